@@ -1,0 +1,111 @@
+# unroll: build, test, demo, bench and install.
+#
+#   make            build libunroll.a and the unroll command
+#   make demo       install what is missing, build, unroll the samples into out/
+#   make check      install what is missing, build, run every test
+#   make check SANITIZE=1   the same with AddressSanitizer and UBSan
+#   make bench      benchmarks (never part of make check)
+#   make install    PREFIX=/usr/local DESTDIR=
+
+PREFIX ?= /usr/local
+DESTDIR ?=
+BINDIR = $(PREFIX)/bin
+MANDIR = $(PREFIX)/share/man
+PROFILEDIR = $(PREFIX)/share/unroll/profiles
+
+CC ?= cc
+PKG_CONFIG ?= pkg-config
+PACKAGES = libxml-2.0 gsl jansson geos
+TEST_PACKAGES = cmocka
+
+ifeq ($(SANITIZE),1)
+BUILD = build/sanitize
+SANITIZE_FLAGS = -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
+OPTIMISE = -O1 -g
+else
+BUILD = build/release
+SANITIZE_FLAGS =
+OPTIMISE = -O2 -g
+endif
+
+# Recursive (=) so that pkg-config is asked only once install-deps has run.
+CFLAGS_ALL = -std=c11 -D_POSIX_C_SOURCE=200809L -Wall -Wextra -Wpedantic -Werror \
+	-Wshadow -Wstrict-prototypes $(OPTIMISE) $(SANITIZE_FLAGS) -Iinclude \
+	-DUR_PROFILE_DIR='"$(PROFILEDIR)"' $(shell $(PKG_CONFIG) --cflags $(PACKAGES)) $(CFLAGS)
+LDLIBS_ALL = $(shell $(PKG_CONFIG) --libs $(PACKAGES)) -lm $(LDLIBS)
+LDFLAGS_ALL = $(SANITIZE_FLAGS) $(LDFLAGS)
+
+LIB_SOURCES = $(wildcard src/base/*.c src/geom/*.c src/surface/*.c src/develop/*.c \
+	src/allow/*.c src/nest/*.c src/io/*.c src/out/*.c)
+CLI_SOURCES = $(wildcard src/cli/*.c)
+UNIT_SOURCES = $(wildcard tests/unit/test_*.c)
+BENCH_SOURCES = $(wildcard bench/*.c)
+
+LIB_OBJECTS = $(LIB_SOURCES:%.c=$(BUILD)/%.o)
+CLI_OBJECTS = $(CLI_SOURCES:%.c=$(BUILD)/%.o)
+UNIT_BINARIES = $(UNIT_SOURCES:tests/unit/%.c=$(BUILD)/tests/%)
+BENCH_BINARIES = $(BENCH_SOURCES:bench/%.c=$(BUILD)/bench/%)
+
+LIBRARY = $(BUILD)/libunroll.a
+PROGRAM = $(BUILD)/unroll
+
+.PHONY: all demo check test deps bench install clean format
+
+all: $(PROGRAM)
+
+$(BUILD)/%.o: %.c
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_ALL) -MMD -MP -c $< -o $@
+
+$(LIBRARY): $(LIB_OBJECTS)
+	@mkdir -p $(dir $@)
+	rm -f $@
+	ar rcs $@ $^
+
+$(PROGRAM): $(CLI_OBJECTS) $(LIBRARY)
+	$(CC) $(LDFLAGS_ALL) -o $@ $(CLI_OBJECTS) $(LIBRARY) $(LDLIBS_ALL)
+
+$(BUILD)/tests/%: tests/unit/%.c $(LIBRARY)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_ALL) $(shell $(PKG_CONFIG) --cflags $(TEST_PACKAGES)) -o $@ $< \
+		$(LIBRARY) $(LDFLAGS_ALL) $(LDLIBS_ALL) $(shell $(PKG_CONFIG) --libs $(TEST_PACKAGES))
+
+$(BUILD)/bench/%: bench/%.c $(LIBRARY)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_ALL) -o $@ $< $(LIBRARY) $(LDFLAGS_ALL) $(LDLIBS_ALL)
+
+deps:
+	@scripts/install-deps
+
+# The sub-make evaluates pkg-config after install-deps has put the libraries in.
+demo: deps
+	@$(MAKE) --no-print-directory $(PROGRAM)
+	@UNROLL=$(PROGRAM) scripts/demo
+
+check: deps
+	@$(MAKE) --no-print-directory test
+
+test: $(PROGRAM) $(UNIT_BINARIES)
+	@UNROLL=$(PROGRAM) UNIT_TESTS="$(UNIT_BINARIES)" tests/run-tests
+
+bench: deps
+	@$(MAKE) --no-print-directory $(PROGRAM) $(BENCH_BINARIES)
+	@UNROLL=$(PROGRAM) BENCHES="$(BENCH_BINARIES)" bench/run-benches
+
+install: $(PROGRAM)
+	install -d $(DESTDIR)$(BINDIR) $(DESTDIR)$(MANDIR)/man1 $(DESTDIR)$(MANDIR)/man5
+	install -m 755 $(PROGRAM) $(DESTDIR)$(BINDIR)/unroll
+	install -m 644 man/unroll.1 $(DESTDIR)$(MANDIR)/man1/unroll.1
+	install -m 644 man/unroll-profile.5 $(DESTDIR)$(MANDIR)/man5/unroll-profile.5
+	for dir in machines materials schema; do \
+		install -d $(DESTDIR)$(PROFILEDIR)/$$dir && \
+		install -m 644 profiles/$$dir/* $(DESTDIR)$(PROFILEDIR)/$$dir/ || exit 1; \
+	done
+
+format:
+	clang-format -i $$(git ls-files '*.c' '*.h')
+
+clean:
+	rm -rf build out
+
+-include $(LIB_OBJECTS:.o=.d) $(CLI_OBJECTS:.o=.d)

@@ -1,0 +1,67 @@
+/*
+ * unroll/base.h: the vocabulary every module shares: status codes, error
+ * messages and the cutting operations.
+ *
+ * The library never prints and never exits.  Every function that can fail
+ * returns a ur_status and, when it fails, fills a caller-owned ur_error with
+ * one sentence the caller can show as it is.
+ */
+#ifndef UNROLL_BASE_H
+#define UNROLL_BASE_H
+
+#include <stdarg.h>
+#include <stddef.h>
+
+#define UR_VERSION "0.1.0"
+
+/* The values double as the command's exit status. */
+typedef enum ur_status {
+    UR_OK = 0,
+    UR_ERROR_INTERNAL = 1, /* out of memory, a library failure, a bug */
+    UR_ERROR_INPUT = 2,    /* bad input: a file, a line, an option */
+} ur_status;
+
+typedef struct ur_error {
+    ur_status status;
+    char message[1024];
+} ur_error;
+
+/* Fills error (which may be NULL) with a printf-style message; returns status. */
+ur_status ur_error_set(ur_error *error, ur_status status, const char *format, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+
+/* Prefixes an existing message with more context, e.g. the option name. */
+ur_status ur_error_prefix(ur_error *error, const char *format, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+
+void ur_error_clear(ur_error *error);
+
+/* Out-of-memory in one place so every caller words it the same. */
+ur_status ur_error_out_of_memory(ur_error *error);
+
+/* What the cutter does with a path.  Writers map each to a layer. */
+typedef enum ur_op {
+    UR_OP_CUT = 0, /* through cut */
+    UR_OP_SCORE,   /* fold line: partial power or dashed */
+    UR_OP_KERF,    /* kerf-bending and relief cuts */
+    UR_OP_ENGRAVE, /* labels */
+    UR_OP_MARK,    /* glue and overlap zones, alignment marks */
+    UR_OP_COUNT
+} ur_op;
+
+/* "cut", "score", "kerf", "engrave", "mark". */
+const char *ur_op_name(ur_op op);
+
+/* Inverse of ur_op_name; returns UR_OP_COUNT for an unknown name. */
+ur_op ur_op_from_name(const char *name);
+
+/* Allocation helpers that fill error on failure and return NULL. */
+void *ur_alloc_array(size_t count, size_t size, ur_error *error);
+
+#endif

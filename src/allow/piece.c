@@ -1,0 +1,72 @@
+/*
+ * piece.c: pieces (what will be cut) and building one from a flat net.
+ *
+ * For now the only allowance is none: the net's outline becomes the CUT path
+ * and, on request, its rulings become SCORE lines.  Glue tabs, kerfing and
+ * overlaps will be added here, fed by the same net.
+ */
+#include "unroll/allow.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+ur_status ur_piece_add_path(ur_piece *piece, ur_op op, const ur_vec2 *points, size_t count,
+                            bool closed, ur_error *error)
+{
+    ur_path *paths = realloc(piece->paths, (piece->path_count + 1) * sizeof *paths);
+    if (!paths)
+        return ur_error_out_of_memory(error);
+    piece->paths = paths;
+    ur_vec2 *copy = ur_alloc_array(count, sizeof *copy, error);
+    if (!copy)
+        return UR_ERROR_INTERNAL;
+    memcpy(copy, points, count * sizeof *copy);
+    if (piece->path_count == 0)
+        piece->box = ur_box_empty();
+    for (size_t i = 0; i < count; i++)
+        ur_box_add(&piece->box, points[i]);
+    ur_path *path = &piece->paths[piece->path_count++];
+    path->op = op;
+    path->closed = closed;
+    path->points = copy;
+    path->count = count;
+    return UR_OK;
+}
+
+static ur_status add_rulings(ur_piece *piece, const ur_net *net, ur_error *error)
+{
+    for (size_t i = 0; i < net->ruling_count; i++) {
+        ur_vec2 ends[2] = {net->rulings[i].start, net->rulings[i].end};
+        ur_status status = ur_piece_add_path(piece, UR_OP_SCORE, ends, 2, false, error);
+        if (status != UR_OK)
+            return status;
+    }
+    return UR_OK;
+}
+
+ur_status ur_piece_from_net(const ur_net *net, const ur_allowance_options *options,
+                            ur_piece *piece, ur_error *error)
+{
+    memset(piece, 0, sizeof *piece);
+    snprintf(piece->name, sizeof piece->name, "%s", net->name);
+    piece->measures.area_3d = net->area_3d;
+    piece->measures.flat_area = net->flat_area;
+    piece->measures.edge_error = net->edge_error;
+    ur_status status =
+        ur_piece_add_path(piece, UR_OP_CUT, net->outline, net->outline_count, true, error);
+    if (status == UR_OK && options && options->draw_rulings)
+        status = add_rulings(piece, net, error);
+    if (status != UR_OK)
+        ur_piece_free(piece);
+    return status;
+}
+
+void ur_piece_free(ur_piece *piece)
+{
+    for (size_t i = 0; i < piece->path_count; i++)
+        free(piece->paths[i].points);
+    free(piece->paths);
+    piece->paths = NULL;
+    piece->path_count = 0;
+}

@@ -1,0 +1,73 @@
+/*
+ * base.c: error messages and operation names, shared by every module.
+ */
+#include "unroll/base.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+ur_status ur_error_set(ur_error *error, ur_status status, const char *format, ...)
+{
+    if (error) {
+        va_list args;
+        va_start(args, format);
+        vsnprintf(error->message, sizeof error->message, format, args);
+        va_end(args);
+        error->status = status;
+    }
+    return status;
+}
+
+ur_status ur_error_prefix(ur_error *error, const char *format, ...)
+{
+    if (!error)
+        return UR_ERROR_INTERNAL;
+    char prefix[sizeof error->message];
+    char old[sizeof error->message];
+    va_list args;
+    va_start(args, format);
+    vsnprintf(prefix, sizeof prefix, format, args);
+    va_end(args);
+    memcpy(old, error->message, sizeof old);
+    snprintf(error->message, sizeof error->message, "%s%s", prefix, old);
+    return error->status;
+}
+
+void ur_error_clear(ur_error *error)
+{
+    if (error) {
+        error->status = UR_OK;
+        error->message[0] = '\0';
+    }
+}
+
+ur_status ur_error_out_of_memory(ur_error *error)
+{
+    return ur_error_set(error, UR_ERROR_INTERNAL, "out of memory");
+}
+
+static const char *const op_names[UR_OP_COUNT] = {"cut", "score", "kerf", "engrave", "mark"};
+
+const char *ur_op_name(ur_op op)
+{
+    return op < UR_OP_COUNT ? op_names[op] : "unknown";
+}
+
+ur_op ur_op_from_name(const char *name)
+{
+    for (int op = 0; op < UR_OP_COUNT; op++)
+        if (strcmp(name, op_names[op]) == 0)
+            return (ur_op)op;
+    return UR_OP_COUNT;
+}
+
+void *ur_alloc_array(size_t count, size_t size, ur_error *error)
+{
+    if (count == 0)
+        count = 1;
+    void *memory = calloc(count, size);
+    if (!memory)
+        ur_error_out_of_memory(error);
+    return memory;
+}
