@@ -23,14 +23,20 @@ ur_status ur_error_prefix(ur_error *error, const char *format, ...)
 {
     if (!error)
         return UR_ERROR_INTERNAL;
-    char prefix[sizeof error->message];
-    char old[sizeof error->message];
+    char combined[sizeof error->message];
     va_list args;
     va_start(args, format);
-    vsnprintf(prefix, sizeof prefix, format, args);
+    vsnprintf(combined, sizeof combined, format, args);
     va_end(args);
-    memcpy(old, error->message, sizeof old);
-    snprintf(error->message, sizeof error->message, "%s%s", prefix, old);
+    /* Messages are short; whatever does not fit is cut off at the end. */
+    size_t used = strlen(combined);
+    size_t room = sizeof combined - used - 1;
+    size_t old_length = strnlen(error->message, sizeof error->message);
+    if (old_length > room)
+        old_length = room;
+    memcpy(combined + used, error->message, old_length);
+    combined[used + old_length] = '\0';
+    memcpy(error->message, combined, sizeof combined);
     return error->status;
 }
 
