@@ -29,7 +29,7 @@ OPTIMISE = -O2 -g
 endif
 
 # Recursive (=) so that pkg-config is asked only once install-deps has run.
-CFLAGS_ALL = -std=c11 -D_POSIX_C_SOURCE=200809L -Wall -Wextra -Wpedantic -Werror \
+CFLAGS_ALL = -std=c11 -D_XOPEN_SOURCE=700 -Wall -Wextra -Wpedantic -Werror \
 	-Wshadow -Wstrict-prototypes $(OPTIMISE) $(SANITIZE_FLAGS) -Iinclude \
 	-DUR_PROFILE_DIR='"$(PROFILEDIR)"' $(shell $(PKG_CONFIG) --cflags $(PACKAGES)) $(CFLAGS)
 LDLIBS_ALL = $(shell $(PKG_CONFIG) --libs $(PACKAGES)) -lm $(LDLIBS)

@@ -1,0 +1,456 @@
+/*
+ * develop.c: from a developable ruled surface to flat nets.
+ *
+ * Every method produces a "strip": the flat ends of a sequence of rulings.
+ * The exact method integrates the base curve's geodesic curvature with an
+ * adaptive Runge-Kutta-Prince-Dormand (8,9) integrator, at parameters chosen
+ * so that every outline chord stays within the tolerance; the discrete
+ * methods (discrete.c) place triangles or quadrilaterals one after another.
+ * The strip is then cut into the fewest pieces whose outlines do not
+ * overlap themselves (GEOS decides), and each piece becomes a net.
+ */
+#include "develop_internal.h"
+
+#include <geos_c.h>
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_odeiv2.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+const char *ur_method_name(ur_method method)
+{
+    static const char *const names[] = {"exact", "triangle", "quad"};
+    return method <= UR_METHOD_QUAD ? names[method] : "unknown";
+}
+
+int ur_method_from_name(const char *name)
+{
+    for (int method = UR_METHOD_EXACT; method <= UR_METHOD_QUAD; method++)
+        if (strcmp(name, ur_method_name((ur_method)method)) == 0)
+            return method;
+    return -1;
+}
+
+void ur_develop_options_default(ur_develop_options *options)
+{
+    options->method = UR_METHOD_EXACT;
+    options->rulings = 24;
+    options->tolerance = 0.01;
+    options->split = true;
+}
+
+ur_status strip_alloc(strip *s, size_t count, ur_error *error)
+{
+    memset(s, 0, sizeof *s);
+    s->count = count;
+    s->u = ur_alloc_array(count, sizeof *s->u, error);
+    s->near = ur_alloc_array(count, sizeof *s->near, error);
+    s->far = ur_alloc_array(count, sizeof *s->far, error);
+    s->drawn = ur_alloc_array(count, sizeof *s->drawn, error);
+    if (!s->u || !s->near || !s->far || !s->drawn) {
+        strip_free(s);
+        return UR_ERROR_INTERNAL;
+    }
+    return UR_OK;
+}
+
+void strip_free(strip *s)
+{
+    free(s->u);
+    free(s->near);
+    free(s->far);
+    free(s->drawn);
+    memset(s, 0, sizeof *s);
+}
+
+/* ---- Where to sample the exact development ------------------------------ */
+
+enum { CELLS = 256, CELL_PROBES = 4 };
+
+/*
+ * A chord of parameter length h on a curve x(u) strays at most h^2 max|x''|/8
+ * from it.  The flat image of a rail has the rail's arc length and only part
+ * of its curvature (the geodesic part), so |flat x''| <= |3D x''|, and the
+ * 3D second derivative, estimated per cell, bounds the steps needed.
+ */
+static size_t cell_steps(ur_ruled *ruled, double u0, double u1, double tolerance)
+{
+    double largest = 0.0, h = (u1 - u0) / CELL_PROBES;
+    ur_vec3 previous[4], rails[4];
+    ur_ruled_rails(ruled, u0, previous);
+    for (int k = 1; k <= CELL_PROBES; k++) {
+        ur_ruled_rails(ruled, u0 + k * h, rails);
+        largest = fmax(largest, ur_vec3_distance(rails[1], previous[1]) / h);
+        largest = fmax(largest, ur_vec3_distance(rails[3], previous[3]) / h);
+        memcpy(previous, rails, sizeof rails);
+    }
+    double steps = ceil(1.25 * (u1 - u0) * sqrt(largest / (8 * tolerance)));
+    return steps < 1 ? 1 : (size_t)fmin(steps, 1e7);
+}
+
+static int compare_doubles(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* Sample parameters: enough for the tolerance, plus every drawn ruling. */
+static ur_status exact_parameters(ur_ruled *ruled, const ur_develop_options *options, strip *s,
+                                  ur_error *error)
+{
+    double u0 = ur_ruled_start(ruled), u1 = ur_ruled_end(ruled);
+    size_t steps[CELLS], total = 0;
+    for (int c = 0; c < CELLS; c++) {
+        steps[c] = cell_steps(ruled, u0 + (u1 - u0) * c / CELLS,
+                              u0 + (u1 - u0) * (c + 1) / CELLS, options->tolerance);
+        total += steps[c];
+    }
+    size_t parts = options->rulings > 0 ? options->rulings : 1;
+    double *u = ur_alloc_array(total + parts + 1, sizeof *u, error);
+    if (!u)
+        return UR_ERROR_INTERNAL;
+    size_t count = 0;
+    for (int c = 0; c < CELLS; c++)
+        for (size_t k = 0; k < steps[c]; k++)
+            u[count++] = u0 + (u1 - u0) * (c + (double)k / steps[c]) / CELLS;
+    for (size_t k = 1; k < parts; k++)
+        u[count++] = u0 + (u1 - u0) * k / parts;
+    u[count++] = u1;
+    qsort(u, count, sizeof *u, compare_doubles);
+    ur_status status = strip_alloc(s, count, error);
+    if (status != UR_OK) {
+        free(u);
+        return status;
+    }
+    /* Keep one of any two parameters too close to tell apart, preferring drawn ones. */
+    double close = 1e-12 * (u1 - u0);
+    size_t kept = 0;
+    for (size_t i = 0; i < count; i++) {
+        if (kept > 0 && u[i] - s->u[kept - 1] <= close)
+            continue;
+        s->u[kept++] = u[i];
+    }
+    s->count = kept;
+    for (size_t k = 1; k < parts; k++) {
+        double target = u0 + (u1 - u0) * k / parts;
+        double *found = bsearch(&target, s->u, kept, sizeof *s->u, compare_doubles);
+        size_t index = found ? (size_t)(found - s->u) : 0;
+        if (!found) /* merged with a neighbour closer than `close` */
+            for (index = 0; index + 1 < kept && s->u[index + 1] < target; index++)
+                ;
+        s->drawn[index] = true;
+    }
+    free(u);
+    return UR_OK;
+}
+
+/* ---- The exact development ---------------------------------------------- */
+
+/* y = (x, y, theta): the flat base curve and its direction. */
+static int flat_curve_rhs(double u, const double y[], double dydu[], void *data)
+{
+    ur_ruling_intrinsics in;
+    ur_ruled_intrinsics(data, u, &in);
+    dydu[0] = in.speed * cos(y[2]);
+    dydu[1] = in.speed * sin(y[2]);
+    dydu[2] = in.geodesic_curvature * in.speed;
+    return isfinite(dydu[2]) ? GSL_SUCCESS : GSL_EBADFUNC;
+}
+
+static void lay_off_ruling(ur_ruled *ruled, strip *s, size_t i, const double y[3])
+{
+    ur_ruling_intrinsics in;
+    ur_ruled_intrinsics(ruled, s->u[i], &in);
+    ur_vec2 base = {y[0], y[1]};
+    ur_vec2 e = {cos(y[2] + in.angle), sin(y[2] + in.angle)};
+    s->near[i] = ur_vec2_add_scaled(base, e, in.near);
+    s->far[i] = ur_vec2_add_scaled(base, e, in.far);
+}
+
+static ur_status develop_exact(ur_ruled *ruled, const ur_develop_options *options, strip *s,
+                               ur_error *error)
+{
+    ur_status status = exact_parameters(ruled, options, s, error);
+    if (status != UR_OK)
+        return status;
+    gsl_odeiv2_system system = {flat_curve_rhs, NULL, 3, ruled};
+    double span = s->u[s->count - 1] - s->u[0];
+    gsl_odeiv2_driver *driver = gsl_odeiv2_driver_alloc_y_new(
+        &system, gsl_odeiv2_step_rk8pd, span / 64, 1e-11, 1e-12);
+    if (!driver) {
+        strip_free(s);
+        return ur_error_out_of_memory(error);
+    }
+    double y[3] = {0.0, 0.0, 0.0}, u = s->u[0];
+    lay_off_ruling(ruled, s, 0, y);
+    for (size_t i = 1; i < s->count; i++) {
+        int code = gsl_odeiv2_driver_apply(driver, &u, s->u[i], y);
+        if (code != GSL_SUCCESS) {
+            gsl_odeiv2_driver_free(driver);
+            strip_free(s);
+            return ur_error_set(error, UR_ERROR_INTERNAL,
+                                "the development did not converge at u = %g: %s", s->u[i],
+                                gsl_strerror(code));
+        }
+        lay_off_ruling(ruled, s, i, y);
+    }
+    gsl_odeiv2_driver_free(driver);
+    return UR_OK;
+}
+
+/* ---- Splitting into pieces that do not overlap themselves --------------- */
+
+enum { CHECK_POINTS = 6000 };
+
+/* The outline of rulings first..last: near rail forward, far rail back. */
+static size_t piece_ring(const strip *s, size_t first, size_t last, size_t stride,
+                         ur_vec2 *ring)
+{
+    size_t n = 0;
+    for (size_t i = first + (s->skip_first_near ? 1 : 0); i < last; i += stride)
+        ring[n++] = s->near[i];
+    ring[n++] = s->near[last];
+    for (size_t i = last; i > first; i = i - first > stride ? i - stride : first)
+        ring[n++] = s->far[i];
+    ring[n++] = s->far[first];
+    return n;
+}
+
+static bool ring_is_simple(GEOSContextHandle_t geos, const ur_vec2 *ring, size_t n)
+{
+    GEOSCoordSequence *sequence = GEOSCoordSeq_create_r(geos, (unsigned)n + 1, 2);
+    if (!sequence)
+        return false;
+    for (size_t i = 0; i <= n; i++)
+        GEOSCoordSeq_setXY_r(geos, sequence, (unsigned)i, ring[i % n].x, ring[i % n].y);
+    GEOSGeometry *shell = GEOSGeom_createLinearRing_r(geos, sequence);
+    if (!shell)
+        return false;
+    GEOSGeometry *polygon = GEOSGeom_createPolygon_r(geos, shell, NULL, 0);
+    if (!polygon)
+        return false;
+    bool simple = GEOSisValid_r(geos, polygon) == 1;
+    GEOSGeom_destroy_r(geos, polygon);
+    return simple;
+}
+
+static bool piece_is_simple(GEOSContextHandle_t geos, const strip *s, size_t first, size_t last,
+                            ur_vec2 *ring)
+{
+    size_t stride = (last - first) / (CHECK_POINTS / 2) + 1;
+    size_t n = piece_ring(s, first, last, stride, ring);
+    return n >= 3 && ring_is_simple(geos, ring, n);
+}
+
+/* The furthest last such that first..last does not overlap itself. */
+static size_t furthest_simple(GEOSContextHandle_t geos, const strip *s, size_t first,
+                              ur_vec2 *ring)
+{
+    size_t good = first + 1, bad = s->count;
+    if (piece_is_simple(geos, s, first, s->count - 1, ring))
+        return s->count - 1;
+    bad = s->count - 1;
+    while (bad - good > 1) {
+        size_t middle = good + (bad - good) / 2;
+        if (piece_is_simple(geos, s, first, middle, ring))
+            good = middle;
+        else
+            bad = middle;
+    }
+    return good;
+}
+
+/*
+ * Greedy furthest reach gives the fewest pieces (a part of a piece that does
+ * not overlap itself does not either); then, with that many pieces, equal
+ * parameter lengths are tried, since equal pieces are easier to build from.
+ */
+static ur_status split_points(const strip *s, size_t **cuts, size_t *piece_count,
+                              ur_error *error)
+{
+    GEOSContextHandle_t geos = GEOS_init_r();
+    ur_vec2 *ring = ur_alloc_array(CHECK_POINTS + 8, sizeof *ring, error);
+    size_t *greedy = ur_alloc_array(s->count + 1, sizeof *greedy, error);
+    if (!geos || !ring || !greedy) {
+        free(ring);
+        free(greedy);
+        if (geos)
+            GEOS_finish_r(geos);
+        return geos ? UR_ERROR_INTERNAL : ur_error_out_of_memory(error);
+    }
+    size_t count = 0;
+    greedy[0] = 0;
+    for (size_t first = 0; first < s->count - 1;)
+        greedy[++count] = first = furthest_simple(geos, s, first, ring);
+    bool even_ok = count > 1;
+    size_t *even = ur_alloc_array(count + 1, sizeof *even, error);
+    for (size_t k = 0; even && even_ok && k <= count; k++) {
+        double target = s->u[0] + (s->u[s->count - 1] - s->u[0]) * k / count;
+        size_t index = 0;
+        while (index + 1 < s->count && s->u[index + 1] <= target)
+            index++;
+        if (index + 1 < s->count && target - s->u[index] > s->u[index + 1] - target)
+            index++;
+        even[k] = index;
+        if (k > 0 && (even[k] <= even[k - 1] || !piece_is_simple(geos, s, even[k - 1], index, ring)))
+            even_ok = false;
+    }
+    free(ring);
+    GEOS_finish_r(geos);
+    if (!even) {
+        free(greedy);
+        return UR_ERROR_INTERNAL;
+    }
+    if (even_ok) {
+        free(greedy);
+        *cuts = even;
+    } else {
+        free(even);
+        *cuts = greedy;
+    }
+    *piece_count = count;
+    return UR_OK;
+}
+
+/* ---- From strip pieces to nets ------------------------------------------ */
+
+static double polyline_length_range(const ur_vec2 *points, size_t first, size_t last)
+{
+    return ur_polyline_length(points + first, last - first + 1, false);
+}
+
+static double relative_error(double flat, double space)
+{
+    return space > 0 ? fabs(flat - space) / space : 0.0;
+}
+
+/* Compares the flat boundary lengths with those of the 3D surface. */
+static ur_status measure_edges(ur_ruled *ruled, const strip *s, size_t first, size_t last,
+                               ur_net *net, ur_error *error)
+{
+    size_t near_first = first + (s->skip_first_near ? 1 : 0);
+    double near_3d, far_3d;
+    ur_status status =
+        ur_ruled_rail_length(ruled, 0, s->u[near_first], s->u[last], &near_3d, error);
+    if (status == UR_OK)
+        status = ur_ruled_rail_length(ruled, 1, s->u[first], s->u[last], &far_3d, error);
+    if (status != UR_OK)
+        return status;
+    ur_vec3 rails[4];
+    ur_ruled_rails(ruled, s->u[last], rails);
+    double ruling_3d = ur_vec3_distance(rails[0], rails[2]);
+    double errors[3] = {
+        relative_error(polyline_length_range(s->near, near_first, last), near_3d),
+        relative_error(polyline_length_range(s->far, first, last), far_3d),
+        relative_error(ur_vec2_distance(s->near[last], s->far[last]), ruling_3d),
+    };
+    net->edge_error = fmax(errors[0], fmax(errors[1], errors[2]));
+    return UR_OK;
+}
+
+static void add_seam(ur_net *net, const strip *s, size_t i)
+{
+    ur_segment seam = {s->near[i], s->far[i]};
+    net->seams[net->seam_count++] = seam;
+}
+
+static void reverse_ring(ur_vec2 *ring, size_t n)
+{
+    for (size_t i = 0, j = n - 1; i < j; i++, j--) {
+        ur_vec2 swap = ring[i];
+        ring[i] = ring[j];
+        ring[j] = swap;
+    }
+}
+
+static ur_status fill_net(ur_ruled *ruled, const strip *s, size_t first, size_t last,
+                          bool seam_before, bool seam_after, ur_net *net, ur_error *error)
+{
+    size_t capacity = 2 * (last - first + 1);
+    net->outline = ur_alloc_array(capacity, sizeof *net->outline, error);
+    net->rulings = ur_alloc_array(last - first + 1, sizeof *net->rulings, error);
+    if (!net->outline || !net->rulings)
+        return UR_ERROR_INTERNAL;
+    net->outline_count = piece_ring(s, first, last, 1, net->outline);
+    double area = ur_polygon_signed_area(net->outline, net->outline_count);
+    if (area < 0)
+        reverse_ring(net->outline, net->outline_count);
+    net->flat_area = fabs(area);
+    for (size_t i = first + 1; i < last; i++)
+        if (s->drawn[i]) {
+            ur_segment ruling = {s->near[i], s->far[i]};
+            net->rulings[net->ruling_count++] = ruling;
+        }
+    if (seam_before)
+        add_seam(net, s, first);
+    if (seam_after)
+        add_seam(net, s, last);
+    net->u_start = s->u[first];
+    net->u_end = s->u[last];
+    ur_status status = ur_ruled_area(ruled, net->u_start, net->u_end, &net->area_3d, error);
+    if (status == UR_OK)
+        status = measure_edges(ruled, s, first, last, net, error);
+    return status;
+}
+
+static ur_status nets_from_strip(ur_ruled *ruled, const strip *s, const size_t *cuts,
+                                 size_t piece_count, ur_net_list *nets, ur_error *error)
+{
+    nets->nets = ur_alloc_array(piece_count, sizeof *nets->nets, error);
+    if (!nets->nets)
+        return UR_ERROR_INTERNAL;
+    nets->count = piece_count;
+    bool closed = ur_ruled_is_closed(ruled);
+    for (size_t k = 0; k < piece_count; k++) {
+        ur_net *net = &nets->nets[k];
+        snprintf(net->name, sizeof net->name, "P%zu", k + 1);
+        ur_status status = fill_net(ruled, s, cuts[k], cuts[k + 1], k > 0 || closed,
+                                    k + 1 < piece_count || closed, net, error);
+        if (status != UR_OK) {
+            ur_net_list_free(nets);
+            return status;
+        }
+    }
+    return UR_OK;
+}
+
+ur_status ur_develop(ur_ruled *ruled, const ur_develop_options *options, ur_net_list *nets,
+                     ur_error *error)
+{
+    memset(nets, 0, sizeof *nets);
+    gsl_set_error_handler_off();
+    if (!(options->tolerance > 0))
+        return ur_error_set(error, UR_ERROR_INPUT, "the tolerance must be positive");
+    ur_status status = ur_ruled_check(ruled, error);
+    if (status != UR_OK)
+        return status;
+    strip s;
+    if (options->method == UR_METHOD_EXACT)
+        status = develop_exact(ruled, options, &s, error);
+    else
+        status = develop_discrete(ruled, options, &s, error);
+    if (status != UR_OK)
+        return status;
+    size_t *cuts = NULL, piece_count = 0;
+    status = split_points(&s, &cuts, &piece_count, error);
+    if (status == UR_OK && piece_count > 1 && !options->split)
+        status = ur_error_set(error, UR_ERROR_INPUT,
+                              "the net overlaps itself and would need %zu pieces", piece_count);
+    if (status == UR_OK)
+        status = nets_from_strip(ruled, &s, cuts, piece_count, nets, error);
+    free(cuts);
+    strip_free(&s);
+    return status;
+}
+
+void ur_net_list_free(ur_net_list *nets)
+{
+    for (size_t k = 0; k < nets->count; k++) {
+        free(nets->nets[k].outline);
+        free(nets->nets[k].rulings);
+    }
+    free(nets->nets);
+    nets->nets = NULL;
+    nets->count = 0;
+}
