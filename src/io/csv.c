@@ -1,0 +1,316 @@
+/*
+ * csv.c: curves as CSV text, one "x,y,z" point per line.  Edges of regression
+ * and rails come in this form; the reader refuses anything the geometry code
+ * could choke on later (too few points, NaN, repeated points) and names the
+ * file and line, the writer replaces its file atomically so a failed write
+ * never leaves half a curve behind.
+ */
+#include "unroll/io.h"
+
+#include <ctype.h>
+#include <errno.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+/* A curve shorter than this has no usable tangent, normal and binormal. */
+#define UR_CURVE_MIN_POINTS 4
+
+/* Longest field quoted back in a message: enough to recognise it. */
+#define UR_FIELD_QUOTE_MAX 40
+
+/* ---- Reading ----------------------------------------------------------- */
+
+typedef struct ur_point_list {
+    ur_vec3 *items;
+    size_t count, capacity;
+    size_t *lines; /* the line each point came from, for "repeats" messages */
+} ur_point_list;
+
+static void point_list_free(ur_point_list *list)
+{
+    free(list->items);
+    free(list->lines);
+    list->items = NULL;
+    list->lines = NULL;
+    list->count = list->capacity = 0;
+}
+
+static ur_status point_list_push(ur_point_list *list, ur_vec3 point, size_t line,
+                                 ur_error *error)
+{
+    if (list->count == list->capacity) {
+        size_t capacity = list->capacity ? 2 * list->capacity : 64;
+        if (capacity > SIZE_MAX / sizeof(ur_vec3))
+            return ur_error_out_of_memory(error);
+        ur_vec3 *items = realloc(list->items, capacity * sizeof *items);
+        if (!items)
+            return ur_error_out_of_memory(error);
+        list->items = items;
+        size_t *lines = realloc(list->lines, capacity * sizeof *lines);
+        if (!lines)
+            return ur_error_out_of_memory(error);
+        list->lines = lines;
+        list->capacity = capacity;
+    }
+    list->items[list->count] = point;
+    list->lines[list->count] = line;
+    list->count++;
+    return UR_OK;
+}
+
+/* Trims white space (including the '\r' of CRLF files) in place. */
+static char *trim(char *text)
+{
+    while (isspace((unsigned char)*text))
+        text++;
+    size_t length = strlen(text);
+    while (length > 0 && isspace((unsigned char)text[length - 1]))
+        text[--length] = '\0';
+    return text;
+}
+
+static ur_status parse_coordinate(const char *path, size_t line, char *field, double *value,
+                                  ur_error *error)
+{
+    field = trim(field);
+    if (*field == '\0')
+        return ur_error_set(error, UR_ERROR_INPUT, "%s:%zu: empty field", path, line);
+    char *end = NULL;
+    double parsed = strtod(field, &end);
+    if (end == field || *end != '\0')
+        return ur_error_set(error, UR_ERROR_INPUT, "%s:%zu: '%.*s' is not a number", path, line,
+                            UR_FIELD_QUOTE_MAX, field);
+    /* strtod accepts "nan" and "inf" and overflows to infinity: refuse all. */
+    if (!isfinite(parsed))
+        return ur_error_set(error, UR_ERROR_INPUT, "%s:%zu: '%.*s' is not a finite number",
+                            path, line, UR_FIELD_QUOTE_MAX, field);
+    *value = parsed;
+    return UR_OK;
+}
+
+/* Splits "x,y,z" (comment already removed) into a point. */
+static ur_status parse_point(const char *path, size_t line, char *text, ur_vec3 *point,
+                             ur_error *error)
+{
+    char *fields[3];
+    size_t field_count = 0;
+    char *cursor = text;
+    for (;;) {
+        char *comma = strchr(cursor, ',');
+        if (field_count < 3)
+            fields[field_count] = cursor;
+        field_count++;
+        if (!comma)
+            break;
+        *comma = '\0';
+        cursor = comma + 1;
+    }
+    if (field_count != 3)
+        return ur_error_set(error, UR_ERROR_INPUT,
+                            "%s:%zu: expected 3 fields 'x,y,z', found %zu", path, line,
+                            field_count);
+    double xyz[3];
+    for (int i = 0; i < 3; i++) {
+        ur_status status = parse_coordinate(path, line, fields[i], &xyz[i], error);
+        if (status != UR_OK)
+            return status;
+    }
+    *point = ur_vec3_make(xyz[0], xyz[1], xyz[2]);
+    return UR_OK;
+}
+
+static bool same_point(ur_vec3 a, ur_vec3 b)
+{
+    return a.x == b.x && a.y == b.y && a.z == b.z;
+}
+
+/* Handles one line of the file; blank and comment-only lines add nothing. */
+static ur_status read_line(const char *path, size_t line, char *text, ur_point_list *list,
+                           ur_error *error)
+{
+    char *comment = strchr(text, '#');
+    if (comment)
+        *comment = '\0';
+    text = trim(text);
+    if (*text == '\0')
+        return UR_OK;
+    ur_vec3 point = {0, 0, 0};
+    ur_status status = parse_point(path, line, text, &point, error);
+    if (status != UR_OK)
+        return status;
+    /* A zero-length segment has no direction: tangents would be NaN. */
+    if (list->count > 0 && same_point(point, list->items[list->count - 1]))
+        return ur_error_set(error, UR_ERROR_INPUT, "%s:%zu: repeats the point on line %zu",
+                            path, line, list->lines[list->count - 1]);
+    return point_list_push(list, point, line, error);
+}
+
+static ur_status read_all_lines(FILE *file, const char *path, ur_point_list *list,
+                                ur_error *error)
+{
+    char *buffer = NULL;
+    size_t buffer_size = 0;
+    size_t line = 0;
+    ur_status status = UR_OK;
+    errno = 0;
+    while (getline(&buffer, &buffer_size, file) >= 0) {
+        line++;
+        status = read_line(path, line, buffer, list, error);
+        if (status != UR_OK)
+            break;
+        errno = 0;
+    }
+    if (status == UR_OK && ferror(file))
+        status = ur_error_set(error, UR_ERROR_INPUT, "%s: cannot read: %s", path,
+                              strerror(errno ? errno : EIO));
+    free(buffer);
+    return status;
+}
+
+ur_status ur_curve_csv_read(const char *path, ur_vec3 **points, size_t *count, bool *closed,
+                            ur_error *error)
+{
+    *points = NULL;
+    *count = 0;
+    *closed = false;
+    FILE *file = fopen(path, "r");
+    if (!file)
+        return ur_error_set(error, UR_ERROR_INPUT, "%s: cannot open: %s", path,
+                            strerror(errno));
+    ur_point_list list = {0};
+    ur_status status = read_all_lines(file, path, &list, error);
+    if (fclose(file) != 0 && status == UR_OK)
+        status = ur_error_set(error, UR_ERROR_INPUT, "%s: cannot read: %s", path,
+                              strerror(errno));
+    if (status != UR_OK) {
+        point_list_free(&list);
+        return status;
+    }
+    bool is_closed = list.count > 1 && same_point(list.items[0], list.items[list.count - 1]);
+    if (is_closed)
+        list.count--;
+    if (list.count < UR_CURVE_MIN_POINTS) {
+        size_t found = list.count;
+        point_list_free(&list);
+        return ur_error_set(error, UR_ERROR_INPUT,
+                            "%s: a curve needs at least %d points, found %zu", path,
+                            UR_CURVE_MIN_POINTS, found);
+    }
+    free(list.lines);
+    *points = list.items;
+    *count = list.count;
+    *closed = is_closed;
+    return UR_OK;
+}
+
+/* ---- Writing ----------------------------------------------------------- */
+
+/* "DIR/NAME" -> "DIR/.NAME.XXXXXX": same directory, so rename() is atomic. */
+static ur_status temp_path_for(const char *path, char **temp, ur_error *error)
+{
+    const char *slash = strrchr(path, '/');
+    const char *name = slash ? slash + 1 : path;
+    size_t dir_length = (size_t)(name - path);
+    if (*name == '\0')
+        return ur_error_set(error, UR_ERROR_INPUT, "%s: not a file name", path);
+    static const char suffix[] = ".XXXXXX";
+    size_t size = strlen(path) + 1 + sizeof suffix;
+    *temp = ur_alloc_array(size, 1, error);
+    if (!*temp)
+        return UR_ERROR_INTERNAL;
+    memcpy(*temp, path, dir_length);
+    (*temp)[dir_length] = '.';
+    strcpy(*temp + dir_length + 1, name);
+    strcat(*temp, suffix);
+    return UR_OK;
+}
+
+static ur_status write_points(FILE *file, const char *path, const ur_vec3 *points, size_t count,
+                              ur_error *error)
+{
+    char line[128];
+    int length = snprintf(line, sizeof line, "# unroll curve: x,y,z in mm, %zu points\n", count);
+    if (length < 0 || (size_t)length >= sizeof line ||
+        fwrite(line, 1, (size_t)length, file) != (size_t)length)
+        return ur_error_set(error, UR_ERROR_INPUT, "%s: cannot write: %s", path,
+                            strerror(errno));
+    for (size_t i = 0; i < count; i++) {
+        /* %.17g round-trips every double exactly. */
+        length = snprintf(line, sizeof line, "%.17g,%.17g,%.17g\n", points[i].x, points[i].y,
+                          points[i].z);
+        if (length < 0 || (size_t)length >= sizeof line ||
+            fwrite(line, 1, (size_t)length, file) != (size_t)length)
+            return ur_error_set(error, UR_ERROR_INPUT, "%s: cannot write: %s", path,
+                                strerror(errno));
+    }
+    return UR_OK;
+}
+
+/* Writes, flushes to disk and closes; the FILE is closed whatever happens. */
+static ur_status write_and_close(FILE *file, const char *path, const ur_vec3 *points,
+                                 size_t count, ur_error *error)
+{
+    ur_status status = write_points(file, path, points, count, error);
+    if (status == UR_OK && fflush(file) != 0)
+        status = ur_error_set(error, UR_ERROR_INPUT, "%s: cannot write: %s", path,
+                              strerror(errno));
+    if (status == UR_OK && fsync(fileno(file)) != 0)
+        status = ur_error_set(error, UR_ERROR_INPUT, "%s: cannot write: %s", path,
+                              strerror(errno));
+    if (fclose(file) != 0 && status == UR_OK)
+        status = ur_error_set(error, UR_ERROR_INPUT, "%s: cannot write: %s", path,
+                              strerror(errno));
+    return status;
+}
+
+static ur_status check_finite(const char *path, const ur_vec3 *points, size_t count,
+                              ur_error *error)
+{
+    for (size_t i = 0; i < count; i++)
+        if (!isfinite(points[i].x) || !isfinite(points[i].y) || !isfinite(points[i].z))
+            return ur_error_set(error, UR_ERROR_INTERNAL,
+                                "%s: point %zu is not finite; refusing to write it", path,
+                                i + 1);
+    return UR_OK;
+}
+
+ur_status ur_curve_csv_write(const char *path, const ur_vec3 *points, size_t count,
+                             ur_error *error)
+{
+    /* The reader would refuse NaN: better to fail here than write a bad file. */
+    ur_status status = check_finite(path, points, count, error);
+    if (status != UR_OK)
+        return status;
+    char *temp = NULL;
+    status = temp_path_for(path, &temp, error);
+    if (status != UR_OK)
+        return status;
+    int fd = mkstemp(temp);
+    if (fd < 0) {
+        status = ur_error_set(error, UR_ERROR_INPUT, "%s: cannot create a temporary file: %s",
+                              path, strerror(errno));
+        free(temp);
+        return status;
+    }
+    /* mkstemp creates 0600; a curve is an ordinary document. */
+    FILE *file = fchmod(fd, 0644) == 0 ? fdopen(fd, "w") : NULL;
+    if (!file) {
+        status = ur_error_set(error, UR_ERROR_INPUT, "%s: cannot write: %s", path,
+                              strerror(errno));
+        close(fd);
+    } else {
+        status = write_and_close(file, path, points, count, error);
+    }
+    if (status == UR_OK && rename(temp, path) != 0)
+        status = ur_error_set(error, UR_ERROR_INPUT, "%s: cannot replace: %s", path,
+                              strerror(errno));
+    if (status != UR_OK)
+        unlink(temp);
+    free(temp);
+    return status;
+}
