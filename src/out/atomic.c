@@ -1,0 +1,199 @@
+/*
+ * atomic.c: temporary file next to the final name, flushed to disk, renamed
+ * into place on commit.  Shared by every writer in src/out/ so there is one
+ * copy of the fiddly part (see atomic.h for the life of a file).
+ *
+ * Failures of the file system (missing directory, no permission, disk full)
+ * are UR_ERROR_INPUT: they concern the output path the user gave, not a bug.
+ */
+#include "atomic.h"
+
+#include <errno.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+static char *copy_string(const char *text, ur_error *error)
+{
+    size_t size = strlen(text) + 1;
+    char *copy = malloc(size);
+    if (!copy) {
+        ur_error_out_of_memory(error);
+        return NULL;
+    }
+    memcpy(copy, text, size);
+    return copy;
+}
+
+/* The directory part of path: "." for a bare name, "/" for "/name". */
+static char *directory_of(const char *path, ur_error *error)
+{
+    const char *slash = strrchr(path, '/');
+    if (!slash)
+        return copy_string(".", error);
+    size_t length = slash == path ? 1 : (size_t)(slash - path);
+    char *directory = malloc(length + 1);
+    if (!directory) {
+        ur_error_out_of_memory(error);
+        return NULL;
+    }
+    memcpy(directory, path, length);
+    directory[length] = '\0';
+    return directory;
+}
+
+/* Refuses, with a message naming it, a directory that is not there. */
+static ur_status check_directory(const char *path, ur_error *error)
+{
+    const char *slash = strrchr(path, '/');
+    const char *base = slash ? slash + 1 : path;
+    if (*base == '\0')
+        return ur_error_set(error, UR_ERROR_INPUT, "cannot write '%s': it names a directory", path);
+    char *directory = directory_of(path, error);
+    if (!directory)
+        return UR_ERROR_INTERNAL;
+    struct stat info;
+    ur_status status = UR_OK;
+    if (stat(directory, &info) != 0) {
+        if (errno == ENOENT || errno == ENOTDIR)
+            status =
+                ur_error_set(error, UR_ERROR_INPUT,
+                             "cannot write '%s': directory '%s' does not exist", path, directory);
+        else
+            status = ur_error_set(error, UR_ERROR_INPUT, "cannot write '%s': %s: %s", path,
+                                  directory, strerror(errno));
+    } else if (!S_ISDIR(info.st_mode)) {
+        status = ur_error_set(error, UR_ERROR_INPUT, "cannot write '%s': '%s' is not a directory",
+                              path, directory);
+    }
+    free(directory);
+    return status;
+}
+
+/* "DIR/.BASE.XXXXXX" for mkstemp: hidden, and in the same directory as path. */
+static char *temp_template(const char *path, ur_error *error)
+{
+    const char *slash = strrchr(path, '/');
+    size_t directory_length = slash ? (size_t)(slash - path) + 1 : 0;
+    const char *base = path + directory_length;
+    static const char suffix[] = ".XXXXXX";
+    size_t size = directory_length + 1 + strlen(base) + sizeof suffix;
+    char *name = malloc(size);
+    if (!name) {
+        ur_error_out_of_memory(error);
+        return NULL;
+    }
+    memcpy(name, path, directory_length);
+    name[directory_length] = '.';
+    strcpy(name + directory_length + 1, base);
+    strcat(name, suffix);
+    return name;
+}
+
+/*
+ * mkstemp creates 0600; give the file the mode open(2) would have given it.
+ * umask() can only be read by setting it, so it is set back at once.
+ */
+static int newly_created_mode(void)
+{
+    mode_t mask = umask(0);
+    umask(mask);
+    return (int)(0666 & ~mask);
+}
+
+/* Creates the temporary and opens a stream on it; removes it on failure. */
+static ur_status create_temp(ur_atomic_file *file, ur_error *error)
+{
+    int fd = mkstemp(file->temp_path);
+    if (fd < 0) {
+        ur_status status = ur_error_set(error, UR_ERROR_INPUT, "cannot write '%s': %s", file->path,
+                                        strerror(errno));
+        free(file->temp_path); /* nothing was created */
+        file->temp_path = NULL;
+        return status;
+    }
+    if (fchmod(fd, (mode_t)newly_created_mode()) != 0) {
+        ur_error_set(error, UR_ERROR_INPUT, "cannot write '%s': %s", file->path, strerror(errno));
+        close(fd);
+        return UR_ERROR_INPUT;
+    }
+    file->stream = fdopen(fd, "w");
+    if (!file->stream) {
+        ur_error_set(error, UR_ERROR_INPUT, "cannot write '%s': %s", file->path, strerror(errno));
+        close(fd);
+        return UR_ERROR_INPUT;
+    }
+    return UR_OK;
+}
+
+ur_status ur_atomic_open(ur_atomic_file *file, const char *path, ur_error *error)
+{
+    memset(file, 0, sizeof *file);
+    ur_status status = check_directory(path, error);
+    if (status != UR_OK)
+        return status;
+    file->path = copy_string(path, error);
+    if (!file->path)
+        return UR_ERROR_INTERNAL;
+    file->temp_path = temp_template(path, error);
+    if (!file->temp_path) {
+        ur_atomic_discard(file);
+        return UR_ERROR_INTERNAL;
+    }
+    status = create_temp(file, error);
+    if (status != UR_OK)
+        ur_atomic_discard(file);
+    return status;
+}
+
+ur_status ur_atomic_close(ur_atomic_file *file, ur_error *error)
+{
+    if (!file->stream)
+        return ur_error_set(error, UR_ERROR_INTERNAL, "'%s' is not open", file->path);
+    FILE *stream = file->stream;
+    file->stream = NULL;
+    /*
+     * A write error may surface only here: in the buffer, the sync or the
+     * close.  errno is cleared so that an error flag left by an earlier
+     * fwrite is not blamed on some unrelated older errno.
+     */
+    int cause = 0;
+    errno = 0;
+    if (fflush(stream) != 0 || ferror(stream))
+        cause = errno ? errno : EIO;
+    else if (fsync(fileno(stream)) != 0)
+        cause = errno;
+    if (fclose(stream) != 0 && cause == 0)
+        cause = errno;
+    if (cause != 0)
+        return ur_error_set(error, UR_ERROR_INPUT, "cannot write '%s': %s", file->path,
+                            strerror(cause));
+    return UR_OK;
+}
+
+ur_status ur_atomic_commit(ur_atomic_file *file, ur_error *error)
+{
+    if (file->stream || !file->temp_path)
+        return ur_error_set(error, UR_ERROR_INTERNAL, "'%s' is not ready to commit",
+                            file->path ? file->path : "(null)");
+    if (rename(file->temp_path, file->path) != 0)
+        return ur_error_set(error, UR_ERROR_INPUT, "cannot write '%s': %s", file->path,
+                            strerror(errno));
+    free(file->temp_path);
+    file->temp_path = NULL;
+    free(file->path);
+    file->path = NULL;
+    return UR_OK;
+}
+
+void ur_atomic_discard(ur_atomic_file *file)
+{
+    if (file->stream)
+        (void)fclose(file->stream); /* the data is thrown away: errors do not matter */
+    if (file->temp_path)
+        unlink(file->temp_path);
+    free(file->temp_path);
+    free(file->path);
+    memset(file, 0, sizeof *file);
+}

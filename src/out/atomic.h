@@ -1,0 +1,46 @@
+/*
+ * atomic.h (private to src/out/): writing a file so that it appears complete
+ * or not at all.
+ *
+ * The data goes to a temporary file ".NAME.XXXXXX" next to the final name
+ * (same directory, hence same file system, so rename() is atomic), is flushed
+ * to disk, and is renamed into place only when the caller commits.  Writers
+ * of several files open them all, write them all, and commit them only once
+ * every one is complete; any failure before that discards every temporary
+ * and leaves what was on disk untouched.
+ *
+ * Life of a file: ur_atomic_open, write to ->stream, ur_atomic_close, then
+ * ur_atomic_commit; ur_atomic_discard at any point undoes what is not yet
+ * committed and frees everything.  A zeroed ur_atomic_file is "nothing yet",
+ * safe to discard.
+ */
+#ifndef UNROLL_OUT_ATOMIC_H
+#define UNROLL_OUT_ATOMIC_H
+
+#include <stdio.h>
+
+#include "unroll/base.h"
+
+typedef struct ur_atomic_file {
+    char *path;      /* owned: the final name */
+    char *temp_path; /* owned: the temporary; NULL once renamed or removed */
+    FILE *stream;    /* open between ur_atomic_open and ur_atomic_close */
+} ur_atomic_file;
+
+/*
+ * Creates the temporary for path, readable as a newly created file would be
+ * (0666 less the umask).  Fails with UR_ERROR_INPUT, naming the directory,
+ * when the directory does not exist.
+ */
+ur_status ur_atomic_open(ur_atomic_file *file, const char *path, ur_error *error);
+
+/* Flushes, syncs and closes the stream; the temporary stays until commit. */
+ur_status ur_atomic_close(ur_atomic_file *file, ur_error *error);
+
+/* Renames the closed temporary to the final name and frees the names. */
+ur_status ur_atomic_commit(ur_atomic_file *file, ur_error *error);
+
+/* Closes and removes whatever is not committed and frees everything. */
+void ur_atomic_discard(ur_atomic_file *file);
+
+#endif

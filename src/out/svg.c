@@ -1,0 +1,304 @@
+/*
+ * svg.c: the SVG format behind writer.h, written with libxml2's xmlTextWriter.
+ *
+ * What laser software expects (DESIGN.md §6, §11): physical width and height
+ * in mm with a viewBox in mm, so 1 user unit = 1 mm; one Inkscape layer group
+ * per operation with the machine's label, colour and hairline width (LightBurn
+ * assigns layers by stroke colour alone); no fill; every path on its own with
+ * absolute coordinates, since some cutter programs mishandle relative ones.
+ * SVG's y axis points down, so y is flipped against the sheet height.
+ *
+ * The XML goes to a memory buffer that is copied to the file after each
+ * layer: libxml2 never touches the FILE, so every I/O error is ours to see
+ * and none is printed by libxml2.
+ */
+#include "writer.h"
+
+#include <errno.h>
+#include <libxml/xmlstring.h>
+#include <libxml/xmlwriter.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define SVG_NAMESPACE "http://www.w3.org/2000/svg"
+#define INKSCAPE_NAMESPACE "http://www.inkscape.org/namespaces/inkscape"
+
+/* Enough for "%.6f" of any finite double (DBL_MAX has 309 digits). */
+enum { NUMBER_SIZE = 400 };
+
+typedef struct svg_sheet {
+    FILE *file;                /* the caller's */
+    xmlBufferPtr buffer;       /* owned: XML not yet copied to file */
+    xmlTextWriterPtr writer;   /* owned: writes into buffer */
+    double height;             /* for the y flip */
+    const ur_machine *machine; /* the caller's */
+    char *data;                /* owned: the d attribute being built, reused */
+    size_t length, capacity;
+} svg_sheet;
+
+/* Millimetres to the nanometre, without trailing zeros. */
+static void format_coordinate(double value, char text[NUMBER_SIZE])
+{
+    snprintf(text, NUMBER_SIZE, "%.6f", value);
+    char *end = text + strlen(text);
+    while (end[-1] == '0')
+        *--end = '\0';
+    if (end[-1] == '.')
+        *--end = '\0';
+    if (strcmp(text, "-0") == 0)
+        strcpy(text, "0");
+}
+
+static ur_status xml_failed(ur_error *error, const char *what)
+{
+    return ur_error_set(error, UR_ERROR_INTERNAL, "SVG writer failed: %s", what);
+}
+
+/* Writes attributes given as name, value pairs, stopping at the first failure. */
+static ur_status write_attributes(xmlTextWriterPtr writer, const char *const (*pairs)[2],
+                                  size_t count, ur_error *error)
+{
+    for (size_t i = 0; i < count; i++)
+        if (xmlTextWriterWriteAttribute(writer, BAD_CAST pairs[i][0], BAD_CAST pairs[i][1]) < 0)
+            return xml_failed(error, pairs[i][0]);
+    return UR_OK;
+}
+
+/* Copies what libxml2 has produced so far to the file and empties the buffer. */
+static ur_status flush_to_file(svg_sheet *sheet, ur_error *error)
+{
+    if (xmlTextWriterFlush(sheet->writer) < 0)
+        return xml_failed(error, "flush");
+    size_t length = (size_t)xmlBufferLength(sheet->buffer);
+    if (length > 0 && fwrite(xmlBufferContent(sheet->buffer), 1, length, sheet->file) != length)
+        return ur_error_set(error, UR_ERROR_INPUT, "cannot write the SVG file: %s",
+                            strerror(errno));
+    xmlBufferEmpty(sheet->buffer);
+    return UR_OK;
+}
+
+/* Text from the user must be UTF-8 without control characters to be XML 1.0. */
+static ur_status check_text(const char *what, const char *text, ur_error *error)
+{
+    bool usable = xmlCheckUTF8(BAD_CAST text) != 0;
+    for (const unsigned char *c = (const unsigned char *)text; usable && *c; c++)
+        if (*c < 0x20 && *c != '\t' && *c != '\n' && *c != '\r')
+            usable = false;
+    if (!usable)
+        return ur_error_set(error, UR_ERROR_INPUT,
+                            "%s is not UTF-8 text without control characters", what);
+    return UR_OK;
+}
+
+static bool is_colour(const char *colour)
+{
+    if (colour[0] != '#' || strlen(colour) != 7)
+        return false;
+    for (int i = 1; i < 7; i++)
+        if (!strchr("0123456789abcdefABCDEF", colour[i]))
+            return false;
+    return true;
+}
+
+/* A machine filled by hand may carry anything: refuse what SVG cannot show. */
+static ur_status check_style(const ur_machine *machine, ur_op op, ur_error *error)
+{
+    const ur_op_style *style = &machine->styles[op];
+    const char *name = memchr(machine->name, '\0', sizeof machine->name) ? machine->name : "?";
+    if (!memchr(style->layer, '\0', sizeof style->layer) ||
+        !memchr(style->colour, '\0', sizeof style->colour) || !is_colour(style->colour))
+        return ur_error_set(error, UR_ERROR_INPUT,
+                            "machine '%s': the %s layer needs a name and a colour #RRGGBB", name,
+                            ur_op_name(op));
+    if (!isfinite(style->line_width) || style->line_width <= 0)
+        return ur_error_set(error, UR_ERROR_INPUT,
+                            "machine '%s': the %s line width must be a positive number of mm", name,
+                            ur_op_name(op));
+    return check_text("the layer name", style->layer, error);
+}
+
+static ur_status write_root(svg_sheet *sheet, double width, double height, ur_error *error)
+{
+    char width_text[NUMBER_SIZE], height_text[NUMBER_SIZE];
+    char width_mm[NUMBER_SIZE + 2], height_mm[NUMBER_SIZE + 2], view_box[2 * NUMBER_SIZE + 8];
+    format_coordinate(width, width_text);
+    format_coordinate(height, height_text);
+    snprintf(width_mm, sizeof width_mm, "%smm", width_text);
+    snprintf(height_mm, sizeof height_mm, "%smm", height_text);
+    snprintf(view_box, sizeof view_box, "0 0 %s %s", width_text, height_text);
+    const char *const attributes[][2] = {
+        {"xmlns", SVG_NAMESPACE}, {"xmlns:inkscape", INKSCAPE_NAMESPACE},
+        {"version", "1.1"},       {"width", width_mm},
+        {"height", height_mm},    {"viewBox", view_box},
+    };
+    if (xmlTextWriterStartDocument(sheet->writer, NULL, "UTF-8", NULL) < 0 ||
+        xmlTextWriterStartElement(sheet->writer, BAD_CAST "svg") < 0)
+        return xml_failed(error, "svg");
+    return write_attributes(sheet->writer, attributes, sizeof attributes / sizeof *attributes,
+                            error);
+}
+
+static ur_status write_title_and_desc(svg_sheet *sheet, const ur_output_options *options,
+                                      ur_error *error)
+{
+    if (options && options->title) {
+        ur_status status = check_text("the title", options->title, error);
+        if (status != UR_OK)
+            return status;
+        if (xmlTextWriterWriteElement(sheet->writer, BAD_CAST "title", BAD_CAST options->title) < 0)
+            return xml_failed(error, "title");
+    }
+    if (xmlTextWriterWriteElement(sheet->writer, BAD_CAST "desc",
+                                  BAD_CAST "made by unroll " UR_VERSION "; 1 user unit = 1 mm") < 0)
+        return xml_failed(error, "desc");
+    return UR_OK;
+}
+
+static void free_sheet(svg_sheet *sheet)
+{
+    if (sheet->writer)
+        xmlFreeTextWriter(sheet->writer);
+    if (sheet->buffer)
+        xmlBufferFree(sheet->buffer);
+    free(sheet->data);
+    free(sheet);
+}
+
+static ur_status svg_begin_sheet(void **state, FILE *file, double width, double height,
+                                 const ur_machine *machine, const ur_output_options *options,
+                                 ur_error *error)
+{
+    *state = NULL;
+    svg_sheet *sheet = calloc(1, sizeof *sheet);
+    if (!sheet)
+        return ur_error_out_of_memory(error);
+    sheet->file = file;
+    sheet->height = height;
+    sheet->machine = machine;
+    sheet->buffer = xmlBufferCreate();
+    sheet->writer = sheet->buffer ? xmlNewTextWriterMemory(sheet->buffer, 0) : NULL;
+    ur_status status = sheet->writer ? UR_OK : ur_error_out_of_memory(error);
+    if (status == UR_OK && xmlTextWriterSetIndent(sheet->writer, 1) < 0)
+        status = xml_failed(error, "indent");
+    if (status == UR_OK)
+        status = write_root(sheet, width, height, error);
+    if (status == UR_OK)
+        status = write_title_and_desc(sheet, options, error);
+    if (status != UR_OK) {
+        free_sheet(sheet);
+        return status;
+    }
+    *state = sheet;
+    return UR_OK;
+}
+
+static ur_status svg_begin_layer(void *state, ur_op op, ur_error *error)
+{
+    svg_sheet *sheet = state;
+    ur_status status = check_style(sheet->machine, op, error);
+    if (status != UR_OK)
+        return status;
+    const ur_op_style *style = &sheet->machine->styles[op];
+    char width[NUMBER_SIZE];
+    snprintf(width, sizeof width, "%.6g", style->line_width); /* %g: never rounds to 0 */
+    const char *const attributes[][2] = {
+        {"id", ur_op_name(op)},
+        {"inkscape:groupmode", "layer"},
+        {"inkscape:label", style->layer[0] ? style->layer : ur_op_name(op)},
+        {"fill", "none"},
+        {"stroke", style->colour},
+        {"stroke-width", width},
+        {"stroke-linecap", "round"},
+        {"stroke-linejoin", "round"},
+    };
+    if (xmlTextWriterStartElement(sheet->writer, BAD_CAST "g") < 0)
+        return xml_failed(error, "g");
+    return write_attributes(sheet->writer, attributes, sizeof attributes / sizeof *attributes,
+                            error);
+}
+
+static ur_status append(svg_sheet *sheet, const char *text, ur_error *error)
+{
+    size_t length = strlen(text);
+    if (sheet->length + length + 1 > sheet->capacity) {
+        size_t capacity = sheet->capacity ? sheet->capacity : 256;
+        while (capacity < sheet->length + length + 1)
+            capacity *= 2;
+        char *data = realloc(sheet->data, capacity);
+        if (!data)
+            return ur_error_out_of_memory(error);
+        sheet->data = data;
+        sheet->capacity = capacity;
+    }
+    memcpy(sheet->data + sheet->length, text, length + 1);
+    sheet->length += length;
+    return UR_OK;
+}
+
+/* Appends "M x y" or " L x y" for a sheet point, y flipped to point down. */
+static ur_status append_point(svg_sheet *sheet, const char *command, ur_vec2 point, ur_error *error)
+{
+    char x[NUMBER_SIZE], y[NUMBER_SIZE], text[2 * NUMBER_SIZE + 8];
+    format_coordinate(point.x, x);
+    format_coordinate(sheet->height - point.y, y);
+    snprintf(text, sizeof text, "%s %s %s", command, x, y);
+    return append(sheet, text, error);
+}
+
+static ur_status svg_path(void *state, ur_op op, const ur_vec2 *points, size_t count, bool closed,
+                          ur_error *error)
+{
+    (void)op; /* the enclosing layer group carries it */
+    svg_sheet *sheet = state;
+    sheet->length = 0;
+    ur_status status = append(sheet, "", error);
+    for (size_t i = 0; status == UR_OK && i < count; i++)
+        status = append_point(sheet, i == 0 ? "M" : " L", points[i], error);
+    if (status == UR_OK && closed)
+        status = append(sheet, " Z", error);
+    if (status != UR_OK)
+        return status;
+    if (xmlTextWriterStartElement(sheet->writer, BAD_CAST "path") < 0 ||
+        xmlTextWriterWriteAttribute(sheet->writer, BAD_CAST "d", BAD_CAST sheet->data) < 0 ||
+        xmlTextWriterEndElement(sheet->writer) < 0)
+        return xml_failed(error, "path");
+    return UR_OK;
+}
+
+static ur_status svg_end_layer(void *state, ur_op op, ur_error *error)
+{
+    (void)op;
+    svg_sheet *sheet = state;
+    if (xmlTextWriterEndElement(sheet->writer) < 0)
+        return xml_failed(error, "end of g");
+    return flush_to_file(sheet, error);
+}
+
+static ur_status svg_end_sheet(void *state, ur_error *error)
+{
+    svg_sheet *sheet = state;
+    ur_status status = UR_OK;
+    if (xmlTextWriterEndDocument(sheet->writer) < 0) /* closes <svg> too */
+        status = xml_failed(error, "end of document");
+    if (status == UR_OK)
+        status = flush_to_file(sheet, error);
+    free_sheet(sheet);
+    return status;
+}
+
+static void svg_discard_sheet(void *state)
+{
+    free_sheet(state);
+}
+
+const ur_writer ur_svg_writer = {
+    .format = "SVG",
+    .extension = "svg",
+    .begin_sheet = svg_begin_sheet,
+    .begin_layer = svg_begin_layer,
+    .end_layer = svg_end_layer,
+    .path = svg_path,
+    .end_sheet = svg_end_sheet,
+    .discard_sheet = svg_discard_sheet,
+};
