@@ -1,0 +1,194 @@
+/*
+ * layout.c: places pieces on sheets in rows (shelves), top to bottom.
+ *
+ * Each piece is turned so that its smallest enclosing rectangle (GEOS) lies
+ * with its long side horizontal, or a quarter turn from that when only then
+ * it fits.  Pieces go tallest first, left to right, a new row when the row is
+ * full and a new sheet when the sheet is.  True-shape nesting will replace
+ * this behind the same interface.
+ */
+#include "unroll/nest.h"
+
+#include <geos_c.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* The angle that turns the piece's smallest enclosing rectangle level. */
+static double level_angle(GEOSContextHandle_t geos, const ur_path *outline)
+{
+    GEOSCoordSequence *sequence = GEOSCoordSeq_create_r(geos, (unsigned)outline->count, 2);
+    if (!sequence)
+        return 0.0;
+    for (size_t i = 0; i < outline->count; i++)
+        GEOSCoordSeq_setXY_r(geos, sequence, (unsigned)i, outline->points[i].x,
+                             outline->points[i].y);
+    GEOSGeometry *points = GEOSGeom_createLineString_r(geos, sequence);
+    GEOSGeometry *rectangle = points ? GEOSMinimumRotatedRectangle_r(geos, points) : NULL;
+    double angle = 0.0;
+    const GEOSGeometry *ring = rectangle ? GEOSGetExteriorRing_r(geos, rectangle) : NULL;
+    const GEOSCoordSequence *corners = ring ? GEOSGeom_getCoordSeq_r(geos, ring) : NULL;
+    unsigned corner_count = 0;
+    if (corners && GEOSCoordSeq_getSize_r(geos, corners, &corner_count) && corner_count >= 3) {
+        double x[3], y[3];
+        for (unsigned k = 0; k < 3; k++)
+            GEOSCoordSeq_getXY_r(geos, corners, k, &x[k], &y[k]);
+        double first = hypot(x[1] - x[0], y[1] - y[0]);
+        double second = hypot(x[2] - x[1], y[2] - y[1]);
+        angle = first >= second ? atan2(y[1] - y[0], x[1] - x[0])
+                                : atan2(y[2] - y[1], x[2] - x[1]);
+    }
+    if (rectangle)
+        GEOSGeom_destroy_r(geos, rectangle);
+    if (points)
+        GEOSGeom_destroy_r(geos, points);
+    return -angle;
+}
+
+static ur_box turned_box(const ur_piece *piece, double angle)
+{
+    ur_transform2 turn = ur_transform2_make(angle, ur_vec2_make(0, 0));
+    ur_box box = ur_box_empty();
+    for (size_t p = 0; p < piece->path_count; p++)
+        for (size_t i = 0; i < piece->paths[p].count; i++)
+            ur_box_add(&box, ur_transform2_apply(turn, piece->paths[p].points[i]));
+    return box;
+}
+
+typedef struct candidate {
+    size_t index;
+    double angle;
+    ur_box box;
+} candidate;
+
+static bool fits(ur_box box, double width, double height)
+{
+    return ur_box_width(box) <= width && ur_box_height(box) <= height;
+}
+
+static ur_status orient(const ur_piece *piece, GEOSContextHandle_t geos, double width,
+                        double height, candidate *out, ur_error *error)
+{
+    double angle = piece->path_count ? level_angle(geos, &piece->paths[0]) : 0.0;
+    for (int quarter = 0; quarter < 2; quarter++) {
+        out->angle = angle + quarter * M_PI / 2;
+        out->box = turned_box(piece, out->angle);
+        if (fits(out->box, width, height))
+            return UR_OK;
+    }
+    out->box = turned_box(piece, angle);
+    return ur_error_set(error, UR_ERROR_INPUT,
+                        "piece %s (%.1f x %.1f mm) does not fit the %.1f x %.1f mm inside the "
+                        "sheet's margin in any orientation; give a larger sheet with --sheet "
+                        "WxH or choose a material with larger stock",
+                        piece->name, ur_box_width(out->box), ur_box_height(out->box), width,
+                        height);
+}
+
+static int taller_first(const void *a, const void *b)
+{
+    const candidate *x = a, *y = b;
+    double hx = ur_box_height(x->box), hy = ur_box_height(y->box);
+    if (hx != hy)
+        return hx < hy ? 1 : -1;
+    return (x->index > y->index) - (x->index < y->index);
+}
+
+static ur_status new_sheet(ur_layout *layout, const ur_layout_options *options, size_t capacity,
+                           ur_error *error)
+{
+    ur_sheet *sheets = realloc(layout->sheets, (layout->sheet_count + 1) * sizeof *sheets);
+    if (!sheets)
+        return ur_error_out_of_memory(error);
+    layout->sheets = sheets;
+    ur_sheet *sheet = &sheets[layout->sheet_count];
+    memset(sheet, 0, sizeof *sheet);
+    sheet->width = options->sheet_width;
+    sheet->height = options->sheet_height;
+    sheet->placements = ur_alloc_array(capacity, sizeof *sheet->placements, error);
+    if (!sheet->placements)
+        return UR_ERROR_INTERNAL;
+    layout->sheet_count++;
+    return UR_OK;
+}
+
+/* Shelf packing of oriented candidates, tallest first. */
+static ur_status place_rows(candidate *order, size_t count, const ur_layout_options *options,
+                            ur_layout *layout, ur_error *error)
+{
+    double left = options->margin, right = options->sheet_width - options->margin;
+    double top = options->sheet_height - options->margin, bottom = options->margin;
+    double x = left, row_top = top, row_height = 0.0;
+    ur_status status = new_sheet(layout, options, count, error);
+    for (size_t k = 0; k < count && status == UR_OK; k++) {
+        double w = ur_box_width(order[k].box), h = ur_box_height(order[k].box);
+        if (x > left && x + w > right) {
+            x = left;
+            row_top -= row_height + options->spacing;
+            row_height = 0.0;
+        }
+        if (row_top - h < bottom) {
+            status = new_sheet(layout, options, count, error);
+            x = left;
+            row_top = top;
+            row_height = 0.0;
+        }
+        if (status != UR_OK)
+            break;
+        ur_sheet *sheet = &layout->sheets[layout->sheet_count - 1];
+        ur_vec2 shift = {x - order[k].box.min.x, row_top - order[k].box.max.y};
+        ur_placement placement = {order[k].index, ur_transform2_make(order[k].angle, shift)};
+        sheet->placements[sheet->placement_count++] = placement;
+        x += w + options->spacing;
+        row_height = fmax(row_height, h);
+    }
+    return status;
+}
+
+ur_status ur_layout_rows(const ur_piece *pieces, size_t piece_count,
+                         const ur_layout_options *options, ur_layout *layout, ur_error *error)
+{
+    memset(layout, 0, sizeof *layout);
+    double width = options->sheet_width - 2 * options->margin;
+    double height = options->sheet_height - 2 * options->margin;
+    if (!(width > 0) || !(height > 0))
+        return ur_error_set(error, UR_ERROR_INPUT,
+                            "the sheet (%.1f x %.1f mm) leaves no room inside its %.1f mm margin",
+                            options->sheet_width, options->sheet_height, options->margin);
+    candidate *order = ur_alloc_array(piece_count, sizeof *order, error);
+    GEOSContextHandle_t geos = GEOS_init_r();
+    ur_status status = order && geos ? UR_OK : ur_error_out_of_memory(error);
+    for (size_t k = 0; k < piece_count && status == UR_OK; k++) {
+        order[k].index = k;
+        status = orient(&pieces[k], geos, width, height, &order[k], error);
+    }
+    if (geos)
+        GEOS_finish_r(geos);
+    if (status == UR_OK) {
+        qsort(order, piece_count, sizeof *order, taller_first);
+        status = place_rows(order, piece_count, options, layout, error);
+    }
+    free(order);
+    if (status != UR_OK)
+        ur_layout_free(layout);
+    return status;
+}
+
+double ur_sheet_utilisation(const ur_sheet *sheet, const ur_piece *pieces)
+{
+    double used = 0.0;
+    for (size_t k = 0; k < sheet->placement_count; k++) {
+        const ur_piece *piece = &pieces[sheet->placements[k].piece_index];
+        if (piece->path_count > 0)
+            used += fabs(ur_polygon_signed_area(piece->paths[0].points, piece->paths[0].count));
+    }
+    return used / (sheet->width * sheet->height);
+}
+
+void ur_layout_free(ur_layout *layout)
+{
+    for (size_t s = 0; s < layout->sheet_count; s++)
+        free(layout->sheets[s].placements);
+    free(layout->sheets);
+    layout->sheets = NULL;
+    layout->sheet_count = 0;
+}
