@@ -1,0 +1,202 @@
+/*
+ * run.c: one surface job end to end: profiles, surface, development,
+ * pieces, sheets, SVG and report, with a short summary on stderr.
+ */
+#include "cli.h"
+#include "surfaces.h"
+
+#include <libgen.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "unroll/allow.h"
+#include "unroll/io.h"
+#include "unroll/nest.h"
+#include "unroll/out.h"
+
+/* Refuse early, before any work, when the file could not be written. */
+static bool directory_exists(const char *option, const char *path)
+{
+    char copy[4096];
+    snprintf(copy, sizeof copy, "%s", path);
+    const char *directory = dirname(copy);
+    struct stat info;
+    if (stat(directory, &info) != 0 || !S_ISDIR(info.st_mode)) {
+        cli_message("%s '%s': directory '%s' does not exist", option, path, directory);
+        return false;
+    }
+    return true;
+}
+
+static int exit_status(const ur_error *error)
+{
+    return error->status == UR_ERROR_INPUT ? EXIT_USAGE : EXIT_INTERNAL;
+}
+
+/* The first stock size that fits the machine's bed, else the bed itself. */
+static void choose_sheet(const cli_job *job, const ur_machine *machine,
+                         const ur_material *material, ur_layout_options *options)
+{
+    options->margin = machine->margin;
+    options->spacing = fmax(machine->spacing, ur_effective_kerf(machine, material));
+    if (job->sheet_width > 0) {
+        options->sheet_width = job->sheet_width;
+        options->sheet_height = job->sheet_height;
+        return;
+    }
+    for (int k = 0; k < material->stock_count; k++) {
+        ur_sheet_size size = material->stock[k];
+        if (size.width <= machine->bed_width && size.height <= machine->bed_height) {
+            options->sheet_width = size.width;
+            options->sheet_height = size.height;
+            return;
+        }
+    }
+    options->sheet_width = machine->bed_width;
+    options->sheet_height = machine->bed_height;
+    if (!job->quiet)
+        cli_message("note: no stock size of %s fits the %s bed; using sheets cut to the bed, "
+                    "%g x %g mm",
+                    material->name, machine->name, machine->bed_width, machine->bed_height);
+}
+
+typedef struct job_state {
+    ur_machine machine;
+    ur_material material;
+    ur_ruled ruled;
+    bool have_ruled;
+    ur_net_list nets;
+    ur_piece *pieces;
+    size_t piece_count;
+    ur_layout layout;
+    double surface_area;
+} job_state;
+
+static void state_free(job_state *state)
+{
+    for (size_t k = 0; k < state->piece_count; k++)
+        ur_piece_free(&state->pieces[k]);
+    free(state->pieces);
+    ur_layout_free(&state->layout);
+    ur_net_list_free(&state->nets);
+    if (state->have_ruled)
+        ur_ruled_free(&state->ruled);
+}
+
+static ur_status make_pieces(const cli_job *job, job_state *state, ur_error *error)
+{
+    state->pieces = ur_alloc_array(state->nets.count, sizeof *state->pieces, error);
+    if (!state->pieces)
+        return UR_ERROR_INTERNAL;
+    ur_allowance_options options = {job->draw_rulings};
+    for (size_t k = 0; k < state->nets.count; k++) {
+        ur_status status =
+            ur_piece_from_net(&state->nets.nets[k], &options, &state->pieces[k], error);
+        if (status != UR_OK)
+            return status;
+        state->piece_count++;
+    }
+    return UR_OK;
+}
+
+static ur_status develop_and_place(const cli_job *job, job_state *state, ur_error *error)
+{
+    ur_status status = ur_ruled_area(&state->ruled, ur_ruled_start(&state->ruled),
+                                     ur_ruled_end(&state->ruled), &state->surface_area, error);
+    if (status == UR_OK)
+        status = ur_develop(&state->ruled, &job->develop, &state->nets, error);
+    if (status == UR_OK)
+        status = make_pieces(job, state, error);
+    ur_layout_options options;
+    choose_sheet(job, &state->machine, &state->material, &options);
+    if (status == UR_OK)
+        status = ur_layout_rows(state->pieces, state->piece_count, &options, &state->layout,
+                                error);
+    return status;
+}
+
+static ur_status write_outputs(const cli_job *job, job_state *state, ur_error *error)
+{
+    char title[128];
+    snprintf(title, sizeof title, "unroll %s", job->surface);
+    ur_output_options output = {title};
+    ur_status status = ur_write_svg(job->output_path, &state->layout, state->pieces,
+                                    &state->machine, &output, error);
+    if (status != UR_OK || !job->report_path)
+        return status;
+    size_t sheets = state->layout.sheet_count;
+    char(*names)[4096] = ur_alloc_array(sheets, sizeof *names, error);
+    const char **outputs = ur_alloc_array(sheets + 1, sizeof *outputs, error);
+    for (size_t s = 0; names && outputs && s < sheets && status == UR_OK; s++) {
+        status = ur_sheet_file_name(job->output_path, s, sheets, names[s], sizeof names[s], error);
+        outputs[s] = names[s];
+    }
+    if (!names || !outputs)
+        status = UR_ERROR_INTERNAL;
+    ur_report_context context = {
+        .surface = job->surface,
+        .method = ur_method_name(job->develop.method),
+        .machine = &state->machine,
+        .material = &state->material,
+        .surface_area = state->surface_area,
+        .outputs = outputs,
+        .sheet_path = job->output_path,
+    };
+    if (status == UR_OK)
+        status = ur_report_write(job->report_path, &context, state->pieces, state->piece_count,
+                                 &state->layout, error);
+    free(names);
+    free(outputs);
+    return status;
+}
+
+static void print_summary(const cli_job *job, const job_state *state)
+{
+    double flat = 0.0;
+    for (size_t k = 0; k < state->piece_count; k++)
+        flat += state->pieces[k].measures.flat_area;
+    const ur_sheet *first = &state->layout.sheets[0];
+    fprintf(stderr,
+            "unroll: %s (%s): %zu piece%s, surface %.2f mm2, net %.2f mm2 (coverage %.6f), "
+            "%zu sheet%s of %g x %g mm (%s, %s) -> %s\n",
+            job->surface, ur_method_name(job->develop.method), state->piece_count,
+            state->piece_count == 1 ? "" : "s", state->surface_area, flat,
+            flat / state->surface_area, state->layout.sheet_count,
+            state->layout.sheet_count == 1 ? "" : "s", first->width, first->height,
+            state->material.name, state->machine.name, job->output_path);
+}
+
+int cli_run_job(const cli_job *job)
+{
+    if (!directory_exists("-o", job->output_path) ||
+        (job->report_path && strcmp(job->report_path, "-") != 0 &&
+         !directory_exists("--report", job->report_path)))
+        return EXIT_USAGE;
+    job_state state;
+    memset(&state, 0, sizeof state);
+    ur_error error;
+    ur_status status = ur_machine_load(job->machine_name, &state.machine, &error);
+    if (status == UR_OK)
+        status = ur_material_load(job->material_name, &state.material, &error);
+    if (status != UR_OK) {
+        cli_message("%s", error.message);
+        return exit_status(&error);
+    }
+    int code = cli_build_surface(job, &state.ruled);
+    if (code)
+        return code;
+    state.have_ruled = true;
+    status = develop_and_place(job, &state, &error);
+    if (status == UR_OK)
+        status = write_outputs(job, &state, &error);
+    if (status != UR_OK) {
+        cli_message("%s: %s", job->surface, error.message);
+        code = exit_status(&error);
+    } else if (!job->quiet) {
+        print_summary(job, &state);
+    }
+    state_free(&state);
+    return code;
+}
