@@ -37,16 +37,25 @@ typedef struct ur_report_context {
     const ur_material *material;
     double surface_area; /* 3D area of the whole surface */
     const char *const *outputs; /* files written, NULL-terminated; may be NULL */
+    /* output_path given to ur_write_svg, so the report names each sheet's file; may be NULL */
+    const char *sheet_path;
 } ur_report_context;
 
-/* Writes the JSON report to path ("-" for stdout), atomically for a file. */
+/*
+ * Writes the JSON report to path ("-" for stdout), atomically for a file.
+ * layout may be NULL (nothing placed yet); every placement's piece_index
+ * must be below piece_count.
+ */
 ur_status ur_report_write(const char *path, const ur_report_context *context,
                           const ur_piece *pieces, size_t piece_count, const ur_layout *layout,
                           ur_error *error);
 
 /*
  * The file names an output of sheet_count sheets gets: output_path itself for
- * one sheet, NAME-1.EXT ... otherwise.  Writes into name (size name_size).
+ * one sheet, NAME-1.EXT ... otherwise, the number going before the extension
+ * of the base name ("dir.v2/net" becomes "dir.v2/net-1").  sheet_index counts
+ * from 0.  Writes into name (size name_size); a name that does not fit is
+ * UR_ERROR_INPUT.
  */
 ur_status ur_sheet_file_name(const char *output_path, size_t sheet_index, size_t sheet_count,
                              char *name, size_t name_size, ur_error *error);

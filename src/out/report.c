@@ -1,0 +1,261 @@
+/*
+ * report.c: the JSON report (jansson): what was unrolled, per piece its 3D
+ * and flat area and how faithful the flat edges are, per sheet how well the
+ * stock is used, and which files were written.
+ *
+ * Numbers that cannot be computed (a coverage of a piece without 3D area, a
+ * NaN from upstream) are written as null: JSON has no NaN, and a reader is
+ * better served by "unknown" than by a made-up 0.
+ */
+#include "unroll/out.h"
+
+#include <errno.h>
+#include <jansson.h>
+#include <math.h>
+#include <string.h>
+
+#include "atomic.h"
+
+/* Every real with the 17 digits that make it read back exactly. */
+#define JSON_FLAGS (JSON_INDENT(2) | JSON_PRESERVE_ORDER | JSON_REAL_PRECISION(17))
+
+static json_t *number(double value)
+{
+    return isfinite(value) ? json_real(value) : json_null();
+}
+
+static json_t *text_or_null(const char *text)
+{
+    return text ? json_string(text) : json_null();
+}
+
+/* A fixed-size name that may fill its array without a terminator. */
+static json_t *name_of(const char *name, size_t size)
+{
+    return json_stringn(name, strnlen(name, size));
+}
+
+/* The 1-based sheet a piece is placed on, 0 when it is on none. */
+static size_t sheet_of(const ur_layout *layout, size_t piece_index)
+{
+    for (size_t s = 0; layout && s < layout->sheet_count; s++)
+        for (size_t p = 0; p < layout->sheets[s].placement_count; p++)
+            if (layout->sheets[s].placements[p].piece_index == piece_index)
+                return s + 1;
+    return 0;
+}
+
+static json_t *box_json(ur_box box)
+{
+    json_t *object = json_object();
+    bool known = box.min.x <= box.max.x && box.min.y <= box.max.y; /* not empty */
+    if (!object ||
+        json_object_set_new(object, "width_mm", known ? number(ur_box_width(box)) : json_null()) !=
+            0 ||
+        json_object_set_new(object, "height_mm",
+                            known ? number(ur_box_height(box)) : json_null()) != 0) {
+        json_decref(object);
+        return NULL;
+    }
+    return object;
+}
+
+/* json_object_set_new takes value even when it fails, so nothing leaks here. */
+static json_t *piece_json(const ur_piece *piece, size_t sheet)
+{
+    const ur_piece_measures *m = &piece->measures;
+    json_t *object = json_object();
+    if (!object ||
+        json_object_set_new(object, "name", name_of(piece->name, sizeof piece->name)) != 0 ||
+        json_object_set_new(object, "area_3d_mm2", number(m->area_3d)) != 0 ||
+        json_object_set_new(object, "flat_area_mm2", number(m->flat_area)) != 0 ||
+        json_object_set_new(object, "coverage",
+                            m->area_3d > 0 ? number(m->flat_area / m->area_3d) : json_null()) !=
+            0 ||
+        json_object_set_new(object, "bounding_box", box_json(piece->box)) != 0 ||
+        json_object_set_new(object, "edge_length_error", number(m->edge_error)) != 0 ||
+        json_object_set_new(object, "sheet",
+                            sheet ? json_integer((json_int_t)sheet) : json_null()) != 0) {
+        json_decref(object);
+        return NULL;
+    }
+    return object;
+}
+
+static json_t *pieces_json(const ur_piece *pieces, size_t piece_count, const ur_layout *layout)
+{
+    json_t *array = json_array();
+    for (size_t i = 0; array && i < piece_count; i++)
+        if (json_array_append_new(array, piece_json(&pieces[i], sheet_of(layout, i))) != 0) {
+            json_decref(array);
+            return NULL;
+        }
+    return array;
+}
+
+/* The file a sheet went to, when the context says what the cut files are called. */
+static ur_status sheet_file(const ur_report_context *context, const ur_layout *layout, size_t index,
+                            json_t **file, ur_error *error)
+{
+    *file = NULL;
+    if (!context->sheet_path)
+        return UR_OK;
+    char name[4096];
+    ur_status status = ur_sheet_file_name(context->sheet_path, index, layout->sheet_count, name,
+                                          sizeof name, error);
+    if (status != UR_OK)
+        return status;
+    *file = json_string(name);
+    return *file ? UR_OK : ur_error_set(error, UR_ERROR_INPUT, "'%s' is not UTF-8", name);
+}
+
+static json_t *sheet_json(const ur_layout *layout, size_t index, const ur_piece *pieces)
+{
+    const ur_sheet *sheet = &layout->sheets[index];
+    json_t *object = json_object();
+    if (!object || json_object_set_new(object, "index", json_integer((json_int_t)index + 1)) != 0 ||
+        json_object_set_new(object, "width_mm", number(sheet->width)) != 0 ||
+        json_object_set_new(object, "height_mm", number(sheet->height)) != 0 ||
+        json_object_set_new(object, "pieces", json_integer((json_int_t)sheet->placement_count)) !=
+            0 ||
+        json_object_set_new(object, "utilisation", number(ur_sheet_utilisation(sheet, pieces))) !=
+            0) {
+        json_decref(object);
+        return NULL;
+    }
+    return object;
+}
+
+static ur_status sheets_json(const ur_report_context *context, const ur_layout *layout,
+                             const ur_piece *pieces, json_t **sheets, ur_error *error)
+{
+    *sheets = json_array();
+    if (!*sheets)
+        return ur_error_out_of_memory(error);
+    for (size_t i = 0; layout && i < layout->sheet_count; i++) {
+        json_t *sheet = sheet_json(layout, i, pieces);
+        json_t *file = NULL;
+        ur_status status =
+            sheet ? sheet_file(context, layout, i, &file, error) : ur_error_out_of_memory(error);
+        if (status == UR_OK && file && json_object_set_new(sheet, "file", file) != 0)
+            status = ur_error_out_of_memory(error);
+        if (status == UR_OK && json_array_append_new(*sheets, sheet) != 0)
+            status = ur_error_out_of_memory(error);
+        else if (status != UR_OK)
+            json_decref(sheet);
+        if (status != UR_OK) {
+            json_decref(*sheets);
+            *sheets = NULL;
+            return status;
+        }
+    }
+    return UR_OK;
+}
+
+static json_t *outputs_json(const char *const *outputs)
+{
+    json_t *array = json_array();
+    for (size_t i = 0; array && outputs && outputs[i]; i++)
+        if (json_array_append_new(array, json_string(outputs[i])) != 0) {
+            json_decref(array);
+            return NULL;
+        }
+    return array;
+}
+
+/* The top-level object; on failure *root is NULL and error says why. */
+static ur_status report_json(const ur_report_context *context, const ur_piece *pieces,
+                             size_t piece_count, const ur_layout *layout, json_t **root,
+                             ur_error *error)
+{
+    const ur_machine *machine = context->machine;
+    const ur_material *material = context->material;
+    json_t *sheets = NULL;
+    ur_status status = sheets_json(context, layout, pieces, &sheets, error);
+    if (status != UR_OK) {
+        *root = NULL;
+        return status;
+    }
+    *root = json_object();
+    if (!*root || json_object_set_new(*root, "unroll", json_string(UR_VERSION)) != 0 ||
+        json_object_set_new(*root, "surface", text_or_null(context->surface)) != 0 ||
+        json_object_set_new(*root, "method", text_or_null(context->method)) != 0 ||
+        json_object_set_new(*root, "machine",
+                            machine ? name_of(machine->name, sizeof machine->name) : json_null()) !=
+            0 ||
+        json_object_set_new(*root, "material",
+                            material ? name_of(material->name, sizeof material->name)
+                                     : json_null()) != 0 ||
+        json_object_set_new(*root, "surface_area_mm2", number(context->surface_area)) != 0 ||
+        json_object_set_new(*root, "pieces", pieces_json(pieces, piece_count, layout)) != 0 ||
+        json_object_set(*root, "sheets", sheets) != 0 ||
+        json_object_set_new(*root, "outputs", outputs_json(context->outputs)) != 0) {
+        json_decref(sheets);
+        json_decref(*root);
+        *root = NULL;
+        /* jansson refuses strings that are not UTF-8 the same way as no memory. */
+        return ur_error_set(error, UR_ERROR_INTERNAL,
+                            "cannot build the report: out of memory or a name not in UTF-8");
+    }
+    json_decref(sheets); /* set without _new: root holds its own reference */
+    return UR_OK;
+}
+
+/* Placements must name pieces that exist: the report reads each of them. */
+static ur_status check_layout(const ur_layout *layout, size_t piece_count, ur_error *error)
+{
+    for (size_t s = 0; layout && s < layout->sheet_count; s++)
+        for (size_t p = 0; p < layout->sheets[s].placement_count; p++)
+            if (layout->sheets[s].placements[p].piece_index >= piece_count)
+                return ur_error_set(error, UR_ERROR_INTERNAL,
+                                    "sheet %zu places piece %zu of only %zu", s + 1,
+                                    layout->sheets[s].placements[p].piece_index + 1, piece_count);
+    return UR_OK;
+}
+
+static ur_status write_stdout(json_t *root, ur_error *error)
+{
+    errno = 0;
+    if (json_dumpf(root, stdout, JSON_FLAGS) != 0 || fputc('\n', stdout) == EOF ||
+        fflush(stdout) != 0)
+        return ur_error_set(error, UR_ERROR_INPUT, "cannot write the report to standard output: %s",
+                            errno ? strerror(errno) : "write error");
+    return UR_OK;
+}
+
+static ur_status write_file(const char *path, json_t *root, ur_error *error)
+{
+    ur_atomic_file file;
+    ur_status status = ur_atomic_open(&file, path, error);
+    if (status != UR_OK)
+        return status;
+    errno = 0;
+    if (json_dumpf(root, file.stream, JSON_FLAGS) != 0 || fputc('\n', file.stream) == EOF)
+        status = ur_error_set(error, UR_ERROR_INPUT, "cannot write '%s': %s", path,
+                              errno ? strerror(errno) : "write error");
+    if (status == UR_OK)
+        status = ur_atomic_close(&file, error);
+    if (status == UR_OK)
+        status = ur_atomic_commit(&file, error);
+    ur_atomic_discard(&file); /* after a commit there is nothing left to remove */
+    return status;
+}
+
+ur_status ur_report_write(const char *path, const ur_report_context *context,
+                          const ur_piece *pieces, size_t piece_count, const ur_layout *layout,
+                          ur_error *error)
+{
+    if (!path || !context || (!pieces && piece_count > 0))
+        return ur_error_set(error, UR_ERROR_INTERNAL, "report writer called without %s",
+                            !path      ? "a path"
+                            : !context ? "a context"
+                                       : "pieces");
+    ur_status status = check_layout(layout, piece_count, error);
+    json_t *root = NULL;
+    if (status == UR_OK)
+        status = report_json(context, pieces, piece_count, layout, &root, error);
+    if (status == UR_OK)
+        status = strcmp(path, "-") == 0 ? write_stdout(root, error) : write_file(path, root, error);
+    json_decref(root);
+    return status;
+}
