@@ -364,6 +364,18 @@ static void reverse_ring(ur_vec2 *ring, size_t n)
     }
 }
 
+/* A cone's rulings all end at its apex: keep one point for it, not one per ruling. */
+static size_t drop_repeated(ur_vec2 *ring, size_t n)
+{
+    size_t kept = 0;
+    for (size_t i = 0; i < n; i++)
+        if (kept == 0 || ur_vec2_distance(ring[i], ring[kept - 1]) > 1e-9)
+            ring[kept++] = ring[i];
+    while (kept > 1 && ur_vec2_distance(ring[kept - 1], ring[0]) <= 1e-9)
+        kept--;
+    return kept;
+}
+
 static ur_status fill_net(ur_ruled *ruled, const strip *s, size_t first, size_t last,
                           bool seam_before, bool seam_after, ur_net *net, ur_error *error)
 {
@@ -372,7 +384,7 @@ static ur_status fill_net(ur_ruled *ruled, const strip *s, size_t first, size_t 
     net->rulings = ur_alloc_array(last - first + 1, sizeof *net->rulings, error);
     if (!net->outline || !net->rulings)
         return UR_ERROR_INTERNAL;
-    net->outline_count = piece_ring(s, first, last, 1, net->outline);
+    net->outline_count = drop_repeated(net->outline, piece_ring(s, first, last, 1, net->outline));
     double area = ur_polygon_signed_area(net->outline, net->outline_count);
     if (area < 0)
         reverse_ring(net->outline, net->outline_count);
