@@ -217,6 +217,18 @@ static size_t piece_ring(const strip *s, size_t first, size_t last, size_t strid
     return n;
 }
 
+/* A cone's rulings all end at its apex: keep one point for it, not one per ruling. */
+static size_t drop_repeated(ur_vec2 *ring, size_t n)
+{
+    size_t kept = 0;
+    for (size_t i = 0; i < n; i++)
+        if (kept == 0 || ur_vec2_distance(ring[i], ring[kept - 1]) > 1e-9)
+            ring[kept++] = ring[i];
+    while (kept > 1 && ur_vec2_distance(ring[kept - 1], ring[0]) <= 1e-9)
+        kept--;
+    return kept;
+}
+
 static bool ring_is_simple(GEOSContextHandle_t geos, const ur_vec2 *ring, size_t n)
 {
     GEOSCoordSequence *sequence = GEOSCoordSeq_create_r(geos, (unsigned)n + 1, 2);
@@ -239,7 +251,7 @@ static bool piece_is_simple(GEOSContextHandle_t geos, const strip *s, size_t fir
                             ur_vec2 *ring)
 {
     size_t stride = (last - first) / (CHECK_POINTS / 2) + 1;
-    size_t n = piece_ring(s, first, last, stride, ring);
+    size_t n = drop_repeated(ring, piece_ring(s, first, last, stride, ring));
     return n >= 3 && ring_is_simple(geos, ring, n);
 }
 
@@ -362,18 +374,6 @@ static void reverse_ring(ur_vec2 *ring, size_t n)
         ring[i] = ring[j];
         ring[j] = swap;
     }
-}
-
-/* A cone's rulings all end at its apex: keep one point for it, not one per ruling. */
-static size_t drop_repeated(ur_vec2 *ring, size_t n)
-{
-    size_t kept = 0;
-    for (size_t i = 0; i < n; i++)
-        if (kept == 0 || ur_vec2_distance(ring[i], ring[kept - 1]) > 1e-9)
-            ring[kept++] = ring[i];
-    while (kept > 1 && ur_vec2_distance(ring[kept - 1], ring[0]) <= 1e-9)
-        kept--;
-    return kept;
 }
 
 static ur_status fill_net(ur_ruled *ruled, const strip *s, size_t first, size_t last,

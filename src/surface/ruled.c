@@ -249,9 +249,50 @@ ur_status ur_ruled_check(ur_ruled *ruled, ur_error *error)
     return check_ruling_across(ruled, error);
 }
 
-/* ---- Area by nested adaptive quadrature --------------------------------- */
+/* ---- Quadrature over the smooth pieces of the surface ------------------- */
 
 enum { QUADRATURE_LIMIT = 2000 };
+
+/*
+ * An interpolated curve's third derivative jumps at its points, so anything
+ * built on its curvature has kinks there.  Integrating knot to knot keeps
+ * every piece smooth, and Gauss-Kronrod converges fast on each.
+ */
+static ur_status integrate_pieces(ur_curve *curve, gsl_function *f, double u_start, double u_end,
+                                  double relative, double *result, ur_error *error)
+{
+    gsl_integration_workspace *workspace = gsl_integration_workspace_alloc(QUADRATURE_LIMIT);
+    if (!workspace)
+        return ur_error_out_of_memory(error);
+    size_t points = ur_curve_point_count(curve);
+    double from = u_start, total = 0.0, total_estimate = 0.0;
+    int failure = 0;
+    for (size_t i = 0; i <= points && !failure; i++) {
+        double to = i < points ? ur_curve_point_parameter(curve, i) : u_end;
+        if (to <= from)
+            continue;
+        to = fmin(to, u_end);
+        double value, estimate;
+        int code = gsl_integration_qag(f, from, to, 0.0, relative, QUADRATURE_LIMIT,
+                                       GSL_INTEG_GAUSS41, workspace, &value, &estimate);
+        if (code && !(estimate <= 1e3 * relative * fabs(value) + 1e-12))
+            failure = code;
+        total += value;
+        total_estimate += estimate;
+        from = to;
+        if (from >= u_end)
+            break;
+    }
+    gsl_integration_workspace_free(workspace);
+    *result = total;
+    if (failure)
+        return ur_error_set(error, UR_ERROR_INTERNAL, "quadrature did not converge: %s",
+                            gsl_strerror(failure));
+    (void)total_estimate;
+    return UR_OK;
+}
+
+/* ---- Area by nested adaptive quadrature --------------------------------- */
 
 typedef struct area_context {
     ur_vec3 base, slope; /* r_u x r_v = base + v slope along one ruling */
@@ -289,22 +330,15 @@ ur_status ur_ruled_area(ur_ruled *ruled, double u_start, double u_end, double *a
 {
     area_context context = {.ruled = ruled};
     context.inner = gsl_integration_workspace_alloc(QUADRATURE_LIMIT);
-    gsl_integration_workspace *outer = gsl_integration_workspace_alloc(QUADRATURE_LIMIT);
-    if (!context.inner || !outer) {
-        gsl_integration_workspace_free(context.inner);
-        gsl_integration_workspace_free(outer);
+    if (!context.inner)
         return ur_error_out_of_memory(error);
-    }
     gsl_function f = {ruling_integral, &context};
-    double estimate;
-    int code = gsl_integration_qag(&f, u_start, u_end, 0.0, 1e-11, QUADRATURE_LIMIT,
-                                   GSL_INTEG_GAUSS41, outer, area, &estimate);
+    ur_status status = integrate_pieces(ruled->curve, &f, u_start, u_end, 1e-11, area, error);
     gsl_integration_workspace_free(context.inner);
-    gsl_integration_workspace_free(outer);
-    if ((code && !(estimate <= 1e-9 * fabs(*area))) || context.failure)
-        return ur_error_set(error, UR_ERROR_INTERNAL, "surface area did not converge: %s",
-                            gsl_strerror(code ? code : context.failure));
-    return UR_OK;
+    if (status == UR_OK && context.failure)
+        status = ur_error_set(error, UR_ERROR_INTERNAL, "surface area did not converge: %s",
+                              gsl_strerror(context.failure));
+    return status;
 }
 
 typedef struct rail_context {
@@ -323,17 +357,7 @@ static double rail_speed(double u, void *data)
 ur_status ur_ruled_rail_length(ur_ruled *ruled, int rail, double u_start, double u_end,
                                double *length, ur_error *error)
 {
-    gsl_integration_workspace *workspace = gsl_integration_workspace_alloc(QUADRATURE_LIMIT);
-    if (!workspace)
-        return ur_error_out_of_memory(error);
     rail_context context = {ruled, rail};
     gsl_function f = {rail_speed, &context};
-    double estimate;
-    int code = gsl_integration_qag(&f, u_start, u_end, 0.0, 1e-12, QUADRATURE_LIMIT,
-                                   GSL_INTEG_GAUSS41, workspace, length, &estimate);
-    gsl_integration_workspace_free(workspace);
-    if (code && !(estimate <= 1e-9 * fabs(*length)))
-        return ur_error_set(error, UR_ERROR_INTERNAL, "rail length did not converge: %s",
-                            gsl_strerror(code));
-    return UR_OK;
+    return integrate_pieces(ruled->curve, &f, u_start, u_end, 1e-12, length, error);
 }
