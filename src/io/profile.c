@@ -1,0 +1,998 @@
+/*
+ * profile.c: machine and material profiles: finding them on the search path,
+ * reading them with libxml2, validating them against the RelaxNG schemas,
+ * turning them into ur_machine and ur_material, and listing them.
+ *
+ * libxml2 reports problems through callbacks and, left alone, prints them on
+ * stderr.  Every call into it here runs with our handlers installed (and the
+ * previous ones restored afterwards), so the library stays silent and the
+ * first error becomes one "FILE:LINE: message".
+ */
+#include "unroll/io.h"
+
+#include <ctype.h>
+#include <dirent.h>
+#include <errno.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <libxml/parser.h>
+#include <libxml/relaxng.h>
+#include <libxml/tree.h>
+#include <libxml/xmlerror.h>
+
+#ifndef UR_PROFILE_DIR
+#define UR_PROFILE_DIR "/usr/local/share/unroll/profiles"
+#endif
+
+#define UR_PROFILE_ROOTS_MAX 3
+#define UR_PATH_MAX 1024
+
+/* libxml2 2.12 made the structured error callback take a const error. */
+#if LIBXML_VERSION >= 21200
+typedef const xmlError ur_xml_error;
+#else
+typedef xmlError ur_xml_error;
+#endif
+
+static const char *kind_folder(ur_profile_kind kind)
+{
+    return kind == UR_PROFILE_MACHINE ? "machines" : "materials";
+}
+
+static const char *kind_word(ur_profile_kind kind)
+{
+    return kind == UR_PROFILE_MACHINE ? "machine" : "material";
+}
+
+/* ---- Search path ------------------------------------------------------- */
+
+typedef struct ur_roots {
+    const char *dirs[UR_PROFILE_ROOTS_MAX];
+    int count;
+    const char *environment; /* $UNROLL_PROFILES, NULL when unset or empty */
+} ur_roots;
+
+/* The roots in search order; a root that does not exist is simply empty. */
+static void profile_roots(ur_roots *roots)
+{
+    roots->count = 0;
+    roots->dirs[roots->count++] = "./profiles";
+    const char *environment = getenv("UNROLL_PROFILES");
+    roots->environment = environment && *environment ? environment : NULL;
+    if (roots->environment)
+        roots->dirs[roots->count++] = roots->environment;
+    roots->dirs[roots->count++] = UR_PROFILE_DIR;
+}
+
+/* "./profiles, $UNROLL_PROFILES=DIR, /usr/...", for "not found" messages. */
+static void describe_roots(const ur_roots *roots, char *text, size_t size)
+{
+    if (roots->environment)
+        snprintf(text, size, "./profiles, $UNROLL_PROFILES=%s, %s", roots->environment,
+                 UR_PROFILE_DIR);
+    else
+        snprintf(text, size, "./profiles, %s; $UNROLL_PROFILES is not set", UR_PROFILE_DIR);
+}
+
+static ur_status join_path(char *out, size_t size, const char *root, const char *folder,
+                           const char *file, ur_error *error)
+{
+    int length = snprintf(out, size, "%s/%s/%s", root, folder, file);
+    if (length < 0 || (size_t)length >= size)
+        return ur_error_set(error, UR_ERROR_INPUT, "%s/%s: path too long", root, folder);
+    return UR_OK;
+}
+
+/* [A-Za-z0-9._-]+ not starting with '.': no way out of the profile folder. */
+static bool valid_name(const char *name)
+{
+    size_t length = strlen(name);
+    if (length == 0 || length >= sizeof(((ur_machine *)0)->name) || name[0] == '.')
+        return false;
+    for (size_t i = 0; i < length; i++) {
+        char c = name[i];
+        bool allowed = (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') ||
+                       (c >= '0' && c <= '9') || c == '.' || c == '_' || c == '-';
+        if (!allowed)
+            return false;
+    }
+    return true;
+}
+
+static ur_status check_name(ur_profile_kind kind, const char *name, ur_error *error)
+{
+    if (valid_name(name))
+        return UR_OK;
+    return ur_error_set(error, UR_ERROR_INPUT,
+                        "bad %s name '%.64s': use up to 63 letters, digits, '.', '_' and '-', "
+                        "not starting with '.'",
+                        kind_word(kind), name);
+}
+
+ur_status ur_profile_find(ur_profile_kind kind, const char *name, char *path, size_t path_size,
+                          ur_error *error)
+{
+    ur_status status = check_name(kind, name, error);
+    if (status != UR_OK)
+        return status;
+    char file[80];
+    snprintf(file, sizeof file, "%s.xml", name);
+    ur_roots roots;
+    profile_roots(&roots);
+    for (int i = 0; i < roots.count; i++) {
+        char candidate[UR_PATH_MAX];
+        status = join_path(candidate, sizeof candidate, roots.dirs[i], kind_folder(kind), file,
+                           error);
+        if (status != UR_OK)
+            return status;
+        struct stat info;
+        if (stat(candidate, &info) == 0) {
+            if (strlen(candidate) >= path_size)
+                return ur_error_set(error, UR_ERROR_INPUT, "%s: path too long", candidate);
+            strcpy(path, candidate);
+            return UR_OK;
+        }
+        /* Anything but "not there" would hide a profile: say so. */
+        if (errno != ENOENT && errno != ENOTDIR)
+            return ur_error_set(error, UR_ERROR_INPUT, "%s: cannot open: %s", candidate,
+                                strerror(errno));
+    }
+    char searched[UR_PATH_MAX];
+    describe_roots(&roots, searched, sizeof searched);
+    return ur_error_set(error, UR_ERROR_INPUT,
+                        "unknown %s '%s' (searched %s); 'unroll profiles' lists them",
+                        kind_word(kind), name, searched);
+}
+
+/* ROOT/schema/KIND.rng from the first root that has it. */
+static ur_status find_schema(ur_profile_kind kind, char *path, size_t size, ur_error *error)
+{
+    char file[32];
+    snprintf(file, sizeof file, "%s.rng", kind_word(kind));
+    ur_roots roots;
+    profile_roots(&roots);
+    for (int i = 0; i < roots.count; i++) {
+        ur_status status = join_path(path, size, roots.dirs[i], "schema", file, error);
+        if (status != UR_OK)
+            return status;
+        if (access(path, R_OK) == 0)
+            return UR_OK;
+    }
+    char searched[UR_PATH_MAX];
+    describe_roots(&roots, searched, sizeof searched);
+    /* The schemas ship with unroll: without them the installation is broken. */
+    return ur_error_set(error, UR_ERROR_INTERNAL, "no schema/%s in any profile root (searched %s)",
+                        file, searched);
+}
+
+/* ---- libxml2 errors ---------------------------------------------------- */
+
+/* The first error libxml2 reports; later ones are mostly consequences. */
+typedef struct ur_xml_report {
+    bool have;
+    char file[UR_PATH_MAX];
+    int line;
+    char message[512];
+} ur_xml_report;
+
+static void strip_trailing_space(char *text)
+{
+    size_t length = strlen(text);
+    while (length > 0 && isspace((unsigned char)text[length - 1]))
+        text[--length] = '\0';
+}
+
+static void collect_error(void *context, ur_xml_error *xml_error)
+{
+    ur_xml_report *report = context;
+    if (report->have || !xml_error || xml_error->level == XML_ERR_WARNING)
+        return;
+    report->have = true;
+    report->line = xml_error->line;
+    snprintf(report->file, sizeof report->file, "%s", xml_error->file ? xml_error->file : "");
+    const char *message = xml_error->message ? xml_error->message : "unknown XML error";
+    xmlNodePtr node = xml_error->node;
+    /* Validity messages do not always say which element: add it, as xmllint does. */
+    if (xml_error->domain == XML_FROM_RELAXNGV && node && node->type == XML_ELEMENT_NODE &&
+        !strstr(message, (const char *)node->name))
+        snprintf(report->message, sizeof report->message, "element %s: %s",
+                 (const char *)node->name, message);
+    else
+        snprintf(report->message, sizeof report->message, "%s", message);
+    strip_trailing_space(report->message);
+}
+
+static void ignore_generic_error(void *context, const char *format, ...)
+{
+    (void)context;
+    (void)format;
+}
+
+/* The handlers in place before ours, put back by xml_handlers_restore. */
+typedef struct ur_xml_handlers {
+    xmlStructuredErrorFunc structured;
+    void *structured_context;
+    xmlGenericErrorFunc generic;
+    void *generic_context;
+} ur_xml_handlers;
+
+static void xml_handlers_install(ur_xml_handlers *saved, ur_xml_report *report)
+{
+    saved->structured = xmlStructuredError;
+    saved->structured_context = xmlStructuredErrorContext;
+    saved->generic = xmlGenericError;
+    saved->generic_context = xmlGenericErrorContext;
+    xmlSetStructuredErrorFunc(report, collect_error);
+    xmlSetGenericErrorFunc(NULL, ignore_generic_error);
+}
+
+static void xml_handlers_restore(const ur_xml_handlers *saved)
+{
+    xmlSetStructuredErrorFunc(saved->structured_context, saved->structured);
+    xmlSetGenericErrorFunc(saved->generic_context, saved->generic);
+}
+
+/* "FILE:LINE: message" from a report, or fallback when libxml2 said nothing. */
+static ur_status report_error(const ur_xml_report *report, const char *path, ur_status status,
+                              const char *fallback, ur_error *error)
+{
+    if (!report->have)
+        return ur_error_set(error, status, "%s: %s", path, fallback);
+    const char *file = report->file[0] ? report->file : path;
+    if (report->line > 0)
+        return ur_error_set(error, status, "%s:%d: %s", file, report->line, report->message);
+    return ur_error_set(error, status, "%s: %s", file, report->message);
+}
+
+/* ---- Parsing and validation -------------------------------------------- */
+
+static ur_status parse_document(const char *path, xmlDocPtr *doc, ur_error *error)
+{
+    *doc = NULL;
+    /* Our own check first: libxml2's wording for a missing file is vague. */
+    struct stat info;
+    if (stat(path, &info) != 0 || access(path, R_OK) != 0)
+        return ur_error_set(error, UR_ERROR_INPUT, "%s: cannot open: %s", path,
+                            strerror(errno));
+    if (!S_ISREG(info.st_mode))
+        return ur_error_set(error, UR_ERROR_INPUT, "%s: not a regular file", path);
+    ur_xml_report report = {0};
+    ur_xml_handlers saved;
+    xml_handlers_install(&saved, &report);
+    *doc = xmlReadFile(path, NULL, XML_PARSE_NONET);
+    xml_handlers_restore(&saved);
+    /* Namespace errors leave a document behind: refuse it all the same. */
+    if (*doc && !report.have)
+        return UR_OK;
+    xmlFreeDoc(*doc);
+    *doc = NULL;
+    return report_error(&report, path, UR_ERROR_INPUT, "cannot parse", error);
+}
+
+static ur_status validate_with(xmlRelaxNGPtr schema, xmlDocPtr doc, const char *path,
+                               ur_error *error)
+{
+    xmlRelaxNGValidCtxtPtr context = xmlRelaxNGNewValidCtxt(schema);
+    if (!context)
+        return ur_error_out_of_memory(error);
+    ur_xml_report report = {0};
+    xmlRelaxNGSetValidStructuredErrors(context, collect_error, &report);
+    int result = xmlRelaxNGValidateDoc(context, doc);
+    xmlRelaxNGFreeValidCtxt(context);
+    if (result == 0)
+        return UR_OK;
+    if (result < 0)
+        return report_error(&report, path, UR_ERROR_INTERNAL, "cannot validate", error);
+    return report_error(&report, path, UR_ERROR_INPUT, "does not match its schema", error);
+}
+
+static ur_status validate_document(xmlDocPtr doc, const char *schema_path, const char *path,
+                                   ur_error *error)
+{
+    ur_xml_report report = {0};
+    ur_xml_handlers saved;
+    xml_handlers_install(&saved, &report);
+    ur_status status = UR_OK;
+    xmlRelaxNGPtr schema = NULL;
+    xmlRelaxNGParserCtxtPtr parser = xmlRelaxNGNewParserCtxt(schema_path);
+    if (!parser) {
+        status = ur_error_out_of_memory(error);
+    } else {
+        xmlRelaxNGSetParserStructuredErrors(parser, collect_error, &report);
+        schema = xmlRelaxNGParse(parser);
+        xmlRelaxNGFreeParserCtxt(parser);
+        /* A broken schema is a broken installation, not bad user input. */
+        if (!schema)
+            status = report_error(&report, schema_path, UR_ERROR_INTERNAL,
+                                  "cannot read the schema", error);
+    }
+    if (status == UR_OK)
+        status = validate_with(schema, doc, path, error);
+    xmlRelaxNGFree(schema);
+    xml_handlers_restore(&saved);
+    return status;
+}
+
+/* Parses path and validates it against the schema of its kind. */
+static ur_status load_document(ur_profile_kind kind, const char *path, xmlDocPtr *doc,
+                               ur_error *error)
+{
+    char schema_path[UR_PATH_MAX];
+    ur_status status = find_schema(kind, schema_path, sizeof schema_path, error);
+    if (status != UR_OK)
+        return status;
+    status = parse_document(path, doc, error);
+    if (status != UR_OK)
+        return status;
+    status = validate_document(*doc, schema_path, path, error);
+    if (status != UR_OK) {
+        xmlFreeDoc(*doc);
+        *doc = NULL;
+    }
+    return status;
+}
+
+/* ---- Reading values ---------------------------------------------------- */
+
+/*
+ * The schema already guarantees what is checked here; the loader checks
+ * again so that a hand-edited schema cannot feed nonsense to the geometry.
+ */
+typedef struct ur_reader {
+    const char *path;
+    ur_error *error;
+} ur_reader;
+
+typedef struct ur_range {
+    double low, high;
+    bool low_open, high_open;
+    const char *wording;
+} ur_range;
+
+static const ur_range positive = {0.0, INFINITY, true, false, "a positive number"};
+static const ur_range non_negative = {0.0, INFINITY, false, false, "a number >= 0"};
+static const ur_range strain = {0.0, 1.0, false, true, "a fraction from 0 to below 1"};
+static const ur_range unit = {0.0, 1.0, false, false, "a fraction from 0 to 1"};
+static const ur_range tab_angle = {0.0, 90.0, true, false, "an angle above 0 and up to 90"};
+static const ur_range tolerance = {0.0, 90.0, false, false, "an angle from 0 to 90"};
+
+static ur_status reader_fail(const ur_reader *reader, xmlNodePtr node, const char *format, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+
+static ur_status reader_fail(const ur_reader *reader, xmlNodePtr node, const char *format, ...)
+{
+    char message[512];
+    va_list args;
+    va_start(args, format);
+    vsnprintf(message, sizeof message, format, args);
+    va_end(args);
+    long line = node ? xmlGetLineNo(node) : -1;
+    if (line > 0)
+        return ur_error_set(reader->error, UR_ERROR_INPUT, "%s:%ld: %s", reader->path, line,
+                            message);
+    return ur_error_set(reader->error, UR_ERROR_INPUT, "%s: %s", reader->path, message);
+}
+
+static bool is_element(xmlNodePtr node, const char *name)
+{
+    return node && node->type == XML_ELEMENT_NODE && xmlStrEqual(node->name, BAD_CAST name);
+}
+
+static xmlNodePtr next_element(xmlNodePtr node, const char *name)
+{
+    while (node && !is_element(node, name))
+        node = node->next;
+    return node;
+}
+
+static ur_status need_element(const ur_reader *reader, xmlNodePtr parent, const char *name,
+                              xmlNodePtr *element)
+{
+    *element = next_element(parent->children, name);
+    if (!*element)
+        return reader_fail(reader, parent, "<%s> has no <%s>", (const char *)parent->name, name);
+    return UR_OK;
+}
+
+static bool in_range(double value, const ur_range *range)
+{
+    bool above = range->low_open ? value > range->low : value >= range->low;
+    bool below = range->high_open ? value < range->high : value <= range->high;
+    return above && below;
+}
+
+static ur_status parse_number(const ur_reader *reader, xmlNodePtr node, const char *what,
+                              const char *text, const ur_range *range, double *value)
+{
+    while (isspace((unsigned char)*text))
+        text++;
+    char *end = NULL;
+    double parsed = strtod(text, &end);
+    if (end != text)
+        while (isspace((unsigned char)*end))
+            end++;
+    if (end == text || *end != '\0' || !isfinite(parsed) || !in_range(parsed, range))
+        return reader_fail(reader, node, "%s must be %s, not '%.40s'", what, range->wording,
+                           text);
+    *value = parsed;
+    return UR_OK;
+}
+
+/* The number in an element's text, e.g. <kerf>0.2</kerf>. */
+static ur_status element_number(const ur_reader *reader, xmlNodePtr parent, const char *name,
+                                const ur_range *range, double *value)
+{
+    xmlNodePtr element;
+    ur_status status = need_element(reader, parent, name, &element);
+    if (status != UR_OK)
+        return status;
+    xmlChar *text = xmlNodeGetContent(element);
+    if (!text)
+        return ur_error_out_of_memory(reader->error);
+    status = parse_number(reader, element, name, (const char *)text, range, value);
+    xmlFree(text);
+    return status;
+}
+
+/* An attribute's number; a missing optional attribute leaves *value alone. */
+static ur_status attribute_number(const ur_reader *reader, xmlNodePtr element, const char *name,
+                                  bool required, const ur_range *range, double *value)
+{
+    xmlChar *text = xmlGetProp(element, BAD_CAST name);
+    if (!text) {
+        if (!required)
+            return UR_OK;
+        return reader_fail(reader, element, "<%s> has no %s attribute",
+                           (const char *)element->name, name);
+    }
+    char what[128];
+    snprintf(what, sizeof what, "%s %s", (const char *)element->name, name);
+    ur_status status = parse_number(reader, element, what, (const char *)text, range, value);
+    xmlFree(text);
+    return status;
+}
+
+/* Copies text with runs of white space collapsed, so descriptions may wrap. */
+static ur_status copy_text(const ur_reader *reader, xmlNodePtr node, const char *what,
+                           const char *text, char *out, size_t size)
+{
+    size_t length = 0;
+    bool pending_space = false;
+    for (const char *p = text; *p; p++) {
+        if (isspace((unsigned char)*p)) {
+            pending_space = length > 0;
+            continue;
+        }
+        if (length + (pending_space ? 2 : 1) >= size)
+            return reader_fail(reader, node, "%s is longer than %zu bytes", what, size - 1);
+        if (pending_space)
+            out[length++] = ' ';
+        pending_space = false;
+        out[length++] = *p;
+    }
+    out[length] = '\0';
+    if (length == 0)
+        return reader_fail(reader, node, "%s is empty", what);
+    return UR_OK;
+}
+
+static ur_status element_text(const ur_reader *reader, xmlNodePtr parent, const char *name,
+                              char *out, size_t size)
+{
+    xmlNodePtr element;
+    ur_status status = need_element(reader, parent, name, &element);
+    if (status != UR_OK)
+        return status;
+    xmlChar *text = xmlNodeGetContent(element);
+    if (!text)
+        return ur_error_out_of_memory(reader->error);
+    status = copy_text(reader, element, name, (const char *)text, out, size);
+    xmlFree(text);
+    return status;
+}
+
+static ur_status attribute_text(const ur_reader *reader, xmlNodePtr element, const char *name,
+                                char *out, size_t size)
+{
+    xmlChar *text = xmlGetProp(element, BAD_CAST name);
+    if (!text)
+        return reader_fail(reader, element, "<%s> has no %s attribute",
+                           (const char *)element->name, name);
+    ur_status status = copy_text(reader, element, name, (const char *)text, out, size);
+    xmlFree(text);
+    return status;
+}
+
+/* The profile name is the file name without ".xml". */
+static ur_status set_identity(const char *path, char *name, size_t name_size, char *source,
+                              size_t source_size, ur_error *error)
+{
+    if (strlen(path) >= source_size)
+        return ur_error_set(error, UR_ERROR_INPUT, "%s: path too long", path);
+    strcpy(source, path);
+    const char *slash = strrchr(path, '/');
+    const char *base = slash ? slash + 1 : path;
+    size_t length = strlen(base);
+    if (length > 4 && strcmp(base + length - 4, ".xml") == 0)
+        length -= 4;
+    if (length == 0 || length >= name_size)
+        return ur_error_set(error, UR_ERROR_INPUT, "%s: file name unusable as a profile name",
+                            path);
+    memcpy(name, base, length);
+    name[length] = '\0';
+    return UR_OK;
+}
+
+/* ---- Machines ---------------------------------------------------------- */
+
+static ur_status read_machine_kind(const ur_reader *reader, xmlNodePtr root,
+                                   ur_machine_kind *kind)
+{
+    char text[16];
+    xmlNodePtr element;
+    ur_status status = need_element(reader, root, "kind", &element);
+    if (status == UR_OK)
+        status = element_text(reader, root, "kind", text, sizeof text);
+    if (status != UR_OK)
+        return status;
+    if (strcmp(text, "laser") == 0)
+        *kind = UR_MACHINE_LASER;
+    else if (strcmp(text, "router") == 0)
+        *kind = UR_MACHINE_ROUTER;
+    else
+        return reader_fail(reader, element, "kind must be 'laser' or 'router', not '%s'", text);
+    return UR_OK;
+}
+
+static ur_status read_colour(const ur_reader *reader, xmlNodePtr element, char colour[8])
+{
+    char text[16];
+    ur_status status = attribute_text(reader, element, "colour", text, sizeof text);
+    if (status != UR_OK)
+        return status;
+    bool ok = strlen(text) == 7 && text[0] == '#';
+    for (int i = 1; ok && i < 7; i++)
+        ok = isxdigit((unsigned char)text[i]);
+    if (!ok)
+        return reader_fail(reader, element, "colour must be #RRGGBB, not '%s'", text);
+    /* One spelling, so writers and tests can compare colours as strings. */
+    for (int i = 0; i < 8; i++)
+        colour[i] = (char)toupper((unsigned char)text[i]);
+    return UR_OK;
+}
+
+static ur_status read_style(const ur_reader *reader, xmlNodePtr element, ur_op_style *style)
+{
+    ur_status status = attribute_text(reader, element, "layer", style->layer, sizeof style->layer);
+    if (status == UR_OK)
+        status = read_colour(reader, element, style->colour);
+    if (status == UR_OK)
+        status = attribute_number(reader, element, "line-width", true, &positive,
+                                  &style->line_width);
+    return status;
+}
+
+/* One <operation> per ur_op, each exactly once. */
+static ur_status read_operations(const ur_reader *reader, xmlNodePtr root, ur_machine *machine)
+{
+    bool seen[UR_OP_COUNT] = {false};
+    for (xmlNodePtr node = next_element(root->children, "operation"); node;
+         node = next_element(node->next, "operation")) {
+        char name[16];
+        ur_status status = attribute_text(reader, node, "name", name, sizeof name);
+        if (status != UR_OK)
+            return status;
+        ur_op op = ur_op_from_name(name);
+        if (op == UR_OP_COUNT)
+            return reader_fail(reader, node, "unknown operation '%s'", name);
+        if (seen[op])
+            return reader_fail(reader, node, "operation '%s' given twice", name);
+        seen[op] = true;
+        status = read_style(reader, node, &machine->styles[op]);
+        if (status != UR_OK)
+            return status;
+    }
+    for (int op = 0; op < UR_OP_COUNT; op++)
+        if (!seen[op])
+            return reader_fail(reader, root, "no <operation name=\"%s\">",
+                               ur_op_name((ur_op)op));
+    return UR_OK;
+}
+
+static ur_status read_machine_fields(const ur_reader *reader, xmlNodePtr root,
+                                     ur_machine *machine)
+{
+    xmlNodePtr bed, speed;
+    ur_status status = element_text(reader, root, "description", machine->description,
+                                    sizeof machine->description);
+    if (status == UR_OK)
+        status = read_machine_kind(reader, root, &machine->kind);
+    if (status == UR_OK)
+        status = need_element(reader, root, "bed", &bed);
+    if (status == UR_OK)
+        status = attribute_number(reader, bed, "width", true, &positive, &machine->bed_width);
+    if (status == UR_OK)
+        status = attribute_number(reader, bed, "height", true, &positive, &machine->bed_height);
+    if (status == UR_OK)
+        status = element_number(reader, root, "kerf", &positive, &machine->kerf);
+    if (status == UR_OK)
+        status = element_number(reader, root, "margin", &non_negative, &machine->margin);
+    if (status == UR_OK)
+        status = element_number(reader, root, "spacing", &non_negative, &machine->spacing);
+    if (status == UR_OK)
+        status = need_element(reader, root, "speed", &speed);
+    if (status == UR_OK)
+        status = attribute_number(reader, speed, "cut", true, &positive, &machine->cut_speed);
+    if (status == UR_OK)
+        status = attribute_number(reader, speed, "travel", true, &positive,
+                                  &machine->travel_speed);
+    if (status == UR_OK)
+        status = read_operations(reader, root, machine);
+    return status;
+}
+
+ur_status ur_machine_read(const char *path, ur_machine *machine, ur_error *error)
+{
+    memset(machine, 0, sizeof *machine);
+    ur_status status = set_identity(path, machine->name, sizeof machine->name, machine->source,
+                                    sizeof machine->source, error);
+    if (status != UR_OK)
+        return status;
+    xmlDocPtr doc = NULL;
+    status = load_document(UR_PROFILE_MACHINE, path, &doc, error);
+    if (status != UR_OK)
+        return status;
+    ur_reader reader = {path, error};
+    xmlNodePtr root = xmlDocGetRootElement(doc);
+    if (!is_element(root, "machine"))
+        status = reader_fail(&reader, root, "not a <machine> profile");
+    else
+        status = read_machine_fields(&reader, root, machine);
+    xmlFreeDoc(doc);
+    return status;
+}
+
+/* ---- Materials --------------------------------------------------------- */
+
+static ur_status read_stock(const ur_reader *reader, xmlNodePtr root, ur_material *material)
+{
+    for (xmlNodePtr node = next_element(root->children, "stock"); node;
+         node = next_element(node->next, "stock")) {
+        if (material->stock_count == UR_MAX_STOCK_SIZES)
+            return reader_fail(reader, node, "more than %d stock sizes", UR_MAX_STOCK_SIZES);
+        ur_sheet_size *size = &material->stock[material->stock_count];
+        ur_status status = attribute_number(reader, node, "width", true, &positive, &size->width);
+        if (status == UR_OK)
+            status = attribute_number(reader, node, "height", true, &positive, &size->height);
+        if (status != UR_OK)
+            return status;
+        material->stock_count++;
+    }
+    if (material->stock_count == 0)
+        return reader_fail(reader, root, "no <stock> size");
+    return UR_OK;
+}
+
+/* <kerf laser=".." router=".."/> is optional, and so is each attribute. */
+static ur_status read_material_kerf(const ur_reader *reader, xmlNodePtr root,
+                                    ur_material *material)
+{
+    xmlNodePtr kerf = next_element(root->children, "kerf");
+    if (!kerf)
+        return UR_OK;
+    ur_status status =
+        attribute_number(reader, kerf, "laser", false, &positive, &material->kerf_laser);
+    if (status == UR_OK)
+        status =
+            attribute_number(reader, kerf, "router", false, &positive, &material->kerf_router);
+    return status;
+}
+
+static ur_status read_grain(const ur_reader *reader, xmlNodePtr root, ur_material *material)
+{
+    xmlNodePtr grain;
+    char rule[16];
+    ur_status status = need_element(reader, root, "grain", &grain);
+    if (status == UR_OK)
+        status = attribute_text(reader, grain, "rule", rule, sizeof rule);
+    if (status != UR_OK)
+        return status;
+    if (strcmp(rule, "none") == 0)
+        material->grain = UR_GRAIN_NONE;
+    else if (strcmp(rule, "along") == 0)
+        material->grain = UR_GRAIN_ALONG;
+    else if (strcmp(rule, "across") == 0)
+        material->grain = UR_GRAIN_ACROSS;
+    else
+        return reader_fail(reader, grain, "grain rule must be none, along or across, not '%s'",
+                           rule);
+    /* A tolerance only means something when there is a rule to keep. */
+    bool required = material->grain != UR_GRAIN_NONE;
+    return attribute_number(reader, grain, "tolerance", required, &tolerance,
+                            &material->grain_tolerance);
+}
+
+static ur_status read_bending(const ur_reader *reader, xmlNodePtr root, ur_material *material)
+{
+    xmlNodePtr radius, strain_element;
+    ur_status status = need_element(reader, root, "bend-radius", &radius);
+    if (status == UR_OK)
+        status = attribute_number(reader, radius, "with-grain", true, &positive,
+                                  &material->bend_radius_with_grain);
+    if (status == UR_OK)
+        status = attribute_number(reader, radius, "across-grain", true, &positive,
+                                  &material->bend_radius_across_grain);
+    if (status == UR_OK)
+        status = need_element(reader, root, "strain", &strain_element);
+    if (status == UR_OK)
+        status = attribute_number(reader, strain_element, "stretch", true, &strain,
+                                  &material->max_stretch);
+    if (status == UR_OK)
+        status = attribute_number(reader, strain_element, "compression", true, &strain,
+                                  &material->max_compression);
+    if (status == UR_OK)
+        status = element_number(reader, root, "k-factor", &unit, &material->k_factor);
+    return status;
+}
+
+static ur_status read_tab_and_hinge(const ur_reader *reader, xmlNodePtr root,
+                                    ur_material *material)
+{
+    xmlNodePtr tab, hinge;
+    ur_status status = need_element(reader, root, "tab", &tab);
+    if (status == UR_OK)
+        status = attribute_number(reader, tab, "depth", true, &positive, &material->tab_depth);
+    if (status == UR_OK)
+        status = attribute_number(reader, tab, "angle", true, &tab_angle, &material->tab_angle);
+    if (status == UR_OK)
+        status = need_element(reader, root, "living-hinge", &hinge);
+    if (status == UR_OK)
+        status = attribute_number(reader, hinge, "cut-length", true, &positive,
+                                  &material->hinge_cut_length);
+    if (status == UR_OK)
+        status = attribute_number(reader, hinge, "connection", true, &positive,
+                                  &material->hinge_connection);
+    if (status == UR_OK)
+        status = attribute_number(reader, hinge, "distance", true, &positive,
+                                  &material->hinge_distance);
+    return status;
+}
+
+static ur_status read_material_fields(const ur_reader *reader, xmlNodePtr root,
+                                      ur_material *material)
+{
+    ur_status status = element_text(reader, root, "description", material->description,
+                                    sizeof material->description);
+    if (status == UR_OK)
+        status = element_number(reader, root, "thickness", &positive, &material->thickness);
+    if (status == UR_OK)
+        status = read_stock(reader, root, material);
+    if (status == UR_OK)
+        status = read_material_kerf(reader, root, material);
+    if (status == UR_OK)
+        status = read_bending(reader, root, material);
+    if (status == UR_OK)
+        status = read_tab_and_hinge(reader, root, material);
+    if (status == UR_OK)
+        status = read_grain(reader, root, material);
+    return status;
+}
+
+ur_status ur_material_read(const char *path, ur_material *material, ur_error *error)
+{
+    memset(material, 0, sizeof *material);
+    ur_status status = set_identity(path, material->name, sizeof material->name,
+                                    material->source, sizeof material->source, error);
+    if (status != UR_OK)
+        return status;
+    xmlDocPtr doc = NULL;
+    status = load_document(UR_PROFILE_MATERIAL, path, &doc, error);
+    if (status != UR_OK)
+        return status;
+    ur_reader reader = {path, error};
+    xmlNodePtr root = xmlDocGetRootElement(doc);
+    if (!is_element(root, "material"))
+        status = reader_fail(&reader, root, "not a <material> profile");
+    else
+        status = read_material_fields(&reader, root, material);
+    xmlFreeDoc(doc);
+    return status;
+}
+
+/* ---- Loading by name --------------------------------------------------- */
+
+ur_status ur_machine_load(const char *name, ur_machine *machine, ur_error *error)
+{
+    char path[UR_PATH_MAX];
+    ur_status status = ur_profile_find(UR_PROFILE_MACHINE, name, path, sizeof path, error);
+    if (status != UR_OK)
+        return status;
+    return ur_machine_read(path, machine, error);
+}
+
+ur_status ur_material_load(const char *name, ur_material *material, ur_error *error)
+{
+    char path[UR_PATH_MAX];
+    ur_status status = ur_profile_find(UR_PROFILE_MATERIAL, name, path, sizeof path, error);
+    if (status != UR_OK)
+        return status;
+    return ur_material_read(path, material, error);
+}
+
+double ur_effective_kerf(const ur_machine *machine, const ur_material *material)
+{
+    if (material) {
+        double kerf =
+            machine->kind == UR_MACHINE_LASER ? material->kerf_laser : material->kerf_router;
+        if (kerf > 0.0)
+            return kerf;
+    }
+    return machine->kerf;
+}
+
+/* ---- Listing ----------------------------------------------------------- */
+
+typedef struct ur_entry_list {
+    ur_profile_entry *items;
+    size_t count, capacity;
+} ur_entry_list;
+
+static bool entry_listed(const ur_entry_list *list, ur_profile_kind kind, const char *name)
+{
+    for (size_t i = 0; i < list->count; i++)
+        if (list->items[i].kind == kind && strcmp(list->items[i].name, name) == 0)
+            return true;
+    return false;
+}
+
+static ur_status entry_list_grow(ur_entry_list *list, ur_error *error)
+{
+    if (list->count < list->capacity)
+        return UR_OK;
+    size_t capacity = list->capacity ? 2 * list->capacity : 16;
+    if (capacity > SIZE_MAX / sizeof(ur_profile_entry))
+        return ur_error_out_of_memory(error);
+    ur_profile_entry *items = realloc(list->items, capacity * sizeof *items);
+    if (!items)
+        return ur_error_out_of_memory(error);
+    list->items = items;
+    list->capacity = capacity;
+    return UR_OK;
+}
+
+/* "(invalid: MESSAGE)", shortened with "..." to fit the description. */
+static void describe_invalid(char *out, size_t size, const char *message)
+{
+    static const char head[] = "(invalid: ", tail[] = ")", dots[] = "...";
+    size_t room = size - sizeof head - sizeof tail - sizeof dots + 2;
+    size_t length = strlen(message);
+    bool shortened = length > room;
+    if (shortened)
+        length = room;
+    memcpy(out, head, sizeof head - 1);
+    memcpy(out + sizeof head - 1, message, length);
+    char *end = out + sizeof head - 1 + length;
+    if (shortened) {
+        memcpy(end, dots, sizeof dots - 1);
+        end += sizeof dots - 1;
+    }
+    memcpy(end, tail, sizeof tail);
+}
+
+/* Reads a profile only for its description; a bad file is listed, not hidden. */
+static void describe_entry(ur_profile_entry *entry)
+{
+    ur_error error = {0};
+    ur_status status;
+    if (entry->kind == UR_PROFILE_MACHINE) {
+        ur_machine machine;
+        status = ur_machine_read(entry->source, &machine, &error);
+        if (status == UR_OK)
+            strcpy(entry->description, machine.description);
+    } else {
+        ur_material material;
+        status = ur_material_read(entry->source, &material, &error);
+        if (status == UR_OK)
+            strcpy(entry->description, material.description);
+    }
+    if (status != UR_OK)
+        describe_invalid(entry->description, sizeof entry->description, error.message);
+}
+
+static ur_status add_entry(ur_entry_list *list, ur_profile_kind kind, const char *folder,
+                           const char *file, size_t stem_length, ur_error *error)
+{
+    char name[sizeof list->items[0].name];
+    if (stem_length >= sizeof name)
+        stem_length = sizeof name - 1;
+    memcpy(name, file, stem_length);
+    name[stem_length] = '\0';
+    /* An earlier root has this name: that one hides this one. */
+    if (entry_listed(list, kind, name))
+        return UR_OK;
+    ur_status status = entry_list_grow(list, error);
+    if (status != UR_OK)
+        return status;
+    ur_profile_entry *entry = &list->items[list->count];
+    memset(entry, 0, sizeof *entry);
+    entry->kind = kind;
+    strcpy(entry->name, name);
+    int length = snprintf(entry->source, sizeof entry->source, "%s/%s", folder, file);
+    if (length < 0 || (size_t)length >= sizeof entry->source)
+        return ur_error_set(error, UR_ERROR_INPUT, "%s/%s: path too long", folder, file);
+    if (valid_name(entry->name) && strlen(file) == stem_length + 4)
+        describe_entry(entry);
+    else
+        describe_invalid(entry->description, sizeof entry->description,
+                         "the file name is not a usable profile name");
+    list->count++;
+    return UR_OK;
+}
+
+/* Adds every ROOT/FOLDER/NAME.xml; dot files are hidden, as ls does. */
+static ur_status list_folder(const char *root, ur_profile_kind kind, ur_entry_list *list,
+                             ur_error *error)
+{
+    char folder[UR_PATH_MAX];
+    int length = snprintf(folder, sizeof folder, "%s/%s", root, kind_folder(kind));
+    if (length < 0 || (size_t)length >= sizeof folder)
+        return ur_error_set(error, UR_ERROR_INPUT, "%s: path too long", root);
+    DIR *dir = opendir(folder);
+    if (!dir) {
+        if (errno == ENOENT || errno == ENOTDIR)
+            return UR_OK;
+        return ur_error_set(error, UR_ERROR_INPUT, "%s: cannot list: %s", folder,
+                            strerror(errno));
+    }
+    ur_status status = UR_OK;
+    for (struct dirent *item = readdir(dir); item && status == UR_OK; item = readdir(dir)) {
+        size_t name_length = strlen(item->d_name);
+        if (item->d_name[0] == '.' || name_length <= 4 ||
+            strcmp(item->d_name + name_length - 4, ".xml") != 0)
+            continue;
+        status = add_entry(list, kind, folder, item->d_name, name_length - 4, error);
+    }
+    closedir(dir);
+    return status;
+}
+
+static int compare_entries(const void *a, const void *b)
+{
+    const ur_profile_entry *left = a, *right = b;
+    if (left->kind != right->kind)
+        return left->kind < right->kind ? -1 : 1;
+    return strcmp(left->name, right->name);
+}
+
+ur_status ur_profile_list(ur_profile_entry **entries, size_t *count, ur_error *error)
+{
+    *entries = NULL;
+    *count = 0;
+    ur_roots roots;
+    profile_roots(&roots);
+    ur_entry_list list = {0};
+    static const ur_profile_kind kinds[] = {UR_PROFILE_MACHINE, UR_PROFILE_MATERIAL};
+    for (size_t k = 0; k < 2; k++) {
+        for (int i = 0; i < roots.count; i++) {
+            ur_status status = list_folder(roots.dirs[i], kinds[k], &list, error);
+            if (status != UR_OK) {
+                free(list.items);
+                return status;
+            }
+        }
+    }
+    if (list.count > 1)
+        qsort(list.items, list.count, sizeof *list.items, compare_entries);
+    *entries = list.items;
+    *count = list.count;
+    return UR_OK;
+}
