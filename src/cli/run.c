@@ -6,6 +6,7 @@
 #include "surfaces.h"
 
 #include <libgen.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -35,31 +36,34 @@ static int exit_status(const ur_error *error)
     return error->status == UR_ERROR_INPUT ? EXIT_USAGE : EXIT_INTERNAL;
 }
 
-/* The first stock size that fits the machine's bed, else the bed itself. */
-static void choose_sheet(const cli_job *job, const ur_machine *machine,
-                         const ur_material *material, ur_layout_options *options)
+/*
+ * The sheets to try, in order: --sheet alone when given; else the material's
+ * stock sizes that fit the machine's bed; else the bed itself.
+ */
+static size_t sheet_choices(const cli_job *job, const ur_machine *machine,
+                            const ur_material *material, ur_sheet_size *choices)
 {
-    options->margin = machine->margin;
-    options->spacing = fmax(machine->spacing, ur_effective_kerf(machine, material));
     if (job->sheet_width > 0) {
-        options->sheet_width = job->sheet_width;
-        options->sheet_height = job->sheet_height;
-        return;
+        choices[0].width = job->sheet_width;
+        choices[0].height = job->sheet_height;
+        return 1;
     }
+    size_t count = 0;
     for (int k = 0; k < material->stock_count; k++) {
         ur_sheet_size size = material->stock[k];
-        if (size.width <= machine->bed_width && size.height <= machine->bed_height) {
-            options->sheet_width = size.width;
-            options->sheet_height = size.height;
-            return;
-        }
+        if ((size.width <= machine->bed_width && size.height <= machine->bed_height) ||
+            (size.height <= machine->bed_width && size.width <= machine->bed_height))
+            choices[count++] = size;
     }
-    options->sheet_width = machine->bed_width;
-    options->sheet_height = machine->bed_height;
-    if (!job->quiet)
-        cli_message("note: no stock size of %s fits the %s bed; using sheets cut to the bed, "
-                    "%g x %g mm",
-                    material->name, machine->name, machine->bed_width, machine->bed_height);
+    if (count == 0) {
+        choices[count].width = machine->bed_width;
+        choices[count++].height = machine->bed_height;
+        if (!job->quiet)
+            cli_message("note: no stock size of %s fits the %s bed; using sheets cut to the "
+                        "bed, %g x %g mm",
+                        material->name, machine->name, machine->bed_width, machine->bed_height);
+    }
+    return count;
 }
 
 typedef struct job_state {
@@ -109,11 +113,24 @@ static ur_status develop_and_place(const cli_job *job, job_state *state, ur_erro
         status = ur_develop(&state->ruled, &job->develop, &state->nets, error);
     if (status == UR_OK)
         status = make_pieces(job, state, error);
-    ur_layout_options options;
-    choose_sheet(job, &state->machine, &state->material, &options);
-    if (status == UR_OK)
+    if (status != UR_OK)
+        return status;
+    /* The first sheet every piece fits; the error of the last one tried otherwise. */
+    ur_sheet_size choices[UR_MAX_STOCK_SIZES + 1];
+    size_t count = sheet_choices(job, &state->machine, &state->material, choices);
+    ur_layout_options options = {
+        .margin = state->machine.margin,
+        .spacing = fmax(state->machine.spacing,
+                        ur_effective_kerf(&state->machine, &state->material)),
+    };
+    for (size_t k = 0; k < count; k++) {
+        options.sheet_width = choices[k].width;
+        options.sheet_height = choices[k].height;
         status = ur_layout_rows(state->pieces, state->piece_count, &options, &state->layout,
                                 error);
+        if (status != UR_ERROR_INPUT)
+            break;
+    }
     return status;
 }
 

@@ -65,9 +65,11 @@ static bool fits(ur_box box, double width, double height)
     return ur_box_width(box) <= width && ur_box_height(box) <= height;
 }
 
-static ur_status orient(const ur_piece *piece, GEOSContextHandle_t geos, double width,
-                        double height, candidate *out, ur_error *error)
+static ur_status orient(const ur_piece *piece, GEOSContextHandle_t geos,
+                        const ur_layout_options *options, candidate *out, ur_error *error)
 {
+    double width = options->sheet_width - 2 * options->margin;
+    double height = options->sheet_height - 2 * options->margin;
     double angle = piece->path_count ? level_angle(geos, &piece->paths[0]) : 0.0;
     for (int quarter = 0; quarter < 2; quarter++) {
         out->angle = angle + quarter * M_PI / 2;
@@ -77,11 +79,12 @@ static ur_status orient(const ur_piece *piece, GEOSContextHandle_t geos, double 
     }
     out->box = turned_box(piece, angle);
     return ur_error_set(error, UR_ERROR_INPUT,
-                        "piece %s (%.1f x %.1f mm) does not fit the %.1f x %.1f mm inside the "
-                        "sheet's margin in any orientation; give a larger sheet with --sheet "
-                        "WxH or choose a material with larger stock",
-                        piece->name, ur_box_width(out->box), ur_box_height(out->box), width,
-                        height);
+                        "piece %s (%.1f x %.1f mm) does not fit the %.1f x %.1f mm sheet "
+                        "(%.1f x %.1f mm inside its %.1f mm margin) in any orientation; give a "
+                        "larger sheet with --sheet WxH or a material with larger stock",
+                        piece->name, ur_box_width(out->box), ur_box_height(out->box),
+                        options->sheet_width, options->sheet_height, width, height,
+                        options->margin);
 }
 
 static int taller_first(const void *a, const void *b)
@@ -159,7 +162,7 @@ ur_status ur_layout_rows(const ur_piece *pieces, size_t piece_count,
     ur_status status = order && geos ? UR_OK : ur_error_out_of_memory(error);
     for (size_t k = 0; k < piece_count && status == UR_OK; k++) {
         order[k].index = k;
-        status = orient(&pieces[k], geos, width, height, &order[k], error);
+        status = orient(&pieces[k], geos, options, &order[k], error);
     }
     if (geos)
         GEOS_finish_r(geos);
