@@ -168,7 +168,8 @@ static bool parse_count(const char *surface, const char *text, size_t *count)
     errno = 0;
     long value = strtol(text, &end, 10);
     if (end == text || *end != '\0' || errno || value < 1 || value > 10000000) {
-        cli_message("%s: -n: '%s' is not a whole number from 1 to 10000000", surface, text);
+        cli_message("%s: -n/--parts: '%s' is not a whole number from 1 to 10000000", surface,
+                    text);
         return false;
     }
     *count = (size_t)value;

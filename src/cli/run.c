@@ -175,6 +175,13 @@ static void print_summary(const cli_job *job, const job_state *state)
     for (size_t k = 0; k < state->piece_count; k++)
         flat += state->pieces[k].measures.flat_area;
     const ur_sheet *first = &state->layout.sheets[0];
+    char first_file[4096];
+    size_t sheets = state->layout.sheet_count;
+    if (ur_sheet_file_name(job->output_path, 0, sheets, first_file, sizeof first_file, NULL))
+        snprintf(first_file, sizeof first_file, "%s", job->output_path);
+    if (sheets > 1) /* "net-1.svg ... net-3.svg" */
+        snprintf(first_file + strlen(first_file), sizeof first_file - strlen(first_file),
+                 " ... -%zu", sheets);
     fprintf(stderr,
             "unroll: %s (%s): %zu piece%s, surface %.2f mm2, net %.2f mm2 (coverage %.6f), "
             "%zu sheet%s of %g x %g mm (%s, %s) -> %s\n",
@@ -182,7 +189,7 @@ static void print_summary(const cli_job *job, const job_state *state)
             state->piece_count == 1 ? "" : "s", state->surface_area, flat,
             flat / state->surface_area, state->layout.sheet_count,
             state->layout.sheet_count == 1 ? "" : "s", first->width, first->height,
-            state->material.name, state->machine.name, job->output_path);
+            state->material.name, state->machine.name, first_file);
 }
 
 int cli_run_job(const cli_job *job)

@@ -240,8 +240,10 @@ static bool ring_is_simple(GEOSContextHandle_t geos, const ur_vec2 *ring, size_t
     if (!shell)
         return false;
     GEOSGeometry *polygon = GEOSGeom_createPolygon_r(geos, shell, NULL, 0);
-    if (!polygon)
+    if (!polygon) {
+        GEOSGeom_destroy_r(geos, shell);
         return false;
+    }
     bool simple = GEOSisValid_r(geos, polygon) == 1;
     GEOSGeom_destroy_r(geos, polygon);
     return simple;

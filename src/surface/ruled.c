@@ -46,7 +46,9 @@ ur_status ur_ruled_cone(ur_curve *curve, ur_vec3 apex, double cut, ur_ruled *rul
     if (!isfinite(apex.x) || !isfinite(apex.y) || !isfinite(apex.z))
         return refuse(ruled, curve, error, "the cone's apex must be a finite point");
     if (!(cut != 0) || !(cut <= 1) || !isfinite(cut))
-        return refuse(ruled, curve, error, "the cone's cut must be in (0, 1]");
+        return refuse(ruled, curve, error,
+                      "the cone's cut must be at most 1 and not 0 (negative keeps the "
+                      "rulings beyond the base, away from the apex)");
     take_curve(ruled, UR_RULED_CONE, curve);
     ruled->apex = apex;
     ruled->cut = cut;
