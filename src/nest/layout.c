@@ -16,12 +16,18 @@
 /* The angle that turns the piece's smallest enclosing rectangle level. */
 static double level_angle(GEOSContextHandle_t geos, const ur_path *outline)
 {
-    GEOSCoordSequence *sequence = GEOSCoordSeq_create_r(geos, (unsigned)outline->count, 2);
+    /*
+     * The angle only orients the piece (its box is then measured on every
+     * point), so a few thousand points of the outline are enough.
+     */
+    size_t stride = outline->count / 4000 + 1;
+    size_t used = (outline->count + stride - 1) / stride;
+    GEOSCoordSequence *sequence = GEOSCoordSeq_create_r(geos, (unsigned)used, 2);
     if (!sequence)
         return 0.0;
-    for (size_t i = 0; i < outline->count; i++)
-        GEOSCoordSeq_setXY_r(geos, sequence, (unsigned)i, outline->points[i].x,
-                             outline->points[i].y);
+    for (size_t i = 0; i < used; i++)
+        GEOSCoordSeq_setXY_r(geos, sequence, (unsigned)i, outline->points[i * stride].x,
+                             outline->points[i * stride].y);
     GEOSGeometry *points = GEOSGeom_createLineString_r(geos, sequence);
     GEOSGeometry *rectangle = points ? GEOSMinimumRotatedRectangle_r(geos, points) : NULL;
     double angle = 0.0;

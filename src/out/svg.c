@@ -37,10 +37,36 @@ typedef struct svg_sheet {
     size_t length, capacity;
 } svg_sheet;
 
-/* Millimetres to the nanometre, without trailing zeros. */
+/*
+ * Millimetres to the nanometre, without trailing zeros.  Sheets hold hundreds
+ * of thousands of coordinates and printf's exact decimal conversion was half
+ * the writing time, so values of ordinary size are written from a rounded
+ * integer count of nanometres (the last digit may differ from printf's on an
+ * exact tie, a nanometre at most).
+ */
 static void format_coordinate(double value, char text[NUMBER_SIZE])
 {
-    snprintf(text, NUMBER_SIZE, "%.6f", value);
+    if (!(fabs(value) < 1e12)) {
+        snprintf(text, NUMBER_SIZE, "%.6f", value);
+    } else {
+        long long nanometres = llround(value * 1e6);
+        unsigned long long magnitude = nanometres < 0 ? -(unsigned long long)nanometres
+                                                      : (unsigned long long)nanometres;
+        char digits[32];
+        int n = 0;
+        for (int place = 0; place < 7 || magnitude > 0; place++) {
+            if (place == 6)
+                digits[n++] = '.';
+            digits[n++] = (char)('0' + magnitude % 10);
+            magnitude /= 10;
+        }
+        char *out = text;
+        if (nanometres < 0)
+            *out++ = '-';
+        while (n > 0)
+            *out++ = digits[--n];
+        *out = '\0';
+    }
     char *end = text + strlen(text);
     while (end[-1] == '0')
         *--end = '\0';
@@ -239,11 +265,17 @@ static ur_status append(svg_sheet *sheet, const char *text, ur_error *error)
 /* Appends "M x y" or " L x y" for a sheet point, y flipped to point down. */
 static ur_status append_point(svg_sheet *sheet, const char *command, ur_vec2 point, ur_error *error)
 {
-    char x[NUMBER_SIZE], y[NUMBER_SIZE], text[2 * NUMBER_SIZE + 8];
+    char x[NUMBER_SIZE], y[NUMBER_SIZE];
     format_coordinate(point.x, x);
     format_coordinate(sheet->height - point.y, y);
-    snprintf(text, sizeof text, "%s %s %s", command, x, y);
-    return append(sheet, text, error);
+    ur_status status = append(sheet, command, error);
+    if (status == UR_OK)
+        status = append(sheet, " ", error);
+    if (status == UR_OK)
+        status = append(sheet, x, error);
+    if (status == UR_OK)
+        status = append(sheet, " ", error);
+    return status == UR_OK ? append(sheet, y, error) : status;
 }
 
 static ur_status svg_path(void *state, ur_op op, const ur_vec2 *points, size_t count, bool closed,
