@@ -153,6 +153,32 @@ static void test_helicoid_annulus(void **state)
     ur_ruled_free(&ruled);
 }
 
+/* Dense sampling switches integrators (see develop.c); the net must stay exact. */
+static void test_dense_sampling_stays_exact(void **state)
+{
+    (void)state;
+    double radius = 30, c = 10, rho = (radius * radius + c * c) / radius;
+    ur_ruled ruled = helicoid(radius, 2 * M_PI * c, 0.75, 0, 25);
+    ur_net_list nets = develop(&ruled, UR_METHOD_EXACT, 60000, 0.01);
+    assert_int_equal(nets.count, 1);
+    const ur_net *net = &nets.nets[0];
+    assert_true(net->outline_count > 2 * 40000);
+    /* Every outline point lies on one of the two circles of the annulus. */
+    double outer = sqrt(rho * rho + 25 * 25);
+    ur_vec2 centre = circle_centre(net->outline[0], net->outline[net->outline_count / 8],
+                                   net->outline[net->outline_count / 4]);
+    double worst = 0;
+    for (size_t i = 0; i < net->outline_count; i++) {
+        double r = ur_vec2_distance(net->outline[i], centre);
+        worst = fmax(worst, fmin(fabs(r - rho) / rho, fabs(r - outer) / outer));
+    }
+    if (!(worst < 1e-8))
+        fail_msg("worst relative radius error %g", worst);
+    assert_relative(net->flat_area, net->area_3d, 1e-6);
+    ur_net_list_free(&nets);
+    ur_ruled_free(&ruled);
+}
+
 /* The paper: triangle net < surface < quad net, both errors shrinking with n. */
 static void test_discrete_methods(void **state)
 {
@@ -290,6 +316,7 @@ int main(void)
         cmocka_unit_test(test_spline_keeps_curvature_at_ends),
         cmocka_unit_test(test_surface_areas),
         cmocka_unit_test(test_helicoid_annulus),
+        cmocka_unit_test(test_dense_sampling_stays_exact),
         cmocka_unit_test(test_discrete_methods),
         cmocka_unit_test(test_split_into_fewest_pieces),
         cmocka_unit_test(test_inflection_refused),
