@@ -152,6 +152,22 @@ def cylinder_is_a_rectangle(work):
 
 
 @test
+def cylinder_over_a_curve_is_a_rectangle(work):
+    """An open right section (half an ellipse) unrolls to its arc length x the height."""
+    with open(os.path.join(work, "arc.csv"), "w") as f:
+        for i in range(201):
+            t = math.pi * i / 200
+            f.write("%.12f,%.12f,0\n" % (50 * math.cos(t), 50 * math.sin(t)))
+    run(work, "cylinder", "--curve", "arc.csv", "--height", "80", "-o", "a.svg", *FINE)
+    [outline] = outlines(os.path.join(work, "a.svg"))
+    xs, ys = [p[0] for p in outline], [p[1] for p in outline]
+    sides = sorted([max(xs) - min(xs), max(ys) - min(ys)])
+    close(sides[1], math.pi * 50, 1e-5, "unrolled arc length (spline through 201 points)")
+    close(sides[0], 80, 1e-9, "height")
+    close(area(outline), sides[1] * 80, 1e-6, "the net is a rectangle")
+
+
+@test
 def right_cone_is_a_sector(work):
     run(work, "cone", "--radius", "60", "--height", "80", "-o", "k.svg", *FINE)
     [outline] = outlines(os.path.join(work, "k.svg"))
