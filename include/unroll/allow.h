@@ -44,8 +44,8 @@ ur_status ur_piece_add_path(ur_piece *piece, ur_op op, const ur_vec2 *points, si
                             bool closed, ur_error *error);
 
 /* Builds the piece for a net; the caller frees it with ur_piece_free. */
-ur_status ur_piece_from_net(const ur_net *net, const ur_allowance_options *options,
-                            ur_piece *piece, ur_error *error);
+ur_status ur_piece_from_net(const ur_net *net, const ur_allowance_options *options, ur_piece *piece,
+                            ur_error *error);
 
 void ur_piece_free(ur_piece *piece);
 

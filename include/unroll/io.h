@@ -33,17 +33,17 @@ ur_status ur_curve_csv_write(const char *path, const ur_vec3 *points, size_t cou
 /* ---- Profiles ---------------------------------------------------------- */
 
 typedef struct ur_op_style {
-    char layer[64];     /* layer name shown in the cutter software */
-    char colour[8];     /* "#RRGGBB" */
-    double line_width;  /* stroke width in mm */
+    char layer[64];    /* layer name shown in the cutter software */
+    char colour[8];    /* "#RRGGBB" */
+    double line_width; /* stroke width in mm */
 } ur_op_style;
 
 typedef enum ur_machine_kind { UR_MACHINE_LASER, UR_MACHINE_ROUTER } ur_machine_kind;
 
 typedef struct ur_machine {
-    char name[64];         /* the file name without .xml */
+    char name[64]; /* the file name without .xml */
     char description[256];
-    char source[1024];     /* the file it was read from */
+    char source[1024]; /* the file it was read from */
     ur_machine_kind kind;
     double bed_width, bed_height; /* mm */
     double kerf;                  /* mm: beam width or bit diameter */
@@ -70,23 +70,23 @@ typedef struct ur_material {
     char name[64];
     char description[256];
     char source[1024];
-    double thickness; /* mm */
+    double thickness;                        /* mm */
     ur_sheet_size stock[UR_MAX_STOCK_SIZES]; /* first is the default */
     int stock_count;
-    double kerf_laser;  /* mm, overrides the machine's; 0 when not given */
-    double kerf_router; /* likewise */
+    double kerf_laser;               /* mm, overrides the machine's; 0 when not given */
+    double kerf_router;              /* likewise */
     double bend_radius_with_grain;   /* mm: smallest radius without cracking */
     double bend_radius_across_grain; /* mm */
-    double max_stretch;     /* allowed strain, e.g. 0.01 for 1 % */
-    double max_compression; /* allowed strain */
-    double k_factor;        /* neutral layer position, 0..1 of thickness */
-    double tab_depth;       /* glue tab depth, mm */
-    double tab_angle;       /* taper of the tab sides, degrees */
+    double max_stretch;              /* allowed strain, e.g. 0.01 for 1 % */
+    double max_compression;          /* allowed strain */
+    double k_factor;                 /* neutral layer position, 0..1 of thickness */
+    double tab_depth;                /* glue tab depth, mm */
+    double tab_angle;                /* taper of the tab sides, degrees */
     ur_grain_rule grain;
-    double grain_tolerance; /* degrees */
-    double hinge_cut_length;  /* living hinge: slit length, mm */
-    double hinge_connection;  /* uncut bridge between slits, mm */
-    double hinge_distance;    /* distance between slit rows, mm */
+    double grain_tolerance;  /* degrees */
+    double hinge_cut_length; /* living hinge: slit length, mm */
+    double hinge_connection; /* uncut bridge between slits, mm */
+    double hinge_distance;   /* distance between slit rows, mm */
 } ur_material;
 
 /* "machines" or "materials": the sub-folder of a profile root. */

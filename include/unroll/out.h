@@ -35,7 +35,7 @@ typedef struct ur_report_context {
     const char *method;  /* "exact", "triangle" or "quad" */
     const ur_machine *machine;
     const ur_material *material;
-    double surface_area; /* 3D area of the whole surface */
+    double surface_area;        /* 3D area of the whole surface */
     const char *const *outputs; /* files written, NULL-terminated; may be NULL */
     /* output_path given to ur_write_svg, so the report names each sheet's file; may be NULL */
     const char *sheet_path;

@@ -45,8 +45,8 @@ static ur_status add_rulings(ur_piece *piece, const ur_net *net, ur_error *error
     return UR_OK;
 }
 
-ur_status ur_piece_from_net(const ur_net *net, const ur_allowance_options *options,
-                            ur_piece *piece, ur_error *error)
+ur_status ur_piece_from_net(const ur_net *net, const ur_allowance_options *options, ur_piece *piece,
+                            ur_error *error)
 {
     memset(piece, 0, sizeof *piece);
     snprintf(piece->name, sizeof piece->name, "%s", net->name);

@@ -47,28 +47,25 @@ static const struct {
      "  line, open or closed) along a direction (default 0,0,1).  Develops to a\n"
      "  rectangle for a right section; in general the base curve develops with its\n"
      "  geodesic curvature.\n"},
-    {"cone",
-     "unroll cone --radius R --height H [--top-radius r] -o FILE.svg [OPTIONS]\n"
-     "unroll cone --curve BASE.csv --apex X,Y,Z [--cut T] -o FILE.svg [OPTIONS]\n"
-     "  A right circular cone (a sector of radius the slant height) or frustum (an\n"
-     "  annular sector); or the cone joining any base curve to an apex, keeping each\n"
-     "  ruling from the base to fraction T of the way to the apex (default 1).\n"},
+    {"cone", "unroll cone --radius R --height H [--top-radius r] -o FILE.svg [OPTIONS]\n"
+             "unroll cone --curve BASE.csv --apex X,Y,Z [--cut T] -o FILE.svg [OPTIONS]\n"
+             "  A right circular cone (a sector of radius the slant height) or frustum (an\n"
+             "  annular sector); or the cone joining any base curve to an apex, keeping each\n"
+             "  ruling from the base to fraction T of the way to the apex (default 1).\n"},
     {"helicoid",
      "unroll helicoid --radius R --pitch P --turns T --width L [--offset D] -o FILE.svg\n"
      "  The developable helicoid: tangents of the helix (R cos t, R sin t, P t / 2 pi),\n"
      "  each kept from distance D to D + L from the helix.  It develops to an annular\n"
      "  sector of inner radius (R^2 + c^2) / R, c = P / 2 pi; nets that would overlap\n"
      "  themselves (about one turn or more) are split into pieces.\n"},
-    {"tangent",
-     "unroll tangent --curve EDGE.csv --width L [--offset D] -o FILE.svg [OPTIONS]\n"
-     "  The tangent developable of any space curve (the edge of regression), given as\n"
-     "  points and interpolated with C2 cubic splines.  The curve must bend one way\n"
-     "  only: an inflection makes the surface singular and is refused.\n"},
-    {"profiles",
-     "unroll profiles            list machine and material profiles\n"
-     "unroll profiles show NAME  print one profile and the file it comes from\n"
-     "  Profiles are searched in ./profiles, then $UNROLL_PROFILES, then the\n"
-     "  installed share directory.\n"},
+    {"tangent", "unroll tangent --curve EDGE.csv --width L [--offset D] -o FILE.svg [OPTIONS]\n"
+                "  The tangent developable of any space curve (the edge of regression), given as\n"
+                "  points and interpolated with C2 cubic splines.  The curve must bend one way\n"
+                "  only: an inflection makes the surface singular and is refused.\n"},
+    {"profiles", "unroll profiles            list machine and material profiles\n"
+                 "unroll profiles show NAME  print one profile and the file it comes from\n"
+                 "  Profiles are searched in ./profiles, then $UNROLL_PROFILES, then the\n"
+                 "  installed share directory.\n"},
 };
 
 void cli_print_usage(void)

@@ -154,8 +154,8 @@ static bool parse_sheet(const char *surface, const char *text, cli_job *job)
         job->sheet_height = strtod(rest, &end);
         ok = end != rest && *end == '\0' && errno == 0;
     }
-    if (!ok || !(job->sheet_width > 0) || !(job->sheet_height > 0) ||
-        !isfinite(job->sheet_width) || !isfinite(job->sheet_height)) {
+    if (!ok || !(job->sheet_width > 0) || !(job->sheet_height > 0) || !isfinite(job->sheet_width) ||
+        !isfinite(job->sheet_height)) {
         cli_message("%s: --sheet: '%s' is not WIDTHxHEIGHT in mm, e.g. 600x400", surface, text);
         return false;
     }
@@ -168,8 +168,7 @@ static bool parse_count(const char *surface, const char *text, size_t *count)
     errno = 0;
     long value = strtol(text, &end, 10);
     if (end == text || *end != '\0' || errno || value < 1 || value > 10000000) {
-        cli_message("%s: -n/--parts: '%s' is not a whole number from 1 to 10000000", surface,
-                    text);
+        cli_message("%s: -n/--parts: '%s' is not a whole number from 1 to 10000000", surface, text);
         return false;
     }
     *count = (size_t)value;
@@ -179,16 +178,26 @@ static bool parse_count(const char *surface, const char *text, size_t *count)
 static double *number_slot(cli_job *job, int id)
 {
     switch (id) {
-    case OPT_RADIUS: return &job->radius;
-    case OPT_HEIGHT: return &job->height;
-    case OPT_TOP_RADIUS: return &job->top_radius;
-    case OPT_CUT: return &job->cut;
-    case OPT_PITCH: return &job->pitch;
-    case OPT_TURNS: return &job->turns;
-    case OPT_WIDTH: return &job->width;
-    case OPT_OFFSET: return &job->offset;
-    case OPT_TOLERANCE: return &job->develop.tolerance;
-    default: return NULL;
+    case OPT_RADIUS:
+        return &job->radius;
+    case OPT_HEIGHT:
+        return &job->height;
+    case OPT_TOP_RADIUS:
+        return &job->top_radius;
+    case OPT_CUT:
+        return &job->cut;
+    case OPT_PITCH:
+        return &job->pitch;
+    case OPT_TURNS:
+        return &job->turns;
+    case OPT_WIDTH:
+        return &job->width;
+    case OPT_OFFSET:
+        return &job->offset;
+    case OPT_TOLERANCE:
+        return &job->develop.tolerance;
+    default:
+        return NULL;
     }
 }
 
@@ -205,19 +214,38 @@ static bool take_option(cli_job *job, int id, const char *value)
     if (slot)
         return parse_number(surface, id, value, slot);
     switch (id) {
-    case OPT_CURVE: job->curve_path = value; return true;
+    case OPT_CURVE:
+        job->curve_path = value;
+        return true;
     case OPT_DIRECTION:
         return job->has_direction = parse_vector(surface, id, value, &job->direction);
-    case OPT_APEX: return job->has_apex = parse_vector(surface, id, value, &job->apex);
-    case 'o': job->output_path = value; return true;
-    case OPT_MACHINE: job->machine_name = value; return true;
-    case OPT_MATERIAL: job->material_name = value; return true;
-    case OPT_SHEET: return parse_sheet(surface, value, job);
-    case OPT_RULINGS: job->draw_rulings = true; return true;
-    case OPT_REPORT: job->report_path = value; return true;
-    case OPT_NO_SPLIT: job->develop.split = false; return true;
-    case OPT_QUIET: job->quiet = true; return true;
-    case 'n': return parse_count(surface, value, &job->develop.rulings);
+    case OPT_APEX:
+        return job->has_apex = parse_vector(surface, id, value, &job->apex);
+    case 'o':
+        job->output_path = value;
+        return true;
+    case OPT_MACHINE:
+        job->machine_name = value;
+        return true;
+    case OPT_MATERIAL:
+        job->material_name = value;
+        return true;
+    case OPT_SHEET:
+        return parse_sheet(surface, value, job);
+    case OPT_RULINGS:
+        job->draw_rulings = true;
+        return true;
+    case OPT_REPORT:
+        job->report_path = value;
+        return true;
+    case OPT_NO_SPLIT:
+        job->develop.split = false;
+        return true;
+    case OPT_QUIET:
+        job->quiet = true;
+        return true;
+    case 'n':
+        return parse_count(surface, value, &job->develop.rulings);
     case OPT_METHOD: {
         int method = ur_method_from_name(value);
         if (method < 0) {
@@ -227,7 +255,8 @@ static bool take_option(cli_job *job, int id, const char *value)
         job->develop.method = (ur_method)method;
         return true;
     }
-    default: return false;
+    default:
+        return false;
     }
 }
 

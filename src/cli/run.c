@@ -120,14 +120,13 @@ static ur_status develop_and_place(const cli_job *job, job_state *state, ur_erro
     size_t count = sheet_choices(job, &state->machine, &state->material, choices);
     ur_layout_options options = {
         .margin = state->machine.margin,
-        .spacing = fmax(state->machine.spacing,
-                        ur_effective_kerf(&state->machine, &state->material)),
+        .spacing =
+            fmax(state->machine.spacing, ur_effective_kerf(&state->machine, &state->material)),
     };
     for (size_t k = 0; k < count; k++) {
         options.sheet_width = choices[k].width;
         options.sheet_height = choices[k].height;
-        status = ur_layout_rows(state->pieces, state->piece_count, &options, &state->layout,
-                                error);
+        status = ur_layout_rows(state->pieces, state->piece_count, &options, &state->layout, error);
         if (status != UR_ERROR_INPUT)
             break;
     }

@@ -172,8 +172,8 @@ static int build_helicoid(const cli_job *job, ur_ruled *ruled)
         return EXIT_USAGE;
     ur_curve *curve = NULL;
     ur_error error;
-    if (ur_curve_new_helix(job->radius, job->pitch, 0.0, 2 * M_PI * job->turns, &curve,
-                           &error) != UR_OK)
+    if (ur_curve_new_helix(job->radius, job->pitch, 0.0, 2 * M_PI * job->turns, &curve, &error) !=
+        UR_OK)
         return fail(&error, job);
     return build_tangent_of(job, curve, ruled);
 }

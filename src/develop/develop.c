@@ -102,8 +102,8 @@ static ur_status exact_parameters(ur_ruled *ruled, const ur_develop_options *opt
     double u0 = ur_ruled_start(ruled), u1 = ur_ruled_end(ruled);
     size_t steps[CELLS], total = 0;
     for (int c = 0; c < CELLS; c++) {
-        steps[c] = cell_steps(ruled, u0 + (u1 - u0) * c / CELLS,
-                              u0 + (u1 - u0) * (c + 1) / CELLS, options->tolerance);
+        steps[c] = cell_steps(ruled, u0 + (u1 - u0) * c / CELLS, u0 + (u1 - u0) * (c + 1) / CELLS,
+                              options->tolerance);
         total += steps[c];
     }
     size_t parts = options->rulings > 0 ? options->rulings : 1;
@@ -214,8 +214,7 @@ static ur_status develop_exact(ur_ruled *ruled, const ur_develop_options *option
 enum { CHECK_POINTS = 6000 };
 
 /* The outline of rulings first..last: near rail forward, far rail back. */
-static size_t piece_ring(const strip *s, size_t first, size_t last, size_t stride,
-                         ur_vec2 *ring)
+static size_t piece_ring(const strip *s, size_t first, size_t last, size_t stride, ur_vec2 *ring)
 {
     size_t n = 0;
     for (size_t i = first + (s->skip_first_near ? 1 : 0); i < last; i += stride)
@@ -268,8 +267,7 @@ static bool piece_is_simple(GEOSContextHandle_t geos, const strip *s, size_t fir
 }
 
 /* The furthest last such that first..last does not overlap itself. */
-static size_t furthest_simple(GEOSContextHandle_t geos, const strip *s, size_t first,
-                              ur_vec2 *ring)
+static size_t furthest_simple(GEOSContextHandle_t geos, const strip *s, size_t first, ur_vec2 *ring)
 {
     size_t good = first + 1, bad = s->count;
     if (piece_is_simple(geos, s, first, s->count - 1, ring))
@@ -290,8 +288,7 @@ static size_t furthest_simple(GEOSContextHandle_t geos, const strip *s, size_t f
  * not overlap itself does not either); then, with that many pieces, equal
  * parameter lengths are tried, since equal pieces are easier to build from.
  */
-static ur_status split_points(const strip *s, size_t **cuts, size_t *piece_count,
-                              ur_error *error)
+static ur_status split_points(const strip *s, size_t **cuts, size_t *piece_count, ur_error *error)
 {
     GEOSContextHandle_t geos = GEOS_init_r();
     ur_vec2 *ring = ur_alloc_array(CHECK_POINTS + 8, sizeof *ring, error);
@@ -317,7 +314,8 @@ static ur_status split_points(const strip *s, size_t **cuts, size_t *piece_count
         if (index + 1 < s->count && target - s->u[index] > s->u[index + 1] - target)
             index++;
         even[k] = index;
-        if (k > 0 && (even[k] <= even[k - 1] || !piece_is_simple(geos, s, even[k - 1], index, ring)))
+        if (k > 0 &&
+            (even[k] <= even[k - 1] || !piece_is_simple(geos, s, even[k - 1], index, ring)))
             even_ok = false;
     }
     free(ring);

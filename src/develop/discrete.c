@@ -22,8 +22,7 @@
  * The point x with |x - p| = to_p and |x - q| = to_q on the side of line pq
  * away from `away` (or to its left when away is NULL).
  */
-static ur_vec2 third_vertex(ur_vec2 p, ur_vec2 q, double to_p, double to_q,
-                            const ur_vec2 *away)
+static ur_vec2 third_vertex(ur_vec2 p, ur_vec2 q, double to_p, double to_q, const ur_vec2 *away)
 {
     ur_vec2 axis = ur_vec2_sub(q, p);
     double base = ur_vec2_length(axis);

@@ -40,8 +40,7 @@ static void point_list_free(ur_point_list *list)
     list->count = list->capacity = 0;
 }
 
-static ur_status point_list_push(ur_point_list *list, ur_vec3 point, size_t line,
-                                 ur_error *error)
+static ur_status point_list_push(ur_point_list *list, ur_vec3 point, size_t line, ur_error *error)
 {
     if (list->count == list->capacity) {
         size_t capacity = list->capacity ? 2 * list->capacity : 64;
@@ -87,8 +86,8 @@ static ur_status parse_coordinate(const char *path, size_t line, char *field, do
                             UR_FIELD_QUOTE_MAX, field);
     /* strtod accepts "nan" and "inf" and overflows to infinity: refuse all. */
     if (!isfinite(parsed))
-        return ur_error_set(error, UR_ERROR_INPUT, "%s:%zu: '%.*s' is not a finite number",
-                            path, line, UR_FIELD_QUOTE_MAX, field);
+        return ur_error_set(error, UR_ERROR_INPUT, "%s:%zu: '%.*s' is not a finite number", path,
+                            line, UR_FIELD_QUOTE_MAX, field);
     *value = parsed;
     return UR_OK;
 }
@@ -111,9 +110,8 @@ static ur_status parse_point(const char *path, size_t line, char *text, ur_vec3 
         cursor = comma + 1;
     }
     if (field_count != 3)
-        return ur_error_set(error, UR_ERROR_INPUT,
-                            "%s:%zu: expected 3 fields 'x,y,z', found %zu", path, line,
-                            field_count);
+        return ur_error_set(error, UR_ERROR_INPUT, "%s:%zu: expected 3 fields 'x,y,z', found %zu",
+                            path, line, field_count);
     double xyz[3];
     for (int i = 0; i < 3; i++) {
         ur_status status = parse_coordinate(path, line, fields[i], &xyz[i], error);
@@ -145,13 +143,12 @@ static ur_status read_line(const char *path, size_t line, char *text, ur_point_l
         return status;
     /* A zero-length segment has no direction: tangents would be NaN. */
     if (list->count > 0 && same_point(point, list->items[list->count - 1]))
-        return ur_error_set(error, UR_ERROR_INPUT, "%s:%zu: repeats the point on line %zu",
-                            path, line, list->lines[list->count - 1]);
+        return ur_error_set(error, UR_ERROR_INPUT, "%s:%zu: repeats the point on line %zu", path,
+                            line, list->lines[list->count - 1]);
     return point_list_push(list, point, line, error);
 }
 
-static ur_status read_all_lines(FILE *file, const char *path, ur_point_list *list,
-                                ur_error *error)
+static ur_status read_all_lines(FILE *file, const char *path, ur_point_list *list, ur_error *error)
 {
     char *buffer = NULL;
     size_t buffer_size = 0;
@@ -180,13 +177,11 @@ ur_status ur_curve_csv_read(const char *path, ur_vec3 **points, size_t *count, b
     *closed = false;
     FILE *file = fopen(path, "r");
     if (!file)
-        return ur_error_set(error, UR_ERROR_INPUT, "%s: cannot open: %s", path,
-                            strerror(errno));
+        return ur_error_set(error, UR_ERROR_INPUT, "%s: cannot open: %s", path, strerror(errno));
     ur_point_list list = {0};
     ur_status status = read_all_lines(file, path, &list, error);
     if (fclose(file) != 0 && status == UR_OK)
-        status = ur_error_set(error, UR_ERROR_INPUT, "%s: cannot read: %s", path,
-                              strerror(errno));
+        status = ur_error_set(error, UR_ERROR_INPUT, "%s: cannot read: %s", path, strerror(errno));
     if (status != UR_OK) {
         point_list_free(&list);
         return status;
@@ -237,8 +232,7 @@ static ur_status write_points(FILE *file, const char *path, const ur_vec3 *point
     int length = snprintf(line, sizeof line, "# unroll curve: x,y,z in mm, %zu points\n", count);
     if (length < 0 || (size_t)length >= sizeof line ||
         fwrite(line, 1, (size_t)length, file) != (size_t)length)
-        return ur_error_set(error, UR_ERROR_INPUT, "%s: cannot write: %s", path,
-                            strerror(errno));
+        return ur_error_set(error, UR_ERROR_INPUT, "%s: cannot write: %s", path, strerror(errno));
     for (size_t i = 0; i < count; i++) {
         /* %.17g round-trips every double exactly. */
         length = snprintf(line, sizeof line, "%.17g,%.17g,%.17g\n", points[i].x, points[i].y,
@@ -252,19 +246,16 @@ static ur_status write_points(FILE *file, const char *path, const ur_vec3 *point
 }
 
 /* Writes, flushes to disk and closes; the FILE is closed whatever happens. */
-static ur_status write_and_close(FILE *file, const char *path, const ur_vec3 *points,
-                                 size_t count, ur_error *error)
+static ur_status write_and_close(FILE *file, const char *path, const ur_vec3 *points, size_t count,
+                                 ur_error *error)
 {
     ur_status status = write_points(file, path, points, count, error);
     if (status == UR_OK && fflush(file) != 0)
-        status = ur_error_set(error, UR_ERROR_INPUT, "%s: cannot write: %s", path,
-                              strerror(errno));
+        status = ur_error_set(error, UR_ERROR_INPUT, "%s: cannot write: %s", path, strerror(errno));
     if (status == UR_OK && fsync(fileno(file)) != 0)
-        status = ur_error_set(error, UR_ERROR_INPUT, "%s: cannot write: %s", path,
-                              strerror(errno));
+        status = ur_error_set(error, UR_ERROR_INPUT, "%s: cannot write: %s", path, strerror(errno));
     if (fclose(file) != 0 && status == UR_OK)
-        status = ur_error_set(error, UR_ERROR_INPUT, "%s: cannot write: %s", path,
-                              strerror(errno));
+        status = ur_error_set(error, UR_ERROR_INPUT, "%s: cannot write: %s", path, strerror(errno));
     return status;
 }
 
@@ -274,13 +265,11 @@ static ur_status check_finite(const char *path, const ur_vec3 *points, size_t co
     for (size_t i = 0; i < count; i++)
         if (!isfinite(points[i].x) || !isfinite(points[i].y) || !isfinite(points[i].z))
             return ur_error_set(error, UR_ERROR_INTERNAL,
-                                "%s: point %zu is not finite; refusing to write it", path,
-                                i + 1);
+                                "%s: point %zu is not finite; refusing to write it", path, i + 1);
     return UR_OK;
 }
 
-ur_status ur_curve_csv_write(const char *path, const ur_vec3 *points, size_t count,
-                             ur_error *error)
+ur_status ur_curve_csv_write(const char *path, const ur_vec3 *points, size_t count, ur_error *error)
 {
     /* The reader would refuse NaN: better to fail here than write a bad file. */
     ur_status status = check_finite(path, points, count, error);
@@ -292,23 +281,22 @@ ur_status ur_curve_csv_write(const char *path, const ur_vec3 *points, size_t cou
         return status;
     int fd = mkstemp(temp);
     if (fd < 0) {
-        status = ur_error_set(error, UR_ERROR_INPUT, "%s: cannot create a temporary file: %s",
-                              path, strerror(errno));
+        status = ur_error_set(error, UR_ERROR_INPUT, "%s: cannot create a temporary file: %s", path,
+                              strerror(errno));
         free(temp);
         return status;
     }
     /* mkstemp creates 0600; a curve is an ordinary document. */
     FILE *file = fchmod(fd, 0644) == 0 ? fdopen(fd, "w") : NULL;
     if (!file) {
-        status = ur_error_set(error, UR_ERROR_INPUT, "%s: cannot write: %s", path,
-                              strerror(errno));
+        status = ur_error_set(error, UR_ERROR_INPUT, "%s: cannot write: %s", path, strerror(errno));
         close(fd);
     } else {
         status = write_and_close(file, path, points, count, error);
     }
     if (status == UR_OK && rename(temp, path) != 0)
-        status = ur_error_set(error, UR_ERROR_INPUT, "%s: cannot replace: %s", path,
-                              strerror(errno));
+        status =
+            ur_error_set(error, UR_ERROR_INPUT, "%s: cannot replace: %s", path, strerror(errno));
     if (status != UR_OK)
         unlink(temp);
     free(temp);

@@ -97,8 +97,8 @@ static bool valid_name(const char *name)
         return false;
     for (size_t i = 0; i < length; i++) {
         char c = name[i];
-        bool allowed = (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') ||
-                       (c >= '0' && c <= '9') || c == '.' || c == '_' || c == '-';
+        bool allowed = (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') ||
+                       c == '.' || c == '_' || c == '-';
         if (!allowed)
             return false;
     }
@@ -127,8 +127,8 @@ ur_status ur_profile_find(ur_profile_kind kind, const char *name, char *path, si
     profile_roots(&roots);
     for (int i = 0; i < roots.count; i++) {
         char candidate[UR_PATH_MAX];
-        status = join_path(candidate, sizeof candidate, roots.dirs[i], kind_folder(kind), file,
-                           error);
+        status =
+            join_path(candidate, sizeof candidate, roots.dirs[i], kind_folder(kind), file, error);
         if (status != UR_OK)
             return status;
         struct stat info;
@@ -258,8 +258,7 @@ static ur_status parse_document(const char *path, xmlDocPtr *doc, ur_error *erro
     /* Our own check first: libxml2's wording for a missing file is vague. */
     struct stat info;
     if (stat(path, &info) != 0 || access(path, R_OK) != 0)
-        return ur_error_set(error, UR_ERROR_INPUT, "%s: cannot open: %s", path,
-                            strerror(errno));
+        return ur_error_set(error, UR_ERROR_INPUT, "%s: cannot open: %s", path, strerror(errno));
     if (!S_ISREG(info.st_mode))
         return ur_error_set(error, UR_ERROR_INPUT, "%s: not a regular file", path);
     ur_xml_report report = {0};
@@ -309,8 +308,8 @@ static ur_status validate_document(xmlDocPtr doc, const char *schema_path, const
         xmlRelaxNGFreeParserCtxt(parser);
         /* A broken schema is a broken installation, not bad user input. */
         if (!schema)
-            status = report_error(&report, schema_path, UR_ERROR_INTERNAL,
-                                  "cannot read the schema", error);
+            status = report_error(&report, schema_path, UR_ERROR_INTERNAL, "cannot read the schema",
+                                  error);
     }
     if (status == UR_OK)
         status = validate_with(schema, doc, path, error);
@@ -421,8 +420,7 @@ static ur_status parse_number(const ur_reader *reader, xmlNodePtr node, const ch
         while (isspace((unsigned char)*end))
             end++;
     if (end == text || *end != '\0' || !isfinite(parsed) || !in_range(parsed, range))
-        return reader_fail(reader, node, "%s must be %s, not '%.40s'", what, range->wording,
-                           text);
+        return reader_fail(reader, node, "%s must be %s, not '%.40s'", what, range->wording, text);
     *value = parsed;
     return UR_OK;
 }
@@ -451,8 +449,8 @@ static ur_status attribute_number(const ur_reader *reader, xmlNodePtr element, c
     if (!text) {
         if (!required)
             return UR_OK;
-        return reader_fail(reader, element, "<%s> has no %s attribute",
-                           (const char *)element->name, name);
+        return reader_fail(reader, element, "<%s> has no %s attribute", (const char *)element->name,
+                           name);
     }
     char what[128];
     snprintf(what, sizeof what, "%s %s", (const char *)element->name, name);
@@ -505,8 +503,8 @@ static ur_status attribute_text(const ur_reader *reader, xmlNodePtr element, con
 {
     xmlChar *text = xmlGetProp(element, BAD_CAST name);
     if (!text)
-        return reader_fail(reader, element, "<%s> has no %s attribute",
-                           (const char *)element->name, name);
+        return reader_fail(reader, element, "<%s> has no %s attribute", (const char *)element->name,
+                           name);
     ur_status status = copy_text(reader, element, name, (const char *)text, out, size);
     xmlFree(text);
     return status;
@@ -534,8 +532,7 @@ static ur_status set_identity(const char *path, char *name, size_t name_size, ch
 
 /* ---- Machines ---------------------------------------------------------- */
 
-static ur_status read_machine_kind(const ur_reader *reader, xmlNodePtr root,
-                                   ur_machine_kind *kind)
+static ur_status read_machine_kind(const ur_reader *reader, xmlNodePtr root, ur_machine_kind *kind)
 {
     char text[16];
     xmlNodePtr element;
@@ -576,8 +573,8 @@ static ur_status read_style(const ur_reader *reader, xmlNodePtr element, ur_op_s
     if (status == UR_OK)
         status = read_colour(reader, element, style->colour);
     if (status == UR_OK)
-        status = attribute_number(reader, element, "line-width", true, &positive,
-                                  &style->line_width);
+        status =
+            attribute_number(reader, element, "line-width", true, &positive, &style->line_width);
     return status;
 }
 
@@ -603,13 +600,11 @@ static ur_status read_operations(const ur_reader *reader, xmlNodePtr root, ur_ma
     }
     for (int op = 0; op < UR_OP_COUNT; op++)
         if (!seen[op])
-            return reader_fail(reader, root, "no <operation name=\"%s\">",
-                               ur_op_name((ur_op)op));
+            return reader_fail(reader, root, "no <operation name=\"%s\">", ur_op_name((ur_op)op));
     return UR_OK;
 }
 
-static ur_status read_machine_fields(const ur_reader *reader, xmlNodePtr root,
-                                     ur_machine *machine)
+static ur_status read_machine_fields(const ur_reader *reader, xmlNodePtr root, ur_machine *machine)
 {
     xmlNodePtr bed, speed;
     ur_status status = element_text(reader, root, "description", machine->description,
@@ -633,8 +628,7 @@ static ur_status read_machine_fields(const ur_reader *reader, xmlNodePtr root,
     if (status == UR_OK)
         status = attribute_number(reader, speed, "cut", true, &positive, &machine->cut_speed);
     if (status == UR_OK)
-        status = attribute_number(reader, speed, "travel", true, &positive,
-                                  &machine->travel_speed);
+        status = attribute_number(reader, speed, "travel", true, &positive, &machine->travel_speed);
     if (status == UR_OK)
         status = read_operations(reader, root, machine);
     return status;
@@ -683,8 +677,7 @@ static ur_status read_stock(const ur_reader *reader, xmlNodePtr root, ur_materia
 }
 
 /* <kerf laser=".." router=".."/> is optional, and so is each attribute. */
-static ur_status read_material_kerf(const ur_reader *reader, xmlNodePtr root,
-                                    ur_material *material)
+static ur_status read_material_kerf(const ur_reader *reader, xmlNodePtr root, ur_material *material)
 {
     xmlNodePtr kerf = next_element(root->children, "kerf");
     if (!kerf)
@@ -692,8 +685,7 @@ static ur_status read_material_kerf(const ur_reader *reader, xmlNodePtr root,
     ur_status status =
         attribute_number(reader, kerf, "laser", false, &positive, &material->kerf_laser);
     if (status == UR_OK)
-        status =
-            attribute_number(reader, kerf, "router", false, &positive, &material->kerf_router);
+        status = attribute_number(reader, kerf, "router", false, &positive, &material->kerf_router);
     return status;
 }
 
@@ -744,8 +736,7 @@ static ur_status read_bending(const ur_reader *reader, xmlNodePtr root, ur_mater
     return status;
 }
 
-static ur_status read_tab_and_hinge(const ur_reader *reader, xmlNodePtr root,
-                                    ur_material *material)
+static ur_status read_tab_and_hinge(const ur_reader *reader, xmlNodePtr root, ur_material *material)
 {
     xmlNodePtr tab, hinge;
     ur_status status = need_element(reader, root, "tab", &tab);
@@ -762,8 +753,8 @@ static ur_status read_tab_and_hinge(const ur_reader *reader, xmlNodePtr root,
         status = attribute_number(reader, hinge, "connection", true, &positive,
                                   &material->hinge_connection);
     if (status == UR_OK)
-        status = attribute_number(reader, hinge, "distance", true, &positive,
-                                  &material->hinge_distance);
+        status =
+            attribute_number(reader, hinge, "distance", true, &positive, &material->hinge_distance);
     return status;
 }
 
@@ -790,8 +781,8 @@ static ur_status read_material_fields(const ur_reader *reader, xmlNodePtr root,
 ur_status ur_material_read(const char *path, ur_material *material, ur_error *error)
 {
     memset(material, 0, sizeof *material);
-    ur_status status = set_identity(path, material->name, sizeof material->name,
-                                    material->source, sizeof material->source, error);
+    ur_status status = set_identity(path, material->name, sizeof material->name, material->source,
+                                    sizeof material->source, error);
     if (status != UR_OK)
         return status;
     xmlDocPtr doc = NULL;
@@ -950,8 +941,7 @@ static ur_status list_folder(const char *root, ur_profile_kind kind, ur_entry_li
     if (!dir) {
         if (errno == ENOENT || errno == ENOTDIR)
             return UR_OK;
-        return ur_error_set(error, UR_ERROR_INPUT, "%s: cannot list: %s", folder,
-                            strerror(errno));
+        return ur_error_set(error, UR_ERROR_INPUT, "%s: cannot list: %s", folder, strerror(errno));
     }
     ur_status status = UR_OK;
     for (struct dirent *item = readdir(dir); item && status == UR_OK; item = readdir(dir)) {

@@ -40,8 +40,7 @@ static double level_angle(GEOSContextHandle_t geos, const ur_path *outline)
             GEOSCoordSeq_getXY_r(geos, corners, k, &x[k], &y[k]);
         double first = hypot(x[1] - x[0], y[1] - y[0]);
         double second = hypot(x[2] - x[1], y[2] - y[1]);
-        angle = first >= second ? atan2(y[1] - y[0], x[1] - x[0])
-                                : atan2(y[2] - y[1], x[2] - x[1]);
+        angle = first >= second ? atan2(y[1] - y[0], x[1] - x[0]) : atan2(y[2] - y[1], x[2] - x[1]);
     }
     if (rectangle)
         GEOSGeom_destroy_r(geos, rectangle);

@@ -50,8 +50,8 @@ static void format_coordinate(double value, char text[NUMBER_SIZE])
         snprintf(text, NUMBER_SIZE, "%.6f", value);
     } else {
         long long nanometres = llround(value * 1e6);
-        unsigned long long magnitude = nanometres < 0 ? -(unsigned long long)nanometres
-                                                      : (unsigned long long)nanometres;
+        unsigned long long magnitude =
+            nanometres < 0 ? -(unsigned long long)nanometres : (unsigned long long)nanometres;
         char digits[32];
         int n = 0;
         for (int place = 0; place < 7 || magnitude > 0; place++) {

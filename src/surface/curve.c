@@ -28,9 +28,9 @@ struct ur_curve {
     /* helix and circle */
     double radius, rise; /* rise = pitch / 2 pi */
     /* spline */
-    size_t point_count;   /* the caller's points */
-    size_t first_point;   /* index of the caller's first point among the knots */
-    double *knots;        /* parameters of every interpolated point, ghosts included */
+    size_t point_count; /* the caller's points */
+    size_t first_point; /* index of the caller's first point among the knots */
+    double *knots;      /* parameters of every interpolated point, ghosts included */
     gsl_spline *splines[3];
     gsl_interp_accel *accels[3];
 };

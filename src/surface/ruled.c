@@ -40,8 +40,7 @@ ur_status ur_ruled_cylinder(ur_curve *curve, ur_vec3 direction, double height, u
     return UR_OK;
 }
 
-ur_status ur_ruled_cone(ur_curve *curve, ur_vec3 apex, double cut, ur_ruled *ruled,
-                        ur_error *error)
+ur_status ur_ruled_cone(ur_curve *curve, ur_vec3 apex, double cut, ur_ruled *ruled, ur_error *error)
 {
     if (!isfinite(apex.x) || !isfinite(apex.y) || !isfinite(apex.z))
         return refuse(ruled, curve, error, "the cone's apex must be a finite point");
@@ -145,7 +144,8 @@ void ur_ruled_intrinsics(ur_ruled *ruled, double u, ur_ruling_intrinsics *out)
     double speed = ur_vec3_length(d[1]);
     out->speed = speed;
     if (ruled->kind == UR_RULED_TANGENT) {
-        out->geodesic_curvature = ur_vec3_length(ur_vec3_cross(d[1], d[2])) / (speed * speed * speed);
+        out->geodesic_curvature =
+            ur_vec3_length(ur_vec3_cross(d[1], d[2])) / (speed * speed * speed);
         out->angle = 0.0;
         out->near = ruled->offset;
         out->far = ruled->offset + ruled->width;
@@ -227,8 +227,8 @@ static ur_status check_ruling_across(ur_ruled *ruled, ur_error *error)
         ur_ruled_rails(ruled, u, rails);
         ur_vec3 ruling = ur_vec3_sub(rails[2], rails[0]);
         double length = ur_vec3_length(ruling);
-        double sine = ur_vec3_length(ur_vec3_cross(rails[1], ruling)) /
-                      (ur_vec3_length(rails[1]) * length);
+        double sine =
+            ur_vec3_length(ur_vec3_cross(rails[1], ruling)) / (ur_vec3_length(rails[1]) * length);
         if (!(length > 1e-9) || !(sine > 1e-6)) {
             char place[256];
             describe_place(ruled, u, place, sizeof place);
@@ -320,8 +320,8 @@ static double ruling_integral(double u, void *data)
     context->slope = ur_vec3_cross(ur_vec3_sub(rails[3], rails[1]), r_v);
     gsl_function f = {cross_norm_at_v, context};
     double value, estimate;
-    int code = gsl_integration_qag(&f, 0.0, 1.0, 0.0, 1e-13, QUADRATURE_LIMIT,
-                                   GSL_INTEG_GAUSS21, context->inner, &value, &estimate);
+    int code = gsl_integration_qag(&f, 0.0, 1.0, 0.0, 1e-13, QUADRATURE_LIMIT, GSL_INTEG_GAUSS21,
+                                   context->inner, &value, &estimate);
     if (code && !(estimate <= 1e-10 * fabs(value)))
         context->failure = code;
     return value;

@@ -70,8 +70,7 @@ static void expect_refusal(const char *text, const char *location, const char *f
     assert_int_equal(count, 0);
     char prefix[256];
     snprintf(prefix, sizeof prefix, "%s%s: ", input_path, location);
-    if (strncmp(error.message, prefix, strlen(prefix)) != 0 ||
-        !strstr(error.message, fragment))
+    if (strncmp(error.message, prefix, strlen(prefix)) != 0 || !strstr(error.message, fragment))
         fail_msg("message '%s' lacks '%s' or '%s'", error.message, prefix, fragment);
 }
 
@@ -82,9 +81,9 @@ static void test_reads_plain_points(void **state)
     size_t count = 0;
     bool closed = true;
     ur_error error = {0};
-    assert_int_equal(read_text("0,0,0\n1,0,0\n1,2.5,0\n-3e2,4,0.125\n", &points, &count,
-                               &closed, &error),
-                     UR_OK);
+    assert_int_equal(
+        read_text("0,0,0\n1,0,0\n1,2.5,0\n-3e2,4,0.125\n", &points, &count, &closed, &error),
+        UR_OK);
     assert_int_equal(count, 4);
     assert_false(closed);
     assert_true(points[2].y == 2.5);
@@ -126,9 +125,8 @@ static void test_closed_curve_drops_last_point(void **state)
     size_t count = 0;
     bool closed = false;
     ur_error error = {0};
-    assert_int_equal(read_text("0,0,0\n1,0,0\n1,1,0\n0,1,0\n0,0,0\n", &points, &count, &closed,
-                               &error),
-                     UR_OK);
+    assert_int_equal(
+        read_text("0,0,0\n1,0,0\n1,1,0\n0,1,0\n0,0,0\n", &points, &count, &closed, &error), UR_OK);
     assert_true(closed);
     assert_int_equal(count, 4);
     assert_true(points[3].x == 0.0 && points[3].y == 1.0);
@@ -176,16 +174,14 @@ static void test_too_few_points(void **state)
     assert_int_equal(read_text("0,0,0\n1,0,0\n1,1,0\n", &points, &count, &closed, &error),
                      UR_ERROR_INPUT);
     char expected[256];
-    snprintf(expected, sizeof expected, "%s: a curve needs at least 4 points, found 3",
-             input_path);
+    snprintf(expected, sizeof expected, "%s: a curve needs at least 4 points, found 3", input_path);
     assert_string_equal(error.message, expected);
     /* A closed triangle has 4 lines but only 3 distinct points. */
     assert_int_equal(read_text("0,0,0\n1,0,0\n1,1,0\n0,0,0\n", &points, &count, &closed, &error),
                      UR_ERROR_INPUT);
     assert_string_equal(error.message, expected);
     assert_int_equal(read_text("# nothing\n", &points, &count, &closed, &error), UR_ERROR_INPUT);
-    snprintf(expected, sizeof expected, "%s: a curve needs at least 4 points, found 0",
-             input_path);
+    snprintf(expected, sizeof expected, "%s: a curve needs at least 4 points, found 0", input_path);
     assert_string_equal(error.message, expected);
     assert_null(points);
 }

@@ -15,11 +15,12 @@
 
 #include "unroll/develop.h"
 
-#define assert_relative(actual, expected, tolerance)                                          \
-    do {                                                                                      \
-        double a_ = (actual), e_ = (expected);                                                \
-        if (!(fabs(a_ - e_) <= (tolerance) * fabs(e_)))                                       \
-            fail_msg("%s = %.12g, expected %.12g within %g", #actual, a_, e_, (double)(tolerance)); \
+#define assert_relative(actual, expected, tolerance)                                               \
+    do {                                                                                           \
+        double a_ = (actual), e_ = (expected);                                                     \
+        if (!(fabs(a_ - e_) <= (tolerance)*fabs(e_)))                                              \
+            fail_msg("%s = %.12g, expected %.12g within %g", #actual, a_, e_,                      \
+                     (double)(tolerance));                                                         \
     } while (0)
 
 static ur_ruled helicoid(double radius, double pitch, double turns, double offset, double width)
@@ -142,7 +143,8 @@ static void test_helicoid_annulus(void **state)
         outer_seen = fmax(outer_seen, r);
     }
     double expected_first = ur_vec2_distance(net->outline[0], centre);
-    assert_true(fabs(expected_first - rho) < 1e-7 * rho || fabs(expected_first - outer) < 1e-7 * outer);
+    assert_true(fabs(expected_first - rho) < 1e-7 * rho ||
+                fabs(expected_first - outer) < 1e-7 * outer);
     assert_relative(inner_seen, rho, 1e-8);
     assert_relative(outer_seen, outer, 1e-8);
     double angle = turns * 2 * M_PI * radius / sqrt(radius * radius + c * c);
@@ -300,7 +302,7 @@ static void test_oblique_cylinder_isometry(void **state)
     assert_relative(nets.nets[0].flat_area, nets.nets[0].area_3d, 2e-6);
     assert_true(nets.nets[0].edge_error < 1e-6);
     /* lateral area of an oblique cylinder = perimeter of the right section x slant length */
-    double e = 1 / sqrt(5.0);            /* sine of the tilt from the vertical axis */
+    double e = 1 / sqrt(5.0);                /* sine of the tilt from the vertical axis */
     double b = 40, a = 40 * sqrt(1 - e * e); /* right section: ellipse with semi-axes a, b */
     double h = (a - b) * (a - b) / ((a + b) * (a + b));
     double perimeter = M_PI * (a + b) * (1 + 3 * h / (10 + sqrt(4 - 3 * h))); /* Ramanujan */

@@ -276,10 +276,10 @@ static void test_effective_kerf(void **state)
 
 /* ---- Bad profiles ------------------------------------------------------ */
 
-static const char good_machine_head[] = "<?xml version=\"1.0\"?>\n"         /* 1 */
-                                        "<machine>\n"                       /* 2 */
+static const char good_machine_head[] = "<?xml version=\"1.0\"?>\n"           /* 1 */
+                                        "<machine>\n"                         /* 2 */
                                         "  <description>Test</description>\n" /* 3 */
-                                        "  <kind>laser</kind>\n";            /* 4 */
+                                        "  <kind>laser</kind>\n";             /* 4 */
 
 static const char good_machine_tail[] =
     "  <margin>5</margin>\n"
@@ -487,7 +487,14 @@ static void test_bad_names(void **state)
 {
     (void)state;
     static const char *const bad[] = {
-        "../x", "..", ".hidden", "", "a/b", "a b", "co2-60w.xml/", "x\n",
+        "../x",
+        "..",
+        ".hidden",
+        "",
+        "a/b",
+        "a b",
+        "co2-60w.xml/",
+        "x\n",
         "a-name-that-is-far-too-long-to-fit-in-the-sixty-four-bytes-of-a-name"};
     char path[1024];
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
@@ -498,8 +505,7 @@ static void test_bad_names(void **state)
         assert_non_null(strstr(error.message, "bad machine name"));
     }
     ur_error error = {0};
-    assert_int_equal(ur_profile_find(UR_PROFILE_MATERIAL, "paper-0.3mm", path, sizeof path,
-                                     &error),
+    assert_int_equal(ur_profile_find(UR_PROFILE_MATERIAL, "paper-0.3mm", path, sizeof path, &error),
                      UR_OK);
     assert_string_equal(path, "./profiles/materials/paper-0.3mm.xml");
 }
@@ -526,9 +532,9 @@ static void test_listing(void **state)
     ur_error error = {0};
     assert_int_equal(ur_profile_list(&entries, &count, &error), UR_OK);
     static const char *const shipped_machines[] = {"co2-60w", "diode-10w", "router"};
-    static const char *const shipped_materials[] = {
-        "cardboard-2mm", "mdf-3mm",     "paper-0.3mm", "plywood-3mm",
-        "plywood-6mm",   "polypropylene-0.8mm"};
+    static const char *const shipped_materials[] = {"cardboard-2mm", "mdf-3mm",
+                                                    "paper-0.3mm",   "plywood-3mm",
+                                                    "plywood-6mm",   "polypropylene-0.8mm"};
     size_t machines = 0, materials = 0, shipped_found = 0;
     const ur_profile_entry *bad = NULL;
     for (size_t i = 0; i < count; i++) {
@@ -536,8 +542,7 @@ static void test_listing(void **state)
         if (i > 0) { /* sorted by kind, then name */
             const ur_profile_entry *previous = &entries[i - 1];
             assert_true(previous->kind < entry->kind ||
-                        (previous->kind == entry->kind &&
-                         strcmp(previous->name, entry->name) < 0));
+                        (previous->kind == entry->kind && strcmp(previous->name, entry->name) < 0));
         }
         if (entry->kind == UR_PROFILE_MACHINE) {
             machines++;
