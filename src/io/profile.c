@@ -634,25 +634,46 @@ static ur_status read_machine_fields(const ur_reader *reader, xmlNodePtr root, u
     return status;
 }
 
-ur_status ur_machine_read(const char *path, ur_machine *machine, ur_error *error)
+/* Fills one kind of profile from its root element. */
+typedef ur_status (*field_reader)(const ur_reader *reader, xmlNodePtr root, void *profile);
+
+static ur_status machine_fields(const ur_reader *reader, xmlNodePtr root, void *profile)
 {
-    memset(machine, 0, sizeof *machine);
-    ur_status status = set_identity(path, machine->name, sizeof machine->name, machine->source,
-                                    sizeof machine->source, error);
+    return read_machine_fields(reader, root, profile);
+}
+
+/*
+ * What machine and material reading share: name and source from the path,
+ * the parsed and validated document, its root element, then the kind's own
+ * fields.
+ */
+static ur_status read_profile(ur_profile_kind kind, const char *path, char *name, size_t name_size,
+                              char *source, size_t source_size, field_reader read_fields,
+                              void *profile, ur_error *error)
+{
+    ur_status status = set_identity(path, name, name_size, source, source_size, error);
     if (status != UR_OK)
         return status;
     xmlDocPtr doc = NULL;
-    status = load_document(UR_PROFILE_MACHINE, path, &doc, error);
+    status = load_document(kind, path, &doc, error);
     if (status != UR_OK)
         return status;
+    const char *root_name = kind == UR_PROFILE_MACHINE ? "machine" : "material";
     ur_reader reader = {path, error};
     xmlNodePtr root = xmlDocGetRootElement(doc);
-    if (!is_element(root, "machine"))
-        status = reader_fail(&reader, root, "not a <machine> profile");
+    if (!is_element(root, root_name))
+        status = reader_fail(&reader, root, "not a <%s> profile", root_name);
     else
-        status = read_machine_fields(&reader, root, machine);
+        status = read_fields(&reader, root, profile);
     xmlFreeDoc(doc);
     return status;
+}
+
+ur_status ur_machine_read(const char *path, ur_machine *machine, ur_error *error)
+{
+    memset(machine, 0, sizeof *machine);
+    return read_profile(UR_PROFILE_MACHINE, path, machine->name, sizeof machine->name,
+                        machine->source, sizeof machine->source, machine_fields, machine, error);
 }
 
 /* ---- Materials --------------------------------------------------------- */
@@ -778,25 +799,17 @@ static ur_status read_material_fields(const ur_reader *reader, xmlNodePtr root,
     return status;
 }
 
+static ur_status material_fields(const ur_reader *reader, xmlNodePtr root, void *profile)
+{
+    return read_material_fields(reader, root, profile);
+}
+
 ur_status ur_material_read(const char *path, ur_material *material, ur_error *error)
 {
     memset(material, 0, sizeof *material);
-    ur_status status = set_identity(path, material->name, sizeof material->name, material->source,
-                                    sizeof material->source, error);
-    if (status != UR_OK)
-        return status;
-    xmlDocPtr doc = NULL;
-    status = load_document(UR_PROFILE_MATERIAL, path, &doc, error);
-    if (status != UR_OK)
-        return status;
-    ur_reader reader = {path, error};
-    xmlNodePtr root = xmlDocGetRootElement(doc);
-    if (!is_element(root, "material"))
-        status = reader_fail(&reader, root, "not a <material> profile");
-    else
-        status = read_material_fields(&reader, root, material);
-    xmlFreeDoc(doc);
-    return status;
+    return read_profile(UR_PROFILE_MATERIAL, path, material->name, sizeof material->name,
+                        material->source, sizeof material->source, material_fields, material,
+                        error);
 }
 
 /* ---- Loading by name --------------------------------------------------- */
