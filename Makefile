@@ -15,7 +15,7 @@ PROFILEDIR = $(PREFIX)/share/unroll/profiles
 
 CC ?= cc
 PKG_CONFIG ?= pkg-config
-PACKAGES = libxml-2.0 gsl jansson geos
+PACKAGES = libxml-2.0 gsl jansson geos cairo
 TEST_PACKAGES = cmocka
 
 ifeq ($(SANITIZE),1)
@@ -36,7 +36,7 @@ LDLIBS_ALL = $(shell $(PKG_CONFIG) --libs $(PACKAGES)) -lm $(LDLIBS)
 LDFLAGS_ALL = $(SANITIZE_FLAGS) $(LDFLAGS)
 
 LIB_SOURCES = $(wildcard src/base/*.c src/geom/*.c src/surface/*.c src/develop/*.c \
-	src/allow/*.c src/nest/*.c src/io/*.c src/out/*.c)
+	src/analyze/*.c src/allow/*.c src/nest/*.c src/io/*.c src/out/*.c)
 CLI_SOURCES = $(wildcard src/cli/*.c)
 UNIT_SOURCES = $(wildcard tests/unit/test_*.c)
 BENCH_SOURCES = $(wildcard bench/*.c)

@@ -64,4 +64,53 @@ ur_status ur_develop(ur_ruled *ruled, const ur_develop_options *options, ur_net_
 
 void ur_net_list_free(ur_net_list *nets);
 
+/*
+ * The paper's observation, measured: the triangle and quad methods against
+ * the exact net as the number of parts n grows.  Method k of every array is
+ * 0 triangle, 1 quad, 2 exact (UR_COMPARE_TRIANGLE, ...).
+ */
+enum { UR_COMPARE_TRIANGLE, UR_COMPARE_QUAD, UR_COMPARE_EXACT, UR_COMPARE_METHODS };
+
+typedef struct ur_compare_row {
+    size_t n;
+    /* signed (flat area - 3D area) / 3D area */
+    double area_error[UR_COMPARE_METHODS];
+    /* largest relative error of a flat rail length against its 3D arc length */
+    double edge_error[UR_COMPARE_METHODS];
+    /*
+     * Largest distance, mm, between a boundary point of the method's net and
+     * the same point of the exact net after the least-squares rigid fit of
+     * one to the other (a mirror image counts as the same net: a piece can
+     * be turned over); 0 for the exact method itself.
+     */
+    double distance[UR_COMPARE_METHODS];
+    /* the triangle method applies only to tangent developables; NAN figures otherwise */
+    bool available[UR_COMPARE_METHODS];
+} ur_compare_row;
+
+typedef struct ur_compare_table {
+    ur_compare_row *rows; /* owned: free with ur_compare_table_free */
+    size_t count;
+    double area_3d; /* 3D area of the surface (quadrature) */
+} ur_compare_table;
+
+/*
+ * One row for each n = n_min, 2 n_min, 4 n_min, ... up to n_max
+ * (1 <= n_min <= n_max).  A discrete net is measured on its strip, the flat
+ * ends of its n + 1 rulings, against the exact development evaluated at the
+ * same rulings; its flat area is that of the strip's outline.  Strips are
+ * never split, so a surface whose net overlaps itself (a helicoid of a turn
+ * or more) is compared all the same: the outline's area counts the overlap
+ * as often as the net covers it, which is the area of the pieces it would
+ * be cut into.  A rail that is a single point (a cone's apex) has no length
+ * to compare.  The exact net's own errors are measured on ur_develop's net
+ * (splitting allowed) at a tolerance of 1e-8 of the surface's size (the
+ * larger of rail a's length and the longest ruling); it is developed once
+ * and its figures repeated in every row, since it does not depend on n.
+ */
+ur_status ur_compare(ur_ruled *ruled, size_t n_min, size_t n_max, ur_compare_table *table,
+                     ur_error *error);
+
+void ur_compare_table_free(ur_compare_table *table);
+
 #endif

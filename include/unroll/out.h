@@ -11,6 +11,8 @@
 #define UNROLL_OUT_H
 
 #include "unroll/allow.h"
+#include "unroll/analyze.h"
+#include "unroll/develop.h"
 #include "unroll/io.h"
 #include "unroll/nest.h"
 
@@ -39,6 +41,9 @@ typedef struct ur_report_context {
     const char *const *outputs; /* files written, NULL-terminated; may be NULL */
     /* output_path given to ur_write_svg, so the report names each sheet's file; may be NULL */
     const char *sheet_path;
+    /* gaps in a strip's domain of existence (ur_ruled_gaps); may be NULL, 0 */
+    const ur_interval *gaps;
+    size_t gap_count;
 } ur_report_context;
 
 /*
@@ -59,5 +64,34 @@ ur_status ur_report_write(const char *path, const ur_report_context *context,
  */
 ur_status ur_sheet_file_name(const char *output_path, size_t sheet_index, size_t sheet_count,
                              char *name, size_t name_size, ur_error *error);
+
+/*
+ * The comparison of the discrete methods with the exact net (ur_compare) as
+ * a 900 x 600 PNG: two log-log panels against n, |relative area error| and
+ * the largest boundary distance to the exact net, one colour and marker per
+ * method, with a legend and the title (NULL for "unroll compare").  Values
+ * below 1e-16, zeros included, are drawn at 1e-16, as the plot says.
+ * Written atomically ("-" for stdout).
+ */
+ur_status ur_compare_plot_png(const char *path, const ur_compare_table *table, const char *title,
+                              ur_error *error);
+
+/*
+ * The same as CSV, one line per n after the header
+ *     n,triangle_area_error,quad_area_error,exact_area_error,
+ *     triangle_edge_error,quad_edge_error,exact_edge_error,
+ *     triangle_distance,quad_distance
+ * (one line), numbers as %.17g, the fields of a method that does not apply
+ * (the triangle method off tangent developables) left empty.  Written
+ * atomically; "-" for stdout.
+ */
+ur_status ur_compare_csv_write(const char *path, const ur_compare_table *table, ur_error *error);
+
+/*
+ * The JSON report of an analysis (ur_analyze of ruled) to path ("-" for
+ * standard output), atomically for a file.
+ */
+ur_status ur_analysis_report_write(const char *path, const char *surface, ur_ruled *ruled,
+                                   const ur_analysis *analysis, ur_error *error);
 
 #endif

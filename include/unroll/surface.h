@@ -61,16 +61,36 @@ typedef enum ur_ruled_kind {
     UR_RULED_CYLINDER, /* b = a + height * direction */
     UR_RULED_CONE,     /* b = a + cut * (apex - a) */
     UR_RULED_TANGENT,  /* a = g + offset t, b = g + (offset + width) t */
+    UR_RULED_STRIP,    /* a = c1, b = c2(sigma(u)), sigma solved: developable */
+    UR_RULED_GENERAL,  /* a = c1, b = c2(sigma(u)), sigma given: in general not */
 } ur_ruled_kind;
+
+typedef struct ur_pairing ur_pairing; /* sigma(u) of the two-rail kinds (strip.c) */
+
+/* Why a part of rail 1 has no strip: see ur_ruled_strip. */
+typedef enum ur_gap_reason { UR_GAP_NO_RULING, UR_GAP_RULINGS_CROSS } ur_gap_reason;
+
+/* A part of rail 1 (the base curve), by parameter, arc length and end points. */
+typedef struct ur_interval {
+    double u_start, u_end;
+    double arc_start, arc_end;
+    ur_vec3 start, end;
+    ur_gap_reason reason; /* for gaps */
+} ur_interval;
 
 typedef struct ur_ruled {
     ur_ruled_kind kind;
-    ur_curve *curve; /* owned: base curve, or the edge of regression g */
+    ur_curve *curve; /* owned: base curve, the edge of regression g, or rail 1 */
     ur_vec3 direction;
     double height;
     ur_vec3 apex;
     double cut;
     double offset, width;
+    ur_curve *rail2;     /* owned, two-rail kinds only */
+    ur_pairing *pairing; /* owned, two-rail kinds only */
+    /* The part of the surface in use (ur_ruled_restrict); the whole by default. */
+    bool restricted;
+    double u_min, u_max;
 } ur_ruled;
 
 /* Each takes ownership of curve, also on failure. */
@@ -81,7 +101,81 @@ ur_status ur_ruled_cone(ur_curve *curve, ur_vec3 apex, double cut, ur_ruled *rul
 ur_status ur_ruled_tangent(ur_curve *curve, double offset, double width, ur_ruled *ruled,
                            ur_error *error);
 
+/*
+ * The developable strip between rail 1 and rail 2 (both owned from here on,
+ * also on failure).  For each u on rail 1 the pairing finds sigma on rail 2
+ * with det(c1'(u), c2'(sigma), c2(sigma) - c1(u)) = 0 by bracketed root
+ * finding, tracked so that sigma never decreases.  Where there is no such
+ * sigma, or where consecutive rulings would cross inside the strip (its edge
+ * of regression passes between the rails), rail 1 has a gap: see
+ * ur_ruled_gaps.  Fails only when no part of rail 1 has a strip.
+ */
+ur_status ur_ruled_strip(ur_curve *rail1, ur_curve *rail2, ur_ruled *ruled, ur_error *error);
+
+/* How a general ruled surface pairs its rails. */
+typedef enum ur_pairing_rule {
+    UR_PAIR_ARC_LENGTH, /* equal fractions of each rail's arc length */
+    UR_PAIR_POINTS,     /* the i-th input point of each rail (same counts) */
+} ur_pairing_rule;
+
+/*
+ * The ruled surface joining rail 1 and rail 2 by the given rule (both rails
+ * owned from here on, also on failure); in general not developable.
+ */
+ur_status ur_ruled_general(ur_curve *rail1, ur_curve *rail2, ur_pairing_rule rule, ur_ruled *ruled,
+                           ur_error *error);
+
+/*
+ * Moves the points of an open rail 2 as little as needed for the strip
+ * between rail 1 and rail 2 to exist along the whole of rail 1 (see
+ * adjust.c for how), along direction only when it is not NULL.  rail2 is
+ * changed in place (left as it was on failure); *largest is the largest
+ * distance a point moved.  The caller checks the result with ur_ruled_strip.
+ */
+ur_status ur_strip_adjust_rail2(const ur_vec3 *rail1, size_t count1, ur_vec3 *rail2, size_t count2,
+                                const ur_vec3 *direction, double *largest, ur_error *error);
+
+/* The pairing at u: the parameter on rail 2 and its derivative. */
+void ur_ruled_pairing(ur_ruled *ruled, double u, double *sigma, double *slope);
+
 void ur_ruled_free(ur_ruled *ruled);
+
+/*
+ * The gaps in the domain of existence of a strip, in order along rail 1
+ * (none for the other kinds).  The array belongs to the surface.
+ */
+size_t ur_ruled_gaps(const ur_ruled *ruled, const ur_interval **gaps);
+
+/*
+ * The parts of the whole of rail 1 that have a surface, in order: the
+ * complement of the gaps (ur_ruled_restrict does not change them).  Writes
+ * at most capacity intervals and returns how many there are.
+ */
+size_t ur_ruled_domain(ur_ruled *ruled, ur_interval *parts, size_t capacity);
+
+/* Uses only u in [u_start, u_end] from now on (start, end, closed, check). */
+void ur_ruled_restrict(ur_ruled *ruled, double u_start, double u_end);
+
+/* Fills the arc length and end point of an interval from its parameters. */
+void ur_ruled_describe_interval(ur_ruled *ruled, ur_interval *interval);
+
+/*
+ * Developability residual at u: the angle (radians, in [0, pi/2]) by which
+ * the tangent plane turns between the two ends of the ruling.  Zero on a
+ * developable surface.
+ */
+double ur_ruled_residual(ur_ruled *ruled, double u);
+
+/* The largest residual (radians) still called developable. */
+#define UR_DEVELOPABLE_RESIDUAL 1e-6
+
+/*
+ * The point where the ruling at u meets its neighbours (the striction point,
+ * which on a developable is the edge of regression), as r(u, v) with v its
+ * position along the ruling (0 on rail a, 1 on rail b).  False when the
+ * neighbouring rulings are parallel (a cylinder): the edge is at infinity.
+ */
+bool ur_ruled_regression(ur_ruled *ruled, double u, ur_vec3 *point, double *v);
 
 double ur_ruled_start(const ur_ruled *ruled);
 double ur_ruled_end(const ur_ruled *ruled);

@@ -13,14 +13,32 @@
 
 enum { EXIT_INTERNAL = 1, EXIT_USAGE = 2 };
 
+/* What is done with the surface. */
+typedef enum cli_action { CLI_DEVELOP, CLI_ANALYZE, CLI_COMPARE } cli_action;
+
 /* Everything the command line can say about a surface job. */
 typedef struct cli_job {
-    const char *surface; /* the subcommand */
+    cli_action action;
+    const char *command; /* "strip", or "analyze" for 'unroll analyze strip ...' */
+    const char *surface; /* the surface subcommand */
     /* surface parameters; NAN when not given */
     double radius, height, top_radius, pitch, turns, width, offset, cut;
     const char *curve_path;
     ur_vec3 direction, apex;
     bool has_direction, has_apex;
+    /* two rails (strip, ruled) and the hypar's corners */
+    const char *rail_paths[2];
+    bool natural_pairing; /* strip --pairing natural */
+    bool strict;
+    const char *regression_path;
+    bool adjust_rail2;
+    ur_vec3 adjust_direction;
+    bool has_adjust_direction;
+    const char *adjusted_rail_path;
+    ur_vec3 corners[4];
+    bool has_corners;
+    /* analyze and compare */
+    const char *png_path, *csv_path;
     /* output */
     const char *output_path;
     const char *report_path;
@@ -39,11 +57,24 @@ void cli_message(const char *format, ...)
 #endif
     ;
 
-/* Parses the options of a surface subcommand; returns 0 or an exit status. */
-int cli_parse_job(int argc, char **argv, cli_job *job);
+/*
+ * Parses the options of a surface subcommand (argv[0] is the surface) for
+ * the given action; returns 0, -1 after printing help, or an exit status.
+ */
+int cli_parse_job(int argc, char **argv, cli_action action, const char *command, cli_job *job);
 
 /* Runs a parsed surface job end to end; returns the exit status. */
 int cli_run_job(const cli_job *job);
+
+/* unroll analyze SURFACE ... and unroll compare SURFACE ... (analyze.c) */
+int cli_analyze(const cli_job *job);
+int cli_compare(const cli_job *job);
+
+/* Refuses early, before any work, when a file could not be written there. */
+bool cli_directory_exists(const char *option, const char *path);
+
+/* The exit status for a library error. */
+int cli_exit_status(const ur_error *error);
 
 /* unroll profiles [show NAME] */
 int cli_profiles(int argc, char **argv);

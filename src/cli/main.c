@@ -16,6 +16,14 @@ static const char usage[] =
     "  cone      --radius R --height H [--top-radius r] | --curve BASE.csv --apex X,Y,Z [--cut T]\n"
     "  helicoid  --radius R --pitch P --turns T --width L [--offset D]\n"
     "  tangent   --curve EDGE.csv --width L [--offset D]\n"
+    "  strip     --rail1 C1.csv --rail2 C2.csv [--pairing natural|developable] [--strict]\n"
+    "            [--regression EDGE.csv] [--adjust-rail2 [--adjust-direction X,Y,Z]\n"
+    "            [--adjusted-rail FILE.csv]]\n"
+    "  ruled     --rail1 C1.csv --rail2 C2.csv        (analysed; developed only if developable)\n"
+    "  hypar     --corners X,Y,Z:X,Y,Z:X,Y,Z:X,Y,Z   (analysed; developed only if flat)\n"
+    "study a surface (SURFACE and its options as above, no -o):\n"
+    "  analyze SURFACE ... [--png FILE.png] [--report FILE.json]\n"
+    "  compare SURFACE ... [--csv FILE.csv] [--png FILE.png]\n"
     "other:\n"
     "  profiles [show NAME]   list machine and material profiles, or print one\n"
     "  help [SUBCOMMAND]      this text, or a subcommand's options\n"
@@ -62,6 +70,40 @@ static const struct {
                 "  The tangent developable of any space curve (the edge of regression), given as\n"
                 "  points and interpolated with C2 cubic splines.  The curve must bend one way\n"
                 "  only: an inflection makes the surface singular and is refused.\n"},
+    {"strip",
+     "unroll strip --rail1 C1.csv --rail2 C2.csv -o FILE.svg [OPTIONS]\n"
+     "  The developable strip between two space curves: for each point of rail 1 the\n"
+     "  ruling goes to the point of rail 2 where one plane touches both rails.  Parts\n"
+     "  of rail 1 where no such ruling exists, or where rulings would cross (the edge\n"
+     "  of regression passes between the rails), are reported and left out; each part\n"
+     "  that exists becomes its own piece.\n"
+     "  --pairing natural|developable  natural joins equal arc-length fractions (a\n"
+     "                        general ruled surface, refused unless developable)\n"
+     "  --strict              refuse a strip that does not exist along all of rail 1\n"
+     "  --regression FILE.csv write the edge of regression (for 'unroll tangent --curve')\n"
+     "  --adjust-rail2        move rail 2 as little as needed for a strip along all of\n"
+     "                        rail 1; --adjust-direction X,Y,Z moves it along X,Y,Z only;\n"
+     "                        --adjusted-rail FILE.csv writes the moved rail\n"},
+    {"ruled", "unroll ruled --rail1 C1.csv --rail2 C2.csv -o FILE.svg [OPTIONS]\n"
+              "  The ruled surface joining matching points of two rails (the i-th points when\n"
+              "  both have as many, else equal arc-length fractions).  In general it is not\n"
+              "  developable: then it is refused with how far it is from developable; see\n"
+              "  'unroll analyze ruled ...'.\n"},
+    {"hypar", "unroll hypar --corners X,Y,Z:X,Y,Z:X,Y,Z:X,Y,Z -o FILE.svg [OPTIONS]\n"
+              "  The hyperbolic paraboloid on a skew quadrilateral, corners in order round it;\n"
+              "  rulings join edge 1-2 to edge 4-3.  Not developable (K < 0) unless the corners\n"
+              "  lie in one plane, when it is a flat quadrilateral and is developed exactly.\n"},
+    {"analyze", "unroll analyze SURFACE SURFACE-OPTIONS [--png FILE.png] [--report FILE.json]\n"
+                "  Whether the surface is developable (the angle its tangent plane turns along\n"
+                "  a ruling), its Gaussian curvature K (min, max, mean, where), the smallest bend\n"
+                "  radius, the area, and for strips the domain of existence and where the edge of\n"
+                "  regression runs.  --png draws the surface's parameter domain coloured by K\n"
+                "  (green K = 0, blue K < 0); --report writes every ruling's figures as JSON.\n"},
+    {"compare", "unroll compare SURFACE SURFACE-OPTIONS [--csv FILE.csv] [--png FILE.png]\n"
+                "  The paper's triangle and quad methods against the exact net for n = 8, 16,\n"
+                "  ..., 4096 rulings: signed relative area error, largest rail length error and\n"
+                "  largest distance to the exact net after the best rigid fit; --png plots them\n"
+                "  on log-log axes.\n"},
     {"profiles", "unroll profiles            list machine and material profiles\n"
                  "unroll profiles show NAME  print one profile and the file it comes from\n"
                  "  Profiles are searched in ./profiles, then $UNROLL_PROFILES, then the\n"
@@ -79,7 +121,9 @@ int cli_print_help(const char *subcommand)
         if (strcmp(subcommand_help[k].name, subcommand) == 0) {
             fputs(subcommand_help[k].text, stdout);
             if (cli_is_surface(subcommand))
-                fputs("\ncommon options: see 'unroll --help'.\n", stdout);
+                fputs("\ncommon options: see 'unroll --help'; also 'unroll analyze' and "
+                      "'unroll compare'.\n",
+                      stdout);
             return 0;
         }
     cli_message("help: unknown subcommand '%s'; 'unroll --help' lists them", subcommand);
@@ -89,10 +133,31 @@ int cli_print_help(const char *subcommand)
 static int surface_command(int argc, char **argv)
 {
     cli_job job;
-    int code = cli_parse_job(argc, argv, &job);
+    int code = cli_parse_job(argc, argv, CLI_DEVELOP, argv[0], &job);
     if (code == -1)
         return 0; /* help was asked for and printed */
     return code ? code : cli_run_job(&job);
+}
+
+/* unroll analyze SURFACE ... and unroll compare SURFACE ... */
+static int study_command(int argc, char **argv, cli_action action)
+{
+    const char *command = argv[0];
+    if (argc >= 2 && (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0))
+        return cli_print_help(command);
+    if (argc < 2 || !cli_is_surface(argv[1])) {
+        cli_message("%s: give a surface first, e.g. 'unroll %s helicoid --radius 30 ...' (see "
+                    "'unroll help %s')",
+                    command, command, command);
+        return EXIT_USAGE;
+    }
+    cli_job job;
+    int code = cli_parse_job(argc - 1, argv + 1, action, command, &job);
+    if (code == -1)
+        return 0;
+    if (code)
+        return code;
+    return action == CLI_ANALYZE ? cli_analyze(&job) : cli_compare(&job);
 }
 
 int main(int argc, char **argv)
@@ -121,6 +186,10 @@ int main(int argc, char **argv)
         return cli_profiles(argc - 1, argv + 1);
     if (cli_is_surface(command))
         return surface_command(argc - 1, argv + 1);
+    if (strcmp(command, "analyze") == 0)
+        return study_command(argc - 1, argv + 1, CLI_ANALYZE);
+    if (strcmp(command, "compare") == 0)
+        return study_command(argc - 1, argv + 1, CLI_COMPARE);
     cli_message("unknown subcommand '%s'; 'unroll --help' lists them", command);
     return EXIT_USAGE;
 }

@@ -26,6 +26,17 @@ enum option_id {
     OPT_TURNS,
     OPT_WIDTH,
     OPT_OFFSET,
+    OPT_RAIL1,
+    OPT_RAIL2,
+    OPT_PAIRING,
+    OPT_STRICT,
+    OPT_REGRESSION,
+    OPT_ADJUST_RAIL2,
+    OPT_ADJUST_DIRECTION,
+    OPT_ADJUSTED_RAIL,
+    OPT_CORNERS, /* last of the surface options */
+    OPT_PNG,
+    OPT_CSV,
     OPT_MACHINE,
     OPT_MATERIAL,
     OPT_SHEET,
@@ -49,6 +60,17 @@ static const struct option long_options[] = {
     {"turns", required_argument, NULL, OPT_TURNS},
     {"width", required_argument, NULL, OPT_WIDTH},
     {"offset", required_argument, NULL, OPT_OFFSET},
+    {"rail1", required_argument, NULL, OPT_RAIL1},
+    {"rail2", required_argument, NULL, OPT_RAIL2},
+    {"pairing", required_argument, NULL, OPT_PAIRING},
+    {"strict", no_argument, NULL, OPT_STRICT},
+    {"regression", required_argument, NULL, OPT_REGRESSION},
+    {"adjust-rail2", no_argument, NULL, OPT_ADJUST_RAIL2},
+    {"adjust-direction", required_argument, NULL, OPT_ADJUST_DIRECTION},
+    {"adjusted-rail", required_argument, NULL, OPT_ADJUSTED_RAIL},
+    {"corners", required_argument, NULL, OPT_CORNERS},
+    {"png", required_argument, NULL, OPT_PNG},
+    {"csv", required_argument, NULL, OPT_CSV},
     {"output", required_argument, NULL, 'o'},
     {"machine", required_argument, NULL, OPT_MACHINE},
     {"material", required_argument, NULL, OPT_MATERIAL},
@@ -73,7 +95,40 @@ static const struct {
     {"cone", " radius height top-radius curve apex cut "},
     {"helicoid", " radius pitch turns width offset "},
     {"tangent", " curve width offset "},
+    {"strip", " rail1 rail2 pairing strict regression adjust-rail2 adjust-direction "
+              "adjusted-rail "},
+    {"ruled", " rail1 rail2 "},
+    {"hypar", " corners "},
 };
+
+/* Options that belong to one action only. */
+static const struct {
+    cli_action action;
+    const char *options;
+} action_options[] = {
+    {CLI_DEVELOP, " output machine material sheet method parts rulings no-split report "},
+    {CLI_ANALYZE, " png report "},
+    {CLI_COMPARE, " png csv "},
+};
+
+static const char *action_name(cli_action action)
+{
+    return action == CLI_ANALYZE ? "analyze" : action == CLI_COMPARE ? "compare" : "develop";
+}
+
+/* An option that belongs to some action but not to this one. */
+static bool foreign_to_action(cli_action action, const char *option)
+{
+    char word[64];
+    snprintf(word, sizeof word, " %s ", option);
+    bool someone = false, mine = false;
+    for (size_t k = 0; k < sizeof action_options / sizeof action_options[0]; k++)
+        if (strstr(action_options[k].options, word)) {
+            someone = true;
+            mine = mine || action_options[k].action == action;
+        }
+    return someone && !mine;
+}
 
 bool cli_is_surface(const char *name)
 {
@@ -123,23 +178,43 @@ static bool parse_number(const char *surface, int id, const char *text, double *
     return true;
 }
 
-static bool parse_vector(const char *surface, int id, const char *text, ur_vec3 *v)
+/* X,Y,Z ending at `last` (a ':' between corners, or the string's end). */
+static const char *scan_vector(const char *p, char last, ur_vec3 *v)
 {
     char *end;
     double c[3];
-    const char *p = text;
     for (int k = 0; k < 3; k++) {
         errno = 0;
         c[k] = strtod(p, &end);
-        bool separator_ok = k < 2 ? *end == ',' : *end == '\0';
-        if (end == p || !separator_ok || errno == ERANGE || !isfinite(c[k])) {
-            cli_message("%s: --%s: '%s' is not three finite numbers X,Y,Z", surface,
-                        option_name(id), text);
-            return false;
-        }
+        bool separator_ok = k < 2 ? *end == ',' : *end == last;
+        if (end == p || !separator_ok || errno == ERANGE || !isfinite(c[k]))
+            return NULL;
         p = end + 1;
     }
     *v = ur_vec3_make(c[0], c[1], c[2]);
+    return p;
+}
+
+static bool parse_vector(const char *surface, int id, const char *text, ur_vec3 *v)
+{
+    if (!scan_vector(text, '\0', v)) {
+        cli_message("%s: --%s: '%s' is not three finite numbers X,Y,Z", surface, option_name(id),
+                    text);
+        return false;
+    }
+    return true;
+}
+
+static bool parse_corners(const char *surface, const char *text, ur_vec3 corners[4])
+{
+    const char *p = text;
+    for (int k = 0; k < 4 && p; k++)
+        p = scan_vector(p, k < 3 ? ':' : '\0', &corners[k]);
+    if (!p) {
+        cli_message("%s: --corners: '%s' is not four corners X,Y,Z:X,Y,Z:X,Y,Z:X,Y,Z", surface,
+                    text);
+        return false;
+    }
     return true;
 }
 
@@ -205,9 +280,15 @@ static double *number_slot(cli_job *job, int id)
 static bool take_option(cli_job *job, int id, const char *value)
 {
     const char *surface = job->surface;
-    if (id >= OPT_RADIUS && id <= OPT_OFFSET && !accepts(surface, option_name(id))) {
-        cli_message("%s: --%s does not apply to a %s (see 'unroll help %s')", surface,
+    if (id >= OPT_RADIUS && id <= OPT_CORNERS && !accepts(surface, option_name(id))) {
+        cli_message("%s: --%s does not apply to a %s (see 'unroll help %s')", job->command,
                     option_name(id), surface, surface);
+        return false;
+    }
+    const char *name = id == 'o' ? "output" : id == 'n' ? "parts" : option_name(id);
+    if (foreign_to_action(job->action, name)) {
+        cli_message("%s: --%s does not apply to '%s' (see 'unroll help %s')", job->command, name,
+                    action_name(job->action), job->command);
         return false;
     }
     double *slot = number_slot(job, id);
@@ -216,6 +297,40 @@ static bool take_option(cli_job *job, int id, const char *value)
     switch (id) {
     case OPT_CURVE:
         job->curve_path = value;
+        return true;
+    case OPT_RAIL1:
+    case OPT_RAIL2:
+        job->rail_paths[id - OPT_RAIL1] = value;
+        return true;
+    case OPT_PAIRING:
+        if (strcmp(value, "natural") != 0 && strcmp(value, "developable") != 0) {
+            cli_message("%s: --pairing: '%s' is not one of natural, developable", job->command,
+                        value);
+            return false;
+        }
+        job->natural_pairing = strcmp(value, "natural") == 0;
+        return true;
+    case OPT_STRICT:
+        job->strict = true;
+        return true;
+    case OPT_REGRESSION:
+        job->regression_path = value;
+        return true;
+    case OPT_ADJUST_RAIL2:
+        job->adjust_rail2 = true;
+        return true;
+    case OPT_ADJUST_DIRECTION:
+        return job->has_adjust_direction = parse_vector(surface, id, value, &job->adjust_direction);
+    case OPT_ADJUSTED_RAIL:
+        job->adjusted_rail_path = value;
+        return true;
+    case OPT_CORNERS:
+        return job->has_corners = parse_corners(surface, value, job->corners);
+    case OPT_PNG:
+        job->png_path = value;
+        return true;
+    case OPT_CSV:
+        job->csv_path = value;
         return true;
     case OPT_DIRECTION:
         return job->has_direction = parse_vector(surface, id, value, &job->direction);
@@ -260,9 +375,11 @@ static bool take_option(cli_job *job, int id, const char *value)
     }
 }
 
-static void job_defaults(cli_job *job, const char *surface)
+static void job_defaults(cli_job *job, cli_action action, const char *command, const char *surface)
 {
     memset(job, 0, sizeof *job);
+    job->action = action;
+    job->command = command;
     job->surface = surface;
     job->radius = job->height = job->top_radius = job->pitch = NAN;
     job->turns = job->width = job->offset = job->cut = NAN;
@@ -271,35 +388,40 @@ static void job_defaults(cli_job *job, const char *surface)
     ur_develop_options_default(&job->develop);
 }
 
-int cli_parse_job(int argc, char **argv, cli_job *job)
+int cli_parse_job(int argc, char **argv, cli_action action, const char *command, cli_job *job)
 {
-    job_defaults(job, argv[0]);
+    job_defaults(job, action, command, argv[0]);
     opterr = 0;
     optind = 1;
     int id;
     while ((id = getopt_long(argc, argv, ":o:n:h", long_options, NULL)) != -1) {
         if (id == 'h')
-            return cli_print_help(job->surface) == 0 ? -1 : EXIT_USAGE;
+            return cli_print_help(job->command) == 0 ? -1 : EXIT_USAGE;
         if (id == '?' || id == ':') {
             const char *word = argv[optind - 1];
             cli_message(id == ':' ? "%s: option %s needs a value"
                                   : "%s: unknown option '%s' (see 'unroll help %s')",
-                        job->surface, word, job->surface);
+                        job->command, word, job->command);
             return EXIT_USAGE;
         }
         if (!take_option(job, id, optarg))
             return EXIT_USAGE;
     }
     if (optind < argc) {
-        cli_message("%s: unexpected argument '%s'", job->surface, argv[optind]);
+        cli_message("%s: unexpected argument '%s'", job->command, argv[optind]);
         return EXIT_USAGE;
     }
-    if (!job->output_path) {
-        cli_message("%s: no output file: give -o FILE.svg", job->surface);
+    if (job->action == CLI_DEVELOP && !job->output_path) {
+        cli_message("%s: no output file: give -o FILE.svg", job->command);
         return EXIT_USAGE;
     }
     if (!(job->develop.tolerance > 0)) {
-        cli_message("%s: --tolerance must be positive", job->surface);
+        cli_message("%s: --tolerance must be positive", job->command);
+        return EXIT_USAGE;
+    }
+    if ((job->has_adjust_direction || job->adjusted_rail_path) && !job->adjust_rail2) {
+        cli_message("%s: --adjust-direction and --adjusted-rail go with --adjust-rail2",
+                    job->command);
         return EXIT_USAGE;
     }
     return 0;

@@ -3,6 +3,7 @@
  * pieces, sheets, SVG and report, with a short summary on stderr.
  */
 #include "cli.h"
+#include "domain.h"
 #include "surfaces.h"
 
 #include <libgen.h>
@@ -17,8 +18,7 @@
 #include "unroll/nest.h"
 #include "unroll/out.h"
 
-/* Refuse early, before any work, when the file could not be written. */
-static bool directory_exists(const char *option, const char *path)
+bool cli_directory_exists(const char *option, const char *path)
 {
     char copy[4096];
     snprintf(copy, sizeof copy, "%s", path);
@@ -31,7 +31,7 @@ static bool directory_exists(const char *option, const char *path)
     return true;
 }
 
-static int exit_status(const ur_error *error)
+int cli_exit_status(const ur_error *error)
 {
     return error->status == UR_ERROR_INPUT ? EXIT_USAGE : EXIT_INTERNAL;
 }
@@ -105,12 +105,57 @@ static ur_status make_pieces(const cli_job *job, job_state *state, ur_error *err
     return UR_OK;
 }
 
+/* Moves the nets of one part to the end of the job's list, numbering them on. */
+static ur_status append_nets(ur_net_list *all, ur_net_list *part, ur_error *error)
+{
+    ur_net *grown = realloc(all->nets, (all->count + part->count) * sizeof *grown);
+    if (!grown)
+        return ur_error_out_of_memory(error);
+    all->nets = grown;
+    for (size_t k = 0; k < part->count; k++) {
+        all->nets[all->count] = part->nets[k];
+        snprintf(all->nets[all->count].name, sizeof all->nets[0].name, "P%zu", all->count + 1);
+        all->count++;
+    }
+    free(part->nets);
+    part->nets = NULL;
+    part->count = 0;
+    return UR_OK;
+}
+
+/* Each part of the domain of existence (the whole surface but for strips) on its own. */
+static ur_status develop_parts(const cli_job *job, job_state *state, ur_error *error)
+{
+    size_t count = ur_ruled_domain(&state->ruled, NULL, 0);
+    ur_interval *parts = ur_alloc_array(count, sizeof *parts, error);
+    if (!parts)
+        return UR_ERROR_INTERNAL;
+    ur_ruled_domain(&state->ruled, parts, count);
+    const ur_interval *gaps;
+    bool whole = ur_ruled_gaps(&state->ruled, &gaps) == 0;
+    ur_status status = UR_OK;
+    state->surface_area = 0.0;
+    for (size_t k = 0; k < count && status == UR_OK; k++) {
+        if (!whole)
+            ur_ruled_restrict(&state->ruled, parts[k].u_start, parts[k].u_end);
+        double area = 0.0;
+        ur_net_list nets = {NULL, 0};
+        status = ur_ruled_area(&state->ruled, ur_ruled_start(&state->ruled),
+                               ur_ruled_end(&state->ruled), &area, error);
+        if (status == UR_OK)
+            status = ur_develop(&state->ruled, &job->develop, &nets, error);
+        if (status == UR_OK)
+            status = append_nets(&state->nets, &nets, error);
+        ur_net_list_free(&nets);
+        state->surface_area += area;
+    }
+    free(parts);
+    return status;
+}
+
 static ur_status develop_and_place(const cli_job *job, job_state *state, ur_error *error)
 {
-    ur_status status = ur_ruled_area(&state->ruled, ur_ruled_start(&state->ruled),
-                                     ur_ruled_end(&state->ruled), &state->surface_area, error);
-    if (status == UR_OK)
-        status = ur_develop(&state->ruled, &job->develop, &state->nets, error);
+    ur_status status = develop_parts(job, state, error);
     if (status == UR_OK)
         status = make_pieces(job, state, error);
     if (status != UR_OK)
@@ -136,7 +181,7 @@ static ur_status develop_and_place(const cli_job *job, job_state *state, ur_erro
 static ur_status write_outputs(const cli_job *job, job_state *state, ur_error *error)
 {
     char title[128];
-    snprintf(title, sizeof title, "unroll %s", job->surface);
+    snprintf(title, sizeof title, "unroll %s", job->command);
     ur_output_options output = {title};
     ur_status status = ur_write_svg(job->output_path, &state->layout, state->pieces,
                                     &state->machine, &output, error);
@@ -160,6 +205,7 @@ static ur_status write_outputs(const cli_job *job, job_state *state, ur_error *e
         .outputs = outputs,
         .sheet_path = job->output_path,
     };
+    context.gap_count = ur_ruled_gaps(&state->ruled, &context.gaps);
     if (status == UR_OK)
         status = ur_report_write(job->report_path, &context, state->pieces, state->piece_count,
                                  &state->layout, error);
@@ -193,9 +239,12 @@ static void print_summary(const cli_job *job, const job_state *state)
 
 int cli_run_job(const cli_job *job)
 {
-    if (!directory_exists("-o", job->output_path) ||
+    if (!cli_directory_exists("-o", job->output_path) ||
         (job->report_path && strcmp(job->report_path, "-") != 0 &&
-         !directory_exists("--report", job->report_path)))
+         !cli_directory_exists("--report", job->report_path)) ||
+        (job->regression_path && !cli_directory_exists("--regression", job->regression_path)) ||
+        (job->adjusted_rail_path &&
+         !cli_directory_exists("--adjusted-rail", job->adjusted_rail_path)))
         return EXIT_USAGE;
     job_state state;
     memset(&state, 0, sizeof state);
@@ -205,21 +254,34 @@ int cli_run_job(const cli_job *job)
         status = ur_material_load(job->material_name, &state.material, &error);
     if (status != UR_OK) {
         cli_message("%s", error.message);
-        return exit_status(&error);
+        return cli_exit_status(&error);
     }
     int code = cli_build_surface(job, &state.ruled);
     if (code)
         return code;
     state.have_ruled = true;
+    ur_vec3 *edge = NULL;
+    size_t edge_count = 0;
+    code = cli_check_domain(job, &state.ruled);
+    if (!code && job->regression_path)
+        code = cli_regression_points(job, &state.ruled, &edge, &edge_count);
+    if (code) {
+        state_free(&state);
+        return code;
+    }
     status = develop_and_place(job, &state, &error);
     if (status == UR_OK)
         status = write_outputs(job, &state, &error);
     if (status != UR_OK) {
-        cli_message("%s: %s", job->surface, error.message);
-        code = exit_status(&error);
-    } else if (!job->quiet) {
-        print_summary(job, &state);
+        cli_message("%s: %s", job->command, error.message);
+        code = cli_exit_status(&error);
+    } else {
+        if (!job->quiet)
+            print_summary(job, &state);
+        if (edge)
+            code = cli_write_regression(job, edge, edge_count);
     }
+    free(edge);
     state_free(&state);
     return code;
 }

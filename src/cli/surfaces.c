@@ -40,7 +40,7 @@ static bool positive(const cli_job *job, double value, const char *option)
 
 static int fail(const ur_error *error, const cli_job *job)
 {
-    cli_message("%s: %s", job->surface, error->message);
+    cli_message("%s: %s", job->command, error->message);
     return error->status == UR_ERROR_INPUT ? EXIT_USAGE : EXIT_INTERNAL;
 }
 
@@ -191,8 +191,216 @@ static int build_tangent(const cli_job *job, ur_ruled *ruled)
     return code ? code : build_tangent_of(job, curve, ruled);
 }
 
+/* ---- Two rails ----------------------------------------------------------- */
+
+static int read_points(const cli_job *job, const char *path, ur_vec3 **points, size_t *count,
+                       bool *closed)
+{
+    ur_error error;
+    if (ur_curve_csv_read(path, points, count, closed, &error) != UR_OK)
+        return fail(&error, job);
+    if (*count < 4) {
+        cli_message("%s: %s: a rail needs at least 4 points (it has %zu)", job->command, path,
+                    *count);
+        free(*points);
+        *points = NULL;
+        return EXIT_USAGE;
+    }
+    return 0;
+}
+
+static void reverse_points(ur_vec3 *points, size_t count)
+{
+    for (size_t i = 0, j = count - 1; i < j; i++, j--) {
+        ur_vec3 swap = points[i];
+        points[i] = points[j];
+        points[j] = swap;
+    }
+}
+
+static size_t nearest_point(const ur_vec3 *points, size_t count, ur_vec3 to)
+{
+    size_t best = 0;
+    for (size_t i = 1; i < count; i++)
+        if (ur_vec3_distance(points[i], to) < ur_vec3_distance(points[best], to))
+            best = i;
+    return best;
+}
+
+/*
+ * The rails must run the same way for the pairing to be monotonic.  Open
+ * rails: their ends pair up shorter one way than the other.  Closed rails:
+ * the directions at rail 1's first point and the nearest point of rail 2.
+ */
+static bool runs_against(const ur_vec3 *first, size_t first_count, bool closed,
+                         const ur_vec3 *second, size_t second_count)
+{
+    if (!closed) {
+        ur_vec3 a0 = first[0], a1 = first[first_count - 1];
+        ur_vec3 b0 = second[0], b1 = second[second_count - 1];
+        return ur_vec3_distance(a0, b1) + ur_vec3_distance(a1, b0) <
+               ur_vec3_distance(a0, b0) + ur_vec3_distance(a1, b1);
+    }
+    size_t j = nearest_point(second, second_count, first[0]);
+    ur_vec3 along_first = ur_vec3_sub(first[1], first[0]);
+    ur_vec3 along_second = ur_vec3_sub(second[(j + 1) % second_count], second[j]);
+    return ur_vec3_dot(along_first, along_second) < 0;
+}
+
+/* The closest approach of the two rails' points, against the rails' size. */
+static int check_rails_apart(const cli_job *job, const ur_vec3 *first, size_t first_count,
+                             const ur_vec3 *second, size_t second_count)
+{
+    double size = 0.0, closest = INFINITY;
+    size_t where = 0;
+    for (size_t i = 0; i < first_count; i++) {
+        size = fmax(size, ur_vec3_distance(first[i], first[0]));
+        size_t j = nearest_point(second, second_count, first[i]);
+        double distance = ur_vec3_distance(first[i], second[j]);
+        if (distance < closest) {
+            closest = distance;
+            where = i;
+        }
+    }
+    if (!(closest > 1e-6 * size)) {
+        cli_message("%s: the rails meet at point %zu of --rail1 (%g, %g, %g): a strip needs them "
+                    "apart everywhere",
+                    job->command, where + 1, first[where].x, first[where].y, first[where].z);
+        return EXIT_USAGE;
+    }
+    return 0;
+}
+
+/* Reads both rails, checks them, and orients rail 2 like rail 1. */
+static int read_rails(const cli_job *job, ur_curve *rails[2], bool *same_count)
+{
+    ur_vec3 *points[2] = {NULL, NULL};
+    size_t count[2] = {0, 0};
+    bool closed[2] = {false, false};
+    const char *options[2] = {"rail1", "rail2"};
+    int code = 0;
+    rails[0] = rails[1] = NULL;
+    for (int k = 0; k < 2 && !code; k++) {
+        if (!job->rail_paths[k]) {
+            cli_message("%s: --%s FILE.csv is required", job->command, options[k]);
+            code = EXIT_USAGE;
+        } else {
+            code = read_points(job, job->rail_paths[k], &points[k], &count[k], &closed[k]);
+        }
+    }
+    if (!code && closed[0] != closed[1]) {
+        cli_message("%s: --rail1 is %s but --rail2 is %s: give two open or two closed rails",
+                    job->command, closed[0] ? "closed" : "open", closed[1] ? "closed" : "open");
+        code = EXIT_USAGE;
+    }
+    if (!code)
+        code = check_rails_apart(job, points[0], count[0], points[1], count[1]);
+    if (!code && runs_against(points[0], count[0], closed[0], points[1], count[1])) {
+        reverse_points(points[1], count[1]);
+        if (!job->quiet)
+            cli_message("note: --rail2 runs against --rail1; using it reversed");
+    }
+    ur_error error;
+    for (int k = 0; k < 2 && !code; k++)
+        if (ur_curve_new_interpolating(points[k], count[k], closed[k], &rails[k], &error) !=
+            UR_OK) {
+            ur_error_prefix(&error, "%s: ", job->rail_paths[k]);
+            code = fail(&error, job);
+        }
+    if (code) {
+        ur_curve_free(rails[0]);
+        ur_curve_free(rails[1]);
+        rails[0] = rails[1] = NULL;
+    }
+    *same_count = count[0] == count[1];
+    free(points[0]);
+    free(points[1]);
+    return code;
+}
+
+static int build_strip(const cli_job *job, ur_ruled *ruled)
+{
+    ur_curve *rails[2];
+    bool same_count;
+    int code = read_rails(job, rails, &same_count);
+    if (code)
+        return code;
+    ur_error error;
+    ur_status status = job->natural_pairing
+                           ? ur_ruled_general(rails[0], rails[1], UR_PAIR_ARC_LENGTH, ruled, &error)
+                           : ur_ruled_strip(rails[0], rails[1], ruled, &error);
+    return status == UR_OK ? 0 : fail(&error, job);
+}
+
+static int build_ruled(const cli_job *job, ur_ruled *ruled)
+{
+    ur_curve *rails[2];
+    bool same_count;
+    int code = read_rails(job, rails, &same_count);
+    if (code)
+        return code;
+    ur_error error;
+    ur_pairing_rule rule = same_count ? UR_PAIR_POINTS : UR_PAIR_ARC_LENGTH;
+    return ur_ruled_general(rails[0], rails[1], rule, ruled, &error) == UR_OK ? 0
+                                                                              : fail(&error, job);
+}
+
+/* A straight rail from p to q, as a curve through four points on it. */
+static ur_status straight_rail(ur_vec3 p, ur_vec3 q, ur_curve **rail, ur_error *error)
+{
+    ur_vec3 points[4];
+    for (int k = 0; k < 4; k++)
+        points[k] = ur_vec3_add_scaled(p, ur_vec3_sub(q, p), k / 3.0);
+    return ur_curve_new_interpolating(points, 4, false, rail, error);
+}
+
+/* Corners in order round the skew quadrilateral; rulings join P0P1 to P3P2. */
+static int build_hypar(const cli_job *job, ur_ruled *ruled)
+{
+    if (!job->has_corners) {
+        cli_message("hypar: --corners X,Y,Z:X,Y,Z:X,Y,Z:X,Y,Z is required");
+        return EXIT_USAGE;
+    }
+    const ur_vec3 *c = job->corners;
+    double size = 0.0;
+    for (int i = 0; i < 4; i++)
+        for (int j = i + 1; j < 4; j++)
+            size = fmax(size, ur_vec3_distance(c[i], c[j]));
+    for (int i = 0; i < 4; i++)
+        for (int j = i + 1; j < 4; j++)
+            if (!(ur_vec3_distance(c[i], c[j]) > 1e-9 * size)) {
+                cli_message("hypar: --corners: corners %d and %d are the same point", i + 1, j + 1);
+                return EXIT_USAGE;
+            }
+    ur_vec3 normal = ur_vec3_cross(ur_vec3_sub(c[1], c[0]), ur_vec3_sub(c[3], c[0]));
+    double lift = fabs(ur_vec3_dot(ur_vec3_sub(c[2], c[0]), normal)) / ur_vec3_length(normal);
+    if (!(ur_vec3_length(normal) > 1e-12 * size * size)) {
+        cli_message("hypar: --corners: corners 1, 2 and 4 lie on one line");
+        return EXIT_USAGE;
+    }
+    if (lift <= 1e-9 * size && !job->quiet)
+        cli_message("note: the four corners lie in one plane: the hypar is a flat quadrilateral, "
+                    "developed exactly");
+    ur_curve *rails[2] = {NULL, NULL};
+    ur_error error;
+    if (straight_rail(c[0], c[1], &rails[0], &error) != UR_OK ||
+        straight_rail(c[3], c[2], &rails[1], &error) != UR_OK) {
+        ur_curve_free(rails[0]);
+        return fail(&error, job);
+    }
+    return ur_ruled_general(rails[0], rails[1], UR_PAIR_ARC_LENGTH, ruled, &error) == UR_OK
+               ? 0
+               : fail(&error, job);
+}
+
 int cli_build_surface(const cli_job *job, ur_ruled *ruled)
 {
+    if (strcmp(job->surface, "strip") == 0)
+        return build_strip(job, ruled);
+    if (strcmp(job->surface, "ruled") == 0)
+        return build_ruled(job, ruled);
+    if (strcmp(job->surface, "hypar") == 0)
+        return build_hypar(job, ruled);
     if (strcmp(job->surface, "cylinder") == 0)
         return build_cylinder(job, ruled);
     if (strcmp(job->surface, "cone") == 0)

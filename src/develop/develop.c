@@ -170,12 +170,12 @@ static void lay_off_ruling(ur_ruled *ruled, strip *s, size_t i, const double y[3
 
 enum { DENSE_SAMPLES = 20000 };
 
-static ur_status develop_exact(ur_ruled *ruled, const ur_develop_options *options, strip *s,
-                               ur_error *error)
+ur_status develop_exact_at(ur_ruled *ruled, strip *s, ur_error *error)
 {
-    ur_status status = exact_parameters(ruled, options, s, error);
-    if (status != UR_OK)
-        return status;
+    if (s->count < 2 || !(s->u[s->count - 1] > s->u[0]))
+        return ur_error_set(error, UR_ERROR_INTERNAL,
+                            "the development needs at least two increasing parameters");
+    gsl_set_error_handler_off(); /* GSL's default handler would abort */
     gsl_odeiv2_system system = {flat_curve_rhs, NULL, 3, ruled};
     double span = s->u[s->count - 1] - s->u[0];
     /*
@@ -188,17 +188,14 @@ static ur_status develop_exact(ur_ruled *ruled, const ur_develop_options *option
         s->count > DENSE_SAMPLES ? gsl_odeiv2_step_rkck : gsl_odeiv2_step_rk8pd;
     gsl_odeiv2_driver *driver =
         gsl_odeiv2_driver_alloc_y_new(&system, stepper, span / 64, 1e-11, 1e-12);
-    if (!driver) {
-        strip_free(s);
+    if (!driver)
         return ur_error_out_of_memory(error);
-    }
     double y[3] = {0.0, 0.0, 0.0}, u = s->u[0];
     lay_off_ruling(ruled, s, 0, y);
     for (size_t i = 1; i < s->count; i++) {
         int code = gsl_odeiv2_driver_apply(driver, &u, s->u[i], y);
         if (code != GSL_SUCCESS) {
             gsl_odeiv2_driver_free(driver);
-            strip_free(s);
             return ur_error_set(error, UR_ERROR_INTERNAL,
                                 "the development did not converge at u = %g: %s", s->u[i],
                                 gsl_strerror(code));
@@ -207,6 +204,18 @@ static ur_status develop_exact(ur_ruled *ruled, const ur_develop_options *option
     }
     gsl_odeiv2_driver_free(driver);
     return UR_OK;
+}
+
+static ur_status develop_exact(ur_ruled *ruled, const ur_develop_options *options, strip *s,
+                               ur_error *error)
+{
+    ur_status status = exact_parameters(ruled, options, s, error);
+    if (status != UR_OK)
+        return status; /* s was never allocated, or already freed */
+    status = develop_exact_at(ruled, s, error);
+    if (status != UR_OK)
+        strip_free(s);
+    return status;
 }
 
 /* ---- Splitting into pieces that do not overlap themselves --------------- */

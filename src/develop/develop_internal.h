@@ -21,6 +21,15 @@ typedef struct strip {
 ur_status strip_alloc(strip *s, size_t count, ur_error *error);
 void strip_free(strip *s);
 
+/*
+ * The exact development (develop.c) at the parameters already in s->u
+ * (count >= 2, increasing): fills s->near and s->far.  The strip stays the
+ * caller's, also on failure.  ur_develop samples its own parameters;
+ * ur_compare (compare.c) uses this to evaluate the exact net at the
+ * rulings of a discrete one.
+ */
+ur_status develop_exact_at(ur_ruled *ruled, strip *s, ur_error *error);
+
 /* The paper's triangle and quad methods (discrete.c). */
 ur_status develop_discrete(ur_ruled *ruled, const ur_develop_options *options, strip *s,
                            ur_error *error);

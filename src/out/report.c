@@ -14,15 +14,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "atomic.h"
-
-/* Every real with the 17 digits that make it read back exactly. */
-#define JSON_FLAGS (JSON_INDENT(2) | JSON_PRESERVE_ORDER | JSON_REAL_PRECISION(17))
-
-static json_t *number(double value)
-{
-    return isfinite(value) ? json_real(value) : json_null();
-}
+#include "json.h"
 
 static json_t *text_or_null(const char *text)
 {
@@ -50,10 +42,10 @@ static json_t *box_json(ur_box box)
     json_t *object = json_object();
     bool known = box.min.x <= box.max.x && box.min.y <= box.max.y; /* not empty */
     if (!object ||
-        json_object_set_new(object, "width_mm", known ? number(ur_box_width(box)) : json_null()) !=
-            0 ||
+        json_object_set_new(object, "width_mm",
+                            known ? ur_json_number(ur_box_width(box)) : json_null()) != 0 ||
         json_object_set_new(object, "height_mm",
-                            known ? number(ur_box_height(box)) : json_null()) != 0) {
+                            known ? ur_json_number(ur_box_height(box)) : json_null()) != 0) {
         json_decref(object);
         return NULL;
     }
@@ -67,13 +59,13 @@ static json_t *piece_json(const ur_piece *piece, size_t sheet)
     json_t *object = json_object();
     if (!object ||
         json_object_set_new(object, "name", name_of(piece->name, sizeof piece->name)) != 0 ||
-        json_object_set_new(object, "area_3d_mm2", number(m->area_3d)) != 0 ||
-        json_object_set_new(object, "flat_area_mm2", number(m->flat_area)) != 0 ||
+        json_object_set_new(object, "area_3d_mm2", ur_json_number(m->area_3d)) != 0 ||
+        json_object_set_new(object, "flat_area_mm2", ur_json_number(m->flat_area)) != 0 ||
         json_object_set_new(object, "coverage",
-                            m->area_3d > 0 ? number(m->flat_area / m->area_3d) : json_null()) !=
-            0 ||
+                            m->area_3d > 0 ? ur_json_number(m->flat_area / m->area_3d)
+                                           : json_null()) != 0 ||
         json_object_set_new(object, "bounding_box", box_json(piece->box)) != 0 ||
-        json_object_set_new(object, "edge_length_error", number(m->edge_error)) != 0 ||
+        json_object_set_new(object, "edge_length_error", ur_json_number(m->edge_error)) != 0 ||
         json_object_set_new(object, "sheet",
                             sheet ? json_integer((json_int_t)sheet) : json_null()) != 0) {
         json_decref(object);
@@ -114,12 +106,12 @@ static json_t *sheet_json(const ur_layout *layout, size_t index, const ur_piece 
     const ur_sheet *sheet = &layout->sheets[index];
     json_t *object = json_object();
     if (!object || json_object_set_new(object, "index", json_integer((json_int_t)index + 1)) != 0 ||
-        json_object_set_new(object, "width_mm", number(sheet->width)) != 0 ||
-        json_object_set_new(object, "height_mm", number(sheet->height)) != 0 ||
+        json_object_set_new(object, "width_mm", ur_json_number(sheet->width)) != 0 ||
+        json_object_set_new(object, "height_mm", ur_json_number(sheet->height)) != 0 ||
         json_object_set_new(object, "pieces", json_integer((json_int_t)sheet->placement_count)) !=
             0 ||
-        json_object_set_new(object, "utilisation", number(ur_sheet_utilisation(sheet, pieces))) !=
-            0) {
+        json_object_set_new(object, "utilisation",
+                            ur_json_number(ur_sheet_utilisation(sheet, pieces))) != 0) {
         json_decref(object);
         return NULL;
     }
@@ -186,10 +178,13 @@ static ur_status report_json(const ur_report_context *context, const ur_piece *p
         json_object_set_new(*root, "material",
                             material ? name_of(material->name, sizeof material->name)
                                      : json_null()) != 0 ||
-        json_object_set_new(*root, "surface_area_mm2", number(context->surface_area)) != 0 ||
+        json_object_set_new(*root, "surface_area_mm2", ur_json_number(context->surface_area)) !=
+            0 ||
         json_object_set_new(*root, "pieces", pieces_json(pieces, piece_count, layout)) != 0 ||
         json_object_set(*root, "sheets", sheets) != 0 ||
-        json_object_set_new(*root, "outputs", outputs_json(context->outputs)) != 0) {
+        json_object_set_new(*root, "outputs", outputs_json(context->outputs)) != 0 ||
+        json_object_set_new(*root, "domain_gaps",
+                            ur_json_intervals(context->gaps, context->gap_count)) != 0) {
         json_decref(sheets);
         json_decref(*root);
         *root = NULL;
@@ -213,34 +208,6 @@ static ur_status check_layout(const ur_layout *layout, size_t piece_count, ur_er
     return UR_OK;
 }
 
-static ur_status write_stdout(json_t *root, ur_error *error)
-{
-    errno = 0;
-    if (json_dumpf(root, stdout, JSON_FLAGS) != 0 || fputc('\n', stdout) == EOF ||
-        fflush(stdout) != 0)
-        return ur_error_set(error, UR_ERROR_INPUT, "cannot write the report to standard output: %s",
-                            errno ? strerror(errno) : "write error");
-    return UR_OK;
-}
-
-static ur_status write_file(const char *path, json_t *root, ur_error *error)
-{
-    ur_atomic_file file;
-    ur_status status = ur_atomic_open(&file, path, error);
-    if (status != UR_OK)
-        return status;
-    errno = 0;
-    if (json_dumpf(root, file.stream, JSON_FLAGS) != 0 || fputc('\n', file.stream) == EOF)
-        status = ur_error_set(error, UR_ERROR_INPUT, "cannot write '%s': %s", path,
-                              errno ? strerror(errno) : "write error");
-    if (status == UR_OK)
-        status = ur_atomic_close(&file, error);
-    if (status == UR_OK)
-        status = ur_atomic_commit(&file, error);
-    ur_atomic_discard(&file); /* after a commit there is nothing left to remove */
-    return status;
-}
-
 ur_status ur_report_write(const char *path, const ur_report_context *context,
                           const ur_piece *pieces, size_t piece_count, const ur_layout *layout,
                           ur_error *error)
@@ -255,7 +222,7 @@ ur_status ur_report_write(const char *path, const ur_report_context *context,
     if (status == UR_OK)
         status = report_json(context, pieces, piece_count, layout, &root, error);
     if (status == UR_OK)
-        status = strcmp(path, "-") == 0 ? write_stdout(root, error) : write_file(path, root, error);
+        status = ur_json_write(path, root, error);
     json_decref(root);
     return status;
 }

@@ -1,9 +1,10 @@
 /*
- * ruled.c: the developable ruled surfaces (cylinder, cone, tangent
- * developable), their rails, the intrinsic quantities the development needs,
- * a regularity check, and the 3D area by quadrature.
+ * ruled.c: ruled surfaces (cylinder, cone, tangent developable, and the
+ * two-rail kinds of strip.c): their rails, the intrinsic quantities the
+ * development needs, the developability residual and edge of regression, a
+ * regularity check, the domain in use, and the 3D area by quadrature.
  */
-#include "unroll/surface.h"
+#include "surface_internal.h"
 
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_integration.h>
@@ -71,23 +72,105 @@ void ur_ruled_free(ur_ruled *ruled)
 {
     if (ruled) {
         ur_curve_free(ruled->curve);
-        ruled->curve = NULL;
+        ur_curve_free(ruled->rail2);
+        pairing_free(ruled->pairing);
+        ruled->curve = ruled->rail2 = NULL;
+        ruled->pairing = NULL;
     }
 }
 
 double ur_ruled_start(const ur_ruled *ruled)
 {
-    return ur_curve_start(ruled->curve);
+    return ruled->restricted ? ruled->u_min : ur_curve_start(ruled->curve);
 }
 
 double ur_ruled_end(const ur_ruled *ruled)
 {
-    return ur_curve_end(ruled->curve);
+    return ruled->restricted ? ruled->u_max : ur_curve_end(ruled->curve);
 }
 
+static bool two_rails(const ur_ruled *ruled)
+{
+    return ruled->kind == UR_RULED_STRIP || ruled->kind == UR_RULED_GENERAL;
+}
+
+/*
+ * A two-rail surface closes when both rails do and the pairing runs once
+ * round rail 2, so that the last ruling is the first.
+ */
 bool ur_ruled_is_closed(const ur_ruled *ruled)
 {
-    return ur_curve_is_closed(ruled->curve);
+    if (ruled->restricted || !ur_curve_is_closed(ruled->curve))
+        return false;
+    if (!two_rails(ruled))
+        return true;
+    const ur_interval *gaps;
+    if (!ur_curve_is_closed(ruled->rail2) || ur_ruled_gaps(ruled, &gaps) > 0)
+        return false;
+    double sigma0, sigma1, slope;
+    ur_ruled_pairing((ur_ruled *)ruled, ur_curve_start(ruled->curve), &sigma0, &slope);
+    ur_ruled_pairing((ur_ruled *)ruled, ur_curve_end(ruled->curve), &sigma1, &slope);
+    double period = ur_curve_end(ruled->rail2) - ur_curve_start(ruled->rail2);
+    return fabs(fabs(sigma1 - sigma0) - period) <= 1e-9 * period;
+}
+
+void ur_ruled_restrict(ur_ruled *ruled, double u_start, double u_end)
+{
+    ruled->restricted = true;
+    ruled->u_min = fmax(u_start, ur_curve_start(ruled->curve));
+    ruled->u_max = fmin(u_end, ur_curve_end(ruled->curve));
+}
+
+void ur_ruled_pairing(ur_ruled *ruled, double u, double *sigma, double *slope)
+{
+    if (two_rails(ruled)) {
+        pairing_eval(ruled->pairing, u, sigma, slope);
+    } else {
+        *sigma = u;
+        *slope = 1.0;
+    }
+}
+
+size_t ur_ruled_gaps(const ur_ruled *ruled, const ur_interval **gaps)
+{
+    *gaps = NULL;
+    return two_rails(ruled) ? pairing_gaps(ruled->pairing, gaps) : 0;
+}
+
+size_t ur_ruled_domain(ur_ruled *ruled, ur_interval *parts, size_t capacity)
+{
+    const ur_interval *gaps;
+    size_t gap_count = ur_ruled_gaps(ruled, &gaps), count = 0;
+    double from = ur_curve_start(ruled->curve), end = ur_curve_end(ruled->curve);
+    double close = 1e-12 * (end - from);
+    for (size_t k = 0; k <= gap_count; k++) {
+        double to = k < gap_count ? gaps[k].u_start : end;
+        if (to - from > close) {
+            if (count < capacity) {
+                memset(&parts[count], 0, sizeof parts[count]);
+                parts[count].u_start = from;
+                parts[count].u_end = to;
+                ur_ruled_describe_interval(ruled, &parts[count]);
+            }
+            count++;
+        }
+        if (k < gap_count)
+            from = gaps[k].u_end;
+    }
+    return count;
+}
+
+void ur_ruled_describe_interval(ur_ruled *ruled, ur_interval *interval)
+{
+    double u0 = ur_curve_start(ruled->curve);
+    ur_vec3 d[3];
+    interval->arc_start = interval->arc_end = 0.0;
+    ur_curve_length(ruled->curve, u0, interval->u_start, &interval->arc_start, NULL);
+    ur_curve_length(ruled->curve, u0, interval->u_end, &interval->arc_end, NULL);
+    ur_curve_eval(ruled->curve, interval->u_start, d);
+    interval->start = d[0];
+    ur_curve_eval(ruled->curve, interval->u_end, d);
+    interval->end = d[0];
 }
 
 /* Unit tangent t = c'/|c'| and its derivative t' = (c'' - (c''.t) t) / |c'|. */
@@ -116,6 +199,18 @@ void ur_ruled_rails(ur_ruled *ruled, double u, ur_vec3 rails[4])
         rails[2] = ur_vec3_add_scaled(d[0], ur_vec3_sub(ruled->apex, d[0]), ruled->cut);
         rails[3] = ur_vec3_scale(d[1], 1.0 - ruled->cut);
         break;
+    case UR_RULED_STRIP:
+    case UR_RULED_GENERAL: {
+        double sigma, slope;
+        ur_vec3 d2[3];
+        pairing_eval(ruled->pairing, u, &sigma, &slope);
+        pairing_rail2(ruled->pairing, sigma, d2);
+        rails[0] = d[0];
+        rails[1] = d[1];
+        rails[2] = d2[0];
+        rails[3] = ur_vec3_scale(d2[1], slope);
+        break;
+    }
     case UR_RULED_TANGENT: {
         ur_vec3 t, dt;
         unit_tangent(d, &t, &dt);
@@ -167,7 +262,7 @@ void ur_ruled_intrinsics(ur_ruled *ruled, double u, ur_ruling_intrinsics *out)
 }
 
 /* Where, in words the user can find: input point and arc length. */
-static void describe_place(ur_ruled *ruled, double u, char *text, size_t size)
+void describe_place(ur_ruled *ruled, double u, char *text, size_t size)
 {
     ur_vec3 d[3];
     ur_curve_eval(ruled->curve, u, d);
@@ -232,23 +327,137 @@ static ur_status check_ruling_across(ur_ruled *ruled, ur_error *error)
         if (!(length > 1e-9) || !(sine > 1e-6)) {
             char place[256];
             describe_place(ruled, u, place, sizeof place);
-            return ur_error_set(error, UR_ERROR_INPUT,
-                                ruled->kind == UR_RULED_CONE
-                                    ? "the base curve heads straight for the apex %s: the cone "
-                                      "has no width there"
-                                    : "the base curve runs along the cylinder's direction %s: "
-                                      "the cylinder has no width there",
-                                place);
+            const char *why =
+                ruled->kind == UR_RULED_CONE
+                    ? "the base curve heads straight for the apex %s: the cone has no width there"
+                : ruled->kind == UR_RULED_CYLINDER
+                    ? "the base curve runs along the cylinder's direction %s: the cylinder has no "
+                      "width there"
+                    : "the rails meet, or rail 1 runs along the ruling, %s: the surface has no "
+                      "width there";
+            return ur_error_set(error, UR_ERROR_INPUT, why, place);
         }
     }
     return UR_OK;
+}
+
+/* A strip may be developed only where it exists. */
+static ur_status check_domain(ur_ruled *ruled, ur_error *error)
+{
+    const ur_interval *gaps;
+    size_t count = ur_ruled_gaps(ruled, &gaps);
+    double u0 = ur_ruled_start(ruled), u1 = ur_ruled_end(ruled);
+    double close = 1e-9 * (ur_curve_end(ruled->curve) - ur_curve_start(ruled->curve));
+    for (size_t k = 0; k < count; k++)
+        if (gaps[k].u_end > u0 + close && gaps[k].u_start < u1 - close)
+            return ur_error_set(error, UR_ERROR_INPUT,
+                                "the strip does not exist from %.6g to %.6g mm along rail 1 (%s); "
+                                "develop the parts of its domain of existence separately",
+                                gaps[k].arc_start, gaps[k].arc_end,
+                                gaps[k].reason == UR_GAP_NO_RULING ? "no ruling" : "rulings cross");
+    return UR_OK;
+}
+
+enum { RESIDUAL_SAMPLES = 2000 };
+
+/* The largest developability residual over the part in use, and where. */
+static double largest_residual(ur_ruled *ruled, double *where)
+{
+    double u0 = ur_ruled_start(ruled), u1 = ur_ruled_end(ruled), largest = 0.0;
+    *where = u0;
+    for (int i = 0; i <= RESIDUAL_SAMPLES; i++) {
+        double u = u0 + (u1 - u0) * i / RESIDUAL_SAMPLES;
+        double residual = ur_ruled_residual(ruled, u);
+        if (!(residual <= largest)) {
+            largest = residual;
+            *where = u;
+        }
+    }
+    return largest;
+}
+
+/* A general ruled surface is developed only when it happens to be developable. */
+static ur_status check_developable(ur_ruled *ruled, ur_error *error)
+{
+    double where;
+    double residual = largest_residual(ruled, &where);
+    if (residual <= UR_DEVELOPABLE_RESIDUAL)
+        return UR_OK;
+    char place[256];
+    describe_place(ruled, where, place, sizeof place);
+    return ur_error_set(error, UR_ERROR_INPUT,
+                        "the surface is not developable: its tangent plane turns by up to %.3g "
+                        "degrees along a ruling (%s), so no flat net fits it without strain",
+                        residual * 180 / M_PI, place);
 }
 
 ur_status ur_ruled_check(ur_ruled *ruled, ur_error *error)
 {
     if (ruled->kind == UR_RULED_TANGENT)
         return check_tangent(ruled, error);
-    return check_ruling_across(ruled, error);
+    ur_status status = check_ruling_across(ruled, error);
+    if (status == UR_OK && ruled->kind == UR_RULED_STRIP)
+        status = check_domain(ruled, error);
+    if (status == UR_OK && ruled->kind == UR_RULED_GENERAL)
+        status = check_developable(ruled, error);
+    return status;
+}
+
+/* ---- Developability and the edge of regression -------------------------- */
+
+/*
+ * The tangent plane along a ruling is spanned by the ruling g = b - a and
+ * r_u, which runs from a' at v = 0 to b' at v = 1.  On a developable the
+ * normals a' x g and b' x g are parallel (det(a', b', g) = 0); the angle
+ * between them is how far from developable the ruling is.  Where one of
+ * them vanishes (a cone's apex, a tangent developable's edge of regression)
+ * the plane is undefined there, and the middle of the ruling stands in.
+ */
+double ur_ruled_residual(ur_ruled *ruled, double u)
+{
+    ur_vec3 rails[4];
+    ur_ruled_rails(ruled, u, rails);
+    ur_vec3 ruling = ur_vec3_sub(rails[2], rails[0]);
+    /* The normal (a' + v (b' - a')) x g at v = 0, 1 and 1/2, where it is defined. */
+    ur_vec3 normals[2];
+    int found = 0;
+    const double at[3] = {0.0, 1.0, 0.5};
+    for (int k = 0; k < 3 && found < 2; k++) {
+        ur_vec3 r_u = ur_vec3_add_scaled(rails[1], ur_vec3_sub(rails[3], rails[1]), at[k]);
+        ur_vec3 normal = ur_vec3_cross(r_u, ruling);
+        double size = ur_vec3_length(r_u) * ur_vec3_length(ruling);
+        if (ur_vec3_length(normal) > 1e-9 * size)
+            normals[found++] = normal;
+    }
+    if (found < 2)
+        return 0.0;
+    double sine = ur_vec3_length(ur_vec3_cross(normals[0], normals[1]));
+    double cosine = fabs(ur_vec3_dot(normals[0], normals[1]));
+    return atan2(sine, cosine);
+}
+
+/*
+ * With e the unit ruling direction, neighbouring rulings come closest at
+ * distance w = -(a' . e') / |e'|^2 from a along e (the striction point); on
+ * a developable they meet there, on the edge of regression.
+ */
+bool ur_ruled_regression(ur_ruled *ruled, double u, ur_vec3 *point, double *v)
+{
+    ur_vec3 rails[4];
+    ur_ruled_rails(ruled, u, rails);
+    ur_vec3 ruling = ur_vec3_sub(rails[2], rails[0]);
+    double length = ur_vec3_length(ruling);
+    ur_vec3 e = ur_vec3_scale(ruling, 1.0 / length);
+    ur_vec3 change = ur_vec3_sub(rails[3], rails[1]);
+    ur_vec3 e_prime =
+        ur_vec3_scale(ur_vec3_add_scaled(change, e, -ur_vec3_dot(change, e)), 1.0 / length);
+    double turning = ur_vec3_dot(e_prime, e_prime);
+    if (!(turning > 1e-24 * ur_vec3_dot(rails[1], rails[1]) / (length * length)))
+        return false;
+    double w = -ur_vec3_dot(rails[1], e_prime) / turning;
+    *point = ur_vec3_add_scaled(rails[0], e, w);
+    *v = w / length;
+    return isfinite(w);
 }
 
 /* ---- Quadrature over the smooth pieces of the surface ------------------- */

@@ -404,6 +404,221 @@ def failure_leaves_existing_file_untouched(work):
     check(sorted(os.listdir(work)) == ["keep.svg"], "left behind: %r" % os.listdir(work))
 
 
+# ---- two-rail strips, hypar, analyze and compare ---------------------------
+def write_points(work, name, points):
+    write(work, name, "".join("%.15g,%.15g,%.15g\n" % p for p in points))
+
+
+def circle_points(r, z, start, end, n, closed=False):
+    """n points from angle start to end; a closed curve repeats its first point."""
+    count = n if closed else n - 1
+    points = [(r * math.cos(start + (end - start) * i / count),
+               r * math.sin(start + (end - start) * i / count), z) for i in range(n)]
+    return points + points[:1] if closed else points
+
+
+def annular_sector_check(outline, inner, outer, what):
+    a, b = two_longest_edges(outline)
+    n = len(outline)
+    centre = lines_meet(outline[a], outline[(a + 1) % n], outline[b], outline[(b + 1) % n])
+    for p in outline:
+        r = math.dist(p, centre)
+        check(abs(r - inner) <= 1e-6 * inner or abs(r - outer) <= 1e-6 * outer,
+              "%s: point at %.9g from the centre, expected %.9g or %.9g" % (what, r, inner, outer))
+
+
+@test
+def strip_between_coaxial_circles_is_a_frustum(work):
+    write_points(work, "low.csv", circle_points(60, 0, 0, 2 * math.pi, 400, closed=True))
+    write_points(work, "high.csv", circle_points(30, 80, 0, 2 * math.pi, 400, closed=True))
+    run(work, "strip", "--rail1", "low.csv", "--rail2", "high.csv", "-o", "s.svg", *FINE)
+    [outline] = outlines(os.path.join(work, "s.svg"))
+    outer = math.hypot(60, 160)
+    annular_sector_check(outline, outer / 2, outer, "frustum strip")
+    close(area(outline), 2 * math.pi * 60 / outer * (outer ** 2 - (outer / 2) ** 2) / 2, 1e-6,
+          "annular sector area")
+
+
+@test
+def strip_to_a_translated_copy_is_a_rectangle(work):
+    low = [(60 * math.cos(t), 35 * math.sin(t), 0) for t in [2.0 * i / 149 for i in range(150)]]
+    write_points(work, "low.csv", low)
+    write_points(work, "high.csv", [(x + 0, y, z + 30) for x, y, z in low])
+    run(work, "strip", "--rail1", "low.csv", "--rail2", "high.csv", "-o", "s.svg", *FINE)
+    [outline] = outlines(os.path.join(work, "s.svg"))
+    # The rectangle's long sides are the interpolated curve's length: measure the ellipse arc.
+    fine = [(60 * math.cos(t), 35 * math.sin(t)) for t in [2.0 * i / 200000 for i in range(200001)]]
+    length = sum(math.dist(p, q) for p, q in zip(fine, fine[1:]))
+    close(area(outline), 30 * length, 1e-6, "rectangle area")
+    close(perimeter(outline), 2 * (30 + length), 1e-6, "rectangle perimeter")
+
+
+@test
+def strip_reports_its_domain_of_existence(work):
+    write_points(work, "low.csv", circle_points(50, 0, 0, math.pi, 300))
+    write_points(work, "high.csv", circle_points(30, 40, 0.4, math.pi, 300))
+    args = ["strip", "--rail1", "low.csv", "--rail2", "high.csv", "-o", "s.svg"]
+    result = run(work, *args, "--report", "r.json", *FINE)
+    check(re.search(r"0 to 20(\.0*)? mm along rail 1.*no ruling", result.stderr),
+          "no gap reported: " + result.stderr)
+    [gap] = report(work, "r.json")["domain_gaps"]
+    close(gap["arc_end_mm"], 50 * 0.4, 1e-6, "end of the gap along rail 1")
+    check(gap["arc_start_mm"] == 0 and gap["reason"] == "no ruling", "gap %r" % gap)
+    [outline] = outlines(os.path.join(work, "s.svg"))
+    slant = math.hypot(20, 40)
+    close(area(outline), (50 + 30) / 2 * slant * (math.pi - 0.4), 1e-6, "the part that exists")
+    os.remove(os.path.join(work, "s.svg"))
+    os.remove(os.path.join(work, "r.json"))
+    bad(work, r"--strict.*0 to 20(\.0*)? mm along rail 1", *args, "--strict")
+
+
+def helix_point(r, c, t, d=0.0):
+    s = math.hypot(r, c)
+    return (r * math.cos(t) - d * r * math.sin(t) / s, r * math.sin(t) + d * r * math.cos(t) / s,
+            c * t + d * c / s)
+
+
+def read_points(path):
+    with open(path) as f:
+        return [tuple(float(v) for v in line.split(",")) for line in f
+                if line.strip() and not line.startswith("#")]
+
+
+@test
+def strip_edge_of_regression_is_the_helix(work):
+    r, c = 30.0, 10.0
+    write_points(work, "near.csv", [helix_point(r, c, 2.0 * i / 299, 5) for i in range(300)])
+    write_points(work, "far.csv", [helix_point(r, c, -0.2 + 2.4 * i / 299,
+                                               25 + 4 * math.sin(3 * (-0.2 + 2.4 * i / 299)))
+                                   for i in range(300)])
+    run(work, "strip", "--rail1", "near.csv", "--rail2", "far.csv", "-o", "s.svg",
+        "--regression", "edge.csv")
+    edge = read_points(os.path.join(work, "edge.csv"))
+    size = 60
+    worst = max(math.dist(p, helix_point(r, c, p[2] / c)) for p in edge)
+    check(worst <= 1e-4 * size, "edge of regression %.3g mm from the helix" % worst)
+    # The tangent developable of the exported edge is the same surface: every point
+    # of rail 1 lies on a tangent of the edge, 5 mm from its point of contact.
+    def off_tangent(p, i):
+        tangent = [edge[i + 1][k] - edge[i - 1][k] for k in range(3)]
+        norm = math.sqrt(sum(v * v for v in tangent))
+        offset = [p[k] - edge[i][k] for k in range(3)]
+        along = sum(offset[k] * tangent[k] / norm for k in range(3))
+        return math.sqrt(max(0.0, sum(v * v for v in offset) - along * along))
+    for p in read_points(os.path.join(work, "near.csv"))[15:-15:15]:
+        away = min(off_tangent(p, i) for i in range(1, len(edge) - 1))
+        check(away <= 1e-4 * size, "rail 1 point %.3g mm off every tangent of the edge" % away)
+    run(work, "tangent", "--curve", "edge.csv", "--offset", "5", "--width", "15", "-o", "t.svg")
+    result = run(work, "analyze", "tangent", "--curve", "edge.csv", "--width", "15")
+    check("tangent: developable" in result.stdout, result.stdout)
+
+
+@test
+def non_developable_surfaces_are_refused_with_how_far(work):
+    low = [(100.0 * i / 39, 0.0, 0.0) for i in range(40)]
+    high = [(100.0 * i / 39, 60.0, 30 * math.sin(math.pi * i / 39)) for i in range(40)]
+    twisted = [(100.0 * i / 39 * math.cos(0.02 * i), 60.0 + 10 * math.sin(0.1 * i), 40.0 * i / 39)
+               for i in range(40)]
+    write_points(work, "low.csv", low)
+    write_points(work, "twisted.csv", twisted)
+    bad(work, r"not developable.*turns by up to [0-9.]+ degrees", "strip", "--rail1", "low.csv",
+        "--rail2", "twisted.csv", "--pairing", "natural", "-o", "x.svg")
+    bad(work, r"not developable.*turns by up to [0-9.]+ degrees", "ruled", "--rail1", "low.csv",
+        "--rail2", "twisted.csv", "-o", "x.svg")
+    bad(work, r"not developable", "hypar", "--corners", HYPAR, "-o", "x.svg")
+    result = run(work, "analyze", "ruled", "--rail1", "low.csv", "--rail2", "twisted.csv")
+    check("not developable" in result.stdout, result.stdout)
+    write_points(work, "high.csv", high)
+    del high
+
+
+HYPAR_A, HYPAR_B, HYPAR_C = 50.0, 40.0, 100.0
+HYPAR = ":".join("%g,%g,%g" % (x, y, x * y / HYPAR_C) for x, y in
+                 [(-HYPAR_A, -HYPAR_B), (HYPAR_A, -HYPAR_B), (HYPAR_A, HYPAR_B), (-HYPAR_A, HYPAR_B)])
+
+
+@test
+def flat_hypar_is_developed_exactly(work):
+    result = run(work, "hypar", "--corners", "0,0,5:100,0,5:120,80,5:-10,70,5", "-o", "q.svg")
+    check("one plane" in result.stderr, result.stderr)
+    [outline] = outlines(os.path.join(work, "q.svg"))
+    quad = [(0, 0), (100, 0), (120, 80), (-10, 70)]
+    close(area(outline), area(quad), 1e-8, "flat quadrilateral")
+
+
+@test
+def analyze_tells_developable_from_not(work):
+    surfaces = {
+        "cylinder": ["cylinder", "--radius", "40", "--height", "50"],
+        "cone": ["cone", "--radius", "40", "--height", "50", "--top-radius", "10"],
+        "helicoid": ["helicoid", "--radius", "30", "--pitch", "60", "--turns", "0.5", "--width", "20"],
+        "tangent": ["tangent", "--curve", os.path.join(REPO, "samples", "spiral.csv"), "--width", "20"],
+    }
+    for name, args in surfaces.items():
+        run(work, "analyze", *args, "--report", name + ".json")
+        data = report(work, name + ".json")
+        check(data["developable"], name + " not developable")
+        k = data["gaussian_curvature"]
+        check(abs(k["min"]) <= 1e-9 and abs(k["max"]) <= 1e-9, "%s: K %r" % (name, k))
+    run(work, "analyze", "hypar", "--corners", HYPAR, "--report", "h.json", "--png", "h.png")
+    data = report(work, "h.json")
+    check(not data["developable"], "hypar developable")
+    check(all(r["gaussian_max"] < 0 for r in data["rulings"]), "hypar: K >= 0 somewhere")
+    # z = x y / c: K = -1 / c^2 at the centre, where |K| is largest.
+    k = data["gaussian_curvature"]
+    close(k["min"], -1 / HYPAR_C ** 2, 1e-4, "K at the hypar's centre")
+    check(math.dist(k["min_at"], (0, 0, 0)) < 1.0, "largest |K| at %r" % k["min_at"])
+    with open(os.path.join(work, "h.png"), "rb") as f:
+        check(f.read(8) == b"\x89PNG\r\n\x1a\n", "h.png is not a PNG")
+
+
+@test
+def compare_reproduces_the_paper(work):
+    run(work, "compare", "helicoid", "--radius", "30", "--pitch", str(20 * math.pi), "--turns",
+        "0.25", "--width", "25", "--csv", "c.csv", "--png", "c.png")
+    with open(os.path.join(work, "c.csv")) as f:
+        lines = [line.strip().split(",") for line in f if line.strip()]
+    header, rows = lines[0], [[float(v) for v in line] for line in lines[1:]]
+    column = {name: i for i, name in enumerate(header)}
+    check([int(r[0]) for r in rows] == [8 * 2 ** k for k in range(10)], "n column %r" % rows)
+    previous = None
+    for r in rows:
+        tri, quad = r[column["triangle_area_error"]], r[column["quad_area_error"]]
+        check(tri < 0 < quad, "n = %d: triangle %g, quad %g" % (r[0], tri, quad))
+        check(abs(r[column["exact_area_error"]]) <= 1e-6, "exact error %g" % r[column["exact_area_error"]])
+        if previous:
+            check(abs(tri) < abs(previous[0]) and quad < previous[1], "errors do not shrink at n = %d" % r[0])
+        previous = (tri, quad)
+    with open(os.path.join(work, "c.png"), "rb") as f:
+        check(f.read(8) == b"\x89PNG\r\n\x1a\n", "c.png is not a PNG")
+
+
+@test
+def bad_rails_and_corners(work):
+    write_points(work, "three.csv", [(0, 0, 0), (1, 0, 0), (2, 1, 0)])
+    write_points(work, "low.csv", circle_points(50, 0, 0, 1, 50))
+    write_points(work, "far.csv", circle_points(30, 40, 2, 3, 50))
+    write(work, "nan.csv", "0,0,0\n1,0,0\n2,1,nan\n3,3,1\n")
+    strip = ["strip", "-o", "x.svg", "--rail1"]
+    bad(work, r"three\.csv.*at least 4 points", *strip, "three.csv", "--rail2", "low.csv")
+    bad(work, r"nan\.csv:3", *strip, "low.csv", "--rail2", "nan.csv")
+    bad(work, r"missing\.csv", *strip, "low.csv", "--rail2", "missing.csv")
+    bad(work, r"--rail2 FILE\.csv is required", *strip, "low.csv")
+    bad(work, r"rails meet", *strip, "low.csv", "--rail2", "low.csv")
+    bad(work, r"no developable strip exists anywhere", *strip, "low.csv", "--rail2", "far.csv",
+        "--quiet")
+    bad(work, r"--pairing: 'loose'", *strip, "low.csv", "--rail2", "far.csv", "--pairing", "loose")
+    bad(work, r"corners 1 and 3 are the same", "hypar", "--corners", "0,0,0:1,0,0:0,0,0:0,1,1", "-o", "x.svg")
+    bad(work, r"--corners: '0,0,0:1,0,0'", "hypar", "--corners", "0,0,0:1,0,0", "-o", "x.svg")
+    bad(work, r"--corners X,Y,Z", "hypar", "-o", "x.svg")
+    bad(work, r"missing\.csv", "analyze", "tangent", "--curve", "missing.csv", "--width", "3")
+    bad(work, r"missing\.csv", "compare", "tangent", "--curve", "missing.csv", "--width", "3",
+        "--png", "c.png")
+    bad(work, r"give a surface first", "analyze", "--png", "a.png")
+    bad(work, r"--png does not apply", "cylinder", "--radius", "3", "--height", "4", "--png", "a.png", "-o", "x.svg")
+    bad(work, r"no-such-dir", "analyze", "cylinder", "--radius", "3", "--height", "4", "--png", "no-such-dir/a.png")
+
+
 def main():
     passed = failed = 0
     for function in TESTS:

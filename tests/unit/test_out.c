@@ -490,8 +490,15 @@ static double expected_utilisation(const fixture *f, size_t sheet_index)
 static ur_report_context make_context(const fixture *f, const char *const *outputs,
                                       const char *sheet_path, const ur_material *material)
 {
-    ur_report_context context = {"cylinder", "exact", &f->machine, material,
-                                 5700.0,     outputs, sheet_path};
+    ur_report_context context = {
+        .surface = "cylinder",
+        .method = "exact",
+        .machine = &f->machine,
+        .material = material,
+        .surface_area = 5700.0,
+        .outputs = outputs,
+        .sheet_path = sheet_path,
+    };
     return context;
 }
 

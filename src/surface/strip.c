@@ -1,0 +1,877 @@
+/*
+ * strip.c: ruled surfaces on two rails, b(u) = c2(sigma(u)).
+ *
+ * For a developable strip the pairing sigma(u) is the root of
+ *     F(u, sigma) = det(c1'(u), c2'(sigma), c2(sigma) - c1(u)),
+ * the condition that one plane touches the surface along the whole ruling.
+ * A table of roots is built once by tracking the root along rail 1 (a local
+ * search around the predicted root, a scan of the whole of rail 2 when that
+ * fails), then any u is answered by Newton's method started from the table
+ * and falling back to GSL's Brent solver on the table's bracket.  The slope
+ * follows from the implicit function theorem: sigma' = -F_u / F_sigma with
+ * F_u = det(c1'', c2', d) and F_sigma = det(c1', c2'', d), d = c2 - c1.
+ *
+ * Where there is no root, where the root jumps to another branch, or where
+ * consecutive rulings cross inside the strip (sigma decreasing, or the edge
+ * of regression between the rails), rail 1 has a gap in the domain of
+ * existence; gap ends are refined by bisection.
+ *
+ * A general ruled surface takes its pairing from the rails' arc lengths or
+ * input points instead, through GSL's monotone Steffen interpolation.
+ */
+#include "surface_internal.h"
+
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_interp.h>
+#include <gsl/gsl_roots.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+enum {
+    MIN_SAMPLES = 2048,   /* rail 1 samples of the root table */
+    MIN_SCAN = 2048,      /* rail 2 samples of a full scan */
+    RESCAN_EVERY = 32,    /* inside a gap, scan all of rail 2 only this often */
+    BISECTIONS = 48,      /* refinement of gap ends */
+    NEWTON_STEPS = 8,
+};
+
+/*
+ * Rails are interpolated, so a ruling meant to end exactly on an end of a
+ * rail misses it by about the interpolation error: closer than this
+ * fraction of a rail counts as on it.
+ */
+#define ROUNDING 1e-5
+
+struct ur_pairing {
+    bool solved; /* developable strip: sigma is a root of F */
+    ur_curve *rail1, *rail2; /* borrowed from the surface */
+    double s0, s1;           /* rail 2's parameter range */
+    bool wrap;               /* rail 2 closed: sigma runs on past s1 */
+    double end_slack;        /* ROUNDING, or 0 while locating a gap's end exactly */
+    size_t count;
+    double *u, *sigma, *slope;
+    unsigned char *state; /* per sample: a sample_state */
+    bool *joined;         /* samples i and i + 1 lie on one branch */
+    double step;          /* rail 2 scan step */
+    /* given pairing */
+    gsl_interp *interp;
+    gsl_interp_accel *accel;
+    /* solved pairing */
+    gsl_root_fsolver *solver;
+    ur_vec3 *scan_position, *scan_tangent; /* rail 2 at the scan samples */
+    size_t scan_count;
+    ur_interval *gaps;
+    size_t gap_count;
+    size_t hint;
+};
+
+enum sample_state { SAMPLE_GOOD, SAMPLE_NO_ROOT, SAMPLE_CROSS };
+
+double determinant3(ur_vec3 x, ur_vec3 y, ur_vec3 z)
+{
+    return ur_vec3_dot(x, ur_vec3_cross(y, z));
+}
+
+void pairing_rail2(ur_pairing *pairing, double sigma, ur_vec3 d[3])
+{
+    ur_curve_eval(pairing->rail2, sigma, d);
+}
+
+void pairing_free(ur_pairing *pairing)
+{
+    if (!pairing)
+        return;
+    free(pairing->u);
+    free(pairing->sigma);
+    free(pairing->slope);
+    free(pairing->state);
+    free(pairing->joined);
+    free(pairing->scan_position);
+    free(pairing->scan_tangent);
+    free(pairing->gaps);
+    if (pairing->interp)
+        gsl_interp_free(pairing->interp);
+    if (pairing->accel)
+        gsl_interp_accel_free(pairing->accel);
+    if (pairing->solver)
+        gsl_root_fsolver_free(pairing->solver);
+    free(pairing);
+}
+
+size_t pairing_gaps(const ur_pairing *pairing, const ur_interval **gaps)
+{
+    *gaps = pairing->gaps;
+    return pairing->gap_count;
+}
+
+/* ---- The condition and its derivatives ---------------------------------- */
+
+/* F at (u, sigma) for rail 1's derivatives c1 at u, and rail 2's d2 at sigma. */
+static double condition(const ur_vec3 c1[3], const ur_vec3 d2[3])
+{
+    return determinant3(c1[1], d2[1], ur_vec3_sub(d2[0], c1[0]));
+}
+
+/* F divided by its natural size, so that tolerances mean the same at any scale. */
+static double condition_scale(const ur_vec3 c1[3], const ur_vec3 d2[3])
+{
+    return ur_vec3_length(c1[1]) * ur_vec3_length(d2[1]) *
+           fmax(ur_vec3_length(ur_vec3_sub(d2[0], c1[0])), 1e-300);
+}
+
+static double implicit_slope(const ur_vec3 c1[3], const ur_vec3 d2[3])
+{
+    ur_vec3 d = ur_vec3_sub(d2[0], c1[0]);
+    double f_u = determinant3(c1[2], d2[1], d);
+    double f_sigma = determinant3(c1[1], d2[2], d);
+    return -f_u / f_sigma;
+}
+
+typedef struct root_context {
+    ur_pairing *pairing;
+    const ur_vec3 *c1;
+} root_context;
+
+static double condition_at(double sigma, void *data)
+{
+    const root_context *context = data;
+    ur_vec3 d2[3];
+    pairing_rail2(context->pairing, sigma, d2);
+    return condition(context->c1, d2);
+}
+
+/* Roots a rounding error beyond rail 2's ends still count as on it. */
+static bool in_rail2(const ur_pairing *pairing, double sigma)
+{
+    double slack = 1e-9 * (pairing->s1 - pairing->s0);
+    return pairing->wrap || (sigma >= pairing->s0 - slack && sigma <= pairing->s1 + slack);
+}
+
+/* Brent's method on a bracket with a sign change. */
+static double brent(ur_pairing *pairing, const ur_vec3 c1[3], double low, double high)
+{
+    root_context context = {pairing, c1};
+    gsl_function f = {condition_at, &context};
+    if (gsl_root_fsolver_set(pairing->solver, &f, low, high) != GSL_SUCCESS)
+        return 0.5 * (low + high);
+    double root = 0.5 * (low + high);
+    double tolerance = 1e-15 * (fabs(pairing->s1) + fabs(pairing->s1 - pairing->s0));
+    for (int k = 0; k < 200; k++) {
+        if (gsl_root_fsolver_iterate(pairing->solver) != GSL_SUCCESS)
+            break;
+        root = gsl_root_fsolver_root(pairing->solver);
+        low = gsl_root_fsolver_x_lower(pairing->solver);
+        high = gsl_root_fsolver_x_upper(pairing->solver);
+        if (gsl_root_test_interval(low, high, tolerance, 0.0) == GSL_SUCCESS)
+            break;
+    }
+    return root;
+}
+
+/*
+ * A root that falls on an end of an open rail 2 (within rounding) shows no
+ * sign change inside the rail: extrapolate the condition linearly past the
+ * end to see whether it vanishes there.
+ */
+static bool root_at_rail_end(ur_pairing *pairing, const ur_vec3 c1[3], double guess,
+                             double window, double *root)
+{
+    if (pairing->wrap)
+        return false;
+    double ends[2] = {pairing->s0, pairing->s1}, inward[2] = {1, -1};
+    for (int k = 0; k < 2; k++) {
+        if (fabs(ends[k] - guess) > window)
+            continue;
+        root_context context = {pairing, c1};
+        double h = pairing->step / 4;
+        double at_end = condition_at(ends[k], &context);
+        double inside = condition_at(ends[k] + inward[k] * h, &context);
+        double crossing = at_end / (at_end - inside); /* in steps of h, inward */
+        if (fabs(crossing) * h <= pairing->end_slack * (pairing->s1 - pairing->s0)) {
+            *root = ends[k];
+            return true;
+        }
+    }
+    return false;
+}
+
+/*
+ * The root nearest to `guess` within `window`, stepping outward on both
+ * sides.  A touching (double) root shows no sign change; it is accepted when
+ * the condition nearly vanishes at a sample.
+ */
+static bool local_root(ur_pairing *pairing, const ur_vec3 c1[3], double guess, double window,
+                       double *root)
+{
+    double step = fmin(pairing->step / 4, window);
+    if (!pairing->wrap)
+        guess = fmin(fmax(guess, pairing->s0), pairing->s1);
+    ur_vec3 d2[3];
+    pairing_rail2(pairing, guess, d2);
+    double at_guess = condition(c1, d2);
+    if (at_guess == 0.0 && in_rail2(pairing, guess)) {
+        *root = guess;
+        return true;
+    }
+    double best = fabs(at_guess) / condition_scale(c1, d2), best_sigma = guess;
+    double before[2] = {at_guess, at_guess}, where[2] = {guess, guess};
+    for (double offset = step; offset <= window * (1 + 1e-12); offset += step) {
+        for (int side = 0; side < 2; side++) {
+            /* Step outward, stopping on an end of an open rail 2 rather than passing it. */
+            double sigma = side == 0 ? guess + offset : guess - offset;
+            if (!pairing->wrap)
+                sigma = fmin(fmax(sigma, pairing->s0), pairing->s1);
+            if (sigma == where[side] || !in_rail2(pairing, where[side]))
+                continue;
+            pairing_rail2(pairing, sigma, d2);
+            double value = condition(c1, d2);
+            if ((value <= 0) != (before[side] <= 0)) {
+                *root = brent(pairing, c1, fmin(sigma, where[side]), fmax(sigma, where[side]));
+                return true;
+            }
+            before[side] = value;
+            where[side] = sigma;
+            double relative = fabs(value) / condition_scale(c1, d2);
+            if (relative < best) {
+                best = relative;
+                best_sigma = sigma;
+            }
+        }
+    }
+    if (best < 1e-10 && in_rail2(pairing, best_sigma)) {
+        *root = best_sigma;
+        return true;
+    }
+    return root_at_rail_end(pairing, c1, guess, window, root);
+}
+
+/* Length of the ruling from c1 to rail 2 at sigma. */
+static double ruling_length(ur_pairing *pairing, const ur_vec3 c1[3], double sigma)
+{
+    ur_vec3 d2[3];
+    pairing_rail2(pairing, sigma, d2);
+    return ur_vec3_distance(d2[0], c1[0]);
+}
+
+static bool rulings_cross(ur_pairing *pairing, double u, double sigma, double slope);
+
+/* Whether the ruling from c1 to rail 2 at sigma would cross its neighbours. */
+static bool candidate_crosses(ur_pairing *pairing, double u, const ur_vec3 c1[3], double sigma)
+{
+    ur_vec3 d2[3];
+    pairing_rail2(pairing, sigma, d2);
+    return rulings_cross(pairing, u, sigma, implicit_slope(c1, d2));
+}
+
+/*
+ * Every root on rail 2 (one period when closed).  With a previous root, the
+ * one nearest the prediction; without, the shortest ruling among those that
+ * do not cross their neighbours (a crossing ruling cannot start a strip).
+ */
+static bool scan_root(ur_pairing *pairing, double u, const ur_vec3 c1[3], bool have_previous,
+                      double predicted, double *root)
+{
+    bool found = false;
+    double best = INFINITY;
+    double previous_value = 0.0;
+    for (size_t j = 0; j < pairing->scan_count; j++) {
+        double value = determinant3(c1[1], pairing->scan_tangent[j],
+                                    ur_vec3_sub(pairing->scan_position[j], c1[0]));
+        if (j > 0 && (value <= 0) != (previous_value <= 0)) {
+            double low = pairing->s0 + pairing->step * (double)(j - 1);
+            double candidate = brent(pairing, c1, low, low + pairing->step);
+            if (pairing->wrap && have_previous) /* unwrap to the turn nearest the prediction */
+                candidate += (pairing->s1 - pairing->s0) *
+                             round((predicted - candidate) / (pairing->s1 - pairing->s0));
+            double score = have_previous ? fabs(candidate - predicted)
+                                         : ruling_length(pairing, c1, candidate);
+            if (score < best && (have_previous || !candidate_crosses(pairing, u, c1, candidate))) {
+                best = score;
+                *root = candidate;
+                found = true;
+            }
+        }
+        previous_value = value;
+    }
+    return found;
+}
+
+/* ---- The root table ----------------------------------------------------- */
+
+static ur_status table_alloc(ur_pairing *pairing, size_t count, ur_error *error)
+{
+    pairing->count = count;
+    pairing->u = ur_alloc_array(count, sizeof *pairing->u, error);
+    pairing->sigma = ur_alloc_array(count, sizeof *pairing->sigma, error);
+    pairing->slope = ur_alloc_array(count, sizeof *pairing->slope, error);
+    pairing->state = ur_alloc_array(count, sizeof *pairing->state, error);
+    pairing->joined = ur_alloc_array(count, sizeof *pairing->joined, error);
+    if (!pairing->u || !pairing->sigma || !pairing->slope || !pairing->state || !pairing->joined)
+        return UR_ERROR_INTERNAL;
+    double u0 = ur_curve_start(pairing->rail1), u1 = ur_curve_end(pairing->rail1);
+    for (size_t i = 0; i < count; i++) {
+        pairing->u[i] = u0 + (u1 - u0) * (double)i / (double)(count - 1);
+        pairing->state[i] = SAMPLE_NO_ROOT;
+    }
+    return UR_OK;
+}
+
+static ur_status scan_alloc(ur_pairing *pairing, ur_error *error)
+{
+    size_t points = ur_curve_point_count(pairing->rail2);
+    size_t n = points * 4 > MIN_SCAN ? points * 4 : MIN_SCAN;
+    pairing->scan_count = n + 1;
+    pairing->step = (pairing->s1 - pairing->s0) / (double)n;
+    pairing->scan_position = ur_alloc_array(n + 1, sizeof(ur_vec3), error);
+    pairing->scan_tangent = ur_alloc_array(n + 1, sizeof(ur_vec3), error);
+    if (!pairing->scan_position || !pairing->scan_tangent)
+        return UR_ERROR_INTERNAL;
+    for (size_t j = 0; j <= n; j++) {
+        ur_vec3 d2[3];
+        pairing_rail2(pairing, pairing->s0 + pairing->step * (double)j, d2);
+        pairing->scan_position[j] = d2[0];
+        pairing->scan_tangent[j] = d2[1];
+    }
+    return UR_OK;
+}
+
+/* The window in which the root at the next sample is looked for. */
+static double search_window(const ur_pairing *pairing, double predicted_change)
+{
+    return fmax(4 * pairing->step, 2 * fabs(predicted_change));
+}
+
+static void store_root(ur_pairing *pairing, size_t i, const ur_vec3 c1[3], double sigma)
+{
+    if (!pairing->wrap)
+        sigma = fmin(fmax(sigma, pairing->s0), pairing->s1);
+    ur_vec3 d2[3];
+    pairing_rail2(pairing, sigma, d2);
+    pairing->sigma[i] = sigma;
+    pairing->slope[i] = implicit_slope(c1, d2);
+    if (!isfinite(pairing->slope[i]))
+        pairing->slope[i] = 0.0;
+    pairing->state[i] = SAMPLE_GOOD;
+}
+
+/* Follows the root from sample `from` backward while it lasts (after a rescan). */
+static void track_backward(ur_pairing *pairing, size_t from, size_t stop)
+{
+    for (size_t i = from; i > stop; i--) {
+        size_t k = i - 1;
+        if (pairing->state[k] == SAMPLE_GOOD)
+            return;
+        ur_vec3 c1[3];
+        ur_curve_eval(pairing->rail1, pairing->u[k], c1);
+        double change = pairing->slope[i] * (pairing->u[k] - pairing->u[i]);
+        double root;
+        if (!local_root(pairing, c1, pairing->sigma[i] + change, search_window(pairing, change),
+                        &root))
+            return;
+        store_root(pairing, k, c1, root);
+        pairing->joined[k] = true;
+    }
+}
+
+static void build_table(ur_pairing *pairing)
+{
+    size_t last_good = SIZE_MAX, since_scan = RESCAN_EVERY;
+    for (size_t i = 0; i < pairing->count; i++) {
+        ur_vec3 c1[3];
+        ur_curve_eval(pairing->rail1, pairing->u[i], c1);
+        pairing->joined[i] = false;
+        bool have_previous = last_good != SIZE_MAX;
+        double predicted = 0.0, change = 0.0, root;
+        if (have_previous) {
+            change = pairing->slope[last_good] * (pairing->u[i] - pairing->u[last_good]);
+            predicted = pairing->sigma[last_good] + change;
+        }
+        if (have_previous && last_good + 1 == i &&
+            local_root(pairing, c1, predicted, search_window(pairing, change), &root)) {
+            store_root(pairing, i, c1, root);
+            pairing->joined[i - 1] = true;
+            last_good = i;
+            continue;
+        }
+        /* Lost or never found: scan rail 2, but only now and then inside a gap. */
+        if (since_scan + 1 < RESCAN_EVERY && i + 1 < pairing->count) {
+            since_scan++;
+            continue;
+        }
+        since_scan = 0;
+        if (scan_root(pairing, pairing->u[i], c1, have_previous, predicted, &root)) {
+            store_root(pairing, i, c1, root);
+            track_backward(pairing, i, have_previous ? last_good + 1 : 0);
+            last_good = i;
+        }
+    }
+}
+
+/* ---- Classifying samples and finding the gaps --------------------------- */
+
+/*
+ * Consecutive rulings of a developable meet at the point where r_u is
+ * parallel to the ruling; inside the strip (strictly between the rails) the
+ * rulings cross and the surface folds.  A decreasing sigma runs rail 2
+ * backwards, which is the same fold seen from rail 2.
+ */
+static bool rulings_cross(ur_pairing *pairing, double u, double sigma, double slope)
+{
+    if (slope < 0)
+        return true;
+    ur_vec3 c1[3], d2[3];
+    ur_curve_eval(pairing->rail1, u, c1);
+    pairing_rail2(pairing, sigma, d2);
+    ur_vec3 ruling = ur_vec3_sub(d2[0], c1[0]);
+    ur_vec3 b_prime = ur_vec3_scale(d2[1], slope);
+    ur_vec3 normal = ur_vec3_cross(c1[1], ruling);
+    double size = ur_vec3_length(normal);
+    if (!(size > 0))
+        return false;
+    /* Components across the ruling, in the tangent plane, of a' and b'. */
+    ur_vec3 across = ur_vec3_scale(ur_vec3_cross(normal, ruling), 1.0 / (size * ur_vec3_length(ruling)));
+    double along_a = ur_vec3_dot(c1[1], across), along_b = ur_vec3_dot(b_prime, across);
+    double margin = 1e-9 * (fabs(along_a) + fabs(along_b));
+    return along_a * along_b < 0 && fabs(along_a) > margin && fabs(along_b) > margin;
+}
+
+static void classify_samples(ur_pairing *pairing)
+{
+    for (size_t i = 0; i < pairing->count; i++)
+        if (pairing->state[i] == SAMPLE_GOOD &&
+            rulings_cross(pairing, pairing->u[i], pairing->sigma[i], pairing->slope[i]))
+            pairing->state[i] = SAMPLE_CROSS;
+}
+
+/* The state at u, following the root from a good sample at u_good. */
+static enum sample_state state_at(ur_pairing *pairing, double u, size_t good, double *sigma)
+{
+    ur_vec3 c1[3];
+    ur_curve_eval(pairing->rail1, u, c1);
+    double change = pairing->slope[good] * (u - pairing->u[good]);
+    if (!local_root(pairing, c1, pairing->sigma[good] + change, search_window(pairing, change),
+                    sigma))
+        return SAMPLE_NO_ROOT;
+    ur_vec3 d2[3];
+    pairing_rail2(pairing, *sigma, d2);
+    double slope = implicit_slope(c1, d2);
+    return rulings_cross(pairing, u, *sigma, slope) ? SAMPLE_CROSS : SAMPLE_GOOD;
+}
+
+static bool usable(const ur_pairing *pairing, size_t i)
+{
+    return pairing->state[i] == SAMPLE_GOOD;
+}
+
+/* Where, between good sample `good` and its neighbour `bad`, the strip ends. */
+static double refine_end(ur_pairing *pairing, size_t good, size_t bad)
+{
+    /*
+     * Where a ruling leaves rail 2 through its end, find exactly where: the
+     * table let roots a rounding error past the end count, so the first good
+     * samples may not be good without that slack.
+     */
+    pairing->end_slack = 0.0;
+    double sigma;
+    size_t step = good > bad ? 1 : (size_t)-1;
+    while (state_at(pairing, pairing->u[good], good, &sigma) != SAMPLE_GOOD) {
+        size_t next = good + step;
+        if (next >= pairing->count || !usable(pairing, next))
+            break;
+        bad = good;
+        good = next;
+    }
+    double inside = pairing->u[good], outside = pairing->u[bad];
+    for (int k = 0; k < BISECTIONS; k++) {
+        double middle = 0.5 * (inside + outside);
+        if (state_at(pairing, middle, good, &sigma) == SAMPLE_GOOD)
+            inside = middle;
+        else
+            outside = middle;
+    }
+    pairing->end_slack = ROUNDING;
+    return inside;
+}
+
+static ur_status add_gap(ur_pairing *pairing, double u_start, double u_end, ur_gap_reason reason,
+                         size_t *capacity, ur_error *error)
+{
+    if (pairing->gap_count == *capacity) {
+        size_t grown = *capacity ? 2 * *capacity : 8;
+        ur_interval *gaps = realloc(pairing->gaps, grown * sizeof *gaps);
+        if (!gaps)
+            return ur_error_out_of_memory(error);
+        pairing->gaps = gaps;
+        *capacity = grown;
+    }
+    ur_interval *gap = &pairing->gaps[pairing->gap_count++];
+    memset(gap, 0, sizeof *gap);
+    gap->u_start = u_start;
+    gap->u_end = u_end;
+    gap->reason = reason;
+    return UR_OK;
+}
+
+/* The reason for a run of unusable samples: crossing wins if any sample crossed. */
+static ur_gap_reason run_reason(const ur_pairing *pairing, size_t first, size_t last)
+{
+    for (size_t i = first; i <= last; i++)
+        if (pairing->state[i] == SAMPLE_CROSS)
+            return UR_GAP_RULINGS_CROSS;
+    return UR_GAP_NO_RULING;
+}
+
+static ur_status find_gaps(ur_pairing *pairing, ur_error *error)
+{
+    size_t capacity = 0, n = pairing->count;
+    size_t i = 0;
+    while (i < n) {
+        if (usable(pairing, i)) {
+            /* A jump to another branch between two good samples: the rulings in between cross. */
+            if (i + 1 < n && usable(pairing, i + 1) && !pairing->joined[i]) {
+                double at = 0.5 * (pairing->u[i] + pairing->u[i + 1]);
+                ur_status status = add_gap(pairing, at, at, UR_GAP_RULINGS_CROSS, &capacity, error);
+                if (status != UR_OK)
+                    return status;
+            }
+            i++;
+            continue;
+        }
+        size_t first = i;
+        while (i < n && !usable(pairing, i))
+            i++;
+        size_t last = i - 1;
+        double start = first == 0 ? pairing->u[0] : refine_end(pairing, first - 1, first);
+        double end = i == n ? pairing->u[n - 1] : refine_end(pairing, i, last);
+        bool at_an_end = first == 0 || i == n;
+        if (at_an_end && end - start <= ROUNDING * (pairing->u[n - 1] - pairing->u[0]))
+            continue; /* an interpolation error at the very end of rail 1 */
+        ur_status status =
+            add_gap(pairing, start, end, run_reason(pairing, first, last), &capacity, error);
+        if (status != UR_OK)
+            return status;
+    }
+    return UR_OK;
+}
+
+/* ---- Answering sigma(u) ------------------------------------------------- */
+
+static size_t table_interval(ur_pairing *pairing, double u)
+{
+    size_t n = pairing->count, i = pairing->hint;
+    if (i + 1 < n && pairing->u[i] <= u && u <= pairing->u[i + 1])
+        return i;
+    double u0 = pairing->u[0], u1 = pairing->u[n - 1];
+    double position = (u - u0) / (u1 - u0) * (double)(n - 1);
+    if (!(position > 0))
+        i = 0;
+    else if (position >= (double)(n - 1))
+        i = n - 2;
+    else
+        i = (size_t)position;
+    pairing->hint = i;
+    return i;
+}
+
+/* Cubic Hermite guess between table samples i and i + 1. */
+static double hermite_guess(const ur_pairing *pairing, size_t i, double u)
+{
+    double h = pairing->u[i + 1] - pairing->u[i], t = (u - pairing->u[i]) / h;
+    double h00 = (1 + 2 * t) * (1 - t) * (1 - t), h10 = t * (1 - t) * (1 - t);
+    double h01 = t * t * (3 - 2 * t), h11 = t * t * (t - 1);
+    return h00 * pairing->sigma[i] + h10 * h * pairing->slope[i] + h01 * pairing->sigma[i + 1] +
+           h11 * h * pairing->slope[i + 1];
+}
+
+/* The nearest sample with a root: the start for u in a gap or at a jump. */
+static size_t nearest_root_sample(const ur_pairing *pairing, size_t i, double u)
+{
+    size_t best = SIZE_MAX;
+    double distance = INFINITY;
+    for (size_t k = 0; k < pairing->count; k++)
+        if (pairing->state[k] != SAMPLE_NO_ROOT && fabs(pairing->u[k] - u) < distance) {
+            distance = fabs(pairing->u[k] - u);
+            best = k;
+        }
+    (void)i;
+    return best;
+}
+
+static double solved_sigma(ur_pairing *pairing, double u, const ur_vec3 c1[3])
+{
+    size_t i = table_interval(pairing, u);
+    bool both = pairing->state[i] != SAMPLE_NO_ROOT && pairing->state[i + 1] != SAMPLE_NO_ROOT &&
+                pairing->joined[i];
+    double guess, low, high;
+    if (both) {
+        guess = hermite_guess(pairing, i, u);
+        low = fmin(pairing->sigma[i], pairing->sigma[i + 1]) - pairing->step;
+        high = fmax(pairing->sigma[i], pairing->sigma[i + 1]) + pairing->step;
+    } else {
+        size_t k = nearest_root_sample(pairing, i, u);
+        if (k == SIZE_MAX)
+            return pairing->s0;
+        guess = pairing->sigma[k] + pairing->slope[k] * (u - pairing->u[k]);
+        low = guess - 4 * pairing->step;
+        high = guess + 4 * pairing->step;
+    }
+    double sigma = guess;
+    for (int k = 0; k < NEWTON_STEPS; k++) {
+        ur_vec3 d2[3];
+        pairing_rail2(pairing, sigma, d2);
+        double f = condition(c1, d2);
+        double f_sigma = determinant3(c1[1], d2[2], ur_vec3_sub(d2[0], c1[0]));
+        double next = sigma - f / f_sigma;
+        if (!isfinite(next) || next < low || next > high)
+            break;
+        bool done = fabs(next - sigma) <= 1e-14 * (fabs(sigma) + (pairing->s1 - pairing->s0));
+        sigma = next;
+        if (done)
+            return sigma;
+    }
+    double root;
+    if (local_root(pairing, c1, guess, 0.5 * (high - low), &root))
+        return root;
+    return guess;
+}
+
+void pairing_eval(ur_pairing *pairing, double u, double *sigma, double *slope)
+{
+    if (!pairing->solved) {
+        *sigma = gsl_interp_eval(pairing->interp, pairing->u, pairing->sigma, u, pairing->accel);
+        *slope =
+            gsl_interp_eval_deriv(pairing->interp, pairing->u, pairing->sigma, u, pairing->accel);
+        return;
+    }
+    ur_vec3 c1[3], d2[3];
+    ur_curve_eval(pairing->rail1, u, c1);
+    *sigma = solved_sigma(pairing, u, c1);
+    pairing_rail2(pairing, *sigma, d2);
+    *slope = implicit_slope(c1, d2);
+    if (!isfinite(*slope))
+        *slope = 0.0;
+}
+
+/* ---- Building the surfaces ---------------------------------------------- */
+
+static ur_pairing *pairing_new(ur_curve *rail1, ur_curve *rail2, ur_error *error)
+{
+    ur_pairing *pairing = calloc(1, sizeof *pairing);
+    if (!pairing) {
+        ur_error_out_of_memory(error);
+        return NULL;
+    }
+    pairing->rail1 = rail1;
+    pairing->rail2 = rail2;
+    pairing->s0 = ur_curve_start(rail2);
+    pairing->s1 = ur_curve_end(rail2);
+    pairing->wrap = ur_curve_is_closed(rail2);
+    pairing->end_slack = ROUNDING;
+    return pairing;
+}
+
+static ur_status take_rails(ur_curve *rail1, ur_curve *rail2, ur_ruled_kind kind, ur_ruled *ruled,
+                            ur_error *error)
+{
+    memset(ruled, 0, sizeof *ruled);
+    gsl_set_error_handler_off();
+    ruled->kind = kind;
+    ruled->curve = rail1;
+    ruled->rail2 = rail2;
+    if (!rail1 || !rail2) {
+        ur_ruled_free(ruled);
+        return ur_error_set(error, UR_ERROR_INPUT, "a ruled surface needs two rails");
+    }
+    ruled->pairing = pairing_new(rail1, rail2, error);
+    if (!ruled->pairing) {
+        ur_ruled_free(ruled);
+        return UR_ERROR_INTERNAL;
+    }
+    return UR_OK;
+}
+
+/* Cumulative arc length of a curve at `count` equally spaced parameters. */
+static ur_status arc_table(ur_curve *curve, size_t count, double *parameters, double *lengths,
+                           ur_error *error)
+{
+    double u0 = ur_curve_start(curve), u1 = ur_curve_end(curve);
+    lengths[0] = 0.0;
+    parameters[0] = u0;
+    for (size_t i = 1; i < count; i++) {
+        parameters[i] = u0 + (u1 - u0) * (double)i / (double)(count - 1);
+        double piece;
+        ur_status status = ur_curve_length(curve, parameters[i - 1], parameters[i], &piece, error);
+        if (status != UR_OK)
+            return status;
+        lengths[i] = lengths[i - 1] + piece;
+    }
+    return UR_OK;
+}
+
+/* sigma at equal arc-length fractions, inverted by linear interpolation. */
+static ur_status arc_length_pairing(ur_pairing *pairing, ur_error *error)
+{
+    size_t n = MIN_SAMPLES * 2;
+    double *s = ur_alloc_array(n, sizeof *s, error);
+    double *length1 = ur_alloc_array(n, sizeof *length1, error);
+    double *length2 = ur_alloc_array(n, sizeof *length2, error);
+    ur_status status = s && length1 && length2 ? UR_OK : UR_ERROR_INTERNAL;
+    if (status == UR_OK)
+        status = table_alloc(pairing, n, error);
+    if (status == UR_OK)
+        status = arc_table(pairing->rail1, n, pairing->u, length1, error);
+    if (status == UR_OK)
+        status = arc_table(pairing->rail2, n, s, length2, error);
+    for (size_t i = 0, j = 0; status == UR_OK && i < n; i++) {
+        double target = length1[i] / length1[n - 1] * length2[n - 1];
+        while (j + 2 < n && length2[j + 1] < target)
+            j++;
+        double t = (target - length2[j]) / (length2[j + 1] - length2[j]);
+        pairing->sigma[i] = s[j] + fmin(fmax(t, 0.0), 1.0) * (s[j + 1] - s[j]);
+    }
+    free(s);
+    free(length1);
+    free(length2);
+    return status;
+}
+
+static ur_status point_pairing(ur_pairing *pairing, ur_error *error)
+{
+    size_t n = ur_curve_point_count(pairing->rail1);
+    if (n < 3 || n != ur_curve_point_count(pairing->rail2))
+        return ur_error_set(error, UR_ERROR_INPUT,
+                            "pairing by points needs two rails with the same number of points "
+                            "(%zu and %zu)",
+                            n, ur_curve_point_count(pairing->rail2));
+    ur_status status = table_alloc(pairing, n + (ur_curve_is_closed(pairing->rail1) ? 1 : 0), error);
+    for (size_t i = 0; status == UR_OK && i < pairing->count; i++) {
+        pairing->u[i] = i < n ? ur_curve_point_parameter(pairing->rail1, i)
+                              : ur_curve_end(pairing->rail1);
+        pairing->sigma[i] = i < n ? ur_curve_point_parameter(pairing->rail2, i)
+                                  : ur_curve_end(pairing->rail2);
+    }
+    return status;
+}
+
+static ur_status interpolate_pairing(ur_pairing *pairing, ur_error *error)
+{
+    pairing->interp = gsl_interp_alloc(gsl_interp_steffen, pairing->count);
+    pairing->accel = gsl_interp_accel_alloc();
+    if (!pairing->interp || !pairing->accel)
+        return ur_error_out_of_memory(error);
+    if (gsl_interp_init(pairing->interp, pairing->u, pairing->sigma, pairing->count) != GSL_SUCCESS)
+        return ur_error_set(error, UR_ERROR_INPUT,
+                            "the rails' pairing is not monotonic (repeated points?)");
+    for (size_t i = 0; i < pairing->count; i++)
+        pairing->state[i] = SAMPLE_GOOD;
+    return UR_OK;
+}
+
+ur_status ur_ruled_general(ur_curve *rail1, ur_curve *rail2, ur_pairing_rule rule,
+                           ur_ruled *ruled, ur_error *error)
+{
+    ur_status status = take_rails(rail1, rail2, UR_RULED_GENERAL, ruled, error);
+    if (status != UR_OK)
+        return status;
+    status = rule == UR_PAIR_POINTS ? point_pairing(ruled->pairing, error)
+                                    : arc_length_pairing(ruled->pairing, error);
+    if (status == UR_OK)
+        status = interpolate_pairing(ruled->pairing, error);
+    if (status != UR_OK)
+        ur_ruled_free(ruled);
+    return status;
+}
+
+/* Both rails in one plane: every pairing is developable and the condition vanishes. */
+static bool rails_coplanar(ur_pairing *pairing)
+{
+    enum { PROBES = 64 };
+    ur_vec3 points[2 * PROBES];
+    for (int k = 0; k < PROBES; k++) {
+        ur_vec3 d[3];
+        ur_curve_eval(pairing->rail1, ur_curve_start(pairing->rail1) +
+                                          (ur_curve_end(pairing->rail1) -
+                                           ur_curve_start(pairing->rail1)) * k / (PROBES - 1),
+                      d);
+        points[k] = d[0];
+        pairing_rail2(pairing, pairing->s0 + (pairing->s1 - pairing->s0) * k / (PROBES - 1), d);
+        points[PROBES + k] = d[0];
+    }
+    /* The plane through the first point and the two most independent directions. */
+    ur_vec3 normal = {0, 0, 0};
+    double size = 0.0;
+    for (int k = 1; k < 2 * PROBES; k++)
+        size = fmax(size, ur_vec3_distance(points[k], points[0]));
+    for (int j = 1; j < 2 * PROBES; j++)
+        for (int k = j + 1; k < 2 * PROBES; k += 7) {
+            ur_vec3 n = ur_vec3_cross(ur_vec3_sub(points[j], points[0]),
+                                      ur_vec3_sub(points[k], points[0]));
+            if (ur_vec3_length(n) > ur_vec3_length(normal))
+                normal = n;
+        }
+    double length = ur_vec3_length(normal);
+    if (!(length > 1e-12 * size * size))
+        return true;
+    normal = ur_vec3_scale(normal, 1.0 / length);
+    for (int k = 1; k < 2 * PROBES; k++)
+        if (fabs(ur_vec3_dot(ur_vec3_sub(points[k], points[0]), normal)) > 1e-9 * size)
+            return false;
+    return true;
+}
+
+static ur_status solve_pairing(ur_ruled *ruled, ur_error *error)
+{
+    ur_pairing *pairing = ruled->pairing;
+    pairing->solved = true;
+    pairing->solver = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
+    if (!pairing->solver)
+        return ur_error_out_of_memory(error);
+    size_t points = ur_curve_point_count(pairing->rail1);
+    size_t n = points * 2 > MIN_SAMPLES ? points * 2 : MIN_SAMPLES;
+    ur_status status = table_alloc(pairing, n + 1, error);
+    if (status == UR_OK)
+        status = scan_alloc(pairing, error);
+    if (status != UR_OK)
+        return status;
+    build_table(pairing);
+    classify_samples(pairing);
+    status = find_gaps(pairing, error);
+    for (size_t k = 0; status == UR_OK && k < pairing->gap_count; k++)
+        ur_ruled_describe_interval(ruled, &pairing->gaps[k]);
+    return status;
+}
+
+static bool covers_all(const ur_ruled *ruled)
+{
+    const ur_pairing *pairing = ruled->pairing;
+    if (pairing->gap_count != 1)
+        return false;
+    const ur_interval *gap = &pairing->gaps[0];
+    return gap->u_start <= pairing->u[0] && gap->u_end >= pairing->u[pairing->count - 1];
+}
+
+ur_status ur_ruled_strip(ur_curve *rail1, ur_curve *rail2, ur_ruled *ruled, ur_error *error)
+{
+    ur_status status = take_rails(rail1, rail2, UR_RULED_STRIP, ruled, error);
+    if (status != UR_OK)
+        return status;
+    if (rails_coplanar(ruled->pairing)) {
+        /* A plane: any pairing is developable; equal arc-length fractions is the natural one. */
+        status = arc_length_pairing(ruled->pairing, error);
+        if (status == UR_OK)
+            status = interpolate_pairing(ruled->pairing, error);
+    } else {
+        status = solve_pairing(ruled, error);
+        if (status == UR_OK && covers_all(ruled))
+            status = ur_error_set(error, UR_ERROR_INPUT,
+                                  "no developable strip exists anywhere between the rails: no "
+                                  "plane touches both rails along a ruling (%s)",
+                                  ruled->pairing->gaps[0].reason == UR_GAP_RULINGS_CROSS
+                                      ? "every candidate ruling crosses its neighbours"
+                                      : "no ruling reaches rail 2 from any point of rail 1");
+    }
+    if (status != UR_OK)
+        ur_ruled_free(ruled);
+    return status;
+}

@@ -1,0 +1,26 @@
+/*
+ * surface_internal.h: what the files of the surface module share.
+ */
+#ifndef UNROLL_SURFACE_INTERNAL_H
+#define UNROLL_SURFACE_INTERNAL_H
+
+#include "unroll/surface.h"
+
+/* sigma(u) and sigma'(u) of a two-rail surface (strip.c). */
+void pairing_eval(ur_pairing *pairing, double u, double *sigma, double *slope);
+
+void pairing_free(ur_pairing *pairing);
+
+/* The gaps of a strip's domain of existence (none for a given pairing). */
+size_t pairing_gaps(const ur_pairing *pairing, const ur_interval **gaps);
+
+/* Rail 2 at sigma, unwrapped when rail 2 is closed. */
+void pairing_rail2(ur_pairing *pairing, double sigma, ur_vec3 d[3]);
+
+/* The determinant det(x, y, z) = x . (y x z). */
+double determinant3(ur_vec3 x, ur_vec3 y, ur_vec3 z);
+
+/* "near point 12 (x, y, z), 34.5 mm along the curve" for a place on rail 1. */
+void describe_place(ur_ruled *ruled, double u, char *text, size_t size);
+
+#endif

@@ -1,0 +1,289 @@
+/*
+ * test_strip.c: developable strips between two rails against closed forms
+ * (frustum, cylinder, a helix's tangent developable), the domain of
+ * existence, and general ruled surfaces (the hyperbolic paraboloid).
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "unroll/develop.h"
+
+#define assert_relative(actual, expected, tolerance)                                               \
+    do {                                                                                           \
+        double a_ = (actual), e_ = (expected);                                                     \
+        if (!(fabs(a_ - e_) <= (tolerance)*fabs(e_)))                                              \
+            fail_msg("%s = %.12g, expected %.12g within %g", #actual, a_, e_,                      \
+                     (double)(tolerance));                                                         \
+    } while (0)
+
+/* Points of a circle arc of radius r at height z, angles from a to b. */
+static ur_curve *arc(double r, double z, double a, double b, size_t n, bool closed)
+{
+    ur_vec3 *points = malloc(n * sizeof *points);
+    assert_non_null(points);
+    for (size_t i = 0; i < n; i++) {
+        double t = closed ? a + (b - a) * (double)i / (double)n
+                          : a + (b - a) * (double)i / (double)(n - 1);
+        points[i] = ur_vec3_make(r * cos(t), r * sin(t), z);
+    }
+    ur_curve *curve;
+    ur_error error;
+    if (ur_curve_new_interpolating(points, n, closed, &curve, &error) != UR_OK)
+        fail_msg("%s", error.message);
+    free(points);
+    return curve;
+}
+
+static ur_ruled strip(ur_curve *rail1, ur_curve *rail2)
+{
+    ur_ruled ruled;
+    ur_error error;
+    if (ur_ruled_strip(rail1, rail2, &ruled, &error) != UR_OK)
+        fail_msg("strip: %s", error.message);
+    return ruled;
+}
+
+static ur_net_list develop(ur_ruled *ruled, double tolerance)
+{
+    ur_develop_options options;
+    ur_develop_options_default(&options);
+    options.tolerance = tolerance;
+    ur_net_list nets;
+    ur_error error;
+    if (ur_develop(ruled, &options, &nets, &error) != UR_OK)
+        fail_msg("develop: %s", error.message);
+    return nets;
+}
+
+/* Two coaxial circles: the frustum, a sector of an annulus when flat. */
+static void test_strip_between_circles_is_a_frustum(void **state)
+{
+    (void)state;
+    double r1 = 50, r2 = 20, h = 40;
+    ur_ruled ruled = strip(arc(r1, 0, 0, 2 * M_PI, 400, true), arc(r2, h, 0, 2 * M_PI, 400, true));
+    const ur_interval *gaps;
+    assert_int_equal(ur_ruled_gaps(&ruled, &gaps), 0);
+    assert_true(ur_ruled_is_closed(&ruled));
+    /* The pairing keeps the angle: every ruling meets the axis at the apex. */
+    double slant = sqrt((r1 - r2) * (r1 - r2) + h * h);
+    for (int k = 0; k < 16; k++) {
+        double u = ur_ruled_start(&ruled) + (ur_ruled_end(&ruled) - ur_ruled_start(&ruled)) * k / 16;
+        ur_vec3 rails[4];
+        ur_ruled_rails(&ruled, u, rails);
+        assert_relative(ur_vec3_distance(rails[0], rails[2]), slant, 1e-6);
+        ur_vec3 edge;
+        double v;
+        assert_true(ur_ruled_regression(&ruled, u, &edge, &v));
+        assert_relative(v, r1 / (r1 - r2), 1e-5);
+        assert_true(fabs(edge.x) < 1e-4 && fabs(edge.y) < 1e-4);
+        assert_relative(edge.z, h * r1 / (r1 - r2), 1e-6);
+        assert_true(ur_ruled_residual(&ruled, u) < 1e-9);
+    }
+    ur_net_list nets = develop(&ruled, 1e-4);
+    double flat = 0;
+    for (size_t k = 0; k < nets.count; k++)
+        flat += nets.nets[k].flat_area;
+    assert_relative(flat, M_PI * (r1 + r2) * slant, 1e-6);
+    /* The outline: outer arc of radius l1, inner of radius l2, about the flat apex. */
+    double l1 = r1 * slant / (r1 - r2), l2 = r2 * slant / (r1 - r2);
+    const ur_net *net = &nets.nets[0];
+    double perimeter = 0;
+    for (size_t i = 0; i < net->outline_count; i++)
+        perimeter += ur_vec2_distance(net->outline[i], net->outline[(i + 1) % net->outline_count]);
+    assert_relative(perimeter, 2 * M_PI * (r1 + r2) + 2 * slant, 1e-6);
+    assert_relative(M_PI * (l1 * l1 - l2 * l2) * (r1 / l1), M_PI * (r1 + r2) * slant, 1e-12);
+    ur_net_list_free(&nets);
+    ur_ruled_free(&ruled);
+}
+
+/* A curve and a translated copy: a cylinder, a rectangle over the right section. */
+static void test_strip_to_translated_copy_is_a_cylinder(void **state)
+{
+    (void)state;
+    enum { N = 120 };
+    ur_vec3 lower[N], upper[N];
+    ur_vec3 shift = ur_vec3_make(0, 0, 30);
+    for (int i = 0; i < N; i++) {
+        double t = 2.0 * i / (N - 1);
+        lower[i] = ur_vec3_make(60 * cos(t), 35 * sin(t), 0);
+        upper[i] = ur_vec3_add(lower[i], shift);
+    }
+    ur_curve *rail1, *rail2;
+    assert_int_equal(ur_curve_new_interpolating(lower, N, false, &rail1, NULL), UR_OK);
+    assert_int_equal(ur_curve_new_interpolating(upper, N, false, &rail2, NULL), UR_OK);
+    double length;
+    assert_int_equal(ur_curve_length(rail1, ur_curve_start(rail1), ur_curve_end(rail1), &length,
+                                     NULL),
+                     UR_OK);
+    ur_ruled ruled = strip(rail1, rail2);
+    const ur_interval *gaps;
+    assert_int_equal(ur_ruled_gaps(&ruled, &gaps), 0);
+    ur_vec3 edge;
+    double v;
+    assert_false(ur_ruled_regression(&ruled, 0.5 * ur_ruled_end(&ruled), &edge, &v));
+    ur_net_list nets = develop(&ruled, 1e-4);
+    assert_int_equal(nets.count, 1);
+    assert_relative(nets.nets[0].flat_area, 30 * length, 1e-6);
+    /* A rectangle: its bounding box is the right section's length by the height. */
+    ur_box box = ur_box_of_points(nets.nets[0].outline, nets.nets[0].outline_count);
+    double w = box.max.x - box.min.x, hgt = box.max.y - box.min.y;
+    double along = fmax(w, hgt), across = fmin(w, hgt);
+    (void)along;
+    assert_relative(across, 30, 1e-6);
+    ur_net_list_free(&nets);
+    ur_ruled_free(&ruled);
+}
+
+/* The helix (r cos t, r sin t, c t) and its unit tangent at t. */
+static void helix(double r, double c, double t, ur_vec3 *point, ur_vec3 *tangent)
+{
+    *point = ur_vec3_make(r * cos(t), r * sin(t), c * t);
+    double s = sqrt(r * r + c * c);
+    *tangent = ur_vec3_make(-r * sin(t) / s, r * cos(t) / s, c / s);
+}
+
+/*
+ * Two curves on the tangent developable of a helix: the strip between them
+ * is that developable, and its edge of regression is the helix.
+ */
+static void test_strip_recovers_tangent_developable(void **state)
+{
+    (void)state;
+    enum { N = 300 };
+    double r = 30, c = 10;
+    ur_vec3 near[N], far[N];
+    for (int i = 0; i < N; i++) {
+        double t = 2.0 * i / (N - 1), t2 = -0.2 + 2.4 * i / (N - 1);
+        ur_vec3 p, e;
+        helix(r, c, t, &p, &e);
+        near[i] = ur_vec3_add_scaled(p, e, 5);
+        helix(r, c, t2, &p, &e);
+        far[i] = ur_vec3_add_scaled(p, e, 25 + 4 * sin(3 * t2));
+    }
+    ur_curve *rail1, *rail2;
+    assert_int_equal(ur_curve_new_interpolating(near, N, false, &rail1, NULL), UR_OK);
+    assert_int_equal(ur_curve_new_interpolating(far, N, false, &rail2, NULL), UR_OK);
+    ur_ruled ruled = strip(rail1, rail2);
+    const ur_interval *gaps;
+    assert_int_equal(ur_ruled_gaps(&ruled, &gaps), 0);
+    double size = 60, worst = 0;
+    for (int k = 0; k <= 200; k++) {
+        double u = ur_ruled_start(&ruled) + (ur_ruled_end(&ruled) - ur_ruled_start(&ruled)) * k / 200;
+        ur_vec3 edge;
+        double v;
+        assert_true(ur_ruled_regression(&ruled, u, &edge, &v));
+        assert_true(v < 0);
+        /* The nearest helix point: the edge lies on the helix at the same height. */
+        double t = edge.z / c;
+        ur_vec3 on_helix, tangent;
+        helix(r, c, t, &on_helix, &tangent);
+        worst = fmax(worst, ur_vec3_distance(edge, on_helix));
+        /* And the ruling is the helix's tangent there. */
+        ur_vec3 rails[4];
+        ur_ruled_rails(&ruled, u, rails);
+        ur_vec3 ruling = ur_vec3_sub(rails[2], rails[0]);
+        double sine = ur_vec3_length(ur_vec3_cross(ruling, tangent)) / ur_vec3_length(ruling);
+        assert_true(sine < 1e-4);
+    }
+    if (!(worst <= 1e-4 * size))
+        fail_msg("edge of regression %.3g mm from the helix", worst);
+    ur_ruled_free(&ruled);
+}
+
+/* Rail 2 starts later than rail 1: no ruling reaches it from rail 1's start. */
+static void test_domain_of_existence(void **state)
+{
+    (void)state;
+    double r1 = 50, r2 = 30, h = 40, late = 0.4;
+    ur_ruled ruled = strip(arc(r1, 0, 0, M_PI, 300, false), arc(r2, h, late, M_PI, 300, false));
+    const ur_interval *gaps;
+    size_t count = ur_ruled_gaps(&ruled, &gaps);
+    assert_int_equal(count, 1);
+    assert_int_equal(gaps[0].reason, UR_GAP_NO_RULING);
+    assert_true(gaps[0].u_start == ur_curve_start(ruled.curve));
+    /* The frustum's ruling at angle `late` is the first that reaches rail 2. */
+    assert_relative(gaps[0].arc_end, r1 * late, 1e-6);
+    ur_interval parts[4];
+    assert_int_equal(ur_ruled_domain(&ruled, parts, 4), 1);
+    assert_relative(parts[0].arc_start, r1 * late, 1e-6);
+    /* Developing the whole strip is refused; the part that exists develops exactly. */
+    ur_develop_options options;
+    ur_develop_options_default(&options);
+    ur_net_list nets;
+    ur_error error;
+    assert_int_equal(ur_develop(&ruled, &options, &nets, &error), UR_ERROR_INPUT);
+    assert_non_null(strstr(error.message, "does not exist"));
+    ur_ruled_restrict(&ruled, parts[0].u_start, parts[0].u_end);
+    nets = develop(&ruled, 1e-4);
+    double slant = sqrt((r1 - r2) * (r1 - r2) + h * h);
+    assert_relative(nets.nets[0].flat_area, 0.5 * (r1 + r2) * slant * (M_PI - late), 1e-6);
+    ur_net_list_free(&nets);
+    ur_ruled_free(&ruled);
+}
+
+/* Rails that cannot carry a strip anywhere: refused with the reason. */
+static void test_no_strip_anywhere(void **state)
+{
+    (void)state;
+    ur_ruled ruled;
+    ur_error error;
+    ur_status status = ur_ruled_strip(arc(50, 0, 0, 1, 50, false), arc(30, 40, 2, 3, 50, false),
+                                      &ruled, &error);
+    assert_int_equal(status, UR_ERROR_INPUT);
+    assert_non_null(strstr(error.message, "no developable strip"));
+}
+
+/*
+ * The hyperbolic paraboloid z = x y / c over [0, a] x [0, b], as the ruled
+ * surface joining two opposite edges: not developable, K < 0, with the closed
+ * form K = -(1/c^2) / (1 + (x^2 + y^2) / c^2)^2.
+ */
+static void test_hypar_is_not_developable(void **state)
+{
+    (void)state;
+    double a = 100, b = 80, height = 30, c = a * b / height;
+    ur_vec3 edge1[4], edge2[4];
+    for (int i = 0; i < 4; i++) {
+        double x = a * i / 3.0;
+        edge1[i] = ur_vec3_make(x, 0, 0);
+        edge2[i] = ur_vec3_make(x, b, height * x / a);
+    }
+    ur_curve *rail1, *rail2;
+    assert_int_equal(ur_curve_new_interpolating(edge1, 4, false, &rail1, NULL), UR_OK);
+    assert_int_equal(ur_curve_new_interpolating(edge2, 4, false, &rail2, NULL), UR_OK);
+    ur_ruled ruled;
+    assert_int_equal(ur_ruled_general(rail1, rail2, UR_PAIR_ARC_LENGTH, &ruled, NULL), UR_OK);
+    double u = 0.5 * (ur_ruled_start(&ruled) + ur_ruled_end(&ruled));
+    ur_vec3 rails[4];
+    ur_ruled_rails(&ruled, u, rails);
+    /* The middle ruling runs from (a/2, 0, 0) to (a/2, b, h/2). */
+    assert_relative(rails[2].z, height / 2, 1e-9);
+    assert_true(ur_ruled_residual(&ruled, u) > 0.1);
+    (void)c;
+    ur_develop_options options;
+    ur_develop_options_default(&options);
+    ur_net_list nets;
+    ur_error error;
+    assert_int_equal(ur_develop(&ruled, &options, &nets, &error), UR_ERROR_INPUT);
+    assert_non_null(strstr(error.message, "not developable"));
+    ur_ruled_free(&ruled);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_strip_between_circles_is_a_frustum),
+        cmocka_unit_test(test_strip_to_translated_copy_is_a_cylinder),
+        cmocka_unit_test(test_strip_recovers_tangent_developable),
+        cmocka_unit_test(test_domain_of_existence),
+        cmocka_unit_test(test_no_strip_anywhere),
+        cmocka_unit_test(test_hypar_is_not_developable),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
