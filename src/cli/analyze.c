@@ -24,9 +24,10 @@ static FILE *findings(const cli_job *job)
 
 static bool outputs_possible(const cli_job *job)
 {
-    const char *options[] = {"--png", "--csv", "--report", "--regression"};
-    const char *paths[] = {job->png_path, job->csv_path, job->report_path, job->regression_path};
-    for (int k = 0; k < 4; k++)
+    const char *options[] = {"--png", "--csv", "--report", "--regression", "--adjusted-rail"};
+    const char *paths[] = {job->png_path, job->csv_path, job->report_path, job->regression_path,
+                           job->adjusted_rail_path};
+    for (int k = 0; k < 5; k++)
         if (paths[k] && strcmp(paths[k], "-") != 0 && !cli_directory_exists(options[k], paths[k]))
             return false;
     return true;
@@ -67,14 +68,16 @@ static void print_regression(FILE *out, const ur_analysis *analysis)
         inside += ruling->striction_v > 1e-9 && ruling->striction_v < 1 - 1e-9;
     }
     if (!analysis->developable)
-        fprintf(out, "  line of striction (where neighbouring rulings come closest): inside the "
-                     "surface on %zu of %zu rulings\n",
+        fprintf(out,
+                "  line of striction (where neighbouring rulings come closest): inside the "
+                "surface on %zu of %zu rulings\n",
                 inside, known);
     else if (known == 0)
         fprintf(out, "  edge of regression: at infinity (parallel rulings)\n");
     else
-        fprintf(out, "  edge of regression: %s (%zu of %zu rulings meet their neighbours "
-                     "between the rails)\n",
+        fprintf(out,
+                "  edge of regression: %s (%zu of %zu rulings meet their neighbours "
+                "between the rails)\n",
                 inside ? "passes through the surface" : "outside the surface", inside, known);
 }
 
@@ -83,12 +86,14 @@ static void print_analysis(const cli_job *job, ur_ruled *ruled, const ur_analysi
     FILE *out = findings(job);
     const ur_ruling_analysis *worst = &analysis->rulings[analysis->worst_ruling];
     if (analysis->developable)
-        fprintf(out, "%s: developable (the tangent plane turns by at most %.3g degrees along a "
-                     "ruling)\n",
+        fprintf(out,
+                "%s: developable (the tangent plane turns by at most %.3g degrees along a "
+                "ruling)\n",
                 job->surface, analysis->max_residual * 180 / M_PI);
     else
-        fprintf(out, "%s: not developable: the tangent plane turns by up to %.4g degrees along "
-                     "the ruling at %.6g mm along rail 1\n",
+        fprintf(out,
+                "%s: not developable: the tangent plane turns by up to %.4g degrees along "
+                "the ruling at %.6g mm along rail 1\n",
                 job->surface, analysis->max_residual * 180 / M_PI, worst->arc);
     fprintf(out, "  area %.6g mm2\n", analysis->area_3d);
     fprintf(out, "  Gaussian curvature K (1/mm2): min %.4g at ", analysis->gaussian_min);
@@ -117,9 +122,8 @@ static int analysis_outputs(const cli_job *job, ur_ruled *ruled, const ur_analys
         cli_message("analyze: --png %s: %s", job->png_path, error.message);
         return cli_exit_status(&error);
     }
-    if (job->report_path &&
-        ur_analysis_report_write(job->report_path, job->surface, ruled, analysis, &error) !=
-            UR_OK) {
+    if (job->report_path && ur_analysis_report_write(job->report_path, job->surface, ruled,
+                                                     analysis, &error) != UR_OK) {
         cli_message("analyze: --report %s: %s", job->report_path, error.message);
         return cli_exit_status(&error);
     }
@@ -131,9 +135,12 @@ int cli_analyze(const cli_job *job)
     if (!outputs_possible(job))
         return EXIT_USAGE;
     ur_ruled ruled;
-    int code = cli_build_surface(job, &ruled);
-    if (code)
+    cli_adjusted_rail adjusted;
+    int code = cli_build_surface(job, &ruled, &adjusted);
+    if (code) {
+        free(adjusted.points);
         return code;
+    }
     ur_vec3 *edge = NULL;
     size_t edge_count = 0;
     if (job->strict)
@@ -153,7 +160,10 @@ int cli_analyze(const cli_job *job)
     }
     if (!code && edge)
         code = cli_write_regression(job, edge, edge_count);
+    if (!code)
+        code = cli_write_adjusted_rail(job, &adjusted);
     free(edge);
+    free(adjusted.points);
     ur_analysis_free(&analysis);
     ur_ruled_free(&ruled);
     return code;
@@ -166,11 +176,12 @@ enum { COMPARE_FIRST = 8, COMPARE_LAST = 4096 };
 static void print_table(const cli_job *job, const ur_compare_table *table)
 {
     FILE *out = findings(job);
-    fprintf(out, "%s: surface %.8g mm2; relative area error (net - surface) / surface, largest "
-                 "relative rail length error, largest distance to the exact net (mm)\n",
+    fprintf(out,
+            "%s: surface %.8g mm2; relative area error (net - surface) / surface, largest "
+            "relative rail length error, largest distance to the exact net (mm)\n",
             job->surface, table->area_3d);
-    fprintf(out, "%6s %12s %12s %12s %11s %11s %11s %11s %11s\n", "n", "triangle", "quad",
-            "exact", "tri edge", "quad edge", "exact edge", "tri dist", "quad dist");
+    fprintf(out, "%6s %12s %12s %12s %11s %11s %11s %11s %11s\n", "n", "triangle", "quad", "exact",
+            "tri edge", "quad edge", "exact edge", "tri dist", "quad dist");
     for (size_t k = 0; k < table->count; k++) {
         const ur_compare_row *row = &table->rows[k];
         fprintf(out, "%6zu %12.4e %12.4e %12.4e %11.3e %11.3e %11.3e %11.3e %11.3e\n", row->n,
@@ -186,7 +197,7 @@ int cli_compare(const cli_job *job)
     if (!outputs_possible(job))
         return EXIT_USAGE;
     ur_ruled ruled;
-    int code = cli_build_surface(job, &ruled);
+    int code = cli_build_surface(job, &ruled, NULL);
     if (code)
         return code;
     ur_compare_table table = {NULL, 0, 0.0};

@@ -43,10 +43,9 @@ int cli_check_domain(const cli_job *job, ur_ruled *ruled)
         for (size_t k = 0; k < count && used < sizeof text; k++) {
             char place[512];
             describe_gap(&gaps[k], place, sizeof place);
-            used += (size_t)snprintf(text + used, sizeof text - used, "%s%s (%s)",
-                                     k ? "; " : "", place,
-                                     gaps[k].reason == UR_GAP_NO_RULING ? "no ruling"
-                                                                        : "rulings cross");
+            used += (size_t)snprintf(
+                text + used, sizeof text - used, "%s%s (%s)", k ? "; " : "", place,
+                gaps[k].reason == UR_GAP_NO_RULING ? "no ruling" : "rulings cross");
         }
         cli_message("%s: --strict: the strip does not exist along the whole of rail 1: %s",
                     job->command, text);

@@ -256,9 +256,12 @@ int cli_run_job(const cli_job *job)
         cli_message("%s", error.message);
         return cli_exit_status(&error);
     }
-    int code = cli_build_surface(job, &state.ruled);
-    if (code)
+    cli_adjusted_rail adjusted;
+    int code = cli_build_surface(job, &state.ruled, &adjusted);
+    if (code) {
+        free(adjusted.points);
         return code;
+    }
     state.have_ruled = true;
     ur_vec3 *edge = NULL;
     size_t edge_count = 0;
@@ -266,6 +269,7 @@ int cli_run_job(const cli_job *job)
     if (!code && job->regression_path)
         code = cli_regression_points(job, &state.ruled, &edge, &edge_count);
     if (code) {
+        free(adjusted.points);
         state_free(&state);
         return code;
     }
@@ -280,8 +284,11 @@ int cli_run_job(const cli_job *job)
             print_summary(job, &state);
         if (edge)
             code = cli_write_regression(job, edge, edge_count);
+        if (!code)
+            code = cli_write_adjusted_rail(job, &adjusted);
     }
     free(edge);
+    free(adjusted.points);
     state_free(&state);
     return code;
 }

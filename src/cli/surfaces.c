@@ -271,8 +271,57 @@ static int check_rails_apart(const cli_job *job, const ur_vec3 *first, size_t fi
     return 0;
 }
 
-/* Reads both rails, checks them, and orients rail 2 like rail 1. */
-static int read_rails(const cli_job *job, ur_curve *rails[2], bool *same_count)
+/* --adjust-rail2: moves rail 2's points and keeps a copy for --adjusted-rail. */
+static int adjust_rail2(const cli_job *job, const ur_vec3 *first, size_t first_count,
+                        ur_vec3 *second, size_t second_count, bool closed,
+                        cli_adjusted_rail *adjusted)
+{
+    if (closed) {
+        cli_message("%s: --adjust-rail2 works on open rails only", job->command);
+        return EXIT_USAGE;
+    }
+    ur_error error;
+    double largest;
+    if (ur_strip_adjust_rail2(first, first_count, second, second_count,
+                              job->has_adjust_direction ? &job->adjust_direction : NULL, &largest,
+                              &error) != UR_OK)
+        return fail(&error, job);
+    if (!job->quiet)
+        cli_message(largest > 0 ? "%s: --adjust-rail2: rail 2 moved by at most %.4g mm"
+                                : "%s: --adjust-rail2: the strip exists along all of rail 1; "
+                                  "rail 2 is unchanged",
+                    job->command, largest);
+    if (adjusted) {
+        adjusted->points = ur_alloc_array(second_count, sizeof *adjusted->points, &error);
+        if (!adjusted->points)
+            return fail(&error, job);
+        memcpy(adjusted->points, second, second_count * sizeof *second);
+        adjusted->count = second_count;
+        adjusted->largest_move = largest;
+    }
+    return 0;
+}
+
+int cli_write_adjusted_rail(const cli_job *job, const cli_adjusted_rail *adjusted)
+{
+    if (!job->adjusted_rail_path || !adjusted->points)
+        return 0;
+    ur_error error;
+    if (ur_curve_csv_write(job->adjusted_rail_path, adjusted->points, adjusted->count, &error) !=
+        UR_OK) {
+        cli_message("%s: --adjusted-rail %s: %s", job->command, job->adjusted_rail_path,
+                    error.message);
+        return cli_exit_status(&error);
+    }
+    return 0;
+}
+
+/*
+ * Reads both rails, checks them, orients rail 2 like rail 1 and, with
+ * --adjust-rail2, moves it.
+ */
+static int read_rails(const cli_job *job, ur_curve *rails[2], bool *same_count,
+                      cli_adjusted_rail *adjusted)
 {
     ur_vec3 *points[2] = {NULL, NULL};
     size_t count[2] = {0, 0};
@@ -300,6 +349,8 @@ static int read_rails(const cli_job *job, ur_curve *rails[2], bool *same_count)
         if (!job->quiet)
             cli_message("note: --rail2 runs against --rail1; using it reversed");
     }
+    if (!code && job->adjust_rail2)
+        code = adjust_rail2(job, points[0], count[0], points[1], count[1], closed[0], adjusted);
     ur_error error;
     for (int k = 0; k < 2 && !code; k++)
         if (ur_curve_new_interpolating(points[k], count[k], closed[k], &rails[k], &error) !=
@@ -318,11 +369,15 @@ static int read_rails(const cli_job *job, ur_curve *rails[2], bool *same_count)
     return code;
 }
 
-static int build_strip(const cli_job *job, ur_ruled *ruled)
+static int build_strip(const cli_job *job, ur_ruled *ruled, cli_adjusted_rail *adjusted)
 {
+    if (job->adjust_rail2 && job->natural_pairing) {
+        cli_message("strip: --adjust-rail2 goes with --pairing developable");
+        return EXIT_USAGE;
+    }
     ur_curve *rails[2];
     bool same_count;
-    int code = read_rails(job, rails, &same_count);
+    int code = read_rails(job, rails, &same_count, adjusted);
     if (code)
         return code;
     ur_error error;
@@ -336,7 +391,7 @@ static int build_ruled(const cli_job *job, ur_ruled *ruled)
 {
     ur_curve *rails[2];
     bool same_count;
-    int code = read_rails(job, rails, &same_count);
+    int code = read_rails(job, rails, &same_count, NULL);
     if (code)
         return code;
     ur_error error;
@@ -393,10 +448,12 @@ static int build_hypar(const cli_job *job, ur_ruled *ruled)
                : fail(&error, job);
 }
 
-int cli_build_surface(const cli_job *job, ur_ruled *ruled)
+int cli_build_surface(const cli_job *job, ur_ruled *ruled, cli_adjusted_rail *adjusted)
 {
+    if (adjusted)
+        memset(adjusted, 0, sizeof *adjusted);
     if (strcmp(job->surface, "strip") == 0)
-        return build_strip(job, ruled);
+        return build_strip(job, ruled, adjusted);
     if (strcmp(job->surface, "ruled") == 0)
         return build_ruled(job, ruled);
     if (strcmp(job->surface, "hypar") == 0)

@@ -19,19 +19,54 @@
 #include <stdlib.h>
 
 /*
- * The point x with |x - p| = to_p and |x - q| = to_q on the side of line pq
- * away from `away` (or to its left when away is NULL).
+ * Which side of a hinge p -> q a new vertex goes.  Every triangle is laid
+ * with the orientation it has in its cell of the 3D strip, so the side
+ * follows from the strip's orientation and never from where earlier points
+ * lie: a degenerate cell (a cone's apex, where A_i = A_i+1) puts such points
+ * on the hinge itself, and their side of it is rounding noise.
  */
-static ur_vec2 third_vertex(ur_vec2 p, ur_vec2 q, double to_p, double to_q, const ur_vec2 *away)
+enum side { LEFT = 1, RIGHT = -1 };
+
+static void order_pair(double *larger, double *smaller)
+{
+    if (*larger < *smaller) {
+        double swap = *larger;
+        *larger = *smaller;
+        *smaller = swap;
+    }
+}
+
+/*
+ * The area of a triangle from its sides by Kahan's formula, which stays
+ * accurate for needle-like triangles; 0 when rounding has broken the
+ * triangle inequality (a side of length 0).
+ */
+static double triangle_area(double a, double b, double c)
+{
+    order_pair(&a, &b);
+    order_pair(&b, &c);
+    order_pair(&a, &b);
+    double product = (a + (b + c)) * (c - (a - b)) * (c + (a - b)) * (a + (b - c));
+    return product > 0 ? 0.25 * sqrt(product) : 0.0;
+}
+
+/*
+ * The point x with |x - p| = to_p and |x - q| = to_q on the given side of
+ * line pq.  Its height above pq comes from the area: the textbook
+ * sqrt(to_p^2 - a^2) loses half the digits when x is close to p or q, and
+ * would move a cone's apex by 1e-8 of the slant height at every cell.
+ */
+static ur_vec2 third_vertex(ur_vec2 p, ur_vec2 q, double to_p, double to_q, enum side side)
 {
     ur_vec2 axis = ur_vec2_sub(q, p);
     double base = ur_vec2_length(axis);
+    /* A hinge of length 0 has no direction; a quad hinges on its longer diagonal, so never. */
+    if (!(base > 0))
+        return p;
     ur_vec2 along = ur_vec2_scale(axis, 1.0 / base);
     ur_vec2 left = {-along.y, along.x};
     double a = (to_p * to_p - to_q * to_q + base * base) / (2 * base);
-    double h = sqrt(fmax(to_p * to_p - a * a, 0.0));
-    if (away && ur_vec2_dot(ur_vec2_sub(*away, p), left) > 0)
-        h = -h;
+    double h = side * 2 * triangle_area(base, to_p, to_q) / base;
     return ur_vec2_add_scaled(ur_vec2_add_scaled(p, along, a), left, h);
 }
 
@@ -41,6 +76,11 @@ static ur_vec2 along_ray(ur_vec2 from, ur_vec2 toward, double distance)
     return ur_vec2_add_scaled(from, d, distance / ur_vec2_length(d));
 }
 
+/*
+ * The first triangle is laid to the left of its ruling A_0 P_0 and every
+ * later one with the same orientation, so A_i+1 is always to the left of
+ * A_i P_i+1.
+ */
 static void unroll_triangles(const ur_vec3 *p, const ur_vec3 *a, strip *s)
 {
     size_t n = s->count - 1;
@@ -50,37 +90,38 @@ static void unroll_triangles(const ur_vec3 *p, const ur_vec3 *a, strip *s)
     s->near[0] = ur_vec2_make(0, -ur_vec3_distance(a[0], p[0]));
     for (size_t i = 0; i < n; i++) {
         s->near[i + 1] = along_ray(s->far[i], s->near[i], ur_vec3_distance(a[i], p[i + 1]));
-        const ur_vec2 *previous = i > 0 ? &s->far[i - 1] : NULL;
         s->far[i + 1] = third_vertex(s->far[i], s->near[i + 1], ur_vec3_distance(a[i], a[i + 1]),
-                                     ur_vec3_distance(p[i + 1], a[i + 1]), previous);
+                                     ur_vec3_distance(p[i + 1], a[i + 1]), LEFT);
     }
 }
 
+/*
+ * The first quad is laid to the left of its ruling P_0 A_0, which makes
+ * every cell P_i P_i+1 A_i+1 A_i clockwise in the net; both triangles of a
+ * cell keep that orientation, which fixes the side of each hinge their new
+ * vertex goes on, whatever the cell's shape (a cone's apex cells have
+ * A_i = A_i+1 and a first triangle of area 0).
+ */
 static void unroll_quads(const ur_vec3 *p, const ur_vec3 *a, strip *s)
 {
     size_t n = s->count - 1;
     s->near[0] = ur_vec2_make(0, 0);
     s->far[0] = ur_vec2_make(0, ur_vec3_distance(a[0], p[0]));
     for (size_t i = 0; i < n; i++) {
-        /* The new quad goes on the side of P_i A_i away from the previous one. */
-        ur_vec2 middle = {0, 0};
-        if (i > 0)
-            middle = ur_vec2_scale(ur_vec2_add(s->near[i - 1], s->far[i - 1]), 0.5);
-        const ur_vec2 *previous = i > 0 ? &middle : NULL;
         if (ur_vec3_distance(p[i], a[i + 1]) >= ur_vec3_distance(p[i + 1], a[i])) {
             /* diagonal P_i A_i+1: triangles (P_i, A_i+1, A_i) then (P_i, P_i+1, A_i+1) */
             s->far[i + 1] = third_vertex(s->near[i], s->far[i], ur_vec3_distance(p[i], a[i + 1]),
-                                         ur_vec3_distance(a[i], a[i + 1]), previous);
+                                         ur_vec3_distance(a[i], a[i + 1]), LEFT);
             s->near[i + 1] =
                 third_vertex(s->near[i], s->far[i + 1], ur_vec3_distance(p[i], p[i + 1]),
-                             ur_vec3_distance(a[i + 1], p[i + 1]), &s->far[i]);
+                             ur_vec3_distance(a[i + 1], p[i + 1]), LEFT);
         } else {
             /* diagonal P_i+1 A_i: triangles (P_i, P_i+1, A_i) then (A_i, P_i+1, A_i+1) */
             s->near[i + 1] = third_vertex(s->near[i], s->far[i], ur_vec3_distance(p[i], p[i + 1]),
-                                          ur_vec3_distance(a[i], p[i + 1]), previous);
+                                          ur_vec3_distance(a[i], p[i + 1]), LEFT);
             s->far[i + 1] =
                 third_vertex(s->far[i], s->near[i + 1], ur_vec3_distance(a[i], a[i + 1]),
-                             ur_vec3_distance(p[i + 1], a[i + 1]), &s->near[i]);
+                             ur_vec3_distance(p[i + 1], a[i + 1]), RIGHT);
         }
     }
 }

@@ -3,54 +3,72 @@
  * exists along the whole of rail 1 (what the Tapeworm script the paper used
  * does by hand).
  *
- * Each gap of the domain of existence is widened into a window of rail 1.
- * Across the window a target pairing sigma(u) is laid: a monotone cubic
- * (Fritsch-Carlson) from the pairing where the strip exists on one side to
- * the pairing on the other, or to rail 2's end where the gap reaches an end
- * of rail 1 (the rails are taken to end together).  Then the points of rail 2
- * in that stretch move so that every ruling of the window satisfies the
- * tangency condition det(c1'(u), c2'(sigma), c2(sigma) - c1(u)) = 0, with
- * the smallest weighted displacement: Gauss-Newton steps, each the minimum
- * of |d|^2 + SMOOTHING |second differences of d|^2 under the linearised
- * conditions, so that the displacement is spread smoothly along the rail.
- * With a direction, every point moves along it only.
+ * Each gap of the domain of existence is widened into a window of rail 1
+ * that reaches into the strip on both sides (or to an end of rail 1, where
+ * the rails are taken to end together).  Over the window, the points of rail
+ * 2 whose rulings it holds may move, and so may the pairing: at samples u_k
+ * it is sigma_k, increasing from the pairing at one end of the window to the
+ * pairing at the other.  GSL's Levenberg-Marquardt solver then minimises
+ *
+ *     sum_k (G_k / TANGENCY)^2 + |L^T d|^2 + PAIRING^2 sum_k (a_k+1 - a_k)^2,
+ *
+ * G_k = det(c1'(u_k), c2'(sigma_k), c2(sigma_k) - c1(u_k)) scaled to an
+ * angle (zero where one plane touches the strip along the ruling), d the
+ * displacements and L L^T = I + SMOOTHING D^T D, D their second differences
+ * running on into the unmoved points, so that the displacement is small,
+ * spread smoothly along the rail and fades out at the window's ends.  The
+ * pairing being free, the points move only where no pairing at all would
+ * do; its increments exp(a_k) are kept from changing abruptly.  With a direction, every point moves
+ * along it only.  The result is checked by building the strip again: a repair that leaves a gap is
+ * refused.
  */
 #include "surface_internal.h"
 
 #include <gsl/gsl_blas.h>
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_linalg.h>
+#include <gsl/gsl_multifit_nlinear.h>
 #include <stdlib.h>
 #include <string.h>
 
 enum {
     LOCAL_MARGIN = 30, /* knots of rail 2 kept on each side of the moved points */
     MOVED_MARGIN = 2,  /* extra points moved on each side of the window */
-    MAX_ITERATIONS = 40,
+    MAX_MOVED = 80,    /* points of rail 2 one window may move */
+    SAMPLES_PER_POINT = 3,
+    MAX_ITERATIONS = 100,
 };
 
 #define SMOOTHING 10.0
+/*
+ * Radians of G that weigh as much as 1 mm of displacement: small enough that
+ * the solution meets the tangency to about 1e-7 rad, large enough that the
+ * solver converges in few iterations.
+ */
+#define TANGENCY 1e-4
+#define PAIRING 0.1 /* weight of the pairing's smoothness */
 
 typedef struct window {
     double u_start, u_end;         /* on rail 1 */
-    double sigma_start, sigma_end; /* target pairing at the ends */
+    double sigma_start, sigma_end; /* pairing at the ends */
     double slope_start, slope_end;
 } window;
 
 typedef struct problem {
     ur_curve *rail1;
     const ur_vec3 *original; /* rail 2's points before */
-    ur_vec3 *points;         /* rail 2's points, being moved */
+    ur_vec3 *points;         /* rail 2's points, moved */
     size_t count;
     const double *knots; /* rail 2's original parameter of each point */
-    size_t first, last;  /* moved points first..last */
+    size_t first, last;  /* the moved points */
     size_t local_first, local_last;
     const ur_vec3 *direction; /* NULL: any direction */
-    const window *w;
+    window w;
     size_t samples;
+    gsl_matrix *cholesky; /* L, lower triangle, of the weights */
 } problem;
 
-/* ---- The target pairing ------------------------------------------------- */
+/* ---- The window and its first pairing ----------------------------------- */
 
 /* Fritsch-Carlson: slopes that keep the cubic Hermite monotone. */
 static void monotone_slopes(window *w)
@@ -67,13 +85,55 @@ static void monotone_slopes(window *w)
     w->slope_end = b * secant;
 }
 
-static double target_sigma(const window *w, double u)
+static double hermite_sigma(const window *w, double u)
 {
     double h = w->u_end - w->u_start, t = (u - w->u_start) / h;
     double h00 = (1 + 2 * t) * (1 - t) * (1 - t), h10 = t * (1 - t) * (1 - t);
     double h01 = t * t * (3 - 2 * t), h11 = t * t * (t - 1);
     return h00 * w->sigma_start + h10 * h * w->slope_start + h01 * w->sigma_end +
            h11 * h * w->slope_end;
+}
+
+static void fill_window_end(ur_ruled *strip, double u, bool at_rail_end, double rail_end,
+                            double *sigma, double *slope)
+{
+    if (at_rail_end) {
+        *sigma = rail_end;
+        *slope = NAN;
+    } else {
+        ur_ruled_pairing(strip, u, sigma, slope);
+    }
+}
+
+/*
+ * The gap widened on both sides by half its length and a few of rail 1's
+ * points, and by as much of rail 1 as rail 2 skips there at the strip's
+ * usual rate (a jump of the pairing has no length on rail 1 but may skip a
+ * long stretch of rail 2).
+ */
+static window window_of(ur_ruled *strip, const ur_interval *gap, double step, double rate)
+{
+    double u0 = ur_curve_start(strip->curve), u1 = ur_curve_end(strip->curve);
+    double before, after, slope, skipped = 0.0;
+    if (gap->u_start > u0 && gap->u_end < u1) { /* the pairing exists at both ends */
+        ur_ruled_pairing(strip, gap->u_start, &before, &slope);
+        ur_ruled_pairing(strip, gap->u_end, &after, &slope);
+        skipped = fmax(after - before, 0.0) / rate;
+    }
+    double margin = 0.5 * (gap->u_end - gap->u_start) + 0.5 * skipped + 4 * step;
+    window w;
+    w.u_start = fmax(u0, gap->u_start - margin);
+    w.u_end = fmin(u1, gap->u_end + margin);
+    fill_window_end(strip, w.u_start, w.u_start <= u0, ur_curve_start(strip->rail2), &w.sigma_start,
+                    &w.slope_start);
+    fill_window_end(strip, w.u_end, w.u_end >= u1, ur_curve_end(strip->rail2), &w.sigma_end,
+                    &w.slope_end);
+    double secant = (w.sigma_end - w.sigma_start) / (w.u_end - w.u_start);
+    if (isnan(w.slope_start))
+        w.slope_start = secant;
+    if (isnan(w.slope_end))
+        w.slope_end = secant;
+    return w;
 }
 
 /* ---- Rail 2 near the window, after moving ------------------------------- */
@@ -96,295 +156,190 @@ static double index_of(const problem *p, double sigma)
     return (double)low + (sigma - p->knots[low]) / (p->knots[low + 1] - p->knots[low]);
 }
 
-/* The tangency condition at every sample of the window, each scaled to an angle. */
-static ur_status conditions(const problem *p, double *values, ur_error *error)
+static double sample_u(const problem *p, size_t k)
+{
+    return p->w.u_start + (p->w.u_end - p->w.u_start) * ((double)k + 0.5) / (double)p->samples;
+}
+
+/* ---- Unknowns: displacements, then the pairing's increments -------------- */
+
+static size_t per_point(const problem *p)
+{
+    return p->direction ? 1 : 3;
+}
+
+static size_t moved_unknowns(const problem *p)
+{
+    return (p->last - p->first + 1) * per_point(p);
+}
+
+static size_t unknown_count(const problem *p)
+{
+    return moved_unknowns(p) + p->samples + 1;
+}
+
+static void place_points(problem *p, const gsl_vector *x)
+{
+    size_t per = per_point(p);
+    for (size_t j = p->first; j <= p->last; j++) {
+        const double *d = x->data + (j - p->first) * per;
+        ur_vec3 move =
+            p->direction ? ur_vec3_scale(*p->direction, d[0]) : ur_vec3_make(d[0], d[1], d[2]);
+        p->points[j] = ur_vec3_add(p->original[j], move);
+    }
+}
+
+/*
+ * sigma_k as index coordinates: the window's start plus the share of the
+ * first k + 1 of the samples + 1 positive increments exp(a_i).
+ */
+static void pairing_indices(const problem *p, const gsl_vector *x, double *indices)
+{
+    const double *a = x->data + moved_unknowns(p);
+    double total = 0.0;
+    for (size_t i = 0; i <= p->samples; i++)
+        total += exp(a[i]);
+    double start = index_of(p, p->w.sigma_start), end = index_of(p, p->w.sigma_end);
+    double sum = 0.0;
+    for (size_t k = 0; k < p->samples; k++) {
+        sum += exp(a[k]);
+        indices[k] = start + (end - start) * sum / total;
+    }
+}
+
+/* The first guess: no move, the monotone cubic for the pairing. */
+static void first_guess(const problem *p, gsl_vector *x)
+{
+    gsl_vector_set_zero(x);
+    double *a = x->data + moved_unknowns(p);
+    double previous = index_of(p, p->w.sigma_start);
+    for (size_t k = 0; k <= p->samples; k++) {
+        double next = k < p->samples ? index_of(p, hermite_sigma(&p->w, sample_u(p, k)))
+                                     : index_of(p, p->w.sigma_end);
+        a[k] = log(fmax(next - previous, 1e-9));
+        previous = next;
+    }
+}
+
+/* ---- The residuals ------------------------------------------------------ */
+
+/* G at each sample, scaled to an angle, on a spline through the moved points. */
+static int tangency(problem *p, const double *indices, double *values)
 {
     ur_curve *local;
     size_t n = p->local_last - p->local_first + 1;
-    ur_status status = ur_curve_new_interpolating(p->points + p->local_first, n, false, &local, error);
-    if (status != UR_OK)
-        return status;
+    if (ur_curve_new_interpolating(p->points + p->local_first, n, false, &local, NULL) != UR_OK)
+        return GSL_EBADFUNC;
     for (size_t k = 0; k < p->samples; k++) {
-        double u = p->w->u_start + (p->w->u_end - p->w->u_start) * (k + 0.5) / p->samples;
-        double x = index_of(p, target_sigma(p->w, u)) - (double)p->local_first;
+        double x = indices[k] - (double)p->local_first;
         size_t i = (size_t)fmin(fmax(floor(x), 0.0), (double)(n - 2));
         double k0 = ur_curve_point_parameter(local, i), k1 = ur_curve_point_parameter(local, i + 1);
         ur_vec3 c1[3], c2[3];
-        ur_curve_eval(p->rail1, u, c1);
+        ur_curve_eval(p->rail1, sample_u(p, k), c1);
         ur_curve_eval(local, k0 + (x - (double)i) * (k1 - k0), c2);
         ur_vec3 d = ur_vec3_sub(c2[0], c1[0]);
         values[k] = determinant3(c1[1], c2[1], d) /
                     (ur_vec3_length(c1[1]) * ur_vec3_length(c2[1]) * ur_vec3_length(d));
     }
     ur_curve_free(local);
-    return UR_OK;
+    return GSL_SUCCESS;
 }
 
-/* ---- Unknowns ----------------------------------------------------------- */
-
-static size_t unknowns_per_point(const problem *p)
+/*
+ * f = (G_k / TANGENCY, L^T d, PAIRING (a_k+1 - a_k)): what Levenberg-Marquardt
+ * makes small.  GSL may hand x and f as strided views (a column of its
+ * Jacobian), so they are read and written through gsl_vector_get and _set.
+ */
+static int residuals(const gsl_vector *x, void *data, gsl_vector *f)
 {
-    return p->direction ? 1 : 3;
-}
-
-static size_t unknown_count(const problem *p)
-{
-    return (p->last - p->first + 1) * unknowns_per_point(p);
-}
-
-static void move(problem *p, size_t unknown, double amount)
-{
-    size_t per = unknowns_per_point(p);
-    ur_vec3 *point = &p->points[p->first + unknown / per];
-    if (p->direction) {
-        *point = ur_vec3_add_scaled(*point, *p->direction, amount);
-        return;
-    }
-    double *coordinate = unknown % 3 == 0 ? &point->x : unknown % 3 == 1 ? &point->y : &point->z;
-    *coordinate += amount;
-}
-
-/* The current displacement in the unknowns' terms. */
-static void displacement(const problem *p, gsl_vector *out)
-{
-    size_t per = unknowns_per_point(p);
-    for (size_t j = 0; j < unknown_count(p); j++) {
-        size_t index = p->first + j / per;
-        ur_vec3 moved = ur_vec3_sub(p->points[index], p->original[index]);
-        double value = p->direction ? ur_vec3_dot(moved, *p->direction)
-                       : j % 3 == 0 ? moved.x
-                       : j % 3 == 1 ? moved.y
-                                    : moved.z;
-        gsl_vector_set(out, j, value);
-    }
-}
-
-/* W = I + SMOOTHING D^T D, D the second differences of each coordinate. */
-static void fill_weights(const problem *p, gsl_matrix *weights)
-{
-    size_t per = unknowns_per_point(p), points = p->last - p->first + 1;
-    gsl_matrix_set_identity(weights);
-    const double stencil[3] = {1, -2, 1};
-    for (size_t c = 0; c < per; c++)
-        for (size_t j = 1; j + 1 < points; j++)
-            for (int a = 0; a < 3; a++)
-                for (int b = 0; b < 3; b++) {
-                    size_t row = (j - 1 + (size_t)a) * per + c, column = (j - 1 + (size_t)b) * per + c;
-                    double value = gsl_matrix_get(weights, row, column);
-                    gsl_matrix_set(weights, row, column, value + SMOOTHING * stencil[a] * stencil[b]);
-                }
-}
-
-/* ---- Gauss-Newton on the smallest weighted displacement ----------------- */
-
-typedef struct workspace {
-    gsl_matrix *jacobian, *weights, *spread, *system;
-    gsl_vector *values, *target, *trial, *solution, *step, *moved;
-} workspace;
-
-static void workspace_free(workspace *s)
-{
-    gsl_matrix_free(s->jacobian);
-    gsl_matrix_free(s->weights);
-    gsl_matrix_free(s->spread);
-    gsl_matrix_free(s->system);
-    gsl_vector_free(s->values);
-    gsl_vector_free(s->target);
-    gsl_vector_free(s->moved);
-    gsl_vector_free(s->trial);
-    gsl_vector_free(s->solution);
-    gsl_vector_free(s->step);
-}
-
-static ur_status workspace_alloc(workspace *s, size_t samples, size_t unknowns, ur_error *error)
-{
-    s->jacobian = gsl_matrix_alloc(samples, unknowns);
-    s->weights = gsl_matrix_alloc(unknowns, unknowns);
-    s->spread = gsl_matrix_alloc(unknowns, samples);
-    s->system = gsl_matrix_alloc(samples, samples);
-    s->values = gsl_vector_alloc(samples);
-    s->target = gsl_vector_alloc(samples);
-    s->moved = gsl_vector_alloc(unknowns);
-    s->trial = gsl_vector_alloc(samples);
-    s->solution = gsl_vector_alloc(samples);
-    s->step = gsl_vector_alloc(unknowns);
-    if (!s->jacobian || !s->weights || !s->spread || !s->system || !s->values || !s->target ||
-        !s->moved || !s->trial || !s->solution || !s->step)
-        return ur_error_out_of_memory(error);
-    return UR_OK;
-}
-
-static ur_status jacobian(problem *p, workspace *s, ur_error *error)
-{
-    double h = 1e-7 * (p->knots[p->count - 1] - p->knots[0]);
-    for (size_t j = 0; j < unknown_count(p); j++) {
-        move(p, j, h);
-        ur_status status = conditions(p, s->trial->data, error);
-        move(p, j, -h);
-        if (status != UR_OK)
-            return status;
+    problem *p = data;
+    size_t moved = moved_unknowns(p), unknowns = unknown_count(p);
+    double *buffer = malloc((unknowns + 2 * p->samples) * sizeof *buffer);
+    if (!buffer)
+        return GSL_ENOMEM;
+    gsl_vector_view copy = gsl_vector_view_array(buffer, unknowns);
+    gsl_vector_memcpy(&copy.vector, x);
+    double *indices = buffer + unknowns, *values = indices + p->samples;
+    place_points(p, &copy.vector);
+    pairing_indices(p, &copy.vector, indices);
+    int code = tangency(p, indices, values);
+    for (size_t k = 0; code == GSL_SUCCESS && k < p->samples; k++)
+        gsl_vector_set(f, k, values[k] / TANGENCY);
+    if (code == GSL_SUCCESS) {
+        gsl_vector_view weighted = gsl_vector_subvector(&copy.vector, 0, moved);
+        gsl_blas_dtrmv(CblasLower, CblasTrans, CblasNonUnit, p->cholesky, &weighted.vector);
+        for (size_t j = 0; j < moved; j++)
+            gsl_vector_set(f, p->samples + j, buffer[j]);
+        const double *a = buffer + moved;
         for (size_t k = 0; k < p->samples; k++)
-            gsl_matrix_set(s->jacobian, k, j,
-                           (gsl_vector_get(s->trial, k) - gsl_vector_get(s->values, k)) / h);
+            gsl_vector_set(f, p->samples + moved + k, PAIRING * (a[k + 1] - a[k]));
     }
-    return UR_OK;
+    free(buffer);
+    return code;
 }
 
 /*
- * The step to the smallest weighted displacement m + step that meets the
- * linearised conditions J step = target - values:
- *     m + step = W^-1 J^T y,  (J W^-1 J^T) y = J m + target - values.
+ * W = I + SMOOTHING D^T D, D the second differences of each coordinate,
+ * factored W = L L^T.  Beyond the moved points rail 2 stays where it is, so
+ * the differences run on into two fixed zeros on each side (unless the
+ * moved points reach an end of rail 2, which is free).
  */
-static ur_status solve_step(workspace *s, ur_error *error)
+static ur_status weights(problem *p, ur_error *error)
 {
-    gsl_matrix *cholesky = s->weights; /* factored in place, once per call */
-    if (gsl_linalg_cholesky_decomp1(cholesky) != GSL_SUCCESS)
+    long per = (long)per_point(p), points = (long)(p->last - p->first + 1);
+    bool free_start = p->first == 0, free_end = p->last == p->count - 1;
+    gsl_matrix *w = p->cholesky;
+    gsl_matrix_set_identity(w);
+    const double stencil[3] = {1, -2, 1};
+    for (long centre = free_start ? 1 : -1; centre < (free_end ? points - 1 : points + 1); centre++)
+        for (int a = 0; a < 3; a++)
+            for (int b = 0; b < 3; b++) {
+                long i = centre - 1 + a, j = centre - 1 + b;
+                if (i < 0 || j < 0 || i >= points || j >= points)
+                    continue; /* a fixed point adds nothing */
+                for (long c = 0; c < per; c++) {
+                    size_t row = (size_t)(i * per + c), column = (size_t)(j * per + c);
+                    gsl_matrix_set(w, row, column,
+                                   gsl_matrix_get(w, row, column) +
+                                       SMOOTHING * stencil[a] * stencil[b]);
+                }
+            }
+    if (gsl_linalg_cholesky_decomp1(w) != GSL_SUCCESS)
         return ur_error_set(error, UR_ERROR_INTERNAL, "adjusting rail 2: weights not positive");
-    /* spread = W^-1 J^T, column by column */
-    for (size_t k = 0; k < s->jacobian->size1; k++) {
-        gsl_vector_view row = gsl_matrix_row(s->jacobian, k);
-        gsl_vector_view column = gsl_matrix_column(s->spread, k);
-        gsl_linalg_cholesky_solve(cholesky, &row.vector, &column.vector);
-    }
-    /* system = J W^-1 J^T + mu I: the conditions may depend on one another */
-    gsl_blas_dgemm(CblasNoTrans, CblasNoTrans, 1.0, s->jacobian, s->spread, 0.0, s->system);
-    double trace = 0.0;
-    for (size_t k = 0; k < s->system->size1; k++)
-        trace += gsl_matrix_get(s->system, k, k);
-    for (size_t k = 0; k < s->system->size1; k++)
-        gsl_matrix_set(s->system, k, k,
-                       gsl_matrix_get(s->system, k, k) + 1e-12 * trace / s->system->size1 + 1e-300);
-    gsl_vector_memcpy(s->trial, s->target);
-    gsl_vector_sub(s->trial, s->values);
-    gsl_blas_dgemv(CblasNoTrans, 1.0, s->jacobian, s->moved, 1.0, s->trial);
-    if (gsl_linalg_cholesky_decomp1(s->system) != GSL_SUCCESS ||
-        gsl_linalg_cholesky_solve(s->system, s->trial, s->solution) != GSL_SUCCESS)
-        return ur_error_set(error, UR_ERROR_INTERNAL, "adjusting rail 2: singular conditions");
-    gsl_blas_dgemv(CblasNoTrans, 1.0, s->spread, s->solution, 0.0, s->step);
-    gsl_vector_sub(s->step, s->moved);
     return UR_OK;
 }
 
-/* How far the conditions are from their target. */
-static double miss(const gsl_vector *values, const gsl_vector *target)
-{
-    double largest = 0.0;
-    for (size_t k = 0; k < values->size; k++)
-        largest = fmax(largest, fabs(gsl_vector_get(values, k) - gsl_vector_get(target, k)));
-    return largest;
-}
+/* ---- One window --------------------------------------------------------- */
 
-static void move_all(problem *p, const gsl_vector *step, double fraction)
+static ur_status solve(problem *p, ur_error *error)
 {
-    for (size_t j = 0; j < unknown_count(p); j++)
-        move(p, j, fraction * gsl_vector_get(step, j));
-}
-
-/*
- * Takes the step, or the largest of its halves that makes the conditions
- * smaller (the linearisation holds only near the current points).
- */
-static ur_status damped_step(problem *p, workspace *s, double before, bool *improved,
-                             ur_error *error)
-{
-    double fraction = 1.0;
-    *improved = false;
-    for (int halving = 0; halving < 30; halving++, fraction /= 2) {
-        move_all(p, s->step, fraction);
-        ur_status status = conditions(p, s->trial->data, error);
-        if (status != UR_OK)
-            return status;
-        if (miss(s->trial, s->target) < before) {
-            *improved = true;
-            return UR_OK;
-        }
-        move_all(p, s->step, -fraction);
+    size_t n = 2 * p->samples + moved_unknowns(p), unknowns = unknown_count(p);
+    gsl_multifit_nlinear_parameters parameters = gsl_multifit_nlinear_default_parameters();
+    /* The pairing's softmax has a direction that changes nothing: plain damping copes. */
+    parameters.scale = gsl_multifit_nlinear_scale_levenberg;
+    gsl_multifit_nlinear_workspace *solver =
+        gsl_multifit_nlinear_alloc(gsl_multifit_nlinear_trust, &parameters, n, unknowns);
+    gsl_vector *x = gsl_vector_alloc(unknowns);
+    if (!solver || !x) {
+        if (solver)
+            gsl_multifit_nlinear_free(solver);
+        gsl_vector_free(x);
+        return ur_error_out_of_memory(error);
     }
+    gsl_multifit_nlinear_fdf fdf = {residuals, NULL, NULL, n, unknowns, p, 0, 0, 0};
+    first_guess(p, x);
+    int info, code = gsl_multifit_nlinear_init(x, &fdf, solver);
+    if (code == GSL_SUCCESS) /* reaching MAX_ITERATIONS is not failure: the result is checked */
+        code = gsl_multifit_nlinear_driver(MAX_ITERATIONS, 1e-14, 1e-14, 1e-14, NULL, NULL, &info,
+                                           solver);
+    if (code == GSL_SUCCESS || code == GSL_EMAXITER)
+        place_points(p, gsl_multifit_nlinear_position(solver));
+    gsl_multifit_nlinear_free(solver);
+    gsl_vector_free(x);
+    if (code != GSL_SUCCESS && code != GSL_EMAXITER)
+        return ur_error_set(error, UR_ERROR_INPUT, "--adjust-rail2: the solver failed: %s",
+                            gsl_strerror(code));
     return UR_OK;
-}
-
-/* Gauss-Newton steps toward the current target; stops when they stop helping. */
-static ur_status meet_target(problem *p, workspace *s, ur_error *error)
-{
-    bool improved = true;
-    ur_status status = UR_OK;
-    for (int iteration = 0; status == UR_OK && improved && iteration < MAX_ITERATIONS;
-         iteration++) {
-        status = conditions(p, s->values->data, error);
-        double before = miss(s->values, s->target);
-        if (status != UR_OK || before < 1e-12)
-            break;
-        fill_weights(p, s->weights);
-        displacement(p, s->moved);
-        status = jacobian(p, s, error);
-        if (status == UR_OK)
-            status = solve_step(s, error);
-        if (status == UR_OK)
-            status = damped_step(p, s, before, &improved, error);
-    }
-    return status;
-}
-
-/*
- * The conditions are brought to zero in stages, (1 - t) times their first
- * values for t = 1/STAGES ... 1, so that the points follow the smallest
- * displacement from where they are instead of jumping to a far solution.
- */
-enum { STAGES = 8 };
-
-static ur_status gauss_newton(problem *p, ur_error *error)
-{
-    workspace s;
-    memset(&s, 0, sizeof s);
-    ur_status status = workspace_alloc(&s, p->samples, unknown_count(p), error);
-    if (status == UR_OK)
-        status = conditions(p, s.values->data, error);
-    gsl_vector *first = status == UR_OK ? gsl_vector_alloc(p->samples) : NULL;
-    if (status == UR_OK && !first)
-        status = ur_error_out_of_memory(error);
-    if (status == UR_OK)
-        gsl_vector_memcpy(first, s.values);
-    for (int stage = 1; status == UR_OK && stage <= STAGES; stage++) {
-        gsl_vector_memcpy(s.target, first);
-        gsl_vector_scale(s.target, 1.0 - (double)stage / STAGES);
-        status = meet_target(p, &s, error);
-    }
-    gsl_vector_free(first);
-    workspace_free(&s);
-    return status;
-}
-
-/* ---- Windows from the gaps ---------------------------------------------- */
-
-static void fill_window_end(ur_ruled *strip, double u, bool at_rail_end, double rail_end,
-                            double *sigma, double *slope)
-{
-    if (at_rail_end) {
-        *sigma = rail_end;
-        *slope = NAN;
-    } else {
-        ur_ruled_pairing(strip, u, sigma, slope);
-    }
-}
-
-/* The gap widened on both sides by half its length and a few of rail 1's points. */
-static window window_of(ur_ruled *strip, const ur_interval *gap, double step)
-{
-    double u0 = ur_curve_start(strip->curve), u1 = ur_curve_end(strip->curve);
-    double margin = 0.5 * (gap->u_end - gap->u_start) + 4 * step;
-    window w;
-    w.u_start = fmax(u0, gap->u_start - margin);
-    w.u_end = fmin(u1, gap->u_end + margin);
-    fill_window_end(strip, w.u_start, w.u_start <= u0, ur_curve_start(strip->rail2),
-                    &w.sigma_start, &w.slope_start);
-    fill_window_end(strip, w.u_end, w.u_end >= u1, ur_curve_end(strip->rail2), &w.sigma_end,
-                    &w.slope_end);
-    double secant = (w.sigma_end - w.sigma_start) / (w.u_end - w.u_start);
-    if (isnan(w.slope_start))
-        w.slope_start = secant;
-    if (isnan(w.slope_end))
-        w.slope_end = secant;
-    return w;
 }
 
 static ur_status adjust_window(problem *p, const window *w, ur_error *error)
@@ -394,24 +349,39 @@ static ur_status adjust_window(problem *p, const window *w, ur_error *error)
                             "--adjust-rail2: rail 2 runs backwards across the gap from %g to %g "
                             "along rail 1; no small move fixes that",
                             w->u_start, w->u_end);
-    p->w = w;
+    p->w = *w;
     double from = floor(index_of(p, w->sigma_start)), to = ceil(index_of(p, w->sigma_end));
     p->first = (size_t)fmax(0.0, from - MOVED_MARGIN);
     p->last = (size_t)fmin((double)(p->count - 1), to + MOVED_MARGIN);
+    if (p->last - p->first + 1 > MAX_MOVED)
+        return ur_error_set(error, UR_ERROR_INPUT,
+                            "--adjust-rail2: the gap from %g to %g along rail 1 spans %zu points "
+                            "of rail 2, more than a repair moves (%d)",
+                            w->u_start, w->u_end, p->last - p->first + 1, MAX_MOVED);
     p->local_first = p->first > LOCAL_MARGIN ? p->first - LOCAL_MARGIN : 0;
     p->local_last = p->last + LOCAL_MARGIN < p->count ? p->last + LOCAL_MARGIN : p->count - 1;
-    p->samples = 3 * (p->last - p->first + 1);
-    return gauss_newton(p, error);
+    p->samples = SAMPLES_PER_POINT * (p->last - p->first + 1);
+    p->cholesky = gsl_matrix_alloc(moved_unknowns(p), moved_unknowns(p));
+    if (!p->cholesky)
+        return ur_error_out_of_memory(error);
+    ur_status status = weights(p, error);
+    if (status == UR_OK)
+        status = solve(p, error);
+    gsl_matrix_free(p->cholesky);
+    p->cholesky = NULL;
+    return status;
 }
 
-/* Builds the strip on the current points; the caller frees it. */
-static ur_status strip_of(const ur_vec3 *rail1, size_t count1, const ur_vec3 *rail2,
-                          size_t count2, bool closed, ur_ruled *strip, ur_error *error)
+/* ---- All the gaps ------------------------------------------------------- */
+
+/* Builds the strip on the given points; the caller frees it. */
+static ur_status strip_of(const ur_vec3 *rail1, size_t count1, const ur_vec3 *rail2, size_t count2,
+                          ur_ruled *strip, ur_error *error)
 {
     ur_curve *curves[2] = {NULL, NULL};
-    ur_status status = ur_curve_new_interpolating(rail1, count1, closed, &curves[0], error);
+    ur_status status = ur_curve_new_interpolating(rail1, count1, false, &curves[0], error);
     if (status == UR_OK)
-        status = ur_curve_new_interpolating(rail2, count2, closed, &curves[1], error);
+        status = ur_curve_new_interpolating(rail2, count2, false, &curves[1], error);
     if (status != UR_OK) {
         ur_curve_free(curves[0]);
         return status;
@@ -419,50 +389,90 @@ static ur_status strip_of(const ur_vec3 *rail1, size_t count1, const ur_vec3 *ra
     return ur_ruled_strip(curves[0], curves[1], strip, error);
 }
 
-ur_status ur_strip_adjust_rail2(const ur_vec3 *rail1, size_t count1, ur_vec3 *rail2,
-                                size_t count2, const ur_vec3 *direction, double *largest,
-                                ur_error *error)
+static bool strip_everywhere(const ur_vec3 *rail1, size_t count1, const ur_vec3 *rail2,
+                             size_t count2)
+{
+    ur_ruled strip;
+    if (strip_of(rail1, count1, rail2, count2, &strip, NULL) != UR_OK)
+        return false;
+    const ur_interval *gaps;
+    bool everywhere = ur_ruled_gaps(&strip, &gaps) == 0;
+    ur_ruled_free(&strip);
+    return everywhere;
+}
+
+/* Each gap in order along rail 1, on the points as moved so far. */
+static ur_status repair_gaps(ur_ruled *strip, problem *p, size_t count1, ur_error *error)
+{
+    const ur_interval *gaps;
+    size_t gap_count = ur_ruled_gaps(strip, &gaps);
+    double span = ur_curve_end(strip->curve) - ur_curve_start(strip->curve);
+    double step = span / (double)count1;
+    double rate = (ur_curve_end(strip->rail2) - ur_curve_start(strip->rail2)) / span;
+    ur_status status = UR_OK;
+    for (size_t k = 0; status == UR_OK && k < gap_count; k++) {
+        window w = window_of(strip, &gaps[k], step, rate);
+        monotone_slopes(&w);
+        status = adjust_window(p, &w, error);
+        /* The next window starts from where this one left the points. */
+        memcpy((ur_vec3 *)p->original, p->points, p->count * sizeof *p->points);
+    }
+    return status;
+}
+
+ur_status ur_strip_adjust_rail2(const ur_vec3 *rail1, size_t count1, ur_vec3 *rail2, size_t count2,
+                                const ur_vec3 *direction, double *largest, ur_error *error)
 {
     *largest = 0.0;
     gsl_set_error_handler_off();
     ur_vec3 unit;
     if (direction) {
         double length = ur_vec3_length(*direction);
-        if (!(length > 0))
+        if (!(length > 0) || !isfinite(length))
             return ur_error_set(error, UR_ERROR_INPUT, "--adjust-direction must not be zero");
         unit = ur_vec3_scale(*direction, 1.0 / length);
         direction = &unit;
     }
     ur_ruled strip;
-    ur_status status = strip_of(rail1, count1, rail2, count2, false, &strip, error);
+    ur_status status = strip_of(rail1, count1, rail2, count2, &strip, error);
     if (status != UR_OK)
         return status;
     const ur_interval *gaps;
-    size_t gap_count = ur_ruled_gaps(&strip, &gaps);
-    ur_vec3 *original = ur_alloc_array(count2, sizeof *original, error);
+    if (ur_ruled_gaps(&strip, &gaps) == 0) {
+        ur_ruled_free(&strip);
+        return UR_OK;
+    }
+    ur_vec3 *moved = ur_alloc_array(count2, sizeof *moved, error);
+    ur_vec3 *start = ur_alloc_array(count2, sizeof *start, error);
     double *knots = ur_alloc_array(count2, sizeof *knots, error);
-    window *windows = ur_alloc_array(gap_count + 1, sizeof *windows, error);
-    if (!original || !knots || !windows)
+    if (!moved || !start || !knots)
         status = UR_ERROR_INTERNAL;
-    double step = (ur_curve_end(strip.curve) - ur_curve_start(strip.curve)) / (double)count1;
-    for (size_t k = 0; status == UR_OK && k < gap_count; k++) {
-        windows[k] = window_of(&strip, &gaps[k], step);
-        monotone_slopes(&windows[k]);
-    }
     for (size_t j = 0; status == UR_OK && j < count2; j++) {
-        original[j] = rail2[j];
         knots[j] = ur_curve_point_parameter(strip.rail2, j);
+        moved[j] = start[j] = rail2[j];
     }
-    problem p = {strip.curve, original, rail2, count2, knots, 0, 0, 0, 0, direction, NULL, 0};
-    for (size_t k = 0; status == UR_OK && k < gap_count; k++)
-        status = adjust_window(&p, &windows[k], error);
-    for (size_t j = 0; status == UR_OK && j < count2; j++)
-        *largest = fmax(*largest, ur_vec3_distance(rail2[j], original[j]));
-    if (status != UR_OK)
-        memcpy(rail2, original, count2 * sizeof *rail2);
-    free(original);
+    if (status == UR_OK) {
+        problem p = {.rail1 = strip.curve,
+                     .original = start,
+                     .points = moved,
+                     .count = count2,
+                     .knots = knots,
+                     .direction = direction};
+        status = repair_gaps(&strip, &p, count1, error);
+    }
+    if (status == UR_OK && !strip_everywhere(rail1, count1, moved, count2))
+        status = ur_error_set(error, UR_ERROR_INPUT,
+                              "--adjust-rail2: no small move of rail 2 gives a strip along the "
+                              "whole of rail 1 (the first gap is %.6g to %.6g mm along rail 1); "
+                              "change the rails' shape there",
+                              gaps[0].arc_start, gaps[0].arc_end);
+    for (size_t j = 0; status == UR_OK && j < count2; j++) {
+        *largest = fmax(*largest, ur_vec3_distance(moved[j], rail2[j]));
+        rail2[j] = moved[j];
+    }
+    free(moved);
+    free(start);
     free(knots);
-    free(windows);
     ur_ruled_free(&strip);
     return status;
 }

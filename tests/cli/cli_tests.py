@@ -514,6 +514,30 @@ def strip_edge_of_regression_is_the_helix(work):
 
 
 @test
+def adjust_rail2_repairs_a_short_rail(work):
+    write_points(work, "low.csv", circle_points(50, 0, 0, math.pi, 60))
+    write_points(work, "late.csv", circle_points(30, 40, 0.3, math.pi, 60))
+    result = run(work, "strip", "--rail1", "low.csv", "--rail2", "late.csv", "--adjust-rail2",
+                 "--adjusted-rail", "moved.csv", "-o", "s.svg")
+    reported = float(re.search(r"moved by at most ([0-9.e-]+) mm", result.stderr).group(1))
+    moved = read_points(os.path.join(work, "moved.csv"))
+    before = read_points(os.path.join(work, "late.csv"))
+    largest = max(math.dist(p, q) for p, q in zip(moved, before))
+    close(reported, largest, 1e-3, "reported displacement")
+    # By hand: sliding rail 2 along its circle to start with rail 1 moves it by this much.
+    check(0 < largest <= 2 * 30 * math.sin(0.15), "moved %g mm" % largest)
+    run(work, "strip", "--rail1", "low.csv", "--rail2", "moved.csv", "--strict", "-o", "t.svg")
+    write_points(work, "ring1.csv", circle_points(50, 0, 0, 2 * math.pi, 60, closed=True))
+    write_points(work, "ring2.csv", circle_points(30, 40, 0, 2 * math.pi, 60, closed=True))
+    bad(work, r"--adjust-rail2 works on open rails", "strip", "--rail1", "ring1.csv", "--rail2",
+        "ring2.csv", "--adjust-rail2", "-o", "x.svg")
+    bad(work, r"--adjusted-rail go with --adjust-rail2", "strip", "--rail1", "low.csv", "--rail2",
+        "late.csv", "--adjusted-rail", "m.csv", "-o", "x.svg")
+    bad(work, r"--adjust-direction must not be zero", "strip", "--rail1", "low.csv", "--rail2",
+        "late.csv", "--adjust-rail2", "--adjust-direction", "0,0,0", "-o", "x.svg")
+
+
+@test
 def non_developable_surfaces_are_refused_with_how_far(work):
     low = [(100.0 * i / 39, 0.0, 0.0) for i in range(40)]
     high = [(100.0 * i / 39, 60.0, 30 * math.sin(math.pi * i / 39)) for i in range(40)]

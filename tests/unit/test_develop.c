@@ -210,6 +210,109 @@ static void test_discrete_methods(void **state)
     ur_ruled_free(&ruled);
 }
 
+/* The outline point at distance `slant` from every other one (a cone's apex), or count. */
+static size_t apex_index(const ur_net *net, double slant)
+{
+    for (size_t k = 0; k < net->outline_count; k++) {
+        size_t j = 0;
+        while (j < net->outline_count &&
+               (j == k ||
+                fabs(ur_vec2_distance(net->outline[j], net->outline[k]) - slant) <= 1e-9 * slant))
+            j++;
+        if (j == net->outline_count)
+            return k;
+    }
+    return net->outline_count;
+}
+
+/*
+ * The quad method on a full cone (cut 1): every far corner is the apex, so
+ * each cell is the flat triangle apex P_i P_i+1, and the net is that of the
+ * inscribed pyramid: n isosceles triangles with legs the slant height l and
+ * bases the chord c = 2 r sin(pi / n), side by side in one piece.  Each has
+ * area c sqrt(4 l^2 - c^2) / 4.
+ */
+static void test_cone_quad_is_inscribed_pyramid(void **state)
+{
+    (void)state;
+    double radius = 60, height = 80, slant = hypot(radius, height);
+    const size_t parts[] = {8, 16, 64};
+    for (size_t k = 0; k < 3; k++) {
+        size_t n = parts[k];
+        ur_curve *circle;
+        ur_ruled ruled;
+        assert_int_equal(ur_curve_new_circle(radius, &circle, NULL), UR_OK);
+        assert_int_equal(ur_ruled_cone(circle, ur_vec3_make(0, 0, height), 1.0, &ruled, NULL),
+                         UR_OK);
+        ur_net_list nets = develop(&ruled, UR_METHOD_QUAD, n, 0.01);
+        assert_int_equal(nets.count, 1);
+        const ur_net *net = &nets.nets[0];
+        double chord = 2 * radius * sin(M_PI / n);
+        assert_relative(net->flat_area, n * chord * sqrt(4 * slant * slant - chord * chord) / 4,
+                        1e-9);
+        /* The n + 1 ends of the rulings on the base, one chord apart, and the apex once. */
+        assert_int_equal(net->outline_count, n + 2);
+        size_t apex = apex_index(net, slant);
+        assert_true(apex < net->outline_count);
+        for (size_t i = 1; i <= n; i++)
+            assert_relative(ur_vec2_distance(net->outline[(apex + i) % (n + 2)],
+                                             net->outline[(apex + i + 1) % (n + 2)]),
+                            chord, 1e-9);
+        ur_net_list_free(&nets);
+        ur_ruled_free(&ruled);
+    }
+}
+
+/* The inscribed polyhedral cone: the 3D triangles apex P_i P_i+1 of n equal parameter steps. */
+static double inscribed_cone_area(ur_ruled *ruled, size_t n)
+{
+    double u0 = ur_ruled_start(ruled), u1 = ur_ruled_end(ruled), area = 0;
+    ur_vec3 previous[4], rails[4];
+    ur_ruled_rails(ruled, u0, previous);
+    for (size_t i = 1; i <= n; i++) {
+        ur_ruled_rails(ruled, u0 + (u1 - u0) * i / n, rails);
+        ur_vec3 side = ur_vec3_sub(previous[0], ruled->apex);
+        area += ur_vec3_length(ur_vec3_cross(side, ur_vec3_sub(rails[0], ruled->apex))) / 2;
+        previous[0] = rails[0];
+    }
+    return area;
+}
+
+/*
+ * A cone over a loop interpolated through points as a CSV file gives them,
+ * its apex off centre: the quad net is the inscribed polyhedral cone laid
+ * flat in one piece, smaller than the surface, and it converges to the
+ * surface as n grows (the error falls about fourfold as n doubles).
+ */
+static void test_cone_quad_over_curve(void **state)
+{
+    (void)state;
+    static const ur_vec3 points[] = {
+        {70, 0, 0},    {52, 38, 0},   {10, 55, 0},  {-35, 41, 0}, {-58, 5, 0},
+        {-47, -30, 0}, {-12, -44, 0}, {30, -37, 0}, {58, -20, 0},
+    };
+    double previous_error = INFINITY;
+    for (size_t n = 8; n <= 128; n *= 2) {
+        ur_curve *curve;
+        ur_ruled ruled;
+        assert_int_equal(ur_curve_new_interpolating(points, sizeof points / sizeof points[0], true,
+                                                    &curve, NULL),
+                         UR_OK);
+        assert_int_equal(ur_ruled_cone(curve, ur_vec3_make(15, -10, 65), 1.0, &ruled, NULL), UR_OK);
+        ur_net_list nets = develop(&ruled, UR_METHOD_QUAD, n, 0.01);
+        assert_int_equal(nets.count, 1);
+        const ur_net *net = &nets.nets[0];
+        assert_relative(net->flat_area, inscribed_cone_area(&ruled, n), 1e-9);
+        double error = (net->area_3d - net->flat_area) / net->area_3d;
+        if (!(error > 0 && error < previous_error / 3))
+            fail_msg("n = %zu: relative area deficit %g after %g", n, error, previous_error);
+        previous_error = error;
+        ur_net_list_free(&nets);
+        ur_ruled_free(&ruled);
+    }
+    assert_true(previous_error < 3e-4);
+}
+
 static bool outline_is_valid(const ur_net *net)
 {
     GEOSContextHandle_t geos = GEOS_init_r();
@@ -320,6 +423,8 @@ int main(void)
         cmocka_unit_test(test_helicoid_annulus),
         cmocka_unit_test(test_dense_sampling_stays_exact),
         cmocka_unit_test(test_discrete_methods),
+        cmocka_unit_test(test_cone_quad_is_inscribed_pyramid),
+        cmocka_unit_test(test_cone_quad_over_curve),
         cmocka_unit_test(test_split_into_fewest_pieces),
         cmocka_unit_test(test_inflection_refused),
         cmocka_unit_test(test_triangle_method_needs_tangent_developable),

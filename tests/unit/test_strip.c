@@ -73,7 +73,8 @@ static void test_strip_between_circles_is_a_frustum(void **state)
     /* The pairing keeps the angle: every ruling meets the axis at the apex. */
     double slant = sqrt((r1 - r2) * (r1 - r2) + h * h);
     for (int k = 0; k < 16; k++) {
-        double u = ur_ruled_start(&ruled) + (ur_ruled_end(&ruled) - ur_ruled_start(&ruled)) * k / 16;
+        double u =
+            ur_ruled_start(&ruled) + (ur_ruled_end(&ruled) - ur_ruled_start(&ruled)) * k / 16;
         ur_vec3 rails[4];
         ur_ruled_rails(&ruled, u, rails);
         assert_relative(ur_vec3_distance(rails[0], rails[2]), slant, 1e-6);
@@ -118,9 +119,8 @@ static void test_strip_to_translated_copy_is_a_cylinder(void **state)
     assert_int_equal(ur_curve_new_interpolating(lower, N, false, &rail1, NULL), UR_OK);
     assert_int_equal(ur_curve_new_interpolating(upper, N, false, &rail2, NULL), UR_OK);
     double length;
-    assert_int_equal(ur_curve_length(rail1, ur_curve_start(rail1), ur_curve_end(rail1), &length,
-                                     NULL),
-                     UR_OK);
+    assert_int_equal(
+        ur_curve_length(rail1, ur_curve_start(rail1), ur_curve_end(rail1), &length, NULL), UR_OK);
     ur_ruled ruled = strip(rail1, rail2);
     const ur_interval *gaps;
     assert_int_equal(ur_ruled_gaps(&ruled, &gaps), 0);
@@ -174,7 +174,8 @@ static void test_strip_recovers_tangent_developable(void **state)
     assert_int_equal(ur_ruled_gaps(&ruled, &gaps), 0);
     double size = 60, worst = 0;
     for (int k = 0; k <= 200; k++) {
-        double u = ur_ruled_start(&ruled) + (ur_ruled_end(&ruled) - ur_ruled_start(&ruled)) * k / 200;
+        double u =
+            ur_ruled_start(&ruled) + (ur_ruled_end(&ruled) - ur_ruled_start(&ruled)) * k / 200;
         ur_vec3 edge;
         double v;
         assert_true(ur_ruled_regression(&ruled, u, &edge, &v));
@@ -227,14 +228,74 @@ static void test_domain_of_existence(void **state)
     ur_ruled_free(&ruled);
 }
 
+static void arc_points(ur_vec3 *points, double r, double z, double a, double b, size_t n)
+{
+    for (size_t i = 0; i < n; i++) {
+        double t = a + (b - a) * (double)i / (double)(n - 1);
+        points[i] = ur_vec3_make(r * cos(t), r * sin(t), z);
+    }
+}
+
+static size_t gaps_between(const ur_vec3 *rail1, const ur_vec3 *rail2, size_t n)
+{
+    ur_curve *c1, *c2;
+    assert_int_equal(ur_curve_new_interpolating(rail1, n, false, &c1, NULL), UR_OK);
+    assert_int_equal(ur_curve_new_interpolating(rail2, n, false, &c2, NULL), UR_OK);
+    ur_ruled ruled = strip(c1, c2);
+    const ur_interval *gaps;
+    size_t count = ur_ruled_gaps(&ruled, &gaps);
+    ur_ruled_free(&ruled);
+    return count;
+}
+
+/*
+ * Rail 2 starts 0.3 rad late on its circle, so the first 15 mm of rail 1
+ * have no ruling.  Worked by hand: sliding rail 2 along its own circle until
+ * it starts with rail 1 repairs it (the strip is then the frustum), moving
+ * its first point by the chord 2 r2 sin(0.15); the smallest repair can be no
+ * larger.  Far from the gap nothing moves.
+ */
+static void test_adjust_rail2_repairs_a_short_rail(void **state)
+{
+    (void)state;
+    enum { N = 60 };
+    ur_vec3 rail1[N], rail2[N], before[N];
+    arc_points(rail1, 50, 0, 0, M_PI, N);
+    arc_points(rail2, 30, 40, 0.3, M_PI, N);
+    memcpy(before, rail2, sizeof before);
+    assert_int_equal(gaps_between(rail1, rail2, N), 1);
+    double largest;
+    ur_error error;
+    if (ur_strip_adjust_rail2(rail1, N, rail2, N, NULL, &largest, &error) != UR_OK)
+        fail_msg("adjust: %s", error.message);
+    assert_int_equal(gaps_between(rail1, rail2, N), 0);
+    double by_hand = 2 * 30 * sin(0.15), measured = 0;
+    for (int j = 0; j < N; j++)
+        measured = fmax(measured, ur_vec3_distance(rail2[j], before[j]));
+    assert_relative(largest, measured, 1e-12);
+    if (!(largest > 0 && largest <= by_hand))
+        fail_msg("moved %g mm; sliding along the circle moves %g", largest, by_hand);
+    for (int j = 20; j < N; j++)
+        assert_true(ur_vec3_distance(rail2[j], before[j]) == 0);
+    /* Along z only: x and y stay exactly, and the strip exists everywhere. */
+    memcpy(rail2, before, sizeof before);
+    ur_vec3 up = {0, 0, 2};
+    if (ur_strip_adjust_rail2(rail1, N, rail2, N, &up, &largest, &error) != UR_OK)
+        fail_msg("adjust along z: %s", error.message);
+    assert_int_equal(gaps_between(rail1, rail2, N), 0);
+    for (int j = 0; j < N; j++)
+        assert_true(rail2[j].x == before[j].x && rail2[j].y == before[j].y);
+    assert_true(largest > 0 && largest <= by_hand);
+}
+
 /* Rails that cannot carry a strip anywhere: refused with the reason. */
 static void test_no_strip_anywhere(void **state)
 {
     (void)state;
     ur_ruled ruled;
     ur_error error;
-    ur_status status = ur_ruled_strip(arc(50, 0, 0, 1, 50, false), arc(30, 40, 2, 3, 50, false),
-                                      &ruled, &error);
+    ur_status status =
+        ur_ruled_strip(arc(50, 0, 0, 1, 50, false), arc(30, 40, 2, 3, 50, false), &ruled, &error);
     assert_int_equal(status, UR_ERROR_INPUT);
     assert_non_null(strstr(error.message, "no developable strip"));
 }
@@ -282,6 +343,7 @@ int main(void)
         cmocka_unit_test(test_strip_to_translated_copy_is_a_cylinder),
         cmocka_unit_test(test_strip_recovers_tangent_developable),
         cmocka_unit_test(test_domain_of_existence),
+        cmocka_unit_test(test_adjust_rail2_repairs_a_short_rail),
         cmocka_unit_test(test_no_strip_anywhere),
         cmocka_unit_test(test_hypar_is_not_developable),
     };
