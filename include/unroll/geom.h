@@ -135,6 +135,17 @@ ur_transform2 ur_transform2_identity(void);
 ur_transform2 ur_transform2_make(double angle, ur_vec2 translation);
 ur_vec2 ur_transform2_apply(ur_transform2 transform, ur_vec2 point);
 
+/* Distance between the 3D segments p0p1 and q0q1. */
+double ur_segment_distance(ur_vec3 p0, ur_vec3 p1, ur_vec3 q0, ur_vec3 q1);
+
+/*
+ * Whether the polylines a and b come within tolerance of each other
+ * anywhere (they meet or cross); *where is then the first segment of a that
+ * does.
+ */
+ur_status ur_polylines_meet(const ur_vec3 *a, size_t a_count, const ur_vec3 *b, size_t b_count,
+                            double tolerance, bool *meet, size_t *where, ur_error *error);
+
 /* A growable array of plane points; the owner frees it with ur_points_free. */
 typedef struct ur_points {
     ur_vec2 *items;

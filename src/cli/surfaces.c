@@ -247,25 +247,28 @@ static bool runs_against(const ur_vec3 *first, size_t first_count, bool closed,
     return ur_vec3_dot(along_first, along_second) < 0;
 }
 
-/* The closest approach of the two rails' points, against the rails' size. */
+/*
+ * Rails that meet or cross leave a ruling of no length there.  Their
+ * polylines are compared (the interpolating curves stay within a small
+ * fraction of a segment of them); closer than 1e-6 of their size is meeting.
+ */
 static int check_rails_apart(const cli_job *job, const ur_vec3 *first, size_t first_count,
                              const ur_vec3 *second, size_t second_count)
 {
-    double size = 0.0, closest = INFINITY;
-    size_t where = 0;
-    for (size_t i = 0; i < first_count; i++) {
+    double size = 0.0;
+    for (size_t i = 0; i < first_count; i++)
         size = fmax(size, ur_vec3_distance(first[i], first[0]));
-        size_t j = nearest_point(second, second_count, first[i]);
-        double distance = ur_vec3_distance(first[i], second[j]);
-        if (distance < closest) {
-            closest = distance;
-            where = i;
-        }
-    }
-    if (!(closest > 1e-6 * size)) {
-        cli_message("%s: the rails meet at point %zu of --rail1 (%g, %g, %g): a strip needs them "
-                    "apart everywhere",
-                    job->command, where + 1, first[where].x, first[where].y, first[where].z);
+    bool meet;
+    size_t where = 0;
+    ur_error error;
+    if (ur_polylines_meet(first, first_count, second, second_count, 1e-6 * size, &meet, &where,
+                          &error) != UR_OK)
+        return fail(&error, job);
+    if (meet) {
+        cli_message("%s: the rails meet or cross between points %zu and %zu of --rail1 (%g, %g, "
+                    "%g): a strip needs them apart everywhere",
+                    job->command, where + 1, where + 2, first[where].x, first[where].y,
+                    first[where].z);
         return EXIT_USAGE;
     }
     return 0;

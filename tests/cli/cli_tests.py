@@ -629,6 +629,11 @@ def bad_rails_and_corners(work):
     bad(work, r"missing\.csv", *strip, "low.csv", "--rail2", "missing.csv")
     bad(work, r"--rail2 FILE\.csv is required", *strip, "low.csv")
     bad(work, r"rails meet", *strip, "low.csv", "--rail2", "low.csv")
+    xs = [100.0 * i / 29 for i in range(30)]  # x = 50 falls between points
+    write_points(work, "across1.csv", [(x, 0.0, 0.001 * x * x) for x in xs])
+    write_points(work, "across2.csv", [(x, 10 - 0.2 * x, 0.001 * x * x) for x in xs])
+    bad(work, r"rails meet or cross between points 15 and 16", *strip, "across1.csv", "--rail2",
+        "across2.csv")
     bad(work, r"no developable strip exists anywhere", *strip, "low.csv", "--rail2", "far.csv",
         "--quiet")
     bad(work, r"--pairing: 'loose'", *strip, "low.csv", "--rail2", "far.csv", "--pairing", "loose")
