@@ -102,10 +102,27 @@ static double bend_radius(double gaussian, double mean, double size)
     return largest * size <= FLAT ? INFINITY : 1.0 / largest;
 }
 
-void ur_analyze_point(ur_ruled *ruled, double u, double v, ur_point_curvature *curvature)
-{
+/*
+ * What the curvature anywhere along the ruling at u needs: the rails, a''
+ * and b'', and the size of the surface.  Worked out once per ruling, since
+ * each costs the rails' pairing.
+ */
+typedef struct ruling_frame {
     ur_vec3 rails[4];
-    ur_ruled_rails(ruled, u, rails);
+    ur_vec3 second[2];
+    double u_range;
+} ruling_frame;
+
+static void ruling_frame_at(ur_ruled *ruled, double u, ruling_frame *frame)
+{
+    ur_ruled_rails(ruled, u, frame->rails);
+    rail_second_derivatives(ruled, u, frame->second);
+    frame->u_range = ur_ruled_end(ruled) - ur_ruled_start(ruled);
+}
+
+static void point_curvature(const ruling_frame *frame, double v, ur_point_curvature *curvature)
+{
+    const ur_vec3 *rails = frame->rails;
     ur_vec3 ruling = ur_vec3_sub(rails[2], rails[0]); /* r_v */
     ur_vec3 twist = ur_vec3_sub(rails[3], rails[1]);  /* r_uv */
     ur_vec3 r_u = ur_vec3_add_scaled(rails[1], twist, v);
@@ -124,8 +141,7 @@ void ur_analyze_point(ur_ruled *ruled, double u, double v, ur_point_curvature *c
     double det = ur_vec3_det(rails[1], rails[3], ruling);
     if (fabs(det) <= ROUNDING * a_speed * b_speed * ruling_length)
         det = 0.0;
-    ur_vec3 second[2];
-    rail_second_derivatives(ruled, u, second);
+    const ur_vec3 *second = frame->second;
     ur_vec3 r_uu = ur_vec3_add_scaled(second[0], ur_vec3_sub(second[1], second[0]), v);
     double area_squared = n_length * n_length; /* E G - F^2 */
     double F = ur_vec3_dot(r_u, ruling), G = ruling_length * ruling_length;
@@ -133,9 +149,15 @@ void ur_analyze_point(ur_ruled *ruled, double u, double v, ur_point_curvature *c
     double M = -det / n_length; /* r_uv . N = det(b' - a', r_u, r_v) / |n| */
     curvature->gaussian = -(M * M) / area_squared;
     curvature->mean = (G * L - 2 * F * M) / (2 * area_squared);
-    double u_range = ur_ruled_end(ruled) - ur_ruled_start(ruled);
-    double size = fmax(ruling_length, ur_vec3_length(r_u) * u_range);
+    double size = fmax(ruling_length, ur_vec3_length(r_u) * frame->u_range);
     curvature->bend_radius = bend_radius(curvature->gaussian, curvature->mean, size);
+}
+
+void ur_analyze_point(ur_ruled *ruled, double u, double v, ur_point_curvature *curvature)
+{
+    ruling_frame frame;
+    ruling_frame_at(ruled, u, &frame);
+    point_curvature(&frame, v, curvature);
 }
 
 /* ---- The analysis ------------------------------------------------------- */
@@ -268,10 +290,12 @@ static void sample_ruling(ur_ruled *ruled, ur_analysis *analysis, extremes *seen
     ruling->bend_radius = INFINITY;
     ruling->bend_v = 0.0;
     integrals[0] = integrals[1] = 0.0;
+    ruling_frame frame;
+    ruling_frame_at(ruled, ruling->u, &frame);
     for (size_t j = 0; j < across; j++) {
         double v = (double)j / (double)(across - 1);
         ur_point_curvature point;
-        ur_analyze_point(ruled, ruling->u, v, &point);
+        point_curvature(&frame, v, &point);
         note_point(analysis, seen, &point);
         if (point.bend_radius < ruling->bend_radius) {
             ruling->bend_radius = point.bend_radius;

@@ -12,6 +12,11 @@
  * by a factor 2 - sqrt(3) = 0.27 per knot, so three ghosts still left 2% of
  * it in the curvature at the real end (and a visible error in where a strip's
  * domain of existence ends); twelve leave about 1e-7.
+ *
+ * GSL solves for the splines; evaluating them is what the surfaces spend
+ * most of their time on, so each interval's cubic is then kept for all three
+ * coordinates together, and one search for the interval and one Horner
+ * scheme give position and both derivatives at once.
  */
 #include "unroll/surface.h"
 
@@ -34,8 +39,10 @@ struct ur_curve {
     size_t point_count; /* the caller's points */
     size_t first_point; /* index of the caller's first point among the knots */
     double *knots;      /* parameters of every interpolated point, ghosts included */
-    gsl_spline *splines[3];
-    gsl_interp_accel *accels[3];
+    size_t knot_count;
+    /* per interval between knots and coordinate: the cubic's a, b, c, d in powers of u - knot */
+    double (*cubics)[3][4];
+    size_t hint; /* the interval of the last evaluation: evaluations come in sequence */
 };
 
 static ur_curve *curve_alloc(ur_error *error)
@@ -126,6 +133,38 @@ static void spline_data(const ur_vec3 *points, size_t count, bool closed, double
     }
 }
 
+/*
+ * GSL's spline of one coordinate through (knots, values), kept as the cubic
+ * of each interval: its values and second derivatives at the two ends
+ * determine it, with the same coefficients GSL evaluates.
+ */
+static ur_status keep_cubics(ur_curve *curve, const double *values, int axis, ur_error *error)
+{
+    const double *knots = curve->knots;
+    size_t n = curve->knot_count;
+    gsl_spline *spline =
+        gsl_spline_alloc(curve->closed ? gsl_interp_cspline_periodic : gsl_interp_cspline, n);
+    gsl_interp_accel *accel = gsl_interp_accel_alloc();
+    bool built = spline && accel && gsl_spline_init(spline, knots, values, n) == GSL_SUCCESS;
+    double second = built ? gsl_spline_eval_deriv2(spline, knots[0], accel) : 0.0;
+    for (size_t i = 0; built && i + 1 < n; i++) {
+        double h = knots[i + 1] - knots[i];
+        double next = gsl_spline_eval_deriv2(spline, knots[i + 1], accel);
+        double *cubic = curve->cubics[i][axis];
+        cubic[0] = values[i];
+        cubic[1] = (values[i + 1] - values[i]) / h - h * (2 * second + next) / 6;
+        cubic[2] = second / 2;
+        cubic[3] = (next - second) / (6 * h);
+        second = next;
+    }
+    if (spline)
+        gsl_spline_free(spline);
+    if (accel)
+        gsl_interp_accel_free(accel);
+    return built ? UR_OK
+                 : ur_error_set(error, UR_ERROR_INTERNAL, "cannot build the curve's spline");
+}
+
 ur_status ur_curve_new_interpolating(const ur_vec3 *points, size_t count, bool closed,
                                      ur_curve **curve_out, ur_error *error)
 {
@@ -149,16 +188,14 @@ ur_status ur_curve_new_interpolating(const ur_vec3 *points, size_t count, bool c
         goto done;
     }
     spline_data(points, count, closed, curve->knots, values);
-    const gsl_interp_type *type = closed ? gsl_interp_cspline_periodic : gsl_interp_cspline;
-    for (int axis = 0; axis < 3; axis++) {
-        curve->splines[axis] = gsl_spline_alloc(type, knot_count);
-        curve->accels[axis] = gsl_interp_accel_alloc();
-        if (!curve->splines[axis] || !curve->accels[axis] ||
-            gsl_spline_init(curve->splines[axis], curve->knots, values[axis], knot_count)) {
-            status = ur_error_set(error, UR_ERROR_INTERNAL, "cannot build the curve's spline");
-            goto done;
-        }
+    curve->knot_count = knot_count;
+    curve->cubics = ur_alloc_array(knot_count - 1, sizeof *curve->cubics, error);
+    if (!curve->cubics) {
+        status = UR_ERROR_INTERNAL;
+        goto done;
     }
+    for (int axis = 0; axis < 3 && status == UR_OK; axis++)
+        status = keep_cubics(curve, values[axis], axis, error);
     curve->u_start = curve->knots[curve->first_point];
     curve->u_end = closed ? curve->knots[count] : curve->knots[curve->first_point + count - 1];
 done:
@@ -176,13 +213,8 @@ void ur_curve_free(ur_curve *curve)
 {
     if (!curve)
         return;
-    for (int axis = 0; axis < 3; axis++) {
-        if (curve->splines[axis])
-            gsl_spline_free(curve->splines[axis]);
-        if (curve->accels[axis])
-            gsl_interp_accel_free(curve->accels[axis]);
-    }
     free(curve->knots);
+    free(curve->cubics);
     free(curve);
 }
 
@@ -194,21 +226,41 @@ static void helix_eval(const ur_curve *curve, double t, ur_vec3 d[3])
     d[2] = ur_vec3_make(-r * c, -r * s, 0.0);
 }
 
+/* The interval [knots[i], knots[i + 1]] that holds u (the first or last one beyond the ends). */
+static size_t knot_interval(ur_curve *curve, double u)
+{
+    const double *knots = curve->knots;
+    size_t low = curve->hint;
+    if (knots[low] <= u && u < knots[low + 1])
+        return low;
+    size_t high = curve->knot_count - 1;
+    low = 0;
+    while (high - low > 1) {
+        size_t middle = low + (high - low) / 2;
+        if (knots[middle] > u)
+            high = middle;
+        else
+            low = middle;
+    }
+    curve->hint = low;
+    return low;
+}
+
 static void spline_eval(ur_curve *curve, double u, ur_vec3 d[3])
 {
-    double out[3][3];
     if (curve->closed) {
         double period = curve->u_end - curve->u_start;
         u = curve->u_start + fmod(fmod(u - curve->u_start, period) + period, period);
     } else {
         u = fmin(fmax(u, curve->u_start), curve->u_end);
     }
+    size_t i = knot_interval(curve, u);
+    double t = u - curve->knots[i], out[3][3];
     for (int axis = 0; axis < 3; axis++) {
-        gsl_spline *spline = curve->splines[axis];
-        gsl_interp_accel *accel = curve->accels[axis];
-        out[0][axis] = gsl_spline_eval(spline, u, accel);
-        out[1][axis] = gsl_spline_eval_deriv(spline, u, accel);
-        out[2][axis] = gsl_spline_eval_deriv2(spline, u, accel);
+        const double *c = curve->cubics[i][axis];
+        out[0][axis] = c[0] + t * (c[1] + t * (c[2] + t * c[3]));
+        out[1][axis] = c[1] + t * (2 * c[2] + 3 * t * c[3]);
+        out[2][axis] = 2 * c[2] + 6 * t * c[3];
     }
     for (int k = 0; k < 3; k++)
         d[k] = ur_vec3_make(out[k][0], out[k][1], out[k][2]);

@@ -462,48 +462,159 @@ bool ur_ruled_regression(ur_ruled *ruled, double u, ur_vec3 *point, double *v)
 
 /* ---- Quadrature over the smooth pieces of the surface ------------------- */
 
-enum { QUADRATURE_LIMIT = 2000 };
+enum { QUADRATURE_LIMIT = 2000, BREAK_STEPS = 60 };
+
+/*
+ * The first knot of a curve after s, of whichever turn of a closed curve s
+ * is in; INFINITY when there is none (an analytic curve has no knots).
+ */
+static double knot_after(const ur_curve *curve, double s)
+{
+    size_t n = ur_curve_point_count(curve);
+    if (n == 0)
+        return INFINITY;
+    double shift = 0.0, start = ur_curve_start(curve), end = ur_curve_end(curve);
+    if (ur_curve_is_closed(curve) && !(s >= start && s < end)) {
+        shift = (end - start) * floor((s - start) / (end - start));
+        s -= shift;
+    }
+    size_t low = 0, high = n; /* the first knot above s is in [low, high] */
+    while (low < high) {
+        size_t middle = low + (high - low) / 2;
+        if (ur_curve_point_parameter(curve, middle) > s)
+            high = middle;
+        else
+            low = middle + 1;
+    }
+    if (low < n)
+        return ur_curve_point_parameter(curve, low) + shift;
+    return ur_curve_is_closed(curve) ? end + shift : INFINITY;
+}
+
+/*
+ * The u in (low, high) where the pairing reaches sigma = target, given that
+ * it runs from below target at low to above it at high: Newton's method on
+ * the pairing and its slope, kept inside the bracket by bisection.
+ */
+static double pairing_reaches(ur_ruled *ruled, double target, double low, double high)
+{
+    double u = 0.5 * (low + high), tolerance = 1e-9 * (high - low);
+    for (int k = 0; k < BREAK_STEPS; k++) {
+        double sigma, slope;
+        ur_ruled_pairing(ruled, u, &sigma, &slope);
+        if (sigma < target)
+            low = u;
+        else
+            high = u;
+        double next = u - (sigma - target) / slope;
+        if (!(next > low && next < high))
+            next = 0.5 * (low + high);
+        if (fabs(next - u) <= tolerance)
+            return next;
+        u = next;
+    }
+    return u;
+}
+
+/*
+ * The developable kinds are smooth between the break points below, and
+ * |r_u x r_v| is linear in v along each of their rulings, so 15-point rules
+ * meet the tolerances on each piece at once.  A general surface's pairing (a
+ * Steffen interpolant) has kinks at each of its own samples besides, and its
+ * |r_u x r_v| curves along a ruling: it keeps 41 and 21 points.
+ */
+static int quadrature_rule(const ur_ruled *ruled, bool along_ruling)
+{
+    if (ruled->kind != UR_RULED_GENERAL)
+        return GSL_INTEG_GAUSS15;
+    return along_ruling ? GSL_INTEG_GAUSS21 : GSL_INTEG_GAUSS41;
+}
+
+typedef struct quadrature {
+    ur_ruled *ruled;
+    gsl_function *f;
+    bool through_rail2; /* f uses rail 2 of a two-rail surface */
+    double relative;
+    int rule;
+    gsl_integration_workspace *workspace;
+    double total;
+    int failure;
+} quadrature;
+
+static void integrate_piece(quadrature *q, double from, double to)
+{
+    double value, estimate;
+    int code = gsl_integration_qag(q->f, from, to, 0.0, q->relative, QUADRATURE_LIMIT, q->rule,
+                                   q->workspace, &value, &estimate);
+    /*
+     * GSL gives up (roundoff) long before an error that matters here:
+     * areas and lengths are reported to about 1e-7.
+     */
+    if (code && !(estimate <= 1e-7 * fabs(value) + 1e-12))
+        q->failure = code;
+    q->total += value;
+}
+
+/*
+ * [from, to] lies between two knots of rail 1; through the pairing, rail 2's
+ * knots put kinks in it too, where sigma reaches them.  sigma is the pairing
+ * at from on entry and at to on return.
+ */
+static void integrate_between_knots(quadrature *q, double from, double to, double *sigma)
+{
+    if (!q->through_rail2) {
+        integrate_piece(q, from, to);
+        return;
+    }
+    double sigma_to, slope;
+    ur_ruled_pairing(q->ruled, to, &sigma_to, &slope);
+    for (double knot = knot_after(q->ruled->rail2, *sigma); knot < sigma_to && !q->failure;) {
+        double at = pairing_reaches(q->ruled, knot, from, to);
+        integrate_piece(q, from, at);
+        from = at;
+        double next = knot_after(q->ruled->rail2, knot);
+        if (!(next > knot))
+            break; /* rounding at a turn of a closed rail 2: leave the rest whole */
+        knot = next;
+    }
+    integrate_piece(q, from, to);
+    *sigma = sigma_to;
+}
 
 /*
  * An interpolated curve's third derivative jumps at its points, so anything
- * built on its curvature has kinks there.  Integrating knot to knot keeps
- * every piece smooth, and Gauss-Kronrod converges fast on each.
+ * built on its curvature has kinks there, and Gauss-Kronrod, which converges
+ * fast on a smooth piece, has to subdivide again and again around a kink.
+ * So the integral runs from kink to kink: the knots of rail 1 and, when the
+ * integrand goes through the pairing, where it reaches the knots of rail 2.
  */
-static ur_status integrate_pieces(ur_curve *curve, gsl_function *f, double u_start, double u_end,
-                                  double relative, double *result, ur_error *error)
+static ur_status integrate_pieces(ur_ruled *ruled, gsl_function *f, bool through_rail2,
+                                  double u_start, double u_end, double relative, double *result,
+                                  ur_error *error)
 {
-    gsl_integration_workspace *workspace = gsl_integration_workspace_alloc(QUADRATURE_LIMIT);
-    if (!workspace)
+    quadrature q = {.ruled = ruled,
+                    .f = f,
+                    .through_rail2 = through_rail2 && two_rails(ruled),
+                    .relative = relative,
+                    .rule = quadrature_rule(ruled, false)};
+    q.workspace = gsl_integration_workspace_alloc(QUADRATURE_LIMIT);
+    if (!q.workspace)
         return ur_error_out_of_memory(error);
-    size_t points = ur_curve_point_count(curve);
-    double from = u_start, total = 0.0, total_estimate = 0.0;
-    int failure = 0;
-    for (size_t i = 0; i <= points && !failure; i++) {
-        double to = i < points ? ur_curve_point_parameter(curve, i) : u_end;
-        if (to <= from)
-            continue;
-        to = fmin(to, u_end);
-        double value, estimate;
-        int code = gsl_integration_qag(f, from, to, 0.0, relative, QUADRATURE_LIMIT,
-                                       GSL_INTEG_GAUSS41, workspace, &value, &estimate);
-        /*
-         * GSL gives up (roundoff) long before an error that matters here:
-         * areas and lengths are reported to about 1e-7.
-         */
-        if (code && !(estimate <= 1e-7 * fabs(value) + 1e-12))
-            failure = code;
-        total += value;
-        total_estimate += estimate;
+    double sigma = 0.0, slope;
+    if (q.through_rail2)
+        ur_ruled_pairing(ruled, u_start, &sigma, &slope);
+    for (double from = u_start; from < u_end && !q.failure;) {
+        double to = knot_after(ruled->curve, from);
+        if (!(to > from) || to > u_end)
+            to = u_end;
+        integrate_between_knots(&q, from, to, &sigma);
         from = to;
-        if (from >= u_end)
-            break;
     }
-    gsl_integration_workspace_free(workspace);
-    *result = total;
-    if (failure)
+    gsl_integration_workspace_free(q.workspace);
+    *result = q.total;
+    if (q.failure)
         return ur_error_set(error, UR_ERROR_INTERNAL, "quadrature did not converge: %s",
-                            gsl_strerror(failure));
-    (void)total_estimate;
+                            gsl_strerror(q.failure));
     return UR_OK;
 }
 
@@ -533,8 +644,9 @@ static double ruling_integral(double u, void *data)
     context->slope = ur_vec3_cross(ur_vec3_sub(rails[3], rails[1]), r_v);
     gsl_function f = {cross_norm_at_v, context};
     double value, estimate;
-    int code = gsl_integration_qag(&f, 0.0, 1.0, 0.0, 1e-13, QUADRATURE_LIMIT, GSL_INTEG_GAUSS21,
-                                   context->inner, &value, &estimate);
+    int code = gsl_integration_qag(&f, 0.0, 1.0, 0.0, 1e-13, QUADRATURE_LIMIT,
+                                   quadrature_rule(context->ruled, true), context->inner, &value,
+                                   &estimate);
     if (code && !(estimate <= 1e-10 * fabs(value)))
         context->failure = code;
     return value;
@@ -548,7 +660,7 @@ ur_status ur_ruled_area(ur_ruled *ruled, double u_start, double u_end, double *a
     if (!context.inner)
         return ur_error_out_of_memory(error);
     gsl_function f = {ruling_integral, &context};
-    ur_status status = integrate_pieces(ruled->curve, &f, u_start, u_end, 1e-11, area, error);
+    ur_status status = integrate_pieces(ruled, &f, true, u_start, u_end, 1e-11, area, error);
     gsl_integration_workspace_free(context.inner);
     if (status == UR_OK && context.failure)
         status = ur_error_set(error, UR_ERROR_INTERNAL, "surface area did not converge: %s",
@@ -565,6 +677,10 @@ static double rail_speed(double u, void *data)
 {
     const rail_context *context = data;
     ur_vec3 rails[4];
+    if (context->rail == 0 && two_rails(context->ruled)) {
+        ur_curve_eval(context->ruled->curve, u, rails); /* rail a is rail 1: no pairing needed */
+        return ur_vec3_length(rails[1]);
+    }
     ur_ruled_rails(context->ruled, u, rails);
     return ur_vec3_length(rails[context->rail == 0 ? 1 : 3]);
 }
@@ -574,5 +690,5 @@ ur_status ur_ruled_rail_length(ur_ruled *ruled, int rail, double u_start, double
 {
     rail_context context = {ruled, rail};
     gsl_function f = {rail_speed, &context};
-    return integrate_pieces(ruled->curve, &f, u_start, u_end, 1e-12, length, error);
+    return integrate_pieces(ruled, &f, rail == 1, u_start, u_end, 1e-12, length, error);
 }
