@@ -16,10 +16,24 @@
 #include "unroll/develop.h"
 #include "unroll/out.h"
 
-/* Where the findings go: standard output, unless a report takes it. */
+static bool to_stdout(const char *path)
+{
+    return path && strcmp(path, "-") == 0;
+}
+
+/* Where the findings go: standard output, unless a file written there takes it. */
 static FILE *findings(const cli_job *job)
 {
-    return job->report_path && strcmp(job->report_path, "-") == 0 ? stderr : stdout;
+    bool taken = to_stdout(job->report_path) || to_stdout(job->png_path) ||
+                 to_stdout(job->csv_path) || to_stdout(job->regression_path) ||
+                 to_stdout(job->adjusted_rail_path);
+    return taken ? stderr : stdout;
+}
+
+/* -0 prints as 0: a developable's K is zero, not negative. */
+static double shown(double value)
+{
+    return value == 0 ? 0.0 : value;
 }
 
 static bool outputs_possible(const cli_job *job)
@@ -96,11 +110,11 @@ static void print_analysis(const cli_job *job, ur_ruled *ruled, const ur_analysi
                 "the ruling at %.6g mm along rail 1\n",
                 job->surface, analysis->max_residual * 180 / M_PI, worst->arc);
     fprintf(out, "  area %.6g mm2\n", analysis->area_3d);
-    fprintf(out, "  Gaussian curvature K (1/mm2): min %.4g at ", analysis->gaussian_min);
+    fprintf(out, "  Gaussian curvature K (1/mm2): min %.4g at ", shown(analysis->gaussian_min));
     print_point(out, analysis->gaussian_min_at);
-    fprintf(out, ", max %.4g at ", analysis->gaussian_max);
+    fprintf(out, ", max %.4g at ", shown(analysis->gaussian_max));
     print_point(out, analysis->gaussian_max_at);
-    fprintf(out, ", mean %.4g\n", analysis->gaussian_mean);
+    fprintf(out, ", mean %.4g\n", shown(analysis->gaussian_mean));
     if (isfinite(analysis->min_bend_radius)) {
         fprintf(out, "  smallest bend radius %.4g mm at ", analysis->min_bend_radius);
         print_point(out, analysis->min_bend_at);

@@ -54,10 +54,14 @@ int cli_check_domain(const cli_job *job, ur_ruled *ruled)
     if (job->quiet)
         return 0;
     size_t parts = ur_ruled_domain(ruled, NULL, 0);
-    cli_message("%s: the strip's domain of existence leaves out %zu part%s of rail 1; the %zu "
-                "part%s that exist%s developed separately:",
-                job->command, count, count == 1 ? "" : "s", parts, parts == 1 ? "" : "s",
-                parts == 1 ? " is" : " are");
+    if (parts == 1)
+        cli_message("%s: the strip's domain of existence leaves out %zu part%s of rail 1; the "
+                    "rest is developed:",
+                    job->command, count, count == 1 ? "" : "s");
+    else
+        cli_message("%s: the strip's domain of existence leaves out %zu part%s of rail 1; the "
+                    "%zu parts that exist are developed separately:",
+                    job->command, count, count == 1 ? "" : "s", parts);
     for (size_t k = 0; k < count; k++) {
         char place[512];
         describe_gap(&gaps[k], place, sizeof place);

@@ -27,6 +27,7 @@
 #include <string.h>
 
 #include "atomic.h"
+#include "png.h"
 
 /* The layout, in pixels. */
 enum {
@@ -662,31 +663,6 @@ static ur_status render(cairo_t *cr, const map *m, ur_ruled *ruled, const ur_ana
     return UR_OK;
 }
 
-static cairo_status_t write_to_stream(void *closure, const unsigned char *data, unsigned int length)
-{
-    return fwrite(data, 1, length, closure) == length ? CAIRO_STATUS_SUCCESS
-                                                      : CAIRO_STATUS_WRITE_ERROR;
-}
-
-static ur_status write_png(const char *path, cairo_surface_t *surface, ur_error *error)
-{
-    ur_atomic_file file;
-    ur_status status = ur_atomic_open(&file, path, error);
-    if (status != UR_OK)
-        return status;
-    cairo_status_t written =
-        cairo_surface_write_to_png_stream(surface, write_to_stream, file.stream);
-    if (written != CAIRO_STATUS_SUCCESS)
-        status = ur_error_set(error, UR_ERROR_INPUT, "cannot write '%s': %s", path,
-                              cairo_status_to_string(written));
-    if (status == UR_OK)
-        status = ur_atomic_close(&file, error);
-    if (status == UR_OK)
-        status = ur_atomic_commit(&file, error);
-    ur_atomic_discard(&file); /* after a commit there is nothing left to remove */
-    return status;
-}
-
 ur_status ur_analysis_png_write(const char *path, ur_ruled *ruled, const ur_analysis *analysis,
                                 const char *title, ur_error *error)
 {
@@ -709,7 +685,7 @@ ur_status ur_analysis_png_write(const char *path, ur_ruled *ruled, const ur_anal
                               cairo_status_to_string(cairo_status(cr)));
     cairo_destroy(cr);
     if (status == UR_OK)
-        status = write_png(path, surface, error);
+        status = ur_atomic_write(path, png_emit, surface, "picture", error);
     cairo_surface_destroy(surface);
     return status;
 }

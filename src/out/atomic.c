@@ -197,3 +197,29 @@ void ur_atomic_discard(ur_atomic_file *file)
     free(file->path);
     memset(file, 0, sizeof *file);
 }
+
+ur_status ur_atomic_write(const char *path, ur_emitter emit, const void *data, const char *what,
+                          ur_error *error)
+{
+    if (strcmp(path, "-") == 0) {
+        errno = 0;
+        if (!emit(stdout, data) || fflush(stdout) != 0)
+            return ur_error_set(error, UR_ERROR_INPUT, "cannot write the %s to standard output: %s",
+                                what, errno ? strerror(errno) : "write error");
+        return UR_OK;
+    }
+    ur_atomic_file file;
+    ur_status status = ur_atomic_open(&file, path, error);
+    if (status != UR_OK)
+        return status;
+    errno = 0;
+    if (!emit(file.stream, data))
+        status = ur_error_set(error, UR_ERROR_INPUT, "cannot write '%s': %s", path,
+                              errno ? strerror(errno) : "write error");
+    if (status == UR_OK)
+        status = ur_atomic_close(&file, error);
+    if (status == UR_OK)
+        status = ur_atomic_commit(&file, error);
+    ur_atomic_discard(&file); /* after a commit there is nothing left to remove */
+    return status;
+}

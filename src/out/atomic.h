@@ -17,6 +17,7 @@
 #ifndef UNROLL_OUT_ATOMIC_H
 #define UNROLL_OUT_ATOMIC_H
 
+#include <stdbool.h>
 #include <stdio.h>
 
 #include "unroll/base.h"
@@ -42,5 +43,16 @@ ur_status ur_atomic_commit(ur_atomic_file *file, ur_error *error);
 
 /* Closes and removes whatever is not committed and frees everything. */
 void ur_atomic_discard(ur_atomic_file *file);
+
+/* Writes a whole document to stream; false on a write error (errno may say why). */
+typedef bool (*ur_emitter)(FILE *stream, const void *data);
+
+/*
+ * Writes what emit produces to path: to standard output for "-", else
+ * atomically (nothing left behind on failure, an existing file untouched).
+ * what names the document in messages ("plot", "report").
+ */
+ur_status ur_atomic_write(const char *path, ur_emitter emit, const void *data, const char *what,
+                          ur_error *error);
 
 #endif

@@ -4,8 +4,6 @@
  */
 #include "json.h"
 
-#include <errno.h>
-#include <string.h>
 
 #include "atomic.h"
 
@@ -14,6 +12,8 @@
 
 json_t *ur_json_number(double value)
 {
+    if (value == 0)
+        value = 0.0; /* -0 is zero: a developable's curvature is not negative */
     return isfinite(value) ? json_real(value) : json_null();
 }
 
@@ -27,11 +27,11 @@ json_t *ur_json_intervals(const ur_interval *intervals, size_t count)
     json_t *array = json_array();
     for (size_t k = 0; array && k < count; k++) {
         const ur_interval *gap = &intervals[k];
-        json_t *item = json_pack(
-            "{s:f, s:f, s:f, s:f, s:o, s:o, s:s}", "u_start", gap->u_start, "u_end", gap->u_end,
-            "arc_start_mm", gap->arc_start, "arc_end_mm", gap->arc_end, "start",
-            ur_json_point(gap->start), "end", ur_json_point(gap->end), "reason",
-            gap->reason == UR_GAP_NO_RULING ? "no ruling" : "rulings cross");
+        json_t *item =
+            json_pack("{s:f, s:f, s:f, s:f, s:o, s:o, s:s}", "u_start", gap->u_start, "u_end",
+                      gap->u_end, "arc_start_mm", gap->arc_start, "arc_end_mm", gap->arc_end,
+                      "start", ur_json_point(gap->start), "end", ur_json_point(gap->end), "reason",
+                      gap->reason == UR_GAP_NO_RULING ? "no ruling" : "rulings cross");
         if (!item || json_array_append_new(array, item) != 0) {
             json_decref(array);
             return NULL;
@@ -40,35 +40,12 @@ json_t *ur_json_intervals(const ur_interval *intervals, size_t count)
     return array;
 }
 
-static ur_status write_stdout(json_t *root, ur_error *error)
+static bool emit_json(FILE *stream, const void *root)
 {
-    errno = 0;
-    if (json_dumpf(root, stdout, JSON_FLAGS) != 0 || fputc('\n', stdout) == EOF ||
-        fflush(stdout) != 0)
-        return ur_error_set(error, UR_ERROR_INPUT, "cannot write to standard output: %s",
-                            errno ? strerror(errno) : "write error");
-    return UR_OK;
-}
-
-static ur_status write_file(const char *path, json_t *root, ur_error *error)
-{
-    ur_atomic_file file;
-    ur_status status = ur_atomic_open(&file, path, error);
-    if (status != UR_OK)
-        return status;
-    errno = 0;
-    if (json_dumpf(root, file.stream, JSON_FLAGS) != 0 || fputc('\n', file.stream) == EOF)
-        status = ur_error_set(error, UR_ERROR_INPUT, "cannot write '%s': %s", path,
-                              errno ? strerror(errno) : "write error");
-    if (status == UR_OK)
-        status = ur_atomic_close(&file, error);
-    if (status == UR_OK)
-        status = ur_atomic_commit(&file, error);
-    ur_atomic_discard(&file); /* after a commit there is nothing left to remove */
-    return status;
+    return json_dumpf(root, stream, JSON_FLAGS) == 0 && fputc('\n', stream) != EOF;
 }
 
 ur_status ur_json_write(const char *path, json_t *root, ur_error *error)
 {
-    return strcmp(path, "-") == 0 ? write_stdout(root, error) : write_file(path, root, error);
+    return ur_atomic_write(path, emit_json, root, "report", error);
 }

@@ -12,9 +12,9 @@
 #include "unroll/out.h"
 
 #include "atomic.h"
+#include "png.h"
 
 #include <cairo.h>
-#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -318,12 +318,6 @@ static void draw(cairo_t *cr, const ur_compare_table *table, const char *title)
 
 /* ---- Writing ------------------------------------------------------------ */
 
-static cairo_status_t write_bytes(void *closure, const unsigned char *data, unsigned int length)
-{
-    return fwrite(data, 1, length, closure) == length ? CAIRO_STATUS_SUCCESS
-                                                      : CAIRO_STATUS_WRITE_ERROR;
-}
-
 /* A table with rows of increasing n, as ur_compare makes them. */
 static ur_status check_table(const ur_compare_table *table, ur_error *error)
 {
@@ -334,47 +328,6 @@ static ur_status check_table(const ur_compare_table *table, ur_error *error)
             return ur_error_set(error, UR_ERROR_INTERNAL,
                                 "the comparison's rows are not in increasing n");
     return UR_OK;
-}
-
-/* What an emitter writes: the drawn plot or the table. */
-typedef struct payload {
-    cairo_surface_t *surface;
-    const ur_compare_table *table;
-} payload;
-
-typedef bool (*emitter)(FILE *stream, const payload *data);
-
-/* Writes the whole of data with emit: to stdout for "-", else atomically. */
-static ur_status emit_to(const char *path, emitter emit, const payload *data, const char *what,
-                         ur_error *error)
-{
-    if (strcmp(path, "-") == 0) {
-        errno = 0;
-        if (!emit(stdout, data) || fflush(stdout) != 0)
-            return ur_error_set(error, UR_ERROR_INPUT, "cannot write the %s to standard output: %s",
-                                what, errno ? strerror(errno) : "write error");
-        return UR_OK;
-    }
-    ur_atomic_file file;
-    ur_status status = ur_atomic_open(&file, path, error);
-    if (status != UR_OK)
-        return status;
-    errno = 0;
-    if (!emit(file.stream, data))
-        status = ur_error_set(error, UR_ERROR_INPUT, "cannot write '%s': %s", path,
-                              errno ? strerror(errno) : "write error");
-    if (status == UR_OK)
-        status = ur_atomic_close(&file, error);
-    if (status == UR_OK)
-        status = ur_atomic_commit(&file, error);
-    ur_atomic_discard(&file); /* after a commit there is nothing left to remove */
-    return status;
-}
-
-static bool emit_png(FILE *stream, const payload *data)
-{
-    return cairo_surface_write_to_png_stream(data->surface, write_bytes, stream) ==
-           CAIRO_STATUS_SUCCESS;
 }
 
 ur_status ur_compare_plot_png(const char *path, const ur_compare_table *table, const char *title,
@@ -396,7 +349,7 @@ ur_status ur_compare_plot_png(const char *path, const ur_compare_table *table, c
         status = ur_error_set(error, UR_ERROR_INTERNAL, "cannot draw the plot: %s",
                               cairo_status_to_string(drawn));
     else
-        status = emit_to(path, emit_png, &(payload){surface, table}, "plot", error);
+        status = ur_atomic_write(path, png_emit, surface, "plot", error);
     cairo_surface_destroy(surface);
     return status;
 }
@@ -422,9 +375,9 @@ static bool emit_row(FILE *stream, const ur_compare_row *row)
     return ok;
 }
 
-static bool emit_csv(FILE *stream, const payload *data)
+static bool emit_csv(FILE *stream, const void *data)
 {
-    const ur_compare_table *table = data->table;
+    const ur_compare_table *table = data;
     bool ok = fputs("n,triangle_area_error,quad_area_error,exact_area_error,"
                     "triangle_edge_error,quad_edge_error,exact_edge_error,"
                     "triangle_distance,quad_distance\n",
@@ -441,5 +394,5 @@ ur_status ur_compare_csv_write(const char *path, const ur_compare_table *table, 
     ur_status status = check_table(table, error);
     if (status != UR_OK)
         return status;
-    return emit_to(path, emit_csv, &(payload){NULL, table}, "comparison", error);
+    return ur_atomic_write(path, emit_csv, table, "comparison", error);
 }

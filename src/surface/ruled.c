@@ -124,7 +124,7 @@ void ur_ruled_restrict(ur_ruled *ruled, double u_start, double u_end)
 void ur_ruled_pairing(ur_ruled *ruled, double u, double *sigma, double *slope)
 {
     if (two_rails(ruled)) {
-        pairing_eval(ruled->pairing, u, sigma, slope);
+        pairing_eval(ruled->pairing, u, ur_ruled_start(ruled), ur_ruled_end(ruled), sigma, slope);
     } else {
         *sigma = u;
         *slope = 1.0;
@@ -203,7 +203,7 @@ void ur_ruled_rails(ur_ruled *ruled, double u, ur_vec3 rails[4])
     case UR_RULED_GENERAL: {
         double sigma, slope;
         ur_vec3 d2[3];
-        pairing_eval(ruled->pairing, u, &sigma, &slope);
+        pairing_eval(ruled->pairing, u, ur_ruled_start(ruled), ur_ruled_end(ruled), &sigma, &slope);
         pairing_rail2(ruled->pairing, sigma, d2);
         rails[0] = d[0];
         rails[1] = d[1];

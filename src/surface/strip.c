@@ -29,10 +29,10 @@
 #include <string.h>
 
 enum {
-    MIN_SAMPLES = 2048,   /* rail 1 samples of the root table */
-    MIN_SCAN = 2048,      /* rail 2 samples of a full scan */
-    RESCAN_EVERY = 32,    /* inside a gap, scan all of rail 2 only this often */
-    BISECTIONS = 48,      /* refinement of gap ends */
+    MIN_SAMPLES = 2048, /* rail 1 samples of the root table */
+    MIN_SCAN = 2048,    /* rail 2 samples of a full scan */
+    RESCAN_EVERY = 32,  /* inside a gap, scan all of rail 2 only this often */
+    BISECTIONS = 48,    /* refinement of gap ends */
     NEWTON_STEPS = 8,
 };
 
@@ -44,7 +44,7 @@ enum {
 #define ROUNDING 1e-5
 
 struct ur_pairing {
-    bool solved; /* developable strip: sigma is a root of F */
+    bool solved;             /* developable strip: sigma is a root of F */
     ur_curve *rail1, *rail2; /* borrowed from the surface */
     double s0, s1;           /* rail 2's parameter range */
     bool wrap;               /* rail 2 closed: sigma runs on past s1 */
@@ -174,8 +174,8 @@ static double brent(ur_pairing *pairing, const ur_vec3 c1[3], double low, double
  * sign change inside the rail: extrapolate the condition linearly past the
  * end to see whether it vanishes there.
  */
-static bool root_at_rail_end(ur_pairing *pairing, const ur_vec3 c1[3], double guess,
-                             double window, double *root)
+static bool root_at_rail_end(ur_pairing *pairing, const ur_vec3 c1[3], double guess, double window,
+                             double *root)
 {
     if (pairing->wrap)
         return false;
@@ -284,8 +284,8 @@ static bool scan_root(ur_pairing *pairing, double u, const ur_vec3 c1[3], bool h
             if (pairing->wrap && have_previous) /* unwrap to the turn nearest the prediction */
                 candidate += (pairing->s1 - pairing->s0) *
                              round((predicted - candidate) / (pairing->s1 - pairing->s0));
-            double score = have_previous ? fabs(candidate - predicted)
-                                         : ruling_length(pairing, c1, candidate);
+            double score =
+                have_previous ? fabs(candidate - predicted) : ruling_length(pairing, c1, candidate);
             if (score < best && (have_previous || !candidate_crosses(pairing, u, c1, candidate))) {
                 best = score;
                 *root = candidate;
@@ -430,7 +430,8 @@ static bool rulings_cross(ur_pairing *pairing, double u, double sigma, double sl
     if (!(size > 0))
         return false;
     /* Components across the ruling, in the tangent plane, of a' and b'. */
-    ur_vec3 across = ur_vec3_scale(ur_vec3_cross(normal, ruling), 1.0 / (size * ur_vec3_length(ruling)));
+    ur_vec3 across =
+        ur_vec3_scale(ur_vec3_cross(normal, ruling), 1.0 / (size * ur_vec3_length(ruling)));
     double along_a = ur_vec3_dot(c1[1], across), along_b = ur_vec3_dot(b_prime, across);
     double margin = 1e-9 * (fabs(along_a) + fabs(along_b));
     return along_a * along_b < 0 && fabs(along_a) > margin && fabs(along_b) > margin;
@@ -584,21 +585,34 @@ static double hermite_guess(const ur_pairing *pairing, size_t i, double u)
            h11 * h * pairing->slope[i + 1];
 }
 
-/* The nearest sample with a root: the start for u in a gap or at a jump. */
-static size_t nearest_root_sample(const ur_pairing *pairing, size_t i, double u)
+/*
+ * The nearest sample with a root, the start for u in a gap or at a jump of
+ * the pairing; preferably one inside [low, high], the part of the surface in
+ * use, so that a piece that starts at a jump takes the branch it is on.
+ */
+static size_t nearest_root_sample(const ur_pairing *pairing, size_t i, double u, double low,
+                                  double high)
 {
-    size_t best = SIZE_MAX;
-    double distance = INFINITY;
-    for (size_t k = 0; k < pairing->count; k++)
-        if (pairing->state[k] != SAMPLE_NO_ROOT && fabs(pairing->u[k] - u) < distance) {
-            distance = fabs(pairing->u[k] - u);
-            best = k;
+    size_t fallback = SIZE_MAX;
+    bool right_first = pairing->u[i + 1] - u < u - pairing->u[i];
+    for (size_t step = 0; step < pairing->count; step++) {
+        size_t right = i + 1 + step, left = i >= step ? i - step : SIZE_MAX;
+        size_t candidates[2] = {right_first ? right : left, right_first ? left : right};
+        for (int k = 0; k < 2; k++) {
+            size_t c = candidates[k];
+            if (c >= pairing->count || pairing->state[c] == SAMPLE_NO_ROOT)
+                continue;
+            if (pairing->u[c] >= low && pairing->u[c] <= high)
+                return c;
+            if (fallback == SIZE_MAX)
+                fallback = c;
         }
-    (void)i;
-    return best;
+    }
+    return fallback;
 }
 
-static double solved_sigma(ur_pairing *pairing, double u, const ur_vec3 c1[3])
+static double solved_sigma(ur_pairing *pairing, double u, double low_u, double high_u,
+                           const ur_vec3 c1[3])
 {
     size_t i = table_interval(pairing, u);
     bool both = pairing->state[i] != SAMPLE_NO_ROOT && pairing->state[i + 1] != SAMPLE_NO_ROOT &&
@@ -609,7 +623,7 @@ static double solved_sigma(ur_pairing *pairing, double u, const ur_vec3 c1[3])
         low = fmin(pairing->sigma[i], pairing->sigma[i + 1]) - pairing->step;
         high = fmax(pairing->sigma[i], pairing->sigma[i + 1]) + pairing->step;
     } else {
-        size_t k = nearest_root_sample(pairing, i, u);
+        size_t k = nearest_root_sample(pairing, i, u, low_u, high_u);
         if (k == SIZE_MAX)
             return pairing->s0;
         guess = pairing->sigma[k] + pairing->slope[k] * (u - pairing->u[k]);
@@ -636,7 +650,8 @@ static double solved_sigma(ur_pairing *pairing, double u, const ur_vec3 c1[3])
     return guess;
 }
 
-void pairing_eval(ur_pairing *pairing, double u, double *sigma, double *slope)
+void pairing_eval(ur_pairing *pairing, double u, double low, double high, double *sigma,
+                  double *slope)
 {
     if (!pairing->solved) {
         *sigma = gsl_interp_eval(pairing->interp, pairing->u, pairing->sigma, u, pairing->accel);
@@ -646,7 +661,7 @@ void pairing_eval(ur_pairing *pairing, double u, double *sigma, double *slope)
     }
     ur_vec3 c1[3], d2[3];
     ur_curve_eval(pairing->rail1, u, c1);
-    *sigma = solved_sigma(pairing, u, c1);
+    *sigma = solved_sigma(pairing, u, low, high, c1);
     pairing_rail2(pairing, *sigma, d2);
     *slope = implicit_slope(c1, d2);
     if (!isfinite(*slope))
@@ -744,12 +759,13 @@ static ur_status point_pairing(ur_pairing *pairing, ur_error *error)
                             "pairing by points needs two rails with the same number of points "
                             "(%zu and %zu)",
                             n, ur_curve_point_count(pairing->rail2));
-    ur_status status = table_alloc(pairing, n + (ur_curve_is_closed(pairing->rail1) ? 1 : 0), error);
+    ur_status status =
+        table_alloc(pairing, n + (ur_curve_is_closed(pairing->rail1) ? 1 : 0), error);
     for (size_t i = 0; status == UR_OK && i < pairing->count; i++) {
-        pairing->u[i] = i < n ? ur_curve_point_parameter(pairing->rail1, i)
-                              : ur_curve_end(pairing->rail1);
-        pairing->sigma[i] = i < n ? ur_curve_point_parameter(pairing->rail2, i)
-                                  : ur_curve_end(pairing->rail2);
+        pairing->u[i] =
+            i < n ? ur_curve_point_parameter(pairing->rail1, i) : ur_curve_end(pairing->rail1);
+        pairing->sigma[i] =
+            i < n ? ur_curve_point_parameter(pairing->rail2, i) : ur_curve_end(pairing->rail2);
     }
     return status;
 }
@@ -768,8 +784,8 @@ static ur_status interpolate_pairing(ur_pairing *pairing, ur_error *error)
     return UR_OK;
 }
 
-ur_status ur_ruled_general(ur_curve *rail1, ur_curve *rail2, ur_pairing_rule rule,
-                           ur_ruled *ruled, ur_error *error)
+ur_status ur_ruled_general(ur_curve *rail1, ur_curve *rail2, ur_pairing_rule rule, ur_ruled *ruled,
+                           ur_error *error)
 {
     ur_status status = take_rails(rail1, rail2, UR_RULED_GENERAL, ruled, error);
     if (status != UR_OK)
@@ -790,9 +806,10 @@ static bool rails_coplanar(ur_pairing *pairing)
     ur_vec3 points[2 * PROBES];
     for (int k = 0; k < PROBES; k++) {
         ur_vec3 d[3];
-        ur_curve_eval(pairing->rail1, ur_curve_start(pairing->rail1) +
-                                          (ur_curve_end(pairing->rail1) -
-                                           ur_curve_start(pairing->rail1)) * k / (PROBES - 1),
+        ur_curve_eval(pairing->rail1,
+                      ur_curve_start(pairing->rail1) +
+                          (ur_curve_end(pairing->rail1) - ur_curve_start(pairing->rail1)) * k /
+                              (PROBES - 1),
                       d);
         points[k] = d[0];
         pairing_rail2(pairing, pairing->s0 + (pairing->s1 - pairing->s0) * k / (PROBES - 1), d);
@@ -805,8 +822,8 @@ static bool rails_coplanar(ur_pairing *pairing)
         size = fmax(size, ur_vec3_distance(points[k], points[0]));
     for (int j = 1; j < 2 * PROBES; j++)
         for (int k = j + 1; k < 2 * PROBES; k += 7) {
-            ur_vec3 n = ur_vec3_cross(ur_vec3_sub(points[j], points[0]),
-                                      ur_vec3_sub(points[k], points[0]));
+            ur_vec3 n =
+                ur_vec3_cross(ur_vec3_sub(points[j], points[0]), ur_vec3_sub(points[k], points[0]));
             if (ur_vec3_length(n) > ur_vec3_length(normal))
                 normal = n;
         }

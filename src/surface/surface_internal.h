@@ -6,8 +6,12 @@
 
 #include "unroll/surface.h"
 
-/* sigma(u) and sigma'(u) of a two-rail surface (strip.c). */
-void pairing_eval(ur_pairing *pairing, double u, double *sigma, double *slope);
+/*
+ * sigma(u) and sigma'(u) of a two-rail surface (strip.c), on the branch of
+ * the part [low, high] in use where the pairing jumps.
+ */
+void pairing_eval(ur_pairing *pairing, double u, double low, double high, double *sigma,
+                  double *slope);
 
 void pairing_free(ur_pairing *pairing);
 

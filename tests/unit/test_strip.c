@@ -288,6 +288,51 @@ static void test_adjust_rail2_repairs_a_short_rail(void **state)
     assert_true(largest > 0 && largest <= by_hand);
 }
 
+/* The twisted cubic g(t) = (30 t, 15 t^2, 6 t^3) and a point d along its tangent. */
+static ur_vec3 along_cubic(double t, double d, double lift)
+{
+    ur_vec3 g = ur_vec3_make(30 * t, 15 * t * t, 6 * t * t * t);
+    ur_vec3 g1 = ur_vec3_make(30, 30 * t, 18 * t * t), g2 = ur_vec3_make(0, 30, 36 * t);
+    ur_vec3 binormal = ur_vec3_cross(g1, g2);
+    ur_vec3 point = ur_vec3_add_scaled(g, g1, d / ur_vec3_length(g1));
+    return ur_vec3_add_scaled(point, binormal, lift / ur_vec3_length(binormal));
+}
+
+/*
+ * Rail 2 on the cubic's tangent developable but for a 1 mm bump off it: the
+ * pairing jumps to another branch there (the rulings in between would
+ * cross), so the strip splits in two.  Each piece on its own branch must
+ * still be an isometry: flat area and rail lengths as in 3D.
+ */
+static void test_pieces_on_both_sides_of_a_jump(void **state)
+{
+    (void)state;
+    enum { N = 81 };
+    ur_vec3 near[N], far[N];
+    for (int i = 0; i < N; i++) {
+        double t = -1.5 + 3.0 * i / (N - 1);
+        near[i] = along_cubic(t, 30, 0);
+        far[i] = along_cubic(t, 70 + 8 * sin(2 * t), exp(-pow((t - 0.5) / 0.1, 2)));
+    }
+    ur_curve *c1, *c2;
+    assert_int_equal(ur_curve_new_interpolating(near, N, false, &c1, NULL), UR_OK);
+    assert_int_equal(ur_curve_new_interpolating(far, N, false, &c2, NULL), UR_OK);
+    ur_ruled ruled = strip(c1, c2);
+    ur_interval parts[4];
+    size_t count = ur_ruled_domain(&ruled, parts, 4);
+    assert_true(count >= 2 && count <= 4);
+    for (size_t k = 0; k < count; k++) {
+        ur_ruled_restrict(&ruled, parts[k].u_start, parts[k].u_end);
+        ur_net_list nets = develop(&ruled, 1e-3);
+        for (size_t j = 0; j < nets.count; j++) {
+            assert_relative(nets.nets[j].flat_area, nets.nets[j].area_3d, 1e-5);
+            assert_true(nets.nets[j].edge_error < 1e-5);
+        }
+        ur_net_list_free(&nets);
+    }
+    ur_ruled_free(&ruled);
+}
+
 /* Rails that cannot carry a strip anywhere: refused with the reason. */
 static void test_no_strip_anywhere(void **state)
 {
@@ -344,6 +389,7 @@ int main(void)
         cmocka_unit_test(test_strip_recovers_tangent_developable),
         cmocka_unit_test(test_domain_of_existence),
         cmocka_unit_test(test_adjust_rail2_repairs_a_short_rail),
+        cmocka_unit_test(test_pieces_on_both_sides_of_a_jump),
         cmocka_unit_test(test_no_strip_anywhere),
         cmocka_unit_test(test_hypar_is_not_developable),
     };
