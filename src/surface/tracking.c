@@ -1,0 +1,595 @@
+/*
+ * tracking.c: solving the pairing of a developable strip between two rails.
+ *
+ * The pairing sigma(u) is the root of
+ *     F(u, sigma) = det(c1'(u), c2'(sigma), c2(sigma) - c1(u)),
+ * the condition that one plane touches the surface along the whole ruling.
+ * A table of roots is built once by tracking the root along rail 1 (a local
+ * search around the predicted root, a scan of the whole of rail 2 when that
+ * fails), then any u is answered by Newton's method started from the table
+ * and falling back to GSL's Brent solver on the table's bracket.  The slope
+ * follows from the implicit function theorem: sigma' = -F_u / F_sigma with
+ * F_u = det(c1'', c2', d) and F_sigma = det(c1', c2'', d), d = c2 - c1.
+ *
+ * Where there is no root, where the root jumps to another branch, or where
+ * consecutive rulings cross inside the strip (sigma decreasing, or the edge
+ * of regression between the rails), rail 1 has a gap in the domain of
+ * existence; gap ends are refined by bisection.
+ */
+#include "pairing.h"
+
+#include <gsl/gsl_errno.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+enum {
+    MIN_SAMPLES = 2048, /* rail 1 samples of the root table */
+    MIN_SCAN = 2048,    /* rail 2 samples of a full scan */
+    RESCAN_EVERY = 32,  /* inside a gap, scan all of rail 2 only this often */
+    BISECTIONS = 48,    /* refinement of gap ends */
+    NEWTON_STEPS = 8,
+};
+
+/* ---- The condition and its derivatives ---------------------------------- */
+
+/* F at (u, sigma) for rail 1's derivatives c1 at u, and rail 2's d2 at sigma. */
+static double condition(const ur_vec3 c1[3], const ur_vec3 d2[3])
+{
+    return determinant3(c1[1], d2[1], ur_vec3_sub(d2[0], c1[0]));
+}
+
+/* F divided by its natural size, so that tolerances mean the same at any scale. */
+static double condition_scale(const ur_vec3 c1[3], const ur_vec3 d2[3])
+{
+    return ur_vec3_length(c1[1]) * ur_vec3_length(d2[1]) *
+           fmax(ur_vec3_length(ur_vec3_sub(d2[0], c1[0])), 1e-300);
+}
+
+double pairing_implicit_slope(const ur_vec3 c1[3], const ur_vec3 d2[3])
+{
+    ur_vec3 d = ur_vec3_sub(d2[0], c1[0]);
+    double f_u = determinant3(c1[2], d2[1], d);
+    double f_sigma = determinant3(c1[1], d2[2], d);
+    return -f_u / f_sigma;
+}
+
+typedef struct root_context {
+    ur_pairing *pairing;
+    const ur_vec3 *c1;
+} root_context;
+
+static double condition_at(double sigma, void *data)
+{
+    const root_context *context = data;
+    ur_vec3 d2[3];
+    pairing_rail2(context->pairing, sigma, d2);
+    return condition(context->c1, d2);
+}
+
+/* Roots a rounding error beyond rail 2's ends still count as on it. */
+static bool in_rail2(const ur_pairing *pairing, double sigma)
+{
+    double slack = 1e-9 * (pairing->s1 - pairing->s0);
+    return pairing->wrap || (sigma >= pairing->s0 - slack && sigma <= pairing->s1 + slack);
+}
+
+/* Brent's method on a bracket with a sign change. */
+static double brent(ur_pairing *pairing, const ur_vec3 c1[3], double low, double high)
+{
+    root_context context = {pairing, c1};
+    gsl_function f = {condition_at, &context};
+    if (gsl_root_fsolver_set(pairing->solver, &f, low, high) != GSL_SUCCESS)
+        return 0.5 * (low + high);
+    double root = 0.5 * (low + high);
+    double tolerance = 1e-15 * (fabs(pairing->s1) + fabs(pairing->s1 - pairing->s0));
+    for (int k = 0; k < 200; k++) {
+        if (gsl_root_fsolver_iterate(pairing->solver) != GSL_SUCCESS)
+            break;
+        root = gsl_root_fsolver_root(pairing->solver);
+        low = gsl_root_fsolver_x_lower(pairing->solver);
+        high = gsl_root_fsolver_x_upper(pairing->solver);
+        if (gsl_root_test_interval(low, high, tolerance, 0.0) == GSL_SUCCESS)
+            break;
+    }
+    return root;
+}
+
+/*
+ * A root that falls on an end of an open rail 2 (within rounding) shows no
+ * sign change inside the rail: extrapolate the condition linearly past the
+ * end to see whether it vanishes there.
+ */
+static bool root_at_rail_end(ur_pairing *pairing, const ur_vec3 c1[3], double guess, double window,
+                             double *root)
+{
+    if (pairing->wrap)
+        return false;
+    double ends[2] = {pairing->s0, pairing->s1}, inward[2] = {1, -1};
+    for (int k = 0; k < 2; k++) {
+        if (fabs(ends[k] - guess) > window)
+            continue;
+        root_context context = {pairing, c1};
+        double h = pairing->step / 4;
+        double at_end = condition_at(ends[k], &context);
+        double inside = condition_at(ends[k] + inward[k] * h, &context);
+        double crossing = at_end / (at_end - inside); /* in steps of h, inward */
+        if (fabs(crossing) * h <= pairing->end_slack * (pairing->s1 - pairing->s0)) {
+            *root = ends[k];
+            return true;
+        }
+    }
+    return false;
+}
+
+/*
+ * The root nearest to `guess` within `window`, stepping outward on both
+ * sides.  A touching (double) root shows no sign change; it is accepted when
+ * the condition nearly vanishes at a sample.
+ */
+static bool local_root(ur_pairing *pairing, const ur_vec3 c1[3], double guess, double window,
+                       double *root)
+{
+    double step = fmin(pairing->step / 4, window);
+    if (!pairing->wrap)
+        guess = fmin(fmax(guess, pairing->s0), pairing->s1);
+    ur_vec3 d2[3];
+    pairing_rail2(pairing, guess, d2);
+    double at_guess = condition(c1, d2);
+    if (at_guess == 0.0 && in_rail2(pairing, guess)) {
+        *root = guess;
+        return true;
+    }
+    double best = fabs(at_guess) / condition_scale(c1, d2), best_sigma = guess;
+    double before[2] = {at_guess, at_guess}, where[2] = {guess, guess};
+    for (double offset = step; offset <= window * (1 + 1e-12); offset += step) {
+        for (int side = 0; side < 2; side++) {
+            /* Step outward, stopping on an end of an open rail 2 rather than passing it. */
+            double sigma = side == 0 ? guess + offset : guess - offset;
+            if (!pairing->wrap)
+                sigma = fmin(fmax(sigma, pairing->s0), pairing->s1);
+            if (sigma == where[side] || !in_rail2(pairing, where[side]))
+                continue;
+            pairing_rail2(pairing, sigma, d2);
+            double value = condition(c1, d2);
+            if ((value <= 0) != (before[side] <= 0)) {
+                *root = brent(pairing, c1, fmin(sigma, where[side]), fmax(sigma, where[side]));
+                return true;
+            }
+            before[side] = value;
+            where[side] = sigma;
+            double relative = fabs(value) / condition_scale(c1, d2);
+            if (relative < best) {
+                best = relative;
+                best_sigma = sigma;
+            }
+        }
+    }
+    if (best < 1e-10 && in_rail2(pairing, best_sigma)) {
+        *root = best_sigma;
+        return true;
+    }
+    return root_at_rail_end(pairing, c1, guess, window, root);
+}
+
+/* Length of the ruling from c1 to rail 2 at sigma. */
+static double ruling_length(ur_pairing *pairing, const ur_vec3 c1[3], double sigma)
+{
+    ur_vec3 d2[3];
+    pairing_rail2(pairing, sigma, d2);
+    return ur_vec3_distance(d2[0], c1[0]);
+}
+
+static bool rulings_cross(ur_pairing *pairing, double u, double sigma, double slope);
+
+/* Whether the ruling from c1 to rail 2 at sigma would cross its neighbours. */
+static bool candidate_crosses(ur_pairing *pairing, double u, const ur_vec3 c1[3], double sigma)
+{
+    ur_vec3 d2[3];
+    pairing_rail2(pairing, sigma, d2);
+    return rulings_cross(pairing, u, sigma, pairing_implicit_slope(c1, d2));
+}
+
+/*
+ * Every root on rail 2 (one period when closed).  With a previous root, the
+ * one nearest the prediction; without, the shortest ruling among those that
+ * do not cross their neighbours (a crossing ruling cannot start a strip).
+ */
+static bool scan_root(ur_pairing *pairing, double u, const ur_vec3 c1[3], bool have_previous,
+                      double predicted, double *root)
+{
+    bool found = false;
+    double best = INFINITY;
+    double previous_value = 0.0;
+    for (size_t j = 0; j < pairing->scan_count; j++) {
+        double value = determinant3(c1[1], pairing->scan_tangent[j],
+                                    ur_vec3_sub(pairing->scan_position[j], c1[0]));
+        if (j > 0 && (value <= 0) != (previous_value <= 0)) {
+            double low = pairing->s0 + pairing->step * (double)(j - 1);
+            double candidate = brent(pairing, c1, low, low + pairing->step);
+            if (pairing->wrap && have_previous) /* unwrap to the turn nearest the prediction */
+                candidate += (pairing->s1 - pairing->s0) *
+                             round((predicted - candidate) / (pairing->s1 - pairing->s0));
+            double score =
+                have_previous ? fabs(candidate - predicted) : ruling_length(pairing, c1, candidate);
+            if (score < best && (have_previous || !candidate_crosses(pairing, u, c1, candidate))) {
+                best = score;
+                *root = candidate;
+                found = true;
+            }
+        }
+        previous_value = value;
+    }
+    return found;
+}
+
+/* ---- The root table ----------------------------------------------------- */
+
+ur_status pairing_table_alloc(ur_pairing *pairing, size_t count, ur_error *error)
+{
+    pairing->count = count;
+    pairing->u = ur_alloc_array(count, sizeof *pairing->u, error);
+    pairing->sigma = ur_alloc_array(count, sizeof *pairing->sigma, error);
+    pairing->slope = ur_alloc_array(count, sizeof *pairing->slope, error);
+    pairing->state = ur_alloc_array(count, sizeof *pairing->state, error);
+    pairing->joined = ur_alloc_array(count, sizeof *pairing->joined, error);
+    if (!pairing->u || !pairing->sigma || !pairing->slope || !pairing->state || !pairing->joined)
+        return UR_ERROR_INTERNAL;
+    double u0 = ur_curve_start(pairing->rail1), u1 = ur_curve_end(pairing->rail1);
+    for (size_t i = 0; i < count; i++) {
+        pairing->u[i] = u0 + (u1 - u0) * (double)i / (double)(count - 1);
+        pairing->state[i] = SAMPLE_NO_ROOT;
+    }
+    return UR_OK;
+}
+
+static ur_status scan_alloc(ur_pairing *pairing, ur_error *error)
+{
+    size_t points = ur_curve_point_count(pairing->rail2);
+    size_t n = points * 4 > MIN_SCAN ? points * 4 : MIN_SCAN;
+    pairing->scan_count = n + 1;
+    pairing->step = (pairing->s1 - pairing->s0) / (double)n;
+    pairing->scan_position = ur_alloc_array(n + 1, sizeof(ur_vec3), error);
+    pairing->scan_tangent = ur_alloc_array(n + 1, sizeof(ur_vec3), error);
+    if (!pairing->scan_position || !pairing->scan_tangent)
+        return UR_ERROR_INTERNAL;
+    for (size_t j = 0; j <= n; j++) {
+        ur_vec3 d2[3];
+        pairing_rail2(pairing, pairing->s0 + pairing->step * (double)j, d2);
+        pairing->scan_position[j] = d2[0];
+        pairing->scan_tangent[j] = d2[1];
+    }
+    return UR_OK;
+}
+
+/* The window in which the root at the next sample is looked for. */
+static double search_window(const ur_pairing *pairing, double predicted_change)
+{
+    return fmax(4 * pairing->step, 2 * fabs(predicted_change));
+}
+
+static void store_root(ur_pairing *pairing, size_t i, const ur_vec3 c1[3], double sigma)
+{
+    if (!pairing->wrap)
+        sigma = fmin(fmax(sigma, pairing->s0), pairing->s1);
+    ur_vec3 d2[3];
+    pairing_rail2(pairing, sigma, d2);
+    pairing->sigma[i] = sigma;
+    pairing->slope[i] = pairing_implicit_slope(c1, d2);
+    if (!isfinite(pairing->slope[i]))
+        pairing->slope[i] = 0.0;
+    pairing->state[i] = SAMPLE_GOOD;
+}
+
+/* Follows the root from sample `from` backward while it lasts (after a rescan). */
+static void track_backward(ur_pairing *pairing, size_t from, size_t stop)
+{
+    for (size_t i = from; i > stop; i--) {
+        size_t k = i - 1;
+        if (pairing->state[k] == SAMPLE_GOOD)
+            return;
+        ur_vec3 c1[3];
+        ur_curve_eval(pairing->rail1, pairing->u[k], c1);
+        double change = pairing->slope[i] * (pairing->u[k] - pairing->u[i]);
+        double root;
+        if (!local_root(pairing, c1, pairing->sigma[i] + change, search_window(pairing, change),
+                        &root))
+            return;
+        store_root(pairing, k, c1, root);
+        pairing->joined[k] = true;
+    }
+}
+
+static void build_table(ur_pairing *pairing)
+{
+    size_t last_good = SIZE_MAX, since_scan = RESCAN_EVERY;
+    for (size_t i = 0; i < pairing->count; i++) {
+        ur_vec3 c1[3];
+        ur_curve_eval(pairing->rail1, pairing->u[i], c1);
+        pairing->joined[i] = false;
+        bool have_previous = last_good != SIZE_MAX;
+        double predicted = 0.0, change = 0.0, root;
+        if (have_previous) {
+            change = pairing->slope[last_good] * (pairing->u[i] - pairing->u[last_good]);
+            predicted = pairing->sigma[last_good] + change;
+        }
+        if (have_previous && last_good + 1 == i &&
+            local_root(pairing, c1, predicted, search_window(pairing, change), &root)) {
+            store_root(pairing, i, c1, root);
+            pairing->joined[i - 1] = true;
+            last_good = i;
+            continue;
+        }
+        /* Lost or never found: scan rail 2, but only now and then inside a gap. */
+        if (since_scan + 1 < RESCAN_EVERY && i + 1 < pairing->count) {
+            since_scan++;
+            continue;
+        }
+        since_scan = 0;
+        if (scan_root(pairing, pairing->u[i], c1, have_previous, predicted, &root)) {
+            store_root(pairing, i, c1, root);
+            track_backward(pairing, i, have_previous ? last_good + 1 : 0);
+            last_good = i;
+        }
+    }
+}
+
+/* ---- Classifying samples and finding the gaps --------------------------- */
+
+/*
+ * Consecutive rulings of a developable meet at the point where r_u is
+ * parallel to the ruling; inside the strip (strictly between the rails) the
+ * rulings cross and the surface folds.  A decreasing sigma runs rail 2
+ * backwards, which is the same fold seen from rail 2.
+ */
+static bool rulings_cross(ur_pairing *pairing, double u, double sigma, double slope)
+{
+    if (slope < 0)
+        return true;
+    ur_vec3 c1[3], d2[3];
+    ur_curve_eval(pairing->rail1, u, c1);
+    pairing_rail2(pairing, sigma, d2);
+    ur_vec3 ruling = ur_vec3_sub(d2[0], c1[0]);
+    ur_vec3 b_prime = ur_vec3_scale(d2[1], slope);
+    ur_vec3 normal = ur_vec3_cross(c1[1], ruling);
+    double size = ur_vec3_length(normal);
+    if (!(size > 0))
+        return false;
+    /* Components across the ruling, in the tangent plane, of a' and b'. */
+    ur_vec3 across =
+        ur_vec3_scale(ur_vec3_cross(normal, ruling), 1.0 / (size * ur_vec3_length(ruling)));
+    double along_a = ur_vec3_dot(c1[1], across), along_b = ur_vec3_dot(b_prime, across);
+    double margin = 1e-9 * (fabs(along_a) + fabs(along_b));
+    return along_a * along_b < 0 && fabs(along_a) > margin && fabs(along_b) > margin;
+}
+
+static void classify_samples(ur_pairing *pairing)
+{
+    for (size_t i = 0; i < pairing->count; i++)
+        if (pairing->state[i] == SAMPLE_GOOD &&
+            rulings_cross(pairing, pairing->u[i], pairing->sigma[i], pairing->slope[i]))
+            pairing->state[i] = SAMPLE_CROSS;
+}
+
+/* The state at u, following the root from a good sample at u_good. */
+static enum sample_state state_at(ur_pairing *pairing, double u, size_t good, double *sigma)
+{
+    ur_vec3 c1[3];
+    ur_curve_eval(pairing->rail1, u, c1);
+    double change = pairing->slope[good] * (u - pairing->u[good]);
+    if (!local_root(pairing, c1, pairing->sigma[good] + change, search_window(pairing, change),
+                    sigma))
+        return SAMPLE_NO_ROOT;
+    ur_vec3 d2[3];
+    pairing_rail2(pairing, *sigma, d2);
+    double slope = pairing_implicit_slope(c1, d2);
+    return rulings_cross(pairing, u, *sigma, slope) ? SAMPLE_CROSS : SAMPLE_GOOD;
+}
+
+static bool usable(const ur_pairing *pairing, size_t i)
+{
+    return pairing->state[i] == SAMPLE_GOOD;
+}
+
+/* Where, between good sample `good` and its neighbour `bad`, the strip ends. */
+static double refine_end(ur_pairing *pairing, size_t good, size_t bad)
+{
+    /*
+     * Where a ruling leaves rail 2 through its end, find exactly where: the
+     * table let roots a rounding error past the end count, so the first good
+     * samples may not be good without that slack.
+     */
+    pairing->end_slack = 0.0;
+    double sigma;
+    size_t step = good > bad ? 1 : (size_t)-1;
+    while (state_at(pairing, pairing->u[good], good, &sigma) != SAMPLE_GOOD) {
+        size_t next = good + step;
+        if (next >= pairing->count || !usable(pairing, next))
+            break;
+        bad = good;
+        good = next;
+    }
+    double inside = pairing->u[good], outside = pairing->u[bad];
+    for (int k = 0; k < BISECTIONS; k++) {
+        double middle = 0.5 * (inside + outside);
+        if (state_at(pairing, middle, good, &sigma) == SAMPLE_GOOD)
+            inside = middle;
+        else
+            outside = middle;
+    }
+    pairing->end_slack = ROUNDING;
+    return inside;
+}
+
+static ur_status add_gap(ur_pairing *pairing, double u_start, double u_end, ur_gap_reason reason,
+                         size_t *capacity, ur_error *error)
+{
+    if (pairing->gap_count == *capacity) {
+        size_t grown = *capacity ? 2 * *capacity : 8;
+        ur_interval *gaps = realloc(pairing->gaps, grown * sizeof *gaps);
+        if (!gaps)
+            return ur_error_out_of_memory(error);
+        pairing->gaps = gaps;
+        *capacity = grown;
+    }
+    ur_interval *gap = &pairing->gaps[pairing->gap_count++];
+    memset(gap, 0, sizeof *gap);
+    gap->u_start = u_start;
+    gap->u_end = u_end;
+    gap->reason = reason;
+    return UR_OK;
+}
+
+/* The reason for a run of unusable samples: crossing wins if any sample crossed. */
+static ur_gap_reason run_reason(const ur_pairing *pairing, size_t first, size_t last)
+{
+    for (size_t i = first; i <= last; i++)
+        if (pairing->state[i] == SAMPLE_CROSS)
+            return UR_GAP_RULINGS_CROSS;
+    return UR_GAP_NO_RULING;
+}
+
+static ur_status find_gaps(ur_pairing *pairing, ur_error *error)
+{
+    size_t capacity = 0, n = pairing->count;
+    size_t i = 0;
+    while (i < n) {
+        if (usable(pairing, i)) {
+            /* A jump to another branch between two good samples: the rulings in between cross. */
+            if (i + 1 < n && usable(pairing, i + 1) && !pairing->joined[i]) {
+                double at = 0.5 * (pairing->u[i] + pairing->u[i + 1]);
+                ur_status status = add_gap(pairing, at, at, UR_GAP_RULINGS_CROSS, &capacity, error);
+                if (status != UR_OK)
+                    return status;
+            }
+            i++;
+            continue;
+        }
+        size_t first = i;
+        while (i < n && !usable(pairing, i))
+            i++;
+        size_t last = i - 1;
+        double start = first == 0 ? pairing->u[0] : refine_end(pairing, first - 1, first);
+        double end = i == n ? pairing->u[n - 1] : refine_end(pairing, i, last);
+        bool at_an_end = first == 0 || i == n;
+        if (at_an_end && end - start <= ROUNDING * (pairing->u[n - 1] - pairing->u[0]))
+            continue; /* an interpolation error at the very end of rail 1 */
+        ur_status status =
+            add_gap(pairing, start, end, run_reason(pairing, first, last), &capacity, error);
+        if (status != UR_OK)
+            return status;
+    }
+    return UR_OK;
+}
+
+/* ---- Answering sigma(u) ------------------------------------------------- */
+
+static size_t table_interval(ur_pairing *pairing, double u)
+{
+    size_t n = pairing->count, i = pairing->hint;
+    if (i + 1 < n && pairing->u[i] <= u && u <= pairing->u[i + 1])
+        return i;
+    double u0 = pairing->u[0], u1 = pairing->u[n - 1];
+    double position = (u - u0) / (u1 - u0) * (double)(n - 1);
+    if (!(position > 0))
+        i = 0;
+    else if (position >= (double)(n - 1))
+        i = n - 2;
+    else
+        i = (size_t)position;
+    pairing->hint = i;
+    return i;
+}
+
+/* Cubic Hermite guess between table samples i and i + 1. */
+static double hermite_guess(const ur_pairing *pairing, size_t i, double u)
+{
+    double h = pairing->u[i + 1] - pairing->u[i], t = (u - pairing->u[i]) / h;
+    double h00 = (1 + 2 * t) * (1 - t) * (1 - t), h10 = t * (1 - t) * (1 - t);
+    double h01 = t * t * (3 - 2 * t), h11 = t * t * (t - 1);
+    return h00 * pairing->sigma[i] + h10 * h * pairing->slope[i] + h01 * pairing->sigma[i + 1] +
+           h11 * h * pairing->slope[i + 1];
+}
+
+/*
+ * The nearest sample with a root, the start for u in a gap or at a jump of
+ * the pairing; preferably one inside [low, high], the part of the surface in
+ * use, so that a piece that starts at a jump takes the branch it is on.
+ */
+static size_t nearest_root_sample(const ur_pairing *pairing, size_t i, double u, double low,
+                                  double high)
+{
+    size_t fallback = SIZE_MAX;
+    bool right_first = pairing->u[i + 1] - u < u - pairing->u[i];
+    for (size_t step = 0; step < pairing->count; step++) {
+        size_t right = i + 1 + step, left = i >= step ? i - step : SIZE_MAX;
+        size_t candidates[2] = {right_first ? right : left, right_first ? left : right};
+        for (int k = 0; k < 2; k++) {
+            size_t c = candidates[k];
+            if (c >= pairing->count || pairing->state[c] == SAMPLE_NO_ROOT)
+                continue;
+            if (pairing->u[c] >= low && pairing->u[c] <= high)
+                return c;
+            if (fallback == SIZE_MAX)
+                fallback = c;
+        }
+    }
+    return fallback;
+}
+
+double pairing_solved_sigma(ur_pairing *pairing, double u, double low_u, double high_u,
+                            const ur_vec3 c1[3])
+{
+    size_t i = table_interval(pairing, u);
+    bool both = pairing->state[i] != SAMPLE_NO_ROOT && pairing->state[i + 1] != SAMPLE_NO_ROOT &&
+                pairing->joined[i];
+    double guess, low, high;
+    if (both) {
+        guess = hermite_guess(pairing, i, u);
+        low = fmin(pairing->sigma[i], pairing->sigma[i + 1]) - pairing->step;
+        high = fmax(pairing->sigma[i], pairing->sigma[i + 1]) + pairing->step;
+    } else {
+        size_t k = nearest_root_sample(pairing, i, u, low_u, high_u);
+        if (k == SIZE_MAX)
+            return pairing->s0;
+        guess = pairing->sigma[k] + pairing->slope[k] * (u - pairing->u[k]);
+        low = guess - 4 * pairing->step;
+        high = guess + 4 * pairing->step;
+    }
+    double sigma = guess;
+    for (int k = 0; k < NEWTON_STEPS; k++) {
+        ur_vec3 d2[3];
+        pairing_rail2(pairing, sigma, d2);
+        double f = condition(c1, d2);
+        double f_sigma = determinant3(c1[1], d2[2], ur_vec3_sub(d2[0], c1[0]));
+        double next = sigma - f / f_sigma;
+        if (!isfinite(next) || next < low || next > high)
+            break;
+        bool done = fabs(next - sigma) <= 1e-14 * (fabs(sigma) + (pairing->s1 - pairing->s0));
+        sigma = next;
+        if (done)
+            return sigma;
+    }
+    double root;
+    if (local_root(pairing, c1, guess, 0.5 * (high - low), &root))
+        return root;
+    return guess;
+}
+
+ur_status pairing_track(ur_pairing *pairing, ur_error *error)
+{
+    pairing->solved = true;
+    pairing->solver = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
+    if (!pairing->solver)
+        return ur_error_out_of_memory(error);
+    size_t points = ur_curve_point_count(pairing->rail1);
+    size_t n = points * 2 > MIN_SAMPLES ? points * 2 : MIN_SAMPLES;
+    ur_status status = pairing_table_alloc(pairing, n + 1, error);
+    if (status == UR_OK)
+        status = scan_alloc(pairing, error);
+    if (status != UR_OK)
+        return status;
+    build_table(pairing);
+    classify_samples(pairing);
+    return find_gaps(pairing, error);
+}
