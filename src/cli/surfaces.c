@@ -412,6 +412,38 @@ static ur_status straight_rail(ur_vec3 p, ur_vec3 q, ur_curve **rail, ur_error *
     return ur_curve_new_interpolating(points, 4, false, rail, error);
 }
 
+/*
+ * Two adjacent corners at one point make the hypar the flat triangle of the
+ * other three: the cone from that point over the opposite edge.
+ */
+static int build_triangle(const cli_job *job, const ur_vec3 *c, int apex, ur_ruled *ruled)
+{
+    int first = (apex + 2) % 4, second = (apex + 3) % 4;
+    if (!job->quiet)
+        cli_message("note: corners %d and %d are the same point: the hypar is a flat triangle, "
+                    "developed exactly",
+                    apex + 1, (apex + 1) % 4 + 1);
+    ur_curve *edge = NULL;
+    ur_error error;
+    if (straight_rail(c[first], c[second], &edge, &error) != UR_OK ||
+        ur_ruled_cone(edge, c[apex], 1.0, ruled, &error) != UR_OK)
+        return fail(&error, job);
+    return 0;
+}
+
+/* Which adjacent pair of corners coincides (the first of the two), or -1; 4 if worse. */
+static int repeated_corner(const ur_vec3 *c, double size)
+{
+    int found = -1, count = 0;
+    for (int i = 0; i < 4; i++)
+        for (int j = i + 1; j < 4; j++)
+            if (!(ur_vec3_distance(c[i], c[j]) > 1e-9 * size)) {
+                count++;
+                found = j == i + 1 ? i : i == 0 && j == 3 ? 3 : 4;
+            }
+    return count > 1 ? 4 : found;
+}
+
 /* Corners in order round the skew quadrilateral; rulings join P0P1 to P3P2. */
 static int build_hypar(const cli_job *job, ur_ruled *ruled)
 {
@@ -424,18 +456,20 @@ static int build_hypar(const cli_job *job, ur_ruled *ruled)
     for (int i = 0; i < 4; i++)
         for (int j = i + 1; j < 4; j++)
             size = fmax(size, ur_vec3_distance(c[i], c[j]));
-    for (int i = 0; i < 4; i++)
-        for (int j = i + 1; j < 4; j++)
-            if (!(ur_vec3_distance(c[i], c[j]) > 1e-9 * size)) {
-                cli_message("hypar: --corners: corners %d and %d are the same point", i + 1, j + 1);
-                return EXIT_USAGE;
-            }
+    int repeated = repeated_corner(c, size);
+    if (repeated == 4 || !(size > 0)) {
+        cli_message("hypar: --corners: opposite or more than two corners are the same point: "
+                    "that is no surface");
+        return EXIT_USAGE;
+    }
+    if (repeated >= 0)
+        return build_triangle(job, c, repeated, ruled);
     ur_vec3 normal = ur_vec3_cross(ur_vec3_sub(c[1], c[0]), ur_vec3_sub(c[3], c[0]));
-    double lift = fabs(ur_vec3_dot(ur_vec3_sub(c[2], c[0]), normal)) / ur_vec3_length(normal);
     if (!(ur_vec3_length(normal) > 1e-12 * size * size)) {
         cli_message("hypar: --corners: corners 1, 2 and 4 lie on one line");
         return EXIT_USAGE;
     }
+    double lift = fabs(ur_vec3_dot(ur_vec3_sub(c[2], c[0]), normal)) / ur_vec3_length(normal);
     if (lift <= 1e-9 * size && !job->quiet)
         cli_message("note: the four corners lie in one plane: the hypar is a flat quadrilateral, "
                     "developed exactly");

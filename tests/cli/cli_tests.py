@@ -571,6 +571,18 @@ def flat_hypar_is_developed_exactly(work):
 
 
 @test
+def hypar_with_a_repeated_corner_is_a_triangle(work):
+    result = run(work, "hypar", "--corners", "0,0,0:100,0,0:100,0,0:0,80,30", "-o", "t.svg")
+    check("corners 2 and 3 are the same point" in result.stderr, result.stderr)
+    [outline] = outlines(os.path.join(work, "t.svg"))
+    # Half the cross product of two sides of the triangle (0,0,0), (100,0,0), (0,80,30).
+    close(area(outline), 0.5 * 100 * math.hypot(80, 30), 1e-8, "triangle area")
+    sides = sorted(math.dist(p, q) for p, q in zip(outline, outline[1:] + outline[:1])
+                   if math.dist(p, q) > 1e-6)
+    close(sides[-1], math.dist((100, 0, 0), (0, 80, 30)), 1e-8, "longest side")
+
+
+@test
 def analyze_tells_developable_from_not(work):
     surfaces = {
         "cylinder": ["cylinder", "--radius", "40", "--height", "50"],
@@ -637,7 +649,8 @@ def bad_rails_and_corners(work):
     bad(work, r"no developable strip exists anywhere", *strip, "low.csv", "--rail2", "far.csv",
         "--quiet")
     bad(work, r"--pairing: 'loose'", *strip, "low.csv", "--rail2", "far.csv", "--pairing", "loose")
-    bad(work, r"corners 1 and 3 are the same", "hypar", "--corners", "0,0,0:1,0,0:0,0,0:0,1,1", "-o", "x.svg")
+    bad(work, r"opposite or more than two corners are the same point", "hypar", "--corners",
+        "0,0,0:1,0,0:0,0,0:0,1,1", "-o", "x.svg")
     bad(work, r"--corners: '0,0,0:1,0,0'", "hypar", "--corners", "0,0,0:1,0,0", "-o", "x.svg")
     bad(work, r"--corners X,Y,Z", "hypar", "-o", "x.svg")
     bad(work, r"missing\.csv", "analyze", "tangent", "--curve", "missing.csv", "--width", "3")
