@@ -25,6 +25,7 @@ typedef struct ur_piece_measures {
     double area_3d;    /* of the part of the surface the piece covers */
     double flat_area;  /* enclosed by the outline */
     double edge_error; /* largest relative error of a flat edge length */
+    double max_stretch, max_compression; /* of an approximate flattening; 0 when exact */
 } ur_piece_measures;
 
 typedef struct ur_piece {

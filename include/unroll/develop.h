@@ -42,6 +42,12 @@ typedef struct ur_net {
     double area_3d;        /* 3D area of that part (quadrature) */
     double flat_area;      /* area enclosed by the outline */
     double edge_error;     /* largest relative error of a flat boundary length */
+    /*
+     * Strain of an approximate flattening (flatten.h): the largest sigma1 - 1
+     * and 1 - sigma2 over the piece's triangles.  Zero for an exact
+     * development, which keeps every length.
+     */
+    double max_stretch, max_compression;
 } ur_net;
 
 typedef struct ur_net_list {

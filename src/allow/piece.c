@@ -53,6 +53,8 @@ ur_status ur_piece_from_net(const ur_net *net, const ur_allowance_options *optio
     piece->measures.area_3d = net->area_3d;
     piece->measures.flat_area = net->flat_area;
     piece->measures.edge_error = net->edge_error;
+    piece->measures.max_stretch = net->max_stretch;
+    piece->measures.max_compression = net->max_compression;
     ur_status status =
         ur_piece_add_path(piece, UR_OP_CUT, net->outline, net->outline_count, true, error);
     if (status == UR_OK && options && options->draw_rulings)

@@ -66,6 +66,8 @@ static json_t *piece_json(const ur_piece *piece, size_t sheet)
                                            : json_null()) != 0 ||
         json_object_set_new(object, "bounding_box", box_json(piece->box)) != 0 ||
         json_object_set_new(object, "edge_length_error", ur_json_number(m->edge_error)) != 0 ||
+        json_object_set_new(object, "max_stretch", ur_json_number(m->max_stretch)) != 0 ||
+        json_object_set_new(object, "max_compression", ur_json_number(m->max_compression)) != 0 ||
         json_object_set_new(object, "sheet",
                             sheet ? json_integer((json_int_t)sheet) : json_null()) != 0) {
         json_decref(object);

@@ -60,19 +60,20 @@ static void make_pieces(ur_piece pieces[PIECES])
     snprintf(pieces[0].name, sizeof pieces[0].name, "panel");
     add_path(&pieces[0], UR_OP_CUT, panel, 4, true);
     add_path(&pieces[0], UR_OP_SCORE, fold, 2, false);
-    pieces[0].measures = (ur_piece_measures){5100.0, 5000.0, 0.002};
+    pieces[0].measures =
+        (ur_piece_measures){.area_3d = 5100.0, .flat_area = 5000.0, .edge_error = 0.002};
 
     const ur_vec2 triangle[] = {{0, 0}, {40, 0}, {0, 30}};
     const ur_vec2 mark[] = {{5, 5}, {15, 5}};
     snprintf(pieces[1].name, sizeof pieces[1].name, "tab");
     add_path(&pieces[1], UR_OP_CUT, triangle, 3, true);
     add_path(&pieces[1], UR_OP_ENGRAVE, mark, 2, false);
-    pieces[1].measures = (ur_piece_measures){600.0, 600.0, 0.0};
+    pieces[1].measures = (ur_piece_measures){.area_3d = 600.0, .flat_area = 600.0};
 
     const ur_vec2 square[] = {{0, 0}, {10, 0}, {10, 10}, {0, 10}};
     snprintf(pieces[2].name, sizeof pieces[2].name, "spare");
     add_path(&pieces[2], UR_OP_CUT, square, 4, true);
-    pieces[2].measures = (ur_piece_measures){0.0, 100.0, 0.0};
+    pieces[2].measures = (ur_piece_measures){.area_3d = 0.0, .flat_area = 100.0};
 }
 
 static void set_style(ur_machine *machine, ur_op op, const char *layer, const char *colour,
