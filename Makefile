@@ -15,7 +15,7 @@ PROFILEDIR = $(PREFIX)/share/unroll/profiles
 
 CC ?= cc
 PKG_CONFIG ?= pkg-config
-PACKAGES = libxml-2.0 gsl jansson geos cairo
+PACKAGES = libxml-2.0 gsl jansson geos cairo assimp
 TEST_PACKAGES = cmocka
 
 ifeq ($(SANITIZE),1)
@@ -31,12 +31,13 @@ endif
 # Recursive (=) so that pkg-config is asked only once install-deps has run.
 CFLAGS_ALL = -std=c11 -D_XOPEN_SOURCE=700 -Wall -Wextra -Wpedantic -Werror \
 	-Wshadow -Wstrict-prototypes $(OPTIMISE) $(SANITIZE_FLAGS) -Iinclude \
-	-DUR_PROFILE_DIR='"$(PROFILEDIR)"' $(shell $(PKG_CONFIG) --cflags $(PACKAGES)) $(CFLAGS)
-LDLIBS_ALL = $(shell $(PKG_CONFIG) --libs $(PACKAGES)) -lm $(LDLIBS)
+	-DUR_PROFILE_DIR='"$(PROFILEDIR)"' $(shell $(PKG_CONFIG) --cflags $(PACKAGES)) \
+	-I/usr/include/suitesparse $(CFLAGS)
+LDLIBS_ALL = $(shell $(PKG_CONFIG) --libs $(PACKAGES)) -lcholmod -lm $(LDLIBS)
 LDFLAGS_ALL = $(SANITIZE_FLAGS) $(LDFLAGS)
 
 LIB_SOURCES = $(wildcard src/base/*.c src/geom/*.c src/surface/*.c src/develop/*.c \
-	src/analyze/*.c src/allow/*.c src/nest/*.c src/io/*.c src/out/*.c)
+	src/analyze/*.c src/mesh/*.c src/flatten/*.c src/allow/*.c src/nest/*.c src/io/*.c src/out/*.c)
 CLI_SOURCES = $(wildcard src/cli/*.c)
 UNIT_SOURCES = $(wildcard tests/unit/test_*.c)
 BENCH_SOURCES = $(wildcard bench/*.c)
@@ -65,7 +66,8 @@ $(LIBRARY): $(LIB_OBJECTS)
 $(PROGRAM): $(CLI_OBJECTS) $(LIBRARY)
 	$(CC) $(LDFLAGS_ALL) -o $@ $(CLI_OBJECTS) $(LIBRARY) $(LDLIBS_ALL)
 
-$(BUILD)/tests/%: tests/unit/%.c $(LIBRARY)
+# test_support.h is shared, header-only: a change to it rebuilds every test.
+$(BUILD)/tests/%: tests/unit/%.c tests/unit/test_support.h $(LIBRARY)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_ALL) $(shell $(PKG_CONFIG) --cflags $(TEST_PACKAGES)) -o $@ $< \
 		$(LIBRARY) $(LDFLAGS_ALL) $(LDLIBS_ALL) $(shell $(PKG_CONFIG) --libs $(TEST_PACKAGES))

@@ -27,6 +27,7 @@
 #include <string.h>
 
 #include "atomic.h"
+#include "draw.h"
 #include "png.h"
 
 /* The layout, in pixels. */
@@ -178,42 +179,15 @@ static void set_gaussian_colour(cairo_t *cr, const grid *g, double gaussian)
 
 /* ---- Text --------------------------------------------------------------- */
 
-typedef enum align { ALIGN_LEFT, ALIGN_CENTRE, ALIGN_RIGHT } align;
-
-static void set_font(cairo_t *cr, double size, bool bold)
-{
-    cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL,
-                           bold ? CAIRO_FONT_WEIGHT_BOLD : CAIRO_FONT_WEIGHT_NORMAL);
-    cairo_set_font_size(cr, size);
-}
-
-static double text_width(cairo_t *cr, const char *text)
-{
-    cairo_text_extents_t extents;
-    cairo_text_extents(cr, text, &extents);
-    return extents.x_advance;
-}
-
-/* Draws text with its baseline at y, aligned on x. */
-static void show_text(cairo_t *cr, double x, double y, align alignment, const char *text)
-{
-    double width = text_width(cr, text);
-    double shift = alignment == ALIGN_LEFT ? 0 : alignment == ALIGN_CENTRE ? width / 2 : width;
-    cairo_move_to(cr, x - shift, y);
-    cairo_show_text(cr, text);
-    cairo_new_path(cr); /* show_text leaves a current point the next path would start from */
-}
-
 /* Text on the map: dark on a white box, so that it reads on any colour. */
-static void show_boxed_text(cairo_t *cr, double x, double y, align alignment, const char *text)
+static void show_boxed_text(cairo_t *cr, double x, double y, ur_align align, const char *text)
 {
-    double width = text_width(cr, text);
-    double shift = alignment == ALIGN_LEFT ? 0 : alignment == ALIGN_CENTRE ? width / 2 : width;
-    cairo_rectangle(cr, x - shift - 3, y - 12, width + 6, 16);
+    double width = ur_draw_text_width(cr, text);
+    cairo_rectangle(cr, ur_draw_left(x, width, align) - 3, y - 12, width + 6, 16);
     cairo_set_source_rgba(cr, 1, 1, 1, 0.85);
     cairo_fill(cr);
     cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
-    show_text(cr, x, y, alignment, text);
+    ur_draw_show_text(cr, x, y, align, text);
 }
 
 /* ---- Map ---------------------------------------------------------------- */
@@ -356,21 +330,21 @@ static bool draw_gaps(cairo_t *cr, const map *m, const ur_analysis *analysis, ur
 {
     const ur_interval *gaps = NULL;
     size_t count = ur_ruled_gaps(ruled, &gaps);
-    set_font(cr, 12, false);
+    ur_draw_set_font(cr, 12, false);
     for (size_t k = 0; k < count; k++) {
         double x0 = map_x(m, arc_at(analysis, gaps[k].u_start));
         double x1 = map_x(m, arc_at(analysis, gaps[k].u_end));
         double top = m->bottom - m->height;
         hatch(cr, x0, top, fmax(x1, x0 + 1), m->bottom);
         const char *label = gap_label(gaps[k].reason);
-        double width = text_width(cr, label);
+        double width = ur_draw_text_width(cr, label);
         if (width + 8 < x1 - x0) {
-            show_boxed_text(cr, (x0 + x1) / 2, top + m->height / 2, ALIGN_CENTRE, label);
+            show_boxed_text(cr, (x0 + x1) / 2, top + m->height / 2, UR_ALIGN_CENTRE, label);
         } else if (width + 8 < m->height) {
             cairo_save(cr);
             cairo_translate(cr, (x0 + x1) / 2 + 4, top + m->height / 2);
             cairo_rotate(cr, -M_PI / 2);
-            show_boxed_text(cr, 0, 0, ALIGN_CENTRE, label);
+            show_boxed_text(cr, 0, 0, UR_ALIGN_CENTRE, label);
             cairo_restore(cr);
         }
     }
@@ -433,10 +407,10 @@ static bool draw_min_bend(cairo_t *cr, const map *m, const ur_analysis *analysis
         bend_marker(cr, x, y);
         char label[80];
         snprintf(label, sizeof label, "smallest bend radius %.4g mm", analysis->min_bend_radius);
-        set_font(cr, 12, false);
-        bool left = x + 12 + text_width(cr, label) > WIDTH - 4;
+        ur_draw_set_font(cr, 12, false);
+        bool left = x + 12 + ur_draw_text_width(cr, label) > WIDTH - 4;
         double baseline = fmin(fmax(y + 4, m->bottom - m->height + 12), m->bottom - 4);
-        show_boxed_text(cr, left ? x - 12 : x + 12, baseline, left ? ALIGN_RIGHT : ALIGN_LEFT,
+        show_boxed_text(cr, left ? x - 12 : x + 12, baseline, left ? UR_ALIGN_RIGHT : UR_ALIGN_LEFT,
                         label);
         return true;
     }
@@ -454,50 +428,53 @@ static double nice_step(double range, double target)
     return (fraction <= 1 ? 1 : fraction <= 2 ? 2 : fraction <= 5 ? 5 : 10) * magnitude;
 }
 
-static void draw_x_axis(cairo_t *cr, const map *m)
+/*
+ * Ticks and their millimetres, along rail a below the map or along the
+ * rulings left of it.  Numbers side by side need more room than numbers one
+ * above the other, so about one every 90 px across and every 45 px up.
+ */
+static void draw_ticks(cairo_t *cr, const map *m, bool vertical)
 {
-    double range = m->width / m->scale, step = nice_step(range, fmax(m->width / 90, 2));
-    set_font(cr, 12, false);
+    double pixels = vertical ? m->height : m->width, range = pixels / m->scale;
+    double step = nice_step(range, fmax(pixels / (vertical ? 45 : 90), 2));
+    ur_draw_set_font(cr, 12, false);
     cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
     cairo_set_line_width(cr, 1.0);
     for (double t = 0; t <= range * (1 + 1e-9); t += step) {
         char label[32];
         snprintf(label, sizeof label, "%.6g", t);
-        double x = map_x(m, t);
-        cairo_move_to(cr, x, m->bottom + 2);
-        cairo_line_to(cr, x, m->bottom + 7);
-        cairo_stroke(cr);
-        show_text(cr, x, m->bottom + 20, ALIGN_CENTRE, label);
+        if (vertical) {
+            double y = map_y(m, t);
+            ur_draw_line(cr, m->left - 2, y, m->left - 7, y);
+            ur_draw_show_text(cr, m->left - 10, y + 4, UR_ALIGN_RIGHT, label);
+        } else {
+            double x = map_x(m, t);
+            ur_draw_line(cr, x, m->bottom + 2, x, m->bottom + 7);
+            ur_draw_show_text(cr, x, m->bottom + 20, UR_ALIGN_CENTRE, label);
+        }
     }
+}
+
+static void draw_x_axis(cairo_t *cr, const map *m)
+{
+    draw_ticks(cr, m, false);
     const char *title = "arc length along rail a (mm)";
-    double centre = fmax(m->left + m->width / 2, m->left + text_width(cr, title) / 2);
-    show_text(cr, centre, m->bottom + 38, ALIGN_CENTRE, title);
+    double centre = fmax(m->left + m->width / 2, m->left + ur_draw_text_width(cr, title) / 2);
+    ur_draw_show_text(cr, centre, m->bottom + 38, UR_ALIGN_CENTRE, title);
 }
 
 static void draw_y_axis(cairo_t *cr, const map *m)
 {
-    double range = m->height / m->scale, step = nice_step(range, fmax(m->height / 45, 2));
-    set_font(cr, 12, false);
-    cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
-    cairo_set_line_width(cr, 1.0);
-    for (double t = 0; t <= range * (1 + 1e-9); t += step) {
-        char label[32];
-        snprintf(label, sizeof label, "%.6g", t);
-        double y = map_y(m, t);
-        cairo_move_to(cr, m->left - 2, y);
-        cairo_line_to(cr, m->left - 7, y);
-        cairo_stroke(cr);
-        show_text(cr, m->left - 10, y + 4, ALIGN_RIGHT, label);
-    }
+    draw_ticks(cr, m, true);
     const char *title = "along the ruling (mm)";
-    if (m->height < text_width(cr, title) + 20) { /* too short to write it alongside */
-        show_text(cr, 20, m->bottom - m->height - 10, ALIGN_LEFT, title);
+    if (m->height < ur_draw_text_width(cr, title) + 20) { /* too short to write it alongside */
+        ur_draw_show_text(cr, 20, m->bottom - m->height - 10, UR_ALIGN_LEFT, title);
         return;
     }
     cairo_save(cr);
     cairo_translate(cr, 26, m->bottom - m->height / 2);
     cairo_rotate(cr, -M_PI / 2);
-    show_text(cr, 0, 0, ALIGN_CENTRE, title);
+    ur_draw_show_text(cr, 0, 0, UR_ALIGN_CENTRE, title);
     cairo_restore(cr);
 }
 
@@ -516,22 +493,20 @@ static void draw_colour_bar(cairo_t *cr, const map *m, const grid *g)
         cairo_fill(cr);
     }
     cairo_set_antialias(cr, CAIRO_ANTIALIAS_DEFAULT);
-    set_font(cr, 11, false);
+    ur_draw_set_font(cr, 11, false);
     cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
-    show_text(cr, x + 13, y + height + 17, ALIGN_CENTRE, "0");
+    ur_draw_show_text(cr, x + 13, y + height + 17, UR_ALIGN_CENTRE, "0");
     cairo_set_line_width(cr, 1.0);
     for (int tick = 0; tick <= 3; tick++) {
         char label[32];
         snprintf(label, sizeof label, "%.2g", -g->lower * pow(g->upper / g->lower, tick / 3.0));
         double at = bar + width * tick / 3;
-        cairo_move_to(cr, at, y + height);
-        cairo_line_to(cr, at, y + height + 4);
-        cairo_stroke(cr);
-        show_text(cr, at, y + height + 17, ALIGN_CENTRE, label);
+        ur_draw_line(cr, at, y + height, at, y + height + 4);
+        ur_draw_show_text(cr, at, y + height + 17, UR_ALIGN_CENTRE, label);
     }
-    set_font(cr, 12, false);
-    show_text(cr, x, y + height + 38, ALIGN_LEFT,
-              "Gaussian curvature K (1/mm\xc2\xb2), log scale of |K|; green: K = 0");
+    ur_draw_set_font(cr, 12, false);
+    ur_draw_show_text(cr, x, y + height + 38, UR_ALIGN_LEFT,
+                      "Gaussian curvature K (1/mm\xc2\xb2), log scale of |K|; green: K = 0");
 }
 
 /* Everything green: say why, and say so when the residual disagrees. */
@@ -545,21 +520,23 @@ static void draw_flat_legend(cairo_t *cr, const map *m, const ur_analysis *analy
              analysis->developable ? "K = 0: developable (largest residual %.2g rad)"
                                    : "K = 0 at every sample, yet the residual reaches %.2g rad",
              analysis->max_residual);
-    set_font(cr, 12, false);
+    ur_draw_set_font(cr, 12, false);
     cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
-    show_text(cr, MAP_LEFT + 36, m->legend_top + 13, ALIGN_LEFT, label);
-    show_text(cr, MAP_LEFT, m->legend_top + 54, ALIGN_LEFT, "Gaussian curvature K (1/mm\xc2\xb2)");
+    ur_draw_show_text(cr, MAP_LEFT + 36, m->legend_top + 13, UR_ALIGN_LEFT, label);
+    ur_draw_show_text(cr, MAP_LEFT, m->legend_top + 54, UR_ALIGN_LEFT,
+                      "Gaussian curvature K (1/mm\xc2\xb2)");
 }
 
 /* The keys for what is drawn over the colours, one line each. */
 static void draw_keys(cairo_t *cr, const map *m, bool gaps, bool striction, bool bend)
 {
     double y = m->legend_top + 8;
-    set_font(cr, 12, false);
+    ur_draw_set_font(cr, 12, false);
     if (gaps) {
         hatch(cr, KEY_LEFT, y - 7, KEY_LEFT + 30, y + 7);
         cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
-        show_text(cr, KEY_LEFT + 40, y + 4, ALIGN_LEFT, "gap in the domain of existence");
+        ur_draw_show_text(cr, KEY_LEFT + 40, y + 4, UR_ALIGN_LEFT,
+                          "gap in the domain of existence");
         y += 22;
     }
     if (striction) {
@@ -572,14 +549,14 @@ static void draw_keys(cairo_t *cr, const map *m, bool gaps, bool striction, bool
         cairo_stroke(cr);
         cairo_set_dash(cr, NULL, 0, 0);
         cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
-        show_text(cr, KEY_LEFT + 40, y + 4, ALIGN_LEFT,
-                  "striction line (edge of regression of a developable)");
+        ur_draw_show_text(cr, KEY_LEFT + 40, y + 4, UR_ALIGN_LEFT,
+                          "striction line (edge of regression of a developable)");
         y += 22;
     }
     if (bend) {
         bend_marker(cr, KEY_LEFT + 15, y);
         cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
-        show_text(cr, KEY_LEFT + 40, y + 4, ALIGN_LEFT, "smallest bend radius");
+        ur_draw_show_text(cr, KEY_LEFT + 40, y + 4, UR_ALIGN_LEFT, "smallest bend radius");
     }
 }
 
@@ -601,8 +578,8 @@ static void draw_scale_bar(cairo_t *cr, const map *m)
     cairo_fill(cr);
     char label[32];
     snprintf(label, sizeof label, "%.6g mm", length);
-    set_font(cr, 12, false);
-    show_text(cr, right - pixels - 8, y, ALIGN_RIGHT, label);
+    ur_draw_set_font(cr, 12, false);
+    ur_draw_show_text(cr, right - pixels - 8, y, UR_ALIGN_RIGHT, label);
 }
 
 /* ---- Header and the whole picture --------------------------------------- */
@@ -613,16 +590,16 @@ static void draw_header(cairo_t *cr, const ur_analysis *analysis, const char *ti
     title = title ? title : "surface analysis";
     /* A long title (a whole command line) gets a smaller font rather than cut off. */
     double size = 20;
-    set_font(cr, size, true);
-    while (size > 11 && text_width(cr, title) > WIDTH - 40)
-        set_font(cr, --size, true);
-    show_text(cr, 20, 32, ALIGN_LEFT, title);
+    ur_draw_set_font(cr, size, true);
+    while (size > 11 && ur_draw_text_width(cr, title) > WIDTH - 40)
+        ur_draw_set_font(cr, --size, true);
+    ur_draw_show_text(cr, 20, 32, UR_ALIGN_LEFT, title);
     char line[256];
     snprintf(line, sizeof line, "area %.6g mm\xc2\xb2 \xc2\xb7 %s (largest residual %.2g rad)",
              analysis->area_3d, analysis->developable ? "developable" : "not developable",
              analysis->max_residual);
-    set_font(cr, 13, false);
-    show_text(cr, 20, 54, ALIGN_LEFT, line);
+    ur_draw_set_font(cr, 13, false);
+    ur_draw_show_text(cr, 20, 54, UR_ALIGN_LEFT, line);
     char bend[96];
     if (isfinite(analysis->min_bend_radius))
         snprintf(bend, sizeof bend, "smallest bend radius %.4g mm%s", analysis->min_bend_radius,
@@ -633,7 +610,7 @@ static void draw_header(cairo_t *cr, const ur_analysis *analysis, const char *ti
     snprintf(line, sizeof line, "K from %.3g to %.3g 1/mm\xc2\xb2 (mean %.3g) \xc2\xb7 %s",
              analysis->gaussian_min + 0.0, analysis->gaussian_max + 0.0,
              analysis->gaussian_mean + 0.0, bend);
-    show_text(cr, 20, 72, ALIGN_LEFT, line);
+    ur_draw_show_text(cr, 20, 72, UR_ALIGN_LEFT, line);
 }
 
 static ur_status render(cairo_t *cr, const map *m, ur_ruled *ruled, const ur_analysis *analysis,

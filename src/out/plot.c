@@ -12,6 +12,7 @@
 #include "unroll/out.h"
 
 #include "atomic.h"
+#include "draw.h"
 #include "png.h"
 
 #include <cairo.h>
@@ -94,50 +95,22 @@ static double to_y(const panel *p, double value)
 
 /* ---- Text --------------------------------------------------------------- */
 
-static void set_font(cairo_t *cr, double size, bool bold)
-{
-    cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL,
-                           bold ? CAIRO_FONT_WEIGHT_BOLD : CAIRO_FONT_WEIGHT_NORMAL);
-    cairo_set_font_size(cr, size);
-}
-
-static double text_width(cairo_t *cr, const char *text)
-{
-    cairo_text_extents_t extents;
-    cairo_text_extents(cr, text, &extents);
-    return extents.x_advance;
-}
-
-/* Text with its baseline at y; align 0 left, 0.5 centred, 1 right of x. */
-static void show_text(cairo_t *cr, double x, double y, double align, const char *text)
-{
-    cairo_move_to(cr, x - align * text_width(cr, text), y);
-    cairo_show_text(cr, text);
-}
-
 /* "10" with the exponent raised, as a tick label. */
-static void show_power(cairo_t *cr, double x, double y, double align, int exponent)
+static void show_power(cairo_t *cr, double x, double y, ur_align align, int exponent)
 {
     char power[16];
     snprintf(power, sizeof power, "%d", exponent);
-    set_font(cr, 12, false);
-    double base = text_width(cr, "10");
-    set_font(cr, 9, false);
-    double width = base + text_width(cr, power);
-    set_font(cr, 12, false);
-    show_text(cr, x - align * width, y, 0, "10");
-    set_font(cr, 9, false);
-    show_text(cr, x - align * width + base, y - 6, 0, power);
+    ur_draw_set_font(cr, 12, false);
+    double base = ur_draw_text_width(cr, "10");
+    ur_draw_set_font(cr, 9, false);
+    double left = ur_draw_left(x, base + ur_draw_text_width(cr, power), align);
+    ur_draw_set_font(cr, 12, false);
+    ur_draw_show_text(cr, left, y, UR_ALIGN_LEFT, "10");
+    ur_draw_set_font(cr, 9, false);
+    ur_draw_show_text(cr, left + base, y - 6, UR_ALIGN_LEFT, power);
 }
 
 /* ---- Axes --------------------------------------------------------------- */
-
-static void line(cairo_t *cr, double x0, double y0, double x1, double y1)
-{
-    cairo_move_to(cr, x0, y0);
-    cairo_line_to(cr, x1, y1);
-    cairo_stroke(cr);
-}
 
 /* Light grid lines at the decades, short ticks at 2..9 times them. */
 static void x_ticks(cairo_t *cr, const panel *p)
@@ -150,12 +123,12 @@ static void x_ticks(cairo_t *cr, const panel *p)
                 continue;
             if (m == 1) {
                 cairo_set_source_rgb(cr, 0.85, 0.85, 0.85);
-                line(cr, x, p->top, x, p->bottom);
+                ur_draw_line(cr, x, p->top, x, p->bottom);
             }
             cairo_set_source_rgb(cr, 0, 0, 0);
-            line(cr, x, p->bottom, x, p->bottom + (m == 1 ? 6 : 3));
+            ur_draw_line(cr, x, p->bottom, x, p->bottom + (m == 1 ? 6 : 3));
             if (m == 1)
-                show_power(cr, x, p->bottom + 22, 0.5, decade);
+                show_power(cr, x, p->bottom + 22, UR_ALIGN_CENTRE, decade);
         }
 }
 
@@ -167,14 +140,14 @@ static void y_ticks(cairo_t *cr, const panel *p)
     for (int decade = (int)p->y_low; decade <= (int)p->y_high; decade++) {
         double y = to_y(p, pow(10, decade));
         cairo_set_source_rgb(cr, 0.85, 0.85, 0.85);
-        line(cr, p->left, y, p->right, y);
+        ur_draw_line(cr, p->left, y, p->right, y);
         cairo_set_source_rgb(cr, 0, 0, 0);
-        line(cr, p->left - 6, y, p->left, y);
+        ur_draw_line(cr, p->left - 6, y, p->left, y);
         if ((decade - (int)p->y_low) % step == 0)
-            show_power(cr, p->left - 9, y + 4, 1, decade);
+            show_power(cr, p->left - 9, y + 4, UR_ALIGN_RIGHT, decade);
         for (int m = 2; step == 1 && decade < (int)p->y_high && m <= 9; m++) {
             double minor = to_y(p, m * pow(10, decade));
-            line(cr, p->left - 3, minor, p->left, minor);
+            ur_draw_line(cr, p->left - 3, minor, p->left, minor);
         }
     }
 }
@@ -187,12 +160,12 @@ static void axes(cairo_t *cr, const panel *p, const char *x_title, const char *y
     cairo_set_line_width(cr, 1.2);
     cairo_rectangle(cr, p->left, p->top, p->right - p->left, p->bottom - p->top);
     cairo_stroke(cr);
-    set_font(cr, 13, false);
-    show_text(cr, (p->left + p->right) / 2, p->bottom + 44, 0.5, x_title);
+    ur_draw_set_font(cr, 13, false);
+    ur_draw_show_text(cr, (p->left + p->right) / 2, p->bottom + 44, UR_ALIGN_CENTRE, x_title);
     cairo_save(cr);
     cairo_translate(cr, p->left - 52, (p->top + p->bottom) / 2);
     cairo_rotate(cr, -M_PI / 2);
-    show_text(cr, 0, 0, 0.5, y_title);
+    ur_draw_show_text(cr, 0, 0, UR_ALIGN_CENTRE, y_title);
     cairo_restore(cr);
 }
 
@@ -272,7 +245,7 @@ static void panel_plot(cairo_t *cr, const panel *p, const ur_compare_table *tabl
 static void legend(cairo_t *cr, const ur_compare_table *table, double y)
 {
     double x = 85;
-    set_font(cr, 13, false);
+    ur_draw_set_font(cr, 13, false);
     for (int k = 0; k < UR_COMPARE_METHODS; k++) {
         char label[64];
         bool drawn = method_drawn(table, k);
@@ -285,17 +258,18 @@ static void legend(cairo_t *cr, const ur_compare_table *table, double y)
         else
             cairo_set_source_rgb(cr, 0.75, 0.75, 0.75); /* greyed out: no data */
         cairo_set_line_width(cr, 2);
-        line(cr, x, y - 4, x + 28, y - 4);
+        ur_draw_line(cr, x, y - 4, x + 28, y - 4);
         marker(cr, k, x + 14, y - 4);
         cairo_set_source_rgb(cr, 0, 0, 0);
-        show_text(cr, x + 36, y, 0, label);
-        x += 36 + text_width(cr, label) + 30;
+        ur_draw_show_text(cr, x + 36, y, UR_ALIGN_LEFT, label);
+        x += 36 + ur_draw_text_width(cr, label) + 30;
     }
-    set_font(cr, 11, false);
+    ur_draw_set_font(cr, 11, false);
     cairo_set_source_rgb(cr, 0.3, 0.3, 0.3);
-    show_text(cr, 85, y + 20, 0,
-              "values below 1e-16 (and zeros) are drawn at 1e-16; distances after the best rigid "
-              "fit to the exact net");
+    ur_draw_show_text(
+        cr, 85, y + 20, UR_ALIGN_LEFT,
+        "values below 1e-16 (and zeros) are drawn at 1e-16; distances after the best rigid "
+        "fit to the exact net");
 }
 
 static void draw(cairo_t *cr, const ur_compare_table *table, const char *title)
@@ -303,8 +277,8 @@ static void draw(cairo_t *cr, const ur_compare_table *table, const char *title)
     cairo_set_source_rgb(cr, 1, 1, 1);
     cairo_paint(cr);
     cairo_set_source_rgb(cr, 0, 0, 0);
-    set_font(cr, 18, true);
-    show_text(cr, WIDTH / 2.0, 32, 0.5, title ? title : "unroll compare");
+    ur_draw_set_font(cr, 18, true);
+    ur_draw_show_text(cr, WIDTH / 2.0, 32, UR_ALIGN_CENTRE, title ? title : "unroll compare");
     panel area = {85, 435, 60, 480, 0, 0, 0, 0};
     panel distance = {535, 885, 60, 480, 0, 0, 0, 0};
     x_range(table, &area);

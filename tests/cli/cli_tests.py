@@ -184,21 +184,29 @@ def right_cone_is_a_sector(work):
     close(perimeter(outline), 2 * slant + slant * angle, 1e-6, "sector perimeter")
 
 
-@test
-def frustum_is_an_annular_sector(work):
-    run(work, "cone", "--radius", "60", "--height", "80", "--top-radius", "30", "-o", "f.svg", *FINE)
-    [outline] = outlines(os.path.join(work, "f.svg"))
-    outer = math.hypot(60, 160)         # the apex is 80 * 60 / 30 = 160 above the base
-    inner = outer / 2
-    angle = 2 * math.pi * 60 / outer
+def annular_sector_check(outline, inner, outer, angle, what):
+    """The outline is a sector of the annulus inner..outer spanning angle (radians).
+
+    Its two straight edges, the longest, lie on lines through the centre; every
+    point lies on one of the two circles (to 1e-6), and the area is the sector's.
+    """
     a, b = two_longest_edges(outline)
     n = len(outline)
     centre = lines_meet(outline[a], outline[(a + 1) % n], outline[b], outline[(b + 1) % n])
     for p in outline:
         r = math.dist(p, centre)
         check(abs(r - inner) <= 1e-6 * inner or abs(r - outer) <= 1e-6 * outer,
-              "point at %.9g from the centre, expected %.9g or %.9g" % (r, inner, outer))
-    close(area(outline), angle * (outer ** 2 - inner ** 2) / 2, 1e-6, "annular sector area")
+              "%s: point at %.9g from the centre, expected %.9g or %.9g" % (what, r, inner, outer))
+    close(area(outline), angle * (outer ** 2 - inner ** 2) / 2, 1e-6,
+          what + ": annular sector area")
+
+
+@test
+def frustum_is_an_annular_sector(work):
+    run(work, "cone", "--radius", "60", "--height", "80", "--top-radius", "30", "-o", "f.svg", *FINE)
+    [outline] = outlines(os.path.join(work, "f.svg"))
+    outer = math.hypot(60, 160)         # the apex is 80 * 60 / 30 = 160 above the base
+    annular_sector_check(outline, outer / 2, outer, 2 * math.pi * 60 / outer, "frustum")
 
 
 def helicoid_pieces(work, turns, extra=()):
@@ -417,16 +425,6 @@ def circle_points(r, z, start, end, n, closed=False):
     return points + points[:1] if closed else points
 
 
-def annular_sector_check(outline, inner, outer, what):
-    a, b = two_longest_edges(outline)
-    n = len(outline)
-    centre = lines_meet(outline[a], outline[(a + 1) % n], outline[b], outline[(b + 1) % n])
-    for p in outline:
-        r = math.dist(p, centre)
-        check(abs(r - inner) <= 1e-6 * inner or abs(r - outer) <= 1e-6 * outer,
-              "%s: point at %.9g from the centre, expected %.9g or %.9g" % (what, r, inner, outer))
-
-
 @test
 def strip_between_coaxial_circles_is_a_frustum(work):
     write_points(work, "low.csv", circle_points(60, 0, 0, 2 * math.pi, 400, closed=True))
@@ -434,9 +432,7 @@ def strip_between_coaxial_circles_is_a_frustum(work):
     run(work, "strip", "--rail1", "low.csv", "--rail2", "high.csv", "-o", "s.svg", *FINE)
     [outline] = outlines(os.path.join(work, "s.svg"))
     outer = math.hypot(60, 160)
-    annular_sector_check(outline, outer / 2, outer, "frustum strip")
-    close(area(outline), 2 * math.pi * 60 / outer * (outer ** 2 - (outer / 2) ** 2) / 2, 1e-6,
-          "annular sector area")
+    annular_sector_check(outline, outer / 2, outer, 2 * math.pi * 60 / outer, "frustum strip")
 
 
 @test

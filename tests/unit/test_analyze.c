@@ -29,7 +29,6 @@
 #include <cmocka.h>
 
 #include <cairo.h>
-#include <dirent.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -38,13 +37,7 @@
 
 #include "unroll/analyze.h"
 
-#define assert_relative(actual, expected, tolerance)                                               \
-    do {                                                                                           \
-        double a_ = (actual), e_ = (expected);                                                     \
-        if (!(fabs(a_ - e_) <= (tolerance)*fabs(e_)))                                              \
-            fail_msg("%s = %.12g, expected %.12g within %g", #actual, a_, e_,                      \
-                     (double)(tolerance));                                                         \
-    } while (0)
+#include "test_support.h"
 
 #define assert_small(actual, bound)                                                                \
     do {                                                                                           \
@@ -425,37 +418,10 @@ static int make_directory(void **state)
     return 0;
 }
 
-/* Calls f on each entry of directory but . and ..; returns how many there are. */
-static int each_entry(const char *directory, void (*f)(const char *path))
-{
-    DIR *dir = opendir(directory);
-    if (!dir)
-        return -1;
-    int count = 0;
-    struct dirent *entry;
-    char path[512];
-    while ((entry = readdir(dir))) {
-        if (strcmp(entry->d_name, ".") == 0 || strcmp(entry->d_name, "..") == 0)
-            continue;
-        count++;
-        snprintf(path, sizeof path, "%s/%s", directory, entry->d_name);
-        if (f)
-            f(path);
-    }
-    closedir(dir);
-    return count;
-}
-
-static void remove_file(const char *path)
-{
-    unlink(path);
-}
-
 static int remove_directory(void **state)
 {
     char *directory = *state;
-    each_entry(directory, remove_file);
-    int status = rmdir(directory);
+    int status = remove_test_directory(directory);
     free(directory);
     return status;
 }
@@ -501,7 +467,7 @@ static void test_png(void **state)
     assert_true(counts.blue > 100 * 100);
     ur_analysis_free(&analysis);
     ur_ruled_free(&ruled);
-    assert_int_equal(each_entry(directory, NULL), 3);
+    assert_int_equal(entries_in(directory), 3);
 }
 
 static void test_png_failures_leave_nothing(void **state)
@@ -537,7 +503,7 @@ static void test_png_failures_leave_nothing(void **state)
 
     ur_analysis_free(&analysis);
     ur_ruled_free(&ruled);
-    assert_int_equal(each_entry(directory, NULL), 1); /* map.png only: no temporary left */
+    assert_int_equal(entries_in(directory), 1); /* map.png only: no temporary left */
 }
 
 /* cairo keeps font caches for the life of the process; let them go before the leak check. */
@@ -547,7 +513,6 @@ static int release_cairo(void **state)
     cairo_debug_reset_static_data();
     return 0;
 }
-
 
 int main(void)
 {

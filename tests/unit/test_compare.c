@@ -18,7 +18,6 @@
 #include <cmocka.h>
 
 #include <cairo.h>
-#include <dirent.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -28,6 +27,8 @@
 
 #include "unroll/out.h"
 
+#include "test_support.h"
+
 enum { TRIANGLE = UR_COMPARE_TRIANGLE, QUAD = UR_COMPARE_QUAD, EXACT = UR_COMPARE_EXACT };
 
 #define HELIX_RADIUS 30.0
@@ -36,14 +37,6 @@ enum { TRIANGLE = UR_COMPARE_TRIANGLE, QUAD = UR_COMPARE_QUAD, EXACT = UR_COMPAR
 #define CONE_RADIUS 60.0
 #define CONE_HEIGHT 80.0 /* slant 100 */
 #define CONE_CUT 0.5     /* the frustum's top: radius 30, slant 50 */
-
-#define assert_relative(actual, expected, tolerance)                                               \
-    do {                                                                                           \
-        double a_ = (actual), e_ = (expected);                                                     \
-        if (!(fabs(a_ - e_) <= (tolerance)*fabs(e_)))                                              \
-            fail_msg("%s = %.12g, expected %.12g within %g", #actual, a_, e_,                      \
-                     (double)(tolerance));                                                         \
-    } while (0)
 
 #define assert_below(actual, bound)                                                                \
     do {                                                                                           \
@@ -100,23 +93,10 @@ static int setup(void **state)
     return 0;
 }
 
-/* Removes the test directory and whatever is left in it (one level deep). */
 static int teardown(void **state)
 {
     fixture *f = *state;
-    DIR *dir = opendir(f->dir);
-    if (dir) {
-        struct dirent *entry;
-        char path[512];
-        while ((entry = readdir(dir)) != NULL) {
-            if (strcmp(entry->d_name, ".") == 0 || strcmp(entry->d_name, "..") == 0)
-                continue;
-            snprintf(path, sizeof path, "%s/%s", f->dir, entry->d_name);
-            unlink(path);
-        }
-        closedir(dir);
-    }
-    rmdir(f->dir);
+    remove_test_directory(f->dir);
     ur_compare_table_free(&f->helicoid_table);
     ur_compare_table_free(&f->frustum_table);
     ur_ruled_free(&f->helicoid);
@@ -217,17 +197,10 @@ static void test_helicoid_quad_edge_at_least_chord_deficit(void **state)
 
 /* ---- The distance against a rigid-motion invariant ---------------------- */
 
-static ur_net_list develop(ur_ruled *ruled, ur_method method, size_t n, double tolerance)
+/* The helicoid's net by method with n parts: one piece, with its n - 1 interior rulings. */
+static ur_net_list develop_one(ur_ruled *ruled, ur_method method, size_t n, double tolerance)
 {
-    ur_develop_options options;
-    ur_develop_options_default(&options);
-    options.method = method;
-    options.rulings = n;
-    options.tolerance = tolerance;
-    ur_net_list nets;
-    ur_error error;
-    if (ur_develop(ruled, &options, &nets, &error) != UR_OK)
-        fail_msg("develop: %s", error.message);
+    ur_net_list nets = develop(ruled, method, n, tolerance);
     assert_int_equal(nets.count, 1);
     assert_int_equal(nets.nets[0].ruling_count, n - 1);
     return nets;
@@ -264,9 +237,9 @@ static void test_distance_at_least_invariant_bound(void **state)
     fixture *f = *state;
     const ur_compare_row *row = &f->helicoid_table.rows[1];
     assert_int_equal(row->n, 16);
-    ur_net_list exact = develop(&f->helicoid, UR_METHOD_EXACT, 16, 1e-5);
-    ur_net_list triangle = develop(&f->helicoid, UR_METHOD_TRIANGLE, 16, 0.01);
-    ur_net_list quad = develop(&f->helicoid, UR_METHOD_QUAD, 16, 0.01);
+    ur_net_list exact = develop_one(&f->helicoid, UR_METHOD_EXACT, 16, 1e-5);
+    ur_net_list triangle = develop_one(&f->helicoid, UR_METHOD_TRIANGLE, 16, 0.01);
+    ur_net_list quad = develop_one(&f->helicoid, UR_METHOD_QUAD, 16, 0.01);
     double triangle_bound = rigid_lower_bound(&triangle.nets[0], &exact.nets[0]);
     double quad_bound = rigid_lower_bound(&quad.nets[0], &exact.nets[0]);
     assert_true(triangle_bound > 0.1 && quad_bound > 0.1); /* visibly different nets */
@@ -343,48 +316,28 @@ static void test_bad_ranges_refused(void **state)
 
 /* ---- Files -------------------------------------------------------------- */
 
-static void path_in(const fixture *f, const char *name, char *path, size_t size)
-{
-    int length = snprintf(path, size, "%s/%s", f->dir, name);
-    assert_true(length > 0 && (size_t)length < size);
-}
-
-/* How many entries the test directory holds, hidden temporaries included. */
-static int entries_in(const fixture *f)
-{
-    DIR *dir = opendir(f->dir);
-    assert_non_null(dir);
-    int count = 0;
-    struct dirent *entry;
-    while ((entry = readdir(dir)) != NULL)
-        if (strcmp(entry->d_name, ".") != 0 && strcmp(entry->d_name, "..") != 0)
-            count++;
-    closedir(dir);
-    return count;
-}
-
 static void test_png_loads_with_its_size(void **state)
 {
     fixture *f = *state;
-    int before = entries_in(f);
+    int before = entries_in(f->dir);
     char path[256];
-    path_in(f, "helicoid.png", path, sizeof path);
+    path_in(f->dir, "helicoid.png", path, sizeof path);
     ur_error error;
     if (ur_compare_plot_png(path, &f->helicoid_table, "helicoid", &error) != UR_OK)
         fail_msg("plot: %s", error.message);
-    path_in(f, "frustum.png", path, sizeof path);
+    path_in(f->dir, "frustum.png", path, sizeof path);
     if (ur_compare_plot_png(path, &f->frustum_table, NULL, &error) != UR_OK)
         fail_msg("plot: %s", error.message);
     const char *names[] = {"helicoid.png", "frustum.png"};
     for (int i = 0; i < 2; i++) {
-        path_in(f, names[i], path, sizeof path);
+        path_in(f->dir, names[i], path, sizeof path);
         cairo_surface_t *image = cairo_image_surface_create_from_png(path);
         assert_int_equal(cairo_surface_status(image), CAIRO_STATUS_SUCCESS);
         assert_int_equal(cairo_image_surface_get_width(image), 900);
         assert_int_equal(cairo_image_surface_get_height(image), 600);
         cairo_surface_destroy(image);
     }
-    assert_int_equal(entries_in(f), before + 2); /* no temporaries left */
+    assert_int_equal(entries_in(f->dir), before + 2); /* no temporaries left */
 }
 
 /* Splits a CSV line in place into at most capacity fields; returns how many. */
@@ -446,8 +399,8 @@ static void test_csv_lines(void **state)
 {
     fixture *f = *state;
     char helicoid[256], frustum[256];
-    path_in(f, "helicoid.csv", helicoid, sizeof helicoid);
-    path_in(f, "frustum.csv", frustum, sizeof frustum);
+    path_in(f->dir, "helicoid.csv", helicoid, sizeof helicoid);
+    path_in(f->dir, "frustum.csv", frustum, sizeof frustum);
     ur_error error;
     assert_int_equal(ur_compare_csv_write(helicoid, &f->helicoid_table, &error), UR_OK);
     assert_int_equal(ur_compare_csv_write(frustum, &f->frustum_table, &error), UR_OK);
@@ -455,18 +408,12 @@ static void test_csv_lines(void **state)
     check_csv(frustum, &f->frustum_table);
 }
 
-static bool exists(const char *path)
-{
-    struct stat info;
-    return stat(path, &info) == 0;
-}
-
 static void test_missing_directory_leaves_nothing(void **state)
 {
     fixture *f = *state;
-    int before = entries_in(f);
+    int before = entries_in(f->dir);
     char missing[256], png[300], csv[300];
-    path_in(f, "missing", missing, sizeof missing);
+    path_in(f->dir, "missing", missing, sizeof missing);
     snprintf(png, sizeof png, "%s/plot.png", missing);
     snprintf(csv, sizeof csv, "%s/table.csv", missing);
     ur_error error;
@@ -476,7 +423,7 @@ static void test_missing_directory_leaves_nothing(void **state)
     status = ur_compare_csv_write(csv, &f->helicoid_table, &error);
     assert_true(status == UR_ERROR_INPUT || status == UR_ERROR_INTERNAL);
     assert_false(exists(missing));
-    assert_int_equal(entries_in(f), before);
+    assert_int_equal(entries_in(f->dir), before);
 }
 
 /* A table with no rows is refused before anything is opened: the old file stays. */
@@ -484,12 +431,12 @@ static void test_empty_table_leaves_file_untouched(void **state)
 {
     fixture *f = *state;
     char path[256];
-    path_in(f, "kept.csv", path, sizeof path);
+    path_in(f->dir, "kept.csv", path, sizeof path);
     FILE *file = fopen(path, "w");
     assert_non_null(file);
     assert_true(fputs("old\n", file) >= 0);
     assert_int_equal(fclose(file), 0);
-    int before = entries_in(f);
+    int before = entries_in(f->dir);
     ur_compare_table empty = {NULL, 0, 0};
     ur_error error;
     assert_int_equal(ur_compare_csv_write(path, &empty, &error), UR_ERROR_INTERNAL);
@@ -500,7 +447,7 @@ static void test_empty_table_leaves_file_untouched(void **state)
     assert_non_null(fgets(line, sizeof line, file));
     fclose(file);
     assert_string_equal(line, "old\n");
-    assert_int_equal(entries_in(f), before);
+    assert_int_equal(entries_in(f->dir), before);
 }
 
 int main(void)

@@ -15,13 +15,7 @@
 
 #include "unroll/develop.h"
 
-#define assert_relative(actual, expected, tolerance)                                               \
-    do {                                                                                           \
-        double a_ = (actual), e_ = (expected);                                                     \
-        if (!(fabs(a_ - e_) <= (tolerance)*fabs(e_)))                                              \
-            fail_msg("%s = %.12g, expected %.12g within %g", #actual, a_, e_,                      \
-                     (double)(tolerance));                                                         \
-    } while (0)
+#include "test_support.h"
 
 static ur_ruled helicoid(double radius, double pitch, double turns, double offset, double width)
 {
@@ -30,20 +24,6 @@ static ur_ruled helicoid(double radius, double pitch, double turns, double offse
     assert_int_equal(ur_curve_new_helix(radius, pitch, 0, 2 * M_PI * turns, &curve, NULL), UR_OK);
     assert_int_equal(ur_ruled_tangent(curve, offset, width, &ruled, NULL), UR_OK);
     return ruled;
-}
-
-static ur_net_list develop(ur_ruled *ruled, ur_method method, size_t n, double tolerance)
-{
-    ur_develop_options options;
-    ur_develop_options_default(&options);
-    options.method = method;
-    options.rulings = n;
-    options.tolerance = tolerance;
-    ur_net_list nets;
-    ur_error error;
-    if (ur_develop(ruled, &options, &nets, &error) != UR_OK)
-        fail_msg("develop: %s", error.message);
-    return nets;
 }
 
 static double total_flat_area(const ur_net_list *nets)

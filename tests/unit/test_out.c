@@ -14,7 +14,6 @@
 #include <setjmp.h>
 #include <cmocka.h>
 
-#include <dirent.h>
 #include <fcntl.h>
 #include <jansson.h>
 #include <libxml/parser.h>
@@ -27,6 +26,8 @@
 #include <unistd.h>
 
 #include "unroll/out.h"
+
+#include "test_support.h"
 
 #define SVG_NAMESPACE "http://www.w3.org/2000/svg"
 #define INKSCAPE_NAMESPACE "http://www.inkscape.org/namespaces/inkscape"
@@ -128,23 +129,10 @@ static int setup(void **state)
     return 0;
 }
 
-/* Removes the test directory and whatever is left in it (one level deep). */
 static int teardown(void **state)
 {
     fixture *f = *state;
-    DIR *dir = opendir(f->dir);
-    if (dir) {
-        struct dirent *entry;
-        char path[512];
-        while ((entry = readdir(dir)) != NULL) {
-            if (strcmp(entry->d_name, ".") == 0 || strcmp(entry->d_name, "..") == 0)
-                continue;
-            snprintf(path, sizeof path, "%s/%s", f->dir, entry->d_name);
-            unlink(path);
-        }
-        closedir(dir);
-    }
-    rmdir(f->dir);
+    remove_test_directory(f->dir);
     for (int i = 0; i < PIECES; i++)
         ur_piece_free(&f->pieces[i]);
     free(f);
@@ -152,32 +140,6 @@ static int teardown(void **state)
 }
 
 /* ---- small checks ------------------------------------------------------- */
-
-static void path_in(const fixture *f, const char *name, char *path, size_t size)
-{
-    int length = snprintf(path, size, "%s/%s", f->dir, name);
-    assert_true(length > 0 && (size_t)length < size);
-}
-
-static bool exists(const char *path)
-{
-    struct stat info;
-    return stat(path, &info) == 0;
-}
-
-/* How many entries the test directory holds, hidden temporaries included. */
-static int entries_in(const fixture *f)
-{
-    DIR *dir = opendir(f->dir);
-    assert_non_null(dir);
-    int count = 0;
-    struct dirent *entry;
-    while ((entry = readdir(dir)) != NULL)
-        if (strcmp(entry->d_name, ".") != 0 && strcmp(entry->d_name, "..") != 0)
-            count++;
-    closedir(dir);
-    return count;
-}
 
 static void assert_near(double actual, double expected)
 {
@@ -287,7 +249,7 @@ static void test_sheet_file_name(void **state)
 static void write_svg(fixture *f, const char *name, ur_status expected, ur_error *error)
 {
     char path[256];
-    path_in(f, name, path, sizeof path);
+    path_in(f->dir, name, path, sizeof path);
     ur_status status = ur_write_svg(path, &f->layout, f->pieces, &f->machine, &f->options, error);
     if (status != expected)
         print_error("status %d: %s\n", status, error->message);
@@ -334,10 +296,10 @@ static void test_svg_one_sheet(void **state)
     fixture *f = *state;
     ur_error error;
     write_svg(f, "net.svg", UR_OK, &error);
-    assert_int_equal(entries_in(f), 1); /* no temporary left */
+    assert_int_equal(entries_in(f->dir), 1); /* no temporary left */
 
     char path[256];
-    path_in(f, "net.svg", path, sizeof path);
+    path_in(f->dir, "net.svg", path, sizeof path);
     xmlDoc *doc = xmlReadFile(path, NULL, XML_PARSE_NONET);
     assert_non_null(doc);
     xmlNode *svg = xmlDocGetRootElement(doc);
@@ -383,7 +345,7 @@ static void test_svg_file_mode_follows_umask(void **state)
     mode_t old = umask(027);
     ur_error error;
     char path[256];
-    path_in(f, "net.svg", path, sizeof path);
+    path_in(f->dir, "net.svg", path, sizeof path);
     ur_status status = ur_write_svg(path, &f->layout, f->pieces, &f->machine, NULL, &error);
     umask(old);
     assert_int_equal(status, UR_OK);
@@ -399,11 +361,11 @@ static void test_svg_several_sheets(void **state)
     ur_error error;
     write_svg(f, "net.svg", UR_OK, &error);
     char path[256];
-    path_in(f, "net.svg", path, sizeof path);
+    path_in(f->dir, "net.svg", path, sizeof path);
     assert_false(exists(path));
-    path_in(f, "net-1.svg", path, sizeof path);
+    path_in(f->dir, "net-1.svg", path, sizeof path);
     assert_true(exists(path));
-    path_in(f, "net-2.svg", path, sizeof path);
+    path_in(f->dir, "net-2.svg", path, sizeof path);
     xmlDoc *doc = xmlReadFile(path, NULL, XML_PARSE_NONET);
     assert_non_null(doc);
     xmlNode *svg = xmlDocGetRootElement(doc);
@@ -418,7 +380,7 @@ static void test_svg_several_sheets(void **state)
     assert_attribute(element(cut->children, "path"), NULL, "d",
                      "M 10 190 L 20 190 L 20 180 L 10 180 Z");
     xmlFreeDoc(doc);
-    assert_int_equal(entries_in(f), 2);
+    assert_int_equal(entries_in(f->dir), 2);
 }
 
 static void test_svg_missing_directory(void **state)
@@ -431,15 +393,15 @@ static void test_svg_missing_directory(void **state)
              "cannot write '%s/missing/x.svg': directory '%s/missing' does not exist", f->dir,
              f->dir);
     assert_string_equal(error.message, expected);
-    assert_int_equal(entries_in(f), 0);
+    assert_int_equal(entries_in(f->dir), 0);
 }
 
 /* A failure on the second sheet, after the first is complete in its temporary. */
 static void assert_second_sheet_failure(fixture *f, ur_status expected, const char *words)
 {
     char one[256], two[256];
-    path_in(f, "net-1.svg", one, sizeof one);
-    path_in(f, "net-2.svg", two, sizeof two);
+    path_in(f->dir, "net-1.svg", one, sizeof one);
+    path_in(f->dir, "net-2.svg", two, sizeof two);
     write_text(one, "old sheet\n");
     f->layout.sheet_count = 2;
     ur_error error;
@@ -447,7 +409,7 @@ static void assert_second_sheet_failure(fixture *f, ur_status expected, const ch
     assert_non_null(strstr(error.message, words));
     assert_file_text(one, "old sheet\n"); /* untouched */
     assert_false(exists(two));
-    assert_int_equal(entries_in(f), 1); /* and no temporaries */
+    assert_int_equal(entries_in(f->dir), 1); /* and no temporaries */
 }
 
 static void test_svg_failure_leaves_nothing(void **state)
@@ -471,7 +433,7 @@ static void test_svg_bad_style(void **state)
     ur_error error;
     write_svg(f, "net.svg", UR_ERROR_INPUT, &error);
     assert_non_null(strstr(error.message, "kerf"));
-    assert_int_equal(entries_in(f), 0);
+    assert_int_equal(entries_in(f->dir), 0);
 }
 
 /* ---- report ------------------------------------------------------------- */
@@ -563,10 +525,10 @@ static void test_report_file(void **state)
     const char *const outputs[] = {"out/net.svg", "out/report.json", NULL};
     ur_report_context context = make_context(f, outputs, "out/net.svg", &material);
     char path[256];
-    path_in(f, "report.json", path, sizeof path);
+    path_in(f->dir, "report.json", path, sizeof path);
     ur_error error;
     assert_int_equal(ur_report_write(path, &context, f->pieces, PIECES, &f->layout, &error), UR_OK);
-    assert_int_equal(entries_in(f), 1);
+    assert_int_equal(entries_in(f->dir), 1);
 
     json_error_t json_error;
     json_t *root = json_load_file(path, 0, &json_error);
@@ -589,7 +551,7 @@ static void test_report_several_sheets(void **state)
     f->layout.sheet_count = 2;
     ur_report_context context = make_context(f, NULL, "net.svg", NULL);
     char path[256];
-    path_in(f, "report.json", path, sizeof path);
+    path_in(f->dir, "report.json", path, sizeof path);
     ur_error error;
     assert_int_equal(ur_report_write(path, &context, f->pieces, PIECES, &f->layout, &error), UR_OK);
     json_error_t json_error;
@@ -612,7 +574,7 @@ static void test_report_stdout(void **state)
     fixture *f = *state;
     ur_report_context context = make_context(f, NULL, NULL, NULL);
     char path[256];
-    path_in(f, "stdout.json", path, sizeof path);
+    path_in(f->dir, "stdout.json", path, sizeof path);
     int fd = open(path, O_WRONLY | O_CREAT | O_TRUNC, 0600);
     assert_true(fd >= 0);
     assert_int_equal(fflush(stdout), 0);
@@ -640,12 +602,12 @@ static void test_report_missing_directory(void **state)
     fixture *f = *state;
     ur_report_context context = make_context(f, NULL, NULL, NULL);
     char path[256];
-    path_in(f, "missing/report.json", path, sizeof path);
+    path_in(f->dir, "missing/report.json", path, sizeof path);
     ur_error error;
     assert_int_equal(ur_report_write(path, &context, f->pieces, PIECES, &f->layout, &error),
                      UR_ERROR_INPUT);
     assert_non_null(strstr(error.message, "does not exist"));
-    assert_int_equal(entries_in(f), 0);
+    assert_int_equal(entries_in(f->dir), 0);
 }
 
 static void test_report_bad_placement(void **state)
@@ -653,13 +615,13 @@ static void test_report_bad_placement(void **state)
     fixture *f = *state;
     ur_report_context context = make_context(f, NULL, NULL, NULL);
     char path[256];
-    path_in(f, "report.json", path, sizeof path);
+    path_in(f->dir, "report.json", path, sizeof path);
     ur_error error;
     /* Only two pieces, but sheet 1 places pieces 0 and 1 and sheet 2 piece 2. */
     f->layout.sheet_count = 2;
     assert_int_equal(ur_report_write(path, &context, f->pieces, 2, &f->layout, &error),
                      UR_ERROR_INTERNAL);
-    assert_int_equal(entries_in(f), 0);
+    assert_int_equal(entries_in(f->dir), 0);
 }
 
 int main(void)

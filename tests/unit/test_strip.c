@@ -14,13 +14,7 @@
 
 #include "unroll/develop.h"
 
-#define assert_relative(actual, expected, tolerance)                                               \
-    do {                                                                                           \
-        double a_ = (actual), e_ = (expected);                                                     \
-        if (!(fabs(a_ - e_) <= (tolerance)*fabs(e_)))                                              \
-            fail_msg("%s = %.12g, expected %.12g within %g", #actual, a_, e_,                      \
-                     (double)(tolerance));                                                         \
-    } while (0)
+#include "test_support.h"
 
 /* Points of a circle arc of radius r at height z, angles from a to b. */
 static ur_curve *arc(double r, double z, double a, double b, size_t n, bool closed)
@@ -49,16 +43,10 @@ static ur_ruled strip(ur_curve *rail1, ur_curve *rail2)
     return ruled;
 }
 
-static ur_net_list develop(ur_ruled *ruled, double tolerance)
+/* The exact development, with the default 24 rulings drawn. */
+static ur_net_list develop_exact(ur_ruled *ruled, double tolerance)
 {
-    ur_develop_options options;
-    ur_develop_options_default(&options);
-    options.tolerance = tolerance;
-    ur_net_list nets;
-    ur_error error;
-    if (ur_develop(ruled, &options, &nets, &error) != UR_OK)
-        fail_msg("develop: %s", error.message);
-    return nets;
+    return develop(ruled, UR_METHOD_EXACT, 24, tolerance);
 }
 
 /* Two coaxial circles: the frustum, a sector of an annulus when flat. */
@@ -86,7 +74,7 @@ static void test_strip_between_circles_is_a_frustum(void **state)
         assert_relative(edge.z, h * r1 / (r1 - r2), 1e-6);
         assert_true(ur_ruled_residual(&ruled, u) < 1e-9);
     }
-    ur_net_list nets = develop(&ruled, 1e-4);
+    ur_net_list nets = develop_exact(&ruled, 1e-4);
     double flat = 0;
     for (size_t k = 0; k < nets.count; k++)
         flat += nets.nets[k].flat_area;
@@ -127,7 +115,7 @@ static void test_strip_to_translated_copy_is_a_cylinder(void **state)
     ur_vec3 edge;
     double v;
     assert_false(ur_ruled_regression(&ruled, 0.5 * ur_ruled_end(&ruled), &edge, &v));
-    ur_net_list nets = develop(&ruled, 1e-4);
+    ur_net_list nets = develop_exact(&ruled, 1e-4);
     assert_int_equal(nets.count, 1);
     assert_relative(nets.nets[0].flat_area, 30 * length, 1e-6);
     /* A rectangle: its bounding box is the right section's length by the height. */
@@ -221,7 +209,7 @@ static void test_domain_of_existence(void **state)
     assert_int_equal(ur_develop(&ruled, &options, &nets, &error), UR_ERROR_INPUT);
     assert_non_null(strstr(error.message, "does not exist"));
     ur_ruled_restrict(&ruled, parts[0].u_start, parts[0].u_end);
-    nets = develop(&ruled, 1e-4);
+    nets = develop_exact(&ruled, 1e-4);
     double slant = sqrt((r1 - r2) * (r1 - r2) + h * h);
     assert_relative(nets.nets[0].flat_area, 0.5 * (r1 + r2) * slant * (M_PI - late), 1e-6);
     ur_net_list_free(&nets);
@@ -323,7 +311,7 @@ static void test_pieces_on_both_sides_of_a_jump(void **state)
     assert_true(count >= 2 && count <= 4);
     for (size_t k = 0; k < count; k++) {
         ur_ruled_restrict(&ruled, parts[k].u_start, parts[k].u_end);
-        ur_net_list nets = develop(&ruled, 1e-3);
+        ur_net_list nets = develop_exact(&ruled, 1e-3);
         for (size_t j = 0; j < nets.count; j++) {
             assert_relative(nets.nets[j].flat_area, nets.nets[j].area_3d, 1e-5);
             assert_true(nets.nets[j].edge_error < 1e-5);

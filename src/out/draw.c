@@ -1,0 +1,39 @@
+/*
+ * draw.c: text and lines for the PNG pictures (draw.h), so that the analysis
+ * map and the comparison plot measure and place text in one way.
+ */
+#include "draw.h"
+
+void ur_draw_set_font(cairo_t *cr, double size, bool bold)
+{
+    cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL,
+                           bold ? CAIRO_FONT_WEIGHT_BOLD : CAIRO_FONT_WEIGHT_NORMAL);
+    cairo_set_font_size(cr, size);
+}
+
+/* The advance, not the ink extent: text placed one after another meets without overlap. */
+double ur_draw_text_width(cairo_t *cr, const char *text)
+{
+    cairo_text_extents_t extents;
+    cairo_text_extents(cr, text, &extents);
+    return extents.x_advance;
+}
+
+double ur_draw_left(double x, double width, ur_align align)
+{
+    return align == UR_ALIGN_LEFT ? x : align == UR_ALIGN_CENTRE ? x - width / 2 : x - width;
+}
+
+void ur_draw_show_text(cairo_t *cr, double x, double y, ur_align align, const char *text)
+{
+    cairo_move_to(cr, ur_draw_left(x, ur_draw_text_width(cr, text), align), y);
+    cairo_show_text(cr, text);
+    cairo_new_path(cr); /* show_text leaves a current point the next path would start from */
+}
+
+void ur_draw_line(cairo_t *cr, double x0, double y0, double x1, double y1)
+{
+    cairo_move_to(cr, x0, y0);
+    cairo_line_to(cr, x1, y1);
+    cairo_stroke(cr);
+}
