@@ -1,6 +1,7 @@
 /*
- * unroll/io.h: reading what the user gives: curves as CSV and the machine and
- * material profiles (XML validated against RelaxNG schemas).
+ * unroll/io.h: reading what the user gives: curves as CSV, the machine and
+ * material profiles (XML validated against RelaxNG schemas) and meshes (OBJ,
+ * STL, PLY, glTF).
  *
  * Every error message names the file and, where there is one, the line:
  * "FILE:LINE: message".
@@ -13,6 +14,7 @@
 
 #include "unroll/base.h"
 #include "unroll/geom.h"
+#include "unroll/mesh.h"
 
 /* ---- Curves ------------------------------------------------------------ */
 
@@ -126,5 +128,65 @@ ur_status ur_profile_list(ur_profile_entry **entries, size_t *count, ur_error *e
 
 /* The kerf a machine cuts in a material: the material's figure if it has one. */
 double ur_effective_kerf(const ur_machine *machine, const ur_material *material);
+
+/* ---- Meshes ------------------------------------------------------------ */
+
+/* The length unit of a mesh file's coordinates; unroll works in millimetres. */
+typedef enum ur_length_unit { UR_UNIT_MM, UR_UNIT_CM, UR_UNIT_M, UR_UNIT_IN } ur_length_unit;
+
+/* "mm", "cm", "m", "in"; ur_length_unit_from_name returns -1 when unknown. */
+const char *ur_length_unit_name(ur_length_unit unit);
+int ur_length_unit_from_name(const char *name);
+
+/* Millimetres in one unit: 1, 10, 1000, 25.4. */
+double ur_length_unit_mm(ur_length_unit unit);
+
+typedef struct ur_mesh_import_options {
+    ur_length_unit unit; /* of the file's coordinates; default millimetres */
+    double scale;        /* multiplies after the unit: positive and finite; default 1 */
+} ur_mesh_import_options;
+
+void ur_mesh_import_options_default(ur_mesh_import_options *options);
+
+/* More vertices than this (counting every node's copy) are refused: memory. */
+#define UR_MESH_IMPORT_MAX_VERTICES 50000000u
+
+/* Coordinates beyond 1000 km, once in millimetres, are refused. */
+#define UR_MESH_IMPORT_MAX_COORDINATE 1e9
+
+/*
+ * Reads OBJ, STL (ASCII and binary), PLY and glTF 2 (.gltf, .glb), known by
+ * the file's extension, into one mesh in millimetres: every node's meshes
+ * with the node's transform (and its parents') applied, a mesh used by
+ * several nodes copied for each.  Triangles keep the file's winding, also
+ * under a mirroring transform.  Each node that carries triangles (an OBJ
+ * group or object, an STL solid, a glTF node) becomes a group, so that
+ * pieces never cross groups; groups of the same name are one group, in the
+ * order they first appear.  Polygons are triangulated and identical
+ * vertices within one mesh joined; nothing is welded across meshes
+ * (ur_mesh_clean does that); points and lines are left out.  options may be
+ * NULL (defaults).  glTF files are in metres by their specification, but
+ * the unit here is what the caller says, as for every format.
+ *
+ * When group_names is not NULL, *group_names receives mesh->group_count
+ * names (NUL-terminated, cut to 63 bytes; unnamed groups take the file's
+ * name), which the caller frees with free().  The caller frees the mesh with
+ * ur_mesh_free (or by freeing its three arrays).  On failure both are empty.
+ *
+ * Refuses, with UR_ERROR_INPUT and a message naming the file: a missing,
+ * empty or unreadable file, an unsupported extension, a file assimp cannot
+ * read (its reason quoted), a scene with no meshes, no triangles (points and
+ * lines only), NaN or infinite coordinates (naming the mesh and vertex),
+ * more than UR_MESH_IMPORT_MAX_VERTICES vertices (a PLY or binary STL
+ * header that announces them, or more than the file can hold, is refused
+ * before assimp reads on) and coordinates beyond
+ * UR_MESH_IMPORT_MAX_COORDINATE mm after the unit, scale and transforms.
+ * An unknown unit or a scale that is not positive and finite is refused
+ * with UR_ERROR_INPUT too, the message naming the value.
+ *
+ * Not thread-safe: assimp keeps its last error message in a global.
+ */
+ur_status ur_mesh_import(const char *path, const ur_mesh_import_options *options, ur_mesh *mesh,
+                         char (**group_names)[64], ur_error *error);
 
 #endif

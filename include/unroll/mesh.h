@@ -1,0 +1,154 @@
+/*
+ * unroll/mesh.h: indexed triangle meshes, the input of approximate
+ * flattening: building one (from points and triangles, or by triangulating a
+ * ruled surface), cleaning it (welding, dropping degenerate triangles and
+ * unused vertices, making the orientation consistent, refusing non-manifold
+ * edges), edge adjacency, and cutting it into pieces that are topological
+ * disks (user seams and group boundaries always cut).
+ */
+#ifndef UNROLL_MESH_H
+#define UNROLL_MESH_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "unroll/base.h"
+#include "unroll/geom.h"
+#include "unroll/surface.h"
+
+/* No twin: a boundary edge. */
+#define UR_NO_EDGE ((size_t)-1)
+
+typedef struct ur_mesh {
+    ur_vec3 *vertices; /* owned */
+    size_t vertex_count;
+    size_t (*triangles)[3]; /* owned: vertex indices, counter-clockwise seen from outside */
+    size_t triangle_count;
+    size_t *groups; /* owned: per triangle, its group (OBJ group or object); pieces never cross */
+    size_t group_count;
+} ur_mesh;
+
+/*
+ * Copies the arrays into a new mesh; groups may be NULL (one group). Indices are checked.
+ * Refuses (UR_ERROR_INPUT) a NaN or infinite coordinate, naming the vertex,
+ * and an index out of range, naming the triangle (both from 1).
+ * group_count is one more than the largest group.
+ */
+ur_status ur_mesh_new(const ur_vec3 *vertices, size_t vertex_count, const size_t (*triangles)[3],
+                      size_t triangle_count, const size_t *groups, ur_mesh *mesh, ur_error *error);
+
+void ur_mesh_free(ur_mesh *mesh);
+
+/* What ur_mesh_clean changed, for the user to read. */
+typedef struct ur_mesh_repairs {
+    size_t welded;     /* vertices merged into another within the tolerance */
+    size_t degenerate; /* zero-area triangles dropped */
+    size_t isolated;   /* vertices no triangle uses, dropped */
+    size_t flipped;    /* triangles turned to agree with their neighbours */
+} ur_mesh_repairs;
+
+/*
+ * Welds vertices closer than weld_tolerance (mm), drops zero-area triangles
+ * and unused vertices, and orients every connected part consistently.
+ * Refuses (UR_ERROR_INPUT, naming a vertex) NaN or infinite coordinates, a
+ * mesh with no triangles left, and non-manifold edges (three or more
+ * triangles on one edge), which cannot be repaired safely.
+ *
+ * Welding merges each vertex, in order, into the nearest vertex kept before
+ * it at a distance <= weld_tolerance (0 merges identical points only); it
+ * is not transitive, so a tolerance never collapses a fine mesh.  A
+ * triangle has zero area when two corners weld together or its area is at
+ * most 1e-12 times the square of the bounding box's diagonal.  Kept
+ * vertices keep their input order.  A part that cannot be oriented (a
+ * Mobius strip) is refused; a closed part is turned outward (positive
+ * signed volume), an open one the way most of its triangles already run.
+ * On failure the mesh is left as it was.  Messages number input vertices
+ * and triangles from 1.
+ */
+ur_status ur_mesh_clean(ur_mesh *mesh, double weld_tolerance, ur_mesh_repairs *repairs,
+                        ur_error *error);
+
+/* Where ur_mesh_clean_map puts an input vertex it dropped. */
+#define UR_NO_VERTEX ((size_t)-1)
+
+/*
+ * ur_mesh_clean that also says where each input vertex went, so that seams
+ * given by input vertex numbers can follow the welding and renumbering:
+ * (*vertex_map)[v] is the cleaned vertex of input vertex v (its welded
+ * partner's for a welded one), or UR_NO_VERTEX when it was dropped.  The
+ * caller frees *vertex_map; it is NULL on failure, when the mesh is left as
+ * it was.
+ */
+ur_status ur_mesh_clean_map(ur_mesh *mesh, double weld_tolerance, ur_mesh_repairs *repairs,
+                            size_t **vertex_map, ur_error *error);
+
+/*
+ * Half-edge k of triangle t runs from corner k to corner k + 1 (mod 3) and
+ * is numbered 3 t + k; twins[3 t + k] is the half-edge of the neighbouring
+ * triangle on the same edge, or UR_NO_EDGE on the boundary.  The caller
+ * frees *twins.  Refuses (UR_ERROR_INPUT, *twins NULL) an edge of three or
+ * more triangles: "non-manifold edge between vertices A and B (N
+ * triangles)".
+ */
+ur_status ur_mesh_twins(const ur_mesh *mesh, size_t **twins, ur_error *error);
+
+/* An edge the user marks as a seam, by its two vertex indices. */
+typedef struct ur_seam {
+    size_t a, b;
+} ur_seam;
+
+/*
+ * Splits the mesh into pieces: connected across edges that are not seams
+ * (user seams, group boundaries), each then cut further along a cut graph
+ * of edges until it is a topological disk (one boundary loop, Euler
+ * characteristic 1), so that closed and higher-genus meshes work.  Each
+ * piece is a mesh of its own (vertices on cuts duplicated); original[i]
+ * names the input vertex of its vertex i.  The caller frees them with
+ * ur_mesh_pieces_free.
+ *
+ * The mesh must be manifold and consistently oriented (as ur_mesh_clean
+ * leaves it); each seam must be an edge of it.  Cuts follow shortest paths
+ * (by edge length): from a piece's first boundary loop to its others, in
+ * loops through one vertex around the handles of a closed piece, and from
+ * pole to pole (two vertices far apart) on a closed piece of genus 0.
+ * Pieces come in the order of their first triangle; a piece keeps the
+ * triangles' order, corners and groups, and the mesh's group_count.
+ * Every piece is checked to be a disk before it is returned.
+ */
+typedef struct ur_mesh_piece {
+    ur_mesh mesh;
+    size_t *original;         /* owned: input vertex of each piece vertex */
+    size_t *source_triangles; /* owned: input triangle of each piece triangle */
+} ur_mesh_piece;
+
+ur_status ur_mesh_pieces(const ur_mesh *mesh, const ur_seam *seams, size_t seam_count,
+                         ur_mesh_piece **pieces, size_t *piece_count, ur_error *error);
+
+void ur_mesh_pieces_free(ur_mesh_piece *pieces, size_t piece_count);
+
+/*
+ * The boundary of a disk as one loop of vertex indices, in the order the
+ * triangles run (counter-clockwise seen from outside); the caller frees it.
+ * Refuses (UR_ERROR_INPUT, saying why) a mesh that is not a disk: closed,
+ * several boundary loops, Euler characteristic other than 1, a boundary
+ * through a vertex twice, or triangles not consistently oriented.
+ */
+ur_status ur_mesh_boundary(const ur_mesh *mesh, size_t **loop, size_t *count, ur_error *error);
+
+/* 3D area (sum of triangle areas). */
+double ur_mesh_area(const ur_mesh *mesh);
+
+/*
+ * Triangulates a ruled surface over its whole domain: along + 1 rulings
+ * evenly spaced in u, each cut into across parts, every quad split on its
+ * shorter diagonal.  Vertex (i, j), ruling i and point j along it, is
+ * i (across + 1) + j; triangles run counter-clockwise in (u, v), so normals
+ * point along r_u x r_v.  A closed surface keeps its last ruling as
+ * vertices of their own, equal to the first: the mesh is one disk, already
+ * cut along the first ruling (ur_mesh_clean welds them when a closed mesh
+ * is wanted, and welds a cone's apex, which is one vertex per ruling).
+ */
+ur_status ur_mesh_from_ruled(ur_ruled *ruled, size_t along, size_t across, ur_mesh *mesh,
+                             ur_error *error);
+
+#endif

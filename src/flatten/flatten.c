@@ -1,0 +1,162 @@
+/*
+ * flatten.c: ur_flatten and its options: check the piece, lay it out by
+ * LSCM, improve the layout by ARAP, and measure the strain of the result.
+ */
+#include "flatten_internal.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const char *const method_names[] = {[UR_FLATTEN_ARAP] = "arap", [UR_FLATTEN_LSCM] = "lscm"};
+
+#define METHOD_COUNT (sizeof method_names / sizeof method_names[0])
+
+const char *ur_flatten_method_name(ur_flatten_method method)
+{
+    return (size_t)method < METHOD_COUNT ? method_names[method] : "unknown";
+}
+
+int ur_flatten_method_from_name(const char *name)
+{
+    for (size_t m = 0; name && m < METHOD_COUNT; m++)
+        if (strcmp(name, method_names[m]) == 0)
+            return (int)m;
+    return -1;
+}
+
+void ur_flatten_options_default(ur_flatten_options *options)
+{
+    options->method = UR_FLATTEN_ARAP;
+    options->iterations = 100;
+    options->tolerance = 1e-9;
+}
+
+static ur_status check_options(const ur_flatten_options *options, ur_error *error)
+{
+    if ((size_t)options->method >= METHOD_COUNT)
+        return ur_error_set(error, UR_ERROR_INPUT, "unknown flattening method %d",
+                            (int)options->method);
+    if (!(options->tolerance >= 0) || !isfinite(options->tolerance))
+        return ur_error_set(error, UR_ERROR_INPUT,
+                            "the flattening tolerance must be a number >= 0, not %g",
+                            options->tolerance);
+    return UR_OK;
+}
+
+void ur_flat_piece_free(ur_flat_piece *flat)
+{
+    if (!flat)
+        return;
+    free(flat->flat);
+    free(flat->strain);
+    memset(flat, 0, sizeof *flat);
+}
+
+/* Twice the signed area of flat triangle t: > 0 when it keeps its 3D orientation. */
+static double twice_flat_area(const ur_mesh *mesh, const ur_vec2 *layout, size_t t)
+{
+    const size_t *c = mesh->triangles[t];
+    return ur_vec2_cross(ur_vec2_sub(layout[c[1]], layout[c[0]]),
+                         ur_vec2_sub(layout[c[2]], layout[c[0]]));
+}
+
+/* Fills everything but flat->flat (already there) and iterations. */
+static ur_status measure(const ur_mesh *mesh, const flat_frame *frames, ur_flat_piece *flat,
+                         ur_error *error)
+{
+    flat->strain = ur_alloc_array(mesh->triangle_count, sizeof *flat->strain, error);
+    if (!flat->strain)
+        return UR_ERROR_INTERNAL;
+    flat->vertex_count = mesh->vertex_count;
+    flat->triangle_count = mesh->triangle_count;
+    for (size_t t = 0; t < mesh->triangle_count; t++) {
+        ur_strain s = flat_strain(flat_triangle_jacobian(mesh, frames, flat->flat, t));
+        double twice = twice_flat_area(mesh, flat->flat, t);
+        flat->strain[t] = s;
+        flat->area_3d += frames[t].area;
+        flat->flat_area += 0.5 * twice;
+        flat->flipped = flat->flipped || twice < 0;
+        flat->max_stretch = fmax(flat->max_stretch, s.sigma1 - 1);
+        flat->max_compression = fmax(flat->max_compression, 1 - s.sigma2);
+    }
+    flat->coverage = flat->flat_area / flat->area_3d;
+    return UR_OK;
+}
+
+/* Lays the piece out with its frames and topology: LSCM, then ARAP if asked. */
+static ur_status lay_out(const ur_mesh *mesh, const flat_frame *frames,
+                         const flat_topology *topology, const ur_flatten_options *options,
+                         ur_flat_piece *flat, ur_error *error)
+{
+    flat->flat = ur_alloc_array(mesh->vertex_count, sizeof *flat->flat, error);
+    if (!flat->flat)
+        return UR_ERROR_INTERNAL;
+    ur_status status = flat_lscm(mesh, frames, topology, flat->flat, error);
+    if (!status && options->method == UR_FLATTEN_ARAP)
+        status = flat_arap(mesh, frames, topology, topology->pins[0], options, flat->flat,
+                           &flat->iterations, error);
+    return status ? status : measure(mesh, frames, flat, error);
+}
+
+ur_status ur_flatten(const ur_mesh *piece, const ur_flatten_options *options, ur_flat_piece *flat,
+                     ur_error *error)
+{
+    memset(flat, 0, sizeof *flat);
+    ur_flatten_options defaults;
+    ur_flatten_options_default(&defaults);
+    if (!options)
+        options = &defaults;
+    flat_frame *frames = NULL;
+    flat_topology topology;
+    memset(&topology, 0, sizeof topology);
+    ur_status status = check_options(options, error);
+    if (!status)
+        status = flat_frames(piece, &frames, error);
+    if (!status)
+        status = flat_topology_of(piece, &topology, error);
+    if (!status)
+        status = lay_out(piece, frames, &topology, options, flat, error);
+    flat_topology_free(&topology);
+    free(frames);
+    if (status)
+        ur_flat_piece_free(flat);
+    return status;
+}
+
+ur_status ur_flat_piece_measure(const ur_mesh *piece, const ur_vec2 *layout, ur_flat_piece *flat,
+                                ur_error *error)
+{
+    memset(flat, 0, sizeof *flat);
+    if (!layout)
+        return ur_error_set(error, UR_ERROR_INPUT, "no layout to measure");
+    flat_frame *frames = NULL;
+    ur_status status = flat_frames(piece, &frames, error);
+    if (status)
+        return status;
+    flat->flat = ur_alloc_array(piece->vertex_count, sizeof *flat->flat, error);
+    if (!flat->flat)
+        status = UR_ERROR_INTERNAL;
+    if (!status) {
+        memcpy(flat->flat, layout, piece->vertex_count * sizeof *flat->flat);
+        status = measure(piece, frames, flat, error);
+    }
+    free(frames);
+    if (status)
+        ur_flat_piece_free(flat);
+    return status;
+}
+
+ur_status ur_flatten_energy(const ur_mesh *piece, const ur_vec2 *layout, double *energy,
+                            ur_error *error)
+{
+    if (!layout)
+        return ur_error_set(error, UR_ERROR_INPUT, "no layout to measure");
+    flat_frame *frames = NULL;
+    ur_status status = flat_frames(piece, &frames, error);
+    if (status)
+        return status;
+    *energy = flat_energy(piece, frames, layout);
+    free(frames);
+    return UR_OK;
+}

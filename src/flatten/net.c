@@ -1,0 +1,59 @@
+/*
+ * net.c: a flattened mesh piece as a net, the shape the rest of the
+ * pipeline (pieces, sheets, writers, report) takes: its boundary loop laid
+ * flat, its areas, how far its boundary lengths are from the 3D ones, and
+ * its strain.
+ */
+#include "unroll/flatten.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* The largest relative difference between a flat boundary edge and its 3D length. */
+static double boundary_error(const ur_mesh *piece, const ur_flat_piece *flat, const size_t *loop,
+                             size_t count)
+{
+    double largest = 0.0;
+    for (size_t i = 0; i < count; i++) {
+        size_t a = loop[i], b = loop[(i + 1) % count];
+        double space = ur_vec3_distance(piece->vertices[a], piece->vertices[b]);
+        double plane = ur_vec2_distance(flat->flat[a], flat->flat[b]);
+        if (space > 0)
+            largest = fmax(largest, fabs(plane - space) / space);
+    }
+    return largest;
+}
+
+ur_status ur_net_from_flat(const ur_mesh *piece, const ur_flat_piece *flat, const char *name,
+                           ur_net *net, ur_error *error)
+{
+    size_t *loop = NULL, count = 0;
+    ur_status status = ur_mesh_boundary(piece, &loop, &count, error);
+    if (status != UR_OK)
+        return status;
+    memset(net, 0, sizeof *net);
+    snprintf(net->name, sizeof net->name, "%s", name);
+    net->outline = ur_alloc_array(count, sizeof *net->outline, error);
+    if (!net->outline) {
+        free(loop);
+        return UR_ERROR_INTERNAL;
+    }
+    for (size_t i = 0; i < count; i++)
+        net->outline[i] = flat->flat[loop[i]];
+    net->outline_count = count;
+    double area = ur_polygon_signed_area(net->outline, count);
+    if (area < 0) /* the writers want counter-clockwise outlines */
+        for (size_t i = 0, j = count - 1; i < j; i++, j--) {
+            ur_vec2 swap = net->outline[i];
+            net->outline[i] = net->outline[j];
+            net->outline[j] = swap;
+        }
+    net->flat_area = fabs(area);
+    net->area_3d = flat->area_3d;
+    net->edge_error = boundary_error(piece, flat, loop, count);
+    net->max_stretch = flat->max_stretch;
+    net->max_compression = flat->max_compression;
+    free(loop);
+    return UR_OK;
+}

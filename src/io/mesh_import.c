@@ -1,0 +1,781 @@
+/*
+ * mesh_import.c: meshes from modellers' files (OBJ, STL, PLY, glTF) through
+ * assimp's C API, into one ur_mesh in millimetres with a group per node.
+ *
+ * The scene is read raw first and every coordinate checked before assimp's
+ * post-processing runs: joining identical vertices sorts them, and a NaN
+ * there silently merges with a real vertex.  Node transforms are composed
+ * and applied in double precision here rather than by assimp, so that each
+ * node stays its own group and a mirroring node can have its triangles
+ * turned back to face outwards.  Nothing is welded across meshes or nodes:
+ * ur_mesh_clean does that with the user's tolerance.
+ */
+#include "unroll/io.h"
+
+#include <errno.h>
+#include <limits.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+#include <sys/stat.h>
+
+#include <assimp/cimport.h>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+/* Assimp builds its node tree recursively: deeper than this is not a model. */
+#define UR_IMPORT_MAX_DEPTH 1000
+
+/* Space for a group name and its terminating NUL, as ur_mesh_import returns it. */
+#define UR_GROUP_NAME_SIZE 64
+
+/* ---- Units ------------------------------------------------------------- */
+
+static const struct {
+    const char *name;
+    double mm;
+} unit_table[] = {
+    [UR_UNIT_MM] = {"mm", 1.0},
+    [UR_UNIT_CM] = {"cm", 10.0},
+    [UR_UNIT_M] = {"m", 1000.0},
+    [UR_UNIT_IN] = {"in", 25.4},
+};
+
+#define UR_UNIT_COUNT (sizeof unit_table / sizeof unit_table[0])
+
+static bool unit_valid(ur_length_unit unit)
+{
+    return (unsigned)unit < UR_UNIT_COUNT;
+}
+
+const char *ur_length_unit_name(ur_length_unit unit)
+{
+    return unit_valid(unit) ? unit_table[unit].name : "?";
+}
+
+int ur_length_unit_from_name(const char *name)
+{
+    for (size_t i = 0; name && i < UR_UNIT_COUNT; i++)
+        if (strcmp(name, unit_table[i].name) == 0)
+            return (int)i;
+    return -1;
+}
+
+double ur_length_unit_mm(ur_length_unit unit)
+{
+    return unit_valid(unit) ? unit_table[unit].mm : NAN;
+}
+
+void ur_mesh_import_options_default(ur_mesh_import_options *options)
+{
+    options->unit = UR_UNIT_MM;
+    options->scale = 1.0;
+}
+
+/* ---- Names ------------------------------------------------------------- */
+
+/* Copies at most size - 1 bytes of text, never cutting a UTF-8 character. */
+static void copy_name(char *dest, size_t size, const char *text, size_t length)
+{
+    if (length > size - 1) {
+        length = size - 1;
+        /* Back off continuation bytes (10xxxxxx) to the start of a character. */
+        while (length > 0 && ((unsigned char)text[length] & 0xC0) == 0x80)
+            length--;
+    }
+    memcpy(dest, text, length);
+    dest[length] = '\0';
+}
+
+/*
+ * Whether an assimp node or mesh name says something: importers fill in
+ * placeholders ("<STL_BINARY>", OBJ's "defaultobject") when the file has none.
+ */
+static bool name_usable(const struct aiString *name)
+{
+    size_t length = strnlen(name->data, sizeof name->data);
+    return length > 0 && name->data[0] != '<' && name->data[0] != '$' &&
+           strcmp(name->data, "defaultobject") != 0;
+}
+
+/* "mesh 'front'" or, for an unnamed mesh, "mesh 3" (1-based). */
+static const char *mesh_label(const struct aiMesh *mesh, unsigned index, char *buffer, size_t size)
+{
+    if (name_usable(&mesh->mName))
+        snprintf(buffer, size, "mesh '%.200s'", mesh->mName.data);
+    else
+        snprintf(buffer, size, "mesh %u", index + 1);
+    return buffer;
+}
+
+/* The file name without directory and extension: the name of unnamed groups. */
+static void file_stem(const char *path, char *stem, size_t size)
+{
+    const char *slash = strrchr(path, '/');
+    const char *name = slash ? slash + 1 : path;
+    const char *dot = strrchr(name, '.');
+    size_t length = dot && dot != name ? (size_t)(dot - name) : strlen(name);
+    copy_name(stem, size, name, length);
+}
+
+/* ---- The file itself --------------------------------------------------- */
+
+static const char *const supported_extensions[] = {"obj", "stl", "ply", "gltf", "glb"};
+
+static bool has_extension(const char *path, const char *extension)
+{
+    const char *dot = strrchr(path, '.');
+    return dot && !strchr(dot, '/') && strcasecmp(dot + 1, extension) == 0;
+}
+
+/*
+ * assimp reads dozens of formats, but some of them (Collada, FBX) carry units
+ * that it applies or not depending on settings: only the formats whose
+ * coordinates are plain numbers in the user's unit are accepted.
+ */
+static ur_status check_extension(const char *path, ur_error *error)
+{
+    for (size_t i = 0; i < sizeof supported_extensions / sizeof supported_extensions[0]; i++)
+        if (has_extension(path, supported_extensions[i]))
+            return UR_OK;
+    return ur_error_set(error, UR_ERROR_INPUT,
+                        "%s: unsupported file type: unroll reads meshes from .obj, .stl, .ply, "
+                        ".gltf and .glb files",
+                        path);
+}
+
+static ur_status refuse_too_many(const char *path, unsigned long long count, ur_error *error)
+{
+    return ur_error_set(error, UR_ERROR_INPUT,
+                        "%s: %llu vertices, more than the %u unroll takes: too large to hold in "
+                        "memory; simplify the mesh first",
+                        path, count, UR_MESH_IMPORT_MAX_VERTICES);
+}
+
+/* One "element NAME COUNT" line of a PLY header adds COUNT to *claimed. */
+static void ply_element(const char *line, unsigned long long *vertices, unsigned long long *claimed)
+{
+    char name[32];
+    unsigned long long count = 0;
+    if (sscanf(line, "element %31s %llu", name, &count) != 2)
+        return;
+    if (strcmp(name, "vertex") == 0)
+        *vertices = count;
+    if (strcmp(name, "vertex") == 0 || strcmp(name, "face") == 0)
+        *claimed = count > ULLONG_MAX - *claimed ? ULLONG_MAX : *claimed + count;
+}
+
+/*
+ * assimp believes a PLY header's counts: it reserves memory for them and
+ * reads on past the end of the file, for minutes and gigabytes when a
+ * header claims a billion vertices.  Every vertex and face takes at least
+ * one byte after the header, so a count above that is refused beforehand.
+ * A header it cannot make sense of is left to assimp to refuse.
+ */
+static ur_status check_ply_header(const char *path, FILE *file, off_t size, ur_error *error)
+{
+    char *line = NULL;
+    size_t line_size = 0;
+    unsigned long long vertices = 0, claimed = 0;
+    bool ended = false;
+    for (int n = 0; n < 1000 && !ended && getline(&line, &line_size, file) >= 0; n++) {
+        ended = strncmp(line, "end_header", 10) == 0;
+        ply_element(line, &vertices, &claimed);
+    }
+    long body_start = ftell(file);
+    free(line);
+    if (!ended || body_start < 0)
+        return UR_OK;
+    if (vertices > UR_MESH_IMPORT_MAX_VERTICES)
+        return refuse_too_many(path, vertices, error);
+    unsigned long long body = (unsigned long long)(size - body_start);
+    if (claimed > body)
+        return ur_error_set(error, UR_ERROR_INPUT,
+                            "%s: the PLY header announces %llu vertices and faces, more than the "
+                            "%llu bytes after it can hold",
+                            path, claimed, body);
+    return UR_OK;
+}
+
+/*
+ * A binary STL says how many triangles it holds (3 vertices each) and is
+ * exactly 84 + 50 per triangle bytes long, which is how assimp tells it from
+ * ASCII: refuse a huge one before assimp reads it all.
+ */
+static ur_status check_stl_header(const char *path, FILE *file, off_t size, ur_error *error)
+{
+    unsigned char header[84];
+    if (size < 84 || fread(header, 1, sizeof header, file) != sizeof header)
+        return UR_OK;
+    unsigned long long triangles = header[80] | (unsigned long long)header[81] << 8 |
+                                   (unsigned long long)header[82] << 16 |
+                                   (unsigned long long)header[83] << 24;
+    if ((unsigned long long)size == 84 + 50 * triangles &&
+        3 * triangles > UR_MESH_IMPORT_MAX_VERTICES)
+        return refuse_too_many(path, 3 * triangles, error);
+    return UR_OK;
+}
+
+/* What a header says about the size, for the formats that assimp trusts blindly. */
+static ur_status check_header(const char *path, off_t size, ur_error *error)
+{
+    bool ply = has_extension(path, "ply");
+    if (!ply && !has_extension(path, "stl"))
+        return UR_OK;
+    FILE *file = fopen(path, "rb");
+    if (!file)
+        return ur_error_set(error, UR_ERROR_INPUT, "%s: cannot open: %s", path, strerror(errno));
+    ur_status status =
+        ply ? check_ply_header(path, file, size, error) : check_stl_header(path, file, size, error);
+    if (fclose(file) != 0 && status == UR_OK)
+        status = ur_error_set(error, UR_ERROR_INPUT, "%s: cannot read: %s", path, strerror(errno));
+    return status;
+}
+
+/* assimp's own message for a missing file is vaguer than strerror's. */
+static ur_status check_file(const char *path, ur_error *error)
+{
+    struct stat info;
+    if (stat(path, &info) != 0)
+        return ur_error_set(error, UR_ERROR_INPUT, "%s: cannot open: %s", path, strerror(errno));
+    if (!S_ISREG(info.st_mode))
+        return ur_error_set(error, UR_ERROR_INPUT, "%s: not a regular file", path);
+    if (info.st_size == 0)
+        return ur_error_set(error, UR_ERROR_INPUT, "%s: the file is empty", path);
+    ur_status status = check_extension(path, error);
+    if (status != UR_OK)
+        return status;
+    return check_header(path, info.st_size, error);
+}
+
+static ur_status check_options(const ur_mesh_import_options *options, ur_error *error)
+{
+    if (!unit_valid(options->unit))
+        return ur_error_set(error, UR_ERROR_INPUT, "unknown length unit %d", (int)options->unit);
+    if (!isfinite(options->scale) || options->scale <= 0)
+        return ur_error_set(error, UR_ERROR_INPUT, "scale %g: must be a positive number",
+                            options->scale);
+    return UR_OK;
+}
+
+/* ---- The raw scene ----------------------------------------------------- */
+
+static bool finite_vector(struct aiVector3D v)
+{
+    return isfinite(v.x) && isfinite(v.y) && isfinite(v.z);
+}
+
+/* The first face (1-based) that uses vertex, or 0 when none does. */
+static unsigned face_using(const struct aiMesh *mesh, unsigned vertex)
+{
+    for (unsigned f = 0; f < mesh->mNumFaces; f++)
+        for (unsigned k = 0; k < mesh->mFaces[f].mNumIndices; k++)
+            if (mesh->mFaces[f].mIndices[k] == vertex)
+                return f + 1;
+    return 0;
+}
+
+static ur_status refuse_vertex(const char *path, const struct aiMesh *mesh, unsigned index,
+                               unsigned vertex, ur_error *error)
+{
+    char label[256];
+    char face[64] = "";
+    unsigned f = face_using(mesh, vertex);
+    if (f > 0)
+        snprintf(face, sizeof face, " (in face %u)", f);
+    struct aiVector3D v = mesh->mVertices[vertex];
+    bool nan = isnan(v.x) || isnan(v.y) || isnan(v.z);
+    /* A number too large for assimp's floats arrives here as infinity. */
+    return ur_error_set(error, UR_ERROR_INPUT, "%s: %s, vertex %u%s: coordinates (%g, %g, %g): %s",
+                        path, mesh_label(mesh, index, label, sizeof label), vertex + 1, face,
+                        (double)v.x, (double)v.y, (double)v.z,
+                        nan ? "not a number"
+                            : "infinite, or too large for assimp's single precision (3.4e38)");
+}
+
+/* Every face's indices point at a vertex of its mesh. */
+static ur_status check_faces(const char *path, const struct aiMesh *mesh, unsigned index,
+                             ur_error *error)
+{
+    char label[256];
+    for (unsigned f = 0; f < mesh->mNumFaces; f++) {
+        const struct aiFace *face = &mesh->mFaces[f];
+        for (unsigned k = 0; k < face->mNumIndices; k++)
+            if (face->mIndices[k] >= mesh->mNumVertices)
+                return ur_error_set(error, UR_ERROR_INPUT,
+                                    "%s: %s, face %u: vertex %u does not exist (%u vertices)", path,
+                                    mesh_label(mesh, index, label, sizeof label), f + 1,
+                                    face->mIndices[k] + 1, mesh->mNumVertices);
+    }
+    return UR_OK;
+}
+
+/*
+ * Before post-processing: a size it is safe to go on with, valid indices and
+ * finite coordinates.
+ */
+static ur_status check_raw_scene(const char *path, const struct aiScene *scene, ur_error *error)
+{
+    if (!scene->mRootNode || scene->mNumMeshes == 0)
+        return ur_error_set(error, UR_ERROR_INPUT, "%s: no mesh in the file (empty scene)", path);
+    size_t total = 0;
+    for (unsigned m = 0; m < scene->mNumMeshes; m++) {
+        total += scene->mMeshes[m]->mNumVertices;
+        if (total > UR_MESH_IMPORT_MAX_VERTICES)
+            return ur_error_set(error, UR_ERROR_INPUT,
+                                "%s: more than %u vertices: too large to hold in memory; "
+                                "simplify the mesh first",
+                                path, UR_MESH_IMPORT_MAX_VERTICES);
+    }
+    for (unsigned m = 0; m < scene->mNumMeshes; m++) {
+        const struct aiMesh *mesh = scene->mMeshes[m];
+        ur_status status = check_faces(path, mesh, m, error);
+        if (status != UR_OK)
+            return status;
+        for (unsigned v = 0; v < mesh->mNumVertices; v++)
+            if (!finite_vector(mesh->mVertices[v]))
+                return refuse_vertex(path, mesh, m, v, error);
+    }
+    return UR_OK;
+}
+
+/* Reads the file and post-processes it; the caller releases *scene. */
+static ur_status load_scene(const char *path, const struct aiScene **scene, ur_error *error)
+{
+    /* assimp keeps its last message even after a success: read it only on failure. */
+    *scene = aiImportFile(path, 0);
+    if (!*scene)
+        return ur_error_set(error, UR_ERROR_INPUT, "%s: cannot read as a mesh: %s", path,
+                            aiGetErrorString());
+    ur_status status = check_raw_scene(path, *scene, error);
+    if (status != UR_OK) {
+        aiReleaseImport(*scene);
+        *scene = NULL;
+        return status;
+    }
+    /* No normals: unroll computes its own from the triangles. */
+    *scene = aiApplyPostProcessing(*scene, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices);
+    if (!*scene) /* assimp has released the scene */
+        return ur_error_set(error, UR_ERROR_INPUT, "%s: cannot process the mesh: %s", path,
+                            aiGetErrorString());
+    return UR_OK;
+}
+
+/* ---- Transforms -------------------------------------------------------- */
+
+/*
+ * The top three rows of a node transform: every supported format's node
+ * transforms are affine (glTF requires matrices that decompose into
+ * translation, rotation and scale).
+ */
+typedef struct affine {
+    double m[3][4];
+} affine;
+
+static affine affine_identity(void)
+{
+    affine a = {{{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}}};
+    return a;
+}
+
+static affine affine_from_ai(const struct aiMatrix4x4 *t)
+{
+    affine a = {
+        {{t->a1, t->a2, t->a3, t->a4}, {t->b1, t->b2, t->b3, t->b4}, {t->c1, t->c2, t->c3, t->c4}}};
+    return a;
+}
+
+/* parent * child: the child's coordinates into the parent's frame. */
+static affine affine_compose(const affine *parent, const affine *child)
+{
+    affine r;
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 4; j++) {
+            double sum = j == 3 ? parent->m[i][3] : 0.0;
+            for (int k = 0; k < 3; k++)
+                sum += parent->m[i][k] * child->m[k][j];
+            r.m[i][j] = sum;
+        }
+    return r;
+}
+
+static ur_vec3 affine_apply(const affine *a, struct aiVector3D v)
+{
+    double p[3];
+    for (int i = 0; i < 3; i++)
+        p[i] = a->m[i][0] * v.x + a->m[i][1] * v.y + a->m[i][2] * v.z + a->m[i][3];
+    return ur_vec3_make(p[0], p[1], p[2]);
+}
+
+/* < 0 for a mirroring transform, which turns triangles over. */
+static double affine_det(const affine *a)
+{
+    ur_vec3 x = ur_vec3_make(a->m[0][0], a->m[1][0], a->m[2][0]);
+    ur_vec3 y = ur_vec3_make(a->m[0][1], a->m[1][1], a->m[2][1]);
+    ur_vec3 z = ur_vec3_make(a->m[0][2], a->m[1][2], a->m[2][2]);
+    return ur_vec3_det(x, y, z);
+}
+
+/* ---- Walking the nodes ------------------------------------------------- */
+
+typedef struct import_state {
+    const char *path;
+    const struct aiScene *scene;
+    double factor; /* millimetres per file unit, times the scale */
+    /* Counted by count_node, then used as cursors by fill_node. */
+    size_t vertex_count, triangle_count, group_count;
+    size_t stray_count;                /* points and lines, which are not surface */
+    ur_vec3 *vertices;                 /* owned until handed to the mesh */
+    size_t (*triangles)[3];            /* likewise */
+    size_t *groups;                    /* likewise */
+    char (*names)[UR_GROUP_NAME_SIZE]; /* likewise */
+    bool *named;                       /* owned: whether the file named the group */
+} import_state;
+
+static void state_free(import_state *state)
+{
+    free(state->vertices);
+    free(state->triangles);
+    free(state->groups);
+    free(state->names);
+    free(state->named);
+    state->vertices = NULL;
+    state->triangles = NULL;
+    state->groups = NULL;
+    state->names = NULL;
+    state->named = NULL;
+}
+
+static size_t mesh_triangles(const struct aiMesh *mesh, size_t *strays)
+{
+    size_t count = 0;
+    for (unsigned f = 0; f < mesh->mNumFaces; f++) {
+        if (mesh->mFaces[f].mNumIndices == 3)
+            count++;
+        else if (strays)
+            (*strays)++;
+    }
+    return count;
+}
+
+/* The node's i-th mesh and its index in the scene. */
+static ur_status node_mesh(const import_state *state, const struct aiNode *node, unsigned i,
+                           const struct aiMesh **mesh, unsigned *index, ur_error *error)
+{
+    *index = node->mMeshes[i];
+    if (*index >= state->scene->mNumMeshes)
+        return ur_error_set(error, UR_ERROR_INPUT,
+                            "%s: node '%.200s' uses mesh %u, which does not exist", state->path,
+                            node->mName.data, *index + 1);
+    *mesh = state->scene->mMeshes[*index];
+    return UR_OK;
+}
+
+/* First pass: how many vertices, triangles and groups, so as to allocate once. */
+static ur_status count_node(import_state *state, const struct aiNode *node, int depth,
+                            ur_error *error)
+{
+    if (depth > UR_IMPORT_MAX_DEPTH)
+        return ur_error_set(error, UR_ERROR_INPUT, "%s: nodes nested more than %d deep",
+                            state->path, UR_IMPORT_MAX_DEPTH);
+    bool has_triangles = false;
+    for (unsigned i = 0; i < node->mNumMeshes; i++) {
+        const struct aiMesh *mesh = NULL;
+        unsigned index = 0;
+        ur_status status = node_mesh(state, node, i, &mesh, &index, error);
+        if (status != UR_OK)
+            return status;
+        size_t triangles = mesh_triangles(mesh, &state->stray_count);
+        if (triangles == 0)
+            continue;
+        has_triangles = true;
+        state->triangle_count += triangles;
+        state->vertex_count += mesh->mNumVertices;
+        /* A mesh used by many nodes is copied for each: count the copies. */
+        if (state->vertex_count > UR_MESH_IMPORT_MAX_VERTICES)
+            return ur_error_set(error, UR_ERROR_INPUT,
+                                "%s: more than %u vertices once every node has its copy: too "
+                                "large to hold in memory; simplify the mesh first",
+                                state->path, UR_MESH_IMPORT_MAX_VERTICES);
+    }
+    if (has_triangles)
+        state->group_count++;
+    for (unsigned c = 0; c < node->mNumChildren; c++) {
+        ur_status status = count_node(state, node->mChildren[c], depth + 1, error);
+        if (status != UR_OK)
+            return status;
+    }
+    return UR_OK;
+}
+
+static ur_status allocate(import_state *state, ur_error *error)
+{
+    state->vertices = ur_alloc_array(state->vertex_count, sizeof *state->vertices, error);
+    state->triangles = ur_alloc_array(state->triangle_count, sizeof *state->triangles, error);
+    state->groups = ur_alloc_array(state->triangle_count, sizeof *state->groups, error);
+    state->names = ur_alloc_array(state->group_count, sizeof *state->names, error);
+    state->named = ur_alloc_array(state->group_count, sizeof *state->named, error);
+    if (!state->vertices || !state->triangles || !state->groups || !state->names || !state->named)
+        return UR_ERROR_INTERNAL;
+    /* The counts come back as fill_node moves its cursors over the arrays. */
+    state->vertex_count = state->triangle_count = state->group_count = 0;
+    return UR_OK;
+}
+
+/* Names a new group after its node, or else after its first mesh. */
+static void name_group(import_state *state, const struct aiNode *node,
+                       const struct aiMesh *first_mesh)
+{
+    size_t group = state->group_count;
+    const struct aiString *name = name_usable(&node->mName)         ? &node->mName
+                                  : name_usable(&first_mesh->mName) ? &first_mesh->mName
+                                                                    : NULL;
+    state->named[group] = name != NULL;
+    if (name)
+        copy_name(state->names[group], UR_GROUP_NAME_SIZE, name->data,
+                  strnlen(name->data, sizeof name->data));
+}
+
+static ur_status add_vertices(import_state *state, const struct aiMesh *mesh, unsigned index,
+                              const affine *to_mm, ur_error *error)
+{
+    char label[256];
+    for (unsigned v = 0; v < mesh->mNumVertices; v++) {
+        ur_vec3 p = affine_apply(to_mm, mesh->mVertices[v]);
+        double largest = fmax(fabs(p.x), fmax(fabs(p.y), fabs(p.z)));
+        /* !(a <= b) also catches NaN, e.g. from an infinite node scale times zero. */
+        if (!(largest <= UR_MESH_IMPORT_MAX_COORDINATE))
+            return ur_error_set(error, UR_ERROR_INPUT,
+                                "%s: %s, vertex %u lies at (%g, %g, %g) mm once unit, scale "
+                                "and node transforms are applied: coordinates beyond 1000 km "
+                                "are refused",
+                                state->path, mesh_label(mesh, index, label, sizeof label), v + 1,
+                                p.x, p.y, p.z);
+        state->vertices[state->vertex_count + v] = p;
+    }
+    return UR_OK;
+}
+
+/* Copies one mesh's triangles after its vertices, turned round under a mirror. */
+static void add_triangles(import_state *state, const struct aiMesh *mesh, bool mirrored)
+{
+    size_t base = state->vertex_count;
+    for (unsigned f = 0; f < mesh->mNumFaces; f++) {
+        const struct aiFace *face = &mesh->mFaces[f];
+        if (face->mNumIndices != 3)
+            continue;
+        size_t *t = state->triangles[state->triangle_count];
+        t[0] = base + face->mIndices[0];
+        t[1] = base + face->mIndices[mirrored ? 2 : 1];
+        t[2] = base + face->mIndices[mirrored ? 1 : 2];
+        state->groups[state->triangle_count] = state->group_count;
+        state->triangle_count++;
+    }
+    state->vertex_count += mesh->mNumVertices;
+}
+
+/* Adds the node's triangle meshes as one group (check_faces vetted every index). */
+static ur_status fill_meshes(import_state *state, const struct aiNode *node, const affine *global,
+                             ur_error *error)
+{
+    affine scale = {{{state->factor, 0, 0, 0}, {0, state->factor, 0, 0}, {0, 0, state->factor, 0}}};
+    affine to_mm = affine_compose(&scale, global);
+    bool mirrored = affine_det(global) < 0;
+    bool started = false;
+    for (unsigned i = 0; i < node->mNumMeshes; i++) {
+        const struct aiMesh *mesh = NULL;
+        unsigned index = 0;
+        ur_status status = node_mesh(state, node, i, &mesh, &index, error);
+        if (status != UR_OK)
+            return status;
+        if (mesh_triangles(mesh, NULL) == 0)
+            continue;
+        if (!started)
+            name_group(state, node, mesh);
+        started = true;
+        status = add_vertices(state, mesh, index, &to_mm, error);
+        if (status != UR_OK)
+            return status;
+        add_triangles(state, mesh, mirrored);
+    }
+    if (started)
+        state->group_count++;
+    return UR_OK;
+}
+
+/*
+ * Second pass: each node's meshes in millimetres, its transform and its
+ * parents' applied (count_node has bounded the depth).
+ */
+static ur_status fill_node(import_state *state, const struct aiNode *node, const affine *parent,
+                           ur_error *error)
+{
+    affine local = affine_from_ai(&node->mTransformation);
+    affine global = affine_compose(parent, &local);
+    ur_status status = fill_meshes(state, node, &global, error);
+    for (unsigned c = 0; status == UR_OK && c < node->mNumChildren; c++)
+        status = fill_node(state, node->mChildren[c], &global, error);
+    return status;
+}
+
+/* ---- Groups ------------------------------------------------------------ */
+
+typedef struct group_key {
+    const char *name;
+    size_t index;
+} group_key;
+
+static int compare_keys(const void *a, const void *b)
+{
+    const group_key *p = a, *q = b;
+    int order = strcmp(p->name, q->name);
+    if (order != 0)
+        return order;
+    return (p->index > q->index) - (p->index < q->index);
+}
+
+/*
+ * Gives unnamed groups the file's name ("NAME-2", ... when there are
+ * several), so the report has something to show.
+ */
+static void name_unnamed(import_state *state)
+{
+    char stem[UR_GROUP_NAME_SIZE];
+    file_stem(state->path, stem, sizeof stem);
+    size_t unnamed = 0;
+    for (size_t g = 0; g < state->group_count; g++)
+        unnamed += !state->named[g];
+    size_t number = 0;
+    for (size_t g = 0; g < state->group_count; g++) {
+        if (state->named[g])
+            continue;
+        char suffix[32] = "";
+        if (unnamed > 1)
+            snprintf(suffix, sizeof suffix, "-%zu", ++number);
+        size_t room = UR_GROUP_NAME_SIZE - strlen(suffix);
+        copy_name(state->names[g], room, stem, strlen(stem));
+        strcat(state->names[g], suffix);
+    }
+}
+
+/*
+ * An OBJ group that comes back later ("g a", "g b", "g a") is one group,
+ * which assimp splits into two nodes: groups of the same name become one,
+ * numbered in the order they first appear.
+ */
+static ur_status merge_groups(import_state *state, ur_error *error)
+{
+    size_t count = state->group_count;
+    group_key *keys = ur_alloc_array(count, sizeof *keys, error);
+    size_t *renumber = ur_alloc_array(count, sizeof *renumber, error);
+    if (!keys || !renumber) {
+        free(keys);
+        free(renumber);
+        return UR_ERROR_INTERNAL;
+    }
+    for (size_t g = 0; g < count; g++)
+        keys[g] = (group_key){state->names[g], g};
+    qsort(keys, count, sizeof *keys, compare_keys);
+    /* renumber[g] first holds the earliest group of g's name (unnamed stay apart). */
+    for (size_t k = 0; k < count; k++) {
+        bool same = k > 0 && state->named[keys[k].index] && state->named[keys[k - 1].index] &&
+                    strcmp(keys[k].name, keys[k - 1].name) == 0;
+        renumber[keys[k].index] = same ? renumber[keys[k - 1].index] : keys[k].index;
+    }
+    size_t kept = 0;
+    for (size_t g = 0; g < count; g++) {
+        if (renumber[g] == g) {
+            memmove(state->names[kept], state->names[g], UR_GROUP_NAME_SIZE);
+            renumber[g] = kept++;
+        } else {
+            renumber[g] = renumber[renumber[g]]; /* the earlier group is renumbered already */
+        }
+    }
+    for (size_t t = 0; t < state->triangle_count; t++)
+        state->groups[t] = renumber[state->groups[t]];
+    state->group_count = kept;
+    free(keys);
+    free(renumber);
+    return UR_OK;
+}
+
+/* ---- Import ------------------------------------------------------------ */
+
+static ur_status refuse_no_triangles(const import_state *state, ur_error *error)
+{
+    if (state->stray_count > 0)
+        return ur_error_set(error, UR_ERROR_INPUT,
+                            "%s: no triangles, only %zu points and lines: unroll needs a surface",
+                            state->path, state->stray_count);
+    return ur_error_set(error, UR_ERROR_INPUT, "%s: no triangles: vertices but no faces",
+                        state->path);
+}
+
+static ur_status build(import_state *state, ur_error *error)
+{
+    ur_status status = count_node(state, state->scene->mRootNode, 0, error);
+    if (status != UR_OK)
+        return status;
+    if (state->triangle_count == 0)
+        return refuse_no_triangles(state, error);
+    status = allocate(state, error);
+    if (status != UR_OK)
+        return status;
+    affine identity = affine_identity();
+    status = fill_node(state, state->scene->mRootNode, &identity, error);
+    if (status != UR_OK)
+        return status;
+    name_unnamed(state);
+    return merge_groups(state, error);
+}
+
+/* Hands the arrays over to mesh and *group_names; state keeps nothing. */
+static void hand_over(import_state *state, ur_mesh *mesh, char (**group_names)[64])
+{
+    mesh->vertices = state->vertices;
+    mesh->vertex_count = state->vertex_count;
+    mesh->triangles = state->triangles;
+    mesh->triangle_count = state->triangle_count;
+    mesh->groups = state->groups;
+    mesh->group_count = state->group_count;
+    state->vertices = NULL;
+    state->triangles = NULL;
+    state->groups = NULL;
+    if (group_names) {
+        *group_names = state->names;
+        state->names = NULL;
+    }
+    state_free(state);
+}
+
+ur_status ur_mesh_import(const char *path, const ur_mesh_import_options *options, ur_mesh *mesh,
+                         char (**group_names)[64], ur_error *error)
+{
+    *mesh = (ur_mesh){0};
+    if (group_names)
+        *group_names = NULL;
+    ur_mesh_import_options defaults;
+    ur_mesh_import_options_default(&defaults);
+    if (!options)
+        options = &defaults;
+    ur_status status = check_options(options, error);
+    if (status == UR_OK)
+        status = check_file(path, error);
+    import_state state = {.path = path};
+    if (status == UR_OK)
+        status = load_scene(path, &state.scene, error);
+    if (status != UR_OK)
+        return status;
+    state.factor = ur_length_unit_mm(options->unit) * options->scale;
+    status = build(&state, error);
+    aiReleaseImport(state.scene);
+    if (status != UR_OK) {
+        state_free(&state);
+        return status;
+    }
+    hand_over(&state, mesh, group_names);
+    return UR_OK;
+}

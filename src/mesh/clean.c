@@ -1,0 +1,240 @@
+/*
+ * clean.c: ur_mesh_clean: welding, dropping zero-area triangles and unused
+ * vertices, refusing non-manifold edges and orienting each part.
+ *
+ * Every step writes new arrays; the mesh gets them only once all have
+ * succeeded, so that a refused mesh is left as it was.  Messages name input
+ * vertices and triangles (1-based), the numbers the user's file has.
+ */
+#include "mesh_internal.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* A triangle of less area than this times the square of the mesh's size has none. */
+#define ZERO_AREA 1e-12
+
+typedef struct cleaning {
+    const ur_mesh *mesh; /* the input */
+    size_t *map;         /* input vertex -> kept input vertex, then -> cleaned vertex */
+    size_t (*triangles)[3];
+    size_t *groups;
+    size_t *source; /* input triangle of each kept triangle */
+    size_t triangle_count;
+    ur_vec3 *vertices;
+    size_t *original; /* input vertex of each cleaned vertex */
+    size_t vertex_count;
+    ur_mesh_repairs repairs;
+} cleaning;
+
+static void cleaning_free(cleaning *c)
+{
+    free(c->map);
+    free(c->triangles);
+    free(c->groups);
+    free(c->source);
+    free(c->vertices);
+    free(c->original);
+}
+
+static ur_status check_input(const ur_mesh *mesh, double tolerance, ur_error *error)
+{
+    if (!isfinite(tolerance) || tolerance < 0)
+        return ur_error_set(error, UR_ERROR_INPUT,
+                            "the weld tolerance must be a finite length, 0 or more (not %g)",
+                            tolerance);
+    if (mesh->triangle_count == 0)
+        return ur_error_set(error, UR_ERROR_INPUT, "the mesh has no triangles");
+    ur_status status = mesh_check_vertices(mesh->vertices, mesh->vertex_count, error);
+    if (status == UR_OK)
+        status = mesh_check_triangles((const size_t(*)[3])mesh->triangles, mesh->triangle_count,
+                                      mesh->vertex_count, error);
+    return status;
+}
+
+/* The diagonal of the mesh's bounding box: what "zero area" is measured against. */
+static double mesh_size(const ur_mesh *mesh)
+{
+    ur_vec3 low = mesh->vertices[0], high = low;
+    for (size_t v = 1; v < mesh->vertex_count; v++) {
+        ur_vec3 p = mesh->vertices[v];
+        low = ur_vec3_make(fmin(low.x, p.x), fmin(low.y, p.y), fmin(low.z, p.z));
+        high = ur_vec3_make(fmax(high.x, p.x), fmax(high.y, p.y), fmax(high.z, p.z));
+    }
+    return ur_vec3_distance(low, high);
+}
+
+static bool is_degenerate(const ur_vec3 *vertices, const size_t c[3], double smallest)
+{
+    if (c[0] == c[1] || c[1] == c[2] || c[2] == c[0])
+        return true;
+    ur_vec3 ab = ur_vec3_sub(vertices[c[1]], vertices[c[0]]);
+    ur_vec3 ac = ur_vec3_sub(vertices[c[2]], vertices[c[0]]);
+    return 0.5 * ur_vec3_length(ur_vec3_cross(ab, ac)) <= smallest;
+}
+
+/* Keeps the triangles with area once their corners are welded. */
+static ur_status drop_degenerate(cleaning *c, ur_error *error)
+{
+    const ur_mesh *mesh = c->mesh;
+    c->triangles = ur_alloc_array(mesh->triangle_count, sizeof *c->triangles, error);
+    c->groups = ur_alloc_array(mesh->triangle_count, sizeof *c->groups, error);
+    c->source = ur_alloc_array(mesh->triangle_count, sizeof *c->source, error);
+    if (!c->triangles || !c->groups || !c->source)
+        return UR_ERROR_INTERNAL;
+    double size = mesh_size(mesh), smallest = ZERO_AREA * size * size;
+    for (size_t t = 0; t < mesh->triangle_count; t++) {
+        size_t welded[3];
+        for (int k = 0; k < 3; k++)
+            welded[k] = c->map[mesh->triangles[t][k]];
+        if (is_degenerate(mesh->vertices, welded, smallest)) {
+            c->repairs.degenerate++;
+            continue;
+        }
+        memcpy(c->triangles[c->triangle_count], welded, sizeof welded);
+        c->groups[c->triangle_count] = mesh->groups ? mesh->groups[t] : 0;
+        c->source[c->triangle_count++] = t;
+    }
+    if (c->triangle_count == 0)
+        return ur_error_set(error, UR_ERROR_INPUT,
+                            "the mesh has no triangles left: all %zu have zero area",
+                            mesh->triangle_count);
+    return UR_OK;
+}
+
+/*
+ * Numbers the vertices the kept triangles use, in input order, and drops
+ * the rest; c->map then goes from input vertex to cleaned vertex.
+ */
+static ur_status renumber(cleaning *c, ur_error *error)
+{
+    const ur_mesh *mesh = c->mesh;
+    size_t *index = ur_alloc_array(mesh->vertex_count, sizeof *index, error);
+    if (!index)
+        return UR_ERROR_INTERNAL;
+    for (size_t v = 0; v < mesh->vertex_count; v++)
+        index[v] = UR_NO_VERTEX;
+    for (size_t t = 0; t < c->triangle_count; t++)
+        for (int k = 0; k < 3; k++)
+            index[c->triangles[t][k]] = 0; /* used; numbered below */
+    for (size_t v = 0; v < mesh->vertex_count; v++) {
+        if (index[v] != UR_NO_VERTEX)
+            index[v] = c->vertex_count++;
+        else if (c->map[v] == v)
+            c->repairs.isolated++;
+    }
+    c->vertices = ur_alloc_array(c->vertex_count, sizeof *c->vertices, error);
+    c->original = ur_alloc_array(c->vertex_count, sizeof *c->original, error);
+    if (!c->vertices || !c->original) {
+        free(index);
+        return UR_ERROR_INTERNAL;
+    }
+    for (size_t v = 0; v < mesh->vertex_count; v++)
+        if (index[v] != UR_NO_VERTEX) {
+            c->vertices[index[v]] = mesh->vertices[v];
+            c->original[index[v]] = v;
+        }
+    for (size_t t = 0; t < c->triangle_count; t++)
+        for (int k = 0; k < 3; k++)
+            c->triangles[t][k] = index[c->triangles[t][k]];
+    for (size_t v = 0; v < mesh->vertex_count; v++)
+        c->map[v] = index[c->map[v]];
+    free(index);
+    return UR_OK;
+}
+
+/* Pairs the half-edges, refusing an edge of three or more triangles. */
+static ur_status pair_edges(const cleaning *c, size_t *twins, ur_error *error)
+{
+    mesh_bad_edge bad = {0, 0, 0};
+    ur_status status = mesh_pair_edges((const size_t(*)[3])c->triangles, c->triangle_count,
+                                       c->vertex_count, twins, &bad, error);
+    if (status == UR_ERROR_INPUT)
+        return ur_error_set(error, status,
+                            "non-manifold edge between vertices %zu and %zu (%zu triangles)",
+                            c->original[bad.a] + 1, c->original[bad.b] + 1, bad.count);
+    return status;
+}
+
+/* Refuses non-manifold edges and orients each part, counting the triangles turned. */
+static ur_status orient(cleaning *c, ur_error *error)
+{
+    size_t *twins = ur_alloc_array(3 * c->triangle_count, sizeof *twins, error);
+    bool *flipped = ur_alloc_array(c->triangle_count, sizeof *flipped, error);
+    ur_status status = twins && flipped ? pair_edges(c, twins, error) : UR_ERROR_INTERNAL;
+    mesh_conflict conflict = {0, 0, 0, 0};
+    if (status == UR_OK) {
+        status = mesh_orient(c->triangles, c->triangle_count, twins, c->vertices, flipped,
+                             &conflict, error);
+        if (status == UR_ERROR_INPUT)
+            ur_error_set(error, status,
+                         "the surface cannot be oriented: a Mobius strip? Going around it from "
+                         "triangle %zu to triangle %zu across the edge between vertices %zu and "
+                         "%zu turns it over",
+                         c->source[conflict.first] + 1, c->source[conflict.second] + 1,
+                         c->original[conflict.a] + 1, c->original[conflict.b] + 1);
+    }
+    for (size_t t = 0; t < c->triangle_count && status == UR_OK; t++)
+        c->repairs.flipped += flipped[t];
+    free(twins);
+    free(flipped);
+    return status;
+}
+
+/* Gives the mesh the cleaned arrays (and c the old ones, to free). */
+static void commit(cleaning *c, ur_mesh *mesh)
+{
+    ur_vec3 *vertices = mesh->vertices;
+    size_t(*triangles)[3] = mesh->triangles;
+    size_t *groups = mesh->groups;
+    mesh->vertices = c->vertices;
+    mesh->vertex_count = c->vertex_count;
+    mesh->triangles = c->triangles;
+    mesh->groups = c->groups;
+    mesh->triangle_count = c->triangle_count;
+    c->vertices = vertices;
+    c->triangles = triangles;
+    c->groups = groups;
+}
+
+ur_status ur_mesh_clean_map(ur_mesh *mesh, double weld_tolerance, ur_mesh_repairs *repairs,
+                            size_t **vertex_map, ur_error *error)
+{
+    cleaning c = {0};
+    c.mesh = mesh;
+    if (repairs)
+        memset(repairs, 0, sizeof *repairs);
+    if (vertex_map)
+        *vertex_map = NULL;
+    ur_status status = check_input(mesh, weld_tolerance, error);
+    if (status == UR_OK) {
+        c.map = ur_alloc_array(mesh->vertex_count, sizeof *c.map, error);
+        status = c.map ? mesh_weld(mesh->vertices, mesh->vertex_count, weld_tolerance, c.map,
+                                   &c.repairs.welded, error)
+                       : UR_ERROR_INTERNAL;
+    }
+    if (status == UR_OK)
+        status = drop_degenerate(&c, error);
+    if (status == UR_OK)
+        status = renumber(&c, error);
+    if (status == UR_OK)
+        status = orient(&c, error);
+    if (status == UR_OK) {
+        commit(&c, mesh);
+        if (repairs)
+            *repairs = c.repairs;
+        if (vertex_map) {
+            *vertex_map = c.map;
+            c.map = NULL;
+        }
+    }
+    cleaning_free(&c);
+    return status;
+}
+
+ur_status ur_mesh_clean(ur_mesh *mesh, double weld_tolerance, ur_mesh_repairs *repairs,
+                        ur_error *error)
+{
+    return ur_mesh_clean_map(mesh, weld_tolerance, repairs, NULL, error);
+}

@@ -1,0 +1,96 @@
+/*
+ * mesh_internal.h: what the files of the mesh module share: checks of raw
+ * arrays, half-edge helpers, edge pairing, welding, orientation and the
+ * shape (Euler characteristic, boundary loops) of a mesh.
+ */
+#ifndef UNROLL_MESH_INTERNAL_H
+#define UNROLL_MESH_INTERNAL_H
+
+#include "unroll/mesh.h"
+
+/* Corner k of triangle t is corner 3 t + k; half-edge 3 t + k leaves it. */
+static inline size_t mesh_next(size_t half_edge)
+{
+    return half_edge - half_edge % 3 + (half_edge % 3 + 1) % 3;
+}
+
+static inline size_t mesh_from(const size_t (*triangles)[3], size_t half_edge)
+{
+    return triangles[half_edge / 3][half_edge % 3];
+}
+
+static inline size_t mesh_to(const size_t (*triangles)[3], size_t half_edge)
+{
+    return triangles[half_edge / 3][(half_edge % 3 + 1) % 3];
+}
+
+/* Refuses a NaN or infinite coordinate, naming the vertex (1-based). */
+ur_status mesh_check_vertices(const ur_vec3 *vertices, size_t count, ur_error *error);
+
+/* Refuses a vertex index out of range, naming the triangle (1-based). */
+ur_status mesh_check_triangles(const size_t (*triangles)[3], size_t count, size_t vertex_count,
+                               ur_error *error);
+
+/* An edge that three or more triangles share (vertex indices, 0-based). */
+typedef struct mesh_bad_edge {
+    size_t a, b, count;
+} mesh_bad_edge;
+
+/*
+ * Fills twins (3 triangle_count entries, the caller's) with the other
+ * half-edge on the same undirected edge, or UR_NO_EDGE.  On an edge of
+ * three or more triangles returns UR_ERROR_INPUT with *bad filled and error
+ * untouched, so that each caller can name the vertices its own way.
+ * Buckets half-edges by their smaller vertex, then sorts each bucket by
+ * the larger one: linear in the mesh but for the sort of each bucket.
+ */
+ur_status mesh_pair_edges(const size_t (*triangles)[3], size_t triangle_count, size_t vertex_count,
+                          size_t *twins, mesh_bad_edge *bad, ur_error *error);
+
+/*
+ * Welds vertices: map[v] is the vertex v is merged into (v itself when it is
+ * kept), always a lower index; *welded counts the merged ones.
+ */
+ur_status mesh_weld(const ur_vec3 *vertices, size_t count, double tolerance, size_t *map,
+                    size_t *welded, ur_error *error);
+
+/* Two neighbouring triangles that no choice of directions can reconcile. */
+typedef struct mesh_conflict {
+    size_t first, second; /* triangles */
+    size_t a, b;          /* the edge between them */
+} mesh_conflict;
+
+/*
+ * Turns triangles over (in place) so that every edge with two triangles is
+ * run in opposite directions by them: each connected part outward when it
+ * is closed (positive signed volume), else the way most of its triangles
+ * already run.  flipped[t] is set for each triangle turned.  Returns
+ * UR_ERROR_INPUT with *conflict filled (error untouched) when a part cannot
+ * be oriented.  twins is that of the triangles before any flip.
+ */
+ur_status mesh_orient(size_t (*triangles)[3], size_t triangle_count, const size_t *twins,
+                      const ur_vec3 *vertices, bool *flipped, mesh_conflict *conflict,
+                      ur_error *error);
+
+/* What the topology of a mesh is, from its triangles and twins. */
+typedef struct mesh_shape {
+    size_t vertices; /* used by some triangle */
+    size_t edges, triangles;
+    size_t boundary_edges;
+    size_t loops;  /* boundary loops */
+    bool pinched;  /* some vertex is on the boundary twice: loops are not well defined */
+    bool oriented; /* every inner edge is run both ways */
+} mesh_shape;
+
+ur_status mesh_shape_of(const ur_mesh *mesh, const size_t *twins, mesh_shape *shape,
+                        ur_error *error);
+
+/* Refuses (UR_ERROR_INPUT, saying why) a mesh that is not a topological disk. */
+ur_status mesh_check_disk(const ur_mesh *mesh, ur_error *error);
+
+static inline long long mesh_euler(const mesh_shape *shape)
+{
+    return (long long)shape->vertices - (long long)shape->edges + (long long)shape->triangles;
+}
+
+#endif

@@ -1,0 +1,538 @@
+/*
+ * test_import.c: mesh files through assimp.  The lampshade sample in every
+ * format (OBJ, ASCII and binary STL, PLY, glTF with node transforms, GLB
+ * with an instanced, mirrored half) gives the same surface, facing the same
+ * way; groups and their names; units and scale; and every refusal names the
+ * file.  Areas, boxes and orientation are computed here, not with src/mesh,
+ * so that this test stands on the importer alone.
+ */
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <setjmp.h>
+#include <cmocka.h>
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "unroll/io.h"
+
+#define LAMPSHADE_TRIANGLES 144 /* 24 segments x 3 rows x 2 */
+
+static const char *const lampshades[] = {
+    "samples/lampshade.obj", "samples/lampshade-ascii.stl", "samples/lampshade-binary.stl",
+    "samples/lampshade.ply", "samples/lampshade.gltf",      "samples/lampshade.glb",
+};
+#define LAMPSHADE_COUNT (sizeof lampshades / sizeof lampshades[0])
+
+/* Every test writes its bad files into one temporary directory. */
+static char directory[64];
+static char written[24][128];
+static int written_count;
+
+static int make_directory(void **state)
+{
+    (void)state;
+    if (access("samples/lampshade.obj", R_OK) != 0) {
+        fprintf(stderr, "test_import: run from the repository root\n");
+        return -1;
+    }
+    strcpy(directory, "/tmp/unroll-test-import-XXXXXX");
+    return mkdtemp(directory) ? 0 : -1;
+}
+
+static int remove_directory(void **state)
+{
+    (void)state;
+    for (int i = 0; i < written_count; i++)
+        unlink(written[i]);
+    return rmdir(directory);
+}
+
+/* Writes text to NAME in the temporary directory; returns the path. */
+static const char *write_file(const char *name, const char *text)
+{
+    assert_true(written_count < 24);
+    char *path = written[written_count++];
+    snprintf(path, sizeof written[0], "%s/%s", directory, name);
+    FILE *file = fopen(path, "w");
+    assert_non_null(file);
+    assert_int_equal(fwrite(text, 1, strlen(text), file), strlen(text));
+    assert_int_equal(fclose(file), 0);
+    return path;
+}
+
+/* The mesh's fields are public: freeing them here keeps src/mesh out of this test. */
+static void free_mesh(ur_mesh *mesh)
+{
+    free(mesh->vertices);
+    free(mesh->triangles);
+    free(mesh->groups);
+    *mesh = (ur_mesh){0};
+}
+
+static void import_ok(const char *path, const ur_mesh_import_options *options, ur_mesh *mesh,
+                      char (**names)[64])
+{
+    ur_error error = {0};
+    ur_status status = ur_mesh_import(path, options, mesh, names, &error);
+    if (status != UR_OK)
+        fail_msg("%s: %s", path, error.message);
+    assert_true(mesh->vertex_count > 0);
+    assert_true(mesh->triangle_count > 0);
+    assert_true(mesh->group_count > 0);
+    for (size_t t = 0; t < mesh->triangle_count; t++) {
+        for (int k = 0; k < 3; k++)
+            assert_true(mesh->triangles[t][k] < mesh->vertex_count);
+        assert_true(mesh->groups[t] < mesh->group_count);
+    }
+}
+
+static ur_vec3 corner(const ur_mesh *mesh, size_t t, int k)
+{
+    return mesh->vertices[mesh->triangles[t][k]];
+}
+
+/* Twice the area vector of triangle t: its normal, by the right-hand rule. */
+static ur_vec3 area_vector(const ur_mesh *mesh, size_t t)
+{
+    ur_vec3 a = corner(mesh, t, 0);
+    return ur_vec3_cross(ur_vec3_sub(corner(mesh, t, 1), a), ur_vec3_sub(corner(mesh, t, 2), a));
+}
+
+static double total_area(const ur_mesh *mesh)
+{
+    double area = 0;
+    for (size_t t = 0; t < mesh->triangle_count; t++)
+        area += 0.5 * ur_vec3_length(area_vector(mesh, t));
+    return area;
+}
+
+/* Bounding box of the vertices triangles use: low[0..2], high[0..2]. */
+static void bounding_box(const ur_mesh *mesh, double low[3], double high[3])
+{
+    for (int i = 0; i < 3; i++) {
+        low[i] = INFINITY;
+        high[i] = -INFINITY;
+    }
+    for (size_t t = 0; t < mesh->triangle_count; t++)
+        for (int k = 0; k < 3; k++) {
+            ur_vec3 p = corner(mesh, t, k);
+            double c[3] = {p.x, p.y, p.z};
+            for (int i = 0; i < 3; i++) {
+                low[i] = fmin(low[i], c[i]);
+                high[i] = fmax(high[i], c[i]);
+            }
+        }
+}
+
+static void assert_relative(double value, double expected, double tolerance, const char *what)
+{
+    if (!(fabs(value - expected) <= tolerance * fabs(expected)))
+        fail_msg("%s: %.17g, expected %.17g", what, value, expected);
+}
+
+static void assert_names(char (*names)[64], size_t count, const char *const *expected)
+{
+    for (size_t g = 0; g < count; g++)
+        if (strcmp(names[g], expected[g]) != 0)
+            fail_msg("group %zu: '%s', expected '%s'", g, names[g], expected[g]);
+}
+
+/* ---- Every format, one surface ---------------------------------------- */
+
+static void test_every_format_gives_the_same_surface(void **state)
+{
+    (void)state;
+    ur_mesh reference = {0};
+    import_ok(lampshades[0], NULL, &reference, NULL);
+    double area = total_area(&reference);
+    double low[3], high[3];
+    bounding_box(&reference, low, high);
+    /* 24 planar trapezoids: the box is exact, the area a little under the cone's. */
+    double expected_low[3] = {-100, -100, 0}, expected_high[3] = {100, 100, 120};
+    for (int i = 0; i < 3; i++) {
+        assert_relative(low[i], expected_low[i], 1e-9, "box low");
+        assert_relative(high[i], expected_high[i], 1e-9, "box high");
+    }
+    double cone = M_PI * (100 + 60) * hypot(120, 40);
+    assert_true(area < cone && area > 0.98 * cone);
+    for (size_t f = 1; f < LAMPSHADE_COUNT; f++) {
+        ur_mesh mesh = {0};
+        import_ok(lampshades[f], NULL, &mesh, NULL);
+        assert_int_equal(mesh.triangle_count, LAMPSHADE_TRIANGLES);
+        assert_relative(total_area(&mesh), area, 1e-6, lampshades[f]);
+        double l[3], h[3];
+        bounding_box(&mesh, l, h);
+        for (int i = 0; i < 3; i++) {
+            /* Relative to the box's size: a zero coordinate has no scale of its own. */
+            if (fabs(l[i] - low[i]) > 1e-6 * 200 || fabs(h[i] - high[i]) > 1e-6 * 200)
+                fail_msg("%s: box axis %d [%g, %g], expected [%g, %g]", lampshades[f], i, l[i],
+                         h[i], low[i], high[i]);
+        }
+        free_mesh(&mesh);
+    }
+    assert_int_equal(reference.triangle_count, LAMPSHADE_TRIANGLES);
+    free_mesh(&reference);
+}
+
+/*
+ * Triangles run counter-clockwise seen from outside, in every format: the
+ * GLB's back half is the front half under a mirroring node, so this fails
+ * unless the importer turns mirrored triangles round.
+ */
+static void test_triangles_face_outwards(void **state)
+{
+    (void)state;
+    for (size_t f = 0; f < LAMPSHADE_COUNT; f++) {
+        ur_mesh mesh = {0};
+        import_ok(lampshades[f], NULL, &mesh, NULL);
+        for (size_t t = 0; t < mesh.triangle_count; t++) {
+            ur_vec3 n = area_vector(&mesh, t);
+            ur_vec3 c = ur_vec3_add(ur_vec3_add(corner(&mesh, t, 0), corner(&mesh, t, 1)),
+                                    corner(&mesh, t, 2));
+            if (n.x * c.x + n.y * c.y <= 0)
+                fail_msg("%s: triangle %zu faces inwards", lampshades[f], t);
+        }
+        free_mesh(&mesh);
+    }
+}
+
+/* The GLB's two nodes use one mesh: each gets its own copy of the vertices. */
+static void test_instanced_mesh_is_copied_per_node(void **state)
+{
+    (void)state;
+    ur_mesh mesh = {0};
+    import_ok("samples/lampshade.glb", NULL, &mesh, NULL);
+    assert_int_equal(mesh.vertex_count, 2 * 52); /* 13 x 4 per half */
+    size_t below = 0;
+    for (size_t v = 0; v < mesh.vertex_count; v++)
+        below += mesh.vertices[v].y < -1e-9;
+    assert_int_equal(below, 11 * 4); /* the mirrored copy, less its two seams on y = 0 */
+    free_mesh(&mesh);
+}
+
+/* ---- Groups ------------------------------------------------------------ */
+
+/* Front triangles lie at y >= 0, back ones at y <= 0. */
+static void expect_front_and_back(const char *path)
+{
+    ur_mesh mesh = {0};
+    char(*names)[64] = NULL;
+    import_ok(path, NULL, &mesh, &names);
+    assert_non_null(names);
+    assert_int_equal(mesh.group_count, 2);
+    assert_names(names, 2, (const char *const[]){"front", "back"});
+    size_t per_group[2] = {0, 0};
+    for (size_t t = 0; t < mesh.triangle_count; t++) {
+        size_t g = mesh.groups[t];
+        per_group[g]++;
+        for (int k = 0; k < 3; k++) {
+            double y = corner(&mesh, t, k).y;
+            if (g == 0 ? y < -1e-6 : y > 1e-6)
+                fail_msg("%s: triangle %zu of group %s at y = %g", path, t, names[g], y);
+        }
+    }
+    assert_int_equal(per_group[0], LAMPSHADE_TRIANGLES / 2);
+    assert_int_equal(per_group[1], LAMPSHADE_TRIANGLES / 2);
+    free(names);
+    free_mesh(&mesh);
+}
+
+static void test_obj_groups(void **state)
+{
+    (void)state;
+    expect_front_and_back("samples/lampshade.obj");
+}
+
+static void test_stl_solids_and_gltf_nodes_are_groups(void **state)
+{
+    (void)state;
+    expect_front_and_back("samples/lampshade-ascii.stl");
+    expect_front_and_back("samples/lampshade.gltf");
+    expect_front_and_back("samples/lampshade.glb");
+}
+
+/* A file with no names of its own gives its one group the file's name. */
+static void test_unnamed_group_takes_the_file_name(void **state)
+{
+    (void)state;
+    const char *paths[] = {"samples/lampshade-binary.stl", "samples/lampshade.ply"};
+    const char *expected[] = {"lampshade-binary", "lampshade"};
+    for (int i = 0; i < 2; i++) {
+        ur_mesh mesh = {0};
+        char(*names)[64] = NULL;
+        import_ok(paths[i], NULL, &mesh, &names);
+        assert_int_equal(mesh.group_count, 1);
+        assert_string_equal(names[0], expected[i]);
+        free(names);
+        free_mesh(&mesh);
+    }
+}
+
+/* "g a", "g b", "g a": assimp makes three nodes; unroll, two groups. */
+static void test_group_named_twice_is_one_group(void **state)
+{
+    (void)state;
+    const char *path = write_file("regroup.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\n"
+                                                 "f 1 2 3\n"
+                                                 "g a\nf 2 4 3\n"
+                                                 "g b\nf 1 3 2\n"
+                                                 "g a\nf 2 3 4\n");
+    ur_mesh mesh = {0};
+    char(*names)[64] = NULL;
+    import_ok(path, NULL, &mesh, &names);
+    assert_int_equal(mesh.triangle_count, 4);
+    assert_int_equal(mesh.group_count, 3);
+    /* Faces before any "g" are in no named group: they take the file's name. */
+    assert_names(names, 3, (const char *const[]){"regroup", "a", "b"});
+    size_t expected[4] = {0, 1, 2, 1};
+    for (size_t t = 0; t < 4; t++)
+        assert_int_equal(mesh.groups[t], expected[t]);
+    free(names);
+    free_mesh(&mesh);
+}
+
+/* ---- A closed mesh ----------------------------------------------------- */
+
+static void test_icosphere_is_closed_and_outward(void **state)
+{
+    (void)state;
+    ur_mesh mesh = {0};
+    char(*names)[64] = NULL;
+    import_ok("samples/icosphere.obj", NULL, &mesh, &names);
+    assert_int_equal(mesh.triangle_count, 80);
+    assert_int_equal(mesh.vertex_count, 42); /* joined: no normals or uv to keep apart */
+    assert_int_equal(mesh.group_count, 1);
+    assert_string_equal(names[0], "icosphere");
+    double volume = 0;
+    for (size_t t = 0; t < mesh.triangle_count; t++)
+        volume += ur_vec3_det(corner(&mesh, t, 0), corner(&mesh, t, 1), corner(&mesh, t, 2)) / 6;
+    for (size_t v = 0; v < mesh.vertex_count; v++)
+        assert_relative(ur_vec3_length(mesh.vertices[v]), 40, 1e-6, "radius");
+    /* Positive: outward.  Inscribed in the sphere, so a little smaller. */
+    double sphere = 4.0 / 3.0 * M_PI * 40 * 40 * 40;
+    assert_true(volume > 0.8 * sphere && volume < sphere);
+    free(names);
+    free_mesh(&mesh);
+}
+
+/* ---- Units ------------------------------------------------------------- */
+
+static void test_unit_names(void **state)
+{
+    (void)state;
+    assert_int_equal(ur_length_unit_from_name("mm"), UR_UNIT_MM);
+    assert_int_equal(ur_length_unit_from_name("cm"), UR_UNIT_CM);
+    assert_int_equal(ur_length_unit_from_name("m"), UR_UNIT_M);
+    assert_int_equal(ur_length_unit_from_name("in"), UR_UNIT_IN);
+    assert_int_equal(ur_length_unit_from_name("inch"), -1);
+    assert_int_equal(ur_length_unit_from_name("MM"), -1);
+    assert_int_equal(ur_length_unit_from_name(""), -1);
+    assert_int_equal(ur_length_unit_from_name(NULL), -1);
+    for (int u = UR_UNIT_MM; u <= UR_UNIT_IN; u++)
+        assert_int_equal(ur_length_unit_from_name(ur_length_unit_name(u)), u);
+    assert_true(ur_length_unit_mm(UR_UNIT_IN) == 25.4);
+    ur_mesh_import_options options = {UR_UNIT_IN, 0};
+    ur_mesh_import_options_default(&options);
+    assert_int_equal(options.unit, UR_UNIT_MM);
+    assert_true(options.scale == 1.0);
+}
+
+/* The same file read in other units (and scaled) has every vertex multiplied. */
+static void test_units_and_scale_multiply(void **state)
+{
+    (void)state;
+    ur_mesh mm = {0};
+    import_ok("samples/lampshade.obj", NULL, &mm, NULL);
+    struct {
+        ur_length_unit unit;
+        double scale, factor;
+    } cases[] = {{UR_UNIT_CM, 1, 10},
+                 {UR_UNIT_M, 1, 1000},
+                 {UR_UNIT_IN, 1, 25.4},
+                 {UR_UNIT_CM, 0.5, 5},
+                 {UR_UNIT_MM, 3, 3}};
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        ur_mesh_import_options options = {cases[c].unit, cases[c].scale};
+        ur_mesh scaled = {0};
+        import_ok("samples/lampshade.obj", &options, &scaled, NULL);
+        assert_int_equal(scaled.vertex_count, mm.vertex_count);
+        assert_int_equal(scaled.triangle_count, mm.triangle_count);
+        double f = cases[c].factor;
+        for (size_t v = 0; v < mm.vertex_count; v++) {
+            ur_vec3 expected = ur_vec3_scale(mm.vertices[v], f);
+            if (ur_vec3_distance(scaled.vertices[v], expected) > 1e-12 * f * 200)
+                fail_msg("%s x%g: vertex %zu off", ur_length_unit_name(cases[c].unit),
+                         cases[c].scale, v);
+        }
+        assert_relative(total_area(&scaled), f * f * total_area(&mm), 1e-12, "scaled area");
+        free_mesh(&scaled);
+    }
+    free_mesh(&mm);
+}
+
+/* ---- Refusals ---------------------------------------------------------- */
+
+/* Expects UR_ERROR_INPUT, a message starting "PATH: " and containing fragment. */
+static void expect_refusal(const char *path, const ur_mesh_import_options *options,
+                           const char *fragment)
+{
+    ur_mesh mesh = {(ur_vec3 *)&mesh, 99, NULL, 99, NULL, 99};
+    char(*names)[64] = (char(*)[64]) & mesh;
+    ur_error error = {0};
+    assert_int_equal(ur_mesh_import(path, options, &mesh, &names, &error), UR_ERROR_INPUT);
+    assert_int_equal(error.status, UR_ERROR_INPUT);
+    assert_null(mesh.vertices);
+    assert_null(mesh.triangles);
+    assert_null(mesh.groups);
+    assert_int_equal(mesh.vertex_count + mesh.triangle_count + mesh.group_count, 0);
+    assert_null(names);
+    char prefix[256];
+    snprintf(prefix, sizeof prefix, "%s: ", path);
+    if (strncmp(error.message, prefix, strlen(prefix)) != 0 || !strstr(error.message, fragment))
+        fail_msg("message '%s' lacks '%s' or '%s'", error.message, prefix, fragment);
+}
+
+static void test_missing_file(void **state)
+{
+    (void)state;
+    char path[128];
+    snprintf(path, sizeof path, "%s/missing.obj", directory);
+    expect_refusal(path, NULL, "No such file");
+    expect_refusal(directory, NULL, "not a regular file");
+}
+
+static void test_not_a_mesh(void **state)
+{
+    (void)state;
+    const char *text = "Shopping list\nplywood, glue\n";
+    expect_refusal(write_file("notes.txt", text), NULL, "unsupported file type");
+    /* Known extensions: assimp says why it cannot read them. */
+    expect_refusal(write_file("notes.stl", text), NULL, "STL");
+    expect_refusal(write_file("notes.ply", text), NULL, "ply");
+    expect_refusal(write_file("notes.gltf", text), NULL, "cannot read as a mesh");
+    /* "plywood" reads as an OBJ point ("p") with a bad index. */
+    expect_refusal(write_file("notes.obj", text), NULL, "cannot read as a mesh");
+    /* Other text the OBJ reader skips line by line, finding nothing. */
+    expect_refusal(write_file("letter.obj", "Hello there\nthis is text\n"), NULL, "empty scene");
+}
+
+static void test_empty_obj(void **state)
+{
+    (void)state;
+    expect_refusal(write_file("empty.obj", ""), NULL, "empty");
+    expect_refusal(write_file("comments.obj", "# nothing here\n# at all\n\n"), NULL, "empty scene");
+}
+
+static void test_vertices_only(void **state)
+{
+    (void)state;
+    expect_refusal(write_file("points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n"), NULL, "no triangles");
+    expect_refusal(write_file("lines.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2 3\n"), NULL,
+                   "only 2 points and lines");
+}
+
+static void test_non_finite_coordinates(void **state)
+{
+    (void)state;
+    expect_refusal(write_file("nan.obj", "v 0 0 0\nv 1 nan 0\nv 0 1 0\nf 1 2 3\n"), NULL,
+                   "vertex 2 (in face 1): coordinates (1, nan, 0): not a number");
+    expect_refusal(write_file("inf.obj", "v 0 0 0\nv 1 0 0\nv 0 1 -inf\nf 1 2 3\n"), NULL,
+                   "infinite");
+    /* Beyond a float: assimp reads it as infinity. */
+    expect_refusal(write_file("huge.obj", "v 0 0 0\nv 1e300 0 0\nv 0 1 0\nf 1 2 3\n"), NULL,
+                   "single precision");
+}
+
+static void test_coordinates_beyond_1000_km(void **state)
+{
+    (void)state;
+    ur_mesh_import_options options = {UR_UNIT_MM, 1e300};
+    expect_refusal("samples/lampshade.obj", &options, "beyond 1000 km");
+    options = (ur_mesh_import_options){UR_UNIT_M, 1e5}; /* 100 m x 1e5: 10 000 km */
+    expect_refusal("samples/lampshade.obj", &options, "beyond 1000 km");
+    /* Up to 1e9 mm is allowed: 120 mm x 8e6 = 960 km. */
+    options = (ur_mesh_import_options){UR_UNIT_MM, 8e6};
+    ur_mesh mesh = {0};
+    import_ok("samples/lampshade.obj", &options, &mesh, NULL);
+    free_mesh(&mesh);
+}
+
+/*
+ * Headers that announce more than unroll takes are refused before assimp,
+ * which would reserve memory for them and read on past the end of the file.
+ */
+static void test_headers_claiming_too_much(void **state)
+{
+    (void)state;
+    const char *ply_header = "ply\nformat ascii 1.0\nelement vertex %s\n"
+                             "property float x\nproperty float y\nproperty float z\n"
+                             "element face 1\nproperty list uchar int vertex_indices\n"
+                             "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+    char text[512];
+    snprintf(text, sizeof text, ply_header, "1000000000");
+    expect_refusal(write_file("billion.ply", text), NULL, "more than the 50000000");
+    snprintf(text, sizeof text, ply_header, "1000000");
+    expect_refusal(write_file("million.ply", text), NULL, "more than the 26 bytes");
+    /* A binary STL of 20 million triangles, sparse: its size is what says binary. */
+    const char *path = write_file("huge.stl", "");
+    FILE *file = fopen(path, "wb");
+    assert_non_null(file);
+    unsigned char header[84] = {0};
+    uint32_t triangles = 20000000;
+    for (int i = 0; i < 4; i++)
+        header[80 + i] = (unsigned char)(triangles >> (8 * i));
+    assert_int_equal(fwrite(header, 1, sizeof header, file), sizeof header);
+    assert_int_equal(fclose(file), 0);
+    assert_int_equal(truncate(path, 84 + 50 * (off_t)triangles), 0);
+    expect_refusal(path, NULL, "60000000 vertices, more than the 50000000");
+}
+
+static void test_bad_index_and_options(void **state)
+{
+    (void)state;
+    expect_refusal(write_file("index.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n"), NULL,
+                   "index out of range");
+    ur_mesh_import_options options[] = {{UR_UNIT_MM, 0},
+                                        {UR_UNIT_MM, -1},
+                                        {UR_UNIT_MM, NAN},
+                                        {UR_UNIT_MM, INFINITY},
+                                        {(ur_length_unit)7, 1}};
+    for (size_t i = 0; i < sizeof options / sizeof options[0]; i++) {
+        ur_mesh mesh = {0};
+        ur_error error = {0};
+        assert_int_equal(ur_mesh_import("samples/lampshade.obj", &options[i], &mesh, NULL, &error),
+                         UR_ERROR_INPUT);
+        assert_null(mesh.vertices);
+    }
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_every_format_gives_the_same_surface),
+        cmocka_unit_test(test_triangles_face_outwards),
+        cmocka_unit_test(test_instanced_mesh_is_copied_per_node),
+        cmocka_unit_test(test_obj_groups),
+        cmocka_unit_test(test_stl_solids_and_gltf_nodes_are_groups),
+        cmocka_unit_test(test_unnamed_group_takes_the_file_name),
+        cmocka_unit_test(test_group_named_twice_is_one_group),
+        cmocka_unit_test(test_icosphere_is_closed_and_outward),
+        cmocka_unit_test(test_unit_names),
+        cmocka_unit_test(test_units_and_scale_multiply),
+        cmocka_unit_test(test_missing_file),
+        cmocka_unit_test(test_not_a_mesh),
+        cmocka_unit_test(test_empty_obj),
+        cmocka_unit_test(test_vertices_only),
+        cmocka_unit_test(test_non_finite_coordinates),
+        cmocka_unit_test(test_coordinates_beyond_1000_km),
+        cmocka_unit_test(test_headers_claiming_too_much),
+        cmocka_unit_test(test_bad_index_and_options),
+    };
+    return cmocka_run_group_tests(tests, make_directory, remove_directory);
+}

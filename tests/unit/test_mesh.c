@@ -1,0 +1,1124 @@
+/*
+ * test_mesh.c: triangle meshes against numbers worked out by hand: counts,
+ * Euler characteristics, boundary loops and areas of solids and tubes with
+ * closed forms; welding a triangle soup, repairing flipped triangles and
+ * refusing what cannot be repaired; cutting closed and higher-genus
+ * meshes into disks; triangulating ruled surfaces.  The edge and loop
+ * counts that check the pieces are computed here, independently of the
+ * library.
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "unroll/mesh.h"
+
+#define assert_relative(actual, expected, tolerance)                                               \
+    do {                                                                                           \
+        double a_ = (actual), e_ = (expected);                                                     \
+        if (!(fabs(a_ - e_) <= (tolerance)*fabs(e_)))                                              \
+            fail_msg("%s = %.15g, expected %.15g within %g", #actual, a_, e_,                      \
+                     (double)(tolerance));                                                         \
+    } while (0)
+
+#define assert_message(error, text)                                                                \
+    do {                                                                                           \
+        if (!strstr((error).message, (text)))                                                      \
+            fail_msg("message \"%s\" does not say \"%s\"", (error).message, (text));               \
+    } while (0)
+
+/* ---- building meshes ---- */
+
+typedef struct builder {
+    ur_vec3 *vertices;
+    size_t vertex_count, vertex_capacity;
+    size_t (*triangles)[3];
+    size_t *groups;
+    size_t triangle_count, triangle_capacity;
+} builder;
+
+static size_t add_vertex(builder *b, double x, double y, double z)
+{
+    if (b->vertex_count == b->vertex_capacity) {
+        b->vertex_capacity = b->vertex_capacity ? 2 * b->vertex_capacity : 64;
+        b->vertices = realloc(b->vertices, b->vertex_capacity * sizeof *b->vertices);
+        assert_non_null(b->vertices);
+    }
+    b->vertices[b->vertex_count] = ur_vec3_make(x, y, z);
+    return b->vertex_count++;
+}
+
+static void add_triangle(builder *b, size_t v0, size_t v1, size_t v2, size_t group)
+{
+    if (b->triangle_count == b->triangle_capacity) {
+        b->triangle_capacity = b->triangle_capacity ? 2 * b->triangle_capacity : 64;
+        b->triangles = realloc(b->triangles, b->triangle_capacity * sizeof *b->triangles);
+        b->groups = realloc(b->groups, b->triangle_capacity * sizeof *b->groups);
+        assert_non_null(b->triangles);
+        assert_non_null(b->groups);
+    }
+    size_t t = b->triangle_count++;
+    b->triangles[t][0] = v0;
+    b->triangles[t][1] = v1;
+    b->triangles[t][2] = v2;
+    b->groups[t] = group;
+}
+
+/* The mesh of what b holds (b is emptied). */
+static ur_mesh build(builder *b)
+{
+    ur_mesh mesh;
+    ur_error error;
+    if (ur_mesh_new(b->vertices, b->vertex_count, (const size_t(*)[3])b->triangles,
+                    b->triangle_count, b->groups, &mesh, &error) != UR_OK)
+        fail_msg("ur_mesh_new: %s", error.message);
+    free(b->vertices);
+    free(b->triangles);
+    free(b->groups);
+    memset(b, 0, sizeof *b);
+    return mesh;
+}
+
+/* A k x k grid of unit squares in z = 0, counter-clockwise seen from +z; columns >= split in
+ * group 1. */
+static ur_mesh grid(size_t k, size_t split)
+{
+    builder b = {0};
+    for (size_t j = 0; j <= k; j++)
+        for (size_t i = 0; i <= k; i++)
+            add_vertex(&b, (double)i, (double)j, 0);
+    for (size_t j = 0; j < k; j++)
+        for (size_t i = 0; i < k; i++) {
+            size_t p00 = j * (k + 1) + i, p10 = p00 + 1, p01 = p00 + k + 1, p11 = p01 + 1;
+            size_t group = i < split ? 0 : 1;
+            add_triangle(&b, p00, p10, p11, group);
+            add_triangle(&b, p00, p11, p01, group);
+        }
+    return build(&b);
+}
+
+/* An open tube: n points round, m bands high, normals outward. */
+static ur_mesh tube(size_t n, size_t m, double radius, double height)
+{
+    builder b = {0};
+    for (size_t j = 0; j <= m; j++)
+        for (size_t i = 0; i < n; i++) {
+            double t = 2 * M_PI * (double)i / (double)n;
+            add_vertex(&b, radius * cos(t), radius * sin(t), height * (double)j / (double)m);
+        }
+    for (size_t j = 0; j < m; j++)
+        for (size_t i = 0; i < n; i++) {
+            size_t p00 = j * n + i, p10 = j * n + (i + 1) % n;
+            size_t p01 = p00 + n, p11 = p10 + n;
+            add_triangle(&b, p00, p10, p11, 0);
+            add_triangle(&b, p00, p11, p01, 0);
+        }
+    return build(&b);
+}
+
+/* A torus: n quads round the axis, m round the tube; the half theta >= pi in group `half`. */
+static ur_mesh torus(size_t n, size_t m, double big, double small, size_t half)
+{
+    builder b = {0};
+    for (size_t i = 0; i < n; i++)
+        for (size_t j = 0; j < m; j++) {
+            double theta = 2 * M_PI * (double)i / (double)n, phi = 2 * M_PI * (double)j / (double)m;
+            double rho = big + small * cos(phi);
+            add_vertex(&b, rho * cos(theta), rho * sin(theta), small * sin(phi));
+        }
+    for (size_t i = 0; i < n; i++)
+        for (size_t j = 0; j < m; j++) {
+            size_t p00 = i * m + j, p10 = (i + 1) % n * m + j;
+            size_t p01 = i * m + (j + 1) % m, p11 = (i + 1) % n * m + (j + 1) % m;
+            size_t group = 2 * i >= n ? half : 0;
+            add_triangle(&b, p00, p10, p11, group);
+            add_triangle(&b, p00, p11, p01, group);
+        }
+    return build(&b);
+}
+
+/* A unit UV sphere: two poles and m - 1 rings of n points, normals outward. */
+static ur_mesh uv_sphere(size_t n, size_t m)
+{
+    builder b = {0};
+    size_t north = add_vertex(&b, 0, 0, 1), south = add_vertex(&b, 0, 0, -1);
+    for (size_t j = 1; j < m; j++)
+        for (size_t i = 0; i < n; i++) {
+            double alpha = M_PI * (double)j / (double)m, theta = 2 * M_PI * (double)i / (double)n;
+            add_vertex(&b, sin(alpha) * cos(theta), sin(alpha) * sin(theta), cos(alpha));
+        }
+    for (size_t i = 0; i < n; i++) {
+        size_t next = (i + 1) % n;
+        add_triangle(&b, north, 2 + i, 2 + next, 0);
+        size_t last = 2 + (m - 2) * n;
+        add_triangle(&b, south, last + next, last + i, 0);
+        for (size_t j = 1; j + 1 < m; j++) {
+            size_t up = 2 + (j - 1) * n, down = up + n;
+            add_triangle(&b, up + i, down + i, down + next, 0);
+            add_triangle(&b, up + i, down + next, up + next, 0);
+        }
+    }
+    return build(&b);
+}
+
+/*
+ * The convex solid with these vertices (centred on the origin) whose faces
+ * are the triangles of three vertices `edge` apart, each turned outward.
+ */
+static ur_mesh solid(const double (*points)[3], size_t count, double edge)
+{
+    builder b = {0};
+    for (size_t i = 0; i < count; i++)
+        add_vertex(&b, points[i][0], points[i][1], points[i][2]);
+    for (size_t i = 0; i < count; i++)
+        for (size_t j = i + 1; j < count; j++)
+            for (size_t k = j + 1; k < count; k++) {
+                ur_vec3 p = b.vertices[i], q = b.vertices[j], r = b.vertices[k];
+                if (fabs(ur_vec3_distance(p, q) - edge) > 1e-9 ||
+                    fabs(ur_vec3_distance(q, r) - edge) > 1e-9 ||
+                    fabs(ur_vec3_distance(r, p) - edge) > 1e-9)
+                    continue;
+                if (ur_vec3_det(p, q, r) > 0)
+                    add_triangle(&b, i, j, k, 0);
+                else
+                    add_triangle(&b, i, k, j, 0);
+            }
+    return build(&b);
+}
+
+static ur_mesh tetrahedron(void)
+{
+    static const double points[][3] = {{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}};
+    return solid(points, 4, 2 * sqrt(2.0));
+}
+
+static ur_mesh octahedron(void)
+{
+    static const double points[][3] = {{1, 0, 0},  {-1, 0, 0}, {0, 1, 0},
+                                       {0, -1, 0}, {0, 0, 1},  {0, 0, -1}};
+    return solid(points, 6, sqrt(2.0));
+}
+
+#define PHI 1.6180339887498948482
+
+/* Edge 2: (0, +-1, +-phi) and its cyclic permutations. */
+static ur_mesh icosahedron(void)
+{
+    double points[12][3];
+    size_t n = 0;
+    for (int s = -1; s <= 1; s += 2)
+        for (int t = -1; t <= 1; t += 2) {
+            double a = s, c = t * PHI;
+            double rows[3][3] = {{0, a, c}, {a, c, 0}, {c, 0, a}};
+            for (int r = 0; r < 3; r++, n++)
+                memcpy(points[n], rows[r], sizeof rows[r]);
+        }
+    return solid((const double(*)[3])points, 12, 2);
+}
+
+/* ---- measuring meshes, independently of the library ---- */
+
+static double signed_volume(const ur_mesh *mesh)
+{
+    double volume = 0;
+    for (size_t t = 0; t < mesh->triangle_count; t++) {
+        const size_t *c = mesh->triangles[t];
+        volume += ur_vec3_det(mesh->vertices[c[0]], mesh->vertices[c[1]], mesh->vertices[c[2]]);
+    }
+    return volume / 6;
+}
+
+typedef struct directed {
+    size_t low, high, from, to;
+} directed;
+
+static int compare_directed(const void *a, const void *b)
+{
+    const directed *x = a, *y = b;
+    if (x->low != y->low)
+        return x->low < y->low ? -1 : 1;
+    return (x->high > y->high) - (x->high < y->high);
+}
+
+static int compare_from(const void *a, const void *b)
+{
+    const directed *x = a, *y = b;
+    return (x->from > y->from) - (x->from < y->from);
+}
+
+/* Edges, boundary edges and boundary loops, by sorting every edge of every triangle. */
+typedef struct topology {
+    size_t vertices, edges, boundary_edges, loops;
+    long long euler;
+    double boundary_length;
+} topology;
+
+static size_t count_loops(directed *boundary, size_t count)
+{
+    qsort(boundary, count, sizeof *boundary, compare_from);
+    bool *seen = calloc(count + 1, sizeof *seen);
+    assert_non_null(seen);
+    size_t loops = 0;
+    for (size_t i = 0; i < count; i++) {
+        if (seen[i])
+            continue;
+        loops++;
+        for (size_t k = i; !seen[k];) {
+            seen[k] = true;
+            directed key = {0, 0, boundary[k].to, 0};
+            directed *next = bsearch(&key, boundary, count, sizeof *boundary, compare_from);
+            if (!next) /* the boundary of a one-sided strip runs both ways */
+                break;
+            k = (size_t)(next - boundary);
+        }
+    }
+    free(seen);
+    return loops;
+}
+
+static topology topology_of(const ur_mesh *mesh)
+{
+    size_t n = 3 * mesh->triangle_count;
+    directed *edges = malloc(n * sizeof *edges), *boundary = malloc(n * sizeof *boundary);
+    bool *used = calloc(mesh->vertex_count, sizeof *used);
+    assert_true(edges && boundary && used);
+    topology top = {0};
+    for (size_t t = 0; t < mesh->triangle_count; t++)
+        for (int k = 0; k < 3; k++) {
+            size_t a = mesh->triangles[t][k], b = mesh->triangles[t][(k + 1) % 3];
+            edges[3 * t + k] = (directed){a < b ? a : b, a < b ? b : a, a, b};
+            top.vertices += !used[a];
+            used[a] = true;
+        }
+    qsort(edges, n, sizeof *edges, compare_directed);
+    for (size_t i = 0, j; i < n; i = j) {
+        for (j = i + 1; j < n && compare_directed(&edges[i], &edges[j]) == 0; j++)
+            ;
+        top.edges++;
+        if (j - i == 1) {
+            boundary[top.boundary_edges++] = edges[i];
+            top.boundary_length +=
+                ur_vec3_distance(mesh->vertices[edges[i].low], mesh->vertices[edges[i].high]);
+        }
+    }
+    top.loops = count_loops(boundary, top.boundary_edges);
+    top.euler = (long long)top.vertices - (long long)top.edges + (long long)mesh->triangle_count;
+    free(edges);
+    free(boundary);
+    free(used);
+    return top;
+}
+
+/* Every piece a disk, its triangles and vertices the mesh's own, nothing lost or doubled. */
+static void check_pieces(const ur_mesh *mesh, const ur_mesh_piece *pieces, size_t count)
+{
+    size_t *uses = calloc(mesh->triangle_count, sizeof *uses);
+    assert_non_null(uses);
+    double area = 0;
+    for (size_t p = 0; p < count; p++) {
+        const ur_mesh *piece = &pieces[p].mesh;
+        for (size_t i = 0; i < piece->triangle_count; i++) {
+            size_t t = pieces[p].source_triangles[i];
+            assert_true(t < mesh->triangle_count);
+            uses[t]++;
+            for (int k = 0; k < 3; k++) {
+                size_t v = piece->triangles[i][k];
+                assert_int_equal(pieces[p].original[v], mesh->triangles[t][k]);
+                assert_memory_equal(&piece->vertices[v], &mesh->vertices[mesh->triangles[t][k]],
+                                    sizeof(ur_vec3));
+            }
+        }
+        topology top = topology_of(piece);
+        assert_int_equal(top.vertices, piece->vertex_count);
+        assert_int_equal(top.euler, 1);
+        assert_int_equal(top.loops, 1);
+        size_t *loop, length;
+        ur_error error;
+        if (ur_mesh_boundary(piece, &loop, &length, &error) != UR_OK)
+            fail_msg("piece %zu: %s", p, error.message);
+        assert_int_equal(length, top.boundary_edges);
+        free(loop);
+        area += ur_mesh_area(piece);
+    }
+    for (size_t t = 0; t < mesh->triangle_count; t++)
+        assert_int_equal(uses[t], 1);
+    free(uses);
+    assert_relative(area, ur_mesh_area(mesh), 1e-12);
+}
+
+static ur_mesh_piece *cut(const ur_mesh *mesh, const ur_seam *seams, size_t seam_count,
+                          size_t *count)
+{
+    ur_mesh_piece *pieces;
+    ur_error error;
+    if (ur_mesh_pieces(mesh, seams, seam_count, &pieces, count, &error) != UR_OK)
+        fail_msg("ur_mesh_pieces: %s", error.message);
+    check_pieces(mesh, pieces, *count);
+    return pieces;
+}
+
+static ur_mesh_repairs clean(ur_mesh *mesh, double tolerance)
+{
+    ur_mesh_repairs repairs;
+    ur_error error;
+    if (ur_mesh_clean(mesh, tolerance, &repairs, &error) != UR_OK)
+        fail_msg("ur_mesh_clean: %s", error.message);
+    return repairs;
+}
+
+/* ---- ur_mesh_new, ur_mesh_area ---- */
+
+static void test_new(void **state)
+{
+    (void)state;
+    ur_vec3 vertices[4] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}};
+    size_t triangles[2][3] = {{0, 1, 3}, {0, 3, 2}};
+    ur_mesh mesh;
+    assert_int_equal(ur_mesh_new(vertices, 4, (const size_t(*)[3])triangles, 2, NULL, &mesh, NULL),
+                     UR_OK);
+    /* Copies: changing the input afterwards does not change the mesh. */
+    vertices[1].x = 7;
+    triangles[1][2] = 1;
+    assert_int_equal(mesh.vertex_count, 4);
+    assert_int_equal(mesh.triangle_count, 2);
+    assert_true(mesh.vertices[1].x == 1);
+    assert_int_equal(mesh.triangles[1][2], 2);
+    assert_int_equal(mesh.groups[0], 0);
+    assert_int_equal(mesh.groups[1], 0);
+    assert_int_equal(mesh.group_count, 1);
+    assert_relative(ur_mesh_area(&mesh), 1.0, 1e-15);
+    ur_mesh_free(&mesh);
+    assert_null(mesh.vertices);
+
+    size_t groups[2] = {3, 1};
+    assert_int_equal(
+        ur_mesh_new(vertices, 4, (const size_t(*)[3])triangles, 2, groups, &mesh, NULL), UR_OK);
+    assert_int_equal(mesh.group_count, 4);
+    assert_int_equal(mesh.groups[0], 3);
+    ur_mesh_free(&mesh);
+}
+
+static void test_new_refuses(void **state)
+{
+    (void)state;
+    ur_vec3 vertices[3] = {{0, 0, 0}, {NAN, 0, 0}, {0, 1, 0}};
+    size_t triangles[2][3] = {{0, 1, 2}, {0, 2, 7}};
+    ur_mesh mesh;
+    ur_error error;
+    assert_int_equal(
+        ur_mesh_new(vertices, 3, (const size_t(*)[3])triangles, 1, NULL, &mesh, &error),
+        UR_ERROR_INPUT);
+    assert_message(error, "vertex 2 ");
+    assert_null(mesh.vertices);
+    vertices[1].x = 1;
+    vertices[2].z = -INFINITY;
+    assert_int_equal(
+        ur_mesh_new(vertices, 3, (const size_t(*)[3])triangles, 1, NULL, &mesh, &error),
+        UR_ERROR_INPUT);
+    assert_message(error, "vertex 3 ");
+    vertices[2].z = 0;
+    assert_int_equal(
+        ur_mesh_new(vertices, 3, (const size_t(*)[3])triangles, 2, NULL, &mesh, &error),
+        UR_ERROR_INPUT);
+    assert_message(error, "triangle 2 uses vertex 8, but the mesh has 3 vertices");
+}
+
+static void test_area(void **state)
+{
+    (void)state;
+    /* Regular solids: tetrahedron of edge 2 sqrt 2 (area sqrt 3 a^2 = 8 sqrt 3),
+       octahedron of edge sqrt 2 (2 sqrt 3 a^2 = 4 sqrt 3), icosahedron of edge 2
+       (5 sqrt 3 a^2 = 20 sqrt 3). */
+    ur_mesh mesh = tetrahedron();
+    assert_int_equal(mesh.triangle_count, 4);
+    assert_relative(ur_mesh_area(&mesh), 8 * sqrt(3.0), 1e-14);
+    ur_mesh_free(&mesh);
+    mesh = octahedron();
+    assert_int_equal(mesh.triangle_count, 8);
+    assert_relative(ur_mesh_area(&mesh), 4 * sqrt(3.0), 1e-14);
+    ur_mesh_free(&mesh);
+    mesh = icosahedron();
+    assert_int_equal(mesh.triangle_count, 20);
+    assert_relative(ur_mesh_area(&mesh), 20 * sqrt(3.0), 1e-14);
+    ur_mesh_free(&mesh);
+    /* A tube of n flat rectangles: n 2 r sin(pi / n) h, which tends to 2 pi r h. */
+    double r = 10, h = 5;
+    size_t n = 2000;
+    mesh = tube(n, 3, r, h);
+    assert_relative(ur_mesh_area(&mesh), (double)n * 2 * r * sin(M_PI / (double)n) * h, 1e-12);
+    assert_relative(ur_mesh_area(&mesh), 2 * M_PI * r * h, 1e-6);
+    ur_mesh_free(&mesh);
+}
+
+/* ---- ur_mesh_twins ---- */
+
+static void test_twins(void **state)
+{
+    (void)state;
+    ur_vec3 vertices[5] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}, {0, 0, 1}};
+    size_t triangles[3][3] = {{0, 1, 2}, {2, 1, 3}, {1, 0, 4}};
+    ur_mesh mesh;
+    assert_int_equal(ur_mesh_new(vertices, 5, (const size_t(*)[3])triangles, 2, NULL, &mesh, NULL),
+                     UR_OK);
+    size_t *twins;
+    assert_int_equal(ur_mesh_twins(&mesh, &twins, NULL), UR_OK);
+    /* Edge 1-2 is half-edge 1 of triangle 0 (1 -> 2) and 0 of triangle 1 (2 -> 1). */
+    size_t expected[6] = {UR_NO_EDGE, 3, UR_NO_EDGE, 1, UR_NO_EDGE, UR_NO_EDGE};
+    assert_memory_equal(twins, expected, sizeof expected);
+    free(twins);
+    ur_mesh_free(&mesh);
+
+    /* A third triangle on edge 0-1 (two of them 0 -> 1 is no matter here). */
+    size_t fan[3][3] = {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}};
+    assert_int_equal(ur_mesh_new(vertices, 5, (const size_t(*)[3])fan, 3, NULL, &mesh, NULL),
+                     UR_OK);
+    ur_error error;
+    assert_int_equal(ur_mesh_twins(&mesh, &twins, &error), UR_ERROR_INPUT);
+    assert_null(twins);
+    assert_message(error, "non-manifold edge between vertices 1 and 2 (3 triangles)");
+    ur_mesh_free(&mesh);
+}
+
+/* ---- ur_mesh_clean ---- */
+
+/*
+ * The 12 triangles of the cube [0, 2]^3 as a soup: 36 vertices, each moved
+ * by up to jitter / 2 along each axis; outward but for flipped_one, or all
+ * inward.
+ */
+static ur_mesh cube_soup(bool inward, size_t flipped_one, double jitter)
+{
+    static const int faces[6][4][3] = {
+        {{0, 0, 0}, {0, 2, 0}, {2, 2, 0}, {2, 0, 0}}, {{0, 0, 2}, {2, 0, 2}, {2, 2, 2}, {0, 2, 2}},
+        {{0, 0, 0}, {2, 0, 0}, {2, 0, 2}, {0, 0, 2}}, {{0, 2, 0}, {0, 2, 2}, {2, 2, 2}, {2, 2, 0}},
+        {{0, 0, 0}, {0, 0, 2}, {0, 2, 2}, {0, 2, 0}}, {{2, 0, 0}, {2, 2, 0}, {2, 2, 2}, {2, 0, 2}},
+    };
+    builder b = {0};
+    unsigned seed = 12345;
+    for (int f = 0; f < 6; f++)
+        for (int half = 0; half < 2; half++) {
+            int corners[3] = {0, half ? 2 : 1, half ? 3 : 2};
+            size_t v[3];
+            for (int k = 0; k < 3; k++) {
+                double p[3];
+                for (int d = 0; d < 3; d++) {
+                    seed = seed * 1103515245u + 12345u;
+                    double unit = (double)(seed >> 16 & 0x7fff) / 32767 - 0.5;
+                    p[d] = faces[f][corners[k]][d] + jitter * unit;
+                }
+                v[k] = add_vertex(&b, p[0], p[1], p[2]);
+            }
+            bool turn = inward != (b.triangle_count == flipped_one);
+            if (turn)
+                add_triangle(&b, v[0], v[2], v[1], 0);
+            else
+                add_triangle(&b, v[0], v[1], v[2], 0);
+        }
+    return build(&b);
+}
+
+static void test_clean_welds_soup(void **state)
+{
+    (void)state;
+    ur_mesh mesh = cube_soup(false, SIZE_MAX, 1e-6);
+    assert_int_equal(mesh.vertex_count, 36);
+    assert_relative(signed_volume(&mesh), 8, 1e-5);
+    ur_mesh_repairs repairs = clean(&mesh, 1e-4);
+    assert_int_equal(mesh.vertex_count, 8);
+    assert_int_equal(mesh.triangle_count, 12);
+    assert_int_equal(repairs.welded, 28);
+    assert_int_equal(repairs.degenerate, 0);
+    assert_int_equal(repairs.isolated, 0);
+    assert_int_equal(repairs.flipped, 0);
+    assert_relative(ur_mesh_area(&mesh), 24, 1e-5);
+    assert_relative(signed_volume(&mesh), 8, 1e-5);
+    topology top = topology_of(&mesh);
+    assert_int_equal(top.edges, 18);
+    assert_int_equal(top.boundary_edges, 0);
+    assert_int_equal(top.euler, 2);
+    ur_mesh_free(&mesh);
+
+    /* Too small a tolerance welds nothing; 0 welds only identical points. */
+    mesh = cube_soup(false, SIZE_MAX, 1e-6);
+    repairs = clean(&mesh, 1e-9);
+    assert_int_equal(repairs.welded, 0);
+    assert_int_equal(mesh.vertex_count, 36);
+    ur_mesh_free(&mesh);
+    mesh = cube_soup(false, SIZE_MAX, 0);
+    repairs = clean(&mesh, 0);
+    assert_int_equal(repairs.welded, 28);
+    assert_int_equal(mesh.vertex_count, 8);
+    ur_mesh_free(&mesh);
+}
+
+static void test_clean_orients(void **state)
+{
+    (void)state;
+    /* One triangle of the soup turned inward: repaired, counted. */
+    ur_mesh mesh = cube_soup(false, 7, 1e-6);
+    /* Triangle 7 lies in y = 2 (area 2): it counted 2 * 2 / 3, now against. */
+    assert_relative(signed_volume(&mesh), 8 - 8.0 / 3, 1e-5);
+    ur_mesh_repairs repairs = clean(&mesh, 1e-4);
+    assert_int_equal(repairs.flipped, 1);
+    assert_relative(signed_volume(&mesh), 8, 1e-5);
+    ur_mesh_free(&mesh);
+    /* All inward: a closed part is turned outward, all 12. */
+    mesh = cube_soup(true, SIZE_MAX, 1e-6);
+    assert_relative(signed_volume(&mesh), -8, 1e-5);
+    repairs = clean(&mesh, 1e-4);
+    assert_int_equal(repairs.flipped, 12);
+    assert_relative(signed_volume(&mesh), 8, 1e-5);
+    ur_mesh_free(&mesh);
+    /* Closed: outward even when most faces were inward (5 of the octahedron's 8). */
+    mesh = octahedron();
+    for (size_t t = 0; t < 5; t++) {
+        size_t corner = mesh.triangles[t][1];
+        mesh.triangles[t][1] = mesh.triangles[t][2];
+        mesh.triangles[t][2] = corner;
+    }
+    repairs = clean(&mesh, 0);
+    assert_int_equal(repairs.flipped, 5);
+    assert_int_equal(repairs.welded, 0);
+    assert_relative(signed_volume(&mesh), 4.0 / 3, 1e-14);
+    ur_mesh_free(&mesh);
+    /* Open: the way most triangles run.  Triangle 6 of a 3 x 3 grid turned down. */
+    mesh = grid(3, 3);
+    size_t corner = mesh.triangles[6][1];
+    mesh.triangles[6][1] = mesh.triangles[6][2];
+    mesh.triangles[6][2] = corner;
+    repairs = clean(&mesh, 1e-6);
+    assert_int_equal(repairs.flipped, 1);
+    for (size_t t = 0; t < mesh.triangle_count; t++) {
+        const size_t *c = mesh.triangles[t];
+        ur_vec3 normal = ur_vec3_cross(ur_vec3_sub(mesh.vertices[c[1]], mesh.vertices[c[0]]),
+                                       ur_vec3_sub(mesh.vertices[c[2]], mesh.vertices[c[0]]));
+        assert_true(normal.z > 0);
+    }
+    ur_mesh_free(&mesh);
+}
+
+static void test_clean_drops(void **state)
+{
+    (void)state;
+    ur_mesh base = grid(2, 2); /* 9 vertices, 8 triangles */
+    builder b = {0};
+    for (size_t v = 0; v < base.vertex_count; v++)
+        add_vertex(&b, base.vertices[v].x, base.vertices[v].y, base.vertices[v].z);
+    for (size_t t = 0; t < base.triangle_count; t++)
+        add_triangle(&b, base.triangles[t][0], base.triangles[t][1], base.triangles[t][2], 0);
+    ur_mesh_free(&base);
+    /* Vertex 9 on edge 0-1: triangle 0 9 1 has no area, and 9 is then unused. */
+    add_vertex(&b, 0.5, 0, 0);
+    add_triangle(&b, 0, 9, 1, 0);
+    /* Vertices 10-12 weld into one point: their triangle goes, and the point. */
+    add_vertex(&b, 5, 5, 0);
+    add_vertex(&b, 5, 5, 1e-9);
+    add_vertex(&b, 5 + 1e-9, 5, 0);
+    add_triangle(&b, 10, 11, 12, 0);
+    /* Vertex 13 no triangle uses; vertex 14 welds into vertex 4 (1, 1, 0). */
+    add_vertex(&b, 7, 7, 7);
+    add_vertex(&b, 1, 1, 1e-8);
+    ur_mesh mesh = build(&b);
+    ur_mesh_repairs repairs;
+    size_t *map;
+    ur_error error;
+    if (ur_mesh_clean_map(&mesh, 1e-6, &repairs, &map, &error) != UR_OK)
+        fail_msg("%s", error.message);
+    assert_int_equal(repairs.welded, 3);
+    assert_int_equal(repairs.degenerate, 2);
+    assert_int_equal(repairs.isolated, 3);
+    assert_int_equal(repairs.flipped, 0);
+    assert_int_equal(mesh.vertex_count, 9);
+    assert_int_equal(mesh.triangle_count, 8);
+    for (size_t v = 0; v < 9; v++)
+        assert_int_equal(map[v], v);
+    for (size_t v = 9; v < 14; v++)
+        assert_int_equal(map[v], UR_NO_VERTEX);
+    assert_int_equal(map[14], 4);
+    free(map);
+    assert_relative(ur_mesh_area(&mesh), 4, 1e-15);
+    ur_mesh_free(&mesh);
+}
+
+/* A triangle (0-based corners) added to a 2 x 2 grid with an unused vertex 0 in front. */
+static ur_mesh grid_with_extra(size_t a, size_t b2, size_t c, double extra_z)
+{
+    ur_mesh base = grid(2, 2);
+    builder b = {0};
+    add_vertex(&b, -5, -5, -5);
+    for (size_t v = 0; v < base.vertex_count; v++)
+        add_vertex(&b, base.vertices[v].x, base.vertices[v].y, base.vertices[v].z);
+    for (size_t t = 0; t < base.triangle_count; t++)
+        add_triangle(&b, base.triangles[t][0] + 1, base.triangles[t][1] + 1,
+                     base.triangles[t][2] + 1, 0);
+    ur_mesh_free(&base);
+    size_t top = add_vertex(&b, 0.5, 0.5, extra_z);
+    add_triangle(&b, a, b2, c == SIZE_MAX ? top : c, 0);
+    return build(&b);
+}
+
+static void test_clean_refuses(void **state)
+{
+    (void)state;
+    ur_error error;
+    /* A third triangle on the grid's edge from (1,0) to (1,1): input vertices 3 and 6 (1-based). */
+    ur_mesh mesh = grid_with_extra(2, 5, SIZE_MAX, 1);
+    size_t vertex_count = mesh.vertex_count;
+    assert_int_equal(ur_mesh_clean(&mesh, 1e-6, NULL, &error), UR_ERROR_INPUT);
+    assert_message(error, "non-manifold edge between vertices 3 and 6 (3 triangles)");
+    assert_int_equal(mesh.vertex_count, vertex_count); /* left as it was */
+    assert_int_equal(mesh.triangle_count, 9);
+    ur_mesh_free(&mesh);
+
+    mesh = grid(2, 2);
+    mesh.vertices[4].y = NAN;
+    assert_int_equal(ur_mesh_clean(&mesh, 1e-6, NULL, &error), UR_ERROR_INPUT);
+    assert_message(error, "vertex 5 ");
+    mesh.vertices[4].y = 1;
+    assert_int_equal(ur_mesh_clean(&mesh, -1, NULL, &error), UR_ERROR_INPUT);
+    assert_message(error, "tolerance");
+    assert_int_equal(ur_mesh_clean(&mesh, NAN, NULL, &error), UR_ERROR_INPUT);
+    /* Everything welded into one point: no triangle left. */
+    assert_int_equal(ur_mesh_clean(&mesh, 10, NULL, &error), UR_ERROR_INPUT);
+    assert_message(error, "no triangles left");
+    assert_int_equal(mesh.triangle_count, 8);
+    ur_mesh_free(&mesh);
+}
+
+/* A Moebius strip: n quads round a circle of radius 10, the ruling turning half a turn. */
+static ur_mesh moebius(size_t n)
+{
+    builder b = {0};
+    for (size_t i = 0; i < n; i++) {
+        double t = 2 * M_PI * (double)i / (double)n, half = t / 2;
+        ur_vec3 centre = ur_vec3_make(10 * cos(t), 10 * sin(t), 0);
+        ur_vec3 across = ur_vec3_make(cos(half) * cos(t), cos(half) * sin(t), sin(half));
+        ur_vec3 p = ur_vec3_add_scaled(centre, across, -2),
+                q = ur_vec3_add_scaled(centre, across, 2);
+        add_vertex(&b, p.x, p.y, p.z);
+        add_vertex(&b, q.x, q.y, q.z);
+    }
+    for (size_t i = 0; i < n; i++) {
+        size_t a = 2 * i, a2 = 2 * i + 1;
+        /* After a whole turn the ruling has turned over: its ends swap. */
+        size_t c = i + 1 < n ? 2 * (i + 1) : 1, c2 = i + 1 < n ? 2 * (i + 1) + 1 : 0;
+        add_triangle(&b, a, c, c2, 0);
+        add_triangle(&b, a, c2, a2, 0);
+    }
+    return build(&b);
+}
+
+static void test_clean_refuses_moebius(void **state)
+{
+    (void)state;
+    ur_mesh mesh = moebius(24);
+    topology top = topology_of(&mesh);
+    assert_int_equal(top.euler, 0);
+    assert_int_equal(top.boundary_edges, 48); /* one edge, twice round */
+    ur_error error;
+    assert_int_equal(ur_mesh_clean(&mesh, 1e-6, NULL, &error), UR_ERROR_INPUT);
+    assert_message(error, "cannot be oriented: a Mobius strip?");
+    /* Cutting refuses it as well: its triangles cannot all agree. */
+    ur_mesh_piece *pieces;
+    size_t count;
+    assert_int_equal(ur_mesh_pieces(&mesh, NULL, 0, &pieces, &count, &error), UR_ERROR_INPUT);
+    assert_message(error, "not consistently oriented");
+    assert_null(pieces);
+    ur_mesh_free(&mesh);
+}
+
+/*
+ * A million vertices: the soup of a 409 x 409 grid, 334,562 triangles with
+ * their own corners (1,003,686), welded into 410^2 = 168,100.  Not timed
+ * here: the weld takes about 0.1 s in a release build.
+ */
+static void test_clean_million(void **state)
+{
+    (void)state;
+    const size_t k = 409;
+    builder b = {0};
+    for (size_t j = 0; j < k; j++)
+        for (size_t i = 0; i < k; i++) {
+            double x = (double)i, y = (double)j, z = 0.01 * sin(x / 20) * cos(y / 30);
+            double dx = 0.01 * sin((x + 1) / 20) * cos(y / 30);
+            double dy = 0.01 * sin(x / 20) * cos((y + 1) / 30);
+            double dxy = 0.01 * sin((x + 1) / 20) * cos((y + 1) / 30);
+            size_t p00 = add_vertex(&b, x, y, z), p10 = add_vertex(&b, x + 1, y, dx);
+            size_t p11 = add_vertex(&b, x + 1, y + 1, dxy);
+            add_triangle(&b, p00, p10, p11, 0);
+            p00 = add_vertex(&b, x, y, z);
+            p11 = add_vertex(&b, x + 1, y + 1, dxy);
+            size_t p01 = add_vertex(&b, x, y + 1, dy);
+            add_triangle(&b, p00, p11, p01, 0);
+        }
+    ur_mesh mesh = build(&b);
+    assert_int_equal(mesh.vertex_count, 1003686);
+    ur_mesh_repairs repairs = clean(&mesh, 1e-3);
+    assert_int_equal(mesh.vertex_count, 410 * 410);
+    assert_int_equal(mesh.triangle_count, 2 * k * k);
+    assert_int_equal(repairs.welded, 1003686 - 410 * 410);
+    assert_int_equal(repairs.flipped, 0);
+    ur_mesh_free(&mesh);
+}
+
+/* ---- ur_mesh_boundary ---- */
+
+static void test_boundary(void **state)
+{
+    (void)state;
+    ur_mesh mesh = grid(3, 3);
+    size_t *loop, count;
+    assert_int_equal(ur_mesh_boundary(&mesh, &loop, &count, NULL), UR_OK);
+    assert_int_equal(count, 12);
+    /* The way the triangles run: counter-clockwise seen from +z, enclosing 9. */
+    double area = 0;
+    for (size_t i = 0; i < count; i++) {
+        ur_vec3 p = mesh.vertices[loop[i]], q = mesh.vertices[loop[(i + 1) % count]];
+        area += 0.5 * (p.x * q.y - q.x * p.y);
+        assert_relative(ur_vec3_distance(p, q), 1, 1e-15);
+    }
+    assert_relative(area, 9, 1e-15);
+    free(loop);
+    ur_mesh_free(&mesh);
+
+    ur_error error;
+    mesh = tetrahedron();
+    assert_int_equal(ur_mesh_boundary(&mesh, &loop, &count, &error), UR_ERROR_INPUT);
+    assert_message(error, "closed");
+    assert_null(loop);
+    ur_mesh_free(&mesh);
+    mesh = tube(8, 2, 1, 1);
+    assert_int_equal(ur_mesh_boundary(&mesh, &loop, &count, &error), UR_ERROR_INPUT);
+    assert_message(error, "2 boundary loops");
+    ur_mesh_free(&mesh);
+}
+
+/* ---- ur_mesh_pieces ---- */
+
+static void test_pieces_disk(void **state)
+{
+    (void)state;
+    ur_mesh mesh = grid(4, 4);
+    size_t count;
+    ur_mesh_piece *pieces = cut(&mesh, NULL, 0, &count);
+    assert_int_equal(count, 1);
+    assert_int_equal(pieces[0].mesh.vertex_count, 25); /* nothing cut */
+    assert_int_equal(pieces[0].mesh.triangle_count, 32);
+    ur_mesh_pieces_free(pieces, count);
+    ur_mesh_free(&mesh);
+}
+
+static void test_pieces_groups(void **state)
+{
+    (void)state;
+    /* Columns 0-1 and 2-3 of a 4 x 4 grid: two 2 x 4 halves sharing 5 vertices. */
+    ur_mesh mesh = grid(4, 2);
+    assert_int_equal(mesh.group_count, 2);
+    size_t count;
+    ur_mesh_piece *pieces = cut(&mesh, NULL, 0, &count);
+    assert_int_equal(count, 2);
+    for (size_t p = 0; p < 2; p++) {
+        assert_int_equal(pieces[p].mesh.vertex_count, 15);
+        assert_int_equal(pieces[p].mesh.triangle_count, 16);
+        assert_int_equal(pieces[p].mesh.groups[0], p);
+        assert_relative(ur_mesh_area(&pieces[p].mesh), 8, 1e-15);
+    }
+    ur_mesh_pieces_free(pieces, count);
+    ur_mesh_free(&mesh);
+
+    /* A torus in two groups: two tubes, each cut open along one path. */
+    mesh = torus(16, 8, 10, 3, 1);
+    pieces = cut(&mesh, NULL, 0, &count);
+    assert_int_equal(count, 2);
+    assert_int_equal(pieces[0].mesh.triangle_count, 128);
+    assert_int_equal(pieces[1].mesh.triangle_count, 128);
+    ur_mesh_pieces_free(pieces, count);
+    ur_mesh_free(&mesh);
+}
+
+static void test_pieces_user_seams(void **state)
+{
+    (void)state;
+    /* A tube (annulus, chi 0) with a seam up one side is a disk without further cuts. */
+    const size_t n = 12, m = 4;
+    ur_mesh mesh = tube(n, m, 5, 8);
+    topology top = topology_of(&mesh);
+    assert_int_equal(top.euler, 0);
+    assert_int_equal(top.loops, 2);
+    ur_seam seams[4];
+    for (size_t j = 0; j < m; j++)
+        seams[j] = (ur_seam){j * n, (j + 1) * n};
+    size_t count;
+    ur_mesh_piece *pieces = cut(&mesh, seams, m, &count);
+    assert_int_equal(count, 1);
+    assert_int_equal(pieces[0].mesh.vertex_count, n * (m + 1) + m + 1);
+    size_t *loop, length;
+    assert_int_equal(ur_mesh_boundary(&pieces[0].mesh, &loop, &length, NULL), UR_OK);
+    assert_int_equal(length, 2 * n + 2 * m);
+    free(loop);
+    ur_mesh_pieces_free(pieces, count);
+    ur_mesh_free(&mesh);
+
+    /* A seam right across a 4 x 4 grid, along x = 2: two halves. */
+    mesh = grid(4, 4);
+    for (size_t j = 0; j < 4; j++)
+        seams[j] = (ur_seam){j * 5 + 2, (j + 1) * 5 + 2};
+    pieces = cut(&mesh, seams, 4, &count);
+    assert_int_equal(count, 2);
+    assert_int_equal(pieces[0].mesh.vertex_count + pieces[1].mesh.vertex_count, 30);
+    ur_mesh_pieces_free(pieces, count);
+    /* One edge inside (a slit from (2,1) to (2,2)), given twice: still one disk. */
+    ur_seam slit[2] = {{7, 12}, {12, 7}};
+    pieces = cut(&mesh, slit, 2, &count);
+    assert_int_equal(count, 1);
+    ur_mesh_pieces_free(pieces, count);
+    ur_mesh_free(&mesh);
+    /* One edge of a closed octahedron: a disk too. */
+    mesh = octahedron();
+    ur_seam edge = {mesh.triangles[0][0], mesh.triangles[0][1]};
+    pieces = cut(&mesh, &edge, 1, &count);
+    assert_int_equal(count, 1);
+    ur_mesh_pieces_free(pieces, count);
+    ur_mesh_free(&mesh);
+}
+
+static void test_pieces_refuses_seams(void **state)
+{
+    (void)state;
+    ur_mesh mesh = grid(2, 2);
+    ur_mesh_piece *pieces;
+    size_t count;
+    ur_error error;
+    ur_seam seams[2] = {{0, 1}, {0, 8}};
+    assert_int_equal(ur_mesh_pieces(&mesh, seams, 2, &pieces, &count, &error), UR_ERROR_INPUT);
+    assert_message(error, "seam 2 (vertices 1 and 9) is not an edge of the mesh");
+    assert_null(pieces);
+    assert_int_equal(count, 0);
+    seams[1] = (ur_seam){3, 9};
+    assert_int_equal(ur_mesh_pieces(&mesh, seams, 2, &pieces, &count, &error), UR_ERROR_INPUT);
+    assert_message(error, "seam 2 names vertex 10, but the mesh has 9 vertices");
+    seams[0] = (ur_seam){4, 4};
+    assert_int_equal(ur_mesh_pieces(&mesh, seams, 1, &pieces, &count, &error), UR_ERROR_INPUT);
+    assert_message(error, "seam 1 joins vertex 5 to itself");
+    ur_mesh_free(&mesh);
+}
+
+/*
+ * A closed or higher-genus mesh: one piece, a disk (check_pieces), the same
+ * triangles; its boundary as long as expected unless that is NAN.
+ */
+static void check_one_disk(ur_mesh mesh, long long euler, size_t loops, double boundary)
+{
+    topology top = topology_of(&mesh);
+    assert_int_equal(top.euler, euler);
+    assert_int_equal(top.loops, loops);
+    size_t count;
+    ur_mesh_piece *pieces = cut(&mesh, NULL, 0, &count);
+    assert_int_equal(count, 1);
+    assert_int_equal(pieces[0].mesh.triangle_count, mesh.triangle_count);
+    assert_true(pieces[0].mesh.vertex_count > mesh.vertex_count);
+    if (!isnan(boundary))
+        assert_relative(topology_of(&pieces[0].mesh).boundary_length, boundary, 1e-12);
+    ur_mesh_pieces_free(pieces, count);
+    ur_mesh_free(&mesh);
+}
+
+static void test_pieces_cut_to_disks(void **state)
+{
+    (void)state;
+    /* A tetrahedron's farthest vertices are neighbours: a path of two edges (2 sqrt 2 each). */
+    check_one_disk(tetrahedron(), 2, 0, 4 * 2 * sqrt(2.0));
+    /* Opposite corners of the octahedron, two edges of sqrt 2 apart. */
+    check_one_disk(octahedron(), 2, 0, 4 * sqrt(2.0));
+    /* Opposite corners of the icosahedron are three edges of 2 apart. */
+    check_one_disk(icosahedron(), 2, 0, 6 * 2);
+    /* Pole to pole along a meridian: 8 chords of 2 sin(pi / 16), opened on both sides. */
+    check_one_disk(uv_sphere(16, 8), 2, 0, 2 * 8 * 2 * sin(M_PI / 16));
+    /* A tube: its two rims and a cut straight up it (height 10), twice. */
+    check_one_disk(tube(12, 5, 3, 10), 0, 2, 2 * 12 * 2 * 3 * sin(M_PI / 12) + 2 * 10);
+    check_one_disk(torus(12, 6, 10, 3, 0), 0, 0, NAN);
+    check_one_disk(torus(40, 20, 10, 3, 0), 0, 0, NAN);
+}
+
+static void test_pieces_pillow(void **state)
+{
+    (void)state;
+    /* Two triangles back to back: a sphere of three vertices.  Its farthest vertices are
+       neighbours, so the slit takes two of its three edges: four vertices, a loop of four. */
+    ur_vec3 vertices[3] = {{0, 0, 0}, {3, 0, 0}, {0, 4, 0}};
+    size_t triangles[2][3] = {{0, 1, 2}, {0, 2, 1}};
+    ur_mesh mesh;
+    assert_int_equal(ur_mesh_new(vertices, 3, (const size_t(*)[3])triangles, 2, NULL, &mesh, NULL),
+                     UR_OK);
+    assert_int_equal(topology_of(&mesh).euler, 2);
+    size_t count;
+    ur_mesh_piece *pieces = cut(&mesh, NULL, 0, &count);
+    assert_int_equal(count, 1);
+    assert_int_equal(pieces[0].mesh.vertex_count, 4);
+    assert_int_equal(topology_of(&pieces[0].mesh).boundary_edges, 4);
+    ur_mesh_pieces_free(pieces, count);
+    /* No triangles: no pieces, and no boundary. */
+    mesh.triangle_count = 0;
+    pieces = cut(&mesh, NULL, 0, &count);
+    assert_int_equal(count, 0);
+    ur_mesh_pieces_free(pieces, count);
+    size_t *loop, length;
+    ur_error error;
+    assert_int_equal(ur_mesh_boundary(&mesh, &loop, &length, &error), UR_ERROR_INPUT);
+    assert_message(error, "no triangles");
+    ur_mesh_free(&mesh);
+}
+
+static void test_pieces_components(void **state)
+{
+    (void)state;
+    /* Two tetrahedra side by side in one mesh: two pieces. */
+    ur_mesh one = tetrahedron();
+    builder b = {0};
+    for (int copy = 0; copy < 2; copy++) {
+        for (size_t v = 0; v < 4; v++)
+            add_vertex(&b, one.vertices[v].x + 5 * copy, one.vertices[v].y, one.vertices[v].z);
+        for (size_t t = 0; t < 4; t++)
+            add_triangle(&b, one.triangles[t][0] + 4 * (size_t)copy,
+                         one.triangles[t][1] + 4 * (size_t)copy,
+                         one.triangles[t][2] + 4 * (size_t)copy, 0);
+    }
+    ur_mesh_free(&one);
+    ur_mesh mesh = build(&b);
+    size_t count;
+    ur_mesh_piece *pieces = cut(&mesh, NULL, 0, &count);
+    assert_int_equal(count, 2);
+    ur_mesh_pieces_free(pieces, count);
+    ur_mesh_free(&mesh);
+}
+
+/* ---- ur_mesh_from_ruled ---- */
+
+static void test_from_ruled_cylinder(void **state)
+{
+    (void)state;
+    const double r = 10, h = 5;
+    const size_t along = 64, across = 3;
+    ur_curve *circle;
+    ur_ruled ruled;
+    assert_int_equal(ur_curve_new_circle(r, &circle, NULL), UR_OK);
+    assert_int_equal(ur_ruled_cylinder(circle, ur_vec3_make(0, 0, 1), h, &ruled, NULL), UR_OK);
+    ur_mesh mesh;
+    assert_int_equal(ur_mesh_from_ruled(&ruled, along, across, &mesh, NULL), UR_OK);
+    ur_ruled_free(&ruled);
+    assert_int_equal(mesh.vertex_count, 65 * 4);
+    assert_int_equal(mesh.triangle_count, 2 * 64 * 3);
+    /* Vertex (i, j) at angle 2 pi i / 64 and height 5 j / 3. */
+    ur_vec3 p = mesh.vertices[10 * 4 + 2];
+    assert_relative(p.x, r * cos(2 * M_PI * 10 / 64), 1e-12);
+    assert_relative(p.y, r * sin(2 * M_PI * 10 / 64), 1e-12);
+    assert_relative(p.z, h * 2 / 3, 1e-12);
+    /* Flat rectangles: 64 chords of 2 r sin(pi / 64) by h. */
+    assert_relative(ur_mesh_area(&mesh), 64 * 2 * r * sin(M_PI / 64) * h, 1e-12);
+    for (size_t t = 0; t < mesh.triangle_count; t++) {
+        const size_t *c = mesh.triangles[t];
+        ur_vec3 a = mesh.vertices[c[0]], b = mesh.vertices[c[1]], d = mesh.vertices[c[2]];
+        ur_vec3 normal = ur_vec3_cross(ur_vec3_sub(b, a), ur_vec3_sub(d, a));
+        ur_vec3 outward = ur_vec3_make(a.x + b.x + d.x, a.y + b.y + d.y, 0);
+        assert_true(ur_vec3_dot(normal, outward) > 0);
+    }
+    /* The seam ruling is doubled: already a disk, its boundary round all four sides. */
+    topology top = topology_of(&mesh);
+    assert_int_equal(top.euler, 1);
+    assert_int_equal(top.boundary_edges, 2 * 64 + 2 * 3);
+    size_t count;
+    ur_mesh_piece *pieces = cut(&mesh, NULL, 0, &count);
+    assert_int_equal(count, 1);
+    assert_int_equal(pieces[0].mesh.vertex_count, 260);
+    ur_mesh_pieces_free(pieces, count);
+    /* Welding closes the seam: a tube, chi 0. */
+    ur_mesh_repairs repairs = clean(&mesh, 1e-9);
+    assert_int_equal(repairs.welded, 4);
+    assert_int_equal(mesh.vertex_count, 256);
+    top = topology_of(&mesh);
+    assert_int_equal(top.euler, 0);
+    assert_int_equal(top.loops, 2);
+    ur_mesh_free(&mesh);
+}
+
+static void test_from_ruled_cone(void **state)
+{
+    (void)state;
+    /* Radius 10, apex 20 above: planar triangles apex-chord, n (1/2) 2 R sin(pi/n) times the
+       apex's distance from the chord, sqrt(h^2 + (R cos(pi/n))^2). */
+    const double r = 10, h = 20;
+    const size_t n = 48, across = 4;
+    ur_curve *circle;
+    ur_ruled ruled;
+    assert_int_equal(ur_curve_new_circle(r, &circle, NULL), UR_OK);
+    assert_int_equal(ur_ruled_cone(circle, ur_vec3_make(0, 0, h), 1, &ruled, NULL), UR_OK);
+    ur_mesh mesh;
+    assert_int_equal(ur_mesh_from_ruled(&ruled, n, across, &mesh, NULL), UR_OK);
+    ur_ruled_free(&ruled);
+    double c = cos(M_PI / (double)n);
+    double area = (double)n * r * sin(M_PI / (double)n) * sqrt(h * h + r * r * c * c);
+    assert_relative(ur_mesh_area(&mesh), area, 1e-12);
+    assert_relative(area, M_PI * r * sqrt(r * r + h * h), 1e-2);
+    /* Cleaning welds the apex (49 into 1) and the seam (4), dropping a triangle per ruling. */
+    ur_mesh_repairs repairs = clean(&mesh, 1e-9);
+    assert_int_equal(repairs.welded, 48 + 4);
+    assert_int_equal(repairs.degenerate, 48);
+    assert_int_equal(repairs.flipped, 0);
+    assert_int_equal(mesh.vertex_count, 48 * 4 + 1);
+    assert_int_equal(mesh.triangle_count, 2 * 48 * 4 - 48);
+    assert_relative(ur_mesh_area(&mesh), area, 1e-12);
+    topology top = topology_of(&mesh);
+    assert_int_equal(top.euler, 1);
+    assert_int_equal(top.loops, 1);
+    assert_int_equal(top.boundary_edges, 48);
+    ur_mesh_free(&mesh);
+}
+
+static void test_from_ruled_refuses(void **state)
+{
+    (void)state;
+    ur_curve *circle;
+    ur_ruled ruled;
+    assert_int_equal(ur_curve_new_circle(1, &circle, NULL), UR_OK);
+    assert_int_equal(ur_ruled_cylinder(circle, ur_vec3_make(0, 0, 1), 1, &ruled, NULL), UR_OK);
+    ur_mesh mesh;
+    ur_error error;
+    assert_int_equal(ur_mesh_from_ruled(&ruled, 0, 3, &mesh, &error), UR_ERROR_INPUT);
+    assert_message(error, "at least 1");
+    assert_null(mesh.vertices);
+    ur_ruled_free(&ruled);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_new),
+        cmocka_unit_test(test_new_refuses),
+        cmocka_unit_test(test_area),
+        cmocka_unit_test(test_twins),
+        cmocka_unit_test(test_clean_welds_soup),
+        cmocka_unit_test(test_clean_orients),
+        cmocka_unit_test(test_clean_drops),
+        cmocka_unit_test(test_clean_refuses),
+        cmocka_unit_test(test_clean_refuses_moebius),
+        cmocka_unit_test(test_clean_million),
+        cmocka_unit_test(test_boundary),
+        cmocka_unit_test(test_pieces_disk),
+        cmocka_unit_test(test_pieces_groups),
+        cmocka_unit_test(test_pieces_user_seams),
+        cmocka_unit_test(test_pieces_refuses_seams),
+        cmocka_unit_test(test_pieces_cut_to_disks),
+        cmocka_unit_test(test_pieces_pillow),
+        cmocka_unit_test(test_pieces_components),
+        cmocka_unit_test(test_from_ruled_cylinder),
+        cmocka_unit_test(test_from_ruled_cone),
+        cmocka_unit_test(test_from_ruled_refuses),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
