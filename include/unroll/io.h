@@ -28,6 +28,10 @@
 ur_status ur_curve_csv_read(const char *path, ur_vec3 **points, size_t *count, bool *closed,
                             ur_error *error);
 
+/* The same for a path of at least min_count points (a seam of two). */
+ur_status ur_points_csv_read(const char *path, size_t min_count, ur_vec3 **points, size_t *count,
+                             bool *closed, ur_error *error);
+
 /* Writes points as CSV, atomically (temporary file, then rename). */
 ur_status ur_curve_csv_write(const char *path, const ur_vec3 *points, size_t count,
                              ur_error *error);

@@ -37,6 +37,14 @@ typedef struct cli_job {
     const char *adjusted_rail_path;
     ur_vec3 corners[4];
     bool has_corners;
+    /* meshes, and non-developable surfaces flattened with strain */
+    const char *mesh_path;
+    const char *unit_name; /* NULL: mm */
+    double scale;          /* NAN when not given */
+    const char *seam_paths[16];
+    size_t seam_count;
+    int flatten;       /* ur_flatten_method, or -1 for the default */
+    size_t iterations; /* 0: the default */
     /* analyze and compare */
     const char *png_path, *csv_path;
     /* output */
@@ -75,6 +83,15 @@ bool cli_directory_exists(const char *option, const char *path);
 
 /* The exit status for a library error. */
 int cli_exit_status(const ur_error *error);
+
+/*
+ * unroll mesh FILE (meshes.c): the nets of a mesh's pieces, flattened with
+ * their strain; returns 0 or an exit status after a message.
+ */
+int cli_mesh_nets(const cli_job *job, ur_net_list *nets, double *area);
+
+/* The nets of a non-developable ruled surface, flattened with strain (meshes.c). */
+int cli_flatten_ruled(const cli_job *job, ur_ruled *ruled, ur_net_list *nets, double *area);
 
 /* unroll profiles [show NAME] */
 int cli_profiles(int argc, char **argv);

@@ -145,6 +145,12 @@ static int study_command(int argc, char **argv, cli_action action)
     const char *command = argv[0];
     if (argc >= 2 && (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0))
         return cli_print_help(command);
+    if (argc >= 2 && strcmp(argv[1], "mesh") == 0) {
+        cli_message("%s: works on ruled surfaces; a mesh's strain is in 'unroll mesh "
+                    "... --report'",
+                    command);
+        return EXIT_USAGE;
+    }
     if (argc < 2 || !cli_is_surface(argv[1])) {
         cli_message("%s: give a surface first, e.g. 'unroll %s helicoid --radius 30 ...' (see "
                     "'unroll help %s')",

@@ -6,6 +6,9 @@
  */
 #include "cli.h"
 
+#include "unroll/flatten.h"
+#include "unroll/io.h"
+
 #include <errno.h>
 #include <getopt.h>
 #include <math.h>
@@ -34,7 +37,12 @@ enum option_id {
     OPT_ADJUST_RAIL2,
     OPT_ADJUST_DIRECTION,
     OPT_ADJUSTED_RAIL,
-    OPT_CORNERS, /* last of the surface options */
+    OPT_CORNERS,
+    OPT_UNITS,
+    OPT_SCALE,
+    OPT_SEAMS,
+    OPT_FLATTEN,
+    OPT_ITERATIONS, /* last of the surface options */
     OPT_PNG,
     OPT_CSV,
     OPT_MACHINE,
@@ -69,6 +77,11 @@ static const struct option long_options[] = {
     {"adjust-direction", required_argument, NULL, OPT_ADJUST_DIRECTION},
     {"adjusted-rail", required_argument, NULL, OPT_ADJUSTED_RAIL},
     {"corners", required_argument, NULL, OPT_CORNERS},
+    {"units", required_argument, NULL, OPT_UNITS},
+    {"scale", required_argument, NULL, OPT_SCALE},
+    {"seams", required_argument, NULL, OPT_SEAMS},
+    {"flatten", required_argument, NULL, OPT_FLATTEN},
+    {"iterations", required_argument, NULL, OPT_ITERATIONS},
     {"png", required_argument, NULL, OPT_PNG},
     {"csv", required_argument, NULL, OPT_CSV},
     {"output", required_argument, NULL, 'o'},
@@ -96,9 +109,10 @@ static const struct {
     {"helicoid", " radius pitch turns width offset "},
     {"tangent", " curve width offset "},
     {"strip", " rail1 rail2 pairing strict regression adjust-rail2 adjust-direction "
-              "adjusted-rail "},
-    {"ruled", " rail1 rail2 "},
-    {"hypar", " corners "},
+              "adjusted-rail flatten iterations "},
+    {"ruled", " rail1 rail2 flatten iterations "},
+    {"hypar", " corners flatten iterations "},
+    {"mesh", " units scale seams flatten iterations "},
 };
 
 /* Options that belong to one action only. */
@@ -250,9 +264,25 @@ static bool parse_count(const char *surface, const char *text, size_t *count)
     return true;
 }
 
+static bool parse_iterations(cli_job *job, const char *text)
+{
+    char *end;
+    errno = 0;
+    long value = strtol(text, &end, 10);
+    if (end == text || *end != '\0' || errno || value < 1 || value > 100000) {
+        cli_message("%s: --iterations: '%s' is not a whole number from 1 to 100000", job->command,
+                    text);
+        return false;
+    }
+    job->iterations = (size_t)value;
+    return true;
+}
+
 static double *number_slot(cli_job *job, int id)
 {
     switch (id) {
+    case OPT_SCALE:
+        return &job->scale;
     case OPT_RADIUS:
         return &job->radius;
     case OPT_HEIGHT:
@@ -280,7 +310,7 @@ static double *number_slot(cli_job *job, int id)
 static bool take_option(cli_job *job, int id, const char *value)
 {
     const char *surface = job->surface;
-    if (id >= OPT_RADIUS && id <= OPT_CORNERS && !accepts(surface, option_name(id))) {
+    if (id >= OPT_RADIUS && id <= OPT_ITERATIONS && !accepts(surface, option_name(id))) {
         cli_message("%s: --%s does not apply to a %s (see 'unroll help %s')", job->command,
                     option_name(id), surface, surface);
         return false;
@@ -326,6 +356,28 @@ static bool take_option(cli_job *job, int id, const char *value)
         return true;
     case OPT_CORNERS:
         return job->has_corners = parse_corners(surface, value, job->corners);
+    case OPT_UNITS:
+        if (ur_length_unit_from_name(value) < 0) {
+            cli_message("%s: --units: '%s' is not one of mm, cm, m, in", job->command, value);
+            return false;
+        }
+        job->unit_name = value;
+        return true;
+    case OPT_SEAMS:
+        if (job->seam_count == sizeof job->seam_paths / sizeof job->seam_paths[0]) {
+            cli_message("%s: --seams: at most %zu seam files", job->command,
+                        sizeof job->seam_paths / sizeof job->seam_paths[0]);
+            return false;
+        }
+        job->seam_paths[job->seam_count++] = value;
+        return true;
+    case OPT_FLATTEN:
+        job->flatten = ur_flatten_method_from_name(value);
+        if (job->flatten < 0)
+            cli_message("%s: --flatten: '%s' is not one of arap, lscm", job->command, value);
+        return job->flatten >= 0;
+    case OPT_ITERATIONS:
+        return parse_iterations(job, value);
     case OPT_PNG:
         job->png_path = value;
         return true;
@@ -383,6 +435,8 @@ static void job_defaults(cli_job *job, cli_action action, const char *command, c
     job->surface = surface;
     job->radius = job->height = job->top_radius = job->pitch = NAN;
     job->turns = job->width = job->offset = job->cut = NAN;
+    job->scale = NAN;
+    job->flatten = -1;
     job->machine_name = "co2-60w";
     job->material_name = "plywood-3mm";
     ur_develop_options_default(&job->develop);
@@ -407,6 +461,8 @@ int cli_parse_job(int argc, char **argv, cli_action action, const char *command,
         if (!take_option(job, id, optarg))
             return EXIT_USAGE;
     }
+    if (optind < argc && strcmp(job->surface, "mesh") == 0)
+        job->mesh_path = argv[optind++];
     if (optind < argc) {
         cli_message("%s: unexpected argument '%s'", job->command, argv[optind]);
         return EXIT_USAGE;

@@ -14,6 +14,8 @@
 #include <sys/stat.h>
 
 #include "unroll/allow.h"
+#include "unroll/analyze.h"
+#include "unroll/flatten.h"
 #include "unroll/io.h"
 #include "unroll/nest.h"
 #include "unroll/out.h"
@@ -76,6 +78,7 @@ typedef struct job_state {
     size_t piece_count;
     ur_layout layout;
     double surface_area;
+    const char *method; /* how the nets were made: exact, triangle, quad, arap, lscm */
 } job_state;
 
 static void state_free(job_state *state)
@@ -153,11 +156,9 @@ static ur_status develop_parts(const cli_job *job, job_state *state, ur_error *e
     return status;
 }
 
-static ur_status develop_and_place(const cli_job *job, job_state *state, ur_error *error)
+static ur_status place(const cli_job *job, job_state *state, ur_error *error)
 {
-    ur_status status = develop_parts(job, state, error);
-    if (status == UR_OK)
-        status = make_pieces(job, state, error);
+    ur_status status = make_pieces(job, state, error);
     if (status != UR_OK)
         return status;
     /* The first sheet every piece fits; the error of the last one tried otherwise. */
@@ -198,7 +199,7 @@ static ur_status write_outputs(const cli_job *job, job_state *state, ur_error *e
         status = UR_ERROR_INTERNAL;
     ur_report_context context = {
         .surface = job->surface,
-        .method = ur_method_name(job->develop.method),
+        .method = state->method,
         .machine = &state->machine,
         .material = &state->material,
         .surface_area = state->surface_area,
@@ -230,11 +231,68 @@ static void print_summary(const cli_job *job, const job_state *state)
     fprintf(stderr,
             "unroll: %s (%s): %zu piece%s, surface %.2f mm2, net %.2f mm2 (coverage %.6f), "
             "%zu sheet%s of %g x %g mm (%s, %s) -> %s\n",
-            job->surface, ur_method_name(job->develop.method), state->piece_count,
-            state->piece_count == 1 ? "" : "s", state->surface_area, flat,
-            flat / state->surface_area, state->layout.sheet_count,
+            job->surface, state->method, state->piece_count, state->piece_count == 1 ? "" : "s",
+            state->surface_area, flat, flat / state->surface_area, state->layout.sheet_count,
             state->layout.sheet_count == 1 ? "" : "s", first->width, first->height,
             state->material.name, state->machine.name, first_file);
+}
+
+/*
+ * A surface that is not developable (a hypar, a general ruled surface) is
+ * flattened with strain; the note says by how much it is not developable.
+ */
+static int flatten_if_needed(const cli_job *job, job_state *state, bool *flattened)
+{
+    *flattened = false;
+    if (state->ruled.kind != UR_RULED_GENERAL)
+        return 0;
+    ur_analysis analysis;
+    ur_error error;
+    if (ur_analyze(&state->ruled, NULL, &analysis, &error) != UR_OK) {
+        ur_analysis_free(&analysis);
+        cli_message("%s: %s", job->command, error.message);
+        return cli_exit_status(&error);
+    }
+    bool developable = analysis.developable;
+    if (!developable && !job->quiet)
+        cli_message("%s: not developable (the tangent plane turns by up to %.3g degrees along a "
+                    "ruling, K down to %.3g 1/mm2): flattened with %s, with strain",
+                    job->command, analysis.max_residual * 180 / M_PI, analysis.gaussian_min,
+                    ur_flatten_method_name(job->flatten >= 0 ? (ur_flatten_method)job->flatten
+                                                             : UR_FLATTEN_ARAP));
+    ur_analysis_free(&analysis);
+    if (developable)
+        return 0;
+    *flattened = true;
+    return cli_flatten_ruled(job, &state->ruled, &state->nets, &state->surface_area);
+}
+
+/* The nets: a mesh's pieces, or the surface developed (or flattened) part by part. */
+static int make_nets(const cli_job *job, job_state *state, cli_adjusted_rail *adjusted,
+                     ur_vec3 **edge, size_t *edge_count)
+{
+    state->method = ur_flatten_method_name(job->flatten >= 0 ? (ur_flatten_method)job->flatten
+                                                             : UR_FLATTEN_ARAP);
+    if (strcmp(job->surface, "mesh") == 0)
+        return cli_mesh_nets(job, &state->nets, &state->surface_area);
+    int code = cli_build_surface(job, &state->ruled, adjusted);
+    if (code)
+        return code;
+    state->have_ruled = true;
+    code = cli_check_domain(job, &state->ruled);
+    if (!code && job->regression_path)
+        code = cli_regression_points(job, &state->ruled, edge, edge_count);
+    bool flattened = false;
+    if (!code)
+        code = flatten_if_needed(job, state, &flattened);
+    ur_error error;
+    if (!flattened)
+        state->method = ur_method_name(job->develop.method);
+    if (!code && !flattened && develop_parts(job, state, &error) != UR_OK) {
+        cli_message("%s: %s", job->command, error.message);
+        code = cli_exit_status(&error);
+    }
+    return code;
 }
 
 int cli_run_job(const cli_job *job)
@@ -256,24 +314,17 @@ int cli_run_job(const cli_job *job)
         cli_message("%s", error.message);
         return cli_exit_status(&error);
     }
-    cli_adjusted_rail adjusted;
-    int code = cli_build_surface(job, &state.ruled, &adjusted);
-    if (code) {
-        free(adjusted.points);
-        return code;
-    }
-    state.have_ruled = true;
+    cli_adjusted_rail adjusted = {NULL, 0, 0.0};
     ur_vec3 *edge = NULL;
     size_t edge_count = 0;
-    code = cli_check_domain(job, &state.ruled);
-    if (!code && job->regression_path)
-        code = cli_regression_points(job, &state.ruled, &edge, &edge_count);
+    int code = make_nets(job, &state, &adjusted, &edge, &edge_count);
     if (code) {
+        free(edge);
         free(adjusted.points);
         state_free(&state);
         return code;
     }
-    status = develop_and_place(job, &state, &error);
+    status = place(job, &state, &error);
     if (status == UR_OK)
         status = write_outputs(job, &state, &error);
     if (status != UR_OK) {

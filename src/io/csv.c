@@ -172,6 +172,12 @@ static ur_status read_all_lines(FILE *file, const char *path, ur_point_list *lis
 ur_status ur_curve_csv_read(const char *path, ur_vec3 **points, size_t *count, bool *closed,
                             ur_error *error)
 {
+    return ur_points_csv_read(path, UR_CURVE_MIN_POINTS, points, count, closed, error);
+}
+
+ur_status ur_points_csv_read(const char *path, size_t min_count, ur_vec3 **points, size_t *count,
+                             bool *closed, ur_error *error)
+{
     *points = NULL;
     *count = 0;
     *closed = false;
@@ -186,15 +192,15 @@ ur_status ur_curve_csv_read(const char *path, ur_vec3 **points, size_t *count, b
         point_list_free(&list);
         return status;
     }
-    bool is_closed = list.count > 1 && same_point(list.items[0], list.items[list.count - 1]);
+    bool is_closed = list.count > 2 && same_point(list.items[0], list.items[list.count - 1]);
     if (is_closed)
         list.count--;
-    if (list.count < UR_CURVE_MIN_POINTS) {
+    if (list.count < min_count) {
         size_t found = list.count;
         point_list_free(&list);
-        return ur_error_set(error, UR_ERROR_INPUT,
-                            "%s: a curve needs at least %d points, found %zu", path,
-                            UR_CURVE_MIN_POINTS, found);
+        return ur_error_set(error, UR_ERROR_INPUT, "%s: %s needs at least %zu points, found %zu",
+                            path, min_count == UR_CURVE_MIN_POINTS ? "a curve" : "a path",
+                            min_count, found);
     }
     free(list.lines);
     *points = list.items;

@@ -534,22 +534,113 @@ def adjust_rail2_repairs_a_short_rail(work):
 
 
 @test
-def non_developable_surfaces_are_refused_with_how_far(work):
+def non_developable_surfaces_are_flattened_with_strain(work):
     low = [(100.0 * i / 39, 0.0, 0.0) for i in range(40)]
-    high = [(100.0 * i / 39, 60.0, 30 * math.sin(math.pi * i / 39)) for i in range(40)]
     twisted = [(100.0 * i / 39 * math.cos(0.02 * i), 60.0 + 10 * math.sin(0.1 * i), 40.0 * i / 39)
                for i in range(40)]
     write_points(work, "low.csv", low)
     write_points(work, "twisted.csv", twisted)
-    bad(work, r"not developable.*turns by up to [0-9.]+ degrees", "strip", "--rail1", "low.csv",
-        "--rail2", "twisted.csv", "--pairing", "natural", "-o", "x.svg")
-    bad(work, r"not developable.*turns by up to [0-9.]+ degrees", "ruled", "--rail1", "low.csv",
-        "--rail2", "twisted.csv", "-o", "x.svg")
-    bad(work, r"not developable", "hypar", "--corners", HYPAR, "-o", "x.svg")
+    cases = [["strip", "--rail1", "low.csv", "--rail2", "twisted.csv", "--pairing", "natural"],
+             ["ruled", "--rail1", "low.csv", "--rail2", "twisted.csv"],
+             ["hypar", "--corners", HYPAR]]
+    for k, args in enumerate(cases):
+        name = "n%d" % k
+        result = run(work, *args, "-o", name + ".svg", "--report", name + ".json")
+        check(re.search(r"not developable \(the tangent plane turns by up to [0-9.]+ degrees",
+                        result.stderr), result.stderr)
+        [piece] = report(work, name + ".json")["pieces"]
+        check(max(piece["max_stretch"], piece["max_compression"]) > 1e-3,
+              "%s: no strain reported: %r" % (args[0], piece))
+        check(abs(piece["coverage"] - 1) < 0.01, "%s: coverage %g" % (args[0], piece["coverage"]))
     result = run(work, "analyze", "ruled", "--rail1", "low.csv", "--rail2", "twisted.csv")
     check("not developable" in result.stdout, result.stdout)
-    write_points(work, "high.csv", high)
-    del high
+
+
+MESHES = ["lampshade.obj", "lampshade-ascii.stl", "lampshade-binary.stl", "lampshade.ply",
+          "lampshade.gltf", "lampshade.glb"]
+
+
+def segments_cross(p1, p2, q1, q2):
+    def side(a, b, c):
+        return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+    return (side(p1, p2, q1) * side(p1, p2, q2) < 0) and (side(q1, q2, p1) * side(q1, q2, p2) < 0)
+
+
+def simple_ring(points):
+    n = len(points)
+    edges = [(points[i], points[(i + 1) % n]) for i in range(n)]
+    for i in range(n):
+        for j in range(i + 2, n):
+            if i == 0 and j == n - 1:
+                continue
+            if segments_cross(*edges[i], *edges[j]):
+                return False
+    return True
+
+
+@test
+def meshes_in_every_format_give_the_same_net(work):
+    areas = []
+    for name in MESHES:
+        run(work, "mesh", os.path.join(REPO, "samples", name), "-o", "m.svg", "--report", "m.json")
+        pieces = report(work, "m.json")["pieces"]
+        # The lampshade is a frustum: developable, so flattening must not invent strain.
+        for piece in pieces:
+            check(piece["max_stretch"] <= 1e-3 and piece["max_compression"] <= 1e-3,
+                  "%s: strain %r" % (name, piece))
+        areas.append(sum(p["flat_area_mm2"] for p in pieces))
+        for outline in outlines(os.path.join(work, "m.svg")):
+            check(simple_ring(outline), "%s: an outline crosses itself" % name)
+        valid_svg(os.path.join(work, "m.svg"), 600, 400)
+    # The frustum's lateral area, faceted: 24 trapezoids whose sides are chords.
+    close(max(areas), min(areas), 1e-6, "net area across formats")
+
+
+@test
+def closed_mesh_is_cut_and_flattened(work):
+    result = run(work, "mesh", os.path.join(REPO, "samples", "icosphere.obj"), "-o", "s.svg",
+                 "--report", "s.json")
+    pieces = report(work, "s.json")["pieces"]
+    check(all(p["max_stretch"] > 1e-3 or p["max_compression"] > 1e-3 for p in pieces),
+          "a sphere flattened without strain? %r" % pieces)
+    for outline in outlines(os.path.join(work, "s.svg")):
+        check(simple_ring(outline), "an outline crosses itself")
+    check("piece" in result.stderr, result.stderr)
+
+
+@test
+def seams_split_a_mesh(work):
+    ply = os.path.join(REPO, "samples", "lampshade.ply")
+    run(work, "mesh", ply, "-o", "one.svg", "--report", "one.json")
+    check(len(report(work, "one.json")["pieces"]) == 1, "the tube is not one piece")
+    rings = [(100.0, 0.0), (86.666664, 40.0), (73.333336, 80.0), (60.0, 120.0)]
+    write_points(work, "front.csv", [(r, 0.0, z) for r, z in rings])
+    write_points(work, "back.csv", [(-r, 0.0, z) for r, z in rings])
+    run(work, "mesh", ply, "--seams", "front.csv", "--seams", "back.csv", "-o", "two.svg",
+        "--report", "two.json")
+    pieces = report(work, "two.json")["pieces"]
+    check(len(pieces) == 2, "%d pieces with two seams" % len(pieces))
+    close(pieces[0]["flat_area_mm2"], pieces[1]["flat_area_mm2"], 1e-6, "the two halves")
+    write_points(work, "off.csv", [(100.0, 5.0, 0.0), (86.666664, 0.0, 40.0)])
+    bad(work, r"off\.csv: point 1 .* is no vertex", "mesh", ply, "--seams", "off.csv",
+        "-o", "x.svg")
+
+
+@test
+def bad_meshes(work):
+    write(work, "words.obj", "this is not a mesh\n")
+    write(work, "nan.obj", "v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n")
+    write(work, "points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n")
+    bad(work, r"missing\.obj", "mesh", "missing.obj", "-o", "x.svg")
+    bad(work, r"words\.obj", "mesh", "words.obj", "-o", "x.svg")
+    bad(work, r"nan\.obj", "mesh", "nan.obj", "-o", "x.svg")
+    bad(work, r"points\.obj", "mesh", "points.obj", "-o", "x.svg")
+    bad(work, r"give the mesh file", "mesh", "-o", "x.svg")
+    bad(work, r"--units: 'furlong'", "mesh", "nan.obj", "--units", "furlong", "-o", "x.svg")
+    bad(work, r"--flatten: 'smash'", "mesh", "nan.obj", "--flatten", "smash", "-o", "x.svg")
+    bad(work, r"--iterations: '0'", "mesh", "nan.obj", "--iterations", "0", "-o", "x.svg")
+    bad(work, r"--seams does not apply", "cylinder", "--radius", "3", "--height", "4",
+        "--seams", "a.csv", "-o", "x.svg")
 
 
 HYPAR_A, HYPAR_B, HYPAR_C = 50.0, 40.0, 100.0

@@ -1,0 +1,194 @@
+/*
+ * meshes.c: surfaces that are flattened rather than developed: a mesh from
+ * a file ('unroll mesh FILE'), and a ruled surface that is not developable
+ * (hypar, ruled, a naturally paired strip), triangulated first.  Each piece
+ * (a topological disk) is laid flat with LSCM and ARAP and becomes a net
+ * that carries its strain.
+ */
+#include "cli.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "unroll/flatten.h"
+#include "unroll/io.h"
+
+/* Triangulation of a ruled surface for flattening: rulings along, parts across. */
+enum { RULED_ALONG = 96, RULED_ACROSS = 24 };
+
+static int fail(const cli_job *job, const ur_error *error)
+{
+    cli_message("%s: %s", job->command, error->message);
+    return cli_exit_status(error);
+}
+
+static void flatten_options(const cli_job *job, ur_flatten_options *options)
+{
+    ur_flatten_options_default(options);
+    if (job->flatten >= 0)
+        options->method = (ur_flatten_method)job->flatten;
+    if (job->iterations > 0)
+        options->iterations = job->iterations;
+}
+
+/* Flattens every piece and appends its net, named P1, P2, ... */
+static int flatten_pieces(const cli_job *job, const ur_mesh_piece *pieces, size_t count,
+                          ur_net_list *nets, double *area)
+{
+    ur_error error;
+    nets->nets = ur_alloc_array(count, sizeof *nets->nets, &error);
+    if (!nets->nets)
+        return fail(job, &error);
+    ur_flatten_options options;
+    flatten_options(job, &options);
+    *area = 0.0;
+    for (size_t k = 0; k < count; k++) {
+        ur_flat_piece flat;
+        char name[32];
+        snprintf(name, sizeof name, "P%zu", k + 1);
+        ur_status status = ur_flatten(&pieces[k].mesh, &options, &flat, &error);
+        if (status == UR_OK)
+            status = ur_net_from_flat(&pieces[k].mesh, &flat, name, &nets->nets[k], &error);
+        if (status == UR_OK && flat.flipped)
+            status = ur_error_set(&error, UR_ERROR_INTERNAL,
+                                  "piece %zu came out with a triangle turned over", k + 1);
+        ur_flat_piece_free(&flat);
+        if (status != UR_OK)
+            return fail(job, &error);
+        nets->count++;
+        *area += nets->nets[k].area_3d;
+    }
+    return 0;
+}
+
+/* A seam file: a path of mesh vertices, one x,y,z per line. */
+static int read_seam(const cli_job *job, const char *path, const ur_mesh *mesh, double tolerance,
+                     ur_seam **seams, size_t *seam_count)
+{
+    ur_vec3 *points = NULL;
+    size_t count = 0;
+    bool closed = false;
+    ur_error error;
+    if (ur_points_csv_read(path, 2, &points, &count, &closed, &error) != UR_OK)
+        return fail(job, &error);
+    size_t *vertices = ur_alloc_array(count, sizeof *vertices, &error);
+    ur_seam *grown = realloc(*seams, (*seam_count + count) * sizeof *grown);
+    int code = vertices && grown ? 0 : fail(job, &error);
+    if (grown)
+        *seams = grown;
+    for (size_t i = 0; !code && i < count; i++) {
+        size_t best = 0;
+        for (size_t v = 1; v < mesh->vertex_count; v++)
+            if (ur_vec3_distance(mesh->vertices[v], points[i]) <
+                ur_vec3_distance(mesh->vertices[best], points[i]))
+                best = v;
+        if (!(ur_vec3_distance(mesh->vertices[best], points[i]) <= tolerance)) {
+            cli_message("%s: --seams %s: point %zu (%g, %g, %g) is no vertex of the mesh",
+                        job->command, path, i + 1, points[i].x, points[i].y, points[i].z);
+            code = EXIT_USAGE;
+        }
+        vertices[i] = best;
+    }
+    for (size_t i = 0; !code && i + 1 < count + (closed ? 1 : 0); i++)
+        (*seams)[(*seam_count)++] = (ur_seam){vertices[i], vertices[(i + 1) % count]};
+    free(vertices);
+    free(points);
+    return code;
+}
+
+static int read_seams(const cli_job *job, const ur_mesh *mesh, double tolerance, ur_seam **seams,
+                      size_t *count)
+{
+    *seams = NULL;
+    *count = 0;
+    int code = 0;
+    for (size_t k = 0; !code && k < job->seam_count; k++)
+        code = read_seam(job, job->seam_paths[k], mesh, tolerance, seams, count);
+    return code;
+}
+
+static void say_repairs(const cli_job *job, const ur_mesh_repairs *repairs)
+{
+    if (job->quiet)
+        return;
+    if (repairs->welded || repairs->degenerate || repairs->isolated || repairs->flipped)
+        cli_message("%s: repaired: %zu vertices welded, %zu zero-area triangles and %zu unused "
+                    "vertices dropped, %zu triangles turned to agree with their neighbours",
+                    job->command, repairs->welded, repairs->degenerate, repairs->isolated,
+                    repairs->flipped);
+}
+
+/* The mesh's size: the diagonal of its bounding box. */
+static double mesh_size(const ur_mesh *mesh)
+{
+    ur_vec3 low = mesh->vertices[0], high = low;
+    for (size_t i = 1; i < mesh->vertex_count; i++) {
+        ur_vec3 p = mesh->vertices[i];
+        low = ur_vec3_make(fmin(low.x, p.x), fmin(low.y, p.y), fmin(low.z, p.z));
+        high = ur_vec3_make(fmax(high.x, p.x), fmax(high.y, p.y), fmax(high.z, p.z));
+    }
+    return ur_vec3_distance(low, high);
+}
+
+/* Cleans, cuts into disks and flattens; repairs are news only for a mesh from a file. */
+static int nets_of_mesh(const cli_job *job, ur_mesh *mesh, bool tell_repairs, ur_net_list *nets,
+                        double *area)
+{
+    ur_error error;
+    ur_mesh_repairs repairs;
+    double size = mesh->vertex_count ? mesh_size(mesh) : 0.0;
+    double weld = 1e-6 * size; /* well below any modelling detail, above float rounding */
+    if (ur_mesh_clean(mesh, weld, &repairs, &error) != UR_OK)
+        return fail(job, &error);
+    if (tell_repairs)
+        say_repairs(job, &repairs);
+    ur_seam *seams = NULL;
+    size_t seam_count = 0;
+    int code = read_seams(job, mesh, 1e-4 * size, &seams, &seam_count);
+    ur_mesh_piece *pieces = NULL;
+    size_t piece_count = 0;
+    if (!code && ur_mesh_pieces(mesh, seams, seam_count, &pieces, &piece_count, &error) != UR_OK)
+        code = fail(job, &error);
+    if (!code)
+        code = flatten_pieces(job, pieces, piece_count, nets, area);
+    ur_mesh_pieces_free(pieces, piece_count);
+    free(seams);
+    return code;
+}
+
+int cli_mesh_nets(const cli_job *job, ur_net_list *nets, double *area)
+{
+    if (!job->mesh_path) {
+        cli_message("mesh: give the mesh file: unroll mesh FILE -o OUT.svg");
+        return EXIT_USAGE;
+    }
+    ur_mesh_import_options options;
+    ur_mesh_import_options_default(&options);
+    if (job->unit_name)
+        options.unit = (ur_length_unit)ur_length_unit_from_name(job->unit_name);
+    if (!isnan(job->scale))
+        options.scale = job->scale;
+    ur_mesh mesh;
+    ur_error error;
+    if (ur_mesh_import(job->mesh_path, &options, &mesh, NULL, &error) != UR_OK)
+        return fail(job, &error);
+    int code = nets_of_mesh(job, &mesh, true, nets, area);
+    ur_mesh_free(&mesh);
+    return code;
+}
+
+int cli_flatten_ruled(const cli_job *job, ur_ruled *ruled, ur_net_list *nets, double *area)
+{
+    if (job->seam_count > 0) {
+        cli_message("%s: --seams goes with 'unroll mesh'", job->command);
+        return EXIT_USAGE;
+    }
+    ur_mesh mesh;
+    ur_error error;
+    if (ur_mesh_from_ruled(ruled, RULED_ALONG, RULED_ACROSS, &mesh, &error) != UR_OK)
+        return fail(job, &error);
+    int code = nets_of_mesh(job, &mesh, false, nets, area);
+    ur_mesh_free(&mesh);
+    return code;
+}
