@@ -22,9 +22,9 @@ typedef struct ur_path {
 
 /* What the report says of a piece: copied from its net. */
 typedef struct ur_piece_measures {
-    double area_3d;    /* of the part of the surface the piece covers */
-    double flat_area;  /* enclosed by the outline */
-    double edge_error; /* largest relative error of a flat edge length */
+    double area_3d;                      /* of the part of the surface the piece covers */
+    double flat_area;                    /* enclosed by the outline */
+    double edge_error;                   /* largest relative error of a flat edge length */
     double max_stretch, max_compression; /* of an approximate flattening; 0 when exact */
 } ur_piece_measures;
 
@@ -34,6 +34,12 @@ typedef struct ur_piece {
     size_t path_count;
     ur_box box; /* of every path, in piece coordinates */
     ur_piece_measures measures;
+    /*
+     * Per-triangle strain copied from the net, in piece coordinates (those
+     * of paths[0]); empty (NULL, 0) for a development.  Owned: ur_piece_free
+     * frees it.  Only the strain picture draws it; nothing is cut from it.
+     */
+    ur_shading shading;
 } ur_piece;
 
 typedef struct ur_allowance_options {
@@ -44,7 +50,10 @@ typedef struct ur_allowance_options {
 ur_status ur_piece_add_path(ur_piece *piece, ur_op op, const ur_vec2 *points, size_t count,
                             bool closed, ur_error *error);
 
-/* Builds the piece for a net; the caller frees it with ur_piece_free. */
+/*
+ * Builds the piece for a net, its shading copied; the caller frees it with
+ * ur_piece_free.
+ */
 ur_status ur_piece_from_net(const ur_net *net, const ur_allowance_options *options, ur_piece *piece,
                             ur_error *error);
 

@@ -29,6 +29,25 @@ typedef struct ur_segment {
     ur_vec2 start, end;
 } ur_segment;
 
+/*
+ * The strain of an approximate flattening triangle by triangle, for the
+ * strain picture (ur_strain_png_write).  Each triangle of the flattened
+ * mesh is given by its three flat corners, in the same coordinates as the
+ * outline of the net (or piece) that carries it, with its dominant strain:
+ * with sigma1 >= sigma2 the singular values of its 3D-to-flat map (see
+ * flatten.h), the strain is sigma1 - 1 (stretch, >= 0) when
+ * sigma1 - 1 >= 1 - sigma2, and -(1 - sigma2) (compression, < 0)
+ * otherwise.  One signed number per triangle is what a diverging colour
+ * can show, and the larger of the two deviations is the one that tears or
+ * buckles the material.  A development keeps every length and has none:
+ * triangles NULL, strain NULL, count 0.
+ */
+typedef struct ur_shading {
+    ur_vec2 (*triangles)[3]; /* owned by the net or piece */
+    double *strain;          /* owned: one per triangle, signed as above */
+    size_t count;
+} ur_shading;
+
 /* One flat piece.  All arrays are owned by the net. */
 typedef struct ur_net {
     char name[32];
@@ -48,6 +67,7 @@ typedef struct ur_net {
      * development, which keeps every length.
      */
     double max_stretch, max_compression;
+    ur_shading shading; /* per-triangle strain of a flattening; empty for a development */
 } ur_net;
 
 typedef struct ur_net_list {

@@ -94,4 +94,33 @@ ur_status ur_compare_csv_write(const char *path, const ur_compare_table *table, 
 ur_status ur_analysis_report_write(const char *path, const char *surface, ur_ruled *ruled,
                                    const ur_analysis *analysis, ur_error *error);
 
+/* The resolution of the strain picture unless told otherwise, dots per inch. */
+#define UR_STRAIN_PNG_DPI 96.0
+
+/*
+ * The strain picture: one PNG per sheet of the layout, named as ur_write_svg
+ * names its SVGs (path itself for one sheet, NAME-1.png, NAME-2.png, ... for
+ * several; ur_sheet_file_name).  Each image is the sheet at dpi dots per inch
+ * (0 for UR_STRAIN_PNG_DPI), width × dpi / 25.4 by height × dpi / 25.4
+ * pixels rounded to the nearest, every piece placed by the layout.  Each
+ * triangle of a piece's shading is filled by a diverging colour map of its
+ * strain: white at 0, darker red the more it is stretched, darker blue the
+ * more it is compressed, its lightness falling with |strain| so that it
+ * reads in grey too.  The scale runs from -s to +s, s the largest |strain|
+ * of all piece_count pieces, so that every sheet uses the same one.  A
+ * piece without shading (a development) stays white, labelled "exact: no
+ * strain".  Outlines are dark grey, each piece's name stands inside it with
+ * its range of strain, and a legend (colour bar with its numbers in per
+ * cent, scale bar) goes in the corner of the sheet where it covers the
+ * least.  Text keeps its size on paper: 1 point = dpi / 96 pixels.
+ *
+ * Written atomically, every sheet or none: on error nothing is left behind
+ * and files already there stay as they were.  "-" writes a one-sheet layout
+ * to standard output.  Refused with UR_ERROR_INPUT: no sheets, a dpi that is
+ * not a positive number, a sheet of no usable size or of more pixels than a
+ * picture may have (32767 a side, 1e8 in all), a missing directory.
+ */
+ur_status ur_strain_png_write(const char *path, const ur_layout *layout, const ur_piece *pieces,
+                              size_t piece_count, double dpi, ur_error *error);
+
 #endif

@@ -3,7 +3,9 @@
  *
  * For now the only allowance is none: the net's outline becomes the CUT path
  * and, on request, its rulings become SCORE lines.  Glue tabs, kerfing and
- * overlaps will be added here, fed by the same net.
+ * overlaps will be added here, fed by the same net.  A flattened net's
+ * per-triangle strain comes along for the strain picture, in the same
+ * coordinates as the outline.
  */
 #include "unroll/allow.h"
 
@@ -45,6 +47,26 @@ static ur_status add_rulings(ur_piece *piece, const ur_net *net, ur_error *error
     return UR_OK;
 }
 
+/* The piece's own copy of the net's per-triangle strain, for the strain picture. */
+static ur_status copy_shading(ur_piece *piece, const ur_shading *shading, ur_error *error)
+{
+    if (shading->count == 0)
+        return UR_OK;
+    if (!shading->triangles || !shading->strain)
+        return ur_error_set(error, UR_ERROR_INTERNAL,
+                            "net '%s' has %zu shaded triangles but no data", piece->name,
+                            shading->count);
+    ur_shading *copy = &piece->shading;
+    copy->triangles = ur_alloc_array(shading->count, sizeof *copy->triangles, error);
+    copy->strain = ur_alloc_array(shading->count, sizeof *copy->strain, error);
+    if (!copy->triangles || !copy->strain)
+        return UR_ERROR_INTERNAL; /* ur_piece_free frees what was allocated */
+    memcpy(copy->triangles, shading->triangles, shading->count * sizeof *copy->triangles);
+    memcpy(copy->strain, shading->strain, shading->count * sizeof *copy->strain);
+    copy->count = shading->count;
+    return UR_OK;
+}
+
 ur_status ur_piece_from_net(const ur_net *net, const ur_allowance_options *options, ur_piece *piece,
                             ur_error *error)
 {
@@ -59,6 +81,8 @@ ur_status ur_piece_from_net(const ur_net *net, const ur_allowance_options *optio
         ur_piece_add_path(piece, UR_OP_CUT, net->outline, net->outline_count, true, error);
     if (status == UR_OK && options && options->draw_rulings)
         status = add_rulings(piece, net, error);
+    if (status == UR_OK)
+        status = copy_shading(piece, &net->shading, error);
     if (status != UR_OK)
         ur_piece_free(piece);
     return status;
@@ -71,4 +95,7 @@ void ur_piece_free(ur_piece *piece)
     free(piece->paths);
     piece->paths = NULL;
     piece->path_count = 0;
+    free(piece->shading.triangles);
+    free(piece->shading.strain);
+    memset(&piece->shading, 0, sizeof piece->shading);
 }

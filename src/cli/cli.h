@@ -45,6 +45,7 @@ typedef struct cli_job {
     size_t seam_count;
     int flatten;       /* ur_flatten_method, or -1 for the default */
     size_t iterations; /* 0: the default */
+    const char *strain_png_path; /* --strain-png */
     /* analyze and compare */
     const char *png_path, *csv_path;
     /* output */

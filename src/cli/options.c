@@ -45,6 +45,7 @@ enum option_id {
     OPT_ITERATIONS, /* last of the surface options */
     OPT_PNG,
     OPT_CSV,
+    OPT_STRAIN_PNG,
     OPT_MACHINE,
     OPT_MATERIAL,
     OPT_SHEET,
@@ -84,6 +85,7 @@ static const struct option long_options[] = {
     {"iterations", required_argument, NULL, OPT_ITERATIONS},
     {"png", required_argument, NULL, OPT_PNG},
     {"csv", required_argument, NULL, OPT_CSV},
+    {"strain-png", required_argument, NULL, OPT_STRAIN_PNG},
     {"output", required_argument, NULL, 'o'},
     {"machine", required_argument, NULL, OPT_MACHINE},
     {"material", required_argument, NULL, OPT_MATERIAL},
@@ -120,7 +122,7 @@ static const struct {
     cli_action action;
     const char *options;
 } action_options[] = {
-    {CLI_DEVELOP, " output machine material sheet method parts rulings no-split report "},
+    {CLI_DEVELOP, " output machine material sheet method parts rulings no-split report strain-png "},
     {CLI_ANALYZE, " png report "},
     {CLI_COMPARE, " png csv "},
 };
@@ -383,6 +385,9 @@ static bool take_option(cli_job *job, int id, const char *value)
         return true;
     case OPT_CSV:
         job->csv_path = value;
+        return true;
+    case OPT_STRAIN_PNG:
+        job->strain_png_path = value;
         return true;
     case OPT_DIRECTION:
         return job->has_direction = parse_vector(surface, id, value, &job->direction);

@@ -179,6 +179,21 @@ static ur_status place(const cli_job *job, job_state *state, ur_error *error)
     return status;
 }
 
+static ur_status write_outputs(const cli_job *job, job_state *state, ur_error *error);
+
+/* The SVG, then the strain previews and the report. */
+static ur_status write_all(const cli_job *job, job_state *state, ur_error *error)
+{
+    ur_status status = write_outputs(job, state, error);
+    if (status == UR_OK && job->strain_png_path) {
+        status = ur_strain_png_write(job->strain_png_path, &state->layout, state->pieces,
+                                     state->piece_count, 0, error);
+        if (status != UR_OK)
+            ur_error_prefix(error, "--strain-png %s: ", job->strain_png_path);
+    }
+    return status;
+}
+
 static ur_status write_outputs(const cli_job *job, job_state *state, ur_error *error)
 {
     char title[128];
@@ -302,7 +317,9 @@ int cli_run_job(const cli_job *job)
          !cli_directory_exists("--report", job->report_path)) ||
         (job->regression_path && !cli_directory_exists("--regression", job->regression_path)) ||
         (job->adjusted_rail_path &&
-         !cli_directory_exists("--adjusted-rail", job->adjusted_rail_path)))
+         !cli_directory_exists("--adjusted-rail", job->adjusted_rail_path)) ||
+        (job->strain_png_path && strcmp(job->strain_png_path, "-") != 0 &&
+         !cli_directory_exists("--strain-png", job->strain_png_path)))
         return EXIT_USAGE;
     job_state state;
     memset(&state, 0, sizeof state);
@@ -326,7 +343,7 @@ int cli_run_job(const cli_job *job)
     }
     status = place(job, &state, &error);
     if (status == UR_OK)
-        status = write_outputs(job, &state, &error);
+        status = write_all(job, &state, &error);
     if (status != UR_OK) {
         cli_message("%s: %s", job->command, error.message);
         code = cli_exit_status(&error);

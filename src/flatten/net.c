@@ -2,7 +2,8 @@
  * net.c: a flattened mesh piece as a net, the shape the rest of the
  * pipeline (pieces, sheets, writers, report) takes: its boundary loop laid
  * flat, its areas, how far its boundary lengths are from the 3D ones, and
- * its strain.
+ * its strain: the largest figures for the report and, triangle by
+ * triangle, the shading the strain picture draws.
  */
 #include "unroll/flatten.h"
 
@@ -23,6 +24,44 @@ static double boundary_error(const ur_mesh *piece, const ur_flat_piece *flat, co
             largest = fmax(largest, fabs(plane - space) / space);
     }
     return largest;
+}
+
+/* sigma1 - 1 or -(1 - sigma2), whichever deviates more (develop.h, ur_shading). */
+static double dominant_strain(ur_strain strain)
+{
+    double stretch = strain.sigma1 - 1, compression = 1 - strain.sigma2;
+    return stretch >= compression ? stretch : -compression;
+}
+
+/* Every triangle of the piece laid flat, with its dominant strain, for the strain picture. */
+static ur_status fill_shading(const ur_mesh *piece, const ur_flat_piece *flat, ur_shading *shading,
+                              ur_error *error)
+{
+    size_t count = piece->triangle_count;
+    if (flat->triangle_count != count || flat->vertex_count != piece->vertex_count || !flat->strain)
+        return ur_error_set(error, UR_ERROR_INTERNAL,
+                            "the flat piece (%zu vertices, %zu triangles) is not that of the mesh "
+                            "(%zu vertices, %zu triangles)",
+                            flat->vertex_count, flat->triangle_count, piece->vertex_count, count);
+    shading->triangles = ur_alloc_array(count, sizeof *shading->triangles, error);
+    shading->strain = ur_alloc_array(count, sizeof *shading->strain, error);
+    if (!shading->triangles || !shading->strain)
+        return UR_ERROR_INTERNAL;
+    for (size_t t = 0; t < count; t++) {
+        for (int k = 0; k < 3; k++)
+            shading->triangles[t][k] = flat->flat[piece->triangles[t][k]];
+        shading->strain[t] = dominant_strain(flat->strain[t]);
+    }
+    shading->count = count;
+    return UR_OK;
+}
+
+static void free_net(ur_net *net)
+{
+    free(net->outline);
+    free(net->shading.triangles);
+    free(net->shading.strain);
+    memset(net, 0, sizeof *net);
 }
 
 ur_status ur_net_from_flat(const ur_mesh *piece, const ur_flat_piece *flat, const char *name,
@@ -55,5 +94,8 @@ ur_status ur_net_from_flat(const ur_mesh *piece, const ur_flat_piece *flat, cons
     net->max_stretch = flat->max_stretch;
     net->max_compression = flat->max_compression;
     free(loop);
-    return UR_OK;
+    status = fill_shading(piece, flat, &net->shading, error);
+    if (status != UR_OK)
+        free_net(net);
+    return status;
 }

@@ -578,6 +578,23 @@ def simple_ring(points):
     return True
 
 
+def png_size(path):
+    with open(path, "rb") as f:
+        head = f.read(24)
+    check(head[:8] == b"\x89PNG\r\n\x1a\n", path + " is not a PNG")
+    return int.from_bytes(head[16:20], "big"), int.from_bytes(head[20:24], "big")
+
+
+@test
+def strain_preview_has_the_sheet_size(work):
+    run(work, "hypar", "--corners", HYPAR, "-o", "h.svg", "--strain-png", "h.png")
+    # 600 x 400 mm at 96 dots per inch.
+    check(png_size(os.path.join(work, "h.png")) == (round(600 / 25.4 * 96), round(400 / 25.4 * 96)),
+          "size %r" % (png_size(os.path.join(work, "h.png")),))
+    bad(work, r"no-such-dir", "hypar", "--corners", HYPAR, "-o", "x.svg", "--strain-png",
+        "no-such-dir/h.png")
+
+
 @test
 def meshes_in_every_format_give_the_same_net(work):
     areas = []
