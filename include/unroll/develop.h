@@ -67,6 +67,13 @@ typedef struct ur_net {
      * development, which keeps every length.
      */
     double max_stretch, max_compression;
+    /*
+     * Fold lines of an unfolded polyhedron (flatten.h): always drawn, as
+     * mountain (SCORE) or valley (SCORE_VALLEY) folds.  NULL, 0 otherwise.
+     */
+    ur_segment *folds;
+    bool *fold_valley;
+    size_t fold_count;
     ur_shading shading; /* per-triangle strain of a flattening; empty for a development */
 } ur_net;
 

@@ -89,4 +89,102 @@ ur_status ur_flatten_energy(const ur_mesh *piece, const ur_vec2 *layout, double 
 ur_status ur_net_from_flat(const ur_mesh *piece, const ur_flat_piece *flat, const char *name,
                            ur_net *net, ur_error *error);
 
+/*
+ * ---- Exact unfolding of a polyhedral mesh (unfold.c) ----
+ *
+ * A low-poly (papercraft) mesh is unfolded along its edges, as Pepakura and
+ * Blender's paper model export do: every face keeps its exact shape, laid
+ * flat rigidly across the edge it shares with a face already laid, and a
+ * piece grows face by face along a spanning tree of the faces.  The edges
+ * joined inside a piece are folds, the others seams (cut, glued when the
+ * model is built).  A face that would overlap its piece, touch it anywhere
+ * but along its fold, or close a hole in it starts or joins another piece
+ * instead: every piece is a topological disk laid flat without overlap.
+ *
+ * Orientation: a triangle runs counter-clockwise seen from the outside (as
+ * ur_mesh_clean leaves a closed mesh), and the net shows the outside face
+ * up, so that every flat triangle runs counter-clockwise too.  Folded with
+ * that side up, a convex edge (the surface turns away from the viewer, the
+ * crease rises towards them) is a mountain fold, a concave edge a valley.
+ */
+
+/*
+ * Two faces that turn by less than this (radians) across their edge are
+ * flat there: joined, with nothing to fold and no fold line drawn.  Over a
+ * face a metre across it moves the far edge by a micrometre; coplanar
+ * quads split in two by a modeller come out well within it.
+ */
+#define UR_UNFOLD_FLAT_ANGLE 1e-6
+
+/* One fold line of a piece. */
+typedef struct ur_fold {
+    ur_vec2 start, end; /* the edge on the piece */
+    size_t a, b;        /* the mesh vertices at start and end */
+    bool valley;        /* a concave edge; false: a mountain (convex) */
+    /*
+     * How far the faces turn at the fold, radians, in (0, pi): pi minus
+     * the dihedral angle inside the surface (pi / 2 on a cube's edges).
+     */
+    double angle;
+} ur_fold;
+
+/* One piece of an unfolding, in its own plane coordinates.  All arrays are owned. */
+typedef struct ur_unfolded_piece {
+    ur_vec2 *outline;         /* its boundary, counter-clockwise, first point not repeated */
+    size_t *outline_vertices; /* the mesh vertex at each outline point */
+    size_t outline_count;     /* an edge between two pieces shows in both outlines */
+    ur_fold *folds;           /* the edges joined inside the piece that fold */
+    size_t fold_count;
+    size_t *triangles;  /* the mesh triangles of the piece, in the order laid */
+    ur_vec2 (*flat)[3]; /* each one's flat corners, in the mesh triangle's corner order */
+    size_t triangle_count;
+    double area_3d, flat_area; /* sum of the triangles' 3D areas; area inside the outline */
+} ur_unfolded_piece;
+
+/*
+ * Every edge of the mesh is exactly one of: a fold, a flat join, a seam
+ * (two faces cut apart) or a boundary edge (the mesh's own boundary, one
+ * face).
+ */
+typedef struct ur_unfolding {
+    ur_unfolded_piece *pieces;
+    size_t count;
+    size_t folds;    /* edges folded, in all pieces */
+    size_t valleys;  /* of which valley folds */
+    size_t flat;     /* edges joined with nothing to fold (UR_UNFOLD_FLAT_ANGLE) */
+    size_t seams;    /* edges between two faces that are cut */
+    size_t boundary; /* edges of one face */
+} ur_unfolding;
+
+/*
+ * Unfolds a mesh that is manifold and consistently oriented (as
+ * ur_mesh_clean leaves it) into pieces; free them with ur_unfolding_free.
+ *
+ * Pieces grow one at a time from the first face not yet laid, always
+ * across the cheapest edge on their border (Prim's algorithm): flat edges
+ * first, then convex ones from the least to the most turned, concave ones
+ * last, longer edges before shorter at equal angles.  User seams, the
+ * boundaries between groups and the mesh's boundary are never folded.
+ * Each new face is placed from the two side lengths on its shared edge, so
+ * it is congruent to its 3D triangle to rounding.  Where a face closes the
+ * ring of faces around a vertex that lies flat (angles summing to 2 pi),
+ * or continues a straight crease, it lands on a laid neighbour edge on edge
+ * and is joined there too.  Points within a millionth of the mesh's size
+ * (the diagonal of its box) meet, so that meshes of 32-bit coordinates
+ * close up as well.  The outline of every piece is checked to be a simple
+ * polygon (GEOS) before it is returned.  Pieces come in the order grown,
+ * the first from triangle 0; where the surface has saddles, whose faces
+ * cannot all lie flat round the vertex, the first pieces tend to be large
+ * and to leave small pieces of one to a few faces in their notches.
+ *
+ * Refuses (UR_ERROR_INPUT) an empty mesh, a coordinate that is not finite,
+ * a triangle of no area, a non-manifold edge, neighbours that run their
+ * edge the same way, and a seam that is not an edge of the mesh (messages
+ * number vertices, triangles and seams from 1).  On failure *out is empty.
+ */
+ur_status ur_unfold(const ur_mesh *mesh, const ur_seam *seams, size_t seam_count, ur_unfolding *out,
+                    ur_error *error);
+
+void ur_unfolding_free(ur_unfolding *unfolding);
+
 #endif

@@ -42,6 +42,7 @@ typedef struct ur_op_style {
     char layer[64];    /* layer name shown in the cutter software */
     char colour[8];    /* "#RRGGBB" */
     double line_width; /* stroke width in mm */
+    char dash[32];     /* dash pattern, mm: "3 1.5" (dash, gap, ...); empty for solid */
 } ur_op_style;
 
 typedef enum ur_machine_kind { UR_MACHINE_LASER, UR_MACHINE_ROUTER } ur_machine_kind;

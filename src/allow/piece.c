@@ -81,6 +81,11 @@ ur_status ur_piece_from_net(const ur_net *net, const ur_allowance_options *optio
         ur_piece_add_path(piece, UR_OP_CUT, net->outline, net->outline_count, true, error);
     if (status == UR_OK && options && options->draw_rulings)
         status = add_rulings(piece, net, error);
+    for (size_t k = 0; status == UR_OK && k < net->fold_count; k++) {
+        ur_vec2 ends[2] = {net->folds[k].start, net->folds[k].end};
+        status = ur_piece_add_path(piece, net->fold_valley[k] ? UR_OP_SCORE_VALLEY : UR_OP_SCORE,
+                                   ends, 2, false, error);
+    }
     if (status == UR_OK)
         status = copy_shading(piece, &net->shading, error);
     if (status != UR_OK)

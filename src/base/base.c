@@ -53,7 +53,8 @@ ur_status ur_error_out_of_memory(ur_error *error)
     return ur_error_set(error, UR_ERROR_INTERNAL, "out of memory");
 }
 
-static const char *const op_names[UR_OP_COUNT] = {"cut", "score", "kerf", "engrave", "mark"};
+static const char *const op_names[UR_OP_COUNT] = {"cut",  "score",   "score-valley",
+                                                  "kerf", "engrave", "mark"};
 
 const char *ur_op_name(ur_op op)
 {

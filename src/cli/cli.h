@@ -43,8 +43,9 @@ typedef struct cli_job {
     double scale;          /* NAN when not given */
     const char *seam_paths[16];
     size_t seam_count;
-    int flatten;       /* ur_flatten_method, or -1 for the default */
-    size_t iterations; /* 0: the default */
+    int flatten;                 /* ur_flatten_method, or -1 for the default */
+    bool unfold;                 /* --flatten unfold: along the mesh's edges, every face exact */
+    size_t iterations;           /* 0: the default */
     const char *strain_png_path; /* --strain-png */
     /* analyze and compare */
     const char *png_path, *csv_path;

@@ -131,6 +131,56 @@ static double mesh_size(const ur_mesh *mesh)
     return ur_vec3_distance(low, high);
 }
 
+/* A piece of an unfolding as a net: its outline, its folds, no strain. */
+static ur_status net_of_unfolded(const ur_unfolded_piece *piece, size_t index, ur_net *net,
+                                 ur_error *error)
+{
+    memset(net, 0, sizeof *net);
+    snprintf(net->name, sizeof net->name, "P%zu", index + 1);
+    net->outline = ur_alloc_array(piece->outline_count, sizeof *net->outline, error);
+    net->folds = ur_alloc_array(piece->fold_count, sizeof *net->folds, error);
+    net->fold_valley = ur_alloc_array(piece->fold_count, sizeof *net->fold_valley, error);
+    if (!net->outline || !net->folds || !net->fold_valley)
+        return UR_ERROR_INTERNAL;
+    memcpy(net->outline, piece->outline, piece->outline_count * sizeof *net->outline);
+    net->outline_count = piece->outline_count;
+    for (size_t k = 0; k < piece->fold_count; k++) {
+        net->folds[k] = (ur_segment){piece->folds[k].start, piece->folds[k].end};
+        net->fold_valley[k] = piece->folds[k].valley;
+    }
+    net->fold_count = piece->fold_count;
+    net->area_3d = piece->area_3d;
+    net->flat_area = piece->flat_area;
+    return UR_OK;
+}
+
+/* Unfolds along the edges: every face keeps its exact shape. */
+static int unfold_mesh(const cli_job *job, const ur_mesh *mesh, const ur_seam *seams,
+                       size_t seam_count, ur_net_list *nets, double *area)
+{
+    ur_unfolding unfolding;
+    ur_error error;
+    if (ur_unfold(mesh, seams, seam_count, &unfolding, &error) != UR_OK)
+        return fail(job, &error);
+    int code = 0;
+    nets->nets = ur_alloc_array(unfolding.count, sizeof *nets->nets, &error);
+    if (!nets->nets)
+        code = fail(job, &error);
+    *area = 0.0;
+    for (size_t k = 0; !code && k < unfolding.count; k++) {
+        nets->count++;
+        if (net_of_unfolded(&unfolding.pieces[k], k, &nets->nets[k], &error) != UR_OK)
+            code = fail(job, &error);
+        *area += unfolding.pieces[k].area_3d;
+    }
+    if (!code && !job->quiet)
+        cli_message("%s: unfolded into %zu piece%s: %zu folds (%zu valleys), %zu seams",
+                    job->command, unfolding.count, unfolding.count == 1 ? "" : "s", unfolding.folds,
+                    unfolding.valleys, unfolding.seams);
+    ur_unfolding_free(&unfolding);
+    return code;
+}
+
 /* Cleans, cuts into disks and flattens; repairs are news only for a mesh from a file. */
 static int nets_of_mesh(const cli_job *job, ur_mesh *mesh, bool tell_repairs, ur_net_list *nets,
                         double *area)
@@ -146,6 +196,11 @@ static int nets_of_mesh(const cli_job *job, ur_mesh *mesh, bool tell_repairs, ur
     ur_seam *seams = NULL;
     size_t seam_count = 0;
     int code = read_seams(job, mesh, 1e-4 * size, &seams, &seam_count);
+    if (!code && job->unfold) {
+        code = unfold_mesh(job, mesh, seams, seam_count, nets, area);
+        free(seams);
+        return code;
+    }
     ur_mesh_piece *pieces = NULL;
     size_t piece_count = 0;
     if (!code && ur_mesh_pieces(mesh, seams, seam_count, &pieces, &piece_count, &error) != UR_OK)

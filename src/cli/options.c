@@ -122,7 +122,8 @@ static const struct {
     cli_action action;
     const char *options;
 } action_options[] = {
-    {CLI_DEVELOP, " output machine material sheet method parts rulings no-split report strain-png "},
+    {CLI_DEVELOP,
+     " output machine material sheet method parts rulings no-split report strain-png "},
     {CLI_ANALYZE, " png report "},
     {CLI_COMPARE, " png csv "},
 };
@@ -374,10 +375,16 @@ static bool take_option(cli_job *job, int id, const char *value)
         job->seam_paths[job->seam_count++] = value;
         return true;
     case OPT_FLATTEN:
-        job->flatten = ur_flatten_method_from_name(value);
-        if (job->flatten < 0)
-            cli_message("%s: --flatten: '%s' is not one of arap, lscm", job->command, value);
-        return job->flatten >= 0;
+        job->unfold = strcmp(value, "unfold") == 0;
+        job->flatten = job->unfold ? -1 : ur_flatten_method_from_name(value);
+        if (job->flatten < 0 && !job->unfold)
+            cli_message("%s: --flatten: '%s' is not one of arap, lscm, unfold", job->command,
+                        value);
+        if (job->unfold && strcmp(job->surface, "mesh") != 0)
+            cli_message("%s: --flatten unfold goes with 'unroll mesh' (it unfolds a polyhedron "
+                        "along its edges)",
+                        job->command);
+        return job->flatten >= 0 || (job->unfold && strcmp(job->surface, "mesh") == 0);
     case OPT_ITERATIONS:
         return parse_iterations(job, value);
     case OPT_PNG:

@@ -286,8 +286,10 @@ static int flatten_if_needed(const cli_job *job, job_state *state, bool *flatten
 static int make_nets(const cli_job *job, job_state *state, cli_adjusted_rail *adjusted,
                      ur_vec3 **edge, size_t *edge_count)
 {
-    state->method = ur_flatten_method_name(job->flatten >= 0 ? (ur_flatten_method)job->flatten
-                                                             : UR_FLATTEN_ARAP);
+    state->method = job->unfold
+                        ? "unfold"
+                        : ur_flatten_method_name(job->flatten >= 0 ? (ur_flatten_method)job->flatten
+                                                                   : UR_FLATTEN_ARAP);
     if (strcmp(job->surface, "mesh") == 0)
         return cli_mesh_nets(job, &state->nets, &state->surface_area);
     int code = cli_build_surface(job, &state->ruled, adjusted);

@@ -480,6 +480,8 @@ void ur_net_list_free(ur_net_list *nets)
     for (size_t k = 0; k < nets->count; k++) {
         free(nets->nets[k].outline);
         free(nets->nets[k].rulings);
+        free(nets->nets[k].folds);
+        free(nets->nets[k].fold_valley);
         free(nets->nets[k].shading.triangles);
         free(nets->nets[k].shading.strain);
     }

@@ -567,6 +567,31 @@ static ur_status read_colour(const ur_reader *reader, xmlNodePtr element, char c
     return UR_OK;
 }
 
+/* An optional dash="3 1.5": positive lengths in mm separated by spaces. */
+static ur_status read_dash(const ur_reader *reader, xmlNodePtr element, char *dash, size_t size)
+{
+    dash[0] = '\0';
+    if (!xmlHasProp(element, BAD_CAST "dash"))
+        return UR_OK;
+    ur_status status = attribute_text(reader, element, "dash", dash, size);
+    if (status != UR_OK)
+        return status;
+    const char *p = dash;
+    int lengths = 0;
+    while (*p) {
+        char *end;
+        double length = strtod(p, &end);
+        if (end == p || !(length > 0) || !isfinite(length) || (*end && *end != ' '))
+            return reader_fail(reader, element,
+                               "dash must be lengths in mm separated by spaces, not '%s'", dash);
+        lengths++;
+        p = *end ? end + 1 : end;
+    }
+    if (lengths == 0)
+        return reader_fail(reader, element, "dash is empty");
+    return UR_OK;
+}
+
 static ur_status read_style(const ur_reader *reader, xmlNodePtr element, ur_op_style *style)
 {
     ur_status status = attribute_text(reader, element, "layer", style->layer, sizeof style->layer);
@@ -575,6 +600,8 @@ static ur_status read_style(const ur_reader *reader, xmlNodePtr element, ur_op_s
     if (status == UR_OK)
         status =
             attribute_number(reader, element, "line-width", true, &positive, &style->line_width);
+    if (status == UR_OK)
+        status = read_dash(reader, element, style->dash, sizeof style->dash);
     return status;
 }
 

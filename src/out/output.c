@@ -21,9 +21,9 @@
  * lines and relief cuts, and the through cuts last so that no part drops out
  * or shifts before everything on it is done.
  */
-_Static_assert(UR_OP_COUNT == 5, "put every operation into cut_order");
-static const ur_op cut_order[UR_OP_COUNT] = {UR_OP_ENGRAVE, UR_OP_MARK, UR_OP_SCORE, UR_OP_KERF,
-                                             UR_OP_CUT};
+_Static_assert(UR_OP_COUNT == 6, "put every operation into cut_order");
+static const ur_op cut_order[UR_OP_COUNT] = {UR_OP_ENGRAVE, UR_OP_MARK,  UR_OP_SCORE,
+                                             UR_OP_SCORE_VALLEY, UR_OP_KERF, UR_OP_CUT};
 
 /* Longest path name we build; longer output names are refused, not cut off. */
 enum { NAME_SIZE = 4096 };

@@ -122,7 +122,7 @@ def valid_svg(svg_file, width, height):
     check(root.get("width") == "%gmm" % width and root.get("height") == "%gmm" % height,
           "size %s x %s" % (root.get("width"), root.get("height")))
     check(root.get("viewBox") == "0 0 %g %g" % (width, height), "viewBox " + root.get("viewBox"))
-    for layer in ("cut", "score", "kerf", "engrave", "mark"):
+    for layer in ("cut", "score", "score-valley", "kerf", "engrave", "mark"):
         group = root.find("%sg[@id='%s']" % (SVG, layer))
         check(group is not None, "no layer " + layer)
         check(group.get(INKSCAPE + "groupmode") == "layer", "layer %s not an Inkscape layer" % layer)
@@ -623,6 +623,28 @@ def closed_mesh_is_cut_and_flattened(work):
     for outline in outlines(os.path.join(work, "s.svg")):
         check(simple_ring(outline), "an outline crosses itself")
     check("piece" in result.stderr, result.stderr)
+
+
+@test
+def unfolding_keeps_every_face(work):
+    result = run(work, "mesh", os.path.join(REPO, "samples", "icosphere.obj"), "--flatten",
+                 "unfold", "-o", "u.svg", "--report", "u.json")
+    counts = re.search(r"unfolded into (\d+) pieces?: (\d+) folds \((\d+) valleys\), (\d+) seams",
+                       result.stderr)
+    check(counts, result.stderr)
+    pieces = report(work, "u.json")["pieces"]
+    for piece in pieces:
+        close(piece["flat_area_mm2"], piece["area_3d_mm2"], 1e-9, "an unfolded piece's area")
+        check(piece["max_stretch"] == 0 and piece["max_compression"] == 0, "strain %r" % piece)
+    for outline in outlines(os.path.join(work, "u.svg")):
+        check(simple_ring(outline), "an outline crosses itself")
+    # A convex polyhedron folds only one way: every fold a mountain.
+    folds = paths(os.path.join(work, "u.svg"), "score")
+    check(len(folds) == int(counts.group(2)) and counts.group(3) == "0",
+          "%d mountain folds drawn, %s reported" % (len(folds), counts.group(2)))
+    check(not paths(os.path.join(work, "u.svg"), "score-valley"), "valley folds on a sphere")
+    bad(work, r"--flatten unfold goes with 'unroll mesh'", "hypar", "--corners", HYPAR,
+        "--flatten", "unfold", "-o", "x.svg")
 
 
 @test

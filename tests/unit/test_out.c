@@ -91,6 +91,7 @@ static void make_machine(ur_machine *machine)
     snprintf(machine->name, sizeof machine->name, "test-laser");
     set_style(machine, UR_OP_CUT, "Cut", "#FF0000", 0.025);
     set_style(machine, UR_OP_SCORE, "Score", "#0000FF", 0.025);
+    set_style(machine, UR_OP_SCORE_VALLEY, "Score valley", "#00E0E0", 0.025);
     set_style(machine, UR_OP_KERF, "Kerf", "#00E000", 0.025);
     set_style(machine, UR_OP_ENGRAVE, "Engrave", "#000000", 0.1);
     set_style(machine, UR_OP_MARK, "Mark", "#FF00FF", 0.05);
@@ -266,6 +267,7 @@ static const layer_expectation sheet_one_layers[] = {
     {"engrave", "Engrave", "#000000", "0.1", {"M 295 305 L 285 305", NULL}},
     {"mark", "Mark", "#FF00FF", "0.05", {NULL}},
     {"score", "Score", "#0000FF", "0.025", {"M 150 330 L 100 330", NULL}},
+    {"score-valley", "Score valley", "#00E0E0", "0.025", {NULL}},
     {"kerf", "Kerf", "#00E000", "0.025", {NULL}},
     {"cut",
      "Cut",
@@ -373,7 +375,7 @@ static void test_svg_several_sheets(void **state)
     assert_attribute(svg, NULL, "viewBox", "0 0 300 200");
     /* The square at (10, 10)..(20, 20), y flipped against 200. */
     xmlNode *cut = element(svg->children, "g");
-    for (int i = 0; cut && i < 4; i++) /* engrave, mark, score, kerf come first */
+    for (int i = 0; cut && i < 5; i++) /* engrave, mark, score, score-valley, kerf first */
         cut = element(cut->next, "g");
     assert_non_null(cut);
     assert_attribute(cut, NULL, "id", "cut");

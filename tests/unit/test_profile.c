@@ -287,6 +287,8 @@ static const char good_machine_tail[] =
     "  <speed cut=\"10\" travel=\"100\"/>\n"
     "  <operation name=\"cut\" layer=\"Cut\" colour=\"#ff0000\" line-width=\"0.025\"/>\n"
     "  <operation name=\"score\" layer=\"Score\" colour=\"#0000FF\" line-width=\"0.025\"/>\n"
+    "  <operation name=\"score-valley\" layer=\"Valley\" colour=\"#00E0E0\" line-width=\"0.025\"\n"
+    "             dash=\"3 1.5\"/>\n"
     "  <operation name=\"kerf\" layer=\"Kerf\" colour=\"#00E000\" line-width=\"0.025\"/>\n"
     "  <operation name=\"engrave\" layer=\"Engrave\" colour=\"#000000\" line-width=\"0.1\"/>\n"
     "  <operation name=\"mark\" layer=\"Mark\" colour=\"#FF00FF\" line-width=\"0.025\"/>\n"

@@ -1,0 +1,795 @@
+/*
+ * test_unfold.c: the exact unfolding of polyhedra built here (a cube, an
+ * icosahedron, a 500-face torus and a 500-face bumpy sphere, a flat fan, a
+ * lampshade of 32-bit coordinates, open and grouped meshes, two faces
+ * folded either way), checked by code of its own rather than the
+ * library's: every flat triangle congruent to its 3D triangle, no two
+ * triangles of a piece overlapping (a pairwise 2D test), which edges a
+ * piece joins found from the flat corners, each fold's mountain or valley
+ * found from which side of one face the other face's far corner lies on,
+ * outlines walked edge by edge, and every edge counted exactly once as a
+ * fold, a flat join, a seam or a boundary edge.
+ */
+#include "test_support.h"
+
+#include <stdlib.h>
+
+#include "unroll/flatten.h"
+
+#define assert_message(error, text)                                                                \
+    do {                                                                                           \
+        if (!strstr((error).message, (text)))                                                      \
+            fail_msg("message \"%s\" does not say \"%s\"", (error).message, (text));               \
+    } while (0)
+
+/* ---- building meshes ---- */
+
+typedef struct builder {
+    ur_vec3 *vertices;
+    size_t vertex_count;
+    size_t (*triangles)[3];
+    size_t *groups;
+    size_t triangle_count;
+} builder;
+
+static size_t add_vertex(builder *b, ur_vec3 p)
+{
+    b->vertices = realloc(b->vertices, (b->vertex_count + 1) * sizeof *b->vertices);
+    assert_non_null(b->vertices);
+    b->vertices[b->vertex_count] = p;
+    return b->vertex_count++;
+}
+
+static void add_triangle(builder *b, size_t v0, size_t v1, size_t v2, size_t group)
+{
+    size_t t = b->triangle_count++;
+    b->triangles = realloc(b->triangles, b->triangle_count * sizeof *b->triangles);
+    b->groups = realloc(b->groups, b->triangle_count * sizeof *b->groups);
+    assert_non_null(b->triangles);
+    assert_non_null(b->groups);
+    b->triangles[t][0] = v0;
+    b->triangles[t][1] = v1;
+    b->triangles[t][2] = v2;
+    b->groups[t] = group;
+}
+
+static ur_vec3 normal_of(const ur_vec3 *v, const size_t tri[3])
+{
+    return ur_vec3_cross(ur_vec3_sub(v[tri[1]], v[tri[0]]), ur_vec3_sub(v[tri[2]], v[tri[0]]));
+}
+
+/* Adds the triangle turned, if need be, so that its normal points away from centre. */
+static void add_outward(builder *b, size_t v0, size_t v1, size_t v2, ur_vec3 centre)
+{
+    size_t tri[3] = {v0, v1, v2};
+    ur_vec3 middle = ur_vec3_scale(
+        ur_vec3_add(ur_vec3_add(b->vertices[v0], b->vertices[v1]), b->vertices[v2]), 1.0 / 3);
+    if (ur_vec3_dot(normal_of(b->vertices, tri), ur_vec3_sub(middle, centre)) > 0)
+        add_triangle(b, v0, v1, v2, 0);
+    else
+        add_triangle(b, v0, v2, v1, 0);
+}
+
+/* Signed volume (positive when the triangles face outward). */
+static double signed_volume(const builder *b)
+{
+    double volume = 0;
+    for (size_t t = 0; t < b->triangle_count; t++) {
+        const size_t *tri = b->triangles[t];
+        volume += ur_vec3_det(b->vertices[tri[0]], b->vertices[tri[1]], b->vertices[tri[2]]) / 6;
+    }
+    return volume;
+}
+
+/* Turns every triangle of a closed mesh whose triangles face inward. */
+static void face_outward(builder *b)
+{
+    if (signed_volume(b) > 0)
+        return;
+    for (size_t t = 0; t < b->triangle_count; t++) {
+        size_t swap = b->triangles[t][1];
+        b->triangles[t][1] = b->triangles[t][2];
+        b->triangles[t][2] = swap;
+    }
+}
+
+static ur_mesh build(builder *b)
+{
+    ur_mesh mesh;
+    ur_error error;
+    if (ur_mesh_new(b->vertices, b->vertex_count, (const size_t(*)[3])b->triangles,
+                    b->triangle_count, b->groups, &mesh, &error) != UR_OK)
+        fail_msg("ur_mesh_new: %s", error.message);
+    free(b->vertices);
+    free(b->triangles);
+    free(b->groups);
+    memset(b, 0, sizeof *b);
+    return mesh;
+}
+
+/* Corners of a cube of side 40 at (5, -3, 2); vertex x + 2 y + 4 z. */
+static void cube_vertices(builder *b)
+{
+    for (int i = 0; i < 8; i++)
+        add_vertex(b, ur_vec3_make(5 + 40 * (i & 1), -3 + 40 * (i >> 1 & 1), 2 + 40 * (i >> 2)));
+}
+
+/* The quads of the cube, each split on its diagonal from its first corner. */
+static const size_t cube_quads[6][4] = {{0, 1, 3, 2}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                                        {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 3, 7, 5}};
+
+/* A closed cube of 12 triangles facing outward; open leaves out the top (z = 42). */
+static ur_mesh cube(bool open)
+{
+    builder b = {0};
+    cube_vertices(&b);
+    ur_vec3 centre = ur_vec3_make(25, 17, 22);
+    for (int f = 0; f < 6; f++) {
+        if (open && f == 1)
+            continue;
+        const size_t *q = cube_quads[f];
+        add_outward(&b, q[0], q[1], q[2], centre);
+        add_outward(&b, q[0], q[2], q[3], centre);
+    }
+    return build(&b);
+}
+
+/* The regular icosahedron of edge 2: the vertices (0, +-1, +-phi) and their cyclic turns. */
+static ur_mesh icosahedron(void)
+{
+    builder b = {0};
+    double phi = (1 + sqrt(5)) / 2;
+    for (int turn = 0; turn < 3; turn++)
+        for (int s = 0; s < 4; s++) {
+            double c[3] = {0, s & 1 ? -1 : 1, s & 2 ? -phi : phi};
+            add_vertex(&b, ur_vec3_make(c[turn % 3], c[(turn + 1) % 3], c[(turn + 2) % 3]));
+        }
+    for (size_t i = 0; i < 12; i++)
+        for (size_t j = i + 1; j < 12; j++)
+            for (size_t k = j + 1; k < 12; k++)
+                if (fabs(ur_vec3_distance(b.vertices[i], b.vertices[j]) - 2) < 1e-9 &&
+                    fabs(ur_vec3_distance(b.vertices[j], b.vertices[k]) - 2) < 1e-9 &&
+                    fabs(ur_vec3_distance(b.vertices[i], b.vertices[k]) - 2) < 1e-9)
+                    add_outward(&b, i, j, k, ur_vec3_make(0, 0, 0));
+    assert_int_equal(b.triangle_count, 20);
+    return build(&b);
+}
+
+/* A torus, around x around, tube around the tube: 2 around tube triangles. */
+static ur_mesh torus(size_t around, size_t tube, double big, double small)
+{
+    builder b = {0};
+    for (size_t i = 0; i < around; i++)
+        for (size_t j = 0; j < tube; j++) {
+            double u = 2 * M_PI * (double)i / (double)around;
+            double v = 2 * M_PI * (double)j / (double)tube;
+            double r = big + small * cos(v);
+            add_vertex(&b, ur_vec3_make(r * cos(u), r * sin(u), small * sin(v)));
+        }
+    for (size_t i = 0; i < around; i++)
+        for (size_t j = 0; j < tube; j++) {
+            size_t p00 = i * tube + j, p01 = i * tube + (j + 1) % tube;
+            size_t p10 = (i + 1) % around * tube + j,
+                   p11 = (i + 1) % around * tube + (j + 1) % tube;
+            add_triangle(&b, p00, p10, p11, 0);
+            add_triangle(&b, p00, p11, p01, 0);
+        }
+    face_outward(&b);
+    return build(&b);
+}
+
+/*
+ * A globe of radius 50: two poles and rings rings of around points, every
+ * third point pushed in by a fifth of the radius so that edges around it
+ * are concave.  2 around (rings - 1) + 2 around triangles.
+ */
+static ur_mesh bumpy_sphere(size_t around, size_t rings)
+{
+    builder b = {0};
+    size_t north = add_vertex(&b, ur_vec3_make(0, 0, 50));
+    for (size_t j = 0; j < rings; j++)
+        for (size_t i = 0; i < around; i++) {
+            double theta = M_PI * (double)(j + 1) / (double)(rings + 1);
+            double phi = 2 * M_PI * ((double)i + 0.5 * (double)(j % 2)) / (double)around;
+            double r = (j * around + i) % 3 == 0 ? 40 : 50;
+            add_vertex(&b, ur_vec3_make(r * sin(theta) * cos(phi), r * sin(theta) * sin(phi),
+                                        r * cos(theta)));
+        }
+    size_t south = add_vertex(&b, ur_vec3_make(0, 0, -50));
+    for (size_t i = 0; i < around; i++) {
+        size_t i1 = (i + 1) % around;
+        add_triangle(&b, north, 1 + i, 1 + i1, 0);
+        add_triangle(&b, south, 1 + (rings - 1) * around + i1, 1 + (rings - 1) * around + i, 0);
+        for (size_t j = 0; j + 1 < rings; j++) {
+            size_t a = 1 + j * around + i, c = 1 + j * around + i1;
+            size_t d = a + around, e = c + around;
+            add_triangle(&b, a, d, e, 0);
+            add_triangle(&b, a, e, c, 0);
+        }
+    }
+    face_outward(&b);
+    return build(&b);
+}
+
+/* n triangles round a centre, all in z = 0 (flat: their angles add to 2 pi). */
+static ur_mesh flat_fan(size_t n)
+{
+    builder b = {0};
+    size_t centre = add_vertex(&b, ur_vec3_make(0, 0, 0));
+    for (size_t i = 0; i < n; i++) {
+        double a = 2 * M_PI * (double)i / (double)n;
+        add_vertex(&b, ur_vec3_make(30 * cos(a) + (i % 2) * 3, 30 * sin(a), 0));
+    }
+    for (size_t i = 0; i < n; i++)
+        add_triangle(&b, centre, 1 + i, 1 + (i + 1) % n, 0);
+    return build(&b);
+}
+
+/*
+ * A lampshade as a modeller exports it: a frustum of a cone (radii 100 and
+ * 60, 120 high), around quads round and rows up, each quad split in two,
+ * every coordinate rounded to a 32-bit float.  Its quads are flat and its
+ * creases straight only to that rounding.
+ */
+static ur_mesh float_frustum(size_t around, size_t rows)
+{
+    builder b = {0};
+    for (size_t j = 0; j <= rows; j++)
+        for (size_t i = 0; i < around; i++) {
+            double t = (double)j / (double)rows, a = 2 * M_PI * (double)i / (double)around;
+            double r = 100 - 40 * t;
+            add_vertex(&b,
+                       ur_vec3_make((float)(r * cos(a)), (float)(r * sin(a)), (float)(120 * t)));
+        }
+    for (size_t j = 0; j < rows; j++)
+        for (size_t i = 0; i < around; i++) {
+            size_t p00 = j * around + i, p10 = j * around + (i + 1) % around;
+            add_triangle(&b, p00, p10, p10 + around, 0);
+            add_triangle(&b, p00, p10 + around, p00 + around, 0);
+        }
+    return build(&b);
+}
+
+/* ---- checking an unfolding, independently of the library ---- */
+
+/* An undirected edge of the mesh and the triangles on it (second is SIZE_MAX on the boundary). */
+typedef struct edge {
+    size_t low, high;
+    size_t first, second;
+} edge;
+
+static int compare_edges(const void *a, const void *b)
+{
+    const edge *x = a, *y = b;
+    if (x->low != y->low)
+        return x->low < y->low ? -1 : 1;
+    return (x->high > y->high) - (x->high < y->high);
+}
+
+/* The edges of a manifold mesh, sorted; *count of them. */
+static edge *mesh_edges(const ur_mesh *mesh, size_t *count)
+{
+    size_t n = 3 * mesh->triangle_count;
+    edge *all = malloc(n * sizeof *all);
+    assert_non_null(all);
+    for (size_t h = 0; h < n; h++) {
+        size_t a = mesh->triangles[h / 3][h % 3], b = mesh->triangles[h / 3][(h % 3 + 1) % 3];
+        all[h] = (edge){a < b ? a : b, a < b ? b : a, h / 3, SIZE_MAX};
+    }
+    qsort(all, n, sizeof *all, compare_edges);
+    size_t kept = 0;
+    for (size_t i = 0; i < n; i++) {
+        if (kept > 0 && compare_edges(&all[i], &all[kept - 1]) == 0) {
+            assert_int_equal(all[kept - 1].second, SIZE_MAX);
+            all[kept - 1].second = all[i].first;
+        } else
+            all[kept++] = all[i];
+    }
+    *count = kept;
+    return all;
+}
+
+static edge *find_edge(edge *edges, size_t count, size_t a, size_t b)
+{
+    edge key = {a < b ? a : b, a < b ? b : a, 0, 0};
+    return bsearch(&key, edges, count, sizeof *edges, compare_edges);
+}
+
+/* Where each triangle went: its piece and its place there. */
+typedef struct placement {
+    size_t piece, index;
+} placement;
+
+static placement *placements(const ur_mesh *mesh, const ur_unfolding *u)
+{
+    placement *where = malloc(mesh->triangle_count * sizeof *where);
+    assert_non_null(where);
+    for (size_t t = 0; t < mesh->triangle_count; t++)
+        where[t].piece = SIZE_MAX;
+    for (size_t p = 0; p < u->count; p++)
+        for (size_t i = 0; i < u->pieces[p].triangle_count; i++) {
+            size_t t = u->pieces[p].triangles[i];
+            assert_true(t < mesh->triangle_count);
+            assert_int_equal(where[t].piece, SIZE_MAX); /* laid once */
+            where[t] = (placement){p, i};
+        }
+    for (size_t t = 0; t < mesh->triangle_count; t++)
+        assert_int_not_equal(where[t].piece, SIZE_MAX); /* laid at all */
+    return where;
+}
+
+/* The flat position of mesh vertex v in triangle t as laid. */
+static ur_vec2 flat_vertex(const ur_mesh *mesh, const ur_unfolding *u, const placement *where,
+                           size_t t, size_t v)
+{
+    for (int k = 0; k < 3; k++)
+        if (mesh->triangles[t][k] == v)
+            return u->pieces[where[t].piece].flat[where[t].index][k];
+    fail_msg("vertex %zu is not a corner of triangle %zu", v, t);
+    return ur_vec2_make(0, 0);
+}
+
+static double mesh_size(const ur_mesh *mesh)
+{
+    ur_box box = ur_box_empty();
+    double low_z = INFINITY, high_z = -INFINITY;
+    for (size_t v = 0; v < mesh->vertex_count; v++) {
+        ur_box_add(&box, ur_vec2_make(mesh->vertices[v].x, mesh->vertices[v].y));
+        low_z = fmin(low_z, mesh->vertices[v].z);
+        high_z = fmax(high_z, mesh->vertices[v].z);
+    }
+    return sqrt(pow(ur_box_width(box), 2) + pow(ur_box_height(box), 2) + pow(high_z - low_z, 2));
+}
+
+/*
+ * Whether the edge's two faces lie in one piece, edge on edge: a join, seen
+ * from the net.  Within a millionth of the mesh's size, so that a mesh of
+ * 32-bit coordinates, whose flat regions close up only to about 1e-7, is
+ * judged as a cutter would.
+ */
+static bool joined(const ur_mesh *mesh, const ur_unfolding *u, const placement *where,
+                   const edge *e)
+{
+    if (e->second == SIZE_MAX || where[e->first].piece != where[e->second].piece)
+        return false;
+    double tolerance = 1e-6 * mesh_size(mesh);
+    return ur_vec2_distance(flat_vertex(mesh, u, where, e->first, e->low),
+                            flat_vertex(mesh, u, where, e->second, e->low)) <= tolerance &&
+           ur_vec2_distance(flat_vertex(mesh, u, where, e->first, e->high),
+                            flat_vertex(mesh, u, where, e->second, e->high)) <= tolerance;
+}
+
+/* The corner of triangle t that is on neither end of the edge. */
+static size_t far_corner(const ur_mesh *mesh, size_t t, const edge *e)
+{
+    for (int k = 0; k < 3; k++)
+        if (mesh->triangles[t][k] != e->low && mesh->triangles[t][k] != e->high)
+            return mesh->triangles[t][k];
+    fail_msg("triangle %zu has no corner off its edge", t);
+    return 0;
+}
+
+/*
+ * +1 where the surface is concave across the edge (a valley), -1 where it
+ * is convex (a mountain): the side of the first face's plane that the
+ * second face's far corner lies on.  *angle is the angle between normals.
+ */
+static int concavity(const ur_mesh *mesh, const edge *e, double *angle)
+{
+    const ur_vec3 *v = mesh->vertices;
+    ur_vec3 n1 = normal_of(v, mesh->triangles[e->first]);
+    ur_vec3 n2 = normal_of(v, mesh->triangles[e->second]);
+    double side = ur_vec3_dot(n1, ur_vec3_sub(v[far_corner(mesh, e->second, e)], v[e->low]));
+    double c = ur_vec3_dot(n1, n2) / (ur_vec3_length(n1) * ur_vec3_length(n2));
+    *angle = acos(fmax(-1.0, fmin(1.0, c)));
+    return side > 0 ? 1 : -1;
+}
+
+static void check_congruent(const ur_mesh *mesh, const ur_unfolded_piece *piece)
+{
+    for (size_t i = 0; i < piece->triangle_count; i++) {
+        const size_t *tri = mesh->triangles[piece->triangles[i]];
+        for (int k = 0; k < 3; k++) {
+            double space =
+                ur_vec3_distance(mesh->vertices[tri[k]], mesh->vertices[tri[(k + 1) % 3]]);
+            assert_relative(ur_vec2_distance(piece->flat[i][k], piece->flat[i][(k + 1) % 3]), space,
+                            1e-9);
+        }
+        assert_true(ur_polygon_signed_area(piece->flat[i], 3) > 0); /* outside face up */
+    }
+}
+
+static double orientation(ur_vec2 a, ur_vec2 b, ur_vec2 c)
+{
+    return ur_vec2_cross(ur_vec2_sub(b, a), ur_vec2_sub(c, a));
+}
+
+static bool crosses(ur_vec2 a, ur_vec2 b, ur_vec2 c, ur_vec2 d)
+{
+    double o1 = orientation(a, b, c), o2 = orientation(a, b, d);
+    double o3 = orientation(c, d, a), o4 = orientation(c, d, b);
+    return ((o1 > 0 && o2 < 0) || (o1 < 0 && o2 > 0)) && ((o3 > 0 && o4 < 0) || (o3 < 0 && o4 > 0));
+}
+
+static bool strictly_inside(ur_vec2 p, const ur_vec2 t[3])
+{
+    for (int k = 0; k < 3; k++)
+        if (orientation(t[k], t[(k + 1) % 3], p) <= 0)
+            return false;
+    return true;
+}
+
+/*
+ * The triangle shrunk towards its centroid until its edges have moved in
+ * by at least margin, so that touching is not overlap.
+ */
+static void shrink(const ur_vec2 in[3], double margin, ur_vec2 out[3])
+{
+    ur_vec2 c = ur_vec2_scale(ur_vec2_add(ur_vec2_add(in[0], in[1]), in[2]), 1.0 / 3);
+    double nearest = INFINITY; /* from the centroid to an edge's line */
+    for (int k = 0; k < 3; k++) {
+        ur_vec2 a = in[k], b = in[(k + 1) % 3];
+        nearest = fmin(nearest, fabs(orientation(a, b, c)) / ur_vec2_distance(a, b));
+    }
+    double keep = fmax(0.5, 1 - margin / nearest);
+    for (int k = 0; k < 3; k++)
+        out[k] = ur_vec2_add_scaled(c, ur_vec2_sub(in[k], c), keep);
+}
+
+/* Whether two triangles overlap by more than margin. */
+static bool overlap(const ur_vec2 first[3], const ur_vec2 second[3], double margin)
+{
+    ur_vec2 a[3], b[3];
+    shrink(first, margin, a);
+    shrink(second, margin, b);
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++)
+            if (crosses(a[i], a[(i + 1) % 3], b[j], b[(j + 1) % 3]))
+                return true;
+    return strictly_inside(a[0], b) || strictly_inside(b[0], a);
+}
+
+/*
+ * No two triangles of a piece overlap by more than 1e-6 of the mesh's
+ * size, the tolerance within which the library joins edges that close a
+ * ring round a vertex (flatten.h).
+ */
+static void check_no_overlap(const ur_mesh *mesh, const ur_unfolded_piece *piece)
+{
+    double margin = 1e-6 * mesh_size(mesh);
+    for (size_t i = 0; i < piece->triangle_count; i++)
+        for (size_t j = i + 1; j < piece->triangle_count; j++)
+            if (overlap(piece->flat[i], piece->flat[j], margin))
+                fail_msg("triangles %zu and %zu of a piece overlap", piece->triangles[i],
+                         piece->triangles[j]);
+}
+
+/* The outline: a simple counter-clockwise ring of the piece's edges that are not joined. */
+static void check_outline(const ur_mesh *mesh, const ur_unfolded_piece *piece, size_t open_edges)
+{
+    size_t n = piece->outline_count;
+    assert_int_equal(n, open_edges);
+    /* An outline point where a ring closed up is either triangle's copy of the vertex. */
+    double tolerance = 2e-6 * mesh_size(mesh);
+    for (size_t i = 0; i < n; i++) {
+        size_t j = (i + 1) % n;
+        double space = ur_vec3_distance(mesh->vertices[piece->outline_vertices[i]],
+                                        mesh->vertices[piece->outline_vertices[j]]);
+        double plane = ur_vec2_distance(piece->outline[i], piece->outline[j]);
+        if (!(fabs(plane - space) <= tolerance))
+            fail_msg("outline edge %zu is %.12g long, its 3D edge %.12g", i, plane, space);
+        for (size_t k = i + 2; k < n; k++)
+            if ((k + 1) % n != i)
+                assert_false(crosses(piece->outline[i], piece->outline[j], piece->outline[k],
+                                     piece->outline[(k + 1) % n]));
+    }
+    double flat = 0;
+    for (size_t i = 0; i < piece->triangle_count; i++)
+        flat += ur_polygon_signed_area(piece->flat[i], 3);
+    assert_relative(ur_polygon_signed_area(piece->outline, n), flat, 1e-6);
+    assert_relative(piece->flat_area, ur_polygon_signed_area(piece->outline, n), 1e-12);
+    assert_relative(piece->area_3d, flat, 1e-9);
+}
+
+/* A fold of the piece: on a joined edge, at the flat corners of its ends, with the right sign. */
+static void check_fold(const ur_mesh *mesh, const ur_unfolding *u, const placement *where,
+                       edge *edges, size_t edge_count, size_t p, const ur_fold *fold, bool *listed)
+{
+    edge *e = find_edge(edges, edge_count, fold->a, fold->b);
+    assert_non_null(e);
+    assert_true(joined(mesh, u, where, e));
+    assert_int_equal(where[e->first].piece, p);
+    assert_false(listed[e - edges]);
+    listed[e - edges] = true;
+    double angle;
+    int sign = concavity(mesh, e, &angle);
+    assert_true(angle >= UR_UNFOLD_FLAT_ANGLE);
+    if (fold->valley != (sign > 0))
+        fail_msg("the fold between vertices %zu and %zu is a %s, but the edge is %s", fold->a,
+                 fold->b, fold->valley ? "valley" : "mountain", sign > 0 ? "concave" : "convex");
+    assert_true(fabs(fold->angle - angle) < 1e-9);
+    double tolerance = 2e-6 * mesh_size(mesh); /* either triangle's copy of the edge */
+    assert_true(ur_vec2_distance(fold->start, flat_vertex(mesh, u, where, e->first, fold->a)) <=
+                tolerance);
+    assert_true(ur_vec2_distance(fold->end, flat_vertex(mesh, u, where, e->first, fold->b)) <=
+                tolerance);
+}
+
+/* What an unfolding is made of, counted by the test. */
+typedef struct tally {
+    size_t folds, valleys, flat, seams, boundary;
+} tally;
+
+/*
+ * Checks everything above and returns the counts found from the net; the
+ * seams and group boundaries must not be joined.
+ */
+static tally check_unfolding(const ur_mesh *mesh, const ur_unfolding *u, const ur_seam *seams,
+                             size_t seam_count)
+{
+    size_t edge_count;
+    edge *edges = mesh_edges(mesh, &edge_count);
+    placement *where = placements(mesh, u);
+    bool *listed = calloc(edge_count, sizeof *listed);
+    size_t *open_edges = calloc(u->count, sizeof *open_edges);
+    assert_non_null(listed);
+    assert_non_null(open_edges);
+    tally found = {0};
+    for (size_t i = 0; i < edge_count; i++) {
+        edge *e = &edges[i];
+        double angle;
+        if (e->second == SIZE_MAX) {
+            found.boundary++;
+            open_edges[where[e->first].piece]++;
+        } else if (!joined(mesh, u, where, e)) {
+            found.seams++;
+            open_edges[where[e->first].piece]++;
+            open_edges[where[e->second].piece]++;
+        } else {
+            int sign = concavity(mesh, e, &angle);
+            found.flat += angle < UR_UNFOLD_FLAT_ANGLE;
+            found.folds += angle >= UR_UNFOLD_FLAT_ANGLE;
+            found.valleys += angle >= UR_UNFOLD_FLAT_ANGLE && sign > 0;
+        }
+        if (e->second != SIZE_MAX && mesh->groups &&
+            mesh->groups[e->first] != mesh->groups[e->second])
+            assert_false(joined(mesh, u, where, e));
+    }
+    for (size_t s = 0; s < seam_count; s++)
+        assert_false(joined(mesh, u, where, find_edge(edges, edge_count, seams[s].a, seams[s].b)));
+    size_t listed_folds = 0;
+    for (size_t p = 0; p < u->count; p++) {
+        const ur_unfolded_piece *piece = &u->pieces[p];
+        check_congruent(mesh, piece);
+        check_no_overlap(mesh, piece);
+        check_outline(mesh, piece, open_edges[p]);
+        for (size_t f = 0; f < piece->fold_count; f++)
+            check_fold(mesh, u, where, edges, edge_count, p, &piece->folds[f], listed);
+        listed_folds += piece->fold_count;
+    }
+    assert_int_equal(listed_folds, found.folds); /* every fold is listed */
+    assert_int_equal(u->folds, found.folds);
+    assert_int_equal(u->valleys, found.valleys);
+    assert_int_equal(u->flat, found.flat);
+    assert_int_equal(u->seams, found.seams);
+    assert_int_equal(u->boundary, found.boundary);
+    assert_int_equal(found.folds + found.flat + found.seams + found.boundary, edge_count);
+    free(edges);
+    free(where);
+    free(listed);
+    free(open_edges);
+    return found;
+}
+
+static ur_unfolding unfold(const ur_mesh *mesh, const ur_seam *seams, size_t seam_count)
+{
+    ur_unfolding u;
+    ur_error error;
+    if (ur_unfold(mesh, seams, seam_count, &u, &error) != UR_OK)
+        fail_msg("ur_unfold: %s", error.message);
+    return u;
+}
+
+/* ---- the tests ---- */
+
+static void test_cube(void **state)
+{
+    (void)state;
+    ur_mesh mesh = cube(false);
+    ur_unfolding u = unfold(&mesh, NULL, 0);
+    tally t = check_unfolding(&mesh, &u, NULL, 0);
+    /* A cube unfolds in one piece: its 6 squares along 5 of its 12 edges. */
+    assert_int_equal(u.count, 1);
+    assert_int_equal(t.folds, 5);
+    assert_int_equal(t.flat, 6); /* the squares' diagonals */
+    assert_int_equal(t.seams, 7);
+    assert_int_equal(t.valleys, 0);
+    for (size_t f = 0; f < u.pieces[0].fold_count; f++)
+        assert_relative(u.pieces[0].folds[f].angle, M_PI / 2, 1e-12);
+    assert_relative(u.pieces[0].area_3d, 6 * 40 * 40, 1e-12);
+    ur_unfolding_free(&u);
+    ur_mesh_free(&mesh);
+}
+
+static void test_icosahedron(void **state)
+{
+    (void)state;
+    ur_mesh mesh = icosahedron();
+    ur_unfolding u = unfold(&mesh, NULL, 0);
+    tally t = check_unfolding(&mesh, &u, NULL, 0);
+    assert_int_equal(t.valleys, 0);
+    assert_int_equal(t.flat, 0);
+    /* A spanning forest of the 20 faces: 19 folds in one piece, one fewer per piece more. */
+    assert_int_equal(t.folds, 20 - u.count);
+    assert_int_equal(t.seams, 30 - t.folds);
+    for (size_t p = 0; p < u.count; p++)
+        for (size_t f = 0; f < u.pieces[p].fold_count; f++)
+            assert_relative(u.pieces[p].folds[f].angle, acos(sqrt(5) / 3), 1e-12);
+    ur_unfolding_free(&u);
+    ur_mesh_free(&mesh);
+}
+
+static void test_torus(void **state)
+{
+    (void)state;
+    ur_mesh mesh = torus(25, 10, 60, 25);
+    assert_int_equal(mesh.triangle_count, 500);
+    ur_unfolding u = unfold(&mesh, NULL, 0);
+    tally t = check_unfolding(&mesh, &u, NULL, 0);
+    assert_true(t.valleys > 0);           /* the inside of the ring is concave one way */
+    assert_true(t.folds - t.valleys > 0); /* and the outside convex */
+    assert_true(t.flat > 0);              /* each quad of a torus is flat: its diagonal */
+    /* A piece is a tree of faces (no vertex of a torus is flat): one fold fewer than faces. */
+    assert_int_equal(t.folds + t.flat, 500 - u.count);
+    ur_unfolding_free(&u);
+    ur_mesh_free(&mesh);
+}
+
+static void test_bumpy_sphere(void **state)
+{
+    (void)state;
+    ur_mesh mesh = bumpy_sphere(25, 10);
+    assert_int_equal(mesh.triangle_count, 500);
+    ur_unfolding u = unfold(&mesh, NULL, 0);
+    tally t = check_unfolding(&mesh, &u, NULL, 0);
+    assert_true(t.valleys > 0);
+    assert_true(t.folds > t.valleys);
+    assert_int_equal(t.folds + t.flat, 500 - u.count);
+    ur_unfolding_free(&u);
+    ur_mesh_free(&mesh);
+}
+
+/* Around a flat vertex the last triangle lands edge on edge with the first: joined there too. */
+static void test_flat_fan_closes(void **state)
+{
+    (void)state;
+    ur_mesh mesh = flat_fan(7);
+    ur_unfolding u = unfold(&mesh, NULL, 0);
+    tally t = check_unfolding(&mesh, &u, NULL, 0);
+    assert_int_equal(u.count, 1);
+    assert_int_equal(t.flat, 7);
+    assert_int_equal(t.folds + t.seams, 0);
+    assert_int_equal(u.pieces[0].outline_count, 7); /* the centre is inside */
+    ur_unfolding_free(&u);
+    ur_mesh_free(&mesh);
+}
+
+/* Float coordinates: the strips still close up along their straight creases, in one sector. */
+static void test_float_frustum(void **state)
+{
+    (void)state;
+    ur_mesh mesh = float_frustum(24, 3);
+    ur_unfolding u = unfold(&mesh, NULL, 0);
+    tally t = check_unfolding(&mesh, &u, NULL, 0);
+    assert_int_equal(u.count, 1); /* an annular sector of 114 degrees */
+    assert_int_equal(t.boundary, 48);
+    assert_int_equal(t.flat, 24 * 3 + 24 * 2); /* diagonals, and rows of one strip */
+    assert_int_equal(t.seams, 3);              /* one ruling, cut */
+    assert_int_equal(t.folds, 23 * 3);
+    ur_unfolding_free(&u);
+    ur_mesh_free(&mesh);
+}
+
+/* An open box: its rim is boundary, a user seam and a group boundary are cut. */
+static void test_seams_groups_and_boundary(void **state)
+{
+    (void)state;
+    ur_mesh mesh = cube(true);
+    assert_int_equal(mesh.triangle_count, 10);
+    mesh.groups[0] = mesh.groups[1] = 1; /* the bottom */
+    mesh.group_count = 2;
+    ur_seam seams[] = {{0, 4}, {4, 0}}; /* a vertical edge, twice */
+    ur_unfolding u = unfold(&mesh, seams, 2);
+    tally t = check_unfolding(&mesh, &u, seams, 2);
+    assert_int_equal(t.boundary, 4);
+    assert_true(u.count >= 2); /* the bottom is a piece of its own */
+    assert_true(t.seams >= 5); /* four edges of the bottom and the user's seam */
+    ur_unfolding_free(&u);
+    ur_mesh_free(&mesh);
+}
+
+static void expect_refused(const ur_mesh *mesh, const ur_seam *seams, size_t seam_count,
+                           const char *text)
+{
+    ur_unfolding u;
+    ur_error error;
+    assert_int_equal(ur_unfold(mesh, seams, seam_count, &u, &error), UR_ERROR_INPUT);
+    assert_message(error, text);
+    assert_null(u.pieces);
+    assert_int_equal(u.count, 0);
+}
+
+static void test_refusals(void **state)
+{
+    (void)state;
+    ur_mesh mesh = cube(false);
+    ur_seam bad_seam = {0, 7}, far_seam = {0, 99};
+    expect_refused(&mesh, &bad_seam, 1, "seam 1 (vertices 1 and 8) is not an edge");
+    expect_refused(&mesh, &far_seam, 1, "seam 1 names vertex 100");
+    size_t swap = mesh.triangles[3][1];
+    mesh.triangles[3][1] = mesh.triangles[3][2];
+    mesh.triangles[3][2] = swap;
+    expect_refused(&mesh, NULL, 0, "not consistently oriented");
+    mesh.vertices[5].x = NAN;
+    expect_refused(&mesh, NULL, 0, "vertex 6 has a coordinate that is not a finite number");
+    mesh.triangle_count = 0;
+    expect_refused(&mesh, NULL, 0, "no triangles");
+    ur_mesh_free(&mesh);
+
+    builder b = {0}; /* three triangles on one edge */
+    for (int i = 0; i < 5; i++)
+        add_vertex(&b, ur_vec3_make(i < 2 ? 0 : cos(i), i < 2 ? 0 : sin(i), i == 1 ? 1 : 0));
+    for (size_t i = 2; i < 5; i++)
+        add_triangle(&b, 0, 1, i, 0);
+    ur_mesh fin = build(&b);
+    expect_refused(&fin, NULL, 0, "non-manifold edge");
+    ur_mesh_free(&fin);
+
+    for (int i = 0; i < 4; i++) /* a triangle of no area beside one of some */
+        add_vertex(&b, ur_vec3_make(i, i == 3, 0));
+    add_triangle(&b, 0, 1, 3, 0);
+    add_triangle(&b, 0, 1, 2, 0);
+    ur_mesh flat = build(&b);
+    expect_refused(&flat, NULL, 0, "triangle 2 has no area");
+    ur_mesh_free(&flat);
+}
+
+/* The folds show which side is which: a single fold between two triangles, both ways. */
+static void test_one_fold_each_way(void **state)
+{
+    (void)state;
+    for (int way = -1; way <= 1; way += 2) {
+        builder b = {0};
+        add_vertex(&b, ur_vec3_make(0, 0, 0));
+        add_vertex(&b, ur_vec3_make(10, 0, 0));
+        add_vertex(&b, ur_vec3_make(5, 8, 0));
+        add_vertex(&b, ur_vec3_make(5, -8, 3 * way)); /* up: concave; down: convex */
+        add_triangle(&b, 0, 1, 2, 0);
+        add_triangle(&b, 1, 0, 3, 0);
+        ur_mesh mesh = build(&b);
+        ur_unfolding u = unfold(&mesh, NULL, 0);
+        check_unfolding(&mesh, &u, NULL, 0);
+        assert_int_equal(u.count, 1);
+        assert_int_equal(u.pieces[0].fold_count, 1);
+        assert_int_equal(u.pieces[0].folds[0].valley, way > 0);
+        assert_relative(u.pieces[0].folds[0].angle, atan2(3, 8), 1e-12);
+        ur_unfolding_free(&u);
+        ur_mesh_free(&mesh);
+    }
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_cube),
+        cmocka_unit_test(test_icosahedron),
+        cmocka_unit_test(test_torus),
+        cmocka_unit_test(test_bumpy_sphere),
+        cmocka_unit_test(test_flat_fan_closes),
+        cmocka_unit_test(test_float_frustum),
+        cmocka_unit_test(test_seams_groups_and_boundary),
+        cmocka_unit_test(test_refusals),
+        cmocka_unit_test(test_one_fold_each_way),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
