@@ -138,6 +138,15 @@ ur_status ur_mesh_boundary(const ur_mesh *mesh, size_t **loop, size_t *count, ur
 /* 3D area (sum of triangle areas). */
 double ur_mesh_area(const ur_mesh *mesh);
 
+/* The diagonal of the mesh's bounding box (0 without vertices): its size. */
+double ur_mesh_size(const ur_mesh *mesh);
+
+/* A triangle of less area than this times the square of the mesh's size has none. */
+#define UR_MESH_ZERO_AREA 1e-12
+
+/* Refuses (UR_ERROR_INPUT, naming it 1-based) a vertex with a NaN or infinite coordinate. */
+ur_status ur_mesh_check_vertices(const ur_vec3 *vertices, size_t count, ur_error *error);
+
 /*
  * Triangulates a ruled surface over its whole domain: along + 1 rulings
  * evenly spaced in u, each cut into across parts, every quad split on its

@@ -119,18 +119,6 @@ static void say_repairs(const cli_job *job, const ur_mesh_repairs *repairs)
                     repairs->flipped);
 }
 
-/* The mesh's size: the diagonal of its bounding box. */
-static double mesh_size(const ur_mesh *mesh)
-{
-    ur_vec3 low = mesh->vertices[0], high = low;
-    for (size_t i = 1; i < mesh->vertex_count; i++) {
-        ur_vec3 p = mesh->vertices[i];
-        low = ur_vec3_make(fmin(low.x, p.x), fmin(low.y, p.y), fmin(low.z, p.z));
-        high = ur_vec3_make(fmax(high.x, p.x), fmax(high.y, p.y), fmax(high.z, p.z));
-    }
-    return ur_vec3_distance(low, high);
-}
-
 /* A piece of an unfolding as a net: its outline, its folds, no strain. */
 static ur_status net_of_unfolded(const ur_unfolded_piece *piece, size_t index, ur_net *net,
                                  ur_error *error)
@@ -187,7 +175,7 @@ static int nets_of_mesh(const cli_job *job, ur_mesh *mesh, bool tell_repairs, ur
 {
     ur_error error;
     ur_mesh_repairs repairs;
-    double size = mesh->vertex_count ? mesh_size(mesh) : 0.0;
+    double size = mesh->vertex_count ? ur_mesh_size(mesh) : 0.0;
     double weld = 1e-6 * size; /* well below any modelling detail, above float rounding */
     if (ur_mesh_clean(mesh, weld, &repairs, &error) != UR_OK)
         return fail(job, &error);

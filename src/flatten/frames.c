@@ -13,20 +13,6 @@
  * has none: the bound ur_mesh_clean drops triangles by, so that a cleaned
  * mesh is never refused here.
  */
-#define ZERO_AREA 1e-12
-
-static ur_status check_vertices(const ur_mesh *mesh, ur_error *error)
-{
-    for (size_t v = 0; v < mesh->vertex_count; v++) {
-        ur_vec3 p = mesh->vertices[v];
-        if (!isfinite(p.x) || !isfinite(p.y) || !isfinite(p.z))
-            return ur_error_set(error, UR_ERROR_INPUT,
-                                "vertex %zu has a coordinate that is not a finite number: "
-                                "(%g, %g, %g)",
-                                v + 1, p.x, p.y, p.z);
-    }
-    return UR_OK;
-}
 
 static ur_status check_triangles(const ur_mesh *mesh, ur_error *error)
 {
@@ -48,20 +34,8 @@ static ur_status check_mesh(const ur_mesh *mesh, ur_error *error)
         return ur_error_set(error, UR_ERROR_INPUT, "the piece has no triangles");
     if (mesh->vertex_count == 0 || !mesh->vertices)
         return ur_error_set(error, UR_ERROR_INPUT, "the piece has no vertices");
-    ur_status status = check_vertices(mesh, error);
+    ur_status status = ur_mesh_check_vertices(mesh->vertices, mesh->vertex_count, error);
     return status ? status : check_triangles(mesh, error);
-}
-
-/* The diagonal of the piece's bounding box: what "zero area" is measured against. */
-static double mesh_size(const ur_mesh *mesh)
-{
-    ur_vec3 low = mesh->vertices[0], high = low;
-    for (size_t v = 1; v < mesh->vertex_count; v++) {
-        ur_vec3 p = mesh->vertices[v];
-        low = ur_vec3_make(fmin(low.x, p.x), fmin(low.y, p.y), fmin(low.z, p.z));
-        high = ur_vec3_make(fmax(high.x, p.x), fmax(high.y, p.y), fmax(high.z, p.z));
-    }
-    return ur_vec3_distance(low, high);
 }
 
 /* The cotangent of the angle at corner k: dot over cross of the two sides leaving it. */
@@ -104,8 +78,8 @@ ur_status flat_frames(const ur_mesh *mesh, flat_frame **frames, ur_error *error)
     flat_frame *made = ur_alloc_array(mesh->triangle_count, sizeof *made, error);
     if (!made)
         return UR_ERROR_INTERNAL;
-    double size = mesh_size(mesh);
-    double smallest = ZERO_AREA * size * size;
+    double size = ur_mesh_size(mesh);
+    double smallest = UR_MESH_ZERO_AREA * size * size;
     for (size_t t = 0; t < mesh->triangle_count; t++) {
         const size_t *c = mesh->triangles[t];
         if (!make_frame(mesh->vertices[c[0]], mesh->vertices[c[1]], mesh->vertices[c[2]], smallest,

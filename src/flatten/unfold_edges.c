@@ -16,22 +16,6 @@
 
 #include <stdlib.h>
 
-/* The bound ur_mesh_clean drops triangles by: below it, a triangle has no area. */
-#define ZERO_AREA 1e-12
-
-static ur_status check_vertices(const ur_mesh *mesh, ur_error *error)
-{
-    for (size_t v = 0; v < mesh->vertex_count; v++) {
-        ur_vec3 p = mesh->vertices[v];
-        if (!isfinite(p.x) || !isfinite(p.y) || !isfinite(p.z))
-            return ur_error_set(error, UR_ERROR_INPUT,
-                                "vertex %zu has a coordinate that is not a finite number: "
-                                "(%g, %g, %g)",
-                                v + 1, p.x, p.y, p.z);
-    }
-    return UR_OK;
-}
-
 /* Twice the triangle's area as a vector along its normal. */
 static ur_vec3 area_vector(const ur_mesh *mesh, size_t t)
 {
@@ -53,7 +37,8 @@ static ur_status measure(const ur_mesh *mesh, unfold_edges *edges, ur_error *err
     edges->scale = ur_vec3_distance(low, high);
     double total = 0.0;
     for (size_t t = 0; t < mesh->triangle_count; t++) {
-        if (0.5 * ur_vec3_length(area_vector(mesh, t)) <= ZERO_AREA * edges->scale * edges->scale)
+        if (0.5 * ur_vec3_length(area_vector(mesh, t)) <=
+            UR_MESH_ZERO_AREA * edges->scale * edges->scale)
             return ur_error_set(error, UR_ERROR_INPUT, "triangle %zu has no area", t + 1);
         for (size_t k = 0; k < 3; k++)
             total += ur_vec3_distance(mesh->vertices[unfold_from(mesh, 3 * t + k)],
@@ -193,7 +178,7 @@ ur_status unfold_edges_build(const ur_mesh *mesh, const ur_seam *seams, size_t s
         return ur_error_set(error, UR_ERROR_INPUT, "the mesh has no triangles to unfold");
     if (seam_count > 0 && !seams)
         return ur_error_set(error, UR_ERROR_INTERNAL, "ur_unfold: seam_count without seams");
-    ur_status status = check_vertices(mesh, error);
+    ur_status status = ur_mesh_check_vertices(mesh->vertices, mesh->vertex_count, error);
     if (status == UR_OK)
         status = ur_mesh_twins(mesh, &edges->twins, error);
     if (status == UR_OK)

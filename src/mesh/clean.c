@@ -12,9 +12,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* A triangle of less area than this times the square of the mesh's size has none. */
-#define ZERO_AREA 1e-12
-
 typedef struct cleaning {
     const ur_mesh *mesh; /* the input */
     size_t *map;         /* input vertex -> kept input vertex, then -> cleaned vertex */
@@ -46,23 +43,11 @@ static ur_status check_input(const ur_mesh *mesh, double tolerance, ur_error *er
                             tolerance);
     if (mesh->triangle_count == 0)
         return ur_error_set(error, UR_ERROR_INPUT, "the mesh has no triangles");
-    ur_status status = mesh_check_vertices(mesh->vertices, mesh->vertex_count, error);
+    ur_status status = ur_mesh_check_vertices(mesh->vertices, mesh->vertex_count, error);
     if (status == UR_OK)
         status = mesh_check_triangles((const size_t(*)[3])mesh->triangles, mesh->triangle_count,
                                       mesh->vertex_count, error);
     return status;
-}
-
-/* The diagonal of the mesh's bounding box: what "zero area" is measured against. */
-static double mesh_size(const ur_mesh *mesh)
-{
-    ur_vec3 low = mesh->vertices[0], high = low;
-    for (size_t v = 1; v < mesh->vertex_count; v++) {
-        ur_vec3 p = mesh->vertices[v];
-        low = ur_vec3_make(fmin(low.x, p.x), fmin(low.y, p.y), fmin(low.z, p.z));
-        high = ur_vec3_make(fmax(high.x, p.x), fmax(high.y, p.y), fmax(high.z, p.z));
-    }
-    return ur_vec3_distance(low, high);
 }
 
 static bool is_degenerate(const ur_vec3 *vertices, const size_t c[3], double smallest)
@@ -83,7 +68,7 @@ static ur_status drop_degenerate(cleaning *c, ur_error *error)
     c->source = ur_alloc_array(mesh->triangle_count, sizeof *c->source, error);
     if (!c->triangles || !c->groups || !c->source)
         return UR_ERROR_INTERNAL;
-    double size = mesh_size(mesh), smallest = ZERO_AREA * size * size;
+    double size = ur_mesh_size(mesh), smallest = UR_MESH_ZERO_AREA * size * size;
     for (size_t t = 0; t < mesh->triangle_count; t++) {
         size_t welded[3];
         for (int k = 0; k < 3; k++)

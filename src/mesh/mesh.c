@@ -8,7 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-ur_status mesh_check_vertices(const ur_vec3 *vertices, size_t count, ur_error *error)
+ur_status ur_mesh_check_vertices(const ur_vec3 *vertices, size_t count, ur_error *error)
 {
     for (size_t i = 0; i < count; i++) {
         ur_vec3 p = vertices[i];
@@ -48,7 +48,7 @@ ur_status ur_mesh_new(const ur_vec3 *vertices, size_t vertex_count, const size_t
                       size_t triangle_count, const size_t *groups, ur_mesh *mesh, ur_error *error)
 {
     memset(mesh, 0, sizeof *mesh);
-    ur_status status = mesh_check_vertices(vertices, vertex_count, error);
+    ur_status status = ur_mesh_check_vertices(vertices, vertex_count, error);
     if (status == UR_OK)
         status = mesh_check_triangles(triangles, triangle_count, vertex_count, error);
     if (status != UR_OK)
@@ -93,4 +93,17 @@ double ur_mesh_area(const ur_mesh *mesh)
         area += 0.5 * ur_vec3_length(ur_vec3_cross(ab, ac));
     }
     return area;
+}
+
+double ur_mesh_size(const ur_mesh *mesh)
+{
+    if (mesh->vertex_count == 0)
+        return 0.0;
+    ur_vec3 low = mesh->vertices[0], high = low;
+    for (size_t v = 1; v < mesh->vertex_count; v++) {
+        ur_vec3 p = mesh->vertices[v];
+        low = ur_vec3_make(fmin(low.x, p.x), fmin(low.y, p.y), fmin(low.z, p.z));
+        high = ur_vec3_make(fmax(high.x, p.x), fmax(high.y, p.y), fmax(high.z, p.z));
+    }
+    return ur_vec3_distance(low, high);
 }

@@ -24,9 +24,6 @@ static inline size_t mesh_to(const size_t (*triangles)[3], size_t half_edge)
     return triangles[half_edge / 3][(half_edge % 3 + 1) % 3];
 }
 
-/* Refuses a NaN or infinite coordinate, naming the vertex (1-based). */
-ur_status mesh_check_vertices(const ur_vec3 *vertices, size_t count, ur_error *error);
-
 /* Refuses a vertex index out of range, naming the triangle (1-based). */
 ur_status mesh_check_triangles(const size_t (*triangles)[3], size_t count, size_t vertex_count,
                                ur_error *error);
