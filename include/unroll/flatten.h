@@ -187,4 +187,110 @@ ur_status ur_unfold(const ur_mesh *mesh, const ur_seam *seams, size_t seam_count
 
 void ur_unfolding_free(ur_unfolding *unfolding);
 
+/*
+ * ---- Flattening in strips (strips.c) ----
+ *
+ * A surface that one piece cannot lay flat within the material's strain is
+ * cut into strips, each flattened on its own (ur_flatten), and the fewest
+ * strips are found whose worst stretch (sigma1 - 1) and compression
+ * (1 - sigma2) stay within the limits.  A ruled surface is cut along its
+ * rulings into strips of equal width in u; a mesh is cut by parallel
+ * planes into bands (mesh.h, ur_mesh_bands) that run along the way it
+ * turns least.  Neighbouring strips share the cut between them, and strips
+ * are numbered in order across the surface so that they can be put back
+ * together.
+ *
+ * The search assumes that the worst strain falls as the strips narrow,
+ * which it does on a smooth surface: a narrow strip strains by about its
+ * Gaussian curvature times the square of its width.  It doubles the count
+ * from 1 until the strips fit, then bisects between the last count that
+ * did not fit and the first that did, so it flattens about 2 log2 N counts
+ * to find N.  Where the strain does not fall steadily (a coarse mesh, a
+ * surface whose curvature sits in one place that some counts cut across
+ * and others do not) the count found fits, and no count below it that was
+ * tried does, but a smaller one that was not tried might.
+ *
+ * A ruled surface is triangulated with 24 parts across each ruling and,
+ * along it, about 96 parts over the whole surface, at least 8 in each
+ * strip; each strip is triangulated, cleaned (welding at a millionth of its
+ * size) and cut into disks on its own (ur_mesh_from_ruled, ur_mesh_clean,
+ * ur_mesh_pieces).
+ */
+
+typedef struct ur_strip_limits {
+    double max_stretch;     /* largest sigma1 - 1 allowed (0.005 is 0.5 %) */
+    double max_compression; /* largest 1 - sigma2 allowed */
+    size_t max_strips;      /* refuse a surface that needs more strips than this */
+} ur_strip_limits;
+
+/* One piece of one strip. */
+typedef struct ur_strip {
+    /*
+     * The piece, a topological disk, and its layout with its strain.  Its
+     * vertices are the strip's own (piece.original numbers the vertices of
+     * the strip's mesh before it was cut into disks, of no use outside).
+     */
+    ur_mesh_piece piece;
+    ur_flat_piece flat;
+    size_t band; /* which strip, from 0, in order across the surface */
+    /*
+     * Where the strip lies: for a ruled surface its range of u; for a mesh
+     * the offsets along the direction of its two planes (the mesh's extent
+     * for the outer side of the first and the last).
+     */
+    double start, end;
+    /*
+     * Ruled surfaces: the rulings the piece shares with the strips before
+     * and after it (seams[0] at start, then the one at end; on a closed
+     * surface the first and the last strip share one too), flat, between
+     * the layout's points of the ruling's two ends.  Meshes: none.
+     */
+    ur_segment seams[2];
+    size_t seam_count;
+} ur_strip;
+
+typedef struct ur_strips {
+    ur_strip *strips;  /* owned: band by band, in order */
+    size_t count;      /* pieces: one a strip, more where a band of a mesh falls apart */
+    size_t bands;      /* how many strips the surface was cut into */
+    ur_vec3 direction; /* meshes: the unit normal of the cutting planes; zero for ruled */
+    double max_stretch, max_compression; /* the worst over the pieces */
+    bool flipped; /* a piece came out with a triangle turned over (never when within limits) */
+    size_t tried; /* ur_flatten_strips_*: how many counts of strips were flattened */
+} ur_strips;
+
+/*
+ * The fewest strips of the ruled surface (of the part of it in use,
+ * ur_ruled_restrict) whose pieces are all laid flat within the limits,
+ * none with a triangle turned over.  options may be NULL (the defaults).
+ * The surface's restriction is as it was afterwards, also on failure.
+ * Refuses (UR_ERROR_INPUT) limits that are not numbers >= 0 or max_strips
+ * 0, and a surface that needs more than max_strips strips: "the surface
+ * needs more than N strips to stay within 0.5 % stretch and 3 %
+ * compression: with N, strip K still stretches ... % and compresses ...
+ * %", for the caller to add how to allow more.  Free the result with
+ * ur_strips_free; it is empty on failure.
+ */
+ur_status ur_flatten_strips_ruled(ur_ruled *ruled, const ur_strip_limits *limits,
+                                  const ur_flatten_options *options, ur_strips *strips,
+                                  ur_error *error);
+
+/*
+ * The same for a mesh, manifold and consistently oriented (as
+ * ur_mesh_clean leaves it), cut by planes perpendicular to direction, or
+ * when it is NULL to ur_mesh_bending_direction, at ur_mesh_band_planes;
+ * each band is cut into disks by ur_mesh_pieces (groups still cut).
+ */
+ur_status ur_flatten_strips_mesh(const ur_mesh *mesh, const ur_vec3 *direction,
+                                 const ur_strip_limits *limits, const ur_flatten_options *options,
+                                 ur_strips *strips, ur_error *error);
+
+/* Exactly count strips, each flattened, whatever their strain (tried is 1). */
+ur_status ur_strips_of_ruled(ur_ruled *ruled, size_t count, const ur_flatten_options *options,
+                             ur_strips *strips, ur_error *error);
+ur_status ur_strips_of_mesh(const ur_mesh *mesh, ur_vec3 direction, size_t count,
+                            const ur_flatten_options *options, ur_strips *strips, ur_error *error);
+
+void ur_strips_free(ur_strips *strips);
+
 #endif

@@ -160,4 +160,70 @@ ur_status ur_mesh_check_vertices(const ur_vec3 *vertices, size_t count, ur_error
 ur_status ur_mesh_from_ruled(ur_ruled *ruled, size_t along, size_t across, ur_mesh *mesh,
                              ur_error *error);
 
+/*
+ * ---- Bands between parallel planes (bands.c) ----
+ *
+ * To flatten a mesh in strips (flatten.h, ur_flatten_strips_mesh) it is
+ * cut by parallel planes into bands.  The planes are perpendicular to the
+ * direction in which the surface turns most, so that each band runs along
+ * the way it turns least, as a boat's planks run along its hull: a band of
+ * a cylinder lies along the axis and is exactly developable.  A narrow
+ * band strains by about its Gaussian curvature times the square of its
+ * width whichever way it runs, but on a saddle bent more one way than the
+ * other, bands along the flatter way need fewer of them (test_strips.c).
+ * Parallel planes suit open shells best: on a closed tube the bands at its
+ * flanks, where the planes touch it, fold round it and come out about
+ * twice as wide as the others, and strain most.
+ */
+
+/*
+ * The unit vector in which the mesh's normals vary most: the eigenvector
+ * of the largest eigenvalue of the normals' spread about their mean,
+ * sum over the triangles of area (n - m)(n - m)^T, n a triangle's unit
+ * normal and m their area-weighted mean.  For a cylinder it is
+ * perpendicular to the axis (for part of one, along the chord of its arc),
+ * for a sphere or a saddle as curved one way as the other any direction
+ * across it will do.  A flat mesh, whose normals do not vary, gives the
+ * direction of its longest extent.  Normals are taken as the triangles
+ * run, so the mesh must be consistently oriented (ur_mesh_clean); the sign
+ * makes the largest component positive.  Refuses (UR_ERROR_INPUT) a mesh
+ * with no triangles or no area.
+ */
+ur_status ur_mesh_bending_direction(const ur_mesh *mesh, ur_vec3 *direction, ur_error *error);
+
+/*
+ * Offsets (p . d, d the unit direction) of count - 1 planes, increasing,
+ * into planes[0 .. count - 2], that cut the mesh into count bands of about
+ * the same width measured on the surface: width accumulates along d as
+ * area over section length, so that where the surface runs nearly parallel
+ * to the planes (the flanks of a whole cylinder) they come closer
+ * together, and a gap in the mesh takes no band.  Nothing is written for
+ * count 1.  Refuses (UR_ERROR_INPUT) count 0, a direction of no length and
+ * a mesh with no extent along it.
+ */
+ur_status ur_mesh_band_planes(const ur_mesh *mesh, ur_vec3 direction, size_t count, double *planes,
+                              ur_error *error);
+
+/*
+ * Cuts the mesh into count bands between the count - 1 planes p . d =
+ * planes[j] (d the unit direction, planes increasing): every triangle a
+ * plane crosses is split along it, each part triangulated, so that the
+ * bands' edges are the plane sections and neighbouring bands share them
+ * vertex for vertex.  Band b lies between planes[b - 1] and planes[b] (the
+ * first and the last reach to infinity); a triangle of band b in group g
+ * gets group b * mesh->group_count + g, so ur_mesh_pieces separates the
+ * bands (and the groups, as before) and b is group / mesh->group_count.
+ * Triangles come band by band, each band's in the order of the triangles
+ * they come from, so that pieces come in band order; a triangle keeps its
+ * orientation.  The vertices of the mesh come first with their numbers,
+ * then the points where planes cross edges, once per edge and plane.  A
+ * vertex within a millionth of the mesh's extent along d of a plane is
+ * taken to lie on it, so that no sliver of a triangle comes out; the area
+ * is kept to rounding.  Free the result with ur_mesh_free.  Refuses
+ * (UR_ERROR_INPUT) count 0, planes that do not increase, a direction of no
+ * length and a mesh with no triangles or a bad vertex or index.
+ */
+ur_status ur_mesh_bands(const ur_mesh *mesh, ur_vec3 direction, const double *planes, size_t count,
+                        ur_mesh *banded, ur_error *error);
+
 #endif

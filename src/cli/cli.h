@@ -10,6 +10,7 @@
 
 #include "unroll/develop.h"
 #include "unroll/geom.h"
+#include "unroll/io.h"
 
 enum { EXIT_INTERNAL = 1, EXIT_USAGE = 2 };
 
@@ -45,6 +46,8 @@ typedef struct cli_job {
     size_t seam_count;
     int flatten;                 /* ur_flatten_method, or -1 for the default */
     bool unfold;                 /* --flatten unfold: along the mesh's edges, every face exact */
+    bool strips;                 /* --flatten strips: the fewest strips within the strain allowed */
+    double max_strain;           /* --max-strain, or NAN for the material's */
     size_t iterations;           /* 0: the default */
     const char *strain_png_path; /* --strain-png */
     /* analyze and compare */
@@ -90,10 +93,11 @@ int cli_exit_status(const ur_error *error);
  * unroll mesh FILE (meshes.c): the nets of a mesh's pieces, flattened with
  * their strain; returns 0 or an exit status after a message.
  */
-int cli_mesh_nets(const cli_job *job, ur_net_list *nets, double *area);
+int cli_mesh_nets(const cli_job *job, const ur_material *material, ur_net_list *nets, double *area);
 
 /* The nets of a non-developable ruled surface, flattened with strain (meshes.c). */
-int cli_flatten_ruled(const cli_job *job, ur_ruled *ruled, ur_net_list *nets, double *area);
+int cli_flatten_ruled(const cli_job *job, const ur_material *material, ur_ruled *ruled,
+                      ur_net_list *nets, double *area);
 
 /* unroll profiles [show NAME] */
 int cli_profiles(int argc, char **argv);

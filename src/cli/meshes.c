@@ -169,9 +169,66 @@ static int unfold_mesh(const cli_job *job, const ur_mesh *mesh, const ur_seam *s
     return code;
 }
 
+/* The strain --flatten strips keeps within: the material's, or --max-strain for both. */
+static ur_strip_limits strip_limits(const cli_job *job, const ur_material *material)
+{
+    ur_strip_limits limits = {material->max_stretch, material->max_compression, 64};
+    if (!isnan(job->max_strain))
+        limits.max_stretch = limits.max_compression = job->max_strain;
+    return limits;
+}
+
+/* The strips' pieces as nets S1, S2, ... in order across the surface. */
+static int nets_of_strips(const cli_job *job, const ur_strips *strips,
+                          const ur_strip_limits *limits, ur_net_list *nets, double *area)
+{
+    ur_error error;
+    nets->nets = ur_alloc_array(strips->count, sizeof *nets->nets, &error);
+    if (!nets->nets)
+        return fail(job, &error);
+    *area = 0.0;
+    for (size_t k = 0; k < strips->count; k++) {
+        const ur_strip *strip = &strips->strips[k];
+        char name[32];
+        snprintf(name, sizeof name, "S%zu", strip->band + 1);
+        if (ur_net_from_flat(&strip->piece.mesh, &strip->flat, name, &nets->nets[k], &error) !=
+            UR_OK)
+            return fail(job, &error);
+        nets->count++;
+        *area += nets->nets[k].area_3d;
+    }
+    if (!job->quiet)
+        cli_message("%s: %zu strip%s keep the strain within %.3g %% stretch and %.3g %% "
+                    "compression (at most %.3g %% and %.3g %%)",
+                    job->command, strips->bands, strips->bands == 1 ? "" : "s",
+                    100 * limits->max_stretch, 100 * limits->max_compression,
+                    100 * strips->max_stretch, 100 * strips->max_compression);
+    return 0;
+}
+
+/* --flatten strips on a mesh or a ruled surface (mesh NULL), with the material's limits. */
+static int flatten_in_strips(const cli_job *job, const ur_material *material, ur_mesh *mesh,
+                             ur_ruled *ruled, ur_net_list *nets, double *area)
+{
+    ur_strip_limits limits = strip_limits(job, material);
+    ur_flatten_options options;
+    flatten_options(job, &options);
+    ur_strips strips;
+    ur_error error;
+    ur_status status = mesh ? ur_flatten_strips_mesh(mesh, NULL, &limits, &options, &strips, &error)
+                            : ur_flatten_strips_ruled(ruled, &limits, &options, &strips, &error);
+    if (status != UR_OK) {
+        cli_message("%s: %s (--max-strain sets another limit)", job->command, error.message);
+        return cli_exit_status(&error);
+    }
+    int code = nets_of_strips(job, &strips, &limits, nets, area);
+    ur_strips_free(&strips);
+    return code;
+}
+
 /* Cleans, cuts into disks and flattens; repairs are news only for a mesh from a file. */
-static int nets_of_mesh(const cli_job *job, ur_mesh *mesh, bool tell_repairs, ur_net_list *nets,
-                        double *area)
+static int nets_of_mesh(const cli_job *job, const ur_material *material, ur_mesh *mesh,
+                        bool tell_repairs, ur_net_list *nets, double *area)
 {
     ur_error error;
     ur_mesh_repairs repairs;
@@ -184,6 +241,10 @@ static int nets_of_mesh(const cli_job *job, ur_mesh *mesh, bool tell_repairs, ur
     ur_seam *seams = NULL;
     size_t seam_count = 0;
     int code = read_seams(job, mesh, 1e-4 * size, &seams, &seam_count);
+    if (!code && job->strips) {
+        free(seams);
+        return flatten_in_strips(job, material, mesh, NULL, nets, area);
+    }
     if (!code && job->unfold) {
         code = unfold_mesh(job, mesh, seams, seam_count, nets, area);
         free(seams);
@@ -200,7 +261,7 @@ static int nets_of_mesh(const cli_job *job, ur_mesh *mesh, bool tell_repairs, ur
     return code;
 }
 
-int cli_mesh_nets(const cli_job *job, ur_net_list *nets, double *area)
+int cli_mesh_nets(const cli_job *job, const ur_material *material, ur_net_list *nets, double *area)
 {
     if (!job->mesh_path) {
         cli_message("mesh: give the mesh file: unroll mesh FILE -o OUT.svg");
@@ -216,22 +277,25 @@ int cli_mesh_nets(const cli_job *job, ur_net_list *nets, double *area)
     ur_error error;
     if (ur_mesh_import(job->mesh_path, &options, &mesh, NULL, &error) != UR_OK)
         return fail(job, &error);
-    int code = nets_of_mesh(job, &mesh, true, nets, area);
+    int code = nets_of_mesh(job, material, &mesh, true, nets, area);
     ur_mesh_free(&mesh);
     return code;
 }
 
-int cli_flatten_ruled(const cli_job *job, ur_ruled *ruled, ur_net_list *nets, double *area)
+int cli_flatten_ruled(const cli_job *job, const ur_material *material, ur_ruled *ruled,
+                      ur_net_list *nets, double *area)
 {
     if (job->seam_count > 0) {
         cli_message("%s: --seams goes with 'unroll mesh'", job->command);
         return EXIT_USAGE;
     }
+    if (job->strips)
+        return flatten_in_strips(job, material, NULL, ruled, nets, area);
     ur_mesh mesh;
     ur_error error;
     if (ur_mesh_from_ruled(ruled, RULED_ALONG, RULED_ACROSS, &mesh, &error) != UR_OK)
         return fail(job, &error);
-    int code = nets_of_mesh(job, &mesh, false, nets, area);
+    int code = nets_of_mesh(job, material, &mesh, false, nets, area);
     ur_mesh_free(&mesh);
     return code;
 }

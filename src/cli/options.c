@@ -42,7 +42,8 @@ enum option_id {
     OPT_SCALE,
     OPT_SEAMS,
     OPT_FLATTEN,
-    OPT_ITERATIONS, /* last of the surface options */
+    OPT_ITERATIONS,
+    OPT_MAX_STRAIN, /* last of the surface options */
     OPT_PNG,
     OPT_CSV,
     OPT_STRAIN_PNG,
@@ -83,6 +84,7 @@ static const struct option long_options[] = {
     {"seams", required_argument, NULL, OPT_SEAMS},
     {"flatten", required_argument, NULL, OPT_FLATTEN},
     {"iterations", required_argument, NULL, OPT_ITERATIONS},
+    {"max-strain", required_argument, NULL, OPT_MAX_STRAIN},
     {"png", required_argument, NULL, OPT_PNG},
     {"csv", required_argument, NULL, OPT_CSV},
     {"strain-png", required_argument, NULL, OPT_STRAIN_PNG},
@@ -111,10 +113,10 @@ static const struct {
     {"helicoid", " radius pitch turns width offset "},
     {"tangent", " curve width offset "},
     {"strip", " rail1 rail2 pairing strict regression adjust-rail2 adjust-direction "
-              "adjusted-rail flatten iterations "},
-    {"ruled", " rail1 rail2 flatten iterations "},
-    {"hypar", " corners flatten iterations "},
-    {"mesh", " units scale seams flatten iterations "},
+              "adjusted-rail flatten iterations max-strain "},
+    {"ruled", " rail1 rail2 flatten iterations max-strain "},
+    {"hypar", " corners flatten iterations max-strain "},
+    {"mesh", " units scale seams flatten iterations max-strain "},
 };
 
 /* Options that belong to one action only. */
@@ -286,6 +288,8 @@ static double *number_slot(cli_job *job, int id)
     switch (id) {
     case OPT_SCALE:
         return &job->scale;
+    case OPT_MAX_STRAIN:
+        return &job->max_strain;
     case OPT_RADIUS:
         return &job->radius;
     case OPT_HEIGHT:
@@ -313,7 +317,7 @@ static double *number_slot(cli_job *job, int id)
 static bool take_option(cli_job *job, int id, const char *value)
 {
     const char *surface = job->surface;
-    if (id >= OPT_RADIUS && id <= OPT_ITERATIONS && !accepts(surface, option_name(id))) {
+    if (id >= OPT_RADIUS && id <= OPT_MAX_STRAIN && !accepts(surface, option_name(id))) {
         cli_message("%s: --%s does not apply to a %s (see 'unroll help %s')", job->command,
                     option_name(id), surface, surface);
         return false;
@@ -376,10 +380,13 @@ static bool take_option(cli_job *job, int id, const char *value)
         return true;
     case OPT_FLATTEN:
         job->unfold = strcmp(value, "unfold") == 0;
-        job->flatten = job->unfold ? -1 : ur_flatten_method_from_name(value);
+        job->strips = strcmp(value, "strips") == 0;
+        job->flatten = job->unfold || job->strips ? -1 : ur_flatten_method_from_name(value);
+        if (job->strips)
+            return true;
         if (job->flatten < 0 && !job->unfold)
-            cli_message("%s: --flatten: '%s' is not one of arap, lscm, unfold", job->command,
-                        value);
+            cli_message("%s: --flatten: '%s' is not one of arap, lscm, strips, unfold",
+                        job->command, value);
         if (job->unfold && strcmp(job->surface, "mesh") != 0)
             cli_message("%s: --flatten unfold goes with 'unroll mesh' (it unfolds a polyhedron "
                         "along its edges)",
@@ -448,6 +455,7 @@ static void job_defaults(cli_job *job, cli_action action, const char *command, c
     job->radius = job->height = job->top_radius = job->pitch = NAN;
     job->turns = job->width = job->offset = job->cut = NAN;
     job->scale = NAN;
+    job->max_strain = NAN;
     job->flatten = -1;
     job->machine_name = "co2-60w";
     job->material_name = "plywood-3mm";
@@ -485,6 +493,15 @@ int cli_parse_job(int argc, char **argv, cli_action action, const char *command,
     }
     if (!(job->develop.tolerance > 0)) {
         cli_message("%s: --tolerance must be positive", job->command);
+        return EXIT_USAGE;
+    }
+    if (!isnan(job->max_strain) && !(job->max_strain > 0 && job->max_strain < 1)) {
+        cli_message("%s: --max-strain must be a fraction between 0 and 1 (0.01 is 1 %%), not %g",
+                    job->command, job->max_strain);
+        return EXIT_USAGE;
+    }
+    if (!isnan(job->max_strain) && !job->strips) {
+        cli_message("%s: --max-strain goes with --flatten strips", job->command);
         return EXIT_USAGE;
     }
     if ((job->has_adjust_direction || job->adjusted_rail_path) && !job->adjust_rail2) {

@@ -273,25 +273,29 @@ static int flatten_if_needed(const cli_job *job, job_state *state, bool *flatten
         cli_message("%s: not developable (the tangent plane turns by up to %.3g degrees along a "
                     "ruling, K down to %.3g 1/mm2): flattened with %s, with strain",
                     job->command, analysis.max_residual * 180 / M_PI, analysis.gaussian_min,
-                    ur_flatten_method_name(job->flatten >= 0 ? (ur_flatten_method)job->flatten
-                                                             : UR_FLATTEN_ARAP));
+                    job->strips
+                        ? "ARAP in strips"
+                        : ur_flatten_method_name(job->flatten >= 0 ? (ur_flatten_method)job->flatten
+                                                                   : UR_FLATTEN_ARAP));
     ur_analysis_free(&analysis);
     if (developable)
         return 0;
     *flattened = true;
-    return cli_flatten_ruled(job, &state->ruled, &state->nets, &state->surface_area);
+    return cli_flatten_ruled(job, &state->material, &state->ruled, &state->nets,
+                             &state->surface_area);
 }
 
 /* The nets: a mesh's pieces, or the surface developed (or flattened) part by part. */
 static int make_nets(const cli_job *job, job_state *state, cli_adjusted_rail *adjusted,
                      ur_vec3 **edge, size_t *edge_count)
 {
-    state->method = job->unfold
+    state->method = job->strips ? "strips"
+                    : job->unfold
                         ? "unfold"
                         : ur_flatten_method_name(job->flatten >= 0 ? (ur_flatten_method)job->flatten
                                                                    : UR_FLATTEN_ARAP);
     if (strcmp(job->surface, "mesh") == 0)
-        return cli_mesh_nets(job, &state->nets, &state->surface_area);
+        return cli_mesh_nets(job, &state->material, &state->nets, &state->surface_area);
     int code = cli_build_surface(job, &state->ruled, adjusted);
     if (code)
         return code;

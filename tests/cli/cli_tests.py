@@ -586,6 +586,31 @@ def png_size(path):
 
 
 @test
+def strips_keep_the_strain_within_the_material(work):
+    limit = 0.01
+    result = run(work, "hypar", "--corners", HYPAR, "--flatten", "strips", "--max-strain",
+                 str(limit), "-o", "s.svg", "--report", "s.json")
+    count = int(re.search(r"(\d+) strips? keep the strain within", result.stderr).group(1))
+    pieces = report(work, "s.json")["pieces"]
+    check(len(pieces) == count and count > 1, "%d pieces for %d strips" % (len(pieces), count))
+    check([p["name"] for p in pieces] == ["S%d" % (k + 1) for k in range(count)],
+          "strips not numbered in order: %r" % [p["name"] for p in pieces])
+    for piece in pieces:
+        check(piece["max_stretch"] <= limit and piece["max_compression"] <= limit,
+              "%s over the limit: %r" % (piece["name"], piece))
+    # One strip fewer does not fit: the whole hypar in one piece strains more than the limit.
+    run(work, "hypar", "--corners", HYPAR, "-o", "one.svg", "--report", "one.json")
+    [whole] = report(work, "one.json")["pieces"]
+    check(max(whole["max_stretch"], whole["max_compression"]) > limit, "one piece fits already")
+    bad(work, r"needs more than 64 strips", "hypar", "--corners", HYPAR, "--flatten", "strips",
+        "--max-strain", "0.00001", "-o", "x.svg", "--quiet")
+    bad(work, r"--max-strain must be a fraction", "hypar", "--corners", HYPAR, "--flatten",
+        "strips", "--max-strain", "2", "-o", "x.svg")
+    bad(work, r"--max-strain goes with --flatten strips", "hypar", "--corners", HYPAR,
+        "--max-strain", "0.01", "-o", "x.svg")
+
+
+@test
 def strain_preview_has_the_sheet_size(work):
     run(work, "hypar", "--corners", HYPAR, "-o", "h.svg", "--strain-png", "h.png")
     # 600 x 400 mm at 96 dots per inch.
