@@ -74,7 +74,8 @@ static double time_flatten(const ur_mesh *mesh, const ur_flatten_options *option
 static double best_of(int runs, const ur_mesh *mesh, ur_flatten_method method, size_t iterations,
                       double tolerance, ur_flat_piece *flat)
 {
-    ur_flatten_options options = {method, iterations, tolerance};
+    ur_flatten_options options = {
+        .method = method, .iterations = iterations, .tolerance = tolerance};
     double best = 1e300;
     for (int run = 0; run < runs; run++) {
         if (run > 0)

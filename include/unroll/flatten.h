@@ -27,6 +27,13 @@ typedef struct ur_flatten_options {
     size_t iterations; /* most ARAP iterations; default 100 */
     double tolerance;  /* stop when the energy improves by less than this fraction; 1e-9 */
                        /* (ARAP also stops once ur_flatten_energy is below 1e-14) */
+    /*
+     * Called after every ARAP iteration with the iteration's number and the
+     * energy, so that a caller can show progress (the library never
+     * prints); NULL for none.
+     */
+    void (*progress)(void *context, size_t iteration, double energy);
+    void *progress_context;
 } ur_flatten_options;
 
 void ur_flatten_options_default(ur_flatten_options *options);

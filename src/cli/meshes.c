@@ -10,6 +10,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "unroll/flatten.h"
 #include "unroll/io.h"
@@ -23,9 +24,36 @@ static int fail(const cli_job *job, const ur_error *error)
     return cli_exit_status(error);
 }
 
+/*
+ * On a terminal, long flattening shows a progress line on stderr that is
+ * overwritten in place and cleared at the end; --quiet or a pipe shows none.
+ */
+static void show_progress(void *context, size_t iteration, double energy)
+{
+    const cli_job *job = context;
+    fprintf(stderr, "\runroll: %s: flattening, ARAP iteration %zu, energy %.3g   ", job->command,
+            iteration, energy);
+    fflush(stderr);
+}
+
+static bool shows_progress(const cli_job *job)
+{
+    return !job->quiet && isatty(STDERR_FILENO);
+}
+
+static void end_progress(const cli_job *job)
+{
+    if (shows_progress(job))
+        fputs("\r\033[K", stderr);
+}
+
 static void flatten_options(const cli_job *job, ur_flatten_options *options)
 {
     ur_flatten_options_default(options);
+    if (shows_progress(job)) {
+        options->progress = show_progress;
+        options->progress_context = (void *)job;
+    }
     if (job->flatten >= 0)
         options->method = (ur_flatten_method)job->flatten;
     if (job->iterations > 0)
@@ -217,6 +245,7 @@ static int flatten_in_strips(const cli_job *job, const ur_material *material, ur
     ur_error error;
     ur_status status = mesh ? ur_flatten_strips_mesh(mesh, NULL, &limits, &options, &strips, &error)
                             : ur_flatten_strips_ruled(ruled, &limits, &options, &strips, &error);
+    end_progress(job);
     if (status != UR_OK) {
         cli_message("%s: %s (--max-strain sets another limit)", job->command, error.message);
         return cli_exit_status(&error);
@@ -256,6 +285,7 @@ static int nets_of_mesh(const cli_job *job, const ur_material *material, ur_mesh
         code = fail(job, &error);
     if (!code)
         code = flatten_pieces(job, pieces, piece_count, nets, area);
+    end_progress(job);
     ur_mesh_pieces_free(pieces, piece_count);
     free(seams);
     return code;

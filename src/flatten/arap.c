@@ -226,6 +226,8 @@ static ur_status iterate(arap *a, const ur_flatten_options *options, ur_vec2 *la
             return status;
         ++*iterations;
         double next = local_step(a, layout);
+        if (options->progress)
+            options->progress(options->progress_context, *iterations, next);
         bool stalled = energy - next <= options->tolerance * energy;
         energy = next;
         if (stalled)

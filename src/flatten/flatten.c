@@ -30,6 +30,8 @@ void ur_flatten_options_default(ur_flatten_options *options)
     options->method = UR_FLATTEN_ARAP;
     options->iterations = 100;
     options->tolerance = 1e-9;
+    options->progress = NULL;
+    options->progress_context = NULL;
 }
 
 static ur_status check_options(const ur_flatten_options *options, ur_error *error)
