@@ -97,6 +97,12 @@ ur_status ur_develop(ur_ruled *ruled, const ur_develop_options *options, ur_net_
 
 void ur_net_list_free(ur_net_list *nets);
 
+/* Frees one net's arrays (not the net itself). */
+void ur_net_free(ur_net *net);
+
+/* Whether a closed ring (first point not repeated) is a simple polygon (GEOS). */
+bool ur_outline_is_simple(const ur_vec2 *ring, size_t count);
+
 /*
  * The paper's observation, measured: the triangle and quad methods against
  * the exact net as the number of parts n grows.  Method k of every array is

@@ -60,34 +60,90 @@ static void flatten_options(const cli_job *job, ur_flatten_options *options)
         options->iterations = job->iterations;
 }
 
-/* Flattens every piece and appends its net, named P1, P2, ... */
+/* Appends a net to the list (taking its arrays). */
+static int append_net(const cli_job *job, ur_net_list *nets, ur_net *net)
+{
+    ur_error error;
+    ur_net *grown = realloc(nets->nets, (nets->count + 1) * sizeof *grown);
+    if (!grown) {
+        ur_net_free(net);
+        ur_error_out_of_memory(&error);
+        return fail(job, &error);
+    }
+    nets->nets = grown;
+    nets->nets[nets->count++] = *net;
+    return 0;
+}
+
+enum { MOST_SPLITS = 6 }; /* halvings of a piece whose flat outline crosses itself */
+
+static int flatten_piece(const cli_job *job, const ur_flatten_options *options,
+                         const ur_mesh *piece, size_t depth, ur_net_list *nets, double *area);
+
+/*
+ * A flat outline that crosses itself cannot be cut: the piece is cut in two
+ * across the way it bends most (ur_mesh_bands), and each half flattened.
+ */
+static int split_piece(const cli_job *job, const ur_flatten_options *options, const ur_mesh *piece,
+                       size_t depth, ur_net_list *nets, double *area)
+{
+    ur_error error;
+    ur_vec3 direction;
+    double plane;
+    ur_mesh halves;
+    ur_mesh_piece *parts = NULL;
+    size_t part_count = 0;
+    if (ur_mesh_bending_direction(piece, &direction, &error) != UR_OK ||
+        ur_mesh_band_planes(piece, direction, 2, &plane, &error) != UR_OK)
+        return fail(job, &error);
+    if (ur_mesh_bands(piece, direction, &plane, 2, &halves, &error) != UR_OK)
+        return fail(job, &error);
+    int code = ur_mesh_pieces(&halves, NULL, 0, &parts, &part_count, &error) == UR_OK
+                   ? 0
+                   : fail(job, &error);
+    for (size_t k = 0; !code && k < part_count; k++)
+        code = flatten_piece(job, options, &parts[k].mesh, depth + 1, nets, area);
+    ur_mesh_pieces_free(parts, part_count);
+    ur_mesh_free(&halves);
+    return code;
+}
+
+static int flatten_piece(const cli_job *job, const ur_flatten_options *options,
+                         const ur_mesh *piece, size_t depth, ur_net_list *nets, double *area)
+{
+    ur_flat_piece flat;
+    ur_net net;
+    ur_error error;
+    ur_status status = ur_flatten(piece, options, &flat, &error);
+    if (status == UR_OK)
+        status = ur_net_from_flat(piece, &flat, "", &net, &error);
+    if (status == UR_OK && flat.flipped)
+        status =
+            ur_error_set(&error, UR_ERROR_INTERNAL, "a piece came out with a triangle turned over");
+    ur_flat_piece_free(&flat);
+    if (status != UR_OK)
+        return fail(job, &error);
+    if (!ur_outline_is_simple(net.outline, net.outline_count) && depth < MOST_SPLITS) {
+        ur_net_free(&net);
+        return split_piece(job, options, piece, depth, nets, area);
+    }
+    *area += net.area_3d;
+    return append_net(job, nets, &net);
+}
+
+/* Flattens every piece (halving any whose outline crosses itself); nets P1, P2, ... */
 static int flatten_pieces(const cli_job *job, const ur_mesh_piece *pieces, size_t count,
                           ur_net_list *nets, double *area)
 {
-    ur_error error;
-    nets->nets = ur_alloc_array(count, sizeof *nets->nets, &error);
-    if (!nets->nets)
-        return fail(job, &error);
     ur_flatten_options options;
     flatten_options(job, &options);
     *area = 0.0;
-    for (size_t k = 0; k < count; k++) {
-        ur_flat_piece flat;
-        char name[32];
-        snprintf(name, sizeof name, "P%zu", k + 1);
-        ur_status status = ur_flatten(&pieces[k].mesh, &options, &flat, &error);
-        if (status == UR_OK)
-            status = ur_net_from_flat(&pieces[k].mesh, &flat, name, &nets->nets[k], &error);
-        if (status == UR_OK && flat.flipped)
-            status = ur_error_set(&error, UR_ERROR_INTERNAL,
-                                  "piece %zu came out with a triangle turned over", k + 1);
-        ur_flat_piece_free(&flat);
-        if (status != UR_OK)
-            return fail(job, &error);
-        nets->count++;
-        *area += nets->nets[k].area_3d;
-    }
-    return 0;
+    int code = 0;
+    for (size_t k = 0; !code && k < count; k++)
+        code = flatten_piece(job, &options, &pieces[k].mesh, 0, nets, area);
+    for (size_t k = 0; k < nets->count; k++)
+        snprintf(nets->nets[k].name, sizeof nets->nets[k].name, "P%zu", k + 1);
+    return code;
 }
 
 /* A seam file: a path of mesh vertices, one x,y,z per line. */

@@ -267,6 +267,16 @@ static bool ring_is_simple(GEOSContextHandle_t geos, const ur_vec2 *ring, size_t
     return simple;
 }
 
+bool ur_outline_is_simple(const ur_vec2 *ring, size_t count)
+{
+    GEOSContextHandle_t geos = GEOS_init_r();
+    if (!geos)
+        return false;
+    bool simple = count >= 3 && ring_is_simple(geos, ring, count);
+    GEOS_finish_r(geos);
+    return simple;
+}
+
 static bool piece_is_simple(GEOSContextHandle_t geos, const strip *s, size_t first, size_t last,
                             ur_vec2 *ring)
 {
@@ -475,16 +485,21 @@ ur_status ur_develop(ur_ruled *ruled, const ur_develop_options *options, ur_net_
     return status;
 }
 
+void ur_net_free(ur_net *net)
+{
+    free(net->outline);
+    free(net->rulings);
+    free(net->folds);
+    free(net->fold_valley);
+    free(net->shading.triangles);
+    free(net->shading.strain);
+    memset(net, 0, sizeof *net);
+}
+
 void ur_net_list_free(ur_net_list *nets)
 {
-    for (size_t k = 0; k < nets->count; k++) {
-        free(nets->nets[k].outline);
-        free(nets->nets[k].rulings);
-        free(nets->nets[k].folds);
-        free(nets->nets[k].fold_valley);
-        free(nets->nets[k].shading.triangles);
-        free(nets->nets[k].shading.strain);
-    }
+    for (size_t k = 0; k < nets->count; k++)
+        ur_net_free(&nets->nets[k]);
     free(nets->nets);
     nets->nets = NULL;
     nets->count = 0;

@@ -673,6 +673,35 @@ def unfolding_keeps_every_face(work):
 
 
 @test
+def a_piece_that_would_overlap_itself_is_cut(work):
+    # 1.6 turns of a helix's tangent developable: flat, it is an annular sector
+    # of about 1.6 turns, so one piece would lie over itself.
+    r, c, n, m = 30.0, 4.0, 160, 4
+    s = math.hypot(r, c)
+    lines = []
+    for i in range(n + 1):
+        t = 2 * math.pi * 1.6 * i / n
+        for j in range(m + 1):
+            d = 5 + 20 * j / m
+            lines.append("v %.9f %.9f %.9f" % (r * math.cos(t) - d * r * math.sin(t) / s,
+                                               r * math.sin(t) + d * r * math.cos(t) / s,
+                                               c * t + d * c / s))
+    for i in range(n):
+        for j in range(m):
+            a = i * (m + 1) + j + 1
+            lines.append("f %d %d %d" % (a, a + m + 1, a + m + 2))
+            lines.append("f %d %d %d" % (a, a + m + 2, a + 1))
+    write(work, "ribbon.obj", "\n".join(lines) + "\n")
+    run(work, "mesh", "ribbon.obj", "-o", "r.svg", "--report", "r.json")
+    pieces = report(work, "r.json")["pieces"]
+    check(len(pieces) >= 2, "%d piece(s)" % len(pieces))
+    for outline in outlines(os.path.join(work, "r.svg")):
+        check(simple_ring(outline), "an outline crosses itself")
+    close(sum(p["flat_area_mm2"] for p in pieces), sum(p["area_3d_mm2"] for p in pieces), 1e-6,
+          "flat area of a developable")
+
+
+@test
 def seams_split_a_mesh(work):
     ply = os.path.join(REPO, "samples", "lampshade.ply")
     run(work, "mesh", ply, "-o", "one.svg", "--report", "one.json")
