@@ -78,7 +78,8 @@ typedef struct job_state {
     size_t piece_count;
     ur_layout layout;
     double surface_area;
-    const char *method; /* how the nets were made: exact, triangle, quad, arap, lscm */
+    const char
+        *method; /* how the nets were made: exact, triangle, quad, arap, lscm, strips, unfold */
 } job_state;
 
 static void state_free(job_state *state)
@@ -181,7 +182,7 @@ static ur_status place(const cli_job *job, job_state *state, ur_error *error)
 
 static ur_status write_outputs(const cli_job *job, job_state *state, ur_error *error);
 
-/* The SVG, then the strain previews and the report. */
+/* The SVG and the report (write_outputs), then the strain previews. */
 static ur_status write_all(const cli_job *job, job_state *state, ur_error *error)
 {
     ur_status status = write_outputs(job, state, error);
