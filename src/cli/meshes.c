@@ -371,10 +371,6 @@ int cli_mesh_nets(const cli_job *job, const ur_material *material, ur_net_list *
 int cli_flatten_ruled(const cli_job *job, const ur_material *material, ur_ruled *ruled,
                       ur_net_list *nets, double *area)
 {
-    if (job->seam_count > 0) {
-        cli_message("%s: --seams goes with 'unroll mesh'", job->command);
-        return EXIT_USAGE;
-    }
     if (job->strips)
         return flatten_in_strips(job, material, NULL, ruled, nets, area);
     ur_mesh mesh;

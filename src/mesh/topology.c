@@ -307,17 +307,29 @@ static ur_status disk_loop(const ur_mesh *mesh, const size_t *twins, size_t leng
     return ur_error_set(error, UR_ERROR_INTERNAL, "the boundary of a disk did not close (a bug)");
 }
 
+/* The twins and shape of a mesh that must be a disk; *twins is the caller's on success. */
+static ur_status disk_shape(const ur_mesh *mesh, size_t **twins, mesh_shape *shape, ur_error *error)
+{
+    ur_status status = ur_mesh_twins(mesh, twins, error);
+    if (status != UR_OK)
+        return status;
+    status = mesh_shape_of(mesh, *twins, shape, error);
+    if (status == UR_OK)
+        status = refuse_non_disk(shape, error);
+    if (status != UR_OK) {
+        free(*twins);
+        *twins = NULL;
+    }
+    return status;
+}
+
 ur_status mesh_check_disk(const ur_mesh *mesh, ur_error *error)
 {
     size_t *twins;
-    ur_status status = ur_mesh_twins(mesh, &twins, error);
-    if (status != UR_OK)
-        return status;
     mesh_shape shape;
-    status = mesh_shape_of(mesh, twins, &shape, error);
+    ur_status status = disk_shape(mesh, &twins, &shape, error);
     if (status == UR_OK)
-        status = refuse_non_disk(&shape, error);
-    free(twins);
+        free(twins);
     return status;
 }
 
@@ -326,15 +338,11 @@ ur_status ur_mesh_boundary(const ur_mesh *mesh, size_t **loop, size_t *count, ur
     *loop = NULL;
     *count = 0;
     size_t *twins;
-    ur_status status = ur_mesh_twins(mesh, &twins, error);
+    mesh_shape shape;
+    ur_status status = disk_shape(mesh, &twins, &shape, error);
     if (status != UR_OK)
         return status;
-    mesh_shape shape;
-    status = mesh_shape_of(mesh, twins, &shape, error);
-    if (status == UR_OK)
-        status = refuse_non_disk(&shape, error);
-    if (status == UR_OK)
-        status = disk_loop(mesh, twins, shape.boundary_edges, loop, count, error);
+    status = disk_loop(mesh, twins, shape.boundary_edges, loop, count, error);
     free(twins);
     return status;
 }
