@@ -3,9 +3,17 @@
  * allowances that turn a flat net into them.
  *
  * A piece is a set of paths in its own plane coordinates (millimetres, y up),
- * each tagged with the operation the cutter performs on it.  For now a piece
- * is the net's outline (CUT) and, on request, its rulings (SCORE); glue tabs,
- * kerfing and the rest come in later.
+ * each tagged with the operation the cutter performs on it: the net's
+ * outline (CUT), its rulings and folds (SCORE), and what the material needs
+ * to take the 3D shape again (DESIGN.md section 4): joints and labels on
+ * seams, kerfing cuts, overlap allowances, bending kerfs, kerf compensation
+ * and holding bridges.  Each allowance added is recorded on the piece with
+ * the reason for it, for the report.
+ *
+ * The order the pipeline applies them: joints and labels, kerfing,
+ * overlaps and bending on the net's own outline; then kerf compensation
+ * (which moves the outline); then, once the piece is placed, bridges
+ * (which open the outline).
  */
 #ifndef UNROLL_ALLOW_H
 #define UNROLL_ALLOW_H
@@ -28,6 +36,38 @@ typedef struct ur_piece_measures {
     double max_stretch, max_compression; /* of an approximate flattening; 0 when exact */
 } ur_piece_measures;
 
+/* ---- What was added and why ----------------------------------------- */
+
+typedef enum ur_allowance_kind {
+    UR_ALLOWANCE_JOINT,             /* a glue tab or lap on a seam */
+    UR_ALLOWANCE_LABEL,             /* an engraved seam label or piece name */
+    UR_ALLOWANCE_KERFING,           /* slits where the net under-covers */
+    UR_ALLOWANCE_OVERLAP,           /* slits or darts with overlap zones where it over-covers */
+    UR_ALLOWANCE_BENDING,           /* bending kerfs where the bend is too tight */
+    UR_ALLOWANCE_KERF_COMPENSATION, /* outline offset by half the kerf */
+    UR_ALLOWANCE_BRIDGES,           /* uncut gaps holding the part in the sheet */
+    UR_ALLOWANCE_KIND_COUNT
+} ur_allowance_kind;
+
+/* "joint", "label", "kerfing", "overlap", "bending", "kerf-compensation", "bridges". */
+const char *ur_allowance_kind_name(ur_allowance_kind kind);
+
+/*
+ * One allowance added to a piece (or one that could not be added: warning),
+ * for the report.  value and limit are what triggered it (a strain as a
+ * fraction, a radius or a length in mm) and the profile's limit it
+ * exceeded; NAN when there is none (a joint on a seam needs no trigger).
+ */
+typedef struct ur_allowance_record {
+    ur_allowance_kind kind;
+    size_t count;     /* cuts, tabs, bridges ... added */
+    double value;     /* what triggered it, NAN when nothing did */
+    double limit;     /* the limit it exceeded, NAN when none */
+    ur_vec2 where;    /* piece coordinates: the middle of the region */
+    bool warning;     /* not done, or only partly: the reason says what is missing */
+    char reason[256]; /* one sentence for the report */
+} ur_allowance_record;
+
 typedef struct ur_piece {
     char name[32];
     ur_path *paths; /* owned; paths[0] is the outer outline */
@@ -40,6 +80,9 @@ typedef struct ur_piece {
      * frees it.  Only the strain picture draws it; nothing is cut from it.
      */
     ur_shading shading;
+    ur_allowance_record *records; /* owned; what was added and why */
+    size_t record_count;
+    bool bridged; /* bridges opened the outline: paths[0] is no longer a closed ring */
 } ur_piece;
 
 typedef struct ur_allowance_options {
@@ -58,5 +101,111 @@ ur_status ur_piece_from_net(const ur_net *net, const ur_allowance_options *optio
                             ur_error *error);
 
 void ur_piece_free(ur_piece *piece);
+
+/* Appends a copy of record to the piece's records. */
+ur_status ur_piece_record(ur_piece *piece, const ur_allowance_record *record, ur_error *error);
+
+/* ---- Labels: single-stroke engraved text (label.c) -------------------- */
+
+/*
+ * A Hershey single-stroke font (libhersheyfont), loaded once and passed to
+ * the functions that engrave text.  ur_font_open loads "rowmans" (Roman
+ * simplex) from the system's hershey-fonts data; NULL name means that one.
+ */
+typedef struct ur_font ur_font;
+ur_status ur_font_open(const char *name, ur_font **font, ur_error *error);
+void ur_font_close(ur_font *font);
+
+/*
+ * The strokes of text as open polylines, cap height `height` mm, baseline
+ * from (0, 0) towards +x; *width is the advance of the whole text.  The
+ * caller frees the paths' points and the array (ur_paths_free).
+ */
+ur_status ur_text_strokes(const ur_font *font, const char *text, double height, ur_path **paths,
+                          size_t *count, double *width, ur_error *error);
+
+void ur_paths_free(ur_path *paths, size_t count);
+
+/*
+ * Engraves text on the piece as ENGRAVE paths: inside the piece (outline
+ * paths[0]), as near `near` as it can be put, its baseline along
+ * `direction` (turned so it never reads upside down), at most `height` mm
+ * high and no smaller than `min_height`, and clear of every other path of
+ * the piece by `clearance` mm (checked with GEOS).  *placed says whether it
+ * found room; when it did not, the piece is unchanged and the caller
+ * records a warning.
+ */
+ur_status ur_piece_add_label(ur_piece *piece, const ur_font *font, const char *text, ur_vec2 near,
+                             ur_vec2 direction, double height, double min_height, double clearance,
+                             bool *placed, ur_error *error);
+
+/* ---- Kerf compensation and bridges (kerf.c, bridges.c) ---------------- */
+
+/*
+ * Offsets the outer outline (paths[0]) outward by kerf / 2 and every other
+ * closed CUT path (a hole) inward by kerf / 2, with mitred joins so that
+ * corners stay sharp (GEOS buffer); other paths are untouched.  Refuses with
+ * UR_ERROR_INPUT naming the piece when a hole would vanish or the outline
+ * would change its number of rings (a feature narrower than the kerf).
+ * Records a UR_ALLOWANCE_KERF_COMPENSATION entry.
+ */
+ur_status ur_piece_compensate_kerf(ur_piece *piece, double kerf, ur_error *error);
+
+/*
+ * Opens `count` uncut gaps of `width` mm in the outer outline, evenly
+ * spaced along it, each at least its own width away from a corner (a turn
+ * of more than 30 degrees) and off tight curves; count 0 means automatic:
+ * one per 300 mm of outline, at least 3 for a router, at least 2 for a
+ * laser (router true or false).  The closed outline becomes open CUT paths
+ * (the first stays paths[0]) and piece->bridged is set.  Apply after
+ * placement: nothing after this may treat paths[0] as a closed ring.
+ * Records a UR_ALLOWANCE_BRIDGES entry (a warning when fewer gaps fit).
+ */
+ur_status ur_piece_add_bridges(ur_piece *piece, size_t count, double width, bool router,
+                               ur_error *error);
+
+/* ---- Kerfing cuts and overlap allowances (relief.c) ------------------- */
+
+/*
+ * Where the net must stretch more than the material allows (under-covers),
+ * KERF slits across the direction of needed stretch; where it must shrink
+ * more than allowed (over-covers), slits or darts from the boundary with
+ * MARK overlap zones.  Driven by the net's shading (per-triangle strain and
+ * direction) for a flattening, and by coverage (flat / 3D area) and the
+ * rulings for the discrete triangle and quad methods.  Sizes from the
+ * material: kerfing_opening, kerfing_margin, overlap style.  Records each
+ * region's entry with the strain that triggered it and the limit.
+ */
+typedef struct ur_relief_limits {
+    double max_stretch, max_compression; /* allowed strain, fractions */
+    double opening;                      /* widest a kerfing slit opens, mm */
+    double margin;                       /* slits stop this far from the outline, mm */
+    bool darts;                          /* overlap darts instead of slits */
+    bool kerfing, overlaps;              /* which of the two to add */
+} ur_relief_limits;
+
+ur_status ur_piece_add_relief(ur_piece *piece, const ur_net *net, const ur_relief_limits *limits,
+                              ur_error *error);
+
+/* ---- Bending kerfs (bending.c) ---------------------------------------- */
+
+/*
+ * KERF lines parallel to the rulings where the surface bends tighter than
+ * min_radius.  router: grooves of width `groove_width` and depth
+ * `groove_depth` at spacing s = w R / d; laser: the material's living-hinge
+ * pattern clipped to the region with solid margins at the ends.  The radius
+ * at each ruling comes from the surface (ur_net.ruling_parameters).  Records
+ * the radius, spacing and depth.
+ */
+typedef struct ur_bending_options {
+    double min_radius;   /* the material's smallest bend radius, mm */
+    bool router;         /* grooves (router) or through-cut hinge (laser) */
+    double groove_width; /* w: the bit diameter, mm */
+    double groove_depth; /* d: thickness minus skin, mm */
+    double hinge_cut_length, hinge_connection, hinge_distance; /* laser pattern, mm */
+} ur_bending_options;
+
+ur_status ur_piece_add_bending_kerfs(ur_piece *piece, const ur_net *net, ur_ruled *ruled,
+                                     const ur_bending_options *options, ur_error *error);
 
 #endif

@@ -47,12 +47,12 @@ ur_status ur_error_out_of_memory(ur_error *error);
 
 /* What the cutter does with a path.  Writers map each to a layer. */
 typedef enum ur_op {
-    UR_OP_CUT = 0, /* through cut */
-    UR_OP_SCORE,   /* fold line: partial power or dashed (a mountain fold) */
+    UR_OP_CUT = 0,      /* through cut */
+    UR_OP_SCORE,        /* fold line: partial power or dashed (a mountain fold) */
     UR_OP_SCORE_VALLEY, /* a valley fold, told apart from mountains by its own layer */
-    UR_OP_KERF,    /* kerf-bending and relief cuts */
-    UR_OP_ENGRAVE, /* labels */
-    UR_OP_MARK,    /* glue and overlap zones, alignment marks */
+    UR_OP_KERF,         /* kerf-bending and relief cuts */
+    UR_OP_ENGRAVE,      /* labels */
+    UR_OP_MARK,         /* glue and overlap zones, alignment marks */
     UR_OP_COUNT
 } ur_op;
 

@@ -45,8 +45,30 @@ typedef struct ur_segment {
 typedef struct ur_shading {
     ur_vec2 (*triangles)[3]; /* owned by the net or piece */
     double *strain;          /* owned: one per triangle, signed as above */
+    /*
+     * Owned: one per triangle, the flat unit direction of that dominant
+     * strain (the left singular vector of sigma1 for stretch, of sigma2 for
+     * compression): the direction in which the flat triangle is longer (or
+     * shorter) than the 3D one.  Kerfing cuts go across it.
+     */
+    ur_vec2 *direction;
     size_t count;
 } ur_shading;
+
+/*
+ * One side of a seam: a run of the outline that was cut from a neighbouring
+ * part of the surface (another piece, or another run of the same piece, as
+ * the two edges of a closed cylinder's cut ruling).  The two sides of a seam
+ * carry the same seam number, unique within one ur_net_list, and each
+ * follows its own outline counter-clockwise, so in 3D they run in opposite
+ * directions: the first point of one side is the last point of the other.
+ * A boundary of the surface itself is no seam.
+ */
+typedef struct ur_seam_side {
+    size_t first; /* outline index of the run's first point */
+    size_t count; /* points in the run, >= 2; indices wrap around the outline */
+    int seam;     /* seam number, >= 1 */
+} ur_seam_side;
 
 /* One flat piece.  All arrays are owned by the net. */
 typedef struct ur_net {
@@ -54,9 +76,17 @@ typedef struct ur_net {
     ur_vec2 *outline; /* closed ring, counter-clockwise, first point not repeated */
     size_t outline_count;
     ur_segment *rulings; /* rulings to draw (fold or score lines) */
+    /*
+     * Parallel to rulings for a development: the surface parameter u of
+     * each drawn ruling, so that allowances can ask the surface about it
+     * (bend radius, for bending kerfs).  NULL for a flattened mesh.
+     */
+    double *ruling_parameters;
     size_t ruling_count;
     ur_segment seams[2]; /* outline edges cut from a neighbouring piece */
     size_t seam_count;
+    ur_seam_side *seam_sides; /* every seam side of the outline; owned */
+    size_t seam_side_count;
     double u_start, u_end; /* the part of the surface this piece covers */
     double area_3d;        /* 3D area of that part (quadrature) */
     double flat_area;      /* area enclosed by the outline */

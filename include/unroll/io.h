@@ -59,11 +59,39 @@ typedef struct ur_machine {
     double cut_speed;             /* mm/s */
     double travel_speed;          /* mm/s */
     ur_op_style styles[UR_OP_COUNT];
+    /*
+     * Holding bridges: uncut gaps of this width (mm) along the outline.
+     * From <bridge width=".." default="none|auto"/>; when absent 0.5 mm for
+     * a laser and 3 mm for a router, off for a laser and on for a router.
+     */
+    double bridge_width;
+    bool bridges_by_default;
 } ur_machine;
 
 typedef struct ur_sheet_size {
     double width, height; /* mm */
 } ur_sheet_size;
+
+/* How two pieces meet along a seam. */
+typedef enum ur_joint_kind {
+    UR_JOINT_TAB, /* a tapered glue tab on one side (paper, cardboard, polypropylene) */
+    UR_JOINT_LAP, /* one piece extends under the other (plywood, MDF) */
+} ur_joint_kind;
+
+/* How a region that must shrink is relieved. */
+typedef enum ur_overlap_style { UR_OVERLAP_SLIT, UR_OVERLAP_DART } ur_overlap_style;
+
+/* Which layer of the material the 3D surface describes (--surface). */
+typedef enum ur_surface_layer {
+    UR_LAYER_NEUTRAL, /* develop the surface as given */
+    UR_LAYER_OUTER,   /* the surface is the outer (convex) face */
+    UR_LAYER_INNER,   /* the inner (concave) face */
+    UR_LAYER_MID,     /* the middle of the thickness */
+} ur_surface_layer;
+
+/* "neutral", "outer", "inner", "mid"; ur_surface_layer_from_name returns -1 when unknown. */
+const char *ur_surface_layer_name(ur_surface_layer layer);
+int ur_surface_layer_from_name(const char *name);
 
 typedef enum ur_grain_rule {
     UR_GRAIN_NONE,   /* no grain: any rotation */
@@ -94,6 +122,19 @@ typedef struct ur_material {
     double hinge_cut_length; /* living hinge: slit length, mm */
     double hinge_connection; /* uncut bridge between slits, mm */
     double hinge_distance;   /* distance between slit rows, mm */
+    /*
+     * What the allowances need.  Each element is optional; the defaults
+     * (unroll-profile(5)) are filled in when it is absent.
+     */
+    ur_joint_kind joint;    /* <joint type=".."/>: default tab */
+    double lap_width;       /* <joint lap-width=".."/>: default the tab depth */
+    double label_height;    /* <label height=".."/>: engraved text, default 4 mm */
+    double kerfing_opening; /* <kerfing opening=".."/>: widest a slit opens, default 0.5 mm */
+    double kerfing_margin;  /* <kerfing margin=".."/>: slits stop this far from the outline, default
+                               3 mm */
+    ur_overlap_style overlap; /* <overlap style=".."/>: default slit */
+    double groove_skin; /* <groove skin=".."/>: uncut skin under a routed groove, default t / 3 */
+    ur_surface_layer surface_layer; /* <surface layer=".."/>: default neutral */
 } ur_material;
 
 /* "machines" or "materials": the sub-folder of a profile root. */

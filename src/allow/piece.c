@@ -63,6 +63,12 @@ static ur_status copy_shading(ur_piece *piece, const ur_shading *shading, ur_err
         return UR_ERROR_INTERNAL; /* ur_piece_free frees what was allocated */
     memcpy(copy->triangles, shading->triangles, shading->count * sizeof *copy->triangles);
     memcpy(copy->strain, shading->strain, shading->count * sizeof *copy->strain);
+    if (shading->direction) {
+        copy->direction = ur_alloc_array(shading->count, sizeof *copy->direction, error);
+        if (!copy->direction)
+            return UR_ERROR_INTERNAL;
+        memcpy(copy->direction, shading->direction, shading->count * sizeof *copy->direction);
+    }
     copy->count = shading->count;
     return UR_OK;
 }
@@ -102,5 +108,27 @@ void ur_piece_free(ur_piece *piece)
     piece->path_count = 0;
     free(piece->shading.triangles);
     free(piece->shading.strain);
+    free(piece->shading.direction);
     memset(&piece->shading, 0, sizeof piece->shading);
+    free(piece->records);
+    piece->records = NULL;
+    piece->record_count = 0;
+}
+
+ur_status ur_piece_record(ur_piece *piece, const ur_allowance_record *record, ur_error *error)
+{
+    ur_allowance_record *records =
+        realloc(piece->records, (piece->record_count + 1) * sizeof *records);
+    if (!records)
+        return ur_error_out_of_memory(error);
+    piece->records = records;
+    piece->records[piece->record_count++] = *record;
+    return UR_OK;
+}
+
+const char *ur_allowance_kind_name(ur_allowance_kind kind)
+{
+    static const char *const names[UR_ALLOWANCE_KIND_COUNT] = {
+        "joint", "label", "kerfing", "overlap", "bending", "kerf-compensation", "bridges"};
+    return (unsigned)kind < UR_ALLOWANCE_KIND_COUNT ? names[kind] : "?";
 }

@@ -489,10 +489,13 @@ void ur_net_free(ur_net *net)
 {
     free(net->outline);
     free(net->rulings);
+    free(net->ruling_parameters);
+    free(net->seam_sides);
     free(net->folds);
     free(net->fold_valley);
     free(net->shading.triangles);
     free(net->shading.strain);
+    free(net->shading.direction);
     memset(net, 0, sizeof *net);
 }
 

@@ -6,6 +6,7 @@
  * triangle, the shading the strain picture draws.
  */
 #include "unroll/flatten.h"
+#include "unroll/develop.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -56,14 +57,6 @@ static ur_status fill_shading(const ur_mesh *piece, const ur_flat_piece *flat, u
     return UR_OK;
 }
 
-static void free_net(ur_net *net)
-{
-    free(net->outline);
-    free(net->shading.triangles);
-    free(net->shading.strain);
-    memset(net, 0, sizeof *net);
-}
-
 ur_status ur_net_from_flat(const ur_mesh *piece, const ur_flat_piece *flat, const char *name,
                            ur_net *net, ur_error *error)
 {
@@ -96,6 +89,6 @@ ur_status ur_net_from_flat(const ur_mesh *piece, const ur_flat_piece *flat, cons
     free(loop);
     status = fill_shading(piece, flat, &net->shading, error);
     if (status != UR_OK)
-        free_net(net);
+        ur_net_free(net);
     return status;
 }

@@ -510,6 +510,28 @@ static ur_status attribute_text(const ur_reader *reader, xmlNodePtr element, con
     return status;
 }
 
+/*
+ * An optional attribute naming one of choices (a NULL-terminated list):
+ * *index is its position; a missing attribute leaves *index alone.
+ */
+static ur_status attribute_choice(const ur_reader *reader, xmlNodePtr element, const char *name,
+                                  const char *const *choices, int *index)
+{
+    if (!xmlHasProp(element, BAD_CAST name))
+        return UR_OK;
+    char text[32];
+    ur_status status = attribute_text(reader, element, name, text, sizeof text);
+    if (status != UR_OK)
+        return status;
+    for (int i = 0; choices[i]; i++)
+        if (strcmp(text, choices[i]) == 0) {
+            *index = i;
+            return UR_OK;
+        }
+    return reader_fail(reader, element, "%s %s '%s' is not one of the known values",
+                       (const char *)element->name, name, text);
+}
+
 /* The profile name is the file name without ".xml". */
 static ur_status set_identity(const char *path, char *name, size_t name_size, char *source,
                               size_t source_size, ur_error *error)
@@ -631,6 +653,25 @@ static ur_status read_operations(const ur_reader *reader, xmlNodePtr root, ur_ma
     return UR_OK;
 }
 
+/* <bridge width=".." default="none|auto"/> is optional: defaults by kind. */
+static ur_status read_bridges(const ur_reader *reader, xmlNodePtr root, ur_machine *machine)
+{
+    static const char *const defaults[] = {"none", "auto", NULL};
+    bool router = machine->kind == UR_MACHINE_ROUTER;
+    machine->bridge_width = router ? 3.0 : 0.5;
+    machine->bridges_by_default = router;
+    xmlNodePtr bridge = next_element(root->children, "bridge");
+    if (!bridge)
+        return UR_OK;
+    int by_default = machine->bridges_by_default ? 1 : 0;
+    ur_status status =
+        attribute_number(reader, bridge, "width", false, &positive, &machine->bridge_width);
+    if (status == UR_OK)
+        status = attribute_choice(reader, bridge, "default", defaults, &by_default);
+    machine->bridges_by_default = by_default == 1;
+    return status;
+}
+
 static ur_status read_machine_fields(const ur_reader *reader, xmlNodePtr root, ur_machine *machine)
 {
     xmlNodePtr bed, speed;
@@ -658,6 +699,8 @@ static ur_status read_machine_fields(const ur_reader *reader, xmlNodePtr root, u
         status = attribute_number(reader, speed, "travel", true, &positive, &machine->travel_speed);
     if (status == UR_OK)
         status = read_operations(reader, root, machine);
+    if (status == UR_OK)
+        status = read_bridges(reader, root, machine);
     return status;
 }
 
@@ -806,6 +849,86 @@ static ur_status read_tab_and_hinge(const ur_reader *reader, xmlNodePtr root, ur
     return status;
 }
 
+static const char *const surface_layer_names[] = {"neutral", "outer", "inner", "mid", NULL};
+
+const char *ur_surface_layer_name(ur_surface_layer layer)
+{
+    return (unsigned)layer < 4 ? surface_layer_names[layer] : "?";
+}
+
+int ur_surface_layer_from_name(const char *name)
+{
+    for (int i = 0; surface_layer_names[i]; i++)
+        if (strcmp(name, surface_layer_names[i]) == 0)
+            return i;
+    return -1;
+}
+
+static void allowance_defaults(ur_material *material)
+{
+    material->joint = UR_JOINT_TAB;
+    material->lap_width = material->tab_depth;
+    material->label_height = 4.0;
+    material->kerfing_opening = 0.5;
+    material->kerfing_margin = 3.0;
+    material->overlap = UR_OVERLAP_SLIT;
+    material->groove_skin = material->thickness / 3.0;
+    material->surface_layer = UR_LAYER_NEUTRAL;
+}
+
+/* An optional element's optional number attribute. */
+static ur_status optional_number(const ur_reader *reader, xmlNodePtr root, const char *element_name,
+                                 const char *name, double *value)
+{
+    xmlNodePtr element = next_element(root->children, element_name);
+    if (!element)
+        return UR_OK;
+    return attribute_number(reader, element, name, false, &positive, value);
+}
+
+/* An optional element's optional choice attribute. */
+static ur_status optional_choice(const ur_reader *reader, xmlNodePtr root, const char *element_name,
+                                 const char *name, const char *const *choices, int *index)
+{
+    xmlNodePtr element = next_element(root->children, element_name);
+    if (!element)
+        return UR_OK;
+    return attribute_choice(reader, element, name, choices, index);
+}
+
+/* <joint>, <label>, <kerfing>, <overlap>, <groove>, <surface>: all optional. */
+static ur_status read_allowances(const ur_reader *reader, xmlNodePtr root, ur_material *material)
+{
+    static const char *const joints[] = {"tab", "lap", NULL};
+    static const char *const overlaps[] = {"slit", "dart", NULL};
+    allowance_defaults(material);
+    int joint = (int)material->joint, overlap = (int)material->overlap,
+        layer = (int)material->surface_layer;
+    ur_status status = optional_choice(reader, root, "joint", "type", joints, &joint);
+    if (status == UR_OK)
+        status = optional_number(reader, root, "joint", "lap-width", &material->lap_width);
+    if (status == UR_OK)
+        status = optional_number(reader, root, "label", "height", &material->label_height);
+    if (status == UR_OK)
+        status = optional_number(reader, root, "kerfing", "opening", &material->kerfing_opening);
+    if (status == UR_OK)
+        status = optional_number(reader, root, "kerfing", "margin", &material->kerfing_margin);
+    if (status == UR_OK)
+        status = optional_choice(reader, root, "overlap", "style", overlaps, &overlap);
+    if (status == UR_OK)
+        status = optional_number(reader, root, "groove", "skin", &material->groove_skin);
+    if (status == UR_OK)
+        status = optional_choice(reader, root, "surface", "layer", surface_layer_names, &layer);
+    material->joint = (ur_joint_kind)joint;
+    material->overlap = (ur_overlap_style)overlap;
+    material->surface_layer = (ur_surface_layer)layer;
+    if (status == UR_OK && material->groove_skin >= material->thickness)
+        status = reader_fail(reader, next_element(root->children, "groove"),
+                             "groove skin %g mm leaves no groove in %g mm stock",
+                             material->groove_skin, material->thickness);
+    return status;
+}
+
 static ur_status read_material_fields(const ur_reader *reader, xmlNodePtr root,
                                       ur_material *material)
 {
@@ -823,6 +946,8 @@ static ur_status read_material_fields(const ur_reader *reader, xmlNodePtr root,
         status = read_tab_and_hinge(reader, root, material);
     if (status == UR_OK)
         status = read_grain(reader, root, material);
+    if (status == UR_OK)
+        status = read_allowances(reader, root, material);
     return status;
 }
 

@@ -4,7 +4,6 @@
  */
 #include "json.h"
 
-
 #include "atomic.h"
 
 /* Every real with the 17 digits that make it read back exactly. */

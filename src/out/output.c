@@ -22,7 +22,7 @@
  * or shifts before everything on it is done.
  */
 _Static_assert(UR_OP_COUNT == 6, "put every operation into cut_order");
-static const ur_op cut_order[UR_OP_COUNT] = {UR_OP_ENGRAVE, UR_OP_MARK,  UR_OP_SCORE,
+static const ur_op cut_order[UR_OP_COUNT] = {UR_OP_ENGRAVE,      UR_OP_MARK, UR_OP_SCORE,
                                              UR_OP_SCORE_VALLEY, UR_OP_KERF, UR_OP_CUT};
 
 /* Longest path name we build; longer output names are refused, not cut off. */

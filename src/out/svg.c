@@ -240,8 +240,8 @@ static ur_status svg_begin_layer(void *state, ur_op op, ur_error *error)
     };
     if (xmlTextWriterStartElement(sheet->writer, BAD_CAST "g") < 0)
         return xml_failed(error, "g");
-    status = write_attributes(sheet->writer, attributes, sizeof attributes / sizeof *attributes,
-                              error);
+    status =
+        write_attributes(sheet->writer, attributes, sizeof attributes / sizeof *attributes, error);
     const char *const dash[][2] = {{"stroke-dasharray", style->dash}};
     if (status == UR_OK && style->dash[0])
         status = write_attributes(sheet->writer, dash, 1, error);

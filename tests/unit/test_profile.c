@@ -436,6 +436,54 @@ static void test_material_rules(void **state)
     assert_string_equal(material.source, path);
 }
 
+/*
+ * The allowance elements are optional: a profile without them (test-grain-none
+ * above, written by test_material_rules) gets the documented defaults, the
+ * shipped ones their figures, and a bad choice is refused with its line.
+ */
+static void test_allowance_fields(void **state)
+{
+    (void)state;
+    ur_material material;
+    ur_error error = {0};
+    assert_int_equal(ur_material_load("test-grain-none", &material, &error), UR_OK);
+    assert_int_equal(material.joint, UR_JOINT_TAB);
+    assert_true(material.lap_width == material.tab_depth);
+    assert_true(material.label_height == 4.0);
+    assert_true(material.kerfing_opening == 0.5 && material.kerfing_margin == 3.0);
+    assert_int_equal(material.overlap, UR_OVERLAP_SLIT);
+    assert_true(material.groove_skin == 0.5); /* a third of 1.5 mm */
+    assert_int_equal(material.surface_layer, UR_LAYER_NEUTRAL);
+
+    load_material("plywood-3mm", &material);
+    assert_int_equal(material.joint, UR_JOINT_LAP);
+    assert_true(material.lap_width == 15.0 && material.groove_skin == 1.0);
+    load_material("paper-0.3mm", &material);
+    assert_int_equal(material.overlap, UR_OVERLAP_DART);
+
+    const char *text = "<material>\n"
+                       "  <description>Test</description>\n"
+                       "  <thickness>3</thickness>\n"
+                       "  <stock width=\"100\" height=\"50\"/>\n"
+                       "  <bend-radius with-grain=\"5\" across-grain=\"7\"/>\n"
+                       "  <strain stretch=\"0\" compression=\"0.01\"/>\n"
+                       "  <k-factor>0.45</k-factor>\n"
+                       "  <tab depth=\"5\" angle=\"60\"/>\n"
+                       "  <grain rule=\"none\"/>\n"
+                       "  <living-hinge cut-length=\"5\" connection=\"1\" distance=\"1\"/>\n"
+                       "  <groove skin=\"3\"/>\n" /* line 11: no groove left */
+                       "</material>\n";
+    const char *path = write_profile("materials", "test-skin", text);
+    assert_int_equal(ur_material_load("test-skin", &material, &error), UR_ERROR_INPUT);
+    expect_located(error.message, path, 11, "skin");
+
+    ur_machine machine;
+    assert_int_equal(ur_machine_load("router", &machine, &error), UR_OK);
+    assert_true(machine.bridge_width == 3.0 && machine.bridges_by_default);
+    assert_int_equal(ur_machine_load("co2-60w", &machine, &error), UR_OK);
+    assert_true(machine.bridge_width == 0.5 && !machine.bridges_by_default);
+}
+
 /* libxml2 must not print: stderr stays empty while a bad file is read. */
 static void test_nothing_printed(void **state)
 {
@@ -592,6 +640,7 @@ int main(void)
         cmocka_unit_test(test_missing_bed),
         cmocka_unit_test(test_bad_kind_and_material_values),
         cmocka_unit_test(test_material_rules),
+        cmocka_unit_test(test_allowance_fields),
         cmocka_unit_test(test_nothing_printed),
         cmocka_unit_test(test_unknown_name),
         cmocka_unit_test(test_bad_names),
