@@ -87,6 +87,12 @@ typedef struct ur_net {
     size_t seam_count;
     ur_seam_side *seam_sides; /* every seam side of the outline; owned */
     size_t seam_side_count;
+    /*
+     * A flattened or unfolded mesh piece: the 3D point of each outline
+     * point (owned), from which ur_net_list_find_seams pairs the seams.
+     * NULL for a development, whose seams are its cut rulings.
+     */
+    ur_vec3 *outline_3d;
     double u_start, u_end; /* the part of the surface this piece covers */
     double area_3d;        /* 3D area of that part (quadrature) */
     double flat_area;      /* area enclosed by the outline */
@@ -126,6 +132,23 @@ ur_status ur_develop(ur_ruled *ruled, const ur_develop_options *options, ur_net_
                      ur_error *error);
 
 void ur_net_list_free(ur_net_list *nets);
+
+/*
+ * Finds the seams between nets that carry outline_3d (meshes): an outline
+ * edge from P to Q pairs with an edge from Q to P of another net, or of the
+ * same net elsewhere along its outline.  Runs of paired edges that follow
+ * each other on both sides become one seam side each, the two numbered
+ * alike from first_seam on (a run stops where the cut folds back on itself,
+ * as at the end of a slit); *next_seam receives the next free number.
+ * Replaces the seam sides of those nets; nets without outline_3d are left
+ * alone.  Points pair when they are equal, as the flattening leaves them:
+ * one mesh vertex, one 3D point.
+ */
+ur_status ur_net_list_find_seams(ur_net_list *nets, int first_seam, int *next_seam,
+                                 ur_error *error);
+
+/* The largest seam number of the list's nets, 0 when there is none. */
+int ur_net_list_last_seam(const ur_net_list *nets);
 
 /* Frees one net's arrays (not the net itself). */
 void ur_net_free(ur_net *net);

@@ -204,11 +204,16 @@ static void say_repairs(const cli_job *job, const ur_mesh_repairs *repairs)
 }
 
 /* A piece of an unfolding as a net: its outline, its folds, no strain. */
-static ur_status net_of_unfolded(const ur_unfolded_piece *piece, size_t index, ur_net *net,
-                                 ur_error *error)
+static ur_status net_of_unfolded(const ur_mesh *mesh, const ur_unfolded_piece *piece, size_t index,
+                                 ur_net *net, ur_error *error)
 {
     memset(net, 0, sizeof *net);
     snprintf(net->name, sizeof net->name, "P%zu", index + 1);
+    net->outline_3d = ur_alloc_array(piece->outline_count, sizeof *net->outline_3d, error);
+    if (!net->outline_3d)
+        return UR_ERROR_INTERNAL;
+    for (size_t i = 0; i < piece->outline_count; i++)
+        net->outline_3d[i] = mesh->vertices[piece->outline_vertices[i]];
     net->outline = ur_alloc_array(piece->outline_count, sizeof *net->outline, error);
     net->folds = ur_alloc_array(piece->fold_count, sizeof *net->folds, error);
     net->fold_valley = ur_alloc_array(piece->fold_count, sizeof *net->fold_valley, error);
@@ -241,7 +246,7 @@ static int unfold_mesh(const cli_job *job, const ur_mesh *mesh, const ur_seam *s
     *area = 0.0;
     for (size_t k = 0; !code && k < unfolding.count; k++) {
         nets->count++;
-        if (net_of_unfolded(&unfolding.pieces[k], k, &nets->nets[k], &error) != UR_OK)
+        if (net_of_unfolded(mesh, &unfolding.pieces[k], k, &nets->nets[k], &error) != UR_OK)
             code = fail(job, &error);
         *area += unfolding.pieces[k].area_3d;
     }

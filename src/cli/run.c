@@ -116,6 +116,10 @@ static ur_status append_nets(ur_net_list *all, ur_net_list *part, ur_error *erro
     if (!grown)
         return ur_error_out_of_memory(error);
     all->nets = grown;
+    int seams_before = ur_net_list_last_seam(all);
+    for (size_t k = 0; k < part->count; k++)
+        for (size_t j = 0; j < part->nets[k].seam_side_count; j++)
+            part->nets[k].seam_sides[j].seam += seams_before;
     for (size_t k = 0; k < part->count; k++) {
         all->nets[all->count] = part->nets[k];
         snprintf(all->nets[all->count].name, sizeof all->nets[0].name, "P%zu", all->count + 1);
@@ -317,6 +321,19 @@ static int make_nets(const cli_job *job, job_state *state, cli_adjusted_rail *ad
     return code;
 }
 
+/* Pairs the seams of mesh nets (developments number their own). */
+static int find_seams(const cli_job *job, job_state *state)
+{
+    ur_error error;
+    int next_seam;
+    if (ur_net_list_find_seams(&state->nets, ur_net_list_last_seam(&state->nets) + 1, &next_seam,
+                               &error) != UR_OK) {
+        cli_message("%s: %s", job->command, error.message);
+        return cli_exit_status(&error);
+    }
+    return 0;
+}
+
 int cli_run_job(const cli_job *job)
 {
     if (!cli_directory_exists("-o", job->output_path) ||
@@ -342,6 +359,8 @@ int cli_run_job(const cli_job *job)
     ur_vec3 *edge = NULL;
     size_t edge_count = 0;
     int code = make_nets(job, &state, &adjusted, &edge, &edge_count);
+    if (!code)
+        code = find_seams(job, &state);
     if (code) {
         free(edge);
         free(adjusted.points);

@@ -14,6 +14,7 @@
 #include <geos_c.h>
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_odeiv2.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -435,6 +436,63 @@ static ur_status fill_net(ur_ruled *ruled, const strip *s, size_t first, size_t 
     return status;
 }
 
+/* The outline index of a point the outline was copied from, or SIZE_MAX. */
+static size_t outline_index(const ur_net *net, ur_vec2 point)
+{
+    for (size_t i = 0; i < net->outline_count; i++)
+        if (net->outline[i].x == point.x && net->outline[i].y == point.y)
+            return i;
+    return SIZE_MAX;
+}
+
+/*
+ * A cut ruling as a seam side: its two ends are neighbours on the outline
+ * (the outline runs along one rail, across the end ruling and back).  A
+ * ruling of no length (at a cone's apex) is no side.
+ */
+static ur_status add_ruling_side(ur_net *net, ur_segment ruling, int seam, ur_error *error)
+{
+    size_t a = outline_index(net, ruling.start), b = outline_index(net, ruling.end);
+    size_t n = net->outline_count;
+    if (a == SIZE_MAX || b == SIZE_MAX || a == b)
+        return UR_OK;
+    size_t first;
+    if ((a + 1) % n == b)
+        first = a;
+    else if ((b + 1) % n == a)
+        first = b;
+    else
+        return ur_error_set(error, UR_ERROR_INTERNAL,
+                            "net %s: a cut ruling's ends are not neighbours on its outline",
+                            net->name);
+    ur_seam_side *sides = realloc(net->seam_sides, (net->seam_side_count + 1) * sizeof *sides);
+    if (!sides)
+        return ur_error_out_of_memory(error);
+    net->seam_sides = sides;
+    sides[net->seam_side_count++] = (ur_seam_side){first, 2, seam};
+    return UR_OK;
+}
+
+/*
+ * Seam k (from 1) joins piece k to piece k + 1; on a closed surface seam
+ * piece_count joins the last piece back to the first.  seams[0] of a
+ * piece is its first ruling when it has a seam there (fill_net).
+ */
+static ur_status number_ruling_seams(ur_net *net, size_t k, size_t piece_count, bool closed,
+                                     ur_error *error)
+{
+    bool before = k > 0 || closed, after = k + 1 < piece_count || closed;
+    int before_seam = k > 0 ? (int)k : (int)piece_count;
+    int after_seam = (int)k + 1;
+    ur_status status = UR_OK;
+    size_t next = 0;
+    if (before)
+        status = add_ruling_side(net, net->seams[next++], before_seam, error);
+    if (status == UR_OK && after)
+        status = add_ruling_side(net, net->seams[next], after_seam, error);
+    return status;
+}
+
 static ur_status nets_from_strip(ur_ruled *ruled, const strip *s, const size_t *cuts,
                                  size_t piece_count, ur_net_list *nets, ur_error *error)
 {
@@ -448,6 +506,8 @@ static ur_status nets_from_strip(ur_ruled *ruled, const strip *s, const size_t *
         snprintf(net->name, sizeof net->name, "P%zu", k + 1);
         ur_status status = fill_net(ruled, s, cuts[k], cuts[k + 1], k > 0 || closed,
                                     k + 1 < piece_count || closed, net, error);
+        if (status == UR_OK)
+            status = number_ruling_seams(net, k, piece_count, closed, error);
         if (status != UR_OK) {
             ur_net_list_free(nets);
             return status;
@@ -491,6 +551,7 @@ void ur_net_free(ur_net *net)
     free(net->rulings);
     free(net->ruling_parameters);
     free(net->seam_sides);
+    free(net->outline_3d);
     free(net->folds);
     free(net->fold_valley);
     free(net->shading.triangles);

@@ -67,20 +67,22 @@ ur_status ur_net_from_flat(const ur_mesh *piece, const ur_flat_piece *flat, cons
     memset(net, 0, sizeof *net);
     snprintf(net->name, sizeof net->name, "%s", name);
     net->outline = ur_alloc_array(count, sizeof *net->outline, error);
-    if (!net->outline) {
+    net->outline_3d = ur_alloc_array(count, sizeof *net->outline_3d, error);
+    if (!net->outline || !net->outline_3d) {
         free(loop);
+        ur_net_free(net);
         return UR_ERROR_INTERNAL;
     }
+    double area = 0.0;
     for (size_t i = 0; i < count; i++)
         net->outline[i] = flat->flat[loop[i]];
+    area = ur_polygon_signed_area(net->outline, count);
+    for (size_t i = 0; i < count; i++) { /* the writers want counter-clockwise outlines */
+        size_t from = area < 0 ? count - 1 - i : i;
+        net->outline[i] = flat->flat[loop[from]];
+        net->outline_3d[i] = piece->vertices[loop[from]];
+    }
     net->outline_count = count;
-    double area = ur_polygon_signed_area(net->outline, count);
-    if (area < 0) /* the writers want counter-clockwise outlines */
-        for (size_t i = 0, j = count - 1; i < j; i++, j--) {
-            ur_vec2 swap = net->outline[i];
-            net->outline[i] = net->outline[j];
-            net->outline[j] = swap;
-        }
     net->flat_area = fabs(area);
     net->area_3d = flat->area_3d;
     net->edge_error = boundary_error(piece, flat, loop, count);
