@@ -139,6 +139,48 @@ ur_status ur_piece_add_label(ur_piece *piece, const ur_font *font, const char *t
                              ur_vec2 direction, double height, double min_height, double clearance,
                              bool *placed, ur_error *error);
 
+/* ---- Joints on seams (joints.c) --------------------------------------- */
+
+typedef struct ur_joint_options {
+    bool lap;            /* lap joints (wood) instead of glue tabs */
+    double tab_depth;    /* mm */
+    double tab_angle;    /* degrees between a tab's base and its sides; 90 for none */
+    double lap_width;    /* mm */
+    double thickness;    /* of the material, mm: see ur_pieces_add_joints */
+    const ur_font *font; /* NULL: no labels */
+    double label_height; /* mm */
+    bool name_pieces;    /* engrave each piece's name too */
+} ur_joint_options;
+
+/* The label of seam number seam (from 1): "A1" ... "A99", "B1" ... "Z99", then "AA1" ... */
+void ur_seam_label(int seam, char *label, size_t size);
+
+/*
+ * Puts a joint on every seam of the nets (pieces[k] was made from
+ * nets->nets[k] and its outline is still the net's, or grown by joints).
+ *
+ * Tabs: a tapered glue tab on one side of each seam, a SCORE fold at its
+ * base, the outline grown around it.  The side is the one where the tab
+ * clashes least with its piece (the other one when the first clashes),
+ * balancing the tabs between the pieces when both are free, as a person
+ * would.  A tab that would overlap its own piece or another tab (GEOS) is
+ * narrowed; failing that it goes to the other side; failing that a
+ * warning is recorded.  On stock 1 mm thick or more, the tab starts a band
+ * of the material's thickness out from the seam, with a second fold, so
+ * that it wraps the edge of the other piece.
+ *
+ * Laps: one piece extends under the other by lap_width (the outline grown
+ * by a band along the seam); the lapped zone is drawn as a closed MARK
+ * path on both pieces.
+ *
+ * With a font, both sides of every seam get its label (ur_seam_label)
+ * engraved inside the piece near the seam's middle, along the seam, and
+ * pieces their names when name_pieces.  Records a UR_ALLOWANCE_JOINT or
+ * UR_ALLOWANCE_LABEL entry for each (warnings for what found no room).
+ */
+ur_status ur_pieces_add_joints(ur_piece *pieces, const ur_net_list *nets,
+                               const ur_joint_options *options, ur_error *error);
+
 /* ---- Kerf compensation and bridges (kerf.c, bridges.c) ---------------- */
 
 /*

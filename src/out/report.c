@@ -52,6 +52,46 @@ static json_t *box_json(ur_box box)
     return object;
 }
 
+/* A figure of a record, or null where it has none (NAN). */
+static json_t *figure_json(double value)
+{
+    return isnan(value) ? json_null() : ur_json_number(value);
+}
+
+static json_t *record_json(const ur_allowance_record *record)
+{
+    json_t *object = json_object();
+    json_t *where = json_pack("[ff]", record->where.x, record->where.y);
+    if (!object || !where ||
+        json_object_set_new(object, "kind", json_string(ur_allowance_kind_name(record->kind))) !=
+            0 ||
+        json_object_set_new(object, "count", json_integer((json_int_t)record->count)) != 0 ||
+        json_object_set_new(object, "value", figure_json(record->value)) != 0 ||
+        json_object_set_new(object, "limit", figure_json(record->limit)) != 0 ||
+        json_object_set_new(object, "at_mm", where) != 0 ||
+        json_object_set_new(object, "warning", json_boolean(record->warning)) != 0 ||
+        json_object_set_new(object, "reason", name_of(record->reason, sizeof record->reason)) !=
+            0) {
+        if (!object)
+            json_decref(where);
+        json_decref(object);
+        return NULL;
+    }
+    return object;
+}
+
+/* What was added to the piece and why, in the order it was added. */
+static json_t *records_json(const ur_piece *piece)
+{
+    json_t *array = json_array();
+    for (size_t i = 0; array && i < piece->record_count; i++)
+        if (json_array_append_new(array, record_json(&piece->records[i])) != 0) {
+            json_decref(array);
+            return NULL;
+        }
+    return array;
+}
+
 /* json_object_set_new takes value even when it fails, so nothing leaks here. */
 static json_t *piece_json(const ur_piece *piece, size_t sheet)
 {
@@ -68,6 +108,7 @@ static json_t *piece_json(const ur_piece *piece, size_t sheet)
         json_object_set_new(object, "edge_length_error", ur_json_number(m->edge_error)) != 0 ||
         json_object_set_new(object, "max_stretch", ur_json_number(m->max_stretch)) != 0 ||
         json_object_set_new(object, "max_compression", ur_json_number(m->max_compression)) != 0 ||
+        json_object_set_new(object, "allowances", records_json(piece)) != 0 ||
         json_object_set_new(object, "sheet",
                             sheet ? json_integer((json_int_t)sheet) : json_null()) != 0) {
         json_decref(object);

@@ -1,0 +1,29 @@
+/*
+ * allow_internal.h: what the allowance files share: moving rings of points
+ * in and out of GEOS (reentrant API; the caller owns the context).
+ */
+#ifndef UNROLL_ALLOW_INTERNAL_H
+#define UNROLL_ALLOW_INTERNAL_H
+
+#include <geos_c.h>
+
+#include "unroll/allow.h"
+
+/* A polygon from a ring (first point not repeated, at least 3 points), or NULL. */
+GEOSGeometry *allow_polygon(GEOSContextHandle_t geos, const ur_vec2 *ring, size_t count);
+
+/* An open line string through the points (at least 2), or NULL. */
+GEOSGeometry *allow_line(GEOSContextHandle_t geos, const ur_vec2 *points, size_t count);
+
+/*
+ * The exterior ring of a polygon as points, counter-clockwise, first point
+ * not repeated; the caller frees *ring.  Fails (UR_ERROR_INTERNAL) on
+ * anything but a polygon with a ring of 3 points or more.
+ */
+ur_status allow_exterior_ring(GEOSContextHandle_t geos, const GEOSGeometry *polygon, ur_vec2 **ring,
+                              size_t *count, ur_error *error);
+
+/* Area of a GEOS geometry (0 when GEOS fails). */
+double allow_area(GEOSContextHandle_t geos, const GEOSGeometry *geometry);
+
+#endif

@@ -1,0 +1,86 @@
+/*
+ * geos.c: rings of points to GEOS geometries and back, for the allowance
+ * files (allow_internal.h).
+ */
+#include "allow_internal.h"
+
+#include <stdlib.h>
+
+static GEOSCoordSequence *sequence_of(GEOSContextHandle_t geos, const ur_vec2 *points, size_t count,
+                                      bool close)
+{
+    size_t total = count + (close ? 1 : 0);
+    GEOSCoordSequence *sequence = GEOSCoordSeq_create_r(geos, (unsigned)total, 2);
+    if (!sequence)
+        return NULL;
+    for (size_t i = 0; i < total; i++) {
+        ur_vec2 p = points[i % count];
+        if (!GEOSCoordSeq_setXY_r(geos, sequence, (unsigned)i, p.x, p.y)) {
+            GEOSCoordSeq_destroy_r(geos, sequence);
+            return NULL;
+        }
+    }
+    return sequence;
+}
+
+GEOSGeometry *allow_polygon(GEOSContextHandle_t geos, const ur_vec2 *ring, size_t count)
+{
+    if (count < 3)
+        return NULL;
+    GEOSCoordSequence *sequence = sequence_of(geos, ring, count, true);
+    if (!sequence)
+        return NULL;
+    GEOSGeometry *shell = GEOSGeom_createLinearRing_r(geos, sequence);
+    if (!shell)
+        return NULL;
+    GEOSGeometry *polygon = GEOSGeom_createPolygon_r(geos, shell, NULL, 0);
+    if (!polygon)
+        GEOSGeom_destroy_r(geos, shell);
+    return polygon;
+}
+
+GEOSGeometry *allow_line(GEOSContextHandle_t geos, const ur_vec2 *points, size_t count)
+{
+    if (count < 2)
+        return NULL;
+    GEOSCoordSequence *sequence = sequence_of(geos, points, count, false);
+    return sequence ? GEOSGeom_createLineString_r(geos, sequence) : NULL;
+}
+
+ur_status allow_exterior_ring(GEOSContextHandle_t geos, const GEOSGeometry *polygon, ur_vec2 **ring,
+                              size_t *count, ur_error *error)
+{
+    *ring = NULL;
+    *count = 0;
+    if (GEOSGeomTypeId_r(geos, polygon) != GEOS_POLYGON)
+        return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS gave a %s where a polygon was due",
+                            GEOSGeomType_r(geos, polygon) ? "other geometry" : "nothing");
+    const GEOSGeometry *shell = GEOSGetExteriorRing_r(geos, polygon);
+    const GEOSCoordSequence *sequence = shell ? GEOSGeom_getCoordSeq_r(geos, shell) : NULL;
+    unsigned size = 0;
+    if (!sequence || !GEOSCoordSeq_getSize_r(geos, sequence, &size) || size < 4)
+        return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS gave a polygon without a ring");
+    size_t n = size - 1; /* GEOS repeats the first point at the end */
+    ur_vec2 *points = ur_alloc_array(n, sizeof *points, error);
+    if (!points)
+        return UR_ERROR_INTERNAL;
+    for (size_t i = 0; i < n; i++)
+        GEOSCoordSeq_getXY_r(geos, sequence, (unsigned)i, &points[i].x, &points[i].y);
+    if (ur_polygon_signed_area(points, n) < 0)
+        for (size_t i = 0, j = n - 1; i < j; i++, j--) {
+            ur_vec2 swap = points[i];
+            points[i] = points[j];
+            points[j] = swap;
+        }
+    *ring = points;
+    *count = n;
+    return UR_OK;
+}
+
+double allow_area(GEOSContextHandle_t geos, const GEOSGeometry *geometry)
+{
+    double area = 0.0;
+    if (!geometry || !GEOSArea_r(geos, geometry, &area))
+        return 0.0;
+    return area;
+}
