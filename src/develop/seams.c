@@ -205,8 +205,7 @@ static ur_status make_tables(const ur_net_list *nets, partner ***partners, int *
     return UR_OK;
 }
 
-ur_status ur_net_list_find_seams(ur_net_list *nets, int first_seam, int *next_seam,
-                                 ur_error *error)
+ur_status ur_net_list_find_seams(ur_net_list *nets, int first_seam, int *next_seam, ur_error *error)
 {
     *next_seam = first_seam;
     partner **partners = NULL;
