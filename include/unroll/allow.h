@@ -111,15 +111,20 @@ ur_status ur_piece_record(ur_piece *piece, const ur_allowance_record *record, ur
  * A Hershey single-stroke font (libhersheyfont), loaded once and passed to
  * the functions that engrave text.  ur_font_open loads "rowmans" (Roman
  * simplex) from the system's hershey-fonts data; NULL name means that one.
+ * A name that is not a font there (letters, digits, '_' and '-' only) is
+ * UR_ERROR_INPUT, the message naming it and the package hershey-fonts-data.
+ * The font's cap height is measured on its 'H'.
  */
 typedef struct ur_font ur_font;
 ur_status ur_font_open(const char *name, ur_font **font, ur_error *error);
 void ur_font_close(ur_font *font);
 
 /*
- * The strokes of text as open polylines, cap height `height` mm, baseline
- * from (0, 0) towards +x; *width is the advance of the whole text.  The
- * caller frees the paths' points and the array (ur_paths_free).
+ * The strokes of text as open ENGRAVE polylines, cap height `height` mm,
+ * baseline from (0, 0) towards +x, y up (descenders go below 0); *width is
+ * the advance of the whole text.  Only printable ASCII the font has is
+ * accepted (UR_ERROR_INPUT says which character is not).  The caller frees
+ * the paths' points and the array with ur_paths_free, even when *count is 0.
  */
 ur_status ur_text_strokes(const ur_font *font, const char *text, double height, ur_path **paths,
                           size_t *count, double *width, ur_error *error);
@@ -128,12 +133,21 @@ void ur_paths_free(ur_path *paths, size_t count);
 
 /*
  * Engraves text on the piece as ENGRAVE paths: inside the piece (outline
- * paths[0]), as near `near` as it can be put, its baseline along
- * `direction` (turned so it never reads upside down), at most `height` mm
- * high and no smaller than `min_height`, and clear of every other path of
- * the piece by `clearance` mm (checked with GEOS).  *placed says whether it
- * found room; when it did not, the piece is unchanged and the caller
- * records a warning.
+ * paths[0], a closed ring: labels go on before bridges), as near `near` as
+ * it can be put, its baseline along `direction` (turned half round when its
+ * x, or for x = 0 its y, is negative, so it never reads upside down), at
+ * most `height` mm high and no smaller than `min_height`, and clear of
+ * every path of the piece by `clearance` mm (checked with GEOS), outside
+ * every closed CUT or KERF path but the outline (a hole).  The text's box is
+ * what must fit.  Heights are tried from `height` down in steps of 0.8 to
+ * `min_height`, each first within about the text's own length of `near`;
+ * only when none fits there is the rest of the piece searched, largest
+ * height first.  On success it records a UR_ALLOWANCE_LABEL entry (value:
+ * the height used, where: the text's centre).  *placed says whether it
+ * found room; when it did not (or the text is only spaces), the piece is
+ * unchanged and the caller records a warning.  UR_ERROR_INPUT for a NULL or
+ * empty text, heights not 0 < min_height <= height, a negative clearance,
+ * a non-finite `near` or a zero or non-finite direction.
  */
 ur_status ur_piece_add_label(ur_piece *piece, const ur_font *font, const char *text, ur_vec2 near,
                              ur_vec2 direction, double height, double min_height, double clearance,
