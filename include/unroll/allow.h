@@ -10,10 +10,10 @@
  * and holding bridges.  Each allowance added is recorded on the piece with
  * the reason for it, for the report.
  *
- * The order the pipeline applies them: joints and labels, kerfing,
- * overlaps and bending on the net's own outline; then kerf compensation
- * (which moves the outline); then, once the piece is placed, bridges
- * (which open the outline).
+ * The order the pipeline applies them: kerfing, overlaps and bending
+ * inside the net's own outline; labels, then joints (which grow the
+ * outline); then kerf compensation (which moves it); then, once the piece
+ * is placed, bridges (which open it).
  */
 #ifndef UNROLL_ALLOW_H
 #define UNROLL_ALLOW_H

@@ -38,6 +38,15 @@ typedef struct ur_flatten_options {
 
 void ur_flatten_options_default(ur_flatten_options *options);
 
+/*
+ * About how many bytes flattening a mesh of triangle_count triangles
+ * (ur_flatten, LSCM then ARAP) takes at its peak, with the mesh, its cut
+ * pieces, the Laplacian and its Cholesky factor: measured from 10k to 1M
+ * triangles (bench/bench_flatten.c), where it grows linearly.  A caller can
+ * refuse a mesh that will not fit before it starts.
+ */
+size_t ur_flatten_memory_estimate(size_t triangle_count);
+
 /* The strain of one triangle. */
 typedef struct ur_strain {
     double sigma1, sigma2; /* singular values of the 3D-to-flat map, sigma1 >= sigma2 */

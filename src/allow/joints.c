@@ -22,8 +22,18 @@
 /* A tab on stock at least this thick (mm) wraps the other piece's edge. */
 #define THICK_STOCK 1.0
 
-/* How much narrower a tab may become before it goes to the other side. */
-static const double depth_steps[] = {1.0, 0.7, 0.5, 0.35};
+/*
+ * The shapes a joint tries, in order, before it goes to the other side:
+ * the share of the full depth, and how much of the seam's length is left
+ * out at each end (a tab clear of the corners, where the neighbouring
+ * edges of the piece come closest).
+ */
+static const struct {
+    double depth, shorten;
+} shapes[] = {{1.0, 0.0},  {0.7, 0.0}, {1.0, 0.15}, {0.7, 0.15},
+              {0.5, 0.15}, {0.5, 0.3}, {0.35, 0.3}};
+
+#define SHAPE_COUNT (sizeof shapes / sizeof shapes[0])
 
 /* A clash smaller than this share of the joint's area is rounding, not overlap. */
 #define CLASH_SHARE 1e-6
@@ -100,8 +110,7 @@ static ur_vec2 point_at(const run *r, double s, size_t *segment)
         if (walked + length >= s || k + 2 == r->count) {
             *segment = k;
             double t = length > 0 ? fmin(1.0, fmax(0.0, (s - walked) / length)) : 0.0;
-            return ur_vec2_add_scaled(r->points[k], ur_vec2_sub(r->points[k + 1], r->points[k]),
-                                      t);
+            return ur_vec2_add_scaled(r->points[k], ur_vec2_sub(r->points[k + 1], r->points[k]), t);
         }
         walked += length;
     }
@@ -123,13 +132,13 @@ static ur_status joint_ring(const run *r, double band, double depth, double inse
     for (size_t k = 0; status == UR_OK && k < r->count; k++)
         status = ur_points_push(ring, r->points[r->count - 1 - k], error);
     if (status == UR_OK && band != 0)
-        status = ur_points_push(
-            ring, ur_vec2_add_scaled(r->points[0], vertex_normal(r, 0), band), error);
+        status = ur_points_push(ring, ur_vec2_add_scaled(r->points[0], vertex_normal(r, 0), band),
+                                error);
     size_t segment;
     ur_vec2 start = point_at(r, inset, &segment);
     if (status == UR_OK)
-        status = ur_points_push(
-            ring, ur_vec2_add_scaled(start, segment_normal(r, segment), height), error);
+        status = ur_points_push(ring, ur_vec2_add_scaled(start, segment_normal(r, segment), height),
+                                error);
     double walked = 0;
     for (size_t k = 0; status == UR_OK && k + 1 < r->count; k++) {
         walked += ur_vec2_distance(r->points[k], r->points[k + 1]);
@@ -139,8 +148,8 @@ static ur_status joint_ring(const run *r, double band, double depth, double inse
     }
     ur_vec2 end = point_at(r, r->length - inset, &segment);
     if (status == UR_OK)
-        status =
-            ur_points_push(ring, ur_vec2_add_scaled(end, segment_normal(r, segment), height), error);
+        status = ur_points_push(ring, ur_vec2_add_scaled(end, segment_normal(r, segment), height),
+                                error);
     if (status == UR_OK && band != 0)
         status = ur_points_push(
             ring, ur_vec2_add_scaled(r->points[r->count - 1], vertex_normal(r, r->count - 1), band),
@@ -322,40 +331,75 @@ typedef struct seam_sides {
     size_t found;
 } seam_sides;
 
-/* Tries the joint on one side at the shrinking depths; *placed says if it went on. */
+/*
+ * The part of the run between arc lengths from and length - from, as a run
+ * of its own (its ends interpolated); the caller frees out->points.
+ */
+static ur_status shortened(const run *r, double from, run *out, ur_error *error)
+{
+    size_t first_segment, last_segment;
+    ur_vec2 start = point_at(r, from, &first_segment);
+    ur_vec2 end = point_at(r, r->length - from, &last_segment);
+    out->points = ur_alloc_array(last_segment - first_segment + 2, sizeof *out->points, error);
+    if (!out->points)
+        return UR_ERROR_INTERNAL;
+    out->count = 0;
+    out->points[out->count++] = start;
+    for (size_t k = first_segment + 1; k <= last_segment; k++)
+        out->points[out->count++] = r->points[k];
+    out->points[out->count++] = end;
+    out->length = ur_polyline_length(out->points, out->count, false);
+    return UR_OK;
+}
+
+/* What a joint adds once it is on: marks (lap) or folds (tab), and the record. */
+static ur_status finish_joint(const joiner *j, size_t piece_index, const run *base,
+                              const GEOSGeometry *joint, const run *other, size_t other_piece,
+                              const char *label, double depth, bool reduced, ur_error *error)
+{
+    ur_piece *piece = &j->pieces[piece_index];
+    ur_status status;
+    j->tab_count[piece_index]++;
+    if (j->options->lap) {
+        status = add_mark(piece, joint, j, error);
+        if (status == UR_OK)
+            status = mark_under(j, &j->pieces[other_piece], other, error);
+        if (status == UR_OK)
+            status = record(piece, UR_ALLOWANCE_JOINT, run_middle(base), false, error,
+                            "lap %.3g mm under seam %s, marked on both pieces%s", depth, label,
+                            reduced ? " (made smaller to fit)" : "");
+        return status;
+    }
+    status = add_folds(j, piece, base, error);
+    if (status == UR_OK)
+        status = record(piece, UR_ALLOWANCE_JOINT, run_middle(base), false, error,
+                        "glue tab on seam %s, %.3g mm deep%s", label, depth,
+                        reduced ? " (made smaller to fit)" : "");
+    return status;
+}
+
+/* Tries the joint on one side in every shape in turn; *placed says if it went on. */
 static ur_status try_side(const joiner *j, size_t piece_index, const run *r, const run *other,
                           size_t other_piece, const char *label, bool *placed, ur_error *error)
 {
     ur_piece *piece = &j->pieces[piece_index];
     *placed = false;
     ur_status status = UR_OK;
-    for (size_t step = 0; status == UR_OK && !*placed && step < 4; step++) {
+    for (size_t step = 0; status == UR_OK && !*placed && step < SHAPE_COUNT; step++) {
+        run base;
+        status = shortened(r, shapes[step].shorten * r->length, &base, error);
+        if (status != UR_OK)
+            break;
         double depth;
-        GEOSGeometry *joint = joint_polygon(j, r, depth_steps[step], &depth, error);
-        if (!joint)
-            continue;
-        if (clash(j, piece, joint) <= CLASH_SHARE * allow_area(j->geos, joint))
+        GEOSGeometry *joint = joint_polygon(j, &base, shapes[step].depth, &depth, error);
+        if (joint && clash(j, piece, joint) <= CLASH_SHARE * allow_area(j->geos, joint))
             status = grow_outline(j, piece, joint, placed, error);
-        if (status == UR_OK && *placed) {
-            const ur_joint_options *o = j->options;
-            if (o->lap) {
-                status = add_mark(piece, joint, j, error);
-                if (status == UR_OK)
-                    status = mark_under(j, &j->pieces[other_piece], other, error);
-                if (status == UR_OK)
-                    status = record(piece, UR_ALLOWANCE_JOINT, run_middle(r), false, error,
-                                    "lap %.3g mm under seam %s, marked on both pieces", depth,
-                                    label);
-            } else {
-                status = add_folds(j, piece, r, error);
-                if (status == UR_OK)
-                    status = record(piece, UR_ALLOWANCE_JOINT, run_middle(r), false, error,
-                                    "glue tab on seam %s, %.3g mm deep%s", label, depth,
-                                    step > 0 ? " (narrowed to fit)" : "");
-            }
-            j->tab_count[piece_index]++;
-        }
-        GEOSGeom_destroy_r(j->geos, joint);
+        if (status == UR_OK && *placed)
+            status = finish_joint(j, piece_index, &base, joint, other, other_piece, label, depth,
+                                  step > 0, error);
+        if (joint)
+            GEOSGeom_destroy_r(j->geos, joint);
+        free(base.points);
     }
     return status;
 }
@@ -400,6 +444,27 @@ static ur_status label_side(const joiner *j, ur_piece *piece, const run *r, cons
     return status;
 }
 
+/*
+ * Both sides of a seam get its label.  Labels go on before the joints, so
+ * that they are placed within the net's own outline and never on a tab
+ * (which is glued out of sight).
+ */
+static ur_status label_seam(const joiner *j, const seam_sides *s, int seam, ur_error *error)
+{
+    char label[16];
+    ur_seam_label(seam, label, sizeof label);
+    ur_status status = UR_OK;
+    for (int k = 0; status == UR_OK && k < 2; k++) {
+        const ur_net *net = &j->nets->nets[s->net[k]];
+        run r = {0};
+        status = run_of(net, &net->seam_sides[s->side[k]], &r, error);
+        if (status == UR_OK)
+            status = label_side(j, &j->pieces[s->net[k]], &r, label, error);
+        free(r.points);
+    }
+    return status;
+}
+
 static ur_status join_seam(const joiner *j, const seam_sides *s, int seam, ur_error *error)
 {
     char label[16];
@@ -413,15 +478,13 @@ static ur_status join_seam(const joiner *j, const seam_sides *s, int seam, ur_er
     bool placed = false;
     for (int attempt = 0; status == UR_OK && !placed && attempt < 2; attempt++) {
         int k = attempt == 0 ? first : 1 - first;
-        status = try_side(j, s->net[k], &runs[k], &runs[1 - k], s->net[1 - k], label, &placed,
-                          error);
+        status =
+            try_side(j, s->net[k], &runs[k], &runs[1 - k], s->net[1 - k], label, &placed, error);
     }
     if (status == UR_OK && !placed)
         status = record(&j->pieces[s->net[first]], UR_ALLOWANCE_JOINT, run_middle(&runs[first]),
                         true, error, "no room for a %s on seam %s on either side: join it by hand",
                         j->options->lap ? "lap" : "glue tab", label);
-    for (int k = 0; status == UR_OK && j->options->font && k < 2; k++)
-        status = label_side(j, &j->pieces[s->net[k]], &runs[k], label, error);
     free(runs[0].points);
     free(runs[1].points);
     return status;
@@ -455,10 +518,9 @@ static ur_status name_piece(const joiner *j, ur_piece *piece, ur_error *error)
                                   (piece->box.min.y + piece->box.max.y) / 2);
     const ur_joint_options *o = j->options;
     bool placed;
-    ur_status status =
-        ur_piece_add_label(piece, o->font, piece->name, centre, ur_vec2_make(1, 0),
-                           o->label_height, 0.5 * o->label_height, fmax(0.3, 0.15 * o->label_height),
-                           &placed, error);
+    ur_status status = ur_piece_add_label(piece, o->font, piece->name, centre, ur_vec2_make(1, 0),
+                                          o->label_height, 0.5 * o->label_height,
+                                          fmax(0.3, 0.15 * o->label_height), &placed, error);
     if (status == UR_OK && !placed)
         status = record(piece, UR_ALLOWANCE_LABEL, centre, true, error,
                         "no room to engrave the piece's name %s", piece->name);
@@ -494,12 +556,15 @@ ur_status ur_pieces_add_joints(ur_piece *pieces, const ur_net_list *nets,
         status = ur_error_out_of_memory(error);
     if (status == UR_OK)
         status = gather_seams(nets, &seams, &last, error);
-    for (int seam = 1; status == UR_OK && seam <= last; seam++)
+    for (int seam = 1; status == UR_OK && options->font && seam <= last; seam++)
         if (seams[seam].found == 2)
-            status = join_seam(&j, &seams[seam], seam, error);
+            status = label_seam(&j, &seams[seam], seam, error);
     for (size_t n = 0; status == UR_OK && options->font && options->name_pieces && n < nets->count;
          n++)
         status = name_piece(&j, &pieces[n], error);
+    for (int seam = 1; status == UR_OK && seam <= last; seam++)
+        if (seams[seam].found == 2)
+            status = join_seam(&j, &seams[seam], seam, error);
     free(seams);
     free(j.tab_count);
     if (j.geos)

@@ -1,0 +1,347 @@
+/*
+ * test_joints.c: glue tabs and laps on seams, with their labels.
+ *
+ * A closed cylinder's one seam gets one tab whose area is worked out here
+ * (a band of the stock's thickness, then a trapezoid tapered at the tab
+ * angle); a helicoid split into pieces gets one tab per seam and the same
+ * label on both sides; every tab of an unfolded icosphere stays off its
+ * piece and off the other tabs (the grown outline is simple and as large
+ * as the net and the tabs together); laps mark the zone on both pieces.
+ * Geometry is checked with GEOS, independently of the code under test.
+ *
+ * Run from the repository root (it reads samples/icosphere.obj).
+ */
+#include "test_support.h"
+
+#include <geos_c.h>
+#include <stdlib.h>
+
+#include "unroll/allow.h"
+#include "unroll/flatten.h"
+#include "unroll/io.h"
+#include "unroll/mesh.h"
+
+static GEOSContextHandle_t geos;
+
+static int start(void **state)
+{
+    (void)state;
+    geos = GEOS_init_r();
+    return geos ? 0 : -1;
+}
+
+static int finish(void **state)
+{
+    (void)state;
+    GEOS_finish_r(geos);
+    return 0;
+}
+
+static GEOSGeometry *polygon(const ur_vec2 *ring, size_t count)
+{
+    GEOSCoordSequence *sequence = GEOSCoordSeq_create_r(geos, (unsigned)count + 1, 2);
+    for (size_t i = 0; i <= count; i++)
+        GEOSCoordSeq_setXY_r(geos, sequence, (unsigned)i, ring[i % count].x, ring[i % count].y);
+    GEOSGeometry *shell = GEOSGeom_createLinearRing_r(geos, sequence);
+    assert_non_null(shell);
+    GEOSGeometry *result = GEOSGeom_createPolygon_r(geos, shell, NULL, 0);
+    assert_non_null(result);
+    return result;
+}
+
+static double area_of(const GEOSGeometry *g)
+{
+    double area;
+    assert_int_equal(GEOSArea_r(geos, g, &area), 1);
+    return area;
+}
+
+static size_t count_op(const ur_piece *piece, ur_op op)
+{
+    size_t count = 0;
+    for (size_t k = 0; k < piece->path_count; k++)
+        count += piece->paths[k].op == op;
+    return count;
+}
+
+static size_t count_records(const ur_piece *piece, ur_allowance_kind kind, bool warning)
+{
+    size_t count = 0;
+    for (size_t k = 0; k < piece->record_count; k++)
+        count += piece->records[k].kind == kind && piece->records[k].warning == warning;
+    return count;
+}
+
+static ur_piece *pieces_of(const ur_net_list *nets)
+{
+    ur_piece *pieces = calloc(nets->count, sizeof *pieces);
+    assert_non_null(pieces);
+    for (size_t k = 0; k < nets->count; k++)
+        assert_int_equal(ur_piece_from_net(&nets->nets[k], NULL, &pieces[k], NULL), UR_OK);
+    return pieces;
+}
+
+static void free_pieces(ur_piece *pieces, size_t count)
+{
+    for (size_t k = 0; k < count; k++)
+        ur_piece_free(&pieces[k]);
+    free(pieces);
+}
+
+static ur_joint_options tab_options(const ur_font *font)
+{
+    ur_joint_options options = {.lap = false,
+                                .tab_depth = 10,
+                                .tab_angle = 45,
+                                .lap_width = 15,
+                                .thickness = 2,
+                                .font = font,
+                                .label_height = 5,
+                                .name_pieces = false};
+    return options;
+}
+
+/* Every engraved point lies inside the net's own outline (not on a tab). */
+static void check_engraving_inside(const ur_piece *piece, const ur_net *net)
+{
+    GEOSGeometry *outline = polygon(net->outline, net->outline_count);
+    for (size_t k = 0; k < piece->path_count; k++) {
+        const ur_path *path = &piece->paths[k];
+        if (path->op != UR_OP_ENGRAVE)
+            continue;
+        for (size_t i = 0; i < path->count; i++) {
+            GEOSGeometry *point = GEOSGeom_createPointFromXY_r(geos, path->points[i].x,
+                                                               path->points[i].y);
+            assert_int_equal(GEOSContains_r(geos, outline, point), 1);
+            GEOSGeom_destroy_r(geos, point);
+        }
+    }
+    GEOSGeom_destroy_r(geos, outline);
+}
+
+static void test_cylinder_tab(void **state)
+{
+    (void)state;
+    ur_curve *circle;
+    ur_ruled ruled;
+    assert_int_equal(ur_curve_new_circle(40, &circle, NULL), UR_OK);
+    assert_int_equal(ur_ruled_cylinder(circle, ur_vec3_make(0, 0, 1), 120, &ruled, NULL), UR_OK);
+    ur_net_list nets = develop(&ruled, UR_METHOD_EXACT, 8, 0.01);
+    ur_piece *pieces = pieces_of(&nets);
+    ur_font *font;
+    ur_error error;
+    assert_int_equal(ur_font_open(NULL, &font, &error), UR_OK);
+    ur_joint_options options = tab_options(font);
+    assert_int_equal(ur_pieces_add_joints(pieces, &nets, &options, &error), UR_OK);
+
+    /* One tab: a 2 mm band along the 120 mm seam, then a trapezoid 10 mm
+     * deep whose top is 120 - 2 * 10 / tan(45 degrees) = 100 mm long. */
+    double expected = nets.nets[0].flat_area + 2 * 120 + (120 + 100) / 2.0 * 10;
+    GEOSGeometry *grown = polygon(pieces[0].paths[0].points, pieces[0].paths[0].count);
+    assert_int_equal(GEOSisValid_r(geos, grown), 1);
+    assert_relative(area_of(grown), expected, 1e-9);
+    GEOSGeom_destroy_r(geos, grown);
+    assert_int_equal(count_records(&pieces[0], UR_ALLOWANCE_JOINT, false), 1);
+    /* Two folds: at the seam and at the band's edge. */
+    assert_int_equal(count_op(&pieces[0], UR_OP_SCORE), 2);
+    /* The label A1 on both sides of the seam, inside the net. */
+    assert_int_equal(count_records(&pieces[0], UR_ALLOWANCE_LABEL, false), 2);
+    check_engraving_inside(&pieces[0], &nets.nets[0]);
+
+    ur_font_close(font);
+    free_pieces(pieces, nets.count);
+    ur_net_list_free(&nets);
+    ur_ruled_free(&ruled);
+}
+
+/* Whether a label record's reason names the label (as 'A7'). */
+static bool names_label(const ur_allowance_record *record, const char *label)
+{
+    char quoted[32];
+    snprintf(quoted, sizeof quoted, "'%s'", label);
+    return record->kind == UR_ALLOWANCE_LABEL && !record->warning && strstr(record->reason, quoted);
+}
+
+static void test_helicoid_labels_pair(void **state)
+{
+    (void)state;
+    ur_curve *curve;
+    ur_ruled ruled;
+    /* 2.5 turns develop to about 850 degrees: 3 pieces with room for tabs between. */
+    assert_int_equal(ur_curve_new_helix(30, 20 * M_PI, 0, 5 * M_PI, &curve, NULL), UR_OK);
+    assert_int_equal(ur_ruled_tangent(curve, 0, 25, &ruled, NULL), UR_OK);
+    ur_net_list nets = develop(&ruled, UR_METHOD_EXACT, 8, 0.01);
+    assert_true(nets.count >= 3);
+    ur_piece *pieces = pieces_of(&nets);
+    ur_font *font;
+    ur_error error;
+    assert_int_equal(ur_font_open(NULL, &font, &error), UR_OK);
+    ur_joint_options options = tab_options(font);
+    options.thickness = 0.3; /* paper: no band */
+    assert_int_equal(ur_pieces_add_joints(pieces, &nets, &options, &error), UR_OK);
+    size_t tabs = 0;
+    for (size_t k = 0; k < nets.count; k++)
+        tabs += count_records(&pieces[k], UR_ALLOWANCE_JOINT, false);
+    assert_int_equal(tabs, nets.count - 1); /* one per seam */
+    for (int seam = 1; seam < (int)nets.count; seam++) {
+        char label[16];
+        ur_seam_label(seam, label, sizeof label);
+        /* Seam j joins nets j - 1 and j: each carries the label once, nobody else. */
+        for (size_t k = 0; k < nets.count; k++) {
+            size_t found = 0;
+            for (size_t r = 0; r < pieces[k].record_count; r++)
+                found += names_label(&pieces[k].records[r], label);
+            bool expected = k + 1 == (size_t)seam || k == (size_t)seam;
+            assert_int_equal(found, expected ? 1 : 0);
+        }
+    }
+    for (size_t k = 0; k < nets.count; k++)
+        check_engraving_inside(&pieces[k], &nets.nets[k]);
+    ur_font_close(font);
+    free_pieces(pieces, nets.count);
+    ur_net_list_free(&nets);
+    ur_ruled_free(&ruled);
+}
+
+static void test_seam_labels(void **state)
+{
+    (void)state;
+    char label[16];
+    ur_seam_label(1, label, sizeof label);
+    assert_string_equal(label, "A1");
+    ur_seam_label(99, label, sizeof label);
+    assert_string_equal(label, "A99");
+    ur_seam_label(100, label, sizeof label);
+    assert_string_equal(label, "B1");
+    ur_seam_label(26 * 99 + 1, label, sizeof label);
+    assert_string_equal(label, "AA1");
+}
+
+/* The unfolded icosphere's nets, as the command line makes them. */
+static ur_net_list icosphere_nets(void)
+{
+    ur_mesh mesh;
+    ur_error error;
+    assert_int_equal(ur_mesh_import("samples/icosphere.obj", NULL, &mesh, NULL, &error), UR_OK);
+    ur_mesh_repairs repairs;
+    assert_int_equal(ur_mesh_clean(&mesh, 1e-6, &repairs, &error), UR_OK);
+    ur_unfolding unfolding;
+    assert_int_equal(ur_unfold(&mesh, NULL, 0, &unfolding, &error), UR_OK);
+    ur_net_list nets = {calloc(unfolding.count, sizeof(ur_net)), unfolding.count};
+    assert_non_null(nets.nets);
+    for (size_t k = 0; k < unfolding.count; k++) {
+        const ur_unfolded_piece *piece = &unfolding.pieces[k];
+        ur_net *net = &nets.nets[k];
+        snprintf(net->name, sizeof net->name, "P%zu", k + 1);
+        net->outline_count = piece->outline_count;
+        net->outline = malloc(piece->outline_count * sizeof *net->outline);
+        net->outline_3d = malloc(piece->outline_count * sizeof *net->outline_3d);
+        assert_true(net->outline && net->outline_3d);
+        for (size_t i = 0; i < piece->outline_count; i++) {
+            net->outline[i] = piece->outline[i];
+            net->outline_3d[i] = mesh.vertices[piece->outline_vertices[i]];
+        }
+        net->flat_area = piece->flat_area;
+    }
+    int next;
+    assert_int_equal(ur_net_list_find_seams(&nets, 1, &next, &error), UR_OK);
+    ur_unfolding_free(&unfolding);
+    ur_mesh_free(&mesh);
+    return nets;
+}
+
+static void test_unfolded_tabs_clear(void **state)
+{
+    (void)state;
+    ur_net_list nets = icosphere_nets();
+    ur_piece *pieces = pieces_of(&nets);
+    ur_error error;
+    ur_joint_options options = tab_options(NULL);
+    options.tab_depth = 3; /* the icosphere's edges are about 9 mm */
+    options.thickness = 0.3;
+    assert_int_equal(ur_pieces_add_joints(pieces, &nets, &options, &error), UR_OK);
+    size_t tabs = 0, warnings = 0, seams = (size_t)ur_net_list_last_seam(&nets);
+    for (size_t k = 0; k < nets.count; k++) {
+        tabs += count_records(&pieces[k], UR_ALLOWANCE_JOINT, false);
+        warnings += count_records(&pieces[k], UR_ALLOWANCE_JOINT, true);
+        /* The grown outline is simple and holds the whole net. */
+        GEOSGeometry *grown = polygon(pieces[k].paths[0].points, pieces[k].paths[0].count);
+        GEOSGeometry *net = polygon(nets.nets[k].outline, nets.nets[k].outline_count);
+        assert_int_equal(GEOSisValid_r(geos, grown), 1);
+        GEOSGeometry *outside = GEOSDifference_r(geos, net, grown);
+        assert_true(area_of(outside) <= 1e-9 * area_of(net));
+        GEOSGeom_destroy_r(geos, outside);
+        /* Each tab's fold is a seam of this piece: the tabs' area is outside the net. */
+        assert_true(area_of(grown) > area_of(net));
+        GEOSGeom_destroy_r(geos, grown);
+        GEOSGeom_destroy_r(geos, net);
+    }
+    print_message("%zu seams: %zu tabs, %zu without\n", seams, tabs, warnings);
+    /* Every seam got a tab or a warning, never both, never two. */
+    assert_int_equal(tabs + warnings, seams);
+    assert_true(tabs >= seams * 9 / 10);
+    free_pieces(pieces, nets.count);
+    ur_net_list_free(&nets);
+}
+
+static void test_laps_marked_on_both(void **state)
+{
+    (void)state;
+    ur_curve *curve;
+    ur_ruled ruled;
+    assert_int_equal(ur_curve_new_helix(30, 20 * M_PI, 0, 5 * M_PI, &curve, NULL), UR_OK);
+    assert_int_equal(ur_ruled_tangent(curve, 0, 25, &ruled, NULL), UR_OK);
+    ur_net_list nets = develop(&ruled, UR_METHOD_EXACT, 8, 0.01);
+    ur_piece *pieces = pieces_of(&nets);
+    ur_error error;
+    ur_joint_options options = tab_options(NULL);
+    options.lap = true;
+    options.lap_width = 6;
+    assert_int_equal(ur_pieces_add_joints(pieces, &nets, &options, &error), UR_OK);
+    size_t marks = 0, laps = 0;
+    for (size_t k = 0; k < nets.count; k++) {
+        marks += count_op(&pieces[k], UR_OP_MARK);
+        laps += count_records(&pieces[k], UR_ALLOWANCE_JOINT, false);
+        assert_int_equal(count_op(&pieces[k], UR_OP_SCORE), 0); /* wood does not fold */
+    }
+    assert_int_equal(laps, nets.count - 1);
+    assert_int_equal(marks, 2 * laps); /* the lap and the zone it lies under */
+    /* A lap along a 25 mm ruling, 6 mm wide, adds 150 mm2 (the rulings are straight). */
+    for (size_t k = 0; k < nets.count; k++)
+        if (count_records(&pieces[k], UR_ALLOWANCE_JOINT, false) == 1) {
+            GEOSGeometry *grown = polygon(pieces[k].paths[0].points, pieces[k].paths[0].count);
+            GEOSGeometry *net = polygon(nets.nets[k].outline, nets.nets[k].outline_count);
+            assert_relative(area_of(grown) - area_of(net), 25 * 6, 1e-6);
+            GEOSGeom_destroy_r(geos, grown);
+            GEOSGeom_destroy_r(geos, net);
+        }
+    free_pieces(pieces, nets.count);
+    ur_net_list_free(&nets);
+    ur_ruled_free(&ruled);
+}
+
+static void test_bad_options(void **state)
+{
+    (void)state;
+    ur_net_list nets = {NULL, 0};
+    ur_error error;
+    ur_joint_options options = tab_options(NULL);
+    options.tab_angle = 0;
+    assert_int_equal(ur_pieces_add_joints(NULL, &nets, &options, &error), UR_ERROR_INPUT);
+    options = tab_options(NULL);
+    options.tab_depth = NAN;
+    assert_int_equal(ur_pieces_add_joints(NULL, &nets, &options, &error), UR_ERROR_INPUT);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_seam_labels),
+        cmocka_unit_test(test_cylinder_tab),
+        cmocka_unit_test(test_helicoid_labels_pair),
+        cmocka_unit_test(test_unfolded_tabs_clear),
+        cmocka_unit_test(test_laps_marked_on_both),
+        cmocka_unit_test(test_bad_options),
+    };
+    return cmocka_run_group_tests(tests, start, finish);
+}
