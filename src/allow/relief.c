@@ -31,8 +31,8 @@
  * passes adding the neighbours' doubled-angle vectors weighted by area and
  * strain, so that nearly isotropic strain, whose axis is noise, follows its
  * neighbours): a ring of strain around a piece, whose direction turns with
- * it, becomes arcs, each with its own slits across it.  Per region: the axis D, the area-weighted mean of the triangles'
- * directions (as axes: doubled angles averaged), and across it N.  The
+ * it, becomes arcs, each with its own slits across it.  Per region: the axis D, the area-weighted
+ * mean of the triangles' directions (as axes: doubled angles averaged), and across it N.  The
  * length the region's material is missing (kerfing) or has too much
  * (overlap) along D, on the line parallel to D at offset w across:
  *
@@ -271,8 +271,8 @@ static ur_status add_rings(relief_job *job, const GEOSGeometry *geometry, ur_op 
         if (!ring || !geometry_points(job->geos, ring, &points, true, job->error))
             status = geos_failed(job, "read an overlap zone");
         else if (points.count >= 3)
-            status = ur_piece_add_path(job->piece, op, points.items, points.count, true,
-                                       job->error);
+            status =
+                ur_piece_add_path(job->piece, op, points.items, points.count, true, job->error);
         ur_points_free(&points);
     }
     return status;
@@ -381,8 +381,8 @@ static ur_status slit_end(relief_job *job, ur_vec2 start, ur_vec2 u, double leng
 {
     ur_points ends = {0};
     *found = false;
-    ur_status status = clip_segment(job, start, ur_vec2_add_scaled(start, u, length), job->inner,
-                                    NULL, &ends);
+    ur_status status =
+        clip_segment(job, start, ur_vec2_add_scaled(start, u, length), job->inner, NULL, &ends);
     double best_below = -1, best_above = INFINITY;
     for (size_t i = 0; status == UR_OK && i + 1 < ends.count; i += 2) {
         double a = ur_vec2_dot(ur_vec2_sub(ends.items[i], start), u);
@@ -452,9 +452,9 @@ static ur_status overlap_slit(relief_job *job, ur_vec2 start, ur_vec2 u, double 
 static ur_status clear_length(relief_job *job, ur_vec2 start, ur_vec2 u, double *end, bool *found)
 {
     ur_points ends = {0};
-    ur_status status = clip_segment(job, ur_vec2_add_scaled(start, u, -1e-3),
-                                    ur_vec2_add_scaled(start, u, *end), job->outline, job->keepout,
-                                    &ends);
+    ur_status status =
+        clip_segment(job, ur_vec2_add_scaled(start, u, -1e-3), ur_vec2_add_scaled(start, u, *end),
+                     job->outline, job->keepout, &ends);
     *found = false;
     for (size_t i = 0; status == UR_OK && i + 1 < ends.count; i += 2) {
         double a = ur_vec2_dot(ur_vec2_sub(ends.items[i], start), u);
@@ -464,8 +464,8 @@ static ur_status clear_length(relief_job *job, ur_vec2 start, ur_vec2 u, double 
         *found = fmax(a, b) >= *end - 1e-9 * job->size;
         if (!*found) { /* shortened: its new end must still be margin inside */
             *end = fmax(a, b);
-            GEOSGeometry *point = GEOSGeom_createPointFromXY_r(
-                job->geos, start.x + *end * u.x, start.y + *end * u.y);
+            GEOSGeometry *point =
+                GEOSGeom_createPointFromXY_r(job->geos, start.x + *end * u.x, start.y + *end * u.y);
             *found = point && GEOSIntersects_r(job->geos, point, job->inner) == 1;
             if (point)
                 GEOSGeom_destroy_r(job->geos, point);
@@ -519,23 +519,28 @@ static ur_status record_need(relief_job *job, const relief_need *need, const cha
     record.limit = need->limit;
     record.where = need->where;
     record.warning = need->cut < need->wanted;
-    char missing[96] = "";
+    char missing[96] = "", reason[512];
     if (record.warning)
-        snprintf(missing, sizeof missing, "; only %zu of %zu fit %.3g mm inside the outline",
-                 need->cut, need->wanted, job->limits->margin);
+        snprintf(missing, sizeof missing, "; only %zu fit, %.3g mm clear of the outline and slits",
+                 need->cut, job->limits->margin);
     if (kerfing)
-        snprintf(record.reason, sizeof record.reason,
+        snprintf(reason, sizeof reason,
                  "the net is %.3g mm shorter than the surface %s (forming needs %.3g %% stretch, "
                  "the material takes %.3g %%): %zu kerfing slits opening up to %.3g mm%s",
                  need->length, across, 100 * need->value, 100 * need->limit, need->wanted,
                  job->limits->opening, missing);
     else
-        snprintf(record.reason, sizeof record.reason,
+        snprintf(reason, sizeof reason,
                  "the net is %.3g mm longer than the surface %s (forming needs %.3g %% "
-                 "compression, the material takes %.3g %%): %zu overlap %s %.3g mm each%s",
+                 "compression, the material takes %.3g %%): %zu overlap %s %.3g mm%s",
                  need->length, across, 100 * need->value, 100 * need->limit, need->wanted,
-                 job->limits->darts ? "darts, wide at the outline by" : "slits, lapping by",
+                 job->limits->darts ? "darts, each as wide at the outline as"
+                                    : "slits, each lapping",
                  need->length / (double)need->wanted, missing);
+    size_t length = strlen(reason); /* at most what the record holds */
+    length = length < sizeof record.reason ? length : sizeof record.reason - 1;
+    memcpy(record.reason, reason, length);
+    record.reason[length] = '\0';
     return ur_piece_record(job->piece, &record, job->error);
 }
 
@@ -637,12 +642,13 @@ static double chord(const ur_vec2 *c, ur_vec2 n, ur_vec2 d, double w)
 typedef struct region {
     size_t *triangles;
     size_t count;
-    ur_vec2 d, n;           /* the axis of its strain and across it */
-    double low, high;       /* its extent along d */
+    ur_vec2 d, n;            /* the axis of its strain and across it */
+    double low, high;        /* its extent along d */
     double across0, across1; /* its extent along n */
 } region;
 
-/* e_t: missing (kerfing) or excess (overlap) length per flat length along the triangle's own axis. */
+/* e_t: missing (kerfing) or excess (overlap) length per flat length along the triangle's own axis.
+ */
 static double excess_per_length(double strain)
 {
     return fabs(strain) / (1 + strain);
@@ -671,7 +677,8 @@ static void region_shape(const ur_shading *shading, region *r, relief_need *need
     double angle = 0.5 * atan2(s2, c2);
     r->d = ur_vec2_make(cos(angle), sin(angle));
     r->n = perpendicular(r->d);
-    need->where = area > 0 ? ur_vec2_scale(centre, 1 / area) : shading->triangles[r->triangles[0]][0];
+    need->where =
+        area > 0 ? ur_vec2_scale(centre, 1 / area) : shading->triangles[r->triangles[0]][0];
     r->low = r->across0 = INFINITY;
     r->high = r->across1 = -INFINITY;
     for (size_t i = 0; i < r->count; i++)
@@ -724,8 +731,8 @@ static GEOSGeometry *region_geometry(relief_job *job, const ur_shading *shading,
     }
     GEOSGeometry *collection = NULL, *uni = NULL;
     if (made == r->count)
-        collection = GEOSGeom_createCollection_r(job->geos, GEOS_MULTIPOLYGON, polygons,
-                                                 (unsigned)made);
+        collection =
+            GEOSGeom_createCollection_r(job->geos, GEOS_MULTIPOLYGON, polygons, (unsigned)made);
     else
         for (size_t i = 0; i < made; i++)
             GEOSGeom_destroy_r(job->geos, polygons[i]);
@@ -851,8 +858,8 @@ static relief_kind triangle_kind(const ur_relief_limits *limits, double strain)
  * times: where the strain is nearly the same in every direction its axis is
  * noise, and neighbours would otherwise fall in different sectors.
  */
-static ur_status smooth_axes(const ur_shading *shading, const size_t (*pairs)[2],
-                             size_t pair_count, ur_vec2 *axes, ur_error *error)
+static ur_status smooth_axes(const ur_shading *shading, const size_t (*pairs)[2], size_t pair_count,
+                             ur_vec2 *axes, ur_error *error)
 {
     size_t count = shading->count;
     ur_vec2 *next = ur_alloc_array(count, sizeof *next, error);
@@ -1020,9 +1027,9 @@ static ur_status ruling_slit(relief_job *job, const relief_need *need, double f,
                             ur_vec2_add_scaled(s.end, u, 1), job->inner, cut);
     /* The chord of the piece through the ruling: from its start (on the outline) across. */
     ur_points chords = {0};
-    ur_status status = clip_segment(job, ur_vec2_add_scaled(s.start, u, -0.01 * length),
-                                    ur_vec2_add_scaled(s.end, u, 0.01 * length), job->outline,
-                                    NULL, &chords);
+    ur_status status =
+        clip_segment(job, ur_vec2_add_scaled(s.start, u, -0.01 * length),
+                     ur_vec2_add_scaled(s.end, u, 0.01 * length), job->outline, NULL, &chords);
     size_t best = SIZE_MAX;
     double nearest = INFINITY;
     for (size_t i = 0; status == UR_OK && i + 1 < chords.count; i += 2) {
@@ -1074,8 +1081,7 @@ static ur_status relieve_developed(relief_job *job)
     relief_need need = {RELIEF_NONE, 0, 0, 0, {0, 0}, 0, 0};
     if (limits->kerfing && 1 - coverage > fmax(limits->max_stretch, UR_RELIEF_NEGLIGIBLE))
         need = (relief_need){RELIEF_KERFING, 1 - coverage, limits->max_stretch, 0, {0, 0}, 0, 0};
-    else if (limits->overlaps &&
-             coverage - 1 > fmax(limits->max_compression, UR_RELIEF_NEGLIGIBLE))
+    else if (limits->overlaps && coverage - 1 > fmax(limits->max_compression, UR_RELIEF_NEGLIGIBLE))
         need =
             (relief_need){RELIEF_OVERLAP, coverage - 1, limits->max_compression, 0, {0, 0}, 0, 0};
     return need.kind == RELIEF_NONE ? UR_OK : relieve_rulings(job, &need);

@@ -455,8 +455,8 @@ static void check_overlaps(const ur_net *net, const ur_piece *piece, double limi
         assert_true(outline_distance(net, end, end) >= MARGIN - 1e-6);
         bool long_there = false; /* some point of it lies where the net is too long */
         for (int k = 1; k < 100 && !long_there; k++) {
-            size_t t = triangle_at(&net->shading, ur_vec2_add_scaled(start, ur_vec2_sub(end, start),
-                                                                     k / 100.0));
+            size_t t = triangle_at(&net->shading,
+                                   ur_vec2_add_scaled(start, ur_vec2_sub(end, start), k / 100.0));
             long_there = t != SIZE_MAX && net->shading.strain[t] > limit;
         }
         assert_true(long_there);
@@ -469,8 +469,8 @@ static void check_overlaps(const ur_net *net, const ur_piece *piece, double limi
     }
     assert_true(slits == recorded && recorded > 0);
     assert_true(zones >= slits);
-    print_message("saddle: %zu overlap regions, %zu slits, %zu zones\n", piece->record_count,
-                  slits, zones);
+    print_message("saddle: %zu overlap regions, %zu slits, %zu zones\n", piece->record_count, slits,
+                  zones);
 }
 
 static void test_saddle_gets_both(void **state)
