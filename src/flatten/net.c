@@ -3,7 +3,9 @@
  * pipeline (pieces, sheets, writers, report) takes: its boundary loop laid
  * flat, its areas, how far its boundary lengths are from the 3D ones, and
  * its strain: the largest figures for the report and, triangle by
- * triangle, the shading the strain picture draws.
+ * triangle, the shading the strain picture draws (with the direction of
+ * each triangle's dominant strain, which the kerfing and overlap
+ * allowances cut across).
  */
 #include "unroll/flatten.h"
 #include "unroll/develop.h"
@@ -34,7 +36,22 @@ static double dominant_strain(ur_strain strain)
     return stretch >= compression ? stretch : -compression;
 }
 
-/* Every triangle of the piece laid flat, with its dominant strain, for the strain picture. */
+/*
+ * The flat unit direction of that dominant strain: the left singular vector
+ * of sigma1 (ur_strain.direction, the leading eigenvector of J J^T) for
+ * stretch, the one of sigma2, perpendicular to it, for compression.
+ */
+static ur_vec2 dominant_direction(ur_strain strain)
+{
+    if (dominant_strain(strain) >= 0)
+        return strain.direction;
+    return ur_vec2_make(-strain.direction.y, strain.direction.x);
+}
+
+/*
+ * Every triangle of the piece laid flat, with its dominant strain and its
+ * direction, for the strain picture and the kerfing and overlap allowances.
+ */
 static ur_status fill_shading(const ur_mesh *piece, const ur_flat_piece *flat, ur_shading *shading,
                               ur_error *error)
 {
@@ -46,12 +63,14 @@ static ur_status fill_shading(const ur_mesh *piece, const ur_flat_piece *flat, u
                             flat->vertex_count, flat->triangle_count, piece->vertex_count, count);
     shading->triangles = ur_alloc_array(count, sizeof *shading->triangles, error);
     shading->strain = ur_alloc_array(count, sizeof *shading->strain, error);
-    if (!shading->triangles || !shading->strain)
+    shading->direction = ur_alloc_array(count, sizeof *shading->direction, error);
+    if (!shading->triangles || !shading->strain || !shading->direction)
         return UR_ERROR_INTERNAL;
     for (size_t t = 0; t < count; t++) {
         for (int k = 0; k < 3; k++)
             shading->triangles[t][k] = flat->flat[piece->triangles[t][k]];
         shading->strain[t] = dominant_strain(flat->strain[t]);
+        shading->direction[t] = dominant_direction(flat->strain[t]);
     }
     shading->count = count;
     return UR_OK;

@@ -1,0 +1,1148 @@
+/*
+ * relief.c: kerfing cuts where a net under-covers its surface and overlap
+ * allowances where it over-covers it (DESIGN.md sections 3 and 4; the
+ * paper: "in the first case overlaps must be provided, in the second case
+ * we have to cut (kerfing)").
+ *
+ * Which is which.  The strain of a flattening is that of the map from the
+ * 3D surface to the flat net (flatten.h): sigma < 1 means the flat net is
+ * shorter than the surface in that direction, so the material must stretch
+ * to take the 3D shape again: the net UNDER-covers there and needs KERFING
+ * slits, which open up.  sigma > 1 means the flat net is longer: the
+ * material must shrink, the net OVER-covers there and needs OVERLAPS, which
+ * let the excess lap over itself.  So, per triangle of the shading
+ * (develop.h, ur_shading: strain s, direction d):
+ *
+ *   kerfing  where s < 0 and -s = 1 - sigma2 > max_stretch,
+ *   overlap  where s > 0 and  s = sigma1 - 1 > max_compression,
+ *
+ * the material's stretch limit against the flattening's compression and
+ * its compression limit against the flattening's stretch.  (The material
+ * strain measured on the flat length is 1 / sigma2 - 1 and 1 - 1 / sigma1;
+ * the triggers use the figures the report shows, equal to first order.)
+ * A triangle whose dominant strain is below UR_RELIEF_NEGLIGIBLE (0.01 %)
+ * is never relieved, whatever the limits: no material is that exact, and an
+ * exact development meets its 3D lengths to quadrature accuracy only.
+ *
+ * Flattened nets.  Triangles of one kind that share an edge make a region,
+ * as long as their directions fall in the same sector of 45 degrees
+ * (centred on 0, 45, 90 and 135 degrees, directions being axes), each
+ * direction first smoothed over its neighbours of the same kind (four
+ * passes adding the neighbours' doubled-angle vectors weighted by area and
+ * strain, so that nearly isotropic strain, whose axis is noise, follows its
+ * neighbours): a ring of strain around a piece, whose direction turns with
+ * it, becomes arcs, each with its own slits across it.  Per region: the axis D, the area-weighted
+ * mean of the triangles' directions (as axes: doubled angles averaged), and across it N.  The
+ * length the region's material is missing (kerfing) or has too much
+ * (overlap) along D, on the line parallel to D at offset w across:
+ *
+ *   L(w) = sum over the region's triangles of  c_t * e_t * cos^2(a_t),
+ *
+ * c_t the chord of triangle t on that line, a_t the angle between its own
+ * direction and D, and e_t = 1 / sigma2 - 1 = -s / (1 + s) for kerfing
+ * (3D length minus flat length per flat length), 1 - 1 / sigma1 =
+ * s / (1 + s) for overlaps (flat minus 3D).  The deficit (or excess) is the
+ * largest L(w) over 64 lines spread evenly across the region's width.  Then
+ *
+ *   n = ceil(deficit / opening)  slits,
+ *
+ * at most one per `opening` of the region's length along D, placed at the
+ * middles of n equal parts of that length, each across D (along N):
+ *
+ *   kerfing: a KERF line clipped to the region and to the outline buffered
+ *   inward by `margin` (GEOS), so it stops `margin` from the outline; parts
+ *   shorter than `opening` are dropped.  A slit through the material opens
+ *   by up to `opening` and every line along D crosses one of each.
+ *
+ *   overlap: the chord of the slit's line across the piece that meets the
+ *   region; the slit runs from the end of the chord nearer to the region
+ *   through the region, its inner end moved (along the chord) to the
+ *   nearest point at least `margin` from the outline.  Beside it, on the +D
+ *   side, a MARK overlap zone (a closed thin rectangle, clipped to the
+ *   outline) over the slit's part in the region, of width
+ *
+ *     w = excess / n  (<= opening),
+ *
+ *   where the flap on the other side laps over and is glued: the zones
+ *   crossed by a line along D add up to the excess.  With darts instead
+ *   (limits->darts) each slit is a thin open V of KERF from the outline to
+ *   the slit's inner end, its base w wide at the outline: the triangle
+ *   drops out, its sides are joined, and no zone is marked.
+ *
+ * Developed nets (no shading).  The discrete methods' nets are a strip of
+ * rulings; the triangle method under-covers (it neglects the slivers
+ * between rulings), the quad method over-covers.  With coverage = flat area
+ * / 3D area of the net:
+ *
+ *   kerfing  when 1 - coverage > max_stretch,
+ *   overlap  when coverage - 1 > max_compression,
+ *
+ * the area missing or in excess lying between the rulings, so the stretch
+ * is across them and the slits go along them.  The length across the
+ * rulings the net misses (or has too much) is measured as the area
+ * difference over the mean flat length of the net's drawn rulings:
+ *
+ *   deficit = (area_3d - flat_area) / mean ruling length,
+ *   excess  = (flat_area - area_3d) / mean ruling length,
+ *
+ * the mean over the rulings' length (the triangle method's slivers are
+ * widest at the edge of regression, so lines across the strip there miss
+ * more than that, and lines near the far rail less).  n = ceil(deficit /
+ * opening) slits, as above; their positions f_k count in drawn rulings
+ * (0 the first, R - 1 the last): f_k = (k + 1/2) R / n - 1/2 when n <= R,
+ * else k (R - 1) / (n - 1), a slit at a fractional position lying between
+ * the two rulings it falls between (their ends interpolated).  Kerfing
+ * slits are clipped as above; overlap slits run from the ruling's start
+ * (on the outline) to `margin` short of the outline at its other end, each
+ * with a zone (or as a dart) of width w = excess / n.  An exact net
+ * (coverage 1 within UR_RELIEF_NEGLIGIBLE) gets neither.
+ *
+ * Slits never cross.  Overlap regions are relieved first, then kerfing
+ * regions; once a region is done its cuts, buffered by `margin`, are kept
+ * out of: a later slit is clipped where it would come nearer (an overlap
+ * slit shortened, and dropped when it no longer reaches its region or its
+ * new end is nearer the outline than margin).  Two crossing cuts that both
+ * reach the outline would cut a part of the piece loose.
+ *
+ * One record per region (per net for a development): kind KERFING or
+ * OVERLAP, count the slits cut, value the largest strain that triggered it
+ * (1 - sigma2 or sigma1 - 1; 1 - coverage or coverage - 1), limit the
+ * material's, where the region's centre; a warning when fewer slits fit
+ * than the formula asks for.
+ */
+#include "unroll/allow.h"
+
+#include <geos_c.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define UR_RELIEF_NEGLIGIBLE 1e-4
+#define RELIEF_LINES 64      /* lines across a region on which its deficit is measured */
+#define RELIEF_MAX_SLITS 512 /* per region: beyond this the limits make no sense */
+#define RELIEF_SMOOTHING 4   /* passes smoothing the axes before they are sorted into sectors */
+
+typedef enum relief_kind { RELIEF_NONE, RELIEF_KERFING, RELIEF_OVERLAP } relief_kind;
+
+/* What every step needs: the piece, the limits and the net's outline in GEOS. */
+typedef struct relief_job {
+    GEOSContextHandle_t geos;
+    ur_piece *piece;
+    const ur_net *net;
+    const ur_relief_limits *limits;
+    GEOSGeometry *outline; /* the net's outline as a polygon */
+    GEOSGeometry *inner;   /* the outline buffered inward by margin (maybe empty) */
+    GEOSGeometry *keepout; /* the relief cut so far buffered by margin; NULL for none */
+    double size;           /* the diagonal of the outline's box */
+    ur_error *error;
+} relief_job;
+
+/* What a region (or a whole development) needs relieved, and where. */
+typedef struct relief_need {
+    relief_kind kind;
+    double value, limit; /* the largest strain, the material's limit */
+    double length;       /* deficit or excess, mm */
+    ur_vec2 where;
+    size_t wanted, cut; /* slits the formula asks for, slits cut */
+} relief_need;
+
+static ur_status geos_failed(relief_job *job, const char *what)
+{
+    return ur_error_set(job->error, UR_ERROR_INTERNAL, "GEOS failed to %s for piece '%s'", what,
+                        job->piece->name);
+}
+
+static ur_vec2 perpendicular(ur_vec2 v)
+{
+    return ur_vec2_make(-v.y, v.x);
+}
+
+static ur_vec2 lerp(ur_vec2 a, ur_vec2 b, double t)
+{
+    return ur_vec2_add_scaled(a, ur_vec2_sub(b, a), t);
+}
+
+/* ---- GEOS helpers --------------------------------------------------- */
+
+static GEOSGeometry *make_polygon(GEOSContextHandle_t geos, const ur_vec2 *ring, size_t count)
+{
+    GEOSCoordSequence *sequence = GEOSCoordSeq_create_r(geos, (unsigned)count + 1, 2);
+    if (!sequence)
+        return NULL;
+    for (size_t i = 0; i <= count; i++)
+        GEOSCoordSeq_setXY_r(geos, sequence, (unsigned)i, ring[i % count].x, ring[i % count].y);
+    GEOSGeometry *shell = GEOSGeom_createLinearRing_r(geos, sequence);
+    if (!shell)
+        return NULL;
+    GEOSGeometry *polygon = GEOSGeom_createPolygon_r(geos, shell, NULL, 0);
+    if (!polygon)
+        GEOSGeom_destroy_r(geos, shell);
+    return polygon;
+}
+
+static GEOSGeometry *make_line(GEOSContextHandle_t geos, const ur_vec2 *points, size_t count)
+{
+    GEOSCoordSequence *sequence = GEOSCoordSeq_create_r(geos, (unsigned)count, 2);
+    if (!sequence)
+        return NULL;
+    for (size_t i = 0; i < count; i++)
+        GEOSCoordSeq_setXY_r(geos, sequence, (unsigned)i, points[i].x, points[i].y);
+    return GEOSGeom_createLineString_r(geos, sequence);
+}
+
+/* The points of a line string or a ring (closed: its last point is dropped); false if none. */
+static bool geometry_points(GEOSContextHandle_t geos, const GEOSGeometry *line, ur_points *points,
+                            bool drop_last, ur_error *error)
+{
+    const GEOSCoordSequence *sequence = GEOSGeom_getCoordSeq_r(geos, line);
+    unsigned size = 0;
+    if (!sequence || !GEOSCoordSeq_getSize_r(geos, sequence, &size))
+        return false;
+    if (drop_last && size > 0)
+        size--;
+    for (unsigned i = 0; i < size; i++) {
+        ur_vec2 p;
+        GEOSCoordSeq_getXY_r(geos, sequence, i, &p.x, &p.y);
+        if (ur_points_push(points, p, error) != UR_OK)
+            return false;
+    }
+    return true;
+}
+
+/* The ends of each line string part of geometry, in order: parts[2 k], parts[2 k + 1]. */
+static ur_status line_parts(relief_job *job, const GEOSGeometry *geometry, ur_points *ends)
+{
+    int parts = GEOSGetNumGeometries_r(job->geos, geometry);
+    for (int k = 0; k < parts; k++) {
+        const GEOSGeometry *part = GEOSGetGeometryN_r(job->geos, geometry, k);
+        if (!part || GEOSGeomTypeId_r(job->geos, part) != GEOS_LINESTRING)
+            continue;
+        ur_points points = {0};
+        if (!geometry_points(job->geos, part, &points, false, job->error)) {
+            ur_points_free(&points);
+            return geos_failed(job, "read a line");
+        }
+        ur_status status = UR_OK;
+        if (points.count >= 2) {
+            status = ur_points_push(ends, points.items[0], job->error);
+            if (status == UR_OK)
+                status = ur_points_push(ends, points.items[points.count - 1], job->error);
+        }
+        ur_points_free(&points);
+        if (status != UR_OK)
+            return status;
+    }
+    return UR_OK;
+}
+
+/* The ends of the parts of segment a b inside area and, unless avoid is NULL, outside avoid. */
+static ur_status clip_segment(relief_job *job, ur_vec2 a, ur_vec2 b, const GEOSGeometry *area,
+                              const GEOSGeometry *avoid, ur_points *ends)
+{
+    ur_vec2 ab[2] = {a, b};
+    GEOSGeometry *line = make_line(job->geos, ab, 2);
+    GEOSGeometry *inside = line ? GEOSIntersection_r(job->geos, line, area) : NULL;
+    if (inside && avoid) {
+        GEOSGeometry *clear = GEOSDifference_r(job->geos, inside, avoid);
+        GEOSGeom_destroy_r(job->geos, inside);
+        inside = clear;
+    }
+    ur_status status = inside ? line_parts(job, inside, ends) : geos_failed(job, "clip a slit");
+    if (inside)
+        GEOSGeom_destroy_r(job->geos, inside);
+    if (line)
+        GEOSGeom_destroy_r(job->geos, line);
+    return status;
+}
+
+/* Adds the exterior ring of every polygon of geometry as a closed path. */
+static ur_status add_rings(relief_job *job, const GEOSGeometry *geometry, ur_op op)
+{
+    int parts = GEOSGetNumGeometries_r(job->geos, geometry);
+    ur_status status = UR_OK;
+    for (int k = 0; status == UR_OK && k < parts; k++) {
+        const GEOSGeometry *part = GEOSGetGeometryN_r(job->geos, geometry, k);
+        if (!part || GEOSGeomTypeId_r(job->geos, part) != GEOS_POLYGON)
+            continue;
+        const GEOSGeometry *ring = GEOSGetExteriorRing_r(job->geos, part);
+        ur_points points = {0};
+        if (!ring || !geometry_points(job->geos, ring, &points, true, job->error))
+            status = geos_failed(job, "read an overlap zone");
+        else if (points.count >= 3)
+            status =
+                ur_piece_add_path(job->piece, op, points.items, points.count, true, job->error);
+        ur_points_free(&points);
+    }
+    return status;
+}
+
+/* Adds the part of an open polyline inside the outline as paths of op. */
+static ur_status add_clipped_polyline(relief_job *job, const ur_vec2 *points, size_t count,
+                                      ur_op op)
+{
+    GEOSGeometry *line = make_line(job->geos, points, count);
+    GEOSGeometry *inside = line ? GEOSIntersection_r(job->geos, line, job->outline) : NULL;
+    ur_status status = inside ? UR_OK : geos_failed(job, "clip a dart");
+    GEOSGeometry *merged = inside ? GEOSLineMerge_r(job->geos, inside) : NULL;
+    const GEOSGeometry *use = merged ? merged : inside;
+    int parts = use ? GEOSGetNumGeometries_r(job->geos, use) : 0;
+    for (int k = 0; status == UR_OK && k < parts; k++) {
+        const GEOSGeometry *part = GEOSGetGeometryN_r(job->geos, use, k);
+        if (!part || GEOSGeomTypeId_r(job->geos, part) != GEOS_LINESTRING)
+            continue;
+        ur_points got = {0};
+        if (!geometry_points(job->geos, part, &got, false, job->error))
+            status = geos_failed(job, "read a dart");
+        else if (got.count >= 2)
+            status = ur_piece_add_path(job->piece, op, got.items, got.count, false, job->error);
+        ur_points_free(&got);
+    }
+    if (merged)
+        GEOSGeom_destroy_r(job->geos, merged);
+    if (inside)
+        GEOSGeom_destroy_r(job->geos, inside);
+    if (line)
+        GEOSGeom_destroy_r(job->geos, line);
+    return status;
+}
+
+/* ---- Slits ------------------------------------------------------------ */
+
+/*
+ * Adds a relief cut (an open polyline) to the keep-out: no later relief
+ * cut comes within margin of it, so that no two cross and no part of the
+ * piece is cut loose between them and the outline.
+ */
+static ur_status keep_out(relief_job *job, const ur_vec2 *points, size_t count)
+{
+    double distance = fmax(job->limits->margin, 1e-6 * job->size);
+    GEOSGeometry *line = make_line(job->geos, points, count);
+    GEOSGeometry *zone = line ? GEOSBuffer_r(job->geos, line, distance, 4) : NULL;
+    if (line)
+        GEOSGeom_destroy_r(job->geos, line);
+    if (zone && job->keepout) {
+        GEOSGeometry *joined = GEOSUnion_r(job->geos, job->keepout, zone);
+        GEOSGeom_destroy_r(job->geos, zone);
+        zone = joined;
+        if (joined)
+            GEOSGeom_destroy_r(job->geos, job->keepout);
+    }
+    if (!zone)
+        return geos_failed(job, "keep slits apart");
+    job->keepout = zone;
+    return UR_OK;
+}
+
+/*
+ * Adds the relief cuts of one region, the piece's KERF paths from first on,
+ * to the keep-out once the region is done: its own slits are parallel and
+ * may lie closer than margin to each other.
+ */
+static ur_status keep_out_since(relief_job *job, size_t first)
+{
+    ur_status status = UR_OK;
+    for (size_t i = first; status == UR_OK && i < job->piece->path_count; i++)
+        if (job->piece->paths[i].op == UR_OP_KERF)
+            status = keep_out(job, job->piece->paths[i].points, job->piece->paths[i].count);
+    return status;
+}
+
+static ur_status add_cut(relief_job *job, const ur_vec2 *points, size_t count)
+{
+    return ur_piece_add_path(job->piece, UR_OP_KERF, points, count, false, job->error);
+}
+
+/* One KERF slit: the parts of segment a b inside area, those shorter than opening dropped. */
+static ur_status kerfing_slit(relief_job *job, ur_vec2 a, ur_vec2 b, const GEOSGeometry *area,
+                              bool *cut)
+{
+    ur_points ends = {0};
+    ur_status status = clip_segment(job, a, b, area, job->keepout, &ends);
+    *cut = false;
+    for (size_t i = 0; status == UR_OK && i + 1 < ends.count; i += 2) {
+        if (ur_vec2_distance(ends.items[i], ends.items[i + 1]) < job->limits->opening)
+            continue;
+        status = add_cut(job, &ends.items[i], 2);
+        *cut = true;
+    }
+    ur_points_free(&ends);
+    return status;
+}
+
+/*
+ * Where an overlap slit from start along unit u may end near `target`
+ * (a distance along u): the point of the chord inside the inner outline
+ * nearest to it, preferring one short of it.  False when none is.
+ */
+static ur_status slit_end(relief_job *job, ur_vec2 start, ur_vec2 u, double length, double target,
+                          double *end, bool *found)
+{
+    ur_points ends = {0};
+    *found = false;
+    ur_status status =
+        clip_segment(job, start, ur_vec2_add_scaled(start, u, length), job->inner, NULL, &ends);
+    double best_below = -1, best_above = INFINITY;
+    for (size_t i = 0; status == UR_OK && i + 1 < ends.count; i += 2) {
+        double a = ur_vec2_dot(ur_vec2_sub(ends.items[i], start), u);
+        double b = ur_vec2_dot(ur_vec2_sub(ends.items[i + 1], start), u);
+        double low = fmin(a, b), high = fmax(a, b);
+        if (low <= target && target <= high)
+            best_below = target;
+        else if (high < target)
+            best_below = fmax(best_below, high);
+        else
+            best_above = fmin(best_above, low);
+    }
+    ur_points_free(&ends);
+    if (best_below > 0) {
+        *end = best_below;
+        *found = true;
+    } else if (isfinite(best_above)) {
+        *end = best_above;
+        *found = true;
+    }
+    return status;
+}
+
+/*
+ * One overlap slit (or dart) from start, on the outline, along unit u to
+ * the distance `end`, with its zone of width w on the side `side` over the
+ * distances zone_from to end.
+ */
+static ur_status overlap_slit(relief_job *job, ur_vec2 start, ur_vec2 u, double zone_from,
+                              double end, double w, ur_vec2 side)
+{
+    ur_vec2 tip = ur_vec2_add_scaled(start, u, end);
+    if (job->limits->darts) {
+        double reach = w + 0.01 * end; /* the arms start outside and are clipped to the outline */
+        ur_vec2 base = ur_vec2_add_scaled(start, u, -reach);
+        ur_vec2 v[3] = {ur_vec2_add_scaled(base, side, 0.5 * w * (end + reach) / end), tip,
+                        ur_vec2_add_scaled(base, side, -0.5 * w * (end + reach) / end)};
+        return add_clipped_polyline(job, v, 3, UR_OP_KERF);
+    }
+    ur_vec2 slit[2] = {start, tip};
+    ur_status status = add_cut(job, slit, 2);
+    if (status != UR_OK || !(end - zone_from > 0))
+        return status;
+    ur_vec2 from = ur_vec2_add_scaled(start, u, fmax(zone_from, 0));
+    ur_vec2 zone[4] = {from, tip, ur_vec2_add_scaled(tip, side, w),
+                       ur_vec2_add_scaled(from, side, w)};
+    if (ur_polygon_signed_area(zone, 4) < 0) {
+        ur_vec2 swap = zone[1];
+        zone[1] = zone[3];
+        zone[3] = swap;
+    }
+    GEOSGeometry *polygon = make_polygon(job->geos, zone, 4);
+    GEOSGeometry *inside = polygon ? GEOSIntersection_r(job->geos, polygon, job->outline) : NULL;
+    status = inside ? add_rings(job, inside, UR_OP_MARK) : geos_failed(job, "mark a zone");
+    if (inside)
+        GEOSGeom_destroy_r(job->geos, inside);
+    if (polygon)
+        GEOSGeom_destroy_r(job->geos, polygon);
+    return status;
+}
+
+/*
+ * Shortens the slit from start along u to where it first comes within
+ * margin of an earlier relief cut; found false when it starts there or its
+ * new end is less than margin from the outline.
+ */
+static ur_status clear_length(relief_job *job, ur_vec2 start, ur_vec2 u, double *end, bool *found)
+{
+    ur_points ends = {0};
+    ur_status status =
+        clip_segment(job, ur_vec2_add_scaled(start, u, -1e-3), ur_vec2_add_scaled(start, u, *end),
+                     job->outline, job->keepout, &ends);
+    *found = false;
+    for (size_t i = 0; status == UR_OK && i + 1 < ends.count; i += 2) {
+        double a = ur_vec2_dot(ur_vec2_sub(ends.items[i], start), u);
+        double b = ur_vec2_dot(ur_vec2_sub(ends.items[i + 1], start), u);
+        if (fmin(a, b) > 1e-6 * job->size)
+            continue; /* not the part from the start */
+        *found = fmax(a, b) >= *end - 1e-9 * job->size;
+        if (!*found) { /* shortened: its new end must still be margin inside */
+            *end = fmax(a, b);
+            GEOSGeometry *point =
+                GEOSGeom_createPointFromXY_r(job->geos, start.x + *end * u.x, start.y + *end * u.y);
+            *found = point && GEOSIntersects_r(job->geos, point, job->inner) == 1;
+            if (point)
+                GEOSGeom_destroy_r(job->geos, point);
+        }
+    }
+    ur_points_free(&ends);
+    return status;
+}
+
+/*
+ * An overlap slit on the chord a b (both on the outline) whose part in the
+ * region lies between distances low and high from a: from the nearer end
+ * of the chord through that part.
+ */
+static ur_status overlap_on_chord(relief_job *job, ur_vec2 a, ur_vec2 b, double low, double high,
+                                  double w, ur_vec2 side, bool *cut)
+{
+    double length = ur_vec2_distance(a, b);
+    *cut = false;
+    if (!(length > 0))
+        return UR_OK;
+    ur_vec2 u = ur_vec2_scale(ur_vec2_sub(b, a), 1 / length);
+    ur_vec2 start = a;
+    double from = low, target = high;
+    if (low > length - high) { /* the region is nearer b: start there */
+        start = b;
+        u = ur_vec2_scale(u, -1);
+        from = length - high;
+        target = length - low;
+    }
+    double end = 0;
+    bool found = false;
+    ur_status status = slit_end(job, start, u, length, target, &end, &found);
+    if (status == UR_OK && found && job->keepout)
+        status = clear_length(job, start, u, &end, &found);
+    if (status != UR_OK || !found || end < job->limits->opening || end <= from)
+        return status;
+    *cut = true;
+    return overlap_slit(job, start, u, fmin(from, end), end, w, side);
+}
+
+/* ---- Records ---------------------------------------------------------- */
+
+static ur_status record_need(relief_job *job, const relief_need *need, const char *across)
+{
+    ur_allowance_record record = {0};
+    bool kerfing = need->kind == RELIEF_KERFING;
+    record.kind = kerfing ? UR_ALLOWANCE_KERFING : UR_ALLOWANCE_OVERLAP;
+    record.count = need->cut;
+    record.value = need->value;
+    record.limit = need->limit;
+    record.where = need->where;
+    record.warning = need->cut < need->wanted;
+    char missing[96] = "", reason[512];
+    if (record.warning)
+        snprintf(missing, sizeof missing, "; only %zu fit, %.3g mm clear of the outline and slits",
+                 need->cut, job->limits->margin);
+    if (kerfing)
+        snprintf(reason, sizeof reason,
+                 "the net is %.3g mm shorter than the surface %s (forming needs %.3g %% stretch, "
+                 "the material takes %.3g %%): %zu kerfing slits opening up to %.3g mm%s",
+                 need->length, across, 100 * need->value, 100 * need->limit, need->wanted,
+                 job->limits->opening, missing);
+    else
+        snprintf(reason, sizeof reason,
+                 "the net is %.3g mm longer than the surface %s (forming needs %.3g %% "
+                 "compression, the material takes %.3g %%): %zu overlap %s %.3g mm%s",
+                 need->length, across, 100 * need->value, 100 * need->limit, need->wanted,
+                 job->limits->darts ? "darts, each as wide at the outline as"
+                                    : "slits, each lapping",
+                 need->length / (double)need->wanted, missing);
+    size_t length = strlen(reason); /* at most what the record holds */
+    length = length < sizeof record.reason ? length : sizeof record.reason - 1;
+    memcpy(record.reason, reason, length);
+    record.reason[length] = '\0';
+    return ur_piece_record(job->piece, &record, job->error);
+}
+
+/* n = ceil(length / opening), at least 1, at most one per opening of span and RELIEF_MAX_SLITS. */
+static size_t slit_count(double length, double opening, double span)
+{
+    double n = ceil(length / opening - 1e-9);
+    n = fmin(n, fmax(1, floor(span / opening)));
+    n = fmin(n, RELIEF_MAX_SLITS);
+    return n < 1 ? 1 : (size_t)n;
+}
+
+/* ---- Flattened nets: regions of the shading --------------------------- */
+
+static size_t find_root(size_t *parent, size_t t)
+{
+    while (parent[t] != t) {
+        parent[t] = parent[parent[t]];
+        t = parent[t];
+    }
+    return t;
+}
+
+typedef struct flat_edge {
+    ur_vec2 p, q; /* p before q in (x, y) order */
+    size_t triangle;
+} flat_edge;
+
+static bool point_before(ur_vec2 a, ur_vec2 b)
+{
+    return a.x < b.x || (a.x == b.x && a.y < b.y);
+}
+
+static int compare_points(ur_vec2 a, ur_vec2 b)
+{
+    return point_before(a, b) ? -1 : point_before(b, a) ? 1 : 0;
+}
+
+static int compare_edges(const void *x, const void *y)
+{
+    const flat_edge *a = x, *b = y;
+    int order = compare_points(a->p, b->p);
+    return order ? order : compare_points(a->q, b->q);
+}
+
+/* The pairs of triangles of one kind (not none) that share an edge (equal flat corners). */
+static ur_status neighbour_pairs(const ur_shading *shading, const relief_kind *kind,
+                                 size_t (**pairs)[2], size_t *pair_count, ur_error *error)
+{
+    size_t count = shading->count;
+    flat_edge *edges = ur_alloc_array(3 * count, sizeof *edges, error);
+    *pairs = ur_alloc_array(3 * count, sizeof **pairs, error);
+    *pair_count = 0;
+    if (!edges || !*pairs) {
+        free(edges);
+        return UR_ERROR_INTERNAL;
+    }
+    for (size_t t = 0; t < count; t++)
+        for (int k = 0; k < 3; k++) {
+            ur_vec2 a = shading->triangles[t][k], b = shading->triangles[t][(k + 1) % 3];
+            flat_edge e = {point_before(a, b) ? a : b, point_before(a, b) ? b : a, t};
+            edges[3 * t + (size_t)k] = e;
+        }
+    qsort(edges, 3 * count, sizeof *edges, compare_edges);
+    for (size_t i = 0; i + 1 < 3 * count; i++) {
+        size_t s = edges[i].triangle, t = edges[i + 1].triangle;
+        if (compare_edges(&edges[i], &edges[i + 1]) != 0 || kind[s] != kind[t] ||
+            kind[s] == RELIEF_NONE)
+            continue;
+        (*pairs)[*pair_count][0] = s;
+        (*pairs)[(*pair_count)++][1] = t;
+    }
+    free(edges);
+    return UR_OK;
+}
+
+static double triangle_area(const ur_vec2 *c)
+{
+    return 0.5 * fabs(ur_vec2_cross(ur_vec2_sub(c[1], c[0]), ur_vec2_sub(c[2], c[0])));
+}
+
+/* The length of the chord of triangle c on the line {p : p . n = w}, measured along d. */
+static double chord(const ur_vec2 *c, ur_vec2 n, ur_vec2 d, double w)
+{
+    double low = INFINITY, high = -INFINITY;
+    for (int k = 0; k < 3; k++) {
+        ur_vec2 a = c[k], b = c[(k + 1) % 3];
+        double sa = ur_vec2_dot(a, n) - w, sb = ur_vec2_dot(b, n) - w;
+        if ((sa < 0) == (sb < 0) || sa == sb)
+            continue;
+        double along = ur_vec2_dot(lerp(a, b, sa / (sa - sb)), d);
+        low = fmin(low, along);
+        high = fmax(high, along);
+    }
+    return high > low ? high - low : 0;
+}
+
+/* One region: its triangles (indices into the shading) and what it needs. */
+typedef struct region {
+    size_t *triangles;
+    size_t count;
+    ur_vec2 d, n;            /* the axis of its strain and across it */
+    double low, high;        /* its extent along d */
+    double across0, across1; /* its extent along n */
+} region;
+
+/* e_t: missing (kerfing) or excess (overlap) length per flat length along the triangle's own axis.
+ */
+static double excess_per_length(double strain)
+{
+    return fabs(strain) / (1 + strain);
+}
+
+/* The region's axis, extent, value and centre. */
+static void region_shape(const ur_shading *shading, region *r, relief_need *need)
+{
+    double c2 = 0, s2 = 0, area = 0;
+    ur_vec2 centre = {0, 0};
+    need->value = 0;
+    for (size_t i = 0; i < r->count; i++) {
+        size_t t = r->triangles[i];
+        double a = triangle_area(shading->triangles[t]);
+        ur_vec2 d = shading->direction[t];
+        c2 += a * (d.x * d.x - d.y * d.y);
+        s2 += a * 2 * d.x * d.y;
+        ur_vec2 middle = ur_vec2_scale(
+            ur_vec2_add(shading->triangles[t][0],
+                        ur_vec2_add(shading->triangles[t][1], shading->triangles[t][2])),
+            1.0 / 3);
+        centre = ur_vec2_add_scaled(centre, middle, a);
+        area += a;
+        need->value = fmax(need->value, fabs(shading->strain[t]));
+    }
+    double angle = 0.5 * atan2(s2, c2);
+    r->d = ur_vec2_make(cos(angle), sin(angle));
+    r->n = perpendicular(r->d);
+    need->where =
+        area > 0 ? ur_vec2_scale(centre, 1 / area) : shading->triangles[r->triangles[0]][0];
+    r->low = r->across0 = INFINITY;
+    r->high = r->across1 = -INFINITY;
+    for (size_t i = 0; i < r->count; i++)
+        for (int k = 0; k < 3; k++) {
+            ur_vec2 p = shading->triangles[r->triangles[i]][k];
+            r->low = fmin(r->low, ur_vec2_dot(p, r->d));
+            r->high = fmax(r->high, ur_vec2_dot(p, r->d));
+            r->across0 = fmin(r->across0, ur_vec2_dot(p, r->n));
+            r->across1 = fmax(r->across1, ur_vec2_dot(p, r->n));
+        }
+}
+
+/* The largest missing (or excess) length along d over RELIEF_LINES lines across the region. */
+static double region_length(const ur_shading *shading, const region *r)
+{
+    double largest = 0;
+    for (int j = 0; j < RELIEF_LINES; j++) {
+        double w = r->across0 + (j + 0.5) * (r->across1 - r->across0) / RELIEF_LINES;
+        double sum = 0;
+        for (size_t i = 0; i < r->count; i++) {
+            size_t t = r->triangles[i];
+            double c = chord(shading->triangles[t], r->n, r->d, w);
+            if (c <= 0)
+                continue;
+            double along = ur_vec2_dot(shading->direction[t], r->d);
+            sum += c * excess_per_length(shading->strain[t]) * along * along;
+        }
+        largest = fmax(largest, sum);
+    }
+    return largest;
+}
+
+/* The region as one GEOS geometry: the union of its triangles. */
+static GEOSGeometry *region_geometry(relief_job *job, const ur_shading *shading, const region *r)
+{
+    GEOSGeometry **polygons = ur_alloc_array(r->count, sizeof *polygons, job->error);
+    if (!polygons)
+        return NULL;
+    size_t made = 0;
+    for (; made < r->count; made++) {
+        const ur_vec2 *c = shading->triangles[r->triangles[made]];
+        ur_vec2 ring[3] = {c[0], c[1], c[2]};
+        if (ur_polygon_signed_area(ring, 3) < 0) {
+            ring[1] = c[2];
+            ring[2] = c[1];
+        }
+        polygons[made] = make_polygon(job->geos, ring, 3);
+        if (!polygons[made])
+            break;
+    }
+    GEOSGeometry *collection = NULL, *uni = NULL;
+    if (made == r->count)
+        collection =
+            GEOSGeom_createCollection_r(job->geos, GEOS_MULTIPOLYGON, polygons, (unsigned)made);
+    else
+        for (size_t i = 0; i < made; i++)
+            GEOSGeom_destroy_r(job->geos, polygons[i]);
+    free(polygons);
+    if (collection) {
+        uni = GEOSUnaryUnion_r(job->geos, collection);
+        GEOSGeom_destroy_r(job->geos, collection);
+    }
+    if (!uni)
+        geos_failed(job, "join a region's triangles");
+    return uni;
+}
+
+/* The ends of the line across the region at distance c along d, reaching past it. */
+static void line_across(const region *r, double c, double pad, ur_vec2 *a, ur_vec2 *b)
+{
+    ur_vec2 at = ur_vec2_scale(r->d, c);
+    *a = ur_vec2_add_scaled(at, r->n, r->across0 - pad);
+    *b = ur_vec2_add_scaled(at, r->n, r->across1 + pad);
+}
+
+static ur_status region_kerfing(relief_job *job, const region *r, const GEOSGeometry *area,
+                                relief_need *need)
+{
+    GEOSGeometry *clip = GEOSIntersection_r(job->geos, area, job->inner);
+    if (!clip)
+        return geos_failed(job, "clip a region to the margin");
+    ur_status status = UR_OK;
+    for (size_t k = 0; status == UR_OK && k < need->wanted; k++) {
+        ur_vec2 a, b;
+        line_across(r, r->low + (k + 0.5) * (r->high - r->low) / need->wanted, 1, &a, &b);
+        bool cut = false;
+        status = kerfing_slit(job, a, b, clip, &cut);
+        need->cut += cut;
+    }
+    GEOSGeom_destroy_r(job->geos, clip);
+    return status;
+}
+
+/* Each chord of the piece on the line a b that meets the region gets an overlap slit. */
+static ur_status overlap_line(relief_job *job, ur_vec2 a, ur_vec2 b, const GEOSGeometry *area,
+                              double w, ur_vec2 side, bool *cut)
+{
+    ur_points chords = {0};
+    ur_status status = clip_segment(job, a, b, job->outline, NULL, &chords);
+    *cut = false;
+    for (size_t i = 0; status == UR_OK && i + 1 < chords.count; i += 2) {
+        ur_vec2 p = chords.items[i], q = chords.items[i + 1];
+        double length = ur_vec2_distance(p, q);
+        if (!(length > 0))
+            continue;
+        ur_vec2 u = ur_vec2_scale(ur_vec2_sub(q, p), 1 / length);
+        ur_points parts = {0};
+        status = clip_segment(job, p, q, area, NULL, &parts);
+        double low = INFINITY, high = -INFINITY;
+        for (size_t j = 0; j < parts.count; j++) {
+            double along = ur_vec2_dot(ur_vec2_sub(parts.items[j], p), u);
+            low = fmin(low, along);
+            high = fmax(high, along);
+        }
+        ur_points_free(&parts);
+        bool one = false;
+        if (status == UR_OK && high > low)
+            status = overlap_on_chord(job, p, q, low, high, w, side, &one);
+        *cut = *cut || one;
+    }
+    ur_points_free(&chords);
+    return status;
+}
+
+static ur_status region_overlaps(relief_job *job, const region *r, const GEOSGeometry *area,
+                                 relief_need *need)
+{
+    double w = need->length / (double)need->wanted;
+    ur_status status = UR_OK;
+    double pad = job->size;
+    for (size_t k = 0; status == UR_OK && k < need->wanted; k++) {
+        ur_vec2 a, b;
+        line_across(r, r->low + (k + 0.5) * (r->high - r->low) / need->wanted, pad, &a, &b);
+        bool cut = false;
+        status = overlap_line(job, a, b, area, w, r->d, &cut);
+        need->cut += cut;
+    }
+    return status;
+}
+
+/* Measures one region and cuts what it needs. */
+static ur_status relieve_region(relief_job *job, region *r, relief_kind kind)
+{
+    const ur_shading *shading = &job->net->shading;
+    relief_need need = {kind, 0, 0, 0, {0, 0}, 0, 0};
+    region_shape(shading, r, &need);
+    need.limit = kind == RELIEF_KERFING ? job->limits->max_stretch : job->limits->max_compression;
+    need.length = region_length(shading, r);
+    if (!(need.length > 0))
+        return UR_OK;
+    need.wanted = slit_count(need.length, job->limits->opening, r->high - r->low);
+    GEOSGeometry *area = region_geometry(job, shading, r);
+    if (!area)
+        return UR_ERROR_INTERNAL;
+    size_t first = job->piece->path_count;
+    ur_status status = kind == RELIEF_KERFING ? region_kerfing(job, r, area, &need)
+                                              : region_overlaps(job, r, area, &need);
+    GEOSGeom_destroy_r(job->geos, area);
+    if (status == UR_OK)
+        status = keep_out_since(job, first);
+    return status == UR_OK ? record_need(job, &need, "across this region") : status;
+}
+
+/* Which relief each triangle asks for, by its dominant strain. */
+static relief_kind triangle_kind(const ur_relief_limits *limits, double strain)
+{
+    if (limits->kerfing && -strain > fmax(limits->max_stretch, UR_RELIEF_NEGLIGIBLE))
+        return RELIEF_KERFING;
+    if (limits->overlaps && strain > fmax(limits->max_compression, UR_RELIEF_NEGLIGIBLE))
+        return RELIEF_OVERLAP;
+    return RELIEF_NONE;
+}
+
+/*
+ * Each triangle's axis smoothed over its neighbours of the same kind, as
+ * doubled-angle vectors weighted by area and strain, RELIEF_SMOOTHING
+ * times: where the strain is nearly the same in every direction its axis is
+ * noise, and neighbours would otherwise fall in different sectors.
+ */
+static ur_status smooth_axes(const ur_shading *shading, const size_t (*pairs)[2], size_t pair_count,
+                             ur_vec2 *axes, ur_error *error)
+{
+    size_t count = shading->count;
+    ur_vec2 *next = ur_alloc_array(count, sizeof *next, error);
+    if (!next)
+        return UR_ERROR_INTERNAL;
+    for (size_t t = 0; t < count; t++) {
+        ur_vec2 d = shading->direction[t];
+        double weight = triangle_area(shading->triangles[t]) * fabs(shading->strain[t]);
+        axes[t] = ur_vec2_make(weight * (d.x * d.x - d.y * d.y), weight * 2 * d.x * d.y);
+    }
+    for (int pass = 0; pass < RELIEF_SMOOTHING; pass++) {
+        memcpy(next, axes, count * sizeof *next);
+        for (size_t i = 0; i < pair_count; i++) {
+            size_t s = pairs[i][0], t = pairs[i][1];
+            next[s] = ur_vec2_add(next[s], axes[t]);
+            next[t] = ur_vec2_add(next[t], axes[s]);
+        }
+        memcpy(axes, next, count * sizeof *next);
+    }
+    free(next);
+    return UR_OK;
+}
+
+/*
+ * Which of four sectors of 45 degrees, centred on 0, 45, 90 and 135
+ * degrees, the axis whose doubled angle points along v falls in.
+ */
+static int axis_sector(ur_vec2 v)
+{
+    double angle = 0.5 * atan2(v.y, v.x) + M_PI / 2 + M_PI / 8; /* 0 .. 9 pi / 8 */
+    int sector = (int)floor(angle / (M_PI / 4));
+    return sector % 4;
+}
+
+/* Joins the pairs whose triangles have the same kind and sector. */
+static void join_regions(const ur_vec2 *axes, const size_t (*pairs)[2], size_t pair_count,
+                         size_t count, size_t *parent)
+{
+    for (size_t t = 0; t < count; t++)
+        parent[t] = t;
+    for (size_t i = 0; i < pair_count; i++) {
+        size_t s = pairs[i][0], t = pairs[i][1];
+        if (axis_sector(axes[s]) == axis_sector(axes[t]))
+            parent[find_root(parent, s)] = find_root(parent, t);
+    }
+}
+
+typedef struct member {
+    size_t root, triangle;
+} member;
+
+static int compare_members(const void *x, const void *y)
+{
+    const member *a = x, *b = y;
+    if (a->root != b->root)
+        return a->root < b->root ? -1 : 1;
+    return a->triangle < b->triangle ? -1 : a->triangle > b->triangle;
+}
+
+/* Sorts the triangles that need relief by region and relieves each region. */
+static ur_status relieve_regions(relief_job *job, const relief_kind *kind, size_t *parent)
+{
+    size_t count = job->net->shading.count, used = 0;
+    member *members = ur_alloc_array(count, sizeof *members, job->error);
+    size_t *triangles = ur_alloc_array(count, sizeof *triangles, job->error);
+    ur_status status = members && triangles ? UR_OK : UR_ERROR_INTERNAL;
+    for (size_t t = 0; status == UR_OK && t < count; t++)
+        if (kind[t] != RELIEF_NONE)
+            members[used++] = (member){find_root(parent, t), t};
+    if (status == UR_OK)
+        qsort(members, used, sizeof *members, compare_members);
+    /* Overlaps first: their slits reach the outline, kerfing slits keep clear of them. */
+    for (int pass = 0; pass < 2; pass++) {
+        relief_kind wanted = pass == 0 ? RELIEF_OVERLAP : RELIEF_KERFING;
+        for (size_t i = 0; status == UR_OK && i < used;) {
+            size_t j = i;
+            for (; j < used && members[j].root == members[i].root; j++)
+                triangles[j - i] = members[j].triangle;
+            region r = {triangles, j - i, {0, 0}, {0, 0}, 0, 0, 0, 0};
+            if (kind[members[i].triangle] == wanted)
+                status = relieve_region(job, &r, wanted);
+            i = j;
+        }
+    }
+    free(members);
+    free(triangles);
+    return status;
+}
+
+static ur_status relieve_flattened(relief_job *job)
+{
+    const ur_shading *shading = &job->net->shading;
+    if (!shading->triangles || !shading->strain || !shading->direction)
+        return ur_error_set(job->error, UR_ERROR_INTERNAL,
+                            "net '%s' has %zu shaded triangles but no strain directions",
+                            job->net->name, shading->count);
+    size_t count = shading->count, (*pairs)[2] = NULL, pair_count = 0;
+    relief_kind *kind = ur_alloc_array(count, sizeof *kind, job->error);
+    ur_vec2 *axes = ur_alloc_array(count, sizeof *axes, job->error);
+    size_t *parent = ur_alloc_array(count, sizeof *parent, job->error);
+    ur_status status = kind && axes && parent ? UR_OK : UR_ERROR_INTERNAL;
+    for (size_t t = 0; status == UR_OK && t < count; t++)
+        kind[t] = triangle_kind(job->limits, shading->strain[t]);
+    if (status == UR_OK)
+        status = neighbour_pairs(shading, kind, &pairs, &pair_count, job->error);
+    if (status == UR_OK)
+        status = smooth_axes(shading, (const size_t(*)[2])pairs, pair_count, axes, job->error);
+    if (status == UR_OK) {
+        join_regions(axes, (const size_t(*)[2])pairs, pair_count, count, parent);
+        status = relieve_regions(job, kind, parent);
+    }
+    free(pairs);
+    free(kind);
+    free(axes);
+    free(parent);
+    return status;
+}
+
+/* ---- Developed nets: along the rulings -------------------------------- */
+
+/* The drawn ruling at fractional position f (0 the first, R - 1 the last), ends interpolated. */
+static ur_segment ruling_at(const ur_net *net, double f)
+{
+    size_t i = (size_t)floor(f);
+    if (i + 1 >= net->ruling_count)
+        return net->rulings[net->ruling_count - 1];
+    double t = f - (double)i;
+    ur_segment s = {lerp(net->rulings[i].start, net->rulings[i + 1].start, t),
+                    lerp(net->rulings[i].end, net->rulings[i + 1].end, t)};
+    return s;
+}
+
+/* Slit k of n among R drawn rulings (relief.c header). */
+static double ruling_position(size_t k, size_t n, size_t rulings)
+{
+    if (n <= rulings)
+        return (k + 0.5) * (double)rulings / (double)n - 0.5;
+    return n > 1 ? (double)k * (double)(rulings - 1) / (double)(n - 1) : 0;
+}
+
+static ur_vec2 outline_centre(const ur_net *net)
+{
+    double area = 0;
+    ur_vec2 sum = {0, 0};
+    for (size_t i = 0; i < net->outline_count; i++) {
+        ur_vec2 a = net->outline[i], b = net->outline[(i + 1) % net->outline_count];
+        double cross = ur_vec2_cross(a, b);
+        area += cross;
+        sum = ur_vec2_add_scaled(sum, ur_vec2_add(a, b), cross);
+    }
+    return area != 0 ? ur_vec2_scale(sum, 1 / (3 * area)) : net->outline[0];
+}
+
+/* One slit along the ruling at f: kerfing clipped to the margin, or overlap from its start. */
+static ur_status ruling_slit(relief_job *job, const relief_need *need, double f, bool *cut)
+{
+    ur_segment s = ruling_at(job->net, f);
+    double length = ur_vec2_distance(s.start, s.end);
+    *cut = false;
+    if (!(length > 0))
+        return UR_OK;
+    ur_vec2 u = ur_vec2_scale(ur_vec2_sub(s.end, s.start), 1 / length);
+    if (need->kind == RELIEF_KERFING)
+        return kerfing_slit(job, ur_vec2_add_scaled(s.start, u, -1),
+                            ur_vec2_add_scaled(s.end, u, 1), job->inner, cut);
+    /* The chord of the piece through the ruling: from its start (on the outline) across. */
+    ur_points chords = {0};
+    ur_status status =
+        clip_segment(job, ur_vec2_add_scaled(s.start, u, -0.01 * length),
+                     ur_vec2_add_scaled(s.end, u, 0.01 * length), job->outline, NULL, &chords);
+    size_t best = SIZE_MAX;
+    double nearest = INFINITY;
+    for (size_t i = 0; status == UR_OK && i + 1 < chords.count; i += 2) {
+        double gap = ur_vec2_distance(chords.items[i], s.start);
+        if (gap < nearest) {
+            nearest = gap;
+            best = i;
+        }
+    }
+    if (status == UR_OK && best != SIZE_MAX) {
+        ur_vec2 a = chords.items[best], b = chords.items[best + 1];
+        double chord_length = ur_vec2_distance(a, b);
+        double w = need->length / (double)need->wanted;
+        status = overlap_on_chord(job, a, b, 0, chord_length, w, perpendicular(u), cut);
+    }
+    ur_points_free(&chords);
+    return status;
+}
+
+static ur_status relieve_rulings(relief_job *job, relief_need *need)
+{
+    const ur_net *net = job->net;
+    double total = 0;
+    for (size_t i = 0; i < net->ruling_count; i++)
+        total += ur_vec2_distance(net->rulings[i].start, net->rulings[i].end);
+    double mean = net->ruling_count ? total / (double)net->ruling_count : 0;
+    need->length = mean > 0 ? fabs(net->area_3d - net->flat_area) / mean : 0;
+    need->where = outline_centre(net);
+    need->wanted = mean > 0 ? slit_count(need->length, job->limits->opening, INFINITY) : 1;
+    size_t placed = need->wanted;
+    if (net->ruling_count < 2 && placed > net->ruling_count)
+        placed = net->ruling_count; /* one ruling or none: no room between rulings */
+    ur_status status = UR_OK;
+    for (size_t k = 0; status == UR_OK && k < placed; k++) {
+        bool cut = false;
+        status = ruling_slit(job, need, ruling_position(k, placed, net->ruling_count), &cut);
+        need->cut += cut;
+    }
+    return status == UR_OK ? record_need(job, need, "across its rulings") : status;
+}
+
+static ur_status relieve_developed(relief_job *job)
+{
+    const ur_net *net = job->net;
+    if (!(net->area_3d > 0) || !(net->flat_area > 0))
+        return UR_OK;
+    double coverage = net->flat_area / net->area_3d;
+    const ur_relief_limits *limits = job->limits;
+    relief_need need = {RELIEF_NONE, 0, 0, 0, {0, 0}, 0, 0};
+    if (limits->kerfing && 1 - coverage > fmax(limits->max_stretch, UR_RELIEF_NEGLIGIBLE))
+        need = (relief_need){RELIEF_KERFING, 1 - coverage, limits->max_stretch, 0, {0, 0}, 0, 0};
+    else if (limits->overlaps && coverage - 1 > fmax(limits->max_compression, UR_RELIEF_NEGLIGIBLE))
+        need =
+            (relief_need){RELIEF_OVERLAP, coverage - 1, limits->max_compression, 0, {0, 0}, 0, 0};
+    return need.kind == RELIEF_NONE ? UR_OK : relieve_rulings(job, &need);
+}
+
+/* ---- Entry ------------------------------------------------------------ */
+
+static ur_status check_limits(const ur_piece *piece, const ur_relief_limits *limits,
+                              ur_error *error)
+{
+    if (!limits || !(limits->max_stretch >= 0) || !(limits->max_compression >= 0) ||
+        !(limits->opening > 0) || !(limits->margin >= 0) || !isfinite(limits->opening) ||
+        !isfinite(limits->margin))
+        return ur_error_set(error, UR_ERROR_INPUT,
+                            "piece '%s': the kerfing and overlap limits must be numbers >= 0 "
+                            "and the opening > 0",
+                            piece->name);
+    return UR_OK;
+}
+
+static ur_status open_job(relief_job *job)
+{
+    const ur_net *net = job->net;
+    job->geos = GEOS_init_r();
+    if (!job->geos)
+        return ur_error_out_of_memory(job->error);
+    ur_box box = ur_box_of_points(net->outline, net->outline_count);
+    job->size = hypot(ur_box_width(box), ur_box_height(box));
+    job->outline = make_polygon(job->geos, net->outline, net->outline_count);
+    if (job->outline)
+        job->inner = job->limits->margin > 0
+                         ? GEOSBuffer_r(job->geos, job->outline, -job->limits->margin, 8)
+                         : GEOSGeom_clone_r(job->geos, job->outline);
+    return job->outline && job->inner ? UR_OK : geos_failed(job, "buffer the outline");
+}
+
+static void close_job(relief_job *job)
+{
+    if (job->keepout)
+        GEOSGeom_destroy_r(job->geos, job->keepout);
+    if (job->inner)
+        GEOSGeom_destroy_r(job->geos, job->inner);
+    if (job->outline)
+        GEOSGeom_destroy_r(job->geos, job->outline);
+    if (job->geos)
+        GEOS_finish_r(job->geos);
+}
+
+ur_status ur_piece_add_relief(ur_piece *piece, const ur_net *net, const ur_relief_limits *limits,
+                              ur_error *error)
+{
+    ur_status status = check_limits(piece, limits, error);
+    if (status != UR_OK || !(limits->kerfing || limits->overlaps))
+        return status;
+    if (!net || net->outline_count < 3)
+        return ur_error_set(error, UR_ERROR_INPUT, "piece '%s' has no outline to relieve",
+                            piece->name);
+    relief_job job = {NULL, piece, net, limits, NULL, NULL, NULL, 0, error};
+    status = open_job(&job);
+    if (status == UR_OK)
+        status = net->shading.count > 0 ? relieve_flattened(&job) : relieve_developed(&job);
+    close_job(&job);
+    return status;
+}
