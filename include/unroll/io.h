@@ -93,6 +93,14 @@ typedef enum ur_surface_layer {
 const char *ur_surface_layer_name(ur_surface_layer layer);
 int ur_surface_layer_from_name(const char *name);
 
+/*
+ * How far the neutral layer lies from the given layer, in mm toward the
+ * inside of the bend (the centre of curvature; negative: away from it).
+ * The neutral layer lies k_factor * thickness from the inner face, so outer
+ * (1 - K) t, inner -K t, mid (1/2 - K) t, neutral 0.
+ */
+double ur_surface_layer_offset(ur_surface_layer layer, double thickness, double k_factor);
+
 typedef enum ur_grain_rule {
     UR_GRAIN_NONE,   /* no grain: any rotation */
     UR_GRAIN_ALONG,  /* rulings (bending axes) along the grain */

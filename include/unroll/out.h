@@ -32,6 +32,15 @@ ur_status ur_write_svg(const char *output_path, const ur_layout *layout, const u
                        ur_error *error);
 
 /* What the report says beyond the pieces and sheets. */
+/* The material layer the 3D surface is and the one developed (--surface). */
+typedef struct ur_report_layer {
+    const char *surface;   /* "outer", "inner", "mid" or "neutral" */
+    const char *developed; /* the layer whose lengths the net keeps: "neutral" */
+    double offset;         /* mm from the first to the second, toward the inside of the bend */
+    double k_factor;       /* the neutral layer's place, a fraction of the thickness */
+    double thickness;      /* mm */
+} ur_report_layer;
+
 typedef struct ur_report_context {
     const char *surface; /* e.g. "helicoid" */
     const char *method;  /* "exact", "triangle" or "quad" */
@@ -44,6 +53,7 @@ typedef struct ur_report_context {
     /* gaps in a strip's domain of existence (ur_ruled_gaps); may be NULL, 0 */
     const ur_interval *gaps;
     size_t gap_count;
+    const struct ur_report_layer *layer; /* the layer developed; NULL: not reported (meshes) */
 } ur_report_context;
 
 /*

@@ -217,4 +217,20 @@ ur_status ur_ruled_area(ur_ruled *ruled, double u_start, double u_end, double *a
 ur_status ur_ruled_rail_length(ur_ruled *ruled, int rail, double u_start, double u_end,
                                double *length, ur_error *error);
 
+/*
+ * The parallel surface at `distance` mm toward the inside of the bend
+ * (negative: away from it), for the part in use (offset.c): each ruling
+ * moves along the unit normal, which on a developable is the same all
+ * along it, so the result is developable again and its net exact.  The
+ * inside is the side of the centre of curvature of the section across the
+ * rulings; on a surface that bends both ways, the side the integral of that
+ * curvature over the area favours.  A cylinder stays a cylinder, a general
+ * ruled surface stays one paired by points, other developables become the
+ * strip between the two new rails.  UR_ERROR_INPUT when the distance
+ * toward a side reaches the bend radius there (the result would fold over
+ * itself; the message says where) or the part in use has a gap.  *offset
+ * is new (free it with ur_ruled_free); ruled is not changed.
+ */
+ur_status ur_ruled_offset(ur_ruled *ruled, double distance, ur_ruled *offset, ur_error *error);
+
 #endif

@@ -60,6 +60,7 @@ typedef struct cli_job {
     double sheet_width, sheet_height; /* 0 when not given */
     bool draw_rulings;
     bool quiet;
+    int surface_layer; /* --surface: a ur_surface_layer, or -1 for the material's */
     ur_develop_options develop;
 } cli_job;
 

@@ -32,6 +32,8 @@ static const char usage[] =
     "  -o, --output FILE.svg  where to write (required); several sheets: FILE-1.svg, ...\n"
     "  --machine NAME         machine profile (default co2-60w)\n"
     "  --material NAME        material profile (default plywood-3mm)\n"
+    "  --surface LAYER        the face the surface is: outer, inner, mid or neutral\n"
+    "                         (default the material's); the neutral layer is developed\n"
     "  --sheet WxH            sheet size instead of the material's stock\n"
     "  --method M             exact (default), triangle or quad\n"
     "  -n, --parts N          parts for triangle/quad; rulings drawn for all (default 24)\n"

@@ -38,6 +38,7 @@ enum option_id {
     OPT_ADJUST_DIRECTION,
     OPT_ADJUSTED_RAIL,
     OPT_CORNERS,
+    OPT_SURFACE,
     OPT_UNITS,
     OPT_SCALE,
     OPT_SEAMS,
@@ -79,6 +80,7 @@ static const struct option long_options[] = {
     {"adjust-direction", required_argument, NULL, OPT_ADJUST_DIRECTION},
     {"adjusted-rail", required_argument, NULL, OPT_ADJUSTED_RAIL},
     {"corners", required_argument, NULL, OPT_CORNERS},
+    {"surface", required_argument, NULL, OPT_SURFACE},
     {"units", required_argument, NULL, OPT_UNITS},
     {"scale", required_argument, NULL, OPT_SCALE},
     {"seams", required_argument, NULL, OPT_SEAMS},
@@ -108,14 +110,14 @@ static const struct {
     const char *surface;
     const char *options;
 } accepted[] = {
-    {"cylinder", " radius height curve direction "},
-    {"cone", " radius height top-radius curve apex cut "},
-    {"helicoid", " radius pitch turns width offset "},
-    {"tangent", " curve width offset "},
+    {"cylinder", " radius height curve direction surface "},
+    {"cone", " radius height top-radius curve apex cut surface "},
+    {"helicoid", " radius pitch turns width offset surface "},
+    {"tangent", " curve width offset surface "},
     {"strip", " rail1 rail2 pairing strict regression adjust-rail2 adjust-direction "
-              "adjusted-rail flatten iterations max-strain "},
-    {"ruled", " rail1 rail2 flatten iterations max-strain "},
-    {"hypar", " corners flatten iterations max-strain "},
+              "adjusted-rail flatten iterations max-strain surface "},
+    {"ruled", " rail1 rail2 flatten iterations max-strain surface "},
+    {"hypar", " corners flatten iterations max-strain surface "},
     {"mesh", " units scale seams flatten iterations max-strain "},
 };
 
@@ -283,6 +285,21 @@ static bool parse_iterations(cli_job *job, const char *text)
     return true;
 }
 
+/* --surface: which layer of the material the 3D surface is; only a development uses it. */
+static bool parse_surface_layer(cli_job *job, const char *text)
+{
+    if (job->action != CLI_DEVELOP) {
+        cli_message("%s: --surface does not apply to '%s' (see 'unroll help %s')", job->command,
+                    action_name(job->action), job->command);
+        return false;
+    }
+    job->surface_layer = ur_surface_layer_from_name(text);
+    if (job->surface_layer < 0)
+        cli_message("%s: --surface: '%s' is not one of outer, inner, mid, neutral", job->command,
+                    text);
+    return job->surface_layer >= 0;
+}
+
 static double *number_slot(cli_job *job, int id)
 {
     switch (id) {
@@ -363,6 +380,8 @@ static bool take_option(cli_job *job, int id, const char *value)
         return true;
     case OPT_CORNERS:
         return job->has_corners = parse_corners(surface, value, job->corners);
+    case OPT_SURFACE:
+        return parse_surface_layer(job, value);
     case OPT_UNITS:
         if (ur_length_unit_from_name(value) < 0) {
             cli_message("%s: --units: '%s' is not one of mm, cm, m, in", job->command, value);
@@ -457,6 +476,7 @@ static void job_defaults(cli_job *job, cli_action action, const char *command, c
     job->scale = NAN;
     job->max_strain = NAN;
     job->flatten = -1;
+    job->surface_layer = -1;
     job->machine_name = "co2-60w";
     job->material_name = "plywood-3mm";
     ur_develop_options_default(&job->develop);

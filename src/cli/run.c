@@ -80,6 +80,8 @@ typedef struct job_state {
     double surface_area;
     const char
         *method; /* how the nets were made: exact, triangle, quad, arap, lscm, strips, unfold */
+    ur_surface_layer layer; /* the layer the 3D surface is (--surface, else the material's) */
+    double layer_offset;    /* mm from it to the neutral layer, toward the inside of the bend */
 } job_state;
 
 static void state_free(job_state *state)
@@ -131,6 +133,24 @@ static ur_status append_nets(ur_net_list *all, ur_net_list *part, ur_error *erro
     return UR_OK;
 }
 
+/*
+ * The surface to develop or flatten: the part in use moved to the neutral
+ * layer (into *moved, which the caller frees when *use points to it), or
+ * the surface itself when it is that layer already.
+ */
+static ur_status neutral_layer(job_state *state, ur_ruled *moved, ur_ruled **use, ur_error *error)
+{
+    *use = &state->ruled;
+    if (state->layer_offset == 0.0)
+        return UR_OK;
+    ur_status status = ur_ruled_offset(&state->ruled, state->layer_offset, moved, error);
+    if (status == UR_OK)
+        *use = moved;
+    else
+        ur_error_prefix(error, "--surface %s: ", ur_surface_layer_name(state->layer));
+    return status;
+}
+
 /* Each part of the domain of existence (the whole surface but for strips) on its own. */
 static ur_status develop_parts(const cli_job *job, job_state *state, ur_error *error)
 {
@@ -148,12 +168,17 @@ static ur_status develop_parts(const cli_job *job, job_state *state, ur_error *e
             ur_ruled_restrict(&state->ruled, parts[k].u_start, parts[k].u_end);
         double area = 0.0;
         ur_net_list nets = {NULL, 0};
-        status = ur_ruled_area(&state->ruled, ur_ruled_start(&state->ruled),
-                               ur_ruled_end(&state->ruled), &area, error);
+        ur_ruled moved, *surface;
+        status = neutral_layer(state, &moved, &surface, error);
         if (status == UR_OK)
-            status = ur_develop(&state->ruled, &job->develop, &nets, error);
+            status = ur_ruled_area(surface, ur_ruled_start(surface), ur_ruled_end(surface), &area,
+                                   error);
+        if (status == UR_OK)
+            status = ur_develop(surface, &job->develop, &nets, error);
         if (status == UR_OK)
             status = append_nets(&state->nets, &nets, error);
+        if (surface == &moved)
+            ur_ruled_free(&moved);
         ur_net_list_free(&nets);
         state->surface_area += area;
     }
@@ -226,6 +251,10 @@ static ur_status write_outputs(const cli_job *job, job_state *state, ur_error *e
         .outputs = outputs,
         .sheet_path = job->output_path,
     };
+    ur_report_layer layer = {ur_surface_layer_name(state->layer), "neutral", state->layer_offset,
+                             state->material.k_factor, state->material.thickness};
+    if (state->have_ruled)
+        context.layer = &layer;
     context.gap_count = ur_ruled_gaps(&state->ruled, &context.gaps);
     if (status == UR_OK)
         status = ur_report_write(job->report_path, &context, state->pieces, state->piece_count,
@@ -286,8 +315,38 @@ static int flatten_if_needed(const cli_job *job, job_state *state, bool *flatten
     if (developable)
         return 0;
     *flattened = true;
-    return cli_flatten_ruled(job, &state->material, &state->ruled, &state->nets,
-                             &state->surface_area);
+    ur_ruled moved, *surface;
+    if (neutral_layer(state, &moved, &surface, &error) != UR_OK) {
+        cli_message("%s: %s", job->command, error.message);
+        return cli_exit_status(&error);
+    }
+    int code =
+        cli_flatten_ruled(job, &state->material, surface, &state->nets, &state->surface_area);
+    if (surface == &moved)
+        ur_ruled_free(&moved);
+    return code;
+}
+
+/* Which layer the surface is, and how far the neutral layer, which is developed, lies from it. */
+static void choose_layer(const cli_job *job, job_state *state)
+{
+    const ur_material *material = &state->material;
+    state->layer =
+        job->surface_layer >= 0 ? (ur_surface_layer)job->surface_layer : material->surface_layer;
+    state->layer_offset =
+        ur_surface_layer_offset(state->layer, material->thickness, material->k_factor);
+}
+
+/* A note when the layer developed is not the one the surface describes. */
+static void print_layer(const cli_job *job, const job_state *state)
+{
+    const ur_material *material = &state->material;
+    if (state->layer_offset != 0.0 && !job->quiet)
+        cli_message("%s: the surface is the %s face of %g mm %s: developing the neutral layer "
+                    "(K %g), %.4g mm %s the bend",
+                    job->command, ur_surface_layer_name(state->layer), material->thickness,
+                    material->name, material->k_factor, fabs(state->layer_offset),
+                    state->layer_offset > 0 ? "toward the inside of" : "away from the inside of");
 }
 
 /* The nets: a mesh's pieces, or the surface developed (or flattened) part by part. */
@@ -305,6 +364,7 @@ static int make_nets(const cli_job *job, job_state *state, cli_adjusted_rail *ad
     if (code)
         return code;
     state->have_ruled = true;
+    choose_layer(job, state);
     code = cli_check_domain(job, &state->ruled);
     if (!code && job->regression_path)
         code = cli_regression_points(job, &state->ruled, edge, edge_count);
@@ -318,6 +378,8 @@ static int make_nets(const cli_job *job, job_state *state, cli_adjusted_rail *ad
         cli_message("%s: %s", job->command, error.message);
         code = cli_exit_status(&error);
     }
+    if (!code)
+        print_layer(job, state);
     return code;
 }
 

@@ -864,6 +864,13 @@ int ur_surface_layer_from_name(const char *name)
     return -1;
 }
 
+/* From the inner face: the neutral layer at K t, the mid layer at t / 2, the outer face at t. */
+double ur_surface_layer_offset(ur_surface_layer layer, double thickness, double k_factor)
+{
+    double from_inner = layer == UR_LAYER_OUTER ? 1.0 : layer == UR_LAYER_MID ? 0.5 : 0.0;
+    return layer == UR_LAYER_NEUTRAL ? 0.0 : (from_inner - k_factor) * thickness;
+}
+
 static void allowance_defaults(ur_material *material)
 {
     material->joint = UR_JOINT_TAB;

@@ -198,6 +198,20 @@ static json_t *outputs_json(const char *const *outputs)
     return array;
 }
 
+static json_t *layer_json(const ur_report_layer *layer)
+{
+    json_t *object = json_object();
+    if (!object || json_object_set_new(object, "surface", text_or_null(layer->surface)) != 0 ||
+        json_object_set_new(object, "developed", text_or_null(layer->developed)) != 0 ||
+        json_object_set_new(object, "offset_mm", ur_json_number(layer->offset)) != 0 ||
+        json_object_set_new(object, "k_factor", ur_json_number(layer->k_factor)) != 0 ||
+        json_object_set_new(object, "thickness_mm", ur_json_number(layer->thickness)) != 0) {
+        json_decref(object);
+        return NULL;
+    }
+    return object;
+}
+
 /* The top-level object; on failure *root is NULL and error says why. */
 static ur_status report_json(const ur_report_context *context, const ur_piece *pieces,
                              size_t piece_count, const ur_layout *layout, json_t **root,
@@ -236,6 +250,11 @@ static ur_status report_json(const ur_report_context *context, const ur_piece *p
                             "cannot build the report: out of memory or a name not in UTF-8");
     }
     json_decref(sheets); /* set without _new: root holds its own reference */
+    if (context->layer && json_object_set_new(*root, "layer", layer_json(context->layer)) != 0) {
+        json_decref(*root);
+        *root = NULL;
+        return ur_error_out_of_memory(error);
+    }
     return UR_OK;
 }
 

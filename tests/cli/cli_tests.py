@@ -412,6 +412,31 @@ def failure_leaves_existing_file_untouched(work):
     check(sorted(os.listdir(work)) == ["keep.svg"], "left behind: %r" % os.listdir(work))
 
 
+@test
+def surface_layer_develops_the_neutral_layer(work):
+    """plywood-3mm (t 3, K 0.5): the outer face of radius 40 develops at 38.5, the inner at 41.5."""
+    cylinder = ["cylinder", "--radius", "40", "--height", "100", "--material", "plywood-3mm"]
+    for layer, radius, offset in (("outer", 38.5, 1.5), ("inner", 41.5, -1.5),
+                                  ("mid", 40, 0), ("neutral", 40, 0)):
+        result = run(work, *cylinder, "--surface", layer, "-o", layer + ".svg",
+                     "--report", layer + ".json", *FINE)
+        found = report(work, layer + ".json")
+        check(found["layer"] == {"surface": layer, "developed": "neutral", "offset_mm": offset,
+                                 "k_factor": 0.5, "thickness_mm": 3},
+              "layer %r" % found["layer"])
+        box = found["pieces"][0]["bounding_box"]
+        close(max(box["width_mm"], box["height_mm"]), 2 * math.pi * radius, 1e-6,
+              "developed length of the %s face" % layer)
+        close(found["surface_area_mm2"], 2 * math.pi * radius * 100, 1e-6, "area of the layer")
+        check(("neutral layer" in result.stderr) == (offset != 0), "note: " + result.stderr)
+    bad(work, r"cylinder: --surface: 'outside' is not one of outer, inner, mid, neutral",
+        *cylinder, "--surface", "outside", "-o", "x.svg", "--report", "x.json")
+    bad(work, r"--surface outer: .*fold it over itself: the bend radius there is only 0 mm",
+        "cone", "--radius", "60", "--height", "40", "--surface", "outer", "-o", "x.svg")
+    bad(work, r"--surface does not apply to 'analyze'", "analyze", *cylinder[:5],
+        "--surface", "outer", "--png", "a.png")
+
+
 # ---- two-rail strips, hypar, analyze and compare ---------------------------
 def write_points(work, name, points):
     write(work, name, "".join("%.15g,%.15g,%.15g\n" % p for p in points))
