@@ -66,6 +66,13 @@ typedef struct ur_allowance_record {
     ur_vec2 where;    /* piece coordinates: the middle of the region */
     bool warning;     /* not done, or only partly: the reason says what is missing */
     char reason[256]; /* one sentence for the report */
+    /*
+     * A label's strokes are paths[first_path .. first_path + path_count - 1]
+     * of the piece, centred on where, their baseline along direction (unit);
+     * path_count is 0 for other records.
+     */
+    size_t first_path, path_count;
+    ur_vec2 direction;
 } ur_allowance_record;
 
 typedef struct ur_piece {
@@ -194,6 +201,13 @@ void ur_seam_label(int seam, char *label, size_t size);
  */
 ur_status ur_pieces_add_joints(ur_piece *pieces, const ur_net_list *nets,
                                const ur_joint_options *options, ur_error *error);
+
+/*
+ * Once the piece is placed turned by `angle` (radians, counter-clockwise),
+ * turns every label that would then read upside down by half a turn about
+ * its centre, so that all read upright on the sheet.
+ */
+void ur_piece_turn_labels(ur_piece *piece, double angle);
 
 /* ---- Kerf compensation and bridges (kerf.c, bridges.c) ---------------- */
 

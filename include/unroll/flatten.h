@@ -295,17 +295,21 @@ ur_status ur_flatten_strips_ruled(ur_ruled *ruled, const ur_strip_limits *limits
  * The same for a mesh, manifold and consistently oriented (as
  * ur_mesh_clean leaves it), cut by planes perpendicular to direction, or
  * when it is NULL to ur_mesh_bending_direction, at ur_mesh_band_planes;
- * each band is cut into disks by ur_mesh_pieces (groups still cut).
+ * each band is cut into disks by ur_mesh_pieces, groups and the given
+ * seams (edges of the mesh, as for ur_mesh_pieces; a seam edge a plane
+ * crosses is cut on both sides of the plane) still cut.
  */
-ur_status ur_flatten_strips_mesh(const ur_mesh *mesh, const ur_vec3 *direction,
-                                 const ur_strip_limits *limits, const ur_flatten_options *options,
-                                 ur_strips *strips, ur_error *error);
+ur_status ur_flatten_strips_mesh(const ur_mesh *mesh, const ur_seam *seams, size_t seam_count,
+                                 const ur_vec3 *direction, const ur_strip_limits *limits,
+                                 const ur_flatten_options *options, ur_strips *strips,
+                                 ur_error *error);
 
 /* Exactly count strips, each flattened, whatever their strain (tried is 1). */
 ur_status ur_strips_of_ruled(ur_ruled *ruled, size_t count, const ur_flatten_options *options,
                              ur_strips *strips, ur_error *error);
-ur_status ur_strips_of_mesh(const ur_mesh *mesh, ur_vec3 direction, size_t count,
-                            const ur_flatten_options *options, ur_strips *strips, ur_error *error);
+ur_status ur_strips_of_mesh(const ur_mesh *mesh, const ur_seam *seams, size_t seam_count,
+                            ur_vec3 direction, size_t count, const ur_flatten_options *options,
+                            ur_strips *strips, ur_error *error);
 
 void ur_strips_free(ur_strips *strips);
 

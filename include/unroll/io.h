@@ -209,6 +209,16 @@ void ur_mesh_import_options_default(ur_mesh_import_options *options);
 #define UR_MESH_IMPORT_MAX_COORDINATE 1e9
 
 /*
+ * About how many bytes reading the mesh file at path takes at its peak
+ * (assimp's scene, its post-processing and unroll's copy): forty times the
+ * file's size, measured on binary STL, the densest format; 0 when the file
+ * cannot be read.  A caller can refuse a file that will not fit before
+ * assimp starts: assimp does not survive running out of memory while it
+ * post-processes (it crashes releasing the scene).
+ */
+size_t ur_mesh_import_memory_estimate(const char *path);
+
+/*
  * Reads OBJ, STL (ASCII and binary), PLY and glTF 2 (.gltf, .glb), known by
  * the file's extension, into one mesh in millimetres: every node's meshes
  * with the node's transform (and its parents') applied, a mesh used by

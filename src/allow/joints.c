@@ -198,7 +198,16 @@ static ur_status grow_outline(const joiner *j, ur_piece *piece, const GEOSGeomet
 {
     *grown = false;
     GEOSGeometry *outline = outline_of(j, piece);
-    GEOSGeometry *united = outline ? GEOSUnion_r(j->geos, outline, joint) : NULL;
+    GEOSGeometry *exact = outline ? GEOSUnion_r(j->geos, outline, joint) : NULL;
+    /*
+     * Where a joint's corner meets the outline a hair's breadth off, the
+     * union keeps a sliver a micrometre wide that folds back on itself;
+     * simplifying by a micrometre, far below any cutter's resolution,
+     * takes it out.
+     */
+    GEOSGeometry *united = exact ? GEOSTopologyPreserveSimplify_r(j->geos, exact, 1e-3) : NULL;
+    if (exact)
+        GEOSGeom_destroy_r(j->geos, exact);
     if (outline)
         GEOSGeom_destroy_r(j->geos, outline);
     if (!united)
@@ -281,7 +290,12 @@ static ur_status record(ur_piece *piece, ur_allowance_kind kind, ur_vec2 where, 
 static ur_status record(ur_piece *piece, ur_allowance_kind kind, ur_vec2 where, bool warning,
                         ur_error *error, const char *format, ...)
 {
-    ur_allowance_record entry = {kind, warning ? 0 : 1, NAN, NAN, where, warning, ""};
+    ur_allowance_record entry = {.kind = kind,
+                                 .count = warning ? 0 : 1,
+                                 .value = NAN,
+                                 .limit = NAN,
+                                 .where = where,
+                                 .warning = warning};
     va_list args;
     va_start(args, format);
     vsnprintf(entry.reason, sizeof entry.reason, format, args);

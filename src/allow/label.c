@@ -537,7 +537,10 @@ static ur_status engrave(ur_piece *piece, const unit_text *text, const char *lab
                                   .value = height,
                                   .limit = NAN,
                                   .where = f->centre,
-                                  .warning = false};
+                                  .warning = false,
+                                  .first_path = old_count,
+                                  .path_count = text->count,
+                                  .direction = f->along};
     snprintf(record.reason, sizeof record.reason, "label '%.64s' %.3g mm high", label, height);
     if (status == UR_OK)
         status = ur_piece_record(piece, &record, error);
@@ -615,4 +618,33 @@ ur_status ur_piece_add_label(ur_piece *piece, const ur_font *font, const char *t
         *placed = false;
     ur_paths_free(unit.strokes, unit.count);
     return status;
+}
+
+/* Whether a baseline along d reads upside down: it runs leftward (or straight down). */
+static bool upside_down(ur_vec2 d)
+{
+    const double level = 1e-12;
+    return d.x < -level || (fabs(d.x) <= level && d.y < 0);
+}
+
+void ur_piece_turn_labels(ur_piece *piece, double angle)
+{
+    double c = cos(angle), s = sin(angle);
+    for (size_t r = 0; r < piece->record_count; r++) {
+        ur_allowance_record *record = &piece->records[r];
+        if (record->kind != UR_ALLOWANCE_LABEL || record->path_count == 0)
+            continue;
+        ur_vec2 d = record->direction;
+        if (!upside_down(ur_vec2_make(c * d.x - s * d.y, s * d.x + c * d.y)))
+            continue;
+        /* Half a turn about the centre keeps the label in the box it was given. */
+        ur_vec2 centre = record->where;
+        for (size_t k = record->first_path;
+             k < record->first_path + record->path_count && k < piece->path_count; k++)
+            for (size_t i = 0; i < piece->paths[k].count; i++) {
+                ur_vec2 *p = &piece->paths[k].points[i];
+                *p = ur_vec2_sub(ur_vec2_scale(centre, 2.0), *p);
+            }
+        record->direction = ur_vec2_scale(d, -1.0);
+    }
 }

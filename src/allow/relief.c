@@ -39,10 +39,12 @@
  *   L(w) = sum over the region's triangles of  c_t * e_t * cos^2(a_t),
  *
  * c_t the chord of triangle t on that line, a_t the angle between its own
- * direction and D, and e_t = 1 / sigma2 - 1 = -s / (1 + s) for kerfing
- * (3D length minus flat length per flat length), 1 - 1 / sigma1 =
- * s / (1 + s) for overlaps (flat minus 3D).  The deficit (or excess) is the
- * largest L(w) over 64 lines spread evenly across the region's width.  Then
+ * direction and D, and e_t = (|s| - limit) / (1 + s): for kerfing the 3D
+ * length minus the flat length per flat length (1 / sigma2 - 1 when the
+ * limit is 0), for overlaps the flat minus the 3D (1 - 1 / sigma1), less
+ * what the material takes by itself (its limit).  The deficit (or excess)
+ * is the largest L(w) over 64 lines spread evenly across the region's
+ * width; under a quarter of `opening` the region needs nothing.  Then
  *
  *   n = ceil(deficit / opening)  slits,
  *
@@ -118,6 +120,13 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+/*
+ * A region whose length to take up, beyond what the material takes by
+ * itself, is under this share of a slit's opening needs no slit: the
+ * material's own give absorbs it with room to spare.
+ */
+#define RELIEF_UNNOTICED 0.25
 
 #define UR_RELIEF_NEGLIGIBLE 1e-4
 #define RELIEF_LINES 64      /* lines across a region on which its deficit is measured */
@@ -647,11 +656,14 @@ typedef struct region {
     double across0, across1; /* its extent along n */
 } region;
 
-/* e_t: missing (kerfing) or excess (overlap) length per flat length along the triangle's own axis.
+/*
+ * e_t: missing (kerfing) or excess (overlap) length per flat length along
+ * the triangle's own axis, beyond what the material takes itself (limit):
+ * only that part needs slits.
  */
-static double excess_per_length(double strain)
+static double excess_per_length(double strain, double limit)
 {
-    return fabs(strain) / (1 + strain);
+    return fmax(0.0, fabs(strain) - limit) / (1 + strain);
 }
 
 /* The region's axis, extent, value and centre. */
@@ -692,7 +704,7 @@ static void region_shape(const ur_shading *shading, region *r, relief_need *need
 }
 
 /* The largest missing (or excess) length along d over RELIEF_LINES lines across the region. */
-static double region_length(const ur_shading *shading, const region *r)
+static double region_length(const ur_shading *shading, const region *r, double limit)
 {
     double largest = 0;
     for (int j = 0; j < RELIEF_LINES; j++) {
@@ -704,7 +716,7 @@ static double region_length(const ur_shading *shading, const region *r)
             if (c <= 0)
                 continue;
             double along = ur_vec2_dot(shading->direction[t], r->d);
-            sum += c * excess_per_length(shading->strain[t]) * along * along;
+            sum += c * excess_per_length(shading->strain[t], limit) * along * along;
         }
         largest = fmax(largest, sum);
     }
@@ -826,8 +838,9 @@ static ur_status relieve_region(relief_job *job, region *r, relief_kind kind)
     relief_need need = {kind, 0, 0, 0, {0, 0}, 0, 0};
     region_shape(shading, r, &need);
     need.limit = kind == RELIEF_KERFING ? job->limits->max_stretch : job->limits->max_compression;
-    need.length = region_length(shading, r);
-    if (!(need.length > 0))
+    need.length = region_length(shading, r, need.limit);
+    /* A quarter of a slit's opening the material takes by itself: no slit, nothing to say. */
+    if (!(need.length > RELIEF_UNNOTICED * job->limits->opening))
         return UR_OK;
     need.wanted = slit_count(need.length, job->limits->opening, r->high - r->low);
     GEOSGeometry *area = region_geometry(job, shading, r);

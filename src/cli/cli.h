@@ -8,9 +8,11 @@
 
 #include <stdbool.h>
 
+#include "unroll/allow.h"
 #include "unroll/develop.h"
 #include "unroll/geom.h"
 #include "unroll/io.h"
+#include "unroll/nest.h"
 
 enum { EXIT_INTERNAL = 1, EXIT_USAGE = 2 };
 
@@ -62,7 +64,26 @@ typedef struct cli_job {
     bool quiet;
     int surface_layer; /* --surface: a ur_surface_layer, or -1 for the material's */
     ur_develop_options develop;
+    /* fabrication allowances (allowances.c) */
+    unsigned allowances;  /* CLI_ALLOW_* bits */
+    bool allowances_auto; /* --allowances auto (the default): what the job needs */
+    long bridges; /* --bridges: -1 auto count, 0 none, N; CLI_BRIDGES_UNSET when not given */
+    bool no_kerf_compensation; /* --no-kerf-compensation */
 } cli_job;
+
+enum {
+    CLI_ALLOW_TABS = 1u << 0, /* joints on seams (tabs or laps, per material) and labels */
+    CLI_ALLOW_KERFING = 1u << 1,
+    CLI_ALLOW_OVERLAPS = 1u << 2,
+    CLI_ALLOW_BENDING = 1u << 3,
+    CLI_ALLOW_BRIDGES = 1u << 4,
+};
+
+#define CLI_BRIDGES_UNSET (-2L)
+
+/* --allowances auto|none|LIST and --bridges auto|N|none (allowances.c); false after a message. */
+bool cli_parse_allowances(cli_job *job, const char *value);
+bool cli_parse_bridges(cli_job *job, const char *value);
 
 /* Prints "unroll: message" on stderr. */
 void cli_message(const char *format, ...)
@@ -99,6 +120,36 @@ int cli_mesh_nets(const cli_job *job, const ur_material *material, ur_net_list *
 /* The nets of a non-developable ruled surface, flattened with strain (meshes.c). */
 int cli_flatten_ruled(const cli_job *job, const ur_material *material, ur_ruled *ruled,
                       ur_net_list *nets, double *area);
+
+/*
+ * The allowances that go on the pieces before they are placed: relief
+ * (kerfing, overlaps), bending kerfs, labels and joints, then kerf
+ * compensation (allowances.c).  pieces[k] was made from nets->nets[k],
+ * developed from surfaces[k] (surfaces NULL, or an entry NULL, for meshes
+ * and flattenings).
+ */
+ur_status cli_allowances_before_placing(const cli_job *job, const ur_machine *machine,
+                                        const ur_material *material, const ur_net_list *nets,
+                                        ur_ruled *const *surfaces, ur_piece *pieces, size_t count,
+                                        ur_error *error);
+
+/*
+ * Once the pieces are placed: labels turned to read upright on the sheet,
+ * then holding bridges (allowances.c).
+ */
+ur_status cli_allowances_after_placing(const cli_job *job, const ur_machine *machine,
+                                       const ur_layout *layout, ur_piece *pieces, size_t count,
+                                       ur_error *error);
+
+/* The warnings the allowances recorded, on stderr ("piece P2: ..."). */
+void cli_allowance_warnings(const cli_job *job, const ur_piece *pieces, size_t count);
+
+/*
+ * 0 when `needed` bytes fit in what this process may still use (the
+ * system's available memory and its ulimit -v); otherwise a message naming
+ * `what`, and EXIT_INTERNAL (memory.c).
+ */
+int cli_check_memory(const cli_job *job, const char *what, size_t needed);
 
 /* unroll profiles [show NAME] */
 int cli_profiles(int argc, char **argv);

@@ -258,10 +258,17 @@ static int unfold_mesh(const cli_job *job, const ur_mesh *mesh, const ur_seam *s
     return code;
 }
 
-/* The strain --flatten strips keeps within: the material's, or --max-strain for both. */
+/*
+ * The strain --flatten strips keeps within: the material's, or --max-strain
+ * for both.  The limits bound the flattening's map from 3D to flat; where
+ * it stretches (sigma1 > 1) the flat piece is longer than the surface and
+ * the material must be compressed to take the shape again, and where it
+ * compresses the material must stretch: so the material's compression
+ * bounds the map's stretch, and its stretch the map's compression.
+ */
 static ur_strip_limits strip_limits(const cli_job *job, const ur_material *material)
 {
-    ur_strip_limits limits = {material->max_stretch, material->max_compression, 64};
+    ur_strip_limits limits = {material->max_compression, material->max_stretch, 64};
     if (!isnan(job->max_strain))
         limits.max_stretch = limits.max_compression = job->max_strain;
     return limits;
@@ -296,15 +303,18 @@ static int nets_of_strips(const cli_job *job, const ur_strips *strips,
 }
 
 /* --flatten strips on a mesh or a ruled surface (mesh NULL), with the material's limits. */
+/* seams: the user's (--seams), on the mesh; none for a ruled surface. */
 static int flatten_in_strips(const cli_job *job, const ur_material *material, ur_mesh *mesh,
-                             ur_ruled *ruled, ur_net_list *nets, double *area)
+                             const ur_seam *seams, size_t seam_count, ur_ruled *ruled,
+                             ur_net_list *nets, double *area)
 {
     ur_strip_limits limits = strip_limits(job, material);
     ur_flatten_options options;
     flatten_options(job, &options);
     ur_strips strips;
     ur_error error;
-    ur_status status = mesh ? ur_flatten_strips_mesh(mesh, NULL, &limits, &options, &strips, &error)
+    ur_status status = mesh ? ur_flatten_strips_mesh(mesh, seams, seam_count, NULL, &limits,
+                                                     &options, &strips, &error)
                             : ur_flatten_strips_ruled(ruled, &limits, &options, &strips, &error);
     end_progress(job);
     if (status != UR_OK) {
@@ -328,12 +338,18 @@ static int nets_of_mesh(const cli_job *job, const ur_material *material, ur_mesh
         return fail(job, &error);
     if (tell_repairs)
         say_repairs(job, &repairs);
+    char what[64];
+    snprintf(what, sizeof what, "flattening %zu triangles", mesh->triangle_count);
+    int code = cli_check_memory(job, what, ur_flatten_memory_estimate(mesh->triangle_count));
+    if (code)
+        return code;
     ur_seam *seams = NULL;
     size_t seam_count = 0;
-    int code = read_seams(job, mesh, 1e-4 * size, &seams, &seam_count);
+    code = read_seams(job, mesh, 1e-4 * size, &seams, &seam_count);
     if (!code && job->strips) {
+        code = flatten_in_strips(job, material, mesh, seams, seam_count, NULL, nets, area);
         free(seams);
-        return flatten_in_strips(job, material, mesh, NULL, nets, area);
+        return code;
     }
     if (!code && job->unfold) {
         code = unfold_mesh(job, mesh, seams, seam_count, nets, area);
@@ -364,11 +380,16 @@ int cli_mesh_nets(const cli_job *job, const ur_material *material, ur_net_list *
         options.unit = (ur_length_unit)ur_length_unit_from_name(job->unit_name);
     if (!isnan(job->scale))
         options.scale = job->scale;
+    char what[64 + 1024];
+    snprintf(what, sizeof what, "reading %s", job->mesh_path);
+    int code = cli_check_memory(job, what, ur_mesh_import_memory_estimate(job->mesh_path));
+    if (code)
+        return code;
     ur_mesh mesh;
     ur_error error;
     if (ur_mesh_import(job->mesh_path, &options, &mesh, NULL, &error) != UR_OK)
         return fail(job, &error);
-    int code = nets_of_mesh(job, material, &mesh, true, nets, area);
+    code = nets_of_mesh(job, material, &mesh, true, nets, area);
     ur_mesh_free(&mesh);
     return code;
 }
@@ -377,7 +398,7 @@ int cli_flatten_ruled(const cli_job *job, const ur_material *material, ur_ruled 
                       ur_net_list *nets, double *area)
 {
     if (job->strips)
-        return flatten_in_strips(job, material, NULL, ruled, nets, area);
+        return flatten_in_strips(job, material, NULL, NULL, 0, ruled, nets, area);
     ur_mesh mesh;
     ur_error error;
     if (ur_mesh_from_ruled(ruled, RULED_ALONG, RULED_ACROSS, &mesh, &error) != UR_OK)

@@ -9,6 +9,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -27,10 +28,12 @@ enum { WHOLE_ALONG = 96, LEAST_ALONG = 8, ACROSS = 24 };
 
 /* What a count of strips is made and flattened from. */
 typedef struct strip_job {
-    ur_ruled *ruled;     /* a ruled surface, or */
-    const ur_mesh *mesh; /* a mesh, cut across */
-    ur_vec3 direction;   /* this unit direction */
-    double low, high;    /* the mesh's extent along it */
+    ur_ruled *ruled;      /* a ruled surface, or */
+    const ur_mesh *mesh;  /* a mesh, cut across */
+    ur_vec3 direction;    /* this unit direction */
+    double low, high;     /* the mesh's extent along it */
+    const ur_seam *seams; /* the user's seams on the mesh, cut in every band */
+    size_t seam_count;
     const ur_flatten_options *options;
     const ur_strip_limits *limits; /* NULL: flatten every strip whatever its strain */
 } strip_job;
@@ -223,6 +226,126 @@ static void band_range(const strip_job *job, const double *planes, size_t count,
     *end = band + 1 < count ? planes[band] : job->high;
 }
 
+/* Every vertex's neighbours along the banded mesh's edges (compressed rows). */
+typedef struct neighbours {
+    size_t *start; /* vertex v's neighbours are list[start[v] .. start[v + 1] - 1] */
+    size_t *list;
+} neighbours;
+
+static void neighbours_free(neighbours *n)
+{
+    free(n->start);
+    free(n->list);
+}
+
+static ur_status neighbours_build(const ur_mesh *mesh, neighbours *n, ur_error *error)
+{
+    size_t v_count = mesh->vertex_count, t_count = mesh->triangle_count;
+    n->start = calloc(v_count + 1, sizeof *n->start);
+    n->list = ur_alloc_array(6 * t_count + 1, sizeof *n->list, error);
+    if (!n->start || !n->list) {
+        neighbours_free(n);
+        return ur_error_out_of_memory(error);
+    }
+    for (size_t t = 0; t < t_count; t++)
+        for (int k = 0; k < 3; k++)
+            n->start[mesh->triangles[t][k] + 1] += 2;
+    for (size_t v = 0; v < v_count; v++)
+        n->start[v + 1] += n->start[v];
+    size_t *fill = ur_alloc_array(v_count + 1, sizeof *fill, error);
+    if (!fill) {
+        neighbours_free(n);
+        return UR_ERROR_INTERNAL;
+    }
+    memcpy(fill, n->start, (v_count + 1) * sizeof *fill);
+    for (size_t t = 0; t < t_count; t++)
+        for (int k = 0; k < 3; k++) {
+            size_t a = mesh->triangles[t][k];
+            n->list[fill[a]++] = mesh->triangles[t][(k + 1) % 3];
+            n->list[fill[a]++] = mesh->triangles[t][(k + 2) % 3];
+        }
+    free(fill);
+    return UR_OK;
+}
+
+/*
+ * The next vertex on the way along the user's seam from `from` to b: b
+ * itself when it is a neighbour, else the point where a plane cut the seam
+ * edge (a new vertex of the banded mesh, on the segment, further along).
+ */
+static size_t seam_step(const ur_mesh *banded, const neighbours *n, size_t original_count, size_t a,
+                        size_t b, size_t from)
+{
+    ur_vec3 pa = banded->vertices[a], pb = banded->vertices[b];
+    ur_vec3 along = ur_vec3_sub(pb, pa);
+    double length2 = ur_vec3_dot(along, along);
+    double at = ur_vec3_dot(ur_vec3_sub(banded->vertices[from], pa), along) / length2;
+    size_t best = SIZE_MAX;
+    double best_at = INFINITY;
+    for (size_t k = n->start[from]; k < n->start[from + 1]; k++) {
+        size_t x = n->list[k];
+        if (x == b)
+            return b;
+        if (x < original_count)
+            continue;
+        ur_vec3 offset = ur_vec3_sub(banded->vertices[x], pa);
+        double t = ur_vec3_dot(offset, along) / length2;
+        ur_vec3 off_line = ur_vec3_add_scaled(offset, along, -t);
+        if (t > at && t < best_at && ur_vec3_dot(off_line, off_line) <= 1e-18 * length2) {
+            best = x;
+            best_at = t;
+        }
+    }
+    return best;
+}
+
+/*
+ * The user's seams on the banded mesh: its first original_count vertices
+ * are the mesh's, with their numbers (ur_mesh_bands), and a seam edge that
+ * a plane crosses is followed through the crossing points.
+ */
+static ur_status band_seams(const strip_job *job, const ur_mesh *banded, ur_seam **seams,
+                            size_t *count, ur_error *error)
+{
+    *seams = NULL;
+    *count = 0;
+    if (job->seam_count == 0)
+        return UR_OK;
+    neighbours n = {0};
+    ur_status status = neighbours_build(banded, &n, error);
+    size_t capacity = 0;
+    for (size_t s = 0; status == UR_OK && s < job->seam_count; s++) {
+        size_t a = job->seams[s].a, b = job->seams[s].b, from = a;
+        while (status == UR_OK && from != b) {
+            size_t next = seam_step(banded, &n, job->mesh->vertex_count, a, b, from);
+            if (next == SIZE_MAX) {
+                status =
+                    ur_error_set(error, UR_ERROR_INTERNAL,
+                                 "seam %zu-%zu is lost where the strips are cut", a + 1, b + 1);
+                break;
+            }
+            if (*count == capacity) {
+                capacity = capacity ? 2 * capacity : 16;
+                ur_seam *grown = realloc(*seams, capacity * sizeof *grown);
+                if (!grown) {
+                    status = ur_error_out_of_memory(error);
+                    break;
+                }
+                *seams = grown;
+            }
+            (*seams)[(*count)++] = (ur_seam){from, next};
+            from = next;
+        }
+    }
+    neighbours_free(&n);
+    if (status != UR_OK) {
+        free(*seams);
+        *seams = NULL;
+        *count = 0;
+    }
+    return status;
+}
+
 /* Flattens the pieces of the banded mesh, which come band by band. */
 static ur_status flatten_bands(const strip_job *job, const ur_mesh *banded, const double *planes,
                                size_t count, ur_strips *strips, strip_failure *failure,
@@ -230,7 +353,12 @@ static ur_status flatten_bands(const strip_job *job, const ur_mesh *banded, cons
 {
     ur_mesh_piece *pieces = NULL;
     size_t piece_count = 0;
-    ur_status status = ur_mesh_pieces(banded, NULL, 0, &pieces, &piece_count, error);
+    ur_seam *seams;
+    size_t seam_count;
+    ur_status status = band_seams(job, banded, &seams, &seam_count, error);
+    if (status == UR_OK)
+        status = ur_mesh_pieces(banded, seams, seam_count, &pieces, &piece_count, error);
+    free(seams);
     size_t groups = job->mesh->group_count > 0 ? job->mesh->group_count : 1;
     for (size_t p = 0; status == UR_OK && !failure->failed && p < piece_count; p++) {
         size_t band = pieces[p].mesh.groups[0] / groups; /* see ur_mesh_bands */
@@ -419,23 +547,26 @@ ur_status ur_strips_of_ruled(ur_ruled *ruled, size_t count, const ur_flatten_opt
     return trial(&job, count, strips, &failure, error);
 }
 
-ur_status ur_flatten_strips_mesh(const ur_mesh *mesh, const ur_vec3 *direction,
-                                 const ur_strip_limits *limits, const ur_flatten_options *options,
-                                 ur_strips *strips, ur_error *error)
+ur_status ur_flatten_strips_mesh(const ur_mesh *mesh, const ur_seam *seams, size_t seam_count,
+                                 const ur_vec3 *direction, const ur_strip_limits *limits,
+                                 const ur_flatten_options *options, ur_strips *strips,
+                                 ur_error *error)
 {
     memset(strips, 0, sizeof *strips);
-    strip_job job = {.options = options, .limits = limits};
+    strip_job job = {
+        .seams = seams, .seam_count = seam_count, .options = options, .limits = limits};
     ur_status status = check_limits(limits, error);
     if (status == UR_OK)
         status = mesh_job(mesh, direction, &job, error);
     return status == UR_OK ? search(&job, strips, error) : status;
 }
 
-ur_status ur_strips_of_mesh(const ur_mesh *mesh, ur_vec3 direction, size_t count,
-                            const ur_flatten_options *options, ur_strips *strips, ur_error *error)
+ur_status ur_strips_of_mesh(const ur_mesh *mesh, const ur_seam *seams, size_t seam_count,
+                            ur_vec3 direction, size_t count, const ur_flatten_options *options,
+                            ur_strips *strips, ur_error *error)
 {
     memset(strips, 0, sizeof *strips);
-    strip_job job = {.options = options};
+    strip_job job = {.seams = seams, .seam_count = seam_count, .options = options};
     strip_failure failure;
     ur_status status = check_count(count, error);
     if (status == UR_OK)

@@ -342,6 +342,15 @@ static ur_status check_raw_scene(const char *path, const struct aiScene *scene, 
     return UR_OK;
 }
 
+size_t ur_mesh_import_memory_estimate(const char *path)
+{
+    struct stat info;
+    if (stat(path, &info) != 0 || info.st_size < 0)
+        return 0;
+    size_t size = (size_t)info.st_size;
+    return size > SIZE_MAX / 40 ? SIZE_MAX : 40 * size;
+}
+
 /* Reads the file and post-processes it; the caller releases *scene. */
 static ur_status load_scene(const char *path, const struct aiScene **scene, ur_error *error)
 {

@@ -100,11 +100,11 @@ static bool across_curvature(const ur_vec3 rails[4], const ur_vec3 second[2], do
 
 /* Where the surface bends most one way and the other, and which way it bends overall. */
 typedef struct bend_survey {
-    double integral;               /* of k over the area, k toward r_u x r_v */
-    double most, least;            /* the largest and smallest k (+-INFINITY at an apex) */
-    double most_u, most_v;         /* where most is */
-    double least_u, least_v;       /* where least is */
-    double turning;                /* the larger total turning of the two rails' tangents */
+    double integral;         /* of k over the area, k toward r_u x r_v */
+    double most, least;      /* the largest and smallest k (+-INFINITY at an apex) */
+    double most_u, most_v;   /* where most is */
+    double least_u, least_v; /* where least is */
+    double turning;          /* the larger total turning of the two rails' tangents */
 } bend_survey;
 
 static void note_curvature(bend_survey *survey, double k, double u, double v)
@@ -167,8 +167,8 @@ static void survey_bend(ur_ruled *ruled, bend_survey *survey)
         for (int k = 0; k < 4; k++)
             previous[k] = rails[k];
     }
-    survey->turning = fmax(isfinite(turning[0]) ? turning[0] : 0.0,
-                           isfinite(turning[1]) ? turning[1] : 0.0);
+    survey->turning =
+        fmax(isfinite(turning[0]) ? turning[0] : 0.0, isfinite(turning[1]) ? turning[1] : 0.0);
 }
 
 /*

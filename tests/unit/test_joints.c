@@ -110,8 +110,8 @@ static void check_engraving_inside(const ur_piece *piece, const ur_net *net)
         if (path->op != UR_OP_ENGRAVE)
             continue;
         for (size_t i = 0; i < path->count; i++) {
-            GEOSGeometry *point = GEOSGeom_createPointFromXY_r(geos, path->points[i].x,
-                                                               path->points[i].y);
+            GEOSGeometry *point =
+                GEOSGeom_createPointFromXY_r(geos, path->points[i].x, path->points[i].y);
             assert_int_equal(GEOSContains_r(geos, outline, point), 1);
             GEOSGeom_destroy_r(geos, point);
         }
@@ -336,12 +336,9 @@ static void test_bad_options(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_seam_labels),
-        cmocka_unit_test(test_cylinder_tab),
-        cmocka_unit_test(test_helicoid_labels_pair),
-        cmocka_unit_test(test_unfolded_tabs_clear),
-        cmocka_unit_test(test_laps_marked_on_both),
-        cmocka_unit_test(test_bad_options),
+        cmocka_unit_test(test_seam_labels),          cmocka_unit_test(test_cylinder_tab),
+        cmocka_unit_test(test_helicoid_labels_pair), cmocka_unit_test(test_unfolded_tabs_clear),
+        cmocka_unit_test(test_laps_marked_on_both),  cmocka_unit_test(test_bad_options),
     };
     return cmocka_run_group_tests(tests, start, finish);
 }

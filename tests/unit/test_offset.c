@@ -23,8 +23,7 @@ static ur_ruled cylinder(double radius, double height)
     ur_curve *circle;
     ur_ruled ruled;
     assert_int_equal(ur_curve_new_circle(radius, &circle, NULL), UR_OK);
-    assert_int_equal(ur_ruled_cylinder(circle, ur_vec3_make(0, 0, 1), height, &ruled, NULL),
-                     UR_OK);
+    assert_int_equal(ur_ruled_cylinder(circle, ur_vec3_make(0, 0, 1), height, &ruled, NULL), UR_OK);
     return ruled;
 }
 
@@ -57,9 +56,9 @@ static double exact_net_area(ur_ruled *offset)
 static double rail_length(ur_ruled *ruled, int rail)
 {
     double length;
-    assert_int_equal(
-        ur_ruled_rail_length(ruled, rail, ur_ruled_start(ruled), ur_ruled_end(ruled), &length, NULL),
-        UR_OK);
+    assert_int_equal(ur_ruled_rail_length(ruled, rail, ur_ruled_start(ruled), ur_ruled_end(ruled),
+                                          &length, NULL),
+                     UR_OK);
     return length;
 }
 
@@ -90,10 +89,8 @@ static void test_cylinder_layers(void **state)
         ur_surface_layer layer;
         double k, expected_radius;
     } cases[] = {
-        {UR_LAYER_OUTER, 0.5, 40 - 1.5},
-        {UR_LAYER_INNER, 0.5, 40 + 1.5},
-        {UR_LAYER_MID, 0.3, 40 - 1.5 + 0.9},
-        {UR_LAYER_OUTER, 0.3, 40 - 3 + 0.9},
+        {UR_LAYER_OUTER, 0.5, 40 - 1.5},     {UR_LAYER_INNER, 0.5, 40 + 1.5},
+        {UR_LAYER_MID, 0.3, 40 - 1.5 + 0.9}, {UR_LAYER_OUTER, 0.3, 40 - 3 + 0.9},
         {UR_LAYER_NEUTRAL, 0.5, 40},
     };
     for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {

@@ -16,6 +16,7 @@
 #include <stdlib.h>
 
 #include "unroll/flatten.h"
+#include "unroll/mesh.h"
 
 #define assert_message(error, text)                                                                \
     do {                                                                                           \
@@ -502,7 +503,7 @@ static ur_strips strips_of_mesh(const ur_mesh *mesh, ur_vec3 d, size_t count)
 {
     ur_strips strips;
     ur_error error;
-    if (ur_strips_of_mesh(mesh, d, count, NULL, &strips, &error) != UR_OK)
+    if (ur_strips_of_mesh(mesh, NULL, 0, d, count, NULL, &strips, &error) != UR_OK)
         fail_msg("%zu bands: %s", count, error.message);
     return strips;
 }
@@ -543,7 +544,7 @@ static size_t fewest_bands(const ur_mesh *mesh, const ur_vec3 *direction,
 {
     ur_strips strips;
     ur_error error;
-    if (ur_flatten_strips_mesh(mesh, direction, limits, NULL, &strips, &error) != UR_OK)
+    if (ur_flatten_strips_mesh(mesh, NULL, 0, direction, limits, NULL, &strips, &error) != UR_OK)
         fail_msg("bands: %s", error.message);
     size_t count = strips.bands;
     assert_true(fits(&strips, limits));
@@ -581,6 +582,66 @@ static void test_developable_mesh_one_band(void **state)
     ur_mesh_free(&mesh);
 }
 
+/* Piece vertices at p: two where the piece is cut open through p, one where it is whole. */
+static size_t copies_at(const ur_mesh *piece, ur_vec3 p)
+{
+    size_t count = 0;
+    for (size_t v = 0; v < piece->vertex_count; v++)
+        count += ur_vec3_distance(piece->vertices[v], p) < 1e-9;
+    return count;
+}
+
+/*
+ * A tube cut into two rings by a plane across its axis, with the user's
+ * seam along the generator at x = -30 (crossing the plane): both rings are
+ * cut open there and nowhere along the opposite generator.
+ */
+static void test_mesh_strips_keep_seams(void **state)
+{
+    (void)state;
+    ur_curve *circle = NULL;
+    ur_ruled ruled;
+    ur_error error;
+    assert_int_equal(ur_curve_new_circle(30, &circle, &error), UR_OK);
+    assert_int_equal(ur_ruled_cylinder(circle, ur_vec3_make(0, 0, 1), 60, &ruled, &error), UR_OK);
+    ur_mesh mesh;
+    assert_int_equal(ur_mesh_from_ruled(&ruled, 48, 5, &mesh, &error), UR_OK);
+    ur_mesh_repairs repairs;
+    assert_int_equal(ur_mesh_clean(&mesh, 1e-6, &repairs, &error), UR_OK);
+    /* The generator at x = -30, bottom to top: 5 edges, vertices by height. */
+    size_t line[6], found = 0;
+    for (size_t v = 0; v < mesh.vertex_count; v++)
+        if (fabs(mesh.vertices[v].x + 30) < 1e-9 && fabs(mesh.vertices[v].y) < 1e-9)
+            line[found++] = v;
+    assert_int_equal(found, 6);
+    for (size_t i = 0; i < 6; i++) /* sort by z */
+        for (size_t j = i + 1; j < 6; j++)
+            if (mesh.vertices[line[j]].z < mesh.vertices[line[i]].z) {
+                size_t swap = line[i];
+                line[i] = line[j];
+                line[j] = swap;
+            }
+    ur_seam seams[5];
+    for (size_t i = 0; i < 5; i++)
+        seams[i] = (ur_seam){line[i], line[i + 1]};
+    ur_strips strips;
+    if (ur_strips_of_mesh(&mesh, seams, 5, ur_vec3_make(0, 0, 1), 2, NULL, &strips, &error) !=
+        UR_OK)
+        fail_msg("strips: %s", error.message);
+    assert_int_equal(strips.count, 2);
+    for (size_t k = 0; k < 2; k++) {
+        const ur_mesh *piece = &strips.strips[k].piece.mesh;
+        /* The plane is at z = 30, across the seam's middle edge, 24 mm up: its
+         * crossing point is cut open too, in both rings. */
+        assert_int_equal(copies_at(piece, ur_vec3_make(-30, 0, 30)), 2);
+        assert_int_equal(copies_at(piece, ur_vec3_make(30, 0, 30)), 1);
+        assert_true(strips.strips[k].flat.max_stretch < 1e-3);
+    }
+    ur_strips_free(&strips);
+    ur_mesh_free(&mesh);
+    ur_ruled_free(&ruled);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -591,6 +652,7 @@ int main(void)
         cmocka_unit_test(test_strips_in_order_share_rulings),
         cmocka_unit_test(test_restriction_kept),
         cmocka_unit_test(test_cylinder_needs_one_strip),
+        cmocka_unit_test(test_mesh_strips_keep_seams),
         cmocka_unit_test(test_bending_direction),
         cmocka_unit_test(test_bands_cut_by_planes),
         cmocka_unit_test(test_bands_through_vertices),
