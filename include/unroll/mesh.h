@@ -226,4 +226,16 @@ ur_status ur_mesh_band_planes(const ur_mesh *mesh, ur_vec3 direction, size_t cou
 ur_status ur_mesh_bands(const ur_mesh *mesh, ur_vec3 direction, const double *planes, size_t count,
                         ur_mesh *banded, ur_error *error);
 
+/*
+ * Cuts a piece in two along its length: across the line where the
+ * distance along its edges from one end (the far end of a double sweep)
+ * splits its area in two.  A ribbon that winds round comes out as two
+ * halves that each wind half as far, where planes would cut it at every
+ * turn.  The result is as ur_mesh_bands leaves it with two bands (groups
+ * b * mesh->group_count + g); free it with ur_mesh_free.  Refuses
+ * (UR_ERROR_INPUT) fewer than 2 triangles and the meshes cutting refuses
+ * (ur_mesh_pieces).
+ */
+ur_status ur_mesh_halve(const ur_mesh *mesh, ur_mesh *halves, ur_error *error);
+
 #endif

@@ -82,21 +82,16 @@ static int flatten_piece(const cli_job *job, const ur_flatten_options *options,
 
 /*
  * A flat outline that crosses itself cannot be cut: the piece is cut in two
- * across the way it bends most (ur_mesh_bands), and each half flattened.
+ * along its length (ur_mesh_halve), and each half flattened.
  */
 static int split_piece(const cli_job *job, const ur_flatten_options *options, const ur_mesh *piece,
                        size_t depth, ur_net_list *nets, double *area)
 {
     ur_error error;
-    ur_vec3 direction;
-    double plane;
     ur_mesh halves;
     ur_mesh_piece *parts = NULL;
     size_t part_count = 0;
-    if (ur_mesh_bending_direction(piece, &direction, &error) != UR_OK ||
-        ur_mesh_band_planes(piece, direction, 2, &plane, &error) != UR_OK)
-        return fail(job, &error);
-    if (ur_mesh_bands(piece, direction, &plane, 2, &halves, &error) != UR_OK)
+    if (ur_mesh_halve(piece, &halves, &error) != UR_OK)
         return fail(job, &error);
     int code = ur_mesh_pieces(&halves, NULL, 0, &parts, &part_count, &error) == UR_OK
                    ? 0

@@ -359,14 +359,19 @@ static size_t planes_below(const band_cut *c, double x, bool at_too)
     return low;
 }
 
-static void snap_offsets(band_cut *c, ur_vec3 d)
+/* Each vertex's offset from the field, snapped onto a plane it nearly lies on. */
+static void snap_offsets(band_cut *c, const double *field)
 {
     const ur_mesh *mesh = c->mesh;
-    double low, high;
-    extent(mesh, d, &low, &high);
+    double low = INFINITY, high = -INFINITY;
+    for (size_t t = 0; t < mesh->triangle_count; t++)
+        for (int k = 0; k < 3; k++) {
+            low = fmin(low, field[mesh->triangles[t][k]]);
+            high = fmax(high, field[mesh->triangles[t][k]]);
+        }
     double near = ON_PLANE * (high - low);
     for (size_t v = 0; v < mesh->vertex_count; v++) {
-        double s = ur_vec3_dot(mesh->vertices[v], d);
+        double s = field[v];
         size_t j = planes_below(c, s, false); /* planes[j - 1] < s <= planes[j] */
         if (j < c->plane_count && c->planes[j] - s <= near)
             s = c->planes[j];
@@ -547,6 +552,23 @@ ur_status ur_mesh_bands(const ur_mesh *mesh, ur_vec3 direction, const double *pl
     ur_status status = check_mesh(mesh, error);
     if (status == UR_OK)
         status = unit_direction(direction, &d, error);
+    if (status != UR_OK)
+        return status;
+    double *field = ur_alloc_array(mesh->vertex_count + 1, sizeof *field, error);
+    if (!field)
+        return UR_ERROR_INTERNAL;
+    for (size_t v = 0; v < mesh->vertex_count; v++)
+        field[v] = ur_vec3_dot(mesh->vertices[v], d);
+    status = mesh_bands_of_field(mesh, field, planes, count, banded, error);
+    free(field);
+    return status;
+}
+
+ur_status mesh_bands_of_field(const ur_mesh *mesh, const double *field, const double *planes,
+                              size_t count, ur_mesh *banded, ur_error *error)
+{
+    memset(banded, 0, sizeof *banded);
+    ur_status status = check_mesh(mesh, error);
     if (status == UR_OK && count == 0)
         status = ur_error_set(error, UR_ERROR_INPUT, "a mesh is cut into 1 band or more, not 0");
     if (status == UR_OK)
@@ -557,7 +579,7 @@ ur_status ur_mesh_bands(const ur_mesh *mesh, ur_vec3 direction, const double *pl
     c.s = ur_alloc_array(mesh->vertex_count, sizeof *c.s, error);
     if (!c.s)
         return UR_ERROR_INTERNAL;
-    snap_offsets(&c, d);
+    snap_offsets(&c, field);
     status = find_crossings(&c, error);
     if (status == UR_OK)
         status = build_banded(&c, banded, error);

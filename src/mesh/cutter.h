@@ -47,6 +47,15 @@ static inline void cutter_unglue(cutter *c, size_t h)
         c->seam[c->twins[h]] = true;
 }
 
+/*
+ * A cutter over the mesh with no seam and every triangle in part 0 until
+ * the caller says otherwise (pieces.c); refuses a mesh whose triangles have
+ * two corners at one vertex or are not consistently oriented.  Free it with
+ * cutter_free, also on failure.
+ */
+ur_status cutter_init(cutter *c, const ur_mesh *mesh, ur_error *error);
+void cutter_free(cutter *c);
+
 /* Numbers the vertices of the cut surface (c->corner) from the seams. */
 ur_status cutter_corners(cutter *c, ur_error *error);
 

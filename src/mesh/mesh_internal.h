@@ -90,4 +90,12 @@ static inline long long mesh_euler(const mesh_shape *shape)
     return (long long)shape->vertices - (long long)shape->edges + (long long)shape->triangles;
 }
 
+/*
+ * ur_mesh_bands with the offsets given per vertex (field) instead of along
+ * a direction (bands.c): band b holds the mesh where planes[b - 1] <=
+ * field <= planes[b].
+ */
+ur_status mesh_bands_of_field(const ur_mesh *mesh, const double *field, const double *planes,
+                              size_t count, ur_mesh *banded, ur_error *error);
+
 #endif

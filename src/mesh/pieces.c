@@ -14,7 +14,7 @@
 /* A triangle no part has reached yet. */
 #define NO_PART ((size_t)-1)
 
-static void cutter_free(cutter *c)
+void cutter_free(cutter *c)
 {
     free(c->twins);
     free(c->seam);
@@ -48,7 +48,7 @@ static ur_status check_mesh(const cutter *c, ur_error *error)
     return UR_OK;
 }
 
-static ur_status cutter_init(cutter *c, const ur_mesh *mesh, ur_error *error)
+ur_status cutter_init(cutter *c, const ur_mesh *mesh, ur_error *error)
 {
     memset(c, 0, sizeof *c);
     c->mesh = mesh;

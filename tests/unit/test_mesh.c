@@ -1095,6 +1095,64 @@ static void test_from_ruled_refuses(void **state)
     ur_ruled_free(&ruled);
 }
 
+/* A helical ribbon of `turns` turns: n steps along, 4 across, radius 30, rising 4 mm per radian. */
+static ur_mesh helical_ribbon(double turns, size_t n)
+{
+    builder b = {0};
+    for (size_t i = 0; i <= n; i++) {
+        double t = 2 * M_PI * turns * (double)i / (double)n;
+        for (size_t j = 0; j <= 4; j++) {
+            double r = 30 + 5.0 * (double)j;
+            add_vertex(&b, r * cos(t), r * sin(t), 4 * t);
+        }
+    }
+    for (size_t i = 0; i < n; i++)
+        for (size_t j = 0; j < 4; j++) {
+            size_t a = i * 5 + j;
+            add_triangle(&b, a, a + 5, a + 6, 0);
+            add_triangle(&b, a, a + 6, a + 1, 0);
+        }
+    return build(&b);
+}
+
+/*
+ * A ribbon of 1.6 turns is halved along its length: two pieces of equal
+ * area, each winding about 0.8 turn and so less than one (its points'
+ * angles span 0.7 to 0.9 of 2 pi), where any plane would cut it at every
+ * turn.
+ */
+static void test_halve_along_the_length(void **state)
+{
+    (void)state;
+    ur_mesh ribbon = helical_ribbon(1.6, 160);
+    ur_mesh halves;
+    ur_error error;
+    assert_int_equal(ur_mesh_halve(&ribbon, &halves, &error), UR_OK);
+    assert_relative(ur_mesh_area(&halves), ur_mesh_area(&ribbon), 1e-12);
+    size_t count;
+    ur_mesh_piece *pieces = cut(&halves, NULL, 0, &count);
+    assert_int_equal(count, 2);
+    for (size_t k = 0; k < 2; k++) {
+        assert_relative(ur_mesh_area(&pieces[k].mesh), ur_mesh_area(&ribbon) / 2, 0.02);
+        double low = INFINITY, high = -INFINITY;
+        for (size_t v = 0; v < pieces[k].mesh.vertex_count; v++) {
+            double height = pieces[k].mesh.vertices[v].z; /* 4 mm per radian: the angle */
+            low = fmin(low, height / 4);
+            high = fmax(high, height / 4);
+        }
+        /* 0.8 turn, give or take the slant of a cut that follows distances from a corner. */
+        assert_true(high - low < 0.9 * 2 * M_PI && high - low > 0.7 * 2 * M_PI);
+    }
+    ur_mesh_pieces_free(pieces, count);
+    ur_mesh_free(&halves);
+    ur_mesh_free(&ribbon);
+    ur_mesh tiny = grid(1, 1);
+    ur_mesh one = {0};
+    assert_int_equal(ur_mesh_halve(&tiny, &one, &error), UR_OK); /* two triangles: fine */
+    ur_mesh_free(&one);
+    ur_mesh_free(&tiny);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1119,6 +1177,7 @@ int main(void)
         cmocka_unit_test(test_from_ruled_cylinder),
         cmocka_unit_test(test_from_ruled_cone),
         cmocka_unit_test(test_from_ruled_refuses),
+        cmocka_unit_test(test_halve_along_the_length),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -1,0 +1,127 @@
+/*
+ * halve.c: cutting a piece in two along its length (ur_mesh_halve), for a
+ * flattened piece whose outline crosses itself.
+ *
+ * A long piece that winds round (a ribbon of more than a turn) lies over
+ * itself when flat; cutting it across its middle makes two pieces that each
+ * wind half as far.  Planes in space cannot do that: a plane cuts a helix
+ * at every turn.  So the cut follows the surface: the distance from one end
+ * of the piece, measured along its edges (the far end of a double sweep:
+ * the vertex farthest from anywhere, then the one farthest from that), and
+ * the cut is the line where that distance splits the piece's area in two.
+ */
+#include "cutter.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* The vertex of the cut surface farthest from source along the edges. */
+static ur_status farthest(const cutter *c, size_t source, size_t *far, double **distance,
+                          ur_error *error)
+{
+    static const bool cutting[1] = {true};
+    mesh_paths paths = {NULL, NULL};
+    ur_status status = mesh_paths_from(c, cutting, &source, 1, &paths, error);
+    if (status == UR_OK) {
+        *far = source;
+        for (size_t v = 0; v < c->vertex_count; v++)
+            if (isfinite(paths.distance[v]) && paths.distance[v] > paths.distance[*far])
+                *far = v;
+    }
+    if (status == UR_OK && distance) {
+        *distance = paths.distance;
+        paths.distance = NULL;
+    }
+    mesh_paths_free(&paths);
+    return status;
+}
+
+static int compare_doubles(const void *a, const void *b)
+{
+    double x = ((const double *)a)[0], y = ((const double *)b)[0];
+    return (x > y) - (x < y);
+}
+
+/* The level of the field below which half the area lies (triangles by their mean). */
+static ur_status median_level(const ur_mesh *mesh, const double *field, double *level,
+                              ur_error *error)
+{
+    size_t n = mesh->triangle_count;
+    double(*pairs)[2] = ur_alloc_array(n, sizeof *pairs, error); /* mean, area */
+    if (!pairs)
+        return UR_ERROR_INTERNAL;
+    double total = 0;
+    for (size_t t = 0; t < n; t++) {
+        const size_t *v = mesh->triangles[t];
+        ur_vec3 a = mesh->vertices[v[0]];
+        ur_vec3 normal =
+            ur_vec3_cross(ur_vec3_sub(mesh->vertices[v[1]], a), ur_vec3_sub(mesh->vertices[v[2]], a));
+        pairs[t][0] = (field[v[0]] + field[v[1]] + field[v[2]]) / 3;
+        pairs[t][1] = ur_vec3_length(normal) / 2;
+        total += pairs[t][1];
+    }
+    qsort(pairs, n, sizeof *pairs, compare_doubles);
+    double below = 0;
+    *level = pairs[n - 1][0];
+    for (size_t t = 0; t < n; t++) {
+        below += pairs[t][1];
+        if (below >= total / 2) {
+            *level = pairs[t][0];
+            break;
+        }
+    }
+    free(pairs);
+    return UR_OK;
+}
+
+/* Each mesh vertex's distance: the least of its corners' cut-surface vertices. */
+static ur_status vertex_field(const cutter *c, const double *distance, double **field,
+                              ur_error *error)
+{
+    const ur_mesh *mesh = c->mesh;
+    *field = ur_alloc_array(mesh->vertex_count, sizeof **field, error);
+    if (!*field)
+        return UR_ERROR_INTERNAL;
+    for (size_t v = 0; v < mesh->vertex_count; v++)
+        (*field)[v] = INFINITY;
+    for (size_t h = 0; h < c->half_edge_count; h++) {
+        size_t v = mesh->triangles[h / 3][h % 3];
+        (*field)[v] = fmin((*field)[v], distance[c->corner[h]]);
+    }
+    for (size_t v = 0; v < mesh->vertex_count; v++)
+        if (!isfinite((*field)[v]))
+            (*field)[v] = 0; /* unused, or cut off from the rest: it makes no crossing */
+    return UR_OK;
+}
+
+ur_status ur_mesh_halve(const ur_mesh *mesh, ur_mesh *halves, ur_error *error)
+{
+    memset(halves, 0, sizeof *halves);
+    if (mesh->triangle_count < 2)
+        return ur_error_set(error, UR_ERROR_INPUT, "a piece of %zu triangle cannot be halved",
+                            mesh->triangle_count);
+    cutter c;
+    double *distance = NULL, *field = NULL, level = 0;
+    size_t start, end;
+    ur_status status = cutter_init(&c, mesh, error);
+    if (status == UR_OK) {
+        c.part_count = 1;
+        c.part_size[0] = mesh->triangle_count;
+        status = cutter_corners(&c, error);
+    }
+    if (status == UR_OK)
+        status = farthest(&c, c.corner[0], &start, NULL, error);
+    if (status == UR_OK)
+        status = farthest(&c, start, &end, &distance, error);
+    if (status == UR_OK)
+        status = vertex_field(&c, distance, &field, error);
+    if (status == UR_OK)
+        status = median_level(mesh, field, &level, error);
+    if (status == UR_OK)
+        status = mesh_bands_of_field(mesh, field, &level, 2, halves, error);
+    free(distance);
+    free(field);
+    cutter_free(&c);
+    return status;
+}
