@@ -214,22 +214,37 @@ void ur_piece_turn_labels(ur_piece *piece, double angle);
 /*
  * Offsets the outer outline (paths[0]) outward by kerf / 2 and every other
  * closed CUT path (a hole) inward by kerf / 2, with mitred joins so that
- * corners stay sharp (GEOS buffer); other paths are untouched.  Refuses with
- * UR_ERROR_INPUT naming the piece when a hole would vanish or the outline
- * would change its number of rings (a feature narrower than the kerf).
- * Records a UR_ALLOWANCE_KERF_COMPENSATION entry.
+ * corners stay sharp (GEOS buffer, mitre limit 10: corners down to about
+ * 11 degrees keep their point); other paths are untouched.  The outline
+ * stays counter-clockwise, each hole keeps its direction, the box is
+ * recomputed.  Refuses with UR_ERROR_INPUT naming the piece, leaving it
+ * unchanged, when a hole would vanish or split, or the outline would close
+ * a slot into a hole (a feature narrower than the kerf), and for a kerf
+ * that is negative or not finite, or an outline already opened by bridges.
+ * A kerf of 0 does nothing.  Records a UR_ALLOWANCE_KERF_COMPENSATION
+ * entry (value: the kerf).
  */
 ur_status ur_piece_compensate_kerf(ur_piece *piece, double kerf, ur_error *error);
 
 /*
  * Opens `count` uncut gaps of `width` mm in the outer outline, evenly
- * spaced along it, each at least its own width away from a corner (a turn
- * of more than 30 degrees) and off tight curves; count 0 means automatic:
- * one per 300 mm of outline, at least 3 for a router, at least 2 for a
- * laser (router true or false).  The closed outline becomes open CUT paths
- * (the first stays paths[0]) and piece->bridged is set.  Apply after
- * placement: nothing after this may treat paths[0] as a closed ring.
- * Records a UR_ALLOWANCE_BRIDGES entry (a warning when fewer gaps fit).
+ * spaced along it by arc length; count 0 means automatic: one per 300 mm
+ * of outline (rounded), at least 3 for a router, at least 2 for a laser
+ * (router true or false).  Each gap keeps at least its own width of cut
+ * (along the outline) from every corner and from the next gap.  A corner is
+ * any stretch of outline no longer than three gap widths over which the
+ * direction turns by more than 30 degrees in all (and would not without
+ * its first or last vertex): a sharp vertex, or a curve tighter than a
+ * radius of about 5.7 widths (bridges.c says more).  The even spread is
+ * placed to miss corners where it can; a gap that would still touch one
+ * moves to the nearest place allowed.  The closed outline becomes open CUT
+ * paths, gap to gap (the first stays paths[0], the others are appended) and
+ * piece->bridged is set.  Apply after placement: nothing after this may
+ * treat paths[0] as a closed ring.  Records a UR_ALLOWANCE_BRIDGES entry
+ * (count: the gaps made, value: the width), a warning when fewer fit than
+ * asked; when none fits the outline stays closed and unbridged.  Refuses
+ * (UR_ERROR_INPUT naming the piece) a width not above 0 or not finite and a
+ * piece already bridged.
  */
 ur_status ur_piece_add_bridges(ur_piece *piece, size_t count, double width, bool router,
                                ur_error *error);
