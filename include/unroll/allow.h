@@ -109,6 +109,9 @@ ur_status ur_piece_from_net(const ur_net *net, const ur_allowance_options *optio
 
 void ur_piece_free(ur_piece *piece);
 
+/* The piece's box, measured again on every path (after paths moved or went). */
+void ur_piece_recompute_box(ur_piece *piece);
+
 /* Appends a copy of record to the piece's records. */
 ur_status ur_piece_record(ur_piece *piece, const ur_allowance_record *record, ur_error *error);
 

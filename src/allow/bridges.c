@@ -362,14 +362,6 @@ static ur_status open_outline(ur_piece *piece, const ring *r, const double *cent
     return status;
 }
 
-static void recompute_box(ur_piece *piece)
-{
-    piece->box = ur_box_empty();
-    for (size_t i = 0; i < piece->path_count; i++)
-        for (size_t k = 0; k < piece->paths[i].count; k++)
-            ur_box_add(&piece->box, piece->paths[i].points[k]);
-}
-
 /* ---- The whole ----------------------------------------------------------- */
 
 /* The outline without repeated points, as arc lengths, and each vertex's turn. */
@@ -474,7 +466,7 @@ ur_status ur_piece_add_bridges(ur_piece *piece, size_t count, double width, bool
     if (status == UR_OK && placed > 0)
         status = open_outline(piece, &r, centres, placed, width, error);
     if (status == UR_OK) {
-        recompute_box(piece);
+        ur_piece_recompute_box(piece);
         status = record(piece, asked, placed, width, count == 0, error);
     }
     free(points);

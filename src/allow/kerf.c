@@ -143,14 +143,6 @@ static ur_status offset_all(const ur_piece *piece, double kerf, ur_vec2 **rings,
     return status;
 }
 
-static void recompute_box(ur_piece *piece)
-{
-    piece->box = ur_box_empty();
-    for (size_t i = 0; i < piece->path_count; i++)
-        for (size_t k = 0; k < piece->paths[i].count; k++)
-            ur_box_add(&piece->box, piece->paths[i].points[k]);
-}
-
 static ur_status record(ur_piece *piece, double kerf, size_t holes, ur_error *error)
 {
     ur_allowance_record entry = {
@@ -199,6 +191,6 @@ ur_status ur_piece_compensate_kerf(ur_piece *piece, double kerf, ur_error *error
     free(counts);
     if (status != UR_OK)
         return status;
-    recompute_box(piece);
+    ur_piece_recompute_box(piece);
     return record(piece, kerf, holes, error);
 }

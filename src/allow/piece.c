@@ -115,6 +115,14 @@ void ur_piece_free(ur_piece *piece)
     piece->record_count = 0;
 }
 
+void ur_piece_recompute_box(ur_piece *piece)
+{
+    piece->box = ur_box_empty();
+    for (size_t i = 0; i < piece->path_count; i++)
+        for (size_t k = 0; k < piece->paths[i].count; k++)
+            ur_box_add(&piece->box, piece->paths[i].points[k]);
+}
+
 ur_status ur_piece_record(ur_piece *piece, const ur_allowance_record *record, ur_error *error)
 {
     ur_allowance_record *records =

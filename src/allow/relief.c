@@ -112,7 +112,7 @@
  * material's, where the region's centre; a warning when fewer slits fit
  * than the formula asks for.
  */
-#include "unroll/allow.h"
+#include "allow_internal.h"
 
 #include <geos_c.h>
 #include <math.h>
@@ -175,32 +175,6 @@ static ur_vec2 lerp(ur_vec2 a, ur_vec2 b, double t)
 
 /* ---- GEOS helpers --------------------------------------------------- */
 
-static GEOSGeometry *make_polygon(GEOSContextHandle_t geos, const ur_vec2 *ring, size_t count)
-{
-    GEOSCoordSequence *sequence = GEOSCoordSeq_create_r(geos, (unsigned)count + 1, 2);
-    if (!sequence)
-        return NULL;
-    for (size_t i = 0; i <= count; i++)
-        GEOSCoordSeq_setXY_r(geos, sequence, (unsigned)i, ring[i % count].x, ring[i % count].y);
-    GEOSGeometry *shell = GEOSGeom_createLinearRing_r(geos, sequence);
-    if (!shell)
-        return NULL;
-    GEOSGeometry *polygon = GEOSGeom_createPolygon_r(geos, shell, NULL, 0);
-    if (!polygon)
-        GEOSGeom_destroy_r(geos, shell);
-    return polygon;
-}
-
-static GEOSGeometry *make_line(GEOSContextHandle_t geos, const ur_vec2 *points, size_t count)
-{
-    GEOSCoordSequence *sequence = GEOSCoordSeq_create_r(geos, (unsigned)count, 2);
-    if (!sequence)
-        return NULL;
-    for (size_t i = 0; i < count; i++)
-        GEOSCoordSeq_setXY_r(geos, sequence, (unsigned)i, points[i].x, points[i].y);
-    return GEOSGeom_createLineString_r(geos, sequence);
-}
-
 /* The points of a line string or a ring (closed: its last point is dropped); false if none. */
 static bool geometry_points(GEOSContextHandle_t geos, const GEOSGeometry *line, ur_points *points,
                             bool drop_last, ur_error *error)
@@ -251,7 +225,7 @@ static ur_status clip_segment(relief_job *job, ur_vec2 a, ur_vec2 b, const GEOSG
                               const GEOSGeometry *avoid, ur_points *ends)
 {
     ur_vec2 ab[2] = {a, b};
-    GEOSGeometry *line = make_line(job->geos, ab, 2);
+    GEOSGeometry *line = allow_line(job->geos, ab, 2);
     GEOSGeometry *inside = line ? GEOSIntersection_r(job->geos, line, area) : NULL;
     if (inside && avoid) {
         GEOSGeometry *clear = GEOSDifference_r(job->geos, inside, avoid);
@@ -291,7 +265,7 @@ static ur_status add_rings(relief_job *job, const GEOSGeometry *geometry, ur_op 
 static ur_status add_clipped_polyline(relief_job *job, const ur_vec2 *points, size_t count,
                                       ur_op op)
 {
-    GEOSGeometry *line = make_line(job->geos, points, count);
+    GEOSGeometry *line = allow_line(job->geos, points, count);
     GEOSGeometry *inside = line ? GEOSIntersection_r(job->geos, line, job->outline) : NULL;
     ur_status status = inside ? UR_OK : geos_failed(job, "clip a dart");
     GEOSGeometry *merged = inside ? GEOSLineMerge_r(job->geos, inside) : NULL;
@@ -327,7 +301,7 @@ static ur_status add_clipped_polyline(relief_job *job, const ur_vec2 *points, si
 static ur_status keep_out(relief_job *job, const ur_vec2 *points, size_t count)
 {
     double distance = fmax(job->limits->margin, 1e-6 * job->size);
-    GEOSGeometry *line = make_line(job->geos, points, count);
+    GEOSGeometry *line = allow_line(job->geos, points, count);
     GEOSGeometry *zone = line ? GEOSBuffer_r(job->geos, line, distance, 4) : NULL;
     if (line)
         GEOSGeom_destroy_r(job->geos, line);
@@ -443,7 +417,7 @@ static ur_status overlap_slit(relief_job *job, ur_vec2 start, ur_vec2 u, double 
         zone[1] = zone[3];
         zone[3] = swap;
     }
-    GEOSGeometry *polygon = make_polygon(job->geos, zone, 4);
+    GEOSGeometry *polygon = allow_polygon(job->geos, zone, 4);
     GEOSGeometry *inside = polygon ? GEOSIntersection_r(job->geos, polygon, job->outline) : NULL;
     status = inside ? add_rings(job, inside, UR_OP_MARK) : geos_failed(job, "mark a zone");
     if (inside)
@@ -737,7 +711,7 @@ static GEOSGeometry *region_geometry(relief_job *job, const ur_shading *shading,
             ring[1] = c[2];
             ring[2] = c[1];
         }
-        polygons[made] = make_polygon(job->geos, ring, 3);
+        polygons[made] = allow_polygon(job->geos, ring, 3);
         if (!polygons[made])
             break;
     }
@@ -1123,7 +1097,7 @@ static ur_status open_job(relief_job *job)
         return ur_error_out_of_memory(job->error);
     ur_box box = ur_box_of_points(net->outline, net->outline_count);
     job->size = hypot(ur_box_width(box), ur_box_height(box));
-    job->outline = make_polygon(job->geos, net->outline, net->outline_count);
+    job->outline = allow_polygon(job->geos, net->outline, net->outline_count);
     if (job->outline)
         job->inner = job->limits->margin > 0
                          ? GEOSBuffer_r(job->geos, job->outline, -job->limits->margin, 8)

@@ -81,6 +81,16 @@ enum {
 
 #define CLI_BRIDGES_UNSET (-2L)
 
+/* The CLI_ALLOW_* bits the job gets: --allowances auto decides from the profiles. */
+unsigned cli_allowances_chosen(const cli_job *job, const ur_machine *machine);
+
+/*
+ * The smallest radius the material bends to: bending happens across the
+ * rulings, and the profile says which of its two radii applies by its
+ * grain rule (rulings across the grain bend with it).
+ */
+double cli_smallest_bend_radius(const ur_material *material);
+
 /* --allowances auto|none|LIST and --bridges auto|N|none (allowances.c); false after a message. */
 bool cli_parse_allowances(cli_job *job, const char *value);
 bool cli_parse_bridges(cli_job *job, const char *value);

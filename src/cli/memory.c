@@ -60,8 +60,8 @@ int cli_check_memory(const cli_job *job, const char *what, size_t needed)
     size_t available = system < limit ? system : limit;
     if (available == SIZE_MAX || needed <= available)
         return 0;
-    cli_message("%s: %s needs about %.2f GB of memory, but only %.2f GB is available%s", job->command,
-                what, gigabytes(needed), gigabytes(available),
+    cli_message("%s: %s needs about %.2f GB of memory, but only %.2f GB is available%s",
+                job->command, what, gigabytes(needed), gigabytes(available),
                 limit < system ? " under this process's limit (ulimit -v)" : "");
     return EXIT_INTERNAL;
 }

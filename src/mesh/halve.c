@@ -55,8 +55,8 @@ static ur_status median_level(const ur_mesh *mesh, const double *field, double *
     for (size_t t = 0; t < n; t++) {
         const size_t *v = mesh->triangles[t];
         ur_vec3 a = mesh->vertices[v[0]];
-        ur_vec3 normal =
-            ur_vec3_cross(ur_vec3_sub(mesh->vertices[v[1]], a), ur_vec3_sub(mesh->vertices[v[2]], a));
+        ur_vec3 normal = ur_vec3_cross(ur_vec3_sub(mesh->vertices[v[1]], a),
+                                       ur_vec3_sub(mesh->vertices[v[2]], a));
         pairs[t][0] = (field[v[0]] + field[v[1]] + field[v[2]]) / 3;
         pairs[t][1] = ur_vec3_length(normal) / 2;
         total += pairs[t][1];

@@ -273,16 +273,12 @@ static ur_status build(ur_ruled *ruled, ur_vec3 *points[2], size_t count, bool c
 /* A strip is moved only where it exists. */
 static ur_status check_no_gap(ur_ruled *ruled, ur_error *error)
 {
-    const ur_interval *gaps;
-    size_t count = ur_ruled_gaps(ruled, &gaps);
-    double u0 = ur_ruled_start(ruled), u1 = ur_ruled_end(ruled);
-    double close = 1e-9 * (ur_curve_end(ruled->curve) - ur_curve_start(ruled->curve));
-    for (size_t k = 0; k < count; k++)
-        if (gaps[k].u_end > u0 + close && gaps[k].u_start < u1 - close)
-            return ur_error_set(error, UR_ERROR_INPUT,
-                                "the strip does not exist from %.6g to %.6g mm along rail 1: "
-                                "move each part of its domain of existence on its own",
-                                gaps[k].arc_start, gaps[k].arc_end);
+    const ur_interval *gap = ruled_gap_in_use(ruled);
+    if (gap)
+        return ur_error_set(error, UR_ERROR_INPUT,
+                            "the strip does not exist from %.6g to %.6g mm along rail 1: "
+                            "move each part of its domain of existence on its own",
+                            gap->arc_start, gap->arc_end);
     return UR_OK;
 }
 

@@ -341,8 +341,7 @@ static ur_status check_ruling_across(ur_ruled *ruled, ur_error *error)
     return UR_OK;
 }
 
-/* A strip may be developed only where it exists. */
-static ur_status check_domain(ur_ruled *ruled, ur_error *error)
+const ur_interval *ruled_gap_in_use(ur_ruled *ruled)
 {
     const ur_interval *gaps;
     size_t count = ur_ruled_gaps(ruled, &gaps);
@@ -350,11 +349,20 @@ static ur_status check_domain(ur_ruled *ruled, ur_error *error)
     double close = 1e-9 * (ur_curve_end(ruled->curve) - ur_curve_start(ruled->curve));
     for (size_t k = 0; k < count; k++)
         if (gaps[k].u_end > u0 + close && gaps[k].u_start < u1 - close)
-            return ur_error_set(error, UR_ERROR_INPUT,
-                                "the strip does not exist from %.6g to %.6g mm along rail 1 (%s); "
-                                "develop the parts of its domain of existence separately",
-                                gaps[k].arc_start, gaps[k].arc_end,
-                                gaps[k].reason == UR_GAP_NO_RULING ? "no ruling" : "rulings cross");
+            return &gaps[k];
+    return NULL;
+}
+
+/* A strip may be developed only where it exists. */
+static ur_status check_domain(ur_ruled *ruled, ur_error *error)
+{
+    const ur_interval *gap = ruled_gap_in_use(ruled);
+    if (gap)
+        return ur_error_set(error, UR_ERROR_INPUT,
+                            "the strip does not exist from %.6g to %.6g mm along rail 1 (%s); "
+                            "develop the parts of its domain of existence separately",
+                            gap->arc_start, gap->arc_end,
+                            gap->reason == UR_GAP_NO_RULING ? "no ruling" : "rulings cross");
     return UR_OK;
 }
 

@@ -27,4 +27,7 @@ double determinant3(ur_vec3 x, ur_vec3 y, ur_vec3 z);
 /* "near point 12 (x, y, z), 34.5 mm along the curve" for a place on rail 1. */
 void describe_place(ur_ruled *ruled, double u, char *text, size_t size);
 
+/* The first gap of the domain of existence inside the part in use, or NULL (ruled.c). */
+const ur_interval *ruled_gap_in_use(ur_ruled *ruled);
+
 #endif

@@ -217,36 +217,14 @@ static void test_seam_labels(void **state)
     assert_string_equal(label, "AA1");
 }
 
-/* The unfolded icosphere's nets, as the command line makes them. */
+/* The unfolded icosphere's nets with their seams, as the command line makes them. */
 static ur_net_list icosphere_nets(void)
 {
-    ur_mesh mesh;
-    ur_error error;
-    assert_int_equal(ur_mesh_import("samples/icosphere.obj", NULL, &mesh, NULL, &error), UR_OK);
-    ur_mesh_repairs repairs;
-    assert_int_equal(ur_mesh_clean(&mesh, 1e-6, &repairs, &error), UR_OK);
-    ur_unfolding unfolding;
-    assert_int_equal(ur_unfold(&mesh, NULL, 0, &unfolding, &error), UR_OK);
-    ur_net_list nets = {calloc(unfolding.count, sizeof(ur_net)), unfolding.count};
-    assert_non_null(nets.nets);
-    for (size_t k = 0; k < unfolding.count; k++) {
-        const ur_unfolded_piece *piece = &unfolding.pieces[k];
-        ur_net *net = &nets.nets[k];
-        snprintf(net->name, sizeof net->name, "P%zu", k + 1);
-        net->outline_count = piece->outline_count;
-        net->outline = malloc(piece->outline_count * sizeof *net->outline);
-        net->outline_3d = malloc(piece->outline_count * sizeof *net->outline_3d);
-        assert_true(net->outline && net->outline_3d);
-        for (size_t i = 0; i < piece->outline_count; i++) {
-            net->outline[i] = piece->outline[i];
-            net->outline_3d[i] = mesh.vertices[piece->outline_vertices[i]];
-        }
-        net->flat_area = piece->flat_area;
-    }
+    size_t cut_edges;
+    ur_net_list nets = unfolded_nets("samples/icosphere.obj", &cut_edges);
     int next;
+    ur_error error;
     assert_int_equal(ur_net_list_find_seams(&nets, 1, &next, &error), UR_OK);
-    ur_unfolding_free(&unfolding);
-    ur_mesh_free(&mesh);
     return nets;
 }
 

@@ -20,11 +20,15 @@
 #include <math.h>
 #include <stdbool.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include "unroll/develop.h"
+#include "unroll/flatten.h"
+#include "unroll/io.h"
+#include "unroll/mesh.h"
 
 /* actual within tolerance * |expected| of expected; the message names the expression. */
 #define assert_relative(actual, expected, tolerance)                                               \
@@ -103,6 +107,46 @@ static inline int remove_test_directory(const char *directory)
 {
     each_entry(directory, unlink);
     return rmdir(directory);
+}
+
+/* ---- Unfolded meshes as nets ---------------------------------------------- */
+
+/*
+ * The nets of the mesh file unfolded along its edges, as the command line
+ * makes them (outline, 3D points, names P1, P2, ...), seams not yet found;
+ * *seams receives how many edges the unfolding cut.  Free with
+ * ur_net_list_free.
+ */
+static inline ur_net_list unfolded_nets(const char *path, size_t *seams)
+{
+    ur_mesh mesh;
+    ur_error error;
+    if (ur_mesh_import(path, NULL, &mesh, NULL, &error) != UR_OK)
+        fail_msg("import: %s", error.message);
+    ur_mesh_repairs repairs;
+    assert_int_equal(ur_mesh_clean(&mesh, 1e-6, &repairs, &error), UR_OK);
+    ur_unfolding unfolding;
+    assert_int_equal(ur_unfold(&mesh, NULL, 0, &unfolding, &error), UR_OK);
+    ur_net_list nets = {calloc(unfolding.count, sizeof(ur_net)), unfolding.count};
+    assert_non_null(nets.nets);
+    for (size_t k = 0; k < unfolding.count; k++) {
+        const ur_unfolded_piece *piece = &unfolding.pieces[k];
+        ur_net *net = &nets.nets[k];
+        snprintf(net->name, sizeof net->name, "P%zu", k + 1);
+        net->outline_count = piece->outline_count;
+        net->outline = malloc(piece->outline_count * sizeof *net->outline);
+        net->outline_3d = malloc(piece->outline_count * sizeof *net->outline_3d);
+        assert_true(net->outline && net->outline_3d);
+        for (size_t i = 0; i < piece->outline_count; i++) {
+            net->outline[i] = piece->outline[i];
+            net->outline_3d[i] = mesh.vertices[piece->outline_vertices[i]];
+        }
+        net->flat_area = piece->flat_area;
+    }
+    *seams = unfolding.seams;
+    ur_unfolding_free(&unfolding);
+    ur_mesh_free(&mesh);
+    return nets;
 }
 
 #endif
