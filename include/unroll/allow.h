@@ -279,11 +279,24 @@ ur_status ur_piece_add_relief(ur_piece *piece, const ur_net *net, const ur_relie
 
 /*
  * KERF lines parallel to the rulings where the surface bends tighter than
- * min_radius.  router: grooves of width `groove_width` and depth
- * `groove_depth` at spacing s = w R / d; laser: the material's living-hinge
- * pattern clipped to the region with solid margins at the ends.  The radius
- * at each ruling comes from the surface (ur_net.ruling_parameters).  Records
- * the radius, spacing and depth.
+ * min_radius.  The radius R at a ruling is ur_analyze_bend_radius at its
+ * parameter (ur_net.ruling_parameters, so `ruled` must be the surface the
+ * net was developed from); spacings are measured across the rulings along
+ * the net, between the rulings' midpoints.  A region is a run of the net
+ * where R < min_radius.  router: grooves of width `groove_width` and depth
+ * `groove_depth` at spacing s = w R / d (the local R), ceil(integral of
+ * dt / s) of them (at least 1) centred in the region, each a line along its
+ * ruling from outline to outline (they do not cut through); where R < d
+ * they would merge and are placed every w instead, and the record is a
+ * warning.  laser: the material's living hinge: rows every hinge_distance
+ * placed alike, each of slits hinge_cut_length long with hinge_connection
+ * bridges, alternate rows half a period along, clipped to stay
+ * hinge_connection from the outline (shorter remnants dropped).  One
+ * UR_ALLOWANCE_BENDING record per region: count the lines, value the
+ * smallest R, limit min_radius, the reason the radius, spacing and depth
+ * (or the hinge).  A net without ruling_parameters (a flattened mesh) is
+ * left alone; fewer than 2 drawn rulings give a warning where a bend is too
+ * tight.  UR_ERROR_INPUT for sizes that are not positive.  See bending.c.
  */
 typedef struct ur_bending_options {
     double min_radius;   /* the material's smallest bend radius, mm */

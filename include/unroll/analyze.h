@@ -50,6 +50,18 @@ typedef struct ur_point_curvature {
 
 void ur_analyze_point(ur_ruled *ruled, double u, double v, ur_point_curvature *curvature);
 
+/*
+ * The bend radius of the ruling at u, as ur_analyze gives it for each of
+ * its rulings: the smallest over `across` points evenly spaced from rail a
+ * to rail b (ends included; fewer than 2 counts as 2) of 1 / max |kappa|,
+ * mm: INFINITY where flat, 0 at a singular point.  *v (may be NULL)
+ * receives where along the ruling it is smallest (0 rail a, 1 rail b).
+ * On a developable the curvature across a ruling varies as 1 / (distance
+ * from the edge of regression), so the smallest radius is at an end or at
+ * a singular point and a few samples find it.
+ */
+double ur_analyze_bend_radius(ur_ruled *ruled, double u, size_t across, double *v);
+
 typedef struct ur_ruling_analysis {
     double u, arc;     /* parameter and arc length along rail a from the start */
     ur_vec3 near, far; /* the ruling's ends */

@@ -160,6 +160,26 @@ void ur_analyze_point(ur_ruled *ruled, double u, double v, ur_point_curvature *c
     point_curvature(&frame, v, curvature);
 }
 
+double ur_analyze_bend_radius(ur_ruled *ruled, double u, size_t across, double *v)
+{
+    if (across < 2)
+        across = 2;
+    ruling_frame frame;
+    ruling_frame_at(ruled, u, &frame);
+    double smallest = INFINITY, where = 0.0;
+    for (size_t j = 0; j < across; j++) {
+        ur_point_curvature point;
+        point_curvature(&frame, (double)j / (double)(across - 1), &point);
+        if (point.bend_radius < smallest) {
+            smallest = point.bend_radius;
+            where = (double)j / (double)(across - 1);
+        }
+    }
+    if (v)
+        *v = where;
+    return smallest;
+}
+
 /* ---- The analysis ------------------------------------------------------- */
 
 static ur_status check_options(const ur_analysis_options *options, ur_error *error)

@@ -412,7 +412,9 @@ static ur_status fill_net(ur_ruled *ruled, const strip *s, size_t first, size_t 
     size_t capacity = 2 * (last - first + 1);
     net->outline = ur_alloc_array(capacity, sizeof *net->outline, error);
     net->rulings = ur_alloc_array(last - first + 1, sizeof *net->rulings, error);
-    if (!net->outline || !net->rulings)
+    net->ruling_parameters =
+        ur_alloc_array(last - first + 1, sizeof *net->ruling_parameters, error);
+    if (!net->outline || !net->rulings || !net->ruling_parameters)
         return UR_ERROR_INTERNAL;
     net->outline_count = drop_repeated(net->outline, piece_ring(s, first, last, 1, net->outline));
     double area = ur_polygon_signed_area(net->outline, net->outline_count);
@@ -421,7 +423,9 @@ static ur_status fill_net(ur_ruled *ruled, const strip *s, size_t first, size_t 
     net->flat_area = fabs(area);
     for (size_t i = first + 1; i < last; i++)
         if (s->drawn[i]) {
+            /* The parameter goes with the ruling so allowances can ask the surface about it. */
             ur_segment ruling = {s->near[i], s->far[i]};
+            net->ruling_parameters[net->ruling_count] = s->u[i];
             net->rulings[net->ruling_count++] = ruling;
         }
     if (seam_before)
