@@ -6,11 +6,15 @@
  * the kerf (GEOS buffer, mitred joins so square corners stay square) makes
  * the part come out at its drawn size.
  *
- * Everything is worked out before the piece is touched, so a refusal
- * (a hole that would vanish, a slot that would close) leaves it as it was.
+ * Everything is worked out before the piece is touched, so a refusal (a
+ * hole that would vanish or split) leaves it as it was.  A slot of the
+ * outline narrower than the kerf (between two glue tabs, say) closes as
+ * the outline moves out: it is filled, with a warning, since no cutter can
+ * cut it.
  */
 #include "allow_internal.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -70,38 +74,67 @@ static void reverse(ur_vec2 *ring, size_t count)
     }
 }
 
+/* The middle of a path's box: where the report and the messages say it is. */
+static ur_vec2 path_middle(const ur_path *path)
+{
+    ur_box box = ur_box_of_points(path->points, path->count);
+    return ur_vec2_make((box.min.x + box.max.x) / 2, (box.min.y + box.max.y) / 2);
+}
+
+/* Where a GEOS polygon's first interior ring is (its box's middle). */
+static ur_vec2 first_slot(GEOSContextHandle_t geos, const GEOSGeometry *polygon)
+{
+    const GEOSGeometry *ring = GEOSGetInteriorRingN_r(geos, polygon, 0);
+    double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+    if (ring) {
+        GEOSGeom_getXMin_r(geos, ring, &x0);
+        GEOSGeom_getYMin_r(geos, ring, &y0);
+        GEOSGeom_getXMax_r(geos, ring, &x1);
+        GEOSGeom_getYMax_r(geos, ring, &y1);
+    }
+    return ur_vec2_make((x0 + x1) / 2, (y0 + y1) / 2);
+}
+
 /*
  * The ring of path offset by distance (> 0 outward, < 0 inward) into
- * *ring (counter-clockwise), or a refusal naming the piece when the result
- * is not one polygon without holes: a hole that vanishes or splits, an
- * outline whose slot closes into a hole.
+ * *ring (counter-clockwise).  A hole that vanishes or splits is refused,
+ * naming the piece and where the hole is: the laser cannot cut it.  A slot
+ * of the outline narrower than the kerf closes into a hole as the outline
+ * moves out; the cutter could not cut it either, so it is filled, counted
+ * in *slots with its place in *slot_at, for a warning.
  */
 static ur_status offset_ring(GEOSContextHandle_t geos, const GEOSBufferParams *params,
                              const ur_piece *piece, size_t index, double distance, ur_vec2 **ring,
-                             size_t *count, ur_error *error)
+                             size_t *count, size_t *slots, ur_vec2 *slot_at, ur_error *error)
 {
     const ur_path *path = &piece->paths[index];
-    const char *what = index == 0 ? "its outline" : "a hole";
+    ur_vec2 at = path_middle(path);
     GEOSGeometry *polygon = allow_polygon(geos, path->points, path->count);
     GEOSGeometry *buffered =
         polygon ? GEOSBufferWithParams_r(geos, polygon, params, distance) : NULL;
     ur_status status = UR_OK;
     if (!buffered)
-        status = ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not offset %s of piece %s",
-                              what, piece->name);
+        status = ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not offset a path of piece %s",
+                              piece->name);
     else if (GEOSisEmpty_r(geos, buffered))
         status = ur_error_set(error, UR_ERROR_INPUT,
-                              "piece %s: a hole is no wider than the kerf (%g mm) and would vanish",
-                              piece->name, -2 * distance);
+                              "piece %s: the hole at (%.1f, %.1f) is no wider than the kerf "
+                              "(%g mm) and would vanish",
+                              piece->name, at.x, at.y, -2 * distance);
     else if (GEOSGeomTypeId_r(geos, buffered) != GEOS_POLYGON ||
-             GEOSGetNumInteriorRings_r(geos, buffered) != 0)
+             (index > 0 && GEOSGetNumInteriorRings_r(geos, buffered) != 0))
         status = ur_error_set(error, UR_ERROR_INPUT,
-                              "piece %s: %s has a part narrower than the kerf (%g mm) that would "
-                              "%s",
-                              piece->name, what, 2 * fabs(distance),
-                              index == 0 ? "close into a hole" : "split it");
-    else
+                              "piece %s: %s at (%.1f, %.1f) has a part narrower than the kerf "
+                              "(%g mm) that would split it",
+                              piece->name, index == 0 ? "the outline" : "the hole", at.x, at.y,
+                              2 * fabs(distance));
+    else {
+        if (GEOSGetNumInteriorRings_r(geos, buffered) > 0) {
+            *slots += (size_t)GEOSGetNumInteriorRings_r(geos, buffered);
+            *slot_at = first_slot(geos, buffered);
+        }
         status = allow_exterior_ring(geos, buffered, ring, count, error);
+    }
     if (buffered)
         GEOSGeom_destroy_r(geos, buffered);
     if (polygon)
@@ -113,7 +146,7 @@ static ur_status offset_ring(GEOSContextHandle_t geos, const GEOSBufferParams *p
 
 /* Every path's new ring (NULL: unchanged) into rings, counts; *holes how many holes moved. */
 static ur_status offset_all(const ur_piece *piece, double kerf, ur_vec2 **rings, size_t *counts,
-                            size_t *holes, ur_error *error)
+                            size_t *holes, size_t *slots, ur_vec2 *slot_at, ur_error *error)
 {
     GEOSContextHandle_t geos = GEOS_init_r();
     GEOSBufferParams *params = geos ? GEOSBufferParams_create_r(geos) : NULL;
@@ -130,7 +163,8 @@ static ur_status offset_all(const ur_piece *piece, double kerf, ur_vec2 **rings,
         if (i > 0 && !is_hole(&piece->paths[i]))
             continue;
         double distance = i == 0 ? kerf / 2 : -kerf / 2;
-        status = offset_ring(geos, params, piece, i, distance, &rings[i], &counts[i], error);
+        status = offset_ring(geos, params, piece, i, distance, &rings[i], &counts[i], slots,
+                             slot_at, error);
         /* Holes keep the direction they had; the outline stays counter-clockwise. */
         if (status == UR_OK && i > 0) {
             (*holes)++;
@@ -143,12 +177,29 @@ static ur_status offset_all(const ur_piece *piece, double kerf, ur_vec2 **rings,
     return status;
 }
 
-static ur_status record(ur_piece *piece, double kerf, size_t holes, ur_error *error)
+static ur_status record(ur_piece *piece, double kerf, size_t holes, size_t slots, ur_vec2 slot_at,
+                        ur_error *error)
 {
     ur_allowance_record entry = {
         .kind = UR_ALLOWANCE_KERF_COMPENSATION, .count = 1 + holes, .value = kerf, .limit = NAN};
     entry.where = ur_vec2_make((piece->box.min.x + piece->box.max.x) / 2,
                                (piece->box.min.y + piece->box.max.y) / 2);
+    if (slots > 0) {
+        ur_allowance_record warning = {.kind = UR_ALLOWANCE_KERF_COMPENSATION,
+                                       .count = slots,
+                                       .value = kerf,
+                                       .limit = NAN,
+                                       .where = slot_at,
+                                       .warning = true};
+        snprintf(warning.reason, sizeof warning.reason,
+                 "%zu slot%s of the outline narrower than the kerf (%g mm), near (%.1f, %.1f), "
+                 "closed as the outline moved out: filled, as the cutter could not cut %s",
+                 slots, slots == 1 ? "" : "s", kerf, slot_at.x, slot_at.y,
+                 slots == 1 ? "it" : "them");
+        ur_status status = ur_piece_record(piece, &warning, error);
+        if (status != UR_OK)
+            return status;
+    }
     if (holes == 0)
         snprintf(entry.reason, sizeof entry.reason,
                  "outline offset outward by half the kerf, %g mm", kerf / 2);
@@ -175,9 +226,11 @@ ur_status ur_piece_compensate_kerf(ur_piece *piece, double kerf, ur_error *error
                             piece->name);
     ur_vec2 **rings = calloc(piece->path_count, sizeof *rings);
     size_t *counts = calloc(piece->path_count, sizeof *counts);
-    size_t holes = 0;
-    ur_status status = rings && counts ? offset_all(piece, kerf, rings, counts, &holes, error)
-                                       : ur_error_out_of_memory(error);
+    size_t holes = 0, slots = 0;
+    ur_vec2 slot_at = {0, 0};
+    ur_status status = rings && counts
+                           ? offset_all(piece, kerf, rings, counts, &holes, &slots, &slot_at, error)
+                           : ur_error_out_of_memory(error);
     for (size_t i = 0; status == UR_OK && i < piece->path_count; i++)
         if (rings[i]) {
             free(piece->paths[i].points);
@@ -192,5 +245,5 @@ ur_status ur_piece_compensate_kerf(ur_piece *piece, double kerf, ur_error *error
     if (status != UR_OK)
         return status;
     ur_piece_recompute_box(piece);
-    return record(piece, kerf, holes, error);
+    return record(piece, kerf, holes, slots, slot_at, error);
 }

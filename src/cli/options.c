@@ -57,6 +57,9 @@ enum option_id {
     OPT_TOLERANCE,
     OPT_NO_SPLIT,
     OPT_QUIET,
+    OPT_ALLOWANCES,
+    OPT_BRIDGES,
+    OPT_NO_KERF_COMPENSATION,
 };
 
 static const struct option long_options[] = {
@@ -101,6 +104,9 @@ static const struct option long_options[] = {
     {"tolerance", required_argument, NULL, OPT_TOLERANCE},
     {"no-split", no_argument, NULL, OPT_NO_SPLIT},
     {"quiet", no_argument, NULL, OPT_QUIET},
+    {"allowances", required_argument, NULL, OPT_ALLOWANCES},
+    {"bridges", required_argument, NULL, OPT_BRIDGES},
+    {"no-kerf-compensation", no_argument, NULL, OPT_NO_KERF_COMPENSATION},
     {"help", no_argument, NULL, 'h'},
     {NULL, 0, NULL, 0},
 };
@@ -126,8 +132,8 @@ static const struct {
     cli_action action;
     const char *options;
 } action_options[] = {
-    {CLI_DEVELOP,
-     " output machine material sheet method parts rulings no-split report strain-png "},
+    {CLI_DEVELOP, " output machine material sheet method parts rulings no-split report strain-png "
+                  "allowances bridges no-kerf-compensation "},
     {CLI_ANALYZE, " png report "},
     {CLI_COMPARE, " png csv "},
 };
@@ -449,6 +455,13 @@ static bool take_option(cli_job *job, int id, const char *value)
     case OPT_QUIET:
         job->quiet = true;
         return true;
+    case OPT_ALLOWANCES:
+        return cli_parse_allowances(job, value);
+    case OPT_BRIDGES:
+        return cli_parse_bridges(job, value);
+    case OPT_NO_KERF_COMPENSATION:
+        job->no_kerf_compensation = true;
+        return true;
     case 'n':
         return parse_count(surface, value, &job->develop.rulings);
     case OPT_METHOD: {
@@ -477,6 +490,8 @@ static void job_defaults(cli_job *job, cli_action action, const char *command, c
     job->max_strain = NAN;
     job->flatten = -1;
     job->surface_layer = -1;
+    job->allowances_auto = true;
+    job->bridges = CLI_BRIDGES_UNSET;
     job->machine_name = "co2-60w";
     job->material_name = "plywood-3mm";
     ur_develop_options_default(&job->develop);

@@ -81,7 +81,18 @@ typedef struct job_state {
     const char
         *method; /* how the nets were made: exact, triangle, quad, arap, lscm, strips, unfold */
     ur_surface_layer layer; /* the layer the 3D surface is (--surface, else the material's) */
+    double k_factor;        /* where the neutral layer is: the material's, or in a grooved skin */
+    bool grooved;           /* bending grooves: the neutral layer is in the uncut skin */
     double layer_offset;    /* mm from it to the neutral layer, toward the inside of the bend */
+    /*
+     * The surface each net was developed from, parallel to nets (NULL for
+     * a mesh or a flattening), for the allowances that ask it about a
+     * ruling: the job's surface, or a part of it moved to the neutral
+     * layer, kept in moved.
+     */
+    ur_ruled **net_surfaces;
+    ur_ruled *moved;
+    size_t moved_count;
 } job_state;
 
 static void state_free(job_state *state)
@@ -91,8 +102,24 @@ static void state_free(job_state *state)
     free(state->pieces);
     ur_layout_free(&state->layout);
     ur_net_list_free(&state->nets);
+    for (size_t k = 0; k < state->moved_count; k++)
+        ur_ruled_free(&state->moved[k]);
+    free(state->moved);
+    free(state->net_surfaces);
     if (state->have_ruled)
         ur_ruled_free(&state->ruled);
+}
+
+/* Records that the nets from first on were developed from surface. */
+static ur_status note_surface(job_state *state, size_t first, ur_ruled *surface, ur_error *error)
+{
+    ur_ruled **grown = realloc(state->net_surfaces, (state->nets.count + 1) * sizeof *grown);
+    if (!grown)
+        return ur_error_out_of_memory(error);
+    state->net_surfaces = grown;
+    for (size_t k = first; k < state->nets.count; k++)
+        grown[k] = surface;
+    return UR_OK;
 }
 
 static ur_status make_pieces(const cli_job *job, job_state *state, ur_error *error)
@@ -163,13 +190,19 @@ static ur_status develop_parts(const cli_job *job, job_state *state, ur_error *e
     bool whole = ur_ruled_gaps(&state->ruled, &gaps) == 0;
     ur_status status = UR_OK;
     state->surface_area = 0.0;
+    state->moved = ur_alloc_array(count, sizeof *state->moved, error);
+    if (!state->moved)
+        status = UR_ERROR_INTERNAL;
     for (size_t k = 0; k < count && status == UR_OK; k++) {
         if (!whole)
             ur_ruled_restrict(&state->ruled, parts[k].u_start, parts[k].u_end);
         double area = 0.0;
         ur_net_list nets = {NULL, 0};
-        ur_ruled moved, *surface;
-        status = neutral_layer(state, &moved, &surface, error);
+        ur_ruled *surface;
+        size_t first = state->nets.count;
+        status = neutral_layer(state, &state->moved[state->moved_count], &surface, error);
+        if (surface != &state->ruled)
+            state->moved_count++; /* kept: the allowances ask it about its rulings */
         if (status == UR_OK)
             status = ur_ruled_area(surface, ur_ruled_start(surface), ur_ruled_end(surface), &area,
                                    error);
@@ -177,8 +210,8 @@ static ur_status develop_parts(const cli_job *job, job_state *state, ur_error *e
             status = ur_develop(surface, &job->develop, &nets, error);
         if (status == UR_OK)
             status = append_nets(&state->nets, &nets, error);
-        if (surface == &moved)
-            ur_ruled_free(&moved);
+        if (status == UR_OK)
+            status = note_surface(state, first, surface, error);
         ur_net_list_free(&nets);
         state->surface_area += area;
     }
@@ -189,6 +222,10 @@ static ur_status develop_parts(const cli_job *job, job_state *state, ur_error *e
 static ur_status place(const cli_job *job, job_state *state, ur_error *error)
 {
     ur_status status = make_pieces(job, state, error);
+    if (status == UR_OK)
+        status = cli_allowances_before_placing(job, &state->machine, &state->material, &state->nets,
+                                               state->net_surfaces, state->pieces,
+                                               state->piece_count, error);
     if (status != UR_OK)
         return status;
     /* The first sheet every piece fits; the error of the last one tried otherwise. */
@@ -252,7 +289,7 @@ static ur_status write_outputs(const cli_job *job, job_state *state, ur_error *e
         .sheet_path = job->output_path,
     };
     ur_report_layer layer = {ur_surface_layer_name(state->layer), "neutral", state->layer_offset,
-                             state->material.k_factor, state->material.thickness};
+                             state->k_factor, state->material.thickness};
     if (state->have_ruled)
         context.layer = &layer;
     context.gap_count = ur_ruled_gaps(&state->ruled, &context.gaps);
@@ -327,14 +364,43 @@ static int flatten_if_needed(const cli_job *job, job_state *state, bool *flatten
     return code;
 }
 
-/* Which layer the surface is, and how far the neutral layer, which is developed, lies from it. */
+/* Rulings sampled to tell whether the surface bends tighter than the material. */
+enum { BEND_SAMPLES = 128 };
+
+/*
+ * Whether the router will cut bending grooves: they go on the inside of
+ * the bend, where they close, and leave the skin on the outside to bend.
+ */
+static bool will_be_grooved(const cli_job *job, job_state *state)
+{
+    if (state->machine.kind != UR_MACHINE_ROUTER ||
+        !(cli_allowances_chosen(job, &state->machine) & CLI_ALLOW_BENDING))
+        return false;
+    double limit = cli_smallest_bend_radius(&state->material);
+    double start = ur_ruled_start(&state->ruled), end = ur_ruled_end(&state->ruled);
+    for (size_t k = 0; k <= BEND_SAMPLES; k++) {
+        double u = start + (end - start) * (double)k / BEND_SAMPLES;
+        if (ur_analyze_bend_radius(&state->ruled, u, 5, NULL) < limit)
+            return true;
+    }
+    return false;
+}
+
+/*
+ * Which layer the surface is, and how far the neutral layer, which is
+ * developed, lies from it: K t from the inner face, K the material's; on a
+ * grooved part the middle of the uncut skin, K = 1 - skin / (2 t).
+ */
 static void choose_layer(const cli_job *job, job_state *state)
 {
     const ur_material *material = &state->material;
     state->layer =
         job->surface_layer >= 0 ? (ur_surface_layer)job->surface_layer : material->surface_layer;
+    state->grooved = will_be_grooved(job, state);
+    state->k_factor = state->grooved ? 1.0 - material->groove_skin / (2.0 * material->thickness)
+                                     : material->k_factor;
     state->layer_offset =
-        ur_surface_layer_offset(state->layer, material->thickness, material->k_factor);
+        ur_surface_layer_offset(state->layer, material->thickness, state->k_factor);
 }
 
 /* A note when the layer developed is not the one the surface describes. */
@@ -343,9 +409,11 @@ static void print_layer(const cli_job *job, const job_state *state)
     const ur_material *material = &state->material;
     if (state->layer_offset != 0.0 && !job->quiet)
         cli_message("%s: the surface is the %s face of %g mm %s: developing the neutral layer "
-                    "(K %g), %.4g mm %s the bend",
+                    "(K %g%s), %.4g mm %s the bend",
                     job->command, ur_surface_layer_name(state->layer), material->thickness,
-                    material->name, material->k_factor, fabs(state->layer_offset),
+                    material->name, state->k_factor,
+                    state->grooved ? ", the middle of the skin the bending grooves leave" : "",
+                    fabs(state->layer_offset),
                     state->layer_offset > 0 ? "toward the inside of" : "away from the inside of");
 }
 
@@ -431,7 +499,12 @@ int cli_run_job(const cli_job *job)
     }
     status = place(job, &state, &error);
     if (status == UR_OK)
+        status = cli_allowances_after_placing(job, &state.machine, &state.layout, state.pieces,
+                                              state.piece_count, &error);
+    if (status == UR_OK) {
+        cli_allowance_warnings(job, state.pieces, state.piece_count);
         status = write_all(job, &state, &error);
+    }
     if (status != UR_OK) {
         cli_message("%s: %s", job->command, error.message);
         code = cli_exit_status(&error);

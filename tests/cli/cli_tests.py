@@ -21,7 +21,9 @@ UNROLL = os.path.abspath(sys.argv[1])
 REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 SVG = "{http://www.w3.org/2000/svg}"
 INKSCAPE = "{http://www.inkscape.org/namespaces/inkscape}"
-FINE = ["--tolerance", "1e-5"]
+# The bare net at a fine tolerance, to compare with closed forms: no
+# allowances, no kerf offset.
+FINE = ["--tolerance", "1e-5", "--allowances", "none", "--no-kerf-compensation"]
 TESTS = []
 
 
@@ -719,7 +721,8 @@ def a_piece_that_would_overlap_itself_is_cut(work):
     write(work, "ribbon.obj", "\n".join(lines) + "\n")
     run(work, "mesh", "ribbon.obj", "-o", "r.svg", "--report", "r.json")
     pieces = report(work, "r.json")["pieces"]
-    check(len(pieces) >= 2, "%d piece(s)" % len(pieces))
+    # Halved along its length, each half winds 0.8 turn: two pieces are enough.
+    check(len(pieces) == 2, "%d piece(s)" % len(pieces))
     for outline in outlines(os.path.join(work, "r.svg")):
         check(simple_ring(outline), "an outline crosses itself")
     close(sum(p["flat_area_mm2"] for p in pieces), sum(p["area_3d_mm2"] for p in pieces), 1e-6,
@@ -768,7 +771,8 @@ HYPAR = ":".join("%g,%g,%g" % (x, y, x * y / HYPAR_C) for x, y in
 
 @test
 def flat_hypar_is_developed_exactly(work):
-    result = run(work, "hypar", "--corners", "0,0,5:100,0,5:120,80,5:-10,70,5", "-o", "q.svg")
+    result = run(work, "hypar", "--corners", "0,0,5:100,0,5:120,80,5:-10,70,5", "-o", "q.svg",
+                 "--allowances", "none", "--no-kerf-compensation")
     check("one plane" in result.stderr, result.stderr)
     [outline] = outlines(os.path.join(work, "q.svg"))
     quad = [(0, 0), (100, 0), (120, 80), (-10, 70)]
@@ -777,7 +781,8 @@ def flat_hypar_is_developed_exactly(work):
 
 @test
 def hypar_with_a_repeated_corner_is_a_triangle(work):
-    result = run(work, "hypar", "--corners", "0,0,0:100,0,0:100,0,0:0,80,30", "-o", "t.svg")
+    result = run(work, "hypar", "--corners", "0,0,0:100,0,0:100,0,0:0,80,30", "-o", "t.svg",
+                 "--allowances", "none", "--no-kerf-compensation")
     check("corners 2 and 3 are the same point" in result.stderr, result.stderr)
     [outline] = outlines(os.path.join(work, "t.svg"))
     # Half the cross product of two sides of the triangle (0,0,0), (100,0,0), (0,80,30).
@@ -864,6 +869,188 @@ def bad_rails_and_corners(work):
     bad(work, r"give a surface first", "analyze", "--png", "a.png")
     bad(work, r"--png does not apply", "cylinder", "--radius", "3", "--height", "4", "--png", "a.png", "-o", "x.svg")
     bad(work, r"no-such-dir", "analyze", "cylinder", "--radius", "3", "--height", "4", "--png", "no-such-dir/a.png")
+
+
+# ---- fabrication allowances ----------------------------------------------
+
+def allowance_records(piece, kind, warning=False):
+    return [a for a in piece["allowances"] if a["kind"] == kind and a["warning"] == warning]
+
+
+@test
+def seams_get_one_tab_and_matching_labels(work):
+    """A helicoid of 2.5 turns in cardboard splits into 3 pieces: 2 seams, one
+    glue tab each (with its fold scores), the label on both sides."""
+    run(work, "helicoid", "--radius", "30", "--pitch", "60", "--turns", "2.5", "--width", "40",
+        "--material", "cardboard-2mm", "--no-kerf-compensation", "-o", "lamp.svg",
+        "--report", "lamp.json")
+    pieces = report(work, "lamp.json")["pieces"]
+    check(len(pieces) == 3, "%d pieces" % len(pieces))
+    tabs = sum(len(allowance_records(p, "joint")) for p in pieces)
+    check(tabs == 2, "%d tabs for 2 seams" % tabs)
+    for seam, pair in (("A1", (0, 1)), ("A2", (1, 2))):
+        for k, piece in enumerate(pieces):
+            labels = [a for a in allowance_records(piece, "label") if "'%s'" % seam in a["reason"]]
+            check(len(labels) == (1 if k in pair else 0),
+                  "seam %s labelled %d times on %s" % (seam, len(labels), piece["name"]))
+    # Two folds per tab on 2 mm board: at the seam and a thickness out.
+    check(len(paths(os.path.join(work, "lamp.svg"), "score")) == 4, "fold scores")
+    check(len(paths(os.path.join(work, "lamp.svg"), "engrave")) > 0, "nothing engraved")
+    valid_svg(os.path.join(work, "lamp.svg"), 600, 400)
+    # --allowances none: the bare nets.
+    run(work, "helicoid", "--radius", "30", "--pitch", "60", "--turns", "2.5", "--width", "40",
+        "--material", "cardboard-2mm", "--allowances", "none", "--no-kerf-compensation",
+        "-o", "bare.svg", "--report", "bare.json")
+    check(all(p["allowances"] == [] for p in report(work, "bare.json")["pieces"]),
+          "allowances none still added some")
+    check(paths(os.path.join(work, "bare.svg"), "engrave") == [], "labels without allowances")
+
+
+@test
+def strain_gets_kerfing_and_overlaps(work):
+    """The paper's two cases at the command line: the triangle method's net
+    (coverage below 1) gets kerfing cuts only, the quad method's (above 1)
+    overlaps only, the exact net neither; a steep hypar in cardboard both."""
+    helicoid = ["helicoid", "--radius", "30", "--pitch", "60", "--turns", "0.25", "--width", "25",
+                "--material", "paper-0.3mm", "-n", "8", "--allowances", "kerfing,overlaps"]
+    expected = {"triangle": (True, False), "quad": (False, True), "exact": (False, False)}
+    for method, (kerfing, overlaps) in expected.items():
+        run(work, *helicoid, "--method", method, "-o", method + ".svg", "--report", method + ".json")
+        [piece] = report(work, method + ".json")["pieces"]
+        check(bool(allowance_records(piece, "kerfing")) == kerfing,
+              "%s: kerfing %r" % (method, piece["allowances"]))
+        check(bool(allowance_records(piece, "overlap")) == overlaps,
+              "%s: overlaps %r" % (method, piece["allowances"]))
+        check((len(paths(os.path.join(work, method + ".svg"), "kerf")) > 0) == (kerfing or overlaps),
+              "%s: kerf layer" % method)
+        for record in piece["allowances"]:
+            check(not record["warning"], "%s: %s" % (method, record["reason"]))
+    run(work, "hypar", "--corners", "-50,-40,40:50,-40,-40:50,40,40:-50,40,-40",
+        "--material", "cardboard-2mm", "-o", "h.svg", "--report", "h.json")
+    [piece] = report(work, "h.json")["pieces"]
+    check(piece["max_compression"] > 0.005 and piece["max_stretch"] > 0.03,
+          "hypar strain %g %g" % (piece["max_compression"], piece["max_stretch"]))
+    kerfing = allowance_records(piece, "kerfing")
+    overlaps = allowance_records(piece, "overlap")
+    check(kerfing and overlaps, "hypar allowances %r" % piece["allowances"])
+    for record in kerfing:
+        check(record["value"] > record["limit"] == 0.005, "kerfing record %r" % record)
+    for record in overlaps:
+        check(record["value"] > record["limit"] == 0.03, "overlap record %r" % record)
+    check(len(paths(os.path.join(work, "h.svg"), "mark")) >= len(overlaps), "no overlap zones")
+
+
+@test
+def kerf_compensation_and_bridges(work):
+    """The cylinder's 251.327 x 120 rectangle cut with plywood's 0.2 mm laser
+    kerf: the outline moves out by 0.1 mm, corners square; on the router
+    (3.175 mm bit) with 4 bridges the outline is 4 open cuts with 4 gaps of
+    the router's 3 mm bridge width."""
+    cylinder = ["cylinder", "--radius", "40", "--height", "120", "--allowances", "none"]
+    run(work, *cylinder, "-o", "c.svg", "--report", "c.json")
+    [piece] = report(work, "c.json")["pieces"]
+    box = piece["bounding_box"]
+    close(max(box["width_mm"], box["height_mm"]), 2 * math.pi * 40 + 0.2, 1e-9, "length")
+    close(min(box["width_mm"], box["height_mm"]), 120.2, 1e-9, "height")
+    [outline] = outlines(os.path.join(work, "c.svg"))
+    close(area(outline), (2 * math.pi * 40 + 0.2) * 120.2, 1e-7, "area with the kerf")
+    check([a["kind"] for a in piece["allowances"]] == ["kerf-compensation"], piece["allowances"])
+    run(work, *cylinder, "--machine", "router", "--bridges", "4", "-o", "r.svg",
+        "--report", "r.json")
+    [piece] = report(work, "r.json")["pieces"]
+    [bridges] = allowance_records(piece, "bridges")
+    check(bridges["count"] == 4 and bridges["value"] == 3, "bridges %r" % bridges)
+    cuts = paths(os.path.join(work, "r.svg"), "cut")
+    check(len(cuts) == 4 and not any(closed for _, closed in cuts), "%d cut paths" % len(cuts))
+    cut_length = sum(sum(math.dist(p, q) for p, q in zip(points, points[1:])) for points, _ in cuts)
+    close(cut_length, 2 * (2 * math.pi * 40 + 3.175) + 2 * (120 + 3.175) - 4 * 3, 1e-6,
+          "cut length with 4 gaps")
+
+
+@test
+def plywood_cylinder_gets_bending_grooves(work):
+    """3 mm plywood bends no tighter than 150 mm: a cylinder of radius 40 on
+    the router (bit w = 3.175 mm, grooves d = 3 - 1 mm skin = 2 mm deep)
+    gets grooves along its rulings every s = w R / d = 63.5 mm; one of radius
+    1000 gets none."""
+    base = ["cylinder", "--height", "100", "--machine", "router", "--material", "plywood-3mm",
+            "--allowances", "bending"]
+    run(work, *base, "--radius", "40", "-o", "c.svg", "--report", "c.json")
+    [piece] = report(work, "c.json")["pieces"]
+    [record] = allowance_records(piece, "bending")
+    close(record["value"], 40, 1e-6, "bend radius")
+    check(record["limit"] == 150, "record %r" % record)
+    check("every 63.5 mm" in record["reason"] and "2 mm deep" in record["reason"], record["reason"])
+    grooves = [points for points, _ in paths(os.path.join(work, "c.svg"), "kerf")]
+    check(len(grooves) == record["count"] == math.ceil(2 * math.pi * 40 / 63.5),
+          "%d grooves" % len(grooves))
+    # All parallel (along the rulings, 100 mm long); spaced 63.5 mm apart across them.
+    (x0, y0), (x1, y1) = grooves[0][0], grooves[0][-1]
+    length = math.hypot(x1 - x0, y1 - y0)
+    close(length, 100, 1e-6, "groove length")
+    normal = ((y1 - y0) / length, -(x1 - x0) / length)
+    offsets = sorted(p[0][0] * normal[0] + p[0][1] * normal[1] for p in grooves)
+    for a, b in zip(offsets, offsets[1:]):
+        close(b - a, 63.5, 1e-6, "groove spacing")
+    run(work, *base, "--radius", "1000", "--sheet", "6400x200", "-o", "w.svg", "--report", "w.json")
+    [piece] = report(work, "w.json")["pieces"]
+    check(allowance_records(piece, "bending") == [], "grooves on a radius of 1000")
+    check(paths(os.path.join(work, "w.svg"), "kerf") == [], "kerf lines on a radius of 1000")
+
+
+@test
+def bad_allowance_options(work):
+    bad(work, r"--allowances: 'glue' is not one of", *HELICOID, "--allowances", "tabs,glue",
+        "-o", "x.svg")
+    bad(work, r"--bridges: '0' is not auto, none or a count", *HELICOID, "--bridges", "0",
+        "-o", "x.svg")
+    bad(work, r"--bridges: 'many' is not auto", *HELICOID, "--bridges", "many", "-o", "x.svg")
+
+
+def write_grid_stl(path, n):
+    """A wavy n x n grid of 2 n^2 triangles as binary STL (50 bytes each)."""
+    import struct
+    def z(i, j):
+        return 5 * math.sin(i / 7.0) * math.cos(j / 9.0)
+    with open(path, "wb") as f:
+        f.write(b"unroll test grid".ljust(80, b" "))
+        f.write(struct.pack("<I", 2 * n * n))
+        for i in range(n):
+            for j in range(n):
+                a, b = (i, j, z(i, j)), (i + 1, j, z(i + 1, j))
+                c, d = (i + 1, j + 1, z(i + 1, j + 1)), (i, j + 1, z(i, j + 1))
+                for tri in ((a, b, c), (a, c, d)):
+                    f.write(struct.pack("<3f", 0, 0, 0))
+                    for p in tri:
+                        f.write(struct.pack("<3f", *p))
+                    f.write(b"\0\0")
+
+
+@test
+def a_mesh_too_large_for_memory_fails_cleanly(work):
+    """Under an address-space limit (ulimit -v) a mesh that will not fit is
+    refused before the work starts, with exit status 1 and no output; a
+    tighter limit fails cleanly too, never with a crash.  AddressSanitizer
+    reserves terabytes of address space, so the sanitizer build skips this."""
+    if "/sanitize/" in UNROLL:
+        return
+    import resource
+    write_grid_stl(os.path.join(work, "grid.stl"), 220)  # 96,800 triangles
+    def limited(megabytes):
+        def apply():
+            resource.setrlimit(resource.RLIMIT_AS, (megabytes << 20, megabytes << 20))
+        return apply
+    limit = r"GB of memory, but only [0-9.]+ GB is available under this process's limit \(ulimit -v\)"
+    for megabytes, pattern in ((300, r"flattening 96800 triangles needs about [0-9.]+ " + limit),
+                               (150, r"reading grid\.stl needs about [0-9.]+ " + limit)):
+        before = set(os.listdir(work))
+        result = subprocess.run([UNROLL, "mesh", "grid.stl", "-o", "g.svg"], cwd=work,
+                                capture_output=True, text=True, preexec_fn=limited(megabytes),
+                                env=dict(os.environ, UNROLL_PROFILES=os.path.join(REPO, "profiles")))
+        check(result.returncode in (1, 2), "ulimit -v %d MB: exit %d (a signal is negative); %s"
+              % (megabytes, result.returncode, result.stderr.strip()))
+        check(re.search(pattern, result.stderr), "ulimit -v %d MB: %r" % (megabytes, result.stderr))
+        check(set(os.listdir(work)) == before, "files left behind")
 
 
 def main():

@@ -337,12 +337,26 @@ static void test_kerf_refuses_narrow_features(void **state)
     assert_int_equal(ur_piece_compensate_kerf(&piece, 0.05, NULL), UR_OK);
     ur_piece_free(&piece);
 
-    /* A keyhole slot in the outline: a 0.1 mm channel to a 5 mm room closes into a hole. */
+    /*
+     * A keyhole slot in the outline: a 0.1 mm channel to a 5 mm room closes
+     * into a hole the cutter could not reach: it is filled, with a warning
+     * that says where, and the outline is the plate grown by 0.1 mm.
+     */
     ur_vec2 keyhole[] = {{0, 0},   {100, 0}, {100, 50}, {50.05, 50}, {50.05, 30}, {55, 30},
                          {55, 25}, {45, 25}, {45, 30},  {49.95, 30}, {49.95, 50}, {0, 50}};
     ur_piece slot = piece_named("slotted");
     add(&slot, UR_OP_CUT, keyhole, sizeof keyhole / sizeof *keyhole, true);
-    assert_refused(&slot, 0.2, "close");
+    assert_int_equal(ur_piece_compensate_kerf(&slot, 0.2, NULL), UR_OK);
+    assert_int_equal(slot.record_count, 2);
+    const ur_allowance_record *warning = &slot.records[0];
+    assert_true(warning->warning && warning->count == 1);
+    assert_true(strstr(warning->reason, "slot") != NULL);
+    assert_close(warning->where.x, 50, 0.5); /* the room, 45..55 across */
+    assert_close(warning->where.y, 27.5, 3);
+    assert_close(ur_box_width(slot.box), 100.2, 1e-9);
+    assert_close(ur_box_height(slot.box), 50.2, 1e-9);
+    assert_close(fabs(ur_polygon_signed_area(slot.paths[0].points, slot.paths[0].count)),
+                 100.2 * 50.2, 1e-6);
     ur_piece_free(&slot);
 }
 

@@ -1,0 +1,235 @@
+/*
+ * allowances.c: what the material needs besides the net's outline, as the
+ * command line asks for it (--allowances, --bridges,
+ * --no-kerf-compensation) and sized from the material and machine
+ * profiles.  The library adds each allowance (allow.h); this file decides
+ * which, in what order, and tells the user what could not be done.
+ */
+#include "cli.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const struct {
+    const char *name;
+    unsigned bit;
+} allowance_names[] = {
+    {"tabs", CLI_ALLOW_TABS},         {"kerfing", CLI_ALLOW_KERFING},
+    {"overlaps", CLI_ALLOW_OVERLAPS}, {"bending", CLI_ALLOW_BENDING},
+    {"bridges", CLI_ALLOW_BRIDGES},
+};
+
+static const size_t allowance_name_count = sizeof allowance_names / sizeof allowance_names[0];
+
+/* One name of a LIST, length bytes long. */
+static bool add_allowance(cli_job *job, const char *name, size_t length)
+{
+    for (size_t k = 0; k < allowance_name_count; k++)
+        if (strlen(allowance_names[k].name) == length &&
+            strncmp(allowance_names[k].name, name, length) == 0) {
+            job->allowances |= allowance_names[k].bit;
+            return true;
+        }
+    cli_message("%s: --allowances: '%.*s' is not one of tabs, kerfing, overlaps, bending, bridges "
+                "(or give auto or none)",
+                job->command, (int)length, name);
+    return false;
+}
+
+bool cli_parse_allowances(cli_job *job, const char *value)
+{
+    job->allowances = 0;
+    job->allowances_auto = strcmp(value, "auto") == 0;
+    if (job->allowances_auto || strcmp(value, "none") == 0)
+        return true;
+    const char *start = value;
+    for (;;) {
+        const char *comma = strchr(start, ',');
+        size_t length = comma ? (size_t)(comma - start) : strlen(start);
+        if (!add_allowance(job, start, length))
+            return false;
+        if (!comma)
+            return true;
+        start = comma + 1;
+    }
+}
+
+bool cli_parse_bridges(cli_job *job, const char *value)
+{
+    if (strcmp(value, "auto") == 0) {
+        job->bridges = -1;
+        return true;
+    }
+    if (strcmp(value, "none") == 0) {
+        job->bridges = 0;
+        return true;
+    }
+    char *end = NULL;
+    errno = 0;
+    long count = strtol(value, &end, 10);
+    if (end == value || *end != '\0' || errno != 0 || count < 1 || count > 1000) {
+        cli_message("%s: --bridges: '%s' is not auto, none or a count from 1 to 1000", job->command,
+                    value);
+        return false;
+    }
+    job->bridges = count;
+    return true;
+}
+
+unsigned cli_allowances_chosen(const cli_job *job, const ur_machine *machine)
+{
+    unsigned set = job->allowances;
+    if (job->allowances_auto) {
+        set = CLI_ALLOW_TABS | CLI_ALLOW_KERFING | CLI_ALLOW_OVERLAPS | CLI_ALLOW_BENDING;
+        if (machine->bridges_by_default)
+            set |= CLI_ALLOW_BRIDGES;
+    }
+    if (job->bridges == 0)
+        set &= ~(unsigned)CLI_ALLOW_BRIDGES;
+    else if (job->bridges != CLI_BRIDGES_UNSET)
+        set |= CLI_ALLOW_BRIDGES;
+    return set;
+}
+
+static ur_status add_relief(unsigned set, const ur_material *material, const ur_net_list *nets,
+                            ur_piece *pieces, size_t count, ur_error *error)
+{
+    ur_relief_limits limits = {
+        .max_stretch = material->max_stretch,
+        .max_compression = material->max_compression,
+        .opening = material->kerfing_opening,
+        .margin = material->kerfing_margin,
+        .darts = material->overlap == UR_OVERLAP_DART,
+        .kerfing = (set & CLI_ALLOW_KERFING) != 0,
+        .overlaps = (set & CLI_ALLOW_OVERLAPS) != 0,
+    };
+    ur_status status = UR_OK;
+    for (size_t k = 0; status == UR_OK && k < count; k++)
+        status = ur_piece_add_relief(&pieces[k], &nets->nets[k], &limits, error);
+    return status;
+}
+
+double cli_smallest_bend_radius(const ur_material *material)
+{
+    return material->grain == UR_GRAIN_ALONG ? material->bend_radius_with_grain
+                                             : material->bend_radius_across_grain;
+}
+
+static ur_status add_bending(const ur_machine *machine, const ur_material *material,
+                             const ur_net_list *nets, ur_ruled *const *surfaces, ur_piece *pieces,
+                             size_t count, ur_error *error)
+{
+    ur_bending_options options = {
+        .min_radius = cli_smallest_bend_radius(material),
+        .router = machine->kind == UR_MACHINE_ROUTER,
+        .groove_width = ur_effective_kerf(machine, material),
+        .groove_depth = material->thickness - material->groove_skin,
+        .hinge_cut_length = material->hinge_cut_length,
+        .hinge_connection = material->hinge_connection,
+        .hinge_distance = material->hinge_distance,
+    };
+    ur_status status = UR_OK;
+    for (size_t k = 0; status == UR_OK && k < count; k++)
+        if (surfaces[k])
+            status =
+                ur_piece_add_bending_kerfs(&pieces[k], &nets->nets[k], surfaces[k], &options, error);
+    return status;
+}
+
+static ur_status add_joints(const ur_material *material, const ur_net_list *nets,
+                            ur_piece *pieces, ur_error *error)
+{
+    ur_font *font = NULL;
+    ur_status status = ur_font_open(NULL, &font, error);
+    if (status != UR_OK)
+        return status;
+    ur_joint_options options = {
+        .lap = material->joint == UR_JOINT_LAP,
+        .tab_depth = material->tab_depth,
+        .tab_angle = material->tab_angle,
+        .lap_width = material->lap_width,
+        .thickness = material->thickness,
+        .font = font,
+        .label_height = material->label_height,
+        .name_pieces = true,
+    };
+    status = ur_pieces_add_joints(pieces, nets, &options, error);
+    ur_font_close(font);
+    return status;
+}
+
+ur_status cli_allowances_before_placing(const cli_job *job, const ur_machine *machine,
+                                        const ur_material *material, const ur_net_list *nets,
+                                        ur_ruled *const *surfaces, ur_piece *pieces,
+                                        size_t count, ur_error *error)
+{
+    unsigned set = cli_allowances_chosen(job, machine);
+    ur_status status = UR_OK;
+    if (set & (CLI_ALLOW_KERFING | CLI_ALLOW_OVERLAPS))
+        status = add_relief(set, material, nets, pieces, count, error);
+    if (status == UR_OK && surfaces && (set & CLI_ALLOW_BENDING))
+        status = add_bending(machine, material, nets, surfaces, pieces, count, error);
+    if (status == UR_OK && (set & CLI_ALLOW_TABS))
+        status = add_joints(material, nets, pieces, error);
+    double kerf = ur_effective_kerf(machine, material);
+    for (size_t k = 0; status == UR_OK && !job->no_kerf_compensation && k < count; k++)
+        status = ur_piece_compensate_kerf(&pieces[k], kerf, error);
+    return status;
+}
+
+ur_status cli_allowances_after_placing(const cli_job *job, const ur_machine *machine,
+                                       const ur_layout *layout, ur_piece *pieces, size_t count,
+                                       ur_error *error)
+{
+    for (size_t s = 0; s < layout->sheet_count; s++)
+        for (size_t p = 0; p < layout->sheets[s].placement_count; p++) {
+            const ur_placement *placement = &layout->sheets[s].placements[p];
+            if (placement->piece_index < count)
+                ur_piece_turn_labels(&pieces[placement->piece_index],
+                                     atan2(placement->transform.sine, placement->transform.cosine));
+        }
+    if (!(cli_allowances_chosen(job, machine) & CLI_ALLOW_BRIDGES))
+        return UR_OK;
+    size_t bridges = job->bridges > 0 ? (size_t)job->bridges : 0;
+    bool router = machine->kind == UR_MACHINE_ROUTER;
+    ur_status status = UR_OK;
+    for (size_t k = 0; status == UR_OK && k < count; k++)
+        status = ur_piece_add_bridges(&pieces[k], bridges, machine->bridge_width, router, error);
+    return status;
+}
+
+/*
+ * One line per piece and kind of allowance: the first warning's reason,
+ * and how many more there are (all are in the report), so that a strongly
+ * strained piece does not bury the summary.
+ */
+void cli_allowance_warnings(const cli_job *job, const ur_piece *pieces, size_t count)
+{
+    if (job->quiet)
+        return;
+    for (size_t k = 0; k < count; k++)
+        for (int kind = 0; kind < UR_ALLOWANCE_KIND_COUNT; kind++) {
+            const ur_allowance_record *first = NULL;
+            size_t more = 0;
+            for (size_t r = 0; r < pieces[k].record_count; r++) {
+                const ur_allowance_record *record = &pieces[k].records[r];
+                if (!record->warning || record->kind != (ur_allowance_kind)kind)
+                    continue;
+                if (first)
+                    more++;
+                else
+                    first = record;
+            }
+            if (!first)
+                continue;
+            if (more)
+                cli_message("%s: warning: piece %s: %s (and %zu more %s warning%s in the report)",
+                            job->command, pieces[k].name, first->reason, more,
+                            ur_allowance_kind_name((ur_allowance_kind)kind), more == 1 ? "" : "s");
+            else
+                cli_message("%s: warning: piece %s: %s", job->command, pieces[k].name,
+                            first->reason);
+        }
+}
