@@ -446,7 +446,9 @@ static ur_status label_side(const joiner *j, ur_piece *piece, const run *r, cons
     size_t segment;
     point_at(r, r->length / 2, &segment);
     ur_vec2 inward = ur_vec2_scale(segment_normal(r, segment), -1.0);
-    ur_vec2 near = ur_vec2_add_scaled(middle, inward, 0.5 * o->label_height + 1.0);
+    /* Beside the seam; with laps beyond the zone the other piece covers. */
+    double lapped = o->lap ? o->lap_width : 0.0;
+    ur_vec2 near = ur_vec2_add_scaled(middle, inward, lapped + 0.5 * o->label_height + 1.0);
     ur_vec2 along = ur_vec2_sub(r->points[r->count - 1], r->points[0]);
     double clearance = fmax(0.3, 0.15 * o->label_height);
     bool placed;

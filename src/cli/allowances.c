@@ -133,13 +133,13 @@ static ur_status add_bending(const ur_machine *machine, const ur_material *mater
     ur_status status = UR_OK;
     for (size_t k = 0; status == UR_OK && k < count; k++)
         if (surfaces[k])
-            status =
-                ur_piece_add_bending_kerfs(&pieces[k], &nets->nets[k], surfaces[k], &options, error);
+            status = ur_piece_add_bending_kerfs(&pieces[k], &nets->nets[k], surfaces[k], &options,
+                                                error);
     return status;
 }
 
-static ur_status add_joints(const ur_material *material, const ur_net_list *nets,
-                            ur_piece *pieces, ur_error *error)
+static ur_status add_joints(const ur_material *material, const ur_net_list *nets, ur_piece *pieces,
+                            ur_error *error)
 {
     ur_font *font = NULL;
     ur_status status = ur_font_open(NULL, &font, error);
@@ -162,8 +162,8 @@ static ur_status add_joints(const ur_material *material, const ur_net_list *nets
 
 ur_status cli_allowances_before_placing(const cli_job *job, const ur_machine *machine,
                                         const ur_material *material, const ur_net_list *nets,
-                                        ur_ruled *const *surfaces, ur_piece *pieces,
-                                        size_t count, ur_error *error)
+                                        ur_ruled *const *surfaces, ur_piece *pieces, size_t count,
+                                        ur_error *error)
 {
     unsigned set = cli_allowances_chosen(job, machine);
     ur_status status = UR_OK;

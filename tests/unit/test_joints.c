@@ -101,6 +101,29 @@ static ur_joint_options tab_options(const ur_font *font)
     return options;
 }
 
+/*
+ * No other line of the piece (labels, folds, marks) crosses its grown
+ * outline: each keeps off it or touches it only at a fold's ends.
+ */
+static void check_nothing_crosses_outline(const ur_piece *piece)
+{
+    GEOSGeometry *outline = polygon(piece->paths[0].points, piece->paths[0].count);
+    GEOSGeometry *inside = GEOSBuffer_r(geos, outline, 1e-6, 8);
+    for (size_t k = 1; k < piece->path_count; k++) {
+        const ur_path *path = &piece->paths[k];
+        for (size_t i = 0; i < path->count; i++) {
+            GEOSGeometry *point =
+                GEOSGeom_createPointFromXY_r(geos, path->points[i].x, path->points[i].y);
+            if (GEOSContains_r(geos, inside, point) != 1)
+                fail_msg("piece %s: path %zu (op %d) point %zu lies outside its outline",
+                         piece->name, k, path->op, i);
+            GEOSGeom_destroy_r(geos, point);
+        }
+    }
+    GEOSGeom_destroy_r(geos, inside);
+    GEOSGeom_destroy_r(geos, outline);
+}
+
 /* Every engraved point lies inside the net's own outline (not on a tab). */
 static void check_engraving_inside(const ur_piece *piece, const ur_net *net)
 {
@@ -147,6 +170,7 @@ static void test_cylinder_tab(void **state)
     /* The label A1 on both sides of the seam, inside the net. */
     assert_int_equal(count_records(&pieces[0], UR_ALLOWANCE_LABEL, false), 2);
     check_engraving_inside(&pieces[0], &nets.nets[0]);
+    check_nothing_crosses_outline(&pieces[0]);
 
     ur_font_close(font);
     free_pieces(pieces, nets.count);
@@ -195,8 +219,10 @@ static void test_helicoid_labels_pair(void **state)
             assert_int_equal(found, expected ? 1 : 0);
         }
     }
-    for (size_t k = 0; k < nets.count; k++)
+    for (size_t k = 0; k < nets.count; k++) {
         check_engraving_inside(&pieces[k], &nets.nets[k]);
+        check_nothing_crosses_outline(&pieces[k]);
+    }
     ur_font_close(font);
     free_pieces(pieces, nets.count);
     ur_net_list_free(&nets);
@@ -253,6 +279,7 @@ static void test_unfolded_tabs_clear(void **state)
         assert_true(area_of(grown) > area_of(net));
         GEOSGeom_destroy_r(geos, grown);
         GEOSGeom_destroy_r(geos, net);
+        check_nothing_crosses_outline(&pieces[k]);
     }
     print_message("%zu seams: %zu tabs, %zu without\n", seams, tabs, warnings);
     /* Every seam got a tab or a warning, never both, never two. */
