@@ -618,13 +618,10 @@ static ur_status open_inner(bend_job *job)
     job->geos = GEOS_init_r();
     if (!job->geos)
         return ur_error_out_of_memory(job->error);
-    GEOSGeometry *outline = allow_polygon(job->geos, job->net->outline, job->net->outline_count);
-    if (outline) {
-        /* Chords of the buffer's arcs cut inside them: widen it so no chord comes nearer. */
-        double margin = job->options->hinge_connection / cos(M_PI / (4.0 * QUADRANT_SEGMENTS));
-        job->inner = GEOSBuffer_r(job->geos, outline, -margin, QUADRANT_SEGMENTS);
-        GEOSGeom_destroy_r(job->geos, outline);
-    }
+    /* Chords of the buffer's arcs cut inside them: widen it so no chord comes nearer. */
+    double margin = job->options->hinge_connection / cos(M_PI / (4.0 * QUADRANT_SEGMENTS));
+    job->inner = allow_inside(job->geos, job->net->outline, job->net->outline_count, margin,
+                              QUADRANT_SEGMENTS);
     if (!job->inner)
         return ur_error_set(job->error, UR_ERROR_INTERNAL,
                             "piece '%s': GEOS failed to buffer the outline for a living hinge",

@@ -4,6 +4,7 @@
  */
 #include "allow_internal.h"
 
+#include <math.h>
 #include <stdlib.h>
 
 static GEOSCoordSequence *sequence_of(GEOSContextHandle_t geos, const ur_vec2 *points, size_t count,
@@ -75,6 +76,22 @@ ur_status allow_exterior_ring(GEOSContextHandle_t geos, const GEOSGeometry *poly
     *ring = points;
     *count = n;
     return UR_OK;
+}
+
+GEOSGeometry *allow_inside(GEOSContextHandle_t geos, const ur_vec2 *ring, size_t count,
+                           double margin, int quadrant_segments)
+{
+    double tolerance = fmin(5e-3, margin / 100);
+    GEOSGeometry *polygon = allow_polygon(geos, ring, count);
+    GEOSGeometry *simple =
+        polygon ? GEOSTopologyPreserveSimplify_r(geos, polygon, tolerance) : NULL;
+    GEOSGeometry *inside =
+        simple ? GEOSBuffer_r(geos, simple, -(margin + tolerance), quadrant_segments) : NULL;
+    if (simple)
+        GEOSGeom_destroy_r(geos, simple);
+    if (polygon)
+        GEOSGeom_destroy_r(geos, polygon);
+    return inside;
 }
 
 double allow_area(GEOSContextHandle_t geos, const GEOSGeometry *geometry)

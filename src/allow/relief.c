@@ -1099,9 +1099,10 @@ static ur_status open_job(relief_job *job)
     job->size = hypot(ur_box_width(box), ur_box_height(box));
     job->outline = allow_polygon(job->geos, net->outline, net->outline_count);
     if (job->outline)
-        job->inner = job->limits->margin > 0
-                         ? GEOSBuffer_r(job->geos, job->outline, -job->limits->margin, 8)
-                         : GEOSGeom_clone_r(job->geos, job->outline);
+        job->inner =
+            job->limits->margin > 0
+                ? allow_inside(job->geos, net->outline, net->outline_count, job->limits->margin, 8)
+                : GEOSGeom_clone_r(job->geos, job->outline);
     return job->outline && job->inner ? UR_OK : geos_failed(job, "buffer the outline");
 }
 
