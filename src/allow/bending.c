@@ -450,6 +450,46 @@ static ur_status hinge_row(bend_job *job, ur_segment row, bool odd, bend_region 
     return status;
 }
 
+/*
+ * The part of the ruling at u (from rail a at v = 0 to rail b at v = 1)
+ * that bends tighter than the material allows: [*v_low, *v_high], widened
+ * to the samples around it so that nothing tight is left out.  On a
+ * tangent developable the radius grows with the distance from the edge of
+ * regression, so only the rulings' near ends need the hinge.  False when
+ * no sample is tight (the minimum fell between samples): then all of it.
+ */
+static bool tight_part(const bend_job *job, double u, double *v_low, double *v_high)
+{
+    int first = -1, last = -1;
+    for (int k = 0; k < ACROSS; k++) {
+        ur_point_curvature c;
+        ur_analyze_point(job->ruled, u, (double)k / (ACROSS - 1), &c);
+        if (c.bend_radius < job->options->min_radius) {
+            if (first < 0)
+                first = k;
+            last = k;
+        }
+    }
+    if (first < 0)
+        return false;
+    *v_low = (double)(first > 0 ? first - 1 : 0) / (ACROSS - 1);
+    *v_high = (double)(last < ACROSS - 1 ? last + 1 : ACROSS - 1) / (ACROSS - 1);
+    return true;
+}
+
+/* A hinge row: the ruling line across the net, cut down to the part that bends too tightly. */
+static ur_segment hinge_line(const bend_job *job, double t, ur_segment ruling, ur_segment line)
+{
+    double v_low, v_high;
+    if (!tight_part(job, parameter_at(job, t), &v_low, &v_high))
+        return line;
+    if (v_low > 0)
+        line.start = lerp(ruling.start, ruling.end, v_low);
+    if (v_high < 1)
+        line.end = lerp(ruling.start, ruling.end, v_high);
+    return line;
+}
+
 /* The grooves or hinge rows of one region. */
 static ur_status fill_region(bend_job *job, bend_region *region)
 {
@@ -478,7 +518,7 @@ static ur_status fill_region(bend_job *job, bend_region *region)
             status = add_line(job, line.start, line.end, region);
         else {
             size_t before = region->lines;
-            status = hinge_row(job, line, k % 2 == 1, region);
+            status = hinge_row(job, hinge_line(job, t, ruling, line), k % 2 == 1, region);
             cut_rows += region->lines > before;
         }
     }
