@@ -69,6 +69,8 @@ typedef struct cli_job {
     bool allowances_auto; /* --allowances auto (the default): what the job needs */
     long bridges; /* --bridges: -1 auto count, 0 none, N; CLI_BRIDGES_UNSET when not given */
     bool no_kerf_compensation; /* --no-kerf-compensation */
+    /* placement: -1 when not given (the machine's) */
+    double margin, spacing;
 } cli_job;
 
 enum {
@@ -150,6 +152,18 @@ ur_status cli_allowances_before_placing(const cli_job *job, const ur_machine *ma
 ur_status cli_allowances_after_placing(const cli_job *job, const ur_machine *machine,
                                        const ur_layout *layout, ur_piece *pieces, size_t count,
                                        ur_error *error);
+
+/*
+ * Places the pieces on the first sheet size they all fit (--sheet, else the
+ * material's stock that fits the machine's bed, else the bed), margin and
+ * spacing from the job or the machine (run.c).
+ */
+ur_status cli_place_pieces(const cli_job *job, const ur_machine *machine,
+                           const ur_material *material, const ur_piece *pieces, size_t count,
+                           ur_layout *layout, ur_error *error);
+
+/* unroll nest FILE... -o OUT (nest.c) */
+int cli_nest(int argc, char **argv);
 
 /* The warnings the allowances recorded, on stderr ("piece P2: ..."). */
 void cli_allowance_warnings(const cli_job *job, const ur_piece *pieces, size_t count);

@@ -492,6 +492,7 @@ static void job_defaults(cli_job *job, cli_action action, const char *command, c
     job->surface_layer = -1;
     job->allowances_auto = true;
     job->bridges = CLI_BRIDGES_UNSET;
+    job->margin = job->spacing = -1;
     job->machine_name = "co2-60w";
     job->material_name = "plywood-3mm";
     ur_develop_options_default(&job->develop);

@@ -228,18 +228,27 @@ static ur_status place(const cli_job *job, job_state *state, ur_error *error)
                                                state->piece_count, error);
     if (status != UR_OK)
         return status;
+    return cli_place_pieces(job, &state->machine, &state->material, state->pieces,
+                            state->piece_count, &state->layout, error);
+}
+
+ur_status cli_place_pieces(const cli_job *job, const ur_machine *machine,
+                           const ur_material *material, const ur_piece *pieces, size_t count,
+                           ur_layout *layout, ur_error *error)
+{
     /* The first sheet every piece fits; the error of the last one tried otherwise. */
     ur_sheet_size choices[UR_MAX_STOCK_SIZES + 1];
-    size_t count = sheet_choices(job, &state->machine, &state->material, choices);
+    size_t choice_count = sheet_choices(job, machine, material, choices);
     ur_layout_options options = {
-        .margin = state->machine.margin,
-        .spacing =
-            fmax(state->machine.spacing, ur_effective_kerf(&state->machine, &state->material)),
+        .margin = job->margin >= 0 ? job->margin : machine->margin,
+        .spacing = job->spacing >= 0 ? job->spacing
+                                     : fmax(machine->spacing, ur_effective_kerf(machine, material)),
     };
-    for (size_t k = 0; k < count; k++) {
+    ur_status status = UR_OK;
+    for (size_t k = 0; k < choice_count; k++) {
         options.sheet_width = choices[k].width;
         options.sheet_height = choices[k].height;
-        status = ur_layout_rows(state->pieces, state->piece_count, &options, &state->layout, error);
+        status = ur_layout_rows(pieces, count, &options, layout, error);
         if (status != UR_ERROR_INPUT)
             break;
     }
