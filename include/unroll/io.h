@@ -1,7 +1,7 @@
 /*
  * unroll/io.h: reading what the user gives: curves as CSV, the machine and
- * material profiles (XML validated against RelaxNG schemas) and meshes (OBJ,
- * STL, PLY, glTF).
+ * material profiles (XML validated against RelaxNG schemas), meshes (OBJ,
+ * STL, PLY, glTF) and flat parts drawn elsewhere (SVG, DXF).
  *
  * Every error message names the file and, where there is one, the line:
  * "FILE:LINE: message".
@@ -12,6 +12,7 @@
 #include <stdbool.h>
 #include <stddef.h>
 
+#include "unroll/allow.h"
 #include "unroll/base.h"
 #include "unroll/geom.h"
 #include "unroll/mesh.h"
@@ -252,5 +253,88 @@ size_t ur_mesh_import_memory_estimate(const char *path);
  */
 ur_status ur_mesh_import(const char *path, const ur_mesh_import_options *options, ur_mesh *mesh,
                          char (**group_names)[64], ur_error *error);
+
+/* ---- Parts from SVG and DXF -------------------------------------------- */
+
+typedef struct ur_parts_import_options {
+    /*
+     * Millimetres in one unit of the file's coordinates, used only when the
+     * file does not say (an SVG without a width or height in a physical
+     * unit, a DXF without $INSUNITS); 0, the default, refuses such a file
+     * asking for --units.  ur_parts_unit_mm turns a unit name into it.
+     */
+    double unit;
+    /* mm: farthest a flattened curve strays from the curve; default 0.01. */
+    double tolerance;
+} ur_parts_import_options;
+
+void ur_parts_import_options_default(ur_parts_import_options *options);
+
+/* Millimetres in "mm", "cm", "m", "in", "ft", "pt", "pc" or "px" (96 per inch); 0 when unknown. */
+double ur_parts_unit_mm(const char *name);
+
+/* Coordinates beyond 1 km, once in millimetres, are refused. */
+#define UR_PARTS_IMPORT_MAX_COORDINATE 1e6
+
+/* What one file held: its parts and what was done to them without asking. */
+typedef struct ur_parts {
+    ur_piece *pieces; /* owned; in the order their outlines appear in the file */
+    size_t count;
+    char (*warnings)[256]; /* owned; "FILE:LINE: ..." sentences for the user */
+    size_t warning_count;
+} ur_parts;
+
+/*
+ * Reads the closed shapes of an SVG or DXF file (known by its extension,
+ * .svg or .dxf in any case) as parts, in millimetres, y up.  Each closed
+ * shape is a ring; a ring directly inside another is a hole of it, a ring
+ * inside a hole a part of its own again, and so on (containment, computed
+ * with GEOS).  A part's paths[0] is its outline, a closed counter-clockwise
+ * CUT ring (first point not repeated); its holes follow as closed clockwise
+ * CUT rings.  measures.flat_area is the outline's area less the holes'.
+ * Curves (arcs, circles, ellipses, Bezier curves, bulges) are flattened to
+ * within options->tolerance.  Parts are named by their SVG id, else the
+ * file's name without extension and the part's number ("plate-3"); a path
+ * whose several sub-paths become parts names the second and later
+ * "ID-2", "ID-3"...  options may be NULL (defaults).
+ *
+ * SVG (libxml2, no network, no entity expansion): path (every command),
+ * rect (rx, ry round the corners), circle, ellipse, polygon, and polyline
+ * or a path's sub-path that ends where it starts without closing; inside g
+ * and nested svg elements, with every transform.  Elements hidden with
+ * display:none, defs, clipPath, mask, marker, pattern, symbol, metadata and
+ * elements of other namespaces (Inkscape's, Sodipodi's) are skipped; text
+ * and image are skipped with a warning; use (clones) is refused.  Units: a
+ * root width or height in mm, cm, in, pt, pc or px (96 per inch) with the
+ * viewBox sets the size of a user unit (the smaller of the two scales when
+ * they differ); a width without a unit is taken in options->unit.  The y
+ * axis is turned to point up (about the viewBox's bottom edge).
+ *
+ * DXF (ASCII): $INSUNITS (1 in, 2 ft, 4 mm, 5 cm, 6 m, 8 microinch, 9 mil,
+ * 10 yd, 13 micron, 14 dm; 0 or absent: options->unit); in ENTITIES:
+ * LWPOLYLINE and POLYLINE (closed by flag 1, with bulges), CIRCLE, ELLIPSE,
+ * and LINE, ARC and open polylines, which are chained end to end (ends
+ * within the tolerance meet) into closed loops.  An extrusion direction of
+ * (0, 0, -1) mirrors the entity, as AutoCAD draws it.  TEXT, MTEXT,
+ * DIMENSION, HATCH, POINT and other entities that draw no outline are
+ * skipped with a warning; INSERT (block references), SPLINE, 3D polygon
+ * meshes and polyface meshes are refused, naming the entity and line.
+ *
+ * Refuses with UR_ERROR_INPUT, "FILE:LINE: message" where there is a line:
+ * a missing, empty or unreadable file, another extension, malformed XML
+ * (libxml2's message) or DXF (a group code that is not a number, a code
+ * without its value, a number that is not one), no physical size and no
+ * options->unit ("give --units"), an open shape (naming the SVG element and
+ * its id, or the DXF entity, that does not close), NaN, infinite or
+ * too-large coordinates, a ring of zero area, two rings that cross, and a
+ * file with no closed shape at all.  A ring that crosses itself is
+ * repaired with GEOSMakeValid when that gives one polygon (a warning says
+ * so) and refused, naming the part, when it does not.  On failure *parts is
+ * empty.  Free with ur_parts_free.
+ */
+ur_status ur_parts_import(const char *path, const ur_parts_import_options *options,
+                          ur_parts *parts, ur_error *error);
+
+void ur_parts_free(ur_parts *parts);
 
 #endif

@@ -1,0 +1,771 @@
+/*
+ * dxf_import.c: the closed shapes of an ASCII DXF drawing as rings in
+ * millimetres, for parts_import.c to sort into parts and holes.
+ *
+ * A DXF file is a list of pairs of lines, a group code (an integer) and its
+ * value; an entity runs from one code 0 to the next.  That is simple enough
+ * to read by hand, and doing so keeps the line of every pair for messages.
+ * Closed polylines, circles and full ellipses are rings as they stand.
+ * LINEs, ARCs and open polylines are how many CAD programs draw an outline,
+ * piece by piece, so they are chained end to end (ends within the tolerance
+ * meet) and only what then stays open is refused, naming the entity.
+ */
+#include "parts_internal.h"
+
+#include <ctype.h>
+#include <errno.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Larger than this is not a drawing of parts: refuse before reading it all. */
+#define DXF_MAX_BYTES (1024L * 1024 * 1024)
+
+/* Kinds of entities left out, counted for one warning each. */
+#define DXF_MAX_IGNORED_KINDS 16
+
+typedef struct dxf_pair {
+    int code;
+    const char *value; /* trimmed, inside the file's text */
+    int line;          /* of the group code */
+} dxf_pair;
+
+/* An open piece of outline waiting to be chained: mm. */
+typedef struct dxf_segment {
+    parts_points points;
+    int line;
+    char what[24];
+} dxf_segment;
+
+typedef struct dxf_ignored {
+    char type[24];
+    size_t count;
+    int line; /* of the first */
+} dxf_ignored;
+
+typedef struct dxf_reader {
+    parts_collection *collection;
+    const char *path;
+    char *text;
+    dxf_pair *pairs;
+    size_t count;
+    double scale;     /* mm per drawing unit */
+    double tolerance; /* drawing units */
+    dxf_segment *segments;
+    size_t segment_count;
+    dxf_ignored ignored[DXF_MAX_IGNORED_KINDS];
+    size_t ignored_count;
+} dxf_reader;
+
+/* One entity: its pairs from the code 0 that names it to the next code 0. */
+typedef struct dxf_entity {
+    dxf_reader *reader;
+    const dxf_pair *pairs;
+    size_t count;
+    const char *type;
+    int line;
+    bool mirrored; /* extrusion (0, 0, -1): AutoCAD draws it with x turned over */
+} dxf_entity;
+
+static ur_status entity_error(const dxf_entity *entity, ur_error *error, const char *message)
+{
+    return ur_error_set(error, UR_ERROR_INPUT, "%s:%d: %s: %s", entity->reader->path,
+                        entity->line, entity->type, message);
+}
+
+/* ---- The file as pairs ---------------------------------------------------- */
+
+static ur_status read_text(const char *path, char **text, size_t *size, ur_error *error)
+{
+    FILE *file = fopen(path, "rb");
+    if (!file)
+        return ur_error_set(error, UR_ERROR_INPUT, "%s: cannot open: %s", path, strerror(errno));
+    long length = fseek(file, 0, SEEK_END) == 0 ? ftell(file) : -1;
+    ur_status status = UR_OK;
+    if (length < 0 || fseek(file, 0, SEEK_SET) != 0)
+        status = ur_error_set(error, UR_ERROR_INPUT, "%s: cannot read: %s", path, strerror(errno));
+    else if (length > DXF_MAX_BYTES)
+        status = ur_error_set(error, UR_ERROR_INPUT, "%s: %ld bytes: too large for a drawing of "
+                              "parts", path, length);
+    else if ((*text = ur_alloc_array((size_t)length + 1, 1, error)) == NULL)
+        status = UR_ERROR_INTERNAL;
+    else if (fread(*text, 1, (size_t)length, file) != (size_t)length)
+        status = ur_error_set(error, UR_ERROR_INPUT, "%s: cannot read: %s", path,
+                              strerror(errno ? errno : EIO));
+    fclose(file);
+    if (status == UR_OK) {
+        (*text)[length] = '\0';
+        *size = (size_t)length;
+    }
+    return status;
+}
+
+static char *trim(char *text)
+{
+    while (isspace((unsigned char)*text))
+        text++;
+    size_t length = strlen(text);
+    while (length > 0 && isspace((unsigned char)text[length - 1]))
+        text[--length] = '\0';
+    return text;
+}
+
+/* Cuts the text into lines in place; *lines points into it. */
+static ur_status split_lines(dxf_reader *reader, size_t size, char ***lines, size_t *count,
+                             ur_error *error)
+{
+    size_t n = 1;
+    for (size_t i = 0; i < size; i++)
+        n += reader->text[i] == '\n';
+    *lines = ur_alloc_array(n, sizeof **lines, error);
+    if (!*lines)
+        return UR_ERROR_INTERNAL;
+    *count = 0;
+    char *start = reader->text;
+    for (char *p = reader->text;; p++) {
+        if (*p == '\n' || *p == '\0') {
+            bool end = *p == '\0';
+            *p = '\0';
+            (*lines)[(*count)++] = trim(start);
+            if (end)
+                break;
+            start = p + 1;
+        }
+    }
+    return UR_OK;
+}
+
+static bool parse_code(const char *text, int *code)
+{
+    char *end = NULL;
+    errno = 0;
+    long value = strtol(text, &end, 10);
+    if (end == text || *end != '\0' || errno != 0 || value < -5 || value > 1071)
+        return false;
+    *code = (int)value;
+    return true;
+}
+
+/* Pairs up to "0 EOF" (what follows it is not read) or the end of the file. */
+static ur_status make_pairs(dxf_reader *reader, char **lines, size_t line_count, ur_error *error)
+{
+    reader->pairs = ur_alloc_array(line_count / 2 + 1, sizeof *reader->pairs, error);
+    if (!reader->pairs)
+        return UR_ERROR_INTERNAL;
+    for (size_t i = 0; i < line_count; i += 2) {
+        if (i + 1 == line_count && lines[i][0] == '\0')
+            break; /* the newline after the last value */
+        dxf_pair *pair = &reader->pairs[reader->count];
+        pair->line = (int)(i + 1);
+        if (!parse_code(lines[i], &pair->code))
+            return ur_error_set(error, UR_ERROR_INPUT, "%s:%zu: \"%.24s\" is not a group code",
+                                reader->path, i + 1, lines[i]);
+        if (i + 1 == line_count)
+            return ur_error_set(error, UR_ERROR_INPUT, "%s:%zu: group code %d has no value",
+                                reader->path, i + 1, pair->code);
+        pair->value = lines[i + 1];
+        reader->count++;
+        if (pair->code == 0 && strcmp(pair->value, "EOF") == 0)
+            break;
+    }
+    return UR_OK;
+}
+
+static ur_status read_pairs(dxf_reader *reader, ur_error *error)
+{
+    size_t size = 0;
+    ur_status status = read_text(reader->path, &reader->text, &size, error);
+    if (status != UR_OK)
+        return status;
+    if (strncmp(reader->text, "AutoCAD Binary DXF", 18) == 0)
+        return ur_error_set(error, UR_ERROR_INPUT,
+                            "%s: a binary DXF file: save it as ASCII DXF", reader->path);
+    char **lines = NULL;
+    size_t line_count = 0;
+    status = split_lines(reader, size, &lines, &line_count, error);
+    if (status == UR_OK)
+        status = make_pairs(reader, lines, line_count, error);
+    free(lines);
+    return status;
+}
+
+/* ---- Values --------------------------------------------------------------- */
+
+static ur_status pair_number(const dxf_reader *reader, const dxf_pair *pair, double *value,
+                             ur_error *error)
+{
+    char *end = NULL;
+    *value = strtod(pair->value, &end);
+    if (end == pair->value || *end != '\0' || !isfinite(*value))
+        return ur_error_set(error, UR_ERROR_INPUT,
+                            "%s:%d: \"%.24s\" is not a finite number (group code %d)",
+                            reader->path, pair->line + 1, pair->value, pair->code);
+    return UR_OK;
+}
+
+/* The entity's value for code, fallback when it has none. */
+static ur_status entity_number(const dxf_entity *entity, int code, double fallback,
+                               double *value, ur_error *error)
+{
+    *value = fallback;
+    for (size_t i = 1; i < entity->count; i++)
+        if (entity->pairs[i].code == code)
+            return pair_number(entity->reader, &entity->pairs[i], value, error);
+    return UR_OK;
+}
+
+static ur_status entity_flags(const dxf_entity *entity, int *flags, ur_error *error)
+{
+    double value = 0;
+    ur_status status = entity_number(entity, 70, 0, &value, error);
+    *flags = status == UR_OK && fabs(value) < 65536 ? (int)value : 0;
+    return status;
+}
+
+/* Reads the codes in order into values (fallback 0); stops at the first failure. */
+static ur_status entity_numbers(const dxf_entity *entity, const int *codes, double *values,
+                                size_t count, ur_error *error)
+{
+    for (size_t i = 0; i < count; i++) {
+        ur_status status = entity_number(entity, codes[i], 0, &values[i], error);
+        if (status != UR_OK)
+            return status;
+    }
+    return UR_OK;
+}
+
+/* ---- Units ------------------------------------------------------------------ */
+
+static double insunits_mm(int code)
+{
+    switch (code) {
+    case 1: return 25.4;
+    case 2: return 304.8;
+    case 4: return 1.0;
+    case 5: return 10.0;
+    case 6: return 1000.0;
+    case 8: return 25.4e-6;
+    case 9: return 0.0254;
+    case 10: return 914.4;
+    case 13: return 0.001;
+    case 14: return 100.0;
+    default: return 0.0;
+    }
+}
+
+/* $INSUNITS from the HEADER, wherever it is; else the caller's unit; else refuse. */
+static ur_status find_units(dxf_reader *reader, ur_error *error)
+{
+    int line = 0, code = 0;
+    for (size_t i = 0; i + 1 < reader->count; i++) {
+        if (reader->pairs[i].code != 9 || strcmp(reader->pairs[i].value, "$INSUNITS") != 0)
+            continue;
+        double value = 0;
+        ur_status status = pair_number(reader, &reader->pairs[i + 1], &value, error);
+        if (status != UR_OK)
+            return status;
+        line = reader->pairs[i + 1].line;
+        code = fabs(value) < 1000 ? (int)value : -1;
+        break;
+    }
+    double unit = insunits_mm(code);
+    if (code != 0 && unit == 0)
+        return ur_error_set(error, UR_ERROR_INPUT,
+                            "%s:%d: $INSUNITS %d is not a length unit this reader knows (1 in, "
+                            "2 ft, 4 mm, 5 cm, 6 m ...)",
+                            reader->path, line, code);
+    if (code == 0)
+        unit = reader->collection->unit;
+    if (unit <= 0)
+        return ur_error_set(error, UR_ERROR_INPUT,
+                            "%s: the drawing gives no unit ($INSUNITS %s): give its unit with "
+                            "--units",
+                            reader->path, line ? "is 0, unitless" : "is missing");
+    reader->scale = unit;
+    reader->tolerance = reader->collection->tolerance / unit;
+    return UR_OK;
+}
+
+/* ---- Shapes ----------------------------------------------------------------- */
+
+/*
+ * Hands points (drawing units) over in mm: a ring when closed, or when it
+ * ends where it starts; an open piece otherwise, for chaining.
+ */
+static ur_status emit(const dxf_entity *entity, parts_points *points, bool closed,
+                      ur_error *error)
+{
+    dxf_reader *reader = entity->reader;
+    for (size_t i = 0; i < points->count; i++) {
+        ur_vec2 *p = &points->items[i];
+        *p = ur_vec2_make((entity->mirrored ? -p->x : p->x) * reader->scale, p->y * reader->scale);
+    }
+    double tolerance = reader->collection->tolerance;
+    if (!closed && points->count > 2 &&
+        ur_vec2_distance(points->items[0], points->items[points->count - 1]) <= tolerance) {
+        points->count--;
+        closed = true;
+    }
+    if (closed)
+        return parts_add_ring(reader->collection, points, entity->line, entity->type, NULL, 1,
+                              error);
+    if (points->count < 2)
+        return UR_OK; /* a line of no length: nothing to cut */
+    dxf_segment *segments =
+        realloc(reader->segments, (reader->segment_count + 1) * sizeof *segments);
+    if (!segments)
+        return ur_error_out_of_memory(error);
+    reader->segments = segments;
+    dxf_segment *segment = &segments[reader->segment_count++];
+    segment->points = *points;
+    segment->line = entity->line;
+    snprintf(segment->what, sizeof segment->what, "%s", entity->type);
+    memset(points, 0, sizeof *points);
+    return UR_OK;
+}
+
+/* Emits and frees points whatever happens. */
+static ur_status emit_points(const dxf_entity *entity, parts_points *points, bool closed,
+                             ur_status status, ur_error *error)
+{
+    if (status == UR_OK)
+        status = emit(entity, points, closed, error);
+    parts_points_free(points);
+    return status;
+}
+
+static ur_status read_line_entity(const dxf_entity *entity, ur_error *error)
+{
+    static const int codes[] = {10, 20, 11, 21};
+    double v[4];
+    parts_points points = {0};
+    ur_status status = entity_numbers(entity, codes, v, 4, error);
+    if (status == UR_OK)
+        status = parts_points_push(&points, ur_vec2_make(v[0], v[1]), error);
+    if (status == UR_OK)
+        status = parts_points_push(&points, ur_vec2_make(v[2], v[3]), error);
+    return emit_points(entity, &points, false, status, error);
+}
+
+static ur_status positive_radius(const dxf_entity *entity, double radius, ur_error *error)
+{
+    if (radius > 0)
+        return UR_OK;
+    char message[64];
+    snprintf(message, sizeof message, "radius %g is not positive", radius);
+    return entity_error(entity, error, message);
+}
+
+/* CIRCLE, and ARC from angle 50 counter-clockwise to angle 51 (degrees). */
+static ur_status read_circle_entity(const dxf_entity *entity, bool arc, ur_error *error)
+{
+    static const int codes[] = {10, 20, 40, 50, 51};
+    double v[5];
+    ur_status status = entity_numbers(entity, codes, v, arc ? 5 : 3, error);
+    if (status == UR_OK)
+        status = positive_radius(entity, v[2], error);
+    if (status != UR_OK)
+        return status;
+    double sweep = 2 * M_PI, start = 0;
+    if (arc) {
+        start = v[3] * M_PI / 180;
+        sweep = fmod(v[4] - v[3], 360.0);
+        sweep = (sweep <= 0 ? sweep + 360 : sweep) * M_PI / 180;
+    }
+    parts_arc shape = {ur_vec2_make(v[0], v[1]), v[2], v[2], 0, start, sweep};
+    parts_points points = {0};
+    double tolerance = entity->reader->tolerance;
+    status = parts_points_push(&points, parts_arc_point(&shape, start), error);
+    if (status == UR_OK)
+        status = parts_flatten_arc(&points, &shape, tolerance, error);
+    return emit_points(entity, &points, !arc, status, error);
+}
+
+/* ELLIPSE: in world coordinates, major axis end 11/21 from the centre, ratio 40. */
+static ur_status read_ellipse_entity(dxf_entity *entity, ur_error *error)
+{
+    static const int codes[] = {10, 20, 11, 21, 40};
+    double v[5], start = 0, end = 2 * M_PI;
+    ur_status status = entity_numbers(entity, codes, v, 5, error);
+    if (status == UR_OK)
+        status = entity_number(entity, 41, 0, &start, error);
+    if (status == UR_OK)
+        status = entity_number(entity, 42, 2 * M_PI, &end, error);
+    double rx = hypot(v[2], v[3]);
+    if (status == UR_OK)
+        status = positive_radius(entity, rx * v[4], error);
+    if (status != UR_OK)
+        return status;
+    double sweep = fmod(end - start, 2 * M_PI);
+    sweep = sweep <= 1e-12 ? sweep + 2 * M_PI : sweep;
+    bool full = fabs(sweep - 2 * M_PI) < 1e-9;
+    /* Its minor axis is the extrusion crossed with the major: the other way round when mirrored. */
+    parts_arc shape = {ur_vec2_make(v[0], v[1]), rx, (entity->mirrored ? -1 : 1) * rx * v[4],
+                       atan2(v[3], v[2]), start, sweep};
+    entity->mirrored = false; /* world coordinates: nothing to turn over */
+    parts_points points = {0};
+    status = parts_points_push(&points, parts_arc_point(&shape, start), error);
+    if (status == UR_OK)
+        status = parts_flatten_arc(&points, &shape, entity->reader->tolerance, error);
+    return emit_points(entity, &points, full, status, error);
+}
+
+/* ---- Polylines ---------------------------------------------------------------- */
+
+typedef struct dxf_vertex {
+    ur_vec2 p;
+    double bulge; /* tan of a quarter of the arc's angle to the next vertex; + counter-clockwise */
+} dxf_vertex;
+
+typedef struct dxf_vertices {
+    dxf_vertex *items;
+    size_t count, capacity;
+} dxf_vertices;
+
+static ur_status vertices_push(dxf_vertices *vertices, ur_error *error)
+{
+    if (vertices->count == vertices->capacity) {
+        size_t capacity = vertices->capacity ? 2 * vertices->capacity : 16;
+        dxf_vertex *items = realloc(vertices->items, capacity * sizeof *items);
+        if (!items)
+            return ur_error_out_of_memory(error);
+        vertices->items = items;
+        vertices->capacity = capacity;
+    }
+    vertices->items[vertices->count++] = (dxf_vertex){{0, 0}, 0};
+    return UR_OK;
+}
+
+/* The arc from a to b that a bulge describes, flattened; b is pushed exactly. */
+static ur_status bulge_to(parts_points *points, ur_vec2 a, ur_vec2 b, double bulge,
+                          double tolerance, ur_error *error)
+{
+    double c = ur_vec2_distance(a, b);
+    if (bulge == 0 || c == 0)
+        return parts_points_push(points, b, error);
+    ur_vec2 middle = ur_vec2_scale(ur_vec2_add(a, b), 0.5);
+    ur_vec2 left = ur_vec2_make(-(b.y - a.y) / c, (b.x - a.x) / c);
+    /* The centre lies r cos(angle / 2) = (c / 2) (1 - bulge^2) / (2 bulge) left of the chord. */
+    ur_vec2 centre = ur_vec2_add_scaled(middle, left, c / 2 * (1 - bulge * bulge) / (2 * bulge));
+    double r = ur_vec2_distance(a, centre);
+    parts_arc arc = {centre, r, r, 0, atan2(a.y - centre.y, a.x - centre.x), 4 * atan(bulge)};
+    ur_status status = parts_flatten_arc(points, &arc, tolerance, error);
+    if (status == UR_OK)
+        points->items[points->count - 1] = b;
+    return status;
+}
+
+static ur_status emit_polyline(const dxf_entity *entity, const dxf_vertices *vertices,
+                               bool closed, ur_error *error)
+{
+    size_t n = vertices->count;
+    if (n == 0)
+        return UR_OK;
+    parts_points points = {0};
+    ur_status status = parts_points_push(&points, vertices->items[0].p, error);
+    size_t edges = closed ? n : n - 1;
+    for (size_t i = 0; status == UR_OK && i < edges; i++)
+        status = bulge_to(&points, vertices->items[i].p, vertices->items[(i + 1) % n].p,
+                          vertices->items[i].bulge, entity->reader->tolerance, error);
+    return emit_points(entity, &points, closed, status, error);
+}
+
+/* One vertex's field: 10 starts a vertex, 20 and 42 fill it in. */
+static ur_status vertex_field(const dxf_entity *entity, const dxf_pair *pair,
+                              dxf_vertices *vertices, ur_error *error)
+{
+    if (pair->code != 10 && pair->code != 20 && pair->code != 42)
+        return UR_OK;
+    double value = 0;
+    ur_status status = pair_number(entity->reader, pair, &value, error);
+    if (status == UR_OK && pair->code == 10)
+        status = vertices_push(vertices, error);
+    if (status != UR_OK)
+        return status;
+    if (vertices->count == 0)
+        return entity_error(entity, error, "a vertex field before the first vertex");
+    dxf_vertex *vertex = &vertices->items[vertices->count - 1];
+    if (pair->code == 10)
+        vertex->p.x = value;
+    else if (pair->code == 20)
+        vertex->p.y = value;
+    else
+        vertex->bulge = value;
+    return UR_OK;
+}
+
+static ur_status read_lwpolyline(const dxf_entity *entity, ur_error *error)
+{
+    int flags = 0;
+    ur_status status = entity_flags(entity, &flags, error);
+    dxf_vertices vertices = {0};
+    for (size_t i = 1; status == UR_OK && i < entity->count; i++)
+        status = vertex_field(entity, &entity->pairs[i], &vertices, error);
+    if (status == UR_OK)
+        status = emit_polyline(entity, &vertices, flags & 1, error);
+    free(vertices.items);
+    return status;
+}
+
+/* The entity that starts at pairs[*index] (code 0); *index moves to the next. */
+static dxf_entity next_entity(dxf_reader *reader, size_t *index, size_t end)
+{
+    dxf_entity entity = {reader, &reader->pairs[*index], 1, reader->pairs[*index].value,
+                         reader->pairs[*index].line, false};
+    size_t i = *index + 1;
+    while (i < end && reader->pairs[i].code != 0)
+        i++;
+    entity.count = i - *index;
+    *index = i;
+    return entity;
+}
+
+/* POLYLINE, then its VERTEX entities up to SEQEND. */
+static ur_status read_polyline(dxf_entity *entity, size_t *index, size_t end, ur_error *error)
+{
+    int flags = 0;
+    ur_status status = entity_flags(entity, &flags, error);
+    if (status == UR_OK && (flags & (16 | 64)))
+        status = entity_error(entity, error,
+                              "polygon and polyface meshes are not read: only flat outlines");
+    dxf_vertices vertices = {0};
+    while (status == UR_OK && *index < end) {
+        size_t at = *index;
+        dxf_entity vertex = next_entity(entity->reader, index, end);
+        if (strcmp(vertex.type, "VERTEX") != 0) {
+            if (strcmp(vertex.type, "SEQEND") != 0)
+                *index = at; /* no SEQEND: the next entity is not ours */
+            break;
+        }
+        int vertex_flags = 0;
+        status = entity_flags(&vertex, &vertex_flags, error);
+        if (vertex_flags & 16)
+            continue; /* a spline's frame control point, not on the curve */
+        for (size_t i = 1; status == UR_OK && i < vertex.count; i++)
+            status = vertex_field(&vertex, &vertex.pairs[i], &vertices, error);
+    }
+    if (status == UR_OK)
+        status = emit_polyline(entity, &vertices, flags & 1, error);
+    free(vertices.items);
+    return status;
+}
+
+/* ---- Entities ------------------------------------------------------------------ */
+
+static ur_status note_ignored(dxf_reader *reader, const dxf_entity *entity)
+{
+    size_t k = 0;
+    while (k < reader->ignored_count && strcmp(reader->ignored[k].type, entity->type) != 0)
+        k++;
+    if (k == reader->ignored_count) {
+        if (k == DXF_MAX_IGNORED_KINDS)
+            k--; /* the last kind counts the rest */
+        else {
+            reader->ignored_count++;
+            snprintf(reader->ignored[k].type, sizeof reader->ignored[k].type, "%s", entity->type);
+            reader->ignored[k].line = entity->line;
+        }
+    }
+    reader->ignored[k].count++;
+    return UR_OK;
+}
+
+static ur_status warn_ignored(dxf_reader *reader, ur_error *error)
+{
+    for (size_t k = 0; k < reader->ignored_count; k++) {
+        const dxf_ignored *kind = &reader->ignored[k];
+        ur_status status = parts_warn(reader->collection, error,
+                                      "%s:%d: %zu %s entit%s left out: not an outline",
+                                      reader->path, kind->line, kind->count, kind->type,
+                                      kind->count == 1 ? "y" : "ies");
+        if (status != UR_OK)
+            return status;
+    }
+    return UR_OK;
+}
+
+static ur_status read_entity(dxf_entity *entity, size_t *index, size_t end, ur_error *error)
+{
+    double extrusion = 1;
+    ur_status status = entity_number(entity, 230, 1, &extrusion, error);
+    entity->mirrored = extrusion < 0;
+    const char *type = entity->type;
+    if (status != UR_OK)
+        return status;
+    if (strcmp(type, "LINE") == 0)
+        return read_line_entity(entity, error);
+    if (strcmp(type, "CIRCLE") == 0 || strcmp(type, "ARC") == 0)
+        return read_circle_entity(entity, strcmp(type, "ARC") == 0, error);
+    if (strcmp(type, "ELLIPSE") == 0)
+        return read_ellipse_entity(entity, error);
+    if (strcmp(type, "LWPOLYLINE") == 0)
+        return read_lwpolyline(entity, error);
+    if (strcmp(type, "POLYLINE") == 0)
+        return read_polyline(entity, index, end, error);
+    if (strcmp(type, "SPLINE") == 0)
+        return entity_error(entity, error,
+                            "splines are not read: turn them into polylines first");
+    if (strcmp(type, "INSERT") == 0)
+        return entity_error(entity, error,
+                            "block references are not read: explode the blocks first");
+    if (strcmp(type, "REGION") == 0 || strcmp(type, "3DSOLID") == 0 ||
+        strcmp(type, "BODY") == 0)
+        return entity_error(entity, error, "not read: explode it into lines and arcs first");
+    return note_ignored(entity->reader, entity);
+}
+
+/* Index of the pair after "0 SECTION / 2 name", and of its "0 ENDSEC"; false when none. */
+static bool find_section(const dxf_reader *reader, const char *name, size_t *begin, size_t *end)
+{
+    for (size_t i = 0; i + 1 < reader->count; i++) {
+        const dxf_pair *pair = &reader->pairs[i];
+        if (pair->code != 0 || strcmp(pair->value, "SECTION") != 0 ||
+            reader->pairs[i + 1].code != 2 || strcmp(reader->pairs[i + 1].value, name) != 0)
+            continue;
+        *begin = i + 2;
+        *end = *begin;
+        while (*end < reader->count && !(reader->pairs[*end].code == 0 &&
+                                         strcmp(reader->pairs[*end].value, "ENDSEC") == 0))
+            (*end)++;
+        return true;
+    }
+    return false;
+}
+
+static ur_status read_entities(dxf_reader *reader, ur_error *error)
+{
+    size_t index = 0, end = 0;
+    if (!find_section(reader, "ENTITIES", &index, &end))
+        return ur_error_set(error, UR_ERROR_INPUT, "%s: no ENTITIES section: nothing drawn",
+                            reader->path);
+    while (index < end && reader->pairs[index].code != 0)
+        index++;
+    while (index < end) {
+        dxf_entity entity = next_entity(reader, &index, end);
+        ur_status status = read_entity(&entity, &index, end, error);
+        if (status != UR_OK)
+            return status;
+    }
+    return warn_ignored(reader, error);
+}
+
+/* ---- Chaining open pieces into loops ----------------------------------------------- */
+
+/* The unused segment with an end nearest to p, within tolerance; *reversed when its end. */
+static size_t nearest_segment(const dxf_reader *reader, const bool *used, ur_vec2 p,
+                              double tolerance, bool *reversed)
+{
+    size_t best = SIZE_MAX;
+    double best_distance = tolerance;
+    for (size_t k = 0; k < reader->segment_count; k++) {
+        if (used[k])
+            continue;
+        const parts_points *points = &reader->segments[k].points;
+        double to_start = ur_vec2_distance(p, points->items[0]);
+        double to_end = ur_vec2_distance(p, points->items[points->count - 1]);
+        if (to_start <= best_distance) {
+            best = k;
+            best_distance = to_start;
+            *reversed = false;
+        }
+        if (to_end <= best_distance && to_end < to_start) {
+            best = k;
+            best_distance = to_end;
+            *reversed = true;
+        }
+    }
+    return best;
+}
+
+static ur_status append_segment(parts_points *chain, const parts_points *points, bool reversed,
+                                ur_error *error)
+{
+    for (size_t i = 1; i < points->count; i++) {
+        size_t k = reversed ? points->count - 1 - i : i;
+        ur_status status = parts_points_push(chain, points->items[k], error);
+        if (status != UR_OK)
+            return status;
+    }
+    return UR_OK;
+}
+
+static ur_status open_end_error(const dxf_reader *reader, const dxf_segment *segment, ur_vec2 end,
+                                ur_error *error)
+{
+    return ur_error_set(error, UR_ERROR_INPUT,
+                        "%s:%d: %s: the outline is open: its end at (%.6g, %.6g) mm meets no "
+                        "other line, arc or polyline within %g mm; only closed shapes can be "
+                        "parts",
+                        reader->path, segment->line, segment->what, end.x, end.y,
+                        reader->collection->tolerance);
+}
+
+/* Follows segment first on, end to end, until the loop closes. */
+static ur_status chain_from(dxf_reader *reader, bool *used, size_t first, ur_error *error)
+{
+    double tolerance = reader->collection->tolerance;
+    parts_points chain = {0};
+    used[first] = true;
+    ur_status status = parts_points_push(&chain, reader->segments[first].points.items[0], error);
+    if (status == UR_OK)
+        status = append_segment(&chain, &reader->segments[first].points, false, error);
+    size_t last = first;
+    while (status == UR_OK) {
+        ur_vec2 end = chain.items[chain.count - 1];
+        if (chain.count > 2 && ur_vec2_distance(end, chain.items[0]) <= tolerance) {
+            chain.count--;
+            break;
+        }
+        bool reversed = false;
+        size_t next = nearest_segment(reader, used, end, tolerance, &reversed);
+        if (next == SIZE_MAX) {
+            status = open_end_error(reader, &reader->segments[last], end, error);
+            break;
+        }
+        used[next] = true;
+        last = next;
+        status = append_segment(&chain, &reader->segments[next].points, reversed, error);
+    }
+    const dxf_segment *segment = &reader->segments[first];
+    if (status == UR_OK)
+        status = parts_add_ring(reader->collection, &chain, segment->line, segment->what, NULL, 1,
+                                error);
+    parts_points_free(&chain);
+    return status;
+}
+
+static ur_status chain_segments(dxf_reader *reader, ur_error *error)
+{
+    if (reader->segment_count == 0)
+        return UR_OK;
+    bool *used = ur_alloc_array(reader->segment_count, sizeof *used, error);
+    if (!used)
+        return UR_ERROR_INTERNAL;
+    memset(used, 0, reader->segment_count * sizeof *used);
+    ur_status status = UR_OK;
+    for (size_t k = 0; status == UR_OK && k < reader->segment_count; k++)
+        if (!used[k])
+            status = chain_from(reader, used, k, error);
+    free(used);
+    return status;
+}
+
+ur_status parts_read_dxf(parts_collection *collection, ur_error *error)
+{
+    dxf_reader reader = {.collection = collection, .path = collection->path};
+    ur_status status = read_pairs(&reader, error);
+    if (status == UR_OK)
+        status = find_units(&reader, error);
+    if (status == UR_OK)
+        status = read_entities(&reader, error);
+    if (status == UR_OK)
+        status = chain_segments(&reader, error);
+    for (size_t k = 0; k < reader.segment_count; k++)
+        parts_points_free(&reader.segments[k].points);
+    free(reader.segments);
+    free(reader.pairs);
+    free(reader.text);
+    return status;
+}

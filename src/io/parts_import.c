@@ -1,0 +1,633 @@
+/*
+ * parts_import.c: parts drawn elsewhere (SVG, DXF) into pieces ready to
+ * nest.  The readers (svg_import.c, dxf_import.c) only find closed shapes
+ * and turn them into rings in millimetres; everything that does not depend
+ * on the format lives here, so both formats get the same checks and the
+ * same words: curve flattening, coordinate limits, zero-area and
+ * self-crossing rings (repaired by GEOS where it gives one polygon), and the
+ * sorting of rings into parts and holes by containment.
+ */
+#include "parts_internal.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+#include <sys/stat.h>
+
+#include <geos_c.h>
+
+#define PARTS_DEFAULT_TOLERANCE 0.01
+
+void ur_parts_import_options_default(ur_parts_import_options *options)
+{
+    options->unit = 0.0;
+    options->tolerance = PARTS_DEFAULT_TOLERANCE;
+}
+
+double ur_parts_unit_mm(const char *name)
+{
+    static const struct {
+        const char *name;
+        double mm;
+    } units[] = {{"mm", 1.0},         {"cm", 10.0},       {"m", 1000.0},
+                 {"in", 25.4},        {"ft", 304.8},      {"pt", 25.4 / 72.0},
+                 {"pc", 25.4 / 6.0},  {"px", 25.4 / 96.0}};
+    for (size_t i = 0; name && i < sizeof units / sizeof units[0]; i++)
+        if (strcmp(name, units[i].name) == 0)
+            return units[i].mm;
+    return 0.0;
+}
+
+/* ---- Points and curves ------------------------------------------------- */
+
+ur_status parts_points_push(parts_points *points, ur_vec2 p, ur_error *error)
+{
+    if (points->count > 0) {
+        ur_vec2 last = points->items[points->count - 1];
+        if (last.x == p.x && last.y == p.y)
+            return UR_OK;
+    }
+    if (points->count == points->capacity) {
+        size_t capacity = points->capacity ? 2 * points->capacity : 32;
+        if (capacity > SIZE_MAX / sizeof(ur_vec2))
+            return ur_error_out_of_memory(error);
+        ur_vec2 *items = realloc(points->items, capacity * sizeof *items);
+        if (!items)
+            return ur_error_out_of_memory(error);
+        points->items = items;
+        points->capacity = capacity;
+    }
+    points->items[points->count++] = p;
+    return UR_OK;
+}
+
+void parts_points_free(parts_points *points)
+{
+    free(points->items);
+    points->items = NULL;
+    points->count = points->capacity = 0;
+}
+
+/* Segments for a curve; NaN and runaways end at the cap (the coordinate check refuses them). */
+static size_t segment_count(double wanted, size_t minimum)
+{
+    if (!(wanted < PARTS_MAX_CURVE_SEGMENTS))
+        return PARTS_MAX_CURVE_SEGMENTS;
+    size_t n = (size_t)ceil(wanted);
+    return n < minimum ? minimum : n;
+}
+
+/*
+ * Uniform steps: a chord of a curve whose second derivative is at most D
+ * strays at most D h^2 / 8 from it, h the parameter step.
+ */
+ur_status parts_flatten_quadratic(parts_points *points, ur_vec2 p0, ur_vec2 p1, ur_vec2 p2,
+                                  double tolerance, ur_error *error)
+{
+    ur_vec2 d = ur_vec2_add(ur_vec2_sub(p0, ur_vec2_scale(p1, 2)), p2);
+    size_t n = segment_count(sqrt(2 * ur_vec2_length(d) / (8 * tolerance)), 1);
+    for (size_t i = 1; i <= n; i++) {
+        double t = (double)i / (double)n, s = 1 - t;
+        ur_vec2 p = ur_vec2_make(s * s * p0.x + 2 * s * t * p1.x + t * t * p2.x,
+                                 s * s * p0.y + 2 * s * t * p1.y + t * t * p2.y);
+        ur_status status = parts_points_push(points, i == n ? p2 : p, error);
+        if (status != UR_OK)
+            return status;
+    }
+    return UR_OK;
+}
+
+ur_status parts_flatten_cubic(parts_points *points, ur_vec2 p0, ur_vec2 p1, ur_vec2 p2, ur_vec2 p3,
+                              double tolerance, ur_error *error)
+{
+    ur_vec2 d1 = ur_vec2_add(ur_vec2_sub(p0, ur_vec2_scale(p1, 2)), p2);
+    ur_vec2 d2 = ur_vec2_add(ur_vec2_sub(p1, ur_vec2_scale(p2, 2)), p3);
+    double m = fmax(ur_vec2_length(d1), ur_vec2_length(d2));
+    size_t n = segment_count(sqrt(6 * m / (8 * tolerance)), 1);
+    for (size_t i = 1; i <= n; i++) {
+        double t = (double)i / (double)n, s = 1 - t;
+        double a = s * s * s, b = 3 * s * s * t, c = 3 * s * t * t, e = t * t * t;
+        ur_vec2 p = ur_vec2_make(a * p0.x + b * p1.x + c * p2.x + e * p3.x,
+                                 a * p0.y + b * p1.y + c * p2.y + e * p3.y);
+        ur_status status = parts_points_push(points, i == n ? p3 : p, error);
+        if (status != UR_OK)
+            return status;
+    }
+    return UR_OK;
+}
+
+ur_vec2 parts_arc_point(const parts_arc *arc, double angle)
+{
+    double x = arc->rx * cos(angle), y = arc->ry * sin(angle);
+    double c = cos(arc->rotation), s = sin(arc->rotation);
+    return ur_vec2_make(arc->centre.x + c * x - s * y, arc->centre.y + s * x + c * y);
+}
+
+/* A chord of angle a on a circle of radius r strays r (1 - cos(a / 2)) from it. */
+ur_status parts_flatten_arc(parts_points *points, const parts_arc *arc, double tolerance,
+                            ur_error *error)
+{
+    double r = fmax(fabs(arc->rx), fabs(arc->ry));
+    double step = tolerance < r ? 2 * acos(1 - tolerance / r) : M_PI / 2;
+    size_t n = segment_count(fabs(arc->sweep) / fmin(step, M_PI / 2), 1);
+    for (size_t i = 1; i <= n; i++) {
+        double angle = arc->start + arc->sweep * (double)i / (double)n;
+        ur_status status = parts_points_push(points, parts_arc_point(arc, angle), error);
+        if (status != UR_OK)
+            return status;
+    }
+    return UR_OK;
+}
+
+/* ---- Collecting rings ---------------------------------------------------- */
+
+ur_status parts_add_ring(parts_collection *collection, parts_points *points, int line,
+                         const char *what, const char *id, int sub, ur_error *error)
+{
+    if (collection->count == collection->capacity) {
+        size_t capacity = collection->capacity ? 2 * collection->capacity : 16;
+        parts_ring *rings = realloc(collection->rings, capacity * sizeof *rings);
+        if (!rings)
+            return ur_error_out_of_memory(error);
+        collection->rings = rings;
+        collection->capacity = capacity;
+    }
+    /* The closing point repeats the first: rings here never do. */
+    while (points->count > 1 && points->items[points->count - 1].x == points->items[0].x &&
+           points->items[points->count - 1].y == points->items[0].y)
+        points->count--;
+    parts_ring *ring = &collection->rings[collection->count++];
+    memset(ring, 0, sizeof *ring);
+    ring->points = points->items;
+    ring->count = points->count;
+    ring->line = line;
+    ring->sub = sub;
+    snprintf(ring->what, sizeof ring->what, "%s", what);
+    snprintf(ring->id, sizeof ring->id, "%s", id ? id : "");
+    points->items = NULL;
+    points->count = points->capacity = 0;
+    return UR_OK;
+}
+
+ur_status parts_warn(parts_collection *collection, ur_error *error, const char *format, ...)
+{
+    char(*warnings)[256] =
+        realloc(collection->warnings, (collection->warning_count + 1) * sizeof *warnings);
+    if (!warnings)
+        return ur_error_out_of_memory(error);
+    collection->warnings = warnings;
+    va_list arguments;
+    va_start(arguments, format);
+    vsnprintf(warnings[collection->warning_count++], sizeof *warnings, format, arguments);
+    va_end(arguments);
+    return UR_OK;
+}
+
+void parts_collection_free(parts_collection *collection)
+{
+    for (size_t i = 0; i < collection->count; i++)
+        free(collection->rings[i].points);
+    free(collection->rings);
+    free(collection->warnings);
+    collection->rings = NULL;
+    collection->warnings = NULL;
+    collection->count = collection->capacity = collection->warning_count = 0;
+}
+
+/* "FILE:LINE: what: " before every message about a ring. */
+static ur_status ring_error(const parts_collection *collection, const parts_ring *ring,
+                            ur_error *error, const char *message)
+{
+    if (ring->line > 0)
+        return ur_error_set(error, UR_ERROR_INPUT, "%s:%d: %s: %s", collection->path, ring->line,
+                            ring->what, message);
+    return ur_error_set(error, UR_ERROR_INPUT, "%s: %s: %s", collection->path, ring->what,
+                        message);
+}
+
+/* ---- Checking rings with GEOS ------------------------------------------- */
+
+typedef struct parts_order {
+    double area;
+    size_t index;
+} parts_order;
+
+static int by_area_descending(const void *a, const void *b)
+{
+    const parts_order *p = a, *q = b;
+    if (p->area != q->area)
+        return p->area > q->area ? -1 : 1;
+    return p->index < q->index ? -1 : p->index > q->index;
+}
+
+typedef struct parts_job {
+    GEOSContextHandle_t geos;
+    parts_collection *collection;
+    GEOSGeometry **polygons; /* one per ring */
+    double *areas;           /* positive */
+    ur_box *boxes;
+    int *parent, *depth;
+    parts_order *order; /* by area, largest first */
+} parts_job;
+
+static GEOSGeometry *ring_polygon(GEOSContextHandle_t geos, const ur_vec2 *points, size_t count)
+{
+    GEOSCoordSequence *sequence = GEOSCoordSeq_create_r(geos, (unsigned)(count + 1), 2);
+    if (!sequence)
+        return NULL;
+    for (size_t i = 0; i <= count; i++)
+        GEOSCoordSeq_setXY_r(geos, sequence, (unsigned)i, points[i % count].x,
+                             points[i % count].y);
+    GEOSGeometry *shell = GEOSGeom_createLinearRing_r(geos, sequence);
+    if (!shell)
+        return NULL;
+    GEOSGeometry *polygon = GEOSGeom_createPolygon_r(geos, shell, NULL, 0);
+    if (!polygon)
+        GEOSGeom_destroy_r(geos, shell);
+    return polygon;
+}
+
+static void reverse_points(ur_vec2 *points, size_t count)
+{
+    for (size_t i = 0, j = count ? count - 1 : 0; i < j; i++, j--) {
+        ur_vec2 swap = points[i];
+        points[i] = points[j];
+        points[j] = swap;
+    }
+}
+
+/* Replaces the ring's points by the exterior ring of polygon. */
+static ur_status take_exterior(GEOSContextHandle_t geos, const GEOSGeometry *polygon,
+                               parts_ring *ring, ur_error *error)
+{
+    const GEOSGeometry *shell = GEOSGetExteriorRing_r(geos, polygon);
+    const GEOSCoordSequence *sequence = shell ? GEOSGeom_getCoordSeq_r(geos, shell) : NULL;
+    unsigned size = 0;
+    if (!sequence || !GEOSCoordSeq_getSize_r(geos, sequence, &size) || size < 4)
+        return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS gave a polygon without a ring");
+    ur_vec2 *points = ur_alloc_array(size - 1, sizeof *points, error);
+    if (!points)
+        return UR_ERROR_INTERNAL;
+    for (unsigned i = 0; i + 1 < size; i++)
+        GEOSCoordSeq_getXY_r(geos, sequence, i, &points[i].x, &points[i].y);
+    free(ring->points);
+    ring->points = points;
+    ring->count = size - 1;
+    return UR_OK;
+}
+
+/* GEOSMakeValid's answer when it is one polygon without holes; NULL otherwise. */
+static GEOSGeometry *repaired(GEOSContextHandle_t geos, const GEOSGeometry *polygon)
+{
+    GEOSGeometry *valid = GEOSMakeValid_r(geos, polygon);
+    if (valid && GEOSGeomTypeId_r(geos, valid) == GEOS_MULTIPOLYGON &&
+        GEOSGetNumGeometries_r(geos, valid) == 1) {
+        GEOSGeometry *single = GEOSGeom_clone_r(geos, GEOSGetGeometryN_r(geos, valid, 0));
+        GEOSGeom_destroy_r(geos, valid);
+        valid = single;
+    }
+    if (valid && (GEOSGeomTypeId_r(geos, valid) != GEOS_POLYGON ||
+                  GEOSGetNumInteriorRings_r(geos, valid) != 0)) {
+        GEOSGeom_destroy_r(geos, valid);
+        valid = NULL;
+    }
+    return valid;
+}
+
+static ur_status repair_ring(parts_job *job, size_t i, ur_error *error)
+{
+    parts_collection *collection = job->collection;
+    parts_ring *ring = &collection->rings[i];
+    GEOSGeometry *valid = repaired(job->geos, job->polygons[i]);
+    if (!valid)
+        return ring_error(collection, ring, error,
+                          "the outline crosses itself and cannot be repaired into one shape");
+    double before = fabs(ur_polygon_signed_area(ring->points, ring->count));
+    ur_status status = take_exterior(job->geos, valid, ring, error);
+    GEOSGeom_destroy_r(job->geos, valid);
+    if (status != UR_OK)
+        return status;
+    double after = fabs(ur_polygon_signed_area(ring->points, ring->count));
+    GEOSGeom_destroy_r(job->geos, job->polygons[i]);
+    job->polygons[i] = ring_polygon(job->geos, ring->points, ring->count);
+    if (!job->polygons[i])
+        return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not make a polygon");
+    return parts_warn(collection, error,
+                      "%s:%d: %s: the outline crosses itself; repaired (area %.6g mm² is now "
+                      "%.6g mm²)",
+                      collection->path, ring->line, ring->what, before, after);
+}
+
+static ur_status check_coordinates(const parts_collection *collection, const parts_ring *ring,
+                                   ur_error *error)
+{
+    for (size_t k = 0; k < ring->count; k++) {
+        ur_vec2 p = ring->points[k];
+        if (!isfinite(p.x) || !isfinite(p.y))
+            return ring_error(collection, ring, error, "a coordinate is not a finite number");
+        if (fabs(p.x) > UR_PARTS_IMPORT_MAX_COORDINATE ||
+            fabs(p.y) > UR_PARTS_IMPORT_MAX_COORDINATE) {
+            char message[160];
+            snprintf(message, sizeof message,
+                     "the point (%.6g, %.6g) mm lies beyond %g mm: check the units", p.x, p.y,
+                     UR_PARTS_IMPORT_MAX_COORDINATE);
+            return ring_error(collection, ring, error, message);
+        }
+    }
+    return UR_OK;
+}
+
+/* Coordinates, area, validity; leaves the ring counter-clockwise and its polygon made. */
+static ur_status prepare_ring(parts_job *job, size_t i, ur_error *error)
+{
+    parts_collection *collection = job->collection;
+    parts_ring *ring = &collection->rings[i];
+    ur_status status = check_coordinates(collection, ring, error);
+    if (status != UR_OK)
+        return status;
+    double area = ring->count >= 3 ? ur_polygon_signed_area(ring->points, ring->count) : 0.0;
+    if (fabs(area) <= collection->tolerance * collection->tolerance)
+        return ring_error(collection, ring, error, "the outline encloses no area");
+    if (area < 0)
+        reverse_points(ring->points, ring->count);
+    job->polygons[i] = ring_polygon(job->geos, ring->points, ring->count);
+    if (!job->polygons[i])
+        return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not make a polygon");
+    char valid = GEOSisValid_r(job->geos, job->polygons[i]);
+    if (valid == 2)
+        return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not check a polygon");
+    if (!valid) {
+        status = repair_ring(job, i, error);
+        if (status != UR_OK)
+            return status;
+        if (ur_polygon_signed_area(ring->points, ring->count) < 0)
+            reverse_points(ring->points, ring->count);
+    }
+    job->areas[i] = fabs(ur_polygon_signed_area(ring->points, ring->count));
+    job->boxes[i] = ur_box_of_points(ring->points, ring->count);
+    return UR_OK;
+}
+
+/* ---- Containment --------------------------------------------------------- */
+
+static bool boxes_meet(ur_box a, ur_box b)
+{
+    return a.min.x <= b.max.x && b.min.x <= a.max.x && a.min.y <= b.max.y && b.min.y <= a.max.y;
+}
+
+static ur_status two_rings_error(const parts_collection *collection, const parts_ring *ring,
+                                 const parts_ring *other, const char *relation, ur_error *error)
+{
+    char message[256];
+    snprintf(message, sizeof message, "%s %s on line %d", relation, other->what, other->line);
+    return ring_error(collection, ring, error, message);
+}
+
+/* How ring i (smaller) lies against ring j (larger): sets *inside, refuses crossings. */
+static ur_status relate(parts_job *job, size_t i, size_t j, bool *inside, ur_error *error)
+{
+    const parts_collection *collection = job->collection;
+    *inside = false;
+    if (!boxes_meet(job->boxes[i], job->boxes[j]))
+        return UR_OK;
+    char contains = GEOSContains_r(job->geos, job->polygons[j], job->polygons[i]);
+    char overlaps = contains ? 0 : GEOSOverlaps_r(job->geos, job->polygons[j], job->polygons[i]);
+    if (contains == 2 || overlaps == 2)
+        return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not compare two outlines");
+    if (overlaps)
+        return two_rings_error(collection, &collection->rings[i], &collection->rings[j],
+                               "the outline crosses", error);
+    if (contains && job->areas[i] >= job->areas[j] * (1 - 1e-9))
+        return two_rings_error(collection, &collection->rings[i], &collection->rings[j],
+                               "the same outline as", error);
+    *inside = contains;
+    return UR_OK;
+}
+
+/* A ring's parent is the smallest ring that contains it; depth says part or hole. */
+static ur_status nest_rings(parts_job *job, ur_error *error)
+{
+    size_t n = job->collection->count;
+    for (size_t i = 0; i < n; i++)
+        job->order[i] = (parts_order){job->areas[i], i};
+    qsort(job->order, n, sizeof *job->order, by_area_descending);
+    for (size_t a = 0; a < n; a++) {
+        size_t i = job->order[a].index;
+        job->parent[i] = -1;
+        job->depth[i] = 0;
+        for (size_t b = a; b-- > 0;) {
+            size_t j = job->order[b].index;
+            bool inside = false;
+            ur_status status = relate(job, i, j, &inside, error);
+            if (status != UR_OK)
+                return status;
+            if (inside && job->parent[i] < 0) {
+                job->parent[i] = (int)j;
+                job->depth[i] = job->depth[j] + 1;
+            }
+        }
+    }
+    return UR_OK;
+}
+
+/* ---- Pieces ---------------------------------------------------------------- */
+
+/* "plate" from "dir/plate.svg". */
+static void base_name(const char *path, char *base, size_t size)
+{
+    const char *slash = strrchr(path, '/');
+    const char *name = slash ? slash + 1 : path;
+    const char *dot = strrchr(name, '.');
+    size_t length = dot && dot != name ? (size_t)(dot - name) : strlen(name);
+    snprintf(base, size, "%.*s", (int)length, name);
+}
+
+/* The id, "ID-2" for an element's second ring, or "plate-3": cut to fit name. */
+static void piece_name(const parts_collection *collection, const parts_ring *ring, size_t number,
+                       char *name, size_t size)
+{
+    char full[96];
+    if (ring->id[0] && ring->sub > 1)
+        snprintf(full, sizeof full, "%.24s-%d", ring->id, ring->sub);
+    else if (ring->id[0])
+        snprintf(full, sizeof full, "%s", ring->id);
+    else {
+        char base[32];
+        base_name(collection->path, base, 20);
+        snprintf(full, sizeof full, "%s-%zu", base, number);
+    }
+    snprintf(name, size, "%.*s", (int)(size - 1), full);
+}
+
+static ur_status build_piece(parts_job *job, size_t outer, size_t number, ur_piece *piece,
+                             ur_error *error)
+{
+    parts_collection *collection = job->collection;
+    parts_ring *ring = &collection->rings[outer];
+    memset(piece, 0, sizeof *piece);
+    piece_name(collection, ring, number, piece->name, sizeof piece->name);
+    ur_status status = ur_piece_add_path(piece, UR_OP_CUT, ring->points, ring->count, true, error);
+    double area = job->areas[outer];
+    for (size_t h = 0; status == UR_OK && h < collection->count; h++) {
+        if (job->parent[h] != (int)outer)
+            continue;
+        parts_ring *hole = &collection->rings[h];
+        reverse_points(hole->points, hole->count); /* holes turn clockwise */
+        status = ur_piece_add_path(piece, UR_OP_CUT, hole->points, hole->count, true, error);
+        area -= job->areas[h];
+    }
+    piece->measures.flat_area = area;
+    if (status != UR_OK)
+        ur_piece_free(piece);
+    return status;
+}
+
+static ur_status build_pieces(parts_job *job, ur_parts *parts, ur_error *error)
+{
+    size_t n = job->collection->count, outers = 0;
+    for (size_t i = 0; i < n; i++)
+        outers += job->depth[i] % 2 == 0;
+    parts->pieces = ur_alloc_array(outers, sizeof *parts->pieces, error);
+    if (!parts->pieces)
+        return UR_ERROR_INTERNAL;
+    for (size_t i = 0; i < n; i++) {
+        if (job->depth[i] % 2 != 0)
+            continue;
+        ur_status status = build_piece(job, i, parts->count + 1, &parts->pieces[parts->count], error);
+        if (status != UR_OK)
+            return status;
+        parts->count++;
+    }
+    return UR_OK;
+}
+
+static ur_status job_allocate(parts_job *job, size_t n, ur_error *error)
+{
+    job->polygons = ur_alloc_array(n, sizeof *job->polygons, error);
+    job->areas = ur_alloc_array(n, sizeof *job->areas, error);
+    job->boxes = ur_alloc_array(n, sizeof *job->boxes, error);
+    job->parent = ur_alloc_array(n, sizeof *job->parent, error);
+    job->depth = ur_alloc_array(n, sizeof *job->depth, error);
+    job->order = ur_alloc_array(n, sizeof *job->order, error);
+    if (!job->polygons || !job->areas || !job->boxes || !job->parent || !job->depth || !job->order)
+        return UR_ERROR_INTERNAL;
+    memset(job->polygons, 0, n * sizeof *job->polygons);
+    return UR_OK;
+}
+
+static void job_free(parts_job *job)
+{
+    for (size_t i = 0; job->polygons && i < job->collection->count; i++)
+        if (job->polygons[i])
+            GEOSGeom_destroy_r(job->geos, job->polygons[i]);
+    free(job->polygons);
+    free(job->areas);
+    free(job->boxes);
+    free(job->parent);
+    free(job->depth);
+    free(job->order);
+    if (job->geos)
+        GEOS_finish_r(job->geos);
+}
+
+ur_status parts_assemble(parts_collection *collection, ur_parts *parts, ur_error *error)
+{
+    if (collection->count == 0)
+        return ur_error_set(error, UR_ERROR_INPUT, "%s: no closed shape: nothing to use as a part",
+                            collection->path);
+    parts_job job = {.collection = collection};
+    job.geos = GEOS_init_r();
+    if (!job.geos)
+        return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not start");
+    ur_status status = job_allocate(&job, collection->count, error);
+    for (size_t i = 0; status == UR_OK && i < collection->count; i++)
+        status = prepare_ring(&job, i, error);
+    if (status == UR_OK)
+        status = nest_rings(&job, error);
+    if (status == UR_OK)
+        status = build_pieces(&job, parts, error);
+    job_free(&job);
+    if (status == UR_OK) {
+        parts->warnings = collection->warnings;
+        parts->warning_count = collection->warning_count;
+        collection->warnings = NULL;
+        collection->warning_count = 0;
+    }
+    return status;
+}
+
+/* ---- The entry point -------------------------------------------------------- */
+
+static bool has_extension(const char *path, const char *extension)
+{
+    size_t length = strlen(path), wanted = strlen(extension);
+    return length > wanted && strcasecmp(path + length - wanted, extension) == 0;
+}
+
+static ur_status check_file(const char *path, ur_error *error)
+{
+    struct stat info;
+    if (stat(path, &info) != 0)
+        return ur_error_set(error, UR_ERROR_INPUT, "%s: cannot open: %s", path, strerror(errno));
+    if (!S_ISREG(info.st_mode))
+        return ur_error_set(error, UR_ERROR_INPUT, "%s: not a regular file", path);
+    if (info.st_size == 0)
+        return ur_error_set(error, UR_ERROR_INPUT, "%s: the file is empty", path);
+    return UR_OK;
+}
+
+static ur_status check_options(const char *path, const ur_parts_import_options *options,
+                               ur_error *error)
+{
+    if (!(options->tolerance >= 1e-6 && options->tolerance <= 10))
+        return ur_error_set(error, UR_ERROR_INPUT,
+                            "%s: the curve tolerance %g mm is not between 1e-6 and 10 mm", path,
+                            options->tolerance);
+    if (!(options->unit >= 0 && isfinite(options->unit)))
+        return ur_error_set(error, UR_ERROR_INPUT, "%s: the unit %g mm is not positive", path,
+                            options->unit);
+    return UR_OK;
+}
+
+ur_status ur_parts_import(const char *path, const ur_parts_import_options *options,
+                          ur_parts *parts, ur_error *error)
+{
+    memset(parts, 0, sizeof *parts);
+    ur_parts_import_options defaults;
+    ur_parts_import_options_default(&defaults);
+    if (!options)
+        options = &defaults;
+    bool svg = has_extension(path, ".svg"), dxf = has_extension(path, ".dxf");
+    if (!svg && !dxf)
+        return ur_error_set(error, UR_ERROR_INPUT,
+                            "%s: unknown kind of file: parts are read from .svg and .dxf files",
+                            path);
+    ur_status status = check_options(path, options, error);
+    if (status == UR_OK)
+        status = check_file(path, error);
+    if (status != UR_OK)
+        return status;
+    parts_collection collection = {
+        .path = path, .tolerance = options->tolerance, .unit = options->unit};
+    status = svg ? parts_read_svg(&collection, error) : parts_read_dxf(&collection, error);
+    if (status == UR_OK)
+        status = parts_assemble(&collection, parts, error);
+    parts_collection_free(&collection);
+    if (status != UR_OK)
+        ur_parts_free(parts);
+    return status;
+}
+
+void ur_parts_free(ur_parts *parts)
+{
+    for (size_t i = 0; parts->pieces && i < parts->count; i++)
+        ur_piece_free(&parts->pieces[i]);
+    free(parts->pieces);
+    free(parts->warnings);
+    memset(parts, 0, sizeof *parts);
+}
