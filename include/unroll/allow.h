@@ -109,6 +109,9 @@ ur_status ur_piece_from_net(const ur_net *net, const ur_allowance_options *optio
 
 void ur_piece_free(ur_piece *piece);
 
+/* A deep copy of a piece (a second part of the same shape); free it with ur_piece_free. */
+ur_status ur_piece_copy(const ur_piece *from, ur_piece *to, ur_error *error);
+
 /* The piece's box, measured again on every path (after paths moved or went). */
 void ur_piece_recompute_box(ur_piece *piece);
 

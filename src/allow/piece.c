@@ -115,6 +115,27 @@ void ur_piece_free(ur_piece *piece)
     piece->record_count = 0;
 }
 
+ur_status ur_piece_copy(const ur_piece *from, ur_piece *to, ur_error *error)
+{
+    memset(to, 0, sizeof *to);
+    memcpy(to->name, from->name, sizeof to->name);
+    to->measures = from->measures;
+    to->bridged = from->bridged;
+    ur_status status = UR_OK;
+    for (size_t k = 0; status == UR_OK && k < from->path_count; k++)
+        status = ur_piece_add_path(to, from->paths[k].op, from->paths[k].points,
+                                   from->paths[k].count, from->paths[k].closed, error);
+    if (status == UR_OK)
+        status = copy_shading(to, &from->shading, error);
+    for (size_t r = 0; status == UR_OK && r < from->record_count; r++)
+        status = ur_piece_record(to, &from->records[r], error);
+    if (status != UR_OK)
+        ur_piece_free(to);
+    else
+        to->box = from->box;
+    return status;
+}
+
 void ur_piece_recompute_box(ur_piece *piece)
 {
     piece->box = ur_box_empty();

@@ -29,6 +29,7 @@ static const char usage[] =
     "  analyze SURFACE ... [--png FILE.png] [--report FILE.json]\n"
     "  compare SURFACE ... [--csv FILE.csv] [--png FILE.png]\n"
     "other:\n"
+    "  nest FILE[:N]... -o OUT.svg  nest the closed paths of SVG and DXF files on sheets\n"
     "  profiles [show NAME]   list machine and material profiles, or print one\n"
     "  help [SUBCOMMAND]      this text, or a subcommand's options\n"
     "\n"
@@ -125,6 +126,9 @@ static const struct {
              "  --flatten unfold       along the edges, papercraft style: every face exact,\n"
              "                         folds scored mountain and valley\n"
              "  --iterations N         most ARAP iterations; --strain-png FILE.png the strain\n"},
+    {"nest", "unroll nest FILE[:N]... -o OUT.svg [OPTIONS]\n"
+             "  Nests the closed paths of SVG and DXF files made elsewhere (nested paths are\n"
+             "  holes) on sheet stock; see 'unroll nest --help'.\n"},
     {"profiles", "unroll profiles            list machine and material profiles\n"
                  "unroll profiles show NAME  print one profile and the file it comes from\n"
                  "  Profiles are searched in ./profiles, then $UNROLL_PROFILES, then the\n"
@@ -211,6 +215,8 @@ int main(int argc, char **argv)
     }
     if (strcmp(command, "profiles") == 0)
         return cli_profiles(argc - 1, argv + 1);
+    if (strcmp(command, "nest") == 0)
+        return cli_nest(argc - 1, argv + 1);
     if (cli_is_surface(command))
         return surface_command(argc - 1, argv + 1);
     if (strcmp(command, "analyze") == 0)

@@ -1053,6 +1053,83 @@ def a_mesh_too_large_for_memory_fails_cleanly(work):
         check(set(os.listdir(work)) == before, "files left behind")
 
 
+# ---- unroll nest -----------------------------------------------------------
+
+PLATE_SVG_MM = """<svg xmlns="http://www.w3.org/2000/svg" width="100mm" height="50mm" viewBox="0 0 100 50">
+  <path id="plate" d="M0,0 H100 V50 H0 Z M40,25 a10,10 0 1,0 20,0 a10,10 0 1,0 -20,0 Z"/>
+</svg>
+"""
+
+# The same plate at 96 px per inch: 100 mm is 377.9527559 px.
+PLATE_SVG_PX = """<svg xmlns="http://www.w3.org/2000/svg" width="377.9527559px" height="188.976378px"
+     viewBox="0 0 377.9527559 188.976378">
+  <g transform="scale(3.779527559)">
+    <rect x="0" y="0" width="100" height="50"/>
+    <circle cx="50" cy="25" r="10"/>
+  </g>
+</svg>
+"""
+
+
+def dxf_plate_inches():
+    """The plate in inches ($INSUNITS 1): an LWPOLYLINE rectangle and a CIRCLE hole."""
+    w, h, r = 100 / 25.4, 50 / 25.4, 10 / 25.4
+    lines = ["0", "SECTION", "2", "HEADER", "9", "$INSUNITS", "70", "1", "0", "ENDSEC",
+             "0", "SECTION", "2", "ENTITIES",
+             "0", "LWPOLYLINE", "8", "0", "90", "4", "70", "1"]
+    for x, y in ((0, 0), (w, 0), (w, h), (0, h)):
+        lines += ["10", repr(x), "20", repr(y)]
+    lines += ["0", "CIRCLE", "8", "0", "10", repr(w / 2), "20", repr(h / 2), "30", "0",
+              "40", repr(r), "0", "ENDSEC", "0", "EOF"]
+    return "\n".join(lines) + "\n"
+
+
+@test
+def nest_reads_svg_and_dxf_in_their_units(work):
+    """The same 100 x 50 plate with a 20 mm hole as SVG in mm, SVG in px at
+    96 dpi and DXF in inches: the same part, the hole kept as a hole."""
+    write(work, "mm.svg", PLATE_SVG_MM)
+    write(work, "px.svg", PLATE_SVG_PX)
+    write(work, "in.dxf", dxf_plate_inches())
+    areas = []
+    for name in ("mm.svg", "px.svg", "in.dxf"):
+        out = name.replace(".", "-") + ".svg"
+        run(work, "nest", name, "-o", out, "--report", out + ".json", "--no-kerf-compensation",
+            "--quiet")
+        [piece] = report(work, out + ".json")["pieces"]
+        box = piece["bounding_box"]
+        close(max(box["width_mm"], box["height_mm"]), 100, 1e-6, name + " length")
+        close(min(box["width_mm"], box["height_mm"]), 50, 1e-6, name + " width")
+        cuts = [points for points, closed in paths(os.path.join(work, out), "cut") if closed]
+        check(len(cuts) == 2, "%s: %d closed cuts" % (name, len(cuts)))
+        areas.append(sorted(area(points) for points in cuts))
+    for other in areas[1:]:
+        close(other[0], areas[0][0], 1e-3, "hole area")  # curves flattened within 0.01 mm
+        close(other[1], areas[0][1], 1e-6, "outline area")
+    close(areas[0][0], math.pi * 100, 2e-3, "the hole is a 20 mm circle")
+
+
+@test
+def nest_copies_and_bad_input(work):
+    write(work, "mm.svg", PLATE_SVG_MM)
+    run(work, "nest", "mm.svg:5", "-o", "five.svg", "--report", "five.json", "--quiet")
+    pieces = report(work, "five.json")["pieces"]
+    check(len(pieces) == 5, "%d parts for mm.svg:5" % len(pieces))
+    check(len({p["name"] for p in pieces}) == 5, "copies share a name")
+    write(work, "open.svg", """<svg xmlns="http://www.w3.org/2000/svg" width="10mm" height="10mm"
+ viewBox="0 0 10 10"><path id="zigzag" d="M0,0 L5,5 L10,0"/></svg>
+""")
+    bad(work, r"open\.svg:2: .*zigzag", "nest", "open.svg", "-o", "x.svg")
+    write(work, "nounits.svg", """<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 10 10">
+<rect width="10" height="10"/></svg>
+""")
+    bad(work, r"nounits\.svg.*--units", "nest", "nounits.svg", "-o", "x.svg")
+    run(work, "nest", "nounits.svg", "--units", "mm", "-o", "u.svg", "--quiet")
+    bad(work, r"missing\.svg", "nest", "missing.svg", "-o", "x.svg")
+    bad(work, r"give the files to nest", "nest", "-o", "x.svg")
+    bad(work, r"--copies: '0' is not a count", "nest", "mm.svg", "--copies", "0", "-o", "x.svg")
+
+
 def main():
     passed = failed = 0
     for function in TESTS:

@@ -1,0 +1,369 @@
+/*
+ * nest.c: unroll nest FILE... -o OUT: parts drawn elsewhere (SVG, DXF)
+ * placed on sheet stock, with the same machine and material profiles, kerf
+ * compensation, writers and report as a surface job.
+ *
+ * A file's closed paths become parts (ur_parts_import); FILE:N or --copies
+ * N asks for N of each.  Units come from the file, or --units when it says
+ * nothing.
+ */
+#include "cli.h"
+
+#include <errno.h>
+#include <getopt.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "unroll/out.h"
+
+enum nest_option {
+    NEST_MACHINE = 256,
+    NEST_MATERIAL,
+    NEST_SHEET,
+    NEST_UNITS,
+    NEST_COPIES,
+    NEST_MARGIN,
+    NEST_SPACING,
+    NEST_REPORT,
+    NEST_QUIET,
+    NEST_NO_KERF,
+};
+
+static const struct option nest_options[] = {
+    {"output", required_argument, NULL, 'o'},
+    {"machine", required_argument, NULL, NEST_MACHINE},
+    {"material", required_argument, NULL, NEST_MATERIAL},
+    {"sheet", required_argument, NULL, NEST_SHEET},
+    {"units", required_argument, NULL, NEST_UNITS},
+    {"copies", required_argument, NULL, NEST_COPIES},
+    {"margin", required_argument, NULL, NEST_MARGIN},
+    {"spacing", required_argument, NULL, NEST_SPACING},
+    {"report", required_argument, NULL, NEST_REPORT},
+    {"quiet", no_argument, NULL, NEST_QUIET},
+    {"no-kerf-compensation", no_argument, NULL, NEST_NO_KERF},
+    {"help", no_argument, NULL, 'h'},
+    {NULL, 0, NULL, 0},
+};
+
+/* What the command line says beyond what a surface job holds. */
+typedef struct nest_job {
+    cli_job job;        /* output, profiles, sheet, margin, spacing, report, quiet */
+    double unit_mm;     /* --units: mm per unit of a file that gives none; 0 when not given */
+    long copies;        /* --copies: of every part, unless FILE:N says otherwise */
+    char **files;       /* argv's file arguments, FILE or FILE:N */
+    size_t file_count;
+} nest_job;
+
+static bool parse_positive_count(const char *what, const char *value, long most, long *count)
+{
+    char *end = NULL;
+    errno = 0;
+    long parsed = strtol(value, &end, 10);
+    if (end == value || *end != '\0' || errno != 0 || parsed < 1 || parsed > most) {
+        cli_message("nest: %s: '%s' is not a count from 1 to %ld", what, value, most);
+        return false;
+    }
+    *count = parsed;
+    return true;
+}
+
+static bool parse_length(const char *what, const char *value, double *length)
+{
+    char *end = NULL;
+    double parsed = strtod(value, &end);
+    if (end == value || *end != '\0' || !isfinite(parsed) || parsed < 0) {
+        cli_message("nest: %s: '%s' is not a length of 0 mm or more", what, value);
+        return false;
+    }
+    *length = parsed;
+    return true;
+}
+
+static bool parse_sheet_size(const char *value, cli_job *job)
+{
+    char *end = NULL;
+    double width = strtod(value, &end);
+    double height = end && *end == 'x' ? strtod(end + 1, &end) : NAN;
+    if (!end || *end != '\0' || !(width > 0) || !(height > 0) || !isfinite(width) ||
+        !isfinite(height)) {
+        cli_message("nest: --sheet: '%s' is not WxH in mm, e.g. 600x400", value);
+        return false;
+    }
+    job->sheet_width = width;
+    job->sheet_height = height;
+    return true;
+}
+
+static bool take_nest_option(nest_job *n, int id, const char *value)
+{
+    cli_job *job = &n->job;
+    switch (id) {
+    case 'o':
+        job->output_path = value;
+        return true;
+    case NEST_MACHINE:
+        job->machine_name = value;
+        return true;
+    case NEST_MATERIAL:
+        job->material_name = value;
+        return true;
+    case NEST_SHEET:
+        return parse_sheet_size(value, job);
+    case NEST_UNITS:
+        n->unit_mm = ur_parts_unit_mm(value);
+        if (n->unit_mm > 0)
+            return true;
+        cli_message("nest: --units: '%s' is not one of mm, cm, m, in, ft, pt, pc, px", value);
+        return false;
+    case NEST_COPIES:
+        return parse_positive_count("--copies", value, 10000, &n->copies);
+    case NEST_MARGIN:
+        return parse_length("--margin", value, &job->margin);
+    case NEST_SPACING:
+        return parse_length("--spacing", value, &job->spacing);
+    case NEST_REPORT:
+        job->report_path = value;
+        return true;
+    case NEST_QUIET:
+        job->quiet = true;
+        return true;
+    case NEST_NO_KERF:
+        job->no_kerf_compensation = true;
+        return true;
+    default:
+        return false;
+    }
+}
+
+static const char nest_help[] =
+    "unroll nest FILE[:N]... -o OUT.svg [OPTIONS]\n"
+    "  Nests the closed paths of SVG and DXF files made elsewhere (nested paths are\n"
+    "  holes) on sheet stock.  Units come from the file (SVG width/height and viewBox,\n"
+    "  DXF $INSUNITS); --units mm|cm|m|in|ft|pt|pc|px when it says nothing.\n"
+    "  FILE:N or --copies N: that many of each part.\n"
+    "  --machine NAME --material NAME --sheet WxH --margin MM --spacing MM\n"
+    "  --report FILE.json --quiet --no-kerf-compensation\n";
+
+/* Parses argv (argv[0] is "nest"); 0, -1 after help, or an exit status. */
+static int parse_nest(int argc, char **argv, nest_job *n)
+{
+    memset(n, 0, sizeof *n);
+    n->copies = 1;
+    cli_job *job = &n->job;
+    job->command = "nest";
+    job->surface = "nest";
+    job->machine_name = "co2-60w";
+    job->material_name = "plywood-3mm";
+    job->margin = job->spacing = -1;
+    opterr = 0;
+    optind = 1;
+    int id;
+    while ((id = getopt_long(argc, argv, ":o:h", nest_options, NULL)) != -1) {
+        if (id == 'h') {
+            fputs(nest_help, stdout);
+            return -1;
+        }
+        if (id == '?' || id == ':') {
+            cli_message(id == ':' ? "nest: option %s needs a value"
+                                  : "nest: unknown option '%s' (see 'unroll help nest')",
+                        argv[optind - 1]);
+            return EXIT_USAGE;
+        }
+        if (!take_nest_option(n, id, optarg))
+            return EXIT_USAGE;
+    }
+    n->files = argv + optind;
+    n->file_count = (size_t)(argc - optind);
+    if (n->file_count == 0 || !job->output_path) {
+        cli_message("nest: give the files to nest and -o OUT.svg: unroll nest FILE... -o OUT.svg");
+        return EXIT_USAGE;
+    }
+    return 0;
+}
+
+/* FILE:N: the path (into path) and the count; the count is n->copies without ":N". */
+static bool split_count(const nest_job *n, const char *argument, char *path, size_t size,
+                        long *copies)
+{
+    const char *colon = strrchr(argument, ':');
+    *copies = n->copies;
+    size_t length = strlen(argument);
+    if (colon && colon[1] != '\0' && strspn(colon + 1, "0123456789") == strlen(colon + 1)) {
+        if (!parse_positive_count(argument, colon + 1, 10000, copies))
+            return false;
+        length = (size_t)(colon - argument);
+    }
+    if (length >= size) {
+        cli_message("nest: %s: path too long", argument);
+        return false;
+    }
+    memcpy(path, argument, length);
+    path[length] = '\0';
+    return true;
+}
+
+/* Appends `copies` of every part of parts to the list, numbering the copies. */
+static ur_status add_parts(const ur_parts *parts, long copies, ur_piece **pieces, size_t *count,
+                           ur_error *error)
+{
+    size_t more = parts->count * (size_t)copies;
+    ur_piece *grown = realloc(*pieces, (*count + more) * sizeof *grown);
+    if (!grown)
+        return ur_error_out_of_memory(error);
+    *pieces = grown;
+    for (size_t k = 0; k < parts->count; k++)
+        for (long c = 0; c < copies; c++) {
+            ur_piece *piece = &(*pieces)[*count];
+            ur_status status = ur_piece_copy(&parts->pieces[k], piece, error);
+            if (status != UR_OK)
+                return status;
+            if (copies > 1) { /* copies are at most 10000: "#" and 5 digits fit after 24 */
+                char number[24];
+                snprintf(number, sizeof number, "#%ld", c + 1);
+                size_t keep = strnlen(parts->pieces[k].name, 24);
+                memcpy(piece->name, parts->pieces[k].name, keep);
+                memcpy(piece->name + keep, number, strlen(number) + 1);
+            }
+            (*count)++;
+        }
+    return UR_OK;
+}
+
+static int read_files(const nest_job *n, ur_piece **pieces, size_t *count)
+{
+    ur_parts_import_options options;
+    ur_parts_import_options_default(&options);
+    options.unit = n->unit_mm;
+    for (size_t f = 0; f < n->file_count; f++) {
+        char path[4096];
+        long copies;
+        if (!split_count(n, n->files[f], path, sizeof path, &copies))
+            return EXIT_USAGE;
+        ur_parts parts;
+        ur_error error;
+        ur_status status = ur_parts_import(path, &options, &parts, &error);
+        if (status != UR_OK) {
+            cli_message("nest: %s", error.message);
+            return cli_exit_status(&error);
+        }
+        for (size_t w = 0; !n->job.quiet && w < parts.warning_count; w++)
+            cli_message("nest: warning: %s", parts.warnings[w]);
+        status = add_parts(&parts, copies, pieces, count, &error);
+        ur_parts_free(&parts);
+        if (status != UR_OK) {
+            cli_message("nest: %s", error.message);
+            return cli_exit_status(&error);
+        }
+    }
+    return 0;
+}
+
+/* Sheets no layout can do with fewer: the parts' area over the room inside the margin. */
+static double lower_bound(const ur_piece *pieces, size_t count, const ur_sheet *sheet,
+                          double margin)
+{
+    double area = 0.0;
+    for (size_t k = 0; k < count; k++)
+        area += pieces[k].measures.flat_area;
+    double room = (sheet->width - 2 * margin) * (sheet->height - 2 * margin);
+    return room > 0 ? ceil(area / room - 1e-9) : NAN;
+}
+
+static void print_nest_summary(const nest_job *n, const ur_machine *machine,
+                               const ur_piece *pieces, size_t count, const ur_layout *layout)
+{
+    if (n->job.quiet || layout->sheet_count == 0)
+        return;
+    double margin = n->job.margin >= 0 ? n->job.margin : machine->margin;
+    for (size_t s = 0; s < layout->sheet_count; s++)
+        cli_message("nest: sheet %zu: %zu parts, utilisation %.1f %%", s + 1,
+                    layout->sheets[s].placement_count,
+                    100 * ur_sheet_utilisation(&layout->sheets[s], pieces));
+    cli_message("nest: %zu parts on %zu sheet%s of %g x %g mm (lower bound %.0f) -> %s", count,
+                layout->sheet_count, layout->sheet_count == 1 ? "" : "s", layout->sheets[0].width,
+                layout->sheets[0].height, lower_bound(pieces, count, &layout->sheets[0], margin),
+                n->job.output_path);
+}
+
+static ur_status compensate(const nest_job *n, const ur_machine *machine,
+                            const ur_material *material, ur_piece *pieces, size_t count,
+                            ur_error *error)
+{
+    double kerf = ur_effective_kerf(machine, material);
+    ur_status status = UR_OK;
+    for (size_t k = 0; status == UR_OK && !n->job.no_kerf_compensation && k < count; k++)
+        status = ur_piece_compensate_kerf(&pieces[k], kerf, error);
+    return status;
+}
+
+static ur_status write_nest(const nest_job *n, const ur_machine *machine,
+                            const ur_material *material, const ur_piece *pieces, size_t count,
+                            const ur_layout *layout, ur_error *error)
+{
+    ur_output_options output = {"unroll nest"};
+    ur_status status = ur_write_svg(n->job.output_path, layout, pieces, machine, &output, error);
+    if (status != UR_OK || !n->job.report_path)
+        return status;
+    ur_report_context context = {.surface = "nest",
+                                 .method = "nest",
+                                 .machine = machine,
+                                 .material = material,
+                                 .sheet_path = n->job.output_path};
+    for (size_t k = 0; k < count; k++)
+        context.surface_area += pieces[k].measures.flat_area;
+    return ur_report_write(n->job.report_path, &context, pieces, count, layout, error);
+}
+
+/* Reads, compensates, places and writes; the pieces and layout are the caller's to free. */
+static int run_nest(const nest_job *n, ur_piece **pieces, size_t *count, ur_layout *layout)
+{
+    ur_machine machine;
+    ur_material material;
+    ur_error error;
+    if (ur_machine_load(n->job.machine_name, &machine, &error) != UR_OK ||
+        ur_material_load(n->job.material_name, &material, &error) != UR_OK) {
+        cli_message("%s", error.message);
+        return cli_exit_status(&error);
+    }
+    int code = read_files(n, pieces, count);
+    if (code)
+        return code;
+    ur_status status = compensate(n, &machine, &material, *pieces, *count, &error);
+    if (status == UR_OK)
+        status = cli_place_pieces(&n->job, &machine, &material, *pieces, *count, layout, &error);
+    if (status == UR_OK) {
+        cli_allowance_warnings(&n->job, *pieces, *count);
+        status = write_nest(n, &machine, &material, *pieces, *count, layout, &error);
+    }
+    if (status != UR_OK) {
+        cli_message("nest: %s", error.message);
+        return cli_exit_status(&error);
+    }
+    print_nest_summary(n, &machine, *pieces, *count, layout);
+    return 0;
+}
+
+int cli_nest(int argc, char **argv)
+{
+    nest_job n;
+    int code = parse_nest(argc, argv, &n);
+    if (code == -1)
+        return 0;
+    if (code)
+        return code;
+    if (!cli_directory_exists("-o", n.job.output_path) ||
+        (n.job.report_path && strcmp(n.job.report_path, "-") != 0 &&
+         !cli_directory_exists("--report", n.job.report_path)))
+        return EXIT_USAGE;
+    ur_piece *pieces = NULL;
+    size_t count = 0;
+    ur_layout layout = {NULL, 0};
+    code = run_nest(&n, &pieces, &count, &layout);
+    for (size_t k = 0; k < count; k++)
+        ur_piece_free(&pieces[k]);
+    free(pieces);
+    ur_layout_free(&layout);
+    return code;
+}
