@@ -34,9 +34,8 @@ double ur_parts_unit_mm(const char *name)
     static const struct {
         const char *name;
         double mm;
-    } units[] = {{"mm", 1.0},         {"cm", 10.0},       {"m", 1000.0},
-                 {"in", 25.4},        {"ft", 304.8},      {"pt", 25.4 / 72.0},
-                 {"pc", 25.4 / 6.0},  {"px", 25.4 / 96.0}};
+    } units[] = {{"mm", 1.0},   {"cm", 10.0},        {"m", 1000.0},      {"in", 25.4},
+                 {"ft", 304.8}, {"pt", 25.4 / 72.0}, {"pc", 25.4 / 6.0}, {"px", 25.4 / 96.0}};
     for (size_t i = 0; name && i < sizeof units / sizeof units[0]; i++)
         if (strcmp(name, units[i].name) == 0)
             return units[i].mm;
@@ -206,8 +205,7 @@ static ur_status ring_error(const parts_collection *collection, const parts_ring
     if (ring->line > 0)
         return ur_error_set(error, UR_ERROR_INPUT, "%s:%d: %s: %s", collection->path, ring->line,
                             ring->what, message);
-    return ur_error_set(error, UR_ERROR_INPUT, "%s: %s: %s", collection->path, ring->what,
-                        message);
+    return ur_error_set(error, UR_ERROR_INPUT, "%s: %s: %s", collection->path, ring->what, message);
 }
 
 /* ---- Checking rings with GEOS ------------------------------------------- */
@@ -241,8 +239,7 @@ static GEOSGeometry *ring_polygon(GEOSContextHandle_t geos, const ur_vec2 *point
     if (!sequence)
         return NULL;
     for (size_t i = 0; i <= count; i++)
-        GEOSCoordSeq_setXY_r(geos, sequence, (unsigned)i, points[i % count].x,
-                             points[i % count].y);
+        GEOSCoordSeq_setXY_r(geos, sequence, (unsigned)i, points[i % count].x, points[i % count].y);
     GEOSGeometry *shell = GEOSGeom_createLinearRing_r(geos, sequence);
     if (!shell)
         return NULL;
@@ -498,7 +495,8 @@ static ur_status build_pieces(parts_job *job, ur_parts *parts, ur_error *error)
     for (size_t i = 0; i < n; i++) {
         if (job->depth[i] % 2 != 0)
             continue;
-        ur_status status = build_piece(job, i, parts->count + 1, &parts->pieces[parts->count], error);
+        ur_status status =
+            build_piece(job, i, parts->count + 1, &parts->pieces[parts->count], error);
         if (status != UR_OK)
             return status;
         parts->count++;
@@ -594,8 +592,8 @@ static ur_status check_options(const char *path, const ur_parts_import_options *
     return UR_OK;
 }
 
-ur_status ur_parts_import(const char *path, const ur_parts_import_options *options,
-                          ur_parts *parts, ur_error *error)
+ur_status ur_parts_import(const char *path, const ur_parts_import_options *options, ur_parts *parts,
+                          ur_error *error)
 {
     memset(parts, 0, sizeof *parts);
     ur_parts_import_options defaults;
