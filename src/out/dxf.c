@@ -292,8 +292,7 @@ static void write_header(const dxf_sheet *sheet)
     end_section(file);
 }
 
-static void begin_table(const dxf_sheet *sheet, const char *name, unsigned long handle,
-                        long count)
+static void begin_table(const dxf_sheet *sheet, const char *name, unsigned long handle, long count)
 {
     FILE *file = sheet->file;
     group(file, 0, "TABLE");

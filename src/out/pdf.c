@@ -6,10 +6,14 @@
  * every path a vector stroke in its operation's colour and line width as
  * the machine gives them, so hairlines stay the hairlines the driver cuts.
  *
- * libharu takes dash lengths only as whole units of user space, so each
- * page draws in hundredths of a millimetre (a scaled CTM): dashes are then
- * exact to 0.01 mm and coordinates, which libharu keeps as floats, exact to
- * about 1e-4 mm on a 5 m sheet.
+ * libharu takes dash lengths only as whole units of user space, at most
+ * 100 of them, and writes every number with five decimals, clamped to
+ * +-32767.  So solid layers draw in points (coordinates to about 4e-6 mm)
+ * and a dashed layer in a unit of its own, between GSave and GRestore: the
+ * finest of 0.01, 0.02, 0.05, 0.1, ... pt (numbers five decimals hold
+ * exactly) in which the longest dash is at most 100 units and the page at
+ * most 32000.  Dashes are then exact to that unit (0.1 pt, 0.035 mm, for a
+ * 3 mm dash on a 600 mm sheet).
  *
  * libharu reports errors through a handler; the default one prints and
  * exits, so a handler that only records the error is installed and every
@@ -24,9 +28,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* User space units per mm, and points per unit. */
-#define UNITS_PER_MM 100.0
 #define POINTS_PER_MM (72.0 / 25.4)
+
+/* libharu's longest dash and our largest coordinate, in units. */
+#define LONGEST_DASH 100.0
+#define LARGEST_NUMBER 32000.0
 
 /* At most this many dash lengths (libharu's limit). */
 enum { MAX_DASHES = 8 };
@@ -41,6 +47,8 @@ typedef struct pdf_sheet {
     pdf_document *document;
     HPDF_Page page;
     size_t index;
+    double largest; /* the sheet's longer side, pt */
+    double unit;    /* points per user space unit in the current layer */
 } pdf_sheet;
 
 /* Records libharu's first error instead of printing it and exiting. */
@@ -174,7 +182,8 @@ static void pdf_discard_document(void *state)
 
 static ur_status check_page_size(double width, double height, size_t index, ur_error *error)
 {
-    double largest = HPDF_MAX_PAGE_SIZE / POINTS_PER_MM, smallest = HPDF_MIN_PAGE_SIZE / POINTS_PER_MM;
+    double largest = HPDF_MAX_PAGE_SIZE / POINTS_PER_MM,
+           smallest = HPDF_MIN_PAGE_SIZE / POINTS_PER_MM;
     if (width > largest || height > largest || width < smallest || height < smallest)
         return ur_error_set(error, UR_ERROR_INPUT,
                             "sheet %zu (%g x %g mm) does not fit a PDF page, which is %.0f to "
@@ -198,8 +207,8 @@ static ur_status pdf_begin_sheet(void **state, void *document_state, FILE *file,
         return ur_error_out_of_memory(error);
     page->document = document;
     page->index = index;
+    page->largest = fmax(sheet->width, sheet->height) * POINTS_PER_MM;
     page->page = HPDF_AddPage(document->pdf);
-    double scale = POINTS_PER_MM / UNITS_PER_MM;
     status = check(document, page->page ? HPDF_OK : HPDF_FAILD_TO_ALLOC_MEM, "new page", error);
     if (status == UR_OK)
         status = check(document,
@@ -209,10 +218,6 @@ static ur_status pdf_begin_sheet(void **state, void *document_state, FILE *file,
         status = check(document,
                        HPDF_Page_SetHeight(page->page, (HPDF_REAL)(sheet->height * POINTS_PER_MM)),
                        "page height", error);
-    if (status == UR_OK)
-        status = check(document,
-                       HPDF_Page_Concat(page->page, (HPDF_REAL)scale, 0, 0, (HPDF_REAL)scale, 0, 0),
-                       "page scale", error);
     if (status != UR_OK) {
         free(page);
         return status;
@@ -221,7 +226,31 @@ static ur_status pdf_begin_sheet(void **state, void *document_state, FILE *file,
     return UR_OK;
 }
 
-/* The operation's colour, width and dashes, in hundredths of a millimetre. */
+/*
+ * Points per unit: 1 for a solid layer; for a dashed one the finest 1, 2 or
+ * 5 times a power of ten from 0.01 up in which every dash and the page fit.
+ */
+static double layer_unit(const pdf_sheet *sheet, const double *dashes, size_t count)
+{
+    if (count == 0)
+        return 1.0;
+    double least = sheet->largest / LARGEST_NUMBER;
+    for (size_t i = 0; i < count; i++)
+        least = fmax(least, dashes[i] * POINTS_PER_MM / LONGEST_DASH);
+    static const double steps[3] = {1, 2, 5};
+    for (double magnitude = 0.01;; magnitude *= 10)
+        for (int k = 0; k < 3; k++)
+            if (steps[k] * magnitude >= least * (1 - 1e-12))
+                return steps[k] * magnitude;
+}
+
+/* A point on the sheet, mm, in the layer's units. */
+static HPDF_REAL units(const pdf_sheet *sheet, double millimetres)
+{
+    return (HPDF_REAL)(millimetres * POINTS_PER_MM / sheet->unit);
+}
+
+/* The operation's colour, width and dashes, in the layer's own unit. */
 static ur_status pdf_begin_layer(void *state, ur_op op, ur_error *error)
 {
     pdf_sheet *sheet = state;
@@ -230,17 +259,29 @@ static ur_status pdf_begin_layer(void *state, ur_op op, ur_error *error)
     unsigned long rgb = ur_style_rgb(style);
     double dashes[MAX_DASHES];
     size_t count = ur_style_dashes(style, dashes, MAX_DASHES);
+    sheet->unit = layer_unit(sheet, dashes, count);
     HPDF_UINT16 pattern[MAX_DASHES];
     for (size_t i = 0; i < count; i++)
-        pattern[i] = (HPDF_UINT16)fmax(1.0, fmin(65535.0, round(dashes[i] * UNITS_PER_MM)));
+        pattern[i] = (HPDF_UINT16)fmax(1.0, fmin(LONGEST_DASH, round(units(sheet, dashes[i]))));
+    HPDF_Page_GSave(page);
+    if (sheet->unit != 1.0)
+        HPDF_Page_Concat(page, (HPDF_REAL)sheet->unit, 0, 0, (HPDF_REAL)sheet->unit, 0, 0);
     HPDF_Page_SetRGBStroke(page, (HPDF_REAL)((rgb >> 16 & 0xFF) / 255.0),
                            (HPDF_REAL)((rgb >> 8 & 0xFF) / 255.0),
                            (HPDF_REAL)((rgb & 0xFF) / 255.0));
-    HPDF_Page_SetLineWidth(page, (HPDF_REAL)(style->line_width * UNITS_PER_MM));
+    HPDF_Page_SetLineWidth(page, units(sheet, style->line_width));
     HPDF_Page_SetLineCap(page, HPDF_ROUND_END);
     HPDF_Page_SetLineJoin(page, HPDF_ROUND_JOIN);
-    HPDF_Page_SetDash(page, count ? pattern : NULL, (HPDF_UINT)count, 0);
+    if (count > 0)
+        HPDF_Page_SetDash(page, pattern, (HPDF_UINT)count, 0);
     return check(sheet->document, HPDF_OK, "line style", error);
+}
+
+static ur_status pdf_end_layer(void *state, ur_op op, ur_error *error)
+{
+    (void)op;
+    pdf_sheet *sheet = state;
+    return check(sheet->document, HPDF_Page_GRestore(sheet->page), "end of layer", error);
 }
 
 static ur_status pdf_path(void *state, ur_op op, const ur_vec2 *points, size_t count, bool closed,
@@ -249,14 +290,11 @@ static ur_status pdf_path(void *state, ur_op op, const ur_vec2 *points, size_t c
     (void)op; /* begin_layer set its style */
     pdf_sheet *sheet = state;
     HPDF_Page page = sheet->page;
-    HPDF_Page_MoveTo(page, (HPDF_REAL)(points[0].x * UNITS_PER_MM),
-                     (HPDF_REAL)(points[0].y * UNITS_PER_MM));
+    HPDF_Page_MoveTo(page, units(sheet, points[0].x), units(sheet, points[0].y));
     for (size_t i = 1; i < count; i++)
-        HPDF_Page_LineTo(page, (HPDF_REAL)(points[i].x * UNITS_PER_MM),
-                         (HPDF_REAL)(points[i].y * UNITS_PER_MM));
+        HPDF_Page_LineTo(page, units(sheet, points[i].x), units(sheet, points[i].y));
     if (count == 1) /* a dot: a round cap on a line of no length */
-        HPDF_Page_LineTo(page, (HPDF_REAL)(points[0].x * UNITS_PER_MM),
-                         (HPDF_REAL)(points[0].y * UNITS_PER_MM));
+        HPDF_Page_LineTo(page, units(sheet, points[0].x), units(sheet, points[0].y));
     if (closed)
         HPDF_Page_ClosePathStroke(page);
     else
@@ -284,6 +322,7 @@ const ur_writer ur_pdf_writer = {
     .begin_document = pdf_begin_document,
     .begin_sheet = pdf_begin_sheet,
     .begin_layer = pdf_begin_layer,
+    .end_layer = pdf_end_layer,
     .path = pdf_path,
     .end_sheet = pdf_end_sheet,
     .discard_sheet = pdf_discard_sheet,

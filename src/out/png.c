@@ -187,8 +187,7 @@ static void fill_strain(png_sheet *s, const ur_piece *piece, ur_transform2 trans
     cairo_set_line_width(cr, 1.0);
     for (size_t t = 0; t < shading->count; t++) {
         for (int k = 0; k < 3; k++) {
-            ur_vec2 corner =
-                to_pixels(s, ur_transform2_apply(transform, shading->triangles[t][k]));
+            ur_vec2 corner = to_pixels(s, ur_transform2_apply(transform, shading->triangles[t][k]));
             cairo_line_to(cr, corner.x, corner.y);
         }
         cairo_close_path(cr);
@@ -313,17 +312,17 @@ static void measure_legend(png_sheet *s, double unit, legend *l)
     l->scale_length = nice_below(SCALE_LONGEST * unit / s->scale);
     snprintf(l->scale_label, sizeof l->scale_label, "%g mm", l->scale_length);
     double width = fmax(width_of(cr, l->title, 12, true), width_of(cr, l->strain, 11, false));
-    width = fmax(width, l->scale_length * s->scale / unit + 6 + width_of(cr, l->scale_label, 11,
-                                                                          false));
+    width = fmax(width,
+                 l->scale_length * s->scale / unit + 6 + width_of(cr, l->scale_label, 11, false));
     l->rows = 0;
     for (int op = 0; op < UR_OP_COUNT; op++) {
         if (!s->drawn[op])
             continue;
         l->rows++;
         const ur_op_style *style = &s->machine->styles[op];
-        width = fmax(width, SWATCH + 6 + width_of(cr, style->layer[0] ? style->layer
-                                                                      : ur_op_name((ur_op)op),
-                                                   11, false));
+        width = fmax(width, SWATCH + 6 +
+                                width_of(cr, style->layer[0] ? style->layer : ur_op_name((ur_op)op),
+                                         11, false));
     }
     l->width = (width + 2 * PAD) * unit;
     l->height = (2 * PAD + 14 + ROW * (l->rows + 1) + 12) * unit;
@@ -345,10 +344,8 @@ static void place_legend(png_sheet *s, legend *l)
         double area = 0;
         for (size_t i = 0; i < s->label_count; i++) {
             ur_vec2 at = s->labels[i].at;
-            area += overlap(corners[k][0], corners[k][0] + l->width, at.x - around,
-                            at.x + around) *
-                    overlap(corners[k][1], corners[k][1] + l->height, at.y - around,
-                            at.y + around);
+            area += overlap(corners[k][0], corners[k][0] + l->width, at.x - around, at.x + around) *
+                    overlap(corners[k][1], corners[k][1] + l->height, at.y - around, at.y + around);
         }
         if (area < least) {
             least = area;
