@@ -6,12 +6,11 @@
  * picture is a millimetre on the sheet at that dpi), white, its edge grey.
  * The pieces come first (writer.h's piece call): each triangle of a
  * flattened piece filled with the colour of its strain (the map of the
- * strain picture, draw.h, one scale for the whole layout), a development
- * left white.  Then every path in its operation's colour, at least one
- * point wide so that hairlines show; then each piece's name on a white
- * box, and a legend (the operations drawn, with their layers' colours,
- * the strain range, a scale bar) in the corner it covers least.  Text and
- * lines are sized in points of 1/96 inch, so they keep their size on
+ * strain picture, draw.h, one scale for the whole layout, lightened so the
+ * lines over it read), a development left white.  Then every path in its operation's colour, at
+ * least one point wide so that hairlines show; then each piece's name on a white box, and a legend
+ * (the operations drawn, with their layers' colours, the strain range, a scale bar) in the corner
+ * it covers least.  Text and lines are sized in points of 1/96 inch, so they keep their size on
  * paper at any resolution.
  */
 #include "writer.h"
@@ -28,6 +27,9 @@
 /* cairo's largest image side; more pixels than MAX_PIXELS (400 MB) are refused as well. */
 enum { MAX_SIDE = 32767 };
 static const double MAX_PIXELS = 1e8;
+
+/* How much of the strain colour covers the white sheet. */
+static const double FILL_ALPHA = 0.6;
 
 /* Legend sizes, in points. */
 enum { PAD = 8, INSET = 6, ROW = 16, SWATCH = 24, SCALE_LONGEST = 120 };
@@ -183,6 +185,9 @@ static void fill_strain(png_sheet *s, const ur_piece *piece, ur_transform2 trans
 {
     cairo_t *cr = s->cr;
     const ur_shading *shading = &piece->shading;
+    if (shading->count == 0)
+        return;
+    cairo_push_group(cr);
     cairo_set_antialias(cr, CAIRO_ANTIALIAS_NONE);
     cairo_set_line_width(cr, 1.0);
     for (size_t t = 0; t < shading->count; t++) {
@@ -196,6 +201,9 @@ static void fill_strain(png_sheet *s, const ur_piece *piece, ur_transform2 trans
         cairo_stroke(cr);
     }
     cairo_set_antialias(cr, CAIRO_ANTIALIAS_DEFAULT);
+    /* Lighter than the strain picture's, so that the lines drawn over it read. */
+    cairo_pop_group_to_source(cr);
+    cairo_paint_with_alpha(cr, FILL_ALPHA);
 }
 
 /* The middle of the piece's placed outline box: where its name goes. */
