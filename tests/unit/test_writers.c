@@ -15,6 +15,7 @@
 #include <cmocka.h>
 
 #include <cairo.h>
+#include <fcntl.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -68,18 +69,21 @@ static const char check_dxf_py[] =
     "    elif f[0] == 'extents':\n"
     "        w, h = float(f[1]), float(f[2])\n"
     "        if tuple(doc.header['$EXTMIN'])[:2] != (0, 0): fail('extmin')\n"
-    "        if abs(doc.header['$EXTMAX'][0] - w) > 1e-9 or abs(doc.header['$EXTMAX'][1] - h) > 1e-9: fail('extmax')\n"
+    "        if abs(doc.header['$EXTMAX'][0] - w) > 1e-9 or abs(doc.header['$EXTMAX'][1] - h) > "
+    "1e-9: fail('extmax')\n"
     "    elif f[0] == 'layer':\n"
     "        name, rgb = f[1].replace('~', ' '), int(f[2], 16)\n"
     "        if not doc.layers.has_entry(name): fail('no layer ' + name)\n"
     "        layer = doc.layers.get(name)\n"
     "        if layer.dxf.name != name: fail('layer name %r' % layer.dxf.name)\n"
     "        if layer.color != nearest(rgb): fail('layer %s colour %d' % (name, layer.color))\n"
-    "        if doc.dxfversion != 'AC1009' and layer.rgb != ((rgb >> 16) & 255, (rgb >> 8) & 255, rgb & 255):\n"
+    "        if doc.dxfversion != 'AC1009' and layer.rgb != ((rgb >> 16) & 255, (rgb >> 8) & 255, "
+    "rgb & 255):\n"
     "            fail('layer %s true colour %s' % (name, layer.rgb))\n"
     "    elif f[0] == 'path':\n"
     "        n = int(f[3]); v = [float(x) for x in f[4:]]\n"
-    "        paths.append((f[1].replace('~', ' '), f[2] == '1', [(v[2*i], v[2*i+1]) for i in range(n)]))\n"
+    "        paths.append((f[1].replace('~', ' '), f[2] == '1', [(v[2*i], v[2*i+1]) for i in "
+    "range(n)]))\n"
     "if doc.header.get('$INSUNITS') != 4: fail('$INSUNITS %s' % doc.header.get('$INSUNITS'))\n"
     "if doc.header.get('$MEASUREMENT') != 1: fail('$MEASUREMENT')\n"
     "read = []\n"
@@ -88,17 +92,22 @@ static const char check_dxf_py[] =
     "    if t == 'LINE':\n"
     "        read.append((e.dxf.layer, False, [tuple(e.dxf.start)[:2], tuple(e.dxf.end)[:2]], t))\n"
     "    elif t == 'POLYLINE':\n"
-    "        read.append((e.dxf.layer, e.is_closed, [tuple(p.dxf.location)[:2] for p in e.vertices], t))\n"
+    "        read.append((e.dxf.layer, e.is_closed, [tuple(p.dxf.location)[:2] for p in "
+    "e.vertices], t))\n"
     "    elif t == 'LWPOLYLINE':\n"
     "        read.append((e.dxf.layer, e.closed, [tuple(p) for p in e.get_points('xy')], t))\n"
     "    else:\n"
     "        fail('unexpected entity ' + t)\n"
     "if len(read) != len(paths): fail('%d entities, expected %d' % (len(read), len(paths)))\n"
     "for layer, closed, points in paths:\n"
-    "    want = 'LINE' if len(points) == 2 and not closed else ('POLYLINE' if doc.dxfversion == 'AC1009' else 'LWPOLYLINE')\n"
-    "    match = [r for r in read if r[0] == layer and r[1] == closed and r[3] == want and len(r[2]) == len(points)\n"
-    "             and all(abs(a[0]-b[0]) <= 1e-6 and abs(a[1]-b[1]) <= 1e-6 for a, b in zip(r[2], points))]\n"
-    "    if not match: fail('no %s %s on %s from %s' % ('closed' if closed else 'open', want, layer, points[0]))\n"
+    "    want = 'LINE' if len(points) == 2 and not closed else ('POLYLINE' if doc.dxfversion == "
+    "'AC1009' else 'LWPOLYLINE')\n"
+    "    match = [r for r in read if r[0] == layer and r[1] == closed and r[3] == want and "
+    "len(r[2]) == len(points)\n"
+    "             and all(abs(a[0]-b[0]) <= 1e-6 and abs(a[1]-b[1]) <= 1e-6 for a, b in zip(r[2], "
+    "points))]\n"
+    "    if not match: fail('no %s %s on %s from %s' % ('closed' if closed else 'open', want, "
+    "layer, points[0]))\n"
     "    read.remove(match[0])\n"
     "print('ok', path)\n";
 
@@ -280,8 +289,7 @@ static void write_expected(const fixture *f, const ur_sheet *sheet, const char *
 }
 
 /* The DXF at dxf holds sheet as ezdxf reads it, its audit clean. */
-static void check_dxf(const fixture *f, const ur_sheet *sheet, const char *version,
-                      const char *dxf)
+static void check_dxf(const fixture *f, const ur_sheet *sheet, const char *version, const char *dxf)
 {
     char script[256], expected[256];
     path_in(f->dir, "check_dxf.py", script, sizeof script);
@@ -378,9 +386,9 @@ static void test_dxf_r2000_reads_back(void **state)
     f->formats.dxf_version = UR_DXF_R2000;
     f->layout.sheet_count = 2;
     ur_error error;
-    assert_int_equal(ur_write_dxf(path, &f->layout, f->pieces, &f->machine, &f->options,
-                                  &f->formats, &error),
-                     UR_OK);
+    assert_int_equal(
+        ur_write_dxf(path, &f->layout, f->pieces, &f->machine, &f->options, &f->formats, &error),
+        UR_OK);
     char one[256], two[256];
     path_in(f->dir, "net-1.dxf", one, sizeof one);
     path_in(f->dir, "net-2.dxf", two, sizeof two);
@@ -437,9 +445,9 @@ static void test_pdf_pages(void **state)
     path_in(f->dir, "net.pdf", path, sizeof path);
     f->layout.sheet_count = 2;
     ur_error error;
-    assert_int_equal(ur_write_pdf(path, &f->layout, f->pieces, &f->machine, &f->options,
-                                  &f->formats, &error),
-                     UR_OK);
+    assert_int_equal(
+        ur_write_pdf(path, &f->layout, f->pieces, &f->machine, &f->options, &f->formats, &error),
+        UR_OK);
     assert_int_equal(entries_in(f->dir), 1); /* one file for every sheet */
     assert_int_equal(run("qpdf --check '%s' >/dev/null 2>&1", path), 0);
     char value[256];
@@ -495,9 +503,9 @@ static void test_png_size_and_fill(void **state)
     f->layout.sheet_count = 2;
     f->formats.dpi = 50;
     ur_error error;
-    assert_int_equal(ur_write_png(path, &f->layout, f->pieces, &f->machine, &f->options,
-                                  &f->formats, &error),
-                     UR_OK);
+    assert_int_equal(
+        ur_write_png(path, &f->layout, f->pieces, &f->machine, &f->options, &f->formats, &error),
+        UR_OK);
     cairo_surface_destroy(read_png(one, 600, 400, 50));
     cairo_surface_t *surface = read_png(two, 300, 200, 50);
     /* The square at (10, 10)-(110, 110): its lower right triangle stretched (red), upper left
@@ -521,13 +529,13 @@ static void test_png_default_dpi(void **state)
         ur_write_png(path, &f->layout, f->pieces, &f->machine, &f->options, NULL, &error), UR_OK);
     cairo_surface_destroy(read_png(path, 600, 400, 96));
     f->formats.dpi = -3;
-    assert_int_equal(ur_write_png(path, &f->layout, f->pieces, &f->machine, &f->options,
-                                  &f->formats, &error),
-                     UR_ERROR_INPUT);
+    assert_int_equal(
+        ur_write_png(path, &f->layout, f->pieces, &f->machine, &f->options, &f->formats, &error),
+        UR_ERROR_INPUT);
     f->formats.dpi = 2000; /* 47244 pixels wide: too many */
-    assert_int_equal(ur_write_png(path, &f->layout, f->pieces, &f->machine, &f->options,
-                                  &f->formats, &error),
-                     UR_ERROR_INPUT);
+    assert_int_equal(
+        ur_write_png(path, &f->layout, f->pieces, &f->machine, &f->options, &f->formats, &error),
+        UR_ERROR_INPUT);
     assert_int_equal(entries_in(f->dir), 1);
 }
 
@@ -601,16 +609,16 @@ static void test_outputs_format_from_extension(void **state)
     char path[256];
     ur_error error;
     path_in(f->dir, "net.dxf", path, sizeof path);
-    assert_int_equal(ur_write_outputs(path, 0, &f->layout, f->pieces, &f->machine, &f->options,
-                                      NULL, &error),
-                     UR_OK);
+    assert_int_equal(
+        ur_write_outputs(path, 0, &f->layout, f->pieces, &f->machine, &f->options, NULL, &error),
+        UR_OK);
     assert_true(exists(path));
     assert_int_equal(entries_in(f->dir), 1);
     /* An extension no format has, or one not asked for: refused, nothing written */
     path_in(f->dir, "net.eps", path, sizeof path);
-    assert_int_equal(ur_write_outputs(path, 0, &f->layout, f->pieces, &f->machine, &f->options,
-                                      NULL, &error),
-                     UR_ERROR_INPUT);
+    assert_int_equal(
+        ur_write_outputs(path, 0, &f->layout, f->pieces, &f->machine, &f->options, NULL, &error),
+        UR_ERROR_INPUT);
     assert_non_null(strstr(error.message, "net.eps"));
     path_in(f->dir, "other.svg", path, sizeof path);
     assert_int_equal(ur_write_outputs(path, UR_FORMAT_DXF, &f->layout, f->pieces, &f->machine,
@@ -684,6 +692,52 @@ static void test_dxf_shared_and_odd_layer_names(void **state)
                          0);
 }
 
+/* "-": one sheet to standard output, as a file would hold it; several sheets refused. */
+static void test_outputs_to_stdout(void **state)
+{
+    fixture *f = *state;
+    char path[256];
+    path_in(f->dir, "stdout.dxf", path, sizeof path);
+    fflush(stdout);
+    int saved = dup(STDOUT_FILENO);
+    int fd = open(path, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    assert_true(saved >= 0 && fd >= 0);
+    assert_int_equal(dup2(fd, STDOUT_FILENO), STDOUT_FILENO);
+    close(fd);
+    ur_error error;
+    ur_status one = ur_write_outputs("-", UR_FORMAT_DXF, &f->layout, f->pieces, &f->machine,
+                                     &f->options, NULL, &error);
+    f->layout.sheet_count = 2;
+    ur_status two = ur_write_outputs("-", UR_FORMAT_DXF, &f->layout, f->pieces, &f->machine,
+                                     &f->options, NULL, &error);
+    ur_status both = ur_write_outputs("-", UR_FORMAT_DXF | UR_FORMAT_SVG, &f->layout, f->pieces,
+                                      &f->machine, &f->options, NULL, &error);
+    fflush(stdout);
+    assert_int_equal(dup2(saved, STDOUT_FILENO), STDOUT_FILENO);
+    close(saved);
+    assert_int_equal(one, UR_OK);
+    assert_int_equal(two, UR_ERROR_INPUT);
+    assert_int_equal(both, UR_ERROR_INPUT);
+    if (have_ezdxf())
+        check_dxf(f, &f->sheets[0], "AC1009", path);
+}
+
+/* Text libharu cannot write in the document information becomes '?', never garbage. */
+static void test_pdf_non_ascii_title(void **state)
+{
+    fixture *f = *state;
+    if (!have_tool("pdfinfo"))
+        skip();
+    char path[256], value[256];
+    path_in(f->dir, "net.pdf", path, sizeof path);
+    f->options.title = "Lampe \xc3\xa9t\xc3\xa9";
+    ur_error error;
+    assert_int_equal(
+        ur_write_pdf(path, &f->layout, f->pieces, &f->machine, &f->options, NULL, &error), UR_OK);
+    assert_true(pdfinfo(path, "Title:", value, sizeof value));
+    assert_string_equal(value, "Lampe ?t?");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -699,6 +753,8 @@ int main(void)
         cmocka_unit_test_setup_teardown(test_outputs_every_format, setup, teardown),
         cmocka_unit_test_setup_teardown(test_outputs_format_from_extension, setup, teardown),
         cmocka_unit_test_setup_teardown(test_outputs_all_or_nothing, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_outputs_to_stdout, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_pdf_non_ascii_title, setup, teardown),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
