@@ -129,9 +129,11 @@ static ur_status pdf_begin_document(void **state, const ur_write_job *job, ur_er
     document->machine = job->machine;
     document->pdf = HPDF_New(record_error, document);
     ur_status status = document->pdf ? UR_OK : ur_error_out_of_memory(error);
-    if (status == UR_OK)
-        status = check(document, HPDF_SetCompressionMode(document->pdf, HPDF_COMP_ALL),
-                       "compression", error);
+    if (status == UR_OK && HPDF_SetCompressionMode(document->pdf, HPDF_COMP_ALL) != HPDF_OK) {
+        /* a libharu built without zlib: the PDF is only larger */
+        HPDF_ResetError(document->pdf);
+        document->error_no = document->detail_no = 0;
+    }
     if (status == UR_OK)
         status = set_metadata(document, job->options, error);
     for (int op = 0; status == UR_OK && op < UR_OP_COUNT; op++)
