@@ -16,9 +16,81 @@
 #include "unroll/io.h"
 #include "unroll/nest.h"
 
+/* The DXF dialects: R12 is what every cutter program reads. */
+typedef enum ur_dxf_version {
+    UR_DXF_R12 = 0, /* AC1009: POLYLINE/VERTEX/SEQEND and LINE, no handles */
+    UR_DXF_R2000,   /* AC1015: LWPOLYLINE, handles, true colour, OBJECTS */
+} ur_dxf_version;
+
+/* The resolution of the PNG preview unless told otherwise, dots per inch. */
+#define UR_PNG_DPI 96.0
+
 typedef struct ur_output_options {
     const char *title; /* document title, e.g. "unroll helicoid" */
 } ur_output_options;
+
+/*
+ * What the formats other than SVG need, and the job name every format
+ * records (SVG, PDF).  Zeroed (or a NULL pointer) means the defaults: no
+ * job name, DXF R12, the PNG preview at UR_PNG_DPI.
+ */
+typedef struct ur_format_options {
+    const char *job_name;       /* the job the files come from; NULL for none */
+    ur_dxf_version dxf_version; /* UR_DXF_R12 by default */
+    double dpi;                 /* PNG preview resolution; 0 for UR_PNG_DPI */
+} ur_format_options;
+
+/* Cut-file formats, as bits so that several can be asked for at once. */
+typedef enum ur_format {
+    UR_FORMAT_SVG = 1 << 0,
+    UR_FORMAT_DXF = 1 << 1,
+    UR_FORMAT_PDF = 1 << 2, /* one file, one page per sheet */
+    UR_FORMAT_PNG = 1 << 3, /* a preview to look at, not to cut */
+} ur_format;
+
+#define UR_FORMAT_ALL (UR_FORMAT_SVG | UR_FORMAT_DXF | UR_FORMAT_PDF | UR_FORMAT_PNG)
+
+/* The format the extension of path's base name names (any case), 0 for none. */
+ur_format ur_format_from_path(const char *path);
+
+/* "svg", "dxf", "pdf", "png" (also the extension) and back; 0 for an unknown name. */
+const char *ur_format_name(ur_format format);
+ur_format ur_format_from_name(const char *name);
+
+/*
+ * A comma-separated list of format names ("svg,dxf") as bits in *formats.
+ * An empty list, an empty item or an unknown name is UR_ERROR_INPUT naming it.
+ */
+ur_status ur_formats_parse(const char *list, unsigned *formats, ur_error *error);
+
+/*
+ * Writes the layout in every format of formats (ur_format bits; 0: the one
+ * path's extension names).  Each format's file is path with that format's
+ * extension: path's own extension, if it names a format, is replaced
+ * ("net.svg" with SVG and DXF gives net.svg and net.dxf; "net" gives
+ * net.svg and net.dxf), and it must then be one of the formats asked for.
+ * SVG, DXF and PNG write one file per sheet, numbered when there are
+ * several (ur_sheet_file_name: net-1.dxf, net-2.dxf, ...); PDF one file
+ * with one page per sheet.  Every path goes to the layer of its operation,
+ * in cutting order (engrave and mark, then scores and kerfs, then cuts;
+ * inner contours before the outline).
+ *
+ * All or nothing: every file of every format is written to a temporary
+ * first and renamed into place only when all are complete; on error no
+ * file is left behind and files already there stay as they were.  "-"
+ * writes one format (formats must name exactly one) of a one-sheet layout
+ * (PDF: any number of sheets) to standard output.
+ *
+ * UR_ERROR_INPUT: no sheets, an extension or a format that is not known or
+ * not asked for, a missing directory, a sheet of no usable size, a DPI that
+ * is not a positive number or gives a picture too large, a style the
+ * machine cannot give, an unwritable file.  pieces must hold every piece a
+ * placement names.
+ */
+ur_status ur_write_outputs(const char *path, unsigned formats, const ur_layout *layout,
+                           const ur_piece *pieces, const ur_machine *machine,
+                           const ur_output_options *options,
+                           const ur_format_options *format_options, ur_error *error);
 
 /*
  * Writes one SVG per sheet.  With one sheet the file is output_path; with
@@ -30,6 +102,31 @@ typedef struct ur_output_options {
 ur_status ur_write_svg(const char *output_path, const ur_layout *layout, const ur_piece *pieces,
                        const ur_machine *machine, const ur_output_options *options,
                        ur_error *error);
+
+/*
+ * The same for DXF, PDF and the PNG preview, output_path used as it is
+ * (numbered per sheet for DXF and PNG; the one PDF file holds every sheet).
+ * DXF (format_options->dxf_version): ASCII, $INSUNITS 4 (mm), $MEASUREMENT 1,
+ * $EXTMIN/$EXTMAX the sheet, one LAYER per operation named as the machine
+ * names it (characters DXF forbids in a name become '_') with the nearest
+ * ACI colour (R2000: and the exact true colour), each path one entity: a
+ * closed or open polyline (R12 POLYLINE, R2000 LWPOLYLINE), a two-point
+ * open path a LINE.  PDF (libharu): each page exactly its sheet, paths in
+ * the machine's colours and line widths (dashes too), title, creator
+ * "unroll VERSION" and job name in the document information (non-ASCII characters as '?').  PNG:
+ * each sheet at format_options->dpi with the pieces filled by strain colour (where the piece has
+ * shading), the lines in their operations' colours, the pieces' names, a scale bar and a legend of
+ * the operations.
+ */
+ur_status ur_write_dxf(const char *output_path, const ur_layout *layout, const ur_piece *pieces,
+                       const ur_machine *machine, const ur_output_options *options,
+                       const ur_format_options *format_options, ur_error *error);
+ur_status ur_write_pdf(const char *output_path, const ur_layout *layout, const ur_piece *pieces,
+                       const ur_machine *machine, const ur_output_options *options,
+                       const ur_format_options *format_options, ur_error *error);
+ur_status ur_write_png(const char *output_path, const ur_layout *layout, const ur_piece *pieces,
+                       const ur_machine *machine, const ur_output_options *options,
+                       const ur_format_options *format_options, ur_error *error);
 
 /* What the report says beyond the pieces and sheets. */
 /* The material layer the 3D surface is and the one developed (--surface). */

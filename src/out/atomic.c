@@ -66,6 +66,9 @@ static ur_status check_directory(const char *path, ur_error *error)
     } else if (!S_ISDIR(info.st_mode)) {
         status = ur_error_set(error, UR_ERROR_INPUT, "cannot write '%s': '%s' is not a directory",
                               path, directory);
+    } else if (stat(path, &info) == 0 && S_ISDIR(info.st_mode)) {
+        /* found now, before any file of the output is renamed into place */
+        status = ur_error_set(error, UR_ERROR_INPUT, "cannot write '%s': it is a directory", path);
     }
     free(directory);
     return status;

@@ -4,6 +4,8 @@
  */
 #include "draw.h"
 
+#include <math.h>
+
 void ur_draw_set_font(cairo_t *cr, double size, bool bold)
 {
     cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL,
@@ -36,4 +38,29 @@ void ur_draw_line(cairo_t *cr, double x0, double y0, double x1, double y1)
     cairo_move_to(cr, x0, y0);
     cairo_line_to(cr, x1, y1);
     cairo_stroke(cr);
+}
+
+/*
+ * ColorBrewer RdBu from its white middle outwards, in 8-bit sRGB.  Every
+ * channel falls from one stop to the next, so lightness falls with |strain|
+ * and the picture still reads printed in grey.
+ */
+enum { STOPS = 6 };
+static const unsigned char stretch_stops[STOPS][3] = {
+    {255, 255, 255}, {253, 219, 199}, {244, 165, 130}, {214, 96, 77}, {178, 24, 43}, {103, 0, 31},
+};
+static const unsigned char compression_stops[STOPS][3] = {
+    {255, 255, 255}, {209, 229, 240}, {146, 197, 222}, {67, 147, 195}, {33, 102, 172}, {5, 48, 97},
+};
+
+void ur_draw_strain_colour(cairo_t *cr, double strain, double range)
+{
+    double t = range > 0 ? fmin(fabs(strain) / range, 1.0) : 0.0;
+    const unsigned char(*stops)[3] = strain >= 0 ? stretch_stops : compression_stops;
+    double at = t * (STOPS - 1);
+    int k = (int)fmin(floor(at), STOPS - 2);
+    double f = at - k, rgb[3];
+    for (int c = 0; c < 3; c++)
+        rgb[c] = (stops[k][c] + f * (stops[k + 1][c] - stops[k][c])) / 255.0;
+    cairo_set_source_rgb(cr, rgb[0], rgb[1], rgb[2]);
 }

@@ -27,4 +27,11 @@ void ur_draw_show_text(cairo_t *cr, double x, double y, ur_align align, const ch
 /* A straight line from (x0, y0) to (x1, y1), stroked with the current source and width. */
 void ur_draw_line(cairo_t *cr, double x0, double y0, double x1, double y1);
 
+/*
+ * The strain colour map (RdBu): white at 0, darker red the more strain
+ * stretches, darker blue the more it compresses, clamped at -range..range;
+ * white when range is 0.  Sets the source of cr.
+ */
+void ur_draw_strain_colour(cairo_t *cr, double strain, double range);
+
 #endif

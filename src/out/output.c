@@ -1,18 +1,20 @@
 /*
  * output.c: the driver behind every cut-file format.
  *
- * It names the files (one per sheet), walks the layout in cutting order,
- * moves each path from piece to sheet coordinates and hands it to a format
- * (writer.h), and makes the whole output atomic: every sheet is written to
- * its own temporary file first, and only when all of them are complete are
- * they renamed into place.  On any error every temporary is removed and the
- * files already on disk are left as they were.
+ * It names the files (one per sheet, or one for a format of pages), walks
+ * the layout in cutting order, moves each path from piece to sheet
+ * coordinates and hands it to a format (writer.h), and makes the whole
+ * output atomic, across formats too: every file is written to its own
+ * temporary first, and only when all of them are complete are they renamed
+ * into place.  On any error every temporary is removed and the files
+ * already on disk are left as they were.
  */
 #include "writer.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 #include "atomic.h"
 
@@ -24,6 +26,18 @@
 _Static_assert(UR_OP_COUNT == 6, "put every operation into cut_order");
 static const ur_op cut_order[UR_OP_COUNT] = {UR_OP_ENGRAVE,      UR_OP_MARK, UR_OP_SCORE,
                                              UR_OP_SCORE_VALLEY, UR_OP_KERF, UR_OP_CUT};
+
+/* Every format, in the order their files are written; a new format adds a line. */
+static const struct {
+    ur_format format;
+    const ur_writer *writer;
+} formats_known[] = {
+    {UR_FORMAT_SVG, &ur_svg_writer},
+    {UR_FORMAT_DXF, &ur_dxf_writer},
+    {UR_FORMAT_PDF, &ur_pdf_writer},
+    {UR_FORMAT_PNG, &ur_png_writer},
+};
+enum { FORMAT_COUNT = sizeof formats_known / sizeof *formats_known };
 
 /* Longest path name we build; longer output names are refused, not cut off. */
 enum { NAME_SIZE = 4096 };
@@ -124,21 +138,32 @@ static ur_status write_layer(const ur_writer *writer, void *state, ur_op op, con
     return status;
 }
 
-static ur_status write_sheet(const ur_writer *writer, FILE *file, const ur_sheet *sheet,
-                             const ur_piece *pieces, const ur_machine *machine,
-                             const ur_output_options *options, ur_vec2 *scratch, ur_error *error)
+/* The pieces placed on the sheet, before any layer: formats that fill or label them. */
+static ur_status write_pieces(const ur_writer *writer, void *state, const ur_sheet *sheet,
+                              const ur_piece *pieces, ur_error *error)
 {
+    ur_status status = UR_OK;
+    for (size_t i = 0; writer->piece && status == UR_OK && i < sheet->placement_count; i++) {
+        const ur_placement *placement = &sheet->placements[i];
+        status = writer->piece(state, &pieces[placement->piece_index], placement, error);
+    }
+    return status;
+}
+
+static ur_status write_sheet(const ur_writer *writer, void *document, FILE *file, size_t index,
+                             const ur_write_job *job, ur_vec2 *scratch, ur_error *error)
+{
+    const ur_sheet *sheet = &job->layout->sheets[index];
     void *state = NULL;
-    ur_status status =
-        writer->begin_sheet(&state, file, sheet->width, sheet->height, machine, options, error);
+    ur_status status = writer->begin_sheet(&state, document, file, index, job, error);
     if (status != UR_OK)
         return status;
-    for (size_t i = 0; i < UR_OP_COUNT; i++) {
-        status = write_layer(writer, state, cut_order[i], sheet, pieces, scratch, error);
-        if (status != UR_OK) {
-            writer->discard_sheet(state);
-            return status;
-        }
+    status = write_pieces(writer, state, sheet, job->pieces, error);
+    for (size_t i = 0; status == UR_OK && i < UR_OP_COUNT; i++)
+        status = write_layer(writer, state, cut_order[i], sheet, job->pieces, scratch, error);
+    if (status != UR_OK) {
+        writer->discard_sheet(state);
+        return status;
     }
     return writer->end_sheet(state, error);
 }
@@ -146,7 +171,7 @@ static ur_status write_sheet(const ur_writer *writer, FILE *file, const ur_sheet
 /* The most points any placed path has: the size of the one scratch buffer. */
 static size_t longest_path(const ur_layout *layout, const ur_piece *pieces)
 {
-    size_t longest = 0;
+    size_t longest = 1;
     for (size_t s = 0; s < layout->sheet_count; s++) {
         const ur_sheet *sheet = &layout->sheets[s];
         for (size_t p = 0; p < sheet->placement_count; p++) {
@@ -159,50 +184,122 @@ static size_t longest_path(const ur_layout *layout, const ur_piece *pieces)
     return longest;
 }
 
-/* Writes sheet index to a new temporary in files[index]. */
-static ur_status write_sheet_file(const ur_writer *writer, const char *output_path,
-                                  const ur_layout *layout, size_t index, const ur_piece *pieces,
-                                  const ur_machine *machine, const ur_output_options *options,
-                                  ur_vec2 *scratch, ur_atomic_file *files, ur_error *error)
+/* One target of a write: a format and the name its file or files are numbered from. */
+typedef struct target {
+    const ur_writer *writer;
+    char path[NAME_SIZE];
+} target;
+
+/* How many files a target makes. */
+static size_t file_count(const target *t, const ur_layout *layout)
 {
-    char name[NAME_SIZE];
-    ur_status status = check_sheet(&layout->sheets[index], index, error);
-    if (status == UR_OK)
-        status =
-            ur_sheet_file_name(output_path, index, layout->sheet_count, name, sizeof name, error);
-    if (status == UR_OK)
-        status = ur_atomic_open(&files[index], name, error);
-    if (status == UR_OK)
-        status = write_sheet(writer, files[index].stream, &layout->sheets[index], pieces, machine,
-                             options, scratch, error);
-    if (status == UR_OK)
-        status = ur_atomic_close(&files[index], error);
+    return t->writer->one_file ? 1 : layout->sheet_count;
+}
+
+/* Every sheet of a one-file format into one temporary, *file. */
+static ur_status write_document(const target *t, const ur_write_job *job, ur_vec2 *scratch,
+                                ur_atomic_file *file, ur_error *error)
+{
+    const ur_writer *writer = t->writer;
+    ur_status status = ur_atomic_open(file, t->path, error);
+    void *document = NULL;
+    if (status == UR_OK && writer->begin_document)
+        status = writer->begin_document(&document, job, error);
+    for (size_t i = 0; status == UR_OK && i < job->layout->sheet_count; i++)
+        status = write_sheet(writer, document, NULL, i, job, scratch, error);
+    if (status != UR_OK) {
+        if (document && writer->discard_document)
+            writer->discard_document(document);
+        return status;
+    }
+    status = writer->end_document ? writer->end_document(document, file->stream, error) : UR_OK;
+    return status == UR_OK ? ur_atomic_close(file, error) : status;
+}
+
+/* Each sheet into its own temporary, files[0 .. sheet_count - 1]. */
+static ur_status write_sheets(const target *t, const ur_write_job *job, ur_vec2 *scratch,
+                              ur_atomic_file *files, ur_error *error)
+{
+    const ur_writer *writer = t->writer;
+    void *document = NULL;
+    ur_status status =
+        writer->begin_document ? writer->begin_document(&document, job, error) : UR_OK;
+    size_t count = job->layout->sheet_count;
+    for (size_t i = 0; status == UR_OK && i < count; i++) {
+        char name[NAME_SIZE];
+        status = ur_sheet_file_name(t->path, i, count, name, sizeof name, error);
+        if (status == UR_OK)
+            status = ur_atomic_open(&files[i], name, error);
+        if (status == UR_OK)
+            status = write_sheet(writer, document, files[i].stream, i, job, scratch, error);
+        if (status == UR_OK)
+            status = ur_atomic_close(&files[i], error);
+    }
+    if (status == UR_OK && writer->end_document)
+        return writer->end_document(document, NULL, error);
+    if (document && writer->discard_document)
+        writer->discard_document(document);
     return status;
 }
 
 /*
- * All temporaries first, then every rename.  A rename failing half-way (the
- * directory removed or made read-only meanwhile) is the one case that can
- * leave some sheets new and some old; the message then says which file.
+ * All temporaries of every target first, then every rename.  A rename
+ * failing half-way (the directory removed or made read-only meanwhile) is
+ * the one case that can leave some files new and some old; the message then
+ * says which file.
  */
-static ur_status write_all(const ur_writer *writer, const char *output_path,
-                           const ur_layout *layout, const ur_piece *pieces,
-                           const ur_machine *machine, const ur_output_options *options,
+static ur_status write_all(const target *targets, size_t target_count, const ur_write_job *job,
                            ur_error *error)
 {
-    size_t count = layout->sheet_count;
+    size_t count = 0;
+    for (size_t t = 0; t < target_count; t++)
+        count += file_count(&targets[t], job->layout);
     ur_atomic_file *files = ur_alloc_array(count, sizeof *files, error);
-    ur_vec2 *scratch = ur_alloc_array(longest_path(layout, pieces), sizeof *scratch, error);
+    ur_vec2 *scratch =
+        files ? ur_alloc_array(longest_path(job->layout, job->pieces), sizeof *scratch, error)
+              : NULL;
     ur_status status = files && scratch ? UR_OK : UR_ERROR_INTERNAL;
-    for (size_t i = 0; status == UR_OK && i < count; i++)
-        status = write_sheet_file(writer, output_path, layout, i, pieces, machine, options, scratch,
-                                  files, error);
+    for (size_t t = 0, first = 0; status == UR_OK && t < target_count; t++) {
+        status = targets[t].writer->one_file
+                     ? write_document(&targets[t], job, scratch, &files[first], error)
+                     : write_sheets(&targets[t], job, scratch, &files[first], error);
+        first += file_count(&targets[t], job->layout);
+    }
     for (size_t i = 0; status == UR_OK && i < count; i++)
         status = ur_atomic_commit(&files[i], error);
     for (size_t i = 0; files && i < count; i++)
         ur_atomic_discard(&files[i]); /* removes what was not committed */
     free(files);
     free(scratch);
+    return status;
+}
+
+/* A stream that is not ours to close: the document, or the one sheet, to standard output. */
+static ur_status write_stdout(const target *t, const ur_write_job *job, ur_error *error)
+{
+    if (!t->writer->one_file && job->layout->sheet_count != 1)
+        return ur_error_set(error, UR_ERROR_INPUT,
+                            "cannot write %zu sheets of %s to standard output: name a file",
+                            job->layout->sheet_count, t->writer->format);
+    ur_vec2 *scratch =
+        ur_alloc_array(longest_path(job->layout, job->pieces), sizeof *scratch, error);
+    if (!scratch)
+        return UR_ERROR_INTERNAL;
+    const ur_writer *writer = t->writer;
+    void *document = NULL;
+    ur_status status =
+        writer->begin_document ? writer->begin_document(&document, job, error) : UR_OK;
+    FILE *file = writer->one_file ? NULL : stdout;
+    for (size_t i = 0; status == UR_OK && i < job->layout->sheet_count; i++)
+        status = write_sheet(writer, document, file, i, job, scratch, error);
+    if (status == UR_OK && writer->end_document)
+        status = writer->end_document(document, writer->one_file ? stdout : NULL, error);
+    else if (document && writer->discard_document)
+        writer->discard_document(document);
+    free(scratch);
+    if (status == UR_OK && (fflush(stdout) != 0 || ferror(stdout)))
+        status = ur_error_set(error, UR_ERROR_INPUT, "cannot write the %s to standard output",
+                              writer->format);
     return status;
 }
 
@@ -218,24 +315,211 @@ static ur_status check_arguments(const char *output_path, const ur_layout *layou
     if (layout->sheet_count == 0)
         return ur_error_set(error, UR_ERROR_INPUT, "cannot write '%s': there is nothing to cut",
                             output_path);
+    if (!layout->sheets)
+        return ur_error_set(error, UR_ERROR_INTERNAL, "the layout has no sheets array");
+    for (size_t i = 0; i < layout->sheet_count; i++) {
+        ur_status status = check_sheet(&layout->sheets[i], i, error);
+        if (status != UR_OK)
+            return status;
+    }
     return UR_OK;
 }
 
-static ur_status write_output(const ur_writer *writer, const char *output_path,
-                              const ur_layout *layout, const ur_piece *pieces,
-                              const ur_machine *machine, const ur_output_options *options,
-                              ur_error *error)
+static ur_status check_options(const ur_write_settings *options, ur_error *error)
 {
-    ur_status status = check_arguments(output_path, layout, pieces, machine, error);
+    if (options->dxf_version != UR_DXF_R12 && options->dxf_version != UR_DXF_R2000)
+        return ur_error_set(error, UR_ERROR_INPUT, "unknown DXF version %d",
+                            (int)options->dxf_version);
+    if (!(options->dpi > 0) || !isfinite(options->dpi))
+        return ur_error_set(error, UR_ERROR_INPUT,
+                            "the resolution of the preview must be a positive number of dots per "
+                            "inch, not %g",
+                            options->dpi);
+    return UR_OK;
+}
+
+/* Checks everything, fills in the defaults, then writes to stdout or the files. */
+static ur_status write_targets(const target *targets, size_t target_count, const ur_layout *layout,
+                               const ur_piece *pieces, const ur_machine *machine,
+                               const ur_output_options *options,
+                               const ur_format_options *format_options, ur_error *error)
+{
+    ur_write_settings chosen = {NULL, NULL, UR_DXF_R12, UR_PNG_DPI};
+    if (options)
+        chosen.title = options->title;
+    if (format_options) {
+        chosen.job_name = format_options->job_name;
+        chosen.dxf_version = format_options->dxf_version;
+        chosen.dpi = format_options->dpi == 0 ? UR_PNG_DPI : format_options->dpi;
+    }
+    ur_status status = check_arguments(targets[0].path, layout, pieces, machine, error);
+    if (status == UR_OK)
+        status = check_options(&chosen, error);
     if (status != UR_OK)
         return status;
-    ur_output_options no_options = {NULL};
-    return write_all(writer, output_path, layout, pieces, machine, options ? options : &no_options,
-                     error);
+    ur_write_job job = {layout, pieces, machine, &chosen};
+    if (strcmp(targets[0].path, "-") == 0)
+        return write_stdout(&targets[0], &job, error);
+    return write_all(targets, target_count, &job, error);
+}
+
+/* One format, its file or files named from output_path as it is. */
+static ur_status write_one(const ur_writer *writer, const char *output_path,
+                           const ur_layout *layout, const ur_piece *pieces,
+                           const ur_machine *machine, const ur_output_options *options,
+                           const ur_format_options *format_options, ur_error *error)
+{
+    target t = {writer, ""};
+    if (output_path && snprintf(t.path, sizeof t.path, "%s", output_path) >= (int)sizeof t.path)
+        return ur_error_set(error, UR_ERROR_INPUT, "output name '%s' is too long", output_path);
+    if (!output_path)
+        return check_arguments(NULL, layout, pieces, machine, error);
+    return write_targets(&t, 1, layout, pieces, machine, options, format_options, error);
 }
 
 ur_status ur_write_svg(const char *output_path, const ur_layout *layout, const ur_piece *pieces,
                        const ur_machine *machine, const ur_output_options *options, ur_error *error)
 {
-    return write_output(&ur_svg_writer, output_path, layout, pieces, machine, options, error);
+    return write_one(&ur_svg_writer, output_path, layout, pieces, machine, options, NULL, error);
+}
+
+ur_status ur_write_dxf(const char *output_path, const ur_layout *layout, const ur_piece *pieces,
+                       const ur_machine *machine, const ur_output_options *options,
+                       const ur_format_options *format_options, ur_error *error)
+{
+    return write_one(&ur_dxf_writer, output_path, layout, pieces, machine, options, format_options,
+                     error);
+}
+
+ur_status ur_write_pdf(const char *output_path, const ur_layout *layout, const ur_piece *pieces,
+                       const ur_machine *machine, const ur_output_options *options,
+                       const ur_format_options *format_options, ur_error *error)
+{
+    return write_one(&ur_pdf_writer, output_path, layout, pieces, machine, options, format_options,
+                     error);
+}
+
+ur_status ur_write_png(const char *output_path, const ur_layout *layout, const ur_piece *pieces,
+                       const ur_machine *machine, const ur_output_options *options,
+                       const ur_format_options *format_options, ur_error *error)
+{
+    return write_one(&ur_png_writer, output_path, layout, pieces, machine, options, format_options,
+                     error);
+}
+
+/* ---- Formats by name and extension -------------------------------------- */
+
+const char *ur_format_name(ur_format format)
+{
+    for (size_t i = 0; i < FORMAT_COUNT; i++)
+        if (formats_known[i].format == format)
+            return formats_known[i].writer->extension;
+    return "unknown";
+}
+
+ur_format ur_format_from_name(const char *name)
+{
+    for (size_t i = 0; name && i < FORMAT_COUNT; i++)
+        if (strcasecmp(name, formats_known[i].writer->extension) == 0)
+            return formats_known[i].format;
+    return 0;
+}
+
+/* The extension of path's base name, without the dot; NULL for none. */
+static const char *extension_of(const char *path)
+{
+    const char *slash = strrchr(path, '/');
+    const char *base = slash ? slash + 1 : path;
+    const char *dot = strrchr(base, '.');
+    return dot && dot != base ? dot + 1 : NULL; /* ".hidden" is a name, not an extension */
+}
+
+ur_format ur_format_from_path(const char *path)
+{
+    return path ? ur_format_from_name(extension_of(path)) : 0;
+}
+
+ur_status ur_formats_parse(const char *list, unsigned *formats, ur_error *error)
+{
+    *formats = 0;
+    const char *at = list ? list : "";
+    do {
+        size_t length = strcspn(at, ",");
+        char name[8] = "";
+        if (length < sizeof name) {
+            memcpy(name, at, length);
+            name[length] = '\0';
+        }
+        ur_format format = length < sizeof name ? ur_format_from_name(name) : 0;
+        if (!format)
+            return ur_error_set(error, UR_ERROR_INPUT,
+                                "unknown format '%.*s' in '%s': the formats are svg, dxf, pdf "
+                                "and png",
+                                (int)length, at, list ? list : "");
+        *formats |= (unsigned)format;
+        at += length;
+    } while (*at++ == ',');
+    return UR_OK;
+}
+
+/* ---- Several formats at once -------------------------------------------- */
+
+/* The stem every format's name is made from: path less an extension that names a format. */
+static ur_status make_targets(const char *path, unsigned formats, target *targets, size_t *count,
+                              ur_error *error)
+{
+    ur_format named = ur_format_from_path(path);
+    size_t stem = named ? strlen(path) - strlen(extension_of(path)) - 1 : strlen(path);
+    *count = 0;
+    for (size_t i = 0; i < FORMAT_COUNT; i++) {
+        if (!(formats & (unsigned)formats_known[i].format))
+            continue;
+        target *t = &targets[(*count)++];
+        t->writer = formats_known[i].writer;
+        int length = strcmp(path, "-") == 0 || formats_known[i].format == named
+                         ? snprintf(t->path, sizeof t->path, "%s", path)
+                         : snprintf(t->path, sizeof t->path, "%.*s.%s", (int)stem, path,
+                                    t->writer->extension);
+        if (length < 0 || (size_t)length >= sizeof t->path)
+            return ur_error_set(error, UR_ERROR_INPUT, "output name '%s' is too long", path);
+    }
+    return UR_OK;
+}
+
+static ur_status check_formats(const char *path, unsigned *formats, ur_error *error)
+{
+    ur_format named = ur_format_from_path(path);
+    if (*formats & ~(unsigned)UR_FORMAT_ALL)
+        return ur_error_set(error, UR_ERROR_INTERNAL, "unknown format bits %#x", *formats);
+    if (*formats == 0 && !named)
+        return ur_error_set(error, UR_ERROR_INPUT,
+                            "cannot tell the format of '%s': end it in .svg, .dxf, .pdf or .png, "
+                            "or name the format",
+                            path);
+    if (*formats == 0)
+        *formats = (unsigned)named;
+    if (named && !(*formats & (unsigned)named))
+        return ur_error_set(error, UR_ERROR_INPUT,
+                            "'%s' names a %s file, which is not one of the formats asked for", path,
+                            ur_format_name(named));
+    if (strcmp(path, "-") == 0 && (*formats & (*formats - 1)) != 0)
+        return ur_error_set(error, UR_ERROR_INPUT, "standard output takes one format, not several");
+    return UR_OK;
+}
+
+ur_status ur_write_outputs(const char *path, unsigned formats, const ur_layout *layout,
+                           const ur_piece *pieces, const ur_machine *machine,
+                           const ur_output_options *options,
+                           const ur_format_options *format_options, ur_error *error)
+{
+    if (!path)
+        return check_arguments(NULL, layout, pieces, machine, error);
+    ur_status status = check_formats(path, &formats, error);
+    target targets[FORMAT_COUNT];
+    size_t count = 0;
+    if (status == UR_OK)
+        status = make_targets(path, formats, targets, &count, error);
+    if (status != UR_OK)
+        return status;
+    return write_targets(targets, count, layout, pieces, machine, options, format_options, error);
 }

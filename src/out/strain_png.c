@@ -165,29 +165,10 @@ static ur_status check_arguments(const char *path, const ur_layout *layout, cons
 
 /* ---- Colour ------------------------------------------------------------- */
 
-/*
- * ColorBrewer RdBu from its white middle outwards, in 8-bit sRGB.  Every
- * channel falls from one stop to the next, so lightness falls with |strain|.
- */
-enum { STOPS = 6 };
-static const unsigned char stretch_stops[STOPS][3] = {
-    {255, 255, 255}, {253, 219, 199}, {244, 165, 130}, {214, 96, 77}, {178, 24, 43}, {103, 0, 31},
-};
-static const unsigned char compression_stops[STOPS][3] = {
-    {255, 255, 255}, {209, 229, 240}, {146, 197, 222}, {67, 147, 195}, {33, 102, 172}, {5, 48, 97},
-};
-
-/* strain on the scale -range..range, clamped; white when there is no scale. */
+/* strain on the scale -range..range (draw.h). */
 static void set_strain_colour(cairo_t *cr, double strain, double range)
 {
-    double t = range > 0 ? fmin(fabs(strain) / range, 1.0) : 0.0;
-    const unsigned char(*stops)[3] = strain >= 0 ? stretch_stops : compression_stops;
-    double at = t * (STOPS - 1);
-    int k = (int)fmin(floor(at), STOPS - 2);
-    double f = at - k, rgb[3];
-    for (int c = 0; c < 3; c++)
-        rgb[c] = (stops[k][c] + f * (stops[k + 1][c] - stops[k][c])) / 255.0;
-    cairo_set_source_rgb(cr, rgb[0], rgb[1], rgb[2]);
+    ur_draw_strain_colour(cr, strain, range);
 }
 
 /* Strain as per cent with its sign: "+1.73%", "-0.5%", "0%". */

@@ -23,6 +23,8 @@
 
 #define SVG_NAMESPACE "http://www.w3.org/2000/svg"
 #define INKSCAPE_NAMESPACE "http://www.inkscape.org/namespaces/inkscape"
+#define RDF_NAMESPACE "http://www.w3.org/1999/02/22-rdf-syntax-ns#"
+#define DC_NAMESPACE "http://purl.org/dc/elements/1.1/"
 
 /* Enough for "%.6f" of any finite double (DBL_MAX has 309 digits). */
 enum { NUMBER_SIZE = 400 };
@@ -117,31 +119,12 @@ static ur_status check_text(const char *what, const char *text, ur_error *error)
     return UR_OK;
 }
 
-static bool is_colour(const char *colour)
-{
-    if (colour[0] != '#' || strlen(colour) != 7)
-        return false;
-    for (int i = 1; i < 7; i++)
-        if (!strchr("0123456789abcdefABCDEF", colour[i]))
-            return false;
-    return true;
-}
-
 /* A machine filled by hand may carry anything: refuse what SVG cannot show. */
 static ur_status check_style(const ur_machine *machine, ur_op op, ur_error *error)
 {
-    const ur_op_style *style = &machine->styles[op];
-    const char *name = memchr(machine->name, '\0', sizeof machine->name) ? machine->name : "?";
-    if (!memchr(style->layer, '\0', sizeof style->layer) ||
-        !memchr(style->colour, '\0', sizeof style->colour) || !is_colour(style->colour))
-        return ur_error_set(error, UR_ERROR_INPUT,
-                            "machine '%s': the %s layer needs a name and a colour #RRGGBB", name,
-                            ur_op_name(op));
-    if (!isfinite(style->line_width) || style->line_width <= 0)
-        return ur_error_set(error, UR_ERROR_INPUT,
-                            "machine '%s': the %s line width must be a positive number of mm", name,
-                            ur_op_name(op));
-    return check_text("the layer name", style->layer, error);
+    ur_status status = ur_style_check(machine, op, error);
+    return status == UR_OK ? check_text("the layer name", machine->styles[op].layer, error)
+                           : status;
 }
 
 static ur_status write_root(svg_sheet *sheet, double width, double height, ur_error *error)
@@ -165,20 +148,56 @@ static ur_status write_root(svg_sheet *sheet, double width, double height, ur_er
                             error);
 }
 
-static ur_status write_title_and_desc(svg_sheet *sheet, const ur_output_options *options,
+static ur_status write_element(svg_sheet *sheet, const char *name, const char *text,
+                               ur_error *error)
+{
+    if (xmlTextWriterWriteElement(sheet->writer, BAD_CAST name, BAD_CAST text) < 0)
+        return xml_failed(error, name);
+    return UR_OK;
+}
+
+/*
+ * Dublin Core in RDF, where Inkscape keeps a drawing's title and creator:
+ * the title, the program that made it and the job it comes from.
+ */
+static ur_status write_metadata(svg_sheet *sheet, const ur_write_settings *options, ur_error *error)
+{
+    const char *const rdf[][2] = {{"xmlns:rdf", RDF_NAMESPACE}, {"xmlns:dc", DC_NAMESPACE}};
+    const char *const about[][2] = {{"rdf:about", ""}};
+    if (xmlTextWriterStartElement(sheet->writer, BAD_CAST "metadata") < 0 ||
+        xmlTextWriterStartElement(sheet->writer, BAD_CAST "rdf:RDF") < 0)
+        return xml_failed(error, "metadata");
+    ur_status status = write_attributes(sheet->writer, rdf, 2, error);
+    if (status == UR_OK && xmlTextWriterStartElement(sheet->writer, BAD_CAST "rdf:Description") < 0)
+        status = xml_failed(error, "rdf:Description");
+    if (status == UR_OK)
+        status = write_attributes(sheet->writer, about, 1, error);
+    if (status == UR_OK && options->title)
+        status = write_element(sheet, "dc:title", options->title, error);
+    if (status == UR_OK)
+        status = write_element(sheet, "dc:creator", "unroll " UR_VERSION, error);
+    if (status == UR_OK && options->job_name)
+        status = write_element(sheet, "dc:source", options->job_name, error);
+    for (int i = 0; status == UR_OK && i < 3; i++) /* rdf:Description, rdf:RDF, metadata */
+        if (xmlTextWriterEndElement(sheet->writer) < 0)
+            status = xml_failed(error, "end of metadata");
+    return status;
+}
+
+static ur_status write_title_and_desc(svg_sheet *sheet, const ur_write_settings *options,
                                       ur_error *error)
 {
-    if (options && options->title) {
-        ur_status status = check_text("the title", options->title, error);
-        if (status != UR_OK)
-            return status;
-        if (xmlTextWriterWriteElement(sheet->writer, BAD_CAST "title", BAD_CAST options->title) < 0)
-            return xml_failed(error, "title");
-    }
-    if (xmlTextWriterWriteElement(sheet->writer, BAD_CAST "desc",
-                                  BAD_CAST "made by unroll " UR_VERSION "; 1 user unit = 1 mm") < 0)
-        return xml_failed(error, "desc");
-    return UR_OK;
+    ur_status status = UR_OK;
+    if (options->title)
+        status = check_text("the title", options->title, error);
+    if (status == UR_OK && options->job_name)
+        status = check_text("the job name", options->job_name, error);
+    if (status == UR_OK && options->title)
+        status = write_element(sheet, "title", options->title, error);
+    if (status == UR_OK)
+        status = write_element(sheet, "desc", "made by unroll " UR_VERSION "; 1 user unit = 1 mm",
+                               error);
+    return status == UR_OK ? write_metadata(sheet, options, error) : status;
 }
 
 static void free_sheet(svg_sheet *sheet)
@@ -191,10 +210,14 @@ static void free_sheet(svg_sheet *sheet)
     free(sheet);
 }
 
-static ur_status svg_begin_sheet(void **state, FILE *file, double width, double height,
-                                 const ur_machine *machine, const ur_output_options *options,
-                                 ur_error *error)
+static ur_status svg_begin_sheet(void **state, void *document, FILE *file, size_t index,
+                                 const ur_write_job *job, ur_error *error)
 {
+    (void)document;
+    const ur_sheet *page = &job->layout->sheets[index];
+    double width = page->width, height = page->height;
+    const ur_machine *machine = job->machine;
+    const ur_write_settings *options = job->options;
     *state = NULL;
     svg_sheet *sheet = calloc(1, sizeof *sheet);
     if (!sheet)

@@ -5,17 +5,25 @@
  * The driver (output.c) owns the files, the placement transforms, the order
  * of operations and the atomic rename; a format only turns a stream of calls
  *
- *     begin_sheet
- *         begin_layer(op)  path(op, ...) ...  end_layer(op)    once per op
- *     end_sheet
+ *     begin_document                                   (optional)
+ *         begin_sheet
+ *             piece(placed piece) ...                  (optional)
+ *             begin_layer(op)  path(op, ...) ...  end_layer(op)    once per op
+ *         end_sheet
+ *         ...                                          once per sheet
+ *     end_document                                     (optional)
  *
  * into bytes on an open FILE.  Every operation gets its begin_layer/end_layer
  * pair, in cutting order, even when it has no paths, so formats with layers
  * always have all of them.  Paths arrive grouped by operation and already in
  * sheet coordinates: millimetres, origin at the sheet's lower left, y up.
  *
- * Adding a format (DXF, PDF, PNG) is one more file defining one more
- * ur_writer and one more public ur_write_* calling the driver.
+ * A format of one file per sheet (SVG, DXF, PNG) gets each sheet's file in
+ * begin_sheet; a one-file format (PDF) gets NULL there and its one file in
+ * end_document, where it writes the whole document.
+ *
+ * Adding a format is one more file defining one more ur_writer, and one
+ * more entry in output.c's table of formats.
  */
 #ifndef UNROLL_OUT_WRITER_H
 #define UNROLL_OUT_WRITER_H
@@ -25,17 +33,44 @@
 
 #include "unroll/out.h"
 
+/* The options of ur_output_options and ur_format_options together, defaults filled in. */
+typedef struct ur_write_settings {
+    const char *title;    /* NULL for none */
+    const char *job_name; /* NULL for none */
+    ur_dxf_version dxf_version;
+    double dpi; /* > 0 */
+} ur_write_settings;
+
+/* What every format may look at: the whole job, for the whole write. */
+typedef struct ur_write_job {
+    const ur_layout *layout;
+    const ur_piece *pieces;
+    const ur_machine *machine;
+    const ur_write_settings *options; /* never NULL */
+} ur_write_job;
+
 typedef struct ur_writer {
     const char *format;    /* for messages: "SVG" */
     const char *extension; /* without the dot: "svg" */
+    bool one_file;         /* every sheet in one file (PDF pages) */
 
     /*
-     * Starts a sheet of width × height mm on file and sets *state, owned by
-     * the writer until end_sheet or discard_sheet.  file stays the caller's.
+     * Optional.  Sets *document, owned by the writer until end_document or
+     * discard_document, before any sheet.
      */
-    ur_status (*begin_sheet)(void **state, FILE *file, double width, double height,
-                             const ur_machine *machine, const ur_output_options *options,
-                             ur_error *error);
+    ur_status (*begin_document)(void **document, const ur_write_job *job, ur_error *error);
+
+    /*
+     * Starts sheet index (of job->layout) on file and sets *state, owned by
+     * the writer until end_sheet or discard_sheet.  file stays the caller's
+     * (NULL for a one-file format); document is begin_document's (or NULL).
+     */
+    ur_status (*begin_sheet)(void **state, void *document, FILE *file, size_t index,
+                             const ur_write_job *job, ur_error *error);
+
+    /* Optional: each piece placed on the sheet, before any layer (fills, labels). */
+    ur_status (*piece)(void *state, const ur_piece *piece, const ur_placement *placement,
+                       ur_error *error);
 
     /* Brackets the paths of one operation; either may be NULL when not needed. */
     ur_status (*begin_layer)(void *state, ur_op op, ur_error *error);
@@ -50,8 +85,34 @@ typedef struct ur_writer {
 
     /* Frees state after a failure; what was written no longer matters. */
     void (*discard_sheet)(void *state);
+
+    /*
+     * Optional.  Writes the document to file (a one-file format's, else
+     * NULL) and frees it, also on failure.
+     */
+    ur_status (*end_document)(void *document, FILE *file, ur_error *error);
+
+    /* Optional (needed with begin_document): frees the document after a failure. */
+    void (*discard_document)(void *document);
 } ur_writer;
 
+/* Checks shared by the formats (style.c). */
+
+/* The machine's style for op, refused when a format could not show it. */
+ur_status ur_style_check(const ur_machine *machine, ur_op op, ur_error *error);
+
+/* "#RRGGBB" as 0xRRGGBB; the style has been checked. */
+unsigned long ur_style_rgb(const ur_op_style *style);
+
+/*
+ * The dash pattern of a style in mm, at most max numbers, into dashes;
+ * returns how many (0: solid).  Numbers that are not positive end it.
+ */
+size_t ur_style_dashes(const ur_op_style *style, double *dashes, size_t max);
+
 extern const ur_writer ur_svg_writer;
+extern const ur_writer ur_dxf_writer;
+extern const ur_writer ur_pdf_writer;
+extern const ur_writer ur_png_writer;
 
 #endif
