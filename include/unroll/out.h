@@ -103,6 +103,18 @@ ur_status ur_write_svg(const char *output_path, const ur_layout *layout, const u
                        const ur_machine *machine, const ur_output_options *options,
                        ur_error *error);
 
+/* Room for one output file name. */
+#define UR_OUTPUT_NAME_SIZE 4096
+
+/*
+ * The names of every file ur_write_outputs writes for path and formats
+ * with sheet_count sheets, in the order it writes them (for the report);
+ * the caller frees *names.  Refuses what ur_write_outputs refuses about
+ * the path and formats.
+ */
+ur_status ur_output_files(const char *path, unsigned formats, size_t sheet_count,
+                          char (**names)[UR_OUTPUT_NAME_SIZE], size_t *count, ur_error *error);
+
 /*
  * The same for DXF, PDF and the PNG preview, output_path used as it is
  * (numbered per sheet for DXF and PNG; the one PDF file holds every sheet).

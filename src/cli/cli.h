@@ -13,6 +13,7 @@
 #include "unroll/geom.h"
 #include "unroll/io.h"
 #include "unroll/nest.h"
+#include "unroll/out.h"
 
 enum { EXIT_INTERNAL = 1, EXIT_USAGE = 2 };
 
@@ -71,6 +72,10 @@ typedef struct cli_job {
     bool no_kerf_compensation; /* --no-kerf-compensation */
     /* placement: -1 when not given (the machine's) */
     double margin, spacing;
+    /* output formats (--format; 0: from -o's extension), --dxf-version, --dpi (0: 96) */
+    unsigned formats;
+    int dxf_version;
+    double dpi;
 } cli_job;
 
 enum {
@@ -161,6 +166,26 @@ ur_status cli_allowances_after_placing(const cli_job *job, const ur_machine *mac
 ur_status cli_place_pieces(const cli_job *job, const ur_machine *machine,
                            const ur_material *material, const ur_piece *pieces, size_t count,
                            ur_layout *layout, ur_error *error);
+
+/*
+ * --format LIST, --dxf-version 12|2000, --dpi N (outputs.c): false after a
+ * message naming the option.
+ */
+bool cli_parse_formats(cli_job *job, const char *value);
+bool cli_parse_dxf_version(cli_job *job, const char *value);
+bool cli_parse_dpi(cli_job *job, const char *value);
+
+/* Whether -o and --format say which files to write; false after a message (outputs.c). */
+bool cli_check_output(const cli_job *job);
+
+/*
+ * Writes the cut files in every format asked for, all or nothing, and the
+ * report naming them all (outputs.c).  context is filled but for its
+ * outputs, which this sets.
+ */
+ur_status cli_write_outputs(const cli_job *job, const ur_machine *machine, const ur_layout *layout,
+                            const ur_piece *pieces, size_t count, ur_report_context *context,
+                            ur_error *error);
 
 /* unroll nest FILE... -o OUT (nest.c) */
 int cli_nest(int argc, char **argv);

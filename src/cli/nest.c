@@ -29,6 +29,9 @@ enum nest_option {
     NEST_REPORT,
     NEST_QUIET,
     NEST_NO_KERF,
+    NEST_FORMAT,
+    NEST_DXF_VERSION,
+    NEST_DPI,
 };
 
 static const struct option nest_options[] = {
@@ -43,16 +46,19 @@ static const struct option nest_options[] = {
     {"report", required_argument, NULL, NEST_REPORT},
     {"quiet", no_argument, NULL, NEST_QUIET},
     {"no-kerf-compensation", no_argument, NULL, NEST_NO_KERF},
+    {"format", required_argument, NULL, NEST_FORMAT},
+    {"dxf-version", required_argument, NULL, NEST_DXF_VERSION},
+    {"dpi", required_argument, NULL, NEST_DPI},
     {"help", no_argument, NULL, 'h'},
     {NULL, 0, NULL, 0},
 };
 
 /* What the command line says beyond what a surface job holds. */
 typedef struct nest_job {
-    cli_job job;        /* output, profiles, sheet, margin, spacing, report, quiet */
-    double unit_mm;     /* --units: mm per unit of a file that gives none; 0 when not given */
-    long copies;        /* --copies: of every part, unless FILE:N says otherwise */
-    char **files;       /* argv's file arguments, FILE or FILE:N */
+    cli_job job;    /* output, profiles, sheet, margin, spacing, report, quiet */
+    double unit_mm; /* --units: mm per unit of a file that gives none; 0 when not given */
+    long copies;    /* --copies: of every part, unless FILE:N says otherwise */
+    char **files;   /* argv's file arguments, FILE or FILE:N */
     size_t file_count;
 } nest_job;
 
@@ -132,6 +138,12 @@ static bool take_nest_option(nest_job *n, int id, const char *value)
     case NEST_NO_KERF:
         job->no_kerf_compensation = true;
         return true;
+    case NEST_FORMAT:
+        return cli_parse_formats(job, value);
+    case NEST_DXF_VERSION:
+        return cli_parse_dxf_version(job, value);
+    case NEST_DPI:
+        return cli_parse_dpi(job, value);
     default:
         return false;
     }
@@ -144,7 +156,8 @@ static const char nest_help[] =
     "  DXF $INSUNITS); --units mm|cm|m|in|ft|pt|pc|px when it says nothing.\n"
     "  FILE:N or --copies N: that many of each part.\n"
     "  --machine NAME --material NAME --sheet WxH --margin MM --spacing MM\n"
-    "  --report FILE.json --quiet --no-kerf-compensation\n";
+    "  --report FILE.json --quiet --no-kerf-compensation\n"
+    "  --format svg,dxf,pdf,png --dxf-version 12|2000 --dpi N\n";
 
 /* Parses argv (argv[0] is "nest"); 0, -1 after help, or an exit status. */
 static int parse_nest(int argc, char **argv, nest_job *n)
@@ -180,6 +193,8 @@ static int parse_nest(int argc, char **argv, nest_job *n)
         cli_message("nest: give the files to nest and -o OUT.svg: unroll nest FILE... -o OUT.svg");
         return EXIT_USAGE;
     }
+    if (!cli_check_output(job))
+        return EXIT_USAGE;
     return 0;
 }
 
@@ -271,8 +286,8 @@ static double lower_bound(const ur_piece *pieces, size_t count, const ur_sheet *
     return room > 0 ? ceil(area / room - 1e-9) : NAN;
 }
 
-static void print_nest_summary(const nest_job *n, const ur_machine *machine,
-                               const ur_piece *pieces, size_t count, const ur_layout *layout)
+static void print_nest_summary(const nest_job *n, const ur_machine *machine, const ur_piece *pieces,
+                               size_t count, const ur_layout *layout)
 {
     if (n->job.quiet || layout->sheet_count == 0)
         return;
@@ -302,10 +317,6 @@ static ur_status write_nest(const nest_job *n, const ur_machine *machine,
                             const ur_material *material, const ur_piece *pieces, size_t count,
                             const ur_layout *layout, ur_error *error)
 {
-    ur_output_options output = {"unroll nest"};
-    ur_status status = ur_write_svg(n->job.output_path, layout, pieces, machine, &output, error);
-    if (status != UR_OK || !n->job.report_path)
-        return status;
     ur_report_context context = {.surface = "nest",
                                  .method = "nest",
                                  .machine = machine,
@@ -313,7 +324,7 @@ static ur_status write_nest(const nest_job *n, const ur_machine *machine,
                                  .sheet_path = n->job.output_path};
     for (size_t k = 0; k < count; k++)
         context.surface_area += pieces[k].measures.flat_area;
-    return ur_report_write(n->job.report_path, &context, pieces, count, layout, error);
+    return cli_write_outputs(&n->job, machine, layout, pieces, count, &context, error);
 }
 
 /* Reads, compensates, places and writes; the pieces and layout are the caller's to free. */
@@ -353,7 +364,7 @@ int cli_nest(int argc, char **argv)
         return 0;
     if (code)
         return code;
-    if (!cli_directory_exists("-o", n.job.output_path) ||
+    if ((strcmp(n.job.output_path, "-") != 0 && !cli_directory_exists("-o", n.job.output_path)) ||
         (n.job.report_path && strcmp(n.job.report_path, "-") != 0 &&
          !cli_directory_exists("--report", n.job.report_path)))
         return EXIT_USAGE;

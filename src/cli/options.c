@@ -60,6 +60,9 @@ enum option_id {
     OPT_ALLOWANCES,
     OPT_BRIDGES,
     OPT_NO_KERF_COMPENSATION,
+    OPT_FORMAT,
+    OPT_DXF_VERSION,
+    OPT_DPI,
 };
 
 static const struct option long_options[] = {
@@ -107,6 +110,9 @@ static const struct option long_options[] = {
     {"allowances", required_argument, NULL, OPT_ALLOWANCES},
     {"bridges", required_argument, NULL, OPT_BRIDGES},
     {"no-kerf-compensation", no_argument, NULL, OPT_NO_KERF_COMPENSATION},
+    {"format", required_argument, NULL, OPT_FORMAT},
+    {"dxf-version", required_argument, NULL, OPT_DXF_VERSION},
+    {"dpi", required_argument, NULL, OPT_DPI},
     {"help", no_argument, NULL, 'h'},
     {NULL, 0, NULL, 0},
 };
@@ -133,7 +139,7 @@ static const struct {
     const char *options;
 } action_options[] = {
     {CLI_DEVELOP, " output machine material sheet method parts rulings no-split report strain-png "
-                  "allowances bridges no-kerf-compensation "},
+                  "allowances bridges no-kerf-compensation format dxf-version dpi "},
     {CLI_ANALYZE, " png report "},
     {CLI_COMPARE, " png csv "},
 };
@@ -462,6 +468,12 @@ static bool take_option(cli_job *job, int id, const char *value)
     case OPT_NO_KERF_COMPENSATION:
         job->no_kerf_compensation = true;
         return true;
+    case OPT_FORMAT:
+        return cli_parse_formats(job, value);
+    case OPT_DXF_VERSION:
+        return cli_parse_dxf_version(job, value);
+    case OPT_DPI:
+        return cli_parse_dpi(job, value);
     case 'n':
         return parse_count(surface, value, &job->develop.rulings);
     case OPT_METHOD: {
@@ -527,6 +539,8 @@ int cli_parse_job(int argc, char **argv, cli_action action, const char *command,
         cli_message("%s: no output file: give -o FILE.svg", job->command);
         return EXIT_USAGE;
     }
+    if (job->action == CLI_DEVELOP && !cli_check_output(job))
+        return EXIT_USAGE;
     if (!(job->develop.tolerance > 0)) {
         cli_message("%s: --tolerance must be positive", job->command);
         return EXIT_USAGE;

@@ -272,29 +272,12 @@ static ur_status write_all(const cli_job *job, job_state *state, ur_error *error
 
 static ur_status write_outputs(const cli_job *job, job_state *state, ur_error *error)
 {
-    char title[128];
-    snprintf(title, sizeof title, "unroll %s", job->command);
-    ur_output_options output = {title};
-    ur_status status = ur_write_svg(job->output_path, &state->layout, state->pieces,
-                                    &state->machine, &output, error);
-    if (status != UR_OK || !job->report_path)
-        return status;
-    size_t sheets = state->layout.sheet_count;
-    char(*names)[4096] = ur_alloc_array(sheets, sizeof *names, error);
-    const char **outputs = ur_alloc_array(sheets + 1, sizeof *outputs, error);
-    for (size_t s = 0; names && outputs && s < sheets && status == UR_OK; s++) {
-        status = ur_sheet_file_name(job->output_path, s, sheets, names[s], sizeof names[s], error);
-        outputs[s] = names[s];
-    }
-    if (!names || !outputs)
-        status = UR_ERROR_INTERNAL;
     ur_report_context context = {
         .surface = job->surface,
         .method = state->method,
         .machine = &state->machine,
         .material = &state->material,
         .surface_area = state->surface_area,
-        .outputs = outputs,
         .sheet_path = job->output_path,
     };
     ur_report_layer layer = {ur_surface_layer_name(state->layer), "neutral", state->layer_offset,
@@ -302,12 +285,8 @@ static ur_status write_outputs(const cli_job *job, job_state *state, ur_error *e
     if (state->have_ruled)
         context.layer = &layer;
     context.gap_count = ur_ruled_gaps(&state->ruled, &context.gaps);
-    if (status == UR_OK)
-        status = ur_report_write(job->report_path, &context, state->pieces, state->piece_count,
-                                 &state->layout, error);
-    free(names);
-    free(outputs);
-    return status;
+    return cli_write_outputs(job, &state->machine, &state->layout, state->pieces,
+                             state->piece_count, &context, error);
 }
 
 static void print_summary(const cli_job *job, const job_state *state)
@@ -475,7 +454,7 @@ static int find_seams(const cli_job *job, job_state *state)
 
 int cli_run_job(const cli_job *job)
 {
-    if (!cli_directory_exists("-o", job->output_path) ||
+    if ((strcmp(job->output_path, "-") != 0 && !cli_directory_exists("-o", job->output_path)) ||
         (job->report_path && strcmp(job->report_path, "-") != 0 &&
          !cli_directory_exists("--report", job->report_path)) ||
         (job->regression_path && !cli_directory_exists("--regression", job->regression_path)) ||

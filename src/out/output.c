@@ -523,3 +523,35 @@ ur_status ur_write_outputs(const char *path, unsigned formats, const ur_layout *
         return status;
     return write_targets(targets, count, layout, pieces, machine, options, format_options, error);
 }
+
+ur_status ur_output_files(const char *path, unsigned formats, size_t sheet_count,
+                          char (**names)[UR_OUTPUT_NAME_SIZE], size_t *count, ur_error *error)
+{
+    *names = NULL;
+    *count = 0;
+    ur_status status = check_formats(path, &formats, error);
+    target targets[FORMAT_COUNT];
+    size_t target_count = 0;
+    if (status == UR_OK)
+        status = make_targets(path, formats, targets, &target_count, error);
+    size_t total = 0;
+    for (size_t t = 0; status == UR_OK && t < target_count; t++)
+        total += targets[t].writer->one_file ? 1 : sheet_count;
+    if (status == UR_OK) {
+        *names = ur_alloc_array(total, sizeof **names, error);
+        if (!*names)
+            status = UR_ERROR_INTERNAL;
+    }
+    for (size_t t = 0; status == UR_OK && t < target_count; t++) {
+        size_t files = targets[t].writer->one_file ? 1 : sheet_count;
+        for (size_t s = 0; status == UR_OK && s < files; s++)
+            status = ur_sheet_file_name(targets[t].path, s, files, (*names)[(*count)++],
+                                        UR_OUTPUT_NAME_SIZE, error);
+    }
+    if (status != UR_OK) {
+        free(*names);
+        *names = NULL;
+        *count = 0;
+    }
+    return status;
+}

@@ -1053,6 +1053,47 @@ def a_mesh_too_large_for_memory_fails_cleanly(work):
         check(set(os.listdir(work)) == before, "files left behind")
 
 
+@test
+def every_format_from_one_job(work):
+    """--format svg,dxf,pdf,png writes the four, all named in the report;
+    ezdxf audits the DXF clean (R12 and R2000), qpdf checks the PDF, whose
+    page is the sheet; -o - writes one SVG to standard output."""
+    cylinder = ["cylinder", "--radius", "40", "--height", "100"]
+    run(work, *cylinder, "--format", "svg,dxf,pdf,png", "-o", "all.svg", "--report", "all.json",
+        "--quiet")
+    outputs = report(work, "all.json")["outputs"]
+    check(outputs == ["all.svg", "all.dxf", "all.pdf", "all.png"], "outputs %r" % outputs)
+    for name in outputs:
+        check(os.path.getsize(os.path.join(work, name)) > 0, name + " is empty")
+    check(png_size(os.path.join(work, "all.png")) == (round(600 / 25.4 * 96), round(400 / 25.4 * 96)),
+          "png size %r" % (png_size(os.path.join(work, "all.png")),))
+    for version in ("12", "2000"):
+        run(work, *cylinder, "--dxf-version", version, "-o", "v%s.dxf" % version, "--quiet")
+        audit = subprocess.run(
+            ["/usr/bin/python3", "-c",
+             "import ezdxf,sys\n"
+             "doc=ezdxf.readfile(sys.argv[1])\n"
+             "a=doc.audit()\n"
+             "print(len(a.errors), doc.header['$INSUNITS'],"
+             " sum(1 for e in doc.modelspace() if e.dxf.layer=='Cut'))",
+             os.path.join(work, "v%s.dxf" % version)], capture_output=True, text=True)
+        check(audit.returncode == 0, "ezdxf: " + audit.stderr)
+        errors, units, cuts = audit.stdout.split()
+        check(errors == "0" and units == "4" and int(cuts) >= 1, "DXF R%s: %s" % (version, audit.stdout))
+    check(subprocess.run(["qpdf", "--check", os.path.join(work, "all.pdf")],
+                         capture_output=True).returncode == 0, "qpdf --check fails")
+    info = subprocess.run(["pdfinfo", os.path.join(work, "all.pdf")], capture_output=True, text=True).stdout
+    size = re.search(r"Page size:\s+([0-9.]+) x ([0-9.]+) pts", info)
+    check(size is not None, info)
+    close(float(size.group(1)) * 25.4 / 72, 600, 1e-4, "PDF page width")
+    close(float(size.group(2)) * 25.4 / 72, 400, 1e-4, "PDF page height")
+    result = run(work, *cylinder, "-o", "-", "--quiet")
+    check(result.stdout.startswith("<?xml") and "</svg>" in result.stdout, "no SVG on stdout")
+    bad(work, r"--format: .*'gif'", *cylinder, "--format", "svg,gif", "-o", "x.svg")
+    bad(work, r"-o: cannot tell the format of 'x\.txt'", *cylinder, "-o", "x.txt")
+    bad(work, r"--dxf-version: '14' is not 12 or 2000", *cylinder, "--dxf-version", "14", "-o", "x.dxf")
+
+
 # ---- unroll nest -----------------------------------------------------------
 
 PLATE_SVG_MM = """<svg xmlns="http://www.w3.org/2000/svg" width="100mm" height="50mm" viewBox="0 0 100 50">

@@ -1,0 +1,104 @@
+/*
+ * outputs.c: the cut files a job writes: the formats asked for (--format,
+ * or -o's extension), the DXF version and the preview's resolution, every
+ * file written all or nothing (ur_write_outputs), and the report that
+ * names them.
+ */
+#include "cli.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+bool cli_parse_formats(cli_job *job, const char *value)
+{
+    ur_error error;
+    if (ur_formats_parse(value, &job->formats, &error) == UR_OK)
+        return true;
+    cli_message("%s: --format: %s (give svg, dxf, pdf or png, or several: svg,dxf)", job->command,
+                error.message);
+    return false;
+}
+
+bool cli_parse_dxf_version(cli_job *job, const char *value)
+{
+    if (strcmp(value, "12") == 0 || strcmp(value, "R12") == 0) {
+        job->dxf_version = UR_DXF_R12;
+        return true;
+    }
+    if (strcmp(value, "2000") == 0 || strcmp(value, "R2000") == 0) {
+        job->dxf_version = UR_DXF_R2000;
+        return true;
+    }
+    cli_message("%s: --dxf-version: '%s' is not 12 or 2000", job->command, value);
+    return false;
+}
+
+bool cli_parse_dpi(cli_job *job, const char *value)
+{
+    char *end = NULL;
+    errno = 0;
+    double dpi = strtod(value, &end);
+    if (end == value || *end != '\0' || !isfinite(dpi) || dpi < 10 || dpi > 2400) {
+        cli_message("%s: --dpi: '%s' is not a resolution from 10 to 2400 dots per inch",
+                    job->command, value);
+        return false;
+    }
+    job->dpi = dpi;
+    return true;
+}
+
+/* The formats to write: -o - without --format is an SVG, as a program reading a pipe expects. */
+static unsigned formats_asked(const cli_job *job)
+{
+    return job->formats == 0 && strcmp(job->output_path, "-") == 0 ? UR_FORMAT_SVG : job->formats;
+}
+
+bool cli_check_output(const cli_job *job)
+{
+    char(*names)[UR_OUTPUT_NAME_SIZE] = NULL;
+    size_t count = 0;
+    ur_error error;
+    ur_status status = ur_output_files(job->output_path, formats_asked(job), 1, &names, &count,
+                                       &error);
+    free(names);
+    if (status != UR_OK)
+        cli_message("%s: -o: %s", job->command, error.message);
+    return status == UR_OK;
+}
+
+ur_status cli_write_outputs(const cli_job *job, const ur_machine *machine, const ur_layout *layout,
+                            const ur_piece *pieces, size_t count, ur_report_context *context,
+                            ur_error *error)
+{
+    char title[128];
+    snprintf(title, sizeof title, "unroll %s", job->command);
+    ur_output_options output = {title};
+    ur_format_options formats = {.job_name = job->surface,
+                                 .dxf_version = (ur_dxf_version)job->dxf_version,
+                                 .dpi = job->dpi};
+    unsigned asked = formats_asked(job);
+    char(*names)[UR_OUTPUT_NAME_SIZE] = NULL;
+    size_t name_count = 0;
+    ur_status status =
+        ur_output_files(job->output_path, asked, layout->sheet_count, &names, &name_count, error);
+    if (status == UR_OK)
+        status = ur_write_outputs(job->output_path, asked, layout, pieces, machine, &output,
+                                  &formats, error);
+    const char **outputs = NULL;
+    if (status == UR_OK && job->report_path) {
+        outputs = ur_alloc_array(name_count + 1, sizeof *outputs, error);
+        if (!outputs)
+            status = UR_ERROR_INTERNAL;
+        for (size_t k = 0; outputs && k < name_count; k++)
+            outputs[k] = names[k];
+        context->outputs = outputs;
+        if (status == UR_OK)
+            status = ur_report_write(job->report_path, context, pieces, count, layout, error);
+    }
+    free(outputs);
+    free(names);
+    return status;
+}
