@@ -332,8 +332,8 @@ typedef struct ur_parts {
  * so) and refused, naming the part, when it does not.  On failure *parts is
  * empty.  Free with ur_parts_free.
  */
-ur_status ur_parts_import(const char *path, const ur_parts_import_options *options,
-                          ur_parts *parts, ur_error *error);
+ur_status ur_parts_import(const char *path, const ur_parts_import_options *options, ur_parts *parts,
+                          ur_error *error);
 
 void ur_parts_free(ur_parts *parts);
 

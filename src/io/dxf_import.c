@@ -71,8 +71,8 @@ typedef struct dxf_entity {
 
 static ur_status entity_error(const dxf_entity *entity, ur_error *error, const char *message)
 {
-    return ur_error_set(error, UR_ERROR_INPUT, "%s:%d: %s: %s", entity->reader->path,
-                        entity->line, entity->type, message);
+    return ur_error_set(error, UR_ERROR_INPUT, "%s:%d: %s: %s", entity->reader->path, entity->line,
+                        entity->type, message);
 }
 
 /* ---- The file as pairs ---------------------------------------------------- */
@@ -87,8 +87,10 @@ static ur_status read_text(const char *path, char **text, size_t *size, ur_error
     if (length < 0 || fseek(file, 0, SEEK_SET) != 0)
         status = ur_error_set(error, UR_ERROR_INPUT, "%s: cannot read: %s", path, strerror(errno));
     else if (length > DXF_MAX_BYTES)
-        status = ur_error_set(error, UR_ERROR_INPUT, "%s: %ld bytes: too large for a drawing of "
-                              "parts", path, length);
+        status = ur_error_set(error, UR_ERROR_INPUT,
+                              "%s: %ld bytes: too large for a drawing of "
+                              "parts",
+                              path, length);
     else if ((*text = ur_alloc_array((size_t)length + 1, 1, error)) == NULL)
         status = UR_ERROR_INTERNAL;
     else if (fread(*text, 1, (size_t)length, file) != (size_t)length)
@@ -180,8 +182,8 @@ static ur_status read_pairs(dxf_reader *reader, ur_error *error)
     if (status != UR_OK)
         return status;
     if (strncmp(reader->text, "AutoCAD Binary DXF", 18) == 0)
-        return ur_error_set(error, UR_ERROR_INPUT,
-                            "%s: a binary DXF file: save it as ASCII DXF", reader->path);
+        return ur_error_set(error, UR_ERROR_INPUT, "%s: a binary DXF file: save it as ASCII DXF",
+                            reader->path);
     char **lines = NULL;
     size_t line_count = 0;
     status = split_lines(reader, size, &lines, &line_count, error);
@@ -200,14 +202,14 @@ static ur_status pair_number(const dxf_reader *reader, const dxf_pair *pair, dou
     *value = strtod(pair->value, &end);
     if (end == pair->value || *end != '\0' || !isfinite(*value))
         return ur_error_set(error, UR_ERROR_INPUT,
-                            "%s:%d: \"%.24s\" is not a finite number (group code %d)",
-                            reader->path, pair->line + 1, pair->value, pair->code);
+                            "%s:%d: \"%.24s\" is not a finite number (group code %d)", reader->path,
+                            pair->line + 1, pair->value, pair->code);
     return UR_OK;
 }
 
 /* The entity's value for code, fallback when it has none. */
-static ur_status entity_number(const dxf_entity *entity, int code, double fallback,
-                               double *value, ur_error *error)
+static ur_status entity_number(const dxf_entity *entity, int code, double fallback, double *value,
+                               ur_error *error)
 {
     *value = fallback;
     for (size_t i = 1; i < entity->count; i++)
@@ -241,17 +243,28 @@ static ur_status entity_numbers(const dxf_entity *entity, const int *codes, doub
 static double insunits_mm(int code)
 {
     switch (code) {
-    case 1: return 25.4;
-    case 2: return 304.8;
-    case 4: return 1.0;
-    case 5: return 10.0;
-    case 6: return 1000.0;
-    case 8: return 25.4e-6;
-    case 9: return 0.0254;
-    case 10: return 914.4;
-    case 13: return 0.001;
-    case 14: return 100.0;
-    default: return 0.0;
+    case 1:
+        return 25.4;
+    case 2:
+        return 304.8;
+    case 4:
+        return 1.0;
+    case 5:
+        return 10.0;
+    case 6:
+        return 1000.0;
+    case 8:
+        return 25.4e-6;
+    case 9:
+        return 0.0254;
+    case 10:
+        return 914.4;
+    case 13:
+        return 0.001;
+    case 14:
+        return 100.0;
+    default:
+        return 0.0;
     }
 }
 
@@ -278,11 +291,16 @@ static ur_status find_units(dxf_reader *reader, ur_error *error)
                             reader->path, line, code);
     if (code == 0)
         unit = reader->collection->unit;
+    if (unit <= 0 && line > 0)
+        return ur_error_set(error, UR_ERROR_INPUT,
+                            "%s:%d: the drawing gives no unit ($INSUNITS is 0, unitless): give "
+                            "its unit with --units",
+                            reader->path, line);
     if (unit <= 0)
         return ur_error_set(error, UR_ERROR_INPUT,
-                            "%s: the drawing gives no unit ($INSUNITS %s): give its unit with "
+                            "%s: the drawing gives no unit (no $INSUNITS): give its unit with "
                             "--units",
-                            reader->path, line ? "is 0, unitless" : "is missing");
+                            reader->path);
     reader->scale = unit;
     reader->tolerance = reader->collection->tolerance / unit;
     return UR_OK;
@@ -294,8 +312,7 @@ static ur_status find_units(dxf_reader *reader, ur_error *error)
  * Hands points (drawing units) over in mm: a ring when closed, or when it
  * ends where it starts; an open piece otherwise, for chaining.
  */
-static ur_status emit(const dxf_entity *entity, parts_points *points, bool closed,
-                      ur_error *error)
+static ur_status emit(const dxf_entity *entity, parts_points *points, bool closed, ur_error *error)
 {
     dxf_reader *reader = entity->reader;
     for (size_t i = 0; i < points->count; i++) {
@@ -402,8 +419,8 @@ static ur_status read_ellipse_entity(dxf_entity *entity, ur_error *error)
     sweep = sweep <= 1e-12 ? sweep + 2 * M_PI : sweep;
     bool full = fabs(sweep - 2 * M_PI) < 1e-9;
     /* Its minor axis is the extrusion crossed with the major: the other way round when mirrored. */
-    parts_arc shape = {ur_vec2_make(v[0], v[1]), rx, (entity->mirrored ? -1 : 1) * rx * v[4],
-                       atan2(v[3], v[2]), start, sweep};
+    parts_arc shape = {ur_vec2_make(v[0], v[1]), rx,    (entity->mirrored ? -1 : 1) * rx * v[4],
+                       atan2(v[3], v[2]),        start, sweep};
     entity->mirrored = false; /* world coordinates: nothing to turn over */
     parts_points points = {0};
     status = parts_points_push(&points, parts_arc_point(&shape, start), error);
@@ -457,8 +474,8 @@ static ur_status bulge_to(parts_points *points, ur_vec2 a, ur_vec2 b, double bul
     return status;
 }
 
-static ur_status emit_polyline(const dxf_entity *entity, const dxf_vertices *vertices,
-                               bool closed, ur_error *error)
+static ur_status emit_polyline(const dxf_entity *entity, const dxf_vertices *vertices, bool closed,
+                               ur_error *error)
 {
     size_t n = vertices->count;
     if (n == 0)
@@ -512,8 +529,13 @@ static ur_status read_lwpolyline(const dxf_entity *entity, ur_error *error)
 /* The entity that starts at pairs[*index] (code 0); *index moves to the next. */
 static dxf_entity next_entity(dxf_reader *reader, size_t *index, size_t end)
 {
-    dxf_entity entity = {reader, &reader->pairs[*index], 1, reader->pairs[*index].value,
-                         reader->pairs[*index].line, false};
+    /* Messages give the line of the entity's name, the value after its code 0. */
+    dxf_entity entity = {reader,
+                         &reader->pairs[*index],
+                         1,
+                         reader->pairs[*index].value,
+                         reader->pairs[*index].line + 1,
+                         false};
     size_t i = *index + 1;
     while (i < end && reader->pairs[i].code != 0)
         i++;
@@ -576,10 +598,9 @@ static ur_status warn_ignored(dxf_reader *reader, ur_error *error)
 {
     for (size_t k = 0; k < reader->ignored_count; k++) {
         const dxf_ignored *kind = &reader->ignored[k];
-        ur_status status = parts_warn(reader->collection, error,
-                                      "%s:%d: %zu %s entit%s left out: not an outline",
-                                      reader->path, kind->line, kind->count, kind->type,
-                                      kind->count == 1 ? "y" : "ies");
+        ur_status status = parts_warn(
+            reader->collection, error, "%s:%d: %zu %s entit%s left out: not an outline",
+            reader->path, kind->line, kind->count, kind->type, kind->count == 1 ? "y" : "ies");
         if (status != UR_OK)
             return status;
     }
@@ -605,13 +626,11 @@ static ur_status read_entity(dxf_entity *entity, size_t *index, size_t end, ur_e
     if (strcmp(type, "POLYLINE") == 0)
         return read_polyline(entity, index, end, error);
     if (strcmp(type, "SPLINE") == 0)
-        return entity_error(entity, error,
-                            "splines are not read: turn them into polylines first");
+        return entity_error(entity, error, "splines are not read: turn them into polylines first");
     if (strcmp(type, "INSERT") == 0)
         return entity_error(entity, error,
                             "block references are not read: explode the blocks first");
-    if (strcmp(type, "REGION") == 0 || strcmp(type, "3DSOLID") == 0 ||
-        strcmp(type, "BODY") == 0)
+    if (strcmp(type, "REGION") == 0 || strcmp(type, "3DSOLID") == 0 || strcmp(type, "BODY") == 0)
         return entity_error(entity, error, "not read: explode it into lines and arcs first");
     return note_ignored(entity->reader, entity);
 }
@@ -626,8 +645,8 @@ static bool find_section(const dxf_reader *reader, const char *name, size_t *beg
             continue;
         *begin = i + 2;
         *end = *begin;
-        while (*end < reader->count && !(reader->pairs[*end].code == 0 &&
-                                         strcmp(reader->pairs[*end].value, "ENDSEC") == 0))
+        while (*end < reader->count &&
+               !(reader->pairs[*end].code == 0 && strcmp(reader->pairs[*end].value, "ENDSEC") == 0))
             (*end)++;
         return true;
     }

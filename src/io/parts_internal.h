@@ -56,10 +56,10 @@ ur_status parts_flatten_arc(parts_points *points, const parts_arc *arc, double t
 typedef struct parts_ring {
     ur_vec2 *points; /* owned; mm, y up, first point not repeated */
     size_t count;
-    int line;        /* where it starts in the file; 0 when unknown */
-    char what[96];   /* 'path id="a"', "LWPOLYLINE": for messages */
-    char id[32];     /* the SVG id, empty otherwise */
-    int sub;         /* 1 for the first ring of an element, 2 for the next ... */
+    int line;      /* where it starts in the file; 0 when unknown */
+    char what[96]; /* 'path id="a"', "LWPOLYLINE": for messages */
+    char id[32];   /* the SVG id, empty otherwise */
+    int sub;       /* 1 for the first ring of an element, 2 for the next ... */
 } parts_ring;
 
 typedef struct parts_collection {

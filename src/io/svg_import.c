@@ -79,9 +79,9 @@ typedef struct svg_element {
     int line;
     char what[96]; /* 'path id="a"' */
     char id[32];
-    svg_matrix matrix;  /* element's user units to mm */
-    double tolerance;   /* in the element's user units */
-    int sub;            /* rings given so far */
+    svg_matrix matrix; /* element's user units to mm */
+    double tolerance;  /* in the element's user units */
+    int sub;           /* rings given so far */
 } svg_element;
 
 static ur_status element_error(const svg_element *element, ur_error *error, const char *message)
@@ -213,8 +213,7 @@ static ur_status length_attribute(svg_element *element, const char *name, double
         *value = number * px;
     else {
         char message[128];
-        snprintf(message, sizeof message, "%s=\"%.*s\" is not a length", name, SVG_QUOTE_MAX,
-                 text);
+        snprintf(message, sizeof message, "%s=\"%.*s\" is not a length", name, SVG_QUOTE_MAX, text);
         status = element_error(element, error, message);
     }
     xmlFree(text);
@@ -409,13 +408,13 @@ static bool arc_centre(ur_vec2 p0, ur_vec2 p1, double rx, double ry, double degr
         delta -= 2 * M_PI;
     else if (sweep && delta < 0)
         delta += 2 * M_PI;
-    *arc = (parts_arc){ur_vec2_make(c * cx - s * cy + (p0.x + p1.x) / 2,
-                                    s * cx + c * cy + (p0.y + p1.y) / 2),
-                       rx,
-                       ry,
-                       phi,
-                       vector_angle(ur_vec2_make(1, 0), u),
-                       delta};
+    *arc = (parts_arc){
+        ur_vec2_make(c * cx - s * cy + (p0.x + p1.x) / 2, s * cx + c * cy + (p0.y + p1.y) / 2),
+        rx,
+        ry,
+        phi,
+        vector_angle(ur_vec2_make(1, 0), u),
+        delta};
     return true;
 }
 
@@ -424,8 +423,8 @@ static ur_status arc_to(svg_path_state *state, const double *v, ur_vec2 end, ur_
     parts_arc arc;
     if (ur_vec2_distance(state->current, end) == 0)
         return UR_OK; /* the spec: an arc to where it starts is left out */
-    if (v[0] == 0 || v[1] == 0 || !arc_centre(state->current, end, v[0], v[1], v[2], v[3] != 0,
-                                               v[4] != 0, &arc))
+    if (v[0] == 0 || v[1] == 0 ||
+        !arc_centre(state->current, end, v[0], v[1], v[2], v[3] != 0, v[4] != 0, &arc))
         return line_to(state, end, error);
     ur_status status = begin_if_needed(state, error);
     if (status == UR_OK)
@@ -438,13 +437,24 @@ static ur_status arc_to(svg_path_state *state, const double *v, ur_vec2 end, ur_
 static int argument_count(char upper)
 {
     switch (upper) {
-    case 'M': case 'L': case 'T': return 2;
-    case 'H': case 'V': return 1;
-    case 'S': case 'Q': return 4;
-    case 'C': return 6;
-    case 'A': return 7;
-    case 'Z': return 0;
-    default: return -1;
+    case 'M':
+    case 'L':
+    case 'T':
+        return 2;
+    case 'H':
+    case 'V':
+        return 1;
+    case 'S':
+    case 'Q':
+        return 4;
+    case 'C':
+        return 6;
+    case 'A':
+        return 7;
+    case 'Z':
+        return 0;
+    default:
+        return -1;
     }
 }
 
@@ -521,10 +531,13 @@ static ur_status run_command(svg_path_state *state, char upper, double *v, ur_er
         status = arc_to(state, v, end, error);
         state->current = end;
         break;
-    case 'C': case 'S': case 'Q': case 'T':
+    case 'C':
+    case 'S':
+    case 'Q':
+    case 'T':
         return curve_command(state, upper, v, error);
     default: /* L, H, V */
-        end = upper == 'H' ? ur_vec2_make(v[0], end.y)
+        end = upper == 'H'   ? ur_vec2_make(v[0], end.y)
               : upper == 'V' ? ur_vec2_make(end.x, v[0])
                              : ur_vec2_make(v[0], v[1]);
         status = line_to(state, end, error);
@@ -620,8 +633,8 @@ static ur_status positive(svg_element *element, const char *name, double value, 
 }
 
 /* A corner of a rounded rectangle: a quarter ellipse from angle start. */
-static ur_status rect_corner(svg_element *element, parts_points *points, ur_vec2 centre,
-                             double rx, double ry, double start, ur_error *error)
+static ur_status rect_corner(svg_element *element, parts_points *points, ur_vec2 centre, double rx,
+                             double ry, double start, ur_error *error)
 {
     parts_arc arc = {centre, rx, ry, 0, start, M_PI / 2};
     ur_status status = parts_points_push(points, parts_arc_point(&arc, start), error);
@@ -858,10 +871,25 @@ static ur_status read_nested_svg(svg_element *element, int depth, ur_error *erro
 }
 
 /* Elements that hold no shape to cut, or only shapes used by reference. */
-static const char *const skipped[] = {
-    "defs",   "clipPath", "mask",  "marker",         "pattern",        "symbol",
-    "metadata", "title",  "desc",  "style",          "script",         "linearGradient",
-    "radialGradient", "filter", "foreignObject", "animate", "animateTransform", "set", NULL};
+static const char *const skipped[] = {"defs",
+                                      "clipPath",
+                                      "mask",
+                                      "marker",
+                                      "pattern",
+                                      "symbol",
+                                      "metadata",
+                                      "title",
+                                      "desc",
+                                      "style",
+                                      "script",
+                                      "linearGradient",
+                                      "radialGradient",
+                                      "filter",
+                                      "foreignObject",
+                                      "animate",
+                                      "animateTransform",
+                                      "set",
+                                      NULL};
 
 /* Shapes that are not outlines: left out with a warning. */
 static const char *const not_outlines[] = {"text", "image", NULL};
@@ -987,7 +1015,7 @@ static ur_status root_matrix(svg_element *root, svg_matrix *matrix, ur_error *er
     if (!width.physical && !height.physical)
         s = width.given ? sx : sy;
     /* y up: measured from the bottom of the viewBox, or of the page. */
-    double bottom = box.given ? box.y + box.height
+    double bottom = box.given      ? box.y + box.height
                     : height.given ? (height.physical ? height.mm / s : height.value)
                                    : 0;
     double left = box.given ? box.x : 0;
@@ -1043,8 +1071,7 @@ static ur_status parse_document(const char *path, xmlDocPtr *doc, ur_error *erro
     if (!report.have)
         return ur_error_set(error, UR_ERROR_INPUT, "%s: cannot parse as XML", path);
     if (report.line > 0)
-        return ur_error_set(error, UR_ERROR_INPUT, "%s:%d: %s", path, report.line,
-                            report.message);
+        return ur_error_set(error, UR_ERROR_INPUT, "%s:%d: %s", path, report.line, report.message);
     return ur_error_set(error, UR_ERROR_INPUT, "%s: %s", path, report.message);
 }
 
