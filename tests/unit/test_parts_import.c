@@ -335,7 +335,8 @@ static void test_dxf_bulges(void **state)
 static void test_dxf_chained_loop(void **state)
 {
     (void)state;
-    /* The same D shape from loose LINEs (one backwards) and an ARC, plus an old-style POLYLINE. */
+    /* The D shape from loose LINEs (one backwards) and an ARC; an old-style POLYLINE; an ELLIPSE.
+     */
     ur_parts parts = import_text("chain.dxf",
                                  "0\nSECTION\n2\nHEADER\n9\n$INSUNITS\n70\n4\n0\nENDSEC\n"
                                  "0\nSECTION\n2\nENTITIES\n"
@@ -347,9 +348,10 @@ static void test_dxf_chained_loop(void **state)
                                  "0\nVERTEX\n10\n200\n20\n0\n0\nVERTEX\n10\n210\n20\n0\n"
                                  "0\nVERTEX\n10\n210\n20\n10\n42\n1\n0\nVERTEX\n10\n200\n20\n10\n"
                                  "0\nSEQEND\n"
+                                 "0\nELLIPSE\n10\n300\n20\n0\n11\n0\n21\n20\n40\n0.5\n"
                                  "0\nENDSEC\n0\nEOF\n",
                                  0);
-    assert_int_equal(parts.count, 2);
+    assert_int_equal(parts.count, 3);
     double area = parts.pieces[0].measures.flat_area, exact = 5000 + M_PI * 1250;
     if (!(fabs(area - exact) < 0.01 * M_PI * 50 + 0.01))
         fail_msg("chained: area %.9g, expected %.9g", area, exact);
@@ -357,6 +359,13 @@ static void test_dxf_chained_loop(void **state)
     exact = 100 + M_PI * 25 / 2;
     if (!(fabs(area - exact) < 0.01 * M_PI * 5 + 1e-9))
         fail_msg("polyline: area %.9g, expected %.9g", area, exact);
+    /* The ELLIPSE: major axis 20 along y, minor 10. */
+    area = parts.pieces[2].measures.flat_area;
+    exact = M_PI * 20 * 10;
+    if (!(area <= exact && area > exact - 0.01 * 2 * M_PI * 20))
+        fail_msg("ellipse: area %.9g, expected %.9g", area, exact);
+    assert_true(fabs(parts.pieces[2].box.max.y - 20) < 1e-9);
+    assert_true(fabs(parts.pieces[2].box.max.x - 310) < 0.01);
     ur_parts_free(&parts);
 }
 
