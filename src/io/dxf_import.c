@@ -291,11 +291,16 @@ static ur_status find_units(dxf_reader *reader, ur_error *error)
                             reader->path, line, code);
     if (code == 0)
         unit = reader->collection->unit;
+    if (unit <= 0 && line > 0)
+        return ur_error_set(error, UR_ERROR_INPUT,
+                            "%s:%d: the drawing gives no unit ($INSUNITS is 0, unitless): give "
+                            "its unit with --units",
+                            reader->path, line);
     if (unit <= 0)
         return ur_error_set(error, UR_ERROR_INPUT,
-                            "%s: the drawing gives no unit ($INSUNITS %s): give its unit with "
+                            "%s: the drawing gives no unit (no $INSUNITS): give its unit with "
                             "--units",
-                            reader->path, line ? "is 0, unitless" : "is missing");
+                            reader->path);
     reader->scale = unit;
     reader->tolerance = reader->collection->tolerance / unit;
     return UR_OK;
@@ -524,9 +529,13 @@ static ur_status read_lwpolyline(const dxf_entity *entity, ur_error *error)
 /* The entity that starts at pairs[*index] (code 0); *index moves to the next. */
 static dxf_entity next_entity(dxf_reader *reader, size_t *index, size_t end)
 {
-    dxf_entity entity = {
-        reader, &reader->pairs[*index], 1, reader->pairs[*index].value, reader->pairs[*index].line,
-        false};
+    /* Messages give the line of the entity's name, the value after its code 0. */
+    dxf_entity entity = {reader,
+                         &reader->pairs[*index],
+                         1,
+                         reader->pairs[*index].value,
+                         reader->pairs[*index].line + 1,
+                         false};
     size_t i = *index + 1;
     while (i < end && reader->pairs[i].code != 0)
         i++;

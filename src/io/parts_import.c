@@ -210,16 +210,17 @@ static ur_status ring_error(const parts_collection *collection, const parts_ring
 
 /* ---- Checking rings with GEOS ------------------------------------------- */
 
+/* A ring's index and what to sort it by: its area, or its line. */
 typedef struct parts_order {
-    double area;
+    double key;
     size_t index;
 } parts_order;
 
 static int by_area_descending(const void *a, const void *b)
 {
     const parts_order *p = a, *q = b;
-    if (p->area != q->area)
-        return p->area > q->area ? -1 : 1;
+    if (p->key != q->key)
+        return p->key > q->key ? -1 : 1;
     return p->index < q->index ? -1 : p->index > q->index;
 }
 
@@ -278,29 +279,51 @@ static ur_status take_exterior(GEOSContextHandle_t geos, const GEOSGeometry *pol
     return UR_OK;
 }
 
-/* GEOSMakeValid's answer when it is one polygon without holes; NULL otherwise. */
-static GEOSGeometry *repaired(GEOSContextHandle_t geos, const GEOSGeometry *polygon)
+/* GEOSMakeValid's answer; the structure method drops what collapses to lines (a spike). */
+static GEOSGeometry *make_valid(GEOSContextHandle_t geos, const GEOSGeometry *polygon)
 {
-    GEOSGeometry *valid = GEOSMakeValid_r(geos, polygon);
-    if (valid && GEOSGeomTypeId_r(geos, valid) == GEOS_MULTIPOLYGON &&
-        GEOSGetNumGeometries_r(geos, valid) == 1) {
-        GEOSGeometry *single = GEOSGeom_clone_r(geos, GEOSGetGeometryN_r(geos, valid, 0));
-        GEOSGeom_destroy_r(geos, valid);
-        valid = single;
-    }
-    if (valid && (GEOSGeomTypeId_r(geos, valid) != GEOS_POLYGON ||
-                  GEOSGetNumInteriorRings_r(geos, valid) != 0)) {
-        GEOSGeom_destroy_r(geos, valid);
-        valid = NULL;
-    }
+    GEOSMakeValidParams *params = GEOSMakeValidParams_create_r(geos);
+    GEOSGeometry *valid = NULL;
+    if (params && GEOSMakeValidParams_setMethod_r(geos, params, GEOS_MAKE_VALID_STRUCTURE) &&
+        GEOSMakeValidParams_setKeepCollapsed_r(geos, params, 0))
+        valid = GEOSMakeValidWithParams_r(geos, polygon, params);
+    if (params)
+        GEOSMakeValidParams_destroy_r(geos, params);
     return valid;
+}
+
+/* A copy of the one polygon without holes that valid is or holds; NULL when it is not that. */
+static GEOSGeometry *single_polygon(GEOSContextHandle_t geos, const GEOSGeometry *valid)
+{
+    int type = GEOSGeomTypeId_r(geos, valid);
+    if ((type == GEOS_MULTIPOLYGON || type == GEOS_GEOMETRYCOLLECTION) &&
+        GEOSGetNumGeometries_r(geos, valid) == 1)
+        return single_polygon(geos, GEOSGetGeometryN_r(geos, valid, 0));
+    if (type != GEOS_POLYGON || GEOSisEmpty_r(geos, valid) != 0 ||
+        GEOSGetNumInteriorRings_r(geos, valid) != 0)
+        return NULL;
+    return GEOSGeom_clone_r(geos, valid);
+}
+
+static ur_status no_area_error(const parts_collection *collection, const parts_ring *ring,
+                               ur_error *error)
+{
+    return ring_error(collection, ring, error, "the outline encloses no area");
 }
 
 static ur_status repair_ring(parts_job *job, size_t i, ur_error *error)
 {
     parts_collection *collection = job->collection;
     parts_ring *ring = &collection->rings[i];
-    GEOSGeometry *valid = repaired(job->geos, job->polygons[i]);
+    GEOSGeometry *made = make_valid(job->geos, job->polygons[i]);
+    if (!made)
+        return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not repair a polygon");
+    double made_area = 0;
+    GEOSArea_r(job->geos, made, &made_area);
+    GEOSGeometry *valid = single_polygon(job->geos, made);
+    GEOSGeom_destroy_r(job->geos, made);
+    if (!valid && made_area <= collection->tolerance * collection->tolerance)
+        return no_area_error(collection, ring, error);
     if (!valid)
         return ring_error(collection, ring, error,
                           "the outline crosses itself and cannot be repaired into one shape");
@@ -339,7 +362,7 @@ static ur_status check_coordinates(const parts_collection *collection, const par
     return UR_OK;
 }
 
-/* Coordinates, area, validity; leaves the ring counter-clockwise and its polygon made. */
+/* Coordinates, validity, area; leaves the ring counter-clockwise and its polygon made. */
 static ur_status prepare_ring(parts_job *job, size_t i, ur_error *error)
 {
     parts_collection *collection = job->collection;
@@ -347,30 +370,43 @@ static ur_status prepare_ring(parts_job *job, size_t i, ur_error *error)
     ur_status status = check_coordinates(collection, ring, error);
     if (status != UR_OK)
         return status;
-    double area = ring->count >= 3 ? ur_polygon_signed_area(ring->points, ring->count) : 0.0;
-    if (fabs(area) <= collection->tolerance * collection->tolerance)
-        return ring_error(collection, ring, error, "the outline encloses no area");
-    if (area < 0)
-        reverse_points(ring->points, ring->count);
+    if (ring->count < 3)
+        return no_area_error(collection, ring, error);
+    double area = ur_polygon_signed_area(ring->points, ring->count);
+    double least = collection->tolerance * collection->tolerance;
     job->polygons[i] = ring_polygon(job->geos, ring->points, ring->count);
     if (!job->polygons[i])
         return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not make a polygon");
     char valid = GEOSisValid_r(job->geos, job->polygons[i]);
     if (valid == 2)
         return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not check a polygon");
+    /* A bow tie's signed area is 0 too: only a valid ring is judged by it here. */
+    if (valid && fabs(area) <= least)
+        return no_area_error(collection, ring, error);
     if (!valid) {
         status = repair_ring(job, i, error);
         if (status != UR_OK)
             return status;
-        if (ur_polygon_signed_area(ring->points, ring->count) < 0)
-            reverse_points(ring->points, ring->count);
+        area = ur_polygon_signed_area(ring->points, ring->count);
+        if (fabs(area) <= least)
+            return no_area_error(collection, ring, error);
     }
-    job->areas[i] = fabs(ur_polygon_signed_area(ring->points, ring->count));
+    if (area < 0)
+        reverse_points(ring->points, ring->count);
+    job->areas[i] = fabs(area);
     job->boxes[i] = ur_box_of_points(ring->points, ring->count);
     return UR_OK;
 }
 
 /* ---- Containment --------------------------------------------------------- */
+
+static int by_line(const void *a, const void *b)
+{
+    const parts_order *p = a, *q = b;
+    if (p->key != q->key)
+        return p->key < q->key ? -1 : 1;
+    return p->index < q->index ? -1 : p->index > q->index;
+}
 
 static bool boxes_meet(ur_box a, ur_box b)
 {
@@ -492,7 +528,12 @@ static ur_status build_pieces(parts_job *job, ur_parts *parts, ur_error *error)
     parts->pieces = ur_alloc_array(outers, sizeof *parts->pieces, error);
     if (!parts->pieces)
         return UR_ERROR_INTERNAL;
-    for (size_t i = 0; i < n; i++) {
+    /* In the order the file draws them: chained DXF loops come last otherwise. */
+    for (size_t i = 0; i < n; i++)
+        job->order[i] = (parts_order){(double)job->collection->rings[i].line, i};
+    qsort(job->order, n, sizeof *job->order, by_line);
+    for (size_t k = 0; k < n; k++) {
+        size_t i = job->order[k].index;
         if (job->depth[i] % 2 != 0)
             continue;
         ur_status status =

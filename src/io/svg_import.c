@@ -776,13 +776,13 @@ static bool hidden(xmlNodePtr node)
     xmlFree(display);
     char *style = attribute(node, "style");
     if (style && !none) {
-        char compact[256];
+        /* Squeezed in place: "display : none" says the same. */
         size_t n = 0;
-        for (const char *p = style; *p && n + 1 < sizeof compact; p++)
+        for (const char *p = style; *p; p++)
             if (!isspace((unsigned char)*p))
-                compact[n++] = *p;
-        compact[n] = '\0';
-        none = strstr(compact, "display:none") != NULL;
+                style[n++] = *p;
+        style[n] = '\0';
+        none = strstr(style, "display:none") != NULL;
     }
     xmlFree(style);
     return none;

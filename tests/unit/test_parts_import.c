@@ -1,0 +1,556 @@
+/*
+ * test_parts_import.c: parts from SVG and DXF files made elsewhere.  The
+ * same 100 x 50 mm plate with a 20 mm round hole, written as SVG in mm, in
+ * px, with a viewBox scale and transforms, and as DXF in inches and in mm,
+ * must come out the same; nesting of rings, bulges, chained loops, path
+ * syntax, an Inkscape-like file, and every refusal with its file and line.
+ */
+#include "test_support.h"
+
+static char directory[64];
+
+static int make_directory(void **state)
+{
+    (void)state;
+    strcpy(directory, "/tmp/unroll-test-parts-XXXXXX");
+    return mkdtemp(directory) ? 0 : -1;
+}
+
+static int remove_directory(void **state)
+{
+    (void)state;
+    return remove_test_directory(directory);
+}
+
+/* Writes text to directory/name; path receives the file's path. */
+static void write_file(const char *name, const char *text, char *path, size_t size)
+{
+    path_in(directory, name, path, size);
+    FILE *file = fopen(path, "w");
+    assert_non_null(file);
+    assert_int_equal(fwrite(text, 1, strlen(text), file), strlen(text));
+    assert_int_equal(fclose(file), 0);
+}
+
+/* Imports text written as name; fails on error. */
+static ur_parts import_text(const char *name, const char *text, double unit)
+{
+    char path[256];
+    write_file(name, text, path, sizeof path);
+    ur_parts_import_options options;
+    ur_parts_import_options_default(&options);
+    options.unit = unit;
+    ur_parts parts;
+    ur_error error = {0};
+    if (ur_parts_import(path, &options, &parts, &error) != UR_OK)
+        fail_msg("%s: %s", name, error.message);
+    return parts;
+}
+
+/* Expects text written as name to be refused with a message "PATH<location>: ...fragment...". */
+static void expect_refusal(const char *name, const char *text, double unit, const char *location,
+                           const char *fragment)
+{
+    char path[256];
+    write_file(name, text, path, sizeof path);
+    ur_parts_import_options options;
+    ur_parts_import_options_default(&options);
+    options.unit = unit;
+    ur_parts parts;
+    ur_error error = {0};
+    assert_int_equal(ur_parts_import(path, &options, &parts, &error), UR_ERROR_INPUT);
+    assert_null(parts.pieces);
+    assert_int_equal(parts.count, 0);
+    char prefix[300];
+    snprintf(prefix, sizeof prefix, "%s%s: ", path, location);
+    if (strncmp(error.message, prefix, strlen(prefix)) != 0 || !strstr(error.message, fragment))
+        fail_msg("message '%s' lacks '%s' or '%s'", error.message, prefix, fragment);
+}
+
+static double path_area(const ur_path *path)
+{
+    return ur_polygon_signed_area(path->points, path->count);
+}
+
+/* ---- The same plate in five files -------------------------------------------- */
+
+static const double plate_hole_area = M_PI * 100; /* r = 10 mm */
+
+/* The plate x 10..110, y 30..80 mm, hole centred (60, 55): as each file must give it. */
+static void check_plate(const ur_parts *parts, const char *name)
+{
+    assert_int_equal(parts->count, 1);
+    const ur_piece *piece = &parts->pieces[0];
+    if (name)
+        assert_string_equal(piece->name, name);
+    assert_int_equal(piece->path_count, 2);
+    for (size_t i = 0; i < 2; i++) {
+        assert_true(piece->paths[i].closed);
+        assert_int_equal(piece->paths[i].op, UR_OP_CUT);
+    }
+    double outline = path_area(&piece->paths[0]), hole = -path_area(&piece->paths[1]);
+    assert_true(fabs(outline - 5000) < 1e-6);
+    /* A flattened circle lies inside it, short by less than tolerance x perimeter. */
+    double slack = 0.01 * 2 * M_PI * 10;
+    if (!(hole <= plate_hole_area + 1e-9 && hole > plate_hole_area - slack))
+        fail_msg("hole area %.9g, expected %.9g less under %g", hole, plate_hole_area, slack);
+    assert_true(fabs(piece->measures.flat_area - (outline - hole)) < 1e-9);
+    assert_true(fabs(piece->box.min.x - 10) < 1e-6 && fabs(piece->box.max.x - 110) < 1e-6);
+    assert_true(fabs(piece->box.min.y - 30) < 1e-6 && fabs(piece->box.max.y - 80) < 1e-6);
+    ur_box hole_box = ur_box_of_points(piece->paths[1].points, piece->paths[1].count);
+    assert_true(fabs((hole_box.min.x + hole_box.max.x) / 2 - 60) < 0.01);
+    assert_true(fabs((hole_box.min.y + hole_box.max.y) / 2 - 55) < 0.01);
+    assert_true(hole_box.max.x - hole_box.min.x > 20 - 0.02);
+}
+
+static void test_svg_in_mm(void **state)
+{
+    (void)state;
+    /* y = 20..70 down from the top of a 100 mm page is 30..80 up from its bottom. */
+    ur_parts parts = import_text("mm.svg",
+                                 "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"200mm\" "
+                                 "height=\"100mm\" viewBox=\"0 0 200 100\">\n"
+                                 "  <rect id=\"plate\" x=\"10\" y=\"20\" width=\"100\" "
+                                 "height=\"50\"/>\n"
+                                 "  <circle id=\"hole\" cx=\"60\" cy=\"45\" r=\"10\"/>\n"
+                                 "</svg>\n",
+                                 0);
+    check_plate(&parts, "plate");
+    assert_int_equal(parts.warning_count, 0);
+    ur_parts_free(&parts);
+}
+
+static void test_svg_in_px(void **state)
+{
+    (void)state;
+    /* 96 px to the inch, no viewBox: user units are px. */
+    ur_parts parts =
+        import_text("px.svg",
+                    "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"755.90551181px\" "
+                    "height=\"377.95275591px\">\n"
+                    "  <rect x=\"37.795275591\" y=\"75.590551181\" width=\"377.95275591\" "
+                    "height=\"188.97637795\"/>\n"
+                    "  <circle cx=\"226.77165354\" cy=\"170.07874016\" r=\"37.795275591\"/>\n"
+                    "</svg>\n",
+                    0);
+    check_plate(&parts, "px-1");
+    ur_parts_free(&parts);
+}
+
+static void test_svg_viewbox_and_transforms(void **state)
+{
+    (void)state;
+    /* One user unit is 0.1 mm; the group moves and doubles; the circle turns about itself. */
+    ur_parts parts = import_text(
+        "scaled.svg",
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"20cm\" height=\"10cm\" "
+        "viewBox=\"0 0 2000 1000\">\n"
+        "  <g transform=\"translate(100,200) scale(2)\">\n"
+        "    <g transform=\"matrix(1 0 0 1 0 0)\">\n"
+        "      <path id=\"outline\" d=\"M0,0 H500 V250 H0 Z\"/>\n"
+        "      <circle transform=\"rotate(30 250 125)\" cx=\"250\" cy=\"125\" r=\"50\"/>\n"
+        "    </g>\n"
+        "  </g>\n"
+        "</svg>\n",
+        0);
+    check_plate(&parts, "outline");
+    ur_parts_free(&parts);
+}
+
+static void test_svg_skew_and_rotate(void **state)
+{
+    (void)state;
+    /* skewX keeps the area of a square; rotate(90) turns 100 x 50 into 50 x 100. */
+    ur_parts parts =
+        import_text("skew.svg",
+                    "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"100mm\" height=\"100mm\" "
+                    "viewBox=\"0 0 100 100\">\n"
+                    "  <rect id=\"skewed\" transform=\"skewX(45)\" x=\"0\" y=\"0\" width=\"10\" "
+                    "height=\"10\"/>\n"
+                    "  <rect id=\"turned\" transform=\"translate(300 0) rotate(90) scale(1,0.5) "
+                    "skewY(0)\" x=\"0\" y=\"0\" width=\"100\" height=\"100\"/>\n"
+                    "</svg>\n",
+                    0);
+    assert_int_equal(parts.count, 2);
+    assert_string_equal(parts.pieces[0].name, "skewed");
+    assert_true(fabs(path_area(&parts.pieces[0].paths[0]) - 100) < 1e-9);
+    ur_box box = parts.pieces[0].box;
+    assert_true(fabs(box.max.x - box.min.x - 20) < 1e-9);
+    box = parts.pieces[1].box;
+    assert_true(fabs(box.max.x - box.min.x - 50) < 1e-9);
+    assert_true(fabs(box.max.y - box.min.y - 100) < 1e-9);
+    ur_parts_free(&parts);
+}
+
+/* The plate as DXF: an LWPOLYLINE and a CIRCLE, in the unit $INSUNITS gives. */
+static const char *plate_dxf(char *text, size_t size, int insunits, double unit)
+{
+    snprintf(text, size,
+             "0\nSECTION\n2\nHEADER\n9\n$INSUNITS\n70\n%d\n0\nENDSEC\n"
+             "0\nSECTION\n2\nENTITIES\n"
+             "0\nLWPOLYLINE\n8\n0\n90\n4\n70\n1\n"
+             "10\n%.17g\n20\n%.17g\n10\n%.17g\n20\n%.17g\n"
+             "10\n%.17g\n20\n%.17g\n10\n%.17g\n20\n%.17g\n"
+             "0\nCIRCLE\n8\n0\n10\n%.17g\n20\n%.17g\n40\n%.17g\n"
+             "0\nTEXT\n8\n0\n10\n0\n20\n0\n1\nplate\n"
+             "0\nENDSEC\n0\nEOF\n",
+             insunits, 10 / unit, 30 / unit, 110 / unit, 30 / unit, 110 / unit, 80 / unit,
+             10 / unit, 80 / unit, 60 / unit, 55 / unit, 10 / unit);
+    return text;
+}
+
+static void test_dxf_in_inches_and_mm(void **state)
+{
+    (void)state;
+    char text[2048];
+    ur_parts parts = import_text("inches.dxf", plate_dxf(text, sizeof text, 1, 25.4), 0);
+    check_plate(&parts, "inches-1");
+    /* The TEXT is left out with a note naming its line. */
+    assert_int_equal(parts.warning_count, 1);
+    assert_non_null(strstr(parts.warnings[0], "TEXT"));
+    ur_parts_free(&parts);
+    parts = import_text("mm.dxf", plate_dxf(text, sizeof text, 4, 1), 0);
+    check_plate(&parts, "mm-1");
+    ur_parts_free(&parts);
+    /* No unit in the file: the caller's. */
+    parts = import_text("unitless.dxf", plate_dxf(text, sizeof text, 0, 25.4), 25.4);
+    check_plate(&parts, NULL);
+    ur_parts_free(&parts);
+}
+
+/* ---- Units, nesting, curves ----------------------------------------------------- */
+
+static void test_units_required(void **state)
+{
+    (void)state;
+    const char *svg = "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 10 10\">\n"
+                      "<rect x=\"0\" y=\"0\" width=\"4\" height=\"2\"/></svg>\n";
+    expect_refusal("nounits.svg", svg, 0, ":1", "--units");
+    ur_parts parts = import_text("nounits.svg", svg, 25.4);
+    assert_true(fabs(path_area(&parts.pieces[0].paths[0]) - 8 * 25.4 * 25.4) < 1e-6);
+    ur_parts_free(&parts);
+    /* A width without a unit is in the caller's unit too: 20 cm over a 10-unit viewBox. */
+    parts = import_text("unitless.svg",
+                        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"20\" height=\"20\" "
+                        "viewBox=\"0 0 10 10\"><rect width=\"4\" height=\"2\"/></svg>\n",
+                        10);
+    assert_true(fabs(path_area(&parts.pieces[0].paths[0]) - 8 * 400) < 1e-6);
+    ur_parts_free(&parts);
+    char text[2048];
+    plate_dxf(text, sizeof text, 0, 1);
+    expect_refusal("nounits.dxf", text, 0, ":7", "--units");
+    /* No $INSUNITS at all. */
+    expect_refusal("noheader.dxf",
+                   "0\nSECTION\n2\nENTITIES\n0\nCIRCLE\n10\n0\n20\n0\n40\n1\n0\nENDSEC\n0\nEOF\n",
+                   0, "", "--units");
+}
+
+static void test_nesting(void **state)
+{
+    (void)state;
+    /* A ring (r 50 with a hole of r 40), a part in its hole, and a hole in that part. */
+    ur_parts parts =
+        import_text("nested.svg",
+                    "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"200mm\" height=\"200mm\" "
+                    "viewBox=\"0 0 200 200\">\n"
+                    "<circle id=\"ring\" cx=\"100\" cy=\"100\" r=\"50\"/>\n"
+                    "<circle cx=\"100\" cy=\"100\" r=\"40\"/>\n"
+                    "<rect id=\"inner\" x=\"80\" y=\"80\" width=\"40\" height=\"40\"/>\n"
+                    "<rect x=\"95\" y=\"95\" width=\"10\" height=\"10\"/>\n"
+                    "<rect id=\"beside\" x=\"160\" y=\"0\" width=\"10\" height=\"10\"/>\n"
+                    "</svg>\n",
+                    0);
+    assert_int_equal(parts.count, 3);
+    assert_string_equal(parts.pieces[0].name, "ring");
+    assert_int_equal(parts.pieces[0].path_count, 2);
+    assert_true(path_area(&parts.pieces[0].paths[0]) > 0);
+    assert_true(path_area(&parts.pieces[0].paths[1]) < 0);
+    assert_string_equal(parts.pieces[1].name, "inner");
+    assert_int_equal(parts.pieces[1].path_count, 2);
+    assert_true(fabs(parts.pieces[1].measures.flat_area - 1500) < 1e-9);
+    assert_string_equal(parts.pieces[2].name, "beside");
+    assert_int_equal(parts.pieces[2].path_count, 1);
+    ur_parts_free(&parts);
+}
+
+static void test_path_syntax(void **state)
+{
+    (void)state;
+    ur_parts parts =
+        import_text("syntax.svg",
+                    "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"300mm\" height=\"300mm\" "
+                    "viewBox=\"0 0 300 300\">\n"
+                    /* implicit lineto after M, 1e1, "-10-0" */
+                    "<path id=\"bar\" d=\"M0,0 1e1,0l0 5-10-0z\"/>\n"
+                    /* "-.5.5" and "-.5-.5": a house of area 1.25 */
+                    "<path id=\"house\" d=\"M20 0l1 0 0 1-.5.5-.5-.5z\"/>\n"
+                    /* a parabolic segment: 2/3 of its control triangle, 3333.33 */
+                    "<path id=\"q\" d=\"M0,100 Q50,200 100,100 Z\"/>\n"
+                    /* C then S reflecting it: 2 x 0.6 w h = 6000 */
+                    "<path id=\"s\" d=\"M150,50 c0,50 100,50 100,0 S150,0 150,50 z\"/>\n"
+                    /* T after Q: a bump out, its reflection in: the 100 x 40 rectangle's area */
+                    "<path id=\"t\" d=\"M0,250 q25,-40 50,0 t50,0 v40 h-100 z\"/>\n"
+                    /* arcs with flags run together: a 10 mm circle in two halves */
+                    "<path id=\"a\" d=\"M150,250a10,10 0 1020,0a10 10 0 10-20 0Z\"/>\n"
+                    "</svg>\n",
+                    0);
+    assert_int_equal(parts.count, 6);
+    double expected[6] = {50, 1.25, 10000.0 / 3, 6000, 4000, M_PI * 100};
+    double slack[6] = {1e-9, 1e-9, 0.01 * 250, 0.01 * 400, 0.01 * 250, 0.01 * 2 * M_PI * 10};
+    for (size_t i = 0; i < 6; i++) {
+        double area = parts.pieces[i].measures.flat_area;
+        if (!(fabs(area - expected[i]) <= slack[i]))
+            fail_msg("%s: area %.9g, expected %.9g within %g", parts.pieces[i].name, area,
+                     expected[i], slack[i]);
+    }
+    ur_parts_free(&parts);
+}
+
+static void test_dxf_bulges(void **state)
+{
+    (void)state;
+    /* 100 x 60 with a half circle of r 50 on top: bulge 1 out, -1 in. */
+    const char *format = "0\nSECTION\n2\nHEADER\n9\n$INSUNITS\n70\n4\n0\nENDSEC\n"
+                         "0\nSECTION\n2\nENTITIES\n"
+                         "0\nLWPOLYLINE\n90\n4\n70\n1\n10\n0\n20\n0\n10\n100\n20\n0\n"
+                         "10\n100\n20\n60\n42\n%s\n10\n0\n20\n60\n"
+                         "0\nENDSEC\n0\nEOF\n";
+    char text[1024];
+    double half = M_PI * 2500 / 2, slack = 0.01 * M_PI * 50;
+    snprintf(text, sizeof text, format, "1");
+    ur_parts parts = import_text("bulge.dxf", text, 0);
+    double area = parts.pieces[0].measures.flat_area;
+    if (!(area <= 6000 + half + 1e-9 && area > 6000 + half - slack))
+        fail_msg("bulge 1: area %.9g, expected %.9g", area, 6000 + half);
+    assert_true(fabs(parts.pieces[0].box.max.y - 110) < 0.01);
+    ur_parts_free(&parts);
+    snprintf(text, sizeof text, format, "-1.0");
+    parts = import_text("bulge.dxf", text, 0);
+    area = parts.pieces[0].measures.flat_area;
+    if (!(area >= 6000 - half - 1e-9 && area < 6000 - half + slack))
+        fail_msg("bulge -1: area %.9g, expected %.9g", area, 6000 - half);
+    ur_parts_free(&parts);
+}
+
+static void test_dxf_chained_loop(void **state)
+{
+    (void)state;
+    /* The D shape from loose LINEs (one backwards) and an ARC; an old-style POLYLINE; an ELLIPSE.
+     */
+    ur_parts parts = import_text("chain.dxf",
+                                 "0\nSECTION\n2\nHEADER\n9\n$INSUNITS\n70\n4\n0\nENDSEC\n"
+                                 "0\nSECTION\n2\nENTITIES\n"
+                                 "0\nLINE\n10\n0\n20\n0\n11\n100\n21\n0\n"
+                                 "0\nARC\n10\n50\n20\n50\n40\n50\n50\n0\n51\n180\n"
+                                 "0\nLINE\n10\n0\n20\n0\n11\n0\n21\n50.001\n"
+                                 "0\nLINE\n10\n100\n20\n0\n11\n100\n21\n50\n"
+                                 "0\nPOLYLINE\n66\n1\n70\n1\n"
+                                 "0\nVERTEX\n10\n200\n20\n0\n0\nVERTEX\n10\n210\n20\n0\n"
+                                 "0\nVERTEX\n10\n210\n20\n10\n42\n1\n0\nVERTEX\n10\n200\n20\n10\n"
+                                 "0\nSEQEND\n"
+                                 "0\nELLIPSE\n10\n300\n20\n0\n11\n0\n21\n20\n40\n0.5\n"
+                                 "0\nENDSEC\n0\nEOF\n",
+                                 0);
+    assert_int_equal(parts.count, 3);
+    double area = parts.pieces[0].measures.flat_area, exact = 5000 + M_PI * 1250;
+    if (!(fabs(area - exact) < 0.01 * M_PI * 50 + 0.01))
+        fail_msg("chained: area %.9g, expected %.9g", area, exact);
+    area = parts.pieces[1].measures.flat_area;
+    exact = 100 + M_PI * 25 / 2;
+    if (!(fabs(area - exact) < 0.01 * M_PI * 5 + 1e-9))
+        fail_msg("polyline: area %.9g, expected %.9g", area, exact);
+    /* The ELLIPSE: major axis 20 along y, minor 10. */
+    area = parts.pieces[2].measures.flat_area;
+    exact = M_PI * 20 * 10;
+    if (!(area <= exact && area > exact - 0.01 * 2 * M_PI * 20))
+        fail_msg("ellipse: area %.9g, expected %.9g", area, exact);
+    assert_true(fabs(parts.pieces[2].box.max.y - 20) < 1e-9);
+    assert_true(fabs(parts.pieces[2].box.max.x - 310) < 0.01);
+    ur_parts_free(&parts);
+}
+
+static void test_inkscape_like(void **state)
+{
+    (void)state;
+    ur_parts parts = import_text(
+        "drawing.svg",
+        "<?xml version=\"1.0\" encoding=\"UTF-8\" standalone=\"no\"?>\n"
+        "<!-- Created with Inkscape (http://www.inkscape.org/) -->\n"
+        "<svg\n"
+        "   width=\"210mm\"\n   height=\"297mm\"\n   viewBox=\"0 0 210 297\"\n"
+        "   version=\"1.1\"\n   id=\"svg5\"\n"
+        "   inkscape:version=\"1.2.2 (b0a8486541, 2022-12-01)\"\n"
+        "   sodipodi:docname=\"drawing.svg\"\n"
+        "   xmlns:inkscape=\"http://www.inkscape.org/namespaces/inkscape\"\n"
+        "   xmlns:sodipodi=\"http://sodipodi.sourceforge.net/DTD/sodipodi-0.dtd\"\n"
+        "   xmlns=\"http://www.w3.org/2000/svg\"\n"
+        "   xmlns:svg=\"http://www.w3.org/2000/svg\"\n"
+        "   xmlns:rdf=\"http://www.w3.org/1999/02/22-rdf-syntax-ns#\"\n"
+        "   xmlns:dc=\"http://purl.org/dc/elements/1.1/\">\n"
+        "  <sodipodi:namedview id=\"namedview7\" pagecolor=\"#ffffff\" "
+        "inkscape:document-units=\"mm\" />\n"
+        "  <defs id=\"defs2\"><rect id=\"unused\" width=\"5\" height=\"5\"/></defs>\n"
+        "  <metadata><rdf:RDF><dc:title>x</dc:title></rdf:RDF></metadata>\n"
+        "  <g inkscape:label=\"Layer 1\" inkscape:groupmode=\"layer\" id=\"layer1\"\n"
+        "     transform=\"translate(-20,-30)\">\n"
+        "    <path style=\"fill:none;stroke:#000000;stroke-width:0.264583\"\n"
+        "       d=\"m 30,50 h 100 v 50 H 30 Z m 40,25 a 10,10 0 0 1 10,-10 10,10 0 0 1 10,10 "
+        "10,10 0 0 1 -10,10 10,10 0 0 1 -10,-10 z\"\n"
+        "       id=\"path1\" sodipodi:nodetypes=\"ccccc\" />\n"
+        "    <text x=\"40\" y=\"60\" id=\"text1\"><tspan>plate</tspan></text>\n"
+        "  </g>\n"
+        "  <g inkscape:label=\"hidden\" inkscape:groupmode=\"layer\" id=\"layer2\" "
+        "style=\"display:none\">\n"
+        "    <path d=\"M 0,0 L 10,10\" id=\"open-but-hidden\"/>\n"
+        "  </g>\n"
+        "</svg>\n",
+        0);
+    /* x 10..110; y 20..70 from the top of a 297 mm page. */
+    assert_int_equal(parts.count, 1);
+    const ur_piece *piece = &parts.pieces[0];
+    assert_string_equal(piece->name, "path1");
+    assert_int_equal(piece->path_count, 2);
+    assert_true(fabs(path_area(&piece->paths[0]) - 5000) < 1e-6);
+    assert_true(fabs(-path_area(&piece->paths[1]) - plate_hole_area) < 0.01 * 2 * M_PI * 10);
+    assert_true(fabs(piece->box.min.x - 10) < 1e-6 && fabs(piece->box.max.y - 277) < 1e-6);
+    assert_int_equal(parts.warning_count, 1);
+    assert_non_null(strstr(parts.warnings[0], "text id=\"text1\""));
+    ur_parts_free(&parts);
+}
+
+static void test_self_crossing(void **state)
+{
+    (void)state;
+    /* A square with a spike drawn out and back: repaired to the square, with a warning. */
+    ur_parts parts =
+        import_text("spike.svg",
+                    "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"100mm\" height=\"100mm\" "
+                    "viewBox=\"0 0 100 100\">\n"
+                    "<polygon id=\"spiky\" points=\"0,0 10,0 10,5 15,5 10,5 10,10 0,10\"/>\n"
+                    "</svg>\n",
+                    0);
+    assert_int_equal(parts.count, 1);
+    assert_true(fabs(parts.pieces[0].measures.flat_area - 100) < 1e-9);
+    assert_true(fabs(parts.pieces[0].box.max.x - 10) < 1e-9);
+    assert_int_equal(parts.warning_count, 1);
+    assert_non_null(strstr(parts.warnings[0], "polygon id=\"spiky\""));
+    ur_parts_free(&parts);
+    /* A bow tie is two shapes: refused, naming it. */
+    expect_refusal("bowtie.svg",
+                   "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"100mm\" height=\"100mm\" "
+                   "viewBox=\"0 0 100 100\">\n\n"
+                   "<polygon id=\"bow\" points=\"0,0 10,10 10,0 0,10\"/>\n"
+                   "</svg>\n",
+                   0, ":3: polygon id=\"bow\"", "crosses itself");
+}
+
+/* ---- Refusals -------------------------------------------------------------------- */
+
+#define SVG_HEAD                                                                                   \
+    "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"100mm\" height=\"100mm\" "                  \
+    "viewBox=\"0 0 100 100\">\n"
+
+static void test_svg_refusals(void **state)
+{
+    (void)state;
+    expect_refusal("open.svg",
+                   SVG_HEAD "<rect width=\"5\" height=\"5\"/>\n"
+                            "<path id=\"cut1\" d=\"M 0 0 L 10 0 L 10 10\"/>\n</svg>\n",
+                   0, ":3: path id=\"cut1\"", "open");
+    expect_refusal("line.svg", SVG_HEAD "\n<line x1=\"0\" y1=\"0\" x2=\"5\" y2=\"5\"/></svg>\n", 0,
+                   ":3: line", "only closed shapes");
+    expect_refusal("polyline.svg", SVG_HEAD "<polyline id=\"pl\" points=\"0,0 5,0 5,5\"/></svg>\n",
+                   0, ":2: polyline id=\"pl\"", "open");
+    expect_refusal("xml.svg", SVG_HEAD "<rect width=\"5\" height=\"5\">\n</svg>\n", 0, ":3", "");
+    expect_refusal("data.svg", SVG_HEAD "<path id=\"p\" d=\"M 0 0 L 5 nan Z\"/></svg>\n", 0,
+                   ":2: path id=\"p\"", "bad path data at \"nan Z\"");
+    expect_refusal("start.svg", SVG_HEAD "<path d=\"L 5 5 Z\"/></svg>\n", 0, ":2: path",
+                   "bad path data");
+    expect_refusal("transform.svg",
+                   SVG_HEAD "<rect transform=\"spin(3)\" width=\"5\" height=\"5\"/></svg>\n", 0,
+                   ":2: rect", "not a transform");
+    expect_refusal("zero.svg", SVG_HEAD "<polygon points=\"0,0 5,5 10,10\"/></svg>\n", 0,
+                   ":2: polygon", "no area");
+    expect_refusal("huge.svg", SVG_HEAD "<rect width=\"1e12\" height=\"5\"/></svg>\n", 0,
+                   ":2: rect", "beyond");
+    expect_refusal("width.svg", SVG_HEAD "<rect width=\"0\" height=\"5\"/></svg>\n", 0, ":2: rect",
+                   "width must be positive");
+    expect_refusal("use.svg", SVG_HEAD "<use href=\"#a\"/></svg>\n", 0, ":2: use", "clones");
+    expect_refusal("cross.svg",
+                   SVG_HEAD "<rect width=\"10\" height=\"10\"/>\n"
+                            "<rect id=\"r\" x=\"5\" y=\"5\" width=\"10\" height=\"10\"/></svg>\n",
+                   0, ":3: rect id=\"r\"", "crosses");
+    expect_refusal("empty.svg", SVG_HEAD "<text>hello</text></svg>\n", 0, "", "no closed shape");
+    expect_refusal("root.svg", "<html/>\n", 0, ":1", "not svg");
+    expect_refusal("empty-file.svg", "", 0, "", "empty");
+}
+
+#define DXF_HEAD "0\nSECTION\n2\nHEADER\n9\n$INSUNITS\n70\n4\n0\nENDSEC\n0\nSECTION\n2\nENTITIES\n"
+
+static void test_dxf_refusals(void **state)
+{
+    (void)state;
+    /* Lines 11..: the entities. */
+    expect_refusal("open.dxf",
+                   DXF_HEAD "0\nLINE\n10\n0\n20\n0\n11\n10\n21\n0\n"
+                            "0\nLINE\n10\n10\n20\n0\n11\n10\n21\n10\n0\nENDSEC\n0\nEOF\n",
+                   0, ":26: LINE", "open");
+    expect_refusal("code.dxf", DXF_HEAD "0\nCIRCLE\nten\n0\n0\nENDSEC\n0\nEOF\n", 0, ":17",
+                   "\"ten\" is not a group code");
+    expect_refusal("value.dxf", DXF_HEAD "0\nCIRCLE\n10", 0, ":17", "group code 10 has no value");
+    expect_refusal("number.dxf", DXF_HEAD "0\nCIRCLE\n10\n1x\n20\n0\n40\n1\n0\nENDSEC\n0\nEOF\n", 0,
+                   ":18", "\"1x\" is not a finite number");
+    expect_refusal("nan.dxf", DXF_HEAD "0\nCIRCLE\n10\nnan\n20\n0\n40\n1\n0\nENDSEC\n0\nEOF\n", 0,
+                   ":18", "not a finite number");
+    expect_refusal("huge.dxf", DXF_HEAD "0\nCIRCLE\n10\n1e300\n20\n0\n40\n1\n0\nENDSEC\n0\nEOF\n",
+                   0, ":16: CIRCLE", "beyond");
+    expect_refusal("spline.dxf", DXF_HEAD "0\nSPLINE\n70\n8\n0\nENDSEC\n0\nEOF\n", 0, ":16: SPLINE",
+                   "splines are not read");
+    expect_refusal("insert.dxf", DXF_HEAD "0\nINSERT\n2\nblock\n0\nENDSEC\n0\nEOF\n", 0,
+                   ":16: INSERT", "explode");
+    expect_refusal("radius.dxf", DXF_HEAD "0\nCIRCLE\n10\n0\n20\n0\n40\n0\n0\nENDSEC\n0\nEOF\n", 0,
+                   ":16: CIRCLE", "radius 0");
+    expect_refusal("units.dxf", "0\nSECTION\n2\nHEADER\n9\n$INSUNITS\n70\n3\n0\nENDSEC\n0\nEOF\n",
+                   0, ":7", "$INSUNITS 3");
+    expect_refusal("nothing.dxf", DXF_HEAD "0\nTEXT\n1\nhi\n0\nENDSEC\n0\nEOF\n", 0, "",
+                   "no closed shape");
+    expect_refusal("binary.dxf", "AutoCAD Binary DXF\r\n\x1a", 0, "", "binary");
+}
+
+static void test_file_refusals(void **state)
+{
+    (void)state;
+    ur_parts parts;
+    ur_error error = {0};
+    char path[256];
+    path_in(directory, "missing.svg", path, sizeof path);
+    assert_int_equal(ur_parts_import(path, NULL, &parts, &error), UR_ERROR_INPUT);
+    assert_non_null(strstr(error.message, "missing.svg: cannot open"));
+    write_file("parts.txt", "x", path, sizeof path);
+    assert_int_equal(ur_parts_import(path, NULL, &parts, &error), UR_ERROR_INPUT);
+    assert_non_null(strstr(error.message, "parts.txt: unknown kind of file"));
+    assert_true(ur_parts_unit_mm("in") == 25.4 && ur_parts_unit_mm("px") == 25.4 / 96);
+    assert_true(ur_parts_unit_mm("furlong") == 0);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_svg_in_mm),
+        cmocka_unit_test(test_svg_in_px),
+        cmocka_unit_test(test_svg_viewbox_and_transforms),
+        cmocka_unit_test(test_svg_skew_and_rotate),
+        cmocka_unit_test(test_dxf_in_inches_and_mm),
+        cmocka_unit_test(test_units_required),
+        cmocka_unit_test(test_nesting),
+        cmocka_unit_test(test_path_syntax),
+        cmocka_unit_test(test_dxf_bulges),
+        cmocka_unit_test(test_dxf_chained_loop),
+        cmocka_unit_test(test_inkscape_like),
+        cmocka_unit_test(test_self_crossing),
+        cmocka_unit_test(test_svg_refusals),
+        cmocka_unit_test(test_dxf_refusals),
+        cmocka_unit_test(test_file_refusals),
+    };
+    return cmocka_run_group_tests(tests, make_directory, remove_directory);
+}
