@@ -61,8 +61,8 @@ bool cli_check_output(const cli_job *job)
     char(*names)[UR_OUTPUT_NAME_SIZE] = NULL;
     size_t count = 0;
     ur_error error;
-    ur_status status = ur_output_files(job->output_path, formats_asked(job), 1, &names, &count,
-                                       &error);
+    ur_status status =
+        ur_output_files(job->output_path, formats_asked(job), 1, &names, &count, &error);
     free(names);
     if (status != UR_OK)
         cli_message("%s: -o: %s", job->command, error.message);
@@ -76,9 +76,8 @@ ur_status cli_write_outputs(const cli_job *job, const ur_machine *machine, const
     char title[128];
     snprintf(title, sizeof title, "unroll %s", job->command);
     ur_output_options output = {title};
-    ur_format_options formats = {.job_name = job->surface,
-                                 .dxf_version = (ur_dxf_version)job->dxf_version,
-                                 .dpi = job->dpi};
+    ur_format_options formats = {
+        .job_name = job->surface, .dxf_version = (ur_dxf_version)job->dxf_version, .dpi = job->dpi};
     unsigned asked = formats_asked(job);
     char(*names)[UR_OUTPUT_NAME_SIZE] = NULL;
     size_t name_count = 0;
