@@ -38,6 +38,7 @@ typedef struct ur_format_options {
     const char *job_name;       /* the job the files come from; NULL for none */
     ur_dxf_version dxf_version; /* UR_DXF_R12 by default */
     double dpi;                 /* PNG preview resolution; 0 for UR_PNG_DPI */
+    bool drawing_order;         /* --order none: paths as drawn, not in cutting order */
 } ur_format_options;
 
 /* Cut-file formats, as bits so that several can be asked for at once. */
@@ -97,11 +98,45 @@ ur_status ur_write_outputs(const char *path, unsigned formats, const ur_layout *
  * several, NAME.svg becomes NAME-1.svg, NAME-2.svg, ...  Each file is
  * width × height mm with a matching viewBox, one layer group per operation
  * (id = operation name, Inkscape layer label and stroke from the machine),
- * each path a separate <path> in absolute coordinates.
+ * each path a separate <path> in absolute coordinates, as drawn (the
+ * pieces in placement order, paths starting where they start; the cutting
+ * order is ur_write_outputs').
  */
 ur_status ur_write_svg(const char *output_path, const ur_layout *layout, const ur_piece *pieces,
                        const ur_machine *machine, const ur_output_options *options,
                        ur_error *error);
+
+/* ---- Cut order ----------------------------------------------------------- */
+
+/*
+ * The operations in the order they are cut: engrave and mark while the
+ * sheet is whole, then scores and kerfs, the through cuts last.
+ */
+const ur_op *ur_operation_order(void);
+
+/*
+ * How a sheet is cut (order.c): the placements in the order the pieces are
+ * visited, the same for every operation (nearest neighbour from the sheet's
+ * origin, then 2-opt; the drawing order when not ordered), and what it
+ * takes: cut length, travel between paths (from the origin) and time at
+ * the machine's speeds (0 without a machine).  Within a piece inner
+ * contours come before the outline; with ordered, every closed path starts
+ * in the middle of its longest edge (ur_path_start).
+ */
+typedef struct ur_cut_plan {
+    size_t *order;        /* placement indices in cutting order; owned */
+    double cut_length;    /* mm */
+    double travel_length; /* mm */
+    double seconds;
+} ur_cut_plan;
+
+ur_status ur_sheet_cut_plan(const ur_sheet *sheet, const ur_piece *pieces, const ur_op *op_order,
+                            bool ordered, const ur_machine *machine, ur_cut_plan *plan,
+                            ur_error *error);
+void ur_cut_plan_free(ur_cut_plan *plan);
+
+/* The edge a closed path's cut starts in the middle of: its longest (0 for open paths). */
+size_t ur_path_start(const ur_path *path);
 
 /* Room for one output file name. */
 #define UR_OUTPUT_NAME_SIZE 4096
@@ -163,6 +198,7 @@ typedef struct ur_report_context {
     const ur_interval *gaps;
     size_t gap_count;
     const struct ur_report_layer *layer; /* the layer developed; NULL: not reported (meshes) */
+    bool drawing_order;                  /* the files keep the drawing order (--order none) */
 } ur_report_context;
 
 /*

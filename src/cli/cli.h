@@ -76,6 +76,7 @@ typedef struct cli_job {
     unsigned formats;
     int dxf_version;
     double dpi;
+    bool drawing_order; /* --order none */
 } cli_job;
 
 enum {
@@ -174,6 +175,7 @@ ur_status cli_place_pieces(const cli_job *job, const ur_machine *machine,
 bool cli_parse_formats(cli_job *job, const char *value);
 bool cli_parse_dxf_version(cli_job *job, const char *value);
 bool cli_parse_dpi(cli_job *job, const char *value);
+bool cli_parse_order(cli_job *job, const char *value);
 
 /* Whether -o and --format say which files to write; false after a message (outputs.c). */
 bool cli_check_output(const cli_job *job);

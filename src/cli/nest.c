@@ -32,6 +32,7 @@ enum nest_option {
     NEST_FORMAT,
     NEST_DXF_VERSION,
     NEST_DPI,
+    NEST_ORDER,
 };
 
 static const struct option nest_options[] = {
@@ -49,6 +50,7 @@ static const struct option nest_options[] = {
     {"format", required_argument, NULL, NEST_FORMAT},
     {"dxf-version", required_argument, NULL, NEST_DXF_VERSION},
     {"dpi", required_argument, NULL, NEST_DPI},
+    {"order", required_argument, NULL, NEST_ORDER},
     {"help", no_argument, NULL, 'h'},
     {NULL, 0, NULL, 0},
 };
@@ -144,6 +146,8 @@ static bool take_nest_option(nest_job *n, int id, const char *value)
         return cli_parse_dxf_version(job, value);
     case NEST_DPI:
         return cli_parse_dpi(job, value);
+    case NEST_ORDER:
+        return cli_parse_order(job, value);
     default:
         return false;
     }
@@ -157,7 +161,7 @@ static const char nest_help[] =
     "  FILE:N or --copies N: that many of each part.\n"
     "  --machine NAME --material NAME --sheet WxH --margin MM --spacing MM\n"
     "  --report FILE.json --quiet --no-kerf-compensation\n"
-    "  --format svg,dxf,pdf,png --dxf-version 12|2000 --dpi N\n";
+    "  --format svg,dxf,pdf,png --dxf-version 12|2000 --dpi N --order cut|none\n";
 
 /* Parses argv (argv[0] is "nest"); 0, -1 after help, or an exit status. */
 static int parse_nest(int argc, char **argv, nest_job *n)

@@ -63,6 +63,7 @@ enum option_id {
     OPT_FORMAT,
     OPT_DXF_VERSION,
     OPT_DPI,
+    OPT_ORDER,
 };
 
 static const struct option long_options[] = {
@@ -113,6 +114,7 @@ static const struct option long_options[] = {
     {"format", required_argument, NULL, OPT_FORMAT},
     {"dxf-version", required_argument, NULL, OPT_DXF_VERSION},
     {"dpi", required_argument, NULL, OPT_DPI},
+    {"order", required_argument, NULL, OPT_ORDER},
     {"help", no_argument, NULL, 'h'},
     {NULL, 0, NULL, 0},
 };
@@ -139,7 +141,7 @@ static const struct {
     const char *options;
 } action_options[] = {
     {CLI_DEVELOP, " output machine material sheet method parts rulings no-split report strain-png "
-                  "allowances bridges no-kerf-compensation format dxf-version dpi "},
+                  "allowances bridges no-kerf-compensation format dxf-version dpi order "},
     {CLI_ANALYZE, " png report "},
     {CLI_COMPARE, " png csv "},
 };
@@ -474,6 +476,8 @@ static bool take_option(cli_job *job, int id, const char *value)
         return cli_parse_dxf_version(job, value);
     case OPT_DPI:
         return cli_parse_dpi(job, value);
+    case OPT_ORDER:
+        return cli_parse_order(job, value);
     case 'n':
         return parse_count(surface, value, &job->develop.rulings);
     case OPT_METHOD: {

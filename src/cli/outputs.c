@@ -50,6 +50,15 @@ bool cli_parse_dpi(cli_job *job, const char *value)
     return true;
 }
 
+bool cli_parse_order(cli_job *job, const char *value)
+{
+    job->drawing_order = strcmp(value, "none") == 0;
+    if (job->drawing_order || strcmp(value, "cut") == 0)
+        return true;
+    cli_message("%s: --order: '%s' is not cut or none", job->command, value);
+    return false;
+}
+
 /* The formats to write: -o - without --format is an SVG, as a program reading a pipe expects. */
 static unsigned formats_asked(const cli_job *job)
 {
@@ -76,8 +85,10 @@ ur_status cli_write_outputs(const cli_job *job, const ur_machine *machine, const
     char title[128];
     snprintf(title, sizeof title, "unroll %s", job->command);
     ur_output_options output = {title};
-    ur_format_options formats = {
-        .job_name = job->surface, .dxf_version = (ur_dxf_version)job->dxf_version, .dpi = job->dpi};
+    ur_format_options formats = {.job_name = job->surface,
+                                 .dxf_version = (ur_dxf_version)job->dxf_version,
+                                 .dpi = job->dpi,
+                                 .drawing_order = job->drawing_order};
     unsigned asked = formats_asked(job);
     char(*names)[UR_OUTPUT_NAME_SIZE] = NULL;
     size_t name_count = 0;
@@ -94,6 +105,7 @@ ur_status cli_write_outputs(const cli_job *job, const ur_machine *machine, const
         for (size_t k = 0; outputs && k < name_count; k++)
             outputs[k] = names[k];
         context->outputs = outputs;
+        context->drawing_order = job->drawing_order;
         if (status == UR_OK)
             status = ur_report_write(job->report_path, context, pieces, count, layout, error);
     }

@@ -39,6 +39,11 @@ static const struct {
 };
 enum { FORMAT_COUNT = sizeof formats_known / sizeof *formats_known };
 
+const ur_op *ur_operation_order(void)
+{
+    return cut_order;
+}
+
 /* Longest path name we build; longer output names are refused, not cut off. */
 enum { NAME_SIZE = 4096 };
 
@@ -92,16 +97,34 @@ static ur_status place_path(const ur_path *path, ur_transform2 transform, const 
     return UR_OK;
 }
 
+/*
+ * A closed path turned to start in the middle of its longest edge: that
+ * point, then the edge's end and round (scratch holds count + 1 points).
+ */
+static size_t start_on_straight(const ur_path *path, ur_vec2 *scratch)
+{
+    size_t n = path->count, i = ur_path_start(path);
+    ur_vec2 *turned = scratch + n + 1; /* the second half of scratch */
+    turned[0] = ur_vec2_scale(ur_vec2_add(scratch[i], scratch[(i + 1) % n]), 0.5);
+    for (size_t k = 0; k < n; k++)
+        turned[k + 1] = scratch[(i + 1 + k) % n];
+    memcpy(scratch, turned, (n + 1) * sizeof *scratch);
+    return n + 1;
+}
+
 static ur_status write_path(const ur_writer *writer, void *state, const ur_path *path,
                             const ur_placement *placement, const ur_piece *piece, ur_vec2 *scratch,
-                            ur_error *error)
+                            bool ordered, ur_error *error)
 {
     if (path->count == 0) /* nothing to cut */
         return UR_OK;
     ur_status status = place_path(path, placement->transform, piece->name, scratch, error);
     if (status != UR_OK)
         return status;
-    return writer->path(state, path->op, scratch, path->count, path->closed, error);
+    size_t count = path->count;
+    if (ordered && path->closed && count >= 3)
+        count = start_on_straight(path, scratch);
+    return writer->path(state, path->op, scratch, count, path->closed, error);
 }
 
 /*
@@ -111,13 +134,14 @@ static ur_status write_path(const ur_writer *writer, void *state, const ur_path 
  */
 static ur_status write_piece_paths(const ur_writer *writer, void *state, ur_op op,
                                    const ur_placement *placement, const ur_piece *piece,
-                                   ur_vec2 *scratch, ur_error *error)
+                                   ur_vec2 *scratch, bool ordered, ur_error *error)
 {
     for (size_t i = 1; i <= piece->path_count; i++) {
         const ur_path *path = &piece->paths[i % piece->path_count];
         if (path->op != op)
             continue;
-        ur_status status = write_path(writer, state, path, placement, piece, scratch, error);
+        ur_status status =
+            write_path(writer, state, path, placement, piece, scratch, ordered, error);
         if (status != UR_OK)
             return status;
     }
@@ -125,13 +149,14 @@ static ur_status write_piece_paths(const ur_writer *writer, void *state, ur_op o
 }
 
 static ur_status write_layer(const ur_writer *writer, void *state, ur_op op, const ur_sheet *sheet,
-                             const ur_piece *pieces, ur_vec2 *scratch, ur_error *error)
+                             const ur_piece *pieces, const ur_cut_plan *plan, bool ordered,
+                             ur_vec2 *scratch, ur_error *error)
 {
     ur_status status = writer->begin_layer ? writer->begin_layer(state, op, error) : UR_OK;
     for (size_t i = 0; status == UR_OK && i < sheet->placement_count; i++) {
-        const ur_placement *placement = &sheet->placements[i];
+        const ur_placement *placement = &sheet->placements[plan->order[i]];
         status = write_piece_paths(writer, state, op, placement, &pieces[placement->piece_index],
-                                   scratch, error);
+                                   scratch, ordered, error);
     }
     if (status == UR_OK && writer->end_layer)
         status = writer->end_layer(state, op, error);
@@ -159,8 +184,15 @@ static ur_status write_sheet(const ur_writer *writer, void *document, FILE *file
     if (status != UR_OK)
         return status;
     status = write_pieces(writer, state, sheet, job->pieces, error);
+    bool ordered = !job->options->drawing_order;
+    ur_cut_plan plan = {NULL, 0, 0, 0};
+    if (status == UR_OK)
+        status =
+            ur_sheet_cut_plan(sheet, job->pieces, cut_order, ordered, job->machine, &plan, error);
     for (size_t i = 0; status == UR_OK && i < UR_OP_COUNT; i++)
-        status = write_layer(writer, state, cut_order[i], sheet, job->pieces, scratch, error);
+        status = write_layer(writer, state, cut_order[i], sheet, job->pieces, &plan, ordered,
+                             scratch, error);
+    ur_cut_plan_free(&plan);
     if (status != UR_OK) {
         writer->discard_sheet(state);
         return status;
@@ -255,9 +287,9 @@ static ur_status write_all(const target *targets, size_t target_count, const ur_
     for (size_t t = 0; t < target_count; t++)
         count += file_count(&targets[t], job->layout);
     ur_atomic_file *files = ur_alloc_array(count, sizeof *files, error);
-    ur_vec2 *scratch =
-        files ? ur_alloc_array(longest_path(job->layout, job->pieces), sizeof *scratch, error)
-              : NULL;
+    ur_vec2 *scratch = files ? ur_alloc_array(2 * (longest_path(job->layout, job->pieces) + 1),
+                                              sizeof *scratch, error)
+                             : NULL;
     ur_status status = files && scratch ? UR_OK : UR_ERROR_INTERNAL;
     for (size_t t = 0, first = 0; status == UR_OK && t < target_count; t++) {
         status = targets[t].writer->one_file
@@ -282,7 +314,7 @@ static ur_status write_stdout(const target *t, const ur_write_job *job, ur_error
                             "cannot write %zu sheets of %s to standard output: name a file",
                             job->layout->sheet_count, t->writer->format);
     ur_vec2 *scratch =
-        ur_alloc_array(longest_path(job->layout, job->pieces), sizeof *scratch, error);
+        ur_alloc_array(2 * (longest_path(job->layout, job->pieces) + 1), sizeof *scratch, error);
     if (!scratch)
         return UR_ERROR_INTERNAL;
     const ur_writer *writer = t->writer;
@@ -344,13 +376,14 @@ static ur_status write_targets(const target *targets, size_t target_count, const
                                const ur_output_options *options,
                                const ur_format_options *format_options, ur_error *error)
 {
-    ur_write_settings chosen = {NULL, NULL, UR_DXF_R12, UR_PNG_DPI};
+    ur_write_settings chosen = {NULL, NULL, UR_DXF_R12, UR_PNG_DPI, false};
     if (options)
         chosen.title = options->title;
     if (format_options) {
         chosen.job_name = format_options->job_name;
         chosen.dxf_version = format_options->dxf_version;
         chosen.dpi = format_options->dpi == 0 ? UR_PNG_DPI : format_options->dpi;
+        chosen.drawing_order = format_options->drawing_order;
     }
     ur_status status = check_arguments(targets[0].path, layout, pieces, machine, error);
     if (status == UR_OK)
@@ -380,7 +413,9 @@ static ur_status write_one(const ur_writer *writer, const char *output_path,
 ur_status ur_write_svg(const char *output_path, const ur_layout *layout, const ur_piece *pieces,
                        const ur_machine *machine, const ur_output_options *options, ur_error *error)
 {
-    return write_one(&ur_svg_writer, output_path, layout, pieces, machine, options, NULL, error);
+    static const ur_format_options as_drawn = {.drawing_order = true};
+    return write_one(&ur_svg_writer, output_path, layout, pieces, machine, options, &as_drawn,
+                     error);
 }
 
 ur_status ur_write_dxf(const char *output_path, const ur_layout *layout, const ur_piece *pieces,

@@ -144,7 +144,23 @@ static ur_status sheet_file(const ur_report_context *context, const ur_layout *l
     return *file ? UR_OK : ur_error_set(error, UR_ERROR_INPUT, "'%s' is not UTF-8", name);
 }
 
-static json_t *sheet_json(const ur_layout *layout, size_t index, const ur_piece *pieces)
+/* Cut length, travel and time of the sheet cut as the files say (ur_sheet_cut_plan). */
+static json_t *cutting_json(const ur_report_context *context, const ur_sheet *sheet,
+                            const ur_piece *pieces)
+{
+    ur_cut_plan plan;
+    ur_error error;
+    if (ur_sheet_cut_plan(sheet, pieces, ur_operation_order(), !context->drawing_order,
+                          context->machine, &plan, &error) != UR_OK)
+        return NULL;
+    ur_cut_plan_free(&plan);
+    return json_pack("{s:o, s:o, s:o}", "cut_length_mm", ur_json_number(plan.cut_length),
+                     "travel_mm", ur_json_number(plan.travel_length), "time_s",
+                     context->machine ? ur_json_number(plan.seconds) : json_null());
+}
+
+static json_t *sheet_json(const ur_report_context *context, const ur_layout *layout, size_t index,
+                          const ur_piece *pieces)
 {
     const ur_sheet *sheet = &layout->sheets[index];
     json_t *object = json_object();
@@ -154,7 +170,8 @@ static json_t *sheet_json(const ur_layout *layout, size_t index, const ur_piece 
         json_object_set_new(object, "pieces", json_integer((json_int_t)sheet->placement_count)) !=
             0 ||
         json_object_set_new(object, "utilisation",
-                            ur_json_number(ur_sheet_utilisation(sheet, pieces))) != 0) {
+                            ur_json_number(ur_sheet_utilisation(sheet, pieces))) != 0 ||
+        json_object_update_new(object, cutting_json(context, sheet, pieces)) != 0) {
         json_decref(object);
         return NULL;
     }
@@ -168,7 +185,7 @@ static ur_status sheets_json(const ur_report_context *context, const ur_layout *
     if (!*sheets)
         return ur_error_out_of_memory(error);
     for (size_t i = 0; layout && i < layout->sheet_count; i++) {
-        json_t *sheet = sheet_json(layout, i, pieces);
+        json_t *sheet = sheet_json(context, layout, i, pieces);
         json_t *file = NULL;
         ur_status status =
             sheet ? sheet_file(context, layout, i, &file, error) : ur_error_out_of_memory(error);

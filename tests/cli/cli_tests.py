@@ -22,8 +22,8 @@ REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 SVG = "{http://www.w3.org/2000/svg}"
 INKSCAPE = "{http://www.inkscape.org/namespaces/inkscape}"
 # The bare net at a fine tolerance, to compare with closed forms: no
-# allowances, no kerf offset.
-FINE = ["--tolerance", "1e-5", "--allowances", "none", "--no-kerf-compensation"]
+# allowances, no kerf offset, paths as drawn (not restarted mid-edge).
+FINE = ["--tolerance", "1e-5", "--allowances", "none", "--no-kerf-compensation", "--order", "none"]
 TESTS = []
 
 
@@ -772,7 +772,7 @@ HYPAR = ":".join("%g,%g,%g" % (x, y, x * y / HYPAR_C) for x, y in
 @test
 def flat_hypar_is_developed_exactly(work):
     result = run(work, "hypar", "--corners", "0,0,5:100,0,5:120,80,5:-10,70,5", "-o", "q.svg",
-                 "--allowances", "none", "--no-kerf-compensation")
+                 "--allowances", "none", "--no-kerf-compensation", "--order", "none")
     check("one plane" in result.stderr, result.stderr)
     [outline] = outlines(os.path.join(work, "q.svg"))
     quad = [(0, 0), (100, 0), (120, 80), (-10, 70)]
@@ -782,7 +782,7 @@ def flat_hypar_is_developed_exactly(work):
 @test
 def hypar_with_a_repeated_corner_is_a_triangle(work):
     result = run(work, "hypar", "--corners", "0,0,0:100,0,0:100,0,0:0,80,30", "-o", "t.svg",
-                 "--allowances", "none", "--no-kerf-compensation")
+                 "--allowances", "none", "--no-kerf-compensation", "--order", "none")
     check("corners 2 and 3 are the same point" in result.stderr, result.stderr)
     [outline] = outlines(os.path.join(work, "t.svg"))
     # Half the cross product of two sides of the triangle (0,0,0), (100,0,0), (0,80,30).
@@ -1148,6 +1148,34 @@ def nest_reads_svg_and_dxf_in_their_units(work):
         close(other[0], areas[0][0], 1e-3, "hole area")  # curves flattened within 0.01 mm
         close(other[1], areas[0][1], 1e-6, "outline area")
     close(areas[0][0], math.pi * 100, 2e-3, "the hole is a 20 mm circle")
+
+
+@test
+def cut_order_shortens_travel(work):
+    """Twelve plates nested: cut in order, the travel between paths is no
+    longer than in drawing order, every closed cut starts in the middle of
+    its longest edge, and each part's hole comes before its outline."""
+    write(work, "mm.svg", PLATE_SVG_MM)
+    sheets = {}
+    for order in ("cut", "none"):
+        run(work, "nest", "mm.svg:12", "--order", order, "-o", order + ".svg",
+            "--report", order + ".json", "--quiet", "--no-kerf-compensation")
+        [sheet] = report(work, order + ".json")["sheets"]
+        check(sheet["cut_length_mm"] > 0 and sheet["time_s"] > 0, "sheet %r" % sheet)
+        sheets[order] = sheet
+    check(sheets["cut"]["travel_mm"] <= sheets["none"]["travel_mm"] + 1e-9,
+          "travel %g in cutting order, %g as drawn" % (sheets["cut"]["travel_mm"], sheets["none"]["travel_mm"]))
+    close(sheets["cut"]["cut_length_mm"], sheets["none"]["cut_length_mm"], 1e-9, "cut length")
+    cuts = paths(os.path.join(work, "cut.svg"), "cut")
+    check(len(cuts) == 24, "%d cut paths" % len(cuts))
+    for k, (points, closed) in enumerate(cuts):
+        # The first point lies halfway along the ring's longest edge: on a straight stretch.
+        a, b, last = points[0], points[1], points[-1]
+        check(abs(math.dist(last, a) - math.dist(a, b)) < 1e-5 and
+              abs((b[0] - a[0]) * (a[1] - last[1]) - (b[1] - a[1]) * (a[0] - last[0])) < 1e-3,
+              "cut %d does not start mid-edge: %r %r %r" % (k, last, a, b))
+        if k % 2 == 0:  # a hole, then the outline around it
+            check(area(points) < area(cuts[k + 1][0]), "cut %d: the outline came before its hole" % k)
 
 
 @test

@@ -206,6 +206,7 @@ static int setup(void **state)
     make_layout(f);
     f->options.title = "unroll test";
     f->formats.job_name = "writers-job";
+    f->formats.drawing_order = true; /* the checks compare paths point by point, as drawn */
     *state = f;
     return 0;
 }
@@ -371,7 +372,8 @@ static void test_dxf_r12_reads_back(void **state)
     path_in(f->dir, "net.dxf", path, sizeof path);
     ur_error error;
     assert_int_equal(
-        ur_write_dxf(path, &f->layout, f->pieces, &f->machine, &f->options, NULL, &error), UR_OK);
+        ur_write_dxf(path, &f->layout, f->pieces, &f->machine, &f->options, &f->formats, &error),
+        UR_OK);
     check_dxf(f, &f->sheets[0], "AC1009", path);
     assert_int_equal(entries_in(f->dir), 1);
 }
@@ -418,7 +420,8 @@ static void test_dxf_r12_entities(void **state)
     path_in(f->dir, "net.dxf", path, sizeof path);
     ur_error error;
     assert_int_equal(
-        ur_write_dxf(path, &f->layout, f->pieces, &f->machine, &f->options, NULL, &error), UR_OK);
+        ur_write_dxf(path, &f->layout, f->pieces, &f->machine, &f->options, &f->formats, &error),
+        UR_OK);
     char *text = read_all(path);
     assert_non_null(strstr(text, "  9\n$ACADVER\n  1\nAC1009\n"));
     assert_non_null(strstr(text, "  9\n$INSUNITS\n 70\n4\n"));
@@ -477,7 +480,8 @@ static void test_pdf_draws_paths(void **state)
     f->machine.styles[UR_OP_CUT].line_width = 1.0; /* wide enough to hit a pixel */
     ur_error error;
     assert_int_equal(
-        ur_write_pdf(path, &f->layout, f->pieces, &f->machine, &f->options, NULL, &error), UR_OK);
+        ur_write_pdf(path, &f->layout, f->pieces, &f->machine, &f->options, &f->formats, &error),
+        UR_OK);
     /* 25.4 dpi: one pixel a millimetre, y down from the top of the 200 mm page */
     assert_int_equal(run("pdftoppm -r 25.4 -png -singlefile '%s' '%s'", path, stem), 0);
     cairo_surface_t *surface = cairo_image_surface_create_from_png(image);
@@ -526,7 +530,8 @@ static void test_png_default_dpi(void **state)
     path_in(f->dir, "net.png", path, sizeof path);
     ur_error error;
     assert_int_equal(
-        ur_write_png(path, &f->layout, f->pieces, &f->machine, &f->options, NULL, &error), UR_OK);
+        ur_write_png(path, &f->layout, f->pieces, &f->machine, &f->options, &f->formats, &error),
+        UR_OK);
     cairo_surface_destroy(read_png(path, 600, 400, 96));
     f->formats.dpi = -3;
     assert_int_equal(
@@ -595,7 +600,7 @@ static void test_outputs_every_format(void **state)
     path_in(f->dir, "plain", path, sizeof path);
     f->layout.sheet_count = 1;
     assert_int_equal(ur_write_outputs(path, UR_FORMAT_DXF | UR_FORMAT_PDF, &f->layout, f->pieces,
-                                      &f->machine, &f->options, NULL, &error),
+                                      &f->machine, &f->options, &f->formats, &error),
                      UR_OK);
     path_in(f->dir, "plain.dxf", name, sizeof name);
     assert_true(exists(name));
@@ -609,20 +614,20 @@ static void test_outputs_format_from_extension(void **state)
     char path[256];
     ur_error error;
     path_in(f->dir, "net.dxf", path, sizeof path);
-    assert_int_equal(
-        ur_write_outputs(path, 0, &f->layout, f->pieces, &f->machine, &f->options, NULL, &error),
-        UR_OK);
+    assert_int_equal(ur_write_outputs(path, 0, &f->layout, f->pieces, &f->machine, &f->options,
+                                      &f->formats, &error),
+                     UR_OK);
     assert_true(exists(path));
     assert_int_equal(entries_in(f->dir), 1);
     /* An extension no format has, or one not asked for: refused, nothing written */
     path_in(f->dir, "net.eps", path, sizeof path);
-    assert_int_equal(
-        ur_write_outputs(path, 0, &f->layout, f->pieces, &f->machine, &f->options, NULL, &error),
-        UR_ERROR_INPUT);
+    assert_int_equal(ur_write_outputs(path, 0, &f->layout, f->pieces, &f->machine, &f->options,
+                                      &f->formats, &error),
+                     UR_ERROR_INPUT);
     assert_non_null(strstr(error.message, "net.eps"));
     path_in(f->dir, "other.svg", path, sizeof path);
     assert_int_equal(ur_write_outputs(path, UR_FORMAT_DXF, &f->layout, f->pieces, &f->machine,
-                                      &f->options, NULL, &error),
+                                      &f->options, &f->formats, &error),
                      UR_ERROR_INPUT);
     assert_int_equal(entries_in(f->dir), 1);
 }
@@ -680,7 +685,8 @@ static void test_dxf_shared_and_odd_layer_names(void **state)
     path_in(f->dir, "net.dxf", path, sizeof path);
     ur_error error;
     assert_int_equal(
-        ur_write_dxf(path, &f->layout, f->pieces, &f->machine, &f->options, NULL, &error), UR_OK);
+        ur_write_dxf(path, &f->layout, f->pieces, &f->machine, &f->options, &f->formats, &error),
+        UR_OK);
     char *text = read_all(path);
     assert_non_null(strstr(text, "  2\nLAYER\n 70\n6\n")); /* 0, Cut, Score, Kerf, Engrave, Mark */
     assert_non_null(strstr(text, "  2\nKerf_ 1_2\n"));
@@ -706,12 +712,12 @@ static void test_outputs_to_stdout(void **state)
     close(fd);
     ur_error error;
     ur_status one = ur_write_outputs("-", UR_FORMAT_DXF, &f->layout, f->pieces, &f->machine,
-                                     &f->options, NULL, &error);
+                                     &f->options, &f->formats, &error);
     f->layout.sheet_count = 2;
     ur_status two = ur_write_outputs("-", UR_FORMAT_DXF, &f->layout, f->pieces, &f->machine,
-                                     &f->options, NULL, &error);
+                                     &f->options, &f->formats, &error);
     ur_status both = ur_write_outputs("-", UR_FORMAT_DXF | UR_FORMAT_SVG, &f->layout, f->pieces,
-                                      &f->machine, &f->options, NULL, &error);
+                                      &f->machine, &f->options, &f->formats, &error);
     fflush(stdout);
     assert_int_equal(dup2(saved, STDOUT_FILENO), STDOUT_FILENO);
     close(saved);
@@ -733,7 +739,8 @@ static void test_pdf_non_ascii_title(void **state)
     f->options.title = "Lampe \xc3\xa9t\xc3\xa9";
     ur_error error;
     assert_int_equal(
-        ur_write_pdf(path, &f->layout, f->pieces, &f->machine, &f->options, NULL, &error), UR_OK);
+        ur_write_pdf(path, &f->layout, f->pieces, &f->machine, &f->options, &f->formats, &error),
+        UR_OK);
     assert_true(pdfinfo(path, "Title:", value, sizeof value));
     assert_string_equal(value, "Lampe ?t?");
 }
