@@ -43,6 +43,31 @@ typedef struct ur_layout_options {
 ur_status ur_layout_rows(const ur_piece *pieces, size_t piece_count,
                          const ur_layout_options *options, ur_layout *layout, ur_error *error);
 
+/*
+ * True-shape nesting (nest.c): every part at its exact shape (holes too,
+ * where other parts may go), largest first, each at the leftmost then
+ * lowest place where it fits on the first sheet that has room, at the best
+ * of its allowed turns; new sheets as needed.  Turns are rotations steps of
+ * 360 / rotations degrees from the part as drawn, or with level from the
+ * turn that lays the part's smallest enclosing rectangle level.  Places come from no-fit polygons
+ * (GEOS): placed parts never overlap and keep the spacing (to a micrometre), and stay inside the
+ * margin.  With max_sheets, parts that find no room on those sheets are left out of the layout (the
+ * caller lists them). Refuses (UR_ERROR_INPUT) a part that fits no empty sheet in any allowed turn,
+ * naming it, and a margin that leaves no room.
+ */
+typedef struct ur_nest_options {
+    double sheet_width, sheet_height;
+    double margin;     /* kept free along every sheet edge */
+    double spacing;    /* kept free between parts */
+    size_t rotations;  /* allowed turns: 0 or 1 the first only, N equal steps */
+    bool level;        /* turns start from the level one (else from the part as drawn) */
+    bool holes;        /* parts may go inside holes of other parts */
+    size_t max_sheets; /* 0: as many as needed */
+} ur_nest_options;
+
+ur_status ur_layout_nest(const ur_piece *pieces, size_t count, const ur_nest_options *options,
+                         ur_layout *layout, ur_error *error);
+
 /* Share of the sheet's area covered by the outlines placed on it, 0..1. */
 double ur_sheet_utilisation(const ur_sheet *sheet, const ur_piece *pieces);
 

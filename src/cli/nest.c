@@ -33,6 +33,8 @@ enum nest_option {
     NEST_DXF_VERSION,
     NEST_DPI,
     NEST_ORDER,
+    NEST_ROTATIONS,
+    NEST_NO_HOLES,
 };
 
 static const struct option nest_options[] = {
@@ -51,6 +53,8 @@ static const struct option nest_options[] = {
     {"dxf-version", required_argument, NULL, NEST_DXF_VERSION},
     {"dpi", required_argument, NULL, NEST_DPI},
     {"order", required_argument, NULL, NEST_ORDER},
+    {"rotations", required_argument, NULL, NEST_ROTATIONS},
+    {"no-holes", no_argument, NULL, NEST_NO_HOLES},
     {"help", no_argument, NULL, 'h'},
     {NULL, 0, NULL, 0},
 };
@@ -148,6 +152,11 @@ static bool take_nest_option(nest_job *n, int id, const char *value)
         return cli_parse_dpi(job, value);
     case NEST_ORDER:
         return cli_parse_order(job, value);
+    case NEST_ROTATIONS:
+        return cli_parse_rotations(job, value);
+    case NEST_NO_HOLES:
+        job->no_holes = true;
+        return true;
     default:
         return false;
     }
@@ -161,7 +170,9 @@ static const char nest_help[] =
     "  FILE:N or --copies N: that many of each part.\n"
     "  --machine NAME --material NAME --sheet WxH --margin MM --spacing MM\n"
     "  --report FILE.json --quiet --no-kerf-compensation\n"
-    "  --format svg,dxf,pdf,png --dxf-version 12|2000 --dpi N --order cut|none\n";
+    "  --format svg,dxf,pdf,png --dxf-version 12|2000 --dpi N --order cut|none\n"
+    "  --rotations N (turns of 360/N degrees from the part as drawn; default 4)\n"
+    "  --no-holes (no part inside another's hole)\n";
 
 /* Parses argv (argv[0] is "nest"); 0, -1 after help, or an exit status. */
 static int parse_nest(int argc, char **argv, nest_job *n)

@@ -64,6 +64,8 @@ enum option_id {
     OPT_DXF_VERSION,
     OPT_DPI,
     OPT_ORDER,
+    OPT_ROTATIONS,
+    OPT_NO_HOLES,
 };
 
 static const struct option long_options[] = {
@@ -115,6 +117,8 @@ static const struct option long_options[] = {
     {"dxf-version", required_argument, NULL, OPT_DXF_VERSION},
     {"dpi", required_argument, NULL, OPT_DPI},
     {"order", required_argument, NULL, OPT_ORDER},
+    {"rotations", required_argument, NULL, OPT_ROTATIONS},
+    {"no-holes", no_argument, NULL, OPT_NO_HOLES},
     {"help", no_argument, NULL, 'h'},
     {NULL, 0, NULL, 0},
 };
@@ -140,8 +144,9 @@ static const struct {
     cli_action action;
     const char *options;
 } action_options[] = {
-    {CLI_DEVELOP, " output machine material sheet method parts rulings no-split report strain-png "
-                  "allowances bridges no-kerf-compensation format dxf-version dpi order "},
+    {CLI_DEVELOP,
+     " output machine material sheet method parts rulings no-split report strain-png "
+     "allowances bridges no-kerf-compensation format dxf-version dpi order rotations no-holes "},
     {CLI_ANALYZE, " png report "},
     {CLI_COMPARE, " png csv "},
 };
@@ -478,6 +483,11 @@ static bool take_option(cli_job *job, int id, const char *value)
         return cli_parse_dpi(job, value);
     case OPT_ORDER:
         return cli_parse_order(job, value);
+    case OPT_ROTATIONS:
+        return cli_parse_rotations(job, value);
+    case OPT_NO_HOLES:
+        job->no_holes = true;
+        return true;
     case 'n':
         return parse_count(surface, value, &job->develop.rulings);
     case OPT_METHOD: {
@@ -509,6 +519,7 @@ static void job_defaults(cli_job *job, cli_action action, const char *command, c
     job->allowances_auto = true;
     job->bridges = CLI_BRIDGES_UNSET;
     job->margin = job->spacing = -1;
+    job->level = true;
     job->machine_name = "co2-60w";
     job->material_name = "plywood-3mm";
     ur_develop_options_default(&job->develop);

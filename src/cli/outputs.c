@@ -59,6 +59,20 @@ bool cli_parse_order(cli_job *job, const char *value)
     return false;
 }
 
+bool cli_parse_rotations(cli_job *job, const char *value)
+{
+    char *end = NULL;
+    errno = 0;
+    long count = strtol(value, &end, 10);
+    if (end == value || *end != '\0' || errno != 0 || count < 1 || count > 360) {
+        cli_message("%s: --rotations: '%s' is not a count of turns from 1 to 360", job->command,
+                    value);
+        return false;
+    }
+    job->rotations = count;
+    return true;
+}
+
 /* The formats to write: -o - without --format is an SVG, as a program reading a pipe expects. */
 static unsigned formats_asked(const cli_job *job)
 {

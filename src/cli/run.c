@@ -239,16 +239,23 @@ ur_status cli_place_pieces(const cli_job *job, const ur_machine *machine,
     /* The first sheet every piece fits; the error of the last one tried otherwise. */
     ur_sheet_size choices[UR_MAX_STOCK_SIZES + 1];
     size_t choice_count = sheet_choices(job, machine, material, choices);
-    ur_layout_options options = {
+    /* Under a grain rule a part may only turn end for end, which keeps its rulings' angle. */
+    size_t rotations = job->rotations > 0                 ? (size_t)job->rotations
+                       : material->grain != UR_GRAIN_NONE ? 2
+                                                          : 4;
+    ur_nest_options options = {
         .margin = job->margin >= 0 ? job->margin : machine->margin,
         .spacing = job->spacing >= 0 ? job->spacing
                                      : fmax(machine->spacing, ur_effective_kerf(machine, material)),
+        .rotations = rotations,
+        .level = job->level,
+        .holes = !job->no_holes,
     };
     ur_status status = UR_OK;
     for (size_t k = 0; k < choice_count; k++) {
         options.sheet_width = choices[k].width;
         options.sheet_height = choices[k].height;
-        status = ur_layout_rows(pieces, count, &options, layout, error);
+        status = ur_layout_nest(pieces, count, &options, layout, error);
         if (status != UR_ERROR_INPUT)
             break;
     }

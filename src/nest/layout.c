@@ -7,14 +7,13 @@
  * full and a new sheet when the sheet is.  True-shape nesting will replace
  * this behind the same interface.
  */
-#include "unroll/nest.h"
+#include "nest_internal.h"
 
-#include <geos_c.h>
 #include <stdlib.h>
 #include <string.h>
 
 /* The angle that turns the piece's smallest enclosing rectangle level. */
-static double level_angle(GEOSContextHandle_t geos, const ur_path *outline)
+double nest_level_angle(GEOSContextHandle_t geos, const ur_path *outline)
 {
     /*
      * The angle only orients the piece (its box is then measured on every
@@ -75,7 +74,7 @@ static ur_status orient(const ur_piece *piece, GEOSContextHandle_t geos,
 {
     double width = options->sheet_width - 2 * options->margin;
     double height = options->sheet_height - 2 * options->margin;
-    double angle = piece->path_count ? level_angle(geos, &piece->paths[0]) : 0.0;
+    double angle = piece->path_count ? nest_level_angle(geos, &piece->paths[0]) : 0.0;
     for (int quarter = 0; quarter < 2; quarter++) {
         out->angle = angle + quarter * M_PI / 2;
         out->box = turned_box(piece, out->angle);

@@ -113,14 +113,14 @@ static void path_ends(const ur_path *path, ur_transform2 transform, bool ordered
 {
     if (path->closed && ordered && path->count >= 3) {
         size_t i = ur_path_start(path);
-        ur_vec2 middle = ur_vec2_scale(
-            ur_vec2_add(path->points[i], path->points[(i + 1) % path->count]), 0.5);
+        ur_vec2 middle =
+            ur_vec2_scale(ur_vec2_add(path->points[i], path->points[(i + 1) % path->count]), 0.5);
         *start = *end = ur_transform2_apply(transform, middle);
         return;
     }
     *start = ur_transform2_apply(transform, path->points[0]);
-    *end = ur_transform2_apply(transform, path->closed ? path->points[0]
-                                                       : path->points[path->count - 1]);
+    *end = ur_transform2_apply(transform,
+                               path->closed ? path->points[0] : path->points[path->count - 1]);
 }
 
 /* Adds one piece's paths of one operation to the measures, in the writers' order. */

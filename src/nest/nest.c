@@ -1,0 +1,370 @@
+/*
+ * nest.c: true-shape nesting (ur_layout_nest).
+ *
+ * Parts go largest first.  Each tries every allowed turn on every sheet
+ * already open, then on a new one: the positions its origin may take are
+ * the inner-fit rectangle (the sheet inside its margin, less the part's own
+ * extent) minus the no-fit polygons of the parts already on the sheet
+ * (nfp.c).  The part goes to the leftmost, then lowest, such position (a
+ * vertex of that region): sheets used first, then how little of the last
+ * sheet's length is used.  No-fit polygons are worked out once per pair of
+ * shapes and turns: copies of a part share them.
+ *
+ * Parts are grown by half the spacing before the no-fit polygons are made,
+ * so parts that touch there keep the spacing between them; the no-fit
+ * polygons are shrunk by a micrometre so that a part that fits exactly (a
+ * tile in a row of tiles) still finds the point where it fits.
+ */
+#include "nest_internal.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Shrinks no-fit polygons so that exact fits stay places, not points (mm). */
+#define EXACT_FIT 1e-6
+
+/* Parts that are the same shape (copies) share their no-fit polygons. */
+typedef struct nest_class {
+    size_t representative; /* a piece of this shape */
+    nest_shape *turns;     /* one per allowed turn */
+} nest_class;
+
+typedef struct placed {
+    size_t piece, turn;
+    ur_vec2 at; /* where its origin went */
+} placed;
+
+typedef struct nester {
+    GEOSContextHandle_t geos;
+    const ur_piece *pieces;
+    size_t count;
+    const ur_nest_options *options;
+    size_t turn_count;
+    size_t *class_of; /* per piece */
+    nest_class *classes;
+    size_t class_count;
+    GEOSGeometry **nfps; /* per (class a, turn a, class b, turn b); NULL until made */
+    placed *placements;  /* per piece, in order placed */
+    size_t *sheet_of;    /* per placement */
+    size_t placed_count, sheet_count;
+    ur_error *error;
+} nester;
+
+static bool same_shape(const ur_piece *a, const ur_piece *b)
+{
+    if (a->path_count != b->path_count)
+        return false;
+    for (size_t k = 0; k < a->path_count; k++) {
+        const ur_path *p = &a->paths[k], *q = &b->paths[k];
+        if (p->count != q->count || p->op != q->op ||
+            memcmp(p->points, q->points, p->count * sizeof *p->points) != 0)
+            return false;
+    }
+    return true;
+}
+
+static ur_status make_class(nester *n, size_t piece)
+{
+    nest_class *c = &n->classes[n->class_count];
+    c->representative = piece;
+    c->turns = calloc(n->turn_count, sizeof *c->turns);
+    if (!c->turns)
+        return ur_error_out_of_memory(n->error);
+    n->class_count++;
+    double base = n->options->level ? nest_level_angle(n->geos, &n->pieces[piece].paths[0]) : 0.0;
+    for (size_t t = 0; t < n->turn_count; t++) {
+        double angle = base + 2 * M_PI * (double)t / (double)n->turn_count;
+        ur_status status = nest_shape_make(n->geos, &n->pieces[piece], angle,
+                                           n->options->spacing / 2, n->options->holes,
+                                           &c->turns[t], n->error);
+        if (status != UR_OK)
+            return status;
+    }
+    return UR_OK;
+}
+
+static ur_status sort_classes(nester *n)
+{
+    for (size_t p = 0; p < n->count; p++) {
+        size_t c = 0;
+        while (c < n->class_count &&
+               !same_shape(&n->pieces[n->classes[c].representative], &n->pieces[p]))
+            c++;
+        if (c == n->class_count) {
+            ur_status status = make_class(n, p);
+            if (status != UR_OK)
+                return status;
+        }
+        n->class_of[p] = c;
+    }
+    size_t pairs = n->class_count * n->turn_count * n->class_count * n->turn_count;
+    n->nfps = calloc(pairs ? pairs : 1, sizeof *n->nfps);
+    return n->nfps ? UR_OK : ur_error_out_of_memory(n->error);
+}
+
+static const nest_shape *shape_of(const nester *n, size_t piece, size_t turn)
+{
+    return &n->classes[n->class_of[piece]].turns[turn];
+}
+
+/* The no-fit polygon of piece b (turn tb) around piece a (turn ta) at the origin. */
+static const GEOSGeometry *nfp_of(nester *n, size_t a, size_t ta, size_t b, size_t tb)
+{
+    size_t ca = n->class_of[a], cb = n->class_of[b], t = n->turn_count;
+    size_t key = ((ca * t + ta) * n->class_count + cb) * t + tb;
+    if (!n->nfps[key]) {
+        GEOSGeometry *exact = nest_nfp(n->geos, shape_of(n, a, ta), shape_of(n, b, tb));
+        n->nfps[key] = exact ? GEOSBuffer_r(n->geos, exact, -EXACT_FIT, 2) : NULL;
+        if (exact)
+            GEOSGeom_destroy_r(n->geos, exact);
+    }
+    return n->nfps[key];
+}
+
+/* Where piece's origin may go on an empty sheet (turn t); NULL when it does not fit. */
+static GEOSGeometry *inner_fit(const nester *n, const nest_shape *shape)
+{
+    const ur_nest_options *o = n->options;
+    double x0 = o->margin - shape->box.min.x, x1 = o->sheet_width - o->margin - shape->box.max.x;
+    double y0 = o->margin - shape->box.min.y, y1 = o->sheet_height - o->margin - shape->box.max.y;
+    if (x1 < x0 - 1e-9 || y1 < y0 - 1e-9)
+        return NULL;
+    /* Widened by the exact-fit allowance, so a part as large as the room still has a place. */
+    x0 -= EXACT_FIT, y0 -= EXACT_FIT, x1 += EXACT_FIT, y1 += EXACT_FIT;
+    GEOSCoordSequence *sequence = GEOSCoordSeq_create_r(n->geos, 5, 2);
+    if (!sequence)
+        return NULL;
+    double xs[5] = {x0, x1, x1, x0, x0}, ys[5] = {y0, y0, y1, y1, y0};
+    for (unsigned i = 0; i < 5; i++)
+        GEOSCoordSeq_setXY_r(n->geos, sequence, i, xs[i], ys[i]);
+    GEOSGeometry *ring = GEOSGeom_createLinearRing_r(n->geos, sequence);
+    return ring ? GEOSGeom_createPolygon_r(n->geos, ring, NULL, 0) : NULL;
+}
+
+static int shift_xy(double *x, double *y, void *userdata)
+{
+    const ur_vec2 *by = userdata;
+    *x += by->x;
+    *y += by->y;
+    return 1;
+}
+
+/* The no-fit polygons of the parts on a sheet for piece at turn, moved to where they are. */
+static GEOSGeometry *forbidden(nester *n, size_t sheet, size_t piece, size_t turn)
+{
+    GEOSGeometry **moved = calloc(n->placed_count + 1, sizeof *moved);
+    if (!moved)
+        return NULL;
+    size_t count = 0;
+    for (size_t k = 0; k < n->placed_count; k++) {
+        if (n->sheet_of[k] != sheet)
+            continue;
+        placed *p = &n->placements[k];
+        const GEOSGeometry *nfp = nfp_of(n, p->piece, p->turn, piece, turn);
+        GEOSGeometry *shifted = nfp ? GEOSGeom_transformXY_r(n->geos, nfp, shift_xy, &p->at) : NULL;
+        if (shifted)
+            moved[count++] = shifted;
+    }
+    GEOSGeometry *collection =
+        GEOSGeom_createCollection_r(n->geos, GEOS_GEOMETRYCOLLECTION, moved, (unsigned)count);
+    free(moved);
+    if (!collection)
+        return NULL;
+    GEOSGeometry *all = GEOSUnaryUnion_r(n->geos, collection);
+    GEOSGeom_destroy_r(n->geos, collection);
+    return all;
+}
+
+/* The leftmost, then lowest, vertex of a region's rings; false when it has none. */
+static bool leftmost(GEOSContextHandle_t geos, const GEOSGeometry *region, ur_vec2 *best)
+{
+    bool found = false;
+    int parts = GEOSGetNumGeometries_r(geos, region);
+    for (int k = 0; k < parts; k++) {
+        const GEOSGeometry *part = GEOSGetGeometryN_r(geos, region, k);
+        if (GEOSGeomTypeId_r(geos, part) != GEOS_POLYGON || GEOSisEmpty_r(geos, part))
+            continue;
+        int holes = GEOSGetNumInteriorRings_r(geos, part);
+        for (int r = -1; r < holes; r++) {
+            const GEOSGeometry *ring =
+                r < 0 ? GEOSGetExteriorRing_r(geos, part) : GEOSGetInteriorRingN_r(geos, part, r);
+            const GEOSCoordSequence *sequence = ring ? GEOSGeom_getCoordSeq_r(geos, ring) : NULL;
+            unsigned size = 0;
+            if (!sequence || !GEOSCoordSeq_getSize_r(geos, sequence, &size))
+                continue;
+            for (unsigned i = 0; i < size; i++) {
+                ur_vec2 p;
+                GEOSCoordSeq_getXY_r(geos, sequence, i, &p.x, &p.y);
+                if (!found || p.x < best->x - 1e-9 || (p.x <= best->x + 1e-9 && p.y < best->y)) {
+                    *best = p;
+                    found = true;
+                }
+            }
+        }
+    }
+    return found;
+}
+
+/* The best place for piece at turn on sheet: the leftmost, then lowest, feasible one. */
+static bool place_on(nester *n, size_t sheet, size_t piece, size_t turn, ur_vec2 *at)
+{
+    GEOSGeometry *room = inner_fit(n, shape_of(n, piece, turn));
+    if (!room)
+        return false;
+    GEOSGeometry *taken = forbidden(n, sheet, piece, turn);
+    GEOSGeometry *free_room = taken ? GEOSDifference_r(n->geos, room, taken) : NULL;
+    bool found = free_room && leftmost(n->geos, free_room, at);
+    if (free_room)
+        GEOSGeom_destroy_r(n->geos, free_room);
+    if (taken)
+        GEOSGeom_destroy_r(n->geos, taken);
+    GEOSGeom_destroy_r(n->geos, room);
+    return found;
+}
+
+/* Places one piece: the first sheet it fits, at its best turn there; a new sheet otherwise. */
+static ur_status place_piece(nester *n, size_t piece)
+{
+    for (size_t sheet = 0; sheet <= n->sheet_count; sheet++) {
+        if (sheet == n->sheet_count && n->options->max_sheets &&
+            n->sheet_count >= n->options->max_sheets)
+            return UR_OK; /* not placed: the caller lists it */
+        bool found = false;
+        ur_vec2 best = {0, 0};
+        size_t best_turn = 0;
+        for (size_t t = 0; t < n->turn_count; t++) {
+            ur_vec2 at = {0, 0};
+            if (place_on(n, sheet, piece, t, &at) &&
+                (!found || at.x < best.x - 1e-9 || (at.x <= best.x + 1e-9 && at.y < best.y))) {
+                found = true;
+                best = at;
+                best_turn = t;
+            }
+        }
+        if (found) {
+            n->placements[n->placed_count] = (placed){piece, best_turn, best};
+            n->sheet_of[n->placed_count++] = sheet;
+            if (sheet == n->sheet_count)
+                n->sheet_count++;
+            return UR_OK;
+        }
+        if (sheet == n->sheet_count) /* it fits no empty sheet either */
+            return ur_error_set(n->error, UR_ERROR_INPUT,
+                                "piece %s (%.1f x %.1f mm) does not fit the %.1f x %.1f mm sheet "
+                                "(%.1f mm margin) in any allowed turn; give a larger sheet with "
+                                "--sheet WxH",
+                                n->pieces[piece].name, ur_box_width(n->pieces[piece].box),
+                                ur_box_height(n->pieces[piece].box), n->options->sheet_width,
+                                n->options->sheet_height, n->options->margin);
+    }
+    return UR_OK;
+}
+
+/* Largest first; equal areas keep their order (the sort is made stable by index). */
+typedef struct order_key {
+    double area;
+    size_t index;
+} order_key;
+
+static int compare_keys(const void *a, const void *b)
+{
+    const order_key *x = a, *y = b;
+    if (x->area != y->area)
+        return x->area > y->area ? -1 : 1;
+    return (x->index > y->index) - (x->index < y->index);
+}
+
+static ur_status build_layout(nester *n, ur_layout *layout)
+{
+    layout->sheets = calloc(n->sheet_count ? n->sheet_count : 1, sizeof *layout->sheets);
+    if (!layout->sheets)
+        return ur_error_out_of_memory(n->error);
+    layout->sheet_count = n->sheet_count;
+    for (size_t s = 0; s < n->sheet_count; s++) {
+        ur_sheet *sheet = &layout->sheets[s];
+        sheet->width = n->options->sheet_width;
+        sheet->height = n->options->sheet_height;
+        sheet->placements = calloc(n->placed_count ? n->placed_count : 1, sizeof *sheet->placements);
+        if (!sheet->placements)
+            return ur_error_out_of_memory(n->error);
+    }
+    for (size_t k = 0; k < n->placed_count; k++) {
+        const placed *p = &n->placements[k];
+        ur_sheet *sheet = &layout->sheets[n->sheet_of[k]];
+        double angle = shape_of(n, p->piece, p->turn)->angle;
+        sheet->placements[sheet->placement_count++] =
+            (ur_placement){p->piece, ur_transform2_make(angle, p->at)};
+    }
+    return UR_OK;
+}
+
+static void nester_free(nester *n)
+{
+    size_t pairs = n->class_count * n->turn_count * n->class_count * n->turn_count;
+    for (size_t k = 0; n->nfps && k < pairs; k++)
+        if (n->nfps[k])
+            GEOSGeom_destroy_r(n->geos, n->nfps[k]);
+    free(n->nfps);
+    for (size_t c = 0; c < n->class_count; c++) {
+        for (size_t t = 0; n->classes[c].turns && t < n->turn_count; t++)
+            nest_shape_free(n->geos, &n->classes[c].turns[t]);
+        free(n->classes[c].turns);
+    }
+    free(n->classes);
+    free(n->class_of);
+    free(n->placements);
+    free(n->sheet_of);
+    if (n->geos)
+        GEOS_finish_r(n->geos);
+}
+
+static ur_status check_nest_options(const ur_nest_options *o, ur_error *error)
+{
+    if (!(o->sheet_width > 0) || !(o->sheet_height > 0) || !(o->margin >= 0) ||
+        !(o->spacing >= 0) || !isfinite(o->sheet_width) || !isfinite(o->sheet_height))
+        return ur_error_set(error, UR_ERROR_INPUT, "nesting needs a sheet of positive size and a "
+                                                   "margin and spacing of 0 mm or more");
+    if (2 * o->margin >= o->sheet_width || 2 * o->margin >= o->sheet_height)
+        return ur_error_set(error, UR_ERROR_INPUT,
+                            "the margin (%g mm) leaves no room on the %g x %g mm sheet", o->margin,
+                            o->sheet_width, o->sheet_height);
+    return UR_OK;
+}
+
+ur_status ur_layout_nest(const ur_piece *pieces, size_t count, const ur_nest_options *options,
+                         ur_layout *layout, ur_error *error)
+{
+    memset(layout, 0, sizeof *layout);
+    ur_status status = check_nest_options(options, error);
+    if (status != UR_OK)
+        return status;
+    nester n = {.geos = GEOS_init_r(),
+                .pieces = pieces,
+                .count = count,
+                .options = options,
+                .turn_count = options->rotations > 1 ? options->rotations : 1,
+                .error = error};
+    n.class_of = calloc(count + 1, sizeof *n.class_of);
+    n.classes = calloc(count + 1, sizeof *n.classes);
+    n.placements = calloc(count + 1, sizeof *n.placements);
+    n.sheet_of = calloc(count + 1, sizeof *n.sheet_of);
+    order_key *keys = calloc(count + 1, sizeof *keys);
+    if (!n.geos || !n.class_of || !n.classes || !n.placements || !n.sheet_of || !keys)
+        status = ur_error_out_of_memory(error);
+    if (status == UR_OK)
+        status = sort_classes(&n);
+    for (size_t p = 0; status == UR_OK && p < count; p++)
+        keys[p] = (order_key){shape_of(&n, p, 0)->area, p};
+    if (status == UR_OK)
+        qsort(keys, count, sizeof *keys, compare_keys);
+    for (size_t k = 0; status == UR_OK && k < count; k++)
+        status = place_piece(&n, keys[k].index);
+    if (status == UR_OK)
+        status = build_layout(&n, layout);
+    if (status != UR_OK)
+        ur_layout_free(layout);
+    free(keys);
+    nester_free(&n);
+    return status;
+}

@@ -1,0 +1,245 @@
+/*
+ * nfp.c: pieces as nesting sees them and their no-fit polygons.
+ *
+ * The no-fit polygon of a moving part B around a fixed part A is the set of
+ * positions of B's origin where B would overlap A: the Minkowski sum
+ * A + (-B).  For convex polygons that sum is the convex hull of the sums of
+ * their vertices; a concave part (or one with holes) is split into convex
+ * parts, and the no-fit polygon is the union of the pairwise sums, exact
+ * for any shape.  Holes of A come out as holes of the no-fit polygon: the
+ * places where B fits inside A.
+ *
+ * The parts come from GEOS's constrained Delaunay triangulation of the
+ * polygon, its triangles merged while the merge stays convex.  Outlines are
+ * simplified first (pieces can have hundreds of thousands of points) and
+ * grown by the simplification's tolerance, so that nothing the
+ * simplification cut off can overlap.
+ */
+#include "nest_internal.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Pieces with more points than this are simplified before their no-fit polygons. */
+#define SIMPLIFY_ABOVE 64
+
+/* The ring of a path turned by angle, as a GEOS linear ring; NULL on failure. */
+static GEOSGeometry *turned_ring(GEOSContextHandle_t geos, const ur_path *path, double angle)
+{
+    ur_transform2 turn = ur_transform2_make(angle, ur_vec2_make(0, 0));
+    GEOSCoordSequence *sequence = GEOSCoordSeq_create_r(geos, (unsigned)path->count + 1, 2);
+    if (!sequence)
+        return NULL;
+    for (size_t i = 0; i <= path->count; i++) {
+        ur_vec2 p = ur_transform2_apply(turn, path->points[i % path->count]);
+        GEOSCoordSeq_setXY_r(geos, sequence, (unsigned)i, p.x, p.y);
+    }
+    return GEOSGeom_createLinearRing_r(geos, sequence);
+}
+
+static bool is_hole(const ur_path *path)
+{
+    return path->op == UR_OP_CUT && path->closed && path->count >= 3;
+}
+
+/* The piece's outline and (with holes) its holes as one turned polygon. */
+static GEOSGeometry *piece_polygon(GEOSContextHandle_t geos, const ur_piece *piece, double angle,
+                                   bool holes)
+{
+    GEOSGeometry *shell = turned_ring(geos, &piece->paths[0], angle);
+    size_t hole_count = 0;
+    GEOSGeometry **rings = calloc(piece->path_count + 1, sizeof *rings);
+    if (!shell || !rings) {
+        if (shell)
+            GEOSGeom_destroy_r(geos, shell);
+        free(rings);
+        return NULL;
+    }
+    for (size_t k = 1; holes && k < piece->path_count; k++)
+        if (is_hole(&piece->paths[k])) {
+            GEOSGeometry *ring = turned_ring(geos, &piece->paths[k], angle);
+            if (ring)
+                rings[hole_count++] = ring;
+        }
+    GEOSGeometry *polygon = GEOSGeom_createPolygon_r(geos, shell, rings, (unsigned)hole_count);
+    free(rings);
+    return polygon;
+}
+
+/* The polygon made valid, simplified by tolerance and grown by grow + tolerance (mitred). */
+static GEOSGeometry *grown(GEOSContextHandle_t geos, const GEOSGeometry *polygon, double grow,
+                           double tolerance)
+{
+    GEOSGeometry *valid = GEOSMakeValid_r(geos, polygon);
+    GEOSGeometry *simple = valid ? GEOSTopologyPreserveSimplify_r(geos, valid, tolerance) : NULL;
+    GEOSBufferParams *params = GEOSBufferParams_create_r(geos);
+    GEOSGeometry *out = NULL;
+    if (simple && params) {
+        GEOSBufferParams_setJoinStyle_r(geos, params, GEOSBUF_JOIN_MITRE);
+        GEOSBufferParams_setMitreLimit_r(geos, params, 4.0);
+        out = GEOSBufferWithParams_r(geos, simple, params, grow + tolerance);
+    }
+    if (params)
+        GEOSBufferParams_destroy_r(geos, params);
+    if (simple)
+        GEOSGeom_destroy_r(geos, simple);
+    if (valid)
+        GEOSGeom_destroy_r(geos, valid);
+    return out;
+}
+
+static double area_of(GEOSContextHandle_t geos, const GEOSGeometry *g)
+{
+    double area = 0.0;
+    return g && GEOSArea_r(geos, g, &area) ? area : 0.0;
+}
+
+/*
+ * Merges the triangles into convex parts: each triangle joins the part
+ * before it when their union is convex (its hull is no larger than the
+ * two), else starts a part of its own.
+ */
+static ur_status convex_parts(GEOSContextHandle_t geos, const GEOSGeometry *polygon,
+                              nest_shape *shape, ur_error *error)
+{
+    GEOSGeometry *triangles = GEOSConstrainedDelaunayTriangulation_r(geos, polygon);
+    if (!triangles)
+        return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not triangulate a piece");
+    int count = GEOSGetNumGeometries_r(geos, triangles);
+    shape->convex = calloc(count > 0 ? (size_t)count : 1, sizeof *shape->convex);
+    if (!shape->convex) {
+        GEOSGeom_destroy_r(geos, triangles);
+        return ur_error_out_of_memory(error);
+    }
+    for (int k = 0; k < count; k++) {
+        GEOSGeometry *triangle = GEOSGeom_clone_r(geos, GEOSGetGeometryN_r(geos, triangles, k));
+        if (!triangle)
+            continue;
+        GEOSGeometry **last = shape->convex_count ? &shape->convex[shape->convex_count - 1] : NULL;
+        if (last) {
+            GEOSGeometry *both = GEOSUnion_r(geos, *last, triangle);
+            GEOSGeometry *hull = both ? GEOSConvexHull_r(geos, both) : NULL;
+            double sum = area_of(geos, *last) + area_of(geos, triangle);
+            bool convex = both && hull && GEOSGeomTypeId_r(geos, both) == GEOS_POLYGON &&
+                          area_of(geos, hull) <= sum * (1 + 1e-9) + 1e-12;
+            if (both)
+                GEOSGeom_destroy_r(geos, both);
+            if (convex) {
+                GEOSGeom_destroy_r(geos, *last);
+                GEOSGeom_destroy_r(geos, triangle);
+                *last = hull;
+                continue;
+            }
+            if (hull)
+                GEOSGeom_destroy_r(geos, hull);
+        }
+        shape->convex[shape->convex_count++] = triangle;
+    }
+    GEOSGeom_destroy_r(geos, triangles);
+    return UR_OK;
+}
+
+ur_status nest_shape_make(GEOSContextHandle_t geos, const ur_piece *piece, double angle,
+                          double grow, bool holes, nest_shape *shape, ur_error *error)
+{
+    memset(shape, 0, sizeof *shape);
+    shape->angle = angle;
+    ur_transform2 turn = ur_transform2_make(angle, ur_vec2_make(0, 0));
+    shape->box = ur_box_empty();
+    for (size_t i = 0; i < piece->paths[0].count; i++)
+        ur_box_add(&shape->box, ur_transform2_apply(turn, piece->paths[0].points[i]));
+    /*
+     * Outlines of a few dozen points are nested as they are, so exact fits
+     * stay exact; longer ones (curves) are simplified to 2 per mille of
+     * their size, at least 0.05 mm, and grown by as much: a curved band
+     * splits into a few dozen convex parts instead of thousands, at the
+     * cost of that much more room round it.
+     */
+    double size = hypot(ur_box_width(shape->box), ur_box_height(shape->box));
+    size_t points = 0;
+    for (size_t k = 0; k < piece->path_count; k++)
+        points += piece->paths[k].count;
+    double tolerance = points > SIMPLIFY_ABOVE ? fmax(0.05, 2e-3 * size) : 0.0;
+    GEOSGeometry *exact = piece_polygon(geos, piece, angle, holes);
+    shape->area = area_of(geos, exact);
+    shape->polygon = exact ? grown(geos, exact, grow, tolerance) : NULL;
+    if (exact)
+        GEOSGeom_destroy_r(geos, exact);
+    if (!shape->polygon)
+        return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not prepare piece %s to nest",
+                            piece->name);
+    return convex_parts(geos, shape->polygon, shape, error);
+}
+
+void nest_shape_free(GEOSContextHandle_t geos, nest_shape *shape)
+{
+    for (size_t k = 0; k < shape->convex_count; k++)
+        GEOSGeom_destroy_r(geos, shape->convex[k]);
+    free(shape->convex);
+    if (shape->polygon)
+        GEOSGeom_destroy_r(geos, shape->polygon);
+    memset(shape, 0, sizeof *shape);
+}
+
+/* The exterior vertices of a polygon (last not repeated), allocated; how many (0 on failure). */
+static size_t vertices(GEOSContextHandle_t geos, const GEOSGeometry *polygon, ur_vec2 **points)
+{
+    *points = NULL;
+    const GEOSGeometry *ring = GEOSGetExteriorRing_r(geos, polygon);
+    const GEOSCoordSequence *sequence = ring ? GEOSGeom_getCoordSeq_r(geos, ring) : NULL;
+    unsigned size = 0;
+    if (!sequence || !GEOSCoordSeq_getSize_r(geos, sequence, &size) || size < 2)
+        return 0;
+    *points = malloc((size - 1) * sizeof **points);
+    if (!*points)
+        return 0;
+    for (unsigned i = 0; i + 1 < size; i++)
+        GEOSCoordSeq_getXY_r(geos, sequence, i, &(*points)[i].x, &(*points)[i].y);
+    return size - 1;
+}
+
+/* The convex hull of a + (-b) for two convex polygons. */
+static GEOSGeometry *convex_sum(GEOSContextHandle_t geos, const GEOSGeometry *a,
+                                const GEOSGeometry *b)
+{
+    ur_vec2 *pa, *pb;
+    size_t na = vertices(geos, a, &pa), nb = vertices(geos, b, &pb);
+    GEOSCoordSequence *sequence =
+        na && nb ? GEOSCoordSeq_create_r(geos, (unsigned)(na * nb), 2) : NULL;
+    for (size_t i = 0; sequence && i < na; i++)
+        for (size_t j = 0; j < nb; j++)
+            GEOSCoordSeq_setXY_r(geos, sequence, (unsigned)(i * nb + j), pa[i].x - pb[j].x,
+                                 pa[i].y - pb[j].y);
+    free(pa);
+    free(pb);
+    GEOSGeometry *cloud = sequence ? GEOSGeom_createLineString_r(geos, sequence) : NULL;
+    GEOSGeometry *hull = cloud ? GEOSConvexHull_r(geos, cloud) : NULL;
+    if (cloud)
+        GEOSGeom_destroy_r(geos, cloud);
+    return hull;
+}
+
+GEOSGeometry *nest_nfp(GEOSContextHandle_t geos, const nest_shape *a, const nest_shape *b)
+{
+    size_t count = a->convex_count * b->convex_count, made = 0;
+    GEOSGeometry **sums = calloc(count ? count : 1, sizeof *sums);
+    if (!sums)
+        return NULL;
+    for (size_t i = 0; i < a->convex_count; i++)
+        for (size_t j = 0; j < b->convex_count; j++) {
+            GEOSGeometry *sum = convex_sum(geos, a->convex[i], b->convex[j]);
+            if (sum && GEOSGeomTypeId_r(geos, sum) == GEOS_POLYGON)
+                sums[made++] = sum;
+            else if (sum)
+                GEOSGeom_destroy_r(geos, sum);
+        }
+    GEOSGeometry *collection =
+        GEOSGeom_createCollection_r(geos, GEOS_MULTIPOLYGON, sums, (unsigned)made);
+    free(sums);
+    if (!collection)
+        return NULL;
+    GEOSGeometry *nfp = GEOSUnaryUnion_r(geos, collection);
+    GEOSGeom_destroy_r(geos, collection);
+    return nfp;
+}

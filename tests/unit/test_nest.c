@@ -1,0 +1,234 @@
+/*
+ * test_nest.c: true-shape nesting.  Placed parts never overlap and keep the
+ * spacing (GEOS distance), stay inside the margin, are placed once each;
+ * rectangles that tile a sheet exactly fill one sheet; a part goes in a
+ * ring's hole when holes are allowed; L shapes interlock.
+ */
+#include "test_support.h"
+
+#include <geos_c.h>
+#include <stdlib.h>
+
+#include "unroll/nest.h"
+
+static GEOSContextHandle_t geos;
+
+static int start(void **state)
+{
+    (void)state;
+    geos = GEOS_init_r();
+    return geos ? 0 : -1;
+}
+
+static int finish(void **state)
+{
+    (void)state;
+    GEOS_finish_r(geos);
+    return 0;
+}
+
+static ur_piece polygon_piece(const char *name, const ur_vec2 *ring, size_t count)
+{
+    ur_piece piece;
+    memset(&piece, 0, sizeof piece);
+    snprintf(piece.name, sizeof piece.name, "%s", name);
+    assert_int_equal(ur_piece_add_path(&piece, UR_OP_CUT, ring, count, true, NULL), UR_OK);
+    piece.measures.flat_area = fabs(ur_polygon_signed_area(ring, count));
+    return piece;
+}
+
+static ur_piece rectangle(const char *name, double w, double h)
+{
+    ur_vec2 ring[4] = {{0, 0}, {w, 0}, {w, h}, {0, h}};
+    return polygon_piece(name, ring, 4);
+}
+
+static ur_piece l_shape(const char *name)
+{
+    ur_vec2 ring[6] = {{0, 0}, {60, 0}, {60, 20}, {20, 20}, {20, 60}, {0, 60}};
+    return polygon_piece(name, ring, 6);
+}
+
+/* A placed piece as a GEOS polygon (outline and holes) in sheet coordinates. */
+static GEOSGeometry *placed_polygon(const ur_piece *piece, ur_transform2 t)
+{
+    GEOSGeometry *shell = NULL, *holes[8];
+    unsigned hole_count = 0;
+    for (size_t k = 0; k < piece->path_count; k++) {
+        const ur_path *path = &piece->paths[k];
+        GEOSCoordSequence *s = GEOSCoordSeq_create_r(geos, (unsigned)path->count + 1, 2);
+        for (size_t i = 0; i <= path->count; i++) {
+            ur_vec2 p = ur_transform2_apply(t, path->points[i % path->count]);
+            GEOSCoordSeq_setXY_r(geos, s, (unsigned)i, p.x, p.y);
+        }
+        GEOSGeometry *ring = GEOSGeom_createLinearRing_r(geos, s);
+        if (k == 0)
+            shell = ring;
+        else
+            holes[hole_count++] = ring;
+    }
+    return GEOSGeom_createPolygon_r(geos, shell, holes, hole_count);
+}
+
+/* The invariants every layout keeps. */
+static void check_layout(const ur_piece *pieces, size_t count, const ur_layout *layout,
+                         const ur_nest_options *o)
+{
+    size_t *seen = calloc(count, sizeof *seen);
+    for (size_t s = 0; s < layout->sheet_count; s++) {
+        const ur_sheet *sheet = &layout->sheets[s];
+        GEOSGeometry **placed = calloc(sheet->placement_count + 1, sizeof *placed);
+        for (size_t p = 0; p < sheet->placement_count; p++) {
+            const ur_placement *pl = &sheet->placements[p];
+            seen[pl->piece_index]++;
+            placed[p] = placed_polygon(&pieces[pl->piece_index], pl->transform);
+            double x0, y0, x1, y1;
+            GEOSGeom_getXMin_r(geos, placed[p], &x0);
+            GEOSGeom_getYMin_r(geos, placed[p], &y0);
+            GEOSGeom_getXMax_r(geos, placed[p], &x1);
+            GEOSGeom_getYMax_r(geos, placed[p], &y1);
+            assert_true(x0 >= o->margin - 1e-5 && y0 >= o->margin - 1e-5);
+            assert_true(x1 <= sheet->width - o->margin + 1e-5);
+            assert_true(y1 <= sheet->height - o->margin + 1e-5);
+            for (size_t q = 0; q < p; q++) {
+                double distance;
+                assert_int_equal(GEOSDistance_r(geos, placed[p], placed[q], &distance), 1);
+                if (distance < o->spacing - 1e-5) {
+                    GEOSGeometry *both = GEOSIntersection_r(geos, placed[p], placed[q]);
+                    double area = 0;
+                    GEOSArea_r(geos, both, &area);
+                    GEOSGeom_destroy_r(geos, both);
+                    fail_msg("parts %zu and %zu on sheet %zu are %g mm apart (overlap %g mm2)", p, q,
+                             s + 1, distance, area);
+                }
+            }
+        }
+        for (size_t p = 0; p < sheet->placement_count; p++)
+            GEOSGeom_destroy_r(geos, placed[p]);
+        free(placed);
+    }
+    for (size_t k = 0; k < count; k++)
+        assert_int_equal(seen[k], 1);
+    free(seen);
+}
+
+static void free_pieces(ur_piece *pieces, size_t count)
+{
+    for (size_t k = 0; k < count; k++)
+        ur_piece_free(&pieces[k]);
+}
+
+static void test_rectangles_tile_one_sheet(void **state)
+{
+    (void)state;
+    ur_piece pieces[4];
+    for (int k = 0; k < 4; k++)
+        pieces[k] = rectangle("tile", 300, 200);
+    ur_nest_options o = {600, 400, 0, 0, 4, false, true, 0};
+    ur_layout layout;
+    ur_error error;
+    assert_int_equal(ur_layout_nest(pieces, 4, &o, &layout, &error), UR_OK);
+    assert_int_equal(layout.sheet_count, 1);
+    check_layout(pieces, 4, &layout, &o);
+    ur_layout_free(&layout);
+    free_pieces(pieces, 4);
+}
+
+static void test_part_goes_in_a_hole(void **state)
+{
+    (void)state;
+    ur_vec2 outer[4] = {{0, 0}, {100, 0}, {100, 100}, {0, 100}};
+    ur_vec2 inner[4] = {{20, 20}, {20, 80}, {80, 80}, {80, 20}};
+    ur_piece pieces[2];
+    pieces[0] = polygon_piece("ring", outer, 4);
+    assert_int_equal(ur_piece_add_path(&pieces[0], UR_OP_CUT, inner, 4, true, NULL), UR_OK);
+    pieces[0].measures.flat_area = 10000 - 3600;
+    pieces[1] = rectangle("plug", 50, 50);
+    ur_nest_options o = {110, 110, 2, 2, 4, false, true, 0};
+    ur_layout layout;
+    ur_error error;
+    assert_int_equal(ur_layout_nest(pieces, 2, &o, &layout, &error), UR_OK);
+    assert_int_equal(layout.sheet_count, 1);
+    check_layout(pieces, 2, &layout, &o);
+    ur_layout_free(&layout);
+    o.holes = false; /* without holes the plug needs a sheet of its own */
+    assert_int_equal(ur_layout_nest(pieces, 2, &o, &layout, &error), UR_OK);
+    assert_int_equal(layout.sheet_count, 2);
+    ur_layout_free(&layout);
+    free_pieces(pieces, 2);
+}
+
+/*
+ * Two thin L shapes (arms 10 mm wide, 60 mm long) on a 74 x 74 sheet with
+ * a 1 mm margin and spacing: their 60 x 60 boxes side by side need 121 mm,
+ * but turned half a turn one sits in the other's corner (together 71 x 71)
+ * and both fit one sheet.
+ */
+static void test_l_shapes_interlock(void **state)
+{
+    (void)state;
+    ur_vec2 ring[6] = {{0, 0}, {60, 0}, {60, 10}, {10, 10}, {10, 60}, {0, 60}};
+    ur_piece pieces[2] = {polygon_piece("L1", ring, 6), polygon_piece("L2", ring, 6)};
+    ur_nest_options o = {74, 74, 1, 1, 4, false, true, 0};
+    ur_layout layout;
+    ur_error error;
+    assert_int_equal(ur_layout_nest(pieces, 2, &o, &layout, &error), UR_OK);
+    assert_int_equal(layout.sheet_count, 1);
+    check_layout(pieces, 2, &layout, &o);
+    ur_layout_free(&layout);
+    free_pieces(pieces, 2);
+}
+
+static void test_mixed_parts_keep_apart(void **state)
+{
+    (void)state;
+    enum { COUNT = 24 };
+    ur_piece pieces[COUNT];
+    for (int k = 0; k < COUNT; k++) {
+        if (k % 3 == 0)
+            pieces[k] = l_shape("L");
+        else
+            pieces[k] = rectangle("R", 30 + 7 * (k % 5), 15 + 11 * (k % 4));
+    }
+    ur_nest_options o = {300, 200, 5, 3, 4, true, true, 0};
+    ur_layout layout;
+    ur_error error;
+    assert_int_equal(ur_layout_nest(pieces, COUNT, &o, &layout, &error), UR_OK);
+    check_layout(pieces, COUNT, &layout, &o);
+    /* Same input, same layout. */
+    ur_layout again;
+    assert_int_equal(ur_layout_nest(pieces, COUNT, &o, &again, &error), UR_OK);
+    assert_int_equal(again.sheet_count, layout.sheet_count);
+    for (size_t s = 0; s < layout.sheet_count; s++)
+        assert_memory_equal(again.sheets[s].placements, layout.sheets[s].placements,
+                            layout.sheets[s].placement_count * sizeof(ur_placement));
+    ur_layout_free(&again);
+    ur_layout_free(&layout);
+    free_pieces(pieces, COUNT);
+}
+
+static void test_refusals(void **state)
+{
+    (void)state;
+    ur_piece big = rectangle("big", 700, 100);
+    ur_nest_options o = {600, 400, 10, 2, 4, true, true, 0};
+    ur_layout layout;
+    ur_error error;
+    assert_int_equal(ur_layout_nest(&big, 1, &o, &layout, &error), UR_ERROR_INPUT);
+    assert_non_null(strstr(error.message, "big"));
+    o.margin = 300; /* nothing left inside the margin */
+    assert_int_equal(ur_layout_nest(&big, 1, &o, &layout, &error), UR_ERROR_INPUT);
+    ur_piece_free(&big);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_rectangles_tile_one_sheet),
+        cmocka_unit_test(test_part_goes_in_a_hole),
+        cmocka_unit_test(test_l_shapes_interlock),
+        cmocka_unit_test(test_mixed_parts_keep_apart),
+        cmocka_unit_test(test_refusals),
+    };
+    return cmocka_run_group_tests(tests, start, finish);
+}
