@@ -48,6 +48,14 @@ typedef struct nester {
     placed *placements;  /* per piece, in order placed */
     size_t *sheet_of;    /* per placement */
     size_t placed_count, sheet_count;
+    /*
+     * Per (sheet, class, turn): the union of the no-fit polygons of the
+     * first taken_count[..] placements, grown as parts are placed so that
+     * each query adds only the parts placed since the last.
+     */
+    GEOSGeometry **taken;
+    size_t *taken_count;
+    double *sheet_area; /* per sheet: area of the parts on it */
     ur_error *error;
 } nester;
 
@@ -75,9 +83,9 @@ static ur_status make_class(nester *n, size_t piece)
     double base = n->options->level ? nest_level_angle(n->geos, &n->pieces[piece].paths[0]) : 0.0;
     for (size_t t = 0; t < n->turn_count; t++) {
         double angle = base + 2 * M_PI * (double)t / (double)n->turn_count;
-        ur_status status = nest_shape_make(n->geos, &n->pieces[piece], angle,
-                                           n->options->spacing / 2, n->options->holes,
-                                           &c->turns[t], n->error);
+        ur_status status =
+            nest_shape_make(n->geos, &n->pieces[piece], angle, n->options->spacing / 2,
+                            n->options->holes, &c->turns[t], n->error);
         if (status != UR_OK)
             return status;
     }
@@ -150,14 +158,27 @@ static int shift_xy(double *x, double *y, void *userdata)
     return 1;
 }
 
-/* The no-fit polygons of the parts on a sheet for piece at turn, moved to where they are. */
-static GEOSGeometry *forbidden(nester *n, size_t sheet, size_t piece, size_t turn)
+/* The cache slot of (sheet, piece's class, turn). */
+static size_t taken_slot(const nester *n, size_t sheet, size_t piece, size_t turn)
 {
-    GEOSGeometry **moved = calloc(n->placed_count + 1, sizeof *moved);
+    return (sheet * n->class_count + n->class_of[piece]) * n->turn_count + turn;
+}
+
+/*
+ * Where piece (at turn) may not go on the sheet: the no-fit polygons of the
+ * parts on it, moved to where they are, their union kept and grown from
+ * one query to the next.  NULL on a GEOS failure; the cache owns it.
+ */
+static const GEOSGeometry *forbidden(nester *n, size_t sheet, size_t piece, size_t turn)
+{
+    size_t slot = taken_slot(n, sheet, piece, turn);
+    GEOSGeometry **moved = calloc(n->placed_count + 2, sizeof *moved);
     if (!moved)
         return NULL;
     size_t count = 0;
-    for (size_t k = 0; k < n->placed_count; k++) {
+    if (n->taken[slot])
+        moved[count++] = n->taken[slot];
+    for (size_t k = n->taken_count[slot]; k < n->placed_count; k++) {
         if (n->sheet_of[k] != sheet)
             continue;
         placed *p = &n->placements[k];
@@ -166,14 +187,14 @@ static GEOSGeometry *forbidden(nester *n, size_t sheet, size_t piece, size_t tur
         if (shifted)
             moved[count++] = shifted;
     }
+    n->taken_count[slot] = n->placed_count;
     GEOSGeometry *collection =
         GEOSGeom_createCollection_r(n->geos, GEOS_GEOMETRYCOLLECTION, moved, (unsigned)count);
     free(moved);
-    if (!collection)
-        return NULL;
-    GEOSGeometry *all = GEOSUnaryUnion_r(n->geos, collection);
-    GEOSGeom_destroy_r(n->geos, collection);
-    return all;
+    n->taken[slot] = collection ? GEOSUnaryUnion_r(n->geos, collection) : NULL;
+    if (collection)
+        GEOSGeom_destroy_r(n->geos, collection);
+    return n->taken[slot];
 }
 
 /* The leftmost, then lowest, vertex of a region's rings; false when it has none. */
@@ -212,13 +233,12 @@ static bool place_on(nester *n, size_t sheet, size_t piece, size_t turn, ur_vec2
     GEOSGeometry *room = inner_fit(n, shape_of(n, piece, turn));
     if (!room)
         return false;
-    GEOSGeometry *taken = forbidden(n, sheet, piece, turn);
-    GEOSGeometry *free_room = taken ? GEOSDifference_r(n->geos, room, taken) : NULL;
+    const GEOSGeometry *taken = sheet < n->sheet_count ? forbidden(n, sheet, piece, turn) : NULL;
+    GEOSGeometry *free_room =
+        taken ? GEOSDifference_r(n->geos, room, taken) : GEOSGeom_clone_r(n->geos, room);
     bool found = free_room && leftmost(n->geos, free_room, at);
     if (free_room)
         GEOSGeom_destroy_r(n->geos, free_room);
-    if (taken)
-        GEOSGeom_destroy_r(n->geos, taken);
     GEOSGeom_destroy_r(n->geos, room);
     return found;
 }
@@ -233,6 +253,10 @@ static ur_status place_piece(nester *n, size_t piece)
         bool found = false;
         ur_vec2 best = {0, 0};
         size_t best_turn = 0;
+        double room = (n->options->sheet_width - 2 * n->options->margin) *
+                      (n->options->sheet_height - 2 * n->options->margin);
+        if (sheet < n->sheet_count && n->sheet_area[sheet] + shape_of(n, piece, 0)->area > room)
+            continue; /* not enough area left on it, whatever the shapes */
         for (size_t t = 0; t < n->turn_count; t++) {
             ur_vec2 at = {0, 0};
             if (place_on(n, sheet, piece, t, &at) &&
@@ -247,6 +271,7 @@ static ur_status place_piece(nester *n, size_t piece)
             n->sheet_of[n->placed_count++] = sheet;
             if (sheet == n->sheet_count)
                 n->sheet_count++;
+            n->sheet_area[sheet] += shape_of(n, piece, 0)->area;
             return UR_OK;
         }
         if (sheet == n->sheet_count) /* it fits no empty sheet either */
@@ -285,7 +310,8 @@ static ur_status build_layout(nester *n, ur_layout *layout)
         ur_sheet *sheet = &layout->sheets[s];
         sheet->width = n->options->sheet_width;
         sheet->height = n->options->sheet_height;
-        sheet->placements = calloc(n->placed_count ? n->placed_count : 1, sizeof *sheet->placements);
+        sheet->placements =
+            calloc(n->placed_count ? n->placed_count : 1, sizeof *sheet->placements);
         if (!sheet->placements)
             return ur_error_out_of_memory(n->error);
     }
@@ -301,6 +327,13 @@ static ur_status build_layout(nester *n, ur_layout *layout)
 
 static void nester_free(nester *n)
 {
+    size_t slots = (n->count + 1) * (n->class_count + 1) * n->turn_count;
+    for (size_t k = 0; n->taken && k < slots; k++)
+        if (n->taken[k])
+            GEOSGeom_destroy_r(n->geos, n->taken[k]);
+    free(n->taken);
+    free(n->taken_count);
+    free(n->sheet_area);
     size_t pairs = n->class_count * n->turn_count * n->class_count * n->turn_count;
     for (size_t k = 0; n->nfps && k < pairs; k++)
         if (n->nfps[k])
@@ -323,8 +356,9 @@ static ur_status check_nest_options(const ur_nest_options *o, ur_error *error)
 {
     if (!(o->sheet_width > 0) || !(o->sheet_height > 0) || !(o->margin >= 0) ||
         !(o->spacing >= 0) || !isfinite(o->sheet_width) || !isfinite(o->sheet_height))
-        return ur_error_set(error, UR_ERROR_INPUT, "nesting needs a sheet of positive size and a "
-                                                   "margin and spacing of 0 mm or more");
+        return ur_error_set(error, UR_ERROR_INPUT,
+                            "nesting needs a sheet of positive size and a "
+                            "margin and spacing of 0 mm or more");
     if (2 * o->margin >= o->sheet_width || 2 * o->margin >= o->sheet_height)
         return ur_error_set(error, UR_ERROR_INPUT,
                             "the margin (%g mm) leaves no room on the %g x %g mm sheet", o->margin,
@@ -354,6 +388,14 @@ ur_status ur_layout_nest(const ur_piece *pieces, size_t count, const ur_nest_opt
         status = ur_error_out_of_memory(error);
     if (status == UR_OK)
         status = sort_classes(&n);
+    size_t slots = (count + 1) * (n.class_count + 1) * n.turn_count;
+    if (status == UR_OK) {
+        n.taken = calloc(slots, sizeof *n.taken);
+        n.taken_count = calloc(slots, sizeof *n.taken_count);
+        n.sheet_area = calloc(count + 1, sizeof *n.sheet_area);
+        if (!n.taken || !n.taken_count || !n.sheet_area)
+            status = ur_error_out_of_memory(error);
+    }
     for (size_t p = 0; status == UR_OK && p < count; p++)
         keys[p] = (order_key){shape_of(&n, p, 0)->area, p};
     if (status == UR_OK)

@@ -98,8 +98,8 @@ static void check_layout(const ur_piece *pieces, size_t count, const ur_layout *
                     double area = 0;
                     GEOSArea_r(geos, both, &area);
                     GEOSGeom_destroy_r(geos, both);
-                    fail_msg("parts %zu and %zu on sheet %zu are %g mm apart (overlap %g mm2)", p, q,
-                             s + 1, distance, area);
+                    fail_msg("parts %zu and %zu on sheet %zu are %g mm apart (overlap %g mm2)", p,
+                             q, s + 1, distance, area);
                 }
             }
         }
