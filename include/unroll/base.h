@@ -65,4 +65,13 @@ ur_op ur_op_from_name(const char *name);
 /* Allocation helpers that fill error on failure and return NULL. */
 void *ur_alloc_array(size_t count, size_t size, ur_error *error);
 
+/*
+ * Room for one more item in a growing array of count items: when count has
+ * reached *capacity, doubles *capacity (from first) and reallocates items.
+ * Returns the array (moved or not), or NULL with error set, items then
+ * untouched.
+ */
+void *ur_array_grow(void *items, size_t *capacity, size_t count, size_t item_size, size_t first,
+                    ur_error *error);
+
 #endif

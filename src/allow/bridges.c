@@ -50,14 +50,11 @@ typedef struct ring {
 
 static ur_status spans_push(spans *list, double lo, double hi, ur_error *error)
 {
-    if (list->count == list->capacity) {
-        size_t capacity = list->capacity ? 2 * list->capacity : 16;
-        span *items = realloc(list->items, capacity * sizeof *items);
-        if (!items)
-            return ur_error_out_of_memory(error);
-        list->items = items;
-        list->capacity = capacity;
-    }
+    span *items =
+        ur_array_grow(list->items, &list->capacity, list->count, sizeof *list->items, 16, error);
+    if (!items)
+        return UR_ERROR_INTERNAL;
+    list->items = items;
     list->items[list->count++] = (span){lo, hi};
     return UR_OK;
 }

@@ -4,6 +4,7 @@
 #include "unroll/base.h"
 
 #include <stdio.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -67,6 +68,21 @@ ur_op ur_op_from_name(const char *name)
         if (strcmp(name, op_names[op]) == 0)
             return (ur_op)op;
     return UR_OP_COUNT;
+}
+
+void *ur_array_grow(void *items, size_t *capacity, size_t count, size_t item_size, size_t first,
+                    ur_error *error)
+{
+    if (count < *capacity)
+        return items;
+    size_t grown = *capacity ? 2 * *capacity : first;
+    void *memory = grown <= SIZE_MAX / item_size ? realloc(items, grown * item_size) : NULL;
+    if (!memory) {
+        ur_error_out_of_memory(error);
+        return NULL;
+    }
+    *capacity = grown;
+    return memory;
 }
 
 void *ur_alloc_array(size_t count, size_t size, ur_error *error)

@@ -68,14 +68,11 @@ ur_vec2 ur_transform2_apply(ur_transform2 t, ur_vec2 p)
 
 ur_status ur_points_push(ur_points *points, ur_vec2 point, ur_error *error)
 {
-    if (points->count == points->capacity) {
-        size_t capacity = points->capacity ? 2 * points->capacity : 64;
-        ur_vec2 *items = realloc(points->items, capacity * sizeof *items);
-        if (!items)
-            return ur_error_out_of_memory(error);
-        points->items = items;
-        points->capacity = capacity;
-    }
+    ur_vec2 *items = ur_array_grow(points->items, &points->capacity, points->count,
+                                   sizeof *points->items, 64, error);
+    if (!items)
+        return UR_ERROR_INTERNAL;
+    points->items = items;
     points->items[points->count++] = point;
     return UR_OK;
 }

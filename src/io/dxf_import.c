@@ -443,14 +443,11 @@ typedef struct dxf_vertices {
 
 static ur_status vertices_push(dxf_vertices *vertices, ur_error *error)
 {
-    if (vertices->count == vertices->capacity) {
-        size_t capacity = vertices->capacity ? 2 * vertices->capacity : 16;
-        dxf_vertex *items = realloc(vertices->items, capacity * sizeof *items);
-        if (!items)
-            return ur_error_out_of_memory(error);
-        vertices->items = items;
-        vertices->capacity = capacity;
-    }
+    dxf_vertex *items = ur_array_grow(vertices->items, &vertices->capacity, vertices->count,
+                                      sizeof *vertices->items, 16, error);
+    if (!items)
+        return UR_ERROR_INTERNAL;
+    vertices->items = items;
     vertices->items[vertices->count++] = (dxf_vertex){{0, 0}, 0};
     return UR_OK;
 }

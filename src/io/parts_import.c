@@ -148,14 +148,11 @@ ur_status parts_flatten_arc(parts_points *points, const parts_arc *arc, double t
 ur_status parts_add_ring(parts_collection *collection, parts_points *points, int line,
                          const char *what, const char *id, int sub, ur_error *error)
 {
-    if (collection->count == collection->capacity) {
-        size_t capacity = collection->capacity ? 2 * collection->capacity : 16;
-        parts_ring *rings = realloc(collection->rings, capacity * sizeof *rings);
-        if (!rings)
-            return ur_error_out_of_memory(error);
-        collection->rings = rings;
-        collection->capacity = capacity;
-    }
+    parts_ring *rings = ur_array_grow(collection->rings, &collection->capacity, collection->count,
+                                      sizeof *collection->rings, 16, error);
+    if (!rings)
+        return UR_ERROR_INTERNAL;
+    collection->rings = rings;
     /* The closing point repeats the first: rings here never do. */
     while (points->count > 1 && points->items[points->count - 1].x == points->items[0].x &&
            points->items[points->count - 1].y == points->items[0].y)
