@@ -184,14 +184,23 @@ static const GEOSGeometry *forbidden(nester *n, size_t sheet, size_t piece, size
         placed *p = &n->placements[k];
         const GEOSGeometry *nfp = nfp_of(n, p->piece, p->turn, piece, turn);
         GEOSGeometry *shifted = nfp ? GEOSGeom_transformXY_r(n->geos, nfp, shift_xy, &p->at) : NULL;
-        if (shifted)
-            moved[count++] = shifted;
+        if (!shifted) { /* a part whose place is unknown: nothing may go near it */
+            for (size_t i = 0; i < count; i++)
+                GEOSGeom_destroy_r(n->geos, moved[i]);
+            free(moved);
+            n->taken[slot] = NULL;
+            n->taken_count[slot] = 0; /* start again from the first part next time */
+            return NULL;
+        }
+        moved[count++] = shifted;
     }
     n->taken_count[slot] = n->placed_count;
     GEOSGeometry *collection =
         GEOSGeom_createCollection_r(n->geos, GEOS_GEOMETRYCOLLECTION, moved, (unsigned)count);
     free(moved);
     n->taken[slot] = collection ? GEOSUnaryUnion_r(n->geos, collection) : NULL;
+    if (!n->taken[slot])
+        n->taken_count[slot] = 0;
     if (collection)
         GEOSGeom_destroy_r(n->geos, collection);
     return n->taken[slot];
@@ -233,7 +242,12 @@ static bool place_on(nester *n, size_t sheet, size_t piece, size_t turn, ur_vec2
     GEOSGeometry *room = inner_fit(n, shape_of(n, piece, turn));
     if (!room)
         return false;
-    const GEOSGeometry *taken = sheet < n->sheet_count ? forbidden(n, sheet, piece, turn) : NULL;
+    bool empty = sheet >= n->sheet_count;
+    const GEOSGeometry *taken = empty ? NULL : forbidden(n, sheet, piece, turn);
+    if (!empty && !taken) { /* GEOS failed: better no place than an overlap */
+        GEOSGeom_destroy_r(n->geos, room);
+        return false;
+    }
     GEOSGeometry *free_room =
         taken ? GEOSDifference_r(n->geos, room, taken) : GEOSGeom_clone_r(n->geos, room);
     bool found = free_room && leftmost(n->geos, free_room, at);
