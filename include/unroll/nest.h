@@ -63,6 +63,12 @@ typedef struct ur_nest_options {
     bool level;        /* turns start from the level one (else from the part as drawn) */
     bool holes;        /* parts may go inside holes of other parts */
     size_t max_sheets; /* 0: as many as needed */
+    /*
+     * Roll stock: > 0 nests on one strip this wide (sheet_height is
+     * ignored; sheet_width too) and as short as it can; the layout's one
+     * sheet is then as long as what was used, margin included.
+     */
+    double roll_width;
 } ur_nest_options;
 
 ur_status ur_layout_nest(const ur_piece *pieces, size_t count, const ur_nest_options *options,

@@ -80,6 +80,7 @@ typedef struct cli_job {
     long rotations;     /* --rotations N; 0: 4, or 2 under a grain rule */
     bool no_holes;      /* --no-holes: no part inside another's hole */
     bool level;         /* turns start from the level one (surfaces), not as drawn (nest) */
+    double roll_width;  /* --roll W: nest on roll stock this wide; 0 for sheets */
 } cli_job;
 
 enum {
@@ -180,6 +181,7 @@ bool cli_parse_dxf_version(cli_job *job, const char *value);
 bool cli_parse_dpi(cli_job *job, const char *value);
 bool cli_parse_order(cli_job *job, const char *value);
 bool cli_parse_rotations(cli_job *job, const char *value);
+bool cli_parse_roll(cli_job *job, const char *value);
 
 /* Whether -o and --format say which files to write; false after a message (outputs.c). */
 bool cli_check_output(const cli_job *job);

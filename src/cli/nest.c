@@ -35,6 +35,7 @@ enum nest_option {
     NEST_ORDER,
     NEST_ROTATIONS,
     NEST_NO_HOLES,
+    NEST_ROLL,
 };
 
 static const struct option nest_options[] = {
@@ -55,6 +56,7 @@ static const struct option nest_options[] = {
     {"order", required_argument, NULL, NEST_ORDER},
     {"rotations", required_argument, NULL, NEST_ROTATIONS},
     {"no-holes", no_argument, NULL, NEST_NO_HOLES},
+    {"roll", required_argument, NULL, NEST_ROLL},
     {"help", no_argument, NULL, 'h'},
     {NULL, 0, NULL, 0},
 };
@@ -157,6 +159,8 @@ static bool take_nest_option(nest_job *n, int id, const char *value)
     case NEST_NO_HOLES:
         job->no_holes = true;
         return true;
+    case NEST_ROLL:
+        return cli_parse_roll(job, value);
     default:
         return false;
     }
@@ -172,7 +176,8 @@ static const char nest_help[] =
     "  --report FILE.json --quiet --no-kerf-compensation\n"
     "  --format svg,dxf,pdf,png --dxf-version 12|2000 --dpi N --order cut|none\n"
     "  --rotations N (turns of 360/N degrees from the part as drawn; default 4)\n"
-    "  --no-holes (no part inside another's hole)\n";
+    "  --no-holes (no part inside another's hole)\n"
+    "  --roll W   nest on roll stock W mm wide, as short as it goes\n";
 
 /* Parses argv (argv[0] is "nest"); 0, -1 after help, or an exit status. */
 static int parse_nest(int argc, char **argv, nest_job *n)
@@ -311,6 +316,11 @@ static void print_nest_summary(const nest_job *n, const ur_machine *machine, con
         cli_message("nest: sheet %zu: %zu parts, utilisation %.1f %%", s + 1,
                     layout->sheets[s].placement_count,
                     100 * ur_sheet_utilisation(&layout->sheets[s], pieces));
+    if (n->job.roll_width > 0) {
+        cli_message("nest: %zu parts on %.1f mm of the %g mm roll -> %s", count,
+                    layout->sheets[0].width, n->job.roll_width, n->job.output_path);
+        return;
+    }
     cli_message("nest: %zu parts on %zu sheet%s of %g x %g mm (lower bound %.0f) -> %s", count,
                 layout->sheet_count, layout->sheet_count == 1 ? "" : "s", layout->sheets[0].width,
                 layout->sheets[0].height, lower_bound(pieces, count, &layout->sheets[0], margin),

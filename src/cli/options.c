@@ -66,6 +66,7 @@ enum option_id {
     OPT_ORDER,
     OPT_ROTATIONS,
     OPT_NO_HOLES,
+    OPT_ROLL,
 };
 
 static const struct option long_options[] = {
@@ -119,6 +120,7 @@ static const struct option long_options[] = {
     {"order", required_argument, NULL, OPT_ORDER},
     {"rotations", required_argument, NULL, OPT_ROTATIONS},
     {"no-holes", no_argument, NULL, OPT_NO_HOLES},
+    {"roll", required_argument, NULL, OPT_ROLL},
     {"help", no_argument, NULL, 'h'},
     {NULL, 0, NULL, 0},
 };
@@ -146,7 +148,8 @@ static const struct {
 } action_options[] = {
     {CLI_DEVELOP,
      " output machine material sheet method parts rulings no-split report strain-png "
-     "allowances bridges no-kerf-compensation format dxf-version dpi order rotations no-holes "},
+     "allowances bridges no-kerf-compensation format dxf-version dpi order rotations no-holes "
+     "roll "},
     {CLI_ANALYZE, " png report "},
     {CLI_COMPARE, " png csv "},
 };
@@ -488,6 +491,8 @@ static bool take_option(cli_job *job, int id, const char *value)
     case OPT_NO_HOLES:
         job->no_holes = true;
         return true;
+    case OPT_ROLL:
+        return cli_parse_roll(job, value);
     case 'n':
         return parse_count(surface, value, &job->develop.rulings);
     case OPT_METHOD: {

@@ -73,6 +73,18 @@ bool cli_parse_rotations(cli_job *job, const char *value)
     return true;
 }
 
+bool cli_parse_roll(cli_job *job, const char *value)
+{
+    char *end = NULL;
+    double width = strtod(value, &end);
+    if (end == value || *end != '\0' || !isfinite(width) || !(width > 0)) {
+        cli_message("%s: --roll: '%s' is not a width in mm", job->command, value);
+        return false;
+    }
+    job->roll_width = width;
+    return true;
+}
+
 /* The formats to write: -o - without --format is an SVG, as a program reading a pipe expects. */
 static unsigned formats_asked(const cli_job *job)
 {

@@ -251,6 +251,10 @@ ur_status cli_place_pieces(const cli_job *job, const ur_machine *machine,
         .level = job->level,
         .holes = !job->no_holes,
     };
+    if (job->roll_width > 0) { /* one strip of roll, as short as it goes */
+        options.roll_width = job->roll_width;
+        return ur_layout_nest(pieces, count, &options, layout, error);
+    }
     ur_status status = UR_OK;
     for (size_t k = 0; k < choice_count; k++) {
         options.sheet_width = choices[k].width;

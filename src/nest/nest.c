@@ -366,6 +366,30 @@ static void nester_free(nester *n)
         GEOS_finish_r(n->geos);
 }
 
+/* A roll as one sheet long enough for every part in a row; cut to length afterwards. */
+static ur_nest_options roll_sheet(const ur_nest_options *o, const ur_piece *pieces, size_t count)
+{
+    ur_nest_options sheet = *o;
+    sheet.sheet_height = o->roll_width;
+    sheet.sheet_width = 2 * o->margin;
+    for (size_t k = 0; k < count; k++)
+        sheet.sheet_width +=
+            hypot(ur_box_width(pieces[k].box), ur_box_height(pieces[k].box)) + o->spacing;
+    sheet.max_sheets = 1;
+    return sheet;
+}
+
+/* The length of roll used: as far as the parts reach, and the margin. */
+static double used_length(const nester *n)
+{
+    double length = 0;
+    for (size_t k = 0; k < n->placed_count; k++) {
+        const placed *p = &n->placements[k];
+        length = fmax(length, p->at.x + shape_of(n, p->piece, p->turn)->box.max.x);
+    }
+    return length + n->options->margin;
+}
+
 static ur_status check_nest_options(const ur_nest_options *o, ur_error *error)
 {
     if (!(o->sheet_width > 0) || !(o->sheet_height > 0) || !(o->margin >= 0) ||
@@ -384,6 +408,11 @@ ur_status ur_layout_nest(const ur_piece *pieces, size_t count, const ur_nest_opt
                          ur_layout *layout, ur_error *error)
 {
     memset(layout, 0, sizeof *layout);
+    ur_nest_options roll;
+    if (options->roll_width > 0) {
+        roll = roll_sheet(options, pieces, count);
+        options = &roll;
+    }
     ur_status status = check_nest_options(options, error);
     if (status != UR_OK)
         return status;
@@ -416,8 +445,14 @@ ur_status ur_layout_nest(const ur_piece *pieces, size_t count, const ur_nest_opt
         qsort(keys, count, sizeof *keys, compare_keys);
     for (size_t k = 0; status == UR_OK && k < count; k++)
         status = place_piece(&n, keys[k].index);
+    if (status == UR_OK && options->roll_width > 0 && n.placed_count < count)
+        status = ur_error_set(error, UR_ERROR_INPUT,
+                              "a part does not fit across the %g mm roll in any allowed turn",
+                              options->roll_width);
     if (status == UR_OK)
         status = build_layout(&n, layout);
+    if (status == UR_OK && options->roll_width > 0 && layout->sheet_count == 1)
+        layout->sheets[0].width = used_length(&n);
     if (status != UR_OK)
         ur_layout_free(layout);
     free(keys);

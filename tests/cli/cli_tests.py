@@ -1179,6 +1179,24 @@ def cut_order_shortens_travel(work):
 
 
 @test
+def roll_stock_is_used_as_short_as_it_goes(work):
+    """Ten 100 x 50 plates on a 120 mm roll with no margin or spacing go two
+    across: 500 mm of roll (a little more, for the 64-gon holes' simplified
+    outlines), reported as the sheet's length; every part within the roll."""
+    write(work, "mm.svg", PLATE_SVG_MM)
+    run(work, "nest", "mm.svg:10", "--roll", "120", "--margin", "0", "--spacing", "0",
+        "--no-kerf-compensation", "-o", "roll.svg", "--report", "roll.json", "--quiet")
+    [sheet] = report(work, "roll.json")["sheets"]
+    check(sheet["height_mm"] == 120, "roll width %r" % sheet["height_mm"])
+    check(500 - 1e-6 <= sheet["width_mm"] <= 505, "roll length %r" % sheet["width_mm"])
+    for points in outlines(os.path.join(work, "roll.svg")):
+        for x, y in points:
+            check(-1e-5 <= y <= 120 + 1e-5 and -1e-5 <= x <= sheet["width_mm"] + 1e-5,
+                  "a part leaves the roll at %r" % ((x, y),))
+    bad(work, r"--roll: 'wide' is not a width", "nest", "mm.svg", "--roll", "wide", "-o", "x.svg")
+
+
+@test
 def nest_copies_and_bad_input(work):
     write(work, "mm.svg", PLATE_SVG_MM)
     run(work, "nest", "mm.svg:5", "-o", "five.svg", "--report", "five.json", "--quiet")
