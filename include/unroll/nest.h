@@ -26,6 +26,8 @@ typedef struct ur_sheet {
 typedef struct ur_layout {
     ur_sheet *sheets; /* owned */
     size_t sheet_count;
+    size_t *not_placed; /* owned: pieces left out when the sheets ran out (max_sheets) */
+    size_t not_placed_count;
 } ur_layout;
 
 typedef struct ur_layout_options {
@@ -49,11 +51,13 @@ ur_status ur_layout_rows(const ur_piece *pieces, size_t piece_count,
  * lowest place where it fits on the first sheet that has room, at the best
  * of its allowed turns; new sheets as needed.  Turns are rotations steps of
  * 360 / rotations degrees from the part as drawn, or with level from the
- * turn that lays the part's smallest enclosing rectangle level.  Places come from no-fit polygons
- * (GEOS): placed parts never overlap and keep the spacing (to a micrometre), and stay inside the
- * margin.  With max_sheets, parts that find no room on those sheets are left out of the layout (the
- * caller lists them). Refuses (UR_ERROR_INPUT) a part that fits no empty sheet in any allowed turn,
- * naming it, and a margin that leaves no room.
+ * turn that lays the part's smallest enclosing rectangle level.  Places
+ * come from no-fit polygons (GEOS): placed parts never overlap and keep
+ * the spacing (to a micrometre), and stay inside the margin.  With
+ * max_sheets, parts that find no room on those sheets are left out of the
+ * layout and listed in its not_placed.  Refuses (UR_ERROR_INPUT) a part
+ * that fits no empty sheet in any allowed turn, naming it, and a margin
+ * that leaves no room.
  */
 typedef struct ur_nest_options {
     double sheet_width, sheet_height;

@@ -81,6 +81,7 @@ typedef struct cli_job {
     bool no_holes;      /* --no-holes: no part inside another's hole */
     bool level;         /* turns start from the level one (surfaces), not as drawn (nest) */
     double roll_width;  /* --roll W: nest on roll stock this wide; 0 for sheets */
+    long max_sheets;    /* --sheets N: at most N sheets; 0 for as many as needed */
 } cli_job;
 
 enum {
@@ -182,6 +183,10 @@ bool cli_parse_dpi(cli_job *job, const char *value);
 bool cli_parse_order(cli_job *job, const char *value);
 bool cli_parse_rotations(cli_job *job, const char *value);
 bool cli_parse_roll(cli_job *job, const char *value);
+bool cli_parse_sheet_count(cli_job *job, const char *value);
+
+/* A warning naming the pieces that found no room on the --sheets allowed (outputs.c). */
+void cli_not_placed_warning(const cli_job *job, const ur_layout *layout, const ur_piece *pieces);
 
 /* Whether -o and --format say which files to write; false after a message (outputs.c). */
 bool cli_check_output(const cli_job *job);

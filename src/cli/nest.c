@@ -36,6 +36,7 @@ enum nest_option {
     NEST_ROTATIONS,
     NEST_NO_HOLES,
     NEST_ROLL,
+    NEST_SHEETS,
 };
 
 static const struct option nest_options[] = {
@@ -57,6 +58,7 @@ static const struct option nest_options[] = {
     {"rotations", required_argument, NULL, NEST_ROTATIONS},
     {"no-holes", no_argument, NULL, NEST_NO_HOLES},
     {"roll", required_argument, NULL, NEST_ROLL},
+    {"sheets", required_argument, NULL, NEST_SHEETS},
     {"help", no_argument, NULL, 'h'},
     {NULL, 0, NULL, 0},
 };
@@ -161,6 +163,8 @@ static bool take_nest_option(nest_job *n, int id, const char *value)
         return true;
     case NEST_ROLL:
         return cli_parse_roll(job, value);
+    case NEST_SHEETS:
+        return cli_parse_sheet_count(job, value);
     default:
         return false;
     }
@@ -177,7 +181,8 @@ static const char nest_help[] =
     "  --format svg,dxf,pdf,png --dxf-version 12|2000 --dpi N --order cut|none\n"
     "  --rotations N (turns of 360/N degrees from the part as drawn; default 4)\n"
     "  --no-holes (no part inside another's hole)\n"
-    "  --roll W   nest on roll stock W mm wide, as short as it goes\n";
+    "  --roll W   nest on roll stock W mm wide, as short as it goes\n"
+    "  --sheets N at most N sheets; what does not fit is named, not placed\n";
 
 /* Parses argv (argv[0] is "nest"); 0, -1 after help, or an exit status. */
 static int parse_nest(int argc, char **argv, nest_job *n)
@@ -321,8 +326,9 @@ static void print_nest_summary(const nest_job *n, const ur_machine *machine, con
                     layout->sheets[0].width, n->job.roll_width, n->job.output_path);
         return;
     }
-    cli_message("nest: %zu parts on %zu sheet%s of %g x %g mm (lower bound %.0f) -> %s", count,
-                layout->sheet_count, layout->sheet_count == 1 ? "" : "s", layout->sheets[0].width,
+    cli_message("nest: %zu parts on %zu sheet%s of %g x %g mm (lower bound %.0f) -> %s",
+                count - layout->not_placed_count, layout->sheet_count,
+                layout->sheet_count == 1 ? "" : "s", layout->sheets[0].width,
                 layout->sheets[0].height, lower_bound(pieces, count, &layout->sheets[0], margin),
                 n->job.output_path);
 }
@@ -371,6 +377,7 @@ static int run_nest(const nest_job *n, ur_piece **pieces, size_t *count, ur_layo
         status = cli_place_pieces(&n->job, &machine, &material, *pieces, *count, layout, &error);
     if (status == UR_OK) {
         cli_allowance_warnings(&n->job, *pieces, *count);
+        cli_not_placed_warning(&n->job, layout, *pieces);
         status = write_nest(n, &machine, &material, *pieces, *count, layout, &error);
     }
     if (status != UR_OK) {
@@ -395,7 +402,7 @@ int cli_nest(int argc, char **argv)
         return EXIT_USAGE;
     ur_piece *pieces = NULL;
     size_t count = 0;
-    ur_layout layout = {NULL, 0};
+    ur_layout layout = {NULL, 0, NULL, 0};
     code = run_nest(&n, &pieces, &count, &layout);
     for (size_t k = 0; k < count; k++)
         ur_piece_free(&pieces[k]);

@@ -67,6 +67,7 @@ enum option_id {
     OPT_ROTATIONS,
     OPT_NO_HOLES,
     OPT_ROLL,
+    OPT_SHEETS,
 };
 
 static const struct option long_options[] = {
@@ -121,6 +122,7 @@ static const struct option long_options[] = {
     {"rotations", required_argument, NULL, OPT_ROTATIONS},
     {"no-holes", no_argument, NULL, OPT_NO_HOLES},
     {"roll", required_argument, NULL, OPT_ROLL},
+    {"sheets", required_argument, NULL, OPT_SHEETS},
     {"help", no_argument, NULL, 'h'},
     {NULL, 0, NULL, 0},
 };
@@ -149,7 +151,7 @@ static const struct {
     {CLI_DEVELOP,
      " output machine material sheet method parts rulings no-split report strain-png "
      "allowances bridges no-kerf-compensation format dxf-version dpi order rotations no-holes "
-     "roll "},
+     "roll sheets "},
     {CLI_ANALYZE, " png report "},
     {CLI_COMPARE, " png csv "},
 };
@@ -493,6 +495,8 @@ static bool take_option(cli_job *job, int id, const char *value)
         return true;
     case OPT_ROLL:
         return cli_parse_roll(job, value);
+    case OPT_SHEETS:
+        return cli_parse_sheet_count(job, value);
     case 'n':
         return parse_count(surface, value, &job->develop.rulings);
     case OPT_METHOD: {

@@ -85,6 +85,36 @@ bool cli_parse_roll(cli_job *job, const char *value)
     return true;
 }
 
+bool cli_parse_sheet_count(cli_job *job, const char *value)
+{
+    char *end = NULL;
+    errno = 0;
+    long count = strtol(value, &end, 10);
+    if (end == value || *end != '\0' || errno != 0 || count < 1 || count > 10000) {
+        cli_message("%s: --sheets: '%s' is not a count of sheets from 1 to 10000", job->command,
+                    value);
+        return false;
+    }
+    job->max_sheets = count;
+    return true;
+}
+
+void cli_not_placed_warning(const cli_job *job, const ur_layout *layout, const ur_piece *pieces)
+{
+    if (layout->not_placed_count == 0)
+        return;
+    char names[512] = "";
+    size_t used = 0;
+    for (size_t k = 0; k < layout->not_placed_count && used + 40 < sizeof names; k++)
+        used += (size_t)snprintf(names + used, sizeof names - used, "%s%s", k ? ", " : "",
+                                 pieces[layout->not_placed[k]].name);
+    cli_message("%s: warning: %zu piece%s found no room on the %zu sheet%s allowed (--sheets): "
+                "%s%s",
+                job->command, layout->not_placed_count, layout->not_placed_count == 1 ? "" : "s",
+                layout->sheet_count, layout->sheet_count == 1 ? "" : "s", names,
+                used + 40 >= sizeof names ? ", ..." : "");
+}
+
 /* The formats to write: -o - without --format is an SVG, as a program reading a pipe expects. */
 static unsigned formats_asked(const cli_job *job)
 {

@@ -250,6 +250,7 @@ ur_status cli_place_pieces(const cli_job *job, const ur_machine *machine,
         .rotations = rotations,
         .level = job->level,
         .holes = !job->no_holes,
+        .max_sheets = job->max_sheets > 0 ? (size_t)job->max_sheets : 0,
     };
     if (job->roll_width > 0) { /* one strip of roll, as short as it goes */
         options.roll_width = job->roll_width;
@@ -502,6 +503,7 @@ int cli_run_job(const cli_job *job)
                                               state.piece_count, &error);
     if (status == UR_OK) {
         cli_allowance_warnings(job, state.pieces, state.piece_count);
+        cli_not_placed_warning(job, &state.layout, state.pieces);
         status = write_all(job, &state, &error);
     }
     if (status != UR_OK) {

@@ -198,4 +198,7 @@ void ur_layout_free(ur_layout *layout)
     free(layout->sheets);
     layout->sheets = NULL;
     layout->sheet_count = 0;
+    free(layout->not_placed);
+    layout->not_placed = NULL;
+    layout->not_placed_count = 0;
 }

@@ -339,6 +339,26 @@ static ur_status build_layout(nester *n, ur_layout *layout)
     return UR_OK;
 }
 
+/* The pieces that found no room on the sheets allowed, in the caller's order. */
+static ur_status list_not_placed(const nester *n, ur_layout *layout)
+{
+    if (n->placed_count == n->count)
+        return UR_OK;
+    bool *placed_piece = calloc(n->count, sizeof *placed_piece);
+    layout->not_placed = calloc(n->count - n->placed_count, sizeof *layout->not_placed);
+    if (!placed_piece || !layout->not_placed) {
+        free(placed_piece);
+        return ur_error_out_of_memory(n->error);
+    }
+    for (size_t k = 0; k < n->placed_count; k++)
+        placed_piece[n->placements[k].piece] = true;
+    for (size_t p = 0; p < n->count; p++)
+        if (!placed_piece[p])
+            layout->not_placed[layout->not_placed_count++] = p;
+    free(placed_piece);
+    return UR_OK;
+}
+
 static void nester_free(nester *n)
 {
     size_t slots = (n->count + 1) * (n->class_count + 1) * n->turn_count;
@@ -451,6 +471,8 @@ ur_status ur_layout_nest(const ur_piece *pieces, size_t count, const ur_nest_opt
                               options->roll_width);
     if (status == UR_OK)
         status = build_layout(&n, layout);
+    if (status == UR_OK)
+        status = list_not_placed(&n, layout);
     if (status == UR_OK && options->roll_width > 0 && layout->sheet_count == 1)
         layout->sheets[0].width = used_length(&n);
     if (status != UR_OK)

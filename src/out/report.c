@@ -92,6 +92,20 @@ static json_t *records_json(const ur_piece *piece)
     return array;
 }
 
+/* The names of the pieces left off the sheets (--sheets N). */
+static json_t *not_placed_json(const ur_layout *layout, const ur_piece *pieces)
+{
+    json_t *array = json_array();
+    for (size_t k = 0; array && layout && k < layout->not_placed_count; k++) {
+        const ur_piece *piece = &pieces[layout->not_placed[k]];
+        if (json_array_append_new(array, name_of(piece->name, sizeof piece->name)) != 0) {
+            json_decref(array);
+            return NULL;
+        }
+    }
+    return array;
+}
+
 /* json_object_set_new takes value even when it fails, so nothing leaks here. */
 static json_t *piece_json(const ur_piece *piece, size_t sheet)
 {
@@ -257,6 +271,7 @@ static ur_status report_json(const ur_report_context *context, const ur_piece *p
         json_object_set_new(*root, "pieces", pieces_json(pieces, piece_count, layout)) != 0 ||
         json_object_set(*root, "sheets", sheets) != 0 ||
         json_object_set_new(*root, "outputs", outputs_json(context->outputs)) != 0 ||
+        json_object_set_new(*root, "not_placed", not_placed_json(layout, pieces)) != 0 ||
         json_object_set_new(*root, "domain_gaps",
                             ur_json_intervals(context->gaps, context->gap_count)) != 0) {
         json_decref(sheets);

@@ -1214,6 +1214,16 @@ def nest_copies_and_bad_input(work):
     run(work, "nest", "nounits.svg", "--units", "mm", "-o", "u.svg", "--quiet")
     bad(work, r"missing\.svg", "nest", "missing.svg", "-o", "x.svg")
     bad(work, r"give the files to nest", "nest", "-o", "x.svg")
+    # --sheets 1: 35 plates fit one 600 x 400 sheet; the other 25 are named, not placed.
+    result = run(work, "nest", "mm.svg:60", "--sheets", "1", "-o", "one.svg", "--report", "one.json")
+    found = report(work, "one.json")
+    check(len(found["sheets"]) == 1, "%d sheets under --sheets 1" % len(found["sheets"]))
+    placed = [p for p in found["pieces"] if p["sheet"] is not None]
+    check(len(placed) + len(found["not_placed"]) == 60 and len(found["not_placed"]) > 0,
+          "%d placed, %d not" % (len(placed), len(found["not_placed"])))
+    check(re.search(r"warning: %d pieces found no room" % len(found["not_placed"]), result.stderr),
+          result.stderr)
+    bad(work, r"--sheets: '0' is not a count", "nest", "mm.svg", "--sheets", "0", "-o", "x.svg")
     bad(work, r"--copies: '0' is not a count", "nest", "mm.svg", "--copies", "0", "-o", "x.svg")
 
 

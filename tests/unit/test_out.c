@@ -109,7 +109,7 @@ static void make_layout(fixture *f)
     f->placements[2] = (ur_placement){2, ur_transform2_make(0, ur_vec2_make(10, 10))};
     f->sheets[0] = (ur_sheet){600, 400, &f->placements[0], 2};
     f->sheets[1] = (ur_sheet){300, 200, &f->placements[2], 1};
-    f->layout = (ur_layout){f->sheets, 1};
+    f->layout = (ur_layout){f->sheets, 1, NULL, 0};
 }
 
 static int setup(void **state)
