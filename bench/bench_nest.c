@@ -85,7 +85,7 @@ int main(void)
         l_shape(&pieces[n++], 60 + 10 * (k % 3), 15);
     for (int k = 0; k < 10; k++)
         ring_piece(&pieces[n++], 25, 40);
-    ur_nest_options options = {600, 400, 5, 3, 4, false, true, 0, 0};
+    ur_nest_options options = {600, 400, 5, 3, 4, false, true, 0, 0, 0, 0, NULL, NULL};
     double area = 0;
     for (size_t k = 0; k < n; k++)
         area += pieces[k].measures.flat_area;

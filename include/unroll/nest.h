@@ -73,7 +73,23 @@ typedef struct ur_nest_options {
      * sheet is then as long as what was used, margin included.
      */
     double roll_width;
+    /*
+     * The search after the first, largest-first layout: orders tried (two
+     * parts swapped, or one moved) until time_budget seconds have passed,
+     * NEST_PATIENCE tries in a row brought nothing better, or NEST_TRIES
+     * tries were made; a better layout places more parts, or uses fewer
+     * sheets, or less of the last sheet's length.  0: no search.  The
+     * orders come from seed (xorshift64*), so a search that stops for want
+     * of improvement or at its try limit gives the same layout every time.
+     */
+    double time_budget;
+    unsigned long long seed;
+    /* Called when the search finds a better layout; NULL for none. */
+    void (*progress)(void *context, size_t sheets, double length, size_t tries);
+    void *progress_context;
 } ur_nest_options;
+
+enum { NEST_PATIENCE = 40, NEST_TRIES = 2000 };
 
 ur_status ur_layout_nest(const ur_piece *pieces, size_t count, const ur_nest_options *options,
                          ur_layout *layout, ur_error *error);

@@ -76,12 +76,14 @@ typedef struct cli_job {
     unsigned formats;
     int dxf_version;
     double dpi;
-    bool drawing_order; /* --order none */
-    long rotations;     /* --rotations N; 0: 4, or 2 under a grain rule */
-    bool no_holes;      /* --no-holes: no part inside another's hole */
-    bool level;         /* turns start from the level one (surfaces), not as drawn (nest) */
-    double roll_width;  /* --roll W: nest on roll stock this wide; 0 for sheets */
-    long max_sheets;    /* --sheets N: at most N sheets; 0 for as many as needed */
+    bool drawing_order;      /* --order none */
+    long rotations;          /* --rotations N; 0: 4, or 2 under a grain rule */
+    bool no_holes;           /* --no-holes: no part inside another's hole */
+    bool level;              /* turns start from the level one (surfaces), not as drawn (nest) */
+    double roll_width;       /* --roll W: nest on roll stock this wide; 0 for sheets */
+    long max_sheets;         /* --sheets N: at most N sheets; 0 for as many as needed */
+    double nest_time;        /* --nest-time S: the search's budget; NAN for the default */
+    unsigned long long seed; /* --seed N */
 } cli_job;
 
 enum {
@@ -184,6 +186,8 @@ bool cli_parse_order(cli_job *job, const char *value);
 bool cli_parse_rotations(cli_job *job, const char *value);
 bool cli_parse_roll(cli_job *job, const char *value);
 bool cli_parse_sheet_count(cli_job *job, const char *value);
+bool cli_parse_nest_time(cli_job *job, const char *value);
+bool cli_parse_seed(cli_job *job, const char *value);
 
 /* A warning naming the pieces that found no room on the --sheets allowed (outputs.c). */
 void cli_not_placed_warning(const cli_job *job, const ur_layout *layout, const ur_piece *pieces);

@@ -37,6 +37,8 @@ enum nest_option {
     NEST_NO_HOLES,
     NEST_ROLL,
     NEST_SHEETS,
+    NEST_NEST_TIME,
+    NEST_SEED,
 };
 
 static const struct option nest_options[] = {
@@ -59,6 +61,8 @@ static const struct option nest_options[] = {
     {"no-holes", no_argument, NULL, NEST_NO_HOLES},
     {"roll", required_argument, NULL, NEST_ROLL},
     {"sheets", required_argument, NULL, NEST_SHEETS},
+    {"nest-time", required_argument, NULL, NEST_NEST_TIME},
+    {"seed", required_argument, NULL, NEST_SEED},
     {"help", no_argument, NULL, 'h'},
     {NULL, 0, NULL, 0},
 };
@@ -165,6 +169,10 @@ static bool take_nest_option(nest_job *n, int id, const char *value)
         return cli_parse_roll(job, value);
     case NEST_SHEETS:
         return cli_parse_sheet_count(job, value);
+    case NEST_NEST_TIME:
+        return cli_parse_nest_time(job, value);
+    case NEST_SEED:
+        return cli_parse_seed(job, value);
     default:
         return false;
     }
@@ -182,7 +190,9 @@ static const char nest_help[] =
     "  --rotations N (turns of 360/N degrees from the part as drawn; default 4)\n"
     "  --no-holes (no part inside another's hole)\n"
     "  --roll W   nest on roll stock W mm wide, as short as it goes\n"
-    "  --sheets N at most N sheets; what does not fit is named, not placed\n";
+    "  --sheets N at most N sheets; what does not fit is named, not placed\n"
+    "  --nest-time S  search for a better layout for up to S seconds (default 2)\n"
+    "  --seed N       the search's orders (the same seed, the same layout)\n";
 
 /* Parses argv (argv[0] is "nest"); 0, -1 after help, or an exit status. */
 static int parse_nest(int argc, char **argv, nest_job *n)
@@ -195,6 +205,7 @@ static int parse_nest(int argc, char **argv, nest_job *n)
     job->machine_name = "co2-60w";
     job->material_name = "plywood-3mm";
     job->margin = job->spacing = -1;
+    job->nest_time = 2.0;
     opterr = 0;
     optind = 1;
     int id;

@@ -68,6 +68,8 @@ enum option_id {
     OPT_NO_HOLES,
     OPT_ROLL,
     OPT_SHEETS,
+    OPT_NEST_TIME,
+    OPT_SEED,
 };
 
 static const struct option long_options[] = {
@@ -123,6 +125,8 @@ static const struct option long_options[] = {
     {"no-holes", no_argument, NULL, OPT_NO_HOLES},
     {"roll", required_argument, NULL, OPT_ROLL},
     {"sheets", required_argument, NULL, OPT_SHEETS},
+    {"nest-time", required_argument, NULL, OPT_NEST_TIME},
+    {"seed", required_argument, NULL, OPT_SEED},
     {"help", no_argument, NULL, 'h'},
     {NULL, 0, NULL, 0},
 };
@@ -151,7 +155,7 @@ static const struct {
     {CLI_DEVELOP,
      " output machine material sheet method parts rulings no-split report strain-png "
      "allowances bridges no-kerf-compensation format dxf-version dpi order rotations no-holes "
-     "roll sheets "},
+     "roll sheets nest-time seed "},
     {CLI_ANALYZE, " png report "},
     {CLI_COMPARE, " png csv "},
 };
@@ -497,6 +501,10 @@ static bool take_option(cli_job *job, int id, const char *value)
         return cli_parse_roll(job, value);
     case OPT_SHEETS:
         return cli_parse_sheet_count(job, value);
+    case OPT_NEST_TIME:
+        return cli_parse_nest_time(job, value);
+    case OPT_SEED:
+        return cli_parse_seed(job, value);
     case 'n':
         return parse_count(surface, value, &job->develop.rulings);
     case OPT_METHOD: {
@@ -529,6 +537,7 @@ static void job_defaults(cli_job *job, cli_action action, const char *command, c
     job->bridges = CLI_BRIDGES_UNSET;
     job->margin = job->spacing = -1;
     job->level = true;
+    job->nest_time = NAN;
     job->machine_name = "co2-60w";
     job->material_name = "plywood-3mm";
     ur_develop_options_default(&job->develop);

@@ -99,6 +99,32 @@ bool cli_parse_sheet_count(cli_job *job, const char *value)
     return true;
 }
 
+bool cli_parse_nest_time(cli_job *job, const char *value)
+{
+    char *end = NULL;
+    double seconds = strtod(value, &end);
+    if (end == value || *end != '\0' || !isfinite(seconds) || seconds < 0 || seconds > 3600) {
+        cli_message("%s: --nest-time: '%s' is not a number of seconds from 0 to 3600", job->command,
+                    value);
+        return false;
+    }
+    job->nest_time = seconds;
+    return true;
+}
+
+bool cli_parse_seed(cli_job *job, const char *value)
+{
+    char *end = NULL;
+    errno = 0;
+    unsigned long long seed = strtoull(value, &end, 10);
+    if (end == value || *end != '\0' || errno != 0 || value[0] == '-') {
+        cli_message("%s: --seed: '%s' is not a whole number of 0 or more", job->command, value);
+        return false;
+    }
+    job->seed = seed;
+    return true;
+}
+
 void cli_not_placed_warning(const cli_job *job, const ur_layout *layout, const ur_piece *pieces)
 {
     if (layout->not_placed_count == 0)

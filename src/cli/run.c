@@ -11,6 +11,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 #include <sys/stat.h>
 
 #include "unroll/allow.h"
@@ -232,6 +233,15 @@ static ur_status place(const cli_job *job, job_state *state, ur_error *error)
                             state->piece_count, &state->layout, error);
 }
 
+/* On a terminal: the search's best so far, on one line rewritten in place. */
+static void show_nest_progress(void *context, size_t sheets, double length, size_t tries)
+{
+    const cli_job *job = context;
+    fprintf(stderr, "\r%s: nesting: %zu sheet%s, %.1f mm of the last used (try %zu)   ",
+            job->command, sheets, sheets == 1 ? "" : "s", length, tries);
+    fflush(stderr);
+}
+
 ur_status cli_place_pieces(const cli_job *job, const ur_machine *machine,
                            const ur_material *material, const ur_piece *pieces, size_t count,
                            ur_layout *layout, ur_error *error)
@@ -251,19 +261,25 @@ ur_status cli_place_pieces(const cli_job *job, const ur_machine *machine,
         .level = job->level,
         .holes = !job->no_holes,
         .max_sheets = job->max_sheets > 0 ? (size_t)job->max_sheets : 0,
+        .time_budget = isnan(job->nest_time) ? 1.0 : job->nest_time,
+        .seed = job->seed,
+        .progress = job->quiet || !isatty(STDERR_FILENO) ? NULL : show_nest_progress,
+        .progress_context = (void *)job,
     };
+    ur_status status = UR_OK;
     if (job->roll_width > 0) { /* one strip of roll, as short as it goes */
         options.roll_width = job->roll_width;
-        return ur_layout_nest(pieces, count, &options, layout, error);
+        status = ur_layout_nest(pieces, count, &options, layout, error);
     }
-    ur_status status = UR_OK;
-    for (size_t k = 0; k < choice_count; k++) {
+    for (size_t k = 0; job->roll_width <= 0 && k < choice_count; k++) {
         options.sheet_width = choices[k].width;
         options.sheet_height = choices[k].height;
         status = ur_layout_nest(pieces, count, &options, layout, error);
         if (status != UR_ERROR_INPUT)
             break;
     }
+    if (options.progress)
+        fputc('\n', stderr);
     return status;
 }
 

@@ -18,8 +18,10 @@
 #include "nest_internal.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 /* Shrinks no-fit polygons so that exact fits stay places, not points (mm). */
 #define EXACT_FIT 1e-6
@@ -424,6 +426,126 @@ static ur_status check_nest_options(const ur_nest_options *o, ur_error *error)
     return UR_OK;
 }
 
+/* ---- The search over orders ------------------------------------------------- */
+
+/* Forgets a run's placements; the no-fit polygons stay, they hold for any run. */
+static void reset_run(nester *n)
+{
+    size_t slots = (n->count + 1) * (n->class_count + 1) * n->turn_count;
+    for (size_t k = 0; k < slots; k++) {
+        if (n->taken[k])
+            GEOSGeom_destroy_r(n->geos, n->taken[k]);
+        n->taken[k] = NULL;
+        n->taken_count[k] = 0;
+    }
+    memset(n->sheet_area, 0, (n->count + 1) * sizeof *n->sheet_area);
+    n->placed_count = 0;
+    n->sheet_count = 0;
+}
+
+static ur_status run_order(nester *n, const size_t *order)
+{
+    reset_run(n);
+    ur_status status = UR_OK;
+    for (size_t k = 0; status == UR_OK && k < n->count; k++)
+        status = place_piece(n, order[k]);
+    return status;
+}
+
+typedef struct score {
+    size_t placed, sheets;
+    double length; /* of the last sheet used, up to its rightmost part */
+} score;
+
+static score score_of(const nester *n)
+{
+    score s = {n->placed_count, n->sheet_count, 0.0};
+    for (size_t k = 0; k < n->placed_count; k++)
+        if (n->sheet_of[k] + 1 == n->sheet_count) {
+            const placed *p = &n->placements[k];
+            s.length = fmax(s.length, p->at.x + shape_of(n, p->piece, p->turn)->box.max.x);
+        }
+    return s;
+}
+
+static bool better(score a, score b)
+{
+    if (a.placed != b.placed)
+        return a.placed > b.placed;
+    if (a.sheets != b.sheets)
+        return a.sheets < b.sheets;
+    return a.length < b.length - 1e-9;
+}
+
+static uint64_t next_random(uint64_t *state)
+{
+    *state ^= *state >> 12;
+    *state ^= *state << 25;
+    *state ^= *state >> 27;
+    return *state * 2685821657736338717ULL;
+}
+
+/* Two parts swapped, or one moved elsewhere in the order. */
+static void mutate(size_t *order, size_t count, uint64_t *state)
+{
+    size_t i = next_random(state) % count, j = next_random(state) % count;
+    if (next_random(state) & 1) {
+        size_t swap = order[i];
+        order[i] = order[j];
+        order[j] = swap;
+        return;
+    }
+    size_t moved = order[i];
+    if (i < j)
+        memmove(order + i, order + i + 1, (j - i) * sizeof *order);
+    else
+        memmove(order + j + 1, order + j, (i - j) * sizeof *order);
+    order[j] = moved;
+}
+
+static double seconds_now(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+/* Improves on order (run and placed already) within the options' budget; leaves the best placed. */
+static ur_status search(nester *n, size_t *order)
+{
+    const ur_nest_options *o = n->options;
+    if (!(o->time_budget > 0) || n->count < 2)
+        return UR_OK;
+    size_t *candidate = malloc(n->count * sizeof *candidate);
+    if (!candidate)
+        return ur_error_out_of_memory(n->error);
+    uint64_t state = o->seed * 0x9E3779B97F4A7C15ULL + 0x2545F4914F6CDD1DULL;
+    score best = score_of(n);
+    double start = seconds_now();
+    ur_status status = UR_OK;
+    size_t since_better = 0;
+    for (size_t tries = 1; status == UR_OK && tries <= NEST_TRIES && since_better < NEST_PATIENCE &&
+                           seconds_now() - start < o->time_budget;
+         tries++) {
+        memcpy(candidate, order, n->count * sizeof *order);
+        mutate(candidate, n->count, &state);
+        status = run_order(n, candidate);
+        score s = score_of(n);
+        if (status == UR_OK && better(s, best)) {
+            best = s;
+            memcpy(order, candidate, n->count * sizeof *order);
+            since_better = 0;
+            if (o->progress)
+                o->progress(o->progress_context, s.sheets, s.length, tries);
+        } else
+            since_better++;
+    }
+    if (status == UR_OK)
+        status = run_order(n, order); /* the best, placed again */
+    free(candidate);
+    return status;
+}
+
 ur_status ur_layout_nest(const ur_piece *pieces, size_t count, const ur_nest_options *options,
                          ur_layout *layout, ur_error *error)
 {
@@ -463,8 +585,16 @@ ur_status ur_layout_nest(const ur_piece *pieces, size_t count, const ur_nest_opt
         keys[p] = (order_key){shape_of(&n, p, 0)->area, p};
     if (status == UR_OK)
         qsort(keys, count, sizeof *keys, compare_keys);
+    size_t *order = calloc(count + 1, sizeof *order);
+    if (status == UR_OK && !order)
+        status = ur_error_out_of_memory(error);
     for (size_t k = 0; status == UR_OK && k < count; k++)
-        status = place_piece(&n, keys[k].index);
+        order[k] = keys[k].index;
+    if (status == UR_OK)
+        status = run_order(&n, order);
+    if (status == UR_OK)
+        status = search(&n, order);
+    free(order);
     if (status == UR_OK && options->roll_width > 0 && n.placed_count < count)
         status = ur_error_set(error, UR_ERROR_INPUT,
                               "a part does not fit across the %g mm roll in any allowed turn",

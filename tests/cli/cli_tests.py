@@ -1197,6 +1197,30 @@ def roll_stock_is_used_as_short_as_it_goes(work):
 
 
 @test
+def nest_search_is_repeatable(work):
+    """The search after the first layout: the same seed gives the same file,
+    and it never ends worse than no search (--nest-time 0)."""
+    write(work, "mm.svg", PLATE_SVG_MM)
+    write(work, "l.svg", """<svg xmlns="http://www.w3.org/2000/svg" width="90mm" height="90mm" viewBox="0 0 90 90">
+<path id="ell" d="M0,0 H90 V25 H25 V90 H0 Z"/></svg>
+""")
+    write(work, "tri.svg", """<svg xmlns="http://www.w3.org/2000/svg" width="80mm" height="60mm" viewBox="0 0 80 60">
+<polygon id="tri" points="0,0 80,0 0,60"/></svg>
+""")
+    parts = ["mm.svg:9", "l.svg:7", "tri.svg:11"]
+    sheets = {}
+    for name, extra in (("a", ["--seed", "5"]), ("b", ["--seed", "5"]), ("none", ["--nest-time", "0"])):
+        run(work, "nest", *parts, *extra, "-o", name + ".svg", "--report", name + ".json", "--quiet")
+        found = report(work, name + ".json")
+        sheets[name] = (len(found["sheets"]), found["sheets"][-1]["utilisation"])
+    with open(os.path.join(work, "a.svg")) as a, open(os.path.join(work, "b.svg")) as b:
+        check(a.read() == b.read(), "the same seed gave different layouts")
+    check(sheets["a"][0] <= sheets["none"][0], "the search used more sheets: %r" % sheets)
+    bad(work, r"--nest-time: 'soon' is not a number of seconds", "nest", "mm.svg", "--nest-time",
+        "soon", "-o", "x.svg")
+
+
+@test
 def nest_copies_and_bad_input(work):
     write(work, "mm.svg", PLATE_SVG_MM)
     run(work, "nest", "mm.svg:5", "-o", "five.svg", "--report", "five.json", "--quiet")

@@ -124,7 +124,7 @@ static void test_rectangles_tile_one_sheet(void **state)
     ur_piece pieces[4];
     for (int k = 0; k < 4; k++)
         pieces[k] = rectangle("tile", 300, 200);
-    ur_nest_options o = {600, 400, 0, 0, 4, false, true, 0, 0};
+    ur_nest_options o = {600, 400, 0, 0, 4, false, true, 0, 0, 0, 0, NULL, NULL};
     ur_layout layout;
     ur_error error;
     assert_int_equal(ur_layout_nest(pieces, 4, &o, &layout, &error), UR_OK);
@@ -144,7 +144,7 @@ static void test_part_goes_in_a_hole(void **state)
     assert_int_equal(ur_piece_add_path(&pieces[0], UR_OP_CUT, inner, 4, true, NULL), UR_OK);
     pieces[0].measures.flat_area = 10000 - 3600;
     pieces[1] = rectangle("plug", 50, 50);
-    ur_nest_options o = {110, 110, 2, 2, 4, false, true, 0, 0};
+    ur_nest_options o = {110, 110, 2, 2, 4, false, true, 0, 0, 0, 0, NULL, NULL};
     ur_layout layout;
     ur_error error;
     assert_int_equal(ur_layout_nest(pieces, 2, &o, &layout, &error), UR_OK);
@@ -169,7 +169,7 @@ static void test_l_shapes_interlock(void **state)
     (void)state;
     ur_vec2 ring[6] = {{0, 0}, {60, 0}, {60, 10}, {10, 10}, {10, 60}, {0, 60}};
     ur_piece pieces[2] = {polygon_piece("L1", ring, 6), polygon_piece("L2", ring, 6)};
-    ur_nest_options o = {74, 74, 1, 1, 4, false, true, 0, 0};
+    ur_nest_options o = {74, 74, 1, 1, 4, false, true, 0, 0, 0, 0, NULL, NULL};
     ur_layout layout;
     ur_error error;
     assert_int_equal(ur_layout_nest(pieces, 2, &o, &layout, &error), UR_OK);
@@ -190,7 +190,7 @@ static void test_mixed_parts_keep_apart(void **state)
         else
             pieces[k] = rectangle("R", 30 + 7 * (k % 5), 15 + 11 * (k % 4));
     }
-    ur_nest_options o = {300, 200, 5, 3, 4, true, true, 0, 0};
+    ur_nest_options o = {300, 200, 5, 3, 4, true, true, 0, 0, 0, 0, NULL, NULL};
     ur_layout layout;
     ur_error error;
     assert_int_equal(ur_layout_nest(pieces, COUNT, &o, &layout, &error), UR_OK);
@@ -211,7 +211,7 @@ static void test_refusals(void **state)
 {
     (void)state;
     ur_piece big = rectangle("big", 700, 100);
-    ur_nest_options o = {600, 400, 10, 2, 4, true, true, 0, 0};
+    ur_nest_options o = {600, 400, 10, 2, 4, true, true, 0, 0, 0, 0, NULL, NULL};
     ur_layout layout;
     ur_error error;
     assert_int_equal(ur_layout_nest(&big, 1, &o, &layout, &error), UR_ERROR_INPUT);
