@@ -1094,6 +1094,37 @@ def every_format_from_one_job(work):
     bad(work, r"--dxf-version: '14' is not 12 or 2000", *cylinder, "--dxf-version", "14", "-o", "x.dxf")
 
 
+@test
+def dxf_geometry_matches_the_svg(work):
+    """The same job as SVG and DXF (both versions): every cut outline read back
+    with ezdxf is the SVG's, turned y up (SVG's y runs down), within 1e-6 mm."""
+    for version in ("12", "2000"):
+        run(work, "helicoid", "--radius", "30", "--pitch", "60", "--turns", "2.5", "--width", "40",
+            "--offset", "5", "--material", "cardboard-2mm", "--format", "svg,dxf",
+            "--dxf-version", version, "-o", "h%s.svg" % version, "--quiet")
+        svg_rings = sorted(([(x, 400 - y) for x, y in points]
+                            for points, closed in paths(os.path.join(work, "h%s.svg" % version), "cut")
+                            if closed), key=len)
+        dump = subprocess.run(
+            ["/usr/bin/python3", "-c",
+             "import ezdxf,sys,json\n"
+             "doc=ezdxf.readfile(sys.argv[1])\n"
+             "out=[]\n"
+             "for e in doc.modelspace():\n"
+             "    if e.dxf.layer!='Cut': continue\n"
+             "    if e.dxftype()=='LWPOLYLINE': out.append([list(p[:2]) for p in e.get_points()])\n"
+             "    elif e.dxftype()=='POLYLINE': out.append([list(v.dxf.location)[:2] for v in e.vertices])\n"
+             "print(json.dumps(out))",
+             os.path.join(work, "h%s.dxf" % version)], capture_output=True, text=True)
+        check(dump.returncode == 0, "ezdxf: " + dump.stderr)
+        dxf_rings = sorted(json.loads(dump.stdout), key=len)
+        check(len(dxf_rings) == len(svg_rings), "R%s: %d DXF outlines, %d SVG" % (version, len(dxf_rings), len(svg_rings)))
+        for a, b in zip(svg_rings, dxf_rings):
+            check(len(a) == len(b), "R%s: %d points against %d" % (version, len(a), len(b)))
+            worst = max(math.dist(p, q) for p, q in zip(a, b))
+            check(worst <= 1e-6, "R%s: points differ by %g mm" % (version, worst))
+
+
 # ---- unroll nest -----------------------------------------------------------
 
 PLATE_SVG_MM = """<svg xmlns="http://www.w3.org/2000/svg" width="100mm" height="50mm" viewBox="0 0 100 50">
