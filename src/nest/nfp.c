@@ -95,11 +95,83 @@ static double area_of(GEOSContextHandle_t geos, const GEOSGeometry *g)
     return g && GEOSArea_r(geos, g, &area) ? area : 0.0;
 }
 
+/* Whether two boxes (x0, y0, x1, y1) touch or overlap, with a little slack. */
+static bool boxes_touch(const double *a, const double *b)
+{
+    const double slack = 1e-9;
+    return a[0] <= b[2] + slack && b[0] <= a[2] + slack && a[1] <= b[3] + slack &&
+           b[1] <= a[3] + slack;
+}
+
+static void box_of(GEOSContextHandle_t geos, const GEOSGeometry *g, double *box)
+{
+    GEOSGeom_getXMin_r(geos, g, &box[0]);
+    GEOSGeom_getYMin_r(geos, g, &box[1]);
+    GEOSGeom_getXMax_r(geos, g, &box[2]);
+    GEOSGeom_getYMax_r(geos, g, &box[3]);
+}
+
 /*
- * Merges the triangles into convex parts: each triangle joins the part
- * before it when their union is convex (its hull is no larger than the
- * two), else starts a part of its own.
+ * The convex hull of a and b when it adds no area to them: then they share
+ * an edge and their union is convex.  NULL otherwise.
  */
+static GEOSGeometry *convex_merge(GEOSContextHandle_t geos, const GEOSGeometry *a,
+                                  const GEOSGeometry *b)
+{
+    GEOSGeometry *pair[2] = {GEOSGeom_clone_r(geos, a), GEOSGeom_clone_r(geos, b)};
+    GEOSGeometry *both =
+        pair[0] && pair[1] ? GEOSGeom_createCollection_r(geos, GEOS_MULTIPOLYGON, pair, 2) : NULL;
+    if (!both) {
+        for (int k = 0; k < 2; k++)
+            if (pair[k])
+                GEOSGeom_destroy_r(geos, pair[k]);
+        return NULL;
+    }
+    GEOSGeometry *hull = GEOSConvexHull_r(geos, both);
+    GEOSGeom_destroy_r(geos, both);
+    double sum = area_of(geos, a) + area_of(geos, b);
+    if (hull && area_of(geos, hull) <= sum * (1 + 1e-9) + 1e-12)
+        return hull;
+    if (hull)
+        GEOSGeom_destroy_r(geos, hull);
+    return NULL;
+}
+
+/*
+ * Merges convex parts two at a time while any two that touch make a convex
+ * whole (Hertel and Mehlhorn's idea, greedily): a curved band of triangles
+ * becomes about one quadrilateral per stretch of its arcs.  Each pair is
+ * tried once per pass; passes repeat until none merges.
+ */
+static void merge_parts(GEOSContextHandle_t geos, nest_shape *shape)
+{
+    bool merged = true;
+    while (merged) {
+        merged = false;
+        for (size_t i = 0; i < shape->convex_count; i++) {
+            double box_i[4];
+            box_of(geos, shape->convex[i], box_i);
+            for (size_t j = i + 1; j < shape->convex_count; j++) {
+                double box_j[4];
+                box_of(geos, shape->convex[j], box_j);
+                if (!boxes_touch(box_i, box_j))
+                    continue;
+                GEOSGeometry *hull = convex_merge(geos, shape->convex[i], shape->convex[j]);
+                if (!hull)
+                    continue;
+                GEOSGeom_destroy_r(geos, shape->convex[i]);
+                GEOSGeom_destroy_r(geos, shape->convex[j]);
+                shape->convex[i] = hull;
+                shape->convex[j] = shape->convex[--shape->convex_count];
+                box_of(geos, hull, box_i);
+                merged = true;
+                j = i; /* the grown part may now merge with one already passed */
+            }
+        }
+    }
+}
+
+/* The polygon's triangles (GEOS's constrained Delaunay triangulation), merged into convex parts. */
 static ur_status convex_parts(GEOSContextHandle_t geos, const GEOSGeometry *polygon,
                               nest_shape *shape, ur_error *error)
 {
@@ -114,29 +186,11 @@ static ur_status convex_parts(GEOSContextHandle_t geos, const GEOSGeometry *poly
     }
     for (int k = 0; k < count; k++) {
         GEOSGeometry *triangle = GEOSGeom_clone_r(geos, GEOSGetGeometryN_r(geos, triangles, k));
-        if (!triangle)
-            continue;
-        GEOSGeometry **last = shape->convex_count ? &shape->convex[shape->convex_count - 1] : NULL;
-        if (last) {
-            GEOSGeometry *both = GEOSUnion_r(geos, *last, triangle);
-            GEOSGeometry *hull = both ? GEOSConvexHull_r(geos, both) : NULL;
-            double sum = area_of(geos, *last) + area_of(geos, triangle);
-            bool convex = both && hull && GEOSGeomTypeId_r(geos, both) == GEOS_POLYGON &&
-                          area_of(geos, hull) <= sum * (1 + 1e-9) + 1e-12;
-            if (both)
-                GEOSGeom_destroy_r(geos, both);
-            if (convex) {
-                GEOSGeom_destroy_r(geos, *last);
-                GEOSGeom_destroy_r(geos, triangle);
-                *last = hull;
-                continue;
-            }
-            if (hull)
-                GEOSGeom_destroy_r(geos, hull);
-        }
-        shape->convex[shape->convex_count++] = triangle;
+        if (triangle)
+            shape->convex[shape->convex_count++] = triangle;
     }
     GEOSGeom_destroy_r(geos, triangles);
+    merge_parts(geos, shape);
     return UR_OK;
 }
 
