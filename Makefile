@@ -99,6 +99,7 @@ install: $(PROGRAM)
 	install -m 755 $(PROGRAM) $(DESTDIR)$(BINDIR)/unroll
 	install -m 644 man/unroll.1 $(DESTDIR)$(MANDIR)/man1/unroll.1
 	install -m 644 man/unroll-profile.5 $(DESTDIR)$(MANDIR)/man5/unroll-profile.5
+	install -m 644 man/unroll-job.5 $(DESTDIR)$(MANDIR)/man5/unroll-job.5
 	for dir in machines materials schema; do \
 		install -d $(DESTDIR)$(PROFILEDIR)/$$dir && \
 		install -m 644 profiles/$$dir/* $(DESTDIR)$(PROFILEDIR)/$$dir/ || exit 1; \

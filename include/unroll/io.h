@@ -254,6 +254,55 @@ size_t ur_mesh_import_memory_estimate(const char *path);
 ur_status ur_mesh_import(const char *path, const ur_mesh_import_options *options, ur_mesh *mesh,
                          char (**group_names)[64], ur_error *error);
 
+/* ---- Job files ---------------------------------------------------------- */
+
+/*
+ * One option of a job, named as on the command line without its dashes:
+ * a value, a path (already made relative to the working directory: the job
+ * file's directory joined in front) or neither (a flag).
+ */
+typedef struct ur_job_option {
+    char name[64];
+    char value[2048];
+    bool has_value;
+    int line; /* in the job file, for messages */
+} ur_job_option;
+
+typedef struct ur_job_part {
+    char surface[16]; /* cylinder, cone, ..., mesh */
+    char name[64];    /* "" when not given */
+    long quantity;    /* 1 when not given */
+    char file[2048];  /* a mesh part's file, relative to the working directory; "" otherwise */
+    ur_job_option *options; /* owned */
+    size_t option_count;
+    int line;
+} ur_job_part;
+
+typedef struct ur_job {
+    char name[64];
+    char source[1024];              /* the job file */
+    char machine[64], material[64]; /* "" when not given */
+    ur_job_option *options;         /* owned: for every part, the sheets and the files */
+    size_t option_count;
+    ur_job_part *parts; /* owned */
+    size_t part_count;
+    char output_directory[2048]; /* relative to the working directory; "." when not given */
+    char output_name[64];
+    char formats[64]; /* "" when not given: SVG */
+    char report[64];  /* a file name in the output directory; "" for none */
+} ur_job;
+
+/*
+ * Reads and validates a job file (profiles' schema/job.rng; unroll-job(5)).
+ * Paths in it (path options, a mesh part's file, the output directory) are
+ * relative to the job file and come back joined to its directory.  Refuses
+ * with UR_ERROR_INPUT, "FILE:LINE: message": a file that is not well formed
+ * or not valid (the schema's message), two parts of one name, a path too
+ * long.  Free with ur_job_free.
+ */
+ur_status ur_job_read(const char *path, ur_job *job, ur_error *error);
+void ur_job_free(ur_job *job);
+
 /* ---- Parts from SVG and DXF -------------------------------------------- */
 
 typedef struct ur_parts_import_options {

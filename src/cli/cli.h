@@ -110,6 +110,12 @@ double cli_smallest_bend_radius(const ur_material *material);
 bool cli_parse_allowances(cli_job *job, const char *value);
 bool cli_parse_bridges(cli_job *job, const char *value);
 
+/*
+ * Messages from now on say where the words came from, as "FILE:LINE"
+ * ("unroll: FILE:LINE: message"); NULL or "" for the command line.
+ */
+void cli_message_context(const char *context);
+
 /* Prints "unroll: message" on stderr. */
 void cli_message(const char *format, ...)
 #if defined(__GNUC__)
@@ -203,6 +209,25 @@ bool cli_check_output(const cli_job *job);
 ur_status cli_write_outputs(const cli_job *job, const ur_machine *machine, const ur_layout *layout,
                             const ur_piece *pieces, size_t count, ur_report_context *context,
                             ur_error *error);
+
+/* The pieces of one surface job, ready to place (run.c, cli_job_pieces). */
+typedef struct cli_pieces {
+    ur_machine machine;
+    ur_material material;
+    ur_piece *pieces; /* owned: free each with ur_piece_free, then the array */
+    size_t count;
+    double surface_area;
+} cli_pieces;
+
+/*
+ * Develops or flattens the job's surface into pieces with their
+ * allowances (but for bridges, which come after placing), without placing
+ * or writing them; 0 or an exit status after a message.
+ */
+int cli_job_pieces(const cli_job *job, cli_pieces *out);
+
+/* unroll job FILE.xml [-o DIR] (job.c) */
+int cli_job_command(int argc, char **argv);
 
 /* unroll nest FILE... -o OUT (nest.c) */
 int cli_nest(int argc, char **argv);

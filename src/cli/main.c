@@ -30,6 +30,7 @@ static const char usage[] =
     "  compare SURFACE ... [--csv FILE.csv] [--png FILE.png]\n"
     "other:\n"
     "  nest FILE[:N]... -o OUT.svg  nest the closed paths of SVG and DXF files on sheets\n"
+    "  job FILE.xml [-o DIR]  a whole build from a job file (unroll-job(5))\n"
     "  profiles [show NAME]   list machine and material profiles, or print one\n"
     "  help [SUBCOMMAND]      this text, or a subcommand's options\n"
     "\n"
@@ -129,6 +130,10 @@ static const struct {
              "  --flatten unfold       along the edges, papercraft style: every face exact,\n"
              "                         folds scored mountain and valley\n"
              "  --iterations N         most ARAP iterations; --strain-png FILE.png the strain\n"},
+    {"job", "unroll job FILE.xml [-o DIR] [--quiet]\n"
+            "  Runs a job file: machine, material, options, parts (any surface, with a\n"
+            "  quantity) nested together, and the outputs; -o DIR overrides its directory.\n"
+            "  See unroll-job(5).\n"},
     {"nest", "unroll nest FILE[:N]... -o OUT.svg [OPTIONS]\n"
              "  Nests the closed paths of SVG and DXF files made elsewhere (nested paths are\n"
              "  holes) on sheet stock; see 'unroll nest --help'.\n"},
@@ -220,6 +225,8 @@ int main(int argc, char **argv)
         return cli_profiles(argc - 1, argv + 1);
     if (strcmp(command, "nest") == 0)
         return cli_nest(argc - 1, argv + 1);
+    if (strcmp(command, "job") == 0)
+        return cli_job_command(argc - 1, argv + 1);
     if (cli_is_surface(command))
         return surface_command(argc - 1, argv + 1);
     if (strcmp(command, "analyze") == 0)

@@ -538,3 +538,48 @@ int cli_run_job(const cli_job *job)
     state_free(&state);
     return code;
 }
+
+int cli_job_pieces(const cli_job *job, cli_pieces *out)
+{
+    memset(out, 0, sizeof *out);
+    job_state state;
+    memset(&state, 0, sizeof state);
+    ur_error error;
+    ur_status status = ur_machine_load(job->machine_name, &state.machine, &error);
+    if (status == UR_OK)
+        status = ur_material_load(job->material_name, &state.material, &error);
+    if (status != UR_OK) {
+        cli_message("%s: %s", job->command, error.message);
+        return cli_exit_status(&error);
+    }
+    cli_adjusted_rail adjusted = {NULL, 0, 0.0};
+    ur_vec3 *edge = NULL;
+    size_t edge_count = 0;
+    int code = make_nets(job, &state, &adjusted, &edge, &edge_count);
+    free(edge);
+    free(adjusted.points);
+    if (!code)
+        code = find_seams(job, &state);
+    if (!code) {
+        status = make_pieces(job, &state, &error);
+        if (status == UR_OK)
+            status = cli_allowances_before_placing(job, &state.machine, &state.material,
+                                                   &state.nets, state.net_surfaces, state.pieces,
+                                                   state.piece_count, &error);
+        if (status != UR_OK) {
+            cli_message("%s: %s", job->command, error.message);
+            code = cli_exit_status(&error);
+        }
+    }
+    if (!code) { /* the pieces leave the state for the caller */
+        out->machine = state.machine;
+        out->material = state.material;
+        out->pieces = state.pieces;
+        out->count = state.piece_count;
+        out->surface_area = state.surface_area;
+        state.pieces = NULL;
+        state.piece_count = 0;
+    }
+    state_free(&state);
+    return code;
+}

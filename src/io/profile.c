@@ -10,6 +10,8 @@
  */
 #include "unroll/io.h"
 
+#include "io_internal.h"
+
 #include <ctype.h>
 #include <dirent.h>
 #include <errno.h>
@@ -151,10 +153,10 @@ ur_status ur_profile_find(ur_profile_kind kind, const char *name, char *path, si
 }
 
 /* ROOT/schema/KIND.rng from the first root that has it. */
-static ur_status find_schema(ur_profile_kind kind, char *path, size_t size, ur_error *error)
+static ur_status find_schema(const char *word, char *path, size_t size, ur_error *error)
 {
     char file[32];
-    snprintf(file, sizeof file, "%s.rng", kind_word(kind));
+    snprintf(file, sizeof file, "%s.rng", word);
     ur_roots roots;
     profile_roots(&roots);
     for (int i = 0; i < roots.count; i++) {
@@ -322,8 +324,13 @@ static ur_status validate_document(xmlDocPtr doc, const char *schema_path, const
 static ur_status load_document(ur_profile_kind kind, const char *path, xmlDocPtr *doc,
                                ur_error *error)
 {
+    return io_xml_load(kind_word(kind), path, doc, error);
+}
+
+ur_status io_xml_load(const char *schema, const char *path, xmlDocPtr *doc, ur_error *error)
+{
     char schema_path[UR_PATH_MAX];
-    ur_status status = find_schema(kind, schema_path, sizeof schema_path, error);
+    ur_status status = find_schema(schema, schema_path, sizeof schema_path, error);
     if (status != UR_OK)
         return status;
     status = parse_document(path, doc, error);

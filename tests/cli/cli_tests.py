@@ -1282,6 +1282,72 @@ def nest_copies_and_bad_input(work):
     bad(work, r"--copies: '0' is not a count", "nest", "mm.svg", "--copies", "0", "-o", "x.svg")
 
 
+# ---- job files -------------------------------------------------------------
+
+JOB_HEAD = """<?xml version="1.0" encoding="UTF-8"?>
+<job name="test">
+  <material>cardboard-2mm</material>
+"""
+
+
+@test
+def sample_jobs_run(work):
+    run(work, "job", os.path.join(REPO, "samples", "jobs", "lamp.xml"), "-o", "lamp", "--quiet")
+    found = report(work, os.path.join("lamp", "lamp.json"))
+    check(len(found["pieces"]) == 8, "%d pieces for 8 lamp portions" % len(found["pieces"]))
+    check(sorted(found["outputs"]) == ["lamp/lamp.pdf", "lamp/lamp.png", "lamp/lamp.svg"],
+          "outputs %r" % found["outputs"])
+    check(len({p["name"] for p in found["pieces"]}) == 8, "copies share a name")
+    run(work, "job", os.path.join(REPO, "samples", "jobs", "hypar-plywood.xml"), "-o", "ply", "--quiet")
+    found = report(work, os.path.join("ply", "plywood.json"))
+    kinds = {a["kind"] for p in found["pieces"] for a in p["allowances"]}
+    check({"kerfing", "overlap", "bending", "bridges"} <= kinds, "allowances %r" % kinds)
+
+
+@test
+def a_job_writes_what_its_command_line_writes(work):
+    """One part of quantity 1: the job's SVG is byte for byte the command line's."""
+    write(work, "one.xml", JOB_HEAD + """  <option name="rulings"/>
+  <part surface="helicoid">
+    <option name="radius" value="30"/>
+    <option name="pitch" value="60"/>
+    <option name="turns" value="1.5"/>
+    <option name="width" value="25"/>
+  </part>
+  <output name="net"/>
+</job>
+""")
+    run(work, "job", "one.xml", "-o", "jobout", "--quiet")
+    run(work, "helicoid", "--radius", "30", "--pitch", "60", "--turns", "1.5", "--width", "25",
+        "--material", "cardboard-2mm", "--rulings", "-o", "net.svg", "--quiet")
+    with open(os.path.join(work, "jobout", "net.svg")) as a, open(os.path.join(work, "net.svg")) as b:
+        check(a.read() == b.read(), "the job and the command line wrote different SVG")
+
+
+@test
+def bad_jobs(work):
+    part = """  <part surface="cylinder"><option name="radius" value="40"/>
+    <option name="height" value="50"/></part>
+"""
+    cases = [
+        ("unknown.xml", JOB_HEAD + "  <colour>red</colour>\n" + part + "  <output name=\"x\"/>\n</job>\n",
+         r"unknown\.xml:4: .*colour"),
+        ("noparts.xml", JOB_HEAD + "  <output name=\"x\"/>\n</job>\n", r"noparts\.xml:\d+: "),
+        ("twice.xml", JOB_HEAD + part.replace('surface="cylinder"', 'surface="cylinder" name="a"') * 2
+         + "  <output name=\"x\"/>\n</job>\n", r"twice\.xml:6: a second part named 'a'"),
+        ("quantity.xml", JOB_HEAD + part.replace('surface="cylinder"', 'surface="cylinder" quantity="0"')
+         + "  <output name=\"x\"/>\n</job>\n", r"quantity\.xml:4: "),
+        ("badoption.xml", JOB_HEAD + part.replace('value="40"', 'value="forty"')
+         + "  <output name=\"x\"/>\n</job>\n", r"badoption\.xml:4: cylinder: --radius"),
+        ("nomesh.xml", JOB_HEAD + '  <part surface="mesh" file="missing.obj"/>\n'
+         + "  <output name=\"x\"/>\n</job>\n", r"missing\.obj"),
+    ]
+    for name, text, pattern in cases:
+        write(work, name, text)
+        bad(work, pattern, "job", name, "-o", "out")
+    bad(work, r"cannot open", "job", "none.xml")
+
+
 def main():
     passed = failed = 0
     for function in TESTS:
