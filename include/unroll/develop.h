@@ -123,6 +123,12 @@ typedef struct ur_develop_options {
     size_t rulings;   /* n: parts for the discrete methods, rulings drawn for all */
     double tolerance; /* largest distance of an outline chord from the true curve, mm */
     bool split;       /* split a net that overlaps itself (otherwise refuse it) */
+    /*
+     * The room a piece must fit in some turn, mm (0: no limit): a net too
+     * long for the sheet is split at rulings into the fewest pieces that
+     * fit (a long strip on sheet stock), as one that overlaps itself is.
+     */
+    double fit_length, fit_width;
 } ur_develop_options;
 
 void ur_develop_options_default(ur_develop_options *options);

@@ -176,8 +176,8 @@ static int place_and_write(const ur_job *file, cli_job *job, cli_pieces *all, bo
 {
     ur_layout layout = {NULL, 0, NULL, 0};
     ur_error error;
-    ur_status status = cli_place_pieces(job, &all->machine, &all->material, all->pieces,
-                                        all->count, &layout, &error);
+    ur_status status = cli_place_pieces(job, &all->machine, &all->material, all->pieces, all->count,
+                                        &layout, &error);
     if (status == UR_OK)
         status = cli_allowances_after_placing(job, &all->machine, &layout, all->pieces, all->count,
                                               &error);
@@ -185,8 +185,8 @@ static int place_and_write(const ur_job *file, cli_job *job, cli_pieces *all, bo
         job->quiet = quiet;
         cli_allowance_warnings(job, all->pieces, all->count);
         cli_not_placed_warning(job, &layout, all->pieces);
-        ur_report_context context = {.surface = file->part_count == 1 ? file->parts[0].surface
-                                                                      : "job",
+        ur_report_context context = {.surface =
+                                         file->part_count == 1 ? file->parts[0].surface : "job",
                                      .method = file->name,
                                      .machine = &all->machine,
                                      .material = &all->material,
@@ -256,8 +256,8 @@ int cli_job_command(int argc, char **argv)
     cli_job job;
     cli_pieces all;
     memset(&all, 0, sizeof all);
-    code = first ? all_pieces(&file, out, first, &job, command, sizeof command, &all)
-                 : EXIT_INTERNAL;
+    code =
+        first ? all_pieces(&file, out, first, &job, command, sizeof command, &all) : EXIT_INTERNAL;
     /* The output directory is made when missing (its parent must exist), only now. */
     bool made_directory = false;
     if (!code) {

@@ -179,6 +179,35 @@ static ur_status neutral_layer(job_state *state, ur_ruled *moved, ur_ruled **use
     return status;
 }
 
+/*
+ * The room a piece may take on the largest sheet the job may use: inside
+ * the margin, less the kerf and a joint at each end (the joints go on the
+ * seams a split makes), so that a strip too long for it is cut at rulings
+ * into pieces that fit.  None on roll stock.
+ */
+static void fit_room(const cli_job *job, const job_state *state, ur_develop_options *options)
+{
+    if (job->roll_width > 0)
+        return;
+    ur_sheet_size choices[UR_MAX_STOCK_SIZES + 1];
+    size_t count = sheet_choices(job, &state->machine, &state->material, choices);
+    double length = 0, width = 0;
+    for (size_t k = 0; k < count; k++) {
+        double a = fmax(choices[k].width, choices[k].height);
+        double b = fmin(choices[k].width, choices[k].height);
+        if (a * b > length * width)
+            length = a, width = b;
+    }
+    const ur_material *m = &state->material;
+    double margin = job->margin >= 0 ? job->margin : state->machine.margin;
+    double kerf = ur_effective_kerf(&state->machine, m);
+    double joint = (m->joint == UR_JOINT_LAP ? m->lap_width : m->tab_depth) + m->thickness;
+    options->fit_length = length - 2 * margin - 2 * joint - kerf;
+    options->fit_width = width - 2 * margin - kerf;
+    if (!(options->fit_length > 0) || !(options->fit_width > 0))
+        options->fit_length = options->fit_width = 0;
+}
+
 /* Each part of the domain of existence (the whole surface but for strips) on its own. */
 static ur_status develop_parts(const cli_job *job, job_state *state, ur_error *error)
 {
@@ -190,6 +219,8 @@ static ur_status develop_parts(const cli_job *job, job_state *state, ur_error *e
     const ur_interval *gaps;
     bool whole = ur_ruled_gaps(&state->ruled, &gaps) == 0;
     ur_status status = UR_OK;
+    ur_develop_options develop = job->develop;
+    fit_room(job, state, &develop);
     state->surface_area = 0.0;
     state->moved = ur_alloc_array(count, sizeof *state->moved, error);
     if (!state->moved)
@@ -208,7 +239,7 @@ static ur_status develop_parts(const cli_job *job, job_state *state, ur_error *e
             status = ur_ruled_area(surface, ur_ruled_start(surface), ur_ruled_end(surface), &area,
                                    error);
         if (status == UR_OK)
-            status = ur_develop(surface, &job->develop, &nets, error);
+            status = ur_develop(surface, &develop, &nets, error);
         if (status == UR_OK)
             status = append_nets(&state->nets, &nets, error);
         if (status == UR_OK)

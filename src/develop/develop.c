@@ -39,6 +39,7 @@ void ur_develop_options_default(ur_develop_options *options)
     options->rulings = 24;
     options->tolerance = 0.01;
     options->split = true;
+    options->fit_length = options->fit_width = 0;
 }
 
 ur_status strip_alloc(strip *s, size_t count, ur_error *error)
@@ -278,24 +279,65 @@ bool ur_outline_is_simple(const ur_vec2 *ring, size_t count)
     return simple;
 }
 
+/* The room a piece must fit (fit_length >= fit_width), or 0, 0 for any size. */
+typedef struct room {
+    double length, width;
+} room;
+
+/* Whether the ring's smallest enclosing rectangle fits the room in some turn. */
+static bool ring_fits(GEOSContextHandle_t geos, const ur_vec2 *ring, size_t n, const room *r)
+{
+    if (!(r->length > 0))
+        return true;
+    ur_box box = ur_box_of_points(ring, n);
+    double w = ur_box_width(box), h = ur_box_height(box);
+    if (fmax(w, h) <= r->length && fmin(w, h) <= r->width)
+        return true; /* as it lies: no need to look further */
+    GEOSCoordSequence *sequence = GEOSCoordSeq_create_r(geos, (unsigned)n, 2);
+    if (!sequence)
+        return false;
+    for (size_t i = 0; i < n; i++)
+        GEOSCoordSeq_setXY_r(geos, sequence, (unsigned)i, ring[i].x, ring[i].y);
+    GEOSGeometry *points = GEOSGeom_createLineString_r(geos, sequence);
+    GEOSGeometry *rectangle = points ? GEOSMinimumRotatedRectangle_r(geos, points) : NULL;
+    const GEOSGeometry *shell = rectangle ? GEOSGetExteriorRing_r(geos, rectangle) : NULL;
+    const GEOSCoordSequence *corners = shell ? GEOSGeom_getCoordSeq_r(geos, shell) : NULL;
+    bool fits = false;
+    unsigned size = 0;
+    if (corners && GEOSCoordSeq_getSize_r(geos, corners, &size) && size >= 3) {
+        double x[3], y[3];
+        for (unsigned k = 0; k < 3; k++)
+            GEOSCoordSeq_getXY_r(geos, corners, k, &x[k], &y[k]);
+        double a = hypot(x[1] - x[0], y[1] - y[0]), b = hypot(x[2] - x[1], y[2] - y[1]);
+        fits = fmax(a, b) <= r->length && fmin(a, b) <= r->width;
+    }
+    if (rectangle)
+        GEOSGeom_destroy_r(geos, rectangle);
+    if (points)
+        GEOSGeom_destroy_r(geos, points);
+    return fits;
+}
+
+/* Whether first..last makes a piece: not overlapping itself, and fitting the room. */
 static bool piece_is_simple(GEOSContextHandle_t geos, const strip *s, size_t first, size_t last,
-                            ur_vec2 *ring)
+                            ur_vec2 *ring, const room *r)
 {
     size_t stride = (last - first) / (CHECK_POINTS / 2) + 1;
     size_t n = drop_repeated(ring, piece_ring(s, first, last, stride, ring));
-    return n >= 3 && ring_is_simple(geos, ring, n);
+    return n >= 3 && ring_is_simple(geos, ring, n) && ring_fits(geos, ring, n, r);
 }
 
 /* The furthest last such that first..last does not overlap itself. */
-static size_t furthest_simple(GEOSContextHandle_t geos, const strip *s, size_t first, ur_vec2 *ring)
+static size_t furthest_simple(GEOSContextHandle_t geos, const strip *s, size_t first, ur_vec2 *ring,
+                              const room *r)
 {
     size_t good = first + 1, bad = s->count;
-    if (piece_is_simple(geos, s, first, s->count - 1, ring))
+    if (piece_is_simple(geos, s, first, s->count - 1, ring, r))
         return s->count - 1;
     bad = s->count - 1;
     while (bad - good > 1) {
         size_t middle = good + (bad - good) / 2;
-        if (piece_is_simple(geos, s, first, middle, ring))
+        if (piece_is_simple(geos, s, first, middle, ring, r))
             good = middle;
         else
             bad = middle;
@@ -308,7 +350,8 @@ static size_t furthest_simple(GEOSContextHandle_t geos, const strip *s, size_t f
  * not overlap itself does not either); then, with that many pieces, equal
  * parameter lengths are tried, since equal pieces are easier to build from.
  */
-static ur_status split_points(const strip *s, size_t **cuts, size_t *piece_count, ur_error *error)
+static ur_status split_points(const strip *s, const room *r, size_t **cuts, size_t *piece_count,
+                              ur_error *error)
 {
     GEOSContextHandle_t geos = GEOS_init_r();
     ur_vec2 *ring = ur_alloc_array(CHECK_POINTS + 8, sizeof *ring, error);
@@ -322,8 +365,21 @@ static ur_status split_points(const strip *s, size_t **cuts, size_t *piece_count
     }
     size_t count = 0;
     greedy[0] = 0;
-    for (size_t first = 0; first < s->count - 1;)
-        greedy[++count] = first = furthest_simple(geos, s, first, ring);
+    for (size_t first = 0; first < s->count - 1;) {
+        greedy[++count] = first = furthest_simple(geos, s, first, ring, r);
+        /*
+         * A piece between two neighbouring samples that does not fit is too
+         * wide for the room whatever the cuts: split for overlaps only, and
+         * let placing say that it does not fit.
+         */
+        if (r->length > 0 && first == greedy[count - 1] + 1 &&
+            !piece_is_simple(geos, s, greedy[count - 1], first, ring, r)) {
+            static const room any = {0, 0};
+            r = &any;
+            count = 0;
+            first = 0;
+        }
+    }
     bool even_ok = count > 1;
     size_t *even = ur_alloc_array(count + 1, sizeof *even, error);
     for (size_t k = 0; even && even_ok && k <= count; k++) {
@@ -335,7 +391,7 @@ static ur_status split_points(const strip *s, size_t **cuts, size_t *piece_count
             index++;
         even[k] = index;
         if (k > 0 &&
-            (even[k] <= even[k - 1] || !piece_is_simple(geos, s, even[k - 1], index, ring)))
+            (even[k] <= even[k - 1] || !piece_is_simple(geos, s, even[k - 1], index, ring, r)))
             even_ok = false;
     }
     free(ring);
@@ -538,10 +594,14 @@ ur_status ur_develop(ur_ruled *ruled, const ur_develop_options *options, ur_net_
     if (status != UR_OK)
         return status;
     size_t *cuts = NULL, piece_count = 0;
-    status = split_points(&s, &cuts, &piece_count, error);
+    room fit = {fmax(options->fit_length, options->fit_width),
+                fmin(options->fit_length, options->fit_width)};
+    status = split_points(&s, &fit, &cuts, &piece_count, error);
     if (status == UR_OK && piece_count > 1 && !options->split)
         status = ur_error_set(error, UR_ERROR_INPUT,
-                              "the net overlaps itself and would need %zu pieces", piece_count);
+                              "the net overlaps itself or is too long for the sheet, and would "
+                              "need %zu pieces",
+                              piece_count);
     if (status == UR_OK)
         status = nets_from_strip(ruled, &s, cuts, piece_count, nets, error);
     free(cuts);

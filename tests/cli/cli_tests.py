@@ -393,7 +393,7 @@ def bad_inputs(work):
     bad(work, r"unknown material 'balsa'", *HELICOID, "--material", "balsa", "-o", "x.svg")
     bad(work, r"no-such-dir", *HELICOID, "-o", "no-such-dir/x.svg")
     bad(work, r"-o FILE", *HELICOID)
-    bad(work, r"does not fit.*--sheet", "cylinder", "--radius", "100", "--height", "300", "-o", "x.svg")
+    bad(work, r"does not fit.*--sheet", "cylinder", "--radius", "100", "--height", "700", "-o", "x.svg")
     bad(work, r"--sheet: '12'", *HELICOID, "--sheet", "12", "-o", "x.svg")
     bad(work, r"--method: 'smash'", *HELICOID, "--method", "smash", "-o", "x.svg")
     bad(work, r"triangle", "cylinder", "--radius", "3", "--height", "4", "--method", "triangle", "-o", "x.svg")
@@ -408,7 +408,7 @@ def bad_inputs(work):
 @test
 def failure_leaves_existing_file_untouched(work):
     write(work, "keep.svg", "precious")
-    run(work, "cylinder", "--radius", "100", "--height", "300", "-o", "keep.svg", status=2)
+    run(work, "cylinder", "--radius", "100", "--height", "700", "-o", "keep.svg", status=2)
     with open(os.path.join(work, "keep.svg")) as f:
         check(f.read() == "precious", "keep.svg was changed")
     check(sorted(os.listdir(work)) == ["keep.svg"], "left behind: %r" % os.listdir(work))
@@ -996,6 +996,30 @@ def plywood_cylinder_gets_bending_grooves(work):
     [piece] = report(work, "w.json")["pieces"]
     check(allowance_records(piece, "bending") == [], "grooves on a radius of 1000")
     check(paths(os.path.join(work, "w.svg"), "kerf") == [], "kerf lines on a radius of 1000")
+
+
+@test
+def a_strip_too_long_for_the_sheet_is_split(work):
+    """A cylinder of radius 100 and height 300 in 3 mm plywood is 628 mm
+    round: too long for the 600 x 400 laser sheet, it is cut at rulings into
+    the fewest pieces that fit, each seam with its lap and matching labels;
+    --no-split refuses instead."""
+    cylinder = ["cylinder", "--radius", "100", "--height", "300", "--allowances", "tabs"]
+    run(work, *cylinder, "-o", "c.svg", "--report", "c.json", "--quiet")
+    found = report(work, "c.json")
+    pieces = found["pieces"]
+    check(len(pieces) == 2 and len(found["sheets"]) >= 1, "%d pieces" % len(pieces))
+    close(sum(p["area_3d_mm2"] for p in pieces), 2 * math.pi * 100 * 300, 1e-6, "area of the pieces")
+    for piece in pieces:
+        box = piece["bounding_box"]
+        check(max(box["width_mm"], box["height_mm"]) < 600, "piece %s is %r" % (piece["name"], box))
+        joints = [a for a in piece["allowances"] if a["kind"] == "joint"]
+        labels = sorted(a["reason"].split("'")[1] for a in piece["allowances"]
+                        if a["kind"] == "label" and not a["warning"] and "'A" in a["reason"])
+        check(labels == ["A1", "A2"], "%s labels %r" % (piece["name"], labels))
+        check(len(joints) == 1, "%s joints %r" % (piece["name"], joints))
+    bad(work, r"too long for the sheet, and would need 2 pieces", *cylinder, "--no-split",
+        "-o", "x.svg")
 
 
 @test
