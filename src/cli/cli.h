@@ -76,14 +76,16 @@ typedef struct cli_job {
     unsigned formats;
     int dxf_version;
     double dpi;
-    bool drawing_order;      /* --order none */
-    long rotations;          /* --rotations N; 0: 4, or 2 under a grain rule */
-    bool no_holes;           /* --no-holes: no part inside another's hole */
-    bool level;              /* turns start from the level one (surfaces), not as drawn (nest) */
-    double roll_width;       /* --roll W: nest on roll stock this wide; 0 for sheets */
-    long max_sheets;         /* --sheets N: at most N sheets; 0 for as many as needed */
-    double nest_time;        /* --nest-time S: the search's budget; NAN for the default */
-    unsigned long long seed; /* --seed N */
+    bool drawing_order;       /* --order none */
+    long rotations;           /* --rotations N; 0: 4, or 2 under a grain rule */
+    bool no_holes;            /* --no-holes: no part inside another's hole */
+    bool level;               /* turns start from the level one (surfaces), not as drawn (nest) */
+    double roll_width;        /* --roll W: nest on roll stock this wide; 0 for sheets */
+    long max_sheets;          /* --sheets N: at most N sheets; 0 for as many as needed */
+    double nest_time;         /* --nest-time S: the search's budget; NAN for the default */
+    int seam_offset;          /* seams are numbered from this on (a job file's later parts) */
+    const char *piece_prefix; /* pieces are named PREFIX-P1, ... (a job file's part); NULL */
+    unsigned long long seed;  /* --seed N */
 } cli_job;
 
 enum {
@@ -217,6 +219,7 @@ typedef struct cli_pieces {
     ur_piece *pieces; /* owned: free each with ur_piece_free, then the array */
     size_t count;
     double surface_area;
+    int last_seam; /* the highest seam number of the pieces, 0 without seams */
 } cli_pieces;
 
 /*

@@ -70,7 +70,7 @@ static bool part_words(const ur_job *job, const ur_job_part *part, const char *o
     return ok && add_word(w, "-o") && add_word(w, out);
 }
 
-/* Appends quantity copies of the part's pieces, named PART-NAME (#k for copies). */
+/* Appends quantity copies of the part's pieces, numbered #k when there are several. */
 static ur_status add_copies(const ur_job_part *part, const cli_pieces *made, ur_piece **all,
                             size_t *count, ur_error *error)
 {
@@ -86,16 +86,10 @@ static ur_status add_copies(const ur_job_part *part, const cli_pieces *made, ur_
             if (status != UR_OK)
                 return status;
             (*count)++;
+            if (part->quantity == 1)
+                continue; /* the names the part's pieces were made with */
             char name[160];
-            if (part->name[0] && part->quantity > 1)
-                snprintf(name, sizeof name, "%s-%s#%ld", part->name, made->pieces[k].name,
-                         copy + 1);
-            else if (part->name[0])
-                snprintf(name, sizeof name, "%s-%s", part->name, made->pieces[k].name);
-            else if (part->quantity > 1)
-                snprintf(name, sizeof name, "%s#%ld", made->pieces[k].name, copy + 1);
-            else
-                continue; /* one part, one copy: the names the command line gives */
+            snprintf(name, sizeof name, "%s#%ld", made->pieces[k].name, copy + 1);
             snprintf(piece->name, sizeof piece->name, "%.31s", name);
         }
     return UR_OK;
@@ -114,7 +108,7 @@ static void free_made(cli_pieces *made)
  * be kept as long as job is used) and makes its pieces.
  */
 static int make_part(const ur_job *file, size_t index, const char *out, words *w, char *command,
-                     size_t command_size, cli_job *job, cli_pieces *made)
+                     size_t command_size, int seam_offset, cli_job *job, cli_pieces *made)
 {
     const ur_job_part *part = &file->parts[index];
     if (!part_words(file, part, out, w)) {
@@ -129,6 +123,8 @@ static int make_part(const ur_job *file, size_t index, const char *out, words *w
         code = EXIT_USAGE; /* --help in a job file */
     if (!code) {
         job->quiet = true;
+        job->seam_offset = seam_offset; /* labels stay unique across the parts */
+        job->piece_prefix = part->name[0] ? part->name : NULL;
         code = cli_job_pieces(job, made);
     }
     cli_message_context(NULL);
@@ -144,7 +140,7 @@ static int all_pieces(const ur_job *file, const char *out, words *first_words, c
         cli_message("job: out of memory");
         return EXIT_INTERNAL;
     }
-    int code = 0;
+    int code = 0, seams = 0;
     ur_error error;
     for (size_t p = 0; !code && p < file->part_count; p++) {
         char part_command[1200];
@@ -153,9 +149,11 @@ static int all_pieces(const ur_job *file, const char *out, words *first_words, c
         words *use = p == 0 ? first_words : w;
         memset(use, 0, sizeof *use);
         code = make_part(file, p, out, use, p == 0 ? command : part_command,
-                         p == 0 ? command_size : sizeof part_command, &job, &made);
+                         p == 0 ? command_size : sizeof part_command, seams, &job, &made);
         if (code)
             break;
+        if (made.last_seam > seams)
+            seams = made.last_seam;
         if (p == 0) {
             *layout_job = job;
             all->machine = made.machine;

@@ -135,6 +135,11 @@ static ur_status make_pieces(const cli_job *job, job_state *state, ur_error *err
         if (status != UR_OK)
             return status;
         state->piece_count++;
+        if (job->piece_prefix) { /* a job file's part: its name goes first, engraved too */
+            char name[96];
+            snprintf(name, sizeof name, "%s-%s", job->piece_prefix, state->nets.nets[k].name);
+            snprintf(state->pieces[k].name, sizeof state->pieces[k].name, "%.31s", name);
+        }
     }
     return UR_OK;
 }
@@ -503,8 +508,14 @@ static int find_seams(const cli_job *job, job_state *state)
 {
     ur_error error;
     int next_seam;
-    if (ur_net_list_find_seams(&state->nets, ur_net_list_last_seam(&state->nets) + 1, &next_seam,
-                               &error) != UR_OK) {
+    /* A job file's later parts number their seams on from the earlier ones'. */
+    for (size_t k = 0; job->seam_offset && k < state->nets.count; k++)
+        for (size_t j = 0; j < state->nets.nets[k].seam_side_count; j++)
+            state->nets.nets[k].seam_sides[j].seam += job->seam_offset;
+    int first = ur_net_list_last_seam(&state->nets) + 1;
+    if (first <= job->seam_offset)
+        first = job->seam_offset + 1;
+    if (ur_net_list_find_seams(&state->nets, first, &next_seam, &error) != UR_OK) {
         cli_message("%s: %s", job->command, error.message);
         return cli_exit_status(&error);
     }
@@ -608,6 +619,7 @@ int cli_job_pieces(const cli_job *job, cli_pieces *out)
         out->pieces = state.pieces;
         out->count = state.piece_count;
         out->surface_area = state.surface_area;
+        out->last_seam = ur_net_list_last_seam(&state.nets);
         state.pieces = NULL;
         state.piece_count = 0;
     }

@@ -1349,6 +1349,29 @@ def a_job_writes_what_its_command_line_writes(work):
 
 
 @test
+def job_parts_keep_their_labels_apart(work):
+    """Two parts of three pieces each: the second part's seams number on from
+    the first's (A3, A4), and every piece carries its part's name."""
+    helicoid = """    <option name="radius" value="30"/><option name="pitch" value="60"/>
+    <option name="turns" value="2.5"/><option name="width" value="40"/><option name="offset" value="5"/>
+"""
+    write(work, "two.xml", JOB_HEAD + '  <part surface="helicoid" name="a">\n' + helicoid
+          + '  </part>\n  <part surface="helicoid" name="b">\n' + helicoid
+          + '  </part>\n  <output name="two" report="two.json"/>\n</job>\n')
+    run(work, "job", "two.xml", "-o", "out", "--quiet")
+    pieces = report(work, os.path.join("out", "two.json"))["pieces"]
+    seams = {}
+    for piece in pieces:
+        for a in piece["allowances"]:
+            if a["kind"] == "label" and not a["warning"] and "'A" in a["reason"]:
+                seams.setdefault(a["reason"].split("'")[1], []).append(piece["name"])
+    check(sorted(seams) == ["A1", "A2", "A3", "A4"], "seams %r" % seams)
+    for label, names in seams.items():
+        check(len(names) == 2 and len({n.split("-")[0] for n in names}) == 1,
+              "%s is on %r" % (label, names))
+
+
+@test
 def bad_jobs(work):
     part = """  <part surface="cylinder"><option name="radius" value="40"/>
     <option name="height" value="50"/></part>
