@@ -7,6 +7,8 @@
  */
 #include "unroll/io.h"
 
+#include "io_internal.h"
+
 #include <ctype.h>
 #include <errno.h>
 #include <math.h>
@@ -62,21 +64,10 @@ static ur_status point_list_push(ur_point_list *list, ur_vec3 point, size_t line
     return UR_OK;
 }
 
-/* Trims white space (including the '\r' of CRLF files) in place. */
-static char *trim(char *text)
-{
-    while (isspace((unsigned char)*text))
-        text++;
-    size_t length = strlen(text);
-    while (length > 0 && isspace((unsigned char)text[length - 1]))
-        text[--length] = '\0';
-    return text;
-}
-
 static ur_status parse_coordinate(const char *path, size_t line, char *field, double *value,
                                   ur_error *error)
 {
-    field = trim(field);
+    field = io_trim(field);
     if (*field == '\0')
         return ur_error_set(error, UR_ERROR_INPUT, "%s:%zu: empty field", path, line);
     char *end = NULL;
@@ -134,7 +125,7 @@ static ur_status read_line(const char *path, size_t line, char *text, ur_point_l
     char *comment = strchr(text, '#');
     if (comment)
         *comment = '\0';
-    text = trim(text);
+    text = io_trim(text);
     if (*text == '\0')
         return UR_OK;
     ur_vec3 point = {0, 0, 0};

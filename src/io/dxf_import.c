@@ -10,6 +10,7 @@
  * piece by piece, so they are chained end to end (ends within the tolerance
  * meet) and only what then stays open is refused, naming the entity.
  */
+#include "io_internal.h"
 #include "parts_internal.h"
 
 #include <ctype.h>
@@ -104,16 +105,6 @@ static ur_status read_text(const char *path, char **text, size_t *size, ur_error
     return status;
 }
 
-static char *trim(char *text)
-{
-    while (isspace((unsigned char)*text))
-        text++;
-    size_t length = strlen(text);
-    while (length > 0 && isspace((unsigned char)text[length - 1]))
-        text[--length] = '\0';
-    return text;
-}
-
 /* Cuts the text into lines in place; *lines points into it. */
 static ur_status split_lines(dxf_reader *reader, size_t size, char ***lines, size_t *count,
                              ur_error *error)
@@ -130,7 +121,7 @@ static ur_status split_lines(dxf_reader *reader, size_t size, char ***lines, siz
         if (*p == '\n' || *p == '\0') {
             bool end = *p == '\0';
             *p = '\0';
-            (*lines)[(*count)++] = trim(start);
+            (*lines)[(*count)++] = io_trim(start);
             if (end)
                 break;
             start = p + 1;

@@ -17,4 +17,10 @@
  */
 ur_status io_xml_load(const char *schema, const char *path, xmlDocPtr *doc, ur_error *error);
 
+/* Trims white space (the '\r' of CRLF files too) at both ends, in place. */
+char *io_trim(char *text);
+
+/* "plate" from "dir/plate.svg": the file name without directory and extension. */
+void io_file_stem(const char *path, char *stem, size_t size);
+
 #endif

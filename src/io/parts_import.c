@@ -7,6 +7,7 @@
  * self-crossing rings (repaired by GEOS where it gives one polygon), and the
  * sorting of rings into parts and holes by containment.
  */
+#include "io_internal.h"
 #include "parts_internal.h"
 
 #include <errno.h>
@@ -467,16 +468,6 @@ static ur_status nest_rings(parts_job *job, ur_error *error)
 
 /* ---- Pieces ---------------------------------------------------------------- */
 
-/* "plate" from "dir/plate.svg". */
-static void base_name(const char *path, char *base, size_t size)
-{
-    const char *slash = strrchr(path, '/');
-    const char *name = slash ? slash + 1 : path;
-    const char *dot = strrchr(name, '.');
-    size_t length = dot && dot != name ? (size_t)(dot - name) : strlen(name);
-    snprintf(base, size, "%.*s", (int)length, name);
-}
-
 /* The id, "ID-2" for an element's second ring, or "plate-3": cut to fit name. */
 static void piece_name(const parts_collection *collection, const parts_ring *ring, size_t number,
                        char *name, size_t size)
@@ -488,7 +479,7 @@ static void piece_name(const parts_collection *collection, const parts_ring *rin
         snprintf(full, sizeof full, "%s", ring->id);
     else {
         char base[32];
-        base_name(collection->path, base, 20);
+        io_file_stem(collection->path, base, 20);
         snprintf(full, sizeof full, "%s-%zu", base, number);
     }
     snprintf(name, size, "%.*s", (int)(size - 1), full);
