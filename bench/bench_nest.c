@@ -85,7 +85,14 @@ int main(void)
         l_shape(&pieces[n++], 60 + 10 * (k % 3), 15);
     for (int k = 0; k < 10; k++)
         ring_piece(&pieces[n++], 25, 40);
-    ur_nest_options options = {600, 400, 5, 3, 4, false, true, 0, 0, 0, 0, NULL, NULL};
+    ur_nest_options options;
+    memset(&options, 0, sizeof options);
+    options.sheet_width = 600;
+    options.sheet_height = 400;
+    options.margin = 5;
+    options.spacing = 3;
+    options.rotations = 4;
+    options.holes = true;
     double area = 0;
     for (size_t k = 0; k < n; k++)
         area += pieces[k].measures.flat_area;

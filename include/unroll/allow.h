@@ -90,6 +90,14 @@ typedef struct ur_piece {
     ur_allowance_record *records; /* owned; what was added and why */
     size_t record_count;
     bool bridged; /* bridges opened the outline: paths[0] is no longer a closed ring */
+    /*
+     * The direction of the piece's rulings (its bending axes), radians in
+     * piece coordinates, taken modulo a half turn, when has_rulings (not a
+     * mesh's piece or a part from a file).  Nesting turns it to the
+     * material's grain.
+     */
+    bool has_rulings;
+    double ruling_angle;
 } ur_piece;
 
 typedef struct ur_allowance_options {

@@ -74,6 +74,14 @@ typedef struct ur_nest_options {
      */
     double roll_width;
     /*
+     * A grain rule: parts with rulings (ur_piece.has_rulings) turn only so
+     * that their rulings make grain_angle (radians) with the sheet's x axis,
+     * the grain, end for end, or grain_tolerance either side (2 turns, or 6
+     * with a tolerance; parts without rulings take as many equal steps).
+     */
+    bool grain;
+    double grain_angle, grain_tolerance;
+    /*
      * The search after the first, largest-first layout: orders tried (two
      * parts swapped, or one moved) until time_budget seconds have passed,
      * NEST_PATIENCE tries in a row brought nothing better, or NEST_TRIES

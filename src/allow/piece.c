@@ -9,6 +9,7 @@
  */
 #include "unroll/allow.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -47,6 +48,26 @@ static ur_status add_rulings(ur_piece *piece, const ur_net *net, ur_error *error
     return UR_OK;
 }
 
+/*
+ * The mean direction of the net's drawn rulings, weighted by length:
+ * directions are axes (a ruling and its reverse are one), so their doubled
+ * angles are averaged.  NAN without rulings.
+ */
+static double ruling_angle(const ur_net *net)
+{
+    double c = 0, s = 0;
+    for (size_t k = 0; k < net->ruling_count; k++) {
+        ur_vec2 d = ur_vec2_sub(net->rulings[k].end, net->rulings[k].start);
+        double length = ur_vec2_length(d);
+        if (!(length > 0))
+            continue;
+        double a = 2 * atan2(d.y, d.x);
+        c += length * cos(a);
+        s += length * sin(a);
+    }
+    return c == 0 && s == 0 ? NAN : 0.5 * atan2(s, c);
+}
+
 /* The piece's own copy of the net's per-triangle strain, for the strain picture. */
 static ur_status copy_shading(ur_piece *piece, const ur_shading *shading, ur_error *error)
 {
@@ -83,6 +104,8 @@ ur_status ur_piece_from_net(const ur_net *net, const ur_allowance_options *optio
     piece->measures.edge_error = net->edge_error;
     piece->measures.max_stretch = net->max_stretch;
     piece->measures.max_compression = net->max_compression;
+    piece->ruling_angle = ruling_angle(net);
+    piece->has_rulings = !isnan(piece->ruling_angle);
     ur_status status =
         ur_piece_add_path(piece, UR_OP_CUT, net->outline, net->outline_count, true, error);
     if (status == UR_OK && options && options->draw_rulings)
@@ -121,6 +144,8 @@ ur_status ur_piece_copy(const ur_piece *from, ur_piece *to, ur_error *error)
     memcpy(to->name, from->name, sizeof to->name);
     to->measures = from->measures;
     to->bridged = from->bridged;
+    to->ruling_angle = from->ruling_angle;
+    to->has_rulings = from->has_rulings;
     ur_status status = UR_OK;
     for (size_t k = 0; status == UR_OK && k < from->path_count; k++)
         status = ur_piece_add_path(to, from->paths[k].op, from->paths[k].points,

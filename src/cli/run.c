@@ -285,10 +285,11 @@ ur_status cli_place_pieces(const cli_job *job, const ur_machine *machine,
     /* The first sheet every piece fits; the error of the last one tried otherwise. */
     ur_sheet_size choices[UR_MAX_STOCK_SIZES + 1];
     size_t choice_count = sheet_choices(job, machine, material, choices);
-    /* Under a grain rule a part may only turn end for end, which keeps its rulings' angle. */
-    size_t rotations = job->rotations > 0                 ? (size_t)job->rotations
-                       : material->grain != UR_GRAIN_NONE ? 2
-                                                          : 4;
+    /*
+     * The grain runs along the sheet's length (its x axis); the material's
+     * rule says whether the rulings, the bending axes, go along it or across.
+     */
+    size_t rotations = job->rotations > 0 ? (size_t)job->rotations : 4;
     ur_nest_options options = {
         .margin = job->margin >= 0 ? job->margin : machine->margin,
         .spacing = job->spacing >= 0 ? job->spacing
@@ -297,6 +298,9 @@ ur_status cli_place_pieces(const cli_job *job, const ur_machine *machine,
         .level = job->level,
         .holes = !job->no_holes,
         .max_sheets = job->max_sheets > 0 ? (size_t)job->max_sheets : 0,
+        .grain = material->grain != UR_GRAIN_NONE,
+        .grain_angle = material->grain == UR_GRAIN_ACROSS ? M_PI / 2 : 0.0,
+        .grain_tolerance = material->grain_tolerance * M_PI / 180,
         .time_budget = isnan(job->nest_time) ? 1.0 : job->nest_time,
         .seed = job->seed,
         .progress = job->quiet || !isatty(STDERR_FILENO) ? NULL : show_nest_progress,

@@ -74,6 +74,18 @@ static bool same_shape(const ur_piece *a, const ur_piece *b)
     return true;
 }
 
+/*
+ * Turn t of a part whose rulings lie at ruling_angle, under a grain rule:
+ * turns 0 and 1 lay the rulings exactly at the rule's angle (the second end
+ * for end), turns 2 to 5 at the tolerance either side.
+ */
+static double grain_turn(const ur_nest_options *o, double ruling_angle, size_t t)
+{
+    static const double off[6] = {0, 0, -1, 1, -1, 1}, end_for_end[6] = {0, 1, 0, 0, 1, 1};
+    return o->grain_angle - ruling_angle + end_for_end[t % 6] * M_PI +
+           off[t % 6] * o->grain_tolerance;
+}
+
 static ur_status make_class(nester *n, size_t piece)
 {
     nest_class *c = &n->classes[n->class_count];
@@ -82,9 +94,13 @@ static ur_status make_class(nester *n, size_t piece)
     if (!c->turns)
         return ur_error_out_of_memory(n->error);
     n->class_count++;
-    double base = n->options->level ? nest_level_angle(n->geos, &n->pieces[piece].paths[0]) : 0.0;
+    const ur_piece *p = &n->pieces[piece];
+    double base = n->options->level ? nest_level_angle(n->geos, &p->paths[0]) : 0.0;
+    bool grain = n->options->grain && p->has_rulings;
     for (size_t t = 0; t < n->turn_count; t++) {
         double angle = base + 2 * M_PI * (double)t / (double)n->turn_count;
+        if (grain) /* the rulings at the grain's angle, end for end, then either way off it */
+            angle = grain_turn(n->options, p->ruling_angle, t);
         ur_status status =
             nest_shape_make(n->geos, &n->pieces[piece], angle, n->options->spacing / 2,
                             n->options->holes, &c->turns[t], n->error);
@@ -562,7 +578,9 @@ ur_status ur_layout_nest(const ur_piece *pieces, size_t count, const ur_nest_opt
                 .pieces = pieces,
                 .count = count,
                 .options = options,
-                .turn_count = options->rotations > 1 ? options->rotations : 1,
+                .turn_count = options->grain           ? (options->grain_tolerance > 0 ? 6 : 2)
+                              : options->rotations > 1 ? options->rotations
+                                                       : 1,
                 .error = error};
     n.class_of = calloc(count + 1, sizeof *n.class_of);
     n.classes = calloc(count + 1, sizeof *n.classes);

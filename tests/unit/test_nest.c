@@ -112,6 +112,22 @@ static void check_layout(const ur_piece *pieces, size_t count, const ur_layout *
     free(seen);
 }
 
+/* Nesting on sheets of w x h: margin, spacing, turns, holes allowed, no search. */
+static ur_nest_options sheet_options(double w, double h, double margin, double spacing,
+                                     size_t rotations, bool level)
+{
+    ur_nest_options o;
+    memset(&o, 0, sizeof o);
+    o.sheet_width = w;
+    o.sheet_height = h;
+    o.margin = margin;
+    o.spacing = spacing;
+    o.rotations = rotations;
+    o.level = level;
+    o.holes = true;
+    return o;
+}
+
 static void free_pieces(ur_piece *pieces, size_t count)
 {
     for (size_t k = 0; k < count; k++)
@@ -124,7 +140,7 @@ static void test_rectangles_tile_one_sheet(void **state)
     ur_piece pieces[4];
     for (int k = 0; k < 4; k++)
         pieces[k] = rectangle("tile", 300, 200);
-    ur_nest_options o = {600, 400, 0, 0, 4, false, true, 0, 0, 0, 0, NULL, NULL};
+    ur_nest_options o = sheet_options(600, 400, 0, 0, 4, false);
     ur_layout layout;
     ur_error error;
     assert_int_equal(ur_layout_nest(pieces, 4, &o, &layout, &error), UR_OK);
@@ -144,7 +160,7 @@ static void test_part_goes_in_a_hole(void **state)
     assert_int_equal(ur_piece_add_path(&pieces[0], UR_OP_CUT, inner, 4, true, NULL), UR_OK);
     pieces[0].measures.flat_area = 10000 - 3600;
     pieces[1] = rectangle("plug", 50, 50);
-    ur_nest_options o = {110, 110, 2, 2, 4, false, true, 0, 0, 0, 0, NULL, NULL};
+    ur_nest_options o = sheet_options(110, 110, 2, 2, 4, false);
     ur_layout layout;
     ur_error error;
     assert_int_equal(ur_layout_nest(pieces, 2, &o, &layout, &error), UR_OK);
@@ -169,7 +185,7 @@ static void test_l_shapes_interlock(void **state)
     (void)state;
     ur_vec2 ring[6] = {{0, 0}, {60, 0}, {60, 10}, {10, 10}, {10, 60}, {0, 60}};
     ur_piece pieces[2] = {polygon_piece("L1", ring, 6), polygon_piece("L2", ring, 6)};
-    ur_nest_options o = {74, 74, 1, 1, 4, false, true, 0, 0, 0, 0, NULL, NULL};
+    ur_nest_options o = sheet_options(74, 74, 1, 1, 4, false);
     ur_layout layout;
     ur_error error;
     assert_int_equal(ur_layout_nest(pieces, 2, &o, &layout, &error), UR_OK);
@@ -190,7 +206,7 @@ static void test_mixed_parts_keep_apart(void **state)
         else
             pieces[k] = rectangle("R", 30 + 7 * (k % 5), 15 + 11 * (k % 4));
     }
-    ur_nest_options o = {300, 200, 5, 3, 4, true, true, 0, 0, 0, 0, NULL, NULL};
+    ur_nest_options o = sheet_options(300, 200, 5, 3, 4, true);
     ur_layout layout;
     ur_error error;
     assert_int_equal(ur_layout_nest(pieces, COUNT, &o, &layout, &error), UR_OK);
@@ -211,7 +227,7 @@ static void test_refusals(void **state)
 {
     (void)state;
     ur_piece big = rectangle("big", 700, 100);
-    ur_nest_options o = {600, 400, 10, 2, 4, true, true, 0, 0, 0, 0, NULL, NULL};
+    ur_nest_options o = sheet_options(600, 400, 10, 2, 4, true);
     ur_layout layout;
     ur_error error;
     assert_int_equal(ur_layout_nest(&big, 1, &o, &layout, &error), UR_ERROR_INPUT);
@@ -219,6 +235,41 @@ static void test_refusals(void **state)
     o.margin = 300; /* nothing left inside the margin */
     assert_int_equal(ur_layout_nest(&big, 1, &o, &layout, &error), UR_ERROR_INPUT);
     ur_piece_free(&big);
+}
+
+/*
+ * Strips whose rulings lie at 30 degrees, in a material whose rulings must
+ * run along the grain (the sheet's x axis) within 10 degrees: every placed
+ * strip's rulings are turned to within 10 degrees of x, whichever end first.
+ */
+static void test_grain_rule_holds(void **state)
+{
+    (void)state;
+    enum { COUNT = 6 };
+    ur_piece pieces[COUNT];
+    for (int k = 0; k < COUNT; k++) {
+        pieces[k] = rectangle("strip", 120, 30);
+        pieces[k].has_rulings = true;
+        pieces[k].ruling_angle = M_PI / 6;
+    }
+    ur_nest_options o = sheet_options(300, 200, 5, 2, 4, false);
+    o.grain = true;
+    o.grain_angle = 0;
+    o.grain_tolerance = 10 * M_PI / 180;
+    ur_layout layout;
+    ur_error error;
+    assert_int_equal(ur_layout_nest(pieces, COUNT, &o, &layout, &error), UR_OK);
+    check_layout(pieces, COUNT, &layout, &o);
+    for (size_t s = 0; s < layout.sheet_count; s++)
+        for (size_t p = 0; p < layout.sheets[s].placement_count; p++) {
+            ur_transform2 t = layout.sheets[s].placements[p].transform;
+            double rulings = atan2(t.sine, t.cosine) + M_PI / 6; /* on the sheet */
+            double off = remainder(rulings, M_PI);               /* from the grain, -90..90 */
+            if (fabs(off) > 10 * M_PI / 180 + 1e-9)
+                fail_msg("rulings at %g degrees to the grain", off * 180 / M_PI);
+        }
+    ur_layout_free(&layout);
+    free_pieces(pieces, COUNT);
 }
 
 int main(void)
@@ -229,6 +280,7 @@ int main(void)
         cmocka_unit_test(test_l_shapes_interlock),
         cmocka_unit_test(test_mixed_parts_keep_apart),
         cmocka_unit_test(test_refusals),
+        cmocka_unit_test(test_grain_rule_holds),
     };
     return cmocka_run_group_tests(tests, start, finish);
 }
