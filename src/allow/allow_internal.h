@@ -7,10 +7,8 @@
 
 #include <geos_c.h>
 
+#include "../geom/geos_polygon.h"
 #include "unroll/allow.h"
-
-/* A polygon from a ring (first point not repeated, at least 3 points), or NULL. */
-GEOSGeometry *allow_polygon(GEOSContextHandle_t geos, const ur_vec2 *ring, size_t count);
 
 /* An open line string through the points (at least 2), or NULL. */
 GEOSGeometry *allow_line(GEOSContextHandle_t geos, const ur_vec2 *points, size_t count);

@@ -1,51 +1,26 @@
 /*
- * geos.c: rings of points to GEOS geometries and back, for the allowance
- * files (allow_internal.h).
+ * geos.c: lines to GEOS and polygons back to rings of points, for the
+ * allowance files (allow_internal.h); rings to polygons are ur_geos_polygon.
  */
 #include "allow_internal.h"
 
 #include <math.h>
 #include <stdlib.h>
 
-static GEOSCoordSequence *sequence_of(GEOSContextHandle_t geos, const ur_vec2 *points, size_t count,
-                                      bool close)
-{
-    size_t total = count + (close ? 1 : 0);
-    GEOSCoordSequence *sequence = GEOSCoordSeq_create_r(geos, (unsigned)total, 2);
-    if (!sequence)
-        return NULL;
-    for (size_t i = 0; i < total; i++) {
-        ur_vec2 p = points[i % count];
-        if (!GEOSCoordSeq_setXY_r(geos, sequence, (unsigned)i, p.x, p.y)) {
-            GEOSCoordSeq_destroy_r(geos, sequence);
-            return NULL;
-        }
-    }
-    return sequence;
-}
-
-GEOSGeometry *allow_polygon(GEOSContextHandle_t geos, const ur_vec2 *ring, size_t count)
-{
-    if (count < 3)
-        return NULL;
-    GEOSCoordSequence *sequence = sequence_of(geos, ring, count, true);
-    if (!sequence)
-        return NULL;
-    GEOSGeometry *shell = GEOSGeom_createLinearRing_r(geos, sequence);
-    if (!shell)
-        return NULL;
-    GEOSGeometry *polygon = GEOSGeom_createPolygon_r(geos, shell, NULL, 0);
-    if (!polygon)
-        GEOSGeom_destroy_r(geos, shell);
-    return polygon;
-}
-
+/* An open line string through the points (at least 2), or NULL. */
 GEOSGeometry *allow_line(GEOSContextHandle_t geos, const ur_vec2 *points, size_t count)
 {
     if (count < 2)
         return NULL;
-    GEOSCoordSequence *sequence = sequence_of(geos, points, count, false);
-    return sequence ? GEOSGeom_createLineString_r(geos, sequence) : NULL;
+    GEOSCoordSequence *sequence = GEOSCoordSeq_create_r(geos, (unsigned)count, 2);
+    if (!sequence)
+        return NULL;
+    for (size_t i = 0; i < count; i++)
+        if (!GEOSCoordSeq_setXY_r(geos, sequence, (unsigned)i, points[i].x, points[i].y)) {
+            GEOSCoordSeq_destroy_r(geos, sequence);
+            return NULL;
+        }
+    return GEOSGeom_createLineString_r(geos, sequence);
 }
 
 ur_status allow_exterior_ring(GEOSContextHandle_t geos, const GEOSGeometry *polygon, ur_vec2 **ring,
@@ -82,7 +57,7 @@ GEOSGeometry *allow_inside(GEOSContextHandle_t geos, const ur_vec2 *ring, size_t
                            double margin, int quadrant_segments)
 {
     double tolerance = fmin(5e-3, margin / 100);
-    GEOSGeometry *polygon = allow_polygon(geos, ring, count);
+    GEOSGeometry *polygon = ur_geos_polygon(geos, ring, count);
     GEOSGeometry *simple =
         polygon ? GEOSTopologyPreserveSimplify_r(geos, polygon, tolerance) : NULL;
     GEOSGeometry *inside =

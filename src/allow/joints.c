@@ -169,7 +169,7 @@ typedef struct joiner {
 
 static GEOSGeometry *outline_of(const joiner *j, const ur_piece *piece)
 {
-    return allow_polygon(j->geos, piece->paths[0].points, piece->paths[0].count);
+    return ur_geos_polygon(j->geos, piece->paths[0].points, piece->paths[0].count);
 }
 
 /*
@@ -247,7 +247,7 @@ static GEOSGeometry *joint_polygon(const joiner *j, const run *r, double share, 
     ur_points ring = {0};
     GEOSGeometry *polygon = NULL;
     if (joint_ring(r, band, *depth, inset, &ring, error) == UR_OK)
-        polygon = allow_polygon(j->geos, ring.items, ring.count);
+        polygon = ur_geos_polygon(j->geos, ring.items, ring.count);
     ur_points_free(&ring);
     return polygon;
 }
@@ -324,7 +324,7 @@ static ur_status mark_under(const joiner *j, ur_piece *piece, const run *r, ur_e
 {
     ur_points ring = {0};
     ur_status status = joint_ring(r, 0.0, -j->options->lap_width, 0.0, &ring, error);
-    GEOSGeometry *zone = status == UR_OK ? allow_polygon(j->geos, ring.items, ring.count) : NULL;
+    GEOSGeometry *zone = status == UR_OK ? ur_geos_polygon(j->geos, ring.items, ring.count) : NULL;
     ur_points_free(&ring);
     GEOSGeometry *outline = zone ? outline_of(j, piece) : NULL;
     GEOSGeometry *valid = zone ? GEOSMakeValid_r(j->geos, zone) : NULL;

@@ -109,7 +109,7 @@ static ur_status offset_ring(GEOSContextHandle_t geos, const GEOSBufferParams *p
 {
     const ur_path *path = &piece->paths[index];
     ur_vec2 at = path_middle(path);
-    GEOSGeometry *polygon = allow_polygon(geos, path->points, path->count);
+    GEOSGeometry *polygon = ur_geos_polygon(geos, path->points, path->count);
     GEOSGeometry *buffered =
         polygon ? GEOSBufferWithParams_r(geos, polygon, params, distance) : NULL;
     ur_status status = UR_OK;

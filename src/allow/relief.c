@@ -417,7 +417,7 @@ static ur_status overlap_slit(relief_job *job, ur_vec2 start, ur_vec2 u, double 
         zone[1] = zone[3];
         zone[3] = swap;
     }
-    GEOSGeometry *polygon = allow_polygon(job->geos, zone, 4);
+    GEOSGeometry *polygon = ur_geos_polygon(job->geos, zone, 4);
     GEOSGeometry *inside = polygon ? GEOSIntersection_r(job->geos, polygon, job->outline) : NULL;
     status = inside ? add_rings(job, inside, UR_OP_MARK) : geos_failed(job, "mark a zone");
     if (inside)
@@ -711,7 +711,7 @@ static GEOSGeometry *region_geometry(relief_job *job, const ur_shading *shading,
             ring[1] = c[2];
             ring[2] = c[1];
         }
-        polygons[made] = allow_polygon(job->geos, ring, 3);
+        polygons[made] = ur_geos_polygon(job->geos, ring, 3);
         if (!polygons[made])
             break;
     }
@@ -1097,7 +1097,7 @@ static ur_status open_job(relief_job *job)
         return ur_error_out_of_memory(job->error);
     ur_box box = ur_box_of_points(net->outline, net->outline_count);
     job->size = hypot(ur_box_width(box), ur_box_height(box));
-    job->outline = allow_polygon(job->geos, net->outline, net->outline_count);
+    job->outline = ur_geos_polygon(job->geos, net->outline, net->outline_count);
     if (job->outline)
         job->inner =
             job->limits->margin > 0

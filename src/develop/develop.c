@@ -11,7 +11,7 @@
  */
 #include "develop_internal.h"
 
-#include <geos_c.h>
+#include "../geom/geos_polygon.h"
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_odeiv2.h>
 #include <stdint.h>
@@ -251,19 +251,9 @@ static size_t drop_repeated(ur_vec2 *ring, size_t n)
 
 static bool ring_is_simple(GEOSContextHandle_t geos, const ur_vec2 *ring, size_t n)
 {
-    GEOSCoordSequence *sequence = GEOSCoordSeq_create_r(geos, (unsigned)n + 1, 2);
-    if (!sequence)
+    GEOSGeometry *polygon = ur_geos_polygon(geos, ring, n);
+    if (!polygon)
         return false;
-    for (size_t i = 0; i <= n; i++)
-        GEOSCoordSeq_setXY_r(geos, sequence, (unsigned)i, ring[i % n].x, ring[i % n].y);
-    GEOSGeometry *shell = GEOSGeom_createLinearRing_r(geos, sequence);
-    if (!shell)
-        return false;
-    GEOSGeometry *polygon = GEOSGeom_createPolygon_r(geos, shell, NULL, 0);
-    if (!polygon) {
-        GEOSGeom_destroy_r(geos, shell);
-        return false;
-    }
     bool simple = GEOSisValid_r(geos, polygon) == 1;
     GEOSGeom_destroy_r(geos, polygon);
     return simple;

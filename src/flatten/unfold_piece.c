@@ -11,6 +11,7 @@
  * every inner vertex closed means that no two triangles overlap.
  */
 #include "unfold_internal.h"
+#include "../geom/geos_polygon.h"
 
 #include <stdlib.h>
 
@@ -118,32 +119,10 @@ static ur_status walk_outline(const unfolder *u, ur_unfolded_piece *piece, ur_er
     return UR_OK;
 }
 
-/* The outline as a GEOS polygon, or NULL. */
-static GEOSGeometry *outline_polygon(GEOSContextHandle_t geos, const ur_unfolded_piece *piece)
-{
-    size_t n = piece->outline_count;
-    GEOSCoordSequence *sequence = GEOSCoordSeq_create_r(geos, (unsigned)n + 1, 2);
-    if (!sequence)
-        return NULL;
-    for (size_t i = 0; i <= n; i++)
-        if (!GEOSCoordSeq_setXY_r(geos, sequence, (unsigned)i, piece->outline[i % n].x,
-                                  piece->outline[i % n].y)) {
-            GEOSCoordSeq_destroy_r(geos, sequence);
-            return NULL;
-        }
-    GEOSGeometry *shell = GEOSGeom_createLinearRing_r(geos, sequence);
-    if (!shell)
-        return NULL;
-    GEOSGeometry *polygon = GEOSGeom_createPolygon_r(geos, shell, NULL, 0);
-    if (!polygon)
-        GEOSGeom_destroy_r(geos, shell);
-    return polygon;
-}
-
 static ur_status check_simple(const unfolder *u, GEOSContextHandle_t geos,
                               const ur_unfolded_piece *piece, ur_error *error)
 {
-    GEOSGeometry *polygon = outline_polygon(geos, piece);
+    GEOSGeometry *polygon = ur_geos_polygon(geos, piece->outline, piece->outline_count);
     if (!polygon)
         return ur_error_set(error, UR_ERROR_INTERNAL,
                             "GEOS could not build the outline of "

@@ -20,7 +20,7 @@
 #include <strings.h>
 #include <sys/stat.h>
 
-#include <geos_c.h>
+#include "../geom/geos_polygon.h"
 
 #define PARTS_DEFAULT_TOLERANCE 0.01
 
@@ -232,22 +232,6 @@ typedef struct parts_job {
     parts_order *order; /* by area, largest first */
 } parts_job;
 
-static GEOSGeometry *ring_polygon(GEOSContextHandle_t geos, const ur_vec2 *points, size_t count)
-{
-    GEOSCoordSequence *sequence = GEOSCoordSeq_create_r(geos, (unsigned)(count + 1), 2);
-    if (!sequence)
-        return NULL;
-    for (size_t i = 0; i <= count; i++)
-        GEOSCoordSeq_setXY_r(geos, sequence, (unsigned)i, points[i % count].x, points[i % count].y);
-    GEOSGeometry *shell = GEOSGeom_createLinearRing_r(geos, sequence);
-    if (!shell)
-        return NULL;
-    GEOSGeometry *polygon = GEOSGeom_createPolygon_r(geos, shell, NULL, 0);
-    if (!polygon)
-        GEOSGeom_destroy_r(geos, shell);
-    return polygon;
-}
-
 static void reverse_points(ur_vec2 *points, size_t count)
 {
     for (size_t i = 0, j = count ? count - 1 : 0; i < j; i++, j--) {
@@ -332,7 +316,7 @@ static ur_status repair_ring(parts_job *job, size_t i, ur_error *error)
         return status;
     double after = fabs(ur_polygon_signed_area(ring->points, ring->count));
     GEOSGeom_destroy_r(job->geos, job->polygons[i]);
-    job->polygons[i] = ring_polygon(job->geos, ring->points, ring->count);
+    job->polygons[i] = ur_geos_polygon(job->geos, ring->points, ring->count);
     if (!job->polygons[i])
         return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not make a polygon");
     return parts_warn(collection, error,
@@ -372,7 +356,7 @@ static ur_status prepare_ring(parts_job *job, size_t i, ur_error *error)
         return no_area_error(collection, ring, error);
     double area = ur_polygon_signed_area(ring->points, ring->count);
     double least = collection->tolerance * collection->tolerance;
-    job->polygons[i] = ring_polygon(job->geos, ring->points, ring->count);
+    job->polygons[i] = ur_geos_polygon(job->geos, ring->points, ring->count);
     if (!job->polygons[i])
         return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not make a polygon");
     char valid = GEOSisValid_r(job->geos, job->polygons[i]);
