@@ -560,18 +560,10 @@ static void draw_keys(cairo_t *cr, const map *m, bool gaps, bool striction, bool
     }
 }
 
-/* The largest 1, 2 or 5 times a power of ten not above limit. */
-static double nice_below(double limit)
-{
-    double magnitude = pow(10, floor(log10(limit)));
-    double fraction = limit / magnitude;
-    return (fraction >= 5 ? 5 : fraction >= 2 ? 2 : 1) * magnitude;
-}
-
 /* About a quarter of the map's longer side, and no longer than 250 px. */
 static void draw_scale_bar(cairo_t *cr, const map *m)
 {
-    double length = nice_below(fmin(fmax(m->width, m->height) / 4, 250) / m->scale);
+    double length = ur_draw_nice_below(fmin(fmax(m->width, m->height) / 4, 250) / m->scale);
     double pixels = length * m->scale, right = MAP_RIGHT, y = m->image_height - 14;
     cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
     cairo_rectangle(cr, right - pixels, y - 6, pixels, 6);

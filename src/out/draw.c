@@ -21,6 +21,12 @@ double ur_draw_text_width(cairo_t *cr, const char *text)
     return extents.x_advance;
 }
 
+double ur_draw_text_width_at(cairo_t *cr, const char *text, double size, bool bold)
+{
+    ur_draw_set_font(cr, size, bold);
+    return ur_draw_text_width(cr, text);
+}
+
 double ur_draw_left(double x, double width, ur_align align)
 {
     return align == UR_ALIGN_LEFT ? x : align == UR_ALIGN_CENTRE ? x - width / 2 : x - width;
@@ -63,4 +69,44 @@ void ur_draw_strain_colour(cairo_t *cr, double strain, double range)
     for (int c = 0; c < 3; c++)
         rgb[c] = (stops[k][c] + f * (stops[k + 1][c] - stops[k][c])) / 255.0;
     cairo_set_source_rgb(cr, rgb[0], rgb[1], rgb[2]);
+}
+
+double ur_draw_nice_below(double limit)
+{
+    double magnitude = pow(10, floor(log10(limit)));
+    double fraction = limit / magnitude;
+    return (fraction >= 5 ? 5 : fraction >= 2 ? 2 : 1) * magnitude;
+}
+
+double ur_draw_overlap(double a0, double a1, double b0, double b1)
+{
+    return fmax(0.0, fmin(a1, b1) - fmax(a0, b0));
+}
+
+void ur_draw_legend_corner(double picture_width, double picture_height, double inset,
+                           double box_width, double box_height, ur_draw_cover *covered,
+                           const void *context, double *left, double *top)
+{
+    double right = picture_width - inset - box_width, bottom = picture_height - inset - box_height;
+    const double corners[4][2] = {{right, bottom}, {inset, bottom}, {right, inset}, {inset, inset}};
+    double least = INFINITY;
+    for (int k = 0; k < 4; k++) {
+        double area = covered(context, corners[k][0], corners[k][1], box_width, box_height);
+        if (area < least) {
+            least = area;
+            *left = corners[k][0];
+            *top = corners[k][1];
+        }
+    }
+}
+
+void ur_draw_legend_frame(cairo_t *cr, double left, double top, double width, double height,
+                          double unit)
+{
+    cairo_rectangle(cr, left, top, width, height);
+    cairo_set_source_rgba(cr, 1, 1, 1, 0.9);
+    cairo_fill_preserve(cr);
+    cairo_set_source_rgb(cr, 0.6, 0.6, 0.6);
+    cairo_set_line_width(cr, 0.8 * unit);
+    cairo_stroke(cr);
 }

@@ -1,6 +1,7 @@
 /*
- * draw.h: text and lines on a cairo context, shared by the PNG pictures of
- * src/out (analysis_png.c, plot.c) so that they set type the same way.
+ * draw.h: text, lines and legends on a cairo context, shared by the PNG
+ * pictures of src/out (analysis_png.c, plot.c, png.c, strain_png.c) so that
+ * they set type and place their legends the same way.
  * Private to src/out.
  */
 #ifndef UNROLL_OUT_DRAW_H
@@ -18,6 +19,9 @@ void ur_draw_set_font(cairo_t *cr, double size, bool bold);
 /* How far the current font advances over text, in pixels. */
 double ur_draw_text_width(cairo_t *cr, const char *text);
 
+/* How far text advances in a sans-serif of size pixels; leaves that font set. */
+double ur_draw_text_width_at(cairo_t *cr, const char *text, double size, bool bold);
+
 /* The left edge of something width wide aligned on x. */
 double ur_draw_left(double x, double width, ur_align align);
 
@@ -33,5 +37,28 @@ void ur_draw_line(cairo_t *cr, double x0, double y0, double x1, double y1);
  * white when range is 0.  Sets the source of cr.
  */
 void ur_draw_strain_colour(cairo_t *cr, double strain, double range);
+
+/* The largest 1, 2 or 5 times a power of ten not above limit: a scale bar's length. */
+double ur_draw_nice_below(double limit);
+
+/* How long the intervals a0..a1 and b0..b1 share, 0 when apart. */
+double ur_draw_overlap(double a0, double a1, double b0, double b1);
+
+/* How much a legend box at (left, top), width by height pixels, would hide. */
+typedef double ur_draw_cover(const void *context, double left, double top, double width,
+                             double height);
+
+/*
+ * The corner of a picture_width by picture_height picture, inset from its
+ * edges, where a box_width by box_height legend hides least by covered:
+ * bottom right first, then bottom left, top right, top left.
+ */
+void ur_draw_legend_corner(double picture_width, double picture_height, double inset,
+                           double box_width, double box_height, ur_draw_cover *covered,
+                           const void *context, double *left, double *top);
+
+/* A legend's box: white, nine tenths opaque, in a grey frame unit pixels a point. */
+void ur_draw_legend_frame(cairo_t *cr, double left, double top, double width, double height,
+                          double unit);
 
 #endif

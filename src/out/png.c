@@ -281,14 +281,6 @@ static void draw_labels(png_sheet *s)
     }
 }
 
-/* The largest 1, 2 or 5 times a power of ten not above limit. */
-static double nice_below(double limit)
-{
-    double magnitude = pow(10, floor(log10(limit)));
-    double fraction = limit / magnitude;
-    return (fraction >= 5 ? 5 : fraction >= 2 ? 2 : 1) * magnitude;
-}
-
 typedef struct legend {
     double left, top, width, height, unit;
     char title[128];
@@ -297,12 +289,6 @@ typedef struct legend {
     char scale_label[32];
     int rows; /* operations listed */
 } legend;
-
-static double width_of(cairo_t *cr, const char *text, double size, bool bold)
-{
-    ur_draw_set_font(cr, size, bold);
-    return ur_draw_text_width(cr, text);
-}
 
 /* The texts and the box's size in pixels at unit pixels per point. */
 static void measure_legend(png_sheet *s, double unit, legend *l)
@@ -317,50 +303,39 @@ static void measure_legend(png_sheet *s, double unit, legend *l)
                  100 * s->range);
     else
         snprintf(l->strain, sizeof l->strain, "no strain on any piece");
-    l->scale_length = nice_below(SCALE_LONGEST * unit / s->scale);
+    l->scale_length = ur_draw_nice_below(SCALE_LONGEST * unit / s->scale);
     snprintf(l->scale_label, sizeof l->scale_label, "%g mm", l->scale_length);
-    double width = fmax(width_of(cr, l->title, 12, true), width_of(cr, l->strain, 11, false));
-    width = fmax(width,
-                 l->scale_length * s->scale / unit + 6 + width_of(cr, l->scale_label, 11, false));
+    double width = fmax(ur_draw_text_width_at(cr, l->title, 12, true),
+                        ur_draw_text_width_at(cr, l->strain, 11, false));
+    width = fmax(width, l->scale_length * s->scale / unit + 6 +
+                            ur_draw_text_width_at(cr, l->scale_label, 11, false));
     l->rows = 0;
     for (int op = 0; op < UR_OP_COUNT; op++) {
         if (!s->drawn[op])
             continue;
         l->rows++;
         const ur_op_style *style = &s->machine->styles[op];
-        width = fmax(width, SWATCH + 6 +
-                                width_of(cr, style->layer[0] ? style->layer : ur_op_name((ur_op)op),
-                                         11, false));
+        width = fmax(
+            width, SWATCH + 6 +
+                       ur_draw_text_width_at(
+                           cr, style->layer[0] ? style->layer : ur_op_name((ur_op)op), 11, false));
     }
     l->width = (width + 2 * PAD) * unit;
     l->height = (2 * PAD + 14 + ROW * (l->rows + 1) + 12) * unit;
 }
 
-static double overlap(double a0, double a1, double b0, double b1)
+/* How much of the surroundings of the piece labels a legend box at (left, top) would hide. */
+static double labels_covered(const void *context, double left, double top, double width,
+                             double height)
 {
-    return fmax(0.0, fmin(a1, b1) - fmax(a0, b0));
-}
-
-/* The corner where the legend covers the fewest piece labels' surroundings: bottom right first. */
-static void place_legend(png_sheet *s, legend *l)
-{
-    double inset = INSET * l->unit;
-    double right = s->width - inset - l->width, bottom = s->height - inset - l->height;
-    const double corners[4][2] = {{right, bottom}, {inset, bottom}, {right, inset}, {inset, inset}};
-    double least = INFINITY, around = 60 * s->unit;
-    for (int k = 0; k < 4; k++) {
-        double area = 0;
-        for (size_t i = 0; i < s->label_count; i++) {
-            ur_vec2 at = s->labels[i].at;
-            area += overlap(corners[k][0], corners[k][0] + l->width, at.x - around, at.x + around) *
-                    overlap(corners[k][1], corners[k][1] + l->height, at.y - around, at.y + around);
-        }
-        if (area < least) {
-            least = area;
-            l->left = corners[k][0];
-            l->top = corners[k][1];
-        }
+    const png_sheet *s = context;
+    double area = 0, around = 60 * s->unit;
+    for (size_t i = 0; i < s->label_count; i++) {
+        ur_vec2 at = s->labels[i].at;
+        area += ur_draw_overlap(left, left + width, at.x - around, at.x + around) *
+                ur_draw_overlap(top, top + height, at.y - around, at.y + around);
     }
+    return area;
 }
 
 static void draw_operations(png_sheet *s, const legend *l, double *y)
@@ -393,14 +368,10 @@ static void draw_legend(png_sheet *s)
                        (s->height - 2 * INSET * s->unit) / l.height);
     if (room < 1) /* a small sheet: a smaller legend */
         measure_legend(s, s->unit * fmax(room, 0.25), &l);
-    place_legend(s, &l);
+    ur_draw_legend_corner(s->width, s->height, INSET * l.unit, l.width, l.height, labels_covered, s,
+                          &l.left, &l.top);
     double u = l.unit, x = l.left + PAD * u, y = l.top + (PAD + 12) * u;
-    cairo_rectangle(cr, l.left, l.top, l.width, l.height);
-    cairo_set_source_rgba(cr, 1, 1, 1, 0.9);
-    cairo_fill_preserve(cr);
-    cairo_set_source_rgb(cr, 0.6, 0.6, 0.6);
-    cairo_set_line_width(cr, 0.8 * u);
-    cairo_stroke(cr);
+    ur_draw_legend_frame(cr, l.left, l.top, l.width, l.height, u);
     cairo_set_source_rgb(cr, 0.05, 0.05, 0.05);
     ur_draw_set_font(cr, 12 * u, true);
     ur_draw_show_text(cr, x, y, UR_ALIGN_LEFT, l.title);

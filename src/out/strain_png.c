@@ -355,21 +355,6 @@ static const char caption[] = "red: stretch \xcf\x83\xe2\x82\x81 \xe2\x88\x92 1 
                               "compression 1 \xe2\x88\x92 \xcf\x83\xe2\x82\x82";
 static const char no_strain[] = "no strain on any piece";
 
-/* The largest 1, 2 or 5 times a power of ten not above limit. */
-static double nice_below(double limit)
-{
-    double magnitude = pow(10, floor(log10(limit)));
-    double fraction = limit / magnitude;
-    return (fraction >= 5 ? 5 : fraction >= 2 ? 2 : 1) * magnitude;
-}
-
-/* Text widths in points (font sizes in points, measured at one pixel a point). */
-static double width_of(cairo_t *cr, const char *text, double size, bool bold)
-{
-    ur_draw_set_font(cr, size, bold);
-    return ur_draw_text_width(cr, text);
-}
-
 /* The texts, and the box's size at unit pixels per point. */
 static void measure_legend(cairo_t *cr, const canvas *c, const picture *p, double unit, legend *l)
 {
@@ -379,56 +364,43 @@ static void measure_legend(cairo_t *cr, const canvas *c, const picture *p, doubl
     double widest_tick = 0;
     for (int k = 0; k < TICKS; k++) {
         format_percent(p->range * (k - TICKS / 2) / (TICKS / 2), l->ticks[k], sizeof l->ticks[k]);
-        widest_tick = fmax(widest_tick, width_of(cr, l->ticks[k], 11, false));
+        widest_tick = fmax(widest_tick, ur_draw_text_width_at(cr, l->ticks[k], 11, false));
     }
     l->side = widest_tick / 2 + 2;
-    l->scale_length = nice_below(SCALE_LONGEST * unit / c->scale);
+    l->scale_length = ur_draw_nice_below(SCALE_LONGEST * unit / c->scale);
     snprintf(l->scale_label, sizeof l->scale_label, "%g mm", l->scale_length);
     double scale_points = l->scale_length * c->scale / unit;
-    double width = fmax(BAR_WIDTH + 2 * l->side, width_of(cr, l->title, 12, true));
-    width = fmax(width, width_of(cr, p->range > 0 ? caption : no_strain, 11, false));
-    width = fmax(width, scale_points + 6 + width_of(cr, l->scale_label, 11, false));
+    double width = fmax(BAR_WIDTH + 2 * l->side, ur_draw_text_width_at(cr, l->title, 12, true));
+    width = fmax(width, ur_draw_text_width_at(cr, p->range > 0 ? caption : no_strain, 11, false));
+    width = fmax(width, scale_points + 6 + ur_draw_text_width_at(cr, l->scale_label, 11, false));
     l->width = (width + 2 * PAD) * unit;
     l->height = LEGEND_HEIGHT * unit;
 }
 
-static double overlap(double a0, double a1, double b0, double b1)
-{
-    return fmax(0.0, fmin(a1, b1) - fmax(a0, b0));
-}
+/* A sheet's picture, for working out what a legend box would hide. */
+typedef struct sheet_picture {
+    const canvas *canvas;
+    const picture *picture;
+} sheet_picture;
 
-/* Pixels of the box at (left, top) that the placed pieces' boxes cover. */
-static double covered(const canvas *c, const picture *p, const legend *l, double left, double top)
+/* Pixels of a legend box at (left, top) that the placed pieces' boxes cover. */
+static double pieces_covered(const void *context, double left, double top, double width,
+                             double height)
 {
+    const sheet_picture *sheet = context;
+    const canvas *c = sheet->canvas;
     double area = 0;
     for (size_t i = 0; i < c->sheet->placement_count; i++) {
         const ur_placement *placement = &c->sheet->placements[i];
-        const ur_piece *piece = &p->pieces[placement->piece_index];
+        const ur_piece *piece = &sheet->picture->pieces[placement->piece_index];
         ur_box box = ur_box_empty();
         for (size_t k = 0; k < piece->path_count; k++)
             for (size_t j = 0; j < piece->paths[k].count; j++)
                 ur_box_add(&box, place(c, placement, piece->paths[k].points[j]));
-        area += overlap(left, left + l->width, box.min.x, box.max.x) *
-                overlap(top, top + l->height, box.min.y, box.max.y);
+        area += ur_draw_overlap(left, left + width, box.min.x, box.max.x) *
+                ur_draw_overlap(top, top + height, box.min.y, box.max.y);
     }
     return area;
-}
-
-/* The corner where the legend hides the least: bottom right first, where rows end. */
-static void place_legend(const canvas *c, const picture *p, legend *l)
-{
-    double inset = INSET * l->unit;
-    double right = c->width - inset - l->width, bottom = c->height - inset - l->height;
-    const double corners[4][2] = {{right, bottom}, {inset, bottom}, {right, inset}, {inset, inset}};
-    double least = INFINITY;
-    for (int k = 0; k < 4; k++) {
-        double area = covered(c, p, l, corners[k][0], corners[k][1]);
-        if (area < least) {
-            least = area;
-            l->left = corners[k][0];
-            l->top = corners[k][1];
-        }
-    }
 }
 
 /* Sized to the canvas's unit, smaller if the sheet is too small for that. */
@@ -439,7 +411,9 @@ static void fit_legend(cairo_t *cr, const canvas *c, const picture *p, legend *l
                        (c->height - 2 * INSET * c->unit) / l->height);
     if (room < 1)
         measure_legend(cr, c, p, c->unit * fmax(room, 0.25), l);
-    place_legend(c, p, l);
+    sheet_picture sheet = {c, p};
+    ur_draw_legend_corner(c->width, c->height, INSET * l->unit, l->width, l->height, pieces_covered,
+                          &sheet, &l->left, &l->top);
 }
 
 static void draw_colour_bar(cairo_t *cr, const legend *l, double range)
@@ -495,12 +469,7 @@ static void draw_legend(cairo_t *cr, const canvas *c, const picture *p)
     legend l;
     fit_legend(cr, c, p, &l);
     double u = l.unit;
-    cairo_rectangle(cr, l.left, l.top, l.width, l.height);
-    cairo_set_source_rgba(cr, 1, 1, 1, 0.9);
-    cairo_fill_preserve(cr);
-    cairo_set_source_rgb(cr, 0.6, 0.6, 0.6);
-    cairo_set_line_width(cr, 0.8 * u);
-    cairo_stroke(cr);
+    ur_draw_legend_frame(cr, l.left, l.top, l.width, l.height, u);
     ur_draw_set_font(cr, 12 * u, true);
     cairo_set_source_rgb(cr, 0.05, 0.05, 0.05);
     ur_draw_show_text(cr, l.left + PAD * u, l.top + 20 * u, UR_ALIGN_LEFT, l.title);
