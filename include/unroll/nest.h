@@ -21,6 +21,8 @@ typedef struct ur_sheet {
     double width, height;
     ur_placement *placements; /* owned */
     size_t placement_count;
+    /* Set by the caller when a job mixes materials: this sheet's; "" otherwise. */
+    char material[64];
 } ur_sheet;
 
 typedef struct ur_layout {

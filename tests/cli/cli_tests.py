@@ -1372,6 +1372,47 @@ def job_parts_keep_their_labels_apart(work):
 
 
 @test
+def job_parts_of_different_materials(work):
+    """A part with its own material goes on that material's sheets: each
+    sheet holds the pieces of one material only, at one of its stock sizes,
+    and the report names the material of every sheet."""
+    # On the router's bed the two materials' first stock sizes differ (1000 x 700, 600 x 400).
+    write(work, "mixed.xml", JOB_HEAD.replace("  <material>", "  <machine>router</machine>\n  <material>")
+          + """  <part surface="cylinder" name="drum">
+    <option name="radius" value="40"/><option name="height" value="100"/>
+  </part>
+  <part surface="cylinder" name="box" material="plywood-3mm" quantity="2">
+    <option name="radius" value="30"/><option name="height" value="80"/>
+  </part>
+  <output name="mixed" report="mixed.json"/>
+</job>
+""")
+    run(work, "job", "mixed.xml", "-o", "out", "--quiet")
+    found = report(work, os.path.join("out", "mixed.json"))
+    stock = {"cardboard-2mm": [(1000, 700)], "plywood-3mm": [(600, 400)]}
+    materials = [sheet.get("material") for sheet in found["sheets"]]
+    check(sorted(set(materials)) == ["cardboard-2mm", "plywood-3mm"], "sheet materials %r" % materials)
+    for index, sheet in enumerate(found["sheets"], 1):
+        size = (round(sheet["width_mm"]), round(sheet["height_mm"]))
+        check(size in stock[sheet["material"]], "sheet %d of %s is %r" % (index, sheet["material"], size))
+        names = [p["name"] for p in found["pieces"] if p["sheet"] == index]
+        want = "box" if sheet["material"] == "plywood-3mm" else "drum"
+        check(names and all(n.startswith(want) for n in names),
+              "sheet %d (%s) holds %r" % (index, sheet["material"], names))
+    check(len(found["pieces"]) == 3 and all(p["sheet"] for p in found["pieces"]),
+          "pieces %r" % [(p["name"], p["sheet"]) for p in found["pieces"]])
+    # One material for the whole job: no sheet names one.
+    write(work, "one.xml", open(os.path.join(work, "mixed.xml")).read()
+          .replace(' material="plywood-3mm"', ""))
+    run(work, "job", "one.xml", "-o", "out3", "--quiet")
+    check(all("material" not in s for s in report(work, os.path.join("out3", "mixed.json"))["sheets"]),
+          "a one-material job names the material per sheet")
+    write(work, "nomaterial.xml", open(os.path.join(work, "mixed.xml")).read()
+          .replace('material="plywood-3mm"', 'material="unobtainium"'))
+    bad(work, r"nomaterial\.xml:8: .*unobtainium", "job", "nomaterial.xml", "-o", "out4")
+
+
+@test
 def bad_jobs(work):
     part = """  <part surface="cylinder"><option name="radius" value="40"/>
     <option name="height" value="50"/></part>
@@ -1397,7 +1438,10 @@ def bad_jobs(work):
 
 def main():
     passed = failed = 0
+    only = sys.argv[2:]  # names of tests to run after the program; all when none
     for function in TESTS:
+        if only and function.__name__ not in only:
+            continue
         work = tempfile.mkdtemp(prefix="unroll-test-")
         try:
             function(work)
