@@ -104,6 +104,19 @@ enum { NEST_PATIENCE = 40, NEST_TRIES = 2000 };
 ur_status ur_layout_nest(const ur_piece *pieces, size_t count, const ur_nest_options *options,
                          ur_layout *layout, ur_error *error);
 
+/*
+ * Common-line cutting (merge_lines.c): going through each sheet's pieces
+ * in placement order, every CUT path loses the stretches that lie within
+ * tolerance (mm) of what the pieces before it on the sheet cut, so that a
+ * line two touching parts share is cut once.  What is left of a path
+ * becomes open paths (the first in its place, the others appended to the
+ * piece; a path left with nothing has no points); an opened outline marks
+ * the piece bridged, keeping its area in outline_area.  *saved is the cut
+ * length taken off, mm.  Parts touch only when nested with no spacing.
+ */
+ur_status ur_layout_merge_lines(const ur_layout *layout, ur_piece *pieces, size_t count,
+                                double tolerance, double *saved, ur_error *error);
+
 /* Share of the sheet's area covered by the outlines placed on it, 0..1. */
 double ur_sheet_utilisation(const ur_sheet *sheet, const ur_piece *pieces);
 

@@ -190,14 +190,15 @@ ur_status cli_allowances_after_placing(const cli_job *job, const ur_machine *mac
                 ur_piece_turn_labels(&pieces[placement->piece_index],
                                      atan2(placement->transform.sine, placement->transform.cosine));
         }
-    if (!(cli_allowances_chosen(job, machine) & CLI_ALLOW_BRIDGES))
-        return UR_OK;
-    size_t bridges = job->bridges > 0 ? (size_t)job->bridges : 0;
-    bool router = machine->kind == UR_MACHINE_ROUTER;
     ur_status status = UR_OK;
-    for (size_t k = 0; status == UR_OK && k < count; k++)
-        status = ur_piece_add_bridges(&pieces[k], bridges, machine->bridge_width, router, error);
-    return status;
+    if (cli_allowances_chosen(job, machine) & CLI_ALLOW_BRIDGES) {
+        size_t bridges = job->bridges > 0 ? (size_t)job->bridges : 0;
+        bool router = machine->kind == UR_MACHINE_ROUTER;
+        for (size_t k = 0; status == UR_OK && k < count; k++)
+            status =
+                ur_piece_add_bridges(&pieces[k], bridges, machine->bridge_width, router, error);
+    }
+    return status == UR_OK ? cli_merge_lines(job, layout, pieces, count, error) : status;
 }
 
 /*

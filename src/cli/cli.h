@@ -79,6 +79,7 @@ typedef struct cli_job {
     bool drawing_order;       /* --order none */
     long rotations;           /* --rotations N; 0: 4, or 2 under a grain rule */
     bool no_holes;            /* --no-holes: no part inside another's hole */
+    bool merge_lines;         /* --merge-lines: touching parts, shared lines cut once */
     bool level;               /* turns start from the level one (surfaces), not as drawn (nest) */
     double roll_width;        /* --roll W: nest on roll stock this wide; 0 for sheets */
     long max_sheets;          /* --sheets N: at most N sheets; 0 for as many as needed */
@@ -170,6 +171,14 @@ ur_status cli_allowances_before_placing(const cli_job *job, const ur_machine *ma
  * Once the pieces are placed: labels turned to read upright on the sheet,
  * then holding bridges (allowances.c).
  */
+/*
+ * --merge-lines: the lines placed parts share are cut once (after bridges,
+ * which it may cut through where they lie on a shared line); a note of
+ * the length saved unless quiet.
+ */
+ur_status cli_merge_lines(const cli_job *job, const ur_layout *layout, ur_piece *pieces,
+                          size_t count, ur_error *error);
+
 ur_status cli_allowances_after_placing(const cli_job *job, const ur_machine *machine,
                                        const ur_layout *layout, ur_piece *pieces, size_t count,
                                        ur_error *error);

@@ -35,6 +35,7 @@ enum nest_option {
     NEST_ORDER,
     NEST_ROTATIONS,
     NEST_NO_HOLES,
+    NEST_MERGE_LINES,
     NEST_ROLL,
     NEST_SHEETS,
     NEST_NEST_TIME,
@@ -59,6 +60,7 @@ static const struct option nest_options[] = {
     {"order", required_argument, NULL, NEST_ORDER},
     {"rotations", required_argument, NULL, NEST_ROTATIONS},
     {"no-holes", no_argument, NULL, NEST_NO_HOLES},
+    {"merge-lines", no_argument, NULL, NEST_MERGE_LINES},
     {"roll", required_argument, NULL, NEST_ROLL},
     {"sheets", required_argument, NULL, NEST_SHEETS},
     {"nest-time", required_argument, NULL, NEST_NEST_TIME},
@@ -165,6 +167,9 @@ static bool take_nest_option(nest_job *n, int id, const char *value)
     case NEST_NO_HOLES:
         job->no_holes = true;
         return true;
+    case NEST_MERGE_LINES:
+        job->merge_lines = true;
+        return true;
     case NEST_ROLL:
         return cli_parse_roll(job, value);
     case NEST_SHEETS:
@@ -189,6 +194,7 @@ static const char nest_help[] =
     "  --format svg,dxf,pdf,png --dxf-version 12|2000 --dpi N --order cut|none\n"
     "  --rotations N (turns of 360/N degrees from the part as drawn; default 4)\n"
     "  --no-holes (no part inside another's hole)\n"
+    "  --merge-lines  parts may touch; a line two parts share is cut once\n"
     "  --roll W   nest on roll stock W mm wide, as short as it goes\n"
     "  --sheets N at most N sheets; what does not fit is named, not placed\n"
     "  --nest-time S  search for a better layout for up to S seconds (default 2)\n"
@@ -386,6 +392,8 @@ static int run_nest(const nest_job *n, ur_piece **pieces, size_t *count, ur_layo
     ur_status status = compensate(n, &machine, &material, *pieces, *count, &error);
     if (status == UR_OK)
         status = cli_place_pieces(&n->job, &machine, &material, *pieces, *count, layout, &error);
+    if (status == UR_OK)
+        status = cli_merge_lines(&n->job, layout, *pieces, *count, &error);
     if (status == UR_OK) {
         cli_allowance_warnings(&n->job, *pieces, *count);
         cli_not_placed_warning(&n->job, layout, *pieces);

@@ -293,7 +293,9 @@ ur_status cli_place_pieces(const cli_job *job, const ur_machine *machine,
     ur_nest_options options = {
         .margin = job->margin >= 0 ? job->margin : machine->margin,
         .spacing = job->spacing >= 0 ? job->spacing
-                                     : fmax(machine->spacing, ur_effective_kerf(machine, material)),
+                   : job->merge_lines
+                       ? 0.0 /* touching parts share their lines */
+                       : fmax(machine->spacing, ur_effective_kerf(machine, material)),
         .rotations = rotations,
         .level = job->level,
         .holes = !job->no_holes,
@@ -320,6 +322,24 @@ ur_status cli_place_pieces(const cli_job *job, const ur_machine *machine,
     }
     if (options.progress)
         fputc('\n', stderr);
+    return status;
+}
+
+/*
+ * Lines closer than this (mm) are one line: far below any kerf, far above
+ * the rounding in placing parts that touch.
+ */
+#define MERGE_TOLERANCE 0.01
+
+ur_status cli_merge_lines(const cli_job *job, const ur_layout *layout, ur_piece *pieces,
+                          size_t count, ur_error *error)
+{
+    if (!job->merge_lines)
+        return UR_OK;
+    double saved = 0;
+    ur_status status = ur_layout_merge_lines(layout, pieces, count, MERGE_TOLERANCE, &saved, error);
+    if (status == UR_OK && !job->quiet)
+        cli_message("%s: merged lines: %.1f mm of shared cuts cut once", job->command, saved);
     return status;
 }
 

@@ -185,7 +185,9 @@ double ur_sheet_utilisation(const ur_sheet *sheet, const ur_piece *pieces)
     double used = 0.0;
     for (size_t k = 0; k < sheet->placement_count; k++) {
         const ur_piece *piece = &pieces[sheet->placements[k].piece_index];
-        if (piece->path_count > 0)
+        if (piece->bridged) /* the outline is open: what it enclosed before */
+            used += piece->outline_area;
+        else if (piece->path_count > 0)
             used += fabs(ur_polygon_signed_area(piece->paths[0].points, piece->paths[0].count));
     }
     return used / (sheet->width * sheet->height);

@@ -1306,6 +1306,35 @@ def nest_copies_and_bad_input(work):
     bad(work, r"--copies: '0' is not a count", "nest", "mm.svg", "--copies", "0", "-o", "x.svg")
 
 
+@test
+def nest_merge_lines_cuts_shared_lines_once(work):
+    """Four 100 x 50 plates tile a 200 x 100 sheet; cut one by one that is
+    4 x 300 = 1200 mm, but the grid they make is 600 around and 100 + 200
+    inside: 900 mm with --merge-lines.  The DXF of the open stretches
+    audits clean."""
+    write(work, "plate.svg", '<svg xmlns="http://www.w3.org/2000/svg" width="100mm" '
+          'height="50mm" viewBox="0 0 100 50"><rect width="100" height="50"/></svg>\n')
+    tiles = ["nest", "plate.svg:4", "--sheet", "200x100", "--margin", "0",
+             "--no-kerf-compensation", "--quiet"]
+    run(work, *tiles, "--spacing", "0", "-o", "apart.svg", "--report", "apart.json")
+    run(work, *tiles, "--merge-lines", "--format", "svg,dxf", "-o", "merged.svg",
+        "--report", "merged.json")
+    for name, length in (("apart.json", 1200), ("merged.json", 900)):
+        sheets = report(work, name)["sheets"]
+        check(len(sheets) == 1, "%s: %d sheets" % (name, len(sheets)))
+        close(sheets[0]["cut_length_mm"], length, 1e-6, name + " cut length")
+        close(sheets[0]["utilisation"], 1.0, 1e-6, name + " utilisation")
+    audit = subprocess.run(
+        ["/usr/bin/python3", "-c",
+         "import ezdxf,sys\n"
+         "doc=ezdxf.readfile(sys.argv[1])\n"
+         "print(len(doc.audit().errors))",
+         os.path.join(work, "merged.dxf")], capture_output=True, text=True)
+    check(audit.returncode == 0 and audit.stdout.split() == ["0"], "ezdxf: %s %s" % (audit.stdout, audit.stderr))
+    # A surface job takes the option too, and with kerf compensation.
+    run(work, "cylinder", "--radius", "20", "--height", "40", "--merge-lines", "-o", "c.svg", "--quiet")
+
+
 # ---- job files -------------------------------------------------------------
 
 JOB_HEAD = """<?xml version="1.0" encoding="UTF-8"?>
