@@ -117,6 +117,14 @@ ur_status ur_layout_nest(const ur_piece *pieces, size_t count, const ur_nest_opt
 ur_status ur_layout_merge_lines(const ur_layout *layout, ur_piece *pieces, size_t count,
                                 double tolerance, double *saved, ur_error *error);
 
+/*
+ * The size of an outline turned so that its smallest enclosing rectangle
+ * lies level, as nesting first turns a piece: *length the longer side,
+ * *width the shorter (mm).
+ */
+ur_status ur_outline_level_size(const ur_vec2 *outline, size_t count, double *length, double *width,
+                                ur_error *error);
+
 /* Share of the sheet's area covered by the outlines placed on it, 0..1. */
 double ur_sheet_utilisation(const ur_sheet *sheet, const ur_piece *pieces);
 

@@ -149,11 +149,24 @@ int cli_exit_status(const ur_error *error);
  * unroll mesh FILE (meshes.c): the nets of a mesh's pieces, flattened with
  * their strain; returns 0 or an exit status after a message.
  */
-int cli_mesh_nets(const cli_job *job, const ur_material *material, ur_net_list *nets, double *area);
+/*
+ * The room a piece may take on the largest sheet the job may use (run.c):
+ * inside the margin, less the kerf and a joint at each end of its length
+ * (the joints go on the seams a split makes).  0 x 0 on roll stock, or
+ * when the sheet leaves no room.
+ */
+typedef struct cli_room {
+    double length, width;
+} cli_room;
+
+cli_room cli_fit_room(const cli_job *job, const ur_machine *machine, const ur_material *material);
+
+int cli_mesh_nets(const cli_job *job, const cli_room *room, const ur_material *material,
+                  ur_net_list *nets, double *area);
 
 /* The nets of a non-developable ruled surface, flattened with strain (meshes.c). */
-int cli_flatten_ruled(const cli_job *job, const ur_material *material, ur_ruled *ruled,
-                      ur_net_list *nets, double *area);
+int cli_flatten_ruled(const cli_job *job, const cli_room *room, const ur_material *material,
+                      ur_ruled *ruled, ur_net_list *nets, double *area);
 
 /*
  * The allowances that go on the pieces before they are placed: relief

@@ -180,6 +180,23 @@ ur_status ur_layout_rows(const ur_piece *pieces, size_t piece_count,
     return status;
 }
 
+ur_status ur_outline_level_size(const ur_vec2 *outline, size_t count, double *length, double *width,
+                                ur_error *error)
+{
+    GEOSContextHandle_t geos = GEOS_init_r();
+    if (!geos)
+        return ur_error_set(error, UR_ERROR_INTERNAL, "cannot start GEOS");
+    ur_path path = {UR_OP_CUT, true, (ur_vec2 *)outline, count};
+    ur_transform2 turn = ur_transform2_make(nest_level_angle(geos, &path), ur_vec2_make(0, 0));
+    GEOS_finish_r(geos);
+    ur_box box = ur_box_empty();
+    for (size_t k = 0; k < count; k++)
+        ur_box_add(&box, ur_transform2_apply(turn, outline[k]));
+    *length = count ? fmax(ur_box_width(box), ur_box_height(box)) : 0;
+    *width = count ? fmin(ur_box_width(box), ur_box_height(box)) : 0;
+    return UR_OK;
+}
+
 double ur_sheet_utilisation(const ur_sheet *sheet, const ur_piece *pieces)
 {
     double used = 0.0;

@@ -1335,6 +1335,46 @@ def nest_merge_lines_cuts_shared_lines_once(work):
     run(work, "cylinder", "--radius", "20", "--height", "40", "--merge-lines", "-o", "c.svg", "--quiet")
 
 
+@test
+def mesh_too_long_for_a_sheet_is_cut_to_fit(work):
+    """A strip of a cylinder of radius 700 mm, 1100 mm round and 50 mm wide,
+    in plywood on the 600 x 400 laser bed: cut along its length into the
+    fewest parts the cut makes fit (3: two even shares come out a little
+    longer than the room the joints leave), each pair of neighbours sharing
+    one seam label, the 3D area (1100 x 50 to a few ppm) kept; --no-split
+    refuses it, writing nothing."""
+    radius, length, width, along, across = 700.0, 1100.0, 50.0, 110, 5
+    lines = []
+    for i in range(along + 1):
+        angle = length / radius * i / along
+        for j in range(across + 1):
+            lines.append("v %.9f %.9f %.9f" % (radius * math.cos(angle), radius * math.sin(angle),
+                                                width * j / across))
+    for i in range(along):
+        for j in range(across):
+            p = i * (across + 1) + j + 1
+            q = p + across + 1
+            lines.append("f %d %d %d\nf %d %d %d" % (p, q, q + 1, p, q + 1, p + 1))
+    write(work, "strip.obj", "\n".join(lines) + "\n")
+    result = run(work, "mesh", "strip.obj", "-o", "strip.svg", "--report", "strip.json")
+    check(re.search(r"cut into 3 along its length", result.stderr), result.stderr)
+    found = report(work, "strip.json")
+    pieces = found["pieces"]
+    check(len(pieces) == 3 and all(p["sheet"] for p in pieces),
+          "pieces %r" % [(p["name"], p["sheet"]) for p in pieces])
+    close(sum(p["area_3d_mm2"] for p in pieces), length * width, 1e-4, "3D area of the parts")
+    seams = {}
+    for piece in pieces:
+        for a in piece["allowances"]:
+            label = re.match(r"label '(A\d+)'", a["reason"])
+            if a["kind"] == "label" and label:
+                seams.setdefault(label.group(1), []).append(piece["name"])
+    check(sorted(seams) == ["A1", "A2"] and all(len(v) == 2 for v in seams.values()),
+          "seam labels %r" % seams)
+    bad(work, r"does not fit the 600\.0 x 400\.0 mm sheet", "mesh", "strip.obj", "--no-split",
+        "-o", "refused.svg")
+
+
 # ---- job files -------------------------------------------------------------
 
 JOB_HEAD = """<?xml version="1.0" encoding="UTF-8"?>
