@@ -125,6 +125,29 @@ ur_status ur_layout_merge_lines(const ur_layout *layout, ur_piece *pieces, size_
 ur_status ur_outline_level_size(const ur_vec2 *outline, size_t count, double *length, double *width,
                                 ur_error *error);
 
+/* The turn (radians) that lays the outline's smallest enclosing rectangle level. */
+double ur_outline_level_angle(const ur_vec2 *outline, size_t count);
+
+/*
+ * A part cut into the fewest parts that fit room_length x room_width
+ * (split_part.c): turned level, it is cut across its length by straight
+ * lines, each within the slack the even shares leave, where it is
+ * narrowest.  Appends to out one net per new part, whose outline_3d are
+ * its points at height id (give each part split a different id) so that
+ * ur_net_list_find_seams pairs the two sides of every cut, and the piece
+ * made from it (ur_piece_from_net) with the holes that fall in it.
+ * Refuses (UR_ERROR_INPUT) a part wider than room_width when level, and
+ * one with no closed outline.
+ */
+typedef struct ur_split_parts {
+    ur_net_list nets; /* owned */
+    ur_piece *pieces; /* owned; pieces[k] made from nets.nets[k] */
+} ur_split_parts;
+
+ur_status ur_part_split(const ur_piece *part, double room_length, double room_width, double id,
+                        ur_split_parts *out, ur_error *error);
+void ur_split_parts_free(ur_split_parts *parts);
+
 /* Share of the sheet's area covered by the outlines placed on it, 0..1. */
 double ur_sheet_utilisation(const ur_sheet *sheet, const ur_piece *pieces);
 

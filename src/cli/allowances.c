@@ -138,8 +138,8 @@ static ur_status add_bending(const ur_machine *machine, const ur_material *mater
     return status;
 }
 
-static ur_status add_joints(const ur_material *material, const ur_net_list *nets, ur_piece *pieces,
-                            ur_error *error)
+ur_status cli_add_joints(const ur_material *material, const ur_net_list *nets, ur_piece *pieces,
+                         ur_error *error)
 {
     ur_font *font = NULL;
     ur_status status = ur_font_open(NULL, &font, error);
@@ -172,7 +172,7 @@ ur_status cli_allowances_before_placing(const cli_job *job, const ur_machine *ma
     if (status == UR_OK && surfaces && (set & CLI_ALLOW_BENDING))
         status = add_bending(machine, material, nets, surfaces, pieces, count, error);
     if (status == UR_OK && (set & CLI_ALLOW_TABS))
-        status = add_joints(material, nets, pieces, error);
+        status = cli_add_joints(material, nets, pieces, error);
     double kerf = ur_effective_kerf(machine, material);
     for (size_t k = 0; status == UR_OK && !job->no_kerf_compensation && k < count; k++)
         status = ur_piece_compensate_kerf(&pieces[k], kerf, error);

@@ -192,6 +192,10 @@ ur_status cli_allowances_before_placing(const cli_job *job, const ur_machine *ma
 ur_status cli_merge_lines(const cli_job *job, const ur_layout *layout, ur_piece *pieces,
                           size_t count, ur_error *error);
 
+/* Joints and labels on the seams of the nets, as the material asks (pieces[k] from nets[k]). */
+ur_status cli_add_joints(const ur_material *material, const ur_net_list *nets, ur_piece *pieces,
+                         ur_error *error);
+
 ur_status cli_allowances_after_placing(const cli_job *job, const ur_machine *machine,
                                        const ur_layout *layout, ur_piece *pieces, size_t count,
                                        ur_error *error);

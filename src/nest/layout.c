@@ -180,15 +180,23 @@ ur_status ur_layout_rows(const ur_piece *pieces, size_t piece_count,
     return status;
 }
 
-ur_status ur_outline_level_size(const ur_vec2 *outline, size_t count, double *length, double *width,
-                                ur_error *error)
+double ur_outline_level_angle(const ur_vec2 *outline, size_t count)
 {
     GEOSContextHandle_t geos = GEOS_init_r();
     if (!geos)
-        return ur_error_set(error, UR_ERROR_INTERNAL, "cannot start GEOS");
+        return 0.0;
     ur_path path = {UR_OP_CUT, true, (ur_vec2 *)outline, count};
-    ur_transform2 turn = ur_transform2_make(nest_level_angle(geos, &path), ur_vec2_make(0, 0));
+    double angle = count ? nest_level_angle(geos, &path) : 0.0;
     GEOS_finish_r(geos);
+    return angle;
+}
+
+ur_status ur_outline_level_size(const ur_vec2 *outline, size_t count, double *length, double *width,
+                                ur_error *error)
+{
+    (void)error; /* nothing fails: without GEOS the outline is measured as it lies */
+    ur_transform2 turn =
+        ur_transform2_make(ur_outline_level_angle(outline, count), ur_vec2_make(0, 0));
     ur_box box = ur_box_empty();
     for (size_t k = 0; k < count; k++)
         ur_box_add(&box, ur_transform2_apply(turn, outline[k]));

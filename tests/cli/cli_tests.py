@@ -1375,6 +1375,41 @@ def mesh_too_long_for_a_sheet_is_cut_to_fit(work):
         "-o", "refused.svg")
 
 
+@test
+def nest_cuts_a_part_too_long_for_the_sheet(work):
+    """A 900 x 60 mm bar with a 20 mm neck at x = 480..490 and a 20 mm hole,
+    for the 600 x 400 bed: one cut makes it fit, and it goes through the
+    neck (the shortest cut within reach of the middle), so the parts are
+    about 480 and 410 mm long; both carry seam label A1, the areas add up
+    to the bar's (54000 - 2 x 200 - pi 100, the hole as drawn to 0.01 mm);
+    --no-split refuses it, writing nothing."""
+    write(work, "bar.svg", '<svg xmlns="http://www.w3.org/2000/svg" width="900mm" height="60mm" '
+          'viewBox="0 0 900 60"><path d="M 0 0 L 480 0 L 480 20 L 490 20 L 490 0 L 900 0 '
+          'L 900 60 L 490 60 L 490 40 L 480 40 L 480 60 L 0 60 Z"/>'
+          '<circle cx="100" cy="30" r="10"/></svg>\n')
+    result = run(work, "nest", "bar.svg", "--no-kerf-compensation", "--format", "svg,dxf",
+                 "-o", "bar-out.svg", "--report", "bar.json")
+    check(re.search(r"part bar-1 \(900 x 60 mm\) .* cut into 2", result.stderr), result.stderr)
+    pieces = report(work, "bar.json")["pieces"]
+    check(len(pieces) == 2 and all(p["sheet"] == 1 for p in pieces),
+          "pieces %r" % [(p["name"], p["sheet"]) for p in pieces])
+    close(sum(p["flat_area_mm2"] for p in pieces), 54000 - 400 - math.pi * 100, 1e-4, "area of the parts")
+    for piece in pieces:
+        labels = [a["reason"] for a in piece["allowances"] if a["kind"] == "label"]
+        check(any("'A1'" in label for label in labels), "%s has labels %r" % (piece["name"], labels))
+    # Without joints the longer part would be 480 to 490 mm long; a lap adds to one of them.
+    lengths = sorted(p["flat_area_mm2"] / 60 for p in pieces)
+    check(400 <= lengths[0] <= 421 and 470 <= lengths[1] <= 491, "lengths by area %r" % lengths)
+    audit = subprocess.run(
+        ["/usr/bin/python3", "-c",
+         "import ezdxf,sys\n"
+         "doc=ezdxf.readfile(sys.argv[1])\n"
+         "print(len(doc.audit().errors))",
+         os.path.join(work, "bar-out.dxf")], capture_output=True, text=True)
+    check(audit.returncode == 0 and audit.stdout.split() == ["0"], "ezdxf: %s %s" % (audit.stdout, audit.stderr))
+    bad(work, r"bar-1 .* does not fit", "nest", "bar.svg", "--no-split", "-o", "refused.svg")
+
+
 # ---- job files -------------------------------------------------------------
 
 JOB_HEAD = """<?xml version="1.0" encoding="UTF-8"?>
