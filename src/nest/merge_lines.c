@@ -175,7 +175,8 @@ static ur_status covered(grid *g, ur_vec2 p, ur_vec2 q, intervals *out, ur_error
                 items[out->count++] = stretch;
             }
         }
-    qsort(out->items, out->count, sizeof *out->items, by_start);
+    if (out->count > 1)
+        qsort(out->items, out->count, sizeof *out->items, by_start);
     size_t joined = 0;
     for (size_t k = 0; k < out->count; k++) {
         if (joined > 0 && out->items[k].lo <= out->items[joined - 1].hi)
