@@ -640,10 +640,10 @@ static void write_line(dxf_sheet *sheet, ur_op op, ur_vec2 a, ur_vec2 b)
     group_point(sheet->body, 11, b.x, b.y);
 }
 
-/* An exact circle: centre and radius. */
-static void write_circle(dxf_sheet *sheet, ur_op op, const ur_path_circle *circle)
+/* An exact circle (type CIRCLE), or the start of an ARC: centre and radius. */
+static void write_circle(dxf_sheet *sheet, const char *type, ur_op op, const ur_path_circle *circle)
 {
-    begin_entity(sheet, "CIRCLE", op, "AcDbCircle");
+    begin_entity(sheet, type, op, "AcDbCircle");
     group_point(sheet->body, 10, circle->centre.x, circle->centre.y);
     group_real(sheet->body, 40, circle->radius);
 }
@@ -665,7 +665,7 @@ static void write_arc(dxf_sheet *sheet, ur_op op, const ur_path_circle *circle, 
 {
     double start = degrees_at(circle->centre, circle->sweep >= 0 ? first : last);
     double end = degrees_at(circle->centre, circle->sweep >= 0 ? last : first);
-    write_circle(sheet, op, circle);
+    write_circle(sheet, "ARC", op, circle);
     subclass(sheet, sheet->body, "AcDbArc");
     group_real(sheet->body, 50, start);
     group_real(sheet->body, 51, end);
@@ -747,7 +747,7 @@ static ur_status dxf_path(void *state, ur_op op, const ur_vec2 *points, size_t c
 {
     dxf_sheet *sheet = state;
     if (circle && closed)
-        write_circle(sheet, op, circle);
+        write_circle(sheet, "CIRCLE", op, circle);
     else if (circle && count >= 2)
         write_arc(sheet, op, circle, points[0], points[count - 1]);
     else if (count <= 2 && !closed)
