@@ -356,7 +356,7 @@ static void write_comment(FILE *file, const char *label, const char *text)
             fputc(*c, file);
         else if (*c < 0x20 || *c == 0x7F)
             fputc(' ', file);
-        else if (*c >= 0xC0 || *c < 0x80) /* not a continuation byte */
+        else if (*c >= 0xC0) /* the first byte of a sequence; the rest are left out */
             fputc('?', file);
     fputc('\n', file);
 }

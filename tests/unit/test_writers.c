@@ -792,6 +792,41 @@ static void test_exact_circles(void **state)
     ur_piece_free(&piece);
 }
 
+/*
+ * One linetype per distinct dash pattern, in both versions: the kerf layer
+ * dashed as the valley folds shares theirs; a single length is a dash and
+ * a gap of that length, as SVG's stroke-dasharray repeats an odd list.
+ */
+static void test_dxf_linetypes(void **state)
+{
+    fixture *f = *state;
+    if (!have_ezdxf())
+        skip();
+    snprintf(f->machine.styles[UR_OP_KERF].dash, sizeof f->machine.styles[UR_OP_KERF].dash,
+             "3, 1.5");
+    snprintf(f->machine.styles[UR_OP_MARK].dash, sizeof f->machine.styles[UR_OP_MARK].dash, "2");
+    for (int version = 0; version < 2; version++) {
+        char path[256];
+        path_in(f->dir, version ? "lt2000.dxf" : "lt12.dxf", path, sizeof path);
+        f->formats.dxf_version = version ? UR_DXF_R2000 : UR_DXF_R12;
+        ur_error error;
+        assert_int_equal(ur_write_dxf(path, &f->layout, f->pieces, &f->machine, &f->options,
+                                      &f->formats, &error),
+                         UR_OK);
+        assert_int_equal(
+            run("/usr/bin/python3 -c \"import ezdxf,sys; d=ezdxf.readfile('%s'); "
+                "assert not d.audit().has_errors; L=lambda n: d.layers.get(n).dxf.linetype; "
+                "P=lambda n: tuple(d.linetypes.get(L(n)).simplified_line_pattern()); "
+                "assert L('Kerf') == L('Score valley') == 'DASH_3_1P5', L('Kerf'); "
+                "assert P('Kerf') == (3, 1.5), P('Kerf'); "
+                "assert L('Mark') == 'DASH_2' and P('Mark') == (2, 2), P('Mark'); "
+                "assert L('Cut').lower() == 'continuous'; "
+                "assert len([t for t in d.linetypes if t.dxf.name.startswith('DASH')]) == 2\"",
+                path),
+            0);
+    }
+}
+
 /* A machine that puts two operations on one layer gets it once; odd characters become '_'. */
 static void test_dxf_shared_and_odd_layer_names(void **state)
 {
@@ -870,6 +905,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(test_dxf_r12_entities, setup, teardown),
         cmocka_unit_test_setup_teardown(test_dxf_shared_and_odd_layer_names, setup, teardown),
         cmocka_unit_test_setup_teardown(test_exact_circles, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_dxf_linetypes, setup, teardown),
         cmocka_unit_test_setup_teardown(test_pdf_pages, setup, teardown),
         cmocka_unit_test_setup_teardown(test_pdf_draws_paths, setup, teardown),
         cmocka_unit_test_setup_teardown(test_png_size_and_fill, setup, teardown),
