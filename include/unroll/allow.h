@@ -21,11 +21,29 @@
 #include "unroll/develop.h"
 #include "unroll/geom.h"
 
+/*
+ * The circle a path exactly is, or is an arc of, when it is known to be
+ * one (a circle or arc read from a file, and what kerf compensation and
+ * bridges make of it): the cut follows the circle, not the chords between
+ * the points.  The points all lie on the circle and are its flattening,
+ * for everything that works on polylines (nesting, areas, cut order, the
+ * preview).  A closed path is the whole circle; an open one the arc from
+ * its first point to its last, turning by sweep radians about the centre
+ * (> 0 counter-clockwise).  radius 0 (a zeroed value) is no circle: the
+ * path is its polyline.  Only exact knowledge sets it, never a fit.
+ */
+typedef struct ur_path_circle {
+    ur_vec2 centre;
+    double radius; /* mm; 0: the path is no circle */
+    double sweep;  /* open paths: radians from the first point to the last */
+} ur_path_circle;
+
 typedef struct ur_path {
     ur_op op;
     bool closed;
     ur_vec2 *points; /* owned by the path */
     size_t count;
+    ur_path_circle circle; /* radius 0 unless the path is exactly a circle or arc */
 } ur_path;
 
 /* What the report says of a piece: copied from its net. */
@@ -105,9 +123,16 @@ typedef struct ur_allowance_options {
     bool draw_rulings; /* rulings as SCORE lines */
 } ur_allowance_options;
 
-/* Copies points into a new path of the piece and grows its box. */
+/* Copies points into a new path of the piece (no circle) and grows its box. */
 ur_status ur_piece_add_path(ur_piece *piece, ur_op op, const ur_vec2 *points, size_t count,
                             bool closed, ur_error *error);
+
+/*
+ * The angle the polyline turns through about centre from its first point
+ * to its last, radians (> 0 counter-clockwise), each step taken the short
+ * way: the sweep of an arc whose points these are.
+ */
+double ur_arc_sweep(ur_vec2 centre, const ur_vec2 *points, size_t count);
 
 /*
  * Builds the piece for a net, its shading copied; the caller frees it with
@@ -236,8 +261,11 @@ void ur_piece_turn_labels(ur_piece *piece, double angle);
  * unchanged, when a hole would vanish or split, or the outline would close
  * a slot into a hole (a feature narrower than the kerf), and for a kerf
  * that is negative or not finite, or an outline already opened by bridges.
- * A kerf of 0 does nothing.  Records a UR_ALLOWANCE_KERF_COMPENSATION
- * entry (value: the kerf).
+ * A kerf of 0 does nothing.  A path that is exactly a circle (its
+ * circle set) stays exactly one, radius kerf / 2 more (outline) or less
+ * (hole), its points moved along their radii onto it, without GEOS; a
+ * hole whose radius would not stay above 0 is refused as vanishing.
+ * Records a UR_ALLOWANCE_KERF_COMPENSATION entry (value: the kerf).
  */
 ur_status ur_piece_compensate_kerf(ur_piece *piece, double kerf, ur_error *error);
 
@@ -254,7 +282,8 @@ ur_status ur_piece_compensate_kerf(ur_piece *piece, double kerf, ur_error *error
  * placed to miss corners where it can; a gap that would still touch one
  * moves to the nearest place allowed.  The closed outline becomes open CUT
  * paths, gap to gap (the first stays paths[0], the others are appended) and
- * piece->bridged is set.  Apply after placement: nothing after this may
+ * piece->bridged is set; an outline that was exactly a circle becomes arcs
+ * of it (each path's circle and sweep set, its ends moved onto the circle).  Apply after placement: nothing after this may
  * treat paths[0] as a closed ring.  Records a UR_ALLOWANCE_BRIDGES entry
  * (count: the gaps made, value: the width), a warning when fewer fit than
  * asked; when none fits the outline stays closed and unbridged.  Refuses

@@ -343,7 +343,10 @@ typedef struct ur_parts {
  * CUT ring (first point not repeated); its holes follow as closed clockwise
  * CUT rings.  measures.flat_area is the outline's area less the holes'.
  * Curves (arcs, circles, ellipses, Bezier curves, bulges) are flattened to
- * within options->tolerance.  Parts are named by their SVG id, else the
+ * within options->tolerance, every point on the curve; a ring that is
+ * exactly a circle (SVG circle, an ellipse of equal radii, a sub-path of
+ * arcs of one circle going once round, under a transform that keeps
+ * circles circles; DXF CIRCLE) keeps it as its path's circle, in mm.  Parts are named by their SVG id, else the
  * file's name without extension and the part's number ("plate-3"); a path
  * whose several sub-paths become parts names the second and later
  * "ID-2", "ID-3"...  options may be NULL (defaults).

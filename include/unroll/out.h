@@ -157,8 +157,11 @@ ur_status ur_output_files(const char *path, unsigned formats, size_t sheet_count
  * $EXTMIN/$EXTMAX the sheet, one LAYER per operation named as the machine
  * names it (characters DXF forbids in a name become '_') with the nearest
  * ACI colour (R2000: and the exact true colour), each path one entity: a
- * closed or open polyline (R12 POLYLINE, R2000 LWPOLYLINE), a two-point
- * open path a LINE.  PDF (libharu): each page exactly its sheet, paths in
+ * closed or open polyline (R12 POLYLINE, R2000 LWPOLYLINE), a path that
+ * is exactly a circle (ur_path_circle) a CIRCLE, exactly an arc an ARC, a
+ * two-point open path a LINE; a layer the machine dashes gets a LTYPE of
+ * its dashes (DASH_3_1P5 for "3 1.5"); the job name is a 999 comment at
+ * the top.  SVG draws exact circles as <circle> and arcs with A.  PDF (libharu): each page exactly its sheet, paths in
  * the machine's colours and line widths (dashes too), title, creator
  * "unroll VERSION" and job name in the document information (non-ASCII characters as '?').  PNG:
  * each sheet at format_options->dpi with the pieces filled by strain colour (where the piece has

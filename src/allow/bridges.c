@@ -327,6 +327,29 @@ static ur_status stretch(const ring *r, double from, double to, ur_points *out, 
     return status == UR_OK ? ur_points_push(out, point_at(r, to), error) : status;
 }
 
+/* The point of the circle nearest point (straight out from the centre). */
+static ur_vec2 onto_circle(ur_path_circle circle, ur_vec2 point)
+{
+    ur_vec2 out = ur_vec2_sub(point, circle.centre);
+    double length = ur_vec2_length(out);
+    return length > 0 ? ur_vec2_add_scaled(circle.centre, out, circle.radius / length) : point;
+}
+
+/*
+ * A stretch of a round outline as the arc it is: its ends, found on the
+ * chords, moved out onto the circle (by less than the flattening's
+ * tolerance), so that every point lies on it and the cut is the arc.
+ */
+
+static ur_path_circle arc_of(ur_path_circle circle, ur_points *stretch)
+{
+    ur_vec2 *first = &stretch->items[0], *last = &stretch->items[stretch->count - 1];
+    *first = onto_circle(circle, *first);
+    *last = onto_circle(circle, *last);
+    circle.sweep = ur_arc_sweep(circle.centre, stretch->items, stretch->count);
+    return circle;
+}
+
 /* The outline cut open at the gaps: paths[0] the first stretch, the rest appended. */
 static ur_status open_outline(ur_piece *piece, const ring *r, const double *centres, size_t placed,
                               double width, ur_error *error)
@@ -346,10 +369,14 @@ static ur_status open_outline(ur_piece *piece, const ring *r, const double *cent
     if (status == UR_OK) {
         piece->paths = paths;
         piece->outline_area = fabs(ur_polygon_signed_area(paths[0].points, paths[0].count));
+        ur_path_circle circle = paths[0].circle;
         free(paths[0].points);
         for (size_t k = 0; k < placed; k++) {
             ur_path *path = k == 0 ? &paths[0] : &paths[piece->path_count + k - 1];
-            *path = (ur_path){UR_OP_CUT, false, pieces[k].items, pieces[k].count};
+            ur_path_circle arc = {{0, 0}, 0, 0};
+            if (circle.radius > 0 && pieces[k].count >= 2)
+                arc = arc_of(circle, &pieces[k]);
+            *path = (ur_path){UR_OP_CUT, false, pieces[k].items, pieces[k].count, arc};
             pieces[k] = (ur_points){0};
         }
         piece->path_count += placed - 1;

@@ -222,6 +222,7 @@ static ur_status grow_outline(const joiner *j, ur_piece *piece, const GEOSGeomet
             free(piece->paths[0].points);
             piece->paths[0].points = ring;
             piece->paths[0].count = count;
+            piece->paths[0].circle = (ur_path_circle){{0, 0}, 0, 0}; /* grown: no circle */
             for (size_t i = 0; i < count; i++)
                 ur_box_add(&piece->box, ring[i]);
             *grown = true;

@@ -144,6 +144,36 @@ static ur_status offset_ring(GEOSContextHandle_t geos, const GEOSBufferParams *p
     return status;
 }
 
+/*
+ * A circle's offset is the circle of radius r + distance about the same
+ * centre, exactly: its points move straight out (or in) from the centre,
+ * keeping their order and staying on it, without GEOS, whose buffer of the
+ * inscribed polygon would be a polygon near the circle but not on it.
+ */
+static ur_status offset_circle(const ur_piece *piece, size_t index, double distance, ur_vec2 **ring,
+                               size_t *count, ur_error *error)
+{
+    const ur_path *path = &piece->paths[index];
+    ur_path_circle circle = path->circle;
+    double radius = circle.radius + distance;
+    if (!(radius > 0))
+        return ur_error_set(error, UR_ERROR_INPUT,
+                            "piece %s: the hole at (%.1f, %.1f) is no wider than the kerf "
+                            "(%g mm) and would vanish",
+                            piece->name, circle.centre.x, circle.centre.y, -2 * distance);
+    *ring = ur_alloc_array(path->count, sizeof **ring, error);
+    if (!*ring)
+        return UR_ERROR_INTERNAL;
+    for (size_t k = 0; k < path->count; k++) {
+        ur_vec2 out = ur_vec2_sub(path->points[k], circle.centre);
+        double length = ur_vec2_length(out);
+        (*ring)[k] =
+            length > 0 ? ur_vec2_add_scaled(circle.centre, out, radius / length) : path->points[k];
+    }
+    *count = path->count;
+    return UR_OK;
+}
+
 /* Every path's new ring (NULL: unchanged) into rings, counts; *holes how many holes moved. */
 static ur_status offset_all(const ur_piece *piece, double kerf, ur_vec2 **rings, size_t *counts,
                             size_t *holes, size_t *slots, ur_vec2 *slot_at, ur_error *error)
@@ -163,14 +193,16 @@ static ur_status offset_all(const ur_piece *piece, double kerf, ur_vec2 **rings,
         if (i > 0 && !is_hole(&piece->paths[i]))
             continue;
         double distance = i == 0 ? kerf / 2 : -kerf / 2;
-        status = offset_ring(geos, params, piece, i, distance, &rings[i], &counts[i], slots,
-                             slot_at, error);
-        /* Holes keep the direction they had; the outline stays counter-clockwise. */
-        if (status == UR_OK && i > 0) {
+        bool round = piece->paths[i].circle.radius > 0;
+        status = round ? offset_circle(piece, i, distance, &rings[i], &counts[i], error)
+                       : offset_ring(geos, params, piece, i, distance, &rings[i], &counts[i], slots,
+                                     slot_at, error);
+        if (status == UR_OK && i > 0)
             (*holes)++;
-            if (ur_polygon_signed_area(piece->paths[i].points, piece->paths[i].count) < 0)
-                reverse(rings[i], counts[i]);
-        }
+        /* Holes keep the direction they had (a circle's points keep their order). */
+        if (status == UR_OK && i > 0 && !round &&
+            ur_polygon_signed_area(piece->paths[i].points, piece->paths[i].count) < 0)
+            reverse(rings[i], counts[i]);
     }
     GEOSBufferParams_destroy_r(geos, params);
     GEOS_finish_r(geos);
@@ -237,6 +269,8 @@ ur_status ur_piece_compensate_kerf(ur_piece *piece, double kerf, ur_error *error
             piece->paths[i].points = rings[i];
             piece->paths[i].count = counts[i];
             rings[i] = NULL;
+            if (piece->paths[i].circle.radius > 0) /* out for the outline, in for a hole */
+                piece->paths[i].circle.radius += i == 0 ? kerf / 2 : -kerf / 2;
         }
     for (size_t i = 0; rings && i < piece->path_count; i++)
         free(rings[i]);

@@ -185,6 +185,7 @@ static ur_status glyph_stroke(const ur_font *font, const struct hershey_path *st
         path->points[i] = ur_vec2_make((advance + stroke->verts[i].x) * scale,
                                        (stroke->verts[i].y - font->baseline) * scale);
     path->count = stroke->nverts;
+    path->circle = (ur_path_circle){{0, 0}, 0, 0};
     return UR_OK;
 }
 

@@ -34,7 +34,18 @@ ur_status ur_piece_add_path(ur_piece *piece, ur_op op, const ur_vec2 *points, si
     path->closed = closed;
     path->points = copy;
     path->count = count;
+    path->circle = (ur_path_circle){{0, 0}, 0, 0};
     return UR_OK;
+}
+
+double ur_arc_sweep(ur_vec2 centre, const ur_vec2 *points, size_t count)
+{
+    double sweep = 0;
+    for (size_t i = 1; i < count; i++) {
+        ur_vec2 a = ur_vec2_sub(points[i - 1], centre), b = ur_vec2_sub(points[i], centre);
+        sweep += atan2(ur_vec2_cross(a, b), ur_vec2_dot(a, b));
+    }
+    return sweep;
 }
 
 static ur_status add_rulings(ur_piece *piece, const ur_net *net, ur_error *error)
@@ -148,9 +159,12 @@ ur_status ur_piece_copy(const ur_piece *from, ur_piece *to, ur_error *error)
     to->ruling_angle = from->ruling_angle;
     to->has_rulings = from->has_rulings;
     ur_status status = UR_OK;
-    for (size_t k = 0; status == UR_OK && k < from->path_count; k++)
+    for (size_t k = 0; status == UR_OK && k < from->path_count; k++) {
         status = ur_piece_add_path(to, from->paths[k].op, from->paths[k].points,
                                    from->paths[k].count, from->paths[k].closed, error);
+        if (status == UR_OK)
+            to->paths[k].circle = from->paths[k].circle;
+    }
     if (status == UR_OK)
         status = copy_shading(to, &from->shading, error);
     for (size_t r = 0; status == UR_OK && r < from->record_count; r++)

@@ -87,6 +87,7 @@ typedef struct cli_job {
     int seam_offset;          /* seams are numbered from this on (a job file's later parts) */
     const char *piece_prefix; /* pieces are named PREFIX-P1, ... (a job file's part); NULL */
     unsigned long long seed;  /* --seed N */
+    const char *job_name;     /* --job-name, or a job file's name; NULL: the surface's */
 } cli_job;
 
 enum {
@@ -222,6 +223,8 @@ bool cli_parse_roll(cli_job *job, const char *value);
 bool cli_parse_sheet_count(cli_job *job, const char *value);
 bool cli_parse_nest_time(cli_job *job, const char *value);
 bool cli_parse_seed(cli_job *job, const char *value);
+/* --job-name NAME: the name the files record (outputs.c); false after a message. */
+bool cli_parse_job_name(cli_job *job, const char *value);
 
 /* A warning naming the pieces that found no room on the --sheets allowed (outputs.c). */
 void cli_not_placed_warning(const cli_job *job, const ur_layout *layout, const ur_piece *pieces);

@@ -396,6 +396,8 @@ int cli_job_command(int argc, char **argv)
     if (!code) {
         /* One part alone writes as its command line would: its own name and title. */
         job.command = file.part_count == 1 ? file.parts[0].surface : "job";
+        if (!job.job_name) /* <option name="job-name"> says otherwise */
+            job.job_name = file.name;
         job.report_path = file.report[0] ? report : NULL;
         code = place_and_write(&file, &job, &all, materials, quiet);
     }

@@ -52,6 +52,7 @@ static const char usage[] =
     "  --no-kerf-compensation leave outlines where the net puts them\n"
     "  --format svg,dxf,pdf,png  the files to write (default: -o's extension)\n"
     "  --dxf-version 12|2000  DXF dialect (default 12); --dpi N  PNG preview resolution\n"
+    "  --job-name NAME        the job the files record (default the subcommand)\n"
     "  --order cut|none       paths in cutting order (default) or as drawn\n"
     "  --report FILE.json     write a JSON report ('-' for standard output)\n"
     "  --quiet                no summary on standard error\n"

@@ -32,6 +32,7 @@ enum nest_option {
     NEST_FORMAT,
     NEST_DXF_VERSION,
     NEST_DPI,
+    NEST_JOB_NAME,
     NEST_ORDER,
     NEST_ROTATIONS,
     NEST_NO_HOLES,
@@ -58,6 +59,7 @@ static const struct option nest_options[] = {
     {"format", required_argument, NULL, NEST_FORMAT},
     {"dxf-version", required_argument, NULL, NEST_DXF_VERSION},
     {"dpi", required_argument, NULL, NEST_DPI},
+    {"job-name", required_argument, NULL, NEST_JOB_NAME},
     {"order", required_argument, NULL, NEST_ORDER},
     {"rotations", required_argument, NULL, NEST_ROTATIONS},
     {"no-holes", no_argument, NULL, NEST_NO_HOLES},
@@ -166,6 +168,8 @@ static bool take_nest_option(nest_job *n, int id, const char *value)
         return cli_parse_dxf_version(job, value);
     case NEST_DPI:
         return cli_parse_dpi(job, value);
+    case NEST_JOB_NAME:
+        return cli_parse_job_name(job, value);
     case NEST_ORDER:
         return cli_parse_order(job, value);
     case NEST_ROTATIONS:
@@ -198,6 +202,7 @@ static const char nest_help[] =
     "  --machine NAME --material NAME --sheet WxH --margin MM --spacing MM\n"
     "  --report FILE.json --quiet --no-kerf-compensation\n"
     "  --format svg,dxf,pdf,png --dxf-version 12|2000 --dpi N --order cut|none\n"
+    "  --job-name NAME (recorded in the files; default nest)\n"
     "  --rotations N (turns of 360/N degrees from the part as drawn; default 4)\n"
     "  --no-holes (no part inside another's hole)\n"
     "  --merge-lines  parts may touch; a line two parts share is cut once\n"

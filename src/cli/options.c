@@ -63,6 +63,7 @@ enum option_id {
     OPT_FORMAT,
     OPT_DXF_VERSION,
     OPT_DPI,
+    OPT_JOB_NAME,
     OPT_ORDER,
     OPT_ROTATIONS,
     OPT_NO_HOLES,
@@ -121,6 +122,7 @@ static const struct option long_options[] = {
     {"format", required_argument, NULL, OPT_FORMAT},
     {"dxf-version", required_argument, NULL, OPT_DXF_VERSION},
     {"dpi", required_argument, NULL, OPT_DPI},
+    {"job-name", required_argument, NULL, OPT_JOB_NAME},
     {"order", required_argument, NULL, OPT_ORDER},
     {"rotations", required_argument, NULL, OPT_ROTATIONS},
     {"no-holes", no_argument, NULL, OPT_NO_HOLES},
@@ -156,9 +158,8 @@ static const struct {
 } action_options[] = {
     {CLI_DEVELOP,
      " output machine material sheet method parts rulings no-split report strain-png "
-     "allowances bridges no-kerf-compensation format dxf-version dpi order rotations no-holes "
-     "merge-lines "
-     "roll sheets nest-time seed "},
+     "allowances bridges no-kerf-compensation format dxf-version dpi job-name order rotations "
+     "no-holes merge-lines roll sheets nest-time seed "},
     {CLI_ANALYZE, " png report "},
     {CLI_COMPARE, " png csv "},
 };
@@ -503,6 +504,8 @@ static bool take_option(cli_job *job, int id, const char *value)
         return cli_parse_dxf_version(job, value);
     case OPT_DPI:
         return cli_parse_dpi(job, value);
+    case OPT_JOB_NAME:
+        return cli_parse_job_name(job, value);
     case OPT_ORDER:
         return cli_parse_order(job, value);
     case OPT_ROTATIONS:

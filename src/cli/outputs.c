@@ -125,6 +125,24 @@ bool cli_parse_seed(cli_job *job, const char *value)
     return true;
 }
 
+/* The most bytes a job name may have: it is a title, not a description. */
+enum { JOB_NAME_MAX = 200 };
+
+bool cli_parse_job_name(cli_job *job, const char *value)
+{
+    size_t length = strlen(value);
+    bool control = false;
+    for (const unsigned char *c = (const unsigned char *)value; *c; c++)
+        control = control || *c < 0x20 || *c == 0x7F;
+    if (length == 0 || length > JOB_NAME_MAX || control) {
+        cli_message("%s: --job-name: give a name of 1 to %d bytes without control characters",
+                    job->command, JOB_NAME_MAX);
+        return false;
+    }
+    job->job_name = value;
+    return true;
+}
+
 void cli_not_placed_warning(const cli_job *job, const ur_layout *layout, const ur_piece *pieces)
 {
     if (layout->not_placed_count == 0)
@@ -167,7 +185,7 @@ ur_status cli_write_outputs(const cli_job *job, const ur_machine *machine, const
     char title[128];
     snprintf(title, sizeof title, "unroll %s", job->command);
     ur_output_options output = {title};
-    ur_format_options formats = {.job_name = job->surface,
+    ur_format_options formats = {.job_name = job->job_name ? job->job_name : job->surface,
                                  .dxf_version = (ur_dxf_version)job->dxf_version,
                                  .dpi = job->dpi,
                                  .drawing_order = job->drawing_order};

@@ -301,14 +301,24 @@ static ur_status find_units(dxf_reader *reader, ur_error *error)
 
 /*
  * Hands points (drawing units) over in mm: a ring when closed, or when it
- * ends where it starts; an open piece otherwise, for chaining.
+ * ends where it starts; an open piece otherwise, for chaining.  circle
+ * (drawing units, NULL for none) is the circle a closed ring exactly is.
  */
-static ur_status emit(const dxf_entity *entity, parts_points *points, bool closed, ur_error *error)
+static ur_status emit(const dxf_entity *entity, parts_points *points, bool closed,
+                      const ur_path_circle *circle, ur_error *error)
 {
     dxf_reader *reader = entity->reader;
     for (size_t i = 0; i < points->count; i++) {
         ur_vec2 *p = &points->items[i];
         *p = ur_vec2_make((entity->mirrored ? -p->x : p->x) * reader->scale, p->y * reader->scale);
+    }
+    /* Mirroring and scaling keep a circle a circle: its centre moves as the points do. */
+    ur_path_circle in_mm = {{0, 0}, 0, 0};
+    if (circle && closed) {
+        ur_vec2 c = circle->centre;
+        in_mm.centre =
+            ur_vec2_make((entity->mirrored ? -c.x : c.x) * reader->scale, c.y * reader->scale);
+        in_mm.radius = circle->radius * reader->scale;
     }
     double tolerance = reader->collection->tolerance;
     if (!closed && points->count > 2 &&
@@ -318,7 +328,7 @@ static ur_status emit(const dxf_entity *entity, parts_points *points, bool close
     }
     if (closed)
         return parts_add_ring(reader->collection, points, entity->line, entity->type, NULL, 1,
-                              error);
+                              in_mm.radius > 0 ? &in_mm : NULL, error);
     if (points->count < 2)
         return UR_OK; /* a line of no length: nothing to cut */
     dxf_segment *segments =
@@ -336,10 +346,10 @@ static ur_status emit(const dxf_entity *entity, parts_points *points, bool close
 
 /* Emits and frees points whatever happens. */
 static ur_status emit_points(const dxf_entity *entity, parts_points *points, bool closed,
-                             ur_status status, ur_error *error)
+                             const ur_path_circle *circle, ur_status status, ur_error *error)
 {
     if (status == UR_OK)
-        status = emit(entity, points, closed, error);
+        status = emit(entity, points, closed, circle, error);
     parts_points_free(points);
     return status;
 }
@@ -354,7 +364,7 @@ static ur_status read_line_entity(const dxf_entity *entity, ur_error *error)
         status = parts_points_push(&points, ur_vec2_make(v[0], v[1]), error);
     if (status == UR_OK)
         status = parts_points_push(&points, ur_vec2_make(v[2], v[3]), error);
-    return emit_points(entity, &points, false, status, error);
+    return emit_points(entity, &points, false, NULL, status, error);
 }
 
 static ur_status positive_radius(const dxf_entity *entity, double radius, ur_error *error)
@@ -388,7 +398,9 @@ static ur_status read_circle_entity(const dxf_entity *entity, bool arc, ur_error
     status = parts_points_push(&points, parts_arc_point(&shape, start), error);
     if (status == UR_OK)
         status = parts_flatten_arc(&points, &shape, tolerance, error);
-    return emit_points(entity, &points, !arc, status, error);
+    /* A CIRCLE is exactly one; its points all lie on it. */
+    ur_path_circle circle = {shape.centre, v[2], 0};
+    return emit_points(entity, &points, !arc, arc ? NULL : &circle, status, error);
 }
 
 /* ELLIPSE: in world coordinates, major axis end 11/21 from the centre, ratio 40. */
@@ -417,7 +429,7 @@ static ur_status read_ellipse_entity(dxf_entity *entity, ur_error *error)
     status = parts_points_push(&points, parts_arc_point(&shape, start), error);
     if (status == UR_OK)
         status = parts_flatten_arc(&points, &shape, entity->reader->tolerance, error);
-    return emit_points(entity, &points, full, status, error);
+    return emit_points(entity, &points, full, NULL, status, error);
 }
 
 /* ---- Polylines ---------------------------------------------------------------- */
@@ -474,7 +486,7 @@ static ur_status emit_polyline(const dxf_entity *entity, const dxf_vertices *ver
     for (size_t i = 0; status == UR_OK && i < edges; i++)
         status = bulge_to(&points, vertices->items[i].p, vertices->items[(i + 1) % n].p,
                           vertices->items[i].bulge, entity->reader->tolerance, error);
-    return emit_points(entity, &points, closed, status, error);
+    return emit_points(entity, &points, closed, NULL, status, error);
 }
 
 /* One vertex's field: 10 starts a vertex, 20 and 42 fill it in. */
@@ -738,7 +750,7 @@ static ur_status chain_from(dxf_reader *reader, bool *used, size_t first, ur_err
     const dxf_segment *segment = &reader->segments[first];
     if (status == UR_OK)
         status = parts_add_ring(reader->collection, &chain, segment->line, segment->what, NULL, 1,
-                                error);
+                                NULL, error);
     parts_points_free(&chain);
     return status;
 }

@@ -147,7 +147,8 @@ ur_status parts_flatten_arc(parts_points *points, const parts_arc *arc, double t
 /* ---- Collecting rings ---------------------------------------------------- */
 
 ur_status parts_add_ring(parts_collection *collection, parts_points *points, int line,
-                         const char *what, const char *id, int sub, ur_error *error)
+                         const char *what, const char *id, int sub, const ur_path_circle *circle,
+                         ur_error *error)
 {
     parts_ring *rings = ur_array_grow(collection->rings, &collection->capacity, collection->count,
                                       sizeof *collection->rings, 16, error);
@@ -164,6 +165,8 @@ ur_status parts_add_ring(parts_collection *collection, parts_points *points, int
     ring->count = points->count;
     ring->line = line;
     ring->sub = sub;
+    if (circle)
+        ring->circle = *circle;
     snprintf(ring->what, sizeof ring->what, "%s", what);
     snprintf(ring->id, sizeof ring->id, "%s", id ? id : "");
     points->items = NULL;
@@ -258,6 +261,7 @@ static ur_status take_exterior(GEOSContextHandle_t geos, const GEOSGeometry *pol
     free(ring->points);
     ring->points = points;
     ring->count = size - 1;
+    ring->circle = (ur_path_circle){{0, 0}, 0, 0}; /* repaired: whatever it was, it is not that */
     return UR_OK;
 }
 
@@ -477,6 +481,8 @@ static ur_status build_piece(parts_job *job, size_t outer, size_t number, ur_pie
     memset(piece, 0, sizeof *piece);
     piece_name(collection, ring, number, piece->name, sizeof piece->name);
     ur_status status = ur_piece_add_path(piece, UR_OP_CUT, ring->points, ring->count, true, error);
+    if (status == UR_OK)
+        piece->paths[0].circle = ring->circle;
     double area = job->areas[outer];
     for (size_t h = 0; status == UR_OK && h < collection->count; h++) {
         if (job->parent[h] != (int)outer)
@@ -484,6 +490,8 @@ static ur_status build_piece(parts_job *job, size_t outer, size_t number, ur_pie
         parts_ring *hole = &collection->rings[h];
         reverse_points(hole->points, hole->count); /* holes turn clockwise */
         status = ur_piece_add_path(piece, UR_OP_CUT, hole->points, hole->count, true, error);
+        if (status == UR_OK)
+            piece->paths[piece->path_count - 1].circle = hole->circle;
         area -= job->areas[h];
     }
     piece->measures.flat_area = area;

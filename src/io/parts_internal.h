@@ -56,10 +56,11 @@ ur_status parts_flatten_arc(parts_points *points, const parts_arc *arc, double t
 typedef struct parts_ring {
     ur_vec2 *points; /* owned; mm, y up, first point not repeated */
     size_t count;
-    int line;      /* where it starts in the file; 0 when unknown */
-    char what[96]; /* 'path id="a"', "LWPOLYLINE": for messages */
-    char id[32];   /* the SVG id, empty otherwise */
-    int sub;       /* 1 for the first ring of an element, 2 for the next ... */
+    int line;              /* where it starts in the file; 0 when unknown */
+    char what[96];         /* 'path id="a"', "LWPOLYLINE": for messages */
+    char id[32];           /* the SVG id, empty otherwise */
+    int sub;               /* 1 for the first ring of an element, 2 for the next ... */
+    ur_path_circle circle; /* the circle the ring exactly is, mm; radius 0 for none */
 } parts_ring;
 
 typedef struct parts_collection {
@@ -72,9 +73,13 @@ typedef struct parts_collection {
     size_t warning_count;
 } parts_collection;
 
-/* Takes points (left empty) as a new ring. */
+/*
+ * Takes points (left empty) as a new ring; circle (NULL for none) is the
+ * circle, in mm, the ring exactly is, the points all on it.
+ */
 ur_status parts_add_ring(parts_collection *collection, parts_points *points, int line,
-                         const char *what, const char *id, int sub, ur_error *error);
+                         const char *what, const char *id, int sub, const ur_path_circle *circle,
+                         ur_error *error);
 
 /* Adds a warning, formatted like an error message. */
 ur_status parts_warn(parts_collection *collection, ur_error *error, const char *format, ...)

@@ -65,6 +65,20 @@ static double matrix_stretch(svg_matrix m)
     return sqrt(p / 2 + sqrt(fmax(0, p * p / 4 - q * q)));
 }
 
+/*
+ * How much m scales every length when it keeps circles circles (turns,
+ * mirrors, moves and scales alike in every direction, to rounding); 0 when
+ * it stretches one way more than another or skews, making circles ellipses.
+ */
+static double matrix_similarity_scale(svg_matrix m)
+{
+    double first = m.a * m.a + m.b * m.b, second = m.c * m.c + m.d * m.d;
+    double slack = 1e-12 * fmax(first, second);
+    if (!(fabs(first - second) <= slack && fabs(m.a * m.c + m.b * m.d) <= slack))
+        return 0;
+    return sqrt(fabs(m.a * m.d - m.b * m.c));
+}
+
 /* ---- Reading state ------------------------------------------------------ */
 
 typedef struct svg_reader {
@@ -90,14 +104,25 @@ static ur_status element_error(const svg_element *element, ur_error *error, cons
                         element->line, element->what, message);
 }
 
-/* Transforms the points to mm and hands them over as a ring. */
-static ur_status element_ring(svg_element *element, parts_points *points, ur_error *error)
+/*
+ * Transforms the points to mm and hands them over as a ring.  circle (user
+ * units, NULL for none) is the circle the ring exactly is; it stays one
+ * only under a transform that keeps circles circles.
+ */
+static ur_status element_ring(svg_element *element, parts_points *points,
+                              const ur_path_circle *circle, ur_error *error)
 {
     for (size_t i = 0; i < points->count; i++)
         points->items[i] = matrix_apply(element->matrix, points->items[i]);
+    ur_path_circle in_mm = {{0, 0}, 0, 0};
+    double scale = circle ? matrix_similarity_scale(element->matrix) : 0;
+    if (scale > 0) {
+        in_mm.centre = matrix_apply(element->matrix, circle->centre);
+        in_mm.radius = circle->radius * scale;
+    }
     element->sub++;
     return parts_add_ring(element->reader->collection, points, element->line, element->what,
-                          element->id, element->sub, error);
+                          element->id, element->sub, in_mm.radius > 0 ? &in_mm : NULL, error);
 }
 
 /* ---- Numbers, lengths, lists -------------------------------------------- */
@@ -317,7 +342,35 @@ typedef struct svg_path_state {
     ur_vec2 control; /* the last control point, reflected by S and T */
     char previous;   /* the last command, upper case */
     bool started;    /* the path began with a moveto */
+    /*
+     * Whether the sub-path so far is arcs of one circle only (a circle drawn
+     * as two half arcs, as many programs write one): their centre, radius
+     * and the angle they have turned through in all.
+     */
+    size_t arcs;  /* circular arcs drawn in this sub-path */
+    bool not_arc; /* something else was drawn too */
+    ur_vec2 centre;
+    double radius, swept;
 } svg_path_state;
+
+/* The sub-path's arcs so far are of one circle, with no other segment. */
+static void note_segment(svg_path_state *state, const parts_arc *arc)
+{
+    if (!arc || arc->rx != arc->ry) {
+        state->not_arc = true;
+        return;
+    }
+    double slack = 1e-9 * fmax(1.0, arc->rx);
+    if (state->arcs > 0 && (ur_vec2_distance(arc->centre, state->centre) > slack ||
+                            fabs(arc->rx - state->radius) > slack || arc->sweep * state->swept < 0))
+        state->not_arc = true;
+    if (state->arcs == 0) {
+        state->centre = arc->centre;
+        state->radius = arc->rx;
+    }
+    state->arcs++;
+    state->swept += arc->sweep;
+}
 
 static ur_status path_data_error(svg_path_state *state, const char *at, ur_error *error)
 {
@@ -348,6 +401,15 @@ static ur_status open_shape_error(svg_element *element, ur_vec2 first, ur_vec2 l
 static ur_status finish_subpath(svg_path_state *state, bool closed, ur_error *error)
 {
     parts_points *points = &state->points;
+    /* Arcs of one circle that go once round, ending where they began, are that circle. */
+    double slack = 1e-9 * fmax(1.0, state->radius);
+    bool round = state->arcs > 0 && !state->not_arc && points->count > 0 &&
+                 ur_vec2_distance(points->items[0], points->items[points->count - 1]) <= slack &&
+                 fabs(fabs(state->swept) - 2 * M_PI) <= 1e-9;
+    ur_path_circle circle = {state->centre, state->radius, 0};
+    state->arcs = 0;
+    state->not_arc = false;
+    state->swept = 0;
     if (points->count == 0 || (points->count == 1 && !closed)) {
         points->count = 0;
         return UR_OK;
@@ -357,7 +419,7 @@ static ur_status finish_subpath(svg_path_state *state, bool closed, ur_error *er
         return open_shape_error(state->element, first, last, error);
     if (!closed)
         points->items[points->count - 1] = first;
-    return element_ring(state->element, points, error);
+    return element_ring(state->element, points, round ? &circle : NULL, error);
 }
 
 /* After Z a drawing command starts again where the sub-path started. */
@@ -370,6 +432,8 @@ static ur_status begin_if_needed(svg_path_state *state, ur_error *error)
 
 static ur_status line_to(svg_path_state *state, ur_vec2 p, ur_error *error)
 {
+    if (ur_vec2_distance(state->current, p) > 0)
+        note_segment(state, NULL);
     ur_status status = begin_if_needed(state, error);
     if (status == UR_OK)
         status = parts_points_push(&state->points, p, error);
@@ -426,6 +490,7 @@ static ur_status arc_to(svg_path_state *state, const double *v, ur_vec2 end, ur_
     if (v[0] == 0 || v[1] == 0 ||
         !arc_centre(state->current, end, v[0], v[1], v[2], v[3] != 0, v[4] != 0, &arc))
         return line_to(state, end, error);
+    note_segment(state, &arc);
     ur_status status = begin_if_needed(state, error);
     if (status == UR_OK)
         status = parts_flatten_arc(&state->points, &arc, state->element->tolerance, error);
@@ -471,6 +536,7 @@ static ur_status curve_command(svg_path_state *state, char upper, const double *
 {
     double tolerance = state->element->tolerance;
     ur_vec2 p0 = state->current, c1, c2, end;
+    note_segment(state, NULL);
     ur_status status = begin_if_needed(state, error);
     if (status != UR_OK)
         return status;
@@ -679,7 +745,7 @@ static ur_status read_rect(svg_element *element, ur_error *error)
     for (int k = 0; status == UR_OK && k < 4; k++)
         status = rect_corner(element, &points, centres[k], rx, ry, (k - 1) * M_PI / 2, error);
     if (status == UR_OK)
-        status = element_ring(element, &points, error);
+        status = element_ring(element, &points, NULL, error);
     parts_points_free(&points);
     return status;
 }
@@ -697,11 +763,13 @@ static ur_status read_ellipse(svg_element *element, bool circle, ur_error *error
     if (status == UR_OK)
         status = positive(element, circle ? "r" : "ry", v[3], error);
     parts_arc arc = {ur_vec2_make(v[0], v[1]), v[2], v[3], 0, 0, 2 * M_PI};
+    /* A circle, or an ellipse of equal radii: its points lie on the circle. */
+    ur_path_circle round = {arc.centre, v[2], 0};
     parts_points points = {0};
     if (status == UR_OK)
         status = parts_flatten_arc(&points, &arc, element->tolerance, error);
     if (status == UR_OK)
-        status = element_ring(element, &points, error);
+        status = element_ring(element, &points, v[2] == v[3] ? &round : NULL, error);
     parts_points_free(&points);
     return status;
 }
@@ -730,7 +798,7 @@ static ur_status read_poly(svg_element *element, bool polygon, ur_error *error)
         ur_vec2_distance(points.items[0], points.items[points.count - 1]) > element->tolerance)
         status = open_shape_error(element, points.items[0], points.items[points.count - 1], error);
     if (status == UR_OK)
-        status = element_ring(element, &points, error);
+        status = element_ring(element, &points, NULL, error);
     parts_points_free(&points);
     return status;
 }

@@ -185,7 +185,7 @@ double ur_outline_level_angle(const ur_vec2 *outline, size_t count)
     GEOSContextHandle_t geos = GEOS_init_r();
     if (!geos)
         return 0.0;
-    ur_path path = {UR_OP_CUT, true, (ur_vec2 *)outline, count};
+    ur_path path = {.op = UR_OP_CUT, .closed = true, .points = (ur_vec2 *)outline, .count = count};
     double angle = count ? nest_level_angle(geos, &path) : 0.0;
     GEOS_finish_r(geos);
     return angle;

@@ -301,7 +301,7 @@ static ur_status replace_path(ur_piece *piece, size_t index, stretches *kept, ur
     if (index == 0)
         piece->bridged = true; /* the outline is open now */
     free(piece->paths[index].points);
-    piece->paths[index] = (ur_path){op, false, NULL, 0};
+    piece->paths[index] = (ur_path){.op = op}; /* open, and no longer a whole circle */
     ur_status status = UR_OK;
     for (size_t k = 0; status == UR_OK && k < kept->count; k++) {
         if (k == 0) {

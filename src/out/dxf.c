@@ -12,17 +12,24 @@
  * Both write $INSUNITS = 4 (mm) and $MEASUREMENT = 1 (metric), even R12,
  * which predates them: a file without them is scaled differently by
  * different programs.  Each operation is a layer named as the machine names
- * it with the nearest ACI colour (programs like LightBurn map by colour);
- * each path is one entity, so every outline is one closed polyline, never
- * several loops in one.
+ * it with the nearest ACI colour (programs like LightBurn map by colour)
+ * and, when the machine dashes it, a linetype of the same dashes (LTYPE),
+ * so a fold line shows dashed in a CAD program too.  Each path is one
+ * entity, so every outline is one closed polyline, never several loops in
+ * one; a path that is exactly a circle is a CIRCLE, exactly an arc an ARC
+ * (the driver says so; nothing is fitted here), a two-point open path a
+ * LINE.  The job's name goes into a 999 comment: neither version has a
+ * header variable for it ($PROJECTNAME came with R2004).
  *
  * The header must hold $HANDSEED, above every handle used, so the entities
  * of a sheet are gathered in memory and the file written at end_sheet.
  */
 #include "writer.h"
 
+#include <ctype.h>
 #include <errno.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
@@ -32,6 +39,12 @@ enum { NUMBER_SIZE = 400 };
 
 /* At most one layer per operation, plus "0", which every drawing has. */
 enum { MAX_LAYERS = UR_OP_COUNT + 1 };
+
+/*
+ * The most dash lengths a pattern keeps (ur_style_dashes), and elements of
+ * a DXF linetype: an odd list is said twice, as SVG and PDF repeat it.
+ */
+enum { MAX_DASHES = 16, MAX_ELEMENTS = 2 * MAX_DASHES };
 
 /* Fixed handles of the R2000 skeleton; layers and entities follow. */
 enum {
@@ -60,6 +73,7 @@ enum {
     H_MODEL_BLOCK = 0x20,
     H_MODEL_END = 0x21,
     H_MODEL_LAYOUT = 0x22,
+    H_FIRST_LTYPE = 0x23, /* the dashed linetypes, at most one per operation */
     H_FIRST_LAYER = 0x30,
     H_FIRST_ENTITY = 0x100,
 };
@@ -124,11 +138,23 @@ static int nearest_aci(unsigned long rgb)
     return best;
 }
 
+_Static_assert(H_FIRST_LTYPE + UR_OP_COUNT <= H_FIRST_LAYER, "room for a linetype per operation");
+
+/* A dash pattern as a linetype: dashes positive, gaps negative, mm. */
+typedef struct dxf_linetype {
+    char name[64];
+    double elements[MAX_ELEMENTS];
+    size_t count;
+} dxf_linetype;
+
 typedef struct dxf_layer {
     char name[64]; /* as DXF allows it */
     int aci;
     unsigned long rgb;
+    size_t linetype; /* index into the sheet's linetypes; LINETYPE_SOLID for none */
 } dxf_layer;
+
+#define LINETYPE_SOLID SIZE_MAX
 
 typedef struct dxf_sheet {
     FILE *file; /* the caller's */
@@ -136,9 +162,12 @@ typedef struct dxf_sheet {
     double width, height;
     dxf_layer layers[MAX_LAYERS]; /* layers[0] is "0" unless the machine names it */
     size_t layer_count;
-    size_t layer_of[UR_OP_COUNT]; /* index into layers */
-    FILE *body;                   /* owned: the entities, in memory until end_sheet */
-    char *body_data;              /* owned: what body wrote */
+    size_t layer_of[UR_OP_COUNT];        /* index into layers */
+    dxf_linetype linetypes[UR_OP_COUNT]; /* one per distinct dash pattern */
+    size_t linetype_count;
+    const char *job_name; /* the caller's; NULL for none */
+    FILE *body;           /* owned: the entities, in memory until end_sheet */
+    char *body_data;      /* owned: what body wrote */
     size_t body_size;
     unsigned long next_handle;
 } dxf_sheet;
@@ -223,10 +252,59 @@ static size_t find_layer(const dxf_sheet *sheet, const char *name)
     return sheet->layer_count;
 }
 
+/*
+ * A linetype name R12 takes too: letters, digits, '_' and '-' only, so a
+ * decimal point is written P ("DASH_3_1P5"); false when that cannot be.
+ */
+static bool plain_name(char *name)
+{
+    for (char *c = name; *c; c++) {
+        if (*c == '.')
+            *c = 'P';
+        else if (!(isalnum((unsigned char)*c) || *c == '_' || *c == '-'))
+            return false;
+    }
+    return true;
+}
+
+/*
+ * The linetype of a style's dashes (LINETYPE_SOLID when it has none), made
+ * the first time a pattern is seen: DASH_3_1P5 for "3 1.5", its elements
+ * dash, gap, dash, gap ... in mm (an odd list said twice).
+ */
+static size_t find_linetype(dxf_sheet *sheet, const ur_op_style *style)
+{
+    double dashes[MAX_DASHES];
+    size_t count = ur_style_dashes(style, dashes, MAX_DASHES);
+    if (count == 0)
+        return LINETYPE_SOLID;
+    dxf_linetype made = {"DASH", {0}, 0};
+    size_t used = strlen(made.name);
+    for (size_t i = 0; i < count && used < sizeof made.name; i++)
+        used += (size_t)snprintf(made.name + used, sizeof made.name - used, "_%g", dashes[i]);
+    for (size_t round = 0; round < (count % 2 ? 2 : 1); round++)
+        for (size_t i = 0; i < count; i++, made.count++)
+            made.elements[made.count] = made.count % 2 ? -dashes[i] : dashes[i];
+    for (size_t i = 0; i < sheet->linetype_count; i++) {
+        const dxf_linetype *known = &sheet->linetypes[i];
+        if (known->count == made.count &&
+            memcmp(known->elements, made.elements, made.count * sizeof *made.elements) == 0)
+            return i;
+    }
+    /* A name too long for its buffer, odd, or cut to another's, is numbered instead. */
+    if (used >= sizeof made.name || !plain_name(made.name))
+        snprintf(made.name, sizeof made.name, "DASH%zu", sheet->linetype_count + 1);
+    for (size_t i = 0; i < sheet->linetype_count; i++)
+        if (strcasecmp(sheet->linetypes[i].name, made.name) == 0)
+            snprintf(made.name, sizeof made.name, "DASH%zu", sheet->linetype_count + 1);
+    sheet->linetypes[sheet->linetype_count] = made;
+    return sheet->linetype_count++;
+}
+
 /* One layer per distinct name; two operations the machine puts on one layer share it. */
 static ur_status make_layers(dxf_sheet *sheet, const ur_machine *machine, ur_error *error)
 {
-    sheet->layers[0] = (dxf_layer){"0", 7, 0xFFFFFF};
+    sheet->layers[0] = (dxf_layer){"0", 7, 0xFFFFFF, LINETYPE_SOLID};
     sheet->layer_count = 1;
     for (int op = 0; op < UR_OP_COUNT; op++) {
         ur_status status = ur_style_check(machine, (ur_op)op, error);
@@ -244,6 +322,7 @@ static ur_status make_layers(dxf_sheet *sheet, const ur_machine *machine, ur_err
             memcpy(layer->name, name, sizeof layer->name);
             layer->rgb = ur_style_rgb(style);
             layer->aci = nearest_aci(layer->rgb);
+            layer->linetype = find_linetype(sheet, style);
         }
         sheet->layer_of[op] = index;
     }
@@ -263,9 +342,30 @@ static void end_section(FILE *file)
     group(file, 0, "ENDSEC");
 }
 
+/*
+ * A 999 comment line: what follows is one line of text, which readers skip.
+ * A control character would end the line early and is written as a space;
+ * anything beyond ASCII (a whole UTF-8 sequence) as '?', as the PDF's
+ * information strings have it, since the file declares no code page.
+ */
+static void write_comment(FILE *file, const char *label, const char *text)
+{
+    fprintf(file, "999\n%s", label);
+    for (const unsigned char *c = (const unsigned char *)text; *c; c++)
+        if (*c >= 0x20 && *c <= 0x7E)
+            fputc(*c, file);
+        else if (*c < 0x20 || *c == 0x7F)
+            fputc(' ', file);
+        else if (*c >= 0xC0) /* the first byte of a sequence; the rest are left out */
+            fputc('?', file);
+    fputc('\n', file);
+}
+
 static void write_header(const dxf_sheet *sheet)
 {
     FILE *file = sheet->file;
+    if (sheet->job_name)
+        write_comment(file, "job: ", sheet->job_name);
     begin_section(file, "HEADER");
     group(file, 9, "$ACADVER");
     group(file, 1, sheet->r2000 ? "AC1015" : "AC1009");
@@ -318,25 +418,52 @@ static void begin_entry(const dxf_sheet *sheet, const char *type, unsigned long 
     group_int(file, 70, 0);
 }
 
+/* A linetype: its elements in mm, dashes positive and gaps negative (none: solid). */
 static void write_linetype(const dxf_sheet *sheet, unsigned long handle, const char *name,
-                           const char *description)
+                           const char *description, const double *elements, size_t count)
 {
     FILE *file = sheet->file;
     begin_entry(sheet, "LTYPE", handle, H_LTYPES, "AcDbLinetypeTableRecord", name);
     group(file, 3, description);
-    group_int(file, 72, 65);
-    group_int(file, 73, 0);
-    group_real(file, 40, 0.0);
+    group_int(file, 72, 65); /* 'A': alignment, the only one there is */
+    group_int(file, 73, (long)count);
+    double total = 0;
+    for (size_t i = 0; i < count; i++)
+        total += fabs(elements[i]);
+    group_real(file, 40, total);
+    for (size_t i = 0; i < count; i++) {
+        group_real(file, 49, elements[i]);
+        if (sheet->r2000)
+            group_int(file, 74, 0); /* a plain dash or gap: no shape or text in it */
+    }
+}
+
+static const char *linetype_name(const dxf_sheet *sheet, size_t linetype)
+{
+    if (linetype != LINETYPE_SOLID)
+        return sheet->linetypes[linetype].name;
+    return sheet->r2000 ? "Continuous" : "CONTINUOUS";
 }
 
 static void write_linetypes(const dxf_sheet *sheet)
 {
-    begin_table(sheet, "LTYPE", H_LTYPES, sheet->r2000 ? 3 : 1);
+    begin_table(sheet, "LTYPE", H_LTYPES, (sheet->r2000 ? 3 : 1) + (long)sheet->linetype_count);
     if (sheet->r2000) {
-        write_linetype(sheet, H_BYBLOCK, "ByBlock", "");
-        write_linetype(sheet, H_BYLAYER, "ByLayer", "");
+        write_linetype(sheet, H_BYBLOCK, "ByBlock", "", NULL, 0);
+        write_linetype(sheet, H_BYLAYER, "ByLayer", "", NULL, 0);
     }
-    write_linetype(sheet, H_CONTINUOUS, sheet->r2000 ? "Continuous" : "CONTINUOUS", "Solid line");
+    write_linetype(sheet, H_CONTINUOUS, linetype_name(sheet, LINETYPE_SOLID), "Solid line", NULL,
+                   0);
+    for (size_t i = 0; i < sheet->linetype_count; i++) {
+        const dxf_linetype *linetype = &sheet->linetypes[i];
+        char description[128] = "Dashes (mm):";
+        size_t used = strlen(description);
+        for (size_t k = 0; k < linetype->count && used < sizeof description; k++)
+            used += (size_t)snprintf(description + used, sizeof description - used, " %g",
+                                     fabs(linetype->elements[k]));
+        write_linetype(sheet, H_FIRST_LTYPE + i, linetype->name, description, linetype->elements,
+                       linetype->count);
+    }
     end_table(sheet->file);
 }
 
@@ -351,7 +478,7 @@ static void write_layers(const dxf_sheet *sheet)
         group_int(file, 62, layer->aci);
         if (sheet->r2000)
             group_int(file, 420, (long)layer->rgb);
-        group(file, 6, sheet->r2000 ? "Continuous" : "CONTINUOUS");
+        group(file, 6, linetype_name(sheet, layer->linetype));
         if (sheet->r2000)
             group_int(file, 370, -3); /* line weight: default */
     }
@@ -513,6 +640,37 @@ static void write_line(dxf_sheet *sheet, ur_op op, ur_vec2 a, ur_vec2 b)
     group_point(sheet->body, 11, b.x, b.y);
 }
 
+/* An exact circle (type CIRCLE), or the start of an ARC: centre and radius. */
+static void write_circle(dxf_sheet *sheet, const char *type, ur_op op, const ur_path_circle *circle)
+{
+    begin_entity(sheet, type, op, "AcDbCircle");
+    group_point(sheet->body, 10, circle->centre.x, circle->centre.y);
+    group_real(sheet->body, 40, circle->radius);
+}
+
+/* The direction of point from the centre, degrees in [0, 360). */
+static double degrees_at(ur_vec2 centre, ur_vec2 point)
+{
+    double degrees = atan2(point.y - centre.y, point.x - centre.x) * 180 / M_PI;
+    return degrees < 0 ? degrees + 360 : degrees;
+}
+
+/*
+ * An exact arc from first to last.  A DXF ARC always runs counter-clockwise
+ * from its start angle to its end angle, so a clockwise one is written
+ * from its last point to its first: the same arc, cut the other way.
+ */
+static void write_arc(dxf_sheet *sheet, ur_op op, const ur_path_circle *circle, ur_vec2 first,
+                      ur_vec2 last)
+{
+    double start = degrees_at(circle->centre, circle->sweep >= 0 ? first : last);
+    double end = degrees_at(circle->centre, circle->sweep >= 0 ? last : first);
+    write_circle(sheet, "ARC", op, circle);
+    subclass(sheet, sheet->body, "AcDbArc");
+    group_real(sheet->body, 50, start);
+    group_real(sheet->body, 51, end);
+}
+
 static void write_lwpolyline(dxf_sheet *sheet, ur_op op, const ur_vec2 *points, size_t count,
                              bool closed)
 {
@@ -569,6 +727,7 @@ static ur_status dxf_begin_sheet(void **state, void *document, FILE *file, size_
     sheet->width = job->layout->sheets[index].width;
     sheet->height = job->layout->sheets[index].height;
     sheet->next_handle = H_FIRST_ENTITY;
+    sheet->job_name = job->options->job_name;
     ur_status status = make_layers(sheet, job->machine, error);
     if (status == UR_OK) {
         sheet->body = open_memstream(&sheet->body_data, &sheet->body_size);
@@ -584,10 +743,14 @@ static ur_status dxf_begin_sheet(void **state, void *document, FILE *file, size_
 }
 
 static ur_status dxf_path(void *state, ur_op op, const ur_vec2 *points, size_t count, bool closed,
-                          ur_error *error)
+                          const ur_path_circle *circle, ur_error *error)
 {
     dxf_sheet *sheet = state;
-    if (count <= 2 && !closed)
+    if (circle && closed)
+        write_circle(sheet, "CIRCLE", op, circle);
+    else if (circle && count >= 2)
+        write_arc(sheet, op, circle, points[0], points[count - 1]);
+    else if (count <= 2 && !closed)
         write_line(sheet, op, points[0], points[count - 1]);
     else if (sheet->r2000)
         write_lwpolyline(sheet, op, points, count, closed);

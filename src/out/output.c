@@ -124,7 +124,13 @@ static ur_status write_path(const ur_writer *writer, void *state, const ur_path 
     size_t count = path->count;
     if (ordered && path->closed && count >= 3)
         count = start_on_straight(path, scratch);
-    return writer->path(state, path->op, scratch, count, path->closed, error);
+    /* A placement turns and moves, never mirrors: the arc keeps its radius and its sweep. */
+    ur_path_circle circle = path->circle;
+    circle.centre = ur_transform2_apply(placement->transform, circle.centre);
+    bool round = circle.radius > 0 && isfinite(circle.radius) && isfinite(circle.centre.x) &&
+                 isfinite(circle.centre.y) && (path->closed || count >= 2);
+    return writer->path(state, path->op, scratch, count, path->closed, round ? &circle : NULL,
+                        error);
 }
 
 /*

@@ -287,9 +287,10 @@ static ur_status pdf_end_layer(void *state, ur_op op, ur_error *error)
 }
 
 static ur_status pdf_path(void *state, ur_op op, const ur_vec2 *points, size_t count, bool closed,
-                          ur_error *error)
+                          const ur_path_circle *circle, ur_error *error)
 {
-    (void)op; /* begin_layer set its style */
+    (void)circle; /* the points lie on it, within the flattening's tolerance */
+    (void)op;     /* begin_layer set its style */
     pdf_sheet *sheet = state;
     HPDF_Page page = sheet->page;
     HPDF_Page_MoveTo(page, units(sheet, points[0].x), units(sheet, points[0].y));

@@ -245,8 +245,9 @@ static ur_status png_begin_layer(void *state, ur_op op, ur_error *error)
 }
 
 static ur_status png_path(void *state, ur_op op, const ur_vec2 *points, size_t count, bool closed,
-                          ur_error *error)
+                          const ur_path_circle *circle, ur_error *error)
 {
+    (void)circle; /* the points lie on it, within the flattening's tolerance */
     (void)error;
     png_sheet *s = state;
     s->drawn[op] = true;

@@ -305,13 +305,55 @@ static ur_status append_point(svg_sheet *sheet, const char *command, ur_vec2 poi
     return status == UR_OK ? append(sheet, y, error) : status;
 }
 
+/* An exact circle as SVG's own element, centre y flipped. */
+static ur_status write_circle(svg_sheet *sheet, const ur_path_circle *circle, ur_error *error)
+{
+    char x[NUMBER_SIZE], y[NUMBER_SIZE], r[NUMBER_SIZE];
+    format_coordinate(circle->centre.x, x);
+    format_coordinate(sheet->height - circle->centre.y, y);
+    format_coordinate(circle->radius, r);
+    const char *const attributes[][2] = {{"cx", x}, {"cy", y}, {"r", r}};
+    if (xmlTextWriterStartElement(sheet->writer, BAD_CAST "circle") < 0)
+        return xml_failed(error, "circle");
+    ur_status status = write_attributes(sheet->writer, attributes, 3, error);
+    if (status == UR_OK && xmlTextWriterEndElement(sheet->writer) < 0)
+        status = xml_failed(error, "circle");
+    return status;
+}
+
+/*
+ * " A r r 0 large sweep x y": the exact arc to the last point.  With y
+ * flipped a counter-clockwise arc turns the way SVG calls negative, so its
+ * sweep flag is 0.
+ */
+static ur_status append_arc(svg_sheet *sheet, const ur_path_circle *circle, ur_vec2 last,
+                            ur_error *error)
+{
+    char r[NUMBER_SIZE], flags[16];
+    format_coordinate(circle->radius, r);
+    snprintf(flags, sizeof flags, " 0 %d %d", fabs(circle->sweep) > M_PI, circle->sweep < 0);
+    const char *const parts[] = {" A ", r, " ", r, flags};
+    ur_status status = UR_OK;
+    for (size_t i = 0; status == UR_OK && i < sizeof parts / sizeof *parts; i++)
+        status = append(sheet, parts[i], error);
+    return status == UR_OK ? append_point(sheet, "", last, error) : status;
+}
+
 static ur_status svg_path(void *state, ur_op op, const ur_vec2 *points, size_t count, bool closed,
-                          ur_error *error)
+                          const ur_path_circle *circle, ur_error *error)
 {
     (void)op; /* the enclosing layer group carries it */
     svg_sheet *sheet = state;
+    if (circle && closed)
+        return write_circle(sheet, circle, error);
     sheet->length = 0;
     ur_status status = append(sheet, "", error);
+    if (circle && count >= 2) {
+        status = append_point(sheet, "M", points[0], error);
+        if (status == UR_OK)
+            status = append_arc(sheet, circle, points[count - 1], error);
+        count = 0; /* the points between lie on the arc */
+    }
     for (size_t i = 0; status == UR_OK && i < count; i++)
         status = append_point(sheet, i == 0 ? "M" : " L", points[i], error);
     if (status == UR_OK && closed)

@@ -77,9 +77,15 @@ typedef struct ur_writer {
     ur_status (*begin_layer)(void *state, ur_op op, ur_error *error);
     ur_status (*end_layer)(void *state, ur_op op, ur_error *error);
 
-    /* One polyline of count >= 1 finite points; closed joins the last to the first. */
+    /*
+     * One polyline of count >= 1 finite points; closed joins the last to the
+     * first.  circle, in sheet coordinates, is NULL unless the path is
+     * exactly that circle (closed) or an arc of it from points[0] to
+     * points[count - 1] (open): a format that can say so draws the circle
+     * or arc, one that cannot draws the points, which lie on it.
+     */
     ur_status (*path)(void *state, ur_op op, const ur_vec2 *points, size_t count, bool closed,
-                      ur_error *error);
+                      const ur_path_circle *circle, ur_error *error);
 
     /* Finishes the sheet, writes what is buffered, frees state (also on failure). */
     ur_status (*end_sheet)(void *state, ur_error *error);

@@ -69,6 +69,15 @@ def paths(svg_file, layer):
     return found
 
 
+def circles(svg_file, layer):
+    """The circles of one layer group as (cx, cy, r), SVG coordinates (y down)."""
+    root = ET.parse(svg_file).getroot()
+    group = root.find("%sg[@id='%s']" % (SVG, layer))
+    check(group is not None, "%s has no layer %s" % (svg_file, layer))
+    return [(float(c.get("cx")), float(c.get("cy")), float(c.get("r")))
+            for c in group.iter(SVG + "circle")]
+
+
 def area(points):
     return abs(sum(x0 * y1 - x1 * y0 for (x0, y0), (x1, y1)
                    in zip(points, points[1:] + points[:1]))) / 2
@@ -1197,12 +1206,14 @@ def nest_reads_svg_and_dxf_in_their_units(work):
         close(max(box["width_mm"], box["height_mm"]), 100, 1e-6, name + " length")
         close(min(box["width_mm"], box["height_mm"]), 50, 1e-6, name + " width")
         cuts = [points for points, closed in paths(os.path.join(work, out), "cut") if closed]
-        check(len(cuts) == 2, "%s: %d closed cuts" % (name, len(cuts)))
-        areas.append(sorted(area(points) for points in cuts))
+        check(len(cuts) == 1, "%s: %d closed cut paths" % (name, len(cuts)))
+        # The hole, a circle in every file, is written as the circle it is.
+        holes = circles(os.path.join(work, out), "cut")
+        check(len(holes) == 1, "%s: %d circles" % (name, len(holes)))
+        close(holes[0][2], 10, 1e-9, name + " hole radius")
+        areas.append(area(cuts[0]))
     for other in areas[1:]:
-        close(other[0], areas[0][0], 1e-3, "hole area")  # curves flattened within 0.01 mm
-        close(other[1], areas[0][1], 1e-6, "outline area")
-    close(areas[0][0], math.pi * 100, 2e-3, "the hole is a 20 mm circle")
+        close(other, areas[0], 1e-6, "outline area")
 
 
 @test
@@ -1222,15 +1233,174 @@ def cut_order_shortens_travel(work):
           "travel %g in cutting order, %g as drawn" % (sheets["cut"]["travel_mm"], sheets["none"]["travel_mm"]))
     close(sheets["cut"]["cut_length_mm"], sheets["none"]["cut_length_mm"], 1e-9, "cut length")
     cuts = paths(os.path.join(work, "cut.svg"), "cut")
-    check(len(cuts) == 24, "%d cut paths" % len(cuts))
+    check(len(cuts) == 12 and len(circles(os.path.join(work, "cut.svg"), "cut")) == 12,
+          "%d cut paths" % len(cuts))
     for k, (points, closed) in enumerate(cuts):
         # The first point lies halfway along the ring's longest edge: on a straight stretch.
         a, b, last = points[0], points[1], points[-1]
         check(abs(math.dist(last, a) - math.dist(a, b)) < 1e-5 and
               abs((b[0] - a[0]) * (a[1] - last[1]) - (b[1] - a[1]) * (a[0] - last[0])) < 1e-3,
               "cut %d does not start mid-edge: %r %r %r" % (k, last, a, b))
-        if k % 2 == 0:  # a hole, then the outline around it
-            check(area(points) < area(cuts[k + 1][0]), "cut %d: the outline came before its hole" % k)
+    # In the layer, each plate's hole (a circle) comes right before the outline around it.
+    group = ET.parse(os.path.join(work, "cut.svg")).getroot().find("%sg[@id='cut']" % SVG)
+    elements = list(group)
+    check(len(elements) == 24, "%d elements in the cut layer" % len(elements))
+    for k in range(0, 24, 2):
+        hole, outline = elements[k], elements[k + 1]
+        check(hole.tag == SVG + "circle" and outline.tag == SVG + "path",
+              "cut %d: %s then %s" % (k, hole.tag, outline.tag))
+        x = [float(n) for n in re.findall(r"-?\d+(?:\.\d+)?", outline.get("d"))]
+        check(min(x[0::2]) < float(hole.get("cx")) < max(x[0::2]) and
+              min(x[1::2]) < float(hole.get("cy")) < max(x[1::2]),
+              "cut %d: the circle is not inside the outline after it" % k)
+
+
+# Everything a DXF holds that the tests look at, as ezdxf reads it, with its audit.
+DXF_DUMP = """import ezdxf, sys, json
+doc = ezdxf.readfile(sys.argv[1])
+audit = doc.audit()
+out = {"errors": [str(e.message) for e in audit.errors + audit.fixes], "entities": []}
+for e in doc.modelspace():
+    t = e.dxftype()
+    d = {"type": t, "layer": e.dxf.layer}
+    if t in ("CIRCLE", "ARC"):
+        d["centre"], d["r"] = list(e.dxf.center)[:2], e.dxf.radius
+    if t == "ARC":
+        d["start"], d["end"] = e.dxf.start_angle, e.dxf.end_angle
+    if t == "LWPOLYLINE":
+        d["points"], d["closed"] = [list(p[:2]) for p in e.get_points()], bool(e.closed)
+    if t == "POLYLINE":
+        d["points"], d["closed"] = [list(v.dxf.location)[:2] for v in e.vertices], e.is_closed
+    if t == "LINE":
+        d["points"], d["closed"] = [list(e.dxf.start)[:2], list(e.dxf.end)[:2]], False
+    out["entities"].append(d)
+out["linetypes"] = {l.dxf.name: list(l.simplified_line_pattern()) for l in doc.linetypes}
+out["layers"] = {l.dxf.name: l.dxf.linetype for l in doc.layers}
+print(json.dumps(out))
+"""
+
+
+def dxf_dump(path):
+    result = subprocess.run(["/usr/bin/python3", "-c", DXF_DUMP, path], capture_output=True, text=True)
+    check(result.returncode == 0, "ezdxf: " + result.stderr)
+    found = json.loads(result.stdout)
+    check(found["errors"] == [], "%s: ezdxf audit: %r" % (path, found["errors"]))
+    return found
+
+
+def svg_height(svg_file):
+    return float(ET.parse(svg_file).getroot().get("height").rstrip("m"))
+
+
+@test
+def nest_writes_circles_as_circles(work):
+    """The plate's 20 mm hole, a circle in the SVG it comes from, is a DXF
+    CIRCLE (both versions) and an SVG <circle> after nesting: radius 10 mm,
+    or 10 - kerf / 2 with kerf compensation, centred in the plate's outline
+    wherever nesting put it; the DXF's geometry is the SVG's (circles as
+    circles, outlines point for point) within 1e-6 mm."""
+    write(work, "mm.svg", PLATE_SVG_MM)
+    write(work, "in.dxf", dxf_plate_inches())
+    for source in ("mm.svg", "in.dxf"):
+        for version in ("12", "2000"):
+            for kerf_option in ([], ["--no-kerf-compensation"]):
+                stem = "%s-%s-%d" % (source[:2], version, len(kerf_option))
+                run(work, "nest", source, "--format", "svg,dxf", "--dxf-version", version,
+                    "--rotations", "4", "-o", stem + ".svg", "--report", stem + ".json", "--quiet",
+                    *kerf_option)
+                [piece] = report(work, stem + ".json")["pieces"]
+                kerf = sum(a["value"] for a in piece["allowances"] if a["kind"] == "kerf-compensation")
+                check((kerf > 0) == (not kerf_option), "%s: kerf %g" % (stem, kerf))
+                found = dxf_dump(os.path.join(work, stem + ".dxf"))
+                cuts = [e for e in found["entities"] if e["layer"] == "Cut"]
+                round_ = [e for e in cuts if e["type"] == "CIRCLE"]
+                rings = [e for e in cuts if e["type"] in ("POLYLINE", "LWPOLYLINE")]
+                check(len(round_) == 1 and len(rings) == 1 and len(cuts) == 2,
+                      "%s: cut entities %r" % (stem, [e["type"] for e in cuts]))
+                [hole], [outline] = round_, rings
+                close(hole["r"], 10 - kerf / 2, 1e-12, stem + " hole radius")
+                xs = [p[0] for p in outline["points"]]
+                ys = [p[1] for p in outline["points"]]
+                check(outline["closed"], stem + ": the outline is not closed")
+                # The outline's box is the plate grown by half the kerf all round (turned
+                # by a quarter turn or not); the hole sits in its middle.
+                sides = sorted((max(xs) - min(xs), max(ys) - min(ys)))
+                close(sides[0], 50 + kerf, 1e-9, stem + " plate width")
+                close(sides[1], 100 + kerf, 1e-9, stem + " plate length")
+                middle = ((max(xs) + min(xs)) / 2, (max(ys) + min(ys)) / 2)
+                check(math.dist(hole["centre"], middle) <= 1e-6,
+                      "%s: hole centre %r, outline middle %r" % (stem, hole["centre"], middle))
+                # The same circle and outline in the SVG of the same run.
+                svg_file = os.path.join(work, stem + ".svg")
+                height = svg_height(svg_file)
+                [(cx, cy, r)] = circles(svg_file, "cut")
+                check(math.dist((cx, height - cy), hole["centre"]) <= 1e-6 and abs(r - hole["r"]) <= 1e-6,
+                      "%s: SVG circle %r, DXF %r" % (stem, (cx, cy, r), hole))
+                [(points, closed)] = paths(svg_file, "cut")
+                check(len(points) == len(outline["points"]) and
+                      max(math.dist((x, height - y), q) for (x, y), q in zip(points, outline["points"])) <= 1e-6,
+                      "%s: the SVG and DXF outlines differ" % stem)
+
+
+@test
+def dxf_layers_are_dashed_as_the_profile(work):
+    """Each dashed operation's layer has a DXF linetype whose dashes and gaps
+    are the machine profile's, in both versions; solid ones stay Continuous."""
+    machine = ET.parse(os.path.join(REPO, "profiles", "machines", "co2-60w.xml")).getroot()
+    dashes = {}
+    for op in machine.iter():
+        if op.tag.endswith("operation"):
+            dashes[op.get("layer")] = [float(x) for x in (op.get("dash") or "").replace(",", " ").split()]
+    check(any(dashes.values()), "the profile dashes nothing: %r" % dashes)
+    for version in ("12", "2000"):
+        run(work, "cylinder", "--radius", "40", "--height", "100", "--machine", "co2-60w",
+            "--dxf-version", version, "-o", "c%s.dxf" % version, "--quiet")
+        found = dxf_dump(os.path.join(work, "c%s.dxf" % version))
+        for layer, pattern in dashes.items():
+            linetype = found["layers"].get(layer)
+            check(linetype is not None, "R%s: no layer %s" % (version, layer))
+            if not pattern:
+                check(linetype.lower() == "continuous", "R%s: %s is %s" % (version, layer, linetype))
+                continue
+            want = pattern * (2 if len(pattern) % 2 else 1)
+            got = found["linetypes"].get(linetype)
+            check(got is not None and len(got) == len(want) and
+                  all(abs(a - b) <= 1e-9 for a, b in zip(got, want)),
+                  "R%s: %s's linetype %s is %r, the profile says %r" % (version, layer, linetype, got, want))
+
+
+@test
+def job_name_is_recorded(work):
+    """--job-name goes into the SVG's metadata, the PDF's information (pdfinfo)
+    and a DXF comment; a job file's name does the same; an empty name or one
+    with a control character is refused (exit 2, nothing written)."""
+    name = "Lamp shade, second try"
+    run(work, "cylinder", "--radius", "40", "--height", "100", "--job-name", name,
+        "--format", "svg,dxf,pdf", "-o", "j.svg", "--quiet")
+    source = ET.parse(os.path.join(work, "j.svg")).getroot().find(
+        ".//{http://purl.org/dc/elements/1.1/}source")
+    check(source is not None and source.text == name, "SVG dc:source %r" % (source is not None and source.text))
+    info = subprocess.run(["pdfinfo", os.path.join(work, "j.pdf")], capture_output=True, text=True).stdout
+    check(re.search(r"^Subject:\s+%s$" % re.escape(name), info, re.M), "pdfinfo: %s" % info)
+    with open(os.path.join(work, "j.dxf")) as f:
+        check(f.read().startswith("999\njob: %s\n" % name), "no job comment in the DXF")
+    dxf_dump(os.path.join(work, "j.dxf"))
+    write(work, "named.xml", JOB_HEAD.replace('name="test"', 'name="lamp-7"') + """  <part surface="cylinder">
+    <option name="radius" value="40"/><option name="height" value="60"/>
+  </part>
+  <output name="net" formats="svg,pdf"/>
+</job>
+""")
+    run(work, "job", "named.xml", "-o", "out", "--quiet")
+    source = ET.parse(os.path.join(work, "out", "net.svg")).getroot().find(
+        ".//{http://purl.org/dc/elements/1.1/}source")
+    check(source is not None and source.text == "lamp-7", "job SVG dc:source %r" % (source is not None and source.text))
+    info = subprocess.run(["pdfinfo", os.path.join(work, "out", "net.pdf")], capture_output=True, text=True).stdout
+    check(re.search(r"^Subject:\s+lamp-7$", info, re.M), "job pdfinfo: %s" % info)
+    for bad_name in ("", "two\nlines"):
+        bad(work, r"--job-name: give a name", "cylinder", "--radius", "40", "--height", "100",
+            "--job-name", bad_name, "-o", "x.svg")
+        bad(work, r"--job-name: give a name", "nest", "mm.svg", "--job-name", bad_name, "-o", "x.svg")
 
 
 @test
@@ -1447,7 +1617,7 @@ def a_job_writes_what_its_command_line_writes(work):
 """)
     run(work, "job", "one.xml", "-o", "jobout", "--quiet")
     run(work, "helicoid", "--radius", "30", "--pitch", "60", "--turns", "1.5", "--width", "25",
-        "--material", "cardboard-2mm", "--rulings", "-o", "net.svg", "--quiet")
+        "--material", "cardboard-2mm", "--rulings", "--job-name", "test", "-o", "net.svg", "--quiet")
     with open(os.path.join(work, "jobout", "net.svg")) as a, open(os.path.join(work, "net.svg")) as b:
         check(a.read() == b.read(), "the job and the command line wrote different SVG")
 

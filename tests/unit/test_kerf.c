@@ -616,6 +616,100 @@ static void test_kerf_then_bridges(void **state)
     ur_piece_free(&piece);
 }
 
+/* n points on the circle about centre of radius r, counter-clockwise from angle 0 (or clockwise).
+ */
+static void on_circle(ur_vec2 *p, size_t n, ur_vec2 centre, double r, bool clockwise)
+{
+    for (size_t k = 0; k < n; k++) {
+        double angle = (clockwise ? -2 : 2) * M_PI * (double)k / (double)n;
+        p[k] = ur_vec2_make(centre.x + r * cos(angle), centre.y + r * sin(angle));
+    }
+}
+
+/* Every point of the path lies on its circle. */
+static void assert_on_circle(const ur_path *path)
+{
+    for (size_t k = 0; k < path->count; k++)
+        assert_close(ur_vec2_distance(path->points[k], path->circle.centre), path->circle.radius,
+                     1e-9);
+}
+
+/*
+ * A disc of radius 40 with a round hole of radius 10, both exact circles:
+ * kerf 0.4 makes them circles of radius 40.2 and 9.8 about the same
+ * centres, every point on them, the hole still clockwise; a kerf of 20 or
+ * more would close the hole and is refused.
+ */
+static void test_kerf_keeps_circles(void **state)
+{
+    (void)state;
+    ur_vec2 disc[CIRCLE_SIDES], hole[64];
+    ur_vec2 centre = ur_vec2_make(5, -3), hole_centre = ur_vec2_make(15, 0);
+    on_circle(disc, CIRCLE_SIDES, centre, 40, false);
+    on_circle(hole, 64, hole_centre, 10, true);
+    ur_piece piece = piece_named("washer");
+    add(&piece, UR_OP_CUT, disc, CIRCLE_SIDES, true);
+    add(&piece, UR_OP_CUT, hole, 64, true);
+    piece.paths[0].circle = (ur_path_circle){centre, 40, 0};
+    piece.paths[1].circle = (ur_path_circle){hole_centre, 10, 0};
+    ur_piece copy;
+    assert_int_equal(ur_piece_copy(&piece, &copy, NULL), UR_OK);
+    assert_close(copy.paths[1].circle.radius, 10, 0);
+    assert_int_equal(ur_piece_compensate_kerf(&piece, 0.4, NULL), UR_OK);
+    assert_close(piece.paths[0].circle.radius, 40.2, 1e-12);
+    assert_close(piece.paths[1].circle.radius, 9.8, 1e-12);
+    assert_close(ur_vec2_distance(piece.paths[1].circle.centre, hole_centre), 0, 0);
+    assert_int_equal(piece.paths[0].count, CIRCLE_SIDES);
+    assert_on_circle(&piece.paths[0]);
+    assert_on_circle(&piece.paths[1]);
+    assert_true(ur_polygon_signed_area(piece.paths[1].points, piece.paths[1].count) < 0);
+    ur_error error;
+    assert_int_equal(ur_piece_compensate_kerf(&copy, 20, &error), UR_ERROR_INPUT);
+    assert_non_null(strstr(error.message, "would vanish"));
+    assert_close(copy.paths[1].circle.radius, 10, 0); /* refused: unchanged */
+    ur_piece_free(&copy);
+    ur_piece_free(&piece);
+}
+
+/*
+ * Bridges on an exact circle of radius 50 leave arcs of it: each open path
+ * keeps the circle, all its points on it (the ends moved there from the
+ * chords), its sweep the counter-clockwise angle from its first point to
+ * its last; the sweeps and the gaps between them make one turn, each gap
+ * about the bridge's width over the radius.
+ */
+static void test_bridges_leave_arcs(void **state)
+{
+    (void)state;
+    ur_vec2 disc[CIRCLE_SIDES];
+    on_circle(disc, CIRCLE_SIDES, ur_vec2_make(0, 0), 50, false);
+    ur_piece piece = piece_named("disc");
+    add(&piece, UR_OP_CUT, disc, CIRCLE_SIDES, true);
+    piece.paths[0].circle = (ur_path_circle){{0, 0}, 50, 0};
+    assert_int_equal(ur_piece_add_bridges(&piece, 5, 2, false, NULL), UR_OK);
+    assert_int_equal(piece.path_count, 5);
+    double turn = 0;
+    for (size_t k = 0; k < piece.path_count; k++) {
+        const ur_path *path = &piece.paths[k];
+        assert_false(path->closed);
+        assert_close(path->circle.radius, 50, 0);
+        assert_on_circle(path);
+        ur_vec2 a = path->points[0], b = path->points[path->count - 1];
+        double angle = atan2(ur_vec2_cross(a, b), ur_vec2_dot(a, b));
+        if (angle < 0)
+            angle += 2 * M_PI;
+        assert_close(path->circle.sweep, angle, 1e-9);
+        /* The gap to the next arc (paths after the first follow on round the circle). */
+        const ur_path *next = &piece.paths[(k + 1) % piece.path_count];
+        ur_vec2 c = next->points[0];
+        double gap = atan2(ur_vec2_cross(b, c), ur_vec2_dot(b, c));
+        assert_close(gap, 2.0 / 50, 1e-4);
+        turn += path->circle.sweep + gap;
+    }
+    assert_close(turn, 2 * M_PI, 1e-9);
+    ur_piece_free(&piece);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -632,6 +726,8 @@ int main(void)
         cmocka_unit_test(test_bridges_too_many),
         cmocka_unit_test(test_bridges_refused),
         cmocka_unit_test(test_kerf_then_bridges),
+        cmocka_unit_test(test_kerf_keeps_circles),
+        cmocka_unit_test(test_bridges_leave_arcs),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

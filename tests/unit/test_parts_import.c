@@ -533,6 +533,73 @@ static void test_file_refusals(void **state)
     assert_true(ur_parts_unit_mm("furlong") == 0);
 }
 
+/* The part named name's outline. */
+static const ur_path *outline_of(const ur_parts *parts, const char *name)
+{
+    for (size_t k = 0; k < parts->count; k++)
+        if (strcmp(parts->pieces[k].name, name) == 0)
+            return &parts->pieces[k].paths[0];
+    fail_msg("no part %s", name);
+    return NULL;
+}
+
+/* path is exactly the circle about (x, y) of radius r, every point on it. */
+static void assert_circle(const ur_path *path, double x, double y, double r)
+{
+    if (!(fabs(path->circle.radius - r) <= 1e-9 && fabs(path->circle.centre.x - x) <= 1e-9 &&
+          fabs(path->circle.centre.y - y) <= 1e-9))
+        fail_msg("circle (%.12g, %.12g) r %.12g, expected (%.12g, %.12g) r %.12g",
+                 path->circle.centre.x, path->circle.centre.y, path->circle.radius, x, y, r);
+    for (size_t k = 0; k < path->count; k++)
+        assert_true(fabs(ur_vec2_distance(path->points[k], path->circle.centre) - r) <= 1e-9);
+}
+
+/*
+ * Circles stay circles exactly when the file says so: a circle turned and
+ * scaled alike both ways (radius 5 x 2 about its turned centre), a path of
+ * two half arcs of one circle; not an ellipse scaled more one way, nor a
+ * half disc closed by a line.  A DXF CIRCLE keeps its own, mirrored by an
+ * extrusion of (0, 0, -1) as its points are.
+ */
+static void test_circles_kept(void **state)
+{
+    (void)state;
+    ur_parts parts = import_text(
+        "round.svg",
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"100mm\" height=\"100mm\" "
+        "viewBox=\"0 0 100 100\">\n"
+        "<circle id=\"a\" cx=\"20\" cy=\"20\" r=\"5\" transform=\"rotate(30 50 50) scale(2)\"/>\n"
+        "<ellipse id=\"b\" cx=\"80\" cy=\"20\" rx=\"5\" ry=\"5\" transform=\"scale(1 1.5)\"/>\n"
+        "<path id=\"c\" d=\"M10,80 a5,5 0 0,1 10,0 a5,5 0 0,1 -10,0 Z\"/>\n"
+        "<path id=\"d\" d=\"M60,80 a5,5 0 0,1 10,0 L60,80 Z\"/>\n"
+        "</svg>\n",
+        0);
+    assert_int_equal(parts.count, 4);
+    /* (40, 40) turned 30 degrees about (50, 50), SVG's y down; then y up from the bottom. */
+    double c = cos(M_PI / 6), s = sin(M_PI / 6);
+    double x = 50 - 10 * c + 10 * s, y = 50 - 10 * s - 10 * c;
+    assert_circle(outline_of(&parts, "a"), x, 100 - y, 10);
+    assert_true(outline_of(&parts, "b")->circle.radius == 0);
+    assert_circle(outline_of(&parts, "c"), 15, 20, 5);
+    assert_true(outline_of(&parts, "d")->circle.radius == 0);
+    ur_parts_free(&parts);
+
+    char text[2048];
+    parts = import_text("plate.dxf", plate_dxf(text, sizeof text, 1, 25.4), 0);
+    assert_int_equal(parts.pieces[0].path_count, 2);
+    assert_true(parts.pieces[0].paths[0].circle.radius == 0);
+    assert_circle(&parts.pieces[0].paths[1], 60, 55, 10);
+    ur_parts_free(&parts);
+    parts = import_text("mirrored.dxf",
+                        "0\nSECTION\n2\nHEADER\n9\n$INSUNITS\n70\n4\n0\nENDSEC\n"
+                        "0\nSECTION\n2\nENTITIES\n"
+                        "0\nCIRCLE\n8\n0\n10\n10\n20\n5\n30\n0\n40\n3\n210\n0\n220\n0\n230\n-1\n"
+                        "0\nENDSEC\n0\nEOF\n",
+                        0);
+    assert_circle(&parts.pieces[0].paths[0], -10, 5, 3);
+    ur_parts_free(&parts);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -551,6 +618,7 @@ int main(void)
         cmocka_unit_test(test_svg_refusals),
         cmocka_unit_test(test_dxf_refusals),
         cmocka_unit_test(test_file_refusals),
+        cmocka_unit_test(test_circles_kept),
     };
     return cmocka_run_group_tests(tests, make_directory, remove_directory);
 }

@@ -677,6 +677,158 @@ static void test_outputs_all_or_nothing(void **state)
     assert_int_equal(entries_in(f->dir), 1);
 }
 
+/*
+ * The circle checker: a DXF and an SVG of the piece test_exact_circles
+ * builds, placed turned 30 degrees and moved by (100, 50) on a 300 x 200
+ * sheet.  The expected numbers are worked out here from the piece's own
+ * (the hole about (30, 30) of radius 10, a counter-clockwise arc of radius
+ * 20 from 0 to 90 degrees, a clockwise one of radius 15 from 180 to 90).
+ */
+static const char check_circles_py[] =
+    "import sys, math, re, ezdxf\n"
+    "import xml.etree.ElementTree as ET\n"
+    "def fail(msg):\n"
+    "    print('check_circles: ' + msg); sys.exit(1)\n"
+    "t = math.radians(30)\n"
+    "def place(x, y): return (x * math.cos(t) - y * math.sin(t) + 100, x * math.sin(t) + y * "
+    "math.cos(t) + 50)\n"
+    "c = place(30, 30)\n"
+    "def near(a, b, what):\n"
+    "    if abs(a - b) > 1e-6: fail('%s %r, expected %r' % (what, a, b))\n"
+    "doc = ezdxf.readfile(sys.argv[1])\n"
+    "if doc.audit().has_errors: fail('audit')\n"
+    "circles = [e for e in doc.modelspace() if e.dxftype() == 'CIRCLE']\n"
+    "arcs = sorted((e for e in doc.modelspace() if e.dxftype() == 'ARC'), key=lambda e: "
+    "e.dxf.radius)\n"
+    "if len(circles) != 1 or len(arcs) != 2: fail('%d circles, %d arcs' % (len(circles), "
+    "len(arcs)))\n"
+    "e = circles[0]\n"
+    "near(e.dxf.center[0], c[0], 'circle x'); near(e.dxf.center[1], c[1], 'circle y')\n"
+    "near(e.dxf.radius, 10, 'circle radius')\n"
+    "if e.dxf.layer != 'Cut': fail('circle on ' + e.dxf.layer)\n"
+    "for e, r, start, end, layer in ((arcs[0], 15, 120, 210, 'Engrave'), (arcs[1], 20, 30, 120, "
+    "'Kerf')):\n"
+    "    near(e.dxf.center[0], c[0], 'arc x'); near(e.dxf.center[1], c[1], 'arc y')\n"
+    "    near(e.dxf.radius, r, 'arc radius'); near(e.dxf.start_angle, start, 'start angle')\n"
+    "    near(e.dxf.end_angle, end, 'end angle')\n"
+    "    if e.dxf.layer != layer: fail('arc of %g on %s' % (r, e.dxf.layer))\n"
+    "S = '{http://www.w3.org/2000/svg}'\n"
+    "root = ET.parse(sys.argv[2]).getroot()\n"
+    "[svg_circle] = root.iter(S + 'circle')\n"
+    "near(float(svg_circle.get('cx')), c[0], 'svg cx'); near(float(svg_circle.get('cy')), 200 - "
+    "c[1], 'svg cy')\n"
+    "near(float(svg_circle.get('r')), 10, 'svg r')\n"
+    "for layer, r, a, b, sweep in (('kerf', 20, 0, 90, '0'), ('engrave', 15, 180, 90, '1')):\n"
+    "    [path] = root.find(\"%sg[@id='%s']\" % (S, layer)).iter(S + 'path')\n"
+    "    n = re.fullmatch(r'M (\\S+) (\\S+) A (\\S+) (\\S+) 0 0 ([01]) (\\S+) (\\S+)', "
+    "path.get('d'))\n"
+    "    if not n: fail('svg arc %r' % path.get('d'))\n"
+    "    p, q = place(30 + r * math.cos(math.radians(a)), 30 + r * math.sin(math.radians(a))), "
+    "place(30 + r * math.cos(math.radians(b)), 30 + r * math.sin(math.radians(b)))\n"
+    "    for got, want in zip((n[1], n[2], n[3], n[4], n[6], n[7]), (p[0], 200 - p[1], r, r, "
+    "q[0], 200 - q[1])):\n"
+    "        near(float(got), want, 'svg arc on ' + layer)\n"
+    "    if n[5] != sweep: fail('svg sweep flag %s on %s' % (n[5], layer))\n"
+    "print('ok')\n";
+
+/* n + 1 points on the circle about (30, 30) of radius r from angle a to b (radians). */
+static void arc_points(ur_vec2 *p, size_t n, double r, double a, double b)
+{
+    for (size_t k = 0; k <= n; k++) {
+        double angle = a + (b - a) * (double)k / (double)n;
+        p[k] = ur_vec2_make(30 + r * cos(angle), 30 + r * sin(angle));
+    }
+}
+
+/*
+ * Exact circles and arcs through a turned placement: the hole a CIRCLE,
+ * the arcs ARCs (the clockwise one written the other way round) in both
+ * DXF versions, a <circle> and A commands in the SVG, all where the
+ * placement puts them.
+ */
+static void test_exact_circles(void **state)
+{
+    fixture *f = *state;
+    if (!have_ezdxf())
+        skip();
+    ur_piece piece;
+    memset(&piece, 0, sizeof piece);
+    snprintf(piece.name, sizeof piece.name, "round");
+    const ur_vec2 square[] = {{0, 0}, {60, 0}, {60, 60}, {0, 60}};
+    ur_vec2 hole[64], kerf[9], engrave[5];
+    arc_points(hole, 63, 10, 0, -2 * PI * 63 / 64); /* clockwise, as holes are */
+    arc_points(kerf, 8, 20, 0, PI / 2);
+    arc_points(engrave, 4, 15, PI, PI / 2);
+    add_path(&piece, UR_OP_CUT, square, 4, true);
+    add_path(&piece, UR_OP_CUT, hole, 64, true);
+    add_path(&piece, UR_OP_KERF, kerf, 9, false);
+    add_path(&piece, UR_OP_ENGRAVE, engrave, 5, false);
+    piece.paths[1].circle = (ur_path_circle){{30, 30}, 10, 0};
+    piece.paths[2].circle = (ur_path_circle){{30, 30}, 20, PI / 2};
+    piece.paths[3].circle = (ur_path_circle){{30, 30}, 15, -PI / 2};
+    ur_placement placement = {0, ur_transform2_make(PI / 6, ur_vec2_make(100, 50))};
+    ur_sheet sheet = {.width = 300, .height = 200, .placements = &placement, .placement_count = 1};
+    ur_layout layout = {&sheet, 1, NULL, 0};
+    char script[256];
+    path_in(f->dir, "check_circles.py", script, sizeof script);
+    FILE *file = fopen(script, "w");
+    assert_non_null(file);
+    assert_true(fputs(check_circles_py, file) >= 0);
+    assert_int_equal(fclose(file), 0);
+    const char *names[] = {"r12", "r2000"};
+    for (int version = 0; version < 2; version++) {
+        char path[256], svg[256], dxf[256], stem[32];
+        snprintf(stem, sizeof stem, "%s.svg", names[version]);
+        path_in(f->dir, stem, path, sizeof path);
+        f->formats.dxf_version = version ? UR_DXF_R2000 : UR_DXF_R12;
+        f->formats.drawing_order = version == 0; /* cutting order moves no circle */
+        ur_error error;
+        assert_int_equal(ur_write_outputs(path, UR_FORMAT_SVG | UR_FORMAT_DXF, &layout, &piece,
+                                          &f->machine, &f->options, &f->formats, &error),
+                         UR_OK);
+        snprintf(stem, sizeof stem, "%s.dxf", names[version]);
+        path_in(f->dir, stem, dxf, sizeof dxf);
+        memcpy(svg, path, sizeof svg);
+        assert_int_equal(run("/usr/bin/python3 %s %s %s", script, dxf, svg), 0);
+    }
+    ur_piece_free(&piece);
+}
+
+/*
+ * One linetype per distinct dash pattern, in both versions: the kerf layer
+ * dashed as the valley folds shares theirs; a single length is a dash and
+ * a gap of that length, as SVG's stroke-dasharray repeats an odd list.
+ */
+static void test_dxf_linetypes(void **state)
+{
+    fixture *f = *state;
+    if (!have_ezdxf())
+        skip();
+    snprintf(f->machine.styles[UR_OP_KERF].dash, sizeof f->machine.styles[UR_OP_KERF].dash,
+             "3, 1.5");
+    snprintf(f->machine.styles[UR_OP_MARK].dash, sizeof f->machine.styles[UR_OP_MARK].dash, "2");
+    for (int version = 0; version < 2; version++) {
+        char path[256];
+        path_in(f->dir, version ? "lt2000.dxf" : "lt12.dxf", path, sizeof path);
+        f->formats.dxf_version = version ? UR_DXF_R2000 : UR_DXF_R12;
+        ur_error error;
+        assert_int_equal(ur_write_dxf(path, &f->layout, f->pieces, &f->machine, &f->options,
+                                      &f->formats, &error),
+                         UR_OK);
+        assert_int_equal(
+            run("/usr/bin/python3 -c \"import ezdxf,sys; d=ezdxf.readfile('%s'); "
+                "assert not d.audit().has_errors; L=lambda n: d.layers.get(n).dxf.linetype; "
+                "P=lambda n: tuple(d.linetypes.get(L(n)).simplified_line_pattern()); "
+                "assert L('Kerf') == L('Score valley') == 'DASH_3_1P5', L('Kerf'); "
+                "assert P('Kerf') == (3, 1.5), P('Kerf'); "
+                "assert L('Mark') == 'DASH_2' and P('Mark') == (2, 2), P('Mark'); "
+                "assert L('Cut').lower() == 'continuous'; "
+                "assert len([t for t in d.linetypes if t.dxf.name.startswith('DASH')]) == 2\"",
+                path),
+            0);
+    }
+}
+
 /* A machine that puts two operations on one layer gets it once; odd characters become '_'. */
 static void test_dxf_shared_and_odd_layer_names(void **state)
 {
@@ -754,6 +906,8 @@ int main(void)
         cmocka_unit_test_setup_teardown(test_dxf_r2000_reads_back, setup, teardown),
         cmocka_unit_test_setup_teardown(test_dxf_r12_entities, setup, teardown),
         cmocka_unit_test_setup_teardown(test_dxf_shared_and_odd_layer_names, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_exact_circles, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_dxf_linetypes, setup, teardown),
         cmocka_unit_test_setup_teardown(test_pdf_pages, setup, teardown),
         cmocka_unit_test_setup_teardown(test_pdf_draws_paths, setup, teardown),
         cmocka_unit_test_setup_teardown(test_png_size_and_fill, setup, teardown),
