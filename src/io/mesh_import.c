@@ -173,20 +173,30 @@ static void ply_element(const char *line, unsigned long long *vertices, unsigned
  * reads on past the end of the file, for minutes and gigabytes when a
  * header claims a billion vertices.  Every vertex and face takes at least
  * one byte after the header, so a count above that is refused beforehand.
- * A header it cannot make sense of is left to assimp to refuse.
+ * assimp 5.2 also loops for ever on a header that the file ends inside
+ * (no end_header line; found by fuzzing), so that is refused too.  Any
+ * other header it cannot make sense of is left to assimp to refuse.
  */
 static ur_status check_ply_header(const char *path, FILE *file, off_t size, ur_error *error)
 {
     char *line = NULL;
     size_t line_size = 0;
     unsigned long long vertices = 0, claimed = 0;
-    bool ended = false;
-    for (int n = 0; n < 1000 && !ended && getline(&line, &line_size, file) >= 0; n++) {
+    bool ended = false, at_end = false;
+    for (int n = 0; n < 1000 && !ended; n++) {
+        if (getline(&line, &line_size, file) < 0) {
+            at_end = true;
+            break;
+        }
         ended = strncmp(line, "end_header", 10) == 0;
         ply_element(line, &vertices, &claimed);
     }
     long body_start = ftell(file);
     free(line);
+    if (at_end && !ferror(file))
+        return ur_error_set(error, UR_ERROR_INPUT,
+                            "%s: the PLY header has no end_header line: the file ends inside it",
+                            path);
     if (!ended || body_start < 0)
         return UR_OK;
     if (vertices > UR_MESH_IMPORT_MAX_VERTICES)

@@ -493,6 +493,17 @@ static void test_headers_claiming_too_much(void **state)
     expect_refusal(path, NULL, "60000000 vertices, more than the 50000000");
 }
 
+/* assimp 5.2 reads a PLY whose header never ends for ever (found by fuzz_mesh). */
+static void test_ply_header_cut_short(void **state)
+{
+    (void)state;
+    expect_refusal(write_file("cut.ply", "ply\nformat ascii 1.0\nelement vertex 3\n"
+                                         "property float x\nproperty float y\nproperty floder\n"
+                                         "0 0 0\n1 0 0\n0 1 0\n"),
+                   NULL, "cut.ply: the PLY header has no end_header line");
+    expect_refusal(write_file("magic.ply", "ply\n"), NULL, "no end_header");
+}
+
 static void test_bad_index_and_options(void **state)
 {
     (void)state;
@@ -532,6 +543,7 @@ int main(void)
         cmocka_unit_test(test_non_finite_coordinates),
         cmocka_unit_test(test_coordinates_beyond_1000_km),
         cmocka_unit_test(test_headers_claiming_too_much),
+        cmocka_unit_test(test_ply_header_cut_short),
         cmocka_unit_test(test_bad_index_and_options),
     };
     return cmocka_run_group_tests(tests, make_directory, remove_directory);
