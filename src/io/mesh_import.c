@@ -396,6 +396,14 @@ static ur_status check_faces(const char *path, const struct aiMesh *mesh, unsign
     char label[256];
     for (unsigned f = 0; f < mesh->mNumFaces; f++) {
         const struct aiFace *face = &mesh->mFaces[f];
+        /*
+         * A PLY file that ends before its faces gives faces without corners,
+         * on which assimp's triangulation aborts (found by fuzzing).
+         */
+        if (face->mNumIndices == 0 || !face->mIndices)
+            return ur_error_set(error, UR_ERROR_INPUT,
+                                "%s: %s, face %u has no corners: is the file cut short?", path,
+                                mesh_label(mesh, index, label, sizeof label), f + 1);
         for (unsigned k = 0; k < face->mNumIndices; k++)
             if (face->mIndices[k] >= mesh->mNumVertices)
                 return ur_error_set(error, UR_ERROR_INPUT,

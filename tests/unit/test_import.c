@@ -499,8 +499,9 @@ static void test_headers_claiming_too_much(void **state)
 }
 
 /*
- * assimp 5.2 reads a PLY whose header never ends for ever, and crashes on
- * some headers with lines PLY does not define (both found by fuzz_mesh).
+ * assimp 5.2 reads a PLY whose header never ends for ever, crashes on some
+ * headers with lines PLY does not define and aborts on a file that ends
+ * before its faces (all found by fuzz_mesh).
  */
 static void test_ply_header_checked(void **state)
 {
@@ -526,6 +527,13 @@ static void test_ply_header_checked(void **state)
     }
     expect_refusal(write_file("start.ply", "PLY\nformat ascii 1.0\nend_header\n"), NULL,
                    "start.ply:1: not a PLY file");
+    /* A file that ends before its faces: assimp made faces without corners and aborted. */
+    expect_refusal(write_file("faces.ply",
+                              "ply\nformat ascii 1.0\nelement vertex 3\n"
+                              "property float x\nproperty float y\nproperty float z\n"
+                              "element face 1\nproperty list uchar int vertex_indices\n"
+                              "end_header\n0 0 0\n1 0 0\n0 1 0\n"),
+                   NULL, "face 1 has no corners");
     /* A property before any element belongs to nothing. */
     expect_refusal(write_file("orphan.ply", "ply\nformat ascii 1.0\nproperty float x\n"
                                             "end_header\n"),
