@@ -5,6 +5,7 @@
 #   make check      install what is missing, build, run every test
 #   make check SANITIZE=1   the same with AddressSanitizer and UBSan
 #   make bench      benchmarks (never part of make check)
+#   make fuzz       libFuzzer targets (clang, ASan, UBSan), each run FUZZ_SECONDS
 #   make install    PREFIX=/usr/local DESTDIR=
 
 PREFIX ?= /usr/local
@@ -18,7 +19,15 @@ PKG_CONFIG ?= pkg-config
 PACKAGES = libxml-2.0 gsl jansson geos cairo assimp
 TEST_PACKAGES = cmocka
 
-ifeq ($(SANITIZE),1)
+# FUZZ=1 is how `make fuzz` builds the library and its targets: clang with
+# libFuzzer's coverage instrumentation, ASan and UBSan, in a tree of its own.
+ifeq ($(FUZZ),1)
+BUILD = build/fuzz
+CC = clang
+SANITIZE_FLAGS = -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=all \
+	-fno-omit-frame-pointer
+OPTIMISE = -O1 -g
+else ifeq ($(SANITIZE),1)
 BUILD = build/sanitize
 SANITIZE_FLAGS = -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 OPTIMISE = -O1 -g
@@ -41,16 +50,23 @@ LIB_SOURCES = $(wildcard src/base/*.c src/geom/*.c src/surface/*.c src/develop/*
 CLI_SOURCES = $(wildcard src/cli/*.c)
 UNIT_SOURCES = $(wildcard tests/unit/test_*.c)
 BENCH_SOURCES = $(wildcard bench/*.c)
+# One fuzz target per input path: tests/fuzz/fuzz_NAME.c, seeds in tests/fuzz/corpus/NAME/.
+FUZZ_SOURCES = $(wildcard tests/fuzz/fuzz_*.c)
+FUZZ_HEADERS = $(wildcard tests/fuzz/*.h)
+FUZZ_SECONDS ?= 10
 
 LIB_OBJECTS = $(LIB_SOURCES:%.c=$(BUILD)/%.o)
 CLI_OBJECTS = $(CLI_SOURCES:%.c=$(BUILD)/%.o)
 UNIT_BINARIES = $(UNIT_SOURCES:tests/unit/%.c=$(BUILD)/tests/%)
 BENCH_BINARIES = $(BENCH_SOURCES:bench/%.c=$(BUILD)/bench/%)
+FUZZ_BINARIES = $(FUZZ_SOURCES:tests/fuzz/%.c=$(BUILD)/fuzz/%)
+# The same targets without libFuzzer, replaying the seeds and regressions in make check.
+REPLAY_BINARIES = $(FUZZ_SOURCES:tests/fuzz/%.c=$(BUILD)/replay/%)
 
 LIBRARY = $(BUILD)/libunroll.a
 PROGRAM = $(BUILD)/unroll
 
-.PHONY: all demo check test deps bench install clean format
+.PHONY: all demo check test deps bench fuzz fuzz-targets install clean format
 
 all: $(PROGRAM)
 
@@ -76,6 +92,14 @@ $(BUILD)/bench/%: bench/%.c $(LIBRARY)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_ALL) -o $@ $< $(LIBRARY) $(LDFLAGS_ALL) $(LDLIBS_ALL)
 
+$(BUILD)/fuzz/%: tests/fuzz/%.c $(FUZZ_HEADERS) $(LIBRARY)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_ALL) -fsanitize=fuzzer -o $@ $< $(LIBRARY) $(LDFLAGS_ALL) $(LDLIBS_ALL)
+
+$(BUILD)/replay/%: tests/fuzz/%.c tests/fuzz/replay.c $(FUZZ_HEADERS) $(LIBRARY)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_ALL) -o $@ $< tests/fuzz/replay.c $(LIBRARY) $(LDFLAGS_ALL) $(LDLIBS_ALL)
+
 deps:
 	@scripts/install-deps
 
@@ -87,8 +111,16 @@ demo: deps
 check: deps
 	@$(MAKE) --no-print-directory test
 
-test: $(PROGRAM) $(UNIT_BINARIES)
-	@UNROLL=$(PROGRAM) UNIT_TESTS="$(UNIT_BINARIES)" tests/run-tests
+test: $(PROGRAM) $(UNIT_BINARIES) $(REPLAY_BINARIES)
+	@UNROLL=$(PROGRAM) UNIT_TESTS="$(UNIT_BINARIES)" REPLAYS="$(REPLAY_BINARIES)" tests/run-tests
+
+# clang and libFuzzer are installed only here: make check does not need them.
+fuzz:
+	@scripts/install-deps fuzz
+	@$(MAKE) --no-print-directory FUZZ=1 fuzz-targets
+	@FUZZ_SECONDS=$(FUZZ_SECONDS) tests/fuzz/run-fuzz $(FUZZ_SOURCES:tests/fuzz/%.c=build/fuzz/fuzz/%)
+
+fuzz-targets: $(FUZZ_BINARIES)
 
 bench: deps
 	@$(MAKE) --no-print-directory $(PROGRAM) $(BENCH_BINARIES)

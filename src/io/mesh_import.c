@@ -168,25 +168,118 @@ static void ply_element(const char *line, unsigned long long *vertices, unsigned
         *claimed = count > ULLONG_MAX - *claimed ? ULLONG_MAX : *claimed + count;
 }
 
+/* The words of a header line (at most 8; 9 says more), split at white space in place. */
+static int split_words(char *line, char *words[8])
+{
+    static const char *const space = " \t\r\n";
+    char *state = NULL;
+    int count = 0;
+    for (char *word = strtok_r(line, space, &state); word; word = strtok_r(NULL, space, &state)) {
+        if (count == 8)
+            return 9;
+        words[count++] = word;
+    }
+    return count;
+}
+
+static bool ply_scalar_type(const char *word)
+{
+    static const char *const types[] = {"char",  "uchar",  "short",   "ushort", "int",   "uint",
+                                        "float", "double", "int8",    "uint8",  "int16", "uint16",
+                                        "int32", "uint32", "float32", "float64"};
+    for (size_t i = 0; i < sizeof types / sizeof types[0]; i++)
+        if (strcmp(word, types[i]) == 0)
+            return true;
+    return false;
+}
+
+static bool all_digits(const char *word)
+{
+    if (!*word)
+        return false;
+    for (; *word; word++)
+        if (*word < '0' || *word > '9')
+            return false;
+    return true;
+}
+
+/*
+ * Whether line (not the first, "ply") is one of the PLY header's lines:
+ * format, comment, obj_info, element NAME COUNT, property TYPE NAME,
+ * property list TYPE TYPE NAME (after an element), end_header.
+ */
+static bool ply_header_line_valid(const char *line, bool *in_element)
+{
+    char copy[256];
+    if (strlen(line) >= sizeof copy)
+        return strncmp(line, "comment", 7) == 0 || strncmp(line, "obj_info", 8) == 0;
+    strcpy(copy, line);
+    char *words[8];
+    int count = split_words(copy, words);
+    if (count == 0)
+        return false;
+    const char *keyword = words[0];
+    if (strcmp(keyword, "comment") == 0 || strcmp(keyword, "obj_info") == 0)
+        return true;
+    if (strcmp(keyword, "format") == 0)
+        return count == 3 &&
+               (strcmp(words[1], "ascii") == 0 || strcmp(words[1], "binary_little_endian") == 0 ||
+                strcmp(words[1], "binary_big_endian") == 0);
+    if (strcmp(keyword, "element") == 0) {
+        *in_element = count == 3 && all_digits(words[2]);
+        return *in_element;
+    }
+    if (strcmp(keyword, "property") == 0)
+        return *in_element && ((count == 3 && ply_scalar_type(words[1])) ||
+                               (count == 5 && strcmp(words[1], "list") == 0 &&
+                                ply_scalar_type(words[2]) && ply_scalar_type(words[3])));
+    return count == 1 && strcmp(keyword, "end_header") == 0;
+}
+
 /*
  * assimp believes a PLY header's counts: it reserves memory for them and
  * reads on past the end of the file, for minutes and gigabytes when a
  * header claims a billion vertices.  Every vertex and face takes at least
  * one byte after the header, so a count above that is refused beforehand.
- * A header it cannot make sense of is left to assimp to refuse.
+ * assimp 5.2 also loops for ever on a header that the file ends inside, and
+ * crashes (a bad free) on some headers with lines that are not PLY's (both
+ * found by fuzzing): the header must end, and every line of it be one that
+ * PLY defines, before assimp reads the file.
  */
 static ur_status check_ply_header(const char *path, FILE *file, off_t size, ur_error *error)
 {
     char *line = NULL;
     size_t line_size = 0;
     unsigned long long vertices = 0, claimed = 0;
-    bool ended = false;
-    for (int n = 0; n < 1000 && !ended && getline(&line, &line_size, file) >= 0; n++) {
+    bool ended = false, at_end = false, in_element = false;
+    int n = 0, bad_line = 0;
+    for (; n < 1000 && !ended && !bad_line; n++) {
+        if (getline(&line, &line_size, file) < 0) {
+            at_end = true;
+            break;
+        }
         ended = strncmp(line, "end_header", 10) == 0;
+        bool valid =
+            n == 0 ? strncmp(line, "ply", 3) == 0 && strspn(line + 3, " \t\r\n") == strlen(line + 3)
+                   : ply_header_line_valid(line, &in_element);
+        if (!valid)
+            bad_line = n + 1;
         ply_element(line, &vertices, &claimed);
     }
     long body_start = ftell(file);
     free(line);
+    if (bad_line == 1)
+        return ur_error_set(error, UR_ERROR_INPUT,
+                            "%s:1: not a PLY file: it does not start with "
+                            "'ply'",
+                            path);
+    if (bad_line)
+        return ur_error_set(error, UR_ERROR_INPUT, "%s:%d: not a line of a PLY header", path,
+                            bad_line);
+    if (at_end && !ferror(file))
+        return ur_error_set(error, UR_ERROR_INPUT,
+                            "%s: the PLY header has no end_header line: the file ends inside it",
+                            path);
     if (!ended || body_start < 0)
         return UR_OK;
     if (vertices > UR_MESH_IMPORT_MAX_VERTICES)
@@ -303,6 +396,14 @@ static ur_status check_faces(const char *path, const struct aiMesh *mesh, unsign
     char label[256];
     for (unsigned f = 0; f < mesh->mNumFaces; f++) {
         const struct aiFace *face = &mesh->mFaces[f];
+        /*
+         * A PLY file that ends before its faces gives faces without corners,
+         * on which assimp's triangulation aborts (found by fuzzing).
+         */
+        if (face->mNumIndices == 0 || !face->mIndices)
+            return ur_error_set(error, UR_ERROR_INPUT,
+                                "%s: %s, face %u has no corners: is the file cut short?", path,
+                                mesh_label(mesh, index, label, sizeof label), f + 1);
         for (unsigned k = 0; k < face->mNumIndices; k++)
             if (face->mIndices[k] >= mesh->mNumVertices)
                 return ur_error_set(error, UR_ERROR_INPUT,
