@@ -102,29 +102,48 @@ static ur_status add_copies(const ur_job_part *part, const cli_pieces *made, ur_
 }
 
 /*
- * The materials of a job's parts, in the order first used, and each
- * piece's: pieces of different materials go on different sheets.
+ * The stock a job's parts go on, in the order first used, and each
+ * piece's: a material and how it is nested (sheet size or roll, margin,
+ * spacing, turns ...).  Parts of one material with the job's nesting
+ * options share sheets; a part with its own material, or its own options
+ * for the sheets, goes on sheets of its own.
  */
 enum { MOST_MATERIALS = 32 };
 
 typedef struct job_materials {
     ur_material list[MOST_MATERIALS];
+    cli_job placing[MOST_MATERIALS]; /* the first part's options, for placing only */
     size_t count;
     size_t *of_piece; /* owned: each piece's index in list */
 } job_materials;
 
-/* Notes that pieces first .. first + count - 1 are of material. */
-static ur_status note_material(job_materials *materials, const ur_material *material, size_t first,
-                               size_t count, ur_error *error)
+/* Whether two parts' options nest them alike. */
+static bool same_placing(const cli_job *a, const cli_job *b)
+{
+    return a->sheet_width == b->sheet_width && a->sheet_height == b->sheet_height &&
+           a->roll_width == b->roll_width && a->margin == b->margin && a->spacing == b->spacing &&
+           a->rotations == b->rotations && a->no_holes == b->no_holes &&
+           a->merge_lines == b->merge_lines && a->max_sheets == b->max_sheets;
+}
+
+/* Notes that pieces first .. first + count - 1 are of material, placed as placing says. */
+static ur_status note_material(job_materials *materials, const ur_material *material,
+                               const cli_job *placing, size_t first, size_t count, ur_error *error)
 {
     size_t k = 0;
-    while (k < materials->count && strcmp(materials->list[k].name, material->name) != 0)
+    while (k < materials->count && (strcmp(materials->list[k].name, material->name) != 0 ||
+                                    !same_placing(&materials->placing[k], placing)))
         k++;
     if (k == MOST_MATERIALS)
-        return ur_error_set(error, UR_ERROR_INPUT, "more than %d materials in one job",
+        return ur_error_set(error, UR_ERROR_INPUT,
+                            "more than %d kinds of stock (materials and sheet options) in one job",
                             MOST_MATERIALS);
-    if (k == materials->count)
-        materials->list[materials->count++] = *material;
+    if (k == materials->count) {
+        materials->list[k] = *material;
+        materials->placing[k] = *placing;
+        materials->placing[k].command = "job"; /* the part's words are gone by then */
+        materials->count++;
+    }
     size_t *grown = realloc(materials->of_piece, (first + count + 1) * sizeof *grown);
     if (!grown)
         return ur_error_out_of_memory(error);
@@ -201,7 +220,8 @@ static int all_pieces(const ur_job *file, const char *out, words *first_words, c
         all->surface_area += made.surface_area * (double)file->parts[p].quantity;
         size_t first = all->count;
         if (add_copies(&file->parts[p], &made, &all->pieces, &all->count, &error) != UR_OK ||
-            note_material(materials, &made.material, first, all->count - first, &error) != UR_OK) {
+            note_material(materials, &made.material, &job, first, all->count - first, &error) !=
+                UR_OK) {
             cli_message("%s: %s", file->source, error.message);
             code = cli_exit_status(&error);
         }
@@ -272,7 +292,7 @@ static ur_status append_layout(ur_layout *layout, ur_layout *part, size_t offset
     return UR_OK;
 }
 
-/* Nests the pieces of each material on that material's own sheets. */
+/* Nests the pieces of each kind of stock on sheets of their own. */
 static ur_status place_by_material(const cli_job *job, cli_pieces *all, job_materials *materials,
                                    ur_layout *layout, ur_error *error)
 {
@@ -283,8 +303,8 @@ static ur_status place_by_material(const cli_job *job, cli_pieces *all, job_mate
     ur_status status = group_by_material(all, materials, starts, error);
     for (size_t g = 0; status == UR_OK && g < materials->count; g++) {
         ur_layout part = {NULL, 0, NULL, 0};
-        status = cli_place_pieces(job, &all->machine, &materials->list[g], all->pieces + starts[g],
-                                  starts[g + 1] - starts[g], &part, error);
+        status = cli_place_pieces(&materials->placing[g], &all->machine, &materials->list[g],
+                                  all->pieces + starts[g], starts[g + 1] - starts[g], &part, error);
         if (status == UR_OK)
             status = append_layout(layout, &part, starts[g], materials->list[g].name, error);
         ur_layout_free(&part);
