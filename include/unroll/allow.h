@@ -107,7 +107,8 @@ typedef struct ur_piece {
     ur_shading shading;
     ur_allowance_record *records; /* owned; what was added and why */
     size_t record_count;
-    bool bridged; /* bridges opened the outline: paths[0] is no longer a closed ring */
+    bool bridged; /* bridges or merged lines opened the outline: paths[0] is no longer a ring */
+    double outline_area; /* what the outline enclosed before it was opened; 0 until then */
     /*
      * The direction of the piece's rulings (its bending axes), radians in
      * piece coordinates, taken modulo a half turn, when has_rulings (not a

@@ -269,10 +269,11 @@ typedef struct ur_job_option {
 } ur_job_option;
 
 typedef struct ur_job_part {
-    char surface[16]; /* cylinder, cone, ..., mesh */
-    char name[64];    /* "" when not given */
-    long quantity;    /* 1 when not given */
-    char file[2048];  /* a mesh part's file, relative to the working directory; "" otherwise */
+    char surface[16];  /* cylinder, cone, ..., mesh */
+    char name[64];     /* "" when not given */
+    long quantity;     /* 1 when not given */
+    char file[2048];   /* a mesh part's file, relative to the working directory; "" otherwise */
+    char material[64]; /* the part's own material, "" for the job's */
     ur_job_option *options; /* owned */
     size_t option_count;
     int line;

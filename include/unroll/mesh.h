@@ -238,4 +238,13 @@ ur_status ur_mesh_bands(const ur_mesh *mesh, ur_vec3 direction, const double *pl
  */
 ur_status ur_mesh_halve(const ur_mesh *mesh, ur_mesh *halves, ur_error *error);
 
+/*
+ * The same cut into parts pieces of equal area, one after another along
+ * the piece's length (ur_mesh_halve is parts 2): for a flat piece too long
+ * for any sheet.  Refuses (UR_ERROR_INPUT) parts below 2 or above the
+ * triangle count, and levels that do not increase (a piece with no length
+ * to speak of).
+ */
+ur_status ur_mesh_split_along(const ur_mesh *mesh, size_t parts, ur_mesh *split, ur_error *error);
+
 #endif

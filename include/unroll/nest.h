@@ -21,6 +21,8 @@ typedef struct ur_sheet {
     double width, height;
     ur_placement *placements; /* owned */
     size_t placement_count;
+    /* Set by the caller when a job mixes materials: this sheet's; "" otherwise. */
+    char material[64];
 } ur_sheet;
 
 typedef struct ur_layout {
@@ -101,6 +103,50 @@ enum { NEST_PATIENCE = 40, NEST_TRIES = 2000 };
 
 ur_status ur_layout_nest(const ur_piece *pieces, size_t count, const ur_nest_options *options,
                          ur_layout *layout, ur_error *error);
+
+/*
+ * Common-line cutting (merge_lines.c): going through each sheet's pieces
+ * in placement order, every CUT path loses the stretches that lie within
+ * tolerance (mm) of what the pieces before it on the sheet cut, so that a
+ * line two touching parts share is cut once.  What is left of a path
+ * becomes open paths (the first in its place, the others appended to the
+ * piece; a path left with nothing has no points); an opened outline marks
+ * the piece bridged, keeping its area in outline_area.  *saved is the cut
+ * length taken off, mm.  Parts touch only when nested with no spacing.
+ */
+ur_status ur_layout_merge_lines(const ur_layout *layout, ur_piece *pieces, size_t count,
+                                double tolerance, double *saved, ur_error *error);
+
+/*
+ * The size of an outline turned so that its smallest enclosing rectangle
+ * lies level, as nesting first turns a piece: *length the longer side,
+ * *width the shorter (mm).
+ */
+ur_status ur_outline_level_size(const ur_vec2 *outline, size_t count, double *length, double *width,
+                                ur_error *error);
+
+/* The turn (radians) that lays the outline's smallest enclosing rectangle level. */
+double ur_outline_level_angle(const ur_vec2 *outline, size_t count);
+
+/*
+ * A part cut into the fewest parts that fit room_length x room_width
+ * (split_part.c): turned level, it is cut across its length by straight
+ * lines, each within the slack the even shares leave, where it is
+ * narrowest.  Appends to out one net per new part, whose outline_3d are
+ * its points at height id (give each part split a different id) so that
+ * ur_net_list_find_seams pairs the two sides of every cut, and the piece
+ * made from it (ur_piece_from_net) with the holes that fall in it.
+ * Refuses (UR_ERROR_INPUT) a part wider than room_width when level, and
+ * one with no closed outline.
+ */
+typedef struct ur_split_parts {
+    ur_net_list nets; /* owned */
+    ur_piece *pieces; /* owned; pieces[k] made from nets.nets[k] */
+} ur_split_parts;
+
+ur_status ur_part_split(const ur_piece *part, double room_length, double room_width, double id,
+                        ur_split_parts *out, ur_error *error);
+void ur_split_parts_free(ur_split_parts *parts);
 
 /* Share of the sheet's area covered by the outlines placed on it, 0..1. */
 double ur_sheet_utilisation(const ur_sheet *sheet, const ur_piece *pieces);

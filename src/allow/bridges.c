@@ -21,6 +21,7 @@
  */
 #include "unroll/allow.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -368,6 +369,7 @@ static ur_status open_outline(ur_piece *piece, const ring *r, const double *cent
     if (status == UR_OK) {
         piece->paths = paths;
         ur_path_circle circle = paths[0].circle;
+        piece->outline_area = fabs(ur_polygon_signed_area(paths[0].points, paths[0].count));
         free(paths[0].points);
         for (size_t k = 0; k < placed; k++) {
             ur_path *path = k == 0 ? &paths[0] : &paths[piece->path_count + k - 1];

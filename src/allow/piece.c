@@ -155,6 +155,7 @@ ur_status ur_piece_copy(const ur_piece *from, ur_piece *to, ur_error *error)
     memcpy(to->name, from->name, sizeof to->name);
     to->measures = from->measures;
     to->bridged = from->bridged;
+    to->outline_area = from->outline_area;
     to->ruling_angle = from->ruling_angle;
     to->has_rulings = from->has_rulings;
     ur_status status = UR_OK;

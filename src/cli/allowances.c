@@ -138,8 +138,8 @@ static ur_status add_bending(const ur_machine *machine, const ur_material *mater
     return status;
 }
 
-static ur_status add_joints(const ur_material *material, const ur_net_list *nets, ur_piece *pieces,
-                            ur_error *error)
+ur_status cli_add_joints(const ur_material *material, const ur_net_list *nets, ur_piece *pieces,
+                         ur_error *error)
 {
     ur_font *font = NULL;
     ur_status status = ur_font_open(NULL, &font, error);
@@ -172,7 +172,7 @@ ur_status cli_allowances_before_placing(const cli_job *job, const ur_machine *ma
     if (status == UR_OK && surfaces && (set & CLI_ALLOW_BENDING))
         status = add_bending(machine, material, nets, surfaces, pieces, count, error);
     if (status == UR_OK && (set & CLI_ALLOW_TABS))
-        status = add_joints(material, nets, pieces, error);
+        status = cli_add_joints(material, nets, pieces, error);
     double kerf = ur_effective_kerf(machine, material);
     for (size_t k = 0; status == UR_OK && !job->no_kerf_compensation && k < count; k++)
         status = ur_piece_compensate_kerf(&pieces[k], kerf, error);
@@ -190,14 +190,15 @@ ur_status cli_allowances_after_placing(const cli_job *job, const ur_machine *mac
                 ur_piece_turn_labels(&pieces[placement->piece_index],
                                      atan2(placement->transform.sine, placement->transform.cosine));
         }
-    if (!(cli_allowances_chosen(job, machine) & CLI_ALLOW_BRIDGES))
-        return UR_OK;
-    size_t bridges = job->bridges > 0 ? (size_t)job->bridges : 0;
-    bool router = machine->kind == UR_MACHINE_ROUTER;
     ur_status status = UR_OK;
-    for (size_t k = 0; status == UR_OK && k < count; k++)
-        status = ur_piece_add_bridges(&pieces[k], bridges, machine->bridge_width, router, error);
-    return status;
+    if (cli_allowances_chosen(job, machine) & CLI_ALLOW_BRIDGES) {
+        size_t bridges = job->bridges > 0 ? (size_t)job->bridges : 0;
+        bool router = machine->kind == UR_MACHINE_ROUTER;
+        for (size_t k = 0; status == UR_OK && k < count; k++)
+            status =
+                ur_piece_add_bridges(&pieces[k], bridges, machine->bridge_width, router, error);
+    }
+    return status == UR_OK ? cli_merge_lines(job, layout, pieces, count, error) : status;
 }
 
 /*

@@ -79,6 +79,7 @@ typedef struct cli_job {
     bool drawing_order;       /* --order none */
     long rotations;           /* --rotations N; 0: 4, or 2 under a grain rule */
     bool no_holes;            /* --no-holes: no part inside another's hole */
+    bool merge_lines;         /* --merge-lines: touching parts, shared lines cut once */
     bool level;               /* turns start from the level one (surfaces), not as drawn (nest) */
     double roll_width;        /* --roll W: nest on roll stock this wide; 0 for sheets */
     long max_sheets;          /* --sheets N: at most N sheets; 0 for as many as needed */
@@ -149,11 +150,24 @@ int cli_exit_status(const ur_error *error);
  * unroll mesh FILE (meshes.c): the nets of a mesh's pieces, flattened with
  * their strain; returns 0 or an exit status after a message.
  */
-int cli_mesh_nets(const cli_job *job, const ur_material *material, ur_net_list *nets, double *area);
+/*
+ * The room a piece may take on the largest sheet the job may use (run.c):
+ * inside the margin, less the kerf and a joint at each end of its length
+ * (the joints go on the seams a split makes).  0 x 0 on roll stock, or
+ * when the sheet leaves no room.
+ */
+typedef struct cli_room {
+    double length, width;
+} cli_room;
+
+cli_room cli_fit_room(const cli_job *job, const ur_machine *machine, const ur_material *material);
+
+int cli_mesh_nets(const cli_job *job, const cli_room *room, const ur_material *material,
+                  ur_net_list *nets, double *area);
 
 /* The nets of a non-developable ruled surface, flattened with strain (meshes.c). */
-int cli_flatten_ruled(const cli_job *job, const ur_material *material, ur_ruled *ruled,
-                      ur_net_list *nets, double *area);
+int cli_flatten_ruled(const cli_job *job, const cli_room *room, const ur_material *material,
+                      ur_ruled *ruled, ur_net_list *nets, double *area);
 
 /*
  * The allowances that go on the pieces before they are placed: relief
@@ -171,6 +185,18 @@ ur_status cli_allowances_before_placing(const cli_job *job, const ur_machine *ma
  * Once the pieces are placed: labels turned to read upright on the sheet,
  * then holding bridges (allowances.c).
  */
+/*
+ * --merge-lines: the lines placed parts share are cut once (after bridges,
+ * which it may cut through where they lie on a shared line); a note of
+ * the length saved unless quiet.
+ */
+ur_status cli_merge_lines(const cli_job *job, const ur_layout *layout, ur_piece *pieces,
+                          size_t count, ur_error *error);
+
+/* Joints and labels on the seams of the nets, as the material asks (pieces[k] from nets[k]). */
+ur_status cli_add_joints(const ur_material *material, const ur_net_list *nets, ur_piece *pieces,
+                         ur_error *error);
+
 ur_status cli_allowances_after_placing(const cli_job *job, const ur_machine *machine,
                                        const ur_layout *layout, ur_piece *pieces, size_t count,
                                        ur_error *error);

@@ -55,16 +55,22 @@ static void output_path(const ur_job *job, char *path, size_t size)
     snprintf(path, size, "%s/%s.%s", job->output_directory, job->output_name, first);
 }
 
-/* The command line a part stands for: surface, file, job options, part options, profiles, -o. */
+/*
+ * The command line a part stands for: surface, file, the job's profiles and
+ * options, then the part's own material and options (the last word wins, so
+ * a part's own override the job's), formats, -o.
+ */
 static bool part_words(const ur_job *job, const ur_job_part *part, const char *out, words *w)
 {
-    bool ok = add_word(w, part->surface) && (!part->file[0] || add_word(w, part->file)) &&
-              add_options(w, job->options, job->option_count) &&
-              add_options(w, part->options, part->option_count);
+    bool ok = add_word(w, part->surface) && (!part->file[0] || add_word(w, part->file));
     if (ok && job->machine[0])
         ok = add_word(w, "--machine") && add_word(w, job->machine);
     if (ok && job->material[0])
         ok = add_word(w, "--material") && add_word(w, job->material);
+    ok = ok && add_options(w, job->options, job->option_count);
+    if (ok && part->material[0])
+        ok = add_word(w, "--material") && add_word(w, part->material);
+    ok = ok && add_options(w, part->options, part->option_count);
     if (ok && job->formats[0])
         ok = add_word(w, "--format") && add_word(w, job->formats);
     return ok && add_word(w, "-o") && add_word(w, out);
@@ -92,6 +98,39 @@ static ur_status add_copies(const ur_job_part *part, const cli_pieces *made, ur_
             snprintf(name, sizeof name, "%s#%ld", made->pieces[k].name, copy + 1);
             snprintf(piece->name, sizeof piece->name, "%.31s", name);
         }
+    return UR_OK;
+}
+
+/*
+ * The materials of a job's parts, in the order first used, and each
+ * piece's: pieces of different materials go on different sheets.
+ */
+enum { MOST_MATERIALS = 32 };
+
+typedef struct job_materials {
+    ur_material list[MOST_MATERIALS];
+    size_t count;
+    size_t *of_piece; /* owned: each piece's index in list */
+} job_materials;
+
+/* Notes that pieces first .. first + count - 1 are of material. */
+static ur_status note_material(job_materials *materials, const ur_material *material, size_t first,
+                               size_t count, ur_error *error)
+{
+    size_t k = 0;
+    while (k < materials->count && strcmp(materials->list[k].name, material->name) != 0)
+        k++;
+    if (k == MOST_MATERIALS)
+        return ur_error_set(error, UR_ERROR_INPUT, "more than %d materials in one job",
+                            MOST_MATERIALS);
+    if (k == materials->count)
+        materials->list[materials->count++] = *material;
+    size_t *grown = realloc(materials->of_piece, (first + count + 1) * sizeof *grown);
+    if (!grown)
+        return ur_error_out_of_memory(error);
+    materials->of_piece = grown;
+    for (size_t p = first; p < first + count; p++)
+        grown[p] = k;
     return UR_OK;
 }
 
@@ -133,7 +172,7 @@ static int make_part(const ur_job *file, size_t index, const char *out, words *w
 
 /* The job's pieces, every part's, as many as asked; *layout_job describes the sheets and files. */
 static int all_pieces(const ur_job *file, const char *out, words *first_words, cli_job *layout_job,
-                      char *command, size_t command_size, cli_pieces *all)
+                      char *command, size_t command_size, cli_pieces *all, job_materials *materials)
 {
     words *w = calloc(1, sizeof *w);
     if (!w) {
@@ -160,7 +199,9 @@ static int all_pieces(const ur_job *file, const char *out, words *first_words, c
             all->material = made.material;
         }
         all->surface_area += made.surface_area * (double)file->parts[p].quantity;
-        if (add_copies(&file->parts[p], &made, &all->pieces, &all->count, &error) != UR_OK) {
+        size_t first = all->count;
+        if (add_copies(&file->parts[p], &made, &all->pieces, &all->count, &error) != UR_OK ||
+            note_material(materials, &made.material, first, all->count - first, &error) != UR_OK) {
             cli_message("%s: %s", file->source, error.message);
             code = cli_exit_status(&error);
         }
@@ -170,12 +211,93 @@ static int all_pieces(const ur_job *file, const char *out, words *first_words, c
     return code;
 }
 
-static int place_and_write(const ur_job *file, cli_job *job, cli_pieces *all, bool quiet)
+/*
+ * Moves the pieces of each material together, the first used first, in
+ * their order within one; starts[g] is where material g's begin.
+ */
+static ur_status group_by_material(cli_pieces *all, job_materials *materials, size_t *starts,
+                                   ur_error *error)
+{
+    ur_piece *sorted = malloc((all->count + 1) * sizeof *sorted);
+    size_t *of_piece = malloc((all->count + 1) * sizeof *of_piece);
+    if (!sorted || !of_piece) {
+        free(sorted);
+        free(of_piece);
+        return ur_error_out_of_memory(error);
+    }
+    size_t n = 0;
+    for (size_t g = 0; g < materials->count; g++) {
+        starts[g] = n;
+        for (size_t p = 0; p < all->count; p++)
+            if (materials->of_piece[p] == g) {
+                of_piece[n] = g;
+                sorted[n++] = all->pieces[p];
+            }
+    }
+    starts[materials->count] = n;
+    free(all->pieces);
+    free(materials->of_piece);
+    all->pieces = sorted;
+    materials->of_piece = of_piece;
+    return UR_OK;
+}
+
+/*
+ * Moves part's sheets and left-out pieces to the end of layout, their piece
+ * indices offset, each sheet marked with the material's name.
+ */
+static ur_status append_layout(ur_layout *layout, ur_layout *part, size_t offset,
+                               const char *material, ur_error *error)
+{
+    ur_sheet *sheets =
+        realloc(layout->sheets, (layout->sheet_count + part->sheet_count + 1) * sizeof *sheets);
+    if (sheets)
+        layout->sheets = sheets;
+    size_t *left = realloc(layout->not_placed,
+                           (layout->not_placed_count + part->not_placed_count + 1) * sizeof *left);
+    if (left)
+        layout->not_placed = left;
+    if (!sheets || !left)
+        return ur_error_out_of_memory(error);
+    for (size_t s = 0; s < part->sheet_count; s++) {
+        ur_sheet *sheet = &sheets[layout->sheet_count++];
+        *sheet = part->sheets[s];
+        snprintf(sheet->material, sizeof sheet->material, "%s", material);
+        for (size_t k = 0; k < sheet->placement_count; k++)
+            sheet->placements[k].piece_index += offset;
+    }
+    part->sheet_count = 0; /* the sheets' placements are layout's now */
+    for (size_t k = 0; k < part->not_placed_count; k++)
+        left[layout->not_placed_count++] = part->not_placed[k] + offset;
+    return UR_OK;
+}
+
+/* Nests the pieces of each material on that material's own sheets. */
+static ur_status place_by_material(const cli_job *job, cli_pieces *all, job_materials *materials,
+                                   ur_layout *layout, ur_error *error)
+{
+    if (materials->count <= 1)
+        return cli_place_pieces(job, &all->machine, &all->material, all->pieces, all->count, layout,
+                                error);
+    size_t starts[MOST_MATERIALS + 1];
+    ur_status status = group_by_material(all, materials, starts, error);
+    for (size_t g = 0; status == UR_OK && g < materials->count; g++) {
+        ur_layout part = {NULL, 0, NULL, 0};
+        status = cli_place_pieces(job, &all->machine, &materials->list[g], all->pieces + starts[g],
+                                  starts[g + 1] - starts[g], &part, error);
+        if (status == UR_OK)
+            status = append_layout(layout, &part, starts[g], materials->list[g].name, error);
+        ur_layout_free(&part);
+    }
+    return status;
+}
+
+static int place_and_write(const ur_job *file, cli_job *job, cli_pieces *all,
+                           job_materials *materials, bool quiet)
 {
     ur_layout layout = {NULL, 0, NULL, 0};
     ur_error error;
-    ur_status status = cli_place_pieces(job, &all->machine, &all->material, all->pieces, all->count,
-                                        &layout, &error);
+    ur_status status = place_by_material(job, all, materials, &layout, &error);
     if (status == UR_OK)
         status = cli_allowances_after_placing(job, &all->machine, &layout, all->pieces, all->count,
                                               &error);
@@ -254,8 +376,13 @@ int cli_job_command(int argc, char **argv)
     cli_job job;
     cli_pieces all;
     memset(&all, 0, sizeof all);
-    code =
-        first ? all_pieces(&file, out, first, &job, command, sizeof command, &all) : EXIT_INTERNAL;
+    job_materials *materials = calloc(1, sizeof *materials);
+    if (first && materials)
+        code = all_pieces(&file, out, first, &job, command, sizeof command, &all, materials);
+    else {
+        cli_message("job: out of memory");
+        code = EXIT_INTERNAL;
+    }
     /* The output directory is made when missing (its parent must exist), only now. */
     bool made_directory = false;
     if (!code) {
@@ -272,11 +399,14 @@ int cli_job_command(int argc, char **argv)
         if (!job.job_name) /* <option name="job-name"> says otherwise */
             job.job_name = file.name;
         job.report_path = file.report[0] ? report : NULL;
-        code = place_and_write(&file, &job, &all, quiet);
+        code = place_and_write(&file, &job, &all, materials, quiet);
     }
     if (code && made_directory)
         rmdir(file.output_directory); /* nothing is left behind */
     free_made(&all);
+    if (materials)
+        free(materials->of_piece);
+    free(materials);
     free(first);
     ur_job_free(&file);
     return code;

@@ -7,6 +7,7 @@
  */
 #include "cli.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -14,6 +15,7 @@
 
 #include "unroll/flatten.h"
 #include "unroll/io.h"
+#include "unroll/nest.h"
 
 /* Triangulation of a ruled surface for flattening: rulings along, parts across. */
 enum { RULED_ALONG = 96, RULED_ACROSS = 24 };
@@ -75,37 +77,104 @@ static int append_net(const cli_job *job, ur_net_list *nets, ur_net *net)
     return 0;
 }
 
-enum { MOST_SPLITS = 6 }; /* halvings of a piece whose flat outline crosses itself */
+enum { MOST_SPLITS = 6 }; /* cuts of a piece whose flat outline crosses itself or is too long */
 
-static int flatten_piece(const cli_job *job, const ur_flatten_options *options,
-                         const ur_mesh *piece, size_t depth, ur_net_list *nets, double *area);
+/* How pieces are flattened: the job, the flattening's options, the room on a sheet. */
+typedef struct flattening {
+    const cli_job *job;
+    ur_flatten_options options;
+    cli_room room; /* 0 x 0: pieces are not cut to fit */
+} flattening;
+
+static int flatten_piece(const flattening *f, const ur_mesh *piece, size_t depth, ur_net_list *nets,
+                         double *area);
 
 /*
- * A flat outline that crosses itself cannot be cut: the piece is cut in two
- * along its length (ur_mesh_halve), and each half flattened.
+ * A piece cut into parts along its length (ur_mesh_split_along), each
+ * flattened: a flat outline that crosses itself cannot be cut (2 parts),
+ * nor can one longer than any sheet.
  */
-static int split_piece(const cli_job *job, const ur_flatten_options *options, const ur_mesh *piece,
-                       size_t depth, ur_net_list *nets, double *area)
+static int split_piece(const flattening *f, const ur_mesh *piece, size_t parts, size_t depth,
+                       ur_net_list *nets, double *area)
 {
     ur_error error;
-    ur_mesh halves;
-    ur_mesh_piece *parts = NULL;
-    size_t part_count = 0;
-    if (ur_mesh_halve(piece, &halves, &error) != UR_OK)
-        return fail(job, &error);
-    int code = ur_mesh_pieces(&halves, NULL, 0, &parts, &part_count, &error) == UR_OK
+    ur_mesh split;
+    ur_mesh_piece *pieces = NULL;
+    size_t piece_count = 0;
+    if (ur_mesh_split_along(piece, parts, &split, &error) != UR_OK)
+        return fail(f->job, &error);
+    int code = ur_mesh_pieces(&split, NULL, 0, &pieces, &piece_count, &error) == UR_OK
                    ? 0
-                   : fail(job, &error);
-    for (size_t k = 0; !code && k < part_count; k++)
-        code = flatten_piece(job, options, &parts[k].mesh, depth + 1, nets, area);
-    ur_mesh_pieces_free(parts, part_count);
-    ur_mesh_free(&halves);
+                   : fail(f->job, &error);
+    for (size_t k = 0; !code && k < piece_count; k++)
+        code = flatten_piece(f, &pieces[k].mesh, depth + 1, nets, area);
+    ur_mesh_pieces_free(pieces, piece_count);
+    ur_mesh_free(&split);
     return code;
 }
 
-static int flatten_piece(const cli_job *job, const ur_flatten_options *options,
-                         const ur_mesh *piece, size_t depth, ur_net_list *nets, double *area)
+/* The net's level size, and whether it fits the room. */
+static bool fits_room(const flattening *f, const ur_net *net, double *length, double *width)
 {
+    ur_error error;
+    if (ur_outline_level_size(net->outline, net->outline_count, length, width, &error) != UR_OK)
+        return true; /* nesting will say */
+    return *length <= f->room.length && *width <= f->room.width;
+}
+
+static void free_nets(ur_net_list *nets)
+{
+    for (size_t k = 0; k < nets->count; k++)
+        ur_net_free(&nets->nets[k]);
+    free(nets->nets);
+    nets->nets = NULL;
+    nets->count = 0;
+}
+
+/*
+ * A flat piece longer than the room, cut into the fewest parts along its
+ * length that each fit: first as many as its length asks, then one more
+ * at a time (the cut follows the mesh's edges, so parts come out a little
+ * longer than an even share), then halving whatever still does not fit.
+ */
+static int split_to_fit(const flattening *f, const ur_mesh *piece, double length, double width,
+                        size_t depth, ur_net_list *nets, double *area)
+{
+    flattening no_fit = *f; /* the trials halve only outlines that cross themselves */
+    no_fit.room = (cli_room){0, 0};
+    size_t first = (size_t)fmax(2, ceil(length / f->room.length));
+    for (size_t parts = first; parts < first + 3; parts++) {
+        ur_net_list trial = {NULL, 0};
+        double trial_area = 0, l, w;
+        int code = split_piece(&no_fit, piece, parts, depth, &trial, &trial_area);
+        bool all = !code;
+        for (size_t k = 0; all && k < trial.count; k++)
+            all = fits_room(f, &trial.nets[k], &l, &w);
+        for (size_t k = 0; all && !code && k < trial.count; k++) {
+            code = append_net(f->job, nets, &trial.nets[k]);
+            trial.nets[k] = (ur_net){0};
+        }
+        free_nets(&trial);
+        if (code)
+            return code;
+        if (all) {
+            *area += trial_area;
+            if (!f->job->quiet)
+                cli_message("%s: a piece %.0f x %.0f mm does not fit the %.0f x %.0f mm a sheet "
+                            "leaves it: cut into %zu along its length (--no-split refuses "
+                            "instead)",
+                            f->job->command, length, width, f->room.length, f->room.width, parts);
+            return 0;
+        }
+    }
+    return split_piece(f, piece, 2, depth, nets, area);
+}
+
+static int flatten_piece(const flattening *f, const ur_mesh *piece, size_t depth, ur_net_list *nets,
+                         double *area)
+{
+    const cli_job *job = f->job;
+    const ur_flatten_options *options = &f->options;
     ur_flat_piece flat;
     ur_net net;
     ur_error error;
@@ -120,22 +189,28 @@ static int flatten_piece(const cli_job *job, const ur_flatten_options *options,
         return fail(job, &error);
     if (!ur_outline_is_simple(net.outline, net.outline_count) && depth < MOST_SPLITS) {
         ur_net_free(&net);
-        return split_piece(job, options, piece, depth, nets, area);
+        return split_piece(f, piece, 2, depth, nets, area);
+    }
+    double length, width;
+    if (f->job->develop.split && f->room.length > 0 && depth < MOST_SPLITS &&
+        !fits_room(f, &net, &length, &width)) {
+        ur_net_free(&net);
+        return split_to_fit(f, piece, length, width, depth, nets, area);
     }
     *area += net.area_3d;
     return append_net(job, nets, &net);
 }
 
 /* Flattens every piece (halving any whose outline crosses itself); nets P1, P2, ... */
-static int flatten_pieces(const cli_job *job, const ur_mesh_piece *pieces, size_t count,
-                          ur_net_list *nets, double *area)
+static int flatten_pieces(const cli_job *job, const cli_room *room, const ur_mesh_piece *pieces,
+                          size_t count, ur_net_list *nets, double *area)
 {
-    ur_flatten_options options;
-    flatten_options(job, &options);
+    flattening f = {.job = job, .room = *room};
+    flatten_options(job, &f.options);
     *area = 0.0;
     int code = 0;
     for (size_t k = 0; !code && k < count; k++)
-        code = flatten_piece(job, &options, &pieces[k].mesh, 0, nets, area);
+        code = flatten_piece(&f, &pieces[k].mesh, 0, nets, area);
     for (size_t k = 0; k < nets->count; k++)
         snprintf(nets->nets[k].name, sizeof nets->nets[k].name, "P%zu", k + 1);
     return code;
@@ -322,8 +397,8 @@ static int flatten_in_strips(const cli_job *job, const ur_material *material, ur
 }
 
 /* Cleans, cuts into disks and flattens; repairs are news only for a mesh from a file. */
-static int nets_of_mesh(const cli_job *job, const ur_material *material, ur_mesh *mesh,
-                        bool tell_repairs, ur_net_list *nets, double *area)
+static int nets_of_mesh(const cli_job *job, const cli_room *room, const ur_material *material,
+                        ur_mesh *mesh, bool tell_repairs, ur_net_list *nets, double *area)
 {
     ur_error error;
     ur_mesh_repairs repairs;
@@ -356,14 +431,15 @@ static int nets_of_mesh(const cli_job *job, const ur_material *material, ur_mesh
     if (!code && ur_mesh_pieces(mesh, seams, seam_count, &pieces, &piece_count, &error) != UR_OK)
         code = fail(job, &error);
     if (!code)
-        code = flatten_pieces(job, pieces, piece_count, nets, area);
+        code = flatten_pieces(job, room, pieces, piece_count, nets, area);
     end_progress(job);
     ur_mesh_pieces_free(pieces, piece_count);
     free(seams);
     return code;
 }
 
-int cli_mesh_nets(const cli_job *job, const ur_material *material, ur_net_list *nets, double *area)
+int cli_mesh_nets(const cli_job *job, const cli_room *room, const ur_material *material,
+                  ur_net_list *nets, double *area)
 {
     if (!job->mesh_path) {
         cli_message("mesh: give the mesh file: unroll mesh FILE -o OUT.svg");
@@ -384,13 +460,13 @@ int cli_mesh_nets(const cli_job *job, const ur_material *material, ur_net_list *
     ur_error error;
     if (ur_mesh_import(job->mesh_path, &options, &mesh, NULL, &error) != UR_OK)
         return fail(job, &error);
-    code = nets_of_mesh(job, material, &mesh, true, nets, area);
+    code = nets_of_mesh(job, room, material, &mesh, true, nets, area);
     ur_mesh_free(&mesh);
     return code;
 }
 
-int cli_flatten_ruled(const cli_job *job, const ur_material *material, ur_ruled *ruled,
-                      ur_net_list *nets, double *area)
+int cli_flatten_ruled(const cli_job *job, const cli_room *room, const ur_material *material,
+                      ur_ruled *ruled, ur_net_list *nets, double *area)
 {
     if (job->strips)
         return flatten_in_strips(job, material, NULL, NULL, 0, ruled, nets, area);
@@ -398,7 +474,7 @@ int cli_flatten_ruled(const cli_job *job, const ur_material *material, ur_ruled 
     ur_error error;
     if (ur_mesh_from_ruled(ruled, RULED_ALONG, RULED_ACROSS, &mesh, &error) != UR_OK)
         return fail(job, &error);
-    int code = nets_of_mesh(job, material, &mesh, false, nets, area);
+    int code = nets_of_mesh(job, room, material, &mesh, false, nets, area);
     ur_mesh_free(&mesh);
     return code;
 }

@@ -36,6 +36,8 @@ enum nest_option {
     NEST_ORDER,
     NEST_ROTATIONS,
     NEST_NO_HOLES,
+    NEST_MERGE_LINES,
+    NEST_NO_SPLIT,
     NEST_ROLL,
     NEST_SHEETS,
     NEST_NEST_TIME,
@@ -61,6 +63,8 @@ static const struct option nest_options[] = {
     {"order", required_argument, NULL, NEST_ORDER},
     {"rotations", required_argument, NULL, NEST_ROTATIONS},
     {"no-holes", no_argument, NULL, NEST_NO_HOLES},
+    {"merge-lines", no_argument, NULL, NEST_MERGE_LINES},
+    {"no-split", no_argument, NULL, NEST_NO_SPLIT},
     {"roll", required_argument, NULL, NEST_ROLL},
     {"sheets", required_argument, NULL, NEST_SHEETS},
     {"nest-time", required_argument, NULL, NEST_NEST_TIME},
@@ -76,6 +80,7 @@ typedef struct nest_job {
     long copies;    /* --copies: of every part, unless FILE:N says otherwise */
     char **files;   /* argv's file arguments, FILE or FILE:N */
     size_t file_count;
+    bool no_split; /* --no-split: a part longer than any sheet is an error, not cut */
 } nest_job;
 
 static bool parse_positive_count(const char *what, const char *value, long most, long *count)
@@ -125,6 +130,9 @@ static bool take_nest_option(nest_job *n, int id, const char *value)
     case 'o':
         job->output_path = value;
         return true;
+    case NEST_NO_SPLIT:
+        n->no_split = true;
+        return true;
     case NEST_MACHINE:
         job->machine_name = value;
         return true;
@@ -169,6 +177,9 @@ static bool take_nest_option(nest_job *n, int id, const char *value)
     case NEST_NO_HOLES:
         job->no_holes = true;
         return true;
+    case NEST_MERGE_LINES:
+        job->merge_lines = true;
+        return true;
     case NEST_ROLL:
         return cli_parse_roll(job, value);
     case NEST_SHEETS:
@@ -194,6 +205,8 @@ static const char nest_help[] =
     "  --job-name NAME (recorded in the files; default nest)\n"
     "  --rotations N (turns of 360/N degrees from the part as drawn; default 4)\n"
     "  --no-holes (no part inside another's hole)\n"
+    "  --merge-lines  parts may touch; a line two parts share is cut once\n"
+    "  --no-split     refuse a part longer than any sheet instead of cutting it\n"
     "  --roll W   nest on roll stock W mm wide, as short as it goes\n"
     "  --sheets N at most N sheets; what does not fit is named, not placed\n"
     "  --nest-time S  search for a better layout for up to S seconds (default 2)\n"
@@ -349,6 +362,73 @@ static void print_nest_summary(const nest_job *n, const ur_machine *machine, con
                 n->job.output_path);
 }
 
+/* Puts the split parts' pieces at the end of the list instead of the parts marked cut. */
+static ur_status replace_split(ur_split_parts *split, const bool *cut, ur_piece **pieces,
+                               size_t *count, ur_error *error)
+{
+    ur_piece *all = malloc((*count + split->nets.count + 1) * sizeof *all);
+    if (!all)
+        return ur_error_out_of_memory(error);
+    size_t kept = 0;
+    for (size_t k = 0; k < *count; k++)
+        if (cut[k])
+            ur_piece_free(&(*pieces)[k]);
+        else
+            all[kept++] = (*pieces)[k];
+    for (size_t k = 0; k < split->nets.count; k++) {
+        all[kept++] = split->pieces[k];
+        memset(&split->pieces[k], 0, sizeof split->pieces[k]); /* all's now */
+    }
+    free(*pieces);
+    *pieces = all;
+    *count = kept;
+    return UR_OK;
+}
+
+/*
+ * A part longer than the room a sheet leaves (inside the margin, less the
+ * kerf and a joint at each end) is cut into the fewest parts that fit,
+ * each cut joined again with a joint and matching labels; --no-split
+ * leaves it for nesting to refuse.
+ */
+static ur_status split_long_parts(const nest_job *n, const ur_machine *machine,
+                                  const ur_material *material, ur_piece **pieces, size_t *count,
+                                  ur_error *error)
+{
+    cli_room room = cli_fit_room(&n->job, machine, material);
+    if (n->no_split || room.length <= 0)
+        return UR_OK;
+    ur_split_parts split = {{NULL, 0}, NULL};
+    bool *cut = calloc(*count + 1, sizeof *cut);
+    ur_status status = cut ? UR_OK : ur_error_out_of_memory(error);
+    for (size_t k = 0; status == UR_OK && k < *count; k++) {
+        const ur_path *outline = &(*pieces)[k].paths[0];
+        double length, width;
+        status = ur_outline_level_size(outline->points, outline->count, &length, &width, error);
+        if (status != UR_OK || (length <= room.length && width <= room.width) ||
+            width > room.width) /* too wide for cuts across it to help: nesting says so */
+            continue;
+        size_t before = split.nets.count;
+        status = ur_part_split(&(*pieces)[k], room.length, room.width, (double)k, &split, error);
+        cut[k] = status == UR_OK;
+        if (status == UR_OK && !n->job.quiet)
+            cli_message("nest: part %s (%.0f x %.0f mm) does not fit the %.0f x %.0f mm a sheet "
+                        "leaves it: cut into %zu (--no-split refuses instead)",
+                        (*pieces)[k].name, length, width, room.length, room.width,
+                        split.nets.count - before);
+    }
+    int next_seam = 0;
+    if (status == UR_OK && split.nets.count > 0)
+        status = ur_net_list_find_seams(&split.nets, 1, &next_seam, error);
+    if (status == UR_OK && split.nets.count > 0)
+        status = cli_add_joints(material, &split.nets, split.pieces, error);
+    if (status == UR_OK && split.nets.count > 0)
+        status = replace_split(&split, cut, pieces, count, error);
+    ur_split_parts_free(&split);
+    free(cut);
+    return status;
+}
+
 static ur_status compensate(const nest_job *n, const ur_machine *machine,
                             const ur_material *material, ur_piece *pieces, size_t count,
                             ur_error *error)
@@ -388,9 +468,13 @@ static int run_nest(const nest_job *n, ur_piece **pieces, size_t *count, ur_layo
     int code = read_files(n, pieces, count);
     if (code)
         return code;
-    ur_status status = compensate(n, &machine, &material, *pieces, *count, &error);
+    ur_status status = split_long_parts(n, &machine, &material, pieces, count, &error);
+    if (status == UR_OK)
+        status = compensate(n, &machine, &material, *pieces, *count, &error);
     if (status == UR_OK)
         status = cli_place_pieces(&n->job, &machine, &material, *pieces, *count, layout, &error);
+    if (status == UR_OK)
+        status = cli_merge_lines(&n->job, layout, *pieces, *count, &error);
     if (status == UR_OK) {
         cli_allowance_warnings(&n->job, *pieces, *count);
         cli_not_placed_warning(&n->job, layout, *pieces);

@@ -67,6 +67,7 @@ enum option_id {
     OPT_ORDER,
     OPT_ROTATIONS,
     OPT_NO_HOLES,
+    OPT_MERGE_LINES,
     OPT_ROLL,
     OPT_SHEETS,
     OPT_NEST_TIME,
@@ -125,6 +126,7 @@ static const struct option long_options[] = {
     {"order", required_argument, NULL, OPT_ORDER},
     {"rotations", required_argument, NULL, OPT_ROTATIONS},
     {"no-holes", no_argument, NULL, OPT_NO_HOLES},
+    {"merge-lines", no_argument, NULL, OPT_MERGE_LINES},
     {"roll", required_argument, NULL, OPT_ROLL},
     {"sheets", required_argument, NULL, OPT_SHEETS},
     {"nest-time", required_argument, NULL, OPT_NEST_TIME},
@@ -157,7 +159,7 @@ static const struct {
     {CLI_DEVELOP,
      " output machine material sheet method parts rulings no-split report strain-png "
      "allowances bridges no-kerf-compensation format dxf-version dpi job-name order rotations "
-     "no-holes roll sheets nest-time seed "},
+     "no-holes merge-lines roll sheets nest-time seed "},
     {CLI_ANALYZE, " png report "},
     {CLI_COMPARE, " png csv "},
 };
@@ -510,6 +512,9 @@ static bool take_option(cli_job *job, int id, const char *value)
         return cli_parse_rotations(job, value);
     case OPT_NO_HOLES:
         job->no_holes = true;
+        return true;
+    case OPT_MERGE_LINES:
+        job->merge_lines = true;
         return true;
     case OPT_ROLL:
         return cli_parse_roll(job, value);

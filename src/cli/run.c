@@ -184,18 +184,15 @@ static ur_status neutral_layer(job_state *state, ur_ruled *moved, ur_ruled **use
     return status;
 }
 
-/*
- * The room a piece may take on the largest sheet the job may use: inside
- * the margin, less the kerf and a joint at each end (the joints go on the
- * seams a split makes), so that a strip too long for it is cut at rulings
- * into pieces that fit.  None on roll stock.
- */
-static void fit_room(const cli_job *job, const job_state *state, ur_develop_options *options)
+cli_room cli_fit_room(const cli_job *job, const ur_machine *machine, const ur_material *material)
 {
+    cli_room room = {0, 0};
     if (job->roll_width > 0)
-        return;
+        return room;
     ur_sheet_size choices[UR_MAX_STOCK_SIZES + 1];
-    size_t count = sheet_choices(job, &state->machine, &state->material, choices);
+    cli_job quiet = *job; /* placing says it when no stock fits the bed */
+    quiet.quiet = true;
+    size_t count = sheet_choices(&quiet, machine, material, choices);
     double length = 0, width = 0;
     for (size_t k = 0; k < count; k++) {
         double a = fmax(choices[k].width, choices[k].height);
@@ -203,14 +200,23 @@ static void fit_room(const cli_job *job, const job_state *state, ur_develop_opti
         if (a * b > length * width)
             length = a, width = b;
     }
-    const ur_material *m = &state->material;
-    double margin = job->margin >= 0 ? job->margin : state->machine.margin;
-    double kerf = ur_effective_kerf(&state->machine, m);
+    const ur_material *m = material;
+    double margin = job->margin >= 0 ? job->margin : machine->margin;
+    double kerf = ur_effective_kerf(machine, m);
     double joint = (m->joint == UR_JOINT_LAP ? m->lap_width : m->tab_depth) + m->thickness;
-    options->fit_length = length - 2 * margin - 2 * joint - kerf;
-    options->fit_width = width - 2 * margin - kerf;
-    if (!(options->fit_length > 0) || !(options->fit_width > 0))
-        options->fit_length = options->fit_width = 0;
+    room.length = length - 2 * margin - 2 * joint - kerf;
+    room.width = width - 2 * margin - kerf;
+    if (!(room.length > 0) || !(room.width > 0))
+        room.length = room.width = 0;
+    return room;
+}
+
+/* A strip too long for the room is cut at rulings into pieces that fit. */
+static void fit_room(const cli_job *job, const job_state *state, ur_develop_options *options)
+{
+    cli_room room = cli_fit_room(job, &state->machine, &state->material);
+    options->fit_length = room.length;
+    options->fit_width = room.width;
 }
 
 /* Each part of the domain of existence (the whole surface but for strips) on its own. */
@@ -293,7 +299,9 @@ ur_status cli_place_pieces(const cli_job *job, const ur_machine *machine,
     ur_nest_options options = {
         .margin = job->margin >= 0 ? job->margin : machine->margin,
         .spacing = job->spacing >= 0 ? job->spacing
-                                     : fmax(machine->spacing, ur_effective_kerf(machine, material)),
+                   : job->merge_lines
+                       ? 0.0 /* touching parts share their lines */
+                       : fmax(machine->spacing, ur_effective_kerf(machine, material)),
         .rotations = rotations,
         .level = job->level,
         .holes = !job->no_holes,
@@ -320,6 +328,24 @@ ur_status cli_place_pieces(const cli_job *job, const ur_machine *machine,
     }
     if (options.progress)
         fputc('\n', stderr);
+    return status;
+}
+
+/*
+ * Lines closer than this (mm) are one line: far below any kerf, far above
+ * the rounding in placing parts that touch.
+ */
+#define MERGE_TOLERANCE 0.01
+
+ur_status cli_merge_lines(const cli_job *job, const ur_layout *layout, ur_piece *pieces,
+                          size_t count, ur_error *error)
+{
+    if (!job->merge_lines)
+        return UR_OK;
+    double saved = 0;
+    ur_status status = ur_layout_merge_lines(layout, pieces, count, MERGE_TOLERANCE, &saved, error);
+    if (status == UR_OK && !job->quiet)
+        cli_message("%s: merged lines: %.1f mm of shared cuts cut once", job->command, saved);
     return status;
 }
 
@@ -413,8 +439,9 @@ static int flatten_if_needed(const cli_job *job, job_state *state, bool *flatten
         cli_message("%s: %s", job->command, error.message);
         return cli_exit_status(&error);
     }
-    int code =
-        cli_flatten_ruled(job, &state->material, surface, &state->nets, &state->surface_area);
+    cli_room room = cli_fit_room(job, &state->machine, &state->material);
+    int code = cli_flatten_ruled(job, &room, &state->material, surface, &state->nets,
+                                 &state->surface_area);
     if (surface == &moved)
         ur_ruled_free(&moved);
     return code;
@@ -482,8 +509,10 @@ static int make_nets(const cli_job *job, job_state *state, cli_adjusted_rail *ad
                         ? "unfold"
                         : ur_flatten_method_name(job->flatten >= 0 ? (ur_flatten_method)job->flatten
                                                                    : UR_FLATTEN_ARAP);
-    if (strcmp(job->surface, "mesh") == 0)
-        return cli_mesh_nets(job, &state->material, &state->nets, &state->surface_area);
+    if (strcmp(job->surface, "mesh") == 0) {
+        cli_room room = cli_fit_room(job, &state->machine, &state->material);
+        return cli_mesh_nets(job, &room, &state->material, &state->nets, &state->surface_area);
+    }
     int code = cli_build_surface(job, &state->ruled, adjusted);
     if (code)
         return code;

@@ -90,6 +90,7 @@ static ur_status read_part(const char *path, xmlNodePtr node, ur_job *job, ur_er
     if (!attribute(node, "surface", part->surface, sizeof part->surface) ||
         !attribute(node, "name", part->name, sizeof part->name) ||
         !attribute(node, "quantity", quantity, sizeof quantity) ||
+        !attribute(node, "material", part->material, sizeof part->material) ||
         !attribute(node, "file", file, sizeof file))
         return too_long(path, node, error);
     part->quantity = quantity[0] ? strtol(quantity, NULL, 10) : 1;

@@ -1,6 +1,7 @@
 /*
  * halve.c: cutting a piece in two along its length (ur_mesh_halve), for a
- * flattened piece whose outline crosses itself.
+ * flattened piece whose outline crosses itself, or into as many as it
+ * takes to fit a sheet (ur_mesh_split_along).
  *
  * A long piece that winds round (a ribbon of more than a turn) lies over
  * itself when flat; cutting it across its middle makes two pieces that each
@@ -8,7 +9,8 @@
  * at every turn.  So the cut follows the surface: the distance from one end
  * of the piece, measured along its edges (the far end of a double sweep:
  * the vertex farthest from anywhere, then the one farthest from that), and
- * the cut is the line where that distance splits the piece's area in two.
+ * the cut is the line where that distance splits the piece's area in two
+ * (or in as many equal parts as asked).
  */
 #include "cutter.h"
 
@@ -43,9 +45,12 @@ static int compare_doubles(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-/* The level of the field below which half the area lies (triangles by their mean). */
-static ur_status median_level(const ur_mesh *mesh, const double *field, double *level,
-                              ur_error *error)
+/*
+ * The parts - 1 levels of the field below which 1/parts, 2/parts, ... of
+ * the area lies (triangles by their mean).
+ */
+static ur_status area_levels(const ur_mesh *mesh, const double *field, double *levels, size_t parts,
+                             ur_error *error)
 {
     size_t n = mesh->triangle_count;
     double(*pairs)[2] = ur_alloc_array(n, sizeof *pairs, error); /* mean, area */
@@ -63,13 +68,11 @@ static ur_status median_level(const ur_mesh *mesh, const double *field, double *
     }
     qsort(pairs, n, sizeof *pairs, compare_doubles);
     double below = 0;
-    *level = pairs[n - 1][0];
-    for (size_t t = 0; t < n; t++) {
-        below += pairs[t][1];
-        if (below >= total / 2) {
-            *level = pairs[t][0];
-            break;
-        }
+    size_t t = 0;
+    for (size_t j = 1; j < parts; j++) {
+        while (t + 1 < n && below + pairs[t][1] < total * (double)j / (double)parts)
+            below += pairs[t++][1];
+        levels[j - 1] = pairs[t][0];
     }
     free(pairs);
     return UR_OK;
@@ -95,16 +98,20 @@ static ur_status vertex_field(const cutter *c, const double *distance, double **
     return UR_OK;
 }
 
-ur_status ur_mesh_halve(const ur_mesh *mesh, ur_mesh *halves, ur_error *error)
+ur_status ur_mesh_split_along(const ur_mesh *mesh, size_t parts, ur_mesh *split, ur_error *error)
 {
-    memset(halves, 0, sizeof *halves);
-    if (mesh->triangle_count < 2)
-        return ur_error_set(error, UR_ERROR_INPUT, "a piece of %zu triangle cannot be halved",
-                            mesh->triangle_count);
+    memset(split, 0, sizeof *split);
+    if (parts < 2 || mesh->triangle_count < parts)
+        return ur_error_set(error, UR_ERROR_INPUT,
+                            "a piece of %zu triangles cannot be cut into %zu along its length",
+                            mesh->triangle_count, parts);
     cutter c;
-    double *distance = NULL, *field = NULL, level = 0;
+    double *distance = NULL, *field = NULL;
+    double *levels = ur_alloc_array(parts, sizeof *levels, error);
     size_t start, end;
-    ur_status status = cutter_init(&c, mesh, error);
+    ur_status status = levels ? cutter_init(&c, mesh, error) : UR_ERROR_INTERNAL;
+    if (!levels)
+        return status;
     if (status == UR_OK) {
         c.part_count = 1;
         c.part_size[0] = mesh->triangle_count;
@@ -117,11 +124,17 @@ ur_status ur_mesh_halve(const ur_mesh *mesh, ur_mesh *halves, ur_error *error)
     if (status == UR_OK)
         status = vertex_field(&c, distance, &field, error);
     if (status == UR_OK)
-        status = median_level(mesh, field, &level, error);
+        status = area_levels(mesh, field, levels, parts, error);
     if (status == UR_OK)
-        status = mesh_bands_of_field(mesh, field, &level, 2, halves, error);
+        status = mesh_bands_of_field(mesh, field, levels, parts, split, error);
+    free(levels);
     free(distance);
     free(field);
     cutter_free(&c);
     return status;
+}
+
+ur_status ur_mesh_halve(const ur_mesh *mesh, ur_mesh *halves, ur_error *error)
+{
+    return ur_mesh_split_along(mesh, 2, halves, error);
 }

@@ -180,12 +180,39 @@ ur_status ur_layout_rows(const ur_piece *pieces, size_t piece_count,
     return status;
 }
 
+double ur_outline_level_angle(const ur_vec2 *outline, size_t count)
+{
+    GEOSContextHandle_t geos = GEOS_init_r();
+    if (!geos)
+        return 0.0;
+    ur_path path = {UR_OP_CUT, true, (ur_vec2 *)outline, count, {{0, 0}, 0, 0}};
+    double angle = count ? nest_level_angle(geos, &path) : 0.0;
+    GEOS_finish_r(geos);
+    return angle;
+}
+
+ur_status ur_outline_level_size(const ur_vec2 *outline, size_t count, double *length, double *width,
+                                ur_error *error)
+{
+    (void)error; /* nothing fails: without GEOS the outline is measured as it lies */
+    ur_transform2 turn =
+        ur_transform2_make(ur_outline_level_angle(outline, count), ur_vec2_make(0, 0));
+    ur_box box = ur_box_empty();
+    for (size_t k = 0; k < count; k++)
+        ur_box_add(&box, ur_transform2_apply(turn, outline[k]));
+    *length = count ? fmax(ur_box_width(box), ur_box_height(box)) : 0;
+    *width = count ? fmin(ur_box_width(box), ur_box_height(box)) : 0;
+    return UR_OK;
+}
+
 double ur_sheet_utilisation(const ur_sheet *sheet, const ur_piece *pieces)
 {
     double used = 0.0;
     for (size_t k = 0; k < sheet->placement_count; k++) {
         const ur_piece *piece = &pieces[sheet->placements[k].piece_index];
-        if (piece->path_count > 0)
+        if (piece->bridged) /* the outline is open: what it enclosed before */
+            used += piece->outline_area;
+        else if (piece->path_count > 0)
             used += fabs(ur_polygon_signed_area(piece->paths[0].points, piece->paths[0].count));
     }
     return used / (sheet->width * sheet->height);

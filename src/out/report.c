@@ -185,7 +185,10 @@ static json_t *sheet_json(const ur_report_context *context, const ur_layout *lay
             0 ||
         json_object_set_new(object, "utilisation",
                             ur_json_number(ur_sheet_utilisation(sheet, pieces))) != 0 ||
-        json_object_update_new(object, cutting_json(context, sheet, pieces)) != 0) {
+        json_object_update_new(object, cutting_json(context, sheet, pieces)) != 0 ||
+        (sheet->material[0] &&
+         json_object_set_new(object, "material",
+                             name_of(sheet->material, sizeof sheet->material)) != 0)) {
         json_decref(object);
         return NULL;
     }

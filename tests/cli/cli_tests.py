@@ -1476,6 +1476,110 @@ def nest_copies_and_bad_input(work):
     bad(work, r"--copies: '0' is not a count", "nest", "mm.svg", "--copies", "0", "-o", "x.svg")
 
 
+@test
+def nest_merge_lines_cuts_shared_lines_once(work):
+    """Four 100 x 50 plates tile a 200 x 100 sheet; cut one by one that is
+    4 x 300 = 1200 mm, but the grid they make is 600 around and 100 + 200
+    inside: 900 mm with --merge-lines.  The DXF of the open stretches
+    audits clean."""
+    write(work, "plate.svg", '<svg xmlns="http://www.w3.org/2000/svg" width="100mm" '
+          'height="50mm" viewBox="0 0 100 50"><rect width="100" height="50"/></svg>\n')
+    tiles = ["nest", "plate.svg:4", "--sheet", "200x100", "--margin", "0",
+             "--no-kerf-compensation", "--quiet"]
+    run(work, *tiles, "--spacing", "0", "-o", "apart.svg", "--report", "apart.json")
+    run(work, *tiles, "--merge-lines", "--format", "svg,dxf", "-o", "merged.svg",
+        "--report", "merged.json")
+    for name, length in (("apart.json", 1200), ("merged.json", 900)):
+        sheets = report(work, name)["sheets"]
+        check(len(sheets) == 1, "%s: %d sheets" % (name, len(sheets)))
+        close(sheets[0]["cut_length_mm"], length, 1e-6, name + " cut length")
+        close(sheets[0]["utilisation"], 1.0, 1e-6, name + " utilisation")
+    audit = subprocess.run(
+        ["/usr/bin/python3", "-c",
+         "import ezdxf,sys\n"
+         "doc=ezdxf.readfile(sys.argv[1])\n"
+         "print(len(doc.audit().errors))",
+         os.path.join(work, "merged.dxf")], capture_output=True, text=True)
+    check(audit.returncode == 0 and audit.stdout.split() == ["0"], "ezdxf: %s %s" % (audit.stdout, audit.stderr))
+    # A surface job takes the option too, and with kerf compensation.
+    run(work, "cylinder", "--radius", "20", "--height", "40", "--merge-lines", "-o", "c.svg", "--quiet")
+
+
+@test
+def mesh_too_long_for_a_sheet_is_cut_to_fit(work):
+    """A strip of a cylinder of radius 700 mm, 1100 mm round and 50 mm wide,
+    in plywood on the 600 x 400 laser bed: cut along its length into the
+    fewest parts the cut makes fit (3: two even shares come out a little
+    longer than the room the joints leave), each pair of neighbours sharing
+    one seam label, the 3D area (1100 x 50 to a few ppm) kept; --no-split
+    refuses it, writing nothing."""
+    radius, length, width, along, across = 700.0, 1100.0, 50.0, 110, 5
+    lines = []
+    for i in range(along + 1):
+        angle = length / radius * i / along
+        for j in range(across + 1):
+            lines.append("v %.9f %.9f %.9f" % (radius * math.cos(angle), radius * math.sin(angle),
+                                                width * j / across))
+    for i in range(along):
+        for j in range(across):
+            p = i * (across + 1) + j + 1
+            q = p + across + 1
+            lines.append("f %d %d %d\nf %d %d %d" % (p, q, q + 1, p, q + 1, p + 1))
+    write(work, "strip.obj", "\n".join(lines) + "\n")
+    result = run(work, "mesh", "strip.obj", "-o", "strip.svg", "--report", "strip.json")
+    check(re.search(r"cut into 3 along its length", result.stderr), result.stderr)
+    found = report(work, "strip.json")
+    pieces = found["pieces"]
+    check(len(pieces) == 3 and all(p["sheet"] for p in pieces),
+          "pieces %r" % [(p["name"], p["sheet"]) for p in pieces])
+    close(sum(p["area_3d_mm2"] for p in pieces), length * width, 1e-4, "3D area of the parts")
+    seams = {}
+    for piece in pieces:
+        for a in piece["allowances"]:
+            label = re.match(r"label '(A\d+)'", a["reason"])
+            if a["kind"] == "label" and label:
+                seams.setdefault(label.group(1), []).append(piece["name"])
+    check(sorted(seams) == ["A1", "A2"] and all(len(v) == 2 for v in seams.values()),
+          "seam labels %r" % seams)
+    bad(work, r"does not fit the 600\.0 x 400\.0 mm sheet", "mesh", "strip.obj", "--no-split",
+        "-o", "refused.svg")
+
+
+@test
+def nest_cuts_a_part_too_long_for_the_sheet(work):
+    """A 900 x 60 mm bar with a 20 mm neck at x = 480..490 and a 20 mm hole,
+    for the 600 x 400 bed: one cut makes it fit, and it goes through the
+    neck (the shortest cut within reach of the middle), so the parts are
+    about 480 and 410 mm long; both carry seam label A1, the areas add up
+    to the bar's (54000 - 2 x 200 - pi 100, the hole as drawn to 0.01 mm);
+    --no-split refuses it, writing nothing."""
+    write(work, "bar.svg", '<svg xmlns="http://www.w3.org/2000/svg" width="900mm" height="60mm" '
+          'viewBox="0 0 900 60"><path d="M 0 0 L 480 0 L 480 20 L 490 20 L 490 0 L 900 0 '
+          'L 900 60 L 490 60 L 490 40 L 480 40 L 480 60 L 0 60 Z"/>'
+          '<circle cx="100" cy="30" r="10"/></svg>\n')
+    result = run(work, "nest", "bar.svg", "--no-kerf-compensation", "--format", "svg,dxf",
+                 "-o", "bar-out.svg", "--report", "bar.json")
+    check(re.search(r"part bar-1 \(900 x 60 mm\) .* cut into 2", result.stderr), result.stderr)
+    pieces = report(work, "bar.json")["pieces"]
+    check(len(pieces) == 2 and all(p["sheet"] == 1 for p in pieces),
+          "pieces %r" % [(p["name"], p["sheet"]) for p in pieces])
+    close(sum(p["flat_area_mm2"] for p in pieces), 54000 - 400 - math.pi * 100, 1e-4, "area of the parts")
+    for piece in pieces:
+        labels = [a["reason"] for a in piece["allowances"] if a["kind"] == "label"]
+        check(any("'A1'" in label for label in labels), "%s has labels %r" % (piece["name"], labels))
+    # Without joints the longer part would be 480 to 490 mm long; a lap adds to one of them.
+    lengths = sorted(p["flat_area_mm2"] / 60 for p in pieces)
+    check(400 <= lengths[0] <= 421 and 470 <= lengths[1] <= 491, "lengths by area %r" % lengths)
+    audit = subprocess.run(
+        ["/usr/bin/python3", "-c",
+         "import ezdxf,sys\n"
+         "doc=ezdxf.readfile(sys.argv[1])\n"
+         "print(len(doc.audit().errors))",
+         os.path.join(work, "bar-out.dxf")], capture_output=True, text=True)
+    check(audit.returncode == 0 and audit.stdout.split() == ["0"], "ezdxf: %s %s" % (audit.stdout, audit.stderr))
+    bad(work, r"bar-1 .* does not fit", "nest", "bar.svg", "--no-split", "-o", "refused.svg")
+
+
 # ---- job files -------------------------------------------------------------
 
 JOB_HEAD = """<?xml version="1.0" encoding="UTF-8"?>
@@ -1542,6 +1646,47 @@ def job_parts_keep_their_labels_apart(work):
 
 
 @test
+def job_parts_of_different_materials(work):
+    """A part with its own material goes on that material's sheets: each
+    sheet holds the pieces of one material only, at one of its stock sizes,
+    and the report names the material of every sheet."""
+    # On the router's bed the two materials' first stock sizes differ (1000 x 700, 600 x 400).
+    write(work, "mixed.xml", JOB_HEAD.replace("  <material>", "  <machine>router</machine>\n  <material>")
+          + """  <part surface="cylinder" name="drum">
+    <option name="radius" value="40"/><option name="height" value="100"/>
+  </part>
+  <part surface="cylinder" name="box" material="plywood-3mm" quantity="2">
+    <option name="radius" value="30"/><option name="height" value="80"/>
+  </part>
+  <output name="mixed" report="mixed.json"/>
+</job>
+""")
+    run(work, "job", "mixed.xml", "-o", "out", "--quiet")
+    found = report(work, os.path.join("out", "mixed.json"))
+    stock = {"cardboard-2mm": [(1000, 700)], "plywood-3mm": [(600, 400)]}
+    materials = [sheet.get("material") for sheet in found["sheets"]]
+    check(sorted(set(materials)) == ["cardboard-2mm", "plywood-3mm"], "sheet materials %r" % materials)
+    for index, sheet in enumerate(found["sheets"], 1):
+        size = (round(sheet["width_mm"]), round(sheet["height_mm"]))
+        check(size in stock[sheet["material"]], "sheet %d of %s is %r" % (index, sheet["material"], size))
+        names = [p["name"] for p in found["pieces"] if p["sheet"] == index]
+        want = "box" if sheet["material"] == "plywood-3mm" else "drum"
+        check(names and all(n.startswith(want) for n in names),
+              "sheet %d (%s) holds %r" % (index, sheet["material"], names))
+    check(len(found["pieces"]) == 3 and all(p["sheet"] for p in found["pieces"]),
+          "pieces %r" % [(p["name"], p["sheet"]) for p in found["pieces"]])
+    # One material for the whole job: no sheet names one.
+    write(work, "one.xml", open(os.path.join(work, "mixed.xml")).read()
+          .replace(' material="plywood-3mm"', ""))
+    run(work, "job", "one.xml", "-o", "out3", "--quiet")
+    check(all("material" not in s for s in report(work, os.path.join("out3", "mixed.json"))["sheets"]),
+          "a one-material job names the material per sheet")
+    write(work, "nomaterial.xml", open(os.path.join(work, "mixed.xml")).read()
+          .replace('material="plywood-3mm"', 'material="unobtainium"'))
+    bad(work, r"nomaterial\.xml:8: .*unobtainium", "job", "nomaterial.xml", "-o", "out4")
+
+
+@test
 def bad_jobs(work):
     part = """  <part surface="cylinder"><option name="radius" value="40"/>
     <option name="height" value="50"/></part>
@@ -1567,7 +1712,10 @@ def bad_jobs(work):
 
 def main():
     passed = failed = 0
+    only = sys.argv[2:]  # names of tests to run after the program; all when none
     for function in TESTS:
+        if only and function.__name__ not in only:
+            continue
         work = tempfile.mkdtemp(prefix="unroll-test-")
         try:
             function(work)

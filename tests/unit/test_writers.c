@@ -185,8 +185,10 @@ static void make_layout(fixture *f)
     f->placements[0] = (ur_placement){0, ur_transform2_make(PI / 2, ur_vec2_make(150, 20))};
     f->placements[1] = (ur_placement){1, ur_transform2_make(PI, ur_vec2_make(300, 100))};
     f->placements[2] = (ur_placement){2, ur_transform2_make(0, ur_vec2_make(10, 10))};
-    f->sheets[0] = (ur_sheet){600, 400, &f->placements[0], 2};
-    f->sheets[1] = (ur_sheet){300, 200, &f->placements[2], 1};
+    f->sheets[0] = (ur_sheet){
+        .width = 600, .height = 400, .placements = &f->placements[0], .placement_count = 2};
+    f->sheets[1] = (ur_sheet){
+        .width = 300, .height = 200, .placements = &f->placements[2], .placement_count = 1};
     f->layout = (ur_layout){f->sheets, 1, NULL, 0};
 }
 
@@ -765,7 +767,7 @@ static void test_exact_circles(void **state)
     piece.paths[2].circle = (ur_path_circle){{30, 30}, 20, PI / 2};
     piece.paths[3].circle = (ur_path_circle){{30, 30}, 15, -PI / 2};
     ur_placement placement = {0, ur_transform2_make(PI / 6, ur_vec2_make(100, 50))};
-    ur_sheet sheet = {300, 200, &placement, 1};
+    ur_sheet sheet = {.width = 300, .height = 200, .placements = &placement, .placement_count = 1};
     ur_layout layout = {&sheet, 1, NULL, 0};
     char script[256];
     path_in(f->dir, "check_circles.py", script, sizeof script);
