@@ -1595,7 +1595,7 @@ def sample_jobs_run(work):
     run(work, "job", os.path.join(REPO, "samples", "jobs", "lamp.xml"), "-o", "lamp", "--quiet")
     found = report(work, os.path.join("lamp", "lamp.json"))
     check(len(found["pieces"]) == 8, "%d pieces for 8 lamp portions" % len(found["pieces"]))
-    check(sorted(found["outputs"]) == ["lamp/lamp.pdf", "lamp/lamp.png", "lamp/lamp.svg"],
+    check(sorted(found["outputs"]) == ["lamp/lamp.dxf", "lamp/lamp.pdf", "lamp/lamp.png", "lamp/lamp.svg"],
           "outputs %r" % found["outputs"])
     check(len({p["name"] for p in found["pieces"]}) == 8, "copies share a name")
     run(work, "job", os.path.join(REPO, "samples", "jobs", "hypar-plywood.xml"), "-o", "ply", "--quiet")
