@@ -161,12 +161,12 @@ ur_status ur_output_files(const char *path, unsigned formats, size_t sheet_count
  * is exactly a circle (ur_path_circle) a CIRCLE, exactly an arc an ARC, a
  * two-point open path a LINE; a layer the machine dashes gets a LTYPE of
  * its dashes (DASH_3_1P5 for "3 1.5"); the job name is a 999 comment at
- * the top.  SVG draws exact circles as <circle> and arcs with A.  PDF (libharu): each page exactly its sheet, paths in
- * the machine's colours and line widths (dashes too), title, creator
- * "unroll VERSION" and job name in the document information (non-ASCII characters as '?').  PNG:
- * each sheet at format_options->dpi with the pieces filled by strain colour (where the piece has
- * shading), the lines in their operations' colours, the pieces' names, a scale bar and a legend of
- * the operations.
+ * the top.  SVG draws exact circles as <circle> and arcs with A.  PDF (libharu): each page exactly
+ * its sheet, paths in the machine's colours and line widths (dashes too), title, creator "unroll
+ * VERSION" and job name in the document information (non-ASCII characters as '?').  PNG: each sheet
+ * at format_options->dpi with the pieces filled by strain colour (where the piece has shading), the
+ * lines in their operations' colours, the pieces' names, a scale bar and a legend of the
+ * operations.
  */
 ur_status ur_write_dxf(const char *output_path, const ur_layout *layout, const ur_piece *pieces,
                        const ur_machine *machine, const ur_output_options *options,
@@ -202,6 +202,8 @@ typedef struct ur_report_context {
     size_t gap_count;
     const struct ur_report_layer *layer; /* the layer developed; NULL: not reported (meshes) */
     bool drawing_order;                  /* the files keep the drawing order (--order none) */
+    /* ceil(part area / usable sheet area), the fewest sheets any layout needs; 0: not known */
+    double sheets_lower_bound;
 } ur_report_context;
 
 /*

@@ -237,6 +237,14 @@ bool cli_check_output(const cli_job *job);
  * report naming them all (outputs.c).  context is filled but for its
  * outputs, which this sets.
  */
+/*
+ * The fewest sheets any layout needs: ceil(sum of the pieces' flat areas /
+ * the room inside the margin); 0 when the layout mixes sheet sizes or
+ * materials.
+ */
+double cli_sheets_lower_bound(const ur_piece *pieces, size_t count, const ur_layout *layout,
+                              double margin);
+
 ur_status cli_write_outputs(const cli_job *job, const ur_machine *machine, const ur_layout *layout,
                             const ur_piece *pieces, size_t count, ur_report_context *context,
                             ur_error *error);

@@ -329,17 +329,6 @@ static int read_files(const nest_job *n, ur_piece **pieces, size_t *count)
     return 0;
 }
 
-/* Sheets no layout can do with fewer: the parts' area over the room inside the margin. */
-static double lower_bound(const ur_piece *pieces, size_t count, const ur_sheet *sheet,
-                          double margin)
-{
-    double area = 0.0;
-    for (size_t k = 0; k < count; k++)
-        area += pieces[k].measures.flat_area;
-    double room = (sheet->width - 2 * margin) * (sheet->height - 2 * margin);
-    return room > 0 ? ceil(area / room - 1e-9) : NAN;
-}
-
 static void print_nest_summary(const nest_job *n, const ur_machine *machine, const ur_piece *pieces,
                                size_t count, const ur_layout *layout)
 {
@@ -358,7 +347,7 @@ static void print_nest_summary(const nest_job *n, const ur_machine *machine, con
     cli_message("nest: %zu parts on %zu sheet%s of %g x %g mm (lower bound %.0f) -> %s",
                 count - layout->not_placed_count, layout->sheet_count,
                 layout->sheet_count == 1 ? "" : "s", layout->sheets[0].width,
-                layout->sheets[0].height, lower_bound(pieces, count, &layout->sheets[0], margin),
+                layout->sheets[0].height, cli_sheets_lower_bound(pieces, count, layout, margin),
                 n->job.output_path);
 }
 

@@ -178,6 +178,23 @@ bool cli_check_output(const cli_job *job)
     return status == UR_OK;
 }
 
+double cli_sheets_lower_bound(const ur_piece *pieces, size_t count, const ur_layout *layout,
+                              double margin)
+{
+    if (layout->sheet_count == 0)
+        return 0;
+    const ur_sheet *first = &layout->sheets[0];
+    for (size_t s = 1; s < layout->sheet_count; s++)
+        if (layout->sheets[s].width != first->width || layout->sheets[s].height != first->height ||
+            strcmp(layout->sheets[s].material, first->material) != 0)
+            return 0; /* stock of several kinds: no one bound */
+    double area = 0.0;
+    for (size_t k = 0; k < count; k++)
+        area += pieces[k].measures.flat_area;
+    double room = (first->width - 2 * margin) * (first->height - 2 * margin);
+    return room > 0 ? ceil(area / room - 1e-9) : 0;
+}
+
 ur_status cli_write_outputs(const cli_job *job, const ur_machine *machine, const ur_layout *layout,
                             const ur_piece *pieces, size_t count, ur_report_context *context,
                             ur_error *error)
@@ -190,6 +207,9 @@ ur_status cli_write_outputs(const cli_job *job, const ur_machine *machine, const
                                  .dpi = job->dpi,
                                  .drawing_order = job->drawing_order};
     unsigned asked = formats_asked(job);
+    if (job->roll_width <= 0)
+        context->sheets_lower_bound = cli_sheets_lower_bound(
+            pieces, count, layout, job->margin >= 0 ? job->margin : machine->margin);
     char(*names)[UR_OUTPUT_NAME_SIZE] = NULL;
     size_t name_count = 0;
     ur_status status =

@@ -285,6 +285,13 @@ static ur_status report_json(const ur_report_context *context, const ur_piece *p
                             "cannot build the report: out of memory or a name not in UTF-8");
     }
     json_decref(sheets); /* set without _new: root holds its own reference */
+    if (context->sheets_lower_bound > 0 &&
+        json_object_set_new(*root, "sheets_lower_bound",
+                            json_integer((json_int_t)context->sheets_lower_bound)) != 0) {
+        json_decref(*root);
+        *root = NULL;
+        return ur_error_out_of_memory(error);
+    }
     if (context->layer && json_object_set_new(*root, "layer", layer_json(context->layer)) != 0) {
         json_decref(*root);
         *root = NULL;

@@ -1412,6 +1412,7 @@ def roll_stock_is_used_as_short_as_it_goes(work):
     run(work, "nest", "mm.svg:10", "--roll", "120", "--margin", "0", "--spacing", "0",
         "--no-kerf-compensation", "-o", "roll.svg", "--report", "roll.json", "--quiet")
     [sheet] = report(work, "roll.json")["sheets"]
+    check("sheets_lower_bound" not in report(work, "roll.json"), "a lower bound in sheets for a roll")
     check(sheet["height_mm"] == 120, "roll width %r" % sheet["height_mm"])
     check(500 - 1e-6 <= sheet["width_mm"] <= 505, "roll length %r" % sheet["width_mm"])
     for points in outlines(os.path.join(work, "roll.svg")):
@@ -1496,6 +1497,7 @@ def nest_merge_lines_cuts_shared_lines_once(work):
         check(len(sheets) == 1, "%s: %d sheets" % (name, len(sheets)))
         close(sheets[0]["cut_length_mm"], length, 1e-6, name + " cut length")
         close(sheets[0]["utilisation"], 1.0, 1e-6, name + " utilisation")
+        check(report(work, name).get("sheets_lower_bound") == 1, name + ": lower bound")
     audit = subprocess.run(
         ["/usr/bin/python3", "-c",
          "import ezdxf,sys\n"
@@ -1673,6 +1675,7 @@ def job_parts_of_different_materials(work):
     stock = {"cardboard-2mm": [(1000, 700), (300, 200)], "plywood-3mm": [(600, 400)]}
     materials = [sheet.get("material") for sheet in found["sheets"]]
     check(sorted(set(materials)) == ["cardboard-2mm", "plywood-3mm"], "sheet materials %r" % materials)
+    check("sheets_lower_bound" not in found, "one lower bound for stock of several kinds")
     for index, sheet in enumerate(found["sheets"], 1):
         size = (round(sheet["width_mm"]), round(sheet["height_mm"]))
         check(size in stock[sheet["material"]], "sheet %d of %s is %r" % (index, sheet["material"], size))
