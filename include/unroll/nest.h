@@ -3,8 +3,8 @@
  *
  * Sheet coordinates are millimetres with the origin at the sheet's lower left
  * corner, x to the right and y up.  A placement is a rigid motion taking piece
- * coordinates to sheet coordinates.  For now pieces go in rows (shelves); true
- * shape nesting comes later behind the same types.
+ * coordinates to sheet coordinates.  Pieces go in rows (ur_layout_rows) or
+ * at their true shape (ur_layout_nest), on stock sheets, remnants or a roll.
  */
 #ifndef UNROLL_NEST_H
 #define UNROLL_NEST_H
@@ -21,7 +21,13 @@ typedef struct ur_sheet {
     double width, height;
     ur_placement *placements; /* owned */
     size_t placement_count;
+    bool remnant; /* one of ur_nest_options.remnants, not a stock sheet */
 } ur_sheet;
+
+/* A sheet left over from an earlier job (an offcut), given by its size in mm. */
+typedef struct ur_remnant {
+    double width, height;
+} ur_remnant;
 
 typedef struct ur_layout {
     ur_sheet *sheets; /* owned */
@@ -66,7 +72,16 @@ typedef struct ur_nest_options {
     size_t rotations;  /* allowed turns: 0 or 1 the first only, N equal steps */
     bool level;        /* turns start from the level one (else from the part as drawn) */
     bool holes;        /* parts may go inside holes of other parts */
-    size_t max_sheets; /* 0: as many as needed */
+    size_t max_sheets; /* stock sheets (remnants not counted); 0: as many as needed */
+    /*
+     * Remnants: sheets at hand, filled before any stock sheet is opened.
+     * A part goes on the first remnant (in this order) where it finds room,
+     * else on the stock sheets; remnants left empty are not in the layout,
+     * and those used come first in it, marked remnant.  Same margin and
+     * spacing as the stock.  NULL and 0: none.
+     */
+    const ur_remnant *remnants;
+    size_t remnant_count;
     /*
      * Roll stock: > 0 nests on one strip this wide (sheet_height is
      * ignored; sheet_width too) and as short as it can; the layout's one

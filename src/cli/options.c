@@ -68,6 +68,7 @@ enum option_id {
     OPT_NO_HOLES,
     OPT_ROLL,
     OPT_SHEETS,
+    OPT_REMNANT,
     OPT_NEST_TIME,
     OPT_SEED,
 };
@@ -125,6 +126,7 @@ static const struct option long_options[] = {
     {"no-holes", no_argument, NULL, OPT_NO_HOLES},
     {"roll", required_argument, NULL, OPT_ROLL},
     {"sheets", required_argument, NULL, OPT_SHEETS},
+    {"remnant", required_argument, NULL, OPT_REMNANT},
     {"nest-time", required_argument, NULL, OPT_NEST_TIME},
     {"seed", required_argument, NULL, OPT_SEED},
     {"help", no_argument, NULL, 'h'},
@@ -155,7 +157,7 @@ static const struct {
     {CLI_DEVELOP,
      " output machine material sheet method parts rulings no-split report strain-png "
      "allowances bridges no-kerf-compensation format dxf-version dpi order rotations no-holes "
-     "roll sheets nest-time seed "},
+     "roll sheets remnant nest-time seed "},
     {CLI_ANALYZE, " png report "},
     {CLI_COMPARE, " png csv "},
 };
@@ -511,6 +513,8 @@ static bool take_option(cli_job *job, int id, const char *value)
         return cli_parse_roll(job, value);
     case OPT_SHEETS:
         return cli_parse_sheet_count(job, value);
+    case OPT_REMNANT:
+        return cli_parse_remnant(job, value);
     case OPT_NEST_TIME:
         return cli_parse_nest_time(job, value);
     case OPT_SEED:

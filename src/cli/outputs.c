@@ -99,6 +99,54 @@ bool cli_parse_sheet_count(cli_job *job, const char *value)
     return true;
 }
 
+/*
+ * What the layout uses, for the summary line: "2 sheets of 600 x 400 mm",
+ * "remnant 200 x 120 mm (sheet 1) and 1 sheet of 600 x 400 mm", ...
+ * Stock sheets all have one size; remnants are named one by one.
+ */
+void cli_describe_sheets(const ur_layout *layout, char *text, size_t size)
+{
+    size_t used = 0, stock = 0;
+    const ur_sheet *stock_sheet = NULL;
+    text[0] = '\0';
+    for (size_t s = 0; s < layout->sheet_count; s++) {
+        const ur_sheet *sheet = &layout->sheets[s];
+        if (!sheet->remnant) {
+            stock++;
+            stock_sheet = sheet;
+            continue;
+        }
+        int n = snprintf(text + used, size - used, "%sremnant %g x %g mm (sheet %zu)",
+                         used ? ", " : "", sheet->width, sheet->height, s + 1);
+        if (n < 0 || (size_t)n >= size - used)
+            return; /* cut short: the report has every sheet */
+        used += (size_t)n;
+    }
+    if (stock_sheet || used == 0)
+        snprintf(text + used, size - used, "%s%zu sheet%s of %g x %g mm", used ? " and " : "",
+                 stock, stock == 1 ? "" : "s", stock_sheet ? stock_sheet->width : 0.0,
+                 stock_sheet ? stock_sheet->height : 0.0);
+}
+
+/* --remnant WxH, repeatable: one more remnant sheet, filled before stock. */
+bool cli_parse_remnant(cli_job *job, const char *value)
+{
+    char *end = NULL;
+    double width = strtod(value, &end);
+    double height = end != value && (*end == 'x' || *end == 'X') ? strtod(end + 1, &end) : NAN;
+    if (*end != '\0' || !isfinite(width) || !isfinite(height) || !(width > 0) || !(height > 0)) {
+        cli_message("%s: --remnant: '%s' is not WIDTHxHEIGHT in mm, e.g. 300x200", job->command,
+                    value);
+        return false;
+    }
+    if (job->remnant_count == CLI_MAX_REMNANTS) {
+        cli_message("%s: --remnant: more than %d remnants", job->command, CLI_MAX_REMNANTS);
+        return false;
+    }
+    job->remnants[job->remnant_count++] = (ur_remnant){width, height};
+    return true;
+}
+
 bool cli_parse_nest_time(cli_job *job, const char *value)
 {
     char *end = NULL;

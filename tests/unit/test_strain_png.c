@@ -82,8 +82,8 @@ static void make_layout(fixture *f)
 {
     f->placements[0] = (ur_placement){0, ur_transform2_make(PI / 2, ur_vec2_make(100, 10))};
     f->placements[1] = (ur_placement){1, ur_transform2_make(0, ur_vec2_make(10, 10))};
-    f->sheets[0] = (ur_sheet){254, 127, &f->placements[0], 1};
-    f->sheets[1] = (ur_sheet){127, 127, &f->placements[1], 1};
+    f->sheets[0] = (ur_sheet){254, 127, &f->placements[0], 1, false};
+    f->sheets[1] = (ur_sheet){127, 127, &f->placements[1], 1, false};
     f->layout = (ur_layout){f->sheets, 1, NULL, 0};
 }
 
