@@ -112,7 +112,7 @@ typedef struct ur_nest_options {
     void *progress_context;
 } ur_nest_options;
 
-enum { NEST_PATIENCE = 40, NEST_TRIES = 2000 };
+enum { NEST_PATIENCE = 40, NEST_PATIENCE_PER_SECOND = 20, NEST_TRIES = 100000 };
 
 ur_status ur_layout_nest(const ur_piece *pieces, size_t count, const ur_nest_options *options,
                          ur_layout *layout, ur_error *error);

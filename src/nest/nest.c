@@ -306,12 +306,23 @@ static ur_status place_piece(nester *n, size_t piece)
         double room = (width - 2 * n->options->margin) * (height - 2 * n->options->margin);
         if (sheet < n->sheet_count && n->sheet_area[sheet] + shape_of(n, piece, 0)->area > room)
             continue; /* not enough area left on it, whatever the shapes */
+        ur_vec2 best_key = {0, 0};
         for (size_t t = 0; t < n->turn_count; t++) {
             ur_vec2 at = {0, 0};
-            if (place_on(n, sheet, piece, t, &at) &&
-                (!found || at.x < best.x - 1e-9 || (at.x <= best.x + 1e-9 && at.y < best.y))) {
+            if (!place_on(n, sheet, piece, t, &at))
+                continue;
+            /*
+             * Turns compare by where the part itself lies (its box's lower
+             * left corner), not by its origin, which sits elsewhere in each.
+             */
+            const nest_shape *shape = shape_of(n, piece, t);
+            ur_vec2 key = {at.x + shape->box.min.x, at.y + shape->box.min.y};
+            /* Ties (to a micrometre: rounding) go to the earlier turn. */
+            if (!found || key.x < best_key.x - 1e-3 ||
+                (key.x <= best_key.x + 1e-3 && key.y < best_key.y - 1e-3)) {
                 found = true;
                 best = at;
+                best_key = key;
                 best_turn = t;
             }
         }
@@ -507,29 +518,46 @@ static ur_status run_order(nester *n, const size_t *order)
     return status;
 }
 
+/*
+ * A layout's score: parts placed, stock sheets used, then how tightly the
+ * last sheet is packed: the length of it used (up to its rightmost part),
+ * then how far its parts reach on average (the mean of their right edges),
+ * which tells apart layouts of the same length, some closer to freeing room
+ * at the end than others, so that the search has somewhere to go.
+ */
 typedef struct score {
     size_t placed, sheets; /* sheets: stock sheets */
-    double length;         /* of the last sheet used, up to its rightmost part */
+    double length, reach;
 } score;
 
 static score score_of(const nester *n)
 {
-    score s = {n->placed_count, n->sheet_count - n->remnant_count, 0.0};
+    score s = {n->placed_count, n->sheet_count - n->remnant_count, 0.0, 0.0};
+    size_t on_last = 0;
     for (size_t k = 0; k < n->placed_count; k++)
         if (n->sheet_of[k] + 1 == n->sheet_count) {
             const placed *p = &n->placements[k];
-            s.length = fmax(s.length, p->at.x + shape_of(n, p->piece, p->turn)->box.max.x);
+            double right = p->at.x + shape_of(n, p->piece, p->turn)->box.max.x;
+            s.length = fmax(s.length, right);
+            s.reach += right;
+            on_last++;
         }
+    s.reach = on_last ? s.reach / (double)on_last : 0.0;
     return s;
 }
 
-static bool better(score a, score b)
+/* Whether a is better than b (1), as good (0) or worse (-1). */
+static int compare_scores(score a, score b)
 {
     if (a.placed != b.placed)
-        return a.placed > b.placed;
+        return a.placed > b.placed ? 1 : -1;
     if (a.sheets != b.sheets)
-        return a.sheets < b.sheets;
-    return a.length < b.length - 1e-9;
+        return a.sheets < b.sheets ? 1 : -1;
+    if (fabs(a.length - b.length) > 1e-9)
+        return a.length < b.length ? 1 : -1;
+    if (fabs(a.reach - b.reach) > 1e-9)
+        return a.reach < b.reach ? 1 : -1;
+    return 0;
 }
 
 static uint64_t next_random(uint64_t *state)
@@ -565,38 +593,58 @@ static double seconds_now(void)
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
-/* Improves on order (run and placed already) within the options' budget; leaves the best placed. */
+/*
+ * Improves on order (run and placed already) within the options' budget;
+ * leaves the best placed.  A hill climb over orders that also takes
+ * sideways steps (an order as good as the current one replaces it), so
+ * that it wanders across the many orders of equal score instead of
+ * stopping at the first.  It gives up after a run of tries without a new
+ * best: NEST_PATIENCE, or NEST_PATIENCE_PER_SECOND per second of budget if
+ * that is more.
+ */
 static ur_status search(nester *n, size_t *order)
 {
     const ur_nest_options *o = n->options;
     if (!(o->time_budget > 0) || n->count < 2)
         return UR_OK;
+    size_t *current = malloc(n->count * sizeof *current);
     size_t *candidate = malloc(n->count * sizeof *candidate);
-    if (!candidate)
+    if (!current || !candidate) {
+        free(current);
+        free(candidate);
         return ur_error_out_of_memory(n->error);
+    }
+    memcpy(current, order, n->count * sizeof *order);
     uint64_t state = o->seed * 0x9E3779B97F4A7C15ULL + 0x2545F4914F6CDD1DULL;
-    score best = score_of(n);
+    score best = score_of(n), now = best;
     double start = seconds_now();
+    double patience = fmax(NEST_PATIENCE, NEST_PATIENCE_PER_SECOND * o->time_budget);
     ur_status status = UR_OK;
     size_t since_better = 0;
-    for (size_t tries = 1; status == UR_OK && tries <= NEST_TRIES && since_better < NEST_PATIENCE &&
+    for (size_t tries = 1; status == UR_OK && tries <= NEST_TRIES &&
+                           (double)since_better < patience &&
                            seconds_now() - start < o->time_budget;
          tries++) {
-        memcpy(candidate, order, n->count * sizeof *order);
+        memcpy(candidate, current, n->count * sizeof *current);
         mutate(candidate, n->count, &state);
         status = run_order(n, candidate);
         score s = score_of(n);
-        if (status == UR_OK && better(s, best)) {
+        since_better++;
+        if (status != UR_OK || compare_scores(s, now) < 0)
+            continue;
+        now = s;
+        memcpy(current, candidate, n->count * sizeof *current);
+        if (compare_scores(s, best) > 0) {
             best = s;
             memcpy(order, candidate, n->count * sizeof *order);
             since_better = 0;
             if (o->progress)
                 o->progress(o->progress_context, s.sheets, s.length, tries);
-        } else
-            since_better++;
+        }
     }
     if (status == UR_OK)
         status = run_order(n, order); /* the best, placed again */
+    free(current);
     free(candidate);
     return status;
 }
