@@ -98,10 +98,13 @@ typedef struct ur_nest_options {
     double grain_angle, grain_tolerance;
     /*
      * The search after the first, largest-first layout: orders tried (two
-     * parts swapped, or one moved) until time_budget seconds have passed,
-     * NEST_PATIENCE tries in a row brought nothing better, or NEST_TRIES
-     * tries were made; a better layout places more parts, or uses fewer
-     * sheets, or less of the last sheet's length.  0: no search.  The
+     * parts swapped, or one moved, from the current order, which any order
+     * at least as good replaces) until time_budget seconds have passed,
+     * a run of tries brought no new best (NEST_PATIENCE_PER_SECOND per
+     * second of budget, at least NEST_PATIENCE), or NEST_TRIES tries were
+     * made.  A better layout places more parts, or uses fewer stock
+     * sheets, or less of the last sheet's length, or at equal length has
+     * that sheet's parts reach less far on average.  0: no search.  The
      * orders come from seed (xorshift64*), so a search that stops for want
      * of improvement or at its try limit gives the same layout every time.
      */

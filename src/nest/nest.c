@@ -6,9 +6,10 @@
  * the inner-fit rectangle (the sheet inside its margin, less the part's own
  * extent) minus the no-fit polygons of the parts already on the sheet
  * (nfp.c).  The part goes to the leftmost, then lowest, such position (a
- * vertex of that region): sheets used first, then how little of the last
- * sheet's length is used.  No-fit polygons are worked out once per pair of
- * shapes and turns: copies of a part share them.
+ * vertex of that region), at the turn whose box lies furthest left, then
+ * lowest: sheets used first, then how little of the last sheet's length
+ * is used.  Remnant sheets come before the stock sheets.  No-fit polygons are worked out once per
+ * pair of shapes and turns: copies of a part share them.
  *
  * Parts are grown by half the spacing before the no-fit polygons are made,
  * so parts that touch there keep the spacing between them; the no-fit
@@ -62,6 +63,11 @@ typedef struct nester {
      */
     GEOSGeometry **taken;
     size_t *taken_count;
+    /*
+     * Per (sheet, class, turn): no room was left for it there.  Sheets only
+     * fill up during a run, so it never fits there again in that run.
+     */
+    bool *full;
     double *sheet_area; /* per sheet: area of the parts on it */
     ur_error *error;
 } nester;
@@ -273,10 +279,12 @@ static bool leftmost(GEOSContextHandle_t geos, const GEOSGeometry *region, ur_ve
 /* The best place for piece at turn on sheet: the leftmost, then lowest, feasible one. */
 static bool place_on(nester *n, size_t sheet, size_t piece, size_t turn, ur_vec2 *at)
 {
+    bool empty = sheet >= n->sheet_count;
+    if (!empty && n->full[taken_slot(n, sheet, piece, turn)])
+        return false;
     GEOSGeometry *room = inner_fit(n, sheet, shape_of(n, piece, turn));
     if (!room)
         return false;
-    bool empty = sheet >= n->sheet_count;
     const GEOSGeometry *taken = empty ? NULL : forbidden(n, sheet, piece, turn);
     if (!empty && !taken) { /* GEOS failed: better no place than an overlap */
         GEOSGeom_destroy_r(n->geos, room);
@@ -285,6 +293,8 @@ static bool place_on(nester *n, size_t sheet, size_t piece, size_t turn, ur_vec2
     GEOSGeometry *free_room =
         taken ? GEOSDifference_r(n->geos, room, taken) : GEOSGeom_clone_r(n->geos, room);
     bool found = free_room && leftmost(n->geos, free_room, at);
+    if (free_room && !found && !empty) /* no room, not a GEOS failure */
+        n->full[taken_slot(n, sheet, piece, turn)] = true;
     if (free_room)
         GEOSGeom_destroy_r(n->geos, free_room);
     GEOSGeom_destroy_r(n->geos, room);
@@ -428,6 +438,7 @@ static void nester_free(nester *n)
             GEOSGeom_destroy_r(n->geos, n->taken[k]);
     free(n->taken);
     free(n->taken_count);
+    free(n->full);
     free(n->sheet_area);
     size_t pairs = n->class_count * n->turn_count * n->class_count * n->turn_count;
     for (size_t k = 0; n->nfps && k < pairs; k++)
@@ -503,6 +514,7 @@ static void reset_run(nester *n)
             GEOSGeom_destroy_r(n->geos, n->taken[k]);
         n->taken[k] = NULL;
         n->taken_count[k] = 0;
+        n->full[k] = false;
     }
     memset(n->sheet_area, 0, n->sheet_slots * sizeof *n->sheet_area);
     n->placed_count = 0;
@@ -621,9 +633,9 @@ static ur_status search(nester *n, size_t *order)
     double patience = fmax(NEST_PATIENCE, NEST_PATIENCE_PER_SECOND * o->time_budget);
     ur_status status = UR_OK;
     size_t since_better = 0;
-    for (size_t tries = 1; status == UR_OK && tries <= NEST_TRIES &&
-                           (double)since_better < patience &&
-                           seconds_now() - start < o->time_budget;
+    for (size_t tries = 1;
+         status == UR_OK && tries <= NEST_TRIES && (double)since_better < patience &&
+         seconds_now() - start < o->time_budget;
          tries++) {
         memcpy(candidate, current, n->count * sizeof *current);
         mutate(candidate, n->count, &state);
@@ -685,8 +697,9 @@ ur_status ur_layout_nest(const ur_piece *pieces, size_t count, const ur_nest_opt
     if (status == UR_OK) {
         n.taken = calloc(slots, sizeof *n.taken);
         n.taken_count = calloc(slots, sizeof *n.taken_count);
+        n.full = calloc(slots, sizeof *n.full);
         n.sheet_area = calloc(n.sheet_slots, sizeof *n.sheet_area);
-        if (!n.taken || !n.taken_count || !n.sheet_area)
+        if (!n.taken || !n.taken_count || !n.full || !n.sheet_area)
             status = ur_error_out_of_memory(error);
     }
     for (size_t p = 0; status == UR_OK && p < count; p++)
