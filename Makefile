@@ -124,7 +124,7 @@ fuzz-targets: $(FUZZ_BINARIES)
 
 bench: deps
 	@$(MAKE) --no-print-directory $(PROGRAM) $(BENCH_BINARIES)
-	@UNROLL=$(PROGRAM) BENCHES="$(BENCH_BINARIES)" bench/run-benches
+	@UNROLL=$(PROGRAM) BENCHES="$(BENCH_BINARIES) bench/bench_esicup" bench/run-benches
 
 install: $(PROGRAM)
 	install -d $(DESTDIR)$(BINDIR) $(DESTDIR)$(MANDIR)/man1 $(DESTDIR)$(MANDIR)/man5

@@ -21,6 +21,9 @@ enum { EXIT_INTERNAL = 1, EXIT_USAGE = 2 };
 typedef enum cli_action { CLI_DEVELOP, CLI_ANALYZE, CLI_COMPARE } cli_action;
 
 /* Everything the command line can say about a surface job. */
+/* The most --remnant options a command takes. */
+#define CLI_MAX_REMNANTS 64
+
 typedef struct cli_job {
     cli_action action;
     const char *command; /* "strip", or "analyze" for 'unroll analyze strip ...' */
@@ -76,13 +79,15 @@ typedef struct cli_job {
     unsigned formats;
     int dxf_version;
     double dpi;
-    bool drawing_order;       /* --order none */
-    long rotations;           /* --rotations N; 0: 4, or 2 under a grain rule */
-    bool no_holes;            /* --no-holes: no part inside another's hole */
-    bool merge_lines;         /* --merge-lines: touching parts, shared lines cut once */
-    bool level;               /* turns start from the level one (surfaces), not as drawn (nest) */
-    double roll_width;        /* --roll W: nest on roll stock this wide; 0 for sheets */
-    long max_sheets;          /* --sheets N: at most N sheets; 0 for as many as needed */
+    bool drawing_order; /* --order none */
+    long rotations;     /* --rotations N; 0: 4, or 2 under a grain rule */
+    bool no_holes;      /* --no-holes: no part inside another's hole */
+    bool merge_lines;   /* --merge-lines: touching parts, shared lines cut once */
+    bool level;         /* turns start from the level one (surfaces), not as drawn (nest) */
+    double roll_width;  /* --roll W: nest on roll stock this wide; 0 for sheets */
+    long max_sheets;    /* --sheets N: at most N sheets; 0 for as many as needed */
+    ur_remnant remnants[CLI_MAX_REMNANTS]; /* --remnant WxH, in the order given */
+    size_t remnant_count;
     double nest_time;         /* --nest-time S: the search's budget; NAN for the default */
     int seam_offset;          /* seams are numbered from this on (a job file's later parts) */
     const char *piece_prefix; /* pieces are named PREFIX-P1, ... (a job file's part); NULL */
@@ -221,6 +226,8 @@ bool cli_parse_order(cli_job *job, const char *value);
 bool cli_parse_rotations(cli_job *job, const char *value);
 bool cli_parse_roll(cli_job *job, const char *value);
 bool cli_parse_sheet_count(cli_job *job, const char *value);
+bool cli_parse_remnant(cli_job *job, const char *value);
+void cli_describe_sheets(const ur_layout *layout, char *text, size_t size);
 bool cli_parse_nest_time(cli_job *job, const char *value);
 bool cli_parse_seed(cli_job *job, const char *value);
 /* --job-name NAME: the name the files record (outputs.c); false after a message. */
@@ -238,9 +245,10 @@ bool cli_check_output(const cli_job *job);
  * outputs, which this sets.
  */
 /*
- * The fewest sheets any layout needs: ceil(sum of the pieces' flat areas /
- * the room inside the margin); 0 when the layout mixes sheet sizes or
- * materials.
+ * The fewest stock sheets any layout needs: ceil(sum of the pieces' flat
+ * areas, less the room inside the remnants' margins, / the room inside a
+ * stock sheet's margin); 0 when the stock sheets are of several sizes or
+ * materials, or there are none.
  */
 double cli_sheets_lower_bound(const ur_piece *pieces, size_t count, const ur_layout *layout,
                               double margin);

@@ -70,6 +70,7 @@ enum option_id {
     OPT_MERGE_LINES,
     OPT_ROLL,
     OPT_SHEETS,
+    OPT_REMNANT,
     OPT_NEST_TIME,
     OPT_SEED,
 };
@@ -129,6 +130,7 @@ static const struct option long_options[] = {
     {"merge-lines", no_argument, NULL, OPT_MERGE_LINES},
     {"roll", required_argument, NULL, OPT_ROLL},
     {"sheets", required_argument, NULL, OPT_SHEETS},
+    {"remnant", required_argument, NULL, OPT_REMNANT},
     {"nest-time", required_argument, NULL, OPT_NEST_TIME},
     {"seed", required_argument, NULL, OPT_SEED},
     {"help", no_argument, NULL, 'h'},
@@ -159,7 +161,7 @@ static const struct {
     {CLI_DEVELOP,
      " output machine material sheet method parts rulings no-split report strain-png "
      "allowances bridges no-kerf-compensation format dxf-version dpi job-name order rotations "
-     "no-holes merge-lines roll sheets nest-time seed "},
+     "no-holes merge-lines roll sheets remnant nest-time seed "},
     {CLI_ANALYZE, " png report "},
     {CLI_COMPARE, " png csv "},
 };
@@ -520,6 +522,8 @@ static bool take_option(cli_job *job, int id, const char *value)
         return cli_parse_roll(job, value);
     case OPT_SHEETS:
         return cli_parse_sheet_count(job, value);
+    case OPT_REMNANT:
+        return cli_parse_remnant(job, value);
     case OPT_NEST_TIME:
         return cli_parse_nest_time(job, value);
     case OPT_SEED:

@@ -99,6 +99,54 @@ bool cli_parse_sheet_count(cli_job *job, const char *value)
     return true;
 }
 
+/*
+ * What the layout uses, for the summary line: "2 sheets of 600 x 400 mm",
+ * "remnant 200 x 120 mm (sheet 1) and 1 sheet of 600 x 400 mm", ...
+ * Stock sheets all have one size; remnants are named one by one.
+ */
+void cli_describe_sheets(const ur_layout *layout, char *text, size_t size)
+{
+    size_t used = 0, stock = 0;
+    const ur_sheet *stock_sheet = NULL;
+    text[0] = '\0';
+    for (size_t s = 0; s < layout->sheet_count; s++) {
+        const ur_sheet *sheet = &layout->sheets[s];
+        if (!sheet->remnant) {
+            stock++;
+            stock_sheet = sheet;
+            continue;
+        }
+        int n = snprintf(text + used, size - used, "%sremnant %g x %g mm (sheet %zu)",
+                         used ? ", " : "", sheet->width, sheet->height, s + 1);
+        if (n < 0 || (size_t)n >= size - used)
+            return; /* cut short: the report has every sheet */
+        used += (size_t)n;
+    }
+    if (stock_sheet || used == 0)
+        snprintf(text + used, size - used, "%s%zu sheet%s of %g x %g mm", used ? " and " : "",
+                 stock, stock == 1 ? "" : "s", stock_sheet ? stock_sheet->width : 0.0,
+                 stock_sheet ? stock_sheet->height : 0.0);
+}
+
+/* --remnant WxH, repeatable: one more remnant sheet, filled before stock. */
+bool cli_parse_remnant(cli_job *job, const char *value)
+{
+    char *end = NULL;
+    double width = strtod(value, &end);
+    double height = end != value && (*end == 'x' || *end == 'X') ? strtod(end + 1, &end) : NAN;
+    if (*end != '\0' || !isfinite(width) || !isfinite(height) || !(width > 0) || !(height > 0)) {
+        cli_message("%s: --remnant: '%s' is not WIDTHxHEIGHT in mm, e.g. 300x200", job->command,
+                    value);
+        return false;
+    }
+    if (job->remnant_count == CLI_MAX_REMNANTS) {
+        cli_message("%s: --remnant: more than %d remnants", job->command, CLI_MAX_REMNANTS);
+        return false;
+    }
+    job->remnants[job->remnant_count++] = (ur_remnant){width, height};
+    return true;
+}
+
 bool cli_parse_nest_time(cli_job *job, const char *value)
 {
     char *end = NULL;
@@ -181,18 +229,22 @@ bool cli_check_output(const cli_job *job)
 double cli_sheets_lower_bound(const ur_piece *pieces, size_t count, const ur_layout *layout,
                               double margin)
 {
-    if (layout->sheet_count == 0)
-        return 0;
-    const ur_sheet *first = &layout->sheets[0];
-    for (size_t s = 1; s < layout->sheet_count; s++)
-        if (layout->sheets[s].width != first->width || layout->sheets[s].height != first->height ||
-            strcmp(layout->sheets[s].material, first->material) != 0)
-            return 0; /* stock of several kinds: no one bound */
+    const ur_sheet *stock = NULL;
     double area = 0.0;
     for (size_t k = 0; k < count; k++)
         area += pieces[k].measures.flat_area;
-    double room = (first->width - 2 * margin) * (first->height - 2 * margin);
-    return room > 0 ? ceil(area / room - 1e-9) : 0;
+    for (size_t s = 0; s < layout->sheet_count; s++) {
+        const ur_sheet *sheet = &layout->sheets[s];
+        if (sheet->remnant) /* what a remnant holds, no stock sheet need */
+            area -= fmax(0, (sheet->width - 2 * margin) * (sheet->height - 2 * margin));
+        else if (!stock)
+            stock = sheet;
+        else if (sheet->width != stock->width || sheet->height != stock->height ||
+                 strcmp(sheet->material, stock->material) != 0)
+            return 0; /* stock of several kinds: no one bound */
+    }
+    double room = stock ? (stock->width - 2 * margin) * (stock->height - 2 * margin) : 0;
+    return room > 0 ? fmax(0, ceil(area / room - 1e-9)) : 0;
 }
 
 ur_status cli_write_outputs(const cli_job *job, const ur_machine *machine, const ur_layout *layout,

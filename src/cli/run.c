@@ -306,6 +306,8 @@ ur_status cli_place_pieces(const cli_job *job, const ur_machine *machine,
         .level = job->level,
         .holes = !job->no_holes,
         .max_sheets = job->max_sheets > 0 ? (size_t)job->max_sheets : 0,
+        .remnants = job->remnants,
+        .remnant_count = job->remnant_count,
         .grain = material->grain != UR_GRAIN_NONE,
         .grain_angle = material->grain == UR_GRAIN_ACROSS ? M_PI / 2 : 0.0,
         .grain_tolerance = material->grain_tolerance * M_PI / 180,
@@ -388,8 +390,8 @@ static void print_summary(const cli_job *job, const job_state *state)
     double flat = 0.0;
     for (size_t k = 0; k < state->piece_count; k++)
         flat += state->pieces[k].measures.flat_area;
-    const ur_sheet *first = &state->layout.sheets[0];
-    char first_file[4096];
+    char first_file[4096], used[1024];
+    cli_describe_sheets(&state->layout, used, sizeof used);
     size_t sheets = state->layout.sheet_count;
     if (ur_sheet_file_name(job->output_path, 0, sheets, first_file, sizeof first_file, NULL))
         snprintf(first_file, sizeof first_file, "%s", job->output_path);
@@ -398,11 +400,10 @@ static void print_summary(const cli_job *job, const job_state *state)
                  " ... -%zu", sheets);
     fprintf(stderr,
             "unroll: %s (%s): %zu piece%s, surface %.2f mm2, net %.2f mm2 (coverage %.6f), "
-            "%zu sheet%s of %g x %g mm (%s, %s) -> %s\n",
+            "%s (%s, %s) -> %s\n",
             job->surface, state->method, state->piece_count, state->piece_count == 1 ? "" : "s",
-            state->surface_area, flat, flat / state->surface_area, state->layout.sheet_count,
-            state->layout.sheet_count == 1 ? "" : "s", first->width, first->height,
-            state->material.name, state->machine.name, first_file);
+            state->surface_area, flat, flat / state->surface_area, used, state->material.name,
+            state->machine.name, first_file);
 }
 
 /*

@@ -6,9 +6,10 @@
  * the inner-fit rectangle (the sheet inside its margin, less the part's own
  * extent) minus the no-fit polygons of the parts already on the sheet
  * (nfp.c).  The part goes to the leftmost, then lowest, such position (a
- * vertex of that region): sheets used first, then how little of the last
- * sheet's length is used.  No-fit polygons are worked out once per pair of
- * shapes and turns: copies of a part share them.
+ * vertex of that region), at the turn whose box lies furthest left, then
+ * lowest: sheets used first, then how little of the last sheet's length
+ * is used.  Remnant sheets come before the stock sheets.  No-fit polygons are worked out once per
+ * pair of shapes and turns: copies of a part share them.
  *
  * Parts are grown by half the spacing before the no-fit polygons are made,
  * so parts that touch there keep the spacing between them; the no-fit
@@ -49,7 +50,12 @@ typedef struct nester {
     GEOSGeometry **nfps; /* per (class a, turn a, class b, turn b); NULL until made */
     placed *placements;  /* per piece, in order placed */
     size_t *sheet_of;    /* per placement */
-    size_t placed_count, sheet_count;
+    /*
+     * Sheets 0 to remnant_count - 1 are the remnants, open from the start
+     * (maybe empty); stock sheets follow as they are opened.
+     */
+    size_t placed_count, sheet_count, remnant_count;
+    size_t sheet_slots; /* sheets there can be: remnants, one per part and one more */
     /*
      * Per (sheet, class, turn): the union of the no-fit polygons of the
      * first taken_count[..] placements, grown as parts are placed so that
@@ -57,6 +63,11 @@ typedef struct nester {
      */
     GEOSGeometry **taken;
     size_t *taken_count;
+    /*
+     * Per (sheet, class, turn): no room was left for it there.  Sheets only
+     * fill up during a run, so it never fits there again in that run.
+     */
+    bool *full;
     double *sheet_area; /* per sheet: area of the parts on it */
     ur_error *error;
 } nester;
@@ -148,12 +159,23 @@ static const GEOSGeometry *nfp_of(nester *n, size_t a, size_t ta, size_t b, size
     return n->nfps[key];
 }
 
-/* Where piece's origin may go on an empty sheet (turn t); NULL when it does not fit. */
-static GEOSGeometry *inner_fit(const nester *n, const nest_shape *shape)
+/* The size of a sheet: a remnant's, or the stock's. */
+static void sheet_size(const nester *n, size_t sheet, double *width, double *height)
 {
     const ur_nest_options *o = n->options;
-    double x0 = o->margin - shape->box.min.x, x1 = o->sheet_width - o->margin - shape->box.max.x;
-    double y0 = o->margin - shape->box.min.y, y1 = o->sheet_height - o->margin - shape->box.max.y;
+    bool remnant = sheet < n->remnant_count;
+    *width = remnant ? o->remnants[sheet].width : o->sheet_width;
+    *height = remnant ? o->remnants[sheet].height : o->sheet_height;
+}
+
+/* Where the shape's origin may go on the sheet when empty; NULL when it does not fit. */
+static GEOSGeometry *inner_fit(const nester *n, size_t sheet, const nest_shape *shape)
+{
+    const ur_nest_options *o = n->options;
+    double width, height;
+    sheet_size(n, sheet, &width, &height);
+    double x0 = o->margin - shape->box.min.x, x1 = width - o->margin - shape->box.max.x;
+    double y0 = o->margin - shape->box.min.y, y1 = height - o->margin - shape->box.max.y;
     if (x1 < x0 - 1e-9 || y1 < y0 - 1e-9)
         return NULL;
     /* Widened by the exact-fit allowance, so a part as large as the room still has a place. */
@@ -257,10 +279,12 @@ static bool leftmost(GEOSContextHandle_t geos, const GEOSGeometry *region, ur_ve
 /* The best place for piece at turn on sheet: the leftmost, then lowest, feasible one. */
 static bool place_on(nester *n, size_t sheet, size_t piece, size_t turn, ur_vec2 *at)
 {
-    GEOSGeometry *room = inner_fit(n, shape_of(n, piece, turn));
+    bool empty = sheet >= n->sheet_count;
+    if (!empty && n->full[taken_slot(n, sheet, piece, turn)])
+        return false;
+    GEOSGeometry *room = inner_fit(n, sheet, shape_of(n, piece, turn));
     if (!room)
         return false;
-    bool empty = sheet >= n->sheet_count;
     const GEOSGeometry *taken = empty ? NULL : forbidden(n, sheet, piece, turn);
     if (!empty && !taken) { /* GEOS failed: better no place than an overlap */
         GEOSGeom_destroy_r(n->geos, room);
@@ -269,6 +293,8 @@ static bool place_on(nester *n, size_t sheet, size_t piece, size_t turn, ur_vec2
     GEOSGeometry *free_room =
         taken ? GEOSDifference_r(n->geos, room, taken) : GEOSGeom_clone_r(n->geos, room);
     bool found = free_room && leftmost(n->geos, free_room, at);
+    if (free_room && !found && !empty) /* no room, not a GEOS failure */
+        n->full[taken_slot(n, sheet, piece, turn)] = true;
     if (free_room)
         GEOSGeom_destroy_r(n->geos, free_room);
     GEOSGeom_destroy_r(n->geos, room);
@@ -280,21 +306,33 @@ static ur_status place_piece(nester *n, size_t piece)
 {
     for (size_t sheet = 0; sheet <= n->sheet_count; sheet++) {
         if (sheet == n->sheet_count && n->options->max_sheets &&
-            n->sheet_count >= n->options->max_sheets)
+            n->sheet_count - n->remnant_count >= n->options->max_sheets)
             return UR_OK; /* not placed: the caller lists it */
         bool found = false;
         ur_vec2 best = {0, 0};
         size_t best_turn = 0;
-        double room = (n->options->sheet_width - 2 * n->options->margin) *
-                      (n->options->sheet_height - 2 * n->options->margin);
+        double width, height;
+        sheet_size(n, sheet, &width, &height);
+        double room = (width - 2 * n->options->margin) * (height - 2 * n->options->margin);
         if (sheet < n->sheet_count && n->sheet_area[sheet] + shape_of(n, piece, 0)->area > room)
             continue; /* not enough area left on it, whatever the shapes */
+        ur_vec2 best_key = {0, 0};
         for (size_t t = 0; t < n->turn_count; t++) {
             ur_vec2 at = {0, 0};
-            if (place_on(n, sheet, piece, t, &at) &&
-                (!found || at.x < best.x - 1e-9 || (at.x <= best.x + 1e-9 && at.y < best.y))) {
+            if (!place_on(n, sheet, piece, t, &at))
+                continue;
+            /*
+             * Turns compare by where the part itself lies (its box's lower
+             * left corner), not by its origin, which sits elsewhere in each.
+             */
+            const nest_shape *shape = shape_of(n, piece, t);
+            ur_vec2 key = {at.x + shape->box.min.x, at.y + shape->box.min.y};
+            /* Ties (to a micrometre: rounding) go to the earlier turn. */
+            if (!found || key.x < best_key.x - 1e-3 ||
+                (key.x <= best_key.x + 1e-3 && key.y < best_key.y - 1e-3)) {
                 found = true;
                 best = at;
+                best_key = key;
                 best_turn = t;
             }
         }
@@ -332,28 +370,43 @@ static int compare_keys(const void *a, const void *b)
     return (x->index > y->index) - (x->index < y->index);
 }
 
+/* The layout's sheets: the remnants that took parts, then the stock sheets, in order. */
 static ur_status build_layout(nester *n, ur_layout *layout)
 {
+    size_t *index = malloc((n->sheet_count + 1) * sizeof *index); /* per sheet: in the layout */
+    bool *used = calloc(n->sheet_count + 1, sizeof *used);
     layout->sheets = calloc(n->sheet_count ? n->sheet_count : 1, sizeof *layout->sheets);
-    if (!layout->sheets)
+    if (!index || !used || !layout->sheets) {
+        free(index);
+        free(used);
         return ur_error_out_of_memory(n->error);
-    layout->sheet_count = n->sheet_count;
+    }
+    for (size_t k = 0; k < n->placed_count; k++)
+        used[n->sheet_of[k]] = true;
     for (size_t s = 0; s < n->sheet_count; s++) {
-        ur_sheet *sheet = &layout->sheets[s];
-        sheet->width = n->options->sheet_width;
-        sheet->height = n->options->sheet_height;
+        if (s < n->remnant_count && !used[s])
+            continue;
+        index[s] = layout->sheet_count;
+        ur_sheet *sheet = &layout->sheets[layout->sheet_count++];
+        sheet_size(n, s, &sheet->width, &sheet->height);
+        sheet->remnant = s < n->remnant_count;
         sheet->placements =
             calloc(n->placed_count ? n->placed_count : 1, sizeof *sheet->placements);
-        if (!sheet->placements)
+        if (!sheet->placements) {
+            free(index);
+            free(used);
             return ur_error_out_of_memory(n->error);
+        }
     }
+    free(used);
     for (size_t k = 0; k < n->placed_count; k++) {
         const placed *p = &n->placements[k];
-        ur_sheet *sheet = &layout->sheets[n->sheet_of[k]];
+        ur_sheet *sheet = &layout->sheets[index[n->sheet_of[k]]];
         double angle = shape_of(n, p->piece, p->turn)->angle;
         sheet->placements[sheet->placement_count++] =
             (ur_placement){p->piece, ur_transform2_make(angle, p->at)};
     }
+    free(index);
     return UR_OK;
 }
 
@@ -379,12 +432,13 @@ static ur_status list_not_placed(const nester *n, ur_layout *layout)
 
 static void nester_free(nester *n)
 {
-    size_t slots = (n->count + 1) * (n->class_count + 1) * n->turn_count;
+    size_t slots = n->sheet_slots * (n->class_count + 1) * n->turn_count;
     for (size_t k = 0; n->taken && k < slots; k++)
         if (n->taken[k])
             GEOSGeom_destroy_r(n->geos, n->taken[k]);
     free(n->taken);
     free(n->taken_count);
+    free(n->full);
     free(n->sheet_area);
     size_t pairs = n->class_count * n->turn_count * n->class_count * n->turn_count;
     for (size_t k = 0; n->nfps && k < pairs; k++)
@@ -417,11 +471,13 @@ static ur_nest_options roll_sheet(const ur_nest_options *o, const ur_piece *piec
     return sheet;
 }
 
-/* The length of roll used: as far as the parts reach, and the margin. */
+/* The length of roll (the stock sheet) used: as far as its parts reach, and the margin. */
 static double used_length(const nester *n)
 {
     double length = 0;
     for (size_t k = 0; k < n->placed_count; k++) {
+        if (n->sheet_of[k] < n->remnant_count)
+            continue;
         const placed *p = &n->placements[k];
         length = fmax(length, p->at.x + shape_of(n, p->piece, p->turn)->box.max.x);
     }
@@ -439,6 +495,11 @@ static ur_status check_nest_options(const ur_nest_options *o, ur_error *error)
         return ur_error_set(error, UR_ERROR_INPUT,
                             "the margin (%g mm) leaves no room on the %g x %g mm sheet", o->margin,
                             o->sheet_width, o->sheet_height);
+    for (size_t k = 0; k < o->remnant_count; k++)
+        if (!(o->remnants[k].width > 0) || !(o->remnants[k].height > 0) ||
+            !isfinite(o->remnants[k].width) || !isfinite(o->remnants[k].height))
+            return ur_error_set(error, UR_ERROR_INPUT,
+                                "remnant %zu: a remnant needs a positive width and height", k + 1);
     return UR_OK;
 }
 
@@ -447,16 +508,17 @@ static ur_status check_nest_options(const ur_nest_options *o, ur_error *error)
 /* Forgets a run's placements; the no-fit polygons stay, they hold for any run. */
 static void reset_run(nester *n)
 {
-    size_t slots = (n->count + 1) * (n->class_count + 1) * n->turn_count;
+    size_t slots = n->sheet_slots * (n->class_count + 1) * n->turn_count;
     for (size_t k = 0; k < slots; k++) {
         if (n->taken[k])
             GEOSGeom_destroy_r(n->geos, n->taken[k]);
         n->taken[k] = NULL;
         n->taken_count[k] = 0;
+        n->full[k] = false;
     }
-    memset(n->sheet_area, 0, (n->count + 1) * sizeof *n->sheet_area);
+    memset(n->sheet_area, 0, n->sheet_slots * sizeof *n->sheet_area);
     n->placed_count = 0;
-    n->sheet_count = 0;
+    n->sheet_count = n->remnant_count;
 }
 
 static ur_status run_order(nester *n, const size_t *order)
@@ -468,29 +530,46 @@ static ur_status run_order(nester *n, const size_t *order)
     return status;
 }
 
+/*
+ * A layout's score: parts placed, stock sheets used, then how tightly the
+ * last sheet is packed: the length of it used (up to its rightmost part),
+ * then how far its parts reach on average (the mean of their right edges),
+ * which tells apart layouts of the same length, some closer to freeing room
+ * at the end than others, so that the search has somewhere to go.
+ */
 typedef struct score {
-    size_t placed, sheets;
-    double length; /* of the last sheet used, up to its rightmost part */
+    size_t placed, sheets; /* sheets: stock sheets */
+    double length, reach;
 } score;
 
 static score score_of(const nester *n)
 {
-    score s = {n->placed_count, n->sheet_count, 0.0};
+    score s = {n->placed_count, n->sheet_count - n->remnant_count, 0.0, 0.0};
+    size_t on_last = 0;
     for (size_t k = 0; k < n->placed_count; k++)
         if (n->sheet_of[k] + 1 == n->sheet_count) {
             const placed *p = &n->placements[k];
-            s.length = fmax(s.length, p->at.x + shape_of(n, p->piece, p->turn)->box.max.x);
+            double right = p->at.x + shape_of(n, p->piece, p->turn)->box.max.x;
+            s.length = fmax(s.length, right);
+            s.reach += right;
+            on_last++;
         }
+    s.reach = on_last ? s.reach / (double)on_last : 0.0;
     return s;
 }
 
-static bool better(score a, score b)
+/* Whether a is better than b (1), as good (0) or worse (-1). */
+static int compare_scores(score a, score b)
 {
     if (a.placed != b.placed)
-        return a.placed > b.placed;
+        return a.placed > b.placed ? 1 : -1;
     if (a.sheets != b.sheets)
-        return a.sheets < b.sheets;
-    return a.length < b.length - 1e-9;
+        return a.sheets < b.sheets ? 1 : -1;
+    if (fabs(a.length - b.length) > 1e-9)
+        return a.length < b.length ? 1 : -1;
+    if (fabs(a.reach - b.reach) > 1e-9)
+        return a.reach < b.reach ? 1 : -1;
+    return 0;
 }
 
 static uint64_t next_random(uint64_t *state)
@@ -526,38 +605,58 @@ static double seconds_now(void)
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
-/* Improves on order (run and placed already) within the options' budget; leaves the best placed. */
+/*
+ * Improves on order (run and placed already) within the options' budget;
+ * leaves the best placed.  A hill climb over orders that also takes
+ * sideways steps (an order as good as the current one replaces it), so
+ * that it wanders across the many orders of equal score instead of
+ * stopping at the first.  It gives up after a run of tries without a new
+ * best: NEST_PATIENCE, or NEST_PATIENCE_PER_SECOND per second of budget if
+ * that is more.
+ */
 static ur_status search(nester *n, size_t *order)
 {
     const ur_nest_options *o = n->options;
     if (!(o->time_budget > 0) || n->count < 2)
         return UR_OK;
+    size_t *current = malloc(n->count * sizeof *current);
     size_t *candidate = malloc(n->count * sizeof *candidate);
-    if (!candidate)
+    if (!current || !candidate) {
+        free(current);
+        free(candidate);
         return ur_error_out_of_memory(n->error);
+    }
+    memcpy(current, order, n->count * sizeof *order);
     uint64_t state = o->seed * 0x9E3779B97F4A7C15ULL + 0x2545F4914F6CDD1DULL;
-    score best = score_of(n);
+    score best = score_of(n), now = best;
     double start = seconds_now();
+    double patience = fmax(NEST_PATIENCE, NEST_PATIENCE_PER_SECOND * o->time_budget);
     ur_status status = UR_OK;
     size_t since_better = 0;
-    for (size_t tries = 1; status == UR_OK && tries <= NEST_TRIES && since_better < NEST_PATIENCE &&
-                           seconds_now() - start < o->time_budget;
+    for (size_t tries = 1;
+         status == UR_OK && tries <= NEST_TRIES && (double)since_better < patience &&
+         seconds_now() - start < o->time_budget;
          tries++) {
-        memcpy(candidate, order, n->count * sizeof *order);
+        memcpy(candidate, current, n->count * sizeof *current);
         mutate(candidate, n->count, &state);
         status = run_order(n, candidate);
         score s = score_of(n);
-        if (status == UR_OK && better(s, best)) {
+        since_better++;
+        if (status != UR_OK || compare_scores(s, now) < 0)
+            continue;
+        now = s;
+        memcpy(current, candidate, n->count * sizeof *current);
+        if (compare_scores(s, best) > 0) {
             best = s;
             memcpy(order, candidate, n->count * sizeof *order);
             since_better = 0;
             if (o->progress)
                 o->progress(o->progress_context, s.sheets, s.length, tries);
-        } else
-            since_better++;
+        }
     }
     if (status == UR_OK)
         status = run_order(n, order); /* the best, placed again */
+    free(current);
     free(candidate);
     return status;
 }
@@ -581,7 +680,10 @@ ur_status ur_layout_nest(const ur_piece *pieces, size_t count, const ur_nest_opt
                 .turn_count = options->grain           ? (options->grain_tolerance > 0 ? 6 : 2)
                               : options->rotations > 1 ? options->rotations
                                                        : 1,
+                .remnant_count = options->remnants ? options->remnant_count : 0,
                 .error = error};
+    n.sheet_count = n.remnant_count;
+    n.sheet_slots = n.remnant_count + count + 1;
     n.class_of = calloc(count + 1, sizeof *n.class_of);
     n.classes = calloc(count + 1, sizeof *n.classes);
     n.placements = calloc(count + 1, sizeof *n.placements);
@@ -591,12 +693,13 @@ ur_status ur_layout_nest(const ur_piece *pieces, size_t count, const ur_nest_opt
         status = ur_error_out_of_memory(error);
     if (status == UR_OK)
         status = sort_classes(&n);
-    size_t slots = (count + 1) * (n.class_count + 1) * n.turn_count;
+    size_t slots = n.sheet_slots * (n.class_count + 1) * n.turn_count;
     if (status == UR_OK) {
         n.taken = calloc(slots, sizeof *n.taken);
         n.taken_count = calloc(slots, sizeof *n.taken_count);
-        n.sheet_area = calloc(count + 1, sizeof *n.sheet_area);
-        if (!n.taken || !n.taken_count || !n.sheet_area)
+        n.full = calloc(slots, sizeof *n.full);
+        n.sheet_area = calloc(n.sheet_slots, sizeof *n.sheet_area);
+        if (!n.taken || !n.taken_count || !n.full || !n.sheet_area)
             status = ur_error_out_of_memory(error);
     }
     for (size_t p = 0; status == UR_OK && p < count; p++)
@@ -621,8 +724,9 @@ ur_status ur_layout_nest(const ur_piece *pieces, size_t count, const ur_nest_opt
         status = build_layout(&n, layout);
     if (status == UR_OK)
         status = list_not_placed(&n, layout);
-    if (status == UR_OK && options->roll_width > 0 && layout->sheet_count == 1)
-        layout->sheets[0].width = used_length(&n);
+    if (status == UR_OK && options->roll_width > 0 && layout->sheet_count > 0 &&
+        !layout->sheets[layout->sheet_count - 1].remnant)
+        layout->sheets[layout->sheet_count - 1].width = used_length(&n);
     if (status != UR_OK)
         ur_layout_free(layout);
     free(keys);

@@ -181,6 +181,7 @@ static json_t *sheet_json(const ur_report_context *context, const ur_layout *lay
     if (!object || json_object_set_new(object, "index", json_integer((json_int_t)index + 1)) != 0 ||
         json_object_set_new(object, "width_mm", ur_json_number(sheet->width)) != 0 ||
         json_object_set_new(object, "height_mm", ur_json_number(sheet->height)) != 0 ||
+        json_object_set_new(object, "remnant", json_boolean(sheet->remnant)) != 0 ||
         json_object_set_new(object, "pieces", json_integer((json_int_t)sheet->placement_count)) !=
             0 ||
         json_object_set_new(object, "utilisation",

@@ -1449,6 +1449,34 @@ def nest_search_is_repeatable(work):
 
 
 @test
+def remnants_are_filled_before_stock(work):
+    """Six 100 x 50 plates, 5 mm margin and 2 mm spacing, with remnants of
+    230 x 120 (220 x 110 inside: four plates, two rows of two, 202 x 102;
+    a fifth has no room either way) and 60 x 40 (too small for a plate):
+    four plates go on the first remnant, two on a stock sheet; the small
+    remnant is not used.  The report and the summary say which is which."""
+    write(work, "mm.svg", PLATE_SVG_MM)
+    result = run(work, "nest", "mm.svg:6", "--remnant", "230x120", "--remnant", "60x40",
+                 "--margin", "5", "--spacing", "2", "--sheet", "600x400", "--no-kerf-compensation",
+                 "-o", "r.svg", "--report", "r.json")
+    sheets = report(work, "r.json")["sheets"]
+    check([(s["width_mm"], s["height_mm"], s["remnant"], s["pieces"]) for s in sheets] ==
+          [(230, 120, True, 4), (600, 400, False, 2)], "sheets %r" % sheets)
+    check("sheet 1 (remnant 230 x 120 mm): 4 parts" in result.stderr, result.stderr)
+    check("remnant 230 x 120 mm (sheet 1) and 1 sheet of 600 x 400 mm" in result.stderr,
+          result.stderr)
+    valid_svg(os.path.join(work, "r-1.svg"), 230, 120)
+    for points in outlines(os.path.join(work, "r-1.svg")):
+        for x, y in points:
+            check(5 - 1e-5 <= x <= 225 + 1e-5 and 5 - 1e-5 <= y <= 115 + 1e-5,
+                  "a part leaves the remnant's margin at %r" % ((x, y),))
+    bad(work, r"--remnant: '300' is not WIDTHxHEIGHT", "nest", "mm.svg", "--remnant", "300",
+        "-o", "x.svg")
+    bad(work, r"--remnant: '0x20' is not WIDTHxHEIGHT", *HELICOID, "--remnant", "0x20",
+        "-o", "x.svg")
+
+
+@test
 def nest_copies_and_bad_input(work):
     write(work, "mm.svg", PLATE_SVG_MM)
     run(work, "nest", "mm.svg:5", "-o", "five.svg", "--report", "five.json", "--quiet")

@@ -238,6 +238,47 @@ static void test_refusals(void **state)
 }
 
 /*
+ * Remnants 200 x 120, 100 x 100 and 50 x 50 (5 mm margin, 2 mm spacing:
+ * 190 x 110, 90 x 90 and 40 x 40 inside), then 600 x 400 stock.  Largest
+ * first: 300 x 200 fits no remnant and opens a stock sheet; 150 x 100 fits
+ * the first remnant; 80 x 80 finds no room beside it (190 - 150 - 2 = 38
+ * across, 110 - 100 - 2 = 8 up) and goes on the second; 50 x 50 fits no
+ * remnant's room left (38, 8, and 40 on the third) and joins the stock
+ * sheet.  The third remnant, unused, is not in the layout.
+ */
+static void test_remnants_first(void **state)
+{
+    (void)state;
+    ur_piece pieces[4] = {rectangle("A", 300, 200), rectangle("B", 150, 100),
+                          rectangle("C", 80, 80), rectangle("D", 50, 50)};
+    ur_remnant remnants[3] = {{200, 120}, {100, 100}, {50, 50}};
+    ur_nest_options o = sheet_options(600, 400, 5, 2, 1, false);
+    o.remnants = remnants;
+    o.remnant_count = 3;
+    o.max_sheets = 1; /* stock sheets only: the remnants come on top */
+    ur_layout layout;
+    ur_error error;
+    assert_int_equal(ur_layout_nest(pieces, 4, &o, &layout, &error), UR_OK);
+    assert_int_equal(layout.sheet_count, 3);
+    assert_int_equal(layout.not_placed_count, 0);
+    const ur_sheet *s = layout.sheets;
+    assert_true(s[0].remnant && s[1].remnant && !s[2].remnant);
+    assert_true(s[0].width == 200 && s[0].height == 120 && s[1].width == 100 &&
+                s[1].height == 100 && s[2].width == 600 && s[2].height == 400);
+    assert_int_equal(s[0].placement_count, 1);
+    assert_int_equal(s[0].placements[0].piece_index, 1);
+    assert_int_equal(s[1].placement_count, 1);
+    assert_int_equal(s[1].placements[0].piece_index, 2);
+    assert_int_equal(s[2].placement_count, 2);
+    check_layout(pieces, 4, &layout, &o);
+    ur_layout_free(&layout);
+    remnants[1].width = 0;
+    assert_int_equal(ur_layout_nest(pieces, 4, &o, &layout, &error), UR_ERROR_INPUT);
+    assert_non_null(strstr(error.message, "remnant 2"));
+    free_pieces(pieces, 4);
+}
+
+/*
  * Strips whose rulings lie at 30 degrees, in a material whose rulings must
  * run along the grain (the sheet's x axis) within 10 degrees: every placed
  * strip's rulings are turned to within 10 degrees of x, whichever end first.
@@ -281,6 +322,7 @@ int main(void)
         cmocka_unit_test(test_mixed_parts_keep_apart),
         cmocka_unit_test(test_refusals),
         cmocka_unit_test(test_grain_rule_holds),
+        cmocka_unit_test(test_remnants_first),
     };
     return cmocka_run_group_tests(tests, start, finish);
 }
