@@ -346,10 +346,10 @@ typedef struct ur_parts {
  * within options->tolerance, every point on the curve; a ring that is
  * exactly a circle (SVG circle, an ellipse of equal radii, a sub-path of
  * arcs of one circle going once round, under a transform that keeps
- * circles circles; DXF CIRCLE) keeps it as its path's circle, in mm.  Parts are named by their SVG id, else the
- * file's name without extension and the part's number ("plate-3"); a path
- * whose several sub-paths become parts names the second and later
- * "ID-2", "ID-3"...  options may be NULL (defaults).
+ * circles circles; DXF CIRCLE) keeps it as its path's circle, in mm.  Parts are named by their SVG
+ * id, else the file's name without extension and the part's number ("plate-3"); a path whose
+ * several sub-paths become parts names the second and later "ID-2", "ID-3"...  options may be NULL
+ * (defaults).
  *
  * SVG (libxml2, no network, no entity expansion): path (every command),
  * rect (rx, ry round the corners), circle, ellipse, polygon, and polyline

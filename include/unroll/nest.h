@@ -71,7 +71,7 @@ typedef struct ur_nest_options {
     double sheet_width, sheet_height;
     double margin;     /* kept free along every sheet edge */
     double spacing;    /* kept free between parts */
-    size_t rotations;  /* allowed turns: 0 or 1 the first only, N equal steps */
+    size_t rotations;  /* allowed turns: 0 or 1 the first only, N equal steps; see ur_piece */
     bool level;        /* turns start from the level one (else from the part as drawn) */
     bool holes;        /* parts may go inside holes of other parts */
     size_t max_sheets; /* stock sheets (remnants not counted); 0: as many as needed */
@@ -94,7 +94,8 @@ typedef struct ur_nest_options {
      * A grain rule: parts with rulings (ur_piece.has_rulings) turn only so
      * that their rulings make grain_angle (radians) with the sheet's x axis,
      * the grain, end for end, or grain_tolerance either side (2 turns, or 6
-     * with a tolerance; parts without rulings take as many equal steps).
+     * with a tolerance).  Parts without rulings turn as rotations says, or
+     * as their own ur_piece.rotations says when it is not 0.
      */
     bool grain;
     double grain_angle, grain_tolerance;

@@ -31,6 +31,7 @@
 typedef struct nest_class {
     size_t representative; /* a piece of this shape */
     nest_shape *turns;     /* one per allowed turn */
+    size_t turn_count;     /* its own: at most the nester's turn_count */
 } nest_class;
 
 typedef struct placed {
@@ -74,7 +75,7 @@ typedef struct nester {
 
 static bool same_shape(const ur_piece *a, const ur_piece *b)
 {
-    if (a->path_count != b->path_count)
+    if (a->path_count != b->path_count || a->rotations != b->rotations)
         return false;
     for (size_t k = 0; k < a->path_count; k++) {
         const ur_path *p = &a->paths[k], *q = &b->paths[k];
@@ -97,19 +98,44 @@ static double grain_turn(const ur_nest_options *o, double ruling_angle, size_t t
            off[t % 6] * o->grain_tolerance;
 }
 
+/*
+ * How many turns a piece may take: under a grain rule, a piece with
+ * rulings 2 (the rulings along the rule's angle, end for end) or 6 (and
+ * the tolerance either side); otherwise its own rotations, or the
+ * nesting's, in equal steps.
+ */
+static size_t turns_of(const ur_nest_options *options, const ur_piece *piece)
+{
+    if (options->grain && piece->has_rulings)
+        return options->grain_tolerance > 0 ? 6 : 2;
+    size_t rotations = piece->rotations ? piece->rotations : options->rotations;
+    return rotations > 1 ? rotations : 1;
+}
+
+/* The most turns any piece may take: the stride of the tables kept per turn. */
+static size_t most_turns(const ur_nest_options *options, const ur_piece *pieces, size_t count)
+{
+    size_t most = 1;
+    for (size_t k = 0; k < count; k++)
+        if (turns_of(options, &pieces[k]) > most)
+            most = turns_of(options, &pieces[k]);
+    return most;
+}
+
 static ur_status make_class(nester *n, size_t piece)
 {
     nest_class *c = &n->classes[n->class_count];
+    const ur_piece *p = &n->pieces[piece];
     c->representative = piece;
-    c->turns = calloc(n->turn_count, sizeof *c->turns);
+    c->turn_count = turns_of(n->options, p);
+    c->turns = calloc(c->turn_count, sizeof *c->turns);
     if (!c->turns)
         return ur_error_out_of_memory(n->error);
     n->class_count++;
-    const ur_piece *p = &n->pieces[piece];
     double base = n->options->level ? nest_level_angle(n->geos, &p->paths[0]) : 0.0;
     bool grain = n->options->grain && p->has_rulings;
-    for (size_t t = 0; t < n->turn_count; t++) {
-        double angle = base + 2 * M_PI * (double)t / (double)n->turn_count;
+    for (size_t t = 0; t < c->turn_count; t++) {
+        double angle = base + 2 * M_PI * (double)t / (double)c->turn_count;
         if (grain) /* the rulings at the grain's angle, end for end, then either way off it */
             angle = grain_turn(n->options, p->ruling_angle, t);
         ur_status status =
@@ -317,7 +343,7 @@ static ur_status place_piece(nester *n, size_t piece)
         if (sheet < n->sheet_count && n->sheet_area[sheet] + shape_of(n, piece, 0)->area > room)
             continue; /* not enough area left on it, whatever the shapes */
         ur_vec2 best_key = {0, 0};
-        for (size_t t = 0; t < n->turn_count; t++) {
+        for (size_t t = 0; t < n->classes[n->class_of[piece]].turn_count; t++) {
             ur_vec2 at = {0, 0};
             if (!place_on(n, sheet, piece, t, &at))
                 continue;
@@ -446,7 +472,7 @@ static void nester_free(nester *n)
             GEOSGeom_destroy_r(n->geos, n->nfps[k]);
     free(n->nfps);
     for (size_t c = 0; c < n->class_count; c++) {
-        for (size_t t = 0; n->classes[c].turns && t < n->turn_count; t++)
+        for (size_t t = 0; n->classes[c].turns && t < n->classes[c].turn_count; t++)
             nest_shape_free(n->geos, &n->classes[c].turns[t]);
         free(n->classes[c].turns);
     }
@@ -677,9 +703,7 @@ ur_status ur_layout_nest(const ur_piece *pieces, size_t count, const ur_nest_opt
                 .pieces = pieces,
                 .count = count,
                 .options = options,
-                .turn_count = options->grain           ? (options->grain_tolerance > 0 ? 6 : 2)
-                              : options->rotations > 1 ? options->rotations
-                                                       : 1,
+                .turn_count = most_turns(options, pieces, count),
                 .remnant_count = options->remnants ? options->remnant_count : 0,
                 .error = error};
     n.sheet_count = n.remnant_count;

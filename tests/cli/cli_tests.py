@@ -1727,6 +1727,27 @@ def job_parts_of_different_materials(work):
 
 
 @test
+def a_parts_own_rotations_share_the_sheets(work):
+    """A part's own --rotations goes with its pieces: both parts still share
+    one sheet (no sheets of its own), and the job runs as one layout."""
+    write(work, "turns.xml", JOB_HEAD + """  <part surface="cylinder" name="drum">
+    <option name="radius" value="20"/><option name="height" value="40"/>
+  </part>
+  <part surface="cylinder" name="still">
+    <option name="radius" value="15"/><option name="height" value="30"/>
+    <option name="rotations" value="1"/>
+  </part>
+  <output name="turns" report="turns.json"/>
+</job>
+""")
+    run(work, "job", "turns.xml", "-o", "out", "--quiet")
+    found = report(work, os.path.join("out", "turns.json"))
+    check(len(found["sheets"]) == 1 and "material" not in found["sheets"][0],
+          "sheets %r" % found["sheets"])
+    check(sorted(p["sheet"] for p in found["pieces"]) == [1, 1], "pieces %r" % found["pieces"])
+
+
+@test
 def bad_jobs(work):
     part = """  <part surface="cylinder"><option name="radius" value="40"/>
     <option name="height" value="50"/></part>

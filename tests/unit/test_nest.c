@@ -313,6 +313,57 @@ static void test_grain_rule_holds(void **state)
     free_pieces(pieces, COUNT);
 }
 
+/* The turn of a placement, degrees, in 0 .. 360. */
+static double degrees_of(ur_transform2 t)
+{
+    double angle = atan2(t.sine, t.cosine) * 180 / M_PI;
+    return angle < -1e-9 ? angle + 360 : fabs(angle);
+}
+
+/*
+ * Under a grain rule, strips with rulings keep to it; L shapes without
+ * rulings turn in the nesting's 4 quarter turns, not in the rule's steps;
+ * L shapes with their own rotations of 1 do not turn at all.
+ */
+static void test_turns_of_each_piece(void **state)
+{
+    (void)state;
+    enum { STRIPS = 3, FREE = 4, FIXED = 4, COUNT = STRIPS + FREE + FIXED };
+    ur_piece pieces[COUNT];
+    for (int k = 0; k < COUNT; k++) {
+        pieces[k] =
+            k < STRIPS ? rectangle("strip", 120, 30) : l_shape(k < STRIPS + FREE ? "L" : "fixed");
+        pieces[k].has_rulings = k < STRIPS;
+        pieces[k].ruling_angle = k < STRIPS ? M_PI / 6 : NAN;
+        pieces[k].rotations = k >= STRIPS + FREE ? 1 : 0;
+    }
+    ur_nest_options o = sheet_options(300, 200, 5, 2, 4, false);
+    o.grain = true;
+    o.grain_angle = 0;
+    o.grain_tolerance = 10 * M_PI / 180;
+    ur_layout layout;
+    ur_error error;
+    assert_int_equal(ur_layout_nest(pieces, COUNT, &o, &layout, &error), UR_OK);
+    check_layout(pieces, COUNT, &layout, &o);
+    for (size_t s = 0; s < layout.sheet_count; s++)
+        for (size_t p = 0; p < layout.sheets[s].placement_count; p++) {
+            const ur_placement *placement = &layout.sheets[s].placements[p];
+            double angle = degrees_of(placement->transform);
+            size_t k = placement->piece_index;
+            if (k < STRIPS) {
+                double off = remainder(angle + 30, 180);
+                if (fabs(off) > 10 + 1e-9)
+                    fail_msg("rulings at %g degrees to the grain", off);
+            } else if (k < STRIPS + FREE) {
+                if (fabs(remainder(angle, 90)) > 1e-9)
+                    fail_msg("an L shape turned by %g degrees", angle);
+            } else if (fabs(remainder(angle, 360)) > 1e-9)
+                fail_msg("an L shape that may not turn turned by %g degrees", angle);
+        }
+    ur_layout_free(&layout);
+    free_pieces(pieces, COUNT);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -323,6 +374,7 @@ int main(void)
         cmocka_unit_test(test_refusals),
         cmocka_unit_test(test_grain_rule_holds),
         cmocka_unit_test(test_remnants_first),
+        cmocka_unit_test(test_turns_of_each_piece),
     };
     return cmocka_run_group_tests(tests, start, finish);
 }
