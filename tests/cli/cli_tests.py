@@ -361,6 +361,17 @@ def bad(work, pattern, *args):
     check(after == before, "files left behind: %r" % sorted(after - before))
 
 
+def dxf_audits_clean(path):
+    """ezdxf reads the DXF and its audit finds no errors."""
+    audit = subprocess.run(
+        ["/usr/bin/python3", "-c",
+         "import ezdxf,sys\n"
+         "doc=ezdxf.readfile(sys.argv[1])\n"
+         "print(len(doc.audit().errors))", path], capture_output=True, text=True)
+    check(audit.returncode == 0 and audit.stdout.split() == ["0"],
+          "ezdxf on %s: %s %s" % (path, audit.stdout, audit.stderr))
+
+
 def write(work, name, text):
     with open(os.path.join(work, name), "w") as f:
         f.write(text)
@@ -1526,13 +1537,7 @@ def nest_merge_lines_cuts_shared_lines_once(work):
         close(sheets[0]["cut_length_mm"], length, 1e-6, name + " cut length")
         close(sheets[0]["utilisation"], 1.0, 1e-6, name + " utilisation")
         check(report(work, name).get("sheets_lower_bound") == 1, name + ": lower bound")
-    audit = subprocess.run(
-        ["/usr/bin/python3", "-c",
-         "import ezdxf,sys\n"
-         "doc=ezdxf.readfile(sys.argv[1])\n"
-         "print(len(doc.audit().errors))",
-         os.path.join(work, "merged.dxf")], capture_output=True, text=True)
-    check(audit.returncode == 0 and audit.stdout.split() == ["0"], "ezdxf: %s %s" % (audit.stdout, audit.stderr))
+    dxf_audits_clean(os.path.join(work, "merged.dxf"))
     # A surface job takes the option too, and with kerf compensation.
     run(work, "cylinder", "--radius", "20", "--height", "40", "--merge-lines", "-o", "c.svg", "--quiet")
 
@@ -1602,13 +1607,7 @@ def nest_cuts_a_part_too_long_for_the_sheet(work):
     # Without joints the longer part would be 480 to 490 mm long; a lap adds to one of them.
     lengths = sorted(p["flat_area_mm2"] / 60 for p in pieces)
     check(400 <= lengths[0] <= 421 and 470 <= lengths[1] <= 491, "lengths by area %r" % lengths)
-    audit = subprocess.run(
-        ["/usr/bin/python3", "-c",
-         "import ezdxf,sys\n"
-         "doc=ezdxf.readfile(sys.argv[1])\n"
-         "print(len(doc.audit().errors))",
-         os.path.join(work, "bar-out.dxf")], capture_output=True, text=True)
-    check(audit.returncode == 0 and audit.stdout.split() == ["0"], "ezdxf: %s %s" % (audit.stdout, audit.stderr))
+    dxf_audits_clean(os.path.join(work, "bar-out.dxf"))
     bad(work, r"bar-1 .* does not fit", "nest", "bar.svg", "--no-split", "-o", "refused.svg")
 
 
