@@ -23,7 +23,8 @@ TEST_PACKAGES = cmocka
 # libFuzzer's coverage instrumentation, ASan and UBSan, in a tree of its own.
 ifeq ($(FUZZ),1)
 BUILD = build/fuzz
-CC = clang
+FUZZ_CC ?= clang
+override CC = $(FUZZ_CC)
 SANITIZE_FLAGS = -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=all \
 	-fno-omit-frame-pointer
 OPTIMISE = -O1 -g

@@ -379,8 +379,9 @@ typedef struct ur_parts {
  * without its value, a number that is not one), no physical size and no
  * options->unit ("give --units"), an open shape (naming the SVG element and
  * its id, or the DXF entity, that does not close), NaN, infinite or
- * too-large coordinates, a ring of zero area, two rings that cross, and a
- * file with no closed shape at all.  A ring that crosses itself is
+ * too-large coordinates, a ring of zero area, two rings that cross, a part
+ * whose holes together fill it (naming its outline), and a file with no
+ * closed shape at all.  A ring that crosses itself is
  * repaired with GEOSMakeValid when that gives one polygon (a warning says
  * so) and refused, naming the part, when it does not.  On failure *parts is
  * empty.  Free with ur_parts_free.
