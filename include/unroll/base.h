@@ -15,6 +15,13 @@
 
 #define UR_VERSION "0.1.0"
 
+/*
+ * The largest coordinate or length, in mm, taken from any input (1000 km):
+ * far beyond any sheet or part, and small enough that squares, cross
+ * products and areas of such numbers never overflow.
+ */
+#define UR_LENGTH_MAX 1e9
+
 /* The values double as the command's exit status. */
 typedef enum ur_status {
     UR_OK = 0,

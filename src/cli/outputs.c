@@ -77,8 +77,9 @@ bool cli_parse_roll(cli_job *job, const char *value)
 {
     char *end = NULL;
     double width = strtod(value, &end);
-    if (end == value || *end != '\0' || !isfinite(width) || !(width > 0)) {
-        cli_message("%s: --roll: '%s' is not a width in mm", job->command, value);
+    if (end == value || *end != '\0' || !(width > 0) || !(width <= UR_LENGTH_MAX)) {
+        cli_message("%s: --roll: '%s' is not a width in mm up to %g", job->command, value,
+                    UR_LENGTH_MAX);
         return false;
     }
     job->roll_width = width;

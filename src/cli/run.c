@@ -27,8 +27,12 @@ bool cli_directory_exists(const char *option, const char *path)
     snprintf(copy, sizeof copy, "%s", path);
     const char *directory = dirname(copy);
     struct stat info;
-    if (stat(directory, &info) != 0 || !S_ISDIR(info.st_mode)) {
+    if (stat(directory, &info) != 0) {
         cli_message("%s '%s': directory '%s' does not exist", option, path, directory);
+        return false;
+    }
+    if (!S_ISDIR(info.st_mode)) {
+        cli_message("%s '%s': '%s' is not a directory", option, path, directory);
         return false;
     }
     return true;
@@ -324,6 +328,14 @@ ur_status cli_place_pieces(const cli_job *job, const ur_machine *machine,
     for (size_t k = 0; job->roll_width <= 0 && k < choice_count; k++) {
         options.sheet_width = choices[k].width;
         options.sheet_height = choices[k].height;
+        if (count > 1 && options.spacing >= fmax(options.sheet_width, options.sheet_height)) {
+            /* every part would take a sheet of its own: surely a mistake */
+            status = ur_error_set(error, UR_ERROR_INPUT,
+                                  "--spacing %g mm is not less than the %g x %g mm sheet: no two "
+                                  "parts could share a sheet",
+                                  options.spacing, options.sheet_width, options.sheet_height);
+            continue;
+        }
         status = ur_layout_nest(pieces, count, &options, layout, error);
         if (status != UR_ERROR_INPUT)
             break;

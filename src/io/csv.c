@@ -81,6 +81,10 @@ static ur_status parse_coordinate(const char *path, size_t line, char *field, do
     if (!isfinite(parsed))
         return ur_error_set(error, UR_ERROR_INPUT, "%s:%zu: '%.*s' is not a finite number", path,
                             line, UR_FIELD_QUOTE_MAX, field);
+    if (fabs(parsed) > UR_LENGTH_MAX)
+        return ur_error_set(error, UR_ERROR_INPUT,
+                            "%s:%zu: '%.*s' is beyond the largest coordinate unroll takes, %g mm",
+                            path, line, UR_FIELD_QUOTE_MAX, field, UR_LENGTH_MAX);
     *value = parsed;
     return UR_OK;
 }

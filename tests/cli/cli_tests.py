@@ -1770,6 +1770,66 @@ def bad_jobs(work):
     bad(work, r"cannot open", "job", "none.xml")
 
 
+BAD_DIR = os.path.join(REPO, "tests", "data", "bad")
+
+
+def bad_cases():
+    """The cases of tests/data/bad/MANIFEST: (line number, status, pattern, arguments)."""
+    import shlex
+    cases = []
+    with open(os.path.join(BAD_DIR, "MANIFEST")) as f:
+        for number, line in enumerate(f, 1):
+            line = line.strip()
+            if not line or line.startswith("#"):
+                continue
+            fields = line.split(" | ", 2)
+            if len(fields) != 3 or not fields[0].isdigit():
+                raise Failure("MANIFEST:%d: not 'STATUS | PATTERN | ARGUMENTS'" % number)
+            cases.append((number, int(fields[0]), fields[1], shlex.split(fields[2])))
+    return cases
+
+
+def snapshot(directory):
+    """Every file under directory, hidden ones too, with its bytes."""
+    found = {}
+    for root, _, files in os.walk(directory):
+        for name in files:
+            path = os.path.join(root, name)
+            with open(path, "rb") as f:
+                found[os.path.relpath(path, directory)] = f.read()
+    return found
+
+
+@test
+def bad_input_corpus(work):
+    """Every case of tests/data/bad/MANIFEST, each in a fresh copy of the
+    directory: the exit status, a message matching the pattern, and not one
+    file added, removed or changed (temporary files included)."""
+    cases = bad_cases()
+    check(len(cases) >= 50, "only %d cases" % len(cases))
+    failures = []
+    for number, status, pattern, args in cases:
+        case = os.path.join(work, "case-%d" % number)
+        shutil.copytree(BAD_DIR, case)
+        before = snapshot(case)
+        result = subprocess.run([UNROLL, *args], cwd=case, capture_output=True, text=True,
+                                env=dict(os.environ, UNROLL_PROFILES=os.path.join(REPO, "profiles")))
+        why = []
+        if result.returncode != status:
+            why.append("exit %d, expected %d" % (result.returncode, status))
+        if not re.search(pattern, result.stderr):
+            why.append("message does not match %r" % pattern)
+        after = snapshot(case)
+        if after != before:
+            changed = sorted(set(after) ^ set(before) | {k for k in before if after.get(k) != before[k]})
+            why.append("files added, removed or changed: %r" % changed)
+        if why:
+            failures.append("MANIFEST:%d (unroll %s): %s; stderr: %s"
+                            % (number, " ".join(args), "; ".join(why), result.stderr.strip()))
+        shutil.rmtree(case)
+    check(not failures, "\n  ".join([""] + failures))
+
+
 def main():
     passed = failed = 0
     only = sys.argv[2:]  # names of tests to run after the program; all when none
