@@ -1770,6 +1770,123 @@ def bad_jobs(work):
     bad(work, r"cannot open", "job", "none.xml")
 
 
+def run_env(work, args, **env):
+    return subprocess.run([UNROLL, *args], cwd=work, capture_output=True, text=True,
+                          env=dict(os.environ, UNROLL_PROFILES=os.path.join(REPO, "profiles"), **env))
+
+
+@test
+def failed_writes_leave_the_old_files(work):
+    """UNROLL_TEST_FAIL_WRITE_AFTER=N (a test-only switch of the atomic
+    writer) makes every write fail with EIO once N bytes have gone out, as a
+    full disk would.  Failing a 2-sheet nesting in 4 formats (7 files) at
+    many points, every earlier file stays byte for byte and no temporary is
+    left; with room enough the same run replaces them all."""
+    write(work, "plate.svg", PLATE_SVG_MM)
+    nest = ["nest", "plate.svg:2", "--sheet", "200x80", "--nest-time", "0", "--format",
+            "svg,dxf,pdf,png", "-o", "h.svg", "--quiet"]
+    old, new = nest + ["--margin", "5"], nest + ["--margin", "4"]
+    names = ["h-1.svg", "h-2.svg", "h-1.dxf", "h-2.dxf", "h.pdf", "h-1.png", "h-2.png"]
+    sizing = os.path.join(work, "sizing")
+    os.mkdir(sizing)
+    write(sizing, "plate.svg", PLATE_SVG_MM)
+    run(sizing, *new)
+    total = sum(os.path.getsize(os.path.join(sizing, n)) for n in names)
+    run(work, *old)
+    before = snapshot(work)
+    check(sorted(before) == sorted(names + ["plate.svg"] + [os.path.join("sizing", n)
+                                                            for n in names + ["plate.svg"]]),
+          "files %r" % sorted(before))
+    points = sorted({0, 1, total - 1} | {total * k // 29 for k in range(1, 29)})
+    for n in points:
+        result = run_env(work, new, UNROLL_TEST_FAIL_WRITE_AFTER=str(n))
+        check(result.returncode == 2, "failing after %d of %d bytes: exit %d; %s"
+              % (n, total, result.returncode, result.stderr.strip()))
+        check(re.search(r"h(-[12])?\.(svg|dxf|pdf|png).*Input/output error", result.stderr),
+              "failing after %d bytes: %r" % (n, result.stderr))
+        check(snapshot(work) == before, "failing after %d bytes changed or left files: %r"
+              % (n, sorted(set(snapshot(work)) ^ set(before))))
+    result = run_env(work, new, UNROLL_TEST_FAIL_WRITE_AFTER=str(total))
+    check(result.returncode == 0, "room for all %d bytes: exit %d; %s"
+          % (total, result.returncode, result.stderr.strip()))
+    after = snapshot(work)
+    check(all(after[n] != before[n] for n in names), "not every file was replaced")
+    # One file on its own: the edge of regression of a strip (the curve CSV writer).
+    write_points(work, "r1.csv", circle_points(30, 0, 0, math.pi, 41))
+    write_points(work, "r2.csv", circle_points(20, 40, 0, math.pi, 41))
+    strip = ["strip", "--rail1", "r1.csv", "--rail2", "r2.csv", "-o", "-", "--quiet"]
+    write(work, "edge.csv", "precious\n")
+    result = run_env(work, strip + ["--regression", "edge.csv"], UNROLL_TEST_FAIL_WRITE_AFTER="0")
+    check(result.returncode == 2 and "edge.csv" in result.stderr,
+          "failed regression write: exit %d; %s" % (result.returncode, result.stderr.strip()))
+    with open(os.path.join(work, "edge.csv")) as f:
+        check(f.read() == "precious\n", "edge.csv was changed")
+    check(not [n for n in os.listdir(work) if n.startswith(".")], "temporaries left")
+
+
+def interrupted(work, args, signal_number, delay):
+    """Runs unroll, sends it a signal after delay seconds; its exit status and stderr."""
+    import signal
+    import time
+    process = subprocess.Popen([UNROLL, *args], cwd=work, stdout=subprocess.PIPE,
+                               stderr=subprocess.PIPE, text=True,
+                               env=dict(os.environ, UNROLL_PROFILES=os.path.join(REPO, "profiles")))
+    time.sleep(delay)
+    check(process.poll() is None, "unroll %s ended before the signal" % " ".join(args))
+    process.send_signal(signal_number)
+    _, stderr = process.communicate(timeout=600)
+    return process.returncode, stderr
+
+
+@test
+def signals_stop_cleanly(work):
+    """SIGINT during a long nesting search and SIGTERM during the flattening
+    (ARAP) of an 80,000-triangle mesh: exit status 130 and 143, a message,
+    the earlier output untouched and no temporary left."""
+    import signal
+    write(work, "l.svg", """<svg xmlns="http://www.w3.org/2000/svg" width="90mm" height="90mm" viewBox="0 0 90 90">
+<path id="ell" d="M0,0 H90 V25 H25 V90 H0 Z"/></svg>
+""")
+    write(work, "tri.svg", """<svg xmlns="http://www.w3.org/2000/svg" width="80mm" height="60mm" viewBox="0 0 80 60">
+<polygon id="tri" points="0,0 80,0 0,60"/></svg>
+""")
+    write(work, "n-1.svg", "old sheet\n")
+    write(work, "n.json", "old report\n")
+    before = snapshot(work)
+    status, stderr = interrupted(work, ["nest", "l.svg:200", "tri.svg:200", "--nest-time", "600",
+                                        "-o", "n.svg", "--report", "n.json", "--quiet"],
+                                 signal.SIGINT, 1.0)
+    check(status == 130, "nest after SIGINT: exit %d; %s" % (status, stderr.strip()))
+    check(re.search(r"stopped by SIGINT", stderr), "nest after SIGINT: %r" % stderr)
+    check(snapshot(work) == before, "nest after SIGINT left or changed files")
+    write_bowl_stl(os.path.join(work, "bowl.stl"), 200)
+    before = snapshot(work)
+    status, stderr = interrupted(work, ["mesh", "bowl.stl", "--flatten", "arap", "--iterations",
+                                        "100000", "--sheet", "2000x2000", "-o", "b.svg",
+                                        "--strain-png", "b.png"], signal.SIGTERM, 0.3)
+    check(status == 143, "mesh after SIGTERM: exit %d; %s" % (status, stderr.strip()))
+    check(re.search(r"stopped by SIGTERM", stderr), "mesh after SIGTERM: %r" % stderr)
+    check(snapshot(work) == before, "mesh after SIGTERM left or changed files")
+
+
+def write_bowl_stl(path, n):
+    """A paraboloid over an n x n grid, 2 n^2 triangles, as binary STL: far from developable."""
+    import struct
+    def point(i, j):
+        return (i, j, 0.01 * ((i - n / 2) ** 2 + (j - n / 2) ** 2))
+    with open(path, "wb") as f:
+        f.write(b"unroll test bowl".ljust(80, b" "))
+        f.write(struct.pack("<I", 2 * n * n))
+        for i in range(n):
+            for j in range(n):
+                a, b, c, d = point(i, j), point(i + 1, j), point(i + 1, j + 1), point(i, j + 1)
+                for tri in ((a, b, c), (a, c, d)):
+                    f.write(struct.pack("<3f", 0, 0, 0))
+                    for p in tri:
+                        f.write(struct.pack("<3f", *p))
+                    f.write(b"\0\0")
+
+
 BAD_DIR = os.path.join(REPO, "tests", "data", "bad")
 
 
