@@ -145,24 +145,43 @@ static ur_status read_line(const char *path, size_t line, char *text, ur_point_l
     return point_list_push(list, point, line, error);
 }
 
+/*
+ * Longest line taken.  A curve file is short lines of text; a longer line
+ * or a NUL byte means some other kind of file, refused at once rather than
+ * read whole into memory (a 1 GB file with no newline, say).
+ */
+enum { LINE_LENGTH_MAX = 4096 };
+
 static ur_status read_all_lines(FILE *file, const char *path, ur_point_list *list, ur_error *error)
 {
-    char *buffer = NULL;
-    size_t buffer_size = 0;
-    size_t line = 0;
+    char buffer[LINE_LENGTH_MAX + 1];
+    size_t length = 0, line = 1;
     ur_status status = UR_OK;
     errno = 0;
-    while (getline(&buffer, &buffer_size, file) >= 0) {
-        line++;
+    for (int c = getc(file); status == UR_OK && c != EOF; c = getc(file)) {
+        if (c == '\n') {
+            buffer[length] = '\0';
+            status = read_line(path, line++, buffer, list, error);
+            length = 0;
+        } else if (c == '\0') {
+            status = ur_error_set(error, UR_ERROR_INPUT, "%s:%zu: a NUL byte: not a text file",
+                                  path, line);
+        } else if (length == LINE_LENGTH_MAX) {
+            status = ur_error_set(error, UR_ERROR_INPUT, "%s:%zu: longer than %d characters", path,
+                                  line, LINE_LENGTH_MAX);
+        } else {
+            buffer[length++] = (char)c;
+        }
+    }
+    if (status == UR_OK && length > 0) { /* the last line, without a newline */
+        buffer[length] = '\0';
         status = read_line(path, line, buffer, list, error);
-        if (status != UR_OK)
-            break;
-        errno = 0;
     }
     if (status == UR_OK && ferror(file))
         status = ur_error_set(error, UR_ERROR_INPUT, "%s: cannot read: %s", path,
                               strerror(errno ? errno : EIO));
-    free(buffer);
+    if (status == UR_ERROR_INTERNAL) /* out of memory: say for which file */
+        ur_error_prefix(error, "%s: ", path);
     return status;
 }
 

@@ -1887,6 +1887,48 @@ def write_bowl_stl(path, n):
                     f.write(b"\0\0")
 
 
+@test
+def inputs_beyond_the_limits_fail_cleanly(work):
+    """Inputs made here, far beyond reason (man unroll, LIMITS): a 1 GB file
+    (sparse, all NUL bytes) as every kind of input, an SVG nested 100,000
+    deep, and under ulimit -v 600 MB a curve of 10^7 points: each fails
+    with exit status 1 or 2 and a message naming the file, leaving nothing.
+    AddressSanitizer reserves terabytes of address space, so the sanitizer
+    build skips the ulimit case."""
+    import resource
+    for name in ("huge.csv", "huge.stl", "huge.svg", "huge.xml"):
+        with open(os.path.join(work, name), "wb") as f:
+            f.truncate(1 << 30)
+    cases = [(["tangent", "--curve", "huge.csv", "--width", "10", "-o", "x.svg"],
+              r"huge\.csv:1: a NUL byte: not a text file"),
+             (["mesh", "huge.stl", "-o", "x.svg"], r"huge\.stl"),
+             (["nest", "huge.svg", "-o", "x.svg"], r"huge\.svg:1: "),
+             (["job", "huge.xml"], r"huge\.xml:1: ")]
+    with open(os.path.join(work, "deep.svg"), "w") as f:
+        f.write('<svg xmlns="http://www.w3.org/2000/svg" width="10mm" height="10mm" viewBox="0 0 10 10">\n'
+                + "<g>" * 100000 + '<rect width="5" height="5"/>' + "</g>" * 100000 + "</svg>\n")
+    cases.append((["nest", "deep.svg", "-o", "x.svg"], r"deep\.svg:2: Excessive depth"))
+    limit = None
+    if "/sanitize/" not in UNROLL:
+        with open(os.path.join(work, "long.csv"), "w") as f:
+            f.write("\n".join("%d,%d,0" % (i, i % 2) for i in range(10 ** 7)) + "\n")
+        cases.append((["tangent", "--curve", "long.csv", "--width", "10", "-o", "x.svg"],
+                      r"long\.csv: out of memory"))
+        limit = 600 << 20
+    before = set(os.listdir(work))
+    for args, pattern in cases:
+        limited = limit if "long.csv" in args else None
+        result = subprocess.run(
+            [UNROLL, *args], cwd=work, capture_output=True, text=True,
+            env=dict(os.environ, UNROLL_PROFILES=os.path.join(REPO, "profiles")),
+            preexec_fn=(lambda: resource.setrlimit(resource.RLIMIT_AS, (limited, limited)))
+            if limited else None)
+        check(result.returncode in (1, 2), "unroll %s: exit %d (a signal is negative); %s"
+              % (" ".join(args), result.returncode, result.stderr.strip()))
+        check(re.search(pattern, result.stderr), "unroll %s: %r" % (" ".join(args), result.stderr))
+        check(set(os.listdir(work)) == before, "unroll %s left files" % " ".join(args))
+
+
 BAD_DIR = os.path.join(REPO, "tests", "data", "bad")
 
 
