@@ -605,6 +605,8 @@ int cli_run_job(const cli_job *job)
     if (status == UR_OK)
         status = cli_allowances_after_placing(job, &state.machine, &state.layout, state.pieces,
                                               state.piece_count, &error);
+    /* Every file of the run (cut files, report, pictures, curves) appears at the end, or none. */
+    ur_output_set_begin();
     if (status == UR_OK) {
         cli_allowance_warnings(job, state.pieces, state.piece_count);
         cli_not_placed_warning(job, &state.layout, state.pieces);
@@ -620,6 +622,10 @@ int cli_run_job(const cli_job *job)
             code = cli_write_regression(job, edge, edge_count);
         if (!code)
             code = cli_write_adjusted_rail(job, &adjusted);
+    }
+    if (ur_output_set_end(code == 0, &error) != UR_OK && code == 0) {
+        cli_message("%s: %s", job->command, error.message);
+        code = cli_exit_status(&error);
     }
     free(edge);
     free(adjusted.points);

@@ -14,6 +14,8 @@
 #define _GNU_SOURCE /* fopencookie, for the test-only failure injection */
 #include "atomic.h"
 
+#include "unroll/out.h"
+
 #include <errno.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -242,11 +244,72 @@ ur_status ur_atomic_close(ur_atomic_file *file, ur_error *error)
     return UR_OK;
 }
 
+/* ---- Output sets ---------------------------------------------------------- */
+
+/* The open set: how deep, whether an end refused it, and the files it holds back. */
+static struct {
+    size_t depth;
+    bool refused;
+    ur_atomic_file *held; /* closed temporaries, renamed or removed at the outermost end */
+    size_t count, capacity;
+} set;
+
+void ur_output_set_begin(void)
+{
+    set.depth++;
+}
+
+/* Removes every temporary the set holds and forgets them. */
+static void set_discard(void)
+{
+    for (size_t i = 0; i < set.count; i++)
+        ur_atomic_discard(&set.held[i]);
+    free(set.held);
+    set.held = NULL;
+    set.count = set.capacity = 0;
+}
+
+ur_status ur_output_set_end(bool commit, ur_error *error)
+{
+    if (set.depth == 0)
+        return ur_error_set(error, UR_ERROR_INTERNAL, "an output set ended that was not begun");
+    if (!commit)
+        set.refused = true;
+    if (--set.depth > 0)
+        return UR_OK;
+    ur_status status = UR_OK;
+    if (!set.refused) {
+        status = ur_cancel_check(error);
+        for (size_t i = 0; status == UR_OK && i < set.count; i++)
+            status = ur_atomic_commit(&set.held[i], error);
+    }
+    set_discard(); /* removes what was not renamed */
+    set.refused = false;
+    return status;
+}
+
+/* Takes over a closed temporary until the set ends; file is left empty. */
+static ur_status set_hold(ur_atomic_file *file, ur_error *error)
+{
+    if (set.count == set.capacity) {
+        ur_atomic_file *held =
+            ur_array_grow(set.held, &set.capacity, set.count, sizeof *held, 8, error);
+        if (!held)
+            return UR_ERROR_INTERNAL;
+        set.held = held;
+    }
+    set.held[set.count++] = *file;
+    memset(file, 0, sizeof *file);
+    return UR_OK;
+}
+
 ur_status ur_atomic_commit(ur_atomic_file *file, ur_error *error)
 {
     if (file->stream || !file->temp_path)
         return ur_error_set(error, UR_ERROR_INTERNAL, "'%s' is not ready to commit",
                             file->path ? file->path : "(null)");
+    if (set.depth > 0)
+        return set_hold(file, error);
     if (rename(file->temp_path, file->path) != 0)
         return ur_error_set(error, UR_ERROR_INPUT, "cannot write '%s': %s", file->path,
                             strerror(errno));

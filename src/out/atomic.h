@@ -12,7 +12,9 @@
  * Life of a file: ur_atomic_open, write to ->stream, ur_atomic_close, then
  * ur_atomic_commit; ur_atomic_discard at any point undoes what is not yet
  * committed and frees everything.  A zeroed ur_atomic_file is "nothing yet",
- * safe to discard.  A cancelled run (ur_cancel_request) renames nothing:
+ * safe to discard.  Inside an output set (ur_output_set_begin, unroll/out.h)
+ * ur_atomic_commit only hands the temporary to the set, which renames
+ * everything at its end.  A cancelled run (ur_cancel_request) renames nothing:
  * ur_atomic_commit and ur_atomic_write then fail with UR_ERROR_CANCELLED.
  *
  * For tests only: UNROLL_TEST_FAIL_WRITE_AFTER=N in the environment makes

@@ -1779,14 +1779,15 @@ def run_env(work, args, **env):
 def failed_writes_leave_the_old_files(work):
     """UNROLL_TEST_FAIL_WRITE_AFTER=N (a test-only switch of the atomic
     writer) makes every write fail with EIO once N bytes have gone out, as a
-    full disk would.  Failing a 2-sheet nesting in 4 formats (7 files) at
-    many points, every earlier file stays byte for byte and no temporary is
-    left; with room enough the same run replaces them all."""
+    full disk would.  Failing a 2-sheet nesting in 4 formats and its report
+    (8 files, one output set) at many points, every earlier file stays byte
+    for byte and no temporary is left; with room enough the same run
+    replaces them all."""
     write(work, "plate.svg", PLATE_SVG_MM)
     nest = ["nest", "plate.svg:2", "--sheet", "200x80", "--nest-time", "0", "--format",
-            "svg,dxf,pdf,png", "-o", "h.svg", "--quiet"]
+            "svg,dxf,pdf,png", "-o", "h.svg", "--report", "h.json", "--quiet"]
     old, new = nest + ["--margin", "5"], nest + ["--margin", "4"]
-    names = ["h-1.svg", "h-2.svg", "h-1.dxf", "h-2.dxf", "h.pdf", "h-1.png", "h-2.png"]
+    names = ["h-1.svg", "h-2.svg", "h-1.dxf", "h-2.dxf", "h.pdf", "h-1.png", "h-2.png", "h.json"]
     sizing = os.path.join(work, "sizing")
     os.mkdir(sizing)
     write(sizing, "plate.svg", PLATE_SVG_MM)
@@ -1802,10 +1803,11 @@ def failed_writes_leave_the_old_files(work):
         result = run_env(work, new, UNROLL_TEST_FAIL_WRITE_AFTER=str(n))
         check(result.returncode == 2, "failing after %d of %d bytes: exit %d; %s"
               % (n, total, result.returncode, result.stderr.strip()))
-        check(re.search(r"h(-[12])?\.(svg|dxf|pdf|png).*Input/output error", result.stderr),
+        check(re.search(r"h(-[12])?\.(svg|dxf|pdf|png|json).*Input/output error", result.stderr),
               "failing after %d bytes: %r" % (n, result.stderr))
-        check(snapshot(work) == before, "failing after %d bytes changed or left files: %r"
-              % (n, sorted(set(snapshot(work)) ^ set(before))))
+        now = snapshot(work)
+        check(now == before, "failing after %d bytes changed or left files: %r"
+              % (n, sorted(k for k in set(now) | set(before) if now.get(k) != before.get(k))))
     result = run_env(work, new, UNROLL_TEST_FAIL_WRITE_AFTER=str(total))
     check(result.returncode == 0, "room for all %d bytes: exit %d; %s"
           % (total, result.returncode, result.stderr.strip()))
