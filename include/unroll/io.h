@@ -207,7 +207,7 @@ void ur_mesh_import_options_default(ur_mesh_import_options *options);
 #define UR_MESH_IMPORT_MAX_VERTICES 50000000u
 
 /* Coordinates beyond 1000 km, once in millimetres, are refused. */
-#define UR_MESH_IMPORT_MAX_COORDINATE 1e9
+#define UR_MESH_IMPORT_MAX_COORDINATE UR_LENGTH_MAX
 
 /*
  * About how many bytes reading the mesh file at path takes at its peak

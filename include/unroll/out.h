@@ -65,6 +65,20 @@ ur_format ur_format_from_name(const char *name);
 ur_status ur_formats_parse(const char *list, unsigned *formats, ur_error *error);
 
 /*
+ * Output sets: between ur_output_set_begin and ur_output_set_end every file
+ * the writers of this module and ur_curve_csv_write complete (cut files,
+ * reports, pictures, curves) stays a hidden temporary next to its name;
+ * ur_output_set_end renames them all into place when commit is true, else
+ * removes them all, so the files of a whole run appear together or not at
+ * all.  Sets nest: only the outermost end renames, and a set that any end
+ * refused (commit false) is removed.  One process-wide set, not for use
+ * from several threads at once.  ur_output_set_end fails, renaming nothing,
+ * when the run was cancelled (ur_cancel_request).
+ */
+void ur_output_set_begin(void);
+ur_status ur_output_set_end(bool commit, ur_error *error);
+
+/*
  * Writes the layout in every format of formats (ur_format bits; 0: the one
  * path's extension names).  Each format's file is path with that format's
  * extension: path's own extension, if it names a format, is replaced

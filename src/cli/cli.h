@@ -1,7 +1,8 @@
 /*
  * cli.h: what the files of the unroll command share.  Only this module talks
  * to the user: messages go to stderr as "unroll: ...", and the exit status is
- * 0 (success), 1 (internal error) or 2 (bad usage or input).
+ * 0 (success), 1 (internal error) or 2 (bad usage or input), or 128 + N when
+ * signal N (SIGINT, SIGTERM) stopped the run.
  */
 #ifndef UNROLL_CLI_H
 #define UNROLL_CLI_H
@@ -289,6 +290,15 @@ void cli_allowance_warnings(const cli_job *job, const ur_piece *pieces, size_t c
  * `what`, and EXIT_INTERNAL (memory.c).
  */
 int cli_check_memory(const cli_job *job, const char *what, size_t needed);
+
+/* Installs the SIGINT and SIGTERM handlers (signals.c); false if the system refuses. */
+bool cli_catch_signals(void);
+
+/*
+ * The exit status: code, or 128 + the signal's number when SIGINT or
+ * SIGTERM arrived, said on stderr.
+ */
+int cli_signal_exit(int code);
 
 /* unroll profiles [show NAME] */
 int cli_profiles(int argc, char **argv);

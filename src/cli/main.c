@@ -57,7 +57,8 @@ static const char usage[] =
     "  --report FILE.json     write a JSON report ('-' for standard output)\n"
     "  --quiet                no summary on standard error\n"
     "\n"
-    "exit status: 0 success, 1 internal error, 2 bad usage or input.\n"
+    "exit status: 0 success, 1 internal error, 2 bad usage or input,\n"
+    "130 stopped by SIGINT, 143 stopped by SIGTERM (nothing half-written).\n"
     "See unroll(1) and unroll-profile(5).\n";
 
 static const struct {
@@ -200,7 +201,7 @@ static int study_command(int argc, char **argv, cli_action action)
     return action == CLI_ANALYZE ? cli_analyze(&job) : cli_compare(&job);
 }
 
-int main(int argc, char **argv)
+static int dispatch(int argc, char **argv)
 {
     if (argc < 2) {
         fputs(usage, stderr);
@@ -236,4 +237,13 @@ int main(int argc, char **argv)
         return study_command(argc - 1, argv + 1, CLI_COMPARE);
     cli_message("unknown subcommand '%s'; 'unroll --help' lists them", command);
     return EXIT_USAGE;
+}
+
+int main(int argc, char **argv)
+{
+    if (!cli_catch_signals()) {
+        cli_message("cannot install the SIGINT and SIGTERM handlers");
+        return EXIT_INTERNAL;
+    }
+    return cli_signal_exit(dispatch(argc, argv));
 }

@@ -102,8 +102,8 @@ static bool parse_length(const char *what, const char *value, double *length)
 {
     char *end = NULL;
     double parsed = strtod(value, &end);
-    if (end == value || *end != '\0' || !isfinite(parsed) || parsed < 0) {
-        cli_message("nest: %s: '%s' is not a length of 0 mm or more", what, value);
+    if (end == value || *end != '\0' || !(parsed >= 0) || !(parsed <= UR_LENGTH_MAX)) {
+        cli_message("nest: %s: '%s' is not a length from 0 to %g mm", what, value, UR_LENGTH_MAX);
         return false;
     }
     *length = parsed;
@@ -115,9 +115,10 @@ static bool parse_sheet_size(const char *value, cli_job *job)
     char *end = NULL;
     double width = strtod(value, &end);
     double height = end && *end == 'x' ? strtod(end + 1, &end) : NAN;
-    if (!end || *end != '\0' || !(width > 0) || !(height > 0) || !isfinite(width) ||
-        !isfinite(height)) {
-        cli_message("nest: --sheet: '%s' is not WxH in mm, e.g. 600x400", value);
+    if (!end || *end != '\0' || !(width > 0) || !(height > 0) || !(width <= UR_LENGTH_MAX) ||
+        !(height <= UR_LENGTH_MAX)) {
+        cli_message("nest: --sheet: '%s' is not WxH in mm up to %g, e.g. 600x400", value,
+                    UR_LENGTH_MAX);
         return false;
     }
     job->sheet_width = width;

@@ -240,6 +240,11 @@ static bool parse_number(const char *surface, int id, const char *text, double *
         cli_message("%s: --%s: '%s' is not a finite number", surface, option_name(id), text);
         return false;
     }
+    if (fabs(*value) > UR_LENGTH_MAX) {
+        cli_message("%s: --%s: '%s' is beyond the largest number unroll takes, %g", surface,
+                    option_name(id), text, UR_LENGTH_MAX);
+        return false;
+    }
     return true;
 }
 
@@ -252,7 +257,8 @@ static const char *scan_vector(const char *p, char last, ur_vec3 *v)
         errno = 0;
         c[k] = strtod(p, &end);
         bool separator_ok = k < 2 ? *end == ',' : *end == last;
-        if (end == p || !separator_ok || errno == ERANGE || !isfinite(c[k]))
+        if (end == p || !separator_ok || errno == ERANGE || !isfinite(c[k]) ||
+            fabs(c[k]) > UR_LENGTH_MAX)
             return NULL;
         p = end + 1;
     }
@@ -263,8 +269,8 @@ static const char *scan_vector(const char *p, char last, ur_vec3 *v)
 static bool parse_vector(const char *surface, int id, const char *text, ur_vec3 *v)
 {
     if (!scan_vector(text, '\0', v)) {
-        cli_message("%s: --%s: '%s' is not three finite numbers X,Y,Z", surface, option_name(id),
-                    text);
+        cli_message("%s: --%s: '%s' is not three numbers X,Y,Z (each at most %g)", surface,
+                    option_name(id), text, UR_LENGTH_MAX);
         return false;
     }
     return true;
@@ -276,8 +282,9 @@ static bool parse_corners(const char *surface, const char *text, ur_vec3 corners
     for (int k = 0; k < 4 && p; k++)
         p = scan_vector(p, k < 3 ? ':' : '\0', &corners[k]);
     if (!p) {
-        cli_message("%s: --corners: '%s' is not four corners X,Y,Z:X,Y,Z:X,Y,Z:X,Y,Z", surface,
-                    text);
+        cli_message("%s: --corners: '%s' is not four corners X,Y,Z:X,Y,Z:X,Y,Z:X,Y,Z (each "
+                    "number at most %g)",
+                    surface, text, UR_LENGTH_MAX);
         return false;
     }
     return true;
@@ -294,9 +301,10 @@ static bool parse_sheet(const char *surface, const char *text, cli_job *job)
         job->sheet_height = strtod(rest, &end);
         ok = end != rest && *end == '\0' && errno == 0;
     }
-    if (!ok || !(job->sheet_width > 0) || !(job->sheet_height > 0) || !isfinite(job->sheet_width) ||
-        !isfinite(job->sheet_height)) {
-        cli_message("%s: --sheet: '%s' is not WIDTHxHEIGHT in mm, e.g. 600x400", surface, text);
+    if (!ok || !(job->sheet_width > 0) || !(job->sheet_height > 0) ||
+        !(job->sheet_width <= UR_LENGTH_MAX) || !(job->sheet_height <= UR_LENGTH_MAX)) {
+        cli_message("%s: --sheet: '%s' is not WIDTHxHEIGHT in mm up to %g, e.g. 600x400", surface,
+                    text, UR_LENGTH_MAX);
         return false;
     }
     return true;

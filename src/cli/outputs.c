@@ -1,8 +1,8 @@
 /*
  * outputs.c: the cut files a job writes: the formats asked for (--format,
- * or -o's extension), the DXF version and the preview's resolution, every
- * file written all or nothing (ur_write_outputs), and the report that
- * names them.
+ * or -o's extension), the DXF version and the preview's resolution, and
+ * the report that names them, every one written all or nothing together
+ * (one output set, unroll/out.h).
  */
 #include "cli.h"
 
@@ -77,8 +77,9 @@ bool cli_parse_roll(cli_job *job, const char *value)
 {
     char *end = NULL;
     double width = strtod(value, &end);
-    if (end == value || *end != '\0' || !isfinite(width) || !(width > 0)) {
-        cli_message("%s: --roll: '%s' is not a width in mm", job->command, value);
+    if (end == value || *end != '\0' || !(width > 0) || !(width <= UR_LENGTH_MAX)) {
+        cli_message("%s: --roll: '%s' is not a width in mm up to %g", job->command, value,
+                    UR_LENGTH_MAX);
         return false;
     }
     job->roll_width = width;
@@ -264,6 +265,7 @@ ur_status cli_write_outputs(const cli_job *job, const ur_machine *machine, const
             pieces, count, layout, job->margin >= 0 ? job->margin : machine->margin);
     char(*names)[UR_OUTPUT_NAME_SIZE] = NULL;
     size_t name_count = 0;
+    ur_output_set_begin(); /* the cut files and the report appear together */
     ur_status status =
         ur_output_files(job->output_path, asked, layout->sheet_count, &names, &name_count, error);
     if (status == UR_OK)
@@ -283,5 +285,6 @@ ur_status cli_write_outputs(const cli_job *job, const ur_machine *machine, const
     }
     free(outputs);
     free(names);
-    return status;
+    ur_status ended = ur_output_set_end(status == UR_OK, error);
+    return status == UR_OK ? ended : status;
 }

@@ -27,8 +27,12 @@ bool cli_directory_exists(const char *option, const char *path)
     snprintf(copy, sizeof copy, "%s", path);
     const char *directory = dirname(copy);
     struct stat info;
-    if (stat(directory, &info) != 0 || !S_ISDIR(info.st_mode)) {
+    if (stat(directory, &info) != 0) {
         cli_message("%s '%s': directory '%s' does not exist", option, path, directory);
+        return false;
+    }
+    if (!S_ISDIR(info.st_mode)) {
+        cli_message("%s '%s': '%s' is not a directory", option, path, directory);
         return false;
     }
     return true;
@@ -324,6 +328,14 @@ ur_status cli_place_pieces(const cli_job *job, const ur_machine *machine,
     for (size_t k = 0; job->roll_width <= 0 && k < choice_count; k++) {
         options.sheet_width = choices[k].width;
         options.sheet_height = choices[k].height;
+        if (count > 1 && options.spacing >= fmax(options.sheet_width, options.sheet_height)) {
+            /* every part would take a sheet of its own: surely a mistake */
+            status = ur_error_set(error, UR_ERROR_INPUT,
+                                  "--spacing %g mm is not less than the %g x %g mm sheet: no two "
+                                  "parts could share a sheet",
+                                  options.spacing, options.sheet_width, options.sheet_height);
+            continue;
+        }
         status = ur_layout_nest(pieces, count, &options, layout, error);
         if (status != UR_ERROR_INPUT)
             break;
@@ -593,6 +605,8 @@ int cli_run_job(const cli_job *job)
     if (status == UR_OK)
         status = cli_allowances_after_placing(job, &state.machine, &state.layout, state.pieces,
                                               state.piece_count, &error);
+    /* Every file of the run (cut files, report, pictures, curves) appears at the end, or none. */
+    ur_output_set_begin();
     if (status == UR_OK) {
         cli_allowance_warnings(job, state.pieces, state.piece_count);
         cli_not_placed_warning(job, &state.layout, state.pieces);
@@ -608,6 +622,10 @@ int cli_run_job(const cli_job *job)
             code = cli_write_regression(job, edge, edge_count);
         if (!code)
             code = cli_write_adjusted_rail(job, &adjusted);
+    }
+    if (ur_output_set_end(code == 0, &error) != UR_OK && code == 0) {
+        cli_message("%s: %s", job->command, error.message);
+        code = cli_exit_status(&error);
     }
     free(edge);
     free(adjusted.points);

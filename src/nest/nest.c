@@ -663,6 +663,9 @@ static ur_status search(nester *n, size_t *order)
          status == UR_OK && tries <= NEST_TRIES && (double)since_better < patience &&
          seconds_now() - start < o->time_budget;
          tries++) {
+        status = ur_cancel_check(n->error); /* a signal to the command */
+        if (status != UR_OK)
+            break;
         memcpy(candidate, current, n->count * sizeof *current);
         mutate(candidate, n->count, &state);
         status = run_order(n, candidate);
