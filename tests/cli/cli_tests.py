@@ -1446,9 +1446,9 @@ def nest_search_is_repeatable(work):
     write(work, "tri.svg", """<svg xmlns="http://www.w3.org/2000/svg" width="80mm" height="60mm" viewBox="0 0 80 60">
 <polygon id="tri" points="0,0 80,0 0,60"/></svg>
 """)
-    parts = ["mm.svg:9", "l.svg:7", "tri.svg:11"]
+    parts = ["mm.svg:2", "l.svg:2", "tri.svg:3"]
     sheets = {}
-    for name, extra in (("a", ["--seed", "5", "--nest-time", "60"]), ("b", ["--seed", "5", "--nest-time", "60"]), ("none", ["--nest-time", "0"])):
+    for name, extra in (("a", ["--seed", "5", "--nest-time", "20"]), ("b", ["--seed", "5", "--nest-time", "20"]), ("none", ["--nest-time", "0"])):
         run(work, "nest", *parts, *extra, "-o", name + ".svg", "--report", name + ".json", "--quiet")
         found = report(work, name + ".json")
         sheets[name] = (len(found["sheets"]), found["sheets"][-1]["utilisation"])
