@@ -369,11 +369,13 @@ static void test_turns_of_each_piece(void **state)
  * Parts with no symmetry (an L of unequal arms, a right triangle and a
  * hooked shape) in 8 turns, packed tightly: most no-fit polygons the
  * nester uses are others turned, and a wrong turn shows as an overlap.
+ * The sheet is several of the nester's grid cells across and up, so parts
+ * also meet across the cells' edges.
  */
 static void test_turned_parts_keep_apart(void **state)
 {
     (void)state;
-    enum { COUNT = 18 };
+    enum { COUNT = 60 };
     ur_vec2 l[6] = {{0, 0}, {50, 0}, {50, 10}, {10, 10}, {10, 25}, {0, 25}};
     ur_vec2 triangle[3] = {{0, 0}, {40, 0}, {0, 15}};
     ur_vec2 hook[8] = {{0, 0}, {30, 0}, {30, 30}, {10, 30}, {10, 20}, {20, 20}, {20, 8}, {0, 8}};
@@ -382,7 +384,7 @@ static void test_turned_parts_keep_apart(void **state)
         pieces[k] = k % 3 == 0   ? polygon_piece("L", l, 6)
                     : k % 3 == 1 ? polygon_piece("triangle", triangle, 3)
                                  : polygon_piece("hook", hook, 8);
-    ur_nest_options o = sheet_options(110, 90, 2, 1, 8, false);
+    ur_nest_options o = sheet_options(260, 200, 2, 1, 8, false);
     ur_layout layout;
     ur_error error;
     assert_int_equal(ur_layout_nest(pieces, COUNT, &o, &layout, &error), UR_OK);
