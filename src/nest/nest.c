@@ -8,8 +8,11 @@
  * (nfp.c).  The part goes to the leftmost, then lowest, such position (a
  * vertex of that region), at the turn whose box lies furthest left, then
  * lowest: sheets used first, then how little of the last sheet's length
- * is used.  Remnant sheets come before the stock sheets.  No-fit polygons are worked out once per
- * pair of shapes and turns: copies of a part share them.
+ * is used.  Remnant sheets come before the stock sheets.  No-fit polygons
+ * are worked out once per pair of shapes and turns: copies of a part share
+ * them.  The positions left are kept per sheet and shape in a grid of
+ * cells (room_grid), so that placing a part cuts only the cells its no-fit
+ * polygon reaches.
  *
  * Parts are grown by half the spacing before the no-fit polygons are made,
  * so parts that touch there keep the spacing between them; the no-fit
@@ -34,6 +37,23 @@ typedef struct nest_class {
     size_t turn_count;     /* its own: at most the nester's turn_count */
 } nest_class;
 
+/*
+ * Where one part (a class at one turn) may still go on one sheet: the
+ * inner-fit rectangle cut into a grid of cells, each less the no-fit
+ * polygons of the parts placed so far that reach into it.  A part placed
+ * touches only the few cells its no-fit polygon reaches, so each cut is an
+ * overlay of a cell's worth of edges, not of the whole sheet's, and cells
+ * are brought up to date only when a query reaches them: the leftmost
+ * place is in the first column that has room, and the columns after it
+ * wait.
+ */
+typedef struct room_grid {
+    GEOSGeometry **free;   /* per cell (column by column): the room left; NULL once none */
+    size_t *applied;       /* per cell: placements already cut out of it */
+    size_t cols, rows;     /* 0 until made */
+    double x0, y0, x1, y1; /* the inner-fit rectangle the cells cover */
+} room_grid;
+
 typedef struct placed {
     size_t piece, turn;
     ur_vec2 at; /* where its origin went */
@@ -57,13 +77,8 @@ typedef struct nester {
      */
     size_t placed_count, sheet_count, remnant_count;
     size_t sheet_slots; /* sheets there can be: remnants, one per part and one more */
-    /*
-     * Per (sheet, class, turn): the union of the no-fit polygons of the
-     * first taken_count[..] placements, grown as parts are placed so that
-     * each query adds only the parts placed since the last.
-     */
-    GEOSGeometry **taken;
-    size_t *taken_count;
+    room_grid *rooms;   /* per (sheet, class, turn) */
+    double cell_size;   /* of the rooms' cells: about two parts across (mm) */
     /*
      * Per (sheet, class, turn): no room was left for it there.  Sheets only
      * fill up during a run, so it never fits there again in that run.
@@ -171,17 +186,66 @@ static const nest_shape *shape_of(const nester *n, size_t piece, size_t turn)
     return &n->classes[n->class_of[piece]].turns[turn];
 }
 
-/* The no-fit polygon of piece b (turn tb) around piece a (turn ta) at the origin. */
+/* Whether two angles (radians) are the same turn, to a nanoradian. */
+static bool same_angle(double a, double b)
+{
+    double d = remainder(a - b, 2 * M_PI);
+    return fabs(d) < 1e-9;
+}
+
+/* Turns a point about the origin by the angle whose cosine and sine userdata holds. */
+static int turn_xy(double *x, double *y, void *userdata)
+{
+    const double *cs = userdata;
+    double tx = cs[0] * *x - cs[1] * *y, ty = cs[1] * *x + cs[0] * *y;
+    *x = tx;
+    *y = ty;
+    return 1;
+}
+
+/*
+ * The turn of class c whose angle is angle (mod a whole turn); the class's
+ * turn count when it has none.
+ */
+static size_t turn_at(const nester *n, size_t c, double angle)
+{
+    const nest_class *k = &n->classes[c];
+    for (size_t t = 0; t < k->turn_count; t++)
+        if (same_angle(k->turns[t].angle, angle))
+            return t;
+    return k->turn_count;
+}
+
+/*
+ * The no-fit polygon of piece b (turn tb) around piece a (turn ta) at the
+ * origin.  Turning both parts by the same angle turns their no-fit polygon
+ * by it, so with a at a turn other than its first, and b having a turn
+ * that makes the same angle with a's first turn as tb makes with ta (equal
+ * steps always do), it is that pair's no-fit polygon turned: a quarter of
+ * the (costly) sums with 4 turns.  The shapes of a class's turns are,
+ * to rounding, its first turn's shape turned (nest_shape_make simplifies
+ * every turn alike), and each contains the part itself grown by half the
+ * spacing, so a turned no-fit polygon keeps parts apart just as well.
+ */
 static const GEOSGeometry *nfp_of(nester *n, size_t a, size_t ta, size_t b, size_t tb)
 {
     size_t ca = n->class_of[a], cb = n->class_of[b], t = n->turn_count;
     size_t key = ((ca * t + ta) * n->class_count + cb) * t + tb;
-    if (!n->nfps[key]) {
-        GEOSGeometry *exact = nest_nfp(n->geos, shape_of(n, a, ta), shape_of(n, b, tb));
-        n->nfps[key] = exact ? GEOSBuffer_r(n->geos, exact, -EXACT_FIT, 2) : NULL;
-        if (exact)
-            GEOSGeom_destroy_r(n->geos, exact);
+    if (n->nfps[key])
+        return n->nfps[key];
+    double by = shape_of(n, a, ta)->angle - shape_of(n, a, 0)->angle;
+    size_t first =
+        ta == 0 ? n->classes[cb].turn_count : turn_at(n, cb, shape_of(n, b, tb)->angle - by);
+    if (first < n->classes[cb].turn_count) {
+        const GEOSGeometry *base = nfp_of(n, a, 0, b, first);
+        double cs[2] = {cos(by), sin(by)};
+        n->nfps[key] = base ? GEOSGeom_transformXY_r(n->geos, base, turn_xy, cs) : NULL;
+        return n->nfps[key];
     }
+    GEOSGeometry *exact = nest_nfp(n->geos, shape_of(n, a, ta), shape_of(n, b, tb));
+    n->nfps[key] = exact ? GEOSBuffer_r(n->geos, exact, -EXACT_FIT, 2) : NULL;
+    if (exact)
+        GEOSGeom_destroy_r(n->geos, exact);
     return n->nfps[key];
 }
 
@@ -194,8 +258,11 @@ static void sheet_size(const nester *n, size_t sheet, double *width, double *hei
     *height = remnant ? o->remnants[sheet].height : o->sheet_height;
 }
 
-/* Where the shape's origin may go on the sheet when empty; NULL when it does not fit. */
-static GEOSGeometry *inner_fit(const nester *n, size_t sheet, const nest_shape *shape)
+/*
+ * The rectangle where the shape's origin may go on the empty sheet (x0, y0,
+ * x1, y1); false when it does not fit.
+ */
+static bool inner_fit_box(const nester *n, size_t sheet, const nest_shape *shape, double *box)
 {
     const ur_nest_options *o = n->options;
     double width, height;
@@ -203,17 +270,25 @@ static GEOSGeometry *inner_fit(const nester *n, size_t sheet, const nest_shape *
     double x0 = o->margin - shape->box.min.x, x1 = width - o->margin - shape->box.max.x;
     double y0 = o->margin - shape->box.min.y, y1 = height - o->margin - shape->box.max.y;
     if (x1 < x0 - 1e-9 || y1 < y0 - 1e-9)
-        return NULL;
+        return false;
     /* Widened by the exact-fit allowance, so a part as large as the room still has a place. */
-    x0 -= EXACT_FIT, y0 -= EXACT_FIT, x1 += EXACT_FIT, y1 += EXACT_FIT;
-    GEOSCoordSequence *sequence = GEOSCoordSeq_create_r(n->geos, 5, 2);
+    box[0] = x0 - EXACT_FIT, box[1] = y0 - EXACT_FIT;
+    box[2] = x1 + EXACT_FIT, box[3] = y1 + EXACT_FIT;
+    return true;
+}
+
+/* A rectangle as a GEOS polygon; NULL on failure. */
+static GEOSGeometry *rectangle_polygon(GEOSContextHandle_t geos, double x0, double y0, double x1,
+                                       double y1)
+{
+    GEOSCoordSequence *sequence = GEOSCoordSeq_create_r(geos, 5, 2);
     if (!sequence)
         return NULL;
     double xs[5] = {x0, x1, x1, x0, x0}, ys[5] = {y0, y0, y1, y1, y0};
     for (unsigned i = 0; i < 5; i++)
-        GEOSCoordSeq_setXY_r(n->geos, sequence, i, xs[i], ys[i]);
-    GEOSGeometry *ring = GEOSGeom_createLinearRing_r(n->geos, sequence);
-    return ring ? GEOSGeom_createPolygon_r(n->geos, ring, NULL, 0) : NULL;
+        GEOSCoordSeq_setXY_r(geos, sequence, i, xs[i], ys[i]);
+    GEOSGeometry *ring = GEOSGeom_createLinearRing_r(geos, sequence);
+    return ring ? GEOSGeom_createPolygon_r(geos, ring, NULL, 0) : NULL;
 }
 
 static int shift_xy(double *x, double *y, void *userdata)
@@ -230,46 +305,96 @@ static size_t taken_slot(const nester *n, size_t sheet, size_t piece, size_t tur
     return (sheet * n->class_count + n->class_of[piece]) * n->turn_count + turn;
 }
 
-/*
- * Where piece (at turn) may not go on the sheet: the no-fit polygons of the
- * parts on it, moved to where they are, their union kept and grown from
- * one query to the next.  NULL on a GEOS failure; the cache owns it.
- */
-static const GEOSGeometry *forbidden(nester *n, size_t sheet, size_t piece, size_t turn)
+static void grid_free(GEOSContextHandle_t geos, room_grid *grid)
 {
-    size_t slot = taken_slot(n, sheet, piece, turn);
-    GEOSGeometry **moved = calloc(n->placed_count + 2, sizeof *moved);
-    if (!moved)
-        return NULL;
-    size_t count = 0;
-    if (n->taken[slot])
-        moved[count++] = n->taken[slot];
-    for (size_t k = n->taken_count[slot]; k < n->placed_count; k++) {
+    for (size_t c = 0; grid->free && c < grid->cols * grid->rows; c++)
+        if (grid->free[c])
+            GEOSGeom_destroy_r(geos, grid->free[c]);
+    free(grid->free);
+    free(grid->applied);
+    memset(grid, 0, sizeof *grid);
+}
+
+/* The bounds of cell c of a grid (x0, y0, x1, y1). */
+static void cell_box(const nester *n, const room_grid *grid, size_t c, double *box)
+{
+    size_t i = c / grid->rows, j = c % grid->rows;
+    box[0] = grid->x0 + (double)i * n->cell_size;
+    box[1] = grid->y0 + (double)j * n->cell_size;
+    box[2] = i + 1 == grid->cols ? grid->x1 : grid->x0 + (double)(i + 1) * n->cell_size;
+    box[3] = j + 1 == grid->rows ? grid->y1 : grid->y0 + (double)(j + 1) * n->cell_size;
+}
+
+/*
+ * The grid of where piece (at turn) may go on the sheet, before any part
+ * is cut out: the inner-fit rectangle in cells.  False when it does not
+ * fit the sheet at all, or on a failure (then it has no place there).
+ */
+static bool grid_make(nester *n, size_t sheet, size_t piece, size_t turn, room_grid *grid)
+{
+    double fit[4];
+    if (!inner_fit_box(n, sheet, shape_of(n, piece, turn), fit))
+        return false;
+    grid->x0 = fit[0], grid->y0 = fit[1], grid->x1 = fit[2], grid->y1 = fit[3];
+    grid->cols = (size_t)fmax(1.0, ceil((fit[2] - fit[0]) / n->cell_size - 1e-9));
+    grid->rows = (size_t)fmax(1.0, ceil((fit[3] - fit[1]) / n->cell_size - 1e-9));
+    size_t cells = grid->cols * grid->rows;
+    grid->free = calloc(cells, sizeof *grid->free);
+    grid->applied = calloc(cells, sizeof *grid->applied);
+    if (!grid->free || !grid->applied) {
+        grid_free(n->geos, grid);
+        return false;
+    }
+    for (size_t c = 0; c < cells; c++) {
+        double box[4];
+        cell_box(n, grid, c, box);
+        grid->free[c] = rectangle_polygon(n->geos, box[0], box[1], box[2], box[3]);
+        if (!grid->free[c]) {
+            grid_free(n->geos, grid);
+            return false;
+        }
+    }
+    return true;
+}
+
+/*
+ * Cuts out of cell c the no-fit polygons (with piece at turn) of the parts
+ * placed on the sheet since it was last brought up to date, those whose
+ * box reaches into it.  False on a GEOS failure.
+ */
+static bool cell_update(nester *n, size_t sheet, size_t piece, size_t turn, room_grid *grid,
+                        size_t c)
+{
+    double box[4];
+    cell_box(n, grid, c, box);
+    for (size_t k = grid->applied[c]; grid->free[c] && k < n->placed_count; k++) {
         if (n->sheet_of[k] != sheet)
             continue;
         placed *p = &n->placements[k];
         const GEOSGeometry *nfp = nfp_of(n, p->piece, p->turn, piece, turn);
-        GEOSGeometry *shifted = nfp ? GEOSGeom_transformXY_r(n->geos, nfp, shift_xy, &p->at) : NULL;
-        if (!shifted) { /* a part whose place is unknown: nothing may go near it */
-            for (size_t i = 0; i < count; i++)
-                GEOSGeom_destroy_r(n->geos, moved[i]);
-            free(moved);
-            n->taken[slot] = NULL;
-            n->taken_count[slot] = 0; /* start again from the first part next time */
-            return NULL;
+        double x0, y0, x1, y1;
+        if (!nfp || !GEOSGeom_getXMin_r(n->geos, nfp, &x0) ||
+            !GEOSGeom_getYMin_r(n->geos, nfp, &y0) || !GEOSGeom_getXMax_r(n->geos, nfp, &x1) ||
+            !GEOSGeom_getYMax_r(n->geos, nfp, &y1))
+            return false;
+        if (x0 + p->at.x >= box[2] || x1 + p->at.x <= box[0] || y0 + p->at.y >= box[3] ||
+            y1 + p->at.y <= box[1])
+            continue; /* it does not reach this cell */
+        GEOSGeometry *shifted = GEOSGeom_transformXY_r(n->geos, nfp, shift_xy, &p->at);
+        GEOSGeometry *left = shifted ? GEOSDifference_r(n->geos, grid->free[c], shifted) : NULL;
+        if (shifted)
+            GEOSGeom_destroy_r(n->geos, shifted);
+        if (!left)
+            return false;
+        GEOSGeom_destroy_r(n->geos, grid->free[c]);
+        grid->free[c] = left;
+        if (GEOSisEmpty_r(n->geos, left) == 1) {
+            GEOSGeom_destroy_r(n->geos, left);
+            grid->free[c] = NULL; /* full: nothing placed later can free it */
         }
-        moved[count++] = shifted;
     }
-    n->taken_count[slot] = n->placed_count;
-    GEOSGeometry *collection =
-        GEOSGeom_createCollection_r(n->geos, GEOS_GEOMETRYCOLLECTION, moved, (unsigned)count);
-    free(moved);
-    n->taken[slot] = collection ? GEOSUnaryUnion_r(n->geos, collection) : NULL;
-    if (!n->taken[slot])
-        n->taken_count[slot] = 0;
-    if (collection)
-        GEOSGeom_destroy_r(n->geos, collection);
-    return n->taken[slot];
+    grid->applied[c] = n->placed_count;
+    return true;
 }
 
 /* The leftmost, then lowest, vertex of a region's rings; false when it has none. */
@@ -302,29 +427,53 @@ static bool leftmost(GEOSContextHandle_t geos, const GEOSGeometry *region, ur_ve
     return found;
 }
 
-/* The best place for piece at turn on sheet: the leftmost, then lowest, feasible one. */
+/* Whether p is left of best, or as far left and lower. */
+static bool further_left(ur_vec2 p, ur_vec2 best)
+{
+    return p.x < best.x - 1e-9 || (p.x <= best.x + 1e-9 && p.y < best.y);
+}
+
+/*
+ * The best place for piece at turn on sheet: the leftmost, then lowest,
+ * feasible one.  Columns of cells are looked at from the left; the first
+ * with room holds it (the columns after it lie further right).
+ */
 static bool place_on(nester *n, size_t sheet, size_t piece, size_t turn, ur_vec2 *at)
 {
-    bool empty = sheet >= n->sheet_count;
-    if (!empty && n->full[taken_slot(n, sheet, piece, turn)])
-        return false;
-    GEOSGeometry *room = inner_fit(n, sheet, shape_of(n, piece, turn));
-    if (!room)
-        return false;
-    const GEOSGeometry *taken = empty ? NULL : forbidden(n, sheet, piece, turn);
-    if (!empty && !taken) { /* GEOS failed: better no place than an overlap */
-        GEOSGeom_destroy_r(n->geos, room);
-        return false;
+    double fit[4];
+    if (sheet >= n->sheet_count) { /* empty: the inner-fit rectangle's lower left corner */
+        if (!inner_fit_box(n, sheet, shape_of(n, piece, turn), fit))
+            return false;
+        *at = ur_vec2_make(fit[0], fit[1]);
+        return true;
     }
-    GEOSGeometry *free_room =
-        taken ? GEOSDifference_r(n->geos, room, taken) : GEOSGeom_clone_r(n->geos, room);
-    bool found = free_room && leftmost(n->geos, free_room, at);
-    if (free_room && !found && !empty) /* no room, not a GEOS failure */
-        n->full[taken_slot(n, sheet, piece, turn)] = true;
-    if (free_room)
-        GEOSGeom_destroy_r(n->geos, free_room);
-    GEOSGeom_destroy_r(n->geos, room);
-    return found;
+    size_t slot = taken_slot(n, sheet, piece, turn);
+    room_grid *grid = &n->rooms[slot];
+    if (n->full[slot])
+        return false;
+    if (!grid->cols && !grid_make(n, sheet, piece, turn, grid))
+        return false; /* it does not fit the sheet, or no memory: no place */
+    for (size_t i = 0; i < grid->cols; i++) {
+        bool found = false;
+        for (size_t c = i * grid->rows; c < (i + 1) * grid->rows; c++) {
+            if (!grid->free[c])
+                continue;
+            if (!cell_update(n, sheet, piece, turn, grid, c)) {
+                grid_free(n->geos, grid); /* GEOS failed: better no place than an overlap */
+                return false;
+            }
+            ur_vec2 p = {0, 0};
+            if (grid->free[c] && leftmost(n->geos, grid->free[c], &p) &&
+                (!found || further_left(p, *at))) {
+                *at = p;
+                found = true;
+            }
+        }
+        if (found)
+            return true;
+    }
+    n->full[slot] = true;
+    return false;
 }
 
 /* Places one piece: the first sheet it fits, at its best turn there; a new sheet otherwise. */
@@ -459,11 +608,9 @@ static ur_status list_not_placed(const nester *n, ur_layout *layout)
 static void nester_free(nester *n)
 {
     size_t slots = n->sheet_slots * (n->class_count + 1) * n->turn_count;
-    for (size_t k = 0; n->taken && k < slots; k++)
-        if (n->taken[k])
-            GEOSGeom_destroy_r(n->geos, n->taken[k]);
-    free(n->taken);
-    free(n->taken_count);
+    for (size_t k = 0; n->rooms && k < slots; k++)
+        grid_free(n->geos, &n->rooms[k]);
+    free(n->rooms);
     free(n->full);
     free(n->sheet_area);
     size_t pairs = n->class_count * n->turn_count * n->class_count * n->turn_count;
@@ -482,6 +629,20 @@ static void nester_free(nester *n)
     free(n->sheet_of);
     if (n->geos)
         GEOS_finish_r(n->geos);
+}
+
+/*
+ * The size of the rooms' cells: twice the mean part's larger side, so that
+ * a no-fit polygon (about two parts across) reaches a few cells and a cell
+ * holds a few parts' edges.
+ */
+static double cell_size_of(const ur_piece *pieces, size_t count, double spacing)
+{
+    double sum = 0;
+    for (size_t k = 0; k < count; k++)
+        sum += fmax(ur_box_width(pieces[k].box), ur_box_height(pieces[k].box)) + spacing;
+    double size = count ? 2 * sum / (double)count : 0;
+    return size > 0 && isfinite(size) ? size : 1.0;
 }
 
 /* A roll as one sheet long enough for every part in a row; cut to length afterwards. */
@@ -536,10 +697,7 @@ static void reset_run(nester *n)
 {
     size_t slots = n->sheet_slots * (n->class_count + 1) * n->turn_count;
     for (size_t k = 0; k < slots; k++) {
-        if (n->taken[k])
-            GEOSGeom_destroy_r(n->geos, n->taken[k]);
-        n->taken[k] = NULL;
-        n->taken_count[k] = 0;
+        grid_free(n->geos, &n->rooms[k]);
         n->full[k] = false;
     }
     memset(n->sheet_area, 0, n->sheet_slots * sizeof *n->sheet_area);
@@ -710,6 +868,7 @@ ur_status ur_layout_nest(const ur_piece *pieces, size_t count, const ur_nest_opt
                 .remnant_count = options->remnants ? options->remnant_count : 0,
                 .error = error};
     n.sheet_count = n.remnant_count;
+    n.cell_size = cell_size_of(pieces, count, options->spacing);
     n.sheet_slots = n.remnant_count + count + 1;
     n.class_of = calloc(count + 1, sizeof *n.class_of);
     n.classes = calloc(count + 1, sizeof *n.classes);
@@ -722,11 +881,10 @@ ur_status ur_layout_nest(const ur_piece *pieces, size_t count, const ur_nest_opt
         status = sort_classes(&n);
     size_t slots = n.sheet_slots * (n.class_count + 1) * n.turn_count;
     if (status == UR_OK) {
-        n.taken = calloc(slots, sizeof *n.taken);
-        n.taken_count = calloc(slots, sizeof *n.taken_count);
+        n.rooms = calloc(slots, sizeof *n.rooms);
         n.full = calloc(slots, sizeof *n.full);
         n.sheet_area = calloc(n.sheet_slots, sizeof *n.sheet_area);
-        if (!n.taken || !n.taken_count || !n.full || !n.sheet_area)
+        if (!n.rooms || !n.full || !n.sheet_area)
             status = ur_error_out_of_memory(error);
     }
     for (size_t p = 0; status == UR_OK && p < count; p++)

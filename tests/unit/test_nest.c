@@ -2,7 +2,8 @@
  * test_nest.c: true-shape nesting.  Placed parts never overlap and keep the
  * spacing (GEOS distance), stay inside the margin, are placed once each;
  * rectangles that tile a sheet exactly fill one sheet; a part goes in a
- * ring's hole when holes are allowed; L shapes interlock.
+ * ring's hole when holes are allowed; L shapes interlock; parts with no
+ * symmetry keep apart in 8 turns.
  */
 #include "test_support.h"
 
@@ -364,6 +365,34 @@ static void test_turns_of_each_piece(void **state)
     free_pieces(pieces, COUNT);
 }
 
+/*
+ * Parts with no symmetry (an L of unequal arms, a right triangle and a
+ * hooked shape) in 8 turns, packed tightly: most no-fit polygons the
+ * nester uses are others turned, and a wrong turn shows as an overlap.
+ * The sheet is several of the nester's grid cells across and up, so parts
+ * also meet across the cells' edges.
+ */
+static void test_turned_parts_keep_apart(void **state)
+{
+    (void)state;
+    enum { COUNT = 60 };
+    ur_vec2 l[6] = {{0, 0}, {50, 0}, {50, 10}, {10, 10}, {10, 25}, {0, 25}};
+    ur_vec2 triangle[3] = {{0, 0}, {40, 0}, {0, 15}};
+    ur_vec2 hook[8] = {{0, 0}, {30, 0}, {30, 30}, {10, 30}, {10, 20}, {20, 20}, {20, 8}, {0, 8}};
+    ur_piece pieces[COUNT];
+    for (int k = 0; k < COUNT; k++)
+        pieces[k] = k % 3 == 0   ? polygon_piece("L", l, 6)
+                    : k % 3 == 1 ? polygon_piece("triangle", triangle, 3)
+                                 : polygon_piece("hook", hook, 8);
+    ur_nest_options o = sheet_options(260, 200, 2, 1, 8, false);
+    ur_layout layout;
+    ur_error error;
+    assert_int_equal(ur_layout_nest(pieces, COUNT, &o, &layout, &error), UR_OK);
+    check_layout(pieces, COUNT, &layout, &o);
+    ur_layout_free(&layout);
+    free_pieces(pieces, COUNT);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -375,6 +404,7 @@ int main(void)
         cmocka_unit_test(test_grain_rule_holds),
         cmocka_unit_test(test_remnants_first),
         cmocka_unit_test(test_turns_of_each_piece),
+        cmocka_unit_test(test_turned_parts_keep_apart),
     };
     return cmocka_run_group_tests(tests, start, finish);
 }
