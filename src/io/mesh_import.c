@@ -301,10 +301,14 @@ static bool ply_line_lists_fit(char *line, int property_count, const bool *list,
 }
 
 /*
- * assimp takes the count of an ASCII list as it stands and reads on through
- * the file for it: a 2.6 kB file whose face said 20000000 corners made it
- * read for minutes and crash (found by fuzzing).  Each list must hold its
- * values on its own line.  line_number is the header's last line.
+ * assimp reads an ASCII PLY body a line per element and takes the count of
+ * a list as it stands, reading on through the file for it; past the end of
+ * the file it goes on making elements, the faces with the last count it
+ * read.  A 2.6 kB file whose face said 20000000 corners made it read for
+ * minutes and crash, one whose vertex lines ran short gave half a million
+ * triangles (both found by fuzzing).  So every element the header
+ * announces must have its line, and each list its values on that line.
+ * line_number is the header's last line.
  */
 static ur_status check_ply_ascii_body(const char *path, FILE *file, const ply_layout *layout,
                                       int line_number, ur_error *error)
@@ -315,8 +319,13 @@ static ur_status check_ply_ascii_body(const char *path, FILE *file, const ply_la
     for (int e = 0; status == UR_OK && e < layout->element_count; e++) {
         int properties = layout->elements[e].property_count;
         for (unsigned long long i = 0; status == UR_OK && i < layout->elements[e].count; i++) {
-            if (getline(&line, &line_size, file) < 0)
-                break; /* the file ends early: assimp's to refuse */
+            if (getline(&line, &line_size, file) < 0) {
+                status = ur_error_set(error, UR_ERROR_INPUT,
+                                      "%s: the file ends after %llu of the %llu lines of element "
+                                      "%d that its PLY header announces",
+                                      path, i, layout->elements[e].count, e + 1);
+                break;
+            }
             line_number++;
             unsigned long long claimed = 0;
             if (!ply_line_lists_fit(line, properties, layout->elements[e].list, &claimed))
