@@ -500,8 +500,9 @@ static void test_headers_claiming_too_much(void **state)
 
 /*
  * assimp 5.2 reads a PLY whose header never ends for ever, crashes on some
- * headers with lines PLY does not define and aborts on a file that ends
- * before its faces (all found by fuzz_mesh).
+ * headers with lines PLY does not define and on a face whose count is far
+ * more than its line holds, and aborts on a file that ends before its faces
+ * (all found by fuzz_mesh).
  */
 static void test_ply_header_checked(void **state)
 {
@@ -527,13 +528,31 @@ static void test_ply_header_checked(void **state)
     }
     expect_refusal(write_file("start.ply", "PLY\nformat ascii 1.0\nend_header\n"), NULL,
                    "start.ply:1: not a PLY file");
-    /* A file that ends before its faces: assimp made faces without corners and aborted. */
+    /*
+     * A file that ends before its faces: assimp made faces without corners
+     * and aborted; one whose vertex lines run short: it made 72 faces of the
+     * last corner count it read.
+     */
     expect_refusal(write_file("faces.ply",
                               "ply\nformat ascii 1.0\nelement vertex 3\n"
                               "property float x\nproperty float y\nproperty float z\n"
                               "element face 1\nproperty list uchar int vertex_indices\n"
                               "end_header\n0 0 0\n1 0 0\n0 1 0\n"),
-                   NULL, "face 1 has no corners");
+                   NULL, "faces.ply: the file ends after 0 of the 1 lines of element 2");
+    expect_refusal(write_file("short.ply",
+                              "ply\nformat ascii 1.0\nelement vertex 3\n"
+                              "property float x\nproperty float y\nproperty float z\n"
+                              "element face 1\nproperty list uchar int vertex_indices\n"
+                              "end_header\n0 0 0\n3 0 1 2\n"),
+                   NULL, "short.ply: the file ends after 2 of the 3 lines of element 1");
+    /* A face claiming 20 million corners: assimp read on for them and crashed. */
+    expect_refusal(write_file("corners.ply",
+                              "ply\nformat ascii 1.0\nelement vertex 3\n"
+                              "property float x\nproperty float y\nproperty float z\n"
+                              "element face 2\nproperty list uchar int vertex_indices\n"
+                              "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"
+                              "20000000 0 1 2\n"),
+                   NULL, "corners.ply:14: a list of 20000000 values on a line that holds fewer");
     /* A property before any element belongs to nothing. */
     expect_refusal(write_file("orphan.ply", "ply\nformat ascii 1.0\nproperty float x\n"
                                             "end_header\n"),
