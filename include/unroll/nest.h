@@ -86,8 +86,10 @@ typedef struct ur_nest_options {
     size_t remnant_count;
     /*
      * Roll stock: > 0 nests on one strip this wide (sheet_height is
-     * ignored; sheet_width too) and as short as it can; the layout's one
-     * sheet is then as long as what was used, margin included.
+     * ignored; sheet_width too) and as short as it can (each part takes
+     * the turn that lengthens the strip least, then the leftmost); the
+     * layout's one sheet is then as long as what was used, margin
+     * included.
      */
     double roll_width;
     /*
@@ -100,15 +102,17 @@ typedef struct ur_nest_options {
     bool grain;
     double grain_angle, grain_tolerance;
     /*
-     * The search after the first, largest-first layout: orders tried (two
-     * parts swapped, or one moved, from the current order, which any order
-     * at least as good replaces) until time_budget seconds have passed,
+     * The search after the first, largest-first layout: layouts tried (two
+     * parts swapped, or one moved, in the current order; or, one try in
+     * three, one part held at another of its allowed turns, or freed to
+     * take its best again; any layout at least as good replaces the
+     * current one) until time_budget seconds have passed,
      * a run of tries brought no new best (NEST_PATIENCE_PER_SECOND per
      * second of budget, at least NEST_PATIENCE), or NEST_TRIES tries were
      * made.  A better layout places more parts, or uses fewer stock
      * sheets, or less of the last sheet's length, or at equal length has
      * that sheet's parts reach less far on average.  0: no search.  The
-     * orders come from seed (xorshift64*), so a search that stops for want
+     * steps come from seed (xorshift64*), so a search that stops for want
      * of improvement or at its try limit gives the same layout every time.
      */
     double time_budget;

@@ -7,12 +7,12 @@
  * extent) minus the no-fit polygons of the parts already on the sheet
  * (nfp.c).  The part goes to the leftmost, then lowest, such position (a
  * vertex of that region), at the turn whose box lies furthest left, then
- * lowest: sheets used first, then how little of the last sheet's length
- * is used.  Remnant sheets come before the stock sheets.  No-fit polygons
- * are worked out once per pair of shapes and turns: copies of a part share
- * them.  The positions left are kept per sheet and shape in a grid of
- * cells (room_grid), so that placing a part cuts only the cells its no-fit
- * polygon reaches.
+ * lowest (on a roll, first the turn that lengthens the strip least; the
+ * search may hold a part at one turn instead): sheets used first, then how little of the last
+ * sheet's length is used.  Remnant sheets come before the stock sheets.  No-fit polygons are worked
+ * out once per pair of shapes and turns: copies of a part share them.  The positions left are kept
+ * per sheet and shape in a grid of cells (room_grid), so that placing a part cuts only the cells
+ * its no-fit polygon reaches.
  *
  * Parts are grown by half the spacing before the no-fit polygons are made,
  * so parts that touch there keep the spacing between them; the no-fit
@@ -476,8 +476,27 @@ static bool place_on(nester *n, size_t sheet, size_t piece, size_t turn, ur_vec2
     return false;
 }
 
-/* Places one piece: the first sheet it fits, at its best turn there; a new sheet otherwise. */
-static ur_status place_piece(nester *n, size_t piece)
+/* How far the parts placed so far reach along the roll (the stock sheet). */
+static double roll_length(const nester *n)
+{
+    double length = 0;
+    for (size_t k = 0; k < n->placed_count; k++) {
+        if (n->sheet_of[k] < n->remnant_count)
+            continue;
+        const placed *p = &n->placements[k];
+        length = fmax(length, p->at.x + shape_of(n, p->piece, p->turn)->box.max.x);
+    }
+    return length;
+}
+
+/* A piece the search leaves free to take its best turn (see place_piece). */
+#define ANY_TURN SIZE_MAX
+
+/*
+ * Places one piece: the first sheet it fits, at its best turn there (or at
+ * turn held, unless that is ANY_TURN); a new sheet otherwise.
+ */
+static ur_status place_piece(nester *n, size_t piece, size_t held)
 {
     for (size_t sheet = 0; sheet <= n->sheet_count; sheet++) {
         if (sheet == n->sheet_count && n->options->max_sheets &&
@@ -492,7 +511,11 @@ static ur_status place_piece(nester *n, size_t piece)
         if (sheet < n->sheet_count && n->sheet_area[sheet] + shape_of(n, piece, 0)->area > room)
             continue; /* not enough area left on it, whatever the shapes */
         ur_vec2 best_key = {0, 0};
-        for (size_t t = 0; t < n->classes[n->class_of[piece]].turn_count; t++) {
+        double best_reach = 0, length = roll_length(n);
+        size_t turns = n->classes[n->class_of[piece]].turn_count;
+        /* A held turn is tried alone: a cheaper try, and one the greedy choice would not make. */
+        size_t first = held < turns ? held : 0, last = held < turns ? held + 1 : turns;
+        for (size_t t = first; t < last; t++) {
             ur_vec2 at = {0, 0};
             if (!place_on(n, sheet, piece, t, &at))
                 continue;
@@ -502,12 +525,21 @@ static ur_status place_piece(nester *n, size_t piece)
              */
             const nest_shape *shape = shape_of(n, piece, t);
             ur_vec2 key = {at.x + shape->box.min.x, at.y + shape->box.min.y};
+            /*
+             * On a roll, first the turn that lengthens the strip least (as
+             * far as the strip or the part reaches): a long part laid
+             * across it rather than along.
+             */
+            double reach = n->options->roll_width > 0 ? fmax(length, at.x + shape->box.max.x) : 0;
             /* Ties (to a micrometre: rounding) go to the earlier turn. */
-            if (!found || key.x < best_key.x - 1e-3 ||
-                (key.x <= best_key.x + 1e-3 && key.y < best_key.y - 1e-3)) {
+            if (!found || reach < best_reach - 1e-3 ||
+                (reach <= best_reach + 1e-3 &&
+                 (key.x < best_key.x - 1e-3 ||
+                  (key.x <= best_key.x + 1e-3 && key.y < best_key.y - 1e-3)))) {
                 found = true;
                 best = at;
                 best_key = key;
+                best_reach = reach;
                 best_turn = t;
             }
         }
@@ -705,12 +737,13 @@ static void reset_run(nester *n)
     n->sheet_count = n->remnant_count;
 }
 
-static ur_status run_order(nester *n, const size_t *order)
+/* Places the pieces in order, each at its held turn (per piece; NULL: all free). */
+static ur_status run_order(nester *n, const size_t *order, const size_t *held)
 {
     reset_run(n);
     ur_status status = UR_OK;
     for (size_t k = 0; status == UR_OK && k < n->count; k++)
-        status = place_piece(n, order[k]);
+        status = place_piece(n, order[k], held ? held[order[k]] : ANY_TURN);
     return status;
 }
 
@@ -782,6 +815,39 @@ static void mutate(size_t *order, size_t count, uint64_t *state)
     order[j] = moved;
 }
 
+/*
+ * Whether piece may be held at turn: only at turns that fit an empty stock
+ * sheet, so that a held part always has a place (the first layout found
+ * one for it at some turn) and never makes a try fail.
+ */
+static bool may_hold(const nester *n, size_t piece, size_t turn)
+{
+    double fit[4];
+    return inner_fit_box(n, n->remnant_count, shape_of(n, piece, turn), fit);
+}
+
+/*
+ * A part's turn changed: held at another of its turns, or freed to take
+ * its best again.  False when the part drawn has no other choice (one
+ * turn, or the others do not fit).
+ */
+static bool turn_move(const nester *n, size_t *held, uint64_t *state)
+{
+    size_t piece = next_random(state) % n->count;
+    size_t turns = n->classes[n->class_of[piece]].turn_count;
+    if (turns < 2)
+        return false;
+    /* Choice turns stands for free; the part's present choice is not drawn. */
+    size_t now = held[piece] < turns ? held[piece] : turns;
+    size_t choice = next_random(state) % turns;
+    if (choice >= now)
+        choice++;
+    if (choice < turns && !may_hold(n, piece, choice))
+        return false;
+    held[piece] = choice < turns ? choice : ANY_TURN;
+    return true;
+}
+
 static double seconds_now(void)
 {
     struct timespec t;
@@ -790,27 +856,41 @@ static double seconds_now(void)
 }
 
 /*
- * Improves on order (run and placed already) within the options' budget;
- * leaves the best placed.  A hill climb over orders that also takes
- * sideways steps (an order as good as the current one replaces it), so
- * that it wanders across the many orders of equal score instead of
- * stopping at the first.  It gives up after a run of tries without a new
- * best: NEST_PATIENCE, or NEST_PATIENCE_PER_SECOND per second of budget if
- * that is more.
+ * Improves on order (run and placed already, every part free to take its
+ * best turn) within the options' budget; leaves the best placed.  A hill
+ * climb over orders and turns that also takes sideways steps (a layout as
+ * good as the current one replaces it), so that it wanders across the many
+ * layouts of equal score instead of stopping at the first.  A step either
+ * changes the order (mutate) or, one time in NEST_TURN_MOVES, one part's
+ * turn (turn_move): the greedy choice of each part's turn is often not the
+ * one that leaves the best room for the parts after it, and a part held at
+ * one turn is tried at that turn alone.  It gives up after a run of tries
+ * without a new best: NEST_PATIENCE, or NEST_PATIENCE_PER_SECOND per second
+ * of budget if that is more.
  */
+#define NEST_TURN_MOVES 3
 static ur_status search(nester *n, size_t *order)
 {
     const ur_nest_options *o = n->options;
     if (!(o->time_budget > 0) || n->count < 2)
         return UR_OK;
-    size_t *current = malloc(n->count * sizeof *current);
-    size_t *candidate = malloc(n->count * sizeof *candidate);
-    if (!current || !candidate) {
+    size_t bytes = n->count * sizeof *order;
+    size_t *current = malloc(bytes), *candidate = malloc(bytes);
+    /* Per piece: the turn it is held at, or ANY_TURN; for the current, candidate and best. */
+    size_t *current_held = malloc(bytes), *candidate_held = malloc(bytes);
+    size_t *best_held = malloc(bytes);
+    if (!current || !candidate || !current_held || !candidate_held || !best_held) {
         free(current);
         free(candidate);
+        free(current_held);
+        free(candidate_held);
+        free(best_held);
         return ur_error_out_of_memory(n->error);
     }
-    memcpy(current, order, n->count * sizeof *order);
+    memcpy(current, order, bytes);
+    for (size_t p = 0; p < n->count; p++)
+        current_held[p] = best_held[p] = ANY_TURN;
+    bool turns = n->turn_count > 1; /* some part has a choice of turns */
     uint64_t state = o->seed * 0x9E3779B97F4A7C15ULL + 0x2545F4914F6CDD1DULL;
     score best = score_of(n), now = best;
     double start = seconds_now();
@@ -824,27 +904,36 @@ static ur_status search(nester *n, size_t *order)
         status = ur_cancel_check(n->error); /* a signal to the command */
         if (status != UR_OK)
             break;
-        memcpy(candidate, current, n->count * sizeof *current);
-        mutate(candidate, n->count, &state);
-        status = run_order(n, candidate);
+        memcpy(candidate, current, bytes);
+        memcpy(candidate_held, current_held, bytes);
+        bool turned = turns && next_random(&state) % NEST_TURN_MOVES == 0 &&
+                      turn_move(n, candidate_held, &state);
+        if (!turned)
+            mutate(candidate, n->count, &state);
+        status = run_order(n, candidate, candidate_held);
         score s = score_of(n);
         since_better++;
         if (status != UR_OK || compare_scores(s, now) < 0)
             continue;
         now = s;
-        memcpy(current, candidate, n->count * sizeof *current);
+        memcpy(current, candidate, bytes);
+        memcpy(current_held, candidate_held, bytes);
         if (compare_scores(s, best) > 0) {
             best = s;
-            memcpy(order, candidate, n->count * sizeof *order);
+            memcpy(order, candidate, bytes);
+            memcpy(best_held, candidate_held, bytes);
             since_better = 0;
             if (o->progress)
                 o->progress(o->progress_context, s.sheets, s.length, tries);
         }
     }
     if (status == UR_OK)
-        status = run_order(n, order); /* the best, placed again */
+        status = run_order(n, order, best_held); /* the best, placed again */
     free(current);
     free(candidate);
+    free(current_held);
+    free(candidate_held);
+    free(best_held);
     return status;
 }
 
@@ -897,7 +986,7 @@ ur_status ur_layout_nest(const ur_piece *pieces, size_t count, const ur_nest_opt
     for (size_t k = 0; status == UR_OK && k < count; k++)
         order[k] = keys[k].index;
     if (status == UR_OK)
-        status = run_order(&n, order);
+        status = run_order(&n, order, NULL);
     if (status == UR_OK)
         status = search(&n, order);
     free(order);
