@@ -104,9 +104,11 @@ static ur_status add_copies(const ur_job_part *part, const cli_pieces *made, ur_
 /*
  * The stock a job's parts go on, in the order first used, and each
  * piece's: a material and how it is nested (sheet size or roll, margin,
- * spacing, holes ...; a part's turns go with its pieces).  Parts of one material with the job's
- * nesting options share sheets; a part with its own material, or its own options for the sheets,
- * goes on sheets of its own.
+ * spacing, holes, remnants ...; a part's turns go with its pieces).  Parts
+ * of one material with the job's nesting options share sheets; a part
+ * with its own material, or its own options for the sheets, goes on
+ * sheets of its own.  Remnants given for the whole job go to the first
+ * stock only, so that no offcut is used twice.
  */
 enum { MOST_MATERIALS = 32 };
 
@@ -117,13 +119,20 @@ typedef struct job_materials {
     size_t *of_piece; /* owned: each piece's index in list */
 } job_materials;
 
+static bool same_remnants(const cli_job *a, const cli_job *b)
+{
+    return a->remnant_count == b->remnant_count &&
+           (a->remnant_count == 0 ||
+            memcmp(a->remnants, b->remnants, a->remnant_count * sizeof *a->remnants) == 0);
+}
+
 /* Whether two parts' options nest them alike. */
 static bool same_placing(const cli_job *a, const cli_job *b)
 {
     return a->sheet_width == b->sheet_width && a->sheet_height == b->sheet_height &&
            a->roll_width == b->roll_width && a->margin == b->margin && a->spacing == b->spacing &&
            a->no_holes == b->no_holes && a->merge_lines == b->merge_lines &&
-           a->max_sheets == b->max_sheets;
+           a->max_sheets == b->max_sheets && same_remnants(a, b);
 }
 
 /* Notes that pieces first .. first + count - 1 are of material, placed as placing says. */
@@ -306,6 +315,8 @@ static ur_status place_by_material(const cli_job *job, cli_pieces *all, job_mate
     ur_status status = group_by_material(all, materials, starts, error);
     for (size_t g = 0; status == UR_OK && g < materials->count; g++) {
         ur_layout part = {NULL, 0, NULL, 0};
+        if (g > 0 && same_remnants(&materials->placing[g], &materials->placing[0]))
+            materials->placing[g].remnant_count = 0; /* the job's offcuts: the first stock's */
         status = cli_place_pieces(&materials->placing[g], &all->machine, &materials->list[g],
                                   all->pieces + starts[g], starts[g + 1] - starts[g], &part, error);
         if (status == UR_OK)

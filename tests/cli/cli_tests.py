@@ -1684,7 +1684,8 @@ def job_parts_of_different_materials(work):
     --sheet goes on sheets of that size."""
     # On the router's bed the two materials' first stock sizes differ (1000 x 700, 600 x 400).
     write(work, "mixed.xml", JOB_HEAD.replace("  <material>", "  <machine>router</machine>\n  <material>")
-          + """  <part surface="cylinder" name="drum">
+          + """  <option name="remnant" value="500x300"/>
+  <part surface="cylinder" name="drum">
     <option name="radius" value="40"/><option name="height" value="100"/>
   </part>
   <part surface="cylinder" name="box" material="plywood-3mm" quantity="2">
@@ -1703,9 +1704,13 @@ def job_parts_of_different_materials(work):
     materials = [sheet.get("material") for sheet in found["sheets"]]
     check(sorted(set(materials)) == ["cardboard-2mm", "plywood-3mm"], "sheet materials %r" % materials)
     check("sheets_lower_bound" not in found, "one lower bound for stock of several kinds")
+    # The job's one offcut is used once, by the first stock (the drum's).
+    remnants = [s for s in found["sheets"] if s["remnant"]]
+    check(len(remnants) == 1 and remnants[0]["material"] == "cardboard-2mm", "remnants %r" % remnants)
     for index, sheet in enumerate(found["sheets"], 1):
         size = (round(sheet["width_mm"]), round(sheet["height_mm"]))
-        check(size in stock[sheet["material"]], "sheet %d of %s is %r" % (index, sheet["material"], size))
+        check(size in stock[sheet["material"]] + ([(500, 300)] if sheet["remnant"] else []),
+              "sheet %d of %s is %r" % (index, sheet["material"], size))
         names = [p["name"] for p in found["pieces"] if p["sheet"] == index]
         # The lid asks for a sheet of its own size, so it shares none with the drum.
         want = ("box" if sheet["material"] == "plywood-3mm" else
@@ -1722,7 +1727,7 @@ def job_parts_of_different_materials(work):
           "a one-material job names the material per sheet")
     write(work, "nomaterial.xml", open(os.path.join(work, "mixed.xml")).read()
           .replace('material="plywood-3mm"', 'material="unobtainium"'))
-    bad(work, r"nomaterial\.xml:8: .*unobtainium", "job", "nomaterial.xml", "-o", "out4")
+    bad(work, r"nomaterial\.xml:9: .*unobtainium", "job", "nomaterial.xml", "-o", "out4")
 
 
 @test
