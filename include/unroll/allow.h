@@ -117,6 +117,8 @@ typedef struct ur_piece {
      */
     bool has_rulings;
     double ruling_angle;
+    /* The piece's own allowed turns for nesting (as ur_nest_options.rotations); 0: the nesting's */
+    size_t rotations;
 } ur_piece;
 
 typedef struct ur_allowance_options {
@@ -283,8 +285,8 @@ ur_status ur_piece_compensate_kerf(ur_piece *piece, double kerf, ur_error *error
  * moves to the nearest place allowed.  The closed outline becomes open CUT
  * paths, gap to gap (the first stays paths[0], the others are appended) and
  * piece->bridged is set; an outline that was exactly a circle becomes arcs
- * of it (each path's circle and sweep set, its ends moved onto the circle).  Apply after placement: nothing after this may
- * treat paths[0] as a closed ring.  Records a UR_ALLOWANCE_BRIDGES entry
+ * of it (each path's circle and sweep set, its ends moved onto the circle).  Apply after placement:
+ * nothing after this may treat paths[0] as a closed ring.  Records a UR_ALLOWANCE_BRIDGES entry
  * (count: the gaps made, value: the width), a warning when fewer fit than
  * asked; when none fits the outline stays closed and unbridged.  Refuses
  * (UR_ERROR_INPUT naming the piece) a width not above 0 or not finite and a

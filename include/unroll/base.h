@@ -10,15 +10,24 @@
 #define UNROLL_BASE_H
 
 #include <stdarg.h>
+#include <stdbool.h>
 #include <stddef.h>
 
 #define UR_VERSION "0.1.0"
+
+/*
+ * The largest coordinate or length, in mm, taken from any input (1000 km):
+ * far beyond any sheet or part, and small enough that squares, cross
+ * products and areas of such numbers never overflow.
+ */
+#define UR_LENGTH_MAX 1e9
 
 /* The values double as the command's exit status. */
 typedef enum ur_status {
     UR_OK = 0,
     UR_ERROR_INTERNAL = 1, /* out of memory, a library failure, a bug */
     UR_ERROR_INPUT = 2,    /* bad input: a file, a line, an option */
+    UR_ERROR_CANCELLED = 3 /* ur_cancel_request was called (the command exits 128 + signal) */
 } ur_status;
 
 typedef struct ur_error {
@@ -44,6 +53,21 @@ void ur_error_clear(ur_error *error);
 
 /* Out-of-memory in one place so every caller words it the same. */
 ur_status ur_error_out_of_memory(ur_error *error);
+
+/*
+ * Cancellation.  Long computations (the nesting search, ARAP iterations,
+ * strips and unfolding) poll one process-wide flag and return
+ * UR_ERROR_CANCELLED at their next check once it is set; the writers check
+ * it once more before renaming any file into place, so that a cancelled run
+ * leaves no output.  ur_cancel_request only stores to a volatile
+ * sig_atomic_t, so a signal handler may call it.
+ */
+void ur_cancel_request(void);
+void ur_cancel_reset(void);
+bool ur_cancel_requested(void);
+
+/* UR_OK, or UR_ERROR_CANCELLED with error saying so once ur_cancel_request was called. */
+ur_status ur_cancel_check(ur_error *error);
 
 /* What the cutter does with a path.  Writers map each to a layer. */
 typedef enum ur_op {

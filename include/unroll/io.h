@@ -207,7 +207,7 @@ void ur_mesh_import_options_default(ur_mesh_import_options *options);
 #define UR_MESH_IMPORT_MAX_VERTICES 50000000u
 
 /* Coordinates beyond 1000 km, once in millimetres, are refused. */
-#define UR_MESH_IMPORT_MAX_COORDINATE 1e9
+#define UR_MESH_IMPORT_MAX_COORDINATE UR_LENGTH_MAX
 
 /*
  * About how many bytes reading the mesh file at path takes at its peak
@@ -346,10 +346,10 @@ typedef struct ur_parts {
  * within options->tolerance, every point on the curve; a ring that is
  * exactly a circle (SVG circle, an ellipse of equal radii, a sub-path of
  * arcs of one circle going once round, under a transform that keeps
- * circles circles; DXF CIRCLE) keeps it as its path's circle, in mm.  Parts are named by their SVG id, else the
- * file's name without extension and the part's number ("plate-3"); a path
- * whose several sub-paths become parts names the second and later
- * "ID-2", "ID-3"...  options may be NULL (defaults).
+ * circles circles; DXF CIRCLE) keeps it as its path's circle, in mm.  Parts are named by their SVG
+ * id, else the file's name without extension and the part's number ("plate-3"); a path whose
+ * several sub-paths become parts names the second and later "ID-2", "ID-3"...  options may be NULL
+ * (defaults).
  *
  * SVG (libxml2, no network, no entity expansion): path (every command),
  * rect (rx, ry round the corners), circle, ellipse, polygon, and polyline
@@ -379,8 +379,9 @@ typedef struct ur_parts {
  * without its value, a number that is not one), no physical size and no
  * options->unit ("give --units"), an open shape (naming the SVG element and
  * its id, or the DXF entity, that does not close), NaN, infinite or
- * too-large coordinates, a ring of zero area, two rings that cross, and a
- * file with no closed shape at all.  A ring that crosses itself is
+ * too-large coordinates, a ring of zero area, two rings that cross, a part
+ * whose holes together fill it (naming its outline), and a file with no
+ * closed shape at all.  A ring that crosses itself is
  * repaired with GEOSMakeValid when that gives one polygon (a warning says
  * so) and refused, naming the part, when it does not.  On failure *parts is
  * empty.  Free with ur_parts_free.

@@ -3,8 +3,8 @@
  *
  * Sheet coordinates are millimetres with the origin at the sheet's lower left
  * corner, x to the right and y up.  A placement is a rigid motion taking piece
- * coordinates to sheet coordinates.  For now pieces go in rows (shelves); true
- * shape nesting comes later behind the same types.
+ * coordinates to sheet coordinates.  Pieces go in rows (ur_layout_rows) or
+ * at their true shape (ur_layout_nest), on stock sheets, remnants or a roll.
  */
 #ifndef UNROLL_NEST_H
 #define UNROLL_NEST_H
@@ -23,7 +23,13 @@ typedef struct ur_sheet {
     size_t placement_count;
     /* Set by the caller when a job mixes materials: this sheet's; "" otherwise. */
     char material[64];
+    bool remnant; /* one of ur_nest_options.remnants, not a stock sheet */
 } ur_sheet;
+
+/* A sheet left over from an earlier job (an offcut), given by its size in mm. */
+typedef struct ur_remnant {
+    double width, height;
+} ur_remnant;
 
 typedef struct ur_layout {
     ur_sheet *sheets; /* owned */
@@ -65,10 +71,19 @@ typedef struct ur_nest_options {
     double sheet_width, sheet_height;
     double margin;     /* kept free along every sheet edge */
     double spacing;    /* kept free between parts */
-    size_t rotations;  /* allowed turns: 0 or 1 the first only, N equal steps */
+    size_t rotations;  /* allowed turns: 0 or 1 the first only, N equal steps; see ur_piece */
     bool level;        /* turns start from the level one (else from the part as drawn) */
     bool holes;        /* parts may go inside holes of other parts */
-    size_t max_sheets; /* 0: as many as needed */
+    size_t max_sheets; /* stock sheets (remnants not counted); 0: as many as needed */
+    /*
+     * Remnants: sheets at hand, filled before any stock sheet is opened.
+     * A part goes on the first remnant (in this order) where it finds room,
+     * else on the stock sheets; remnants left empty are not in the layout,
+     * and those used come first in it, marked remnant.  Same margin and
+     * spacing as the stock.  NULL and 0: none.
+     */
+    const ur_remnant *remnants;
+    size_t remnant_count;
     /*
      * Roll stock: > 0 nests on one strip this wide (sheet_height is
      * ignored; sheet_width too) and as short as it can; the layout's one
@@ -79,16 +94,20 @@ typedef struct ur_nest_options {
      * A grain rule: parts with rulings (ur_piece.has_rulings) turn only so
      * that their rulings make grain_angle (radians) with the sheet's x axis,
      * the grain, end for end, or grain_tolerance either side (2 turns, or 6
-     * with a tolerance; parts without rulings take as many equal steps).
+     * with a tolerance).  Parts without rulings turn as rotations says, or
+     * as their own ur_piece.rotations says when it is not 0.
      */
     bool grain;
     double grain_angle, grain_tolerance;
     /*
      * The search after the first, largest-first layout: orders tried (two
-     * parts swapped, or one moved) until time_budget seconds have passed,
-     * NEST_PATIENCE tries in a row brought nothing better, or NEST_TRIES
-     * tries were made; a better layout places more parts, or uses fewer
-     * sheets, or less of the last sheet's length.  0: no search.  The
+     * parts swapped, or one moved, from the current order, which any order
+     * at least as good replaces) until time_budget seconds have passed,
+     * a run of tries brought no new best (NEST_PATIENCE_PER_SECOND per
+     * second of budget, at least NEST_PATIENCE), or NEST_TRIES tries were
+     * made.  A better layout places more parts, or uses fewer stock
+     * sheets, or less of the last sheet's length, or at equal length has
+     * that sheet's parts reach less far on average.  0: no search.  The
      * orders come from seed (xorshift64*), so a search that stops for want
      * of improvement or at its try limit gives the same layout every time.
      */
@@ -99,7 +118,7 @@ typedef struct ur_nest_options {
     void *progress_context;
 } ur_nest_options;
 
-enum { NEST_PATIENCE = 40, NEST_TRIES = 2000 };
+enum { NEST_PATIENCE = 40, NEST_PATIENCE_PER_SECOND = 20, NEST_TRIES = 100000 };
 
 ur_status ur_layout_nest(const ur_piece *pieces, size_t count, const ur_nest_options *options,
                          ur_layout *layout, ur_error *error);

@@ -65,6 +65,20 @@ ur_format ur_format_from_name(const char *name);
 ur_status ur_formats_parse(const char *list, unsigned *formats, ur_error *error);
 
 /*
+ * Output sets: between ur_output_set_begin and ur_output_set_end every file
+ * the writers of this module and ur_curve_csv_write complete (cut files,
+ * reports, pictures, curves) stays a hidden temporary next to its name;
+ * ur_output_set_end renames them all into place when commit is true, else
+ * removes them all, so the files of a whole run appear together or not at
+ * all.  Sets nest: only the outermost end renames, and a set that any end
+ * refused (commit false) is removed.  One process-wide set, not for use
+ * from several threads at once.  ur_output_set_end fails, renaming nothing,
+ * when the run was cancelled (ur_cancel_request).
+ */
+void ur_output_set_begin(void);
+ur_status ur_output_set_end(bool commit, ur_error *error);
+
+/*
  * Writes the layout in every format of formats (ur_format bits; 0: the one
  * path's extension names).  Each format's file is path with that format's
  * extension: path's own extension, if it names a format, is replaced
@@ -161,12 +175,12 @@ ur_status ur_output_files(const char *path, unsigned formats, size_t sheet_count
  * is exactly a circle (ur_path_circle) a CIRCLE, exactly an arc an ARC, a
  * two-point open path a LINE; a layer the machine dashes gets a LTYPE of
  * its dashes (DASH_3_1P5 for "3 1.5"); the job name is a 999 comment at
- * the top.  SVG draws exact circles as <circle> and arcs with A.  PDF (libharu): each page exactly its sheet, paths in
- * the machine's colours and line widths (dashes too), title, creator
- * "unroll VERSION" and job name in the document information (non-ASCII characters as '?').  PNG:
- * each sheet at format_options->dpi with the pieces filled by strain colour (where the piece has
- * shading), the lines in their operations' colours, the pieces' names, a scale bar and a legend of
- * the operations.
+ * the top.  SVG draws exact circles as <circle> and arcs with A.  PDF (libharu): each page exactly
+ * its sheet, paths in the machine's colours and line widths (dashes too), title, creator "unroll
+ * VERSION" and job name in the document information (non-ASCII characters as '?').  PNG: each sheet
+ * at format_options->dpi with the pieces filled by strain colour (where the piece has shading), the
+ * lines in their operations' colours, the pieces' names, a scale bar and a legend of the
+ * operations.
  */
 ur_status ur_write_dxf(const char *output_path, const ur_layout *layout, const ur_piece *pieces,
                        const ur_machine *machine, const ur_output_options *options,
@@ -202,6 +216,8 @@ typedef struct ur_report_context {
     size_t gap_count;
     const struct ur_report_layer *layer; /* the layer developed; NULL: not reported (meshes) */
     bool drawing_order;                  /* the files keep the drawing order (--order none) */
+    /* ceil(part area / usable sheet area), the fewest sheets any layout needs; 0: not known */
+    double sheets_lower_bound;
 } ur_report_context;
 
 /*

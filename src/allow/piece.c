@@ -156,6 +156,7 @@ ur_status ur_piece_copy(const ur_piece *from, ur_piece *to, ur_error *error)
     to->measures = from->measures;
     to->bridged = from->bridged;
     to->outline_area = from->outline_area;
+    to->rotations = from->rotations;
     to->ruling_angle = from->ruling_angle;
     to->has_rulings = from->has_rulings;
     ur_status status = UR_OK;

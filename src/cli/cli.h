@@ -1,7 +1,8 @@
 /*
  * cli.h: what the files of the unroll command share.  Only this module talks
  * to the user: messages go to stderr as "unroll: ...", and the exit status is
- * 0 (success), 1 (internal error) or 2 (bad usage or input).
+ * 0 (success), 1 (internal error) or 2 (bad usage or input), or 128 + N when
+ * signal N (SIGINT, SIGTERM) stopped the run.
  */
 #ifndef UNROLL_CLI_H
 #define UNROLL_CLI_H
@@ -21,6 +22,9 @@ enum { EXIT_INTERNAL = 1, EXIT_USAGE = 2 };
 typedef enum cli_action { CLI_DEVELOP, CLI_ANALYZE, CLI_COMPARE } cli_action;
 
 /* Everything the command line can say about a surface job. */
+/* The most --remnant options a command takes. */
+#define CLI_MAX_REMNANTS 64
+
 typedef struct cli_job {
     cli_action action;
     const char *command; /* "strip", or "analyze" for 'unroll analyze strip ...' */
@@ -76,13 +80,15 @@ typedef struct cli_job {
     unsigned formats;
     int dxf_version;
     double dpi;
-    bool drawing_order;       /* --order none */
-    long rotations;           /* --rotations N; 0: 4, or 2 under a grain rule */
-    bool no_holes;            /* --no-holes: no part inside another's hole */
-    bool merge_lines;         /* --merge-lines: touching parts, shared lines cut once */
-    bool level;               /* turns start from the level one (surfaces), not as drawn (nest) */
-    double roll_width;        /* --roll W: nest on roll stock this wide; 0 for sheets */
-    long max_sheets;          /* --sheets N: at most N sheets; 0 for as many as needed */
+    bool drawing_order; /* --order none */
+    long rotations;     /* --rotations N; 0: 4, or 2 under a grain rule */
+    bool no_holes;      /* --no-holes: no part inside another's hole */
+    bool merge_lines;   /* --merge-lines: touching parts, shared lines cut once */
+    bool level;         /* turns start from the level one (surfaces), not as drawn (nest) */
+    double roll_width;  /* --roll W: nest on roll stock this wide; 0 for sheets */
+    long max_sheets;    /* --sheets N: at most N sheets; 0 for as many as needed */
+    ur_remnant remnants[CLI_MAX_REMNANTS]; /* --remnant WxH, in the order given */
+    size_t remnant_count;
     double nest_time;         /* --nest-time S: the search's budget; NAN for the default */
     int seam_offset;          /* seams are numbered from this on (a job file's later parts) */
     const char *piece_prefix; /* pieces are named PREFIX-P1, ... (a job file's part); NULL */
@@ -221,6 +227,8 @@ bool cli_parse_order(cli_job *job, const char *value);
 bool cli_parse_rotations(cli_job *job, const char *value);
 bool cli_parse_roll(cli_job *job, const char *value);
 bool cli_parse_sheet_count(cli_job *job, const char *value);
+bool cli_parse_remnant(cli_job *job, const char *value);
+void cli_describe_sheets(const ur_layout *layout, char *text, size_t size);
 bool cli_parse_nest_time(cli_job *job, const char *value);
 bool cli_parse_seed(cli_job *job, const char *value);
 /* --job-name NAME: the name the files record (outputs.c); false after a message. */
@@ -237,6 +245,15 @@ bool cli_check_output(const cli_job *job);
  * report naming them all (outputs.c).  context is filled but for its
  * outputs, which this sets.
  */
+/*
+ * The fewest stock sheets any layout needs: ceil(sum of the pieces' flat
+ * areas, less the room inside the remnants' margins, / the room inside a
+ * stock sheet's margin); 0 when the stock sheets are of several sizes or
+ * materials, or there are none.
+ */
+double cli_sheets_lower_bound(const ur_piece *pieces, size_t count, const ur_layout *layout,
+                              double margin);
+
 ur_status cli_write_outputs(const cli_job *job, const ur_machine *machine, const ur_layout *layout,
                             const ur_piece *pieces, size_t count, ur_report_context *context,
                             ur_error *error);
@@ -273,6 +290,15 @@ void cli_allowance_warnings(const cli_job *job, const ur_piece *pieces, size_t c
  * `what`, and EXIT_INTERNAL (memory.c).
  */
 int cli_check_memory(const cli_job *job, const char *what, size_t needed);
+
+/* Installs the SIGINT and SIGTERM handlers (signals.c); false if the system refuses. */
+bool cli_catch_signals(void);
+
+/*
+ * The exit status: code, or 128 + the signal's number when SIGINT or
+ * SIGTERM arrived, said on stderr.
+ */
+int cli_signal_exit(int code);
 
 /* unroll profiles [show NAME] */
 int cli_profiles(int argc, char **argv);

@@ -104,9 +104,9 @@ static ur_status add_copies(const ur_job_part *part, const cli_pieces *made, ur_
 /*
  * The stock a job's parts go on, in the order first used, and each
  * piece's: a material and how it is nested (sheet size or roll, margin,
- * spacing, turns ...).  Parts of one material with the job's nesting
- * options share sheets; a part with its own material, or its own options
- * for the sheets, goes on sheets of its own.
+ * spacing, holes ...; a part's turns go with its pieces).  Parts of one material with the job's
+ * nesting options share sheets; a part with its own material, or its own options for the sheets,
+ * goes on sheets of its own.
  */
 enum { MOST_MATERIALS = 32 };
 
@@ -122,8 +122,8 @@ static bool same_placing(const cli_job *a, const cli_job *b)
 {
     return a->sheet_width == b->sheet_width && a->sheet_height == b->sheet_height &&
            a->roll_width == b->roll_width && a->margin == b->margin && a->spacing == b->spacing &&
-           a->rotations == b->rotations && a->no_holes == b->no_holes &&
-           a->merge_lines == b->merge_lines && a->max_sheets == b->max_sheets;
+           a->no_holes == b->no_holes && a->merge_lines == b->merge_lines &&
+           a->max_sheets == b->max_sheets;
 }
 
 /* Notes that pieces first .. first + count - 1 are of material, placed as placing says. */
@@ -219,6 +219,9 @@ static int all_pieces(const ur_job *file, const char *out, words *first_words, c
         }
         all->surface_area += made.surface_area * (double)file->parts[p].quantity;
         size_t first = all->count;
+        for (size_t k = 0; job.rotations > 0 && k < made.count; k++)
+            made.pieces[k].rotations =
+                (size_t)job.rotations; /* the part's turns, on shared sheets */
         if (add_copies(&file->parts[p], &made, &all->pieces, &all->count, &error) != UR_OK ||
             note_material(materials, &made.material, &job, first, all->count - first, &error) !=
                 UR_OK) {

@@ -45,7 +45,8 @@ static const char usage[] =
     "  -n, --parts N          parts for triangle/quad; rulings drawn for all (default 24)\n"
     "  --rulings              draw the rulings as score lines\n"
     "  --tolerance MM         largest distance of an outline chord from the curve (0.01)\n"
-    "  --no-split             refuse a net that overlaps itself instead of splitting it\n"
+    "  --no-split             refuse a net that overlaps itself or fits no sheet\n"
+    "                         instead of splitting it\n"
     "  --allowances WHAT      auto (default), none, or a list of tabs, kerfing, overlaps,\n"
     "                         bending, bridges: what the material needs (man unroll)\n"
     "  --bridges auto|N|none  holding bridges (default: as the machine profile says)\n"
@@ -54,10 +55,17 @@ static const char usage[] =
     "  --dxf-version 12|2000  DXF dialect (default 12); --dpi N  PNG preview resolution\n"
     "  --job-name NAME        the job the files record (default the subcommand)\n"
     "  --order cut|none       paths in cutting order (default) or as drawn\n"
+    "nesting (man unroll, SHEETS):\n"
+    "  --rotations N          N turns of 360/N degrees (default 4); --no-holes\n"
+    "  --roll W               roll stock W mm wide, as short as it goes\n"
+    "  --sheets N             at most N sheets; --remnant WxH  an offcut, filled first\n"
+    "  --nest-time S --seed N the search for a better layout (default 1 s, seed 0)\n"
+    "  --merge-lines          parts may touch; a line two parts share is cut once\n"
     "  --report FILE.json     write a JSON report ('-' for standard output)\n"
     "  --quiet                no summary on standard error\n"
     "\n"
-    "exit status: 0 success, 1 internal error, 2 bad usage or input.\n"
+    "exit status: 0 success, 1 internal error, 2 bad usage or input,\n"
+    "130 stopped by SIGINT, 143 stopped by SIGTERM (nothing half-written).\n"
     "See unroll(1) and unroll-profile(5).\n";
 
 static const struct {
@@ -200,7 +208,7 @@ static int study_command(int argc, char **argv, cli_action action)
     return action == CLI_ANALYZE ? cli_analyze(&job) : cli_compare(&job);
 }
 
-int main(int argc, char **argv)
+static int dispatch(int argc, char **argv)
 {
     if (argc < 2) {
         fputs(usage, stderr);
@@ -236,4 +244,13 @@ int main(int argc, char **argv)
         return study_command(argc - 1, argv + 1, CLI_COMPARE);
     cli_message("unknown subcommand '%s'; 'unroll --help' lists them", command);
     return EXIT_USAGE;
+}
+
+int main(int argc, char **argv)
+{
+    if (!cli_catch_signals()) {
+        cli_message("cannot install the SIGINT and SIGTERM handlers");
+        return EXIT_INTERNAL;
+    }
+    return cli_signal_exit(dispatch(argc, argv));
 }

@@ -404,8 +404,11 @@ static int nets_of_mesh(const cli_job *job, const cli_room *room, const ur_mater
     ur_mesh_repairs repairs;
     double size = mesh->vertex_count ? ur_mesh_size(mesh) : 0.0;
     double weld = 1e-6 * size; /* well below any modelling detail, above float rounding */
-    if (ur_mesh_clean(mesh, weld, &repairs, &error) != UR_OK)
+    if (ur_mesh_clean(mesh, weld, &repairs, &error) != UR_OK) {
+        if (tell_repairs && job->mesh_path) /* the library does not know the file's name */
+            ur_error_prefix(&error, "%s: ", job->mesh_path);
         return fail(job, &error);
+    }
     if (tell_repairs)
         say_repairs(job, &repairs);
     char what[64];

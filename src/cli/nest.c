@@ -40,6 +40,7 @@ enum nest_option {
     NEST_NO_SPLIT,
     NEST_ROLL,
     NEST_SHEETS,
+    NEST_REMNANT,
     NEST_NEST_TIME,
     NEST_SEED,
 };
@@ -67,6 +68,7 @@ static const struct option nest_options[] = {
     {"no-split", no_argument, NULL, NEST_NO_SPLIT},
     {"roll", required_argument, NULL, NEST_ROLL},
     {"sheets", required_argument, NULL, NEST_SHEETS},
+    {"remnant", required_argument, NULL, NEST_REMNANT},
     {"nest-time", required_argument, NULL, NEST_NEST_TIME},
     {"seed", required_argument, NULL, NEST_SEED},
     {"help", no_argument, NULL, 'h'},
@@ -100,8 +102,8 @@ static bool parse_length(const char *what, const char *value, double *length)
 {
     char *end = NULL;
     double parsed = strtod(value, &end);
-    if (end == value || *end != '\0' || !isfinite(parsed) || parsed < 0) {
-        cli_message("nest: %s: '%s' is not a length of 0 mm or more", what, value);
+    if (end == value || *end != '\0' || !(parsed >= 0) || !(parsed <= UR_LENGTH_MAX)) {
+        cli_message("nest: %s: '%s' is not a length from 0 to %g mm", what, value, UR_LENGTH_MAX);
         return false;
     }
     *length = parsed;
@@ -113,9 +115,10 @@ static bool parse_sheet_size(const char *value, cli_job *job)
     char *end = NULL;
     double width = strtod(value, &end);
     double height = end && *end == 'x' ? strtod(end + 1, &end) : NAN;
-    if (!end || *end != '\0' || !(width > 0) || !(height > 0) || !isfinite(width) ||
-        !isfinite(height)) {
-        cli_message("nest: --sheet: '%s' is not WxH in mm, e.g. 600x400", value);
+    if (!end || *end != '\0' || !(width > 0) || !(height > 0) || !(width <= UR_LENGTH_MAX) ||
+        !(height <= UR_LENGTH_MAX)) {
+        cli_message("nest: --sheet: '%s' is not WxH in mm up to %g, e.g. 600x400", value,
+                    UR_LENGTH_MAX);
         return false;
     }
     job->sheet_width = width;
@@ -184,6 +187,8 @@ static bool take_nest_option(nest_job *n, int id, const char *value)
         return cli_parse_roll(job, value);
     case NEST_SHEETS:
         return cli_parse_sheet_count(job, value);
+    case NEST_REMNANT:
+        return cli_parse_remnant(job, value);
     case NEST_NEST_TIME:
         return cli_parse_nest_time(job, value);
     case NEST_SEED:
@@ -209,6 +214,7 @@ static const char nest_help[] =
     "  --no-split     refuse a part longer than any sheet instead of cutting it\n"
     "  --roll W   nest on roll stock W mm wide, as short as it goes\n"
     "  --sheets N at most N sheets; what does not fit is named, not placed\n"
+    "  --remnant WxH  a remnant sheet at hand, filled before stock (repeatable)\n"
     "  --nest-time S  search for a better layout for up to S seconds (default 2)\n"
     "  --seed N       the search's orders (the same seed, the same layout)\n";
 
@@ -329,37 +335,41 @@ static int read_files(const nest_job *n, ur_piece **pieces, size_t *count)
     return 0;
 }
 
-/* Sheets no layout can do with fewer: the parts' area over the room inside the margin. */
-static double lower_bound(const ur_piece *pieces, size_t count, const ur_sheet *sheet,
-                          double margin)
-{
-    double area = 0.0;
-    for (size_t k = 0; k < count; k++)
-        area += pieces[k].measures.flat_area;
-    double room = (sheet->width - 2 * margin) * (sheet->height - 2 * margin);
-    return room > 0 ? ceil(area / room - 1e-9) : NAN;
-}
-
 static void print_nest_summary(const nest_job *n, const ur_machine *machine, const ur_piece *pieces,
                                size_t count, const ur_layout *layout)
 {
     if (n->job.quiet || layout->sheet_count == 0)
         return;
     double margin = n->job.margin >= 0 ? n->job.margin : machine->margin;
-    for (size_t s = 0; s < layout->sheet_count; s++)
-        cli_message("nest: sheet %zu: %zu parts, utilisation %.1f %%", s + 1,
-                    layout->sheets[s].placement_count,
-                    100 * ur_sheet_utilisation(&layout->sheets[s], pieces));
+    const ur_sheet *stock = NULL; /* the first stock sheet, the roll on roll stock */
+    for (size_t s = 0; s < layout->sheet_count; s++) {
+        const ur_sheet *sheet = &layout->sheets[s];
+        if (!sheet->remnant && !stock)
+            stock = sheet;
+        if (sheet->remnant)
+            cli_message("nest: sheet %zu (remnant %g x %g mm): %zu parts, utilisation %.1f %%",
+                        s + 1, sheet->width, sheet->height, sheet->placement_count,
+                        100 * ur_sheet_utilisation(sheet, pieces));
+        else
+            cli_message("nest: sheet %zu: %zu parts, utilisation %.1f %%", s + 1,
+                        sheet->placement_count, 100 * ur_sheet_utilisation(sheet, pieces));
+    }
     if (n->job.roll_width > 0) {
-        cli_message("nest: %zu parts on %.1f mm of the %g mm roll -> %s", count,
-                    layout->sheets[0].width, n->job.roll_width, n->job.output_path);
+        cli_message("nest: %zu parts on %.1f mm of the %g mm roll%s -> %s", count,
+                    stock ? stock->width : 0.0, n->job.roll_width,
+                    layout->sheet_count > (stock != NULL) ? " and remnants" : "",
+                    n->job.output_path);
         return;
     }
-    cli_message("nest: %zu parts on %zu sheet%s of %g x %g mm (lower bound %.0f) -> %s",
-                count - layout->not_placed_count, layout->sheet_count,
-                layout->sheet_count == 1 ? "" : "s", layout->sheets[0].width,
-                layout->sheets[0].height, lower_bound(pieces, count, &layout->sheets[0], margin),
-                n->job.output_path);
+    char used[1024];
+    cli_describe_sheets(layout, used, sizeof used);
+    if (stock)
+        cli_message("nest: %zu parts on %s (lower bound %.0f stock sheets) -> %s",
+                    count - layout->not_placed_count, used,
+                    cli_sheets_lower_bound(pieces, count, layout, margin), n->job.output_path);
+    else
+        cli_message("nest: %zu parts on %s -> %s", count - layout->not_placed_count, used,
+                    n->job.output_path);
 }
 
 /* Puts the split parts' pieces at the end of the list instead of the parts marked cut. */

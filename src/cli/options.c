@@ -70,6 +70,7 @@ enum option_id {
     OPT_MERGE_LINES,
     OPT_ROLL,
     OPT_SHEETS,
+    OPT_REMNANT,
     OPT_NEST_TIME,
     OPT_SEED,
 };
@@ -129,6 +130,7 @@ static const struct option long_options[] = {
     {"merge-lines", no_argument, NULL, OPT_MERGE_LINES},
     {"roll", required_argument, NULL, OPT_ROLL},
     {"sheets", required_argument, NULL, OPT_SHEETS},
+    {"remnant", required_argument, NULL, OPT_REMNANT},
     {"nest-time", required_argument, NULL, OPT_NEST_TIME},
     {"seed", required_argument, NULL, OPT_SEED},
     {"help", no_argument, NULL, 'h'},
@@ -159,7 +161,7 @@ static const struct {
     {CLI_DEVELOP,
      " output machine material sheet method parts rulings no-split report strain-png "
      "allowances bridges no-kerf-compensation format dxf-version dpi job-name order rotations "
-     "no-holes merge-lines roll sheets nest-time seed "},
+     "no-holes merge-lines roll sheets remnant nest-time seed "},
     {CLI_ANALYZE, " png report "},
     {CLI_COMPARE, " png csv "},
 };
@@ -238,6 +240,11 @@ static bool parse_number(const char *surface, int id, const char *text, double *
         cli_message("%s: --%s: '%s' is not a finite number", surface, option_name(id), text);
         return false;
     }
+    if (fabs(*value) > UR_LENGTH_MAX) {
+        cli_message("%s: --%s: '%s' is beyond the largest number unroll takes, %g", surface,
+                    option_name(id), text, UR_LENGTH_MAX);
+        return false;
+    }
     return true;
 }
 
@@ -250,7 +257,8 @@ static const char *scan_vector(const char *p, char last, ur_vec3 *v)
         errno = 0;
         c[k] = strtod(p, &end);
         bool separator_ok = k < 2 ? *end == ',' : *end == last;
-        if (end == p || !separator_ok || errno == ERANGE || !isfinite(c[k]))
+        if (end == p || !separator_ok || errno == ERANGE || !isfinite(c[k]) ||
+            fabs(c[k]) > UR_LENGTH_MAX)
             return NULL;
         p = end + 1;
     }
@@ -261,8 +269,8 @@ static const char *scan_vector(const char *p, char last, ur_vec3 *v)
 static bool parse_vector(const char *surface, int id, const char *text, ur_vec3 *v)
 {
     if (!scan_vector(text, '\0', v)) {
-        cli_message("%s: --%s: '%s' is not three finite numbers X,Y,Z", surface, option_name(id),
-                    text);
+        cli_message("%s: --%s: '%s' is not three numbers X,Y,Z (each at most %g)", surface,
+                    option_name(id), text, UR_LENGTH_MAX);
         return false;
     }
     return true;
@@ -274,8 +282,9 @@ static bool parse_corners(const char *surface, const char *text, ur_vec3 corners
     for (int k = 0; k < 4 && p; k++)
         p = scan_vector(p, k < 3 ? ':' : '\0', &corners[k]);
     if (!p) {
-        cli_message("%s: --corners: '%s' is not four corners X,Y,Z:X,Y,Z:X,Y,Z:X,Y,Z", surface,
-                    text);
+        cli_message("%s: --corners: '%s' is not four corners X,Y,Z:X,Y,Z:X,Y,Z:X,Y,Z (each "
+                    "number at most %g)",
+                    surface, text, UR_LENGTH_MAX);
         return false;
     }
     return true;
@@ -292,9 +301,10 @@ static bool parse_sheet(const char *surface, const char *text, cli_job *job)
         job->sheet_height = strtod(rest, &end);
         ok = end != rest && *end == '\0' && errno == 0;
     }
-    if (!ok || !(job->sheet_width > 0) || !(job->sheet_height > 0) || !isfinite(job->sheet_width) ||
-        !isfinite(job->sheet_height)) {
-        cli_message("%s: --sheet: '%s' is not WIDTHxHEIGHT in mm, e.g. 600x400", surface, text);
+    if (!ok || !(job->sheet_width > 0) || !(job->sheet_height > 0) ||
+        !(job->sheet_width <= UR_LENGTH_MAX) || !(job->sheet_height <= UR_LENGTH_MAX)) {
+        cli_message("%s: --sheet: '%s' is not WIDTHxHEIGHT in mm up to %g, e.g. 600x400", surface,
+                    text, UR_LENGTH_MAX);
         return false;
     }
     return true;
@@ -520,6 +530,8 @@ static bool take_option(cli_job *job, int id, const char *value)
         return cli_parse_roll(job, value);
     case OPT_SHEETS:
         return cli_parse_sheet_count(job, value);
+    case OPT_REMNANT:
+        return cli_parse_remnant(job, value);
     case OPT_NEST_TIME:
         return cli_parse_nest_time(job, value);
     case OPT_SEED:

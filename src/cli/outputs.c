@@ -1,8 +1,8 @@
 /*
  * outputs.c: the cut files a job writes: the formats asked for (--format,
- * or -o's extension), the DXF version and the preview's resolution, every
- * file written all or nothing (ur_write_outputs), and the report that
- * names them.
+ * or -o's extension), the DXF version and the preview's resolution, and
+ * the report that names them, every one written all or nothing together
+ * (one output set, unroll/out.h).
  */
 #include "cli.h"
 
@@ -77,8 +77,9 @@ bool cli_parse_roll(cli_job *job, const char *value)
 {
     char *end = NULL;
     double width = strtod(value, &end);
-    if (end == value || *end != '\0' || !isfinite(width) || !(width > 0)) {
-        cli_message("%s: --roll: '%s' is not a width in mm", job->command, value);
+    if (end == value || *end != '\0' || !(width > 0) || !(width <= UR_LENGTH_MAX)) {
+        cli_message("%s: --roll: '%s' is not a width in mm up to %g", job->command, value,
+                    UR_LENGTH_MAX);
         return false;
     }
     job->roll_width = width;
@@ -96,6 +97,54 @@ bool cli_parse_sheet_count(cli_job *job, const char *value)
         return false;
     }
     job->max_sheets = count;
+    return true;
+}
+
+/*
+ * What the layout uses, for the summary line: "2 sheets of 600 x 400 mm",
+ * "remnant 200 x 120 mm (sheet 1) and 1 sheet of 600 x 400 mm", ...
+ * Stock sheets all have one size; remnants are named one by one.
+ */
+void cli_describe_sheets(const ur_layout *layout, char *text, size_t size)
+{
+    size_t used = 0, stock = 0;
+    const ur_sheet *stock_sheet = NULL;
+    text[0] = '\0';
+    for (size_t s = 0; s < layout->sheet_count; s++) {
+        const ur_sheet *sheet = &layout->sheets[s];
+        if (!sheet->remnant) {
+            stock++;
+            stock_sheet = sheet;
+            continue;
+        }
+        int n = snprintf(text + used, size - used, "%sremnant %g x %g mm (sheet %zu)",
+                         used ? ", " : "", sheet->width, sheet->height, s + 1);
+        if (n < 0 || (size_t)n >= size - used)
+            return; /* cut short: the report has every sheet */
+        used += (size_t)n;
+    }
+    if (stock_sheet || used == 0)
+        snprintf(text + used, size - used, "%s%zu sheet%s of %g x %g mm", used ? " and " : "",
+                 stock, stock == 1 ? "" : "s", stock_sheet ? stock_sheet->width : 0.0,
+                 stock_sheet ? stock_sheet->height : 0.0);
+}
+
+/* --remnant WxH, repeatable: one more remnant sheet, filled before stock. */
+bool cli_parse_remnant(cli_job *job, const char *value)
+{
+    char *end = NULL;
+    double width = strtod(value, &end);
+    double height = end != value && (*end == 'x' || *end == 'X') ? strtod(end + 1, &end) : NAN;
+    if (*end != '\0' || !isfinite(width) || !isfinite(height) || !(width > 0) || !(height > 0)) {
+        cli_message("%s: --remnant: '%s' is not WIDTHxHEIGHT in mm, e.g. 300x200", job->command,
+                    value);
+        return false;
+    }
+    if (job->remnant_count == CLI_MAX_REMNANTS) {
+        cli_message("%s: --remnant: more than %d remnants", job->command, CLI_MAX_REMNANTS);
+        return false;
+    }
+    job->remnants[job->remnant_count++] = (ur_remnant){width, height};
     return true;
 }
 
@@ -178,6 +227,27 @@ bool cli_check_output(const cli_job *job)
     return status == UR_OK;
 }
 
+double cli_sheets_lower_bound(const ur_piece *pieces, size_t count, const ur_layout *layout,
+                              double margin)
+{
+    const ur_sheet *stock = NULL;
+    double area = 0.0;
+    for (size_t k = 0; k < count; k++)
+        area += pieces[k].measures.flat_area;
+    for (size_t s = 0; s < layout->sheet_count; s++) {
+        const ur_sheet *sheet = &layout->sheets[s];
+        if (sheet->remnant) /* what a remnant holds, no stock sheet need */
+            area -= fmax(0, (sheet->width - 2 * margin) * (sheet->height - 2 * margin));
+        else if (!stock)
+            stock = sheet;
+        else if (sheet->width != stock->width || sheet->height != stock->height ||
+                 strcmp(sheet->material, stock->material) != 0)
+            return 0; /* stock of several kinds: no one bound */
+    }
+    double room = stock ? (stock->width - 2 * margin) * (stock->height - 2 * margin) : 0;
+    return room > 0 ? fmax(0, ceil(area / room - 1e-9)) : 0;
+}
+
 ur_status cli_write_outputs(const cli_job *job, const ur_machine *machine, const ur_layout *layout,
                             const ur_piece *pieces, size_t count, ur_report_context *context,
                             ur_error *error)
@@ -190,8 +260,12 @@ ur_status cli_write_outputs(const cli_job *job, const ur_machine *machine, const
                                  .dpi = job->dpi,
                                  .drawing_order = job->drawing_order};
     unsigned asked = formats_asked(job);
+    if (job->roll_width <= 0)
+        context->sheets_lower_bound = cli_sheets_lower_bound(
+            pieces, count, layout, job->margin >= 0 ? job->margin : machine->margin);
     char(*names)[UR_OUTPUT_NAME_SIZE] = NULL;
     size_t name_count = 0;
+    ur_output_set_begin(); /* the cut files and the report appear together */
     ur_status status =
         ur_output_files(job->output_path, asked, layout->sheet_count, &names, &name_count, error);
     if (status == UR_OK)
@@ -211,5 +285,6 @@ ur_status cli_write_outputs(const cli_job *job, const ur_machine *machine, const
     }
     free(outputs);
     free(names);
-    return status;
+    ur_status ended = ur_output_set_end(status == UR_OK, error);
+    return status == UR_OK ? ended : status;
 }

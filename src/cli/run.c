@@ -27,8 +27,12 @@ bool cli_directory_exists(const char *option, const char *path)
     snprintf(copy, sizeof copy, "%s", path);
     const char *directory = dirname(copy);
     struct stat info;
-    if (stat(directory, &info) != 0 || !S_ISDIR(info.st_mode)) {
+    if (stat(directory, &info) != 0) {
         cli_message("%s '%s': directory '%s' does not exist", option, path, directory);
+        return false;
+    }
+    if (!S_ISDIR(info.st_mode)) {
+        cli_message("%s '%s': '%s' is not a directory", option, path, directory);
         return false;
     }
     return true;
@@ -306,6 +310,8 @@ ur_status cli_place_pieces(const cli_job *job, const ur_machine *machine,
         .level = job->level,
         .holes = !job->no_holes,
         .max_sheets = job->max_sheets > 0 ? (size_t)job->max_sheets : 0,
+        .remnants = job->remnants,
+        .remnant_count = job->remnant_count,
         .grain = material->grain != UR_GRAIN_NONE,
         .grain_angle = material->grain == UR_GRAIN_ACROSS ? M_PI / 2 : 0.0,
         .grain_tolerance = material->grain_tolerance * M_PI / 180,
@@ -322,6 +328,14 @@ ur_status cli_place_pieces(const cli_job *job, const ur_machine *machine,
     for (size_t k = 0; job->roll_width <= 0 && k < choice_count; k++) {
         options.sheet_width = choices[k].width;
         options.sheet_height = choices[k].height;
+        if (count > 1 && options.spacing >= fmax(options.sheet_width, options.sheet_height)) {
+            /* every part would take a sheet of its own: surely a mistake */
+            status = ur_error_set(error, UR_ERROR_INPUT,
+                                  "--spacing %g mm is not less than the %g x %g mm sheet: no two "
+                                  "parts could share a sheet",
+                                  options.spacing, options.sheet_width, options.sheet_height);
+            continue;
+        }
         status = ur_layout_nest(pieces, count, &options, layout, error);
         if (status != UR_ERROR_INPUT)
             break;
@@ -388,8 +402,8 @@ static void print_summary(const cli_job *job, const job_state *state)
     double flat = 0.0;
     for (size_t k = 0; k < state->piece_count; k++)
         flat += state->pieces[k].measures.flat_area;
-    const ur_sheet *first = &state->layout.sheets[0];
-    char first_file[4096];
+    char first_file[4096], used[1024];
+    cli_describe_sheets(&state->layout, used, sizeof used);
     size_t sheets = state->layout.sheet_count;
     if (ur_sheet_file_name(job->output_path, 0, sheets, first_file, sizeof first_file, NULL))
         snprintf(first_file, sizeof first_file, "%s", job->output_path);
@@ -398,11 +412,10 @@ static void print_summary(const cli_job *job, const job_state *state)
                  " ... -%zu", sheets);
     fprintf(stderr,
             "unroll: %s (%s): %zu piece%s, surface %.2f mm2, net %.2f mm2 (coverage %.6f), "
-            "%zu sheet%s of %g x %g mm (%s, %s) -> %s\n",
+            "%s (%s, %s) -> %s\n",
             job->surface, state->method, state->piece_count, state->piece_count == 1 ? "" : "s",
-            state->surface_area, flat, flat / state->surface_area, state->layout.sheet_count,
-            state->layout.sheet_count == 1 ? "" : "s", first->width, first->height,
-            state->material.name, state->machine.name, first_file);
+            state->surface_area, flat, flat / state->surface_area, used, state->material.name,
+            state->machine.name, first_file);
 }
 
 /*
@@ -592,6 +605,8 @@ int cli_run_job(const cli_job *job)
     if (status == UR_OK)
         status = cli_allowances_after_placing(job, &state.machine, &state.layout, state.pieces,
                                               state.piece_count, &error);
+    /* Every file of the run (cut files, report, pictures, curves) appears at the end, or none. */
+    ur_output_set_begin();
     if (status == UR_OK) {
         cli_allowance_warnings(job, state.pieces, state.piece_count);
         cli_not_placed_warning(job, &state.layout, state.pieces);
@@ -607,6 +622,10 @@ int cli_run_job(const cli_job *job)
             code = cli_write_regression(job, edge, edge_count);
         if (!code)
             code = cli_write_adjusted_rail(job, &adjusted);
+    }
+    if (ur_output_set_end(code == 0, &error) != UR_OK && code == 0) {
+        cli_message("%s: %s", job->command, error.message);
+        code = cli_exit_status(&error);
     }
     free(edge);
     free(adjusted.points);

@@ -221,7 +221,9 @@ static ur_status iterate(arap *a, const ur_flatten_options *options, ur_vec2 *la
 {
     double energy = local_step(a, layout);
     while (*iterations < options->iterations && energy > NEGLIGIBLE_ENERGY) {
-        ur_status status = global_step(a, layout, error);
+        ur_status status = ur_cancel_check(error);
+        if (status == UR_OK)
+            status = global_step(a, layout, error);
         if (status)
             return status;
         ++*iterations;

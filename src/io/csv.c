@@ -9,6 +9,8 @@
 
 #include "io_internal.h"
 
+#include "../out/atomic.h"
+
 #include <ctype.h>
 #include <errno.h>
 #include <math.h>
@@ -79,6 +81,10 @@ static ur_status parse_coordinate(const char *path, size_t line, char *field, do
     if (!isfinite(parsed))
         return ur_error_set(error, UR_ERROR_INPUT, "%s:%zu: '%.*s' is not a finite number", path,
                             line, UR_FIELD_QUOTE_MAX, field);
+    if (fabs(parsed) > UR_LENGTH_MAX)
+        return ur_error_set(error, UR_ERROR_INPUT,
+                            "%s:%zu: '%.*s' is beyond the largest coordinate unroll takes, %g mm",
+                            path, line, UR_FIELD_QUOTE_MAX, field, UR_LENGTH_MAX);
     *value = parsed;
     return UR_OK;
 }
@@ -139,24 +145,43 @@ static ur_status read_line(const char *path, size_t line, char *text, ur_point_l
     return point_list_push(list, point, line, error);
 }
 
+/*
+ * Longest line taken.  A curve file is short lines of text; a longer line
+ * or a NUL byte means some other kind of file, refused at once rather than
+ * read whole into memory (a 1 GB file with no newline, say).
+ */
+enum { LINE_LENGTH_MAX = 4096 };
+
 static ur_status read_all_lines(FILE *file, const char *path, ur_point_list *list, ur_error *error)
 {
-    char *buffer = NULL;
-    size_t buffer_size = 0;
-    size_t line = 0;
+    char buffer[LINE_LENGTH_MAX + 1];
+    size_t length = 0, line = 1;
     ur_status status = UR_OK;
     errno = 0;
-    while (getline(&buffer, &buffer_size, file) >= 0) {
-        line++;
+    for (int c = getc(file); status == UR_OK && c != EOF; c = getc(file)) {
+        if (c == '\n') {
+            buffer[length] = '\0';
+            status = read_line(path, line++, buffer, list, error);
+            length = 0;
+        } else if (c == '\0') {
+            status = ur_error_set(error, UR_ERROR_INPUT, "%s:%zu: a NUL byte: not a text file",
+                                  path, line);
+        } else if (length == LINE_LENGTH_MAX) {
+            status = ur_error_set(error, UR_ERROR_INPUT, "%s:%zu: longer than %d characters", path,
+                                  line, LINE_LENGTH_MAX);
+        } else {
+            buffer[length++] = (char)c;
+        }
+    }
+    if (status == UR_OK && length > 0) { /* the last line, without a newline */
+        buffer[length] = '\0';
         status = read_line(path, line, buffer, list, error);
-        if (status != UR_OK)
-            break;
-        errno = 0;
     }
     if (status == UR_OK && ferror(file))
         status = ur_error_set(error, UR_ERROR_INPUT, "%s: cannot read: %s", path,
                               strerror(errno ? errno : EIO));
-    free(buffer);
+    if (status == UR_ERROR_INTERNAL) /* out of memory: say for which file */
+        ur_error_prefix(error, "%s: ", path);
     return status;
 }
 
@@ -202,58 +227,24 @@ ur_status ur_points_csv_read(const char *path, size_t min_count, ur_vec3 **point
 
 /* ---- Writing ----------------------------------------------------------- */
 
-/* "DIR/NAME" -> "DIR/.NAME.XXXXXX": same directory, so rename() is atomic. */
-static ur_status temp_path_for(const char *path, char **temp, ur_error *error)
-{
-    const char *slash = strrchr(path, '/');
-    const char *name = slash ? slash + 1 : path;
-    size_t dir_length = (size_t)(name - path);
-    if (*name == '\0')
-        return ur_error_set(error, UR_ERROR_INPUT, "%s: not a file name", path);
-    static const char suffix[] = ".XXXXXX";
-    size_t size = strlen(path) + 1 + sizeof suffix;
-    *temp = ur_alloc_array(size, 1, error);
-    if (!*temp)
-        return UR_ERROR_INTERNAL;
-    memcpy(*temp, path, dir_length);
-    (*temp)[dir_length] = '.';
-    strcpy(*temp + dir_length + 1, name);
-    strcat(*temp, suffix);
-    return UR_OK;
-}
+typedef struct curve_text {
+    const ur_vec3 *points;
+    size_t count;
+} curve_text;
 
-static ur_status write_points(FILE *file, const char *path, const ur_vec3 *points, size_t count,
-                              ur_error *error)
+/* The emitter for ur_atomic_write: a comment line, then one point per line. */
+static bool emit_points(FILE *file, const void *data)
 {
-    char line[128];
-    int length = snprintf(line, sizeof line, "# unroll curve: x,y,z in mm, %zu points\n", count);
-    if (length < 0 || (size_t)length >= sizeof line ||
-        fwrite(line, 1, (size_t)length, file) != (size_t)length)
-        return ur_error_set(error, UR_ERROR_INPUT, "%s: cannot write: %s", path, strerror(errno));
-    for (size_t i = 0; i < count; i++) {
+    const curve_text *curve = data;
+    if (fprintf(file, "# unroll curve: x,y,z in mm, %zu points\n", curve->count) < 0)
+        return false;
+    for (size_t i = 0; i < curve->count; i++) {
+        const ur_vec3 *p = &curve->points[i];
         /* %.17g round-trips every double exactly. */
-        length = snprintf(line, sizeof line, "%.17g,%.17g,%.17g\n", points[i].x, points[i].y,
-                          points[i].z);
-        if (length < 0 || (size_t)length >= sizeof line ||
-            fwrite(line, 1, (size_t)length, file) != (size_t)length)
-            return ur_error_set(error, UR_ERROR_INPUT, "%s: cannot write: %s", path,
-                                strerror(errno));
+        if (fprintf(file, "%.17g,%.17g,%.17g\n", p->x, p->y, p->z) < 0)
+            return false;
     }
-    return UR_OK;
-}
-
-/* Writes, flushes to disk and closes; the FILE is closed whatever happens. */
-static ur_status write_and_close(FILE *file, const char *path, const ur_vec3 *points, size_t count,
-                                 ur_error *error)
-{
-    ur_status status = write_points(file, path, points, count, error);
-    if (status == UR_OK && fflush(file) != 0)
-        status = ur_error_set(error, UR_ERROR_INPUT, "%s: cannot write: %s", path, strerror(errno));
-    if (status == UR_OK && fsync(fileno(file)) != 0)
-        status = ur_error_set(error, UR_ERROR_INPUT, "%s: cannot write: %s", path, strerror(errno));
-    if (fclose(file) != 0 && status == UR_OK)
-        status = ur_error_set(error, UR_ERROR_INPUT, "%s: cannot write: %s", path, strerror(errno));
-    return status;
+    return true;
 }
 
 static ur_status check_finite(const char *path, const ur_vec3 *points, size_t count,
@@ -272,30 +263,6 @@ ur_status ur_curve_csv_write(const char *path, const ur_vec3 *points, size_t cou
     ur_status status = check_finite(path, points, count, error);
     if (status != UR_OK)
         return status;
-    char *temp = NULL;
-    status = temp_path_for(path, &temp, error);
-    if (status != UR_OK)
-        return status;
-    int fd = mkstemp(temp);
-    if (fd < 0) {
-        status = ur_error_set(error, UR_ERROR_INPUT, "%s: cannot create a temporary file: %s", path,
-                              strerror(errno));
-        free(temp);
-        return status;
-    }
-    /* mkstemp creates 0600; a curve is an ordinary document. */
-    FILE *file = fchmod(fd, 0644) == 0 ? fdopen(fd, "w") : NULL;
-    if (!file) {
-        status = ur_error_set(error, UR_ERROR_INPUT, "%s: cannot write: %s", path, strerror(errno));
-        close(fd);
-    } else {
-        status = write_and_close(file, path, points, count, error);
-    }
-    if (status == UR_OK && rename(temp, path) != 0)
-        status =
-            ur_error_set(error, UR_ERROR_INPUT, "%s: cannot replace: %s", path, strerror(errno));
-    if (status != UR_OK)
-        unlink(temp);
-    free(temp);
-    return status;
+    curve_text curve = {points, count};
+    return ur_atomic_write(path, emit_points, &curve, "curve", error);
 }

@@ -252,8 +252,8 @@ static ur_status check_ply_header(const char *path, FILE *file, off_t size, ur_e
     size_t line_size = 0;
     unsigned long long vertices = 0, claimed = 0;
     bool ended = false, at_end = false, in_element = false;
-    int n = 0, bad_line = 0;
-    for (; n < 1000 && !ended && !bad_line; n++) {
+    int bad_line = 0;
+    for (int n = 0; n < 1000 && !ended && !bad_line; n++) {
         if (getline(&line, &line_size, file) < 0) {
             at_end = true;
             break;
@@ -270,9 +270,7 @@ static ur_status check_ply_header(const char *path, FILE *file, off_t size, ur_e
     free(line);
     if (bad_line == 1)
         return ur_error_set(error, UR_ERROR_INPUT,
-                            "%s:1: not a PLY file: it does not start with "
-                            "'ply'",
-                            path);
+                            "%s:1: not a PLY file: it does not start with 'ply'", path);
     if (bad_line)
         return ur_error_set(error, UR_ERROR_INPUT, "%s:%d: not a line of a PLY header", path,
                             bad_line);

@@ -495,6 +495,12 @@ static ur_status build_piece(parts_job *job, size_t outer, size_t number, ur_pie
         area -= job->areas[h];
     }
     piece->measures.flat_area = area;
+    /*
+     * Holes that touch one another can fill the outline (found by fuzzing):
+     * such a part is all cut lines and no material.
+     */
+    if (status == UR_OK && !(area > 1e-9 * job->areas[outer]))
+        status = ring_error(collection, ring, error, "its holes leave nothing of it");
     if (status != UR_OK)
         ur_piece_free(piece);
     return status;

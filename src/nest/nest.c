@@ -6,9 +6,13 @@
  * the inner-fit rectangle (the sheet inside its margin, less the part's own
  * extent) minus the no-fit polygons of the parts already on the sheet
  * (nfp.c).  The part goes to the leftmost, then lowest, such position (a
- * vertex of that region): sheets used first, then how little of the last
- * sheet's length is used.  No-fit polygons are worked out once per pair of
- * shapes and turns: copies of a part share them.
+ * vertex of that region), at the turn whose box lies furthest left, then
+ * lowest: sheets used first, then how little of the last sheet's length
+ * is used.  Remnant sheets come before the stock sheets.  No-fit polygons
+ * are worked out once per pair of shapes and turns: copies of a part share
+ * them.  The positions left are kept per sheet and shape in a grid of
+ * cells (room_grid), so that placing a part cuts only the cells its no-fit
+ * polygon reaches.
  *
  * Parts are grown by half the spacing before the no-fit polygons are made,
  * so parts that touch there keep the spacing between them; the no-fit
@@ -30,7 +34,25 @@
 typedef struct nest_class {
     size_t representative; /* a piece of this shape */
     nest_shape *turns;     /* one per allowed turn */
+    size_t turn_count;     /* its own: at most the nester's turn_count */
 } nest_class;
+
+/*
+ * Where one part (a class at one turn) may still go on one sheet: the
+ * inner-fit rectangle cut into a grid of cells, each less the no-fit
+ * polygons of the parts placed so far that reach into it.  A part placed
+ * touches only the few cells its no-fit polygon reaches, so each cut is an
+ * overlay of a cell's worth of edges, not of the whole sheet's, and cells
+ * are brought up to date only when a query reaches them: the leftmost
+ * place is in the first column that has room, and the columns after it
+ * wait.
+ */
+typedef struct room_grid {
+    GEOSGeometry **free;   /* per cell (column by column): the room left; NULL once none */
+    size_t *applied;       /* per cell: placements already cut out of it */
+    size_t cols, rows;     /* 0 until made */
+    double x0, y0, x1, y1; /* the inner-fit rectangle the cells cover */
+} room_grid;
 
 typedef struct placed {
     size_t piece, turn;
@@ -49,21 +71,26 @@ typedef struct nester {
     GEOSGeometry **nfps; /* per (class a, turn a, class b, turn b); NULL until made */
     placed *placements;  /* per piece, in order placed */
     size_t *sheet_of;    /* per placement */
-    size_t placed_count, sheet_count;
     /*
-     * Per (sheet, class, turn): the union of the no-fit polygons of the
-     * first taken_count[..] placements, grown as parts are placed so that
-     * each query adds only the parts placed since the last.
+     * Sheets 0 to remnant_count - 1 are the remnants, open from the start
+     * (maybe empty); stock sheets follow as they are opened.
      */
-    GEOSGeometry **taken;
-    size_t *taken_count;
+    size_t placed_count, sheet_count, remnant_count;
+    size_t sheet_slots; /* sheets there can be: remnants, one per part and one more */
+    room_grid *rooms;   /* per (sheet, class, turn) */
+    double cell_size;   /* of the rooms' cells: about two parts across (mm) */
+    /*
+     * Per (sheet, class, turn): no room was left for it there.  Sheets only
+     * fill up during a run, so it never fits there again in that run.
+     */
+    bool *full;
     double *sheet_area; /* per sheet: area of the parts on it */
     ur_error *error;
 } nester;
 
 static bool same_shape(const ur_piece *a, const ur_piece *b)
 {
-    if (a->path_count != b->path_count)
+    if (a->path_count != b->path_count || a->rotations != b->rotations)
         return false;
     for (size_t k = 0; k < a->path_count; k++) {
         const ur_path *p = &a->paths[k], *q = &b->paths[k];
@@ -86,19 +113,44 @@ static double grain_turn(const ur_nest_options *o, double ruling_angle, size_t t
            off[t % 6] * o->grain_tolerance;
 }
 
+/*
+ * How many turns a piece may take: under a grain rule, a piece with
+ * rulings 2 (the rulings along the rule's angle, end for end) or 6 (and
+ * the tolerance either side); otherwise its own rotations, or the
+ * nesting's, in equal steps.
+ */
+static size_t turns_of(const ur_nest_options *options, const ur_piece *piece)
+{
+    if (options->grain && piece->has_rulings)
+        return options->grain_tolerance > 0 ? 6 : 2;
+    size_t rotations = piece->rotations ? piece->rotations : options->rotations;
+    return rotations > 1 ? rotations : 1;
+}
+
+/* The most turns any piece may take: the stride of the tables kept per turn. */
+static size_t most_turns(const ur_nest_options *options, const ur_piece *pieces, size_t count)
+{
+    size_t most = 1;
+    for (size_t k = 0; k < count; k++)
+        if (turns_of(options, &pieces[k]) > most)
+            most = turns_of(options, &pieces[k]);
+    return most;
+}
+
 static ur_status make_class(nester *n, size_t piece)
 {
     nest_class *c = &n->classes[n->class_count];
+    const ur_piece *p = &n->pieces[piece];
     c->representative = piece;
-    c->turns = calloc(n->turn_count, sizeof *c->turns);
+    c->turn_count = turns_of(n->options, p);
+    c->turns = calloc(c->turn_count, sizeof *c->turns);
     if (!c->turns)
         return ur_error_out_of_memory(n->error);
     n->class_count++;
-    const ur_piece *p = &n->pieces[piece];
     double base = n->options->level ? nest_level_angle(n->geos, &p->paths[0]) : 0.0;
     bool grain = n->options->grain && p->has_rulings;
-    for (size_t t = 0; t < n->turn_count; t++) {
-        double angle = base + 2 * M_PI * (double)t / (double)n->turn_count;
+    for (size_t t = 0; t < c->turn_count; t++) {
+        double angle = base + 2 * M_PI * (double)t / (double)c->turn_count;
         if (grain) /* the rulings at the grain's angle, end for end, then either way off it */
             angle = grain_turn(n->options, p->ruling_angle, t);
         ur_status status =
@@ -134,38 +186,109 @@ static const nest_shape *shape_of(const nester *n, size_t piece, size_t turn)
     return &n->classes[n->class_of[piece]].turns[turn];
 }
 
-/* The no-fit polygon of piece b (turn tb) around piece a (turn ta) at the origin. */
+/* Whether two angles (radians) are the same turn, to a nanoradian. */
+static bool same_angle(double a, double b)
+{
+    double d = remainder(a - b, 2 * M_PI);
+    return fabs(d) < 1e-9;
+}
+
+/* Turns a point about the origin by the angle whose cosine and sine userdata holds. */
+static int turn_xy(double *x, double *y, void *userdata)
+{
+    const double *cs = userdata;
+    double tx = cs[0] * *x - cs[1] * *y, ty = cs[1] * *x + cs[0] * *y;
+    *x = tx;
+    *y = ty;
+    return 1;
+}
+
+/*
+ * The turn of class c whose angle is angle (mod a whole turn); the class's
+ * turn count when it has none.
+ */
+static size_t turn_at(const nester *n, size_t c, double angle)
+{
+    const nest_class *k = &n->classes[c];
+    for (size_t t = 0; t < k->turn_count; t++)
+        if (same_angle(k->turns[t].angle, angle))
+            return t;
+    return k->turn_count;
+}
+
+/*
+ * The no-fit polygon of piece b (turn tb) around piece a (turn ta) at the
+ * origin.  Turning both parts by the same angle turns their no-fit polygon
+ * by it, so with a at a turn other than its first, and b having a turn
+ * that makes the same angle with a's first turn as tb makes with ta (equal
+ * steps always do), it is that pair's no-fit polygon turned: a quarter of
+ * the (costly) sums with 4 turns.  The shapes of a class's turns are,
+ * to rounding, its first turn's shape turned (nest_shape_make simplifies
+ * every turn alike), and each contains the part itself grown by half the
+ * spacing, so a turned no-fit polygon keeps parts apart just as well.
+ */
 static const GEOSGeometry *nfp_of(nester *n, size_t a, size_t ta, size_t b, size_t tb)
 {
     size_t ca = n->class_of[a], cb = n->class_of[b], t = n->turn_count;
     size_t key = ((ca * t + ta) * n->class_count + cb) * t + tb;
-    if (!n->nfps[key]) {
-        GEOSGeometry *exact = nest_nfp(n->geos, shape_of(n, a, ta), shape_of(n, b, tb));
-        n->nfps[key] = exact ? GEOSBuffer_r(n->geos, exact, -EXACT_FIT, 2) : NULL;
-        if (exact)
-            GEOSGeom_destroy_r(n->geos, exact);
+    if (n->nfps[key])
+        return n->nfps[key];
+    double by = shape_of(n, a, ta)->angle - shape_of(n, a, 0)->angle;
+    size_t first =
+        ta == 0 ? n->classes[cb].turn_count : turn_at(n, cb, shape_of(n, b, tb)->angle - by);
+    if (first < n->classes[cb].turn_count) {
+        const GEOSGeometry *base = nfp_of(n, a, 0, b, first);
+        double cs[2] = {cos(by), sin(by)};
+        n->nfps[key] = base ? GEOSGeom_transformXY_r(n->geos, base, turn_xy, cs) : NULL;
+        return n->nfps[key];
     }
+    GEOSGeometry *exact = nest_nfp(n->geos, shape_of(n, a, ta), shape_of(n, b, tb));
+    n->nfps[key] = exact ? GEOSBuffer_r(n->geos, exact, -EXACT_FIT, 2) : NULL;
+    if (exact)
+        GEOSGeom_destroy_r(n->geos, exact);
     return n->nfps[key];
 }
 
-/* Where piece's origin may go on an empty sheet (turn t); NULL when it does not fit. */
-static GEOSGeometry *inner_fit(const nester *n, const nest_shape *shape)
+/* The size of a sheet: a remnant's, or the stock's. */
+static void sheet_size(const nester *n, size_t sheet, double *width, double *height)
 {
     const ur_nest_options *o = n->options;
-    double x0 = o->margin - shape->box.min.x, x1 = o->sheet_width - o->margin - shape->box.max.x;
-    double y0 = o->margin - shape->box.min.y, y1 = o->sheet_height - o->margin - shape->box.max.y;
+    bool remnant = sheet < n->remnant_count;
+    *width = remnant ? o->remnants[sheet].width : o->sheet_width;
+    *height = remnant ? o->remnants[sheet].height : o->sheet_height;
+}
+
+/*
+ * The rectangle where the shape's origin may go on the empty sheet (x0, y0,
+ * x1, y1); false when it does not fit.
+ */
+static bool inner_fit_box(const nester *n, size_t sheet, const nest_shape *shape, double *box)
+{
+    const ur_nest_options *o = n->options;
+    double width, height;
+    sheet_size(n, sheet, &width, &height);
+    double x0 = o->margin - shape->box.min.x, x1 = width - o->margin - shape->box.max.x;
+    double y0 = o->margin - shape->box.min.y, y1 = height - o->margin - shape->box.max.y;
     if (x1 < x0 - 1e-9 || y1 < y0 - 1e-9)
-        return NULL;
+        return false;
     /* Widened by the exact-fit allowance, so a part as large as the room still has a place. */
-    x0 -= EXACT_FIT, y0 -= EXACT_FIT, x1 += EXACT_FIT, y1 += EXACT_FIT;
-    GEOSCoordSequence *sequence = GEOSCoordSeq_create_r(n->geos, 5, 2);
+    box[0] = x0 - EXACT_FIT, box[1] = y0 - EXACT_FIT;
+    box[2] = x1 + EXACT_FIT, box[3] = y1 + EXACT_FIT;
+    return true;
+}
+
+/* A rectangle as a GEOS polygon; NULL on failure. */
+static GEOSGeometry *rectangle_polygon(GEOSContextHandle_t geos, double x0, double y0, double x1,
+                                       double y1)
+{
+    GEOSCoordSequence *sequence = GEOSCoordSeq_create_r(geos, 5, 2);
     if (!sequence)
         return NULL;
     double xs[5] = {x0, x1, x1, x0, x0}, ys[5] = {y0, y0, y1, y1, y0};
     for (unsigned i = 0; i < 5; i++)
-        GEOSCoordSeq_setXY_r(n->geos, sequence, i, xs[i], ys[i]);
-    GEOSGeometry *ring = GEOSGeom_createLinearRing_r(n->geos, sequence);
-    return ring ? GEOSGeom_createPolygon_r(n->geos, ring, NULL, 0) : NULL;
+        GEOSCoordSeq_setXY_r(geos, sequence, i, xs[i], ys[i]);
+    GEOSGeometry *ring = GEOSGeom_createLinearRing_r(geos, sequence);
+    return ring ? GEOSGeom_createPolygon_r(geos, ring, NULL, 0) : NULL;
 }
 
 static int shift_xy(double *x, double *y, void *userdata)
@@ -182,46 +305,96 @@ static size_t taken_slot(const nester *n, size_t sheet, size_t piece, size_t tur
     return (sheet * n->class_count + n->class_of[piece]) * n->turn_count + turn;
 }
 
-/*
- * Where piece (at turn) may not go on the sheet: the no-fit polygons of the
- * parts on it, moved to where they are, their union kept and grown from
- * one query to the next.  NULL on a GEOS failure; the cache owns it.
- */
-static const GEOSGeometry *forbidden(nester *n, size_t sheet, size_t piece, size_t turn)
+static void grid_free(GEOSContextHandle_t geos, room_grid *grid)
 {
-    size_t slot = taken_slot(n, sheet, piece, turn);
-    GEOSGeometry **moved = calloc(n->placed_count + 2, sizeof *moved);
-    if (!moved)
-        return NULL;
-    size_t count = 0;
-    if (n->taken[slot])
-        moved[count++] = n->taken[slot];
-    for (size_t k = n->taken_count[slot]; k < n->placed_count; k++) {
+    for (size_t c = 0; grid->free && c < grid->cols * grid->rows; c++)
+        if (grid->free[c])
+            GEOSGeom_destroy_r(geos, grid->free[c]);
+    free(grid->free);
+    free(grid->applied);
+    memset(grid, 0, sizeof *grid);
+}
+
+/* The bounds of cell c of a grid (x0, y0, x1, y1). */
+static void cell_box(const nester *n, const room_grid *grid, size_t c, double *box)
+{
+    size_t i = c / grid->rows, j = c % grid->rows;
+    box[0] = grid->x0 + (double)i * n->cell_size;
+    box[1] = grid->y0 + (double)j * n->cell_size;
+    box[2] = i + 1 == grid->cols ? grid->x1 : grid->x0 + (double)(i + 1) * n->cell_size;
+    box[3] = j + 1 == grid->rows ? grid->y1 : grid->y0 + (double)(j + 1) * n->cell_size;
+}
+
+/*
+ * The grid of where piece (at turn) may go on the sheet, before any part
+ * is cut out: the inner-fit rectangle in cells.  False when it does not
+ * fit the sheet at all, or on a failure (then it has no place there).
+ */
+static bool grid_make(nester *n, size_t sheet, size_t piece, size_t turn, room_grid *grid)
+{
+    double fit[4];
+    if (!inner_fit_box(n, sheet, shape_of(n, piece, turn), fit))
+        return false;
+    grid->x0 = fit[0], grid->y0 = fit[1], grid->x1 = fit[2], grid->y1 = fit[3];
+    grid->cols = (size_t)fmax(1.0, ceil((fit[2] - fit[0]) / n->cell_size - 1e-9));
+    grid->rows = (size_t)fmax(1.0, ceil((fit[3] - fit[1]) / n->cell_size - 1e-9));
+    size_t cells = grid->cols * grid->rows;
+    grid->free = calloc(cells, sizeof *grid->free);
+    grid->applied = calloc(cells, sizeof *grid->applied);
+    if (!grid->free || !grid->applied) {
+        grid_free(n->geos, grid);
+        return false;
+    }
+    for (size_t c = 0; c < cells; c++) {
+        double box[4];
+        cell_box(n, grid, c, box);
+        grid->free[c] = rectangle_polygon(n->geos, box[0], box[1], box[2], box[3]);
+        if (!grid->free[c]) {
+            grid_free(n->geos, grid);
+            return false;
+        }
+    }
+    return true;
+}
+
+/*
+ * Cuts out of cell c the no-fit polygons (with piece at turn) of the parts
+ * placed on the sheet since it was last brought up to date, those whose
+ * box reaches into it.  False on a GEOS failure.
+ */
+static bool cell_update(nester *n, size_t sheet, size_t piece, size_t turn, room_grid *grid,
+                        size_t c)
+{
+    double box[4];
+    cell_box(n, grid, c, box);
+    for (size_t k = grid->applied[c]; grid->free[c] && k < n->placed_count; k++) {
         if (n->sheet_of[k] != sheet)
             continue;
         placed *p = &n->placements[k];
         const GEOSGeometry *nfp = nfp_of(n, p->piece, p->turn, piece, turn);
-        GEOSGeometry *shifted = nfp ? GEOSGeom_transformXY_r(n->geos, nfp, shift_xy, &p->at) : NULL;
-        if (!shifted) { /* a part whose place is unknown: nothing may go near it */
-            for (size_t i = 0; i < count; i++)
-                GEOSGeom_destroy_r(n->geos, moved[i]);
-            free(moved);
-            n->taken[slot] = NULL;
-            n->taken_count[slot] = 0; /* start again from the first part next time */
-            return NULL;
+        double x0, y0, x1, y1;
+        if (!nfp || !GEOSGeom_getXMin_r(n->geos, nfp, &x0) ||
+            !GEOSGeom_getYMin_r(n->geos, nfp, &y0) || !GEOSGeom_getXMax_r(n->geos, nfp, &x1) ||
+            !GEOSGeom_getYMax_r(n->geos, nfp, &y1))
+            return false;
+        if (x0 + p->at.x >= box[2] || x1 + p->at.x <= box[0] || y0 + p->at.y >= box[3] ||
+            y1 + p->at.y <= box[1])
+            continue; /* it does not reach this cell */
+        GEOSGeometry *shifted = GEOSGeom_transformXY_r(n->geos, nfp, shift_xy, &p->at);
+        GEOSGeometry *left = shifted ? GEOSDifference_r(n->geos, grid->free[c], shifted) : NULL;
+        if (shifted)
+            GEOSGeom_destroy_r(n->geos, shifted);
+        if (!left)
+            return false;
+        GEOSGeom_destroy_r(n->geos, grid->free[c]);
+        grid->free[c] = left;
+        if (GEOSisEmpty_r(n->geos, left) == 1) {
+            GEOSGeom_destroy_r(n->geos, left);
+            grid->free[c] = NULL; /* full: nothing placed later can free it */
         }
-        moved[count++] = shifted;
     }
-    n->taken_count[slot] = n->placed_count;
-    GEOSGeometry *collection =
-        GEOSGeom_createCollection_r(n->geos, GEOS_GEOMETRYCOLLECTION, moved, (unsigned)count);
-    free(moved);
-    n->taken[slot] = collection ? GEOSUnaryUnion_r(n->geos, collection) : NULL;
-    if (!n->taken[slot])
-        n->taken_count[slot] = 0;
-    if (collection)
-        GEOSGeom_destroy_r(n->geos, collection);
-    return n->taken[slot];
+    grid->applied[c] = n->placed_count;
+    return true;
 }
 
 /* The leftmost, then lowest, vertex of a region's rings; false when it has none. */
@@ -254,25 +427,53 @@ static bool leftmost(GEOSContextHandle_t geos, const GEOSGeometry *region, ur_ve
     return found;
 }
 
-/* The best place for piece at turn on sheet: the leftmost, then lowest, feasible one. */
+/* Whether p is left of best, or as far left and lower. */
+static bool further_left(ur_vec2 p, ur_vec2 best)
+{
+    return p.x < best.x - 1e-9 || (p.x <= best.x + 1e-9 && p.y < best.y);
+}
+
+/*
+ * The best place for piece at turn on sheet: the leftmost, then lowest,
+ * feasible one.  Columns of cells are looked at from the left; the first
+ * with room holds it (the columns after it lie further right).
+ */
 static bool place_on(nester *n, size_t sheet, size_t piece, size_t turn, ur_vec2 *at)
 {
-    GEOSGeometry *room = inner_fit(n, shape_of(n, piece, turn));
-    if (!room)
-        return false;
-    bool empty = sheet >= n->sheet_count;
-    const GEOSGeometry *taken = empty ? NULL : forbidden(n, sheet, piece, turn);
-    if (!empty && !taken) { /* GEOS failed: better no place than an overlap */
-        GEOSGeom_destroy_r(n->geos, room);
-        return false;
+    double fit[4];
+    if (sheet >= n->sheet_count) { /* empty: the inner-fit rectangle's lower left corner */
+        if (!inner_fit_box(n, sheet, shape_of(n, piece, turn), fit))
+            return false;
+        *at = ur_vec2_make(fit[0], fit[1]);
+        return true;
     }
-    GEOSGeometry *free_room =
-        taken ? GEOSDifference_r(n->geos, room, taken) : GEOSGeom_clone_r(n->geos, room);
-    bool found = free_room && leftmost(n->geos, free_room, at);
-    if (free_room)
-        GEOSGeom_destroy_r(n->geos, free_room);
-    GEOSGeom_destroy_r(n->geos, room);
-    return found;
+    size_t slot = taken_slot(n, sheet, piece, turn);
+    room_grid *grid = &n->rooms[slot];
+    if (n->full[slot])
+        return false;
+    if (!grid->cols && !grid_make(n, sheet, piece, turn, grid))
+        return false; /* it does not fit the sheet, or no memory: no place */
+    for (size_t i = 0; i < grid->cols; i++) {
+        bool found = false;
+        for (size_t c = i * grid->rows; c < (i + 1) * grid->rows; c++) {
+            if (!grid->free[c])
+                continue;
+            if (!cell_update(n, sheet, piece, turn, grid, c)) {
+                grid_free(n->geos, grid); /* GEOS failed: better no place than an overlap */
+                return false;
+            }
+            ur_vec2 p = {0, 0};
+            if (grid->free[c] && leftmost(n->geos, grid->free[c], &p) &&
+                (!found || further_left(p, *at))) {
+                *at = p;
+                found = true;
+            }
+        }
+        if (found)
+            return true;
+    }
+    n->full[slot] = true;
+    return false;
 }
 
 /* Places one piece: the first sheet it fits, at its best turn there; a new sheet otherwise. */
@@ -280,21 +481,33 @@ static ur_status place_piece(nester *n, size_t piece)
 {
     for (size_t sheet = 0; sheet <= n->sheet_count; sheet++) {
         if (sheet == n->sheet_count && n->options->max_sheets &&
-            n->sheet_count >= n->options->max_sheets)
+            n->sheet_count - n->remnant_count >= n->options->max_sheets)
             return UR_OK; /* not placed: the caller lists it */
         bool found = false;
         ur_vec2 best = {0, 0};
         size_t best_turn = 0;
-        double room = (n->options->sheet_width - 2 * n->options->margin) *
-                      (n->options->sheet_height - 2 * n->options->margin);
+        double width, height;
+        sheet_size(n, sheet, &width, &height);
+        double room = (width - 2 * n->options->margin) * (height - 2 * n->options->margin);
         if (sheet < n->sheet_count && n->sheet_area[sheet] + shape_of(n, piece, 0)->area > room)
             continue; /* not enough area left on it, whatever the shapes */
-        for (size_t t = 0; t < n->turn_count; t++) {
+        ur_vec2 best_key = {0, 0};
+        for (size_t t = 0; t < n->classes[n->class_of[piece]].turn_count; t++) {
             ur_vec2 at = {0, 0};
-            if (place_on(n, sheet, piece, t, &at) &&
-                (!found || at.x < best.x - 1e-9 || (at.x <= best.x + 1e-9 && at.y < best.y))) {
+            if (!place_on(n, sheet, piece, t, &at))
+                continue;
+            /*
+             * Turns compare by where the part itself lies (its box's lower
+             * left corner), not by its origin, which sits elsewhere in each.
+             */
+            const nest_shape *shape = shape_of(n, piece, t);
+            ur_vec2 key = {at.x + shape->box.min.x, at.y + shape->box.min.y};
+            /* Ties (to a micrometre: rounding) go to the earlier turn. */
+            if (!found || key.x < best_key.x - 1e-3 ||
+                (key.x <= best_key.x + 1e-3 && key.y < best_key.y - 1e-3)) {
                 found = true;
                 best = at;
+                best_key = key;
                 best_turn = t;
             }
         }
@@ -332,28 +545,43 @@ static int compare_keys(const void *a, const void *b)
     return (x->index > y->index) - (x->index < y->index);
 }
 
+/* The layout's sheets: the remnants that took parts, then the stock sheets, in order. */
 static ur_status build_layout(nester *n, ur_layout *layout)
 {
+    size_t *index = malloc((n->sheet_count + 1) * sizeof *index); /* per sheet: in the layout */
+    bool *used = calloc(n->sheet_count + 1, sizeof *used);
     layout->sheets = calloc(n->sheet_count ? n->sheet_count : 1, sizeof *layout->sheets);
-    if (!layout->sheets)
+    if (!index || !used || !layout->sheets) {
+        free(index);
+        free(used);
         return ur_error_out_of_memory(n->error);
-    layout->sheet_count = n->sheet_count;
+    }
+    for (size_t k = 0; k < n->placed_count; k++)
+        used[n->sheet_of[k]] = true;
     for (size_t s = 0; s < n->sheet_count; s++) {
-        ur_sheet *sheet = &layout->sheets[s];
-        sheet->width = n->options->sheet_width;
-        sheet->height = n->options->sheet_height;
+        if (s < n->remnant_count && !used[s])
+            continue;
+        index[s] = layout->sheet_count;
+        ur_sheet *sheet = &layout->sheets[layout->sheet_count++];
+        sheet_size(n, s, &sheet->width, &sheet->height);
+        sheet->remnant = s < n->remnant_count;
         sheet->placements =
             calloc(n->placed_count ? n->placed_count : 1, sizeof *sheet->placements);
-        if (!sheet->placements)
+        if (!sheet->placements) {
+            free(index);
+            free(used);
             return ur_error_out_of_memory(n->error);
+        }
     }
+    free(used);
     for (size_t k = 0; k < n->placed_count; k++) {
         const placed *p = &n->placements[k];
-        ur_sheet *sheet = &layout->sheets[n->sheet_of[k]];
+        ur_sheet *sheet = &layout->sheets[index[n->sheet_of[k]]];
         double angle = shape_of(n, p->piece, p->turn)->angle;
         sheet->placements[sheet->placement_count++] =
             (ur_placement){p->piece, ur_transform2_make(angle, p->at)};
     }
+    free(index);
     return UR_OK;
 }
 
@@ -379,12 +607,11 @@ static ur_status list_not_placed(const nester *n, ur_layout *layout)
 
 static void nester_free(nester *n)
 {
-    size_t slots = (n->count + 1) * (n->class_count + 1) * n->turn_count;
-    for (size_t k = 0; n->taken && k < slots; k++)
-        if (n->taken[k])
-            GEOSGeom_destroy_r(n->geos, n->taken[k]);
-    free(n->taken);
-    free(n->taken_count);
+    size_t slots = n->sheet_slots * (n->class_count + 1) * n->turn_count;
+    for (size_t k = 0; n->rooms && k < slots; k++)
+        grid_free(n->geos, &n->rooms[k]);
+    free(n->rooms);
+    free(n->full);
     free(n->sheet_area);
     size_t pairs = n->class_count * n->turn_count * n->class_count * n->turn_count;
     for (size_t k = 0; n->nfps && k < pairs; k++)
@@ -392,7 +619,7 @@ static void nester_free(nester *n)
             GEOSGeom_destroy_r(n->geos, n->nfps[k]);
     free(n->nfps);
     for (size_t c = 0; c < n->class_count; c++) {
-        for (size_t t = 0; n->classes[c].turns && t < n->turn_count; t++)
+        for (size_t t = 0; n->classes[c].turns && t < n->classes[c].turn_count; t++)
             nest_shape_free(n->geos, &n->classes[c].turns[t]);
         free(n->classes[c].turns);
     }
@@ -402,6 +629,20 @@ static void nester_free(nester *n)
     free(n->sheet_of);
     if (n->geos)
         GEOS_finish_r(n->geos);
+}
+
+/*
+ * The size of the rooms' cells: twice the mean part's larger side, so that
+ * a no-fit polygon (about two parts across) reaches a few cells and a cell
+ * holds a few parts' edges.
+ */
+static double cell_size_of(const ur_piece *pieces, size_t count, double spacing)
+{
+    double sum = 0;
+    for (size_t k = 0; k < count; k++)
+        sum += fmax(ur_box_width(pieces[k].box), ur_box_height(pieces[k].box)) + spacing;
+    double size = count ? 2 * sum / (double)count : 0;
+    return size > 0 && isfinite(size) ? size : 1.0;
 }
 
 /* A roll as one sheet long enough for every part in a row; cut to length afterwards. */
@@ -417,11 +658,13 @@ static ur_nest_options roll_sheet(const ur_nest_options *o, const ur_piece *piec
     return sheet;
 }
 
-/* The length of roll used: as far as the parts reach, and the margin. */
+/* The length of roll (the stock sheet) used: as far as its parts reach, and the margin. */
 static double used_length(const nester *n)
 {
     double length = 0;
     for (size_t k = 0; k < n->placed_count; k++) {
+        if (n->sheet_of[k] < n->remnant_count)
+            continue;
         const placed *p = &n->placements[k];
         length = fmax(length, p->at.x + shape_of(n, p->piece, p->turn)->box.max.x);
     }
@@ -439,6 +682,11 @@ static ur_status check_nest_options(const ur_nest_options *o, ur_error *error)
         return ur_error_set(error, UR_ERROR_INPUT,
                             "the margin (%g mm) leaves no room on the %g x %g mm sheet", o->margin,
                             o->sheet_width, o->sheet_height);
+    for (size_t k = 0; k < o->remnant_count; k++)
+        if (!(o->remnants[k].width > 0) || !(o->remnants[k].height > 0) ||
+            !isfinite(o->remnants[k].width) || !isfinite(o->remnants[k].height))
+            return ur_error_set(error, UR_ERROR_INPUT,
+                                "remnant %zu: a remnant needs a positive width and height", k + 1);
     return UR_OK;
 }
 
@@ -447,16 +695,14 @@ static ur_status check_nest_options(const ur_nest_options *o, ur_error *error)
 /* Forgets a run's placements; the no-fit polygons stay, they hold for any run. */
 static void reset_run(nester *n)
 {
-    size_t slots = (n->count + 1) * (n->class_count + 1) * n->turn_count;
+    size_t slots = n->sheet_slots * (n->class_count + 1) * n->turn_count;
     for (size_t k = 0; k < slots; k++) {
-        if (n->taken[k])
-            GEOSGeom_destroy_r(n->geos, n->taken[k]);
-        n->taken[k] = NULL;
-        n->taken_count[k] = 0;
+        grid_free(n->geos, &n->rooms[k]);
+        n->full[k] = false;
     }
-    memset(n->sheet_area, 0, (n->count + 1) * sizeof *n->sheet_area);
+    memset(n->sheet_area, 0, n->sheet_slots * sizeof *n->sheet_area);
     n->placed_count = 0;
-    n->sheet_count = 0;
+    n->sheet_count = n->remnant_count;
 }
 
 static ur_status run_order(nester *n, const size_t *order)
@@ -468,29 +714,46 @@ static ur_status run_order(nester *n, const size_t *order)
     return status;
 }
 
+/*
+ * A layout's score: parts placed, stock sheets used, then how tightly the
+ * last sheet is packed: the length of it used (up to its rightmost part),
+ * then how far its parts reach on average (the mean of their right edges),
+ * which tells apart layouts of the same length, some closer to freeing room
+ * at the end than others, so that the search has somewhere to go.
+ */
 typedef struct score {
-    size_t placed, sheets;
-    double length; /* of the last sheet used, up to its rightmost part */
+    size_t placed, sheets; /* sheets: stock sheets */
+    double length, reach;
 } score;
 
 static score score_of(const nester *n)
 {
-    score s = {n->placed_count, n->sheet_count, 0.0};
+    score s = {n->placed_count, n->sheet_count - n->remnant_count, 0.0, 0.0};
+    size_t on_last = 0;
     for (size_t k = 0; k < n->placed_count; k++)
         if (n->sheet_of[k] + 1 == n->sheet_count) {
             const placed *p = &n->placements[k];
-            s.length = fmax(s.length, p->at.x + shape_of(n, p->piece, p->turn)->box.max.x);
+            double right = p->at.x + shape_of(n, p->piece, p->turn)->box.max.x;
+            s.length = fmax(s.length, right);
+            s.reach += right;
+            on_last++;
         }
+    s.reach = on_last ? s.reach / (double)on_last : 0.0;
     return s;
 }
 
-static bool better(score a, score b)
+/* Whether a is better than b (1), as good (0) or worse (-1). */
+static int compare_scores(score a, score b)
 {
     if (a.placed != b.placed)
-        return a.placed > b.placed;
+        return a.placed > b.placed ? 1 : -1;
     if (a.sheets != b.sheets)
-        return a.sheets < b.sheets;
-    return a.length < b.length - 1e-9;
+        return a.sheets < b.sheets ? 1 : -1;
+    if (fabs(a.length - b.length) > 1e-9)
+        return a.length < b.length ? 1 : -1;
+    if (fabs(a.reach - b.reach) > 1e-9)
+        return a.reach < b.reach ? 1 : -1;
+    return 0;
 }
 
 static uint64_t next_random(uint64_t *state)
@@ -526,38 +789,61 @@ static double seconds_now(void)
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
-/* Improves on order (run and placed already) within the options' budget; leaves the best placed. */
+/*
+ * Improves on order (run and placed already) within the options' budget;
+ * leaves the best placed.  A hill climb over orders that also takes
+ * sideways steps (an order as good as the current one replaces it), so
+ * that it wanders across the many orders of equal score instead of
+ * stopping at the first.  It gives up after a run of tries without a new
+ * best: NEST_PATIENCE, or NEST_PATIENCE_PER_SECOND per second of budget if
+ * that is more.
+ */
 static ur_status search(nester *n, size_t *order)
 {
     const ur_nest_options *o = n->options;
     if (!(o->time_budget > 0) || n->count < 2)
         return UR_OK;
+    size_t *current = malloc(n->count * sizeof *current);
     size_t *candidate = malloc(n->count * sizeof *candidate);
-    if (!candidate)
+    if (!current || !candidate) {
+        free(current);
+        free(candidate);
         return ur_error_out_of_memory(n->error);
+    }
+    memcpy(current, order, n->count * sizeof *order);
     uint64_t state = o->seed * 0x9E3779B97F4A7C15ULL + 0x2545F4914F6CDD1DULL;
-    score best = score_of(n);
+    score best = score_of(n), now = best;
     double start = seconds_now();
+    double patience = fmax(NEST_PATIENCE, NEST_PATIENCE_PER_SECOND * o->time_budget);
     ur_status status = UR_OK;
     size_t since_better = 0;
-    for (size_t tries = 1; status == UR_OK && tries <= NEST_TRIES && since_better < NEST_PATIENCE &&
-                           seconds_now() - start < o->time_budget;
+    for (size_t tries = 1;
+         status == UR_OK && tries <= NEST_TRIES && (double)since_better < patience &&
+         seconds_now() - start < o->time_budget;
          tries++) {
-        memcpy(candidate, order, n->count * sizeof *order);
+        status = ur_cancel_check(n->error); /* a signal to the command */
+        if (status != UR_OK)
+            break;
+        memcpy(candidate, current, n->count * sizeof *current);
         mutate(candidate, n->count, &state);
         status = run_order(n, candidate);
         score s = score_of(n);
-        if (status == UR_OK && better(s, best)) {
+        since_better++;
+        if (status != UR_OK || compare_scores(s, now) < 0)
+            continue;
+        now = s;
+        memcpy(current, candidate, n->count * sizeof *current);
+        if (compare_scores(s, best) > 0) {
             best = s;
             memcpy(order, candidate, n->count * sizeof *order);
             since_better = 0;
             if (o->progress)
                 o->progress(o->progress_context, s.sheets, s.length, tries);
-        } else
-            since_better++;
+        }
     }
     if (status == UR_OK)
         status = run_order(n, order); /* the best, placed again */
+    free(current);
     free(candidate);
     return status;
 }
@@ -578,10 +864,12 @@ ur_status ur_layout_nest(const ur_piece *pieces, size_t count, const ur_nest_opt
                 .pieces = pieces,
                 .count = count,
                 .options = options,
-                .turn_count = options->grain           ? (options->grain_tolerance > 0 ? 6 : 2)
-                              : options->rotations > 1 ? options->rotations
-                                                       : 1,
+                .turn_count = most_turns(options, pieces, count),
+                .remnant_count = options->remnants ? options->remnant_count : 0,
                 .error = error};
+    n.sheet_count = n.remnant_count;
+    n.cell_size = cell_size_of(pieces, count, options->spacing);
+    n.sheet_slots = n.remnant_count + count + 1;
     n.class_of = calloc(count + 1, sizeof *n.class_of);
     n.classes = calloc(count + 1, sizeof *n.classes);
     n.placements = calloc(count + 1, sizeof *n.placements);
@@ -591,12 +879,12 @@ ur_status ur_layout_nest(const ur_piece *pieces, size_t count, const ur_nest_opt
         status = ur_error_out_of_memory(error);
     if (status == UR_OK)
         status = sort_classes(&n);
-    size_t slots = (count + 1) * (n.class_count + 1) * n.turn_count;
+    size_t slots = n.sheet_slots * (n.class_count + 1) * n.turn_count;
     if (status == UR_OK) {
-        n.taken = calloc(slots, sizeof *n.taken);
-        n.taken_count = calloc(slots, sizeof *n.taken_count);
-        n.sheet_area = calloc(count + 1, sizeof *n.sheet_area);
-        if (!n.taken || !n.taken_count || !n.sheet_area)
+        n.rooms = calloc(slots, sizeof *n.rooms);
+        n.full = calloc(slots, sizeof *n.full);
+        n.sheet_area = calloc(n.sheet_slots, sizeof *n.sheet_area);
+        if (!n.rooms || !n.full || !n.sheet_area)
             status = ur_error_out_of_memory(error);
     }
     for (size_t p = 0; status == UR_OK && p < count; p++)
@@ -621,8 +909,9 @@ ur_status ur_layout_nest(const ur_piece *pieces, size_t count, const ur_nest_opt
         status = build_layout(&n, layout);
     if (status == UR_OK)
         status = list_not_placed(&n, layout);
-    if (status == UR_OK && options->roll_width > 0 && layout->sheet_count == 1)
-        layout->sheets[0].width = used_length(&n);
+    if (status == UR_OK && options->roll_width > 0 && layout->sheet_count > 0 &&
+        !layout->sheets[layout->sheet_count - 1].remnant)
+        layout->sheets[layout->sheet_count - 1].width = used_length(&n);
     if (status != UR_OK)
         ur_layout_free(layout);
     free(keys);

@@ -208,9 +208,14 @@ ur_status nest_shape_make(GEOSContextHandle_t geos, const ur_piece *piece, doubl
      * stay exact; longer ones (curves) are simplified to 2 per mille of
      * their size, at least 0.05 mm, and grown by as much: a curved band
      * splits into a few dozen convex parts instead of thousands, at the
-     * cost of that much more room round it.
+     * cost of that much more room round it.  The size is the unturned
+     * outline's, so that every turn is simplified alike and the shapes of
+     * a piece's turns are one shape turned (nest.c turns no-fit polygons).
      */
-    double size = hypot(ur_box_width(shape->box), ur_box_height(shape->box));
+    ur_box unturned = ur_box_empty();
+    for (size_t i = 0; i < piece->paths[0].count; i++)
+        ur_box_add(&unturned, piece->paths[0].points[i]);
+    double size = hypot(ur_box_width(unturned), ur_box_height(unturned));
     size_t points = 0;
     for (size_t k = 0; k < piece->path_count; k++)
         points += piece->paths[k].count;

@@ -5,10 +5,19 @@
  *
  * Failures of the file system (missing directory, no permission, disk full)
  * are UR_ERROR_INPUT: they concern the output path the user gave, not a bug.
+ *
+ * The tests need to see a disk fill up at any point of a multi-file output:
+ * UNROLL_TEST_FAIL_WRITE_AFTER=N puts every temporary behind a stdio stream
+ * of our own (fopencookie) that lets N bytes through in all, then fails
+ * each write with EIO.  Unset, the streams are plain fdopen streams.
  */
+#define _GNU_SOURCE /* fopencookie, for the test-only failure injection */
 #include "atomic.h"
 
+#include "unroll/out.h"
+
 #include <errno.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -105,6 +114,65 @@ static int newly_created_mode(void)
     return (int)(0666 & ~mask);
 }
 
+/* ---- Test-only failure injection ---------------------------------------- */
+
+/* Bytes the writes may still pass; -1 when UNROLL_TEST_FAIL_WRITE_AFTER is unset. */
+static long long injection_budget(void)
+{
+    static bool looked;
+    static long long budget = -1;
+    if (!looked) {
+        looked = true;
+        const char *value = getenv("UNROLL_TEST_FAIL_WRITE_AFTER");
+        char *end = NULL;
+        long long bytes = value ? strtoll(value, &end, 10) : -1;
+        if (value && end != value && *end == '\0' && bytes >= 0)
+            budget = bytes;
+    }
+    return budget;
+}
+
+static long long injection_left = -1; /* counted down from injection_budget() */
+
+static ssize_t limited_write(void *cookie, const char *data, size_t size)
+{
+    int fd = (int)(intptr_t)cookie;
+    size_t allowed = injection_left < 0 || (unsigned long long)injection_left >= size
+                         ? size
+                         : (size_t)injection_left;
+    size_t done = 0;
+    while (done < allowed) {
+        ssize_t written = write(fd, data + done, allowed - done);
+        if (written < 0)
+            return -1;
+        done += (size_t)written;
+    }
+    injection_left -= (long long)done;
+    if (done < size) {
+        errno = EIO;
+        return -1; /* what got through stays in the temporary, as on a full disk */
+    }
+    return (ssize_t)size;
+}
+
+static int limited_close(void *cookie)
+{
+    return close((int)(intptr_t)cookie);
+}
+
+/* A stream on fd that fails once the injected budget is spent; plain when there is none. */
+static FILE *open_stream(int fd)
+{
+    if (injection_budget() < 0)
+        return fdopen(fd, "w");
+    if (injection_left < 0)
+        injection_left = injection_budget();
+    cookie_io_functions_t functions = {.write = limited_write, .close = limited_close};
+    return fopencookie((void *)(intptr_t)fd, "w", functions);
+}
+
+/* ---- The files ----------------------------------------------------------- */
+
 /* Creates the temporary and opens a stream on it; removes it on failure. */
 static ur_status create_temp(ur_atomic_file *file, ur_error *error)
 {
@@ -121,7 +189,8 @@ static ur_status create_temp(ur_atomic_file *file, ur_error *error)
         close(fd);
         return UR_ERROR_INPUT;
     }
-    file->stream = fdopen(fd, "w");
+    file->fd = fd;
+    file->stream = open_stream(fd);
     if (!file->stream) {
         ur_error_set(error, UR_ERROR_INPUT, "cannot write '%s': %s", file->path, strerror(errno));
         close(fd);
@@ -165,7 +234,7 @@ ur_status ur_atomic_close(ur_atomic_file *file, ur_error *error)
     errno = 0;
     if (fflush(stream) != 0 || ferror(stream))
         cause = errno ? errno : EIO;
-    else if (fsync(fileno(stream)) != 0)
+    else if (fsync(file->fd) != 0)
         cause = errno;
     if (fclose(stream) != 0 && cause == 0)
         cause = errno;
@@ -175,11 +244,72 @@ ur_status ur_atomic_close(ur_atomic_file *file, ur_error *error)
     return UR_OK;
 }
 
+/* ---- Output sets ---------------------------------------------------------- */
+
+/* The open set: how deep, whether an end refused it, and the files it holds back. */
+static struct {
+    size_t depth;
+    bool refused;
+    ur_atomic_file *held; /* closed temporaries, renamed or removed at the outermost end */
+    size_t count, capacity;
+} set;
+
+void ur_output_set_begin(void)
+{
+    set.depth++;
+}
+
+/* Removes every temporary the set holds and forgets them. */
+static void set_discard(void)
+{
+    for (size_t i = 0; i < set.count; i++)
+        ur_atomic_discard(&set.held[i]);
+    free(set.held);
+    set.held = NULL;
+    set.count = set.capacity = 0;
+}
+
+ur_status ur_output_set_end(bool commit, ur_error *error)
+{
+    if (set.depth == 0)
+        return ur_error_set(error, UR_ERROR_INTERNAL, "an output set ended that was not begun");
+    if (!commit)
+        set.refused = true;
+    if (--set.depth > 0)
+        return UR_OK;
+    ur_status status = UR_OK;
+    if (!set.refused) {
+        status = ur_cancel_check(error);
+        for (size_t i = 0; status == UR_OK && i < set.count; i++)
+            status = ur_atomic_commit(&set.held[i], error);
+    }
+    set_discard(); /* removes what was not renamed */
+    set.refused = false;
+    return status;
+}
+
+/* Takes over a closed temporary until the set ends; file is left empty. */
+static ur_status set_hold(ur_atomic_file *file, ur_error *error)
+{
+    if (set.count == set.capacity) {
+        ur_atomic_file *held =
+            ur_array_grow(set.held, &set.capacity, set.count, sizeof *held, 8, error);
+        if (!held)
+            return UR_ERROR_INTERNAL;
+        set.held = held;
+    }
+    set.held[set.count++] = *file;
+    memset(file, 0, sizeof *file);
+    return UR_OK;
+}
+
 ur_status ur_atomic_commit(ur_atomic_file *file, ur_error *error)
 {
     if (file->stream || !file->temp_path)
         return ur_error_set(error, UR_ERROR_INTERNAL, "'%s' is not ready to commit",
                             file->path ? file->path : "(null)");
+    if (set.depth > 0)
+        return set_hold(file, error);
     if (rename(file->temp_path, file->path) != 0)
         return ur_error_set(error, UR_ERROR_INPUT, "cannot write '%s': %s", file->path,
                             strerror(errno));
@@ -188,6 +318,14 @@ ur_status ur_atomic_commit(ur_atomic_file *file, ur_error *error)
     free(file->path);
     file->path = NULL;
     return UR_OK;
+}
+
+ur_status ur_atomic_commit_all(ur_atomic_file *files, size_t count, ur_error *error)
+{
+    ur_status status = ur_cancel_check(error);
+    for (size_t i = 0; status == UR_OK && i < count; i++)
+        status = ur_atomic_commit(&files[i], error);
+    return status;
 }
 
 void ur_atomic_discard(ur_atomic_file *file)
@@ -222,7 +360,7 @@ ur_status ur_atomic_write(const char *path, ur_emitter emit, const void *data, c
     if (status == UR_OK)
         status = ur_atomic_close(&file, error);
     if (status == UR_OK)
-        status = ur_atomic_commit(&file, error);
+        status = ur_atomic_commit_all(&file, 1, error);
     ur_atomic_discard(&file); /* after a commit there is nothing left to remove */
     return status;
 }

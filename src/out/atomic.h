@@ -1,6 +1,6 @@
 /*
- * atomic.h (private to src/out/): writing a file so that it appears complete
- * or not at all.
+ * atomic.h (library-internal, used by src/out/ and the CSV writer in
+ * src/io/): writing a file so that it appears complete or not at all.
  *
  * The data goes to a temporary file ".NAME.XXXXXX" next to the final name
  * (same directory, hence same file system, so rename() is atomic), is flushed
@@ -12,7 +12,14 @@
  * Life of a file: ur_atomic_open, write to ->stream, ur_atomic_close, then
  * ur_atomic_commit; ur_atomic_discard at any point undoes what is not yet
  * committed and frees everything.  A zeroed ur_atomic_file is "nothing yet",
- * safe to discard.
+ * safe to discard.  Inside an output set (ur_output_set_begin, unroll/out.h)
+ * ur_atomic_commit only hands the temporary to the set, which renames
+ * everything at its end.  A cancelled run (ur_cancel_request) renames nothing:
+ * ur_atomic_commit and ur_atomic_write then fail with UR_ERROR_CANCELLED.
+ *
+ * For tests only: UNROLL_TEST_FAIL_WRITE_AFTER=N in the environment makes
+ * every write to these files fail with EIO once N bytes in all have gone
+ * to them in this process, as a full disk would (atomic.c).
  */
 #ifndef UNROLL_OUT_ATOMIC_H
 #define UNROLL_OUT_ATOMIC_H
@@ -26,6 +33,7 @@ typedef struct ur_atomic_file {
     char *path;      /* owned: the final name */
     char *temp_path; /* owned: the temporary; NULL once renamed or removed */
     FILE *stream;    /* open between ur_atomic_open and ur_atomic_close */
+    int fd;          /* the temporary's descriptor, under stream, for fsync */
 } ur_atomic_file;
 
 /*
@@ -40,6 +48,12 @@ ur_status ur_atomic_close(ur_atomic_file *file, ur_error *error);
 
 /* Renames the closed temporary to the final name and frees the names. */
 ur_status ur_atomic_commit(ur_atomic_file *file, ur_error *error);
+
+/*
+ * Commits files[0 .. count - 1], all closed, in order; fails before the
+ * first rename, renaming none, when the run was cancelled.
+ */
+ur_status ur_atomic_commit_all(ur_atomic_file *files, size_t count, ur_error *error);
 
 /* Closes and removes whatever is not committed and frees everything. */
 void ur_atomic_discard(ur_atomic_file *file);

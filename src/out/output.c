@@ -251,6 +251,8 @@ static ur_status write_document(const target *t, const ur_write_job *job, ur_vec
         return status;
     }
     status = writer->end_document ? writer->end_document(document, file->stream, error) : UR_OK;
+    if (status == UR_ERROR_INPUT) /* a write error: the format's message does not name the file */
+        ur_error_prefix(error, "%s: ", t->path);
     return status == UR_OK ? ur_atomic_close(file, error) : status;
 }
 
@@ -268,8 +270,11 @@ static ur_status write_sheets(const target *t, const ur_write_job *job, ur_vec2 
         status = ur_sheet_file_name(t->path, i, count, name, sizeof name, error);
         if (status == UR_OK)
             status = ur_atomic_open(&files[i], name, error);
-        if (status == UR_OK)
+        if (status == UR_OK) {
             status = write_sheet(writer, document, files[i].stream, i, job, scratch, error);
+            if (status == UR_ERROR_INPUT) /* as in write_document */
+                ur_error_prefix(error, "%s: ", name);
+        }
         if (status == UR_OK)
             status = ur_atomic_close(&files[i], error);
     }
@@ -303,8 +308,8 @@ static ur_status write_all(const target *targets, size_t target_count, const ur_
                      : write_sheets(&targets[t], job, scratch, &files[first], error);
         first += file_count(&targets[t], job->layout);
     }
-    for (size_t i = 0; status == UR_OK && i < count; i++)
-        status = ur_atomic_commit(&files[i], error);
+    if (status == UR_OK)
+        status = ur_atomic_commit_all(files, count, error);
     for (size_t i = 0; files && i < count; i++)
         ur_atomic_discard(&files[i]); /* removes what was not committed */
     free(files);

@@ -181,6 +181,7 @@ static json_t *sheet_json(const ur_report_context *context, const ur_layout *lay
     if (!object || json_object_set_new(object, "index", json_integer((json_int_t)index + 1)) != 0 ||
         json_object_set_new(object, "width_mm", ur_json_number(sheet->width)) != 0 ||
         json_object_set_new(object, "height_mm", ur_json_number(sheet->height)) != 0 ||
+        json_object_set_new(object, "remnant", json_boolean(sheet->remnant)) != 0 ||
         json_object_set_new(object, "pieces", json_integer((json_int_t)sheet->placement_count)) !=
             0 ||
         json_object_set_new(object, "utilisation",
@@ -285,6 +286,13 @@ static ur_status report_json(const ur_report_context *context, const ur_piece *p
                             "cannot build the report: out of memory or a name not in UTF-8");
     }
     json_decref(sheets); /* set without _new: root holds its own reference */
+    if (context->sheets_lower_bound > 0 &&
+        json_object_set_new(*root, "sheets_lower_bound",
+                            json_integer((json_int_t)context->sheets_lower_bound)) != 0) {
+        json_decref(*root);
+        *root = NULL;
+        return ur_error_out_of_memory(error);
+    }
     if (context->layer && json_object_set_new(*root, "layer", layer_json(context->layer)) != 0) {
         json_decref(*root);
         *root = NULL;

@@ -566,8 +566,8 @@ static ur_status write_files(const char *path, const picture *p, ur_error *error
     ur_status status = UR_OK;
     for (size_t i = 0; status == UR_OK && i < count; i++)
         status = write_sheet_file(path, p, i, files, error);
-    for (size_t i = 0; status == UR_OK && i < count; i++)
-        status = ur_atomic_commit(&files[i], error);
+    if (status == UR_OK)
+        status = ur_atomic_commit_all(files, count, error);
     for (size_t i = 0; i < count; i++)
         ur_atomic_discard(&files[i]); /* removes what was not committed */
     free(files);

@@ -361,6 +361,17 @@ def bad(work, pattern, *args):
     check(after == before, "files left behind: %r" % sorted(after - before))
 
 
+def dxf_audits_clean(path):
+    """ezdxf reads the DXF and its audit finds no errors."""
+    audit = subprocess.run(
+        ["/usr/bin/python3", "-c",
+         "import ezdxf,sys\n"
+         "doc=ezdxf.readfile(sys.argv[1])\n"
+         "print(len(doc.audit().errors))", path], capture_output=True, text=True)
+    check(audit.returncode == 0 and audit.stdout.split() == ["0"],
+          "ezdxf on %s: %s %s" % (path, audit.stdout, audit.stderr))
+
+
 def write(work, name, text):
     with open(os.path.join(work, name), "w") as f:
         f.write(text)
@@ -1412,6 +1423,7 @@ def roll_stock_is_used_as_short_as_it_goes(work):
     run(work, "nest", "mm.svg:10", "--roll", "120", "--margin", "0", "--spacing", "0",
         "--no-kerf-compensation", "-o", "roll.svg", "--report", "roll.json", "--quiet")
     [sheet] = report(work, "roll.json")["sheets"]
+    check("sheets_lower_bound" not in report(work, "roll.json"), "a lower bound in sheets for a roll")
     check(sheet["height_mm"] == 120, "roll width %r" % sheet["height_mm"])
     check(500 - 1e-6 <= sheet["width_mm"] <= 505, "roll length %r" % sheet["width_mm"])
     for points in outlines(os.path.join(work, "roll.svg")):
@@ -1434,9 +1446,9 @@ def nest_search_is_repeatable(work):
     write(work, "tri.svg", """<svg xmlns="http://www.w3.org/2000/svg" width="80mm" height="60mm" viewBox="0 0 80 60">
 <polygon id="tri" points="0,0 80,0 0,60"/></svg>
 """)
-    parts = ["mm.svg:9", "l.svg:7", "tri.svg:11"]
+    parts = ["mm.svg:2", "l.svg:2", "tri.svg:3"]
     sheets = {}
-    for name, extra in (("a", ["--seed", "5", "--nest-time", "60"]), ("b", ["--seed", "5", "--nest-time", "60"]), ("none", ["--nest-time", "0"])):
+    for name, extra in (("a", ["--seed", "5", "--nest-time", "20"]), ("b", ["--seed", "5", "--nest-time", "20"]), ("none", ["--nest-time", "0"])):
         run(work, "nest", *parts, *extra, "-o", name + ".svg", "--report", name + ".json", "--quiet")
         found = report(work, name + ".json")
         sheets[name] = (len(found["sheets"]), found["sheets"][-1]["utilisation"])
@@ -1445,6 +1457,34 @@ def nest_search_is_repeatable(work):
     check(sheets["a"][0] <= sheets["none"][0], "the search used more sheets: %r" % sheets)
     bad(work, r"--nest-time: 'soon' is not a number of seconds", "nest", "mm.svg", "--nest-time",
         "soon", "-o", "x.svg")
+
+
+@test
+def remnants_are_filled_before_stock(work):
+    """Six 100 x 50 plates, 5 mm margin and 2 mm spacing, with remnants of
+    230 x 120 (220 x 110 inside: four plates, two rows of two, 202 x 102;
+    a fifth has no room either way) and 60 x 40 (too small for a plate):
+    four plates go on the first remnant, two on a stock sheet; the small
+    remnant is not used.  The report and the summary say which is which."""
+    write(work, "mm.svg", PLATE_SVG_MM)
+    result = run(work, "nest", "mm.svg:6", "--remnant", "230x120", "--remnant", "60x40",
+                 "--margin", "5", "--spacing", "2", "--sheet", "600x400", "--no-kerf-compensation",
+                 "-o", "r.svg", "--report", "r.json")
+    sheets = report(work, "r.json")["sheets"]
+    check([(s["width_mm"], s["height_mm"], s["remnant"], s["pieces"]) for s in sheets] ==
+          [(230, 120, True, 4), (600, 400, False, 2)], "sheets %r" % sheets)
+    check("sheet 1 (remnant 230 x 120 mm): 4 parts" in result.stderr, result.stderr)
+    check("remnant 230 x 120 mm (sheet 1) and 1 sheet of 600 x 400 mm" in result.stderr,
+          result.stderr)
+    valid_svg(os.path.join(work, "r-1.svg"), 230, 120)
+    for points in outlines(os.path.join(work, "r-1.svg")):
+        for x, y in points:
+            check(5 - 1e-5 <= x <= 225 + 1e-5 and 5 - 1e-5 <= y <= 115 + 1e-5,
+                  "a part leaves the remnant's margin at %r" % ((x, y),))
+    bad(work, r"--remnant: '300' is not WIDTHxHEIGHT", "nest", "mm.svg", "--remnant", "300",
+        "-o", "x.svg")
+    bad(work, r"--remnant: '0x20' is not WIDTHxHEIGHT", *HELICOID, "--remnant", "0x20",
+        "-o", "x.svg")
 
 
 @test
@@ -1496,13 +1536,8 @@ def nest_merge_lines_cuts_shared_lines_once(work):
         check(len(sheets) == 1, "%s: %d sheets" % (name, len(sheets)))
         close(sheets[0]["cut_length_mm"], length, 1e-6, name + " cut length")
         close(sheets[0]["utilisation"], 1.0, 1e-6, name + " utilisation")
-    audit = subprocess.run(
-        ["/usr/bin/python3", "-c",
-         "import ezdxf,sys\n"
-         "doc=ezdxf.readfile(sys.argv[1])\n"
-         "print(len(doc.audit().errors))",
-         os.path.join(work, "merged.dxf")], capture_output=True, text=True)
-    check(audit.returncode == 0 and audit.stdout.split() == ["0"], "ezdxf: %s %s" % (audit.stdout, audit.stderr))
+        check(report(work, name).get("sheets_lower_bound") == 1, name + ": lower bound")
+    dxf_audits_clean(os.path.join(work, "merged.dxf"))
     # A surface job takes the option too, and with kerf compensation.
     run(work, "cylinder", "--radius", "20", "--height", "40", "--merge-lines", "-o", "c.svg", "--quiet")
 
@@ -1572,13 +1607,7 @@ def nest_cuts_a_part_too_long_for_the_sheet(work):
     # Without joints the longer part would be 480 to 490 mm long; a lap adds to one of them.
     lengths = sorted(p["flat_area_mm2"] / 60 for p in pieces)
     check(400 <= lengths[0] <= 421 and 470 <= lengths[1] <= 491, "lengths by area %r" % lengths)
-    audit = subprocess.run(
-        ["/usr/bin/python3", "-c",
-         "import ezdxf,sys\n"
-         "doc=ezdxf.readfile(sys.argv[1])\n"
-         "print(len(doc.audit().errors))",
-         os.path.join(work, "bar-out.dxf")], capture_output=True, text=True)
-    check(audit.returncode == 0 and audit.stdout.split() == ["0"], "ezdxf: %s %s" % (audit.stdout, audit.stderr))
+    dxf_audits_clean(os.path.join(work, "bar-out.dxf"))
     bad(work, r"bar-1 .* does not fit", "nest", "bar.svg", "--no-split", "-o", "refused.svg")
 
 
@@ -1673,6 +1702,7 @@ def job_parts_of_different_materials(work):
     stock = {"cardboard-2mm": [(1000, 700), (300, 200)], "plywood-3mm": [(600, 400)]}
     materials = [sheet.get("material") for sheet in found["sheets"]]
     check(sorted(set(materials)) == ["cardboard-2mm", "plywood-3mm"], "sheet materials %r" % materials)
+    check("sheets_lower_bound" not in found, "one lower bound for stock of several kinds")
     for index, sheet in enumerate(found["sheets"], 1):
         size = (round(sheet["width_mm"]), round(sheet["height_mm"]))
         check(size in stock[sheet["material"]], "sheet %d of %s is %r" % (index, sheet["material"], size))
@@ -1693,6 +1723,27 @@ def job_parts_of_different_materials(work):
     write(work, "nomaterial.xml", open(os.path.join(work, "mixed.xml")).read()
           .replace('material="plywood-3mm"', 'material="unobtainium"'))
     bad(work, r"nomaterial\.xml:8: .*unobtainium", "job", "nomaterial.xml", "-o", "out4")
+
+
+@test
+def a_parts_own_rotations_share_the_sheets(work):
+    """A part's own --rotations goes with its pieces: both parts still share
+    one sheet (no sheets of its own), and the job runs as one layout."""
+    write(work, "turns.xml", JOB_HEAD + """  <part surface="cylinder" name="drum">
+    <option name="radius" value="20"/><option name="height" value="40"/>
+  </part>
+  <part surface="cylinder" name="still">
+    <option name="radius" value="15"/><option name="height" value="30"/>
+    <option name="rotations" value="1"/>
+  </part>
+  <output name="turns" report="turns.json"/>
+</job>
+""")
+    run(work, "job", "turns.xml", "-o", "out", "--quiet")
+    found = report(work, os.path.join("out", "turns.json"))
+    check(len(found["sheets"]) == 1 and "material" not in found["sheets"][0],
+          "sheets %r" % found["sheets"])
+    check(sorted(p["sheet"] for p in found["pieces"]) == [1, 1], "pieces %r" % found["pieces"])
 
 
 @test
@@ -1717,6 +1768,227 @@ def bad_jobs(work):
         write(work, name, text)
         bad(work, pattern, "job", name, "-o", "out")
     bad(work, r"cannot open", "job", "none.xml")
+
+
+def run_env(work, args, **env):
+    return subprocess.run([UNROLL, *args], cwd=work, capture_output=True, text=True,
+                          env=dict(os.environ, UNROLL_PROFILES=os.path.join(REPO, "profiles"), **env))
+
+
+@test
+def failed_writes_leave_the_old_files(work):
+    """UNROLL_TEST_FAIL_WRITE_AFTER=N (a test-only switch of the atomic
+    writer) makes every write fail with EIO once N bytes have gone out, as a
+    full disk would.  Failing a 2-sheet nesting in 4 formats and its report
+    (8 files, one output set) at many points, every earlier file stays byte
+    for byte and no temporary is left; with room enough the same run
+    replaces them all."""
+    write(work, "plate.svg", PLATE_SVG_MM)
+    nest = ["nest", "plate.svg:2", "--sheet", "200x80", "--nest-time", "0", "--format",
+            "svg,dxf,pdf,png", "-o", "h.svg", "--report", "h.json", "--quiet"]
+    old, new = nest + ["--margin", "5"], nest + ["--margin", "4"]
+    names = ["h-1.svg", "h-2.svg", "h-1.dxf", "h-2.dxf", "h.pdf", "h-1.png", "h-2.png", "h.json"]
+    sizing = os.path.join(work, "sizing")
+    os.mkdir(sizing)
+    write(sizing, "plate.svg", PLATE_SVG_MM)
+    run(sizing, *new)
+    total = sum(os.path.getsize(os.path.join(sizing, n)) for n in names)
+    run(work, *old)
+    before = snapshot(work)
+    check(sorted(before) == sorted(names + ["plate.svg"] + [os.path.join("sizing", n)
+                                                            for n in names + ["plate.svg"]]),
+          "files %r" % sorted(before))
+    points = sorted({0, 1, total - 1} | {total * k // 29 for k in range(1, 29)})
+    for n in points:
+        result = run_env(work, new, UNROLL_TEST_FAIL_WRITE_AFTER=str(n))
+        check(result.returncode == 2, "failing after %d of %d bytes: exit %d; %s"
+              % (n, total, result.returncode, result.stderr.strip()))
+        check(re.search(r"h(-[12])?\.(svg|dxf|pdf|png|json).*Input/output error", result.stderr),
+              "failing after %d bytes: %r" % (n, result.stderr))
+        now = snapshot(work)
+        check(now == before, "failing after %d bytes changed or left files: %r"
+              % (n, sorted(k for k in set(now) | set(before) if now.get(k) != before.get(k))))
+    result = run_env(work, new, UNROLL_TEST_FAIL_WRITE_AFTER=str(total))
+    check(result.returncode == 0, "room for all %d bytes: exit %d; %s"
+          % (total, result.returncode, result.stderr.strip()))
+    after = snapshot(work)
+    check(all(after[n] != before[n] for n in names), "not every file was replaced")
+    # One file on its own: the edge of regression of a strip (the curve CSV writer).
+    write_points(work, "r1.csv", circle_points(30, 0, 0, math.pi, 41))
+    write_points(work, "r2.csv", circle_points(20, 40, 0, math.pi, 41))
+    strip = ["strip", "--rail1", "r1.csv", "--rail2", "r2.csv", "-o", "-", "--quiet"]
+    write(work, "edge.csv", "precious\n")
+    result = run_env(work, strip + ["--regression", "edge.csv"], UNROLL_TEST_FAIL_WRITE_AFTER="0")
+    check(result.returncode == 2 and "edge.csv" in result.stderr,
+          "failed regression write: exit %d; %s" % (result.returncode, result.stderr.strip()))
+    with open(os.path.join(work, "edge.csv")) as f:
+        check(f.read() == "precious\n", "edge.csv was changed")
+    check(not [n for n in os.listdir(work) if n.startswith(".")], "temporaries left")
+
+
+def interrupted(work, args, signal_number, delay):
+    """Runs unroll, sends it a signal after delay seconds; its exit status and stderr."""
+    import signal
+    import time
+    process = subprocess.Popen([UNROLL, *args], cwd=work, stdout=subprocess.PIPE,
+                               stderr=subprocess.PIPE, text=True,
+                               env=dict(os.environ, UNROLL_PROFILES=os.path.join(REPO, "profiles")))
+    time.sleep(delay)
+    check(process.poll() is None, "unroll %s ended before the signal" % " ".join(args))
+    process.send_signal(signal_number)
+    _, stderr = process.communicate(timeout=600)
+    return process.returncode, stderr
+
+
+@test
+def signals_stop_cleanly(work):
+    """SIGINT during a long nesting search and SIGTERM during the flattening
+    (ARAP) of an 80,000-triangle mesh: exit status 130 and 143, a message,
+    the earlier output untouched and no temporary left."""
+    import signal
+    write(work, "l.svg", """<svg xmlns="http://www.w3.org/2000/svg" width="90mm" height="90mm" viewBox="0 0 90 90">
+<path id="ell" d="M0,0 H90 V25 H25 V90 H0 Z"/></svg>
+""")
+    write(work, "tri.svg", """<svg xmlns="http://www.w3.org/2000/svg" width="80mm" height="60mm" viewBox="0 0 80 60">
+<polygon id="tri" points="0,0 80,0 0,60"/></svg>
+""")
+    write(work, "n-1.svg", "old sheet\n")
+    write(work, "n.json", "old report\n")
+    before = snapshot(work)
+    status, stderr = interrupted(work, ["nest", "l.svg:200", "tri.svg:200", "--nest-time", "600",
+                                        "-o", "n.svg", "--report", "n.json", "--quiet"],
+                                 signal.SIGINT, 1.0)
+    check(status == 130, "nest after SIGINT: exit %d; %s" % (status, stderr.strip()))
+    check(re.search(r"stopped by SIGINT", stderr), "nest after SIGINT: %r" % stderr)
+    check(snapshot(work) == before, "nest after SIGINT left or changed files")
+    write_bowl_stl(os.path.join(work, "bowl.stl"), 200)
+    before = snapshot(work)
+    status, stderr = interrupted(work, ["mesh", "bowl.stl", "--flatten", "arap", "--iterations",
+                                        "100000", "--sheet", "2000x2000", "-o", "b.svg",
+                                        "--strain-png", "b.png"], signal.SIGTERM, 0.3)
+    check(status == 143, "mesh after SIGTERM: exit %d; %s" % (status, stderr.strip()))
+    check(re.search(r"stopped by SIGTERM", stderr), "mesh after SIGTERM: %r" % stderr)
+    check(snapshot(work) == before, "mesh after SIGTERM left or changed files")
+
+
+def write_bowl_stl(path, n):
+    """A paraboloid over an n x n grid, 2 n^2 triangles, as binary STL: far from developable."""
+    import struct
+    def point(i, j):
+        return (i, j, 0.01 * ((i - n / 2) ** 2 + (j - n / 2) ** 2))
+    with open(path, "wb") as f:
+        f.write(b"unroll test bowl".ljust(80, b" "))
+        f.write(struct.pack("<I", 2 * n * n))
+        for i in range(n):
+            for j in range(n):
+                a, b, c, d = point(i, j), point(i + 1, j), point(i + 1, j + 1), point(i, j + 1)
+                for tri in ((a, b, c), (a, c, d)):
+                    f.write(struct.pack("<3f", 0, 0, 0))
+                    for p in tri:
+                        f.write(struct.pack("<3f", *p))
+                    f.write(b"\0\0")
+
+
+@test
+def inputs_beyond_the_limits_fail_cleanly(work):
+    """Inputs made here, far beyond reason (man unroll, LIMITS): a 1 GB file
+    (sparse, all NUL bytes) as every kind of input, an SVG nested 100,000
+    deep, and under ulimit -v 600 MB a curve of 10^7 points: each fails
+    with exit status 1 or 2 and a message naming the file, leaving nothing.
+    AddressSanitizer reserves terabytes of address space, so the sanitizer
+    build skips the ulimit case."""
+    import resource
+    for name in ("huge.csv", "huge.stl", "huge.svg", "huge.xml"):
+        with open(os.path.join(work, name), "wb") as f:
+            f.truncate(1 << 30)
+    cases = [(["tangent", "--curve", "huge.csv", "--width", "10", "-o", "x.svg"],
+              r"huge\.csv:1: a NUL byte: not a text file"),
+             (["mesh", "huge.stl", "-o", "x.svg"], r"huge\.stl"),
+             (["nest", "huge.svg", "-o", "x.svg"], r"huge\.svg:1: "),
+             (["job", "huge.xml"], r"huge\.xml:1: ")]
+    with open(os.path.join(work, "deep.svg"), "w") as f:
+        f.write('<svg xmlns="http://www.w3.org/2000/svg" width="10mm" height="10mm" viewBox="0 0 10 10">\n'
+                + "<g>" * 100000 + '<rect width="5" height="5"/>' + "</g>" * 100000 + "</svg>\n")
+    cases.append((["nest", "deep.svg", "-o", "x.svg"], r"deep\.svg:2: Excessive depth"))
+    limit = None
+    if "/sanitize/" not in UNROLL:
+        with open(os.path.join(work, "long.csv"), "w") as f:
+            f.write("\n".join("%d,%d,0" % (i, i % 2) for i in range(10 ** 7)) + "\n")
+        cases.append((["tangent", "--curve", "long.csv", "--width", "10", "-o", "x.svg"],
+                      r"long\.csv: out of memory"))
+        limit = 600 << 20
+    before = set(os.listdir(work))
+    for args, pattern in cases:
+        limited = limit if "long.csv" in args else None
+        result = subprocess.run(
+            [UNROLL, *args], cwd=work, capture_output=True, text=True,
+            env=dict(os.environ, UNROLL_PROFILES=os.path.join(REPO, "profiles")),
+            preexec_fn=(lambda: resource.setrlimit(resource.RLIMIT_AS, (limited, limited)))
+            if limited else None)
+        check(result.returncode in (1, 2), "unroll %s: exit %d (a signal is negative); %s"
+              % (" ".join(args), result.returncode, result.stderr.strip()))
+        check(re.search(pattern, result.stderr), "unroll %s: %r" % (" ".join(args), result.stderr))
+        check(set(os.listdir(work)) == before, "unroll %s left files" % " ".join(args))
+
+
+BAD_DIR = os.path.join(REPO, "tests", "data", "bad")
+
+
+def bad_cases():
+    """The cases of tests/data/bad/MANIFEST: (line number, status, pattern, arguments)."""
+    import shlex
+    cases = []
+    with open(os.path.join(BAD_DIR, "MANIFEST")) as f:
+        for number, line in enumerate(f, 1):
+            line = line.strip()
+            if not line or line.startswith("#"):
+                continue
+            fields = line.split(" | ", 2)
+            if len(fields) != 3 or not fields[0].isdigit():
+                raise Failure("MANIFEST:%d: not 'STATUS | PATTERN | ARGUMENTS'" % number)
+            cases.append((number, int(fields[0]), fields[1], shlex.split(fields[2])))
+    return cases
+
+
+def snapshot(directory):
+    """Every file under directory, hidden ones too, with its bytes."""
+    found = {}
+    for root, _, files in os.walk(directory):
+        for name in files:
+            path = os.path.join(root, name)
+            with open(path, "rb") as f:
+                found[os.path.relpath(path, directory)] = f.read()
+    return found
+
+
+@test
+def bad_input_corpus(work):
+    """Every case of tests/data/bad/MANIFEST, each in a fresh copy of the
+    directory: the exit status, a message matching the pattern, and not one
+    file added, removed or changed (temporary files included)."""
+    cases = bad_cases()
+    check(len(cases) >= 50, "only %d cases" % len(cases))
+    failures = []
+    for number, status, pattern, args in cases:
+        case = os.path.join(work, "case-%d" % number)
+        shutil.copytree(BAD_DIR, case)
+        before = snapshot(case)
+        result = subprocess.run([UNROLL, *args], cwd=case, capture_output=True, text=True,
+                                env=dict(os.environ, UNROLL_PROFILES=os.path.join(REPO, "profiles")))
+        why = []
+        if result.returncode != status:
+            why.append("exit %d, expected %d" % (result.returncode, status))
+        if not re.search(pattern, result.stderr):
+            why.append("message does not match %r" % pattern)
+        after = snapshot(case)
+        if after != before:
+            changed = sorted(set(after) ^ set(before) | {k for k in before if after.get(k) != before[k]})
+            why.append("files added, removed or changed: %r" % changed)
+        if why:
+            failures.append("MANIFEST:%d (unroll %s): %s; stderr: %s"
+                            % (number, " ".join(args), "; ".join(why), result.stderr.strip()))
+        shutil.rmtree(case)
+    check(not failures, "\n  ".join([""] + failures))
 
 
 def librecad_pixels(work, dxf_file):

@@ -208,7 +208,7 @@ static void test_write_then_read_round_trip(void **state)
     const ur_vec3 written[5] = {
         {0.1, 0.2, 0.3},
         {1.0 / 3.0, -2.0 / 3.0, 1e-300},
-        {3.141592653589793, 2.718281828459045, -1e300},
+        {3.141592653589793, 2.718281828459045, -987654321.0123456},
         {123456789.123456789, -0.0, 5e-324},
         {0.1, 0.2, 0.3}, /* closes the curve */
     };
@@ -241,7 +241,7 @@ static void test_write_into_missing_directory(void **state)
     ur_error error = {0};
     assert_int_equal(ur_curve_csv_write(path, written, 4, &error), UR_ERROR_INPUT);
     assert_non_null(strstr(error.message, path));
-    assert_non_null(strstr(error.message, "No such file or directory"));
+    assert_non_null(strstr(error.message, "does not exist"));
 }
 
 static void test_write_refuses_nan(void **state)

@@ -2,7 +2,8 @@
  * test_nest.c: true-shape nesting.  Placed parts never overlap and keep the
  * spacing (GEOS distance), stay inside the margin, are placed once each;
  * rectangles that tile a sheet exactly fill one sheet; a part goes in a
- * ring's hole when holes are allowed; L shapes interlock.
+ * ring's hole when holes are allowed; L shapes interlock; parts with no
+ * symmetry keep apart in 8 turns.
  */
 #include "test_support.h"
 
@@ -238,6 +239,47 @@ static void test_refusals(void **state)
 }
 
 /*
+ * Remnants 200 x 120, 100 x 100 and 50 x 50 (5 mm margin, 2 mm spacing:
+ * 190 x 110, 90 x 90 and 40 x 40 inside), then 600 x 400 stock.  Largest
+ * first: 300 x 200 fits no remnant and opens a stock sheet; 150 x 100 fits
+ * the first remnant; 80 x 80 finds no room beside it (190 - 150 - 2 = 38
+ * across, 110 - 100 - 2 = 8 up) and goes on the second; 50 x 50 fits no
+ * remnant's room left (38, 8, and 40 on the third) and joins the stock
+ * sheet.  The third remnant, unused, is not in the layout.
+ */
+static void test_remnants_first(void **state)
+{
+    (void)state;
+    ur_piece pieces[4] = {rectangle("A", 300, 200), rectangle("B", 150, 100),
+                          rectangle("C", 80, 80), rectangle("D", 50, 50)};
+    ur_remnant remnants[3] = {{200, 120}, {100, 100}, {50, 50}};
+    ur_nest_options o = sheet_options(600, 400, 5, 2, 1, false);
+    o.remnants = remnants;
+    o.remnant_count = 3;
+    o.max_sheets = 1; /* stock sheets only: the remnants come on top */
+    ur_layout layout;
+    ur_error error;
+    assert_int_equal(ur_layout_nest(pieces, 4, &o, &layout, &error), UR_OK);
+    assert_int_equal(layout.sheet_count, 3);
+    assert_int_equal(layout.not_placed_count, 0);
+    const ur_sheet *s = layout.sheets;
+    assert_true(s[0].remnant && s[1].remnant && !s[2].remnant);
+    assert_true(s[0].width == 200 && s[0].height == 120 && s[1].width == 100 &&
+                s[1].height == 100 && s[2].width == 600 && s[2].height == 400);
+    assert_int_equal(s[0].placement_count, 1);
+    assert_int_equal(s[0].placements[0].piece_index, 1);
+    assert_int_equal(s[1].placement_count, 1);
+    assert_int_equal(s[1].placements[0].piece_index, 2);
+    assert_int_equal(s[2].placement_count, 2);
+    check_layout(pieces, 4, &layout, &o);
+    ur_layout_free(&layout);
+    remnants[1].width = 0;
+    assert_int_equal(ur_layout_nest(pieces, 4, &o, &layout, &error), UR_ERROR_INPUT);
+    assert_non_null(strstr(error.message, "remnant 2"));
+    free_pieces(pieces, 4);
+}
+
+/*
  * Strips whose rulings lie at 30 degrees, in a material whose rulings must
  * run along the grain (the sheet's x axis) within 10 degrees: every placed
  * strip's rulings are turned to within 10 degrees of x, whichever end first.
@@ -272,6 +314,85 @@ static void test_grain_rule_holds(void **state)
     free_pieces(pieces, COUNT);
 }
 
+/* The turn of a placement, degrees, in 0 .. 360. */
+static double degrees_of(ur_transform2 t)
+{
+    double angle = atan2(t.sine, t.cosine) * 180 / M_PI;
+    return angle < -1e-9 ? angle + 360 : fabs(angle);
+}
+
+/*
+ * Under a grain rule, strips with rulings keep to it; L shapes without
+ * rulings turn in the nesting's 4 quarter turns, not in the rule's steps;
+ * L shapes with their own rotations of 1 do not turn at all.
+ */
+static void test_turns_of_each_piece(void **state)
+{
+    (void)state;
+    enum { STRIPS = 3, FREE = 4, FIXED = 4, COUNT = STRIPS + FREE + FIXED };
+    ur_piece pieces[COUNT];
+    for (int k = 0; k < COUNT; k++) {
+        pieces[k] =
+            k < STRIPS ? rectangle("strip", 120, 30) : l_shape(k < STRIPS + FREE ? "L" : "fixed");
+        pieces[k].has_rulings = k < STRIPS;
+        pieces[k].ruling_angle = k < STRIPS ? M_PI / 6 : NAN;
+        pieces[k].rotations = k >= STRIPS + FREE ? 1 : 0;
+    }
+    ur_nest_options o = sheet_options(300, 200, 5, 2, 4, false);
+    o.grain = true;
+    o.grain_angle = 0;
+    o.grain_tolerance = 10 * M_PI / 180;
+    ur_layout layout;
+    ur_error error;
+    assert_int_equal(ur_layout_nest(pieces, COUNT, &o, &layout, &error), UR_OK);
+    check_layout(pieces, COUNT, &layout, &o);
+    for (size_t s = 0; s < layout.sheet_count; s++)
+        for (size_t p = 0; p < layout.sheets[s].placement_count; p++) {
+            const ur_placement *placement = &layout.sheets[s].placements[p];
+            double angle = degrees_of(placement->transform);
+            size_t k = placement->piece_index;
+            if (k < STRIPS) {
+                double off = remainder(angle + 30, 180);
+                if (fabs(off) > 10 + 1e-9)
+                    fail_msg("rulings at %g degrees to the grain", off);
+            } else if (k < STRIPS + FREE) {
+                if (fabs(remainder(angle, 90)) > 1e-9)
+                    fail_msg("an L shape turned by %g degrees", angle);
+            } else if (fabs(remainder(angle, 360)) > 1e-9)
+                fail_msg("an L shape that may not turn turned by %g degrees", angle);
+        }
+    ur_layout_free(&layout);
+    free_pieces(pieces, COUNT);
+}
+
+/*
+ * Parts with no symmetry (an L of unequal arms, a right triangle and a
+ * hooked shape) in 8 turns, packed tightly: most no-fit polygons the
+ * nester uses are others turned, and a wrong turn shows as an overlap.
+ * The sheet is several of the nester's grid cells across and up, so parts
+ * also meet across the cells' edges.
+ */
+static void test_turned_parts_keep_apart(void **state)
+{
+    (void)state;
+    enum { COUNT = 60 };
+    ur_vec2 l[6] = {{0, 0}, {50, 0}, {50, 10}, {10, 10}, {10, 25}, {0, 25}};
+    ur_vec2 triangle[3] = {{0, 0}, {40, 0}, {0, 15}};
+    ur_vec2 hook[8] = {{0, 0}, {30, 0}, {30, 30}, {10, 30}, {10, 20}, {20, 20}, {20, 8}, {0, 8}};
+    ur_piece pieces[COUNT];
+    for (int k = 0; k < COUNT; k++)
+        pieces[k] = k % 3 == 0   ? polygon_piece("L", l, 6)
+                    : k % 3 == 1 ? polygon_piece("triangle", triangle, 3)
+                                 : polygon_piece("hook", hook, 8);
+    ur_nest_options o = sheet_options(260, 200, 2, 1, 8, false);
+    ur_layout layout;
+    ur_error error;
+    assert_int_equal(ur_layout_nest(pieces, COUNT, &o, &layout, &error), UR_OK);
+    check_layout(pieces, COUNT, &layout, &o);
+    ur_layout_free(&layout);
+    free_pieces(pieces, COUNT);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -281,6 +402,9 @@ int main(void)
         cmocka_unit_test(test_mixed_parts_keep_apart),
         cmocka_unit_test(test_refusals),
         cmocka_unit_test(test_grain_rule_holds),
+        cmocka_unit_test(test_remnants_first),
+        cmocka_unit_test(test_turns_of_each_piece),
+        cmocka_unit_test(test_turned_parts_keep_apart),
     };
     return cmocka_run_group_tests(tests, start, finish);
 }

@@ -480,6 +480,12 @@ static void test_svg_refusals(void **state)
                    SVG_HEAD "<rect width=\"10\" height=\"10\"/>\n"
                             "<rect id=\"r\" x=\"5\" y=\"5\" width=\"10\" height=\"10\"/></svg>\n",
                    0, ":3: rect id=\"r\"", "crosses");
+    /* Two holes side by side that fill the plate: no material (found by fuzz_dxf). */
+    expect_refusal("holes.svg",
+                   SVG_HEAD "<rect id=\"plate\" width=\"20\" height=\"10\"/>\n"
+                            "<rect width=\"10\" height=\"10\"/>\n"
+                            "<rect x=\"10\" width=\"10\" height=\"10\"/></svg>\n",
+                   0, ":2: rect id=\"plate\"", "its holes leave nothing of it");
     expect_refusal("empty.svg", SVG_HEAD "<text>hello</text></svg>\n", 0, "", "no closed shape");
     expect_refusal("root.svg", "<html/>\n", 0, ":1", "not svg");
     expect_refusal("empty-file.svg", "", 0, "", "empty");
