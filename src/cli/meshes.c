@@ -122,15 +122,6 @@ static bool fits_room(const flattening *f, const ur_net *net, double *length, do
     return *length <= f->room.length && *width <= f->room.width;
 }
 
-static void free_nets(ur_net_list *nets)
-{
-    for (size_t k = 0; k < nets->count; k++)
-        ur_net_free(&nets->nets[k]);
-    free(nets->nets);
-    nets->nets = NULL;
-    nets->count = 0;
-}
-
 /*
  * A flat piece longer than the room, cut into the fewest parts along its
  * length that each fit: first as many as its length asks, then one more
@@ -154,7 +145,7 @@ static int split_to_fit(const flattening *f, const ur_mesh *piece, double length
             code = append_net(f->job, nets, &trial.nets[k]);
             trial.nets[k] = (ur_net){0};
         }
-        free_nets(&trial);
+        ur_net_list_free(&trial);
         if (code)
             return code;
         if (all) {

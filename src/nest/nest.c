@@ -693,14 +693,7 @@ static ur_nest_options roll_sheet(const ur_nest_options *o, const ur_piece *piec
 /* The length of roll (the stock sheet) used: as far as its parts reach, and the margin. */
 static double used_length(const nester *n)
 {
-    double length = 0;
-    for (size_t k = 0; k < n->placed_count; k++) {
-        if (n->sheet_of[k] < n->remnant_count)
-            continue;
-        const placed *p = &n->placements[k];
-        length = fmax(length, p->at.x + shape_of(n, p->piece, p->turn)->box.max.x);
-    }
-    return length + n->options->margin;
+    return roll_length(n) + n->options->margin;
 }
 
 static ur_status check_nest_options(const ur_nest_options *o, ur_error *error)
