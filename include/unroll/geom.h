@@ -84,6 +84,11 @@ static inline ur_vec2 ur_vec2_add_scaled(ur_vec2 a, ur_vec2 b, double s)
 {
     return ur_vec2_make(a.x + s * b.x, a.y + s * b.y);
 }
+/* The point a fraction t of the way from a to b. */
+static inline ur_vec2 ur_vec2_lerp(ur_vec2 a, ur_vec2 b, double t)
+{
+    return ur_vec2_make(a.x + t * (b.x - a.x), a.y + t * (b.y - a.y));
+}
 static inline double ur_vec2_dot(ur_vec2 a, ur_vec2 b)
 {
     return a.x * b.x + a.y * b.y;
@@ -104,6 +109,9 @@ static inline double ur_vec2_distance(ur_vec2 a, ur_vec2 b)
 
 /* Signed area by the shoelace formula: > 0 for counter-clockwise rings. */
 double ur_polygon_signed_area(const ur_vec2 *points, size_t count);
+
+/* Reverses the order of the points in place (a ring then turns the other way). */
+void ur_points_reverse(ur_vec2 *points, size_t count);
 
 /* Length of a polyline; closed adds the edge from the last point to the first. */
 double ur_polyline_length(const ur_vec2 *points, size_t count, bool closed);

@@ -104,14 +104,9 @@ typedef struct bend_region {
     ur_vec2 where;
 } bend_region;
 
-static ur_vec2 lerp(ur_vec2 a, ur_vec2 b, double f)
-{
-    return ur_vec2_make(a.x + f * (b.x - a.x), a.y + f * (b.y - a.y));
-}
-
 static ur_vec2 midpoint(ur_segment s)
 {
-    return lerp(s.start, s.end, 0.5);
+    return ur_vec2_lerp(s.start, s.end, 0.5);
 }
 
 /* ---- The net's outline ------------------------------------------------- */
@@ -151,7 +146,7 @@ static ur_segment across_net(const ur_net *net, ur_vec2 near, ur_vec2 far)
     double length = ur_vec2_length(d);
     if (!(length > 0))
         return line;
-    ur_vec2 e = ur_vec2_scale(d, 1.0 / length), m = lerp(near, far, 0.5);
+    ur_vec2 e = ur_vec2_scale(d, 1.0 / length), m = ur_vec2_lerp(near, far, 0.5);
     double forward = ray_to_outline(net, m, e);
     double back = ray_to_outline(net, m, ur_vec2_scale(e, -1));
     if (isfinite(back))
@@ -189,7 +184,7 @@ static ur_segment ruling_at(const bend_job *job, double t)
     double span = drawn_t[i + 1] - drawn_t[i];
     double f = span > 0 ? (t - drawn_t[i]) / span : 0.0;
     ur_segment a = net->rulings[i], b = net->rulings[i + 1];
-    ur_segment s = {lerp(a.start, b.start, f), lerp(a.end, b.end, f)};
+    ur_segment s = {ur_vec2_lerp(a.start, b.start, f), ur_vec2_lerp(a.end, b.end, f)};
     return s;
 }
 
@@ -484,9 +479,9 @@ static ur_segment hinge_line(const bend_job *job, double t, ur_segment ruling, u
     if (!tight_part(job, parameter_at(job, t), &v_low, &v_high))
         return line;
     if (v_low > 0)
-        line.start = lerp(ruling.start, ruling.end, v_low);
+        line.start = ur_vec2_lerp(ruling.start, ruling.end, v_low);
     if (v_high < 1)
-        line.end = lerp(ruling.start, ruling.end, v_high);
+        line.end = ur_vec2_lerp(ruling.start, ruling.end, v_high);
     return line;
 }
 

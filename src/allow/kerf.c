@@ -65,15 +65,6 @@ static void drop_straight_points(ur_vec2 *ring, size_t *count)
     *count = n;
 }
 
-static void reverse(ur_vec2 *ring, size_t count)
-{
-    for (size_t i = 0, j = count - 1; i < j; i++, j--) {
-        ur_vec2 swap = ring[i];
-        ring[i] = ring[j];
-        ring[j] = swap;
-    }
-}
-
 /* The middle of a path's box: where the report and the messages say it is. */
 static ur_vec2 path_middle(const ur_path *path)
 {
@@ -202,7 +193,7 @@ static ur_status offset_all(const ur_piece *piece, double kerf, ur_vec2 **rings,
         /* Holes keep the direction they had (a circle's points keep their order). */
         if (status == UR_OK && i > 0 && !round &&
             ur_polygon_signed_area(piece->paths[i].points, piece->paths[i].count) < 0)
-            reverse(rings[i], counts[i]);
+            ur_points_reverse(rings[i], counts[i]);
     }
     GEOSBufferParams_destroy_r(geos, params);
     GEOS_finish_r(geos);

@@ -168,11 +168,6 @@ static ur_vec2 perpendicular(ur_vec2 v)
     return ur_vec2_make(-v.y, v.x);
 }
 
-static ur_vec2 lerp(ur_vec2 a, ur_vec2 b, double t)
-{
-    return ur_vec2_add_scaled(a, ur_vec2_sub(b, a), t);
-}
-
 /* ---- GEOS helpers --------------------------------------------------- */
 
 /* The points of a line string or a ring (closed: its last point is dropped); false if none. */
@@ -614,7 +609,7 @@ static double chord(const ur_vec2 *c, ur_vec2 n, ur_vec2 d, double w)
         double sa = ur_vec2_dot(a, n) - w, sb = ur_vec2_dot(b, n) - w;
         if ((sa < 0) == (sb < 0) || sa == sb)
             continue;
-        double along = ur_vec2_dot(lerp(a, b, sa / (sa - sb)), d);
+        double along = ur_vec2_dot(ur_vec2_lerp(a, b, sa / (sa - sb)), d);
         low = fmin(low, along);
         high = fmax(high, along);
     }
@@ -974,8 +969,8 @@ static ur_segment ruling_at(const ur_net *net, double f)
     if (i + 1 >= net->ruling_count)
         return net->rulings[net->ruling_count - 1];
     double t = f - (double)i;
-    ur_segment s = {lerp(net->rulings[i].start, net->rulings[i + 1].start, t),
-                    lerp(net->rulings[i].end, net->rulings[i + 1].end, t)};
+    ur_segment s = {ur_vec2_lerp(net->rulings[i].start, net->rulings[i + 1].start, t),
+                    ur_vec2_lerp(net->rulings[i].end, net->rulings[i + 1].end, t)};
     return s;
 }
 

@@ -443,15 +443,6 @@ static void add_seam(ur_net *net, const strip *s, size_t i)
     net->seams[net->seam_count++] = seam;
 }
 
-static void reverse_ring(ur_vec2 *ring, size_t n)
-{
-    for (size_t i = 0, j = n - 1; i < j; i++, j--) {
-        ur_vec2 swap = ring[i];
-        ring[i] = ring[j];
-        ring[j] = swap;
-    }
-}
-
 static ur_status fill_net(ur_ruled *ruled, const strip *s, size_t first, size_t last,
                           bool seam_before, bool seam_after, ur_net *net, ur_error *error)
 {
@@ -465,7 +456,7 @@ static ur_status fill_net(ur_ruled *ruled, const strip *s, size_t first, size_t 
     net->outline_count = drop_repeated(net->outline, piece_ring(s, first, last, 1, net->outline));
     double area = ur_polygon_signed_area(net->outline, net->outline_count);
     if (area < 0)
-        reverse_ring(net->outline, net->outline_count);
+        ur_points_reverse(net->outline, net->outline_count);
     net->flat_area = fabs(area);
     for (size_t i = first + 1; i < last; i++)
         if (s->drawn[i]) {

@@ -16,6 +16,15 @@ double ur_polygon_signed_area(const ur_vec2 *points, size_t count)
     return 0.5 * twice_area;
 }
 
+void ur_points_reverse(ur_vec2 *points, size_t count)
+{
+    for (size_t i = 0, j = count ? count - 1 : 0; i < j; i++, j--) {
+        ur_vec2 swap = points[i];
+        points[i] = points[j];
+        points[j] = swap;
+    }
+}
+
 double ur_polyline_length(const ur_vec2 *points, size_t count, bool closed)
 {
     double length = 0.0;

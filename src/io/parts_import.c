@@ -235,15 +235,6 @@ typedef struct parts_job {
     parts_order *order; /* by area, largest first */
 } parts_job;
 
-static void reverse_points(ur_vec2 *points, size_t count)
-{
-    for (size_t i = 0, j = count ? count - 1 : 0; i < j; i++, j--) {
-        ur_vec2 swap = points[i];
-        points[i] = points[j];
-        points[j] = swap;
-    }
-}
-
 /* Replaces the ring's points by the exterior ring of polygon. */
 static ur_status take_exterior(GEOSContextHandle_t geos, const GEOSGeometry *polygon,
                                parts_ring *ring, ur_error *error)
@@ -378,7 +369,7 @@ static ur_status prepare_ring(parts_job *job, size_t i, ur_error *error)
             return no_area_error(collection, ring, error);
     }
     if (area < 0)
-        reverse_points(ring->points, ring->count);
+        ur_points_reverse(ring->points, ring->count);
     job->areas[i] = fabs(area);
     job->boxes[i] = ur_box_of_points(ring->points, ring->count);
     return UR_OK;
@@ -488,7 +479,7 @@ static ur_status build_piece(parts_job *job, size_t outer, size_t number, ur_pie
         if (job->parent[h] != (int)outer)
             continue;
         parts_ring *hole = &collection->rings[h];
-        reverse_points(hole->points, hole->count); /* holes turn clockwise */
+        ur_points_reverse(hole->points, hole->count); /* holes turn clockwise */
         status = ur_piece_add_path(piece, UR_OP_CUT, hole->points, hole->count, true, error);
         if (status == UR_OK)
             piece->paths[piece->path_count - 1].circle = hole->circle;

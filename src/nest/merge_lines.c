@@ -226,11 +226,6 @@ static ur_status keep(stretches *list, ur_vec2 a, ur_vec2 b, bool starts_segment
     return ur_points_push(&list->items[list->count - 1], b, error);
 }
 
-static ur_vec2 lerp(ur_vec2 a, ur_vec2 b, double t)
-{
-    return ur_vec2_add(a, ur_vec2_scale(ur_vec2_sub(b, a), t));
-}
-
 /*
  * Walks the path's segments: what no earlier cut covers is kept, and the
  * length taken off added to *saved.  A closed path kept whole is left as
@@ -251,7 +246,8 @@ static ur_status walk_path(grid *g, const ur_path *path, ur_transform2 placement
         for (size_t k = 0; status == UR_OK && k <= cover.count; k++) {
             double to = k < cover.count ? cover.items[k].lo : 1;
             if ((to - from) * length > g->tolerance || (to == 1 && from == 0))
-                status = keep(kept, lerp(a, b, from), lerp(a, b, to), from == 0, to == 1, error);
+                status = keep(kept, ur_vec2_lerp(a, b, from), ur_vec2_lerp(a, b, to), from == 0,
+                              to == 1, error);
             else
                 kept->open = false;
             if (k < cover.count) {

@@ -145,11 +145,7 @@ static ur_status ring_points(GEOSContextHandle_t geos, const GEOSGeometry *ring,
     }
     double area = ur_polygon_signed_area(out->items, out->count);
     if (status == UR_OK && (area < 0) != clockwise)
-        for (size_t i = 0, j = out->count - 1; i < j; i++, j--) {
-            ur_vec2 t = out->items[i];
-            out->items[i] = out->items[j];
-            out->items[j] = t;
-        }
+        ur_points_reverse(out->items, out->count);
     return status;
 }
 
