@@ -30,64 +30,6 @@
 /* Shrinks no-fit polygons so that exact fits stay places, not points (mm). */
 #define EXACT_FIT 1e-6
 
-/* Parts that are the same shape (copies) share their no-fit polygons. */
-typedef struct nest_class {
-    size_t representative; /* a piece of this shape */
-    nest_shape *turns;     /* one per allowed turn */
-    size_t turn_count;     /* its own: at most the nester's turn_count */
-} nest_class;
-
-/*
- * Where one part (a class at one turn) may still go on one sheet: the
- * inner-fit rectangle cut into a grid of cells, each less the no-fit
- * polygons of the parts placed so far that reach into it.  A part placed
- * touches only the few cells its no-fit polygon reaches, so each cut is an
- * overlay of a cell's worth of edges, not of the whole sheet's, and cells
- * are brought up to date only when a query reaches them: the leftmost
- * place is in the first column that has room, and the columns after it
- * wait.
- */
-typedef struct room_grid {
-    GEOSGeometry **free;   /* per cell (column by column): the room left; NULL once none */
-    size_t *applied;       /* per cell: placements already cut out of it */
-    size_t cols, rows;     /* 0 until made */
-    double x0, y0, x1, y1; /* the inner-fit rectangle the cells cover */
-} room_grid;
-
-typedef struct placed {
-    size_t piece, turn;
-    ur_vec2 at; /* where its origin went */
-} placed;
-
-typedef struct nester {
-    GEOSContextHandle_t geos;
-    const ur_piece *pieces;
-    size_t count;
-    const ur_nest_options *options;
-    size_t turn_count;
-    size_t *class_of; /* per piece */
-    nest_class *classes;
-    size_t class_count;
-    GEOSGeometry **nfps; /* per (class a, turn a, class b, turn b); NULL until made */
-    placed *placements;  /* per piece, in order placed */
-    size_t *sheet_of;    /* per placement */
-    /*
-     * Sheets 0 to remnant_count - 1 are the remnants, open from the start
-     * (maybe empty); stock sheets follow as they are opened.
-     */
-    size_t placed_count, sheet_count, remnant_count;
-    size_t sheet_slots; /* sheets there can be: remnants, one per part and one more */
-    room_grid *rooms;   /* per (sheet, class, turn) */
-    double cell_size;   /* of the rooms' cells: about two parts across (mm) */
-    /*
-     * Per (sheet, class, turn): no room was left for it there.  Sheets only
-     * fill up during a run, so it never fits there again in that run.
-     */
-    bool *full;
-    double *sheet_area; /* per sheet: area of the parts on it */
-    ur_error *error;
-} nester;
-
 static bool same_shape(const ur_piece *a, const ur_piece *b)
 {
     if (a->path_count != b->path_count || a->rotations != b->rotations)
@@ -181,7 +123,7 @@ static ur_status sort_classes(nester *n)
     return n->nfps ? UR_OK : ur_error_out_of_memory(n->error);
 }
 
-static const nest_shape *shape_of(const nester *n, size_t piece, size_t turn)
+const nest_shape *nest_shape_of(const nester *n, size_t piece, size_t turn)
 {
     return &n->classes[n->class_of[piece]].turns[turn];
 }
@@ -227,22 +169,22 @@ static size_t turn_at(const nester *n, size_t c, double angle)
  * every turn alike), and each contains the part itself grown by half the
  * spacing, so a turned no-fit polygon keeps parts apart just as well.
  */
-static const GEOSGeometry *nfp_of(nester *n, size_t a, size_t ta, size_t b, size_t tb)
+const GEOSGeometry *nest_nfp_of(nester *n, size_t a, size_t ta, size_t b, size_t tb)
 {
     size_t ca = n->class_of[a], cb = n->class_of[b], t = n->turn_count;
     size_t key = ((ca * t + ta) * n->class_count + cb) * t + tb;
     if (n->nfps[key])
         return n->nfps[key];
-    double by = shape_of(n, a, ta)->angle - shape_of(n, a, 0)->angle;
+    double by = nest_shape_of(n, a, ta)->angle - nest_shape_of(n, a, 0)->angle;
     size_t first =
-        ta == 0 ? n->classes[cb].turn_count : turn_at(n, cb, shape_of(n, b, tb)->angle - by);
+        ta == 0 ? n->classes[cb].turn_count : turn_at(n, cb, nest_shape_of(n, b, tb)->angle - by);
     if (first < n->classes[cb].turn_count) {
-        const GEOSGeometry *base = nfp_of(n, a, 0, b, first);
+        const GEOSGeometry *base = nest_nfp_of(n, a, 0, b, first);
         double cs[2] = {cos(by), sin(by)};
         n->nfps[key] = base ? GEOSGeom_transformXY_r(n->geos, base, turn_xy, cs) : NULL;
         return n->nfps[key];
     }
-    GEOSGeometry *exact = nest_nfp(n->geos, shape_of(n, a, ta), shape_of(n, b, tb));
+    GEOSGeometry *exact = nest_nfp(n->geos, nest_shape_of(n, a, ta), nest_shape_of(n, b, tb));
     n->nfps[key] = exact ? GEOSBuffer_r(n->geos, exact, -EXACT_FIT, 2) : NULL;
     if (exact)
         GEOSGeom_destroy_r(n->geos, exact);
@@ -333,7 +275,7 @@ static void cell_box(const nester *n, const room_grid *grid, size_t c, double *b
 static bool grid_make(nester *n, size_t sheet, size_t piece, size_t turn, room_grid *grid)
 {
     double fit[4];
-    if (!inner_fit_box(n, sheet, shape_of(n, piece, turn), fit))
+    if (!inner_fit_box(n, sheet, nest_shape_of(n, piece, turn), fit))
         return false;
     grid->x0 = fit[0], grid->y0 = fit[1], grid->x1 = fit[2], grid->y1 = fit[3];
     grid->cols = (size_t)fmax(1.0, ceil((fit[2] - fit[0]) / n->cell_size - 1e-9));
@@ -371,7 +313,7 @@ static bool cell_update(nester *n, size_t sheet, size_t piece, size_t turn, room
         if (n->sheet_of[k] != sheet)
             continue;
         placed *p = &n->placements[k];
-        const GEOSGeometry *nfp = nfp_of(n, p->piece, p->turn, piece, turn);
+        const GEOSGeometry *nfp = nest_nfp_of(n, p->piece, p->turn, piece, turn);
         double x0, y0, x1, y1;
         if (!nfp || !GEOSGeom_getXMin_r(n->geos, nfp, &x0) ||
             !GEOSGeom_getYMin_r(n->geos, nfp, &y0) || !GEOSGeom_getXMax_r(n->geos, nfp, &x1) ||
@@ -442,7 +384,7 @@ static bool place_on(nester *n, size_t sheet, size_t piece, size_t turn, ur_vec2
 {
     double fit[4];
     if (sheet >= n->sheet_count) { /* empty: the inner-fit rectangle's lower left corner */
-        if (!inner_fit_box(n, sheet, shape_of(n, piece, turn), fit))
+        if (!inner_fit_box(n, sheet, nest_shape_of(n, piece, turn), fit))
             return false;
         *at = ur_vec2_make(fit[0], fit[1]);
         return true;
@@ -484,7 +426,7 @@ static double roll_length(const nester *n)
         if (n->sheet_of[k] < n->remnant_count)
             continue;
         const placed *p = &n->placements[k];
-        length = fmax(length, p->at.x + shape_of(n, p->piece, p->turn)->box.max.x);
+        length = fmax(length, p->at.x + nest_shape_of(n, p->piece, p->turn)->box.max.x);
     }
     return length;
 }
@@ -508,7 +450,7 @@ static ur_status place_piece(nester *n, size_t piece, size_t held)
         double width, height;
         sheet_size(n, sheet, &width, &height);
         double room = (width - 2 * n->options->margin) * (height - 2 * n->options->margin);
-        if (sheet < n->sheet_count && n->sheet_area[sheet] + shape_of(n, piece, 0)->area > room)
+        if (sheet < n->sheet_count && n->sheet_area[sheet] + nest_shape_of(n, piece, 0)->area > room)
             continue; /* not enough area left on it, whatever the shapes */
         ur_vec2 best_key = {0, 0};
         double best_reach = 0, length = roll_length(n);
@@ -523,7 +465,7 @@ static ur_status place_piece(nester *n, size_t piece, size_t held)
              * Turns compare by where the part itself lies (its box's lower
              * left corner), not by its origin, which sits elsewhere in each.
              */
-            const nest_shape *shape = shape_of(n, piece, t);
+            const nest_shape *shape = nest_shape_of(n, piece, t);
             ur_vec2 key = {at.x + shape->box.min.x, at.y + shape->box.min.y};
             /*
              * On a roll, first the turn that lengthens the strip least (as
@@ -548,7 +490,7 @@ static ur_status place_piece(nester *n, size_t piece, size_t held)
             n->sheet_of[n->placed_count++] = sheet;
             if (sheet == n->sheet_count)
                 n->sheet_count++;
-            n->sheet_area[sheet] += shape_of(n, piece, 0)->area;
+            n->sheet_area[sheet] += nest_shape_of(n, piece, 0)->area;
             return UR_OK;
         }
         if (sheet == n->sheet_count) /* it fits no empty sheet either */
@@ -609,7 +551,7 @@ static ur_status build_layout(nester *n, ur_layout *layout)
     for (size_t k = 0; k < n->placed_count; k++) {
         const placed *p = &n->placements[k];
         ur_sheet *sheet = &layout->sheets[index[n->sheet_of[k]]];
-        double angle = shape_of(n, p->piece, p->turn)->angle;
+        double angle = nest_shape_of(n, p->piece, p->turn)->angle;
         sheet->placements[sheet->placement_count++] =
             (ur_placement){p->piece, ur_transform2_make(angle, p->at)};
     }
@@ -759,7 +701,7 @@ static score score_of(const nester *n)
     for (size_t k = 0; k < n->placed_count; k++)
         if (n->sheet_of[k] + 1 == n->sheet_count) {
             const placed *p = &n->placements[k];
-            double right = p->at.x + shape_of(n, p->piece, p->turn)->box.max.x;
+            double right = p->at.x + nest_shape_of(n, p->piece, p->turn)->box.max.x;
             s.length = fmax(s.length, right);
             s.reach += right;
             on_last++;
@@ -816,7 +758,7 @@ static void mutate(size_t *order, size_t count, uint64_t *state)
 static bool may_hold(const nester *n, size_t piece, size_t turn)
 {
     double fit[4];
-    return inner_fit_box(n, n->remnant_count, shape_of(n, piece, turn), fit);
+    return inner_fit_box(n, n->remnant_count, nest_shape_of(n, piece, turn), fit);
 }
 
 /*
@@ -841,7 +783,7 @@ static bool turn_move(const nester *n, size_t *held, uint64_t *state)
     return true;
 }
 
-static double seconds_now(void)
+double nest_seconds_now(void)
 {
     struct timespec t;
     clock_gettime(CLOCK_MONOTONIC, &t);
@@ -862,10 +804,11 @@ static double seconds_now(void)
  * of budget if that is more.
  */
 #define NEST_TURN_MOVES 3
-static ur_status search(nester *n, size_t *order)
+#define ROLL_ORDER_SHARE 0.2
+static ur_status search(nester *n, size_t *order, double budget)
 {
     const ur_nest_options *o = n->options;
-    if (!(o->time_budget > 0) || n->count < 2)
+    if (!(budget > 0) || n->count < 2)
         return UR_OK;
     size_t bytes = n->count * sizeof *order;
     size_t *current = malloc(bytes), *candidate = malloc(bytes);
@@ -886,13 +829,13 @@ static ur_status search(nester *n, size_t *order)
     bool turns = n->turn_count > 1; /* some part has a choice of turns */
     uint64_t state = o->seed * 0x9E3779B97F4A7C15ULL + 0x2545F4914F6CDD1DULL;
     score best = score_of(n), now = best;
-    double start = seconds_now();
-    double patience = fmax(NEST_PATIENCE, NEST_PATIENCE_PER_SECOND * o->time_budget);
+    double start = nest_seconds_now();
+    double patience = fmax(NEST_PATIENCE, NEST_PATIENCE_PER_SECOND * budget);
     ur_status status = UR_OK;
     size_t since_better = 0;
     for (size_t tries = 1;
          status == UR_OK && tries <= NEST_TRIES && (double)since_better < patience &&
-         seconds_now() - start < o->time_budget;
+         nest_seconds_now() - start < budget;
          tries++) {
         status = ur_cancel_check(n->error); /* a signal to the command */
         if (status != UR_OK)
@@ -970,7 +913,7 @@ ur_status ur_layout_nest(const ur_piece *pieces, size_t count, const ur_nest_opt
             status = ur_error_out_of_memory(error);
     }
     for (size_t p = 0; status == UR_OK && p < count; p++)
-        keys[p] = (order_key){shape_of(&n, p, 0)->area, p};
+        keys[p] = (order_key){nest_shape_of(&n, p, 0)->area, p};
     if (status == UR_OK)
         qsort(keys, count, sizeof *keys, compare_keys);
     size_t *order = calloc(count + 1, sizeof *order);
@@ -980,8 +923,12 @@ ur_status ur_layout_nest(const ur_piece *pieces, size_t count, const ur_nest_opt
         order[k] = keys[k].index;
     if (status == UR_OK)
         status = run_order(&n, order, NULL);
+    double start = nest_seconds_now(), budget = options->time_budget;
+    /* On a roll the search over orders has a share of the budget; shortening the strip, the rest. */
     if (status == UR_OK)
-        status = search(&n, order);
+        status = search(&n, order, options->roll_width > 0 ? ROLL_ORDER_SHARE * budget : budget);
+    if (status == UR_OK && options->roll_width > 0 && budget > 0)
+        status = nest_compact_roll(&n, start + budget);
     free(order);
     if (status == UR_OK && options->roll_width > 0 && n.placed_count < count)
         status = ur_error_set(error, UR_ERROR_INPUT,

@@ -6,6 +6,8 @@
 #define UNROLL_NEST_INTERNAL_H
 
 #include <geos_c.h>
+#include <stdbool.h>
+#include <stddef.h>
 
 #include "unroll/nest.h"
 
@@ -37,5 +39,85 @@ void nest_shape_free(GEOSContextHandle_t geos, nest_shape *shape);
  * parts' sums).  NULL when GEOS fails.
  */
 GEOSGeometry *nest_nfp(GEOSContextHandle_t geos, const nest_shape *a, const nest_shape *b);
+
+/* ---- The true-shape nester's state (nest.c), shared with compact.c ---- */
+
+/* Parts that are the same shape (copies) share their no-fit polygons. */
+typedef struct nest_class {
+    size_t representative; /* a piece of this shape */
+    nest_shape *turns;     /* one per allowed turn */
+    size_t turn_count;     /* its own: at most the nester's turn_count */
+} nest_class;
+
+/*
+ * Where one part (a class at one turn) may still go on one sheet: the
+ * inner-fit rectangle cut into a grid of cells, each less the no-fit
+ * polygons of the parts placed so far that reach into it.  A part placed
+ * touches only the few cells its no-fit polygon reaches, so each cut is an
+ * overlay of a cell's worth of edges, not of the whole sheet's, and cells
+ * are brought up to date only when a query reaches them: the leftmost
+ * place is in the first column that has room, and the columns after it
+ * wait.
+ */
+typedef struct room_grid {
+    GEOSGeometry **free;   /* per cell (column by column): the room left; NULL once none */
+    size_t *applied;       /* per cell: placements already cut out of it */
+    size_t cols, rows;     /* 0 until made */
+    double x0, y0, x1, y1; /* the inner-fit rectangle the cells cover */
+} room_grid;
+
+typedef struct placed {
+    size_t piece, turn;
+    ur_vec2 at; /* where its origin went */
+} placed;
+
+typedef struct nester {
+    GEOSContextHandle_t geos;
+    const ur_piece *pieces;
+    size_t count;
+    const ur_nest_options *options;
+    size_t turn_count;
+    size_t *class_of; /* per piece */
+    nest_class *classes;
+    size_t class_count;
+    GEOSGeometry **nfps; /* per (class a, turn a, class b, turn b); NULL until made */
+    placed *placements;  /* per piece, in order placed */
+    size_t *sheet_of;    /* per placement */
+    /*
+     * Sheets 0 to remnant_count - 1 are the remnants, open from the start
+     * (maybe empty); stock sheets follow as they are opened.
+     */
+    size_t placed_count, sheet_count, remnant_count;
+    size_t sheet_slots; /* sheets there can be: remnants, one per part and one more */
+    room_grid *rooms;   /* per (sheet, class, turn) */
+    double cell_size;   /* of the rooms' cells: about two parts across (mm) */
+    /*
+     * Per (sheet, class, turn): no room was left for it there.  Sheets only
+     * fill up during a run, so it never fits there again in that run.
+     */
+    bool *full;
+    double *sheet_area; /* per sheet: area of the parts on it */
+    ur_error *error;
+} nester;
+
+/* The shape of piece at one of its turns. */
+const nest_shape *nest_shape_of(const nester *n, size_t piece, size_t turn);
+
+/*
+ * The no-fit polygon of piece b at turn tb around piece a at turn ta, a's
+ * origin at the origin: where b's origin may not go.  Owned by the nester;
+ * NULL when GEOS fails.
+ */
+const GEOSGeometry *nest_nfp_of(nester *n, size_t a, size_t ta, size_t b, size_t tb);
+
+/*
+ * Shortens the roll in a roll layout (compact.c): the parts on it are moved
+ * and turned, overlapping on the way, until they fit a shorter strip with
+ * no overlap, until deadline (seconds_now's clock) or for want of progress.
+ */
+ur_status nest_compact_roll(nester *n, double deadline);
+
+/* A monotonic clock, in seconds. */
+double nest_seconds_now(void);
 
 #endif

@@ -1,0 +1,711 @@
+/*
+ * compact.c: shortening a roll layout by overlap minimisation.
+ *
+ * The first layout (nest.c) places each part where it fits; this search
+ * lets parts overlap on the way to a shorter strip, as the best strip
+ * packers do (guided local search, after Egeblad et al. 2007, Umetani et
+ * al. 2009 and Gardeyn and Wauters 2025).  From the shortest layout found
+ * so far it cuts the strip a little shorter, moves the parts left outside
+ * back in (now overlapping), and then separates them: each overlapping part
+ * in turn moves, at any of its turns, to the place where it overlaps the
+ * others least (random places across the strip and near its own, the best
+ * refined by smaller and smaller steps).  Overlap is the penetration
+ * depth: how far a part must move to leave another, read off their no-fit
+ * polygon (the distance from the one's origin to that polygon's edge when
+ * it lies inside).  Pairs that keep overlapping weigh more each round
+ * (guided local search), so the parts make room for each other instead of
+ * stopping at the first crowded layout.  When no overlap is left, the
+ * shorter strip is the new best and the cut goes on; when separating fails,
+ * the next cut is smaller.
+ */
+#include "nest_internal.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Depths below this count as touching (mm): the rounding of points on a no-fit polygon's edge. */
+#define TOUCHING 1e-9
+/* Random places tried across the strip per turn, and near the part, when a part moves. */
+#define PLACES_ACROSS 40
+#define PLACES_NEAR 20
+/* Rounds of moves without a lower total overlap before a separation restarts from its best. */
+#define ROUNDS_WITHOUT_GAIN 200
+/* Restarts before a separation gives up. */
+#define RESTARTS 3
+/* Exploration's share of the time, and its cut of the strip (a fraction of its length). */
+#define EXPLORE_SHARE 0.8
+#define EXPLORE_CUT 0.01
+/* Compression's first and last cut, and the failed cuts in a row that end it. */
+#define COMPRESS_FIRST 0.005
+#define COMPRESS_LAST 0.0001
+#define COMPRESS_PATIENCE 200
+
+/* A no-fit polygon as flat rings, for fast depth queries. */
+typedef struct flat_nfp {
+    double box[4];   /* x0, y0, x1, y1 */
+    size_t *starts;  /* ring r: points starts[r] to starts[r + 1] - 1, closed */
+    size_t ring_count;
+    ur_vec2 *points;
+    bool made;
+} flat_nfp;
+
+/* Where the parts on the roll are: one state of the search. */
+typedef struct state {
+    size_t *turn;
+    ur_vec2 *at;
+} state;
+
+typedef struct compactor {
+    nester *n;
+    size_t count;     /* parts on the roll */
+    size_t *index;    /* per part: its placement in the nester */
+    size_t *piece;    /* per part */
+    state now, best;
+    double *depth;    /* count x count: how far each pair overlaps */
+    double *weight;   /* count x count: guided local search's weight of each pair */
+    flat_nfp *nfps;   /* per (class, turn, class, turn), as the nester keys them */
+    double length;    /* the strip the parts must keep within, from the margin (mm) */
+    double deadline;  /* on nest_seconds_now's clock */
+    uint64_t random;
+    const flat_nfp **row; /* scratch: per part, the no-fit polygon a moving part meets */
+} compactor;
+
+static uint64_t next_random(uint64_t *seed)
+{
+    *seed ^= *seed >> 12;
+    *seed ^= *seed << 25;
+    *seed ^= *seed >> 27;
+    return *seed * 2685821657736338717ULL;
+}
+
+/* A uniform random number in [0, 1). */
+static double uniform(uint64_t *seed)
+{
+    return (double)(next_random(seed) >> 11) * 0x1.0p-53;
+}
+
+static void flat_free(flat_nfp *f)
+{
+    free(f->starts);
+    free(f->points);
+    memset(f, 0, sizeof *f);
+}
+
+/* The rings of a GEOS polygon or multipolygon, flattened into f; false on failure. */
+static bool flatten(GEOSContextHandle_t geos, const GEOSGeometry *g, flat_nfp *f)
+{
+    size_t rings = 0, points = 0;
+    int parts = GEOSGetNumGeometries_r(geos, g);
+    for (int pass = 0; pass < 2; pass++) {
+        if (pass == 1) {
+            f->starts = calloc(rings + 1, sizeof *f->starts);
+            f->points = calloc(points ? points : 1, sizeof *f->points);
+            if (!f->starts || !f->points)
+                return false;
+            rings = points = 0;
+        }
+        for (int k = 0; k < parts; k++) {
+            const GEOSGeometry *part = GEOSGetGeometryN_r(geos, g, k);
+            if (GEOSGeomTypeId_r(geos, part) != GEOS_POLYGON || GEOSisEmpty_r(geos, part))
+                continue;
+            int holes = GEOSGetNumInteriorRings_r(geos, part);
+            for (int r = -1; r < holes; r++) {
+                const GEOSGeometry *ring = r < 0 ? GEOSGetExteriorRing_r(geos, part)
+                                                 : GEOSGetInteriorRingN_r(geos, part, r);
+                const GEOSCoordSequence *sequence =
+                    ring ? GEOSGeom_getCoordSeq_r(geos, ring) : NULL;
+                unsigned size = 0;
+                if (!sequence || !GEOSCoordSeq_getSize_r(geos, sequence, &size))
+                    return false;
+                if (pass == 1) {
+                    f->starts[rings] = points;
+                    for (unsigned i = 0; i < size; i++)
+                        GEOSCoordSeq_getXY_r(geos, sequence, i, &f->points[points + i].x,
+                                             &f->points[points + i].y);
+                }
+                rings++;
+                points += size;
+            }
+        }
+    }
+    f->starts[rings] = points;
+    f->ring_count = rings;
+    f->box[0] = f->box[1] = INFINITY;
+    f->box[2] = f->box[3] = -INFINITY;
+    for (size_t i = 0; i < points; i++) {
+        f->box[0] = fmin(f->box[0], f->points[i].x), f->box[1] = fmin(f->box[1], f->points[i].y);
+        f->box[2] = fmax(f->box[2], f->points[i].x), f->box[3] = fmax(f->box[3], f->points[i].y);
+    }
+    return true;
+}
+
+/*
+ * The no-fit polygon of part b at turn tb around part a at turn ta,
+ * flattened; NULL on a failure.
+ */
+static const flat_nfp *nfp_between(compactor *c, size_t a, size_t ta, size_t b, size_t tb)
+{
+    nester *n = c->n;
+    size_t pa = c->piece[a], pb = c->piece[b], t = n->turn_count;
+    size_t key = ((n->class_of[pa] * t + ta) * n->class_count + n->class_of[pb]) * t + tb;
+    flat_nfp *f = &c->nfps[key];
+    if (f->made)
+        return f;
+    const GEOSGeometry *g = nest_nfp_of(n, pa, ta, pb, tb);
+    if (!g || !flatten(n->geos, g, f)) {
+        flat_free(f);
+        return NULL;
+    }
+    f->made = true;
+    return f;
+}
+
+/* The squared distance from p to the segment a-b. */
+static double segment_distance2(ur_vec2 p, ur_vec2 a, ur_vec2 b)
+{
+    double dx = b.x - a.x, dy = b.y - a.y, px = p.x - a.x, py = p.y - a.y;
+    double length2 = dx * dx + dy * dy;
+    double s = length2 > 0 ? (px * dx + py * dy) / length2 : 0;
+    s = s < 0 ? 0 : s > 1 ? 1 : s;
+    double ex = px - s * dx, ey = py - s * dy;
+    return ex * ex + ey * ey;
+}
+
+/* How far p lies inside the no-fit polygon (0 outside): the penetration depth. */
+static double depth_in(const flat_nfp *f, ur_vec2 p)
+{
+    if (p.x <= f->box[0] || p.x >= f->box[2] || p.y <= f->box[1] || p.y >= f->box[3])
+        return 0;
+    bool inside = false;
+    for (size_t r = 0; r < f->ring_count; r++)
+        for (size_t i = f->starts[r]; i + 1 < f->starts[r + 1]; i++) {
+            ur_vec2 a = f->points[i], b = f->points[i + 1];
+            if ((a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y))
+                inside = !inside;
+        }
+    if (!inside)
+        return 0;
+    double nearest = INFINITY;
+    for (size_t r = 0; r < f->ring_count; r++)
+        for (size_t i = f->starts[r]; i + 1 < f->starts[r + 1]; i++)
+            nearest = fmin(nearest, segment_distance2(p, f->points[i], f->points[i + 1]));
+    double depth = sqrt(nearest);
+    return depth > TOUCHING ? depth : 0;
+}
+
+/* How far parts i and j overlap where they are now; -1 on a failure. */
+static double pair_depth(compactor *c, size_t i, size_t j)
+{
+    const flat_nfp *f = nfp_between(c, j, c->now.turn[j], i, c->now.turn[i]);
+    if (!f)
+        return -1;
+    return depth_in(f, ur_vec2_make(c->now.at[i].x - c->now.at[j].x,
+                                    c->now.at[i].y - c->now.at[j].y));
+}
+
+/* Brings part i's row and column of depths up to date; false on a failure. */
+static bool update_depths(compactor *c, size_t i)
+{
+    for (size_t j = 0; j < c->count; j++) {
+        if (j == i)
+            continue;
+        double d = pair_depth(c, i, j);
+        if (d < 0)
+            return false;
+        c->depth[i * c->count + j] = c->depth[j * c->count + i] = d;
+    }
+    return true;
+}
+
+static double total_depth(const compactor *c)
+{
+    double total = 0;
+    for (size_t i = 0; i < c->count; i++)
+        for (size_t j = i + 1; j < c->count; j++)
+            total += c->depth[i * c->count + j];
+    return total;
+}
+
+static bool overlaps_any(const compactor *c, size_t i)
+{
+    for (size_t j = 0; j < c->count; j++)
+        if (c->depth[i * c->count + j] > 0)
+            return true;
+    return false;
+}
+
+/*
+ * Where part i's origin may go at turn t, the strip's length being
+ * c->length (x0, y0, x1, y1); false when it is too long for it at that turn.
+ */
+static bool inner_fit(const compactor *c, size_t i, size_t t, double *box)
+{
+    const nester *n = c->n;
+    const ur_nest_options *o = n->options;
+    const nest_shape *shape = nest_shape_of(n, c->piece[i], t);
+    box[0] = o->margin - shape->box.min.x;
+    box[1] = o->margin - shape->box.min.y;
+    box[2] = o->margin + c->length - shape->box.max.x;
+    box[3] = o->sheet_height - o->margin - shape->box.max.y;
+    return box[2] >= box[0] && box[3] >= box[1];
+}
+
+/* A candidate: part i at turn t, its origin at p, and its weighted overlap there. */
+typedef struct candidate {
+    size_t turn;
+    ur_vec2 at;
+    double cost;
+} candidate;
+
+/*
+ * Fills c->row with the no-fit polygons part i meets at turn t (row[i]
+ * unused); false on a failure.
+ */
+static bool fill_row(compactor *c, size_t i, size_t t)
+{
+    for (size_t j = 0; j < c->count; j++) {
+        if (j == i)
+            continue;
+        c->row[j] = nfp_between(c, j, c->now.turn[j], i, t);
+        if (!c->row[j])
+            return false;
+    }
+    return true;
+}
+
+/* Part i's weighted overlap with the others at p (c->row filled), given up once above limit. */
+static double cost_at(const compactor *c, size_t i, ur_vec2 p, double limit)
+{
+    double cost = 0;
+    for (size_t j = 0; j < c->count && cost < limit; j++) {
+        if (j == i)
+            continue;
+        double d = depth_in(c->row[j], ur_vec2_make(p.x - c->now.at[j].x, p.y - c->now.at[j].y));
+        if (d > 0)
+            cost += c->weight[i * c->count + j] * d * d;
+    }
+    return cost;
+}
+
+static ur_vec2 clamp_to(ur_vec2 p, const double *box)
+{
+    return ur_vec2_make(fmin(fmax(p.x, box[0]), box[2]), fmin(fmax(p.y, box[1]), box[3]));
+}
+
+/* Tries p at the candidate's turn: keeps it when it overlaps less. */
+static void try_place(const compactor *c, size_t i, ur_vec2 p, candidate *best)
+{
+    double cost = cost_at(c, i, p, best->cost);
+    if (cost < best->cost) {
+        best->at = p;
+        best->cost = cost;
+    }
+}
+
+/*
+ * Refines a candidate (c->row filled for its turn) by steps in eight
+ * directions, halving the step when none helps, down to a millionth of the
+ * part's size.
+ */
+static void refine(const compactor *c, size_t i, const double *box, double size, candidate *best)
+{
+    static const double dx[8] = {1, -1, 0, 0, 0.7071, -0.7071, 0.7071, -0.7071};
+    static const double dy[8] = {0, 0, 1, -1, 0.7071, 0.7071, -0.7071, -0.7071};
+    for (double step = 0.05 * size; step > 1e-6 * size && best->cost > 0;) {
+        bool better = false;
+        for (int k = 0; k < 8 && !better; k++) {
+            double before = best->cost;
+            try_place(c, i, clamp_to(ur_vec2_make(best->at.x + step * dx[k],
+                                                  best->at.y + step * dy[k]),
+                                     box),
+                      best);
+            better = best->cost < before;
+        }
+        if (!better)
+            step *= 0.5;
+    }
+}
+
+/*
+ * Moves part i to where it overlaps the others least (weighted), at any of
+ * its turns: random places across the strip and near where it is, the best
+ * refined.  False on a failure.
+ */
+static bool move_part(compactor *c, size_t i)
+{
+    nester *n = c->n;
+    size_t turns = n->classes[n->class_of[c->piece[i]]].turn_count;
+    const nest_shape *shape = nest_shape_of(n, c->piece[i], 0);
+    double size = fmax(ur_box_width(shape->box), ur_box_height(shape->box));
+    double box[4];
+    size_t turn = c->now.turn[i];
+    /* Left outside a shorter strip, it may go anywhere inside. */
+    bool fits = inner_fit(c, i, turn, box);
+    if (!fill_row(c, i, turn))
+        return false;
+    double cost_now = fits ? cost_at(c, i, c->now.at[i], INFINITY) : INFINITY;
+    candidate best = {turn, c->now.at[i], cost_now};
+    for (size_t t = 0; t < turns; t++) {
+        if (!inner_fit(c, i, t, box))
+            continue;
+        if (!fill_row(c, i, t))
+            return false;
+        candidate here = {t, c->now.at[i], t == turn ? cost_now : INFINITY};
+        if (t == turn && fits) {
+            for (int k = 0; k < PLACES_NEAR; k++) {
+                ur_vec2 p = {c->now.at[i].x + (2 * uniform(&c->random) - 1) * 0.25 * size,
+                             c->now.at[i].y + (2 * uniform(&c->random) - 1) * 0.25 * size};
+                try_place(c, i, clamp_to(p, box), &here);
+            }
+        }
+        for (int k = 0; k < PLACES_ACROSS; k++) {
+            ur_vec2 p = {box[0] + uniform(&c->random) * (box[2] - box[0]),
+                         box[1] + uniform(&c->random) * (box[3] - box[1])};
+            try_place(c, i, p, &here);
+        }
+        refine(c, i, box, size, &here);
+        if (here.cost < best.cost)
+            best = here;
+    }
+    if (!isfinite(best.cost))
+        return true; /* no turn fits the strip: the caller keeps it longer */
+    c->now.turn[i] = best.turn;
+    c->now.at[i] = best.at;
+    return update_depths(c, i);
+}
+
+/*
+ * Guided local search's weights: pairs that overlap weigh more, the more
+ * the deeper, and the others fall back toward 1.
+ */
+static void update_weights(compactor *c)
+{
+    double deepest = 0;
+    for (size_t k = 0; k < c->count * c->count; k++)
+        deepest = fmax(deepest, c->depth[k]);
+    for (size_t k = 0; k < c->count * c->count; k++)
+        c->weight[k] = c->depth[k] > 0 ? c->weight[k] * (1.2 + 0.8 * c->depth[k] / deepest)
+                                       : fmax(1.0, 0.95 * c->weight[k]);
+}
+
+static void copy_state(const compactor *c, state *to, const state *from)
+{
+    memcpy(to->turn, from->turn, c->count * sizeof *to->turn);
+    memcpy(to->at, from->at, c->count * sizeof *to->at);
+}
+
+static bool recompute_depths(compactor *c)
+{
+    for (size_t i = 0; i < c->count; i++)
+        for (size_t j = i + 1; j < c->count; j++) {
+            double d = pair_depth(c, i, j);
+            if (d < 0)
+                return false;
+            c->depth[i * c->count + j] = c->depth[j * c->count + i] = d;
+        }
+    return true;
+}
+
+/* Shuffles the first count entries of order. */
+static void shuffle(size_t *order, size_t count, uint64_t *random)
+{
+    for (size_t k = count; k > 1; k--) {
+        size_t j = next_random(random) % k, swap = order[k - 1];
+        order[k - 1] = order[j];
+        order[j] = swap;
+    }
+}
+
+/*
+ * Separates the parts in the strip of c->length: rounds of moves of every
+ * overlapping part, weights updated after each.  True when no overlap is
+ * left (c->now holds that layout); false when it gives up or time runs out
+ * (c->now is then its least overlapping layout), *status set on a failure.
+ */
+static bool separate(compactor *c, size_t *order, state *least, ur_status *status)
+{
+    for (size_t k = 0; k < c->count * c->count; k++)
+        c->weight[k] = 1.0;
+    double least_total = total_depth(c);
+    copy_state(c, least, &c->now);
+    for (int restart = 0; restart < RESTARTS; restart++) {
+        for (int idle = 0; idle < ROUNDS_WITHOUT_GAIN;) {
+            if (nest_seconds_now() > c->deadline || (*status = ur_cancel_check(c->n->error)))
+                return false;
+            for (size_t k = 0; k < c->count; k++)
+                order[k] = k;
+            shuffle(order, c->count, &c->random);
+            for (size_t k = 0; k < c->count; k++)
+                if (overlaps_any(c, order[k]) && !move_part(c, order[k])) {
+                    *status = ur_error_out_of_memory(c->n->error);
+                    return false;
+                }
+            double total = total_depth(c);
+            if (total == 0)
+                return true;
+            if (total < least_total * (1 - 1e-6)) {
+                least_total = total;
+                copy_state(c, least, &c->now);
+                idle = 0;
+            } else {
+                idle++;
+            }
+            update_weights(c);
+        }
+        copy_state(c, &c->now, least);
+        if (!recompute_depths(c)) {
+            *status = ur_error_out_of_memory(c->n->error);
+            return false;
+        }
+    }
+    return false;
+}
+
+/* How far along the strip the parts reach now, from the margin. */
+static double reach_of(const compactor *c)
+{
+    double reach = 0;
+    for (size_t i = 0; i < c->count; i++)
+        reach = fmax(reach, c->now.at[i].x +
+                                nest_shape_of(c->n, c->piece[i], c->now.turn[i])->box.max.x);
+    return reach - c->n->options->margin;
+}
+
+/*
+ * The shortest strip any layout can have: the longest of the parts' least
+ * lengths over their turns, and the parts' area over the strip's width.
+ */
+static double shortest_possible(const compactor *c)
+{
+    const ur_nest_options *o = c->n->options;
+    double area = 0, longest = 0;
+    for (size_t i = 0; i < c->count; i++) {
+        const nest_class *k = &c->n->classes[c->n->class_of[c->piece[i]]];
+        double least = INFINITY;
+        for (size_t t = 0; t < k->turn_count; t++)
+            least = fmin(least, ur_box_width(k->turns[t].box));
+        longest = fmax(longest, least);
+        area += k->turns[0].area;
+    }
+    return fmax(longest, area / (o->sheet_height - 2 * o->margin));
+}
+
+/* Cuts the strip to length: parts beyond it move in, overlapping; false on a failure. */
+static bool cut_to(compactor *c, double length)
+{
+    c->length = length;
+    for (size_t i = 0; i < c->count; i++) {
+        double box[4];
+        if (inner_fit(c, i, c->now.turn[i], box))
+            c->now.at[i] = clamp_to(c->now.at[i], box);
+    }
+    if (!recompute_depths(c))
+        return false;
+    for (size_t k = 0; k < c->count * c->count; k++)
+        c->weight[k] = 1.0;
+    for (size_t i = 0; i < c->count; i++) {
+        double box[4];
+        if (!inner_fit(c, i, c->now.turn[i], box) && !move_part(c, i))
+            return false;
+    }
+    return true;
+}
+
+/*
+ * A jolt out of a crowded layout: two parts of different shapes trade
+ * places (their boxes' centres), the larger parts more often.  False on a
+ * failure.
+ */
+static bool disrupt(compactor *c)
+{
+    size_t i = 0, j = 0;
+    for (int tries = 0; tries < 20; tries++) {
+        i = next_random(&c->random) % c->count;
+        j = next_random(&c->random) % c->count;
+        /* Of two drawn parts, the larger: a bias toward large parts. */
+        size_t k = next_random(&c->random) % c->count, l = next_random(&c->random) % c->count;
+        if (nest_shape_of(c->n, c->piece[k], 0)->area > nest_shape_of(c->n, c->piece[i], 0)->area)
+            i = k;
+        if (nest_shape_of(c->n, c->piece[l], 0)->area > nest_shape_of(c->n, c->piece[j], 0)->area)
+            j = l;
+        if (c->n->class_of[c->piece[i]] != c->n->class_of[c->piece[j]])
+            break;
+    }
+    if (c->n->class_of[c->piece[i]] == c->n->class_of[c->piece[j]])
+        return true; /* all one shape: nothing to trade */
+    const ur_box *bi = &nest_shape_of(c->n, c->piece[i], c->now.turn[i])->box;
+    const ur_box *bj = &nest_shape_of(c->n, c->piece[j], c->now.turn[j])->box;
+    ur_vec2 ci = {c->now.at[i].x + 0.5 * (bi->min.x + bi->max.x),
+                  c->now.at[i].y + 0.5 * (bi->min.y + bi->max.y)};
+    ur_vec2 cj = {c->now.at[j].x + 0.5 * (bj->min.x + bj->max.x),
+                  c->now.at[j].y + 0.5 * (bj->min.y + bj->max.y)};
+    c->now.at[i] = ur_vec2_make(cj.x - 0.5 * (bi->min.x + bi->max.x),
+                                cj.y - 0.5 * (bi->min.y + bi->max.y));
+    c->now.at[j] = ur_vec2_make(ci.x - 0.5 * (bj->min.x + bj->max.x),
+                                ci.y - 0.5 * (bj->min.y + bj->max.y));
+    double box[4];
+    if (inner_fit(c, i, c->now.turn[i], box))
+        c->now.at[i] = clamp_to(c->now.at[i], box);
+    if (inner_fit(c, j, c->now.turn[j], box))
+        c->now.at[j] = clamp_to(c->now.at[j], box);
+    return recompute_depths(c);
+}
+
+/* A layout with no overlap in a shorter strip than the best: the new best. */
+static void keep_best(compactor *c, double *best_length)
+{
+    *best_length = reach_of(c);
+    copy_state(c, &c->best, &c->now);
+    if (c->n->options->progress)
+        c->n->options->progress(c->n->options->progress_context, 1,
+                                *best_length + c->n->options->margin, 0);
+}
+
+/*
+ * Exploration: the strip cut by EXPLORE_CUT from the best, and separated
+ * again and again from the least overlapping layout, jolted, until a
+ * layout fits or the phase's time is up.  False when it stops for time
+ * (or *status says why).
+ */
+static bool explore_once(compactor *c, double length, double until, size_t *order, state *least,
+                         ur_status *status)
+{
+    copy_state(c, &c->now, &c->best);
+    if (!cut_to(c, length)) {
+        *status = ur_error_out_of_memory(c->n->error);
+        return false;
+    }
+    double saved = c->deadline;
+    c->deadline = until;
+    bool fits = false;
+    while (!fits && *status == UR_OK && nest_seconds_now() < until) {
+        double t0 = nest_seconds_now();
+        fits = separate(c, order, least, status);
+        if (getenv("DEBUG_COMPACT"))
+            fprintf(stderr, "explore length %.4f -> %s in %.2f s\n", length, fits ? "ok" : "FAIL", nest_seconds_now() - t0);
+        if (!fits && *status == UR_OK) {
+            copy_state(c, &c->now, least);
+            if (!disrupt(c))
+                *status = ur_error_out_of_memory(c->n->error);
+        }
+    }
+    c->deadline = saved;
+    return fits;
+}
+
+/*
+ * The search itself, c set up: exploration (EXPLORE_SHARE of the time),
+ * then compression, which cuts the best strip by less and less (from
+ * COMPRESS_FIRST to COMPRESS_LAST of its length as time runs out) and
+ * separates once per cut.  The best layout ends in c->best.
+ */
+static ur_status search_shorter(compactor *c, size_t *order, state *least)
+{
+    ur_status status = UR_OK;
+    double best_length = reach_of(c), floor = shortest_possible(c);
+    copy_state(c, &c->best, &c->now);
+    double start = nest_seconds_now(), span = c->deadline - start;
+    double until = start + EXPLORE_SHARE * span;
+    while (status == UR_OK && nest_seconds_now() < until) {
+        double length = best_length * (1 - EXPLORE_CUT);
+        if (length < floor)
+            break;
+        if (explore_once(c, length, until, order, least, &status))
+            keep_best(c, &best_length);
+    }
+    double compress_start = nest_seconds_now();
+    for (int failures = 0; status == UR_OK && failures < COMPRESS_PATIENCE;) {
+        double now = nest_seconds_now();
+        if (now > c->deadline)
+            break;
+        double done = (now - compress_start) / fmax(1e-9, c->deadline - compress_start);
+        double cut = COMPRESS_FIRST + (COMPRESS_LAST - COMPRESS_FIRST) * done;
+        double length = best_length * (1 - cut);
+        if (length < floor)
+            break;
+        copy_state(c, &c->now, &c->best);
+        if (!cut_to(c, length))
+            return ur_error_out_of_memory(c->n->error);
+        double t0 = nest_seconds_now();
+        bool fits = separate(c, order, least, &status);
+        if (getenv("DEBUG_COMPACT"))
+            fprintf(stderr, "compress cut %.5f length %.4f -> %s in %.2f s\n", cut, length, fits ? "ok" : "FAIL", nest_seconds_now() - t0);
+        if (fits && reach_of(c) < best_length) {
+            keep_best(c, &best_length);
+            failures = 0;
+        } else {
+            failures++;
+        }
+    }
+    return status;
+}
+
+static void compactor_free(compactor *c)
+{
+    size_t keys = c->n->class_count * c->n->turn_count * c->n->class_count * c->n->turn_count;
+    for (size_t k = 0; c->nfps && k < keys; k++)
+        flat_free(&c->nfps[k]);
+    free(c->nfps);
+    free(c->index);
+    free(c->piece);
+    free(c->now.turn);
+    free(c->now.at);
+    free(c->best.turn);
+    free(c->best.at);
+    free(c->depth);
+    free(c->weight);
+    free(c->row);
+}
+
+ur_status nest_compact_roll(nester *n, double deadline)
+{
+    size_t roll = n->remnant_count, count = 0;
+    for (size_t k = 0; k < n->placed_count; k++)
+        count += n->sheet_of[k] == roll;
+    if (count < 2 || nest_seconds_now() > deadline)
+        return UR_OK;
+    size_t keys = n->class_count * n->turn_count * n->class_count * n->turn_count;
+    compactor c = {.n = n, .count = count, .deadline = deadline};
+    c.random = n->options->seed * 0x9E3779B97F4A7C15ULL + 0x632BE59BD9B4E019ULL;
+    c.index = calloc(count, sizeof *c.index);
+    c.piece = calloc(count, sizeof *c.piece);
+    c.now.turn = calloc(count, sizeof *c.now.turn);
+    c.now.at = calloc(count, sizeof *c.now.at);
+    c.best.turn = calloc(count, sizeof *c.best.turn);
+    c.best.at = calloc(count, sizeof *c.best.at);
+    c.depth = calloc(count * count, sizeof *c.depth);
+    c.weight = calloc(count * count, sizeof *c.weight);
+    c.row = calloc(count, sizeof *c.row);
+    c.nfps = calloc(keys, sizeof *c.nfps);
+    size_t *order = calloc(count, sizeof *order);
+    state least = {calloc(count, sizeof(size_t)), calloc(count, sizeof(ur_vec2))};
+    ur_status status = UR_OK;
+    if (!c.index || !c.piece || !c.now.turn || !c.now.at || !c.best.turn || !c.best.at ||
+        !c.depth || !c.weight || !c.row || !c.nfps || !order || !least.turn || !least.at)
+        status = ur_error_out_of_memory(n->error);
+    for (size_t k = 0, i = 0; status == UR_OK && k < n->placed_count; k++)
+        if (n->sheet_of[k] == roll) {
+            c.index[i] = k;
+            c.piece[i] = n->placements[k].piece;
+            c.now.turn[i] = n->placements[k].turn;
+            c.now.at[i++] = n->placements[k].at;
+        }
+    if (status == UR_OK && !recompute_depths(&c))
+        status = ur_error_out_of_memory(n->error);
+    /* The first layout has no overlap: anything else is a disagreement to leave alone. */
+    if (status == UR_OK && total_depth(&c) == 0)
+        status = search_shorter(&c, order, &least);
+    if (status == UR_OK)
+        for (size_t i = 0; i < count; i++) {
+            n->placements[c.index[i]].turn = c.best.turn[i];
+            n->placements[c.index[i]].at = c.best.at[i];
+        }
+    free(order);
+    free(least.turn);
+    free(least.at);
+    compactor_free(&c);
+    return status;
+}
