@@ -114,6 +114,9 @@ typedef struct ur_nest_options {
      * that sheet's parts reach less far on average.  0: no search.  The
      * steps come from seed (xorshift64*), so a search that stops for want
      * of improvement or at its try limit gives the same layout every time.
+     * On a roll that search has a fifth of the budget, and shortening the
+     * strip by overlap minimisation (src/nest/compact.c) the rest: it
+     * stops when the time is up or after 200 failed cuts in a row.
      */
     double time_budget;
     unsigned long long seed;

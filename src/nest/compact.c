@@ -7,29 +7,40 @@
  * al. 2009 and Gardeyn and Wauters 2025).  From the shortest layout found
  * so far it cuts the strip a little shorter, moves the parts left outside
  * back in (now overlapping), and then separates them: each overlapping part
- * in turn moves, at any of its turns, to the place where it overlaps the
- * others least (random places across the strip and near its own, the best
- * refined by smaller and smaller steps).  Overlap is the penetration
+ * in turn moves to the place and turn where it overlaps the others least
+ * (random places across the strip at random turns, and near its own, the
+ * best refined by smaller and smaller steps).  Overlap is the penetration
  * depth: how far a part must move to leave another, read off their no-fit
  * polygon (the distance from the one's origin to that polygon's edge when
- * it lies inside).  Pairs that keep overlapping weigh more each round
- * (guided local search), so the parts make room for each other instead of
- * stopping at the first crowded layout.  When no overlap is left, the
- * shorter strip is the new best and the cut goes on; when separating fails,
- * the next cut is smaller.
+ * it lies inside); a part's cost at a place is the sum of its squared
+ * depths into the others, each weighted.  Pairs that keep overlapping weigh
+ * more each round (guided local search), so the parts make room for each
+ * other instead of stopping at the first crowded layout.
+ *
+ * Exploration (most of the time) cuts 1% at a time; when the parts cannot
+ * be separated it jolts the least overlapping layout (two parts trade
+ * places) and tries the same length again.  Compression (the rest) cuts
+ * less and less from the best, once each.  Only layouts with no overlap
+ * left are kept, so what the nester writes never overlaps.
  */
 #include "nest_internal.h"
 
 #include <math.h>
-#include <stdio.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
 /* Depths below this count as touching (mm): the rounding of points on a no-fit polygon's edge. */
 #define TOUCHING 1e-9
-/* Random places tried across the strip per turn, and near the part, when a part moves. */
-#define PLACES_ACROSS 40
+/*
+ * Bands searched either side of a point for the nearest edge; beyond them,
+ * the depth is taken as the distance out of the polygon's box (at least
+ * the true depth): a part that deep is far from any place worth having,
+ * and the exact figure would cost a scan of most of the edges.
+ */
+#define NEAREST_BANDS 4
+/* Random places tried across the strip, and near the part, when a part moves. */
+#define PLACES_ACROSS 60
 #define PLACES_NEAR 20
 /* Rounds of moves without a lower total overlap before a separation restarts from its best. */
 #define ROUNDS_WITHOUT_GAIN 200
@@ -43,12 +54,25 @@
 #define COMPRESS_LAST 0.0001
 #define COMPRESS_PATIENCE 200
 
-/* A no-fit polygon as flat rings, for fast depth queries. */
+/* An edge of a no-fit polygon's rings: from a, along d; inverse of d's squared length (or 0). */
+typedef struct flat_edge {
+    double ax, ay, dx, dy, inverse;
+} flat_edge;
+
+/*
+ * A no-fit polygon as the edges of its rings, for fast depth queries, and
+ * cut across into bands of equal height, each listing the edges that reach
+ * into it: a point's inside test needs only its band's edges, and the
+ * nearest edge is found from its band outward.
+ */
 typedef struct flat_nfp {
-    double box[4];   /* x0, y0, x1, y1 */
-    size_t *starts;  /* ring r: points starts[r] to starts[r + 1] - 1, closed */
-    size_t ring_count;
-    ur_vec2 *points;
+    double box[4]; /* x0, y0, x1, y1 */
+    flat_edge *edges;
+    size_t edge_count;
+    double band_height;
+    size_t band_count;
+    size_t *band_start; /* band b: band_edges[band_start[b]] to band_edges[band_start[b + 1] - 1] */
+    size_t *band_edges;
     bool made;
 } flat_nfp;
 
@@ -60,15 +84,15 @@ typedef struct state {
 
 typedef struct compactor {
     nester *n;
-    size_t count;     /* parts on the roll */
-    size_t *index;    /* per part: its placement in the nester */
-    size_t *piece;    /* per part */
+    size_t count;  /* parts on the roll */
+    size_t *index; /* per part: its placement in the nester */
+    size_t *piece; /* per part */
     state now, best;
-    double *depth;    /* count x count: how far each pair overlaps */
-    double *weight;   /* count x count: guided local search's weight of each pair */
-    flat_nfp *nfps;   /* per (class, turn, class, turn), as the nester keys them */
-    double length;    /* the strip the parts must keep within, from the margin (mm) */
-    double deadline;  /* on nest_seconds_now's clock */
+    double *depth;   /* count x count: how far each pair overlaps */
+    double *weight;  /* count x count: guided local search's weight of each pair */
+    flat_nfp *nfps;  /* per (class, turn, class, turn), as the nester keys them */
+    double length;   /* the strip the parts must keep within, from the margin (mm) */
+    double deadline; /* on nest_seconds_now's clock */
     uint64_t random;
     const flat_nfp **row; /* scratch: per part, the no-fit polygon a moving part meets */
 } compactor;
@@ -89,57 +113,123 @@ static double uniform(uint64_t *seed)
 
 static void flat_free(flat_nfp *f)
 {
-    free(f->starts);
-    free(f->points);
+    free(f->edges);
+    free(f->band_start);
+    free(f->band_edges);
     memset(f, 0, sizeof *f);
+}
+
+/* Adds a ring's edges to f (edges allocated for them); false on a failure. */
+static bool add_ring(GEOSContextHandle_t geos, const GEOSGeometry *ring, flat_nfp *f)
+{
+    const GEOSCoordSequence *sequence = ring ? GEOSGeom_getCoordSeq_r(geos, ring) : NULL;
+    unsigned size = 0;
+    if (!sequence || !GEOSCoordSeq_getSize_r(geos, sequence, &size))
+        return false;
+    double x0 = 0, y0 = 0;
+    for (unsigned i = 0; i < size; i++) {
+        double x, y;
+        GEOSCoordSeq_getXY_r(geos, sequence, i, &x, &y);
+        f->box[0] = fmin(f->box[0], x), f->box[1] = fmin(f->box[1], y);
+        f->box[2] = fmax(f->box[2], x), f->box[3] = fmax(f->box[3], y);
+        if (i > 0) {
+            double dx = x - x0, dy = y - y0, length2 = dx * dx + dy * dy;
+            f->edges[f->edge_count++] = (flat_edge){x0, y0, dx, dy, length2 > 0 ? 1 / length2 : 0};
+        }
+        x0 = x, y0 = y;
+    }
+    return true;
+}
+
+/* The number of points in a polygon's rings. */
+static size_t ring_points(GEOSContextHandle_t geos, const GEOSGeometry *polygon)
+{
+    size_t points = 0;
+    int holes = GEOSGetNumInteriorRings_r(geos, polygon);
+    for (int r = -1; r < holes; r++) {
+        const GEOSGeometry *ring =
+            r < 0 ? GEOSGetExteriorRing_r(geos, polygon) : GEOSGetInteriorRingN_r(geos, polygon, r);
+        int size = ring ? GEOSGetNumCoordinates_r(geos, ring) : 0;
+        points += size > 0 ? (size_t)size : 0;
+    }
+    return points;
+}
+
+/* The band a height falls in, clamped to the bands there are. */
+static size_t band_of(const flat_nfp *f, double y)
+{
+    double b = floor((y - f->box[1]) / f->band_height);
+    return b < 0 ? 0 : b >= (double)f->band_count ? f->band_count - 1 : (size_t)b;
+}
+
+/* The bands of f's edges (edges and box made); false on a failure. */
+static bool make_bands(flat_nfp *f)
+{
+    f->band_count = f->edge_count / 2 + 1;
+    f->band_height = (f->box[3] - f->box[1]) / (double)f->band_count;
+    if (!(f->band_height > 0)) {
+        f->band_count = 1;
+        f->band_height = 1;
+    }
+    f->band_start = calloc(f->band_count + 1, sizeof *f->band_start);
+    if (!f->band_start)
+        return false;
+    /* Counted first, then filled: band_start[b + 1] counts band b's edges, then runs over them. */
+    for (int pass = 0; pass < 2; pass++) {
+        if (pass == 1) {
+            for (size_t b = 0; b < f->band_count; b++)
+                f->band_start[b + 1] += f->band_start[b];
+            f->band_edges = calloc(f->band_start[f->band_count] + 1, sizeof *f->band_edges);
+            if (!f->band_edges)
+                return false;
+        }
+        size_t *fill = calloc(f->band_count, sizeof *fill);
+        if (!fill)
+            return false;
+        for (size_t i = 0; i < f->edge_count; i++) {
+            const flat_edge *e = &f->edges[i];
+            size_t low = band_of(f, fmin(e->ay, e->ay + e->dy));
+            size_t high = band_of(f, fmax(e->ay, e->ay + e->dy));
+            for (size_t b = low; b <= high; b++) {
+                if (pass == 0)
+                    f->band_start[b + 1]++;
+                else
+                    f->band_edges[f->band_start[b] + fill[b]++] = i;
+            }
+        }
+        free(fill);
+    }
+    return true;
 }
 
 /* The rings of a GEOS polygon or multipolygon, flattened into f; false on failure. */
 static bool flatten(GEOSContextHandle_t geos, const GEOSGeometry *g, flat_nfp *f)
 {
-    size_t rings = 0, points = 0;
     int parts = GEOSGetNumGeometries_r(geos, g);
-    for (int pass = 0; pass < 2; pass++) {
-        if (pass == 1) {
-            f->starts = calloc(rings + 1, sizeof *f->starts);
-            f->points = calloc(points ? points : 1, sizeof *f->points);
-            if (!f->starts || !f->points)
-                return false;
-            rings = points = 0;
-        }
-        for (int k = 0; k < parts; k++) {
-            const GEOSGeometry *part = GEOSGetGeometryN_r(geos, g, k);
-            if (GEOSGeomTypeId_r(geos, part) != GEOS_POLYGON || GEOSisEmpty_r(geos, part))
-                continue;
-            int holes = GEOSGetNumInteriorRings_r(geos, part);
-            for (int r = -1; r < holes; r++) {
-                const GEOSGeometry *ring = r < 0 ? GEOSGetExteriorRing_r(geos, part)
-                                                 : GEOSGetInteriorRingN_r(geos, part, r);
-                const GEOSCoordSequence *sequence =
-                    ring ? GEOSGeom_getCoordSeq_r(geos, ring) : NULL;
-                unsigned size = 0;
-                if (!sequence || !GEOSCoordSeq_getSize_r(geos, sequence, &size))
-                    return false;
-                if (pass == 1) {
-                    f->starts[rings] = points;
-                    for (unsigned i = 0; i < size; i++)
-                        GEOSCoordSeq_getXY_r(geos, sequence, i, &f->points[points + i].x,
-                                             &f->points[points + i].y);
-                }
-                rings++;
-                points += size;
-            }
-        }
+    size_t points = 0;
+    for (int k = 0; k < parts; k++) {
+        const GEOSGeometry *part = GEOSGetGeometryN_r(geos, g, k);
+        if (GEOSGeomTypeId_r(geos, part) == GEOS_POLYGON && !GEOSisEmpty_r(geos, part))
+            points += ring_points(geos, part);
     }
-    f->starts[rings] = points;
-    f->ring_count = rings;
+    f->edges = calloc(points ? points : 1, sizeof *f->edges);
+    if (!f->edges)
+        return false;
     f->box[0] = f->box[1] = INFINITY;
     f->box[2] = f->box[3] = -INFINITY;
-    for (size_t i = 0; i < points; i++) {
-        f->box[0] = fmin(f->box[0], f->points[i].x), f->box[1] = fmin(f->box[1], f->points[i].y);
-        f->box[2] = fmax(f->box[2], f->points[i].x), f->box[3] = fmax(f->box[3], f->points[i].y);
+    for (int k = 0; k < parts; k++) {
+        const GEOSGeometry *part = GEOSGetGeometryN_r(geos, g, k);
+        if (GEOSGeomTypeId_r(geos, part) != GEOS_POLYGON || GEOSisEmpty_r(geos, part))
+            continue;
+        int holes = GEOSGetNumInteriorRings_r(geos, part);
+        for (int r = -1; r < holes; r++)
+            if (!add_ring(geos,
+                          r < 0 ? GEOSGetExteriorRing_r(geos, part)
+                                : GEOSGetInteriorRingN_r(geos, part, r),
+                          f))
+                return false;
     }
-    return true;
+    return f->edge_count > 0 && make_bands(f);
 }
 
 /*
@@ -163,35 +253,52 @@ static const flat_nfp *nfp_between(compactor *c, size_t a, size_t ta, size_t b, 
     return f;
 }
 
-/* The squared distance from p to the segment a-b. */
-static double segment_distance2(ur_vec2 p, ur_vec2 a, ur_vec2 b)
-{
-    double dx = b.x - a.x, dy = b.y - a.y, px = p.x - a.x, py = p.y - a.y;
-    double length2 = dx * dx + dy * dy;
-    double s = length2 > 0 ? (px * dx + py * dy) / length2 : 0;
-    s = s < 0 ? 0 : s > 1 ? 1 : s;
-    double ex = px - s * dx, ey = py - s * dy;
-    return ex * ex + ey * ey;
-}
-
-/* How far p lies inside the no-fit polygon (0 outside): the penetration depth. */
+/*
+ * How far p lies inside the no-fit polygon (0 outside): the penetration
+ * depth, the distance to the nearest edge of its rings.
+ */
 static double depth_in(const flat_nfp *f, ur_vec2 p)
 {
     if (p.x <= f->box[0] || p.x >= f->box[2] || p.y <= f->box[1] || p.y >= f->box[3])
         return 0;
+    size_t band = band_of(f, p.y);
     bool inside = false;
-    for (size_t r = 0; r < f->ring_count; r++)
-        for (size_t i = f->starts[r]; i + 1 < f->starts[r + 1]; i++) {
-            ur_vec2 a = f->points[i], b = f->points[i + 1];
-            if ((a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y))
-                inside = !inside;
-        }
+    for (size_t k = f->band_start[band]; k < f->band_start[band + 1]; k++) {
+        const flat_edge *e = &f->edges[f->band_edges[k]];
+        double ry = p.y - e->ay;
+        if ((ry < 0) != (ry < e->dy) && ((p.x - e->ax) * e->dy < ry * e->dx) == (e->dy > 0))
+            inside = !inside;
+    }
     if (!inside)
         return 0;
+    /* Bands further than the nearest edge found so far cannot hold a nearer one. */
     double nearest = INFINITY;
-    for (size_t r = 0; r < f->ring_count; r++)
-        for (size_t i = f->starts[r]; i + 1 < f->starts[r + 1]; i++)
-            nearest = fmin(nearest, segment_distance2(p, f->points[i], f->points[i + 1]));
+    for (size_t step = 0; step < f->band_count; step++) {
+        double gap = step ? (double)(step - 1) * f->band_height : 0;
+        if (gap * gap >= nearest)
+            break;
+        if (step > NEAREST_BANDS) {
+            /* Deep inside: the way out of the box is near enough a depth. */
+            double out = fmin(fmin(p.x - f->box[0], f->box[2] - p.x),
+                              fmin(p.y - f->box[1], f->box[3] - p.y));
+            nearest = fmin(nearest, out * out);
+            break;
+        }
+        for (int side = -1; side <= 1; side += 2) {
+            if ((side < 0 && step > band) ||
+                (side > 0 && (step == 0 || band + step >= f->band_count)))
+                continue;
+            size_t b = side < 0 ? band - step : band + step;
+            for (size_t k = f->band_start[b]; k < f->band_start[b + 1]; k++) {
+                const flat_edge *e = &f->edges[f->band_edges[k]];
+                double px = p.x - e->ax, py = p.y - e->ay;
+                double s = (px * e->dx + py * e->dy) * e->inverse;
+                s = s < 0 ? 0 : s > 1 ? 1 : s;
+                double ex = px - s * e->dx, ey = py - s * e->dy, d2 = ex * ex + ey * ey;
+                nearest = d2 < nearest ? d2 : nearest;
+            }
+        }
+    }
     double depth = sqrt(nearest);
     return depth > TOUCHING ? depth : 0;
 }
@@ -202,8 +309,8 @@ static double pair_depth(compactor *c, size_t i, size_t j)
     const flat_nfp *f = nfp_between(c, j, c->now.turn[j], i, c->now.turn[i]);
     if (!f)
         return -1;
-    return depth_in(f, ur_vec2_make(c->now.at[i].x - c->now.at[j].x,
-                                    c->now.at[i].y - c->now.at[j].y));
+    return depth_in(f,
+                    ur_vec2_make(c->now.at[i].x - c->now.at[j].x, c->now.at[i].y - c->now.at[j].y));
 }
 
 /* Brings part i's row and column of depths up to date; false on a failure. */
@@ -261,31 +368,34 @@ typedef struct candidate {
 } candidate;
 
 /*
- * Fills c->row with the no-fit polygons part i meets at turn t (row[i]
- * unused); false on a failure.
+ * Fills c->row (per turn, per part) with the no-fit polygons part i meets
+ * at each of its turns; false on a failure.
  */
-static bool fill_row(compactor *c, size_t i, size_t t)
+static bool fill_rows(compactor *c, size_t i, size_t turns)
 {
-    for (size_t j = 0; j < c->count; j++) {
-        if (j == i)
-            continue;
-        c->row[j] = nfp_between(c, j, c->now.turn[j], i, t);
-        if (!c->row[j])
-            return false;
-    }
+    for (size_t t = 0; t < turns; t++)
+        for (size_t j = 0; j < c->count; j++) {
+            if (j == i)
+                continue;
+            c->row[t * c->count + j] = nfp_between(c, j, c->now.turn[j], i, t);
+            if (!c->row[t * c->count + j])
+                return false;
+        }
     return true;
 }
 
-/* Part i's weighted overlap with the others at p (c->row filled), given up once above limit. */
-static double cost_at(const compactor *c, size_t i, ur_vec2 p, double limit)
+/* Part i's weighted overlap with the others at turn t and p, given up once above limit. */
+static double cost_at(const compactor *c, size_t i, size_t t, ur_vec2 p, double limit)
 {
+    const flat_nfp *const *row = c->row + t * c->count;
+    const double *weight = c->weight + i * c->count;
     double cost = 0;
     for (size_t j = 0; j < c->count && cost < limit; j++) {
         if (j == i)
             continue;
-        double d = depth_in(c->row[j], ur_vec2_make(p.x - c->now.at[j].x, p.y - c->now.at[j].y));
+        double d = depth_in(row[j], ur_vec2_make(p.x - c->now.at[j].x, p.y - c->now.at[j].y));
         if (d > 0)
-            cost += c->weight[i * c->count + j] * d * d;
+            cost += weight[j] * d * d;
     }
     return cost;
 }
@@ -295,20 +405,17 @@ static ur_vec2 clamp_to(ur_vec2 p, const double *box)
     return ur_vec2_make(fmin(fmax(p.x, box[0]), box[2]), fmin(fmax(p.y, box[1]), box[3]));
 }
 
-/* Tries p at the candidate's turn: keeps it when it overlaps less. */
-static void try_place(const compactor *c, size_t i, ur_vec2 p, candidate *best)
+/* Tries part i at turn t and p: the new best candidate when it overlaps less. */
+static void try_place(const compactor *c, size_t i, size_t t, ur_vec2 p, candidate *best)
 {
-    double cost = cost_at(c, i, p, best->cost);
-    if (cost < best->cost) {
-        best->at = p;
-        best->cost = cost;
-    }
+    double cost = cost_at(c, i, t, p, best->cost);
+    if (cost < best->cost)
+        *best = (candidate){t, p, cost};
 }
 
 /*
- * Refines a candidate (c->row filled for its turn) by steps in eight
- * directions, halving the step when none helps, down to a millionth of the
- * part's size.
+ * Refines a candidate by steps in eight directions, halving the step when
+ * none helps, down to a millionth of the part's size.
  */
 static void refine(const compactor *c, size_t i, const double *box, double size, candidate *best)
 {
@@ -318,10 +425,8 @@ static void refine(const compactor *c, size_t i, const double *box, double size,
         bool better = false;
         for (int k = 0; k < 8 && !better; k++) {
             double before = best->cost;
-            try_place(c, i, clamp_to(ur_vec2_make(best->at.x + step * dx[k],
-                                                  best->at.y + step * dy[k]),
-                                     box),
-                      best);
+            ur_vec2 p = {best->at.x + step * dx[k], best->at.y + step * dy[k]};
+            try_place(c, i, best->turn, clamp_to(p, box), best);
             better = best->cost < before;
         }
         if (!better)
@@ -330,8 +435,8 @@ static void refine(const compactor *c, size_t i, const double *box, double size,
 }
 
 /*
- * Moves part i to where it overlaps the others least (weighted), at any of
- * its turns: random places across the strip and near where it is, the best
+ * Moves part i to where it overlaps the others least (weighted): random
+ * places across the strip at random turns and near where it is, the best
  * refined.  False on a failure.
  */
 static bool move_part(compactor *c, size_t i)
@@ -342,36 +447,29 @@ static bool move_part(compactor *c, size_t i)
     double size = fmax(ur_box_width(shape->box), ur_box_height(shape->box));
     double box[4];
     size_t turn = c->now.turn[i];
+    if (!fill_rows(c, i, turns))
+        return false;
     /* Left outside a shorter strip, it may go anywhere inside. */
     bool fits = inner_fit(c, i, turn, box);
-    if (!fill_row(c, i, turn))
-        return false;
-    double cost_now = fits ? cost_at(c, i, c->now.at[i], INFINITY) : INFINITY;
-    candidate best = {turn, c->now.at[i], cost_now};
-    for (size_t t = 0; t < turns; t++) {
+    candidate best = {turn, c->now.at[i],
+                      fits ? cost_at(c, i, turn, c->now.at[i], INFINITY) : INFINITY};
+    for (int k = 0; fits && k < PLACES_NEAR; k++) {
+        ur_vec2 p = {c->now.at[i].x + (2 * uniform(&c->random) - 1) * 0.25 * size,
+                     c->now.at[i].y + (2 * uniform(&c->random) - 1) * 0.25 * size};
+        try_place(c, i, turn, clamp_to(p, box), &best);
+    }
+    for (int k = 0; k < PLACES_ACROSS; k++) {
+        size_t t = next_random(&c->random) % turns;
         if (!inner_fit(c, i, t, box))
             continue;
-        if (!fill_row(c, i, t))
-            return false;
-        candidate here = {t, c->now.at[i], t == turn ? cost_now : INFINITY};
-        if (t == turn && fits) {
-            for (int k = 0; k < PLACES_NEAR; k++) {
-                ur_vec2 p = {c->now.at[i].x + (2 * uniform(&c->random) - 1) * 0.25 * size,
-                             c->now.at[i].y + (2 * uniform(&c->random) - 1) * 0.25 * size};
-                try_place(c, i, clamp_to(p, box), &here);
-            }
-        }
-        for (int k = 0; k < PLACES_ACROSS; k++) {
-            ur_vec2 p = {box[0] + uniform(&c->random) * (box[2] - box[0]),
-                         box[1] + uniform(&c->random) * (box[3] - box[1])};
-            try_place(c, i, p, &here);
-        }
-        refine(c, i, box, size, &here);
-        if (here.cost < best.cost)
-            best = here;
+        ur_vec2 p = {box[0] + uniform(&c->random) * (box[2] - box[0]),
+                     box[1] + uniform(&c->random) * (box[3] - box[1])};
+        try_place(c, i, t, p, &best);
     }
     if (!isfinite(best.cost))
         return true; /* no turn fits the strip: the caller keeps it longer */
+    inner_fit(c, i, best.turn, box);
+    refine(c, i, box, size, &best);
     c->now.turn[i] = best.turn;
     c->now.at[i] = best.at;
     return update_depths(c, i);
@@ -433,7 +531,8 @@ static bool separate(compactor *c, size_t *order, state *least, ur_status *statu
     copy_state(c, least, &c->now);
     for (int restart = 0; restart < RESTARTS; restart++) {
         for (int idle = 0; idle < ROUNDS_WITHOUT_GAIN;) {
-            if (nest_seconds_now() > c->deadline || (*status = ur_cancel_check(c->n->error)))
+            *status = ur_cancel_check(c->n->error); /* a signal to the command */
+            if (*status != UR_OK || nest_seconds_now() > c->deadline)
                 return false;
             for (size_t k = 0; k < c->count; k++)
                 order[k] = k;
@@ -469,8 +568,8 @@ static double reach_of(const compactor *c)
 {
     double reach = 0;
     for (size_t i = 0; i < c->count; i++)
-        reach = fmax(reach, c->now.at[i].x +
-                                nest_shape_of(c->n, c->piece[i], c->now.turn[i])->box.max.x);
+        reach = fmax(reach,
+                     c->now.at[i].x + nest_shape_of(c->n, c->piece[i], c->now.turn[i])->box.max.x);
     return reach - c->n->options->margin;
 }
 
@@ -542,10 +641,10 @@ static bool disrupt(compactor *c)
                   c->now.at[i].y + 0.5 * (bi->min.y + bi->max.y)};
     ur_vec2 cj = {c->now.at[j].x + 0.5 * (bj->min.x + bj->max.x),
                   c->now.at[j].y + 0.5 * (bj->min.y + bj->max.y)};
-    c->now.at[i] = ur_vec2_make(cj.x - 0.5 * (bi->min.x + bi->max.x),
-                                cj.y - 0.5 * (bi->min.y + bi->max.y));
-    c->now.at[j] = ur_vec2_make(ci.x - 0.5 * (bj->min.x + bj->max.x),
-                                ci.y - 0.5 * (bj->min.y + bj->max.y));
+    c->now.at[i] =
+        ur_vec2_make(cj.x - 0.5 * (bi->min.x + bi->max.x), cj.y - 0.5 * (bi->min.y + bi->max.y));
+    c->now.at[j] =
+        ur_vec2_make(ci.x - 0.5 * (bj->min.x + bj->max.x), ci.y - 0.5 * (bj->min.y + bj->max.y));
     double box[4];
     if (inner_fit(c, i, c->now.turn[i], box))
         c->now.at[i] = clamp_to(c->now.at[i], box);
@@ -582,10 +681,7 @@ static bool explore_once(compactor *c, double length, double until, size_t *orde
     c->deadline = until;
     bool fits = false;
     while (!fits && *status == UR_OK && nest_seconds_now() < until) {
-        double t0 = nest_seconds_now();
         fits = separate(c, order, least, status);
-        if (getenv("DEBUG_COMPACT"))
-            fprintf(stderr, "explore length %.4f -> %s in %.2f s\n", length, fits ? "ok" : "FAIL", nest_seconds_now() - t0);
         if (!fits && *status == UR_OK) {
             copy_state(c, &c->now, least);
             if (!disrupt(c))
@@ -629,10 +725,7 @@ static ur_status search_shorter(compactor *c, size_t *order, state *least)
         copy_state(c, &c->now, &c->best);
         if (!cut_to(c, length))
             return ur_error_out_of_memory(c->n->error);
-        double t0 = nest_seconds_now();
         bool fits = separate(c, order, least, &status);
-        if (getenv("DEBUG_COMPACT"))
-            fprintf(stderr, "compress cut %.5f length %.4f -> %s in %.2f s\n", cut, length, fits ? "ok" : "FAIL", nest_seconds_now() - t0);
         if (fits && reach_of(c) < best_length) {
             keep_best(c, &best_length);
             failures = 0;
@@ -678,7 +771,7 @@ ur_status nest_compact_roll(nester *n, double deadline)
     c.best.at = calloc(count, sizeof *c.best.at);
     c.depth = calloc(count * count, sizeof *c.depth);
     c.weight = calloc(count * count, sizeof *c.weight);
-    c.row = calloc(count, sizeof *c.row);
+    c.row = calloc(count * n->turn_count, sizeof *c.row);
     c.nfps = calloc(keys, sizeof *c.nfps);
     size_t *order = calloc(count, sizeof *order);
     state least = {calloc(count, sizeof(size_t)), calloc(count, sizeof(ur_vec2))};

@@ -12,7 +12,8 @@
  * sheet's length is used.  Remnant sheets come before the stock sheets.  No-fit polygons are worked
  * out once per pair of shapes and turns: copies of a part share them.  The positions left are kept
  * per sheet and shape in a grid of cells (room_grid), so that placing a part cuts only the cells
- * its no-fit polygon reaches.
+ * its no-fit polygon reaches.  A search over orders and turns follows; on a
+ * roll, compact.c then shortens the strip.
  *
  * Parts are grown by half the spacing before the no-fit polygons are made,
  * so parts that touch there keep the spacing between them; the no-fit
@@ -450,7 +451,8 @@ static ur_status place_piece(nester *n, size_t piece, size_t held)
         double width, height;
         sheet_size(n, sheet, &width, &height);
         double room = (width - 2 * n->options->margin) * (height - 2 * n->options->margin);
-        if (sheet < n->sheet_count && n->sheet_area[sheet] + nest_shape_of(n, piece, 0)->area > room)
+        if (sheet < n->sheet_count &&
+            n->sheet_area[sheet] + nest_shape_of(n, piece, 0)->area > room)
             continue; /* not enough area left on it, whatever the shapes */
         ur_vec2 best_key = {0, 0};
         double best_reach = 0, length = roll_length(n);
@@ -833,9 +835,8 @@ static ur_status search(nester *n, size_t *order, double budget)
     double patience = fmax(NEST_PATIENCE, NEST_PATIENCE_PER_SECOND * budget);
     ur_status status = UR_OK;
     size_t since_better = 0;
-    for (size_t tries = 1;
-         status == UR_OK && tries <= NEST_TRIES && (double)since_better < patience &&
-         nest_seconds_now() - start < budget;
+    for (size_t tries = 1; status == UR_OK && tries <= NEST_TRIES &&
+                           (double)since_better < patience && nest_seconds_now() - start < budget;
          tries++) {
         status = ur_cancel_check(n->error); /* a signal to the command */
         if (status != UR_OK)
@@ -924,7 +925,8 @@ ur_status ur_layout_nest(const ur_piece *pieces, size_t count, const ur_nest_opt
     if (status == UR_OK)
         status = run_order(&n, order, NULL);
     double start = nest_seconds_now(), budget = options->time_budget;
-    /* On a roll the search over orders has a share of the budget; shortening the strip, the rest. */
+    /* On a roll the search over orders has a share of the budget; shortening the strip, the rest.
+     */
     if (status == UR_OK)
         status = search(&n, order, options->roll_width > 0 ? ROLL_ORDER_SHARE * budget : budget);
     if (status == UR_OK && options->roll_width > 0 && budget > 0)

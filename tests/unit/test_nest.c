@@ -393,6 +393,53 @@ static void test_turned_parts_keep_apart(void **state)
     free_pieces(pieces, COUNT);
 }
 
+/*
+ * Parts on a roll, the first layout alone (no time) and then shortened by
+ * the search (a few seconds): both keep the invariants, the search's strip
+ * is shorter than the first layout's, and no strip is shorter than the
+ * parts' area over the roll's width.
+ */
+static double roll_length_of(const ur_piece *pieces, size_t count, double budget)
+{
+    ur_nest_options o = sheet_options(1, 1, 2, 1, 4, false);
+    o.roll_width = 120;
+    o.time_budget = budget;
+    o.seed = 3;
+    ur_layout layout;
+    ur_error error;
+    assert_int_equal(ur_layout_nest(pieces, count, &o, &layout, &error), UR_OK);
+    assert_int_equal(layout.sheet_count, 1);
+    o.sheet_width = layout.sheets[0].width;
+    o.sheet_height = o.roll_width;
+    check_layout(pieces, count, &layout, &o);
+    double length = layout.sheets[0].width;
+    ur_layout_free(&layout);
+    return length;
+}
+
+static void test_roll_is_shortened(void **state)
+{
+    (void)state;
+    enum { COUNT = 30 };
+    ur_vec2 l[6] = {{0, 0}, {50, 0}, {50, 10}, {10, 10}, {10, 25}, {0, 25}};
+    ur_vec2 triangle[3] = {{0, 0}, {40, 0}, {0, 15}};
+    ur_vec2 hook[8] = {{0, 0}, {30, 0}, {30, 30}, {10, 30}, {10, 20}, {20, 20}, {20, 8}, {0, 8}};
+    ur_piece pieces[COUNT];
+    double area = 0;
+    for (int k = 0; k < COUNT; k++) {
+        pieces[k] = k % 3 == 0   ? polygon_piece("L", l, 6)
+                    : k % 3 == 1 ? polygon_piece("triangle", triangle, 3)
+                                 : polygon_piece("hook", hook, 8);
+        area += pieces[k].measures.flat_area;
+    }
+    double first = roll_length_of(pieces, COUNT, 0), searched = roll_length_of(pieces, COUNT, 3);
+    print_message("roll: first layout %.2f mm, searched %.2f mm, area bound %.2f mm\n", first,
+                  searched, area / 116 + 4);
+    assert_true(searched < first - 1);
+    assert_true(searched >= area / 116 + 4);
+    free_pieces(pieces, COUNT);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -405,6 +452,7 @@ int main(void)
         cmocka_unit_test(test_remnants_first),
         cmocka_unit_test(test_turns_of_each_piece),
         cmocka_unit_test(test_turned_parts_keep_apart),
+        cmocka_unit_test(test_roll_is_shortened),
     };
     return cmocka_run_group_tests(tests, start, finish);
 }
