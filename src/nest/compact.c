@@ -42,8 +42,10 @@
 /* Random places tried across the strip, and near the part, when a part moves. */
 #define PLACES_ACROSS 60
 #define PLACES_NEAR 20
+/* The finest step of a move's refinement, as a fraction of the part's size. */
+#define REFINE_FINEST 1e-4
 /* Rounds of moves without a lower total overlap before a separation restarts from its best. */
-#define ROUNDS_WITHOUT_GAIN 200
+#define ROUNDS_WITHOUT_GAIN 50
 /* Restarts before a separation gives up. */
 #define RESTARTS 3
 /* Exploration's share of the time, and its cut of the strip (a fraction of its length). */
@@ -415,13 +417,13 @@ static void try_place(const compactor *c, size_t i, size_t t, ur_vec2 p, candida
 
 /*
  * Refines a candidate by steps in eight directions, halving the step when
- * none helps, down to a millionth of the part's size.
+ * none helps, down to REFINE_FINEST of the part's size.
  */
 static void refine(const compactor *c, size_t i, const double *box, double size, candidate *best)
 {
     static const double dx[8] = {1, -1, 0, 0, 0.7071, -0.7071, 0.7071, -0.7071};
     static const double dy[8] = {0, 0, 1, -1, 0.7071, 0.7071, -0.7071, -0.7071};
-    for (double step = 0.05 * size; step > 1e-6 * size && best->cost > 0;) {
+    for (double step = 0.05 * size; step > REFINE_FINEST * size && best->cost > 0;) {
         bool better = false;
         for (int k = 0; k < 8 && !better; k++) {
             double before = best->cost;
