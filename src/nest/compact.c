@@ -56,9 +56,15 @@
 #define COMPRESS_LAST 0.0001
 #define COMPRESS_PATIENCE 200
 
-/* An edge of a no-fit polygon's rings: from a, along d; inverse of d's squared length (or 0). */
+/*
+ * An edge of a no-fit polygon's rings: from a, along d, to a height of by;
+ * inverse: of d's squared length (or 0).  The end's height is kept as it
+ * was read, not as ay + dy, so that an edge and the next compare a point's
+ * height with the very same number at the vertex they share: the inside
+ * test's crossings then always pair up.
+ */
 typedef struct flat_edge {
-    double ax, ay, dx, dy, inverse;
+    double ax, ay, by, dx, dy, inverse;
 } flat_edge;
 
 /*
@@ -96,6 +102,7 @@ typedef struct compactor {
     double length;   /* the strip the parts must keep within, from the margin (mm) */
     double deadline; /* on nest_seconds_now's clock */
     uint64_t random;
+    size_t separations;   /* tried so far: the progress line's count of tries */
     const flat_nfp **row; /* scratch: per part, the no-fit polygon a moving part meets */
 } compactor;
 
@@ -136,7 +143,8 @@ static bool add_ring(GEOSContextHandle_t geos, const GEOSGeometry *ring, flat_nf
         f->box[2] = fmax(f->box[2], x), f->box[3] = fmax(f->box[3], y);
         if (i > 0) {
             double dx = x - x0, dy = y - y0, length2 = dx * dx + dy * dy;
-            f->edges[f->edge_count++] = (flat_edge){x0, y0, dx, dy, length2 > 0 ? 1 / length2 : 0};
+            f->edges[f->edge_count++] =
+                (flat_edge){x0, y0, y, dx, dy, length2 > 0 ? 1 / length2 : 0};
         }
         x0 = x, y0 = y;
     }
@@ -190,8 +198,8 @@ static bool make_bands(flat_nfp *f)
             return false;
         for (size_t i = 0; i < f->edge_count; i++) {
             const flat_edge *e = &f->edges[i];
-            size_t low = band_of(f, fmin(e->ay, e->ay + e->dy));
-            size_t high = band_of(f, fmax(e->ay, e->ay + e->dy));
+            size_t low = band_of(f, fmin(e->ay, e->by));
+            size_t high = band_of(f, fmax(e->ay, e->by));
             for (size_t b = low; b <= high; b++) {
                 if (pass == 0)
                     f->band_start[b + 1]++;
@@ -267,8 +275,8 @@ static double depth_in(const flat_nfp *f, ur_vec2 p)
     bool inside = false;
     for (size_t k = f->band_start[band]; k < f->band_start[band + 1]; k++) {
         const flat_edge *e = &f->edges[f->band_edges[k]];
-        double ry = p.y - e->ay;
-        if ((ry < 0) != (ry < e->dy) && ((p.x - e->ax) * e->dy < ry * e->dx) == (e->dy > 0))
+        if ((e->ay > p.y) != (e->by > p.y) &&
+            ((p.x - e->ax) * e->dy < (p.y - e->ay) * e->dx) == (e->dy > 0))
             inside = !inside;
     }
     if (!inside)
@@ -527,6 +535,7 @@ static void shuffle(size_t *order, size_t count, uint64_t *random)
  */
 static bool separate(compactor *c, size_t *order, state *least, ur_status *status)
 {
+    c->separations++;
     for (size_t k = 0; k < c->count * c->count; k++)
         c->weight[k] = 1.0;
     double least_total = total_depth(c);
@@ -637,16 +646,14 @@ static bool disrupt(compactor *c)
     }
     if (c->n->class_of[c->piece[i]] == c->n->class_of[c->piece[j]])
         return true; /* all one shape: nothing to trade */
+    /* Where each part's box centre lies from its origin. */
     const ur_box *bi = &nest_shape_of(c->n, c->piece[i], c->now.turn[i])->box;
     const ur_box *bj = &nest_shape_of(c->n, c->piece[j], c->now.turn[j])->box;
-    ur_vec2 ci = {c->now.at[i].x + 0.5 * (bi->min.x + bi->max.x),
-                  c->now.at[i].y + 0.5 * (bi->min.y + bi->max.y)};
-    ur_vec2 cj = {c->now.at[j].x + 0.5 * (bj->min.x + bj->max.x),
-                  c->now.at[j].y + 0.5 * (bj->min.y + bj->max.y)};
-    c->now.at[i] =
-        ur_vec2_make(cj.x - 0.5 * (bi->min.x + bi->max.x), cj.y - 0.5 * (bi->min.y + bi->max.y));
-    c->now.at[j] =
-        ur_vec2_make(ci.x - 0.5 * (bj->min.x + bj->max.x), ci.y - 0.5 * (bj->min.y + bj->max.y));
+    ur_vec2 oi = ur_vec2_make(0.5 * (bi->min.x + bi->max.x), 0.5 * (bi->min.y + bi->max.y));
+    ur_vec2 oj = ur_vec2_make(0.5 * (bj->min.x + bj->max.x), 0.5 * (bj->min.y + bj->max.y));
+    ur_vec2 ci = ur_vec2_add(c->now.at[i], oi), cj = ur_vec2_add(c->now.at[j], oj);
+    c->now.at[i] = ur_vec2_sub(cj, oi);
+    c->now.at[j] = ur_vec2_sub(ci, oj);
     double box[4];
     if (inner_fit(c, i, c->now.turn[i], box))
         c->now.at[i] = clamp_to(c->now.at[i], box);
@@ -655,14 +662,50 @@ static bool disrupt(compactor *c)
     return recompute_depths(c);
 }
 
-/* A layout with no overlap in a shorter strip than the best: the new best. */
-static void keep_best(compactor *c, double *best_length)
+/*
+ * Whether the layout in c->now truly has no overlap and keeps within the
+ * strip: every pair's relative place checked against GEOS's own no-fit
+ * polygon, not the flattened copies the search reads, so that an error in
+ * those can never reach a cut file.  False on a GEOS failure too.
+ */
+static bool verified(compactor *c)
 {
+    nester *n = c->n;
+    for (size_t i = 0; i < c->count; i++) {
+        double box[4];
+        ur_vec2 at = c->now.at[i];
+        if (!inner_fit(c, i, c->now.turn[i], box) || at.x < box[0] - 1e-9 || at.x > box[2] + 1e-9 ||
+            at.y < box[1] - 1e-9 || at.y > box[3] + 1e-9)
+            return false;
+        for (size_t j = 0; j < i; j++) {
+            const GEOSGeometry *nfp =
+                nest_nfp_of(n, c->piece[j], c->now.turn[j], c->piece[i], c->now.turn[i]);
+            GEOSGeometry *point =
+                GEOSGeom_createPointFromXY_r(n->geos, at.x - c->now.at[j].x, at.y - c->now.at[j].y);
+            char inside = nfp && point ? GEOSContains_r(n->geos, nfp, point) : 2;
+            if (point)
+                GEOSGeom_destroy_r(n->geos, point);
+            if (inside != 0)
+                return false;
+        }
+    }
+    return true;
+}
+
+/*
+ * A layout with no overlap in a shorter strip than the best: the new best,
+ * once verified; false when it is not.
+ */
+static bool keep_best(compactor *c, double *best_length)
+{
+    if (!verified(c))
+        return false;
     *best_length = reach_of(c);
     copy_state(c, &c->best, &c->now);
     if (c->n->options->progress)
         c->n->options->progress(c->n->options->progress_context, 1,
-                                *best_length + c->n->options->margin, 0);
+                                *best_length + c->n->options->margin, c->separations);
+    return true;
 }
 
 /*
@@ -712,7 +755,7 @@ static ur_status search_shorter(compactor *c, size_t *order, state *least)
         if (length < floor)
             break;
         if (explore_once(c, length, until, order, least, &status))
-            keep_best(c, &best_length);
+            (void)keep_best(c, &best_length); /* or, not verified, the same cut again */
     }
     double compress_start = nest_seconds_now();
     for (int failures = 0; status == UR_OK && failures < COMPRESS_PATIENCE;) {
@@ -728,8 +771,7 @@ static ur_status search_shorter(compactor *c, size_t *order, state *least)
         if (!cut_to(c, length))
             return ur_error_out_of_memory(c->n->error);
         bool fits = separate(c, order, least, &status);
-        if (fits && reach_of(c) < best_length) {
-            keep_best(c, &best_length);
+        if (fits && reach_of(c) < best_length && keep_best(c, &best_length)) {
             failures = 0;
         } else {
             failures++;
