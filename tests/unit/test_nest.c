@@ -365,6 +365,17 @@ static void test_turns_of_each_piece(void **state)
     free_pieces(pieces, COUNT);
 }
 
+/* Part k of a mix of three shapes with no symmetry: an L, a right triangle, a hook. */
+static ur_piece asymmetric_piece(int k)
+{
+    ur_vec2 l[6] = {{0, 0}, {50, 0}, {50, 10}, {10, 10}, {10, 25}, {0, 25}};
+    ur_vec2 triangle[3] = {{0, 0}, {40, 0}, {0, 15}};
+    ur_vec2 hook[8] = {{0, 0}, {30, 0}, {30, 30}, {10, 30}, {10, 20}, {20, 20}, {20, 8}, {0, 8}};
+    return k % 3 == 0   ? polygon_piece("L", l, 6)
+           : k % 3 == 1 ? polygon_piece("triangle", triangle, 3)
+                        : polygon_piece("hook", hook, 8);
+}
+
 /*
  * Parts with no symmetry (an L of unequal arms, a right triangle and a
  * hooked shape) in 8 turns, packed tightly: most no-fit polygons the
@@ -376,14 +387,9 @@ static void test_turned_parts_keep_apart(void **state)
 {
     (void)state;
     enum { COUNT = 60 };
-    ur_vec2 l[6] = {{0, 0}, {50, 0}, {50, 10}, {10, 10}, {10, 25}, {0, 25}};
-    ur_vec2 triangle[3] = {{0, 0}, {40, 0}, {0, 15}};
-    ur_vec2 hook[8] = {{0, 0}, {30, 0}, {30, 30}, {10, 30}, {10, 20}, {20, 20}, {20, 8}, {0, 8}};
     ur_piece pieces[COUNT];
     for (int k = 0; k < COUNT; k++)
-        pieces[k] = k % 3 == 0   ? polygon_piece("L", l, 6)
-                    : k % 3 == 1 ? polygon_piece("triangle", triangle, 3)
-                                 : polygon_piece("hook", hook, 8);
+        pieces[k] = asymmetric_piece(k);
     ur_nest_options o = sheet_options(260, 200, 2, 1, 8, false);
     ur_layout layout;
     ur_error error;
@@ -422,15 +428,10 @@ static void test_roll_is_shortened(void **state)
 {
     (void)state;
     enum { COUNT = 30 };
-    ur_vec2 l[6] = {{0, 0}, {50, 0}, {50, 10}, {10, 10}, {10, 25}, {0, 25}};
-    ur_vec2 triangle[3] = {{0, 0}, {40, 0}, {0, 15}};
-    ur_vec2 hook[8] = {{0, 0}, {30, 0}, {30, 30}, {10, 30}, {10, 20}, {20, 20}, {20, 8}, {0, 8}};
     ur_piece pieces[COUNT];
     double area = 0;
     for (int k = 0; k < COUNT; k++) {
-        pieces[k] = k % 3 == 0   ? polygon_piece("L", l, 6)
-                    : k % 3 == 1 ? polygon_piece("triangle", triangle, 3)
-                                 : polygon_piece("hook", hook, 8);
+        pieces[k] = asymmetric_piece(k);
         area += pieces[k].measures.flat_area;
     }
     double first = roll_length_of(pieces, COUNT, 0, 2, 1);
