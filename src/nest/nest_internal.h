@@ -1,6 +1,7 @@
 /*
  * nest_internal.h: what the placement files share (layout.c: shelves,
- * nfp.c: no-fit polygons, nest.c: true-shape nesting).
+ * nfp.c: no-fit polygons, nest.c: true-shape nesting, compact.c:
+ * shortening a roll).
  */
 #ifndef UNROLL_NEST_INTERNAL_H
 #define UNROLL_NEST_INTERNAL_H
