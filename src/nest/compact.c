@@ -110,21 +110,13 @@ typedef struct compactor {
     double deadline; /* on nest_seconds_now's clock */
     uint64_t random;
     size_t separations;   /* tried so far: the progress line's count of tries */
-    const flat_nfp **row; /* scratch: per part, the no-fit polygon a moving part meets */
+    const flat_nfp **row; /* scratch: per turn and part, the no-fit polygon a moving part meets */
 } compactor;
-
-static uint64_t next_random(uint64_t *seed)
-{
-    *seed ^= *seed >> 12;
-    *seed ^= *seed << 25;
-    *seed ^= *seed >> 27;
-    return *seed * 2685821657736338717ULL;
-}
 
 /* A uniform random number in [0, 1). */
 static double uniform(uint64_t *seed)
 {
-    return (double)(next_random(seed) >> 11) * 0x1.0p-53;
+    return (double)(nest_next_random(seed) >> 11) * 0x1.0p-53;
 }
 
 static void flat_free(flat_nfp *f)
@@ -476,7 +468,7 @@ static bool move_part(compactor *c, size_t i)
         try_place(c, i, turn, clamp_to(p, box), &best);
     }
     for (int k = 0; k < PLACES_ACROSS; k++) {
-        size_t t = next_random(&c->random) % turns;
+        size_t t = nest_next_random(&c->random) % turns;
         if (!inner_fit(c, i, t, box))
             continue;
         ur_vec2 p = {box[0] + uniform(&c->random) * (box[2] - box[0]),
@@ -528,7 +520,7 @@ static bool recompute_depths(compactor *c)
 static void shuffle(size_t *order, size_t count, uint64_t *random)
 {
     for (size_t k = count; k > 1; k--) {
-        size_t j = next_random(random) % k, swap = order[k - 1];
+        size_t j = nest_next_random(random) % k, swap = order[k - 1];
         order[k - 1] = order[j];
         order[j] = swap;
     }
@@ -643,10 +635,11 @@ static bool disrupt(compactor *c)
 {
     size_t i = 0, j = 0;
     for (int tries = 0; tries < 20; tries++) {
-        i = next_random(&c->random) % c->count;
-        j = next_random(&c->random) % c->count;
+        i = nest_next_random(&c->random) % c->count;
+        j = nest_next_random(&c->random) % c->count;
         /* Of two drawn parts, the larger: a bias toward large parts. */
-        size_t k = next_random(&c->random) % c->count, l = next_random(&c->random) % c->count;
+        size_t k = nest_next_random(&c->random) % c->count,
+               l = nest_next_random(&c->random) % c->count;
         if (nest_shape_of(c->n, c->piece[k], 0)->area > nest_shape_of(c->n, c->piece[i], 0)->area)
             i = k;
         if (nest_shape_of(c->n, c->piece[l], 0)->area > nest_shape_of(c->n, c->piece[j], 0)->area)

@@ -726,7 +726,7 @@ static int compare_scores(score a, score b)
     return 0;
 }
 
-static uint64_t next_random(uint64_t *state)
+uint64_t nest_next_random(uint64_t *state)
 {
     *state ^= *state >> 12;
     *state ^= *state << 25;
@@ -737,8 +737,8 @@ static uint64_t next_random(uint64_t *state)
 /* Two parts swapped, or one moved elsewhere in the order. */
 static void mutate(size_t *order, size_t count, uint64_t *state)
 {
-    size_t i = next_random(state) % count, j = next_random(state) % count;
-    if (next_random(state) & 1) {
+    size_t i = nest_next_random(state) % count, j = nest_next_random(state) % count;
+    if (nest_next_random(state) & 1) {
         size_t swap = order[i];
         order[i] = order[j];
         order[j] = swap;
@@ -770,13 +770,13 @@ static bool may_hold(const nester *n, size_t piece, size_t turn)
  */
 static bool turn_move(const nester *n, size_t *held, uint64_t *state)
 {
-    size_t piece = next_random(state) % n->count;
+    size_t piece = nest_next_random(state) % n->count;
     size_t turns = n->classes[n->class_of[piece]].turn_count;
     if (turns < 2)
         return false;
     /* Choice turns stands for free; the part's present choice is not drawn. */
     size_t now = held[piece] < turns ? held[piece] : turns;
-    size_t choice = next_random(state) % turns;
+    size_t choice = nest_next_random(state) % turns;
     if (choice >= now)
         choice++;
     if (choice < turns && !may_hold(n, piece, choice))
@@ -843,7 +843,7 @@ static ur_status search(nester *n, size_t *order, double budget)
             break;
         memcpy(candidate, current, bytes);
         memcpy(candidate_held, current_held, bytes);
-        bool turned = turns && next_random(&state) % NEST_TURN_MOVES == 0 &&
+        bool turned = turns && nest_next_random(&state) % NEST_TURN_MOVES == 0 &&
                       turn_move(n, candidate_held, &state);
         if (!turned)
             mutate(candidate, n->count, &state);

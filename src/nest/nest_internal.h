@@ -9,6 +9,7 @@
 #include <geos_c.h>
 #include <stdbool.h>
 #include <stddef.h>
+#include <stdint.h>
 
 #include "unroll/nest.h"
 
@@ -117,6 +118,9 @@ const GEOSGeometry *nest_nfp_of(nester *n, size_t a, size_t ta, size_t b, size_t
  * no overlap, until deadline (seconds_now's clock) or for want of progress.
  */
 ur_status nest_compact_roll(nester *n, double deadline);
+
+/* The next number of an xorshift64* sequence (state: not 0). */
+uint64_t nest_next_random(uint64_t *state);
 
 /* A monotonic clock, in seconds. */
 double nest_seconds_now(void);
