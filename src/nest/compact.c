@@ -238,7 +238,8 @@ static bool flatten(GEOSContextHandle_t geos, const GEOSGeometry *g, flat_nfp *f
                           f))
                 return false;
     }
-    return f->edge_count > 0 && make_bands(f);
+    /* An empty no-fit polygon (parts too small to overlap) has an empty box: depth 0 everywhere. */
+    return f->edge_count == 0 || make_bands(f);
 }
 
 /*
@@ -835,8 +836,12 @@ ur_status nest_compact_roll(nester *n, double deadline)
         }
     if (status == UR_OK && !recompute_depths(&c))
         status = ur_error_out_of_memory(n->error);
-    /* The first layout has no overlap: anything else is a disagreement to leave alone. */
-    if (status == UR_OK && total_depth(&c) == 0)
+    /*
+     * The first layout is the best until a shorter one is separated and
+     * verified; if rounding makes a pair of its parts look a nanometre
+     * deep, the search clears that on the way.
+     */
+    if (status == UR_OK)
         status = search_shorter(&c, order, &least);
     if (status == UR_OK)
         for (size_t i = 0; i < count; i++) {
