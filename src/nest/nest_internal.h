@@ -115,7 +115,8 @@ const GEOSGeometry *nest_nfp_of(nester *n, size_t a, size_t ta, size_t b, size_t
 /*
  * Shortens the roll in a roll layout (compact.c): the parts on it are moved
  * and turned, overlapping on the way, until they fit a shorter strip with
- * no overlap, until deadline (seconds_now's clock) or for want of progress.
+ * no overlap, until deadline (nest_seconds_now's clock) or for want of
+ * progress.
  */
 ur_status nest_compact_roll(nester *n, double deadline);
 
