@@ -477,8 +477,8 @@ static bool move_part(compactor *c, size_t i)
         try_place(c, i, t, p, &best);
     }
     if (!isfinite(best.cost))
-        return true; /* no turn fits the strip: the caller keeps it longer */
-    inner_fit(c, i, best.turn, box);
+        return true;                       /* no turn fits the strip: the caller keeps it longer */
+    (void)inner_fit(c, i, best.turn, box); /* it fits: best was found inside it */
     refine(c, i, box, size, &best);
     c->now.turn[i] = best.turn;
     c->now.at[i] = best.at;
