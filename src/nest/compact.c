@@ -323,17 +323,22 @@ static double pair_depth(compactor *c, size_t i, size_t j)
                     ur_vec2_make(c->now.at[i].x - c->now.at[j].x, c->now.at[i].y - c->now.at[j].y));
 }
 
+/* Brings the depth of the pair i, j up to date (both ways); false on a failure. */
+static bool refresh_pair(compactor *c, size_t i, size_t j)
+{
+    double d = pair_depth(c, i, j);
+    if (d < 0)
+        return false;
+    c->depth[i * c->count + j] = c->depth[j * c->count + i] = d;
+    return true;
+}
+
 /* Brings part i's row and column of depths up to date; false on a failure. */
 static bool update_depths(compactor *c, size_t i)
 {
-    for (size_t j = 0; j < c->count; j++) {
-        if (j == i)
-            continue;
-        double d = pair_depth(c, i, j);
-        if (d < 0)
+    for (size_t j = 0; j < c->count; j++)
+        if (j != i && !refresh_pair(c, i, j))
             return false;
-        c->depth[i * c->count + j] = c->depth[j * c->count + i] = d;
-    }
     return true;
 }
 
@@ -508,12 +513,9 @@ static void copy_state(const compactor *c, state *to, const state *from)
 static bool recompute_depths(compactor *c)
 {
     for (size_t i = 0; i < c->count; i++)
-        for (size_t j = i + 1; j < c->count; j++) {
-            double d = pair_depth(c, i, j);
-            if (d < 0)
+        for (size_t j = i + 1; j < c->count; j++)
+            if (!refresh_pair(c, i, j))
                 return false;
-            c->depth[i * c->count + j] = c->depth[j * c->count + i] = d;
-        }
     return true;
 }
 
