@@ -117,8 +117,12 @@ typedef struct ur_nest_options {
      * On a roll that search has a fifth of the budget, and shortening the
      * strip by overlap minimisation (src/nest/compact.c) the rest: it
      * stops when the time is up or after 200 failed cuts in a row.
+     * Shortening runs threads searches side by side, each from the
+     * shortest layout any of them has found (0: one per processor, at
+     * most NEST_MAX_THREADS); the time is the same, the tries more.
      */
     double time_budget;
+    size_t threads;
     unsigned long long seed;
     /* Called when the search finds a better layout; NULL for none. */
     void (*progress)(void *context, size_t sheets, double length, size_t tries);
@@ -126,6 +130,7 @@ typedef struct ur_nest_options {
 } ur_nest_options;
 
 enum { NEST_PATIENCE = 40, NEST_PATIENCE_PER_SECOND = 20, NEST_TRIES = 100000 };
+enum { NEST_MAX_THREADS = 16 };
 
 ur_status ur_layout_nest(const ur_piece *pieces, size_t count, const ur_nest_options *options,
                          ur_layout *layout, ur_error *error);

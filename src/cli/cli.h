@@ -90,6 +90,7 @@ typedef struct cli_job {
     ur_remnant remnants[CLI_MAX_REMNANTS]; /* --remnant WxH, in the order given */
     size_t remnant_count;
     double nest_time;         /* --nest-time S: the search's budget; NAN for the default */
+    size_t threads;           /* --threads N: searches side by side on a roll; 0: per processor */
     int seam_offset;          /* seams are numbered from this on (a job file's later parts) */
     const char *piece_prefix; /* pieces are named PREFIX-P1, ... (a job file's part); NULL */
     unsigned long long seed;  /* --seed N */
@@ -231,6 +232,7 @@ bool cli_parse_remnant(cli_job *job, const char *value);
 void cli_describe_sheets(const ur_layout *layout, char *text, size_t size);
 bool cli_parse_nest_time(cli_job *job, const char *value);
 bool cli_parse_seed(cli_job *job, const char *value);
+bool cli_parse_threads(cli_job *job, const char *value);
 /* --job-name NAME: the name the files record (outputs.c); false after a message. */
 bool cli_parse_job_name(cli_job *job, const char *value);
 

@@ -60,6 +60,7 @@ static const char usage[] =
     "  --roll W               roll stock W mm wide, as short as it goes\n"
     "  --sheets N             at most N sheets; --remnant WxH  an offcut, filled first\n"
     "  --nest-time S --seed N the search for a better layout (default 1 s, seed 0)\n"
+    "  --threads N            roll searches side by side (default one per processor)\n"
     "  --merge-lines          parts may touch; a line two parts share is cut once\n"
     "  --report FILE.json     write a JSON report ('-' for standard output)\n"
     "  --quiet                no summary on standard error\n"

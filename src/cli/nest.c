@@ -43,6 +43,7 @@ enum nest_option {
     NEST_REMNANT,
     NEST_NEST_TIME,
     NEST_SEED,
+    NEST_THREADS,
 };
 
 static const struct option nest_options[] = {
@@ -71,6 +72,7 @@ static const struct option nest_options[] = {
     {"remnant", required_argument, NULL, NEST_REMNANT},
     {"nest-time", required_argument, NULL, NEST_NEST_TIME},
     {"seed", required_argument, NULL, NEST_SEED},
+    {"threads", required_argument, NULL, NEST_THREADS},
     {"help", no_argument, NULL, 'h'},
     {NULL, 0, NULL, 0},
 };
@@ -193,6 +195,8 @@ static bool take_nest_option(nest_job *n, int id, const char *value)
         return cli_parse_nest_time(job, value);
     case NEST_SEED:
         return cli_parse_seed(job, value);
+    case NEST_THREADS:
+        return cli_parse_threads(job, value);
     default:
         return false;
     }
@@ -216,7 +220,8 @@ static const char nest_help[] =
     "  --sheets N at most N sheets; what does not fit is named, not placed\n"
     "  --remnant WxH  a remnant sheet at hand, filled before stock (repeatable)\n"
     "  --nest-time S  search for a better layout for up to S seconds (default 2)\n"
-    "  --seed N       the search's orders (the same seed, the same layout)\n";
+    "  --seed N       the search's orders (the same seed, the same layout)\n"
+    "  --threads N    roll searches side by side (default one per processor)\n";
 
 /* Parses argv (argv[0] is "nest"); 0, -1 after help, or an exit status. */
 static int parse_nest(int argc, char **argv, nest_job *n)

@@ -73,6 +73,7 @@ enum option_id {
     OPT_REMNANT,
     OPT_NEST_TIME,
     OPT_SEED,
+    OPT_THREADS,
 };
 
 static const struct option long_options[] = {
@@ -133,6 +134,7 @@ static const struct option long_options[] = {
     {"remnant", required_argument, NULL, OPT_REMNANT},
     {"nest-time", required_argument, NULL, OPT_NEST_TIME},
     {"seed", required_argument, NULL, OPT_SEED},
+    {"threads", required_argument, NULL, OPT_THREADS},
     {"help", no_argument, NULL, 'h'},
     {NULL, 0, NULL, 0},
 };
@@ -161,7 +163,7 @@ static const struct {
     {CLI_DEVELOP,
      " output machine material sheet method parts rulings no-split report strain-png "
      "allowances bridges no-kerf-compensation format dxf-version dpi job-name order rotations "
-     "no-holes merge-lines roll sheets remnant nest-time seed "},
+     "no-holes merge-lines roll sheets remnant nest-time seed threads "},
     {CLI_ANALYZE, " png report "},
     {CLI_COMPARE, " png csv "},
 };
@@ -536,6 +538,8 @@ static bool take_option(cli_job *job, int id, const char *value)
         return cli_parse_nest_time(job, value);
     case OPT_SEED:
         return cli_parse_seed(job, value);
+    case OPT_THREADS:
+        return cli_parse_threads(job, value);
     case 'n':
         return parse_count(surface, value, &job->develop.rulings);
     case OPT_METHOD: {

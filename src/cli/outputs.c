@@ -161,6 +161,21 @@ bool cli_parse_nest_time(cli_job *job, const char *value)
     return true;
 }
 
+bool cli_parse_threads(cli_job *job, const char *value)
+{
+    char *end = NULL;
+    errno = 0;
+    unsigned long threads = strtoul(value, &end, 10);
+    if (end == value || *end != '\0' || errno != 0 || value[0] == '-' || threads < 1 ||
+        threads > NEST_MAX_THREADS) {
+        cli_message("%s: --threads: '%s' is not a whole number from 1 to %d", job->command, value,
+                    NEST_MAX_THREADS);
+        return false;
+    }
+    job->threads = threads;
+    return true;
+}
+
 bool cli_parse_seed(cli_job *job, const char *value)
 {
     char *end = NULL;

@@ -317,6 +317,7 @@ ur_status cli_place_pieces(const cli_job *job, const ur_machine *machine,
         .grain_tolerance = material->grain_tolerance * M_PI / 180,
         .time_budget = isnan(job->nest_time) ? 1.0 : job->nest_time,
         .seed = job->seed,
+        .threads = job->threads,
         .progress = job->quiet || !isatty(STDERR_FILENO) ? NULL : show_nest_progress,
         .progress_context = (void *)job,
     };

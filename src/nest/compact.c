@@ -22,13 +22,21 @@
  * places) and tries the same length again.  Compression (the rest) cuts
  * less and less from the best, once each.  Only layouts with no overlap
  * left are kept, so what the nester writes never overlaps.
+ *
+ * Several searches may run side by side, one per thread, each with its own
+ * random steps and copies of the no-fit polygons; they share the shortest
+ * layout found (each goes on from it as soon as it sees it), and take
+ * turns with the nester, whose GEOS context is not theirs to share.
  */
 #include "nest_internal.h"
 
 #include <math.h>
+#include <stdatomic.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include <threads.h>
+#include <unistd.h>
 
 /* Depths below this count as touching (mm): the rounding of points on a no-fit polygon's edge. */
 #define TOUCHING 1e-9
@@ -97,8 +105,25 @@ typedef struct state {
     ur_vec2 *at;
 } state;
 
+/*
+ * What the searches running side by side share: the shortest verified
+ * layout any of them has found, and the nester, whose GEOS context and
+ * no-fit polygons only one may use at a time.
+ */
+typedef struct shared_best {
+    mtx_t lock;                /* held to use the nester, or to read or write the fields below */
+    double length;             /* of best, from the margin */
+    state best;                /* owned */
+    atomic_uint version;       /* one more with each new best: read without the lock */
+    atomic_size_t separations; /* tried by all the searches: the progress line's count */
+} shared_best;
+
 typedef struct compactor {
     nester *n;
+    shared_best *shared;
+    unsigned seen;  /* the shared version this search has caught up with */
+    ur_error error; /* its own, copied to the nester's when it fails */
+    ur_status status;
     size_t count;  /* parts on the roll */
     size_t *index; /* per part: its placement in the nester */
     size_t *piece; /* per part */
@@ -109,8 +134,9 @@ typedef struct compactor {
     double length;   /* the strip the parts must keep within, from the margin (mm) */
     double deadline; /* on nest_seconds_now's clock */
     uint64_t random;
-    size_t separations;   /* tried so far: the progress line's count of tries */
     const flat_nfp **row; /* scratch: per turn and part, the no-fit polygon a moving part meets */
+    size_t *order;        /* scratch: the order parts move in during a round */
+    state least;          /* scratch: a separation's least overlapping layout */
 } compactor;
 
 /* A uniform random number in [0, 1). */
@@ -254,8 +280,11 @@ static const flat_nfp *nfp_between(compactor *c, size_t a, size_t ta, size_t b, 
     flat_nfp *f = &c->nfps[key];
     if (f->made)
         return f;
+    mtx_lock(&c->shared->lock);
     const GEOSGeometry *g = nest_nfp_of(n, pa, ta, pb, tb);
-    if (!g || !flatten(n->geos, g, f)) {
+    bool made = g && flatten(n->geos, g, f);
+    mtx_unlock(&c->shared->lock);
+    if (!made) {
         flat_free(f);
         return NULL;
     }
@@ -535,9 +564,11 @@ static void shuffle(size_t *order, size_t count, uint64_t *random)
  * left (c->now holds that layout); false when it gives up or time runs out
  * (c->now is then its least overlapping layout), *status set on a failure.
  */
-static bool separate(compactor *c, size_t *order, state *least, ur_status *status)
+static bool separate(compactor *c, ur_status *status)
 {
-    c->separations++;
+    size_t *order = c->order;
+    state *least = &c->least;
+    atomic_fetch_add(&c->shared->separations, 1);
     size_t patience = c->count * ROUNDS_PER_PART;
     if (patience < ROUNDS_WITHOUT_GAIN)
         patience = ROUNDS_WITHOUT_GAIN;
@@ -547,7 +578,7 @@ static bool separate(compactor *c, size_t *order, state *least, ur_status *statu
     copy_state(c, least, &c->now);
     for (int restart = 0; restart < RESTARTS; restart++) {
         for (size_t idle = 0; idle < patience;) {
-            *status = ur_cancel_check(c->n->error); /* a signal to the command */
+            *status = ur_cancel_check(&c->error); /* a signal to the command */
             if (*status != UR_OK || nest_seconds_now() > c->deadline)
                 return false;
             for (size_t k = 0; k < c->count; k++)
@@ -555,7 +586,7 @@ static bool separate(compactor *c, size_t *order, state *least, ur_status *statu
             shuffle(order, c->count, &c->random);
             for (size_t k = 0; k < c->count; k++)
                 if (overlaps_any(c, order[k]) && !move_part(c, order[k])) {
-                    *status = ur_error_out_of_memory(c->n->error);
+                    *status = ur_error_out_of_memory(&c->error);
                     return false;
                 }
             double total = total_depth(c);
@@ -572,7 +603,7 @@ static bool separate(compactor *c, size_t *order, state *least, ur_status *statu
         }
         copy_state(c, &c->now, least);
         if (!recompute_depths(c)) {
-            *status = ur_error_out_of_memory(c->n->error);
+            *status = ur_error_out_of_memory(&c->error);
             return false;
         }
     }
@@ -672,7 +703,8 @@ static bool disrupt(compactor *c)
  * Whether the layout in c->now truly has no overlap and keeps within the
  * strip: every pair's relative place checked against GEOS's own no-fit
  * polygon, not the flattened copies the search reads, so that an error in
- * those can never reach a cut file.  False on a GEOS failure too.
+ * those can never reach a cut file.  False on a GEOS failure too.  The
+ * caller holds the shared lock (the nester's GEOS context).
  */
 static bool verified(compactor *c)
 {
@@ -699,44 +731,80 @@ static bool verified(compactor *c)
 }
 
 /*
- * A layout with no overlap in a shorter strip than the best: the new best,
- * once verified; false when it is not.
+ * A layout with no overlap in a shorter strip than this search's best:
+ * its new best, once verified, and everyone's if no other search has
+ * found a shorter one meanwhile.  False when it is not verified.
  */
 static bool keep_best(compactor *c, double *best_length)
 {
-    if (!verified(c))
+    shared_best *shared = c->shared;
+    const ur_nest_options *o = c->n->options;
+    mtx_lock(&shared->lock);
+    bool kept = verified(c);
+    if (kept) {
+        *best_length = reach_of(c);
+        copy_state(c, &c->best, &c->now);
+    }
+    if (kept && *best_length < shared->length) {
+        shared->length = *best_length;
+        copy_state(c, &shared->best, &c->now);
+        c->seen = atomic_fetch_add(&shared->version, 1) + 1;
+        if (o->progress)
+            o->progress(o->progress_context, 1, *best_length + o->margin,
+                        atomic_load(&shared->separations));
+    }
+    mtx_unlock(&shared->lock);
+    return kept;
+}
+
+/* Whether another search has found a new best since this one last looked. */
+static bool overtaken(const compactor *c)
+{
+    return atomic_load(&c->shared->version) != c->seen;
+}
+
+/*
+ * Takes up the shared best when it is shorter than this search's own;
+ * true when it did.
+ */
+static bool catch_up(compactor *c, double *best_length)
+{
+    if (!overtaken(c))
         return false;
-    *best_length = reach_of(c);
-    copy_state(c, &c->best, &c->now);
-    if (c->n->options->progress)
-        c->n->options->progress(c->n->options->progress_context, 1,
-                                *best_length + c->n->options->margin, c->separations);
-    return true;
+    shared_best *shared = c->shared;
+    mtx_lock(&shared->lock);
+    c->seen = atomic_load(&shared->version);
+    bool shorter = shared->length < *best_length;
+    if (shorter) {
+        *best_length = shared->length;
+        copy_state(c, &c->best, &shared->best);
+    }
+    mtx_unlock(&shared->lock);
+    return shorter;
 }
 
 /*
  * Exploration: the strip cut by EXPLORE_CUT from the best, and separated
  * again and again from the least overlapping layout, jolted, until a
- * layout fits or the phase's time is up.  False when it stops for time
- * (or *status says why).
+ * layout fits, the phase's time is up or another search gets ahead.
+ * False when it stops without a layout (or *status says why).
  */
-static bool explore_once(compactor *c, double length, double until, size_t *order, state *least,
-                         ur_status *status)
+static bool explore_once(compactor *c, double length, double until, ur_status *status)
 {
     copy_state(c, &c->now, &c->best);
     if (!cut_to(c, length)) {
-        *status = ur_error_out_of_memory(c->n->error);
+        *status = ur_error_out_of_memory(&c->error);
         return false;
     }
     double saved = c->deadline;
     c->deadline = until;
     bool fits = false;
-    while (!fits && *status == UR_OK && nest_seconds_now() < until) {
-        fits = separate(c, order, least, status);
+    while (!fits && *status == UR_OK && nest_seconds_now() < until && !overtaken(c)) {
+        fits = separate(c, status);
         if (!fits && *status == UR_OK) {
-            copy_state(c, &c->now, least);
+            copy_state(c, &c->now, &c->least);
             if (!disrupt(c))
-                *status = ur_error_out_of_memory(c->n->error);
+                *status = ur_error_out_of_memory(&c->error);
         }
     }
     c->deadline = saved;
@@ -744,12 +812,13 @@ static bool explore_once(compactor *c, double length, double until, size_t *orde
 }
 
 /*
- * The search itself, c set up: exploration (EXPLORE_SHARE of the time),
- * then compression, which cuts the best strip by less and less (from
+ * One search, c set up: exploration (EXPLORE_SHARE of the time), then
+ * compression, which cuts the best strip by less and less (from
  * COMPRESS_FIRST to COMPRESS_LAST of its length as time runs out) and
- * separates once per cut.  The best layout ends in c->best.
+ * separates once per cut.  Each step starts from the shortest layout any
+ * search has found; the best ends in c->shared.
  */
-static ur_status search_shorter(compactor *c, size_t *order, state *least)
+static ur_status search_shorter(compactor *c)
 {
     ur_status status = UR_OK;
     double best_length = reach_of(c), floor = shortest_possible(c);
@@ -757,10 +826,11 @@ static ur_status search_shorter(compactor *c, size_t *order, state *least)
     double start = nest_seconds_now(), span = c->deadline - start;
     double until = start + EXPLORE_SHARE * span;
     while (status == UR_OK && nest_seconds_now() < until) {
+        (void)catch_up(c, &best_length);
         double length = best_length * (1 - EXPLORE_CUT);
         if (length < floor)
             break;
-        if (explore_once(c, length, until, order, least, &status))
+        if (explore_once(c, length, until, &status))
             (void)keep_best(c, &best_length); /* or, not verified, the same cut again */
     }
     double compress_start = nest_seconds_now();
@@ -768,6 +838,8 @@ static ur_status search_shorter(compactor *c, size_t *order, state *least)
         double now = nest_seconds_now();
         if (now > c->deadline)
             break;
+        if (catch_up(c, &best_length))
+            failures = 0;
         double done = (now - compress_start) / fmax(1e-9, c->deadline - compress_start);
         double cut = COMPRESS_FIRST + (COMPRESS_LAST - COMPRESS_FIRST) * done;
         double length = best_length * (1 - cut);
@@ -775,8 +847,8 @@ static ur_status search_shorter(compactor *c, size_t *order, state *least)
             break;
         copy_state(c, &c->now, &c->best);
         if (!cut_to(c, length))
-            return ur_error_out_of_memory(c->n->error);
-        bool fits = separate(c, order, least, &status);
+            return ur_error_out_of_memory(&c->error);
+        bool fits = separate(c, &status);
         if (fits && reach_of(c) < best_length && keep_best(c, &best_length)) {
             failures = 0;
         } else {
@@ -798,9 +870,93 @@ static void compactor_free(compactor *c)
     free(c->now.at);
     free(c->best.turn);
     free(c->best.at);
+    free(c->least.turn);
+    free(c->least.at);
     free(c->depth);
     free(c->weight);
     free(c->row);
+    free(c->order);
+}
+
+/*
+ * Sets up search number k (its own random steps) over the count parts on
+ * the roll, from the first layout; false when out of memory.
+ */
+static bool compactor_make(compactor *c, nester *n, size_t count, shared_best *shared, size_t k)
+{
+    size_t keys = n->class_count * n->turn_count * n->class_count * n->turn_count;
+    *c = (compactor){.n = n, .shared = shared, .count = count};
+    c->random = (n->options->seed + k) * 0x9E3779B97F4A7C15ULL + 0x632BE59BD9B4E019ULL;
+    c->index = calloc(count, sizeof *c->index);
+    c->piece = calloc(count, sizeof *c->piece);
+    c->now = (state){calloc(count, sizeof(size_t)), calloc(count, sizeof(ur_vec2))};
+    c->best = (state){calloc(count, sizeof(size_t)), calloc(count, sizeof(ur_vec2))};
+    c->least = (state){calloc(count, sizeof(size_t)), calloc(count, sizeof(ur_vec2))};
+    c->depth = calloc(count * count, sizeof *c->depth);
+    c->weight = calloc(count * count, sizeof *c->weight);
+    c->row = calloc(count * n->turn_count, sizeof *c->row);
+    c->nfps = calloc(keys, sizeof *c->nfps);
+    c->order = calloc(count, sizeof *c->order);
+    if (!c->index || !c->piece || !c->now.turn || !c->now.at || !c->best.turn || !c->best.at ||
+        !c->least.turn || !c->least.at || !c->depth || !c->weight || !c->row || !c->nfps ||
+        !c->order)
+        return false;
+    size_t roll = n->remnant_count;
+    for (size_t p = 0, i = 0; p < n->placed_count; p++)
+        if (n->sheet_of[p] == roll) {
+            c->index[i] = p;
+            c->piece[i] = n->placements[p].piece;
+            c->now.turn[i] = n->placements[p].turn;
+            c->now.at[i++] = n->placements[p].at;
+        }
+    return true;
+}
+
+/*
+ * A search in a thread of its own: the depths of its first layout, then
+ * the search.  If rounding makes a pair of the first layout's parts look
+ * a nanometre deep, the search clears that on the way.
+ */
+static int run_search(void *context)
+{
+    compactor *c = context;
+    c->status = recompute_depths(c) ? search_shorter(c) : ur_error_out_of_memory(&c->error);
+    return 0;
+}
+
+/* Searches run side by side: options->threads, or one per processor. */
+static size_t search_count(const ur_nest_options *o)
+{
+    if (o->threads > 0)
+        return o->threads < NEST_MAX_THREADS ? o->threads : NEST_MAX_THREADS;
+    long processors = sysconf(_SC_NPROCESSORS_ONLN);
+    return processors < 1                  ? 1
+           : processors < NEST_MAX_THREADS ? (size_t)processors
+                                           : NEST_MAX_THREADS;
+}
+
+/*
+ * Runs the searches (the first in this thread, the others in threads of
+ * their own: fewer if a thread cannot start) and waits for them all; the
+ * first failure's status, its message in the nester's error.
+ */
+static ur_status run_searches(compactor *searches, size_t count)
+{
+    thrd_t threads[NEST_MAX_THREADS];
+    bool started[NEST_MAX_THREADS] = {false};
+    for (size_t k = 1; k < count; k++)
+        started[k] = thrd_create(&threads[k], run_search, &searches[k]) == thrd_success;
+    run_search(&searches[0]);
+    for (size_t k = 1; k < count; k++)
+        if (started[k])
+            thrd_join(threads[k], NULL);
+    for (size_t k = 0; k < count; k++)
+        if ((k == 0 || started[k]) && searches[k].status != UR_OK) {
+            if (searches[0].n->error)
+                *searches[0].n->error = searches[k].error;
+            return searches[k].status;
+        }
+    return UR_OK;
 }
 
 ur_status nest_compact_roll(nester *n, double deadline)
@@ -810,49 +966,38 @@ ur_status nest_compact_roll(nester *n, double deadline)
         count += n->sheet_of[k] == roll;
     if (count < 2 || nest_seconds_now() > deadline)
         return UR_OK;
-    size_t keys = n->class_count * n->turn_count * n->class_count * n->turn_count;
-    compactor c = {.n = n, .count = count, .deadline = deadline};
-    c.random = n->options->seed * 0x9E3779B97F4A7C15ULL + 0x632BE59BD9B4E019ULL;
-    c.index = calloc(count, sizeof *c.index);
-    c.piece = calloc(count, sizeof *c.piece);
-    c.now.turn = calloc(count, sizeof *c.now.turn);
-    c.now.at = calloc(count, sizeof *c.now.at);
-    c.best.turn = calloc(count, sizeof *c.best.turn);
-    c.best.at = calloc(count, sizeof *c.best.at);
-    c.depth = calloc(count * count, sizeof *c.depth);
-    c.weight = calloc(count * count, sizeof *c.weight);
-    c.row = calloc(count * n->turn_count, sizeof *c.row);
-    c.nfps = calloc(keys, sizeof *c.nfps);
-    size_t *order = calloc(count, sizeof *order);
-    state least = {calloc(count, sizeof(size_t)), calloc(count, sizeof(ur_vec2))};
-    ur_status status = UR_OK;
-    if (!c.index || !c.piece || !c.now.turn || !c.now.at || !c.best.turn || !c.best.at ||
-        !c.depth || !c.weight || !c.row || !c.nfps || !order || !least.turn || !least.at)
-        status = ur_error_out_of_memory(n->error);
-    for (size_t k = 0, i = 0; status == UR_OK && k < n->placed_count; k++)
-        if (n->sheet_of[k] == roll) {
-            c.index[i] = k;
-            c.piece[i] = n->placements[k].piece;
-            c.now.turn[i] = n->placements[k].turn;
-            c.now.at[i++] = n->placements[k].at;
+    shared_best shared = {.best = {calloc(count, sizeof(size_t)), calloc(count, sizeof(ur_vec2))}};
+    atomic_init(&shared.version, 0);
+    atomic_init(&shared.separations, 0);
+    bool locked = mtx_init(&shared.lock, mtx_plain) == thrd_success;
+    size_t search_total = search_count(n->options), made = 0;
+    compactor searches[NEST_MAX_THREADS];
+    ur_status status =
+        shared.best.turn && shared.best.at && locked ? UR_OK : ur_error_out_of_memory(n->error);
+    for (; status == UR_OK && made < search_total; made++)
+        if (!compactor_make(&searches[made], n, count, &shared, made)) {
+            status = ur_error_out_of_memory(n->error);
+            made++; /* freed below */
+            break;
         }
-    if (status == UR_OK && !recompute_depths(&c))
-        status = ur_error_out_of_memory(n->error);
-    /*
-     * The first layout is the best until a shorter one is separated and
-     * verified; if rounding makes a pair of its parts look a nanometre
-     * deep, the search clears that on the way.
-     */
-    if (status == UR_OK)
-        status = search_shorter(&c, order, &least);
+    if (status == UR_OK) {
+        /* The first layout is everyone's best until a shorter one is separated and verified. */
+        shared.length = reach_of(&searches[0]);
+        copy_state(&searches[0], &shared.best, &searches[0].now);
+        for (size_t k = 0; k < made; k++)
+            searches[k].deadline = deadline;
+        status = run_searches(searches, made);
+    }
     if (status == UR_OK)
         for (size_t i = 0; i < count; i++) {
-            n->placements[c.index[i]].turn = c.best.turn[i];
-            n->placements[c.index[i]].at = c.best.at[i];
+            n->placements[searches[0].index[i]].turn = shared.best.turn[i];
+            n->placements[searches[0].index[i]].at = shared.best.at[i];
         }
-    free(order);
-    free(least.turn);
-    free(least.at);
-    compactor_free(&c);
+    for (size_t k = 0; k < made; k++)
+        compactor_free(&searches[k]);
+    if (locked)
+        mtx_destroy(&shared.lock);
+    free(shared.best.turn);
+    free(shared.best.at);
     return status;
 }

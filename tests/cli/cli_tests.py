@@ -1431,6 +1431,17 @@ def roll_stock_is_used_as_short_as_it_goes(work):
             check(-1e-5 <= y <= 120 + 1e-5 and -1e-5 <= x <= sheet["width_mm"] + 1e-5,
                   "a part leaves the roll at %r" % ((x, y),))
     bad(work, r"--roll: 'wide' is not a width", "nest", "mm.svg", "--roll", "wide", "-o", "x.svg")
+    # Two searches side by side find the same two-across layout.
+    run(work, "nest", "mm.svg:10", "--roll", "120", "--margin", "0", "--spacing", "0",
+        "--no-kerf-compensation", "--threads", "2", "-o", "two.svg", "--report", "two.json",
+        "--quiet")
+    [two] = report(work, "two.json")["sheets"]
+    check(500 - 1e-6 <= two["width_mm"] <= 505, "roll length with two threads %r" % two["width_mm"])
+    for value in ("0", "17", "two", "-1", ""):
+        bad(work, r"--threads: '%s' is not a whole number from 1 to 16" % value, "nest", "mm.svg",
+            "--roll", "120", "--threads", value, "-o", "x.svg")
+    bad(work, r"--threads: 'all' is not a whole number from 1 to 16", "cylinder", "--radius", "40",
+        "--height", "60", "--threads", "all", "-o", "x.svg")
 
 
 @test
