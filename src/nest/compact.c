@@ -5,8 +5,9 @@
  * lets parts overlap on the way to a shorter strip, as the best strip
  * packers do (guided local search, after Egeblad et al. 2007, Umetani et
  * al. 2009 and Gardeyn and Wauters 2025).  From the shortest layout found
- * so far it cuts the strip a little shorter, moves the parts left outside
- * back in (now overlapping), and then separates them: each overlapping part
+ * so far it cuts the strip a little shorter, taking a slice out of it at a
+ * random place (the parts beyond it move back, now overlapping those
+ * before it), and then separates them: each overlapping part
  * in turn moves to the place and turn where it overlaps the others least
  * (random places across the strip at random turns, and near its own, the
  * best refined by smaller and smaller steps).  Overlap is the penetration
@@ -53,16 +54,19 @@
 /* The finest step of a move's refinement, as a fraction of the part's size. */
 #define REFINE_FINEST 1e-4
 /*
- * Rounds of moves without a lower total overlap before a separation
- * restarts from its best: ROUNDS_PER_PART per part on the roll, at least
+ * Rounds of moves without a gain before a separation tries again from its
+ * least overlapping layout: ROUNDS_PER_PART per part on the roll, at least
  * ROUNDS_WITHOUT_GAIN.  A round moves each overlapping part once, and the
  * more parts, the more rounds a gain takes to show (at 30 s, 50 rounds
- * did best with 25 parts, 200 with 99).
+ * did best with 25 parts, 200 with 99).  A gain is a fall of the total
+ * overlap by GAIN below its least: smaller falls would keep a separation
+ * that is going nowhere creeping on.
  */
 #define ROUNDS_WITHOUT_GAIN 50
 #define ROUNDS_PER_PART 2
-/* Restarts before a separation gives up. */
-#define RESTARTS 3
+#define GAIN 0.02
+/* Tries in a row without a gain before a separation gives up. */
+#define STRIKES 3
 /* Exploration's share of the time, and its cut of the strip (a fraction of its length). */
 #define EXPLORE_SHARE 0.8
 #define EXPLORE_CUT 0.01
@@ -558,16 +562,30 @@ static void shuffle(size_t *order, size_t count, uint64_t *random)
     }
 }
 
+/* One round: each overlapping part, in random order, moves once; false on a failure. */
+static bool move_overlapping(compactor *c)
+{
+    for (size_t k = 0; k < c->count; k++)
+        c->order[k] = k;
+    shuffle(c->order, c->count, &c->random);
+    for (size_t k = 0; k < c->count; k++)
+        if (overlaps_any(c, c->order[k]) && !move_part(c, c->order[k]))
+            return false;
+    return true;
+}
+
 /*
  * Separates the parts in the strip of c->length: rounds of moves of every
- * overlapping part, weights updated after each.  True when no overlap is
- * left (c->now holds that layout); false when it gives up or time runs out
- * (c->now is then its least overlapping layout), *status set on a failure.
+ * overlapping part, weights updated after each.  A try ends after a run of
+ * rounds (patience) that did not bring the total overlap GAIN below its
+ * least so far, and the next starts from the least overlapping layout; a
+ * try that brought no such gain at all is a strike, and STRIKES in a row
+ * end the separation.  True when no overlap is left (c->now holds that
+ * layout); false when it gives up or time runs out (c->now is then its
+ * least overlapping layout), *status set on a failure.
  */
 static bool separate(compactor *c, ur_status *status)
 {
-    size_t *order = c->order;
-    state *least = &c->least;
     atomic_fetch_add(&c->shared->separations, 1);
     size_t patience = c->count * ROUNDS_PER_PART;
     if (patience < ROUNDS_WITHOUT_GAIN)
@@ -575,33 +593,29 @@ static bool separate(compactor *c, ur_status *status)
     for (size_t k = 0; k < c->count * c->count; k++)
         c->weight[k] = 1.0;
     double least_total = total_depth(c);
-    copy_state(c, least, &c->now);
-    for (int restart = 0; restart < RESTARTS; restart++) {
+    copy_state(c, &c->least, &c->now);
+    for (int strikes = 0; strikes < STRIKES;) {
+        double try_start = least_total;
         for (size_t idle = 0; idle < patience;) {
             *status = ur_cancel_check(&c->error); /* a signal to the command */
             if (*status != UR_OK || nest_seconds_now() > c->deadline)
                 return false;
-            for (size_t k = 0; k < c->count; k++)
-                order[k] = k;
-            shuffle(order, c->count, &c->random);
-            for (size_t k = 0; k < c->count; k++)
-                if (overlaps_any(c, order[k]) && !move_part(c, order[k])) {
-                    *status = ur_error_out_of_memory(&c->error);
-                    return false;
-                }
+            if (!move_overlapping(c)) {
+                *status = ur_error_out_of_memory(&c->error);
+                return false;
+            }
             double total = total_depth(c);
             if (total == 0)
                 return true;
-            if (total < least_total * (1 - 1e-6)) {
+            idle = total < least_total * (1 - GAIN) ? 0 : idle + 1;
+            if (total < least_total) {
                 least_total = total;
-                copy_state(c, least, &c->now);
-                idle = 0;
-            } else {
-                idle++;
+                copy_state(c, &c->least, &c->now);
             }
             update_weights(c);
         }
-        copy_state(c, &c->now, least);
+        strikes = least_total < try_start * (1 - GAIN) ? 0 : strikes + 1;
+        copy_state(c, &c->now, &c->least);
         if (!recompute_depths(c)) {
             *status = ur_error_out_of_memory(&c->error);
             return false;
@@ -639,9 +653,22 @@ static double shortest_possible(const compactor *c)
     return fmax(longest, area / (o->sheet_height - 2 * o->margin));
 }
 
-/* Cuts the strip to length: parts beyond it move in, overlapping; false on a failure. */
+/*
+ * Cuts the strip to length: a slice as wide as the cut comes out at a
+ * random place along it, the parts beyond moving back by as much, so that
+ * the overlap the cut makes is spread along one line across the strip
+ * rather than piled at its end; parts still outside (those the slice went
+ * through) then move in, overlapping.  False on a failure.
+ */
 static bool cut_to(compactor *c, double length)
 {
+    double reach = reach_of(c);
+    double slice = c->n->options->margin + uniform(&c->random) * reach;
+    for (size_t i = 0; i < c->count; i++) {
+        const ur_box *box = &nest_shape_of(c->n, c->piece[i], c->now.turn[i])->box;
+        if (c->now.at[i].x + 0.5 * (box->min.x + box->max.x) > slice)
+            c->now.at[i].x -= reach - length;
+    }
     c->length = length;
     for (size_t i = 0; i < c->count; i++) {
         double box[4];
