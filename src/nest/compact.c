@@ -996,11 +996,11 @@ ur_status nest_compact_roll(nester *n, double deadline)
     shared_best shared = {.best = {calloc(count, sizeof(size_t)), calloc(count, sizeof(ur_vec2))}};
     atomic_init(&shared.version, 0);
     atomic_init(&shared.separations, 0);
-    bool locked = mtx_init(&shared.lock, mtx_plain) == thrd_success;
+    bool lock_made = mtx_init(&shared.lock, mtx_plain) == thrd_success;
     size_t search_total = search_count(n->options), made = 0;
     compactor searches[NEST_MAX_THREADS];
     ur_status status =
-        shared.best.turn && shared.best.at && locked ? UR_OK : ur_error_out_of_memory(n->error);
+        shared.best.turn && shared.best.at && lock_made ? UR_OK : ur_error_out_of_memory(n->error);
     for (; status == UR_OK && made < search_total; made++)
         if (!compactor_make(&searches[made], n, count, &shared, made)) {
             status = ur_error_out_of_memory(n->error);
@@ -1022,7 +1022,7 @@ ur_status nest_compact_roll(nester *n, double deadline)
         }
     for (size_t k = 0; k < made; k++)
         compactor_free(&searches[k]);
-    if (locked)
+    if (lock_made)
         mtx_destroy(&shared.lock);
     free(shared.best.turn);
     free(shared.best.at);
