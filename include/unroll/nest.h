@@ -117,9 +117,9 @@ typedef struct ur_nest_options {
      * On a roll that search has a fifth of the budget, and shortening the
      * strip by overlap minimisation (src/nest/compact.c) the rest: it
      * stops when the time is up or after 200 failed cuts in a row.
-     * Shortening runs threads searches side by side, each from the
-     * shortest layout any of them has found (0: one per processor, at
-     * most NEST_MAX_THREADS); the time is the same, the tries more.
+     * Shortening runs as many searches side by side as threads says (0:
+     * one per processor; at most NEST_MAX_THREADS), each going on from
+     * the shortest layout any of them has found: the same time, more tries.
      */
     double time_budget;
     size_t threads;
