@@ -7,7 +7,6 @@
  */
 #include "cli.h"
 
-#include <errno.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -66,10 +65,8 @@ bool cli_parse_bridges(cli_job *job, const char *value)
         job->bridges = 0;
         return true;
     }
-    char *end = NULL;
-    errno = 0;
-    long count = strtol(value, &end, 10);
-    if (end == value || *end != '\0' || errno != 0 || count < 1 || count > 1000) {
+    long count;
+    if (!cli_whole_number(value, 1, 1000, &count)) {
         cli_message("%s: --bridges: '%s' is not auto, none or a count from 1 to 1000", job->command,
                     value);
         return false;

@@ -127,6 +127,12 @@ bool cli_parse_bridges(cli_job *job, const char *value);
  */
 void cli_message_context(const char *context);
 
+/*
+ * Whether text is a whole number from least to most (decimal, nothing
+ * after it), stored in *value when it is; no message.
+ */
+bool cli_whole_number(const char *text, long least, long most, long *value);
+
 /* Prints "unroll: message" on stderr. */
 void cli_message(const char *format, ...)
 #if defined(__GNUC__)

@@ -9,7 +9,6 @@
  */
 #include "cli.h"
 
-#include <errno.h>
 #include <getopt.h>
 #include <math.h>
 #include <stdio.h>
@@ -89,14 +88,10 @@ typedef struct nest_job {
 
 static bool parse_positive_count(const char *what, const char *value, long most, long *count)
 {
-    char *end = NULL;
-    errno = 0;
-    long parsed = strtol(value, &end, 10);
-    if (end == value || *end != '\0' || errno != 0 || parsed < 1 || parsed > most) {
+    if (!cli_whole_number(value, 1, most, count)) {
         cli_message("nest: %s: '%s' is not a count from 1 to %ld", what, value, most);
         return false;
     }
-    *count = parsed;
     return true;
 }
 

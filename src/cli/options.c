@@ -225,6 +225,17 @@ void cli_message(const char *format, ...)
     va_end(args);
 }
 
+bool cli_whole_number(const char *text, long least, long most, long *value)
+{
+    char *end = NULL;
+    errno = 0;
+    long parsed = strtol(text, &end, 10);
+    if (end == text || *end != '\0' || errno != 0 || parsed < least || parsed > most)
+        return false;
+    *value = parsed;
+    return true;
+}
+
 static const char *option_name(int id)
 {
     for (const struct option *o = long_options; o->name; o++)
@@ -314,10 +325,8 @@ static bool parse_sheet(const char *surface, const char *text, cli_job *job)
 
 static bool parse_count(const char *surface, const char *text, size_t *count)
 {
-    char *end;
-    errno = 0;
-    long value = strtol(text, &end, 10);
-    if (end == text || *end != '\0' || errno || value < 1 || value > 10000000) {
+    long value;
+    if (!cli_whole_number(text, 1, 10000000, &value)) {
         cli_message("%s: -n/--parts: '%s' is not a whole number from 1 to 10000000", surface, text);
         return false;
     }
@@ -327,10 +336,8 @@ static bool parse_count(const char *surface, const char *text, size_t *count)
 
 static bool parse_iterations(cli_job *job, const char *text)
 {
-    char *end;
-    errno = 0;
-    long value = strtol(text, &end, 10);
-    if (end == text || *end != '\0' || errno || value < 1 || value > 100000) {
+    long value;
+    if (!cli_whole_number(text, 1, 100000, &value)) {
         cli_message("%s: --iterations: '%s' is not a whole number from 1 to 100000", job->command,
                     text);
         return false;

@@ -61,10 +61,8 @@ bool cli_parse_order(cli_job *job, const char *value)
 
 bool cli_parse_rotations(cli_job *job, const char *value)
 {
-    char *end = NULL;
-    errno = 0;
-    long count = strtol(value, &end, 10);
-    if (end == value || *end != '\0' || errno != 0 || count < 1 || count > 360) {
+    long count;
+    if (!cli_whole_number(value, 1, 360, &count)) {
         cli_message("%s: --rotations: '%s' is not a count of turns from 1 to 360", job->command,
                     value);
         return false;
@@ -88,10 +86,8 @@ bool cli_parse_roll(cli_job *job, const char *value)
 
 bool cli_parse_sheet_count(cli_job *job, const char *value)
 {
-    char *end = NULL;
-    errno = 0;
-    long count = strtol(value, &end, 10);
-    if (end == value || *end != '\0' || errno != 0 || count < 1 || count > 10000) {
+    long count;
+    if (!cli_whole_number(value, 1, 10000, &count)) {
         cli_message("%s: --sheets: '%s' is not a count of sheets from 1 to 10000", job->command,
                     value);
         return false;
@@ -163,16 +159,13 @@ bool cli_parse_nest_time(cli_job *job, const char *value)
 
 bool cli_parse_threads(cli_job *job, const char *value)
 {
-    char *end = NULL;
-    errno = 0;
-    unsigned long threads = strtoul(value, &end, 10);
-    if (end == value || *end != '\0' || errno != 0 || value[0] == '-' || threads < 1 ||
-        threads > NEST_MAX_THREADS) {
+    long threads;
+    if (!cli_whole_number(value, 1, NEST_MAX_THREADS, &threads)) {
         cli_message("%s: --threads: '%s' is not a whole number from 1 to %d", job->command, value,
                     NEST_MAX_THREADS);
         return false;
     }
-    job->threads = threads;
+    job->threads = (size_t)threads;
     return true;
 }
 

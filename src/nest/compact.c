@@ -581,8 +581,8 @@ static bool move_overlapping(compactor *c)
  * least so far, and the next starts from the least overlapping layout; a
  * try that brought no such gain at all is a strike, and STRIKES in a row
  * end the separation.  True when no overlap is left (c->now holds that
- * layout); false when it gives up or time runs out (c->now is then its
- * least overlapping layout), *status set on a failure.
+ * layout); false when it gives up (c->now is then its least overlapping
+ * layout) or time runs out, *status set on a failure.
  */
 static bool separate(compactor *c, ur_status *status)
 {
