@@ -42,12 +42,11 @@
 /* Depths below this count as touching (mm): the rounding of points on a no-fit polygon's edge. */
 #define TOUCHING 1e-9
 /*
- * Bands searched either side of a point for the nearest edge; beyond them,
- * the depth is taken as the distance out of the polygon's box (at least
- * the true depth): a part that deep is far from any place worth having,
- * and the exact figure would cost a scan of most of the edges.
+ * Cells of a no-fit polygon's grid per edge, and at most: more cells make
+ * shorter lists of the edges that may be nearest, and cost more to make.
  */
-#define NEAREST_BANDS 4
+#define CELLS_PER_EDGE 4
+#define CELLS_MOST 1024
 /* Random places tried across the strip, and near the part, when a part moves. */
 #define PLACES_ACROSS 60
 #define PLACES_NEAR 20
@@ -86,11 +85,16 @@ typedef struct flat_edge {
     double ax, ay, by, dx, dy, inverse;
 } flat_edge;
 
+/* Where a cell of a no-fit polygon's grid lies: outside it, inside, or across its edges. */
+typedef enum cell_kind { CELL_OUTSIDE, CELL_INSIDE, CELL_ACROSS } cell_kind;
+
 /*
- * A no-fit polygon as the edges of its rings, for fast depth queries, and
- * cut across into bands of equal height, each listing the edges that reach
- * into it: a point's inside test needs only its band's edges, and the
- * nearest edge is found from its band outward.
+ * A no-fit polygon as the edges of its rings, for fast depth queries.  It
+ * is cut across into bands of equal height, each listing the edges that
+ * reach into it: a point's inside test needs only its band's edges.  And
+ * its box is cut into a grid of cells, each knowing whether it lies
+ * outside, inside or across the rings, and listing the few edges that can
+ * be the nearest to a point in it: a depth needs only those.
  */
 typedef struct flat_nfp {
     double box[4]; /* x0, y0, x1, y1 */
@@ -100,6 +104,12 @@ typedef struct flat_nfp {
     size_t band_count;
     size_t *band_start; /* band b: band_edges[band_start[b]] to band_edges[band_start[b + 1] - 1] */
     size_t *band_edges;
+    double cell_width, cell_height;
+    double per_width, per_height; /* 1 / cell_width, 1 / cell_height */
+    size_t columns, rows;
+    unsigned char *cell_kind; /* per cell, row by row: a cell_kind */
+    size_t *cell_start;       /* cell c: cell_edges[cell_start[c] to cell_start[c + 1] - 1] */
+    size_t *cell_edges;
     bool made;
 } flat_nfp;
 
@@ -154,6 +164,9 @@ static void flat_free(flat_nfp *f)
     free(f->edges);
     free(f->band_start);
     free(f->band_edges);
+    free(f->cell_kind);
+    free(f->cell_start);
+    free(f->cell_edges);
     memset(f, 0, sizeof *f);
 }
 
@@ -241,6 +254,124 @@ static bool make_bands(flat_nfp *f)
     return true;
 }
 
+/* Whether p lies inside f's rings: a ray to the right crosses an odd number of its band's edges. */
+static inline bool inside_of(const flat_nfp *f, ur_vec2 p)
+{
+    size_t band = band_of(f, p.y);
+    bool inside = false;
+    for (size_t k = f->band_start[band]; k < f->band_start[band + 1]; k++) {
+        const flat_edge *e = &f->edges[f->band_edges[k]];
+        if ((e->ay > p.y) != (e->by > p.y) &&
+            ((p.x - e->ax) * e->dy < (p.y - e->ay) * e->dx) == (e->dy > 0))
+            inside = !inside;
+    }
+    return inside;
+}
+
+/* The squared distance from p to an edge. */
+static inline double edge_distance2(const flat_edge *e, ur_vec2 p)
+{
+    double px = p.x - e->ax, py = p.y - e->ay;
+    double s = (px * e->dx + py * e->dy) * e->inverse;
+    s = s < 0 ? 0 : s > 1 ? 1 : s;
+    double ex = px - s * e->dx, ey = py - s * e->dy;
+    return ex * ex + ey * ey;
+}
+
+/* The cell a point inside f's box falls in. */
+static size_t cell_of(const flat_nfp *f, ur_vec2 p)
+{
+    /* Not below 0 inside the box; the far edge is rounded into the last cell. */
+    size_t column = (size_t)((p.x - f->box[0]) * f->per_width);
+    size_t row = (size_t)((p.y - f->box[1]) * f->per_height);
+    column = column < f->columns ? column : f->columns - 1;
+    row = row < f->rows ? row : f->rows - 1;
+    return row * f->columns + column;
+}
+
+/* Appends edge to the list of cell edges (grown as needed); false when out of memory. */
+static bool add_cell_edge(flat_nfp *f, size_t *capacity, size_t edge)
+{
+    size_t used = f->cell_start[f->columns * f->rows];
+    if (used == *capacity) {
+        size_t more = *capacity ? 2 * *capacity : 64;
+        size_t *grown = realloc(f->cell_edges, more * sizeof *grown);
+        if (!grown)
+            return false;
+        f->cell_edges = grown;
+        *capacity = more;
+    }
+    f->cell_edges[used] = edge;
+    f->cell_start[f->columns * f->rows] = used + 1;
+    return true;
+}
+
+/*
+ * Fills cell c of f's grid.  Every point of the cell lies within radius of
+ * its centre, and within reach of some edge, reach being the least over
+ * the edges of their farthest distance from the cell (at a corner, the
+ * distance to a segment being convex).  So a point's nearest edge lies
+ * within reach + radius of the centre: those edges are the cell's list.
+ * When no edge comes within radius of the centre, none crosses the cell,
+ * which then lies wholly on the centre's side.  False when out of memory.
+ */
+static bool fill_cell(flat_nfp *f, size_t c, size_t *capacity)
+{
+    double x0 = f->box[0] + (double)(c % f->columns) * f->cell_width;
+    double y0 = f->box[1] + (double)(c / f->columns) * f->cell_height;
+    ur_vec2 centre = {x0 + 0.5 * f->cell_width, y0 + 0.5 * f->cell_height};
+    /* A little over half the diagonal: points rounded into the cell from just outside it. */
+    double radius = 0.5 * hypot(f->cell_width, f->cell_height) * (1 + 1e-6);
+    double reach = INFINITY, closest = INFINITY;
+    for (size_t i = 0; i < f->edge_count; i++) {
+        double farthest = 0;
+        for (int k = 0; k < 4; k++) {
+            ur_vec2 corner = {x0 + (k & 1) * f->cell_width, y0 + (k >> 1) * f->cell_height};
+            farthest = fmax(farthest, edge_distance2(&f->edges[i], corner));
+        }
+        reach = fmin(reach, sqrt(farthest));
+        closest = fmin(closest, edge_distance2(&f->edges[i], centre));
+    }
+    closest = sqrt(closest);
+    f->cell_kind[c] =
+        closest > radius ? (inside_of(f, centre) ? CELL_INSIDE : CELL_OUTSIDE) : CELL_ACROSS;
+    f->cell_start[c] = f->cell_start[f->columns * f->rows];
+    if (f->cell_kind[c] == CELL_OUTSIDE)
+        return true; /* no depth is ever wanted there */
+    double within = (reach + radius) * (reach + radius);
+    for (size_t i = 0; i < f->edge_count; i++)
+        if (edge_distance2(&f->edges[i], centre) <= within && !add_cell_edge(f, capacity, i))
+            return false;
+    return true;
+}
+
+/* The grid of f's cells (edges, box and bands made); false when out of memory. */
+static bool make_cells(flat_nfp *f)
+{
+    double width = f->box[2] - f->box[0], height = f->box[3] - f->box[1];
+    size_t wanted = CELLS_PER_EDGE * f->edge_count;
+    wanted = wanted < CELLS_MOST ? wanted : CELLS_MOST;
+    f->columns = f->rows = 1;
+    if (width > 0 && height > 0) {
+        double columns = ceil(sqrt((double)wanted * width / height));
+        f->columns = columns < 1 ? 1 : columns > (double)wanted ? wanted : (size_t)columns;
+        f->rows = (wanted + f->columns - 1) / f->columns;
+    }
+    f->cell_width = width > 0 ? width / (double)f->columns : 1;
+    f->cell_height = height > 0 ? height / (double)f->rows : 1;
+    f->per_width = 1 / f->cell_width;
+    f->per_height = 1 / f->cell_height;
+    size_t cells = f->columns * f->rows, capacity = 0;
+    f->cell_kind = calloc(cells, sizeof *f->cell_kind);
+    f->cell_start = calloc(cells + 1, sizeof *f->cell_start);
+    if (!f->cell_kind || !f->cell_start)
+        return false;
+    for (size_t c = 0; c < cells; c++)
+        if (!fill_cell(f, c, &capacity))
+            return false;
+    return true;
+}
+
 /* The rings of a GEOS polygon or multipolygon, flattened into f; false on failure. */
 static bool flatten(GEOSContextHandle_t geos, const GEOSGeometry *g, flat_nfp *f)
 {
@@ -269,7 +400,7 @@ static bool flatten(GEOSContextHandle_t geos, const GEOSGeometry *g, flat_nfp *f
                 return false;
     }
     /* An empty no-fit polygon (parts too small to overlap) has an empty box: depth 0 everywhere. */
-    return f->edge_count == 0 || make_bands(f);
+    return f->edge_count == 0 || (make_bands(f) && make_cells(f));
 }
 
 /*
@@ -304,43 +435,14 @@ static double depth_in(const flat_nfp *f, ur_vec2 p)
 {
     if (p.x <= f->box[0] || p.x >= f->box[2] || p.y <= f->box[1] || p.y >= f->box[3])
         return 0;
-    size_t band = band_of(f, p.y);
-    bool inside = false;
-    for (size_t k = f->band_start[band]; k < f->band_start[band + 1]; k++) {
-        const flat_edge *e = &f->edges[f->band_edges[k]];
-        if ((e->ay > p.y) != (e->by > p.y) &&
-            ((p.x - e->ax) * e->dy < (p.y - e->ay) * e->dx) == (e->dy > 0))
-            inside = !inside;
-    }
-    if (!inside)
+    size_t cell = cell_of(f, p);
+    if (f->cell_kind[cell] == CELL_OUTSIDE ||
+        (f->cell_kind[cell] == CELL_ACROSS && !inside_of(f, p)))
         return 0;
-    /* Bands further than the nearest edge found so far cannot hold a nearer one. */
     double nearest = INFINITY;
-    for (size_t step = 0; step < f->band_count; step++) {
-        double gap = step ? (double)(step - 1) * f->band_height : 0;
-        if (gap * gap >= nearest)
-            break;
-        if (step > NEAREST_BANDS) {
-            /* Deep inside: the way out of the box is near enough a depth. */
-            double out = fmin(fmin(p.x - f->box[0], f->box[2] - p.x),
-                              fmin(p.y - f->box[1], f->box[3] - p.y));
-            nearest = fmin(nearest, out * out);
-            break;
-        }
-        for (int side = -1; side <= 1; side += 2) {
-            if ((side < 0 && step > band) ||
-                (side > 0 && (step == 0 || band + step >= f->band_count)))
-                continue;
-            size_t b = side < 0 ? band - step : band + step;
-            for (size_t k = f->band_start[b]; k < f->band_start[b + 1]; k++) {
-                const flat_edge *e = &f->edges[f->band_edges[k]];
-                double px = p.x - e->ax, py = p.y - e->ay;
-                double s = (px * e->dx + py * e->dy) * e->inverse;
-                s = s < 0 ? 0 : s > 1 ? 1 : s;
-                double ex = px - s * e->dx, ey = py - s * e->dy, d2 = ex * ex + ey * ey;
-                nearest = d2 < nearest ? d2 : nearest;
-            }
-        }
+    for (size_t k = f->cell_start[cell]; k < f->cell_start[cell + 1]; k++) {
+        double d2 = edge_distance2(&f->edges[f->cell_edges[k]], p);
+        nearest = d2 < nearest ? d2 : nearest;
     }
     double depth = sqrt(nearest);
     return depth > TOUCHING ? depth : 0;
