@@ -108,8 +108,8 @@ typedef struct flat_nfp {
     double per_width, per_height; /* 1 / cell_width, 1 / cell_height */
     size_t columns, rows;
     unsigned char *cell_kind; /* per cell, row by row: a cell_kind */
-    size_t *cell_start;       /* cell c: cell_edges[cell_start[c] to cell_start[c + 1] - 1] */
-    size_t *cell_edges;
+    uint32_t *cell_start;     /* cell c: cell_edges[cell_start[c] to cell_start[c + 1] - 1] */
+    uint32_t *cell_edges;     /* 32 bits: the lists take much of a search's memory */
     bool made;
 } flat_nfp;
 
@@ -295,14 +295,16 @@ static bool add_cell_edge(flat_nfp *f, size_t *capacity, size_t edge)
     size_t used = f->cell_start[f->columns * f->rows];
     if (used == *capacity) {
         size_t more = *capacity ? 2 * *capacity : 64;
-        size_t *grown = realloc(f->cell_edges, more * sizeof *grown);
+        if (more > UINT32_MAX)
+            return false;
+        uint32_t *grown = realloc(f->cell_edges, more * sizeof *grown);
         if (!grown)
             return false;
         f->cell_edges = grown;
         *capacity = more;
     }
-    f->cell_edges[used] = edge;
-    f->cell_start[f->columns * f->rows] = used + 1;
+    f->cell_edges[used] = (uint32_t)edge;
+    f->cell_start[f->columns * f->rows] = (uint32_t)(used + 1);
     return true;
 }
 
@@ -349,6 +351,8 @@ static bool fill_cell(flat_nfp *f, size_t c, size_t *capacity)
 static bool make_cells(flat_nfp *f)
 {
     double width = f->box[2] - f->box[0], height = f->box[3] - f->box[1];
+    if (f->edge_count > UINT32_MAX)
+        return false; /* far beyond any memory: the lists number edges in 32 bits */
     size_t wanted = CELLS_PER_EDGE * f->edge_count;
     wanted = wanted < CELLS_MOST ? wanted : CELLS_MOST;
     f->columns = f->rows = 1;
