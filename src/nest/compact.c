@@ -289,7 +289,11 @@ static size_t cell_of(const flat_nfp *f, ur_vec2 p)
     return row * f->columns + column;
 }
 
-/* Appends edge to the list of cell edges (grown as needed); false when out of memory. */
+/*
+ * Appends edge to the cells' lists (grown as needed), to the cell being
+ * filled; false when out of memory.  Until the last cell is filled, the
+ * entry after the last cell's start counts the edges listed so far.
+ */
 static bool add_cell_edge(flat_nfp *f, size_t *capacity, size_t edge)
 {
     size_t used = f->cell_start[f->columns * f->rows];
