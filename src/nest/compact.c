@@ -290,25 +290,27 @@ static size_t cell_of(const flat_nfp *f, ur_vec2 p)
 }
 
 /*
- * Appends edge to the cells' lists (grown as needed), to the cell being
- * filled; false when out of memory.  Until the last cell is filled, the
- * entry after the last cell's start counts the edges listed so far.
+ * The cells' lists as they are filled: entries used so far, and room for
+ * how many.
  */
-static bool add_cell_edge(flat_nfp *f, size_t *capacity, size_t edge)
+typedef struct cell_lists {
+    size_t used, capacity;
+} cell_lists;
+
+/* Appends edge to the list of the cell being filled (grown as needed); false when out of memory. */
+static bool add_cell_edge(flat_nfp *f, cell_lists *lists, size_t edge)
 {
-    size_t used = f->cell_start[f->columns * f->rows];
-    if (used == *capacity) {
-        size_t more = *capacity ? 2 * *capacity : 64;
+    if (lists->used == lists->capacity) {
+        size_t more = lists->capacity ? 2 * lists->capacity : 64;
         if (more > UINT32_MAX)
             return false;
         uint32_t *grown = realloc(f->cell_edges, more * sizeof *grown);
         if (!grown)
             return false;
         f->cell_edges = grown;
-        *capacity = more;
+        lists->capacity = more;
     }
-    f->cell_edges[used] = (uint32_t)edge;
-    f->cell_start[f->columns * f->rows] = (uint32_t)(used + 1);
+    f->cell_edges[lists->used++] = (uint32_t)edge;
     return true;
 }
 
@@ -321,7 +323,7 @@ static bool add_cell_edge(flat_nfp *f, size_t *capacity, size_t edge)
  * When no edge comes within radius of the centre, none crosses the cell,
  * which then lies wholly on the centre's side.  False when out of memory.
  */
-static bool fill_cell(flat_nfp *f, size_t c, size_t *capacity)
+static bool fill_cell(flat_nfp *f, size_t c, cell_lists *lists)
 {
     double x0 = f->box[0] + (double)(c % f->columns) * f->cell_width;
     double y0 = f->box[1] + (double)(c / f->columns) * f->cell_height;
@@ -341,12 +343,12 @@ static bool fill_cell(flat_nfp *f, size_t c, size_t *capacity)
     closest = sqrt(closest);
     f->cell_kind[c] =
         closest > radius ? (inside_of(f, centre) ? CELL_INSIDE : CELL_OUTSIDE) : CELL_ACROSS;
-    f->cell_start[c] = f->cell_start[f->columns * f->rows];
+    f->cell_start[c] = (uint32_t)lists->used;
     if (f->cell_kind[c] == CELL_OUTSIDE)
         return true; /* no depth is ever wanted there */
     double within = (reach + radius) * (reach + radius);
     for (size_t i = 0; i < f->edge_count; i++)
-        if (edge_distance2(&f->edges[i], centre) <= within && !add_cell_edge(f, capacity, i))
+        if (edge_distance2(&f->edges[i], centre) <= within && !add_cell_edge(f, lists, i))
             return false;
     return true;
 }
@@ -369,14 +371,16 @@ static bool make_cells(flat_nfp *f)
     f->cell_height = height > 0 ? height / (double)f->rows : 1;
     f->per_width = 1 / f->cell_width;
     f->per_height = 1 / f->cell_height;
-    size_t cells = f->columns * f->rows, capacity = 0;
+    size_t cells = f->columns * f->rows;
+    cell_lists lists = {0, 0};
     f->cell_kind = calloc(cells, sizeof *f->cell_kind);
     f->cell_start = calloc(cells + 1, sizeof *f->cell_start);
     if (!f->cell_kind || !f->cell_start)
         return false;
     for (size_t c = 0; c < cells; c++)
-        if (!fill_cell(f, c, &capacity))
+        if (!fill_cell(f, c, &lists))
             return false;
+    f->cell_start[cells] = (uint32_t)lists.used;
     return true;
 }
 
