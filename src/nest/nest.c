@@ -255,6 +255,7 @@ static void grid_free(GEOSContextHandle_t geos, room_grid *grid)
             GEOSGeom_destroy_r(geos, grid->free[c]);
     free(grid->free);
     free(grid->applied);
+    free(grid->cut_by);
     memset(grid, 0, sizeof *grid);
 }
 
@@ -284,7 +285,8 @@ static bool grid_make(nester *n, size_t sheet, size_t piece, size_t turn, room_g
     size_t cells = grid->cols * grid->rows;
     grid->free = calloc(cells, sizeof *grid->free);
     grid->applied = calloc(cells, sizeof *grid->applied);
-    if (!grid->free || !grid->applied) {
+    grid->cut_by = calloc(cells, sizeof *grid->cut_by);
+    if (!grid->free || !grid->applied || !grid->cut_by) {
         grid_free(n->geos, grid);
         return false;
     }
@@ -331,6 +333,7 @@ static bool cell_update(nester *n, size_t sheet, size_t piece, size_t turn, room
             return false;
         GEOSGeom_destroy_r(n->geos, grid->free[c]);
         grid->free[c] = left;
+        grid->cut_by[c] = k + 1;
         if (GEOSisEmpty_r(n->geos, left) == 1) {
             GEOSGeom_destroy_r(n->geos, left);
             grid->free[c] = NULL; /* full: nothing placed later can free it */
@@ -588,6 +591,9 @@ static void nester_free(nester *n)
         grid_free(n->geos, &n->rooms[k]);
     free(n->rooms);
     free(n->full);
+    free(n->run_piece);
+    free(n->run_held);
+    free(n->run_placed);
     free(n->sheet_area);
     size_t pairs = n->class_count * n->turn_count * n->class_count * n->turn_count;
     for (size_t k = 0; n->nfps && k < pairs; k++)
@@ -664,6 +670,7 @@ static ur_status check_nest_options(const ur_nest_options *o, ur_error *error)
 /* Forgets a run's placements; the no-fit polygons stay, they hold for any run. */
 static void reset_run(nester *n)
 {
+    n->run_length = 0;
     size_t slots = n->sheet_slots * (n->class_count + 1) * n->turn_count;
     for (size_t k = 0; k < slots; k++) {
         grid_free(n->geos, &n->rooms[k]);
@@ -674,13 +681,75 @@ static void reset_run(nester *n)
     n->sheet_count = n->remnant_count;
 }
 
-/* Places the pieces in order, each at its held turn (per piece; NULL: all free). */
+/*
+ * Makes a cell of a grid whole again (no placement cut from it yet); on a
+ * GEOS failure the whole grid goes, to be made again when next asked for.
+ */
+static void cell_renew(nester *n, room_grid *grid, size_t c)
+{
+    double box[4];
+    cell_box(n, grid, c, box);
+    if (grid->free[c])
+        GEOSGeom_destroy_r(n->geos, grid->free[c]);
+    grid->free[c] = rectangle_polygon(n->geos, box[0], box[1], box[2], box[3]);
+    grid->applied[c] = grid->cut_by[c] = 0;
+    if (!grid->free[c])
+        grid_free(n->geos, grid);
+}
+
+/*
+ * Forgets all placements but the first kept, as if only those had been
+ * made: a cell that a later one cut is made whole again, the others only
+ * forget having looked at the later ones.  Rooms thus kept are what a run
+ * placing just the first kept would have made, cut for cut.
+ */
+static void rewind_run(nester *n, size_t kept)
+{
+    size_t slots = n->sheet_slots * (n->class_count + 1) * n->turn_count;
+    for (size_t k = 0; k < slots; k++) {
+        room_grid *grid = &n->rooms[k];
+        n->full[k] = false; /* a later placement may have filled it */
+        for (size_t c = 0; grid->cols && c < grid->cols * grid->rows; c++) {
+            if (grid->cut_by[c] > kept)
+                cell_renew(n, grid, c);
+            else if (grid->applied[c] > kept)
+                grid->applied[c] = kept;
+        }
+    }
+    memset(n->sheet_area, 0, n->sheet_slots * sizeof *n->sheet_area);
+    n->sheet_count = n->remnant_count;
+    for (size_t k = 0; k < kept; k++) {
+        n->sheet_area[n->sheet_of[k]] += nest_shape_of(n, n->placements[k].piece, 0)->area;
+        if (n->sheet_of[k] >= n->sheet_count)
+            n->sheet_count = n->sheet_of[k] + 1;
+    }
+    n->placed_count = kept;
+}
+
+/*
+ * Places the pieces in order, each at its held turn (per piece; NULL: all
+ * free).  Where the order and turns begin as the last run's did, that
+ * run's placements stand: a placement depends only on those before it.
+ */
 static ur_status run_order(nester *n, const size_t *order, const size_t *held)
 {
-    reset_run(n);
+    size_t same = 0;
+    while (same < n->run_length && n->run_piece[same] == order[same] &&
+           n->run_held[same] == (held ? held[order[same]] : ANY_TURN))
+        same++;
+    if (same == 0)
+        reset_run(n);
+    else
+        rewind_run(n, n->run_placed[same]);
+    n->run_length = same;
     ur_status status = UR_OK;
-    for (size_t k = 0; status == UR_OK && k < n->count; k++)
-        status = place_piece(n, order[k], held ? held[order[k]] : ANY_TURN);
+    for (size_t k = same; status == UR_OK && k < n->count; k++) {
+        n->run_piece[k] = order[k];
+        n->run_held[k] = held ? held[order[k]] : ANY_TURN;
+        n->run_placed[k] = n->placed_count;
+        status = place_piece(n, order[k], n->run_held[k]);
+        n->run_length = status == UR_OK ? k + 1 : 0;
+    }
     return status;
 }
 
@@ -910,7 +979,10 @@ ur_status ur_layout_nest(const ur_piece *pieces, size_t count, const ur_nest_opt
         n.rooms = calloc(slots, sizeof *n.rooms);
         n.full = calloc(slots, sizeof *n.full);
         n.sheet_area = calloc(n.sheet_slots, sizeof *n.sheet_area);
-        if (!n.rooms || !n.full || !n.sheet_area)
+        n.run_piece = calloc(count + 1, sizeof *n.run_piece);
+        n.run_held = calloc(count + 1, sizeof *n.run_held);
+        n.run_placed = calloc(count + 1, sizeof *n.run_placed);
+        if (!n.rooms || !n.full || !n.sheet_area || !n.run_piece || !n.run_held || !n.run_placed)
             status = ur_error_out_of_memory(error);
     }
     for (size_t p = 0; status == UR_OK && p < count; p++)

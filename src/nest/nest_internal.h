@@ -64,6 +64,7 @@ typedef struct nest_class {
 typedef struct room_grid {
     GEOSGeometry **free;   /* per cell (column by column): the room left; NULL once none */
     size_t *applied;       /* per cell: placements already cut out of it */
+    size_t *cut_by;        /* per cell: 1 + the last placement whose no-fit polygon cut it, or 0 */
     size_t cols, rows;     /* 0 until made */
     double x0, y0, x1, y1; /* the inner-fit rectangle the cells cover */
 } room_grid;
@@ -98,6 +99,14 @@ typedef struct nester {
      * fill up during a run, so it never fits there again in that run.
      */
     bool *full;
+    /*
+     * The last run over an order, for the next to start where the two
+     * orders part: per position, the piece placed, the turn it was held at
+     * (or ANY_TURN) and the placements made before it; run_length
+     * positions hold.
+     */
+    size_t *run_piece, *run_held, *run_placed;
+    size_t run_length;
     double *sheet_area; /* per sheet: area of the parts on it */
     ur_error *error;
 } nester;
