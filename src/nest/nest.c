@@ -750,6 +750,7 @@ static ur_status run_order(nester *n, const size_t *order, const size_t *held)
         status = place_piece(n, order[k], n->run_held[k]);
         n->run_length = status == UR_OK ? k + 1 : 0;
     }
+    n->run_placed[n->count] = n->placed_count; /* an order the same throughout keeps them all */
     return status;
 }
 

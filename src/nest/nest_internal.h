@@ -102,8 +102,8 @@ typedef struct nester {
     /*
      * The last run over an order, for the next to start where the two
      * orders part: per position, the piece placed, the turn it was held at
-     * (or ANY_TURN) and the placements made before it; run_length
-     * positions hold.
+     * (or ANY_TURN) and the placements made before it (and after the
+     * last, at position count); run_length positions hold.
      */
     size_t *run_piece, *run_held, *run_placed;
     size_t run_length;

@@ -3,7 +3,8 @@
  * spacing (GEOS distance), stay inside the margin, are placed once each;
  * rectangles that tile a sheet exactly fill one sheet; a part goes in a
  * ring's hole when holes are allowed; L shapes interlock; parts with no
- * symmetry keep apart in 8 turns; a roll is shortened by the search.
+ * symmetry keep apart in 8 turns; the search over orders keeps every part
+ * whatever its budget; a roll is shortened by the search.
  */
 #include "test_support.h"
 
@@ -149,6 +150,35 @@ static void test_rectangles_tile_one_sheet(void **state)
     check_layout(pieces, 4, &layout, &o);
     ur_layout_free(&layout);
     free_pieces(pieces, 4);
+}
+
+/*
+ * The search over orders places every part once and never ends worse than
+ * its first layout, whatever the seed and budget.  With three parts many
+ * of its tries give the order it already has; a budget too short for any
+ * try places the first layout again, the same order as the run before it:
+ * a run the same as the one before keeps every placement.
+ */
+static void test_search_keeps_every_part(void **state)
+{
+    (void)state;
+    ur_piece pieces[3] = {rectangle("wide", 250, 120), rectangle("tall", 90, 260), l_shape("L")};
+    ur_nest_options o = sheet_options(300, 300, 5, 3, 4, false);
+    ur_layout first;
+    ur_error error;
+    assert_int_equal(ur_layout_nest(pieces, 3, &o, &first, &error), UR_OK);
+    for (uint64_t seed = 1; seed <= 12; seed++) {
+        o.time_budget = seed % 2 ? 1e-9 : 0.2;
+        o.seed = seed;
+        ur_layout layout;
+        assert_int_equal(ur_layout_nest(pieces, 3, &o, &layout, &error), UR_OK);
+        assert_int_equal(layout.not_placed_count, 0);
+        assert_true(layout.sheet_count <= first.sheet_count);
+        check_layout(pieces, 3, &layout, &o);
+        ur_layout_free(&layout);
+    }
+    ur_layout_free(&first);
+    free_pieces(pieces, 3);
 }
 
 static void test_part_goes_in_a_hole(void **state)
@@ -464,6 +494,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_rectangles_tile_one_sheet),
         cmocka_unit_test(test_part_goes_in_a_hole),
+        cmocka_unit_test(test_search_keeps_every_part),
         cmocka_unit_test(test_l_shapes_interlock),
         cmocka_unit_test(test_mixed_parts_keep_apart),
         cmocka_unit_test(test_refusals),
