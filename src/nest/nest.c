@@ -667,20 +667,6 @@ static ur_status check_nest_options(const ur_nest_options *o, ur_error *error)
 
 /* ---- The search over orders ------------------------------------------------- */
 
-/* Forgets a run's placements; the no-fit polygons stay, they hold for any run. */
-static void reset_run(nester *n)
-{
-    n->run_length = 0;
-    size_t slots = n->sheet_slots * (n->class_count + 1) * n->turn_count;
-    for (size_t k = 0; k < slots; k++) {
-        grid_free(n->geos, &n->rooms[k]);
-        n->full[k] = false;
-    }
-    memset(n->sheet_area, 0, n->sheet_slots * sizeof *n->sheet_area);
-    n->placed_count = 0;
-    n->sheet_count = n->remnant_count;
-}
-
 /*
  * Makes a cell of a grid whole again (no placement cut from it yet); on a
  * GEOS failure the whole grid goes, to be made again when next asked for.
@@ -698,10 +684,11 @@ static void cell_renew(nester *n, room_grid *grid, size_t c)
 }
 
 /*
- * Forgets all placements but the first kept, as if only those had been
- * made: a cell that a later one cut is made whole again, the others only
- * forget having looked at the later ones.  Rooms thus kept are what a run
- * placing just the first kept would have made, cut for cut.
+ * Forgets all placements but the first kept (maybe none), as if only those
+ * had been made: a cell that a later one cut is made whole again, the
+ * others only forget having looked at the later ones.  Rooms thus kept are
+ * what a run placing just the first kept would have made, cut for cut; the
+ * no-fit polygons stay, they hold for any run.
  */
 static void rewind_run(nester *n, size_t kept)
 {
@@ -737,10 +724,7 @@ static ur_status run_order(nester *n, const size_t *order, const size_t *held)
     while (same < n->run_length && n->run_piece[same] == order[same] &&
            n->run_held[same] == (held ? held[order[same]] : ANY_TURN))
         same++;
-    if (same == 0)
-        reset_run(n);
-    else
-        rewind_run(n, n->run_placed[same]);
+    rewind_run(n, n->run_placed[same]); /* run_placed[0] is 0: a run from the start */
     n->run_length = same;
     ur_status status = UR_OK;
     for (size_t k = same; status == UR_OK && k < n->count; k++) {
