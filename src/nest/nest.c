@@ -17,8 +17,9 @@
  *
  * Parts are grown by half the spacing before the no-fit polygons are made,
  * so parts that touch there keep the spacing between them; the no-fit
- * polygons are shrunk by a micrometre so that a part that fits exactly (a
- * tile in a row of tiles) still finds the point where it fits.
+ * polygons are a micrometre smaller (NEST_EXACT_FIT) so that a part that
+ * fits exactly (a tile in a row of tiles) still finds the place where it
+ * fits.
  */
 #include "nest_internal.h"
 
@@ -27,9 +28,6 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
-
-/* Shrinks no-fit polygons so that exact fits stay places, not points (mm). */
-#define EXACT_FIT 1e-6
 
 static bool same_shape(const ur_piece *a, const ur_piece *b)
 {
@@ -185,10 +183,7 @@ const GEOSGeometry *nest_nfp_of(nester *n, size_t a, size_t ta, size_t b, size_t
         n->nfps[key] = base ? GEOSGeom_transformXY_r(n->geos, base, turn_xy, cs) : NULL;
         return n->nfps[key];
     }
-    GEOSGeometry *exact = nest_nfp(n->geos, nest_shape_of(n, a, ta), nest_shape_of(n, b, tb));
-    n->nfps[key] = exact ? GEOSBuffer_r(n->geos, exact, -EXACT_FIT, 2) : NULL;
-    if (exact)
-        GEOSGeom_destroy_r(n->geos, exact);
+    n->nfps[key] = nest_nfp(n->geos, nest_shape_of(n, a, ta), nest_shape_of(n, b, tb));
     return n->nfps[key];
 }
 
@@ -215,8 +210,8 @@ static bool inner_fit_box(const nester *n, size_t sheet, const nest_shape *shape
     if (x1 < x0 - 1e-9 || y1 < y0 - 1e-9)
         return false;
     /* Widened by the exact-fit allowance, so a part as large as the room still has a place. */
-    box[0] = x0 - EXACT_FIT, box[1] = y0 - EXACT_FIT;
-    box[2] = x1 + EXACT_FIT, box[3] = y1 + EXACT_FIT;
+    box[0] = x0 - NEST_EXACT_FIT, box[1] = y0 - NEST_EXACT_FIT;
+    box[2] = x1 + NEST_EXACT_FIT, box[3] = y1 + NEST_EXACT_FIT;
     return true;
 }
 

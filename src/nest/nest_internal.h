@@ -13,6 +13,15 @@
 
 #include "unroll/nest.h"
 
+/*
+ * How far two parts may overlap and still count as touching (mm): each
+ * part's convex parts are shrunk by half as much before their no-fit
+ * polygons are made, so that an exact fit (a tile in a row of tiles, a part
+ * in a notch of its own width) is a place of that width, not a point or a
+ * line that the union of the sums would close.
+ */
+#define NEST_EXACT_FIT 1e-6
+
 /* The angle that turns the piece's smallest enclosing rectangle level (layout.c). */
 double nest_level_angle(GEOSContextHandle_t geos, const ur_path *outline);
 
@@ -20,7 +29,8 @@ double nest_level_angle(GEOSContextHandle_t geos, const ur_path *outline);
  * A piece as nesting sees it, turned by one of its allowed angles about its
  * own origin: its polygon (outline and, with holes, its holes) grown by
  * half the spacing and by the simplification's tolerance, the convex parts
- * that polygon splits into, and the box of the actual (ungrown) outline.
+ * that polygon splits into (each shrunk by half NEST_EXACT_FIT), and the
+ * box of the actual (ungrown) outline.
  */
 typedef struct nest_shape {
     GEOSGeometry *polygon;

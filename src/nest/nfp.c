@@ -14,6 +14,13 @@
  * simplified first (pieces can have hundreds of thousands of points) and
  * grown by the simplification's tolerance, so that nothing the
  * simplification cut off can overlap.
+ *
+ * The convex parts are then shrunk by half of NEST_EXACT_FIT, a millionth
+ * of a millimetre, before their sums are made.  Where B fits A exactly (a
+ * part in a notch of its own width) the sums only touch: the places where
+ * B fits form a line or a point, and their union would close it, as if B
+ * could never go there.  Shrunk, the sums leave a corridor that wide, and
+ * the nester and compact.c's search can find the fit.
  */
 #include "nest_internal.h"
 
@@ -171,7 +178,38 @@ static void merge_parts(GEOSContextHandle_t geos, nest_shape *shape)
     }
 }
 
-/* The polygon's triangles (GEOS's constrained Delaunay triangulation), merged into convex parts. */
+/*
+ * Shrinks each convex part by half of NEST_EXACT_FIT (mitred, so it keeps
+ * its corners); a part too thin to shrink is kept as it is.  False when
+ * GEOS fails.
+ */
+static bool shrink_parts(GEOSContextHandle_t geos, nest_shape *shape)
+{
+    GEOSBufferParams *params = GEOSBufferParams_create_r(geos);
+    if (!params)
+        return false;
+    GEOSBufferParams_setJoinStyle_r(geos, params, GEOSBUF_JOIN_MITRE);
+    GEOSBufferParams_setMitreLimit_r(geos, params, 10.0);
+    bool shrunk = true;
+    for (size_t k = 0; shrunk && k < shape->convex_count; k++) {
+        GEOSGeometry *in =
+            GEOSBufferWithParams_r(geos, shape->convex[k], params, -0.5 * NEST_EXACT_FIT);
+        shrunk = in != NULL;
+        if (in && GEOSGeomTypeId_r(geos, in) == GEOS_POLYGON && !GEOSisEmpty_r(geos, in)) {
+            GEOSGeom_destroy_r(geos, shape->convex[k]);
+            shape->convex[k] = in;
+        } else if (in) {
+            GEOSGeom_destroy_r(geos, in);
+        }
+    }
+    GEOSBufferParams_destroy_r(geos, params);
+    return shrunk;
+}
+
+/*
+ * The polygon's triangles (GEOS's constrained Delaunay triangulation),
+ * merged into convex parts and shrunk.
+ */
 static ur_status convex_parts(GEOSContextHandle_t geos, const GEOSGeometry *polygon,
                               nest_shape *shape, ur_error *error)
 {
@@ -191,6 +229,8 @@ static ur_status convex_parts(GEOSContextHandle_t geos, const GEOSGeometry *poly
     }
     GEOSGeom_destroy_r(geos, triangles);
     merge_parts(geos, shape);
+    if (!shrink_parts(geos, shape))
+        return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not shrink a piece's parts");
     return UR_OK;
 }
 

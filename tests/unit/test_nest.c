@@ -73,6 +73,24 @@ static GEOSGeometry *placed_polygon(const ur_piece *piece, ur_transform2 t)
 }
 
 /* The invariants every layout keeps. */
+/*
+ * How deep two touching parts overlap, on average along the shorter
+ * outline (mm): their common area over that outline's length.  The nester
+ * lets parts overlap by a millionth of a millimetre (NEST_EXACT_FIT), so
+ * that exact fits stay open; more is a true overlap.
+ */
+static double overlap_depth(const GEOSGeometry *a, const GEOSGeometry *b)
+{
+    GEOSGeometry *both = GEOSIntersection_r(geos, a, b);
+    double area = 0, length_a = 0, length_b = 0;
+    assert_non_null(both);
+    assert_int_equal(GEOSArea_r(geos, both, &area), 1);
+    assert_int_equal(GEOSLength_r(geos, a, &length_a), 1);
+    assert_int_equal(GEOSLength_r(geos, b, &length_b), 1);
+    GEOSGeom_destroy_r(geos, both);
+    return area / fmin(length_a, length_b);
+}
+
 static void check_layout(const ur_piece *pieces, size_t count, const ur_layout *layout,
                          const ur_nest_options *o)
 {
@@ -95,14 +113,10 @@ static void check_layout(const ur_piece *pieces, size_t count, const ur_layout *
             for (size_t q = 0; q < p; q++) {
                 double distance;
                 assert_int_equal(GEOSDistance_r(geos, placed[p], placed[q], &distance), 1);
-                if (distance < o->spacing - 1e-5) {
-                    GEOSGeometry *both = GEOSIntersection_r(geos, placed[p], placed[q]);
-                    double area = 0;
-                    GEOSArea_r(geos, both, &area);
-                    GEOSGeom_destroy_r(geos, both);
-                    fail_msg("parts %zu and %zu on sheet %zu are %g mm apart (overlap %g mm2)", p,
-                             q, s + 1, distance, area);
-                }
+                double depth = distance > 0 ? 0 : overlap_depth(placed[p], placed[q]);
+                if (distance < o->spacing - 1e-5 || depth > 1e-5)
+                    fail_msg("parts %zu and %zu on sheet %zu are %g mm apart (overlap %g mm deep)",
+                             p, q, s + 1, distance, depth);
             }
         }
         for (size_t p = 0; p < sheet->placement_count; p++)
@@ -223,6 +237,30 @@ static void test_l_shapes_interlock(void **state)
     assert_int_equal(layout.sheet_count, 1);
     check_layout(pieces, 2, &layout, &o);
     ur_layout_free(&layout);
+    free_pieces(pieces, 2);
+}
+
+/*
+ * A key exactly as wide as a U's notch (60 mm) on a sheet exactly the U's
+ * size: the only place for it is in the notch, touching both its sides.
+ * Where the key fits is a line, not an area, and the no-fit polygon must
+ * keep it open.
+ */
+static void test_part_fits_a_notch_exactly(void **state)
+{
+    (void)state;
+    ur_vec2 u[8] = {{0, 0},   {100, 0}, {100, 100}, {80, 100},
+                    {80, 20}, {20, 20}, {20, 100},  {0, 100}};
+    ur_piece pieces[2] = {polygon_piece("U", u, 8), rectangle("key", 60, 70)};
+    for (size_t rotations = 1; rotations <= 4; rotations *= 2) {
+        ur_nest_options o = sheet_options(100, 100, 0, 0, rotations, false);
+        ur_layout layout;
+        ur_error error;
+        assert_int_equal(ur_layout_nest(pieces, 2, &o, &layout, &error), UR_OK);
+        assert_int_equal(layout.sheet_count, 1);
+        check_layout(pieces, 2, &layout, &o);
+        ur_layout_free(&layout);
+    }
     free_pieces(pieces, 2);
 }
 
@@ -496,6 +534,7 @@ int main(void)
         cmocka_unit_test(test_part_goes_in_a_hole),
         cmocka_unit_test(test_search_keeps_every_part),
         cmocka_unit_test(test_l_shapes_interlock),
+        cmocka_unit_test(test_part_fits_a_notch_exactly),
         cmocka_unit_test(test_mixed_parts_keep_apart),
         cmocka_unit_test(test_refusals),
         cmocka_unit_test(test_grain_rule_holds),
