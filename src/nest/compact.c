@@ -42,6 +42,12 @@
 /* Depths below this count as touching (mm): the rounding of points on a no-fit polygon's edge. */
 #define TOUCHING 1e-9
 /*
+ * How far past a no-fit polygon's edge a part pushed out of it goes, as a
+ * fraction of the point's coordinates: past the rounding of the push, so
+ * that GEOS too sees it outside.
+ */
+#define OUT_BEYOND 1e-12
+/*
  * Cells of a no-fit polygon's grid per edge, and at most: more cells make
  * shorter lists of the edges that may be nearest, and cost more to make.
  */
@@ -52,6 +58,8 @@
 #define PLACES_NEAR 20
 /* The finest step of a move's refinement, as a fraction of the part's size. */
 #define REFINE_FINEST 1e-4
+/* Pushes out of the part a move overlaps most, at most. */
+#define PUSHES_OUT 4
 /*
  * Rounds of moves without a gain before a separation tries again from its
  * least overlapping layout: ROUNDS_PER_PART per part on the roll, at least
@@ -69,6 +77,14 @@
 /* Exploration's share of the time, and its cut of the strip (a fraction of its length). */
 #define EXPLORE_SHARE 0.8
 #define EXPLORE_CUT 0.01
+/*
+ * The least overlapping layouts exploration keeps at one length, at most,
+ * and how it picks the one to jolt next: the k-th best with k a fraction
+ * of them drawn from a half-normal spread (Gardeyn and Wauters's 0.25), so
+ * mostly among the best few but now and then a worse one.
+ */
+#define NEAR_MISSES 32
+#define NEAR_MISS_SPREAD 0.25
 /* Compression's first and last cut, and the failed cuts in a row that end it. */
 #define COMPRESS_FIRST 0.005
 #define COMPRESS_LAST 0.0001
@@ -120,6 +136,17 @@ typedef struct state {
 } state;
 
 /*
+ * The least overlapping layouts the separations at one length ended with,
+ * least overlap first: exploration jolts one of them when a separation
+ * fails, so that it goes on from a good layout, not just the last one.
+ */
+typedef struct near_misses {
+    state layout[NEAR_MISSES]; /* each owned */
+    double total[NEAR_MISSES]; /* each one's total overlap */
+    size_t count;
+} near_misses;
+
+/*
  * What the searches running side by side share: the shortest verified
  * layout any of them has found, and the nester, whose GEOS context and
  * no-fit polygons only one may use at a time.
@@ -151,6 +178,7 @@ typedef struct compactor {
     const flat_nfp **row; /* scratch: per turn and part, the no-fit polygon a moving part meets */
     size_t *order;        /* scratch: the order parts move in during a round */
     state least;          /* scratch: a separation's least overlapping layout */
+    near_misses misses;   /* exploration's, at its current length */
 } compactor;
 
 /* A uniform random number in [0, 1). */
@@ -460,6 +488,32 @@ static double depth_in(const flat_nfp *f, ur_vec2 p)
     return depth > TOUCHING ? depth : 0;
 }
 
+/*
+ * The nearest place outside f from p, which lies inside: p taken across
+ * the nearest edge of f's rings, a hair beyond it.
+ */
+static ur_vec2 way_out(const flat_nfp *f, ur_vec2 p)
+{
+    size_t cell = cell_of(f, p);
+    double nearest = INFINITY;
+    ur_vec2 edge_point = p;
+    for (size_t k = f->cell_start[cell]; k < f->cell_start[cell + 1]; k++) {
+        const flat_edge *e = &f->edges[f->cell_edges[k]];
+        double d2 = edge_distance2(e, p);
+        if (d2 < nearest) {
+            double s = ((p.x - e->ax) * e->dx + (p.y - e->ay) * e->dy) * e->inverse;
+            s = s < 0 ? 0 : s > 1 ? 1 : s;
+            nearest = d2;
+            edge_point = ur_vec2_make(e->ax + s * e->dx, e->ay + s * e->dy);
+        }
+    }
+    double dx = edge_point.x - p.x, dy = edge_point.y - p.y, length = hypot(dx, dy);
+    if (length == 0)
+        return p;
+    double beyond = OUT_BEYOND * (1 + fabs(edge_point.x) + fabs(edge_point.y));
+    return ur_vec2_make(edge_point.x + dx / length * beyond, edge_point.y + dy / length * beyond);
+}
+
 /* How far parts i and j overlap where they are now; -1 on a failure. */
 static double pair_depth(compactor *c, size_t i, size_t j)
 {
@@ -597,6 +651,42 @@ static void refine(const compactor *c, size_t i, const double *box, double size,
 }
 
 /*
+ * Pushes a candidate out of the part it overlaps most (weighted), across
+ * the nearest edge of their no-fit polygon, while that lowers its cost.
+ * Refinement only comes near a contact; this reaches it exactly, as a part
+ * between two others or in a notch of its own width must.
+ */
+static void push_out(const compactor *c, size_t i, const double *box, candidate *best)
+{
+    const flat_nfp *const *row = c->row + best->turn * c->count;
+    const double *weight = c->weight + i * c->count;
+    for (int push = 0; push < PUSHES_OUT && best->cost > 0; push++) {
+        size_t most = i;
+        double most_cost = 0;
+        for (size_t j = 0; j < c->count; j++) {
+            double d = j == i ? 0
+                              : depth_in(row[j], ur_vec2_make(best->at.x - c->now.at[j].x,
+                                                              best->at.y - c->now.at[j].y));
+            if (weight[j] * d * d > most_cost) {
+                most_cost = weight[j] * d * d;
+                most = j;
+            }
+        }
+        if (most == i)
+            return;
+        ur_vec2 from = c->now.at[most];
+        ur_vec2 out = way_out(row[most], ur_vec2_make(best->at.x - from.x, best->at.y - from.y));
+        ur_vec2 p = ur_vec2_make(out.x + from.x, out.y + from.y);
+        if (p.x < box[0] || p.x > box[2] || p.y < box[1] || p.y > box[3])
+            return;
+        double before = best->cost;
+        try_place(c, i, best->turn, p, best);
+        if (best->cost >= before)
+            return;
+    }
+}
+
+/*
  * Moves part i to where it overlaps the others least (weighted): random
  * places across the strip at random turns and near where it is, the best
  * refined.  False on a failure.
@@ -632,6 +722,7 @@ static bool move_part(compactor *c, size_t i)
         return true;                       /* no turn fits the strip: the caller keeps it longer */
     (void)inner_fit(c, i, best.turn, box); /* it fits: best was found inside it */
     refine(c, i, box, size, &best);
+    push_out(c, i, box, &best);
     c->now.turn[i] = best.turn;
     c->now.at[i] = best.at;
     return update_depths(c, i);
@@ -925,13 +1016,47 @@ static bool catch_up(compactor *c, double *best_length)
 }
 
 /*
+ * Keeps the layout in c->now, whose total overlap is total, among the near
+ * misses if it is among the NEAR_MISSES least; the most overlapping one
+ * drops out when they are full.
+ */
+static void keep_near_miss(compactor *c, double total)
+{
+    near_misses *m = &c->misses;
+    size_t at = m->count;
+    while (at > 0 && m->total[at - 1] > total)
+        at--;
+    if (at == NEAR_MISSES)
+        return;
+    size_t last = m->count < NEAR_MISSES ? m->count++ : NEAR_MISSES - 1;
+    state spare = m->layout[last]; /* its arrays are reused for the new one */
+    for (size_t k = last; k > at; k--) {
+        m->layout[k] = m->layout[k - 1];
+        m->total[k] = m->total[k - 1];
+    }
+    m->layout[at] = spare;
+    m->total[at] = total;
+    copy_state(c, &m->layout[at], &c->now);
+}
+
+/* One of the near misses (there is one at least), the least overlapping most often. */
+static const state *pick_near_miss(compactor *c)
+{
+    double u = uniform(&c->random), v = uniform(&c->random);
+    double spread = fabs(sqrt(-2 * log(1 - u)) * cos(2 * M_PI * v)) * NEAR_MISS_SPREAD;
+    size_t k = (size_t)(fmin(spread, 0.999) * (double)c->misses.count);
+    return &c->misses.layout[k < c->misses.count ? k : c->misses.count - 1];
+}
+
+/*
  * Exploration: the strip cut by EXPLORE_CUT from the best, and separated
- * again and again from the least overlapping layout, jolted, until a
- * layout fits, the phase's time is up or another search gets ahead.
- * False when it stops without a layout (or *status says why).
+ * again and again, each time from one of the near misses so far, jolted,
+ * until a layout fits, the phase's time is up or another search gets
+ * ahead.  False when it stops without a layout (or *status says why).
  */
 static bool explore_once(compactor *c, double length, double until, ur_status *status)
 {
+    c->misses.count = 0;
     copy_state(c, &c->now, &c->best);
     if (!cut_to(c, length)) {
         *status = ur_error_out_of_memory(&c->error);
@@ -943,7 +1068,8 @@ static bool explore_once(compactor *c, double length, double until, ur_status *s
     while (!fits && *status == UR_OK && nest_seconds_now() < until && !overtaken(c)) {
         fits = separate(c, status);
         if (!fits && *status == UR_OK) {
-            copy_state(c, &c->now, &c->least);
+            keep_near_miss(c, total_depth(c)); /* separate left its least in c->now */
+            copy_state(c, &c->now, pick_near_miss(c));
             if (!disrupt(c))
                 *status = ur_error_out_of_memory(&c->error);
         }
@@ -1017,6 +1143,10 @@ static void compactor_free(compactor *c)
     free(c->weight);
     free(c->row);
     free(c->order);
+    for (size_t k = 0; k < NEAR_MISSES; k++) {
+        free(c->misses.layout[k].turn);
+        free(c->misses.layout[k].at);
+    }
 }
 
 /*
@@ -1042,6 +1172,12 @@ static bool compactor_make(compactor *c, nester *n, size_t count, shared_best *s
         !c->least.turn || !c->least.at || !c->depth || !c->weight || !c->row || !c->nfps ||
         !c->order)
         return false;
+    for (size_t m = 0; m < NEAR_MISSES; m++) {
+        state *miss = &c->misses.layout[m];
+        *miss = (state){calloc(count, sizeof(size_t)), calloc(count, sizeof(ur_vec2))};
+        if (!miss->turn || !miss->at)
+            return false;
+    }
     size_t roll = n->remnant_count;
     for (size_t p = 0, i = 0; p < n->placed_count; p++)
         if (n->sheet_of[p] == roll) {
