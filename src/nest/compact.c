@@ -10,7 +10,8 @@
  * before it), and then separates them: each overlapping part
  * in turn moves to the place and turn where it overlaps the others least
  * (random places across the strip at random turns, and near its own, the
- * best refined by smaller and smaller steps).  Overlap is the penetration
+ * best refined by smaller and smaller steps, then pushed out of the part
+ * it overlaps most, to touch it exactly).  Overlap is the penetration
  * depth: how far a part must move to leave another, read off their no-fit
  * polygon (the distance from the one's origin to that polygon's edge when
  * it lies inside); a part's cost at a place is the sum of its squared
@@ -19,8 +20,9 @@
  * other instead of stopping at the first crowded layout.
  *
  * Exploration (most of the time) cuts 1% at a time; when the parts cannot
- * be separated it jolts the least overlapping layout (two parts trade
- * places) and tries the same length again.  Compression (the rest) cuts
+ * be separated it keeps the least overlapping layout among its near misses
+ * at that length, jolts one of the best of them (two parts trade places)
+ * and tries the same length again.  Compression (the rest) cuts
  * less and less from the best, once each.  Only layouts with no overlap
  * left are kept, so what the nester writes never overlaps.
  *
