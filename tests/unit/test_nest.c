@@ -150,6 +150,18 @@ static void free_pieces(ur_piece *pieces, size_t count)
         ur_piece_free(&pieces[k]);
 }
 
+/* Nests the pieces on sheets, checks the layout and that it takes that many sheets. */
+static void check_sheets_used(const ur_piece *pieces, size_t count, const ur_nest_options *o,
+                              size_t sheets)
+{
+    ur_layout layout;
+    ur_error error;
+    assert_int_equal(ur_layout_nest(pieces, count, o, &layout, &error), UR_OK);
+    assert_int_equal(layout.sheet_count, sheets);
+    check_layout(pieces, count, &layout, o);
+    ur_layout_free(&layout);
+}
+
 static void test_rectangles_tile_one_sheet(void **state)
 {
     (void)state;
@@ -157,12 +169,7 @@ static void test_rectangles_tile_one_sheet(void **state)
     for (int k = 0; k < 4; k++)
         pieces[k] = rectangle("tile", 300, 200);
     ur_nest_options o = sheet_options(600, 400, 0, 0, 4, false);
-    ur_layout layout;
-    ur_error error;
-    assert_int_equal(ur_layout_nest(pieces, 4, &o, &layout, &error), UR_OK);
-    assert_int_equal(layout.sheet_count, 1);
-    check_layout(pieces, 4, &layout, &o);
-    ur_layout_free(&layout);
+    check_sheets_used(pieces, 4, &o, 1);
     free_pieces(pieces, 4);
 }
 
@@ -206,16 +213,9 @@ static void test_part_goes_in_a_hole(void **state)
     pieces[0].measures.flat_area = 10000 - 3600;
     pieces[1] = rectangle("plug", 50, 50);
     ur_nest_options o = sheet_options(110, 110, 2, 2, 4, false);
-    ur_layout layout;
-    ur_error error;
-    assert_int_equal(ur_layout_nest(pieces, 2, &o, &layout, &error), UR_OK);
-    assert_int_equal(layout.sheet_count, 1);
-    check_layout(pieces, 2, &layout, &o);
-    ur_layout_free(&layout);
+    check_sheets_used(pieces, 2, &o, 1);
     o.holes = false; /* without holes the plug needs a sheet of its own */
-    assert_int_equal(ur_layout_nest(pieces, 2, &o, &layout, &error), UR_OK);
-    assert_int_equal(layout.sheet_count, 2);
-    ur_layout_free(&layout);
+    check_sheets_used(pieces, 2, &o, 2);
     free_pieces(pieces, 2);
 }
 
@@ -231,12 +231,7 @@ static void test_l_shapes_interlock(void **state)
     ur_vec2 ring[6] = {{0, 0}, {60, 0}, {60, 10}, {10, 10}, {10, 60}, {0, 60}};
     ur_piece pieces[2] = {polygon_piece("L1", ring, 6), polygon_piece("L2", ring, 6)};
     ur_nest_options o = sheet_options(74, 74, 1, 1, 4, false);
-    ur_layout layout;
-    ur_error error;
-    assert_int_equal(ur_layout_nest(pieces, 2, &o, &layout, &error), UR_OK);
-    assert_int_equal(layout.sheet_count, 1);
-    check_layout(pieces, 2, &layout, &o);
-    ur_layout_free(&layout);
+    check_sheets_used(pieces, 2, &o, 1);
     free_pieces(pieces, 2);
 }
 
@@ -254,12 +249,7 @@ static void test_part_fits_a_notch_exactly(void **state)
     ur_piece pieces[2] = {polygon_piece("U", u, 8), rectangle("key", 60, 70)};
     for (size_t rotations = 1; rotations <= 4; rotations *= 2) {
         ur_nest_options o = sheet_options(100, 100, 0, 0, rotations, false);
-        ur_layout layout;
-        ur_error error;
-        assert_int_equal(ur_layout_nest(pieces, 2, &o, &layout, &error), UR_OK);
-        assert_int_equal(layout.sheet_count, 1);
-        check_layout(pieces, 2, &layout, &o);
-        ur_layout_free(&layout);
+        check_sheets_used(pieces, 2, &o, 1);
     }
     free_pieces(pieces, 2);
 }
