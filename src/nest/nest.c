@@ -17,9 +17,9 @@
  *
  * Parts are grown by half the spacing before the no-fit polygons are made,
  * so parts that touch there keep the spacing between them; the no-fit
- * polygons are a micrometre smaller (NEST_EXACT_FIT) so that a part that
- * fits exactly (a tile in a row of tiles) still finds the place where it
- * fits.
+ * polygons are a millionth of a millimetre smaller (NEST_EXACT_FIT) so
+ * that a part that fits exactly (a tile in a row of tiles) still finds the
+ * place where it fits.
  */
 #include "nest_internal.h"
 

@@ -19,8 +19,9 @@
  * of a millimetre, before their sums are made.  Where B fits A exactly (a
  * part in a notch of its own width) the sums only touch: the places where
  * B fits form a line or a point, and their union would close it, as if B
- * could never go there.  Shrunk, the sums leave a corridor that wide, and
- * the nester and compact.c's search can find the fit.
+ * could never go there.  Shrunk, the sums leave a corridor a millionth of
+ * a millimetre wide there, where the nester and compact.c's search can
+ * find the fit.
  */
 #include "nest_internal.h"
 
