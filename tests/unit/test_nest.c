@@ -72,7 +72,6 @@ static GEOSGeometry *placed_polygon(const ur_piece *piece, ur_transform2 t)
     return GEOSGeom_createPolygon_r(geos, shell, holes, hole_count);
 }
 
-/* The invariants every layout keeps. */
 /*
  * How deep two touching parts overlap, on average along the shorter
  * outline (mm): their common area over that outline's length.  The nester
@@ -91,6 +90,7 @@ static double overlap_depth(const GEOSGeometry *a, const GEOSGeometry *b)
     return area / fmin(length_a, length_b);
 }
 
+/* The invariants every layout keeps. */
 static void check_layout(const ur_piece *pieces, size_t count, const ur_layout *layout,
                          const ur_nest_options *o)
 {
