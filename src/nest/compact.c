@@ -303,13 +303,18 @@ static inline bool inside_of(const flat_nfp *f, ur_vec2 p)
     return inside;
 }
 
+/* How far along an edge (0 to 1) its point nearest to p lies. */
+static inline double edge_fraction(const flat_edge *e, ur_vec2 p)
+{
+    double s = ((p.x - e->ax) * e->dx + (p.y - e->ay) * e->dy) * e->inverse;
+    return s < 0 ? 0 : s > 1 ? 1 : s;
+}
+
 /* The squared distance from p to an edge. */
 static inline double edge_distance2(const flat_edge *e, ur_vec2 p)
 {
-    double px = p.x - e->ax, py = p.y - e->ay;
-    double s = (px * e->dx + py * e->dy) * e->inverse;
-    s = s < 0 ? 0 : s > 1 ? 1 : s;
-    double ex = px - s * e->dx, ey = py - s * e->dy;
+    double s = edge_fraction(e, p);
+    double ex = p.x - e->ax - s * e->dx, ey = p.y - e->ay - s * e->dy;
     return ex * ex + ey * ey;
 }
 
@@ -475,6 +480,27 @@ static const flat_nfp *nfp_between(compactor *c, size_t a, size_t ta, size_t b, 
 }
 
 /*
+ * The edge of f's rings nearest to p, a point in the given cell, among
+ * those the cell lists (the only ones that can be nearest); its squared
+ * distance in *distance2.
+ */
+static inline const flat_edge *nearest_edge(const flat_nfp *f, size_t cell, ur_vec2 p,
+                                            double *distance2)
+{
+    const flat_edge *nearest = NULL;
+    *distance2 = INFINITY;
+    for (size_t k = f->cell_start[cell]; k < f->cell_start[cell + 1]; k++) {
+        const flat_edge *e = &f->edges[f->cell_edges[k]];
+        double d2 = edge_distance2(e, p);
+        if (d2 < *distance2) {
+            *distance2 = d2;
+            nearest = e;
+        }
+    }
+    return nearest;
+}
+
+/*
  * How far p lies inside the no-fit polygon (0 outside): the penetration
  * depth, the distance to the nearest edge of its rings.
  */
@@ -486,11 +512,8 @@ static double depth_in(const flat_nfp *f, ur_vec2 p)
     if (f->cell_kind[cell] == CELL_OUTSIDE ||
         (f->cell_kind[cell] == CELL_ACROSS && !inside_of(f, p)))
         return 0;
-    double nearest = INFINITY;
-    for (size_t k = f->cell_start[cell]; k < f->cell_start[cell + 1]; k++) {
-        double d2 = edge_distance2(&f->edges[f->cell_edges[k]], p);
-        nearest = d2 < nearest ? d2 : nearest;
-    }
+    double nearest;
+    (void)nearest_edge(f, cell, p, &nearest);
     double depth = sqrt(nearest);
     return depth > TOUCHING ? depth : 0;
 }
@@ -501,19 +524,10 @@ static double depth_in(const flat_nfp *f, ur_vec2 p)
  */
 static ur_vec2 way_out(const flat_nfp *f, ur_vec2 p)
 {
-    size_t cell = cell_of(f, p);
-    double nearest = INFINITY;
-    ur_vec2 edge_point = p;
-    for (size_t k = f->cell_start[cell]; k < f->cell_start[cell + 1]; k++) {
-        const flat_edge *e = &f->edges[f->cell_edges[k]];
-        double d2 = edge_distance2(e, p);
-        if (d2 < nearest) {
-            double s = ((p.x - e->ax) * e->dx + (p.y - e->ay) * e->dy) * e->inverse;
-            s = s < 0 ? 0 : s > 1 ? 1 : s;
-            nearest = d2;
-            edge_point = ur_vec2_make(e->ax + s * e->dx, e->ay + s * e->dy);
-        }
-    }
+    double nearest;
+    const flat_edge *e = nearest_edge(f, cell_of(f, p), p, &nearest);
+    double s = e ? edge_fraction(e, p) : 0;
+    ur_vec2 edge_point = e ? ur_vec2_make(e->ax + s * e->dx, e->ay + s * e->dy) : p;
     double dx = edge_point.x - p.x, dy = edge_point.y - p.y, length = hypot(dx, dy);
     if (length == 0)
         return p;
