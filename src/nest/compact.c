@@ -712,8 +712,9 @@ static void push_out(const compactor *c, size_t i, const double *box, candidate 
             double d = j == i ? 0
                               : depth_in(row[j], ur_vec2_make(best->at.x - c->now.at[j].x,
                                                               best->at.y - c->now.at[j].y));
-            if (d > 0 && pair_cost(c, i, j, d) > most_cost) {
-                most_cost = pair_cost(c, i, j, d);
+            double cost = d > 0 ? pair_cost(c, i, j, d) : 0;
+            if (cost > most_cost) {
+                most_cost = cost;
                 most = j;
             }
         }
@@ -731,6 +732,13 @@ static void push_out(const compactor *c, size_t i, const double *box, candidate 
     }
 }
 
+/* Part i's size: the longer side of its box at turn 0. */
+static double part_size(const compactor *c, size_t i)
+{
+    const nest_shape *shape = nest_shape_of(c->n, c->piece[i], 0);
+    return fmax(ur_box_width(shape->box), ur_box_height(shape->box));
+}
+
 /*
  * Moves part i to where it overlaps the others least (weighted): random
  * places across the strip at random turns and near where it is, the best
@@ -740,8 +748,7 @@ static bool move_part(compactor *c, size_t i)
 {
     nester *n = c->n;
     size_t turns = n->classes[n->class_of[c->piece[i]]].turn_count;
-    const nest_shape *shape = nest_shape_of(n, c->piece[i], 0);
-    double size = fmax(ur_box_width(shape->box), ur_box_height(shape->box));
+    double size = part_size(c, i);
     double box[4];
     size_t turn = c->now.turn[i];
     if (!fill_rows(c, i, turns))
@@ -1202,15 +1209,15 @@ static void compactor_free(compactor *c)
 /* Each pair's size and floor for pair_cost, from the parts' areas and sizes at turn 0. */
 static void size_pairs(compactor *c)
 {
-    for (size_t i = 0; i < c->count; i++)
+    for (size_t i = 0; i < c->count; i++) {
+        double area_i = nest_shape_of(c->n, c->piece[i], 0)->area;
         for (size_t j = 0; j < c->count; j++) {
-            const nest_shape *a = nest_shape_of(c->n, c->piece[i], 0);
-            const nest_shape *b = nest_shape_of(c->n, c->piece[j], 0);
-            double size_a = fmax(ur_box_width(a->box), ur_box_height(a->box));
-            double size_b = fmax(ur_box_width(b->box), ur_box_height(b->box));
-            c->pair_scale[i * c->count + j] = sqrt(sqrt(a->area) * sqrt(b->area));
-            c->pair_floor[i * c->count + j] = OVERLAP_FLOOR * fmax(size_a, size_b);
+            double area_j = nest_shape_of(c->n, c->piece[j], 0)->area;
+            c->pair_scale[i * c->count + j] = sqrt(sqrt(area_i) * sqrt(area_j));
+            c->pair_floor[i * c->count + j] =
+                OVERLAP_FLOOR * fmax(part_size(c, i), part_size(c, j));
         }
+    }
 }
 
 /*
