@@ -16,6 +16,16 @@ lampshade.gltf       the same surface, buffer embedded; the back half is
 lampshade.glb        the same surface, one half-mesh used by two nodes, the
                      second mirrored (scale 1,-1,1): the importer must apply
                      it and turn the mirrored triangles round
+cube.obj             a cube of side 100 mm, six quads (papercraft: six squares)
+uvsphere.obj         a UV sphere of radius 50 mm, 32 segments and 16 rings, as
+                     a modeller makes one: quads, triangle fans at the poles
+torus.obj            a torus (radii 60 and 20 mm, 24 by 12) of planar quads
+grid-hole.obj        a 3 x 3 grid of 20 mm quads, its centre quad a group of
+                     its own, and a 2 x 2 frame of quads around a square hole
+                     beside it: seams that are closed loops
+head.obj             a closed head-like mesh (about 120 mm tall): a smooth
+                     skull and cheeks, a nose, a flat base meeting the sides
+                     at a sharp edge
 
 Every coordinate is rounded to a 32-bit float first, because that is what
 assimp reads: the formats then hold exactly the same numbers.  Triangles run
@@ -324,6 +334,125 @@ def write_icosphere_obj(path):
     write_text(path, lines)
 
 
+# ---- Papercraft meshes ---------------------------------------------------------
+
+
+def write_faces_obj(path, comment, vertices, groups):
+    """An OBJ of vertices (mm) and groups [(name or None, faces)], faces 0-based."""
+    lines = ["# " + line for line in comment] + ["# Written by samples/make-meshes.py."]
+    lines += ["v " + point(tuple(round(c, 6) + 0.0 for c in v)) for v in vertices]
+    for name, faces in groups:
+        if name:
+            lines.append("g " + name)
+        lines += ["f " + " ".join(str(i + 1) for i in face) for face in faces]
+    write_text(path, lines)
+
+
+def cube(side):
+    h = side / 2
+    vertices = [(x, y, z) for z in (-h, h) for y in (-h, h) for x in (-h, h)]
+    faces = [(0, 2, 3, 1), (4, 5, 7, 6), (0, 1, 5, 4), (2, 6, 7, 3), (0, 4, 6, 2), (1, 3, 7, 5)]
+    return vertices, faces
+
+
+def uv_sphere(radius, segments, rings):
+    """Blender's UV sphere: a vertex at each pole, quads between rings, fans at the poles."""
+    vertices = [(0.0, 0.0, radius)]
+    for ring in range(1, rings):
+        polar = math.pi * ring / rings
+        for s in range(segments):
+            a = 2 * math.pi * s / segments
+            vertices.append((radius * math.sin(polar) * math.cos(a),
+                             radius * math.sin(polar) * math.sin(a), radius * math.cos(polar)))
+    vertices.append((0.0, 0.0, -radius))
+    bottom = len(vertices) - 1
+
+    def at(ring, s):
+        return 1 + (ring - 1) * segments + s % segments
+
+    faces = [(0, at(1, s), at(1, s + 1)) for s in range(segments)]
+    for ring in range(1, rings - 1):
+        faces += [(at(ring, s), at(ring + 1, s), at(ring + 1, s + 1), at(ring, s + 1))
+                  for s in range(segments)]
+    faces += [(at(rings - 1, s), bottom, at(rings - 1, s + 1)) for s in range(segments)]
+    return vertices, faces
+
+
+def torus(major, minor, around, across):
+    vertices = []
+    for i in range(around):
+        a = 2 * math.pi * i / around
+        for j in range(across):
+            b = 2 * math.pi * j / across
+            r = major + minor * math.cos(b)
+            vertices.append((r * math.cos(a), r * math.sin(a), minor * math.sin(b)))
+
+    def at(i, j):
+        return (i % around) * across + j % across
+
+    faces = [(at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1))
+             for i in range(around) for j in range(across)]
+    return vertices, faces
+
+
+def grid_with_hole():
+    """A 3 x 3 grid (centre quad grouped apart) and, beside it, a frame round a hole."""
+    size = 20.0
+    vertices = [(x * size, y * size, 0.0) for y in range(4) for x in range(4)]
+
+    def at(x, y):
+        return y * 4 + x
+
+    quads = {(x, y): (at(x, y), at(x + 1, y), at(x + 1, y + 1), at(x, y + 1))
+             for x in range(3) for y in range(3)}
+    rim = [quads[k] for k in sorted(quads) if k != (1, 1)]
+    # The frame: a 3 x 3 block of quads 100 mm to the right, its centre left open.
+    first = len(vertices)
+    vertices += [(100.0 + x * size, y * size, 0.0) for y in range(4) for x in range(4)]
+    frame = [(first + at(x, y), first + at(x + 1, y), first + at(x + 1, y + 1),
+              first + at(x, y + 1)) for x in range(3) for y in range(3) if (x, y) != (1, 1)]
+    return vertices, [("rim", rim), ("centre", [quads[(1, 1)]]), ("frame", frame)]
+
+
+def head(segments=32, rings=20):
+    """A closed head-like mesh: an egg-shaped skull, a nose, cheeks, a flat base."""
+    vertices, faces = uv_sphere(1.0, segments, rings)
+    base = -0.72  # the sphere is cut flat here: the base meets the sides at a sharp edge
+    shaped = []
+    for x, y, z in vertices:
+        z = max(z, base)
+        # Nose: a bump towards -y, just below the middle.
+        nose = 0.32 * math.exp(-((x / 0.16) ** 2 + ((z + 0.05) / 0.22) ** 2)) if y < 0 else 0.0
+        # Cheeks and jaw: narrower at the bottom, a wider skull at the top.
+        width = 0.85 + 0.12 * z
+        shaped.append((60 * width * x, 60 * (y * 0.95 - nose), 60 * 1.05 * z))
+    return shaped, faces
+
+
+def write_papercraft_meshes():
+    write_faces_obj(os.path.join(HERE, "cube.obj"), ["Cube of side 100 mm (mm), six quads."],
+                    *cube_groups(100.0))
+    v, f = uv_sphere(50.0, 32, 16)
+    write_faces_obj(os.path.join(HERE, "uvsphere.obj"),
+                    ["UV sphere of radius 50 mm (mm), 32 segments, 16 rings."], v, [("sphere", f)])
+    v, f = torus(60.0, 20.0, 24, 12)
+    write_faces_obj(os.path.join(HERE, "torus.obj"),
+                    ["Torus, radii 60 and 20 mm (mm), 24 x 12 planar quads."], v, [("torus", f)])
+    v, groups = grid_with_hole()
+    write_faces_obj(os.path.join(HERE, "grid-hole.obj"),
+                    ["A 3 x 3 grid of 20 mm quads, its centre quad a group of its own,",
+                     "and a frame of 8 quads round a square hole (mm)."], v, groups)
+    v, f = head()
+    write_faces_obj(os.path.join(HERE, "head.obj"),
+                    ["A closed head-like mesh (mm): a smooth skull, a nose, a flat base",
+                     "meeting the sides at a sharp edge."], v, [("head", f)])
+
+
+def cube_groups(side):
+    v, f = cube(side)
+    return v, [("cube", f)]
+
+
 # ---- Files -------------------------------------------------------------------
 
 
@@ -345,6 +474,7 @@ def main():
     write_lampshade_ply(os.path.join(HERE, "lampshade.ply"))
     write_lampshade_gltf(os.path.join(HERE, "lampshade.gltf"))
     write_lampshade_glb(os.path.join(HERE, "lampshade.glb"))
+    write_papercraft_meshes()
 
 
 if __name__ == "__main__":
