@@ -298,6 +298,26 @@ static bool grid_make(nester *n, size_t sheet, size_t piece, size_t turn, room_g
 }
 
 /*
+ * Whether the no-fit polygon of piece (at turn) around placement p can
+ * reach into a cell (x0, y0, x1, y1).  A no-fit polygon lies in the sum of
+ * its two shapes' boxes, a + (-b); the box test spares making the no-fit
+ * polygons of parts far apart, most of them on a sheet of many small
+ * parts.  The slack covers the turned no-fit polygons of nest_nfp_of,
+ * which equal the sums of the turned shapes only to rounding.
+ */
+static bool nfp_may_reach(const nester *n, const placed *p, size_t piece, size_t turn,
+                          const double *cell)
+{
+    const ur_box *a = &nest_shape_of(n, p->piece, p->turn)->reach;
+    const ur_box *b = &nest_shape_of(n, piece, turn)->reach;
+    double slack =
+        1e-3 + 1e-3 * (ur_box_width(*a) + ur_box_height(*a) + ur_box_width(*b) + ur_box_height(*b));
+    double x0 = p->at.x + a->min.x - b->max.x - slack, x1 = p->at.x + a->max.x - b->min.x + slack;
+    double y0 = p->at.y + a->min.y - b->max.y - slack, y1 = p->at.y + a->max.y - b->min.y + slack;
+    return x0 < cell[2] && x1 > cell[0] && y0 < cell[3] && y1 > cell[1];
+}
+
+/*
  * Cuts out of cell c the no-fit polygons (with piece at turn) of the parts
  * placed on the sheet since it was last brought up to date, those whose
  * box reaches into it.  False on a GEOS failure.
@@ -311,6 +331,8 @@ static bool cell_update(nester *n, size_t sheet, size_t piece, size_t turn, room
         if (n->sheet_of[k] != sheet)
             continue;
         placed *p = &n->placements[k];
+        if (!nfp_may_reach(n, p, piece, turn, box))
+            continue; /* too far away to matter: its no-fit polygon is never made */
         const GEOSGeometry *nfp = nest_nfp_of(n, p->piece, p->turn, piece, turn);
         double x0, y0, x1, y1;
         if (!nfp || !GEOSGeom_getXMin_r(n->geos, nfp, &x0) ||

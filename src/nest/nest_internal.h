@@ -36,7 +36,8 @@ typedef struct nest_shape {
     GEOSGeometry *polygon;
     GEOSGeometry **convex; /* owned parts */
     size_t convex_count;
-    ur_box box; /* of the turned outline itself */
+    ur_box box;   /* of the turned outline itself */
+    ur_box reach; /* of polygon: the outline grown, as its no-fit polygons see it */
     double angle;
     double area; /* of the piece itself (outline less holes) */
 } nest_shape;

@@ -207,6 +207,81 @@ static bool shrink_parts(GEOSContextHandle_t geos, nest_shape *shape)
     return shrunk;
 }
 
+/* Appends the triangles of a triangulation to the shape's convex parts (room made by the caller).
+ */
+static void take_triangles(GEOSContextHandle_t geos, const GEOSGeometry *triangles,
+                           nest_shape *shape)
+{
+    int count = GEOSGetNumGeometries_r(geos, triangles);
+    for (int k = 0; k < count; k++) {
+        GEOSGeometry *triangle = GEOSGeom_clone_r(geos, GEOSGetGeometryN_r(geos, triangles, k));
+        if (triangle)
+            shape->convex[shape->convex_count++] = triangle;
+    }
+}
+
+static bool grow_parts(nest_shape *shape, size_t more, size_t *room)
+{
+    if (shape->convex_count + more <= *room)
+        return true;
+    size_t wanted = 2 * (shape->convex_count + more);
+    GEOSGeometry **grown = realloc(shape->convex, wanted * sizeof *grown);
+    if (!grown)
+        return false;
+    shape->convex = grown;
+    *room = wanted;
+    return true;
+}
+
+/* Halves of a polygon's box beyond which a failed triangulation gives up. */
+#define MOST_HALVINGS 12
+
+/*
+ * The polygon's triangles added to the shape's parts.  GEOS 3.11's
+ * triangulation fails on some valid polygons ("unable to find a convex
+ * corner", on long zigzag outlines such as a papercraft net's); cut in two
+ * across its longer side, each half triangulates, and merge_parts joins
+ * the triangles across the cut again.  False on failure.
+ */
+static bool triangulate(GEOSContextHandle_t geos, const GEOSGeometry *polygon, int halvings,
+                        nest_shape *shape, size_t *room)
+{
+    GEOSGeometry *triangles = GEOSConstrainedDelaunayTriangulation_r(geos, polygon);
+    if (triangles) {
+        int count = GEOSGetNumGeometries_r(geos, triangles);
+        bool grown = grow_parts(shape, count > 0 ? (size_t)count : 0, room);
+        if (grown)
+            take_triangles(geos, triangles, shape);
+        GEOSGeom_destroy_r(geos, triangles);
+        return grown;
+    }
+    if (halvings >= MOST_HALVINGS)
+        return false;
+    double box[4];
+    box_of(geos, polygon, box);
+    bool across_x = box[2] - box[0] >= box[3] - box[1];
+    double middle = across_x ? (box[0] + box[2]) / 2 : (box[1] + box[3]) / 2;
+    bool done = true;
+    for (int half = 0; done && half < 2; half++) {
+        double x0 = box[0], y0 = box[1], x1 = box[2], y1 = box[3];
+        if (across_x)
+            *(half ? &x0 : &x1) = middle;
+        else
+            *(half ? &y0 : &y1) = middle;
+        GEOSGeometry *part = GEOSClipByRect_r(geos, polygon, x0, y0, x1, y1);
+        int count = part ? GEOSGetNumGeometries_r(geos, part) : -1;
+        done = count >= 0;
+        for (int k = 0; done && k < count; k++) {
+            const GEOSGeometry *piece = GEOSGetGeometryN_r(geos, part, k);
+            if (GEOSGeomTypeId_r(geos, piece) == GEOS_POLYGON && !GEOSisEmpty_r(geos, piece))
+                done = triangulate(geos, piece, halvings + 1, shape, room);
+        }
+        if (part)
+            GEOSGeom_destroy_r(geos, part);
+    }
+    return done;
+}
+
 /*
  * The polygon's triangles (GEOS's constrained Delaunay triangulation),
  * merged into convex parts and shrunk.
@@ -214,21 +289,9 @@ static bool shrink_parts(GEOSContextHandle_t geos, nest_shape *shape)
 static ur_status convex_parts(GEOSContextHandle_t geos, const GEOSGeometry *polygon,
                               nest_shape *shape, ur_error *error)
 {
-    GEOSGeometry *triangles = GEOSConstrainedDelaunayTriangulation_r(geos, polygon);
-    if (!triangles)
+    size_t room = 0;
+    if (!triangulate(geos, polygon, 0, shape, &room))
         return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not triangulate a piece");
-    int count = GEOSGetNumGeometries_r(geos, triangles);
-    shape->convex = calloc(count > 0 ? (size_t)count : 1, sizeof *shape->convex);
-    if (!shape->convex) {
-        GEOSGeom_destroy_r(geos, triangles);
-        return ur_error_out_of_memory(error);
-    }
-    for (int k = 0; k < count; k++) {
-        GEOSGeometry *triangle = GEOSGeom_clone_r(geos, GEOSGetGeometryN_r(geos, triangles, k));
-        if (triangle)
-            shape->convex[shape->convex_count++] = triangle;
-    }
-    GEOSGeom_destroy_r(geos, triangles);
     merge_parts(geos, shape);
     if (!shrink_parts(geos, shape))
         return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not shrink a piece's parts");
@@ -266,9 +329,12 @@ ur_status nest_shape_make(GEOSContextHandle_t geos, const ur_piece *piece, doubl
     shape->polygon = exact ? grown(geos, exact, grow, tolerance) : NULL;
     if (exact)
         GEOSGeom_destroy_r(geos, exact);
+    double reach[4];
     if (!shape->polygon)
         return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not prepare piece %s to nest",
                             piece->name);
+    box_of(geos, shape->polygon, reach);
+    shape->reach = (ur_box){{reach[0], reach[1]}, {reach[2], reach[3]}};
     return convex_parts(geos, shape->polygon, shape, error);
 }
 
@@ -334,6 +400,11 @@ GEOSGeometry *nest_nfp(GEOSContextHandle_t geos, const nest_shape *a, const nest
             else if (sum)
                 GEOSGeom_destroy_r(geos, sum);
         }
+    if (made == 1) { /* two convex parts: their sum is convex, and the union would only copy it */
+        GEOSGeometry *only = sums[0];
+        free(sums);
+        return only;
+    }
     GEOSGeometry *collection =
         GEOSGeom_createCollection_r(geos, GEOS_MULTIPOLYGON, sums, (unsigned)made);
     free(sums);

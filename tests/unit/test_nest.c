@@ -517,6 +517,40 @@ static void test_roll_is_shortened(void **state)
     free_pieces(pieces, COUNT);
 }
 
+/*
+ * The outline of an unfolded UV sphere's largest piece (tests/data/nest/):
+ * a long zigzag of 1,874 points.  Levelled and grown by 1 mm (2 mm apart,
+ * as on the CO2 laser's profile), GEOS 3.11 fails to triangulate it whole;
+ * nesting must still place two of it, apart.
+ */
+static void test_long_zigzag_nests(void **state)
+{
+    (void)state;
+    FILE *file = fopen("tests/data/nest/sphere-net.csv", "r");
+    assert_non_null(file);
+    ur_vec2 *ring = NULL;
+    size_t count = 0, room = 0;
+    char line[128];
+    while (fgets(line, sizeof line, file)) {
+        ur_vec2 p;
+        if (line[0] == '#' || sscanf(line, "%lf,%lf", &p.x, &p.y) != 2)
+            continue;
+        if (count == room) {
+            room = room ? 2 * room : 256;
+            ring = realloc(ring, room * sizeof *ring);
+            assert_non_null(ring);
+        }
+        ring[count++] = p;
+    }
+    fclose(file);
+    assert_true(count > 1000);
+    ur_piece pieces[2] = {polygon_piece("Z1", ring, count), polygon_piece("Z2", ring, count)};
+    free(ring);
+    ur_nest_options o = sheet_options(1000, 1000, 5, 2, 4, true);
+    check_sheets_used(pieces, 2, &o, 1);
+    free_pieces(pieces, 2);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -532,6 +566,7 @@ int main(void)
         cmocka_unit_test(test_turns_of_each_piece),
         cmocka_unit_test(test_turned_parts_keep_apart),
         cmocka_unit_test(test_roll_is_shortened),
+        cmocka_unit_test(test_long_zigzag_nests),
     };
     return cmocka_run_group_tests(tests, start, finish);
 }
