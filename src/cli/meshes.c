@@ -432,6 +432,33 @@ static int nets_of_mesh(const cli_job *job, const cli_room *room, const ur_mater
     return code;
 }
 
+/*
+ * A model this small (mm) was most likely drawn in metres, as Blender's
+ * are, or in inches: mesh files carry no unit, and read as millimetres a
+ * chair becomes a crumb.
+ */
+#define TINY_MODEL 10.0
+
+/* Without --units or --scale, a mesh smaller than TINY_MODEL gets a warning naming both. */
+static void warn_if_tiny(const cli_job *job, const ur_mesh *mesh)
+{
+    if (job->quiet || mesh->vertex_count == 0)
+        return;
+    ur_vec3 low = mesh->vertices[0], high = mesh->vertices[0];
+    for (size_t v = 1; v < mesh->vertex_count; v++) {
+        ur_vec3 p = mesh->vertices[v];
+        low = ur_vec3_make(fmin(low.x, p.x), fmin(low.y, p.y), fmin(low.z, p.z));
+        high = ur_vec3_make(fmax(high.x, p.x), fmax(high.y, p.y), fmax(high.z, p.z));
+    }
+    double size = fmax(high.x - low.x, fmax(high.y - low.y, high.z - low.z));
+    if (!(size < TINY_MODEL) || !(size > 0))
+        return;
+    cli_message("%s: warning: %s is only %.3g mm across, read in millimetres; if it was "
+                "modelled in metres (as Blender's are) give --units m (%.4g mm), in inches "
+                "--units in (%.4g mm), or --scale S",
+                job->command, job->mesh_path, size, size * 1000, size * 25.4);
+}
+
 int cli_mesh_nets(const cli_job *job, const cli_room *room, const ur_material *material,
                   ur_net_list *nets, double *area)
 {
@@ -454,6 +481,8 @@ int cli_mesh_nets(const cli_job *job, const cli_room *room, const ur_material *m
     ur_error error;
     if (ur_mesh_import(job->mesh_path, &options, &mesh, NULL, &error) != UR_OK)
         return fail(job, &error);
+    if (!job->unit_name && isnan(job->scale))
+        warn_if_tiny(job, &mesh);
     code = nets_of_mesh(job, room, material, &mesh, true, nets, area);
     ur_mesh_free(&mesh);
     return code;

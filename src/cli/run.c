@@ -292,7 +292,10 @@ ur_status cli_place_pieces(const cli_job *job, const ur_machine *machine,
                            const ur_material *material, const ur_piece *pieces, size_t count,
                            ur_layout *layout, ur_error *error)
 {
-    /* The first sheet every piece fits; the error of the last one tried otherwise. */
+    /*
+     * The first sheet every piece fits; otherwise the error of the largest
+     * one tried, which names the sheet that came closest.
+     */
     ur_sheet_size choices[UR_MAX_STOCK_SIZES + 1];
     size_t choice_count = sheet_choices(job, machine, material, choices);
     /*
@@ -326,6 +329,8 @@ ur_status cli_place_pieces(const cli_job *job, const ur_machine *machine,
         options.roll_width = job->roll_width;
         status = ur_layout_nest(pieces, count, &options, layout, error);
     }
+    ur_error largest = {UR_OK, ""};
+    double largest_area = 0;
     for (size_t k = 0; job->roll_width <= 0 && k < choice_count; k++) {
         options.sheet_width = choices[k].width;
         options.sheet_height = choices[k].height;
@@ -340,7 +345,13 @@ ur_status cli_place_pieces(const cli_job *job, const ur_machine *machine,
         status = ur_layout_nest(pieces, count, &options, layout, error);
         if (status != UR_ERROR_INPUT)
             break;
+        if (options.sheet_width * options.sheet_height > largest_area) {
+            largest_area = options.sheet_width * options.sheet_height;
+            largest = *error;
+        }
     }
+    if (status == UR_ERROR_INPUT && largest.status == UR_ERROR_INPUT)
+        *error = largest;
     if (options.progress)
         fputc('\n', stderr);
     return status;

@@ -698,6 +698,33 @@ def closed_mesh_is_cut_and_flattened(work):
 
 
 @test
+def mesh_in_metres_gets_a_warning(work):
+    # A 2-unit cube, as Blender exports its default cube (metres).
+    corners = [(x, y, z) for z in (-1, 1) for y in (-1, 1) for x in (-1, 1)]
+    faces = [(1, 3, 4, 2), (5, 6, 8, 7), (1, 2, 6, 5), (3, 7, 8, 4), (1, 5, 7, 3), (2, 4, 8, 6)]
+    write(work, "cube.obj", "".join("v %d %d %d\n" % c for c in corners) +
+          "".join("f %d %d %d %d\n" % f for f in faces))
+    result = run(work, "mesh", "cube.obj", "--flatten", "unfold", "--material", "paper-0.3mm",
+                 "-o", "c.svg")
+    check(re.search(r"only 2 mm across.*--units m \(2000 mm\).*--units in \(50\.8 mm\)",
+                    result.stderr), result.stderr)
+    result = run(work, "mesh", "cube.obj", "--units", "cm", "--flatten", "unfold", "--material",
+                 "paper-0.3mm", "-o", "c.svg", "--report", "c.json")
+    check("across" not in result.stderr, result.stderr)
+    close(sum(p["area_3d_mm2"] for p in report(work, "c.json")["pieces"]), 6 * 20.0 ** 2, 1e-9,
+          "the cube's area in centimetres")
+
+
+@test
+def too_large_names_the_largest_stock(work):
+    # samples/cube.obj (100 mm) unfolds whole into a cross about 406 x 306 mm: wider than
+    # either stock size of paper (A3 and A4), so the message names A3, the nearest miss.
+    bad(work, r"does not fit the 420\.0 x 297\.0 mm sheet", "mesh",
+        os.path.join(REPO, "samples", "cube.obj"), "--flatten", "unfold", "--no-split",
+        "--material", "paper-0.3mm", "--quiet", "-o", "c.svg")
+
+
+@test
 def unfolding_keeps_every_face(work):
     result = run(work, "mesh", os.path.join(REPO, "samples", "icosphere.obj"), "--flatten",
                  "unfold", "-o", "u.svg", "--report", "u.json")
