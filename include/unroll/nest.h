@@ -126,6 +126,12 @@ typedef struct ur_nest_options {
     unsigned long long seed;
     /* Called when the search finds a better layout; NULL for none. */
     void (*progress)(void *context, size_t sheets, double length, size_t tries);
+    /*
+     * Called as the first layout is made, after each part placed (placed
+     * of count), before any search: with many parts that takes a while.
+     * NULL for none.  Both get progress_context.
+     */
+    void (*placing)(void *context, size_t placed, size_t count);
     void *progress_context;
 } ur_nest_options;
 

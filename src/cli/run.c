@@ -283,8 +283,19 @@ static ur_status place(const cli_job *job, job_state *state, ur_error *error)
 static void show_nest_progress(void *context, size_t sheets, double length, size_t tries)
 {
     const cli_job *job = context;
-    fprintf(stderr, "\r%s: nesting: %zu sheet%s, %.1f mm of the last used (try %zu)   ",
+    fprintf(stderr, "\runroll: %s: nesting: %zu sheet%s, %.1f mm of the last used (try %zu)   ",
             job->command, sheets, sheets == 1 ? "" : "s", length, tries);
+    fflush(stderr);
+}
+
+/* Fewer parts than this are placed too fast for a progress line. */
+#define MANY_PARTS 20
+
+/* On a terminal: how many parts the first layout has placed, on the same line. */
+static void show_placing(void *context, size_t placed, size_t count)
+{
+    const cli_job *job = context;
+    fprintf(stderr, "\runroll: %s: nesting: placed %zu of %zu parts   ", job->command, placed, count);
     fflush(stderr);
 }
 
@@ -322,6 +333,7 @@ ur_status cli_place_pieces(const cli_job *job, const ur_machine *machine,
         .seed = job->seed,
         .threads = job->threads,
         .progress = job->quiet || !isatty(STDERR_FILENO) ? NULL : show_nest_progress,
+        .placing = job->quiet || !isatty(STDERR_FILENO) || count < MANY_PARTS ? NULL : show_placing,
         .progress_context = (void *)job,
     };
     ur_status status = UR_OK;

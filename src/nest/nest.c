@@ -750,6 +750,8 @@ static ur_status run_order(nester *n, const size_t *order, const size_t *held)
         n->run_placed[k] = n->placed_count;
         status = place_piece(n, order[k], n->run_held[k]);
         n->run_length = status == UR_OK ? k + 1 : 0;
+        if (n->first_run && n->options->placing)
+            n->options->placing(n->options->progress_context, k + 1, n->count);
     }
     n->run_placed[n->count] = n->placed_count; /* an order the same throughout keeps them all */
     return status;
@@ -963,6 +965,7 @@ ur_status ur_layout_nest(const ur_piece *pieces, size_t count, const ur_nest_opt
                 .options = options,
                 .turn_count = most_turns(options, pieces, count),
                 .remnant_count = options->remnants ? options->remnant_count : 0,
+                .first_run = true,
                 .error = error};
     n.sheet_count = n.remnant_count;
     n.cell_size = cell_size_of(pieces, count, options->spacing);
@@ -998,6 +1001,7 @@ ur_status ur_layout_nest(const ur_piece *pieces, size_t count, const ur_nest_opt
         order[k] = keys[k].index;
     if (status == UR_OK)
         status = run_order(&n, order, NULL);
+    n.first_run = false;
     double start = nest_seconds_now(), budget = options->time_budget;
     /* On a roll the search over orders has a share of the budget; shortening the strip, the rest.
      */

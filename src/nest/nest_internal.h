@@ -119,6 +119,7 @@ typedef struct nester {
     size_t *run_piece, *run_held, *run_placed;
     size_t run_length;
     double *sheet_area; /* per sheet: area of the parts on it */
+    bool first_run;     /* the first layout is being made: options->placing hears of it */
     ur_error *error;
 } nester;
 

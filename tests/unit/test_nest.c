@@ -173,6 +173,38 @@ static void test_rectangles_tile_one_sheet(void **state)
     free_pieces(pieces, 4);
 }
 
+/* What the placing callback heard: calls, and whether each counted one more part of all. */
+typedef struct placing_heard {
+    size_t calls, last;
+    bool in_order;
+} placing_heard;
+
+static void hear_placing(void *context, size_t placed, size_t count)
+{
+    placing_heard *heard = context;
+    heard->in_order = heard->in_order && placed == heard->last + 1 && count == 5;
+    heard->last = placed;
+    heard->calls++;
+}
+
+/* The first layout tells of each of its parts placed, once, in order; the search does not. */
+static void test_placing_is_told(void **state)
+{
+    (void)state;
+    ur_piece pieces[5];
+    for (int k = 0; k < 5; k++)
+        pieces[k] = rectangle("tile", 100 + 10 * k, 50);
+    ur_nest_options o = sheet_options(600, 400, 0, 0, 4, false);
+    placing_heard heard = {0, 0, true};
+    o.placing = hear_placing;
+    o.progress_context = &heard;
+    o.time_budget = 0.05;
+    check_sheets_used(pieces, 5, &o, 1);
+    assert_int_equal(heard.calls, 5);
+    assert_true(heard.in_order);
+    free_pieces(pieces, 5);
+}
+
 /*
  * The search over orders places every part once and never ends worse than
  * its first layout, whatever the seed and budget.  With three parts many
@@ -567,6 +599,7 @@ int main(void)
         cmocka_unit_test(test_turned_parts_keep_apart),
         cmocka_unit_test(test_roll_is_shortened),
         cmocka_unit_test(test_long_zigzag_nests),
+        cmocka_unit_test(test_placing_is_told),
     };
     return cmocka_run_group_tests(tests, start, finish);
 }
