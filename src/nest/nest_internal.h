@@ -48,10 +48,14 @@ void nest_shape_free(GEOSContextHandle_t geos, nest_shape *shape);
 
 /*
  * The no-fit polygon of moving shape b around fixed shape a, both at their
- * origins: where b's origin may not go (a + (-b), the union of the convex
- * parts' sums).  NULL when GEOS fails.
+ * origins, where b's origin may not go (a + (-b)), as the sums of their
+ * convex parts, one convex polygon each, in a collection: they overlap, so
+ * the collection is no valid polygon itself.  NULL when GEOS fails.
  */
-GEOSGeometry *nest_nfp(GEOSContextHandle_t geos, const nest_shape *a, const nest_shape *b);
+GEOSGeometry *nest_sums(GEOSContextHandle_t geos, const nest_shape *a, const nest_shape *b);
+
+/* The no-fit polygon itself, the union of the sums; NULL when GEOS fails. */
+GEOSGeometry *nest_union_of_sums(GEOSContextHandle_t geos, const GEOSGeometry *sums);
 
 /* ---- The true-shape nester's state (nest.c), shared with compact.c ---- */
 
@@ -94,9 +98,12 @@ typedef struct nester {
     size_t *class_of; /* per piece */
     nest_class *classes;
     size_t class_count;
-    GEOSGeometry **nfps; /* per (class a, turn a, class b, turn b); NULL until made */
-    placed *placements;  /* per piece, in order placed */
-    size_t *sheet_of;    /* per placement */
+    /* Per (class a, turn a, class b, turn b), NULL until made: nest_sums, and their unions. */
+    GEOSGeometry **sums, **nfps;
+    size_t *pair_met;   /* per pair: when it was first met (nest.c, by_union), 0 never */
+    size_t runs;        /* runs over an order so far */
+    placed *placements; /* per piece, in order placed */
+    size_t *sheet_of;   /* per placement */
     /*
      * Sheets 0 to remnant_count - 1 are the remnants, open from the start
      * (maybe empty); stock sheets follow as they are opened.
@@ -129,9 +136,12 @@ const nest_shape *nest_shape_of(const nester *n, size_t piece, size_t turn);
 /*
  * The no-fit polygon of piece b at turn tb around piece a at turn ta, a's
  * origin at the origin: where b's origin may not go.  Owned by the nester;
- * NULL when GEOS fails.
+ * NULL when GEOS fails.  nest_sums_of gives it as its convex sums
+ * (nest_sums), which is all that placing on sheets needs: a place is
+ * free when it lies in none of them, and the union is the costly part.
  */
 const GEOSGeometry *nest_nfp_of(nester *n, size_t a, size_t ta, size_t b, size_t tb);
+const GEOSGeometry *nest_sums_of(nester *n, size_t a, size_t ta, size_t b, size_t tb);
 
 /*
  * Shortens the roll in a roll layout (compact.c): the parts on it are moved

@@ -386,7 +386,7 @@ static GEOSGeometry *convex_sum(GEOSContextHandle_t geos, const GEOSGeometry *a,
     return hull;
 }
 
-GEOSGeometry *nest_nfp(GEOSContextHandle_t geos, const nest_shape *a, const nest_shape *b)
+GEOSGeometry *nest_sums(GEOSContextHandle_t geos, const nest_shape *a, const nest_shape *b)
 {
     size_t count = a->convex_count * b->convex_count, made = 0;
     GEOSGeometry **sums = calloc(count ? count : 1, sizeof *sums);
@@ -400,17 +400,15 @@ GEOSGeometry *nest_nfp(GEOSContextHandle_t geos, const nest_shape *a, const nest
             else if (sum)
                 GEOSGeom_destroy_r(geos, sum);
         }
-    if (made == 1) { /* two convex parts: their sum is convex, and the union would only copy it */
-        GEOSGeometry *only = sums[0];
-        free(sums);
-        return only;
-    }
     GEOSGeometry *collection =
-        GEOSGeom_createCollection_r(geos, GEOS_MULTIPOLYGON, sums, (unsigned)made);
+        GEOSGeom_createCollection_r(geos, GEOS_GEOMETRYCOLLECTION, sums, (unsigned)made);
     free(sums);
-    if (!collection)
-        return NULL;
-    GEOSGeometry *nfp = GEOSUnaryUnion_r(geos, collection);
-    GEOSGeom_destroy_r(geos, collection);
-    return nfp;
+    return collection;
+}
+
+GEOSGeometry *nest_union_of_sums(GEOSContextHandle_t geos, const GEOSGeometry *sums)
+{
+    if (GEOSGetNumGeometries_r(geos, sums) == 1) /* one convex sum: the union would copy it */
+        return GEOSGeom_clone_r(geos, GEOSGetGeometryN_r(geos, sums, 0));
+    return GEOSUnaryUnion_r(geos, sums);
 }
