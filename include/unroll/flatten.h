@@ -4,11 +4,14 @@
  *
  * LSCM (least-squares conformal maps) gives the first layout; ARAP
  * (as-rigid-as-possible) local/global iterations then bring every triangle
- * as close to its 3D shape as the surface allows.  The global step's matrix
- * (the cotangent Laplacian) is built and factored once with CHOLMOD; every
- * iteration only solves.  Per triangle, the singular values sigma1 >=
- * sigma2 of the 3D-to-flat map say how much it is stretched (sigma > 1) or
- * compressed (sigma < 1).
+ * as close to its 3D shape as the surface allows, by steps bounded so that
+ * no triangle turns over.  Where LSCM's layout turns one over (a piece
+ * curved far from any flat shape), Tutte's embedding (the boundary on a
+ * circle) is the first layout instead, and ARAP follows whatever the
+ * method.  The global step's matrix (the cotangent Laplacian) is built and
+ * factored once with CHOLMOD; every iteration only solves.  Per triangle,
+ * the singular values sigma1 >= sigma2 of the 3D-to-flat map say how much
+ * it is stretched (sigma > 1) or compressed (sigma < 1).
  */
 #ifndef UNROLL_FLATTEN_H
 #define UNROLL_FLATTEN_H
@@ -62,7 +65,8 @@ typedef struct ur_flat_piece {
     double max_stretch;     /* largest sigma1 - 1 (0 when none is stretched) */
     double max_compression; /* largest 1 - sigma2 (0 when none is compressed) */
     size_t iterations;      /* ARAP iterations done */
-    bool flipped;           /* some flat triangle is turned over (should never be) */
+    bool flipped;           /* some flat triangle is turned over: only a piece with holes, */
+                            /* which has no Tutte embedding, whose LSCM layout turns one */
 } ur_flat_piece;
 
 /*

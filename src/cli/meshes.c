@@ -172,13 +172,12 @@ static int flatten_piece(const flattening *f, const ur_mesh *piece, size_t depth
     ur_status status = ur_flatten(piece, options, &flat, &error);
     if (status == UR_OK)
         status = ur_net_from_flat(piece, &flat, "", &net, &error);
-    if (status == UR_OK && flat.flipped)
-        status =
-            ur_error_set(&error, UR_ERROR_INTERNAL, "a piece came out with a triangle turned over");
+    /* Only a piece with holes, which ur_mesh_pieces never makes, can keep a turned triangle. */
+    bool turned = status == UR_OK && flat.flipped;
     ur_flat_piece_free(&flat);
     if (status != UR_OK)
         return fail(job, &error);
-    if (!ur_outline_is_simple(net.outline, net.outline_count) && depth < MOST_SPLITS) {
+    if ((turned || !ur_outline_is_simple(net.outline, net.outline_count)) && depth < MOST_SPLITS) {
         ur_net_free(&net);
         return split_piece(f, piece, 2, depth, nets, area);
     }

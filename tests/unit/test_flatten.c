@@ -522,6 +522,64 @@ static void test_closed_tube_is_strained(void **state)
     free_mesh(&mesh);
 }
 
+/* Twice the signed area of flat triangle t, from the layout itself. */
+static double twice_signed_area(const ur_mesh *mesh, const ur_flat_piece *flat, size_t t)
+{
+    const size_t *c = mesh->triangles[t];
+    return ur_vec2_cross(ur_vec2_sub(flat->flat[c[1]], flat->flat[c[0]]),
+                         ur_vec2_sub(flat->flat[c[2]], flat->flat[c[0]]));
+}
+
+/* Every flat triangle runs the way its 3D triangle does, with some area. */
+static void assert_none_turned(const ur_mesh *mesh, const ur_flat_piece *flat)
+{
+    for (size_t t = 0; t < mesh->triangle_count; t++)
+        if (!(twice_signed_area(mesh, flat, t) > 0))
+            fail_msg("triangle %zu is turned over (twice its signed area is %g)", t,
+                     twice_signed_area(mesh, flat, t));
+    assert_false(flat->flipped);
+}
+
+/* A sphere of radius 50 slit open along a meridian, from latitude -86 to 86 degrees. */
+static ur_vec3 slit_sphere(double s, double t)
+{
+    double longitude = 2 * M_PI * s, latitude = (t - 0.5) * M_PI * 172 / 180;
+    return ur_vec3_make(50 * cos(latitude) * cos(longitude), 50 * cos(latitude) * sin(longitude),
+                        50 * sin(latitude));
+}
+
+/*
+ * A bag: a tube of radius 20 whose rim, at the top, opens out to radius
+ * 60, so that LSCM shrinks its bottom to almost nothing and ARAP, growing
+ * it back, pushes triangles across their neighbours unless its steps are
+ * bounded.
+ */
+static ur_vec3 flared_tube(double s, double t)
+{
+    double angle = 2 * M_PI * s * 0.98, r = 20 + 40 * pow(t, 6);
+    return ur_vec3_make(r * cos(angle), r * sin(angle), 60 * t);
+}
+
+/*
+ * Pieces curved far from any flat shape (nearly a whole sphere, a flared
+ * bag): both methods lay every triangle the right way round.
+ */
+static void test_nothing_turns_over(void **state)
+{
+    (void)state;
+    surface_fn shapes[] = {slit_sphere, flared_tube};
+    for (size_t k = 0; k < 2; k++) {
+        ur_mesh mesh = grid(48, 24, false, shapes[k]);
+        for (int m = 0; m < 2; m++) {
+            ur_flat_piece flat = flatten(&mesh, m == 0 ? UR_FLATTEN_ARAP : UR_FLATTEN_LSCM);
+            assert_none_turned(&mesh, &flat);
+            assert_true(flat.flat_area > 0);
+            ur_flat_piece_free(&flat);
+        }
+        free_mesh(&mesh);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -539,6 +597,7 @@ int main(void)
         cmocka_unit_test(test_single_triangle),
         cmocka_unit_test(test_bad_pieces),
         cmocka_unit_test(test_closed_tube_is_strained),
+        cmocka_unit_test(test_nothing_turns_over),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
