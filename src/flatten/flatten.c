@@ -217,3 +217,43 @@ ur_status ur_flatten_energy(const ur_mesh *piece, const ur_vec2 *layout, double 
     free(frames);
     return UR_OK;
 }
+
+/* The factor that brings sigma in [low, high] within the limits, nearest 1. */
+static double fitting_scale(double low, double high, const ur_strip_limits *limits)
+{
+    double stretch = limits->max_stretch, compression = limits->max_compression;
+    double smallest = (1 - compression) / low, largest = (1 + stretch) / high;
+    if (smallest <= largest)
+        return fmin(fmax(1.0, smallest), largest);
+    /* Over both ways: s high - 1 and 1 - s low the same share of their limits. */
+    if (stretch + compression > 0)
+        return (stretch + compression) / (compression * high + stretch * low);
+    return 2 / (low + high);
+}
+
+void ur_flat_piece_fit_limits(ur_flat_piece *flat, const ur_strip_limits *limits)
+{
+    if (!flat->strain || flat->triangle_count == 0)
+        return;
+    double low = INFINITY, high = 0;
+    for (size_t t = 0; t < flat->triangle_count; t++) {
+        low = fmin(low, flat->strain[t].sigma2);
+        high = fmax(high, flat->strain[t].sigma1);
+    }
+    if (!(low > 0) || !isfinite(high))
+        return;
+    double scale = fitting_scale(low, high, limits);
+    if (scale == 1.0)
+        return;
+    for (size_t v = 0; v < flat->vertex_count; v++)
+        flat->flat[v] = ur_vec2_scale(flat->flat[v], scale);
+    flat->max_stretch = flat->max_compression = 0;
+    for (size_t t = 0; t < flat->triangle_count; t++) {
+        flat->strain[t].sigma1 *= scale;
+        flat->strain[t].sigma2 *= scale;
+        flat->max_stretch = fmax(flat->max_stretch, flat->strain[t].sigma1 - 1);
+        flat->max_compression = fmax(flat->max_compression, 1 - flat->strain[t].sigma2);
+    }
+    flat->flat_area *= scale * scale;
+    flat->coverage = flat->flat_area / flat->area_3d;
+}
