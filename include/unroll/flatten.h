@@ -337,8 +337,11 @@ void ur_strips_free(ur_strips *strips);
 /*
  * Faces that turn by more than this across their edge (radians, 30
  * degrees) meet at a sharp edge, where charts are always cut: a cube's
- * edges (90 degrees), a low-poly sphere's (20 to 40), not a smooth
- * surface of a few hundred faces (a 32-segment sphere turns by 11).
+ * edges (90 degrees), the rim of a flat base, not a smooth surface of a
+ * few hundred faces (a 32-segment sphere turns by 11).  A turn of 30
+ * degrees to a thousandth of a radian is not sharp, so that a tube of 12
+ * sides (Blender's torus) is cut the same way at every edge, by nothing
+ * but its strain.
  */
 #define UR_CHART_SHARP_ANGLE (3.14159265358979323846 / 6)
 

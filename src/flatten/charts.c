@@ -18,10 +18,16 @@
  * size, as on any curved surface, the halves strain less; a sphere's
  * charts strain by about the square of their size over its radius.
  *
- * Last, neighbouring charts are joined again where the two together still
- * lie flat within the limits, longest shared edge first, so that a cut
- * made early in a large chart does not stay where a smaller chart would
- * have needed none.
+ * Last, neighbouring charts are joined again where the two together are
+ * one disk that still lies flat within the limits (never across a sharp
+ * edge or a seam): the pairs with the smaller chart smallest first, then
+ * the longest shared edges, so that stray small charts join a neighbour
+ * first.  Cutting in two halves a chart wherever it is over, though a
+ * narrower cut elsewhere might have done; joining takes back the cuts that
+ * were not needed, and on a sphere it joins the caps that halving leaves
+ * into long gores, which strain less for their area (by the square of
+ * their width, not of their length): a 512-face sphere in 0.3 mm paper
+ * goes from 96 charts to 18.
  */
 #include "unroll/flatten.h"
 
@@ -31,6 +37,9 @@
 
 #define NONE ((size_t)-1)
 #define UNGROWN ((size_t)-2) /* region of a triangle of the set being cut, not yet grown to */
+
+/* A turn this little over UR_CHART_SHARP_ANGLE is still not sharp (rounding). */
+#define SHARP_MARGIN 1e-3
 
 /* Rounds of refitting the proxies and growing the regions again. */
 enum { LLOYD_ROUNDS = 3 };
@@ -53,6 +62,7 @@ typedef struct charting {
     const ur_strip_limits *limits;
     const ur_flatten_options *options;
     size_t *twins;
+    bool *cut; /* per half-edge: a sharp edge or a user's seam, never joined again */
     ur_vec3 *normals, *centres;
     double *areas;
     size_t *region;      /* per input triangle: 0 or 1 while a set is cut in two, else NONE */
@@ -100,19 +110,60 @@ bool ur_chart_edge_is_sharp(const ur_mesh *mesh, size_t t, size_t u)
     double la = ur_vec3_length(na), lb = ur_vec3_length(nb);
     if (!(la > 0) || !(lb > 0))
         return false;
-    return ur_vec3_dot(na, nb) < cos(UR_CHART_SHARP_ANGLE) * la * lb;
+    return ur_vec3_dot(na, nb) < cos(UR_CHART_SHARP_ANGLE + SHARP_MARGIN) * la * lb;
 }
 
-/* The user's seams and every sharp edge, once each. */
-static ur_status cut_edges(const charting *c, const ur_seam *seams, size_t seam_count,
-                           ur_seam **cuts, size_t *cut_count, size_t *sharp, ur_error *error)
+/* An edge by its ends, the lower first. */
+typedef struct edge_key {
+    size_t low, high;
+} edge_key;
+
+static edge_key key_of(size_t a, size_t b)
+{
+    return a < b ? (edge_key){a, b} : (edge_key){b, a};
+}
+
+static int compare_keys(const void *a, const void *b)
+{
+    const edge_key *x = a, *y = b;
+    if (x->low != y->low)
+        return (x->low > y->low) - (x->low < y->low);
+    return (x->high > y->high) - (x->high < y->high);
+}
+
+/* Marks the half-edges (both sides) of the user's seams in c->cut. */
+static ur_status mark_seams(charting *c, const ur_seam *seams, size_t seam_count, ur_error *error)
+{
+    const ur_mesh *m = c->mesh;
+    edge_key *keys = ur_alloc_array(seam_count, sizeof *keys, error);
+    if (!keys)
+        return UR_ERROR_INTERNAL;
+    for (size_t k = 0; k < seam_count; k++)
+        keys[k] = key_of(seams[k].a, seams[k].b);
+    qsort(keys, seam_count, sizeof *keys, compare_keys);
+    for (size_t h = 0; seam_count > 0 && h < 3 * m->triangle_count; h++) {
+        edge_key key = key_of(m->triangles[h / 3][h % 3], m->triangles[h / 3][(h % 3 + 1) % 3]);
+        if (bsearch(&key, keys, seam_count, sizeof *keys, compare_keys))
+            c->cut[h] = true;
+    }
+    free(keys);
+    return UR_OK;
+}
+
+/* The user's seams and every sharp edge, once each; both marked in c->cut. */
+static ur_status cut_edges(charting *c, const ur_seam *seams, size_t seam_count, ur_seam **cuts,
+                           size_t *cut_count, size_t *sharp, ur_error *error)
 {
     const ur_mesh *m = c->mesh;
     *sharp = 0;
     *cut_count = 0;
+    c->cut = ur_alloc_array(3 * m->triangle_count, sizeof *c->cut, error);
     *cuts = ur_alloc_array(seam_count + 3 * m->triangle_count / 2 + 1, sizeof **cuts, error);
-    if (!*cuts)
+    if (!*cuts || !c->cut)
         return UR_ERROR_INTERNAL;
+    ur_status status = mark_seams(c, seams, seam_count, error);
+    if (status)
+        return status;
     for (size_t s = 0; s < seam_count; s++)
         (*cuts)[(*cut_count)++] = seams[s];
     for (size_t h = 0; h < 3 * m->triangle_count; h++) {
@@ -121,6 +172,7 @@ static ur_status cut_edges(const charting *c, const ur_seam *seams, size_t seam_
             continue;
         size_t t = h / 3, k = h % 3;
         (*cuts)[(*cut_count)++] = (ur_seam){m->triangles[t][k], m->triangles[t][(k + 1) % 3]};
+        c->cut[h] = c->cut[twin] = true;
         ++*sharp;
     }
     return UR_OK;
@@ -500,6 +552,190 @@ static ur_status queue_first(charting *c, const ur_seam *seams, size_t seam_coun
     return status;
 }
 
+/* ---- Joining neighbours again ---- */
+
+/* Two charts that share edges, and how long those edges are in all. */
+typedef struct neighbours {
+    size_t a, b; /* a < b */
+    double shared;
+    size_t smaller; /* triangles of the smaller chart */
+} neighbours;
+
+/* Smaller charts first (a stray triangle joins before large charts do), then longer edges. */
+static int compare_neighbours(const void *x, const void *y)
+{
+    const neighbours *p = x, *q = y;
+    if (p->smaller != q->smaller)
+        return (p->smaller > q->smaller) - (p->smaller < q->smaller);
+    if (p->shared != q->shared)
+        return (p->shared < q->shared) - (p->shared > q->shared);
+    if (p->a != q->a)
+        return (p->a > q->a) - (p->a < q->a);
+    return (p->b > q->b) - (p->b < q->b);
+}
+
+static int compare_pairs(const void *x, const void *y)
+{
+    const neighbours *p = x, *q = y;
+    if (p->a != q->a)
+        return (p->a > q->a) - (p->a < q->a);
+    return (p->b > q->b) - (p->b < q->b);
+}
+
+static size_t chart_root(size_t *parent, size_t k)
+{
+    while (parent[k] != k)
+        k = parent[k] = parent[parent[k]];
+    return k;
+}
+
+/*
+ * Every pair of charts that meet across an edge that is neither sharp nor
+ * a seam, with the length of the edges they share, in the order they are
+ * to be tried.
+ */
+static ur_status find_neighbours(const charting *c, const size_t *chart_of, neighbours **pairs,
+                                 size_t *count, ur_error *error)
+{
+    const ur_mesh *m = c->mesh;
+    const ur_charts *charts = c->charts;
+    *count = 0;
+    *pairs = ur_alloc_array(3 * m->triangle_count / 2 + 1, sizeof **pairs, error);
+    if (!*pairs)
+        return UR_ERROR_INTERNAL;
+    for (size_t h = 0; h < 3 * m->triangle_count; h++) {
+        size_t twin = c->twins[h];
+        if (twin == NONE || twin < h || c->cut[h])
+            continue;
+        size_t a = chart_of[h / 3], b = chart_of[twin / 3];
+        if (a == b)
+            continue;
+        size_t from = m->triangles[h / 3][h % 3], to = m->triangles[h / 3][(h % 3 + 1) % 3];
+        size_t ta = charts->charts[a].piece.mesh.triangle_count;
+        size_t tb = charts->charts[b].piece.mesh.triangle_count;
+        (*pairs)[(*count)++] =
+            (neighbours){a < b ? a : b, a < b ? b : a,
+                         ur_vec3_distance(m->vertices[from], m->vertices[to]), ta < tb ? ta : tb};
+    }
+    /* One entry per pair: sort by the pair, sum the shared lengths. */
+    neighbours *p = *pairs;
+    qsort(p, *count, sizeof *p, compare_pairs);
+    size_t kept = 0;
+    for (size_t i = 0; i < *count; i++) {
+        if (kept > 0 && p[kept - 1].a == p[i].a && p[kept - 1].b == p[i].b)
+            p[kept - 1].shared += p[i].shared;
+        else
+            p[kept++] = p[i];
+    }
+    *count = kept;
+    qsort(p, *count, sizeof *p, compare_neighbours);
+    return UR_OK;
+}
+
+/* The triangles of two charts as one set. */
+static ur_status union_set(const ur_chart *a, const ur_chart *b, triangle_set *set, ur_error *error)
+{
+    size_t na = a->piece.mesh.triangle_count, nb = b->piece.mesh.triangle_count;
+    set->count = na + nb;
+    set->triangles = ur_alloc_array(set->count, sizeof *set->triangles, error);
+    if (!set->triangles)
+        return UR_ERROR_INTERNAL;
+    memcpy(set->triangles, a->piece.source_triangles, na * sizeof *set->triangles);
+    memcpy(set->triangles + na, b->piece.source_triangles, nb * sizeof *set->triangles);
+    return UR_OK;
+}
+
+static void chart_free(ur_chart *chart)
+{
+    ur_mesh_free(&chart->piece.mesh);
+    free(chart->piece.original);
+    free(chart->piece.source_triangles);
+    ur_flat_piece_free(&chart->flat);
+    memset(chart, 0, sizeof *chart);
+}
+
+/*
+ * Tries charts a and b (roots) as one: when their union is one disk that
+ * lies flat within the limits, it takes a's place and b is emptied.
+ */
+static ur_status try_joining(charting *c, size_t a, size_t b, bool *joined, ur_error *error)
+{
+    ur_chart *charts = c->charts->charts;
+    *joined = false;
+    triangle_set set;
+    ur_mesh_piece *disks = NULL;
+    size_t count = 0;
+    ur_status status = union_set(&charts[a], &charts[b], &set, error);
+    if (status)
+        return status;
+    status = disks_of_set(c, &set, &disks, &count, error);
+    free(set.triangles);
+    if (!status && count == 1) {
+        ur_flat_piece flat;
+        status = ur_flatten(&disks[0].mesh, c->options, &flat, error);
+        if (!status) {
+            ur_flat_piece_fit_limits(&flat, c->limits);
+            c->charts->flattened++;
+            *joined = within(&flat, c->limits);
+            if (*joined) {
+                chart_free(&charts[a]);
+                chart_free(&charts[b]);
+                charts[a] = (ur_chart){disks[0], flat};
+                memset(&disks[0], 0, sizeof disks[0]);
+            } else
+                ur_flat_piece_free(&flat);
+        }
+    }
+    ur_mesh_pieces_free(disks, count);
+    return status;
+}
+
+/* Drops the charts emptied by joining, keeping the others' order. */
+static void drop_empty(ur_charts *charts)
+{
+    size_t kept = 0;
+    for (size_t k = 0; k < charts->count; k++)
+        if (charts->charts[k].piece.mesh.triangle_count > 0)
+            charts->charts[kept++] = charts->charts[k];
+    charts->count = kept;
+}
+
+/* Joins neighbouring charts where the two lie flat within the limits together. */
+static ur_status join_neighbours(charting *c, ur_error *error)
+{
+    const ur_mesh *m = c->mesh;
+    ur_charts *charts = c->charts;
+    size_t *chart_of = ur_alloc_array(m->triangle_count, sizeof *chart_of, error);
+    size_t *parent = ur_alloc_array(charts->count, sizeof *parent, error);
+    neighbours *pairs = NULL;
+    size_t pair_count = 0;
+    ur_status status = chart_of && parent ? UR_OK : UR_ERROR_INTERNAL;
+    for (size_t k = 0; !status && k < charts->count; k++) {
+        parent[k] = k;
+        for (size_t t = 0; t < charts->charts[k].piece.mesh.triangle_count; t++)
+            chart_of[charts->charts[k].piece.source_triangles[t]] = k;
+    }
+    if (!status)
+        status = find_neighbours(c, chart_of, &pairs, &pair_count, error);
+    for (size_t i = 0; !status && i < pair_count; i++) {
+        size_t a = chart_root(parent, pairs[i].a), b = chart_root(parent, pairs[i].b);
+        bool joined = false;
+        if (a == b)
+            continue;
+        status = ur_cancel_check(error);
+        if (!status)
+            status = try_joining(c, a < b ? a : b, a < b ? b : a, &joined, error);
+        if (joined)
+            parent[a < b ? b : a] = a < b ? a : b;
+    }
+    if (!status)
+        drop_empty(charts);
+    free(pairs);
+    free(parent);
+    free(chart_of);
+    return status;
+}
+
 static int by_first_triangle(const void *a, const void *b)
 {
     const ur_chart *x = a, *y = b;
@@ -527,6 +763,7 @@ static void charting_free(charting *c)
         free(c->queue[k].triangles);
     free(c->queue);
     free(c->twins);
+    free(c->cut);
     free(c->normals);
     free(c->centres);
     free(c->areas);
@@ -564,6 +801,8 @@ ur_status ur_flatten_charts(const ur_mesh *mesh, const ur_seam *seams, size_t se
         status = queue_first(&c, seams, seam_count, error);
     if (!status)
         status = lay_out_queue(&c, error);
+    if (!status)
+        status = join_neighbours(&c, error);
     charting_free(&c);
     if (status)
         ur_charts_free(charts);
