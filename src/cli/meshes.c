@@ -3,7 +3,8 @@
  * a file ('unroll mesh FILE'), and a ruled surface that is not developable
  * (hypar, ruled, a naturally paired strip), triangulated first.  Each piece
  * (a topological disk) is laid flat with LSCM and ARAP and becomes a net
- * that carries its strain.
+ * that carries its strain; a mesh from a file is by default first cut into
+ * charts that each lie flat within the material's strain (ur_flatten_charts).
  */
 #include "cli.h"
 
