@@ -69,7 +69,7 @@ typedef struct charting {
     const ur_strip_limits *limits;
     const ur_flatten_options *options;
     size_t *twins;
-    bool *cut; /* per half-edge: a sharp edge or a user's seam, never joined again */
+    bool *cut; /* per half-edge: sharp, a user's seam or between groups: never joined */
     ur_vec3 *normals, *centres;
     double *areas;
     size_t *region;      /* per input triangle: 0 or 1 while a set is cut in two, else NONE */
@@ -157,7 +157,19 @@ static ur_status mark_seams(charting *c, const ur_seam *seams, size_t seam_count
     return UR_OK;
 }
 
-/* The user's seams and every sharp edge, once each; both marked in c->cut. */
+/* Marks the half-edges between two groups in c->cut (ur_mesh_pieces cuts there itself). */
+static void mark_groups(charting *c)
+{
+    const ur_mesh *m = c->mesh;
+    for (size_t h = 0; m->groups && h < 3 * m->triangle_count; h++)
+        if (c->twins[h] != NONE && m->groups[h / 3] != m->groups[c->twins[h] / 3])
+            c->cut[h] = true;
+}
+
+/*
+ * The user's seams and every sharp edge, once each; both marked in c->cut,
+ * and the boundaries between groups too.
+ */
 static ur_status cut_edges(charting *c, const ur_seam *seams, size_t seam_count, ur_seam **cuts,
                            size_t *cut_count, size_t *sharp, ur_error *error)
 {
@@ -171,6 +183,7 @@ static ur_status cut_edges(charting *c, const ur_seam *seams, size_t seam_count,
     ur_status status = mark_seams(c, seams, seam_count, error);
     if (status)
         return status;
+    mark_groups(c);
     for (size_t s = 0; s < seam_count; s++)
         (*cuts)[(*cut_count)++] = seams[s];
     for (size_t h = 0; h < 3 * m->triangle_count; h++) {

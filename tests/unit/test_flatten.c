@@ -707,6 +707,29 @@ static void test_curved_meshes_fit_the_material(void **state)
     }
 }
 
+/*
+ * The lampshade, a frustum in two groups (its halves): developable, so each
+ * half is one chart without strain, and no chart joins the two.
+ */
+static void test_groups_stay_apart(void **state)
+{
+    (void)state;
+    ur_mesh mesh = sample("lampshade.obj");
+    assert_int_equal(mesh.group_count, 2);
+    ur_charts charts = charts_of(&mesh, &paper);
+    check_charts(&mesh, &charts, &paper);
+    assert_int_equal(charts.count, 2);
+    for (size_t k = 0; k < charts.count; k++) {
+        const ur_chart *chart = &charts.charts[k];
+        for (size_t t = 0; t < chart->piece.mesh.triangle_count; t++)
+            assert_int_equal(mesh.groups[chart->piece.source_triangles[t]],
+                             mesh.groups[chart->piece.source_triangles[0]]);
+        assert_no_strain(&chart->flat, 1e-6);
+    }
+    ur_charts_free(&charts);
+    free_mesh(&mesh);
+}
+
 /* A low-poly sphere is built too, a face or a few to a chart. */
 static void test_low_poly_sphere_is_built(void **state)
 {
@@ -814,6 +837,7 @@ int main(void)
         cmocka_unit_test(test_nothing_turns_over),
         cmocka_unit_test(test_cube_becomes_six_squares),
         cmocka_unit_test(test_curved_meshes_fit_the_material),
+        cmocka_unit_test(test_groups_stay_apart),
         cmocka_unit_test(test_low_poly_sphere_is_built),
         cmocka_unit_test(test_sharp_edges),
         cmocka_unit_test(test_fit_limits),
