@@ -331,7 +331,12 @@ void ur_strips_free(ur_strips *strips);
  * regions of like normals grown from two seeds, refitted a few times),
  * each half laid out again, until every chart fits.  A single triangle
  * always fits, so it ends; a flat face (a cube's) is one chart with no
- * strain at all.
+ * strain at all.  Then neighbouring charts are joined wherever the two
+ * together are one disk within the limits (smallest first, never across a
+ * sharp edge, a seam or a group boundary), and triangles that jut from one
+ * chart into another move over where both stay within the limits.  The
+ * charts follow the mesh's edges, so their borders are as jagged as its
+ * triangles.
  */
 
 /*
