@@ -738,7 +738,7 @@ def charts_keep_within_the_material(work):
     for name, material in [("head.obj", "cardboard-2mm"),
                            ("uvsphere.obj", "cardboard-2mm"), ("icosphere.obj", "paper-0.3mm")]:
         run(work, "mesh", os.path.join(samples, name), "--material", material, "--allowances",
-            "none", "-o", "m.svg", "--report", "m.json")
+            "none", "--nest-time", "0", "-o", "m.svg", "--report", "m.json")
         pieces = report(work, "m.json")["pieces"]
         check(len(pieces) > 1, "%s in %s: one piece" % (name, material))
         check_within(pieces, material_strain(material), "%s in %s" % (name, material))
@@ -748,7 +748,7 @@ def charts_keep_within_the_material(work):
             check(simple_ring(outline), "%s: an outline crosses itself" % name)
     # --max-strain sets the limits instead; --flatten arap keeps each disk whole.
     run(work, "mesh", os.path.join(samples, "uvsphere.obj"), "--max-strain", "0.05",
-        "--allowances", "none", "-o", "s.svg", "--report", "s.json")
+        "--allowances", "none", "--nest-time", "0", "-o", "s.svg", "--report", "s.json")
     check_within(report(work, "s.json")["pieces"], (0.05, 0.05), "uvsphere at 5 %")
     run(work, "mesh", os.path.join(samples, "cube.obj"), "--flatten", "arap", "-o", "a.svg",
         "--report", "a.json")
