@@ -742,6 +742,36 @@ static void test_low_poly_sphere_is_built(void **state)
     free_mesh(&mesh);
 }
 
+/*
+ * An icosahedron, whose faces turn by 41.8 degrees at every edge: every
+ * edge is sharp, so every face is a chart of its own, flat as it is.
+ */
+static void test_every_edge_sharp(void **state)
+{
+    (void)state;
+    double g = (1 + sqrt(5)) / 2;
+    ur_vec3 vertices[12] = {{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0},
+                            {0, -1, g}, {0, 1, g}, {0, -1, -g}, {0, 1, -g},
+                            {g, 0, -1}, {g, 0, 1}, {-g, 0, -1}, {-g, 0, 1}};
+    size_t triangles[20][3] = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
+                               {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
+                               {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
+                               {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
+    for (size_t v = 0; v < 12; v++)
+        vertices[v] = ur_vec3_scale(vertices[v], 20);
+    ur_mesh mesh = {vertices, 12, triangles, 20, NULL, 1};
+    ur_charts charts = charts_of(&mesh, &paper);
+    check_charts(&mesh, &charts, &paper);
+    assert_int_equal(charts.sharp_edges, 30);
+    assert_int_equal(charts.count, 20);
+    double side = 40; /* the edge, twice the 20 the unit coordinates were scaled by */
+    for (size_t k = 0; k < charts.count; k++) {
+        assert_no_strain(&charts.charts[k].flat, 1e-9);
+        assert_true(fabs(charts.charts[k].flat.flat_area - sqrt(3) / 4 * side * side) <= 1e-9);
+    }
+    ur_charts_free(&charts);
+}
+
 /* The sharp angle by hand: two faces of a hinge opened to 29 and to 31 degrees. */
 static void test_sharp_edges(void **state)
 {
@@ -839,6 +869,7 @@ int main(void)
         cmocka_unit_test(test_curved_meshes_fit_the_material),
         cmocka_unit_test(test_groups_stay_apart),
         cmocka_unit_test(test_low_poly_sphere_is_built),
+        cmocka_unit_test(test_every_edge_sharp),
         cmocka_unit_test(test_sharp_edges),
         cmocka_unit_test(test_fit_limits),
         cmocka_unit_test(test_bad_limits),
