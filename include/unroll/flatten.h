@@ -4,11 +4,14 @@
  *
  * LSCM (least-squares conformal maps) gives the first layout; ARAP
  * (as-rigid-as-possible) local/global iterations then bring every triangle
- * as close to its 3D shape as the surface allows.  The global step's matrix
- * (the cotangent Laplacian) is built and factored once with CHOLMOD; every
- * iteration only solves.  Per triangle, the singular values sigma1 >=
- * sigma2 of the 3D-to-flat map say how much it is stretched (sigma > 1) or
- * compressed (sigma < 1).
+ * as close to its 3D shape as the surface allows, by steps bounded so that
+ * no triangle turns over.  Where LSCM's layout turns one over (a piece
+ * curved far from any flat shape), Tutte's embedding (the boundary on a
+ * circle) is the first layout instead, and ARAP follows whatever the
+ * method.  The global step's matrix (the cotangent Laplacian) is built and
+ * factored once with CHOLMOD; every iteration only solves.  Per triangle,
+ * the singular values sigma1 >= sigma2 of the 3D-to-flat map say how much
+ * it is stretched (sigma > 1) or compressed (sigma < 1).
  */
 #ifndef UNROLL_FLATTEN_H
 #define UNROLL_FLATTEN_H
@@ -62,7 +65,8 @@ typedef struct ur_flat_piece {
     double max_stretch;     /* largest sigma1 - 1 (0 when none is stretched) */
     double max_compression; /* largest 1 - sigma2 (0 when none is compressed) */
     size_t iterations;      /* ARAP iterations done */
-    bool flipped;           /* some flat triangle is turned over (should never be) */
+    bool flipped;           /* some flat triangle is turned over: only a piece with holes, */
+                            /* which has no Tutte embedding, whose LSCM layout turns one */
 } ur_flat_piece;
 
 /*
@@ -312,5 +316,84 @@ ur_status ur_strips_of_mesh(const ur_mesh *mesh, const ur_seam *seams, size_t se
                             ur_strips *strips, ur_error *error);
 
 void ur_strips_free(ur_strips *strips);
+
+/*
+ * ---- Charts within the material's strain (charts.c) ----
+ *
+ * A mesh from a modeller cut into charts that each lie flat within the
+ * limits (ur_strip_limits: the largest stretch and compression of the
+ * 3D-to-flat map): first at its sharp edges, where the faces turn by more
+ * than UR_CHART_SHARP_ANGLE (a cube's edges, the rim of a flat base), at
+ * the user's seams and between groups, then into disks (ur_mesh_pieces);
+ * each is flattened (ur_flatten) and scaled into the limits
+ * (ur_flat_piece_fit_limits), and a chart still over them is cut in two
+ * the way D-Charts grows its charts (Julius, Kraevoy and Sheffer 2005:
+ * regions of like normals grown from two seeds, refitted a few times),
+ * each half laid out again, until every chart fits.  A single triangle
+ * always fits, so it ends; a flat face (a cube's) is one chart with no
+ * strain at all.  Then neighbouring charts are joined wherever the two
+ * together are one disk within the limits (smallest first, never across a
+ * sharp edge, a seam or a group boundary), and triangles that jut from one
+ * chart into another move over where both stay within the limits.  The
+ * charts follow the mesh's edges, so their borders are as jagged as its
+ * triangles.
+ */
+
+/*
+ * Faces that turn by more than this across their edge (radians, 30
+ * degrees) meet at a sharp edge, where charts are always cut: a cube's
+ * edges (90 degrees), the rim of a flat base, not a smooth surface of a
+ * few hundred faces (a 32-segment sphere turns by 11).  A turn of 30
+ * degrees to a thousandth of a radian is not sharp, so that a tube of 12
+ * sides (Blender's torus) is cut the same way at every edge, by nothing
+ * but its strain.
+ */
+#define UR_CHART_SHARP_ANGLE (3.14159265358979323846 / 6)
+
+/* Whether the faces of triangles t and u (neighbours) turn by more than UR_CHART_SHARP_ANGLE. */
+bool ur_chart_edge_is_sharp(const ur_mesh *mesh, size_t t, size_t u);
+
+typedef struct ur_chart {
+    /*
+     * The chart, a disk: original and source_triangles number the input
+     * mesh's vertices and triangles, its groups are theirs.
+     */
+    ur_mesh_piece piece;
+    ur_flat_piece flat; /* its layout, within the limits */
+} ur_chart;
+
+typedef struct ur_charts {
+    ur_chart *charts; /* owned, in the order of their first input triangle */
+    size_t count;
+    size_t sharp_edges;                  /* edges cut for being sharp */
+    double max_stretch, max_compression; /* the worst over the charts */
+    size_t flattened;                    /* layouts made to find them */
+} ur_charts;
+
+/*
+ * Cuts the mesh, manifold and consistently oriented (as ur_mesh_clean
+ * leaves it), into charts within the limits (max_strips is not used), the
+ * seams (edges of the mesh, as for ur_mesh_pieces) and group boundaries
+ * always cut.  options may be NULL (the defaults).  Refuses
+ * (UR_ERROR_INPUT) limits that are not numbers >= 0, a mesh with no
+ * triangles, and what ur_mesh_pieces and ur_flatten refuse.  Free the
+ * result with ur_charts_free; it is empty on failure.
+ */
+ur_status ur_flatten_charts(const ur_mesh *mesh, const ur_seam *seams, size_t seam_count,
+                            const ur_strip_limits *limits, const ur_flatten_options *options,
+                            ur_charts *charts, ur_error *error);
+
+void ur_charts_free(ur_charts *charts);
+
+/*
+ * Scales a layout about the origin so that its strain falls within the
+ * limits where the spread of its singular values allows (largest sigma1
+ * over smallest sigma2 at most (1 + max_stretch) / (1 - max_compression)),
+ * by the factor nearest 1 that does; where it does not, by the factor that
+ * leaves both over by the same share of their limit.  Coverage, areas,
+ * strain and the largest stretch and compression follow.  A layout within
+ * the limits is left as it is.
+ */
+void ur_flat_piece_fit_limits(ur_flat_piece *flat, const ur_strip_limits *limits);
 
 #endif

@@ -3,7 +3,8 @@
  * a file ('unroll mesh FILE'), and a ruled surface that is not developable
  * (hypar, ruled, a naturally paired strip), triangulated first.  Each piece
  * (a topological disk) is laid flat with LSCM and ARAP and becomes a net
- * that carries its strain.
+ * that carries its strain; a mesh from a file is by default first cut into
+ * charts that each lie flat within the material's strain (ur_flatten_charts).
  */
 #include "cli.h"
 
@@ -79,11 +80,15 @@ static int append_net(const cli_job *job, ur_net_list *nets, ur_net *net)
 
 enum { MOST_SPLITS = 6 }; /* cuts of a piece whose flat outline crosses itself or is too long */
 
-/* How pieces are flattened: the job, the flattening's options, the room on a sheet. */
+/*
+ * How pieces are flattened: the job, the flattening's options, the room on
+ * a sheet, and the strain every layout is scaled into where it can be.
+ */
 typedef struct flattening {
     const cli_job *job;
     ur_flatten_options options;
-    cli_room room; /* 0 x 0: pieces are not cut to fit */
+    cli_room room;                 /* 0 x 0: pieces are not cut to fit */
+    const ur_strip_limits *limits; /* NULL: layouts are kept at the 3D area */
 } flattening;
 
 static int flatten_piece(const flattening *f, const ur_mesh *piece, size_t depth, ur_net_list *nets,
@@ -161,24 +166,20 @@ static int split_to_fit(const flattening *f, const ur_mesh *piece, double length
     return split_piece(f, piece, 2, depth, nets, area);
 }
 
-static int flatten_piece(const flattening *f, const ur_mesh *piece, size_t depth, ur_net_list *nets,
-                         double *area)
+/*
+ * A piece laid flat as a net, or when its outline crosses itself (or a
+ * triangle is turned over, which only a piece with holes can keep) or it
+ * does not fit the room, cut into parts that are each flattened again.
+ */
+static int place_flat(const flattening *f, const ur_mesh *piece, const ur_flat_piece *flat,
+                      size_t depth, ur_net_list *nets, double *area)
 {
-    const cli_job *job = f->job;
-    const ur_flatten_options *options = &f->options;
-    ur_flat_piece flat;
     ur_net net;
     ur_error error;
-    ur_status status = ur_flatten(piece, options, &flat, &error);
-    if (status == UR_OK)
-        status = ur_net_from_flat(piece, &flat, "", &net, &error);
-    if (status == UR_OK && flat.flipped)
-        status =
-            ur_error_set(&error, UR_ERROR_INTERNAL, "a piece came out with a triangle turned over");
-    ur_flat_piece_free(&flat);
-    if (status != UR_OK)
-        return fail(job, &error);
-    if (!ur_outline_is_simple(net.outline, net.outline_count) && depth < MOST_SPLITS) {
+    if (ur_net_from_flat(piece, flat, "", &net, &error) != UR_OK)
+        return fail(f->job, &error);
+    if ((flat->flipped || !ur_outline_is_simple(net.outline, net.outline_count)) &&
+        depth < MOST_SPLITS) {
         ur_net_free(&net);
         return split_piece(f, piece, 2, depth, nets, area);
     }
@@ -189,7 +190,28 @@ static int flatten_piece(const flattening *f, const ur_mesh *piece, size_t depth
         return split_to_fit(f, piece, length, width, depth, nets, area);
     }
     *area += net.area_3d;
-    return append_net(job, nets, &net);
+    return append_net(f->job, nets, &net);
+}
+
+static int flatten_piece(const flattening *f, const ur_mesh *piece, size_t depth, ur_net_list *nets,
+                         double *area)
+{
+    ur_flat_piece flat;
+    ur_error error;
+    if (ur_flatten(piece, &f->options, &flat, &error) != UR_OK)
+        return fail(f->job, &error);
+    if (f->limits)
+        ur_flat_piece_fit_limits(&flat, f->limits);
+    int code = place_flat(f, piece, &flat, depth, nets, area);
+    ur_flat_piece_free(&flat);
+    return code;
+}
+
+/* Names the nets P1, P2, ... */
+static void name_nets(ur_net_list *nets)
+{
+    for (size_t k = 0; k < nets->count; k++)
+        snprintf(nets->nets[k].name, sizeof nets->nets[k].name, "P%zu", k + 1);
 }
 
 /* Flattens every piece (halving any whose outline crosses itself); nets P1, P2, ... */
@@ -202,8 +224,7 @@ static int flatten_pieces(const cli_job *job, const cli_room *room, const ur_mes
     int code = 0;
     for (size_t k = 0; !code && k < count; k++)
         code = flatten_piece(&f, &pieces[k].mesh, 0, nets, area);
-    for (size_t k = 0; k < nets->count; k++)
-        snprintf(nets->nets[k].name, sizeof nets->nets[k].name, "P%zu", k + 1);
+    name_nets(nets);
     return code;
 }
 
@@ -387,6 +408,39 @@ static int flatten_in_strips(const cli_job *job, const ur_material *material, ur
     return code;
 }
 
+/*
+ * The default for a mesh: charts within the material's strain (or
+ * --max-strain), each placed as a net (cut again where its outline
+ * crosses itself or it does not fit the room).
+ */
+static int flatten_charts(const cli_job *job, const cli_room *room, const ur_material *material,
+                          const ur_mesh *mesh, const ur_seam *seams, size_t seam_count,
+                          ur_net_list *nets, double *area)
+{
+    ur_strip_limits limits = strip_limits(job, material);
+    flattening f = {.job = job, .room = *room, .limits = &limits};
+    flatten_options(job, &f.options);
+    f.options.method = UR_FLATTEN_ARAP;
+    f.options.progress = NULL; /* one line per layout would only flicker */
+    ur_charts charts;
+    ur_error error;
+    if (ur_flatten_charts(mesh, seams, seam_count, &limits, &f.options, &charts, &error) != UR_OK)
+        return fail(job, &error);
+    *area = 0.0;
+    int code = 0;
+    for (size_t k = 0; !code && k < charts.count; k++)
+        code = place_flat(&f, &charts.charts[k].piece.mesh, &charts.charts[k].flat, 0, nets, area);
+    name_nets(nets);
+    if (!code && !job->quiet)
+        cli_message("%s: %zu chart%s (cut at %zu sharp edges, then where over the strain) keep "
+                    "within %.3g %% stretch and %.3g %% compression (at most %.3g %% and %.3g %%)",
+                    job->command, charts.count, charts.count == 1 ? "" : "s", charts.sharp_edges,
+                    100 * limits.max_stretch, 100 * limits.max_compression,
+                    100 * charts.max_stretch, 100 * charts.max_compression);
+    ur_charts_free(&charts);
+    return code;
+}
+
 /* Cleans, cuts into disks and flattens; repairs are news only for a mesh from a file. */
 static int nets_of_mesh(const cli_job *job, const cli_room *room, const ur_material *material,
                         ur_mesh *mesh, bool tell_repairs, ur_net_list *nets, double *area)
@@ -417,6 +471,11 @@ static int nets_of_mesh(const cli_job *job, const cli_room *room, const ur_mater
     }
     if (!code && job->unfold) {
         code = unfold_mesh(job, mesh, seams, seam_count, nets, area);
+        free(seams);
+        return code;
+    }
+    if (!code && job->flatten < 0 && strcmp(job->surface, "mesh") == 0) {
+        code = flatten_charts(job, room, material, mesh, seams, seam_count, nets, area);
         free(seams);
         return code;
     }

@@ -458,20 +458,24 @@ static bool take_option(cli_job *job, int id, const char *value)
         }
         job->seam_paths[job->seam_count++] = value;
         return true;
-    case OPT_FLATTEN:
+    case OPT_FLATTEN: {
+        /* charts is the mesh's default, flatten -1 as when none is given. */
+        bool charts = strcmp(value, "charts") == 0, mesh = strcmp(job->surface, "mesh") == 0;
         job->unfold = strcmp(value, "unfold") == 0;
         job->strips = strcmp(value, "strips") == 0;
-        job->flatten = job->unfold || job->strips ? -1 : ur_flatten_method_from_name(value);
+        job->flatten =
+            job->unfold || job->strips || charts ? -1 : ur_flatten_method_from_name(value);
         if (job->strips)
             return true;
-        if (job->flatten < 0 && !job->unfold)
-            cli_message("%s: --flatten: '%s' is not one of arap, lscm, strips, unfold",
+        if (job->flatten < 0 && !job->unfold && !charts)
+            cli_message("%s: --flatten: '%s' is not one of charts, arap, lscm, strips, unfold",
                         job->command, value);
-        if (job->unfold && strcmp(job->surface, "mesh") != 0)
-            cli_message("%s: --flatten unfold goes with 'unroll mesh' (it unfolds a polyhedron "
-                        "along its edges)",
-                        job->command);
-        return job->flatten >= 0 || (job->unfold && strcmp(job->surface, "mesh") == 0);
+        if ((job->unfold || charts) && !mesh)
+            cli_message("%s: --flatten %s goes with 'unroll mesh' (it cuts a mesh along its "
+                        "edges)",
+                        job->command, value);
+        return job->flatten >= 0 || ((job->unfold || charts) && mesh);
+    }
     case OPT_ITERATIONS:
         return parse_iterations(job, value);
     case OPT_PNG:
@@ -625,8 +629,9 @@ int cli_parse_job(int argc, char **argv, cli_action action, const char *command,
                     job->command, job->max_strain);
         return EXIT_USAGE;
     }
-    if (!isnan(job->max_strain) && !job->strips) {
-        cli_message("%s: --max-strain goes with --flatten strips", job->command);
+    bool charts = strcmp(job->surface, "mesh") == 0 && job->flatten < 0 && !job->unfold;
+    if (!isnan(job->max_strain) && !job->strips && !charts) {
+        cli_message("%s: --max-strain goes with --flatten strips or charts", job->command);
         return EXIT_USAGE;
     }
     if ((job->has_adjust_direction || job->adjusted_rail_path) && !job->adjust_rail2) {

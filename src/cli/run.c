@@ -83,8 +83,8 @@ typedef struct job_state {
     size_t piece_count;
     ur_layout layout;
     double surface_area;
-    const char
-        *method; /* how the nets were made: exact, triangle, quad, arap, lscm, strips, unfold */
+    const char *method;     /* how the nets were made: exact, triangle, quad, arap, lscm, strips,
+                               unfold, charts */
     ur_surface_layer layer; /* the layer the 3D surface is (--surface, else the material's) */
     double k_factor;        /* where the neutral layer is: the material's, or in a grooved skin */
     bool grooved;           /* bending grooves: the neutral layer is in the uncut skin */
@@ -547,6 +547,8 @@ static int make_nets(const cli_job *job, job_state *state, cli_adjusted_rail *ad
                         : ur_flatten_method_name(job->flatten >= 0 ? (ur_flatten_method)job->flatten
                                                                    : UR_FLATTEN_ARAP);
     if (strcmp(job->surface, "mesh") == 0) {
+        if (job->flatten < 0 && !job->strips && !job->unfold)
+            state->method = "charts";
         cli_room room = cli_fit_room(job, &state->machine, &state->material);
         return cli_mesh_nets(job, &room, &state->material, &state->nets, &state->surface_area);
     }

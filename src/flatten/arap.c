@@ -14,6 +14,15 @@
  * energy, so it falls until it stalls.  One vertex is pinned, which removes
  * the translations (the only freedom left once rotations are fitted).
  *
+ * The energy does not stop a triangle from turning over, so the move from
+ * the layout to the global step's solution is bounded (Smith and Schaefer
+ * 2015, as SLIM does): each corner moves on a straight line, each
+ * triangle's signed area is a quadratic along it, and the step goes
+ * FLIP_MARGIN of the way to the first zero of any of them.  From a layout
+ * with every triangle the right way round, every layout after is too.  The
+ * shorter step still lowers the global step's quadratic (a convex function
+ * falls all along the segment to its minimum), so the energy still falls.
+ *
  * The cotangent Laplacian is the Dirichlet energy of the piecewise linear
  * map, so it is positive semidefinite whatever the angles (cotangents of
  * obtuse angles are negative) and definite once a vertex of a connected
@@ -25,6 +34,7 @@
  */
 #include "flatten_internal.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -40,6 +50,12 @@
 
 #define NOT_FREE ((size_t)-1)
 
+/* The share of the way to the first triangle that would turn over that a step goes. */
+#define FLIP_MARGIN 0.8
+
+/* A step bounded to less than this of the way moves nothing worth another iteration. */
+#define SMALLEST_STEP 1e-9
+
 typedef struct arap {
     const ur_mesh *mesh;
     const flat_frame *frames;
@@ -47,6 +63,7 @@ typedef struct arap {
     size_t pin, free_count;
     double *weight; /* 3 T: cotangent at each corner, clamped on fallback */
     double *pinned; /* 2 F: the pinned vertex's share of b (x column, then y) */
+    ur_vec2 *next;  /* V: the global step's solution, before the step is bounded */
     double area;    /* 3D area */
     flat_solver solver;
     cholmod_dense *rhs;
@@ -64,6 +81,7 @@ static void arap_free(arap *a)
     flat_solver_finish(&a->solver);
     free(a->weight);
     free(a->pinned);
+    free(a->next);
 }
 
 static ur_status arap_alloc(arap *a, ur_error *error)
@@ -72,7 +90,8 @@ static ur_status arap_alloc(arap *a, ur_error *error)
     a->free_count = a->mesh->vertex_count - 1;
     a->weight = ur_alloc_array(3 * t, sizeof *a->weight, error);
     a->pinned = ur_alloc_array(2 * a->free_count, sizeof *a->pinned, error);
-    if (!a->weight || !a->pinned)
+    a->next = ur_alloc_array(a->mesh->vertex_count, sizeof *a->next, error);
+    if (!a->weight || !a->pinned || !a->next)
         return UR_ERROR_INTERNAL;
     a->area = 0;
     for (size_t k = 0; k < t; k++) {
@@ -201,7 +220,62 @@ static double local_step(arap *a, const ur_vec2 *layout)
     return energy / a->area;
 }
 
-static ur_status global_step(arap *a, ur_vec2 *layout, ur_error *error)
+/*
+ * The largest fraction of the step from a to b (each triangle's corners
+ * moving on straight lines) before triangle t's signed area reaches zero,
+ * or 1 when it never does within the step: the smallest root in (0, 1] of
+ * the quadratic twice area(s) = c + b s + q s^2, c > 0.
+ */
+static double room_to_flip(const size_t corner[3], const ur_vec2 *from, const ur_vec2 *to)
+{
+    ur_vec2 e1 = ur_vec2_sub(from[corner[1]], from[corner[0]]);
+    ur_vec2 e2 = ur_vec2_sub(from[corner[2]], from[corner[0]]);
+    ur_vec2 d1 = ur_vec2_sub(ur_vec2_sub(to[corner[1]], to[corner[0]]), e1);
+    ur_vec2 d2 = ur_vec2_sub(ur_vec2_sub(to[corner[2]], to[corner[0]]), e2);
+    double c = ur_vec2_cross(e1, e2);
+    double b = ur_vec2_cross(e1, d2) + ur_vec2_cross(d1, e2);
+    double q = ur_vec2_cross(d1, d2);
+    if (!(c > 0))
+        return 0;
+    if (c + b + q > 0 && (b >= 0 || q <= 0 || b * b < 4 * q * c))
+        return 1; /* positive at both ends, and no dip below zero between */
+    double root = 1;
+    if (fabs(q) <= 1e-12 * (fabs(b) + c)) {
+        if (b < 0)
+            root = -c / b;
+    } else {
+        double discriminant = b * b - 4 * q * c;
+        if (discriminant >= 0) {
+            /* The two roots without cancellation: c / (a root of the reversed quadratic). */
+            double w = -0.5 * (b + copysign(sqrt(discriminant), b));
+            double r1 = w / q, r2 = c / w;
+            if (r1 > 0 && r1 < root)
+                root = r1;
+            if (r2 > 0 && r2 < root)
+                root = r2;
+        }
+    }
+    return root;
+}
+
+/*
+ * How far to go from the layout towards the global step's solution: all
+ * the way, unless a triangle would turn over on the way; then
+ * FLIP_MARGIN of the way to the first that would (Smith and Schaefer
+ * 2015), so that every triangle keeps a positive area.
+ */
+static double bounded_step(const arap *a, const ur_vec2 *from, const ur_vec2 *to)
+{
+    double step = 1;
+    for (size_t t = 0; t < a->mesh->triangle_count; t++) {
+        double room = room_to_flip(a->mesh->triangles[t], from, to);
+        if (room < 1)
+            step = fmin(step, FLIP_MARGIN * room);
+    }
+    return step;
+}
+
+static ur_status global_step(arap *a, ur_vec2 *layout, double *step, ur_error *error)
 {
     const double *u;
     ur_status status = flat_solver_solve(&a->solver, a->rhs, &u, error);
@@ -210,9 +284,12 @@ static ur_status global_step(arap *a, ur_vec2 *layout, ur_error *error)
     size_t n = a->free_count;
     for (size_t v = 0; v < a->mesh->vertex_count; v++) {
         size_t i = free_index(a, v);
-        if (i != NOT_FREE)
-            layout[v] = ur_vec2_make(u[i], u[n + i]);
+        a->next[v] = i != NOT_FREE ? ur_vec2_make(u[i], u[n + i]) : layout[v];
     }
+    *step = bounded_step(a, layout, a->next);
+    for (size_t v = 0; v < a->mesh->vertex_count; v++)
+        layout[v] =
+            ur_vec2_add(layout[v], ur_vec2_scale(ur_vec2_sub(a->next[v], layout[v]), *step));
     return UR_OK;
 }
 
@@ -222,15 +299,16 @@ static ur_status iterate(arap *a, const ur_flatten_options *options, ur_vec2 *la
     double energy = local_step(a, layout);
     while (*iterations < options->iterations && energy > NEGLIGIBLE_ENERGY) {
         ur_status status = ur_cancel_check(error);
+        double step = 0;
         if (status == UR_OK)
-            status = global_step(a, layout, error);
+            status = global_step(a, layout, &step, error);
         if (status)
             return status;
         ++*iterations;
         double next = local_step(a, layout);
         if (options->progress)
             options->progress(options->progress_context, *iterations, next);
-        bool stalled = energy - next <= options->tolerance * energy;
+        bool stalled = energy - next <= options->tolerance * energy || step < SMALLEST_STEP;
         energy = next;
         if (stalled)
             break;

@@ -101,7 +101,42 @@ static ur_status measure(const ur_mesh *mesh, const flat_frame *frames, ur_flat_
     return UR_OK;
 }
 
-/* Lays the piece out with its frames and topology: LSCM, then ARAP if asked. */
+/* Whether some triangle of the layout has no area or is turned over. */
+static bool any_turned(const ur_mesh *mesh, const ur_vec2 *layout)
+{
+    for (size_t t = 0; t < mesh->triangle_count; t++)
+        if (!(twice_flat_area(mesh, layout, t) > 0))
+            return true;
+    return false;
+}
+
+/*
+ * A first layout with no triangle turned over: LSCM's, or where it turns
+ * one over (a piece curved far from any flat shape), Tutte's embedding.
+ * A piece with holes has no Tutte embedding here and keeps LSCM's; *tutte
+ * says which was taken.
+ */
+static ur_status first_layout(const ur_mesh *mesh, const flat_frame *frames,
+                              const flat_topology *topology, ur_vec2 *layout, bool *tutte,
+                              ur_error *error)
+{
+    *tutte = false;
+    ur_status status = flat_lscm(mesh, frames, topology, layout, error);
+    if (status == UR_ERROR_INTERNAL || (!status && any_turned(mesh, layout))) {
+        ur_error ignored;
+        if (flat_tutte(mesh, frames, topology, layout, &ignored) == UR_OK) {
+            *tutte = true;
+            return UR_OK;
+        }
+    }
+    return status;
+}
+
+/*
+ * Lays the piece out with its frames and topology: LSCM, then ARAP if
+ * asked, or always when LSCM turned a triangle over and Tutte's layout
+ * was taken instead (it keeps no lengths).
+ */
 static ur_status lay_out(const ur_mesh *mesh, const flat_frame *frames,
                          const flat_topology *topology, const ur_flatten_options *options,
                          ur_flat_piece *flat, ur_error *error)
@@ -109,10 +144,15 @@ static ur_status lay_out(const ur_mesh *mesh, const flat_frame *frames,
     flat->flat = ur_alloc_array(mesh->vertex_count, sizeof *flat->flat, error);
     if (!flat->flat)
         return UR_ERROR_INTERNAL;
-    ur_status status = flat_lscm(mesh, frames, topology, flat->flat, error);
-    if (!status && options->method == UR_FLATTEN_ARAP)
-        status = flat_arap(mesh, frames, topology, topology->pins[0], options, flat->flat,
+    bool tutte = false;
+    ur_status status = first_layout(mesh, frames, topology, flat->flat, &tutte, error);
+    if (!status && (options->method == UR_FLATTEN_ARAP || tutte)) {
+        ur_flatten_options arap = *options;
+        if (arap.iterations == 0)
+            arap.iterations = 1;
+        status = flat_arap(mesh, frames, topology, topology->pins[0], &arap, flat->flat,
                            &flat->iterations, error);
+    }
     return status ? status : measure(mesh, frames, flat, error);
 }
 
@@ -176,4 +216,44 @@ ur_status ur_flatten_energy(const ur_mesh *piece, const ur_vec2 *layout, double 
     *energy = flat_energy(piece, frames, layout);
     free(frames);
     return UR_OK;
+}
+
+/* The factor that brings sigma in [low, high] within the limits, nearest 1. */
+static double fitting_scale(double low, double high, const ur_strip_limits *limits)
+{
+    double stretch = limits->max_stretch, compression = limits->max_compression;
+    double smallest = (1 - compression) / low, largest = (1 + stretch) / high;
+    if (smallest <= largest)
+        return fmin(fmax(1.0, smallest), largest);
+    /* Over both ways: s high - 1 and 1 - s low the same share of their limits. */
+    if (stretch + compression > 0)
+        return (stretch + compression) / (compression * high + stretch * low);
+    return 2 / (low + high);
+}
+
+void ur_flat_piece_fit_limits(ur_flat_piece *flat, const ur_strip_limits *limits)
+{
+    if (!flat->strain || flat->triangle_count == 0)
+        return;
+    double low = INFINITY, high = 0;
+    for (size_t t = 0; t < flat->triangle_count; t++) {
+        low = fmin(low, flat->strain[t].sigma2);
+        high = fmax(high, flat->strain[t].sigma1);
+    }
+    if (!(low > 0) || !isfinite(high))
+        return;
+    double scale = fitting_scale(low, high, limits);
+    if (scale == 1.0)
+        return;
+    for (size_t v = 0; v < flat->vertex_count; v++)
+        flat->flat[v] = ur_vec2_scale(flat->flat[v], scale);
+    flat->max_stretch = flat->max_compression = 0;
+    for (size_t t = 0; t < flat->triangle_count; t++) {
+        flat->strain[t].sigma1 *= scale;
+        flat->strain[t].sigma2 *= scale;
+        flat->max_stretch = fmax(flat->max_stretch, flat->strain[t].sigma1 - 1);
+        flat->max_compression = fmax(flat->max_compression, 1 - flat->strain[t].sigma2);
+    }
+    flat->flat_area *= scale * scale;
+    flat->coverage = flat->flat_area / flat->area_3d;
 }

@@ -136,8 +136,19 @@ ur_status flat_lscm(const ur_mesh *mesh, const flat_frame *frames, const flat_to
                     ur_vec2 *layout, ur_error *error);
 
 /*
+ * Tutte's embedding (tutte.c): the boundary on a circle, every inner vertex
+ * the mean of its neighbours, scaled to the 3D area; no triangle is turned
+ * over.  The piece must have one boundary loop (ur_mesh_boundary refuses
+ * others, UR_ERROR_INPUT).
+ */
+ur_status flat_tutte(const ur_mesh *mesh, const flat_frame *frames, const flat_topology *topology,
+                     ur_vec2 *layout, ur_error *error);
+
+/*
  * ARAP (Liu et al. 2008) from the layout given, which it improves in
  * place; pin keeps its place.  *iterations counts the global steps done.
+ * No step turns a triangle over: from a layout with none turned over,
+ * none is after.
  */
 ur_status flat_arap(const ur_mesh *mesh, const flat_frame *frames, const flat_topology *topology,
                     size_t pin, const ur_flatten_options *options, ur_vec2 *layout,

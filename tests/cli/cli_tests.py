@@ -687,14 +687,74 @@ def meshes_in_every_format_give_the_same_net(work):
 
 @test
 def closed_mesh_is_cut_and_flattened(work):
-    result = run(work, "mesh", os.path.join(REPO, "samples", "icosphere.obj"), "-o", "s.svg",
-                 "--report", "s.json")
+    # One piece whole (--flatten arap), not the charts that are the default.
+    result = run(work, "mesh", os.path.join(REPO, "samples", "icosphere.obj"), "--flatten", "arap",
+                 "-o", "s.svg", "--report", "s.json")
     pieces = report(work, "s.json")["pieces"]
     check(all(p["max_stretch"] > 1e-3 or p["max_compression"] > 1e-3 for p in pieces),
           "a sphere flattened without strain? %r" % pieces)
     for outline in outlines(os.path.join(work, "s.svg")):
         check(simple_ring(outline), "an outline crosses itself")
     check("piece" in result.stderr, result.stderr)
+
+
+def material_strain(name):
+    """The largest stretch and compression of the flattening's map a material takes: its
+    compression bounds the map's stretch, and its stretch the map's compression."""
+    path = os.path.join(REPO, "profiles", "materials", name + ".xml")
+    strain = ET.parse(path).getroot().find(".//strain")
+    return float(strain.get("compression")), float(strain.get("stretch"))
+
+
+def check_within(pieces, limits, what):
+    for piece in pieces:
+        check(piece["max_stretch"] <= limits[0] + 1e-9 and
+              piece["max_compression"] <= limits[1] + 1e-9,
+              "%s: %s over %r: %r" % (what, piece["name"], limits, piece))
+
+
+@test
+def charts_keep_within_the_material(work):
+    samples = os.path.join(REPO, "samples")
+    # A cube: cut at its 12 edges into six squares, no strain.
+    result = run(work, "mesh", os.path.join(samples, "cube.obj"), "--material", "paper-0.3mm",
+                 "-o", "c.svg", "--report", "c.json", *FINE)
+    check("6 charts (cut at 12 sharp edges" in result.stderr, result.stderr)
+    data = report(work, "c.json")
+    check(data["method"] == "charts", "method %r" % data["method"])
+    pieces = data["pieces"]
+    check(len(pieces) == 6, "%d pieces" % len(pieces))
+    for piece in pieces:
+        close(piece["coverage"], 1.0, 1e-6, "a face's coverage")
+        check(piece["max_stretch"] <= 1e-6 and piece["max_compression"] <= 1e-6,
+              "strain %r" % piece)
+    close(sum(p["flat_area_mm2"] for p in pieces), 60000.0, 1e-6, "flat area of the cube")
+    squares = outlines(os.path.join(work, "c.svg"))
+    check(len(squares) == 6, "%d outlines" % len(squares))
+    for outline in squares:
+        close(abs(area(outline)), 10000.0, 1e-6, "a face's outline")
+        close(perimeter(outline), 400.0, 1e-6, "a face's perimeter")
+    # Curved meshes: every piece within the material, no outline crossing itself.
+    for name, material in [("head.obj", "cardboard-2mm"),
+                           ("uvsphere.obj", "cardboard-2mm"), ("icosphere.obj", "paper-0.3mm")]:
+        run(work, "mesh", os.path.join(samples, name), "--material", material, "--allowances",
+            "none", "--nest-time", "0", "-o", "m.svg", "--report", "m.json")
+        pieces = report(work, "m.json")["pieces"]
+        check(len(pieces) > 1, "%s in %s: one piece" % (name, material))
+        check_within(pieces, material_strain(material), "%s in %s" % (name, material))
+        close(sum(p["area_3d_mm2"] for p in pieces), report(work, "m.json")["surface_area_mm2"],
+              1e-9, "%s: the pieces' 3D area" % name)
+        for outline in outlines(os.path.join(work, "m.svg")):
+            check(simple_ring(outline), "%s: an outline crosses itself" % name)
+    # --max-strain sets the limits instead; --flatten arap keeps each disk whole.
+    run(work, "mesh", os.path.join(samples, "uvsphere.obj"), "--max-strain", "0.05",
+        "--allowances", "none", "--nest-time", "0", "-o", "s.svg", "--report", "s.json")
+    check_within(report(work, "s.json")["pieces"], (0.05, 0.05), "uvsphere at 5 %")
+    run(work, "mesh", os.path.join(samples, "cube.obj"), "--flatten", "arap", "-o", "a.svg",
+        "--report", "a.json")
+    check(len(report(work, "a.json")["pieces"]) == 1, "--flatten arap cut the cube")
+    bad(work, r"--flatten charts goes with 'unroll mesh'", "hypar", "--corners", HYPAR,
+        "--flatten", "charts", "-o", "x.svg")
 
 
 @test
@@ -1616,8 +1676,9 @@ def mesh_too_long_for_a_sheet_is_cut_to_fit(work):
                 seams.setdefault(label.group(1), []).append(piece["name"])
     check(sorted(seams) == ["A1", "A2"] and all(len(v) == 2 for v in seams.values()),
           "seam labels %r" % seams)
+    # --quiet: the note on the charts comes before the refusal.
     bad(work, r"does not fit the 600\.0 x 400\.0 mm sheet", "mesh", "strip.obj", "--no-split",
-        "-o", "refused.svg")
+        "--quiet", "-o", "refused.svg")
 
 
 @test

@@ -3,7 +3,9 @@
  * hand, so that these tests need nothing of the mesh module): developable
  * meshes come out without strain, a saddle comes out with some and with
  * less ARAP energy than LSCM's, strain of layouts made by hand, options,
- * and pieces that cannot be flattened.
+ * and pieces that cannot be flattened; no triangle turned over on pieces
+ * far from flat.  Last, charts within a material's strain on the meshes of
+ * samples/make-meshes.py (run from the repository root).
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -12,10 +14,12 @@
 
 #include <cmocka.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "unroll/flatten.h"
+#include "unroll/io.h"
 
 /* A surface patch over (s, t) in [0, 1]^2. */
 typedef ur_vec3 (*surface_fn)(double s, double t);
@@ -522,6 +526,327 @@ static void test_closed_tube_is_strained(void **state)
     free_mesh(&mesh);
 }
 
+/* Twice the signed area of flat triangle t, from the layout itself. */
+static double twice_signed_area(const ur_mesh *mesh, const ur_flat_piece *flat, size_t t)
+{
+    const size_t *c = mesh->triangles[t];
+    return ur_vec2_cross(ur_vec2_sub(flat->flat[c[1]], flat->flat[c[0]]),
+                         ur_vec2_sub(flat->flat[c[2]], flat->flat[c[0]]));
+}
+
+/* Every flat triangle runs the way its 3D triangle does, with some area. */
+static void assert_none_turned(const ur_mesh *mesh, const ur_flat_piece *flat)
+{
+    for (size_t t = 0; t < mesh->triangle_count; t++)
+        if (!(twice_signed_area(mesh, flat, t) > 0))
+            fail_msg("triangle %zu is turned over (twice its signed area is %g)", t,
+                     twice_signed_area(mesh, flat, t));
+    assert_false(flat->flipped);
+}
+
+/* A sphere of radius 50 slit open along a meridian, from latitude -86 to 86 degrees. */
+static ur_vec3 slit_sphere(double s, double t)
+{
+    double longitude = 2 * M_PI * s, latitude = (t - 0.5) * M_PI * 172 / 180;
+    return ur_vec3_make(50 * cos(latitude) * cos(longitude), 50 * cos(latitude) * sin(longitude),
+                        50 * sin(latitude));
+}
+
+/*
+ * A bag: a tube of radius 20 whose rim, at the top, opens out to radius
+ * 60, so that LSCM shrinks its bottom to almost nothing and ARAP, growing
+ * it back, pushes triangles across their neighbours unless its steps are
+ * bounded.
+ */
+static ur_vec3 flared_tube(double s, double t)
+{
+    double angle = 2 * M_PI * s * 0.98, r = 20 + 40 * pow(t, 6);
+    return ur_vec3_make(r * cos(angle), r * sin(angle), 60 * t);
+}
+
+/*
+ * Pieces curved far from any flat shape (nearly a whole sphere, a flared
+ * bag): both methods lay every triangle the right way round.
+ */
+static void test_nothing_turns_over(void **state)
+{
+    (void)state;
+    surface_fn shapes[] = {slit_sphere, flared_tube};
+    for (size_t k = 0; k < 2; k++) {
+        ur_mesh mesh = grid(48, 24, false, shapes[k]);
+        for (int m = 0; m < 2; m++) {
+            ur_flat_piece flat = flatten(&mesh, m == 0 ? UR_FLATTEN_ARAP : UR_FLATTEN_LSCM);
+            assert_none_turned(&mesh, &flat);
+            assert_true(flat.flat_area > 0);
+            ur_flat_piece_free(&flat);
+        }
+        free_mesh(&mesh);
+    }
+}
+
+/* ---- Charts within the strain ---- */
+
+/* paper-0.3mm and cardboard-2mm as the CLI reads them (meshes.c, strip_limits). */
+static const ur_strip_limits paper = {0.01, 0.002, 64}, cardboard = {0.03, 0.005, 64};
+
+static ur_mesh sample(const char *name)
+{
+    char path[128];
+    snprintf(path, sizeof path, "samples/%s", name);
+    ur_mesh_import_options options;
+    ur_mesh_import_options_default(&options);
+    ur_mesh mesh;
+    ur_mesh_repairs repairs;
+    ur_error error;
+    if (ur_mesh_import(path, &options, &mesh, NULL, &error) != UR_OK ||
+        ur_mesh_clean(&mesh, 1e-6 * ur_mesh_size(&mesh), &repairs, &error) != UR_OK)
+        fail_msg("%s: %s (run from the repository root)", path, error.message);
+    return mesh;
+}
+
+static ur_charts charts_of(const ur_mesh *mesh, const ur_strip_limits *limits)
+{
+    ur_charts charts;
+    ur_error error;
+    if (ur_flatten_charts(mesh, NULL, 0, limits, NULL, &charts, &error) != UR_OK)
+        fail_msg("charts: %s", error.message);
+    return charts;
+}
+
+/*
+ * What every set of charts must be: each input triangle in exactly one
+ * chart, congruent to it in 3D; the 3D area kept; every chart within the
+ * limits by its own singular values, with no triangle turned over.
+ */
+static void check_charts(const ur_mesh *mesh, const ur_charts *charts,
+                         const ur_strip_limits *limits)
+{
+    size_t *uses = calloc(mesh->triangle_count, sizeof *uses);
+    assert_non_null(uses);
+    double area = 0;
+    for (size_t k = 0; k < charts->count; k++) {
+        const ur_chart *chart = &charts->charts[k];
+        const ur_mesh *piece = &chart->piece.mesh;
+        assert_int_equal(chart->flat.triangle_count, piece->triangle_count);
+        assert_none_turned(piece, &chart->flat);
+        for (size_t t = 0; t < piece->triangle_count; t++) {
+            size_t input = chart->piece.source_triangles[t];
+            assert_true(input < mesh->triangle_count);
+            uses[input]++;
+            for (int c = 0; c < 3; c++) {
+                ur_vec3 a = piece->vertices[piece->triangles[t][c]];
+                ur_vec3 b = mesh->vertices[mesh->triangles[input][c]];
+                assert_true(ur_vec3_distance(a, b) == 0);
+                assert_true(chart->piece.original[piece->triangles[t][c]] ==
+                            mesh->triangles[input][c]);
+            }
+            const ur_strain *s = &chart->flat.strain[t];
+            if (!(s->sigma1 - 1 <= limits->max_stretch + 1e-9 &&
+                  1 - s->sigma2 <= limits->max_compression + 1e-9))
+                fail_msg("chart %zu, triangle %zu: sigma %.6f, %.6f", k, t, s->sigma1, s->sigma2);
+        }
+        area += chart->flat.area_3d;
+    }
+    for (size_t t = 0; t < mesh->triangle_count; t++)
+        if (uses[t] != 1)
+            fail_msg("triangle %zu is in %zu charts", t, uses[t]);
+    free(uses);
+    assert_true(fabs(area - ur_mesh_area(mesh)) <= 1e-9 * area);
+    assert_true(charts->max_stretch <= limits->max_stretch + 1e-9);
+    assert_true(charts->max_compression <= limits->max_compression + 1e-9);
+}
+
+/* A 100 mm cube: its six faces, flat squares of 100 x 100 mm with no strain. */
+static void test_cube_becomes_six_squares(void **state)
+{
+    (void)state;
+    ur_mesh mesh = sample("cube.obj");
+    ur_charts charts = charts_of(&mesh, &paper);
+    check_charts(&mesh, &charts, &paper);
+    assert_int_equal(charts.sharp_edges, 12);
+    assert_int_equal(charts.count, 6);
+    double flat = 0;
+    for (size_t k = 0; k < charts.count; k++) {
+        const ur_flat_piece *f = &charts.charts[k].flat;
+        assert_no_strain(f, 1e-6);
+        assert_true(fabs(f->coverage - 1) <= 1e-6);
+        assert_true(fabs(f->flat_area - 10000) <= 1e-6 * 10000);
+        assert_edges_kept(&charts.charts[k].piece.mesh, f, 1e-6);
+        flat += f->flat_area;
+    }
+    assert_true(fabs(flat - 60000) <= 1e-6 * 60000);
+    ur_charts_free(&charts);
+    free_mesh(&mesh);
+}
+
+/*
+ * Curved meshes come out within the material's strain, in fewer charts in
+ * cardboard (which takes 3 % and 0.5 %) than in paper (1 % and 0.2 %);
+ * one chart of the whole would not do.
+ */
+static void test_curved_meshes_fit_the_material(void **state)
+{
+    (void)state;
+    const char *names[] = {"head.obj", "uvsphere.obj"};
+    for (size_t k = 0; k < 2; k++) {
+        ur_mesh mesh = sample(names[k]);
+        ur_charts in_paper = charts_of(&mesh, &paper);
+        ur_charts in_cardboard = charts_of(&mesh, &cardboard);
+        check_charts(&mesh, &in_paper, &paper);
+        check_charts(&mesh, &in_cardboard, &cardboard);
+        assert_true(in_cardboard.count > 1);
+        assert_true(in_cardboard.count < in_paper.count);
+        /* A chart is cut only when over the limits: most are not single triangles. */
+        size_t single = 0;
+        for (size_t c = 0; c < in_cardboard.count; c++)
+            single += in_cardboard.charts[c].piece.mesh.triangle_count == 1;
+        assert_true(single * 10 < in_cardboard.count);
+        ur_charts_free(&in_paper);
+        ur_charts_free(&in_cardboard);
+        free_mesh(&mesh);
+    }
+}
+
+/*
+ * The lampshade, a frustum in two groups (its halves): developable, so each
+ * half is one chart without strain, and no chart joins the two.
+ */
+static void test_groups_stay_apart(void **state)
+{
+    (void)state;
+    ur_mesh mesh = sample("lampshade.obj");
+    assert_int_equal(mesh.group_count, 2);
+    ur_charts charts = charts_of(&mesh, &paper);
+    check_charts(&mesh, &charts, &paper);
+    assert_int_equal(charts.count, 2);
+    for (size_t k = 0; k < charts.count; k++) {
+        const ur_chart *chart = &charts.charts[k];
+        for (size_t t = 0; t < chart->piece.mesh.triangle_count; t++)
+            assert_int_equal(mesh.groups[chart->piece.source_triangles[t]],
+                             mesh.groups[chart->piece.source_triangles[0]]);
+        assert_no_strain(&chart->flat, 1e-6);
+    }
+    ur_charts_free(&charts);
+    free_mesh(&mesh);
+}
+
+/* A low-poly sphere is built too, a face or a few to a chart. */
+static void test_low_poly_sphere_is_built(void **state)
+{
+    (void)state;
+    ur_mesh mesh = sample("icosphere.obj");
+    ur_charts charts = charts_of(&mesh, &paper);
+    check_charts(&mesh, &charts, &paper);
+    assert_true(charts.count > 1 && charts.count <= mesh.triangle_count);
+    ur_charts_free(&charts);
+    free_mesh(&mesh);
+}
+
+/*
+ * An icosahedron, whose faces turn by 41.8 degrees at every edge: every
+ * edge is sharp, so every face is a chart of its own, flat as it is.
+ */
+static void test_every_edge_sharp(void **state)
+{
+    (void)state;
+    double g = (1 + sqrt(5)) / 2;
+    ur_vec3 vertices[12] = {{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0},
+                            {0, -1, g}, {0, 1, g}, {0, -1, -g}, {0, 1, -g},
+                            {g, 0, -1}, {g, 0, 1}, {-g, 0, -1}, {-g, 0, 1}};
+    size_t triangles[20][3] = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
+                               {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
+                               {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
+                               {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
+    for (size_t v = 0; v < 12; v++)
+        vertices[v] = ur_vec3_scale(vertices[v], 20);
+    ur_mesh mesh = {vertices, 12, triangles, 20, NULL, 1};
+    ur_charts charts = charts_of(&mesh, &paper);
+    check_charts(&mesh, &charts, &paper);
+    assert_int_equal(charts.sharp_edges, 30);
+    assert_int_equal(charts.count, 20);
+    double side = 40; /* the edge, twice the 20 the unit coordinates were scaled by */
+    for (size_t k = 0; k < charts.count; k++) {
+        assert_no_strain(&charts.charts[k].flat, 1e-9);
+        assert_true(fabs(charts.charts[k].flat.flat_area - sqrt(3) / 4 * side * side) <= 1e-9);
+    }
+    ur_charts_free(&charts);
+}
+
+/* The sharp angle by hand: two faces of a hinge opened to 29 and to 31 degrees. */
+static void test_sharp_edges(void **state)
+{
+    (void)state;
+    for (int k = 0; k < 2; k++) {
+        double turn = (k == 0 ? 29.0 : 31.0) * M_PI / 180;
+        ur_vec3 vertices[4] = {
+            {0, 0, 0}, {10, 0, 0}, {5, 8, 0}, {5, -8 * cos(turn), 8 * sin(turn)}};
+        size_t triangles[2][3] = {{0, 1, 2}, {1, 0, 3}};
+        ur_mesh mesh = {vertices, 4, triangles, 2, NULL, 1};
+        assert_int_equal(ur_chart_edge_is_sharp(&mesh, 0, 1), k == 1);
+    }
+}
+
+/* Scaling into the limits, checked against the singular values of a layout made by hand. */
+static void test_fit_limits(void **state)
+{
+    (void)state;
+    ur_vec3 vertices[3] = {{0, 0, 0}, {10, 0, 0}, {0, 10, 0}};
+    size_t triangles[1][3] = {{0, 1, 2}};
+    ur_mesh mesh = {vertices, 3, triangles, 1, NULL, 1};
+    /* Stretched 2 % along x, compressed 1 % along y. */
+    ur_vec2 layout[3] = {{0, 0}, {10.2, 0}, {0, 9.9}};
+    ur_flat_piece flat;
+    ur_error error;
+    assert_int_equal(ur_flat_piece_measure(&mesh, layout, &flat, &error), UR_OK);
+    /* Paper allows 1 % stretch, 0.2 % compression: the spread 1.02 / 0.99 is too wide. */
+    ur_flat_piece_fit_limits(&flat, &paper);
+    double s = (0.01 + 0.002) / (0.002 * 1.02 + 0.01 * 0.99);
+    assert_true(fabs(flat.strain[0].sigma1 - 1.02 * s) <= 1e-12);
+    assert_true(fabs(flat.flat[1].x - 10.2 * s) <= 1e-12);
+    assert_true(fabs((flat.max_stretch) / 0.01 - flat.max_compression / 0.002) <= 1e-9);
+    ur_flat_piece_free(&flat);
+    /* Cardboard (3 %, 0.5 %) takes it, grown by the least that brings sigma2 to 0.995. */
+    assert_int_equal(ur_flat_piece_measure(&mesh, layout, &flat, &error), UR_OK);
+    ur_flat_piece_fit_limits(&flat, &cardboard);
+    assert_true(fabs(flat.strain[0].sigma2 - 0.995) <= 1e-12);
+    assert_true(fabs(flat.strain[0].sigma1 - 1.02 * 0.995 / 0.99) <= 1e-12);
+    assert_true(fabs(flat.coverage - 1.02 * 0.99 * pow(0.995 / 0.99, 2)) <= 1e-12);
+    ur_flat_piece_free(&flat);
+    /* 4 % stretch and 1 % compression do not fit cardboard: both over by a like share. */
+    layout[1].x = 10.4;
+    assert_int_equal(ur_flat_piece_measure(&mesh, layout, &flat, &error), UR_OK);
+    ur_flat_piece_fit_limits(&flat, &cardboard);
+    s = (0.03 + 0.005) / (0.005 * 1.04 + 0.03 * 0.99);
+    assert_true(fabs(flat.strain[0].sigma2 - 0.99 * s) <= 1e-12);
+    assert_true(fabs(flat.max_stretch / 0.03 - flat.max_compression / 0.005) <= 1e-9);
+    assert_true(flat.max_stretch > 0.03);
+    ur_flat_piece_free(&flat);
+    /* A layout within the limits is left as it is. */
+    layout[1].x = 10.05;
+    layout[2].y = 10;
+    assert_int_equal(ur_flat_piece_measure(&mesh, layout, &flat, &error), UR_OK);
+    ur_flat_piece_fit_limits(&flat, &paper);
+    assert_true(flat.flat[1].x == 10.05 && fabs(flat.strain[0].sigma1 - 1.005) <= 1e-12);
+    ur_flat_piece_free(&flat);
+}
+
+static void test_bad_limits(void **state)
+{
+    (void)state;
+    ur_mesh mesh = grid(2, 2, false, tilted_plane);
+    ur_strip_limits limits = {-0.01, 0.01, 64};
+    ur_charts charts;
+    ur_error error;
+    assert_int_equal(ur_flatten_charts(&mesh, NULL, 0, &limits, NULL, &charts, &error),
+                     UR_ERROR_INPUT);
+    assert_non_null(strstr(error.message, "limits"));
+    assert_int_equal(charts.count, 0);
+    limits.max_stretch = NAN;
+    assert_int_equal(ur_flatten_charts(&mesh, NULL, 0, &limits, NULL, &charts, &error),
+                     UR_ERROR_INPUT);
+    free_mesh(&mesh);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -539,6 +864,15 @@ int main(void)
         cmocka_unit_test(test_single_triangle),
         cmocka_unit_test(test_bad_pieces),
         cmocka_unit_test(test_closed_tube_is_strained),
+        cmocka_unit_test(test_nothing_turns_over),
+        cmocka_unit_test(test_cube_becomes_six_squares),
+        cmocka_unit_test(test_curved_meshes_fit_the_material),
+        cmocka_unit_test(test_groups_stay_apart),
+        cmocka_unit_test(test_low_poly_sphere_is_built),
+        cmocka_unit_test(test_every_edge_sharp),
+        cmocka_unit_test(test_sharp_edges),
+        cmocka_unit_test(test_fit_limits),
+        cmocka_unit_test(test_bad_limits),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
