@@ -439,22 +439,55 @@ static int first_side(const joiner *j, const seam_sides *s, const run runs[2], u
     return j->tab_count[s->net[1]] < j->tab_count[s->net[0]] ? 1 : 0;
 }
 
+/*
+ * The seam's direction where its label goes: that of the segment there.
+ * A side that is a closed loop (the rim of a hole, the whole outline of a
+ * piece) ends where it starts, so its chord says nothing; a zero-length
+ * segment falls back to the chord, and that to +x.
+ */
+static ur_vec2 direction_at(const run *r, size_t segment)
+{
+    ur_vec2 along = ur_vec2_sub(r->points[segment + 1], r->points[segment]);
+    if (!(ur_vec2_length(along) > 0))
+        along = ur_vec2_sub(r->points[r->count - 1], r->points[0]);
+    if (!(ur_vec2_length(along) > 0) || !isfinite(along.x) || !isfinite(along.y))
+        along = ur_vec2_make(1, 0);
+    return along;
+}
+
+/*
+ * Engraves one label for the joints: the place and direction are ours, so
+ * a refusal of them is our failure (UR_ERROR_INTERNAL), never bad input.
+ */
+static ur_status engrave_label(ur_piece *piece, const ur_font *font, const char *text, ur_vec2 near,
+                               ur_vec2 along, double height, double clearance, bool *placed,
+                               ur_error *error)
+{
+    ur_status status = ur_piece_add_label(piece, font, text, near, along, height, 0.5 * height,
+                                          clearance, placed, error);
+    if (status == UR_ERROR_INPUT) {
+        if (error)
+            error->status = UR_ERROR_INTERNAL;
+        ur_error_prefix(error, "piece %s: ", piece->name);
+        return UR_ERROR_INTERNAL;
+    }
+    return status;
+}
+
 static ur_status label_side(const joiner *j, ur_piece *piece, const run *r, const char *text,
                             ur_error *error)
 {
     const ur_joint_options *o = j->options;
-    ur_vec2 middle = run_middle(r);
     size_t segment;
-    point_at(r, r->length / 2, &segment);
+    ur_vec2 middle = point_at(r, r->length / 2, &segment);
     ur_vec2 inward = ur_vec2_scale(segment_normal(r, segment), -1.0);
     /* Beside the seam; with laps beyond the zone the other piece covers. */
     double lapped = o->lap ? o->lap_width : 0.0;
     ur_vec2 near = ur_vec2_add_scaled(middle, inward, lapped + 0.5 * o->label_height + 1.0);
-    ur_vec2 along = ur_vec2_sub(r->points[r->count - 1], r->points[0]);
     double clearance = fmax(0.3, 0.15 * o->label_height);
     bool placed;
-    ur_status status = ur_piece_add_label(piece, o->font, text, near, along, o->label_height,
-                                          0.5 * o->label_height, clearance, &placed, error);
+    ur_status status = engrave_label(piece, o->font, text, near, direction_at(r, segment),
+                                     o->label_height, clearance, &placed, error);
     if (status == UR_OK && !placed)
         status = record(piece, UR_ALLOWANCE_LABEL, middle, true, error,
                         "no room for label %s beside its seam", text);
@@ -535,9 +568,9 @@ static ur_status name_piece(const joiner *j, ur_piece *piece, ur_error *error)
                                   (piece->box.min.y + piece->box.max.y) / 2);
     const ur_joint_options *o = j->options;
     bool placed;
-    ur_status status = ur_piece_add_label(piece, o->font, piece->name, centre, ur_vec2_make(1, 0),
-                                          o->label_height, 0.5 * o->label_height,
-                                          fmax(0.3, 0.15 * o->label_height), &placed, error);
+    ur_status status =
+        engrave_label(piece, o->font, piece->name, centre, ur_vec2_make(1, 0), o->label_height,
+                      fmax(0.3, 0.15 * o->label_height), &placed, error);
     if (status == UR_OK && !placed)
         status = record(piece, UR_ALLOWANCE_LABEL, centre, true, error,
                         "no room to engrave the piece's name %s", piece->name);

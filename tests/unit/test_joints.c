@@ -289,6 +289,101 @@ static void test_unfolded_tabs_clear(void **state)
     ur_net_list_free(&nets);
 }
 
+/* A net of the given outline, its 3D points (x, y, 0) on the grid. */
+static ur_net grid_net(const char *name, const ur_vec2 *flat, const ur_vec2 *grid, size_t count)
+{
+    ur_net net;
+    memset(&net, 0, sizeof net);
+    snprintf(net.name, sizeof net.name, "%s", name);
+    net.outline = malloc(count * sizeof *net.outline);
+    net.outline_3d = malloc(count * sizeof *net.outline_3d);
+    assert_true(net.outline && net.outline_3d);
+    for (size_t i = 0; i < count; i++) {
+        net.outline[i] = flat[i];
+        net.outline_3d[i] = ur_vec3_make(grid[i].x, grid[i].y, 0);
+    }
+    net.outline_count = count;
+    net.flat_area = fabs(ur_polygon_signed_area(flat, count));
+    return net;
+}
+
+/*
+ * A 60 mm square of 3 x 3 quads whose centre quad is a piece of its own:
+ * the centre's whole outline is one seam side, a closed loop, and so is the
+ * rim of the hole it leaves in the frame.  The frame is one piece, cut
+ * open along the grid line x = 20 below the hole (that slit is a second
+ * seam, both of its sides on the frame) and laid out with the slit opened
+ * 4 mm, so that the frame's outline is a simple ring.
+ */
+static ur_net_list grid_with_centre(void)
+{
+    static const ur_vec2 centre[] = {{20, 20}, {40, 20}, {40, 40}, {20, 40}};
+    static const ur_vec2 frame_grid[] = {{20, 0},  {60, 0},  {60, 60}, {0, 60},  {0, 0},  {20, 0},
+                                         {20, 20}, {20, 40}, {40, 40}, {40, 20}, {20, 20}};
+    ur_vec2 frame_flat[11];
+    for (size_t i = 0; i < 11; i++)
+        frame_flat[i] = frame_grid[i];
+    frame_flat[5].x = frame_flat[6].x = 16; /* the slit's left side, opened */
+    ur_net_list nets = {calloc(2, sizeof(ur_net)), 2};
+    assert_non_null(nets.nets);
+    nets.nets[0] = grid_net("P1", frame_flat, frame_grid, 11);
+    nets.nets[1] = grid_net("P2", centre, centre, 4);
+    int next;
+    ur_error error;
+    assert_int_equal(ur_net_list_find_seams(&nets, 1, &next, &error), UR_OK);
+    return nets;
+}
+
+/* Whether seam side k of the net ends where it starts (in 3D): a closed loop. */
+static bool side_is_loop(const ur_net *net, size_t k)
+{
+    const ur_seam_side *side = &net->seam_sides[k];
+    ur_vec3 a = net->outline_3d[side->first];
+    ur_vec3 b = net->outline_3d[(side->first + side->count - 1) % net->outline_count];
+    return a.x == b.x && a.y == b.y && a.z == b.z;
+}
+
+static void test_loop_seams_labelled(void **state)
+{
+    (void)state;
+    ur_net_list nets = grid_with_centre();
+    /* The seams found: the slit and the loop round the centre quad. */
+    assert_int_equal(ur_net_list_last_seam(&nets), 2);
+    assert_int_equal(nets.nets[1].seam_side_count, 1);
+    assert_true(side_is_loop(&nets.nets[1], 0));
+    assert_int_equal(nets.nets[1].seam_sides[0].count, 5); /* four edges, round to the start */
+    ur_piece *pieces = pieces_of(&nets);
+    ur_font *font;
+    ur_error error;
+    assert_int_equal(ur_font_open(NULL, &font, &error), UR_OK);
+    ur_joint_options options = tab_options(font);
+    options.tab_depth = 5;
+    options.thickness = 0.3;
+    options.label_height = 3;
+    assert_int_equal(ur_pieces_add_joints(pieces, &nets, &options, &error), UR_OK);
+    /* Each seam's label on both its sides: the loop's on both pieces, the slit's twice on the
+     * frame. */
+    for (int seam = 1; seam <= 2; seam++) {
+        char label[16];
+        ur_seam_label(seam, label, sizeof label);
+        size_t found[2] = {0, 0};
+        for (size_t k = 0; k < 2; k++)
+            for (size_t r = 0; r < pieces[k].record_count; r++)
+                found[k] += names_label(&pieces[k].records[r], label);
+        size_t frame_side = nets.nets[0].seam_sides[0].seam == seam ? 0 : 1;
+        bool loop = side_is_loop(&nets.nets[0], frame_side);
+        assert_int_equal(found[0], loop ? 1 : 2);
+        assert_int_equal(found[1], loop ? 1 : 0);
+    }
+    for (size_t k = 0; k < nets.count; k++) {
+        check_engraving_inside(&pieces[k], &nets.nets[k]);
+        check_nothing_crosses_outline(&pieces[k]);
+    }
+    ur_font_close(font);
+    free_pieces(pieces, nets.count);
+    ur_net_list_free(&nets);
+}
+
 static void test_laps_marked_on_both(void **state)
 {
     (void)state;
@@ -343,7 +438,8 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_seam_labels),          cmocka_unit_test(test_cylinder_tab),
         cmocka_unit_test(test_helicoid_labels_pair), cmocka_unit_test(test_unfolded_tabs_clear),
-        cmocka_unit_test(test_laps_marked_on_both),  cmocka_unit_test(test_bad_options),
+        cmocka_unit_test(test_loop_seams_labelled),  cmocka_unit_test(test_laps_marked_on_both),
+        cmocka_unit_test(test_bad_options),
     };
     return cmocka_run_group_tests(tests, start, finish);
 }
