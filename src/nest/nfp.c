@@ -215,6 +215,22 @@ static ur_status convex_parts(GEOSContextHandle_t geos, const GEOSGeometry *poly
                               nest_shape *shape, ur_error *error)
 {
     GEOSGeometry *triangles = GEOSConstrainedDelaunayTriangulation_r(geos, polygon);
+    if (!triangles && GEOSGetNumInteriorRings_r(geos, polygon) > 0) {
+        /*
+         * GEOS cannot always join holes that touch the shell to it, as
+         * growing a piece makes of the gaps between its glue tabs; then the
+         * parts cover the holes too, which only keeps other pieces out of
+         * them.
+         */
+        const GEOSGeometry *ring = GEOSGetExteriorRing_r(geos, polygon);
+        GEOSGeometry *shell = ring ? GEOSGeom_clone_r(geos, ring) : NULL;
+        GEOSGeometry *filled = shell ? GEOSGeom_createPolygon_r(geos, shell, NULL, 0) : NULL;
+        if (shell && !filled)
+            GEOSGeom_destroy_r(geos, shell);
+        triangles = filled ? GEOSConstrainedDelaunayTriangulation_r(geos, filled) : NULL;
+        if (filled)
+            GEOSGeom_destroy_r(geos, filled);
+    }
     if (!triangles)
         return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not triangulate a piece");
     int count = GEOSGetNumGeometries_r(geos, triangles);
