@@ -343,6 +343,7 @@ typedef enum blocker { BLOCKED_NOT, BLOCKED_SHAPE, BLOCKED_OUTLINE, BLOCKED_JOIN
 typedef struct verdict {
     blocker by;
     const GEOSGeometry *what; /* the segment or joint in the way */
+    size_t edge;              /* the outline's edge in the way */
 } verdict;
 
 /*
@@ -369,40 +370,125 @@ static void regions_free(const joiner *j, regions *r)
             GEOSGeom_destroy_r(j->geos, all[k]);
 }
 
-/* The half-plane outward of the base's chord, lifted by TOUCH, as a polygon far larger than the
- * joint. */
-static GEOSGeometry *outward_side(const joiner *j, const run *base, double size)
+/*
+ * The line outward of which the joint's outer region lies: the base's
+ * chord, lifted by TOUCH past the base's own points (which may stray from
+ * a straight chord); *out is its outward unit normal, *level the value of
+ * dot(point, out) on it.  False for a base of no length.
+ */
+static bool outward_line(const run *base, ur_vec2 *out, double *level)
 {
-    ur_vec2 a = base->points[0], b = base->points[base->count - 1];
-    ur_vec2 along = ur_vec2_sub(b, a);
+    ur_vec2 a = base->points[0], along = ur_vec2_sub(base->points[base->count - 1], a);
     double length = ur_vec2_length(along);
     if (!(length > 0))
-        return NULL;
-    along = ur_vec2_scale(along, 1 / length);
-    ur_vec2 out = ur_vec2_make(along.y, -along.x);
-    /* Lifted past the base's own points, which may stray from a straight chord. */
+        return false;
+    *out = ur_vec2_make(along.y / length, -along.x / length);
     double lift = TOUCH;
     for (size_t k = 0; k < base->count; k++)
-        lift = fmax(lift, TOUCH + ur_vec2_dot(ur_vec2_sub(base->points[k], a), out));
-    ur_vec2 start = ur_vec2_add_scaled(ur_vec2_add_scaled(a, out, lift), along, -size);
-    ur_vec2 end = ur_vec2_add_scaled(ur_vec2_add_scaled(b, out, lift), along, size);
-    ur_vec2 ring[4] = {start, ur_vec2_add_scaled(start, out, size),
-                       ur_vec2_add_scaled(end, out, size), end};
-    return ur_geos_polygon(j->geos, ring, 4);
+        lift = fmax(lift, TOUCH + ur_vec2_dot(ur_vec2_sub(base->points[k], a), *out));
+    *level = ur_vec2_dot(a, *out) + lift;
+    return true;
+}
+
+/*
+ * The polygon's exterior ring clipped to the half-plane dot(p, out) >=
+ * level (Sutherland and Hodgman: the grown joint of a tab is convex, so
+ * the clipped ring is too), as a polygon; NULL when nothing is left.
+ */
+static GEOSGeometry *clip_outward(const joiner *j, const GEOSGeometry *polygon, ur_vec2 out,
+                                  double level)
+{
+    const GEOSGeometry *shell = GEOSGetExteriorRing_r(j->geos, polygon);
+    const GEOSCoordSequence *sequence = shell ? GEOSGeom_getCoordSeq_r(j->geos, shell) : NULL;
+    unsigned size = 0;
+    if (!sequence || !GEOSCoordSeq_getSize_r(j->geos, sequence, &size) || size < 4)
+        return NULL;
+    ur_points kept = {0};
+    bool failed = false;
+    ur_vec2 previous;
+    GEOSCoordSeq_getXY_r(j->geos, sequence, size - 2, &previous.x, &previous.y);
+    for (unsigned i = 0; i + 1 < size && !failed; i++) {
+        ur_vec2 point;
+        GEOSCoordSeq_getXY_r(j->geos, sequence, i, &point.x, &point.y);
+        double a = ur_vec2_dot(previous, out) - level, b = ur_vec2_dot(point, out) - level;
+        if ((a >= 0) != (b >= 0)) /* the edge crosses the line: keep where */
+            failed =
+                ur_points_push(
+                    &kept, ur_vec2_add_scaled(previous, ur_vec2_sub(point, previous), a / (a - b)),
+                    NULL) != UR_OK;
+        if (b >= 0 && !failed)
+            failed = ur_points_push(&kept, point, NULL) != UR_OK;
+        previous = point;
+    }
+    GEOSGeometry *clipped =
+        !failed && kept.count >= 3 ? ur_geos_polygon(j->geos, kept.items, kept.count) : NULL;
+    ur_points_free(&kept);
+    return clipped;
+}
+
+/*
+ * Whether the ring (counter-clockwise, first point not repeated) is
+ * convex with no edge of zero length: a tab is, a lap on a bent seam is not.
+ */
+static bool convex_ring(const ur_vec2 *ring, size_t n)
+{
+    for (size_t i = 0; i < n; i++) {
+        ur_vec2 a = ring[i], b = ring[(i + 1) % n], c = ring[(i + 2) % n];
+        if (!(ur_vec2_length(ur_vec2_sub(b, a)) > 0) ||
+            ur_vec2_cross(ur_vec2_sub(b, a), ur_vec2_sub(c, b)) < 0)
+            return false;
+    }
+    return true;
+}
+
+/*
+ * A convex ring moved out by distance (in when negative) with mitred
+ * corners, as a polygon: GEOS's buffer is exact but slow for the many
+ * joints of a large mesh, and a convex joint's corners are no sharper
+ * than 45 degrees, so a mitre is at most 2.7 times the distance.
+ */
+static GEOSGeometry *offset_convex(const joiner *j, const ur_vec2 *ring, size_t n, double distance)
+{
+    ur_vec2 *moved = malloc(n * sizeof *moved);
+    if (!moved)
+        return NULL;
+    for (size_t i = 0; i < n; i++) {
+        ur_vec2 p = ring[(i + n - 1) % n], q = ring[i], r = ring[(i + 1) % n];
+        ur_vec2 d0 = ur_vec2_sub(q, p), d1 = ur_vec2_sub(r, q);
+        ur_vec2 a = ur_vec2_scale(ur_vec2_make(d0.y, -d0.x), 1 / ur_vec2_length(d0));
+        ur_vec2 b = ur_vec2_scale(ur_vec2_make(d1.y, -d1.x), 1 / ur_vec2_length(d1));
+        moved[i] = ur_vec2_add_scaled(q, ur_vec2_add(a, b), distance / (1 + ur_vec2_dot(a, b)));
+    }
+    GEOSGeometry *polygon = ur_geos_polygon(j->geos, moved, n);
+    free(moved);
+    return polygon;
+}
+
+/* The joint shrunk and grown: by offset_convex when it is convex, by GEOS's buffer otherwise. */
+static void shrink_and_grow(const joiner *j, const GEOSGeometry *joint, regions *r)
+{
+    ur_vec2 *ring = NULL;
+    size_t n = 0;
+    if (allow_exterior_ring(j->geos, joint, &ring, &n, NULL) == UR_OK && convex_ring(ring, n)) {
+        r->shrunk = offset_convex(j, ring, n, -TOUCH);
+        r->grown = offset_convex(j, ring, n, j->gap);
+    } else {
+        r->shrunk = GEOSBuffer_r(j->geos, joint, -TOUCH, 1);
+        r->grown = GEOSBuffer_r(j->geos, joint, j->gap, 2);
+    }
+    free(ring);
 }
 
 static bool regions_make(const joiner *j, const GEOSGeometry *joint, const run *base, regions *r)
 {
     memset(r, 0, sizeof *r);
-    r->shrunk = GEOSBuffer_r(j->geos, joint, -TOUCH, 1);
-    r->grown = GEOSBuffer_r(j->geos, joint, j->gap, 2);
-    if (!r->shrunk || !r->grown || GEOSisEmpty_r(j->geos, r->shrunk))
+    shrink_and_grow(j, joint, r);
+    ur_vec2 out;
+    double level;
+    if (!r->shrunk || !r->grown || GEOSisEmpty_r(j->geos, r->shrunk) ||
+        GEOSGeomTypeId_r(j->geos, r->grown) != GEOS_POLYGON || !outward_line(base, &out, &level))
         return false;
-    ur_box box = allow_box(j->geos, r->grown);
-    GEOSGeometry *side = outward_side(j, base, 4 * (ur_box_width(box) + ur_box_height(box)));
-    r->clipped = side ? GEOSIntersection_r(j->geos, r->grown, side) : NULL;
-    if (side)
-        GEOSGeom_destroy_r(j->geos, side);
+    r->clipped = clip_outward(j, r->grown, out, level);
     if (!r->clipped)
         return false;
     r->inner = GEOSPrepare_r(j->geos, r->shrunk);
@@ -438,7 +524,7 @@ static ur_status test_near(joiner *j, size_t piece, const regions *r, size_t fir
         size_t e = j->found.items[k];
         status = meets(j, share_corner(n, e, 1, first, edges), r, b->segments[e], &hit, error);
         if (hit)
-            *v = (verdict){BLOCKED_OUTLINE, b->segments[e]};
+            *v = (verdict){BLOCKED_OUTLINE, b->segments[e], e};
     }
     if (status != UR_OK || hit)
         return status;
@@ -448,7 +534,7 @@ static ur_status test_near(joiner *j, size_t piece, const regions *r, size_t fir
         status = meets(j, share_corner(n, q->first_edge, q->edges, first, edges), r, q->shape, &hit,
                        error);
         if (hit)
-            *v = (verdict){BLOCKED_JOINT, q->shape};
+            *v = (verdict){BLOCKED_JOINT, q->shape, 0};
     }
     return status;
 }
@@ -460,13 +546,13 @@ static ur_status test_near(joiner *j, size_t piece, const regions *r, size_t fir
 static ur_status joint_fits(joiner *j, size_t piece, const GEOSGeometry *joint, const run *base,
                             size_t first, size_t edges, verdict *v, ur_error *error)
 {
-    *v = (verdict){BLOCKED_SHAPE, NULL};
+    *v = (verdict){BLOCKED_SHAPE, NULL, 0};
     if (!joint || GEOSisValid_r(j->geos, joint) != 1)
         return UR_OK;
     regions r;
     ur_status status = UR_OK;
     if (regions_make(j, joint, base, &r)) {
-        *v = (verdict){BLOCKED_NOT, NULL};
+        *v = (verdict){BLOCKED_NOT, NULL, 0};
         status = test_near(j, piece, &r, first, edges, v, error);
     }
     regions_free(j, &r);
@@ -595,7 +681,7 @@ static ur_status try_shapes(joiner *j, const seam_job *sj, int k, const stretch 
         double depth = 0;
         GEOSGeometry *joint =
             status == UR_OK ? joint_shape(j, &base, shapes[step].depth, &depth, error) : NULL;
-        verdict tried = {BLOCKED_SHAPE, NULL};
+        verdict tried = {BLOCKED_SHAPE, NULL, 0};
         if (status == UR_OK)
             status = joint_fits(j, piece, joint, &base, edge, count, &tried, error);
         /* What stopped the smallest shape that could be built says most. */
@@ -630,6 +716,16 @@ static ur_status try_shapes(joiner *j, const seam_job *sj, int k, const stretch 
     return status;
 }
 
+/* Whether outline edge e of side k's piece is one of the seam's other side (on the same piece). */
+static bool on_other_side(const joiner *j, const seam_job *sj, int k, size_t e)
+{
+    if (sj->s->net[0] != sj->s->net[1])
+        return false;
+    const ur_net *net = &j->nets->nets[sj->s->net[k]];
+    size_t first = net->seam_sides[sj->s->side[1 - k]].first, n = net->outline_count;
+    return (e + n - first % n) % n < sj->edges[1 - k];
+}
+
 /* Which side of the seam a describe() names, and what stopped its joint there. */
 static void describe(const joiner *j, const seam_job *sj, int k, const stretch *st,
                      const verdict *v, char *text, size_t size)
@@ -647,7 +743,10 @@ static void describe(const joiner *j, const seam_job *sj, int k, const stretch *
         GEOSDistance_r(j->geos, point, v->what, &distance);
     if (point)
         GEOSGeom_destroy_r(j->geos, point);
-    if (v->by == BLOCKED_OUTLINE)
+    if (v->by == BLOCKED_OUTLINE && on_other_side(j, sj, k, v->edge))
+        snprintf(text, size, "on %s the seam's other side comes within %.1f mm (a narrow slit)",
+                 piece->name, distance);
+    else if (v->by == BLOCKED_OUTLINE)
         snprintf(text, size, "on %s its own outline comes within %.1f mm", piece->name, distance);
     else if (v->by == BLOCKED_JOINT)
         snprintf(text, size, "on %s another %s comes within %.1f mm", piece->name,
@@ -713,7 +812,7 @@ static ur_status join_stretch(joiner *j, const seam_job *sj, const stretch *st, 
     size_t count = o->lap ? COUNT(lap_shapes) : COUNT(tab_shapes);
     /* Tabs: the full shape on both sides before any smaller; laps: one side, then the other. */
     size_t split = o->lap ? count : 1;
-    verdict why[2] = {{BLOCKED_SHAPE, NULL}, {BLOCKED_SHAPE, NULL}};
+    verdict why[2] = {{BLOCKED_SHAPE, NULL, 0}, {BLOCKED_SHAPE, NULL, 0}};
     bool done = false;
     ur_status status = UR_OK;
     for (int pass = 0; status == UR_OK && !done && pass < 4; pass++) {
@@ -885,21 +984,30 @@ static ur_status set_outline(const joiner *j, ur_piece *piece, const GEOSGeometr
 }
 
 /*
- * a united with b, simplified by a micrometre, far below any cutter's
- * resolution: where a joint's corner meets the outline a hair's breadth
- * off, the union keeps a sliver that folds back on itself.  NULL unless it
- * is one polygon.
+ * The union of all (a collection), simplified by a micrometre, far below
+ * any cutter's resolution: where a shortened joint's corner meets the
+ * outline a hair's breadth off, the union keeps a sliver that folds back
+ * on itself.  Plain Douglas-Peucker is quick on an outline of thousands of
+ * tabs; should it leave the polygon invalid, the exact union is kept.
+ * NULL unless it is one polygon.
  */
 static GEOSGeometry *united(const joiner *j, GEOSGeometry *all)
 {
     GEOSGeometry *exact = all ? GEOSUnaryUnion_r(j->geos, all) : NULL;
-    GEOSGeometry *simple = exact ? GEOSTopologyPreserveSimplify_r(j->geos, exact, 1e-3) : NULL;
-    if (exact)
+    if (exact && GEOSGeomTypeId_r(j->geos, exact) != GEOS_POLYGON) {
         GEOSGeom_destroy_r(j->geos, exact);
-    if (simple && GEOSGeomTypeId_r(j->geos, simple) != GEOS_POLYGON) {
+        return NULL;
+    }
+    GEOSGeometry *simple = exact ? GEOSSimplify_r(j->geos, exact, 1e-3) : NULL;
+    if (simple && (GEOSGeomTypeId_r(j->geos, simple) != GEOS_POLYGON ||
+                   GEOSisValid_r(j->geos, simple) != 1)) {
         GEOSGeom_destroy_r(j->geos, simple);
         simple = NULL;
     }
+    if (!simple)
+        return exact;
+    if (exact)
+        GEOSGeom_destroy_r(j->geos, exact);
     return simple;
 }
 
