@@ -414,20 +414,22 @@ static ur_vec2 frame_apply(const frame *f, double u, double v)
     return ur_vec2_add_scaled(ur_vec2_add_scaled(f->centre, f->along, u), f->up, v);
 }
 
-/* The distance from the point (u, v) to the rectangle [-a, a] x [-b, b]. */
+/* The squared distance from the point (u, v) to the rectangle [-a, a] x [-b, b]. */
 static double point_to_box(double u, double v, double a, double b)
 {
-    return hypot(fmax(fabs(u) - a, 0.0), fmax(fabs(v) - b, 0.0));
+    double du = fmax(fabs(u) - a, 0.0), dv = fmax(fabs(v) - b, 0.0);
+    return du * du + dv * dv;
 }
 
-/* The distance from the point to the segment from p to q. */
+/* The squared distance from the point to the segment from p to q. */
 static double point_to_segment(ur_vec2 point, ur_vec2 p, ur_vec2 q)
 {
     ur_vec2 d = ur_vec2_sub(q, p);
     double length2 = ur_vec2_dot(d, d);
     double t =
         length2 > 0 ? fmin(1.0, fmax(0.0, ur_vec2_dot(ur_vec2_sub(point, p), d) / length2)) : 0.0;
-    return ur_vec2_distance(point, ur_vec2_add_scaled(p, d, t));
+    ur_vec2 off = ur_vec2_sub(point, ur_vec2_add_scaled(p, d, t));
+    return ur_vec2_dot(off, off);
 }
 
 /* Whether the segment from p to q (frame coordinates) crosses the rectangle [-a, a] x [-b, b]. */
@@ -461,12 +463,13 @@ static bool segment_near_box(const frame *f, double a, double b, double clearanc
     ur_vec2 dp = ur_vec2_sub(p, f->centre), dq = ur_vec2_sub(q, f->centre);
     ur_vec2 u = ur_vec2_make(ur_vec2_dot(dp, f->along), ur_vec2_dot(dp, f->up));
     ur_vec2 v = ur_vec2_make(ur_vec2_dot(dq, f->along), ur_vec2_dot(dq, f->up));
-    if (point_to_box(u.x, u.y, a, b) <= clearance || point_to_box(v.x, v.y, a, b) <= clearance ||
+    double reach = clearance * clearance; /* squared distances: no square roots */
+    if (point_to_box(u.x, u.y, a, b) <= reach || point_to_box(v.x, v.y, a, b) <= reach ||
         segment_crosses_box(u, v, a, b))
         return true;
     static const int sign[4][2] = {{1, 1}, {-1, 1}, {-1, -1}, {1, -1}};
     for (int k = 0; k < 4; k++)
-        if (point_to_segment(ur_vec2_make(sign[k][0] * a, sign[k][1] * b), u, v) <= clearance)
+        if (point_to_segment(ur_vec2_make(sign[k][0] * a, sign[k][1] * b), u, v) <= reach)
             return true;
     return false;
 }
