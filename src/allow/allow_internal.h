@@ -71,6 +71,44 @@ ur_status allow_grid_add(allow_grid *grid, ur_box box, size_t *item, ur_error *e
 ur_status allow_grid_query(allow_grid *grid, ur_box box, allow_items *found, ur_error *error);
 
 /*
+ * What the joints of one piece must keep clear of (clearance.c): its net's
+ * outline edges in an STRtree, the joints placed so far in a grid.  A
+ * joint over outline edges [first, first + edges) may touch what shares a
+ * corner with those edges but not overlap it, and keeps `gap` mm from
+ * everything else on its outward side (beyond the chord of its base, the
+ * fold it is built on).  reach: how far beyond the outline joints go.
+ */
+typedef struct allow_board allow_board;
+
+typedef enum allow_blocker {
+    ALLOW_BLOCKED_NOT,     /* it fits */
+    ALLOW_BLOCKED_SHAPE,   /* no joint, or no simple polygon */
+    ALLOW_BLOCKED_OUTLINE, /* an edge of the piece's outline */
+    ALLOW_BLOCKED_JOINT    /* a joint placed before */
+} allow_blocker;
+
+typedef struct allow_verdict {
+    allow_blocker by;
+    const GEOSGeometry *what; /* the edge or joint in the way */
+    size_t edge;              /* the outline edge in the way */
+} allow_verdict;
+
+ur_status allow_board_open(GEOSContextHandle_t geos, const ur_vec2 *outline, size_t count,
+                           double reach, double gap, allow_board **board, ur_error *error);
+void allow_board_close(allow_board *board);
+
+/* Whether joint, built on base (count points), fits over outline edges [first, first + edges). */
+ur_status allow_board_test(allow_board *board, const GEOSGeometry *joint, const ur_vec2 *base,
+                           size_t count, size_t first, size_t edges, allow_verdict *verdict,
+                           ur_error *error);
+
+/* Puts the joint on the board (the caller keeps the shape alive), with a tag of the caller's. */
+ur_status allow_board_add(allow_board *board, const GEOSGeometry *shape, size_t first, size_t edges,
+                          size_t tag, ur_error *error);
+size_t allow_board_joint_count(const allow_board *board);
+size_t allow_board_joint_tag(const allow_board *board, size_t k);
+
+/*
  * Room for labels on one piece, kept between labels (label.c): every path
  * the piece has when it is opened, in an STRtree, and the labels engraved
  * through it since, in a grid.  The piece gets no other paths while it is

@@ -16,15 +16,12 @@
  * Laps: one band along each seam side (each half of a loop), mitred at
  * its corners (wood does not fold).
  *
- * A joint must not overlap its piece or another joint: a joint is tested
- * against the net's outline, cut into segments in a GEOS STRtree, and the
- * joints already placed on the piece, in a grid (grid.c) that grows as
- * they go on, so that each test looks only at what is near.  What shares
- * a corner with the joint's stretch may touch it (a neighbouring edge,
- * the tab on it): that is tested with the joint shrunk by TOUCH; anything
- * else must keep the joint's gap.  The outline is grown by all the joints
- * of a piece at once at the end (one GEOS union), and only then the folds
- * and marks go on.
+ * A joint must not overlap its piece or another joint, and keeps a gap
+ * from all but its neighbours at the seam's corners: each piece has a
+ * board (clearance.c) of its net's outline and the joints placed on it,
+ * indexed so that each test looks only at what is near.  The outline is
+ * grown by all the joints of a piece at once at the end (one GEOS union),
+ * and only then the folds and marks go on.
  */
 #include "allow_internal.h"
 
@@ -55,13 +52,6 @@ static const shape lap_shapes[] = {{1.0, 0.0},  {0.7, 0.0}, {1.0, 0.15}, {0.7, 0
                                    {0.5, 0.15}, {0.5, 0.3}, {0.35, 0.3}};
 
 #define COUNT(array) (sizeof array / sizeof array[0])
-
-/*
- * Joints sharing a corner may touch there but not overlap: each is tested
- * shrunk by this much (mm), far below a cutter's resolution, so that
- * rounding where they meet is no clash.
- */
-#define TOUCH 1e-4
 
 /* A stretch of a seam is straight when no point strays from its chord by more than this share of
  * the tab depth. */
@@ -251,28 +241,16 @@ typedef struct placed {
     bool kept;    /* still on once the outline has grown */
 } placed_joint;
 
-/* One piece: its net's outline edges in an STRtree, its joints in a grid. */
-typedef struct board {
-    GEOSSTRtree *tree;
-    GEOSGeometry **segments; /* owned: outline edge e from point e to e + 1 */
-    size_t *edge_ids;        /* the tree's items: edge_ids[e] == e */
-    size_t edge_count;
-    allow_grid grid;
-    size_t *joints; /* grid item -> index in the joiner's placed */
-    size_t tab_count;
-} board;
-
 typedef struct joiner {
     GEOSContextHandle_t geos;
     ur_piece *pieces;
     const ur_net_list *nets;
     const ur_joint_options *options;
-    board *boards;
+    allow_board **boards; /* one per piece */
+    size_t *tab_count;    /* per piece, to balance them */
     placed_joint *placed;
     size_t placed_count, placed_capacity;
     double gap; /* mm a joint keeps from anything it does not share a corner with */
-    allow_items found;
-    bool out_of_memory;
 } joiner;
 
 static double full_depth(const ur_joint_options *o)
@@ -283,280 +261,6 @@ static double full_depth(const ur_joint_options *o)
 static double band_of(const ur_joint_options *o)
 {
     return !o->lap && o->thickness >= THICK_STOCK ? o->thickness : 0.0;
-}
-
-static ur_status board_init(joiner *j, board *b, const ur_net *net, ur_error *error)
-{
-    size_t n = net->outline_count;
-    b->edge_count = n;
-    b->tree = GEOSSTRtree_create_r(j->geos, 8);
-    b->segments = calloc(n, sizeof *b->segments);
-    b->edge_ids = calloc(n, sizeof *b->edge_ids);
-    if (!b->tree || !b->segments || !b->edge_ids)
-        return ur_error_out_of_memory(error);
-    for (size_t e = 0; e < n; e++) {
-        ur_vec2 ends[2] = {net->outline[e], net->outline[(e + 1) % n]};
-        b->segments[e] = allow_line(j->geos, ends, 2);
-        if (!b->segments[e])
-            return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not build the outline of %s",
-                                net->name);
-        b->edge_ids[e] = e;
-        GEOSSTRtree_insert_r(j->geos, b->tree, b->segments[e], &b->edge_ids[e]);
-    }
-    const ur_joint_options *o = j->options;
-    double reach = band_of(o) + full_depth(o) + j->gap;
-    ur_box region = ur_box_of_points(net->outline, n);
-    region.min = ur_vec2_add(region.min, ur_vec2_make(-reach, -reach));
-    region.max = ur_vec2_add(region.max, ur_vec2_make(reach, reach));
-    return allow_grid_init(&b->grid, region, reach, error);
-}
-
-static void board_free(joiner *j, board *b)
-{
-    if (b->tree)
-        GEOSSTRtree_destroy_r(j->geos, b->tree);
-    for (size_t e = 0; b->segments && e < b->edge_count; e++)
-        if (b->segments[e])
-            GEOSGeom_destroy_r(j->geos, b->segments[e]);
-    free(b->segments);
-    free(b->edge_ids);
-    free(b->joints);
-    allow_grid_free(&b->grid);
-}
-
-/* Whether edges [a, a + la) and [b, b + lb) of an outline of n edges overlap or share a corner. */
-static bool share_corner(size_t n, size_t a, size_t la, size_t b, size_t lb)
-{
-    return (b + n - a) % n <= la || (a + n - b) % n <= lb;
-}
-
-static void collect_edge(void *item, void *userdata)
-{
-    joiner *j = userdata;
-    if (allow_items_push(&j->found, *(const size_t *)item, NULL) != UR_OK)
-        j->out_of_memory = true;
-}
-
-/* What stopped a joint: nothing, its own shape (too small, not simple), the outline, a joint. */
-typedef enum blocker { BLOCKED_NOT, BLOCKED_SHAPE, BLOCKED_OUTLINE, BLOCKED_JOINT } blocker;
-
-typedef struct verdict {
-    blocker by;
-    const GEOSGeometry *what; /* the segment or joint in the way */
-    size_t edge;              /* the outline's edge in the way */
-} verdict;
-
-/*
- * The joint's two test regions: inner, the joint shrunk by TOUCH, which
- * nothing may meet; outer, the joint grown by the gap on its outward side
- * only (beyond its base's chord, lifted by TOUCH), which nothing but what
- * shares a corner with it may meet.  Behind the base is the piece itself,
- * whose outline runs on from the base's ends.
- */
-typedef struct regions {
-    GEOSGeometry *shrunk, *grown, *clipped;
-    const GEOSPreparedGeometry *inner, *outer;
-} regions;
-
-static void regions_free(const joiner *j, regions *r)
-{
-    if (r->inner)
-        GEOSPreparedGeom_destroy_r(j->geos, r->inner);
-    if (r->outer)
-        GEOSPreparedGeom_destroy_r(j->geos, r->outer);
-    GEOSGeometry *all[] = {r->shrunk, r->grown, r->clipped};
-    for (size_t k = 0; k < 3; k++)
-        if (all[k])
-            GEOSGeom_destroy_r(j->geos, all[k]);
-}
-
-/*
- * The line outward of which the joint's outer region lies: the base's
- * chord, lifted by TOUCH past the base's own points (which may stray from
- * a straight chord); *out is its outward unit normal, *level the value of
- * dot(point, out) on it.  False for a base of no length.
- */
-static bool outward_line(const run *base, ur_vec2 *out, double *level)
-{
-    ur_vec2 a = base->points[0], along = ur_vec2_sub(base->points[base->count - 1], a);
-    double length = ur_vec2_length(along);
-    if (!(length > 0))
-        return false;
-    *out = ur_vec2_make(along.y / length, -along.x / length);
-    double lift = TOUCH;
-    for (size_t k = 0; k < base->count; k++)
-        lift = fmax(lift, TOUCH + ur_vec2_dot(ur_vec2_sub(base->points[k], a), *out));
-    *level = ur_vec2_dot(a, *out) + lift;
-    return true;
-}
-
-/*
- * The polygon's exterior ring clipped to the half-plane dot(p, out) >=
- * level (Sutherland and Hodgman: the grown joint of a tab is convex, so
- * the clipped ring is too), as a polygon; NULL when nothing is left.
- */
-static GEOSGeometry *clip_outward(const joiner *j, const GEOSGeometry *polygon, ur_vec2 out,
-                                  double level)
-{
-    const GEOSGeometry *shell = GEOSGetExteriorRing_r(j->geos, polygon);
-    const GEOSCoordSequence *sequence = shell ? GEOSGeom_getCoordSeq_r(j->geos, shell) : NULL;
-    unsigned size = 0;
-    if (!sequence || !GEOSCoordSeq_getSize_r(j->geos, sequence, &size) || size < 4)
-        return NULL;
-    ur_points kept = {0};
-    bool failed = false;
-    ur_vec2 previous;
-    GEOSCoordSeq_getXY_r(j->geos, sequence, size - 2, &previous.x, &previous.y);
-    for (unsigned i = 0; i + 1 < size && !failed; i++) {
-        ur_vec2 point;
-        GEOSCoordSeq_getXY_r(j->geos, sequence, i, &point.x, &point.y);
-        double a = ur_vec2_dot(previous, out) - level, b = ur_vec2_dot(point, out) - level;
-        if ((a >= 0) != (b >= 0)) /* the edge crosses the line: keep where */
-            failed =
-                ur_points_push(
-                    &kept, ur_vec2_add_scaled(previous, ur_vec2_sub(point, previous), a / (a - b)),
-                    NULL) != UR_OK;
-        if (b >= 0 && !failed)
-            failed = ur_points_push(&kept, point, NULL) != UR_OK;
-        previous = point;
-    }
-    GEOSGeometry *clipped =
-        !failed && kept.count >= 3 ? ur_geos_polygon(j->geos, kept.items, kept.count) : NULL;
-    ur_points_free(&kept);
-    return clipped;
-}
-
-/*
- * Whether the ring (counter-clockwise, first point not repeated) is
- * convex with no edge of zero length: a tab is, a lap on a bent seam is not.
- */
-static bool convex_ring(const ur_vec2 *ring, size_t n)
-{
-    for (size_t i = 0; i < n; i++) {
-        ur_vec2 a = ring[i], b = ring[(i + 1) % n], c = ring[(i + 2) % n];
-        if (!(ur_vec2_length(ur_vec2_sub(b, a)) > 0) ||
-            ur_vec2_cross(ur_vec2_sub(b, a), ur_vec2_sub(c, b)) < 0)
-            return false;
-    }
-    return true;
-}
-
-/*
- * A convex ring moved out by distance (in when negative) with mitred
- * corners, as a polygon: GEOS's buffer is exact but slow for the many
- * joints of a large mesh, and a convex joint's corners are no sharper
- * than 45 degrees, so a mitre is at most 2.7 times the distance.
- */
-static GEOSGeometry *offset_convex(const joiner *j, const ur_vec2 *ring, size_t n, double distance)
-{
-    ur_vec2 *moved = malloc(n * sizeof *moved);
-    if (!moved)
-        return NULL;
-    for (size_t i = 0; i < n; i++) {
-        ur_vec2 p = ring[(i + n - 1) % n], q = ring[i], r = ring[(i + 1) % n];
-        ur_vec2 d0 = ur_vec2_sub(q, p), d1 = ur_vec2_sub(r, q);
-        ur_vec2 a = ur_vec2_scale(ur_vec2_make(d0.y, -d0.x), 1 / ur_vec2_length(d0));
-        ur_vec2 b = ur_vec2_scale(ur_vec2_make(d1.y, -d1.x), 1 / ur_vec2_length(d1));
-        moved[i] = ur_vec2_add_scaled(q, ur_vec2_add(a, b), distance / (1 + ur_vec2_dot(a, b)));
-    }
-    GEOSGeometry *polygon = ur_geos_polygon(j->geos, moved, n);
-    free(moved);
-    return polygon;
-}
-
-/* The joint shrunk and grown: by offset_convex when it is convex, by GEOS's buffer otherwise. */
-static void shrink_and_grow(const joiner *j, const GEOSGeometry *joint, regions *r)
-{
-    ur_vec2 *ring = NULL;
-    size_t n = 0;
-    if (allow_exterior_ring(j->geos, joint, &ring, &n, NULL) == UR_OK && convex_ring(ring, n)) {
-        r->shrunk = offset_convex(j, ring, n, -TOUCH);
-        r->grown = offset_convex(j, ring, n, j->gap);
-    } else {
-        r->shrunk = GEOSBuffer_r(j->geos, joint, -TOUCH, 1);
-        r->grown = GEOSBuffer_r(j->geos, joint, j->gap, 2);
-    }
-    free(ring);
-}
-
-static bool regions_make(const joiner *j, const GEOSGeometry *joint, const run *base, regions *r)
-{
-    memset(r, 0, sizeof *r);
-    shrink_and_grow(j, joint, r);
-    ur_vec2 out;
-    double level;
-    if (!r->shrunk || !r->grown || GEOSisEmpty_r(j->geos, r->shrunk) ||
-        GEOSGeomTypeId_r(j->geos, r->grown) != GEOS_POLYGON || !outward_line(base, &out, &level))
-        return false;
-    r->clipped = clip_outward(j, r->grown, out, level);
-    if (!r->clipped)
-        return false;
-    r->inner = GEOSPrepare_r(j->geos, r->shrunk);
-    r->outer = GEOSPrepare_r(j->geos, r->clipped);
-    return r->inner && r->outer;
-}
-
-/* Whether thing meets the joint: its inner region, and unless it shares a corner, its outer. */
-static ur_status meets(const joiner *j, bool corner, const regions *r, const GEOSGeometry *thing,
-                       bool *hit, ur_error *error)
-{
-    char result = GEOSPreparedIntersects_r(j->geos, r->inner, thing);
-    if (result == 0 && !corner)
-        result = GEOSPreparedIntersects_r(j->geos, r->outer, thing);
-    if (result == 2)
-        return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS failed testing a joint");
-    *hit = result == 1;
-    return UR_OK;
-}
-
-static ur_status test_near(joiner *j, size_t piece, const regions *r, size_t first, size_t edges,
-                           verdict *v, ur_error *error)
-{
-    board *b = &j->boards[piece];
-    size_t n = b->edge_count;
-    j->found.count = 0;
-    GEOSSTRtree_query_r(j->geos, b->tree, r->grown, collect_edge, j);
-    if (j->out_of_memory)
-        return ur_error_out_of_memory(error);
-    bool hit = false;
-    ur_status status = UR_OK;
-    for (size_t k = 0; status == UR_OK && !hit && k < j->found.count; k++) {
-        size_t e = j->found.items[k];
-        status = meets(j, share_corner(n, e, 1, first, edges), r, b->segments[e], &hit, error);
-        if (hit)
-            *v = (verdict){BLOCKED_OUTLINE, b->segments[e], e};
-    }
-    if (status != UR_OK || hit)
-        return status;
-    status = allow_grid_query(&b->grid, allow_box(j->geos, r->grown), &j->found, error);
-    for (size_t k = 0; status == UR_OK && !hit && k < j->found.count; k++) {
-        const placed_joint *q = &j->placed[b->joints[j->found.items[k]]];
-        status = meets(j, share_corner(n, q->first_edge, q->edges, first, edges), r, q->shape, &hit,
-                       error);
-        if (hit)
-            *v = (verdict){BLOCKED_JOINT, q->shape, 0};
-    }
-    return status;
-}
-
-/*
- * Whether the joint's shape on base fits on the piece over outline edges
- * [first, first + edges); v says what stopped it.
- */
-static ur_status joint_fits(joiner *j, size_t piece, const GEOSGeometry *joint, const run *base,
-                            size_t first, size_t edges, verdict *v, ur_error *error)
-{
-    *v = (verdict){BLOCKED_SHAPE, NULL, 0};
-    if (!joint || GEOSisValid_r(j->geos, joint) != 1)
-        return UR_OK;
-    regions r;
-    ur_status status = UR_OK;
-    if (regions_make(j, joint, base, &r)) {
-        *v = (verdict){BLOCKED_NOT, NULL, 0};
-        status = test_near(j, piece, &r, first, edges, v, error);
-    }
-    regions_free(j, &r);
-    return status;
 }
 
 /*
@@ -644,18 +348,12 @@ static ur_status add_placed(joiner *j, const placed_joint *p, ur_error *error)
         j->placed = grown;
         j->placed_capacity = capacity;
     }
-    board *b = &j->boards[p->piece];
-    size_t item;
-    ur_status status = allow_grid_add(&b->grid, allow_box(j->geos, p->shape), &item, error);
+    ur_status status = allow_board_add(j->boards[p->piece], p->shape, p->first_edge, p->edges,
+                                       j->placed_count, error);
     if (status != UR_OK)
         return status;
-    size_t *joints = realloc(b->joints, (item + 1) * sizeof *joints);
-    if (!joints)
-        return ur_error_out_of_memory(error);
-    b->joints = joints;
-    joints[item] = j->placed_count;
     j->placed[j->placed_count++] = *p;
-    b->tab_count++;
+    j->tab_count[p->piece]++;
     return UR_OK;
 }
 
@@ -665,8 +363,8 @@ static ur_status add_placed(joiner *j, const placed_joint *p, ur_error *error)
  * built did not.
  */
 static ur_status try_shapes(joiner *j, const seam_job *sj, int k, const stretch *st,
-                            const shape *shapes, size_t from, size_t to, bool *done, verdict *v,
-                            ur_error *error)
+                            const shape *shapes, size_t from, size_t to, bool *done,
+                            allow_verdict *v, ur_error *error)
 {
     size_t piece = sj->s->net[k], first = local_first(sj, k, st), count = local_count(sj, k, st);
     size_t edge = outline_edge(j, sj, k, first);
@@ -681,13 +379,14 @@ static ur_status try_shapes(joiner *j, const seam_job *sj, int k, const stretch 
         double depth = 0;
         GEOSGeometry *joint =
             status == UR_OK ? joint_shape(j, &base, shapes[step].depth, &depth, error) : NULL;
-        verdict tried = {BLOCKED_SHAPE, NULL, 0};
+        allow_verdict tried = {ALLOW_BLOCKED_SHAPE, NULL, 0};
         if (status == UR_OK)
-            status = joint_fits(j, piece, joint, &base, edge, count, &tried, error);
+            status = allow_board_test(j->boards[piece], joint, base.points, base.count, edge, count,
+                                      &tried, error);
         /* What stopped the smallest shape that could be built says most. */
-        if (tried.by != BLOCKED_SHAPE || v->by == BLOCKED_SHAPE)
+        if (tried.by != ALLOW_BLOCKED_SHAPE || v->by == ALLOW_BLOCKED_SHAPE)
             *v = tried;
-        if (status == UR_OK && v->by == BLOCKED_NOT) {
+        if (status == UR_OK && v->by == ALLOW_BLOCKED_NOT) {
             placed_joint p = {.shape = joint,
                               .piece = piece,
                               .first_edge = edge,
@@ -728,7 +427,7 @@ static bool on_other_side(const joiner *j, const seam_job *sj, int k, size_t e)
 
 /* Which side of the seam a describe() names, and what stopped its joint there. */
 static void describe(const joiner *j, const seam_job *sj, int k, const stretch *st,
-                     const verdict *v, char *text, size_t size)
+                     const allow_verdict *v, char *text, size_t size)
 {
     const ur_piece *piece = &j->pieces[sj->s->net[k]];
     run r = {0};
@@ -743,12 +442,12 @@ static void describe(const joiner *j, const seam_job *sj, int k, const stretch *
         GEOSDistance_r(j->geos, point, v->what, &distance);
     if (point)
         GEOSGeom_destroy_r(j->geos, point);
-    if (v->by == BLOCKED_OUTLINE && on_other_side(j, sj, k, v->edge))
+    if (v->by == ALLOW_BLOCKED_OUTLINE && on_other_side(j, sj, k, v->edge))
         snprintf(text, size, "on %s the seam's other side comes within %.1f mm (a narrow slit)",
                  piece->name, distance);
-    else if (v->by == BLOCKED_OUTLINE)
+    else if (v->by == ALLOW_BLOCKED_OUTLINE)
         snprintf(text, size, "on %s its own outline comes within %.1f mm", piece->name, distance);
-    else if (v->by == BLOCKED_JOINT)
+    else if (v->by == ALLOW_BLOCKED_JOINT)
         snprintf(text, size, "on %s another %s comes within %.1f mm", piece->name,
                  j->options->lap ? "lap" : "tab", distance);
     else
@@ -781,7 +480,7 @@ static ur_status record(ur_piece *piece, ur_allowance_kind kind, ur_vec2 where, 
 
 /* The warning for a stretch that got no joint on either side, saying why. */
 static ur_status warn_stretch(joiner *j, const seam_job *sj, const stretch *st, int first_side,
-                              const verdict why[2], ur_error *error)
+                              const allow_verdict why[2], ur_error *error)
 {
     char sides[2][96];
     for (int k = 0; k < 2; k++)
@@ -812,7 +511,7 @@ static ur_status join_stretch(joiner *j, const seam_job *sj, const stretch *st, 
     size_t count = o->lap ? COUNT(lap_shapes) : COUNT(tab_shapes);
     /* Tabs: the full shape on both sides before any smaller; laps: one side, then the other. */
     size_t split = o->lap ? count : 1;
-    verdict why[2] = {{BLOCKED_SHAPE, NULL, 0}, {BLOCKED_SHAPE, NULL, 0}};
+    allow_verdict why[2] = {{ALLOW_BLOCKED_SHAPE, NULL, 0}, {ALLOW_BLOCKED_SHAPE, NULL, 0}};
     bool done = false;
     ur_status status = UR_OK;
     for (int pass = 0; status == UR_OK && !done && pass < 4; pass++) {
@@ -920,12 +619,12 @@ static ur_status first_side(joiner *j, const seam_job *sj, const stretch *stretc
             double depth;
             GEOSGeometry *joint =
                 status == UR_OK ? joint_shape(j, &base, shapes[0].depth, &depth, error) : NULL;
-            verdict v;
+            allow_verdict v;
             if (status == UR_OK)
-                status = joint_fits(j, sj->s->net[k], joint, &base,
-                                    outline_edge(j, sj, k, local_first(sj, k, st)),
-                                    local_count(sj, k, st), &v, error);
-            if (status == UR_OK && v.by == BLOCKED_NOT)
+                status = allow_board_test(j->boards[sj->s->net[k]], joint, base.points, base.count,
+                                          outline_edge(j, sj, k, local_first(sj, k, st)),
+                                          local_count(sj, k, st), &v, error);
+            if (status == UR_OK && v.by == ALLOW_BLOCKED_NOT)
                 fits[k]++;
             if (joint)
                 GEOSGeom_destroy_r(j->geos, joint);
@@ -934,7 +633,7 @@ static ur_status first_side(joiner *j, const seam_job *sj, const stretch *stretc
     if (fits[0] != fits[1])
         *side = fits[0] > fits[1] ? 0 : 1;
     else
-        *side = j->boards[sj->s->net[1]].tab_count < j->boards[sj->s->net[0]].tab_count ? 1 : 0;
+        *side = j->tab_count[sj->s->net[1]] < j->tab_count[sj->s->net[0]] ? 1 : 0;
     return status;
 }
 
@@ -1039,9 +738,9 @@ static GEOSGeometry *collection(const joiner *j, const GEOSGeometry *outline,
  */
 static ur_status grow_piece(joiner *j, size_t index, ur_error *error)
 {
-    board *b = &j->boards[index];
+    const allow_board *b = j->boards[index];
     ur_piece *piece = &j->pieces[index];
-    size_t count = b->grid.count;
+    size_t count = allow_board_joint_count(b);
     if (count == 0)
         return UR_OK;
     const GEOSGeometry **shapes = calloc(count, sizeof *shapes);
@@ -1054,13 +753,13 @@ static ur_status grow_piece(joiner *j, size_t index, ur_error *error)
                             piece->name);
     }
     for (size_t k = 0; k < count; k++)
-        shapes[k] = j->placed[b->joints[k]].shape;
+        shapes[k] = j->placed[allow_board_joint_tag(b, k)].shape;
     GEOSGeometry *all = collection(j, outline, (const GEOSGeometry *const *)shapes, count);
     GEOSGeometry *grown = united(j, all);
     if (all)
         GEOSGeom_destroy_r(j->geos, all);
     for (size_t k = 0; k < count; k++)
-        j->placed[b->joints[k]].kept = grown != NULL;
+        j->placed[allow_board_joint_tag(b, k)].kept = grown != NULL;
     if (!grown) { /* one at a time */
         grown = outline;
         outline = NULL;
@@ -1072,7 +771,7 @@ static ur_status grow_piece(joiner *j, size_t index, ur_error *error)
             if (next && GEOSGetNumInteriorRings_r(j->geos, next) == 0) {
                 GEOSGeom_destroy_r(j->geos, grown);
                 grown = next;
-                j->placed[b->joints[k]].kept = true;
+                j->placed[allow_board_joint_tag(b, k)].kept = true;
             } else if (next)
                 GEOSGeom_destroy_r(j->geos, next);
         }
@@ -1416,9 +1115,9 @@ static void joiner_free(joiner *j)
     }
     free(j->placed);
     for (size_t n = 0; j->boards && n < j->nets->count; n++)
-        board_free(j, &j->boards[n]);
+        allow_board_close(j->boards[n]);
     free(j->boards);
-    allow_items_free(&j->found);
+    free(j->tab_count);
     if (j->geos)
         GEOS_finish_r(j->geos);
 }
@@ -1427,7 +1126,9 @@ static ur_status add_all_joints(joiner *j, const seam_sides *seams, int last, ur
 {
     ur_status status = UR_OK;
     for (size_t n = 0; status == UR_OK && n < j->nets->count; n++)
-        status = board_init(j, &j->boards[n], &j->nets->nets[n], error);
+        status = allow_board_open(j->geos, j->nets->nets[n].outline, j->nets->nets[n].outline_count,
+                                  band_of(j->options) + full_depth(j->options) + j->gap, j->gap,
+                                  &j->boards[n], error);
     for (int seam = 1; status == UR_OK && seam <= last; seam++)
         if (seams[seam].found == 2) {
             status = ur_cancel_check(error);
@@ -1453,9 +1154,10 @@ ur_status ur_pieces_add_joints(ur_piece *pieces, const ur_net_list *nets,
                 .pieces = pieces,
                 .nets = nets,
                 .options = options,
-                .boards = calloc(nets->count + 1, sizeof(board)),
+                .boards = calloc(nets->count + 1, sizeof(allow_board *)),
+                .tab_count = calloc(nets->count + 1, sizeof(size_t)),
                 .gap = fmax(0.2, 0.5 * options->thickness)};
-    if (!j.geos || !j.boards)
+    if (!j.geos || !j.boards || !j.tab_count)
         status = ur_error_out_of_memory(error);
     if (status == UR_OK)
         status = gather_seams(nets, &seams, &last, error);
