@@ -220,25 +220,33 @@ void ur_seam_label(int seam, char *label, size_t size);
 
 /*
  * Puts a joint on every seam of the nets (pieces[k] was made from
- * nets->nets[k] and its outline is still the net's, or grown by joints).
+ * nets->nets[k] and its outline is still the net's: joints go on once).
  *
- * Tabs: a tapered glue tab on one side of each seam, a SCORE fold at its
- * base, the outline grown around it.  The side is the one where the tab
- * clashes least with its piece (the other one when the first clashes),
- * balancing the tabs between the pieces when both are free, as a person
- * would.  A tab that would overlap its own piece or another tab (GEOS) is
- * narrowed; failing that it goes to the other side; failing that a
- * warning is recorded.  On stock 1 mm thick or more, the tab starts a band
- * of the material's thickness out from the seam, with a second fold, so
- * that it wraps the edge of the other piece.
+ * Tabs: one tapered glue tab per straight stretch of each seam (on a
+ * folded mesh, per edge), a SCORE fold at its base, the outline grown
+ * around it; tabs on neighbouring edges leave a notch down to the seam's
+ * corner so that each folds on its own.  Sides may be closed loops (the
+ * rim of a hole).  The side is the one more full tabs fit on, balancing the
+ * tabs between the pieces when both are alike.  A tab that would overlap
+ * its piece, another tab or a label (or come nearer than a small gap to
+ * anything but its neighbours at the corners) goes full size on the other
+ * side, then is made lower, then shorter along its edge, on either side;
+ * failing that a warning for that edge says what is in the way on each
+ * side.  Clashes are tested against the net's outline in a GEOS STRtree
+ * and the tabs already placed in a grid, so each test is local; the
+ * outline is grown by all of a piece's tabs at once.  On stock 1 mm thick
+ * or more the first `thickness` mm of a tab is a band with a second fold,
+ * so that it wraps the edge of the other piece.  One UR_ALLOWANCE_JOINT
+ * record per seam side with tabs (count: how many), one warning per edge
+ * without.
  *
  * Laps: one piece extends under the other by lap_width (the outline grown
- * by a band along the seam); the lapped zone is drawn as a closed MARK
- * path on both pieces.
+ * by a band along the whole seam, or each half of a closed loop); the
+ * lapped zone is drawn as a closed MARK path on both pieces.
  *
  * With a font, both sides of every seam get its label (ur_seam_label)
- * engraved inside the piece near the seam's middle, along the seam, and
- * pieces their names when name_pieces.  Records a UR_ALLOWANCE_JOINT or
+ * engraved inside the piece near the seam's middle, along the seam's edge
+ * there, and pieces their names when name_pieces.  Records a UR_ALLOWANCE_JOINT or
  * UR_ALLOWANCE_LABEL entry for each (warnings for what found no room).
  */
 ur_status ur_pieces_add_joints(ur_piece *pieces, const ur_net_list *nets,

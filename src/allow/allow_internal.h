@@ -35,4 +35,97 @@ GEOSGeometry *allow_inside(GEOSContextHandle_t geos, const ur_vec2 *ring, size_t
 /* Area of a GEOS geometry (0 when GEOS fails). */
 double allow_area(GEOSContextHandle_t geos, const GEOSGeometry *geometry);
 
+/* The box of a GEOS geometry (an empty box when it has none). */
+ur_box allow_box(GEOSContextHandle_t geos, const GEOSGeometry *geometry);
+
+/* A growing list of item numbers. */
+typedef struct allow_items {
+    size_t *items;
+    size_t count, capacity;
+} allow_items;
+
+ur_status allow_items_push(allow_items *items, size_t item, ur_error *error);
+void allow_items_free(allow_items *items);
+
+/*
+ * A spatial index of boxes that takes new ones between queries (grid.c):
+ * square cells over a region, each listing the items whose box meets it.
+ * Items are numbered 0, 1, ... in the order they were added.
+ */
+typedef struct allow_cell allow_cell;
+typedef struct allow_grid {
+    ur_box region;
+    double cell; /* mm */
+    size_t columns, rows;
+    allow_cell *cells;
+    ur_box *boxes;         /* of each item */
+    unsigned *seen, stamp; /* per item: the last query that found it */
+    size_t count, capacity;
+} allow_grid;
+
+/* A grid over region with cells about cell mm wide (wider on a large region). */
+ur_status allow_grid_init(allow_grid *grid, ur_box region, double cell, ur_error *error);
+void allow_grid_free(allow_grid *grid);
+ur_status allow_grid_add(allow_grid *grid, ur_box box, size_t *item, ur_error *error);
+/* The items whose box meets box, each once, in found (emptied first). */
+ur_status allow_grid_query(allow_grid *grid, ur_box box, allow_items *found, ur_error *error);
+
+/*
+ * What the joints of one piece must keep clear of (clearance.c): its net's
+ * outline edges in an STRtree, the joints placed so far in a grid.  A
+ * joint over outline edges [first, first + edges) may touch what shares a
+ * corner with those edges but not overlap it, and keeps `gap` mm from
+ * everything else on its outward side (beyond the chord of its base, the
+ * fold it is built on).  reach: how far beyond the outline joints go.
+ */
+typedef struct allow_board allow_board;
+
+typedef enum allow_blocker {
+    ALLOW_BLOCKED_NOT,     /* it fits */
+    ALLOW_BLOCKED_SHAPE,   /* no joint, or no simple polygon */
+    ALLOW_BLOCKED_OUTLINE, /* an edge of the piece's outline */
+    ALLOW_BLOCKED_JOINT    /* a joint placed before */
+} allow_blocker;
+
+typedef struct allow_verdict {
+    allow_blocker by;
+    const GEOSGeometry *what; /* the edge or joint in the way */
+    size_t edge;              /* the outline edge in the way */
+} allow_verdict;
+
+ur_status allow_board_open(GEOSContextHandle_t geos, const ur_vec2 *outline, size_t count,
+                           double reach, double gap, allow_board **board, ur_error *error);
+void allow_board_close(allow_board *board);
+
+/* Whether joint, built on base (count points), fits over outline edges [first, first + edges). */
+ur_status allow_board_test(allow_board *board, const GEOSGeometry *joint, const ur_vec2 *base,
+                           size_t count, size_t first, size_t edges, allow_verdict *verdict,
+                           ur_error *error);
+
+/* Puts the joint on the board (the caller keeps the shape alive), with a tag of the caller's. */
+ur_status allow_board_add(allow_board *board, const GEOSGeometry *shape, size_t first, size_t edges,
+                          size_t tag, ur_error *error);
+size_t allow_board_joint_count(const allow_board *board);
+size_t allow_board_joint_tag(const allow_board *board, size_t k);
+
+/*
+ * Room for labels on one piece, kept between labels (label.c): every path
+ * the piece has when it is opened, in an STRtree, and the labels engraved
+ * through it since, in a grid.  The piece gets no other paths while it is
+ * open.
+ */
+typedef struct allow_room allow_room;
+
+ur_status allow_room_open(ur_piece *piece, allow_room **room, ur_error *error);
+void allow_room_close(allow_room *room);
+
+/*
+ * ur_piece_add_label on the room's piece, looking no farther than reach mm
+ * from near (INFINITY: the whole piece); the room then keeps the label
+ * clear of the later ones.
+ */
+ur_status allow_room_add_label(allow_room *room, const ur_font *font, const char *text,
+                               ur_vec2 near, ur_vec2 direction, double height, double min_height,
+                               double clearance, double reach, bool *placed, ur_error *error);
+
 #endif

@@ -76,3 +76,16 @@ double allow_area(GEOSContextHandle_t geos, const GEOSGeometry *geometry)
         return 0.0;
     return area;
 }
+
+ur_box allow_box(GEOSContextHandle_t geos, const GEOSGeometry *geometry)
+{
+    ur_box box = ur_box_empty();
+    double x0, y0, x1, y1;
+    if (geometry && !GEOSisEmpty_r(geos, geometry) && GEOSGeom_getXMin_r(geos, geometry, &x0) &&
+        GEOSGeom_getYMin_r(geos, geometry, &y0) && GEOSGeom_getXMax_r(geos, geometry, &x1) &&
+        GEOSGeom_getYMax_r(geos, geometry, &y1)) {
+        ur_box_add(&box, ur_vec2_make(x0, y0));
+        ur_box_add(&box, ur_vec2_make(x1, y1));
+    }
+    return box;
+}

@@ -2,19 +2,32 @@
  * joints.c: glue tabs or laps on the seams of a net, and the labels that
  * tell which edge goes to which (allow.h, ur_pieces_add_joints).
  *
- * A seam has two sides, runs of two outlines (develop.h, ur_seam_side).
- * A joint is built on one side, outward of it: outlines run
- * counter-clockwise, so outward is to the right of the run.  The joint's
- * shape is the run, a "shoulder" band (the material's thickness, for a
- * tab on thick stock) and a top line offset by the depth, pulled in at
- * both ends by depth / tan(angle) for a tab's taper.  It is united with
- * the piece's outline (GEOS), so the cut goes around it and the seam
- * itself becomes a fold.
+ * A seam has two sides, runs of two outlines (develop.h, ur_seam_side),
+ * which may be closed loops (the rim of a hole, a piece's whole outline).
+ * Outlines run counter-clockwise, so outward is to the right of a run.
+ *
+ * Tabs: one per straight stretch of the seam, which on a folded mesh is
+ * one per edge, since the tab on each edge is glued under a different
+ * face of the other piece and must fold on its own line.  A tab is a
+ * trapezoid on its stretch, tapered at the tab angle from its base, so
+ * that the tabs of neighbouring edges leave a notch between them down to
+ * the seam's corner and fold apart.  On thick stock its first `thickness`
+ * mm is a band with a second fold, which wraps the other piece's edge.
+ * Laps: one band along each seam side (each half of a loop), mitred at
+ * its corners (wood does not fold).
+ *
+ * A joint must not overlap its piece or another joint, and keeps a gap
+ * from all but its neighbours at the seam's corners: each piece has a
+ * board (clearance.c) of its net's outline and the joints placed on it,
+ * indexed so that each test looks only at what is near.  The outline is
+ * grown by all the joints of a piece at once at the end (one GEOS union),
+ * and only then the folds and marks go on.
  */
 #include "allow_internal.h"
 
 #include <math.h>
 #include <stdarg.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -23,20 +36,36 @@
 #define THICK_STOCK 1.0
 
 /*
- * The shapes a joint tries, in order, before it goes to the other side:
- * the share of the full depth, and how much of the seam's length is left
- * out at each end (a tab clear of the corners, where the neighbouring
- * edges of the piece come closest).
+ * The shapes a joint tries, in order: the share of the full depth, and how
+ * much of its stretch's length is left out at each end (clear of the
+ * corners, where the neighbouring edges of the piece come closest).  A tab
+ * first tries the full shape on both sides of the seam, then the smaller
+ * ones on each; a lap all its shapes on one side, then on the other.
  */
-static const struct {
+typedef struct shape {
     double depth, shorten;
-} shapes[] = {{1.0, 0.0},  {0.7, 0.0}, {1.0, 0.15}, {0.7, 0.15},
-              {0.5, 0.15}, {0.5, 0.3}, {0.35, 0.3}};
+} shape;
 
-#define SHAPE_COUNT (sizeof shapes / sizeof shapes[0])
+static const shape tab_shapes[] = {{1.0, 0.0},  {0.7, 0.0},  {0.5, 0.0}, {0.35, 0.0},
+                                   {0.7, 0.15}, {0.5, 0.15}, {0.5, 0.3}, {0.35, 0.3}};
+static const shape lap_shapes[] = {{1.0, 0.0},  {0.7, 0.0}, {1.0, 0.15}, {0.7, 0.15},
+                                   {0.5, 0.15}, {0.5, 0.3}, {0.35, 0.3}};
 
-/* A clash smaller than this share of the joint's area is rounding, not overlap. */
-#define CLASH_SHARE 1e-6
+#define COUNT(array) (sizeof array / sizeof array[0])
+
+/* A stretch of a seam is straight when no point strays from its chord by more than this share of
+ * the tab depth. */
+#define STRAIGHT_SHARE 0.02
+
+/*
+ * A tab on an edge too short for its taper gets steeper sides, up to this
+ * many degrees (still a notch between neighbouring tabs), before it is
+ * made lower; lower than LOWEST_SHARE of the tab depth it is too small to
+ * glue.
+ */
+#define STEEPEST 75.0
+
+#define LOWEST_SHARE 0.2
 
 void ur_seam_label(int seam, char *label, size_t size)
 {
@@ -157,194 +186,17 @@ static ur_status joint_ring(const run *r, double band, double depth, double inse
     return status;
 }
 
-/* ---- Fitting a joint to a piece ----------------------------------------- */
-
-typedef struct joiner {
-    GEOSContextHandle_t geos;
-    ur_piece *pieces;
-    const ur_net_list *nets;
-    const ur_joint_options *options;
-    size_t *tab_count; /* per piece, to balance them */
-} joiner;
-
-static GEOSGeometry *outline_of(const joiner *j, const ur_piece *piece)
+/* The part of the run from its edge first on, edges long, as a run of its own. */
+static ur_status sub_run(const run *r, size_t first, size_t edges, run *out, ur_error *error)
 {
-    return ur_geos_polygon(j->geos, piece->paths[0].points, piece->paths[0].count);
-}
-
-/*
- * How much of the joint overlaps the piece: its area inside the current
- * outline (which holds the tabs already added), or INFINITY when the
- * joint is no simple polygon.
- */
-static double clash(const joiner *j, const ur_piece *piece, const GEOSGeometry *joint)
-{
-    if (!joint || GEOSisValid_r(j->geos, joint) != 1)
-        return INFINITY;
-    GEOSGeometry *outline = outline_of(j, piece);
-    if (!outline)
-        return INFINITY;
-    GEOSGeometry *overlap = GEOSIntersection_r(j->geos, outline, joint);
-    double area = overlap ? allow_area(j->geos, overlap) : INFINITY;
-    if (overlap)
-        GEOSGeom_destroy_r(j->geos, overlap);
-    GEOSGeom_destroy_r(j->geos, outline);
-    return area;
-}
-
-/* The joint united with the piece's outline, if that stays one ring. */
-static ur_status grow_outline(const joiner *j, ur_piece *piece, const GEOSGeometry *joint,
-                              bool *grown, ur_error *error)
-{
-    *grown = false;
-    GEOSGeometry *outline = outline_of(j, piece);
-    GEOSGeometry *exact = outline ? GEOSUnion_r(j->geos, outline, joint) : NULL;
-    /*
-     * Where a joint's corner meets the outline a hair's breadth off, the
-     * union keeps a sliver a micrometre wide that folds back on itself;
-     * simplifying by a micrometre, far below any cutter's resolution,
-     * takes it out.
-     */
-    GEOSGeometry *united = exact ? GEOSTopologyPreserveSimplify_r(j->geos, exact, 1e-3) : NULL;
-    if (exact)
-        GEOSGeom_destroy_r(j->geos, exact);
-    if (outline)
-        GEOSGeom_destroy_r(j->geos, outline);
-    if (!united)
-        return UR_OK;
-    ur_status status = UR_OK;
-    if (GEOSGeomTypeId_r(j->geos, united) == GEOS_POLYGON &&
-        GEOSGetNumInteriorRings_r(j->geos, united) == 0) {
-        ur_vec2 *ring;
-        size_t count;
-        status = allow_exterior_ring(j->geos, united, &ring, &count, error);
-        if (status == UR_OK) {
-            free(piece->paths[0].points);
-            piece->paths[0].points = ring;
-            piece->paths[0].count = count;
-            piece->paths[0].circle = (ur_path_circle){{0, 0}, 0, 0}; /* grown: no circle */
-            for (size_t i = 0; i < count; i++)
-                ur_box_add(&piece->box, ring[i]);
-            *grown = true;
-        }
-    }
-    GEOSGeom_destroy_r(j->geos, united);
-    return status;
-}
-
-/* The joint's polygon for a run at a share of the full depth, or NULL. */
-static GEOSGeometry *joint_polygon(const joiner *j, const run *r, double share, double *depth,
-                                   ur_error *error)
-{
-    const ur_joint_options *o = j->options;
-    double band = !o->lap && o->thickness >= THICK_STOCK ? o->thickness : 0.0;
-    *depth = (o->lap ? o->lap_width : o->tab_depth) * share;
-    double angle = o->lap ? 90.0 : o->tab_angle;
-    double inset = angle >= 90.0 ? 0.0 : *depth / tan(angle * M_PI / 180.0);
-    if (2 * inset > 0.8 * r->length) { /* a short seam: a lower tab keeps some top */
-        inset = 0.4 * r->length;
-        *depth = inset * tan(angle * M_PI / 180.0);
-    }
-    ur_points ring = {0};
-    GEOSGeometry *polygon = NULL;
-    if (joint_ring(r, band, *depth, inset, &ring, error) == UR_OK)
-        polygon = ur_geos_polygon(j->geos, ring.items, ring.count);
-    ur_points_free(&ring);
-    return polygon;
-}
-
-static ur_status add_open_path(ur_piece *piece, ur_op op, const run *r, double offset,
-                               ur_error *error)
-{
-    ur_vec2 *points = ur_alloc_array(r->count, sizeof *points, error);
-    if (!points)
+    out->points = ur_alloc_array(edges + 1, sizeof *out->points, error);
+    if (!out->points)
         return UR_ERROR_INTERNAL;
-    for (size_t k = 0; k < r->count; k++)
-        points[k] = ur_vec2_add_scaled(r->points[k], vertex_normal(r, k), offset);
-    ur_status status = ur_piece_add_path(piece, op, points, r->count, false, error);
-    free(points);
-    return status;
+    memcpy(out->points, r->points + first, (edges + 1) * sizeof *out->points);
+    out->count = edges + 1;
+    out->length = ur_polyline_length(out->points, out->count, false);
+    return UR_OK;
 }
-
-/* The folds of a tab: at the seam, and at the shoulder on thick stock. */
-static ur_status add_folds(const joiner *j, ur_piece *piece, const run *r, ur_error *error)
-{
-    ur_status status = add_open_path(piece, UR_OP_SCORE, r, 0.0, error);
-    if (status == UR_OK && j->options->thickness >= THICK_STOCK)
-        status = add_open_path(piece, UR_OP_SCORE, r, j->options->thickness, error);
-    return status;
-}
-
-static ur_vec2 run_middle(const run *r)
-{
-    size_t segment;
-    return point_at(r, r->length / 2, &segment);
-}
-
-static ur_status record(ur_piece *piece, ur_allowance_kind kind, ur_vec2 where, bool warning,
-                        ur_error *error, const char *format, ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 6, 7)))
-#endif
-    ;
-
-static ur_status record(ur_piece *piece, ur_allowance_kind kind, ur_vec2 where, bool warning,
-                        ur_error *error, const char *format, ...)
-{
-    ur_allowance_record entry = {.kind = kind,
-                                 .count = warning ? 0 : 1,
-                                 .value = NAN,
-                                 .limit = NAN,
-                                 .where = where,
-                                 .warning = warning};
-    va_list args;
-    va_start(args, format);
-    vsnprintf(entry.reason, sizeof entry.reason, format, args);
-    va_end(args);
-    return ur_piece_record(piece, &entry, error);
-}
-
-/* ---- Laps: the zone marked on both pieces -------------------------------- */
-
-static ur_status add_mark(ur_piece *piece, const GEOSGeometry *zone, const joiner *j,
-                          ur_error *error)
-{
-    ur_vec2 *ring;
-    size_t count;
-    if (GEOSGeomTypeId_r(j->geos, zone) != GEOS_POLYGON || GEOSisEmpty_r(j->geos, zone))
-        return UR_OK; /* nothing left to mark */
-    ur_status status = allow_exterior_ring(j->geos, zone, &ring, &count, error);
-    if (status == UR_OK)
-        status = ur_piece_add_path(piece, UR_OP_MARK, ring, count, true, error);
-    free(ring);
-    return status;
-}
-
-/* The other piece's lapped zone: inward of its side, clipped to it. */
-static ur_status mark_under(const joiner *j, ur_piece *piece, const run *r, ur_error *error)
-{
-    ur_points ring = {0};
-    ur_status status = joint_ring(r, 0.0, -j->options->lap_width, 0.0, &ring, error);
-    GEOSGeometry *zone = status == UR_OK ? ur_geos_polygon(j->geos, ring.items, ring.count) : NULL;
-    ur_points_free(&ring);
-    GEOSGeometry *outline = zone ? outline_of(j, piece) : NULL;
-    GEOSGeometry *valid = zone ? GEOSMakeValid_r(j->geos, zone) : NULL;
-    GEOSGeometry *clipped = outline && valid ? GEOSIntersection_r(j->geos, outline, valid) : NULL;
-    if (status == UR_OK && clipped)
-        status = add_mark(piece, clipped, j, error);
-    GEOSGeometry *all[] = {zone, outline, valid, clipped};
-    for (size_t k = 0; k < 4; k++)
-        if (all[k])
-            GEOSGeom_destroy_r(j->geos, all[k]);
-    return status;
-}
-
-/* ---- One seam ------------------------------------------------------------ */
-
-typedef struct seam_sides {
-    size_t net[2], side[2];
-    size_t found;
-} seam_sides;
 
 /*
  * The part of the run between arc lengths from and length - from, as a run
@@ -367,51 +219,195 @@ static ur_status shortened(const run *r, double from, run *out, ur_error *error)
     return UR_OK;
 }
 
-/* What a joint adds once it is on: marks (lap) or folds (tab), and the record. */
-static ur_status finish_joint(const joiner *j, size_t piece_index, const run *base,
-                              const GEOSGeometry *joint, const run *other, size_t other_piece,
-                              const char *label, double depth, bool reduced, ur_error *error)
+static ur_vec2 run_middle(const run *r)
 {
-    ur_piece *piece = &j->pieces[piece_index];
-    ur_status status;
-    j->tab_count[piece_index]++;
-    if (j->options->lap) {
-        status = add_mark(piece, joint, j, error);
-        if (status == UR_OK)
-            status = mark_under(j, &j->pieces[other_piece], other, error);
-        if (status == UR_OK)
-            status = record(piece, UR_ALLOWANCE_JOINT, run_middle(base), false, error,
-                            "lap %.3g mm under seam %s, marked on both pieces%s", depth, label,
-                            reduced ? " (made smaller to fit)" : "");
-        return status;
-    }
-    status = add_folds(j, piece, base, error);
-    if (status == UR_OK)
-        status = record(piece, UR_ALLOWANCE_JOINT, run_middle(base), false, error,
-                        "glue tab on seam %s, %.3g mm deep%s", label, depth,
-                        reduced ? " (made smaller to fit)" : "");
-    return status;
+    size_t segment;
+    return point_at(r, r->length / 2, &segment);
 }
 
-/* Tries the joint on one side in every shape in turn; *placed says if it went on. */
-static ur_status try_side(const joiner *j, size_t piece_index, const run *r, const run *other,
-                          size_t other_piece, const char *label, bool *placed, ur_error *error)
+/* ---- What a piece's joints must keep clear of ----------------------------- */
+
+/* A joint placed on a piece; its folds or marks go on once the outline has grown. */
+typedef struct placed {
+    GEOSGeometry *shape; /* owned */
+    size_t piece;
+    size_t first_edge, edges; /* the outline edges under it */
+    run base;                 /* owned: where it folds */
+    run under;                /* laps: the other side, which the lap lies under; owned */
+    size_t under_piece;
+    int seam, side; /* side: 0 or 1 of the seam */
+    double depth;
+    bool reduced; /* smaller than the full shape */
+    bool kept;    /* still on once the outline has grown */
+} placed_joint;
+
+typedef struct joiner {
+    GEOSContextHandle_t geos;
+    ur_piece *pieces;
+    const ur_net_list *nets;
+    const ur_joint_options *options;
+    allow_board **boards; /* one per piece */
+    size_t *tab_count;    /* per piece, to balance them */
+    placed_joint *placed;
+    size_t placed_count, placed_capacity;
+    double gap; /* mm a joint keeps from anything it does not share a corner with */
+} joiner;
+
+static double full_depth(const ur_joint_options *o)
 {
-    ur_piece *piece = &j->pieces[piece_index];
-    *placed = false;
+    return o->lap ? o->lap_width : o->tab_depth;
+}
+
+static double band_of(const ur_joint_options *o)
+{
+    return !o->lap && o->thickness >= THICK_STOCK ? o->thickness : 0.0;
+}
+
+/*
+ * The joint's shape on base at a share of the full depth, or NULL when it
+ * would be too small to glue.  A tab is tapered from its base at the tab
+ * angle, band and all; on a short base its sides are steeper, and it is
+ * made lower, so that some of its top is left.
+ */
+static GEOSGeometry *joint_shape(const joiner *j, const run *base, double share, double *depth,
+                                 ur_error *error)
+{
+    const ur_joint_options *o = j->options;
+    double band = band_of(o);
+    *depth = full_depth(o) * share;
+    double height = band + *depth, inset = 0.0;
+    if (!o->lap && o->tab_angle < 90.0) {
+        double slope = tan(o->tab_angle * M_PI / 180.0);
+        inset = height / slope;
+        if (2 * inset > 0.8 * base->length) {
+            /* Steeper sides first, up to STEEPEST, then lower. */
+            inset = 0.4 * base->length;
+            slope = fmax(slope, fmin(height / inset, tan(STEEPEST * M_PI / 180.0)));
+            height = fmin(height, inset * slope);
+            *depth = height - band;
+        }
+    }
+    if (!o->lap && *depth < LOWEST_SHARE * o->tab_depth)
+        return NULL;
+    ur_points ring = {0};
+    GEOSGeometry *polygon = NULL;
+    if (joint_ring(base, 0.0, height, inset, &ring, error) == UR_OK)
+        polygon = ur_geos_polygon(j->geos, ring.items, ring.count);
+    ur_points_free(&ring);
+    return polygon;
+}
+
+/* ---- One seam -------------------------------------------------------------- */
+
+typedef struct seam_sides {
+    size_t net[2], side[2];
+    size_t found;
+} seam_sides;
+
+/* A seam being joined: its two sides and their edges. */
+typedef struct seam_job {
+    const seam_sides *s;
+    int seam;
+    char label[16];
+    run runs[2];
+    size_t edges[2]; /* of each side */
+} seam_job;
+
+/* A stretch of the seam: edges [first, first + count) of side 0, the same edges of side 1. */
+typedef struct stretch {
+    size_t first, count;
+} stretch;
+
+/* The stretch's first edge along side k (side 1 runs the other way). */
+static size_t local_first(const seam_job *sj, int k, const stretch *st)
+{
+    if (sj->edges[0] != sj->edges[1]) /* one stretch, all of each side */
+        return 0;
+    return k == 0 ? st->first : sj->edges[1] - st->first - st->count;
+}
+
+static size_t local_count(const seam_job *sj, int k, const stretch *st)
+{
+    return sj->edges[0] != sj->edges[1] ? sj->edges[k] : st->count;
+}
+
+/* The outline edge of the piece under side k's local edge. */
+static size_t outline_edge(const joiner *j, const seam_job *sj, int k, size_t local)
+{
+    const ur_net *net = &j->nets->nets[sj->s->net[k]];
+    return (net->seam_sides[sj->s->side[k]].first + local) % net->outline_count;
+}
+
+static ur_status add_placed(joiner *j, const placed_joint *p, ur_error *error)
+{
+    if (j->placed_count == j->placed_capacity) {
+        size_t capacity = j->placed_capacity ? 2 * j->placed_capacity : 64;
+        placed_joint *grown = realloc(j->placed, capacity * sizeof *grown);
+        if (!grown)
+            return ur_error_out_of_memory(error);
+        j->placed = grown;
+        j->placed_capacity = capacity;
+    }
+    ur_status status = allow_board_add(j->boards[p->piece], p->shape, p->first_edge, p->edges,
+                                       j->placed_count, error);
+    if (status != UR_OK)
+        return status;
+    j->placed[j->placed_count++] = *p;
+    j->tab_count[p->piece]++;
+    return UR_OK;
+}
+
+/*
+ * Tries shapes [from, to) of the joint on side k of the stretch; *done
+ * says whether one went on, v (set by the caller) why the smallest one
+ * built did not.
+ */
+static ur_status try_shapes(joiner *j, const seam_job *sj, int k, const stretch *st,
+                            const shape *shapes, size_t from, size_t to, bool *done,
+                            allow_verdict *v, ur_error *error)
+{
+    size_t piece = sj->s->net[k], first = local_first(sj, k, st), count = local_count(sj, k, st);
+    size_t edge = outline_edge(j, sj, k, first);
+    *done = false;
     ur_status status = UR_OK;
-    for (size_t step = 0; status == UR_OK && !*placed && step < SHAPE_COUNT; step++) {
-        run base;
-        status = shortened(r, shapes[step].shorten * r->length, &base, error);
-        if (status != UR_OK)
-            break;
-        double depth;
-        GEOSGeometry *joint = joint_polygon(j, &base, shapes[step].depth, &depth, error);
-        if (joint && clash(j, piece, joint) <= CLASH_SHARE * allow_area(j->geos, joint))
-            status = grow_outline(j, piece, joint, placed, error);
-        if (status == UR_OK && *placed)
-            status = finish_joint(j, piece_index, &base, joint, other, other_piece, label, depth,
-                                  step > 0, error);
+    for (size_t step = from; status == UR_OK && !*done && step < to; step++) {
+        run whole = {0}, base = {0};
+        status = sub_run(&sj->runs[k], first, count, &whole, error);
+        if (status == UR_OK)
+            status = shortened(&whole, shapes[step].shorten * whole.length, &base, error);
+        free(whole.points);
+        double depth = 0;
+        GEOSGeometry *joint =
+            status == UR_OK ? joint_shape(j, &base, shapes[step].depth, &depth, error) : NULL;
+        allow_verdict tried = {ALLOW_BLOCKED_SHAPE, NULL, 0};
+        if (status == UR_OK)
+            status = allow_board_test(j->boards[piece], joint, base.points, base.count, edge, count,
+                                      &tried, error);
+        /* What stopped the smallest shape that could be built says most. */
+        if (tried.by != ALLOW_BLOCKED_SHAPE || v->by == ALLOW_BLOCKED_SHAPE)
+            *v = tried;
+        if (status == UR_OK && v->by == ALLOW_BLOCKED_NOT) {
+            placed_joint p = {.shape = joint,
+                              .piece = piece,
+                              .first_edge = edge,
+                              .edges = count,
+                              .base = base,
+                              .under_piece = sj->s->net[1 - k],
+                              .seam = sj->seam,
+                              .side = k,
+                              .depth = depth,
+                              .reduced = step > 0};
+            if (j->options->lap)
+                status = sub_run(&sj->runs[1 - k], local_first(sj, 1 - k, st),
+                                 local_count(sj, 1 - k, st), &p.under, error);
+            if (status == UR_OK)
+                status = add_placed(j, &p, error);
+            if (status == UR_OK) {
+                *done = true;
+                continue; /* the joiner owns the shape and the runs now */
+            }
+            free(p.under.points);
+        }
         if (joint)
             GEOSGeom_destroy_r(j->geos, joint);
         free(base.points);
@@ -419,44 +415,597 @@ static ur_status try_side(const joiner *j, size_t piece_index, const run *r, con
     return status;
 }
 
-/* Which side first: the one that clashes less; when both are free, the piece with fewer joints. */
-static int first_side(const joiner *j, const seam_sides *s, const run runs[2], ur_error *error)
+/* Whether outline edge e of side k's piece is one of the seam's other side (on the same piece). */
+static bool on_other_side(const joiner *j, const seam_job *sj, int k, size_t e)
 {
-    double clashes[2];
-    for (int k = 0; k < 2; k++) {
-        double depth;
-        GEOSGeometry *joint = joint_polygon(j, &runs[k], 1.0, &depth, error);
-        clashes[k] = clash(j, &j->pieces[s->net[k]], joint);
-        if (joint) {
-            clashes[k] /= fmax(allow_area(j->geos, joint), 1e-12);
-            GEOSGeom_destroy_r(j->geos, joint);
-        }
-        if (clashes[k] <= CLASH_SHARE)
-            clashes[k] = 0;
-    }
-    if (clashes[0] != clashes[1])
-        return clashes[0] < clashes[1] ? 0 : 1;
-    return j->tab_count[s->net[1]] < j->tab_count[s->net[0]] ? 1 : 0;
+    if (sj->s->net[0] != sj->s->net[1])
+        return false;
+    const ur_net *net = &j->nets->nets[sj->s->net[k]];
+    size_t first = net->seam_sides[sj->s->side[1 - k]].first, n = net->outline_count;
+    return (e + n - first % n) % n < sj->edges[1 - k];
 }
 
-static ur_status label_side(const joiner *j, ur_piece *piece, const run *r, const char *text,
-                            ur_error *error)
+/* Which side of the seam a describe() names, and what stopped its joint there. */
+static void describe(const joiner *j, const seam_job *sj, int k, const stretch *st,
+                     const allow_verdict *v, char *text, size_t size)
+{
+    const ur_piece *piece = &j->pieces[sj->s->net[k]];
+    run r = {0};
+    if (sub_run(&sj->runs[k], local_first(sj, k, st), local_count(sj, k, st), &r, NULL) != UR_OK) {
+        snprintf(text, size, "on %s no room", piece->name);
+        return;
+    }
+    ur_vec2 middle = run_middle(&r);
+    double distance = -1;
+    GEOSGeometry *point = GEOSGeom_createPointFromXY_r(j->geos, middle.x, middle.y);
+    if (point && v->what)
+        GEOSDistance_r(j->geos, point, v->what, &distance);
+    if (point)
+        GEOSGeom_destroy_r(j->geos, point);
+    if (v->by == ALLOW_BLOCKED_OUTLINE && on_other_side(j, sj, k, v->edge))
+        snprintf(text, size, "on %s the seam's other side comes within %.1f mm (a narrow slit)",
+                 piece->name, distance);
+    else if (v->by == ALLOW_BLOCKED_OUTLINE)
+        snprintf(text, size, "on %s its own outline comes within %.1f mm", piece->name, distance);
+    else if (v->by == ALLOW_BLOCKED_JOINT)
+        snprintf(text, size, "on %s another %s comes within %.1f mm", piece->name,
+                 j->options->lap ? "lap" : "tab", distance);
+    else
+        snprintf(text, size, "on %s the edge (%.1f mm) is too short", piece->name, r.length);
+    free(r.points);
+}
+
+static ur_status record(ur_piece *piece, ur_allowance_kind kind, ur_vec2 where, size_t count,
+                        bool warning, ur_error *error, const char *format, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 7, 8)))
+#endif
+    ;
+
+static ur_status record(ur_piece *piece, ur_allowance_kind kind, ur_vec2 where, size_t count,
+                        bool warning, ur_error *error, const char *format, ...)
+{
+    ur_allowance_record entry = {.kind = kind,
+                                 .count = count,
+                                 .value = NAN,
+                                 .limit = NAN,
+                                 .where = where,
+                                 .warning = warning};
+    va_list args;
+    va_start(args, format);
+    vsnprintf(entry.reason, sizeof entry.reason, format, args);
+    va_end(args);
+    return ur_piece_record(piece, &entry, error);
+}
+
+/* The warning for a stretch that got no joint on either side, saying why. */
+static ur_status warn_stretch(joiner *j, const seam_job *sj, const stretch *st, int first_side,
+                              const allow_verdict why[2], ur_error *error)
+{
+    char sides[2][96];
+    for (int k = 0; k < 2; k++)
+        describe(j, sj, k, st, &why[k], sides[k], sizeof sides[k]);
+    run r = {0};
+    ur_status status = sub_run(&sj->runs[first_side], local_first(sj, first_side, st),
+                               local_count(sj, first_side, st), &r, error);
+    if (status != UR_OK)
+        return status;
+    size_t total = sj->edges[0];
+    char which[48] = "";
+    if (total > 1 && sj->edges[0] == sj->edges[1])
+        snprintf(which, sizeof which, " (edge %zu of %zu)", st->first + 1, total);
+    status = record(&j->pieces[sj->s->net[first_side]], UR_ALLOWANCE_JOINT, run_middle(&r), 0, true,
+                    error, "no room for a %s on seam %s%s: %s, %s: join it by hand",
+                    j->options->lap ? "lap" : "glue tab", sj->label, which, sides[first_side],
+                    sides[1 - first_side]);
+    free(r.points);
+    return status;
+}
+
+/* The joint of one stretch: full on either side, then smaller on either. */
+static ur_status join_stretch(joiner *j, const seam_job *sj, const stretch *st, int first_side,
+                              ur_error *error)
 {
     const ur_joint_options *o = j->options;
-    ur_vec2 middle = run_middle(r);
+    const shape *shapes = o->lap ? lap_shapes : tab_shapes;
+    size_t count = o->lap ? COUNT(lap_shapes) : COUNT(tab_shapes);
+    /* Tabs: the full shape on both sides before any smaller; laps: one side, then the other. */
+    size_t split = o->lap ? count : 1;
+    allow_verdict why[2] = {{ALLOW_BLOCKED_SHAPE, NULL, 0}, {ALLOW_BLOCKED_SHAPE, NULL, 0}};
+    bool done = false;
+    ur_status status = UR_OK;
+    for (int pass = 0; status == UR_OK && !done && pass < 4; pass++) {
+        int k = pass % 2 == 0 ? first_side : 1 - first_side;
+        size_t from = pass < 2 ? 0 : split, to = pass < 2 ? split : count;
+        if (from < to)
+            status = try_shapes(j, sj, k, st, shapes, from, to, &done, &why[k], error);
+    }
+    if (status == UR_OK && !done)
+        status = warn_stretch(j, sj, st, first_side, why, error);
+    return status;
+}
+
+/* Whether the points stay within tolerance of the chord from the first to the last. */
+static bool straight_2d(const ur_vec2 *points, size_t count, double tolerance)
+{
+    ur_vec3 a = ur_vec3_make(points[0].x, points[0].y, 0);
+    ur_vec3 b = ur_vec3_make(points[count - 1].x, points[count - 1].y, 0);
+    for (size_t i = 1; i + 1 < count; i++) {
+        ur_vec3 p = ur_vec3_make(points[i].x, points[i].y, 0);
+        if (ur_segment_distance(p, p, a, b) > tolerance)
+            return false;
+    }
+    return true;
+}
+
+/* The same in 3D, for the mesh points of side 0's net, outline points first .. first + count - 1.
+ */
+static bool straight_3d(const ur_net *net, size_t first, size_t count, double tolerance)
+{
+    size_t n = net->outline_count;
+    ur_vec3 a = net->outline_3d[first % n], b = net->outline_3d[(first + count - 1) % n];
+    for (size_t i = 1; i + 1 < count; i++) {
+        ur_vec3 p = net->outline_3d[(first + i) % n];
+        if (ur_segment_distance(p, p, a, b) > tolerance)
+            return false;
+    }
+    return true;
+}
+
+/* Whether side 0's edges [first, first + count) and the same edges of side 1 are straight. */
+static bool stretch_straight(const joiner *j, const seam_job *sj, size_t first, size_t count)
+{
+    double tolerance = STRAIGHT_SHARE * j->options->tab_depth;
+    const ur_net *net = &j->nets->nets[sj->s->net[0]];
+    size_t other_first = sj->edges[1] - first - count;
+    return straight_2d(sj->runs[0].points + first, count + 1, tolerance) &&
+           straight_2d(sj->runs[1].points + other_first, count + 1, tolerance) &&
+           (!net->outline_3d ||
+            straight_3d(net, net->seam_sides[sj->s->side[0]].first + first, count + 1, tolerance));
+}
+
+/*
+ * The seam cut into stretches: for tabs, its straight stretches (on a
+ * folded mesh each edge, unless neighbouring edges run on in a straight
+ * line on both pieces and in space); for laps, all of it, or each half of
+ * a closed loop.
+ */
+static ur_status find_stretches(const joiner *j, const seam_job *sj, stretch **out, size_t *count,
+                                ur_error *error)
+{
+    size_t m = sj->edges[0];
+    bool paired = sj->edges[0] == sj->edges[1];
+    *count = 0;
+    *out = ur_alloc_array(m ? m : 1, sizeof **out, error);
+    if (!*out)
+        return UR_ERROR_INTERNAL;
+    if (!paired || (j->options->lap && m < 2)) {
+        (*out)[(*count)++] = (stretch){0, m};
+        return UR_OK;
+    }
+    if (j->options->lap) {
+        const run *r = &sj->runs[0];
+        bool loop = ur_vec2_distance(r->points[0], r->points[r->count - 1]) <= 1e-9 * r->length;
+        if (loop) {
+            (*out)[(*count)++] = (stretch){0, m / 2};
+            (*out)[(*count)++] = (stretch){m / 2, m - m / 2};
+        } else
+            (*out)[(*count)++] = (stretch){0, m};
+        return UR_OK;
+    }
+    for (size_t first = 0; first < m;) {
+        size_t length = 1;
+        while (first + length < m && stretch_straight(j, sj, first, length + 1))
+            length++;
+        (*out)[(*count)++] = (stretch){first, length};
+        first += length;
+    }
+    return UR_OK;
+}
+
+/* The side most full joints fit on; when both are alike, the piece with fewer joints. */
+static ur_status first_side(joiner *j, const seam_job *sj, const stretch *stretches, size_t count,
+                            int *side, ur_error *error)
+{
+    const shape *shapes = j->options->lap ? lap_shapes : tab_shapes;
+    size_t fits[2] = {0, 0};
+    ur_status status = UR_OK;
+    for (int k = 0; status == UR_OK && k < 2; k++)
+        for (size_t s = 0; status == UR_OK && s < count; s++) {
+            const stretch *st = &stretches[s];
+            run base = {0};
+            status =
+                sub_run(&sj->runs[k], local_first(sj, k, st), local_count(sj, k, st), &base, error);
+            double depth;
+            GEOSGeometry *joint =
+                status == UR_OK ? joint_shape(j, &base, shapes[0].depth, &depth, error) : NULL;
+            allow_verdict v;
+            if (status == UR_OK)
+                status = allow_board_test(j->boards[sj->s->net[k]], joint, base.points, base.count,
+                                          outline_edge(j, sj, k, local_first(sj, k, st)),
+                                          local_count(sj, k, st), &v, error);
+            if (status == UR_OK && v.by == ALLOW_BLOCKED_NOT)
+                fits[k]++;
+            if (joint)
+                GEOSGeom_destroy_r(j->geos, joint);
+            free(base.points);
+        }
+    if (fits[0] != fits[1])
+        *side = fits[0] > fits[1] ? 0 : 1;
+    else
+        *side = j->tab_count[sj->s->net[1]] < j->tab_count[sj->s->net[0]] ? 1 : 0;
+    return status;
+}
+
+static ur_status join_seam(joiner *j, const seam_sides *s, int seam, ur_error *error)
+{
+    seam_job sj = {.s = s, .seam = seam};
+    ur_seam_label(seam, sj.label, sizeof sj.label);
+    ur_status status = UR_OK;
+    for (int k = 0; status == UR_OK && k < 2; k++) {
+        const ur_net *net = &j->nets->nets[s->net[k]];
+        status = run_of(net, &net->seam_sides[s->side[k]], &sj.runs[k], error);
+        sj.edges[k] = status == UR_OK ? sj.runs[k].count - 1 : 0;
+    }
+    stretch *stretches = NULL;
+    size_t count = 0;
+    if (status == UR_OK)
+        status = find_stretches(j, &sj, &stretches, &count, error);
+    int side = 0;
+    if (status == UR_OK)
+        status = first_side(j, &sj, stretches, count, &side, error);
+    for (size_t k = 0; status == UR_OK && k < count; k++)
+        status = join_stretch(j, &sj, &stretches[k], side, error);
+    free(stretches);
+    free(sj.runs[0].points);
+    free(sj.runs[1].points);
+    return status;
+}
+
+/* ---- Growing the outlines, then folds, marks and records ----------------- */
+
+/* A polygon's exterior ring as the piece's outline (holes, if any, filled). */
+static ur_status set_outline(const joiner *j, ur_piece *piece, const GEOSGeometry *polygon,
+                             ur_error *error)
+{
+    ur_vec2 *ring;
+    size_t count;
+    ur_status status = allow_exterior_ring(j->geos, polygon, &ring, &count, error);
+    if (status != UR_OK)
+        return status;
+    free(piece->paths[0].points);
+    piece->paths[0].points = ring;
+    piece->paths[0].count = count;
+    piece->paths[0].circle = (ur_path_circle){{0, 0}, 0, 0}; /* grown: no circle */
+    for (size_t i = 0; i < count; i++)
+        ur_box_add(&piece->box, ring[i]);
+    return UR_OK;
+}
+
+/*
+ * The union of all (a collection), simplified by a micrometre, far below
+ * any cutter's resolution: where a shortened joint's corner meets the
+ * outline a hair's breadth off, the union keeps a sliver that folds back
+ * on itself.  Plain Douglas-Peucker is quick on an outline of thousands of
+ * tabs; should it leave the polygon invalid, the exact union is kept.
+ * NULL unless it is one polygon.
+ */
+static GEOSGeometry *united(const joiner *j, GEOSGeometry *all)
+{
+    GEOSGeometry *exact = all ? GEOSUnaryUnion_r(j->geos, all) : NULL;
+    if (exact && GEOSGeomTypeId_r(j->geos, exact) != GEOS_POLYGON) {
+        GEOSGeom_destroy_r(j->geos, exact);
+        return NULL;
+    }
+    GEOSGeometry *simple = exact ? GEOSSimplify_r(j->geos, exact, 1e-3) : NULL;
+    if (simple && (GEOSGeomTypeId_r(j->geos, simple) != GEOS_POLYGON ||
+                   GEOSisValid_r(j->geos, simple) != 1)) {
+        GEOSGeom_destroy_r(j->geos, simple);
+        simple = NULL;
+    }
+    if (!simple)
+        return exact;
+    if (exact)
+        GEOSGeom_destroy_r(j->geos, exact);
+    return simple;
+}
+
+/* The collection of the polygon and the shapes (cloned), or NULL. */
+static GEOSGeometry *collection(const joiner *j, const GEOSGeometry *outline,
+                                const GEOSGeometry *const *shapes, size_t count)
+{
+    GEOSGeometry **parts = calloc(count + 1, sizeof *parts);
+    if (!parts)
+        return NULL;
+    bool failed = false;
+    for (size_t k = 0; k <= count && !failed; k++)
+        failed = !(parts[k] = GEOSGeom_clone_r(j->geos, k == 0 ? outline : shapes[k - 1]));
+    GEOSGeometry *all = failed ? NULL
+                               : GEOSGeom_createCollection_r(j->geos, GEOS_GEOMETRYCOLLECTION,
+                                                             parts, (unsigned)(count + 1));
+    if (!all)
+        for (size_t k = 0; k <= count; k++)
+            if (parts[k])
+                GEOSGeom_destroy_r(j->geos, parts[k]);
+    free(parts);
+    return all;
+}
+
+/*
+ * The piece's outline grown by all its joints at once.  Should the union
+ * not be one polygon (a net that touches itself), the joints are added one
+ * at a time instead and any that would break the outline is left off.
+ */
+static ur_status grow_piece(joiner *j, size_t index, ur_error *error)
+{
+    const allow_board *b = j->boards[index];
+    ur_piece *piece = &j->pieces[index];
+    size_t count = allow_board_joint_count(b);
+    if (count == 0)
+        return UR_OK;
+    const GEOSGeometry **shapes = calloc(count, sizeof *shapes);
+    GEOSGeometry *outline = ur_geos_polygon(j->geos, piece->paths[0].points, piece->paths[0].count);
+    if (!shapes || !outline) {
+        free(shapes);
+        if (outline)
+            GEOSGeom_destroy_r(j->geos, outline);
+        return ur_error_set(error, UR_ERROR_INTERNAL, "could not grow the outline of piece %s",
+                            piece->name);
+    }
+    for (size_t k = 0; k < count; k++)
+        shapes[k] = j->placed[allow_board_joint_tag(b, k)].shape;
+    GEOSGeometry *all = collection(j, outline, (const GEOSGeometry *const *)shapes, count);
+    GEOSGeometry *grown = united(j, all);
+    if (all)
+        GEOSGeom_destroy_r(j->geos, all);
+    for (size_t k = 0; k < count; k++)
+        j->placed[allow_board_joint_tag(b, k)].kept = grown != NULL;
+    if (!grown) { /* one at a time */
+        grown = outline;
+        outline = NULL;
+        for (size_t k = 0; k < count; k++) {
+            GEOSGeometry *pair = collection(j, grown, &shapes[k], 1);
+            GEOSGeometry *next = united(j, pair);
+            if (pair)
+                GEOSGeom_destroy_r(j->geos, pair);
+            if (next && GEOSGetNumInteriorRings_r(j->geos, next) == 0) {
+                GEOSGeom_destroy_r(j->geos, grown);
+                grown = next;
+                j->placed[allow_board_joint_tag(b, k)].kept = true;
+            } else if (next)
+                GEOSGeom_destroy_r(j->geos, next);
+        }
+    }
+    ur_status status = set_outline(j, piece, grown, error);
+    GEOSGeom_destroy_r(j->geos, grown);
+    if (outline)
+        GEOSGeom_destroy_r(j->geos, outline);
+    free(shapes);
+    return status;
+}
+
+static ur_status add_open_path(ur_piece *piece, ur_op op, const run *r, double offset,
+                               ur_error *error)
+{
+    ur_vec2 *points = ur_alloc_array(r->count, sizeof *points, error);
+    if (!points)
+        return UR_ERROR_INTERNAL;
+    for (size_t k = 0; k < r->count; k++)
+        points[k] = ur_vec2_add_scaled(r->points[k], vertex_normal(r, k), offset);
+    ur_status status = ur_piece_add_path(piece, op, points, r->count, false, error);
+    free(points);
+    return status;
+}
+
+/*
+ * The folds of a tab: at the seam, and on thick stock at the band's top,
+ * between the tab's tapered sides.
+ */
+static ur_status add_folds(const joiner *j, ur_piece *piece, const run *base, ur_error *error)
+{
+    ur_status status = add_open_path(piece, UR_OP_SCORE, base, 0.0, error);
+    double band = band_of(j->options);
+    if (status != UR_OK || band <= 0)
+        return status;
+    double inset =
+        j->options->tab_angle < 90.0 ? band / tan(j->options->tab_angle * M_PI / 180.0) : 0.0;
+    run inner = {0};
+    if (base->length > 2 * inset)
+        status = shortened(base, inset, &inner, error);
+    if (status == UR_OK && inner.points)
+        status = add_open_path(piece, UR_OP_SCORE, &inner, band, error);
+    free(inner.points);
+    return status;
+}
+
+static ur_status add_mark(const joiner *j, ur_piece *piece, const GEOSGeometry *zone,
+                          ur_error *error)
+{
+    ur_vec2 *ring;
+    size_t count;
+    if (GEOSGeomTypeId_r(j->geos, zone) != GEOS_POLYGON || GEOSisEmpty_r(j->geos, zone))
+        return UR_OK; /* nothing left to mark */
+    ur_status status = allow_exterior_ring(j->geos, zone, &ring, &count, error);
+    if (status == UR_OK)
+        status = ur_piece_add_path(piece, UR_OP_MARK, ring, count, true, error);
+    free(ring);
+    return status;
+}
+
+/* The other piece's lapped zone: inward of its side, clipped to it. */
+static ur_status mark_under(const joiner *j, ur_piece *piece, const run *r, ur_error *error)
+{
+    ur_points ring = {0};
+    ur_status status = joint_ring(r, 0.0, -j->options->lap_width, 0.0, &ring, error);
+    GEOSGeometry *zone = status == UR_OK ? ur_geos_polygon(j->geos, ring.items, ring.count) : NULL;
+    ur_points_free(&ring);
+    GEOSGeometry *outline =
+        zone ? ur_geos_polygon(j->geos, piece->paths[0].points, piece->paths[0].count) : NULL;
+    GEOSGeometry *valid = zone ? GEOSMakeValid_r(j->geos, zone) : NULL;
+    GEOSGeometry *clipped = outline && valid ? GEOSIntersection_r(j->geos, outline, valid) : NULL;
+    if (status == UR_OK && clipped)
+        status = add_mark(j, piece, clipped, error);
+    GEOSGeometry *all[] = {zone, outline, valid, clipped};
+    for (size_t k = 0; k < 4; k++)
+        if (all[k])
+            GEOSGeom_destroy_r(j->geos, all[k]);
+    return status;
+}
+
+/* What a kept joint adds: folds (tab) or marks on both pieces (lap). */
+static ur_status finish_joint(const joiner *j, const placed_joint *p, ur_error *error)
+{
+    ur_piece *piece = &j->pieces[p->piece];
+    if (!j->options->lap)
+        return add_folds(j, piece, &p->base, error);
+    ur_status status = add_mark(j, piece, p->shape, error);
+    if (status == UR_OK)
+        status = mark_under(j, &j->pieces[p->under_piece], &p->under, error);
+    return status;
+}
+
+/* One record per side of a seam for its joints there, placed[from .. to - 1] being the seam's. */
+static ur_status record_seam(joiner *j, size_t from, size_t to, ur_error *error)
+{
+    char label[16];
+    ur_seam_label(j->placed[from].seam, label, sizeof label);
+    ur_status status = UR_OK;
+    for (int side = 0; status == UR_OK && side < 2; side++) {
+        size_t kept = 0, dropped = 0, reduced = 0, first = to;
+        double depth = 0;
+        for (size_t k = from; k < to; k++) {
+            const placed_joint *p = &j->placed[k];
+            if (p->side != side)
+                continue;
+            if (!p->kept) {
+                dropped++;
+                continue;
+            }
+            if (first == to)
+                first = k;
+            kept++;
+            reduced += p->reduced;
+            depth = fmax(depth, p->depth);
+        }
+        const placed_joint *p = first < to ? &j->placed[first] : NULL;
+        ur_piece *piece = p ? &j->pieces[p->piece] : NULL;
+        char smaller[48] = "";
+        if (reduced)
+            snprintf(smaller, sizeof smaller, " (%zu made smaller to fit)", reduced);
+        if (p && j->options->lap)
+            status = record(piece, UR_ALLOWANCE_JOINT, run_middle(&p->base), kept, false, error,
+                            "lap %.3g mm under seam %s, marked on both pieces%s", depth, label,
+                            reduced ? " (made smaller to fit)" : "");
+        else if (p)
+            status = record(piece, UR_ALLOWANCE_JOINT, run_middle(&p->base), kept, false, error,
+                            "%zu glue tab%s on seam %s, up to %.3g mm deep%s", kept,
+                            kept == 1 ? "" : "s", label, depth, smaller);
+        for (size_t k = from; status == UR_OK && dropped && k < to; k++)
+            if (j->placed[k].side == side && !j->placed[k].kept)
+                status = record(&j->pieces[j->placed[k].piece], UR_ALLOWANCE_JOINT,
+                                run_middle(&j->placed[k].base), 0, true, error,
+                                "a %s on seam %s was left off: the piece's outline would not "
+                                "stay one ring with it: join it by hand",
+                                j->options->lap ? "lap" : "glue tab", label);
+    }
+    return status;
+}
+
+static ur_status finish_all(joiner *j, ur_error *error)
+{
+    ur_status status = UR_OK;
+    for (size_t n = 0; status == UR_OK && n < j->nets->count; n++)
+        status = grow_piece(j, n, error);
+    for (size_t k = 0; status == UR_OK && k < j->placed_count; k++)
+        if (j->placed[k].kept)
+            status = finish_joint(j, &j->placed[k], error);
+    for (size_t from = 0; status == UR_OK && from < j->placed_count;) {
+        size_t to = from + 1;
+        while (to < j->placed_count && j->placed[to].seam == j->placed[from].seam)
+            to++;
+        status = record_seam(j, from, to, error);
+        from = to;
+    }
+    return status;
+}
+
+/* ---- Labels ---------------------------------------------------------------- */
+
+/*
+ * The seam's direction where its label goes: that of the segment there.
+ * A side that is a closed loop (the rim of a hole, the whole outline of a
+ * piece) ends where it starts, so its chord says nothing; a zero-length
+ * segment falls back to the chord, and that to +x.
+ */
+static ur_vec2 direction_at(const run *r, size_t segment)
+{
+    ur_vec2 along = ur_vec2_sub(r->points[segment + 1], r->points[segment]);
+    if (!(ur_vec2_length(along) > 0))
+        along = ur_vec2_sub(r->points[r->count - 1], r->points[0]);
+    if (!(ur_vec2_length(along) > 0) || !isfinite(along.x) || !isfinite(along.y))
+        along = ur_vec2_make(1, 0);
+    return along;
+}
+
+/*
+ * Engraves one label for the joints: the place and direction are ours, so
+ * a refusal of them is our failure (UR_ERROR_INTERNAL), never bad input.
+ */
+static ur_status engrave_label(allow_room *room, const ur_piece *piece, const ur_font *font,
+                               const char *text, ur_vec2 near, ur_vec2 along, double height,
+                               double clearance, double reach, bool *placed, ur_error *error)
+{
+    ur_status status = allow_room_add_label(room, font, text, near, along, height, 0.5 * height,
+                                            clearance, reach, placed, error);
+    if (status == UR_ERROR_INPUT) {
+        if (error)
+            error->status = UR_ERROR_INTERNAL;
+        ur_error_prefix(error, "piece %s: ", piece->name);
+        return UR_ERROR_INTERNAL;
+    }
+    return status;
+}
+
+/* The rooms for labels, one per piece, opened when first needed. */
+typedef struct rooms {
+    allow_room **of;
+    ur_piece *pieces;
+    size_t count;
+} rooms;
+
+static ur_status room_of(rooms *r, size_t piece, allow_room **room, ur_error *error)
+{
+    if (!r->of[piece]) {
+        ur_status status = allow_room_open(&r->pieces[piece], &r->of[piece], error);
+        if (status != UR_OK)
+            return status;
+    }
+    *room = r->of[piece];
+    return UR_OK;
+}
+
+static ur_status label_side(const joiner *j, rooms *r, size_t piece_index, const run *seam_run,
+                            const char *text, ur_error *error)
+{
+    const ur_joint_options *o = j->options;
+    ur_piece *piece = &j->pieces[piece_index];
     size_t segment;
-    point_at(r, r->length / 2, &segment);
-    ur_vec2 inward = ur_vec2_scale(segment_normal(r, segment), -1.0);
+    ur_vec2 middle = point_at(seam_run, seam_run->length / 2, &segment);
+    ur_vec2 inward = ur_vec2_scale(segment_normal(seam_run, segment), -1.0);
     /* Beside the seam; with laps beyond the zone the other piece covers. */
     double lapped = o->lap ? o->lap_width : 0.0;
     ur_vec2 near = ur_vec2_add_scaled(middle, inward, lapped + 0.5 * o->label_height + 1.0);
-    ur_vec2 along = ur_vec2_sub(r->points[r->count - 1], r->points[0]);
     double clearance = fmax(0.3, 0.15 * o->label_height);
+    /* A label far from its seam tells nothing: it stays within a few of its own lengths. */
+    double reach = lapped + 12 * o->label_height + 0.5 * seam_run->length;
+    allow_room *room;
     bool placed;
-    ur_status status = ur_piece_add_label(piece, o->font, text, near, along, o->label_height,
-                                          0.5 * o->label_height, clearance, &placed, error);
+    ur_status status = room_of(r, piece_index, &room, error);
+    if (status == UR_OK)
+        status = engrave_label(room, piece, o->font, text, near, direction_at(seam_run, segment),
+                               o->label_height, clearance, reach, &placed, error);
     if (status == UR_OK && !placed)
-        status = record(piece, UR_ALLOWANCE_LABEL, middle, true, error,
+        status = record(piece, UR_ALLOWANCE_LABEL, middle, 0, true, error,
                         "no room for label %s beside its seam", text);
     return status;
 }
@@ -466,44 +1015,39 @@ static ur_status label_side(const joiner *j, ur_piece *piece, const run *r, cons
  * that they are placed within the net's own outline and never on a tab
  * (which is glued out of sight).
  */
-static ur_status label_seam(const joiner *j, const seam_sides *s, int seam, ur_error *error)
+static ur_status label_seam(const joiner *j, rooms *r, const seam_sides *s, int seam,
+                            ur_error *error)
 {
     char label[16];
     ur_seam_label(seam, label, sizeof label);
     ur_status status = UR_OK;
     for (int k = 0; status == UR_OK && k < 2; k++) {
         const ur_net *net = &j->nets->nets[s->net[k]];
-        run r = {0};
-        status = run_of(net, &net->seam_sides[s->side[k]], &r, error);
+        run seam_run = {0};
+        status = run_of(net, &net->seam_sides[s->side[k]], &seam_run, error);
         if (status == UR_OK)
-            status = label_side(j, &j->pieces[s->net[k]], &r, label, error);
-        free(r.points);
+            status = label_side(j, r, s->net[k], &seam_run, label, error);
+        free(seam_run.points);
     }
     return status;
 }
 
-static ur_status join_seam(const joiner *j, const seam_sides *s, int seam, ur_error *error)
+static ur_status name_piece(const joiner *j, rooms *r, size_t index, ur_error *error)
 {
-    char label[16];
-    ur_seam_label(seam, label, sizeof label);
-    run runs[2] = {{0}};
-    ur_status status = UR_OK;
-    for (int k = 0; status == UR_OK && k < 2; k++)
-        status = run_of(&j->nets->nets[s->net[k]], &j->nets->nets[s->net[k]].seam_sides[s->side[k]],
-                        &runs[k], error);
-    int first = status == UR_OK ? first_side(j, s, runs, error) : 0;
-    bool placed = false;
-    for (int attempt = 0; status == UR_OK && !placed && attempt < 2; attempt++) {
-        int k = attempt == 0 ? first : 1 - first;
-        status =
-            try_side(j, s->net[k], &runs[k], &runs[1 - k], s->net[1 - k], label, &placed, error);
-    }
+    ur_piece *piece = &j->pieces[index];
+    ur_vec2 centre = ur_vec2_make((piece->box.min.x + piece->box.max.x) / 2,
+                                  (piece->box.min.y + piece->box.max.y) / 2);
+    const ur_joint_options *o = j->options;
+    allow_room *room;
+    bool placed;
+    ur_status status = room_of(r, index, &room, error);
+    if (status == UR_OK)
+        status = engrave_label(room, piece, o->font, piece->name, centre, ur_vec2_make(1, 0),
+                               o->label_height, fmax(0.3, 0.15 * o->label_height), INFINITY,
+                               &placed, error);
     if (status == UR_OK && !placed)
-        status = record(&j->pieces[s->net[first]], UR_ALLOWANCE_JOINT, run_middle(&runs[first]),
-                        true, error, "no room for a %s on seam %s on either side: join it by hand",
-                        j->options->lap ? "lap" : "glue tab", label);
-    free(runs[0].points);
-    free(runs[1].points);
+        status = record(piece, UR_ALLOWANCE_LABEL, centre, 0, true, error,
+                        "no room to engrave the piece's name %s", piece->name);
     return status;
 }
 
@@ -529,18 +1073,23 @@ static ur_status gather_seams(const ur_net_list *nets, seam_sides **seams, int *
     return UR_OK;
 }
 
-static ur_status name_piece(const joiner *j, ur_piece *piece, ur_error *error)
+static ur_status add_labels(joiner *j, const seam_sides *seams, int last, ur_error *error)
 {
-    ur_vec2 centre = ur_vec2_make((piece->box.min.x + piece->box.max.x) / 2,
-                                  (piece->box.min.y + piece->box.max.y) / 2);
-    const ur_joint_options *o = j->options;
-    bool placed;
-    ur_status status = ur_piece_add_label(piece, o->font, piece->name, centre, ur_vec2_make(1, 0),
-                                          o->label_height, 0.5 * o->label_height,
-                                          fmax(0.3, 0.15 * o->label_height), &placed, error);
-    if (status == UR_OK && !placed)
-        status = record(piece, UR_ALLOWANCE_LABEL, centre, true, error,
-                        "no room to engrave the piece's name %s", piece->name);
+    rooms r = {calloc(j->nets->count + 1, sizeof(allow_room *)), j->pieces, j->nets->count};
+    if (!r.of)
+        return ur_error_out_of_memory(error);
+    ur_status status = UR_OK;
+    for (int seam = 1; status == UR_OK && seam <= last; seam++)
+        if (seams[seam].found == 2) {
+            status = ur_cancel_check(error);
+            if (status == UR_OK)
+                status = label_seam(j, &r, &seams[seam], seam, error);
+        }
+    for (size_t n = 0; status == UR_OK && j->options->name_pieces && n < j->nets->count; n++)
+        status = name_piece(j, &r, n, error);
+    for (size_t n = 0; n < r.count; n++)
+        allow_room_close(r.of[n]);
+    free(r.of);
     return status;
 }
 
@@ -549,11 +1098,44 @@ static ur_status check_options(const ur_joint_options *o, ur_error *error)
     bool sizes = o->lap ? o->lap_width > 0 && isfinite(o->lap_width)
                         : o->tab_depth > 0 && isfinite(o->tab_depth) && o->tab_angle > 0 &&
                               o->tab_angle <= 90;
-    if (!sizes || !(o->thickness >= 0) || (o->font && !(o->label_height > 0)))
+    if (!sizes || !(o->thickness >= 0) || !isfinite(o->thickness) ||
+        (o->font && !(o->label_height > 0)))
         return ur_error_set(error, UR_ERROR_INPUT,
                             "joints need a positive tab depth (angle above 0 up to 90 degrees) "
                             "or lap width, and a positive label height");
     return UR_OK;
+}
+
+static void joiner_free(joiner *j)
+{
+    for (size_t k = 0; k < j->placed_count; k++) {
+        GEOSGeom_destroy_r(j->geos, j->placed[k].shape);
+        free(j->placed[k].base.points);
+        free(j->placed[k].under.points);
+    }
+    free(j->placed);
+    for (size_t n = 0; j->boards && n < j->nets->count; n++)
+        allow_board_close(j->boards[n]);
+    free(j->boards);
+    free(j->tab_count);
+    if (j->geos)
+        GEOS_finish_r(j->geos);
+}
+
+static ur_status add_all_joints(joiner *j, const seam_sides *seams, int last, ur_error *error)
+{
+    ur_status status = UR_OK;
+    for (size_t n = 0; status == UR_OK && n < j->nets->count; n++)
+        status = allow_board_open(j->geos, j->nets->nets[n].outline, j->nets->nets[n].outline_count,
+                                  band_of(j->options) + full_depth(j->options) + j->gap, j->gap,
+                                  &j->boards[n], error);
+    for (int seam = 1; status == UR_OK && seam <= last; seam++)
+        if (seams[seam].found == 2) {
+            status = ur_cancel_check(error);
+            if (status == UR_OK)
+                status = join_seam(j, &seams[seam], seam, error);
+        }
+    return status == UR_OK ? finish_all(j, error) : status;
 }
 
 ur_status ur_pieces_add_joints(ur_piece *pieces, const ur_net_list *nets,
@@ -563,28 +1145,27 @@ ur_status ur_pieces_add_joints(ur_piece *pieces, const ur_net_list *nets,
     if (status != UR_OK)
         return status;
     for (size_t n = 0; n < nets->count; n++)
-        if (pieces[n].path_count == 0 || !pieces[n].paths[0].closed)
+        if (pieces[n].path_count == 0 || !pieces[n].paths[0].closed || pieces[n].paths[0].count < 3)
             return ur_error_set(error, UR_ERROR_INTERNAL, "piece %s has no closed outline",
                                 pieces[n].name);
     seam_sides *seams = NULL;
     int last = 0;
-    joiner j = {GEOS_init_r(), pieces, nets, options, calloc(nets->count + 1, sizeof(size_t))};
-    if (!j.geos || !j.tab_count)
+    joiner j = {.geos = GEOS_init_r(),
+                .pieces = pieces,
+                .nets = nets,
+                .options = options,
+                .boards = calloc(nets->count + 1, sizeof(allow_board *)),
+                .tab_count = calloc(nets->count + 1, sizeof(size_t)),
+                .gap = fmax(0.2, 0.5 * options->thickness)};
+    if (!j.geos || !j.boards || !j.tab_count)
         status = ur_error_out_of_memory(error);
     if (status == UR_OK)
         status = gather_seams(nets, &seams, &last, error);
-    for (int seam = 1; status == UR_OK && options->font && seam <= last; seam++)
-        if (seams[seam].found == 2)
-            status = label_seam(&j, &seams[seam], seam, error);
-    for (size_t n = 0; status == UR_OK && options->font && options->name_pieces && n < nets->count;
-         n++)
-        status = name_piece(&j, &pieces[n], error);
-    for (int seam = 1; status == UR_OK && seam <= last; seam++)
-        if (seams[seam].found == 2)
-            status = join_seam(&j, &seams[seam], seam, error);
+    if (status == UR_OK && options->font)
+        status = add_labels(&j, seams, last, error);
+    if (status == UR_OK)
+        status = add_all_joints(&j, seams, last, error);
     free(seams);
-    free(j.tab_count);
-    if (j.geos)
-        GEOS_finish_r(j.geos);
+    joiner_free(&j);
     return status;
 }

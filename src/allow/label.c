@@ -18,13 +18,17 @@
  *
  * Finding room: the text's bounding rectangle, turned along the label's
  * direction and grown by the clearance, must not meet any path of the
- * piece (outline, holes, scores, engraves, kerfs, marks: one prepared GEOS
- * multi-linestring, "the walls"), and its centre must lie inside the
- * outline and outside every hole.  Since the rectangle meets no wall, the
- * centre decides for all of it.  Candidate centres lie on rings around
- * `near`, the nearest first, for each height from the largest down.
+ * piece (outline, holes, scores, engraves, kerfs, marks: "the walls"), and
+ * its centre must lie inside the outline and outside every hole.  Since
+ * the rectangle meets no wall, the centre decides for all of it.
+ * Candidate centres lie on rings around `near`, the nearest first, for
+ * each height from the largest down.  The walls are cut into short pieces
+ * in a GEOS STRtree and the outline is a prepared polygon, so that a test
+ * looks only at what is near the candidate: a piece with many seams takes
+ * many labels, and each must stay quick (allow_room keeps all this from
+ * one label to the next).
  */
-#include "unroll/allow.h"
+#include "allow_internal.h"
 
 #include <geos_c.h>
 #include <hersheyfont.h>
@@ -42,9 +46,6 @@
 
 /* Each smaller height tried is this fraction of the one before (until min_height). */
 #define HEIGHT_STEP 0.8
-
-/* Segments per quarter circle in the rounded corners of the grown rectangle. */
-#define CORNER_SEGMENTS 4
 
 struct ur_font {
     struct hershey_font *hershey;
@@ -227,87 +228,148 @@ ur_status ur_text_strokes(const ur_font *font, const char *text, double height, 
 
 /* ---- Where the piece has room ------------------------------------------- */
 
-/* What a label search needs of the piece, built once per call. */
-typedef struct room {
+/* Points per piece of a path in the walls' STRtree: enough to keep the tree small, few to test. */
+#define WALL_POINTS 9
+
+/* A piece of a path: its points, and the line the STRtree holds it by. */
+typedef struct wall {
+    ur_vec2 points[WALL_POINTS];
+    size_t count;
+    GEOSGeometry *line; /* owned: the tree keeps its envelope */
+} wall;
+
+/* A label engraved through the room: its text's box. */
+typedef struct label_box {
+    ur_vec2 centre, along, up;
+    double a, b; /* half sizes along and up */
+} label_box;
+
+/* What a label search needs of the piece, built once and kept while labels go on. */
+struct allow_room {
     GEOSContextHandle_t geos;
-    GEOSGeometry *walls;              /* every path of the piece as lines */
-    const GEOSPreparedGeometry *fast; /* the walls, prepared */
+    ur_piece *piece;
+    GEOSSTRtree *tree; /* the walls, pieces of every path of the piece when opened */
+    wall *walls;       /* owned; the tree's items (never moved once the tree is built) */
+    size_t wall_count;
+    allow_grid labels; /* the boxes of the labels engraved since */
+    label_box *boxes;  /* the grid's items */
+    size_t box_capacity;
+    GEOSGeometry *outline; /* paths[0] as a polygon, and prepared */
+    const GEOSPreparedGeometry *outline_fast;
+    size_t *holes; /* the paths that are holes */
+    size_t hole_count;
     ur_box outline_box;
-    const ur_piece *piece;
-} room;
+    allow_items found; /* what a query of the labels found */
+};
 
-/* A GEOS line string along points (a closed path comes back to its start), or NULL. */
-static GEOSGeometry *path_line(GEOSContextHandle_t geos, const ur_path *path)
+/* How many walls a path makes (a closed one runs back to its start). */
+static size_t walls_of_path(const ur_path *path)
 {
-    /* A line string needs two points: a lone point becomes a line of length 0. */
     size_t n = path->count, total = n + (path->closed && n > 2 ? 1 : 0);
-    if (total < 2)
-        total = 2;
-    GEOSCoordSequence *sequence = GEOSCoordSeq_create_r(geos, (unsigned)total, 2);
-    if (!sequence)
-        return NULL;
-    for (size_t i = 0; i < total; i++) {
-        ur_vec2 p = path->points[i < n ? i : i % n];
-        if (!GEOSCoordSeq_setXY_r(geos, sequence, (unsigned)i, p.x, p.y)) {
-            GEOSCoordSeq_destroy_r(geos, sequence);
-            return NULL;
-        }
-    }
-    return GEOSGeom_createLineString_r(geos, sequence);
+    if (n == 0)
+        return 0;
+    return total <= WALL_POINTS ? 1 : (total - 2) / (WALL_POINTS - 1) + 1;
 }
 
-/* The walls: one multi-linestring of every path with points. */
-static GEOSGeometry *piece_walls(GEOSContextHandle_t geos, const ur_piece *piece, ur_error *error)
+/* One path as walls of at most WALL_POINTS points each, sharing their ends. */
+static ur_status add_path_walls(allow_room *r, const ur_path *path, ur_error *error)
 {
-    GEOSGeometry **lines = ur_alloc_array(piece->path_count, sizeof *lines, error);
-    if (!lines)
-        return NULL;
-    size_t n = 0;
-    bool failed = false;
-    for (size_t i = 0; i < piece->path_count && !failed; i++) {
-        if (piece->paths[i].count == 0)
-            continue;
-        lines[n] = path_line(geos, &piece->paths[i]);
-        failed = !lines[n++];
+    size_t n = path->count, total = n + (path->closed && n > 2 ? 1 : 0);
+    for (size_t start = 0, made = walls_of_path(path); made > 0; start += WALL_POINTS - 1, made--) {
+        wall *w = &r->walls[r->wall_count];
+        w->count = 0;
+        for (size_t i = start; i < total && w->count < WALL_POINTS; i++)
+            w->points[w->count++] = path->points[i % n];
+        /* A line string needs two points: a lone point becomes a line of length 0. */
+        ur_vec2 ends[2] = {w->points[0], w->points[w->count - 1]};
+        w->line =
+            allow_line(r->geos, w->count >= 2 ? w->points : ends, w->count >= 2 ? w->count : 2);
+        if (!w->line)
+            return ur_error_set(error, UR_ERROR_INTERNAL,
+                                "GEOS could not build the paths of piece '%s'", r->piece->name);
+        r->wall_count++;
+        GEOSSTRtree_insert_r(r->geos, r->tree, w->line, w);
     }
-    GEOSGeometry *walls =
-        failed ? NULL : GEOSGeom_createCollection_r(geos, GEOS_MULTILINESTRING, lines, (unsigned)n);
-    if (!walls) {
-        for (size_t i = 0; i < n; i++)
-            if (lines[i])
-                GEOSGeom_destroy_r(geos, lines[i]);
-        ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not build the paths of piece '%s'",
-                     piece->name);
-    }
-    free(lines); /* the collection owns the lines, not the array */
-    return walls;
+    return UR_OK;
 }
 
-static void room_free(room *r)
+void allow_room_close(allow_room *r)
 {
-    if (r->fast)
-        GEOSPreparedGeom_destroy_r(r->geos, r->fast);
-    if (r->walls)
-        GEOSGeom_destroy_r(r->geos, r->walls);
+    if (!r)
+        return;
+    if (r->tree)
+        GEOSSTRtree_destroy_r(r->geos, r->tree);
+    for (size_t i = 0; i < r->wall_count; i++)
+        GEOSGeom_destroy_r(r->geos, r->walls[i].line);
+    free(r->walls);
+    free(r->boxes);
+    allow_grid_free(&r->labels);
+    if (r->outline_fast)
+        GEOSPreparedGeom_destroy_r(r->geos, r->outline_fast);
+    if (r->outline)
+        GEOSGeom_destroy_r(r->geos, r->outline);
+    free(r->holes);
+    allow_items_free(&r->found);
     if (r->geos)
         GEOS_finish_r(r->geos);
+    free(r);
 }
 
-static ur_status room_init(room *r, const ur_piece *piece, ur_error *error)
+/* The paths that are holes: a closed through cut drops out with what it encloses. */
+static ur_status find_holes(allow_room *r, ur_error *error)
 {
-    memset(r, 0, sizeof *r);
+    const ur_piece *piece = r->piece;
+    r->holes = ur_alloc_array(piece->path_count, sizeof *r->holes, error);
+    if (!r->holes)
+        return UR_ERROR_INTERNAL;
+    for (size_t i = 1; i < piece->path_count; i++) {
+        const ur_path *path = &piece->paths[i];
+        if (path->closed && path->count >= 3 && (path->op == UR_OP_CUT || path->op == UR_OP_KERF))
+            r->holes[r->hole_count++] = i;
+    }
+    return UR_OK;
+}
+
+ur_status allow_room_open(ur_piece *piece, allow_room **room, ur_error *error)
+{
+    *room = NULL;
+    allow_room *r = calloc(1, sizeof *r);
+    if (!r)
+        return ur_error_out_of_memory(error);
     r->piece = piece;
     r->outline_box = ur_box_of_points(piece->paths[0].points, piece->paths[0].count);
     r->geos = GEOS_init_r();
-    if (!r->geos)
-        return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not start");
-    r->walls = piece_walls(r->geos, piece, error);
-    if (!r->walls)
-        return UR_ERROR_INTERNAL;
-    r->fast = GEOSPrepare_r(r->geos, r->walls);
-    if (!r->fast)
-        return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not prepare piece '%s'",
-                            piece->name);
+    r->tree = r->geos ? GEOSSTRtree_create_r(r->geos, 8) : NULL;
+    ur_status status =
+        r->tree ? UR_OK : ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not start");
+    size_t total = 0;
+    for (size_t i = 0; i < piece->path_count; i++)
+        total += walls_of_path(&piece->paths[i]);
+    if (status == UR_OK) {
+        r->walls = ur_alloc_array(total ? total : 1, sizeof *r->walls, error);
+        if (!r->walls)
+            status = UR_ERROR_INTERNAL;
+    }
+    for (size_t i = 0; status == UR_OK && i < piece->path_count; i++)
+        status = add_path_walls(r, &piece->paths[i], error);
+    ur_box region = piece->box;
+    double size = fmax(ur_box_width(region), ur_box_height(region));
+    if (status == UR_OK)
+        status = allow_grid_init(&r->labels, region, fmax(size / 64, 1e-3), error);
+    if (status == UR_OK) {
+        r->outline = ur_geos_polygon(r->geos, piece->paths[0].points, piece->paths[0].count);
+        r->outline_fast = r->outline ? GEOSPrepare_r(r->geos, r->outline) : NULL;
+        if (!r->outline_fast)
+            status = ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not prepare piece '%s'",
+                                  piece->name);
+    }
+    if (status == UR_OK)
+        status = find_holes(r, error);
+    if (status != UR_OK) {
+        allow_room_close(r);
+        return status;
+    }
+    *room = r;
     return UR_OK;
 }
 
@@ -324,19 +386,22 @@ static bool inside_ring(const ur_vec2 *ring, size_t n, ur_vec2 p)
 }
 
 /* Whether p falls where material stays: inside the outline, in no hole. */
-static bool on_material(const ur_piece *piece, ur_vec2 p)
+static ur_status on_material(allow_room *r, ur_vec2 p, bool *inside, ur_error *error)
 {
-    if (!inside_ring(piece->paths[0].points, piece->paths[0].count, p))
-        return false;
-    for (size_t i = 1; i < piece->path_count; i++) {
-        const ur_path *path = &piece->paths[i];
-        /* A closed through cut drops out with what it encloses. */
-        bool hole =
-            path->closed && path->count >= 3 && (path->op == UR_OP_CUT || path->op == UR_OP_KERF);
-        if (hole && inside_ring(path->points, path->count, p))
-            return false;
+    GEOSGeometry *point = GEOSGeom_createPointFromXY_r(r->geos, p.x, p.y);
+    char contained = point ? GEOSPreparedContains_r(r->geos, r->outline_fast, point) : 2;
+    if (point)
+        GEOSGeom_destroy_r(r->geos, point);
+    if (contained == 2)
+        return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS failed testing a label on piece '%s'",
+                            r->piece->name);
+    *inside = contained == 1;
+    for (size_t i = 0; *inside && i < r->hole_count; i++) {
+        const ur_path *hole = &r->piece->paths[r->holes[i]];
+        if (inside_ring(hole->points, hole->count, p))
+            *inside = false;
     }
-    return true;
+    return UR_OK;
 }
 
 /* A label's frame: where its box's centre goes and which way its baseline runs. */
@@ -349,61 +414,157 @@ static ur_vec2 frame_apply(const frame *f, double u, double v)
     return ur_vec2_add_scaled(ur_vec2_add_scaled(f->centre, f->along, u), f->up, v);
 }
 
-enum { SHAPE_POINTS = 4 * (CORNER_SEGMENTS + 1) + 1 };
-
-/*
- * The text's box (half sizes a, b about its centre) grown by clearance with
- * rounded corners, as a closed ring of SHAPE_POINTS points.  The corner
- * radius is enlarged so that the chords of each arc, not only its points,
- * stay clearance away from the box.
- */
-static void grown_box(const frame *f, double a, double b, double clearance, ur_vec2 *ring)
+/* The squared distance from the point (u, v) to the rectangle [-a, a] x [-b, b]. */
+static double point_to_box(double u, double v, double a, double b)
 {
-    const double quarter = M_PI / 2, step = quarter / CORNER_SEGMENTS;
-    double radius = clearance / cos(step / 2);
-    static const int sign[4][2] = {{1, 1}, {-1, 1}, {-1, -1}, {1, -1}};
-    size_t n = 0;
-    for (int corner = 0; corner < 4; corner++)
-        for (int k = 0; k <= CORNER_SEGMENTS; k++) {
-            double angle = corner * quarter + k * step;
-            ring[n++] = frame_apply(f, sign[corner][0] * a + radius * cos(angle),
-                                    sign[corner][1] * b + radius * sin(angle));
-        }
-    ring[n] = ring[0];
+    double du = fmax(fabs(u) - a, 0.0), dv = fmax(fabs(v) - b, 0.0);
+    return du * du + dv * dv;
 }
 
-/* Whether the grown box fits: within the outline's box, meeting no wall, on material. */
-static ur_status box_fits(const room *r, const frame *f, double a, double b, double clearance,
+/* The squared distance from the point to the segment from p to q. */
+static double point_to_segment(ur_vec2 point, ur_vec2 p, ur_vec2 q)
+{
+    ur_vec2 d = ur_vec2_sub(q, p);
+    double length2 = ur_vec2_dot(d, d);
+    double t =
+        length2 > 0 ? fmin(1.0, fmax(0.0, ur_vec2_dot(ur_vec2_sub(point, p), d) / length2)) : 0.0;
+    ur_vec2 off = ur_vec2_sub(point, ur_vec2_add_scaled(p, d, t));
+    return ur_vec2_dot(off, off);
+}
+
+/* Whether the segment from p to q (frame coordinates) crosses the rectangle [-a, a] x [-b, b]. */
+static bool segment_crosses_box(ur_vec2 p, ur_vec2 q, double a, double b)
+{
+    double t0 = 0.0, t1 = 1.0;
+    double d[2] = {q.x - p.x, q.y - p.y}, start[2] = {p.x, p.y}, half[2] = {a, b};
+    for (int axis = 0; axis < 2; axis++) {
+        if (d[axis] == 0) {
+            if (fabs(start[axis]) > half[axis])
+                return false;
+            continue;
+        }
+        double ta = (-half[axis] - start[axis]) / d[axis],
+               tb = (half[axis] - start[axis]) / d[axis];
+        t0 = fmax(t0, fmin(ta, tb));
+        t1 = fmin(t1, fmax(ta, tb));
+        if (t0 > t1)
+            return false;
+    }
+    return true;
+}
+
+/*
+ * Whether the segment from p to q (piece coordinates) comes within
+ * clearance of the label's box (half sizes a, b in frame f).
+ */
+static bool segment_near_box(const frame *f, double a, double b, double clearance, ur_vec2 p,
+                             ur_vec2 q)
+{
+    ur_vec2 dp = ur_vec2_sub(p, f->centre), dq = ur_vec2_sub(q, f->centre);
+    ur_vec2 u = ur_vec2_make(ur_vec2_dot(dp, f->along), ur_vec2_dot(dp, f->up));
+    ur_vec2 v = ur_vec2_make(ur_vec2_dot(dq, f->along), ur_vec2_dot(dq, f->up));
+    double reach = clearance * clearance; /* squared distances: no square roots */
+    if (point_to_box(u.x, u.y, a, b) <= reach || point_to_box(v.x, v.y, a, b) <= reach ||
+        segment_crosses_box(u, v, a, b))
+        return true;
+    static const int sign[4][2] = {{1, 1}, {-1, 1}, {-1, -1}, {1, -1}};
+    for (int k = 0; k < 4; k++)
+        if (point_to_segment(ur_vec2_make(sign[k][0] * a, sign[k][1] * b), u, v) <= reach)
+            return true;
+    return false;
+}
+
+/* A query of the walls near a label's box. */
+typedef struct wall_test {
+    const frame *f;
+    double a, b, clearance;
+    bool meets;
+} wall_test;
+
+static void test_wall(void *item, void *userdata)
+{
+    wall_test *test = userdata;
+    const wall *w = item;
+    for (size_t i = 0; !test->meets && i + 1 < w->count; i++)
+        test->meets = segment_near_box(test->f, test->a, test->b, test->clearance, w->points[i],
+                                       w->points[i + 1]);
+    if (w->count == 1 && !test->meets)
+        test->meets = segment_near_box(test->f, test->a, test->b, test->clearance, w->points[0],
+                                       w->points[0]);
+}
+
+/* The corners of a label's box, counter-clockwise. */
+static void box_corners(const label_box *box, ur_vec2 corners[4])
+{
+    static const int sign[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+    for (int k = 0; k < 4; k++)
+        corners[k] =
+            ur_vec2_add_scaled(ur_vec2_add_scaled(box->centre, box->along, sign[k][0] * box->a),
+                               box->up, sign[k][1] * box->b);
+}
+
+/* Whether the point lies in the label's box. */
+static bool in_box(const label_box *box, ur_vec2 p)
+{
+    ur_vec2 d = ur_vec2_sub(p, box->centre);
+    return fabs(ur_vec2_dot(d, box->along)) <= box->a && fabs(ur_vec2_dot(d, box->up)) <= box->b;
+}
+
+/* Whether the box (half sizes a, b in frame f) comes within clearance of a label engraved since. */
+static ur_status meets_label(allow_room *r, const frame *f, double a, double b, double clearance,
+                             ur_box around, bool *meets, ur_error *error)
+{
+    *meets = false;
+    ur_status status = allow_grid_query(&r->labels, around, &r->found, error);
+    for (size_t k = 0; status == UR_OK && !*meets && k < r->found.count; k++) {
+        const label_box *other = &r->boxes[r->found.items[k]];
+        ur_vec2 corners[4];
+        box_corners(other, corners);
+        *meets = in_box(other, f->centre);
+        for (int i = 0; !*meets && i < 4; i++)
+            *meets = segment_near_box(f, a, b, clearance, corners[i], corners[(i + 1) % 4]);
+    }
+    return status;
+}
+
+/* The box of the label's box grown by clearance, in piece coordinates. */
+static ur_box box_around(const frame *f, double a, double b, double clearance)
+{
+    double half_x = fabs(f->along.x) * a + fabs(f->up.x) * b + clearance;
+    double half_y = fabs(f->along.y) * a + fabs(f->up.y) * b + clearance;
+    ur_box box = {{f->centre.x - half_x, f->centre.y - half_y},
+                  {f->centre.x + half_x, f->centre.y + half_y}};
+    return box;
+}
+
+/*
+ * Whether the box fits: within the outline's box, no wall and no label
+ * engraved since within clearance of it, on material.  Only the walls and
+ * labels near the box are tested (the STRtree and the grid find them),
+ * each segment by its exact distance from the box.
+ */
+static ur_status box_fits(allow_room *r, const frame *f, double a, double b, double clearance,
                           bool *fits, ur_error *error)
 {
-    ur_vec2 ring[SHAPE_POINTS];
-    grown_box(f, a, b, clearance, ring);
-    ur_box box = ur_box_of_points(ring, SHAPE_POINTS);
+    ur_box box = box_around(f, a, b, clearance);
     *fits = false;
     /* The cheap test first: most candidates far from the piece stop here. */
     if (box.min.x < r->outline_box.min.x || box.min.y < r->outline_box.min.y ||
         box.max.x > r->outline_box.max.x || box.max.y > r->outline_box.max.y)
         return UR_OK;
-    GEOSCoordSequence *sequence = GEOSCoordSeq_create_r(r->geos, SHAPE_POINTS, 2);
-    for (unsigned i = 0; sequence && i < SHAPE_POINTS; i++)
-        GEOSCoordSeq_setXY_r(r->geos, sequence, i, ring[i].x, ring[i].y);
-    GEOSGeometry *shell = sequence ? GEOSGeom_createLinearRing_r(r->geos, sequence) : NULL;
-    GEOSGeometry *polygon = shell ? GEOSGeom_createPolygon_r(r->geos, shell, NULL, 0) : NULL;
-    if (!polygon) {
-        if (shell)
-            GEOSGeom_destroy_r(r->geos, shell);
-        else if (sequence)
-            GEOSCoordSeq_destroy_r(r->geos, sequence);
+    GEOSGeometry *query =
+        GEOSGeom_createRectangle_r(r->geos, box.min.x, box.min.y, box.max.x, box.max.y);
+    if (!query)
         return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not build a label's box");
-    }
-    char meets = GEOSPreparedIntersects_r(r->geos, r->fast, polygon);
-    GEOSGeom_destroy_r(r->geos, polygon);
-    if (meets == 2)
-        return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS failed testing a label on piece '%s'",
-                            r->piece->name);
+    wall_test test = {f, a, b, clearance, false};
+    GEOSSTRtree_query_r(r->geos, r->tree, query, test_wall, &test);
+    GEOSGeom_destroy_r(r->geos, query);
+    bool meets = test.meets;
+    ur_status status = meets ? UR_OK : meets_label(r, f, a, b, clearance, box, &meets, error);
     /* Meeting no wall, the whole box is on one side of each: its centre tells which. */
-    *fits = !meets && on_material(r->piece, f->centre);
-    return UR_OK;
+    if (status != UR_OK || meets)
+        return status;
+    return on_material(r, f->centre, fits, error);
 }
 
 /* ---- The search ------------------------------------------------------------ */
@@ -417,10 +578,11 @@ typedef struct unit_text {
 
 /* What one search tries: a height, a ring of radii, what it must clear. */
 typedef struct search {
-    const room *r;
+    allow_room *r;
     const unit_text *text;
     ur_vec2 near, along;
     double clearance;
+    double reach; /* the farthest from near a centre may be */
 } search;
 
 /* The distance from one ring of candidates to the next: finer near the start. */
@@ -472,7 +634,7 @@ static double far_radius(const search *s)
     ur_box box = s->r->outline_box;
     double dx = fmax(fabs(box.min.x - s->near.x), fabs(box.max.x - s->near.x));
     double dy = fmax(fabs(box.min.y - s->near.y), fabs(box.max.y - s->near.y));
-    return hypot(dx, dy) + 1e-9;
+    return fmin(hypot(dx, dy) + 1e-9, s->reach);
 }
 
 /*
@@ -487,7 +649,7 @@ static ur_status search_piece(const search *s, double max_height, double min_hei
     for (int far = 0; far < 2; far++) {
         for (double h = max_height;; h = fmax(min_height, h * HEIGHT_STEP)) {
             double from = far ? near_radius(s, h) : 0;
-            double to = far ? far_radius(s) : near_radius(s, h);
+            double to = far ? far_radius(s) : fmin(near_radius(s, h), s->reach);
             ur_status status = search_rings(s, h, from, to, f, found, error);
             if (status != UR_OK || *found) {
                 *height = h;
@@ -587,11 +749,30 @@ static ur_vec2 reading_direction(ur_vec2 direction)
     return along;
 }
 
-ur_status ur_piece_add_label(ur_piece *piece, const ur_font *font, const char *text, ur_vec2 near,
-                             ur_vec2 direction, double height, double min_height, double clearance,
-                             bool *placed, ur_error *error)
+/* Keeps the label just engraved in the room, for the next labels to keep clear of. */
+static ur_status remember_label(allow_room *r, const unit_text *text, double height, const frame *f,
+                                ur_error *error)
+{
+    label_box box = {f->centre, f->along, f->up, 0.5 * height * ur_box_width(text->extent),
+                     0.5 * height * ur_box_height(text->extent)};
+    if (r->labels.count == r->box_capacity) {
+        size_t capacity = r->box_capacity ? 2 * r->box_capacity : 16;
+        label_box *boxes = realloc(r->boxes, capacity * sizeof *boxes);
+        if (!boxes)
+            return ur_error_out_of_memory(error);
+        r->boxes = boxes;
+        r->box_capacity = capacity;
+    }
+    r->boxes[r->labels.count] = box;
+    return allow_grid_add(&r->labels, box_around(f, box.a, box.b, 0.0), NULL, error);
+}
+
+ur_status allow_room_add_label(allow_room *room, const ur_font *font, const char *text,
+                               ur_vec2 near, ur_vec2 direction, double height, double min_height,
+                               double clearance, double reach, bool *placed, ur_error *error)
 {
     *placed = false;
+    ur_piece *piece = room->piece;
     ur_status status = check_label_arguments(piece, font, text, near, direction, height, min_height,
                                              clearance, error);
     unit_text unit = {0};
@@ -604,20 +785,36 @@ ur_status ur_piece_add_label(ur_piece *piece, const ur_font *font, const char *t
     for (size_t i = 0; i < unit.count; i++)
         for (size_t k = 0; k < unit.strokes[i].count; k++)
             ur_box_add(&unit.extent, unit.strokes[i].points[k]);
-    room r;
-    status = room_init(&r, piece, error);
-    search s = {&r, &unit, near, reading_direction(direction), clearance};
+    search s = {room, &unit, near, reading_direction(direction), clearance, reach};
     frame f = {{0, 0}, {0, 0}, {0, 0}};
     double used = 0;
     /* A text of spaces only has nothing to engrave, nor room to find. */
-    if (status == UR_OK && unit.count > 0)
+    if (unit.count > 0)
         status = search_piece(&s, height, min_height, &f, &used, placed, error);
-    room_free(&r);
     if (status == UR_OK && *placed)
         status = engrave(piece, &unit, text, used, &f, error);
+    if (status == UR_OK && *placed)
+        status = remember_label(room, &unit, used, &f, error);
     if (status != UR_OK)
         *placed = false;
     ur_paths_free(unit.strokes, unit.count);
+    return status;
+}
+
+ur_status ur_piece_add_label(ur_piece *piece, const ur_font *font, const char *text, ur_vec2 near,
+                             ur_vec2 direction, double height, double min_height, double clearance,
+                             bool *placed, ur_error *error)
+{
+    *placed = false;
+    ur_status status = check_label_arguments(piece, font, text, near, direction, height, min_height,
+                                             clearance, error);
+    allow_room *room = NULL;
+    if (status == UR_OK)
+        status = allow_room_open(piece, &room, error);
+    if (status == UR_OK)
+        status = allow_room_add_label(room, font, text, near, direction, height, min_height,
+                                      clearance, INFINITY, placed, error);
+    allow_room_close(room);
     return status;
 }
 

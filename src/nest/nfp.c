@@ -282,6 +282,17 @@ static bool triangulate(GEOSContextHandle_t geos, const GEOSGeometry *polygon, i
     return done;
 }
 
+/* The polygon without its holes; NULL on failure. */
+static GEOSGeometry *filled_shell(GEOSContextHandle_t geos, const GEOSGeometry *polygon)
+{
+    const GEOSGeometry *ring = GEOSGetExteriorRing_r(geos, polygon);
+    GEOSGeometry *shell = ring ? GEOSGeom_clone_r(geos, ring) : NULL;
+    GEOSGeometry *filled = shell ? GEOSGeom_createPolygon_r(geos, shell, NULL, 0) : NULL;
+    if (shell && !filled)
+        GEOSGeom_destroy_r(geos, shell);
+    return filled;
+}
+
 /*
  * The polygon's triangles (GEOS's constrained Delaunay triangulation),
  * merged into convex parts and shrunk.
@@ -290,7 +301,23 @@ static ur_status convex_parts(GEOSContextHandle_t geos, const GEOSGeometry *poly
                               nest_shape *shape, ur_error *error)
 {
     size_t room = 0;
-    if (!triangulate(geos, polygon, 0, shape, &room))
+    bool done = triangulate(geos, polygon, 0, shape, &room);
+    if (!done && GEOSGetNumInteriorRings_r(geos, polygon) > 0) {
+        /*
+         * GEOS cannot always join holes that touch the shell to it, as
+         * growing a piece makes of the gaps between its glue tabs; then the
+         * parts cover the holes too, which only keeps other pieces out of
+         * them.
+         */
+        for (size_t k = 0; k < shape->convex_count; k++) /* what the first try made */
+            GEOSGeom_destroy_r(geos, shape->convex[k]);
+        shape->convex_count = 0;
+        GEOSGeometry *filled = filled_shell(geos, polygon);
+        done = filled && triangulate(geos, filled, 0, shape, &room);
+        if (filled)
+            GEOSGeom_destroy_r(geos, filled);
+    }
+    if (!done)
         return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not triangulate a piece");
     merge_parts(geos, shape);
     if (!shrink_parts(geos, shape))

@@ -785,6 +785,28 @@ def too_large_names_the_largest_stock(work):
 
 
 @test
+def grid_with_grouped_centre_joined(work):
+    """Every seam of the grid and the holed frame gets glue tabs, one per edge, and its label on both sides."""
+    run(work, "mesh", os.path.join(REPO, "samples", "grid-hole.obj"), "--flatten", "unfold",
+        "--material", "paper-0.3mm", "-o", "g.svg", "--report", "g.json")
+    records = [a for piece in report(work, "g.json")["pieces"] for a in piece["allowances"]]
+    warnings = [a["reason"] for a in records if a["kind"] == "joint" and a["warning"]]
+    check(not warnings, "joints left off: %r" % warnings)
+    tabs = sum(a["count"] for a in records if a["kind"] == "joint")
+    labels = {}
+    for a in records:
+        found = re.search(r"label '([A-Z]+\d+)'", a["reason"]) if a["kind"] == "label" else None
+        if found and not a["warning"]:
+            labels[found.group(1)] = labels.get(found.group(1), 0) + 1
+    seams = [label for label in labels if not label.startswith("P")]
+    check(seams and all(labels[label] == 2 for label in seams), "seam labels %r" % labels)
+    # Each seam runs over one 20 mm grid edge or more: at least a tab each.
+    check(tabs >= len(seams), "%d tabs for %d seams" % (tabs, len(seams)))
+    for outline in outlines(os.path.join(work, "g.svg")):
+        check(simple_ring(outline), "an outline crosses itself")
+
+
+@test
 def unfolding_keeps_every_face(work):
     result = run(work, "mesh", os.path.join(REPO, "samples", "icosphere.obj"), "--flatten",
                  "unfold", "-o", "u.svg", "--report", "u.json")

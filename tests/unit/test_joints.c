@@ -2,11 +2,14 @@
  * test_joints.c: glue tabs and laps on seams, with their labels.
  *
  * A closed cylinder's one seam gets one tab whose area is worked out here
- * (a band of the stock's thickness, then a trapezoid tapered at the tab
- * angle); a helicoid split into pieces gets one tab per seam and the same
- * label on both sides; every tab of an unfolded icosphere stays off its
- * piece and off the other tabs (the grown outline is simple and as large
- * as the net and the tabs together); laps mark the zone on both pieces.
+ * (a trapezoid tapered at the tab angle from the seam, the stock's
+ * thickness of it a band with its own fold); a helicoid split into pieces
+ * gets one tab per seam and the same label on both sides; every edge of
+ * an unfolded icosphere's seams gets a tab of its own (or a warning), off
+ * its piece and off the other tabs (the grown outline is simple and as
+ * large as the net and the tabs together); a seam that is a closed loop
+ * (a grid's centre quad) gets a tab on each edge and its labels; laps mark
+ * the zone on both pieces.
  * Geometry is checked with GEOS, independently of the code under test.
  *
  * Run from the repository root (it reads samples/icosphere.obj).
@@ -69,6 +72,16 @@ static size_t count_records(const ur_piece *piece, ur_allowance_kind kind, bool 
     size_t count = 0;
     for (size_t k = 0; k < piece->record_count; k++)
         count += piece->records[k].kind == kind && piece->records[k].warning == warning;
+    return count;
+}
+
+/* How many joints the piece's records say went on (a record counts all of a seam side's tabs). */
+static size_t count_joints(const ur_piece *piece)
+{
+    size_t count = 0;
+    for (size_t k = 0; k < piece->record_count; k++)
+        if (piece->records[k].kind == UR_ALLOWANCE_JOINT && !piece->records[k].warning)
+            count += piece->records[k].count;
     return count;
 }
 
@@ -157,9 +170,10 @@ static void test_cylinder_tab(void **state)
     ur_joint_options options = tab_options(font);
     assert_int_equal(ur_pieces_add_joints(pieces, &nets, &options, &error), UR_OK);
 
-    /* One tab: a 2 mm band along the 120 mm seam, then a trapezoid 10 mm
-     * deep whose top is 120 - 2 * 10 / tan(45 degrees) = 100 mm long. */
-    double expected = nets.nets[0].flat_area + 2 * 120 + (120 + 100) / 2.0 * 10;
+    /* One tab: a trapezoid on the 120 mm seam, 2 mm of band and 10 mm of
+     * depth high, its sides tapered at 45 degrees from the seam up, so its
+     * top is 120 - 2 * 12 / tan(45 degrees) = 96 mm long. */
+    double expected = nets.nets[0].flat_area + (120 + 96) / 2.0 * 12;
     GEOSGeometry *grown = polygon(pieces[0].paths[0].points, pieces[0].paths[0].count);
     assert_int_equal(GEOSisValid_r(geos, grown), 1);
     assert_relative(area_of(grown), expected, 1e-9);
@@ -266,7 +280,7 @@ static void test_unfolded_tabs_clear(void **state)
     assert_int_equal(ur_pieces_add_joints(pieces, &nets, &options, &error), UR_OK);
     size_t tabs = 0, warnings = 0, seams = (size_t)ur_net_list_last_seam(&nets);
     for (size_t k = 0; k < nets.count; k++) {
-        tabs += count_records(&pieces[k], UR_ALLOWANCE_JOINT, false);
+        tabs += count_joints(&pieces[k]);
         warnings += count_records(&pieces[k], UR_ALLOWANCE_JOINT, true);
         /* The grown outline is simple and holds the whole net. */
         GEOSGeometry *grown = polygon(pieces[k].paths[0].points, pieces[k].paths[0].count);
@@ -281,10 +295,135 @@ static void test_unfolded_tabs_clear(void **state)
         GEOSGeom_destroy_r(geos, net);
         check_nothing_crosses_outline(&pieces[k]);
     }
-    print_message("%zu seams: %zu tabs, %zu without\n", seams, tabs, warnings);
-    /* Every seam got a tab or a warning, never both, never two. */
-    assert_int_equal(tabs + warnings, seams);
-    assert_true(tabs >= seams * 9 / 10);
+    /* The seams' edges, counted on their sides: each edge is on two. */
+    size_t edges = 0;
+    for (size_t k = 0; k < nets.count; k++)
+        for (size_t i = 0; i < nets.nets[k].seam_side_count; i++)
+            edges += nets.nets[k].seam_sides[i].count - 1;
+    edges /= 2;
+    print_message("%zu seams, %zu edges: %zu tabs, %zu without\n", seams, edges, tabs, warnings);
+    /* One tab per edge (no two edges of an icosphere run on straight), or a warning. */
+    assert_int_equal(tabs + warnings, edges);
+    assert_true(tabs >= edges * 9 / 10);
+    free_pieces(pieces, nets.count);
+    ur_net_list_free(&nets);
+}
+
+/* A net of the given outline, its 3D points (x, y, 0) on the grid. */
+static ur_net grid_net(const char *name, const ur_vec2 *flat, const ur_vec2 *grid, size_t count)
+{
+    ur_net net;
+    memset(&net, 0, sizeof net);
+    snprintf(net.name, sizeof net.name, "%s", name);
+    net.outline = malloc(count * sizeof *net.outline);
+    net.outline_3d = malloc(count * sizeof *net.outline_3d);
+    assert_true(net.outline && net.outline_3d);
+    for (size_t i = 0; i < count; i++) {
+        net.outline[i] = flat[i];
+        net.outline_3d[i] = ur_vec3_make(grid[i].x, grid[i].y, 0);
+    }
+    net.outline_count = count;
+    net.flat_area = fabs(ur_polygon_signed_area(flat, count));
+    return net;
+}
+
+/*
+ * A 60 mm square of 3 x 3 quads whose centre quad is a piece of its own:
+ * the centre's whole outline is one seam side, a closed loop, and so is the
+ * rim of the hole it leaves in the frame.  The frame is one piece, cut
+ * open along the grid line x = 20 below the hole (that slit is a second
+ * seam, both of its sides on the frame) and laid out with the slit opened
+ * 4 mm, so that the frame's outline is a simple ring.
+ */
+static ur_net_list grid_with_centre(void)
+{
+    static const ur_vec2 centre[] = {{20, 20}, {40, 20}, {40, 40}, {20, 40}};
+    static const ur_vec2 frame_grid[] = {{20, 0},  {60, 0},  {60, 60}, {0, 60},  {0, 0},  {20, 0},
+                                         {20, 20}, {20, 40}, {40, 40}, {40, 20}, {20, 20}};
+    ur_vec2 frame_flat[11];
+    for (size_t i = 0; i < 11; i++)
+        frame_flat[i] = frame_grid[i];
+    frame_flat[5].x = frame_flat[6].x = 16; /* the slit's left side, opened */
+    ur_net_list nets = {calloc(2, sizeof(ur_net)), 2};
+    assert_non_null(nets.nets);
+    nets.nets[0] = grid_net("P1", frame_flat, frame_grid, 11);
+    nets.nets[1] = grid_net("P2", centre, centre, 4);
+    int next;
+    ur_error error;
+    assert_int_equal(ur_net_list_find_seams(&nets, 1, &next, &error), UR_OK);
+    return nets;
+}
+
+/* Whether seam side k of the net ends where it starts (in 3D): a closed loop. */
+static bool side_is_loop(const ur_net *net, size_t k)
+{
+    const ur_seam_side *side = &net->seam_sides[k];
+    ur_vec3 a = net->outline_3d[side->first];
+    ur_vec3 b = net->outline_3d[(side->first + side->count - 1) % net->outline_count];
+    return a.x == b.x && a.y == b.y && a.z == b.z;
+}
+
+static void test_loop_seams_joined(void **state)
+{
+    (void)state;
+    ur_net_list nets = grid_with_centre();
+    /* The seams found: the slit and the loop round the centre quad. */
+    assert_int_equal(ur_net_list_last_seam(&nets), 2);
+    assert_int_equal(nets.nets[1].seam_side_count, 1);
+    assert_true(side_is_loop(&nets.nets[1], 0));
+    assert_int_equal(nets.nets[1].seam_sides[0].count, 5); /* four edges, round to the start */
+    ur_piece *pieces = pieces_of(&nets);
+    ur_font *font;
+    ur_error error;
+    assert_int_equal(ur_font_open(NULL, &font, &error), UR_OK);
+    ur_joint_options options = tab_options(font);
+    options.tab_depth = 5;
+    options.thickness = 0.3;
+    options.label_height = 3;
+    assert_int_equal(ur_pieces_add_joints(pieces, &nets, &options, &error), UR_OK);
+    /* Each seam's label on both its sides: the loop's on both pieces, the slit's twice on the
+     * frame. */
+    for (int seam = 1; seam <= 2; seam++) {
+        char label[16];
+        ur_seam_label(seam, label, sizeof label);
+        size_t found[2] = {0, 0};
+        for (size_t k = 0; k < 2; k++)
+            for (size_t r = 0; r < pieces[k].record_count; r++)
+                found[k] += names_label(&pieces[k].records[r], label);
+        size_t frame_side = nets.nets[0].seam_sides[0].seam == seam ? 0 : 1;
+        bool loop = side_is_loop(&nets.nets[0], frame_side);
+        assert_int_equal(found[0], loop ? 1 : 2);
+        assert_int_equal(found[1], loop ? 1 : 0);
+    }
+    /*
+     * The loop's four edges each get a tab of their own, on the centre
+     * quad or into the hole: the pieces grow by four tapered tabs, each at
+     * most 5 mm deep on its 20 mm edge and no larger than (20 + 10) / 2 * 5.
+     */
+    int loop_seam = nets.nets[1].seam_sides[0].seam;
+    char loop_label[16], quoted[24];
+    ur_seam_label(loop_seam, loop_label, sizeof loop_label);
+    snprintf(quoted, sizeof quoted, "seam %s,", loop_label);
+    size_t loop_tabs = 0;
+    double grown_area = 0;
+    for (size_t k = 0; k < nets.count; k++) {
+        for (size_t r = 0; r < pieces[k].record_count; r++) {
+            const ur_allowance_record *record = &pieces[k].records[r];
+            if (record->kind == UR_ALLOWANCE_JOINT && !record->warning &&
+                strstr(record->reason, quoted))
+                loop_tabs += record->count;
+        }
+        GEOSGeometry *grown = polygon(pieces[k].paths[0].points, pieces[k].paths[0].count);
+        assert_int_equal(GEOSisValid_r(geos, grown), 1);
+        grown_area += area_of(grown) - nets.nets[k].flat_area;
+        GEOSGeom_destroy_r(geos, grown);
+        check_engraving_inside(&pieces[k], &nets.nets[k]);
+        check_nothing_crosses_outline(&pieces[k]);
+    }
+    assert_int_equal(loop_tabs, 4);
+    assert_true(grown_area > 4 * 0.2 * 5 * 20 * 0.5);
+    assert_true(grown_area <= 4 * 75 + 2 * 20 * 5 + 1e-9); /* and the slit's, if any */
+    ur_font_close(font);
     free_pieces(pieces, nets.count);
     ur_net_list_free(&nets);
 }
@@ -343,7 +482,8 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_seam_labels),          cmocka_unit_test(test_cylinder_tab),
         cmocka_unit_test(test_helicoid_labels_pair), cmocka_unit_test(test_unfolded_tabs_clear),
-        cmocka_unit_test(test_laps_marked_on_both),  cmocka_unit_test(test_bad_options),
+        cmocka_unit_test(test_loop_seams_joined),    cmocka_unit_test(test_laps_marked_on_both),
+        cmocka_unit_test(test_bad_options),
     };
     return cmocka_run_group_tests(tests, start, finish);
 }

@@ -1,0 +1,353 @@
+/*
+ * clearance.c: what a piece's joints must keep clear of (allow_internal.h,
+ * allow_board), so that each test of a joint looks only at what is near.
+ *
+ * A board holds one piece's net outline, cut into its edges in a GEOS
+ * STRtree, and the joints placed on it so far in a grid (grid.c), which
+ * takes new ones between queries.  A joint is tested against both with
+ * two regions: inner, the joint shrunk by TOUCH, which nothing may meet;
+ * outer, the joint grown by the gap on its outward side only (beyond its
+ * base's chord), which nothing but what shares a corner with the joint's
+ * edges may meet: the outline's neighbouring edges and the joints on them
+ * touch it at the seam's corners, where the notch between two tabs closes.
+ * Behind the base is the piece itself, whose outline runs on from the
+ * base's ends.
+ */
+#include "allow_internal.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/*
+ * Joints sharing a corner may touch there but not overlap: each is tested
+ * shrunk by this much (mm), far below a cutter's resolution, so that
+ * rounding where they meet is no clash.
+ */
+#define TOUCH 1e-4
+
+/* A joint on the board: its shape (the caller's), the outline edges under it, the caller's tag. */
+typedef struct board_joint {
+    const GEOSGeometry *shape;
+    size_t first, edges;
+    size_t tag;
+} board_joint;
+
+struct allow_board {
+    GEOSContextHandle_t geos;
+    double gap;
+    GEOSSTRtree *tree;
+    GEOSGeometry **segments; /* owned: outline edge e from point e to e + 1 */
+    size_t *edge_ids;        /* the tree's items: edge_ids[e] == e */
+    size_t edge_count;
+    allow_grid grid;
+    board_joint *joints; /* per grid item */
+    size_t joint_capacity;
+    allow_items found; /* what a query found */
+    bool out_of_memory;
+};
+
+void allow_board_close(allow_board *b)
+{
+    if (!b)
+        return;
+    if (b->tree)
+        GEOSSTRtree_destroy_r(b->geos, b->tree);
+    for (size_t e = 0; b->segments && e < b->edge_count; e++)
+        if (b->segments[e])
+            GEOSGeom_destroy_r(b->geos, b->segments[e]);
+    free(b->segments);
+    free(b->edge_ids);
+    free(b->joints);
+    allow_grid_free(&b->grid);
+    allow_items_free(&b->found);
+    free(b);
+}
+
+ur_status allow_board_open(GEOSContextHandle_t geos, const ur_vec2 *outline, size_t count,
+                           double reach, double gap, allow_board **board, ur_error *error)
+{
+    *board = NULL;
+    allow_board *b = calloc(1, sizeof *b);
+    if (!b)
+        return ur_error_out_of_memory(error);
+    b->geos = geos;
+    b->gap = gap;
+    b->edge_count = count;
+    b->tree = GEOSSTRtree_create_r(geos, 8);
+    b->segments = calloc(count ? count : 1, sizeof *b->segments);
+    b->edge_ids = calloc(count ? count : 1, sizeof *b->edge_ids);
+    ur_status status =
+        b->tree && b->segments && b->edge_ids ? UR_OK : ur_error_out_of_memory(error);
+    for (size_t e = 0; status == UR_OK && e < count; e++) {
+        ur_vec2 ends[2] = {outline[e], outline[(e + 1) % count]};
+        b->segments[e] = allow_line(geos, ends, 2);
+        if (!b->segments[e]) {
+            status = ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not build an outline");
+            break;
+        }
+        b->edge_ids[e] = e;
+        GEOSSTRtree_insert_r(geos, b->tree, b->segments[e], &b->edge_ids[e]);
+    }
+    ur_box region = ur_box_of_points(outline, count);
+    region.min = ur_vec2_add(region.min, ur_vec2_make(-reach, -reach));
+    region.max = ur_vec2_add(region.max, ur_vec2_make(reach, reach));
+    if (status == UR_OK)
+        status = allow_grid_init(&b->grid, region, reach, error);
+    if (status != UR_OK) {
+        allow_board_close(b);
+        return status;
+    }
+    *board = b;
+    return UR_OK;
+}
+
+ur_status allow_board_add(allow_board *b, const GEOSGeometry *shape, size_t first, size_t edges,
+                          size_t tag, ur_error *error)
+{
+    if (b->grid.count == b->joint_capacity) {
+        size_t capacity = b->joint_capacity ? 2 * b->joint_capacity : 16;
+        board_joint *joints = realloc(b->joints, capacity * sizeof *joints);
+        if (!joints)
+            return ur_error_out_of_memory(error);
+        b->joints = joints;
+        b->joint_capacity = capacity;
+    }
+    b->joints[b->grid.count] = (board_joint){shape, first, edges, tag};
+    return allow_grid_add(&b->grid, allow_box(b->geos, shape), NULL, error);
+}
+
+size_t allow_board_joint_count(const allow_board *b)
+{
+    return b->grid.count;
+}
+
+size_t allow_board_joint_tag(const allow_board *b, size_t k)
+{
+    return b->joints[k].tag;
+}
+
+/* Whether edges [a, a + la) and [c, c + lc) of an outline of n edges overlap or share a corner. */
+static bool share_corner(size_t n, size_t a, size_t la, size_t c, size_t lc)
+{
+    return (c + n - a) % n <= la || (a + n - c) % n <= lc;
+}
+
+static void collect_edge(void *item, void *userdata)
+{
+    allow_board *b = userdata;
+    if (allow_items_push(&b->found, *(const size_t *)item, NULL) != UR_OK)
+        b->out_of_memory = true;
+}
+
+/*
+ * The joint's two test regions: inner, the joint shrunk by TOUCH, which
+ * nothing may meet; outer, the joint grown by the gap on its outward side
+ * only (beyond its base's chord, lifted by TOUCH), which nothing but what
+ * shares a corner with it may meet.  Behind the base is the piece itself,
+ * whose outline runs on from the base's ends.
+ */
+typedef struct regions {
+    GEOSGeometry *shrunk, *grown, *clipped;
+    const GEOSPreparedGeometry *inner, *outer;
+} regions;
+
+static void regions_free(const allow_board *b, regions *r)
+{
+    if (r->inner)
+        GEOSPreparedGeom_destroy_r(b->geos, r->inner);
+    if (r->outer)
+        GEOSPreparedGeom_destroy_r(b->geos, r->outer);
+    GEOSGeometry *all[] = {r->shrunk, r->grown, r->clipped};
+    for (size_t k = 0; k < 3; k++)
+        if (all[k])
+            GEOSGeom_destroy_r(b->geos, all[k]);
+}
+
+/*
+ * The line outward of which the joint's outer region lies: the base's
+ * chord, lifted by TOUCH past the base's own points (which may stray from
+ * a straight chord); *out is its outward unit normal, *level the value of
+ * dot(point, out) on it.  False for a base of no length.
+ */
+static bool outward_line(const ur_vec2 *base, size_t count, ur_vec2 *out, double *level)
+{
+    ur_vec2 a = base[0], along = ur_vec2_sub(base[count - 1], a);
+    double length = ur_vec2_length(along);
+    if (!(length > 0))
+        return false;
+    *out = ur_vec2_make(along.y / length, -along.x / length);
+    double lift = TOUCH;
+    for (size_t k = 0; k < count; k++)
+        lift = fmax(lift, TOUCH + ur_vec2_dot(ur_vec2_sub(base[k], a), *out));
+    *level = ur_vec2_dot(a, *out) + lift;
+    return true;
+}
+
+/*
+ * The polygon's exterior ring clipped to the half-plane dot(p, out) >=
+ * level (Sutherland and Hodgman: the grown joint of a tab is convex, so
+ * the clipped ring is too), as a polygon; NULL when nothing is left.
+ */
+static GEOSGeometry *clip_outward(const allow_board *b, const GEOSGeometry *polygon, ur_vec2 out,
+                                  double level)
+{
+    const GEOSGeometry *shell = GEOSGetExteriorRing_r(b->geos, polygon);
+    const GEOSCoordSequence *sequence = shell ? GEOSGeom_getCoordSeq_r(b->geos, shell) : NULL;
+    unsigned size = 0;
+    if (!sequence || !GEOSCoordSeq_getSize_r(b->geos, sequence, &size) || size < 4)
+        return NULL;
+    ur_points kept = {0};
+    bool failed = false;
+    ur_vec2 previous;
+    GEOSCoordSeq_getXY_r(b->geos, sequence, size - 2, &previous.x, &previous.y);
+    for (unsigned i = 0; i + 1 < size && !failed; i++) {
+        ur_vec2 point;
+        GEOSCoordSeq_getXY_r(b->geos, sequence, i, &point.x, &point.y);
+        double before = ur_vec2_dot(previous, out) - level, after = ur_vec2_dot(point, out) - level;
+        if ((before >= 0) != (after >= 0)) /* the edge crosses the line: keep where */
+            failed = ur_points_push(&kept,
+                                    ur_vec2_add_scaled(previous, ur_vec2_sub(point, previous),
+                                                       before / (before - after)),
+                                    NULL) != UR_OK;
+        if (after >= 0 && !failed)
+            failed = ur_points_push(&kept, point, NULL) != UR_OK;
+        previous = point;
+    }
+    GEOSGeometry *clipped =
+        !failed && kept.count >= 3 ? ur_geos_polygon(b->geos, kept.items, kept.count) : NULL;
+    ur_points_free(&kept);
+    return clipped;
+}
+
+/*
+ * Whether the ring (counter-clockwise, first point not repeated) is
+ * convex with no edge of zero length: a tab is, a lap on a bent seam is not.
+ */
+static bool convex_ring(const ur_vec2 *ring, size_t n)
+{
+    for (size_t i = 0; i < n; i++) {
+        ur_vec2 a = ring[i], b = ring[(i + 1) % n], c = ring[(i + 2) % n];
+        if (!(ur_vec2_length(ur_vec2_sub(b, a)) > 0) ||
+            ur_vec2_cross(ur_vec2_sub(b, a), ur_vec2_sub(c, b)) < 0)
+            return false;
+    }
+    return true;
+}
+
+/*
+ * A convex ring moved out by distance (in when negative) with mitred
+ * corners, as a polygon: GEOS's buffer is exact but slow for the many
+ * joints of a large mesh, and a convex joint's corners are no sharper
+ * than 45 degrees, so a mitre is at most 2.7 times the distance.
+ */
+static GEOSGeometry *offset_convex(const allow_board *b, const ur_vec2 *ring, size_t n,
+                                   double distance)
+{
+    ur_vec2 *moved = malloc(n * sizeof *moved);
+    if (!moved)
+        return NULL;
+    for (size_t i = 0; i < n; i++) {
+        ur_vec2 p = ring[(i + n - 1) % n], q = ring[i], r = ring[(i + 1) % n];
+        ur_vec2 d0 = ur_vec2_sub(q, p), d1 = ur_vec2_sub(r, q);
+        ur_vec2 n0 = ur_vec2_scale(ur_vec2_make(d0.y, -d0.x), 1 / ur_vec2_length(d0));
+        ur_vec2 n1 = ur_vec2_scale(ur_vec2_make(d1.y, -d1.x), 1 / ur_vec2_length(d1));
+        moved[i] = ur_vec2_add_scaled(q, ur_vec2_add(n0, n1), distance / (1 + ur_vec2_dot(n0, n1)));
+    }
+    GEOSGeometry *polygon = ur_geos_polygon(b->geos, moved, n);
+    free(moved);
+    return polygon;
+}
+
+/* The joint shrunk and grown: by offset_convex when it is convex, by GEOS's buffer otherwise. */
+static void shrink_and_grow(const allow_board *b, const GEOSGeometry *joint, regions *r)
+{
+    ur_vec2 *ring = NULL;
+    size_t n = 0;
+    if (allow_exterior_ring(b->geos, joint, &ring, &n, NULL) == UR_OK && convex_ring(ring, n)) {
+        r->shrunk = offset_convex(b, ring, n, -TOUCH);
+        r->grown = offset_convex(b, ring, n, b->gap);
+    } else {
+        r->shrunk = GEOSBuffer_r(b->geos, joint, -TOUCH, 1);
+        r->grown = GEOSBuffer_r(b->geos, joint, b->gap, 2);
+    }
+    free(ring);
+}
+
+static bool regions_make(const allow_board *b, const GEOSGeometry *joint, const ur_vec2 *base,
+                         size_t count, regions *r)
+{
+    memset(r, 0, sizeof *r);
+    shrink_and_grow(b, joint, r);
+    ur_vec2 out;
+    double level;
+    if (!r->shrunk || !r->grown || GEOSisEmpty_r(b->geos, r->shrunk) ||
+        GEOSGeomTypeId_r(b->geos, r->grown) != GEOS_POLYGON ||
+        !outward_line(base, count, &out, &level))
+        return false;
+    r->clipped = clip_outward(b, r->grown, out, level);
+    if (!r->clipped)
+        return false;
+    r->inner = GEOSPrepare_r(b->geos, r->shrunk);
+    r->outer = GEOSPrepare_r(b->geos, r->clipped);
+    return r->inner && r->outer;
+}
+
+/* Whether thing meets the joint: its inner region, and unless it shares a corner, its outer. */
+static ur_status meets(const allow_board *b, bool corner, const regions *r,
+                       const GEOSGeometry *thing, bool *hit, ur_error *error)
+{
+    char result = GEOSPreparedIntersects_r(b->geos, r->inner, thing);
+    if (result == 0 && !corner)
+        result = GEOSPreparedIntersects_r(b->geos, r->outer, thing);
+    if (result == 2)
+        return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS failed testing a joint");
+    *hit = result == 1;
+    return UR_OK;
+}
+
+static ur_status test_near(allow_board *b, const regions *r, size_t first, size_t edges,
+                           allow_verdict *v, ur_error *error)
+{
+    size_t n = b->edge_count;
+    b->found.count = 0;
+    GEOSSTRtree_query_r(b->geos, b->tree, r->grown, collect_edge, b);
+    if (b->out_of_memory)
+        return ur_error_out_of_memory(error);
+    bool hit = false;
+    ur_status status = UR_OK;
+    for (size_t k = 0; status == UR_OK && !hit && k < b->found.count; k++) {
+        size_t e = b->found.items[k];
+        status = meets(b, share_corner(n, e, 1, first, edges), r, b->segments[e], &hit, error);
+        if (hit)
+            *v = (allow_verdict){ALLOW_BLOCKED_OUTLINE, b->segments[e], e};
+    }
+    if (status != UR_OK || hit)
+        return status;
+    status = allow_grid_query(&b->grid, allow_box(b->geos, r->grown), &b->found, error);
+    for (size_t k = 0; status == UR_OK && !hit && k < b->found.count; k++) {
+        const board_joint *q = &b->joints[b->found.items[k]];
+        status =
+            meets(b, share_corner(n, q->first, q->edges, first, edges), r, q->shape, &hit, error);
+        if (hit)
+            *v = (allow_verdict){ALLOW_BLOCKED_JOINT, q->shape, 0};
+    }
+    return status;
+}
+
+ur_status allow_board_test(allow_board *b, const GEOSGeometry *joint, const ur_vec2 *base,
+                           size_t count, size_t first, size_t edges, allow_verdict *v,
+                           ur_error *error)
+{
+    *v = (allow_verdict){ALLOW_BLOCKED_SHAPE, NULL, 0};
+    if (!joint || GEOSisValid_r(b->geos, joint) != 1)
+        return UR_OK;
+    regions r;
+    ur_status status = UR_OK;
+    if (regions_make(b, joint, base, count, &r)) {
+        *v = (allow_verdict){ALLOW_BLOCKED_NOT, NULL, 0};
+        status = test_near(b, &r, first, edges, v, error);
+    }
+    regions_free(b, &r);
+    return status;
+}
