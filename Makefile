@@ -147,7 +147,8 @@ fuzz-targets: $(FUZZ_BINARIES)
 
 bench: deps
 	@$(MAKE) --no-print-directory $(PROGRAM) $(BENCH_BINARIES)
-	@UNROLL=$(PROGRAM) BENCHES="$(BENCH_BINARIES) bench/bench_esicup" bench/run-benches
+	@UNROLL=$(PROGRAM) BENCHES="$(BENCH_BINARIES) bench/bench_esicup bench/bench_papercraft" \
+		bench/run-benches
 
 install: $(PROGRAM)
 	install -d $(DESTDIR)$(BINDIR) $(DESTDIR)$(MANDIR)/man1 $(DESTDIR)$(MANDIR)/man5
