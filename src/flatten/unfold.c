@@ -107,6 +107,8 @@ static ur_status restart(unfolder *u, ur_error *error)
 {
     size_t n = u->mesh->triangle_count;
     unfold_grid_restart(&u->grid);
+    for (size_t i = 0; i < UNFOLD_CULPRITS; i++)
+        u->culprits[i] = UNFOLD_NONE;
     for (size_t t = 0; t < n; t++) {
         u->piece[t] = t;
         u->next_member[t] = UNFOLD_NONE;
@@ -114,6 +116,9 @@ static ur_status restart(unfolder *u, ur_error *error)
         island->first = island->last = t;
         island->triangle_count = 1;
         island->outline_count = 3;
+        island->face_count = 1;
+        island->failed_with = UNFOLD_NONE;
+        island->failures = 0;
         for (int k = 0; k < 3; k++) {
             u->flat[t][k] = u->faces.home[t][k];
             u->joined[3 * t + (size_t)k] = false;
@@ -184,6 +189,8 @@ ur_status unfold_run(unfolder *u, const size_t *order, size_t count, unfold_scor
     ur_status status = restart(u, error);
     if (status == UR_OK)
         status = join_all(u, u->faces.order, u->faces.order_count, error);
+    for (size_t t = 0; t < u->mesh->triangle_count; t++)
+        u->islands[t].face_count = 1; /* each piece now a face (or part of one) */
     u->room_binds = u->room;
     u->slits = false;
     if (status == UR_OK)

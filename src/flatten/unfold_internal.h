@@ -156,7 +156,18 @@ typedef struct unfold_island {
     size_t outline_count; /* half-edges not joined */
     ur_vec2 *hull;        /* its convex hull, counter-clockwise, when the room is limited */
     size_t hull_count, hull_capacity;
+    size_t face_count; /* flat faces, once the faces are joined (1 before) */
+    /* the piece it last failed to join as the smaller one, that piece's size then, how often */
+    size_t failed_with, failed_size, failures;
 } unfold_island;
+
+/*
+ * A piece of several faces that failed to join an unchanged piece this
+ * often, across as many edges, is not tried with it again: two large
+ * pieces that do not fit would otherwise be tried across every edge
+ * between them.  A piece of one face is always tried.
+ */
+#define UNFOLD_MOST_FAILURES 8
 
 /* p -> to + R (p - from), R the turn by (cos, sin). */
 typedef struct unfold_motion {
@@ -170,6 +181,9 @@ static inline ur_vec2 unfold_move(const unfold_motion *m, ur_vec2 p)
     return ur_vec2_add(m->to,
                        ur_vec2_make(m->cos * d.x - m->sin * d.y, m->sin * d.x + m->cos * d.y));
 }
+
+/* How many of the triangles that stopped the last joins are tried first (unfold_lay.c). */
+#define UNFOLD_CULPRITS 8
 
 /* The mesh, its edges and faces, and the state of the current run of joins. */
 typedef struct unfolder {
@@ -193,6 +207,7 @@ typedef struct unfolder {
     bool slits;                      /* allowed: inside faces */
     size_t *roots; /* 2 per pair: the flat vertices it makes one, small's then large's */
     ur_vec2 *hull_points, *hull_chain; /* room for the hull of every corner */
+    size_t culprits[UNFOLD_CULPRITS];  /* the triangles that stopped the last joins */
 } unfolder;
 
 /* The union-find root of corner c (with path halving). */

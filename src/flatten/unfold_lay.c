@@ -22,6 +22,7 @@
 #include "unfold_internal.h"
 
 #include <stdlib.h>
+#include <string.h>
 
 static ur_vec2 corner_at(const unfolder *u, size_t corner)
 {
@@ -232,13 +233,37 @@ static void move_triangle(const unfold_motion *m, const ur_vec2 in[3], ur_vec2 o
         out[k] = unfold_move(m, in[k]);
 }
 
+static bool fits_one(unfolder *u, const unfold_motion *m, size_t s, size_t large)
+{
+    ur_vec2 moved[3];
+    move_triangle(m, u->flat[s], moved);
+    if (fits_large(u, s, moved, large))
+        return true;
+    /* Remember it: the next try of these pieces, across a neighbouring edge, fails there too. */
+    memmove(u->culprits + 1, u->culprits, (UNFOLD_CULPRITS - 1) * sizeof *u->culprits);
+    u->culprits[0] = s;
+    return false;
+}
+
+/*
+ * Whether the moved small piece fits the large.  Two large pieces that do
+ * not fit are tried across every edge between them, and most of their
+ * triangles would overlap: the triangles that stopped the last tries go
+ * first, then every 16th, then all, so that a join that fails fails early.
+ */
 static bool fits(unfolder *u, const unfold_motion *m, size_t small, size_t large)
 {
-    for (size_t s = u->islands[small].first; s != UNFOLD_NONE; s = u->next_member[s]) {
-        ur_vec2 moved[3];
-        move_triangle(m, u->flat[s], moved);
-        if (!fits_large(u, s, moved, large))
+    for (size_t i = 0; i < UNFOLD_CULPRITS; i++) {
+        size_t s = u->culprits[i];
+        if (s != UNFOLD_NONE && u->piece[s] == small && !fits_one(u, m, s, large))
             return false;
+    }
+    size_t stride = u->islands[small].triangle_count > 64 ? 16 : 1;
+    for (size_t pass = stride; pass >= 1; pass = pass == 1 ? 0 : 1) {
+        size_t i = 0;
+        for (size_t s = u->islands[small].first; s != UNFOLD_NONE; s = u->next_member[s], i++)
+            if (i % pass == 0 && !fits_one(u, m, s, large))
+                return false;
     }
     return true;
 }
@@ -298,10 +323,33 @@ static ur_status commit(unfolder *u, const unfold_motion *m, size_t small, size_
     u->next_member[b->last] = a->first;
     b->last = a->last;
     b->triangle_count += a->triangle_count;
+    b->face_count += a->face_count;
+    b->failures = 0;
     b->outline_count = b->outline_count + a->outline_count - 2 * u->pair_count;
     a->triangle_count = 0;
     a->first = a->last = UNFOLD_NONE;
     return UR_OK;
+}
+
+static bool given_up(const unfolder *u, size_t small, size_t large)
+{
+    const unfold_island *a = &u->islands[small];
+    return a->face_count > 1 && a->failed_with == large &&
+           a->failed_size == u->islands[large].triangle_count &&
+           a->failures >= UNFOLD_MOST_FAILURES;
+}
+
+static void count_failure(unfolder *u, size_t small, size_t large)
+{
+    unfold_island *a = &u->islands[small];
+    size_t size = u->islands[large].triangle_count;
+    if (a->failed_with == large && a->failed_size == size) {
+        a->failures++;
+        return;
+    }
+    a->failed_with = large;
+    a->failed_size = size;
+    a->failures = 1;
 }
 
 ur_status unfold_try_join(unfolder *u, size_t h, bool *joined, ur_error *error)
@@ -316,6 +364,8 @@ ur_status unfold_try_join(unfolder *u, size_t h, bool *joined, ur_error *error)
     size_t na = u->islands[a].triangle_count, nb = u->islands[b].triangle_count;
     bool a_small = na < nb || (na == nb && a > b);
     size_t small = a_small ? a : b, large = a_small ? b : a;
+    if (given_up(u, small, large))
+        return UR_OK;
     size_t hinge_small = a_small ? h : g, hinge_large = a_small ? g : h;
     unfold_motion m = hinge_motion(u, hinge_small, hinge_large);
     size_t hull_count = u->room ? joined_hull(u, &m, small, large) : 0;
@@ -328,8 +378,10 @@ ur_status unfold_try_join(unfolder *u, size_t h, bool *joined, ur_error *error)
     u->slit_count = 0;
     if (u->slits)
         find_slits(u, &m, small, large);
-    if (!fits(u, &m, small, large))
+    if (!fits(u, &m, small, large)) {
+        count_failure(u, small, large);
         return UR_OK;
+    }
     if (u->room && keep_hull(u, large, hull_count, error) != UR_OK)
         return UR_ERROR_INTERNAL;
     *joined = true;
