@@ -162,10 +162,10 @@ typedef struct unfold_island {
 } unfold_island;
 
 /*
- * A piece of several faces that failed to join an unchanged piece this
- * often, across as many edges, is not tried with it again: two large
- * pieces that do not fit would otherwise be tried across every edge
- * between them.  A piece of one face is always tried.
+ * Two pieces of several faces that failed to join this often, across as
+ * many edges, are not tried again while neither changes: two large pieces
+ * that do not fit would otherwise be tried across every edge between them.
+ * A piece of one face is always tried.
  */
 #define UNFOLD_MOST_FAILURES 8
 

@@ -331,11 +331,12 @@ static ur_status commit(unfolder *u, const unfold_motion *m, size_t small, size_
     return UR_OK;
 }
 
+/* Whether two pieces of several faces have failed to join too often (not inside faces). */
 static bool given_up(const unfolder *u, size_t small, size_t large)
 {
     const unfold_island *a = &u->islands[small];
-    return a->face_count > 1 && a->failed_with == large &&
-           a->failed_size == u->islands[large].triangle_count &&
+    return !u->slits && a->face_count > 1 && u->islands[large].face_count > 1 &&
+           a->failed_with == large && a->failed_size == u->islands[large].triangle_count &&
            a->failures >= UNFOLD_MOST_FAILURES;
 }
 
