@@ -8,7 +8,12 @@
  * piece joins found from the flat corners, each fold's mountain or valley
  * found from which side of one face the other face's far corner lies on,
  * outlines walked edge by edge, and every edge counted exactly once as a
- * fold, a flat join, a seam or a boundary edge.
+ * fold, a flat join, a seam or a boundary edge.  Then flat faces (a
+ * cube's squares, a torus's float-rounded quads, a ring of quads round a
+ * hole), no single face on the head that could have joined a neighbour
+ * (each moved onto its neighbours and checked), pieces within a room (the
+ * smallest rectangle found by the test), a face larger than the room
+ * refused, and the search giving the same result for a seed.
  */
 #include "test_support.h"
 
