@@ -54,22 +54,23 @@ void unfold_hull_size(const ur_vec2 *hull, size_t count, double *length, double 
     *length = *width = 0.0;
     for (size_t i = 0; i < count; i++) {
         ur_vec2 d = ur_vec2_sub(hull[(i + 1) % count], hull[i]);
-        double norm = ur_vec2_length(d);
+        double norm = sqrt(ur_vec2_dot(d, d));
         if (!(norm > 0))
             continue;
         d = ur_vec2_scale(d, 1.0 / norm);
-        double low = INFINITY, high = -INFINITY, across = 0.0;
-        for (size_t j = 0; j < count; j++) {
+        double low = 0.0, high = 0.0, across = 0.0;
+        /* The area only grows as points are added: stop once it is no better. */
+        for (size_t j = 0; j < count && (high - low) * across < best_area; j++) {
             ur_vec2 p = ur_vec2_sub(hull[j], hull[i]);
-            double along = ur_vec2_dot(p, d);
-            low = fmin(low, along);
-            high = fmax(high, along);
-            across = fmax(across, fabs(ur_vec2_cross(d, p)));
+            double along = ur_vec2_dot(p, d), side = fabs(ur_vec2_cross(d, p));
+            low = along < low ? along : low;
+            high = along > high ? along : high;
+            across = side > across ? side : across;
         }
         if ((high - low) * across < best_area) {
             best_area = (high - low) * across;
-            *length = fmax(high - low, across);
-            *width = fmin(high - low, across);
+            *length = high - low > across ? high - low : across;
+            *width = high - low > across ? across : high - low;
         }
     }
 }
