@@ -16,6 +16,8 @@
 #ifndef UNROLL_FLATTEN_H
 #define UNROLL_FLATTEN_H
 
+#include <stdint.h>
+
 #include "unroll/develop.h"
 #include "unroll/mesh.h"
 
@@ -114,12 +116,10 @@ ur_status ur_net_from_flat(const ur_mesh *piece, const ur_flat_piece *flat, cons
  *
  * A low-poly (papercraft) mesh is unfolded along its edges, as Pepakura and
  * Blender's paper model export do: every face keeps its exact shape, laid
- * flat rigidly across the edge it shares with a face already laid, and a
- * piece grows face by face along a spanning tree of the faces.  The edges
- * joined inside a piece are folds, the others seams (cut, glued when the
- * model is built).  A face that would overlap its piece, touch it anywhere
- * but along its fold, or close a hole in it starts or joins another piece
- * instead: every piece is a topological disk laid flat without overlap.
+ * flat rigidly across the edge it shares with a face already laid, and the
+ * faces of a piece hang together along a spanning tree.  The edges joined
+ * inside a piece are folds, the others seams (cut, glued when the model is
+ * built).  Every piece is a topological disk laid flat without overlap.
  *
  * Orientation: a triangle runs counter-clockwise seen from the outside (as
  * ur_mesh_clean leaves a closed mesh), and the net shows the outside face
@@ -129,12 +129,46 @@ ur_status ur_net_from_flat(const ur_mesh *piece, const ur_flat_piece *flat, cons
  */
 
 /*
- * Two faces that turn by less than this (radians) across their edge are
- * flat there: joined, with nothing to fold and no fold line drawn.  Over a
- * face a metre across it moves the far edge by a micrometre; coplanar
- * quads split in two by a modeller come out well within it.
+ * The default flat angle (radians, 0.5 degrees): triangles that turn by
+ * less than this across their edge lie in one flat face (see
+ * ur_unfold_options).  Quads a modeller made planar and then split in two
+ * come out well within it (a torus's quads are flat to 0.0004 degrees after
+ * 32-bit export); over a face 100 mm across it is 0.9 mm out of plane.
  */
-#define UR_UNFOLD_FLAT_ANGLE 1e-6
+#define UR_UNFOLD_FLAT_ANGLE (0.5 * M_PI / 180.0)
+
+typedef struct ur_unfold_options {
+    /*
+     * Triangles that turn by less than flat_angle (radians) across an edge
+     * that is not a seam, and whose normals are within it of the first
+     * triangle of their face, are one flat face: laid as one rigid unit in
+     * its own plane (each point projected on it) and never cut inside.
+     * Every joined edge that turns by less than it, or lies inside a face,
+     * is flat: no fold line.  0: every triangle is a face of its own.
+     */
+    double flat_angle;
+    /*
+     * Seconds spent improving the cut after the greedy growth (see
+     * ur_unfold); 0 keeps the greedy result.  Default 1.
+     */
+    double time_budget;
+    size_t max_steps; /* most improvement steps, 0 for no limit but the time */
+    uint64_t seed;    /* of the search's random choices; default 1 */
+    /*
+     * The room a piece may take (mm, any order): every piece's smallest
+     * enclosing rectangle fits it (long side along the long side).  0 x 0:
+     * no limit.
+     */
+    double room_length, room_width;
+    /*
+     * Called now and then with the phase ("unfolding", "improving") and
+     * how far it is, from 0 to 1; NULL for none.
+     */
+    void (*progress)(void *context, const char *phase, double fraction);
+    void *progress_context;
+} ur_unfold_options;
+
+void ur_unfold_options_default(ur_unfold_options *options);
 
 /* One fold line of a piece. */
 typedef struct ur_fold {
@@ -155,9 +189,10 @@ typedef struct ur_unfolded_piece {
     size_t outline_count;     /* an edge between two pieces shows in both outlines */
     ur_fold *folds;           /* the edges joined inside the piece that fold */
     size_t fold_count;
-    size_t *triangles;  /* the mesh triangles of the piece, in the order laid */
+    size_t *triangles;  /* the mesh triangles of the piece */
     ur_vec2 (*flat)[3]; /* each one's flat corners, in the mesh triangle's corner order */
     size_t triangle_count;
+    size_t face_count;         /* flat faces (ur_unfold_options.flat_angle) in the piece */
     double area_3d, flat_area; /* sum of the triangles' 3D areas; area inside the outline */
 } ur_unfolded_piece;
 
@@ -169,41 +204,68 @@ typedef struct ur_unfolded_piece {
 typedef struct ur_unfolding {
     ur_unfolded_piece *pieces;
     size_t count;
-    size_t folds;    /* edges folded, in all pieces */
-    size_t valleys;  /* of which valley folds */
-    size_t flat;     /* edges joined with nothing to fold (UR_UNFOLD_FLAT_ANGLE) */
-    size_t seams;    /* edges between two faces that are cut */
-    size_t boundary; /* edges of one face */
+    size_t folds;       /* edges folded, in all pieces */
+    size_t valleys;     /* of which valley folds */
+    size_t flat;        /* edges joined with nothing to fold (inside a flat face) */
+    size_t seams;       /* edges between two faces that are cut */
+    size_t boundary;    /* edges of one face */
+    size_t single_face; /* pieces of one flat face */
+    double seam_length; /* of the seams, mm */
+    size_t steps;       /* improvement steps done */
 } ur_unfolding;
 
 /*
  * Unfolds a mesh that is manifold and consistently oriented (as
  * ur_mesh_clean leaves it) into pieces; free them with ur_unfolding_free.
+ * ur_unfold uses the default options.
  *
- * Pieces grow one at a time from the first face not yet laid, always
- * across the cheapest edge on their border (Prim's algorithm): flat edges
- * first, then convex ones from the least to the most turned, concave ones
- * last, longer edges before shorter at equal angles.  User seams, the
- * boundaries between groups and the mesh's boundary are never folded.
- * Each new face is placed from the two side lengths on its shared edge, so
- * it is congruent to its 3D triangle to rounding.  Where a face closes the
- * ring of faces around a vertex that lies flat (angles summing to 2 pi),
- * or continues a straight crease, it lands on a laid neighbour edge on edge
- * and is joined there too.  Points within a millionth of the mesh's size
- * (the diagonal of its box) meet, so that meshes of 32-bit coordinates
- * close up as well.  The outline of every piece is checked to be a simple
- * polygon (GEOS) before it is returned.  Pieces come in the order grown,
- * the first from triangle 0; where the surface has saddles, whose faces
- * cannot all lie flat round the vertex, the first pieces tend to be large
- * and to leave small pieces of one to a few faces in their notches.
+ * First the flat faces (options.flat_angle) are laid each as one piece in
+ * its own plane, joined across their longest edges first; a face that is
+ * not a disk (a ring round a hole) stays cut along the edge that would
+ * close it, one of its shortest.  Then pieces are joined across the other
+ * edges in order, as Blender's paper model export does: flat edges first,
+ * then convex ones from the least to the most turned, concave ones last,
+ * longer edges before shorter at equal angles.  A join moves the smaller
+ * piece rigidly onto the larger, so that the edge meets, and is kept only
+ * if no two triangles overlap, the pieces touch nowhere but along the edge
+ * and the points where it closes the ring round a vertex (then the edges
+ * that land on each other there are joined too, as round a flat vertex or
+ * along a straight crease), and the joined piece fits the room.  Points
+ * within a millionth of the mesh's size (or of the error the faces'
+ * flattening makes, if larger) meet, so that meshes of 32-bit coordinates
+ * close up as well.
+ *
+ * Then, while the time budget lasts, the order of the edges is changed
+ * (Takahashi et al. 2011 search over which edges are cut): a seam edge of
+ * one of the smallest pieces goes first, or a fold goes last, and the
+ * joining is done again; a change that leaves fewer pieces, or as many with
+ * fewer of a single face, or as many with a shorter cut, is kept (worse
+ * ones now and then early on, annealing).  The search stops early when the
+ * pieces are as few as the mesh's parts, or after many steps with nothing
+ * better.  For a seed and a number of steps the result is always the same;
+ * within a time budget the number of steps depends on the machine.  Every
+ * edge was tried, so a piece of one face had nowhere to go: across every
+ * one of its seams it would overlap or touch its neighbour.
+ *
+ * User seams, the boundaries between groups and the mesh's boundary are
+ * never joined.  The outline of every piece is checked to be a simple
+ * polygon (GEOS) before it is returned.  Pieces come in the order of their
+ * first triangle.
  *
  * Refuses (UR_ERROR_INPUT) an empty mesh, a coordinate that is not finite,
  * a triangle of no area, a non-manifold edge, neighbours that run their
- * edge the same way, and a seam that is not an edge of the mesh (messages
- * number vertices, triangles and seams from 1).  On failure *out is empty.
+ * edge the same way, a seam that is not an edge of the mesh, options out of
+ * range, and a flat face (or triangle) larger than the room, naming it and
+ * its size (messages number vertices, triangles and seams from 1).  On
+ * failure *out is empty.
  */
 ur_status ur_unfold(const ur_mesh *mesh, const ur_seam *seams, size_t seam_count, ur_unfolding *out,
                     ur_error *error);
+
+/* The same with options (NULL: the defaults). */
+ur_status ur_unfold_with_options(const ur_mesh *mesh, const ur_seam *seams, size_t seam_count,
+                                 const ur_unfold_options *options, ur_unfolding *out,
+                                 ur_error *error);
 
 void ur_unfolding_free(ur_unfolding *unfolding);
 

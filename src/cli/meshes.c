@@ -313,13 +313,44 @@ static ur_status net_of_unfolded(const ur_mesh *mesh, const ur_unfolded_piece *p
     return UR_OK;
 }
 
-/* Unfolds along the edges: every face keeps its exact shape. */
-static int unfold_mesh(const cli_job *job, const ur_mesh *mesh, const ur_seam *seams,
-                       size_t seam_count, ur_net_list *nets, double *area)
+/* The unfolding's progress line, as show_progress's. */
+static void show_unfold_progress(void *context, const char *phase, double fraction)
 {
+    const cli_job *job = context;
+    fprintf(stderr, "\runroll: %s: %s, %.0f %%   ", job->command, phase, 100 * fraction);
+    fflush(stderr);
+}
+
+/*
+ * Unfolds along the edges: every face keeps its exact shape, flat faces
+ * are not folded, and every piece fits the room on a sheet (0 x 0: no
+ * limit) with a joint (tab or lap) on each side: the room's length leaves
+ * one at each end already.  The search for fewer pieces takes the
+ * library's default time (1 s) with the job's --seed.
+ */
+static int unfold_mesh(const cli_job *job, const cli_room *room, const ur_material *material,
+                       const ur_mesh *mesh, const ur_seam *seams, size_t seam_count,
+                       ur_net_list *nets, double *area)
+{
+    double joint = (material->joint == UR_JOINT_LAP ? material->lap_width : material->tab_depth) +
+                   material->thickness;
+    ur_unfold_options options;
+    ur_unfold_options_default(&options);
+    if (room->width - 2 * joint > 0) {
+        options.room_length = room->length;
+        options.room_width = room->width - 2 * joint;
+    }
+    options.seed = (uint64_t)job->seed;
+    if (shows_progress(job)) {
+        options.progress = show_unfold_progress;
+        options.progress_context = (void *)job;
+    }
     ur_unfolding unfolding;
     ur_error error;
-    if (ur_unfold(mesh, seams, seam_count, &unfolding, &error) != UR_OK)
+    ur_status status =
+        ur_unfold_with_options(mesh, seams, seam_count, &options, &unfolding, &error);
+    end_progress(job);
+    if (status != UR_OK)
         return fail(job, &error);
     int code = 0;
     nets->nets = ur_alloc_array(unfolding.count, sizeof *nets->nets, &error);
@@ -333,9 +364,10 @@ static int unfold_mesh(const cli_job *job, const ur_mesh *mesh, const ur_seam *s
         *area += unfolding.pieces[k].area_3d;
     }
     if (!code && !job->quiet)
-        cli_message("%s: unfolded into %zu piece%s: %zu folds (%zu valleys), %zu seams",
-                    job->command, unfolding.count, unfolding.count == 1 ? "" : "s", unfolding.folds,
-                    unfolding.valleys, unfolding.seams);
+        cli_message("%s: unfolded into %zu piece%s (%zu of a single face): %zu folds (%zu "
+                    "valleys), %zu seams",
+                    job->command, unfolding.count, unfolding.count == 1 ? "" : "s",
+                    unfolding.single_face, unfolding.folds, unfolding.valleys, unfolding.seams);
     ur_unfolding_free(&unfolding);
     return code;
 }
@@ -470,7 +502,7 @@ static int nets_of_mesh(const cli_job *job, const cli_room *room, const ur_mater
         return code;
     }
     if (!code && job->unfold) {
-        code = unfold_mesh(job, mesh, seams, seam_count, nets, area);
+        code = unfold_mesh(job, room, material, mesh, seams, seam_count, nets, area);
         free(seams);
         return code;
     }

@@ -1,128 +1,75 @@
 /*
  * unfold.c: ur_unfold: the exact unfolding of a polyhedral mesh along its
- * edges, grown piece by piece.
+ * edges.
  *
- * A piece starts from the first triangle not yet laid and grows across the
- * cheapest edge on its border (a binary heap of border edges: Prim's
- * algorithm on the faces' graph).  Flat edges cost nothing, convex ones
- * their turn, concave ones pi more than that, so a piece folds across
- * gentle convex edges first and leaves sharp and concave ones to be cut
- * where it can.  The new triangle is laid rigidly on the shared edge
- * (unfold_lay.c) and kept only if it fits: it must not overlap the piece,
- * nor touch it anywhere but at the flat vertices it shares with it, so
- * that the piece stays a disk that can be cut out whole.  A triangle that
- * does not fit may still fit when reached across another edge, later in
- * this piece or in another.
+ * A run starts from every triangle a piece of its own, laid in its flat
+ * face's plane (unfold_faces.c), and joins pieces across edges in turn
+ * (unfold_lay.c): first the edges inside flat faces, longest first, so
+ * that each face becomes one piece and a face round a hole is cut at one
+ * of its shortest edges; then the edges between faces in the order given.
+ * A join that does not fit is left cut.  Every later join only adds to
+ * pieces, so an edge refused once would be refused again: each edge is
+ * tried once.  The first order is Blender's paper model's: flat edges,
+ * then convex ones by turn, concave last, longer first; the search
+ * (unfold_search.c) then changes it.
  */
 #include "unfold_internal.h"
 
 #include <stdlib.h>
 
-/* ---- the border of the growing piece: a binary heap of half-edges ---- */
-
-typedef struct border_edge {
-    double weight, length;
-    size_t half; /* in a laid triangle; its twin's triangle is not laid */
-} border_edge;
-
-/* Room for 3 n edges: a triangle is laid once and puts at most its three edges here. */
-typedef struct border {
-    border_edge *items;
-    size_t count;
-} border;
-
-/* Cheapest first; at equal weight the longer edge, so that short edges are cut. */
-static bool before(border_edge a, border_edge b)
-{
-    if (a.weight != b.weight)
-        return a.weight < b.weight;
-    if (a.length != b.length)
-        return a.length > b.length;
-    return a.half < b.half;
-}
-
-static void border_push(border *b, border_edge edge)
-{
-    size_t i = b->count++;
-    while (i > 0 && before(edge, b->items[(i - 1) / 2])) {
-        b->items[i] = b->items[(i - 1) / 2];
-        i = (i - 1) / 2;
-    }
-    b->items[i] = edge;
-}
-
-static size_t border_pop(border *b)
-{
-    size_t top = b->items[0].half;
-    border_edge last = b->items[--b->count];
-    size_t i = 0;
-    for (;;) {
-        size_t child = 2 * i + 1;
-        if (child >= b->count)
-            break;
-        if (child + 1 < b->count && before(b->items[child + 1], b->items[child]))
-            child++;
-        if (!before(b->items[child], last))
-            break;
-        b->items[i] = b->items[child];
-        i = child;
-    }
-    if (b->count > 0)
-        b->items[i] = last;
-    return top;
-}
+/* ---- the orders of the edges ---- */
 
 /* What folding across an edge costs: flat, then convex by turn, then concave. */
-static double fold_weight(double bend)
+static double fold_weight(const unfolder *u, size_t h)
 {
-    if (fabs(bend) < UR_UNFOLD_FLAT_ANGLE)
+    double bend = u->edges.bend[h];
+    if (u->faces.flat[h])
         return 0.0;
     return bend > 0 ? bend : M_PI - bend;
 }
 
-/* The edges of triangle t that could take the piece further. */
-static void push_border(const unfolder *u, border *b, size_t t)
+typedef struct ranked_edge {
+    double weight, length;
+    size_t half;
+} ranked_edge;
+
+/* Cheapest first; at equal weight the longer edge, so that short edges are cut. */
+static int compare_ranked(const void *a, const void *b)
 {
-    for (size_t h = 3 * t; h < 3 * t + 3; h++) {
-        if (u->edges.cut[h] || u->joined[h] || u->piece[u->edges.twins[h] / 3] != UNFOLD_NONE)
-            continue;
-        double length = ur_vec3_distance(u->mesh->vertices[unfold_from(u->mesh, h)],
-                                         u->mesh->vertices[unfold_to(u->mesh, h)]);
-        border_push(b, (border_edge){fold_weight(u->edges.bend[h]), length, h});
+    const ranked_edge *x = a, *y = b;
+    if (x->weight != y->weight)
+        return x->weight < y->weight ? -1 : 1;
+    if (x->length != y->length)
+        return x->length > y->length ? -1 : 1;
+    return (x->half > y->half) - (x->half < y->half);
+}
+
+/* The edges between faces that may be joined, by their lower halves, in the first order. */
+static ur_status rank_edges(const unfolder *u, size_t **order, size_t *count, ur_error *error)
+{
+    size_t halves = 3 * u->mesh->triangle_count, n = 0;
+    ranked_edge *ranked = ur_alloc_array(halves, sizeof *ranked, error);
+    *order = ur_alloc_array(halves, sizeof **order, error);
+    if (!ranked || !*order) {
+        free(ranked);
+        return UR_ERROR_INTERNAL;
     }
-}
-
-/* ---- growing ---- */
-
-static ur_status lay(unfolder *u, unfold_grid *grid, border *b, const unfold_candidate *c,
-                     ur_error *error)
-{
-    ur_status status = unfold_commit(u, grid, c, error);
-    if (status == UR_OK)
-        push_border(u, b, c->triangle);
-    return status;
-}
-
-/* Grows piece u->current from seed until no edge on its border takes a triangle that fits. */
-static ur_status grow(unfolder *u, unfold_grid *grid, border *b, size_t seed, ur_error *error)
-{
-    u->member_count = 0;
-    b->count = 0;
-    unfold_grid_restart(grid);
-    unfold_candidate c;
-    unfold_seed(u, seed, &c);
-    ur_status status = lay(u, grid, b, &c, error);
-    while (status == UR_OK && b->count > 0) {
-        size_t g = u->edges.twins[border_pop(b)];
-        if (u->piece[g / 3] != UNFOLD_NONE)
+    for (size_t h = 0; h < halves; h++) {
+        size_t g = u->edges.twins[h];
+        if (g == UR_NO_EDGE || g < h || u->edges.cut[h] ||
+            u->faces.face[h / 3] == u->faces.face[g / 3])
             continue;
-        if (unfold_prepare(u, g, &c) && unfold_fits(u, grid, &c))
-            status = lay(u, grid, b, &c, error);
+        ranked[n++] = (ranked_edge){fold_weight(u, h), unfold_edge_length(u->mesh, h), h};
     }
-    return status;
+    qsort(ranked, n, sizeof *ranked, compare_ranked);
+    for (size_t i = 0; i < n; i++)
+        (*order)[i] = ranked[i].half;
+    *count = n;
+    free(ranked);
+    return UR_OK;
 }
 
-/* ---- the unfolding ---- */
+/* ---- a run ---- */
 
 size_t unfold_find(unfolder *u, size_t corner)
 {
@@ -133,37 +80,245 @@ size_t unfold_find(unfolder *u, size_t corner)
     return corner;
 }
 
-static ur_status unfolder_init(unfolder *u, const ur_mesh *mesh, const ur_seam *seams,
-                               size_t seam_count, ur_error *error)
+size_t unfold_outline_next(const unfolder *u, size_t h)
 {
-    *u = (unfolder){.mesh = mesh};
-    ur_status status = unfold_edges_build(mesh, seams, seam_count, &u->edges, error);
-    if (status != UR_OK)
-        return status;
-    size_t n = mesh->triangle_count;
+    size_t n = unfold_next(h), limit = 3 * u->mesh->triangle_count;
+    for (size_t turns = 0; u->joined[n]; turns++) {
+        if (turns > limit)
+            return UNFOLD_NONE;
+        n = unfold_next(u->edges.twins[n]);
+    }
+    return n;
+}
+
+size_t unfold_outline_previous(const unfolder *u, size_t h)
+{
+    size_t p = unfold_previous(h), limit = 3 * u->mesh->triangle_count;
+    for (size_t turns = 0; u->joined[p]; turns++) {
+        if (turns > limit)
+            return UNFOLD_NONE;
+        p = unfold_previous(u->edges.twins[p]);
+    }
+    return p;
+}
+
+/* Every triangle a piece of its own, in its face's plane. */
+static ur_status restart(unfolder *u, ur_error *error)
+{
+    size_t n = u->mesh->triangle_count;
+    unfold_grid_restart(&u->grid);
+    for (size_t i = 0; i < UNFOLD_CULPRITS; i++)
+        u->culprits[i] = UNFOLD_NONE;
+    for (size_t t = 0; t < n; t++) {
+        u->piece[t] = t;
+        u->next_member[t] = UNFOLD_NONE;
+        unfold_island *island = &u->islands[t];
+        island->first = island->last = t;
+        island->triangle_count = 1;
+        island->outline_count = 3;
+        island->face_count = 1;
+        island->failed_with = UNFOLD_NONE;
+        island->failures = 0;
+        for (int k = 0; k < 3; k++) {
+            u->flat[t][k] = u->faces.home[t][k];
+            u->joined[3 * t + (size_t)k] = false;
+            u->parent[3 * t + (size_t)k] = 3 * t + (size_t)k;
+            if (u->room)
+                island->hull[k] = u->flat[t][k];
+        }
+        island->hull_count = u->room ? 3 : 0;
+        if (unfold_grid_add(&u->grid, ur_box_of_points(u->flat[t], 3), t, t, error) != UR_OK)
+            return UR_ERROR_INTERNAL;
+    }
+    return UR_OK;
+}
+
+static ur_status join_all(unfolder *u, const size_t *order, size_t count, ur_error *error)
+{
+    for (size_t i = 0; i < count; i++) {
+        bool joined;
+        if (unfold_try_join(u, order[i], &joined, error) != UR_OK)
+            return UR_ERROR_INTERNAL;
+    }
+    return UR_OK;
+}
+
+static bool one_face(const unfolder *u, size_t p)
+{
+    size_t first = u->islands[p].first;
+    for (size_t t = first; t != UNFOLD_NONE; t = u->next_member[t])
+        if (u->faces.face[t] != u->faces.face[first])
+            return false;
+    return true;
+}
+
+static unfold_score score_of(const unfolder *u)
+{
+    unfold_score score = {0, 0, 0.0};
+    size_t n = u->mesh->triangle_count;
+    for (size_t p = 0; p < n; p++) {
+        if (u->islands[p].triangle_count == 0)
+            continue;
+        score.pieces++;
+        score.single_face += one_face(u, p);
+    }
+    for (size_t h = 0; h < 3 * n; h++) {
+        size_t g = u->edges.twins[h];
+        if (g != UR_NO_EDGE && h < g && !u->joined[h])
+            score.seam_length += unfold_edge_length(u->mesh, h);
+    }
+    return score;
+}
+
+int unfold_score_compare(unfold_score a, unfold_score b)
+{
+    if (a.pieces != b.pieces)
+        return a.pieces < b.pieces ? -1 : 1;
+    if (a.single_face != b.single_face)
+        return a.single_face < b.single_face ? -1 : 1;
+    if (a.seam_length != b.seam_length)
+        return a.seam_length < b.seam_length ? -1 : 1;
+    return 0;
+}
+
+ur_status unfold_run(unfolder *u, const size_t *order, size_t count, unfold_score *score,
+                     ur_error *error)
+{
+    u->room_binds = false; /* a face is never cut: one too large is refused before */
+    u->slits = true;
+    ur_status status = restart(u, error);
+    if (status == UR_OK)
+        status = join_all(u, u->faces.order, u->faces.order_count, error);
+    for (size_t t = 0; t < u->mesh->triangle_count; t++)
+        u->islands[t].face_count = 1; /* each piece now a face (or part of one) */
+    u->room_binds = u->room;
+    u->slits = false;
+    if (status == UR_OK)
+        status = join_all(u, order, count, error);
+    if (status == UR_OK)
+        *score = score_of(u);
+    return status;
+}
+
+/* ---- the unfolder ---- */
+
+static ur_status check_options(const ur_unfold_options *o, ur_error *error)
+{
+    if (!(o->flat_angle >= 0 && o->flat_angle < M_PI / 2))
+        return ur_error_set(error, UR_ERROR_INPUT,
+                            "the flat angle must be at least 0 and less than 90 degrees");
+    if (!(o->time_budget >= 0 && isfinite(o->time_budget)))
+        return ur_error_set(error, UR_ERROR_INPUT,
+                            "the unfolding's time budget must be a number of seconds >= 0");
+    if (!(o->room_length >= 0 && isfinite(o->room_length) && o->room_width >= 0 &&
+          isfinite(o->room_width)))
+        return ur_error_set(error, UR_ERROR_INPUT,
+                            "the room for a piece must be two lengths >= 0 (0 x 0: no limit)");
+    return UR_OK;
+}
+
+static ur_status alloc_run(unfolder *u, ur_error *error)
+{
+    size_t n = u->mesh->triangle_count;
     u->piece = ur_alloc_array(n, sizeof *u->piece, error);
     u->flat = ur_alloc_array(n, sizeof *u->flat, error);
     u->joined = ur_alloc_array(3 * n, sizeof *u->joined, error);
     u->parent = ur_alloc_array(3 * n, sizeof *u->parent, error);
-    u->members = ur_alloc_array(n, sizeof *u->members, error);
-    if (!u->piece || !u->flat || !u->joined || !u->parent || !u->members)
+    u->next_member = ur_alloc_array(n, sizeof *u->next_member, error);
+    u->islands = ur_alloc_array(n, sizeof *u->islands, error);
+    u->pair_small = ur_alloc_array(3 * n + 2, sizeof *u->pair_small, error);
+    u->pair_large = ur_alloc_array(3 * n + 2, sizeof *u->pair_large, error);
+    u->roots = ur_alloc_array(4 * (3 * n + 2), sizeof *u->roots, error);
+    if (!u->piece || !u->flat || !u->joined || !u->parent || !u->next_member || !u->islands ||
+        !u->pair_small || !u->pair_large || !u->roots)
         return UR_ERROR_INTERNAL;
-    for (size_t t = 0; t < n; t++)
-        u->piece[t] = UNFOLD_NONE;
-    for (size_t c = 0; c < 3 * n; c++)
-        u->parent[c] = c;
-    u->eps = UNFOLD_CONTACT * u->edges.scale;
+    if (!u->room)
+        return UR_OK;
+    u->hull_points = ur_alloc_array(3 * n + 1, sizeof *u->hull_points, error);
+    u->hull_chain = ur_alloc_array(6 * n + 2, sizeof *u->hull_chain, error);
+    if (!u->hull_points || !u->hull_chain)
+        return UR_ERROR_INTERNAL;
+    for (size_t t = 0; t < n; t++) {
+        u->islands[t].hull = ur_alloc_array(3, sizeof *u->islands[t].hull, error);
+        if (!u->islands[t].hull)
+            return UR_ERROR_INTERNAL;
+        u->islands[t].hull_capacity = 3;
+    }
     return UR_OK;
+}
+
+static ur_status unfolder_init(unfolder *u, const ur_mesh *mesh, const ur_seam *seams,
+                               size_t seam_count, const ur_unfold_options *options, ur_error *error)
+{
+    *u = (unfolder){.mesh = mesh};
+    if (options)
+        u->options = *options;
+    else
+        ur_unfold_options_default(&u->options);
+    ur_status status = check_options(&u->options, error);
+    if (status == UR_OK)
+        status = unfold_edges_build(mesh, seams, seam_count, &u->edges, error);
+    if (status == UR_OK)
+        status = unfold_faces_build(mesh, &u->edges, u->options.flat_angle, &u->faces, error);
+    if (status != UR_OK)
+        return status;
+    /* Faces laid in their planes meet their neighbours only to the projection's slack. */
+    u->eps = fmax(UNFOLD_CONTACT * u->edges.scale, 2.0 * u->faces.slack);
+    u->room = u->options.room_length > 0 && u->options.room_width > 0;
+    status = alloc_run(u, error);
+    if (status == UR_OK)
+        status = unfold_grid_init(&u->grid, mesh->triangle_count, u->edges.mean_edge, error);
+    return status;
 }
 
 static void unfolder_free(unfolder *u)
 {
     unfold_edges_free(&u->edges);
+    unfold_faces_free(&u->faces);
+    if (u->islands)
+        for (size_t t = 0; t < u->mesh->triangle_count; t++)
+            free(u->islands[t].hull);
     free(u->piece);
     free(u->flat);
     free(u->joined);
     free(u->parent);
-    free(u->members);
+    free(u->next_member);
+    free(u->islands);
+    free(u->pair_small);
+    free(u->pair_large);
+    free(u->roots);
+    free(u->hull_points);
+    free(u->hull_chain);
+    unfold_grid_free(&u->grid);
+}
+
+/* ---- the result ---- */
+
+/* A flat face (one piece after the faces are joined) larger than the room, refused. */
+static ur_status check_faces_fit(unfolder *u, ur_error *error)
+{
+    unfold_score score;
+    if (unfold_run(u, NULL, 0, &score, error) != UR_OK)
+        return UR_ERROR_INTERNAL;
+    for (size_t t = 0; t < u->mesh->triangle_count; t++) {
+        const unfold_island *island = &u->islands[t];
+        if (island->triangle_count == 0 || unfold_hull_fits(u, island->hull, island->hull_count))
+            continue;
+        double length, width;
+        unfold_hull_size(island->hull, island->hull_count, &length, &width);
+        size_t first = island->first;
+        for (size_t s = island->first; s != UNFOLD_NONE; s = u->next_member[s])
+            first = s < first ? s : first;
+        return ur_error_set(error, UR_ERROR_INPUT,
+                            "the flat face of triangle %zu (%zu triangle%s) is %.1f x %.1f mm, "
+                            "larger than the room of %.1f x %.1f mm a piece may take, and a face "
+                            "is never cut",
+                            first + 1, island->triangle_count,
+                            island->triangle_count == 1 ? "" : "s", length, width,
+                            fmax(u->options.room_length, u->options.room_width),
+                            fmin(u->options.room_length, u->options.room_width));
+    }
+    return UR_OK;
 }
 
 /* Folds, flat joins, seams and boundary edges, each edge counted once. */
@@ -175,9 +330,10 @@ static void count_edges(const unfolder *u, ur_unfolding *out)
             out->boundary++;
         else if (h > g)
             continue;
-        else if (!u->joined[h])
+        else if (!u->joined[h]) {
             out->seams++;
-        else if (fabs(u->edges.bend[h]) < UR_UNFOLD_FLAT_ANGLE)
+            out->seam_length += unfold_edge_length(u->mesh, h);
+        } else if (u->faces.flat[h])
             out->flat++;
         else {
             out->folds++;
@@ -186,56 +342,88 @@ static void count_edges(const unfolder *u, ur_unfolding *out)
     }
 }
 
-/* Grows every piece, one from each triangle not yet laid. */
-static ur_status grow_all(unfolder *u, GEOSContextHandle_t geos, ur_unfolding *out, ur_error *error)
+/* The pieces of the last run, in the order of their first triangle. */
+static ur_status build_pieces(const unfolder *u, GEOSContextHandle_t geos, ur_unfolding *out,
+                              ur_error *error)
 {
-    size_t n = u->mesh->triangle_count;
-    unfold_grid grid;
-    border b = {ur_alloc_array(3 * n, sizeof *b.items, error), 0};
-    out->pieces = ur_alloc_array(n, sizeof *out->pieces, error);
-    ur_status status = unfold_grid_init(&grid, n, u->edges.mean_edge, error);
-    if (!b.items || !out->pieces)
-        status = UR_ERROR_INTERNAL;
-    for (size_t seed = 0; seed < n && status == UR_OK; seed++) {
-        if (u->piece[seed] != UNFOLD_NONE)
+    size_t n = u->mesh->triangle_count, count = 0;
+    for (size_t p = 0; p < n; p++)
+        count += u->islands[p].triangle_count > 0;
+    out->pieces = ur_alloc_array(count, sizeof *out->pieces, error);
+    bool *done = ur_alloc_array(n, sizeof *done, error);
+    ur_status status = out->pieces && done ? UR_OK : UR_ERROR_INTERNAL;
+    for (size_t t = 0; t < n && status == UR_OK; t++) {
+        size_t p = u->piece[t];
+        if (done[p])
             continue;
-        u->current = out->count;
-        status = grow(u, &grid, &b, seed, error);
-        if (status == UR_OK)
-            status = unfold_piece_build(u, geos, &out->pieces[out->count], error);
-        if (status == UR_OK)
+        done[p] = true;
+        status = unfold_piece_build(u, p, out->count, geos, &out->pieces[out->count], error);
+        if (status == UR_OK) {
+            out->single_face += out->pieces[out->count].face_count == 1;
             out->count++;
+        }
     }
-    unfold_grid_free(&grid);
-    free(b.items);
-    /* Room was made for a piece per triangle; give back what is not used. */
-    ur_unfolded_piece *fitted = status == UR_OK && out->count > 0
-                                    ? realloc(out->pieces, out->count * sizeof *fitted)
-                                    : NULL;
-    if (fitted)
-        out->pieces = fitted;
+    free(done);
+    return status;
+}
+
+static void report(const unfolder *u, const char *phase, double fraction)
+{
+    if (u->options.progress)
+        u->options.progress(u->options.progress_context, phase, fraction);
+}
+
+static ur_status unfold(unfolder *u, ur_unfolding *out, ur_error *error)
+{
+    size_t *order = NULL, count = 0;
+    report(u, "unfolding", 0.0);
+    ur_status status = u->room ? check_faces_fit(u, error) : UR_OK;
+    if (status == UR_OK)
+        status = rank_edges(u, &order, &count, error);
+    if (status == UR_OK)
+        status = unfold_search(u, order, count, &out->steps, error);
+    free(order);
+    GEOSContextHandle_t geos = status == UR_OK ? GEOS_init_r() : NULL;
+    if (status == UR_OK && !geos)
+        status = ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not be started");
+    if (status == UR_OK)
+        status = build_pieces(u, geos, out, error);
+    if (status == UR_OK)
+        count_edges(u, out);
+    if (geos)
+        GEOS_finish_r(geos);
+    report(u, "unfolding", 1.0);
+    return status;
+}
+
+void ur_unfold_options_default(ur_unfold_options *options)
+{
+    *options = (ur_unfold_options){
+        .flat_angle = UR_UNFOLD_FLAT_ANGLE,
+        .time_budget = 1.0,
+        .seed = 1,
+    };
+}
+
+ur_status ur_unfold_with_options(const ur_mesh *mesh, const ur_seam *seams, size_t seam_count,
+                                 const ur_unfold_options *options, ur_unfolding *out,
+                                 ur_error *error)
+{
+    *out = (ur_unfolding){0};
+    unfolder u;
+    ur_status status = unfolder_init(&u, mesh, seams, seam_count, options, error);
+    if (status == UR_OK)
+        status = unfold(&u, out, error);
+    unfolder_free(&u);
+    if (status != UR_OK)
+        ur_unfolding_free(out);
     return status;
 }
 
 ur_status ur_unfold(const ur_mesh *mesh, const ur_seam *seams, size_t seam_count, ur_unfolding *out,
                     ur_error *error)
 {
-    *out = (ur_unfolding){0};
-    unfolder u;
-    ur_status status = unfolder_init(&u, mesh, seams, seam_count, error);
-    GEOSContextHandle_t geos = status == UR_OK ? GEOS_init_r() : NULL;
-    if (status == UR_OK && !geos)
-        status = ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not be started");
-    if (status == UR_OK)
-        status = grow_all(&u, geos, out, error);
-    if (status == UR_OK)
-        count_edges(&u, out);
-    if (geos)
-        GEOS_finish_r(geos);
-    unfolder_free(&u);
-    if (status != UR_OK)
-        ur_unfolding_free(out);
-    return status;
+    return ur_unfold_with_options(mesh, seams, seam_count, NULL, out, error);
 }
 
 void ur_unfolding_free(ur_unfolding *unfolding)

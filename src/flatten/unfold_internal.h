@@ -1,10 +1,13 @@
 /*
  * unfold_internal.h: what the files of the exact unfolding share: the
  * mesh's edges with their bends and what may never be folded
- * (unfold_edges.c), how two flat triangles touch and a hash grid to find
- * the triangles near one (unfold_contact.c), the state of a growing piece
- * (unfold.c), laying one triangle on it (unfold_lay.c) and turning a grown
- * piece into its outline and folds (unfold_piece.c).
+ * (unfold_edges.c), its flat faces laid in their planes (unfold_faces.c),
+ * how two flat triangles touch and a hash grid to find the triangles of a
+ * piece near a point (unfold_contact.c), joining two pieces across an edge
+ * (unfold_lay.c), whether a piece fits the room (unfold_room.c), one run
+ * of joins in a given order (unfold.c), the search over orders
+ * (unfold_search.c) and turning the pieces into outlines and folds
+ * (unfold_piece.c).
  */
 #ifndef UNROLL_UNFOLD_INTERNAL_H
 #define UNROLL_UNFOLD_INTERNAL_H
@@ -32,6 +35,11 @@ static inline size_t unfold_next(size_t half)
     return half - half % 3 + (half % 3 + 1) % 3;
 }
 
+static inline size_t unfold_previous(size_t half)
+{
+    return half - half % 3 + (half % 3 + 2) % 3;
+}
+
 static inline size_t unfold_from(const ur_mesh *mesh, size_t half)
 {
     return mesh->triangles[half / 3][half % 3];
@@ -40,6 +48,12 @@ static inline size_t unfold_from(const ur_mesh *mesh, size_t half)
 static inline size_t unfold_to(const ur_mesh *mesh, size_t half)
 {
     return mesh->triangles[half / 3][(half % 3 + 1) % 3];
+}
+
+static inline double unfold_edge_length(const ur_mesh *mesh, size_t half)
+{
+    return ur_vec3_distance(mesh->vertices[unfold_from(mesh, half)],
+                            mesh->vertices[unfold_to(mesh, half)]);
 }
 
 /* The mesh's edges, per half-edge. */
@@ -60,6 +74,27 @@ ur_status unfold_edges_build(const ur_mesh *mesh, const ur_seam *seams, size_t s
 void unfold_edges_free(unfold_edges *edges);
 
 /*
+ * The flat faces: per triangle its face (the number of the face's first
+ * triangle) and its corners in the face's plane, every face's points
+ * projected on one plane so that its triangles meet exactly.  flat[h]:
+ * half-edge h draws no fold when joined (inside a face, or turning less
+ * than the flat angle).  slack: the most an edge's length changes by the
+ * projection.
+ */
+typedef struct unfold_faces {
+    size_t *face;
+    ur_vec2 (*home)[3];
+    bool *flat;
+    double slack;
+    size_t *order; /* the edges inside faces (lower halves) in the order to join them */
+    size_t order_count;
+} unfold_faces;
+
+ur_status unfold_faces_build(const ur_mesh *mesh, const unfold_edges *edges, double flat_angle,
+                             unfold_faces *faces, ur_error *error);
+void unfold_faces_free(unfold_faces *faces);
+
+/*
  * How a candidate triangle t touches a laid one q, both counter-clockwise:
  * overlap when their interiors overlap deeper than eps; otherwise the bits
  * of t_near (q_near) are the corners of t (q) within eps of the other
@@ -74,22 +109,24 @@ typedef struct unfold_contact {
 unfold_contact unfold_triangle_contact(const ur_vec2 t[3], const ur_vec2 q[3], double eps);
 
 /*
- * The triangles of the growing piece, bucketed by the square cells their
- * boxes cover (cells of about a mean edge, hashed into slots), so that
- * laying a triangle looks at its neighbours only.  A triangle whose box
- * covers many cells is kept on a list that every query reads.
+ * The triangles of every piece, bucketed by piece and by the square cells
+ * their boxes cover (cells of about a mean edge, hashed into slots), so
+ * that a join looks at the triangles near the moved ones only.  A triangle
+ * is added again under its new piece when it moves; an entry whose
+ * triangle has left its piece is stale and skipped.  A triangle whose box
+ * covers many cells is kept on its piece's list of big ones, which every
+ * query reads.
  */
 typedef struct unfold_grid {
     double cell;
     size_t mask;        /* slots - 1, a power of two less one */
     size_t *head;       /* per slot: first entry */
-    size_t *head_piece; /* per slot: the piece head belongs to (else the slot is empty) */
-    size_t piece;       /* the piece being grown */
+    size_t *head_stamp; /* per slot: the run head belongs to (else the slot is empty) */
+    size_t stamp;       /* the run */
     size_t *entry_item; /* per entry: a triangle */
+    size_t *entry_piece;
     size_t *entry_next; /* per entry: the next in its slot */
     size_t entry_count, entry_capacity;
-    size_t *big; /* triangles on every query's list */
-    size_t big_count;
     size_t *seen; /* per triangle: the last query that found it */
     size_t query;
     size_t *found; /* what the last query found */
@@ -99,71 +136,140 @@ typedef struct unfold_grid {
 ur_status unfold_grid_init(unfold_grid *grid, size_t triangle_count, double cell, ur_error *error);
 void unfold_grid_free(unfold_grid *grid);
 
-/* Empties the grid for a new piece. */
+/* Empties the grid for a new run. */
 void unfold_grid_restart(unfold_grid *grid);
 
-ur_status unfold_grid_add(unfold_grid *grid, ur_box box, size_t triangle, ur_error *error);
+ur_status unfold_grid_add(unfold_grid *grid, ur_box box, size_t piece, size_t triangle,
+                          ur_error *error);
 
-/* Fills grid->found with every triangle whose box may meet box, once each. */
-void unfold_grid_query(unfold_grid *grid, ur_box box);
+/*
+ * Fills grid->found with every triangle of the piece (piece_of[t] ==
+ * piece) whose box may meet box, once each; false when the box covers too
+ * many cells, and the caller reads the piece's triangles itself.
+ */
+bool unfold_grid_query(unfold_grid *grid, ur_box box, size_t piece, const size_t *piece_of);
 
-/* A piece being grown and the mesh it comes from. */
+/* A piece of a run: its triangles in a list through unfolder.next_member. */
+typedef struct unfold_island {
+    size_t first, last;
+    size_t triangle_count;
+    size_t outline_count; /* half-edges not joined */
+    ur_vec2 *hull;        /* its convex hull, counter-clockwise, when the room is limited */
+    size_t hull_count, hull_capacity;
+    size_t face_count; /* flat faces, once the faces are joined (1 before) */
+    /* the piece it last failed to join as the smaller one, that piece's size then, how often */
+    size_t failed_with, failed_size, failures;
+} unfold_island;
+
+/*
+ * Two pieces of several faces that failed to join this often, across as
+ * many edges, are not tried again while neither changes: two large pieces
+ * that do not fit would otherwise be tried across every edge between them.
+ * A piece of one face is always tried.
+ */
+#define UNFOLD_MOST_FAILURES 8
+
+/* p -> to + R (p - from), R the turn by (cos, sin). */
+typedef struct unfold_motion {
+    double cos, sin;
+    ur_vec2 from, to;
+} unfold_motion;
+
+static inline ur_vec2 unfold_move(const unfold_motion *m, ur_vec2 p)
+{
+    ur_vec2 d = ur_vec2_sub(p, m->from);
+    return ur_vec2_add(m->to,
+                       ur_vec2_make(m->cos * d.x - m->sin * d.y, m->sin * d.x + m->cos * d.y));
+}
+
+/* How many of the triangles that stopped the last joins are tried first (unfold_lay.c). */
+#define UNFOLD_CULPRITS 8
+
+/* The mesh, its edges and faces, and the state of the current run of joins. */
 typedef struct unfolder {
     const ur_mesh *mesh;
+    ur_unfold_options options;
     unfold_edges edges;
-    size_t *piece;      /* per triangle: the piece it is laid in, or UNFOLD_NONE */
-    ur_vec2 (*flat)[3]; /* per triangle: its corners, once laid */
+    unfold_faces faces;
+    double eps;      /* points closer than this meet */
+    bool room;       /* options.room_* limit the pieces: hulls are kept */
+    bool room_binds; /* joins that do not fit the room are refused (not inside faces) */
+    /* the run: */
+    size_t *piece;      /* per triangle: its piece (an island's number) */
+    ur_vec2 (*flat)[3]; /* per triangle: its corners on its piece */
     bool *joined;       /* per half-edge: joined to its twin inside a piece */
     size_t *parent;     /* union-find over corners 3 t + k: the flat vertices of pieces */
-    size_t *members;    /* the triangles of the current piece, in the order laid */
-    size_t member_count;
-    size_t current; /* the number of the piece being grown */
-    double eps;     /* UNFOLD_CONTACT of the mesh's size */
+    size_t *next_member;
+    unfold_island *islands; /* per triangle number: the piece it started */
+    unfold_grid grid;
+    size_t *pair_small, *pair_large; /* the half-edges a join joins, in the two pieces */
+    size_t pair_count, slit_count;   /* slits follow the pairs */
+    bool slits;                      /* allowed: inside faces */
+    size_t *roots; /* 2 per pair: the flat vertices it makes one, small's then large's */
+    ur_vec2 *hull_points, *hull_chain; /* room for the hull of every corner */
+    size_t culprits[UNFOLD_CULPRITS];  /* the triangles that stopped the last joins */
 } unfolder;
 
 /* The union-find root of corner c (with path halving). */
 size_t unfold_find(unfolder *u, size_t corner);
 
-/*
- * A triangle about to be laid (unfold_lay.c): across half-edge entry of
- * its own, from the laid triangle on the other side.
- */
-typedef struct unfold_candidate {
-    size_t triangle, entry;
-    ur_vec2 corner[3]; /* flat corners in the triangle's corner order */
-    size_t join[3];    /* per half-edge k: the laid twin it is joined to, or UNFOLD_NONE */
-    size_t root[3][2]; /* per corner: the flat vertices (roots) it is one with, or UNFOLD_NONE */
-} unfold_candidate;
+/* Joins the pieces on either side of half-edge h if they fit together (unfold_lay.c). */
+ur_status unfold_try_join(unfolder *u, size_t h, bool *joined, ur_error *error);
 
-/* The first triangle of a piece: corner 0 at the origin, corner 1 along +x. */
-void unfold_seed(const unfolder *u, size_t triangle, unfold_candidate *c);
+/* ---- the room (unfold_room.c) ---- */
 
 /*
- * Lays the triangle of half-edge entry on the laid triangle across it,
- * and joins it along its other edges too where it lands on a laid twin
- * edge on edge, closing the ring of triangles around a flat vertex.
- * False when that would join it on all three edges (filling a hole, which
- * a disk has not: rounding).
+ * The convex hull of points (count of them, sorted in place),
+ * counter-clockwise, into hull (which may be points); chain: room for
+ * count + 1 points.
  */
-bool unfold_prepare(unfolder *u, size_t entry, unfold_candidate *c);
+size_t unfold_hull(ur_vec2 *points, size_t count, ur_vec2 *chain, ur_vec2 *hull);
+
+/* The sides of the smallest rectangle round a convex hull, longer first. */
+void unfold_hull_size(const ur_vec2 *hull, size_t count, double *length, double *width);
+
+/* Whether a convex hull fits the room of the options. */
+bool unfold_hull_fits(const unfolder *u, const ur_vec2 *hull, size_t count);
+
+/* ---- one run (unfold.c) ---- */
+
+/* The outcome of a run, compared: fewer pieces, then fewer of one face, then less cut. */
+typedef struct unfold_score {
+    size_t pieces, single_face;
+    double seam_length;
+} unfold_score;
+
+/* -1, 0, 1 as a is better than, as good as or worse than b. */
+int unfold_score_compare(unfold_score a, unfold_score b);
 
 /*
- * Whether the candidate fits the piece: overlaps none of its triangles and
- * touches them only at the flat vertices it is joined to.
+ * The faces laid (every triangle a piece, joined across the flat edges
+ * inside faces), then the pieces joined across order[0..count) in turn.
  */
-bool unfold_fits(unfolder *u, unfold_grid *grid, const unfold_candidate *c);
+ur_status unfold_run(unfolder *u, const size_t *order, size_t count, unfold_score *score,
+                     ur_error *error);
 
-/* Lays the candidate in piece u->current: its corners, joins, flat vertices, grid. */
-ur_status unfold_commit(unfolder *u, unfold_grid *grid, const unfold_candidate *c, ur_error *error);
+/* The half-edge leaving the end of h (arriving at the start of h) on its piece's outline. */
+size_t unfold_outline_next(const unfolder *u, size_t h);
+size_t unfold_outline_previous(const unfolder *u, size_t h);
+
+/* ---- the search (unfold_search.c) ---- */
 
 /*
- * Turns the piece just grown (u->members) into *piece: triangles and their
- * flat corners, the folds, the outline (walked along the edges not
- * joined) checked to be a simple polygon with GEOS, and the areas.  Frees
- * what it made on failure.
+ * Improves order (count edges; the best found is left in it) while the
+ * budget lasts, then runs it again so that u holds its pieces; *steps the
+ * steps done.
  */
-ur_status unfold_piece_build(const unfolder *u, GEOSContextHandle_t geos, ur_unfolded_piece *piece,
-                             ur_error *error);
+ur_status unfold_search(unfolder *u, size_t *order, size_t count, size_t *steps, ur_error *error);
+
+/*
+ * Turns piece p of the last run into *piece: triangles and their flat
+ * corners, the folds, the outline (walked along the edges not joined)
+ * checked to be a simple polygon with GEOS, and the areas.  index numbers
+ * it in messages.  Frees what it made on failure.
+ */
+ur_status unfold_piece_build(const unfolder *u, size_t p, size_t index, GEOSContextHandle_t geos,
+                             ur_unfolded_piece *piece, ur_error *error);
 
 void unfold_piece_free(ur_unfolded_piece *piece);
 

@@ -1,203 +1,286 @@
 /*
- * unfold_lay.c: laying one triangle on a growing piece: placing it rigidly
- * on the edge it shares with a laid triangle, joining it to laid twins it
- * meets edge to edge, and deciding whether it fits.
+ * unfold_lay.c: joining two pieces across an edge: the smaller moved
+ * rigidly onto the larger so that the edge meets, the edges that land on
+ * each other next to it joined too, and the join kept only if the result
+ * is still a disk laid flat without overlap.
  *
- * The piece is a disk whose flat vertices are classes of triangle corners
- * (union-find over corners, joined across every edge the piece joins).  A
- * new triangle keeps it a disk when it meets the piece along a path of
- * edges it is joined across, and nowhere else but at those edges' flat
- * vertices.  So a laid triangle it touches must touch it only at a flat
- * vertex the two share, at one corner: two shared corners would be an edge
- * they meet along without being joined across it (a slit, or a hole when
- * the edge is elsewhere on the border).  Across its entry edge the new
- * triangle is joined to its parent; where it closes the ring around a
- * flat vertex of the mesh (the angles there add to 2 pi) it lands on the
- * laid twin of another of its edges too and is joined there as well.
+ * A piece is a disk whose flat vertices are classes of triangle corners
+ * (union-find over corners, joined across every edge the piece joins).
+ * Two disks joined along a path of their outlines make a disk, so the
+ * join follows the outlines away from the edge at both its ends for as
+ * long as the next edges are twins that land on each other (closing the
+ * ring of triangles round a vertex whose angles add to 2 pi, or following
+ * a straight crease), and joins those too, but never the whole outline of
+ * either piece (that would close a hole).  Everywhere else the pieces may
+ * touch only at the flat vertices the join makes one: two triangles may
+ * share one such vertex, not two (an edge they meet along without being
+ * joined across it would be a slit, or a hole).  Inside a flat face, which
+ * is rigid, a slit is allowed: a face round a hole can only be laid flat
+ * in one piece with a cut from its hole to its outside, and both sides of
+ * that cut lie on each other.
  */
 #include "unfold_internal.h"
 
-/* Corner k + 2 of triangle t, when corner k lies at p0 and corner k + 1 at p1. */
-static ur_vec2 third_corner(const ur_mesh *mesh, size_t t, size_t k, ur_vec2 p0, ur_vec2 p1)
+#include <stdlib.h>
+#include <string.h>
+
+static ur_vec2 corner_at(const unfolder *u, size_t corner)
 {
-    ur_vec3 a = mesh->vertices[mesh->triangles[t][k]];
-    ur_vec3 b = mesh->vertices[mesh->triangles[t][(k + 1) % 3]];
-    ur_vec3 c = mesh->vertices[mesh->triangles[t][(k + 2) % 3]];
-    ur_vec3 side = ur_vec3_sub(b, a), other = ur_vec3_sub(c, a);
-    double length = ur_vec3_length(side);
-    double along = ur_vec3_dot(other, side) / length;
-    double across = ur_vec3_length(ur_vec3_cross(side, other)) / length;
-    ur_vec2 d = ur_vec2_sub(p1, p0);
-    d = ur_vec2_scale(d, 1.0 / ur_vec2_length(d));
-    /* The triangle runs counter-clockwise, so its third corner is left of p0 -> p1. */
-    return ur_vec2_add_scaled(ur_vec2_add_scaled(p0, d, along), ur_vec2_make(-d.y, d.x), across);
+    return u->flat[corner / 3][corner % 3];
 }
 
-static void candidate_start(unfold_candidate *c, size_t triangle, size_t entry)
+/* The motion that lays half-edge small_half on its twin large_half, midpoint on midpoint. */
+static unfold_motion hinge_motion(const unfolder *u, size_t small_half, size_t large_half)
 {
-    c->triangle = triangle;
-    c->entry = entry;
-    for (int k = 0; k < 3; k++)
-        c->join[k] = c->root[k][0] = c->root[k][1] = UNFOLD_NONE;
+    ur_vec2 xs = corner_at(u, small_half), ys = corner_at(u, unfold_next(small_half));
+    ur_vec2 yl = corner_at(u, large_half), xl = corner_at(u, unfold_next(large_half));
+    /* small_half runs from x to y, its twin from y to x: turn x to y onto x to y. */
+    ur_vec2 ds = ur_vec2_sub(ys, xs), dl = ur_vec2_sub(yl, xl);
+    double angle = atan2(ur_vec2_cross(ds, dl), ur_vec2_dot(ds, dl));
+    return (unfold_motion){cos(angle), sin(angle), ur_vec2_scale(ur_vec2_add(xs, ys), 0.5),
+                           ur_vec2_scale(ur_vec2_add(xl, yl), 0.5)};
 }
 
-void unfold_seed(const unfolder *u, size_t triangle, unfold_candidate *c)
+static bool lands_on(const unfolder *u, const unfold_motion *m, size_t small_corner,
+                     size_t large_corner)
 {
-    candidate_start(c, triangle, UNFOLD_NONE);
-    const ur_mesh *mesh = u->mesh;
-    double length = ur_vec3_distance(mesh->vertices[mesh->triangles[triangle][0]],
-                                     mesh->vertices[mesh->triangles[triangle][1]]);
-    c->corner[0] = ur_vec2_make(0, 0);
-    c->corner[1] = ur_vec2_make(length, 0);
-    c->corner[2] = third_corner(mesh, triangle, 0, c->corner[0], c->corner[1]);
+    return ur_vec2_distance(unfold_move(m, corner_at(u, small_corner)),
+                            corner_at(u, large_corner)) <= u->eps;
 }
 
-/* Records that corner k of the candidate is flat vertex root; false if it already is another. */
-static bool add_root(unfold_candidate *c, size_t k, size_t root)
+static void add_pair(unfolder *u, size_t small_half, size_t large_half)
 {
-    if (c->root[k][0] == UNFOLD_NONE || c->root[k][0] == root) {
-        c->root[k][0] = root;
-        return true;
-    }
-    if (c->root[k][1] == UNFOLD_NONE || c->root[k][1] == root) {
-        c->root[k][1] = root;
-        return true;
-    }
-    return false;
+    u->pair_small[u->pair_count] = small_half;
+    u->pair_large[u->pair_count] = large_half;
+    u->pair_count++;
+}
+
+/* Whether s and l are twins that may be joined, and there is room for one more pair. */
+static bool zips(const unfolder *u, size_t s, size_t l, size_t most)
+{
+    return s != UNFOLD_NONE && l != UNFOLD_NONE && u->edges.twins[s] == l && !u->edges.cut[s] &&
+           u->pair_count + 1 < most;
 }
 
 /*
- * Half-edge k of the candidate runs from its corner k to corner k + 1; its
- * twin q runs from corner q % 3 of its triangle (the same mesh vertex as
- * corner k + 1) to the next.  The twin's corners for the candidate's k and
- * k + 1 are stored in *mine and *next.
+ * The pairs of half-edges the join joins: the hinge, then along the
+ * outlines from its two ends while the next edges land on each other.
  */
-static void twin_corners(size_t q, size_t *mine, size_t *next)
+static void find_pairs(unfolder *u, const unfold_motion *m, size_t hinge_small, size_t hinge_large,
+                       size_t most)
 {
-    *mine = 3 * (q / 3) + (q % 3 + 1) % 3;
-    *next = q;
-}
-
-/* Joins half-edge k to its twin when the twin is laid in this piece, edge on edge. */
-static bool try_join(unfolder *u, unfold_candidate *c, size_t k)
-{
-    size_t half = 3 * c->triangle + k, q = u->edges.twins[half];
-    if (q == UR_NO_EDGE || u->edges.cut[half] || u->piece[q / 3] != u->current)
-        return false;
-    size_t mine, next, k1 = (k + 1) % 3;
-    twin_corners(q, &mine, &next);
-    const ur_vec2 *laid = u->flat[q / 3];
-    if (ur_vec2_distance(c->corner[k], laid[mine % 3]) > u->eps ||
-        ur_vec2_distance(c->corner[k1], laid[next % 3]) > u->eps)
-        return false;
-    /* The shared corner must be the same flat vertex, or the join would pinch the disk. */
-    size_t root_mine = unfold_find(u, mine), root_next = unfold_find(u, next);
-    if ((c->root[k][0] != UNFOLD_NONE && c->root[k][0] != root_mine) ||
-        (c->root[k1][0] != UNFOLD_NONE && c->root[k1][0] != root_next))
-        return false;
-    add_root(c, k, root_mine);
-    add_root(c, k1, root_next);
-    c->join[k] = q;
-    return true;
-}
-
-bool unfold_prepare(unfolder *u, size_t entry, unfold_candidate *c)
-{
-    size_t t = entry / 3, k = entry % 3, h = u->edges.twins[entry];
-    size_t mine, next;
-    twin_corners(h, &mine, &next);
-    candidate_start(c, t, entry);
-    c->corner[k] = u->flat[h / 3][mine % 3];
-    c->corner[(k + 1) % 3] = u->flat[h / 3][next % 3];
-    c->corner[(k + 2) % 3] = third_corner(u->mesh, t, k, c->corner[k], c->corner[(k + 1) % 3]);
-    c->join[k] = h;
-    add_root(c, k, unfold_find(u, mine));
-    add_root(c, (k + 1) % 3, unfold_find(u, next));
-    bool first = try_join(u, c, (k + 1) % 3);
-    bool second = try_join(u, c, (k + 2) % 3);
-    /* Joined on all three edges it would fill a hole, which a disk has not: rounding. */
-    return !(first && second);
-}
-
-/* Whether corner i of the candidate and corner j of laid triangle q are one flat vertex. */
-static bool same_vertex(unfolder *u, const unfold_candidate *c, int i, size_t q, int j)
-{
-    if (ur_vec2_distance(c->corner[i], u->flat[q][j]) > u->eps)
-        return false;
-    size_t root = unfold_find(u, 3 * q + (size_t)j);
-    return root == c->root[i][0] || root == c->root[i][1];
-}
-
-/* The bit of the candidate's corner that corner j of laid triangle q is one with; 0 if none. */
-static unsigned corner_of_laid(unfolder *u, const unfold_candidate *c, size_t q, int j)
-{
-    for (int i = 0; i < 3; i++)
-        if (same_vertex(u, c, i, q, j))
-            return 1u << i;
-    return 0;
-}
-
-/* The bit of the candidate's corner i if it is one with a corner of laid triangle q; else 0. */
-static unsigned corner_if_shared(unfolder *u, const unfold_candidate *c, int i, size_t q)
-{
-    for (int j = 0; j < 3; j++)
-        if (same_vertex(u, c, i, q, j))
-            return 1u << i;
-    return 0;
-}
-
-/* Whether the candidate and laid triangle q meet at most at one flat vertex they share. */
-static bool touches_well(unfolder *u, const unfold_candidate *c, size_t q)
-{
-    unfold_contact contact = unfold_triangle_contact(c->corner, u->flat[q], u->eps);
-    if (contact.overlap)
-        return false;
-    unsigned shared = 0;
-    for (int k = 0; k < 3; k++) {
-        if (contact.t_near & (1u << k)) {
-            unsigned s = corner_if_shared(u, c, k, q);
-            if (!s)
-                return false;
-            shared |= s;
-        }
-        if (contact.q_near & (1u << k)) {
-            unsigned s = corner_of_laid(u, c, q, k);
-            if (!s)
-                return false;
-            shared |= s;
-        }
+    u->pair_count = 0;
+    add_pair(u, hinge_small, hinge_large);
+    /* From the hinge's end y: on, round the small piece; back, round the large one. */
+    for (size_t s = hinge_small, l = hinge_large;;) {
+        size_t s2 = unfold_outline_next(u, s), l2 = unfold_outline_previous(u, l);
+        if (!zips(u, s2, l2, most) || !lands_on(u, m, unfold_next(s2), l2))
+            break;
+        add_pair(u, s2, l2);
+        s = s2, l = l2;
     }
-    return shared == 0 || (shared & (shared - 1)) == 0;
+    /* From its start x: back round the small piece, on round the large one. */
+    for (size_t s = hinge_small, l = hinge_large;;) {
+        size_t s2 = unfold_outline_previous(u, s), l2 = unfold_outline_next(u, l);
+        if (!zips(u, s2, l2, most) || !lands_on(u, m, s2, unfold_next(l2)))
+            break;
+        add_pair(u, s2, l2);
+        s = s2, l = l2;
+    }
+    /* The flat vertices each pair makes one: its start's and its end's. */
+    for (size_t i = 0; i < u->pair_count; i++) {
+        size_t s = u->pair_small[i], l = u->pair_large[i];
+        u->roots[4 * i] = unfold_find(u, s);
+        u->roots[4 * i + 1] = unfold_find(u, unfold_next(l));
+        u->roots[4 * i + 2] = unfold_find(u, unfold_next(s));
+        u->roots[4 * i + 3] = unfold_find(u, l);
+    }
 }
 
-static bool joined_to(const unfold_candidate *c, size_t q)
+static bool is_pair(const unfolder *u, size_t small_half)
 {
-    for (int k = 0; k < 3; k++)
-        if (c->join[k] != UNFOLD_NONE && c->join[k] / 3 == q)
+    for (size_t i = 0; i < u->pair_count; i++)
+        if (u->pair_small[i] == small_half)
             return true;
     return false;
 }
 
-static ur_box candidate_box(const unfold_candidate *c, double eps)
+/*
+ * Inside a face: the edges of the small piece that land on their twins in
+ * the large one without being joined, slits, after the pairs (slit_count
+ * of them), with the flat vertices at their ends as if they were made one.
+ */
+static void find_slits(unfolder *u, const unfold_motion *m, size_t small, size_t large)
 {
-    ur_box box = ur_box_of_points(c->corner, 3);
+    size_t end = u->pair_count;
+    for (size_t t = u->islands[small].first; t != UNFOLD_NONE; t = u->next_member[t])
+        for (size_t h = 3 * t; h < 3 * t + 3; h++) {
+            size_t g = u->edges.twins[h];
+            if (g == UR_NO_EDGE || u->piece[g / 3] != large || is_pair(u, h) ||
+                !lands_on(u, m, h, unfold_next(g)) || !lands_on(u, m, unfold_next(h), g))
+                continue;
+            u->pair_small[end] = h;
+            u->pair_large[end] = g;
+            u->roots[4 * end] = unfold_find(u, h);
+            u->roots[4 * end + 1] = unfold_find(u, unfold_next(g));
+            u->roots[4 * end + 2] = unfold_find(u, unfold_next(h));
+            u->roots[4 * end + 3] = unfold_find(u, g);
+            end++;
+        }
+    u->slit_count = end - u->pair_count;
+}
+
+/* Whether corner cs of the small piece and cl of the large become one flat vertex (or a slit's
+ * end). */
+static bool made_one(unfolder *u, size_t cs, size_t cl)
+{
+    size_t rs = unfold_find(u, cs), rl = unfold_find(u, cl);
+    for (size_t i = 0; i < 2 * (u->pair_count + u->slit_count); i++)
+        if (u->roots[2 * i] == rs && u->roots[2 * i + 1] == rl)
+            return true;
+    return false;
+}
+
+static bool paired(const unfolder *u, size_t s, size_t q)
+{
+    for (size_t i = 0; i < u->pair_count + u->slit_count; i++)
+        if (u->pair_small[i] / 3 == s && u->pair_large[i] / 3 == q)
+            return true;
+    return false;
+}
+
+/* The bit of corner j of q if it is one with corner i of moved small triangle s; else 0. */
+static unsigned shared_corner(unfolder *u, size_t s, const ur_vec2 moved[3], int i, size_t q, int j)
+{
+    if (ur_vec2_distance(moved[i], u->flat[q][j]) > u->eps)
+        return 0;
+    return made_one(u, 3 * s + (size_t)i, 3 * q + (size_t)j) ? 1u << j : 0;
+}
+
+/* Whether moved small triangle s and large triangle q meet at most at one flat vertex made one. */
+static bool touches_well(unfolder *u, size_t s, const ur_vec2 moved[3], size_t q)
+{
+    if (paired(u, s, q))
+        return true;
+    unfold_contact contact = unfold_triangle_contact(moved, u->flat[q], u->eps);
+    if (contact.overlap)
+        return false;
+    unsigned shared = 0;
+    for (int i = 0; i < 3; i++) {
+        if (!(contact.t_near & (1u << i)))
+            continue;
+        unsigned bit = 0;
+        for (int j = 0; j < 3 && !bit; j++)
+            bit = shared_corner(u, s, moved, i, q, j);
+        if (!bit)
+            return false;
+        shared |= bit;
+    }
+    for (int j = 0; j < 3; j++) {
+        if (!(contact.q_near & (1u << j)))
+            continue;
+        unsigned bit = 0;
+        for (int i = 0; i < 3 && !bit; i++)
+            bit = shared_corner(u, s, moved, i, q, j);
+        if (!bit)
+            return false;
+        shared |= bit;
+    }
+    return (shared & (shared - 1)) == 0;
+}
+
+static ur_box padded_box(const ur_vec2 corners[3], double eps)
+{
+    ur_box box = ur_box_of_points(corners, 3);
     box.min = ur_vec2_sub(box.min, ur_vec2_make(eps, eps));
     box.max = ur_vec2_add(box.max, ur_vec2_make(eps, eps));
     return box;
 }
 
-bool unfold_fits(unfolder *u, unfold_grid *grid, const unfold_candidate *c)
+static bool boxes_meet(ur_box box, const ur_vec2 q[3])
 {
-    unfold_grid_query(grid, candidate_box(c, u->eps));
-    for (size_t i = 0; i < grid->found_count; i++) {
-        size_t q = grid->found[i];
-        if (!joined_to(c, q) && !touches_well(u, c, q))
+    for (int axis = 0; axis < 2; axis++) {
+        double low = axis ? box.min.y : box.min.x, high = axis ? box.max.y : box.max.x;
+        double a = axis ? q[0].y : q[0].x, b = axis ? q[1].y : q[1].x, c = axis ? q[2].y : q[2].x;
+        if ((a < low && b < low && c < low) || (a > high && b > high && c > high))
             return false;
     }
     return true;
 }
 
-static void join(unfolder *u, size_t a, size_t b)
+/* Whether moved small triangle s touches the large piece well. */
+static bool fits_large(unfolder *u, size_t s, const ur_vec2 moved[3], size_t large)
+{
+    unfold_grid *grid = &u->grid;
+    ur_box box = padded_box(moved, u->eps);
+    if (unfold_grid_query(grid, box, large, u->piece)) {
+        for (size_t i = 0; i < grid->found_count; i++) {
+            size_t q = grid->found[i];
+            if (boxes_meet(box, u->flat[q]) && !touches_well(u, s, moved, q))
+                return false;
+        }
+        return true;
+    }
+    for (size_t q = u->islands[large].first; q != UNFOLD_NONE; q = u->next_member[q])
+        if (boxes_meet(box, u->flat[q]) && !touches_well(u, s, moved, q))
+            return false;
+    return true;
+}
+
+static void move_triangle(const unfold_motion *m, const ur_vec2 in[3], ur_vec2 out[3])
+{
+    for (int k = 0; k < 3; k++)
+        out[k] = unfold_move(m, in[k]);
+}
+
+static bool fits_one(unfolder *u, const unfold_motion *m, size_t s, size_t large)
+{
+    ur_vec2 moved[3];
+    move_triangle(m, u->flat[s], moved);
+    if (fits_large(u, s, moved, large))
+        return true;
+    /* Remember it: the next try of these pieces, across a neighbouring edge, fails there too. */
+    memmove(u->culprits + 1, u->culprits, (UNFOLD_CULPRITS - 1) * sizeof *u->culprits);
+    u->culprits[0] = s;
+    return false;
+}
+
+/*
+ * Whether the moved small piece fits the large.  Two large pieces that do
+ * not fit are tried across every edge between them, and most of their
+ * triangles would overlap: the triangles that stopped the last tries go
+ * first, then every 16th, then all, so that a join that fails fails early.
+ */
+static bool fits(unfolder *u, const unfold_motion *m, size_t small, size_t large)
+{
+    for (size_t i = 0; i < UNFOLD_CULPRITS; i++) {
+        size_t s = u->culprits[i];
+        if (s != UNFOLD_NONE && u->piece[s] == small && !fits_one(u, m, s, large))
+            return false;
+    }
+    size_t stride = u->islands[small].triangle_count > 64 ? 16 : 1;
+    for (size_t pass = stride; pass >= 1; pass = pass == 1 ? 0 : 1) {
+        size_t i = 0;
+        for (size_t s = u->islands[small].first; s != UNFOLD_NONE; s = u->next_member[s], i++)
+            if (i % pass == 0 && !fits_one(u, m, s, large))
+                return false;
+    }
+    return true;
+}
+
+/* The hull of both pieces into u->hull_points; its count. */
+static size_t joined_hull(unfolder *u, const unfold_motion *m, size_t small, size_t large)
+{
+    const unfold_island *a = &u->islands[small], *b = &u->islands[large];
+    size_t count = 0;
+    for (size_t i = 0; i < a->hull_count; i++)
+        u->hull_points[count++] = unfold_move(m, a->hull[i]);
+    for (size_t i = 0; i < b->hull_count; i++)
+        u->hull_points[count++] = b->hull[i];
+    return unfold_hull(u->hull_points, count, u->hull_chain, u->hull_points);
+}
+
+static void unite(unfolder *u, size_t a, size_t b)
 {
     a = unfold_find(u, a);
     b = unfold_find(u, b);
@@ -205,22 +288,103 @@ static void join(unfolder *u, size_t a, size_t b)
         u->parent[a] = b;
 }
 
-ur_status unfold_commit(unfolder *u, unfold_grid *grid, const unfold_candidate *c, ur_error *error)
+static ur_status keep_hull(unfolder *u, size_t large, size_t count, ur_error *error)
 {
-    size_t t = c->triangle;
-    u->piece[t] = u->current;
-    for (int k = 0; k < 3; k++) {
-        u->flat[t][k] = c->corner[k];
-        size_t q = c->join[k];
-        if (q == UNFOLD_NONE)
-            continue;
-        size_t mine, next;
-        twin_corners(q, &mine, &next);
-        u->joined[3 * t + (size_t)k] = u->joined[q] = true;
-        join(u, 3 * t + (size_t)k, mine);
-        join(u, 3 * t + (size_t)(k + 1) % 3, next);
+    unfold_island *island = &u->islands[large];
+    if (count > island->hull_capacity) {
+        ur_vec2 *grown = realloc(island->hull, 2 * count * sizeof *grown);
+        if (!grown)
+            return ur_error_out_of_memory(error);
+        island->hull = grown;
+        island->hull_capacity = 2 * count;
     }
-    u->members[u->member_count++] = t;
-    ur_box box = ur_box_of_points(c->corner, 3);
-    return unfold_grid_add(grid, box, t, error);
+    for (size_t i = 0; i < count; i++)
+        island->hull[i] = u->hull_points[i];
+    island->hull_count = count;
+    return UR_OK;
+}
+
+static ur_status commit(unfolder *u, const unfold_motion *m, size_t small, size_t large,
+                        ur_error *error)
+{
+    for (size_t i = 0; i < u->pair_count; i++) {
+        size_t s = u->pair_small[i], l = u->pair_large[i];
+        u->joined[s] = u->joined[l] = true;
+        unite(u, s, unfold_next(l));
+        unite(u, unfold_next(s), l);
+    }
+    unfold_island *a = &u->islands[small], *b = &u->islands[large];
+    for (size_t s = a->first; s != UNFOLD_NONE; s = u->next_member[s]) {
+        move_triangle(m, u->flat[s], u->flat[s]);
+        u->piece[s] = large;
+        if (unfold_grid_add(&u->grid, ur_box_of_points(u->flat[s], 3), large, s, error) != UR_OK)
+            return UR_ERROR_INTERNAL;
+    }
+    u->next_member[b->last] = a->first;
+    b->last = a->last;
+    b->triangle_count += a->triangle_count;
+    b->face_count += a->face_count;
+    b->failures = 0;
+    b->outline_count = b->outline_count + a->outline_count - 2 * u->pair_count;
+    a->triangle_count = 0;
+    a->first = a->last = UNFOLD_NONE;
+    return UR_OK;
+}
+
+/* Whether two pieces of several faces have failed to join too often (not inside faces). */
+static bool given_up(const unfolder *u, size_t small, size_t large)
+{
+    const unfold_island *a = &u->islands[small];
+    return !u->slits && a->face_count > 1 && u->islands[large].face_count > 1 &&
+           a->failed_with == large && a->failed_size == u->islands[large].triangle_count &&
+           a->failures >= UNFOLD_MOST_FAILURES;
+}
+
+static void count_failure(unfolder *u, size_t small, size_t large)
+{
+    unfold_island *a = &u->islands[small];
+    size_t size = u->islands[large].triangle_count;
+    if (a->failed_with == large && a->failed_size == size) {
+        a->failures++;
+        return;
+    }
+    a->failed_with = large;
+    a->failed_size = size;
+    a->failures = 1;
+}
+
+ur_status unfold_try_join(unfolder *u, size_t h, bool *joined, ur_error *error)
+{
+    *joined = false;
+    size_t g = u->edges.twins[h];
+    if (g == UR_NO_EDGE || u->edges.cut[h] || u->joined[h])
+        return UR_OK;
+    size_t a = u->piece[h / 3], b = u->piece[g / 3];
+    if (a == b)
+        return UR_OK;
+    size_t na = u->islands[a].triangle_count, nb = u->islands[b].triangle_count;
+    bool a_small = na < nb || (na == nb && a > b);
+    size_t small = a_small ? a : b, large = a_small ? b : a;
+    if (given_up(u, small, large))
+        return UR_OK;
+    size_t hinge_small = a_small ? h : g, hinge_large = a_small ? g : h;
+    unfold_motion m = hinge_motion(u, hinge_small, hinge_large);
+    size_t hull_count = u->room ? joined_hull(u, &m, small, large) : 0;
+    if (u->room && u->room_binds && !unfold_hull_fits(u, u->hull_points, hull_count))
+        return UR_OK;
+    size_t most = u->islands[small].outline_count < u->islands[large].outline_count
+                      ? u->islands[small].outline_count
+                      : u->islands[large].outline_count;
+    find_pairs(u, &m, hinge_small, hinge_large, most);
+    u->slit_count = 0;
+    if (u->slits)
+        find_slits(u, &m, small, large);
+    if (!fits(u, &m, small, large)) {
+        count_failure(u, small, large);
+        return UR_OK;
+    }
+    if (u->room && keep_hull(u, large, hull_count, error) != UR_OK)
+        return UR_ERROR_INTERNAL;
+    *joined = true;
+    return commit(u, &m, small, large, error);
 }

@@ -15,16 +15,39 @@
 
 #include <stdlib.h>
 
-static ur_status copy_triangles(const unfolder *u, ur_unfolded_piece *piece, ur_error *error)
+static int compare_sizes(const void *a, const void *b)
 {
-    size_t n = u->member_count;
+    size_t x = *(const size_t *)a, y = *(const size_t *)b;
+    return (x > y) - (x < y);
+}
+
+/* How many flat faces the piece's triangles (sorted) lie in. */
+static ur_status count_faces(const unfolder *u, ur_unfolded_piece *piece, ur_error *error)
+{
+    size_t n = piece->triangle_count;
+    size_t *faces = ur_alloc_array(n, sizeof *faces, error);
+    if (!faces)
+        return UR_ERROR_INTERNAL;
+    for (size_t i = 0; i < n; i++)
+        faces[i] = u->faces.face[piece->triangles[i]];
+    qsort(faces, n, sizeof *faces, compare_sizes);
+    for (size_t i = 0; i < n; i++)
+        piece->face_count += i == 0 || faces[i] != faces[i - 1];
+    free(faces);
+    return UR_OK;
+}
+
+static ur_status copy_triangles(const unfolder *u, size_t p, ur_unfolded_piece *piece,
+                                ur_error *error)
+{
+    size_t n = u->islands[p].triangle_count;
     piece->triangles = ur_alloc_array(n, sizeof *piece->triangles, error);
     piece->flat = ur_alloc_array(n, sizeof *piece->flat, error);
     if (!piece->triangles || !piece->flat)
         return UR_ERROR_INTERNAL;
     const ur_mesh *mesh = u->mesh;
-    for (size_t i = 0; i < n; i++) {
-        size_t t = u->members[i];
+    size_t i = 0;
+    for (size_t t = u->islands[p].first; t != UNFOLD_NONE; t = u->next_member[t], i++) {
         piece->triangles[i] = t;
         for (int k = 0; k < 3; k++)
             piece->flat[i][k] = u->flat[t][k];
@@ -34,26 +57,26 @@ static ur_status copy_triangles(const unfolder *u, ur_unfolded_piece *piece, ur_
         piece->area_3d += 0.5 * ur_vec3_length(ur_vec3_cross(ur_vec3_sub(b, a), ur_vec3_sub(c, a)));
     }
     piece->triangle_count = n;
-    return UR_OK;
+    return count_faces(u, piece, error);
 }
 
 /* Whether half-edge h is a fold of its piece, counted from its lower-numbered half. */
 static bool is_fold(const unfolder *u, size_t h)
 {
-    return u->joined[h] && h < u->edges.twins[h] && fabs(u->edges.bend[h]) >= UR_UNFOLD_FLAT_ANGLE;
+    return u->joined[h] && h < u->edges.twins[h] && !u->faces.flat[h];
 }
 
 static ur_status collect_folds(const unfolder *u, ur_unfolded_piece *piece, ur_error *error)
 {
     size_t count = 0;
-    for (size_t i = 0; i < u->member_count; i++)
-        for (size_t h = 3 * u->members[i]; h < 3 * u->members[i] + 3; h++)
+    for (size_t i = 0; i < piece->triangle_count; i++)
+        for (size_t h = 3 * piece->triangles[i]; h < 3 * piece->triangles[i] + 3; h++)
             count += is_fold(u, h);
     piece->folds = ur_alloc_array(count, sizeof *piece->folds, error);
     if (!piece->folds)
         return UR_ERROR_INTERNAL;
-    for (size_t i = 0; i < u->member_count; i++)
-        for (size_t h = 3 * u->members[i]; h < 3 * u->members[i] + 3; h++) {
+    for (size_t i = 0; i < piece->triangle_count; i++)
+        for (size_t h = 3 * piece->triangles[i]; h < 3 * piece->triangles[i] + 3; h++) {
             if (!is_fold(u, h))
                 continue;
             double bend = u->edges.bend[h];
@@ -69,36 +92,25 @@ static ur_status collect_folds(const unfolder *u, ur_unfolded_piece *piece, ur_e
     return UR_OK;
 }
 
-/* The half-edge not joined that leaves the end of half-edge h, turning about it. */
-static size_t next_on_outline(const unfolder *u, size_t h, size_t limit)
-{
-    size_t n = unfold_next(h);
-    for (size_t turns = 0; u->joined[n]; turns++) {
-        if (turns > limit)
-            return UNFOLD_NONE;
-        n = unfold_next(u->edges.twins[n]);
-    }
-    return n;
-}
-
-static ur_status not_a_disk(const unfolder *u, ur_error *error)
+static ur_status not_a_disk(size_t index, ur_error *error)
 {
     return ur_error_set(error, UR_ERROR_INTERNAL,
                         "piece %zu of the unfolding is not a disk (its outline is not one loop)",
-                        u->current + 1);
+                        index + 1);
 }
 
-static ur_status walk_outline(const unfolder *u, ur_unfolded_piece *piece, ur_error *error)
+static ur_status walk_outline(const unfolder *u, size_t index, ur_unfolded_piece *piece,
+                              ur_error *error)
 {
-    size_t count = 0, start = UNFOLD_NONE, limit = 3 * u->member_count;
-    for (size_t i = 0; i < u->member_count; i++)
-        for (size_t h = 3 * u->members[i]; h < 3 * u->members[i] + 3; h++)
+    size_t count = 0, start = UNFOLD_NONE;
+    for (size_t i = 0; i < piece->triangle_count; i++)
+        for (size_t h = 3 * piece->triangles[i]; h < 3 * piece->triangles[i] + 3; h++)
             if (!u->joined[h]) {
                 count++;
                 start = start == UNFOLD_NONE ? h : start;
             }
     if (start == UNFOLD_NONE)
-        return not_a_disk(u, error);
+        return not_a_disk(index, error);
     piece->outline = ur_alloc_array(count, sizeof *piece->outline, error);
     piece->outline_vertices = ur_alloc_array(count, sizeof *piece->outline_vertices, error);
     if (!piece->outline || !piece->outline_vertices)
@@ -106,20 +118,58 @@ static ur_status walk_outline(const unfolder *u, ur_unfolded_piece *piece, ur_er
     size_t h = start;
     do {
         if (piece->outline_count == count)
-            return not_a_disk(u, error);
+            return not_a_disk(index, error);
         piece->outline[piece->outline_count] = u->flat[h / 3][h % 3];
         piece->outline_vertices[piece->outline_count++] = unfold_from(u->mesh, h);
-        h = next_on_outline(u, h, limit);
+        h = unfold_outline_next(u, h);
         if (h == UNFOLD_NONE)
-            return not_a_disk(u, error);
+            return not_a_disk(index, error);
     } while (h != start);
     if (piece->outline_count != count)
-        return not_a_disk(u, error);
+        return not_a_disk(index, error);
     piece->flat_area = ur_polygon_signed_area(piece->outline, count);
     return UR_OK;
 }
 
-static ur_status check_simple(const unfolder *u, GEOSContextHandle_t geos,
+/* Whether the piece has a slit: an edge it cuts with both sides in it (a face round a hole). */
+static bool has_slit(const unfolder *u, const ur_unfolded_piece *piece)
+{
+    for (size_t i = 0; i < piece->triangle_count; i++)
+        for (size_t h = 3 * piece->triangles[i]; h < 3 * piece->triangles[i] + 3; h++) {
+            size_t g = u->edges.twins[h];
+            if (g != UR_NO_EDGE && !u->joined[h] && u->piece[g / 3] == u->piece[h / 3])
+                return true;
+        }
+    return false;
+}
+/*
+ * An outline with a slit runs along both its sides, which GEOS calls a
+ * self-intersection; made valid it must be one polygon of the triangles'
+ * area (with a hole where the face had one) and the slits as lines.
+ */
+static bool slit_outline_sound(GEOSContextHandle_t geos, GEOSGeometry *polygon,
+                               const ur_unfolded_piece *piece)
+{
+    GEOSGeometry *valid = GEOSMakeValid_r(geos, polygon);
+    double area = 0.0, triangles = 0.0;
+    int parts = valid ? GEOSGetNumGeometries_r(geos, valid) : -1, polygons = 0;
+    bool sound = parts >= 1;
+    for (int i = 0; i < parts && sound; i++) {
+        const GEOSGeometry *part = GEOSGetGeometryN_r(geos, valid, i);
+        int type = part ? GEOSGeomTypeId_r(geos, part) : -1;
+        polygons += type == GEOS_POLYGON;
+        sound = (type == GEOS_POLYGON && GEOSArea_r(geos, part, &area) == 1) ||
+                type == GEOS_LINESTRING || type == GEOS_MULTILINESTRING;
+    }
+    sound = sound && polygons == 1;
+    for (size_t i = 0; i < piece->triangle_count; i++)
+        triangles += ur_polygon_signed_area(piece->flat[i], 3);
+    if (valid)
+        GEOSGeom_destroy_r(geos, valid);
+    return sound && fabs(area - triangles) <= 1e-9 * triangles;
+}
+
+static ur_status check_simple(const unfolder *u, size_t index, GEOSContextHandle_t geos,
                               const ur_unfolded_piece *piece, ur_error *error)
 {
     GEOSGeometry *polygon = ur_geos_polygon(geos, piece->outline, piece->outline_count);
@@ -127,35 +177,37 @@ static ur_status check_simple(const unfolder *u, GEOSContextHandle_t geos,
         return ur_error_set(error, UR_ERROR_INTERNAL,
                             "GEOS could not build the outline of "
                             "piece %zu of the unfolding",
-                            u->current + 1);
+                            index + 1);
     char valid = GEOSisValid_r(geos, polygon);
+    if (valid != 1 && has_slit(u, piece) && slit_outline_sound(geos, polygon, piece))
+        valid = 1;
     char *reason = valid == 1 ? NULL : GEOSisValidReason_r(geos, polygon);
     ur_status status = UR_OK;
     if (valid != 1)
         status = ur_error_set(error, UR_ERROR_INTERNAL,
-                              "piece %zu of the unfolding overlaps itself (%s)", u->current + 1,
+                              "piece %zu of the unfolding overlaps itself (%s)", index + 1,
                               reason ? reason : "GEOS gives no reason");
     else if (!(piece->flat_area > 0))
-        status = ur_error_set(error, UR_ERROR_INTERNAL,
-                              "the outline of piece %zu of the unfolding runs clockwise",
-                              u->current + 1);
+        status =
+            ur_error_set(error, UR_ERROR_INTERNAL,
+                         "the outline of piece %zu of the unfolding runs clockwise", index + 1);
     if (reason)
         GEOSFree_r(geos, reason);
     GEOSGeom_destroy_r(geos, polygon);
     return status;
 }
 
-ur_status unfold_piece_build(const unfolder *u, GEOSContextHandle_t geos, ur_unfolded_piece *piece,
-                             ur_error *error)
+ur_status unfold_piece_build(const unfolder *u, size_t p, size_t index, GEOSContextHandle_t geos,
+                             ur_unfolded_piece *piece, ur_error *error)
 {
     *piece = (ur_unfolded_piece){0};
-    ur_status status = copy_triangles(u, piece, error);
+    ur_status status = copy_triangles(u, p, piece, error);
     if (status == UR_OK)
         status = collect_folds(u, piece, error);
     if (status == UR_OK)
-        status = walk_outline(u, piece, error);
+        status = walk_outline(u, index, piece, error);
     if (status == UR_OK)
-        status = check_simple(u, geos, piece, error);
+        status = check_simple(u, index, geos, piece, error);
     if (status != UR_OK)
         unfold_piece_free(piece);
     return status;

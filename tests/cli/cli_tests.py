@@ -810,8 +810,8 @@ def grid_with_grouped_centre_joined(work):
 def unfolding_keeps_every_face(work):
     result = run(work, "mesh", os.path.join(REPO, "samples", "icosphere.obj"), "--flatten",
                  "unfold", "-o", "u.svg", "--report", "u.json")
-    counts = re.search(r"unfolded into (\d+) pieces?: (\d+) folds \((\d+) valleys\), (\d+) seams",
-                       result.stderr)
+    counts = re.search(r"unfolded into (\d+) pieces? \(\d+ of a single face\): (\d+) folds "
+                       r"\((\d+) valleys\), (\d+) seams", result.stderr)
     check(counts, result.stderr)
     pieces = report(work, "u.json")["pieces"]
     for piece in pieces:
@@ -826,6 +826,31 @@ def unfolding_keeps_every_face(work):
     check(not paths(os.path.join(work, "u.svg"), "score-valley"), "valley folds on a sphere")
     bad(work, r"--flatten unfold goes with 'unroll mesh'", "hypar", "--corners", HYPAR,
         "--flatten", "unfold", "-o", "x.svg")
+
+
+@test
+def unfolding_fits_the_sheet(work):
+    # A 100 mm cube on a 250 x 180 mm sheet: inside the margins and with
+    # room for a tab on each side, two squares side by side fit but three in
+    # a row or an L do not, so it comes in 3 pieces of two squares, none of a
+    # single face, each with one fold; no diagonal of a square is a fold
+    # (no tabs, whose bases are scored too).
+    cube = os.path.join(REPO, "samples", "cube.obj")
+    result = run(work, "mesh", cube, "--flatten", "unfold", "--material", "paper-0.3mm",
+                 "--sheet", "250x180", "--allowances", "none", "-o", "c.svg", "--report", "c.json")
+    check("unfolded into 3 pieces (0 of a single face): 3 folds (0 valleys), 9 seams"
+          in result.stderr, result.stderr)
+    pieces = report(work, "c.json")["pieces"]
+    check(len(pieces) == 3, "%d pieces" % len(pieces))
+    for piece in pieces:
+        close(piece["area_3d_mm2"], 2 * 100 * 100, 1e-9, "two squares a piece")
+    sheets = [f for f in os.listdir(work) if f.startswith("c") and f.endswith(".svg")]
+    folds = sum(len(paths(os.path.join(work, f), "score")) for f in sheets)
+    check(folds == 3, "%d folds drawn" % folds)
+    # A square face larger than the sheet leaves cannot be split.
+    bad(work, r"the flat face of triangle \d+ \(2 triangles\) is 100\.0 x 100\.0 mm, larger than "
+        r"the room", "mesh", cube, "--flatten", "unfold", "--material", "paper-0.3mm",
+        "--sheet", "120x120", "-o", "x.svg")
 
 
 @test
