@@ -323,9 +323,9 @@ static void show_unfold_progress(void *context, const char *phase, double fracti
 
 /*
  * Unfolds along the edges: every face keeps its exact shape, flat faces
- * are not folded, and every piece fits the room on a sheet (0 x 0: no
- * limit) with a joint (tab or lap) on each side: the room's length leaves
- * one at each end already.  The search for fewer pieces takes the
+ * are not folded, and every piece fits the room on a sheet (0 x 0, or
+ * --no-split: no limit) with a joint (tab or lap) on each side: the room's
+ * length leaves one at each end already.  The search for fewer pieces takes the
  * library's default time (1 s) with the job's --seed.
  */
 static int unfold_mesh(const cli_job *job, const cli_room *room, const ur_material *material,
@@ -336,7 +336,7 @@ static int unfold_mesh(const cli_job *job, const cli_room *room, const ur_materi
                    material->thickness;
     ur_unfold_options options;
     ur_unfold_options_default(&options);
-    if (room->width - 2 * joint > 0) {
+    if (job->develop.split && room->width - 2 * joint > 0) { /* --no-split: refuse instead */
         options.room_length = room->length;
         options.room_width = room->width - 2 * joint;
     }
