@@ -4,28 +4,17 @@
  * labels where the seams lie, so that a person holding a cut piece can find
  * where it goes and which edge to glue to which (Pepakura's 3D view, on
  * paper).  PNG through a cairo image, PDF through cairo's PDF surface.
+ * The model is assembly_model.c's, the views assembly_view.c's; this file
+ * labels and draws them.
  *
- * The four views look from the corners of a regular tetrahedron: front
- * right and back left from above, front left and back right from below.
- * Their directions sum to zero, so every face of the model faces at least
- * one of them (its normal makes less than 71 degrees with it): no face of
- * a convex model is left unseen, as it could be with views along the axes.
+ * The views (assembly_view.c) look at the model from the corners of a
+ * tetrahedron, so that every face of a convex model is seen, with hidden
+ * faces removed and an exact test of what is in sight for the labels.
  *
- * Hidden faces: the painter's algorithm, faces drawn from far to near by
- * the depth of their centroids, with the faces turned away culled when the
- * mesh is closed (they are always behind); an open mesh shows their inside
- * in a greyer tint.  The painter's order can be wrong where faces overlap
- * in depth, so what the labels need, whether a point is seen, is decided
- * exactly: a grid over each view indexes the projected faces, and a point
- * is hidden when a face over it lies nearer the viewer.  That keeps a
- * label of a seam behind the model off the picture, and it stays fast on
- * meshes of 100,000 faces.
- *
- * Colours: evenly spaced hues, one per piece, stepped round the circle by
- * about 1/phi^2 of a turn so that pieces numbered one after another (often
- * neighbours) differ most, lit by a light from the viewer's upper left.
- * Shading scales a colour toward black and the back side mixes it with
- * grey: neither changes its hue, so a piece keeps one hue everywhere.
+ * Faces are lit by a light from the viewer's upper left and tinted with
+ * their piece's colour (assembly_model.c: one hue a piece).  Shading
+ * scales a colour toward black and the inside of an open mesh mixes it
+ * with grey: neither changes its hue, so a piece keeps one hue everywhere.
  *
  * Labels never overlap: piece names go first (each piece named in every
  * view where enough of it is seen, and at least once), then the seam
@@ -33,7 +22,7 @@
  * no room at its point moves a little aside on a leader line, or is left
  * out.  The cut pieces carry every label: the guide shows where they are.
  */
-#include "unroll/out.h"
+#include "assembly.h"
 
 #include <cairo-pdf.h>
 #include <cairo.h>
@@ -47,730 +36,23 @@
 #include "draw.h"
 #include "png.h"
 
-/* The picture in pixels of the PNG; the PDF draws the same at PDF_SCALE points a pixel. */
-enum {
-    CELL = 1150,  /* one view's square */
-    MARGIN = 24,  /* round and between the views */
-    HEADER = 184, /* title, key and swatches above the views */
-    CAPTION = 44, /* a view's caption, at the top of its square */
-    INSET = 16,   /* between a view's square and its drawing */
-    COLUMNS = 2,
-    ROWS = 2,
-    VIEWS = COLUMNS * ROWS,
-    CANVAS_WIDTH = COLUMNS * CELL + (COLUMNS + 1) * MARGIN,
-    CANVAS_HEIGHT = HEADER + ROWS * CELL + ROWS * MARGIN,
-};
-
 /* About 297 mm wide: A3's short side, A4 landscape at 70 %. */
 static const double PDF_SCALE = 0.355;
 
-/* Type sizes, pixels. */
-static const double TITLE_SIZE = 34, KEY_SIZE = 19, CAPTION_SIZE = 23, NAME_SIZE = 24,
-                    SEAM_SIZE = 15;
+/* Type sizes, pixels (a piece's name: NAME_SIZE). */
+static const double TITLE_SIZE = 34, KEY_SIZE = 19, CAPTION_SIZE = 23, SEAM_SIZE = 15;
 
 /* A piece is named in a view where this much of it (pixels^2) is seen. */
 static const double NAME_MIN_AREA = 2500;
 
-/* A fold is drawn where the faces turn by more than this (radians) and it is this long (pixels). */
-static const double FOLD_MIN_ANGLE = 0.035, FOLD_MIN_LENGTH = 7;
+/* Faces smaller than this on the picture (pixels^2) are filled without antialiasing. */
+static const double SMALL_FACE = 60;
+
+/* A fold is drawn where it is this long on the picture (pixels). */
+static const double FOLD_MIN_LENGTH = 7;
 
 /* Rows of swatches in the key; the pieces that find no room there are told by their names alone. */
 enum { SWATCH_ROWS = 2 };
-
-/* ---- The model ----------------------------------------------------------- */
-
-typedef struct face {
-    ur_vec3 corner[3];
-    ur_vec3 normal; /* unit, toward the outside */
-    size_t piece;
-    unsigned char border; /* bit k: the edge from corner k to k + 1 is on its piece's outline */
-    unsigned char fold;   /* bit k: that edge is a fold inside the piece */
-} face;
-
-/* Where a seam is: the middle of its run, by length, in 3D. */
-typedef struct seam_mark {
-    int seam;
-    ur_vec3 point;
-} seam_mark;
-
-typedef struct model {
-    face *faces;
-    size_t face_count;
-    size_t piece_count;   /* the nets, drawn or not */
-    size_t pieces_drawn;  /* nets with faces */
-    bool *outlined;       /* per piece: its net has faces and its outline in 3D */
-    const char **names;   /* per piece, borrowed */
-    double (*colours)[3]; /* per piece, sRGB 0..1 */
-    seam_mark *seams;
-    size_t seam_count;
-    bool closed; /* every edge has a face on both sides */
-    ur_vec3 centre;
-    double size; /* the diagonal of the box round it */
-} model;
-
-static void model_free(model *m)
-{
-    free(m->faces);
-    free(m->outlined);
-    free(m->names);
-    free(m->colours);
-    free(m->seams);
-    memset(m, 0, sizeof *m);
-}
-
-static void hsv_to_rgb(double hue, double saturation, double value, double rgb[3])
-{
-    double h = fmod(hue, 1.0) * 6.0, c = value * saturation;
-    double x = c * (1 - fabs(fmod(h, 2.0) - 1)), m = value - c;
-    int sector = (int)h % 6;
-    static const int pick[6][3] = {{0, 1, 2}, {1, 0, 2}, {2, 0, 1},
-                                   {2, 1, 0}, {1, 2, 0}, {0, 2, 1}};
-    double parts[3] = {c, x, 0};
-    for (int k = 0; k < 3; k++)
-        rgb[k] = parts[pick[sector][k]] + m;
-}
-
-static size_t greatest_divisor(size_t a, size_t b)
-{
-    while (b) {
-        size_t r = a % b;
-        a = b;
-        b = r;
-    }
-    return a;
-}
-
-/*
- * Piece k gets hue j / n, j = k m mod n, m the whole number nearest
- * n / phi^2 that is prime to n: every hue used once, and pieces numbered
- * one after another far apart on the circle.
- */
-static void choose_colours(model *m)
-{
-    size_t n = m->piece_count, step = 1;
-    if (n > 2) {
-        step = (size_t)fmax(1, round((double)n * 0.381966));
-        while (greatest_divisor(n, step) != 1)
-            step++;
-    }
-    for (size_t k = 0; k < n; k++) {
-        double j = (double)((k * step) % n);
-        double saturation = k % 2 ? 0.62 : 0.5;
-        hsv_to_rgb(0.58 + j / (double)n, saturation, 0.97, m->colours[k]);
-    }
-}
-
-static int compare_points(const ur_vec3 *a, const ur_vec3 *b)
-{
-    if (a->x != b->x)
-        return a->x < b->x ? -1 : 1;
-    if (a->y != b->y)
-        return a->y < b->y ? -1 : 1;
-    if (a->z != b->z)
-        return a->z < b->z ? -1 : 1;
-    return 0;
-}
-
-typedef struct point_ref {
-    const ur_vec3 *point;
-    size_t index;
-} point_ref;
-
-static int compare_point_refs(const void *a, const void *b)
-{
-    const point_ref *p = a, *q = b;
-    int order = compare_points(p->point, q->point);
-    return order ? order : (p->index > q->index) - (p->index < q->index);
-}
-
-/* An edge of a face, or of a piece's outline (face NO_FACE). */
-typedef struct edge_ref {
-    size_t low, high; /* the point numbers of its ends */
-    size_t face;
-    size_t piece;
-    int side; /* a face's edge from corner side to side + 1 */
-} edge_ref;
-
-#define NO_FACE ((size_t)-1)
-
-static int compare_edges(const void *a, const void *b)
-{
-    const edge_ref *p = a, *q = b;
-    if (p->low != q->low)
-        return p->low < q->low ? -1 : 1;
-    if (p->high != q->high)
-        return p->high < q->high ? -1 : 1;
-    return (p->face > q->face) - (p->face < q->face);
-}
-
-/*
- * Every face corner, then every outline point of the nets that have
- * faces, numbered alike where they are the same point (the pieces share
- * the mesh's vertices exactly).
- */
-static ur_status number_points(const model *m, const ur_net_list *nets, size_t count,
-                               size_t *numbers, ur_error *error)
-{
-    point_ref *points = ur_alloc_array(count, sizeof *points, error);
-    if (!points)
-        return UR_ERROR_INTERNAL;
-    size_t n = 0;
-    for (size_t f = 0; f < m->face_count; f++)
-        for (int k = 0; k < 3; k++, n++)
-            points[n] = (point_ref){&m->faces[f].corner[k], n};
-    for (size_t k = 0; k < nets->count; k++)
-        for (size_t i = 0; m->outlined[k] && i < nets->nets[k].outline_count; i++, n++)
-            points[n] = (point_ref){&nets->nets[k].outline_3d[i], n};
-    qsort(points, count, sizeof *points, compare_point_refs);
-    size_t number = 0;
-    for (size_t i = 0; i < count; i++) {
-        if (i > 0 && compare_points(points[i - 1].point, points[i].point) != 0)
-            number++;
-        numbers[points[i].index] = number;
-    }
-    free(points);
-    return UR_OK;
-}
-
-static edge_ref edge_between(size_t a, size_t b, size_t face_index, size_t piece, int side)
-{
-    return (edge_ref){a < b ? a : b, a < b ? b : a, face_index, piece, side};
-}
-
-/* The edges of the faces, then those of the outlines, in the order number_points numbered them. */
-static void list_edges(const model *m, const ur_net_list *nets, const size_t *numbers,
-                       edge_ref *edges)
-{
-    size_t n = 0;
-    for (size_t f = 0; f < m->face_count; f++)
-        for (int k = 0; k < 3; k++, n++)
-            edges[n] = edge_between(numbers[3 * f + (size_t)k],
-                                    numbers[3 * f + (size_t)(k + 1) % 3], f, m->faces[f].piece, k);
-    for (size_t k = 0; k < nets->count; k++) {
-        size_t count = m->outlined[k] ? nets->nets[k].outline_count : 0;
-        for (size_t i = 0; i < count; i++, n++)
-            edges[n] = edge_between(numbers[n], numbers[n - i + (i + 1) % count], NO_FACE, k, -1);
-    }
-}
-
-/*
- * Marks the faces' edges of one run of edges that are the same edge: on
- * its piece's outline (a cut, to another piece or within the same one),
- * or a fold inside the piece.  A piece without an outline in 3D is cut
- * wherever its neighbour is another piece's.
- */
-static void classify_run(model *m, const edge_ref *run, size_t count)
-{
-    size_t faces = 0;
-    for (size_t i = 0; i < count; i++)
-        faces += run[i].face != NO_FACE;
-    if (faces == 1)
-        m->closed = false;
-    for (size_t i = 0; i < count; i++) {
-        if (run[i].face == NO_FACE)
-            continue;
-        face *f = &m->faces[run[i].face];
-        const face *partner = NULL;
-        bool on_outline = false;
-        for (size_t j = 0; j < count; j++) {
-            if (j == i || run[j].piece != f->piece)
-                continue;
-            if (run[j].face == NO_FACE)
-                on_outline = true;
-            else if (!partner)
-                partner = &m->faces[run[j].face];
-        }
-        unsigned char bit = (unsigned char)(1u << run[i].side);
-        if (m->outlined[f->piece] ? on_outline : !partner)
-            f->border |= bit;
-        else if (partner &&
-                 acos(fmax(-1, fmin(1, ur_vec3_dot(f->normal, partner->normal)))) > FOLD_MIN_ANGLE)
-            f->fold |= bit;
-    }
-}
-
-static ur_status classify_edges(model *m, const ur_net_list *nets, ur_error *error)
-{
-    size_t count = 3 * m->face_count;
-    for (size_t k = 0; k < nets->count; k++)
-        count += m->outlined[k] ? nets->nets[k].outline_count : 0;
-    size_t *numbers = ur_alloc_array(count, sizeof *numbers, error);
-    edge_ref *edges = ur_alloc_array(count, sizeof *edges, error);
-    ur_status status =
-        numbers && edges ? number_points(m, nets, count, numbers, error) : UR_ERROR_INTERNAL;
-    if (status == UR_OK) {
-        list_edges(m, nets, numbers, edges);
-        qsort(edges, count, sizeof *edges, compare_edges);
-        m->closed = true;
-        for (size_t i = 0, j; i < count; i = j) {
-            for (j = i + 1;
-                 j < count && edges[j].low == edges[i].low && edges[j].high == edges[i].high; j++)
-                ;
-            classify_run(m, &edges[i], j - i);
-        }
-    }
-    free(numbers);
-    free(edges);
-    return status;
-}
-
-static ur_status add_faces(model *m, const ur_net *net, size_t piece, ur_error *error)
-{
-    for (size_t t = 0; t < net->face_count; t++) {
-        const ur_vec3 *c = net->faces_3d[t];
-        for (int k = 0; k < 3; k++)
-            if (!isfinite(c[k].x) || !isfinite(c[k].y) || !isfinite(c[k].z))
-                return ur_error_set(error, UR_ERROR_INPUT,
-                                    "piece %s: face %zu has a corner that is not finite",
-                                    m->names[piece], t + 1);
-        ur_vec3 normal = ur_vec3_cross(ur_vec3_sub(c[1], c[0]), ur_vec3_sub(c[2], c[0]));
-        double length = ur_vec3_length(normal);
-        if (!(length > 0))
-            continue; /* no area: nothing to draw */
-        face *f = &m->faces[m->face_count++];
-        memset(f, 0, sizeof *f);
-        memcpy(f->corner, c, sizeof f->corner);
-        f->normal = ur_vec3_scale(normal, 1 / length);
-        f->piece = piece;
-    }
-    return UR_OK;
-}
-
-static ur_vec3 outline_point(const ur_net *net, size_t first, size_t i)
-{
-    return net->outline_3d[(first + i) % net->outline_count];
-}
-
-/* The seams, each once, at the middle of its run (both sides run over the same edges). */
-static ur_status find_seam_marks(model *m, const ur_net_list *nets, ur_error *error)
-{
-    size_t sides = 0;
-    for (size_t k = 0; k < nets->count; k++)
-        sides += nets->nets[k].outline_3d ? nets->nets[k].seam_side_count : 0;
-    m->seams = ur_alloc_array(sides ? sides : 1, sizeof *m->seams, error);
-    if (!m->seams)
-        return UR_ERROR_INTERNAL;
-    for (size_t k = 0; k < nets->count; k++) {
-        const ur_net *net = &nets->nets[k];
-        for (size_t s = 0; net->outline_3d && net->outline_count && s < net->seam_side_count; s++) {
-            const ur_seam_side *side = &net->seam_sides[s];
-            bool seen = false;
-            for (size_t j = 0; j < m->seam_count && !seen; j++)
-                seen = m->seams[j].seam == side->seam;
-            if (seen || side->count < 2)
-                continue;
-            double length = 0;
-            for (size_t i = 0; i + 1 < side->count; i++)
-                length += ur_vec3_distance(outline_point(net, side->first, i),
-                                           outline_point(net, side->first, i + 1));
-            double walked = 0;
-            ur_vec3 middle = outline_point(net, side->first, 0);
-            for (size_t i = 0; i + 1 < side->count; i++) {
-                ur_vec3 a = outline_point(net, side->first, i);
-                ur_vec3 b = outline_point(net, side->first, i + 1);
-                double step = ur_vec3_distance(a, b);
-                if (walked + step >= length / 2 && step > 0) {
-                    middle = ur_vec3_add_scaled(a, ur_vec3_sub(b, a), (length / 2 - walked) / step);
-                    break;
-                }
-                walked += step;
-            }
-            m->seams[m->seam_count++] = (seam_mark){side->seam, middle};
-        }
-    }
-    return UR_OK;
-}
-
-static void measure_model(model *m)
-{
-    ur_vec3 low = m->faces[0].corner[0], high = low;
-    for (size_t f = 0; f < m->face_count; f++)
-        for (int k = 0; k < 3; k++) {
-            ur_vec3 p = m->faces[f].corner[k];
-            low = ur_vec3_make(fmin(low.x, p.x), fmin(low.y, p.y), fmin(low.z, p.z));
-            high = ur_vec3_make(fmax(high.x, p.x), fmax(high.y, p.y), fmax(high.z, p.z));
-        }
-    m->centre = ur_vec3_scale(ur_vec3_add(low, high), 0.5);
-    m->size = ur_vec3_distance(low, high);
-}
-
-static ur_status build_model(const ur_net_list *nets, const ur_assembly_options *options, model *m,
-                             ur_error *error)
-{
-    memset(m, 0, sizeof *m);
-    size_t faces = 0;
-    for (size_t k = 0; k < nets->count; k++) {
-        if (nets->nets[k].face_count > 0 && !nets->nets[k].faces_3d)
-            return ur_error_set(error, UR_ERROR_INTERNAL, "net %s has %zu faces but no array",
-                                nets->nets[k].name, nets->nets[k].face_count);
-        faces += nets->nets[k].face_count;
-        m->pieces_drawn += nets->nets[k].face_count > 0;
-    }
-    if (faces == 0)
-        return ur_error_set(error, UR_ERROR_INPUT,
-                            "the assembly guide draws meshes, and these pieces have no 3D faces "
-                            "(a surface developed exactly): it is only for meshes and surfaces "
-                            "flattened as meshes");
-    m->piece_count = nets->count;
-    m->faces = ur_alloc_array(faces, sizeof *m->faces, error);
-    m->names = ur_alloc_array(nets->count, sizeof *m->names, error);
-    m->colours = ur_alloc_array(nets->count, sizeof *m->colours, error);
-    m->outlined = ur_alloc_array(nets->count, sizeof *m->outlined, error);
-    if (!m->faces || !m->names || !m->colours || !m->outlined)
-        return UR_ERROR_INTERNAL;
-    for (size_t k = 0; k < nets->count; k++) {
-        const ur_net *net = &nets->nets[k];
-        m->names[k] = options->names && options->names[k] ? options->names[k] : net->name;
-        m->outlined[k] = net->face_count > 0 && net->outline_3d && net->outline_count >= 2;
-    }
-    ur_status status = UR_OK;
-    for (size_t k = 0; k < nets->count && status == UR_OK; k++)
-        status = add_faces(m, &nets->nets[k], k, error);
-    if (status == UR_OK && m->face_count == 0)
-        status = ur_error_set(error, UR_ERROR_INPUT, "every face of the pieces has no area");
-    if (status == UR_OK)
-        status = classify_edges(m, nets, error);
-    if (status == UR_OK)
-        status = find_seam_marks(m, nets, error);
-    if (status != UR_OK)
-        return status;
-    measure_model(m);
-    choose_colours(m);
-    return UR_OK;
-}
-
-/* ---- Views ----------------------------------------------------------------- */
-
-typedef struct camera {
-    const char *caption;
-    ur_vec3 toward; /* from the model to the viewer, unit */
-    ur_vec3 right, up;
-} camera;
-
-/* The corners of a tetrahedron round the model, in its frame (up, toward the front, right). */
-static void make_cameras(bool y_up, camera cameras[VIEWS])
-{
-    ur_vec3 up = y_up ? ur_vec3_make(0, 1, 0) : ur_vec3_make(0, 0, 1);
-    ur_vec3 front = y_up ? ur_vec3_make(0, 0, 1) : ur_vec3_make(0, -1, 0);
-    ur_vec3 right = ur_vec3_make(1, 0, 0);
-    static const struct {
-        const char *caption;
-        double right, front, up;
-    } corners[VIEWS] = {
-        {"front right, from above", 1, 1, 1},
-        {"back left, from above", -1, -1, 1},
-        {"front left, from below", -1, 1, -1},
-        {"back right, from below", 1, -1, -1},
-    };
-    for (int v = 0; v < VIEWS; v++) {
-        ur_vec3 t = ur_vec3_add(ur_vec3_add(ur_vec3_scale(right, corners[v].right),
-                                            ur_vec3_scale(front, corners[v].front)),
-                                ur_vec3_scale(up, corners[v].up));
-        t = ur_vec3_scale(t, 1 / ur_vec3_length(t));
-        ur_vec3 r = ur_vec3_cross(up, t);
-        r = ur_vec3_scale(r, 1 / ur_vec3_length(r));
-        cameras[v] = (camera){corners[v].caption, t, r, ur_vec3_cross(t, r)};
-    }
-}
-
-/* The faces drawn in a view, indexed by where they fall on it. */
-typedef struct grid {
-    double left, top, cell; /* pixels */
-    size_t columns, rows;
-    size_t *start; /* columns * rows + 1: the faces of cell c are faces[start[c] .. start[c + 1]) */
-    size_t *faces;
-} grid;
-
-typedef struct view {
-    camera camera;
-    double left, top, width, height; /* the drawing area, pixels */
-    double scale;                    /* pixels a model unit */
-    ur_vec2 middle;                  /* the model point drawn at the area's middle (view plane) */
-    ur_vec2 (*points)[3];            /* per face: its corners on the picture */
-    double (*depth)[3];              /* per face: its corners' depths, larger nearer */
-    size_t *order;                   /* the faces drawn, far to near */
-    size_t drawn;
-    grid grid;
-    double *seen_area;   /* per piece: pixels^2 seen */
-    ur_vec2 *name_point; /* per piece: where its name goes */
-} view;
-
-static void view_free(view *v)
-{
-    free(v->points);
-    free(v->depth);
-    free(v->order);
-    free(v->grid.start);
-    free(v->grid.faces);
-    free(v->seen_area);
-    free(v->name_point);
-    memset(v, 0, sizeof *v);
-}
-
-static ur_vec2 plane_point(const camera *c, const model *m, ur_vec3 p)
-{
-    ur_vec3 d = ur_vec3_sub(p, m->centre);
-    return ur_vec2_make(ur_vec3_dot(d, c->right), ur_vec3_dot(d, c->up));
-}
-
-static double depth_of(const camera *c, const model *m, ur_vec3 p)
-{
-    return ur_vec3_dot(ur_vec3_sub(p, m->centre), c->toward);
-}
-
-static ur_vec2 to_picture(const view *v, ur_vec2 plane)
-{
-    return ur_vec2_make(v->left + v->width / 2 + (plane.x - v->middle.x) * v->scale,
-                        v->top + v->height / 2 - (plane.y - v->middle.y) * v->scale);
-}
-
-/* The model's extent on the view plane, and the scale at which it fills the area. */
-static double fit_scale(view *v, const model *m)
-{
-    double low_x = INFINITY, high_x = -INFINITY, low_y = INFINITY, high_y = -INFINITY;
-    for (size_t f = 0; f < m->face_count; f++)
-        for (int k = 0; k < 3; k++) {
-            ur_vec2 p = plane_point(&v->camera, m, m->faces[f].corner[k]);
-            low_x = fmin(low_x, p.x), high_x = fmax(high_x, p.x);
-            low_y = fmin(low_y, p.y), high_y = fmax(high_y, p.y);
-        }
-    v->middle = ur_vec2_make((low_x + high_x) / 2, (low_y + high_y) / 2);
-    double sx = high_x > low_x ? v->width / (high_x - low_x) : INFINITY;
-    double sy = high_y > low_y ? v->height / (high_y - low_y) : INFINITY;
-    return fmin(sx, sy);
-}
-
-typedef struct depth_key {
-    double depth;
-    size_t face;
-} depth_key;
-
-static int compare_depths(const void *a, const void *b)
-{
-    const depth_key *p = a, *q = b;
-    if (p->depth != q->depth)
-        return p->depth < q->depth ? -1 : 1;
-    return (p->face > q->face) - (p->face < q->face);
-}
-
-static bool faces_viewer(const view *v, const face *f)
-{
-    return ur_vec3_dot(f->normal, v->camera.toward) > 0;
-}
-
-/* The faces to draw (those turned away only on an open mesh), far to near. */
-static ur_status sort_faces(view *v, const model *m, ur_error *error)
-{
-    depth_key *keys = ur_alloc_array(m->face_count, sizeof *keys, error);
-    v->order = ur_alloc_array(m->face_count, sizeof *v->order, error);
-    if (!keys || !v->order) {
-        free(keys);
-        return UR_ERROR_INTERNAL;
-    }
-    v->drawn = 0;
-    for (size_t f = 0; f < m->face_count; f++)
-        if (!m->closed || faces_viewer(v, &m->faces[f]))
-            keys[v->drawn++] =
-                (depth_key){(v->depth[f][0] + v->depth[f][1] + v->depth[f][2]) / 3, f};
-    qsort(keys, v->drawn, sizeof *keys, compare_depths);
-    for (size_t i = 0; i < v->drawn; i++)
-        v->order[i] = keys[i].face;
-    free(keys);
-    return UR_OK;
-}
-
-static void cell_range(const grid *g, double low, double high, size_t cells, double origin,
-                       size_t *first, size_t *last)
-{
-    double a = floor((low - origin) / g->cell), b = floor((high - origin) / g->cell);
-    *first = (size_t)fmax(0, fmin((double)cells - 1, a));
-    *last = (size_t)fmax(0, fmin((double)cells - 1, b));
-}
-
-static void face_cells(const grid *g, const ur_vec2 p[3], size_t range[4])
-{
-    double x0 = fmin(p[0].x, fmin(p[1].x, p[2].x)), x1 = fmax(p[0].x, fmax(p[1].x, p[2].x));
-    double y0 = fmin(p[0].y, fmin(p[1].y, p[2].y)), y1 = fmax(p[0].y, fmax(p[1].y, p[2].y));
-    cell_range(g, x0, x1, g->columns, g->left, &range[0], &range[1]);
-    cell_range(g, y0, y1, g->rows, g->top, &range[2], &range[3]);
-}
-
-/* About one face a cell, at most 1024 cells a side. */
-static ur_status build_grid(view *v, ur_error *error)
-{
-    grid *g = &v->grid;
-    double side = fmax(v->width, v->height);
-    g->columns = g->rows = (size_t)fmax(1, fmin(1024, ceil(sqrt((double)v->drawn))));
-    g->cell = side / (double)g->columns;
-    g->left = v->left;
-    g->top = v->top;
-    size_t cells = g->columns * g->rows;
-    g->start = calloc(cells + 1, sizeof *g->start);
-    if (!g->start)
-        return ur_error_out_of_memory(error);
-    size_t range[4];
-    for (int pass = 0; pass < 2; pass++) {
-        for (size_t i = 0; i < v->drawn; i++) {
-            face_cells(g, v->points[v->order[i]], range);
-            for (size_t r = range[2]; r <= range[3]; r++)
-                for (size_t c = range[0]; c <= range[1]; c++) {
-                    size_t cell = r * g->columns + c;
-                    if (pass == 0)
-                        g->start[cell + 1]++;
-                    else
-                        g->faces[g->start[cell]++] = v->order[i];
-                }
-        }
-        if (pass == 0) {
-            for (size_t c = 0; c < cells; c++)
-                g->start[c + 1] += g->start[c];
-            g->faces =
-                ur_alloc_array(g->start[cells] ? g->start[cells] : 1, sizeof *g->faces, error);
-            if (!g->faces)
-                return UR_ERROR_INTERNAL;
-        }
-    }
-    for (size_t c = cells; c > 0; c--) /* the fill moved each start to the next cell's */
-        g->start[c] = g->start[c - 1];
-    g->start[0] = 0;
-    return UR_OK;
-}
-
-/*
- * Whether the model point drawn at q with that depth is in sight: no face
- * drawn over q lies nearer the viewer by more than tolerance.
- */
-static bool in_sight(const view *v, ur_vec2 q, double depth, double tolerance)
-{
-    const grid *g = &v->grid;
-    double column = floor((q.x - g->left) / g->cell), row = floor((q.y - g->top) / g->cell);
-    if (column < 0 || row < 0 || column >= (double)g->columns || row >= (double)g->rows)
-        return true;
-    size_t cell = (size_t)row * g->columns + (size_t)column;
-    for (size_t i = g->start[cell]; i < g->start[cell + 1]; i++) {
-        size_t f = g->faces[i];
-        const ur_vec2 *p = v->points[f];
-        double area = ur_vec2_cross(ur_vec2_sub(p[1], p[0]), ur_vec2_sub(p[2], p[0]));
-        if (fabs(area) < 1e-12)
-            continue; /* seen edge on */
-        double w[3];
-        for (int k = 0; k < 3; k++)
-            w[k] = ur_vec2_cross(ur_vec2_sub(p[(k + 2) % 3], p[(k + 1) % 3]),
-                                 ur_vec2_sub(q, p[(k + 1) % 3])) /
-                   area;
-        if (w[0] < -1e-9 || w[1] < -1e-9 || w[2] < -1e-9)
-            continue;
-        double there = w[0] * v->depth[f][0] + w[1] * v->depth[f][1] + w[2] * v->depth[f][2];
-        if (there > depth + tolerance)
-            return false;
-    }
-    return true;
-}
-
-static double face_area_on_picture(const ur_vec2 p[3])
-{
-    return 0.5 * fabs(ur_vec2_cross(ur_vec2_sub(p[1], p[0]), ur_vec2_sub(p[2], p[0])));
-}
-
-/*
- * How much of each piece is seen, and where its name goes: the middle of
- * the face seen nearest the centroid of what is seen of it.
- */
-static ur_status measure_pieces(view *v, const model *m, ur_error *error)
-{
-    size_t n = m->piece_count;
-    v->seen_area = calloc(n ? n : 1, sizeof *v->seen_area);
-    v->name_point = calloc(n ? n : 1, sizeof *v->name_point);
-    ur_vec2 *weighted = calloc(n ? n : 1, sizeof *weighted);
-    double *nearest = ur_alloc_array(n ? n : 1, sizeof *nearest, error);
-    bool *face_seen = calloc(m->face_count, sizeof *face_seen);
-    if (!v->seen_area || !v->name_point || !weighted || !nearest || !face_seen) {
-        free(weighted);
-        free(nearest);
-        free(face_seen);
-        return ur_error_out_of_memory(error);
-    }
-    double tolerance = 1e-4 * m->size;
-    for (size_t i = 0; i < v->drawn; i++) {
-        size_t f = v->order[i];
-        const ur_vec2 *p = v->points[f];
-        ur_vec2 middle = ur_vec2_scale(ur_vec2_add(ur_vec2_add(p[0], p[1]), p[2]), 1.0 / 3);
-        double depth = (v->depth[f][0] + v->depth[f][1] + v->depth[f][2]) / 3;
-        if (!faces_viewer(v, &m->faces[f]) || !in_sight(v, middle, depth, tolerance))
-            continue;
-        face_seen[f] = true;
-        double area = face_area_on_picture(p);
-        size_t piece = m->faces[f].piece;
-        v->seen_area[piece] += area;
-        weighted[piece] = ur_vec2_add_scaled(weighted[piece], middle, area);
-    }
-    for (size_t k = 0; k < n; k++) {
-        nearest[k] = INFINITY;
-        if (v->seen_area[k] > 0)
-            weighted[k] = ur_vec2_scale(weighted[k], 1 / v->seen_area[k]);
-    }
-    for (size_t f = 0; f < m->face_count; f++) {
-        if (!face_seen[f])
-            continue;
-        const ur_vec2 *p = v->points[f];
-        ur_vec2 middle = ur_vec2_scale(ur_vec2_add(ur_vec2_add(p[0], p[1]), p[2]), 1.0 / 3);
-        size_t piece = m->faces[f].piece;
-        double distance = ur_vec2_distance(middle, weighted[piece]);
-        if (distance < nearest[piece]) {
-            nearest[piece] = distance;
-            v->name_point[piece] = middle;
-        }
-    }
-    free(weighted);
-    free(nearest);
-    free(face_seen);
-    return UR_OK;
-}
-
-static ur_status prepare_view(view *v, const model *m, ur_error *error)
-{
-    v->points = ur_alloc_array(m->face_count, sizeof *v->points, error);
-    v->depth = ur_alloc_array(m->face_count, sizeof *v->depth, error);
-    if (!v->points || !v->depth)
-        return UR_ERROR_INTERNAL;
-    for (size_t f = 0; f < m->face_count; f++)
-        for (int k = 0; k < 3; k++) {
-            ur_vec3 p = m->faces[f].corner[k];
-            v->points[f][k] = to_picture(v, plane_point(&v->camera, m, p));
-            v->depth[f][k] = depth_of(&v->camera, m, p);
-        }
-    ur_status status = sort_faces(v, m, error);
-    if (status == UR_OK)
-        status = build_grid(v, error);
-    if (status == UR_OK)
-        status = measure_pieces(v, m, error);
-    return status;
-}
-
-/* The views in their squares, all at one scale, so that the model keeps its size. */
-static ur_status prepare_views(view views[VIEWS], const model *m, bool y_up, ur_error *error)
-{
-    camera cameras[VIEWS];
-    make_cameras(y_up, cameras);
-    double scale = INFINITY;
-    for (int k = 0; k < VIEWS; k++) {
-        view *v = &views[k];
-        v->camera = cameras[k];
-        v->left = MARGIN + (k % COLUMNS) * (CELL + MARGIN) + INSET;
-        v->top = HEADER + (k / COLUMNS) * (CELL + MARGIN) + CAPTION;
-        v->width = CELL - 2 * INSET;
-        v->height = CELL - CAPTION - INSET;
-        scale = fmin(scale, fit_scale(v, m));
-    }
-    if (!isfinite(scale) || !(scale > 0))
-        return ur_error_set(error, UR_ERROR_INPUT, "the pieces' faces have no extent to draw");
-    ur_status status = UR_OK;
-    for (int k = 0; k < VIEWS && status == UR_OK; k++) {
-        views[k].scale = 0.94 * scale;
-        status = prepare_view(&views[k], m, error);
-    }
-    return status;
-}
 
 /* ---- Labels -------------------------------------------------------------- */
 
@@ -893,8 +175,8 @@ static ur_status place_labels(cairo_t *cr, const view *v, int index, const model
             if (earlier != (pass == 1) || first_view[s] == index)
                 continue;
             ur_vec3 point = m->seams[s].point;
-            ur_vec2 q = to_picture(v, plane_point(&v->camera, m, point));
-            if (!in_sight(v, q, depth_of(&v->camera, m, point), tolerance))
+            ur_vec2 q = ur_assembly_picture_point(v, m, point);
+            if (!ur_assembly_in_sight(v, q, ur_assembly_depth(v, m, point), tolerance))
                 continue;
             label l = {.name = false, .point = q};
             ur_seam_label(m->seams[s].seam, l.text, sizeof l.text);
@@ -918,7 +200,7 @@ static double lighting(const view *v, ur_vec3 normal)
 
 static void face_colour(const view *v, const model *m, const face *f, double rgb[3])
 {
-    bool front = faces_viewer(v, f);
+    bool front = ur_assembly_faces_viewer(v, f);
     double light = lighting(v, front ? f->normal : ur_vec3_scale(f->normal, -1));
     for (int k = 0; k < 3; k++) {
         double c = m->colours[f->piece][k];
@@ -939,9 +221,21 @@ static void draw_face(cairo_t *cr, const view *v, const model *m, size_t index)
     cairo_line_to(cr, p[2].x, p[2].y);
     cairo_close_path(cr);
     cairo_set_source_rgb(cr, rgb[0], rgb[1], rgb[2]);
-    cairo_set_line_width(cr, 0.8); /* the same colour round it closes the seams of antialiasing */
-    cairo_fill_preserve(cr);
-    cairo_stroke(cr);
+    if (ur_assembly_face_area(p) < SMALL_FACE) {
+        /*
+         * Small faces of a fine mesh, filled whole pixels at a time: they
+         * meet without the hairline gaps antialiasing leaves, and a stroke
+         * round each, which would close those, would cost more than the fill.
+         */
+        cairo_set_antialias(cr, CAIRO_ANTIALIAS_NONE);
+        cairo_fill(cr);
+        cairo_set_antialias(cr, CAIRO_ANTIALIAS_DEFAULT);
+    } else {
+        cairo_set_line_width(cr,
+                             0.8); /* the same colour round it closes the gaps of antialiasing */
+        cairo_fill_preserve(cr);
+        cairo_stroke(cr);
+    }
     for (int k = 0; k < 3; k++) {
         ur_vec2 a = p[k], b = p[(k + 1) % 3];
         if (f->border & (1u << k)) {
@@ -1084,8 +378,8 @@ typedef struct guide {
 static void guide_free(guide *g)
 {
     for (int v = 0; v < VIEWS; v++)
-        view_free(&g->views[v]);
-    model_free(&g->model);
+        ur_assembly_view_free(&g->views[v]);
+    ur_assembly_model_free(&g->model);
 }
 
 /* The whole picture on cr, in pixels of the PNG. */
@@ -1210,9 +504,9 @@ ur_status ur_assembly_write(const ur_net_list *nets, const char *path,
     guide g;
     memset(&g, 0, sizeof g);
     g.title = options->title;
-    ur_status status = build_model(nets, options, &g.model, error);
+    ur_status status = ur_assembly_model_build(nets, options, &g.model, error);
     if (status == UR_OK)
-        status = prepare_views(g.views, &g.model, options->y_up, error);
+        status = ur_assembly_views_prepare(g.views, &g.model, options->y_up, error);
     if (status == UR_OK)
         status = png ? write_png(path, &g, error) : write_pdf(path, &g, error);
     guide_free(&g);
