@@ -349,9 +349,8 @@ static ur_status measure_pieces(view *v, const model *m, ur_error *error)
         size_t f = v->order[i];
         ur_vec2 middle = face_middle(v, f);
         double depth = (v->depth[f][0] + v->depth[f][1] + v->depth[f][2]) / 3;
-        if (!ur_assembly_faces_viewer(v, &m->faces[f]) ||
-            !ur_assembly_in_sight(v, middle, depth, tolerance))
-            continue;
+        if (!ur_assembly_in_sight(v, middle, depth, tolerance))
+            continue; /* the faces drawn are those that can be seen: an open mesh's inside too */
         double area = ur_assembly_face_area(v->points[f]);
         size_t piece = m->faces[f].piece;
         v->seen_area[piece] += area;

@@ -761,8 +761,16 @@ def assembly_guide_shows_each_piece_in_its_colour(work):
           "pdfinfo: %s" % info)
     found = hue_groups(*pdf_pixels(work, pdf, 100), least=20, gap=180 / pieces)
     check(found == pieces, "the PDF shows %d hues for %d pieces" % (found, pieces))
-    for name in ("guide.png", "guide.pdf", "x.svg", "y.svg", "x.json"):
+    # The guide is one of the run's files: when it cannot be written, none is.
+    for name in ("guide.png", "guide.pdf", "x.svg", "x.json"):
         os.remove(os.path.join(work, name))
+    size = os.path.getsize(os.path.join(work, "y.svg"))
+    os.remove(os.path.join(work, "y.svg"))
+    result = run_env(work, common + ["-o", "y.svg", "--assembly", "guide.png"],
+                     UNROLL_TEST_FAIL_WRITE_AFTER=str(size))
+    check(result.returncode == 2 and "guide.png" in result.stderr,
+          "failed guide: exit %d; %s" % (result.returncode, result.stderr.strip()))
+    check(os.listdir(work) == [], "left behind: %r" % os.listdir(work))
     bad(work, r"--assembly: 'guide.svg' is not a \.png or \.pdf", *common, "-o", "z.svg",
         "--assembly", "guide.svg")
     bad(work, r"--assembly is for meshes", "cylinder", "--radius", "20", "--height", "30",
@@ -1889,6 +1897,10 @@ def bad_jobs(work):
          + "  <output name=\"x\"/>\n</job>\n", r"badoption\.xml:4: cylinder: --radius"),
         ("nomesh.xml", JOB_HEAD + '  <part surface="mesh" file="missing.obj"/>\n'
          + "  <output name=\"x\"/>\n</job>\n", r"missing\.obj"),
+        ("assembly.xml", JOB_HEAD + part.replace('<option name="height" value="50"/>',
+                                                 '<option name="height" value="50"/>'
+                                                 '<option name="assembly" value="g.png"/>')
+         + "  <output name=\"x\"/>\n</job>\n", r"assembly\.xml:4: cylinder: --assembly is not taken"),
     ]
     for name, text, pattern in cases:
         write(work, name, text)
