@@ -11,9 +11,8 @@
  * the faces and of the outlines sorted by their two numbers, so that the
  * faces on an edge and the outline along it come together.
  *
- * Colours: evenly spaced hues, one per piece, stepped round the circle by
- * about 1/phi^2 of a turn so that pieces numbered one after another (often
- * neighbours) differ most.
+ * Colours: evenly spaced hues, one per piece, given out so that pieces
+ * that meet at a seam get hues far apart (choose_slots).
  */
 #include "assembly.h"
 
@@ -57,24 +56,169 @@ static size_t greatest_divisor(size_t a, size_t b)
     return a;
 }
 
-/*
- * Piece k gets hue j / n, j = k m mod n, m the whole number nearest
- * n / phi^2 that is prime to n: every hue used once, and pieces numbered
- * one after another far apart on the circle.
- */
-static void choose_colours(model *m)
+/* Two pieces that share a seam. */
+typedef struct piece_pair {
+    size_t a, b;
+} piece_pair;
+
+typedef struct pair_list {
+    piece_pair *items;
+    size_t count, capacity;
+} pair_list;
+
+static bool add_pair(pair_list *pairs, size_t a, size_t b)
 {
-    size_t n = m->piece_count, step = 1;
+    if (pairs->count == pairs->capacity) {
+        size_t capacity = pairs->capacity ? 2 * pairs->capacity : 64;
+        piece_pair *grown = realloc(pairs->items, capacity * sizeof *grown);
+        if (!grown)
+            return false;
+        pairs->items = grown;
+        pairs->capacity = capacity;
+    }
+    pairs->items[pairs->count++] = (piece_pair){a < b ? a : b, a < b ? b : a};
+    return true;
+}
+
+static int compare_pairs(const void *x, const void *y)
+{
+    const piece_pair *p = x, *q = y;
+    if (p->a != q->a)
+        return p->a < q->a ? -1 : 1;
+    return (p->b > q->b) - (p->b < q->b);
+}
+
+/* Each piece's neighbours: those of piece k are list[start[k] .. start[k + 1]). */
+typedef struct neighbours {
+    size_t *start, *list;
+} neighbours;
+
+static ur_status find_neighbours(pair_list *pairs, size_t n, neighbours *out, ur_error *error)
+{
+    qsort(pairs->items, pairs->count, sizeof *pairs->items, compare_pairs);
+    size_t unique = 0;
+    for (size_t i = 0; i < pairs->count; i++)
+        if (unique == 0 || compare_pairs(&pairs->items[unique - 1], &pairs->items[i]) != 0)
+            pairs->items[unique++] = pairs->items[i];
+    pairs->count = unique;
+    out->start = calloc(n + 1, sizeof *out->start);
+    out->list = ur_alloc_array(2 * unique + 1, sizeof *out->list, error);
+    if (!out->start || !out->list)
+        return ur_error_out_of_memory(error);
+    for (size_t i = 0; i < unique; i++) {
+        out->start[pairs->items[i].a + 1]++;
+        out->start[pairs->items[i].b + 1]++;
+    }
+    for (size_t k = 0; k < n; k++)
+        out->start[k + 1] += out->start[k];
+    for (size_t i = 0; i < unique; i++) { /* fills each piece's run from its start on */
+        out->list[out->start[pairs->items[i].a]++] = pairs->items[i].b;
+        out->list[out->start[pairs->items[i].b]++] = pairs->items[i].a;
+    }
+    for (size_t k = n; k > 0; k--) /* which moved each start to the next piece's */
+        out->start[k] = out->start[k - 1];
+    out->start[0] = 0;
+    return UR_OK;
+}
+
+typedef struct degree_key {
+    size_t degree, piece;
+} degree_key;
+
+static int compare_degrees(const void *x, const void *y)
+{
+    const degree_key *p = x, *q = y;
+    if (p->degree != q->degree)
+        return p->degree > q->degree ? -1 : 1;
+    return (p->piece > q->piece) - (p->piece < q->piece);
+}
+
+/* More pieces than this get their hues in golden steps alone (the choice is quadratic). */
+enum { MOST_CHOSEN_HUES = 4096 };
+
+/* How far apart hue slots i and j of n are round the circle. */
+static size_t slots_apart(size_t i, size_t j, size_t n)
+{
+    size_t apart = i > j ? i - j : j - i;
+    return apart < n - apart ? apart : n - apart;
+}
+
+/*
+ * Which of the n hues each piece gets (slot[k]): every hue once.  In golden
+ * steps (j = k s mod n, s the whole number nearest n / phi^2 prime to n),
+ * pieces numbered one after another come far apart on the circle; better,
+ * the most connected pieces first, each takes the hue left that is
+ * farthest from its neighbours' (the pieces it shares a seam with), so
+ * that pieces that meet differ most.
+ */
+static void choose_slots(size_t n, const neighbours *near, size_t *slot)
+{
+    size_t step = 1;
     if (n > 2) {
         step = (size_t)fmax(1, round((double)n * 0.381966));
         while (greatest_divisor(n, step) != 1)
             step++;
     }
-    for (size_t k = 0; k < n; k++) {
-        double j = (double)((k * step) % n);
-        double saturation = k % 2 ? 0.62 : 0.5;
-        hsv_to_rgb(0.58 + j / (double)n, saturation, 0.97, m->colours[k]);
+    degree_key *order = calloc(n ? n : 1, sizeof *order);
+    bool *used = calloc(n ? n : 1, sizeof *used);
+    if (!order || !used || n > MOST_CHOSEN_HUES) {
+        for (size_t k = 0; k < n; k++)
+            slot[k] = (k * step) % n;
+        free(order);
+        free(used);
+        return;
     }
+    for (size_t k = 0; k < n; k++) {
+        order[k] = (degree_key){near->start[k + 1] - near->start[k], k};
+        slot[k] = NO_FACE;
+    }
+    qsort(order, n, sizeof *order, compare_degrees);
+    for (size_t i = 0; i < n; i++) {
+        size_t piece = order[i].piece, best = NO_FACE, best_gap = 0;
+        for (size_t t = 0; t < n; t++) {
+            size_t j = (t * step) % n, gap = n;
+            if (used[j])
+                continue;
+            for (size_t e = near->start[piece]; e < near->start[piece + 1]; e++)
+                if (slot[near->list[e]] != NO_FACE) {
+                    size_t apart = slots_apart(j, slot[near->list[e]], n);
+                    gap = apart < gap ? apart : gap;
+                }
+            if (best == NO_FACE || gap > best_gap) {
+                best = j;
+                best_gap = gap;
+            }
+            if (gap == n)
+                break; /* no neighbour has a hue yet: the next in golden steps */
+        }
+        slot[piece] = best;
+        used[best] = true;
+    }
+    free(order);
+    free(used);
+}
+
+/* Hue slot j of n; its saturation alternates, so that hues next to each other differ more. */
+static void slot_colour(size_t j, size_t n, double rgb[3])
+{
+    hsv_to_rgb(0.58 + (double)j / (double)n, j % 2 ? 0.62 : 0.5, 0.97, rgb);
+}
+
+static ur_status choose_colours(model *m, pair_list *pairs, ur_error *error)
+{
+    size_t n = m->piece_count;
+    neighbours near = {NULL, NULL};
+    size_t *slot = ur_alloc_array(n ? n : 1, sizeof *slot, error);
+    ur_status status = slot ? find_neighbours(pairs, n, &near, error) : UR_ERROR_INTERNAL;
+    if (status == UR_OK) {
+        choose_slots(n, &near, slot);
+        for (size_t k = 0; k < n; k++)
+            slot_colour(slot[k], n, m->colours[k]);
+    }
+    free(near.start);
+    free(near.list);
+    free(slot);
+    return status;
 }
 
 static int compare_points(const ur_vec3 *a, const ur_vec3 *b)
@@ -174,13 +318,18 @@ static void list_edges(const model *m, const ur_net_list *nets, const size_t *nu
  * or a fold inside the piece.  A piece without an outline in 3D is cut
  * wherever its neighbour is another piece's.
  */
-static void classify_run(model *m, const edge_ref *run, size_t count)
+static bool classify_run(model *m, const edge_ref *run, size_t count, pair_list *pairs)
 {
     size_t faces = 0;
     for (size_t i = 0; i < count; i++)
         faces += run[i].face != NO_FACE;
     if (faces == 1)
         m->closed = false;
+    for (size_t i = 0; i < count; i++)
+        for (size_t j = i + 1; j < count; j++)
+            if (run[i].face != NO_FACE && run[j].face != NO_FACE && run[i].piece != run[j].piece &&
+                !add_pair(pairs, run[i].piece, run[j].piece))
+                return false;
     for (size_t i = 0; i < count; i++) {
         if (run[i].face == NO_FACE)
             continue;
@@ -202,9 +351,12 @@ static void classify_run(model *m, const edge_ref *run, size_t count)
                  acos(fmax(-1, fmin(1, ur_vec3_dot(f->normal, partner->normal)))) > FOLD_MIN_ANGLE)
             f->fold |= bit;
     }
+    return true;
 }
 
-static ur_status classify_edges(model *m, const ur_net_list *nets, ur_error *error)
+/* Marks every face's edges; the pairs of pieces that meet go into pairs. */
+static ur_status classify_edges(model *m, const ur_net_list *nets, pair_list *pairs,
+                                ur_error *error)
 {
     size_t count = 3 * m->face_count;
     for (size_t k = 0; k < nets->count; k++)
@@ -217,11 +369,12 @@ static ur_status classify_edges(model *m, const ur_net_list *nets, ur_error *err
         list_edges(m, nets, numbers, edges);
         qsort(edges, count, sizeof *edges, compare_edges);
         m->closed = true;
-        for (size_t i = 0, j; i < count; i = j) {
+        for (size_t i = 0, j; i < count && status == UR_OK; i = j) {
             for (j = i + 1;
                  j < count && edges[j].low == edges[i].low && edges[j].high == edges[i].high; j++)
                 ;
-            classify_run(m, &edges[i], j - i);
+            if (!classify_run(m, &edges[i], j - i, pairs))
+                status = ur_error_out_of_memory(error);
         }
     }
     free(numbers);
@@ -256,7 +409,34 @@ static ur_vec3 outline_point(const ur_net *net, size_t first, size_t i)
     return net->outline_3d[(first + i) % net->outline_count];
 }
 
-/* The seams, each once, at the middle of its run (both sides run over the same edges). */
+/* The middle of a seam side's run by length, in 3D. */
+static ur_vec3 run_middle(const ur_net *net, const ur_seam_side *side)
+{
+    double length = 0;
+    for (size_t i = 0; i + 1 < side->count; i++)
+        length += ur_vec3_distance(outline_point(net, side->first, i),
+                                   outline_point(net, side->first, i + 1));
+    double walked = 0;
+    for (size_t i = 0; i + 1 < side->count; i++) {
+        ur_vec3 a = outline_point(net, side->first, i), b = outline_point(net, side->first, i + 1);
+        double step = ur_vec3_distance(a, b);
+        if (walked + step >= length / 2 && step > 0)
+            return ur_vec3_add_scaled(a, ur_vec3_sub(b, a), (length / 2 - walked) / step);
+        walked += step;
+    }
+    return outline_point(net, side->first, 0);
+}
+
+static int compare_seam_marks(const void *a, const void *b)
+{
+    const seam_mark *p = a, *q = b;
+    return (p->seam > q->seam) - (p->seam < q->seam);
+}
+
+/*
+ * The seams, each once (in order of number), at the middle of its run:
+ * both sides of a seam run over the same edges, so either will do.
+ */
 static ur_status find_seam_marks(model *m, const ur_net_list *nets, ur_error *error)
 {
     size_t sides = 0;
@@ -265,34 +445,19 @@ static ur_status find_seam_marks(model *m, const ur_net_list *nets, ur_error *er
     m->seams = ur_alloc_array(sides ? sides : 1, sizeof *m->seams, error);
     if (!m->seams)
         return UR_ERROR_INTERNAL;
+    size_t count = 0;
     for (size_t k = 0; k < nets->count; k++) {
         const ur_net *net = &nets->nets[k];
-        for (size_t s = 0; net->outline_3d && net->outline_count && s < net->seam_side_count; s++) {
-            const ur_seam_side *side = &net->seam_sides[s];
-            bool seen = false;
-            for (size_t j = 0; j < m->seam_count && !seen; j++)
-                seen = m->seams[j].seam == side->seam;
-            if (seen || side->count < 2)
-                continue;
-            double length = 0;
-            for (size_t i = 0; i + 1 < side->count; i++)
-                length += ur_vec3_distance(outline_point(net, side->first, i),
-                                           outline_point(net, side->first, i + 1));
-            double walked = 0;
-            ur_vec3 middle = outline_point(net, side->first, 0);
-            for (size_t i = 0; i + 1 < side->count; i++) {
-                ur_vec3 a = outline_point(net, side->first, i);
-                ur_vec3 b = outline_point(net, side->first, i + 1);
-                double step = ur_vec3_distance(a, b);
-                if (walked + step >= length / 2 && step > 0) {
-                    middle = ur_vec3_add_scaled(a, ur_vec3_sub(b, a), (length / 2 - walked) / step);
-                    break;
-                }
-                walked += step;
-            }
-            m->seams[m->seam_count++] = (seam_mark){side->seam, middle};
-        }
+        for (size_t s = 0; net->outline_3d && net->outline_count && s < net->seam_side_count; s++)
+            if (net->seam_sides[s].count >= 2)
+                m->seams[count++] =
+                    (seam_mark){net->seam_sides[s].seam, run_middle(net, &net->seam_sides[s])};
     }
+    /* stable enough: a seam's two marks are the same point */
+    qsort(m->seams, count, sizeof *m->seams, compare_seam_marks);
+    for (size_t i = 0; i < count; i++)
+        if (m->seam_count == 0 || m->seams[m->seam_count - 1].seam != m->seams[i].seam)
+            m->seams[m->seam_count++] = m->seams[i];
     return UR_OK;
 }
 
@@ -343,13 +508,16 @@ ur_status ur_assembly_model_build(const ur_net_list *nets, const ur_assembly_opt
         status = add_faces(m, &nets->nets[k], k, error);
     if (status == UR_OK && m->face_count == 0)
         status = ur_error_set(error, UR_ERROR_INPUT, "every face of the pieces has no area");
+    pair_list pairs = {NULL, 0, 0};
     if (status == UR_OK)
-        status = classify_edges(m, nets, error);
+        status = classify_edges(m, nets, &pairs, error);
     if (status == UR_OK)
         status = find_seam_marks(m, nets, error);
+    if (status == UR_OK)
+        status = choose_colours(m, &pairs, error);
+    free(pairs.items);
     if (status != UR_OK)
         return status;
     measure_model(m);
-    choose_colours(m);
     return UR_OK;
 }
