@@ -317,13 +317,14 @@ typedef struct ur_assembly_options {
  * removed (painter's algorithm; on a closed mesh the faces turned away are
  * not drawn, on an open one their inside is greyed); faces are lit from
  * the viewer's upper left and tinted with their piece's colour, one hue per
- * piece, all hues different; cuts between pieces are thick dark lines,
- * folds thin ones.  Each piece's name stands on it in every view where
- * enough of it is seen (at least once where any of it is), and each seam's
- * label (ur_seam_label) at the middle of the seam where that point is in
- * sight, in a box, moved aside on a leader line when its place is taken;
- * no two labels overlap, and a label with no room is left out (the title
- * says how many seams are shown).  The key shows each piece's colour.
+ * piece, all hues different and far apart where pieces meet; cuts between
+ * pieces are thick dark lines, folds thin ones.  Each piece's name stands
+ * on it in every view where enough of it is seen (at least once where any
+ * of it is), and each seam's label (ur_seam_label) at the middle of the
+ * seam where that point is in sight, in a box, moved aside on a leader
+ * line when its place is taken; no two labels overlap, and a label with no
+ * room is left out (the title says how many seams are shown).  The key
+ * shows each piece's colour.
  *
  * path's extension says the format (any case): .png, a 2372 x 2532 pixel
  * RGB image; .pdf, the same drawing as vectors on one page about 297 mm
