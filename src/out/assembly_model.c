@@ -95,7 +95,8 @@ typedef struct neighbours {
 
 static ur_status find_neighbours(pair_list *pairs, size_t n, neighbours *out, ur_error *error)
 {
-    qsort(pairs->items, pairs->count, sizeof *pairs->items, compare_pairs);
+    if (pairs->count > 1) /* none at all for one piece: no array to sort */
+        qsort(pairs->items, pairs->count, sizeof *pairs->items, compare_pairs);
     size_t unique = 0;
     for (size_t i = 0; i < pairs->count; i++)
         if (unique == 0 || compare_pairs(&pairs->items[unique - 1], &pairs->items[i]) != 0)
