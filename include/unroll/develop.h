@@ -111,6 +111,13 @@ typedef struct ur_net {
     bool *fold_valley;
     size_t fold_count;
     ur_shading shading; /* per-triangle strain of a flattening; empty for a development */
+    /*
+     * A mesh piece's triangles in 3D (owned), corners counter-clockwise
+     * seen from the outside as in the mesh, for the assembly guide
+     * (ur_assembly_write).  NULL, 0 for a development.
+     */
+    ur_vec3 (*faces_3d)[3];
+    size_t face_count;
 } ur_net;
 
 typedef struct ur_net_list {

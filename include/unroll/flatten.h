@@ -106,10 +106,19 @@ ur_status ur_flatten_energy(const ur_mesh *piece, const ur_vec2 *layout, double 
 /*
  * The net of a flattened piece (net.c): its boundary loop laid flat
  * (counter-clockwise), its areas, the largest relative error of a boundary
- * edge's length, and its strain.  Free it as part of a ur_net_list.
+ * edge's length, its strain and its 3D faces.  Free it as part of a
+ * ur_net_list.
  */
 ur_status ur_net_from_flat(const ur_mesh *piece, const ur_flat_piece *flat, const char *name,
                            ur_net *net, ur_error *error);
+
+/*
+ * Gives the net the 3D corners of the mesh's triangles listed (all of
+ * them when triangles is NULL), replacing any it had: the faces the
+ * assembly guide draws (ur_net.faces_3d).
+ */
+ur_status ur_net_set_faces(ur_net *net, const ur_mesh *mesh, const size_t *triangles, size_t count,
+                           ur_error *error);
 
 /*
  * ---- Exact unfolding of a polyhedral mesh (unfold.c) ----

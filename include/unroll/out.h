@@ -297,4 +297,43 @@ ur_status ur_analysis_report_write(const char *path, const char *surface, ur_rul
 ur_status ur_strain_png_write(const char *path, const ur_layout *layout, const ur_piece *pieces,
                               size_t piece_count, double dpi, ur_error *error);
 
+/* ---- Assembly guide (assembly.c) ----------------------------------------- */
+
+typedef struct ur_assembly_options {
+    const char *title; /* the model's name, for the title; NULL for none */
+    /*
+     * The names the cut pieces carry, parallel to the nets (NULL, or an
+     * entry NULL: the net's own name).
+     */
+    const char *const *names;
+    bool y_up; /* the model's up is +y (as Blender's OBJ export); false: +z */
+} ur_assembly_options;
+
+/*
+ * The assembly guide: the mesh the nets were cut from (their faces_3d),
+ * drawn from four directions (front right and back left from above, front
+ * left and back right from below: every face of a convex model faces one
+ * of them) in a 2 x 2 grid under a title and a key.  Hidden faces are
+ * removed (painter's algorithm; on a closed mesh the faces turned away are
+ * not drawn, on an open one their inside is greyed); faces are lit from
+ * the viewer's upper left and tinted with their piece's colour, one hue per
+ * piece, all hues different and far apart where pieces meet; cuts between
+ * pieces are thick dark lines, folds thin ones.  Each piece's name stands
+ * on it in every view where enough of it is seen (at least once where any
+ * of it is), and each seam's label (ur_seam_label) at the middle of the
+ * seam where that point is in sight, in a box, moved aside on a leader
+ * line when its place is taken; no two labels overlap, and a label with no
+ * room is left out (the title says how many seams are shown).  The key
+ * shows each piece's colour.
+ *
+ * path's extension says the format (any case): .png, a 2372 x 2532 pixel
+ * RGB image; .pdf, the same drawing as vectors on one page about 297 mm
+ * wide.  Written atomically (part of an output set when one is open).
+ * Refused with UR_ERROR_INPUT: another extension, nets without any 3D face
+ * (a development of a ruled surface), a face corner that is not finite, an
+ * unwritable file.  options may be NULL.
+ */
+ur_status ur_assembly_write(const ur_net_list *nets, const char *path,
+                            const ur_assembly_options *options, ur_error *error);
+
 #endif

@@ -57,6 +57,8 @@ typedef struct cli_job {
     double max_strain;           /* --max-strain, or NAN for the material's */
     size_t iterations;           /* 0: the default */
     const char *strain_png_path; /* --strain-png */
+    const char *assembly_path;   /* --assembly FILE.png|pdf: the assembly guide */
+    bool assembly_y_up;          /* --assembly-up y: the model's up is +y, not +z */
     /* analyze and compare */
     const char *png_path, *csv_path;
     /* output */

@@ -187,7 +187,13 @@ static int make_part(const ur_job *file, size_t index, const char *out, words *w
     snprintf(command, command_size, "%s", part->surface);
     int code = cli_parse_job((int)w->count, w->items, CLI_DEVELOP, command, job);
     if (code == -1)
-        code = EXIT_USAGE; /* --help in a job file */
+        code = EXIT_USAGE;             /* --help in a job file */
+    if (!code && job->assembly_path) { /* the parts share sheets, not one model */
+        cli_message("%s: --assembly is not taken in a job file: draw a part's guide with its own "
+                    "command line ('unroll %s ... --assembly FILE')",
+                    command, part->surface);
+        code = EXIT_USAGE;
+    }
     if (!code) {
         job->quiet = true;
         job->seam_offset = seam_offset; /* labels stay unique across the parts */

@@ -26,6 +26,8 @@ static const char usage[] =
     "  --flatten charts|arap|lscm|strips|unfold  how to flatten (default charts for\n"
     "                        a mesh, arap for a surface)\n"
     "  --iterations N --max-strain S --strain-png FILE.png\n"
+    "  --assembly FILE.png|pdf  the assembly guide: the mesh from four sides, pieces\n"
+    "                         coloured and named, seam labels (--assembly-up y|z)\n"
     "study a surface (SURFACE and its options as above, no -o):\n"
     "  analyze SURFACE ... [--png FILE.png] [--report FILE.json]\n"
     "  compare SURFACE ... [--csv FILE.csv] [--png FILE.png]\n"
@@ -143,7 +145,10 @@ static const struct {
              "                         (--max-strain S overrides it)\n"
              "  --flatten unfold       along the edges, papercraft style: every face exact,\n"
              "                         folds scored mountain and valley\n"
-             "  --iterations N         most ARAP iterations; --strain-png FILE.png the strain\n"},
+             "  --iterations N         most ARAP iterations; --strain-png FILE.png the strain\n"
+             "  --assembly FILE.png|pdf  where each piece goes: the mesh from four sides,\n"
+             "                         pieces coloured and named, seam labels where they lie;\n"
+             "                         --assembly-up y for a mesh with Y up (default z)\n"},
     {"job", "unroll job FILE.xml [-o DIR] [--quiet]\n"
             "  Runs a job file: machine, material, options, parts (any surface, with a\n"
             "  quantity) nested together, and the outputs; -o DIR overrides its directory.\n"

@@ -310,7 +310,7 @@ static ur_status net_of_unfolded(const ur_mesh *mesh, const ur_unfolded_piece *p
     net->fold_count = piece->fold_count;
     net->area_3d = piece->area_3d;
     net->flat_area = piece->flat_area;
-    return UR_OK;
+    return ur_net_set_faces(net, mesh, piece->triangles, piece->triangle_count, error);
 }
 
 /* The unfolding's progress line, as show_progress's. */

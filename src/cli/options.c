@@ -16,6 +16,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 enum option_id {
     OPT_RADIUS = 256,
@@ -48,6 +49,8 @@ enum option_id {
     OPT_PNG,
     OPT_CSV,
     OPT_STRAIN_PNG,
+    OPT_ASSEMBLY,
+    OPT_ASSEMBLY_UP,
     OPT_MACHINE,
     OPT_MATERIAL,
     OPT_SHEET,
@@ -107,6 +110,8 @@ static const struct option long_options[] = {
     {"png", required_argument, NULL, OPT_PNG},
     {"csv", required_argument, NULL, OPT_CSV},
     {"strain-png", required_argument, NULL, OPT_STRAIN_PNG},
+    {"assembly", required_argument, NULL, OPT_ASSEMBLY},
+    {"assembly-up", required_argument, NULL, OPT_ASSEMBLY_UP},
     {"output", required_argument, NULL, 'o'},
     {"machine", required_argument, NULL, OPT_MACHINE},
     {"material", required_argument, NULL, OPT_MATERIAL},
@@ -161,7 +166,8 @@ static const struct {
     const char *options;
 } action_options[] = {
     {CLI_DEVELOP,
-     " output machine material sheet method parts rulings no-split report strain-png "
+     " output machine material sheet method parts rulings no-split report strain-png assembly "
+     "assembly-up "
      "allowances bridges no-kerf-compensation format dxf-version dpi job-name order rotations "
      "no-holes merge-lines roll sheets remnant nest-time seed threads "},
     {CLI_ANALYZE, " png report "},
@@ -361,6 +367,21 @@ static bool parse_surface_layer(cli_job *job, const char *text)
     return job->surface_layer >= 0;
 }
 
+/* --assembly FILE: its extension says the format, and only two are drawn. */
+static bool parse_assembly(cli_job *job, const char *path)
+{
+    size_t length = strlen(path);
+    const char *extension = length > 4 ? path + length - 4 : "";
+    if (strcasecmp(extension, ".png") != 0 && strcasecmp(extension, ".pdf") != 0) {
+        cli_message("%s: --assembly: '%s' is not a .png or .pdf file name (the assembly guide is "
+                    "a picture or a PDF)",
+                    job->command, path);
+        return false;
+    }
+    job->assembly_path = path;
+    return true;
+}
+
 static double *number_slot(cli_job *job, int id)
 {
     switch (id) {
@@ -486,6 +507,16 @@ static bool take_option(cli_job *job, int id, const char *value)
         return true;
     case OPT_STRAIN_PNG:
         job->strain_png_path = value;
+        return true;
+    case OPT_ASSEMBLY:
+        return parse_assembly(job, value);
+    case OPT_ASSEMBLY_UP:
+        if (strcmp(value, "y") != 0 && strcmp(value, "z") != 0) {
+            cli_message("%s: --assembly-up: '%s' is not y or z (the axis that points up)",
+                        job->command, value);
+            return false;
+        }
+        job->assembly_y_up = strcmp(value, "y") == 0;
         return true;
     case OPT_DIRECTION:
         return job->has_direction = parse_vector(surface, id, value, &job->direction);

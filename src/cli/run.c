@@ -389,7 +389,32 @@ ur_status cli_merge_lines(const cli_job *job, const ur_layout *layout, ur_piece 
 
 static ur_status write_outputs(const cli_job *job, job_state *state, ur_error *error);
 
-/* The SVG and the report (write_outputs), then the strain previews. */
+/*
+ * The assembly guide: the nets' faces, named as the cut pieces are (a job
+ * file's prefix included), under the model's name.
+ */
+static ur_status write_assembly(const cli_job *job, const job_state *state, ur_error *error)
+{
+    const char **names =
+        ur_alloc_array(state->nets.count ? state->nets.count : 1, sizeof *names, error);
+    if (!names)
+        return UR_ERROR_INTERNAL;
+    for (size_t k = 0; k < state->nets.count; k++)
+        names[k] = k < state->piece_count ? state->pieces[k].name : NULL;
+    const char *title = job->job_name ? job->job_name : job->surface;
+    if (job->mesh_path && !job->job_name) {
+        const char *slash = strrchr(job->mesh_path, '/');
+        title = slash ? slash + 1 : job->mesh_path;
+    }
+    ur_assembly_options options = {.title = title, .names = names, .y_up = job->assembly_y_up};
+    ur_status status = ur_assembly_write(&state->nets, job->assembly_path, &options, error);
+    if (status != UR_OK)
+        ur_error_prefix(error, "--assembly %s: ", job->assembly_path);
+    free(names);
+    return status;
+}
+
+/* The SVG and the report (write_outputs), then the strain previews and the assembly guide. */
 static ur_status write_all(const cli_job *job, job_state *state, ur_error *error)
 {
     ur_status status = write_outputs(job, state, error);
@@ -399,6 +424,8 @@ static ur_status write_all(const cli_job *job, job_state *state, ur_error *error
         if (status != UR_OK)
             ur_error_prefix(error, "--strain-png %s: ", job->strain_png_path);
     }
+    if (status == UR_OK && job->assembly_path)
+        status = write_assembly(job, state, error);
     return status;
 }
 
@@ -594,6 +621,20 @@ static int find_seams(const cli_job *job, job_state *state)
     return 0;
 }
 
+/* Before the work: the assembly guide needs pieces with 3D faces (a mesh, or a flattening). */
+static int check_assembly(const cli_job *job, const job_state *state)
+{
+    if (!job->assembly_path)
+        return 0;
+    for (size_t k = 0; k < state->nets.count; k++)
+        if (state->nets.nets[k].face_count > 0)
+            return 0;
+    cli_message("%s: --assembly is for meshes (and surfaces flattened as meshes): a %s developed "
+                "%s has no faces to draw",
+                job->command, job->surface, state->method);
+    return EXIT_USAGE;
+}
+
 int cli_run_job(const cli_job *job)
 {
     if ((strcmp(job->output_path, "-") != 0 && !cli_directory_exists("-o", job->output_path)) ||
@@ -603,7 +644,8 @@ int cli_run_job(const cli_job *job)
         (job->adjusted_rail_path &&
          !cli_directory_exists("--adjusted-rail", job->adjusted_rail_path)) ||
         (job->strain_png_path && strcmp(job->strain_png_path, "-") != 0 &&
-         !cli_directory_exists("--strain-png", job->strain_png_path)))
+         !cli_directory_exists("--strain-png", job->strain_png_path)) ||
+        (job->assembly_path && !cli_directory_exists("--assembly", job->assembly_path)))
         return EXIT_USAGE;
     job_state state;
     memset(&state, 0, sizeof state);
@@ -621,6 +663,8 @@ int cli_run_job(const cli_job *job)
     int code = make_nets(job, &state, &adjusted, &edge, &edge_count);
     if (!code)
         code = find_seams(job, &state);
+    if (!code)
+        code = check_assembly(job, &state);
     if (code) {
         free(edge);
         free(adjusted.points);

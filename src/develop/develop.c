@@ -602,6 +602,7 @@ void ur_net_free(ur_net *net)
     free(net->shading.triangles);
     free(net->shading.strain);
     free(net->shading.direction);
+    free(net->faces_3d);
     memset(net, 0, sizeof *net);
 }
 

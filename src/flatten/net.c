@@ -109,7 +109,33 @@ ur_status ur_net_from_flat(const ur_mesh *piece, const ur_flat_piece *flat, cons
     net->max_compression = flat->max_compression;
     free(loop);
     status = fill_shading(piece, flat, &net->shading, error);
+    if (status == UR_OK)
+        status = ur_net_set_faces(net, piece, NULL, piece->triangle_count, error);
     if (status != UR_OK)
         ur_net_free(net);
     return status;
+}
+
+ur_status ur_net_set_faces(ur_net *net, const ur_mesh *mesh, const size_t *triangles, size_t count,
+                           ur_error *error)
+{
+    free(net->faces_3d);
+    net->faces_3d = NULL;
+    net->face_count = 0;
+    if (count == 0)
+        return UR_OK;
+    net->faces_3d = ur_alloc_array(count, sizeof *net->faces_3d, error);
+    if (!net->faces_3d)
+        return UR_ERROR_INTERNAL;
+    for (size_t f = 0; f < count; f++) {
+        size_t t = triangles ? triangles[f] : f;
+        if (t >= mesh->triangle_count)
+            return ur_error_set(error, UR_ERROR_INTERNAL,
+                                "face %zu of a net is triangle %zu of %zu", f + 1, t + 1,
+                                mesh->triangle_count);
+        for (int k = 0; k < 3; k++)
+            net->faces_3d[f][k] = mesh->vertices[mesh->triangles[t][k]];
+    }
+    net->face_count = count;
+    return UR_OK;
 }

@@ -667,6 +667,118 @@ def strain_preview_has_the_sheet_size(work):
         "no-such-dir/h.png")
 
 
+def ppm_pixels(path):
+    """A binary PPM (P6, 255) as (width, height, rows of RGB bytes)."""
+    with open(path, "rb") as f:
+        data = f.read()
+    fields = re.match(rb"P6\s+(\d+)\s+(\d+)\s+255\s", data)
+    check(fields is not None, "%s is no P6 PPM" % path)
+    width, height = int(fields.group(1)), int(fields.group(2))
+    rgb = data[fields.end():]
+    check(len(rgb) == 3 * width * height, "PPM of %d bytes for %d x %d" % (len(rgb), width, height))
+    return width, height, [rgb[3 * width * y:3 * width * (y + 1)] for y in range(height)]
+
+
+def pdf_pixels(work, pdf, dpi):
+    """The first page of PDF rendered by pdftoppm at DPI."""
+    stem = os.path.join(work, "page")
+    check(subprocess.run(["pdftoppm", "-r", str(dpi), "-singlefile", pdf, stem]).returncode == 0,
+          "pdftoppm cannot render " + pdf)
+    pixels = ppm_pixels(stem + ".ppm")
+    os.remove(stem + ".ppm")
+    return pixels
+
+
+def png_pixels(work, png):
+    """The pixels of PNG at half its size.  Python's standard library reads a
+    picture this large too slowly (its filters byte by byte), so librsvg reads
+    it (an SVG showing it, made into a PDF) and pdftoppm gives the pixels: a
+    PNG they cannot read shows nothing."""
+    width, height = png_size(png)
+    svg, pdf = os.path.join(work, "png.svg"), os.path.join(work, "png.pdf")
+    with open(svg, "w") as f:
+        f.write('<svg xmlns="http://www.w3.org/2000/svg" xmlns:xlink="http://www.w3.org/1999/xlink" '
+                'width="%d" height="%d"><image width="%d" height="%d" xlink:href="%s"/></svg>'
+                % (width, height, width, height, os.path.abspath(png)))
+    check(subprocess.run(["rsvg-convert", "-f", "pdf", "-o", pdf, svg]).returncode == 0,
+          "rsvg-convert cannot show " + png)
+    pixels = pdf_pixels(work, pdf, 48)  # rsvg-convert: 96 pixels an inch
+    os.remove(svg)
+    os.remove(pdf)
+    return pixels
+
+
+def hue_groups(width, height, rows, least=100, gap=None):
+    """The colours of a picture told apart by hue: every second pixel of every
+    second row that is clearly coloured (no grey, white or black text), by
+    whole degree of hue; groups of degrees holding at least LEAST of them
+    each, a group ending at a gap of GAP degrees (default 10) that hold
+    fewer.  Shading a colour (toward black or grey) keeps its hue."""
+    import colorsys
+    count = [0] * 360
+    for y in range(0, height, 2):
+        row = rows[y]
+        for x in range(0, width, 2):
+            r, g, b = row[3 * x], row[3 * x + 1], row[3 * x + 2]
+            if max(r, g, b) - min(r, g, b) >= 40:
+                count[int(colorsys.rgb_to_hsv(r / 255, g / 255, b / 255)[0] * 360) % 360] += 1
+    gap = gap or 10
+    occupied = [d for d in range(360) if count[d] >= least]
+    if not occupied:
+        return 0
+    groups = 0
+    for i, d in enumerate(occupied):
+        previous = occupied[i - 1]  # round the circle: the last before the first
+        if (d - previous) % 360 > gap or len(occupied) == 1:
+            groups += 1
+    return max(groups, 1)
+
+
+@test
+def assembly_guide_shows_each_piece_in_its_colour(work):
+    """--assembly: the head unfolded into pieces, drawn as a PNG and as a PDF
+    with one hue a piece, as many hues as the report has pieces; a file name
+    that is not .png or .pdf, and a surface with no faces (a development),
+    are refused before anything is written."""
+    head = os.path.join(REPO, "samples", "head.obj")
+    common = ["mesh", head, "--flatten", "unfold", "--material", "paper-0.3mm", "--quiet"]
+    run(work, *common, "-o", "x.svg", "--report", "x.json", "--assembly", "guide.png")
+    common += ["--allowances", "none"]  # the rest need no tabs
+    pieces = len(report(work, "x.json")["pieces"])
+    check(pieces >= 2, "%d pieces" % pieces)
+    width, height = png_size(os.path.join(work, "guide.png"))
+    check(width > 1000 and height > 1000, "a %d x %d guide" % (width, height))
+    # The hues are 360 / pieces degrees apart; half of that tells them apart.
+    found = hue_groups(*png_pixels(work, os.path.join(work, "guide.png")), least=20,
+                       gap=180 / pieces)
+    check(found == pieces, "the guide shows %d hues for %d pieces" % (found, pieces))
+    run(work, *common, "-o", "y.svg", "--assembly", "guide.pdf")
+    pdf = os.path.join(work, "guide.pdf")
+    check(subprocess.run(["qpdf", "--check", pdf], capture_output=True).returncode == 0,
+          "qpdf --check fails on the guide")
+    info = subprocess.run(["pdfinfo", pdf], capture_output=True, text=True).stdout
+    check(re.search(r"^Pages:\s+1$", info, re.M) and re.search(r"^Title:\s+head.obj$", info, re.M),
+          "pdfinfo: %s" % info)
+    found = hue_groups(*pdf_pixels(work, pdf, 100), least=20, gap=180 / pieces)
+    check(found == pieces, "the PDF shows %d hues for %d pieces" % (found, pieces))
+    # The guide is one of the run's files: when it cannot be written, none is.
+    for name in ("guide.png", "guide.pdf", "x.svg", "x.json"):
+        os.remove(os.path.join(work, name))
+    size = os.path.getsize(os.path.join(work, "y.svg"))
+    os.remove(os.path.join(work, "y.svg"))
+    result = run_env(work, common + ["-o", "y.svg", "--assembly", "guide.png"],
+                     UNROLL_TEST_FAIL_WRITE_AFTER=str(size))
+    check(result.returncode == 2 and "guide.png" in result.stderr,
+          "failed guide: exit %d; %s" % (result.returncode, result.stderr.strip()))
+    check(os.listdir(work) == [], "left behind: %r" % os.listdir(work))
+    bad(work, r"--assembly: 'guide.svg' is not a \.png or \.pdf", *common, "-o", "z.svg",
+        "--assembly", "guide.svg")
+    bad(work, r"--assembly is for meshes", "cylinder", "--radius", "20", "--height", "30",
+        "-o", "c.svg", "--assembly", "c.png", "--quiet")
+    bad(work, r"--assembly-up: 'x' is not y or z", *common, "-o", "z.svg", "--assembly",
+        "g.png", "--assembly-up", "x")
+
+
 @test
 def meshes_in_every_format_give_the_same_net(work):
     areas = []
@@ -1920,6 +2032,10 @@ def bad_jobs(work):
          + "  <output name=\"x\"/>\n</job>\n", r"badoption\.xml:4: cylinder: --radius"),
         ("nomesh.xml", JOB_HEAD + '  <part surface="mesh" file="missing.obj"/>\n'
          + "  <output name=\"x\"/>\n</job>\n", r"missing\.obj"),
+        ("assembly.xml", JOB_HEAD + part.replace('<option name="height" value="50"/>',
+                                                 '<option name="height" value="50"/>'
+                                                 '<option name="assembly" value="g.png"/>')
+         + "  <output name=\"x\"/>\n</job>\n", r"assembly\.xml:4: cylinder: --assembly is not taken"),
     ]
     for name, text, pattern in cases:
         write(work, name, text)
