@@ -322,6 +322,14 @@ static void show_unfold_progress(void *context, const char *phase, double fracti
 }
 
 /*
+ * The search for fewer pieces takes UNFOLD_STEPS steps, so that a mesh
+ * unfolds the same way every time (and on every machine), stopping early
+ * after UNFOLD_SECONDS on a large mesh.
+ */
+enum { UNFOLD_STEPS = 200 };
+#define UNFOLD_SECONDS 5.0
+
+/*
  * Unfolds along the edges: every face keeps its exact shape, flat faces
  * are not folded, and every piece fits the room on a sheet (0 x 0, or
  * --no-split: no limit) with a joint (tab or lap) on each side: the room's
@@ -341,6 +349,8 @@ static int unfold_mesh(const cli_job *job, const cli_room *room, const ur_materi
         options.room_width = room->width - 2 * joint;
     }
     options.seed = (uint64_t)job->seed;
+    options.max_steps = UNFOLD_STEPS;
+    options.time_budget = UNFOLD_SECONDS;
     if (shows_progress(job)) {
         options.progress = show_unfold_progress;
         options.progress_context = (void *)job;

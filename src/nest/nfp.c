@@ -32,6 +32,13 @@
 /* Pieces with more points than this are simplified before their no-fit polygons. */
 #define SIMPLIFY_ABOVE 64
 
+/*
+ * And closed by this share of their size: the notches between a papercraft
+ * net's glue tabs and the slits between its flaps, which no other part
+ * could use, filled, so that the net is a few convex parts, not hundreds.
+ */
+#define CLOSING 0.01
+
 /* The ring of a path turned by angle, as a GEOS linear ring; NULL on failure. */
 static GEOSGeometry *turned_ring(GEOSContextHandle_t geos, const ur_path *path, double angle)
 {
@@ -76,8 +83,27 @@ static GEOSGeometry *piece_polygon(GEOSContextHandle_t geos, const ur_piece *pie
 }
 
 /* The polygon made valid, simplified by tolerance and grown by grow + tolerance (mitred). */
+/*
+ * The polygon closed by radius (grown by it, then shrunk by as much, mitred):
+ * notches and slits narrower than about twice the radius filled, nothing
+ * else moved.  It contains the polygon.  NULL on failure.
+ */
+static GEOSGeometry *closed(GEOSContextHandle_t geos, const GEOSGeometry *polygon,
+                            GEOSBufferParams *params, double radius)
+{
+    GEOSGeometry *out = GEOSBufferWithParams_r(geos, polygon, params, radius);
+    GEOSGeometry *back = out ? GEOSBufferWithParams_r(geos, out, params, -radius) : NULL;
+    if (out)
+        GEOSGeom_destroy_r(geos, out);
+    if (back && (GEOSGeomTypeId_r(geos, back) != GEOS_POLYGON || GEOSisEmpty_r(geos, back))) {
+        GEOSGeom_destroy_r(geos, back);
+        return GEOSGeom_clone_r(geos, polygon); /* it fell apart: keep it as it was */
+    }
+    return back;
+}
+
 static GEOSGeometry *grown(GEOSContextHandle_t geos, const GEOSGeometry *polygon, double grow,
-                           double tolerance)
+                           double tolerance, double closing)
 {
     GEOSGeometry *valid = GEOSMakeValid_r(geos, polygon);
     GEOSGeometry *simple = valid ? GEOSTopologyPreserveSimplify_r(geos, valid, tolerance) : NULL;
@@ -87,6 +113,11 @@ static GEOSGeometry *grown(GEOSContextHandle_t geos, const GEOSGeometry *polygon
         GEOSBufferParams_setJoinStyle_r(geos, params, GEOSBUF_JOIN_MITRE);
         GEOSBufferParams_setMitreLimit_r(geos, params, 4.0);
         out = GEOSBufferWithParams_r(geos, simple, params, grow + tolerance);
+    }
+    if (out && closing > 0) {
+        GEOSGeometry *filled = closed(geos, out, params, closing);
+        GEOSGeom_destroy_r(geos, out);
+        out = filled;
     }
     if (params)
         GEOSBufferParams_destroy_r(geos, params);
@@ -353,7 +384,8 @@ ur_status nest_shape_make(GEOSContextHandle_t geos, const ur_piece *piece, doubl
     double tolerance = points > SIMPLIFY_ABOVE ? fmax(0.05, 2e-3 * size) : 0.0;
     GEOSGeometry *exact = piece_polygon(geos, piece, angle, holes);
     shape->area = area_of(geos, exact);
-    shape->polygon = exact ? grown(geos, exact, grow, tolerance) : NULL;
+    double closing = points > SIMPLIFY_ABOVE ? CLOSING * size : 0.0;
+    shape->polygon = exact ? grown(geos, exact, grow, tolerance, closing) : NULL;
     if (exact)
         GEOSGeom_destroy_r(geos, exact);
     double reach[4];
