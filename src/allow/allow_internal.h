@@ -22,6 +22,13 @@ ur_status allow_exterior_ring(GEOSContextHandle_t geos, const GEOSGeometry *poly
                               size_t *count, ur_error *error);
 
 /*
+ * A piece whose outline reaches a hole through a slit of no width (slits.c)
+ * is cut as its rim and its holes instead: the outline becomes the rim,
+ * each hole a closed CUT path.  Any other piece is left as it is.
+ */
+ur_status allow_open_slits(ur_piece *piece, ur_error *error);
+
+/*
  * The region at least margin (> 0) inside a ring: the ring simplified to
  * within a hundredth of margin (at most 5 micrometres) and buffered inward
  * by margin plus that tolerance, so nothing of it comes nearer than margin

@@ -7,7 +7,7 @@
  * per-triangle strain comes along for the strain picture, in the same
  * coordinates as the outline.
  */
-#include "unroll/allow.h"
+#include "allow_internal.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -119,6 +119,8 @@ ur_status ur_piece_from_net(const ur_net *net, const ur_allowance_options *optio
     piece->has_rulings = !isnan(piece->ruling_angle);
     ur_status status =
         ur_piece_add_path(piece, UR_OP_CUT, net->outline, net->outline_count, true, error);
+    if (status == UR_OK)
+        status = allow_open_slits(piece, error);
     if (status == UR_OK && options && options->draw_rulings)
         status = add_rulings(piece, net, error);
     for (size_t k = 0; status == UR_OK && k < net->fold_count; k++) {

@@ -710,10 +710,44 @@ static void test_bridges_leave_arcs(void **state)
     ur_piece_free(&piece);
 }
 
+/*
+ * A flat frame unfolded as one piece: its outline runs in from the rim to
+ * the window along a slit of no width, round the window and back.  It is
+ * cut as its rim and its window (60 x 60 and 20 x 20 mm), and kerf
+ * compensation then moves the rim out and the window in, as for any hole.
+ */
+static void test_slit_to_a_window_is_cut_as_a_hole(void **state)
+{
+    (void)state;
+    ur_vec2 frame[] = {{0, 0},   {20, 0},  {40, 0},  {60, 0},  {60, 20}, {40, 20},
+                       {20, 20}, {20, 40}, {40, 40}, {40, 20}, {60, 20}, {60, 40},
+                       {60, 60}, {40, 60}, {20, 60}, {0, 60},  {0, 40},  {0, 20}};
+    ur_net net;
+    memset(&net, 0, sizeof net);
+    net.outline = frame;
+    net.outline_count = sizeof frame / sizeof frame[0];
+    ur_piece piece;
+    ur_error error;
+    assert_int_equal(ur_piece_from_net(&net, NULL, &piece, &error), UR_OK);
+    assert_int_equal(piece.path_count, 2);
+    assert_true(piece.paths[1].op == UR_OP_CUT && piece.paths[1].closed);
+    assert_float_equal(ur_polygon_signed_area(piece.paths[0].points, piece.paths[0].count), 3600,
+                       1e-9);
+    assert_float_equal(fabs(ur_polygon_signed_area(piece.paths[1].points, piece.paths[1].count)),
+                       400, 1e-9);
+    assert_int_equal(ur_piece_compensate_kerf(&piece, 0.2, &error), UR_OK);
+    assert_float_equal(ur_polygon_signed_area(piece.paths[0].points, piece.paths[0].count),
+                       60.2 * 60.2, 1e-6);
+    assert_float_equal(fabs(ur_polygon_signed_area(piece.paths[1].points, piece.paths[1].count)),
+                       19.8 * 19.8, 1e-6);
+    ur_piece_free(&piece);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_kerf_rectangle_with_hole),
+        cmocka_unit_test(test_slit_to_a_window_is_cut_as_a_hole),
         cmocka_unit_test(test_kerf_sharp_corner),
         cmocka_unit_test(test_kerf_refuses_vanishing_hole),
         cmocka_unit_test(test_kerf_refuses_narrow_features),

@@ -1,0 +1,135 @@
+/*
+ * slits.c: an outline that reaches a hole through a slit of no width, as
+ * the unfolding leaves a flat ring of faces (a frame round a window): one
+ * piece, cut open along an edge from its hole to its rim, both sides of the
+ * cut lying on each other.  A cutter needs the rim and the hole, and the
+ * slit closes up in the offsets and unions the allowances make of the
+ * outline (GEOS reads it as a polygon with a hole); so the piece is cut as
+ * its rim and its holes (allow_internal.h, allow_open_slits).
+ */
+#include "allow_internal.h"
+#include "../geom/geos_polygon.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+/* Two points this close (a share of the outline's size) are one. */
+#define SAME_POINT 1e-9
+
+static int compare_x(const void *a, const void *b)
+{
+    const ur_vec2 *p = a, *q = b;
+    return (p->x > q->x) - (p->x < q->x);
+}
+
+/* Whether some point of the ring comes back: the ends of a slit do, twice. */
+static bool has_repeated_point(const ur_vec2 *points, size_t count, double tolerance)
+{
+    ur_vec2 *sorted = malloc(count * sizeof *sorted);
+    if (!sorted)
+        return false;
+    for (size_t i = 0; i < count; i++)
+        sorted[i] = points[i];
+    qsort(sorted, count, sizeof *sorted, compare_x);
+    bool repeated = false;
+    for (size_t i = 0; i < count && !repeated; i++)
+        for (size_t j = i + 1; j < count && sorted[j].x - sorted[i].x <= tolerance; j++)
+            if (ur_vec2_distance(sorted[i], sorted[j]) <= tolerance) {
+                repeated = true;
+                break;
+            }
+    free(sorted);
+    return repeated;
+}
+
+/* Interior ring k of a polygon as points (last not repeated); NULL on failure. */
+static ur_vec2 *interior_ring(GEOSContextHandle_t geos, const GEOSGeometry *polygon, int k,
+                              size_t *count)
+{
+    const GEOSGeometry *ring = GEOSGetInteriorRingN_r(geos, polygon, k);
+    const GEOSCoordSequence *sequence = ring ? GEOSGeom_getCoordSeq_r(geos, ring) : NULL;
+    unsigned size = 0;
+    if (!sequence || !GEOSCoordSeq_getSize_r(geos, sequence, &size) || size < 4)
+        return NULL;
+    *count = size - 1;
+    ur_vec2 *points = malloc(*count * sizeof *points);
+    for (unsigned i = 0; points && i < size - 1; i++)
+        GEOSCoordSeq_getXY_r(geos, sequence, i, &points[i].x, &points[i].y);
+    return points;
+}
+
+/* The piece's outline replaced by the polygon's rim, its holes added as cut paths. */
+static ur_status take_rim_and_holes(GEOSContextHandle_t geos, ur_piece *piece,
+                                    const GEOSGeometry *polygon, ur_error *error)
+{
+    ur_vec2 *rim;
+    size_t rim_count;
+    ur_status status = allow_exterior_ring(geos, polygon, &rim, &rim_count, error);
+    if (status != UR_OK)
+        return status;
+    free(piece->paths[0].points);
+    piece->paths[0].points = rim;
+    piece->paths[0].count = rim_count;
+    int holes = GEOSGetNumInteriorRings_r(geos, polygon);
+    for (int k = 0; status == UR_OK && k < holes; k++) {
+        size_t count = 0;
+        ur_vec2 *hole = interior_ring(geos, polygon, k, &count);
+        status = hole ? ur_piece_add_path(piece, UR_OP_CUT, hole, count, true, error)
+                      : ur_error_out_of_memory(error);
+        free(hole);
+    }
+    return status;
+}
+
+/*
+ * The one polygon of what GEOS made valid: itself, or the only polygon of
+ * a collection whose other parts are lines (the slit, collapsed) or
+ * points; NULL otherwise.
+ */
+static const GEOSGeometry *only_polygon(GEOSContextHandle_t geos, const GEOSGeometry *valid)
+{
+    if (GEOSGeomTypeId_r(geos, valid) == GEOS_POLYGON)
+        return valid;
+    if (GEOSGeomTypeId_r(geos, valid) != GEOS_GEOMETRYCOLLECTION)
+        return NULL;
+    const GEOSGeometry *found = NULL;
+    int count = GEOSGetNumGeometries_r(geos, valid);
+    for (int k = 0; k < count; k++) {
+        const GEOSGeometry *part = GEOSGetGeometryN_r(geos, valid, k);
+        int type = GEOSGeomTypeId_r(geos, part);
+        if (type == GEOS_POLYGON || type == GEOS_MULTIPOLYGON) {
+            if (found || type == GEOS_MULTIPOLYGON)
+                return NULL;
+            found = part;
+        }
+    }
+    return found;
+}
+
+ur_status allow_open_slits(ur_piece *piece, ur_error *error)
+{
+    if (piece->path_count == 0 || !piece->paths[0].closed || piece->paths[0].count < 6)
+        return UR_OK;
+    const ur_path *outline = &piece->paths[0];
+    double size = hypot(ur_box_width(piece->box), ur_box_height(piece->box));
+    if (!has_repeated_point(outline->points, outline->count, SAME_POINT * size))
+        return UR_OK;
+    GEOSContextHandle_t geos = GEOS_init_r();
+    if (!geos)
+        return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not be started");
+    GEOSGeometry *drawn = ur_geos_polygon(geos, outline->points, outline->count);
+    GEOSGeometry *valid = drawn ? GEOSMakeValid_r(geos, drawn) : NULL;
+    const GEOSGeometry *polygon = valid ? only_polygon(geos, valid) : NULL;
+    double area = fabs(ur_polygon_signed_area(outline->points, outline->count)), valid_area = 0;
+    ur_status status = UR_OK;
+    /* Only a slit: one polygon with holes, of the outline's own area (a slit has none). */
+    if (polygon && GEOSGetNumInteriorRings_r(geos, polygon) > 0 &&
+        GEOSArea_r(geos, polygon, &valid_area) && fabs(valid_area - area) <= 1e-9 * area)
+        status = take_rim_and_holes(geos, piece, polygon, error);
+    if (valid)
+        GEOSGeom_destroy_r(geos, valid);
+    if (drawn)
+        GEOSGeom_destroy_r(geos, drawn);
+    GEOS_finish_r(geos);
+    return status;
+}
