@@ -191,35 +191,45 @@ static size_t pair_key(const nester *n, size_t a, size_t ta, size_t b, size_t tb
     return ((ca * t + ta) * n->class_count + cb) * t + tb;
 }
 
-const GEOSGeometry *nest_sums_of(nester *n, size_t a, size_t ta, size_t b, size_t tb)
+/* What a cache of pairs holds, made for a pair at a's first turn (or one not turned). */
+typedef GEOSGeometry *(*pair_maker)(nester *n, size_t a, size_t ta, size_t b, size_t tb);
+
+/* The cache's entry for the pair: made, or turned from its first turn's, once. */
+static const GEOSGeometry *cached_pair(nester *n, GEOSGeometry **cache, pair_maker make, size_t a,
+                                       size_t ta, size_t b, size_t tb)
 {
     size_t key = pair_key(n, a, ta, b, tb), first;
     double cs[2];
-    if (n->sums[key])
-        return n->sums[key];
+    if (cache[key])
+        return cache[key];
     if (turned_pair(n, a, ta, b, tb, &first, cs)) {
-        const GEOSGeometry *base = nest_sums_of(n, a, 0, b, first);
-        n->sums[key] = base ? GEOSGeom_transformXY_r(n->geos, base, turn_xy, cs) : NULL;
+        const GEOSGeometry *base = cached_pair(n, cache, make, a, 0, b, first);
+        cache[key] = base ? GEOSGeom_transformXY_r(n->geos, base, turn_xy, cs) : NULL;
     } else {
-        n->sums[key] = nest_sums(n->geos, nest_shape_of(n, a, ta), nest_shape_of(n, b, tb));
+        cache[key] = make(n, a, ta, b, tb);
     }
-    return n->sums[key];
+    return cache[key];
+}
+
+static GEOSGeometry *make_sums(nester *n, size_t a, size_t ta, size_t b, size_t tb)
+{
+    return nest_sums(n->geos, nest_shape_of(n, a, ta), nest_shape_of(n, b, tb));
+}
+
+static GEOSGeometry *make_union(nester *n, size_t a, size_t ta, size_t b, size_t tb)
+{
+    const GEOSGeometry *sums = nest_sums_of(n, a, ta, b, tb);
+    return sums ? nest_union_of_sums(n->geos, sums) : NULL;
+}
+
+const GEOSGeometry *nest_sums_of(nester *n, size_t a, size_t ta, size_t b, size_t tb)
+{
+    return cached_pair(n, n->sums, make_sums, a, ta, b, tb);
 }
 
 const GEOSGeometry *nest_nfp_of(nester *n, size_t a, size_t ta, size_t b, size_t tb)
 {
-    size_t key = pair_key(n, a, ta, b, tb), first;
-    double cs[2];
-    if (n->nfps[key])
-        return n->nfps[key];
-    if (turned_pair(n, a, ta, b, tb, &first, cs)) {
-        const GEOSGeometry *base = nest_nfp_of(n, a, 0, b, first);
-        n->nfps[key] = base ? GEOSGeom_transformXY_r(n->geos, base, turn_xy, cs) : NULL;
-    } else {
-        const GEOSGeometry *sums = nest_sums_of(n, a, ta, b, tb);
-        n->nfps[key] = sums ? nest_union_of_sums(n->geos, sums) : NULL;
-    }
-    return n->nfps[key];
+    return cached_pair(n, n->nfps, make_union, a, ta, b, tb);
 }
 
 /* The size of a sheet: a remnant's, or the stock's. */
