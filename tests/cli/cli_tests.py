@@ -736,12 +736,12 @@ def hue_groups(width, height, rows, least=100, gap=None):
 
 @test
 def assembly_guide_shows_each_piece_in_its_colour(work):
-    """--assembly: the torus unfolded into pieces, drawn as a PNG and as a PDF
+    """--assembly: the cube unfolded into pieces, drawn as a PNG and as a PDF
     with one hue a piece, as many hues as the report has pieces; a file name
     that is not .png or .pdf, and a surface with no faces (a development),
     are refused before anything is written."""
-    torus = os.path.join(REPO, "samples", "torus.obj")
-    common = ["mesh", torus, "--flatten", "unfold", "--material", "paper-0.3mm", "--quiet"]
+    cube = os.path.join(REPO, "samples", "cube.obj")
+    common = ["mesh", cube, "--flatten", "unfold", "--material", "paper-0.3mm", "--quiet"]
     run(work, *common, "-o", "x.svg", "--report", "x.json", "--assembly", "guide.png")
     common += ["--allowances", "none"]  # the rest need no tabs
     pieces = len(report(work, "x.json")["pieces"])
@@ -757,7 +757,7 @@ def assembly_guide_shows_each_piece_in_its_colour(work):
     check(subprocess.run(["qpdf", "--check", pdf], capture_output=True).returncode == 0,
           "qpdf --check fails on the guide")
     info = subprocess.run(["pdfinfo", pdf], capture_output=True, text=True).stdout
-    check(re.search(r"^Pages:\s+1$", info, re.M) and re.search(r"^Title:\s+torus.obj$", info, re.M),
+    check(re.search(r"^Pages:\s+1$", info, re.M) and re.search(r"^Title:\s+cube.obj$", info, re.M),
           "pdfinfo: %s" % info)
     found = hue_groups(*pdf_pixels(work, pdf, 100), least=20, gap=180 / pieces)
     check(found == pieces, "the PDF shows %d hues for %d pieces" % (found, pieces))
