@@ -170,6 +170,15 @@ typedef struct ur_unfold_options {
      */
     double room_length, room_width;
     /*
+     * The narrowest gap (mm) a join may leave between the outline of the
+     * piece it moves and the outline of the other piece: no join leaves
+     * two edges of a piece's outline facing each other across the outside
+     * closer than this (a slit with no room for a glue tab), except next
+     * to the flat vertices it makes one.  Edges inside a flat face are
+     * exempt.  0: any gap (pieces only never overlap).
+     */
+    double min_gap;
+    /*
      * Called now and then with the phase ("unfolding", "improving") and
      * how far it is, from 0 to 1; NULL for none.
      */

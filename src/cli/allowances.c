@@ -90,6 +90,11 @@ unsigned cli_allowances_chosen(const cli_job *job, const ur_machine *machine)
     return set;
 }
 
+bool cli_makes_joints(const cli_job *job)
+{
+    return job->allowances_auto || (job->allowances & CLI_ALLOW_TABS);
+}
+
 static ur_status add_relief(unsigned set, const ur_material *material, const ur_net_list *nets,
                             ur_piece *pieces, size_t count, ur_error *error)
 {

@@ -112,6 +112,9 @@ enum {
 /* The CLI_ALLOW_* bits the job gets: --allowances auto decides from the profiles. */
 unsigned cli_allowances_chosen(const cli_job *job, const ur_machine *machine);
 
+/* Whether the job puts joints on the seams (the same on every machine). */
+bool cli_makes_joints(const cli_job *job);
+
 /*
  * The smallest radius the material bends to: bending happens across the
  * rulings, and the profile says which of its two radii applies by its

@@ -351,6 +351,9 @@ static int unfold_mesh(const cli_job *job, const cli_room *room, const ur_materi
     options.seed = (uint64_t)job->seed;
     options.max_steps = UNFOLD_STEPS;
     options.time_budget = UNFOLD_SECONDS;
+    if (cli_makes_joints(job))
+        options.min_gap =
+            material->joint == UR_JOINT_LAP ? material->lap_width : material->tab_depth;
     if (shows_progress(job)) {
         options.progress = show_unfold_progress;
         options.progress_context = (void *)job;

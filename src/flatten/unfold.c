@@ -214,6 +214,9 @@ static ur_status check_options(const ur_unfold_options *o, ur_error *error)
           isfinite(o->room_width)))
         return ur_error_set(error, UR_ERROR_INPUT,
                             "the room for a piece must be two lengths >= 0 (0 x 0: no limit)");
+    if (!(o->min_gap >= 0 && isfinite(o->min_gap)))
+        return ur_error_set(error, UR_ERROR_INPUT,
+                            "the narrowest gap between a piece's edges must be a length >= 0");
     return UR_OK;
 }
 
@@ -229,8 +232,9 @@ static ur_status alloc_run(unfolder *u, ur_error *error)
     u->pair_small = ur_alloc_array(3 * n + 2, sizeof *u->pair_small, error);
     u->pair_large = ur_alloc_array(3 * n + 2, sizeof *u->pair_large, error);
     u->roots = ur_alloc_array(4 * (3 * n + 2), sizeof *u->roots, error);
+    u->nearby = ur_alloc_array(n, sizeof *u->nearby, error);
     if (!u->piece || !u->flat || !u->joined || !u->parent || !u->next_member || !u->islands ||
-        !u->pair_small || !u->pair_large || !u->roots)
+        !u->pair_small || !u->pair_large || !u->roots || !u->nearby)
         return UR_ERROR_INTERNAL;
     if (!u->room)
         return UR_OK;
@@ -287,6 +291,7 @@ static void unfolder_free(unfolder *u)
     free(u->pair_small);
     free(u->pair_large);
     free(u->roots);
+    free(u->nearby);
     free(u->hull_points);
     free(u->hull_chain);
     unfold_grid_free(&u->grid);

@@ -49,12 +49,17 @@ static double gap_along(ur_vec2 a, ur_vec2 b, const ur_vec2 t[3], const ur_vec2 
     return one > other ? one : other;
 }
 
-static double squared_segment_distance(ur_vec2 p, ur_vec2 a, ur_vec2 b)
+static ur_vec2 nearest_on_segment(ur_vec2 p, ur_vec2 a, ur_vec2 b)
 {
     ur_vec2 d = ur_vec2_sub(b, a);
     double s = ur_vec2_dot(ur_vec2_sub(p, a), d) / ur_vec2_dot(d, d);
     s = s < 0 ? 0 : s > 1 ? 1 : s;
-    ur_vec2 e = ur_vec2_sub(p, ur_vec2_add_scaled(a, d, s));
+    return ur_vec2_add_scaled(a, d, s);
+}
+
+static double squared_segment_distance(ur_vec2 p, ur_vec2 a, ur_vec2 b)
+{
+    ur_vec2 e = ur_vec2_sub(p, nearest_on_segment(p, a, b));
     return ur_vec2_dot(e, e);
 }
 
@@ -94,6 +99,26 @@ unfold_contact unfold_triangle_contact(const ur_vec2 t[3], const ur_vec2 q[3], d
             contact.q_near |= 1u << k;
     }
     return contact;
+}
+
+double unfold_edge_gap(ur_vec2 a, ur_vec2 b, ur_vec2 c, ur_vec2 d, ur_vec2 *on_ab, ur_vec2 *on_cd)
+{
+    /* Segments that do not cross are nearest at an end of one of them. */
+    ur_vec2 ends[4] = {a, b, c, d};
+    ur_vec2 nearest[4] = {nearest_on_segment(a, c, d), nearest_on_segment(b, c, d),
+                          nearest_on_segment(c, a, b), nearest_on_segment(d, a, b)};
+    int best = 0;
+    for (int k = 1; k < 4; k++)
+        if (ur_vec2_distance(ends[k], nearest[k]) < ur_vec2_distance(ends[best], nearest[best]))
+            best = k;
+    *on_ab = best < 2 ? ends[best] : nearest[best];
+    *on_cd = best < 2 ? nearest[best] : ends[best];
+    return ur_vec2_distance(ends[best], nearest[best]);
+}
+
+bool unfold_point_near_triangle(ur_vec2 p, const ur_vec2 q[3], double eps)
+{
+    return near_triangle(p, q, eps);
 }
 
 /* ---- the grid ---- */

@@ -109,6 +109,15 @@ typedef struct unfold_contact {
 unfold_contact unfold_triangle_contact(const ur_vec2 t[3], const ur_vec2 q[3], double eps);
 
 /*
+ * How far apart segments ab and cd are (they do not cross), and their
+ * nearest points.
+ */
+double unfold_edge_gap(ur_vec2 a, ur_vec2 b, ur_vec2 c, ur_vec2 d, ur_vec2 *on_ab, ur_vec2 *on_cd);
+
+/* Whether p is within eps of the counter-clockwise triangle q (or inside it). */
+bool unfold_point_near_triangle(ur_vec2 p, const ur_vec2 q[3], double eps);
+
+/*
  * The triangles of every piece, bucketed by piece and by the square cells
  * their boxes cover (cells of about a mean edge, hashed into slots), so
  * that a join looks at the triangles near the moved ones only.  A triangle
@@ -182,6 +191,14 @@ static inline ur_vec2 unfold_move(const unfold_motion *m, ur_vec2 p)
                        ur_vec2_make(m->cos * d.x - m->sin * d.y, m->sin * d.x + m->cos * d.y));
 }
 
+/* The point that m moves to p. */
+static inline ur_vec2 unfold_move_back(const unfold_motion *m, ur_vec2 p)
+{
+    ur_vec2 d = ur_vec2_sub(p, m->to);
+    return ur_vec2_add(m->from,
+                       ur_vec2_make(m->cos * d.x + m->sin * d.y, -m->sin * d.x + m->cos * d.y));
+}
+
 /* How many of the triangles that stopped the last joins are tried first (unfold_lay.c). */
 #define UNFOLD_CULPRITS 8
 
@@ -202,6 +219,7 @@ typedef struct unfolder {
     size_t *next_member;
     unfold_island *islands; /* per triangle number: the piece it started */
     unfold_grid grid;
+    size_t *nearby; /* a copy of what a grid query found, while the join asks it again */
     size_t *pair_small, *pair_large; /* the half-edges a join joins, in the two pieces */
     size_t pair_count, slit_count;   /* slits follow the pairs */
     bool slits;                      /* allowed: inside faces */

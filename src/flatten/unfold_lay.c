@@ -157,11 +157,19 @@ static unsigned shared_corner(unfolder *u, size_t s, const ur_vec2 moved[3], int
     return made_one(u, 3 * s + (size_t)i, 3 * q + (size_t)j) ? 1u << j : 0;
 }
 
-/* Whether moved small triangle s and large triangle q meet at most at one flat vertex made one. */
-static bool touches_well(unfolder *u, size_t s, const ur_vec2 moved[3], size_t q)
+/* Whether joins keep the options' gap: between pieces of faces, not inside a face. */
+static bool keeps_gap(const unfolder *u)
 {
-    if (paired(u, s, q))
-        return true;
+    return u->options.min_gap > 0 && !u->slits;
+}
+
+/*
+ * Whether moved small triangle s and large triangle q meet at most at one
+ * flat vertex made one; *at_vertex: they meet there.
+ */
+static bool touches_well(unfolder *u, size_t s, const ur_vec2 moved[3], size_t q, bool *at_vertex)
+{
+    *at_vertex = false;
     unfold_contact contact = unfold_triangle_contact(moved, u->flat[q], u->eps);
     if (contact.overlap)
         return false;
@@ -186,7 +194,94 @@ static bool touches_well(unfolder *u, size_t s, const ur_vec2 moved[3], size_t q
             return false;
         shared |= bit;
     }
+    *at_vertex = shared != 0;
     return (shared & (shared - 1)) == 0;
+}
+
+/* Whether half-edge h stays on its piece's outline: joined neither before nor by this join. */
+static bool stays_outline(const unfolder *u, size_t h)
+{
+    if (u->joined[h])
+        return false;
+    for (size_t i = 0; i < u->pair_count + u->slit_count; i++)
+        if (u->pair_small[i] == h || u->pair_large[i] == h)
+            return false;
+    return true;
+}
+
+/*
+ * Whether point p (where the join puts it) lies on a triangle of piece
+ * (the small one moved by m, or the large one as it lies), or within
+ * tolerance of one.
+ */
+static bool covered(unfolder *u, size_t piece, const unfold_motion *m, ur_vec2 p, double tolerance)
+{
+    ur_vec2 at = m ? unfold_move_back(m, p) : p;
+    ur_box box = {ur_vec2_make(at.x - tolerance, at.y - tolerance),
+                  ur_vec2_make(at.x + tolerance, at.y + tolerance)};
+    unfold_grid *grid = &u->grid;
+    if (unfold_grid_query(grid, box, piece, u->piece)) {
+        for (size_t i = 0; i < grid->found_count; i++)
+            if (unfold_point_near_triangle(at, u->flat[grid->found[i]], tolerance))
+                return true;
+        return false;
+    }
+    for (size_t t = u->islands[piece].first; t != UNFOLD_NONE; t = u->next_member[t])
+        if (unfold_point_near_triangle(at, u->flat[t], tolerance))
+            return true;
+    return false;
+}
+
+/*
+ * Whether outline edges ab (of the moved small piece) and cd (of the large
+ * one) come closer than the gap with the outside between them: a slit.
+ * Where the middle of the shortest way between them is on a piece, it is
+ * a narrow part of the piece, or the way runs along its outline (edges of
+ * a straight or convex stretch apart by less than the gap), not a slit.
+ */
+static bool slit_between(unfolder *u, const unfold_motion *m, size_t small, size_t large, ur_vec2 a,
+                         ur_vec2 b, ur_vec2 c, ur_vec2 d)
+{
+    ur_vec2 on_ab, on_cd;
+    double gap = u->options.min_gap;
+    if (!(unfold_edge_gap(a, b, c, d, &on_ab, &on_cd) < gap))
+        return false;
+    ur_vec2 middle = ur_vec2_scale(ur_vec2_add(on_ab, on_cd), 0.5);
+    return !covered(u, large, NULL, middle, u->eps) && !covered(u, small, m, middle, u->eps);
+}
+
+/* Whether an outline edge of moved s and one of q leave a slit between them. */
+static bool leaves_slit(unfolder *u, const unfold_motion *m, size_t s, const ur_vec2 moved[3],
+                        size_t q)
+{
+    for (int i = 0; i < 3; i++) {
+        if (!stays_outline(u, 3 * s + (size_t)i))
+            continue;
+        for (int j = 0; j < 3; j++)
+            if (stays_outline(u, 3 * q + (size_t)j) &&
+                slit_between(u, m, u->piece[s], u->piece[q], moved[i], moved[(i + 1) % 3],
+                             u->flat[q][j], u->flat[q][(j + 1) % 3]))
+                return true;
+    }
+    return false;
+}
+
+/*
+ * Whether moved small triangle s may lie where it is beside large triangle
+ * q: joined to it, or touching it well, and, when the options ask for a
+ * gap, leaving no slit narrower than it between their outlines unless
+ * they meet at a flat vertex the join makes one (round which they must
+ * come close).
+ */
+static bool lies_well(unfolder *u, const unfold_motion *m, size_t s, const ur_vec2 moved[3],
+                      size_t q)
+{
+    if (paired(u, s, q))
+        return true;
+    bool at_vertex;
+    if (!touches_well(u, s, moved, q, &at_vertex))
+        return false;
+    return at_vertex || !keeps_gap(u) || !leaves_slit(u, m, s, moved, q);
 }
 
 static ur_box padded_box(const ur_vec2 corners[3], double eps)
@@ -208,21 +303,27 @@ static bool boxes_meet(ur_box box, const ur_vec2 q[3])
     return true;
 }
 
-/* Whether moved small triangle s touches the large piece well. */
-static bool fits_large(unfolder *u, size_t s, const ur_vec2 moved[3], size_t large)
+/*
+ * Whether moved small triangle s lies well beside the large piece.  What
+ * the grid found is copied first: looking for slits asks it again.
+ */
+static bool fits_large(unfolder *u, const unfold_motion *m, size_t s, const ur_vec2 moved[3],
+                       size_t large)
 {
     unfold_grid *grid = &u->grid;
-    ur_box box = padded_box(moved, u->eps);
+    ur_box box = padded_box(moved, keeps_gap(u) ? fmax(u->eps, u->options.min_gap) : u->eps);
     if (unfold_grid_query(grid, box, large, u->piece)) {
-        for (size_t i = 0; i < grid->found_count; i++) {
-            size_t q = grid->found[i];
-            if (boxes_meet(box, u->flat[q]) && !touches_well(u, s, moved, q))
+        size_t count = grid->found_count;
+        memcpy(u->nearby, grid->found, count * sizeof *u->nearby);
+        for (size_t i = 0; i < count; i++) {
+            size_t q = u->nearby[i];
+            if (boxes_meet(box, u->flat[q]) && !lies_well(u, m, s, moved, q))
                 return false;
         }
         return true;
     }
     for (size_t q = u->islands[large].first; q != UNFOLD_NONE; q = u->next_member[q])
-        if (boxes_meet(box, u->flat[q]) && !touches_well(u, s, moved, q))
+        if (boxes_meet(box, u->flat[q]) && !lies_well(u, m, s, moved, q))
             return false;
     return true;
 }
@@ -237,7 +338,7 @@ static bool fits_one(unfolder *u, const unfold_motion *m, size_t s, size_t large
 {
     ur_vec2 moved[3];
     move_triangle(m, u->flat[s], moved);
-    if (fits_large(u, s, moved, large))
+    if (fits_large(u, m, s, moved, large))
         return true;
     /* Remember it: the next try of these pieces, across a neighbouring edge, fails there too. */
     memmove(u->culprits + 1, u->culprits, (UNFOLD_CULPRITS - 1) * sizeof *u->culprits);

@@ -189,7 +189,8 @@ static ur_mesh torus(size_t around, size_t tube, double big, double small)
  * third point pushed in by a fifth of the radius so that edges around it
  * are concave.  2 around (rings - 1) + 2 around triangles.
  */
-static ur_mesh bumpy_sphere(size_t around, size_t rings)
+/* A sphere of radius 50 in rings of quads, every third vertex pulled in to radius bump. */
+static ur_mesh sphere(size_t around, size_t rings, double bump)
 {
     builder b = {0};
     size_t north = add_vertex(&b, ur_vec3_make(0, 0, 50));
@@ -197,7 +198,7 @@ static ur_mesh bumpy_sphere(size_t around, size_t rings)
         for (size_t i = 0; i < around; i++) {
             double theta = M_PI * (double)(j + 1) / (double)(rings + 1);
             double phi = 2 * M_PI * ((double)i + 0.5 * (double)(j % 2)) / (double)around;
-            double r = (j * around + i) % 3 == 0 ? 40 : 50;
+            double r = (j * around + i) % 3 == 0 ? bump : 50;
             add_vertex(&b, ur_vec3_make(r * sin(theta) * cos(phi), r * sin(theta) * sin(phi),
                                         r * cos(theta)));
         }
@@ -215,6 +216,11 @@ static ur_mesh bumpy_sphere(size_t around, size_t rings)
     }
     face_outward(&b);
     return build(&b);
+}
+
+static ur_mesh bumpy_sphere(size_t around, size_t rings)
+{
+    return sphere(around, rings, 40);
 }
 
 /* n triangles round a centre, all in z = 0 (flat: their angles add to 2 pi). */
@@ -1159,6 +1165,96 @@ static void test_search_repeats(void **state)
     ur_mesh_free(&mesh);
 }
 
+static double point_segment_distance(ur_vec2 p, ur_vec2 a, ur_vec2 b)
+{
+    ur_vec2 d = ur_vec2_sub(b, a);
+    double s = fmax(0.0, fmin(1.0, ur_vec2_dot(ur_vec2_sub(p, a), d) / ur_vec2_dot(d, d)));
+    return ur_vec2_distance(p, ur_vec2_add_scaled(a, d, s));
+}
+
+static double segment_distance(ur_vec2 a, ur_vec2 b, ur_vec2 c, ur_vec2 d)
+{
+    if (crosses(a, b, c, d))
+        return 0;
+    return fmin(fmin(point_segment_distance(a, c, d), point_segment_distance(b, c, d)),
+                fmin(point_segment_distance(c, a, b), point_segment_distance(d, a, b)));
+}
+
+/* The triangle of the piece with outline edge i (its flat corners at both ends). */
+static size_t triangle_of_outline_edge(const ur_unfolded_piece *piece, size_t i, double tolerance)
+{
+    ur_vec2 a = piece->outline[i], b = piece->outline[(i + 1) % piece->outline_count];
+    for (size_t t = 0; t < piece->triangle_count; t++)
+        for (int k = 0; k < 3; k++)
+            if (ur_vec2_distance(piece->flat[t][k], a) <= tolerance &&
+                ur_vec2_distance(piece->flat[t][(k + 1) % 3], b) <= tolerance)
+                return t;
+    fail_msg("outline edge %zu is no triangle's edge", i);
+    return 0;
+}
+
+/* Whether two triangles of a piece have a corner of one mesh vertex at one flat point. */
+static bool share_flat_vertex(const ur_mesh *mesh, const ur_unfolded_piece *piece, size_t t,
+                              size_t q, double tolerance)
+{
+    const size_t *a = mesh->triangles[piece->triangles[t]],
+                 *b = mesh->triangles[piece->triangles[q]];
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++)
+            if (a[i] == b[j] && ur_vec2_distance(piece->flat[t][i], piece->flat[q][j]) <= tolerance)
+                return true;
+    return false;
+}
+
+/*
+ * How many pairs of outline edges of the pieces, not next to each other,
+ * come closer than gap, other than those of triangles that meet at a flat
+ * vertex (round which edges must come close).
+ */
+static size_t narrow_gaps(const ur_mesh *mesh, const ur_unfolding *u, double gap)
+{
+    double tolerance = 2e-6 * mesh_size(mesh);
+    size_t count = 0;
+    for (size_t p = 0; p < u->count; p++) {
+        const ur_unfolded_piece *piece = &u->pieces[p];
+        size_t n = piece->outline_count;
+        for (size_t i = 0; i < n; i++)
+            for (size_t k = i + 2; k < n; k++) {
+                if ((k + 1) % n == i)
+                    continue;
+                const ur_vec2 *o = piece->outline;
+                if (segment_distance(o[i], o[(i + 1) % n], o[k], o[(k + 1) % n]) >= gap)
+                    continue;
+                size_t t = triangle_of_outline_edge(piece, i, tolerance);
+                size_t q = triangle_of_outline_edge(piece, k, tolerance);
+                if (!share_flat_vertex(mesh, piece, t, q, tolerance))
+                    count++;
+            }
+    }
+    return count;
+}
+
+/* With a gap asked for, no two edges of a piece's outline come closer but at a flat vertex. */
+static void test_min_gap(void **state)
+{
+    (void)state;
+    ur_mesh mesh = sphere(24, 11, 50);
+    ur_unfold_options options;
+    ur_unfold_options_default(&options);
+    options.max_steps = 50;
+    double gap = 3.0;
+    ur_unfolding any = unfold_with(&mesh, &options);
+    check_unfolding(&mesh, &any, NULL, 0);
+    assert_true(narrow_gaps(&mesh, &any, gap) > 0); /* without it, bands lie close */
+    options.min_gap = gap;
+    ur_unfolding apart = unfold_with(&mesh, &options);
+    check_unfolding(&mesh, &apart, NULL, 0);
+    assert_int_equal(narrow_gaps(&mesh, &apart, gap), 0);
+    ur_unfolding_free(&any);
+    ur_unfolding_free(&apart);
+    ur_mesh_free(&mesh);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1179,6 +1275,7 @@ int main(void)
         cmocka_unit_test(test_room_splits),
         cmocka_unit_test(test_face_larger_than_room),
         cmocka_unit_test(test_search_repeats),
+        cmocka_unit_test(test_min_gap),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
