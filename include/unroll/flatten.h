@@ -172,10 +172,12 @@ typedef struct ur_unfold_options {
     /*
      * The narrowest gap (mm) a join may leave between the outline of the
      * piece it moves and the outline of the other piece: no join leaves
-     * two edges of a piece's outline facing each other across the outside
-     * closer than this (a slit with no room for a glue tab), except next
-     * to the flat vertices it makes one.  Edges inside a flat face are
-     * exempt.  0: any gap (pieces only never overlap).
+     * two edges of a piece's outline closer than this with the outside
+     * between them (a slit with no room for a glue tab), nor a wedge
+     * narrower than this at a vertex it closes (measured from the far end
+     * of the shorter side).  Two edges of a straight or convex stretch of
+     * the outline, or with the piece between them, may come closer.  Not
+     * kept inside a flat face.  0: any gap (pieces only never overlap).
      */
     double min_gap;
     /*

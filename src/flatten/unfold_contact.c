@@ -52,7 +52,10 @@ static double gap_along(ur_vec2 a, ur_vec2 b, const ur_vec2 t[3], const ur_vec2 
 static ur_vec2 nearest_on_segment(ur_vec2 p, ur_vec2 a, ur_vec2 b)
 {
     ur_vec2 d = ur_vec2_sub(b, a);
-    double s = ur_vec2_dot(ur_vec2_sub(p, a), d) / ur_vec2_dot(d, d);
+    double squared_length = ur_vec2_dot(d, d);
+    if (squared_length == 0) /* a point (the far end of a wedge's side, unfold_lay.c) */
+        return a;
+    double s = ur_vec2_dot(ur_vec2_sub(p, a), d) / squared_length;
     s = s < 0 ? 0 : s > 1 ? 1 : s;
     return ur_vec2_add_scaled(a, d, s);
 }

@@ -163,13 +163,9 @@ static bool keeps_gap(const unfolder *u)
     return u->options.min_gap > 0 && !u->slits;
 }
 
-/*
- * Whether moved small triangle s and large triangle q meet at most at one
- * flat vertex made one; *at_vertex: they meet there.
- */
-static bool touches_well(unfolder *u, size_t s, const ur_vec2 moved[3], size_t q, bool *at_vertex)
+/* Whether moved small triangle s and large triangle q meet at most at one flat vertex made one. */
+static bool touches_well(unfolder *u, size_t s, const ur_vec2 moved[3], size_t q)
 {
-    *at_vertex = false;
     unfold_contact contact = unfold_triangle_contact(moved, u->flat[q], u->eps);
     if (contact.overlap)
         return false;
@@ -194,7 +190,6 @@ static bool touches_well(unfolder *u, size_t s, const ur_vec2 moved[3], size_t q
             return false;
         shared |= bit;
     }
-    *at_vertex = shared != 0;
     return (shared & (shared - 1)) == 0;
 }
 
@@ -233,6 +228,30 @@ static bool covered(unfolder *u, size_t piece, const unfold_motion *m, ur_vec2 p
 }
 
 /*
+ * How far apart edges ab and cd are, and their nearest points; edges that
+ * meet at an end (round a flat vertex the join makes one) are as far apart
+ * as the nearer of their other ends is from the other edge: the width of
+ * the wedge between them.
+ */
+static double edge_gap(const unfolder *u, ur_vec2 a, ur_vec2 b, ur_vec2 c, ur_vec2 d,
+                       ur_vec2 *on_ab, ur_vec2 *on_cd)
+{
+    ur_vec2 ab[2] = {a, b}, cd[2] = {c, d};
+    for (int i = 0; i < 2; i++)
+        for (int j = 0; j < 2; j++) {
+            if (ur_vec2_distance(ab[i], cd[j]) > u->eps)
+                continue;
+            ur_vec2 far_ab = ab[1 - i], far_cd = cd[1 - j], near_cd, near_ab, unused;
+            double from_ab = unfold_edge_gap(far_ab, far_ab, c, d, &unused, &near_cd);
+            double from_cd = unfold_edge_gap(a, b, far_cd, far_cd, &near_ab, &unused);
+            *on_ab = from_ab < from_cd ? far_ab : near_ab;
+            *on_cd = from_ab < from_cd ? near_cd : far_cd;
+            return fmin(from_ab, from_cd);
+        }
+    return unfold_edge_gap(a, b, c, d, on_ab, on_cd);
+}
+
+/*
  * Whether outline edges ab (of the moved small piece) and cd (of the large
  * one) come closer than the gap with the outside between them: a slit.
  * Where the middle of the shortest way between them is on a piece, it is
@@ -244,7 +263,7 @@ static bool slit_between(unfolder *u, const unfold_motion *m, size_t small, size
 {
     ur_vec2 on_ab, on_cd;
     double gap = u->options.min_gap;
-    if (!(unfold_edge_gap(a, b, c, d, &on_ab, &on_cd) < gap))
+    if (!(edge_gap(u, a, b, c, d, &on_ab, &on_cd) < gap))
         return false;
     ur_vec2 middle = ur_vec2_scale(ur_vec2_add(on_ab, on_cd), 0.5);
     return !covered(u, large, NULL, middle, u->eps) && !covered(u, small, m, middle, u->eps);
@@ -269,19 +288,17 @@ static bool leaves_slit(unfolder *u, const unfold_motion *m, size_t s, const ur_
 /*
  * Whether moved small triangle s may lie where it is beside large triangle
  * q: joined to it, or touching it well, and, when the options ask for a
- * gap, leaving no slit narrower than it between their outlines unless
- * they meet at a flat vertex the join makes one (round which they must
- * come close).
+ * gap, leaving no slit narrower than it between their outlines (nor a
+ * narrower wedge at a flat vertex the join makes one).
  */
 static bool lies_well(unfolder *u, const unfold_motion *m, size_t s, const ur_vec2 moved[3],
                       size_t q)
 {
     if (paired(u, s, q))
         return true;
-    bool at_vertex;
-    if (!touches_well(u, s, moved, q, &at_vertex))
+    if (!touches_well(u, s, moved, q))
         return false;
-    return at_vertex || !keeps_gap(u) || !leaves_slit(u, m, s, moved, q);
+    return !keeps_gap(u) || !leaves_slit(u, m, s, moved, q);
 }
 
 static ur_box padded_box(const ur_vec2 corners[3], double eps)
