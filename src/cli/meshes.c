@@ -322,6 +322,24 @@ static void show_unfold_progress(void *context, const char *phase, double fracti
 }
 
 /*
+ * The mean length of the mesh's triangle sides (each inner edge twice).
+ * Where faces are at least as long as a tab is deep, the unfolding leaves
+ * half a tab's depth between the parts of a piece, so that every seam has
+ * room for a tab (a lower one where it must); on finer meshes tabs cannot
+ * be full size anyway, and that rule cut Blender's subdivided monkey head
+ * into hundreds of pieces: there the pieces stay large.
+ */
+static double mean_edge_length(const ur_mesh *mesh)
+{
+    double sum = 0;
+    for (size_t t = 0; t < mesh->triangle_count; t++)
+        for (int k = 0; k < 3; k++)
+            sum += ur_vec3_distance(mesh->vertices[mesh->triangles[t][k]],
+                                    mesh->vertices[mesh->triangles[t][(k + 1) % 3]]);
+    return mesh->triangle_count ? sum / (3.0 * (double)mesh->triangle_count) : 0.0;
+}
+
+/*
  * The search for fewer pieces takes UNFOLD_STEPS steps, so that a mesh
  * unfolds the same way every time (and on every machine), stopping early
  * after UNFOLD_SECONDS on a large mesh.
@@ -351,9 +369,9 @@ static int unfold_mesh(const cli_job *job, const cli_room *room, const ur_materi
     options.seed = (uint64_t)job->seed;
     options.max_steps = UNFOLD_STEPS;
     options.time_budget = UNFOLD_SECONDS;
-    if (cli_makes_joints(job))
-        options.min_gap =
-            material->joint == UR_JOINT_LAP ? material->lap_width : material->tab_depth;
+    double tab = material->joint == UR_JOINT_LAP ? material->lap_width : material->tab_depth;
+    if (cli_makes_joints(job) && mean_edge_length(mesh) >= tab)
+        options.min_gap = tab / 2;
     if (shows_progress(job)) {
         options.progress = show_unfold_progress;
         options.progress_context = (void *)job;

@@ -943,6 +943,97 @@ def unfolding_keeps_every_face(work):
         "--flatten", "unfold", "-o", "x.svg")
 
 
+def inside(point, ring):
+    """Whether a point lies inside a ring (even-odd rule)."""
+    x, y = point
+    result = False
+    for (x1, y1), (x2, y2) in zip(ring, ring[1:] + ring[:1]):
+        if (y1 > y) != (y2 > y) and x < x1 + (y - y1) * (x2 - x1) / (y2 - y1):
+            result = not result
+    return result
+
+
+def on_ring(point, ring, tolerance=1e-3):
+    """Whether a point lies on a ring's edges (a fold along a cut edge)."""
+    for p, q in zip(ring, ring[1:] + ring[:1]):
+        dx, dy = q[0] - p[0], q[1] - p[1]
+        length2 = dx * dx + dy * dy
+        t = 0 if length2 == 0 else max(0, min(1, ((point[0] - p[0]) * dx + (point[1] - p[1]) * dy)
+                                                / length2))
+        if math.dist(point, (p[0] + t * dx, p[1] + t * dy)) <= tolerance:
+            return True
+    return False
+
+
+def rings_apart(a, b):
+    """Whether two rings do not cross."""
+    box = lambda r: (min(p[0] for p in r), min(p[1] for p in r), max(p[0] for p in r),
+                     max(p[1] for p in r))
+    ba, bb = box(a), box(b)
+    if ba[2] < bb[0] or bb[2] < ba[0] or ba[3] < bb[1] or bb[3] < ba[1]:
+        return True
+    for p, q in zip(a, a[1:] + a[:1]):
+        for r, s in zip(b, b[1:] + b[:1]):
+            if segments_cross(p, q, r, s):
+                return False
+    # A part may lie in another's hole (nesting puts the grid's centre in the frame's
+    # window), so only crossings are checked here; test_nest checks containment.
+    return True
+
+
+PAPERCRAFT = ["cube.obj", "uvsphere.obj", "torus.obj", "grid-hole.obj", "head.obj"]
+
+
+@test
+def papercraft_of_the_sample_meshes(work):
+    for name in PAPERCRAFT:
+        mesh = os.path.join(REPO, "samples", name)
+        result = run(work, "mesh", mesh, "--flatten", "unfold", "--material", "paper-0.3mm",
+                     "--nest-time", "0", "--no-kerf-compensation", "--order", "none",
+                     "-o", "p.svg", "--report", "p.json")
+        data = report(work, "p.json")
+        check(not data["not_placed"], "%s: pieces not placed" % name)
+        labels, tabs, unlabelled = {}, set(), set()
+        for piece in data["pieces"]:
+            for a in piece["allowances"]:
+                # Every seam gets its tabs; a label with no room is said, never dropped silently.
+                check(not a["warning"] or a["reason"].startswith("no room for label ")
+                      or a["reason"].startswith("no room to engrave the piece's name"),
+                      "%s: %s: %s" % (name, piece["name"], a["reason"]))
+                found = re.match(r"no room for label ([A-Z]+\d+)", a["reason"])
+                if a["warning"] and found:
+                    unlabelled.add(found.group(1))
+                found = re.match(r"label '([A-Z]+\d+)'", a["reason"])
+                if a["kind"] == "label" and found:
+                    labels[found.group(1)] = labels.get(found.group(1), 0) + 1
+                found = re.match(r"\d+ glue tabs? on seam ([A-Z]+\d+)", a["reason"])
+                if found:
+                    tabs.add(found.group(1))
+        names = {piece["name"] for piece in data["pieces"]}
+        seams = sorted((set(labels) | tabs | unlabelled) - names)
+        check(seams, "%s: no seam labels" % name)
+        for label in seams:
+            placed = labels.get(label, 0)
+            check(placed == 2 or (placed < 2 and label in unlabelled),
+                  "%s: seam %s labelled %d times" % (name, label, placed))
+            check(label in tabs, "%s: seam %s has no glue tab" % (name, label))
+        # Small pieces can be short of room for a label (said above); most seams are not.
+        check(3 * len(unlabelled) <= len(seams), "%s: %d of %d seams short of a label"
+              % (name, len(unlabelled), len(seams)))
+        for sheet in data["sheets"]:
+            svg = os.path.join(work, os.path.basename(sheet["file"]))
+            rings = outlines(svg)
+            for i in range(len(rings)):
+                for j in range(i):
+                    check(rings_apart(rings[i], rings[j]), "%s: two pieces overlap" % name)
+            for layer in ("score", "score-valley", "engrave"):
+                for points, _ in paths(svg, layer):
+                    for p, q in zip(points, points[1:]):
+                        middle = ((p[0] + q[0]) / 2, (p[1] + q[1]) / 2)
+                        check(any(inside(middle, ring) or on_ring(middle, ring) for ring in rings),
+                              "%s: a %s line outside every piece" % (name, layer))
+
+
 @test
 def unfolding_fits_the_sheet(work):
     # A 100 mm cube on a 250 x 180 mm sheet: inside the margins and with
