@@ -111,6 +111,18 @@ static inline int remove_test_directory(const char *directory)
 
 /* ---- Unfolded meshes as nets ---------------------------------------------- */
 
+/* A mesh file read and cleaned as the command line does (welded to 1e-6 mm). */
+static inline ur_mesh cleaned_mesh_file(const char *path)
+{
+    ur_mesh mesh;
+    ur_error error;
+    if (ur_mesh_import(path, NULL, &mesh, NULL, &error) != UR_OK)
+        fail_msg("import: %s", error.message);
+    ur_mesh_repairs repairs;
+    assert_int_equal(ur_mesh_clean(&mesh, 1e-6, &repairs, &error), UR_OK);
+    return mesh;
+}
+
 /*
  * The nets of the mesh file unfolded along its edges, as the command line
  * makes them (outline, 3D points, names P1, P2, ...), seams not yet found;
@@ -119,12 +131,8 @@ static inline int remove_test_directory(const char *directory)
  */
 static inline ur_net_list unfolded_nets(const char *path, size_t *seams)
 {
-    ur_mesh mesh;
+    ur_mesh mesh = cleaned_mesh_file(path);
     ur_error error;
-    if (ur_mesh_import(path, NULL, &mesh, NULL, &error) != UR_OK)
-        fail_msg("import: %s", error.message);
-    ur_mesh_repairs repairs;
-    assert_int_equal(ur_mesh_clean(&mesh, 1e-6, &repairs, &error), UR_OK);
     ur_unfolding unfolding;
     assert_int_equal(ur_unfold(&mesh, NULL, 0, &unfolding, &error), UR_OK);
     ur_net_list nets = {calloc(unfolding.count, sizeof(ur_net)), unfolding.count};

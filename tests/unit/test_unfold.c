@@ -820,17 +820,6 @@ static ur_unfolding unfold_with(const ur_mesh *mesh, const ur_unfold_options *op
     return u;
 }
 
-static ur_mesh mesh_file(const char *path)
-{
-    ur_mesh mesh;
-    ur_error error;
-    if (ur_mesh_import(path, NULL, &mesh, NULL, &error) != UR_OK)
-        fail_msg("import: %s", error.message);
-    ur_mesh_repairs repairs;
-    assert_int_equal(ur_mesh_clean(&mesh, 1e-6, &repairs, &error), UR_OK);
-    return mesh;
-}
-
 /* The cube's 12 triangles are 6 flat faces: no fold inside a face, all of its area laid. */
 static void test_cube_faces_whole(void **state)
 {
@@ -1024,7 +1013,7 @@ static bool blocked(const ur_mesh *mesh, const ur_unfolding *u, const placement 
 static void test_head_no_stray_faces(void **state)
 {
     (void)state;
-    ur_mesh mesh = mesh_file("samples/head.obj");
+    ur_mesh mesh = cleaned_mesh_file("samples/head.obj");
     ur_unfold_options options;
     ur_unfold_options_default(&options);
     options.time_budget = 0; /* the greedy joining and nothing more: every edge tried */
@@ -1089,7 +1078,7 @@ static void smallest_rectangle(const ur_vec2 *points, size_t count, double *leng
 static void test_room_splits(void **state)
 {
     (void)state;
-    ur_mesh mesh = mesh_file("samples/cube.obj");
+    ur_mesh mesh = cleaned_mesh_file("samples/cube.obj");
     ur_unfold_options options;
     ur_unfold_options_default(&options);
     options.room_length = 150;
@@ -1110,7 +1099,7 @@ static void test_room_splits(void **state)
 static void test_face_larger_than_room(void **state)
 {
     (void)state;
-    ur_mesh mesh = mesh_file("samples/cube.obj");
+    ur_mesh mesh = cleaned_mesh_file("samples/cube.obj");
     ur_unfold_options options;
     ur_unfold_options_default(&options);
     options.room_length = options.room_width = 90;
