@@ -181,6 +181,13 @@ typedef struct ur_unfold_options {
      */
     double min_gap;
     /*
+     * Whether the gap is kept even where a face would be left a piece of
+     * its own (a UV sphere's thin pole triangles).  Default false: such a
+     * face is joined to a neighbour without it, and the search counts
+     * each such join (gap_breaks) as it counts a piece.
+     */
+    bool gap_strands_faces;
+    /*
      * Called now and then with the phase ("unfolding", "improving") and
      * how far it is, from 0 to 1; NULL for none.
      */
@@ -232,6 +239,7 @@ typedef struct ur_unfolding {
     size_t single_face; /* pieces of one flat face */
     double seam_length; /* of the seams, mm */
     size_t steps;       /* improvement steps done */
+    size_t gap_breaks;  /* joins of a single face made without min_gap */
 } ur_unfolding;
 
 /*

@@ -380,17 +380,6 @@ static int unfold_mesh(const cli_job *job, const cli_room *room, const ur_materi
     ur_error error;
     ur_status status =
         ur_unfold_with_options(mesh, seams, seam_count, &options, &unfolding, &error);
-    if (status == UR_OK && options.min_gap > 0 && 4 * unfolding.single_face > unfolding.count) {
-        /*
-         * The gap left faces stranded (thin triangles round a sphere's
-         * poles, which no join can lay clear of their neighbours): pieces
-         * matter more there, so unfold without it and let the tabs say
-         * which seams have no room.
-         */
-        ur_unfolding_free(&unfolding);
-        options.min_gap = 0;
-        status = ur_unfold_with_options(mesh, seams, seam_count, &options, &unfolding, &error);
-    }
     end_progress(job);
     if (status != UR_OK)
         return fail(job, &error);

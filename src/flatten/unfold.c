@@ -143,6 +143,32 @@ static ur_status join_all(unfolder *u, const size_t *order, size_t count, ur_err
     return UR_OK;
 }
 
+/*
+ * Joins the pieces of a single face the gap left (a sphere's thin pole
+ * triangles, which no join lays clear of their neighbours) to a neighbour
+ * without it, counting the joins: a stray face costs the maker more than
+ * a seam whose tab may find no room (the tabs then say so), and the
+ * search weighs such joins as pieces.  Every edge was tried with the gap
+ * before and joins only add to pieces, so each join here breaks it.
+ */
+static ur_status join_single_faces(unfolder *u, const size_t *order, size_t count, size_t *joins,
+                                   ur_error *error)
+{
+    u->gap_waived = true;
+    ur_status status = UR_OK;
+    for (size_t i = 0; i < count && status == UR_OK; i++) {
+        size_t h = order[i], g = u->edges.twins[h];
+        if (u->islands[u->piece[h / 3]].face_count != 1 &&
+            u->islands[u->piece[g / 3]].face_count != 1)
+            continue;
+        bool joined;
+        status = unfold_try_join(u, h, &joined, error);
+        *joins += joined;
+    }
+    u->gap_waived = false;
+    return status;
+}
+
 static bool one_face(const unfolder *u, size_t p)
 {
     size_t first = u->islands[p].first;
@@ -154,7 +180,7 @@ static bool one_face(const unfolder *u, size_t p)
 
 static unfold_score score_of(const unfolder *u)
 {
-    unfold_score score = {0, 0, 0.0};
+    unfold_score score = {0, 0, 0, 0.0};
     size_t n = u->mesh->triangle_count;
     for (size_t p = 0; p < n; p++) {
         if (u->islands[p].triangle_count == 0)
@@ -172,10 +198,12 @@ static unfold_score score_of(const unfolder *u)
 
 int unfold_score_compare(unfold_score a, unfold_score b)
 {
-    if (a.pieces != b.pieces)
-        return a.pieces < b.pieces ? -1 : 1;
+    if (unfold_score_cost(a) != unfold_score_cost(b))
+        return unfold_score_cost(a) < unfold_score_cost(b) ? -1 : 1;
     if (a.single_face != b.single_face)
         return a.single_face < b.single_face ? -1 : 1;
+    if (a.gap_breaks != b.gap_breaks) /* a seam with room for its tab before a shorter cut */
+        return a.gap_breaks < b.gap_breaks ? -1 : 1;
     if (a.seam_length != b.seam_length)
         return a.seam_length < b.seam_length ? -1 : 1;
     return 0;
@@ -195,8 +223,13 @@ ur_status unfold_run(unfolder *u, const size_t *order, size_t count, unfold_scor
     u->slits = false;
     if (status == UR_OK)
         status = join_all(u, order, count, error);
-    if (status == UR_OK)
+    u->gap_breaks = 0;
+    if (status == UR_OK && u->options.min_gap > 0 && !u->options.gap_strands_faces)
+        status = join_single_faces(u, order, count, &u->gap_breaks, error);
+    if (status == UR_OK) {
         *score = score_of(u);
+        score->gap_breaks = u->gap_breaks;
+    }
     return status;
 }
 
@@ -387,6 +420,7 @@ static ur_status unfold(unfolder *u, ur_unfolding *out, ur_error *error)
         status = rank_edges(u, &order, &count, error);
     if (status == UR_OK)
         status = unfold_search(u, order, count, &out->steps, error);
+    out->gap_breaks = u->gap_breaks;
     free(order);
     GEOSContextHandle_t geos = status == UR_OK ? GEOS_init_r() : NULL;
     if (status == UR_OK && !geos)

@@ -223,6 +223,8 @@ typedef struct unfolder {
     size_t *pair_small, *pair_large; /* the half-edges a join joins, in the two pieces */
     size_t pair_count, slit_count;   /* slits follow the pairs */
     bool slits;                      /* allowed: inside faces */
+    bool gap_waived;                 /* options.min_gap not kept: single faces joined last */
+    size_t gap_breaks;               /* the run's joins made so */
     size_t *roots; /* 2 per pair: the flat vertices it makes one, small's then large's */
     ur_vec2 *hull_points, *hull_chain; /* room for the hull of every corner */
     size_t culprits[UNFOLD_CULPRITS];  /* the triangles that stopped the last joins */
@@ -254,8 +256,15 @@ bool unfold_hull_fits(const unfolder *u, const ur_vec2 *hull, size_t count);
 /* The outcome of a run, compared: fewer pieces, then fewer of one face, then less cut. */
 typedef struct unfold_score {
     size_t pieces, single_face;
+    size_t gap_breaks; /* joins of single faces made without the options' gap */
     double seam_length;
 } unfold_score;
+
+/* What a run costs the maker: a piece, or a seam whose tab may find no room, each one. */
+static inline size_t unfold_score_cost(unfold_score score)
+{
+    return score.pieces + score.gap_breaks;
+}
 
 /* -1, 0, 1 as a is better than, as good as or worse than b. */
 int unfold_score_compare(unfold_score a, unfold_score b);

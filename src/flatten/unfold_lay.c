@@ -160,7 +160,7 @@ static unsigned shared_corner(unfolder *u, size_t s, const ur_vec2 moved[3], int
 /* Whether joins keep the options' gap: between pieces of faces, not inside a face. */
 static bool keeps_gap(const unfolder *u)
 {
-    return u->options.min_gap > 0 && !u->slits;
+    return u->options.min_gap > 0 && !u->slits && !u->gap_waived;
 }
 
 /* Whether moved small triangle s and large triangle q meet at most at one flat vertex made one. */

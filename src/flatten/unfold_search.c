@@ -151,7 +151,7 @@ static bool mutate(const unfolder *u, size_t *order, size_t count, size_t *piece
 /* How much worse b is than a, in pieces, for the annealing's acceptance. */
 static double worse_by(unfold_score a, unfold_score b, double total_length)
 {
-    return (double)b.pieces - (double)a.pieces +
+    return (double)unfold_score_cost(b) - (double)unfold_score_cost(a) +
            0.5 * ((double)b.single_face - (double)a.single_face) +
            (b.seam_length - a.seam_length) / total_length;
 }
@@ -209,7 +209,7 @@ static ur_status run_search(search *s, size_t least, size_t *steps, ur_error *er
     size_t stall_limit = 2000 + s->count, stall = 0;
     for (size_t step = 0;; step++) {
         double progress = spent(s, step);
-        if (progress >= 1.0 || s->top.pieces <= least || stall > stall_limit)
+        if (progress >= 1.0 || unfold_score_cost(s->top) <= least || stall > stall_limit)
             return UR_OK;
         if (step % 32 == 0 && o->progress)
             o->progress(o->progress_context, "improving", progress);
@@ -222,7 +222,7 @@ static ur_status run_search(search *s, size_t least, size_t *steps, ur_error *er
         *steps = step + 1;
         stall = unfold_score_compare(s->top, before) < 0 ? 0 : stall + 1;
         /* Carry on from the best when the walk has strayed far from it. */
-        if (s->current.pieces > s->top.pieces + 2) {
+        if (unfold_score_cost(s->current) > unfold_score_cost(s->top) + 2) {
             memcpy(s->order, s->best, s->count * sizeof *s->order);
             s->current = s->top;
         }
