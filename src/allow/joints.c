@@ -853,9 +853,34 @@ static GEOSGeometry *grown_at_once(joiner *j, const allow_board *b, const GEOSGe
 }
 
 /*
- * The piece's outline grown by all its joints at once.  Should that fail
- * (no one polygon even in part), the joints are added one at a time
- * instead and any that would break the outline is left off.
+ * Adds to grown (taken over, returned) the joints not kept yet, one at a
+ * time, leaving off any that would break the outline.
+ */
+static GEOSGeometry *grown_one_at_a_time(joiner *j, const allow_board *b, GEOSGeometry *grown,
+                                         const GEOSGeometry **shapes, size_t count)
+{
+    for (size_t k = 0; k < count; k++) {
+        placed_joint *p = &j->placed[allow_board_joint_tag(b, k)];
+        if (p->kept)
+            continue;
+        GEOSGeometry *pair = collection(j, grown, &shapes[k], 1);
+        GEOSGeometry *next = united(j, pair);
+        if (pair)
+            GEOSGeom_destroy_r(j->geos, pair);
+        if (next && GEOSGetNumInteriorRings_r(j->geos, next) == 0) {
+            GEOSGeom_destroy_r(j->geos, grown);
+            grown = next;
+            p->kept = true;
+        } else if (next)
+            GEOSGeom_destroy_r(j->geos, next);
+    }
+    return grown;
+}
+
+/*
+ * The piece's outline grown by all its joints at once, then by those that
+ * fell off it one at a time; should the union fail (no one polygon even
+ * in part), by all of them one at a time from the outline.
  */
 static ur_status grow_piece(joiner *j, size_t index, ur_error *error)
 {
@@ -876,22 +901,11 @@ static ur_status grow_piece(joiner *j, size_t index, ur_error *error)
     for (size_t k = 0; k < count; k++)
         shapes[k] = j->placed[allow_board_joint_tag(b, k)].shape;
     GEOSGeometry *grown = grown_at_once(j, b, outline, shapes, count);
-    if (!grown) { /* one at a time */
+    if (!grown) {
         grown = outline;
         outline = NULL;
-        for (size_t k = 0; k < count; k++) {
-            GEOSGeometry *pair = collection(j, grown, &shapes[k], 1);
-            GEOSGeometry *next = united(j, pair);
-            if (pair)
-                GEOSGeom_destroy_r(j->geos, pair);
-            if (next && GEOSGetNumInteriorRings_r(j->geos, next) == 0) {
-                GEOSGeom_destroy_r(j->geos, grown);
-                grown = next;
-                j->placed[allow_board_joint_tag(b, k)].kept = true;
-            } else if (next)
-                GEOSGeom_destroy_r(j->geos, next);
-        }
     }
+    grown = grown_one_at_a_time(j, b, grown, shapes, count);
     ur_status status = set_outline(j, piece, grown, error);
     GEOSGeom_destroy_r(j->geos, grown);
     if (outline)
