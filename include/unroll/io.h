@@ -314,8 +314,18 @@ typedef struct ur_parts_import_options {
      * asking for --units.  ur_parts_unit_mm turns a unit name into it.
      */
     double unit;
-    /* mm: farthest a flattened curve strays from the curve; default 0.01. */
+    /*
+     * mm: farthest a flattened curve strays from the curve; default 0.01.
+     * Ends this close meet: a path whose end is this close to its start is
+     * closed, an arc or ellipse this close to a full turn is one.
+     */
     double tolerance;
+    /*
+     * Refuse a file with anything that would be left out (an open shape,
+     * or a score, engrave, mark or kerf line no part holds) instead of
+     * leaving it out with a warning; default false.
+     */
+    bool strict;
 } ur_parts_import_options;
 
 void ur_parts_import_options_default(ur_parts_import_options *options);

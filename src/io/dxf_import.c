@@ -68,6 +68,7 @@ typedef struct dxf_entity {
     const char *type;
     int line;
     bool mirrored; /* extrusion (0, 0, -1): AutoCAD draws it with x turned over */
+    ur_op op;      /* what its layer says it is: cut unless the layer names another */
 } dxf_entity;
 
 static ur_status entity_error(const dxf_entity *entity, ur_error *error, const char *message)
@@ -209,6 +210,15 @@ static ur_status entity_number(const dxf_entity *entity, int code, double fallba
     return UR_OK;
 }
 
+/* The entity's text for code, NULL when it has none. */
+static const char *entity_text(const dxf_entity *entity, int code)
+{
+    for (size_t i = 1; i < entity->count; i++)
+        if (entity->pairs[i].code == code)
+            return entity->pairs[i].value;
+    return NULL;
+}
+
 static ur_status entity_flags(const dxf_entity *entity, int *flags, ur_error *error)
 {
     double value = 0;
@@ -326,6 +336,9 @@ static ur_status emit(const dxf_entity *entity, parts_points *points, bool close
         points->count--;
         closed = true;
     }
+    if (entity->op != UR_OP_CUT)
+        return parts_add_line(reader->collection, points, closed, entity->op, entity->line,
+                              entity->type, error);
     if (closed)
         return parts_add_ring(reader->collection, points, entity->line, entity->type, NULL, 1,
                               in_mm.radius > 0 ? &in_mm : NULL, error);
@@ -391,6 +404,10 @@ static ur_status read_circle_entity(const dxf_entity *entity, bool arc, ur_error
         start = v[3] * M_PI / 180;
         sweep = fmod(v[4] - v[3], 360.0);
         sweep = (sweep <= 0 ? sweep + 360 : sweep) * M_PI / 180;
+        /* Within the tolerance of a full turn either way: a circle, drawn as an arc. */
+        double slack = entity->reader->tolerance / v[2];
+        if (sweep <= slack || fabs(sweep - 2 * M_PI) <= slack)
+            sweep = 2 * M_PI;
     }
     parts_arc shape = {ur_vec2_make(v[0], v[1]), v[2], v[2], 0, start, sweep};
     parts_points points = {0};
@@ -419,8 +436,12 @@ static ur_status read_ellipse_entity(dxf_entity *entity, ur_error *error)
     if (status != UR_OK)
         return status;
     double sweep = fmod(end - start, 2 * M_PI);
-    sweep = sweep <= 1e-12 ? sweep + 2 * M_PI : sweep;
-    bool full = fabs(sweep - 2 * M_PI) < 1e-9;
+    sweep = sweep <= 0 ? sweep + 2 * M_PI : sweep;
+    /* Within the tolerance of a full turn either way (LibreCAD writes 2 pi as 6.28318530718). */
+    double slack = entity->reader->tolerance / fmax(rx, rx * fabs(v[4]));
+    bool full = sweep <= slack || fabs(sweep - 2 * M_PI) <= slack;
+    if (full)
+        sweep = 2 * M_PI;
     /* Its minor axis is the extrusion crossed with the major: the other way round when mirrored. */
     parts_arc shape = {ur_vec2_make(v[0], v[1]), rx,    (entity->mirrored ? -1 : 1) * rx * v[4],
                        atan2(v[3], v[2]),        start, sweep};
@@ -535,7 +556,8 @@ static dxf_entity next_entity(dxf_reader *reader, size_t *index, size_t end)
                          1,
                          reader->pairs[*index].value,
                          reader->pairs[*index].line + 1,
-                         false};
+                         false,
+                         UR_OP_CUT};
     size_t i = *index + 1;
     while (i < end && reader->pairs[i].code != 0)
         i++;
@@ -612,6 +634,8 @@ static ur_status read_entity(dxf_entity *entity, size_t *index, size_t end, ur_e
     double extrusion = 1;
     ur_status status = entity_number(entity, 230, 1, &extrusion, error);
     entity->mirrored = extrusion < 0;
+    ur_op op = parts_layer_op(entity_text(entity, 8));
+    entity->op = op == UR_OP_COUNT ? UR_OP_CUT : op;
     const char *type = entity->type;
     if (status != UR_OK)
         return status;
@@ -710,18 +734,16 @@ static ur_status append_segment(parts_points *chain, const parts_points *points,
     return UR_OK;
 }
 
-static ur_status open_end_error(const dxf_reader *reader, const dxf_segment *segment, ur_vec2 end,
-                                ur_error *error)
+static void reverse_points(parts_points *points)
 {
-    return ur_error_set(error, UR_ERROR_INPUT,
-                        "%s:%d: %s: the outline is open: its end at (%.6g, %.6g) mm meets no "
-                        "other line, arc or polyline within %g mm; only closed shapes can be "
-                        "parts",
-                        reader->path, segment->line, segment->what, end.x, end.y,
-                        reader->collection->tolerance);
+    ur_points_reverse(points->items, points->count);
 }
 
-/* Follows segment first on, end to end, until the loop closes. */
+/*
+ * Follows segment first on, end to end, until the loop closes; when an end
+ * meets nothing, back from its start: what then stays open is an open shape,
+ * named by the piece whose end met nothing first.
+ */
 static ur_status chain_from(dxf_reader *reader, bool *used, size_t first, ur_error *error)
 {
     double tolerance = reader->collection->tolerance;
@@ -730,27 +752,38 @@ static ur_status chain_from(dxf_reader *reader, bool *used, size_t first, ur_err
     ur_status status = parts_points_push(&chain, reader->segments[first].points.items[0], error);
     if (status == UR_OK)
         status = append_segment(&chain, &reader->segments[first].points, false, error);
-    size_t last = first;
+    size_t last = first, dangling = SIZE_MAX;
+    bool closed = false;
     while (status == UR_OK) {
         ur_vec2 end = chain.items[chain.count - 1];
-        if (chain.count > 2 && ur_vec2_distance(end, chain.items[0]) <= tolerance) {
+        if (dangling == SIZE_MAX && chain.count > 2 &&
+            ur_vec2_distance(end, chain.items[0]) <= tolerance) {
             chain.count--;
+            closed = true;
             break;
         }
         bool reversed = false;
         size_t next = nearest_segment(reader, used, end, tolerance, &reversed);
-        if (next == SIZE_MAX) {
-            status = open_end_error(reader, &reader->segments[last], end, error);
+        if (next == SIZE_MAX && dangling != SIZE_MAX)
             break;
+        if (next == SIZE_MAX) {
+            dangling = last;
+            reverse_points(&chain);
+            continue;
         }
         used[next] = true;
         last = next;
         status = append_segment(&chain, &reader->segments[next].points, reversed, error);
     }
-    const dxf_segment *segment = &reader->segments[first];
-    if (status == UR_OK)
+    if (dangling != SIZE_MAX)
+        reverse_points(&chain); /* from the start it had, as drawn */
+    const dxf_segment *segment = &reader->segments[closed ? first : dangling];
+    if (status == UR_OK && closed)
         status = parts_add_ring(reader->collection, &chain, segment->line, segment->what, NULL, 1,
                                 NULL, error);
+    else if (status == UR_OK)
+        status = parts_add_line(reader->collection, &chain, false, UR_OP_CUT, segment->line,
+                                segment->what, error);
     parts_points_free(&chain);
     return status;
 }

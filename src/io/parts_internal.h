@@ -63,12 +63,30 @@ typedef struct parts_ring {
     ur_path_circle circle; /* the circle the ring exactly is, mm; radius 0 for none */
 } parts_ring;
 
+/*
+ * Any other path: an open shape, or a shape drawn on a score, engrave, mark
+ * or kerf layer.  It goes with the part whose outline holds it (unroll's own
+ * folds and labels, another program's engraving or slits inside a part) and
+ * is left out, with a warning, when no part holds it.
+ */
+typedef struct parts_line {
+    ur_vec2 *points; /* owned; mm, y up */
+    size_t count;
+    bool closed;
+    ur_op op;
+    int line;
+    char what[96];
+} parts_line;
+
 typedef struct parts_collection {
     const char *path;
     double tolerance; /* mm */
     double unit;      /* options->unit */
+    bool strict;      /* options->strict: refuse what would be left out */
     parts_ring *rings;
     size_t count, capacity;
+    parts_line *lines;
+    size_t line_count, line_capacity;
     char (*warnings)[256];
     size_t warning_count;
 } parts_collection;
@@ -80,6 +98,18 @@ typedef struct parts_collection {
 ur_status parts_add_ring(parts_collection *collection, parts_points *points, int line,
                          const char *what, const char *id, int sub, const ur_path_circle *circle,
                          ur_error *error);
+
+/* Takes points (left empty) as a new line; fewer than two points are dropped. */
+ur_status parts_add_line(parts_collection *collection, parts_points *points, bool closed, ur_op op,
+                         int line, const char *what, ur_error *error);
+
+/*
+ * What a layer's (or an SVG group's) name says its paths are, the names
+ * unroll writes and a few more: cut, score, fold(s), score valley, valley,
+ * engrave, engraving, kerf, mark(s), marking, in any case, with spaces,
+ * hyphens or underscores alike; UR_OP_COUNT for any other name.
+ */
+ur_op parts_layer_op(const char *name);
 
 /* Adds a warning, formatted like an error message. */
 ur_status parts_warn(parts_collection *collection, ur_error *error, const char *format, ...)

@@ -84,6 +84,7 @@ static double matrix_similarity_scale(svg_matrix m)
 typedef struct svg_reader {
     parts_collection *collection;
     const char *path;
+    ur_op op; /* what the enclosing layer (group) says its paths are: cut unless it names another */
 } svg_reader;
 
 /* The element being read: for messages and for the rings it gives. */
@@ -120,9 +121,21 @@ static ur_status element_ring(svg_element *element, parts_points *points,
         in_mm.centre = matrix_apply(element->matrix, circle->centre);
         in_mm.radius = circle->radius * scale;
     }
+    if (element->reader->op != UR_OP_CUT)
+        return parts_add_line(element->reader->collection, points, true, element->reader->op,
+                              element->line, element->what, error);
     element->sub++;
     return parts_add_ring(element->reader->collection, points, element->line, element->what,
                           element->id, element->sub, in_mm.radius > 0 ? &in_mm : NULL, error);
+}
+
+/* An open shape, in mm: it goes with the part that holds it, or is left out. */
+static ur_status element_line(svg_element *element, parts_points *points, ur_error *error)
+{
+    for (size_t i = 0; i < points->count; i++)
+        points->items[i] = matrix_apply(element->matrix, points->items[i]);
+    return parts_add_line(element->reader->collection, points, false, element->reader->op,
+                          element->line, element->what, error);
 }
 
 /* ---- Numbers, lengths, lists -------------------------------------------- */
@@ -382,18 +395,6 @@ static ur_status path_data_error(svg_path_state *state, const char *at, ur_error
     return element_error(state->element, error, message);
 }
 
-static ur_status open_shape_error(svg_element *element, ur_vec2 first, ur_vec2 last,
-                                  ur_error *error)
-{
-    ur_vec2 a = matrix_apply(element->matrix, first), b = matrix_apply(element->matrix, last);
-    char message[256];
-    snprintf(message, sizeof message,
-             "the shape is open (it starts at (%.6g, %.6g) mm and ends at (%.6g, %.6g) mm): "
-             "only closed shapes can be parts",
-             a.x, a.y, b.x, b.y);
-    return element_error(element, error, message);
-}
-
 /*
  * Ends the sub-path: closed by Z, or by ending where it started (within the
  * tolerance), it becomes a ring; a lone moveto is nothing; anything else is open.
@@ -416,9 +417,7 @@ static ur_status finish_subpath(svg_path_state *state, bool closed, ur_error *er
     }
     ur_vec2 first = points->items[0], last = points->items[points->count - 1];
     if (!closed && ur_vec2_distance(first, last) > state->element->tolerance)
-        return open_shape_error(state->element, first, last, error);
-    if (!closed)
-        points->items[points->count - 1] = first;
+        return element_line(state->element, points, error);
     return element_ring(state->element, points, round ? &circle : NULL, error);
 }
 
@@ -794,10 +793,12 @@ static ur_status read_poly(svg_element *element, bool polygon, ur_error *error)
             status = parts_points_push(&points, ur_vec2_make(x, y), error);
     }
     xmlFree(text);
-    if (status == UR_OK && !polygon && points.count > 1 &&
-        ur_vec2_distance(points.items[0], points.items[points.count - 1]) > element->tolerance)
-        status = open_shape_error(element, points.items[0], points.items[points.count - 1], error);
-    if (status == UR_OK)
+    bool open =
+        !polygon && points.count > 1 &&
+        ur_vec2_distance(points.items[0], points.items[points.count - 1]) > element->tolerance;
+    if (status == UR_OK && open)
+        status = element_line(element, &points, error);
+    else if (status == UR_OK)
         status = element_ring(element, &points, NULL, error);
     parts_points_free(&points);
     return status;
@@ -807,10 +808,16 @@ static ur_status read_line(svg_element *element, ur_error *error)
 {
     static const char *const names[] = {"x1", "y1", "x2", "y2", NULL};
     double v[4];
+    parts_points points = {0};
     ur_status status = lengths(element, names, v, error);
-    if (status != UR_OK)
-        return status;
-    return open_shape_error(element, ur_vec2_make(v[0], v[1]), ur_vec2_make(v[2], v[3]), error);
+    if (status == UR_OK)
+        status = parts_points_push(&points, ur_vec2_make(v[0], v[1]), error);
+    if (status == UR_OK)
+        status = parts_points_push(&points, ur_vec2_make(v[2], v[3]), error);
+    if (status == UR_OK)
+        status = element_line(element, &points, error);
+    parts_points_free(&points);
+    return status;
 }
 
 /* ---- The document tree ------------------------------------------------------ */
@@ -938,6 +945,24 @@ static ur_status read_nested_svg(svg_element *element, int depth, ur_error *erro
                 depth + 1, error);
 }
 
+/*
+ * What a group's id or Inkscape label says its paths are (unroll writes
+ * each operation as a group named after it, "score", "engrave" ...);
+ * inherited when it names none.
+ */
+static ur_op group_op(xmlNodePtr node, ur_op inherited)
+{
+    static const char *const names[] = {"label", "id"};
+    for (size_t i = 0; i < 2; i++) {
+        char *name = attribute(node, names[i]);
+        ur_op op = name ? parts_layer_op(name) : UR_OP_COUNT;
+        xmlFree(name);
+        if (op != UR_OP_COUNT)
+            return op;
+    }
+    return inherited;
+}
+
 /* Elements that hold no shape to cut, or only shapes used by reference. */
 static const char *const skipped[] = {"defs",
                                       "clipPath",
@@ -968,7 +993,12 @@ static ur_status read_shape(svg_element *element, int depth, ur_error *error)
     if (named(node, "g") || named(node, "a") || named(node, "switch")) {
         if (depth >= PARTS_MAX_DEPTH)
             return element_error(element, error, "groups nest too deep");
-        return walk(element->reader, node, element->matrix, depth + 1, error);
+        svg_reader *reader = element->reader;
+        ur_op outer = reader->op;
+        reader->op = group_op(node, outer);
+        ur_status status = walk(reader, node, element->matrix, depth + 1, error);
+        reader->op = outer;
+        return status;
     }
     if (named(node, "svg"))
         return depth >= PARTS_MAX_DEPTH ? element_error(element, error, "groups nest too deep")
@@ -1168,7 +1198,7 @@ ur_status parts_read_svg(parts_collection *collection, ur_error *error)
     ur_status status = parse_document(collection->path, &doc, error);
     if (status != UR_OK)
         return status;
-    svg_reader reader = {collection, collection->path};
+    svg_reader reader = {collection, collection->path, UR_OP_CUT};
     status = read_root(&reader, xmlDocGetRootElement(doc), error);
     xmlFreeDoc(doc);
     return status;

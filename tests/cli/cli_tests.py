@@ -1848,7 +1848,8 @@ def nest_copies_and_bad_input(work):
     write(work, "open.svg", """<svg xmlns="http://www.w3.org/2000/svg" width="10mm" height="10mm"
  viewBox="0 0 10 10"><path id="zigzag" d="M0,0 L5,5 L10,0"/></svg>
 """)
-    bad(work, r"open\.svg:2: .*zigzag", "nest", "open.svg", "-o", "x.svg")
+    bad(work, r"open\.svg:2: .*zigzag.*open", "nest", "open.svg", "--strict", "-o", "x.svg")
+    bad(work, r"open\.svg:2: no closed shape.*1 open shape", "nest", "open.svg", "-o", "x.svg")
     write(work, "nounits.svg", """<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 10 10">
 <rect width="10" height="10"/></svg>
 """)
@@ -1867,6 +1868,84 @@ def nest_copies_and_bad_input(work):
           result.stderr)
     bad(work, r"--sheets: '0' is not a count", "nest", "mm.svg", "--sheets", "0", "-o", "x.svg")
     bad(work, r"--copies: '0' is not a count", "nest", "mm.svg", "--copies", "0", "-o", "x.svg")
+
+
+@test
+def nest_leaves_open_shapes_out(work):
+    """Closed shapes are nested, open ones left out with one warning naming the
+    file, the first one's line and the count; --strict refuses the file, naming
+    the line, and writes nothing.  The same for a DXF."""
+    write(work, "mixed.svg", """<svg xmlns="http://www.w3.org/2000/svg" width="100mm" height="100mm" viewBox="0 0 100 100">
+<rect id="a" width="20" height="10"/>
+<path id="zigzag" d="M50,50 L60,60 L70,50"/>
+<line x1="80" y1="0" x2="90" y2="0"/>
+<circle id="b" cx="50" cy="20" r="5"/>
+</svg>
+""")
+    result = run(work, "nest", "mixed.svg", "-o", "mixed-out.svg", "--report", "m.json")
+    check(re.search(r"warning: .*mixed\.svg:3: 2 open shapes left out \(path id=\"zigzag\" "
+                    r"on lines 3, 4\)", result.stderr), result.stderr)
+    names = sorted(p["name"] for p in report(work, "m.json")["pieces"])
+    check(names == ["a", "b"], "parts %r" % names)
+    out = os.path.join(work, "mixed-out.svg")
+    check(len(outlines(out)) == 1 and len(circles(out, "cut")) == 1, "not a rectangle and a circle")
+    bad(work, r"mixed\.svg:3: path id=\"zigzag\": the shape is open", "nest", "mixed.svg",
+        "--strict", "-o", "x.svg")
+    entities = ("0\nLWPOLYLINE\n8\n0\n90\n4\n70\n1\n10\n0\n20\n0\n10\n30\n20\n0\n10\n30\n20\n"
+                "10\n10\n0\n20\n10\n0\nLINE\n8\n0\n10\n50\n20\n0\n11\n60\n21\n5\n")
+    write(work, "mixed.dxf", "0\nSECTION\n2\nHEADER\n9\n$INSUNITS\n70\n4\n0\nENDSEC\n"
+          "0\nSECTION\n2\nENTITIES\n" + entities + "0\nENDSEC\n0\nEOF\n")
+    result = run(work, "nest", "mixed.dxf", "-o", "mixed-dxf.svg")
+    check(re.search(r"mixed\.dxf:40: 1 open shape left out \(LINE", result.stderr), result.stderr)
+    bad(work, r"mixed\.dxf:40: LINE: the shape is open", "nest", "mixed.dxf", "--strict", "-o",
+        "x.svg")
+
+
+def lines_by_part(svg_file):
+    """For each outline of a sheet, largest first: its area, and the count and
+    length of the score, valley and engrave lines that lie on it (every
+    middle of a segment inside it or on its edge); every such line must lie
+    on one outline."""
+    rings = outlines(svg_file)
+    found = [[area(ring)] + [0, 0.0] * 3 for ring in rings]
+    for k, layer in enumerate(("score", "score-valley", "engrave")):
+        for points, closed in paths(svg_file, layer):
+            if closed:
+                points = points + points[:1]
+            middles = [((p[0] + q[0]) / 2, (p[1] + q[1]) / 2) for p, q in zip(points, points[1:])]
+            holders = [i for i, ring in enumerate(rings)
+                       if all(inside(m, ring) or on_ring(m, ring) for m in middles)]
+            check(len(holders) >= 1, "%s: a %s line outside every part" % (svg_file, layer))
+            found[holders[0]][1 + 2 * k] += 1
+            found[holders[0]][2 + 2 * k] += sum(math.dist(p, q) for p, q in zip(points, points[1:]))
+    return sorted(found, reverse=True)
+
+
+@test
+def nest_keeps_the_folds_and_labels_of_unroll_files(work):
+    """unroll's own cut file (SVG and DXF) nested again: every part keeps its
+    folds and labels, turned and placed with it: each outline holds as many
+    score, valley and engrave lines, as long in all, as it did."""
+    mesh = os.path.join(REPO, "samples", "torus.obj")
+    run(work, "mesh", mesh, "--flatten", "unfold", "--material", "paper-0.3mm", "--nest-time", "0",
+        "--no-kerf-compensation", "--order", "none", "-o", "t.svg", "--format", "svg,dxf",
+        "--quiet")
+    before = lines_by_part(os.path.join(work, "t-1.svg"))
+    check(len(before) >= 3 and all(part[1] > 0 and part[5] > 0 for part in before),
+          "the unfolded torus has no folds or labels to keep")
+    for source in ("t-1.svg", "t-1.dxf"):
+        result = run(work, "nest", source, "--material", "paper-0.3mm", "--nest-time", "0",
+                     "--no-kerf-compensation", "--rotations", "4", "-o", "again.svg",
+                     "--format", "svg,dxf")
+        check("left out" not in result.stderr, result.stderr)
+        after = lines_by_part(os.path.join(work, "again.svg"))
+        check(len(after) == len(before), "%s: %d parts, %d before" % (source, len(after), len(before)))
+        for a, b in zip(after, before):
+            close(a[0], b[0], 1e-6, "%s: a part's area" % source)
+            check(a[1::2] == b[1::2], "%s: lines per part %r, before %r" % (source, a[1::2], b[1::2]))
+            for k in (2, 4, 6):
+                close(a[k], b[k], 1e-6, "%s: length of a part's lines" % source)
+        dxf_audits_clean(os.path.join(work, "again.dxf"))
 
 
 @test

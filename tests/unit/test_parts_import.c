@@ -48,14 +48,15 @@ static ur_parts import_text(const char *name, const char *text, double unit)
 }
 
 /* Expects text written as name to be refused with a message "PATH<location>: ...fragment...". */
-static void expect_refusal(const char *name, const char *text, double unit, const char *location,
-                           const char *fragment)
+static void expect_refusal_of(const char *name, const char *text, double unit, bool strict,
+                              const char *location, const char *fragment)
 {
     char path[256];
     write_file(name, text, path, sizeof path);
     ur_parts_import_options options;
     ur_parts_import_options_default(&options);
     options.unit = unit;
+    options.strict = strict;
     ur_parts parts;
     ur_error error = {0};
     assert_int_equal(ur_parts_import(path, &options, &parts, &error), UR_ERROR_INPUT);
@@ -65,6 +66,19 @@ static void expect_refusal(const char *name, const char *text, double unit, cons
     snprintf(prefix, sizeof prefix, "%s%s: ", path, location);
     if (strncmp(error.message, prefix, strlen(prefix)) != 0 || !strstr(error.message, fragment))
         fail_msg("message '%s' lacks '%s' or '%s'", error.message, prefix, fragment);
+}
+
+static void expect_refusal(const char *name, const char *text, double unit, const char *location,
+                           const char *fragment)
+{
+    expect_refusal_of(name, text, unit, false, location, fragment);
+}
+
+/* Refused with strict only: without, what is open is left out with a warning. */
+static void expect_strict_refusal(const char *name, const char *text, const char *location,
+                                  const char *fragment)
+{
+    expect_refusal_of(name, text, 0, true, location, fragment);
 }
 
 static double path_area(const ur_path *path)
@@ -444,23 +458,116 @@ static void test_self_crossing(void **state)
                    0, ":3: polygon id=\"bow\"", "crosses itself");
 }
 
-/* ---- Refusals -------------------------------------------------------------------- */
-
 #define SVG_HEAD                                                                                   \
     "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"100mm\" height=\"100mm\" "                  \
     "viewBox=\"0 0 100 100\">\n"
 
+/* ---- Lines that go with their part ----------------------------------------------- */
+
+static size_t paths_of(const ur_piece *piece, ur_op op, bool closed)
+{
+    size_t n = 0;
+    for (size_t i = 0; i < piece->path_count; i++)
+        n += piece->paths[i].op == op && piece->paths[i].closed == closed;
+    return n;
+}
+
+static void test_lines_go_with_their_part(void **state)
+{
+    (void)state;
+    /*
+     * Two plates: a fold (score group, as unroll writes) across the first,
+     * a label (engrave) and an open cut slit inside the second, a closed
+     * mark inside the first; an open line and an engraving outside both
+     * are left out, one warning naming the first one's line and the count.
+     */
+    ur_parts parts = import_text(
+        "lines.svg",
+        SVG_HEAD
+        "<g id=\"cut\"><rect id=\"a\" width=\"20\" height=\"10\"/>\n"
+        "<rect id=\"b\" x=\"30\" width=\"20\" height=\"10\"/>\n"
+        "<path d=\"M 35 2 L 45 2\"/>\n"
+        "<path d=\"M 60 0 L 70 0\"/></g>\n"
+        "<g id=\"score\"><path d=\"M 10 0 L 10 10\"/></g>\n"
+        "<g inkscape:label=\"Engrave\" xmlns:inkscape=\"http://www.inkscape.org/namespaces/"
+        "inkscape\"><path d=\"M 35 5 L 40 8 L 45 5\"/><path d=\"M 80 5 L 90 5\"/></g>\n"
+        "<g id=\"mark\"><rect x=\"2\" y=\"2\" width=\"3\" height=\"3\"/></g></svg>\n",
+        0);
+    assert_int_equal(parts.count, 2);
+    const ur_piece *a = &parts.pieces[0], *b = &parts.pieces[1];
+    assert_string_equal(a->name, "a");
+    assert_int_equal(a->path_count, 3);
+    assert_int_equal(paths_of(a, UR_OP_SCORE, false), 1);
+    assert_int_equal(paths_of(a, UR_OP_MARK, true), 1);
+    assert_int_equal(b->path_count, 3);
+    assert_int_equal(paths_of(b, UR_OP_ENGRAVE, false), 1);
+    assert_int_equal(paths_of(b, UR_OP_CUT, false), 1);
+    /* The holes and areas are the rings' alone. */
+    assert_true(fabs(a->measures.flat_area - 200) < 1e-9);
+    assert_int_equal(parts.warning_count, 1);
+    assert_non_null(strstr(parts.warnings[0], ":5: 2 shapes left out"));
+    assert_non_null(strstr(parts.warnings[0], "lines 5, 7"));
+    ur_parts_free(&parts);
+}
+
+static void test_ends_within_the_tolerance(void **state)
+{
+    (void)state;
+    /*
+     * A path closed in relative coordinates whose last point lands 1e-15
+     * from its start: a square, neither crossing itself nor repaired.
+     */
+    ur_parts parts = import_text("relative.svg",
+                                 SVG_HEAD "<path d=\"m 0.1 0.1 l 10 0 l 0 10 l -10 0 "
+                                          "l 1e-15 -10 z\"/></svg>\n",
+                                 0);
+    assert_int_equal(parts.count, 1);
+    assert_int_equal(parts.warning_count, 0);
+    assert_int_equal(parts.pieces[0].paths[0].count, 4);
+    assert_true(fabs(parts.pieces[0].measures.flat_area - 100) < 1e-9);
+    ur_parts_free(&parts);
+    /*
+     * LibreCAD's full ellipse: its end parameter 2 pi rounded to
+     * 6.28318530718.  Radii 2 and 1: area within the flattening's loss of
+     * 2 pi (the chords stray at most 0.01 mm inside the curve).
+     */
+    char text[1024];
+    snprintf(text, sizeof text,
+             "0\nSECTION\n2\nHEADER\n9\n$INSUNITS\n70\n4\n0\nENDSEC\n0\nSECTION\n2\nENTITIES\n"
+             "0\nELLIPSE\n8\n0\n10\n5\n20\n5\n11\n9.18485099361e-017\n21\n2\n40\n0.5\n41\n0\n"
+             "42\n6.28318530718\n0\nARC\n8\n0\n10\n20\n20\n5\n40\n1\n50\n0\n51\n359.9999999999\n"
+             "0\nENDSEC\n0\nEOF\n");
+    parts = import_text("ellipse.dxf", text, 0);
+    assert_int_equal(parts.count, 2);
+    assert_int_equal(parts.warning_count, 0);
+    double ellipse = parts.pieces[0].measures.flat_area,
+           circle = parts.pieces[1].measures.flat_area;
+    double perimeter = 2 * M_PI * 2; /* more than the ellipse's */
+    assert_true(ellipse <= 2 * M_PI && ellipse >= 2 * M_PI - perimeter * 0.01);
+    assert_true(circle <= M_PI && circle >= M_PI - 2 * M_PI * 0.01);
+    ur_parts_free(&parts);
+}
+
+/* ---- Refusals -------------------------------------------------------------------- */
+
 static void test_svg_refusals(void **state)
 {
     (void)state;
-    expect_refusal("open.svg",
-                   SVG_HEAD "<rect width=\"5\" height=\"5\"/>\n"
-                            "<path id=\"cut1\" d=\"M 0 0 L 10 0 L 10 10\"/>\n</svg>\n",
-                   0, ":3: path id=\"cut1\"", "open");
-    expect_refusal("line.svg", SVG_HEAD "\n<line x1=\"0\" y1=\"0\" x2=\"5\" y2=\"5\"/></svg>\n", 0,
-                   ":3: line", "only closed shapes");
-    expect_refusal("polyline.svg", SVG_HEAD "<polyline id=\"pl\" points=\"0,0 5,0 5,5\"/></svg>\n",
-                   0, ":2: polyline id=\"pl\"", "open");
+    expect_strict_refusal("open.svg",
+                          SVG_HEAD "<rect width=\"5\" height=\"5\"/>\n"
+                                   "<path id=\"cut1\" d=\"M 0 0 L 10 0 L 10 10\"/>\n</svg>\n",
+                          ":3: path id=\"cut1\"", "open");
+    expect_strict_refusal("line.svg",
+                          SVG_HEAD "\n<rect width=\"5\" height=\"5\"/>"
+                                   "<line x1=\"10\" y1=\"0\" x2=\"15\" y2=\"5\"/></svg>\n",
+                          ":3: line", "only closed shapes");
+    expect_strict_refusal("polyline.svg",
+                          SVG_HEAD "<polyline id=\"pl\" points=\"0,0 5,0 5,5\"/></svg>\n",
+                          ":2: polyline id=\"pl\"", "open");
+    /* Without strict, a file of open shapes only has no part, and says where the first is. */
+    expect_refusal("only-open.svg",
+                   SVG_HEAD "\n<line x1=\"0\" y1=\"0\" x2=\"5\" y2=\"5\"/></svg>\n", 0, ":3",
+                   "no closed shape");
     expect_refusal("xml.svg", SVG_HEAD "<rect width=\"5\" height=\"5\">\n</svg>\n", 0, ":3", "");
     expect_refusal("data.svg", SVG_HEAD "<path id=\"p\" d=\"M 0 0 L 5 nan Z\"/></svg>\n", 0,
                    ":2: path id=\"p\"", "bad path data at \"nan Z\"");
@@ -497,10 +604,10 @@ static void test_dxf_refusals(void **state)
 {
     (void)state;
     /* Lines 11..: the entities. */
-    expect_refusal("open.dxf",
-                   DXF_HEAD "0\nLINE\n10\n0\n20\n0\n11\n10\n21\n0\n"
-                            "0\nLINE\n10\n10\n20\n0\n11\n10\n21\n10\n0\nENDSEC\n0\nEOF\n",
-                   0, ":26: LINE", "open");
+    expect_strict_refusal("open.dxf",
+                          DXF_HEAD "0\nLINE\n10\n0\n20\n0\n11\n10\n21\n0\n"
+                                   "0\nLINE\n10\n10\n20\n0\n11\n10\n21\n10\n0\nENDSEC\n0\nEOF\n",
+                          ":26: LINE", "open");
     expect_refusal("code.dxf", DXF_HEAD "0\nCIRCLE\nten\n0\n0\nENDSEC\n0\nEOF\n", 0, ":17",
                    "\"ten\" is not a group code");
     expect_refusal("value.dxf", DXF_HEAD "0\nCIRCLE\n10", 0, ":17", "group code 10 has no value");
@@ -625,6 +732,8 @@ int main(void)
         cmocka_unit_test(test_dxf_refusals),
         cmocka_unit_test(test_file_refusals),
         cmocka_unit_test(test_circles_kept),
+        cmocka_unit_test(test_lines_go_with_their_part),
+        cmocka_unit_test(test_ends_within_the_tolerance),
     };
     return cmocka_run_group_tests(tests, make_directory, remove_directory);
 }
