@@ -146,6 +146,37 @@ ur_status parts_flatten_arc(parts_points *points, const parts_arc *arc, double t
     return UR_OK;
 }
 
+/* ---- Affine transforms ------------------------------------------------- */
+
+parts_matrix parts_matrix_multiply(parts_matrix m, parts_matrix n)
+{
+    parts_matrix r = {m.a * n.a + m.c * n.b,       m.b * n.a + m.d * n.b,
+                      m.a * n.c + m.c * n.d,       m.b * n.c + m.d * n.d,
+                      m.a * n.e + m.c * n.f + m.e, m.b * n.e + m.d * n.f + m.f};
+    return r;
+}
+
+ur_vec2 parts_matrix_apply(parts_matrix m, ur_vec2 p)
+{
+    return ur_vec2_make(m.a * p.x + m.c * p.y + m.e, m.b * p.x + m.d * p.y + m.f);
+}
+
+double parts_matrix_stretch(parts_matrix m)
+{
+    double p = m.a * m.a + m.b * m.b + m.c * m.c + m.d * m.d;
+    double q = m.a * m.d - m.b * m.c;
+    return sqrt(p / 2 + sqrt(fmax(0, p * p / 4 - q * q)));
+}
+
+double parts_matrix_similarity_scale(parts_matrix m)
+{
+    double first = m.a * m.a + m.b * m.b, second = m.c * m.c + m.d * m.d;
+    double slack = 1e-12 * fmax(first, second);
+    if (!(fabs(first - second) <= slack && fabs(m.a * m.c + m.b * m.d) <= slack))
+        return 0;
+    return sqrt(fabs(m.a * m.d - m.b * m.c));
+}
+
 /* ---- Collecting rings ---------------------------------------------------- */
 
 ur_status parts_add_ring(parts_collection *collection, parts_points *points, int line,

@@ -40,6 +40,28 @@ ur_status parts_flatten_quadratic(parts_points *points, ur_vec2 p0, ur_vec2 p1, 
 ur_status parts_flatten_cubic(parts_points *points, ur_vec2 p0, ur_vec2 p1, ur_vec2 p2, ur_vec2 p3,
                               double tolerance, ur_error *error);
 
+/*
+ * Affine transforms (SVG transforms, DXF block references): x' = a x + c y
+ * + e, y' = b x + d y + f, as SVG writes matrix(a b c d e f).
+ */
+typedef struct parts_matrix {
+    double a, b, c, d, e, f;
+} parts_matrix;
+
+static const parts_matrix parts_identity = {1, 0, 0, 1, 0, 0};
+
+/* m after n: (m n) p = m (n p). */
+parts_matrix parts_matrix_multiply(parts_matrix m, parts_matrix n);
+ur_vec2 parts_matrix_apply(parts_matrix m, ur_vec2 p);
+/* The most the matrix stretches a length: its largest singular value. */
+double parts_matrix_stretch(parts_matrix m);
+/*
+ * How much m scales every length when it keeps circles circles (turns,
+ * mirrors, moves and scales alike in every direction, to rounding); 0 when
+ * it stretches one way more than another or skews, making circles ellipses.
+ */
+double parts_matrix_similarity_scale(parts_matrix m);
+
 /* An elliptical arc: centre, radii, x axis turned by rotation, from angle start by sweep (radians,
  * positive counter-clockwise). */
 typedef struct parts_arc {
@@ -51,6 +73,24 @@ typedef struct parts_arc {
 ur_vec2 parts_arc_point(const parts_arc *arc, double angle);
 ur_status parts_flatten_arc(parts_points *points, const parts_arc *arc, double tolerance,
                             ur_error *error);
+
+/*
+ * A NURBS curve: degree >= 1, control_count control points, knots of
+ * control_count + degree + 1 non-decreasing values (the reader checks
+ * these), weights all > 0 or NULL for a plain B-spline.  Drawn over
+ * knots[degree] .. knots[control_count].
+ */
+typedef struct parts_nurbs {
+    int degree;
+    const ur_vec2 *points;
+    const double *weights;
+    size_t control_count;
+    const double *knots;
+} parts_nurbs;
+
+/* Appends every point of the flattened curve, its start included (unlike the other flatteners). */
+ur_status parts_flatten_nurbs(parts_points *points, const parts_nurbs *curve, double tolerance,
+                              ur_error *error);
 
 /* One closed shape as a reader found it. */
 typedef struct parts_ring {

@@ -1901,6 +1901,116 @@ def nest_leaves_open_shapes_out(work):
         "x.svg")
 
 
+def part_areas(work, source, *extra):
+    """The areas of the parts unroll nest finds in a file, smallest first."""
+    run(work, "nest", source, "--nest-time", "0", "--no-kerf-compensation", "--sheet", "1000x1000",
+        "-o", source + ".out.svg", "--report", source + ".json", "--quiet", *extra)
+    return sorted(p["flat_area_mm2"] for p in report(work, source + ".json")["pieces"])
+
+
+@test
+def nest_reads_blocks_and_splines(work):
+    """A DXF of blocks (nested, turned, scaled unevenly, mirrored, in an array)
+    holding polylines, circles and splines (a rational one, a circle) gives the
+    parts ezdxf's explode gives, areas equal to 1e-6; the spline circle is
+    within the flattening's loss of its area; the files written pass ezdxf's
+    audit and xmllint."""
+    import ezdxf
+    doc = ezdxf.new("R2000")
+    doc.header["$INSUNITS"] = 4
+    square = doc.blocks.new("square", base_point=(5, 5))
+    square.add_lwpolyline([(0, 0), (10, 0), (10, 10), (0, 10)], close=True)
+    square.add_lwpolyline([(2, 2), (6, 2), (2, 6)], close=True)
+    pair = doc.blocks.new("pair")
+    pair.add_blockref("square", (0, 0), dxfattribs={"rotation": 30, "xscale": 2, "yscale": 0.5})
+    pair.add_blockref("square", (40, 0), dxfattribs={"rotation": -45, "extrusion": (0, 0, -1)})
+    pair.add_circle((0, 40), 6)
+    w = math.sqrt(0.5)
+    ring = [(10, 0), (10, 10), (0, 10), (-10, 10), (-10, 0), (-10, -10), (0, -10), (10, -10),
+            (10, 0)]
+    pair.add_rational_spline([(x + 30, y + 40) for x, y in ring], [1, w, 1, w, 1, w, 1, w, 1],
+                             degree=2, knots=[0, 0, 0, 1, 1, 2, 2, 3, 3, 4, 4, 4])
+    msp = doc.modelspace()
+    msp.add_blockref("pair", (100, 100), dxfattribs={"rotation": 15, "xscale": 1.5, "yscale": 1.5})
+    grid = msp.add_blockref("square", (0, 200), dxfattribs={"rotation": 10})
+    grid.dxf.column_count, grid.dxf.row_count = 3, 2
+    grid.dxf.column_spacing, grid.dxf.row_spacing = 20, 30
+    doc.saveas(os.path.join(work, "blocks.dxf"))
+    for insert in msp.query("INSERT"):
+        insert.explode()
+    while len(msp.query("INSERT")):
+        for insert in msp.query("INSERT"):
+            insert.explode()
+    doc.saveas(os.path.join(work, "exploded.dxf"))
+    blocks, exploded = part_areas(work, "blocks.dxf"), part_areas(work, "exploded.dxf")
+    check(len(blocks) == 10, "%d parts, not 10" % len(blocks))
+    check(len(blocks) == len(exploded), "%d parts, exploded %d" % (len(blocks), len(exploded)))
+    for a, b in zip(blocks, exploded):
+        close(a, b, 1e-6 / b, "a part's area against the exploded drawing's")
+    # Squares with a triangular hole: 92 mm2, 2 x 0.5 x 1.5^2 = 2.25 times that in pair.
+    check(sum(abs(a - 92) < 1e-9 for a in blocks) == 6, "not 6 squares of 92 mm2: %r" % blocks)
+    check(sum(abs(a - 92 * 2.25) < 1e-9 for a in blocks) == 2, "not 2 of 207 mm2: %r" % blocks)
+    # The spline circle, radius 15 mm after pair's scale: within 0.01 mm of its perimeter.
+    spline = math.pi * 15 ** 2
+    check(any(spline - 0.01 * 2 * math.pi * 15 <= a <= spline for a in blocks),
+          "no part has the spline circle's area %g: %r" % (spline, blocks))
+    run(work, "nest", "blocks.dxf", "--nest-time", "0", "-o", "written.svg", "--format", "svg,dxf",
+        "--quiet")
+    dxf_audits_clean(os.path.join(work, "written.dxf"))
+    check(subprocess.run(["xmllint", "--noout", os.path.join(work, "written.svg")]).returncode == 0,
+          "xmllint rejects written.svg")
+
+
+@test
+def nest_reads_svg_use_and_symbol(work):
+    """An SVG drawn with use (href and xlink:href, x and y, transforms, a use of
+    a group of uses) and a symbol with a viewBox gives the parts of the same
+    drawing written out shape by shape, areas equal to 1e-6."""
+    head = ('<svg xmlns="http://www.w3.org/2000/svg" xmlns:xlink="http://www.w3.org/1999/xlink" '
+            'width="200mm" height="200mm" viewBox="0 0 200 200">\n')
+    plate = '<path d="M0,0 H20 V10 H0 Z M4,4 h2 v2 h-2 Z"/>'
+    write(work, "use.svg", head + '<defs><g id="plate">' + plate + '</g>\n'
+          '<symbol id="sym" viewBox="0 0 10 10"><path d="M0,0 L10,0 L0,10 Z"/></symbol>\n'
+          '<g id="two"><use href="#plate"/><use xlink:href="#plate" x="30" '
+          'transform="rotate(10)"/></g></defs>\n'
+          '<use href="#two" x="10" y="10"/>\n'
+          '<use href="#sym" x="100" y="100" width="40" height="40"/>\n'
+          '<use href="#two" transform="translate(0,100) scale(1.5)"/>\n</svg>\n')
+    write(work, "flat.svg", head +
+          '<g transform="translate(10,10)">' + plate +
+          '<g transform="rotate(10) translate(30,0)">' + plate + '</g></g>\n'
+          '<path d="M100,100 L140,100 L100,140 Z"/>\n'
+          '<g transform="translate(0,100) scale(1.5)">' + plate +
+          '<g transform="rotate(10) translate(30,0)">' + plate + '</g></g>\n</svg>\n')
+    used, flat = part_areas(work, "use.svg"), part_areas(work, "flat.svg")
+    check(len(used) == 5 and len(flat) == 5, "%d and %d parts, not 5" % (len(used), len(flat)))
+    for a, b in zip(used, flat):
+        close(a, b, 1e-6 / b, "a part's area against the drawing without use")
+    check(abs(used[-1] - 800) < 1e-9, "the symbol's triangle is %g mm2, not 800" % used[-1])
+
+
+@test
+def bad_blocks_splines_and_uses(work):
+    """Each a one-line message naming the file and line, exit 2, nothing written."""
+    units = "0\nSECTION\n2\nHEADER\n9\n$INSUNITS\n70\n4\n0\nENDSEC\n"
+    write(work, "self.dxf", units + "0\nSECTION\n2\nBLOCKS\n0\nBLOCK\n2\nA\n0\nINSERT\n2\nB\n"
+          "0\nENDBLK\n0\nBLOCK\n2\nB\n0\nINSERT\n2\nA\n0\nENDBLK\n0\nENDSEC\n"
+          "0\nSECTION\n2\nENTITIES\n0\nINSERT\n2\nA\n0\nENDSEC\n0\nEOF\n")
+    bad(work, r"self\.dxf:30: INSERT: block 'A' refers to itself", "nest", "self.dxf", "-o", "x.svg")
+    write(work, "degree.dxf", units + "0\nSECTION\n2\nENTITIES\n0\nSPLINE\n71\n0\n40\n0\n40\n1\n"
+          "10\n0\n20\n0\n0\nENDSEC\n0\nEOF\n")
+    bad(work, r"degree\.dxf:16: SPLINE: degree 0", "nest", "degree.dxf", "-o", "x.svg")
+    write(work, "knots.dxf", units + "0\nSECTION\n2\nENTITIES\n0\nSPLINE\n71\n1\n40\n0\n40\n0\n"
+          "40\n2\n40\n1\n10\n0\n20\n0\n10\n1\n20\n0\n0\nENDSEC\n0\nEOF\n")
+    bad(work, r"knots\.dxf:16: SPLINE: its knots decrease", "nest", "knots.dxf", "-o", "x.svg")
+    head = ('<svg xmlns="http://www.w3.org/2000/svg" width="10mm" height="10mm" viewBox="0 0 10 10">'
+            '\n<rect width="5" height="5"/>\n')
+    write(work, "self.svg", head + '<g id="g"><use href="#g"/></g></svg>\n')
+    bad(work, r"self\.svg:3: use: .*refers to itself", "nest", "self.svg", "-o", "x.svg")
+    write(work, "nowhere.svg", head + '<use href="#none"/></svg>\n')
+    bad(work, r"nowhere\.svg:3: use: .*points at no element", "nest", "nowhere.svg", "-o", "x.svg")
+
+
 def lines_by_part(svg_file):
     """For each outline of a sheet, largest first: its area, and the count and
     length of the score, valley and engrave lines that lie on it (every
