@@ -1096,6 +1096,8 @@ static ur_status chain_from(dxf_reader *reader, bool *used, size_t first, ur_err
     if (status == UR_OK && closed)
         status = parts_add_ring(reader->collection, &chain, segment->line, segment->what, NULL, 1,
                                 NULL, error);
+    if (status == UR_OK && closed)
+        reader->collection->rings[reader->collection->count - 1].chained = true;
     else if (status == UR_OK)
         status = parts_add_line(reader->collection, &chain, false, UR_OP_CUT, segment->line,
                                 segment->what, error);

@@ -851,15 +851,67 @@ static ur_status no_part_error(const parts_collection *collection, ur_error *err
                         collection->line_count == 1 ? "" : "s", first->what);
 }
 
+/* Whether a chained ring encloses no area or crosses itself; 2 when GEOS fails. */
+static int bad_chain(GEOSContextHandle_t geos, const parts_collection *collection,
+                     const parts_ring *ring)
+{
+    double least = collection->tolerance * collection->tolerance;
+    if (ring->count < 3 || fabs(ur_polygon_signed_area(ring->points, ring->count)) <= least)
+        return 1;
+    GEOSGeometry *polygon = ur_geos_polygon(geos, ring->points, ring->count);
+    char valid = polygon ? GEOSisValid_r(geos, polygon) : 2;
+    if (polygon)
+        GEOSGeom_destroy_r(geos, polygon);
+    return valid == 2 ? 2 : !valid;
+}
+
+/*
+ * Lines chained end to end that close into no shape (a line drawn twice, a
+ * junction of three lines taken the wrong way round) are open shapes, not
+ * outlines: without strict they join the lines, to be left out or go with
+ * a part, rather than refuse the file.
+ */
+static ur_status release_bad_chains(parts_collection *collection, GEOSContextHandle_t geos,
+                                    ur_error *error)
+{
+    size_t kept = 0;
+    ur_status status = UR_OK;
+    for (size_t i = 0; i < collection->count; i++) {
+        parts_ring *ring = &collection->rings[i];
+        int bad = status == UR_OK && ring->chained && !collection->strict
+                      ? bad_chain(geos, collection, ring)
+                      : 0;
+        if (bad == 2)
+            status = ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not check a polygon");
+        if (bad != 1) {
+            collection->rings[kept++] = *ring;
+            continue;
+        }
+        parts_points points = {ring->points, ring->count, ring->count};
+        status = parts_points_push(&points, ring->points[0], error); /* the loop drawn whole */
+        if (status == UR_OK)
+            status = parts_add_line(collection, &points, false, UR_OP_CUT, ring->line, ring->what,
+                                    error);
+        parts_points_free(&points);
+    }
+    collection->count = kept;
+    return status;
+}
+
 ur_status parts_assemble(parts_collection *collection, ur_parts *parts, ur_error *error)
 {
-    if (collection->count == 0)
-        return no_part_error(collection, error);
     parts_job job = {.collection = collection};
     job.geos = GEOS_init_r();
     if (!job.geos)
         return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not start");
-    ur_status status = job_allocate(&job, collection->count, error);
+    ur_status status = release_bad_chains(collection, job.geos, error);
+    if (status == UR_OK && collection->count == 0)
+        status = no_part_error(collection, error);
+    if (status != UR_OK) {
+        GEOS_finish_r(job.geos);
+        return status;
+    }
+    status = job_allocate(&job, collection->count, error);
     for (size_t i = 0; status == UR_OK && i < collection->count; i++)
         status = prepare_ring(&job, i, error);
     if (status == UR_OK)

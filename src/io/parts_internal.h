@@ -101,6 +101,7 @@ typedef struct parts_ring {
     char id[32];           /* the SVG id, empty otherwise */
     int sub;               /* 1 for the first ring of an element, 2 for the next ... */
     ur_path_circle circle; /* the circle the ring exactly is, mm; radius 0 for none */
+    bool chained;          /* DXF pieces chained end to end, not one closed entity */
 } parts_ring;
 
 /*

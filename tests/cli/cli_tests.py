@@ -1990,6 +1990,33 @@ def nest_reads_svg_use_and_symbol(work):
 
 
 @test
+def sample_drawing_of_blocks_and_splines_nests(work):
+    """samples/brackets.dxf is what samples/make-drawings.py writes; make demo
+    nests it: 3 brackets, 8 tabs and the disc, each bracket's engraved arrow
+    inside it, the disc's area that of a 25 mm circle less a 2.5 mm one
+    within the flattening's loss, the open construction line named as left
+    out."""
+    subprocess.run([sys.executable, os.path.join(REPO, "samples", "make-drawings.py"), work],
+                   check=True)
+    with open(os.path.join(work, "brackets.dxf")) as a, \
+            open(os.path.join(REPO, "samples", "brackets.dxf")) as b:
+        check(a.read() == b.read(), "samples/brackets.dxf is not what make-drawings.py writes")
+    result = run(work, "nest", os.path.join(REPO, "samples", "brackets.dxf"), "--material",
+                 "plywood-3mm", "--nest-time", "0", "--no-kerf-compensation", "-o", "b.svg",
+                 "--report", "b.json")
+    check(re.search(r"brackets\.dxf:\d+: 1 open shape left out \(LINE", result.stderr),
+          result.stderr)
+    areas = sorted(p["flat_area_mm2"] for p in report(work, "b.json")["pieces"])
+    check(len(areas) == 12, "%d parts, not 12" % len(areas))
+    disc = math.pi * (25 ** 2 - 2.5 ** 2)
+    check(any(disc - 0.01 * 2 * math.pi * 25 <= a <= disc + 0.01 * 2 * math.pi * 2.5
+              for a in areas), "no part is the disc (%g mm2): %r" % (disc, areas))
+    parts = lines_by_part(os.path.join(work, "b.svg"))
+    check(sum(part[5] for part in parts) == 3 and max(part[5] for part in parts) == 1,
+          "the three arrows are not one to a bracket: %r" % [part[5] for part in parts])
+
+
+@test
 def bad_blocks_splines_and_uses(work):
     """Each a one-line message naming the file and line, exit 2, nothing written."""
     units = "0\nSECTION\n2\nHEADER\n9\n$INSUNITS\n70\n4\n0\nENDSEC\n"

@@ -698,6 +698,24 @@ static void test_svg_use(void **state)
     ur_parts_free(&parts);
 }
 
+/* A line drawn twice chains into a loop of no area: an open shape, not a refusal of the file. */
+static void test_chain_of_no_shape(void **state)
+{
+    (void)state;
+    const char *text =
+        DXF_UNITS_MM "0\nSECTION\n2\nENTITIES\n"
+                     "0\nLWPOLYLINE\n8\n0\n90\n4\n70\n1\n10\n0\n20\n0\n10\n10\n20\n0\n10\n10\n20\n1"
+                     "0\n10\n0\n20\n10\n"
+                     "0\nLINE\n8\n0\n10\n20\n20\n0\n11\n30\n21\n0\n"
+                     "0\nLINE\n8\n0\n10\n30\n20\n0\n11\n20\n21\n0\n0\nENDSEC\n0\nEOF\n";
+    ur_parts parts = import_text("twice.dxf", text, 0);
+    assert_int_equal(parts.count, 1);
+    assert_int_equal(parts.warning_count, 1);
+    assert_non_null(strstr(parts.warnings[0], "1 open shape left out (LINE"));
+    ur_parts_free(&parts);
+    expect_strict_refusal("twice.dxf", text, ":40: LINE", "encloses no area");
+}
+
 static void test_block_spline_use_refusals(void **state)
 {
     (void)state;
@@ -927,6 +945,7 @@ int main(void)
         cmocka_unit_test(test_dxf_blocks),
         cmocka_unit_test(test_dxf_splines),
         cmocka_unit_test(test_svg_use),
+        cmocka_unit_test(test_chain_of_no_shape),
         cmocka_unit_test(test_block_spline_use_refusals),
     };
     return cmocka_run_group_tests(tests, make_directory, remove_directory);
