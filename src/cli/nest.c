@@ -43,6 +43,7 @@ enum nest_option {
     NEST_NEST_TIME,
     NEST_SEED,
     NEST_THREADS,
+    NEST_STRICT,
 };
 
 static const struct option nest_options[] = {
@@ -72,6 +73,7 @@ static const struct option nest_options[] = {
     {"nest-time", required_argument, NULL, NEST_NEST_TIME},
     {"seed", required_argument, NULL, NEST_SEED},
     {"threads", required_argument, NULL, NEST_THREADS},
+    {"strict", no_argument, NULL, NEST_STRICT},
     {"help", no_argument, NULL, 'h'},
     {NULL, 0, NULL, 0},
 };
@@ -84,6 +86,7 @@ typedef struct nest_job {
     char **files;   /* argv's file arguments, FILE or FILE:N */
     size_t file_count;
     bool no_split; /* --no-split: a part longer than any sheet is an error, not cut */
+    bool strict;   /* --strict: a file with open shapes (or lines no part holds) is refused */
 } nest_job;
 
 static bool parse_positive_count(const char *what, const char *value, long most, long *count)
@@ -132,6 +135,9 @@ static bool take_nest_option(nest_job *n, int id, const char *value)
         return true;
     case NEST_NO_SPLIT:
         n->no_split = true;
+        return true;
+    case NEST_STRICT:
+        n->strict = true;
         return true;
     case NEST_MACHINE:
         job->machine_name = value;
@@ -202,6 +208,8 @@ static const char nest_help[] =
     "  Nests the closed paths of SVG and DXF files made elsewhere (nested paths are\n"
     "  holes) on sheet stock.  Units come from the file (SVG width/height and viewBox,\n"
     "  DXF $INSUNITS); --units mm|cm|m|in|ft|pt|pc|px when it says nothing.\n"
+    "  Score, engrave, mark and kerf lines (and open paths) inside a part go with it;\n"
+    "  open shapes outside every part are left out with a warning (--strict refuses).\n"
     "  FILE:N or --copies N: that many of each part.\n"
     "  --machine NAME --material NAME --sheet WxH --margin MM --spacing MM\n"
     "  --report FILE.json --quiet --no-kerf-compensation\n"
@@ -211,6 +219,7 @@ static const char nest_help[] =
     "  --no-holes (no part inside another's hole)\n"
     "  --merge-lines  parts may touch; a line two parts share is cut once\n"
     "  --no-split     refuse a part longer than any sheet instead of cutting it\n"
+    "  --strict       refuse a file with open shapes instead of leaving them out\n"
     "  --roll W   nest on roll stock W mm wide, as short as it goes\n"
     "  --sheets N at most N sheets; what does not fit is named, not placed\n"
     "  --remnant WxH  a remnant sheet at hand, filled before stock (repeatable)\n"
@@ -311,6 +320,7 @@ static int read_files(const nest_job *n, ur_piece **pieces, size_t *count)
     ur_parts_import_options options;
     ur_parts_import_options_default(&options);
     options.unit = n->unit_mm;
+    options.strict = n->strict;
     for (size_t f = 0; f < n->file_count; f++) {
         char path[4096];
         long copies;
