@@ -46,7 +46,6 @@
 #include <math.h>
 #include <stdatomic.h>
 #include <stdint.h>
-#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <threads.h>
@@ -177,7 +176,7 @@ typedef struct near_misses {
  */
 typedef struct shared_best {
     mtx_t lock;                /* held to use the nester, or to read or write the fields below */
-    double length;             /* of best (measure_of) */
+    double length;             /* of best (reach_of) */
     state best;                /* owned */
     atomic_uint version;       /* one more with each new best: read without the lock */
     atomic_size_t separations; /* tried by all the searches: the progress line's count */
@@ -1285,8 +1284,7 @@ static ur_status search_fewer(compactor *c)
             break;
         double length = fmax(c->sheet_length, best_length * (1 - cut));
         size_t tries = cut > EXPLORE_CUT ? FEWER_TRIES : SIZE_MAX;
-        bool ok = explore_once(c, length, c->deadline, tries, &status);
-        if (!ok)
+        if (!explore_once(c, length, c->deadline, tries, &status))
             cut = EXPLORE_CUT;
         else if (keep_best(c, &best_length)) /* or, not verified, the same cut again */
             cut = fmin(FEWER_CUT_MOST, 2 * cut);

@@ -1130,6 +1130,31 @@ static ur_status number_fullest_first(nester *n)
 }
 
 /*
+ * The most parts, and shapes at their turns, the searches on sheets take
+ * on: each keeps tables of every pair of parts (32 bytes a pair) and of
+ * every pair of shapes at their turns (a flattened no-fit polygon's
+ * header, near 200 bytes a pair), which for thousands would be
+ * gigabytes.  A layout of more stays as the search over orders left it.
+ */
+#define SEARCH_PARTS_MOST 1000
+#define SEARCH_SHAPE_TURNS_MOST 600
+
+/* Whether the searches on sheets take on count parts of the nester's. */
+static bool searchable(const nester *n, size_t count)
+{
+    return count <= SEARCH_PARTS_MOST && n->class_count * n->turn_count <= SEARCH_SHAPE_TURNS_MOST;
+}
+
+/* The parts on a sheet of the nester. */
+static size_t parts_on(const nester *n, size_t sheet)
+{
+    size_t count = 0;
+    for (size_t p = 0; p < n->placed_count; p++)
+        count += n->sheet_of[p] == sheet;
+    return count;
+}
+
+/*
  * After the search over orders, on sheets with every part placed: fewer
  * stock sheets, from the area bound up (nest_fewer_sheets), until
  * fewer_until; then the last stock sheet's parts pushed to its left end
@@ -1140,11 +1165,12 @@ static ur_status fewer_sheets(nester *n, double fewer_until, double deadline)
     if (n->placed_count < n->count || n->sheet_count <= n->remnant_count)
         return UR_OK;
     ur_status status = number_fullest_first(n);
-    if (status == UR_OK)
+    if (status == UR_OK && searchable(n, n->placed_count))
         status = nest_fewer_sheets(n, stock_sheets_bound(n), fewer_until);
     if (status == UR_OK)
         status = number_fullest_first(n);
-    if (status == UR_OK && n->sheet_count > n->remnant_count)
+    if (status == UR_OK && n->sheet_count > n->remnant_count &&
+        searchable(n, parts_on(n, n->sheet_count - 1)))
         status = nest_push_to_one_end(n, n->sheet_count - 1, deadline);
     return status;
 }

@@ -623,7 +623,9 @@ static size_t sheets_for(const ur_piece *pieces, size_t count, ur_nest_options *
  * one: where the roll search (a roll as wide as the sheet is tall) fits it
  * in a sheet's length, the sheet search puts it on one sheet, every part
  * apart (GEOS); in general on no more sheets than the roll's length
- * shows enough.
+ * shows enough.  The sheet search has twice the roll's budget: it shares
+ * its budget with the search over orders and the last sheet's, and the
+ * machine may be slow (a sanitizer's build, other work).
  */
 static void check_sheets_at_the_roll(ur_piece *pieces, size_t count, double width, double height,
                                      double budget)
@@ -636,7 +638,7 @@ static void check_sheets_at_the_roll(ur_piece *pieces, size_t count, double widt
     assert_true(area <= width * height); /* the area bound: one sheet */
     size_t first = sheets_for(pieces, count, &o, 0);
     double roll = roll_for(pieces, count, &o, budget);
-    size_t searched = sheets_for(pieces, count, &o, budget);
+    size_t searched = sheets_for(pieces, count, &o, 2 * budget);
     print_message("%s...: first layout %zu sheets, roll %.1f mm of %g, searched %zu sheets\n",
                   pieces[0].name, first, roll, width, searched);
     assert_int_equal(first, 2); /* else the set tests nothing */
@@ -647,7 +649,7 @@ static void check_sheets_at_the_roll(ur_piece *pieces, size_t count, double widt
  * Identical concave parts that must interlock: 40 curved strips (66 % of
  * a 600 x 400 sheet) and 36 crescents (74 %); and 32 irregular parts (16
  * shapes, two of each: 72 % of 300 x 200).  The roll fits each in one
- * sheet's length within the budget but under the heaviest load, and then
+ * sheet's length within its budget but under the heaviest load, and then
  * the sheet search must put it on one sheet.
  */
 static void test_sheets_as_few_as_the_roll_shows(void **state)
@@ -656,17 +658,17 @@ static void test_sheets_as_few_as_the_roll_shows(void **state)
     ur_piece pieces[40];
     assert_true(nest_set_strips(pieces, 40));
     nest_set_fill(pieces, 40, 0.66, 600, 400);
-    check_sheets_at_the_roll(pieces, 40, 600, 400, 3);
+    check_sheets_at_the_roll(pieces, 40, 600, 400, 2);
     free_pieces(pieces, 40);
     assert_true(nest_set_crescents(pieces, 36));
     nest_set_fill(pieces, 36, 0.74, 600, 400);
-    check_sheets_at_the_roll(pieces, 36, 600, 400, 3);
+    check_sheets_at_the_roll(pieces, 36, 600, 400, 2);
     free_pieces(pieces, 36);
     assert_true(nest_set_irregular(pieces, 16, 1));
     for (size_t k = 0; k < 16; k++)
         assert_int_equal(ur_piece_copy(&pieces[k], &pieces[16 + k], NULL), UR_OK);
     nest_set_fill(pieces, 32, 0.72, 300, 200);
-    check_sheets_at_the_roll(pieces, 32, 300, 200, 3);
+    check_sheets_at_the_roll(pieces, 32, 300, 200, 2);
     free_pieces(pieces, 32);
 }
 
