@@ -156,13 +156,16 @@ ur_status nest_compact_roll(nester *n, double deadline);
 
 /*
  * Puts the parts of a sheet layout (every part placed) on fewer stock
- * sheets by the same search (compact.c): the parts on the sheets past
- * the remnants and the first least stock sheets move onto those,
- * overlapping, and are separated; if that fails within its share of the
- * time, one stock sheet more, up to one less than the layout has.  The
- * stock sheets dropped are the last: number the fullest first.  A layout
- * kept has no overlap (checked by GEOS); the nester's rooms no longer hold
- * after it, only its placements, sheets and their areas.
+ * sheets by the same search (compact.c): to keep the remnants and the
+ * first least stock sheets, the parts of the sheets after them go at the
+ * end of the last kept, as if it were a roll that long, and that strip
+ * is shortened to the sheet's own length, parts moving between all the
+ * sheets kept on the way; if that fails within its share of the time (an
+ * equal one per count up to deadline), one stock sheet more, up to one
+ * less than the layout has.  The stock sheets dropped are the last:
+ * number the fullest first.  A layout kept has no overlap (checked by
+ * GEOS); the nester's rooms no longer hold after it, only its
+ * placements, sheets and their areas.
  */
 ur_status nest_fewer_sheets(nester *n, size_t least, double deadline);
 
