@@ -406,10 +406,12 @@ static ur_status replace_split(ur_split_parts *split, const bool *cut, ur_piece 
 }
 
 /*
- * A part longer than the room a sheet leaves (inside the margin, less the
- * kerf and a joint at each end) is cut into the fewest parts that fit,
- * each cut joined again with a joint and matching labels; --no-split
- * leaves it for nesting to refuse.
+ * A part that fits no empty stock sheet in any allowed turn, and is
+ * longer than the room a sheet leaves (inside the margin, less the kerf
+ * and a joint at each end), is cut into the fewest parts that fit the
+ * room, each cut joined again with a joint and matching labels; --no-split
+ * leaves it for nesting to refuse.  A part that fits some sheet whole
+ * stays whole, however the room compares.
  */
 static ur_status split_long_parts(const nest_job *n, const ur_machine *machine,
                                   const ur_material *material, ur_piece **pieces, size_t *count,
@@ -428,14 +430,19 @@ static ur_status split_long_parts(const nest_job *n, const ur_machine *machine,
         if (status != UR_OK || (length <= room.length && width <= room.width) ||
             width > room.width) /* too wide for cuts across it to help: nesting says so */
             continue;
+        bool fits = false;
+        status = cli_piece_fits_stock(&n->job, machine, material, &(*pieces)[k], &fits, error);
+        if (status != UR_OK || fits)
+            continue;
         size_t before = split.nets.count;
         status = ur_part_split(&(*pieces)[k], room.length, room.width, (double)k, &split, error);
         cut[k] = status == UR_OK;
         if (status == UR_OK && !n->job.quiet)
-            cli_message("nest: part %s (%.0f x %.0f mm) does not fit the %.0f x %.0f mm a sheet "
-                        "leaves it: cut into %zu (--no-split refuses instead)",
-                        (*pieces)[k].name, length, width, room.length, room.width,
-                        split.nets.count - before);
+            cli_message("nest: part %s (%.0f x %.0f mm) fits no sheet in any allowed turn: cut "
+                        "into %zu to fit the %.0f x %.0f mm a sheet leaves a part with joints "
+                        "(--no-split refuses instead)",
+                        (*pieces)[k].name, length, width, split.nets.count - before, room.length,
+                        room.width);
     }
     int next_seam = 0;
     if (status == UR_OK && split.nets.count > 0)

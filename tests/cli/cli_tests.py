@@ -2188,6 +2188,39 @@ def nest_cuts_a_part_too_long_for_the_sheet(work):
     bad(work, r"bar-1 .* does not fit", "nest", "bar.svg", "--no-split", "-o", "refused.svg")
 
 
+@test
+def nest_keeps_whole_a_part_that_fits_the_sheet(work):
+    """A ring 90 mm across with a 70 mm hole, and a 60 mm disc, on a 100 x
+    100 mm sheet with a 1 mm margin: the ring is longer than the room a
+    part cut in two may take (the sheet less a joint at each end: 62 mm in
+    plywood, less in cardboard) but fits the sheet whole, so it is not cut:
+    two parts, both on sheet 1 (the disc in the ring's hole), their areas
+    the ring's and the disc's, pi (45^2 - 35^2) and pi 30^2 to the
+    flattening of the arcs, and the circles of the drawing written whole."""
+    write(work, "ring.svg", '<svg xmlns="http://www.w3.org/2000/svg" width="100mm" height="100mm" '
+          'viewBox="0 0 100 100"><path id="ring" d="M5,50 a45,45 0 1,0 90,0 a45,45 0 1,0 -90,0 Z '
+          'M15,50 a35,35 0 1,0 70,0 a35,35 0 1,0 -70,0 Z"/><circle id="disc" cx="50" cy="50" r="30"/>'
+          '</svg>\n')
+    for material in ("plywood-3mm", "cardboard-2mm"):
+        result = run(work, "nest", "ring.svg", "--sheet", "100x100", "--margin", "1", "--material",
+                     material, "--no-kerf-compensation", "-o", material + ".svg", "--report",
+                     material + ".json")
+        check("cut into" not in result.stderr, material + ": " + result.stderr)
+        found = report(work, material + ".json")
+        pieces = sorted(found["pieces"], key=lambda p: p["name"])
+        check([(p["name"], p["sheet"]) for p in pieces] == [("disc", 1), ("ring", 1)],
+              "%s: pieces %r" % (material, [(p["name"], p["sheet"]) for p in pieces]))
+        check(len(found["sheets"]) == 1, "%s: %d sheets" % (material, len(found["sheets"])))
+        close(pieces[0]["flat_area_mm2"], math.pi * 30 ** 2, 2e-3, material + ": disc area")
+        close(pieces[1]["flat_area_mm2"], math.pi * (45 ** 2 - 35 ** 2), 2e-3, material + ": ring area")
+        # Circles stay circles in the file written; any other outline would be a path.
+        written = os.path.join(work, material + ".svg")
+        radii = sorted(r for _, _, r in circles(written, "cut"))
+        check(len(radii) == 3 and not outlines(written), "%s: circles %r" % (material, radii))
+        for got, radius in zip(radii, (30, 35, 45)):
+            close(got, radius, 1e-6, "%s: a circle's radius" % material)
+
+
 # ---- job files -------------------------------------------------------------
 
 JOB_HEAD = """<?xml version="1.0" encoding="UTF-8"?>
