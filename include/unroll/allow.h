@@ -91,6 +91,13 @@ typedef struct ur_allowance_record {
      */
     size_t first_path, path_count;
     ur_vec2 direction;
+    /*
+     * Bending kerfs: the largest angle one groove or hinge row turns the
+     * sheet by (degrees, between the tangent planes of consecutive rows)
+     * and how many rows (grooves) the region has; 0 for other records.
+     */
+    double facet_angle;
+    size_t rows;
 } ur_allowance_record;
 
 typedef struct ur_piece {
@@ -334,27 +341,47 @@ ur_status ur_piece_add_relief(ur_piece *piece, const ur_net *net, const ur_relie
  * parameter (ur_net.ruling_parameters, so `ruled` must be the surface the
  * net was developed from); spacings are measured across the rulings along
  * the net, between the rulings' midpoints.  A region is a run of the net
- * where R < min_radius.  router: grooves of width `groove_width` and depth
- * `groove_depth` at spacing s = w R / d (the local R), ceil(integral of
- * dt / s) of them (at least 1) centred in the region, each a line along its
- * ruling from outline to outline (they do not cut through); where R < d
- * they would merge and are placed every w instead, and the record is a
- * warning.  laser: the material's living hinge: rows every hinge_distance
- * placed alike, each of slits hinge_cut_length long with hinge_connection
- * bridges, alternate rows half a period along, clipped to stay
- * hinge_connection from the outline (shorter remnants dropped).  One
- * UR_ALLOWANCE_BENDING record per region: count the lines, value the
- * smallest R, limit min_radius, the reason the radius, spacing and depth
- * (or the hinge).  A net without ruling_parameters (a flattened mesh) is
- * left alone; fewer than 2 drawn rulings give a warning where a bend is too
- * tight.  UR_ERROR_INPUT for sizes that are not positive.  See bending.c.
+ * where R < min_radius.
+ *
+ * Rows (grooves or hinge rows) are spaced so that each turns the sheet by
+ * at most facet_angle degrees (the angle between the tangent planes of
+ * consecutive rows), and never farther apart than the widest spacing:
+ * w R / d for router grooves (at which a groove closes completely), the
+ * hinge's row distance for a laser; ceil(integral of the row density) of
+ * them, at least 1, centred in the region.  Rows are never closer than
+ * their width (w, or the laser's kerf) plus min_web: where the facet angle
+ * would need them closer, they stay at that spacing and a warning says by
+ * how much each turns.  Router grooves that could not close even then
+ * (w R / d below that spacing) are placed every w, touching, with a
+ * warning.  With thickness given, a router warns where the uncut skin
+ * (thickness - d) is too thick to bend to R (its outer-fibre strain over
+ * that of the whole sheet at min_radius): the groove would need to be
+ * deeper than the profile allows.
+ *
+ * router: each groove is a line along its ruling from outline to outline
+ * (it does not cut through).  laser: the material's living hinge: each row
+ * of slits hinge_cut_length long with hinge_connection bridges, alternate
+ * rows half a period along, clipped to stay hinge_connection from the
+ * outline (shorter remnants dropped).  One UR_ALLOWANCE_BENDING record per
+ * region: count the lines, rows the grooves or rows, facet_angle the
+ * largest turn per row, value the smallest R, limit min_radius, the
+ * reason the radius, spacing and depth (or the hinge); warnings as above.
+ * A net without ruling_parameters (a flattened mesh) is left alone; fewer
+ * than 2 drawn rulings give a warning where a bend is too tight.
+ * UR_ERROR_INPUT for sizes that are not positive.  See bending.c.
  */
+#define UR_DEFAULT_FACET_ANGLE 5.0 /* degrees */
+
 typedef struct ur_bending_options {
     double min_radius;   /* the material's smallest bend radius, mm */
     bool router;         /* grooves (router) or through-cut hinge (laser) */
     double groove_width; /* w: the bit diameter, mm */
     double groove_depth; /* d: thickness minus skin, mm */
     double hinge_cut_length, hinge_connection, hinge_distance; /* laser pattern, mm */
+    double facet_angle; /* degrees each row may turn the sheet by; 0: UR_DEFAULT_FACET_ANGLE */
+    double min_web;     /* thinnest material left between grooves or slits, mm; 0: none */
+    double kerf;        /* laser: the width a slit cuts, mm (0: a line) */
+    double thickness;   /* of the material, mm; 0: the skin is not checked */
 } ur_bending_options;
 
 ur_status ur_piece_add_bending_kerfs(ur_piece *piece, const ur_net *net, ur_ruled *ruled,

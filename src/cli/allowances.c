@@ -119,6 +119,20 @@ double cli_smallest_bend_radius(const ur_material *material)
                                              : material->bend_radius_across_grain;
 }
 
+/*
+ * The thinnest web to leave between grooves or slits: the profile's, or
+ * three kerfs of the laser (in this material; 0.2 mm when it gives none),
+ * the usual rule for what survives the cut and the bending.
+ */
+double cli_min_web(const ur_machine *machine, const ur_material *material)
+{
+    if (material->min_web > 0)
+        return material->min_web;
+    if (machine->kind == UR_MACHINE_LASER)
+        return 3 * ur_effective_kerf(machine, material);
+    return 3 * (material->kerf_laser > 0 ? material->kerf_laser : 0.2);
+}
+
 static ur_status add_bending(const ur_machine *machine, const ur_material *material,
                              const ur_net_list *nets, ur_ruled *const *surfaces, ur_piece *pieces,
                              size_t count, ur_error *error)
@@ -131,6 +145,10 @@ static ur_status add_bending(const ur_machine *machine, const ur_material *mater
         .hinge_cut_length = material->hinge_cut_length,
         .hinge_connection = material->hinge_connection,
         .hinge_distance = material->hinge_distance,
+        .facet_angle = material->facet_angle,
+        .min_web = cli_min_web(machine, material),
+        .kerf = machine->kind == UR_MACHINE_LASER ? ur_effective_kerf(machine, material) : 0.0,
+        .thickness = material->thickness,
     };
     ur_status status = UR_OK;
     for (size_t k = 0; status == UR_OK && k < count; k++)

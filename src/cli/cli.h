@@ -122,6 +122,9 @@ bool cli_makes_joints(const cli_job *job);
  */
 double cli_smallest_bend_radius(const ur_material *material);
 
+/* The thinnest web between grooves or slits: the profile's, else three laser kerfs. */
+double cli_min_web(const ur_machine *machine, const ur_material *material);
+
 /* --allowances auto|none|LIST and --bridges auto|N|none (allowances.c); false after a message. */
 bool cli_parse_allowances(cli_job *job, const char *value);
 bool cli_parse_bridges(cli_job *job, const char *value);
