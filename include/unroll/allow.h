@@ -211,6 +211,44 @@ ur_status ur_piece_add_label(ur_piece *piece, const ur_font *font, const char *t
 
 /* ---- Joints on seams (joints.c) --------------------------------------- */
 
+/* ---- Splice pieces (splice.c) ------------------------------------------- */
+
+/*
+ * A splice piece joins a seam from behind where no tab or lap fits on
+ * either side: a strip `width` mm on each side of the seam (seam, count
+ * points in the coordinates of piece_a's outline, which it follows
+ * counter-clockwise, so piece_a lies on its left), its outline the seam
+ * buffered by the width with flat ends, the seam a MARK line along its
+ * middle, and with a font each half engraved with the name of the piece
+ * that goes on it and the seam's label ("P1 A1" on the left, "P2 A1" on
+ * the right).  strap says it is wood's butt strap (for the record's
+ * words).  Records a UR_ALLOWANCE_JOINT entry; the caller frees the piece
+ * with ur_piece_free.  UR_ERROR_INPUT for fewer than 2 points, a seam of
+ * no length or sizes that are not positive.
+ */
+typedef struct ur_splice_request {
+    const ur_vec2 *seam;
+    size_t count;
+    double width;      /* mm on each side of the seam */
+    const char *name;  /* of the new piece */
+    const char *label; /* the seam's, "A1" */
+    const char *piece_a, *piece_b;
+    bool strap;
+    const ur_font *font; /* NULL: no labels */
+    double label_height;
+} ur_splice_request;
+
+/* Pieces made by the joints, owned: free with ur_splice_list_free. */
+typedef struct ur_splice_list {
+    ur_piece *pieces;
+    size_t count;
+} ur_splice_list;
+
+ur_status ur_splice_piece(const ur_splice_request *request, ur_piece *piece, ur_error *error);
+ur_status ur_splice_list_add(ur_splice_list *list, const ur_splice_request *request,
+                             ur_error *error);
+void ur_splice_list_free(ur_splice_list *list);
+
 typedef struct ur_joint_options {
     bool lap;            /* lap joints (wood) instead of glue tabs */
     double tab_depth;    /* mm */
@@ -220,6 +258,12 @@ typedef struct ur_joint_options {
     const ur_font *font; /* NULL: no labels */
     double label_height; /* mm */
     bool name_pieces;    /* engrave each piece's name too */
+    /*
+     * Where no joint fits either side of a stretch of a seam: NULL, a
+     * warning ("join it by hand"); else a splice piece (ur_splice_piece,
+     * as wide on each side as a tab is deep or a lap wide) is added here.
+     */
+    ur_splice_list *splices;
 } ur_joint_options;
 
 /* The label of seam number seam (from 1): "A1" ... "A99", "B1" ... "Z99", then "AA1" ... */

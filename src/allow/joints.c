@@ -502,6 +502,48 @@ static ur_status warn_stretch(joiner *j, const seam_job *sj, const stretch *st, 
     return status;
 }
 
+/*
+ * No joint fits either side of the stretch: a splice piece glued behind it
+ * (splice.c), named after the seam (and the stretch, on a seam of several),
+ * and a record on each piece saying so.
+ */
+static ur_status splice_stretch(joiner *j, const seam_job *sj, const stretch *st, int side,
+                                ur_error *error)
+{
+    const ur_joint_options *o = j->options;
+    run r = {0};
+    ur_status status =
+        sub_run(&sj->runs[side], local_first(sj, side, st), local_count(sj, side, st), &r, error);
+    if (status != UR_OK)
+        return status;
+    const ur_piece *a = &j->pieces[sj->s->net[side]], *b = &j->pieces[sj->s->net[1 - side]];
+    char name[32];
+    if (sj->edges[0] > 1 && sj->edges[0] == sj->edges[1])
+        snprintf(name, sizeof name, "S-%s.%zu", sj->label, st->first + 1);
+    else
+        snprintf(name, sizeof name, "S-%s", sj->label);
+    ur_splice_request request = {.seam = r.points,
+                                 .count = r.count,
+                                 .width = full_depth(o),
+                                 .name = name,
+                                 .label = sj->label,
+                                 .piece_a = a->name,
+                                 .piece_b = b->name,
+                                 .strap = o->lap,
+                                 .font = o->font,
+                                 .label_height = o->label_height};
+    status = ur_splice_list_add(o->splices, &request, error);
+    for (int k = 0; status == UR_OK && k < (sj->s->net[0] == sj->s->net[1] ? 1 : 2); k++)
+        status = record(&j->pieces[sj->s->net[k]], UR_ALLOWANCE_JOINT, run_middle(&sj->runs[k]), 0,
+                        false, error,
+                        "no room for a %s on seam %s on either side: joined by %s %s, glued "
+                        "behind the seam",
+                        o->lap ? "lap" : "glue tab", sj->label,
+                        o->lap ? "butt strap" : "splice strip", name);
+    free(r.points);
+    return status;
+}
+
 /* The joint of one stretch: full on either side, then smaller on either. */
 static ur_status join_stretch(joiner *j, const seam_job *sj, const stretch *st, int first_side,
                               ur_error *error)
@@ -521,7 +563,8 @@ static ur_status join_stretch(joiner *j, const seam_job *sj, const stretch *st, 
             status = try_shapes(j, sj, k, st, shapes, from, to, &done, &why[k], error);
     }
     if (status == UR_OK && !done)
-        status = warn_stretch(j, sj, st, first_side, why, error);
+        status = o->splices ? splice_stretch(j, sj, st, first_side, error)
+                            : warn_stretch(j, sj, st, first_side, why, error);
     return status;
 }
 

@@ -159,7 +159,7 @@ static ur_status add_bending(const ur_machine *machine, const ur_material *mater
 }
 
 ur_status cli_add_joints(const ur_material *material, const ur_net_list *nets, ur_piece *pieces,
-                         ur_error *error)
+                         ur_splice_list *splices, ur_error *error)
 {
     ur_font *font = NULL;
     ur_status status = ur_font_open(NULL, &font, error);
@@ -174,28 +174,52 @@ ur_status cli_add_joints(const ur_material *material, const ur_net_list *nets, u
         .font = font,
         .label_height = material->label_height,
         .name_pieces = true,
+        .splices = splices,
     };
     status = ur_pieces_add_joints(pieces, nets, &options, error);
     ur_font_close(font);
     return status;
 }
 
+/* The splice pieces the joints made go after the nets' pieces, to be nested with them. */
+static ur_status append_splices(ur_splice_list *splices, ur_piece **pieces, size_t *count,
+                                ur_error *error)
+{
+    if (splices->count == 0)
+        return UR_OK;
+    ur_piece *grown = realloc(*pieces, (*count + splices->count) * sizeof *grown);
+    if (!grown)
+        return ur_error_out_of_memory(error);
+    *pieces = grown;
+    memcpy(grown + *count, splices->pieces, splices->count * sizeof *grown);
+    *count += splices->count;
+    free(splices->pieces); /* the pieces' own arrays moved with them */
+    splices->pieces = NULL;
+    splices->count = 0;
+    return UR_OK;
+}
+
 ur_status cli_allowances_before_placing(const cli_job *job, const ur_machine *machine,
                                         const ur_material *material, const ur_net_list *nets,
-                                        ur_ruled *const *surfaces, ur_piece *pieces, size_t count,
+                                        ur_ruled *const *surfaces, ur_piece **pieces, size_t *count,
                                         ur_error *error)
 {
     unsigned set = cli_allowances_chosen(job, machine);
     ur_status status = UR_OK;
     if (set & (CLI_ALLOW_KERFING | CLI_ALLOW_OVERLAPS))
-        status = add_relief(set, material, nets, pieces, count, error);
+        status = add_relief(set, material, nets, *pieces, *count, error);
     if (status == UR_OK && surfaces && (set & CLI_ALLOW_BENDING))
-        status = add_bending(machine, material, nets, surfaces, pieces, count, error);
-    if (status == UR_OK && (set & CLI_ALLOW_TABS))
-        status = cli_add_joints(material, nets, pieces, error);
+        status = add_bending(machine, material, nets, surfaces, *pieces, *count, error);
+    if (status == UR_OK && (set & CLI_ALLOW_TABS)) {
+        ur_splice_list splices = {NULL, 0};
+        status = cli_add_joints(material, nets, *pieces, &splices, error);
+        if (status == UR_OK)
+            status = append_splices(&splices, pieces, count, error);
+        ur_splice_list_free(&splices);
+    }
     double kerf = ur_effective_kerf(machine, material);
-    for (size_t k = 0; status == UR_OK && !job->no_kerf_compensation && k < count; k++)
-        status = ur_piece_compensate_kerf(&pieces[k], kerf, error);
+    for (size_t k = 0; status == UR_OK && !job->no_kerf_compensation && k < *count; k++)
+        status = ur_piece_compensate_kerf(&(*pieces)[k], kerf, error);
     return status;
 }
 

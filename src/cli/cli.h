@@ -193,13 +193,14 @@ int cli_flatten_ruled(const cli_job *job, const cli_room *room, const ur_materia
 /*
  * The allowances that go on the pieces before they are placed: relief
  * (kerfing, overlaps), bending kerfs, labels and joints, then kerf
- * compensation (allowances.c).  pieces[k] was made from nets->nets[k],
+ * compensation (allowances.c).  (*pieces)[k] was made from nets->nets[k],
  * developed from surfaces[k] (surfaces NULL, or an entry NULL, for meshes
- * and flattenings).
+ * and flattenings).  Splice pieces for seams no joint fits on are
+ * appended to *pieces (reallocated), *count growing by as many.
  */
 ur_status cli_allowances_before_placing(const cli_job *job, const ur_machine *machine,
                                         const ur_material *material, const ur_net_list *nets,
-                                        ur_ruled *const *surfaces, ur_piece *pieces, size_t count,
+                                        ur_ruled *const *surfaces, ur_piece **pieces, size_t *count,
                                         ur_error *error);
 
 /*
@@ -214,9 +215,13 @@ ur_status cli_allowances_before_placing(const cli_job *job, const ur_machine *ma
 ur_status cli_merge_lines(const cli_job *job, const ur_layout *layout, ur_piece *pieces,
                           size_t count, ur_error *error);
 
-/* Joints and labels on the seams of the nets, as the material asks (pieces[k] from nets[k]). */
+/*
+ * Joints and labels on the seams of the nets, as the material asks
+ * (pieces[k] from nets[k]); splice pieces into splices where no joint fits
+ * (NULL: a warning instead).
+ */
 ur_status cli_add_joints(const ur_material *material, const ur_net_list *nets, ur_piece *pieces,
-                         ur_error *error);
+                         ur_splice_list *splices, ur_error *error);
 
 ur_status cli_allowances_after_placing(const cli_job *job, const ur_machine *machine,
                                        const ur_layout *layout, ur_piece *pieces, size_t count,

@@ -1337,6 +1337,33 @@ def kerf_compensation_and_bridges(work):
 
 
 @test
+def every_seam_of_a_helicoid_is_joined(work):
+    """Two turns of the README's helicoid split in two pieces whose seam has
+    the other turn within a few millimetres on both sides: no tab (cardboard)
+    or lap (plywood) fits, so a splice piece is glued behind it, nested with
+    the rest, carrying both pieces' names with the seam's label; no seam is
+    left to join by hand.  A cone's seam (from its base to its apex) gets its
+    tab."""
+    for material, width in (("cardboard-2mm", 10), ("plywood-3mm", 15)):
+        result = run(work, "helicoid", "--radius", "30", "--pitch", "62.83", "--turns", "2",
+                     "--width", "25", "--material", material, "-o", "h.svg", "--report", "h.json")
+        check("join it by hand" not in result.stderr, result.stderr)
+        pieces = report(work, "h.json")["pieces"]
+        splices = [p for p in pieces if p["name"].startswith("S-")]
+        check(len(splices) == 1 and splices[0]["sheet"] == 1, "splices %r" % splices)
+        reasons = [a["reason"] for a in splices[0]["allowances"]]
+        check(any("seam A1" in r and "%g mm on each side" % width in r for r in reasons), reasons)
+        check(sum("'P1 A1'" in r or "'P2 A1'" in r for r in reasons) == 2, reasons)
+        for piece in pieces:
+            check(allowance_records(piece, "joint", warning=True) == [], piece["name"])
+    run(work, "cone", "--radius", "60", "--height", "80", "--material", "cardboard-2mm",
+        "-o", "c.svg", "--report", "c.json")
+    [piece] = report(work, "c.json")["pieces"]
+    [joint] = allowance_records(piece, "joint")
+    check(joint["count"] == 1 and "seam A1" in joint["reason"], joint["reason"])
+
+
+@test
 def plywood_cylinder_gets_bending_grooves(work):
     """Plywood bends no tighter than 150 mm (3 mm) or 400 mm (6 mm): a
     cylinder on the router (bit w = 3.175 mm, grooves d = thickness less the
