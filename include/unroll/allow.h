@@ -264,6 +264,14 @@ typedef struct ur_joint_options {
      * as wide on each side as a tab is deep or a lap wide) is added here.
      */
     ur_splice_list *splices;
+    /*
+     * A lap lies on the other piece's lapped zone and must bend with it:
+     * with lap_kerfs, the KERF lines of that zone (bending grooves, hinge
+     * slits) are carried onto the lap, kept lap_kerf_margin mm inside its
+     * edges (a hinge's solid margin; 0 for grooves, which run out).
+     */
+    bool lap_kerfs;
+    double lap_kerf_margin;
 } ur_joint_options;
 
 /* The label of seam number seam (from 1): "A1" ... "A99", "B1" ... "Z99", then "AA1" ... */
@@ -309,6 +317,18 @@ ur_status ur_pieces_add_joints(ur_piece *pieces, const ur_net_list *nets,
  * its centre, so that all read upright on the sheet.
  */
 void ur_piece_turn_labels(ur_piece *piece, double angle);
+
+/*
+ * Hinges and joints agree (joint_kerfs.c): once the joints are on (their
+ * folds and marks are paths[first ..]), every KERF line of the piece is cut
+ * back to keep `clearance` mm from each MARK and SCORE line among them (a
+ * lap zone's mark line, a tab's folds); what is left of a line shorter
+ * than `shortest` is dropped.  *trimmed: how many lines were cut.  Label
+ * records keep pointing at their strokes.  UR_ERROR_INPUT for a clearance
+ * not above 0 or a negative shortest.
+ */
+ur_status ur_piece_keep_kerfs_off_joints(ur_piece *piece, size_t first, double clearance,
+                                         double shortest, size_t *trimmed, ur_error *error);
 
 /* ---- Kerf compensation and bridges (kerf.c, bridges.c) ---------------- */
 

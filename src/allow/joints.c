@@ -950,13 +950,92 @@ static ur_status mark_under(const joiner *j, ur_piece *piece, const run *r, ur_e
     return status;
 }
 
-/* What a kept joint adds: folds (tab) or marks on both pieces (lap). */
+/*
+ * Where the lapped zone's point q lands on the lap: the lap lies on the
+ * zone, its seam run on the zone's seam run the other way round (a turn
+ * about the two runs' middles, which shortening a lap leaves in place).
+ */
+static ur_vec2 onto_lap(const placed_joint *p, ur_vec2 q)
+{
+    ur_vec2 from = run_middle(&p->under), to = run_middle(&p->base);
+    ur_vec2 along = ur_vec2_sub(p->under.points[p->under.count - 1], p->under.points[0]);
+    ur_vec2 back = ur_vec2_sub(p->base.points[0], p->base.points[p->base.count - 1]);
+    double angle = atan2(ur_vec2_cross(along, back), ur_vec2_dot(along, back));
+    ur_vec2 d = ur_vec2_sub(q, from);
+    double c = cos(angle), s = sin(angle);
+    return ur_vec2_add(to, ur_vec2_make(c * d.x - s * d.y, s * d.x + c * d.y));
+}
+
+/* One kerf line of the zone, carried onto the lap and clipped to inside. */
+static ur_status carry_line(const joiner *j, const placed_joint *p, const ur_path *line,
+                            const GEOSGeometry *inside, ur_error *error)
+{
+    ur_vec2 *moved = ur_alloc_array(line->count, sizeof *moved, error);
+    if (!moved)
+        return UR_ERROR_INTERNAL;
+    for (size_t k = 0; k < line->count; k++)
+        moved[k] = onto_lap(p, line->points[k]);
+    GEOSGeometry *carried = allow_line(j->geos, moved, line->count);
+    free(moved);
+    GEOSGeometry *parts = carried ? GEOSIntersection_r(j->geos, carried, inside) : NULL;
+    if (carried)
+        GEOSGeom_destroy_r(j->geos, carried);
+    if (!parts)
+        return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not carry a kerf onto a lap");
+    ur_status status = UR_OK;
+    ur_piece *piece = &j->pieces[p->piece];
+    for (int k = 0; status == UR_OK && k < GEOSGetNumGeometries_r(j->geos, parts); k++) {
+        const GEOSGeometry *part = GEOSGetGeometryN_r(j->geos, parts, k);
+        const GEOSCoordSequence *sequence =
+            part && GEOSGeomTypeId_r(j->geos, part) == GEOS_LINESTRING
+                ? GEOSGeom_getCoordSeq_r(j->geos, part)
+                : NULL;
+        unsigned size = 0;
+        if (!sequence || !GEOSCoordSeq_getSize_r(j->geos, sequence, &size) || size < 2)
+            continue;
+        ur_vec2 ends[2];
+        GEOSCoordSeq_getXY_r(j->geos, sequence, 0, &ends[0].x, &ends[0].y);
+        GEOSCoordSeq_getXY_r(j->geos, sequence, size - 1, &ends[1].x, &ends[1].y);
+        if (ur_vec2_distance(ends[0], ends[1]) > j->options->lap_kerf_margin)
+            status = ur_piece_add_path(piece, UR_OP_KERF, ends, 2, false, error);
+    }
+    GEOSGeom_destroy_r(j->geos, parts);
+    return status;
+}
+
+/*
+ * A lap lies on the other piece's lapped zone and must bend as it does:
+ * the zone's kerf lines (straight: grooves and slits) are carried onto it,
+ * kept the margin inside its edges.
+ */
+static ur_status hinge_lap(const joiner *j, const placed_joint *p, ur_error *error)
+{
+    const ur_piece *under = &j->pieces[p->under_piece];
+    size_t count = under->path_count; /* the lap may be on the same piece: not its new lines */
+    double margin = j->options->lap_kerf_margin;
+    GEOSGeometry *inside = margin > 0 ? GEOSBuffer_r(j->geos, p->shape, -margin, 8)
+                                      : GEOSGeom_clone_r(j->geos, p->shape);
+    if (!inside)
+        return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not shrink a lap");
+    ur_status status = UR_OK;
+    for (size_t i = 1; status == UR_OK && i < count; i++) {
+        const ur_path *line = &j->pieces[p->under_piece].paths[i];
+        if (line->op == UR_OP_KERF && !line->closed && line->count == 2)
+            status = carry_line(j, p, line, inside, error);
+    }
+    GEOSGeom_destroy_r(j->geos, inside);
+    return status;
+}
+
+/* What a kept joint adds: folds (tab) or marks on both pieces (lap), a lap its hinge. */
 static ur_status finish_joint(const joiner *j, const placed_joint *p, ur_error *error)
 {
     ur_piece *piece = &j->pieces[p->piece];
     if (!j->options->lap)
         return add_folds(j, piece, &p->base, error);
-    ur_status status = add_mark(j, piece, p->shape, error);
+    ur_status status = j->options->lap_kerfs ? hinge_lap(j, p, error) : UR_OK;
+    if (status == UR_OK)
+        status = add_mark(j, piece, p->shape, error);
     if (status == UR_OK)
         status = mark_under(j, &j->pieces[p->under_piece], &p->under, error);
     return status;

@@ -158,8 +158,9 @@ static ur_status add_bending(const ur_machine *machine, const ur_material *mater
     return status;
 }
 
-ur_status cli_add_joints(const ur_material *material, const ur_net_list *nets, ur_piece *pieces,
-                         ur_splice_list *splices, ur_error *error)
+ur_status cli_add_joints(const ur_machine *machine, const ur_material *material,
+                         const ur_net_list *nets, ur_piece *pieces, ur_splice_list *splices,
+                         ur_error *error)
 {
     ur_font *font = NULL;
     ur_status status = ur_font_open(NULL, &font, error);
@@ -175,10 +176,27 @@ ur_status cli_add_joints(const ur_material *material, const ur_net_list *nets, u
         .label_height = material->label_height,
         .name_pieces = true,
         .splices = splices,
+        .lap_kerfs = machine != NULL,
+        .lap_kerf_margin =
+            machine && machine->kind == UR_MACHINE_LASER ? material->hinge_connection : 0.0,
     };
     status = ur_pieces_add_joints(pieces, nets, &options, error);
     ur_font_close(font);
     return status;
+}
+
+/*
+ * No kerf line touches a fold or mark line of the joints: each keeps half
+ * its own width (the bit, or the laser's kerf) and the minimum web from
+ * them, and what is left shorter than the web goes.
+ */
+static ur_status keep_kerfs_off_joints(const ur_machine *machine, const ur_material *material,
+                                       ur_piece *piece, size_t first, ur_error *error)
+{
+    double web = cli_min_web(machine, material);
+    double clearance = 0.5 * ur_effective_kerf(machine, material) + web;
+    size_t trimmed = 0;
+    return ur_piece_keep_kerfs_off_joints(piece, first, clearance, web, &trimmed, error);
 }
 
 /* The splice pieces the joints made go after the nets' pieces, to be nested with them. */
@@ -212,7 +230,14 @@ ur_status cli_allowances_before_placing(const cli_job *job, const ur_machine *ma
         status = add_bending(machine, material, nets, surfaces, *pieces, *count, error);
     if (status == UR_OK && (set & CLI_ALLOW_TABS)) {
         ur_splice_list splices = {NULL, 0};
-        status = cli_add_joints(material, nets, *pieces, &splices, error);
+        size_t *first = ur_alloc_array(*count ? *count : 1, sizeof *first, error);
+        for (size_t k = 0; first && k < *count; k++)
+            first[k] = (*pieces)[k].path_count;
+        status = first ? cli_add_joints(machine, material, nets, *pieces, &splices, error)
+                       : UR_ERROR_INTERNAL;
+        for (size_t k = 0; status == UR_OK && k < *count; k++)
+            status = keep_kerfs_off_joints(machine, material, &(*pieces)[k], first[k], error);
+        free(first);
         if (status == UR_OK)
             status = append_splices(&splices, pieces, count, error);
         ur_splice_list_free(&splices);

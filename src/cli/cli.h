@@ -218,10 +218,12 @@ ur_status cli_merge_lines(const cli_job *job, const ur_layout *layout, ur_piece 
 /*
  * Joints and labels on the seams of the nets, as the material asks
  * (pieces[k] from nets[k]); splice pieces into splices where no joint fits
- * (NULL: a warning instead).
+ * (NULL: a warning instead).  With a machine, laps carry the kerf lines of
+ * the zone they lie on (kept a hinge's margin inside on a laser).
  */
-ur_status cli_add_joints(const ur_material *material, const ur_net_list *nets, ur_piece *pieces,
-                         ur_splice_list *splices, ur_error *error);
+ur_status cli_add_joints(const ur_machine *machine, const ur_material *material,
+                         const ur_net_list *nets, ur_piece *pieces, ur_splice_list *splices,
+                         ur_error *error);
 
 ur_status cli_allowances_after_placing(const cli_job *job, const ur_machine *machine,
                                        const ur_layout *layout, ur_piece *pieces, size_t count,

@@ -1363,6 +1363,74 @@ def every_seam_of_a_helicoid_is_joined(work):
     check(joint["count"] == 1 and "seam A1" in joint["reason"], joint["reason"])
 
 
+def segment_distance(a, b, c, d):
+    """The distance between segments ab and cd (0 when they cross)."""
+    def cross(o, p, q):
+        return (p[0] - o[0]) * (q[1] - o[1]) - (p[1] - o[1]) * (q[0] - o[0])
+
+    def to_segment(p, u, v):
+        dx, dy = v[0] - u[0], v[1] - u[1]
+        length = dx * dx + dy * dy
+        t = 0 if length == 0 else max(0, min(1, ((p[0] - u[0]) * dx + (p[1] - u[1]) * dy) / length))
+        return math.dist(p, (u[0] + t * dx, u[1] + t * dy))
+
+    if (cross(a, b, c) * cross(a, b, d) < 0) and (cross(c, d, a) * cross(c, d, b) < 0):
+        return 0.0
+    return min(to_segment(a, c, d), to_segment(b, c, d), to_segment(c, a, b), to_segment(d, a, b))
+
+
+def inside(point, ring):
+    """Whether point lies inside the closed ring (even-odd rule)."""
+    x, y = point
+    result = False
+    for (x0, y0), (x1, y1) in zip(ring, ring[1:] + ring[:1]):
+        if (y0 > y) != (y1 > y) and x < x0 + (y - y0) * (x1 - x0) / (y1 - y0):
+            result = not result
+    return result
+
+
+@test
+def hinges_and_joints_agree(work):
+    """No slit or groove comes nearer a lap zone's mark line or a tab's fold
+    than half its width and the minimum web (3 laser kerfs): plywood
+    cylinders of radius 40 with a lap (living hinge on the laser, grooves on
+    the router), cardboard ones of radius 8 and a cardboard cone with tabs.
+    The lap tongue carries the hinge of the zone it is glued to: every lap
+    and lapped zone (a closed mark line) has kerf lines inside it."""
+    cases = (("cylinder", "--radius", "40", "--height", "100", "--material", "plywood-3mm"),
+             ("cylinder", "--radius", "40", "--height", "100", "--material", "plywood-3mm",
+              "--machine", "router"),
+             ("cylinder", "--radius", "8", "--height", "60", "--material", "cardboard-2mm"),
+             ("cone", "--radius", "60", "--height", "80", "--material", "cardboard-2mm"))
+    for case in cases:
+        run(work, *case, "-o", "a.svg", "--no-kerf-compensation", "--bridges", "none")
+        svg = os.path.join(work, "a.svg")
+        root = ET.parse(svg).getroot()
+        layers = {g.get("id") for g in root.iter(SVG + "g")}
+        kerfs = paths(svg, "kerf")
+        check(len(kerfs) > 10, "%d kerf lines" % len(kerfs))
+        lines = [p for layer in ("mark", "score") if layer in layers for p in paths(svg, layer)]
+        check(lines, "no joint lines in %r" % (case,))
+        router = "router" in case
+        kerf = 3.175 if router else (0.2 if "plywood-3mm" in case else 0.15)
+        clearance = kerf / 2 + 3 * (0.2 if "plywood-3mm" in case else 0.15)
+        nearest = math.inf
+        for points, _ in kerfs:
+            for line, closed in lines:
+                ring = line + line[:1] if closed else line
+                for c, d in zip(ring, ring[1:]):
+                    for a, b in zip(points, points[1:]):
+                        nearest = min(nearest, segment_distance(a, b, c, d))
+        check(nearest >= clearance - 1e-3, "%r: a kerf line %.3f mm from a joint line"
+              % (case, nearest))
+        if "plywood-3mm" in case:
+            zones = [ring for ring, closed in paths(svg, "mark") if closed]
+            check(len(zones) == 2, "%d lap zones" % len(zones))
+            for ring in zones:
+                middles = [((p[0][0] + p[-1][0]) / 2, (p[0][1] + p[-1][1]) / 2) for p, _ in kerfs]
+                check(any(inside(m, ring) for m in middles), "a lap zone without its hinge")
+
+
 @test
 def plywood_cylinder_gets_bending_grooves(work):
     """Plywood bends no tighter than 150 mm (3 mm) or 400 mm (6 mm): a

@@ -681,6 +681,131 @@ static void test_cone_apex_webs(void **state)
     ur_ruled_free(&ruled);
 }
 
+/* ---- Hinges and joints agree ------------------------------------------------ */
+
+/* A GEOS line through a path's points (a closed one back to its first point). */
+static GEOSGeometry *path_line(GEOSContextHandle_t geos, const ur_path *path)
+{
+    size_t count = path->count + (path->closed ? 1 : 0);
+    GEOSCoordSequence *sequence = GEOSCoordSeq_create_r(geos, (unsigned)count, 2);
+    for (size_t k = 0; k < count; k++) {
+        ur_vec2 p = path->points[k % path->count];
+        GEOSCoordSeq_setXY_r(geos, sequence, (unsigned)k, p.x, p.y);
+    }
+    return GEOSGeom_createLineString_r(geos, sequence);
+}
+
+/*
+ * The nearest any KERF line of the piece comes to a MARK or SCORE line
+ * among paths[first ..] (the joints'), by GEOS.
+ */
+static double kerf_to_joint_lines(const ur_piece *piece, size_t first)
+{
+    GEOSContextHandle_t geos = GEOS_init_r();
+    double nearest = INFINITY;
+    for (size_t i = 0; i < piece->path_count; i++) {
+        if (piece->paths[i].op != UR_OP_KERF)
+            continue;
+        GEOSGeometry *kerf = path_line(geos, &piece->paths[i]);
+        for (size_t k = first; k < piece->path_count; k++) {
+            ur_op op = piece->paths[k].op;
+            if (op != UR_OP_MARK && op != UR_OP_SCORE)
+                continue;
+            GEOSGeometry *line = path_line(geos, &piece->paths[k]);
+            double distance;
+            assert_int_equal(GEOSDistance_r(geos, kerf, line, &distance), 1);
+            nearest = fmin(nearest, distance);
+            GEOSGeom_destroy_r(geos, line);
+        }
+        GEOSGeom_destroy_r(geos, kerf);
+    }
+    GEOS_finish_r(geos);
+    return nearest;
+}
+
+/* KERF lines whose middle lies outside the net's own outline: on its joints. */
+static size_t kerfs_outside_net(const ur_piece *piece, const ur_net *net)
+{
+    GEOSContextHandle_t geos = GEOS_init_r();
+    GEOSCoordSequence *sequence = GEOSCoordSeq_create_r(geos, (unsigned)net->outline_count + 1, 2);
+    for (size_t k = 0; k <= net->outline_count; k++) {
+        ur_vec2 p = net->outline[k % net->outline_count];
+        GEOSCoordSeq_setXY_r(geos, sequence, (unsigned)k, p.x, p.y);
+    }
+    GEOSGeometry *outline =
+        GEOSGeom_createPolygon_r(geos, GEOSGeom_createLinearRing_r(geos, sequence), NULL, 0);
+    size_t count = 0;
+    for (size_t i = 0; i < piece->path_count; i++) {
+        const ur_path *path = &piece->paths[i];
+        if (path->op != UR_OP_KERF)
+            continue;
+        ur_vec2 m = ur_vec2_lerp(path->points[0], path->points[path->count - 1], 0.5);
+        GEOSGeometry *point = GEOSGeom_createPointFromXY_r(geos, m.x, m.y);
+        count += GEOSContains_r(geos, outline, point) != 1;
+        GEOSGeom_destroy_r(geos, point);
+    }
+    GEOSGeom_destroy_r(geos, outline);
+    GEOS_finish_r(geos);
+    return count;
+}
+
+/*
+ * A 3 mm plywood cylinder of radius 40 with a 15 mm lap on its seam: on a
+ * laser (living hinge) and on a router (grooves), the lap tongue carries
+ * the hinge of the zone it lies on (kerf lines outside the net's outline),
+ * and once the kerfs are kept off the joints no kerf line comes nearer a
+ * mark line than the clearance.  A cardboard cone's tab: no slit nears its
+ * folds.
+ */
+static void test_hinges_and_joints_agree(void **state)
+{
+    (void)state;
+    const double clearance = 0.7;
+    for (int router = 0; router < 3; router++) {
+        bool cone = router == 2;
+        ur_ruled ruled;
+        if (cone) {
+            ur_curve *curve;
+            assert_int_equal(ur_curve_new_circle(60, &curve, NULL), UR_OK);
+            assert_int_equal(ur_ruled_cone(curve, ur_vec3_make(0, 0, 80), 1.0, &ruled, NULL),
+                             UR_OK);
+        } else
+            ruled = cylinder(40, 100);
+        ur_net_list nets = develop(&ruled, UR_METHOD_EXACT, 48, 0.01);
+        ur_bending_options options = router == 1 ? router_options() : laser_options();
+        options.kerf = 0.2;
+        options.min_web = 0.6;
+        if (cone) {
+            options.min_radius = 10;
+            options.hinge_cut_length = 10;
+            options.hinge_connection = 2;
+            options.hinge_distance = 1;
+        }
+        ur_piece piece = bent_piece(&nets, &ruled, &options);
+        size_t first = piece.path_count;
+        ur_joint_options joints = {.lap = !cone,
+                                   .tab_depth = 10,
+                                   .tab_angle = 45,
+                                   .lap_width = 15,
+                                   .thickness = cone ? 2 : 3,
+                                   .lap_kerfs = true,
+                                   .lap_kerf_margin = router == 1 ? 0 : CONNECTION};
+        ur_error error;
+        assert_int_equal(ur_pieces_add_joints(&piece, &nets, &joints, &error), UR_OK);
+        if (!cone)
+            assert_true(kerfs_outside_net(&piece, &nets.nets[0]) >= (router == 1 ? 4 : 10));
+        size_t trimmed = 0;
+        assert_int_equal(
+            ur_piece_keep_kerfs_off_joints(&piece, first, clearance, 0.6, &trimmed, &error), UR_OK);
+        assert_true(kerf_to_joint_lines(&piece, first) >= clearance - 1e-6);
+        if (!cone)
+            assert_true(kerfs_outside_net(&piece, &nets.nets[0]) >= (router == 1 ? 4 : 10));
+        ur_piece_free(&piece);
+        ur_net_list_free(&nets);
+        ur_ruled_free(&ruled);
+    }
+}
+
 /* ---- Limits ----------------------------------------------------------------- */
 
 /* R = 1.5 mm < d = 2 mm: grooves every w, touching, and a warning. */
@@ -753,6 +878,7 @@ int main(void)
         cmocka_unit_test(test_laser_cylinders_round),
         cmocka_unit_test(test_cone_grooves_only_where_tight),
         cmocka_unit_test(test_cone_apex_webs),
+        cmocka_unit_test(test_hinges_and_joints_agree),
         cmocka_unit_test(test_merging_grooves_warn),
         cmocka_unit_test(test_too_few_rulings_warn),
         cmocka_unit_test(test_mesh_left_alone),
