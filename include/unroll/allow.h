@@ -432,7 +432,8 @@ ur_status ur_piece_add_relief(ur_piece *piece, const ur_net *net, const ur_relie
  * reason the radius, spacing and depth (or the hinge); warnings as above.
  * A net without ruling_parameters (a flattened mesh) is left alone; fewer
  * than 2 drawn rulings give a warning where a bend is too tight.
- * UR_ERROR_INPUT for sizes that are not positive.  See bending.c.
+ * UR_ERROR_INPUT for sizes that are not positive, a facet angle outside
+ * [0, 90] or a negative minimum web, kerf or thickness.  See bending.c.
  */
 #define UR_DEFAULT_FACET_ANGLE 5.0 /* degrees */
 

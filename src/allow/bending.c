@@ -947,6 +947,13 @@ static ur_status check_options(const ur_piece *piece, const ur_bending_options *
         return ur_error_set(error, UR_ERROR_INPUT,
                             "piece '%s': bending grooves need a positive width and depth",
                             piece->name);
+    if (!(o->facet_angle >= 0 && o->facet_angle <= 90) ||
+        !(o->min_web >= 0 && isfinite(o->min_web)) || !(o->kerf >= 0 && isfinite(o->kerf)) ||
+        !(o->thickness >= 0 && isfinite(o->thickness)))
+        return ur_error_set(error, UR_ERROR_INPUT,
+                            "piece '%s': bending kerfs need a facet angle from 0 to 90 degrees "
+                            "and a minimum web, kerf and thickness of 0 or more",
+                            piece->name);
     if (!o->router && !(positive(o->hinge_cut_length) && positive(o->hinge_connection) &&
                         positive(o->hinge_distance)))
         return ur_error_set(error, UR_ERROR_INPUT,

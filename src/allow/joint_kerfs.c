@@ -166,6 +166,11 @@ ur_status ur_piece_keep_kerfs_off_joints(ur_piece *piece, size_t first, double c
         return ur_error_set(error, UR_ERROR_INPUT,
                             "piece %s: kerf lines keep a positive clearance from the joints",
                             piece->name);
+    bool any = false;
+    for (size_t i = 1; i < piece->path_count && !any; i++)
+        any = is_kerf_line(&piece->paths[i]);
+    if (!any)
+        return UR_OK; /* a papercraft piece's many tabs need no buffering */
     GEOSContextHandle_t geos = GEOS_init_r();
     if (!geos)
         return ur_error_out_of_memory(error);

@@ -864,6 +864,14 @@ static void test_mesh_left_alone(void **state)
     ur_error error;
     assert_int_equal(ur_piece_add_bending_kerfs(&piece, &net, NULL, &options, &error),
                      UR_ERROR_INPUT);
+    options = router_options();
+    options.facet_angle = 91;
+    assert_int_equal(ur_piece_add_bending_kerfs(&piece, &net, NULL, &options, &error),
+                     UR_ERROR_INPUT);
+    options.facet_angle = 5;
+    options.min_web = -1;
+    assert_int_equal(ur_piece_add_bending_kerfs(&piece, &net, NULL, &options, &error),
+                     UR_ERROR_INPUT);
     ur_piece_free(&piece);
 }
 
