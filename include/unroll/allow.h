@@ -91,6 +91,13 @@ typedef struct ur_allowance_record {
      */
     size_t first_path, path_count;
     ur_vec2 direction;
+    /*
+     * Bending kerfs: the largest angle one groove or hinge row turns the
+     * sheet by (degrees, between the tangent planes of consecutive rows)
+     * and how many rows (grooves) the region has; 0 for other records.
+     */
+    double facet_angle;
+    size_t rows;
 } ur_allowance_record;
 
 typedef struct ur_piece {
@@ -204,6 +211,44 @@ ur_status ur_piece_add_label(ur_piece *piece, const ur_font *font, const char *t
 
 /* ---- Joints on seams (joints.c) --------------------------------------- */
 
+/* ---- Splice pieces (splice.c) ------------------------------------------- */
+
+/*
+ * A splice piece joins a seam from behind where no tab or lap fits on
+ * either side: a strip `width` mm on each side of the seam (seam, count
+ * points in the coordinates of piece_a's outline, which it follows
+ * counter-clockwise, so piece_a lies on its left), its outline the seam
+ * buffered by the width with flat ends, the seam a MARK line along its
+ * middle, and with a font each half engraved with the name of the piece
+ * that goes on it and the seam's label ("P1 A1" on the left, "P2 A1" on
+ * the right).  strap says it is wood's butt strap (for the record's
+ * words).  Records a UR_ALLOWANCE_JOINT entry; the caller frees the piece
+ * with ur_piece_free.  UR_ERROR_INPUT for fewer than 2 points, a seam of
+ * no length or sizes that are not positive.
+ */
+typedef struct ur_splice_request {
+    const ur_vec2 *seam;
+    size_t count;
+    double width;      /* mm on each side of the seam */
+    const char *name;  /* of the new piece */
+    const char *label; /* the seam's, "A1" */
+    const char *piece_a, *piece_b;
+    bool strap;
+    const ur_font *font; /* NULL: no labels */
+    double label_height;
+} ur_splice_request;
+
+/* Pieces made by the joints, owned: free with ur_splice_list_free. */
+typedef struct ur_splice_list {
+    ur_piece *pieces;
+    size_t count;
+} ur_splice_list;
+
+ur_status ur_splice_piece(const ur_splice_request *request, ur_piece *piece, ur_error *error);
+ur_status ur_splice_list_add(ur_splice_list *list, const ur_splice_request *request,
+                             ur_error *error);
+void ur_splice_list_free(ur_splice_list *list);
+
 typedef struct ur_joint_options {
     bool lap;            /* lap joints (wood) instead of glue tabs */
     double tab_depth;    /* mm */
@@ -213,6 +258,20 @@ typedef struct ur_joint_options {
     const ur_font *font; /* NULL: no labels */
     double label_height; /* mm */
     bool name_pieces;    /* engrave each piece's name too */
+    /*
+     * Where no joint fits either side of a stretch of a seam: NULL, a
+     * warning ("join it by hand"); else a splice piece (ur_splice_piece,
+     * as wide on each side as a tab is deep or a lap wide) is added here.
+     */
+    ur_splice_list *splices;
+    /*
+     * A lap lies on the other piece's lapped zone and must bend with it:
+     * with lap_kerfs, the KERF lines of that zone (bending grooves, hinge
+     * slits) are carried onto the lap, kept lap_kerf_margin mm inside its
+     * edges (a hinge's solid margin; 0 for grooves, which run out).
+     */
+    bool lap_kerfs;
+    double lap_kerf_margin;
 } ur_joint_options;
 
 /* The label of seam number seam (from 1): "A1" ... "A99", "B1" ... "Z99", then "AA1" ... */
@@ -258,6 +317,18 @@ ur_status ur_pieces_add_joints(ur_piece *pieces, const ur_net_list *nets,
  * its centre, so that all read upright on the sheet.
  */
 void ur_piece_turn_labels(ur_piece *piece, double angle);
+
+/*
+ * Hinges and joints agree (joint_kerfs.c): once the joints are on (their
+ * folds and marks are paths[first ..]), every KERF line of the piece is cut
+ * back to keep `clearance` mm from each MARK and SCORE line among them (a
+ * lap zone's mark line, a tab's folds); what is left of a line shorter
+ * than `shortest` is dropped.  *trimmed: how many lines were cut.  Label
+ * records keep pointing at their strokes.  UR_ERROR_INPUT for a clearance
+ * not above 0 or a negative shortest.
+ */
+ur_status ur_piece_keep_kerfs_off_joints(ur_piece *piece, size_t first, double clearance,
+                                         double shortest, size_t *trimmed, ur_error *error);
 
 /* ---- Kerf compensation and bridges (kerf.c, bridges.c) ---------------- */
 
@@ -334,27 +405,48 @@ ur_status ur_piece_add_relief(ur_piece *piece, const ur_net *net, const ur_relie
  * parameter (ur_net.ruling_parameters, so `ruled` must be the surface the
  * net was developed from); spacings are measured across the rulings along
  * the net, between the rulings' midpoints.  A region is a run of the net
- * where R < min_radius.  router: grooves of width `groove_width` and depth
- * `groove_depth` at spacing s = w R / d (the local R), ceil(integral of
- * dt / s) of them (at least 1) centred in the region, each a line along its
- * ruling from outline to outline (they do not cut through); where R < d
- * they would merge and are placed every w instead, and the record is a
- * warning.  laser: the material's living hinge: rows every hinge_distance
- * placed alike, each of slits hinge_cut_length long with hinge_connection
- * bridges, alternate rows half a period along, clipped to stay
- * hinge_connection from the outline (shorter remnants dropped).  One
- * UR_ALLOWANCE_BENDING record per region: count the lines, value the
- * smallest R, limit min_radius, the reason the radius, spacing and depth
- * (or the hinge).  A net without ruling_parameters (a flattened mesh) is
- * left alone; fewer than 2 drawn rulings give a warning where a bend is too
- * tight.  UR_ERROR_INPUT for sizes that are not positive.  See bending.c.
+ * where R < min_radius.
+ *
+ * Rows (grooves or hinge rows) are spaced so that each turns the sheet by
+ * at most facet_angle degrees (the angle between the tangent planes of
+ * consecutive rows), and never farther apart than the widest spacing:
+ * w R / d for router grooves (at which a groove closes completely), the
+ * hinge's row distance for a laser; ceil(integral of the row density) of
+ * them, at least 1, centred in the region.  Rows are never closer than
+ * their width (w, or the laser's kerf) plus min_web: where the facet angle
+ * would need them closer, they stay at that spacing and a warning says by
+ * how much each turns.  Router grooves that could not close even then
+ * (w R / d below that spacing) are placed every w, touching, with a
+ * warning.  With thickness given, a router warns where the uncut skin
+ * (thickness - d) is too thick to bend to R (its outer-fibre strain over
+ * that of the whole sheet at min_radius): the groove would need to be
+ * deeper than the profile allows.
+ *
+ * router: each groove is a line along its ruling from outline to outline
+ * (it does not cut through).  laser: the material's living hinge: each row
+ * of slits hinge_cut_length long with hinge_connection bridges, alternate
+ * rows half a period along, clipped to stay hinge_connection from the
+ * outline (shorter remnants dropped).  One UR_ALLOWANCE_BENDING record per
+ * region: count the lines, rows the grooves or rows, facet_angle the
+ * largest turn per row, value the smallest R, limit min_radius, the
+ * reason the radius, spacing and depth (or the hinge); warnings as above.
+ * A net without ruling_parameters (a flattened mesh) is left alone; fewer
+ * than 2 drawn rulings give a warning where a bend is too tight.
+ * UR_ERROR_INPUT for sizes that are not positive, a facet angle outside
+ * [0, 90] or a negative minimum web, kerf or thickness.  See bending.c.
  */
+#define UR_DEFAULT_FACET_ANGLE 5.0 /* degrees */
+
 typedef struct ur_bending_options {
     double min_radius;   /* the material's smallest bend radius, mm */
     bool router;         /* grooves (router) or through-cut hinge (laser) */
     double groove_width; /* w: the bit diameter, mm */
     double groove_depth; /* d: thickness minus skin, mm */
     double hinge_cut_length, hinge_connection, hinge_distance; /* laser pattern, mm */
+    double facet_angle; /* degrees each row may turn the sheet by; 0: UR_DEFAULT_FACET_ANGLE */
+    double min_web;     /* thinnest material left between grooves or slits, mm; 0: none */
+    double kerf;        /* laser: the width a slit cuts, mm (0: a line) */
+    double thickness;   /* of the material, mm; 0: the skin is not checked */
 } ur_bending_options;
 
 ur_status ur_piece_add_bending_kerfs(ur_piece *piece, const ur_net *net, ur_ruled *ruled,

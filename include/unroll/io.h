@@ -143,6 +143,10 @@ typedef struct ur_material {
                                3 mm */
     ur_overlap_style overlap; /* <overlap style=".."/>: default slit */
     double groove_skin; /* <groove skin=".."/>: uncut skin under a routed groove, default t / 3 */
+    double
+        facet_angle; /* <bending facet-angle=".."/>: degrees per groove or hinge row, default 5 */
+    double min_web;  /* <bending min-web=".."/>: thinnest web between kerfs, mm; 0 when not
+                        given: the command takes three laser kerfs */
     ur_surface_layer surface_layer; /* <surface layer=".."/>: default neutral */
 } ur_material;
 

@@ -502,6 +502,48 @@ static ur_status warn_stretch(joiner *j, const seam_job *sj, const stretch *st, 
     return status;
 }
 
+/*
+ * No joint fits either side of the stretch: a splice piece glued behind it
+ * (splice.c), named after the seam (and the stretch, on a seam of several),
+ * and a record on each piece saying so.
+ */
+static ur_status splice_stretch(joiner *j, const seam_job *sj, const stretch *st, int side,
+                                ur_error *error)
+{
+    const ur_joint_options *o = j->options;
+    run r = {0};
+    ur_status status =
+        sub_run(&sj->runs[side], local_first(sj, side, st), local_count(sj, side, st), &r, error);
+    if (status != UR_OK)
+        return status;
+    const ur_piece *a = &j->pieces[sj->s->net[side]], *b = &j->pieces[sj->s->net[1 - side]];
+    char name[32];
+    if (sj->edges[0] > 1 && sj->edges[0] == sj->edges[1])
+        snprintf(name, sizeof name, "S-%s.%zu", sj->label, st->first + 1);
+    else
+        snprintf(name, sizeof name, "S-%s", sj->label);
+    ur_splice_request request = {.seam = r.points,
+                                 .count = r.count,
+                                 .width = full_depth(o),
+                                 .name = name,
+                                 .label = sj->label,
+                                 .piece_a = a->name,
+                                 .piece_b = b->name,
+                                 .strap = o->lap,
+                                 .font = o->font,
+                                 .label_height = o->label_height};
+    status = ur_splice_list_add(o->splices, &request, error);
+    for (int k = 0; status == UR_OK && k < (sj->s->net[0] == sj->s->net[1] ? 1 : 2); k++)
+        status = record(&j->pieces[sj->s->net[k]], UR_ALLOWANCE_JOINT, run_middle(&sj->runs[k]), 0,
+                        false, error,
+                        "no room for a %s on seam %s on either side: joined by %s %s, glued "
+                        "behind the seam",
+                        o->lap ? "lap" : "glue tab", sj->label,
+                        o->lap ? "butt strap" : "splice strip", name);
+    free(r.points);
+    return status;
+}
+
 /* The joint of one stretch: full on either side, then smaller on either. */
 static ur_status join_stretch(joiner *j, const seam_job *sj, const stretch *st, int first_side,
                               ur_error *error)
@@ -521,7 +563,8 @@ static ur_status join_stretch(joiner *j, const seam_job *sj, const stretch *st, 
             status = try_shapes(j, sj, k, st, shapes, from, to, &done, &why[k], error);
     }
     if (status == UR_OK && !done)
-        status = warn_stretch(j, sj, st, first_side, why, error);
+        status = o->splices ? splice_stretch(j, sj, st, first_side, error)
+                            : warn_stretch(j, sj, st, first_side, why, error);
     return status;
 }
 
@@ -982,13 +1025,92 @@ static ur_status mark_under(const joiner *j, ur_piece *piece, const run *r, ur_e
     return status;
 }
 
-/* What a kept joint adds: folds (tab) or marks on both pieces (lap). */
+/*
+ * Where the lapped zone's point q lands on the lap: the lap lies on the
+ * zone, its seam run on the zone's seam run the other way round (a turn
+ * about the two runs' middles, which shortening a lap leaves in place).
+ */
+static ur_vec2 onto_lap(const placed_joint *p, ur_vec2 q)
+{
+    ur_vec2 from = run_middle(&p->under), to = run_middle(&p->base);
+    ur_vec2 along = ur_vec2_sub(p->under.points[p->under.count - 1], p->under.points[0]);
+    ur_vec2 back = ur_vec2_sub(p->base.points[0], p->base.points[p->base.count - 1]);
+    double angle = atan2(ur_vec2_cross(along, back), ur_vec2_dot(along, back));
+    ur_vec2 d = ur_vec2_sub(q, from);
+    double c = cos(angle), s = sin(angle);
+    return ur_vec2_add(to, ur_vec2_make(c * d.x - s * d.y, s * d.x + c * d.y));
+}
+
+/* One kerf line of the zone, carried onto the lap and clipped to inside. */
+static ur_status carry_line(const joiner *j, const placed_joint *p, const ur_path *line,
+                            const GEOSGeometry *inside, ur_error *error)
+{
+    ur_vec2 *moved = ur_alloc_array(line->count, sizeof *moved, error);
+    if (!moved)
+        return UR_ERROR_INTERNAL;
+    for (size_t k = 0; k < line->count; k++)
+        moved[k] = onto_lap(p, line->points[k]);
+    GEOSGeometry *carried = allow_line(j->geos, moved, line->count);
+    free(moved);
+    GEOSGeometry *parts = carried ? GEOSIntersection_r(j->geos, carried, inside) : NULL;
+    if (carried)
+        GEOSGeom_destroy_r(j->geos, carried);
+    if (!parts)
+        return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not carry a kerf onto a lap");
+    ur_status status = UR_OK;
+    ur_piece *piece = &j->pieces[p->piece];
+    for (int k = 0; status == UR_OK && k < GEOSGetNumGeometries_r(j->geos, parts); k++) {
+        const GEOSGeometry *part = GEOSGetGeometryN_r(j->geos, parts, k);
+        const GEOSCoordSequence *sequence =
+            part && GEOSGeomTypeId_r(j->geos, part) == GEOS_LINESTRING
+                ? GEOSGeom_getCoordSeq_r(j->geos, part)
+                : NULL;
+        unsigned size = 0;
+        if (!sequence || !GEOSCoordSeq_getSize_r(j->geos, sequence, &size) || size < 2)
+            continue;
+        ur_vec2 ends[2];
+        GEOSCoordSeq_getXY_r(j->geos, sequence, 0, &ends[0].x, &ends[0].y);
+        GEOSCoordSeq_getXY_r(j->geos, sequence, size - 1, &ends[1].x, &ends[1].y);
+        if (ur_vec2_distance(ends[0], ends[1]) > j->options->lap_kerf_margin)
+            status = ur_piece_add_path(piece, UR_OP_KERF, ends, 2, false, error);
+    }
+    GEOSGeom_destroy_r(j->geos, parts);
+    return status;
+}
+
+/*
+ * A lap lies on the other piece's lapped zone and must bend as it does:
+ * the zone's kerf lines (straight: grooves and slits) are carried onto it,
+ * kept the margin inside its edges.
+ */
+static ur_status hinge_lap(const joiner *j, const placed_joint *p, ur_error *error)
+{
+    const ur_piece *under = &j->pieces[p->under_piece];
+    size_t count = under->path_count; /* the lap may be on the same piece: not its new lines */
+    double margin = j->options->lap_kerf_margin;
+    GEOSGeometry *inside = margin > 0 ? GEOSBuffer_r(j->geos, p->shape, -margin, 8)
+                                      : GEOSGeom_clone_r(j->geos, p->shape);
+    if (!inside)
+        return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not shrink a lap");
+    ur_status status = UR_OK;
+    for (size_t i = 1; status == UR_OK && i < count; i++) {
+        const ur_path *line = &j->pieces[p->under_piece].paths[i];
+        if (line->op == UR_OP_KERF && !line->closed && line->count == 2)
+            status = carry_line(j, p, line, inside, error);
+    }
+    GEOSGeom_destroy_r(j->geos, inside);
+    return status;
+}
+
+/* What a kept joint adds: folds (tab) or marks on both pieces (lap), a lap its hinge. */
 static ur_status finish_joint(const joiner *j, const placed_joint *p, ur_error *error)
 {
     ur_piece *piece = &j->pieces[p->piece];
     if (!j->options->lap)
         return add_folds(j, piece, &p->base, error);
-    ur_status status = add_mark(j, piece, p->shape, error);
+    ur_status status = j->options->lap_kerfs ? hinge_lap(j, p, error) : UR_OK;
+    if (status == UR_OK)
+        status = add_mark(j, piece, p->shape, error);
     if (status == UR_OK)
         status = mark_under(j, &j->pieces[p->under_piece], &p->under, error);
     return status;

@@ -119,6 +119,20 @@ double cli_smallest_bend_radius(const ur_material *material)
                                              : material->bend_radius_across_grain;
 }
 
+/*
+ * The thinnest web to leave between grooves or slits: the profile's, or
+ * three kerfs of the laser (in this material; 0.2 mm when it gives none),
+ * the usual rule for what survives the cut and the bending.
+ */
+double cli_min_web(const ur_machine *machine, const ur_material *material)
+{
+    if (material->min_web > 0)
+        return material->min_web;
+    if (machine->kind == UR_MACHINE_LASER)
+        return 3 * ur_effective_kerf(machine, material);
+    return 3 * (material->kerf_laser > 0 ? material->kerf_laser : 0.2);
+}
+
 static ur_status add_bending(const ur_machine *machine, const ur_material *material,
                              const ur_net_list *nets, ur_ruled *const *surfaces, ur_piece *pieces,
                              size_t count, ur_error *error)
@@ -131,6 +145,10 @@ static ur_status add_bending(const ur_machine *machine, const ur_material *mater
         .hinge_cut_length = material->hinge_cut_length,
         .hinge_connection = material->hinge_connection,
         .hinge_distance = material->hinge_distance,
+        .facet_angle = material->facet_angle,
+        .min_web = cli_min_web(machine, material),
+        .kerf = machine->kind == UR_MACHINE_LASER ? ur_effective_kerf(machine, material) : 0.0,
+        .thickness = material->thickness,
     };
     ur_status status = UR_OK;
     for (size_t k = 0; status == UR_OK && k < count; k++)
@@ -140,7 +158,8 @@ static ur_status add_bending(const ur_machine *machine, const ur_material *mater
     return status;
 }
 
-ur_status cli_add_joints(const ur_material *material, const ur_net_list *nets, ur_piece *pieces,
+ur_status cli_add_joints(const ur_machine *machine, const ur_material *material,
+                         const ur_net_list *nets, ur_piece *pieces, ur_splice_list *splices,
                          ur_error *error)
 {
     ur_font *font = NULL;
@@ -156,28 +175,76 @@ ur_status cli_add_joints(const ur_material *material, const ur_net_list *nets, u
         .font = font,
         .label_height = material->label_height,
         .name_pieces = true,
+        .splices = splices,
+        .lap_kerfs = machine != NULL,
+        .lap_kerf_margin =
+            machine && machine->kind == UR_MACHINE_LASER ? material->hinge_connection : 0.0,
     };
     status = ur_pieces_add_joints(pieces, nets, &options, error);
     ur_font_close(font);
     return status;
 }
 
+/*
+ * No kerf line touches a fold or mark line of the joints: each keeps half
+ * its own width (the bit, or the laser's kerf) and the minimum web from
+ * them, and what is left shorter than the web goes.
+ */
+static ur_status keep_kerfs_off_joints(const ur_machine *machine, const ur_material *material,
+                                       ur_piece *piece, size_t first, ur_error *error)
+{
+    double web = cli_min_web(machine, material);
+    double clearance = 0.5 * ur_effective_kerf(machine, material) + web;
+    size_t trimmed = 0;
+    return ur_piece_keep_kerfs_off_joints(piece, first, clearance, web, &trimmed, error);
+}
+
+/* The splice pieces the joints made go after the nets' pieces, to be nested with them. */
+static ur_status append_splices(ur_splice_list *splices, ur_piece **pieces, size_t *count,
+                                ur_error *error)
+{
+    if (splices->count == 0)
+        return UR_OK;
+    ur_piece *grown = realloc(*pieces, (*count + splices->count) * sizeof *grown);
+    if (!grown)
+        return ur_error_out_of_memory(error);
+    *pieces = grown;
+    memcpy(grown + *count, splices->pieces, splices->count * sizeof *grown);
+    *count += splices->count;
+    free(splices->pieces); /* the pieces' own arrays moved with them */
+    splices->pieces = NULL;
+    splices->count = 0;
+    return UR_OK;
+}
+
 ur_status cli_allowances_before_placing(const cli_job *job, const ur_machine *machine,
                                         const ur_material *material, const ur_net_list *nets,
-                                        ur_ruled *const *surfaces, ur_piece *pieces, size_t count,
+                                        ur_ruled *const *surfaces, ur_piece **pieces, size_t *count,
                                         ur_error *error)
 {
     unsigned set = cli_allowances_chosen(job, machine);
     ur_status status = UR_OK;
     if (set & (CLI_ALLOW_KERFING | CLI_ALLOW_OVERLAPS))
-        status = add_relief(set, material, nets, pieces, count, error);
+        status = add_relief(set, material, nets, *pieces, *count, error);
     if (status == UR_OK && surfaces && (set & CLI_ALLOW_BENDING))
-        status = add_bending(machine, material, nets, surfaces, pieces, count, error);
-    if (status == UR_OK && (set & CLI_ALLOW_TABS))
-        status = cli_add_joints(material, nets, pieces, error);
+        status = add_bending(machine, material, nets, surfaces, *pieces, *count, error);
+    if (status == UR_OK && (set & CLI_ALLOW_TABS)) {
+        ur_splice_list splices = {NULL, 0};
+        size_t *first = ur_alloc_array(*count ? *count : 1, sizeof *first, error);
+        for (size_t k = 0; first && k < *count; k++)
+            first[k] = (*pieces)[k].path_count;
+        status = first ? cli_add_joints(machine, material, nets, *pieces, &splices, error)
+                       : UR_ERROR_INTERNAL;
+        for (size_t k = 0; status == UR_OK && k < *count; k++)
+            status = keep_kerfs_off_joints(machine, material, &(*pieces)[k], first[k], error);
+        free(first);
+        if (status == UR_OK)
+            status = append_splices(&splices, pieces, count, error);
+        ur_splice_list_free(&splices);
+    }
     double kerf = ur_effective_kerf(machine, material);
-    for (size_t k = 0; status == UR_OK && !job->no_kerf_compensation && k < count; k++)
-        status = ur_piece_compensate_kerf(&pieces[k], kerf, error);
+    for (size_t k = 0; status == UR_OK && !job->no_kerf_compensation && k < *count; k++)
+        status = ur_piece_compensate_kerf(&(*pieces)[k], kerf, error);
     return status;
 }
 

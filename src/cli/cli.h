@@ -122,6 +122,9 @@ bool cli_makes_joints(const cli_job *job);
  */
 double cli_smallest_bend_radius(const ur_material *material);
 
+/* The thinnest web between grooves or slits: the profile's, else three laser kerfs. */
+double cli_min_web(const ur_machine *machine, const ur_material *material);
+
 /* --allowances auto|none|LIST and --bridges auto|N|none (allowances.c); false after a message. */
 bool cli_parse_allowances(cli_job *job, const char *value);
 bool cli_parse_bridges(cli_job *job, const char *value);
@@ -200,13 +203,14 @@ int cli_flatten_ruled(const cli_job *job, const cli_room *room, const ur_materia
 /*
  * The allowances that go on the pieces before they are placed: relief
  * (kerfing, overlaps), bending kerfs, labels and joints, then kerf
- * compensation (allowances.c).  pieces[k] was made from nets->nets[k],
+ * compensation (allowances.c).  (*pieces)[k] was made from nets->nets[k],
  * developed from surfaces[k] (surfaces NULL, or an entry NULL, for meshes
- * and flattenings).
+ * and flattenings).  Splice pieces for seams no joint fits on are
+ * appended to *pieces (reallocated), *count growing by as many.
  */
 ur_status cli_allowances_before_placing(const cli_job *job, const ur_machine *machine,
                                         const ur_material *material, const ur_net_list *nets,
-                                        ur_ruled *const *surfaces, ur_piece *pieces, size_t count,
+                                        ur_ruled *const *surfaces, ur_piece **pieces, size_t *count,
                                         ur_error *error);
 
 /*
@@ -221,8 +225,14 @@ ur_status cli_allowances_before_placing(const cli_job *job, const ur_machine *ma
 ur_status cli_merge_lines(const cli_job *job, const ur_layout *layout, ur_piece *pieces,
                           size_t count, ur_error *error);
 
-/* Joints and labels on the seams of the nets, as the material asks (pieces[k] from nets[k]). */
-ur_status cli_add_joints(const ur_material *material, const ur_net_list *nets, ur_piece *pieces,
+/*
+ * Joints and labels on the seams of the nets, as the material asks
+ * (pieces[k] from nets[k]); splice pieces into splices where no joint fits
+ * (NULL: a warning instead).  With a machine, laps carry the kerf lines of
+ * the zone they lie on (kept a hinge's margin inside on a laser).
+ */
+ur_status cli_add_joints(const ur_machine *machine, const ur_material *material,
+                         const ur_net_list *nets, ur_piece *pieces, ur_splice_list *splices,
                          ur_error *error);
 
 ur_status cli_allowances_after_placing(const cli_job *job, const ur_machine *machine,

@@ -271,8 +271,8 @@ static ur_status place(const cli_job *job, job_state *state, ur_error *error)
     ur_status status = make_pieces(job, state, error);
     if (status == UR_OK)
         status = cli_allowances_before_placing(job, &state->machine, &state->material, &state->nets,
-                                               state->net_surfaces, state->pieces,
-                                               state->piece_count, error);
+                                               state->net_surfaces, &state->pieces,
+                                               &state->piece_count, error);
     if (status != UR_OK)
         return status;
     return cli_place_pieces(job, &state->machine, &state->material, state->pieces,
@@ -776,8 +776,8 @@ int cli_job_pieces(const cli_job *job, cli_pieces *out)
         status = make_pieces(job, &state, &error);
         if (status == UR_OK)
             status = cli_allowances_before_placing(job, &state.machine, &state.material,
-                                                   &state.nets, state.net_surfaces, state.pieces,
-                                                   state.piece_count, &error);
+                                                   &state.nets, state.net_surfaces, &state.pieces,
+                                                   &state.piece_count, &error);
         if (status != UR_OK) {
             cli_message("%s: %s", job->command, error.message);
             code = cli_exit_status(&error);

@@ -477,11 +477,15 @@ static ur_status fill_net(ur_ruled *ruled, const strip *s, size_t first, size_t 
     return status;
 }
 
-/* The outline index of a point the outline was copied from, or SIZE_MAX. */
+/*
+ * The outline index of a point the outline was copied from, or SIZE_MAX.
+ * drop_repeated keeps one of a cone's apex points, which the rulings reach
+ * within rounding of each other: the same tolerance finds it.
+ */
 static size_t outline_index(const ur_net *net, ur_vec2 point)
 {
     for (size_t i = 0; i < net->outline_count; i++)
-        if (net->outline[i].x == point.x && net->outline[i].y == point.y)
+        if (ur_vec2_distance(net->outline[i], point) <= 1e-9)
             return i;
     return SIZE_MAX;
 }

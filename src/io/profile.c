@@ -887,6 +887,8 @@ static void allowance_defaults(ur_material *material)
     material->kerfing_margin = 3.0;
     material->overlap = UR_OVERLAP_SLIT;
     material->groove_skin = material->thickness / 3.0;
+    material->facet_angle = UR_DEFAULT_FACET_ANGLE;
+    material->min_web = 0.0;
     material->surface_layer = UR_LAYER_NEUTRAL;
 }
 
@@ -910,7 +912,7 @@ static ur_status optional_choice(const ur_reader *reader, xmlNodePtr root, const
     return attribute_choice(reader, element, name, choices, index);
 }
 
-/* <joint>, <label>, <kerfing>, <overlap>, <groove>, <surface>: all optional. */
+/* <joint>, <label>, <kerfing>, <overlap>, <groove>, <bending>, <surface>: all optional. */
 static ur_status read_allowances(const ur_reader *reader, xmlNodePtr root, ur_material *material)
 {
     static const char *const joints[] = {"tab", "lap", NULL};
@@ -932,10 +934,19 @@ static ur_status read_allowances(const ur_reader *reader, xmlNodePtr root, ur_ma
     if (status == UR_OK)
         status = optional_number(reader, root, "groove", "skin", &material->groove_skin);
     if (status == UR_OK)
+        status = optional_number(reader, root, "bending", "facet-angle", &material->facet_angle);
+    if (status == UR_OK)
+        status = optional_number(reader, root, "bending", "min-web", &material->min_web);
+    if (status == UR_OK)
         status = optional_choice(reader, root, "surface", "layer", surface_layer_names, &layer);
     material->joint = (ur_joint_kind)joint;
     material->overlap = (ur_overlap_style)overlap;
     material->surface_layer = (ur_surface_layer)layer;
+    if (status == UR_OK && material->facet_angle > 90)
+        status = reader_fail(reader, next_element(root->children, "bending"),
+                             "facet angle %g degrees: a groove or hinge row turns the sheet by "
+                             "more than 0 and at most 90 degrees",
+                             material->facet_angle);
     if (status == UR_OK && material->groove_skin >= material->thickness)
         status = reader_fail(reader, next_element(root->children, "groove"),
                              "groove skin %g mm leaves no groove in %g mm stock",

@@ -70,6 +70,10 @@ static json_t *record_json(const ur_allowance_record *record)
         json_object_set_new(object, "limit", figure_json(record->limit)) != 0 ||
         json_object_set_new(object, "at_mm", where) != 0 ||
         json_object_set_new(object, "warning", json_boolean(record->warning)) != 0 ||
+        (record->kind == UR_ALLOWANCE_BENDING &&
+         (json_object_set_new(object, "facet_angle_degrees", ur_json_number(record->facet_angle)) !=
+              0 ||
+          json_object_set_new(object, "rows", json_integer((json_int_t)record->rows)) != 0)) ||
         json_object_set_new(object, "reason", name_of(record->reason, sizeof record->reason)) !=
             0) {
         if (!object)

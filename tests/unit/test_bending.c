@@ -1,9 +1,13 @@
 /*
  * test_bending.c: the surface parameter of each drawn ruling
- * (ur_net.ruling_parameters) and bending kerfs: router grooves at
- * s = w R / d on a cylinder, none where the bend is gentle, a laser living
- * hinge with its rows, slits, bridges and margins, a cone whose bend
- * radius varies along it, grooves that would merge, and meshes left alone.
+ * (ur_net.ruling_parameters) and bending kerfs: router grooves and laser
+ * hinge rows on cylinders of several radii, each turning the sheet by at
+ * most the facet angle and never farther apart than w R / d (or the hinge
+ * distance), warnings where webs would be too thin or the skin too thick,
+ * none where the bend is gentle, a laser living hinge with its rows, slits,
+ * bridges and margins, a cone whose bend radius varies along it, a cone's
+ * apex where no two slits come nearer than the minimum web, grooves that
+ * would merge, and meshes left alone.
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -17,6 +21,8 @@
 #include "unroll/allow.h"
 #include "unroll/analyze.h"
 #include "unroll/develop.h"
+
+#include <geos_c.h>
 
 #include "test_support.h"
 
@@ -193,57 +199,139 @@ static void test_ruling_parameters(void **state)
 
 /* ---- Router grooves ------------------------------------------------------- */
 
-/* Grooves on R = 40: s = w R / d = 63.5 mm, ceil(2 pi 40 / 63.5) = 4 of them, centred. */
-static void test_router_cylinder(void **state)
+/* The positions across the net of the piece's KERF lines (all parallel to the rulings), sorted. */
+static double *positions_across(const ur_piece *piece, const ur_net *net, size_t *count)
 {
-    (void)state;
-    const double radius = 40, height = 100;
-    ur_ruled ruled = cylinder(radius, height);
-    ur_net_list nets = develop(&ruled, UR_METHOD_EXACT, 24, 0.01);
-    ur_bending_options options = router_options();
-    ur_piece piece = bent_piece(&nets, &ruled, &options);
-    const ur_net *net = &nets.nets[0];
-    double s = WIDTH * radius / DEPTH, length = 2 * M_PI * radius;
-    assert_relative(s, 63.5, 1e-15);
-    size_t count;
-    ur_segment *lines = kerf_lines(&piece, &count);
-    assert_int_equal(count, (size_t)ceil(length / s));
-    assert_int_equal(count, 4);
     ur_vec2 along = unit(ur_vec2_sub(net->rulings[0].end, net->rulings[0].start));
     ur_vec2 across = {-along.y, along.x};
-    double at[8];
-    for (size_t i = 0; i < count; i++) {
+    ur_segment *lines = kerf_lines(piece, count);
+    double *at = calloc(*count ? *count : 1, sizeof *at);
+    assert_non_null(at);
+    for (size_t i = 0; i < *count; i++) {
         ur_vec2 d = unit(ur_vec2_sub(lines[i].end, lines[i].start));
         assert_true(fabs(ur_vec2_cross(d, along)) < 1e-9); /* parallel to the rulings */
-        /* Edge to edge: the whole ruling, both ends on the outline. */
-        assert_relative(ur_vec2_distance(lines[i].start, lines[i].end), height, 1e-9);
-        assert_true(distance_to_outline(net, lines[i].start) < 1e-9);
-        assert_true(distance_to_outline(net, lines[i].end) < 1e-9);
-        at[i] = ur_vec2_dot(lines[i].start, across);
+        at[i] = ur_vec2_dot(middle(lines[i]), across);
     }
-    qsort(at, count, sizeof *at, compare_doubles);
+    qsort(at, *count, sizeof *at, compare_doubles);
+    free(lines);
+    return at;
+}
+
+/*
+ * Cylinders of several radii on a router: each groove turns the sheet by
+ * at most the facet angle (on a cylinder the flat spacing over R, since
+ * the net keeps lengths) and grooves are never farther apart than w R / d;
+ * ceil(L / s) of them for s = min(R theta, w R / d), evenly spaced, centred,
+ * every line from outline to outline.  The last case, a facet limit of 60
+ * degrees in 6 mm plywood (w / d = 40 degrees), gives the nonagon of the
+ * old rule: w R / d decides.
+ */
+static void test_router_cylinders_round(void **state)
+{
+    (void)state;
+    const double height = 100;
+    const struct {
+        double radius, depth, facet, min_web;
+        size_t expected; /* worked out by hand from the formula */
+    } cases[] = {
+        {40, 2.0, 0, 0, 72},       /* default 5 degrees: 2 pi 40 / 3.49 */
+        {120, 2.0, 5, 0.6, 72},    /* s = 10.47 mm, webs of 7.3 mm */
+        {300, 4.5, 5, 0.6, 72},    /* the 6 mm plywood drum: not 9 grooves */
+        {300, 4.5, 60, 0.6, 9},    /* w R / d = 211.7 mm decides */
+        {160, 2.0, 2.5, 0.6, 144}, /* a finer facet, twice the grooves */
+    };
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        double radius = cases[c].radius, depth = cases[c].depth;
+        ur_ruled ruled = cylinder(radius, height);
+        ur_net_list nets = develop(&ruled, UR_METHOD_EXACT, 24, 0.01);
+        ur_bending_options options = router_options();
+        options.groove_depth = depth;
+        options.facet_angle = cases[c].facet;
+        options.min_web = cases[c].min_web;
+        options.min_radius = 1000;
+        ur_piece piece = bent_piece(&nets, &ruled, &options);
+        const ur_net *net = &nets.nets[0];
+        double theta = (cases[c].facet > 0 ? cases[c].facet : 5.0) * M_PI / 180;
+        double widest = WIDTH * radius / depth, length = 2 * M_PI * radius;
+        double s = fmin(radius * theta, widest);
+        size_t count;
+        double *at = positions_across(&piece, net, &count);
+        assert_int_equal(count, (size_t)ceil(length / s - 1e-9));
+        assert_int_equal(count, cases[c].expected);
+        for (size_t i = 1; i < count; i++) {
+            double spacing = at[i] - at[i - 1];
+            assert_true(spacing / radius <= theta * (1 + 1e-6));
+            assert_true(spacing <= widest * (1 + 1e-9));
+            assert_true(spacing - WIDTH >= cases[c].min_web - 1e-9);
+            assert_relative(spacing, s, 1e-6);
+        }
+        ur_segment *lines = kerf_lines(&piece, &count);
+        for (size_t i = 0; i < count; i++) {
+            assert_relative(ur_vec2_distance(lines[i].start, lines[i].end), height, 1e-9);
+            assert_true(distance_to_outline(net, lines[i].start) < 1e-9);
+            assert_true(distance_to_outline(net, lines[i].end) < 1e-9);
+        }
+        /* Centred: the same margin to both ends of the net. */
+        ur_vec2 along = unit(ur_vec2_sub(net->rulings[0].end, net->rulings[0].start));
+        ur_vec2 across = {-along.y, along.x};
+        double low = INFINITY, high = -INFINITY;
+        for (size_t i = 0; i < net->outline_count; i++) {
+            low = fmin(low, ur_vec2_dot(net->outline[i], across));
+            high = fmax(high, ur_vec2_dot(net->outline[i], across));
+        }
+        assert_relative(high - low, length, 1e-6);
+        assert_relative(at[0] - low, high - at[count - 1], 1e-6);
+        assert_true(at[0] - low <= 0.5 * s * (1 + 1e-6));
+        assert_int_equal(piece.record_count, 1);
+        const ur_allowance_record *record = &piece.records[0];
+        assert_int_equal(record->kind, UR_ALLOWANCE_BENDING);
+        assert_int_equal(record->count, count);
+        assert_int_equal(record->rows, count);
+        assert_true(record->facet_angle <= theta * 180 / M_PI * (1 + 1e-6));
+        assert_relative(record->facet_angle, s / radius * 180 / M_PI, 1e-4);
+        assert_relative(record->value, radius, 1e-6);
+        assert_false(record->warning);
+        assert_non_null(strstr(record->reason, "grooves 3.175 mm wide"));
+        free(lines);
+        free(at);
+        ur_piece_free(&piece);
+        ur_net_list_free(&nets);
+        ur_ruled_free(&ruled);
+    }
+}
+
+/*
+ * 5 degrees on R = 40 would leave 0.32 mm webs between 3.175 mm grooves:
+ * with a 0.6 mm minimum they stay 3.775 mm apart, each turning by
+ * 3.775 / 40 rad, and a warning says so; the 1 mm skin of 3 mm stock that
+ * bends no tighter than 150 mm takes 50 mm, not 40: a second warning.
+ */
+static void test_router_limits_warn(void **state)
+{
+    (void)state;
+    const double radius = 40;
+    ur_ruled ruled = cylinder(radius, 100);
+    ur_net_list nets = develop(&ruled, UR_METHOD_EXACT, 24, 0.01);
+    ur_bending_options options = router_options();
+    options.min_web = 0.6;
+    options.thickness = 3.0;
+    ur_piece piece = bent_piece(&nets, &ruled, &options);
+    size_t count;
+    double *at = positions_across(&piece, &nets.nets[0], &count);
+    double s = WIDTH + 0.6;
+    assert_int_equal(count, (size_t)ceil(2 * M_PI * radius / s));
     for (size_t i = 1; i < count; i++)
         assert_relative(at[i] - at[i - 1], s, 1e-6);
-    /* Centred: the same margin to both ends of the net. */
-    double low = INFINITY, high = -INFINITY;
-    for (size_t i = 0; i < net->outline_count; i++) {
-        low = fmin(low, ur_vec2_dot(net->outline[i], across));
-        high = fmax(high, ur_vec2_dot(net->outline[i], across));
-    }
-    assert_relative(high - low, length, 1e-6);
-    assert_relative(at[0] - low, 0.5 * (length - 3 * s), 1e-6);
-    assert_relative(high - at[count - 1], 0.5 * (length - 3 * s), 1e-6);
-    assert_int_equal(piece.record_count, 1);
-    const ur_allowance_record *record = &piece.records[0];
-    assert_int_equal(record->kind, UR_ALLOWANCE_BENDING);
-    assert_int_equal(record->count, 4);
-    assert_relative(record->value, radius, 1e-6);
-    assert_relative(record->limit, MIN_RADIUS, 0);
-    assert_false(record->warning);
-    assert_string_equal(record->reason,
-                        "bend radius 40 mm < 150 mm: 4 grooves 3.175 mm wide, 2 mm deep, every "
-                        "63.5 mm");
-    free(lines);
+    assert_int_equal(piece.record_count, 3);
+    assert_false(piece.records[0].warning);
+    assert_relative(piece.records[0].facet_angle, s / radius * 180 / M_PI, 1e-4);
+    assert_true(piece.records[1].warning);
+    assert_non_null(strstr(piece.records[1].reason, "webs under 0.6 mm"));
+    assert_non_null(strstr(piece.records[1].reason, "living hinge"));
+    assert_true(piece.records[2].warning);
+    assert_non_null(strstr(piece.records[2].reason, "skin"));
+    assert_non_null(strstr(piece.records[2].reason, "needs a skin of 0.8 mm"));
+    free(at);
     ur_piece_free(&piece);
     ur_net_list_free(&nets);
     ur_ruled_free(&ruled);
@@ -384,6 +472,58 @@ static void test_laser_hinge_cylinder(void **state)
     ur_ruled_free(&ruled);
 }
 
+/*
+ * Laser hinges on cylinders of several radii: rows never farther apart
+ * than the hinge's row distance nor than R theta (each row turns the sheet
+ * by at most the facet angle), and never closer than the kerf plus the
+ * minimum web.  On R = 5 the facet angle would need rows 0.44 mm apart,
+ * webs of 0.24 mm: they stay 0.8 mm apart and a warning says so.
+ */
+static void test_laser_cylinders_round(void **state)
+{
+    (void)state;
+    const double kerf = 0.2, web = 0.6, theta = 5 * M_PI / 180;
+    const double radii[] = {5, 10, 20, 40};
+    for (size_t c = 0; c < sizeof radii / sizeof radii[0]; c++) {
+        double radius = radii[c];
+        ur_ruled ruled = cylinder(radius, 60);
+        ur_net_list nets = develop(&ruled, UR_METHOD_EXACT, 24, 0.001);
+        ur_bending_options options = laser_options();
+        options.kerf = kerf;
+        options.min_web = web;
+        ur_piece piece = bent_piece(&nets, &ruled, &options);
+        size_t count, rows = 0;
+        double *at = positions_across(&piece, &nets.nets[0], &count);
+        double expected = fmax(fmin(radius * theta, DISTANCE), kerf + web);
+        bool thin = radius * theta < kerf + web;
+        assert_true(count > 0);
+        for (size_t i = 1; i < count; i++) {
+            double spacing = at[i] - at[i - 1];
+            if (spacing < 1e-6)
+                continue; /* another slit of the same row */
+            rows++;
+            assert_relative(spacing, expected, 1e-6);
+            assert_true(spacing - kerf >= web - 1e-9);
+            assert_true(spacing <= DISTANCE * (1 + 1e-9));
+            if (!thin)
+                assert_true(spacing / radius <= theta * (1 + 1e-6));
+        }
+        assert_true(rows > 10);
+        const ur_allowance_record *record = &piece.records[0];
+        assert_int_equal(piece.record_count, thin ? 2 : 1);
+        assert_relative(record->facet_angle, expected / radius * 180 / M_PI, 1e-4);
+        if (thin) {
+            assert_true(piece.records[1].warning);
+            assert_non_null(strstr(piece.records[1].reason, "webs under 0.6 mm"));
+        } else
+            assert_true(record->facet_angle <= 5 * (1 + 1e-6));
+        free(at);
+        ur_piece_free(&piece);
+        ur_net_list_free(&nets);
+        ur_ruled_free(&ruled);
+    }
+}
+
 /* ---- A cone: R varies along it ---------------------------------------------- */
 
 /*
@@ -479,6 +619,193 @@ static void test_cone_grooves_only_where_tight(void **state)
     ur_ruled_free(&ruled);
 }
 
+/* ---- A cone's apex ---------------------------------------------------------- */
+
+/*
+ * A right cone in cardboard (radius 60, height 80) bends to radius 0 at
+ * its apex, where the hinge's rows converge: no two slits come nearer than
+ * the kerf plus the minimum web (GEOS distance between every pair), though
+ * without the rule neighbouring rows met within 0.09 mm.  The seam (the
+ * cut ruling from base to apex) has its two sides, so it gets its joint.
+ */
+static void test_cone_apex_webs(void **state)
+{
+    (void)state;
+    const double kerf = 0.15, web = 0.45;
+    ur_curve *curve;
+    ur_ruled ruled;
+    assert_int_equal(ur_curve_new_circle(60, &curve, NULL), UR_OK);
+    assert_int_equal(ur_ruled_cone(curve, ur_vec3_make(0, 0, 80), 1.0, &ruled, NULL), UR_OK);
+    ur_net_list nets = develop(&ruled, UR_METHOD_EXACT, 48, 0.01);
+    assert_int_equal(nets.count, 1);
+    assert_int_equal(nets.nets[0].seam_side_count, 2);
+    ur_bending_options options = {0};
+    options.min_radius = 10;
+    options.hinge_cut_length = 10;
+    options.hinge_connection = 2;
+    options.hinge_distance = 1;
+    options.kerf = kerf;
+    options.min_web = web;
+    ur_piece piece = bent_piece(&nets, &ruled, &options);
+    size_t count;
+    ur_segment *lines = kerf_lines(&piece, &count);
+    assert_true(count > 50);
+    GEOSContextHandle_t geos = GEOS_init_r();
+    GEOSGeometry **slits = calloc(count, sizeof *slits);
+    assert_non_null(slits);
+    for (size_t i = 0; i < count; i++) {
+        GEOSCoordSequence *sequence = GEOSCoordSeq_create_r(geos, 2, 2);
+        GEOSCoordSeq_setXY_r(geos, sequence, 0, lines[i].start.x, lines[i].start.y);
+        GEOSCoordSeq_setXY_r(geos, sequence, 1, lines[i].end.x, lines[i].end.y);
+        slits[i] = GEOSGeom_createLineString_r(geos, sequence);
+        assert_non_null(slits[i]);
+    }
+    double nearest = INFINITY;
+    for (size_t i = 0; i < count; i++)
+        for (size_t k = i + 1; k < count; k++) {
+            double distance;
+            assert_int_equal(GEOSDistance_r(geos, slits[i], slits[k], &distance), 1);
+            nearest = fmin(nearest, distance);
+        }
+    assert_true(nearest - kerf >= web - 1e-6);
+    for (size_t i = 0; i < count; i++)
+        GEOSGeom_destroy_r(geos, slits[i]);
+    free(slits);
+    GEOS_finish_r(geos);
+    assert_false(piece.records[0].warning);
+    assert_non_null(strstr(piece.records[0].reason, "fanned out"));
+    assert_true(piece.records[0].facet_angle <= 5 * (1 + 1e-6));
+    free(lines);
+    ur_piece_free(&piece);
+    ur_net_list_free(&nets);
+    ur_ruled_free(&ruled);
+}
+
+/* ---- Hinges and joints agree ------------------------------------------------ */
+
+/* A GEOS line through a path's points (a closed one back to its first point). */
+static GEOSGeometry *path_line(GEOSContextHandle_t geos, const ur_path *path)
+{
+    size_t count = path->count + (path->closed ? 1 : 0);
+    GEOSCoordSequence *sequence = GEOSCoordSeq_create_r(geos, (unsigned)count, 2);
+    for (size_t k = 0; k < count; k++) {
+        ur_vec2 p = path->points[k % path->count];
+        GEOSCoordSeq_setXY_r(geos, sequence, (unsigned)k, p.x, p.y);
+    }
+    return GEOSGeom_createLineString_r(geos, sequence);
+}
+
+/*
+ * The nearest any KERF line of the piece comes to a MARK or SCORE line
+ * among paths[first ..] (the joints'), by GEOS.
+ */
+static double kerf_to_joint_lines(const ur_piece *piece, size_t first)
+{
+    GEOSContextHandle_t geos = GEOS_init_r();
+    double nearest = INFINITY;
+    for (size_t i = 0; i < piece->path_count; i++) {
+        if (piece->paths[i].op != UR_OP_KERF)
+            continue;
+        GEOSGeometry *kerf = path_line(geos, &piece->paths[i]);
+        for (size_t k = first; k < piece->path_count; k++) {
+            ur_op op = piece->paths[k].op;
+            if (op != UR_OP_MARK && op != UR_OP_SCORE)
+                continue;
+            GEOSGeometry *line = path_line(geos, &piece->paths[k]);
+            double distance;
+            assert_int_equal(GEOSDistance_r(geos, kerf, line, &distance), 1);
+            nearest = fmin(nearest, distance);
+            GEOSGeom_destroy_r(geos, line);
+        }
+        GEOSGeom_destroy_r(geos, kerf);
+    }
+    GEOS_finish_r(geos);
+    return nearest;
+}
+
+/* KERF lines whose middle lies outside the net's own outline: on its joints. */
+static size_t kerfs_outside_net(const ur_piece *piece, const ur_net *net)
+{
+    GEOSContextHandle_t geos = GEOS_init_r();
+    GEOSCoordSequence *sequence = GEOSCoordSeq_create_r(geos, (unsigned)net->outline_count + 1, 2);
+    for (size_t k = 0; k <= net->outline_count; k++) {
+        ur_vec2 p = net->outline[k % net->outline_count];
+        GEOSCoordSeq_setXY_r(geos, sequence, (unsigned)k, p.x, p.y);
+    }
+    GEOSGeometry *outline =
+        GEOSGeom_createPolygon_r(geos, GEOSGeom_createLinearRing_r(geos, sequence), NULL, 0);
+    size_t count = 0;
+    for (size_t i = 0; i < piece->path_count; i++) {
+        const ur_path *path = &piece->paths[i];
+        if (path->op != UR_OP_KERF)
+            continue;
+        ur_vec2 m = ur_vec2_lerp(path->points[0], path->points[path->count - 1], 0.5);
+        GEOSGeometry *point = GEOSGeom_createPointFromXY_r(geos, m.x, m.y);
+        count += GEOSContains_r(geos, outline, point) != 1;
+        GEOSGeom_destroy_r(geos, point);
+    }
+    GEOSGeom_destroy_r(geos, outline);
+    GEOS_finish_r(geos);
+    return count;
+}
+
+/*
+ * A 3 mm plywood cylinder of radius 40 with a 15 mm lap on its seam: on a
+ * laser (living hinge) and on a router (grooves), the lap tongue carries
+ * the hinge of the zone it lies on (kerf lines outside the net's outline),
+ * and once the kerfs are kept off the joints no kerf line comes nearer a
+ * mark line than the clearance.  A cardboard cone's tab: no slit nears its
+ * folds.
+ */
+static void test_hinges_and_joints_agree(void **state)
+{
+    (void)state;
+    const double clearance = 0.7;
+    for (int router = 0; router < 3; router++) {
+        bool cone = router == 2;
+        ur_ruled ruled;
+        if (cone) {
+            ur_curve *curve;
+            assert_int_equal(ur_curve_new_circle(60, &curve, NULL), UR_OK);
+            assert_int_equal(ur_ruled_cone(curve, ur_vec3_make(0, 0, 80), 1.0, &ruled, NULL),
+                             UR_OK);
+        } else
+            ruled = cylinder(40, 100);
+        ur_net_list nets = develop(&ruled, UR_METHOD_EXACT, 48, 0.01);
+        ur_bending_options options = router == 1 ? router_options() : laser_options();
+        options.kerf = 0.2;
+        options.min_web = 0.6;
+        if (cone) {
+            options.min_radius = 10;
+            options.hinge_cut_length = 10;
+            options.hinge_connection = 2;
+            options.hinge_distance = 1;
+        }
+        ur_piece piece = bent_piece(&nets, &ruled, &options);
+        size_t first = piece.path_count;
+        ur_joint_options joints = {.lap = !cone,
+                                   .tab_depth = 10,
+                                   .tab_angle = 45,
+                                   .lap_width = 15,
+                                   .thickness = cone ? 2 : 3,
+                                   .lap_kerfs = true,
+                                   .lap_kerf_margin = router == 1 ? 0 : CONNECTION};
+        ur_error error;
+        assert_int_equal(ur_pieces_add_joints(&piece, &nets, &joints, &error), UR_OK);
+        if (!cone)
+            assert_true(kerfs_outside_net(&piece, &nets.nets[0]) >= (router == 1 ? 4 : 10));
+        size_t trimmed = 0;
+        assert_int_equal(
+            ur_piece_keep_kerfs_off_joints(&piece, first, clearance, 0.6, &trimmed, &error), UR_OK);
+        assert_true(kerf_to_joint_lines(&piece, first) >= clearance - 1e-6);
+        if (!cone)
+            assert_true(kerfs_outside_net(&piece, &nets.nets[0]) >= (router == 1 ? 4 : 10));
+        ur_piece_free(&piece);
+        ur_net_list_free(&nets);
+        ur_ruled_free(&ruled);
+    }
+}
+
 /* ---- Limits ----------------------------------------------------------------- */
 
 /* R = 1.5 mm < d = 2 mm: grooves every w, touching, and a warning. */
@@ -537,6 +864,14 @@ static void test_mesh_left_alone(void **state)
     ur_error error;
     assert_int_equal(ur_piece_add_bending_kerfs(&piece, &net, NULL, &options, &error),
                      UR_ERROR_INPUT);
+    options = router_options();
+    options.facet_angle = 91;
+    assert_int_equal(ur_piece_add_bending_kerfs(&piece, &net, NULL, &options, &error),
+                     UR_ERROR_INPUT);
+    options.facet_angle = 5;
+    options.min_web = -1;
+    assert_int_equal(ur_piece_add_bending_kerfs(&piece, &net, NULL, &options, &error),
+                     UR_ERROR_INPUT);
     ur_piece_free(&piece);
 }
 
@@ -544,10 +879,14 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_ruling_parameters),
-        cmocka_unit_test(test_router_cylinder),
+        cmocka_unit_test(test_router_cylinders_round),
+        cmocka_unit_test(test_router_limits_warn),
         cmocka_unit_test(test_gentle_bend_needs_none),
         cmocka_unit_test(test_laser_hinge_cylinder),
+        cmocka_unit_test(test_laser_cylinders_round),
         cmocka_unit_test(test_cone_grooves_only_where_tight),
+        cmocka_unit_test(test_cone_apex_webs),
+        cmocka_unit_test(test_hinges_and_joints_agree),
         cmocka_unit_test(test_merging_grooves_warn),
         cmocka_unit_test(test_too_few_rulings_warn),
         cmocka_unit_test(test_mesh_left_alone),

@@ -9,7 +9,8 @@
  * its piece and off the other tabs (the grown outline is simple and as
  * large as the net and the tabs together); a seam that is a closed loop
  * (a grid's centre quad) gets a tab on each edge and its labels; laps mark
- * the zone on both pieces.
+ * the zone on both pieces; two turns of a helicoid, in cardboard and in
+ * plywood, get every seam joined, by a splice piece where nothing fits.
  * Geometry is checked with GEOS, independently of the code under test.
  *
  * Run from the repository root (it reads samples/icosphere.obj).
@@ -464,6 +465,69 @@ static void test_laps_marked_on_both(void **state)
     ur_ruled_free(&ruled);
 }
 
+/*
+ * Two turns of a helicoid (radius 30, pitch 62.83, ruling width 25, as the
+ * README's example) develop to about 680 degrees and split in two pieces
+ * whose seam has the other turn within a few millimetres on both sides:
+ * no tab or lap fits.  In cardboard (tabs) and in plywood (laps) every seam
+ * is joined all the same: by a tab or lap, or by a splice piece, a strip
+ * glued behind the seam, as wide on each side as the tab is deep (the lap
+ * wide): its area is twice that width times the seam's 25 mm, it marks
+ * the seam and carries both pieces' names with the seam's label.
+ */
+static void test_every_seam_joined(void **state)
+{
+    (void)state;
+    ur_font *font;
+    ur_error error;
+    assert_int_equal(ur_font_open(NULL, &font, &error), UR_OK);
+    for (int wood = 0; wood < 2; wood++) {
+        ur_curve *curve;
+        ur_ruled ruled;
+        assert_int_equal(ur_curve_new_helix(30, 20 * M_PI, 0, 4 * M_PI, &curve, NULL), UR_OK);
+        assert_int_equal(ur_ruled_tangent(curve, 0, 25, &ruled, NULL), UR_OK);
+        ur_net_list nets = develop(&ruled, UR_METHOD_EXACT, 64, 0.01);
+        assert_true(nets.count >= 2);
+        ur_piece *pieces = pieces_of(&nets);
+        ur_splice_list splices = {NULL, 0};
+        ur_joint_options options = tab_options(font);
+        options.lap = wood;
+        options.thickness = wood ? 3 : 2;
+        options.splices = &splices;
+        assert_int_equal(ur_pieces_add_joints(pieces, &nets, &options, &error), UR_OK);
+        int seams = ur_net_list_last_seam(&nets);
+        assert_true(seams >= 1);
+        size_t joined = 0;
+        for (size_t k = 0; k < nets.count; k++) {
+            assert_int_equal(count_records(&pieces[k], UR_ALLOWANCE_JOINT, true), 0);
+            joined += count_joints(&pieces[k]);
+        }
+        double width = wood ? options.lap_width : options.tab_depth;
+        for (size_t s = 0; s < splices.count; s++) {
+            const ur_piece *splice = &splices.pieces[s];
+            GEOSGeometry *outline = polygon(splice->paths[0].points, splice->paths[0].count);
+            assert_int_equal(GEOSisValid_r(geos, outline), 1);
+            assert_relative(area_of(outline), 2 * width * 25, 1e-6);
+            GEOSGeom_destroy_r(geos, outline);
+            assert_int_equal(count_op(splice, UR_OP_MARK), 1);
+            assert_true(count_op(splice, UR_OP_ENGRAVE) > 0);
+            size_t labels = 0;
+            for (size_t r = 0; r < splice->record_count; r++)
+                labels += splice->records[r].kind == UR_ALLOWANCE_LABEL &&
+                          !splice->records[r].warning && strstr(splice->records[r].reason, "A1");
+            assert_int_equal(labels, 2);
+        }
+        /* Each seam: a joint on one side, or a splice. */
+        assert_int_equal(joined + splices.count, (size_t)seams);
+        assert_true(splices.count >= 1); /* the example's seam has no room either side */
+        ur_splice_list_free(&splices);
+        free_pieces(pieces, nets.count);
+        ur_net_list_free(&nets);
+        ur_ruled_free(&ruled);
+    }
+    ur_font_close(font);
+}
+
 static void test_bad_options(void **state)
 {
     (void)state;
@@ -481,9 +545,9 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_seam_labels),          cmocka_unit_test(test_cylinder_tab),
-        cmocka_unit_test(test_helicoid_labels_pair), cmocka_unit_test(test_unfolded_tabs_clear),
-        cmocka_unit_test(test_loop_seams_joined),    cmocka_unit_test(test_laps_marked_on_both),
-        cmocka_unit_test(test_bad_options),
+        cmocka_unit_test(test_helicoid_labels_pair), cmocka_unit_test(test_every_seam_joined),
+        cmocka_unit_test(test_unfolded_tabs_clear),  cmocka_unit_test(test_loop_seams_joined),
+        cmocka_unit_test(test_laps_marked_on_both),  cmocka_unit_test(test_bad_options),
     };
     return cmocka_run_group_tests(tests, start, finish);
 }

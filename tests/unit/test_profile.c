@@ -453,6 +453,7 @@ static void test_allowance_fields(void **state)
     assert_true(material.kerfing_opening == 0.5 && material.kerfing_margin == 3.0);
     assert_int_equal(material.overlap, UR_OVERLAP_SLIT);
     assert_true(material.groove_skin == 0.5); /* a third of 1.5 mm */
+    assert_true(material.facet_angle == 5.0 && material.min_web == 0.0);
     assert_int_equal(material.surface_layer, UR_LAYER_NEUTRAL);
 
     load_material("plywood-3mm", &material);
@@ -476,6 +477,28 @@ static void test_allowance_fields(void **state)
     const char *path = write_profile("materials", "test-skin", text);
     assert_int_equal(ur_material_load("test-skin", &material, &error), UR_ERROR_INPUT);
     expect_located(error.message, path, 11, "skin");
+
+    const char *bending = "<material>\n"
+                          "  <description>Test</description>\n"
+                          "  <thickness>3</thickness>\n"
+                          "  <stock width=\"100\" height=\"50\"/>\n"
+                          "  <bend-radius with-grain=\"5\" across-grain=\"7\"/>\n"
+                          "  <strain stretch=\"0\" compression=\"0.01\"/>\n"
+                          "  <k-factor>0.45</k-factor>\n"
+                          "  <tab depth=\"5\" angle=\"60\"/>\n"
+                          "  <grain rule=\"none\"/>\n"
+                          "  <living-hinge cut-length=\"5\" connection=\"1\" distance=\"1\"/>\n"
+                          "  <bending facet-angle=\"%s\" min-web=\"0.8\"/>\n" /* line 11 */
+                          "</material>\n";
+    char text_of[1024];
+    snprintf(text_of, sizeof text_of, bending, "2.5");
+    write_profile("materials", "test-bending", text_of);
+    assert_int_equal(ur_material_load("test-bending", &material, &error), UR_OK);
+    assert_true(material.facet_angle == 2.5 && material.min_web == 0.8);
+    snprintf(text_of, sizeof text_of, bending, "120");
+    path = write_profile("materials", "test-bending", text_of);
+    assert_int_equal(ur_material_load("test-bending", &material, &error), UR_ERROR_INPUT);
+    expect_located(error.message, path, 11, "facet angle");
 
     ur_machine machine;
     assert_int_equal(ur_machine_load("router", &machine, &error), UR_OK);
