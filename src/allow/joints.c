@@ -544,6 +544,21 @@ static ur_status splice_stretch(joiner *j, const seam_job *sj, const stretch *st
     return status;
 }
 
+/*
+ * Whether a splice piece is worth cutting for the stretch: one at least as
+ * long as it is wide.  A papercraft mesh's seams are runs of short edges,
+ * one stretch each; a strip for each short one the tabs miss (round a UV
+ * sphere's poles) would be confetti, and such an edge is glued by hand.
+ */
+static bool worth_a_splice(const joiner *j, const seam_job *sj, const stretch *st, int side)
+{
+    const run *r = &sj->runs[side];
+    size_t first = local_first(sj, side, st), edges = local_count(sj, side, st);
+    if (first + edges >= r->count)
+        return true;
+    return ur_polyline_length(r->points + first, edges + 1, false) >= full_depth(j->options);
+}
+
 /* The joint of one stretch: full on either side, then smaller on either. */
 static ur_status join_stretch(joiner *j, const seam_job *sj, const stretch *st, int first_side,
                               ur_error *error)
@@ -563,8 +578,9 @@ static ur_status join_stretch(joiner *j, const seam_job *sj, const stretch *st, 
             status = try_shapes(j, sj, k, st, shapes, from, to, &done, &why[k], error);
     }
     if (status == UR_OK && !done)
-        status = o->splices ? splice_stretch(j, sj, st, first_side, error)
-                            : warn_stretch(j, sj, st, first_side, why, error);
+        status = o->splices && worth_a_splice(j, sj, st, first_side)
+                     ? splice_stretch(j, sj, st, first_side, error)
+                     : warn_stretch(j, sj, st, first_side, why, error);
     return status;
 }
 
