@@ -57,6 +57,13 @@ ur_status pairing_track(ur_pairing *pairing, ur_error *error);
 double pairing_solved_sigma(ur_pairing *pairing, double u, double low, double high,
                             const ur_vec3 c1[3]);
 
+/*
+ * sigma'(u) at the root sigma of a solved pairing: the implicit slope, or at
+ * a double root (an inflection of the rails) the slope of the table's branch.
+ */
+double pairing_solved_slope(ur_pairing *pairing, double u, const ur_vec3 c1[3],
+                            const ur_vec3 d2[3]);
+
 /* sigma' = -F_u / F_sigma, with rail 1's derivatives c1 and rail 2's d2 at sigma. */
 double pairing_implicit_slope(const ur_vec3 c1[3], const ur_vec3 d2[3]);
 

@@ -65,9 +65,7 @@ void pairing_eval(ur_pairing *pairing, double u, double low, double high, double
     ur_curve_eval(pairing->rail1, u, c1);
     *sigma = pairing_solved_sigma(pairing, u, low, high, c1);
     pairing_rail2(pairing, *sigma, d2);
-    *slope = pairing_implicit_slope(c1, d2);
-    if (!isfinite(*slope))
-        *slope = 0.0;
+    *slope = pairing_solved_slope(pairing, u, c1, d2);
 }
 
 /* ---- Building the surfaces ---------------------------------------------- */

@@ -4,12 +4,21 @@
  * The pairing sigma(u) is the root of
  *     F(u, sigma) = det(c1'(u), c2'(sigma), c2(sigma) - c1(u)),
  * the condition that one plane touches the surface along the whole ruling.
- * A table of roots is built once by tracking the root along rail 1 (a local
- * search around the predicted root, a scan of the whole of rail 2 when that
- * fails), then any u is answered by Newton's method started from the table
- * and falling back to GSL's Brent solver on the table's bracket.  The slope
- * follows from the implicit function theorem: sigma' = -F_u / F_sigma with
- * F_u = det(c1'', c2', d) and F_sigma = det(c1', c2'', d), d = c2 - c1.
+ * A table of roots is built once by continuing the root along rail 1
+ * (predict with the slope of the solution curve, correct by Newton's method,
+ * a scan of the whole of rail 2 when that fails), then any u is answered by
+ * Newton's method started from the table and falling back to GSL's Brent
+ * solver on the table's bracket.  The slope follows from the implicit
+ * function theorem: sigma' = -F_u / F_sigma with F_u = det(c1'', c2', d) and
+ * F_sigma = det(c1', c2'', d), d = c2 - c1.
+ *
+ * Where the rails have inflections the condition has double roots: two
+ * branches of solutions cross there (on a general cylinder, sigma = u and the
+ * points whose tangent is the mirror image), both derivatives of F vanish and
+ * the nearest root may lie on the other branch.  So the continuation looks at
+ * both roots near the prediction and keeps the one whose slope continues the
+ * slope it came with; at the double root itself, where -F_u / F_sigma is 0 / 0,
+ * the slope comes from the neighbouring samples instead.
  *
  * Where there is no root, where the root jumps to another branch, or where
  * consecutive rulings cross inside the strip (sigma decreasing, or the edge
@@ -28,8 +37,17 @@ enum {
     MIN_SCAN = 2048,    /* rail 2 samples of a full scan */
     RESCAN_EVERY = 32,  /* inside a gap, scan all of rail 2 only this often */
     BISECTIONS = 48,    /* refinement of gap ends */
-    NEWTON_STEPS = 8,
+    NEWTON_STEPS = 64,  /* near a double root Newton's method only halves the error each step */
 };
+
+/*
+ * Both derivatives of F, per unit of the rails' parameter ranges, below this
+ * fraction of F's natural size: at or next to a double root.  There F's
+ * rounding moves the root by up to the square root of it (about 1e-8 of the
+ * rail) and the implicit slope is 0 / 0; outside, the root is good to 1e-11
+ * of the rail.
+ */
+#define DOUBLE_ROOT 1e-4
 
 /* ---- The condition and its derivatives ---------------------------------- */
 
@@ -54,6 +72,16 @@ double pairing_implicit_slope(const ur_vec3 c1[3], const ur_vec3 d2[3])
     return -f_u / f_sigma;
 }
 
+/* Whether (c1, d2) is at or next to a double root: grad F nearly zero. */
+static bool at_double_root(const ur_pairing *pairing, const ur_vec3 c1[3], const ur_vec3 d2[3])
+{
+    ur_vec3 d = ur_vec3_sub(d2[0], c1[0]);
+    double f_u = determinant3(c1[2], d2[1], d), f_sigma = determinant3(c1[1], d2[2], d);
+    double range1 = ur_curve_end(pairing->rail1) - ur_curve_start(pairing->rail1);
+    double size = DOUBLE_ROOT * condition_scale(c1, d2);
+    return fabs(f_u) * range1 <= size && fabs(f_sigma) * (pairing->s1 - pairing->s0) <= size;
+}
+
 typedef struct root_context {
     ur_pairing *pairing;
     const ur_vec3 *c1;
@@ -71,6 +99,16 @@ static double condition_at(double sigma, void *data)
 static bool in_rail2(const ur_pairing *pairing, double sigma)
 {
     double slack = 1e-9 * (pairing->s1 - pairing->s0);
+    return pairing->wrap || (sigma >= pairing->s0 - slack && sigma <= pairing->s1 + slack);
+}
+
+/*
+ * Roots within the end slack past rail 2's ends (a ruling meant to end on an
+ * end of rail 2 misses it by the interpolation error) count as on it.
+ */
+static bool near_rail2(const ur_pairing *pairing, double sigma)
+{
+    double slack = fmax(pairing->end_slack, 1e-9) * (pairing->s1 - pairing->s0);
     return pairing->wrap || (sigma >= pairing->s0 - slack && sigma <= pairing->s1 + slack);
 }
 
@@ -143,6 +181,7 @@ static bool local_root(ur_pairing *pairing, const ur_vec3 c1[3], double guess, d
     double best = fabs(at_guess) / condition_scale(c1, d2), best_sigma = guess;
     double before[2] = {at_guess, at_guess}, where[2] = {guess, guess};
     for (double offset = step; offset <= window * (1 + 1e-12); offset += step) {
+        bool found = false;
         for (int side = 0; side < 2; side++) {
             /* Step outward, stopping on an end of an open rail 2 rather than passing it. */
             double sigma = side == 0 ? guess + offset : guess - offset;
@@ -153,8 +192,13 @@ static bool local_root(ur_pairing *pairing, const ur_vec3 c1[3], double guess, d
             pairing_rail2(pairing, sigma, d2);
             double value = condition(c1, d2);
             if ((value <= 0) != (before[side] <= 0)) {
-                *root = brent(pairing, c1, fmin(sigma, where[side]), fmax(sigma, where[side]));
-                return true;
+                /* A root on each side at the same distance: the nearer one. */
+                double candidate =
+                    brent(pairing, c1, fmin(sigma, where[side]), fmax(sigma, where[side]));
+                if (!found || fabs(candidate - guess) < fabs(*root - guess))
+                    *root = candidate;
+                found = true;
+                continue;
             }
             before[side] = value;
             where[side] = sigma;
@@ -164,6 +208,8 @@ static bool local_root(ur_pairing *pairing, const ur_vec3 c1[3], double guess, d
                 best_sigma = sigma;
             }
         }
+        if (found)
+            return true;
     }
     if (best < 1e-10 && in_rail2(pairing, best_sigma)) {
         *root = best_sigma;
@@ -171,6 +217,123 @@ static bool local_root(ur_pairing *pairing, const ur_vec3 c1[3], double guess, d
     }
     return root_at_rail_end(pairing, c1, guess, window, root);
 }
+
+/* The window in which the root at the next sample is looked for. */
+static double search_window(const ur_pairing *pairing, double predicted_change)
+{
+    return fmax(4 * pairing->step, 2 * fabs(predicted_change));
+}
+
+/*
+ * Newton's method on F(u, .) from guess, kept inside [low, high] and on rail
+ * 2.  From a good prediction it converges to the nearest root, also to a
+ * double root (slowly) where a search for a sign change sees none.  With
+ * `other`, it looks for a second root by deflation: F / (sigma - other).
+ */
+static bool newton_root(ur_pairing *pairing, const ur_vec3 c1[3], double guess, double low,
+                        double high, const double *other, double *root)
+{
+    double sigma = guess, tolerance = 1e-14 * (fabs(pairing->s1) + (pairing->s1 - pairing->s0));
+    for (int k = 0; k < NEWTON_STEPS; k++) {
+        ur_vec3 d2[3];
+        pairing_rail2(pairing, sigma, d2);
+        double f = condition(c1, d2);
+        double f_sigma = determinant3(c1[1], d2[2], ur_vec3_sub(d2[0], c1[0]));
+        if (other) {
+            double apart = sigma - *other;
+            if (fabs(apart) <= tolerance)
+                return false;
+            f_sigma = f_sigma - f / apart; /* of F / (sigma - other), times (sigma - other) */
+        }
+        double next = sigma - f / f_sigma;
+        if (!isfinite(next) || next < low || next > high)
+            return false;
+        if (!pairing->wrap && (next < pairing->s0 || next > pairing->s1)) {
+            /* Rail 2 ends here: a root past it within the end slack is on its end. */
+            double end = next < pairing->s0 ? pairing->s0 : pairing->s1;
+            if (sigma == end) {
+                *root = end;
+                return near_rail2(pairing, next) && (!other || fabs(end - *other) > tolerance);
+            }
+            next = end;
+        }
+        bool done = fabs(next - sigma) <= tolerance || f == 0.0;
+        sigma = next;
+        if (done) {
+            *root = sigma;
+            return !other || fabs(sigma - *other) > tolerance;
+        }
+    }
+    return false;
+}
+
+/*
+ * The slope at a root reached from a root at (u_from, sigma_from, slope_from):
+ * -F_u / F_sigma, or at a double root, where that is 0 / 0, the slope of the
+ * parabola through the two roots that has slope_from at u_from.
+ */
+static double continued_slope(ur_pairing *pairing, const ur_vec3 c1[3], double sigma, double u_from,
+                              double sigma_from, double slope_from, double u)
+{
+    ur_vec3 d2[3];
+    pairing_rail2(pairing, sigma, d2);
+    double slope = pairing_implicit_slope(c1, d2);
+    if (isfinite(slope) && !at_double_root(pairing, c1, d2))
+        return slope;
+    if (u == u_from)
+        return slope_from;
+    return 2 * (sigma - sigma_from) / (u - u_from) - slope_from;
+}
+
+/*
+ * The root at u on the branch of the root at table sample `from`: predicted
+ * with that sample's slope and corrected by Newton's method.  Next to a
+ * double root the other branch's root is near too, so both are found and
+ * the one kept is the one whose position and slope continue the branch
+ * best (slope continuity, not the nearest root).
+ */
+static bool follow_root(ur_pairing *pairing, size_t from, double u, const ur_vec3 c1[3],
+                        double *root, double *slope)
+{
+    double u_from = pairing->u[from], sigma_from = pairing->sigma[from];
+    double slope_from = pairing->slope[from];
+    double change = slope_from * (u - u_from), predicted = sigma_from + change;
+    double window = search_window(pairing, change);
+    double candidates[2];
+    int count = 0;
+    if (newton_root(pairing, c1, predicted, predicted - window, predicted + window, NULL,
+                    &candidates[0]) ||
+        local_root(pairing, c1, predicted, window, &candidates[0]))
+        count = 1;
+    if (count == 0)
+        return false;
+    /* The other branch, if it passes close by. */
+    double near = fmax(fabs(candidates[0] - predicted), pairing->step);
+    double start = candidates[0] == predicted ? predicted + 0.5 * near : predicted;
+    if (newton_root(pairing, c1, start, predicted - 4 * near, predicted + 4 * near, &candidates[0],
+                    &candidates[1]))
+        count = 2;
+    double best = INFINITY;
+    for (int k = 0; k < count; k++) {
+        double m = continued_slope(pairing, c1, candidates[k], u_from, sigma_from, slope_from, u);
+        double score =
+            fabs(candidates[k] - predicted) + 0.5 * fabs(u - u_from) * fabs(m - slope_from);
+        if (score < best) {
+            best = score;
+            *root = candidates[k];
+            *slope = m;
+        }
+    }
+    return true;
+}
+
+/*
+ * The slope at a root found without a neighbour (a scan): -F_u / F_sigma, or
+ * at a double root the slope of the branch that starts a strip there: the
+ * roots a little way along rail 1, whose rulings do not cross, the one
+ * running forward along rail 2 most slowly.
+ */
+static double fresh_slope(ur_pairing *pairing, double u, const ur_vec3 c1[3], double sigma);
 
 /* Length of the ruling from c1 to rail 2 at sigma. */
 static double ruling_length(ur_pairing *pairing, const ur_vec3 c1[3], double sigma)
@@ -185,9 +348,7 @@ static bool rulings_cross(ur_pairing *pairing, double u, double sigma, double sl
 /* Whether the ruling from c1 to rail 2 at sigma would cross its neighbours. */
 static bool candidate_crosses(ur_pairing *pairing, double u, const ur_vec3 c1[3], double sigma)
 {
-    ur_vec3 d2[3];
-    pairing_rail2(pairing, sigma, d2);
-    return rulings_cross(pairing, u, sigma, pairing_implicit_slope(c1, d2));
+    return rulings_cross(pairing, u, sigma, fresh_slope(pairing, u, c1, sigma));
 }
 
 /*
@@ -219,6 +380,18 @@ static bool scan_root(ur_pairing *pairing, double u, const ur_vec3 c1[3], bool h
             }
         }
         previous_value = value;
+    }
+    /* A root on an end of an open rail 2 shows no sign change inside it. */
+    double ends[2] = {pairing->s0, pairing->s1};
+    for (int k = 0; k < 2 && !have_previous; k++) {
+        double candidate;
+        if (root_at_rail_end(pairing, c1, ends[k], 0.0, &candidate) &&
+            ruling_length(pairing, c1, candidate) < best &&
+            !candidate_crosses(pairing, u, c1, candidate)) {
+            best = ruling_length(pairing, c1, candidate);
+            *root = candidate;
+            found = true;
+        }
     }
     return found;
 }
@@ -262,22 +435,12 @@ static ur_status scan_alloc(ur_pairing *pairing, ur_error *error)
     return UR_OK;
 }
 
-/* The window in which the root at the next sample is looked for. */
-static double search_window(const ur_pairing *pairing, double predicted_change)
-{
-    return fmax(4 * pairing->step, 2 * fabs(predicted_change));
-}
-
-static void store_root(ur_pairing *pairing, size_t i, const ur_vec3 c1[3], double sigma)
+static void store_root(ur_pairing *pairing, size_t i, double sigma, double slope)
 {
     if (!pairing->wrap)
         sigma = fmin(fmax(sigma, pairing->s0), pairing->s1);
-    ur_vec3 d2[3];
-    pairing_rail2(pairing, sigma, d2);
     pairing->sigma[i] = sigma;
-    pairing->slope[i] = pairing_implicit_slope(c1, d2);
-    if (!isfinite(pairing->slope[i]))
-        pairing->slope[i] = 0.0;
+    pairing->slope[i] = isfinite(slope) ? slope : 0.0;
     pairing->state[i] = SAMPLE_GOOD;
 }
 
@@ -290,12 +453,10 @@ static void track_backward(ur_pairing *pairing, size_t from, size_t stop)
             return;
         ur_vec3 c1[3];
         ur_curve_eval(pairing->rail1, pairing->u[k], c1);
-        double change = pairing->slope[i] * (pairing->u[k] - pairing->u[i]);
-        double root;
-        if (!local_root(pairing, c1, pairing->sigma[i] + change, search_window(pairing, change),
-                        &root))
+        double root, slope;
+        if (!follow_root(pairing, i, pairing->u[k], c1, &root, &slope))
             return;
-        store_root(pairing, k, c1, root);
+        store_root(pairing, k, root, slope);
         pairing->joined[k] = true;
     }
 }
@@ -308,14 +469,13 @@ static void build_table(ur_pairing *pairing)
         ur_curve_eval(pairing->rail1, pairing->u[i], c1);
         pairing->joined[i] = false;
         bool have_previous = last_good != SIZE_MAX;
-        double predicted = 0.0, change = 0.0, root;
-        if (have_previous) {
-            change = pairing->slope[last_good] * (pairing->u[i] - pairing->u[last_good]);
-            predicted = pairing->sigma[last_good] + change;
-        }
+        double predicted = 0.0, root, slope;
+        if (have_previous)
+            predicted = pairing->sigma[last_good] +
+                        pairing->slope[last_good] * (pairing->u[i] - pairing->u[last_good]);
         if (have_previous && last_good + 1 == i &&
-            local_root(pairing, c1, predicted, search_window(pairing, change), &root)) {
-            store_root(pairing, i, c1, root);
+            follow_root(pairing, last_good, pairing->u[i], c1, &root, &slope)) {
+            store_root(pairing, i, root, slope);
             pairing->joined[i - 1] = true;
             last_good = i;
             continue;
@@ -327,7 +487,7 @@ static void build_table(ur_pairing *pairing)
         }
         since_scan = 0;
         if (scan_root(pairing, pairing->u[i], c1, have_previous, predicted, &root)) {
-            store_root(pairing, i, c1, root);
+            store_root(pairing, i, root, fresh_slope(pairing, pairing->u[i], c1, root));
             track_backward(pairing, i, have_previous ? last_good + 1 : 0);
             last_good = i;
         }
@@ -363,6 +523,75 @@ static bool rulings_cross(ur_pairing *pairing, double u, double sigma, double sl
     return along_a * along_b < 0 && fabs(along_a) > margin && fabs(along_b) > margin;
 }
 
+static double fresh_slope(ur_pairing *pairing, double u, const ur_vec3 c1[3], double sigma)
+{
+    ur_vec3 d2[3];
+    pairing_rail2(pairing, sigma, d2);
+    double slope = pairing_implicit_slope(c1, d2);
+    if (isfinite(slope) && !at_double_root(pairing, c1, d2))
+        return slope;
+    double u0 = ur_curve_start(pairing->rail1), u1 = ur_curve_end(pairing->rail1);
+    double h = (u1 - u0) / (double)(4 * (pairing->count - 1));
+    if (u + h > u1)
+        h = -h;
+    ur_vec3 next[3];
+    ur_curve_eval(pairing->rail1, u + h, next);
+    double window = search_window(pairing, 0.0), roots[2], best = INFINITY;
+    int count = 0;
+    if (newton_root(pairing, next, sigma, sigma - window, sigma + window, NULL, &roots[0]) ||
+        local_root(pairing, next, sigma, window, &roots[0]))
+        count = 1;
+    if (count == 1 && newton_root(pairing, next, sigma + 0.5 * window, sigma - window,
+                                  sigma + window, &roots[0], &roots[1]))
+        count = 2;
+    for (int k = 0; k < count; k++) {
+        double candidate = (roots[k] - sigma) / h;
+        if (candidate < best && !rulings_cross(pairing, u + h, roots[k], candidate))
+            best = candidate;
+    }
+    return isfinite(best) ? best : isfinite(slope) ? slope : 0.0;
+}
+
+/* Whether the root of table sample i is at or next to a double root. */
+static bool sample_at_double_root(ur_pairing *pairing, size_t i)
+{
+    ur_vec3 c1[3], d2[3];
+    ur_curve_eval(pairing->rail1, pairing->u[i], c1);
+    pairing_rail2(pairing, pairing->sigma[i], d2);
+    return at_double_root(pairing, c1, d2);
+}
+
+/* Cubic Hermite value and slope at u between table samples i and j. */
+static void hermite(const ur_pairing *pairing, size_t i, size_t j, double u, double *sigma,
+                    double *slope)
+{
+    double h = pairing->u[j] - pairing->u[i], t = (u - pairing->u[i]) / h;
+    double h00 = (1 + 2 * t) * (1 - t) * (1 - t), h10 = t * (1 - t) * (1 - t);
+    double h01 = t * t * (3 - 2 * t), h11 = t * t * (t - 1);
+    double d00 = 6 * t * (t - 1), d10 = (1 - t) * (1 - 3 * t), d11 = t * (3 * t - 2);
+    *sigma = h00 * pairing->sigma[i] + h10 * h * pairing->slope[i] + h01 * pairing->sigma[j] +
+             h11 * h * pairing->slope[j];
+    *slope = d00 * (pairing->sigma[i] - pairing->sigma[j]) / h + d10 * pairing->slope[i] +
+             d11 * pairing->slope[j];
+}
+
+/*
+ * A sample at a double root has a root good only to about 1e-8 of the rail
+ * and a slope from the parabola through its neighbour: take both from the
+ * branch through the well-conditioned samples on either side instead.
+ */
+static void smooth_double_roots(ur_pairing *pairing)
+{
+    for (size_t i = 1; i + 1 < pairing->count; i++) {
+        if (pairing->state[i] != SAMPLE_GOOD || !pairing->joined[i - 1] || !pairing->joined[i] ||
+            !sample_at_double_root(pairing, i))
+            continue;
+        if (sample_at_double_root(pairing, i - 1) || sample_at_double_root(pairing, i + 1))
+            continue;
+        hermite(pairing, i - 1, i + 1, pairing->u[i], &pairing->sigma[i], &pairing->slope[i]);
+    }
+}
+
 static void classify_samples(ur_pairing *pairing)
 {
     for (size_t i = 0; i < pairing->count; i++)
@@ -371,18 +600,21 @@ static void classify_samples(ur_pairing *pairing)
             pairing->state[i] = SAMPLE_CROSS;
 }
 
+/* Whether the table runs on one branch from sample i to i + 1. */
+static bool table_joined(const ur_pairing *pairing, size_t i)
+{
+    return pairing->state[i] != SAMPLE_NO_ROOT && pairing->state[i + 1] != SAMPLE_NO_ROOT &&
+           pairing->joined[i];
+}
+
 /* The state at u, following the root from a good sample at u_good. */
 static enum sample_state state_at(ur_pairing *pairing, double u, size_t good, double *sigma)
 {
     ur_vec3 c1[3];
     ur_curve_eval(pairing->rail1, u, c1);
-    double change = pairing->slope[good] * (u - pairing->u[good]);
-    if (!local_root(pairing, c1, pairing->sigma[good] + change, search_window(pairing, change),
-                    sigma))
+    double slope;
+    if (!follow_root(pairing, good, u, c1, sigma, &slope))
         return SAMPLE_NO_ROOT;
-    ur_vec3 d2[3];
-    pairing_rail2(pairing, *sigma, d2);
-    double slope = pairing_implicit_slope(c1, d2);
     return rulings_cross(pairing, u, *sigma, slope) ? SAMPLE_CROSS : SAMPLE_GOOD;
 }
 
@@ -501,16 +733,6 @@ static size_t table_interval(ur_pairing *pairing, double u)
     return i;
 }
 
-/* Cubic Hermite guess between table samples i and i + 1. */
-static double hermite_guess(const ur_pairing *pairing, size_t i, double u)
-{
-    double h = pairing->u[i + 1] - pairing->u[i], t = (u - pairing->u[i]) / h;
-    double h00 = (1 + 2 * t) * (1 - t) * (1 - t), h10 = t * (1 - t) * (1 - t);
-    double h01 = t * t * (3 - 2 * t), h11 = t * t * (t - 1);
-    return h00 * pairing->sigma[i] + h10 * h * pairing->slope[i] + h01 * pairing->sigma[i + 1] +
-           h11 * h * pairing->slope[i + 1];
-}
-
 /*
  * The nearest sample with a root, the start for u in a gap or at a jump of
  * the pairing; preferably one inside [low, high], the part of the surface in
@@ -541,11 +763,10 @@ double pairing_solved_sigma(ur_pairing *pairing, double u, double low_u, double 
                             const ur_vec3 c1[3])
 {
     size_t i = table_interval(pairing, u);
-    bool both = pairing->state[i] != SAMPLE_NO_ROOT && pairing->state[i + 1] != SAMPLE_NO_ROOT &&
-                pairing->joined[i];
-    double guess, low, high;
+    bool both = table_joined(pairing, i);
+    double guess, low, high, slope;
     if (both) {
-        guess = hermite_guess(pairing, i, u);
+        hermite(pairing, i, i + 1, u, &guess, &slope);
         low = fmin(pairing->sigma[i], pairing->sigma[i + 1]) - pairing->step;
         high = fmax(pairing->sigma[i], pairing->sigma[i + 1]) + pairing->step;
     } else {
@@ -556,24 +777,36 @@ double pairing_solved_sigma(ur_pairing *pairing, double u, double low_u, double 
         low = guess - 4 * pairing->step;
         high = guess + 4 * pairing->step;
     }
-    double sigma = guess;
-    for (int k = 0; k < NEWTON_STEPS; k++) {
-        ur_vec3 d2[3];
-        pairing_rail2(pairing, sigma, d2);
-        double f = condition(c1, d2);
-        double f_sigma = determinant3(c1[1], d2[2], ur_vec3_sub(d2[0], c1[0]));
-        double next = sigma - f / f_sigma;
-        if (!isfinite(next) || next < low || next > high)
-            break;
-        bool done = fabs(next - sigma) <= 1e-14 * (fabs(sigma) + (pairing->s1 - pairing->s0));
-        sigma = next;
-        if (done)
-            return sigma;
-    }
+    /*
+     * At a double root F's rounding leaves the root uncertain by about 1e-8
+     * of the rail; the table's branch through well-conditioned samples is
+     * better there (and keeps to the branch).
+     */
+    ur_vec3 d2[3];
+    pairing_rail2(pairing, guess, d2);
+    if (both && at_double_root(pairing, c1, d2))
+        return guess;
+    double sigma;
+    if (newton_root(pairing, c1, guess, low, high, NULL, &sigma))
+        return sigma;
     double root;
     if (local_root(pairing, c1, guess, 0.5 * (high - low), &root))
         return root;
     return guess;
+}
+
+double pairing_solved_slope(ur_pairing *pairing, double u, const ur_vec3 c1[3], const ur_vec3 d2[3])
+{
+    double slope = pairing_implicit_slope(c1, d2);
+    if (isfinite(slope) && !at_double_root(pairing, c1, d2))
+        return slope;
+    /* At a double root -F_u / F_sigma is 0 / 0: the slope of the table's branch instead. */
+    size_t i = table_interval(pairing, u);
+    if (!table_joined(pairing, i))
+        return isfinite(slope) ? slope : 0.0;
+    double sigma;
+    hermite(pairing, i, i + 1, u, &sigma, &slope);
+    return slope;
 }
 
 ur_status pairing_track(ur_pairing *pairing, ur_error *error)
@@ -590,6 +823,7 @@ ur_status pairing_track(ur_pairing *pairing, ur_error *error)
     if (status != UR_OK)
         return status;
     build_table(pairing);
+    smooth_double_roots(pairing);
     classify_samples(pairing);
     return find_gaps(pairing, error);
 }
