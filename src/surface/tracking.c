@@ -44,10 +44,10 @@ enum {
  * Both derivatives of F, per unit of the rails' parameter ranges, below this
  * fraction of F's natural size: at or next to a double root.  There F's
  * rounding moves the root by up to the square root of it (about 1e-8 of the
- * rail) and the implicit slope is 0 / 0; outside, the root is good to 1e-11
- * of the rail.
+ * rail) and the implicit slope is 0 / 0; outside, Newton's root is good to
+ * about 1e-10 of the rail and the implicit slope to about 1e-6.
  */
-#define DOUBLE_ROOT 1e-4
+#define DOUBLE_ROOT 1e-3
 
 /* ---- The condition and its derivatives ---------------------------------- */
 

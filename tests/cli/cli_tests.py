@@ -496,6 +496,41 @@ def strip_to_a_translated_copy_is_a_rectangle(work):
     close(perimeter(outline), 2 * (30 + length), 1e-6, "rectangle perimeter")
 
 
+def sine_wave_length(length, wavelength, amplitude, steps=400000):
+    """The length of y = amplitude sin(2 pi x / wavelength), x from 0 to length, by a fine polyline."""
+    fine = [(length * i / steps, amplitude * math.sin(2 * math.pi * length * i / steps / wavelength))
+            for i in range(steps + 1)]
+    return sum(math.dist(p, q) for p, q in zip(fine, fine[1:]))
+
+
+@test
+def wavy_wall_is_a_rectangle(work):
+    """The demo's wavy wall (samples/make-wave.py): a sine wave and the same wave 100 mm up.
+
+    At each of its five inflections the pairing has a double root; the strip
+    must pass them all (no gap, no split) and unroll to a rectangle 100 mm by
+    the wave's length, and analyze must call it developable.  With every
+    fourth point the inflections fall between points (once: rulings cross).
+    """
+    rail1, rail2 = (os.path.join(REPO, "samples", "wave-rail%d.csv" % k) for k in (1, 2))
+    result = run(work, "strip", "--rail1", rail1, "--rail2", rail2, "-o", "w.svg", *FINE)
+    check("domain of existence" not in result.stderr, "a gap: " + result.stderr)
+    [outline] = outlines(os.path.join(work, "w.svg"))
+    length = sine_wave_length(500, 250, 10)
+    close(area(outline), 100 * length, 1e-6, "wall area")
+    close(perimeter(outline), 2 * (100 + length), 1e-6, "wall perimeter")
+    found = run(work, "analyze", "strip", "--rail1", rail1, "--rail2", rail2).stdout
+    check(re.search(r"strip: developable", found) and "the whole of rail 1" in found,
+          "analyze: " + found)
+    for name, path in (("low.csv", rail1), ("high.csv", rail2)):
+        write_points(work, name, read_points(path)[::4])
+    result = run(work, "strip", "--rail1", "low.csv", "--rail2", "high.csv", "-o", "f.svg", *FINE)
+    check("domain of existence" not in result.stderr, "a gap: " + result.stderr)
+    [outline] = outlines(os.path.join(work, "f.svg"))
+    close(area(outline), 100 * (perimeter(outline) / 2 - 100), 1e-6, "a rectangle 100 mm high")
+    close(area(outline), 100 * length, 1e-4, "wall area (26 points a rail)")
+
+
 @test
 def strip_reports_its_domain_of_existence(work):
     write_points(work, "low.csv", circle_points(50, 0, 0, math.pi, 300))
