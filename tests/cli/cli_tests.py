@@ -531,6 +531,57 @@ def wavy_wall_is_a_rectangle(work):
     close(area(outline), 100 * length, 1e-4, "wall area (26 points a rail)")
 
 
+def summary_figures(line):
+    """Utilisation (%), cut length (mm) and time (s) as a summary line gives them."""
+    found = re.search(r"utilisation ([0-9.]+) %, cut ([0-9.]+) (mm|m) in about "
+                      r"(?:(\d+) h )?(?:(\d+) min)? ?(?:(\d+) s)?", line)
+    check(found, "no utilisation, cut length and time in %r" % line)
+    utilisation, length, unit, hours, minutes, seconds = found.groups()
+    time = 3600 * int(hours or 0) + 60 * int(minutes or 0) + int(seconds or 0)
+    return float(utilisation), float(length) * (1000 if unit == "m" else 1), time
+
+
+def check_summary_against_report(line, found, what):
+    """The summary's figures are the report's, summed over its sheets, as rounded."""
+    sheets = found["sheets"]
+    area = sum(s["width_mm"] * s["height_mm"] for s in sheets)
+    utilisation = 100 * sum(s["utilisation"] * s["width_mm"] * s["height_mm"] for s in sheets) / area
+    cut = sum(s["cut_length_mm"] for s in sheets)
+    time = sum(s["time_s"] for s in sheets)
+    said = summary_figures(line)
+    check(abs(said[0] - utilisation) <= 0.05 + 1e-9, "%s: utilisation %g %%, report %g %%"
+          % (what, said[0], utilisation))
+    check(abs(said[1] - cut) <= (5 if cut >= 1000 else 0.5) + 1e-9,
+          "%s: cut %g mm, report %g mm" % (what, said[1], cut))
+    check(abs(said[2] - time) <= (30 if time >= 3600 else 0.5) + 1e-9,
+          "%s: time %g s, report %g s" % (what, said[2], time))
+
+
+@test
+def summary_gives_sheets_utilisation_cut_length_and_time(work):
+    """The one-line summaries of a surface, nest and job: the report's figures, plurals right."""
+    result = run(work, "cylinder", "--radius", "40", "--height", "120", "--material",
+                 "cardboard-2mm", "-o", "c.svg", "--report", "c.json")
+    [line] = [l for l in result.stderr.splitlines() if "coverage" in l]
+    check(re.search(r": 1 piece, .* 1 sheet of ", line), line)
+    check_summary_against_report(line, report(work, "c.json"), "cylinder")
+    found = report(work, "c.json")
+    check(len(found["sheets"]) == 1 and found["sheets"][0]["time_s"] > 0, "sheets %r" % found)
+    result = run(work, "helicoid", "--radius", "45", "--pitch", "80", "--turns", "0.5", "--width",
+                 "40", "--offset", "5", "--allowances", "none", "-o", "p.svg")
+    for copies, word in (("1", "1 part on"), ("12", "12 parts on")):
+        result = run(work, "nest", "p.svg:" + copies, "--material", "cardboard-2mm", "-o",
+                     "n.svg", "--report", "n.json")
+        [line] = [l for l in result.stderr.splitlines() if " on " in l and "->" in l]
+        check(word in line and "1 parts" not in result.stderr and
+              "1 stock sheets" not in result.stderr, line)
+        check_summary_against_report(line, report(work, "n.json"), "nest of " + copies)
+    result = run(work, "job", os.path.join(REPO, "samples", "jobs", "lamp.xml"), "-o", "lamp")
+    [line] = [l for l in result.stderr.splitlines() if l.startswith("unroll: job lamp:")]
+    check(re.search(r"8 pieces on \d+ sheets?, utilisation", line), line)
+    check_summary_against_report(line, report(work, os.path.join("lamp", "lamp.json")), "job")
+
+
 @test
 def strip_reports_its_domain_of_existence(work):
     write_points(work, "low.csv", circle_points(50, 0, 0, math.pi, 300))
