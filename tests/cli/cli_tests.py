@@ -583,6 +583,34 @@ def summary_gives_sheets_utilisation_cut_length_and_time(work):
 
 
 @test
+def readme_examples_are_current(work):
+    """Every example in README.md ("$ build/release/unroll ..." in a fenced block) prints
+    exactly the lines the README shows after it (make readme writes them)."""
+    with open(os.path.join(REPO, "README.md")) as f:
+        lines = f.read().split("\n")
+    os.symlink(os.path.join(REPO, "samples"), os.path.join(work, "samples"))
+    os.mkdir(os.path.join(work, "out"))
+    count = 0
+    for start, line in enumerate(lines):
+        if not (line.startswith("$ build/release/unroll ") and lines[start - 1].startswith("```")):
+            continue
+        end = start
+        while lines[end].endswith("\\"):
+            end += 1
+        shown = []
+        while not lines[end + 1 + len(shown)].startswith("```"):
+            shown.append(lines[end + 1 + len(shown)])
+        words = " ".join(l.rstrip("\\") for l in lines[start:end + 1]).split()[2:]
+        result = run(work, *words)
+        printed = (result.stdout + result.stderr).splitlines()
+        check(printed == shown, "README.md line %d: unroll %s printed\n%s\nbut the README shows\n%s\n"
+              "(make readme brings it up to date)"
+              % (start + 1, " ".join(words), "\n".join(printed), "\n".join(shown)))
+        count += 1
+    check(count >= 3, "only %d examples found in README.md" % count)
+
+
+@test
 def strip_reports_its_domain_of_existence(work):
     write_points(work, "low.csv", circle_points(50, 0, 0, math.pi, 300))
     write_points(work, "high.csv", circle_points(30, 40, 0.4, math.pi, 300))
