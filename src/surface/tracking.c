@@ -33,12 +33,17 @@
 #include <string.h>
 
 enum {
-    MIN_SAMPLES = 2048, /* rail 1 samples of the root table */
-    MIN_SCAN = 2048,    /* rail 2 samples of a full scan */
-    RESCAN_EVERY = 32,  /* inside a gap, scan all of rail 2 only this often */
-    BISECTIONS = 48,    /* refinement of gap ends */
-    NEWTON_STEPS = 64,  /* near a double root Newton's method only halves the error each step */
+    MIN_SAMPLES = 2048,  /* rail 1 samples of the root table */
+    MIN_SCAN = 2048,     /* rail 2 samples of a full scan */
+    RESCAN_EVERY = 32,   /* inside a gap, scan all of rail 2 only this often */
+    BISECTIONS = 48,     /* refinement of gap ends */
+    NEWTON_STEPS = 64,   /* near a double root Newton's method only halves the error each step */
+    BRIDGE_SAMPLES = 24, /* the farthest a branch is followed past roots that turn back */
+    BRIDGE_MARGIN = 4,   /* samples kept off the turn on either side of a bridge */
 };
+
+/* The largest relative change of slope from one table sample to the next that continues it. */
+#define SLOPE_CHANGE 0.2
 
 /*
  * Both derivatives of F, per unit of the rails' parameter ranges, below this
@@ -48,6 +53,9 @@ enum {
  * about 1e-10 of the rail and the implicit slope to about 1e-6.
  */
 #define DOUBLE_ROOT 1e-3
+
+/* The same, below which interpolation errors of the rails may move the root (near_double_root). */
+#define NEAR_DOUBLE_ROOT 0.05
 
 /* ---- The condition and its derivatives ---------------------------------- */
 
@@ -152,7 +160,16 @@ static bool root_at_rail_end(ur_pairing *pairing, const ur_vec3 c1[3], double gu
         double at_end = condition_at(ends[k], &context);
         double inside = condition_at(ends[k] + inward[k] * h, &context);
         double crossing = at_end / (at_end - inside); /* in steps of h, inward */
-        if (fabs(crossing) * h <= pairing->end_slack * (pairing->s1 - pairing->s0)) {
+        /*
+         * Or the condition, in radians between the tangent planes at the
+         * ruling's ends, nearly holds there: next to a double root a small
+         * error of the interpolation moves the root a long way.
+         */
+        ur_vec3 d2[3];
+        pairing_rail2(pairing, ends[k], d2);
+        double angle = fabs(at_end) / condition_scale(c1, d2);
+        if (fabs(crossing) * h <= pairing->end_slack * (pairing->s1 - pairing->s0) ||
+            angle <= pairing->end_slack) {
             *root = ends[k];
             return true;
         }
@@ -252,8 +269,11 @@ static bool newton_root(ur_pairing *pairing, const ur_vec3 c1[3], double guess, 
             /* Rail 2 ends here: a root past it within the end slack is on its end. */
             double end = next < pairing->s0 ? pairing->s0 : pairing->s1;
             if (sigma == end) {
+                /* As root_at_rail_end: within the end slack, in length or in angle. */
                 *root = end;
-                return near_rail2(pairing, next) && (!other || fabs(end - *other) > tolerance);
+                bool near = near_rail2(pairing, next) ||
+                            fabs(f) / condition_scale(c1, d2) <= pairing->end_slack;
+                return near && (!other || fabs(end - *other) > tolerance);
             }
             next = end;
         }
@@ -265,6 +285,29 @@ static bool newton_root(ur_pairing *pairing, const ur_vec3 c1[3], double guess, 
         }
     }
     return false;
+}
+
+static void store_root(ur_pairing *pairing, size_t i, double sigma, double slope)
+{
+    if (!pairing->wrap)
+        sigma = fmin(fmax(sigma, pairing->s0), pairing->s1);
+    pairing->sigma[i] = sigma;
+    pairing->slope[i] = isfinite(slope) ? slope : 0.0;
+    pairing->state[i] = SAMPLE_GOOD;
+}
+
+/* Cubic Hermite value and slope at u between table samples i and j. */
+static void hermite(const ur_pairing *pairing, size_t i, size_t j, double u, double *sigma,
+                    double *slope)
+{
+    double h = pairing->u[j] - pairing->u[i], t = (u - pairing->u[i]) / h;
+    double h00 = (1 + 2 * t) * (1 - t) * (1 - t), h10 = t * (1 - t) * (1 - t);
+    double h01 = t * t * (3 - 2 * t), h11 = t * t * (t - 1);
+    double d00 = 6 * t * (t - 1), d10 = (1 - t) * (1 - 3 * t), d11 = t * (3 * t - 2);
+    *sigma = h00 * pairing->sigma[i] + h10 * h * pairing->slope[i] + h01 * pairing->sigma[j] +
+             h11 * h * pairing->slope[j];
+    *slope = d00 * (pairing->sigma[i] - pairing->sigma[j]) / h + d10 * pairing->slope[i] +
+             d11 * pairing->slope[j];
 }
 
 /*
@@ -292,11 +335,9 @@ static double continued_slope(ur_pairing *pairing, const ur_vec3 c1[3], double s
  * the one kept is the one whose position and slope continue the branch
  * best (slope continuity, not the nearest root).
  */
-static bool follow_root(ur_pairing *pairing, size_t from, double u, const ur_vec3 c1[3],
-                        double *root, double *slope)
+static bool follow_from(ur_pairing *pairing, double u_from, double sigma_from, double slope_from,
+                        double u, const ur_vec3 c1[3], double *root, double *slope)
 {
-    double u_from = pairing->u[from], sigma_from = pairing->sigma[from];
-    double slope_from = pairing->slope[from];
     double change = slope_from * (u - u_from), predicted = sigma_from + change;
     double window = search_window(pairing, change);
     double candidates[2];
@@ -327,6 +368,60 @@ static bool follow_root(ur_pairing *pairing, size_t from, double u, const ur_vec
     return true;
 }
 
+static bool follow_root(ur_pairing *pairing, size_t from, double u, const ur_vec3 c1[3],
+                        double *root, double *slope)
+{
+    return follow_from(pairing, pairing->u[from], pairing->sigma[from], pairing->slope[from], u, c1,
+                       root, slope);
+}
+
+/*
+ * Whether a slope continues the one before: on a smooth branch the slope
+ * changes little from one table sample to the next.
+ */
+static bool continues(double slope_from, double slope)
+{
+    return fabs(slope - slope_from) <= SLOPE_CHANGE * fmax(fabs(slope_from), fabs(slope));
+}
+
+/*
+ * Where the rails' interpolations differ a little (rails with inflections
+ * and unlike parametrisations), the two branches that would cross at a
+ * double root miss each other instead: near the inflection each turns back
+ * and neither root there continues the slope.  The branch goes on beyond:
+ * predicted from sample `from` a few samples on, a root there continues the
+ * slope.  Then the samples in between take the branch's Hermite
+ * interpolation and are marked bridged; returns the landing sample, or
+ * SIZE_MAX when no root continues the branch (a true end of it).  `bad` is
+ * the first sample where the branch did not go on; the landing is at least
+ * BRIDGE_MARGIN past it, where the roots no longer feel the turn.
+ */
+static size_t bridge(ur_pairing *pairing, size_t from, size_t bad)
+{
+    size_t first = bad + BRIDGE_MARGIN > from + 2 ? bad + BRIDGE_MARGIN : from + 2;
+    for (size_t land = first; land <= bad + BRIDGE_SAMPLES && land < pairing->count; land++) {
+        ur_vec3 c1[3];
+        ur_curve_eval(pairing->rail1, pairing->u[land], c1);
+        double root, slope;
+        if (!follow_root(pairing, from, pairing->u[land], c1, &root, &slope) ||
+            !continues(pairing->slope[from], slope))
+            continue;
+        double predicted =
+            pairing->sigma[from] + pairing->slope[from] * (pairing->u[land] - pairing->u[from]);
+        if (fabs(root - predicted) > SLOPE_CHANGE * fabs(predicted - pairing->sigma[from]))
+            continue;
+        store_root(pairing, land, root, slope);
+        for (size_t k = from + 1; k < land; k++) {
+            hermite(pairing, from, land, pairing->u[k], &pairing->sigma[k], &pairing->slope[k]);
+            pairing->state[k] = SAMPLE_GOOD;
+        }
+        for (size_t k = from; k < land; k++)
+            pairing->joined[k] = pairing->bridged[k] = true;
+        return land;
+    }
+    return SIZE_MAX;
+}
+
 /*
  * The slope at a root found without a neighbour (a scan): -F_u / F_sigma, or
  * at a double root the slope of the branch that starts a strip there: the
@@ -351,6 +446,50 @@ static bool candidate_crosses(ur_pairing *pairing, double u, const ur_vec3 c1[3]
     return rulings_cross(pairing, u, sigma, fresh_slope(pairing, u, c1, sigma));
 }
 
+typedef struct scan_choice {
+    bool have_previous;
+    double predicted;
+    double best; /* the score of *root: distance from the prediction, or ruling length */
+    bool found;
+} scan_choice;
+
+/* Keeps candidate if it scores better than the root chosen so far. */
+static void consider(ur_pairing *pairing, double u, const ur_vec3 c1[3], double candidate,
+                     scan_choice *choice, double *root)
+{
+    if (pairing->wrap && choice->have_previous) /* unwrap to the turn nearest the prediction */
+        candidate += (pairing->s1 - pairing->s0) *
+                     round((choice->predicted - candidate) / (pairing->s1 - pairing->s0));
+    double score = choice->have_previous ? fabs(candidate - choice->predicted)
+                                         : ruling_length(pairing, c1, candidate);
+    if (score < choice->best &&
+        (choice->have_previous || !candidate_crosses(pairing, u, c1, candidate))) {
+        choice->best = score;
+        *root = candidate;
+        choice->found = true;
+    }
+}
+
+/*
+ * Where |F| dips without changing sign between scan samples (or at an end
+ * of rail 2), two roots may lie closer together than a scan step, or one
+ * on the end: Newton's method from there finds them.
+ */
+static void dip_roots(ur_pairing *pairing, double u, const ur_vec3 c1[3], double sigma,
+                      scan_choice *choice, double *root)
+{
+    double window = 2 * pairing->step, first, second;
+    if ((sigma == pairing->s0 || sigma >= pairing->s1) &&
+        root_at_rail_end(pairing, c1, sigma, window, &first))
+        consider(pairing, u, c1, first, choice, root);
+    if (!newton_root(pairing, c1, sigma, sigma - window, sigma + window, NULL, &first))
+        return;
+    consider(pairing, u, c1, first, choice, root);
+    double start = first == sigma ? sigma + 0.5 * pairing->step : sigma;
+    if (newton_root(pairing, c1, start, sigma - window, sigma + window, &first, &second))
+        consider(pairing, u, c1, second, choice, root);
+}
+
 /*
  * Every root on rail 2 (one period when closed).  With a previous root, the
  * one nearest the prediction; without, the shortest ruling among those that
@@ -359,41 +498,27 @@ static bool candidate_crosses(ur_pairing *pairing, double u, const ur_vec3 c1[3]
 static bool scan_root(ur_pairing *pairing, double u, const ur_vec3 c1[3], bool have_previous,
                       double predicted, double *root)
 {
-    bool found = false;
-    double best = INFINITY;
-    double previous_value = 0.0;
-    for (size_t j = 0; j < pairing->scan_count; j++) {
-        double value = determinant3(c1[1], pairing->scan_tangent[j],
-                                    ur_vec3_sub(pairing->scan_position[j], c1[0]));
-        if (j > 0 && (value <= 0) != (previous_value <= 0)) {
-            double low = pairing->s0 + pairing->step * (double)(j - 1);
-            double candidate = brent(pairing, c1, low, low + pairing->step);
-            if (pairing->wrap && have_previous) /* unwrap to the turn nearest the prediction */
-                candidate += (pairing->s1 - pairing->s0) *
-                             round((predicted - candidate) / (pairing->s1 - pairing->s0));
-            double score =
-                have_previous ? fabs(candidate - predicted) : ruling_length(pairing, c1, candidate);
-            if (score < best && (have_previous || !candidate_crosses(pairing, u, c1, candidate))) {
-                best = score;
-                *root = candidate;
-                found = true;
-            }
-        }
-        previous_value = value;
+    scan_choice choice = {have_previous, predicted, INFINITY, false};
+    size_t n = pairing->scan_count;
+    double before = 0.0, value = 0.0, after = 0.0;
+    for (size_t j = 0; j < n; j++) {
+        before = value;
+        value = j == 0 ? determinant3(c1[1], pairing->scan_tangent[0],
+                                      ur_vec3_sub(pairing->scan_position[0], c1[0]))
+                       : after;
+        if (j + 1 < n)
+            after = determinant3(c1[1], pairing->scan_tangent[j + 1],
+                                 ur_vec3_sub(pairing->scan_position[j + 1], c1[0]));
+        double sigma = pairing->s0 + pairing->step * (double)j;
+        if (j > 0 && (value <= 0) != (before <= 0))
+            consider(pairing, u, c1, brent(pairing, c1, sigma - pairing->step, sigma), &choice,
+                     root);
+        bool dip = (j == 0 || ((value <= 0) == (before <= 0) && fabs(value) <= fabs(before))) &&
+                   (j + 1 == n || ((value <= 0) == (after <= 0) && fabs(value) <= fabs(after)));
+        if (dip)
+            dip_roots(pairing, u, c1, sigma, &choice, root);
     }
-    /* A root on an end of an open rail 2 shows no sign change inside it. */
-    double ends[2] = {pairing->s0, pairing->s1};
-    for (int k = 0; k < 2 && !have_previous; k++) {
-        double candidate;
-        if (root_at_rail_end(pairing, c1, ends[k], 0.0, &candidate) &&
-            ruling_length(pairing, c1, candidate) < best &&
-            !candidate_crosses(pairing, u, c1, candidate)) {
-            best = ruling_length(pairing, c1, candidate);
-            *root = candidate;
-            found = true;
-        }
-    }
-    return found;
+    return choice.found;
 }
 
 /* ---- The root table ----------------------------------------------------- */
@@ -406,12 +531,15 @@ ur_status pairing_table_alloc(ur_pairing *pairing, size_t count, ur_error *error
     pairing->slope = ur_alloc_array(count, sizeof *pairing->slope, error);
     pairing->state = ur_alloc_array(count, sizeof *pairing->state, error);
     pairing->joined = ur_alloc_array(count, sizeof *pairing->joined, error);
-    if (!pairing->u || !pairing->sigma || !pairing->slope || !pairing->state || !pairing->joined)
+    pairing->bridged = ur_alloc_array(count, sizeof *pairing->bridged, error);
+    if (!pairing->u || !pairing->sigma || !pairing->slope || !pairing->state || !pairing->joined ||
+        !pairing->bridged)
         return UR_ERROR_INTERNAL;
     double u0 = ur_curve_start(pairing->rail1), u1 = ur_curve_end(pairing->rail1);
     for (size_t i = 0; i < count; i++) {
         pairing->u[i] = u0 + (u1 - u0) * (double)i / (double)(count - 1);
         pairing->state[i] = SAMPLE_NO_ROOT;
+        pairing->bridged[i] = false;
     }
     return UR_OK;
 }
@@ -433,15 +561,6 @@ static ur_status scan_alloc(ur_pairing *pairing, ur_error *error)
         pairing->scan_tangent[j] = d2[1];
     }
     return UR_OK;
-}
-
-static void store_root(ur_pairing *pairing, size_t i, double sigma, double slope)
-{
-    if (!pairing->wrap)
-        sigma = fmin(fmax(sigma, pairing->s0), pairing->s1);
-    pairing->sigma[i] = sigma;
-    pairing->slope[i] = isfinite(slope) ? slope : 0.0;
-    pairing->state[i] = SAMPLE_GOOD;
 }
 
 /* Follows the root from sample `from` backward while it lasts (after a rescan). */
@@ -473,12 +592,31 @@ static void build_table(ur_pairing *pairing)
         if (have_previous)
             predicted = pairing->sigma[last_good] +
                         pairing->slope[last_good] * (pairing->u[i] - pairing->u[last_good]);
-        if (have_previous && last_good + 1 == i &&
-            follow_root(pairing, last_good, pairing->u[i], c1, &root, &slope)) {
-            store_root(pairing, i, root, slope);
-            pairing->joined[i - 1] = true;
-            last_good = i;
-            continue;
+        if (have_previous && last_good + 1 == i) {
+            bool found = follow_root(pairing, last_good, pairing->u[i], c1, &root, &slope);
+            if (!found || !continues(pairing->slope[last_good], slope)) {
+                /*
+                 * From a few samples back, before the branch began to turn,
+                 * to a few samples past the turn.
+                 */
+                size_t from = last_good;
+                while (last_good - from < BRIDGE_MARGIN && from > 0 && pairing->joined[from - 1] &&
+                       !pairing->bridged[from - 1])
+                    from--;
+                size_t land = bridge(pairing, from, i);
+                if (land == SIZE_MAX && from != last_good)
+                    land = bridge(pairing, last_good, i);
+                if (land != SIZE_MAX) {
+                    last_good = i = land;
+                    continue;
+                }
+            }
+            if (found) {
+                store_root(pairing, i, root, slope);
+                pairing->joined[i - 1] = true;
+                last_good = i;
+                continue;
+            }
         }
         /* Lost or never found: scan rail 2, but only now and then inside a gap. */
         if (since_scan + 1 < RESCAN_EVERY && i + 1 < pairing->count) {
@@ -552,43 +690,58 @@ static double fresh_slope(ur_pairing *pairing, double u, const ur_vec3 c1[3], do
     return isfinite(best) ? best : isfinite(slope) ? slope : 0.0;
 }
 
-/* Whether the root of table sample i is at or next to a double root. */
-static bool sample_at_double_root(ur_pairing *pairing, size_t i)
+/*
+ * Whether (c1, d2) is near enough to a double root that an error of the
+ * rails' interpolation, not only of F's rounding, moves the root: where two
+ * rails of unlike parametrisation have inflections, the branches that
+ * should cross there miss each other by about the square root of it.
+ */
+static bool near_double_root(const ur_pairing *pairing, const ur_vec3 c1[3], const ur_vec3 d2[3])
+{
+    ur_vec3 d = ur_vec3_sub(d2[0], c1[0]);
+    double f_u = determinant3(c1[2], d2[1], d), f_sigma = determinant3(c1[1], d2[2], d);
+    double range1 = ur_curve_end(pairing->rail1) - ur_curve_start(pairing->rail1);
+    double size = NEAR_DOUBLE_ROOT * condition_scale(c1, d2);
+    return fabs(f_u) * range1 <= size && fabs(f_sigma) * (pairing->s1 - pairing->s0) <= size;
+}
+
+/* Whether the root of table sample i is near a double root (near_double_root). */
+static bool sample_near_double_root(ur_pairing *pairing, size_t i)
 {
     ur_vec3 c1[3], d2[3];
     ur_curve_eval(pairing->rail1, pairing->u[i], c1);
     pairing_rail2(pairing, pairing->sigma[i], d2);
-    return at_double_root(pairing, c1, d2);
-}
-
-/* Cubic Hermite value and slope at u between table samples i and j. */
-static void hermite(const ur_pairing *pairing, size_t i, size_t j, double u, double *sigma,
-                    double *slope)
-{
-    double h = pairing->u[j] - pairing->u[i], t = (u - pairing->u[i]) / h;
-    double h00 = (1 + 2 * t) * (1 - t) * (1 - t), h10 = t * (1 - t) * (1 - t);
-    double h01 = t * t * (3 - 2 * t), h11 = t * t * (t - 1);
-    double d00 = 6 * t * (t - 1), d10 = (1 - t) * (1 - 3 * t), d11 = t * (3 * t - 2);
-    *sigma = h00 * pairing->sigma[i] + h10 * h * pairing->slope[i] + h01 * pairing->sigma[j] +
-             h11 * h * pairing->slope[j];
-    *slope = d00 * (pairing->sigma[i] - pairing->sigma[j]) / h + d10 * pairing->slope[i] +
-             d11 * pairing->slope[j];
+    return near_double_root(pairing, c1, d2);
 }
 
 /*
- * A sample at a double root has a root good only to about 1e-8 of the rail
- * and a slope from the parabola through its neighbour: take both from the
- * branch through the well-conditioned samples on either side instead.
+ * Samples near a double root have roots that F's rounding (at the double
+ * root) or the rails' interpolation (next to it, for rails of unlike
+ * parametrisation) move off the branch, and slopes to match: the run of
+ * them takes the Hermite interpolation of the branch between the samples
+ * on either side, and is marked bridged so that sigma is answered from it.
  */
 static void smooth_double_roots(ur_pairing *pairing)
 {
-    for (size_t i = 1; i + 1 < pairing->count; i++) {
-        if (pairing->state[i] != SAMPLE_GOOD || !pairing->joined[i - 1] || !pairing->joined[i] ||
-            !sample_at_double_root(pairing, i))
+    size_t n = pairing->count;
+    for (size_t i = 1; i + 1 < n; i++) {
+        if (pairing->state[i] != SAMPLE_GOOD || !pairing->joined[i - 1] ||
+            !sample_near_double_root(pairing, i))
             continue;
-        if (sample_at_double_root(pairing, i - 1) || sample_at_double_root(pairing, i + 1))
+        size_t before = i - 1, after = i;
+        while (after + 1 < n && pairing->joined[after] && after - i < BRIDGE_SAMPLES &&
+               sample_near_double_root(pairing, after))
+            after++;
+        if (!pairing->joined[after - 1] || sample_near_double_root(pairing, after) ||
+            sample_near_double_root(pairing, before)) {
+            i = after;
             continue;
-        hermite(pairing, i - 1, i + 1, pairing->u[i], &pairing->sigma[i], &pairing->slope[i]);
+        }
+        for (size_t k = i; k < after; k++)
+            hermite(pairing, before, after, pairing->u[k], &pairing->sigma[k], &pairing->slope[k]);
+        for (size_t k = before; k < after; k++)
+            pairing->bridged[k] = true;
+        i = after;
     }
 }
 
@@ -760,11 +913,12 @@ static size_t nearest_root_sample(const ur_pairing *pairing, size_t i, double u,
 }
 
 double pairing_solved_sigma(ur_pairing *pairing, double u, double low_u, double high_u,
-                            const ur_vec3 c1[3])
+                            const ur_vec3 c1[3], bool *on_table)
 {
     size_t i = table_interval(pairing, u);
     bool both = table_joined(pairing, i);
     double guess, low, high, slope;
+    *on_table = false;
     if (both) {
         hermite(pairing, i, i + 1, u, &guess, &slope);
         low = fmin(pairing->sigma[i], pairing->sigma[i + 1]) - pairing->step;
@@ -784,7 +938,8 @@ double pairing_solved_sigma(ur_pairing *pairing, double u, double low_u, double 
      */
     ur_vec3 d2[3];
     pairing_rail2(pairing, guess, d2);
-    if (both && at_double_root(pairing, c1, d2))
+    *on_table = both && (pairing->bridged[i] || at_double_root(pairing, c1, d2));
+    if (*on_table)
         return guess;
     double sigma;
     if (newton_root(pairing, c1, guess, low, high, NULL, &sigma))
@@ -795,13 +950,14 @@ double pairing_solved_sigma(ur_pairing *pairing, double u, double low_u, double 
     return guess;
 }
 
-double pairing_solved_slope(ur_pairing *pairing, double u, const ur_vec3 c1[3], const ur_vec3 d2[3])
+double pairing_solved_slope(ur_pairing *pairing, double u, const ur_vec3 c1[3], const ur_vec3 d2[3],
+                            bool on_table)
 {
     double slope = pairing_implicit_slope(c1, d2);
-    if (isfinite(slope) && !at_double_root(pairing, c1, d2))
+    size_t i = table_interval(pairing, u);
+    if (isfinite(slope) && !on_table && !at_double_root(pairing, c1, d2))
         return slope;
     /* At a double root -F_u / F_sigma is 0 / 0: the slope of the table's branch instead. */
-    size_t i = table_interval(pairing, u);
     if (!table_joined(pairing, i))
         return isfinite(slope) ? slope : 0.0;
     double sigma;
