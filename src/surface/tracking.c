@@ -18,7 +18,10 @@
  * the nearest root may lie on the other branch.  So the continuation looks at
  * both roots near the prediction and keeps the one whose slope continues the
  * slope it came with; at the double root itself, where -F_u / F_sigma is 0 / 0,
- * the slope comes from the neighbouring samples instead.
+ * the slope comes from the neighbouring samples instead.  Rails of unlike
+ * parametrisation are interpolated a little differently, and there the two
+ * branches miss each other, each turning back: the pairing is carried over
+ * the turn (bridge) and answered there from the table's interpolation.
  *
  * Where there is no root, where the root jumps to another branch, or where
  * consecutive rulings cross inside the strip (sigma decreasing, or the edge
@@ -80,14 +83,21 @@ double pairing_implicit_slope(const ur_vec3 c1[3], const ur_vec3 d2[3])
     return -f_u / f_sigma;
 }
 
-/* Whether (c1, d2) is at or next to a double root: grad F nearly zero. */
-static bool at_double_root(const ur_pairing *pairing, const ur_vec3 c1[3], const ur_vec3 d2[3])
+/* Whether both derivatives of F at (c1, d2) are below `fraction` of F's natural size. */
+static bool gradient_below(const ur_pairing *pairing, const ur_vec3 c1[3], const ur_vec3 d2[3],
+                           double fraction)
 {
     ur_vec3 d = ur_vec3_sub(d2[0], c1[0]);
     double f_u = determinant3(c1[2], d2[1], d), f_sigma = determinant3(c1[1], d2[2], d);
     double range1 = ur_curve_end(pairing->rail1) - ur_curve_start(pairing->rail1);
-    double size = DOUBLE_ROOT * condition_scale(c1, d2);
+    double size = fraction * condition_scale(c1, d2);
     return fabs(f_u) * range1 <= size && fabs(f_sigma) * (pairing->s1 - pairing->s0) <= size;
+}
+
+/* Whether (c1, d2) is at or next to a double root: grad F nearly zero. */
+static bool at_double_root(const ur_pairing *pairing, const ur_vec3 c1[3], const ur_vec3 d2[3])
+{
+    return gradient_below(pairing, c1, d2, DOUBLE_ROOT);
 }
 
 typedef struct root_context {
@@ -698,11 +708,7 @@ static double fresh_slope(ur_pairing *pairing, double u, const ur_vec3 c1[3], do
  */
 static bool near_double_root(const ur_pairing *pairing, const ur_vec3 c1[3], const ur_vec3 d2[3])
 {
-    ur_vec3 d = ur_vec3_sub(d2[0], c1[0]);
-    double f_u = determinant3(c1[2], d2[1], d), f_sigma = determinant3(c1[1], d2[2], d);
-    double range1 = ur_curve_end(pairing->rail1) - ur_curve_start(pairing->rail1);
-    double size = NEAR_DOUBLE_ROOT * condition_scale(c1, d2);
-    return fabs(f_u) * range1 <= size && fabs(f_sigma) * (pairing->s1 - pairing->s0) <= size;
+    return gradient_below(pairing, c1, d2, NEAR_DOUBLE_ROOT);
 }
 
 /* Whether the root of table sample i is near a double root (near_double_root). */
