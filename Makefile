@@ -109,13 +109,14 @@ $(LIBRARY): $(LIB_OBJECTS)
 $(PROGRAM): $(CLI_OBJECTS) $(LIBRARY)
 	$(CC) $(LDFLAGS_ALL) -o $@ $(CLI_OBJECTS) $(LIBRARY) $(LDLIBS_ALL)
 
-# test_support.h is shared, header-only: a change to it rebuilds every test.
-$(BUILD)/tests/%: tests/unit/%.c tests/unit/test_support.h $(LIBRARY)
+# test_support.h and nest_sets.h are shared, header-only: a change to them rebuilds every
+# test (and nest_sets.h, the benches that make the same sets of parts).
+$(BUILD)/tests/%: tests/unit/%.c tests/unit/test_support.h tests/unit/nest_sets.h $(LIBRARY)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_ALL) $(shell $(PKG_CONFIG) --cflags $(TEST_PACKAGES)) -o $@ $< \
 		$(LIBRARY) $(LDFLAGS_ALL) $(LDLIBS_ALL) $(shell $(PKG_CONFIG) --libs $(TEST_PACKAGES))
 
-$(BUILD)/bench/%: bench/%.c $(LIBRARY)
+$(BUILD)/bench/%: bench/%.c tests/unit/nest_sets.h $(LIBRARY)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_ALL) -o $@ $< $(LIBRARY) $(LDFLAGS_ALL) $(LDLIBS_ALL)
 

@@ -314,8 +314,18 @@ typedef struct ur_parts_import_options {
      * asking for --units.  ur_parts_unit_mm turns a unit name into it.
      */
     double unit;
-    /* mm: farthest a flattened curve strays from the curve; default 0.01. */
+    /*
+     * mm: farthest a flattened curve strays from the curve; default 0.01.
+     * Ends this close meet: a path whose end is this close to its start is
+     * closed, an arc or ellipse this close to a full turn is one.
+     */
     double tolerance;
+    /*
+     * Refuse a file with anything that would be left out (an open shape,
+     * or a score, engrave, mark or kerf line no part holds) instead of
+     * leaving it out with a warning; default false.
+     */
+    bool strict;
 } ur_parts_import_options;
 
 void ur_parts_import_options_default(ur_parts_import_options *options);
@@ -342,6 +352,14 @@ typedef struct ur_parts {
  * with GEOS).  A part's paths[0] is its outline, a closed counter-clockwise
  * CUT ring (first point not repeated); its holes follow as closed clockwise
  * CUT rings.  measures.flat_area is the outline's area less the holes'.
+ * Every other path (an open shape; any shape on a layer or in a group
+ * named score, fold, score valley, engrave, kerf or mark, as unroll writes
+ * them) follows, with that operation (CUT when open on another layer),
+ * in the part whose outline holds it (within the tolerance): unroll's own
+ * folds and labels, another program's engraving or slits.  What no part
+ * holds is left out with one warning (the file, the first one's line, how
+ * many), or refused with options->strict.  A path whose end lies within the
+ * tolerance of its start is closed.
  * Curves (arcs, circles, ellipses, Bezier curves, bulges) are flattened to
  * within options->tolerance, every point on the curve; a ring that is
  * exactly a circle (SVG circle, an ellipse of equal radii, a sub-path of
@@ -354,10 +372,13 @@ typedef struct ur_parts {
  * SVG (libxml2, no network, no entity expansion): path (every command),
  * rect (rx, ry round the corners), circle, ellipse, polygon, and polyline
  * or a path's sub-path that ends where it starts without closing; inside g
- * and nested svg elements, with every transform.  Elements hidden with
+ * and nested svg elements, with every transform; use (href or xlink:href
+ * "#id", x, y, transform, uses of uses) draws a copy of the element or
+ * symbol (viewBox scaled to the use's width and height) it names, its parts
+ * numbered rather than named by the copied id.  Elements hidden with
  * display:none, defs, clipPath, mask, marker, pattern, symbol, metadata and
- * elements of other namespaces (Inkscape's, Sodipodi's) are skipped; text
- * and image are skipped with a warning; use (clones) is refused.  Units: a
+ * elements of other namespaces (Inkscape's, Sodipodi's) are skipped where
+ * they stand; text and image are skipped with a warning.  Units: a
  * root width or height in mm, cm, in, pt, pc or px (96 per inch) with the
  * viewBox sets the size of a user unit (the smaller of the two scales when
  * they differ); a width without a unit is taken in options->unit.  The y
@@ -366,19 +387,29 @@ typedef struct ur_parts {
  * DXF (ASCII): $INSUNITS (1 in, 2 ft, 4 mm, 5 cm, 6 m, 8 microinch, 9 mil,
  * 10 yd, 13 micron, 14 dm; 0 or absent: options->unit); in ENTITIES:
  * LWPOLYLINE and POLYLINE (closed by flag 1, with bulges), CIRCLE, ELLIPSE,
- * and LINE, ARC and open polylines, which are chained end to end (ends
- * within the tolerance meet) into closed loops.  An extrusion direction of
- * (0, 0, -1) mirrors the entity, as AutoCAD draws it.  TEXT, MTEXT,
- * DIMENSION, HATCH, POINT and other entities that draw no outline are
- * skipped with a warning; INSERT (block references), SPLINE, 3D polygon
- * meshes and polyface meshes are refused, naming the entity and line.
+ * SPLINE (NURBS of any degree, rational or not, any non-decreasing knots,
+ * by its control points), INSERT (the block of BLOCKS, less its base point,
+ * scaled, turned, in columns and rows, blocks inside blocks; entities on
+ * layer 0 take the INSERT's layer), and LINE, ARC and open polylines and
+ * splines, which are chained end to end (ends within the tolerance meet)
+ * into closed loops.  An ARC or ELLIPSE within the tolerance of a full
+ * turn is one.  An extrusion direction of (0, 0, -1) mirrors the entity,
+ * as AutoCAD draws it.  TEXT, MTEXT, DIMENSION, HATCH, POINT and other
+ * entities that draw no outline are skipped with a warning; 3D polygon
+ * meshes, polyface meshes and splines given by fit points only are refused,
+ * naming the entity and line.
  *
  * Refuses with UR_ERROR_INPUT, "FILE:LINE: message" where there is a line:
  * a missing, empty or unreadable file, another extension, malformed XML
  * (libxml2's message) or DXF (a group code that is not a number, a code
  * without its value, a number that is not one), no physical size and no
- * options->unit ("give --units"), an open shape (naming the SVG element and
- * its id, or the DXF entity, that does not close), NaN, infinite or
+ * options->unit ("give --units"), with options->strict an open shape
+ * (naming the SVG element and its id, or the DXF entity, that does not
+ * close), a block that inserts itself (directly or through others) or is
+ * not defined, a spline of degree 0 or with decreasing knots, a use that
+ * points at itself (or a group holding it), at nothing or outside the
+ * file, more than 200000 entities drawn by INSERTs or 100000 elements by
+ * uses, NaN, infinite or
  * too-large coordinates, a ring of zero area, two rings that cross, a part
  * whose holes together fill it (naming its outline), and a file with no
  * closed shape at all.  A ring that crosses itself is

@@ -52,7 +52,9 @@ typedef struct ur_mesh_repairs {
  * and unused vertices, and orients every connected part consistently.
  * Refuses (UR_ERROR_INPUT, naming a vertex) NaN or infinite coordinates, a
  * mesh with no triangles left, and non-manifold edges (three or more
- * triangles on one edge), which cannot be repaired safely.
+ * triangles on one edge), which cannot be repaired safely.  An edge that
+ * only welding made non-manifold (two parts that touch, each with its own
+ * vertices) is not: the vertices welded into its ends are left apart.
  *
  * Welding merges each vertex, in order, into the nearest vertex kept before
  * it at a distance <= weld_tolerance (0 merges identical points only); it

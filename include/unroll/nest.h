@@ -24,6 +24,12 @@ typedef struct ur_sheet {
     /* Set by the caller when a job mixes materials: this sheet's; "" otherwise. */
     char material[64];
     bool remnant; /* one of ur_nest_options.remnants, not a stock sheet */
+    /*
+     * True-shape nesting on sheets, the last stock sheet: the offcut its
+     * parts leave at its right end, as tall as the sheet, from their right
+     * edges and the spacing to the sheet's edge (mm); 0 on other sheets.
+     */
+    double offcut_width;
 } ur_sheet;
 
 /* A sheet left over from an earlier job (an offcut), given by its size in mm. */
@@ -114,9 +120,16 @@ typedef struct ur_nest_options {
      * that sheet's parts reach less far on average.  0: no search.  The
      * steps come from seed (xorshift64*), so a search that stops for want
      * of improvement or at its try limit gives the same layout every time.
-     * On a roll that search has a fifth of the budget, and shortening the
-     * strip by overlap minimisation (src/nest/compact.c) the rest: it
-     * stops when the time is up or after 200 failed cuts in a row.
+     * That search has a fifth of the budget.  On a roll, shortening the
+     * strip by overlap minimisation (src/nest/compact.c) has the rest: it
+     * stops when the time is up or after 200 failed cuts in a row.  On
+     * sheets, with every part placed, the same search looks for a layout
+     * on fewer stock sheets, from the area bound up (each count an equal
+     * share of the time up to four fifths of the budget; parts overlap on
+     * the way, and a layout is kept only once GEOS finds no overlap left),
+     * then pushes the last stock sheet's parts toward its left edge (one
+     * search, ending when its cuts are tried or at the budget), which
+     * leaves its offcut (ur_sheet.offcut_width) in one piece.
      * Shortening runs as many searches side by side as threads says (0:
      * one per processor; at most NEST_MAX_THREADS), each going on from
      * the shortest layout any of them has found: the same time, more tries.

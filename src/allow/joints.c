@@ -734,16 +734,15 @@ static GEOSGeometry *rim_cleaned(const joiner *j, const GEOSGeometry *polygon)
 }
 
 /*
- * The union of all (a collection), simplified by a micrometre, far below
- * any cutter's resolution: where a shortened joint's corner meets the
- * outline a hair's breadth off, the union keeps a sliver that folds back
- * on itself.  Plain Douglas-Peucker is quick on an outline of thousands of
+ * The union (exact, taken over) simplified by a micrometre, far below any
+ * cutter's resolution: where a shortened joint's corner meets the outline
+ * a hair's breadth off, the union keeps a sliver that folds back on
+ * itself.  Plain Douglas-Peucker is quick on an outline of thousands of
  * tabs; should it leave the polygon invalid, the exact union is kept.
  * NULL unless it is one polygon.
  */
-static GEOSGeometry *united(const joiner *j, GEOSGeometry *all)
+static GEOSGeometry *simplified(const joiner *j, GEOSGeometry *exact)
 {
-    GEOSGeometry *exact = all ? GEOSUnaryUnion_r(j->geos, all) : NULL;
     if (exact && GEOSGeomTypeId_r(j->geos, exact) != GEOS_POLYGON) {
         GEOSGeom_destroy_r(j->geos, exact);
         return NULL;
@@ -763,6 +762,12 @@ static GEOSGeometry *united(const joiner *j, GEOSGeometry *all)
     if (exact)
         GEOSGeom_destroy_r(j->geos, exact);
     return simple;
+}
+
+/* The union of all (a collection), simplified; NULL unless it is one polygon. */
+static GEOSGeometry *united(const joiner *j, GEOSGeometry *all)
+{
+    return simplified(j, all ? GEOSUnaryUnion_r(j->geos, all) : NULL);
 }
 
 /* The collection of the polygon and the shapes (cloned), or NULL. */
@@ -787,9 +792,95 @@ static GEOSGeometry *collection(const joiner *j, const GEOSGeometry *outline,
 }
 
 /*
- * The piece's outline grown by all its joints at once.  Should the union
- * not be one polygon (a net that touches itself), the joints are added one
- * at a time instead and any that would break the outline is left off.
+ * The part of a union that falls apart (parts, taken over) that holds the
+ * outline, which is one ring and so lies in one part; NULL on failure.
+ */
+static GEOSGeometry *part_holding(const joiner *j, GEOSGeometry *parts, const GEOSGeometry *outline)
+{
+    GEOSGeometry *inside = GEOSPointOnSurface_r(j->geos, outline), *found = NULL;
+    int count = inside ? GEOSGetNumGeometries_r(j->geos, parts) : 0;
+    for (int k = 0; k < count && !found; k++) {
+        const GEOSGeometry *part = GEOSGetGeometryN_r(j->geos, parts, k);
+        if (GEOSIntersects_r(j->geos, part, inside) == 1)
+            found = GEOSGeom_clone_r(j->geos, part);
+    }
+    if (inside)
+        GEOSGeom_destroy_r(j->geos, inside);
+    GEOSGeom_destroy_r(j->geos, parts);
+    return found;
+}
+
+/* Whether a joint's shape lies on the grown outline: a point inside it does. */
+static bool on_grown(const joiner *j, const GEOSPreparedGeometry *grown, const GEOSGeometry *joint)
+{
+    GEOSGeometry *inside = GEOSPointOnSurface_r(j->geos, joint);
+    bool on = inside && GEOSPreparedIntersects_r(j->geos, grown, inside) == 1;
+    if (inside)
+        GEOSGeom_destroy_r(j->geos, inside);
+    return on;
+}
+
+/*
+ * The outline grown by all the joints at once.  Where the union falls
+ * apart (a joint that meets the outline only at a point, on an edge a
+ * hair long), the part holding the outline is kept and the joints off it
+ * are left off: one union for the piece, where adding them one at a time
+ * cost one union per joint (a 100,000-face sphere: 935 unions of a
+ * 40,000-point outline).  NULL when even that fails.
+ */
+static GEOSGeometry *grown_at_once(joiner *j, const allow_board *b, const GEOSGeometry *outline,
+                                   const GEOSGeometry **shapes, size_t count)
+{
+    GEOSGeometry *all = collection(j, outline, shapes, count);
+    GEOSGeometry *exact = all ? GEOSUnaryUnion_r(j->geos, all) : NULL;
+    if (all)
+        GEOSGeom_destroy_r(j->geos, all);
+    bool apart = exact && GEOSGeomTypeId_r(j->geos, exact) == GEOS_MULTIPOLYGON;
+    if (apart)
+        exact = part_holding(j, exact, outline);
+    GEOSGeometry *grown = simplified(j, exact);
+    const GEOSPreparedGeometry *prepared = grown && apart ? GEOSPrepare_r(j->geos, grown) : NULL;
+    if (grown && apart && !prepared) {
+        GEOSGeom_destroy_r(j->geos, grown);
+        return NULL;
+    }
+    for (size_t k = 0; k < count; k++)
+        j->placed[allow_board_joint_tag(b, k)].kept =
+            grown && (!apart || on_grown(j, prepared, shapes[k]));
+    if (prepared)
+        GEOSPreparedGeom_destroy_r(j->geos, prepared);
+    return grown;
+}
+
+/*
+ * Adds to grown (taken over, returned) the joints not kept yet, one at a
+ * time, leaving off any that would break the outline.
+ */
+static GEOSGeometry *grown_one_at_a_time(joiner *j, const allow_board *b, GEOSGeometry *grown,
+                                         const GEOSGeometry **shapes, size_t count)
+{
+    for (size_t k = 0; k < count; k++) {
+        placed_joint *p = &j->placed[allow_board_joint_tag(b, k)];
+        if (p->kept)
+            continue;
+        GEOSGeometry *pair = collection(j, grown, &shapes[k], 1);
+        GEOSGeometry *next = united(j, pair);
+        if (pair)
+            GEOSGeom_destroy_r(j->geos, pair);
+        if (next && GEOSGetNumInteriorRings_r(j->geos, next) == 0) {
+            GEOSGeom_destroy_r(j->geos, grown);
+            grown = next;
+            p->kept = true;
+        } else if (next)
+            GEOSGeom_destroy_r(j->geos, next);
+    }
+    return grown;
+}
+
+/*
+ * The piece's outline grown by all its joints at once, then by those that
+ * fell off it one at a time; should the union fail (no one polygon even
+ * in part), by all of them one at a time from the outline.
  */
 static ur_status grow_piece(joiner *j, size_t index, ur_error *error)
 {
@@ -809,28 +900,12 @@ static ur_status grow_piece(joiner *j, size_t index, ur_error *error)
     }
     for (size_t k = 0; k < count; k++)
         shapes[k] = j->placed[allow_board_joint_tag(b, k)].shape;
-    GEOSGeometry *all = collection(j, outline, (const GEOSGeometry *const *)shapes, count);
-    GEOSGeometry *grown = united(j, all);
-    if (all)
-        GEOSGeom_destroy_r(j->geos, all);
-    for (size_t k = 0; k < count; k++)
-        j->placed[allow_board_joint_tag(b, k)].kept = grown != NULL;
-    if (!grown) { /* one at a time */
+    GEOSGeometry *grown = grown_at_once(j, b, outline, shapes, count);
+    if (!grown) {
         grown = outline;
         outline = NULL;
-        for (size_t k = 0; k < count; k++) {
-            GEOSGeometry *pair = collection(j, grown, &shapes[k], 1);
-            GEOSGeometry *next = united(j, pair);
-            if (pair)
-                GEOSGeom_destroy_r(j->geos, pair);
-            if (next && GEOSGetNumInteriorRings_r(j->geos, next) == 0) {
-                GEOSGeom_destroy_r(j->geos, grown);
-                grown = next;
-                j->placed[allow_board_joint_tag(b, k)].kept = true;
-            } else if (next)
-                GEOSGeom_destroy_r(j->geos, next);
-        }
     }
+    grown = grown_one_at_a_time(j, b, grown, shapes, count);
     ur_status status = set_outline(j, piece, grown, error);
     GEOSGeom_destroy_r(j->geos, grown);
     if (outline)

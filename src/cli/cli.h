@@ -180,6 +180,16 @@ typedef struct cli_room {
 
 cli_room cli_fit_room(const cli_job *job, const ur_machine *machine, const ur_material *material);
 
+/*
+ * Whether the piece, kerf compensated as it will be, fits an empty stock
+ * sheet of one of the sizes the job may use in one of its allowed turns,
+ * with nesting's margin, spacing and grain rule (run.c: nesting it alone
+ * there).  False on roll stock: a roll is as long as a part needs.
+ */
+ur_status cli_piece_fits_stock(const cli_job *job, const ur_machine *machine,
+                               const ur_material *material, const ur_piece *piece, bool *fits,
+                               ur_error *error);
+
 int cli_mesh_nets(const cli_job *job, const cli_room *room, const ur_material *material,
                   ur_net_list *nets, double *area);
 

@@ -43,6 +43,7 @@ enum nest_option {
     NEST_NEST_TIME,
     NEST_SEED,
     NEST_THREADS,
+    NEST_STRICT,
 };
 
 static const struct option nest_options[] = {
@@ -72,6 +73,7 @@ static const struct option nest_options[] = {
     {"nest-time", required_argument, NULL, NEST_NEST_TIME},
     {"seed", required_argument, NULL, NEST_SEED},
     {"threads", required_argument, NULL, NEST_THREADS},
+    {"strict", no_argument, NULL, NEST_STRICT},
     {"help", no_argument, NULL, 'h'},
     {NULL, 0, NULL, 0},
 };
@@ -84,6 +86,7 @@ typedef struct nest_job {
     char **files;   /* argv's file arguments, FILE or FILE:N */
     size_t file_count;
     bool no_split; /* --no-split: a part longer than any sheet is an error, not cut */
+    bool strict;   /* --strict: a file with open shapes (or lines no part holds) is refused */
 } nest_job;
 
 static bool parse_positive_count(const char *what, const char *value, long most, long *count)
@@ -132,6 +135,9 @@ static bool take_nest_option(nest_job *n, int id, const char *value)
         return true;
     case NEST_NO_SPLIT:
         n->no_split = true;
+        return true;
+    case NEST_STRICT:
+        n->strict = true;
         return true;
     case NEST_MACHINE:
         job->machine_name = value;
@@ -202,6 +208,8 @@ static const char nest_help[] =
     "  Nests the closed paths of SVG and DXF files made elsewhere (nested paths are\n"
     "  holes) on sheet stock.  Units come from the file (SVG width/height and viewBox,\n"
     "  DXF $INSUNITS); --units mm|cm|m|in|ft|pt|pc|px when it says nothing.\n"
+    "  Score, engrave, mark and kerf lines (and open paths) inside a part go with it;\n"
+    "  open shapes outside every part are left out with a warning (--strict refuses).\n"
     "  FILE:N or --copies N: that many of each part.\n"
     "  --machine NAME --material NAME --sheet WxH --margin MM --spacing MM\n"
     "  --report FILE.json --quiet --no-kerf-compensation\n"
@@ -211,6 +219,7 @@ static const char nest_help[] =
     "  --no-holes (no part inside another's hole)\n"
     "  --merge-lines  parts may touch; a line two parts share is cut once\n"
     "  --no-split     refuse a part longer than any sheet instead of cutting it\n"
+    "  --strict       refuse a file with open shapes instead of leaving them out\n"
     "  --roll W   nest on roll stock W mm wide, as short as it goes\n"
     "  --sheets N at most N sheets; what does not fit is named, not placed\n"
     "  --remnant WxH  a remnant sheet at hand, filled before stock (repeatable)\n"
@@ -311,6 +320,7 @@ static int read_files(const nest_job *n, ur_piece **pieces, size_t *count)
     ur_parts_import_options options;
     ur_parts_import_options_default(&options);
     options.unit = n->unit_mm;
+    options.strict = n->strict;
     for (size_t f = 0; f < n->file_count; f++) {
         char path[4096];
         long copies;
@@ -406,10 +416,12 @@ static ur_status replace_split(ur_split_parts *split, const bool *cut, ur_piece 
 }
 
 /*
- * A part longer than the room a sheet leaves (inside the margin, less the
- * kerf and a joint at each end) is cut into the fewest parts that fit,
- * each cut joined again with a joint and matching labels; --no-split
- * leaves it for nesting to refuse.
+ * A part that fits no empty stock sheet in any allowed turn, and is
+ * longer than the room a sheet leaves (inside the margin, less the kerf
+ * and a joint at each end), is cut into the fewest parts that fit the
+ * room, each cut joined again with a joint and matching labels; --no-split
+ * leaves it for nesting to refuse.  A part that fits some sheet whole
+ * stays whole, however the room compares.
  */
 static ur_status split_long_parts(const nest_job *n, const ur_machine *machine,
                                   const ur_material *material, ur_piece **pieces, size_t *count,
@@ -428,14 +440,19 @@ static ur_status split_long_parts(const nest_job *n, const ur_machine *machine,
         if (status != UR_OK || (length <= room.length && width <= room.width) ||
             width > room.width) /* too wide for cuts across it to help: nesting says so */
             continue;
+        bool fits = false;
+        status = cli_piece_fits_stock(&n->job, machine, material, &(*pieces)[k], &fits, error);
+        if (status != UR_OK || fits)
+            continue;
         size_t before = split.nets.count;
         status = ur_part_split(&(*pieces)[k], room.length, room.width, (double)k, &split, error);
         cut[k] = status == UR_OK;
         if (status == UR_OK && !n->job.quiet)
-            cli_message("nest: part %s (%.0f x %.0f mm) does not fit the %.0f x %.0f mm a sheet "
-                        "leaves it: cut into %zu (--no-split refuses instead)",
-                        (*pieces)[k].name, length, width, room.length, room.width,
-                        split.nets.count - before);
+            cli_message("nest: part %s (%.0f x %.0f mm) fits no sheet in any allowed turn: cut "
+                        "into %zu to fit the %.0f x %.0f mm a sheet leaves a part with joints "
+                        "(--no-split refuses instead)",
+                        (*pieces)[k].name, length, width, split.nets.count - before, room.length,
+                        room.width);
     }
     int next_seam = 0;
     if (status == UR_OK && split.nets.count > 0)

@@ -98,8 +98,10 @@ bool cli_parse_sheet_count(cli_job *job, const char *value)
 
 /*
  * What the layout uses, for the summary line: "2 sheets of 600 x 400 mm",
- * "remnant 200 x 120 mm (sheet 1) and 1 sheet of 600 x 400 mm", ...
- * Stock sheets all have one size; remnants are named one by one.
+ * "remnant 200 x 120 mm (sheet 1) and 1 sheet of 600 x 400 mm", ..., and
+ * the offcut the last stock sheet leaves (", the last leaving an offcut of
+ * 265 x 200 mm").  Stock sheets all have one size; remnants are named one
+ * by one.
  */
 void cli_describe_sheets(const ur_layout *layout, char *text, size_t size)
 {
@@ -119,10 +121,18 @@ void cli_describe_sheets(const ur_layout *layout, char *text, size_t size)
             return; /* cut short: the report has every sheet */
         used += (size_t)n;
     }
-    if (stock_sheet || used == 0)
-        snprintf(text + used, size - used, "%s%zu sheet%s of %g x %g mm", used ? " and " : "",
-                 stock, stock == 1 ? "" : "s", stock_sheet ? stock_sheet->width : 0.0,
-                 stock_sheet ? stock_sheet->height : 0.0);
+    if (stock_sheet || used == 0) {
+        int n =
+            snprintf(text + used, size - used, "%s%zu sheet%s of %g x %g mm", used ? " and " : "",
+                     stock, stock == 1 ? "" : "s", stock_sheet ? stock_sheet->width : 0.0,
+                     stock_sheet ? stock_sheet->height : 0.0);
+        if (n < 0 || (size_t)n >= size - used)
+            return;
+        used += (size_t)n;
+    }
+    if (stock_sheet && stock_sheet->offcut_width >= 1) /* less is no offcut to keep */
+        snprintf(text + used, size - used, ", the last leaving an offcut of %.0f x %g mm",
+                 floor(stock_sheet->offcut_width), stock_sheet->height);
 }
 
 /* "812 mm" or "3.54 m": a cut length as a maker reads it. */

@@ -300,22 +300,20 @@ static void show_placing(void *context, size_t placed, size_t count)
     fflush(stderr);
 }
 
-ur_status cli_place_pieces(const cli_job *job, const ur_machine *machine,
-                           const ur_material *material, const ur_piece *pieces, size_t count,
-                           ur_layout *layout, ur_error *error)
+/*
+ * The nesting options of a job (the sheet size left to the caller): margin
+ * and spacing, turns, holes, grain rule, remnants, the search and its
+ * progress lines.
+ */
+static ur_nest_options nest_options_of(const cli_job *job, const ur_machine *machine,
+                                       const ur_material *material, size_t count)
 {
-    /*
-     * The first sheet every piece fits; otherwise the error of the largest
-     * one tried, which names the sheet that came closest.
-     */
-    ur_sheet_size choices[UR_MAX_STOCK_SIZES + 1];
-    size_t choice_count = sheet_choices(job, machine, material, choices);
     /*
      * The grain runs along the sheet's length (its x axis); the material's
      * rule says whether the rulings, the bending axes, go along it or across.
      */
     size_t rotations = job->rotations > 0 ? (size_t)job->rotations : 4;
-    ur_nest_options options = {
+    return (ur_nest_options){
         .margin = job->margin >= 0 ? job->margin : machine->margin,
         .spacing = job->spacing >= 0 ? job->spacing
                    : job->merge_lines
@@ -337,6 +335,55 @@ ur_status cli_place_pieces(const cli_job *job, const ur_machine *machine,
         .placing = job->quiet || !isatty(STDERR_FILENO) || count < MANY_PARTS ? NULL : show_placing,
         .progress_context = (void *)job,
     };
+}
+
+ur_status cli_piece_fits_stock(const cli_job *job, const ur_machine *machine,
+                               const ur_material *material, const ur_piece *piece, bool *fits,
+                               ur_error *error)
+{
+    *fits = false;
+    if (job->roll_width > 0)
+        return UR_OK;
+    ur_sheet_size choices[UR_MAX_STOCK_SIZES + 1];
+    cli_job quiet = *job; /* placing says it when no stock fits the bed */
+    quiet.quiet = true;
+    size_t choice_count = sheet_choices(&quiet, machine, material, choices);
+    ur_nest_options options = nest_options_of(&quiet, machine, material, 1);
+    options.remnants = NULL;
+    options.remnant_count = 0;
+    options.max_sheets = 1;
+    options.time_budget = 0;
+    ur_piece cut;
+    ur_status status = ur_piece_copy(piece, &cut, error);
+    if (status == UR_OK && !job->no_kerf_compensation)
+        status = ur_piece_compensate_kerf(&cut, ur_effective_kerf(machine, material), error);
+    for (size_t k = 0; status == UR_OK && !*fits && k < choice_count; k++) {
+        options.sheet_width = choices[k].width;
+        options.sheet_height = choices[k].height;
+        ur_layout layout;
+        ur_error refused;
+        ur_status placed = ur_layout_nest(&cut, 1, &options, &layout, &refused);
+        if (placed == UR_OK)
+            *fits = layout.not_placed_count == 0;
+        else if (placed != UR_ERROR_INPUT) /* refused: it does not fit that size */
+            status = placed, *error = refused;
+        ur_layout_free(&layout);
+    }
+    ur_piece_free(&cut);
+    return status;
+}
+
+ur_status cli_place_pieces(const cli_job *job, const ur_machine *machine,
+                           const ur_material *material, const ur_piece *pieces, size_t count,
+                           ur_layout *layout, ur_error *error)
+{
+    /*
+     * The first sheet every piece fits; otherwise the error of the largest
+     * one tried, which names the sheet that came closest.
+     */
+    ur_sheet_size choices[UR_MAX_STOCK_SIZES + 1];
+    size_t choice_count = sheet_choices(job, machine, material, choices);
+    ur_nest_options options = nest_options_of(job, machine, material, count);
     ur_status status = UR_OK;
     if (job->roll_width > 0) { /* one strip of roll, as short as it goes */
         options.roll_width = job->roll_width;

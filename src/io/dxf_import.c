@@ -27,6 +27,12 @@
 /* Kinds of entities left out, counted for one warning each. */
 #define DXF_MAX_IGNORED_KINDS 16
 
+/* Entities drawn by INSERTs (arrays of arrays multiply): more is a runaway. */
+#define DXF_MAX_DRAWN_ENTITIES 200000
+
+/* A spline of higher degree than this is not a drawing. */
+#define DXF_MAX_SPLINE_DEGREE 25
+
 typedef struct dxf_pair {
     int code;
     const char *value; /* trimmed, inside the file's text */
@@ -46,14 +52,28 @@ typedef struct dxf_ignored {
     int line; /* of the first */
 } dxf_ignored;
 
+/* A block definition in the BLOCKS section: its entities are pairs[begin .. end). */
+typedef struct dxf_block {
+    const char *name;
+    ur_vec2 base;
+    size_t begin, end;
+    bool inserting; /* being drawn now: an INSERT of it inside is a loop */
+} dxf_block;
+
 typedef struct dxf_reader {
     parts_collection *collection;
     const char *path;
     char *text;
     dxf_pair *pairs;
     size_t count;
-    double scale;     /* mm per drawing unit */
-    double tolerance; /* drawing units */
+    double scale;        /* mm per drawing unit */
+    parts_matrix matrix; /* the block being drawn's coordinates to the drawing's */
+    double tolerance;    /* in the block being drawn's units */
+    ur_op block_op;      /* the INSERT's layer's: what entities on layer 0 of a block are */
+    int depth;           /* blocks inside blocks being drawn */
+    size_t drawn;        /* entities drawn by INSERTs so far */
+    dxf_block *blocks;
+    size_t block_count;
     dxf_segment *segments;
     size_t segment_count;
     dxf_ignored ignored[DXF_MAX_IGNORED_KINDS];
@@ -68,6 +88,7 @@ typedef struct dxf_entity {
     const char *type;
     int line;
     bool mirrored; /* extrusion (0, 0, -1): AutoCAD draws it with x turned over */
+    ur_op op;      /* what its layer says it is: cut unless the layer names another */
 } dxf_entity;
 
 static ur_status entity_error(const dxf_entity *entity, ur_error *error, const char *message)
@@ -209,6 +230,15 @@ static ur_status entity_number(const dxf_entity *entity, int code, double fallba
     return UR_OK;
 }
 
+/* The entity's text for code, NULL when it has none. */
+static const char *entity_text(const dxf_entity *entity, int code)
+{
+    for (size_t i = 1; i < entity->count; i++)
+        if (entity->pairs[i].code == code)
+            return entity->pairs[i].value;
+    return NULL;
+}
+
 static ur_status entity_flags(const dxf_entity *entity, int *flags, ur_error *error)
 {
     double value = 0;
@@ -308,17 +338,18 @@ static ur_status emit(const dxf_entity *entity, parts_points *points, bool close
                       const ur_path_circle *circle, ur_error *error)
 {
     dxf_reader *reader = entity->reader;
-    for (size_t i = 0; i < points->count; i++) {
-        ur_vec2 *p = &points->items[i];
-        *p = ur_vec2_make((entity->mirrored ? -p->x : p->x) * reader->scale, p->y * reader->scale);
-    }
-    /* Mirroring and scaling keep a circle a circle: its centre moves as the points do. */
+    parts_matrix mirror = {entity->mirrored ? -1 : 1, 0, 0, 1, 0, 0};
+    parts_matrix to_mm =
+        parts_matrix_multiply((parts_matrix){reader->scale, 0, 0, reader->scale, 0, 0},
+                              parts_matrix_multiply(reader->matrix, mirror));
+    for (size_t i = 0; i < points->count; i++)
+        points->items[i] = parts_matrix_apply(to_mm, points->items[i]);
+    /* A circle stays one under a block's turn, mirror and even scale, not under uneven scales. */
     ur_path_circle in_mm = {{0, 0}, 0, 0};
-    if (circle && closed) {
-        ur_vec2 c = circle->centre;
-        in_mm.centre =
-            ur_vec2_make((entity->mirrored ? -c.x : c.x) * reader->scale, c.y * reader->scale);
-        in_mm.radius = circle->radius * reader->scale;
+    double similarity = circle && closed ? parts_matrix_similarity_scale(to_mm) : 0;
+    if (similarity > 0) {
+        in_mm.centre = parts_matrix_apply(to_mm, circle->centre);
+        in_mm.radius = circle->radius * similarity;
     }
     double tolerance = reader->collection->tolerance;
     if (!closed && points->count > 2 &&
@@ -326,6 +357,9 @@ static ur_status emit(const dxf_entity *entity, parts_points *points, bool close
         points->count--;
         closed = true;
     }
+    if (entity->op != UR_OP_CUT)
+        return parts_add_line(reader->collection, points, closed, entity->op, entity->line,
+                              entity->type, error);
     if (closed)
         return parts_add_ring(reader->collection, points, entity->line, entity->type, NULL, 1,
                               in_mm.radius > 0 ? &in_mm : NULL, error);
@@ -391,6 +425,10 @@ static ur_status read_circle_entity(const dxf_entity *entity, bool arc, ur_error
         start = v[3] * M_PI / 180;
         sweep = fmod(v[4] - v[3], 360.0);
         sweep = (sweep <= 0 ? sweep + 360 : sweep) * M_PI / 180;
+        /* Within the tolerance of a full turn either way: a circle, drawn as an arc. */
+        double slack = entity->reader->tolerance / v[2];
+        if (sweep <= slack || fabs(sweep - 2 * M_PI) <= slack)
+            sweep = 2 * M_PI;
     }
     parts_arc shape = {ur_vec2_make(v[0], v[1]), v[2], v[2], 0, start, sweep};
     parts_points points = {0};
@@ -419,8 +457,12 @@ static ur_status read_ellipse_entity(dxf_entity *entity, ur_error *error)
     if (status != UR_OK)
         return status;
     double sweep = fmod(end - start, 2 * M_PI);
-    sweep = sweep <= 1e-12 ? sweep + 2 * M_PI : sweep;
-    bool full = fabs(sweep - 2 * M_PI) < 1e-9;
+    sweep = sweep <= 0 ? sweep + 2 * M_PI : sweep;
+    /* Within the tolerance of a full turn either way (LibreCAD writes 2 pi as 6.28318530718). */
+    double slack = entity->reader->tolerance / fmax(rx, rx * fabs(v[4]));
+    bool full = sweep <= slack || fabs(sweep - 2 * M_PI) <= slack;
+    if (full)
+        sweep = 2 * M_PI;
     /* Its minor axis is the extrusion crossed with the major: the other way round when mirrored. */
     parts_arc shape = {ur_vec2_make(v[0], v[1]), rx,    (entity->mirrored ? -1 : 1) * rx * v[4],
                        atan2(v[3], v[2]),        start, sweep};
@@ -430,6 +472,126 @@ static ur_status read_ellipse_entity(dxf_entity *entity, ur_error *error)
     if (status == UR_OK)
         status = parts_flatten_arc(&points, &shape, entity->reader->tolerance, error);
     return emit_points(entity, &points, full, NULL, status, error);
+}
+
+/* ---- Splines ------------------------------------------------------------------ */
+
+typedef struct dxf_spline {
+    int degree;
+    double *knots, *weights;
+    size_t knot_count, weight_count, knot_capacity, weight_capacity;
+    parts_points points, fit;
+} dxf_spline;
+
+static ur_status push_number(double **items, size_t *count, size_t *capacity, double value,
+                             ur_error *error)
+{
+    double *grown = ur_array_grow(*items, capacity, *count, sizeof **items, 16, error);
+    if (!grown)
+        return UR_ERROR_INTERNAL;
+    *items = grown;
+    grown[(*count)++] = value;
+    return UR_OK;
+}
+
+/* 40 knots, 41 weights, 10/20 control points, 11/21 fit points, in the order written. */
+static ur_status spline_field(const dxf_entity *entity, const dxf_pair *pair, dxf_spline *spline,
+                              ur_error *error)
+{
+    int code = pair->code;
+    if (code != 40 && code != 41 && code != 10 && code != 20 && code != 11 && code != 21)
+        return UR_OK;
+    double value = 0;
+    ur_status status = pair_number(entity->reader, pair, &value, error);
+    if (status != UR_OK)
+        return status;
+    if (code == 40)
+        return push_number(&spline->knots, &spline->knot_count, &spline->knot_capacity, value,
+                           error);
+    if (code == 41)
+        return push_number(&spline->weights, &spline->weight_count, &spline->weight_capacity, value,
+                           error);
+    parts_points *points = code == 10 || code == 20 ? &spline->points : &spline->fit;
+    if (code == 10 || code == 11) {
+        /* Pushed as it comes: two equal control points in a row are both needed. */
+        ur_vec2 *items = ur_array_grow(points->items, &points->capacity, points->count,
+                                       sizeof *points->items, 16, error);
+        if (!items)
+            return UR_ERROR_INTERNAL;
+        points->items = items;
+        items[points->count++] = ur_vec2_make(value, 0);
+        return UR_OK;
+    }
+    if (points->count == 0)
+        return entity_error(entity, error, "a y coordinate before its x");
+    points->items[points->count - 1].y = value;
+    return UR_OK;
+}
+
+/* Degree, knots and weights as a NURBS needs them; the message names what is wrong. */
+static ur_status check_spline(const dxf_entity *entity, const dxf_spline *spline, ur_error *error)
+{
+    char message[160];
+    size_t n = spline->points.count, p = (size_t)(spline->degree > 0 ? spline->degree : 0);
+    if (spline->degree < 1 || spline->degree > DXF_MAX_SPLINE_DEGREE)
+        snprintf(message, sizeof message, "degree %d: a spline's degree is from 1 to %d",
+                 spline->degree, DXF_MAX_SPLINE_DEGREE);
+    else if (n == 0 && spline->fit.count > 0)
+        snprintf(message, sizeof message,
+                 "a spline given by fit points only is not read: save it with its control "
+                 "points");
+    else if (n < p + 1)
+        snprintf(message, sizeof message, "%zu control points: a spline of degree %zu needs %zu", n,
+                 p, p + 1);
+    else if (spline->knot_count != n + p + 1)
+        snprintf(message, sizeof message, "%zu knots: %zu control points of degree %zu need %zu",
+                 spline->knot_count, n, p, n + p + 1);
+    else if (spline->weight_count != 0 && spline->weight_count != n)
+        snprintf(message, sizeof message, "%zu weights for %zu control points",
+                 spline->weight_count, n);
+    else
+        message[0] = '\0';
+    for (size_t i = 0; !message[0] && i + 1 < spline->knot_count; i++)
+        if (spline->knots[i + 1] < spline->knots[i])
+            snprintf(message, sizeof message, "its knots decrease (knot %zu is %g, knot %zu %g)",
+                     i + 1, spline->knots[i], i + 2, spline->knots[i + 1]);
+    for (size_t i = 0; !message[0] && i < spline->weight_count; i++)
+        if (!(spline->weights[i] > 0))
+            snprintf(message, sizeof message, "weight %zu is %g: weights must be positive", i + 1,
+                     spline->weights[i]);
+    if (!message[0] && !(spline->knots[n] > spline->knots[p]))
+        snprintf(message, sizeof message, "its knots span nothing (all %g)", spline->knots[p]);
+    return message[0] ? entity_error(entity, error, message) : UR_OK;
+}
+
+/* SPLINE: a NURBS curve in world coordinates, flattened to the tolerance. */
+static ur_status read_spline(dxf_entity *entity, ur_error *error)
+{
+    double degree = 0;
+    int flags = 0;
+    dxf_spline spline = {0};
+    ur_status status = entity_number(entity, 71, 0, &degree, error);
+    if (status == UR_OK)
+        status = entity_flags(entity, &flags, error);
+    spline.degree = fabs(degree) < 1000 ? (int)degree : -1;
+    for (size_t i = 1; status == UR_OK && i < entity->count; i++)
+        status = spline_field(entity, &entity->pairs[i], &spline, error);
+    if (status == UR_OK)
+        status = check_spline(entity, &spline, error);
+    entity->mirrored = false; /* world coordinates, as an ELLIPSE's */
+    parts_points points = {0};
+    if (status == UR_OK) {
+        parts_nurbs curve = {spline.degree, spline.points.items,
+                             spline.weight_count ? spline.weights : NULL, spline.points.count,
+                             spline.knots};
+        status = parts_flatten_nurbs(&points, &curve, entity->reader->tolerance, error);
+    }
+    free(spline.knots);
+    free(spline.weights);
+    parts_points_free(&spline.points);
+    parts_points_free(&spline.fit);
+    /* Flag 1, closed: its ends meet, and emit closes what ends where it starts. */
+    return emit_points(entity, &points, false, NULL, status, error);
 }
 
 /* ---- Polylines ---------------------------------------------------------------- */
@@ -535,7 +697,8 @@ static dxf_entity next_entity(dxf_reader *reader, size_t *index, size_t end)
                          1,
                          reader->pairs[*index].value,
                          reader->pairs[*index].line + 1,
-                         false};
+                         false,
+                         UR_OP_CUT};
     size_t i = *index + 1;
     while (i < end && reader->pairs[i].code != 0)
         i++;
@@ -607,12 +770,25 @@ static ur_status warn_ignored(dxf_reader *reader, ur_error *error)
     return UR_OK;
 }
 
+static ur_status read_insert(const dxf_entity *entity, ur_error *error);
+
 static ur_status read_entity(dxf_entity *entity, size_t *index, size_t end, ur_error *error)
 {
     double extrusion = 1;
     ur_status status = entity_number(entity, 230, 1, &extrusion, error);
     entity->mirrored = extrusion < 0;
+    const char *layer = entity_text(entity, 8);
+    ur_op op = parts_layer_op(layer);
+    /* Inside a block, layer 0 takes the layer of the INSERT that draws it. */
+    if (!layer || strcmp(layer, "0") == 0)
+        op = entity->reader->block_op;
+    entity->op = op == UR_OP_COUNT ? UR_OP_CUT : op;
     const char *type = entity->type;
+    if (status == UR_OK && entity->reader->depth > 0 &&
+        ++entity->reader->drawn > DXF_MAX_DRAWN_ENTITIES)
+        status = entity_error(entity, error,
+                              "more than 200000 entities drawn by block references: not a "
+                              "drawing of parts");
     if (status != UR_OK)
         return status;
     if (strcmp(type, "LINE") == 0)
@@ -626,10 +802,9 @@ static ur_status read_entity(dxf_entity *entity, size_t *index, size_t end, ur_e
     if (strcmp(type, "POLYLINE") == 0)
         return read_polyline(entity, index, end, error);
     if (strcmp(type, "SPLINE") == 0)
-        return entity_error(entity, error, "splines are not read: turn them into polylines first");
+        return read_spline(entity, error);
     if (strcmp(type, "INSERT") == 0)
-        return entity_error(entity, error,
-                            "block references are not read: explode the blocks first");
+        return read_insert(entity, error);
     if (strcmp(type, "REGION") == 0 || strcmp(type, "3DSOLID") == 0 || strcmp(type, "BODY") == 0)
         return entity_error(entity, error, "not read: explode it into lines and arcs first");
     return note_ignored(entity->reader, entity);
@@ -653,12 +828,9 @@ static bool find_section(const dxf_reader *reader, const char *name, size_t *beg
     return false;
 }
 
-static ur_status read_entities(dxf_reader *reader, ur_error *error)
+/* The entities of pairs[index .. end): the ENTITIES section, or a block's. */
+static ur_status read_entity_list(dxf_reader *reader, size_t index, size_t end, ur_error *error)
 {
-    size_t index = 0, end = 0;
-    if (!find_section(reader, "ENTITIES", &index, &end))
-        return ur_error_set(error, UR_ERROR_INPUT, "%s: no ENTITIES section: nothing drawn",
-                            reader->path);
     while (index < end && reader->pairs[index].code != 0)
         index++;
     while (index < end) {
@@ -667,7 +839,174 @@ static ur_status read_entities(dxf_reader *reader, ur_error *error)
         if (status != UR_OK)
             return status;
     }
-    return warn_ignored(reader, error);
+    return UR_OK;
+}
+
+static ur_status read_entities(dxf_reader *reader, ur_error *error)
+{
+    size_t index = 0, end = 0;
+    if (!find_section(reader, "ENTITIES", &index, &end))
+        return ur_error_set(error, UR_ERROR_INPUT, "%s: no ENTITIES section: nothing drawn",
+                            reader->path);
+    ur_status status = read_entity_list(reader, index, end, error);
+    if (status == UR_OK)
+        status = warn_ignored(reader, error);
+    return status;
+}
+
+/* ---- Blocks ------------------------------------------------------------------------ */
+
+/* Each "0 BLOCK" of the BLOCKS section: its name, base point and entities up to "0 ENDBLK". */
+static ur_status find_blocks(dxf_reader *reader, ur_error *error)
+{
+    size_t index = 0, end = 0;
+    if (!find_section(reader, "BLOCKS", &index, &end))
+        return UR_OK;
+    size_t capacity = 0;
+    while (index < end) {
+        if (reader->pairs[index].code != 0 || strcmp(reader->pairs[index].value, "BLOCK") != 0) {
+            index++;
+            continue;
+        }
+        dxf_entity header = next_entity(reader, &index, end);
+        dxf_block *blocks = ur_array_grow(reader->blocks, &capacity, reader->block_count,
+                                          sizeof *reader->blocks, 16, error);
+        if (!blocks)
+            return UR_ERROR_INTERNAL;
+        reader->blocks = blocks;
+        dxf_block *block = &blocks[reader->block_count++];
+        memset(block, 0, sizeof *block);
+        block->name = entity_text(&header, 2);
+        static const int codes[] = {10, 20};
+        double base[2];
+        ur_status status = entity_numbers(&header, codes, base, 2, error);
+        if (status != UR_OK)
+            return status;
+        block->base = ur_vec2_make(base[0], base[1]);
+        block->begin = index;
+        while (index < end && !(reader->pairs[index].code == 0 &&
+                                strcmp(reader->pairs[index].value, "ENDBLK") == 0))
+            index++;
+        block->end = index;
+    }
+    return UR_OK;
+}
+
+static dxf_block *find_block(dxf_reader *reader, const char *name)
+{
+    for (size_t k = 0; name && k < reader->block_count; k++)
+        if (reader->blocks[k].name && strcmp(reader->blocks[k].name, name) == 0)
+            return &reader->blocks[k];
+    return NULL;
+}
+
+/* An INSERT's placement: codes 10/20 point, 41/42 scales, 50 turn, 70/71 columns and rows, 44/45
+ * their spacing. */
+typedef struct dxf_insertion {
+    double v[9];
+} dxf_insertion;
+
+enum { AT_X, AT_Y, SCALE_X, SCALE_Y, TURN, COLUMNS, ROWS, COLUMN_STEP, ROW_STEP };
+
+static ur_status read_insertion(const dxf_entity *entity, dxf_insertion *at, ur_error *error)
+{
+    static const int codes[] = {10, 20, 41, 42, 50, 70, 71, 44, 45};
+    static const double fallbacks[] = {0, 0, 1, 1, 0, 1, 1, 0, 0};
+    for (size_t i = 0; i < 9; i++) {
+        ur_status status = entity_number(entity, codes[i], fallbacks[i], &at->v[i], error);
+        if (status != UR_OK)
+            return status;
+    }
+    char message[128];
+    if (at->v[SCALE_X] == 0 || at->v[SCALE_Y] == 0) {
+        snprintf(message, sizeof message, "a scale of 0 (%g by %g) draws nothing", at->v[SCALE_X],
+                 at->v[SCALE_Y]);
+        return entity_error(entity, error, message);
+    }
+    if (!(at->v[COLUMNS] >= 1 && at->v[COLUMNS] <= 32767 && at->v[ROWS] >= 1 &&
+          at->v[ROWS] <= 32767)) {
+        snprintf(message, sizeof message, "%g columns by %g rows: not from 1 to 32767",
+                 at->v[COLUMNS], at->v[ROWS]);
+        return entity_error(entity, error, message);
+    }
+    return UR_OK;
+}
+
+/*
+ * The block's coordinates to the INSERT's for one copy of an array: less
+ * the base point, scaled, moved by the copy's column and row, turned, put
+ * at the insertion point, all in the INSERT's own (OCS) coordinates, which
+ * an extrusion of (0, 0, -1) turns over.
+ */
+static parts_matrix copy_matrix(const dxf_insertion *at, ur_vec2 base, double column, double row,
+                                bool mirrored)
+{
+    double turn = at->v[TURN] * M_PI / 180, c = cos(turn), s = sin(turn);
+    double sx = at->v[SCALE_X], sy = at->v[SCALE_Y];
+    ur_vec2 offset = ur_vec2_make(column * at->v[COLUMN_STEP] - sx * base.x,
+                                  row * at->v[ROW_STEP] - sy * base.y);
+    parts_matrix m = {c * sx,
+                      s * sx,
+                      -s * sy,
+                      c * sy,
+                      at->v[AT_X] + c * offset.x - s * offset.y,
+                      at->v[AT_Y] + s * offset.x + c * offset.y};
+    parts_matrix mirror = {mirrored ? -1 : 1, 0, 0, 1, 0, 0};
+    return parts_matrix_multiply(mirror, m);
+}
+
+/* Draws the block once per copy of the array, under the INSERT's placement. */
+static ur_status draw_block(const dxf_entity *entity, dxf_block *block, const dxf_insertion *at,
+                            ur_error *error)
+{
+    dxf_reader *reader = entity->reader;
+    parts_matrix outer = reader->matrix;
+    double outer_tolerance = reader->tolerance;
+    ur_op outer_op = reader->block_op;
+    reader->block_op = entity->op;
+    reader->depth++;
+    block->inserting = true;
+    ur_status status = UR_OK;
+    for (int row = 0; status == UR_OK && row < (int)at->v[ROWS]; row++)
+        for (int column = 0; status == UR_OK && column < (int)at->v[COLUMNS]; column++) {
+            reader->matrix = parts_matrix_multiply(
+                outer, copy_matrix(at, block->base, column, row, entity->mirrored));
+            double stretch = parts_matrix_stretch(reader->matrix) * reader->scale;
+            reader->tolerance = reader->collection->tolerance / stretch;
+            status = read_entity_list(reader, block->begin, block->end, error);
+        }
+    block->inserting = false;
+    reader->depth--;
+    reader->matrix = outer;
+    reader->tolerance = outer_tolerance;
+    reader->block_op = outer_op;
+    return status;
+}
+
+/* INSERT: a block drawn here, scaled, turned, in columns and rows; blocks may insert blocks. */
+static ur_status read_insert(const dxf_entity *entity, ur_error *error)
+{
+    dxf_reader *reader = entity->reader;
+    const char *name = entity_text(entity, 2);
+    dxf_block *block = find_block(reader, name);
+    char message[160];
+    if (!block) {
+        snprintf(message, sizeof message, "block '%.60s' is not defined in the drawing",
+                 name ? name : "");
+        return entity_error(entity, error, message);
+    }
+    if (block->inserting) {
+        snprintf(message, sizeof message,
+                 "block '%.60s' refers to itself (directly or through other blocks)", name);
+        return entity_error(entity, error, message);
+    }
+    if (reader->depth >= PARTS_MAX_DEPTH)
+        return entity_error(entity, error, "blocks nest too deep");
+    dxf_insertion at;
+    ur_status status = read_insertion(entity, &at, error);
+    if (status == UR_OK)
+        status = draw_block(entity, block, &at, error);
+    return status;
 }
 
 /* ---- Chaining open pieces into loops ----------------------------------------------- */
@@ -710,18 +1049,16 @@ static ur_status append_segment(parts_points *chain, const parts_points *points,
     return UR_OK;
 }
 
-static ur_status open_end_error(const dxf_reader *reader, const dxf_segment *segment, ur_vec2 end,
-                                ur_error *error)
+static void reverse_points(parts_points *points)
 {
-    return ur_error_set(error, UR_ERROR_INPUT,
-                        "%s:%d: %s: the outline is open: its end at (%.6g, %.6g) mm meets no "
-                        "other line, arc or polyline within %g mm; only closed shapes can be "
-                        "parts",
-                        reader->path, segment->line, segment->what, end.x, end.y,
-                        reader->collection->tolerance);
+    ur_points_reverse(points->items, points->count);
 }
 
-/* Follows segment first on, end to end, until the loop closes. */
+/*
+ * Follows segment first on, end to end, until the loop closes; when an end
+ * meets nothing, back from its start: what then stays open is an open shape,
+ * named by the piece whose end met nothing first.
+ */
 static ur_status chain_from(dxf_reader *reader, bool *used, size_t first, ur_error *error)
 {
     double tolerance = reader->collection->tolerance;
@@ -730,27 +1067,40 @@ static ur_status chain_from(dxf_reader *reader, bool *used, size_t first, ur_err
     ur_status status = parts_points_push(&chain, reader->segments[first].points.items[0], error);
     if (status == UR_OK)
         status = append_segment(&chain, &reader->segments[first].points, false, error);
-    size_t last = first;
+    size_t last = first, dangling = SIZE_MAX;
+    bool closed = false;
     while (status == UR_OK) {
         ur_vec2 end = chain.items[chain.count - 1];
-        if (chain.count > 2 && ur_vec2_distance(end, chain.items[0]) <= tolerance) {
+        if (dangling == SIZE_MAX && chain.count > 2 &&
+            ur_vec2_distance(end, chain.items[0]) <= tolerance) {
             chain.count--;
+            closed = true;
             break;
         }
         bool reversed = false;
         size_t next = nearest_segment(reader, used, end, tolerance, &reversed);
-        if (next == SIZE_MAX) {
-            status = open_end_error(reader, &reader->segments[last], end, error);
+        if (next == SIZE_MAX && dangling != SIZE_MAX)
             break;
+        if (next == SIZE_MAX) {
+            dangling = last;
+            reverse_points(&chain);
+            continue;
         }
         used[next] = true;
         last = next;
         status = append_segment(&chain, &reader->segments[next].points, reversed, error);
     }
-    const dxf_segment *segment = &reader->segments[first];
-    if (status == UR_OK)
+    if (dangling != SIZE_MAX)
+        reverse_points(&chain); /* from the start it had, as drawn */
+    const dxf_segment *segment = &reader->segments[closed ? first : dangling];
+    if (status == UR_OK && closed)
         status = parts_add_ring(reader->collection, &chain, segment->line, segment->what, NULL, 1,
                                 NULL, error);
+    if (status == UR_OK && closed)
+        reader->collection->rings[reader->collection->count - 1].chained = true;
+    else if (status == UR_OK)
+        status = parts_add_line(reader->collection, &chain, false, UR_OP_CUT, segment->line,
+                                segment->what, error);
     parts_points_free(&chain);
     return status;
 }
@@ -773,10 +1123,15 @@ static ur_status chain_segments(dxf_reader *reader, ur_error *error)
 
 ur_status parts_read_dxf(parts_collection *collection, ur_error *error)
 {
-    dxf_reader reader = {.collection = collection, .path = collection->path};
+    dxf_reader reader = {.collection = collection,
+                         .path = collection->path,
+                         .matrix = parts_identity,
+                         .block_op = UR_OP_CUT};
     ur_status status = read_pairs(&reader, error);
     if (status == UR_OK)
         status = find_units(&reader, error);
+    if (status == UR_OK)
+        status = find_blocks(&reader, error);
     if (status == UR_OK)
         status = read_entities(&reader, error);
     if (status == UR_OK)
@@ -784,6 +1139,7 @@ ur_status parts_read_dxf(parts_collection *collection, ur_error *error)
     for (size_t k = 0; k < reader.segment_count; k++)
         parts_points_free(&reader.segments[k].points);
     free(reader.segments);
+    free(reader.blocks);
     free(reader.pairs);
     free(reader.text);
     return status;

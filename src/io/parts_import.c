@@ -10,6 +10,7 @@
 #include "io_internal.h"
 #include "parts_internal.h"
 
+#include <ctype.h>
 #include <errno.h>
 #include <math.h>
 #include <stdarg.h>
@@ -28,6 +29,7 @@ void ur_parts_import_options_default(ur_parts_import_options *options)
 {
     options->unit = 0.0;
     options->tolerance = PARTS_DEFAULT_TOLERANCE;
+    options->strict = false;
 }
 
 double ur_parts_unit_mm(const char *name)
@@ -144,6 +146,37 @@ ur_status parts_flatten_arc(parts_points *points, const parts_arc *arc, double t
     return UR_OK;
 }
 
+/* ---- Affine transforms ------------------------------------------------- */
+
+parts_matrix parts_matrix_multiply(parts_matrix m, parts_matrix n)
+{
+    parts_matrix r = {m.a * n.a + m.c * n.b,       m.b * n.a + m.d * n.b,
+                      m.a * n.c + m.c * n.d,       m.b * n.c + m.d * n.d,
+                      m.a * n.e + m.c * n.f + m.e, m.b * n.e + m.d * n.f + m.f};
+    return r;
+}
+
+ur_vec2 parts_matrix_apply(parts_matrix m, ur_vec2 p)
+{
+    return ur_vec2_make(m.a * p.x + m.c * p.y + m.e, m.b * p.x + m.d * p.y + m.f);
+}
+
+double parts_matrix_stretch(parts_matrix m)
+{
+    double p = m.a * m.a + m.b * m.b + m.c * m.c + m.d * m.d;
+    double q = m.a * m.d - m.b * m.c;
+    return sqrt(p / 2 + sqrt(fmax(0, p * p / 4 - q * q)));
+}
+
+double parts_matrix_similarity_scale(parts_matrix m)
+{
+    double first = m.a * m.a + m.b * m.b, second = m.c * m.c + m.d * m.d;
+    double slack = 1e-12 * fmax(first, second);
+    if (!(fabs(first - second) <= slack && fabs(m.a * m.c + m.b * m.d) <= slack))
+        return 0;
+    return sqrt(fabs(m.a * m.d - m.b * m.c));
+}
+
 /* ---- Collecting rings ---------------------------------------------------- */
 
 ur_status parts_add_ring(parts_collection *collection, parts_points *points, int line,
@@ -155,7 +188,15 @@ ur_status parts_add_ring(parts_collection *collection, parts_points *points, int
     if (!rings)
         return UR_ERROR_INTERNAL;
     collection->rings = rings;
-    /* The closing point repeats the first: rings here never do. */
+    /*
+     * The closing point repeats the first: rings here never do.  Nor a last
+     * point within the tolerance of the first (a path closed in relative
+     * coordinates, a full turn of a curve, end where rounding puts them):
+     * left in, it would be an edge of no length that makes the ring cross itself.
+     */
+    while (points->count > 3 && ur_vec2_distance(points->items[points->count - 1],
+                                                 points->items[0]) <= collection->tolerance)
+        points->count--;
     while (points->count > 1 && points->items[points->count - 1].x == points->items[0].x &&
            points->items[points->count - 1].y == points->items[0].y)
         points->count--;
@@ -172,6 +213,66 @@ ur_status parts_add_ring(parts_collection *collection, parts_points *points, int
     points->items = NULL;
     points->count = points->capacity = 0;
     return UR_OK;
+}
+
+ur_status parts_add_line(parts_collection *collection, parts_points *points, bool closed, ur_op op,
+                         int line, const char *what, ur_error *error)
+{
+    while (closed && points->count > 3 &&
+           ur_vec2_distance(points->items[points->count - 1], points->items[0]) <=
+               collection->tolerance)
+        points->count--; /* as parts_add_ring: the closing edge returns to the first point */
+    if (points->count < 2) {
+        parts_points_free(points);
+        return UR_OK; /* a dot: nothing to cut or draw */
+    }
+    parts_line *lines = ur_array_grow(collection->lines, &collection->line_capacity,
+                                      collection->line_count, sizeof *collection->lines, 16, error);
+    if (!lines)
+        return UR_ERROR_INTERNAL;
+    collection->lines = lines;
+    parts_line *added = &lines[collection->line_count++];
+    memset(added, 0, sizeof *added);
+    added->points = points->items;
+    added->count = points->count;
+    added->closed = closed && points->count > 2;
+    added->op = op;
+    added->line = line;
+    snprintf(added->what, sizeof added->what, "%s", what);
+    points->items = NULL;
+    points->count = points->capacity = 0;
+    return UR_OK;
+}
+
+ur_op parts_layer_op(const char *name)
+{
+    static const struct {
+        const char *name;
+        ur_op op;
+    } names[] = {{"cut", UR_OP_CUT},
+                 {"score", UR_OP_SCORE},
+                 {"fold", UR_OP_SCORE},
+                 {"folds", UR_OP_SCORE},
+                 {"score-valley", UR_OP_SCORE_VALLEY},
+                 {"valley", UR_OP_SCORE_VALLEY},
+                 {"engrave", UR_OP_ENGRAVE},
+                 {"engraving", UR_OP_ENGRAVE},
+                 {"kerf", UR_OP_KERF},
+                 {"mark", UR_OP_MARK},
+                 {"marks", UR_OP_MARK},
+                 {"marking", UR_OP_MARK}};
+    /* "Score valley", "score_valley" and "SCORE-VALLEY" are one name. */
+    char plain[32];
+    size_t n = 0;
+    for (; name && name[n] && n + 1 < sizeof plain; n++) {
+        char c = (char)tolower((unsigned char)name[n]);
+        plain[n] = c == ' ' || c == '_' ? '-' : c;
+    }
+    plain[n] = '\0';
+    for (size_t i = 0; name && name[n] == '\0' && i < sizeof names / sizeof names[0]; i++)
+        if (strcmp(plain, names[i].name) == 0)
+            return names[i].op;
+    return UR_OP_COUNT;
 }
 
 ur_status parts_warn(parts_collection *collection, ur_error *error, const char *format, ...)
@@ -193,20 +294,31 @@ void parts_collection_free(parts_collection *collection)
     for (size_t i = 0; i < collection->count; i++)
         free(collection->rings[i].points);
     free(collection->rings);
+    for (size_t i = 0; i < collection->line_count; i++)
+        free(collection->lines[i].points);
+    free(collection->lines);
+    collection->lines = NULL;
+    collection->line_count = collection->line_capacity = 0;
     free(collection->warnings);
     collection->rings = NULL;
     collection->warnings = NULL;
     collection->count = collection->capacity = collection->warning_count = 0;
 }
 
-/* "FILE:LINE: what: " before every message about a ring. */
+/* "FILE:LINE: what: " before a message about a shape; "FILE: what: " when the line is unknown. */
+static ur_status shape_error(const parts_collection *collection, int line, const char *what,
+                             ur_error *error, const char *message)
+{
+    if (line > 0)
+        return ur_error_set(error, UR_ERROR_INPUT, "%s:%d: %s: %s", collection->path, line, what,
+                            message);
+    return ur_error_set(error, UR_ERROR_INPUT, "%s: %s: %s", collection->path, what, message);
+}
+
 static ur_status ring_error(const parts_collection *collection, const parts_ring *ring,
                             ur_error *error, const char *message)
 {
-    if (ring->line > 0)
-        return ur_error_set(error, UR_ERROR_INPUT, "%s:%d: %s: %s", collection->path, ring->line,
-                            ring->what, message);
-    return ur_error_set(error, UR_ERROR_INPUT, "%s: %s: %s", collection->path, ring->what, message);
+    return shape_error(collection, ring->line, ring->what, error, message);
 }
 
 /* ---- Checking rings with GEOS ------------------------------------------- */
@@ -232,7 +344,9 @@ typedef struct parts_job {
     double *areas;           /* positive */
     ur_box *boxes;
     int *parent, *depth;
-    parts_order *order; /* by area, largest first */
+    parts_order *order;   /* by area, largest first */
+    int *piece_of;        /* the part a ring is the outline of, -1 for a hole */
+    GEOSGeometry **grown; /* polygons grown by the tolerance, made when a line needs them */
 } parts_job;
 
 /* Replaces the ring's points by the exterior ring of polygon. */
@@ -320,20 +434,21 @@ static ur_status repair_ring(parts_job *job, size_t i, ur_error *error)
                       collection->path, ring->line, ring->what, before, after);
 }
 
-static ur_status check_coordinates(const parts_collection *collection, const parts_ring *ring,
-                                   ur_error *error)
+static ur_status check_coordinates(const parts_collection *collection, const ur_vec2 *points,
+                                   size_t count, int line, const char *what, ur_error *error)
 {
-    for (size_t k = 0; k < ring->count; k++) {
-        ur_vec2 p = ring->points[k];
+    for (size_t k = 0; k < count; k++) {
+        ur_vec2 p = points[k];
         if (!isfinite(p.x) || !isfinite(p.y))
-            return ring_error(collection, ring, error, "a coordinate is not a finite number");
+            return shape_error(collection, line, what, error,
+                               "a coordinate is not a finite number");
         if (fabs(p.x) > UR_PARTS_IMPORT_MAX_COORDINATE ||
             fabs(p.y) > UR_PARTS_IMPORT_MAX_COORDINATE) {
             char message[160];
             snprintf(message, sizeof message,
                      "the point (%.6g, %.6g) mm lies beyond %g mm: check the units", p.x, p.y,
                      UR_PARTS_IMPORT_MAX_COORDINATE);
-            return ring_error(collection, ring, error, message);
+            return shape_error(collection, line, what, error, message);
         }
     }
     return UR_OK;
@@ -344,7 +459,8 @@ static ur_status prepare_ring(parts_job *job, size_t i, ur_error *error)
 {
     parts_collection *collection = job->collection;
     parts_ring *ring = &collection->rings[i];
-    ur_status status = check_coordinates(collection, ring, error);
+    ur_status status =
+        check_coordinates(collection, ring->points, ring->count, ring->line, ring->what, error);
     if (status != UR_OK)
         return status;
     if (ring->count < 3)
@@ -511,8 +627,10 @@ static ur_status build_pieces(parts_job *job, ur_parts *parts, ur_error *error)
     qsort(job->order, n, sizeof *job->order, by_line);
     for (size_t k = 0; k < n; k++) {
         size_t i = job->order[k].index;
+        job->piece_of[i] = -1;
         if (job->depth[i] % 2 != 0)
             continue;
+        job->piece_of[i] = (int)parts->count;
         ur_status status =
             build_piece(job, i, parts->count + 1, &parts->pieces[parts->count], error);
         if (status != UR_OK)
@@ -530,9 +648,13 @@ static ur_status job_allocate(parts_job *job, size_t n, ur_error *error)
     job->parent = ur_alloc_array(n, sizeof *job->parent, error);
     job->depth = ur_alloc_array(n, sizeof *job->depth, error);
     job->order = ur_alloc_array(n, sizeof *job->order, error);
-    if (!job->polygons || !job->areas || !job->boxes || !job->parent || !job->depth || !job->order)
+    job->piece_of = ur_alloc_array(n, sizeof *job->piece_of, error);
+    job->grown = ur_alloc_array(n, sizeof *job->grown, error);
+    if (!job->polygons || !job->areas || !job->boxes || !job->parent || !job->depth ||
+        !job->order || !job->piece_of || !job->grown)
         return UR_ERROR_INTERNAL;
     memset(job->polygons, 0, n * sizeof *job->polygons);
+    memset(job->grown, 0, n * sizeof *job->grown);
     return UR_OK;
 }
 
@@ -541,7 +663,12 @@ static void job_free(parts_job *job)
     for (size_t i = 0; job->polygons && i < job->collection->count; i++)
         if (job->polygons[i])
             GEOSGeom_destroy_r(job->geos, job->polygons[i]);
+    for (size_t i = 0; job->grown && i < job->collection->count; i++)
+        if (job->grown[i])
+            GEOSGeom_destroy_r(job->geos, job->grown[i]);
     free(job->polygons);
+    free(job->grown);
+    free(job->piece_of);
     free(job->areas);
     free(job->boxes);
     free(job->parent);
@@ -551,22 +678,248 @@ static void job_free(parts_job *job)
         GEOS_finish_r(job->geos);
 }
 
-ur_status parts_assemble(parts_collection *collection, ur_parts *parts, ur_error *error)
+/* ---- Lines that go with a part ------------------------------------------- */
+
+/* The line as a GEOS line string, back to its start when closed; NULL when GEOS fails. */
+static GEOSGeometry *line_string(GEOSContextHandle_t geos, const parts_line *line)
 {
-    if (collection->count == 0)
+    size_t n = line->count + (line->closed ? 1 : 0);
+    GEOSCoordSequence *sequence = GEOSCoordSeq_create_r(geos, (unsigned)n, 2);
+    if (!sequence)
+        return NULL;
+    for (size_t i = 0; i < n; i++) {
+        ur_vec2 p = line->points[i % line->count];
+        if (!GEOSCoordSeq_setXY_r(geos, sequence, (unsigned)i, p.x, p.y)) {
+            GEOSCoordSeq_destroy_r(geos, sequence);
+            return NULL;
+        }
+    }
+    return GEOSGeom_createLineString_r(geos, sequence);
+}
+
+/*
+ * Ring i's polygon grown by the tolerance, made on first use: a fold or a
+ * label that ends on the outline, written to six decimals, may end a hair
+ * outside it.
+ */
+static const GEOSGeometry *grown_polygon(parts_job *job, size_t i)
+{
+    if (!job->grown[i])
+        job->grown[i] = GEOSBuffer_r(job->geos, job->polygons[i], job->collection->tolerance, 2);
+    return job->grown[i];
+}
+
+/* The smallest ring that holds the whole line, SIZE_MAX for none. */
+static ur_status holding_ring(parts_job *job, const parts_line *line, size_t *found,
+                              ur_error *error)
+{
+    *found = SIZE_MAX;
+    GEOSGeometry *string = line_string(job->geos, line);
+    if (!string)
+        return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not make a line");
+    ur_box box = ur_box_of_points(line->points, line->count);
+    double tolerance = job->collection->tolerance;
+    ur_box wide = {{box.min.x + tolerance, box.min.y + tolerance},
+                   {box.max.x - tolerance, box.max.y - tolerance}};
+    ur_status status = UR_OK;
+    for (size_t i = 0; i < job->collection->count; i++) {
+        const ur_box *ring = &job->boxes[i];
+        if (!(ring->min.x <= wide.min.x && ring->min.y <= wide.min.y && ring->max.x >= wide.max.x &&
+              ring->max.y >= wide.max.y) ||
+            (*found != SIZE_MAX && job->areas[i] >= job->areas[*found]))
+            continue;
+        const GEOSGeometry *grown = grown_polygon(job, i);
+        char covers = grown ? GEOSCovers_r(job->geos, grown, string) : 2;
+        if (covers == 2) {
+            status = ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not place a line");
+            break;
+        }
+        if (covers)
+            *found = i;
+    }
+    GEOSGeom_destroy_r(job->geos, string);
+    return status;
+}
+
+static ur_status left_out_error(const parts_collection *collection, const parts_line *line,
+                                ur_error *error)
+{
+    char message[256];
+    ur_vec2 a = line->points[0], b = line->points[line->count - 1];
+    if (line->op == UR_OP_CUT && !line->closed)
+        snprintf(message, sizeof message,
+                 "the shape is open (it starts at (%.6g, %.6g) mm and ends at (%.6g, %.6g) mm): "
+                 "only closed shapes can be parts",
+                 a.x, a.y, b.x, b.y);
+    else
+        snprintf(message, sizeof message, "a %s line outside every part", ur_op_name(line->op));
+    return shape_error(collection, line->line, line->what, error, message);
+}
+
+/* One warning for everything left out: how many, the first, the lines they start on. */
+static ur_status warn_left_out(parts_collection *collection, const size_t *left, size_t count,
+                               ur_error *error)
+{
+    if (count == 0)
+        return UR_OK;
+    bool all_open = true;
+    for (size_t k = 0; k < count; k++)
+        all_open = all_open && collection->lines[left[k]].op == UR_OP_CUT;
+    char where[96] = "";
+    size_t used = 0;
+    for (size_t k = 0; k < count && k < 6 && used < sizeof where; k++)
+        used += (size_t)snprintf(where + used, sizeof where - used, "%s%d", k ? ", " : "",
+                                 collection->lines[left[k]].line);
+    if (count > 6 && used < sizeof where)
+        snprintf(where + used, sizeof where - used, " and %zu more", count - 6);
+    const parts_line *first = &collection->lines[left[0]];
+    return parts_warn(collection, error, "%s:%d: %zu %s left out (%s on line%s %s): %s",
+                      collection->path, first->line, count,
+                      all_open ? (count == 1 ? "open shape" : "open shapes")
+                               : (count == 1 ? "shape" : "shapes"),
+                      first->what, count == 1 ? "" : "s", where,
+                      all_open ? "only closed shapes become parts"
+                               : "open, or outside every part; only closed shapes become parts");
+}
+
+static int by_line_number(const void *a, const void *b, const parts_collection *collection)
+{
+    int p = collection->lines[*(const size_t *)a].line,
+        q = collection->lines[*(const size_t *)b].line;
+    return (p > q) - (p < q);
+}
+
+/*
+ * Every line goes with the part whose outline holds it (the smallest ring
+ * that does, when that ring is a part's outline and not a hole); what no
+ * part holds is left out with one warning, or refused when strict.
+ */
+static ur_status attach_lines(parts_job *job, ur_parts *parts, ur_error *error)
+{
+    parts_collection *collection = job->collection;
+    size_t *left = ur_alloc_array(collection->line_count + 1, sizeof *left, error);
+    if (!left)
+        return UR_ERROR_INTERNAL;
+    size_t left_count = 0;
+    ur_status status = UR_OK;
+    for (size_t k = 0; status == UR_OK && k < collection->line_count; k++) {
+        const parts_line *line = &collection->lines[k];
+        size_t ring = SIZE_MAX;
+        status =
+            check_coordinates(collection, line->points, line->count, line->line, line->what, error);
+        if (status == UR_OK)
+            status = holding_ring(job, line, &ring, error);
+        if (status != UR_OK)
+            break;
+        if (ring != SIZE_MAX && job->piece_of[ring] >= 0)
+            status = ur_piece_add_path(&parts->pieces[job->piece_of[ring]], line->op, line->points,
+                                       line->count, line->closed, error);
+        else if (collection->strict)
+            status = left_out_error(collection, line, error);
+        else
+            left[left_count++] = k;
+    }
+    /* Insertion sort: the order of the file, for the warning. */
+    for (size_t a = 1; a < left_count; a++)
+        for (size_t b = a; b > 0 && by_line_number(&left[b - 1], &left[b], collection) > 0; b--) {
+            size_t t = left[b];
+            left[b] = left[b - 1];
+            left[b - 1] = t;
+        }
+    if (status == UR_OK)
+        status = warn_left_out(collection, left, left_count, error);
+    free(left);
+    return status;
+}
+
+/* No ring at all: say so, naming the first open shape when there is one. */
+static ur_status no_part_error(const parts_collection *collection, ur_error *error)
+{
+    if (collection->line_count == 0)
         return ur_error_set(error, UR_ERROR_INPUT, "%s: no closed shape: nothing to use as a part",
                             collection->path);
+    const parts_line *first = &collection->lines[0];
+    for (size_t k = 1; k < collection->line_count; k++)
+        if (collection->lines[k].line < first->line)
+            first = &collection->lines[k];
+    if (collection->strict)
+        return left_out_error(collection, first, error);
+    return ur_error_set(error, UR_ERROR_INPUT,
+                        "%s:%d: no closed shape: nothing to use as a part (%zu open shape%s, the "
+                        "first a %s)",
+                        collection->path, first->line, collection->line_count,
+                        collection->line_count == 1 ? "" : "s", first->what);
+}
+
+/* Whether a chained ring encloses no area or crosses itself; 2 when GEOS fails. */
+static int bad_chain(GEOSContextHandle_t geos, const parts_collection *collection,
+                     const parts_ring *ring)
+{
+    double least = collection->tolerance * collection->tolerance;
+    if (ring->count < 3 || fabs(ur_polygon_signed_area(ring->points, ring->count)) <= least)
+        return 1;
+    GEOSGeometry *polygon = ur_geos_polygon(geos, ring->points, ring->count);
+    char valid = polygon ? GEOSisValid_r(geos, polygon) : 2;
+    if (polygon)
+        GEOSGeom_destroy_r(geos, polygon);
+    return valid == 2 ? 2 : !valid;
+}
+
+/*
+ * Lines chained end to end that close into no shape (a line drawn twice, a
+ * junction of three lines taken the wrong way round) are open shapes, not
+ * outlines: without strict they join the lines, to be left out or go with
+ * a part, rather than refuse the file.
+ */
+static ur_status release_bad_chains(parts_collection *collection, GEOSContextHandle_t geos,
+                                    ur_error *error)
+{
+    size_t kept = 0;
+    ur_status status = UR_OK;
+    for (size_t i = 0; i < collection->count; i++) {
+        parts_ring *ring = &collection->rings[i];
+        int bad = status == UR_OK && ring->chained && !collection->strict
+                      ? bad_chain(geos, collection, ring)
+                      : 0;
+        if (bad == 2)
+            status = ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not check a polygon");
+        if (bad != 1) {
+            collection->rings[kept++] = *ring;
+            continue;
+        }
+        parts_points points = {ring->points, ring->count, ring->count};
+        status = parts_points_push(&points, ring->points[0], error); /* the loop drawn whole */
+        if (status == UR_OK)
+            status = parts_add_line(collection, &points, false, UR_OP_CUT, ring->line, ring->what,
+                                    error);
+        parts_points_free(&points);
+    }
+    collection->count = kept;
+    return status;
+}
+
+ur_status parts_assemble(parts_collection *collection, ur_parts *parts, ur_error *error)
+{
     parts_job job = {.collection = collection};
     job.geos = GEOS_init_r();
     if (!job.geos)
         return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not start");
-    ur_status status = job_allocate(&job, collection->count, error);
+    ur_status status = release_bad_chains(collection, job.geos, error);
+    if (status == UR_OK && collection->count == 0)
+        status = no_part_error(collection, error);
+    if (status != UR_OK) {
+        GEOS_finish_r(job.geos);
+        return status;
+    }
+    status = job_allocate(&job, collection->count, error);
     for (size_t i = 0; status == UR_OK && i < collection->count; i++)
         status = prepare_ring(&job, i, error);
     if (status == UR_OK)
         status = nest_rings(&job, error);
     if (status == UR_OK)
         status = build_pieces(&job, parts, error);
+    if (status == UR_OK)
+        status = attach_lines(&job, parts, error);
     job_free(&job);
     if (status == UR_OK) {
         parts->warnings = collection->warnings;
@@ -628,8 +981,10 @@ ur_status ur_parts_import(const char *path, const ur_parts_import_options *optio
         status = check_file(path, error);
     if (status != UR_OK)
         return status;
-    parts_collection collection = {
-        .path = path, .tolerance = options->tolerance, .unit = options->unit};
+    parts_collection collection = {.path = path,
+                                   .tolerance = options->tolerance,
+                                   .unit = options->unit,
+                                   .strict = options->strict};
     status = svg ? parts_read_svg(&collection, error) : parts_read_dxf(&collection, error);
     if (status == UR_OK)
         status = parts_assemble(&collection, parts, error);

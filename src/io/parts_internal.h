@@ -40,6 +40,28 @@ ur_status parts_flatten_quadratic(parts_points *points, ur_vec2 p0, ur_vec2 p1, 
 ur_status parts_flatten_cubic(parts_points *points, ur_vec2 p0, ur_vec2 p1, ur_vec2 p2, ur_vec2 p3,
                               double tolerance, ur_error *error);
 
+/*
+ * Affine transforms (SVG transforms, DXF block references): x' = a x + c y
+ * + e, y' = b x + d y + f, as SVG writes matrix(a b c d e f).
+ */
+typedef struct parts_matrix {
+    double a, b, c, d, e, f;
+} parts_matrix;
+
+static const parts_matrix parts_identity = {1, 0, 0, 1, 0, 0};
+
+/* m after n: (m n) p = m (n p). */
+parts_matrix parts_matrix_multiply(parts_matrix m, parts_matrix n);
+ur_vec2 parts_matrix_apply(parts_matrix m, ur_vec2 p);
+/* The most the matrix stretches a length: its largest singular value. */
+double parts_matrix_stretch(parts_matrix m);
+/*
+ * How much m scales every length when it keeps circles circles (turns,
+ * mirrors, moves and scales alike in every direction, to rounding); 0 when
+ * it stretches one way more than another or skews, making circles ellipses.
+ */
+double parts_matrix_similarity_scale(parts_matrix m);
+
 /* An elliptical arc: centre, radii, x axis turned by rotation, from angle start by sweep (radians,
  * positive counter-clockwise). */
 typedef struct parts_arc {
@@ -52,6 +74,24 @@ ur_vec2 parts_arc_point(const parts_arc *arc, double angle);
 ur_status parts_flatten_arc(parts_points *points, const parts_arc *arc, double tolerance,
                             ur_error *error);
 
+/*
+ * A NURBS curve: degree >= 1, control_count control points, knots of
+ * control_count + degree + 1 non-decreasing values (the reader checks
+ * these), weights all > 0 or NULL for a plain B-spline.  Drawn over
+ * knots[degree] .. knots[control_count].
+ */
+typedef struct parts_nurbs {
+    int degree;
+    const ur_vec2 *points;
+    const double *weights;
+    size_t control_count;
+    const double *knots;
+} parts_nurbs;
+
+/* Appends every point of the flattened curve, its start included (unlike the other flatteners). */
+ur_status parts_flatten_nurbs(parts_points *points, const parts_nurbs *curve, double tolerance,
+                              ur_error *error);
+
 /* One closed shape as a reader found it. */
 typedef struct parts_ring {
     ur_vec2 *points; /* owned; mm, y up, first point not repeated */
@@ -61,14 +101,33 @@ typedef struct parts_ring {
     char id[32];           /* the SVG id, empty otherwise */
     int sub;               /* 1 for the first ring of an element, 2 for the next ... */
     ur_path_circle circle; /* the circle the ring exactly is, mm; radius 0 for none */
+    bool chained;          /* DXF pieces chained end to end, not one closed entity */
 } parts_ring;
+
+/*
+ * Any other path: an open shape, or a shape drawn on a score, engrave, mark
+ * or kerf layer.  It goes with the part whose outline holds it (unroll's own
+ * folds and labels, another program's engraving or slits inside a part) and
+ * is left out, with a warning, when no part holds it.
+ */
+typedef struct parts_line {
+    ur_vec2 *points; /* owned; mm, y up */
+    size_t count;
+    bool closed;
+    ur_op op;
+    int line;
+    char what[96];
+} parts_line;
 
 typedef struct parts_collection {
     const char *path;
     double tolerance; /* mm */
     double unit;      /* options->unit */
+    bool strict;      /* options->strict: refuse what would be left out */
     parts_ring *rings;
     size_t count, capacity;
+    parts_line *lines;
+    size_t line_count, line_capacity;
     char (*warnings)[256];
     size_t warning_count;
 } parts_collection;
@@ -80,6 +139,18 @@ typedef struct parts_collection {
 ur_status parts_add_ring(parts_collection *collection, parts_points *points, int line,
                          const char *what, const char *id, int sub, const ur_path_circle *circle,
                          ur_error *error);
+
+/* Takes points (left empty) as a new line; fewer than two points are dropped. */
+ur_status parts_add_line(parts_collection *collection, parts_points *points, bool closed, ur_op op,
+                         int line, const char *what, ur_error *error);
+
+/*
+ * What a layer's (or an SVG group's) name says its paths are, the names
+ * unroll writes and a few more: cut, score, fold(s), score valley, valley,
+ * engrave, engraving, kerf, mark(s), marking, in any case, with spaces,
+ * hyphens or underscores alike; UR_OP_COUNT for any other name.
+ */
+ur_op parts_layer_op(const char *name);
 
 /* Adds a warning, formatted like an error message. */
 ur_status parts_warn(parts_collection *collection, ur_error *error, const char *format, ...)

@@ -34,56 +34,18 @@ typedef const xmlError svg_xml_error;
 typedef xmlError svg_xml_error;
 #endif
 
-/* ---- Affine transforms ------------------------------------------------- */
-
-/* x' = a x + c y + e, y' = b x + d y + f, as SVG writes matrix(a b c d e f). */
-typedef struct svg_matrix {
-    double a, b, c, d, e, f;
-} svg_matrix;
-
-static const svg_matrix svg_identity = {1, 0, 0, 1, 0, 0};
-
-/* m after n: (m n) p = m (n p). */
-static svg_matrix matrix_multiply(svg_matrix m, svg_matrix n)
-{
-    svg_matrix r = {m.a * n.a + m.c * n.b,       m.b * n.a + m.d * n.b,
-                    m.a * n.c + m.c * n.d,       m.b * n.c + m.d * n.d,
-                    m.a * n.e + m.c * n.f + m.e, m.b * n.e + m.d * n.f + m.f};
-    return r;
-}
-
-static ur_vec2 matrix_apply(svg_matrix m, ur_vec2 p)
-{
-    return ur_vec2_make(m.a * p.x + m.c * p.y + m.e, m.b * p.x + m.d * p.y + m.f);
-}
-
-/* The most the matrix stretches a length: its largest singular value. */
-static double matrix_stretch(svg_matrix m)
-{
-    double p = m.a * m.a + m.b * m.b + m.c * m.c + m.d * m.d;
-    double q = m.a * m.d - m.b * m.c;
-    return sqrt(p / 2 + sqrt(fmax(0, p * p / 4 - q * q)));
-}
-
-/*
- * How much m scales every length when it keeps circles circles (turns,
- * mirrors, moves and scales alike in every direction, to rounding); 0 when
- * it stretches one way more than another or skews, making circles ellipses.
- */
-static double matrix_similarity_scale(svg_matrix m)
-{
-    double first = m.a * m.a + m.b * m.b, second = m.c * m.c + m.d * m.d;
-    double slack = 1e-12 * fmax(first, second);
-    if (!(fabs(first - second) <= slack && fabs(m.a * m.c + m.b * m.d) <= slack))
-        return 0;
-    return sqrt(fabs(m.a * m.d - m.b * m.c));
-}
-
 /* ---- Reading state ------------------------------------------------------ */
+
+/* Elements a file may draw through use (copies of copies multiply): more is a runaway. */
+#define SVG_MAX_USED_ELEMENTS 100000
 
 typedef struct svg_reader {
     parts_collection *collection;
     const char *path;
+    ur_op op; /* what the enclosing layer (group) says its paths are: cut unless it names another */
+    xmlNodePtr using[PARTS_MAX_DEPTH]; /* what the use elements being drawn point at */
+    size_t using_count;
+    size_t used; /* elements drawn through use so far */
 } svg_reader;
 
 /* The element being read: for messages and for the rings it gives. */
@@ -93,9 +55,9 @@ typedef struct svg_element {
     int line;
     char what[96]; /* 'path id="a"' */
     char id[32];
-    svg_matrix matrix; /* element's user units to mm */
-    double tolerance;  /* in the element's user units */
-    int sub;           /* rings given so far */
+    parts_matrix matrix; /* element's user units to mm */
+    double tolerance;    /* in the element's user units */
+    int sub;             /* rings given so far */
 } svg_element;
 
 static ur_status element_error(const svg_element *element, ur_error *error, const char *message)
@@ -113,16 +75,28 @@ static ur_status element_ring(svg_element *element, parts_points *points,
                               const ur_path_circle *circle, ur_error *error)
 {
     for (size_t i = 0; i < points->count; i++)
-        points->items[i] = matrix_apply(element->matrix, points->items[i]);
+        points->items[i] = parts_matrix_apply(element->matrix, points->items[i]);
     ur_path_circle in_mm = {{0, 0}, 0, 0};
-    double scale = circle ? matrix_similarity_scale(element->matrix) : 0;
+    double scale = circle ? parts_matrix_similarity_scale(element->matrix) : 0;
     if (scale > 0) {
-        in_mm.centre = matrix_apply(element->matrix, circle->centre);
+        in_mm.centre = parts_matrix_apply(element->matrix, circle->centre);
         in_mm.radius = circle->radius * scale;
     }
+    if (element->reader->op != UR_OP_CUT)
+        return parts_add_line(element->reader->collection, points, true, element->reader->op,
+                              element->line, element->what, error);
     element->sub++;
     return parts_add_ring(element->reader->collection, points, element->line, element->what,
                           element->id, element->sub, in_mm.radius > 0 ? &in_mm : NULL, error);
+}
+
+/* An open shape, in mm: it goes with the part that holds it, or is left out. */
+static ur_status element_line(svg_element *element, parts_points *points, ur_error *error)
+{
+    for (size_t i = 0; i < points->count; i++)
+        points->items[i] = parts_matrix_apply(element->matrix, points->items[i]);
+    return parts_add_line(element->reader->collection, points, false, element->reader->op,
+                          element->line, element->what, error);
 }
 
 /* ---- Numbers, lengths, lists -------------------------------------------- */
@@ -269,24 +243,24 @@ static bool scan_arguments(svg_scanner *scanner, double *values, int max, int *c
 
 /* One transform function by name and arguments; false when they do not fit. */
 static bool transform_function(const char *name, size_t length, const double *v, int n,
-                               svg_matrix *m)
+                               parts_matrix *m)
 {
 #define IS(word) (length == strlen(word) && strncmp(name, word, length) == 0)
     double radians = n > 0 ? v[0] * M_PI / 180 : 0;
     if (IS("matrix") && n == 6)
-        *m = (svg_matrix){v[0], v[1], v[2], v[3], v[4], v[5]};
+        *m = (parts_matrix){v[0], v[1], v[2], v[3], v[4], v[5]};
     else if (IS("translate") && (n == 1 || n == 2))
-        *m = (svg_matrix){1, 0, 0, 1, v[0], n == 2 ? v[1] : 0};
+        *m = (parts_matrix){1, 0, 0, 1, v[0], n == 2 ? v[1] : 0};
     else if (IS("scale") && (n == 1 || n == 2))
-        *m = (svg_matrix){v[0], 0, 0, n == 2 ? v[1] : v[0], 0, 0};
+        *m = (parts_matrix){v[0], 0, 0, n == 2 ? v[1] : v[0], 0, 0};
     else if (IS("rotate") && (n == 1 || n == 3)) {
         double c = cos(radians), s = sin(radians);
         double cx = n == 3 ? v[1] : 0, cy = n == 3 ? v[2] : 0;
-        *m = (svg_matrix){c, s, -s, c, cx - c * cx + s * cy, cy - s * cx - c * cy};
+        *m = (parts_matrix){c, s, -s, c, cx - c * cx + s * cy, cy - s * cx - c * cy};
     } else if (IS("skewX") && n == 1)
-        *m = (svg_matrix){1, 0, tan(radians), 1, 0, 0};
+        *m = (parts_matrix){1, 0, tan(radians), 1, 0, 0};
     else if (IS("skewY") && n == 1)
-        *m = (svg_matrix){1, tan(radians), 0, 1, 0, 0};
+        *m = (parts_matrix){1, tan(radians), 0, 1, 0, 0};
     else
         return false;
     return true;
@@ -294,7 +268,7 @@ static bool transform_function(const char *name, size_t length, const double *v,
 }
 
 /* One "name(arguments)" of a transform list into *step. */
-static bool scan_transform(svg_scanner *scanner, svg_matrix *step)
+static bool scan_transform(svg_scanner *scanner, parts_matrix *step)
 {
     skip_separators(scanner);
     const char *name = scanner->at;
@@ -308,19 +282,19 @@ static bool scan_transform(svg_scanner *scanner, svg_matrix *step)
 }
 
 /* The element's transform attribute, identity when it has none. */
-static ur_status parse_transform(svg_element *element, svg_matrix *matrix, ur_error *error)
+static ur_status parse_transform(svg_element *element, parts_matrix *matrix, ur_error *error)
 {
-    *matrix = svg_identity;
+    *matrix = parts_identity;
     char *text = attribute(element->node, "transform");
     if (!text)
         return UR_OK;
     svg_scanner scanner = {text};
     bool good = true;
     while (good && !at_end(&scanner)) {
-        svg_matrix step;
+        parts_matrix step;
         good = scan_transform(&scanner, &step);
         if (good)
-            *matrix = matrix_multiply(*matrix, step);
+            *matrix = parts_matrix_multiply(*matrix, step);
     }
     ur_status status = UR_OK;
     if (!good) {
@@ -382,18 +356,6 @@ static ur_status path_data_error(svg_path_state *state, const char *at, ur_error
     return element_error(state->element, error, message);
 }
 
-static ur_status open_shape_error(svg_element *element, ur_vec2 first, ur_vec2 last,
-                                  ur_error *error)
-{
-    ur_vec2 a = matrix_apply(element->matrix, first), b = matrix_apply(element->matrix, last);
-    char message[256];
-    snprintf(message, sizeof message,
-             "the shape is open (it starts at (%.6g, %.6g) mm and ends at (%.6g, %.6g) mm): "
-             "only closed shapes can be parts",
-             a.x, a.y, b.x, b.y);
-    return element_error(element, error, message);
-}
-
 /*
  * Ends the sub-path: closed by Z, or by ending where it started (within the
  * tolerance), it becomes a ring; a lone moveto is nothing; anything else is open.
@@ -416,9 +378,7 @@ static ur_status finish_subpath(svg_path_state *state, bool closed, ur_error *er
     }
     ur_vec2 first = points->items[0], last = points->items[points->count - 1];
     if (!closed && ur_vec2_distance(first, last) > state->element->tolerance)
-        return open_shape_error(state->element, first, last, error);
-    if (!closed)
-        points->items[points->count - 1] = first;
+        return element_line(state->element, points, error);
     return element_ring(state->element, points, round ? &circle : NULL, error);
 }
 
@@ -794,10 +754,12 @@ static ur_status read_poly(svg_element *element, bool polygon, ur_error *error)
             status = parts_points_push(&points, ur_vec2_make(x, y), error);
     }
     xmlFree(text);
-    if (status == UR_OK && !polygon && points.count > 1 &&
-        ur_vec2_distance(points.items[0], points.items[points.count - 1]) > element->tolerance)
-        status = open_shape_error(element, points.items[0], points.items[points.count - 1], error);
-    if (status == UR_OK)
+    bool open =
+        !polygon && points.count > 1 &&
+        ur_vec2_distance(points.items[0], points.items[points.count - 1]) > element->tolerance;
+    if (status == UR_OK && open)
+        status = element_line(element, &points, error);
+    else if (status == UR_OK)
         status = element_ring(element, &points, NULL, error);
     parts_points_free(&points);
     return status;
@@ -807,10 +769,16 @@ static ur_status read_line(svg_element *element, ur_error *error)
 {
     static const char *const names[] = {"x1", "y1", "x2", "y2", NULL};
     double v[4];
+    parts_points points = {0};
     ur_status status = lengths(element, names, v, error);
-    if (status != UR_OK)
-        return status;
-    return open_shape_error(element, ur_vec2_make(v[0], v[1]), ur_vec2_make(v[2], v[3]), error);
+    if (status == UR_OK)
+        status = parts_points_push(&points, ur_vec2_make(v[0], v[1]), error);
+    if (status == UR_OK)
+        status = parts_points_push(&points, ur_vec2_make(v[2], v[3]), error);
+    if (status == UR_OK)
+        status = element_line(element, &points, error);
+    parts_points_free(&points);
+    return status;
 }
 
 /* ---- The document tree ------------------------------------------------------ */
@@ -859,7 +827,9 @@ static bool hidden(xmlNodePtr node)
 static void describe(svg_element *element)
 {
     char *id = attribute(element->node, "id");
-    snprintf(element->id, sizeof element->id, "%s", id ? id : "");
+    /* A copy drawn through use is no longer the element of that id: its parts are numbered. */
+    bool copy = element->reader && element->reader->using_count > 0;
+    snprintf(element->id, sizeof element->id, "%s", id && !copy ? id : "");
     if (id)
         snprintf(element->what, sizeof element->what, "%s id=\"%.40s\"",
                  (const char *)element->node->name, id);
@@ -872,18 +842,22 @@ static void describe(svg_element *element)
 
 /* Starts the element: who it is, and its user units to mm. */
 static ur_status element_begin(svg_element *element, svg_reader *reader, xmlNodePtr node,
-                               svg_matrix parent, ur_error *error)
+                               parts_matrix parent, ur_error *error)
 {
     memset(element, 0, sizeof *element);
     element->reader = reader;
     element->node = node;
     describe(element);
-    svg_matrix own;
+    parts_matrix own;
     ur_status status = parse_transform(element, &own, error);
-    element->matrix = matrix_multiply(parent, own);
-    double stretch = matrix_stretch(element->matrix);
+    element->matrix = parts_matrix_multiply(parent, own);
+    double stretch = parts_matrix_stretch(element->matrix);
     element->tolerance =
         stretch > 0 ? reader->collection->tolerance / stretch : reader->collection->tolerance;
+    if (status == UR_OK && reader->using_count > 0 && ++reader->used > SVG_MAX_USED_ELEMENTS)
+        status = element_error(element, error,
+                               "more than 100000 elements drawn through use: not a drawing of "
+                               "parts");
     return status;
 }
 
@@ -915,7 +889,7 @@ static ur_status read_viewbox(svg_element *element, svg_viewbox *box, ur_error *
     return status;
 }
 
-static ur_status walk(svg_reader *reader, xmlNodePtr parent, svg_matrix matrix, int depth,
+static ur_status walk(svg_reader *reader, xmlNodePtr parent, parts_matrix matrix, int depth,
                       ur_error *error);
 
 /* A nested svg: its x, y and, with a viewBox and a size, the viewBox's scale. */
@@ -929,13 +903,157 @@ static ur_status read_nested_svg(svg_element *element, int depth, ur_error *erro
         status = read_viewbox(element, &box, error);
     if (status != UR_OK)
         return status;
-    svg_matrix viewport = {1, 0, 0, 1, v[0], v[1]};
+    parts_matrix viewport = {1, 0, 0, 1, v[0], v[1]};
     if (box.given && v[2] > 0 && v[3] > 0) {
         double s = fmin(v[2] / box.width, v[3] / box.height);
-        viewport = (svg_matrix){s, 0, 0, s, v[0] - s * box.x, v[1] - s * box.y};
+        viewport = (parts_matrix){s, 0, 0, s, v[0] - s * box.x, v[1] - s * box.y};
     }
-    return walk(element->reader, element->node, matrix_multiply(element->matrix, viewport),
+    return walk(element->reader, element->node, parts_matrix_multiply(element->matrix, viewport),
                 depth + 1, error);
+}
+
+/*
+ * What a group's id or Inkscape label says its paths are (unroll writes
+ * each operation as a group named after it, "score", "engrave" ...);
+ * inherited when it names none.
+ */
+static ur_op group_op(xmlNodePtr node, ur_op inherited)
+{
+    static const char *const names[] = {"label", "id"};
+    for (size_t i = 0; i < 2; i++) {
+        char *name = attribute(node, names[i]);
+        ur_op op = name ? parts_layer_op(name) : UR_OP_COUNT;
+        xmlFree(name);
+        if (op != UR_OP_COUNT)
+            return op;
+    }
+    return inherited;
+}
+
+/* ---- use and symbol --------------------------------------------------------- */
+
+static ur_status read_shape(svg_element *element, int depth, ur_error *error);
+
+/* The first element of the document, in document order, whose id is id. */
+static xmlNodePtr element_by_id(xmlNodePtr node, const char *id)
+{
+    for (; node; node = node->next) {
+        if (node->type != XML_ELEMENT_NODE)
+            continue;
+        char *own = attribute(node, "id");
+        bool found = own && strcmp(own, id) == 0;
+        xmlFree(own);
+        if (found)
+            return node;
+        xmlNodePtr inside = element_by_id(node->children, id);
+        if (inside)
+            return inside;
+    }
+    return NULL;
+}
+
+/* Whether drawing target from this use would draw the use again: a loop. */
+static bool loops(const svg_element *element, xmlNodePtr target)
+{
+    for (xmlNodePtr node = element->node; node; node = node->parent)
+        if (node == target)
+            return true; /* the use itself, or a group that holds it */
+    const svg_reader *reader = element->reader;
+    for (size_t i = 0; i < reader->using_count; i++)
+        if (reader->using[i] == target)
+            return true;
+    return false;
+}
+
+/* The element href (or xlink:href) names as "#id"; a message when it names none. */
+static ur_status use_target(svg_element *element, xmlNodePtr *target, ur_error *error)
+{
+    char *href = attribute(element->node, "href"); /* xlink:href too: any namespace */
+    char message[160];
+    *target = NULL;
+    if (!href)
+        snprintf(message, sizeof message, "no href: the use points at nothing");
+    else if (href[0] != '#')
+        snprintf(message, sizeof message,
+                 "href=\"%.*s\" points outside the file: only \"#id\" is read", SVG_QUOTE_MAX,
+                 href);
+    else if ((*target = element_by_id(xmlDocGetRootElement(element->node->doc), href + 1)) == NULL)
+        snprintf(message, sizeof message, "href=\"%.*s\" points at no element of the file",
+                 SVG_QUOTE_MAX, href);
+    else if (loops(element, *target))
+        snprintf(message, sizeof message,
+                 "href=\"%.*s\" refers to itself (directly or through other uses)", SVG_QUOTE_MAX,
+                 href);
+    else
+        message[0] = '\0';
+    xmlFree(href);
+    return message[0] ? element_error(element, error, message) : UR_OK;
+}
+
+/*
+ * A symbol's viewport: with a viewBox and a size (the use's width and
+ * height, else the symbol's own), the viewBox scaled into it as a nested
+ * svg's is; without, its user units are the use's.
+ */
+static ur_status symbol_viewport(svg_element *use, svg_element *symbol, parts_matrix *viewport,
+                                 ur_error *error)
+{
+    double size[2], own[2];
+    svg_viewbox box;
+    static const char *const names[] = {"width", "height", NULL};
+    ur_status status = lengths(use, names, size, error);
+    if (status == UR_OK)
+        status = lengths(symbol, names, own, error);
+    if (status == UR_OK)
+        status = read_viewbox(symbol, &box, error);
+    *viewport = parts_identity;
+    double width = size[0] > 0 ? size[0] : own[0], height = size[1] > 0 ? size[1] : own[1];
+    if (status == UR_OK && box.given && width > 0 && height > 0) {
+        double s = fmin(width / box.width, height / box.height);
+        *viewport = (parts_matrix){s, 0, 0, s, -s * box.x, -s * box.y};
+    }
+    return status;
+}
+
+/* Draws what the use points at, moved by its x and y (after its transform). */
+static ur_status draw_target(svg_element *element, xmlNodePtr target, int depth, ur_error *error)
+{
+    static const char *const names[] = {"x", "y", NULL};
+    double at[2];
+    ur_status status = lengths(element, names, at, error);
+    if (status != UR_OK)
+        return status;
+    parts_matrix moved =
+        parts_matrix_multiply(element->matrix, (parts_matrix){1, 0, 0, 1, at[0], at[1]});
+    svg_reader *reader = element->reader;
+    svg_element drawn;
+    status = element_begin(&drawn, reader, target, moved, error);
+    if (status != UR_OK || hidden(target))
+        return status;
+    if (!named(target, "symbol"))
+        return read_shape(&drawn, depth + 1, error);
+    parts_matrix viewport;
+    status = symbol_viewport(element, &drawn, &viewport, error);
+    if (status == UR_OK)
+        status =
+            walk(reader, target, parts_matrix_multiply(drawn.matrix, viewport), depth + 1, error);
+    return status;
+}
+
+/* use: a copy of another element (a symbol, a group, a shape) drawn here. */
+static ur_status read_use(svg_element *element, int depth, ur_error *error)
+{
+    svg_reader *reader = element->reader;
+    xmlNodePtr target = NULL;
+    ur_status status = use_target(element, &target, error);
+    if (status != UR_OK)
+        return status;
+    if (reader->using_count == PARTS_MAX_DEPTH)
+        return element_error(element, error, "uses nest too deep");
+    reader->using[reader->using_count++] = target;
+    status = draw_target(element, target, depth, error);
+    reader->using_count--;
+    return status;
 }
 
 /* Elements that hold no shape to cut, or only shapes used by reference. */
@@ -968,7 +1086,12 @@ static ur_status read_shape(svg_element *element, int depth, ur_error *error)
     if (named(node, "g") || named(node, "a") || named(node, "switch")) {
         if (depth >= PARTS_MAX_DEPTH)
             return element_error(element, error, "groups nest too deep");
-        return walk(element->reader, node, element->matrix, depth + 1, error);
+        svg_reader *reader = element->reader;
+        ur_op outer = reader->op;
+        reader->op = group_op(node, outer);
+        ur_status status = walk(reader, node, element->matrix, depth + 1, error);
+        reader->op = outer;
+        return status;
     }
     if (named(node, "svg"))
         return depth >= PARTS_MAX_DEPTH ? element_error(element, error, "groups nest too deep")
@@ -984,13 +1107,12 @@ static ur_status read_shape(svg_element *element, int depth, ur_error *error)
     if (named(node, "line"))
         return read_line(element, error);
     if (named(node, "use"))
-        return element_error(element, error,
-                             "clones (use) are not read: unlink them first (Inkscape: Edit > "
-                             "Clone > Unlink Clone)");
+        return depth >= PARTS_MAX_DEPTH ? element_error(element, error, "groups nest too deep")
+                                        : read_use(element, depth, error);
     return UR_OK; /* other SVG elements draw nothing to cut */
 }
 
-static ur_status walk(svg_reader *reader, xmlNodePtr parent, svg_matrix matrix, int depth,
+static ur_status walk(svg_reader *reader, xmlNodePtr parent, parts_matrix matrix, int depth,
                       ur_error *error)
 {
     for (xmlNodePtr node = parent->children; node; node = node->next) {
@@ -1061,7 +1183,7 @@ static double axis_scale(const svg_size *size, bool has_box, double box_extent, 
     return has_box && size->given ? size->value * unit / box_extent : unit;
 }
 
-static ur_status root_matrix(svg_element *root, svg_matrix *matrix, ur_error *error)
+static ur_status root_matrix(svg_element *root, parts_matrix *matrix, ur_error *error)
 {
     svg_size width, height;
     svg_viewbox box;
@@ -1087,7 +1209,7 @@ static ur_status root_matrix(svg_element *root, svg_matrix *matrix, ur_error *er
                     : height.given ? (height.physical ? height.mm / s : height.value)
                                    : 0;
     double left = box.given ? box.x : 0;
-    *matrix = (svg_matrix){s, 0, 0, -s, -s * left, s * bottom};
+    *matrix = (parts_matrix){s, 0, 0, -s, -s * left, s * bottom};
     return UR_OK;
 }
 
@@ -1153,12 +1275,12 @@ static ur_status read_root(svg_reader *reader, xmlNodePtr node, ur_error *error)
     if (!node || !svg_element_node(node) || !named(node, "svg"))
         return ur_error_set(error, UR_ERROR_INPUT, "%s:%d: the root element is %s, not svg",
                             reader->path, root.line, node ? (const char *)node->name : "missing");
-    svg_matrix base = svg_identity, own = svg_identity;
+    parts_matrix base = parts_identity, own = parts_identity;
     ur_status status = root_matrix(&root, &base, error);
     if (status == UR_OK)
         status = parse_transform(&root, &own, error);
     if (status == UR_OK)
-        status = walk(reader, node, matrix_multiply(base, own), 0, error);
+        status = walk(reader, node, parts_matrix_multiply(base, own), 0, error);
     return status;
 }
 
@@ -1168,7 +1290,7 @@ ur_status parts_read_svg(parts_collection *collection, ur_error *error)
     ur_status status = parse_document(collection->path, &doc, error);
     if (status != UR_OK)
         return status;
-    svg_reader reader = {collection, collection->path};
+    svg_reader reader = {.collection = collection, .path = collection->path, .op = UR_OP_CUT};
     status = read_root(&reader, xmlDocGetRootElement(doc), error);
     xmlFreeDoc(doc);
     return status;

@@ -1,6 +1,7 @@
 /*
  * clean.c: ur_mesh_clean: welding, dropping zero-area triangles and unused
- * vertices, refusing non-manifold edges and orienting each part.
+ * vertices, refusing non-manifold edges (after un-welding the vertices
+ * whose welding made them) and orienting each part.
  *
  * Every step writes new arrays; the mesh gets them only once all have
  * succeeded, so that a refused mesh is left as it was.  Messages name input
@@ -23,6 +24,7 @@ typedef struct cleaning {
     size_t *original; /* input vertex of each cleaned vertex */
     size_t vertex_count;
     ur_mesh_repairs repairs;
+    mesh_bad_edge bad; /* the non-manifold edge found, in cleaned vertices */
 } cleaning;
 
 static void cleaning_free(cleaning *c)
@@ -33,6 +35,14 @@ static void cleaning_free(cleaning *c)
     free(c->source);
     free(c->vertices);
     free(c->original);
+}
+
+/* Frees what a try made and starts again with none of it. */
+static void cleaning_reset(cleaning *c)
+{
+    const ur_mesh *mesh = c->mesh;
+    cleaning_free(c);
+    *c = (cleaning){.mesh = mesh};
 }
 
 static ur_status check_input(const ur_mesh *mesh, double tolerance, ur_error *error)
@@ -129,16 +139,18 @@ static ur_status renumber(cleaning *c, ur_error *error)
     return UR_OK;
 }
 
-/* Pairs the half-edges, refusing an edge of three or more triangles. */
-static ur_status pair_edges(const cleaning *c, size_t *twins, ur_error *error)
+/* Pairs the half-edges, refusing an edge of three or more triangles (kept in c->bad). */
+static ur_status pair_edges(cleaning *c, size_t *twins, ur_error *error)
 {
     mesh_bad_edge bad = {0, 0, 0};
     ur_status status = mesh_pair_edges((const size_t(*)[3])c->triangles, c->triangle_count,
                                        c->vertex_count, twins, &bad, error);
-    if (status == UR_ERROR_INPUT)
+    if (status == UR_ERROR_INPUT) {
+        c->bad = bad;
         return ur_error_set(error, status,
                             "non-manifold edge between vertices %zu and %zu (%zu triangles)",
                             c->original[bad.a] + 1, c->original[bad.b] + 1, bad.count);
+    }
     return status;
 }
 
@@ -183,6 +195,50 @@ static void commit(cleaning *c, ur_mesh *mesh)
     c->groups = groups;
 }
 
+/* The steps of a cleaning, with the vertices marked apart left unwelded. */
+static ur_status clean_once(cleaning *c, double weld_tolerance, const bool *apart, ur_error *error)
+{
+    const ur_mesh *mesh = c->mesh;
+    c->map = ur_alloc_array(mesh->vertex_count, sizeof *c->map, error);
+    ur_status status = c->map ? mesh_weld(mesh->vertices, mesh->vertex_count, weld_tolerance,
+                                          c->map, &c->repairs.welded, error)
+                              : UR_ERROR_INTERNAL;
+    for (size_t v = 0; status == UR_OK && apart && v < mesh->vertex_count; v++)
+        if (c->map[v] != v && (apart[v] || apart[c->map[v]])) {
+            c->map[v] = v;
+            c->repairs.welded--;
+        }
+    if (status == UR_OK)
+        status = drop_degenerate(c, error);
+    if (status == UR_OK)
+        status = renumber(c, error);
+    if (status == UR_OK)
+        status = orient(c, error);
+    return status;
+}
+
+/*
+ * Marks apart the input vertices welded into either end of the bad edge;
+ * false when none was (the edge was non-manifold in the input).
+ */
+static bool mark_welded_ends(const cleaning *c, bool *apart)
+{
+    bool marked = false;
+    for (size_t v = 0; v < c->mesh->vertex_count; v++) {
+        size_t cleaned = c->map[v];
+        if (cleaned == UR_NO_VERTEX || (cleaned != c->bad.a && cleaned != c->bad.b))
+            continue;
+        if (c->original[cleaned] != v && !apart[v]) {
+            apart[v] = apart[c->original[cleaned]] = true;
+            marked = true;
+        }
+    }
+    return marked;
+}
+
+/* At most this many edges made non-manifold by welding are taken apart again. */
+#define MOST_UNWELDS 1000
+
 ur_status ur_mesh_clean_map(ur_mesh *mesh, double weld_tolerance, ur_mesh_repairs *repairs,
                             size_t **vertex_map, ur_error *error)
 {
@@ -193,18 +249,30 @@ ur_status ur_mesh_clean_map(ur_mesh *mesh, double weld_tolerance, ur_mesh_repair
     if (vertex_map)
         *vertex_map = NULL;
     ur_status status = check_input(mesh, weld_tolerance, error);
-    if (status == UR_OK) {
-        c.map = ur_alloc_array(mesh->vertex_count, sizeof *c.map, error);
-        status = c.map ? mesh_weld(mesh->vertices, mesh->vertex_count, weld_tolerance, c.map,
-                                   &c.repairs.welded, error)
-                       : UR_ERROR_INTERNAL;
+    /*
+     * Welding can join two parts that only touch (a modeller's eyes set
+     * into a head) along an edge of four triangles: the ends of such an
+     * edge are welded no more, and the mesh cleaned again.
+     */
+    bool *apart = NULL;
+    if (status == UR_OK)
+        status = clean_once(&c, weld_tolerance, NULL, error);
+    for (size_t round = 0; status == UR_ERROR_INPUT && c.bad.count > 2 && round < MOST_UNWELDS;
+         round++) {
+        if (!apart) {
+            apart = ur_alloc_array(mesh->vertex_count, sizeof *apart, error);
+            if (!apart) {
+                status = UR_ERROR_INTERNAL;
+                break;
+            }
+            memset(apart, 0, mesh->vertex_count * sizeof *apart);
+        }
+        if (!mark_welded_ends(&c, apart))
+            break;
+        cleaning_reset(&c);
+        status = clean_once(&c, weld_tolerance, apart, error);
     }
-    if (status == UR_OK)
-        status = drop_degenerate(&c, error);
-    if (status == UR_OK)
-        status = renumber(&c, error);
-    if (status == UR_OK)
-        status = orient(&c, error);
+    free(apart);
     if (status == UR_OK) {
         commit(&c, mesh);
         if (repairs)

@@ -1,5 +1,7 @@
 /*
- * compact.c: shortening a roll layout by overlap minimisation.
+ * compact.c: shortening a roll layout by overlap minimisation, and the
+ * same search on sheets: fewer sheets, and the last one's parts pushed to
+ * one end.
  *
  * The first layout (nest.c) places each part where it fits; this search
  * lets parts overlap on the way to a shorter strip, as the best strip
@@ -26,6 +28,13 @@
  * and tries the same length again.  Compression (the rest) cuts
  * less and less from the best, once each.  Only layouts with no overlap
  * left are kept, so what the nester writes never overlaps.
+ *
+ * On sheets the parts may move between the nester's sheets as well
+ * (random places on any of them): to put a layout on fewer sheets, the
+ * parts of the sheets to drop go at the end of the last sheet kept, as if
+ * it were a roll that long, and that strip is shortened as a roll is until
+ * it is no longer than the sheet (search_fewer).  To leave the last
+ * sheet's offcut whole, that sheet alone is shortened (push_to_one_end).
  *
  * Several searches may run side by side, one per thread, each with its own
  * random steps and copies of the no-fit polygons; they share the shortest
@@ -142,10 +151,11 @@ typedef struct flat_nfp {
     bool made;
 } flat_nfp;
 
-/* Where the parts on the roll are: one state of the search. */
+/* Where the parts are: one state of the search. */
 typedef struct state {
     size_t *turn;
     ur_vec2 *at;
+    size_t *sheet; /* the nester's sheet each is on */
 } state;
 
 /*
@@ -166,7 +176,7 @@ typedef struct near_misses {
  */
 typedef struct shared_best {
     mtx_t lock;                /* held to use the nester, or to read or write the fields below */
-    double length;             /* of best, from the margin */
+    double length;             /* of best (reach_of) */
     state best;                /* owned */
     atomic_uint version;       /* one more with each new best: read without the lock */
     atomic_size_t separations; /* tried by all the searches: the progress line's count */
@@ -178,16 +188,28 @@ typedef struct compactor {
     unsigned seen;  /* the shared version this search has caught up with */
     ur_error error; /* its own, copied to the nester's when it fails */
     ur_status status;
-    size_t count;  /* parts on the roll */
-    size_t *index; /* per part: its placement in the nester */
-    size_t *piece; /* per part */
+    /*
+     * The parts keep within length of the nester's sheet strip_sheet (from
+     * its margin): a roll, or a sheet whose parts are pushed to one end
+     * (to_one_end), every part on it.  Or, across_sheets, a sheet search:
+     * every part, on the nester's sheets 0 to sheet_count - 1, whole ones
+     * but for the last, strip_sheet, which the parts of the sheets dropped
+     * lengthen at first (see search_fewer); sheet_length is its own.
+     */
+    bool across_sheets, to_one_end;
+    size_t strip_sheet, sheet_count;
+    double sheet_length;
+    size_t stock_sheets; /* stock sheets of the layout: what progress tells */
+    size_t count;        /* parts searched over */
+    size_t *index;       /* per part: its placement in the nester */
+    size_t *piece;       /* per part */
     state now, best;
     double *depth;      /* count x count: how far each pair overlaps */
     double *weight;     /* count x count: guided local search's weight of each pair */
     double *pair_scale; /* count x count: each pair's size (pair_cost) */
     double *pair_floor; /* count x count: each pair's least overlap (pair_cost) */
     flat_nfp *nfps;     /* per (class, turn, class, turn), as the nester keys them */
-    double length;      /* the strip the parts must keep within, from the margin (mm) */
+    double length;      /* a strip: the length the parts must keep within, from the margin (mm) */
     double deadline;    /* on nest_seconds_now's clock */
     uint64_t random;
     const flat_nfp **row; /* scratch: per turn and part, the no-fit polygon a moving part meets */
@@ -543,9 +565,11 @@ static ur_vec2 way_out(const flat_nfp *f, ur_vec2 p)
     return ur_vec2_make(edge_point.x + dx / length * beyond, edge_point.y + dy / length * beyond);
 }
 
-/* How far parts i and j overlap where they are now; -1 on a failure. */
+/* How far parts i and j overlap where they are now (0 on different sheets); -1 on a failure. */
 static double pair_depth(compactor *c, size_t i, size_t j)
 {
+    if (c->now.sheet[i] != c->now.sheet[j])
+        return 0;
     const flat_nfp *f = nfp_between(c, j, c->now.turn[j], i, c->now.turn[i]);
     if (!f)
         return -1;
@@ -590,26 +614,37 @@ static bool overlaps_any(const compactor *c, size_t i)
 }
 
 /*
- * Where part i's origin may go at turn t, the strip's length being
- * c->length (x0, y0, x1, y1); false when it is too long for it at that turn.
+ * Where part i's origin may go at turn t on sheet (x0, y0, x1, y1), inside
+ * the margin and, on the strip's sheet, within c->length of it; false when
+ * it does not fit there at that turn.
  */
-static bool inner_fit(const compactor *c, size_t i, size_t t, double *box)
+static bool inner_fit(const compactor *c, size_t sheet, size_t i, size_t t, double *box)
 {
     const nester *n = c->n;
     const ur_nest_options *o = n->options;
     const nest_shape *shape = nest_shape_of(n, c->piece[i], t);
+    double width, height;
+    nest_sheet_size(n, sheet, &width, &height);
     box[0] = o->margin - shape->box.min.x;
     box[1] = o->margin - shape->box.min.y;
-    box[2] = o->margin + c->length - shape->box.max.x;
-    box[3] = o->sheet_height - o->margin - shape->box.max.y;
+    box[2] =
+        (sheet == c->strip_sheet ? o->margin + c->length : width - o->margin) - shape->box.max.x;
+    box[3] = height - o->margin - shape->box.max.y;
     return box[2] >= box[0] && box[3] >= box[1];
 }
 
-/* A candidate: part i at turn t, its origin at p, and its weighted overlap there. */
+/* Where part i may go at turn t on the sheet it is on now (inner_fit). */
+static bool fits_where_it_is(const compactor *c, size_t i, size_t t, double *box)
+{
+    return inner_fit(c, c->now.sheet[i], i, t, box);
+}
+
+/* A candidate: part i at turn t, its origin at p on sheet, and its weighted overlap there. */
 typedef struct candidate {
     size_t turn;
     ur_vec2 at;
     double cost;
+    size_t sheet;
 } candidate;
 
 /*
@@ -647,13 +682,13 @@ static double pair_cost(const compactor *c, size_t i, size_t j, double d)
     return c->weight[k] * (d + c->pair_floor[k]) * c->pair_scale[k];
 }
 
-/* Part i's cost (pair_cost) at turn t and p, given up once above limit. */
-static double cost_at(const compactor *c, size_t i, size_t t, ur_vec2 p, double limit)
+/* Part i's cost (pair_cost) at turn t and p on sheet, given up once above limit. */
+static double cost_at(const compactor *c, size_t i, size_t t, size_t sheet, ur_vec2 p, double limit)
 {
     const flat_nfp *const *row = c->row + t * c->count;
     double cost = 0;
     for (size_t j = 0; j < c->count && cost < limit; j++) {
-        if (j == i)
+        if (j == i || c->now.sheet[j] != sheet)
             continue;
         double d = depth_in(row[j], ur_vec2_make(p.x - c->now.at[j].x, p.y - c->now.at[j].y));
         if (d > 0)
@@ -667,12 +702,13 @@ static ur_vec2 clamp_to(ur_vec2 p, const double *box)
     return ur_vec2_make(fmin(fmax(p.x, box[0]), box[2]), fmin(fmax(p.y, box[1]), box[3]));
 }
 
-/* Tries part i at turn t and p: the new best candidate when it overlaps less. */
-static void try_place(const compactor *c, size_t i, size_t t, ur_vec2 p, candidate *best)
+/* Tries part i at turn t and p on sheet: the new best candidate when it overlaps less. */
+static void try_place(const compactor *c, size_t i, size_t t, size_t sheet, ur_vec2 p,
+                      candidate *best)
 {
-    double cost = cost_at(c, i, t, p, best->cost);
+    double cost = cost_at(c, i, t, sheet, p, best->cost);
     if (cost < best->cost)
-        *best = (candidate){t, p, cost};
+        *best = (candidate){t, p, cost, sheet};
 }
 
 /*
@@ -688,7 +724,7 @@ static void refine(const compactor *c, size_t i, const double *box, double size,
         for (int k = 0; k < 8 && !better; k++) {
             double before = best->cost;
             ur_vec2 p = {best->at.x + step * dx[k], best->at.y + step * dy[k]};
-            try_place(c, i, best->turn, clamp_to(p, box), best);
+            try_place(c, i, best->turn, best->sheet, clamp_to(p, box), best);
             better = best->cost < before;
         }
         if (!better)
@@ -709,9 +745,10 @@ static void push_out(const compactor *c, size_t i, const double *box, candidate 
         size_t most = i;
         double most_cost = 0;
         for (size_t j = 0; j < c->count; j++) {
-            double d = j == i ? 0
-                              : depth_in(row[j], ur_vec2_make(best->at.x - c->now.at[j].x,
-                                                              best->at.y - c->now.at[j].y));
+            double d = j == i || c->now.sheet[j] != best->sheet
+                           ? 0
+                           : depth_in(row[j], ur_vec2_make(best->at.x - c->now.at[j].x,
+                                                           best->at.y - c->now.at[j].y));
             double cost = d > 0 ? pair_cost(c, i, j, d) : 0;
             if (cost > most_cost) {
                 most_cost = cost;
@@ -726,7 +763,7 @@ static void push_out(const compactor *c, size_t i, const double *box, candidate 
         if (p.x < box[0] || p.x > box[2] || p.y < box[1] || p.y > box[3])
             return;
         double before = best->cost;
-        try_place(c, i, best->turn, p, best);
+        try_place(c, i, best->turn, best->sheet, p, best);
         if (best->cost >= before)
             return;
     }
@@ -739,10 +776,18 @@ static double part_size(const compactor *c, size_t i)
     return fmax(ur_box_width(shape->box), ur_box_height(shape->box));
 }
 
+/* A sheet for a random place: the strip's, or in a sheet search any. */
+static size_t random_sheet(compactor *c)
+{
+    if (!c->across_sheets)
+        return c->strip_sheet;
+    return c->sheet_count > 1 ? nest_next_random(&c->random) % c->sheet_count : 0;
+}
+
 /*
  * Moves part i to where it overlaps the others least (weighted): random
- * places across the strip at random turns and near where it is, the best
- * refined.  False on a failure.
+ * places across the strip (or the sheets) at random turns and near where
+ * it is, the best refined.  False on a failure.
  */
 static bool move_part(compactor *c, size_t i)
 {
@@ -750,33 +795,34 @@ static bool move_part(compactor *c, size_t i)
     size_t turns = n->classes[n->class_of[c->piece[i]]].turn_count;
     double size = part_size(c, i);
     double box[4];
-    size_t turn = c->now.turn[i];
+    size_t turn = c->now.turn[i], sheet = c->now.sheet[i];
     if (!fill_rows(c, i, turns))
         return false;
-    /* Left outside a shorter strip, it may go anywhere inside. */
-    bool fits = inner_fit(c, i, turn, box);
+    /* Left outside a shorter strip, or on a sheet no longer used, it may go anywhere inside. */
+    bool fits = inner_fit(c, sheet, i, turn, box);
     candidate best = {turn, c->now.at[i],
-                      fits ? cost_at(c, i, turn, c->now.at[i], INFINITY) : INFINITY};
+                      fits ? cost_at(c, i, turn, sheet, c->now.at[i], INFINITY) : INFINITY, sheet};
     for (int k = 0; fits && k < PLACES_NEAR; k++) {
         ur_vec2 p = {c->now.at[i].x + (2 * uniform(&c->random) - 1) * 0.25 * size,
                      c->now.at[i].y + (2 * uniform(&c->random) - 1) * 0.25 * size};
-        try_place(c, i, turn, clamp_to(p, box), &best);
+        try_place(c, i, turn, sheet, clamp_to(p, box), &best);
     }
     for (int k = 0; k < PLACES_ACROSS; k++) {
-        size_t t = nest_next_random(&c->random) % turns;
-        if (!inner_fit(c, i, t, box))
+        size_t t = nest_next_random(&c->random) % turns, s = random_sheet(c);
+        if (!inner_fit(c, s, i, t, box))
             continue;
         ur_vec2 p = {box[0] + uniform(&c->random) * (box[2] - box[0]),
                      box[1] + uniform(&c->random) * (box[3] - box[1])};
-        try_place(c, i, t, p, &best);
+        try_place(c, i, t, s, p, &best);
     }
     if (!isfinite(best.cost))
-        return true;                       /* no turn fits the strip: the caller keeps it longer */
-    (void)inner_fit(c, i, best.turn, box); /* it fits: best was found inside it */
+        return true; /* no turn fits the strip: the caller keeps it longer */
+    (void)inner_fit(c, best.sheet, i, best.turn, box); /* it fits: best was found inside it */
     refine(c, i, box, size, &best);
     push_out(c, i, box, &best);
     c->now.turn[i] = best.turn;
     c->now.at[i] = best.at;
+    c->now.sheet[i] = best.sheet;
     return update_depths(c, i);
 }
 
@@ -801,6 +847,7 @@ static void copy_state(const compactor *c, state *to, const state *from)
 {
     memcpy(to->turn, from->turn, c->count * sizeof *to->turn);
     memcpy(to->at, from->at, c->count * sizeof *to->at);
+    memcpy(to->sheet, from->sheet, c->count * sizeof *to->sheet);
 }
 
 static bool recompute_depths(compactor *c)
@@ -884,19 +931,21 @@ static bool separate(compactor *c, ur_status *status)
     return false;
 }
 
-/* How far along the strip the parts reach now, from the margin. */
+/* How far along the strip the parts on it reach now, from the margin. */
 static double reach_of(const compactor *c)
 {
     double reach = 0;
     for (size_t i = 0; i < c->count; i++)
-        reach = fmax(reach,
-                     c->now.at[i].x + nest_shape_of(c->n, c->piece[i], c->now.turn[i])->box.max.x);
+        if (c->now.sheet[i] == c->strip_sheet)
+            reach = fmax(reach, c->now.at[i].x +
+                                    nest_shape_of(c->n, c->piece[i], c->now.turn[i])->box.max.x);
     return reach - c->n->options->margin;
 }
 
 /*
  * The shortest strip any layout can have: the longest of the parts' least
- * lengths over their turns, and the parts' area over the strip's width.
+ * lengths over their turns, and the parts' area over the strip's width
+ * (a roll's or a sheet's, every part on it).
  */
 static double shortest_possible(const compactor *c)
 {
@@ -910,7 +959,28 @@ static double shortest_possible(const compactor *c)
         longest = fmax(longest, least);
         area += k->turns[0].area;
     }
-    return fmax(longest, area / (o->sheet_height - 2 * o->margin));
+    double width, height;
+    nest_sheet_size(c->n, c->strip_sheet, &width, &height);
+    return fmax(longest, area / (height - 2 * o->margin));
+}
+
+/*
+ * The parts that no longer fit where they are (outside a shorter strip, on
+ * a sheet no longer used) move to where they overlap the others least,
+ * the depths and weights made afresh first.  False on a failure.
+ */
+static bool move_in(compactor *c)
+{
+    if (!recompute_depths(c))
+        return false;
+    for (size_t k = 0; k < c->count * c->count; k++)
+        c->weight[k] = 1.0;
+    for (size_t i = 0; i < c->count; i++) {
+        double box[4];
+        if (!fits_where_it_is(c, i, c->now.turn[i], box) && !move_part(c, i))
+            return false;
+    }
+    return true;
 }
 
 /*
@@ -926,25 +996,17 @@ static bool cut_to(compactor *c, double length)
     double slice = c->n->options->margin + uniform(&c->random) * reach;
     for (size_t i = 0; i < c->count; i++) {
         const ur_box *box = &nest_shape_of(c->n, c->piece[i], c->now.turn[i])->box;
-        if (c->now.at[i].x + 0.5 * (box->min.x + box->max.x) > slice)
+        if (c->now.sheet[i] == c->strip_sheet &&
+            c->now.at[i].x + 0.5 * (box->min.x + box->max.x) > slice)
             c->now.at[i].x -= reach - length;
     }
     c->length = length;
     for (size_t i = 0; i < c->count; i++) {
         double box[4];
-        if (inner_fit(c, i, c->now.turn[i], box))
+        if (fits_where_it_is(c, i, c->now.turn[i], box))
             c->now.at[i] = clamp_to(c->now.at[i], box);
     }
-    if (!recompute_depths(c))
-        return false;
-    for (size_t k = 0; k < c->count * c->count; k++)
-        c->weight[k] = 1.0;
-    for (size_t i = 0; i < c->count; i++) {
-        double box[4];
-        if (!inner_fit(c, i, c->now.turn[i], box) && !move_part(c, i))
-            return false;
-    }
-    return true;
+    return move_in(c);
 }
 
 /*
@@ -976,13 +1038,14 @@ static bool disrupt(compactor *c)
     ur_vec2 oi = ur_vec2_make(0.5 * (bi->min.x + bi->max.x), 0.5 * (bi->min.y + bi->max.y));
     ur_vec2 oj = ur_vec2_make(0.5 * (bj->min.x + bj->max.x), 0.5 * (bj->min.y + bj->max.y));
     ur_vec2 ci = ur_vec2_add(c->now.at[i], oi), cj = ur_vec2_add(c->now.at[j], oj);
-    c->now.at[i] = ur_vec2_sub(cj, oi);
-    c->now.at[j] = ur_vec2_sub(ci, oj);
-    double box[4];
-    if (inner_fit(c, i, c->now.turn[i], box))
-        c->now.at[i] = clamp_to(c->now.at[i], box);
-    if (inner_fit(c, j, c->now.turn[j], box))
-        c->now.at[j] = clamp_to(c->now.at[j], box);
+    size_t si = c->now.sheet[i], sj = c->now.sheet[j];
+    double box_i[4], box_j[4];
+    if (!inner_fit(c, sj, i, c->now.turn[i], box_i) || !inner_fit(c, si, j, c->now.turn[j], box_j))
+        return true; /* one does not fit the other's sheet (a remnant): no trade */
+    c->now.at[i] = clamp_to(ur_vec2_sub(cj, oi), box_i);
+    c->now.at[j] = clamp_to(ur_vec2_sub(ci, oj), box_j);
+    c->now.sheet[i] = sj;
+    c->now.sheet[j] = si;
     return recompute_depths(c);
 }
 
@@ -999,10 +1062,12 @@ static bool verified(compactor *c)
     for (size_t i = 0; i < c->count; i++) {
         double box[4];
         ur_vec2 at = c->now.at[i];
-        if (!inner_fit(c, i, c->now.turn[i], box) || at.x < box[0] - 1e-9 || at.x > box[2] + 1e-9 ||
-            at.y < box[1] - 1e-9 || at.y > box[3] + 1e-9)
+        if (!fits_where_it_is(c, i, c->now.turn[i], box) || at.x < box[0] - 1e-9 ||
+            at.x > box[2] + 1e-9 || at.y < box[1] - 1e-9 || at.y > box[3] + 1e-9)
             return false;
         for (size_t j = 0; j < i; j++) {
+            if (c->now.sheet[j] != c->now.sheet[i])
+                continue;
             const GEOSGeometry *nfp =
                 nest_nfp_of(n, c->piece[j], c->now.turn[j], c->piece[i], c->now.turn[i]);
             GEOSGeometry *point =
@@ -1017,6 +1082,17 @@ static bool verified(compactor *c)
     return true;
 }
 
+/* Tells the caller's progress of a new best (the shared lock held). */
+static void tell_progress(const compactor *c, double best)
+{
+    const ur_nest_options *o = c->n->options;
+    if (!o->progress)
+        return;
+    size_t tried = atomic_load(&c->shared->separations);
+    size_t sheets = c->across_sheets ? c->sheet_count - c->n->remnant_count : c->stock_sheets;
+    o->progress(o->progress_context, sheets, best + o->margin, tried);
+}
+
 /*
  * A layout with no overlap in a shorter strip than this search's best:
  * its new best, once verified, and everyone's if no other search has
@@ -1025,7 +1101,6 @@ static bool verified(compactor *c)
 static bool keep_best(compactor *c, double *best_length)
 {
     shared_best *shared = c->shared;
-    const ur_nest_options *o = c->n->options;
     mtx_lock(&shared->lock);
     bool kept = verified(c);
     if (kept) {
@@ -1036,9 +1111,7 @@ static bool keep_best(compactor *c, double *best_length)
         shared->length = *best_length;
         copy_state(c, &shared->best, &c->now);
         c->seen = atomic_fetch_add(&shared->version, 1) + 1;
-        if (o->progress)
-            o->progress(o->progress_context, 1, *best_length + o->margin,
-                        atomic_load(&shared->separations));
+        tell_progress(c, *best_length);
     }
     mtx_unlock(&shared->lock);
     return kept;
@@ -1104,12 +1177,12 @@ static const state *pick_near_miss(compactor *c)
 }
 
 /*
- * Exploration: the strip cut by EXPLORE_CUT from the best, and separated
- * again and again, each time from one of the near misses so far, jolted,
- * until a layout fits, the phase's time is up or another search gets
- * ahead.  False when it stops without a layout (or *status says why).
+ * Exploration: the strip cut to length (by EXPLORE_CUT from the best), or
+ * the parts put on that many sheets, and separated again and again, each time from one of the near
+ * misses so far, jolted, until a layout fits, the phase's time is up or another search gets ahead.
+ * False when it stops without a layout (or *status says why).
  */
-static bool explore_once(compactor *c, double length, double until, ur_status *status)
+static bool explore_once(compactor *c, double length, double until, size_t tries, ur_status *status)
 {
     c->misses.count = 0;
     copy_state(c, &c->now, &c->best);
@@ -1120,7 +1193,9 @@ static bool explore_once(compactor *c, double length, double until, ur_status *s
     double saved = c->deadline;
     c->deadline = until;
     bool fits = false;
-    while (!fits && *status == UR_OK && nest_seconds_now() < until && !overtaken(c)) {
+    for (size_t tried = 0;
+         !fits && *status == UR_OK && tried < tries && nest_seconds_now() < until && !overtaken(c);
+         tried++) {
         fits = separate(c, status);
         if (!fits && *status == UR_OK) {
             keep_near_miss(c, total_depth(c)); /* separate left its least in c->now */
@@ -1152,7 +1227,7 @@ static ur_status search_shorter(compactor *c)
         double length = best_length * (1 - EXPLORE_CUT);
         if (length < floor)
             break;
-        if (explore_once(c, length, until, &status))
+        if (explore_once(c, length, until, SIZE_MAX, &status))
             (void)keep_best(c, &best_length); /* or, not verified, the same cut again */
     }
     double compress_start = nest_seconds_now();
@@ -1180,6 +1255,91 @@ static ur_status search_shorter(compactor *c)
     return status;
 }
 
+/*
+ * A sheet search's cut while cuts go through: doubled after each layout
+ * found at the first separation, up to FEWER_CUT_MOST, and back to
+ * EXPLORE_CUT after FEWER_TRIES separations fail.  The lengthened sheet
+ * has much slack at first (the first layout's, and the sheets dropped
+ * end to end), which small cuts would take long to take up.
+ */
+#define FEWER_CUT_MOST 0.05
+#define FEWER_TRIES 2
+
+/*
+ * A sheet search at one count of sheets, c set up (compactor_make): the
+ * last sheet, lengthened at first by the parts of the sheets dropped, is
+ * shortened as a roll is, to its own length; parts move between all the
+ * sheets on the way.  It ends when the parts fit (the shared best is then
+ * within sheet_length), at the deadline, or when another search has done
+ * it.
+ */
+static ur_status search_fewer(compactor *c)
+{
+    ur_status status = UR_OK;
+    double best_length = reach_of(c), cut = EXPLORE_CUT;
+    copy_state(c, &c->best, &c->now);
+    while (status == UR_OK && best_length > c->sheet_length && nest_seconds_now() < c->deadline) {
+        (void)catch_up(c, &best_length);
+        if (best_length <= c->sheet_length)
+            break;
+        double length = fmax(c->sheet_length, best_length * (1 - cut));
+        size_t tries = cut > EXPLORE_CUT ? FEWER_TRIES : SIZE_MAX;
+        if (!explore_once(c, length, c->deadline, tries, &status))
+            cut = EXPLORE_CUT;
+        else if (keep_best(c, &best_length)) /* or, not verified, the same cut again */
+            cut = fmin(FEWER_CUT_MOST, 2 * cut);
+    }
+    return status;
+}
+
+/*
+ * push_to_one_end's cuts: the first, the most and the least (a fraction
+ * of the strip's length), and the separations it tries at each length.
+ */
+#define END_CUT_FIRST 0.01
+#define END_CUT_MOST 0.04
+#define END_CUT_LEAST 0.0005
+#define END_TRIES 2
+
+/*
+ * A sheet's parts pushed to one end (c a strip over that sheet), so that
+ * what is left at the other is one piece of stock: the strip is cut and
+ * separated as a roll is, the cut doubled after each layout found and
+ * halved after END_TRIES separations fail, until it falls below
+ * END_CUT_LEAST.  It stops then, not only at the deadline, so that one
+ * search (the caller runs one) gives the same layout every time.
+ */
+static ur_status push_to_one_end(compactor *c)
+{
+    ur_status status = UR_OK;
+    double best_length = reach_of(c), floor = shortest_possible(c);
+    copy_state(c, &c->best, &c->now);
+    for (double cut = END_CUT_FIRST;
+         status == UR_OK && cut >= END_CUT_LEAST && nest_seconds_now() < c->deadline;) {
+        double length = best_length * (1 - cut);
+        if (length >= floor && explore_once(c, length, c->deadline, END_TRIES, &status) &&
+            keep_best(c, &best_length))
+            cut = fmin(END_CUT_MOST, 2 * cut);
+        else
+            cut *= 0.5;
+    }
+    return status;
+}
+
+static void state_free(state *s)
+{
+    free(s->turn);
+    free(s->at);
+    free(s->sheet);
+}
+
+static bool state_make(state *s, size_t count)
+{
+    *s = (state){calloc(count, sizeof(size_t)), calloc(count, sizeof(ur_vec2)),
+                 calloc(count, sizeof(size_t))};
+    return s->turn && s->at && s->sheet;
+}
+
 static void compactor_free(compactor *c)
 {
     size_t keys = c->n->class_count * c->n->turn_count * c->n->class_count * c->n->turn_count;
@@ -1188,22 +1348,17 @@ static void compactor_free(compactor *c)
     free(c->nfps);
     free(c->index);
     free(c->piece);
-    free(c->now.turn);
-    free(c->now.at);
-    free(c->best.turn);
-    free(c->best.at);
-    free(c->least.turn);
-    free(c->least.at);
+    state_free(&c->now);
+    state_free(&c->best);
+    state_free(&c->least);
     free(c->depth);
     free(c->weight);
     free(c->pair_scale);
     free(c->pair_floor);
     free(c->row);
     free(c->order);
-    for (size_t k = 0; k < NEAR_MISSES; k++) {
-        free(c->misses.layout[k].turn);
-        free(c->misses.layout[k].at);
-    }
+    for (size_t k = 0; k < NEAR_MISSES; k++)
+        state_free(&c->misses.layout[k]);
 }
 
 /* Each pair's size and floor for pair_cost, from the parts' areas and sizes at turn 0. */
@@ -1221,19 +1376,68 @@ static void size_pairs(compactor *c)
 }
 
 /*
- * Sets up search number k (its own random steps) over the count parts on
- * the roll, from the first layout; false when out of memory.
+ * What a search works on: the parts on one sheet as a strip (sheets 0:
+ * a roll, or to_one_end), or every part on the first sheets (a sheet
+ * search: the parts of the others put at the end of the last).
  */
-static bool compactor_make(compactor *c, nester *n, size_t count, shared_best *shared, size_t k)
+typedef struct search_kind {
+    size_t sheet;  /* the strip's sheet (a sheet search: the last it keeps) */
+    size_t sheets; /* a sheet search: how many sheets it keeps (remnants too); 0 otherwise */
+    bool to_one_end;
+} search_kind;
+
+/* Whether the nester's placement p is one the search works on. */
+static bool searched(const nester *n, const search_kind *kind, size_t p)
+{
+    return kind->sheets > 0 || n->sheet_of[p] == kind->sheet;
+}
+
+/* The stock sheets the nester's layout uses. */
+static size_t stock_sheets_of(const nester *n)
+{
+    return n->sheet_count > n->remnant_count ? n->sheet_count - n->remnant_count : 0;
+}
+
+/*
+ * A sheet search's first layout: the parts of each sheet past the last
+ * kept go on the last, a sheet's length (and the spacing) further along
+ * for each sheet past it, so that the last sheet is a strip as long as
+ * all of them, to be shortened to its own length.
+ */
+static void lengthen_last_sheet(compactor *c)
+{
+    double step = c->sheet_length + c->n->options->spacing;
+    for (size_t i = 0; i < c->count; i++)
+        if (c->now.sheet[i] > c->strip_sheet) {
+            c->now.at[i].x += step * (double)(c->now.sheet[i] - c->strip_sheet);
+            c->now.sheet[i] = c->strip_sheet;
+        }
+}
+
+/*
+ * Sets up search number k (its own random steps) over the count parts the
+ * kind says, from the nester's layout; false when out of memory.
+ */
+static bool compactor_make(compactor *c, nester *n, const search_kind *kind, size_t count,
+                           shared_best *shared, size_t k)
 {
     size_t keys = n->class_count * n->turn_count * n->class_count * n->turn_count;
-    *c = (compactor){.n = n, .shared = shared, .count = count};
+    double width, height;
+    nest_sheet_size(n, kind->sheet, &width, &height);
+    *c = (compactor){.n = n,
+                     .shared = shared,
+                     .count = count,
+                     .across_sheets = kind->sheets > 0,
+                     .to_one_end = kind->to_one_end,
+                     .strip_sheet = kind->sheet,
+                     .sheet_count = kind->sheets,
+                     .sheet_length = width - 2 * n->options->margin,
+                     .stock_sheets = stock_sheets_of(n)};
     c->random = (n->options->seed + k) * 0x9E3779B97F4A7C15ULL + 0x632BE59BD9B4E019ULL;
     c->index = calloc(count, sizeof *c->index);
     c->piece = calloc(count, sizeof *c->piece);
-    c->now = (state){calloc(count, sizeof(size_t)), calloc(count, sizeof(ur_vec2))};
-    c->best = (state){calloc(count, sizeof(size_t)), calloc(count, sizeof(ur_vec2))};
-    c->least = (state){calloc(count, sizeof(size_t)), calloc(count, sizeof(ur_vec2))};
+    bool states =
+        state_make(&c->now, count) && state_make(&c->best, count) && state_make(&c->least, count);
     c->depth = calloc(count * count, sizeof *c->depth);
     c->weight = calloc(count * count, sizeof *c->weight);
     c->pair_scale = calloc(count * count, sizeof *c->pair_scale);
@@ -1241,24 +1445,23 @@ static bool compactor_make(compactor *c, nester *n, size_t count, shared_best *s
     c->row = calloc(count * n->turn_count, sizeof *c->row);
     c->nfps = calloc(keys, sizeof *c->nfps);
     c->order = calloc(count, sizeof *c->order);
-    if (!c->index || !c->piece || !c->now.turn || !c->now.at || !c->best.turn || !c->best.at ||
-        !c->least.turn || !c->least.at || !c->depth || !c->weight || !c->pair_scale ||
+    if (!c->index || !c->piece || !states || !c->depth || !c->weight || !c->pair_scale ||
         !c->pair_floor || !c->row || !c->nfps || !c->order)
         return false;
-    for (size_t m = 0; m < NEAR_MISSES; m++) {
-        state *miss = &c->misses.layout[m];
-        *miss = (state){calloc(count, sizeof(size_t)), calloc(count, sizeof(ur_vec2))};
-        if (!miss->turn || !miss->at)
+    for (size_t m = 0; m < NEAR_MISSES; m++)
+        if (!state_make(&c->misses.layout[m], count))
             return false;
-    }
-    size_t roll = n->remnant_count;
     for (size_t p = 0, i = 0; p < n->placed_count; p++)
-        if (n->sheet_of[p] == roll) {
+        if (searched(n, kind, p)) {
             c->index[i] = p;
             c->piece[i] = n->placements[p].piece;
             c->now.turn[i] = n->placements[p].turn;
+            c->now.sheet[i] = n->sheet_of[p];
             c->now.at[i++] = n->placements[p].at;
         }
+    if (c->across_sheets)
+        lengthen_last_sheet(c);
+    c->length = reach_of(c);
     size_pairs(c);
     return true;
 }
@@ -1271,7 +1474,12 @@ static bool compactor_make(compactor *c, nester *n, size_t count, shared_best *s
 static int run_search(void *context)
 {
     compactor *c = context;
-    c->status = recompute_depths(c) ? search_shorter(c) : ur_error_out_of_memory(&c->error);
+    if (!recompute_depths(c))
+        c->status = ur_error_out_of_memory(&c->error);
+    else
+        c->status = c->across_sheets ? search_fewer(c)
+                    : c->to_one_end  ? push_to_one_end(c)
+                                     : search_shorter(c);
     return 0;
 }
 
@@ -1310,45 +1518,105 @@ static ur_status run_searches(compactor *searches, size_t count)
     return UR_OK;
 }
 
-ur_status nest_compact_roll(nester *n, double deadline)
+/*
+ * Writes the best layout back into the nester: the parts' turns and
+ * places, and after a sheet search, their sheets and the sheets' count
+ * and areas.
+ */
+static void write_back(nester *n, const compactor *c, const shared_best *shared)
 {
-    size_t roll = n->remnant_count, count = 0;
-    for (size_t k = 0; k < n->placed_count; k++)
-        count += n->sheet_of[k] == roll;
-    if (count < 2 || nest_seconds_now() > deadline)
-        return UR_OK;
-    shared_best shared = {.best = {calloc(count, sizeof(size_t)), calloc(count, sizeof(ur_vec2))}};
+    for (size_t i = 0; i < c->count; i++) {
+        n->placements[c->index[i]].turn = shared->best.turn[i];
+        n->placements[c->index[i]].at = shared->best.at[i];
+        n->sheet_of[c->index[i]] = shared->best.sheet[i];
+    }
+    if (!c->across_sheets)
+        return;
+    n->sheet_count = c->sheet_count;
+    memset(n->sheet_area, 0, n->sheet_slots * sizeof *n->sheet_area);
+    for (size_t p = 0; p < n->placed_count; p++)
+        n->sheet_area[n->sheet_of[p]] += nest_shape_of(n, n->placements[p].piece, 0)->area;
+}
+
+/*
+ * Sets up and runs the searches of a kind over count parts until deadline,
+ * and keeps what they found: a shorter strip, or a sheet search's layout
+ * if its last sheet is no longer than itself (*done then).
+ */
+static ur_status run_kind(nester *n, const search_kind *kind, size_t count, double deadline,
+                          bool *done)
+{
+    shared_best shared = {.length = 0};
     atomic_init(&shared.version, 0);
     atomic_init(&shared.separations, 0);
     bool lock_made = mtx_init(&shared.lock, mtx_plain) == thrd_success;
-    size_t search_total = search_count(n->options), made = 0;
+    size_t search_total = kind->to_one_end ? 1 : search_count(n->options), made = 0;
     compactor searches[NEST_MAX_THREADS];
     ur_status status =
-        shared.best.turn && shared.best.at && lock_made ? UR_OK : ur_error_out_of_memory(n->error);
+        state_make(&shared.best, count) && lock_made ? UR_OK : ur_error_out_of_memory(n->error);
     for (; status == UR_OK && made < search_total; made++)
-        if (!compactor_make(&searches[made], n, count, &shared, made)) {
+        if (!compactor_make(&searches[made], n, kind, count, &shared, made)) {
             status = ur_error_out_of_memory(n->error);
             made++; /* freed below */
             break;
         }
     if (status == UR_OK) {
-        /* The first layout is everyone's best until a shorter one is separated and verified. */
+        /* The first layout is everyone's best until a better one is separated and verified. */
         shared.length = reach_of(&searches[0]);
         copy_state(&searches[0], &shared.best, &searches[0].now);
         for (size_t k = 0; k < made; k++)
             searches[k].deadline = deadline;
         status = run_searches(searches, made);
     }
-    if (status == UR_OK)
-        for (size_t i = 0; i < count; i++) {
-            n->placements[searches[0].index[i]].turn = shared.best.turn[i];
-            n->placements[searches[0].index[i]].at = shared.best.at[i];
-        }
+    *done = status == UR_OK && (kind->sheets == 0 || shared.length <= searches[0].sheet_length);
+    if (*done)
+        write_back(n, &searches[0], &shared);
     for (size_t k = 0; k < made; k++)
         compactor_free(&searches[k]);
     if (lock_made)
         mtx_destroy(&shared.lock);
-    free(shared.best.turn);
-    free(shared.best.at);
+    state_free(&shared.best);
+    return status;
+}
+
+/* Runs a strip search over the parts on sheet: the roll's, or one end's (to_one_end). */
+static ur_status compact_strip(nester *n, size_t sheet, bool to_one_end, double deadline)
+{
+    size_t count = 0;
+    for (size_t k = 0; k < n->placed_count; k++)
+        count += n->sheet_of[k] == sheet;
+    if (count < 2 || nest_seconds_now() > deadline)
+        return UR_OK;
+    search_kind kind = {.sheet = sheet, .to_one_end = to_one_end};
+    bool done;
+    return run_kind(n, &kind, count, deadline, &done);
+}
+
+ur_status nest_compact_roll(nester *n, double deadline)
+{
+    return compact_strip(n, n->remnant_count, false, deadline);
+}
+
+ur_status nest_push_to_one_end(nester *n, size_t sheet, double deadline)
+{
+    return compact_strip(n, sheet, true, deadline);
+}
+
+ur_status nest_fewer_sheets(nester *n, size_t least, double deadline)
+{
+    size_t stock = stock_sheets_of(n);
+    least = least > 1 ? least : 1;
+    if (n->placed_count < 2 || stock <= least)
+        return UR_OK;
+    double start = nest_seconds_now(), share = (deadline - start) / (double)(stock - least);
+    bool done = false;
+    ur_status status = UR_OK;
+    for (size_t k = least; status == UR_OK && !done && k < stock; k++) {
+        double until = start + share * (double)(k - least + 1);
+        if (nest_seconds_now() >= until)
+            continue;
+        search_kind kind = {.sheet = n->remnant_count + k - 1, .sheets = n->remnant_count + k};
+        status = run_kind(n, &kind, n->placed_count, until, &done);
+    }
     return status;
 }

@@ -13,7 +13,9 @@
  * out once per pair of shapes and turns: copies of a part share them.  The positions left are kept
  * per sheet and shape in a grid of cells (room_grid), so that placing a part cuts only the cells
  * its no-fit polygon reaches.  A search over orders and turns follows; on a
- * roll, compact.c then shortens the strip.
+ * roll, compact.c then shortens the strip; on sheets, it looks for a
+ * layout on fewer sheets (from the area bound up) and pushes the last
+ * sheet's parts to one end, leaving one offcut there.
  *
  * Parts are grown by half the spacing before the no-fit polygons are made,
  * so parts that touch there keep the spacing between them; the no-fit
@@ -232,8 +234,7 @@ const GEOSGeometry *nest_nfp_of(nester *n, size_t a, size_t ta, size_t b, size_t
     return cached_pair(n, n->nfps, make_union, a, ta, b, tb);
 }
 
-/* The size of a sheet: a remnant's, or the stock's. */
-static void sheet_size(const nester *n, size_t sheet, double *width, double *height)
+void nest_sheet_size(const nester *n, size_t sheet, double *width, double *height)
 {
     const ur_nest_options *o = n->options;
     bool remnant = sheet < n->remnant_count;
@@ -249,7 +250,7 @@ static bool inner_fit_box(const nester *n, size_t sheet, const nest_shape *shape
 {
     const ur_nest_options *o = n->options;
     double width, height;
-    sheet_size(n, sheet, &width, &height);
+    nest_sheet_size(n, sheet, &width, &height);
     double x0 = o->margin - shape->box.min.x, x1 = width - o->margin - shape->box.max.x;
     double y0 = o->margin - shape->box.min.y, y1 = height - o->margin - shape->box.max.y;
     if (x1 < x0 - 1e-9 || y1 < y0 - 1e-9)
@@ -568,7 +569,7 @@ static ur_status place_piece(nester *n, size_t piece, size_t held)
         ur_vec2 best = {0, 0};
         size_t best_turn = 0;
         double width, height;
-        sheet_size(n, sheet, &width, &height);
+        nest_sheet_size(n, sheet, &width, &height);
         double room = (width - 2 * n->options->margin) * (height - 2 * n->options->margin);
         if (sheet < n->sheet_count &&
             n->sheet_area[sheet] + nest_shape_of(n, piece, 0)->area > room)
@@ -658,7 +659,7 @@ static ur_status build_layout(nester *n, ur_layout *layout)
             continue;
         index[s] = layout->sheet_count;
         ur_sheet *sheet = &layout->sheets[layout->sheet_count++];
-        sheet_size(n, s, &sheet->width, &sheet->height);
+        nest_sheet_size(n, s, &sheet->width, &sheet->height);
         sheet->remnant = s < n->remnant_count;
         sheet->placements =
             calloc(n->placed_count ? n->placed_count : 1, sizeof *sheet->placements);
@@ -984,7 +985,6 @@ double nest_seconds_now(void)
  * of budget if that is more.
  */
 #define NEST_TURN_MOVES 3
-#define ROLL_ORDER_SHARE 0.2
 static ur_status search(nester *n, size_t *order, double budget)
 {
     const ur_nest_options *o = n->options;
@@ -1052,6 +1052,148 @@ static ur_status search(nester *n, size_t *order, double budget)
     return status;
 }
 
+/* ---- Fewer sheets, and the last one's offcut --------------------------------- */
+
+/*
+ * The budget's shares: the search over orders has the first fifth; on
+ * sheets the search for fewer sheets goes on to four fifths (or until it
+ * reaches the bound), then the last sheet's parts are pushed to one end.
+ */
+#define ORDER_SHARE 0.2
+#define FEWER_SHEETS_SHARE 0.8
+
+/*
+ * The fewest stock sheets any layout needs by area: the parts' area less
+ * the room inside the remnants' margins, over the room inside a stock
+ * sheet's, rounded up.
+ */
+static size_t stock_sheets_bound(const nester *n)
+{
+    const ur_nest_options *o = n->options;
+    double area = 0;
+    for (size_t p = 0; p < n->count; p++)
+        area += nest_shape_of(n, p, 0)->area;
+    for (size_t s = 0; s < n->remnant_count; s++) {
+        double width, height;
+        nest_sheet_size(n, s, &width, &height);
+        area -= fmax(0, (width - 2 * o->margin) * (height - 2 * o->margin));
+    }
+    double room = (o->sheet_width - 2 * o->margin) * (o->sheet_height - 2 * o->margin);
+    double bound = area > 0 ? ceil(area / room - 1e-9) : 0;
+    return bound < (double)n->count ? (size_t)bound : n->count;
+}
+
+/* A stock sheet and the area of its parts, to sort the fullest first. */
+typedef struct sheet_fill {
+    double area;
+    size_t sheet;
+} sheet_fill;
+
+static int fuller_first(const void *a, const void *b)
+{
+    const sheet_fill *x = a, *y = b;
+    if (x->area != y->area)
+        return x->area > y->area ? -1 : 1;
+    return (x->sheet > y->sheet) - (x->sheet < y->sheet);
+}
+
+/*
+ * Numbers the stock sheets anew, the fullest first (the remnants keep
+ * theirs): the sheet search drops the last ones, and the last is the one
+ * whose parts are pushed to one end.  Only once the nester's rooms are no
+ * longer needed: they are kept per sheet number.
+ */
+static ur_status number_fullest_first(nester *n)
+{
+    size_t stock = n->sheet_count - n->remnant_count;
+    sheet_fill *fills = calloc(stock + 1, sizeof *fills);
+    size_t *renumbered = calloc(n->sheet_count + 1, sizeof *renumbered);
+    if (!fills || !renumbered) {
+        free(fills);
+        free(renumbered);
+        return ur_error_out_of_memory(n->error);
+    }
+    for (size_t k = 0; k < stock; k++)
+        fills[k] = (sheet_fill){n->sheet_area[n->remnant_count + k], n->remnant_count + k};
+    qsort(fills, stock, sizeof *fills, fuller_first);
+    for (size_t s = 0; s < n->remnant_count; s++)
+        renumbered[s] = s;
+    for (size_t k = 0; k < stock; k++) {
+        renumbered[fills[k].sheet] = n->remnant_count + k;
+        n->sheet_area[n->remnant_count + k] = fills[k].area;
+    }
+    for (size_t p = 0; p < n->placed_count; p++)
+        n->sheet_of[p] = renumbered[n->sheet_of[p]];
+    free(fills);
+    free(renumbered);
+    return UR_OK;
+}
+
+/*
+ * The most parts, and shapes at their turns, the searches on sheets take
+ * on: each keeps tables of every pair of parts (32 bytes a pair) and of
+ * every pair of shapes at their turns (a flattened no-fit polygon's
+ * header, near 200 bytes a pair), which for thousands would be
+ * gigabytes.  A layout of more stays as the search over orders left it.
+ */
+#define SEARCH_PARTS_MOST 1000
+#define SEARCH_SHAPE_TURNS_MOST 600
+
+/* Whether the searches on sheets take on count parts of the nester's. */
+static bool searchable(const nester *n, size_t count)
+{
+    return count <= SEARCH_PARTS_MOST && n->class_count * n->turn_count <= SEARCH_SHAPE_TURNS_MOST;
+}
+
+/* The parts on a sheet of the nester. */
+static size_t parts_on(const nester *n, size_t sheet)
+{
+    size_t count = 0;
+    for (size_t p = 0; p < n->placed_count; p++)
+        count += n->sheet_of[p] == sheet;
+    return count;
+}
+
+/*
+ * After the search over orders, on sheets with every part placed: fewer
+ * stock sheets, from the area bound up (nest_fewer_sheets), until
+ * fewer_until; then the last stock sheet's parts pushed to its left end
+ * until deadline.
+ */
+static ur_status fewer_sheets(nester *n, double fewer_until, double deadline)
+{
+    if (n->placed_count < n->count || n->sheet_count <= n->remnant_count)
+        return UR_OK;
+    ur_status status = number_fullest_first(n);
+    if (status == UR_OK && searchable(n, n->placed_count))
+        status = nest_fewer_sheets(n, stock_sheets_bound(n), fewer_until);
+    if (status == UR_OK)
+        status = number_fullest_first(n);
+    if (status == UR_OK && n->sheet_count > n->remnant_count &&
+        searchable(n, parts_on(n, n->sheet_count - 1)))
+        status = nest_push_to_one_end(n, n->sheet_count - 1, deadline);
+    return status;
+}
+
+/*
+ * The last stock sheet's offcut: from its parts' right edges and the
+ * spacing to the sheet's right edge.
+ */
+static void measure_offcut(const nester *n, ur_layout *layout)
+{
+    if (n->sheet_count <= n->remnant_count || layout->sheet_count == 0)
+        return;
+    size_t last = n->sheet_count - 1;
+    double reach = 0;
+    for (size_t p = 0; p < n->placed_count; p++) {
+        const placed *part = &n->placements[p];
+        if (n->sheet_of[p] == last)
+            reach = fmax(reach, part->at.x + nest_shape_of(n, part->piece, part->turn)->box.max.x);
+    }
+    ur_sheet *sheet = &layout->sheets[layout->sheet_count - 1];
+    sheet->offcut_width = fmax(0, sheet->width - reach - n->options->spacing);
+}
+
 ur_status ur_layout_nest(const ur_piece *pieces, size_t count, const ur_nest_options *options,
                          ur_layout *layout, ur_error *error)
 {
@@ -1108,12 +1250,17 @@ ur_status ur_layout_nest(const ur_piece *pieces, size_t count, const ur_nest_opt
         status = run_order(&n, order, NULL);
     n.first_run = false;
     double start = nest_seconds_now(), budget = options->time_budget;
-    /* On a roll the search over orders has a share of the budget; shortening the strip, the rest.
+    /*
+     * The search over orders has a share of the budget; shortening the
+     * strip, or fewer sheets and then the last one's parts pushed to one
+     * end, the rest.
      */
     if (status == UR_OK)
-        status = search(&n, order, options->roll_width > 0 ? ROLL_ORDER_SHARE * budget : budget);
+        status = search(&n, order, ORDER_SHARE * budget);
     if (status == UR_OK && options->roll_width > 0 && budget > 0)
         status = nest_compact_roll(&n, start + budget);
+    if (status == UR_OK && options->roll_width <= 0 && budget > 0)
+        status = fewer_sheets(&n, start + FEWER_SHEETS_SHARE * budget, start + budget);
     free(order);
     if (status == UR_OK && options->roll_width > 0 && n.placed_count < count)
         status = ur_error_set(error, UR_ERROR_INPUT,
@@ -1126,6 +1273,8 @@ ur_status ur_layout_nest(const ur_piece *pieces, size_t count, const ur_nest_opt
     if (status == UR_OK && options->roll_width > 0 && layout->sheet_count > 0 &&
         !layout->sheets[layout->sheet_count - 1].remnant)
         layout->sheets[layout->sheet_count - 1].width = used_length(&n);
+    if (status == UR_OK && options->roll_width <= 0)
+        measure_offcut(&n, layout);
     if (status != UR_OK)
         ur_layout_free(layout);
     free(keys);

@@ -143,6 +143,9 @@ const nest_shape *nest_shape_of(const nester *n, size_t piece, size_t turn);
 const GEOSGeometry *nest_nfp_of(nester *n, size_t a, size_t ta, size_t b, size_t tb);
 const GEOSGeometry *nest_sums_of(nester *n, size_t a, size_t ta, size_t b, size_t tb);
 
+/* The size of one of the nester's sheets: a remnant's, or the stock's. */
+void nest_sheet_size(const nester *n, size_t sheet, double *width, double *height);
+
 /*
  * Shortens the roll in a roll layout (compact.c): the parts on it are moved
  * and turned, overlapping on the way, until they fit a shorter strip with
@@ -150,6 +153,28 @@ const GEOSGeometry *nest_sums_of(nester *n, size_t a, size_t ta, size_t b, size_
  * progress.
  */
 ur_status nest_compact_roll(nester *n, double deadline);
+
+/*
+ * Puts the parts of a sheet layout (every part placed) on fewer stock
+ * sheets by the same search (compact.c): to keep the remnants and the
+ * first least stock sheets, the parts of the sheets after them go at the
+ * end of the last kept, as if it were a roll that long, and that strip
+ * is shortened to the sheet's own length, parts moving between all the
+ * sheets kept on the way; if that fails within its share of the time (an
+ * equal one per count up to deadline), one stock sheet more, up to one
+ * less than the layout has.  The stock sheets dropped are the last:
+ * number the fullest first.  A layout kept has no overlap (checked by
+ * GEOS); the nester's rooms no longer hold after it, only its
+ * placements, sheets and their areas.
+ */
+ur_status nest_fewer_sheets(nester *n, size_t least, double deadline);
+
+/*
+ * Pushes the parts on one sheet toward its left edge by the roll's search
+ * (compact.c), so that the sheet's right end is left whole: one search,
+ * which stops when its cuts are tried or at deadline.
+ */
+ur_status nest_push_to_one_end(nester *n, size_t sheet, double deadline);
 
 /* The next number of an xorshift64* sequence (state: not 0). */
 uint64_t nest_next_random(uint64_t *state);

@@ -39,6 +39,17 @@
  */
 #define CLOSING 0.01
 
+/*
+ * A shape with more convex parts than this is simplified and closed again,
+ * twice as coarsely each time, up to COARSEST of its size (four times the
+ * first tolerance): a pair's no-fit polygon is made of one sum per pair of
+ * their parts, and a papercraft net's curved, tabbed strips came out in up
+ * to 140 parts (20,000 sums for a pair: 35 s of a 2,000-face sphere's 36,
+ * and 400 MB).
+ */
+#define MOST_PARTS 32
+#define COARSEST 0.008
+
 /* The ring of a path turned by angle, as a GEOS linear ring; NULL on failure. */
 static GEOSGeometry *turned_ring(GEOSContextHandle_t geos, const ur_path *path, double angle)
 {
@@ -356,6 +367,30 @@ static ur_status convex_parts(GEOSContextHandle_t geos, const GEOSGeometry *poly
     return UR_OK;
 }
 
+/* Frees a shape's polygon and convex parts, keeping the rest. */
+static void drop_parts(GEOSContextHandle_t geos, nest_shape *shape)
+{
+    for (size_t k = 0; k < shape->convex_count; k++)
+        GEOSGeom_destroy_r(geos, shape->convex[k]);
+    free(shape->convex);
+    shape->convex = NULL;
+    shape->convex_count = 0;
+    if (shape->polygon)
+        GEOSGeom_destroy_r(geos, shape->polygon);
+    shape->polygon = NULL;
+}
+
+/* The shape's polygon (exact grown, simplified and closed) and its convex parts, made again. */
+static ur_status shape_parts(GEOSContextHandle_t geos, const GEOSGeometry *exact, double grow,
+                             double tolerance, double closing, nest_shape *shape, ur_error *error)
+{
+    drop_parts(geos, shape);
+    shape->polygon = exact ? grown(geos, exact, grow, tolerance, closing) : NULL;
+    if (!shape->polygon)
+        return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not prepare a piece to nest");
+    return convex_parts(geos, shape->polygon, shape, error);
+}
+
 ur_status nest_shape_make(GEOSContextHandle_t geos, const ur_piece *piece, double angle,
                           double grow, bool holes, nest_shape *shape, ur_error *error)
 {
@@ -382,19 +417,30 @@ ur_status nest_shape_make(GEOSContextHandle_t geos, const ur_piece *piece, doubl
     for (size_t k = 0; k < piece->path_count; k++)
         points += piece->paths[k].count;
     double tolerance = points > SIMPLIFY_ABOVE ? fmax(0.05, 2e-3 * size) : 0.0;
-    GEOSGeometry *exact = piece_polygon(geos, piece, angle, holes);
-    shape->area = area_of(geos, exact);
     double closing = points > SIMPLIFY_ABOVE ? CLOSING * size : 0.0;
-    shape->polygon = exact ? grown(geos, exact, grow, tolerance, closing) : NULL;
+    /* How coarse is decided unturned, so that every turn is one shape turned. */
+    GEOSGeometry *exact = piece_polygon(geos, piece, 0.0, holes);
+    shape->area = area_of(geos, exact);
+    ur_status status = shape_parts(geos, exact, grow, tolerance, closing, shape, error);
+    while (status == UR_OK && shape->convex_count > MOST_PARTS && tolerance > 0 &&
+           2 * tolerance <= COARSEST * size) {
+        tolerance *= 2;
+        closing *= 2;
+        status = shape_parts(geos, exact, grow, tolerance, closing, shape, error);
+    }
+    if (status == UR_OK && angle != 0.0) {
+        GEOSGeom_destroy_r(geos, exact);
+        exact = piece_polygon(geos, piece, angle, holes);
+        status = shape_parts(geos, exact, grow, tolerance, closing, shape, error);
+    }
     if (exact)
         GEOSGeom_destroy_r(geos, exact);
+    if (status != UR_OK)
+        return status;
     double reach[4];
-    if (!shape->polygon)
-        return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not prepare piece %s to nest",
-                            piece->name);
     box_of(geos, shape->polygon, reach);
     shape->reach = (ur_box){{reach[0], reach[1]}, {reach[2], reach[3]}};
-    return convex_parts(geos, shape->polygon, shape, error);
+    return UR_OK;
 }
 
 void nest_shape_free(GEOSContextHandle_t geos, nest_shape *shape)

@@ -173,6 +173,15 @@ static json_t *cutting_json(const ur_report_context *context, const ur_sheet *sh
                      context->machine ? ur_json_number(plan.seconds) : json_null());
 }
 
+/* The offcut the parts leave at the sheet's right end (nesting's last sheet), or null. */
+static json_t *offcut_json(const ur_sheet *sheet)
+{
+    if (!(sheet->offcut_width > 0))
+        return json_null();
+    return json_pack("{s:o, s:o}", "width_mm", ur_json_number(sheet->offcut_width), "height_mm",
+                     ur_json_number(sheet->height));
+}
+
 static json_t *sheet_json(const ur_report_context *context, const ur_layout *layout, size_t index,
                           const ur_piece *pieces)
 {
@@ -187,6 +196,7 @@ static json_t *sheet_json(const ur_report_context *context, const ur_layout *lay
         json_object_set_new(object, "utilisation",
                             ur_json_number(ur_sheet_utilisation(sheet, pieces))) != 0 ||
         json_object_update_new(object, cutting_json(context, sheet, pieces)) != 0 ||
+        json_object_set_new(object, "offcut", offcut_json(sheet)) != 0 ||
         (sheet->material[0] &&
          json_object_set_new(object, "material",
                              name_of(sheet->material, sizeof sheet->material)) != 0)) {

@@ -1971,7 +1971,8 @@ def nest_copies_and_bad_input(work):
     write(work, "open.svg", """<svg xmlns="http://www.w3.org/2000/svg" width="10mm" height="10mm"
  viewBox="0 0 10 10"><path id="zigzag" d="M0,0 L5,5 L10,0"/></svg>
 """)
-    bad(work, r"open\.svg:2: .*zigzag", "nest", "open.svg", "-o", "x.svg")
+    bad(work, r"open\.svg:2: .*zigzag.*open", "nest", "open.svg", "--strict", "-o", "x.svg")
+    bad(work, r"open\.svg:2: no closed shape.*1 open shape", "nest", "open.svg", "-o", "x.svg")
     write(work, "nounits.svg", """<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 10 10">
 <rect width="10" height="10"/></svg>
 """)
@@ -1990,6 +1991,221 @@ def nest_copies_and_bad_input(work):
           result.stderr)
     bad(work, r"--sheets: '0' is not a count", "nest", "mm.svg", "--sheets", "0", "-o", "x.svg")
     bad(work, r"--copies: '0' is not a count", "nest", "mm.svg", "--copies", "0", "-o", "x.svg")
+
+
+@test
+def nest_leaves_open_shapes_out(work):
+    """Closed shapes are nested, open ones left out with one warning naming the
+    file, the first one's line and the count; --strict refuses the file, naming
+    the line, and writes nothing.  The same for a DXF."""
+    write(work, "mixed.svg", """<svg xmlns="http://www.w3.org/2000/svg" width="100mm" height="100mm" viewBox="0 0 100 100">
+<rect id="a" width="20" height="10"/>
+<path id="zigzag" d="M50,50 L60,60 L70,50"/>
+<line x1="80" y1="0" x2="90" y2="0"/>
+<circle id="b" cx="50" cy="20" r="5"/>
+</svg>
+""")
+    result = run(work, "nest", "mixed.svg", "-o", "mixed-out.svg", "--report", "m.json")
+    check(re.search(r"warning: .*mixed\.svg:3: 2 open shapes left out \(path id=\"zigzag\" "
+                    r"on lines 3, 4\)", result.stderr), result.stderr)
+    names = sorted(p["name"] for p in report(work, "m.json")["pieces"])
+    check(names == ["a", "b"], "parts %r" % names)
+    out = os.path.join(work, "mixed-out.svg")
+    check(len(outlines(out)) == 1 and len(circles(out, "cut")) == 1, "not a rectangle and a circle")
+    bad(work, r"mixed\.svg:3: path id=\"zigzag\": the shape is open", "nest", "mixed.svg",
+        "--strict", "-o", "x.svg")
+    entities = ("0\nLWPOLYLINE\n8\n0\n90\n4\n70\n1\n10\n0\n20\n0\n10\n30\n20\n0\n10\n30\n20\n"
+                "10\n10\n0\n20\n10\n0\nLINE\n8\n0\n10\n50\n20\n0\n11\n60\n21\n5\n")
+    write(work, "mixed.dxf", "0\nSECTION\n2\nHEADER\n9\n$INSUNITS\n70\n4\n0\nENDSEC\n"
+          "0\nSECTION\n2\nENTITIES\n" + entities + "0\nENDSEC\n0\nEOF\n")
+    result = run(work, "nest", "mixed.dxf", "-o", "mixed-dxf.svg")
+    check(re.search(r"mixed\.dxf:40: 1 open shape left out \(LINE", result.stderr), result.stderr)
+    bad(work, r"mixed\.dxf:40: LINE: the shape is open", "nest", "mixed.dxf", "--strict", "-o",
+        "x.svg")
+
+
+def part_areas(work, source, *extra):
+    """The areas of the parts unroll nest finds in a file, smallest first."""
+    run(work, "nest", source, "--nest-time", "0", "--no-kerf-compensation", "--sheet", "1000x1000",
+        "-o", source + ".out.svg", "--report", source + ".json", "--quiet", *extra)
+    return sorted(p["flat_area_mm2"] for p in report(work, source + ".json")["pieces"])
+
+
+@test
+def nest_reads_blocks_and_splines(work):
+    """A DXF of blocks (nested, turned, scaled unevenly, mirrored, in an array)
+    holding polylines, circles and splines (a rational one, a circle) gives the
+    parts ezdxf's explode gives, areas equal to 1e-6; the spline circle is
+    within the flattening's loss of its area; the files written pass ezdxf's
+    audit and xmllint."""
+    import ezdxf
+    doc = ezdxf.new("R2000")
+    doc.header["$INSUNITS"] = 4
+    square = doc.blocks.new("square", base_point=(5, 5))
+    square.add_lwpolyline([(0, 0), (10, 0), (10, 10), (0, 10)], close=True)
+    square.add_lwpolyline([(2, 2), (6, 2), (2, 6)], close=True)
+    pair = doc.blocks.new("pair")
+    pair.add_blockref("square", (0, 0), dxfattribs={"rotation": 30, "xscale": 2, "yscale": 0.5})
+    pair.add_blockref("square", (40, 0), dxfattribs={"rotation": -45, "extrusion": (0, 0, -1)})
+    pair.add_circle((0, 40), 6)
+    w = math.sqrt(0.5)
+    ring = [(10, 0), (10, 10), (0, 10), (-10, 10), (-10, 0), (-10, -10), (0, -10), (10, -10),
+            (10, 0)]
+    pair.add_rational_spline([(x + 30, y + 40) for x, y in ring], [1, w, 1, w, 1, w, 1, w, 1],
+                             degree=2, knots=[0, 0, 0, 1, 1, 2, 2, 3, 3, 4, 4, 4])
+    msp = doc.modelspace()
+    msp.add_blockref("pair", (100, 100), dxfattribs={"rotation": 15, "xscale": 1.5, "yscale": 1.5})
+    grid = msp.add_blockref("square", (0, 200), dxfattribs={"rotation": 10})
+    grid.dxf.column_count, grid.dxf.row_count = 3, 2
+    grid.dxf.column_spacing, grid.dxf.row_spacing = 20, 30
+    doc.saveas(os.path.join(work, "blocks.dxf"))
+    for insert in msp.query("INSERT"):
+        insert.explode()
+    while len(msp.query("INSERT")):
+        for insert in msp.query("INSERT"):
+            insert.explode()
+    doc.saveas(os.path.join(work, "exploded.dxf"))
+    blocks, exploded = part_areas(work, "blocks.dxf"), part_areas(work, "exploded.dxf")
+    check(len(blocks) == 10, "%d parts, not 10" % len(blocks))
+    check(len(blocks) == len(exploded), "%d parts, exploded %d" % (len(blocks), len(exploded)))
+    for a, b in zip(blocks, exploded):
+        close(a, b, 1e-6 / b, "a part's area against the exploded drawing's")
+    # Squares with a triangular hole: 92 mm2, 2 x 0.5 x 1.5^2 = 2.25 times that in pair.
+    check(sum(abs(a - 92) < 1e-9 for a in blocks) == 6, "not 6 squares of 92 mm2: %r" % blocks)
+    check(sum(abs(a - 92 * 2.25) < 1e-9 for a in blocks) == 2, "not 2 of 207 mm2: %r" % blocks)
+    # The spline circle, radius 15 mm after pair's scale: within 0.01 mm of its perimeter.
+    spline = math.pi * 15 ** 2
+    check(any(spline - 0.01 * 2 * math.pi * 15 <= a <= spline for a in blocks),
+          "no part has the spline circle's area %g: %r" % (spline, blocks))
+    run(work, "nest", "blocks.dxf", "--nest-time", "0", "-o", "written.svg", "--format", "svg,dxf",
+        "--quiet")
+    dxf_audits_clean(os.path.join(work, "written.dxf"))
+    check(subprocess.run(["xmllint", "--noout", os.path.join(work, "written.svg")]).returncode == 0,
+          "xmllint rejects written.svg")
+
+
+@test
+def nest_reads_svg_use_and_symbol(work):
+    """An SVG drawn with use (href and xlink:href, x and y, transforms, a use of
+    a group of uses) and a symbol with a viewBox gives the parts of the same
+    drawing written out shape by shape, areas equal to 1e-6."""
+    head = ('<svg xmlns="http://www.w3.org/2000/svg" xmlns:xlink="http://www.w3.org/1999/xlink" '
+            'width="200mm" height="200mm" viewBox="0 0 200 200">\n')
+    plate = '<path d="M0,0 H20 V10 H0 Z M4,4 h2 v2 h-2 Z"/>'
+    write(work, "use.svg", head + '<defs><g id="plate">' + plate + '</g>\n'
+          '<symbol id="sym" viewBox="0 0 10 10"><path d="M0,0 L10,0 L0,10 Z"/></symbol>\n'
+          '<g id="two"><use href="#plate"/><use xlink:href="#plate" x="30" '
+          'transform="rotate(10)"/></g></defs>\n'
+          '<use href="#two" x="10" y="10"/>\n'
+          '<use href="#sym" x="100" y="100" width="40" height="40"/>\n'
+          '<use href="#two" transform="translate(0,100) scale(1.5)"/>\n</svg>\n')
+    write(work, "flat.svg", head +
+          '<g transform="translate(10,10)">' + plate +
+          '<g transform="rotate(10) translate(30,0)">' + plate + '</g></g>\n'
+          '<path d="M100,100 L140,100 L100,140 Z"/>\n'
+          '<g transform="translate(0,100) scale(1.5)">' + plate +
+          '<g transform="rotate(10) translate(30,0)">' + plate + '</g></g>\n</svg>\n')
+    used, flat = part_areas(work, "use.svg"), part_areas(work, "flat.svg")
+    check(len(used) == 5 and len(flat) == 5, "%d and %d parts, not 5" % (len(used), len(flat)))
+    for a, b in zip(used, flat):
+        close(a, b, 1e-6 / b, "a part's area against the drawing without use")
+    check(abs(used[-1] - 800) < 1e-9, "the symbol's triangle is %g mm2, not 800" % used[-1])
+
+
+@test
+def sample_drawing_of_blocks_and_splines_nests(work):
+    """samples/brackets.dxf is what samples/make-drawings.py writes; make demo
+    nests it: 3 brackets, 8 tabs and the disc, each bracket's engraved arrow
+    inside it, the disc's area that of a 25 mm circle less a 2.5 mm one
+    within the flattening's loss, the open construction line named as left
+    out."""
+    subprocess.run([sys.executable, os.path.join(REPO, "samples", "make-drawings.py"), work],
+                   check=True)
+    with open(os.path.join(work, "brackets.dxf")) as a, \
+            open(os.path.join(REPO, "samples", "brackets.dxf")) as b:
+        check(a.read() == b.read(), "samples/brackets.dxf is not what make-drawings.py writes")
+    result = run(work, "nest", os.path.join(REPO, "samples", "brackets.dxf"), "--material",
+                 "plywood-3mm", "--nest-time", "0", "--no-kerf-compensation", "-o", "b.svg",
+                 "--report", "b.json")
+    check(re.search(r"brackets\.dxf:\d+: 1 open shape left out \(LINE", result.stderr),
+          result.stderr)
+    areas = sorted(p["flat_area_mm2"] for p in report(work, "b.json")["pieces"])
+    check(len(areas) == 12, "%d parts, not 12" % len(areas))
+    disc = math.pi * (25 ** 2 - 2.5 ** 2)
+    check(any(disc - 0.01 * 2 * math.pi * 25 <= a <= disc + 0.01 * 2 * math.pi * 2.5
+              for a in areas), "no part is the disc (%g mm2): %r" % (disc, areas))
+    parts = lines_by_part(os.path.join(work, "b.svg"))
+    check(sum(part[5] for part in parts) == 3 and max(part[5] for part in parts) == 1,
+          "the three arrows are not one to a bracket: %r" % [part[5] for part in parts])
+
+
+@test
+def bad_blocks_splines_and_uses(work):
+    """Each a one-line message naming the file and line, exit 2, nothing written."""
+    units = "0\nSECTION\n2\nHEADER\n9\n$INSUNITS\n70\n4\n0\nENDSEC\n"
+    write(work, "self.dxf", units + "0\nSECTION\n2\nBLOCKS\n0\nBLOCK\n2\nA\n0\nINSERT\n2\nB\n"
+          "0\nENDBLK\n0\nBLOCK\n2\nB\n0\nINSERT\n2\nA\n0\nENDBLK\n0\nENDSEC\n"
+          "0\nSECTION\n2\nENTITIES\n0\nINSERT\n2\nA\n0\nENDSEC\n0\nEOF\n")
+    bad(work, r"self\.dxf:30: INSERT: block 'A' refers to itself", "nest", "self.dxf", "-o", "x.svg")
+    write(work, "degree.dxf", units + "0\nSECTION\n2\nENTITIES\n0\nSPLINE\n71\n0\n40\n0\n40\n1\n"
+          "10\n0\n20\n0\n0\nENDSEC\n0\nEOF\n")
+    bad(work, r"degree\.dxf:16: SPLINE: degree 0", "nest", "degree.dxf", "-o", "x.svg")
+    write(work, "knots.dxf", units + "0\nSECTION\n2\nENTITIES\n0\nSPLINE\n71\n1\n40\n0\n40\n0\n"
+          "40\n2\n40\n1\n10\n0\n20\n0\n10\n1\n20\n0\n0\nENDSEC\n0\nEOF\n")
+    bad(work, r"knots\.dxf:16: SPLINE: its knots decrease", "nest", "knots.dxf", "-o", "x.svg")
+    head = ('<svg xmlns="http://www.w3.org/2000/svg" width="10mm" height="10mm" viewBox="0 0 10 10">'
+            '\n<rect width="5" height="5"/>\n')
+    write(work, "self.svg", head + '<g id="g"><use href="#g"/></g></svg>\n')
+    bad(work, r"self\.svg:3: use: .*refers to itself", "nest", "self.svg", "-o", "x.svg")
+    write(work, "nowhere.svg", head + '<use href="#none"/></svg>\n')
+    bad(work, r"nowhere\.svg:3: use: .*points at no element", "nest", "nowhere.svg", "-o", "x.svg")
+
+
+def lines_by_part(svg_file):
+    """For each outline of a sheet, largest first: its area, and the count and
+    length of the score, valley and engrave lines that lie on it (every
+    middle of a segment inside it or on its edge); every such line must lie
+    on one outline."""
+    rings = outlines(svg_file)
+    found = [[area(ring)] + [0, 0.0] * 3 for ring in rings]
+    for k, layer in enumerate(("score", "score-valley", "engrave")):
+        for points, closed in paths(svg_file, layer):
+            if closed:
+                points = points + points[:1]
+            middles = [((p[0] + q[0]) / 2, (p[1] + q[1]) / 2) for p, q in zip(points, points[1:])]
+            holders = [i for i, ring in enumerate(rings)
+                       if all(inside(m, ring) or on_ring(m, ring) for m in middles)]
+            check(len(holders) >= 1, "%s: a %s line outside every part" % (svg_file, layer))
+            found[holders[0]][1 + 2 * k] += 1
+            found[holders[0]][2 + 2 * k] += sum(math.dist(p, q) for p, q in zip(points, points[1:]))
+    return sorted(found, reverse=True)
+
+
+@test
+def nest_keeps_the_folds_and_labels_of_unroll_files(work):
+    """unroll's own cut file (SVG and DXF) nested again: every part keeps its
+    folds and labels, turned and placed with it: each outline holds as many
+    score, valley and engrave lines, as long in all, as it did."""
+    mesh = os.path.join(REPO, "samples", "torus.obj")
+    run(work, "mesh", mesh, "--flatten", "unfold", "--material", "paper-0.3mm", "--nest-time", "0",
+        "--no-kerf-compensation", "--order", "none", "-o", "t.svg", "--format", "svg,dxf",
+        "--quiet")
+    before = lines_by_part(os.path.join(work, "t-1.svg"))
+    check(len(before) >= 3 and all(part[1] > 0 and part[5] > 0 for part in before),
+          "the unfolded torus has no folds or labels to keep")
+    for source in ("t-1.svg", "t-1.dxf"):
+        result = run(work, "nest", source, "--material", "paper-0.3mm", "--nest-time", "0",
+                     "--no-kerf-compensation", "--rotations", "4", "-o", "again.svg",
+                     "--format", "svg,dxf")
+        check("left out" not in result.stderr, result.stderr)
+        after = lines_by_part(os.path.join(work, "again.svg"))
+        check(len(after) == len(before), "%s: %d parts, %d before" % (source, len(after), len(before)))
+        for a, b in zip(after, before):
+            close(a[0], b[0], 1e-6, "%s: a part's area" % source)
+            check(a[1::2] == b[1::2], "%s: lines per part %r, before %r" % (source, a[1::2], b[1::2]))
+            for k in (2, 4, 6):
+                close(a[k], b[k], 1e-6, "%s: length of a part's lines" % source)
+        dxf_audits_clean(os.path.join(work, "again.dxf"))
 
 
 @test
@@ -2084,6 +2300,39 @@ def nest_cuts_a_part_too_long_for_the_sheet(work):
     check(400 <= lengths[0] <= 421 and 470 <= lengths[1] <= 491, "lengths by area %r" % lengths)
     dxf_audits_clean(os.path.join(work, "bar-out.dxf"))
     bad(work, r"bar-1 .* does not fit", "nest", "bar.svg", "--no-split", "-o", "refused.svg")
+
+
+@test
+def nest_keeps_whole_a_part_that_fits_the_sheet(work):
+    """A ring 90 mm across with a 70 mm hole, and a 60 mm disc, on a 100 x
+    100 mm sheet with a 1 mm margin: the ring is longer than the room a
+    part cut in two may take (the sheet less a joint at each end: 62 mm in
+    plywood, less in cardboard) but fits the sheet whole, so it is not cut:
+    two parts, both on sheet 1 (the disc in the ring's hole), their areas
+    the ring's and the disc's, pi (45^2 - 35^2) and pi 30^2 to the
+    flattening of the arcs, and the circles of the drawing written whole."""
+    write(work, "ring.svg", '<svg xmlns="http://www.w3.org/2000/svg" width="100mm" height="100mm" '
+          'viewBox="0 0 100 100"><path id="ring" d="M5,50 a45,45 0 1,0 90,0 a45,45 0 1,0 -90,0 Z '
+          'M15,50 a35,35 0 1,0 70,0 a35,35 0 1,0 -70,0 Z"/><circle id="disc" cx="50" cy="50" r="30"/>'
+          '</svg>\n')
+    for material in ("plywood-3mm", "cardboard-2mm"):
+        result = run(work, "nest", "ring.svg", "--sheet", "100x100", "--margin", "1", "--material",
+                     material, "--no-kerf-compensation", "-o", material + ".svg", "--report",
+                     material + ".json")
+        check("cut into" not in result.stderr, material + ": " + result.stderr)
+        found = report(work, material + ".json")
+        pieces = sorted(found["pieces"], key=lambda p: p["name"])
+        check([(p["name"], p["sheet"]) for p in pieces] == [("disc", 1), ("ring", 1)],
+              "%s: pieces %r" % (material, [(p["name"], p["sheet"]) for p in pieces]))
+        check(len(found["sheets"]) == 1, "%s: %d sheets" % (material, len(found["sheets"])))
+        close(pieces[0]["flat_area_mm2"], math.pi * 30 ** 2, 2e-3, material + ": disc area")
+        close(pieces[1]["flat_area_mm2"], math.pi * (45 ** 2 - 35 ** 2), 2e-3, material + ": ring area")
+        # Circles stay circles in the file written; any other outline would be a path.
+        written = os.path.join(work, material + ".svg")
+        radii = sorted(r for _, _, r in circles(written, "cut"))
+        check(len(radii) == 3 and not outlines(written), "%s: circles %r" % (material, radii))
+        for got, radius in zip(radii, (30, 35, 45)):
+            close(got, radius, 1e-6, "%s: a circle's radius" % material)
 
 
 # ---- job files -------------------------------------------------------------

@@ -12,10 +12,16 @@
 
 #include "unroll/io.h"
 
+/* A ring (outline or hole), or a line that goes with the part (open, or not a cut). */
+static inline bool is_ring(const ur_path *path)
+{
+    return path->op == UR_OP_CUT && path->closed;
+}
+
 static inline void check_path(const ur_path *path)
 {
-    FUZZ_CHECK(path->op == UR_OP_CUT && path->closed);
-    FUZZ_CHECK(path->count >= 3 && path->points != NULL);
+    FUZZ_CHECK(path->op < UR_OP_COUNT);
+    FUZZ_CHECK(path->count >= (path->closed ? 3u : 2u) && path->points != NULL);
     for (size_t i = 0; i < path->count; i++) {
         ur_vec2 p = path->points[i];
         FUZZ_CHECK(isfinite(p.x) && isfinite(p.y));
@@ -42,11 +48,13 @@ static inline void check_parts(const ur_parts *parts)
         const ur_piece *piece = &parts->pieces[k];
         FUZZ_CHECK(memchr(piece->name, '\0', sizeof piece->name) != NULL);
         FUZZ_CHECK(piece->path_count >= 1);
+        FUZZ_CHECK(is_ring(&piece->paths[0]));
         for (size_t i = 0; i < piece->path_count; i++) {
             check_path(&piece->paths[i]);
             /* The outline runs counter-clockwise, its holes clockwise. */
             double area2 = ring_area2(&piece->paths[i]);
-            FUZZ_CHECK(i == 0 ? area2 > 0 : area2 < 0);
+            if (is_ring(&piece->paths[i]))
+                FUZZ_CHECK(i == 0 ? area2 > 0 : area2 < 0);
         }
         FUZZ_CHECK(isfinite(piece->measures.flat_area) && piece->measures.flat_area > 0);
     }

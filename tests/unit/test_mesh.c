@@ -663,6 +663,39 @@ static ur_mesh grid_with_extra(size_t a, size_t b2, size_t c, double extra_z)
     return build(&b);
 }
 
+/*
+ * Two tetrahedra, each with its own vertices, that touch along one edge
+ * (two of their corners at the same places): welding alone would join
+ * them by an edge of four triangles.
+ */
+static void test_clean_unwelds_touching_parts(void **state)
+{
+    (void)state;
+    static const double first[][3] = {{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}};
+    static const double second[][3] = {{1, 1, 1}, {1, -1, -1}, {3, 1, -1}, {3, -1, 1}};
+    ur_mesh a = solid(first, 4, 2 * sqrt(2.0)), b = solid(second, 4, 2 * sqrt(2.0));
+    builder both = {0};
+    for (int k = 0; k < 2; k++) {
+        const ur_mesh *m = k ? &b : &a;
+        size_t base = both.vertex_count;
+        for (size_t v = 0; v < m->vertex_count; v++)
+            add_vertex(&both, m->vertices[v].x, m->vertices[v].y, m->vertices[v].z);
+        for (size_t t = 0; t < m->triangle_count; t++)
+            add_triangle(&both, base + m->triangles[t][0], base + m->triangles[t][1],
+                         base + m->triangles[t][2], 0);
+    }
+    ur_mesh_free(&a);
+    ur_mesh_free(&b);
+    ur_mesh mesh = build(&both);
+    ur_mesh_repairs repairs;
+    ur_error error;
+    assert_int_equal(ur_mesh_clean(&mesh, 1e-6, &repairs, &error), UR_OK);
+    assert_int_equal(mesh.vertex_count, 8); /* the shared corners welded no more */
+    assert_int_equal(mesh.triangle_count, 8);
+    assert_int_equal(repairs.welded, 0);
+    ur_mesh_free(&mesh);
+}
+
 static void test_clean_refuses(void **state)
 {
     (void)state;
@@ -1164,6 +1197,7 @@ int main(void)
         cmocka_unit_test(test_clean_orients),
         cmocka_unit_test(test_clean_drops),
         cmocka_unit_test(test_clean_refuses),
+        cmocka_unit_test(test_clean_unwelds_touching_parts),
         cmocka_unit_test(test_clean_refuses_moebius),
         cmocka_unit_test(test_clean_million),
         cmocka_unit_test(test_boundary),

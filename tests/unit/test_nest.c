@@ -11,6 +11,7 @@
 #include <geos_c.h>
 #include <stdlib.h>
 
+#include "nest_sets.h"
 #include "unroll/nest.h"
 
 static GEOSContextHandle_t geos;
@@ -583,6 +584,186 @@ static void test_long_zigzag_nests(void **state)
     free_pieces(pieces, 2);
 }
 
+/* ---- The sheet search ------------------------------------------------------ */
+
+/* The length a roll as wide as the options' sheet is tall takes (threads: 1). */
+static double roll_for(const ur_piece *pieces, size_t count, const ur_nest_options *sheets,
+                       double budget)
+{
+    ur_nest_options o = *sheets;
+    o.roll_width = sheets->sheet_height;
+    o.time_budget = budget;
+    o.threads = 1;
+    ur_layout layout;
+    ur_error error;
+    assert_int_equal(ur_layout_nest(pieces, count, &o, &layout, &error), UR_OK);
+    assert_int_equal(layout.sheet_count, 1);
+    o.sheet_width = layout.sheets[0].width;
+    check_layout(pieces, count, &layout, &o);
+    double length = layout.sheets[0].width;
+    ur_layout_free(&layout);
+    return length;
+}
+
+/* The sheets a layout uses, checked (check_layout), with the search's budget. */
+static size_t sheets_for(const ur_piece *pieces, size_t count, ur_nest_options *o, double budget)
+{
+    o->time_budget = budget;
+    ur_layout layout;
+    ur_error error;
+    assert_int_equal(ur_layout_nest(pieces, count, o, &layout, &error), UR_OK);
+    check_layout(pieces, count, &layout, o);
+    size_t sheets = layout.sheet_count;
+    ur_layout_free(&layout);
+    return sheets;
+}
+
+/*
+ * A set that the first layout puts on two sheets though its area fits
+ * one: where the roll search (a roll as wide as the sheet is tall) fits it
+ * in a sheet's length, the sheet search puts it on one sheet, every part
+ * apart (GEOS); in general on no more sheets than the roll's length
+ * shows enough.  The sheet search has twice the roll's budget: it shares
+ * its budget with the search over orders and the last sheet's, and the
+ * machine may be slow (a sanitizer's build, other work).
+ */
+static void check_sheets_at_the_roll(ur_piece *pieces, size_t count, double width, double height,
+                                     double budget)
+{
+    ur_nest_options o = sheet_options(width, height, 0, 1, 4, false);
+    o.seed = 1;
+    double area = 0;
+    for (size_t k = 0; k < count; k++)
+        area += pieces[k].measures.flat_area;
+    assert_true(area <= width * height); /* the area bound: one sheet */
+    size_t first = sheets_for(pieces, count, &o, 0);
+    double roll = roll_for(pieces, count, &o, budget);
+    size_t searched = sheets_for(pieces, count, &o, 2 * budget);
+    print_message("%s...: first layout %zu sheets, roll %.1f mm of %g, searched %zu sheets\n",
+                  pieces[0].name, first, roll, width, searched);
+    assert_int_equal(first, 2); /* else the set tests nothing */
+    assert_true((double)searched <= ceil(roll / width));
+}
+
+/*
+ * Identical concave parts that must interlock: 40 curved strips (66 % of
+ * a 600 x 400 sheet) and 36 crescents (74 %); and 32 irregular parts (16
+ * shapes, two of each: 72 % of 300 x 200).  The roll fits each in one
+ * sheet's length within its budget but under the heaviest load, and then
+ * the sheet search must put it on one sheet.
+ */
+static void test_sheets_as_few_as_the_roll_shows(void **state)
+{
+    (void)state;
+    ur_piece pieces[40];
+    assert_true(nest_set_strips(pieces, 40));
+    nest_set_fill(pieces, 40, 0.66, 600, 400);
+    check_sheets_at_the_roll(pieces, 40, 600, 400, 2);
+    free_pieces(pieces, 40);
+    assert_true(nest_set_crescents(pieces, 36));
+    nest_set_fill(pieces, 36, 0.74, 600, 400);
+    check_sheets_at_the_roll(pieces, 36, 600, 400, 2);
+    free_pieces(pieces, 36);
+    assert_true(nest_set_irregular(pieces, 16, 1));
+    for (size_t k = 0; k < 16; k++)
+        assert_int_equal(ur_piece_copy(&pieces[k], &pieces[16 + k], NULL), UR_OK);
+    nest_set_fill(pieces, 32, 0.72, 300, 200);
+    check_sheets_at_the_roll(pieces, 32, 300, 200, 2);
+    free_pieces(pieces, 32);
+}
+
+/* The largest x any placed part reaches on a sheet (GEOS). */
+static double right_edge_of(const ur_piece *pieces, const ur_sheet *sheet)
+{
+    double right = 0;
+    for (size_t p = 0; p < sheet->placement_count; p++) {
+        const ur_placement *pl = &sheet->placements[p];
+        GEOSGeometry *g = placed_polygon(&pieces[pl->piece_index], pl->transform);
+        double x1;
+        assert_int_equal(GEOSGeom_getXMax_r(geos, g, &x1), 1);
+        right = fmax(right, x1);
+        GEOSGeom_destroy_r(geos, g);
+    }
+    return right;
+}
+
+/*
+ * Curved strips alike, a sheet's area (two sheets inside the margin): the
+ * last sheet's parts are pushed to its left end, the offcut the layout
+ * reports is what they leave there (GEOS), and it is larger than the
+ * first layout's.
+ */
+static void test_last_sheet_leaves_an_offcut(void **state)
+{
+    (void)state;
+    enum { COUNT = 40 };
+    ur_piece pieces[COUNT];
+    assert_true(nest_set_strips(pieces, COUNT));
+    nest_set_fill(pieces, COUNT, 1.0, 600, 400);
+    ur_nest_options o = sheet_options(600, 400, 5, 2, 4, false);
+    o.seed = 1;
+    o.threads = 1;
+    double offcut[2];
+    for (int run = 0; run < 2; run++) {
+        o.time_budget = run == 0 ? 0 : 2;
+        ur_layout layout;
+        ur_error error;
+        assert_int_equal(ur_layout_nest(pieces, COUNT, &o, &layout, &error), UR_OK);
+        check_layout(pieces, COUNT, &layout, &o);
+        assert_int_equal(layout.sheet_count, 2);
+        const ur_sheet *last = &layout.sheets[1];
+        assert_true(layout.sheets[0].offcut_width == 0);
+        offcut[run] = last->offcut_width;
+        assert_true(fabs(offcut[run] - (600 - right_edge_of(pieces, last) - o.spacing)) < 1e-6);
+        ur_layout_free(&layout);
+    }
+    print_message("offcut: first layout %.1f mm, searched %.1f mm\n", offcut[0], offcut[1]);
+    assert_true(offcut[1] > offcut[0]);
+    free_pieces(pieces, COUNT);
+}
+
+/*
+ * The sheet search with a remnant and a grain rule: strips whose rulings
+ * must keep within 10 degrees of the grain, on a remnant first and then
+ * on as few stock sheets as the first layout or fewer; the rule holds.
+ */
+static void test_sheet_search_keeps_remnants_and_grain(void **state)
+{
+    (void)state;
+    enum { COUNT = 14 };
+    ur_piece pieces[COUNT];
+    for (int k = 0; k < COUNT; k++) {
+        pieces[k] = rectangle("strip", 120 - 3 * k, 30);
+        pieces[k].has_rulings = true;
+        pieces[k].ruling_angle = M_PI / 6;
+    }
+    ur_remnant remnant = {150, 100};
+    ur_nest_options o = sheet_options(300, 200, 5, 2, 4, false);
+    o.grain = true;
+    o.grain_tolerance = 10 * M_PI / 180;
+    o.remnants = &remnant;
+    o.remnant_count = 1;
+    size_t first = sheets_for(pieces, COUNT, &o, 0);
+    o.time_budget = 1;
+    ur_layout layout;
+    ur_error error;
+    assert_int_equal(ur_layout_nest(pieces, COUNT, &o, &layout, &error), UR_OK);
+    check_layout(pieces, COUNT, &layout, &o);
+    assert_true(layout.sheet_count <= first);
+    assert_true(layout.sheets[0].remnant && layout.sheets[0].width == 150);
+    for (size_t s = 1; s < layout.sheet_count; s++)
+        assert_false(layout.sheets[s].remnant);
+    for (size_t s = 0; s < layout.sheet_count; s++)
+        for (size_t p = 0; p < layout.sheets[s].placement_count; p++) {
+            ur_transform2 t = layout.sheets[s].placements[p].transform;
+            double off = remainder(atan2(t.sine, t.cosine) + M_PI / 6, M_PI);
+            if (fabs(off) > 10 * M_PI / 180 + 1e-9)
+                fail_msg("rulings at %g degrees to the grain", off * 180 / M_PI);
+        }
+    ur_layout_free(&layout);
+    free_pieces(pieces, COUNT);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -600,6 +781,9 @@ int main(void)
         cmocka_unit_test(test_roll_is_shortened),
         cmocka_unit_test(test_long_zigzag_nests),
         cmocka_unit_test(test_placing_is_told),
+        cmocka_unit_test(test_sheets_as_few_as_the_roll_shows),
+        cmocka_unit_test(test_last_sheet_leaves_an_offcut),
+        cmocka_unit_test(test_sheet_search_keeps_remnants_and_grain),
     };
     return cmocka_run_group_tests(tests, start, finish);
 }

@@ -48,14 +48,15 @@ static ur_parts import_text(const char *name, const char *text, double unit)
 }
 
 /* Expects text written as name to be refused with a message "PATH<location>: ...fragment...". */
-static void expect_refusal(const char *name, const char *text, double unit, const char *location,
-                           const char *fragment)
+static void expect_refusal_of(const char *name, const char *text, double unit, bool strict,
+                              const char *location, const char *fragment)
 {
     char path[256];
     write_file(name, text, path, sizeof path);
     ur_parts_import_options options;
     ur_parts_import_options_default(&options);
     options.unit = unit;
+    options.strict = strict;
     ur_parts parts;
     ur_error error = {0};
     assert_int_equal(ur_parts_import(path, &options, &parts, &error), UR_ERROR_INPUT);
@@ -65,6 +66,19 @@ static void expect_refusal(const char *name, const char *text, double unit, cons
     snprintf(prefix, sizeof prefix, "%s%s: ", path, location);
     if (strncmp(error.message, prefix, strlen(prefix)) != 0 || !strstr(error.message, fragment))
         fail_msg("message '%s' lacks '%s' or '%s'", error.message, prefix, fragment);
+}
+
+static void expect_refusal(const char *name, const char *text, double unit, const char *location,
+                           const char *fragment)
+{
+    expect_refusal_of(name, text, unit, false, location, fragment);
+}
+
+/* Refused with strict only: without, what is open is left out with a warning. */
+static void expect_strict_refusal(const char *name, const char *text, const char *location,
+                                  const char *fragment)
+{
+    expect_refusal_of(name, text, 0, true, location, fragment);
 }
 
 static double path_area(const ur_path *path)
@@ -444,23 +458,329 @@ static void test_self_crossing(void **state)
                    0, ":3: polygon id=\"bow\"", "crosses itself");
 }
 
-/* ---- Refusals -------------------------------------------------------------------- */
-
 #define SVG_HEAD                                                                                   \
     "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"100mm\" height=\"100mm\" "                  \
     "viewBox=\"0 0 100 100\">\n"
 
+/* ---- Lines that go with their part ----------------------------------------------- */
+
+static size_t paths_of(const ur_piece *piece, ur_op op, bool closed)
+{
+    size_t n = 0;
+    for (size_t i = 0; i < piece->path_count; i++)
+        n += piece->paths[i].op == op && piece->paths[i].closed == closed;
+    return n;
+}
+
+static void test_lines_go_with_their_part(void **state)
+{
+    (void)state;
+    /*
+     * Two plates: a fold (score group, as unroll writes) across the first,
+     * a label (engrave) and an open cut slit inside the second, a closed
+     * mark inside the first; an open line and an engraving outside both
+     * are left out, one warning naming the first one's line and the count.
+     */
+    ur_parts parts = import_text(
+        "lines.svg",
+        SVG_HEAD
+        "<g id=\"cut\"><rect id=\"a\" width=\"20\" height=\"10\"/>\n"
+        "<rect id=\"b\" x=\"30\" width=\"20\" height=\"10\"/>\n"
+        "<path d=\"M 35 2 L 45 2\"/>\n"
+        "<path d=\"M 60 0 L 70 0\"/></g>\n"
+        "<g id=\"score\"><path d=\"M 10 0 L 10 10\"/></g>\n"
+        "<g inkscape:label=\"Engrave\" xmlns:inkscape=\"http://www.inkscape.org/namespaces/"
+        "inkscape\"><path d=\"M 35 5 L 40 8 L 45 5\"/><path d=\"M 80 5 L 90 5\"/></g>\n"
+        "<g id=\"mark\"><rect x=\"2\" y=\"2\" width=\"3\" height=\"3\"/></g></svg>\n",
+        0);
+    assert_int_equal(parts.count, 2);
+    const ur_piece *a = &parts.pieces[0], *b = &parts.pieces[1];
+    assert_string_equal(a->name, "a");
+    assert_int_equal(a->path_count, 3);
+    assert_int_equal(paths_of(a, UR_OP_SCORE, false), 1);
+    assert_int_equal(paths_of(a, UR_OP_MARK, true), 1);
+    assert_int_equal(b->path_count, 3);
+    assert_int_equal(paths_of(b, UR_OP_ENGRAVE, false), 1);
+    assert_int_equal(paths_of(b, UR_OP_CUT, false), 1);
+    /* The holes and areas are the rings' alone. */
+    assert_true(fabs(a->measures.flat_area - 200) < 1e-9);
+    assert_int_equal(parts.warning_count, 1);
+    assert_non_null(strstr(parts.warnings[0], ":5: 2 shapes left out"));
+    assert_non_null(strstr(parts.warnings[0], "lines 5, 7"));
+    ur_parts_free(&parts);
+}
+
+static void test_ends_within_the_tolerance(void **state)
+{
+    (void)state;
+    /*
+     * A path closed in relative coordinates whose last point lands 1e-15
+     * from its start: a square, neither crossing itself nor repaired.
+     */
+    ur_parts parts = import_text("relative.svg",
+                                 SVG_HEAD "<path d=\"m 0.1 0.1 l 10 0 l 0 10 l -10 0 "
+                                          "l 1e-15 -10 z\"/></svg>\n",
+                                 0);
+    assert_int_equal(parts.count, 1);
+    assert_int_equal(parts.warning_count, 0);
+    assert_int_equal(parts.pieces[0].paths[0].count, 4);
+    assert_true(fabs(parts.pieces[0].measures.flat_area - 100) < 1e-9);
+    ur_parts_free(&parts);
+    /*
+     * LibreCAD's full ellipse: its end parameter 2 pi rounded to
+     * 6.28318530718.  Radii 2 and 1: area within the flattening's loss of
+     * 2 pi (the chords stray at most 0.01 mm inside the curve).
+     */
+    char text[1024];
+    snprintf(text, sizeof text,
+             "0\nSECTION\n2\nHEADER\n9\n$INSUNITS\n70\n4\n0\nENDSEC\n0\nSECTION\n2\nENTITIES\n"
+             "0\nELLIPSE\n8\n0\n10\n5\n20\n5\n11\n9.18485099361e-017\n21\n2\n40\n0.5\n41\n0\n"
+             "42\n6.28318530718\n0\nARC\n8\n0\n10\n20\n20\n5\n40\n1\n50\n0\n51\n359.9999999999\n"
+             "0\nENDSEC\n0\nEOF\n");
+    parts = import_text("ellipse.dxf", text, 0);
+    assert_int_equal(parts.count, 2);
+    assert_int_equal(parts.warning_count, 0);
+    double ellipse = parts.pieces[0].measures.flat_area,
+           circle = parts.pieces[1].measures.flat_area;
+    double perimeter = 2 * M_PI * 2; /* more than the ellipse's */
+    assert_true(ellipse <= 2 * M_PI && ellipse >= 2 * M_PI - perimeter * 0.01);
+    assert_true(circle <= M_PI && circle >= M_PI - 2 * M_PI * 0.01);
+    ur_parts_free(&parts);
+}
+
+/* ---- Blocks, splines, use ------------------------------------------------------- */
+
+#define DXF_UNITS_MM "0\nSECTION\n2\nHEADER\n9\n$INSUNITS\n70\n4\n0\nENDSEC\n"
+
+/* A 10 mm square block with its base point at its centre, and one that inserts it twice. */
+#define DXF_BLOCKS                                                                                 \
+    "0\nSECTION\n2\nBLOCKS\n"                                                                      \
+    "0\nBLOCK\n2\nsq\n10\n5\n20\n5\n"                                                              \
+    "0\nLWPOLYLINE\n8\n0\n90\n4\n70\n1\n10\n0\n20\n0\n10\n10\n20\n0\n10\n10\n20\n10\n10\n0\n20\n1" \
+    "0\n"                                                                                          \
+    "0\nENDBLK\n"                                                                                  \
+    "0\nBLOCK\n2\npair\n10\n0\n20\n0\n"                                                            \
+    "0\nINSERT\n8\n0\n2\nsq\n10\n0\n20\n0\n41\n2\n42\n0.5\n50\n30\n"                               \
+    "0\nINSERT\n8\n0\n2\nsq\n10\n40\n20\n0\n50\n-45\n"                                             \
+    "0\nENDBLK\n0\nENDSEC\n"
+
+static ur_vec2 centroid(const ur_path *path)
+{
+    ur_vec2 sum = {0, 0};
+    for (size_t i = 0; i < path->count; i++)
+        sum = ur_vec2_add(sum, path->points[i]);
+    return ur_vec2_scale(sum, 1.0 / (double)path->count);
+}
+
+static bool has_centroid(const ur_parts *parts, ur_vec2 expected)
+{
+    for (size_t k = 0; k < parts->count; k++)
+        if (ur_vec2_distance(centroid(&parts->pieces[k].paths[0]), expected) < 1e-9)
+            return true;
+    return false;
+}
+
+static void test_dxf_blocks(void **state)
+{
+    (void)state;
+    /*
+     * pair at (100, 100), turned 15 degrees, scaled 1.5: its squares are
+     * 2 x 0.5 then 1.5 times larger (225 mm2) and 1.5 times (225 mm2); sq
+     * in 3 columns 20 apart and 2 rows 30 apart, turned 10 degrees at
+     * (0, 200): 6 squares of 100 mm2 whose centres are the insertion point
+     * plus the turned column and row offsets (the base point is the centre).
+     */
+    ur_parts parts =
+        import_text("blocks.dxf",
+                    DXF_UNITS_MM DXF_BLOCKS
+                    "0\nSECTION\n2\nENTITIES\n"
+                    "0\nINSERT\n8\n0\n2\npair\n10\n100\n20\n100\n41\n1.5\n42\n1.5\n50\n15\n"
+                    "0\nINSERT\n8\n0\n2\nsq\n10\n0\n20\n200\n50\n10\n70\n3\n71\n2\n44\n20\n45\n30\n"
+                    "0\nENDSEC\n0\nEOF\n",
+                    0);
+    assert_int_equal(parts.count, 8);
+    double areas[8];
+    for (size_t k = 0; k < 8; k++)
+        areas[k] = parts.pieces[k].measures.flat_area;
+    assert_true(fabs(areas[0] - 225) < 1e-9 && fabs(areas[1] - 225) < 1e-9);
+    for (size_t k = 2; k < 8; k++)
+        assert_true(fabs(areas[k] - 100) < 1e-9);
+    double c = cos(10 * M_PI / 180), s = sin(10 * M_PI / 180);
+    for (int row = 0; row < 2; row++)
+        for (int column = 0; column < 3; column++) {
+            double dx = 20.0 * column, dy = 30.0 * row;
+            assert_true(has_centroid(&parts, ur_vec2_make(c * dx - s * dy, 200 + s * dx + c * dy)));
+        }
+    /* The second square of pair: at (40, 0) in pair, so at (100, 100) + 1.5 (40, 0) turned 15. */
+    double c15 = cos(15 * M_PI / 180), s15 = sin(15 * M_PI / 180);
+    assert_true(has_centroid(&parts, ur_vec2_make(100 + 60 * c15, 100 + 60 * s15)));
+    ur_parts_free(&parts);
+}
+
+static void test_dxf_splines(void **state)
+{
+    (void)state;
+    /*
+     * A circle of radius 10 about (50, 50) as a rational quadratic NURBS
+     * (nine control points, weights 1 and 1/sqrt 2, double interior knots):
+     * every flattened point on the circle, the area within the flattening's
+     * loss (chords within 0.01 mm) of 100 pi.  A cubic Bezier from (0, 0)
+     * over (0, 10) and (10, 10) to (10, 0), closed by a LINE: its area is
+     * 60 exactly (the integral of y dx over the curve).
+     */
+    char text[4096];
+    int n = snprintf(text, sizeof text,
+                     DXF_UNITS_MM
+                     "0\nSECTION\n2\nENTITIES\n0\nSPLINE\n8\n0\n70\n12\n71\n2\n72\n12\n73\n9\n");
+    static const double knots[] = {0, 0, 0, 1, 1, 2, 2, 3, 3, 4, 4, 4};
+    for (int i = 0; i < 12; i++)
+        n += snprintf(text + n, sizeof text - (size_t)n, "40\n%g\n", knots[i]);
+    static const double corners[9][2] = {{1, 0},   {1, 1},  {0, 1},  {-1, 1}, {-1, 0},
+                                         {-1, -1}, {0, -1}, {1, -1}, {1, 0}};
+    for (int i = 0; i < 9; i++)
+        n += snprintf(text + n, sizeof text - (size_t)n, "41\n%.17g\n", i % 2 ? sqrt(0.5) : 1.0);
+    for (int i = 0; i < 9; i++)
+        n += snprintf(text + n, sizeof text - (size_t)n, "10\n%g\n20\n%g\n30\n0\n",
+                      50 + 10 * corners[i][0], 50 + 10 * corners[i][1]);
+    snprintf(
+        text + n, sizeof text - (size_t)n,
+        "0\nSPLINE\n8\n0\n70\n8\n71\n3\n72\n8\n73\n4\n40\n0\n40\n0\n40\n0\n40\n0\n40\n1\n40\n1\n"
+        "40\n1\n40\n1\n10\n0\n20\n0\n10\n0\n20\n10\n10\n10\n20\n10\n10\n10\n20\n0\n"
+        "0\nLINE\n8\n0\n10\n10\n20\n0\n11\n0\n21\n0\n0\nENDSEC\n0\nEOF\n");
+    ur_parts parts = import_text("splines.dxf", text, 0);
+    assert_int_equal(parts.count, 2);
+    const ur_path *circle = &parts.pieces[0].paths[0];
+    assert_true(circle->count > 100);
+    for (size_t i = 0; i < circle->count; i++)
+        assert_true(fabs(ur_vec2_distance(circle->points[i], ur_vec2_make(50, 50)) - 10) < 1e-9);
+    double area = parts.pieces[0].measures.flat_area;
+    assert_true(area <= 100 * M_PI && area >= 100 * M_PI - 20 * M_PI * 0.01);
+    double bezier = parts.pieces[1].measures.flat_area;
+    assert_true(bezier <= 60 && bezier >= 60 - 40 * 0.01);
+    assert_true(bezier > 60 - 0.1);
+    ur_parts_free(&parts);
+}
+
+static void test_svg_use(void **state)
+{
+    (void)state;
+    /*
+     * A plate with a round hole (a group in defs), drawn through use twice
+     * inside a group that is used twice again, once scaled 1.5; a symbol
+     * of a 10 mm triangle with a viewBox, used 40 mm wide: 16 times its area.
+     */
+    ur_parts parts = import_text(
+        "use.svg",
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" xmlns:xlink=\"http://www.w3.org/1999/xlink\" "
+        "width=\"200mm\" height=\"200mm\" viewBox=\"0 0 200 200\">\n"
+        "<defs><g id=\"plate\"><rect width=\"20\" height=\"10\"/>"
+        "<polygon points=\"4,4 6,4 6,6 4,6\"/></g>\n"
+        "<symbol id=\"sym\" viewBox=\"0 0 10 10\"><path d=\"M0,0 L10,0 L0,10 Z\"/></symbol>\n"
+        "<g id=\"two\"><use href=\"#plate\"/><use xlink:href=\"#plate\" x=\"30\" "
+        "transform=\"rotate(10)\"/></g></defs>\n"
+        "<use href=\"#two\" x=\"10\" y=\"10\"/>\n"
+        "<use href=\"#sym\" x=\"100\" y=\"100\" width=\"40\" height=\"40\"/>\n"
+        "<use href=\"#two\" transform=\"translate(0,100) scale(1.5)\"/>\n</svg>\n",
+        0);
+    assert_int_equal(parts.count, 5);
+    int small = 0, large = 0, triangle = 0;
+    for (size_t k = 0; k < parts.count; k++) {
+        double area = parts.pieces[k].measures.flat_area;
+        small += fabs(area - 196) < 1e-9;
+        large += fabs(area - 196 * 2.25) < 1e-9;
+        triangle += fabs(area - 800) < 1e-9;
+        /* Copies are numbered, not named by the id they copy. */
+        assert_non_null(strstr(parts.pieces[k].name, "use-"));
+    }
+    assert_int_equal(small, 2);
+    assert_int_equal(large, 2);
+    assert_int_equal(triangle, 1);
+    ur_parts_free(&parts);
+}
+
+/* A line drawn twice chains into a loop of no area: an open shape, not a refusal of the file. */
+static void test_chain_of_no_shape(void **state)
+{
+    (void)state;
+    const char *text =
+        DXF_UNITS_MM "0\nSECTION\n2\nENTITIES\n"
+                     "0\nLWPOLYLINE\n8\n0\n90\n4\n70\n1\n10\n0\n20\n0\n10\n10\n20\n0\n10\n10\n20\n1"
+                     "0\n10\n0\n20\n10\n"
+                     "0\nLINE\n8\n0\n10\n20\n20\n0\n11\n30\n21\n0\n"
+                     "0\nLINE\n8\n0\n10\n30\n20\n0\n11\n20\n21\n0\n0\nENDSEC\n0\nEOF\n";
+    ur_parts parts = import_text("twice.dxf", text, 0);
+    assert_int_equal(parts.count, 1);
+    assert_int_equal(parts.warning_count, 1);
+    assert_non_null(strstr(parts.warnings[0], "1 open shape left out (LINE"));
+    ur_parts_free(&parts);
+    expect_strict_refusal("twice.dxf", text, ":40: LINE", "encloses no area");
+}
+
+static void test_block_spline_use_refusals(void **state)
+{
+    (void)state;
+    expect_refusal("self.dxf",
+                   DXF_UNITS_MM
+                   "0\nSECTION\n2\nBLOCKS\n0\nBLOCK\n2\nA\n10\n0\n20\n0\n"
+                   "0\nINSERT\n8\n0\n2\nA\n0\nENDBLK\n0\nENDSEC\n"
+                   "0\nSECTION\n2\nENTITIES\n0\nINSERT\n8\n0\n2\nA\n0\nENDSEC\n0\nEOF\n",
+                   0, ":24: INSERT", "block 'A' refers to itself");
+    expect_refusal("loop.dxf",
+                   DXF_UNITS_MM
+                   "0\nSECTION\n2\nBLOCKS\n0\nBLOCK\n2\nA\n0\nINSERT\n2\nB\n0\nENDBLK\n"
+                   "0\nBLOCK\n2\nB\n0\nINSERT\n2\nA\n0\nENDBLK\n0\nENDSEC\n"
+                   "0\nSECTION\n2\nENTITIES\n0\nINSERT\n2\nA\n0\nENDSEC\n0\nEOF\n",
+                   0, ":30: INSERT", "block 'A' refers to itself");
+    expect_refusal("undefined.dxf",
+                   DXF_UNITS_MM "0\nSECTION\n2\nENTITIES\n0\nINSERT\n2\nnone\n0\nENDSEC\n0\nEOF\n",
+                   0, ":16: INSERT", "block 'none' is not defined");
+    expect_refusal("degree.dxf",
+                   DXF_UNITS_MM
+                   "0\nSECTION\n2\nENTITIES\n0\nSPLINE\n71\n0\n40\n0\n40\n1\n10\n0\n20\n0"
+                   "\n0\nENDSEC\n0\nEOF\n",
+                   0, ":16: SPLINE", "degree 0");
+    expect_refusal("knots.dxf",
+                   DXF_UNITS_MM
+                   "0\nSECTION\n2\nENTITIES\n0\nSPLINE\n71\n1\n40\n0\n40\n0\n40\n2\n40\n1"
+                   "\n10\n0\n20\n0\n10\n1\n20\n0\n0\nENDSEC\n0\nEOF\n",
+                   0, ":16: SPLINE", "knots decrease");
+    expect_refusal("fit.dxf",
+                   DXF_UNITS_MM
+                   "0\nSECTION\n2\nENTITIES\n0\nSPLINE\n71\n3\n11\n0\n21\n0\n11\n1\n21\n1"
+                   "\n0\nENDSEC\n0\nEOF\n",
+                   0, ":16: SPLINE", "fit points");
+    expect_refusal("self.svg", SVG_HEAD "\n<use id=\"u\" href=\"#u\"/></svg>\n", 0,
+                   ":3: use id=\"u\"", "refers to itself");
+    expect_refusal("group.svg",
+                   SVG_HEAD
+                   "<g id=\"g\"><rect width=\"5\" height=\"5\"/>\n<use href=\"#g\"/></g></svg>\n",
+                   0, ":3: use", "refers to itself");
+    expect_refusal("nowhere.svg", SVG_HEAD "<use href=\"#none\"/></svg>\n", 0, ":2: use",
+                   "points at no element");
+    expect_refusal("outside.svg", SVG_HEAD "<use href=\"other.svg#a\"/></svg>\n", 0, ":2: use",
+                   "outside the file");
+}
+
+/* ---- Refusals -------------------------------------------------------------------- */
+
 static void test_svg_refusals(void **state)
 {
     (void)state;
-    expect_refusal("open.svg",
-                   SVG_HEAD "<rect width=\"5\" height=\"5\"/>\n"
-                            "<path id=\"cut1\" d=\"M 0 0 L 10 0 L 10 10\"/>\n</svg>\n",
-                   0, ":3: path id=\"cut1\"", "open");
-    expect_refusal("line.svg", SVG_HEAD "\n<line x1=\"0\" y1=\"0\" x2=\"5\" y2=\"5\"/></svg>\n", 0,
-                   ":3: line", "only closed shapes");
-    expect_refusal("polyline.svg", SVG_HEAD "<polyline id=\"pl\" points=\"0,0 5,0 5,5\"/></svg>\n",
-                   0, ":2: polyline id=\"pl\"", "open");
+    expect_strict_refusal("open.svg",
+                          SVG_HEAD "<rect width=\"5\" height=\"5\"/>\n"
+                                   "<path id=\"cut1\" d=\"M 0 0 L 10 0 L 10 10\"/>\n</svg>\n",
+                          ":3: path id=\"cut1\"", "open");
+    expect_strict_refusal("line.svg",
+                          SVG_HEAD "\n<rect width=\"5\" height=\"5\"/>"
+                                   "<line x1=\"10\" y1=\"0\" x2=\"15\" y2=\"5\"/></svg>\n",
+                          ":3: line", "only closed shapes");
+    expect_strict_refusal("polyline.svg",
+                          SVG_HEAD "<polyline id=\"pl\" points=\"0,0 5,0 5,5\"/></svg>\n",
+                          ":2: polyline id=\"pl\"", "open");
+    /* Without strict, a file of open shapes only has no part, and says where the first is. */
+    expect_refusal("only-open.svg",
+                   SVG_HEAD "\n<line x1=\"0\" y1=\"0\" x2=\"5\" y2=\"5\"/></svg>\n", 0, ":3",
+                   "no closed shape");
     expect_refusal("xml.svg", SVG_HEAD "<rect width=\"5\" height=\"5\">\n</svg>\n", 0, ":3", "");
     expect_refusal("data.svg", SVG_HEAD "<path id=\"p\" d=\"M 0 0 L 5 nan Z\"/></svg>\n", 0,
                    ":2: path id=\"p\"", "bad path data at \"nan Z\"");
@@ -475,7 +795,6 @@ static void test_svg_refusals(void **state)
                    ":2: rect", "beyond");
     expect_refusal("width.svg", SVG_HEAD "<rect width=\"0\" height=\"5\"/></svg>\n", 0, ":2: rect",
                    "width must be positive");
-    expect_refusal("use.svg", SVG_HEAD "<use href=\"#a\"/></svg>\n", 0, ":2: use", "clones");
     expect_refusal("cross.svg",
                    SVG_HEAD "<rect width=\"10\" height=\"10\"/>\n"
                             "<rect id=\"r\" x=\"5\" y=\"5\" width=\"10\" height=\"10\"/></svg>\n",
@@ -497,10 +816,10 @@ static void test_dxf_refusals(void **state)
 {
     (void)state;
     /* Lines 11..: the entities. */
-    expect_refusal("open.dxf",
-                   DXF_HEAD "0\nLINE\n10\n0\n20\n0\n11\n10\n21\n0\n"
-                            "0\nLINE\n10\n10\n20\n0\n11\n10\n21\n10\n0\nENDSEC\n0\nEOF\n",
-                   0, ":26: LINE", "open");
+    expect_strict_refusal("open.dxf",
+                          DXF_HEAD "0\nLINE\n10\n0\n20\n0\n11\n10\n21\n0\n"
+                                   "0\nLINE\n10\n10\n20\n0\n11\n10\n21\n10\n0\nENDSEC\n0\nEOF\n",
+                          ":26: LINE", "open");
     expect_refusal("code.dxf", DXF_HEAD "0\nCIRCLE\nten\n0\n0\nENDSEC\n0\nEOF\n", 0, ":17",
                    "\"ten\" is not a group code");
     expect_refusal("value.dxf", DXF_HEAD "0\nCIRCLE\n10", 0, ":17", "group code 10 has no value");
@@ -510,10 +829,6 @@ static void test_dxf_refusals(void **state)
                    ":18", "not a finite number");
     expect_refusal("huge.dxf", DXF_HEAD "0\nCIRCLE\n10\n1e300\n20\n0\n40\n1\n0\nENDSEC\n0\nEOF\n",
                    0, ":16: CIRCLE", "beyond");
-    expect_refusal("spline.dxf", DXF_HEAD "0\nSPLINE\n70\n8\n0\nENDSEC\n0\nEOF\n", 0, ":16: SPLINE",
-                   "splines are not read");
-    expect_refusal("insert.dxf", DXF_HEAD "0\nINSERT\n2\nblock\n0\nENDSEC\n0\nEOF\n", 0,
-                   ":16: INSERT", "explode");
     expect_refusal("radius.dxf", DXF_HEAD "0\nCIRCLE\n10\n0\n20\n0\n40\n0\n0\nENDSEC\n0\nEOF\n", 0,
                    ":16: CIRCLE", "radius 0");
     expect_refusal("units.dxf", "0\nSECTION\n2\nHEADER\n9\n$INSUNITS\n70\n3\n0\nENDSEC\n0\nEOF\n",
@@ -625,6 +940,13 @@ int main(void)
         cmocka_unit_test(test_dxf_refusals),
         cmocka_unit_test(test_file_refusals),
         cmocka_unit_test(test_circles_kept),
+        cmocka_unit_test(test_lines_go_with_their_part),
+        cmocka_unit_test(test_ends_within_the_tolerance),
+        cmocka_unit_test(test_dxf_blocks),
+        cmocka_unit_test(test_dxf_splines),
+        cmocka_unit_test(test_svg_use),
+        cmocka_unit_test(test_chain_of_no_shape),
+        cmocka_unit_test(test_block_spline_use_refusals),
     };
     return cmocka_run_group_tests(tests, make_directory, remove_directory);
 }
