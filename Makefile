@@ -93,7 +93,7 @@ endif
 LIBRARY = $(BUILD)/libunroll.a
 PROGRAM = $(BUILD)/unroll
 
-.PHONY: all demo check test deps bench fuzz fuzz-targets install clean format
+.PHONY: all demo readme check test deps bench fuzz fuzz-targets install clean format
 
 all: $(PROGRAM)
 
@@ -135,6 +135,11 @@ deps:
 demo: deps
 	@$(MAKE) --no-print-directory $(PROGRAM)
 	@UNROLL=$(PROGRAM) scripts/demo
+
+# README.md's example outputs and docs/helicoid.png from the current build (scripts/readme).
+readme: deps
+	@$(MAKE) --no-print-directory $(PROGRAM)
+	@scripts/readme
 
 check: deps
 	@$(MAKE) --no-print-directory test

@@ -261,6 +261,15 @@ bool cli_parse_roll(cli_job *job, const char *value);
 bool cli_parse_sheet_count(cli_job *job, const char *value);
 bool cli_parse_remnant(cli_job *job, const char *value);
 void cli_describe_sheets(const ur_layout *layout, char *text, size_t size);
+
+/*
+ * ", utilisation 21.2 %, cut 3.54 m in about 4 min 6 s" for a summary line:
+ * the pieces' share of the sheets' area, and the cut length and machine
+ * time of the report (ur_sheet_cut_plan) summed over the sheets; empty
+ * when the plan fails (the report says why).
+ */
+void cli_describe_cutting(const cli_job *job, const ur_machine *machine, const ur_layout *layout,
+                          const ur_piece *pieces, char *text, size_t size);
 bool cli_parse_nest_time(cli_job *job, const char *value);
 bool cli_parse_seed(cli_job *job, const char *value);
 bool cli_parse_threads(cli_job *job, const char *value);

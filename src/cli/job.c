@@ -359,9 +359,13 @@ static int place_and_write(const ur_job *file, cli_job *job, cli_pieces *all,
     if (status != UR_OK) {
         cli_message("%s: %s", file->source, error.message);
         code = cli_exit_status(&error);
-    } else if (!quiet)
-        cli_message("job %s: %zu pieces on %zu sheet%s -> %s", file->name, all->count,
-                    layout.sheet_count, layout.sheet_count == 1 ? "" : "s", job->output_path);
+    } else if (!quiet) {
+        char cutting[256];
+        cli_describe_cutting(job, &all->machine, &layout, all->pieces, cutting, sizeof cutting);
+        cli_message("job %s: %zu piece%s on %zu sheet%s%s -> %s", file->name, all->count,
+                    all->count == 1 ? "" : "s", layout.sheet_count,
+                    layout.sheet_count == 1 ? "" : "s", cutting, job->output_path);
+    }
     ur_layout_free(&layout);
     return code;
 }

@@ -345,40 +345,50 @@ static int read_files(const nest_job *n, ur_piece **pieces, size_t *count)
     return 0;
 }
 
+static const char *plural(size_t count)
+{
+    return count == 1 ? "" : "s";
+}
+
 static void print_nest_summary(const nest_job *n, const ur_machine *machine, const ur_piece *pieces,
                                size_t count, const ur_layout *layout)
 {
     if (n->job.quiet || layout->sheet_count == 0)
         return;
     double margin = n->job.margin >= 0 ? n->job.margin : machine->margin;
+    char cutting[256];
+    cli_describe_cutting(&n->job, machine, layout, pieces, cutting, sizeof cutting);
     const ur_sheet *stock = NULL; /* the first stock sheet, the roll on roll stock */
     for (size_t s = 0; s < layout->sheet_count; s++) {
         const ur_sheet *sheet = &layout->sheets[s];
         if (!sheet->remnant && !stock)
             stock = sheet;
         if (sheet->remnant)
-            cli_message("nest: sheet %zu (remnant %g x %g mm): %zu parts, utilisation %.1f %%",
+            cli_message("nest: sheet %zu (remnant %g x %g mm): %zu part%s, utilisation %.1f %%",
                         s + 1, sheet->width, sheet->height, sheet->placement_count,
-                        100 * ur_sheet_utilisation(sheet, pieces));
+                        plural(sheet->placement_count), 100 * ur_sheet_utilisation(sheet, pieces));
         else
-            cli_message("nest: sheet %zu: %zu parts, utilisation %.1f %%", s + 1,
-                        sheet->placement_count, 100 * ur_sheet_utilisation(sheet, pieces));
+            cli_message("nest: sheet %zu: %zu part%s, utilisation %.1f %%", s + 1,
+                        sheet->placement_count, plural(sheet->placement_count),
+                        100 * ur_sheet_utilisation(sheet, pieces));
     }
     if (n->job.roll_width > 0) {
-        cli_message("nest: %zu parts on %.1f mm of the %g mm roll%s -> %s", count,
+        cli_message("nest: %zu part%s on %.1f mm of the %g mm roll%s%s -> %s", count, plural(count),
                     stock ? stock->width : 0.0, n->job.roll_width,
-                    layout->sheet_count > (stock != NULL) ? " and remnants" : "",
+                    layout->sheet_count > (stock != NULL) ? " and remnants" : "", cutting,
                     n->job.output_path);
         return;
     }
     char used[1024];
     cli_describe_sheets(layout, used, sizeof used);
+    size_t placed = count - layout->not_placed_count;
+    double bound = cli_sheets_lower_bound(pieces, count, layout, margin);
     if (stock)
-        cli_message("nest: %zu parts on %s (lower bound %.0f stock sheets) -> %s",
-                    count - layout->not_placed_count, used,
-                    cli_sheets_lower_bound(pieces, count, layout, margin), n->job.output_path);
+        cli_message("nest: %zu part%s on %s (lower bound %.0f stock sheet%s)%s -> %s", placed,
+                    plural(placed), used, bound, bound == 1 ? "" : "s", cutting,
+                    n->job.output_path);
     else
-        cli_message("nest: %zu parts on %s -> %s", count - layout->not_placed_count, used,
+        cli_message("nest: %zu part%s on %s%s -> %s", placed, plural(placed), used, cutting,
                     n->job.output_path);
 }
 

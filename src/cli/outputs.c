@@ -135,6 +135,55 @@ void cli_describe_sheets(const ur_layout *layout, char *text, size_t size)
                  floor(stock_sheet->offcut_width), stock_sheet->height);
 }
 
+/* "812 mm" or "3.54 m": a cut length as a maker reads it. */
+static void describe_length(double millimetres, char *text, size_t size)
+{
+    if (millimetres < 1000)
+        snprintf(text, size, "%.0f mm", millimetres);
+    else
+        snprintf(text, size, "%.2f m", millimetres / 1000);
+}
+
+/* "45 s", "4 min 6 s" or "1 h 5 min": a machine time as a maker reads it. */
+static void describe_time(double seconds, char *text, size_t size)
+{
+    long whole = lround(seconds);
+    if (whole < 60)
+        snprintf(text, size, "%ld s", whole);
+    else if (whole < 3600)
+        snprintf(text, size, "%ld min %ld s", whole / 60, whole % 60);
+    else
+        snprintf(text, size, "%ld h %ld min", whole / 3600, (whole % 3600 + 30) / 60);
+}
+
+void cli_describe_cutting(const cli_job *job, const ur_machine *machine, const ur_layout *layout,
+                          const ur_piece *pieces, char *text, size_t size)
+{
+    double used = 0.0, room = 0.0, cut = 0.0, seconds = 0.0;
+    for (size_t s = 0; s < layout->sheet_count; s++) {
+        const ur_sheet *sheet = &layout->sheets[s];
+        double area = sheet->width * sheet->height;
+        used += ur_sheet_utilisation(sheet, pieces) * area;
+        room += area;
+        ur_cut_plan plan;
+        ur_error error;
+        /* As the report does: the files' order (ur_report_write's cutting_json). */
+        if (ur_sheet_cut_plan(sheet, pieces, ur_operation_order(), !job->drawing_order, machine,
+                              &plan, &error) != UR_OK) {
+            text[0] = '\0';
+            return;
+        }
+        ur_cut_plan_free(&plan);
+        cut += plan.cut_length;
+        seconds += plan.seconds;
+    }
+    char length[64], time[64];
+    describe_length(cut, length, sizeof length);
+    describe_time(seconds, time, sizeof time);
+    snprintf(text, size, ", utilisation %.1f %%, cut %s in about %s",
+             room > 0 ? 100 * used / room : 0.0, length, time);
+}
+
 /* --remnant WxH, repeatable: one more remnant sheet, filled before stock. */
 bool cli_parse_remnant(cli_job *job, const char *value)
 {

@@ -509,12 +509,15 @@ static void print_summary(const cli_job *job, const job_state *state)
     if (sheets > 1) /* "net-1.svg ... net-3.svg" */
         snprintf(first_file + strlen(first_file), sizeof first_file - strlen(first_file),
                  " ... -%zu", sheets);
+    char cutting[256];
+    cli_describe_cutting(job, &state->machine, &state->layout, state->pieces, cutting,
+                         sizeof cutting);
     fprintf(stderr,
             "unroll: %s (%s): %zu piece%s, surface %.2f mm2, net %.2f mm2 (coverage %.6f), "
-            "%s (%s, %s) -> %s\n",
+            "%s (%s, %s)%s -> %s\n",
             job->surface, state->method, state->piece_count, state->piece_count == 1 ? "" : "s",
             state->surface_area, flat, flat / state->surface_area, used, state->material.name,
-            state->machine.name, first_file);
+            state->machine.name, cutting, first_file);
 }
 
 /*

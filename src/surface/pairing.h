@@ -28,6 +28,7 @@ struct ur_pairing {
     double *u, *sigma, *slope;
     unsigned char *state; /* per sample: a sample_state */
     bool *joined;         /* samples i and i + 1 lie on one branch */
+    bool *bridged;        /* ... and between them sigma is the table's Hermite interpolation */
     double step;          /* rail 2 scan step */
     /* given pairing */
     gsl_interp *interp;
@@ -53,9 +54,20 @@ ur_status pairing_table_alloc(ur_pairing *pairing, size_t count, ur_error *error
  */
 ur_status pairing_track(ur_pairing *pairing, ur_error *error);
 
-/* sigma at u by Newton's method from the table, on the branch of [low, high] (tracking.c). */
+/*
+ * sigma at u by Newton's method from the table, on the branch of [low, high]
+ * (tracking.c); *on_table when it is the table's interpolation instead (at
+ * or next to a double root).
+ */
 double pairing_solved_sigma(ur_pairing *pairing, double u, double low, double high,
-                            const ur_vec3 c1[3]);
+                            const ur_vec3 c1[3], bool *on_table);
+
+/*
+ * sigma'(u) at the root sigma of a solved pairing: the implicit slope, or at
+ * a double root (an inflection of the rails) the slope of the table's branch.
+ */
+double pairing_solved_slope(ur_pairing *pairing, double u, const ur_vec3 c1[3], const ur_vec3 d2[3],
+                            bool on_table);
 
 /* sigma' = -F_u / F_sigma, with rail 1's derivatives c1 and rail 2's d2 at sigma. */
 double pairing_implicit_slope(const ur_vec3 c1[3], const ur_vec3 d2[3]);

@@ -460,7 +460,12 @@ bool ur_ruled_regression(ur_ruled *ruled, double u, ur_vec3 *point, double *v)
     ur_vec3 e_prime =
         ur_vec3_scale(ur_vec3_add_scaled(change, e, -ur_vec3_dot(change, e)), 1.0 / length);
     double turning = ur_vec3_dot(e_prime, e_prime);
-    if (!(turning > 1e-24 * ur_vec3_dot(rails[1], rails[1]) / (length * length)))
+    /*
+     * Rulings that turn by less than 1e-8 of a' per ruling length meet more
+     * than 1e8 ruling lengths away: parallel, as on a cylinder, up to the
+     * rounding of a pairing solved near a double root.
+     */
+    if (!(turning > 1e-16 * ur_vec3_dot(rails[1], rails[1]) / (length * length)))
         return false;
     double w = -ur_vec3_dot(rails[1], e_prime) / turning;
     *point = ur_vec3_add_scaled(rails[0], e, w);

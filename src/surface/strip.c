@@ -34,6 +34,7 @@ void pairing_free(ur_pairing *pairing)
     free(pairing->slope);
     free(pairing->state);
     free(pairing->joined);
+    free(pairing->bridged);
     free(pairing->scan_position);
     free(pairing->scan_tangent);
     free(pairing->gaps);
@@ -63,11 +64,10 @@ void pairing_eval(ur_pairing *pairing, double u, double low, double high, double
     }
     ur_vec3 c1[3], d2[3];
     ur_curve_eval(pairing->rail1, u, c1);
-    *sigma = pairing_solved_sigma(pairing, u, low, high, c1);
+    bool on_table;
+    *sigma = pairing_solved_sigma(pairing, u, low, high, c1, &on_table);
     pairing_rail2(pairing, *sigma, d2);
-    *slope = pairing_implicit_slope(c1, d2);
-    if (!isfinite(*slope))
-        *slope = 0.0;
+    *slope = pairing_solved_slope(pairing, u, c1, d2, on_table);
 }
 
 /* ---- Building the surfaces ---------------------------------------------- */

@@ -4,12 +4,24 @@
  * The pairing sigma(u) is the root of
  *     F(u, sigma) = det(c1'(u), c2'(sigma), c2(sigma) - c1(u)),
  * the condition that one plane touches the surface along the whole ruling.
- * A table of roots is built once by tracking the root along rail 1 (a local
- * search around the predicted root, a scan of the whole of rail 2 when that
- * fails), then any u is answered by Newton's method started from the table
- * and falling back to GSL's Brent solver on the table's bracket.  The slope
- * follows from the implicit function theorem: sigma' = -F_u / F_sigma with
- * F_u = det(c1'', c2', d) and F_sigma = det(c1', c2'', d), d = c2 - c1.
+ * A table of roots is built once by continuing the root along rail 1
+ * (predict with the slope of the solution curve, correct by Newton's method,
+ * a scan of the whole of rail 2 when that fails), then any u is answered by
+ * Newton's method started from the table and falling back to GSL's Brent
+ * solver on the table's bracket.  The slope follows from the implicit
+ * function theorem: sigma' = -F_u / F_sigma with F_u = det(c1'', c2', d) and
+ * F_sigma = det(c1', c2'', d), d = c2 - c1.
+ *
+ * Where the rails have inflections the condition has double roots: two
+ * branches of solutions cross there (on a general cylinder, sigma = u and the
+ * points whose tangent is the mirror image), both derivatives of F vanish and
+ * the nearest root may lie on the other branch.  So the continuation looks at
+ * both roots near the prediction and keeps the one whose slope continues the
+ * slope it came with; at the double root itself, where -F_u / F_sigma is 0 / 0,
+ * the slope comes from the neighbouring samples instead.  Rails of unlike
+ * parametrisation are interpolated a little differently, and there the two
+ * branches miss each other, each turning back: the pairing is carried over
+ * the turn (bridge) and answered there from the table's interpolation.
  *
  * Where there is no root, where the root jumps to another branch, or where
  * consecutive rulings cross inside the strip (sigma decreasing, or the edge
@@ -24,12 +36,29 @@
 #include <string.h>
 
 enum {
-    MIN_SAMPLES = 2048, /* rail 1 samples of the root table */
-    MIN_SCAN = 2048,    /* rail 2 samples of a full scan */
-    RESCAN_EVERY = 32,  /* inside a gap, scan all of rail 2 only this often */
-    BISECTIONS = 48,    /* refinement of gap ends */
-    NEWTON_STEPS = 8,
+    MIN_SAMPLES = 2048,  /* rail 1 samples of the root table */
+    MIN_SCAN = 2048,     /* rail 2 samples of a full scan */
+    RESCAN_EVERY = 32,   /* inside a gap, scan all of rail 2 only this often */
+    BISECTIONS = 48,     /* refinement of gap ends */
+    NEWTON_STEPS = 64,   /* near a double root Newton's method only halves the error each step */
+    BRIDGE_SAMPLES = 24, /* the farthest a branch is followed past roots that turn back */
+    BRIDGE_MARGIN = 4,   /* samples kept off the turn on either side of a bridge */
 };
+
+/* The largest relative change of slope from one table sample to the next that continues it. */
+#define SLOPE_CHANGE 0.2
+
+/*
+ * Both derivatives of F, per unit of the rails' parameter ranges, below this
+ * fraction of F's natural size: at or next to a double root.  There F's
+ * rounding moves the root by up to the square root of it (about 1e-8 of the
+ * rail) and the implicit slope is 0 / 0; outside, Newton's root is good to
+ * about 1e-10 of the rail and the implicit slope to about 1e-6.
+ */
+#define DOUBLE_ROOT 1e-3
+
+/* The same, below which interpolation errors of the rails may move the root (near_double_root). */
+#define NEAR_DOUBLE_ROOT 0.05
 
 /* ---- The condition and its derivatives ---------------------------------- */
 
@@ -54,6 +83,23 @@ double pairing_implicit_slope(const ur_vec3 c1[3], const ur_vec3 d2[3])
     return -f_u / f_sigma;
 }
 
+/* Whether both derivatives of F at (c1, d2) are below `fraction` of F's natural size. */
+static bool gradient_below(const ur_pairing *pairing, const ur_vec3 c1[3], const ur_vec3 d2[3],
+                           double fraction)
+{
+    ur_vec3 d = ur_vec3_sub(d2[0], c1[0]);
+    double f_u = determinant3(c1[2], d2[1], d), f_sigma = determinant3(c1[1], d2[2], d);
+    double range1 = ur_curve_end(pairing->rail1) - ur_curve_start(pairing->rail1);
+    double size = fraction * condition_scale(c1, d2);
+    return fabs(f_u) * range1 <= size && fabs(f_sigma) * (pairing->s1 - pairing->s0) <= size;
+}
+
+/* Whether (c1, d2) is at or next to a double root: grad F nearly zero. */
+static bool at_double_root(const ur_pairing *pairing, const ur_vec3 c1[3], const ur_vec3 d2[3])
+{
+    return gradient_below(pairing, c1, d2, DOUBLE_ROOT);
+}
+
 typedef struct root_context {
     ur_pairing *pairing;
     const ur_vec3 *c1;
@@ -71,6 +117,16 @@ static double condition_at(double sigma, void *data)
 static bool in_rail2(const ur_pairing *pairing, double sigma)
 {
     double slack = 1e-9 * (pairing->s1 - pairing->s0);
+    return pairing->wrap || (sigma >= pairing->s0 - slack && sigma <= pairing->s1 + slack);
+}
+
+/*
+ * Roots within the end slack past rail 2's ends (a ruling meant to end on an
+ * end of rail 2 misses it by the interpolation error) count as on it.
+ */
+static bool near_rail2(const ur_pairing *pairing, double sigma)
+{
+    double slack = fmax(pairing->end_slack, 1e-9) * (pairing->s1 - pairing->s0);
     return pairing->wrap || (sigma >= pairing->s0 - slack && sigma <= pairing->s1 + slack);
 }
 
@@ -114,7 +170,16 @@ static bool root_at_rail_end(ur_pairing *pairing, const ur_vec3 c1[3], double gu
         double at_end = condition_at(ends[k], &context);
         double inside = condition_at(ends[k] + inward[k] * h, &context);
         double crossing = at_end / (at_end - inside); /* in steps of h, inward */
-        if (fabs(crossing) * h <= pairing->end_slack * (pairing->s1 - pairing->s0)) {
+        /*
+         * Or the condition, in radians between the tangent planes at the
+         * ruling's ends, nearly holds there: next to a double root a small
+         * error of the interpolation moves the root a long way.
+         */
+        ur_vec3 d2[3];
+        pairing_rail2(pairing, ends[k], d2);
+        double angle = fabs(at_end) / condition_scale(c1, d2);
+        if (fabs(crossing) * h <= pairing->end_slack * (pairing->s1 - pairing->s0) ||
+            angle <= pairing->end_slack) {
             *root = ends[k];
             return true;
         }
@@ -143,6 +208,7 @@ static bool local_root(ur_pairing *pairing, const ur_vec3 c1[3], double guess, d
     double best = fabs(at_guess) / condition_scale(c1, d2), best_sigma = guess;
     double before[2] = {at_guess, at_guess}, where[2] = {guess, guess};
     for (double offset = step; offset <= window * (1 + 1e-12); offset += step) {
+        bool found = false;
         for (int side = 0; side < 2; side++) {
             /* Step outward, stopping on an end of an open rail 2 rather than passing it. */
             double sigma = side == 0 ? guess + offset : guess - offset;
@@ -153,8 +219,13 @@ static bool local_root(ur_pairing *pairing, const ur_vec3 c1[3], double guess, d
             pairing_rail2(pairing, sigma, d2);
             double value = condition(c1, d2);
             if ((value <= 0) != (before[side] <= 0)) {
-                *root = brent(pairing, c1, fmin(sigma, where[side]), fmax(sigma, where[side]));
-                return true;
+                /* A root on each side at the same distance: the nearer one. */
+                double candidate =
+                    brent(pairing, c1, fmin(sigma, where[side]), fmax(sigma, where[side]));
+                if (!found || fabs(candidate - guess) < fabs(*root - guess))
+                    *root = candidate;
+                found = true;
+                continue;
             }
             before[side] = value;
             where[side] = sigma;
@@ -164,6 +235,8 @@ static bool local_root(ur_pairing *pairing, const ur_vec3 c1[3], double guess, d
                 best_sigma = sigma;
             }
         }
+        if (found)
+            return true;
     }
     if (best < 1e-10 && in_rail2(pairing, best_sigma)) {
         *root = best_sigma;
@@ -171,6 +244,201 @@ static bool local_root(ur_pairing *pairing, const ur_vec3 c1[3], double guess, d
     }
     return root_at_rail_end(pairing, c1, guess, window, root);
 }
+
+/* The window in which the root at the next sample is looked for. */
+static double search_window(const ur_pairing *pairing, double predicted_change)
+{
+    return fmax(4 * pairing->step, 2 * fabs(predicted_change));
+}
+
+/*
+ * Newton's method on F(u, .) from guess, kept inside [low, high] and on rail
+ * 2.  From a good prediction it converges to the nearest root, also to a
+ * double root (slowly) where a search for a sign change sees none.  With
+ * `other`, it looks for a second root by deflation: F / (sigma - other).
+ */
+static bool newton_root(ur_pairing *pairing, const ur_vec3 c1[3], double guess, double low,
+                        double high, const double *other, double *root)
+{
+    double sigma = guess, tolerance = 1e-14 * (fabs(pairing->s1) + (pairing->s1 - pairing->s0));
+    for (int k = 0; k < NEWTON_STEPS; k++) {
+        ur_vec3 d2[3];
+        pairing_rail2(pairing, sigma, d2);
+        double f = condition(c1, d2);
+        double f_sigma = determinant3(c1[1], d2[2], ur_vec3_sub(d2[0], c1[0]));
+        if (other) {
+            double apart = sigma - *other;
+            if (fabs(apart) <= tolerance)
+                return false;
+            f_sigma = f_sigma - f / apart; /* of F / (sigma - other), times (sigma - other) */
+        }
+        double next = sigma - f / f_sigma;
+        if (!isfinite(next) || next < low || next > high)
+            return false;
+        if (!pairing->wrap && (next < pairing->s0 || next > pairing->s1)) {
+            /* Rail 2 ends here: a root past it within the end slack is on its end. */
+            double end = next < pairing->s0 ? pairing->s0 : pairing->s1;
+            if (sigma == end) {
+                /* As root_at_rail_end: within the end slack, in length or in angle. */
+                *root = end;
+                bool near = near_rail2(pairing, next) ||
+                            fabs(f) / condition_scale(c1, d2) <= pairing->end_slack;
+                return near && (!other || fabs(end - *other) > tolerance);
+            }
+            next = end;
+        }
+        bool done = fabs(next - sigma) <= tolerance || f == 0.0;
+        sigma = next;
+        if (done) {
+            *root = sigma;
+            return !other || fabs(sigma - *other) > tolerance;
+        }
+    }
+    return false;
+}
+
+static void store_root(ur_pairing *pairing, size_t i, double sigma, double slope)
+{
+    if (!pairing->wrap)
+        sigma = fmin(fmax(sigma, pairing->s0), pairing->s1);
+    pairing->sigma[i] = sigma;
+    pairing->slope[i] = isfinite(slope) ? slope : 0.0;
+    pairing->state[i] = SAMPLE_GOOD;
+}
+
+/* Cubic Hermite value and slope at u between table samples i and j. */
+static void hermite(const ur_pairing *pairing, size_t i, size_t j, double u, double *sigma,
+                    double *slope)
+{
+    double h = pairing->u[j] - pairing->u[i], t = (u - pairing->u[i]) / h;
+    double h00 = (1 + 2 * t) * (1 - t) * (1 - t), h10 = t * (1 - t) * (1 - t);
+    double h01 = t * t * (3 - 2 * t), h11 = t * t * (t - 1);
+    double d00 = 6 * t * (t - 1), d10 = (1 - t) * (1 - 3 * t), d11 = t * (3 * t - 2);
+    *sigma = h00 * pairing->sigma[i] + h10 * h * pairing->slope[i] + h01 * pairing->sigma[j] +
+             h11 * h * pairing->slope[j];
+    *slope = d00 * (pairing->sigma[i] - pairing->sigma[j]) / h + d10 * pairing->slope[i] +
+             d11 * pairing->slope[j];
+}
+
+/*
+ * The slope at a root reached from a root at (u_from, sigma_from, slope_from):
+ * -F_u / F_sigma, or at a double root, where that is 0 / 0, the slope of the
+ * parabola through the two roots that has slope_from at u_from.
+ */
+static double continued_slope(ur_pairing *pairing, const ur_vec3 c1[3], double sigma, double u_from,
+                              double sigma_from, double slope_from, double u)
+{
+    ur_vec3 d2[3];
+    pairing_rail2(pairing, sigma, d2);
+    double slope = pairing_implicit_slope(c1, d2);
+    if (isfinite(slope) && !at_double_root(pairing, c1, d2))
+        return slope;
+    if (u == u_from)
+        return slope_from;
+    return 2 * (sigma - sigma_from) / (u - u_from) - slope_from;
+}
+
+/*
+ * The root at u on the branch of the root at table sample `from`: predicted
+ * with that sample's slope and corrected by Newton's method.  Next to a
+ * double root the other branch's root is near too, so both are found and
+ * the one kept is the one whose position and slope continue the branch
+ * best (slope continuity, not the nearest root).
+ */
+static bool follow_from(ur_pairing *pairing, double u_from, double sigma_from, double slope_from,
+                        double u, const ur_vec3 c1[3], double *root, double *slope)
+{
+    double change = slope_from * (u - u_from), predicted = sigma_from + change;
+    double window = search_window(pairing, change);
+    double candidates[2];
+    int count = 0;
+    if (newton_root(pairing, c1, predicted, predicted - window, predicted + window, NULL,
+                    &candidates[0]) ||
+        local_root(pairing, c1, predicted, window, &candidates[0]))
+        count = 1;
+    if (count == 0)
+        return false;
+    /* The other branch, if it passes close by. */
+    double near = fmax(fabs(candidates[0] - predicted), pairing->step);
+    double start = candidates[0] == predicted ? predicted + 0.5 * near : predicted;
+    if (newton_root(pairing, c1, start, predicted - 4 * near, predicted + 4 * near, &candidates[0],
+                    &candidates[1]))
+        count = 2;
+    double best = INFINITY;
+    for (int k = 0; k < count; k++) {
+        double m = continued_slope(pairing, c1, candidates[k], u_from, sigma_from, slope_from, u);
+        double score =
+            fabs(candidates[k] - predicted) + 0.5 * fabs(u - u_from) * fabs(m - slope_from);
+        if (score < best) {
+            best = score;
+            *root = candidates[k];
+            *slope = m;
+        }
+    }
+    return true;
+}
+
+static bool follow_root(ur_pairing *pairing, size_t from, double u, const ur_vec3 c1[3],
+                        double *root, double *slope)
+{
+    return follow_from(pairing, pairing->u[from], pairing->sigma[from], pairing->slope[from], u, c1,
+                       root, slope);
+}
+
+/*
+ * Whether a slope continues the one before: on a smooth branch the slope
+ * changes little from one table sample to the next.
+ */
+static bool continues(double slope_from, double slope)
+{
+    return fabs(slope - slope_from) <= SLOPE_CHANGE * fmax(fabs(slope_from), fabs(slope));
+}
+
+/*
+ * Where the rails' interpolations differ a little (rails with inflections
+ * and unlike parametrisations), the two branches that would cross at a
+ * double root miss each other instead: near the inflection each turns back
+ * and neither root there continues the slope.  The branch goes on beyond:
+ * predicted from sample `from` a few samples on, a root there continues the
+ * slope.  Then the samples in between take the branch's Hermite
+ * interpolation and are marked bridged; returns the landing sample, or
+ * SIZE_MAX when no root continues the branch (a true end of it).  `bad` is
+ * the first sample where the branch did not go on; the landing is at least
+ * BRIDGE_MARGIN past it, where the roots no longer feel the turn.
+ */
+static size_t bridge(ur_pairing *pairing, size_t from, size_t bad)
+{
+    size_t first = bad + BRIDGE_MARGIN > from + 2 ? bad + BRIDGE_MARGIN : from + 2;
+    for (size_t land = first; land <= bad + BRIDGE_SAMPLES && land < pairing->count; land++) {
+        ur_vec3 c1[3];
+        ur_curve_eval(pairing->rail1, pairing->u[land], c1);
+        double root, slope;
+        if (!follow_root(pairing, from, pairing->u[land], c1, &root, &slope) ||
+            !continues(pairing->slope[from], slope))
+            continue;
+        double predicted =
+            pairing->sigma[from] + pairing->slope[from] * (pairing->u[land] - pairing->u[from]);
+        if (fabs(root - predicted) > SLOPE_CHANGE * fabs(predicted - pairing->sigma[from]))
+            continue;
+        store_root(pairing, land, root, slope);
+        for (size_t k = from + 1; k < land; k++) {
+            hermite(pairing, from, land, pairing->u[k], &pairing->sigma[k], &pairing->slope[k]);
+            pairing->state[k] = SAMPLE_GOOD;
+        }
+        for (size_t k = from; k < land; k++)
+            pairing->joined[k] = pairing->bridged[k] = true;
+        return land;
+    }
+    return SIZE_MAX;
+}
+
+/*
+ * The slope at a root found without a neighbour (a scan): -F_u / F_sigma, or
+ * at a double root the slope of the branch that starts a strip there: the
+ * roots a little way along rail 1, whose rulings do not cross, the one
+ * running forward along rail 2 most slowly.
+ */
+static double fresh_slope(ur_pairing *pairing, double u, const ur_vec3 c1[3], double sigma);
 
 /* Length of the ruling from c1 to rail 2 at sigma. */
 static double ruling_length(ur_pairing *pairing, const ur_vec3 c1[3], double sigma)
@@ -185,9 +453,51 @@ static bool rulings_cross(ur_pairing *pairing, double u, double sigma, double sl
 /* Whether the ruling from c1 to rail 2 at sigma would cross its neighbours. */
 static bool candidate_crosses(ur_pairing *pairing, double u, const ur_vec3 c1[3], double sigma)
 {
-    ur_vec3 d2[3];
-    pairing_rail2(pairing, sigma, d2);
-    return rulings_cross(pairing, u, sigma, pairing_implicit_slope(c1, d2));
+    return rulings_cross(pairing, u, sigma, fresh_slope(pairing, u, c1, sigma));
+}
+
+typedef struct scan_choice {
+    bool have_previous;
+    double predicted;
+    double best; /* the score of *root: distance from the prediction, or ruling length */
+    bool found;
+} scan_choice;
+
+/* Keeps candidate if it scores better than the root chosen so far. */
+static void consider(ur_pairing *pairing, double u, const ur_vec3 c1[3], double candidate,
+                     scan_choice *choice, double *root)
+{
+    if (pairing->wrap && choice->have_previous) /* unwrap to the turn nearest the prediction */
+        candidate += (pairing->s1 - pairing->s0) *
+                     round((choice->predicted - candidate) / (pairing->s1 - pairing->s0));
+    double score = choice->have_previous ? fabs(candidate - choice->predicted)
+                                         : ruling_length(pairing, c1, candidate);
+    if (score < choice->best &&
+        (choice->have_previous || !candidate_crosses(pairing, u, c1, candidate))) {
+        choice->best = score;
+        *root = candidate;
+        choice->found = true;
+    }
+}
+
+/*
+ * Where |F| dips without changing sign between scan samples (or at an end
+ * of rail 2), two roots may lie closer together than a scan step, or one
+ * on the end: Newton's method from there finds them.
+ */
+static void dip_roots(ur_pairing *pairing, double u, const ur_vec3 c1[3], double sigma,
+                      scan_choice *choice, double *root)
+{
+    double window = 2 * pairing->step, first, second;
+    if ((sigma == pairing->s0 || sigma >= pairing->s1) &&
+        root_at_rail_end(pairing, c1, sigma, window, &first))
+        consider(pairing, u, c1, first, choice, root);
+    if (!newton_root(pairing, c1, sigma, sigma - window, sigma + window, NULL, &first))
+        return;
+    consider(pairing, u, c1, first, choice, root);
+    double start = first == sigma ? sigma + 0.5 * pairing->step : sigma;
+    if (newton_root(pairing, c1, start, sigma - window, sigma + window, &first, &second))
+        consider(pairing, u, c1, second, choice, root);
 }
 
 /*
@@ -198,29 +508,27 @@ static bool candidate_crosses(ur_pairing *pairing, double u, const ur_vec3 c1[3]
 static bool scan_root(ur_pairing *pairing, double u, const ur_vec3 c1[3], bool have_previous,
                       double predicted, double *root)
 {
-    bool found = false;
-    double best = INFINITY;
-    double previous_value = 0.0;
-    for (size_t j = 0; j < pairing->scan_count; j++) {
-        double value = determinant3(c1[1], pairing->scan_tangent[j],
-                                    ur_vec3_sub(pairing->scan_position[j], c1[0]));
-        if (j > 0 && (value <= 0) != (previous_value <= 0)) {
-            double low = pairing->s0 + pairing->step * (double)(j - 1);
-            double candidate = brent(pairing, c1, low, low + pairing->step);
-            if (pairing->wrap && have_previous) /* unwrap to the turn nearest the prediction */
-                candidate += (pairing->s1 - pairing->s0) *
-                             round((predicted - candidate) / (pairing->s1 - pairing->s0));
-            double score =
-                have_previous ? fabs(candidate - predicted) : ruling_length(pairing, c1, candidate);
-            if (score < best && (have_previous || !candidate_crosses(pairing, u, c1, candidate))) {
-                best = score;
-                *root = candidate;
-                found = true;
-            }
-        }
-        previous_value = value;
+    scan_choice choice = {have_previous, predicted, INFINITY, false};
+    size_t n = pairing->scan_count;
+    double before = 0.0, value = 0.0, after = 0.0;
+    for (size_t j = 0; j < n; j++) {
+        before = value;
+        value = j == 0 ? determinant3(c1[1], pairing->scan_tangent[0],
+                                      ur_vec3_sub(pairing->scan_position[0], c1[0]))
+                       : after;
+        if (j + 1 < n)
+            after = determinant3(c1[1], pairing->scan_tangent[j + 1],
+                                 ur_vec3_sub(pairing->scan_position[j + 1], c1[0]));
+        double sigma = pairing->s0 + pairing->step * (double)j;
+        if (j > 0 && (value <= 0) != (before <= 0))
+            consider(pairing, u, c1, brent(pairing, c1, sigma - pairing->step, sigma), &choice,
+                     root);
+        bool dip = (j == 0 || ((value <= 0) == (before <= 0) && fabs(value) <= fabs(before))) &&
+                   (j + 1 == n || ((value <= 0) == (after <= 0) && fabs(value) <= fabs(after)));
+        if (dip)
+            dip_roots(pairing, u, c1, sigma, &choice, root);
     }
-    return found;
+    return choice.found;
 }
 
 /* ---- The root table ----------------------------------------------------- */
@@ -233,12 +541,15 @@ ur_status pairing_table_alloc(ur_pairing *pairing, size_t count, ur_error *error
     pairing->slope = ur_alloc_array(count, sizeof *pairing->slope, error);
     pairing->state = ur_alloc_array(count, sizeof *pairing->state, error);
     pairing->joined = ur_alloc_array(count, sizeof *pairing->joined, error);
-    if (!pairing->u || !pairing->sigma || !pairing->slope || !pairing->state || !pairing->joined)
+    pairing->bridged = ur_alloc_array(count, sizeof *pairing->bridged, error);
+    if (!pairing->u || !pairing->sigma || !pairing->slope || !pairing->state || !pairing->joined ||
+        !pairing->bridged)
         return UR_ERROR_INTERNAL;
     double u0 = ur_curve_start(pairing->rail1), u1 = ur_curve_end(pairing->rail1);
     for (size_t i = 0; i < count; i++) {
         pairing->u[i] = u0 + (u1 - u0) * (double)i / (double)(count - 1);
         pairing->state[i] = SAMPLE_NO_ROOT;
+        pairing->bridged[i] = false;
     }
     return UR_OK;
 }
@@ -262,25 +573,6 @@ static ur_status scan_alloc(ur_pairing *pairing, ur_error *error)
     return UR_OK;
 }
 
-/* The window in which the root at the next sample is looked for. */
-static double search_window(const ur_pairing *pairing, double predicted_change)
-{
-    return fmax(4 * pairing->step, 2 * fabs(predicted_change));
-}
-
-static void store_root(ur_pairing *pairing, size_t i, const ur_vec3 c1[3], double sigma)
-{
-    if (!pairing->wrap)
-        sigma = fmin(fmax(sigma, pairing->s0), pairing->s1);
-    ur_vec3 d2[3];
-    pairing_rail2(pairing, sigma, d2);
-    pairing->sigma[i] = sigma;
-    pairing->slope[i] = pairing_implicit_slope(c1, d2);
-    if (!isfinite(pairing->slope[i]))
-        pairing->slope[i] = 0.0;
-    pairing->state[i] = SAMPLE_GOOD;
-}
-
 /* Follows the root from sample `from` backward while it lasts (after a rescan). */
 static void track_backward(ur_pairing *pairing, size_t from, size_t stop)
 {
@@ -290,12 +582,10 @@ static void track_backward(ur_pairing *pairing, size_t from, size_t stop)
             return;
         ur_vec3 c1[3];
         ur_curve_eval(pairing->rail1, pairing->u[k], c1);
-        double change = pairing->slope[i] * (pairing->u[k] - pairing->u[i]);
-        double root;
-        if (!local_root(pairing, c1, pairing->sigma[i] + change, search_window(pairing, change),
-                        &root))
+        double root, slope;
+        if (!follow_root(pairing, i, pairing->u[k], c1, &root, &slope))
             return;
-        store_root(pairing, k, c1, root);
+        store_root(pairing, k, root, slope);
         pairing->joined[k] = true;
     }
 }
@@ -308,17 +598,35 @@ static void build_table(ur_pairing *pairing)
         ur_curve_eval(pairing->rail1, pairing->u[i], c1);
         pairing->joined[i] = false;
         bool have_previous = last_good != SIZE_MAX;
-        double predicted = 0.0, change = 0.0, root;
-        if (have_previous) {
-            change = pairing->slope[last_good] * (pairing->u[i] - pairing->u[last_good]);
-            predicted = pairing->sigma[last_good] + change;
-        }
-        if (have_previous && last_good + 1 == i &&
-            local_root(pairing, c1, predicted, search_window(pairing, change), &root)) {
-            store_root(pairing, i, c1, root);
-            pairing->joined[i - 1] = true;
-            last_good = i;
-            continue;
+        double predicted = 0.0, root, slope;
+        if (have_previous)
+            predicted = pairing->sigma[last_good] +
+                        pairing->slope[last_good] * (pairing->u[i] - pairing->u[last_good]);
+        if (have_previous && last_good + 1 == i) {
+            bool found = follow_root(pairing, last_good, pairing->u[i], c1, &root, &slope);
+            if (!found || !continues(pairing->slope[last_good], slope)) {
+                /*
+                 * From a few samples back, before the branch began to turn,
+                 * to a few samples past the turn.
+                 */
+                size_t from = last_good;
+                while (last_good - from < BRIDGE_MARGIN && from > 0 && pairing->joined[from - 1] &&
+                       !pairing->bridged[from - 1])
+                    from--;
+                size_t land = bridge(pairing, from, i);
+                if (land == SIZE_MAX && from != last_good)
+                    land = bridge(pairing, last_good, i);
+                if (land != SIZE_MAX) {
+                    last_good = i = land;
+                    continue;
+                }
+            }
+            if (found) {
+                store_root(pairing, i, root, slope);
+                pairing->joined[i - 1] = true;
+                last_good = i;
+                continue;
+            }
         }
         /* Lost or never found: scan rail 2, but only now and then inside a gap. */
         if (since_scan + 1 < RESCAN_EVERY && i + 1 < pairing->count) {
@@ -327,7 +635,7 @@ static void build_table(ur_pairing *pairing)
         }
         since_scan = 0;
         if (scan_root(pairing, pairing->u[i], c1, have_previous, predicted, &root)) {
-            store_root(pairing, i, c1, root);
+            store_root(pairing, i, root, fresh_slope(pairing, pairing->u[i], c1, root));
             track_backward(pairing, i, have_previous ? last_good + 1 : 0);
             last_good = i;
         }
@@ -363,6 +671,86 @@ static bool rulings_cross(ur_pairing *pairing, double u, double sigma, double sl
     return along_a * along_b < 0 && fabs(along_a) > margin && fabs(along_b) > margin;
 }
 
+static double fresh_slope(ur_pairing *pairing, double u, const ur_vec3 c1[3], double sigma)
+{
+    ur_vec3 d2[3];
+    pairing_rail2(pairing, sigma, d2);
+    double slope = pairing_implicit_slope(c1, d2);
+    if (isfinite(slope) && !at_double_root(pairing, c1, d2))
+        return slope;
+    double u0 = ur_curve_start(pairing->rail1), u1 = ur_curve_end(pairing->rail1);
+    double h = (u1 - u0) / (double)(4 * (pairing->count - 1));
+    if (u + h > u1)
+        h = -h;
+    ur_vec3 next[3];
+    ur_curve_eval(pairing->rail1, u + h, next);
+    double window = search_window(pairing, 0.0), roots[2], best = INFINITY;
+    int count = 0;
+    if (newton_root(pairing, next, sigma, sigma - window, sigma + window, NULL, &roots[0]) ||
+        local_root(pairing, next, sigma, window, &roots[0]))
+        count = 1;
+    if (count == 1 && newton_root(pairing, next, sigma + 0.5 * window, sigma - window,
+                                  sigma + window, &roots[0], &roots[1]))
+        count = 2;
+    for (int k = 0; k < count; k++) {
+        double candidate = (roots[k] - sigma) / h;
+        if (candidate < best && !rulings_cross(pairing, u + h, roots[k], candidate))
+            best = candidate;
+    }
+    return isfinite(best) ? best : isfinite(slope) ? slope : 0.0;
+}
+
+/*
+ * Whether (c1, d2) is near enough to a double root that an error of the
+ * rails' interpolation, not only of F's rounding, moves the root: where two
+ * rails of unlike parametrisation have inflections, the branches that
+ * should cross there miss each other by about the square root of it.
+ */
+static bool near_double_root(const ur_pairing *pairing, const ur_vec3 c1[3], const ur_vec3 d2[3])
+{
+    return gradient_below(pairing, c1, d2, NEAR_DOUBLE_ROOT);
+}
+
+/* Whether the root of table sample i is near a double root (near_double_root). */
+static bool sample_near_double_root(ur_pairing *pairing, size_t i)
+{
+    ur_vec3 c1[3], d2[3];
+    ur_curve_eval(pairing->rail1, pairing->u[i], c1);
+    pairing_rail2(pairing, pairing->sigma[i], d2);
+    return near_double_root(pairing, c1, d2);
+}
+
+/*
+ * Samples near a double root have roots that F's rounding (at the double
+ * root) or the rails' interpolation (next to it, for rails of unlike
+ * parametrisation) move off the branch, and slopes to match: the run of
+ * them takes the Hermite interpolation of the branch between the samples
+ * on either side, and is marked bridged so that sigma is answered from it.
+ */
+static void smooth_double_roots(ur_pairing *pairing)
+{
+    size_t n = pairing->count;
+    for (size_t i = 1; i + 1 < n; i++) {
+        if (pairing->state[i] != SAMPLE_GOOD || !pairing->joined[i - 1] ||
+            !sample_near_double_root(pairing, i))
+            continue;
+        size_t before = i - 1, after = i;
+        while (after + 1 < n && pairing->joined[after] && after - i < BRIDGE_SAMPLES &&
+               sample_near_double_root(pairing, after))
+            after++;
+        if (!pairing->joined[after - 1] || sample_near_double_root(pairing, after) ||
+            sample_near_double_root(pairing, before)) {
+            i = after;
+            continue;
+        }
+        for (size_t k = i; k < after; k++)
+            hermite(pairing, before, after, pairing->u[k], &pairing->sigma[k], &pairing->slope[k]);
+        for (size_t k = before; k < after; k++)
+            pairing->bridged[k] = true;
+        i = after;
+    }
+}
+
 static void classify_samples(ur_pairing *pairing)
 {
     for (size_t i = 0; i < pairing->count; i++)
@@ -371,18 +759,21 @@ static void classify_samples(ur_pairing *pairing)
             pairing->state[i] = SAMPLE_CROSS;
 }
 
+/* Whether the table runs on one branch from sample i to i + 1. */
+static bool table_joined(const ur_pairing *pairing, size_t i)
+{
+    return pairing->state[i] != SAMPLE_NO_ROOT && pairing->state[i + 1] != SAMPLE_NO_ROOT &&
+           pairing->joined[i];
+}
+
 /* The state at u, following the root from a good sample at u_good. */
 static enum sample_state state_at(ur_pairing *pairing, double u, size_t good, double *sigma)
 {
     ur_vec3 c1[3];
     ur_curve_eval(pairing->rail1, u, c1);
-    double change = pairing->slope[good] * (u - pairing->u[good]);
-    if (!local_root(pairing, c1, pairing->sigma[good] + change, search_window(pairing, change),
-                    sigma))
+    double slope;
+    if (!follow_root(pairing, good, u, c1, sigma, &slope))
         return SAMPLE_NO_ROOT;
-    ur_vec3 d2[3];
-    pairing_rail2(pairing, *sigma, d2);
-    double slope = pairing_implicit_slope(c1, d2);
     return rulings_cross(pairing, u, *sigma, slope) ? SAMPLE_CROSS : SAMPLE_GOOD;
 }
 
@@ -501,16 +892,6 @@ static size_t table_interval(ur_pairing *pairing, double u)
     return i;
 }
 
-/* Cubic Hermite guess between table samples i and i + 1. */
-static double hermite_guess(const ur_pairing *pairing, size_t i, double u)
-{
-    double h = pairing->u[i + 1] - pairing->u[i], t = (u - pairing->u[i]) / h;
-    double h00 = (1 + 2 * t) * (1 - t) * (1 - t), h10 = t * (1 - t) * (1 - t);
-    double h01 = t * t * (3 - 2 * t), h11 = t * t * (t - 1);
-    return h00 * pairing->sigma[i] + h10 * h * pairing->slope[i] + h01 * pairing->sigma[i + 1] +
-           h11 * h * pairing->slope[i + 1];
-}
-
 /*
  * The nearest sample with a root, the start for u in a gap or at a jump of
  * the pairing; preferably one inside [low, high], the part of the surface in
@@ -538,14 +919,14 @@ static size_t nearest_root_sample(const ur_pairing *pairing, size_t i, double u,
 }
 
 double pairing_solved_sigma(ur_pairing *pairing, double u, double low_u, double high_u,
-                            const ur_vec3 c1[3])
+                            const ur_vec3 c1[3], bool *on_table)
 {
     size_t i = table_interval(pairing, u);
-    bool both = pairing->state[i] != SAMPLE_NO_ROOT && pairing->state[i + 1] != SAMPLE_NO_ROOT &&
-                pairing->joined[i];
-    double guess, low, high;
+    bool both = table_joined(pairing, i);
+    double guess, low, high, slope;
+    *on_table = false;
     if (both) {
-        guess = hermite_guess(pairing, i, u);
+        hermite(pairing, i, i + 1, u, &guess, &slope);
         low = fmin(pairing->sigma[i], pairing->sigma[i + 1]) - pairing->step;
         high = fmax(pairing->sigma[i], pairing->sigma[i + 1]) + pairing->step;
     } else {
@@ -556,24 +937,38 @@ double pairing_solved_sigma(ur_pairing *pairing, double u, double low_u, double 
         low = guess - 4 * pairing->step;
         high = guess + 4 * pairing->step;
     }
-    double sigma = guess;
-    for (int k = 0; k < NEWTON_STEPS; k++) {
-        ur_vec3 d2[3];
-        pairing_rail2(pairing, sigma, d2);
-        double f = condition(c1, d2);
-        double f_sigma = determinant3(c1[1], d2[2], ur_vec3_sub(d2[0], c1[0]));
-        double next = sigma - f / f_sigma;
-        if (!isfinite(next) || next < low || next > high)
-            break;
-        bool done = fabs(next - sigma) <= 1e-14 * (fabs(sigma) + (pairing->s1 - pairing->s0));
-        sigma = next;
-        if (done)
-            return sigma;
-    }
+    /*
+     * At a double root F's rounding leaves the root uncertain by about 1e-8
+     * of the rail; the table's branch through well-conditioned samples is
+     * better there (and keeps to the branch).
+     */
+    ur_vec3 d2[3];
+    pairing_rail2(pairing, guess, d2);
+    *on_table = both && (pairing->bridged[i] || at_double_root(pairing, c1, d2));
+    if (*on_table)
+        return guess;
+    double sigma;
+    if (newton_root(pairing, c1, guess, low, high, NULL, &sigma))
+        return sigma;
     double root;
     if (local_root(pairing, c1, guess, 0.5 * (high - low), &root))
         return root;
     return guess;
+}
+
+double pairing_solved_slope(ur_pairing *pairing, double u, const ur_vec3 c1[3], const ur_vec3 d2[3],
+                            bool on_table)
+{
+    double slope = pairing_implicit_slope(c1, d2);
+    size_t i = table_interval(pairing, u);
+    if (isfinite(slope) && !on_table && !at_double_root(pairing, c1, d2))
+        return slope;
+    /* At a double root -F_u / F_sigma is 0 / 0: the slope of the table's branch instead. */
+    if (!table_joined(pairing, i))
+        return isfinite(slope) ? slope : 0.0;
+    double sigma;
+    hermite(pairing, i, i + 1, u, &sigma, &slope);
+    return slope;
 }
 
 ur_status pairing_track(ur_pairing *pairing, ur_error *error)
@@ -590,6 +985,7 @@ ur_status pairing_track(ur_pairing *pairing, ur_error *error)
     if (status != UR_OK)
         return status;
     build_table(pairing);
+    smooth_double_roots(pairing);
     classify_samples(pairing);
     return find_gaps(pairing, error);
 }

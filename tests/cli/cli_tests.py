@@ -496,6 +496,120 @@ def strip_to_a_translated_copy_is_a_rectangle(work):
     close(perimeter(outline), 2 * (30 + length), 1e-6, "rectangle perimeter")
 
 
+def sine_wave_length(length, wavelength, amplitude, steps=400000):
+    """The length of y = amplitude sin(2 pi x / wavelength), x from 0 to length, by a fine polyline."""
+    fine = [(length * i / steps, amplitude * math.sin(2 * math.pi * length * i / steps / wavelength))
+            for i in range(steps + 1)]
+    return sum(math.dist(p, q) for p, q in zip(fine, fine[1:]))
+
+
+@test
+def wavy_wall_is_a_rectangle(work):
+    """The demo's wavy wall (samples/make-wave.py): a sine wave and the same wave 100 mm up.
+
+    At each of its five inflections the pairing has a double root; the strip
+    must pass them all (no gap, no split) and unroll to a rectangle 100 mm by
+    the wave's length, and analyze must call it developable.  With every
+    fourth point the inflections fall between points (once: rulings cross).
+    """
+    rail1, rail2 = (os.path.join(REPO, "samples", "wave-rail%d.csv" % k) for k in (1, 2))
+    result = run(work, "strip", "--rail1", rail1, "--rail2", rail2, "-o", "w.svg", *FINE)
+    check("domain of existence" not in result.stderr, "a gap: " + result.stderr)
+    [outline] = outlines(os.path.join(work, "w.svg"))
+    length = sine_wave_length(500, 250, 10)
+    close(area(outline), 100 * length, 1e-6, "wall area")
+    close(perimeter(outline), 2 * (100 + length), 1e-6, "wall perimeter")
+    found = run(work, "analyze", "strip", "--rail1", rail1, "--rail2", rail2).stdout
+    check(re.search(r"strip: developable", found) and "the whole of rail 1" in found,
+          "analyze: " + found)
+    for name, path in (("low.csv", rail1), ("high.csv", rail2)):
+        write_points(work, name, read_points(path)[::4])
+    result = run(work, "strip", "--rail1", "low.csv", "--rail2", "high.csv", "-o", "f.svg", *FINE)
+    check("domain of existence" not in result.stderr, "a gap: " + result.stderr)
+    [outline] = outlines(os.path.join(work, "f.svg"))
+    close(area(outline), 100 * (perimeter(outline) / 2 - 100), 1e-6, "a rectangle 100 mm high")
+    close(area(outline), 100 * length, 1e-4, "wall area (26 points a rail)")
+
+
+def summary_figures(line):
+    """Utilisation (%), cut length (mm) and time (s) as a summary line gives them."""
+    found = re.search(r"utilisation ([0-9.]+) %, cut ([0-9.]+) (mm|m) in about "
+                      r"(?:(\d+) h )?(?:(\d+) min)? ?(?:(\d+) s)?", line)
+    check(found, "no utilisation, cut length and time in %r" % line)
+    utilisation, length, unit, hours, minutes, seconds = found.groups()
+    time = 3600 * int(hours or 0) + 60 * int(minutes or 0) + int(seconds or 0)
+    return float(utilisation), float(length) * (1000 if unit == "m" else 1), time
+
+
+def check_summary_against_report(line, found, what):
+    """The summary's figures are the report's, summed over its sheets, as rounded."""
+    sheets = found["sheets"]
+    area = sum(s["width_mm"] * s["height_mm"] for s in sheets)
+    utilisation = 100 * sum(s["utilisation"] * s["width_mm"] * s["height_mm"] for s in sheets) / area
+    cut = sum(s["cut_length_mm"] for s in sheets)
+    time = sum(s["time_s"] for s in sheets)
+    said = summary_figures(line)
+    check(abs(said[0] - utilisation) <= 0.05 + 1e-9, "%s: utilisation %g %%, report %g %%"
+          % (what, said[0], utilisation))
+    check(abs(said[1] - cut) <= (5 if cut >= 1000 else 0.5) + 1e-9,
+          "%s: cut %g mm, report %g mm" % (what, said[1], cut))
+    check(abs(said[2] - time) <= (30 if time >= 3600 else 0.5) + 1e-9,
+          "%s: time %g s, report %g s" % (what, said[2], time))
+
+
+@test
+def summary_gives_sheets_utilisation_cut_length_and_time(work):
+    """The one-line summaries of a surface, nest and job: the report's figures, plurals right."""
+    result = run(work, "cylinder", "--radius", "40", "--height", "120", "--material",
+                 "cardboard-2mm", "-o", "c.svg", "--report", "c.json")
+    [line] = [l for l in result.stderr.splitlines() if "coverage" in l]
+    check(re.search(r": 1 piece, .* 1 sheet of ", line), line)
+    check_summary_against_report(line, report(work, "c.json"), "cylinder")
+    found = report(work, "c.json")
+    check(len(found["sheets"]) == 1 and found["sheets"][0]["time_s"] > 0, "sheets %r" % found)
+    result = run(work, "helicoid", "--radius", "45", "--pitch", "80", "--turns", "0.5", "--width",
+                 "40", "--offset", "5", "--allowances", "none", "-o", "p.svg")
+    for copies, word in (("1", "1 part on"), ("12", "12 parts on")):
+        result = run(work, "nest", "p.svg:" + copies, "--material", "cardboard-2mm", "-o",
+                     "n.svg", "--report", "n.json")
+        [line] = [l for l in result.stderr.splitlines() if " on " in l and "->" in l]
+        check(word in line and "1 parts" not in result.stderr and
+              "1 stock sheets" not in result.stderr, line)
+        check_summary_against_report(line, report(work, "n.json"), "nest of " + copies)
+    result = run(work, "job", os.path.join(REPO, "samples", "jobs", "lamp.xml"), "-o", "lamp")
+    [line] = [l for l in result.stderr.splitlines() if l.startswith("unroll: job lamp:")]
+    check(re.search(r"8 pieces on \d+ sheets?, utilisation", line), line)
+    check_summary_against_report(line, report(work, os.path.join("lamp", "lamp.json")), "job")
+
+
+@test
+def readme_examples_are_current(work):
+    """Every example in README.md ("$ build/release/unroll ..." in a fenced block) prints
+    exactly the lines the README shows after it (make readme writes them)."""
+    with open(os.path.join(REPO, "README.md")) as f:
+        lines = f.read().split("\n")
+    os.symlink(os.path.join(REPO, "samples"), os.path.join(work, "samples"))
+    os.mkdir(os.path.join(work, "out"))
+    count = 0
+    for start, line in enumerate(lines):
+        if not (line.startswith("$ build/release/unroll ") and lines[start - 1].startswith("```")):
+            continue
+        end = start
+        while lines[end].endswith("\\"):
+            end += 1
+        shown = []
+        while not lines[end + 1 + len(shown)].startswith("```"):
+            shown.append(lines[end + 1 + len(shown)])
+        words = " ".join(l.rstrip("\\") for l in lines[start:end + 1]).split()[2:]
+        result = run(work, *words)
+        printed = (result.stdout + result.stderr).splitlines()
+        check(printed == shown, "README.md line %d: unroll %s printed\n%s\nbut the README shows\n%s\n"
+              "(make readme brings it up to date)"
+              % (start + 1, " ".join(words), "\n".join(printed), "\n".join(shown)))
+        count += 1
+    check(count >= 3, "only %d examples found in README.md" % count)
+
+
 @test
 def strip_reports_its_domain_of_existence(work):
     write_points(work, "low.csv", circle_points(50, 0, 0, math.pi, 300))

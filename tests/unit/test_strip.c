@@ -12,6 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "unroll/analyze.h"
 #include "unroll/develop.h"
 
 #include "test_support.h"
@@ -321,6 +322,339 @@ static void test_pieces_on_both_sides_of_a_jump(void **state)
     ur_ruled_free(&ruled);
 }
 
+/*
+ * A sine wave y = 20 sin(2 pi x / 100), x from `from` to `to`, through n
+ * points: inflections at every multiple of 50.  From 0 to 200 (sine_points)
+ * it has two whole waves and five inflections, two of them on its ends, and
+ * with n - 1 a multiple of 4 they fall on points, else between them.
+ */
+static void sine_points_from(ur_vec3 *points, size_t n, double from, double to)
+{
+    for (size_t i = 0; i < n; i++) {
+        double x = from + (to - from) * (double)i / (double)(n - 1);
+        points[i] = ur_vec3_make(x, 20 * sin(2 * M_PI * x / 100), 0);
+    }
+}
+
+static void sine_points(ur_vec3 *points, size_t n)
+{
+    sine_points_from(points, n, 0, 200);
+}
+
+/* The turning of a plane curve in z = 0 at u: the sign of its curvature. */
+static double turning(ur_curve *curve, double u)
+{
+    ur_vec3 d[3];
+    ur_curve_eval(curve, u, d);
+    return ur_vec3_cross(d[1], d[2]).z;
+}
+
+/*
+ * The parameters of rail 1 (a sine wave in z = 0) at its inflections, found
+ * where the sign of its curvature changes (bisected), and at its ends (where
+ * the sample waves have inflections too), and just beside them.
+ */
+static size_t places_at_inflections(ur_curve *rail1, double *places)
+{
+    enum { SCAN = 4000 };
+    double u0 = ur_curve_start(rail1), u1 = ur_curve_end(rail1), found[16];
+    size_t inflections = 0;
+    found[inflections++] = u0;
+    found[inflections++] = u1;
+    for (int k = 0; k < SCAN && inflections < 16; k++) {
+        double low = u0 + (u1 - u0) * k / SCAN, high = u0 + (u1 - u0) * (k + 1) / SCAN;
+        if (turning(rail1, low) * turning(rail1, high) >= 0)
+            continue;
+        for (int step = 0; step < 100; step++) {
+            double middle = 0.5 * (low + high);
+            if (turning(rail1, low) * turning(rail1, middle) <= 0)
+                high = middle;
+            else
+                low = middle;
+        }
+        found[inflections++] = 0.5 * (low + high);
+    }
+    assert_true(inflections >= 5);
+    size_t count = 0;
+    for (size_t k = 0; k < inflections; k++) {
+        const double offsets[] = {0, 1e-9, -1e-9, 1e-6, -1e-6, 1e-4, -1e-4, 1e-2, -1e-2};
+        for (size_t j = 0; j < sizeof offsets / sizeof offsets[0]; j++) {
+            double place = found[k] + offsets[j] * (u1 - u0);
+            if (place >= u0 && place <= u1)
+                places[count++] = place;
+        }
+    }
+    return count;
+}
+
+/* Simpson's rule with `steps` (even) steps of f over [a, b]: an independent quadrature. */
+static double simpson(double (*f)(ur_curve *, double, const void *), ur_curve *curve,
+                      const void *data, double a, double b, int steps)
+{
+    double h = (b - a) / steps, sum = f(curve, a, data) + f(curve, b, data);
+    for (int k = 1; k < steps; k++)
+        sum += (k % 2 ? 4 : 2) * f(curve, a + h * k, data);
+    return sum * h / 3;
+}
+
+/* |c'| x |d|: the area density of the cylinder of c along the translation d. */
+static double cylinder_density(ur_curve *curve, double u, const void *data)
+{
+    ur_vec3 d[3];
+    ur_curve_eval(curve, u, d);
+    return ur_vec3_length(ur_vec3_cross(d[1], *(const ur_vec3 *)data));
+}
+
+/* |(c - A) x c'| / 2: the area density of the cone from the apex A to c. */
+static double cone_density(ur_curve *curve, double u, const void *data)
+{
+    ur_vec3 d[3];
+    ur_curve_eval(curve, u, d);
+    return 0.5 * ur_vec3_length(ur_vec3_cross(ur_vec3_sub(d[0], *(const ur_vec3 *)data), d[1]));
+}
+
+static bool analyzed_developable(ur_ruled *ruled)
+{
+    ur_analysis analysis;
+    ur_error error;
+    if (ur_analyze(ruled, NULL, &analysis, &error) != UR_OK)
+        fail_msg("analyze: %s", error.message);
+    bool developable = analysis.developable;
+    ur_analysis_free(&analysis);
+    return developable;
+}
+
+/*
+ * The exact net of a strip without gaps against the area computed
+ * independently: one piece, flat area and 3D area as expected, every
+ * boundary length kept.
+ */
+static void assert_develops_within(ur_ruled *ruled, double expected, double tolerance)
+{
+    ur_net_list nets = develop_exact(ruled, 1e-4);
+    double flat = 0, surface = 0;
+    for (size_t k = 0; k < nets.count; k++) {
+        flat += nets.nets[k].flat_area;
+        surface += nets.nets[k].area_3d;
+        if (!(nets.nets[k].edge_error < tolerance))
+            fail_msg("piece %zu: boundary lengths off by %.3g", k, nets.nets[k].edge_error);
+    }
+    assert_int_equal(nets.count, 1);
+    assert_relative(surface, expected, tolerance);
+    assert_relative(flat, expected, tolerance);
+    ur_net_list_free(&nets);
+}
+
+static void assert_develops_to_area(ur_ruled *ruled, double expected)
+{
+    assert_develops_within(ruled, expected, 1e-6);
+}
+
+/*
+ * A sine wave and the same wave translated (straight up, then slanting): a
+ * general cylinder, the commonest curved wall.  At each inflection the
+ * pairing condition has a double root (the branch sigma = u crosses the
+ * branch of the points with the mirrored tangent); the pairing must stay on
+ * sigma = u through all five, with vertical rulings of the height, and the
+ * net is the cylinder's: area |d| x the length of the right section.
+ */
+static void check_sine_cylinder(size_t n, ur_vec3 shift)
+{
+    ur_vec3 *lower = malloc(n * sizeof *lower), *upper = malloc(n * sizeof *upper);
+    assert_true(lower && upper);
+    sine_points(lower, n);
+    for (size_t i = 0; i < n; i++)
+        upper[i] = ur_vec3_add(lower[i], shift);
+    ur_curve *rail1, *rail2;
+    assert_int_equal(ur_curve_new_interpolating(lower, n, false, &rail1, NULL), UR_OK);
+    assert_int_equal(ur_curve_new_interpolating(upper, n, false, &rail2, NULL), UR_OK);
+    free(lower);
+    free(upper);
+    double expected = simpson(cylinder_density, rail1, &shift, ur_curve_start(rail1),
+                              ur_curve_end(rail1), 200000);
+    ur_ruled ruled = strip(rail1, rail2);
+    const ur_interval *gaps;
+    assert_int_equal(ur_ruled_gaps(&ruled, &gaps), 0);
+    double places[512];
+    size_t count = places_at_inflections(rail1, places);
+    for (int k = 0; k <= 400; k++)
+        places[count++] =
+            ur_ruled_start(&ruled) + (ur_ruled_end(&ruled) - ur_ruled_start(&ruled)) * k / 400.0;
+    for (size_t k = 0; k < count; k++) {
+        double sigma, slope;
+        ur_ruled_pairing(&ruled, places[k], &sigma, &slope);
+        if (!(fabs(sigma - places[k]) <= 1e-9 * ur_curve_end(rail1) && fabs(slope - 1) < 1e-6))
+            fail_msg("at u = %.12g: sigma %.12g, slope %.9g (the ruling should be the "
+                     "translation)",
+                     places[k], sigma, slope);
+        ur_vec3 rails[4];
+        ur_ruled_rails(&ruled, places[k], rails);
+        ur_vec3 ruling = ur_vec3_sub(rails[2], rails[0]);
+        assert_true(ur_vec3_distance(ruling, shift) <= 1e-9 * ur_vec3_length(shift));
+    }
+    assert_true(analyzed_developable(&ruled));
+    assert_develops_to_area(&ruled, expected);
+    ur_ruled_free(&ruled);
+}
+
+static void test_strip_over_sine_is_a_general_cylinder(void **state)
+{
+    (void)state;
+    check_sine_cylinder(121, ur_vec3_make(0, 0, 80)); /* inflections on points */
+    check_sine_cylinder(31, ur_vec3_make(0, 0, 80));  /* fewer points: once said rulings cross */
+    check_sine_cylinder(150, ur_vec3_make(0, 0, 80)); /* inflections between points */
+    check_sine_cylinder(121, ur_vec3_make(15, -10, 60));
+}
+
+/*
+ * A sine wave and a copy scaled by lambda towards an apex A: a cone over a
+ * curve with inflections.  Chord lengths scale by lambda, so the pairing is
+ * sigma = lambda u; every ruling heads for A and is (1 - lambda) |c - A|
+ * long, and the strip is the cone's area from A less the part beyond rail 2,
+ * (1 - lambda^2) times the integral of |(c - A) x c'| / 2.
+ */
+static void check_sine_cone(size_t n, ur_vec3 apex, double lambda)
+{
+    ur_vec3 *lower = malloc(n * sizeof *lower), *upper = malloc(n * sizeof *upper);
+    assert_true(lower && upper);
+    sine_points(lower, n);
+    for (size_t i = 0; i < n; i++)
+        upper[i] = ur_vec3_add_scaled(apex, ur_vec3_sub(lower[i], apex), lambda);
+    ur_curve *rail1, *rail2;
+    assert_int_equal(ur_curve_new_interpolating(lower, n, false, &rail1, NULL), UR_OK);
+    assert_int_equal(ur_curve_new_interpolating(upper, n, false, &rail2, NULL), UR_OK);
+    free(lower);
+    free(upper);
+    double expected =
+        (1 - lambda * lambda) *
+        simpson(cone_density, rail1, &apex, ur_curve_start(rail1), ur_curve_end(rail1), 200000);
+    ur_ruled ruled = strip(rail1, rail2);
+    const ur_interval *gaps;
+    assert_int_equal(ur_ruled_gaps(&ruled, &gaps), 0);
+    double places[512];
+    size_t count = places_at_inflections(rail1, places);
+    for (int k = 0; k <= 400; k++)
+        places[count++] =
+            ur_ruled_start(&ruled) + (ur_ruled_end(&ruled) - ur_ruled_start(&ruled)) * k / 400.0;
+    for (size_t k = 0; k < count; k++) {
+        double sigma, slope;
+        ur_ruled_pairing(&ruled, places[k], &sigma, &slope);
+        if (!(fabs(sigma - lambda * places[k]) <= 1e-9 * ur_curve_end(rail1) &&
+              fabs(slope - lambda) < 1e-6))
+            fail_msg("at u = %.12g: sigma %.12g, slope %.9g (expected %.12g, %g)", places[k], sigma,
+                     slope, lambda * places[k], lambda);
+        ur_vec3 rails[4];
+        ur_ruled_rails(&ruled, places[k], rails);
+        ur_vec3 ruling = ur_vec3_sub(rails[2], rails[0]), to_apex = ur_vec3_sub(apex, rails[0]);
+        assert_relative(ur_vec3_length(ruling), (1 - lambda) * ur_vec3_length(to_apex), 1e-9);
+        assert_true(ur_vec3_length(ur_vec3_cross(ruling, to_apex)) <=
+                    1e-9 * ur_vec3_length(ruling) * ur_vec3_length(to_apex));
+    }
+    assert_true(analyzed_developable(&ruled));
+    assert_develops_to_area(&ruled, expected);
+    ur_ruled_free(&ruled);
+}
+
+static void test_strip_to_scaled_sine_is_a_cone(void **state)
+{
+    (void)state;
+    check_sine_cone(121, ur_vec3_make(100, 0, 150), 0.6);
+    check_sine_cone(31, ur_vec3_make(100, 0, 150), 0.6);
+    check_sine_cone(150, ur_vec3_make(40, 30, 120), 0.35);
+}
+
+/* The height of the wall under a wavy top edge at x, and the cone's fraction towards its apex. */
+static double top_height(double x)
+{
+    return 80 + 15 * sin(M_PI * x / 70);
+}
+
+static double apex_fraction(double x)
+{
+    return 0.5 + 0.15 * sin(M_PI * x / 60);
+}
+
+/* |c'| h(x): the area density of the wall of height h over c. */
+static double wall_density(ur_curve *curve, double u, const void *data)
+{
+    (void)data;
+    ur_vec3 d[3];
+    ur_curve_eval(curve, u, d);
+    return ur_vec3_length(d[1]) * top_height(d[0].x);
+}
+
+/* (1 - (1 - f(x))^2) |(c - A) x c'| / 2: the cone from c to the fraction f(x) of the way to A. */
+static double cone_part_density(ur_curve *curve, double u, const void *data)
+{
+    ur_vec3 d[3];
+    ur_curve_eval(curve, u, d);
+    double near = 1 - apex_fraction(d[0].x); /* rail 2 is A + near (c - A) */
+    return (1 - near * near) * cone_density(curve, u, data);
+}
+
+/*
+ * Rails of different shapes, both with inflections: a sine wave under a top
+ * edge that is the same wave at a height varying along it (a wall with a
+ * wavy top: still a general cylinder, its rulings vertical), and a sine
+ * wave joined to the points a varying fraction of the way to an apex (still
+ * a cone, its rulings heading for the apex).  Rail 2 is S-shaped in space
+ * and parametrised unlike rail 1, so the pairing is no simple formula; the
+ * rulings and the area are known all the same.
+ */
+static void test_strip_to_an_s_shaped_rail(void **state)
+{
+    (void)state;
+    enum { N = 441 }; /* 0.5 mm apart: interpolating rail 2 moves it off the surface by 1e-8 */
+    ur_vec3 apex = ur_vec3_make(90, 20, 140);
+    for (int kind = 0; kind < 2; kind++) {
+        ur_vec3 lower[N], upper[N];
+        sine_points_from(lower, N, -10, 210); /* inflections inside, not on the ends */
+        for (int i = 0; i < N; i++) {
+            double x = lower[i].x;
+            upper[i] = kind == 0 ? ur_vec3_make(x, lower[i].y, top_height(x))
+                                 : ur_vec3_add_scaled(lower[i], ur_vec3_sub(apex, lower[i]),
+                                                      apex_fraction(x));
+        }
+        ur_curve *rail1, *rail2;
+        assert_int_equal(ur_curve_new_interpolating(lower, N, false, &rail1, NULL), UR_OK);
+        assert_int_equal(ur_curve_new_interpolating(upper, N, false, &rail2, NULL), UR_OK);
+        double expected = simpson(kind == 0 ? wall_density : cone_part_density, rail1, &apex,
+                                  ur_curve_start(rail1), ur_curve_end(rail1), 200000);
+        ur_ruled ruled = strip(rail1, rail2);
+        const ur_interval *gaps;
+        assert_int_equal(ur_ruled_gaps(&ruled, &gaps), 0);
+        double places[512];
+        size_t count = places_at_inflections(rail1, places);
+        for (int k = 0; k <= 400; k++)
+            places[count++] = ur_ruled_start(&ruled) +
+                              (ur_ruled_end(&ruled) - ur_ruled_start(&ruled)) * k / 400.0;
+        for (size_t k = 0; k < count; k++) {
+            ur_vec3 rails[4];
+            ur_ruled_rails(&ruled, places[k], rails);
+            ur_vec3 ruling = ur_vec3_sub(rails[2], rails[0]);
+            ur_vec3 along = kind == 0 ? ur_vec3_make(0, 0, 1) : ur_vec3_sub(apex, rails[0]);
+            double sine = ur_vec3_length(ur_vec3_cross(ruling, along)) /
+                          (ur_vec3_length(ruling) * ur_vec3_length(along));
+            /* Rail 2's spline leaves the surface most at its ends, where its end condition acts. */
+            double u0 = ur_curve_start(rail1), u1 = ur_curve_end(rail1);
+            bool end = places[k] - u0 < 2 || u1 - places[k] < 2;
+            if (!(sine < (end || kind == 1 ? 1e-4 : 1e-5)))
+                fail_msg("%s: the ruling at u = %.9g is %.3g rad off", kind ? "cone" : "wall",
+                         places[k], asin(fmin(sine, 1)));
+            double sigma, slope;
+            ur_ruled_pairing(&ruled, places[k], &sigma, &slope);
+            assert_true(slope > 0);
+        }
+        if (kind == 0) {
+            assert_true(analyzed_developable(&ruled));
+            assert_develops_to_area(&ruled, expected);
+        } else {
+            assert_develops_within(&ruled, expected, 1e-5);
+        }
+        ur_ruled_free(&ruled);
+    }
+}
+
 /* Rails that cannot carry a strip anywhere: refused with the reason. */
 static void test_no_strip_anywhere(void **state)
 {
@@ -378,6 +712,9 @@ int main(void)
         cmocka_unit_test(test_domain_of_existence),
         cmocka_unit_test(test_adjust_rail2_repairs_a_short_rail),
         cmocka_unit_test(test_pieces_on_both_sides_of_a_jump),
+        cmocka_unit_test(test_strip_over_sine_is_a_general_cylinder),
+        cmocka_unit_test(test_strip_to_scaled_sine_is_a_cone),
+        cmocka_unit_test(test_strip_to_an_s_shaped_rail),
         cmocka_unit_test(test_no_strip_anywhere),
         cmocka_unit_test(test_hypar_is_not_developable),
     };
