@@ -834,13 +834,18 @@ static ur_status record_main(bend_job *job, const bend_region *region)
                                   "about the depth's radius"
                                 : "",
                  stopped);
+    else if (region->lines == 0)
+        snprintf(reason, sizeof reason,
+                 "bend radius %.4g mm < %.4g mm: no living-hinge slit (%.4g mm long with "
+                 "%.4g mm bridges) fits inside the margins there%s",
+                 region->smallest, o->min_radius, o->hinge_cut_length, o->hinge_connection,
+                 stopped);
     else
         snprintf(reason, sizeof reason,
                  "bend radius %.4g mm < %.4g mm: living hinge, %zu slits %.4g mm long with "
-                 "%.4g mm bridges in %zu rows %s, %.2g degrees each%s%s",
+                 "%.4g mm bridges in %zu rows %s, %.2g degrees each%s",
                  region->smallest, o->min_radius, region->lines, o->hinge_cut_length,
-                 o->hinge_connection, region->rows, spacing, record.facet_angle,
-                 region->lines == 0 ? "; no slit fits inside the margins" : "", stopped);
+                 o->hinge_connection, region->rows, spacing, record.facet_angle, stopped);
     set_reason(&record, reason);
     return ur_piece_record(job->piece, &record, job->error);
 }
