@@ -559,28 +559,53 @@ static bool worth_a_splice(const joiner *j, const seam_job *sj, const stretch *s
     return ur_polyline_length(r->points + first, edges + 1, false) >= full_depth(j->options);
 }
 
-/* The joint of one stretch: full on either side, then smaller on either. */
+/*
+ * The joint of one stretch: full on either side, then smaller on either;
+ * done says whether one went on, why[] what stopped each side if not.
+ */
 static ur_status join_stretch(joiner *j, const seam_job *sj, const stretch *st, int first_side,
-                              ur_error *error)
+                              bool *done, allow_verdict why[2], ur_error *error)
 {
     const ur_joint_options *o = j->options;
     const shape *shapes = o->lap ? lap_shapes : tab_shapes;
     size_t count = o->lap ? COUNT(lap_shapes) : COUNT(tab_shapes);
     /* Tabs: the full shape on both sides before any smaller; laps: one side, then the other. */
     size_t split = o->lap ? count : 1;
-    allow_verdict why[2] = {{ALLOW_BLOCKED_SHAPE, NULL, 0}, {ALLOW_BLOCKED_SHAPE, NULL, 0}};
-    bool done = false;
+    why[0] = why[1] = (allow_verdict){ALLOW_BLOCKED_SHAPE, NULL, 0};
+    *done = false;
     ur_status status = UR_OK;
-    for (int pass = 0; status == UR_OK && !done && pass < 4; pass++) {
+    for (int pass = 0; status == UR_OK && !*done && pass < 4; pass++) {
         int k = pass % 2 == 0 ? first_side : 1 - first_side;
         size_t from = pass < 2 ? 0 : split, to = pass < 2 ? split : count;
         if (from < to)
-            status = try_shapes(j, sj, k, st, shapes, from, to, &done, &why[k], error);
+            status = try_shapes(j, sj, k, st, shapes, from, to, done, &why[k], error);
     }
-    if (status == UR_OK && !done)
-        status = o->splices && worth_a_splice(j, sj, st, first_side)
-                     ? splice_stretch(j, sj, st, first_side, error)
-                     : warn_stretch(j, sj, st, first_side, why, error);
+    return status;
+}
+
+/*
+ * The stretches no joint went on: a splice piece behind each, where the
+ * seam has no joint at all and the stretch is worth one; else the warning
+ * to join it by hand.  A seam that keeps joints elsewhere (a papercraft
+ * mesh's seam of many edges, one tab each) is joined already: a strip for
+ * each edge its tabs miss would be hundreds of pieces on a fine mesh.
+ */
+static ur_status finish_stretches(joiner *j, const seam_job *sj, const stretch *stretches,
+                                  size_t count, int side, const bool *done,
+                                  const allow_verdict (*why)[2], ur_error *error)
+{
+    bool any = false;
+    for (size_t k = 0; k < count; k++)
+        any = any || done[k];
+    ur_status status = UR_OK;
+    for (size_t k = 0; status == UR_OK && k < count; k++) {
+        if (done[k])
+            continue;
+        if (j->options->splices && !any && worth_a_splice(j, sj, &stretches[k], side))
+            status = splice_stretch(j, sj, &stretches[k], side, error);
+        else
+            status = warn_stretch(j, sj, &stretches[k], side, why[k], error);
+    }
     return status;
 }
 
@@ -713,8 +738,17 @@ static ur_status join_seam(joiner *j, const seam_sides *s, int seam, ur_error *e
     int side = 0;
     if (status == UR_OK)
         status = first_side(j, &sj, stretches, count, &side, error);
+    bool *done = status == UR_OK ? ur_alloc_array(count ? count : 1, sizeof *done, error) : NULL;
+    allow_verdict(*why)[2] = done ? ur_alloc_array(count ? count : 1, sizeof *why, error) : NULL;
+    if (status == UR_OK && !why)
+        status = UR_ERROR_INTERNAL;
     for (size_t k = 0; status == UR_OK && k < count; k++)
-        status = join_stretch(j, &sj, &stretches[k], side, error);
+        status = join_stretch(j, &sj, &stretches[k], side, &done[k], why[k], error);
+    if (status == UR_OK)
+        status = finish_stretches(j, &sj, stretches, count, side, done,
+                                  (const allow_verdict(*)[2])why, error);
+    free(done);
+    free(why);
     free(stretches);
     free(sj.runs[0].points);
     free(sj.runs[1].points);
