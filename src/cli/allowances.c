@@ -233,7 +233,14 @@ ur_status cli_allowances_before_placing(const cli_job *job, const ur_machine *ma
         size_t *first = ur_alloc_array(*count ? *count : 1, sizeof *first, error);
         for (size_t k = 0; first && k < *count; k++)
             first[k] = (*pieces)[k].path_count;
-        status = first ? cli_add_joints(machine, material, nets, *pieces, &splices, error)
+        /*
+         * A mesh's seams are many and short: where its tabs miss, a splice
+         * strip for each would be hundreds of pieces (a 100,000-face
+         * sphere: 955), so they are said, to join by hand, as in papercraft.
+         */
+        bool mesh = strcmp(job->command, "mesh") == 0;
+        status = first ? cli_add_joints(machine, material, nets, *pieces, mesh ? NULL : &splices,
+                                        error)
                        : UR_ERROR_INTERNAL;
         for (size_t k = 0; status == UR_OK && k < *count; k++)
             status = keep_kerfs_off_joints(machine, material, &(*pieces)[k], first[k], error);
