@@ -4,12 +4,11 @@
  * sheet), 36 crescents alike (70 % of 600 x 400) and 40 curved strips
  * alike (62 % of 600 x 400), each with a 5 mm margin and 1 mm spacing, 4
  * turns: sets that the first layout puts on two sheets and a roll as wide
- * as the sheet is tall packs into one sheet's length.  For each: the sheets the first layout uses, the length a roll
- * as wide as the sheet is tall takes with the same budget (a length
- * within the sheet's shows one sheet possible), the sheets the search
- * uses against the bound ceil(parts' area / area inside the margin), the
- * last sheet's offcut and the time.  NEST_SECONDS sets the budget of each
- * run (default 20, as `unroll nest --nest-time 20`).
+ * as the sheet is tall packs into one sheet's length.  For each: the sheets the first layout uses,
+ * the length a roll as wide as the sheet is tall takes with the same budget (a length within the
+ * sheet's shows one sheet possible), the sheets the search uses against the bound ceil(parts' area
+ * / area inside the margin), the last sheet's offcut and the time.  NEST_SECONDS sets the budget of
+ * each run (default 20, as `unroll nest --nest-time 20`).
  */
 #include <math.h>
 #include <stdio.h>

@@ -239,9 +239,9 @@ ur_status cli_allowances_before_placing(const cli_job *job, const ur_machine *ma
          * sphere: 955), so they are said, to join by hand, as in papercraft.
          */
         bool mesh = strcmp(job->command, "mesh") == 0;
-        status = first ? cli_add_joints(machine, material, nets, *pieces, mesh ? NULL : &splices,
-                                        error)
-                       : UR_ERROR_INTERNAL;
+        status =
+            first ? cli_add_joints(machine, material, nets, *pieces, mesh ? NULL : &splices, error)
+                  : UR_ERROR_INTERNAL;
         for (size_t k = 0; status == UR_OK && k < *count; k++)
             status = keep_kerfs_off_joints(machine, material, &(*pieces)[k], first[k], error);
         free(first);
