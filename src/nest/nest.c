@@ -98,7 +98,7 @@ static ur_status make_class(nester *n, size_t piece)
             angle = grain_turn(n->options, p->ruling_angle, t);
         ur_status status =
             nest_shape_make(n->geos, &n->pieces[piece], angle, n->options->spacing / 2,
-                            n->options->holes, &c->turns[t], n->error);
+                            n->options->holes, t > 0 ? &c->turns[0] : NULL, &c->turns[t], n->error);
         if (status != UR_OK)
             return status;
     }

@@ -39,11 +39,18 @@ typedef struct nest_shape {
     ur_box box;   /* of the turned outline itself */
     ur_box reach; /* of polygon: the outline grown, as its no-fit polygons see it */
     double angle;
-    double area; /* of the piece itself (outline less holes) */
+    double area;               /* of the piece itself (outline less holes) */
+    double tolerance, closing; /* of its simplification, decided unturned */
 } nest_shape;
 
+/*
+ * The shape of piece at angle.  like, when not NULL, is another turn of
+ * the same piece, whose simplification this one takes instead of deciding
+ * it again.
+ */
 ur_status nest_shape_make(GEOSContextHandle_t geos, const ur_piece *piece, double angle,
-                          double grow, bool holes, nest_shape *shape, ur_error *error);
+                          double grow, bool holes, const nest_shape *like, nest_shape *shape,
+                          ur_error *error);
 void nest_shape_free(GEOSContextHandle_t geos, nest_shape *shape);
 
 /*

@@ -391,8 +391,42 @@ static ur_status shape_parts(GEOSContextHandle_t geos, const GEOSGeometry *exact
     return convex_parts(geos, shape->polygon, shape, error);
 }
 
+/*
+ * How coarsely the piece is simplified and closed: first as
+ * nest_shape_make says, then coarser while its unturned shape (made here
+ * into shape) has more than MOST_PARTS convex parts.
+ */
+static ur_status coarseness(GEOSContextHandle_t geos, const ur_piece *piece, double grow,
+                            bool holes, nest_shape *shape, ur_error *error)
+{
+    ur_box unturned = ur_box_empty();
+    for (size_t i = 0; i < piece->paths[0].count; i++)
+        ur_box_add(&unturned, piece->paths[0].points[i]);
+    double size = hypot(ur_box_width(unturned), ur_box_height(unturned));
+    size_t points = 0;
+    for (size_t k = 0; k < piece->path_count; k++)
+        points += piece->paths[k].count;
+    double tolerance = points > SIMPLIFY_ABOVE ? fmax(0.05, 2e-3 * size) : 0.0;
+    double closing = points > SIMPLIFY_ABOVE ? CLOSING * size : 0.0;
+    GEOSGeometry *exact = piece_polygon(geos, piece, 0.0, holes);
+    shape->area = area_of(geos, exact);
+    ur_status status = shape_parts(geos, exact, grow, tolerance, closing, shape, error);
+    while (status == UR_OK && shape->convex_count > MOST_PARTS && tolerance > 0 &&
+           2 * tolerance <= COARSEST * size) {
+        tolerance *= 2;
+        closing *= 2;
+        status = shape_parts(geos, exact, grow, tolerance, closing, shape, error);
+    }
+    if (exact)
+        GEOSGeom_destroy_r(geos, exact);
+    shape->tolerance = tolerance;
+    shape->closing = closing;
+    return status;
+}
+
 ur_status nest_shape_make(GEOSContextHandle_t geos, const ur_piece *piece, double angle,
-                          double grow, bool holes, nest_shape *shape, ur_error *error)
+                          double grow, bool holes, const nest_shape *like, nest_shape *shape,
+                          ur_error *error)
 {
     memset(shape, 0, sizeof *shape);
     shape->angle = angle;
@@ -407,34 +441,23 @@ ur_status nest_shape_make(GEOSContextHandle_t geos, const ur_piece *piece, doubl
      * splits into a few dozen convex parts instead of thousands, at the
      * cost of that much more room round it.  The size is the unturned
      * outline's, so that every turn is simplified alike and the shapes of
-     * a piece's turns are one shape turned (nest.c turns no-fit polygons).
+     * a piece's turns are one shape turned (nest.c turns no-fit polygons):
+     * the first turn decides it (coarseness), the others take it.
      */
-    ur_box unturned = ur_box_empty();
-    for (size_t i = 0; i < piece->paths[0].count; i++)
-        ur_box_add(&unturned, piece->paths[0].points[i]);
-    double size = hypot(ur_box_width(unturned), ur_box_height(unturned));
-    size_t points = 0;
-    for (size_t k = 0; k < piece->path_count; k++)
-        points += piece->paths[k].count;
-    double tolerance = points > SIMPLIFY_ABOVE ? fmax(0.05, 2e-3 * size) : 0.0;
-    double closing = points > SIMPLIFY_ABOVE ? CLOSING * size : 0.0;
-    /* How coarse is decided unturned, so that every turn is one shape turned. */
-    GEOSGeometry *exact = piece_polygon(geos, piece, 0.0, holes);
-    shape->area = area_of(geos, exact);
-    ur_status status = shape_parts(geos, exact, grow, tolerance, closing, shape, error);
-    while (status == UR_OK && shape->convex_count > MOST_PARTS && tolerance > 0 &&
-           2 * tolerance <= COARSEST * size) {
-        tolerance *= 2;
-        closing *= 2;
-        status = shape_parts(geos, exact, grow, tolerance, closing, shape, error);
+    ur_status status = UR_OK;
+    if (like) {
+        shape->area = like->area;
+        shape->tolerance = like->tolerance;
+        shape->closing = like->closing;
+    } else {
+        status = coarseness(geos, piece, grow, holes, shape, error);
     }
-    if (status == UR_OK && angle != 0.0) {
-        GEOSGeom_destroy_r(geos, exact);
-        exact = piece_polygon(geos, piece, angle, holes);
-        status = shape_parts(geos, exact, grow, tolerance, closing, shape, error);
+    if (status == UR_OK && (like || angle != 0.0)) {
+        GEOSGeometry *exact = piece_polygon(geos, piece, angle, holes);
+        status = shape_parts(geos, exact, grow, shape->tolerance, shape->closing, shape, error);
+        if (exact)
+            GEOSGeom_destroy_r(geos, exact);
     }
-    if (exact)
-        GEOSGeom_destroy_r(geos, exact);
     if (status != UR_OK)
         return status;
     double reach[4];
