@@ -272,6 +272,7 @@ typedef struct ur_joint_options {
      */
     bool lap_kerfs;
     double lap_kerf_margin;
+    const ur_context *context; /* stops with UR_ERROR_CANCELLED once it is cancelled; NULL: never */
 } ur_joint_options;
 
 /* The label of seam number seam (from 1): "A1" ... "A99", "B1" ... "Z99", then "AA1" ... */

@@ -141,6 +141,6 @@ enum { UR_ANALYSIS_PNG_WIDTH = 1000, UR_ANALYSIS_PNG_MAX_HEIGHT = 720 };
  * left and an existing file is untouched.
  */
 ur_status ur_analysis_png_write(const char *path, ur_ruled *ruled, const ur_analysis *analysis,
-                                const char *title, ur_error *error);
+                                const char *title, ur_context *context, ur_error *error);
 
 #endif

@@ -27,7 +27,7 @@ typedef enum ur_status {
     UR_OK = 0,
     UR_ERROR_INTERNAL = 1, /* out of memory, a library failure, a bug */
     UR_ERROR_INPUT = 2,    /* bad input: a file, a line, an option */
-    UR_ERROR_CANCELLED = 3 /* ur_cancel_request was called (the command exits 128 + signal) */
+    UR_ERROR_CANCELLED = 3 /* the context was cancelled (the command exits 128 + signal) */
 } ur_status;
 
 typedef struct ur_error {
@@ -55,19 +55,80 @@ void ur_error_clear(ur_error *error);
 ur_status ur_error_out_of_memory(ur_error *error);
 
 /*
- * Cancellation.  Long computations (the nesting search, ARAP iterations,
- * strips and unfolding) poll one process-wide flag and return
- * UR_ERROR_CANCELLED at their next check once it is set; the writers check
- * it once more before renaming any file into place, so that a cancelled run
- * leaves no output.  ur_cancel_request only stores to a volatile
- * sig_atomic_t, so a signal handler may call it.
+ * The context a run happens in, like lua_State or GEOS's handle: it holds
+ * everything that would otherwise be state of the whole process.
+ *
+ * - Cancelling.  Long computations (the nesting search, ARAP iterations,
+ *   charts, tabs) poll their context's flag, found in their options, and
+ *   return UR_ERROR_CANCELLED at their next check once it is set; the
+ *   writers check it once more before renaming any file into place, so that
+ *   a cancelled run leaves no output.  ur_context_cancel only stores to a
+ *   lock-free atomic, so a signal handler may call it, and worker threads
+ *   read the flag without a data race.
+ * - The output set (ur_output_set_begin): the files of a run held back so
+ *   that they appear together or not at all.
+ * - Messages: warnings go to the handler set here (none: they are dropped).
+ * - A test hook that makes the writers fail as a full disk would.
+ *
+ * A NULL context is allowed wherever one is taken: never cancelled, no
+ * output set (files are renamed into place as each is complete), messages
+ * dropped.  One context may serve one run at a time; runs in several
+ * threads each need their own.
  */
-void ur_cancel_request(void);
-void ur_cancel_reset(void);
-bool ur_cancel_requested(void);
+typedef struct ur_context ur_context;
 
-/* UR_OK, or UR_ERROR_CANCELLED with error saying so once ur_cancel_request was called. */
-ur_status ur_cancel_check(ur_error *error);
+typedef enum ur_message_kind {
+    UR_MESSAGE_WARNING = 0, /* the run goes on, but the user should know */
+    UR_MESSAGE_NOTE         /* what was chosen or done, for a verbose caller */
+} ur_message_kind;
+
+typedef void (*ur_message_handler)(void *data, ur_message_kind kind, const char *message);
+
+/* A new context, or NULL when out of memory.  Freed with ur_context_free. */
+ur_context *ur_context_new(void);
+
+/* Removes the files of an output set still open (as an end refusing them) and frees. */
+void ur_context_free(ur_context *context);
+
+/* Asks every computation running in context to stop; safe from a signal handler. */
+void ur_context_cancel(ur_context *context);
+
+/* Clears the request, for a caller that runs again after a cancelled run. */
+void ur_context_cancel_clear(ur_context *context);
+
+bool ur_context_cancelled(const ur_context *context);
+
+/* UR_OK, or UR_ERROR_CANCELLED with error saying so once context was cancelled. */
+ur_status ur_context_check(const ur_context *context, ur_error *error);
+
+void ur_context_set_message_handler(ur_context *context, ur_message_handler handler, void *data);
+
+/* Passes a printf-style message to context's handler, if it has one. */
+void ur_context_message(const ur_context *context, ur_message_kind kind, const char *format, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+
+/*
+ * For tests only: every write to a file the library writes in this context
+ * fails with EIO once bytes bytes in all have gone to such files, as on a
+ * full disk; a negative count lifts the limit.
+ */
+void ur_context_fail_writes_after(ur_context *context, long long bytes);
+
+/*
+ * Output sets: between ur_output_set_begin and ur_output_set_end every file
+ * a writer completes in context (cut files, reports, pictures, curves)
+ * stays a hidden temporary next to its name; ur_output_set_end renames
+ * them all into place when commit is true, else removes them all, so the
+ * files of a whole run appear together or not at all.  Sets nest: only the
+ * outermost end renames, and a set that any end refused (commit false) is
+ * removed.  ur_output_set_end fails, renaming nothing, when context was
+ * cancelled.  context must not be NULL.
+ */
+void ur_output_set_begin(ur_context *context);
+ur_status ur_output_set_end(ur_context *context, bool commit, ur_error *error);
 
 /* What the cutter does with a path.  Writers map each to a layer. */
 typedef enum ur_op {

@@ -39,6 +39,7 @@ typedef struct ur_flatten_options {
      */
     void (*progress)(void *context, size_t iteration, double energy);
     void *progress_context;
+    const ur_context *context; /* stops with UR_ERROR_CANCELLED once it is cancelled; NULL: never */
 } ur_flatten_options;
 
 void ur_flatten_options_default(ur_flatten_options *options);

@@ -35,7 +35,7 @@ ur_status ur_points_csv_read(const char *path, size_t min_count, ur_vec3 **point
 
 /* Writes points as CSV, atomically (temporary file, then rename). */
 ur_status ur_curve_csv_write(const char *path, const ur_vec3 *points, size_t count,
-                             ur_error *error);
+                             ur_context *context, ur_error *error);
 
 /* ---- Profiles ---------------------------------------------------------- */
 

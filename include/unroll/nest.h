@@ -146,6 +146,11 @@ typedef struct ur_nest_options {
      */
     void (*placing)(void *context, size_t placed, size_t count);
     void *progress_context;
+    /*
+     * The run's: the search (and its worker threads) stops with
+     * UR_ERROR_CANCELLED soon after it is cancelled; NULL: never.
+     */
+    const ur_context *context;
 } ur_nest_options;
 
 enum { NEST_PATIENCE = 40, NEST_PATIENCE_PER_SECOND = 20, NEST_TRIES = 100000 };

@@ -26,7 +26,8 @@ typedef enum ur_dxf_version {
 #define UR_PNG_DPI 96.0
 
 typedef struct ur_output_options {
-    const char *title; /* document title, e.g. "unroll helicoid" */
+    const char *title;   /* document title, e.g. "unroll helicoid" */
+    ur_context *context; /* the run's (its output set, cancel flag); NULL for none */
 } ur_output_options;
 
 /*
@@ -64,19 +65,7 @@ ur_format ur_format_from_name(const char *name);
  */
 ur_status ur_formats_parse(const char *list, unsigned *formats, ur_error *error);
 
-/*
- * Output sets: between ur_output_set_begin and ur_output_set_end every file
- * the writers of this module and ur_curve_csv_write complete (cut files,
- * reports, pictures, curves) stays a hidden temporary next to its name;
- * ur_output_set_end renames them all into place when commit is true, else
- * removes them all, so the files of a whole run appear together or not at
- * all.  Sets nest: only the outermost end renames, and a set that any end
- * refused (commit false) is removed.  One process-wide set, not for use
- * from several threads at once.  ur_output_set_end fails, renaming nothing,
- * when the run was cancelled (ur_cancel_request).
- */
-void ur_output_set_begin(void);
-ur_status ur_output_set_end(bool commit, ur_error *error);
+/* Output sets (ur_output_set_begin) are the context's: see unroll/base.h. */
 
 /*
  * Writes the layout in every format of formats (ur_format bits; 0: the one
@@ -227,7 +216,7 @@ typedef struct ur_report_context {
  */
 ur_status ur_report_write(const char *path, const ur_report_context *context,
                           const ur_piece *pieces, size_t piece_count, const ur_layout *layout,
-                          ur_error *error);
+                          ur_context *run, ur_error *error);
 
 /*
  * The file names an output of sheet_count sheets gets: output_path itself for
@@ -248,7 +237,7 @@ ur_status ur_sheet_file_name(const char *output_path, size_t sheet_index, size_t
  * Written atomically ("-" for stdout).
  */
 ur_status ur_compare_plot_png(const char *path, const ur_compare_table *table, const char *title,
-                              ur_error *error);
+                              ur_context *context, ur_error *error);
 
 /*
  * The same as CSV, one line per n after the header
@@ -259,14 +248,16 @@ ur_status ur_compare_plot_png(const char *path, const ur_compare_table *table, c
  * (the triangle method off tangent developables) left empty.  Written
  * atomically; "-" for stdout.
  */
-ur_status ur_compare_csv_write(const char *path, const ur_compare_table *table, ur_error *error);
+ur_status ur_compare_csv_write(const char *path, const ur_compare_table *table, ur_context *context,
+                               ur_error *error);
 
 /*
  * The JSON report of an analysis (ur_analyze of ruled) to path ("-" for
  * standard output), atomically for a file.
  */
 ur_status ur_analysis_report_write(const char *path, const char *surface, ur_ruled *ruled,
-                                   const ur_analysis *analysis, ur_error *error);
+                                   const ur_analysis *analysis, ur_context *context,
+                                   ur_error *error);
 
 /* The resolution of the strain picture unless told otherwise, dots per inch. */
 #define UR_STRAIN_PNG_DPI 96.0
@@ -295,7 +286,7 @@ ur_status ur_analysis_report_write(const char *path, const char *surface, ur_rul
  * picture may have (32767 a side, 1e8 in all), a missing directory.
  */
 ur_status ur_strain_png_write(const char *path, const ur_layout *layout, const ur_piece *pieces,
-                              size_t piece_count, double dpi, ur_error *error);
+                              size_t piece_count, double dpi, ur_context *context, ur_error *error);
 
 /* ---- Assembly guide (assembly.c) ----------------------------------------- */
 
@@ -306,7 +297,8 @@ typedef struct ur_assembly_options {
      * entry NULL: the net's own name).
      */
     const char *const *names;
-    bool y_up; /* the model's up is +y (as Blender's OBJ export); false: +z */
+    bool y_up;           /* the model's up is +y (as Blender's OBJ export); false: +z */
+    ur_context *context; /* the run's (its output set, cancel flag); NULL for none */
 } ur_assembly_options;
 
 /*

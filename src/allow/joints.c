@@ -1383,7 +1383,7 @@ static ur_status add_labels(joiner *j, const seam_sides *seams, int last, ur_err
     ur_status status = UR_OK;
     for (int seam = 1; status == UR_OK && seam <= last; seam++)
         if (seams[seam].found == 2) {
-            status = ur_cancel_check(error);
+            status = ur_context_check(j->options->context, error);
             if (status == UR_OK)
                 status = label_seam(j, &r, &seams[seam], seam, error);
         }
@@ -1433,7 +1433,7 @@ static ur_status add_all_joints(joiner *j, const seam_sides *seams, int last, ur
                                   &j->boards[n], error);
     for (int seam = 1; status == UR_OK && seam <= last; seam++)
         if (seams[seam].found == 2) {
-            status = ur_cancel_check(error);
+            status = ur_context_check(j->options->context, error);
             if (status == UR_OK)
                 status = join_seam(j, &seams[seam], seam, error);
         }

@@ -3,7 +3,6 @@
  */
 #include "unroll/base.h"
 
-#include <signal.h>
 #include <stdio.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -53,31 +52,6 @@ void ur_error_clear(ur_error *error)
 ur_status ur_error_out_of_memory(ur_error *error)
 {
     return ur_error_set(error, UR_ERROR_INTERNAL, "out of memory");
-}
-
-/* Set from a signal handler, read by the loops that poll it: nothing else is safe there. */
-static volatile sig_atomic_t cancel_requested = 0;
-
-void ur_cancel_request(void)
-{
-    cancel_requested = 1;
-}
-
-void ur_cancel_reset(void)
-{
-    cancel_requested = 0;
-}
-
-bool ur_cancel_requested(void)
-{
-    return cancel_requested != 0;
-}
-
-ur_status ur_cancel_check(ur_error *error)
-{
-    if (!cancel_requested)
-        return UR_OK;
-    return ur_error_set(error, UR_ERROR_CANCELLED, "cancelled");
 }
 
 static const char *const op_names[UR_OP_COUNT] = {"cut",  "score",   "score-valley",

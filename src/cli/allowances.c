@@ -179,6 +179,7 @@ ur_status cli_add_joints(const ur_machine *machine, const ur_material *material,
         .lap_kerfs = machine != NULL,
         .lap_kerf_margin =
             machine && machine->kind == UR_MACHINE_LASER ? material->hinge_connection : 0.0,
+        .context = cli_context(),
     };
     status = ur_pieces_add_joints(pieces, nets, &options, error);
     ur_font_close(font);

@@ -131,13 +131,13 @@ static int analysis_outputs(const cli_job *job, ur_ruled *ruled, const ur_analys
     ur_error error;
     char title[256];
     snprintf(title, sizeof title, "unroll analyze %s: Gaussian curvature", job->surface);
-    if (job->png_path &&
-        ur_analysis_png_write(job->png_path, ruled, analysis, title, &error) != UR_OK) {
+    if (job->png_path && ur_analysis_png_write(job->png_path, ruled, analysis, title, cli_context(),
+                                               &error) != UR_OK) {
         cli_message("analyze: --png %s: %s", job->png_path, error.message);
         return cli_exit_status(&error);
     }
     if (job->report_path && ur_analysis_report_write(job->report_path, job->surface, ruled,
-                                                     analysis, &error) != UR_OK) {
+                                                     analysis, cli_context(), &error) != UR_OK) {
         cli_message("analyze: --report %s: %s", job->report_path, error.message);
         return cli_exit_status(&error);
     }
@@ -225,10 +225,10 @@ int cli_compare(const cli_job *job)
     if (status == UR_OK) {
         print_table(job, &table);
         if (job->csv_path)
-            status = ur_compare_csv_write(job->csv_path, &table, &error);
+            status = ur_compare_csv_write(job->csv_path, &table, cli_context(), &error);
     }
     if (status == UR_OK && job->png_path)
-        status = ur_compare_plot_png(job->png_path, &table, title, &error);
+        status = ur_compare_plot_png(job->png_path, &table, title, cli_context(), &error);
     if (status != UR_OK) {
         cli_message("compare: %s", error.message);
         code = cli_exit_status(&error);

@@ -333,6 +333,14 @@ void cli_allowance_warnings(const cli_job *job, const ur_piece *pieces, size_t c
  */
 int cli_check_memory(const cli_job *job, const char *what, size_t needed);
 
+/*
+ * The run's library context (signals.c): opened once in main, before the
+ * signal handlers, which cancel it; false when out of memory.
+ */
+bool cli_context_open(void);
+ur_context *cli_context(void);
+void cli_context_close(void);
+
 /* Installs the SIGINT and SIGTERM handlers (signals.c); false if the system refuses. */
 bool cli_catch_signals(void);
 

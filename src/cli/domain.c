@@ -113,7 +113,7 @@ int cli_regression_points(const cli_job *job, ur_ruled *ruled, ur_vec3 **points,
 int cli_write_regression(const cli_job *job, const ur_vec3 *points, size_t count)
 {
     ur_error error;
-    if (ur_curve_csv_write(job->regression_path, points, count, &error) != UR_OK) {
+    if (ur_curve_csv_write(job->regression_path, points, count, cli_context(), &error) != UR_OK) {
         cli_message("%s: --regression %s: %s", job->command, job->regression_path, error.message);
         return cli_exit_status(&error);
     }

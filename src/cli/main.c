@@ -258,9 +258,16 @@ static int dispatch(int argc, char **argv)
 
 int main(int argc, char **argv)
 {
-    if (!cli_catch_signals()) {
-        cli_message("cannot install the SIGINT and SIGTERM handlers");
+    if (!cli_context_open()) {
+        cli_message("out of memory");
         return EXIT_INTERNAL;
     }
-    return cli_signal_exit(dispatch(argc, argv));
+    if (!cli_catch_signals()) {
+        cli_message("cannot install the SIGINT and SIGTERM handlers");
+        cli_context_close();
+        return EXIT_INTERNAL;
+    }
+    int code = cli_signal_exit(dispatch(argc, argv));
+    cli_context_close();
+    return code;
 }

@@ -53,6 +53,7 @@ static void end_progress(const cli_job *job)
 static void flatten_options(const cli_job *job, ur_flatten_options *options)
 {
     ur_flatten_options_default(options);
+    options->context = cli_context();
     if (shows_progress(job)) {
         options->progress = show_progress;
         options->progress_context = (void *)job;

@@ -321,7 +321,7 @@ ur_status cli_write_outputs(const cli_job *job, const ur_machine *machine, const
 {
     char title[128];
     snprintf(title, sizeof title, "unroll %s", job->command);
-    ur_output_options output = {title};
+    ur_output_options output = {title, cli_context()};
     ur_format_options formats = {.job_name = job->job_name ? job->job_name : job->surface,
                                  .dxf_version = (ur_dxf_version)job->dxf_version,
                                  .dpi = job->dpi,
@@ -332,7 +332,7 @@ ur_status cli_write_outputs(const cli_job *job, const ur_machine *machine, const
             pieces, count, layout, job->margin >= 0 ? job->margin : machine->margin);
     char(*names)[UR_OUTPUT_NAME_SIZE] = NULL;
     size_t name_count = 0;
-    ur_output_set_begin(); /* the cut files and the report appear together */
+    ur_output_set_begin(cli_context()); /* the cut files and the report appear together */
     ur_status status =
         ur_output_files(job->output_path, asked, layout->sheet_count, &names, &name_count, error);
     if (status == UR_OK)
@@ -348,10 +348,11 @@ ur_status cli_write_outputs(const cli_job *job, const ur_machine *machine, const
         context->outputs = outputs;
         context->drawing_order = job->drawing_order;
         if (status == UR_OK)
-            status = ur_report_write(job->report_path, context, pieces, count, layout, error);
+            status = ur_report_write(job->report_path, context, pieces, count, layout,
+                                     cli_context(), error);
     }
     free(outputs);
     free(names);
-    ur_status ended = ur_output_set_end(status == UR_OK, error);
+    ur_status ended = ur_output_set_end(cli_context(), status == UR_OK, error);
     return status == UR_OK ? ended : status;
 }

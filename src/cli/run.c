@@ -334,6 +334,7 @@ static ur_nest_options nest_options_of(const cli_job *job, const ur_machine *mac
         .progress = job->quiet || !isatty(STDERR_FILENO) ? NULL : show_nest_progress,
         .placing = job->quiet || !isatty(STDERR_FILENO) || count < MANY_PARTS ? NULL : show_placing,
         .progress_context = (void *)job,
+        .context = cli_context(),
     };
 }
 
@@ -454,7 +455,8 @@ static ur_status write_assembly(const cli_job *job, const job_state *state, ur_e
         const char *slash = strrchr(job->mesh_path, '/');
         title = slash ? slash + 1 : job->mesh_path;
     }
-    ur_assembly_options options = {.title = title, .names = names, .y_up = job->assembly_y_up};
+    ur_assembly_options options = {
+        .title = title, .names = names, .y_up = job->assembly_y_up, .context = cli_context()};
     ur_status status = ur_assembly_write(&state->nets, job->assembly_path, &options, error);
     if (status != UR_OK)
         ur_error_prefix(error, "--assembly %s: ", job->assembly_path);
@@ -468,7 +470,7 @@ static ur_status write_all(const cli_job *job, job_state *state, ur_error *error
     ur_status status = write_outputs(job, state, error);
     if (status == UR_OK && job->strain_png_path) {
         status = ur_strain_png_write(job->strain_png_path, &state->layout, state->pieces,
-                                     state->piece_count, 0, error);
+                                     state->piece_count, 0, cli_context(), error);
         if (status != UR_OK)
             ur_error_prefix(error, "--strain-png %s: ", job->strain_png_path);
     }
@@ -727,7 +729,7 @@ int cli_run_job(const cli_job *job)
         status = cli_allowances_after_placing(job, &state.machine, &state.layout, state.pieces,
                                               state.piece_count, &error);
     /* Every file of the run (cut files, report, pictures, curves) appears at the end, or none. */
-    ur_output_set_begin();
+    ur_output_set_begin(cli_context());
     if (status == UR_OK) {
         cli_allowance_warnings(job, state.pieces, state.piece_count);
         cli_not_placed_warning(job, &state.layout, state.pieces);
@@ -744,7 +746,7 @@ int cli_run_job(const cli_job *job)
         if (!code)
             code = cli_write_adjusted_rail(job, &adjusted);
     }
-    if (ur_output_set_end(code == 0, &error) != UR_OK && code == 0) {
+    if (ur_output_set_end(cli_context(), code == 0, &error) != UR_OK && code == 0) {
         cli_message("%s: %s", job->command, error.message);
         code = cli_exit_status(&error);
     }

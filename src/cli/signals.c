@@ -1,6 +1,7 @@
 /*
- * signals.c: SIGINT and SIGTERM stop a run cleanly.  The handler only asks
- * the library to cancel (ur_cancel_request): the long loops notice at their
+ * signals.c: the command's one library context, and SIGINT and SIGTERM
+ * stopping a run cleanly.  The handler only cancels the context
+ * (ur_context_cancel): the long loops notice at their
  * next check and every writer removes its temporary files, so nothing is
  * left half-written; the command then exits with 128 + the signal's number.
  * The handler is installed for one signal only (SA_RESETHAND): a second
@@ -9,15 +10,57 @@
 #include "cli.h"
 
 #include <signal.h>
+#include <stdatomic.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 static volatile sig_atomic_t caught = 0;
 
+/* Read by the handler, which may only touch lock-free atomics. */
+static _Atomic(ur_context *) run_context = NULL;
+
+#if ATOMIC_POINTER_LOCK_FREE != 2
+#error "the signal handler needs a lock-free atomic pointer"
+#endif
+
 static void on_signal(int number)
 {
     caught = number;
-    ur_cancel_request();
+    ur_context_cancel(atomic_load(&run_context));
+}
+
+/*
+ * For the tests only: UNROLL_TEST_FAIL_WRITE_AFTER=N makes every write of
+ * the run fail once N bytes in all were written, as on a full disk.
+ */
+static void set_test_hooks(ur_context *context)
+{
+    const char *value = getenv("UNROLL_TEST_FAIL_WRITE_AFTER");
+    char *end = NULL;
+    long long bytes = value ? strtoll(value, &end, 10) : -1;
+    if (value && end != value && *end == '\0' && bytes >= 0)
+        ur_context_fail_writes_after(context, bytes);
+}
+
+bool cli_context_open(void)
+{
+    ur_context *context = ur_context_new();
+    if (!context)
+        return false;
+    set_test_hooks(context);
+    atomic_store(&run_context, context);
+    return true;
+}
+
+ur_context *cli_context(void)
+{
+    return atomic_load(&run_context);
+}
+
+void cli_context_close(void)
+{
+    ur_context_free(atomic_exchange(&run_context, NULL));
 }
 
 bool cli_catch_signals(void)

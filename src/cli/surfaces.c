@@ -310,8 +310,8 @@ int cli_write_adjusted_rail(const cli_job *job, const cli_adjusted_rail *adjuste
     if (!job->adjusted_rail_path || !adjusted->points)
         return 0;
     ur_error error;
-    if (ur_curve_csv_write(job->adjusted_rail_path, adjusted->points, adjusted->count, &error) !=
-        UR_OK) {
+    if (ur_curve_csv_write(job->adjusted_rail_path, adjusted->points, adjusted->count,
+                           cli_context(), &error) != UR_OK) {
         cli_message("%s: --adjusted-rail %s: %s", job->command, job->adjusted_rail_path,
                     error.message);
         return cli_exit_status(&error);

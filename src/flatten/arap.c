@@ -298,7 +298,7 @@ static ur_status iterate(arap *a, const ur_flatten_options *options, ur_vec2 *la
 {
     double energy = local_step(a, layout);
     while (*iterations < options->iterations && energy > NEGLIGIBLE_ENERGY) {
-        ur_status status = ur_cancel_check(error);
+        ur_status status = ur_context_check(options->context, error);
         double step = 0;
         if (status == UR_OK)
             status = global_step(a, layout, &step, error);

@@ -539,7 +539,7 @@ static ur_status lay_out_queue(charting *c, ur_error *error)
         triangle_set set = c->queue[--c->queued];
         ur_mesh_piece *disks = NULL;
         size_t count = 0;
-        status = ur_cancel_check(error);
+        status = ur_context_check(c->options->context, error);
         if (!status)
             status = disks_of_set(c, &set, &disks, &count, error);
         for (size_t k = 0; !status && k < count; k++)
@@ -757,7 +757,7 @@ static ur_status join_neighbours(charting *c, ur_error *error)
         bool joined = false;
         if (a == b)
             continue;
-        status = ur_cancel_check(error);
+        status = ur_context_check(c->options->context, error);
         if (!status)
             status = try_joining(c, a < b ? a : b, a < b ? b : a, &joined, error);
         if (joined)
@@ -896,7 +896,7 @@ static ur_status smooth_borders(charting *c, ur_error *error)
         for (size_t i = 0, j; !status && i < count; i = j) {
             for (j = i + 1; j < count && juts[j].from == juts[i].from && juts[j].to == juts[i].to;)
                 j++;
-            status = ur_cancel_check(error);
+            status = ur_context_check(c->options->context, error);
             if (!status)
                 status = move_juts(c, juts + i, j - i, chart_of, &moved, error);
         }

@@ -33,6 +33,7 @@ void ur_flatten_options_default(ur_flatten_options *options)
     options->tolerance = 1e-9;
     options->progress = NULL;
     options->progress_context = NULL;
+    options->context = NULL;
 }
 
 /*

@@ -9,7 +9,7 @@
 
 #include "io_internal.h"
 
-#include "../out/atomic.h"
+#include "../base/atomic.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -257,12 +257,13 @@ static ur_status check_finite(const char *path, const ur_vec3 *points, size_t co
     return UR_OK;
 }
 
-ur_status ur_curve_csv_write(const char *path, const ur_vec3 *points, size_t count, ur_error *error)
+ur_status ur_curve_csv_write(const char *path, const ur_vec3 *points, size_t count,
+                             ur_context *context, ur_error *error)
 {
     /* The reader would refuse NaN: better to fail here than write a bad file. */
     ur_status status = check_finite(path, points, count, error);
     if (status != UR_OK)
         return status;
     curve_text curve = {points, count};
-    return ur_atomic_write(path, emit_points, &curve, "curve", error);
+    return ur_atomic_write(path, emit_points, &curve, "curve", context, error);
 }

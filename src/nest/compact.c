@@ -904,7 +904,7 @@ static bool separate(compactor *c, ur_status *status)
     for (int strikes = 0; strikes < STRIKES;) {
         double try_start = least_total;
         for (size_t idle = 0; idle < patience;) {
-            *status = ur_cancel_check(&c->error); /* a signal to the command */
+            *status = ur_context_check(c->n->options->context, &c->error);
             if (*status != UR_OK || nest_seconds_now() > c->deadline)
                 return false;
             if (!move_overlapping(c)) {

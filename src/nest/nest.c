@@ -1016,7 +1016,7 @@ static ur_status search(nester *n, size_t *order, double budget)
     for (size_t tries = 1; status == UR_OK && tries <= NEST_TRIES &&
                            (double)since_better < patience && nest_seconds_now() - start < budget;
          tries++) {
-        status = ur_cancel_check(n->error); /* a signal to the command */
+        status = ur_context_check(n->options->context, n->error);
         if (status != UR_OK)
             break;
         memcpy(candidate, current, bytes);

@@ -26,7 +26,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "atomic.h"
+#include "../base/atomic.h"
 #include "draw.h"
 #include "png.h"
 
@@ -633,7 +633,7 @@ static ur_status render(cairo_t *cr, const map *m, ur_ruled *ruled, const ur_ana
 }
 
 ur_status ur_analysis_png_write(const char *path, ur_ruled *ruled, const ur_analysis *analysis,
-                                const char *title, ur_error *error)
+                                const char *title, ur_context *context, ur_error *error)
 {
     if (analysis->ruling_count < 2)
         return ur_error_set(error, UR_ERROR_INTERNAL, "the analysis has fewer than 2 rulings");
@@ -654,7 +654,7 @@ ur_status ur_analysis_png_write(const char *path, ur_ruled *ruled, const ur_anal
                               cairo_status_to_string(cairo_status(cr)));
     cairo_destroy(cr);
     if (status == UR_OK)
-        status = ur_atomic_write(path, png_emit, surface, "picture", error);
+        status = ur_atomic_write(path, png_emit, surface, "picture", context, error);
     cairo_surface_destroy(surface);
     return status;
 }

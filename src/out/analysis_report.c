@@ -37,7 +37,8 @@ static json_t *rulings_json(const ur_analysis *analysis)
 }
 
 ur_status ur_analysis_report_write(const char *path, const char *surface, ur_ruled *ruled,
-                                   const ur_analysis *analysis, ur_error *error)
+                                   const ur_analysis *analysis, ur_context *context,
+                                   ur_error *error)
 {
     const ur_interval *gaps;
     size_t gap_count = ur_ruled_gaps(ruled, &gaps);
@@ -64,7 +65,7 @@ ur_status ur_analysis_report_write(const char *path, const char *surface, ur_rul
         return ur_error_out_of_memory(error);
     }
     json_decref(gaussian);
-    ur_status status = ur_json_write(path, root, error);
+    ur_status status = ur_json_write(path, root, context, error);
     json_decref(root);
     return status;
 }

@@ -32,7 +32,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "atomic.h"
+#include "../base/atomic.h"
 #include "draw.h"
 #include "png.h"
 
@@ -371,7 +371,8 @@ typedef struct guide {
     model model;
     view views[VIEWS];
     const char *title;
-    ur_status status; /* of drawing, which allocates the labels */
+    ur_context *context; /* the file is opened in it; NULL for none */
+    ur_status status;    /* of drawing, which allocates the labels */
     ur_error *error;
 } guide;
 
@@ -441,7 +442,7 @@ static ur_status write_png(const char *path, guide *g, ur_error *error)
     cairo_destroy(cr);
     cairo_surface_flush(surface);
     if (status == UR_OK)
-        status = ur_atomic_write(path, png_emit, surface, "assembly guide", error);
+        status = ur_atomic_write(path, png_emit, surface, "assembly guide", g->context, error);
     cairo_surface_destroy(surface);
     return status;
 }
@@ -480,7 +481,7 @@ static ur_status write_pdf(const char *path, guide *g, ur_error *error)
     ur_error_clear(&drawing);
     g->error = &drawing;
     g->status = UR_OK;
-    ur_status status = ur_atomic_write(path, pdf_emit, g, "assembly guide", error);
+    ur_status status = ur_atomic_write(path, pdf_emit, g, "assembly guide", g->context, error);
     if (g->status != UR_OK) { /* the drawing's own reason, not "cannot write" */
         *error = drawing;
         status = g->status;
@@ -504,6 +505,7 @@ ur_status ur_assembly_write(const ur_net_list *nets, const char *path,
     guide g;
     memset(&g, 0, sizeof g);
     g.title = options->title;
+    g.context = options->context;
     ur_status status = ur_assembly_model_build(nets, options, &g.model, error);
     if (status == UR_OK)
         status = ur_assembly_views_prepare(g.views, &g.model, options->y_up, error);

@@ -4,7 +4,7 @@
  */
 #include "json.h"
 
-#include "atomic.h"
+#include "../base/atomic.h"
 
 /* Every real with the 17 digits that make it read back exactly. */
 #define JSON_FLAGS (JSON_INDENT(2) | JSON_PRESERVE_ORDER | JSON_REAL_PRECISION(17))
@@ -44,7 +44,7 @@ static bool emit_json(FILE *stream, const void *root)
     return json_dumpf(root, stream, JSON_FLAGS) == 0 && fputc('\n', stream) != EOF;
 }
 
-ur_status ur_json_write(const char *path, json_t *root, ur_error *error)
+ur_status ur_json_write(const char *path, json_t *root, ur_context *context, ur_error *error)
 {
-    return ur_atomic_write(path, emit_json, root, "report", error);
+    return ur_atomic_write(path, emit_json, root, "report", context, error);
 }

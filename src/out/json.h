@@ -9,7 +9,7 @@
 #include "unroll/surface.h"
 
 /* Writes root to path ("-" for standard output), atomically for a file. */
-ur_status ur_json_write(const char *path, json_t *root, ur_error *error);
+ur_status ur_json_write(const char *path, json_t *root, ur_context *context, ur_error *error);
 
 /* A number, or null when it is not finite (JSON has no NaN or infinity). */
 json_t *ur_json_number(double value);

@@ -16,7 +16,7 @@
 #include <string.h>
 #include <strings.h>
 
-#include "atomic.h"
+#include "../base/atomic.h"
 
 /*
  * Cutting order: engrave and mark while the sheet is still whole, then fold
@@ -239,7 +239,7 @@ static ur_status write_document(const target *t, const ur_write_job *job, ur_vec
                                 ur_atomic_file *file, ur_error *error)
 {
     const ur_writer *writer = t->writer;
-    ur_status status = ur_atomic_open(file, t->path, error);
+    ur_status status = ur_atomic_open(file, t->path, job->options->context, error);
     void *document = NULL;
     if (status == UR_OK && writer->begin_document)
         status = writer->begin_document(&document, job, error);
@@ -269,7 +269,7 @@ static ur_status write_sheets(const target *t, const ur_write_job *job, ur_vec2 
         char name[NAME_SIZE];
         status = ur_sheet_file_name(t->path, i, count, name, sizeof name, error);
         if (status == UR_OK)
-            status = ur_atomic_open(&files[i], name, error);
+            status = ur_atomic_open(&files[i], name, job->options->context, error);
         if (status == UR_OK) {
             status = write_sheet(writer, document, files[i].stream, i, job, scratch, error);
             if (status == UR_ERROR_INPUT) /* as in write_document */
@@ -387,9 +387,11 @@ static ur_status write_targets(const target *targets, size_t target_count, const
                                const ur_output_options *options,
                                const ur_format_options *format_options, ur_error *error)
 {
-    ur_write_settings chosen = {NULL, NULL, UR_DXF_R12, UR_PNG_DPI, false};
-    if (options)
+    ur_write_settings chosen = {NULL, NULL, UR_DXF_R12, UR_PNG_DPI, false, NULL};
+    if (options) {
         chosen.title = options->title;
+        chosen.context = options->context;
+    }
     if (format_options) {
         chosen.job_name = format_options->job_name;
         chosen.dxf_version = format_options->dxf_version;

@@ -11,7 +11,7 @@
  */
 #include "unroll/out.h"
 
-#include "atomic.h"
+#include "../base/atomic.h"
 #include "draw.h"
 #include "png.h"
 
@@ -305,7 +305,7 @@ static ur_status check_table(const ur_compare_table *table, ur_error *error)
 }
 
 ur_status ur_compare_plot_png(const char *path, const ur_compare_table *table, const char *title,
-                              ur_error *error)
+                              ur_context *context, ur_error *error)
 {
     if (!path)
         return ur_error_set(error, UR_ERROR_INTERNAL, "the plot writer was called without a path");
@@ -323,7 +323,7 @@ ur_status ur_compare_plot_png(const char *path, const ur_compare_table *table, c
         status = ur_error_set(error, UR_ERROR_INTERNAL, "cannot draw the plot: %s",
                               cairo_status_to_string(drawn));
     else
-        status = ur_atomic_write(path, png_emit, surface, "plot", error);
+        status = ur_atomic_write(path, png_emit, surface, "plot", context, error);
     cairo_surface_destroy(surface);
     return status;
 }
@@ -361,12 +361,13 @@ static bool emit_csv(FILE *stream, const void *data)
     return ok;
 }
 
-ur_status ur_compare_csv_write(const char *path, const ur_compare_table *table, ur_error *error)
+ur_status ur_compare_csv_write(const char *path, const ur_compare_table *table, ur_context *context,
+                               ur_error *error)
 {
     if (!path)
         return ur_error_set(error, UR_ERROR_INTERNAL, "the CSV writer was called without a path");
     ur_status status = check_table(table, error);
     if (status != UR_OK)
         return status;
-    return ur_atomic_write(path, emit_csv, table, "comparison", error);
+    return ur_atomic_write(path, emit_csv, table, "comparison", context, error);
 }

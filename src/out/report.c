@@ -329,7 +329,7 @@ static ur_status check_layout(const ur_layout *layout, size_t piece_count, ur_er
 
 ur_status ur_report_write(const char *path, const ur_report_context *context,
                           const ur_piece *pieces, size_t piece_count, const ur_layout *layout,
-                          ur_error *error)
+                          ur_context *run, ur_error *error)
 {
     if (!path || !context || (!pieces && piece_count > 0))
         return ur_error_set(error, UR_ERROR_INTERNAL, "report writer called without %s",
@@ -341,7 +341,7 @@ ur_status ur_report_write(const char *path, const ur_report_context *context,
     if (status == UR_OK)
         status = report_json(context, pieces, piece_count, layout, &root, error);
     if (status == UR_OK)
-        status = ur_json_write(path, root, error);
+        status = ur_json_write(path, root, run, error);
     json_decref(root);
     return status;
 }

@@ -34,7 +34,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "atomic.h"
+#include "../base/atomic.h"
 #include "draw.h"
 #include "png.h"
 
@@ -68,6 +68,7 @@ typedef struct picture {
     size_t piece_count;
     double dpi;
     double range; /* largest |strain| of all pieces: the ends of the colour scale; 0 for none */
+    ur_context *context; /* the files are opened in it; NULL for none */
 } picture;
 
 /* One sheet's image: sheet millimetres to pixels, y flipped. */
@@ -541,7 +542,7 @@ static ur_status write_sheet_file(const char *path, const picture *p, size_t ind
     ur_status status =
         ur_sheet_file_name(path, index, p->layout->sheet_count, name, sizeof name, error);
     if (status == UR_OK)
-        status = ur_atomic_open(&files[index], name, error);
+        status = ur_atomic_open(&files[index], name, p->context, error);
     cairo_surface_t *surface = NULL;
     if (status == UR_OK)
         status = draw_sheet(p, index, &surface, error);
@@ -584,21 +585,21 @@ static ur_status write_stdout(const picture *p, ur_error *error)
     cairo_surface_t *surface = NULL;
     ur_status status = draw_sheet(p, 0, &surface, error);
     if (status == UR_OK)
-        status = ur_atomic_write("-", png_emit, surface, "strain picture", error);
+        status = ur_atomic_write("-", png_emit, surface, "strain picture", p->context, error);
     if (surface)
         cairo_surface_destroy(surface);
     return status;
 }
 
 ur_status ur_strain_png_write(const char *path, const ur_layout *layout, const ur_piece *pieces,
-                              size_t piece_count, double dpi, ur_error *error)
+                              size_t piece_count, double dpi, ur_context *context, ur_error *error)
 {
     if (dpi == 0)
         dpi = UR_STRAIN_PNG_DPI;
     ur_status status = check_arguments(path, layout, pieces, piece_count, dpi, error);
     if (status != UR_OK)
         return status;
-    picture p = {layout, pieces, piece_count, dpi, 0.0};
+    picture p = {layout, pieces, piece_count, dpi, 0.0, context};
     for (size_t i = 0; status == UR_OK && i < layout->sheet_count; i++)
         status = check_sheet(&layout->sheets[i], i, &p, error);
     if (status == UR_OK)

@@ -38,8 +38,9 @@ typedef struct ur_write_settings {
     const char *title;    /* NULL for none */
     const char *job_name; /* NULL for none */
     ur_dxf_version dxf_version;
-    double dpi;         /* > 0 */
-    bool drawing_order; /* paths as drawn, not in cutting order */
+    double dpi;          /* > 0 */
+    bool drawing_order;  /* paths as drawn, not in cutting order */
+    ur_context *context; /* the files are opened in it; NULL for none */
 } ur_write_settings;
 
 /* What every format may look at: the whole job, for the whole write. */

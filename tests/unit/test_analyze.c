@@ -436,7 +436,7 @@ static void test_png(void **state)
     ur_ruled ruled = cylinder(40, 120);
     ur_analysis analysis = analyze(&ruled, 64, 9);
     snprintf(path, sizeof path, "%s/cylinder.png", directory);
-    if (ur_analysis_png_write(path, &ruled, &analysis, "cylinder R 40", &error) != UR_OK)
+    if (ur_analysis_png_write(path, &ruled, &analysis, "cylinder R 40", NULL, &error) != UR_OK)
         fail_msg("png: %s", error.message);
     png_counts counts = load_png(path);
     /* the map is 2 pi 40 x 120 mm, far more than 100 x 100 px at any sensible scale */
@@ -450,7 +450,7 @@ static void test_png(void **state)
     ruled = cylinder(5, 500);
     analysis = analyze(&ruled, 16, 5);
     snprintf(path, sizeof path, "%s/tall.png", directory);
-    if (ur_analysis_png_write(path, &ruled, &analysis, "cylinder R 5", &error) != UR_OK)
+    if (ur_analysis_png_write(path, &ruled, &analysis, "cylinder R 5", NULL, &error) != UR_OK)
         fail_msg("png: %s", error.message);
     counts = load_png(path);
     assert_true(counts.height > squat);
@@ -461,7 +461,7 @@ static void test_png(void **state)
     ruled = hyperbolic_paraboloid(50, 40, 30);
     analysis = analyze(&ruled, 64, 17);
     snprintf(path, sizeof path, "%s/hypar.png", directory);
-    if (ur_analysis_png_write(path, &ruled, &analysis, NULL, &error) != UR_OK)
+    if (ur_analysis_png_write(path, &ruled, &analysis, NULL, NULL, &error) != UR_OK)
         fail_msg("png: %s", error.message);
     counts = load_png(path);
     assert_true(counts.blue > 100 * 100);
@@ -480,7 +480,8 @@ static void test_png_failures_leave_nothing(void **state)
 
     /* into a directory that is not there */
     snprintf(path, sizeof path, "%s/missing/map.png", directory);
-    assert_int_equal(ur_analysis_png_write(path, &ruled, &analysis, "t", &error), UR_ERROR_INPUT);
+    assert_int_equal(ur_analysis_png_write(path, &ruled, &analysis, "t", NULL, &error),
+                     UR_ERROR_INPUT);
     assert_non_null(strstr(error.message, "does not exist"));
     struct stat info;
     snprintf(path, sizeof path, "%s/missing", directory);
@@ -493,7 +494,7 @@ static void test_png_failures_leave_nothing(void **state)
     assert_int_equal(fputs("old", file) >= 0, 1);
     assert_int_equal(fclose(file), 0);
     ur_analysis empty = {0};
-    assert_int_not_equal(ur_analysis_png_write(path, &ruled, &empty, "t", &error), UR_OK);
+    assert_int_not_equal(ur_analysis_png_write(path, &ruled, &empty, "t", NULL, &error), UR_OK);
     char text[16] = {0};
     file = fopen(path, "r");
     assert_non_null(file);

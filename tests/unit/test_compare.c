@@ -323,10 +323,10 @@ static void test_png_loads_with_its_size(void **state)
     char path[256];
     path_in(f->dir, "helicoid.png", path, sizeof path);
     ur_error error;
-    if (ur_compare_plot_png(path, &f->helicoid_table, "helicoid", &error) != UR_OK)
+    if (ur_compare_plot_png(path, &f->helicoid_table, "helicoid", NULL, &error) != UR_OK)
         fail_msg("plot: %s", error.message);
     path_in(f->dir, "frustum.png", path, sizeof path);
-    if (ur_compare_plot_png(path, &f->frustum_table, NULL, &error) != UR_OK)
+    if (ur_compare_plot_png(path, &f->frustum_table, NULL, NULL, &error) != UR_OK)
         fail_msg("plot: %s", error.message);
     const char *names[] = {"helicoid.png", "frustum.png"};
     for (int i = 0; i < 2; i++) {
@@ -402,8 +402,8 @@ static void test_csv_lines(void **state)
     path_in(f->dir, "helicoid.csv", helicoid, sizeof helicoid);
     path_in(f->dir, "frustum.csv", frustum, sizeof frustum);
     ur_error error;
-    assert_int_equal(ur_compare_csv_write(helicoid, &f->helicoid_table, &error), UR_OK);
-    assert_int_equal(ur_compare_csv_write(frustum, &f->frustum_table, &error), UR_OK);
+    assert_int_equal(ur_compare_csv_write(helicoid, &f->helicoid_table, NULL, &error), UR_OK);
+    assert_int_equal(ur_compare_csv_write(frustum, &f->frustum_table, NULL, &error), UR_OK);
     check_csv(helicoid, &f->helicoid_table);
     check_csv(frustum, &f->frustum_table);
 }
@@ -417,10 +417,10 @@ static void test_missing_directory_leaves_nothing(void **state)
     snprintf(png, sizeof png, "%s/plot.png", missing);
     snprintf(csv, sizeof csv, "%s/table.csv", missing);
     ur_error error;
-    ur_status status = ur_compare_plot_png(png, &f->helicoid_table, "x", &error);
+    ur_status status = ur_compare_plot_png(png, &f->helicoid_table, "x", NULL, &error);
     assert_true(status == UR_ERROR_INPUT || status == UR_ERROR_INTERNAL);
     assert_non_null(strstr(error.message, "missing"));
-    status = ur_compare_csv_write(csv, &f->helicoid_table, &error);
+    status = ur_compare_csv_write(csv, &f->helicoid_table, NULL, &error);
     assert_true(status == UR_ERROR_INPUT || status == UR_ERROR_INTERNAL);
     assert_false(exists(missing));
     assert_int_equal(entries_in(f->dir), before);
@@ -439,8 +439,8 @@ static void test_empty_table_leaves_file_untouched(void **state)
     int before = entries_in(f->dir);
     ur_compare_table empty = {NULL, 0, 0};
     ur_error error;
-    assert_int_equal(ur_compare_csv_write(path, &empty, &error), UR_ERROR_INTERNAL);
-    assert_int_equal(ur_compare_plot_png(path, &empty, NULL, &error), UR_ERROR_INTERNAL);
+    assert_int_equal(ur_compare_csv_write(path, &empty, NULL, &error), UR_ERROR_INTERNAL);
+    assert_int_equal(ur_compare_plot_png(path, &empty, NULL, NULL, &error), UR_ERROR_INTERNAL);
     file = fopen(path, "r");
     assert_non_null(file);
     char line[16] = "";

@@ -213,7 +213,7 @@ static void test_write_then_read_round_trip(void **state)
         {0.1, 0.2, 0.3}, /* closes the curve */
     };
     ur_error error = {0};
-    assert_int_equal(ur_curve_csv_write(output_path, written, 5, &error), UR_OK);
+    assert_int_equal(ur_curve_csv_write(output_path, written, 5, NULL, &error), UR_OK);
     ur_vec3 *points = NULL;
     size_t count = 0;
     bool closed = false;
@@ -239,7 +239,7 @@ static void test_write_into_missing_directory(void **state)
     char path[160];
     snprintf(path, sizeof path, "%s/missing/out.csv", directory);
     ur_error error = {0};
-    assert_int_equal(ur_curve_csv_write(path, written, 4, &error), UR_ERROR_INPUT);
+    assert_int_equal(ur_curve_csv_write(path, written, 4, NULL, &error), UR_ERROR_INPUT);
     assert_non_null(strstr(error.message, path));
     assert_non_null(strstr(error.message, "does not exist"));
 }
@@ -250,7 +250,7 @@ static void test_write_refuses_nan(void **state)
     const ur_vec3 written[4] = {{0, 0, 0}, {1, 0, 0}, {NAN, 1, 0}, {0, 1, 0}};
     ur_error error = {0};
     unlink(output_path);
-    assert_int_not_equal(ur_curve_csv_write(output_path, written, 4, &error), UR_OK);
+    assert_int_not_equal(ur_curve_csv_write(output_path, written, 4, NULL, &error), UR_OK);
     assert_non_null(strstr(error.message, "point 3 is not finite"));
     assert_int_not_equal(access(output_path, F_OK), 0);
 }

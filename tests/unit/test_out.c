@@ -531,7 +531,8 @@ static void test_report_file(void **state)
     char path[256];
     path_in(f->dir, "report.json", path, sizeof path);
     ur_error error;
-    assert_int_equal(ur_report_write(path, &context, f->pieces, PIECES, &f->layout, &error), UR_OK);
+    assert_int_equal(ur_report_write(path, &context, f->pieces, PIECES, &f->layout, NULL, &error),
+                     UR_OK);
     assert_int_equal(entries_in(f->dir), 1);
 
     json_error_t json_error;
@@ -557,7 +558,8 @@ static void test_report_several_sheets(void **state)
     char path[256];
     path_in(f->dir, "report.json", path, sizeof path);
     ur_error error;
-    assert_int_equal(ur_report_write(path, &context, f->pieces, PIECES, &f->layout, &error), UR_OK);
+    assert_int_equal(ur_report_write(path, &context, f->pieces, PIECES, &f->layout, NULL, &error),
+                     UR_OK);
     json_error_t json_error;
     json_t *root = json_load_file(path, 0, &json_error);
     assert_non_null(root);
@@ -586,7 +588,7 @@ static void test_report_stdout(void **state)
     assert_true(saved >= 0);
     assert_true(dup2(fd, STDOUT_FILENO) >= 0);
     ur_error error;
-    ur_status status = ur_report_write("-", &context, f->pieces, PIECES, &f->layout, &error);
+    ur_status status = ur_report_write("-", &context, f->pieces, PIECES, &f->layout, NULL, &error);
     fflush(stdout);
     assert_true(dup2(saved, STDOUT_FILENO) >= 0);
     close(saved);
@@ -608,7 +610,7 @@ static void test_report_missing_directory(void **state)
     char path[256];
     path_in(f->dir, "missing/report.json", path, sizeof path);
     ur_error error;
-    assert_int_equal(ur_report_write(path, &context, f->pieces, PIECES, &f->layout, &error),
+    assert_int_equal(ur_report_write(path, &context, f->pieces, PIECES, &f->layout, NULL, &error),
                      UR_ERROR_INPUT);
     assert_non_null(strstr(error.message, "does not exist"));
     assert_int_equal(entries_in(f->dir), 0);
@@ -623,7 +625,7 @@ static void test_report_bad_placement(void **state)
     ur_error error;
     /* Only two pieces, but sheet 1 places pieces 0 and 1 and sheet 2 piece 2. */
     f->layout.sheet_count = 2;
-    assert_int_equal(ur_report_write(path, &context, f->pieces, 2, &f->layout, &error),
+    assert_int_equal(ur_report_write(path, &context, f->pieces, 2, &f->layout, NULL, &error),
                      UR_ERROR_INTERNAL);
     assert_int_equal(entries_in(f->dir), 0);
 }

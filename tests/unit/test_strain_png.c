@@ -161,7 +161,7 @@ static ur_status write_picture(fixture *f, const char *name, double dpi, char *p
                                ur_error *error)
 {
     path_in(f->dir, name, path, size);
-    return ur_strain_png_write(path, &f->layout, f->pieces, PIECES, dpi, error);
+    return ur_strain_png_write(path, &f->layout, f->pieces, PIECES, dpi, NULL, error);
 }
 
 /* ---- The picture -------------------------------------------------------- */

@@ -7,14 +7,20 @@
  * are UR_ERROR_INPUT: they concern the output path the user gave, not a bug.
  *
  * The tests need to see a disk fill up at any point of a multi-file output:
- * UNROLL_TEST_FAIL_WRITE_AFTER=N puts every temporary behind a stdio stream
- * of our own (fopencookie) that lets N bytes through in all, then fails
- * each write with EIO.  Unset, the streams are plain fdopen streams.
+ * a context's write budget (ur_context_fail_writes_after) puts every
+ * temporary behind a stdio stream of our own (fopencookie) that lets that
+ * many bytes through in all, then fails each write with EIO.  Without one
+ * the streams are plain fdopen streams.
+ *
+ * The context's output set lives here too: its held files are atomic files.
  */
 #define _GNU_SOURCE /* fopencookie, for the test-only failure injection */
 #include "atomic.h"
 
-#include "unroll/out.h"
+#include "context.h"
+
+#include <fcntl.h>
+#include <time.h>
 
 #include <errno.h>
 #include <stdint.h>
@@ -83,7 +89,10 @@ static ur_status check_directory(const char *path, ur_error *error)
     return status;
 }
 
-/* "DIR/.BASE.XXXXXX" for mkstemp: hidden, and in the same directory as path. */
+/*
+ * "DIR/.BASE.XXXXXX": hidden, and in the same directory as path.  The six
+ * X are replaced by create_temp, which makes the name unique.
+ */
 static char *temp_template(const char *path, ur_error *error)
 {
     const char *slash = strrchr(path, '/');
@@ -103,51 +112,27 @@ static char *temp_template(const char *path, ur_error *error)
     return name;
 }
 
-/*
- * mkstemp creates 0600; give the file the mode open(2) would have given it.
- * umask() can only be read by setting it, so it is set back at once.
- */
-static int newly_created_mode(void)
-{
-    mode_t mask = umask(0);
-    umask(mask);
-    return (int)(0666 & ~mask);
-}
-
 /* ---- Test-only failure injection ---------------------------------------- */
 
-/* Bytes the writes may still pass; -1 when UNROLL_TEST_FAIL_WRITE_AFTER is unset. */
-static long long injection_budget(void)
-{
-    static bool looked;
-    static long long budget = -1;
-    if (!looked) {
-        looked = true;
-        const char *value = getenv("UNROLL_TEST_FAIL_WRITE_AFTER");
-        char *end = NULL;
-        long long bytes = value ? strtoll(value, &end, 10) : -1;
-        if (value && end != value && *end == '\0' && bytes >= 0)
-            budget = bytes;
-    }
-    return budget;
-}
-
-static long long injection_left = -1; /* counted down from injection_budget() */
+/* What a limited stream writes to and the budget it shares with its context's other files. */
+typedef struct limited_sink {
+    int fd;
+    long long *budget; /* the context's write_budget, counted down */
+} limited_sink;
 
 static ssize_t limited_write(void *cookie, const char *data, size_t size)
 {
-    int fd = (int)(intptr_t)cookie;
-    size_t allowed = injection_left < 0 || (unsigned long long)injection_left >= size
-                         ? size
-                         : (size_t)injection_left;
+    limited_sink *sink = cookie;
+    long long left = *sink->budget;
+    size_t allowed = (unsigned long long)left >= size ? size : (size_t)left;
     size_t done = 0;
     while (done < allowed) {
-        ssize_t written = write(fd, data + done, allowed - done);
+        ssize_t written = write(sink->fd, data + done, allowed - done);
         if (written < 0)
             return -1;
         done += (size_t)written;
     }
-    injection_left -= (long long)done;
+    *sink->budget -= (long long)done;
     if (done < size) {
         errno = EIO;
         return -1; /* what got through stays in the temporary, as on a full disk */
@@ -157,26 +142,71 @@ static ssize_t limited_write(void *cookie, const char *data, size_t size)
 
 static int limited_close(void *cookie)
 {
-    return close((int)(intptr_t)cookie);
+    limited_sink *sink = cookie;
+    int result = close(sink->fd);
+    free(sink);
+    return result;
 }
 
-/* A stream on fd that fails once the injected budget is spent; plain when there is none. */
-static FILE *open_stream(int fd)
+/* A stream on fd that fails once the context's budget is spent; plain when it has none. */
+static FILE *open_stream(int fd, ur_context *context)
 {
-    if (injection_budget() < 0)
+    if (!context || context->write_budget < 0)
         return fdopen(fd, "w");
-    if (injection_left < 0)
-        injection_left = injection_budget();
+    limited_sink *sink = malloc(sizeof *sink);
+    if (!sink)
+        return NULL;
+    sink->fd = fd;
+    sink->budget = &context->write_budget;
     cookie_io_functions_t functions = {.write = limited_write, .close = limited_close};
-    return fopencookie((void *)(intptr_t)fd, "w", functions);
+    FILE *stream = fopencookie(sink, "w", functions);
+    if (!stream)
+        free(sink);
+    return stream;
 }
 
 /* ---- The files ----------------------------------------------------------- */
 
+/*
+ * Writes six letters from seed over the XXXXXX at the end of name; seed is
+ * then moved on, so the next try gets another name.
+ */
+static void fill_in_name(char *name, unsigned long long *seed)
+{
+    static const char letters[] = "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789";
+    char *end = name + strlen(name);
+    for (char *place = end - 6; place < end; place++) {
+        *seed = *seed * 6364136223846793005ULL + 1442695040888963407ULL;
+        *place = letters[(*seed >> 33) % (sizeof letters - 1)];
+    }
+}
+
+/*
+ * Opens a new temporary of a name no file has.  Created with mode 0666 and
+ * O_EXCL, as mkstemp would but without its 0600, so that the umask gives
+ * the file the mode any newly created file gets (asking for the umask
+ * would change it for the whole process, if only for a moment).
+ */
+static int open_unique(char *name)
+{
+    struct timespec now;
+    clock_gettime(CLOCK_REALTIME, &now);
+    unsigned long long seed =
+        (unsigned long long)now.tv_nsec ^ ((unsigned long long)now.tv_sec << 20) ^
+        ((unsigned long long)getpid() << 40) ^ (unsigned long long)(uintptr_t)name;
+    for (int attempt = 0; attempt < 100; attempt++) {
+        fill_in_name(name, &seed);
+        int fd = open(name, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+        if (fd >= 0 || errno != EEXIST)
+            return fd;
+    }
+    return -1; /* errno is EEXIST */
+}
+
 /* Creates the temporary and opens a stream on it; removes it on failure. */
 static ur_status create_temp(ur_atomic_file *file, ur_error *error)
 {
-    int fd = mkstemp(file->temp_path);
+    int fd = open_unique(file->temp_path);
     if (fd < 0) {
         ur_status status = ur_error_set(error, UR_ERROR_INPUT, "cannot write '%s': %s", file->path,
                                         strerror(errno));
@@ -184,13 +214,8 @@ static ur_status create_temp(ur_atomic_file *file, ur_error *error)
         file->temp_path = NULL;
         return status;
     }
-    if (fchmod(fd, (mode_t)newly_created_mode()) != 0) {
-        ur_error_set(error, UR_ERROR_INPUT, "cannot write '%s': %s", file->path, strerror(errno));
-        close(fd);
-        return UR_ERROR_INPUT;
-    }
     file->fd = fd;
-    file->stream = open_stream(fd);
+    file->stream = open_stream(fd, file->context);
     if (!file->stream) {
         ur_error_set(error, UR_ERROR_INPUT, "cannot write '%s': %s", file->path, strerror(errno));
         close(fd);
@@ -199,9 +224,11 @@ static ur_status create_temp(ur_atomic_file *file, ur_error *error)
     return UR_OK;
 }
 
-ur_status ur_atomic_open(ur_atomic_file *file, const char *path, ur_error *error)
+ur_status ur_atomic_open(ur_atomic_file *file, const char *path, ur_context *context,
+                         ur_error *error)
 {
     memset(file, 0, sizeof *file);
+    file->context = context;
     ur_status status = check_directory(path, error);
     if (status != UR_OK)
         return status;
@@ -246,59 +273,53 @@ ur_status ur_atomic_close(ur_atomic_file *file, ur_error *error)
 
 /* ---- Output sets ---------------------------------------------------------- */
 
-/* The open set: how deep, whether an end refused it, and the files it holds back. */
-static struct {
-    size_t depth;
-    bool refused;
-    ur_atomic_file *held; /* closed temporaries, renamed or removed at the outermost end */
-    size_t count, capacity;
-} set;
-
-void ur_output_set_begin(void)
+void ur_output_set_begin(ur_context *context)
 {
-    set.depth++;
+    context->output_set.depth++;
 }
 
-/* Removes every temporary the set holds and forgets them. */
-static void set_discard(void)
+void ur_atomic_set_discard(ur_context *context)
 {
-    for (size_t i = 0; i < set.count; i++)
-        ur_atomic_discard(&set.held[i]);
-    free(set.held);
-    set.held = NULL;
-    set.count = set.capacity = 0;
+    for (size_t i = 0; i < context->output_set.count; i++)
+        ur_atomic_discard(&context->output_set.held[i]);
+    free(context->output_set.held);
+    context->output_set.held = NULL;
+    context->output_set.count = context->output_set.capacity = 0;
 }
 
-ur_status ur_output_set_end(bool commit, ur_error *error)
+ur_status ur_output_set_end(ur_context *context, bool commit, ur_error *error)
 {
-    if (set.depth == 0)
+    if (context->output_set.depth == 0)
         return ur_error_set(error, UR_ERROR_INTERNAL, "an output set ended that was not begun");
     if (!commit)
-        set.refused = true;
-    if (--set.depth > 0)
+        context->output_set.refused = true;
+    if (--context->output_set.depth > 0)
         return UR_OK;
     ur_status status = UR_OK;
-    if (!set.refused) {
-        status = ur_cancel_check(error);
-        for (size_t i = 0; status == UR_OK && i < set.count; i++)
-            status = ur_atomic_commit(&set.held[i], error);
+    if (!context->output_set.refused) {
+        status = ur_context_check(context, error);
+        for (size_t i = 0; status == UR_OK && i < context->output_set.count; i++) {
+            context->output_set.held[i].context = NULL; /* renamed now, not held again */
+            status = ur_atomic_commit(&context->output_set.held[i], error);
+        }
     }
-    set_discard(); /* removes what was not renamed */
-    set.refused = false;
+    ur_atomic_set_discard(context); /* removes what was not renamed */
+    context->output_set.refused = false;
     return status;
 }
 
 /* Takes over a closed temporary until the set ends; file is left empty. */
-static ur_status set_hold(ur_atomic_file *file, ur_error *error)
+static ur_status set_hold(ur_context *context, ur_atomic_file *file, ur_error *error)
 {
-    if (set.count == set.capacity) {
+    if (context->output_set.count == context->output_set.capacity) {
         ur_atomic_file *held =
-            ur_array_grow(set.held, &set.capacity, set.count, sizeof *held, 8, error);
+            ur_array_grow(context->output_set.held, &context->output_set.capacity,
+                          context->output_set.count, sizeof *held, 8, error);
         if (!held)
             return UR_ERROR_INTERNAL;
-        set.held = held;
+        context->output_set.held = held;
     }
-    set.held[set.count++] = *file;
+    context->output_set.held[context->output_set.count++] = *file;
     memset(file, 0, sizeof *file);
     return UR_OK;
 }
@@ -308,8 +329,8 @@ ur_status ur_atomic_commit(ur_atomic_file *file, ur_error *error)
     if (file->stream || !file->temp_path)
         return ur_error_set(error, UR_ERROR_INTERNAL, "'%s' is not ready to commit",
                             file->path ? file->path : "(null)");
-    if (set.depth > 0)
-        return set_hold(file, error);
+    if (file->context && file->context->output_set.depth > 0)
+        return set_hold(file->context, file, error);
     if (rename(file->temp_path, file->path) != 0)
         return ur_error_set(error, UR_ERROR_INPUT, "cannot write '%s': %s", file->path,
                             strerror(errno));
@@ -322,7 +343,7 @@ ur_status ur_atomic_commit(ur_atomic_file *file, ur_error *error)
 
 ur_status ur_atomic_commit_all(ur_atomic_file *files, size_t count, ur_error *error)
 {
-    ur_status status = ur_cancel_check(error);
+    ur_status status = count > 0 ? ur_context_check(files[0].context, error) : UR_OK;
     for (size_t i = 0; status == UR_OK && i < count; i++)
         status = ur_atomic_commit(&files[i], error);
     return status;
@@ -340,7 +361,7 @@ void ur_atomic_discard(ur_atomic_file *file)
 }
 
 ur_status ur_atomic_write(const char *path, ur_emitter emit, const void *data, const char *what,
-                          ur_error *error)
+                          ur_context *context, ur_error *error)
 {
     if (strcmp(path, "-") == 0) {
         errno = 0;
@@ -350,7 +371,7 @@ ur_status ur_atomic_write(const char *path, ur_emitter emit, const void *data, c
         return UR_OK;
     }
     ur_atomic_file file;
-    ur_status status = ur_atomic_open(&file, path, error);
+    ur_status status = ur_atomic_open(&file, path, context, error);
     if (status != UR_OK)
         return status;
     errno = 0;

@@ -1,6 +1,7 @@
 /*
- * atomic.h (library-internal, used by src/out/ and the CSV writer in
- * src/io/): writing a file so that it appears complete or not at all.
+ * atomic.h (library-internal, used by every writer: src/out/ and the CSV
+ * writer in src/io/): writing a file so that it appears complete or not at
+ * all.
  *
  * The data goes to a temporary file ".NAME.XXXXXX" next to the final name
  * (same directory, hence same file system, so rename() is atomic), is flushed
@@ -12,14 +13,13 @@
  * Life of a file: ur_atomic_open, write to ->stream, ur_atomic_close, then
  * ur_atomic_commit; ur_atomic_discard at any point undoes what is not yet
  * committed and frees everything.  A zeroed ur_atomic_file is "nothing yet",
- * safe to discard.  Inside an output set (ur_output_set_begin, unroll/out.h)
- * ur_atomic_commit only hands the temporary to the set, which renames
- * everything at its end.  A cancelled run (ur_cancel_request) renames nothing:
- * ur_atomic_commit and ur_atomic_write then fail with UR_ERROR_CANCELLED.
- *
- * For tests only: UNROLL_TEST_FAIL_WRITE_AFTER=N in the environment makes
- * every write to these files fail with EIO once N bytes in all have gone
- * to them in this process, as a full disk would (atomic.c).
+ * safe to discard.  A file belongs to the context it was opened in (which
+ * may be NULL): inside that context's output set (ur_output_set_begin,
+ * unroll/base.h) ur_atomic_commit only hands the temporary to the set,
+ * which renames everything at its end.  In a cancelled context nothing is
+ * renamed: ur_atomic_commit_all and ur_atomic_write then fail with
+ * UR_ERROR_CANCELLED.  The context's write budget
+ * (ur_context_fail_writes_after) applies to every file opened in it.
  */
 #ifndef UNROLL_OUT_ATOMIC_H
 #define UNROLL_OUT_ATOMIC_H
@@ -30,10 +30,11 @@
 #include "unroll/base.h"
 
 typedef struct ur_atomic_file {
-    char *path;      /* owned: the final name */
-    char *temp_path; /* owned: the temporary; NULL once renamed or removed */
-    FILE *stream;    /* open between ur_atomic_open and ur_atomic_close */
-    int fd;          /* the temporary's descriptor, under stream, for fsync */
+    char *path;          /* owned: the final name */
+    char *temp_path;     /* owned: the temporary; NULL once renamed or removed */
+    FILE *stream;        /* open between ur_atomic_open and ur_atomic_close */
+    int fd;              /* the temporary's descriptor, under stream, for fsync */
+    ur_context *context; /* not owned; NULL for none */
 } ur_atomic_file;
 
 /*
@@ -41,7 +42,8 @@ typedef struct ur_atomic_file {
  * (0666 less the umask).  Fails with UR_ERROR_INPUT, naming the directory,
  * when the directory does not exist.
  */
-ur_status ur_atomic_open(ur_atomic_file *file, const char *path, ur_error *error);
+ur_status ur_atomic_open(ur_atomic_file *file, const char *path, ur_context *context,
+                         ur_error *error);
 
 /* Flushes, syncs and closes the stream; the temporary stays until commit. */
 ur_status ur_atomic_close(ur_atomic_file *file, ur_error *error);
@@ -67,6 +69,9 @@ typedef bool (*ur_emitter)(FILE *stream, const void *data);
  * what names the document in messages ("plot", "report").
  */
 ur_status ur_atomic_write(const char *path, ur_emitter emit, const void *data, const char *what,
-                          ur_error *error);
+                          ur_context *context, ur_error *error);
+
+/* Removes every temporary context's output set holds and forgets them (context.c's free). */
+void ur_atomic_set_discard(ur_context *context);
 
 #endif

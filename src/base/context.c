@@ -1,0 +1,81 @@
+/*
+ * context.c: the context a run happens in (unroll/base.h): its cancel
+ * flag, its message handler and its test hook.  Its output set is kept by
+ * atomic.c, which writes the files.
+ */
+#include "context.h"
+
+#include "atomic.h"
+
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+ur_context *ur_context_new(void)
+{
+    ur_context *context = calloc(1, sizeof *context);
+    if (!context)
+        return NULL;
+    atomic_init(&context->cancelled, 0);
+    context->write_budget = -1;
+    return context;
+}
+
+void ur_context_free(ur_context *context)
+{
+    if (!context)
+        return;
+    ur_atomic_set_discard(context);
+    free(context);
+}
+
+void ur_context_cancel(ur_context *context)
+{
+    if (context)
+        atomic_store(&context->cancelled, 1);
+}
+
+void ur_context_cancel_clear(ur_context *context)
+{
+    if (context)
+        atomic_store(&context->cancelled, 0);
+}
+
+bool ur_context_cancelled(const ur_context *context)
+{
+    /* atomic_load takes a pointer to non-const in C11 before DR 459. */
+    return context && atomic_load((atomic_int *)&context->cancelled) != 0;
+}
+
+ur_status ur_context_check(const ur_context *context, ur_error *error)
+{
+    if (!ur_context_cancelled(context))
+        return UR_OK;
+    return ur_error_set(error, UR_ERROR_CANCELLED, "cancelled");
+}
+
+void ur_context_set_message_handler(ur_context *context, ur_message_handler handler, void *data)
+{
+    if (!context)
+        return;
+    context->message_handler = handler;
+    context->message_data = data;
+}
+
+void ur_context_message(const ur_context *context, ur_message_kind kind, const char *format, ...)
+{
+    if (!context || !context->message_handler)
+        return;
+    char message[1024];
+    va_list args;
+    va_start(args, format);
+    vsnprintf(message, sizeof message, format, args);
+    va_end(args);
+    context->message_handler(context->message_data, kind, message);
+}
+
+void ur_context_fail_writes_after(ur_context *context, long long bytes)
+{
+    if (context)
+        context->write_budget = bytes < 0 ? -1 : bytes;
+}
