@@ -114,6 +114,8 @@
  */
 #include "allow_internal.h"
 
+#include "../base/union_find.h"
+
 #include <geos_c.h>
 #include <math.h>
 #include <stdint.h>
@@ -533,15 +535,6 @@ static size_t slit_count(double length, double opening, double span)
 
 /* ---- Flattened nets: regions of the shading --------------------------- */
 
-static size_t find_root(size_t *parent, size_t t)
-{
-    while (parent[t] != t) {
-        parent[t] = parent[parent[t]];
-        t = parent[t];
-    }
-    return t;
-}
-
 typedef struct flat_edge {
     ur_vec2 p, q; /* p before q in (x, y) order */
     size_t triangle;
@@ -880,12 +873,11 @@ static int axis_sector(ur_vec2 v)
 static void join_regions(const ur_vec2 *axes, const size_t (*pairs)[2], size_t pair_count,
                          size_t count, size_t *parent)
 {
-    for (size_t t = 0; t < count; t++)
-        parent[t] = t;
+    union_find_init(parent, count);
     for (size_t i = 0; i < pair_count; i++) {
         size_t s = pairs[i][0], t = pairs[i][1];
         if (axis_sector(axes[s]) == axis_sector(axes[t]))
-            parent[find_root(parent, s)] = find_root(parent, t);
+            union_find_join(parent, s, t);
     }
 }
 
@@ -910,7 +902,7 @@ static ur_status relieve_regions(relief_job *job, const relief_kind *kind, size_
     ur_status status = members && triangles ? UR_OK : UR_ERROR_INTERNAL;
     for (size_t t = 0; status == UR_OK && t < count; t++)
         if (kind[t] != RELIEF_NONE)
-            members[used++] = (member){find_root(parent, t), t};
+            members[used++] = (member){union_find_root(parent, t), t};
     if (status == UR_OK)
         qsort(members, used, sizeof *members, compare_members);
     /* Overlaps first: their slits reach the outline, kerfing slits keep clear of them. */

@@ -10,6 +10,8 @@
  */
 #include "flatten_internal.h"
 
+#include "../base/union_find.h"
+
 #include <stdlib.h>
 #include <string.h>
 
@@ -34,24 +36,6 @@ static size_t half_from(const ur_mesh *mesh, size_t half)
 static size_t half_to(const ur_mesh *mesh, size_t half)
 {
     return mesh->triangles[half / 3][(half % 3 + 1) % 3];
-}
-
-/* Union-find with path halving: parent[v] == v at a root. */
-static size_t find_root(size_t *parent, size_t v)
-{
-    while (parent[v] != v) {
-        parent[v] = parent[parent[v]];
-        v = parent[v];
-    }
-    return v;
-}
-
-static void join(size_t *parent, size_t a, size_t b)
-{
-    a = find_root(parent, a);
-    b = find_root(parent, b);
-    if (a != b)
-        parent[a < b ? b : a] = a < b ? a : b;
 }
 
 /* What the scan of the edges finds out, and its scratch arrays (owned). */
@@ -141,7 +125,7 @@ static ur_status take_edge(scan *s, size_t low, size_t first, size_t count, flat
     if (count == 1) {
         s->boundary_edges++;
         s->on_boundary[low] = s->on_boundary[high] = true;
-        join(s->loops, low, high);
+        union_find_join(s->loops, low, high);
     }
     return UR_OK;
 }
@@ -168,12 +152,12 @@ static ur_status check_parts(scan *s, ur_error *error)
 {
     const ur_mesh *mesh = s->mesh;
     for (size_t t = 0; t < mesh->triangle_count; t++) {
-        join(s->parts, mesh->triangles[t][0], mesh->triangles[t][1]);
-        join(s->parts, mesh->triangles[t][0], mesh->triangles[t][2]);
+        union_find_join(s->parts, mesh->triangles[t][0], mesh->triangles[t][1]);
+        union_find_join(s->parts, mesh->triangles[t][0], mesh->triangles[t][2]);
     }
     size_t count = 0;
     for (size_t v = 0; v < mesh->vertex_count; v++) {
-        if (find_root(s->parts, v) != v)
+        if (union_find_root(s->parts, v) != v)
             continue;
         /*
          * A root is the smallest vertex of its part (join keeps the smaller),
@@ -205,7 +189,7 @@ static ur_status check_shape(scan *s, const flat_topology *topology, ur_error *e
                             "the piece is closed (it has no boundary): cut it open first");
     size_t loops = 0;
     for (size_t v = 0; v < mesh->vertex_count; v++)
-        loops += s->on_boundary[v] && find_root(s->loops, v) == v;
+        loops += s->on_boundary[v] && union_find_root(s->loops, v) == v;
     long long euler = (long long)mesh->vertex_count - (long long)topology->edge_count +
                       (long long)mesh->triangle_count;
     if (euler + (long long)loops != 2)

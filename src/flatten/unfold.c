@@ -15,6 +15,8 @@
  */
 #include "unfold_internal.h"
 
+#include "../base/union_find.h"
+
 #include <stdlib.h>
 
 /* ---- the orders of the edges ---- */
@@ -73,11 +75,7 @@ static ur_status rank_edges(const unfolder *u, size_t **order, size_t *count, ur
 
 size_t unfold_find(unfolder *u, size_t corner)
 {
-    while (u->parent[corner] != corner) {
-        u->parent[corner] = u->parent[u->parent[corner]];
-        corner = u->parent[corner];
-    }
-    return corner;
+    return union_find_root(u->parent, corner);
 }
 
 size_t unfold_outline_next(const unfolder *u, size_t h)

@@ -21,6 +21,8 @@
  */
 #include "unfold_internal.h"
 
+#include "../base/union_find.h"
+
 #include <stdlib.h>
 #include <string.h>
 
@@ -398,14 +400,6 @@ static size_t joined_hull(unfolder *u, const unfold_motion *m, size_t small, siz
     return unfold_hull(u->hull_points, count, u->hull_chain, u->hull_points);
 }
 
-static void unite(unfolder *u, size_t a, size_t b)
-{
-    a = unfold_find(u, a);
-    b = unfold_find(u, b);
-    if (a != b)
-        u->parent[a] = b;
-}
-
 static ur_status keep_hull(unfolder *u, size_t large, size_t count, ur_error *error)
 {
     unfold_island *island = &u->islands[large];
@@ -428,8 +422,8 @@ static ur_status commit(unfolder *u, const unfold_motion *m, size_t small, size_
     for (size_t i = 0; i < u->pair_count; i++) {
         size_t s = u->pair_small[i], l = u->pair_large[i];
         u->joined[s] = u->joined[l] = true;
-        unite(u, s, unfold_next(l));
-        unite(u, unfold_next(s), l);
+        union_find_join(u->parent, s, unfold_next(l));
+        union_find_join(u->parent, unfold_next(s), l);
     }
     unfold_island *a = &u->islands[small], *b = &u->islands[large];
     for (size_t s = a->first; s != UNFOLD_NONE; s = u->next_member[s]) {

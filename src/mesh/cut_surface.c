@@ -6,26 +6,9 @@
  */
 #include "cutter.h"
 
+#include "../base/union_find.h"
+
 #include <stdlib.h>
-
-static size_t find_root(size_t *parent, size_t x)
-{
-    while (parent[x] != x) {
-        parent[x] = parent[parent[x]];
-        x = parent[x];
-    }
-    return x;
-}
-
-static void join(size_t *parent, size_t a, size_t b)
-{
-    a = find_root(parent, a);
-    b = find_root(parent, b);
-    if (a < b)
-        parent[b] = a;
-    else if (b < a)
-        parent[a] = b;
-}
 
 ur_status cutter_corners(cutter *c, ur_error *error)
 {
@@ -33,20 +16,19 @@ ur_status cutter_corners(cutter *c, ur_error *error)
     size_t *parent = ur_alloc_array(n, sizeof *parent, error);
     if (!parent)
         return UR_ERROR_INTERNAL;
-    for (size_t x = 0; x < n; x++)
-        parent[x] = x;
+    union_find_init(parent, n);
     /* Across a glued edge a -> b (twin b -> a), the corners at a meet, and those at b. */
     for (size_t h = 0; h < n; h++) {
         size_t g = c->twins[h];
         if (g == UR_NO_EDGE || c->seam[h] || g < h)
             continue;
-        join(parent, h, mesh_next(g));
-        join(parent, mesh_next(h), g);
+        union_find_join(parent, h, mesh_next(g));
+        union_find_join(parent, mesh_next(h), g);
     }
     /* Roots are the smallest corner of their class, so classes number in corner order. */
     c->vertex_count = 0;
     for (size_t x = 0; x < n; x++) {
-        size_t root = find_root(parent, x);
+        size_t root = union_find_root(parent, x);
         c->corner[x] = root == x ? c->vertex_count++ : c->corner[root];
     }
     free(parent);
