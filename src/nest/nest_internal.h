@@ -153,6 +153,54 @@ const GEOSGeometry *nest_sums_of(nester *n, size_t a, size_t ta, size_t b, size_
 /* The size of one of the nester's sheets: a remnant's, or the stock's. */
 void nest_sheet_size(const nester *n, size_t sheet, double *width, double *height);
 
+/* The key of the pair (piece a at turn ta, piece b at turn tb) in the nester's caches. */
+size_t nest_pair_key(const nester *n, size_t a, size_t ta, size_t b, size_t tb);
+
+/* ---- Placing a part (room.c) ---------------------------------------------- */
+
+/* A piece the search leaves free to take its best turn (see nest_place_piece). */
+#define ANY_TURN SIZE_MAX
+
+/* The rectangle where the shape's origin may go on the empty sheet; false when it does not fit. */
+bool nest_inner_fit_box(const nester *n, size_t sheet, const nest_shape *shape, double *box);
+
+/* A GEOS rectangle; NULL on a failure. */
+GEOSGeometry *nest_rectangle_polygon(GEOSContextHandle_t geos, double x0, double y0, double x1,
+                                     double y1);
+
+/* Frees a room grid's cells (the grid itself is the nester's). */
+void nest_grid_free(GEOSContextHandle_t geos, room_grid *grid);
+
+/* The box of cell c of a room grid. */
+void nest_cell_box(const nester *n, const room_grid *grid, size_t c, double *box);
+
+/* How long the roll is with the parts placed so far (margins included). */
+double nest_roll_length(const nester *n);
+
+/*
+ * Places piece at its best turn and place on the sheets open or a new one
+ * (held: the turn the search holds it at, or ANY_TURN for any).
+ */
+ur_status nest_place_piece(nester *n, size_t piece, size_t held);
+
+/* ---- The search over orders, and fewer sheets (order_search.c) ---------- */
+
+/* Places the pieces in order (held: per piece, a turn to hold or not) after the kept prefix. */
+ur_status nest_run_order(nester *n, const size_t *order, const size_t *held);
+
+/* The search over orders and turns for budget seconds, from order (the best is left in it). */
+ur_status nest_search_orders(nester *n, size_t *order, double budget);
+
+/*
+ * After the search, on sheets: the layout on fewer stock sheets, tried
+ * until fewer_until, then the last sheet's parts pushed to its left end
+ * until deadline.
+ */
+ur_status nest_sheets_search(nester *n, double fewer_until, double deadline);
+
+/* The offcut the layout's last stock sheet leaves, into the layout. */
+void nest_measure_offcut(const nester *n, ur_layout *layout);
+
 /*
  * Shortens the roll in a roll layout (compact.c): the parts on it are moved
  * and turned, overlapping on the way, until they fit a shorter strip with

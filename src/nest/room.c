@@ -1,0 +1,394 @@
+/*
+ * room.c: where a part may go (see nest.c): the inner-fit rectangle of a
+ * sheet, less the no-fit polygons of the parts already there, kept per
+ * sheet and shape in a grid of cells so that placing a part cuts only the
+ * cells its no-fit polygon reaches; and placing a part at the leftmost,
+ * then lowest, place of the best turn and sheet.
+ */
+#include "nest_internal.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/*
+ * The rectangle where the shape's origin may go on the empty sheet (x0, y0,
+ * x1, y1); false when it does not fit.
+ */
+bool nest_inner_fit_box(const nester *n, size_t sheet, const nest_shape *shape, double *box)
+{
+    const ur_nest_options *o = n->options;
+    double width, height;
+    nest_sheet_size(n, sheet, &width, &height);
+    double x0 = o->margin - shape->box.min.x, x1 = width - o->margin - shape->box.max.x;
+    double y0 = o->margin - shape->box.min.y, y1 = height - o->margin - shape->box.max.y;
+    if (x1 < x0 - 1e-9 || y1 < y0 - 1e-9)
+        return false;
+    /* Widened by the exact-fit allowance, so a part as large as the room still has a place. */
+    box[0] = x0 - NEST_EXACT_FIT, box[1] = y0 - NEST_EXACT_FIT;
+    box[2] = x1 + NEST_EXACT_FIT, box[3] = y1 + NEST_EXACT_FIT;
+    return true;
+}
+
+/* A rectangle as a GEOS polygon; NULL on failure. */
+GEOSGeometry *nest_rectangle_polygon(GEOSContextHandle_t geos, double x0, double y0, double x1,
+                                     double y1)
+{
+    GEOSCoordSequence *sequence = GEOSCoordSeq_create_r(geos, 5, 2);
+    if (!sequence)
+        return NULL;
+    double xs[5] = {x0, x1, x1, x0, x0}, ys[5] = {y0, y0, y1, y1, y0};
+    for (unsigned i = 0; i < 5; i++)
+        GEOSCoordSeq_setXY_r(geos, sequence, i, xs[i], ys[i]);
+    GEOSGeometry *ring = GEOSGeom_createLinearRing_r(geos, sequence);
+    return ring ? GEOSGeom_createPolygon_r(geos, ring, NULL, 0) : NULL;
+}
+
+static int shift_xy(double *x, double *y, void *userdata)
+{
+    const ur_vec2 *by = userdata;
+    *x += by->x;
+    *y += by->y;
+    return 1;
+}
+
+/* The cache slot of (sheet, piece's class, turn). */
+static size_t taken_slot(const nester *n, size_t sheet, size_t piece, size_t turn)
+{
+    return (sheet * n->class_count + n->class_of[piece]) * n->turn_count + turn;
+}
+
+void nest_grid_free(GEOSContextHandle_t geos, room_grid *grid)
+{
+    for (size_t c = 0; grid->free && c < grid->cols * grid->rows; c++)
+        if (grid->free[c])
+            GEOSGeom_destroy_r(geos, grid->free[c]);
+    free(grid->free);
+    free(grid->applied);
+    free(grid->cut_by);
+    memset(grid, 0, sizeof *grid);
+}
+
+/* The bounds of cell c of a grid (x0, y0, x1, y1). */
+void nest_cell_box(const nester *n, const room_grid *grid, size_t c, double *box)
+{
+    size_t i = c / grid->rows, j = c % grid->rows;
+    box[0] = grid->x0 + (double)i * n->cell_size;
+    box[1] = grid->y0 + (double)j * n->cell_size;
+    box[2] = i + 1 == grid->cols ? grid->x1 : grid->x0 + (double)(i + 1) * n->cell_size;
+    box[3] = j + 1 == grid->rows ? grid->y1 : grid->y0 + (double)(j + 1) * n->cell_size;
+}
+
+/*
+ * The grid of where piece (at turn) may go on the sheet, before any part
+ * is cut out: the inner-fit rectangle in cells.  False when it does not
+ * fit the sheet at all, or on a failure (then it has no place there).
+ */
+static bool grid_make(nester *n, size_t sheet, size_t piece, size_t turn, room_grid *grid)
+{
+    double fit[4];
+    if (!nest_inner_fit_box(n, sheet, nest_shape_of(n, piece, turn), fit))
+        return false;
+    grid->x0 = fit[0], grid->y0 = fit[1], grid->x1 = fit[2], grid->y1 = fit[3];
+    grid->cols = (size_t)fmax(1.0, ceil((fit[2] - fit[0]) / n->cell_size - 1e-9));
+    grid->rows = (size_t)fmax(1.0, ceil((fit[3] - fit[1]) / n->cell_size - 1e-9));
+    size_t cells = grid->cols * grid->rows;
+    grid->free = calloc(cells, sizeof *grid->free);
+    grid->applied = calloc(cells, sizeof *grid->applied);
+    grid->cut_by = calloc(cells, sizeof *grid->cut_by);
+    if (!grid->free || !grid->applied || !grid->cut_by) {
+        nest_grid_free(n->geos, grid);
+        return false;
+    }
+    for (size_t c = 0; c < cells; c++) {
+        double box[4];
+        nest_cell_box(n, grid, c, box);
+        grid->free[c] = nest_rectangle_polygon(n->geos, box[0], box[1], box[2], box[3]);
+        if (!grid->free[c]) {
+            nest_grid_free(n->geos, grid);
+            return false;
+        }
+    }
+    return true;
+}
+
+/*
+ * Whether the no-fit polygon of piece (at turn) around placement p can
+ * reach into a cell (x0, y0, x1, y1).  A no-fit polygon lies in the sum of
+ * its two shapes' boxes, a + (-b); the box test spares making the no-fit
+ * polygons of parts far apart, most of them on a sheet of many small
+ * parts.  The slack covers the turned no-fit polygons of nest_nfp_of,
+ * which equal the sums of the turned shapes only to rounding.
+ */
+static bool nfp_may_reach(const nester *n, const placed *p, size_t piece, size_t turn,
+                          const double *cell)
+{
+    const ur_box *a = &nest_shape_of(n, p->piece, p->turn)->reach;
+    const ur_box *b = &nest_shape_of(n, piece, turn)->reach;
+    double slack =
+        1e-3 + 1e-3 * (ur_box_width(*a) + ur_box_height(*a) + ur_box_width(*b) + ur_box_height(*b));
+    double x0 = p->at.x + a->min.x - b->max.x - slack, x1 = p->at.x + a->max.x - b->min.x + slack;
+    double y0 = p->at.y + a->min.y - b->max.y - slack, y1 = p->at.y + a->max.y - b->min.y + slack;
+    return x0 < cell[2] && x1 > cell[0] && y0 < cell[3] && y1 > cell[1];
+}
+
+/* Whether a geometry's box, shifted by at, reaches into a cell (x0, y0, x1, y1). */
+static bool reaches(GEOSContextHandle_t geos, const GEOSGeometry *g, ur_vec2 at, const double *cell)
+{
+    double x0, y0, x1, y1;
+    if (!GEOSGeom_getXMin_r(geos, g, &x0) || !GEOSGeom_getYMin_r(geos, g, &y0) ||
+        !GEOSGeom_getXMax_r(geos, g, &x1) || !GEOSGeom_getYMax_r(geos, g, &y1))
+        return true; /* no box: cut it out and let GEOS say */
+    return x0 + at.x < cell[2] && x1 + at.x > cell[0] && y0 + at.y < cell[3] && y1 + at.y > cell[1];
+}
+
+/* Cuts a polygon shifted by at out of the cell's room; false on a GEOS failure. */
+static bool cut_out(GEOSContextHandle_t geos, GEOSGeometry **room, const GEOSGeometry *polygon,
+                    ur_vec2 at)
+{
+    GEOSGeometry *shifted = GEOSGeom_transformXY_r(geos, polygon, shift_xy, &at);
+    GEOSGeometry *left = shifted ? GEOSDifference_r(geos, *room, shifted) : NULL;
+    if (shifted)
+        GEOSGeom_destroy_r(geos, shifted);
+    if (!left)
+        return false;
+    GEOSGeom_destroy_r(geos, *room);
+    *room = left;
+    if (GEOSisEmpty_r(geos, left) == 1) {
+        GEOSGeom_destroy_r(geos, left);
+        *room = NULL; /* full: nothing placed later can free it */
+    }
+    return true;
+}
+
+/*
+ * A pair's no-fit polygon is cut out of cells as its convex sums, each
+ * that reaches the cell on its own, the first time the pair is met (one
+ * placement in one run); after that as their union, made once and kept.
+ * Nesting many different small parts once meets most pairs once, and
+ * making their unions took nearly all its time (122 parts of an unfolded
+ * mesh: 29 s; by sums 12 s); copies of a part and a search over orders
+ * meet the same pairs again and again, and there the union, one cut per
+ * cell instead of many, pays for itself (bench_nest: 3.8 s by unions
+ * only, 8.9 s by sums only, 6.5 s so).
+ */
+
+/*
+ * Whether placement k's no-fit polygon with piece at turn is cut out of
+ * cells as a union: once the pair has been met before, at another
+ * placement (a copy of a part) or in another run.
+ */
+static bool by_union(nester *n, size_t a, size_t ta, size_t b, size_t tb, size_t k)
+{
+    size_t key = nest_pair_key(n, a, ta, b, tb);
+    size_t meeting = n->runs * (n->count + 1) + k + 1;
+    if (n->nfps[key] || (n->pair_met[key] && n->pair_met[key] != meeting))
+        return true;
+    n->pair_met[key] = meeting;
+    return false;
+}
+
+/*
+ * Cuts out of cell c the no-fit polygons (with piece at turn) of the parts
+ * placed on the sheet since it was last brought up to date, those whose
+ * box reaches into it.  False on a GEOS failure.
+ */
+static bool cell_update(nester *n, size_t sheet, size_t piece, size_t turn, room_grid *grid,
+                        size_t c)
+{
+    double box[4];
+    nest_cell_box(n, grid, c, box);
+    for (size_t k = grid->applied[c]; grid->free[c] && k < n->placed_count; k++) {
+        if (n->sheet_of[k] != sheet)
+            continue;
+        placed *p = &n->placements[k];
+        if (!nfp_may_reach(n, p, piece, turn, box))
+            continue; /* too far away to matter: its no-fit polygon is never made */
+        if (by_union(n, p->piece, p->turn, piece, turn, k)) {
+            const GEOSGeometry *nfp = nest_nfp_of(n, p->piece, p->turn, piece, turn);
+            if (!nfp || (reaches(n->geos, nfp, p->at, box) &&
+                         !cut_out(n->geos, &grid->free[c], nfp, p->at)))
+                return false;
+            grid->cut_by[c] = k + 1;
+            continue;
+        }
+        const GEOSGeometry *sums = nest_sums_of(n, p->piece, p->turn, piece, turn);
+        int count = sums ? GEOSGetNumGeometries_r(n->geos, sums) : -1;
+        if (count < 0)
+            return false;
+        for (int q = 0; q < count && grid->free[c]; q++) {
+            const GEOSGeometry *sum = GEOSGetGeometryN_r(n->geos, sums, q);
+            if (!reaches(n->geos, sum, p->at, box))
+                continue;
+            if (!cut_out(n->geos, &grid->free[c], sum, p->at))
+                return false;
+            grid->cut_by[c] = k + 1;
+        }
+    }
+    grid->applied[c] = n->placed_count;
+    return true;
+}
+
+/* The leftmost, then lowest, vertex of a region's rings; false when it has none. */
+static bool leftmost(GEOSContextHandle_t geos, const GEOSGeometry *region, ur_vec2 *best)
+{
+    bool found = false;
+    int parts = GEOSGetNumGeometries_r(geos, region);
+    for (int k = 0; k < parts; k++) {
+        const GEOSGeometry *part = GEOSGetGeometryN_r(geos, region, k);
+        if (GEOSGeomTypeId_r(geos, part) != GEOS_POLYGON || GEOSisEmpty_r(geos, part))
+            continue;
+        int holes = GEOSGetNumInteriorRings_r(geos, part);
+        for (int r = -1; r < holes; r++) {
+            const GEOSGeometry *ring =
+                r < 0 ? GEOSGetExteriorRing_r(geos, part) : GEOSGetInteriorRingN_r(geos, part, r);
+            const GEOSCoordSequence *sequence = ring ? GEOSGeom_getCoordSeq_r(geos, ring) : NULL;
+            unsigned size = 0;
+            if (!sequence || !GEOSCoordSeq_getSize_r(geos, sequence, &size))
+                continue;
+            for (unsigned i = 0; i < size; i++) {
+                ur_vec2 p;
+                GEOSCoordSeq_getXY_r(geos, sequence, i, &p.x, &p.y);
+                if (!found || p.x < best->x - 1e-9 || (p.x <= best->x + 1e-9 && p.y < best->y)) {
+                    *best = p;
+                    found = true;
+                }
+            }
+        }
+    }
+    return found;
+}
+
+/* Whether p is left of best, or as far left and lower. */
+static bool further_left(ur_vec2 p, ur_vec2 best)
+{
+    return p.x < best.x - 1e-9 || (p.x <= best.x + 1e-9 && p.y < best.y);
+}
+
+/*
+ * The best place for piece at turn on sheet: the leftmost, then lowest,
+ * feasible one.  Columns of cells are looked at from the left; the first
+ * with room holds it (the columns after it lie further right).
+ */
+static bool place_on(nester *n, size_t sheet, size_t piece, size_t turn, ur_vec2 *at)
+{
+    double fit[4];
+    if (sheet >= n->sheet_count) { /* empty: the inner-fit rectangle's lower left corner */
+        if (!nest_inner_fit_box(n, sheet, nest_shape_of(n, piece, turn), fit))
+            return false;
+        *at = ur_vec2_make(fit[0], fit[1]);
+        return true;
+    }
+    size_t slot = taken_slot(n, sheet, piece, turn);
+    room_grid *grid = &n->rooms[slot];
+    if (n->full[slot])
+        return false;
+    if (!grid->cols && !grid_make(n, sheet, piece, turn, grid))
+        return false; /* it does not fit the sheet, or no memory: no place */
+    for (size_t i = 0; i < grid->cols; i++) {
+        bool found = false;
+        for (size_t c = i * grid->rows; c < (i + 1) * grid->rows; c++) {
+            if (!grid->free[c])
+                continue;
+            if (!cell_update(n, sheet, piece, turn, grid, c)) {
+                nest_grid_free(n->geos, grid); /* GEOS failed: better no place than an overlap */
+                return false;
+            }
+            ur_vec2 p = {0, 0};
+            if (grid->free[c] && leftmost(n->geos, grid->free[c], &p) &&
+                (!found || further_left(p, *at))) {
+                *at = p;
+                found = true;
+            }
+        }
+        if (found)
+            return true;
+    }
+    n->full[slot] = true;
+    return false;
+}
+
+/* How far the parts placed so far reach along the roll (the stock sheet). */
+double nest_roll_length(const nester *n)
+{
+    double length = 0;
+    for (size_t k = 0; k < n->placed_count; k++) {
+        if (n->sheet_of[k] < n->remnant_count)
+            continue;
+        const placed *p = &n->placements[k];
+        length = fmax(length, p->at.x + nest_shape_of(n, p->piece, p->turn)->box.max.x);
+    }
+    return length;
+}
+
+/*
+ * Places one piece: the first sheet it fits, at its best turn there (or at
+ * turn held, unless that is ANY_TURN); a new sheet otherwise.
+ */
+ur_status nest_place_piece(nester *n, size_t piece, size_t held)
+{
+    for (size_t sheet = 0; sheet <= n->sheet_count; sheet++) {
+        if (sheet == n->sheet_count && n->options->max_sheets &&
+            n->sheet_count - n->remnant_count >= n->options->max_sheets)
+            return UR_OK; /* not placed: the caller lists it */
+        bool found = false;
+        ur_vec2 best = {0, 0};
+        size_t best_turn = 0;
+        double width, height;
+        nest_sheet_size(n, sheet, &width, &height);
+        double room = (width - 2 * n->options->margin) * (height - 2 * n->options->margin);
+        if (sheet < n->sheet_count &&
+            n->sheet_area[sheet] + nest_shape_of(n, piece, 0)->area > room)
+            continue; /* not enough area left on it, whatever the shapes */
+        ur_vec2 best_key = {0, 0};
+        double best_reach = 0, length = nest_roll_length(n);
+        size_t turns = n->classes[n->class_of[piece]].turn_count;
+        /* A held turn is tried alone: a cheaper try, and one the greedy choice would not make. */
+        size_t first = held < turns ? held : 0, last = held < turns ? held + 1 : turns;
+        for (size_t t = first; t < last; t++) {
+            ur_vec2 at = {0, 0};
+            if (!place_on(n, sheet, piece, t, &at))
+                continue;
+            /*
+             * Turns compare by where the part itself lies (its box's lower
+             * left corner), not by its origin, which sits elsewhere in each.
+             */
+            const nest_shape *shape = nest_shape_of(n, piece, t);
+            ur_vec2 key = {at.x + shape->box.min.x, at.y + shape->box.min.y};
+            /*
+             * On a roll, first the turn that lengthens the strip least (as
+             * far as the strip or the part reaches): a long part laid
+             * across it rather than along.
+             */
+            double reach = n->options->roll_width > 0 ? fmax(length, at.x + shape->box.max.x) : 0;
+            /* Ties (to a micrometre: rounding) go to the earlier turn. */
+            if (!found || reach < best_reach - 1e-3 ||
+                (reach <= best_reach + 1e-3 &&
+                 (key.x < best_key.x - 1e-3 ||
+                  (key.x <= best_key.x + 1e-3 && key.y < best_key.y - 1e-3)))) {
+                found = true;
+                best = at;
+                best_key = key;
+                best_reach = reach;
+                best_turn = t;
+            }
+        }
+        if (found) {
+            n->placements[n->placed_count] = (placed){piece, best_turn, best};
+            n->sheet_of[n->placed_count++] = sheet;
+            if (sheet == n->sheet_count)
+                n->sheet_count++;
+            n->sheet_area[sheet] += nest_shape_of(n, piece, 0)->area;
+            return UR_OK;
+        }
+        if (sheet == n->sheet_count) /* it fits no empty sheet either */
+            return ur_error_set(n->error, UR_ERROR_INPUT,
+                                "piece %s (%.1f x %.1f mm) does not fit the %.1f x %.1f mm sheet "
+                                "(%.1f mm margin) in any allowed turn; give a larger sheet with "
+                                "--sheet WxH",
+                                n->pieces[piece].name, ur_box_width(n->pieces[piece].box),
+                                ur_box_height(n->pieces[piece].box), n->options->sheet_width,
+                                n->options->sheet_height, n->options->margin);
+    }
+    return UR_OK;
+}
