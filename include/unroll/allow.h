@@ -5,8 +5,8 @@
  * A piece is a set of paths in its own plane coordinates (millimetres, y up),
  * each tagged with the operation the cutter performs on it: the net's
  * outline (CUT), its rulings and folds (SCORE), and what the material needs
- * to take the 3D shape again (DESIGN.md section 4): joints and labels on
- * seams, kerfing cuts, overlap allowances, bending kerfs, kerf compensation
+ * to take the 3D shape again (docs/design.md, section 5): joints and labels
+ * on seams, kerfing cuts, overlap allowances, bending kerfs, kerf compensation
  * and holding bridges.  Each allowance added is recorded on the piece with
  * the reason for it, for the report.
  *

@@ -4,11 +4,13 @@
  * The exact method integrates the geodesic curvature of the base curve (an
  * adaptive high-order ODE integrator from GSL) to lay the curve flat with its
  * arc length, then lays each ruling off at its 3D angle and length.  The two
- * discrete methods are those of the paper: the triangle method keeps the
- * triangles A_i A_i+1 P_i+1 between consecutive rulings and neglects the thin
- * sliver P_i P_i+1 A_i (the net comes out smaller than the surface); the quad
- * method flattens each twisted quadrilateral P_i P_i+1 A_i+1 A_i hinged on
- * its longer diagonal (the net comes out larger).
+ * discrete methods are those of the seed paper ([Seed2018] in
+ * docs/bibliography.md; docs/algorithms.md, section 5): the triangle method
+ * keeps the triangles A_i A_i+1 P_i+1 between consecutive rulings and
+ * neglects the thin sliver P_i P_i+1 A_i (the net comes out smaller than the
+ * surface); the quad method flattens each twisted quadrilateral
+ * P_i P_i+1 A_i+1 A_i hinged on its longer diagonal (the net comes out
+ * larger).
  *
  * A net that would overlap itself is split into the fewest pieces that do
  * not; the cut rulings are recorded as seams.
@@ -170,9 +172,10 @@ void ur_net_free(ur_net *net);
 bool ur_outline_is_simple(const ur_vec2 *ring, size_t count);
 
 /*
- * The paper's observation, measured: the triangle and quad methods against
- * the exact net as the number of parts n grows.  Method k of every array is
- * 0 triangle, 1 quad, 2 exact (UR_COMPARE_TRIANGLE, ...).
+ * The seed paper's observation ([Seed2018]), measured: the triangle and
+ * quad methods against the exact net as the number of parts n grows.
+ * Method k of every array is 0 triangle, 1 quad, 2 exact
+ * (UR_COMPARE_TRIANGLE, ...).
  */
 enum { UR_COMPARE_TRIANGLE, UR_COMPARE_QUAD, UR_COMPARE_EXACT, UR_COMPARE_METHODS };
 

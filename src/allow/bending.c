@@ -1,6 +1,6 @@
 /*
- * bending.c: bending kerfs (DESIGN.md section 4) where a developed surface
- * bends tighter than the material's smallest bend radius.
+ * bending.c: bending kerfs (docs/algorithms.md, section 13) where a
+ * developed surface bends tighter than the material's smallest bend radius.
  *
  * The bend radius R at the ruling of parameter u is the one `unroll
  * analyze` reports (ur_analyze_bend_radius): the smallest radius of normal

@@ -1,8 +1,8 @@
 /*
  * relief.c: kerfing cuts where a net under-covers its surface and overlap
- * allowances where it over-covers it (DESIGN.md sections 3 and 4; the
- * paper: "in the first case overlaps must be provided, in the second case
- * we have to cut (kerfing)").
+ * allowances where it over-covers it (docs/algorithms.md, section 12; the
+ * seed paper, [Seed2018] in docs/bibliography.md: "in the first case
+ * overlaps must be provided, in the second case we have to cut (kerfing)").
  *
  * Which is which.  The strain of a flattening is that of the map from the
  * 3D surface to the flat net (flatten.h): sigma < 1 means the flat net is

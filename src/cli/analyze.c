@@ -1,8 +1,9 @@
 /*
  * analyze.c: 'unroll analyze SURFACE ...' (is it developable, its Gaussian
  * curvature, bend radii, domain of existence and edge of regression) and
- * 'unroll compare SURFACE ...' (the paper's discrete methods against the
- * exact net as n grows).  Both print their findings on standard output.
+ * 'unroll compare SURFACE ...' (the discrete methods of the seed paper,
+ * [Seed2018] in docs/bibliography.md, against the exact net as n grows).
+ * Both print their findings on standard output.
  */
 #include "cli.h"
 #include "domain.h"

@@ -1,5 +1,6 @@
 /*
- * compare.c: the paper's observation, measured.  For n = n_min, 2 n_min, ...
+ * compare.c: the seed paper's observation ([Seed2018] in
+ * docs/bibliography.md), measured.  For n = n_min, 2 n_min, ...
  * the triangle and quad nets are compared with the exact one: flat area
  * against the 3D area, flat rail lengths against the 3D arc lengths, and how
  * far each boundary point lies from its place in the exact net.

@@ -30,7 +30,7 @@ void strip_free(strip *s);
  */
 ur_status develop_exact_at(ur_ruled *ruled, strip *s, ur_error *error);
 
-/* The paper's triangle and quad methods (discrete.c). */
+/* The triangle and quad methods of [Seed2018] (docs/bibliography.md; discrete.c). */
 ur_status develop_discrete(ur_ruled *ruled, const ur_develop_options *options, strip *s,
                            ur_error *error);
 

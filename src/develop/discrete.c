@@ -1,12 +1,13 @@
 /*
- * discrete.c: the paper's two discrete unrollings of a ruled surface cut into
- * n parts along its rulings, P_i on rail a and A_i on rail b (for a tangent
- * developable P_i on the edge of regression and A_i = P_i + L t_i).
+ * discrete.c: the two discrete unrollings of the seed paper ([Seed2018] in
+ * docs/bibliography.md; docs/algorithms.md, section 5) of a ruled surface
+ * cut into n parts along its rulings, P_i on rail a and A_i on rail b (for a
+ * tangent developable P_i on the edge of regression and A_i = P_i + L t_i).
  *
  * Triangle method: keep triangle A_i A_i+1 P_i+1 and neglect the sliver
  * P_i P_i+1 A_i, which is thin because the tangent at P_i passes close to
  * P_i+1.  Each triangle is laid down with its vertex A_i on the previous one
- * and its side A_i P_i+1 along the previous ruling A_i P_i (the paper's
+ * and its side A_i P_i+1 along the previous ruling A_i P_i ([Seed2018]'s
  * "points 1, 2, B aligned").  The net is smaller than the surface.
  *
  * Quad method: flatten each twisted quadrilateral P_i P_i+1 A_i+1 A_i keeping

@@ -2,9 +2,9 @@
  * dxf.c: the DXF format behind writer.h, ASCII, R12 or R2000.
  *
  * R12 (AC1009) is what every cutter program reads: some Ruida/RDWorks and
- * LaserWeb versions read nothing newer (DESIGN.md §11), so it is the
- * default, with the fewest sections a reader needs: HEADER, TABLES (LTYPE,
- * LAYER), ENTITIES.  R2000 (AC1015) is for CAD programs that want
+ * LaserWeb versions read nothing newer (docs/design.md, section 8), so it
+ * is the default, with the fewest sections a reader needs: HEADER, TABLES
+ * (LTYPE, LAYER), ENTITIES.  R2000 (AC1015) is for CAD programs that want
  * LWPOLYLINE and true colour; it has to carry handles, owners, subclass
  * markers, the standard tables and blocks and an OBJECTS section with the
  * layouts, or AutoCAD and ezdxf's audit complain.

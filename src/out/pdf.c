@@ -1,10 +1,11 @@
 /*
  * pdf.c: the PDF format behind writer.h, written with libharu (libhpdf).
  *
- * For print-driver lasers (Epilog, ULS) and Glowforge (DESIGN.md §6, §11):
- * one page per sheet, the page exactly the sheet (1 mm = 72 / 25.4 pt),
- * every path a vector stroke in its operation's colour and line width as
- * the machine gives them, so hairlines stay the hairlines the driver cuts.
+ * For print-driver lasers (Epilog, ULS) and Glowforge (docs/design.md,
+ * sections 6 and 8): one page per sheet, the page exactly the sheet
+ * (1 mm = 72 / 25.4 pt), every path a vector stroke in its operation's
+ * colour and line width as the machine gives them, so hairlines stay the
+ * hairlines the driver cuts.
  *
  * libharu takes dash lengths only as whole units of user space, at most
  * 100 of them, and writes every number with five decimals, clamped to

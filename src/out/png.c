@@ -1,6 +1,6 @@
 /*
  * png.c: the PNG preview behind writer.h (cairo): what a user looks at
- * before cutting (DESIGN.md §6).
+ * before cutting (docs/design.md, section 6).
  *
  * Each sheet is one picture at the resolution asked for (1 mm on the
  * picture is a millimetre on the sheet at that dpi), white, its edge grey.

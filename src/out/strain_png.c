@@ -1,6 +1,6 @@
 /*
  * strain_png.c: the sheets as PNG pictures (cairo) with every piece shaded
- * by its strain, for `--strain-png` (DESIGN.md §6, PNG preview).
+ * by its strain, for `--strain-png` (docs/design.md, section 6, Writers).
  *
  * Each picture is one sheet and nothing else, at the resolution asked for:
  * a 600 x 400 mm sheet at 96 dpi is 2268 x 1512 pixels, so a millimetre on

@@ -1,11 +1,12 @@
 /*
  * svg.c: the SVG format behind writer.h, written with libxml2's xmlTextWriter.
  *
- * What laser software expects (DESIGN.md §6, §11): physical width and height
- * in mm with a viewBox in mm, so 1 user unit = 1 mm; one Inkscape layer group
- * per operation with the machine's label, colour and hairline width (LightBurn
- * assigns layers by stroke colour alone); no fill; every path on its own with
- * absolute coordinates, since some cutter programs mishandle relative ones.
+ * What laser software expects (docs/design.md, sections 6 and 8): physical
+ * width and height in mm with a viewBox in mm, so 1 user unit = 1 mm; one
+ * Inkscape layer group per operation with the machine's label, colour and
+ * hairline width (LightBurn assigns layers by stroke colour alone); no fill;
+ * every path on its own with absolute coordinates, since some cutter
+ * programs mishandle relative ones.
  * SVG's y axis points down, so y is flipped against the sheet height.
  *
  * The XML goes to a memory buffer that is copied to the file after each

@@ -1,7 +1,8 @@
 /*
  * adjust.c: moving rail 2 as little as needed so that the developable strip
- * exists along the whole of rail 1 (what the Tapeworm script the paper used
- * does by hand).
+ * exists along the whole of rail 1 (what the Tapeworm script the seed paper
+ * used does by hand: [Tapeworm] and [Seed2018] in docs/bibliography.md;
+ * docs/algorithms.md, section 3).
  *
  * Each gap of the domain of existence is widened into a window of rail 1
  * that reaches into the strip on both sides (or to an end of rail 1, where

@@ -1391,7 +1391,8 @@ def seams_get_one_tab_and_matching_labels(work):
 
 @test
 def strain_gets_kerfing_and_overlaps(work):
-    """The paper's two cases at the command line: the triangle method's net
+    """The two cases of the seed paper ([Seed2018] in docs/bibliography.md)
+    at the command line: the triangle method's net
     (coverage below 1) gets kerfing cuts only, the quad method's (above 1)
     overlaps only, the exact net neither; a steep hypar in cardboard both."""
     helicoid = ["helicoid", "--radius", "30", "--pitch", "60", "--turns", "0.25", "--width", "25",

@@ -1,14 +1,15 @@
 /*
- * test_compare.c: ur_compare, the paper's observation measured, and its plot
- * and CSV writers.
+ * test_compare.c: ur_compare, the seed paper's observation ([Seed2018] in
+ * docs/bibliography.md) measured, and its plot and CSV writers.
  *
- * On DESIGN.md's helicoid (R 30, pitch 20 pi, a quarter turn, L 25) the
- * triangle net must come out smaller and the quad net larger than the
- * surface at every n, both converging, with DESIGN's figures at n = 16.  On a
- * frustum of a right circular cone the quad method flattens planar
- * trapezoids, so its net is the inscribed polygonal frustum and every figure
- * has a closed form.  Expected values come from closed forms, DESIGN.md or
- * rigid-motion invariants computed here, never from the code under test.
+ * On the reference helicoid of docs/algorithms.md, section 5 (R 30, pitch
+ * 20 pi, a quarter turn, L 25) the triangle net must come out smaller and the
+ * quad net larger than the surface at every n, both converging, with the
+ * reference figures at n = 16.  On a frustum of a right circular cone the
+ * quad method flattens planar trapezoids, so its net is the inscribed
+ * polygonal frustum and every figure has a closed form.  Expected values
+ * come from closed forms, the reference figures or rigid-motion invariants
+ * computed here, never from the code under test.
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -163,7 +164,7 @@ static void test_helicoid_sign_pattern(void **state)
     assert_exact_is_exact(table);
 }
 
-/* DESIGN.md: n = 16 gives triangle 436.1, quad 522.8, surface 465.68 mm^2. */
+/* docs/algorithms.md, section 5: n = 16 gives triangle 436.1, quad 522.8, surface 465.68 mm^2. */
 static void test_helicoid_design_figures(void **state)
 {
     const ur_compare_table *table = &((fixture *)*state)->helicoid_table;

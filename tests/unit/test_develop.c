@@ -1,7 +1,8 @@
 /*
  * test_develop.c: curves, surface areas and developments against closed
- * forms, the paper's observations on the discrete methods, and the splitting
- * of nets that would overlap themselves.
+ * forms, the seed paper's observations on the discrete methods ([Seed2018] in
+ * docs/bibliography.md), and the splitting of nets that would overlap
+ * themselves.
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -161,7 +162,7 @@ static void test_dense_sampling_stays_exact(void **state)
     ur_ruled_free(&ruled);
 }
 
-/* The paper: triangle net < surface < quad net, both errors shrinking with n. */
+/* [Seed2018]: triangle net < surface < quad net, both errors shrinking with n. */
 static void test_discrete_methods(void **state)
 {
     (void)state;
@@ -178,7 +179,7 @@ static void test_discrete_methods(void **state)
         assert_true(quad > surface);
         assert_true(triangle > previous_triangle);
         assert_true(quad < previous_quad);
-        if (parts[k] == 16) { /* DESIGN.md's figures */
+        if (parts[k] == 16) { /* the reference figures, docs/algorithms.md section 5 */
             assert_relative(triangle, 436.1, 2e-4);
             assert_relative(quad, 522.8, 2e-4);
         }

@@ -157,7 +157,7 @@ static void test_router(void **state)
     assert_true(machine.bed_width == 2440.0 && machine.bed_height == 1220.0);
     assert_true(machine.kerf == 3.175);
     assert_true(machine.spacing == 6.35);
-    assert_true(machine.spacing >= machine.kerf); /* DESIGN.md section 11 */
+    assert_true(machine.spacing >= machine.kerf); /* docs/design.md section 8 */
     assert_true(machine.margin == 10.0);
     assert_string_equal(machine.styles[UR_OP_CUT].colour, "#FF0000");
 }
@@ -200,13 +200,13 @@ static void test_plywood(void **state)
     expect_stock(&material, 0, 600.0, 400.0);
     expect_stock(&material, 1, 1220.0, 610.0);
     expect_stock(&material, 2, 2440.0, 1220.0);
-    assert_true(material.kerf_laser == 0.20); /* DESIGN.md section 11 */
+    assert_true(material.kerf_laser == 0.20); /* docs/design.md section 8 */
     assert_true(material.kerf_router == 0.0); /* the router's bit decides */
     assert_int_equal(material.grain, UR_GRAIN_ACROSS);
     assert_true(material.grain_tolerance == 15.0);
     /* Plywood bends tighter across its face grain than along it. */
     assert_true(material.bend_radius_across_grain < material.bend_radius_with_grain);
-    /* DESIGN.md section 4: slit about 5 t, bridge 1 t, rows 0.5 t apart. */
+    /* docs/design.md section 8: slit about 5 t, bridge 1 t, rows 0.5 t apart. */
     assert_true(material.hinge_cut_length == 15.0);
     assert_true(material.hinge_connection == 3.0);
     assert_true(material.hinge_distance == 1.5);

@@ -1,12 +1,13 @@
 /*
  * test_relief.c: kerfing cuts and overlap allowances (relief.c) and the
- * strain directions they follow (net.c).  The paper's two cases: a helicoid
- * developed with the triangle method under-covers and gets kerfing slits,
- * with the quad method over-covers and gets overlaps, exactly developed gets
- * neither, the counts following the documented formula recomputed here from
- * the net's own figures; a hyperbolic paraboloid flattened with ARAP in a
- * cardboard-like limit gets both, every slit where it belongs and inside
- * the outline by the margin, measured here independently.
+ * strain directions they follow (net.c).  The two cases of [Seed2018]
+ * (docs/bibliography.md): a helicoid developed with the triangle method
+ * under-covers and gets kerfing slits, with the quad method over-covers and
+ * gets overlaps, exactly developed gets neither, the counts following the
+ * documented formula recomputed here from the net's own figures; a hyperbolic
+ * paraboloid flattened with ARAP in a cardboard-like limit gets both, every
+ * slit where it belongs and inside the outline by the margin, measured here
+ * independently.
  */
 #include "test_support.h"
 

@@ -162,7 +162,7 @@ static void set_style(ur_machine *machine, ur_op op, const char *layer, const ch
     machine->styles[op].line_width = width;
 }
 
-/* The LightBurn palette of DESIGN.md §11, hairlines but for engraving. */
+/* The LightBurn palette of docs/design.md section 8, hairlines but for engraving. */
 static void make_machine(ur_machine *machine)
 {
     memset(machine, 0, sizeof *machine);
