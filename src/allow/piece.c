@@ -1,11 +1,11 @@
 /*
  * piece.c: pieces (what will be cut) and building one from a flat net.
  *
- * For now the only allowance is none: the net's outline becomes the CUT path
- * and, on request, its rulings become SCORE lines.  Glue tabs, kerfing and
- * overlaps will be added here, fed by the same net.  A flattened net's
- * per-triangle strain comes along for the strain picture, in the same
- * coordinates as the outline.
+ * The net's outline becomes the CUT path and, on request, its rulings
+ * become SCORE lines; the allowances (joints.c, relief.c, bending.c and
+ * the others of this module) are added to the piece afterwards.  A
+ * flattened net's per-triangle strain comes along for the strain picture,
+ * in the same coordinates as the outline.
  */
 #include "allow_internal.h"
 

@@ -4,8 +4,9 @@
  * Each piece is turned so that its smallest enclosing rectangle (GEOS) lies
  * with its long side horizontal, or a quarter turn from that when only then
  * it fits.  Pieces go tallest first, left to right, a new row when the row is
- * full and a new sheet when the sheet is.  True-shape nesting will replace
- * this behind the same interface.
+ * full and a new sheet when the sheet is.  The command nests true shapes
+ * (nest.c); this quick layout stays for callers that want rows, such as
+ * bench_develop.
  */
 #include "nest_internal.h"
 
