@@ -111,8 +111,11 @@
  * (1 - sigma2 or sigma1 - 1; 1 - coverage or coverage - 1), limit the
  * material's, where the region's centre; a warning when fewer slits fit
  * than the formula asks for.
+ *
+ * This file lays the slits out over regions and rulings; relief_slits.c
+ * cuts them and records each region.
  */
-#include "allow_internal.h"
+#include "relief_internal.h"
 
 #include "../base/union_find.h"
 
@@ -131,407 +134,8 @@
 #define RELIEF_UNNOTICED 0.25
 
 #define UR_RELIEF_NEGLIGIBLE 1e-4
-#define RELIEF_LINES 64      /* lines across a region on which its deficit is measured */
-#define RELIEF_MAX_SLITS 512 /* per region: beyond this the limits make no sense */
-#define RELIEF_SMOOTHING 4   /* passes smoothing the axes before they are sorted into sectors */
-
-typedef enum relief_kind { RELIEF_NONE, RELIEF_KERFING, RELIEF_OVERLAP } relief_kind;
-
-/* What every step needs: the piece, the limits and the net's outline in GEOS. */
-typedef struct relief_job {
-    GEOSContextHandle_t geos;
-    ur_piece *piece;
-    const ur_net *net;
-    const ur_relief_limits *limits;
-    GEOSGeometry *outline; /* the net's outline as a polygon */
-    GEOSGeometry *inner;   /* the outline buffered inward by margin (maybe empty) */
-    GEOSGeometry *keepout; /* the relief cut so far buffered by margin; NULL for none */
-    double size;           /* the diagonal of the outline's box */
-    ur_error *error;
-} relief_job;
-
-/* What a region (or a whole development) needs relieved, and where. */
-typedef struct relief_need {
-    relief_kind kind;
-    double value, limit; /* the largest strain, the material's limit */
-    double length;       /* deficit or excess, mm */
-    ur_vec2 where;
-    size_t wanted, cut; /* slits the formula asks for, slits cut */
-} relief_need;
-
-static ur_status geos_failed(relief_job *job, const char *what)
-{
-    return ur_error_set(job->error, UR_ERROR_INTERNAL, "GEOS failed to %s for piece '%s'", what,
-                        job->piece->name);
-}
-
-static ur_vec2 perpendicular(ur_vec2 v)
-{
-    return ur_vec2_make(-v.y, v.x);
-}
-
-/* ---- GEOS helpers --------------------------------------------------- */
-
-/* The points of a line string or a ring (closed: its last point is dropped); false if none. */
-static bool geometry_points(GEOSContextHandle_t geos, const GEOSGeometry *line, ur_points *points,
-                            bool drop_last, ur_error *error)
-{
-    const GEOSCoordSequence *sequence = GEOSGeom_getCoordSeq_r(geos, line);
-    unsigned size = 0;
-    if (!sequence || !GEOSCoordSeq_getSize_r(geos, sequence, &size))
-        return false;
-    if (drop_last && size > 0)
-        size--;
-    for (unsigned i = 0; i < size; i++) {
-        ur_vec2 p;
-        GEOSCoordSeq_getXY_r(geos, sequence, i, &p.x, &p.y);
-        if (ur_points_push(points, p, error) != UR_OK)
-            return false;
-    }
-    return true;
-}
-
-/* The ends of each line string part of geometry, in order: parts[2 k], parts[2 k + 1]. */
-static ur_status line_parts(relief_job *job, const GEOSGeometry *geometry, ur_points *ends)
-{
-    int parts = GEOSGetNumGeometries_r(job->geos, geometry);
-    for (int k = 0; k < parts; k++) {
-        const GEOSGeometry *part = GEOSGetGeometryN_r(job->geos, geometry, k);
-        if (!part || GEOSGeomTypeId_r(job->geos, part) != GEOS_LINESTRING)
-            continue;
-        ur_points points = {0};
-        if (!geometry_points(job->geos, part, &points, false, job->error)) {
-            ur_points_free(&points);
-            return geos_failed(job, "read a line");
-        }
-        ur_status status = UR_OK;
-        if (points.count >= 2) {
-            status = ur_points_push(ends, points.items[0], job->error);
-            if (status == UR_OK)
-                status = ur_points_push(ends, points.items[points.count - 1], job->error);
-        }
-        ur_points_free(&points);
-        if (status != UR_OK)
-            return status;
-    }
-    return UR_OK;
-}
-
-/* The ends of the parts of segment a b inside area and, unless avoid is NULL, outside avoid. */
-static ur_status clip_segment(relief_job *job, ur_vec2 a, ur_vec2 b, const GEOSGeometry *area,
-                              const GEOSGeometry *avoid, ur_points *ends)
-{
-    ur_vec2 ab[2] = {a, b};
-    GEOSGeometry *line = allow_line(job->geos, ab, 2);
-    GEOSGeometry *inside = line ? GEOSIntersection_r(job->geos, line, area) : NULL;
-    if (inside && avoid) {
-        GEOSGeometry *clear = GEOSDifference_r(job->geos, inside, avoid);
-        GEOSGeom_destroy_r(job->geos, inside);
-        inside = clear;
-    }
-    ur_status status = inside ? line_parts(job, inside, ends) : geos_failed(job, "clip a slit");
-    if (inside)
-        GEOSGeom_destroy_r(job->geos, inside);
-    if (line)
-        GEOSGeom_destroy_r(job->geos, line);
-    return status;
-}
-
-/* Adds the exterior ring of every polygon of geometry as a closed path. */
-static ur_status add_rings(relief_job *job, const GEOSGeometry *geometry, ur_op op)
-{
-    int parts = GEOSGetNumGeometries_r(job->geos, geometry);
-    ur_status status = UR_OK;
-    for (int k = 0; status == UR_OK && k < parts; k++) {
-        const GEOSGeometry *part = GEOSGetGeometryN_r(job->geos, geometry, k);
-        if (!part || GEOSGeomTypeId_r(job->geos, part) != GEOS_POLYGON)
-            continue;
-        const GEOSGeometry *ring = GEOSGetExteriorRing_r(job->geos, part);
-        ur_points points = {0};
-        if (!ring || !geometry_points(job->geos, ring, &points, true, job->error))
-            status = geos_failed(job, "read an overlap zone");
-        else if (points.count >= 3)
-            status =
-                ur_piece_add_path(job->piece, op, points.items, points.count, true, job->error);
-        ur_points_free(&points);
-    }
-    return status;
-}
-
-/* Adds the part of an open polyline inside the outline as paths of op. */
-static ur_status add_clipped_polyline(relief_job *job, const ur_vec2 *points, size_t count,
-                                      ur_op op)
-{
-    GEOSGeometry *line = allow_line(job->geos, points, count);
-    GEOSGeometry *inside = line ? GEOSIntersection_r(job->geos, line, job->outline) : NULL;
-    ur_status status = inside ? UR_OK : geos_failed(job, "clip a dart");
-    GEOSGeometry *merged = inside ? GEOSLineMerge_r(job->geos, inside) : NULL;
-    const GEOSGeometry *use = merged ? merged : inside;
-    int parts = use ? GEOSGetNumGeometries_r(job->geos, use) : 0;
-    for (int k = 0; status == UR_OK && k < parts; k++) {
-        const GEOSGeometry *part = GEOSGetGeometryN_r(job->geos, use, k);
-        if (!part || GEOSGeomTypeId_r(job->geos, part) != GEOS_LINESTRING)
-            continue;
-        ur_points got = {0};
-        if (!geometry_points(job->geos, part, &got, false, job->error))
-            status = geos_failed(job, "read a dart");
-        else if (got.count >= 2)
-            status = ur_piece_add_path(job->piece, op, got.items, got.count, false, job->error);
-        ur_points_free(&got);
-    }
-    if (merged)
-        GEOSGeom_destroy_r(job->geos, merged);
-    if (inside)
-        GEOSGeom_destroy_r(job->geos, inside);
-    if (line)
-        GEOSGeom_destroy_r(job->geos, line);
-    return status;
-}
-
-/* ---- Slits ------------------------------------------------------------ */
-
-/*
- * Adds a relief cut (an open polyline) to the keep-out: no later relief
- * cut comes within margin of it, so that no two cross and no part of the
- * piece is cut loose between them and the outline.
- */
-static ur_status keep_out(relief_job *job, const ur_vec2 *points, size_t count)
-{
-    double distance = fmax(job->limits->margin, 1e-6 * job->size);
-    GEOSGeometry *line = allow_line(job->geos, points, count);
-    GEOSGeometry *zone = line ? GEOSBuffer_r(job->geos, line, distance, 4) : NULL;
-    if (line)
-        GEOSGeom_destroy_r(job->geos, line);
-    if (zone && job->keepout) {
-        GEOSGeometry *joined = GEOSUnion_r(job->geos, job->keepout, zone);
-        GEOSGeom_destroy_r(job->geos, zone);
-        zone = joined;
-        if (joined)
-            GEOSGeom_destroy_r(job->geos, job->keepout);
-    }
-    if (!zone)
-        return geos_failed(job, "keep slits apart");
-    job->keepout = zone;
-    return UR_OK;
-}
-
-/*
- * Adds the relief cuts of one region, the piece's KERF paths from first on,
- * to the keep-out once the region is done: its own slits are parallel and
- * may lie closer than margin to each other.
- */
-static ur_status keep_out_since(relief_job *job, size_t first)
-{
-    ur_status status = UR_OK;
-    for (size_t i = first; status == UR_OK && i < job->piece->path_count; i++)
-        if (job->piece->paths[i].op == UR_OP_KERF)
-            status = keep_out(job, job->piece->paths[i].points, job->piece->paths[i].count);
-    return status;
-}
-
-static ur_status add_cut(relief_job *job, const ur_vec2 *points, size_t count)
-{
-    return ur_piece_add_path(job->piece, UR_OP_KERF, points, count, false, job->error);
-}
-
-/* One KERF slit: the parts of segment a b inside area, those shorter than opening dropped. */
-static ur_status kerfing_slit(relief_job *job, ur_vec2 a, ur_vec2 b, const GEOSGeometry *area,
-                              bool *cut)
-{
-    ur_points ends = {0};
-    ur_status status = clip_segment(job, a, b, area, job->keepout, &ends);
-    *cut = false;
-    for (size_t i = 0; status == UR_OK && i + 1 < ends.count; i += 2) {
-        if (ur_vec2_distance(ends.items[i], ends.items[i + 1]) < job->limits->opening)
-            continue;
-        status = add_cut(job, &ends.items[i], 2);
-        *cut = true;
-    }
-    ur_points_free(&ends);
-    return status;
-}
-
-/*
- * Where an overlap slit from start along unit u may end near `target`
- * (a distance along u): the point of the chord inside the inner outline
- * nearest to it, preferring one short of it.  False when none is.
- */
-static ur_status slit_end(relief_job *job, ur_vec2 start, ur_vec2 u, double length, double target,
-                          double *end, bool *found)
-{
-    ur_points ends = {0};
-    *found = false;
-    ur_status status =
-        clip_segment(job, start, ur_vec2_add_scaled(start, u, length), job->inner, NULL, &ends);
-    double best_below = -1, best_above = INFINITY;
-    for (size_t i = 0; status == UR_OK && i + 1 < ends.count; i += 2) {
-        double a = ur_vec2_dot(ur_vec2_sub(ends.items[i], start), u);
-        double b = ur_vec2_dot(ur_vec2_sub(ends.items[i + 1], start), u);
-        double low = fmin(a, b), high = fmax(a, b);
-        if (low <= target && target <= high)
-            best_below = target;
-        else if (high < target)
-            best_below = fmax(best_below, high);
-        else
-            best_above = fmin(best_above, low);
-    }
-    ur_points_free(&ends);
-    if (best_below > 0) {
-        *end = best_below;
-        *found = true;
-    } else if (isfinite(best_above)) {
-        *end = best_above;
-        *found = true;
-    }
-    return status;
-}
-
-/*
- * One overlap slit (or dart) from start, on the outline, along unit u to
- * the distance `end`, with its zone of width w on the side `side` over the
- * distances zone_from to end.
- */
-static ur_status overlap_slit(relief_job *job, ur_vec2 start, ur_vec2 u, double zone_from,
-                              double end, double w, ur_vec2 side)
-{
-    ur_vec2 tip = ur_vec2_add_scaled(start, u, end);
-    if (job->limits->darts) {
-        double reach = w + 0.01 * end; /* the arms start outside and are clipped to the outline */
-        ur_vec2 base = ur_vec2_add_scaled(start, u, -reach);
-        ur_vec2 v[3] = {ur_vec2_add_scaled(base, side, 0.5 * w * (end + reach) / end), tip,
-                        ur_vec2_add_scaled(base, side, -0.5 * w * (end + reach) / end)};
-        return add_clipped_polyline(job, v, 3, UR_OP_KERF);
-    }
-    ur_vec2 slit[2] = {start, tip};
-    ur_status status = add_cut(job, slit, 2);
-    if (status != UR_OK || !(end - zone_from > 0))
-        return status;
-    ur_vec2 from = ur_vec2_add_scaled(start, u, fmax(zone_from, 0));
-    ur_vec2 zone[4] = {from, tip, ur_vec2_add_scaled(tip, side, w),
-                       ur_vec2_add_scaled(from, side, w)};
-    if (ur_polygon_signed_area(zone, 4) < 0) {
-        ur_vec2 swap = zone[1];
-        zone[1] = zone[3];
-        zone[3] = swap;
-    }
-    GEOSGeometry *polygon = ur_geos_polygon(job->geos, zone, 4);
-    GEOSGeometry *inside = polygon ? GEOSIntersection_r(job->geos, polygon, job->outline) : NULL;
-    status = inside ? add_rings(job, inside, UR_OP_MARK) : geos_failed(job, "mark a zone");
-    if (inside)
-        GEOSGeom_destroy_r(job->geos, inside);
-    if (polygon)
-        GEOSGeom_destroy_r(job->geos, polygon);
-    return status;
-}
-
-/*
- * Shortens the slit from start along u to where it first comes within
- * margin of an earlier relief cut; found false when it starts there or its
- * new end is less than margin from the outline.
- */
-static ur_status clear_length(relief_job *job, ur_vec2 start, ur_vec2 u, double *end, bool *found)
-{
-    ur_points ends = {0};
-    ur_status status =
-        clip_segment(job, ur_vec2_add_scaled(start, u, -1e-3), ur_vec2_add_scaled(start, u, *end),
-                     job->outline, job->keepout, &ends);
-    *found = false;
-    for (size_t i = 0; status == UR_OK && i + 1 < ends.count; i += 2) {
-        double a = ur_vec2_dot(ur_vec2_sub(ends.items[i], start), u);
-        double b = ur_vec2_dot(ur_vec2_sub(ends.items[i + 1], start), u);
-        if (fmin(a, b) > 1e-6 * job->size)
-            continue; /* not the part from the start */
-        *found = fmax(a, b) >= *end - 1e-9 * job->size;
-        if (!*found) { /* shortened: its new end must still be margin inside */
-            *end = fmax(a, b);
-            GEOSGeometry *point =
-                GEOSGeom_createPointFromXY_r(job->geos, start.x + *end * u.x, start.y + *end * u.y);
-            *found = point && GEOSIntersects_r(job->geos, point, job->inner) == 1;
-            if (point)
-                GEOSGeom_destroy_r(job->geos, point);
-        }
-    }
-    ur_points_free(&ends);
-    return status;
-}
-
-/*
- * An overlap slit on the chord a b (both on the outline) whose part in the
- * region lies between distances low and high from a: from the nearer end
- * of the chord through that part.
- */
-static ur_status overlap_on_chord(relief_job *job, ur_vec2 a, ur_vec2 b, double low, double high,
-                                  double w, ur_vec2 side, bool *cut)
-{
-    double length = ur_vec2_distance(a, b);
-    *cut = false;
-    if (!(length > 0))
-        return UR_OK;
-    ur_vec2 u = ur_vec2_scale(ur_vec2_sub(b, a), 1 / length);
-    ur_vec2 start = a;
-    double from = low, target = high;
-    if (low > length - high) { /* the region is nearer b: start there */
-        start = b;
-        u = ur_vec2_scale(u, -1);
-        from = length - high;
-        target = length - low;
-    }
-    double end = 0;
-    bool found = false;
-    ur_status status = slit_end(job, start, u, length, target, &end, &found);
-    if (status == UR_OK && found && job->keepout)
-        status = clear_length(job, start, u, &end, &found);
-    if (status != UR_OK || !found || end < job->limits->opening || end <= from)
-        return status;
-    *cut = true;
-    return overlap_slit(job, start, u, fmin(from, end), end, w, side);
-}
-
-/* ---- Records ---------------------------------------------------------- */
-
-static ur_status record_need(relief_job *job, const relief_need *need, const char *across)
-{
-    ur_allowance_record record = {0};
-    bool kerfing = need->kind == RELIEF_KERFING;
-    record.kind = kerfing ? UR_ALLOWANCE_KERFING : UR_ALLOWANCE_OVERLAP;
-    record.count = need->cut;
-    record.value = need->value;
-    record.limit = need->limit;
-    record.where = need->where;
-    record.warning = need->cut < need->wanted;
-    char missing[96] = "", reason[512];
-    if (record.warning)
-        snprintf(missing, sizeof missing, "; only %zu fit, %.3g mm clear of the outline and slits",
-                 need->cut, job->limits->margin);
-    if (kerfing)
-        snprintf(reason, sizeof reason,
-                 "the net is %.3g mm shorter than the surface %s (forming needs %.3g %% stretch, "
-                 "the material takes %.3g %%): %zu kerfing slits opening up to %.3g mm%s",
-                 need->length, across, 100 * need->value, 100 * need->limit, need->wanted,
-                 job->limits->opening, missing);
-    else
-        snprintf(reason, sizeof reason,
-                 "the net is %.3g mm longer than the surface %s (forming needs %.3g %% "
-                 "compression, the material takes %.3g %%): %zu overlap %s %.3g mm%s",
-                 need->length, across, 100 * need->value, 100 * need->limit, need->wanted,
-                 job->limits->darts ? "darts, each as wide at the outline as"
-                                    : "slits, each lapping",
-                 need->length / (double)need->wanted, missing);
-    size_t length = strlen(reason); /* at most what the record holds */
-    length = length < sizeof record.reason ? length : sizeof record.reason - 1;
-    memcpy(record.reason, reason, length);
-    record.reason[length] = '\0';
-    return ur_piece_record(job->piece, &record, job->error);
-}
-
-/* n = ceil(length / opening), at least 1, at most one per opening of span and RELIEF_MAX_SLITS. */
-static size_t slit_count(double length, double opening, double span)
-{
-    double n = ceil(length / opening - 1e-9);
-    n = fmin(n, fmax(1, floor(span / opening)));
-    n = fmin(n, RELIEF_MAX_SLITS);
-    return n < 1 ? 1 : (size_t)n;
-}
+#define RELIEF_LINES 64    /* lines across a region on which its deficit is measured */
+#define RELIEF_SMOOTHING 4 /* passes smoothing the axes before they are sorted into sectors */
 
 /* ---- Flattened nets: regions of the shading --------------------------- */
 
@@ -650,7 +254,7 @@ static void region_shape(const ur_shading *shading, region *r, relief_need *need
     }
     double angle = 0.5 * atan2(s2, c2);
     r->d = ur_vec2_make(cos(angle), sin(angle));
-    r->n = perpendicular(r->d);
+    r->n = relief_perpendicular(r->d);
     need->where =
         area > 0 ? ur_vec2_scale(centre, 1 / area) : shading->triangles[r->triangles[0]][0];
     r->low = r->across0 = INFINITY;
@@ -716,7 +320,7 @@ static GEOSGeometry *region_geometry(relief_job *job, const ur_shading *shading,
         GEOSGeom_destroy_r(job->geos, collection);
     }
     if (!uni)
-        geos_failed(job, "join a region's triangles");
+        relief_geos_failed(job, "join a region's triangles");
     return uni;
 }
 
@@ -733,13 +337,13 @@ static ur_status region_kerfing(relief_job *job, const region *r, const GEOSGeom
 {
     GEOSGeometry *clip = GEOSIntersection_r(job->geos, area, job->inner);
     if (!clip)
-        return geos_failed(job, "clip a region to the margin");
+        return relief_geos_failed(job, "clip a region to the margin");
     ur_status status = UR_OK;
     for (size_t k = 0; status == UR_OK && k < need->wanted; k++) {
         ur_vec2 a, b;
         line_across(r, r->low + (k + 0.5) * (r->high - r->low) / need->wanted, 1, &a, &b);
         bool cut = false;
-        status = kerfing_slit(job, a, b, clip, &cut);
+        status = relief_kerfing_slit(job, a, b, clip, &cut);
         need->cut += cut;
     }
     GEOSGeom_destroy_r(job->geos, clip);
@@ -751,7 +355,7 @@ static ur_status overlap_line(relief_job *job, ur_vec2 a, ur_vec2 b, const GEOSG
                               double w, ur_vec2 side, bool *cut)
 {
     ur_points chords = {0};
-    ur_status status = clip_segment(job, a, b, job->outline, NULL, &chords);
+    ur_status status = relief_clip_segment(job, a, b, job->outline, NULL, &chords);
     *cut = false;
     for (size_t i = 0; status == UR_OK && i + 1 < chords.count; i += 2) {
         ur_vec2 p = chords.items[i], q = chords.items[i + 1];
@@ -760,7 +364,7 @@ static ur_status overlap_line(relief_job *job, ur_vec2 a, ur_vec2 b, const GEOSG
             continue;
         ur_vec2 u = ur_vec2_scale(ur_vec2_sub(q, p), 1 / length);
         ur_points parts = {0};
-        status = clip_segment(job, p, q, area, NULL, &parts);
+        status = relief_clip_segment(job, p, q, area, NULL, &parts);
         double low = INFINITY, high = -INFINITY;
         for (size_t j = 0; j < parts.count; j++) {
             double along = ur_vec2_dot(ur_vec2_sub(parts.items[j], p), u);
@@ -770,7 +374,7 @@ static ur_status overlap_line(relief_job *job, ur_vec2 a, ur_vec2 b, const GEOSG
         ur_points_free(&parts);
         bool one = false;
         if (status == UR_OK && high > low)
-            status = overlap_on_chord(job, p, q, low, high, w, side, &one);
+            status = relief_overlap_on_chord(job, p, q, low, high, w, side, &one);
         *cut = *cut || one;
     }
     ur_points_free(&chords);
@@ -804,7 +408,7 @@ static ur_status relieve_region(relief_job *job, region *r, relief_kind kind)
     /* A quarter of a slit's opening the material takes by itself: no slit, nothing to say. */
     if (!(need.length > RELIEF_UNNOTICED * job->limits->opening))
         return UR_OK;
-    need.wanted = slit_count(need.length, job->limits->opening, r->high - r->low);
+    need.wanted = relief_slit_count(need.length, job->limits->opening, r->high - r->low);
     GEOSGeometry *area = region_geometry(job, shading, r);
     if (!area)
         return UR_ERROR_INTERNAL;
@@ -813,8 +417,8 @@ static ur_status relieve_region(relief_job *job, region *r, relief_kind kind)
                                               : region_overlaps(job, r, area, &need);
     GEOSGeom_destroy_r(job->geos, area);
     if (status == UR_OK)
-        status = keep_out_since(job, first);
-    return status == UR_OK ? record_need(job, &need, "across this region") : status;
+        status = relief_keep_out_since(job, first);
+    return status == UR_OK ? relief_record_need(job, &need, "across this region") : status;
 }
 
 /* Which relief each triangle asks for, by its dominant strain. */
@@ -997,13 +601,13 @@ static ur_status ruling_slit(relief_job *job, const relief_need *need, double f,
         return UR_OK;
     ur_vec2 u = ur_vec2_scale(ur_vec2_sub(s.end, s.start), 1 / length);
     if (need->kind == RELIEF_KERFING)
-        return kerfing_slit(job, ur_vec2_add_scaled(s.start, u, -1),
-                            ur_vec2_add_scaled(s.end, u, 1), job->inner, cut);
+        return relief_kerfing_slit(job, ur_vec2_add_scaled(s.start, u, -1),
+                                   ur_vec2_add_scaled(s.end, u, 1), job->inner, cut);
     /* The chord of the piece through the ruling: from its start (on the outline) across. */
     ur_points chords = {0};
-    ur_status status =
-        clip_segment(job, ur_vec2_add_scaled(s.start, u, -0.01 * length),
-                     ur_vec2_add_scaled(s.end, u, 0.01 * length), job->outline, NULL, &chords);
+    ur_status status = relief_clip_segment(job, ur_vec2_add_scaled(s.start, u, -0.01 * length),
+                                           ur_vec2_add_scaled(s.end, u, 0.01 * length),
+                                           job->outline, NULL, &chords);
     size_t best = SIZE_MAX;
     double nearest = INFINITY;
     for (size_t i = 0; status == UR_OK && i + 1 < chords.count; i += 2) {
@@ -1017,7 +621,8 @@ static ur_status ruling_slit(relief_job *job, const relief_need *need, double f,
         ur_vec2 a = chords.items[best], b = chords.items[best + 1];
         double chord_length = ur_vec2_distance(a, b);
         double w = need->length / (double)need->wanted;
-        status = overlap_on_chord(job, a, b, 0, chord_length, w, perpendicular(u), cut);
+        status =
+            relief_overlap_on_chord(job, a, b, 0, chord_length, w, relief_perpendicular(u), cut);
     }
     ur_points_free(&chords);
     return status;
@@ -1032,7 +637,7 @@ static ur_status relieve_rulings(relief_job *job, relief_need *need)
     double mean = net->ruling_count ? total / (double)net->ruling_count : 0;
     need->length = mean > 0 ? fabs(net->area_3d - net->flat_area) / mean : 0;
     need->where = outline_centre(net);
-    need->wanted = mean > 0 ? slit_count(need->length, job->limits->opening, INFINITY) : 1;
+    need->wanted = mean > 0 ? relief_slit_count(need->length, job->limits->opening, INFINITY) : 1;
     size_t placed = need->wanted;
     if (net->ruling_count < 2 && placed > net->ruling_count)
         placed = net->ruling_count; /* one ruling or none: no room between rulings */
@@ -1042,7 +647,7 @@ static ur_status relieve_rulings(relief_job *job, relief_need *need)
         status = ruling_slit(job, need, ruling_position(k, placed, net->ruling_count), &cut);
         need->cut += cut;
     }
-    return status == UR_OK ? record_need(job, need, "across its rulings") : status;
+    return status == UR_OK ? relief_record_need(job, need, "across its rulings") : status;
 }
 
 static ur_status relieve_developed(relief_job *job)
@@ -1090,7 +695,7 @@ static ur_status open_job(relief_job *job)
             job->limits->margin > 0
                 ? allow_inside(job->geos, net->outline, net->outline_count, job->limits->margin, 8)
                 : GEOSGeom_clone_r(job->geos, job->outline);
-    return job->outline && job->inner ? UR_OK : geos_failed(job, "buffer the outline");
+    return job->outline && job->inner ? UR_OK : relief_geos_failed(job, "buffer the outline");
 }
 
 static void close_job(relief_job *job)
