@@ -21,6 +21,10 @@
 #include "unroll/develop.h"
 #include "unroll/geom.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /*
  * The circle a path exactly is, or is an arc of, when it is known to be
  * one (a circle or arc read from a file, and what kerf compensation and
@@ -451,5 +455,9 @@ typedef struct ur_bending_options {
 
 ur_status ur_piece_add_bending_kerfs(ur_piece *piece, const ur_net *net, ur_ruled *ruled,
                                      const ur_bending_options *options, ur_error *error);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

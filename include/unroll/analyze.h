@@ -30,6 +30,10 @@
 #include "unroll/geom.h"
 #include "unroll/surface.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /*
  * The curvature at one point r(u, v).  A point where r_u x r_v vanishes (a
  * cone's apex, the edge of regression of a tangent developable with no
@@ -142,5 +146,9 @@ enum { UR_ANALYSIS_PNG_WIDTH = 1000, UR_ANALYSIS_PNG_MAX_HEIGHT = 720 };
  */
 ur_status ur_analysis_png_write(const char *path, ur_ruled *ruled, const ur_analysis *analysis,
                                 const char *title, ur_error *error);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -13,6 +13,10 @@
 #include <stdbool.h>
 #include <stddef.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 #define UR_VERSION "0.1.0"
 
 /*
@@ -97,5 +101,9 @@ void *ur_alloc_array(size_t count, size_t size, ur_error *error);
  */
 void *ur_array_grow(void *items, size_t *capacity, size_t count, size_t item_size, size_t first,
                     ur_error *error);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -19,6 +19,10 @@
 #include "unroll/geom.h"
 #include "unroll/surface.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef enum ur_method { UR_METHOD_EXACT, UR_METHOD_TRIANGLE, UR_METHOD_QUAD } ur_method;
 
 /* "exact", "triangle", "quad"; ur_method_from_name returns -1 when unknown. */
@@ -217,5 +221,9 @@ ur_status ur_compare(ur_ruled *ruled, size_t n_min, size_t n_max, ur_compare_tab
                      ur_error *error);
 
 void ur_compare_table_free(ur_compare_table *table);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

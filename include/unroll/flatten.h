@@ -21,6 +21,10 @@
 #include "unroll/develop.h"
 #include "unroll/mesh.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef enum ur_flatten_method { UR_FLATTEN_ARAP, UR_FLATTEN_LSCM } ur_flatten_method;
 
 /* "arap", "lscm"; ur_flatten_method_from_name returns -1 when unknown. */
@@ -485,5 +489,9 @@ void ur_charts_free(ur_charts *charts);
  * the limits is left as it is.
  */
 void ur_flat_piece_fit_limits(ur_flat_piece *flat, const ur_strip_limits *limits);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -11,6 +11,10 @@
 
 #include "unroll/base.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct ur_vec2 {
     double x, y;
 } ur_vec2;
@@ -162,5 +166,9 @@ typedef struct ur_points {
 
 ur_status ur_points_push(ur_points *points, ur_vec2 point, ur_error *error);
 void ur_points_free(ur_points *points);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

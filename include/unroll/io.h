@@ -17,6 +17,10 @@
 #include "unroll/geom.h"
 #include "unroll/mesh.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* ---- Curves ------------------------------------------------------------ */
 
 /*
@@ -425,5 +429,9 @@ ur_status ur_parts_import(const char *path, const ur_parts_import_options *optio
                           ur_error *error);
 
 void ur_parts_free(ur_parts *parts);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

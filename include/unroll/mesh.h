@@ -16,6 +16,10 @@
 #include "unroll/geom.h"
 #include "unroll/surface.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* No twin: a boundary edge. */
 #define UR_NO_EDGE ((size_t)-1)
 
@@ -248,5 +252,9 @@ ur_status ur_mesh_halve(const ur_mesh *mesh, ur_mesh *halves, ur_error *error);
  * to speak of).
  */
 ur_status ur_mesh_split_along(const ur_mesh *mesh, size_t parts, ur_mesh *split, ur_error *error);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

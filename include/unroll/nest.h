@@ -12,6 +12,10 @@
 #include "unroll/allow.h"
 #include "unroll/geom.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct ur_placement {
     size_t piece_index;
     ur_transform2 transform;
@@ -202,5 +206,9 @@ void ur_split_parts_free(ur_split_parts *parts);
 double ur_sheet_utilisation(const ur_sheet *sheet, const ur_piece *pieces);
 
 void ur_layout_free(ur_layout *layout);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

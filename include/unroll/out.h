@@ -16,6 +16,10 @@
 #include "unroll/io.h"
 #include "unroll/nest.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* The DXF dialects: R12 is what every cutter program reads. */
 typedef enum ur_dxf_version {
     UR_DXF_R12 = 0, /* AC1009: POLYLINE/VERTEX/SEQEND and LINE, no handles */
@@ -335,5 +339,9 @@ typedef struct ur_assembly_options {
  */
 ur_status ur_assembly_write(const ur_net_list *nets, const char *path,
                             const ur_assembly_options *options, ur_error *error);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

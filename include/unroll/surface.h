@@ -19,6 +19,10 @@
 #include "unroll/base.h"
 #include "unroll/geom.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct ur_curve ur_curve;
 
 /* (R cos t, R sin t, pitch t / 2 pi) for t in [t_start, t_end]. */
@@ -232,5 +236,9 @@ ur_status ur_ruled_rail_length(ur_ruled *ruled, int rail, double u_start, double
  * is new (free it with ur_ruled_free); ruled is not changed.
  */
 ur_status ur_ruled_offset(ur_ruled *ruled, double distance, ur_ruled *offset, ur_error *error);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif
