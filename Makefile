@@ -98,7 +98,13 @@ ifeq ($(VALGRIND)$(SANITIZE),11)
 $(error VALGRIND=1 and SANITIZE=1 do not mix: valgrind cannot run ASan's build)
 endif
 
+# libunroll.a, installed: one relocatable object of every library object
+# with the hidden (not UR_API) symbols made local, so that it defines no
+# name outside the public API.  The tests, benches and fuzz targets, which
+# also call internal functions, link the objects themselves (OBJECT_ARCHIVE).
 LIBRARY = $(BUILD)/libunroll.a
+LIBRARY_OBJECT = $(BUILD)/libunroll.o
+OBJECT_ARCHIVE = $(BUILD)/libunroll-objects.a
 # libunroll.so.VERSION, with the links SONAME (what programs load) and
 # libunroll.so (what -lunroll finds).
 SHARED_FILE = $(BUILD)/libunroll.so.$(VERSION)
@@ -111,15 +117,25 @@ INSTALL_CHECK_PREFIX = $(CURDIR)/$(BUILD)/install-check
 
 all: $(PROGRAM) $(SHARED)
 
-# The library's objects go into the shared library too: position-independent.
-$(LIB_OBJECTS): PIC = -fPIC
+# The library's objects go into the shared library too: position-independent,
+# and every symbol hidden that the headers do not mark UR_API.
+$(LIB_OBJECTS): PIC = -fPIC -fvisibility=hidden
 
 $(BUILD)/%.o: %.c
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_ALL) $(PIC) -MMD -MP -c $< -o $@
 
-$(LIBRARY): $(LIB_OBJECTS)
+$(OBJECT_ARCHIVE): $(LIB_OBJECTS)
 	@mkdir -p $(dir $@)
+	rm -f $@
+	ar rcs $@ $^
+
+$(LIBRARY_OBJECT): $(LIB_OBJECTS)
+	$(LD) -r -o $@.whole $^
+	objcopy --localize-hidden $@.whole $@
+	rm -f $@.whole
+
+$(LIBRARY): $(LIBRARY_OBJECT)
 	rm -f $@
 	ar rcs $@ $^
 
@@ -139,22 +155,22 @@ $(PROGRAM): $(CLI_OBJECTS) $(LIBRARY)
 
 # test_support.h and nest_sets.h are shared, header-only: a change to them rebuilds every
 # test (and nest_sets.h, the benches that make the same sets of parts).
-$(BUILD)/tests/%: tests/unit/%.c tests/unit/test_support.h tests/unit/nest_sets.h $(LIBRARY)
+$(BUILD)/tests/%: tests/unit/%.c tests/unit/test_support.h tests/unit/nest_sets.h $(OBJECT_ARCHIVE)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_ALL) $(shell $(PKG_CONFIG) --cflags $(TEST_PACKAGES)) -o $@ $< \
-		$(LIBRARY) $(LDFLAGS_ALL) $(LDLIBS_ALL) $(shell $(PKG_CONFIG) --libs $(TEST_PACKAGES))
+		$(OBJECT_ARCHIVE) $(LDFLAGS_ALL) $(LDLIBS_ALL) $(shell $(PKG_CONFIG) --libs $(TEST_PACKAGES))
 
-$(BUILD)/bench/%: bench/%.c tests/unit/nest_sets.h $(LIBRARY)
+$(BUILD)/bench/%: bench/%.c tests/unit/nest_sets.h $(OBJECT_ARCHIVE)
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS_ALL) -o $@ $< $(LIBRARY) $(LDFLAGS_ALL) $(LDLIBS_ALL)
+	$(CC) $(CFLAGS_ALL) -o $@ $< $(OBJECT_ARCHIVE) $(LDFLAGS_ALL) $(LDLIBS_ALL)
 
-$(BUILD)/fuzz/%: tests/fuzz/%.c $(FUZZ_HEADERS) $(LIBRARY)
+$(BUILD)/fuzz/%: tests/fuzz/%.c $(FUZZ_HEADERS) $(OBJECT_ARCHIVE)
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS_ALL) -fsanitize=fuzzer -o $@ $< $(LIBRARY) $(LDFLAGS_ALL) $(LDLIBS_ALL)
+	$(CC) $(CFLAGS_ALL) -fsanitize=fuzzer -o $@ $< $(OBJECT_ARCHIVE) $(LDFLAGS_ALL) $(LDLIBS_ALL)
 
-$(BUILD)/replay/%: tests/fuzz/%.c tests/fuzz/replay.c $(FUZZ_HEADERS) $(LIBRARY)
+$(BUILD)/replay/%: tests/fuzz/%.c tests/fuzz/replay.c $(FUZZ_HEADERS) $(OBJECT_ARCHIVE)
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS_ALL) -o $@ $< tests/fuzz/replay.c $(LIBRARY) $(LDFLAGS_ALL) $(LDLIBS_ALL)
+	$(CC) $(CFLAGS_ALL) -o $@ $< tests/fuzz/replay.c $(OBJECT_ARCHIVE) $(LDFLAGS_ALL) $(LDLIBS_ALL)
 
 deps:
 	@scripts/install-deps $(if $(filter 1,$(VALGRIND)),valgrind)
@@ -173,12 +189,14 @@ check: deps
 	@$(MAKE) --no-print-directory test
 
 # tests/run-tests builds examples/ against the copy installed in
-# $(INSTALL_CHECK_PREFIX) (tests/install-check).
+# $(INSTALL_CHECK_PREFIX) (tests/install-check) and checks that the
+# libraries export ur_ names only (tests/exported-names).
 test: $(PROGRAM) $(SHARED) $(UNIT_BINARIES) $(REPLAY_BINARIES)
 	@rm -rf $(INSTALL_CHECK_PREFIX)
 	@$(MAKE) --no-print-directory -s install PREFIX=$(INSTALL_CHECK_PREFIX) DESTDIR= >/dev/null
 	@UNROLL=$(PROGRAM) UNIT_TESTS="$(UNIT_BINARIES)" REPLAYS="$(REPLAY_BINARIES)" \
 		VALGRIND="$(VALGRIND)" VALGRIND_SKIP="$(VALGRIND_SKIP)" \
+		EXPORTED="$(LIBRARY) $(SHARED)" \
 		INSTALLED="$(INSTALL_CHECK_PREFIX)" EXAMPLE_CC="$(CC)" EXAMPLE_FLAGS="$(SANITIZE_FLAGS)" \
 		tests/run-tests
 

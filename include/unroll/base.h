@@ -20,6 +20,17 @@ extern "C" {
 #define UR_VERSION "0.1.0"
 
 /*
+ * Marks the public API: the library is built with -fvisibility=hidden, so
+ * that libunroll.so exports only what is declared with UR_API (and the
+ * static archive keeps the rest local too).
+ */
+#if defined(__GNUC__)
+#define UR_API __attribute__((visibility("default")))
+#else
+#define UR_API
+#endif
+
+/*
  * The largest coordinate or length, in mm, taken from any input (1000 km):
  * far beyond any sheet or part, and small enough that squares, cross
  * products and areas of such numbers never overflow.
@@ -40,23 +51,23 @@ typedef struct ur_error {
 } ur_error;
 
 /* Fills error (which may be NULL) with a printf-style message; returns status. */
-ur_status ur_error_set(ur_error *error, ur_status status, const char *format, ...)
+UR_API ur_status ur_error_set(ur_error *error, ur_status status, const char *format, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 3, 4)))
 #endif
     ;
 
 /* Prefixes an existing message with more context, e.g. the option name. */
-ur_status ur_error_prefix(ur_error *error, const char *format, ...)
+UR_API ur_status ur_error_prefix(ur_error *error, const char *format, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 2, 3)))
 #endif
     ;
 
-void ur_error_clear(ur_error *error);
+UR_API void ur_error_clear(ur_error *error);
 
 /* Out-of-memory in one place so every caller words it the same. */
-ur_status ur_error_out_of_memory(ur_error *error);
+UR_API ur_status ur_error_out_of_memory(ur_error *error);
 
 /*
  * Cancellation.  Long computations (the nesting search, ARAP iterations,
@@ -66,12 +77,12 @@ ur_status ur_error_out_of_memory(ur_error *error);
  * leaves no output.  ur_cancel_request only stores to a volatile
  * sig_atomic_t, so a signal handler may call it.
  */
-void ur_cancel_request(void);
-void ur_cancel_reset(void);
-bool ur_cancel_requested(void);
+UR_API void ur_cancel_request(void);
+UR_API void ur_cancel_reset(void);
+UR_API bool ur_cancel_requested(void);
 
 /* UR_OK, or UR_ERROR_CANCELLED with error saying so once ur_cancel_request was called. */
-ur_status ur_cancel_check(ur_error *error);
+UR_API ur_status ur_cancel_check(ur_error *error);
 
 /* What the cutter does with a path.  Writers map each to a layer. */
 typedef enum ur_op {
@@ -85,13 +96,13 @@ typedef enum ur_op {
 } ur_op;
 
 /* "cut", "score", "kerf", "engrave", "mark". */
-const char *ur_op_name(ur_op op);
+UR_API const char *ur_op_name(ur_op op);
 
 /* Inverse of ur_op_name; returns UR_OP_COUNT for an unknown name. */
-ur_op ur_op_from_name(const char *name);
+UR_API ur_op ur_op_from_name(const char *name);
 
 /* Allocation helpers that fill error on failure and return NULL. */
-void *ur_alloc_array(size_t count, size_t size, ur_error *error);
+UR_API void *ur_alloc_array(size_t count, size_t size, ur_error *error);
 
 /*
  * Room for one more item in a growing array of count items: when count has
@@ -99,8 +110,8 @@ void *ur_alloc_array(size_t count, size_t size, ur_error *error);
  * Returns the array (moved or not), or NULL with error set, items then
  * untouched.
  */
-void *ur_array_grow(void *items, size_t *capacity, size_t count, size_t item_size, size_t first,
-                    ur_error *error);
+UR_API void *ur_array_grow(void *items, size_t *capacity, size_t count, size_t item_size,
+                           size_t first, ur_error *error);
 
 #ifdef __cplusplus
 }
