@@ -37,12 +37,18 @@ extern "C" {
  */
 #define UR_LENGTH_MAX 1e9
 
-/* The values double as the command's exit status. */
+/*
+ * What went wrong.  The command maps each to an exit status of its own
+ * (unroll(1), EXIT STATUS); the numbers are not exit statuses.
+ */
 typedef enum ur_status {
     UR_OK = 0,
-    UR_ERROR_INTERNAL = 1, /* out of memory, a library failure, a bug */
-    UR_ERROR_INPUT = 2,    /* bad input: a file, a line, an option */
-    UR_ERROR_CANCELLED = 3 /* ur_cancel_request was called (the command exits 128 + signal) */
+    UR_ERROR_INTERNAL = 1,  /* a library failure, a computation that failed, a bug */
+    UR_ERROR_INPUT = 2,     /* bad input: a file, a line, a value, a missing input file */
+    UR_ERROR_CANCELLED = 3, /* ur_cancel_request was called */
+    UR_ERROR_IO = 4,        /* the system refused an output: no such directory, no
+                               permission, a full disk, a failed write */
+    UR_ERROR_MEMORY = 5     /* out of memory */
 } ur_status;
 
 typedef struct ur_error {
@@ -66,7 +72,7 @@ UR_API ur_status ur_error_prefix(ur_error *error, const char *format, ...)
 
 UR_API void ur_error_clear(ur_error *error);
 
-/* Out-of-memory in one place so every caller words it the same. */
+/* Out-of-memory (UR_ERROR_MEMORY) in one place so every caller words it the same. */
 UR_API ur_status ur_error_out_of_memory(ur_error *error);
 
 /*

@@ -52,7 +52,7 @@ void ur_error_clear(ur_error *error)
 
 ur_status ur_error_out_of_memory(ur_error *error)
 {
-    return ur_error_set(error, UR_ERROR_INTERNAL, "out of memory");
+    return ur_error_set(error, UR_ERROR_MEMORY, "out of memory");
 }
 
 /* Set from a signal handler, read by the loops that poll it: nothing else is safe there. */

@@ -536,7 +536,7 @@ int cli_nest(int argc, char **argv)
     if ((strcmp(n.job.output_path, "-") != 0 && !cli_directory_exists("-o", n.job.output_path)) ||
         (n.job.report_path && strcmp(n.job.report_path, "-") != 0 &&
          !cli_directory_exists("--report", n.job.report_path)))
-        return EXIT_USAGE;
+        return EXIT_IO;
     ur_piece *pieces = NULL;
     size_t count = 0;
     ur_layout layout = {NULL, 0, NULL, 0};

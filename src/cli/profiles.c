@@ -18,7 +18,7 @@ static int list_profiles(void)
     ur_error error;
     if (ur_profile_list(&entries, &count, &error) != UR_OK) {
         cli_message("profiles: %s", error.message);
-        return error.status == UR_ERROR_INPUT ? EXIT_USAGE : EXIT_INTERNAL;
+        return cli_exit_status(&error);
     }
     for (size_t k = 0; k < count; k++)
         printf("%-9s %-22s %s\n          %s\n",
