@@ -51,7 +51,7 @@ endif
 # Recursive (=) so that pkg-config is asked only once install-deps has run.
 CFLAGS_ALL = -std=c11 -D_XOPEN_SOURCE=700 -Wall -Wextra -Wpedantic -Werror \
 	-Wshadow -Wstrict-prototypes $(OPTIMISE) $(SANITIZE_FLAGS) -Iinclude \
-	-DUR_PROFILE_DIR='"$(PROFILEDIR)"' $(shell $(PKG_CONFIG) --cflags $(PACKAGES)) \
+	$(shell $(PKG_CONFIG) --cflags $(PACKAGES)) \
 	-I/usr/include/suitesparse $(CFLAGS)
 LDLIBS_ALL = $(shell $(PKG_CONFIG) --libs $(PACKAGES)) -lcholmod -lhersheyfont -lhpdf -lm $(LDLIBS)
 LDFLAGS_ALL = $(SANITIZE_FLAGS) $(LDFLAGS)

@@ -6,7 +6,9 @@
  * writes them as SVG.
  *
  *   cc develop_frustum.c $(pkg-config --cflags --libs unroll) -o develop_frustum
- *   ./develop_frustum frustum.svg
+ *   ./develop_frustum frustum.svg "$(pkg-config --variable=profiledir unroll)"
+ *
+ * The last argument is where the machine profiles are (the installed ones).
  *
  * The frustum's lateral area is pi (R + r) s with slant s = sqrt((R - r)^2 + h^2):
  * the program fails unless the flat pieces cover exactly that much.
@@ -76,7 +78,8 @@ static ur_status check_area(const frustum_run *run, ur_error *error)
     return UR_OK;
 }
 
-static ur_status run_frustum(frustum_run *run, const char *output, ur_error *error)
+static ur_status run_frustum(frustum_run *run, const char *output, const char *profiles,
+                             ur_error *error)
 {
     ur_status status = make_frustum(run, error);
     ur_develop_options develop;
@@ -88,7 +91,8 @@ static ur_status run_frustum(frustum_run *run, const char *output, ur_error *err
     if (status == UR_OK)
         status = make_pieces(run, error);
     if (status == UR_OK)
-        status = ur_machine_load("co2-60w", &run->machine, error);
+        status =
+            ur_machine_load((const char *const[]){profiles, NULL}, "co2-60w", &run->machine, error);
     if (status == UR_OK) {
         ur_layout_options layout = {.sheet_width = run->machine.bed_width,
                                     .sheet_height = run->machine.bed_height,
@@ -116,13 +120,13 @@ static void free_run(frustum_run *run)
 
 int main(int argc, char **argv)
 {
-    if (argc != 2) {
-        fprintf(stderr, "usage: develop_frustum OUTPUT.svg\n");
+    if (argc != 3) {
+        fprintf(stderr, "usage: develop_frustum OUTPUT.svg PROFILE_DIRECTORY\n");
         return 2;
     }
     frustum_run run = {0};
     ur_error error;
-    ur_status status = run_frustum(&run, argv[1], &error);
+    ur_status status = run_frustum(&run, argv[1], argv[2], &error);
     free_run(&run);
     if (status != UR_OK) {
         fprintf(stderr, "develop_frustum: %s\n", error.message);

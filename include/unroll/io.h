@@ -158,24 +158,32 @@ typedef struct ur_material {
 typedef enum ur_profile_kind { UR_PROFILE_MACHINE, UR_PROFILE_MATERIAL } ur_profile_kind;
 
 /*
- * Profile roots, searched in order: ./profiles, then $UNROLL_PROFILES, then
- * the installed share directory (UR_PROFILE_DIR at build time).  A profile
- * NAME is the file ROOT/machines/NAME.xml or ROOT/materials/NAME.xml; the
- * schemas are ROOT/schema/machine.rng and ROOT/schema/material.rng, taken
- * from the first root that has them.
+ * Profile roots: the directories profiles are searched in, in order, as a
+ * NULL-terminated list of paths (roots), e.g. {"/usr/share/unroll/profiles",
+ * NULL}; a root that does not exist is empty.  A profile NAME is the file
+ * ROOT/machines/NAME.xml or ROOT/materials/NAME.xml; the schemas are
+ * ROOT/schema/machine.rng, material.rng and job.rng, taken from the first
+ * root that has them.  The library searches nothing else: the command's
+ * roots (next to its executable, $UNROLL_PROFILES, ./profiles) are its own
+ * (unroll(1), PROFILES); `pkg-config --variable=profiledir unroll` names
+ * the installed ones.
  */
-UR_API ur_status ur_profile_find(ur_profile_kind kind, const char *name, char *path,
-                                 size_t path_size, ur_error *error);
+UR_API ur_status ur_profile_find(const char *const *roots, ur_profile_kind kind, const char *name,
+                                 char *path, size_t path_size, ur_error *error);
 
-/* Reads and validates one profile file. */
-UR_API ur_status ur_machine_read(const char *path, ur_machine *machine, ur_error *error);
-UR_API ur_status ur_material_read(const char *path, ur_material *material, ur_error *error);
+/* Reads and validates one profile file (its schema from roots). */
+UR_API ur_status ur_machine_read(const char *const *roots, const char *path, ur_machine *machine,
+                                 ur_error *error);
+UR_API ur_status ur_material_read(const char *const *roots, const char *path, ur_material *material,
+                                  ur_error *error);
 
-/* Finds NAME on the search path, then reads it. */
-UR_API ur_status ur_machine_load(const char *name, ur_machine *machine, ur_error *error);
-UR_API ur_status ur_material_load(const char *name, ur_material *material, ur_error *error);
+/* Finds NAME in the roots, then reads it. */
+UR_API ur_status ur_machine_load(const char *const *roots, const char *name, ur_machine *machine,
+                                 ur_error *error);
+UR_API ur_status ur_material_load(const char *const *roots, const char *name, ur_material *material,
+                                  ur_error *error);
 
-/* One entry of a listing of every profile on the search path. */
+/* One entry of a listing of every profile in the roots. */
 typedef struct ur_profile_entry {
     ur_profile_kind kind;
     char name[64];
@@ -187,7 +195,8 @@ typedef struct ur_profile_entry {
  * Lists every profile found (a name found in an earlier root hides the same
  * name in later ones), sorted by kind then name.  The caller frees *entries.
  */
-UR_API ur_status ur_profile_list(ur_profile_entry **entries, size_t *count, ur_error *error);
+UR_API ur_status ur_profile_list(const char *const *roots, ur_profile_entry **entries,
+                                 size_t *count, ur_error *error);
 
 /* The kerf a machine cuts in a material: the material's figure if it has one. */
 UR_API double ur_effective_kerf(const ur_machine *machine, const ur_material *material);
@@ -302,14 +311,16 @@ typedef struct ur_job {
 } ur_job;
 
 /*
- * Reads and validates a job file (profiles' schema/job.rng; unroll-job(5)).
+ * Reads and validates a job file (schema/job.rng from the profile roots;
+ * unroll-job(5)).
  * Paths in it (path options, a mesh part's file, the output directory) are
  * relative to the job file and come back joined to its directory.  Refuses
  * with UR_ERROR_INPUT, "FILE:LINE: message": a file that is not well formed
  * or not valid (the schema's message), two parts of one name, a path too
  * long.  Free with ur_job_free.
  */
-UR_API ur_status ur_job_read(const char *path, ur_job *job, ur_error *error);
+UR_API ur_status ur_job_read(const char *const *roots, const char *path, ur_job *job,
+                             ur_error *error);
 UR_API void ur_job_free(ur_job *job);
 
 /* ---- Parts from SVG and DXF -------------------------------------------- */

@@ -346,6 +346,12 @@ int cli_signal_exit(int code);
 /* unroll profiles [show NAME] */
 int cli_profiles(int argc, char **argv);
 
+/*
+ * The profile roots, NULL-terminated, in search order (profiles.c): beside
+ * the executable, $UNROLL_PROFILES, ./profiles.  Found on the first call.
+ */
+const char *const *cli_profile_roots(void);
+
 /* Help texts. */
 void cli_print_usage(void);
 int cli_print_help(const char *subcommand);

@@ -406,7 +406,7 @@ int cli_job_command(int argc, char **argv)
         return code;
     ur_job file;
     ur_error error;
-    if (ur_job_read(path, &file, &error) != UR_OK) {
+    if (ur_job_read(cli_profile_roots(), path, &file, &error) != UR_OK) {
         cli_message("%s", error.message);
         return cli_exit_status(&error);
     }

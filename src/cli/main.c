@@ -159,8 +159,9 @@ static const struct {
              "  holes) on sheet stock; see 'unroll nest --help'.\n"},
     {"profiles", "unroll profiles            list machine and material profiles\n"
                  "unroll profiles show NAME  print one profile and the file it comes from\n"
-                 "  Profiles are searched in ./profiles, then $UNROLL_PROFILES, then the\n"
-                 "  installed share directory.\n"},
+                 "  Profiles are searched beside the command (the installed share directory,\n"
+                 "  or the profiles/ of the source tree it was built in), then in\n"
+                 "  $UNROLL_PROFILES, then in ./profiles.\n"},
 };
 
 void cli_print_usage(void)

@@ -497,8 +497,8 @@ static int run_nest(const nest_job *n, ur_piece **pieces, size_t *count, ur_layo
     ur_machine machine;
     ur_material material;
     ur_error error;
-    if (ur_machine_load(n->job.machine_name, &machine, &error) != UR_OK ||
-        ur_material_load(n->job.material_name, &material, &error) != UR_OK) {
+    if (ur_machine_load(cli_profile_roots(), n->job.machine_name, &machine, &error) != UR_OK ||
+        ur_material_load(cli_profile_roots(), n->job.material_name, &material, &error) != UR_OK) {
         cli_message("%s", error.message);
         return cli_exit_status(&error);
     }

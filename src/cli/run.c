@@ -710,9 +710,10 @@ int cli_run_job(const cli_job *job)
     job_state state;
     memset(&state, 0, sizeof state);
     ur_error error;
-    ur_status status = ur_machine_load(job->machine_name, &state.machine, &error);
+    ur_status status =
+        ur_machine_load(cli_profile_roots(), job->machine_name, &state.machine, &error);
     if (status == UR_OK)
-        status = ur_material_load(job->material_name, &state.material, &error);
+        status = ur_material_load(cli_profile_roots(), job->material_name, &state.material, &error);
     if (status != UR_OK) {
         cli_message("%s", error.message);
         return cli_exit_status(&error);
@@ -769,9 +770,10 @@ int cli_job_pieces(const cli_job *job, cli_pieces *out)
     job_state state;
     memset(&state, 0, sizeof state);
     ur_error error;
-    ur_status status = ur_machine_load(job->machine_name, &state.machine, &error);
+    ur_status status =
+        ur_machine_load(cli_profile_roots(), job->machine_name, &state.machine, &error);
     if (status == UR_OK)
-        status = ur_material_load(job->material_name, &state.material, &error);
+        status = ur_material_load(cli_profile_roots(), job->material_name, &state.material, &error);
     if (status != UR_OK) {
         cli_message("%s: %s", job->command, error.message);
         return cli_exit_status(&error);

@@ -336,6 +336,39 @@ def help_version_and_profiles(work):
 
 
 @test
+def profiles_are_found_from_any_directory(work):
+    """The built command finds the repository's profiles beside itself
+    (build/*/unroll, two levels below them), whatever the working directory
+    and with $UNROLL_PROFILES unset: from a temporary directory it shows
+    co2-60w from the repository and unrolls a cylinder with it, and from
+    samples/jobs runs the lamp's job file there; ./profiles is searched
+    too, after it."""
+    env = {k: v for k, v in os.environ.items() if k != "UNROLL_PROFILES"}
+    def unroll(*args):
+        return subprocess.run([UNROLL, *args], cwd=work, capture_output=True, text=True, env=env)
+    shown = unroll("profiles", "show", "co2-60w")
+    expected = os.path.realpath(os.path.join(REPO, "profiles", "machines", "co2-60w.xml"))
+    check(shown.returncode == 0 and shown.stdout.startswith("<!-- %s -->" % expected),
+          "profiles show co2-60w: exit %d; %r" % (shown.returncode, (shown.stdout[:200], shown.stderr)))
+    made = unroll("cylinder", "--radius", "20", "--height", "30", "--machine", "co2-60w",
+                  "--material", "plywood-3mm", "-o", "x.svg", "--quiet")
+    check(made.returncode == 0 and os.path.getsize(os.path.join(work, "x.svg")) > 0,
+          "cylinder: exit %d; %s" % (made.returncode, made.stderr.strip()))
+    jobs = os.path.join(REPO, "samples", "jobs")  # where the job files are
+    job = subprocess.run([UNROLL, "job", "lamp.xml", "-o", os.path.join(work, "lamp"), "--quiet"],
+                         cwd=jobs, capture_output=True, text=True, env=env)
+    check(job.returncode == 0 and os.path.getsize(os.path.join(work, "lamp", "lamp.svg")) > 0,
+          "job lamp.xml in samples/jobs: exit %d; %s" % (job.returncode, job.stderr.strip()))
+    with open(os.path.join(REPO, "profiles", "machines", "co2-60w.xml")) as f:
+        machine = f.read()
+    os.makedirs(os.path.join(work, "profiles", "machines"))
+    write(work, os.path.join("profiles", "machines", "here.xml"), machine)
+    shown = unroll("profiles", "show", "here")
+    check(shown.returncode == 0 and shown.stdout.startswith("<!-- ./profiles/machines/here.xml -->"),
+          "profiles show here: exit %d; %r" % (shown.returncode, (shown.stdout[:200], shown.stderr)))
+
+
+@test
 def router_and_material_profiles_are_used(work):
     run(work, "cylinder", "--radius", "100", "--height", "300", "--machine", "router",
         "--material", "plywood-6mm", "-o", "r.svg", "--report", "r.json")
