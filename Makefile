@@ -1,6 +1,6 @@
 # unroll: build, test, demo, bench and install.
 #
-#   make            build libunroll.a and the unroll command
+#   make            build libunroll.a, libunroll.so and the unroll command
 #   make demo       install what is missing, build, unroll the samples into out/
 #   make check      install what is missing, build, run every test
 #   make check SANITIZE=1   the same with AddressSanitizer and UBSan
@@ -8,13 +8,21 @@
 #                           valgrind memcheck (no errors, no leaks)
 #   make bench      benchmarks (never part of make check)
 #   make fuzz       libFuzzer targets (clang, ASan, UBSan), each run FUZZ_SECONDS
-#   make install    PREFIX=/usr/local DESTDIR=
+#   make install    PREFIX=/usr/local DESTDIR=: the command, man pages and
+#                   profiles, the libraries, headers and unroll.pc
 
 PREFIX ?= /usr/local
 DESTDIR ?=
 BINDIR = $(PREFIX)/bin
+LIBDIR = $(PREFIX)/lib
+INCLUDEDIR = $(PREFIX)/include
+PKGCONFIGDIR = $(LIBDIR)/pkgconfig
 MANDIR = $(PREFIX)/share/man
 PROFILEDIR = $(PREFIX)/share/unroll/profiles
+
+# The library's version is UR_VERSION; its soname changes with the major number.
+VERSION := $(shell sed -n 's/^\#define UR_VERSION "\(.*\)"/\1/p' include/unroll/base.h)
+SONAME = libunroll.so.$(firstword $(subst ., ,$(VERSION)))
 
 CC ?= cc
 PKG_CONFIG ?= pkg-config
@@ -43,7 +51,7 @@ endif
 # Recursive (=) so that pkg-config is asked only once install-deps has run.
 CFLAGS_ALL = -std=c11 -D_XOPEN_SOURCE=700 -Wall -Wextra -Wpedantic -Werror \
 	-Wshadow -Wstrict-prototypes $(OPTIMISE) $(SANITIZE_FLAGS) -Iinclude \
-	-DUR_PROFILE_DIR='"$(PROFILEDIR)"' $(shell $(PKG_CONFIG) --cflags $(PACKAGES)) \
+	$(shell $(PKG_CONFIG) --cflags $(PACKAGES)) \
 	-I/usr/include/suitesparse $(CFLAGS)
 LDLIBS_ALL = $(shell $(PKG_CONFIG) --libs $(PACKAGES)) -lcholmod -lhersheyfont -lhpdf -lm $(LDLIBS)
 LDFLAGS_ALL = $(SANITIZE_FLAGS) $(LDFLAGS)
@@ -90,43 +98,79 @@ ifeq ($(VALGRIND)$(SANITIZE),11)
 $(error VALGRIND=1 and SANITIZE=1 do not mix: valgrind cannot run ASan's build)
 endif
 
+# libunroll.a, installed: one relocatable object of every library object
+# with the hidden (not UR_API) symbols made local, so that it defines no
+# name outside the public API.  The tests, benches and fuzz targets, which
+# also call internal functions, link the objects themselves (OBJECT_ARCHIVE).
 LIBRARY = $(BUILD)/libunroll.a
+LIBRARY_OBJECT = $(BUILD)/libunroll.o
+OBJECT_ARCHIVE = $(BUILD)/libunroll-objects.a
+# libunroll.so.VERSION, with the links SONAME (what programs load) and
+# libunroll.so (what -lunroll finds).
+SHARED_FILE = $(BUILD)/libunroll.so.$(VERSION)
+SHARED = $(BUILD)/libunroll.so
 PROGRAM = $(BUILD)/unroll
+# make check installs here and builds examples/ against the installed copy.
+INSTALL_CHECK_PREFIX = $(CURDIR)/$(BUILD)/install-check
 
 .PHONY: all demo readme check test deps bench fuzz fuzz-targets install clean format
 
-all: $(PROGRAM)
+all: $(PROGRAM) $(SHARED)
+
+# The library's objects go into the shared library too: position-independent,
+# and every symbol hidden that the headers do not mark UR_API.
+$(LIB_OBJECTS): PIC = -fPIC -fvisibility=hidden
 
 $(BUILD)/%.o: %.c
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS_ALL) -MMD -MP -c $< -o $@
+	$(CC) $(CFLAGS_ALL) $(PIC) -MMD -MP -c $< -o $@
 
-$(LIBRARY): $(LIB_OBJECTS)
+$(OBJECT_ARCHIVE): $(LIB_OBJECTS)
 	@mkdir -p $(dir $@)
 	rm -f $@
 	ar rcs $@ $^
+
+$(LIBRARY_OBJECT): $(LIB_OBJECTS)
+	$(LD) -r -o $@.whole $^
+	objcopy --localize-hidden $@.whole $@
+	rm -f $@.whole
+
+$(LIBRARY): $(LIBRARY_OBJECT)
+	rm -f $@
+	ar rcs $@ $^
+
+$(SHARED_FILE): $(LIB_OBJECTS)
+	$(CC) -shared -Wl,-soname,$(SONAME) $(LDFLAGS_ALL) -o $@ $^ $(LDLIBS_ALL)
+
+$(SHARED): $(SHARED_FILE)
+	ln -sf $(notdir $(SHARED_FILE)) $(BUILD)/$(SONAME)
+	ln -sf $(SONAME) $@
+
+$(BUILD)/unroll.pc: unroll.pc.in include/unroll/base.h
+	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@LIBDIR@|$(LIBDIR)|' -e 's|@INCLUDEDIR@|$(INCLUDEDIR)|' \
+		-e 's|@PROFILEDIR@|$(PROFILEDIR)|' -e 's|@VERSION@|$(VERSION)|' unroll.pc.in >$@
 
 $(PROGRAM): $(CLI_OBJECTS) $(LIBRARY)
 	$(CC) $(LDFLAGS_ALL) -o $@ $(CLI_OBJECTS) $(LIBRARY) $(LDLIBS_ALL)
 
 # test_support.h and nest_sets.h are shared, header-only: a change to them rebuilds every
 # test (and nest_sets.h, the benches that make the same sets of parts).
-$(BUILD)/tests/%: tests/unit/%.c tests/unit/test_support.h tests/unit/nest_sets.h $(LIBRARY)
+$(BUILD)/tests/%: tests/unit/%.c tests/unit/test_support.h tests/unit/nest_sets.h $(OBJECT_ARCHIVE)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_ALL) $(shell $(PKG_CONFIG) --cflags $(TEST_PACKAGES)) -o $@ $< \
-		$(LIBRARY) $(LDFLAGS_ALL) $(LDLIBS_ALL) $(shell $(PKG_CONFIG) --libs $(TEST_PACKAGES))
+		$(OBJECT_ARCHIVE) $(LDFLAGS_ALL) $(LDLIBS_ALL) $(shell $(PKG_CONFIG) --libs $(TEST_PACKAGES))
 
-$(BUILD)/bench/%: bench/%.c tests/unit/nest_sets.h $(LIBRARY)
+$(BUILD)/bench/%: bench/%.c tests/unit/nest_sets.h $(OBJECT_ARCHIVE)
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS_ALL) -o $@ $< $(LIBRARY) $(LDFLAGS_ALL) $(LDLIBS_ALL)
+	$(CC) $(CFLAGS_ALL) -o $@ $< $(OBJECT_ARCHIVE) $(LDFLAGS_ALL) $(LDLIBS_ALL)
 
-$(BUILD)/fuzz/%: tests/fuzz/%.c $(FUZZ_HEADERS) $(LIBRARY)
+$(BUILD)/fuzz/%: tests/fuzz/%.c $(FUZZ_HEADERS) $(OBJECT_ARCHIVE)
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS_ALL) -fsanitize=fuzzer -o $@ $< $(LIBRARY) $(LDFLAGS_ALL) $(LDLIBS_ALL)
+	$(CC) $(CFLAGS_ALL) -fsanitize=fuzzer -o $@ $< $(OBJECT_ARCHIVE) $(LDFLAGS_ALL) $(LDLIBS_ALL)
 
-$(BUILD)/replay/%: tests/fuzz/%.c tests/fuzz/replay.c $(FUZZ_HEADERS) $(LIBRARY)
+$(BUILD)/replay/%: tests/fuzz/%.c tests/fuzz/replay.c $(FUZZ_HEADERS) $(OBJECT_ARCHIVE)
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS_ALL) -o $@ $< tests/fuzz/replay.c $(LIBRARY) $(LDFLAGS_ALL) $(LDLIBS_ALL)
+	$(CC) $(CFLAGS_ALL) -o $@ $< tests/fuzz/replay.c $(OBJECT_ARCHIVE) $(LDFLAGS_ALL) $(LDLIBS_ALL)
 
 deps:
 	@scripts/install-deps $(if $(filter 1,$(VALGRIND)),valgrind)
@@ -144,9 +188,17 @@ readme: deps
 check: deps
 	@$(MAKE) --no-print-directory test
 
-test: $(PROGRAM) $(UNIT_BINARIES) $(REPLAY_BINARIES)
+# tests/run-tests builds examples/ against the copy installed in
+# $(INSTALL_CHECK_PREFIX) (tests/install-check) and checks that the
+# libraries export ur_ names only (tests/exported-names).
+test: $(PROGRAM) $(SHARED) $(UNIT_BINARIES) $(REPLAY_BINARIES)
+	@rm -rf $(INSTALL_CHECK_PREFIX)
+	@$(MAKE) --no-print-directory -s install PREFIX=$(INSTALL_CHECK_PREFIX) DESTDIR= >/dev/null
 	@UNROLL=$(PROGRAM) UNIT_TESTS="$(UNIT_BINARIES)" REPLAYS="$(REPLAY_BINARIES)" \
-		VALGRIND="$(VALGRIND)" VALGRIND_SKIP="$(VALGRIND_SKIP)" tests/run-tests
+		VALGRIND="$(VALGRIND)" VALGRIND_SKIP="$(VALGRIND_SKIP)" \
+		EXPORTED="$(LIBRARY) $(SHARED)" \
+		INSTALLED="$(INSTALL_CHECK_PREFIX)" EXAMPLE_CC="$(CC)" EXAMPLE_FLAGS="$(SANITIZE_FLAGS)" \
+		tests/run-tests
 
 # clang and libFuzzer are installed only here: make check does not need them.
 fuzz:
@@ -161,9 +213,19 @@ bench: deps
 	@UNROLL=$(PROGRAM) BENCHES="$(BENCH_BINARIES) bench/bench_esicup bench/bench_papercraft" \
 		bench/run-benches
 
-install: $(PROGRAM)
+# A fresh unroll.pc each time: it names the PREFIX of this install.
+install: $(PROGRAM) $(SHARED)
+	@rm -f $(BUILD)/unroll.pc
+	@$(MAKE) --no-print-directory $(BUILD)/unroll.pc
 	install -d $(DESTDIR)$(BINDIR) $(DESTDIR)$(MANDIR)/man1 $(DESTDIR)$(MANDIR)/man5
+	install -d $(DESTDIR)$(LIBDIR) $(DESTDIR)$(PKGCONFIGDIR) $(DESTDIR)$(INCLUDEDIR)/unroll
 	install -m 755 $(PROGRAM) $(DESTDIR)$(BINDIR)/unroll
+	install -m 644 $(LIBRARY) $(DESTDIR)$(LIBDIR)/libunroll.a
+	install -m 755 $(SHARED_FILE) $(DESTDIR)$(LIBDIR)/$(notdir $(SHARED_FILE))
+	ln -sf $(notdir $(SHARED_FILE)) $(DESTDIR)$(LIBDIR)/$(SONAME)
+	ln -sf $(SONAME) $(DESTDIR)$(LIBDIR)/libunroll.so
+	install -m 644 include/unroll/*.h $(DESTDIR)$(INCLUDEDIR)/unroll/
+	install -m 644 $(BUILD)/unroll.pc $(DESTDIR)$(PKGCONFIGDIR)/unroll.pc
 	install -m 644 man/unroll.1 $(DESTDIR)$(MANDIR)/man1/unroll.1
 	install -m 644 man/unroll-profile.5 $(DESTDIR)$(MANDIR)/man5/unroll-profile.5
 	install -m 644 man/unroll-job.5 $(DESTDIR)$(MANDIR)/man5/unroll-job.5

@@ -21,6 +21,10 @@
 #include "unroll/develop.h"
 #include "unroll/geom.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /*
  * The circle a path exactly is, or is an arc of, when it is known to be
  * one (a circle or arc read from a file, and what kerf compensation and
@@ -68,7 +72,7 @@ typedef enum ur_allowance_kind {
 } ur_allowance_kind;
 
 /* "joint", "label", "kerfing", "overlap", "bending", "kerf-compensation", "bridges". */
-const char *ur_allowance_kind_name(ur_allowance_kind kind);
+UR_API const char *ur_allowance_kind_name(ur_allowance_kind kind);
 
 /*
  * One allowance added to a piece (or one that could not be added: warning),
@@ -133,33 +137,34 @@ typedef struct ur_allowance_options {
 } ur_allowance_options;
 
 /* Copies points into a new path of the piece (no circle) and grows its box. */
-ur_status ur_piece_add_path(ur_piece *piece, ur_op op, const ur_vec2 *points, size_t count,
-                            bool closed, ur_error *error);
+UR_API ur_status ur_piece_add_path(ur_piece *piece, ur_op op, const ur_vec2 *points, size_t count,
+                                   bool closed, ur_error *error);
 
 /*
  * The angle the polyline turns through about centre from its first point
  * to its last, radians (> 0 counter-clockwise), each step taken the short
  * way: the sweep of an arc whose points these are.
  */
-double ur_arc_sweep(ur_vec2 centre, const ur_vec2 *points, size_t count);
+UR_API double ur_arc_sweep(ur_vec2 centre, const ur_vec2 *points, size_t count);
 
 /*
  * Builds the piece for a net, its shading copied; the caller frees it with
  * ur_piece_free.
  */
-ur_status ur_piece_from_net(const ur_net *net, const ur_allowance_options *options, ur_piece *piece,
-                            ur_error *error);
+UR_API ur_status ur_piece_from_net(const ur_net *net, const ur_allowance_options *options,
+                                   ur_piece *piece, ur_error *error);
 
-void ur_piece_free(ur_piece *piece);
+UR_API void ur_piece_free(ur_piece *piece);
 
 /* A deep copy of a piece (a second part of the same shape); free it with ur_piece_free. */
-ur_status ur_piece_copy(const ur_piece *from, ur_piece *to, ur_error *error);
+UR_API ur_status ur_piece_copy(const ur_piece *from, ur_piece *to, ur_error *error);
 
 /* The piece's box, measured again on every path (after paths moved or went). */
-void ur_piece_recompute_box(ur_piece *piece);
+UR_API void ur_piece_recompute_box(ur_piece *piece);
 
 /* Appends a copy of record to the piece's records. */
-ur_status ur_piece_record(ur_piece *piece, const ur_allowance_record *record, ur_error *error);
+UR_API ur_status ur_piece_record(ur_piece *piece, const ur_allowance_record *record,
+                                 ur_error *error);
 
 /* ---- Labels: single-stroke engraved text (label.c) -------------------- */
 
@@ -172,8 +177,8 @@ ur_status ur_piece_record(ur_piece *piece, const ur_allowance_record *record, ur
  * The font's cap height is measured on its 'H'.
  */
 typedef struct ur_font ur_font;
-ur_status ur_font_open(const char *name, ur_font **font, ur_error *error);
-void ur_font_close(ur_font *font);
+UR_API ur_status ur_font_open(const char *name, ur_font **font, ur_error *error);
+UR_API void ur_font_close(ur_font *font);
 
 /*
  * The strokes of text as open ENGRAVE polylines, cap height `height` mm,
@@ -182,10 +187,10 @@ void ur_font_close(ur_font *font);
  * accepted (UR_ERROR_INPUT says which character is not).  The caller frees
  * the paths' points and the array with ur_paths_free, even when *count is 0.
  */
-ur_status ur_text_strokes(const ur_font *font, const char *text, double height, ur_path **paths,
-                          size_t *count, double *width, ur_error *error);
+UR_API ur_status ur_text_strokes(const ur_font *font, const char *text, double height,
+                                 ur_path **paths, size_t *count, double *width, ur_error *error);
 
-void ur_paths_free(ur_path *paths, size_t count);
+UR_API void ur_paths_free(ur_path *paths, size_t count);
 
 /*
  * Engraves text on the piece as ENGRAVE paths: inside the piece (outline
@@ -205,9 +210,10 @@ void ur_paths_free(ur_path *paths, size_t count);
  * empty text, heights not 0 < min_height <= height, a negative clearance,
  * a non-finite `near` or a zero or non-finite direction.
  */
-ur_status ur_piece_add_label(ur_piece *piece, const ur_font *font, const char *text, ur_vec2 near,
-                             ur_vec2 direction, double height, double min_height, double clearance,
-                             bool *placed, ur_error *error);
+UR_API ur_status ur_piece_add_label(ur_piece *piece, const ur_font *font, const char *text,
+                                    ur_vec2 near, ur_vec2 direction, double height,
+                                    double min_height, double clearance, bool *placed,
+                                    ur_error *error);
 
 /* ---- Joints on seams (joints.c) --------------------------------------- */
 
@@ -244,10 +250,11 @@ typedef struct ur_splice_list {
     size_t count;
 } ur_splice_list;
 
-ur_status ur_splice_piece(const ur_splice_request *request, ur_piece *piece, ur_error *error);
-ur_status ur_splice_list_add(ur_splice_list *list, const ur_splice_request *request,
-                             ur_error *error);
-void ur_splice_list_free(ur_splice_list *list);
+UR_API ur_status ur_splice_piece(const ur_splice_request *request, ur_piece *piece,
+                                 ur_error *error);
+UR_API ur_status ur_splice_list_add(ur_splice_list *list, const ur_splice_request *request,
+                                    ur_error *error);
+UR_API void ur_splice_list_free(ur_splice_list *list);
 
 typedef struct ur_joint_options {
     bool lap;            /* lap joints (wood) instead of glue tabs */
@@ -276,7 +283,7 @@ typedef struct ur_joint_options {
 } ur_joint_options;
 
 /* The label of seam number seam (from 1): "A1" ... "A99", "B1" ... "Z99", then "AA1" ... */
-void ur_seam_label(int seam, char *label, size_t size);
+UR_API void ur_seam_label(int seam, char *label, size_t size);
 
 /*
  * Puts a joint on every seam of the nets (pieces[k] was made from
@@ -309,15 +316,15 @@ void ur_seam_label(int seam, char *label, size_t size);
  * there, and pieces their names when name_pieces.  Records a UR_ALLOWANCE_JOINT or
  * UR_ALLOWANCE_LABEL entry for each (warnings for what found no room).
  */
-ur_status ur_pieces_add_joints(ur_piece *pieces, const ur_net_list *nets,
-                               const ur_joint_options *options, ur_error *error);
+UR_API ur_status ur_pieces_add_joints(ur_piece *pieces, const ur_net_list *nets,
+                                      const ur_joint_options *options, ur_error *error);
 
 /*
  * Once the piece is placed turned by `angle` (radians, counter-clockwise),
  * turns every label that would then read upside down by half a turn about
  * its centre, so that all read upright on the sheet.
  */
-void ur_piece_turn_labels(ur_piece *piece, double angle);
+UR_API void ur_piece_turn_labels(ur_piece *piece, double angle);
 
 /*
  * Hinges and joints agree (joint_kerfs.c): once the joints are on (their
@@ -328,8 +335,8 @@ void ur_piece_turn_labels(ur_piece *piece, double angle);
  * records keep pointing at their strokes.  UR_ERROR_INPUT for a clearance
  * not above 0 or a negative shortest.
  */
-ur_status ur_piece_keep_kerfs_off_joints(ur_piece *piece, size_t first, double clearance,
-                                         double shortest, size_t *trimmed, ur_error *error);
+UR_API ur_status ur_piece_keep_kerfs_off_joints(ur_piece *piece, size_t first, double clearance,
+                                                double shortest, size_t *trimmed, ur_error *error);
 
 /* ---- Kerf compensation and bridges (kerf.c, bridges.c) ---------------- */
 
@@ -349,7 +356,7 @@ ur_status ur_piece_keep_kerfs_off_joints(ur_piece *piece, size_t first, double c
  * hole whose radius would not stay above 0 is refused as vanishing.
  * Records a UR_ALLOWANCE_KERF_COMPENSATION entry (value: the kerf).
  */
-ur_status ur_piece_compensate_kerf(ur_piece *piece, double kerf, ur_error *error);
+UR_API ur_status ur_piece_compensate_kerf(ur_piece *piece, double kerf, ur_error *error);
 
 /*
  * Opens `count` uncut gaps of `width` mm in the outer outline, evenly
@@ -372,8 +379,8 @@ ur_status ur_piece_compensate_kerf(ur_piece *piece, double kerf, ur_error *error
  * (UR_ERROR_INPUT naming the piece) a width not above 0 or not finite and a
  * piece already bridged.
  */
-ur_status ur_piece_add_bridges(ur_piece *piece, size_t count, double width, bool router,
-                               ur_error *error);
+UR_API ur_status ur_piece_add_bridges(ur_piece *piece, size_t count, double width, bool router,
+                                      ur_error *error);
 
 /* ---- Kerfing cuts and overlap allowances (relief.c) ------------------- */
 
@@ -395,8 +402,8 @@ typedef struct ur_relief_limits {
     bool kerfing, overlaps;              /* which of the two to add */
 } ur_relief_limits;
 
-ur_status ur_piece_add_relief(ur_piece *piece, const ur_net *net, const ur_relief_limits *limits,
-                              ur_error *error);
+UR_API ur_status ur_piece_add_relief(ur_piece *piece, const ur_net *net,
+                                     const ur_relief_limits *limits, ur_error *error);
 
 /* ---- Bending kerfs (bending.c) ---------------------------------------- */
 
@@ -450,7 +457,11 @@ typedef struct ur_bending_options {
     double thickness;   /* of the material, mm; 0: the skin is not checked */
 } ur_bending_options;
 
-ur_status ur_piece_add_bending_kerfs(ur_piece *piece, const ur_net *net, ur_ruled *ruled,
-                                     const ur_bending_options *options, ur_error *error);
+UR_API ur_status ur_piece_add_bending_kerfs(ur_piece *piece, const ur_net *net, ur_ruled *ruled,
+                                            const ur_bending_options *options, ur_error *error);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -30,6 +30,10 @@
 #include "unroll/geom.h"
 #include "unroll/surface.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /*
  * The curvature at one point r(u, v).  A point where r_u x r_v vanishes (a
  * cone's apex, the edge of regression of a tangent developable with no
@@ -48,7 +52,7 @@ typedef struct ur_point_curvature {
     double bend_radius;  /* 1 / max |kappa|, mm; INFINITY where flat, 0 when singular */
 } ur_point_curvature;
 
-void ur_analyze_point(ur_ruled *ruled, double u, double v, ur_point_curvature *curvature);
+UR_API void ur_analyze_point(ur_ruled *ruled, double u, double v, ur_point_curvature *curvature);
 
 /*
  * The bend radius of the ruling at u, as ur_analyze gives it for each of
@@ -60,7 +64,7 @@ void ur_analyze_point(ur_ruled *ruled, double u, double v, ur_point_curvature *c
  * from the edge of regression), so the smallest radius is at an end or at
  * a singular point and a few samples find it.
  */
-double ur_analyze_bend_radius(ur_ruled *ruled, double u, size_t across, double *v);
+UR_API double ur_analyze_bend_radius(ur_ruled *ruled, double u, size_t across, double *v);
 
 typedef struct ur_ruling_analysis {
     double u, arc;     /* parameter and arc length along rail a from the start */
@@ -110,17 +114,17 @@ typedef struct ur_analysis {
     ur_vec3 min_bend_at;
 } ur_analysis;
 
-void ur_analysis_options_default(ur_analysis_options *options);
+UR_API void ur_analysis_options_default(ur_analysis_options *options);
 
 /*
  * Analyses ruled (options NULL for the defaults) into analysis, which the
  * caller frees with ur_analysis_free, also after a failure.  Options out of
  * range are UR_ERROR_INPUT.
  */
-ur_status ur_analyze(ur_ruled *ruled, const ur_analysis_options *options, ur_analysis *analysis,
-                     ur_error *error);
+UR_API ur_status ur_analyze(ur_ruled *ruled, const ur_analysis_options *options,
+                            ur_analysis *analysis, ur_error *error);
 
-void ur_analysis_free(ur_analysis *analysis);
+UR_API void ur_analysis_free(ur_analysis *analysis);
 
 /* The picture ur_analysis_png_write draws: this wide, as tall as the map needs, at most this. */
 enum { UR_ANALYSIS_PNG_WIDTH = 1000, UR_ANALYSIS_PNG_MAX_HEIGHT = 720 };
@@ -140,7 +144,12 @@ enum { UR_ANALYSIS_PNG_WIDTH = 1000, UR_ANALYSIS_PNG_MAX_HEIGHT = 720 };
  * NULL) complete it.  The file is written atomically: on failure nothing is
  * left and an existing file is untouched.
  */
-ur_status ur_analysis_png_write(const char *path, ur_ruled *ruled, const ur_analysis *analysis,
-                                const char *title, ur_context *context, ur_error *error);
+UR_API ur_status ur_analysis_png_write(const char *path, ur_ruled *ruled,
+                                       const ur_analysis *analysis, const char *title,
+                                       ur_context *context, ur_error *error);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -13,7 +13,22 @@
 #include <stdbool.h>
 #include <stddef.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 #define UR_VERSION "0.1.0"
+
+/*
+ * Marks the public API: the library is built with -fvisibility=hidden, so
+ * that libunroll.so exports only what is declared with UR_API (and the
+ * static archive keeps the rest local too).
+ */
+#if defined(__GNUC__)
+#define UR_API __attribute__((visibility("default")))
+#else
+#define UR_API
+#endif
 
 /*
  * The largest coordinate or length, in mm, taken from any input (1000 km):
@@ -22,12 +37,18 @@
  */
 #define UR_LENGTH_MAX 1e9
 
-/* The values double as the command's exit status. */
+/*
+ * What went wrong.  The command maps each to an exit status of its own
+ * (unroll(1), EXIT STATUS); the numbers are not exit statuses.
+ */
 typedef enum ur_status {
     UR_OK = 0,
-    UR_ERROR_INTERNAL = 1, /* out of memory, a library failure, a bug */
-    UR_ERROR_INPUT = 2,    /* bad input: a file, a line, an option */
-    UR_ERROR_CANCELLED = 3 /* the context was cancelled (the command exits 128 + signal) */
+    UR_ERROR_INTERNAL = 1,  /* a library failure, a computation that failed, a bug */
+    UR_ERROR_INPUT = 2,     /* bad input: a file, a line, a value, a missing input file */
+    UR_ERROR_CANCELLED = 3, /* the context was cancelled */
+    UR_ERROR_IO = 4,        /* the system refused an output: no such directory, no
+                               permission, a full disk, a failed write */
+    UR_ERROR_MEMORY = 5     /* out of memory */
 } ur_status;
 
 typedef struct ur_error {
@@ -36,23 +57,23 @@ typedef struct ur_error {
 } ur_error;
 
 /* Fills error (which may be NULL) with a printf-style message; returns status. */
-ur_status ur_error_set(ur_error *error, ur_status status, const char *format, ...)
+UR_API ur_status ur_error_set(ur_error *error, ur_status status, const char *format, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 3, 4)))
 #endif
     ;
 
 /* Prefixes an existing message with more context, e.g. the option name. */
-ur_status ur_error_prefix(ur_error *error, const char *format, ...)
+UR_API ur_status ur_error_prefix(ur_error *error, const char *format, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 2, 3)))
 #endif
     ;
 
-void ur_error_clear(ur_error *error);
+UR_API void ur_error_clear(ur_error *error);
 
-/* Out-of-memory in one place so every caller words it the same. */
-ur_status ur_error_out_of_memory(ur_error *error);
+/* Out-of-memory (UR_ERROR_MEMORY) in one place so every caller words it the same. */
+UR_API ur_status ur_error_out_of_memory(ur_error *error);
 
 /*
  * The context a run happens in, like lua_State or GEOS's handle: it holds
@@ -85,26 +106,28 @@ typedef enum ur_message_kind {
 typedef void (*ur_message_handler)(void *data, ur_message_kind kind, const char *message);
 
 /* A new context, or NULL when out of memory.  Freed with ur_context_free. */
-ur_context *ur_context_new(void);
+UR_API ur_context *ur_context_new(void);
 
 /* Removes the files of an output set still open (as an end refusing them) and frees. */
-void ur_context_free(ur_context *context);
+UR_API void ur_context_free(ur_context *context);
 
 /* Asks every computation running in context to stop; safe from a signal handler. */
-void ur_context_cancel(ur_context *context);
+UR_API void ur_context_cancel(ur_context *context);
 
 /* Clears the request, for a caller that runs again after a cancelled run. */
-void ur_context_cancel_clear(ur_context *context);
+UR_API void ur_context_cancel_clear(ur_context *context);
 
-bool ur_context_cancelled(const ur_context *context);
+UR_API bool ur_context_cancelled(const ur_context *context);
 
 /* UR_OK, or UR_ERROR_CANCELLED with error saying so once context was cancelled. */
-ur_status ur_context_check(const ur_context *context, ur_error *error);
+UR_API ur_status ur_context_check(const ur_context *context, ur_error *error);
 
-void ur_context_set_message_handler(ur_context *context, ur_message_handler handler, void *data);
+UR_API void ur_context_set_message_handler(ur_context *context, ur_message_handler handler,
+                                           void *data);
 
 /* Passes a printf-style message to context's handler, if it has one. */
-void ur_context_message(const ur_context *context, ur_message_kind kind, const char *format, ...)
+UR_API void ur_context_message(const ur_context *context, ur_message_kind kind, const char *format,
+                               ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 3, 4)))
 #endif
@@ -115,7 +138,7 @@ void ur_context_message(const ur_context *context, ur_message_kind kind, const c
  * fails with EIO once bytes bytes in all have gone to such files, as on a
  * full disk; a negative count lifts the limit.
  */
-void ur_context_fail_writes_after(ur_context *context, long long bytes);
+UR_API void ur_context_fail_writes_after(ur_context *context, long long bytes);
 
 /*
  * Output sets: between ur_output_set_begin and ur_output_set_end every file
@@ -127,8 +150,8 @@ void ur_context_fail_writes_after(ur_context *context, long long bytes);
  * removed.  ur_output_set_end fails, renaming nothing, when context was
  * cancelled.  context must not be NULL.
  */
-void ur_output_set_begin(ur_context *context);
-ur_status ur_output_set_end(ur_context *context, bool commit, ur_error *error);
+UR_API void ur_output_set_begin(ur_context *context);
+UR_API ur_status ur_output_set_end(ur_context *context, bool commit, ur_error *error);
 
 /* What the cutter does with a path.  Writers map each to a layer. */
 typedef enum ur_op {
@@ -142,13 +165,13 @@ typedef enum ur_op {
 } ur_op;
 
 /* "cut", "score", "kerf", "engrave", "mark". */
-const char *ur_op_name(ur_op op);
+UR_API const char *ur_op_name(ur_op op);
 
 /* Inverse of ur_op_name; returns UR_OP_COUNT for an unknown name. */
-ur_op ur_op_from_name(const char *name);
+UR_API ur_op ur_op_from_name(const char *name);
 
 /* Allocation helpers that fill error on failure and return NULL. */
-void *ur_alloc_array(size_t count, size_t size, ur_error *error);
+UR_API void *ur_alloc_array(size_t count, size_t size, ur_error *error);
 
 /*
  * Room for one more item in a growing array of count items: when count has
@@ -156,7 +179,11 @@ void *ur_alloc_array(size_t count, size_t size, ur_error *error);
  * Returns the array (moved or not), or NULL with error set, items then
  * untouched.
  */
-void *ur_array_grow(void *items, size_t *capacity, size_t count, size_t item_size, size_t first,
-                    ur_error *error);
+UR_API void *ur_array_grow(void *items, size_t *capacity, size_t count, size_t item_size,
+                           size_t first, ur_error *error);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

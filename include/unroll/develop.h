@@ -21,11 +21,15 @@
 #include "unroll/geom.h"
 #include "unroll/surface.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef enum ur_method { UR_METHOD_EXACT, UR_METHOD_TRIANGLE, UR_METHOD_QUAD } ur_method;
 
 /* "exact", "triangle", "quad"; ur_method_from_name returns -1 when unknown. */
-const char *ur_method_name(ur_method method);
-int ur_method_from_name(const char *name);
+UR_API const char *ur_method_name(ur_method method);
+UR_API int ur_method_from_name(const char *name);
 
 typedef struct ur_segment {
     ur_vec2 start, end;
@@ -140,13 +144,13 @@ typedef struct ur_develop_options {
     double fit_length, fit_width;
 } ur_develop_options;
 
-void ur_develop_options_default(ur_develop_options *options);
+UR_API void ur_develop_options_default(ur_develop_options *options);
 
 /* Develops the surface into one or more nets; free them with ur_net_list_free. */
-ur_status ur_develop(ur_ruled *ruled, const ur_develop_options *options, ur_net_list *nets,
-                     ur_error *error);
+UR_API ur_status ur_develop(ur_ruled *ruled, const ur_develop_options *options, ur_net_list *nets,
+                            ur_error *error);
 
-void ur_net_list_free(ur_net_list *nets);
+UR_API void ur_net_list_free(ur_net_list *nets);
 
 /*
  * Finds the seams between nets that carry outline_3d (meshes): an outline
@@ -159,17 +163,17 @@ void ur_net_list_free(ur_net_list *nets);
  * alone.  Points pair when they are equal, as the flattening leaves them:
  * one mesh vertex, one 3D point.
  */
-ur_status ur_net_list_find_seams(ur_net_list *nets, int first_seam, int *next_seam,
-                                 ur_error *error);
+UR_API ur_status ur_net_list_find_seams(ur_net_list *nets, int first_seam, int *next_seam,
+                                        ur_error *error);
 
 /* The largest seam number of the list's nets, 0 when there is none. */
-int ur_net_list_last_seam(const ur_net_list *nets);
+UR_API int ur_net_list_last_seam(const ur_net_list *nets);
 
 /* Frees one net's arrays (not the net itself). */
-void ur_net_free(ur_net *net);
+UR_API void ur_net_free(ur_net *net);
 
 /* Whether a closed ring (first point not repeated) is a simple polygon (GEOS). */
-bool ur_outline_is_simple(const ur_vec2 *ring, size_t count);
+UR_API bool ur_outline_is_simple(const ur_vec2 *ring, size_t count);
 
 /*
  * The seed paper's observation ([Seed2018]), measured: the triangle and
@@ -216,9 +220,13 @@ typedef struct ur_compare_table {
  * larger of rail a's length and the longest ruling); it is developed once
  * and its figures repeated in every row, since it does not depend on n.
  */
-ur_status ur_compare(ur_ruled *ruled, size_t n_min, size_t n_max, ur_compare_table *table,
-                     ur_error *error);
+UR_API ur_status ur_compare(ur_ruled *ruled, size_t n_min, size_t n_max, ur_compare_table *table,
+                            ur_error *error);
 
-void ur_compare_table_free(ur_compare_table *table);
+UR_API void ur_compare_table_free(ur_compare_table *table);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -21,11 +21,15 @@
 #include "unroll/develop.h"
 #include "unroll/mesh.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef enum ur_flatten_method { UR_FLATTEN_ARAP, UR_FLATTEN_LSCM } ur_flatten_method;
 
 /* "arap", "lscm"; ur_flatten_method_from_name returns -1 when unknown. */
-const char *ur_flatten_method_name(ur_flatten_method method);
-int ur_flatten_method_from_name(const char *name);
+UR_API const char *ur_flatten_method_name(ur_flatten_method method);
+UR_API int ur_flatten_method_from_name(const char *name);
 
 typedef struct ur_flatten_options {
     ur_flatten_method method;
@@ -42,7 +46,7 @@ typedef struct ur_flatten_options {
     const ur_context *context; /* stops with UR_ERROR_CANCELLED once it is cancelled; NULL: never */
 } ur_flatten_options;
 
-void ur_flatten_options_default(ur_flatten_options *options);
+UR_API void ur_flatten_options_default(ur_flatten_options *options);
 
 /*
  * About how many bytes flattening a mesh of triangle_count triangles
@@ -51,7 +55,7 @@ void ur_flatten_options_default(ur_flatten_options *options);
  * triangles (bench/bench_flatten.c), where it grows linearly.  A caller can
  * refuse a mesh that will not fit before it starts.
  */
-size_t ur_flatten_memory_estimate(size_t triangle_count);
+UR_API size_t ur_flatten_memory_estimate(size_t triangle_count);
 
 /* The strain of one triangle. */
 typedef struct ur_strain {
@@ -80,10 +84,10 @@ typedef struct ur_flat_piece {
  * triangles, a vertex no triangle uses, a triangle of no area, a coordinate
  * that is not finite, or bad options.  options may be NULL (the defaults).
  */
-ur_status ur_flatten(const ur_mesh *piece, const ur_flatten_options *options, ur_flat_piece *flat,
-                     ur_error *error);
+UR_API ur_status ur_flatten(const ur_mesh *piece, const ur_flatten_options *options,
+                            ur_flat_piece *flat, ur_error *error);
 
-void ur_flat_piece_free(ur_flat_piece *flat);
+UR_API void ur_flat_piece_free(ur_flat_piece *flat);
 
 /*
  * Measures a layout made elsewhere (layout: one flat point per vertex of
@@ -91,8 +95,8 @@ void ur_flat_piece_free(ur_flat_piece *flat);
  * areas, coverage, the largest stretch and compression and the flipped
  * flag; iterations is 0.  Free the result with ur_flat_piece_free.
  */
-ur_status ur_flat_piece_measure(const ur_mesh *piece, const ur_vec2 *layout, ur_flat_piece *flat,
-                                ur_error *error);
+UR_API ur_status ur_flat_piece_measure(const ur_mesh *piece, const ur_vec2 *layout,
+                                       ur_flat_piece *flat, ur_error *error);
 
 /*
  * The ARAP energy of a layout: the area-weighted mean over the triangles of
@@ -101,8 +105,8 @@ ur_status ur_flat_piece_measure(const ur_mesh *piece, const ur_vec2 *layout, ur_
  * triangle that is not flipped.  0 for an isometry; dimensionless, so
  * pieces and methods compare.  ARAP minimises it.
  */
-ur_status ur_flatten_energy(const ur_mesh *piece, const ur_vec2 *layout, double *energy,
-                            ur_error *error);
+UR_API ur_status ur_flatten_energy(const ur_mesh *piece, const ur_vec2 *layout, double *energy,
+                                   ur_error *error);
 
 /*
  * The net of a flattened piece (net.c): its boundary loop laid flat
@@ -110,16 +114,16 @@ ur_status ur_flatten_energy(const ur_mesh *piece, const ur_vec2 *layout, double 
  * edge's length, its strain and its 3D faces.  Free it as part of a
  * ur_net_list.
  */
-ur_status ur_net_from_flat(const ur_mesh *piece, const ur_flat_piece *flat, const char *name,
-                           ur_net *net, ur_error *error);
+UR_API ur_status ur_net_from_flat(const ur_mesh *piece, const ur_flat_piece *flat, const char *name,
+                                  ur_net *net, ur_error *error);
 
 /*
  * Gives the net the 3D corners of the mesh's triangles listed (all of
  * them when triangles is NULL), replacing any it had: the faces the
  * assembly guide draws (ur_net.faces_3d).
  */
-ur_status ur_net_set_faces(ur_net *net, const ur_mesh *mesh, const size_t *triangles, size_t count,
-                           ur_error *error);
+UR_API ur_status ur_net_set_faces(ur_net *net, const ur_mesh *mesh, const size_t *triangles,
+                                  size_t count, ur_error *error);
 
 /*
  * ---- Exact unfolding of a polyhedral mesh (unfold.c) ----
@@ -196,7 +200,7 @@ typedef struct ur_unfold_options {
     void *progress_context;
 } ur_unfold_options;
 
-void ur_unfold_options_default(ur_unfold_options *options);
+UR_API void ur_unfold_options_default(ur_unfold_options *options);
 
 /* One fold line of a piece. */
 typedef struct ur_fold {
@@ -288,15 +292,15 @@ typedef struct ur_unfolding {
  * its size (messages number vertices, triangles and seams from 1).  On
  * failure *out is empty.
  */
-ur_status ur_unfold(const ur_mesh *mesh, const ur_seam *seams, size_t seam_count, ur_unfolding *out,
-                    ur_error *error);
+UR_API ur_status ur_unfold(const ur_mesh *mesh, const ur_seam *seams, size_t seam_count,
+                           ur_unfolding *out, ur_error *error);
 
 /* The same with options (NULL: the defaults). */
-ur_status ur_unfold_with_options(const ur_mesh *mesh, const ur_seam *seams, size_t seam_count,
-                                 const ur_unfold_options *options, ur_unfolding *out,
-                                 ur_error *error);
+UR_API ur_status ur_unfold_with_options(const ur_mesh *mesh, const ur_seam *seams,
+                                        size_t seam_count, const ur_unfold_options *options,
+                                        ur_unfolding *out, ur_error *error);
 
-void ur_unfolding_free(ur_unfolding *unfolding);
+UR_API void ur_unfolding_free(ur_unfolding *unfolding);
 
 /*
  * ---- Flattening in strips (strips.c) ----
@@ -382,9 +386,9 @@ typedef struct ur_strips {
  * %", for the caller to add how to allow more.  Free the result with
  * ur_strips_free; it is empty on failure.
  */
-ur_status ur_flatten_strips_ruled(ur_ruled *ruled, const ur_strip_limits *limits,
-                                  const ur_flatten_options *options, ur_strips *strips,
-                                  ur_error *error);
+UR_API ur_status ur_flatten_strips_ruled(ur_ruled *ruled, const ur_strip_limits *limits,
+                                         const ur_flatten_options *options, ur_strips *strips,
+                                         ur_error *error);
 
 /*
  * The same for a mesh, manifold and consistently oriented (as
@@ -394,19 +398,22 @@ ur_status ur_flatten_strips_ruled(ur_ruled *ruled, const ur_strip_limits *limits
  * seams (edges of the mesh, as for ur_mesh_pieces; a seam edge a plane
  * crosses is cut on both sides of the plane) still cut.
  */
-ur_status ur_flatten_strips_mesh(const ur_mesh *mesh, const ur_seam *seams, size_t seam_count,
-                                 const ur_vec3 *direction, const ur_strip_limits *limits,
-                                 const ur_flatten_options *options, ur_strips *strips,
-                                 ur_error *error);
+UR_API ur_status ur_flatten_strips_mesh(const ur_mesh *mesh, const ur_seam *seams,
+                                        size_t seam_count, const ur_vec3 *direction,
+                                        const ur_strip_limits *limits,
+                                        const ur_flatten_options *options, ur_strips *strips,
+                                        ur_error *error);
 
 /* Exactly count strips, each flattened, whatever their strain (tried is 1). */
-ur_status ur_strips_of_ruled(ur_ruled *ruled, size_t count, const ur_flatten_options *options,
-                             ur_strips *strips, ur_error *error);
-ur_status ur_strips_of_mesh(const ur_mesh *mesh, const ur_seam *seams, size_t seam_count,
-                            ur_vec3 direction, size_t count, const ur_flatten_options *options,
-                            ur_strips *strips, ur_error *error);
+UR_API ur_status ur_strips_of_ruled(ur_ruled *ruled, size_t count,
+                                    const ur_flatten_options *options, ur_strips *strips,
+                                    ur_error *error);
+UR_API ur_status ur_strips_of_mesh(const ur_mesh *mesh, const ur_seam *seams, size_t seam_count,
+                                   ur_vec3 direction, size_t count,
+                                   const ur_flatten_options *options, ur_strips *strips,
+                                   ur_error *error);
 
-void ur_strips_free(ur_strips *strips);
+UR_API void ur_strips_free(ur_strips *strips);
 
 /*
  * ---- Charts within the material's strain (charts.c) ----
@@ -442,7 +449,7 @@ void ur_strips_free(ur_strips *strips);
 #define UR_CHART_SHARP_ANGLE (3.14159265358979323846 / 6)
 
 /* Whether the faces of triangles t and u (neighbours) turn by more than UR_CHART_SHARP_ANGLE. */
-bool ur_chart_edge_is_sharp(const ur_mesh *mesh, size_t t, size_t u);
+UR_API bool ur_chart_edge_is_sharp(const ur_mesh *mesh, size_t t, size_t u);
 
 typedef struct ur_chart {
     /*
@@ -470,11 +477,11 @@ typedef struct ur_charts {
  * triangles, and what ur_mesh_pieces and ur_flatten refuse.  Free the
  * result with ur_charts_free; it is empty on failure.
  */
-ur_status ur_flatten_charts(const ur_mesh *mesh, const ur_seam *seams, size_t seam_count,
-                            const ur_strip_limits *limits, const ur_flatten_options *options,
-                            ur_charts *charts, ur_error *error);
+UR_API ur_status ur_flatten_charts(const ur_mesh *mesh, const ur_seam *seams, size_t seam_count,
+                                   const ur_strip_limits *limits, const ur_flatten_options *options,
+                                   ur_charts *charts, ur_error *error);
 
-void ur_charts_free(ur_charts *charts);
+UR_API void ur_charts_free(ur_charts *charts);
 
 /*
  * Scales a layout about the origin so that its strain falls within the
@@ -485,6 +492,10 @@ void ur_charts_free(ur_charts *charts);
  * strain and the largest stretch and compression follow.  A layout within
  * the limits is left as it is.
  */
-void ur_flat_piece_fit_limits(ur_flat_piece *flat, const ur_strip_limits *limits);
+UR_API void ur_flat_piece_fit_limits(ur_flat_piece *flat, const ur_strip_limits *limits);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

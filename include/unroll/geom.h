@@ -11,6 +11,10 @@
 
 #include "unroll/base.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct ur_vec2 {
     double x, y;
 } ur_vec2;
@@ -108,22 +112,22 @@ static inline double ur_vec2_distance(ur_vec2 a, ur_vec2 b)
 }
 
 /* Signed area by the shoelace formula: > 0 for counter-clockwise rings. */
-double ur_polygon_signed_area(const ur_vec2 *points, size_t count);
+UR_API double ur_polygon_signed_area(const ur_vec2 *points, size_t count);
 
 /* Reverses the order of the points in place (a ring then turns the other way). */
-void ur_points_reverse(ur_vec2 *points, size_t count);
+UR_API void ur_points_reverse(ur_vec2 *points, size_t count);
 
 /* Length of a polyline; closed adds the edge from the last point to the first. */
-double ur_polyline_length(const ur_vec2 *points, size_t count, bool closed);
+UR_API double ur_polyline_length(const ur_vec2 *points, size_t count, bool closed);
 
 /* An axis-aligned box.  An empty box has min > max. */
 typedef struct ur_box {
     ur_vec2 min, max;
 } ur_box;
 
-ur_box ur_box_empty(void);
-void ur_box_add(ur_box *box, ur_vec2 point);
-ur_box ur_box_of_points(const ur_vec2 *points, size_t count);
+UR_API ur_box ur_box_empty(void);
+UR_API void ur_box_add(ur_box *box, ur_vec2 point);
+UR_API ur_box ur_box_of_points(const ur_vec2 *points, size_t count);
 static inline double ur_box_width(ur_box box)
 {
     return box.max.x - box.min.x;
@@ -139,20 +143,21 @@ typedef struct ur_transform2 {
     ur_vec2 translation;
 } ur_transform2;
 
-ur_transform2 ur_transform2_identity(void);
-ur_transform2 ur_transform2_make(double angle, ur_vec2 translation);
-ur_vec2 ur_transform2_apply(ur_transform2 transform, ur_vec2 point);
+UR_API ur_transform2 ur_transform2_identity(void);
+UR_API ur_transform2 ur_transform2_make(double angle, ur_vec2 translation);
+UR_API ur_vec2 ur_transform2_apply(ur_transform2 transform, ur_vec2 point);
 
 /* Distance between the 3D segments p0p1 and q0q1. */
-double ur_segment_distance(ur_vec3 p0, ur_vec3 p1, ur_vec3 q0, ur_vec3 q1);
+UR_API double ur_segment_distance(ur_vec3 p0, ur_vec3 p1, ur_vec3 q0, ur_vec3 q1);
 
 /*
  * Whether the polylines a and b come within tolerance of each other
  * anywhere (they meet or cross); *where is then the first segment of a that
  * does.
  */
-ur_status ur_polylines_meet(const ur_vec3 *a, size_t a_count, const ur_vec3 *b, size_t b_count,
-                            double tolerance, bool *meet, size_t *where, ur_error *error);
+UR_API ur_status ur_polylines_meet(const ur_vec3 *a, size_t a_count, const ur_vec3 *b,
+                                   size_t b_count, double tolerance, bool *meet, size_t *where,
+                                   ur_error *error);
 
 /* A growable array of plane points; the owner frees it with ur_points_free. */
 typedef struct ur_points {
@@ -160,7 +165,11 @@ typedef struct ur_points {
     size_t count, capacity;
 } ur_points;
 
-ur_status ur_points_push(ur_points *points, ur_vec2 point, ur_error *error);
-void ur_points_free(ur_points *points);
+UR_API ur_status ur_points_push(ur_points *points, ur_vec2 point, ur_error *error);
+UR_API void ur_points_free(ur_points *points);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

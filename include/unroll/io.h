@@ -17,6 +17,10 @@
 #include "unroll/geom.h"
 #include "unroll/mesh.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* ---- Curves ------------------------------------------------------------ */
 
 /*
@@ -26,16 +30,16 @@
  * coordinates and a point equal to the one before it.  The caller frees
  * *points with free().
  */
-ur_status ur_curve_csv_read(const char *path, ur_vec3 **points, size_t *count, bool *closed,
-                            ur_error *error);
+UR_API ur_status ur_curve_csv_read(const char *path, ur_vec3 **points, size_t *count, bool *closed,
+                                   ur_error *error);
 
 /* The same for a path of at least min_count points (a seam of two). */
-ur_status ur_points_csv_read(const char *path, size_t min_count, ur_vec3 **points, size_t *count,
-                             bool *closed, ur_error *error);
+UR_API ur_status ur_points_csv_read(const char *path, size_t min_count, ur_vec3 **points,
+                                    size_t *count, bool *closed, ur_error *error);
 
 /* Writes points as CSV, atomically (temporary file, then rename). */
-ur_status ur_curve_csv_write(const char *path, const ur_vec3 *points, size_t count,
-                             ur_context *context, ur_error *error);
+UR_API ur_status ur_curve_csv_write(const char *path, const ur_vec3 *points, size_t count,
+                                    ur_context *context, ur_error *error);
 
 /* ---- Profiles ---------------------------------------------------------- */
 
@@ -91,8 +95,8 @@ typedef enum ur_surface_layer {
 } ur_surface_layer;
 
 /* "neutral", "outer", "inner", "mid"; ur_surface_layer_from_name returns -1 when unknown. */
-const char *ur_surface_layer_name(ur_surface_layer layer);
-int ur_surface_layer_from_name(const char *name);
+UR_API const char *ur_surface_layer_name(ur_surface_layer layer);
+UR_API int ur_surface_layer_from_name(const char *name);
 
 /*
  * How far the neutral layer lies from the given layer, in mm toward the
@@ -100,7 +104,7 @@ int ur_surface_layer_from_name(const char *name);
  * The neutral layer lies k_factor * thickness from the inner face, so outer
  * (1 - K) t, inner -K t, mid (1/2 - K) t, neutral 0.
  */
-double ur_surface_layer_offset(ur_surface_layer layer, double thickness, double k_factor);
+UR_API double ur_surface_layer_offset(ur_surface_layer layer, double thickness, double k_factor);
 
 typedef enum ur_grain_rule {
     UR_GRAIN_NONE,   /* no grain: any rotation */
@@ -154,24 +158,32 @@ typedef struct ur_material {
 typedef enum ur_profile_kind { UR_PROFILE_MACHINE, UR_PROFILE_MATERIAL } ur_profile_kind;
 
 /*
- * Profile roots, searched in order: ./profiles, then $UNROLL_PROFILES, then
- * the installed share directory (UR_PROFILE_DIR at build time).  A profile
- * NAME is the file ROOT/machines/NAME.xml or ROOT/materials/NAME.xml; the
- * schemas are ROOT/schema/machine.rng and ROOT/schema/material.rng, taken
- * from the first root that has them.
+ * Profile roots: the directories profiles are searched in, in order, as a
+ * NULL-terminated list of paths (roots), e.g. {"/usr/share/unroll/profiles",
+ * NULL}; a root that does not exist is empty.  A profile NAME is the file
+ * ROOT/machines/NAME.xml or ROOT/materials/NAME.xml; the schemas are
+ * ROOT/schema/machine.rng, material.rng and job.rng, taken from the first
+ * root that has them.  The library searches nothing else: the command's
+ * roots (next to its executable, $UNROLL_PROFILES, ./profiles) are its own
+ * (unroll(1), PROFILES); `pkg-config --variable=profiledir unroll` names
+ * the installed ones.
  */
-ur_status ur_profile_find(ur_profile_kind kind, const char *name, char *path, size_t path_size,
-                          ur_error *error);
+UR_API ur_status ur_profile_find(const char *const *roots, ur_profile_kind kind, const char *name,
+                                 char *path, size_t path_size, ur_error *error);
 
-/* Reads and validates one profile file. */
-ur_status ur_machine_read(const char *path, ur_machine *machine, ur_error *error);
-ur_status ur_material_read(const char *path, ur_material *material, ur_error *error);
+/* Reads and validates one profile file (its schema from roots). */
+UR_API ur_status ur_machine_read(const char *const *roots, const char *path, ur_machine *machine,
+                                 ur_error *error);
+UR_API ur_status ur_material_read(const char *const *roots, const char *path, ur_material *material,
+                                  ur_error *error);
 
-/* Finds NAME on the search path, then reads it. */
-ur_status ur_machine_load(const char *name, ur_machine *machine, ur_error *error);
-ur_status ur_material_load(const char *name, ur_material *material, ur_error *error);
+/* Finds NAME in the roots, then reads it. */
+UR_API ur_status ur_machine_load(const char *const *roots, const char *name, ur_machine *machine,
+                                 ur_error *error);
+UR_API ur_status ur_material_load(const char *const *roots, const char *name, ur_material *material,
+                                  ur_error *error);
 
-/* One entry of a listing of every profile on the search path. */
+/* One entry of a listing of every profile in the roots. */
 typedef struct ur_profile_entry {
     ur_profile_kind kind;
     char name[64];
@@ -183,10 +195,11 @@ typedef struct ur_profile_entry {
  * Lists every profile found (a name found in an earlier root hides the same
  * name in later ones), sorted by kind then name.  The caller frees *entries.
  */
-ur_status ur_profile_list(ur_profile_entry **entries, size_t *count, ur_error *error);
+UR_API ur_status ur_profile_list(const char *const *roots, ur_profile_entry **entries,
+                                 size_t *count, ur_error *error);
 
 /* The kerf a machine cuts in a material: the material's figure if it has one. */
-double ur_effective_kerf(const ur_machine *machine, const ur_material *material);
+UR_API double ur_effective_kerf(const ur_machine *machine, const ur_material *material);
 
 /* ---- Meshes ------------------------------------------------------------ */
 
@@ -194,18 +207,18 @@ double ur_effective_kerf(const ur_machine *machine, const ur_material *material)
 typedef enum ur_length_unit { UR_UNIT_MM, UR_UNIT_CM, UR_UNIT_M, UR_UNIT_IN } ur_length_unit;
 
 /* "mm", "cm", "m", "in"; ur_length_unit_from_name returns -1 when unknown. */
-const char *ur_length_unit_name(ur_length_unit unit);
-int ur_length_unit_from_name(const char *name);
+UR_API const char *ur_length_unit_name(ur_length_unit unit);
+UR_API int ur_length_unit_from_name(const char *name);
 
 /* Millimetres in one unit: 1, 10, 1000, 25.4. */
-double ur_length_unit_mm(ur_length_unit unit);
+UR_API double ur_length_unit_mm(ur_length_unit unit);
 
 typedef struct ur_mesh_import_options {
     ur_length_unit unit; /* of the file's coordinates; default millimetres */
     double scale;        /* multiplies after the unit: positive and finite; default 1 */
 } ur_mesh_import_options;
 
-void ur_mesh_import_options_default(ur_mesh_import_options *options);
+UR_API void ur_mesh_import_options_default(ur_mesh_import_options *options);
 
 /* More vertices than this (counting every node's copy) are refused: memory. */
 #define UR_MESH_IMPORT_MAX_VERTICES 50000000u
@@ -221,7 +234,7 @@ void ur_mesh_import_options_default(ur_mesh_import_options *options);
  * assimp starts: assimp does not survive running out of memory while it
  * post-processes (it crashes releasing the scene).
  */
-size_t ur_mesh_import_memory_estimate(const char *path);
+UR_API size_t ur_mesh_import_memory_estimate(const char *path);
 
 /*
  * Reads OBJ, STL (ASCII and binary), PLY and glTF 2 (.gltf, .glb), known by
@@ -255,8 +268,8 @@ size_t ur_mesh_import_memory_estimate(const char *path);
  *
  * Not thread-safe: assimp keeps its last error message in a global.
  */
-ur_status ur_mesh_import(const char *path, const ur_mesh_import_options *options, ur_mesh *mesh,
-                         char (**group_names)[64], ur_error *error);
+UR_API ur_status ur_mesh_import(const char *path, const ur_mesh_import_options *options,
+                                ur_mesh *mesh, char (**group_names)[64], ur_error *error);
 
 /* ---- Job files ---------------------------------------------------------- */
 
@@ -298,15 +311,17 @@ typedef struct ur_job {
 } ur_job;
 
 /*
- * Reads and validates a job file (profiles' schema/job.rng; unroll-job(5)).
+ * Reads and validates a job file (schema/job.rng from the profile roots;
+ * unroll-job(5)).
  * Paths in it (path options, a mesh part's file, the output directory) are
  * relative to the job file and come back joined to its directory.  Refuses
  * with UR_ERROR_INPUT, "FILE:LINE: message": a file that is not well formed
  * or not valid (the schema's message), two parts of one name, a path too
  * long.  Free with ur_job_free.
  */
-ur_status ur_job_read(const char *path, ur_job *job, ur_error *error);
-void ur_job_free(ur_job *job);
+UR_API ur_status ur_job_read(const char *const *roots, const char *path, ur_job *job,
+                             ur_error *error);
+UR_API void ur_job_free(ur_job *job);
 
 /* ---- Parts from SVG and DXF -------------------------------------------- */
 
@@ -332,10 +347,10 @@ typedef struct ur_parts_import_options {
     bool strict;
 } ur_parts_import_options;
 
-void ur_parts_import_options_default(ur_parts_import_options *options);
+UR_API void ur_parts_import_options_default(ur_parts_import_options *options);
 
 /* Millimetres in "mm", "cm", "m", "in", "ft", "pt", "pc" or "px" (96 per inch); 0 when unknown. */
-double ur_parts_unit_mm(const char *name);
+UR_API double ur_parts_unit_mm(const char *name);
 
 /* Coordinates beyond 1 km, once in millimetres, are refused. */
 #define UR_PARTS_IMPORT_MAX_COORDINATE 1e6
@@ -421,9 +436,13 @@ typedef struct ur_parts {
  * so) and refused, naming the part, when it does not.  On failure *parts is
  * empty.  Free with ur_parts_free.
  */
-ur_status ur_parts_import(const char *path, const ur_parts_import_options *options, ur_parts *parts,
-                          ur_error *error);
+UR_API ur_status ur_parts_import(const char *path, const ur_parts_import_options *options,
+                                 ur_parts *parts, ur_error *error);
 
-void ur_parts_free(ur_parts *parts);
+UR_API void ur_parts_free(ur_parts *parts);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

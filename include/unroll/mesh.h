@@ -16,6 +16,10 @@
 #include "unroll/geom.h"
 #include "unroll/surface.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* No twin: a boundary edge. */
 #define UR_NO_EDGE ((size_t)-1)
 
@@ -34,10 +38,11 @@ typedef struct ur_mesh {
  * and an index out of range, naming the triangle (both from 1).
  * group_count is one more than the largest group.
  */
-ur_status ur_mesh_new(const ur_vec3 *vertices, size_t vertex_count, const size_t (*triangles)[3],
-                      size_t triangle_count, const size_t *groups, ur_mesh *mesh, ur_error *error);
+UR_API ur_status ur_mesh_new(const ur_vec3 *vertices, size_t vertex_count,
+                             const size_t (*triangles)[3], size_t triangle_count,
+                             const size_t *groups, ur_mesh *mesh, ur_error *error);
 
-void ur_mesh_free(ur_mesh *mesh);
+UR_API void ur_mesh_free(ur_mesh *mesh);
 
 /* What ur_mesh_clean changed, for the user to read. */
 typedef struct ur_mesh_repairs {
@@ -67,8 +72,8 @@ typedef struct ur_mesh_repairs {
  * On failure the mesh is left as it was.  Messages number input vertices
  * and triangles from 1.
  */
-ur_status ur_mesh_clean(ur_mesh *mesh, double weld_tolerance, ur_mesh_repairs *repairs,
-                        ur_error *error);
+UR_API ur_status ur_mesh_clean(ur_mesh *mesh, double weld_tolerance, ur_mesh_repairs *repairs,
+                               ur_error *error);
 
 /* Where ur_mesh_clean_map puts an input vertex it dropped. */
 #define UR_NO_VERTEX ((size_t)-1)
@@ -81,8 +86,8 @@ ur_status ur_mesh_clean(ur_mesh *mesh, double weld_tolerance, ur_mesh_repairs *r
  * caller frees *vertex_map; it is NULL on failure, when the mesh is left as
  * it was.
  */
-ur_status ur_mesh_clean_map(ur_mesh *mesh, double weld_tolerance, ur_mesh_repairs *repairs,
-                            size_t **vertex_map, ur_error *error);
+UR_API ur_status ur_mesh_clean_map(ur_mesh *mesh, double weld_tolerance, ur_mesh_repairs *repairs,
+                                   size_t **vertex_map, ur_error *error);
 
 /*
  * Half-edge k of triangle t runs from corner k to corner k + 1 (mod 3) and
@@ -92,7 +97,7 @@ ur_status ur_mesh_clean_map(ur_mesh *mesh, double weld_tolerance, ur_mesh_repair
  * more triangles: "non-manifold edge between vertices A and B (N
  * triangles)".
  */
-ur_status ur_mesh_twins(const ur_mesh *mesh, size_t **twins, ur_error *error);
+UR_API ur_status ur_mesh_twins(const ur_mesh *mesh, size_t **twins, ur_error *error);
 
 /* An edge the user marks as a seam, by its two vertex indices. */
 typedef struct ur_seam {
@@ -123,10 +128,10 @@ typedef struct ur_mesh_piece {
     size_t *source_triangles; /* owned: input triangle of each piece triangle */
 } ur_mesh_piece;
 
-ur_status ur_mesh_pieces(const ur_mesh *mesh, const ur_seam *seams, size_t seam_count,
-                         ur_mesh_piece **pieces, size_t *piece_count, ur_error *error);
+UR_API ur_status ur_mesh_pieces(const ur_mesh *mesh, const ur_seam *seams, size_t seam_count,
+                                ur_mesh_piece **pieces, size_t *piece_count, ur_error *error);
 
-void ur_mesh_pieces_free(ur_mesh_piece *pieces, size_t piece_count);
+UR_API void ur_mesh_pieces_free(ur_mesh_piece *pieces, size_t piece_count);
 
 /*
  * The boundary of a disk as one loop of vertex indices, in the order the
@@ -135,19 +140,20 @@ void ur_mesh_pieces_free(ur_mesh_piece *pieces, size_t piece_count);
  * several boundary loops, Euler characteristic other than 1, a boundary
  * through a vertex twice, or triangles not consistently oriented.
  */
-ur_status ur_mesh_boundary(const ur_mesh *mesh, size_t **loop, size_t *count, ur_error *error);
+UR_API ur_status ur_mesh_boundary(const ur_mesh *mesh, size_t **loop, size_t *count,
+                                  ur_error *error);
 
 /* 3D area (sum of triangle areas). */
-double ur_mesh_area(const ur_mesh *mesh);
+UR_API double ur_mesh_area(const ur_mesh *mesh);
 
 /* The diagonal of the mesh's bounding box (0 without vertices): its size. */
-double ur_mesh_size(const ur_mesh *mesh);
+UR_API double ur_mesh_size(const ur_mesh *mesh);
 
 /* A triangle of less area than this times the square of the mesh's size has none. */
 #define UR_MESH_ZERO_AREA 1e-12
 
 /* Refuses (UR_ERROR_INPUT, naming it 1-based) a vertex with a NaN or infinite coordinate. */
-ur_status ur_mesh_check_vertices(const ur_vec3 *vertices, size_t count, ur_error *error);
+UR_API ur_status ur_mesh_check_vertices(const ur_vec3 *vertices, size_t count, ur_error *error);
 
 /*
  * Triangulates a ruled surface over its whole domain: along + 1 rulings
@@ -159,8 +165,8 @@ ur_status ur_mesh_check_vertices(const ur_vec3 *vertices, size_t count, ur_error
  * cut along the first ruling (ur_mesh_clean welds them when a closed mesh
  * is wanted, and welds a cone's apex, which is one vertex per ruling).
  */
-ur_status ur_mesh_from_ruled(ur_ruled *ruled, size_t along, size_t across, ur_mesh *mesh,
-                             ur_error *error);
+UR_API ur_status ur_mesh_from_ruled(ur_ruled *ruled, size_t along, size_t across, ur_mesh *mesh,
+                                    ur_error *error);
 
 /*
  * ---- Bands between parallel planes (bands.c) ----
@@ -191,7 +197,8 @@ ur_status ur_mesh_from_ruled(ur_ruled *ruled, size_t along, size_t across, ur_me
  * makes the largest component positive.  Refuses (UR_ERROR_INPUT) a mesh
  * with no triangles or no area.
  */
-ur_status ur_mesh_bending_direction(const ur_mesh *mesh, ur_vec3 *direction, ur_error *error);
+UR_API ur_status ur_mesh_bending_direction(const ur_mesh *mesh, ur_vec3 *direction,
+                                           ur_error *error);
 
 /*
  * Offsets (p . d, d the unit direction) of count - 1 planes, increasing,
@@ -203,8 +210,8 @@ ur_status ur_mesh_bending_direction(const ur_mesh *mesh, ur_vec3 *direction, ur_
  * count 1.  Refuses (UR_ERROR_INPUT) count 0, a direction of no length and
  * a mesh with no extent along it.
  */
-ur_status ur_mesh_band_planes(const ur_mesh *mesh, ur_vec3 direction, size_t count, double *planes,
-                              ur_error *error);
+UR_API ur_status ur_mesh_band_planes(const ur_mesh *mesh, ur_vec3 direction, size_t count,
+                                     double *planes, ur_error *error);
 
 /*
  * Cuts the mesh into count bands between the count - 1 planes p . d =
@@ -225,8 +232,8 @@ ur_status ur_mesh_band_planes(const ur_mesh *mesh, ur_vec3 direction, size_t cou
  * (UR_ERROR_INPUT) count 0, planes that do not increase, a direction of no
  * length and a mesh with no triangles or a bad vertex or index.
  */
-ur_status ur_mesh_bands(const ur_mesh *mesh, ur_vec3 direction, const double *planes, size_t count,
-                        ur_mesh *banded, ur_error *error);
+UR_API ur_status ur_mesh_bands(const ur_mesh *mesh, ur_vec3 direction, const double *planes,
+                               size_t count, ur_mesh *banded, ur_error *error);
 
 /*
  * Cuts a piece in two along its length: across the line where the
@@ -238,7 +245,7 @@ ur_status ur_mesh_bands(const ur_mesh *mesh, ur_vec3 direction, const double *pl
  * (UR_ERROR_INPUT) fewer than 2 triangles and the meshes cutting refuses
  * (ur_mesh_pieces).
  */
-ur_status ur_mesh_halve(const ur_mesh *mesh, ur_mesh *halves, ur_error *error);
+UR_API ur_status ur_mesh_halve(const ur_mesh *mesh, ur_mesh *halves, ur_error *error);
 
 /*
  * The same cut into parts pieces of equal area, one after another along
@@ -247,6 +254,11 @@ ur_status ur_mesh_halve(const ur_mesh *mesh, ur_mesh *halves, ur_error *error);
  * triangle count, and levels that do not increase (a piece with no length
  * to speak of).
  */
-ur_status ur_mesh_split_along(const ur_mesh *mesh, size_t parts, ur_mesh *split, ur_error *error);
+UR_API ur_status ur_mesh_split_along(const ur_mesh *mesh, size_t parts, ur_mesh *split,
+                                     ur_error *error);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

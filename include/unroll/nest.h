@@ -12,6 +12,10 @@
 #include "unroll/allow.h"
 #include "unroll/geom.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct ur_placement {
     size_t piece_index;
     ur_transform2 transform;
@@ -56,8 +60,9 @@ typedef struct ur_layout_options {
  * quarter turn more if that is what makes it fit.  Fails with UR_ERROR_INPUT,
  * naming both sizes, when a piece fits no sheet.
  */
-ur_status ur_layout_rows(const ur_piece *pieces, size_t piece_count,
-                         const ur_layout_options *options, ur_layout *layout, ur_error *error);
+UR_API ur_status ur_layout_rows(const ur_piece *pieces, size_t piece_count,
+                                const ur_layout_options *options, ur_layout *layout,
+                                ur_error *error);
 
 /*
  * True-shape nesting (nest.c): every part at its exact shape (holes too,
@@ -113,17 +118,14 @@ typedef struct ur_nest_options {
      * three, one part held at another of its allowed turns, or freed to
      * take its best again; any layout at least as good replaces the
      * current one) until time_budget seconds have passed,
-     * a run of tries brought no new best (NEST_PATIENCE_PER_SECOND per
-     * second of budget, at least NEST_PATIENCE), or NEST_TRIES tries were
-     * made.  A better layout places more parts, or uses fewer stock
-     * sheets, or less of the last sheet's length, or at equal length has
-     * that sheet's parts reach less far on average.  0: no search.  The
-     * steps come from seed (xorshift64*), so a search that stops for want
-     * of improvement or at its try limit gives the same layout every time.
-     * That search has a fifth of the budget.  On a roll, shortening the
-     * strip by overlap minimisation (src/nest/compact.c) has the rest: it
-     * stops when the time is up or after 200 failed cuts in a row.  On
-     * sheets, with every part placed, the same search looks for a layout
+     * a run of tries brought no new best (20 per second of budget, at
+     * least 40), or 100,000 tries were made.  A better layout places more parts, or uses fewer
+     * stock sheets, or less of the last sheet's length, or at equal length has that sheet's parts
+     * reach less far on average.  0: no search.  The steps come from seed (xorshift64*), so a
+     * search that stops for want of improvement or at its try limit gives the same layout every
+     * time. That search has a fifth of the budget.  On a roll, shortening the strip by overlap
+     * minimisation (src/nest/compact.c) has the rest: it stops when the time is up or after 200
+     * failed cuts in a row.  On sheets, with every part placed, the same search looks for a layout
      * on fewer stock sheets, from the area bound up (each count an equal
      * share of the time up to four fifths of the budget; parts overlap on
      * the way, and a layout is kept only once GEOS finds no overlap left),
@@ -131,7 +133,7 @@ typedef struct ur_nest_options {
      * search, ending when its cuts are tried or at the budget), which
      * leaves its offcut (ur_sheet.offcut_width) in one piece.
      * Shortening runs as many searches side by side as threads says (0:
-     * one per processor; at most NEST_MAX_THREADS), each going on from
+     * one per processor; at most UR_NEST_MAX_THREADS), each going on from
      * the shortest layout any of them has found: the same time, more tries.
      */
     double time_budget;
@@ -153,11 +155,11 @@ typedef struct ur_nest_options {
     const ur_context *context;
 } ur_nest_options;
 
-enum { NEST_PATIENCE = 40, NEST_PATIENCE_PER_SECOND = 20, NEST_TRIES = 100000 };
-enum { NEST_MAX_THREADS = 16 };
+/* The most searches ur_nest_options.threads runs side by side. */
+enum { UR_NEST_MAX_THREADS = 16 };
 
-ur_status ur_layout_nest(const ur_piece *pieces, size_t count, const ur_nest_options *options,
-                         ur_layout *layout, ur_error *error);
+UR_API ur_status ur_layout_nest(const ur_piece *pieces, size_t count,
+                                const ur_nest_options *options, ur_layout *layout, ur_error *error);
 
 /*
  * Common-line cutting (merge_lines.c): going through each sheet's pieces
@@ -169,19 +171,19 @@ ur_status ur_layout_nest(const ur_piece *pieces, size_t count, const ur_nest_opt
  * the piece bridged, keeping its area in outline_area.  *saved is the cut
  * length taken off, mm.  Parts touch only when nested with no spacing.
  */
-ur_status ur_layout_merge_lines(const ur_layout *layout, ur_piece *pieces, size_t count,
-                                double tolerance, double *saved, ur_error *error);
+UR_API ur_status ur_layout_merge_lines(const ur_layout *layout, ur_piece *pieces, size_t count,
+                                       double tolerance, double *saved, ur_error *error);
 
 /*
  * The size of an outline turned so that its smallest enclosing rectangle
  * lies level, as nesting first turns a piece: *length the longer side,
  * *width the shorter (mm).
  */
-ur_status ur_outline_level_size(const ur_vec2 *outline, size_t count, double *length, double *width,
-                                ur_error *error);
+UR_API ur_status ur_outline_level_size(const ur_vec2 *outline, size_t count, double *length,
+                                       double *width, ur_error *error);
 
 /* The turn (radians) that lays the outline's smallest enclosing rectangle level. */
-double ur_outline_level_angle(const ur_vec2 *outline, size_t count);
+UR_API double ur_outline_level_angle(const ur_vec2 *outline, size_t count);
 
 /*
  * A part cut into the fewest parts that fit room_length x room_width
@@ -199,13 +201,17 @@ typedef struct ur_split_parts {
     ur_piece *pieces; /* owned; pieces[k] made from nets.nets[k] */
 } ur_split_parts;
 
-ur_status ur_part_split(const ur_piece *part, double room_length, double room_width, double id,
-                        ur_split_parts *out, ur_error *error);
-void ur_split_parts_free(ur_split_parts *parts);
+UR_API ur_status ur_part_split(const ur_piece *part, double room_length, double room_width,
+                               double id, ur_split_parts *out, ur_error *error);
+UR_API void ur_split_parts_free(ur_split_parts *parts);
 
 /* Share of the sheet's area covered by the outlines placed on it, 0..1. */
-double ur_sheet_utilisation(const ur_sheet *sheet, const ur_piece *pieces);
+UR_API double ur_sheet_utilisation(const ur_sheet *sheet, const ur_piece *pieces);
 
-void ur_layout_free(ur_layout *layout);
+UR_API void ur_layout_free(ur_layout *layout);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -16,6 +16,10 @@
 #include "unroll/io.h"
 #include "unroll/nest.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* The DXF dialects: R12 is what every cutter program reads. */
 typedef enum ur_dxf_version {
     UR_DXF_R12 = 0, /* AC1009: POLYLINE/VERTEX/SEQEND and LINE, no handles */
@@ -53,17 +57,17 @@ typedef enum ur_format {
 #define UR_FORMAT_ALL (UR_FORMAT_SVG | UR_FORMAT_DXF | UR_FORMAT_PDF | UR_FORMAT_PNG)
 
 /* The format the extension of path's base name names (any case), 0 for none. */
-ur_format ur_format_from_path(const char *path);
+UR_API ur_format ur_format_from_path(const char *path);
 
 /* "svg", "dxf", "pdf", "png" (also the extension) and back; 0 for an unknown name. */
-const char *ur_format_name(ur_format format);
-ur_format ur_format_from_name(const char *name);
+UR_API const char *ur_format_name(ur_format format);
+UR_API ur_format ur_format_from_name(const char *name);
 
 /*
  * A comma-separated list of format names ("svg,dxf") as bits in *formats.
  * An empty list, an empty item or an unknown name is UR_ERROR_INPUT naming it.
  */
-ur_status ur_formats_parse(const char *list, unsigned *formats, ur_error *error);
+UR_API ur_status ur_formats_parse(const char *list, unsigned *formats, ur_error *error);
 
 /* Output sets (ur_output_set_begin) are the context's: see unroll/base.h. */
 
@@ -91,10 +95,10 @@ ur_status ur_formats_parse(const char *list, unsigned *formats, ur_error *error)
  * machine cannot give, an unwritable file.  pieces must hold every piece a
  * placement names.
  */
-ur_status ur_write_outputs(const char *path, unsigned formats, const ur_layout *layout,
-                           const ur_piece *pieces, const ur_machine *machine,
-                           const ur_output_options *options,
-                           const ur_format_options *format_options, ur_error *error);
+UR_API ur_status ur_write_outputs(const char *path, unsigned formats, const ur_layout *layout,
+                                  const ur_piece *pieces, const ur_machine *machine,
+                                  const ur_output_options *options,
+                                  const ur_format_options *format_options, ur_error *error);
 
 /*
  * Writes one SVG per sheet.  With one sheet the file is output_path; with
@@ -105,9 +109,9 @@ ur_status ur_write_outputs(const char *path, unsigned formats, const ur_layout *
  * pieces in placement order, paths starting where they start; the cutting
  * order is ur_write_outputs').
  */
-ur_status ur_write_svg(const char *output_path, const ur_layout *layout, const ur_piece *pieces,
-                       const ur_machine *machine, const ur_output_options *options,
-                       ur_error *error);
+UR_API ur_status ur_write_svg(const char *output_path, const ur_layout *layout,
+                              const ur_piece *pieces, const ur_machine *machine,
+                              const ur_output_options *options, ur_error *error);
 
 /* ---- Cut order ----------------------------------------------------------- */
 
@@ -115,7 +119,7 @@ ur_status ur_write_svg(const char *output_path, const ur_layout *layout, const u
  * The operations in the order they are cut: engrave and mark while the
  * sheet is whole, then scores and kerfs, the through cuts last.
  */
-const ur_op *ur_operation_order(void);
+UR_API const ur_op *ur_operation_order(void);
 
 /*
  * How a sheet is cut (order.c): the placements in the order the pieces are
@@ -133,13 +137,13 @@ typedef struct ur_cut_plan {
     double seconds;
 } ur_cut_plan;
 
-ur_status ur_sheet_cut_plan(const ur_sheet *sheet, const ur_piece *pieces, const ur_op *op_order,
-                            bool ordered, const ur_machine *machine, ur_cut_plan *plan,
-                            ur_error *error);
-void ur_cut_plan_free(ur_cut_plan *plan);
+UR_API ur_status ur_sheet_cut_plan(const ur_sheet *sheet, const ur_piece *pieces,
+                                   const ur_op *op_order, bool ordered, const ur_machine *machine,
+                                   ur_cut_plan *plan, ur_error *error);
+UR_API void ur_cut_plan_free(ur_cut_plan *plan);
 
 /* The edge a closed path's cut starts in the middle of: its longest (0 for open paths). */
-size_t ur_path_start(const ur_path *path);
+UR_API size_t ur_path_start(const ur_path *path);
 
 /* Room for one output file name. */
 #define UR_OUTPUT_NAME_SIZE 4096
@@ -150,8 +154,9 @@ size_t ur_path_start(const ur_path *path);
  * the caller frees *names.  Refuses what ur_write_outputs refuses about
  * the path and formats.
  */
-ur_status ur_output_files(const char *path, unsigned formats, size_t sheet_count,
-                          char (**names)[UR_OUTPUT_NAME_SIZE], size_t *count, ur_error *error);
+UR_API ur_status ur_output_files(const char *path, unsigned formats, size_t sheet_count,
+                                 char (**names)[UR_OUTPUT_NAME_SIZE], size_t *count,
+                                 ur_error *error);
 
 /*
  * The same for DXF, PDF and the PNG preview, output_path used as it is
@@ -171,15 +176,18 @@ ur_status ur_output_files(const char *path, unsigned formats, size_t sheet_count
  * lines in their operations' colours, the pieces' names, a scale bar and a legend of the
  * operations.
  */
-ur_status ur_write_dxf(const char *output_path, const ur_layout *layout, const ur_piece *pieces,
-                       const ur_machine *machine, const ur_output_options *options,
-                       const ur_format_options *format_options, ur_error *error);
-ur_status ur_write_pdf(const char *output_path, const ur_layout *layout, const ur_piece *pieces,
-                       const ur_machine *machine, const ur_output_options *options,
-                       const ur_format_options *format_options, ur_error *error);
-ur_status ur_write_png(const char *output_path, const ur_layout *layout, const ur_piece *pieces,
-                       const ur_machine *machine, const ur_output_options *options,
-                       const ur_format_options *format_options, ur_error *error);
+UR_API ur_status ur_write_dxf(const char *output_path, const ur_layout *layout,
+                              const ur_piece *pieces, const ur_machine *machine,
+                              const ur_output_options *options,
+                              const ur_format_options *format_options, ur_error *error);
+UR_API ur_status ur_write_pdf(const char *output_path, const ur_layout *layout,
+                              const ur_piece *pieces, const ur_machine *machine,
+                              const ur_output_options *options,
+                              const ur_format_options *format_options, ur_error *error);
+UR_API ur_status ur_write_png(const char *output_path, const ur_layout *layout,
+                              const ur_piece *pieces, const ur_machine *machine,
+                              const ur_output_options *options,
+                              const ur_format_options *format_options, ur_error *error);
 
 /* What the report says beyond the pieces and sheets. */
 /* The material layer the 3D surface is and the one developed (--surface). */
@@ -214,9 +222,9 @@ typedef struct ur_report_context {
  * layout may be NULL (nothing placed yet); every placement's piece_index
  * must be below piece_count.
  */
-ur_status ur_report_write(const char *path, const ur_report_context *context,
-                          const ur_piece *pieces, size_t piece_count, const ur_layout *layout,
-                          ur_context *run, ur_error *error);
+UR_API ur_status ur_report_write(const char *path, const ur_report_context *context,
+                                 const ur_piece *pieces, size_t piece_count,
+                                 const ur_layout *layout, ur_context *run, ur_error *error);
 
 /*
  * The file names an output of sheet_count sheets gets: output_path itself for
@@ -225,8 +233,8 @@ ur_status ur_report_write(const char *path, const ur_report_context *context,
  * from 0.  Writes into name (size name_size); a name that does not fit is
  * UR_ERROR_INPUT.
  */
-ur_status ur_sheet_file_name(const char *output_path, size_t sheet_index, size_t sheet_count,
-                             char *name, size_t name_size, ur_error *error);
+UR_API ur_status ur_sheet_file_name(const char *output_path, size_t sheet_index, size_t sheet_count,
+                                    char *name, size_t name_size, ur_error *error);
 
 /*
  * The comparison of the discrete methods with the exact net (ur_compare) as
@@ -236,8 +244,8 @@ ur_status ur_sheet_file_name(const char *output_path, size_t sheet_index, size_t
  * below 1e-16, zeros included, are drawn at 1e-16, as the plot says.
  * Written atomically ("-" for stdout).
  */
-ur_status ur_compare_plot_png(const char *path, const ur_compare_table *table, const char *title,
-                              ur_context *context, ur_error *error);
+UR_API ur_status ur_compare_plot_png(const char *path, const ur_compare_table *table,
+                                     const char *title, ur_context *context, ur_error *error);
 
 /*
  * The same as CSV, one line per n after the header
@@ -248,16 +256,16 @@ ur_status ur_compare_plot_png(const char *path, const ur_compare_table *table, c
  * (the triangle method off tangent developables) left empty.  Written
  * atomically; "-" for stdout.
  */
-ur_status ur_compare_csv_write(const char *path, const ur_compare_table *table, ur_context *context,
-                               ur_error *error);
+UR_API ur_status ur_compare_csv_write(const char *path, const ur_compare_table *table,
+                                      ur_context *context, ur_error *error);
 
 /*
  * The JSON report of an analysis (ur_analyze of ruled) to path ("-" for
  * standard output), atomically for a file.
  */
-ur_status ur_analysis_report_write(const char *path, const char *surface, ur_ruled *ruled,
-                                   const ur_analysis *analysis, ur_context *context,
-                                   ur_error *error);
+UR_API ur_status ur_analysis_report_write(const char *path, const char *surface, ur_ruled *ruled,
+                                          const ur_analysis *analysis, ur_context *context,
+                                          ur_error *error);
 
 /* The resolution of the strain picture unless told otherwise, dots per inch. */
 #define UR_STRAIN_PNG_DPI 96.0
@@ -285,8 +293,9 @@ ur_status ur_analysis_report_write(const char *path, const char *surface, ur_rul
  * not a positive number, a sheet of no usable size or of more pixels than a
  * picture may have (32767 a side, 1e8 in all), a missing directory.
  */
-ur_status ur_strain_png_write(const char *path, const ur_layout *layout, const ur_piece *pieces,
-                              size_t piece_count, double dpi, ur_context *context, ur_error *error);
+UR_API ur_status ur_strain_png_write(const char *path, const ur_layout *layout,
+                                     const ur_piece *pieces, size_t piece_count, double dpi,
+                                     ur_context *context, ur_error *error);
 
 /* ---- Assembly guide (assembly.c) ----------------------------------------- */
 
@@ -325,7 +334,11 @@ typedef struct ur_assembly_options {
  * (a development of a ruled surface), a face corner that is not finite, an
  * unwritable file.  options may be NULL.
  */
-ur_status ur_assembly_write(const ur_net_list *nets, const char *path,
-                            const ur_assembly_options *options, ur_error *error);
+UR_API ur_status ur_assembly_write(const ur_net_list *nets, const char *path,
+                                   const ur_assembly_options *options, ur_error *error);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

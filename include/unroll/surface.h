@@ -19,14 +19,18 @@
 #include "unroll/base.h"
 #include "unroll/geom.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct ur_curve ur_curve;
 
 /* (R cos t, R sin t, pitch t / 2 pi) for t in [t_start, t_end]. */
-ur_status ur_curve_new_helix(double radius, double pitch, double t_start, double t_end,
-                             ur_curve **curve, ur_error *error);
+UR_API ur_status ur_curve_new_helix(double radius, double pitch, double t_start, double t_end,
+                                    ur_curve **curve, ur_error *error);
 
 /* (R cos t, R sin t, 0), t in [0, 2 pi], closed. */
-ur_status ur_curve_new_circle(double radius, ur_curve **curve, ur_error *error);
+UR_API ur_status ur_curve_new_circle(double radius, ur_curve **curve, ur_error *error);
 
 /*
  * Interpolates points (count >= 4) with C2 cubic splines.  A closed curve is
@@ -34,28 +38,28 @@ ur_status ur_curve_new_circle(double radius, ur_curve **curve, ur_error *error);
  * last four points rather than the "natural" zero second derivative, which
  * would put a false inflection at each end.
  */
-ur_status ur_curve_new_interpolating(const ur_vec3 *points, size_t count, bool closed,
-                                     ur_curve **curve, ur_error *error);
+UR_API ur_status ur_curve_new_interpolating(const ur_vec3 *points, size_t count, bool closed,
+                                            ur_curve **curve, ur_error *error);
 
-void ur_curve_free(ur_curve *curve);
+UR_API void ur_curve_free(ur_curve *curve);
 
 /* Position, first and second derivative with respect to u. */
-void ur_curve_eval(ur_curve *curve, double u, ur_vec3 derivatives[3]);
+UR_API void ur_curve_eval(ur_curve *curve, double u, ur_vec3 derivatives[3]);
 
-double ur_curve_start(const ur_curve *curve);
-double ur_curve_end(const ur_curve *curve);
-bool ur_curve_is_closed(const ur_curve *curve);
+UR_API double ur_curve_start(const ur_curve *curve);
+UR_API double ur_curve_end(const ur_curve *curve);
+UR_API bool ur_curve_is_closed(const ur_curve *curve);
 
 /* For interpolating curves, the parameter of input point index; else NAN. */
-double ur_curve_point_parameter(const ur_curve *curve, size_t index);
-size_t ur_curve_point_count(const ur_curve *curve);
+UR_API double ur_curve_point_parameter(const ur_curve *curve, size_t index);
+UR_API size_t ur_curve_point_count(const ur_curve *curve);
 
 /* Curvature |c' x c''| / |c'|^3 at u. */
-double ur_curve_curvature(ur_curve *curve, double u);
+UR_API double ur_curve_curvature(ur_curve *curve, double u);
 
 /* Arc length between u_start and u_end by adaptive quadrature. */
-ur_status ur_curve_length(ur_curve *curve, double u_start, double u_end, double *length,
-                          ur_error *error);
+UR_API ur_status ur_curve_length(ur_curve *curve, double u_start, double u_end, double *length,
+                                 ur_error *error);
 
 typedef enum ur_ruled_kind {
     UR_RULED_CYLINDER, /* b = a + height * direction */
@@ -94,12 +98,12 @@ typedef struct ur_ruled {
 } ur_ruled;
 
 /* Each takes ownership of curve, also on failure. */
-ur_status ur_ruled_cylinder(ur_curve *curve, ur_vec3 direction, double height, ur_ruled *ruled,
-                            ur_error *error);
-ur_status ur_ruled_cone(ur_curve *curve, ur_vec3 apex, double cut, ur_ruled *ruled,
-                        ur_error *error);
-ur_status ur_ruled_tangent(ur_curve *curve, double offset, double width, ur_ruled *ruled,
-                           ur_error *error);
+UR_API ur_status ur_ruled_cylinder(ur_curve *curve, ur_vec3 direction, double height,
+                                   ur_ruled *ruled, ur_error *error);
+UR_API ur_status ur_ruled_cone(ur_curve *curve, ur_vec3 apex, double cut, ur_ruled *ruled,
+                               ur_error *error);
+UR_API ur_status ur_ruled_tangent(ur_curve *curve, double offset, double width, ur_ruled *ruled,
+                                  ur_error *error);
 
 /*
  * The developable strip between rail 1 and rail 2 (both owned from here on,
@@ -110,7 +114,7 @@ ur_status ur_ruled_tangent(ur_curve *curve, double offset, double width, ur_rule
  * of regression passes between the rails), rail 1 has a gap: see
  * ur_ruled_gaps.  Fails only when no part of rail 1 has a strip.
  */
-ur_status ur_ruled_strip(ur_curve *rail1, ur_curve *rail2, ur_ruled *ruled, ur_error *error);
+UR_API ur_status ur_ruled_strip(ur_curve *rail1, ur_curve *rail2, ur_ruled *ruled, ur_error *error);
 
 /* How a general ruled surface pairs its rails. */
 typedef enum ur_pairing_rule {
@@ -122,8 +126,8 @@ typedef enum ur_pairing_rule {
  * The ruled surface joining rail 1 and rail 2 by the given rule (both rails
  * owned from here on, also on failure); in general not developable.
  */
-ur_status ur_ruled_general(ur_curve *rail1, ur_curve *rail2, ur_pairing_rule rule, ur_ruled *ruled,
-                           ur_error *error);
+UR_API ur_status ur_ruled_general(ur_curve *rail1, ur_curve *rail2, ur_pairing_rule rule,
+                                  ur_ruled *ruled, ur_error *error);
 
 /*
  * Moves the points of an open rail 2 as little as needed for the strip
@@ -132,39 +136,40 @@ ur_status ur_ruled_general(ur_curve *rail1, ur_curve *rail2, ur_pairing_rule rul
  * changed in place (left as it was on failure); *largest is the largest
  * distance a point moved.  The caller checks the result with ur_ruled_strip.
  */
-ur_status ur_strip_adjust_rail2(const ur_vec3 *rail1, size_t count1, ur_vec3 *rail2, size_t count2,
-                                const ur_vec3 *direction, double *largest, ur_error *error);
+UR_API ur_status ur_strip_adjust_rail2(const ur_vec3 *rail1, size_t count1, ur_vec3 *rail2,
+                                       size_t count2, const ur_vec3 *direction, double *largest,
+                                       ur_error *error);
 
 /* The pairing at u: the parameter on rail 2 and its derivative. */
-void ur_ruled_pairing(ur_ruled *ruled, double u, double *sigma, double *slope);
+UR_API void ur_ruled_pairing(ur_ruled *ruled, double u, double *sigma, double *slope);
 
-void ur_ruled_free(ur_ruled *ruled);
+UR_API void ur_ruled_free(ur_ruled *ruled);
 
 /*
  * The gaps in the domain of existence of a strip, in order along rail 1
  * (none for the other kinds).  The array belongs to the surface.
  */
-size_t ur_ruled_gaps(const ur_ruled *ruled, const ur_interval **gaps);
+UR_API size_t ur_ruled_gaps(const ur_ruled *ruled, const ur_interval **gaps);
 
 /*
  * The parts of the whole of rail 1 that have a surface, in order: the
  * complement of the gaps (ur_ruled_restrict does not change them).  Writes
  * at most capacity intervals and returns how many there are.
  */
-size_t ur_ruled_domain(ur_ruled *ruled, ur_interval *parts, size_t capacity);
+UR_API size_t ur_ruled_domain(ur_ruled *ruled, ur_interval *parts, size_t capacity);
 
 /* Uses only u in [u_start, u_end] from now on (start, end, closed, check). */
-void ur_ruled_restrict(ur_ruled *ruled, double u_start, double u_end);
+UR_API void ur_ruled_restrict(ur_ruled *ruled, double u_start, double u_end);
 
 /* Fills the arc length and end point of an interval from its parameters. */
-void ur_ruled_describe_interval(ur_ruled *ruled, ur_interval *interval);
+UR_API void ur_ruled_describe_interval(ur_ruled *ruled, ur_interval *interval);
 
 /*
  * Developability residual at u: the angle (radians, in [0, pi/2]) by which
  * the tangent plane turns between the two ends of the ruling.  Zero on a
  * developable surface.
  */
-double ur_ruled_residual(ur_ruled *ruled, double u);
+UR_API double ur_ruled_residual(ur_ruled *ruled, double u);
 
 /* The largest residual (radians) still called developable. */
 #define UR_DEVELOPABLE_RESIDUAL 1e-6
@@ -175,14 +180,14 @@ double ur_ruled_residual(ur_ruled *ruled, double u);
  * position along the ruling (0 on rail a, 1 on rail b).  False when the
  * neighbouring rulings are parallel (a cylinder): the edge is at infinity.
  */
-bool ur_ruled_regression(ur_ruled *ruled, double u, ur_vec3 *point, double *v);
+UR_API bool ur_ruled_regression(ur_ruled *ruled, double u, ur_vec3 *point, double *v);
 
-double ur_ruled_start(const ur_ruled *ruled);
-double ur_ruled_end(const ur_ruled *ruled);
-bool ur_ruled_is_closed(const ur_ruled *ruled);
+UR_API double ur_ruled_start(const ur_ruled *ruled);
+UR_API double ur_ruled_end(const ur_ruled *ruled);
+UR_API bool ur_ruled_is_closed(const ur_ruled *ruled);
 
 /* rails[0] = a(u), rails[1] = a'(u), rails[2] = b(u), rails[3] = b'(u). */
-void ur_ruled_rails(ur_ruled *ruled, double u, ur_vec3 rails[4]);
+UR_API void ur_ruled_rails(ur_ruled *ruled, double u, ur_vec3 rails[4]);
 
 /*
  * What the development needs at u, all intrinsic (unchanged by bending).
@@ -199,7 +204,7 @@ typedef struct ur_ruling_intrinsics {
     double near, far;
 } ur_ruling_intrinsics;
 
-void ur_ruled_intrinsics(ur_ruled *ruled, double u, ur_ruling_intrinsics *intrinsics);
+UR_API void ur_ruled_intrinsics(ur_ruled *ruled, double u, ur_ruling_intrinsics *intrinsics);
 
 /*
  * Checks that the surface is regular where it will be developed: a tangent
@@ -207,15 +212,15 @@ void ur_ruled_intrinsics(ur_ruled *ruled, double u, ur_ruling_intrinsics *intrin
  * zero), a cylinder a base curve never tangent to its direction, a cone a
  * base curve never heading for its apex.  The message says where and why.
  */
-ur_status ur_ruled_check(ur_ruled *ruled, ur_error *error);
+UR_API ur_status ur_ruled_check(ur_ruled *ruled, ur_error *error);
 
 /* 3D area of the part u in [u_start, u_end]: adaptive quadrature of |r_u x r_v|. */
-ur_status ur_ruled_area(ur_ruled *ruled, double u_start, double u_end, double *area,
-                        ur_error *error);
+UR_API ur_status ur_ruled_area(ur_ruled *ruled, double u_start, double u_end, double *area,
+                               ur_error *error);
 
 /* Length of rail a (rail = 0) or rail b (rail = 1) between u_start and u_end. */
-ur_status ur_ruled_rail_length(ur_ruled *ruled, int rail, double u_start, double u_end,
-                               double *length, ur_error *error);
+UR_API ur_status ur_ruled_rail_length(ur_ruled *ruled, int rail, double u_start, double u_end,
+                                      double *length, ur_error *error);
 
 /*
  * The parallel surface at `distance` mm toward the inside of the bend
@@ -231,6 +236,11 @@ ur_status ur_ruled_rail_length(ur_ruled *ruled, int rail, double u_start, double
  * itself; the message says where) or the part in use has a gap.  *offset
  * is new (free it with ur_ruled_free); ruled is not changed.
  */
-ur_status ur_ruled_offset(ur_ruled *ruled, double distance, ur_ruled *offset, ur_error *error);
+UR_API ur_status ur_ruled_offset(ur_ruled *ruled, double distance, ur_ruled *offset,
+                                 ur_error *error);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -4,7 +4,7 @@
  * copy of the fiddly part (see atomic.h for the life of a file).
  *
  * Failures of the file system (missing directory, no permission, disk full)
- * are UR_ERROR_INPUT: they concern the output path the user gave, not a bug.
+ * are UR_ERROR_IO; only a path that names a directory ("out/") is bad input.
  *
  * The tests need to see a disk fill up at any point of a multi-file output:
  * a context's write budget (ur_context_fail_writes_after) puts every
@@ -73,17 +73,17 @@ static ur_status check_directory(const char *path, ur_error *error)
     if (stat(directory, &info) != 0) {
         if (errno == ENOENT || errno == ENOTDIR)
             status =
-                ur_error_set(error, UR_ERROR_INPUT,
-                             "cannot write '%s': directory '%s' does not exist", path, directory);
+                ur_error_set(error, UR_ERROR_IO, "cannot write '%s': directory '%s' does not exist",
+                             path, directory);
         else
-            status = ur_error_set(error, UR_ERROR_INPUT, "cannot write '%s': %s: %s", path,
-                                  directory, strerror(errno));
+            status = ur_error_set(error, UR_ERROR_IO, "cannot write '%s': %s: %s", path, directory,
+                                  strerror(errno));
     } else if (!S_ISDIR(info.st_mode)) {
-        status = ur_error_set(error, UR_ERROR_INPUT, "cannot write '%s': '%s' is not a directory",
+        status = ur_error_set(error, UR_ERROR_IO, "cannot write '%s': '%s' is not a directory",
                               path, directory);
     } else if (stat(path, &info) == 0 && S_ISDIR(info.st_mode)) {
         /* found now, before any file of the output is renamed into place */
-        status = ur_error_set(error, UR_ERROR_INPUT, "cannot write '%s': it is a directory", path);
+        status = ur_error_set(error, UR_ERROR_IO, "cannot write '%s': it is a directory", path);
     }
     free(directory);
     return status;
@@ -208,8 +208,8 @@ static ur_status create_temp(ur_atomic_file *file, ur_error *error)
 {
     int fd = open_unique(file->temp_path);
     if (fd < 0) {
-        ur_status status = ur_error_set(error, UR_ERROR_INPUT, "cannot write '%s': %s", file->path,
-                                        strerror(errno));
+        ur_status status =
+            ur_error_set(error, UR_ERROR_IO, "cannot write '%s': %s", file->path, strerror(errno));
         free(file->temp_path); /* nothing was created */
         file->temp_path = NULL;
         return status;
@@ -217,9 +217,9 @@ static ur_status create_temp(ur_atomic_file *file, ur_error *error)
     file->fd = fd;
     file->stream = open_stream(fd, file->context);
     if (!file->stream) {
-        ur_error_set(error, UR_ERROR_INPUT, "cannot write '%s': %s", file->path, strerror(errno));
+        ur_error_set(error, UR_ERROR_IO, "cannot write '%s': %s", file->path, strerror(errno));
         close(fd);
-        return UR_ERROR_INPUT;
+        return UR_ERROR_IO;
     }
     return UR_OK;
 }
@@ -266,7 +266,7 @@ ur_status ur_atomic_close(ur_atomic_file *file, ur_error *error)
     if (fclose(stream) != 0 && cause == 0)
         cause = errno;
     if (cause != 0)
-        return ur_error_set(error, UR_ERROR_INPUT, "cannot write '%s': %s", file->path,
+        return ur_error_set(error, UR_ERROR_IO, "cannot write '%s': %s", file->path,
                             strerror(cause));
     return UR_OK;
 }
@@ -332,7 +332,7 @@ ur_status ur_atomic_commit(ur_atomic_file *file, ur_error *error)
     if (file->context && file->context->output_set.depth > 0)
         return set_hold(file->context, file, error);
     if (rename(file->temp_path, file->path) != 0)
-        return ur_error_set(error, UR_ERROR_INPUT, "cannot write '%s': %s", file->path,
+        return ur_error_set(error, UR_ERROR_IO, "cannot write '%s': %s", file->path,
                             strerror(errno));
     free(file->temp_path);
     file->temp_path = NULL;
@@ -366,7 +366,7 @@ ur_status ur_atomic_write(const char *path, ur_emitter emit, const void *data, c
     if (strcmp(path, "-") == 0) {
         errno = 0;
         if (!emit(stdout, data) || fflush(stdout) != 0)
-            return ur_error_set(error, UR_ERROR_INPUT, "cannot write the %s to standard output: %s",
+            return ur_error_set(error, UR_ERROR_IO, "cannot write the %s to standard output: %s",
                                 what, errno ? strerror(errno) : "write error");
         return UR_OK;
     }
@@ -376,7 +376,7 @@ ur_status ur_atomic_write(const char *path, ur_emitter emit, const void *data, c
         return status;
     errno = 0;
     if (!emit(file.stream, data))
-        status = ur_error_set(error, UR_ERROR_INPUT, "cannot write '%s': %s", path,
+        status = ur_error_set(error, UR_ERROR_IO, "cannot write '%s': %s", path,
                               errno ? strerror(errno) : "write error");
     if (status == UR_OK)
         status = ur_atomic_close(&file, error);

@@ -51,7 +51,7 @@ void ur_error_clear(ur_error *error)
 
 ur_status ur_error_out_of_memory(ur_error *error)
 {
-    return ur_error_set(error, UR_ERROR_INTERNAL, "out of memory");
+    return ur_error_set(error, UR_ERROR_MEMORY, "out of memory");
 }
 
 static const char *const op_names[UR_OP_COUNT] = {"cut",  "score",   "score-valley",

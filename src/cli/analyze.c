@@ -148,7 +148,7 @@ static int analysis_outputs(const cli_job *job, ur_ruled *ruled, const ur_analys
 int cli_analyze(const cli_job *job)
 {
     if (!outputs_possible(job))
-        return EXIT_USAGE;
+        return EXIT_IO;
     ur_ruled ruled;
     cli_adjusted_rail adjusted;
     int code = cli_build_surface(job, &ruled, &adjusted);
@@ -210,7 +210,7 @@ static void print_table(const cli_job *job, const ur_compare_table *table)
 int cli_compare(const cli_job *job)
 {
     if (!outputs_possible(job))
-        return EXIT_USAGE;
+        return EXIT_IO;
     ur_ruled ruled;
     int code = cli_build_surface(job, &ruled, NULL);
     if (code)

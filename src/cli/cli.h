@@ -16,7 +16,8 @@
 #include "unroll/nest.h"
 #include "unroll/out.h"
 
-enum { EXIT_INTERNAL = 1, EXIT_USAGE = 2 };
+/* The exit statuses (unroll(1), EXIT STATUS); cli_exit_status maps ur_status to them. */
+enum { EXIT_INTERNAL = 1, EXIT_USAGE = 2, EXIT_IO = 3, EXIT_MEMORY = 4 };
 
 /* What is done with the surface. */
 typedef enum cli_action { CLI_DEVELOP, CLI_ANALYZE, CLI_COMPARE } cli_action;
@@ -161,10 +162,10 @@ int cli_run_job(const cli_job *job);
 int cli_analyze(const cli_job *job);
 int cli_compare(const cli_job *job);
 
-/* Refuses early, before any work, when a file could not be written there. */
+/* Refuses early, before any work, when a file could not be written there (then EXIT_IO). */
 bool cli_directory_exists(const char *option, const char *path);
 
-/* The exit status for a library error. */
+/* The exit status for a library error: the one place that maps ur_status to it. */
 int cli_exit_status(const ur_error *error);
 
 /*
@@ -329,7 +330,7 @@ void cli_allowance_warnings(const cli_job *job, const ur_piece *pieces, size_t c
 /*
  * 0 when `needed` bytes fit in what this process may still use (the
  * system's available memory and its ulimit -v); otherwise a message naming
- * `what`, and EXIT_INTERNAL (memory.c).
+ * `what`, and EXIT_MEMORY (memory.c).
  */
 int cli_check_memory(const cli_job *job, const char *what, size_t needed);
 
@@ -352,6 +353,12 @@ int cli_signal_exit(int code);
 
 /* unroll profiles [show NAME] */
 int cli_profiles(int argc, char **argv);
+
+/*
+ * The profile roots, NULL-terminated, in search order (profiles.c): beside
+ * the executable, $UNROLL_PROFILES, ./profiles.  Found on the first call.
+ */
+const char *const *cli_profile_roots(void);
 
 /* Help texts. */
 void cli_print_usage(void);

@@ -91,7 +91,7 @@ int cli_regression_points(const cli_job *job, ur_ruled *ruled, ur_vec3 **points,
     *points = ur_alloc_array(REGRESSION_POINTS + 1, sizeof **points, &error);
     if (!*points) {
         cli_message("%s: %s", job->command, error.message);
-        return EXIT_INTERNAL;
+        return cli_exit_status(&error);
     }
     double u0 = ur_ruled_start(ruled), u1 = ur_ruled_end(ruled);
     for (int i = 0; i <= REGRESSION_POINTS; i++) {

@@ -211,7 +211,7 @@ static int all_pieces(const ur_job *file, const char *out, words *first_words, c
     words *w = calloc(1, sizeof *w);
     if (!w) {
         cli_message("job: out of memory");
-        return EXIT_INTERNAL;
+        return EXIT_MEMORY;
     }
     int code = 0, seams = 0;
     ur_error error;
@@ -406,7 +406,7 @@ int cli_job_command(int argc, char **argv)
         return code;
     ur_job file;
     ur_error error;
-    if (ur_job_read(path, &file, &error) != UR_OK) {
+    if (ur_job_read(cli_profile_roots(), path, &file, &error) != UR_OK) {
         cli_message("%s", error.message);
         return cli_exit_status(&error);
     }
@@ -425,7 +425,7 @@ int cli_job_command(int argc, char **argv)
         code = all_pieces(&file, out, first, &job, command, sizeof command, &all, materials);
     else {
         cli_message("job: out of memory");
-        code = EXIT_INTERNAL;
+        code = EXIT_MEMORY;
     }
     /* The output directory is made when missing (its parent must exist), only now. */
     bool made_directory = false;
@@ -434,7 +434,7 @@ int cli_job_command(int argc, char **argv)
         if (!made_directory && errno != EEXIST) {
             cli_message("%s: cannot make the output directory %s: %s", file.source,
                         file.output_directory, strerror(errno));
-            code = EXIT_USAGE;
+            code = EXIT_IO;
         }
     }
     if (!code) {

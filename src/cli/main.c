@@ -68,8 +68,9 @@ static const char usage[] =
     "  --report FILE.json     write a JSON report ('-' for standard output)\n"
     "  --quiet                no summary on standard error\n"
     "\n"
-    "exit status: 0 success, 1 internal error, 2 bad usage or input,\n"
-    "130 stopped by SIGINT, 143 stopped by SIGTERM (nothing half-written).\n"
+    "exit status: 0 success, 1 internal error, 2 bad usage or input, 3 an output\n"
+    "could not be written, 4 out of memory, 130 stopped by SIGINT, 143 stopped by\n"
+    "SIGTERM (nothing half-written).\n"
     "See unroll(1) and unroll-profile(5).\n";
 
 static const struct {
@@ -158,8 +159,9 @@ static const struct {
              "  holes) on sheet stock; see 'unroll nest --help'.\n"},
     {"profiles", "unroll profiles            list machine and material profiles\n"
                  "unroll profiles show NAME  print one profile and the file it comes from\n"
-                 "  Profiles are searched in ./profiles, then $UNROLL_PROFILES, then the\n"
-                 "  installed share directory.\n"},
+                 "  Profiles are searched beside the command (the installed share directory,\n"
+                 "  or the profiles/ of the source tree it was built in), then in\n"
+                 "  $UNROLL_PROFILES, then in ./profiles.\n"},
 };
 
 void cli_print_usage(void)

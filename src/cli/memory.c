@@ -63,5 +63,5 @@ int cli_check_memory(const cli_job *job, const char *what, size_t needed)
     cli_message("%s: %s needs about %.2f GB of memory, but only %.2f GB is available%s",
                 job->command, what, gigabytes(needed), gigabytes(available),
                 limit < system ? " under this process's limit (ulimit -v)" : "");
-    return EXIT_INTERNAL;
+    return EXIT_MEMORY;
 }

@@ -497,8 +497,8 @@ static int run_nest(const nest_job *n, ur_piece **pieces, size_t *count, ur_layo
     ur_machine machine;
     ur_material material;
     ur_error error;
-    if (ur_machine_load(n->job.machine_name, &machine, &error) != UR_OK ||
-        ur_material_load(n->job.material_name, &material, &error) != UR_OK) {
+    if (ur_machine_load(cli_profile_roots(), n->job.machine_name, &machine, &error) != UR_OK ||
+        ur_material_load(cli_profile_roots(), n->job.material_name, &material, &error) != UR_OK) {
         cli_message("%s", error.message);
         return cli_exit_status(&error);
     }
@@ -536,7 +536,7 @@ int cli_nest(int argc, char **argv)
     if ((strcmp(n.job.output_path, "-") != 0 && !cli_directory_exists("-o", n.job.output_path)) ||
         (n.job.report_path && strcmp(n.job.report_path, "-") != 0 &&
          !cli_directory_exists("--report", n.job.report_path)))
-        return EXIT_USAGE;
+        return EXIT_IO;
     ur_piece *pieces = NULL;
     size_t count = 0;
     ur_layout layout = {NULL, 0, NULL, 0};

@@ -219,9 +219,9 @@ bool cli_parse_nest_time(cli_job *job, const char *value)
 bool cli_parse_threads(cli_job *job, const char *value)
 {
     long threads;
-    if (!cli_whole_number(value, 1, NEST_MAX_THREADS, &threads)) {
+    if (!cli_whole_number(value, 1, UR_NEST_MAX_THREADS, &threads)) {
         cli_message("%s: --threads: '%s' is not a whole number from 1 to %d", job->command, value,
-                    NEST_MAX_THREADS);
+                    UR_NEST_MAX_THREADS);
         return false;
     }
     job->threads = (size_t)threads;

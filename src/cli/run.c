@@ -40,7 +40,16 @@ bool cli_directory_exists(const char *option, const char *path)
 
 int cli_exit_status(const ur_error *error)
 {
-    return error->status == UR_ERROR_INPUT ? EXIT_USAGE : EXIT_INTERNAL;
+    switch (error->status) {
+    case UR_ERROR_INPUT:
+        return EXIT_USAGE;
+    case UR_ERROR_IO:
+        return EXIT_IO;
+    case UR_ERROR_MEMORY:
+        return EXIT_MEMORY;
+    default: /* UR_ERROR_CANCELLED ends in 128 + the signal (cli_signal_exit) */
+        return EXIT_INTERNAL;
+    }
 }
 
 /*
@@ -699,13 +708,14 @@ int cli_run_job(const cli_job *job)
         (job->strain_png_path && strcmp(job->strain_png_path, "-") != 0 &&
          !cli_directory_exists("--strain-png", job->strain_png_path)) ||
         (job->assembly_path && !cli_directory_exists("--assembly", job->assembly_path)))
-        return EXIT_USAGE;
+        return EXIT_IO;
     job_state state;
     memset(&state, 0, sizeof state);
     ur_error error;
-    ur_status status = ur_machine_load(job->machine_name, &state.machine, &error);
+    ur_status status =
+        ur_machine_load(cli_profile_roots(), job->machine_name, &state.machine, &error);
     if (status == UR_OK)
-        status = ur_material_load(job->material_name, &state.material, &error);
+        status = ur_material_load(cli_profile_roots(), job->material_name, &state.material, &error);
     if (status != UR_OK) {
         cli_message("%s", error.message);
         return cli_exit_status(&error);
@@ -762,9 +772,10 @@ int cli_job_pieces(const cli_job *job, cli_pieces *out)
     job_state state;
     memset(&state, 0, sizeof state);
     ur_error error;
-    ur_status status = ur_machine_load(job->machine_name, &state.machine, &error);
+    ur_status status =
+        ur_machine_load(cli_profile_roots(), job->machine_name, &state.machine, &error);
     if (status == UR_OK)
-        status = ur_material_load(job->material_name, &state.material, &error);
+        status = ur_material_load(cli_profile_roots(), job->material_name, &state.material, &error);
     if (status != UR_OK) {
         cli_message("%s: %s", job->command, error.message);
         return cli_exit_status(&error);

@@ -41,7 +41,7 @@ static bool positive(const cli_job *job, double value, const char *option)
 static int fail(const ur_error *error, const cli_job *job)
 {
     cli_message("%s: %s", job->command, error->message);
-    return error->status == UR_ERROR_INPUT ? EXIT_USAGE : EXIT_INTERNAL;
+    return cli_exit_status(error);
 }
 
 static int curve_from_file(const cli_job *job, ur_curve **curve)

@@ -180,7 +180,7 @@ static ur_status read_all_lines(FILE *file, const char *path, ur_point_list *lis
     if (status == UR_OK && ferror(file))
         status = ur_error_set(error, UR_ERROR_INPUT, "%s: cannot read: %s", path,
                               strerror(errno ? errno : EIO));
-    if (status == UR_ERROR_INTERNAL) /* out of memory: say for which file */
+    if (status == UR_ERROR_MEMORY) /* say for which file */
         ur_error_prefix(error, "%s: ", path);
     return status;
 }

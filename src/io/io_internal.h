@@ -15,7 +15,8 @@
  * the profile roots; the caller frees *doc with xmlFreeDoc.  UR_ERROR_INPUT
  * naming the file and line for a file that is not well formed or valid.
  */
-ur_status io_xml_load(const char *schema, const char *path, xmlDocPtr *doc, ur_error *error);
+ur_status io_xml_load(const char *const *roots, const char *schema, const char *path,
+                      xmlDocPtr *doc, ur_error *error);
 
 /* Trims white space (the '\r' of CRLF files too) at both ends, in place. */
 char *io_trim(char *text);

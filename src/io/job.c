@@ -142,13 +142,13 @@ static ur_status read_job(const char *path, xmlNodePtr root, ur_job *job, ur_err
     return status;
 }
 
-ur_status ur_job_read(const char *path, ur_job *job, ur_error *error)
+ur_status ur_job_read(const char *const *roots, const char *path, ur_job *job, ur_error *error)
 {
     memset(job, 0, sizeof *job);
     if (snprintf(job->source, sizeof job->source, "%s", path) >= (int)sizeof job->source)
         return ur_error_set(error, UR_ERROR_INPUT, "%s: path too long", path);
     xmlDocPtr doc = NULL;
-    ur_status status = io_xml_load("job", path, &doc, error);
+    ur_status status = io_xml_load(roots, "job", path, &doc, error);
     if (status == UR_OK)
         status = read_job(path, xmlDocGetRootElement(doc), job, error);
     xmlFreeDoc(doc);

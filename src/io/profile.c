@@ -1,5 +1,5 @@
 /*
- * profile.c: machine and material profiles: finding them on the search path,
+ * profile.c: machine and material profiles: finding them in the roots given,
  * reading them with libxml2, validating them against the RelaxNG schemas,
  * turning them into ur_machine and ur_material, and listing them.
  *
@@ -28,11 +28,6 @@
 #include <libxml/tree.h>
 #include <libxml/xmlerror.h>
 
-#ifndef UR_PROFILE_DIR
-#define UR_PROFILE_DIR "/usr/local/share/unroll/profiles"
-#endif
-
-#define UR_PROFILE_ROOTS_MAX 3
 #define UR_PATH_MAX 1024
 
 /* libxml2 2.12 made the structured error callback take a const error. */
@@ -54,32 +49,26 @@ static const char *kind_word(ur_profile_kind kind)
 
 /* ---- Search path ------------------------------------------------------- */
 
-typedef struct ur_roots {
-    const char *dirs[UR_PROFILE_ROOTS_MAX];
-    int count;
-    const char *environment; /* $UNROLL_PROFILES, NULL when unset or empty */
-} ur_roots;
+/*
+ * The caller's roots, in search order: a NULL-terminated list (NULL for
+ * none).  A root that does not exist is simply empty.  The library reads no
+ * environment variable and no directory of its own: the command decides
+ * where profiles are (unroll(1), PROFILES).
+ */
 
-/* The roots in search order; a root that does not exist is simply empty. */
-static void profile_roots(ur_roots *roots)
+/* "DIR1, DIR2, ...", for "not found" messages. */
+static void describe_roots(const char *const *roots, char *text, size_t size)
 {
-    roots->count = 0;
-    roots->dirs[roots->count++] = "./profiles";
-    const char *environment = getenv("UNROLL_PROFILES");
-    roots->environment = environment && *environment ? environment : NULL;
-    if (roots->environment)
-        roots->dirs[roots->count++] = roots->environment;
-    roots->dirs[roots->count++] = UR_PROFILE_DIR;
-}
-
-/* "./profiles, $UNROLL_PROFILES=DIR, /usr/...", for "not found" messages. */
-static void describe_roots(const ur_roots *roots, char *text, size_t size)
-{
-    if (roots->environment)
-        snprintf(text, size, "./profiles, $UNROLL_PROFILES=%s, %s", roots->environment,
-                 UR_PROFILE_DIR);
-    else
-        snprintf(text, size, "./profiles, %s; $UNROLL_PROFILES is not set", UR_PROFILE_DIR);
+    size_t used = 0;
+    text[0] = '\0';
+    for (const char *const *root = roots; root && *root && used < size; root++) {
+        int length = snprintf(text + used, size - used, "%s%s", used ? ", " : "", *root);
+        if (length < 0)
+            break;
+        used += (size_t)length;
+    }
+    if (!text[0])
+        snprintf(text, size, "no profile directory given");
 }
 
 static ur_status join_path(char *out, size_t size, const char *root, const char *folder,
@@ -117,20 +106,17 @@ static ur_status check_name(ur_profile_kind kind, const char *name, ur_error *er
                         kind_word(kind), name);
 }
 
-ur_status ur_profile_find(ur_profile_kind kind, const char *name, char *path, size_t path_size,
-                          ur_error *error)
+ur_status ur_profile_find(const char *const *roots, ur_profile_kind kind, const char *name,
+                          char *path, size_t path_size, ur_error *error)
 {
     ur_status status = check_name(kind, name, error);
     if (status != UR_OK)
         return status;
     char file[80];
     snprintf(file, sizeof file, "%s.xml", name);
-    ur_roots roots;
-    profile_roots(&roots);
-    for (int i = 0; i < roots.count; i++) {
+    for (const char *const *root = roots; root && *root; root++) {
         char candidate[UR_PATH_MAX];
-        status =
-            join_path(candidate, sizeof candidate, roots.dirs[i], kind_folder(kind), file, error);
+        status = join_path(candidate, sizeof candidate, *root, kind_folder(kind), file, error);
         if (status != UR_OK)
             return status;
         struct stat info;
@@ -146,28 +132,27 @@ ur_status ur_profile_find(ur_profile_kind kind, const char *name, char *path, si
                                 strerror(errno));
     }
     char searched[UR_PATH_MAX];
-    describe_roots(&roots, searched, sizeof searched);
+    describe_roots(roots, searched, sizeof searched);
     return ur_error_set(error, UR_ERROR_INPUT,
                         "unknown %s '%s' (searched %s); 'unroll profiles' lists them",
                         kind_word(kind), name, searched);
 }
 
 /* ROOT/schema/KIND.rng from the first root that has it. */
-static ur_status find_schema(const char *word, char *path, size_t size, ur_error *error)
+static ur_status find_schema(const char *const *roots, const char *word, char *path, size_t size,
+                             ur_error *error)
 {
     char file[32];
     snprintf(file, sizeof file, "%s.rng", word);
-    ur_roots roots;
-    profile_roots(&roots);
-    for (int i = 0; i < roots.count; i++) {
-        ur_status status = join_path(path, size, roots.dirs[i], "schema", file, error);
+    for (const char *const *root = roots; root && *root; root++) {
+        ur_status status = join_path(path, size, *root, "schema", file, error);
         if (status != UR_OK)
             return status;
         if (access(path, R_OK) == 0)
             return UR_OK;
     }
     char searched[UR_PATH_MAX];
-    describe_roots(&roots, searched, sizeof searched);
+    describe_roots(roots, searched, sizeof searched);
     /* The schemas ship with unroll: without them the installation is broken. */
     return ur_error_set(error, UR_ERROR_INTERNAL, "no schema/%s in any profile root (searched %s)",
                         file, searched);
@@ -321,16 +306,17 @@ static ur_status validate_document(xmlDocPtr doc, const char *schema_path, const
 }
 
 /* Parses path and validates it against the schema of its kind. */
-static ur_status load_document(ur_profile_kind kind, const char *path, xmlDocPtr *doc,
-                               ur_error *error)
+static ur_status load_document(const char *const *roots, ur_profile_kind kind, const char *path,
+                               xmlDocPtr *doc, ur_error *error)
 {
-    return io_xml_load(kind_word(kind), path, doc, error);
+    return io_xml_load(roots, kind_word(kind), path, doc, error);
 }
 
-ur_status io_xml_load(const char *schema, const char *path, xmlDocPtr *doc, ur_error *error)
+ur_status io_xml_load(const char *const *roots, const char *schema, const char *path,
+                      xmlDocPtr *doc, ur_error *error)
 {
     char schema_path[UR_PATH_MAX];
-    ur_status status = find_schema(schema, schema_path, sizeof schema_path, error);
+    ur_status status = find_schema(roots, schema, schema_path, sizeof schema_path, error);
     if (status != UR_OK)
         return status;
     status = parse_document(path, doc, error);
@@ -724,15 +710,15 @@ static ur_status machine_fields(const ur_reader *reader, xmlNodePtr root, void *
  * the parsed and validated document, its root element, then the kind's own
  * fields.
  */
-static ur_status read_profile(ur_profile_kind kind, const char *path, char *name, size_t name_size,
-                              char *source, size_t source_size, field_reader read_fields,
-                              void *profile, ur_error *error)
+static ur_status read_profile(const char *const *roots, ur_profile_kind kind, const char *path,
+                              char *name, size_t name_size, char *source, size_t source_size,
+                              field_reader read_fields, void *profile, ur_error *error)
 {
     ur_status status = set_identity(path, name, name_size, source, source_size, error);
     if (status != UR_OK)
         return status;
     xmlDocPtr doc = NULL;
-    status = load_document(kind, path, &doc, error);
+    status = load_document(roots, kind, path, &doc, error);
     if (status != UR_OK)
         return status;
     const char *root_name = kind == UR_PROFILE_MACHINE ? "machine" : "material";
@@ -746,10 +732,11 @@ static ur_status read_profile(ur_profile_kind kind, const char *path, char *name
     return status;
 }
 
-ur_status ur_machine_read(const char *path, ur_machine *machine, ur_error *error)
+ur_status ur_machine_read(const char *const *roots, const char *path, ur_machine *machine,
+                          ur_error *error)
 {
     memset(machine, 0, sizeof *machine);
-    return read_profile(UR_PROFILE_MACHINE, path, machine->name, sizeof machine->name,
+    return read_profile(roots, UR_PROFILE_MACHINE, path, machine->name, sizeof machine->name,
                         machine->source, sizeof machine->source, machine_fields, machine, error);
 }
 
@@ -981,32 +968,35 @@ static ur_status material_fields(const ur_reader *reader, xmlNodePtr root, void 
     return read_material_fields(reader, root, profile);
 }
 
-ur_status ur_material_read(const char *path, ur_material *material, ur_error *error)
+ur_status ur_material_read(const char *const *roots, const char *path, ur_material *material,
+                           ur_error *error)
 {
     memset(material, 0, sizeof *material);
-    return read_profile(UR_PROFILE_MATERIAL, path, material->name, sizeof material->name,
+    return read_profile(roots, UR_PROFILE_MATERIAL, path, material->name, sizeof material->name,
                         material->source, sizeof material->source, material_fields, material,
                         error);
 }
 
 /* ---- Loading by name --------------------------------------------------- */
 
-ur_status ur_machine_load(const char *name, ur_machine *machine, ur_error *error)
+ur_status ur_machine_load(const char *const *roots, const char *name, ur_machine *machine,
+                          ur_error *error)
 {
     char path[UR_PATH_MAX];
-    ur_status status = ur_profile_find(UR_PROFILE_MACHINE, name, path, sizeof path, error);
+    ur_status status = ur_profile_find(roots, UR_PROFILE_MACHINE, name, path, sizeof path, error);
     if (status != UR_OK)
         return status;
-    return ur_machine_read(path, machine, error);
+    return ur_machine_read(roots, path, machine, error);
 }
 
-ur_status ur_material_load(const char *name, ur_material *material, ur_error *error)
+ur_status ur_material_load(const char *const *roots, const char *name, ur_material *material,
+                           ur_error *error)
 {
     char path[UR_PATH_MAX];
-    ur_status status = ur_profile_find(UR_PROFILE_MATERIAL, name, path, sizeof path, error);
+    ur_status status = ur_profile_find(roots, UR_PROFILE_MATERIAL, name, path, sizeof path, error);
     if (status != UR_OK)
         return status;
-    return ur_material_read(path, material, error);
+    return ur_material_read(roots, path, material, error);
 }
 
 double ur_effective_kerf(const ur_machine *machine, const ur_material *material)
@@ -1070,18 +1060,18 @@ static void describe_invalid(char *out, size_t size, const char *message)
 }
 
 /* Reads a profile only for its description; a bad file is listed, not hidden. */
-static void describe_entry(ur_profile_entry *entry)
+static void describe_entry(const char *const *roots, ur_profile_entry *entry)
 {
     ur_error error = {0};
     ur_status status;
     if (entry->kind == UR_PROFILE_MACHINE) {
         ur_machine machine;
-        status = ur_machine_read(entry->source, &machine, &error);
+        status = ur_machine_read(roots, entry->source, &machine, &error);
         if (status == UR_OK)
             strcpy(entry->description, machine.description);
     } else {
         ur_material material;
-        status = ur_material_read(entry->source, &material, &error);
+        status = ur_material_read(roots, entry->source, &material, &error);
         if (status == UR_OK)
             strcpy(entry->description, material.description);
     }
@@ -1089,8 +1079,9 @@ static void describe_entry(ur_profile_entry *entry)
         describe_invalid(entry->description, sizeof entry->description, error.message);
 }
 
-static ur_status add_entry(ur_entry_list *list, ur_profile_kind kind, const char *folder,
-                           const char *file, size_t stem_length, ur_error *error)
+static ur_status add_entry(const char *const *roots, ur_entry_list *list, ur_profile_kind kind,
+                           const char *folder, const char *file, size_t stem_length,
+                           ur_error *error)
 {
     char name[sizeof list->items[0].name];
     if (stem_length >= sizeof name)
@@ -1111,7 +1102,7 @@ static ur_status add_entry(ur_entry_list *list, ur_profile_kind kind, const char
     if (length < 0 || (size_t)length >= sizeof entry->source)
         return ur_error_set(error, UR_ERROR_INPUT, "%s/%s: path too long", folder, file);
     if (valid_name(entry->name) && strlen(file) == stem_length + 4)
-        describe_entry(entry);
+        describe_entry(roots, entry);
     else
         describe_invalid(entry->description, sizeof entry->description,
                          "the file name is not a usable profile name");
@@ -1120,8 +1111,8 @@ static ur_status add_entry(ur_entry_list *list, ur_profile_kind kind, const char
 }
 
 /* Adds every ROOT/FOLDER/NAME.xml; dot files are hidden, as ls does. */
-static ur_status list_folder(const char *root, ur_profile_kind kind, ur_entry_list *list,
-                             ur_error *error)
+static ur_status list_folder(const char *const *roots, const char *root, ur_profile_kind kind,
+                             ur_entry_list *list, ur_error *error)
 {
     char folder[UR_PATH_MAX];
     int length = snprintf(folder, sizeof folder, "%s/%s", root, kind_folder(kind));
@@ -1139,7 +1130,7 @@ static ur_status list_folder(const char *root, ur_profile_kind kind, ur_entry_li
         if (item->d_name[0] == '.' || name_length <= 4 ||
             strcmp(item->d_name + name_length - 4, ".xml") != 0)
             continue;
-        status = add_entry(list, kind, folder, item->d_name, name_length - 4, error);
+        status = add_entry(roots, list, kind, folder, item->d_name, name_length - 4, error);
     }
     closedir(dir);
     return status;
@@ -1153,17 +1144,16 @@ static int compare_entries(const void *a, const void *b)
     return strcmp(left->name, right->name);
 }
 
-ur_status ur_profile_list(ur_profile_entry **entries, size_t *count, ur_error *error)
+ur_status ur_profile_list(const char *const *roots, ur_profile_entry **entries, size_t *count,
+                          ur_error *error)
 {
     *entries = NULL;
     *count = 0;
-    ur_roots roots;
-    profile_roots(&roots);
     ur_entry_list list = {0};
     static const ur_profile_kind kinds[] = {UR_PROFILE_MACHINE, UR_PROFILE_MATERIAL};
     for (size_t k = 0; k < 2; k++) {
-        for (int i = 0; i < roots.count; i++) {
-            ur_status status = list_folder(roots.dirs[i], kinds[k], &list, error);
+        for (const char *const *root = roots; root && *root; root++) {
+            ur_status status = list_folder(roots, *root, kinds[k], &list, error);
             if (status != UR_OK) {
                 free(list.items);
                 return status;

@@ -22,6 +22,14 @@
  */
 #define NEST_EXACT_FIT 1e-6
 
+/*
+ * The search after the first layout stops after NEST_PATIENCE tries without
+ * a new best (NEST_PATIENCE_PER_SECOND per second of budget when that is
+ * more) or after NEST_TRIES tries (ur_nest_options.time_budget).
+ */
+enum { NEST_PATIENCE = 40, NEST_PATIENCE_PER_SECOND = 20, NEST_TRIES = 100000 };
+enum { NEST_MAX_THREADS = UR_NEST_MAX_THREADS };
+
 /* The angle that turns the piece's smallest enclosing rectangle level (layout.c). */
 double nest_level_angle(GEOSContextHandle_t geos, const ur_path *outline);
 

@@ -788,7 +788,7 @@ static ur_status dxf_end_sheet(void *state, ur_error *error)
             write_objects(sheet);
         group(file, 0, "EOF");
         if (ferror(file))
-            status = ur_error_set(error, UR_ERROR_INPUT, "cannot write the DXF file: %s",
+            status = ur_error_set(error, UR_ERROR_IO, "cannot write the DXF file: %s",
                                   errno ? strerror(errno) : "write error");
     }
     free_sheet(sheet);

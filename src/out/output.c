@@ -251,7 +251,8 @@ static ur_status write_document(const target *t, const ur_write_job *job, ur_vec
         return status;
     }
     status = writer->end_document ? writer->end_document(document, file->stream, error) : UR_OK;
-    if (status == UR_ERROR_INPUT) /* a write error: the format's message does not name the file */
+    /* a write error (or bad input): the format's message does not name the file */
+    if (status == UR_ERROR_IO || status == UR_ERROR_INPUT)
         ur_error_prefix(error, "%s: ", t->path);
     return status == UR_OK ? ur_atomic_close(file, error) : status;
 }
@@ -272,7 +273,7 @@ static ur_status write_sheets(const target *t, const ur_write_job *job, ur_vec2 
             status = ur_atomic_open(&files[i], name, job->options->context, error);
         if (status == UR_OK) {
             status = write_sheet(writer, document, files[i].stream, i, job, scratch, error);
-            if (status == UR_ERROR_INPUT) /* as in write_document */
+            if (status == UR_ERROR_IO || status == UR_ERROR_INPUT) /* as in write_document */
                 ur_error_prefix(error, "%s: ", name);
         }
         if (status == UR_OK)
@@ -341,7 +342,7 @@ static ur_status write_stdout(const target *t, const ur_write_job *job, ur_error
         writer->discard_document(document);
     free(scratch);
     if (status == UR_OK && (fflush(stdout) != 0 || ferror(stdout)))
-        status = ur_error_set(error, UR_ERROR_INPUT, "cannot write the %s to standard output",
+        status = ur_error_set(error, UR_ERROR_IO, "cannot write the %s to standard output",
                               writer->format);
     return status;
 }

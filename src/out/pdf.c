@@ -155,7 +155,7 @@ static ur_status copy_to_file(pdf_document *document, FILE *file, ur_error *erro
         HPDF_UINT32 size = sizeof buffer;
         HPDF_STATUS result = HPDF_ReadFromStream(document->pdf, buffer, &size);
         if (size > 0 && fwrite(buffer, 1, size, file) != size)
-            return ur_error_set(error, UR_ERROR_INPUT, "cannot write the PDF file: %s",
+            return ur_error_set(error, UR_ERROR_IO, "cannot write the PDF file: %s",
                                 strerror(errno));
         if (result == HPDF_STREAM_EOF)
             return UR_OK;

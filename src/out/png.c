@@ -406,7 +406,7 @@ static ur_status png_end_sheet(void *state, ur_error *error)
     cairo_surface_flush(s->surface);
     errno = 0;
     if (status == UR_OK && !png_emit(s->file, s->surface))
-        status = ur_error_set(error, UR_ERROR_INPUT, "cannot write the PNG file: %s",
+        status = ur_error_set(error, UR_ERROR_IO, "cannot write the PNG file: %s",
                               errno ? strerror(errno) : "write error");
     free_sheet(s);
     return status;

@@ -548,7 +548,7 @@ static ur_status write_sheet_file(const char *path, const picture *p, size_t ind
         status = draw_sheet(p, index, &surface, error);
     errno = 0;
     if (status == UR_OK && !png_emit(files[index].stream, surface))
-        status = ur_error_set(error, UR_ERROR_INPUT, "cannot write '%s': %s", name,
+        status = ur_error_set(error, UR_ERROR_IO, "cannot write '%s': %s", name,
                               errno ? strerror(errno) : "write error");
     if (status == UR_OK)
         status = ur_atomic_close(&files[index], error);

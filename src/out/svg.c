@@ -101,8 +101,7 @@ static ur_status flush_to_file(svg_sheet *sheet, ur_error *error)
         return xml_failed(error, "flush");
     size_t length = (size_t)xmlBufferLength(sheet->buffer);
     if (length > 0 && fwrite(xmlBufferContent(sheet->buffer), 1, length, sheet->file) != length)
-        return ur_error_set(error, UR_ERROR_INPUT, "cannot write the SVG file: %s",
-                            strerror(errno));
+        return ur_error_set(error, UR_ERROR_IO, "cannot write the SVG file: %s", strerror(errno));
     xmlBufferEmpty(sheet->buffer);
     return UR_OK;
 }

@@ -336,6 +336,39 @@ def help_version_and_profiles(work):
 
 
 @test
+def profiles_are_found_from_any_directory(work):
+    """The built command finds the repository's profiles beside itself
+    (build/*/unroll, two levels below them), whatever the working directory
+    and with $UNROLL_PROFILES unset: from a temporary directory it shows
+    co2-60w from the repository and unrolls a cylinder with it, and from
+    samples/jobs runs the lamp's job file there; ./profiles is searched
+    too, after it."""
+    env = {k: v for k, v in os.environ.items() if k != "UNROLL_PROFILES"}
+    def unroll(*args):
+        return subprocess.run([UNROLL, *args], cwd=work, capture_output=True, text=True, env=env)
+    shown = unroll("profiles", "show", "co2-60w")
+    expected = os.path.realpath(os.path.join(REPO, "profiles", "machines", "co2-60w.xml"))
+    check(shown.returncode == 0 and shown.stdout.startswith("<!-- %s -->" % expected),
+          "profiles show co2-60w: exit %d; %r" % (shown.returncode, (shown.stdout[:200], shown.stderr)))
+    made = unroll("cylinder", "--radius", "20", "--height", "30", "--machine", "co2-60w",
+                  "--material", "plywood-3mm", "-o", "x.svg", "--quiet")
+    check(made.returncode == 0 and os.path.getsize(os.path.join(work, "x.svg")) > 0,
+          "cylinder: exit %d; %s" % (made.returncode, made.stderr.strip()))
+    jobs = os.path.join(REPO, "samples", "jobs")  # where the job files are
+    job = subprocess.run([UNROLL, "job", "lamp.xml", "-o", os.path.join(work, "lamp"), "--quiet"],
+                         cwd=jobs, capture_output=True, text=True, env=env)
+    check(job.returncode == 0 and os.path.getsize(os.path.join(work, "lamp", "lamp.svg")) > 0,
+          "job lamp.xml in samples/jobs: exit %d; %s" % (job.returncode, job.stderr.strip()))
+    with open(os.path.join(REPO, "profiles", "machines", "co2-60w.xml")) as f:
+        machine = f.read()
+    os.makedirs(os.path.join(work, "profiles", "machines"))
+    write(work, os.path.join("profiles", "machines", "here.xml"), machine)
+    shown = unroll("profiles", "show", "here")
+    check(shown.returncode == 0 and shown.stdout.startswith("<!-- ./profiles/machines/here.xml -->"),
+          "profiles show here: exit %d; %r" % (shown.returncode, (shown.stdout[:200], shown.stderr)))
+
+
+@test
 def router_and_material_profiles_are_used(work):
     run(work, "cylinder", "--radius", "100", "--height", "300", "--machine", "router",
         "--material", "plywood-6mm", "-o", "r.svg", "--report", "r.json")
@@ -352,9 +385,9 @@ BAD_PROFILE = """<?xml version="1.0"?>
 """
 
 
-def bad(work, pattern, *args):
+def bad(work, pattern, *args, status=2):
     before = set(os.listdir(work))
-    result = run(work, *args, status=2)
+    result = run(work, *args, status=status)
     check(re.search(pattern, result.stderr), "message %r does not match %r" % (result.stderr.strip(), pattern))
     check(result.stderr.count("\n") == 1, "more than one line: %r" % result.stderr)
     after = set(os.listdir(work))
@@ -411,7 +444,7 @@ def bad_inputs(work):
     bad(work, r"--pitch does not apply", "cylinder", "--radius", "3", "--height", "4", "--pitch", "1", "-o", "x.svg")
     bad(work, r"unknown machine 'laser9000'", *HELICOID, "--machine", "laser9000", "-o", "x.svg")
     bad(work, r"unknown material 'balsa'", *HELICOID, "--material", "balsa", "-o", "x.svg")
-    bad(work, r"no-such-dir", *HELICOID, "-o", "no-such-dir/x.svg")
+    bad(work, r"no-such-dir", *HELICOID, "-o", "no-such-dir/x.svg", status=3)
     bad(work, r"-o FILE", *HELICOID)
     bad(work, r"does not fit.*--sheet", "cylinder", "--radius", "100", "--height", "700", "-o", "x.svg")
     bad(work, r"--sheet: '12'", *HELICOID, "--sheet", "12", "-o", "x.svg")
@@ -778,7 +811,7 @@ def strain_preview_has_the_sheet_size(work):
     check(png_size(os.path.join(work, "h.png")) == (round(600 / 25.4 * 96), round(400 / 25.4 * 96)),
           "size %r" % (png_size(os.path.join(work, "h.png")),))
     bad(work, r"no-such-dir", "hypar", "--corners", HYPAR, "-o", "x.svg", "--strain-png",
-        "no-such-dir/h.png")
+        "no-such-dir/h.png", status=3)
 
 
 def ppm_pixels(path):
@@ -885,7 +918,7 @@ def assembly_guide_shows_each_piece_in_its_colour(work):
         os.remove(os.path.join(work, name))
     result = run_env(work, common + ["-o", "y.svg", "--assembly", "guide.png"],
                      UNROLL_TEST_FAIL_WRITE_AFTER=str(size))
-    check(result.returncode == 2 and "guide.png" in result.stderr,
+    check(result.returncode == 3 and "guide.png" in result.stderr,
           "failed guide: exit %d; %s" % (result.returncode, result.stderr.strip()))
     check(os.listdir(work) == [], "left behind: %r" % os.listdir(work))
     bad(work, r"--assembly: 'guide.svg' is not a \.png or \.pdf", *common, "-o", "z.svg",
@@ -1351,7 +1384,8 @@ def bad_rails_and_corners(work):
         "--png", "c.png")
     bad(work, r"give a surface first", "analyze", "--png", "a.png")
     bad(work, r"--png does not apply", "cylinder", "--radius", "3", "--height", "4", "--png", "a.png", "-o", "x.svg")
-    bad(work, r"no-such-dir", "analyze", "cylinder", "--radius", "3", "--height", "4", "--png", "no-such-dir/a.png")
+    bad(work, r"no-such-dir", "analyze", "cylinder", "--radius", "3", "--height", "4", "--png", "no-such-dir/a.png",
+        status=3)
 
 
 # ---- fabrication allowances ----------------------------------------------
@@ -1648,7 +1682,7 @@ def write_grid_stl(path, n):
 @test
 def a_mesh_too_large_for_memory_fails_cleanly(work):
     """Under an address-space limit (ulimit -v) a mesh that will not fit is
-    refused before the work starts, with exit status 1 and no output; a
+    refused before the work starts, with exit status 4 and no output; a
     tighter limit fails cleanly too, never with a crash.  AddressSanitizer
     reserves terabytes of address space, so the sanitizer build skips this."""
     if "/sanitize/" in UNROLL:
@@ -1666,7 +1700,7 @@ def a_mesh_too_large_for_memory_fails_cleanly(work):
         result = subprocess.run([UNROLL, "mesh", "grid.stl", "-o", "g.svg"], cwd=work,
                                 capture_output=True, text=True, preexec_fn=limited(megabytes),
                                 env=dict(os.environ, UNROLL_PROFILES=os.path.join(REPO, "profiles")))
-        check(result.returncode in (1, 2), "ulimit -v %d MB: exit %d (a signal is negative); %s"
+        check(result.returncode == 4, "ulimit -v %d MB: exit %d (a signal is negative); %s"
               % (megabytes, result.returncode, result.stderr.strip()))
         check(re.search(pattern, result.stderr), "ulimit -v %d MB: %r" % (megabytes, result.stderr))
         check(set(os.listdir(work)) == before, "files left behind")
@@ -2652,7 +2686,7 @@ def failed_writes_leave_the_old_files(work):
     points = sorted({0, 1, total - 1} | {total * k // 29 for k in range(1, 29)})
     for n in points:
         result = run_env(work, new, UNROLL_TEST_FAIL_WRITE_AFTER=str(n))
-        check(result.returncode == 2, "failing after %d of %d bytes: exit %d; %s"
+        check(result.returncode == 3, "failing after %d of %d bytes: exit %d; %s"
               % (n, total, result.returncode, result.stderr.strip()))
         check(re.search(r"h(-[12])?\.(svg|dxf|pdf|png|json).*Input/output error", result.stderr),
               "failing after %d bytes: %r" % (n, result.stderr))
@@ -2670,11 +2704,43 @@ def failed_writes_leave_the_old_files(work):
     strip = ["strip", "--rail1", "r1.csv", "--rail2", "r2.csv", "-o", "-", "--quiet"]
     write(work, "edge.csv", "precious\n")
     result = run_env(work, strip + ["--regression", "edge.csv"], UNROLL_TEST_FAIL_WRITE_AFTER="0")
-    check(result.returncode == 2 and "edge.csv" in result.stderr,
+    check(result.returncode == 3 and "edge.csv" in result.stderr,
           "failed regression write: exit %d; %s" % (result.returncode, result.stderr.strip()))
     with open(os.path.join(work, "edge.csv")) as f:
         check(f.read() == "precious\n", "edge.csv was changed")
     check(not [n for n in os.listdir(work) if n.startswith(".")], "temporaries left")
+
+
+@test
+def an_unwritable_output_directory_is_an_io_failure(work):
+    """An output directory unroll may not write in (mode 0555; when the tests
+    run as root, whom modes do not stop, unroll runs as the user nobody)
+    fails with exit status 3, an output that could not be written, not 2,
+    bad input: the message names the file and the system's reason, and no
+    file is left, neither there nor the other outputs of the run."""
+    locked = os.path.join(work, "locked")
+    os.mkdir(locked)
+    os.chmod(locked, 0o555)
+    as_nobody = None
+    if os.geteuid() == 0:
+        os.chmod(work, 0o777)
+        if os.environ.get("VALGRIND_LOGS"):  # valgrind-unroll writes its report there
+            os.chmod(os.environ["VALGRIND_LOGS"], 0o1777)
+        def as_nobody():
+            os.setgroups([])
+            os.setgid(65534)
+            os.setuid(65534)
+    cylinder = ["cylinder", "--radius", "10", "--height", "10", "--quiet"]
+    for outputs, name in ((["-o", "locked/x.svg"], "locked/x.svg"),
+                          (["-o", "x.svg", "--report", "locked/r.json"], "locked/r.json")):
+        result = subprocess.run([UNROLL, *cylinder, *outputs], cwd=work, capture_output=True,
+                                text=True, preexec_fn=as_nobody,
+                                env=dict(os.environ, UNROLL_PROFILES=os.path.join(REPO, "profiles")))
+        check(result.returncode == 3, "%s: exit %d; %s" % (name, result.returncode, result.stderr.strip()))
+        check(re.search(r"cannot write '%s': Permission denied" % re.escape(name), result.stderr),
+              "%s: %r" % (name, result.stderr))
+        check(os.listdir(locked) == [] and not os.path.exists(os.path.join(work, "x.svg")),
+              "%s: files left: %r %r" % (name, os.listdir(locked), os.listdir(work)))
 
 
 def interrupted(work, args, signal_number, delay):
@@ -2745,7 +2811,9 @@ def inputs_beyond_the_limits_fail_cleanly(work):
     """Inputs made here, far beyond reason (man unroll, LIMITS): a 1 GB file
     (sparse, all NUL bytes) as every kind of input, an SVG nested 100,000
     deep, and under ulimit -v 600 MB a curve of 10^7 points: each fails
-    with exit status 1 or 2 and a message naming the file, leaving nothing.
+    with exit status 1 or 2, or 4 (out of memory) for the curve and for the
+    mesh where the machine has less than the 40 GB its reading would take,
+    and a message naming the file, leaving nothing.
     AddressSanitizer reserves terabytes of address space, so the sanitizer
     build skips the ulimit case."""
     import resource
@@ -2776,7 +2844,8 @@ def inputs_beyond_the_limits_fail_cleanly(work):
             env=dict(os.environ, UNROLL_PROFILES=os.path.join(REPO, "profiles")),
             preexec_fn=(lambda: resource.setrlimit(resource.RLIMIT_AS, (limited, limited)))
             if limited else None)
-        check(result.returncode in (1, 2), "unroll %s: exit %d (a signal is negative); %s"
+        expected = (4,) if "long.csv" in args else (2, 4) if "huge.stl" in args else (1, 2)
+        check(result.returncode in expected, "unroll %s: exit %d (a signal is negative); %s"
               % (" ".join(args), result.returncode, result.stderr.strip()))
         check(re.search(pattern, result.stderr), "unroll %s: %r" % (" ".join(args), result.stderr))
         check(set(os.listdir(work)) == before, "unroll %s left files" % " ".join(args))

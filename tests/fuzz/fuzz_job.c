@@ -3,8 +3,8 @@
  * file, profiles/schema/job.rng validates it, and the reader turns the tree
  * into a ur_job with its paths joined to the job file's directory.
  *
- * The schema is found on the profile search path, ./profiles first: run the
- * target from the top of the source tree (make fuzz does).
+ * The schema is read from ./profiles/schema: run the target from the top of
+ * the source tree (make fuzz does).
  */
 #include "fuzz_support.h"
 
@@ -44,13 +44,15 @@ static void check_job(const ur_job *job)
     }
 }
 
+static const char *const roots[] = {"./profiles", NULL};
+
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     char path[1024];
     fuzz_write_file("job.xml", data, size, path, sizeof path);
     ur_job job;
     ur_error error;
-    if (ur_job_read(path, &job, &error) == UR_OK) {
+    if (ur_job_read(roots, path, &job, &error) == UR_OK) {
         check_job(&job);
         ur_job_free(&job);
     } else {

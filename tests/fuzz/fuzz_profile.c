@@ -4,8 +4,8 @@
  * profiles/schema/ validates it and the reader turns it into a ur_machine
  * or ur_material.  The same bytes are read as both.
  *
- * The schemas are found on the profile search path, ./profiles first: run
- * the target from the top of the source tree (make fuzz does).
+ * The schemas are read from ./profiles/schema: run the target from the top
+ * of the source tree (make fuzz does).
  */
 #include "fuzz_support.h"
 
@@ -46,18 +46,20 @@ static void check_material(const ur_material *material)
     FUZZ_CHECK(isfinite(material->label_height) && isfinite(material->groove_skin));
 }
 
+static const char *const roots[] = {"./profiles", NULL};
+
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     char path[1024];
     fuzz_write_file("profile.xml", data, size, path, sizeof path);
     ur_error error;
     ur_machine machine;
-    if (ur_machine_read(path, &machine, &error) == UR_OK)
+    if (ur_machine_read(roots, path, &machine, &error) == UR_OK)
         check_machine(&machine);
     else
         FUZZ_CHECK(strstr(error.message, "profile.xml") != NULL);
     ur_material material;
-    if (ur_material_read(path, &material, &error) == UR_OK)
+    if (ur_material_read(roots, path, &material, &error) == UR_OK)
         check_material(&material);
     else
         FUZZ_CHECK(strstr(error.message, "profile.xml") != NULL);

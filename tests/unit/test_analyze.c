@@ -481,7 +481,7 @@ static void test_png_failures_leave_nothing(void **state)
     /* into a directory that is not there */
     snprintf(path, sizeof path, "%s/missing/map.png", directory);
     assert_int_equal(ur_analysis_png_write(path, &ruled, &analysis, "t", NULL, &error),
-                     UR_ERROR_INPUT);
+                     UR_ERROR_IO);
     assert_non_null(strstr(error.message, "does not exist"));
     struct stat info;
     snprintf(path, sizeof path, "%s/missing", directory);

@@ -239,7 +239,7 @@ static void test_write_into_missing_directory(void **state)
     char path[160];
     snprintf(path, sizeof path, "%s/missing/out.csv", directory);
     ur_error error = {0};
-    assert_int_equal(ur_curve_csv_write(path, written, 4, NULL, &error), UR_ERROR_INPUT);
+    assert_int_equal(ur_curve_csv_write(path, written, 4, NULL, &error), UR_ERROR_IO);
     assert_non_null(strstr(error.message, path));
     assert_non_null(strstr(error.message, "does not exist"));
 }

@@ -391,7 +391,7 @@ static void test_svg_missing_directory(void **state)
 {
     fixture *f = *state;
     ur_error error;
-    write_svg(f, "missing/x.svg", UR_ERROR_INPUT, &error);
+    write_svg(f, "missing/x.svg", UR_ERROR_IO, &error);
     char expected[512];
     snprintf(expected, sizeof expected,
              "cannot write '%s/missing/x.svg': directory '%s/missing' does not exist", f->dir,
@@ -611,7 +611,7 @@ static void test_report_missing_directory(void **state)
     path_in(f->dir, "missing/report.json", path, sizeof path);
     ur_error error;
     assert_int_equal(ur_report_write(path, &context, f->pieces, PIECES, &f->layout, NULL, &error),
-                     UR_ERROR_INPUT);
+                     UR_ERROR_IO);
     assert_non_null(strstr(error.message, "does not exist"));
     assert_int_equal(entries_in(f->dir), 0);
 }

@@ -3,9 +3,9 @@
  * with the figures they were written with, bad files are refused naming file
  * and line, names are checked, the search path and the listing behave.
  *
- * Run from the repository root: ./profiles is the first profile root.  The
- * bad profiles go into a temporary root named by $UNROLL_PROFILES, under
- * names that do not exist in ./profiles.
+ * Run from the repository root: ./profiles is the first profile root the
+ * tests give the library.  The bad profiles go into a temporary second
+ * root, under names that do not exist in ./profiles.
  */
 #include <stdarg.h>
 #include <stddef.h>
@@ -28,6 +28,8 @@
 #define MAX_WRITTEN 32
 
 static char root[64];
+/* The roots every test searches: ./profiles, then the temporary root. */
+static const char *roots[] = {"./profiles", root, NULL};
 static char written[MAX_WRITTEN][256];
 static int written_count;
 
@@ -48,7 +50,7 @@ static int make_root(void **state)
     snprintf(path, sizeof path, "%s/materials", root);
     if (mkdir(path, 0755) != 0)
         return -1;
-    return setenv("UNROLL_PROFILES", root, 1);
+    return 0;
 }
 
 static int remove_root(void **state)
@@ -61,7 +63,6 @@ static int remove_root(void **state)
     rmdir(path);
     snprintf(path, sizeof path, "%s/materials", root);
     rmdir(path);
-    unsetenv("UNROLL_PROFILES");
     xmlCleanupParser(); /* so valgrind sees libxml2's globals freed */
     return rmdir(root);
 }
@@ -116,7 +117,7 @@ static void test_co2_laser(void **state)
     (void)state;
     ur_machine machine;
     ur_error error = {0};
-    assert_int_equal(ur_machine_load("co2-60w", &machine, &error), UR_OK);
+    assert_int_equal(ur_machine_load(roots, "co2-60w", &machine, &error), UR_OK);
     assert_string_equal(machine.name, "co2-60w");
     assert_string_equal(machine.source, "./profiles/machines/co2-60w.xml");
     assert_non_null(strstr(machine.description, "60 W"));
@@ -138,7 +139,7 @@ static void test_diode_laser(void **state)
     (void)state;
     ur_machine machine;
     ur_error error = {0};
-    assert_int_equal(ur_machine_load("diode-10w", &machine, &error), UR_OK);
+    assert_int_equal(ur_machine_load(roots, "diode-10w", &machine, &error), UR_OK);
     assert_int_equal(machine.kind, UR_MACHINE_LASER);
     assert_true(machine.bed_width == 400.0 && machine.bed_height == 400.0);
     assert_true(machine.kerf == 0.1);
@@ -152,7 +153,7 @@ static void test_router(void **state)
     (void)state;
     ur_machine machine;
     ur_error error = {0};
-    assert_int_equal(ur_machine_load("router", &machine, &error), UR_OK);
+    assert_int_equal(ur_machine_load(roots, "router", &machine, &error), UR_OK);
     assert_int_equal(machine.kind, UR_MACHINE_ROUTER);
     assert_true(machine.bed_width == 2440.0 && machine.bed_height == 1220.0);
     assert_true(machine.kerf == 3.175);
@@ -167,7 +168,7 @@ static void test_router(void **state)
 static void load_material(const char *name, ur_material *material)
 {
     ur_error error = {0};
-    if (ur_material_load(name, material, &error) != UR_OK)
+    if (ur_material_load(roots, name, material, &error) != UR_OK)
         fail_msg("%s: %s", name, error.message);
     assert_string_equal(material->name, name);
     /* Figures every material must have, whatever it is. */
@@ -259,11 +260,11 @@ static void test_effective_kerf(void **state)
     ur_machine co2, diode, router;
     ur_material plywood, mdf;
     ur_error error = {0};
-    assert_int_equal(ur_machine_load("co2-60w", &co2, &error), UR_OK);
-    assert_int_equal(ur_machine_load("diode-10w", &diode, &error), UR_OK);
-    assert_int_equal(ur_machine_load("router", &router, &error), UR_OK);
-    assert_int_equal(ur_material_load("plywood-6mm", &plywood, &error), UR_OK);
-    assert_int_equal(ur_material_load("mdf-3mm", &mdf, &error), UR_OK);
+    assert_int_equal(ur_machine_load(roots, "co2-60w", &co2, &error), UR_OK);
+    assert_int_equal(ur_machine_load(roots, "diode-10w", &diode, &error), UR_OK);
+    assert_int_equal(ur_machine_load(roots, "router", &router, &error), UR_OK);
+    assert_int_equal(ur_material_load(roots, "plywood-6mm", &plywood, &error), UR_OK);
+    assert_int_equal(ur_material_load(roots, "mdf-3mm", &mdf, &error), UR_OK);
     assert_true(ur_effective_kerf(&co2, &plywood) == 0.25);
     assert_true(ur_effective_kerf(&diode, &mdf) == 0.18);
     assert_true(ur_effective_kerf(&router, &plywood) == 3.175); /* no router figure */
@@ -302,14 +303,14 @@ static const char *write_machine(const char *name, const char *middle)
     return write_profile("machines", name, text);
 }
 
-static void test_own_profile_from_environment(void **state)
+static void test_own_profile_from_a_root(void **state)
 {
     (void)state;
     const char *path = write_machine("test-good", "  <bed width=\"300\" height=\"200\"/>\n"
                                                   "  <kerf>0.15</kerf>\n");
     ur_machine machine;
     ur_error error = {0};
-    assert_int_equal(ur_machine_load("test-good", &machine, &error), UR_OK);
+    assert_int_equal(ur_machine_load(roots, "test-good", &machine, &error), UR_OK);
     assert_string_equal(machine.source, path);
     assert_true(machine.bed_width == 300.0 && machine.bed_height == 200.0);
     assert_true(machine.kerf == 0.15);
@@ -323,12 +324,12 @@ static void test_malformed_xml(void **state)
                                                        "  <kerf>0.15</kref>\n"); /* line 6 */
     ur_machine machine;
     ur_error error = {0};
-    assert_int_equal(ur_machine_load("test-malformed", &machine, &error), UR_ERROR_INPUT);
+    assert_int_equal(ur_machine_load(roots, "test-malformed", &machine, &error), UR_ERROR_INPUT);
     expect_located(error.message, path, 6, "kerf");
     assert_null(strchr(error.message, '\n'));
 
     path = write_profile("machines", "test-unclosed", "<machine>\n<description>x\n\n\n");
-    assert_int_equal(ur_machine_load("test-unclosed", &machine, &error), UR_ERROR_INPUT);
+    assert_int_equal(ur_machine_load(roots, "test-unclosed", &machine, &error), UR_ERROR_INPUT);
     assert_int_equal(strncmp(error.message, path, strlen(path)), 0);
     assert_int_equal(error.message[strlen(path)], ':');
 }
@@ -340,7 +341,7 @@ static void test_negative_kerf(void **state)
                                                       "  <kerf>-0.2</kerf>\n");
     ur_machine machine;
     ur_error error = {0};
-    assert_int_equal(ur_machine_load("test-negative", &machine, &error), UR_ERROR_INPUT);
+    assert_int_equal(ur_machine_load(roots, "test-negative", &machine, &error), UR_ERROR_INPUT);
     expect_located(error.message, path, 6, "kerf");
 }
 
@@ -355,7 +356,7 @@ static void test_colour_name_refused(void **state)
     const char *path = write_profile("machines", "test-colour", text);
     ur_machine machine;
     ur_error error = {0};
-    assert_int_equal(ur_machine_load("test-colour", &machine, &error), UR_ERROR_INPUT);
+    assert_int_equal(ur_machine_load(roots, "test-colour", &machine, &error), UR_ERROR_INPUT);
     expect_located(error.message, path, 11, "operation");
 }
 
@@ -365,7 +366,7 @@ static void test_missing_bed(void **state)
     const char *path = write_machine("test-no-bed", "  <kerf>0.2</kerf>\n"); /* line 5 */
     ur_machine machine;
     ur_error error = {0};
-    assert_int_equal(ur_machine_load("test-no-bed", &machine, &error), UR_ERROR_INPUT);
+    assert_int_equal(ur_machine_load(roots, "test-no-bed", &machine, &error), UR_ERROR_INPUT);
     expect_located(error.message, path, 5, "kerf");
 }
 
@@ -379,7 +380,7 @@ static void test_bad_kind_and_material_values(void **state)
     const char *path = write_profile("machines", "test-kind", text);
     ur_machine machine;
     ur_error error = {0};
-    assert_int_equal(ur_machine_load("test-kind", &machine, &error), UR_ERROR_INPUT);
+    assert_int_equal(ur_machine_load(roots, "test-kind", &machine, &error), UR_ERROR_INPUT);
     expect_located(error.message, path, 4, "kind");
 
     /* A strain written with an exponent is not a plain decimal (line 6). */
@@ -396,7 +397,7 @@ static void test_bad_kind_and_material_values(void **state)
                          "  <living-hinge cut-length=\"5\" connection=\"1\" distance=\"1\"/>\n"
                          "</material>\n");
     ur_material material;
-    assert_int_equal(ur_material_load("test-strain", &material, &error), UR_ERROR_INPUT);
+    assert_int_equal(ur_material_load(roots, "test-strain", &material, &error), UR_ERROR_INPUT);
     expect_located(error.message, path, 6, "strain");
 }
 
@@ -419,14 +420,14 @@ static void test_material_rules(void **state)
     const char *path = write_profile("materials", "test-grain", text);
     ur_material material;
     ur_error error = {0};
-    assert_int_equal(ur_material_load("test-grain", &material, &error), UR_ERROR_INPUT);
+    assert_int_equal(ur_material_load(roots, "test-grain", &material, &error), UR_ERROR_INPUT);
     expect_located(error.message, path, 11, "grain");
 
     char fixed[2048];
     snprintf(fixed, sizeof fixed, "%s", text);
     replace(fixed, sizeof fixed, "rule=\"along\"", "rule=\"none\"");
     path = write_profile("materials", "test-grain-none", fixed);
-    assert_int_equal(ur_material_load("test-grain-none", &material, &error), UR_OK);
+    assert_int_equal(ur_material_load(roots, "test-grain-none", &material, &error), UR_OK);
     assert_string_equal(material.description, "Test wrapped");
     assert_true(material.kerf_laser == 0.0 && material.kerf_router == 3.3);
     assert_true(material.max_stretch == 0.0 && material.k_factor == 0.45);
@@ -446,7 +447,7 @@ static void test_allowance_fields(void **state)
     (void)state;
     ur_material material;
     ur_error error = {0};
-    assert_int_equal(ur_material_load("test-grain-none", &material, &error), UR_OK);
+    assert_int_equal(ur_material_load(roots, "test-grain-none", &material, &error), UR_OK);
     assert_int_equal(material.joint, UR_JOINT_TAB);
     assert_true(material.lap_width == material.tab_depth);
     assert_true(material.label_height == 4.0);
@@ -475,7 +476,7 @@ static void test_allowance_fields(void **state)
                        "  <groove skin=\"3\"/>\n" /* line 11: no groove left */
                        "</material>\n";
     const char *path = write_profile("materials", "test-skin", text);
-    assert_int_equal(ur_material_load("test-skin", &material, &error), UR_ERROR_INPUT);
+    assert_int_equal(ur_material_load(roots, "test-skin", &material, &error), UR_ERROR_INPUT);
     expect_located(error.message, path, 11, "skin");
 
     const char *bending = "<material>\n"
@@ -493,17 +494,17 @@ static void test_allowance_fields(void **state)
     char text_of[1024];
     snprintf(text_of, sizeof text_of, bending, "2.5");
     write_profile("materials", "test-bending", text_of);
-    assert_int_equal(ur_material_load("test-bending", &material, &error), UR_OK);
+    assert_int_equal(ur_material_load(roots, "test-bending", &material, &error), UR_OK);
     assert_true(material.facet_angle == 2.5 && material.min_web == 0.8);
     snprintf(text_of, sizeof text_of, bending, "120");
     path = write_profile("materials", "test-bending", text_of);
-    assert_int_equal(ur_material_load("test-bending", &material, &error), UR_ERROR_INPUT);
+    assert_int_equal(ur_material_load(roots, "test-bending", &material, &error), UR_ERROR_INPUT);
     expect_located(error.message, path, 11, "facet angle");
 
     ur_machine machine;
-    assert_int_equal(ur_machine_load("router", &machine, &error), UR_OK);
+    assert_int_equal(ur_machine_load(roots, "router", &machine, &error), UR_OK);
     assert_true(machine.bridge_width == 3.0 && machine.bridges_by_default);
-    assert_int_equal(ur_machine_load("co2-60w", &machine, &error), UR_OK);
+    assert_int_equal(ur_machine_load(roots, "co2-60w", &machine, &error), UR_OK);
     assert_true(machine.bridge_width == 0.5 && !machine.bridges_by_default);
 }
 
@@ -525,8 +526,8 @@ static void test_nothing_printed(void **state)
     write_machine("test-quiet-invalid", "  <kerf>0.2</kerf>\n");
     ur_machine machine;
     ur_error error = {0};
-    ur_status malformed = ur_machine_load("test-quiet", &machine, &error);
-    ur_status invalid = ur_machine_load("test-quiet-invalid", &machine, &error);
+    ur_status malformed = ur_machine_load(roots, "test-quiet", &machine, &error);
+    ur_status invalid = ur_machine_load(roots, "test-quiet-invalid", &machine, &error);
     fflush(stderr);
     assert_true(dup2(saved, 2) == 2);
     close(saved);
@@ -544,15 +545,15 @@ static void test_unknown_name(void **state)
     (void)state;
     ur_machine machine;
     ur_error error = {0};
-    assert_int_equal(ur_machine_load("no-such-machine", &machine, &error), UR_ERROR_INPUT);
+    assert_int_equal(ur_machine_load(roots, "no-such-machine", &machine, &error), UR_ERROR_INPUT);
     assert_non_null(strstr(error.message, "unknown machine 'no-such-machine'"));
     assert_non_null(strstr(error.message, "./profiles"));
     char expected[128];
-    snprintf(expected, sizeof expected, "$UNROLL_PROFILES=%s", root);
+    snprintf(expected, sizeof expected, "(searched ./profiles, %s)", root);
     assert_non_null(strstr(error.message, expected));
     assert_non_null(strstr(error.message, "unroll profiles"));
     ur_material material;
-    assert_int_equal(ur_material_load("co2-60w", &material, &error), UR_ERROR_INPUT);
+    assert_int_equal(ur_material_load(roots, "co2-60w", &material, &error), UR_ERROR_INPUT);
     assert_non_null(strstr(error.message, "unknown material 'co2-60w'"));
 }
 
@@ -572,27 +573,51 @@ static void test_bad_names(void **state)
     char path[1024];
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
         ur_error error = {0};
-        if (ur_profile_find(UR_PROFILE_MACHINE, bad[i], path, sizeof path, &error) !=
+        if (ur_profile_find(roots, UR_PROFILE_MACHINE, bad[i], path, sizeof path, &error) !=
             UR_ERROR_INPUT)
             fail_msg("name '%s' accepted", bad[i]);
         assert_non_null(strstr(error.message, "bad machine name"));
     }
     ur_error error = {0};
-    assert_int_equal(ur_profile_find(UR_PROFILE_MATERIAL, "paper-0.3mm", path, sizeof path, &error),
-                     UR_OK);
+    assert_int_equal(
+        ur_profile_find(roots, UR_PROFILE_MATERIAL, "paper-0.3mm", path, sizeof path, &error),
+        UR_OK);
     assert_string_equal(path, "./profiles/materials/paper-0.3mm.xml");
 }
 
 static void test_first_root_wins(void **state)
 {
     (void)state;
-    /* A co2-60w in $UNROLL_PROFILES is hidden by the one in ./profiles. */
+    /* A co2-60w in the second root is hidden by the one in ./profiles. */
     write_machine("co2-60w", "  <bed width=\"1\" height=\"1\"/>\n  <kerf>9</kerf>\n");
     ur_machine machine;
     ur_error error = {0};
-    assert_int_equal(ur_machine_load("co2-60w", &machine, &error), UR_OK);
+    assert_int_equal(ur_machine_load(roots, "co2-60w", &machine, &error), UR_OK);
     assert_true(machine.bed_width == 600.0);
     assert_string_equal(machine.source, "./profiles/machines/co2-60w.xml");
+}
+
+/*
+ * The library searches the roots it is given and nothing else: not
+ * $UNROLL_PROFILES (the command's business), and with no roots, nothing.
+ */
+static void test_only_the_roots_given(void **state)
+{
+    (void)state;
+    write_machine("test-only-given", "  <bed width=\"100\" height=\"50\"/>\n"
+                                     "  <kerf>0.2</kerf>\n");
+    assert_int_equal(setenv("UNROLL_PROFILES", root, 1), 0);
+    static const char *const shipped_only[] = {"./profiles", NULL};
+    ur_machine machine;
+    ur_error error = {0};
+    assert_int_equal(ur_machine_load(shipped_only, "test-only-given", &machine, &error),
+                     UR_ERROR_INPUT);
+    assert_non_null(strstr(error.message, "(searched ./profiles)"));
+    assert_int_equal(ur_machine_load(roots, "test-only-given", &machine, &error), UR_OK);
+    assert_true(machine.bed_width == 100.0 && machine.bed_height == 50.0);
+    assert_int_equal(ur_machine_load(NULL, "co2-60w", &machine, &error), UR_ERROR_INPUT);
+    assert_non_null(strstr(error.message, "no profile directory given"));
+    assert_int_equal(unsetenv("UNROLL_PROFILES"), 0);
 }
 
 static void test_listing(void **state)
@@ -603,7 +628,7 @@ static void test_listing(void **state)
     ur_profile_entry *entries = NULL;
     size_t count = 0;
     ur_error error = {0};
-    assert_int_equal(ur_profile_list(&entries, &count, &error), UR_OK);
+    assert_int_equal(ur_profile_list(roots, &entries, &count, &error), UR_OK);
     static const char *const shipped_machines[] = {"co2-60w", "diode-10w", "router"};
     static const char *const shipped_materials[] = {"cardboard-2mm", "mdf-3mm",
                                                     "paper-0.3mm",   "plywood-3mm",
@@ -656,7 +681,7 @@ int main(void)
         cmocka_unit_test(test_mdf),
         cmocka_unit_test(test_cardboard_paper_polypropylene),
         cmocka_unit_test(test_effective_kerf),
-        cmocka_unit_test(test_own_profile_from_environment),
+        cmocka_unit_test(test_own_profile_from_a_root),
         cmocka_unit_test(test_malformed_xml),
         cmocka_unit_test(test_negative_kerf),
         cmocka_unit_test(test_colour_name_refused),
@@ -668,6 +693,7 @@ int main(void)
         cmocka_unit_test(test_unknown_name),
         cmocka_unit_test(test_bad_names),
         cmocka_unit_test(test_first_root_wins),
+        cmocka_unit_test(test_only_the_roots_given),
         cmocka_unit_test(test_listing),
     };
     return cmocka_run_group_tests(tests, make_root, remove_root);

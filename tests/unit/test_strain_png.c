@@ -228,7 +228,7 @@ static void test_missing_directory(void **state)
     char path[256];
     ur_error error;
     assert_int_equal(write_picture(f, "missing/strain.png", 100, path, sizeof path, &error),
-                     UR_ERROR_INPUT);
+                     UR_ERROR_IO);
     assert_non_null(strstr(error.message, "does not exist"));
     assert_int_equal(entries_in(f->dir), 0);
 }

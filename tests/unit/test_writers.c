@@ -654,7 +654,7 @@ static void test_outputs_all_or_nothing(void **state)
     ur_error error;
     assert_int_equal(ur_write_outputs(path, UR_FORMAT_ALL, &f->layout, f->pieces, &f->machine,
                                       &f->options, &f->formats, &error),
-                     UR_ERROR_INPUT);
+                     UR_ERROR_IO);
     assert_non_null(strstr(error.message, "net-2.dxf"));
     assert_int_equal(entries_in(f->dir), 2); /* the directory and the old file */
     char *text = read_all(old);
@@ -666,7 +666,7 @@ static void test_outputs_all_or_nothing(void **state)
     assert_int_equal(mkdir(blocker, 0755), 0);
     assert_int_equal(ur_write_outputs(path, UR_FORMAT_ALL, &f->layout, f->pieces, &f->machine,
                                       &f->options, &f->formats, &error),
-                     UR_ERROR_INPUT);
+                     UR_ERROR_IO);
     assert_int_equal(entries_in(f->dir), 2);
     /* A failure inside a writer (a bad machine colour) also leaves nothing. */
     assert_int_equal(rmdir(blocker), 0);
