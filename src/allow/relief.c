@@ -120,6 +120,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "../base/c_locale.h"
 
 /*
  * A region whose length to take up, beyond what the material takes by
@@ -499,22 +500,24 @@ static ur_status record_need(relief_job *job, const relief_need *need, const cha
     record.warning = need->cut < need->wanted;
     char missing[96] = "", reason[512];
     if (record.warning)
-        snprintf(missing, sizeof missing, "; only %zu fit, %.3g mm clear of the outline and slits",
-                 need->cut, job->limits->margin);
+        ur_c_snprintf(missing, sizeof missing,
+                      "; only %zu fit, %.3g mm clear of the outline and slits", need->cut,
+                      job->limits->margin);
     if (kerfing)
-        snprintf(reason, sizeof reason,
-                 "the net is %.3g mm shorter than the surface %s (forming needs %.3g %% stretch, "
-                 "the material takes %.3g %%): %zu kerfing slits opening up to %.3g mm%s",
-                 need->length, across, 100 * need->value, 100 * need->limit, need->wanted,
-                 job->limits->opening, missing);
+        ur_c_snprintf(
+            reason, sizeof reason,
+            "the net is %.3g mm shorter than the surface %s (forming needs %.3g %% stretch, "
+            "the material takes %.3g %%): %zu kerfing slits opening up to %.3g mm%s",
+            need->length, across, 100 * need->value, 100 * need->limit, need->wanted,
+            job->limits->opening, missing);
     else
-        snprintf(reason, sizeof reason,
-                 "the net is %.3g mm longer than the surface %s (forming needs %.3g %% "
-                 "compression, the material takes %.3g %%): %zu overlap %s %.3g mm%s",
-                 need->length, across, 100 * need->value, 100 * need->limit, need->wanted,
-                 job->limits->darts ? "darts, each as wide at the outline as"
-                                    : "slits, each lapping",
-                 need->length / (double)need->wanted, missing);
+        ur_c_snprintf(reason, sizeof reason,
+                      "the net is %.3g mm longer than the surface %s (forming needs %.3g %% "
+                      "compression, the material takes %.3g %%): %zu overlap %s %.3g mm%s",
+                      need->length, across, 100 * need->value, 100 * need->limit, need->wanted,
+                      job->limits->darts ? "darts, each as wide at the outline as"
+                                         : "slits, each lapping",
+                      need->length / (double)need->wanted, missing);
     size_t length = strlen(reason); /* at most what the record holds */
     length = length < sizeof record.reason ? length : sizeof record.reason - 1;
     memcpy(record.reason, reason, length);

@@ -18,6 +18,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "../base/c_locale.h"
 
 const char *ur_method_name(ur_method method)
 {
@@ -548,7 +549,7 @@ static ur_status nets_from_strip(ur_ruled *ruled, const strip *s, const size_t *
     bool closed = ur_ruled_is_closed(ruled);
     for (size_t k = 0; k < piece_count; k++) {
         ur_net *net = &nets->nets[k];
-        snprintf(net->name, sizeof net->name, "P%zu", k + 1);
+        ur_c_snprintf(net->name, sizeof net->name, "P%zu", k + 1);
         ur_status status = fill_net(ruled, s, cuts[k], cuts[k + 1], k > 0 || closed,
                                     k + 1 < piece_count || closed, net, error);
         if (status == UR_OK)

@@ -20,6 +20,7 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
+#include "../base/c_locale.h"
 
 /* A curve shorter than this has no usable tangent, normal and binormal. */
 #define UR_CURVE_MIN_POINTS 4
@@ -73,7 +74,7 @@ static ur_status parse_coordinate(const char *path, size_t line, char *field, do
     if (*field == '\0')
         return ur_error_set(error, UR_ERROR_INPUT, "%s:%zu: empty field", path, line);
     char *end = NULL;
-    double parsed = strtod(field, &end);
+    double parsed = ur_c_strtod(field, &end);
     if (end == field || *end != '\0')
         return ur_error_set(error, UR_ERROR_INPUT, "%s:%zu: '%.*s' is not a number", path, line,
                             UR_FIELD_QUOTE_MAX, field);
@@ -236,12 +237,12 @@ typedef struct curve_text {
 static bool emit_points(FILE *file, const void *data)
 {
     const curve_text *curve = data;
-    if (fprintf(file, "# unroll curve: x,y,z in mm, %zu points\n", curve->count) < 0)
+    if (ur_c_fprintf(file, "# unroll curve: x,y,z in mm, %zu points\n", curve->count) < 0)
         return false;
     for (size_t i = 0; i < curve->count; i++) {
         const ur_vec3 *p = &curve->points[i];
         /* %.17g round-trips every double exactly. */
-        if (fprintf(file, "%.17g,%.17g,%.17g\n", p->x, p->y, p->z) < 0)
+        if (ur_c_fprintf(file, "%.17g,%.17g,%.17g\n", p->x, p->y, p->z) < 0)
             return false;
     }
     return true;

@@ -25,6 +25,7 @@
 #include <assimp/cimport.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include "../base/c_locale.h"
 
 /* Assimp builds its node tree recursively: deeper than this is not a model. */
 #define UR_IMPORT_MAX_DEPTH 1000
@@ -105,9 +106,9 @@ static bool name_usable(const struct aiString *name)
 static const char *mesh_label(const struct aiMesh *mesh, unsigned index, char *buffer, size_t size)
 {
     if (name_usable(&mesh->mName))
-        snprintf(buffer, size, "mesh '%.200s'", mesh->mName.data);
+        ur_c_snprintf(buffer, size, "mesh '%.200s'", mesh->mName.data);
     else
-        snprintf(buffer, size, "mesh %u", index + 1);
+        ur_c_snprintf(buffer, size, "mesh %u", index + 1);
     return buffer;
 }
 
@@ -481,7 +482,7 @@ static ur_status refuse_vertex(const char *path, const struct aiMesh *mesh, unsi
     char face[64] = "";
     unsigned f = face_using(mesh, vertex);
     if (f > 0)
-        snprintf(face, sizeof face, " (in face %u)", f);
+        ur_c_snprintf(face, sizeof face, " (in face %u)", f);
     struct aiVector3D v = mesh->mVertices[vertex];
     bool nan = isnan(v.x) || isnan(v.y) || isnan(v.z);
     /* A number too large for assimp's floats arrives here as infinity. */
@@ -867,7 +868,7 @@ static void name_unnamed(import_state *state)
             continue;
         char suffix[32] = "";
         if (unnamed > 1)
-            snprintf(suffix, sizeof suffix, "-%zu", ++number);
+            ur_c_snprintf(suffix, sizeof suffix, "-%zu", ++number);
         size_t room = UR_GROUP_NAME_SIZE - strlen(suffix);
         copy_name(state->names[g], room, stem, strlen(stem));
         strcat(state->names[g], suffix);

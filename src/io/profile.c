@@ -27,6 +27,7 @@
 #include <libxml/relaxng.h>
 #include <libxml/tree.h>
 #include <libxml/xmlerror.h>
+#include "../base/c_locale.h"
 
 #ifndef UR_PROFILE_DIR
 #define UR_PROFILE_DIR "/usr/local/share/unroll/profiles"
@@ -76,16 +77,16 @@ static void profile_roots(ur_roots *roots)
 static void describe_roots(const ur_roots *roots, char *text, size_t size)
 {
     if (roots->environment)
-        snprintf(text, size, "./profiles, $UNROLL_PROFILES=%s, %s", roots->environment,
-                 UR_PROFILE_DIR);
+        ur_c_snprintf(text, size, "./profiles, $UNROLL_PROFILES=%s, %s", roots->environment,
+                      UR_PROFILE_DIR);
     else
-        snprintf(text, size, "./profiles, %s; $UNROLL_PROFILES is not set", UR_PROFILE_DIR);
+        ur_c_snprintf(text, size, "./profiles, %s; $UNROLL_PROFILES is not set", UR_PROFILE_DIR);
 }
 
 static ur_status join_path(char *out, size_t size, const char *root, const char *folder,
                            const char *file, ur_error *error)
 {
-    int length = snprintf(out, size, "%s/%s/%s", root, folder, file);
+    int length = ur_c_snprintf(out, size, "%s/%s/%s", root, folder, file);
     if (length < 0 || (size_t)length >= size)
         return ur_error_set(error, UR_ERROR_INPUT, "%s/%s: path too long", root, folder);
     return UR_OK;
@@ -124,7 +125,7 @@ ur_status ur_profile_find(ur_profile_kind kind, const char *name, char *path, si
     if (status != UR_OK)
         return status;
     char file[80];
-    snprintf(file, sizeof file, "%s.xml", name);
+    ur_c_snprintf(file, sizeof file, "%s.xml", name);
     ur_roots roots;
     profile_roots(&roots);
     for (int i = 0; i < roots.count; i++) {
@@ -156,7 +157,7 @@ ur_status ur_profile_find(ur_profile_kind kind, const char *name, char *path, si
 static ur_status find_schema(const char *word, char *path, size_t size, ur_error *error)
 {
     char file[32];
-    snprintf(file, sizeof file, "%s.rng", word);
+    ur_c_snprintf(file, sizeof file, "%s.rng", word);
     ur_roots roots;
     profile_roots(&roots);
     for (int i = 0; i < roots.count; i++) {
@@ -197,16 +198,16 @@ static void collect_error(void *context, ur_xml_error *xml_error)
         return;
     report->have = true;
     report->line = xml_error->line;
-    snprintf(report->file, sizeof report->file, "%s", xml_error->file ? xml_error->file : "");
+    ur_c_snprintf(report->file, sizeof report->file, "%s", xml_error->file ? xml_error->file : "");
     const char *message = xml_error->message ? xml_error->message : "unknown XML error";
     xmlNodePtr node = xml_error->node;
     /* Validity messages do not always say which element: add it, as xmllint does. */
     if (xml_error->domain == XML_FROM_RELAXNGV && node && node->type == XML_ELEMENT_NODE &&
         !strstr(message, (const char *)node->name))
-        snprintf(report->message, sizeof report->message, "element %s: %s",
-                 (const char *)node->name, message);
+        ur_c_snprintf(report->message, sizeof report->message, "element %s: %s",
+                      (const char *)node->name, message);
     else
-        snprintf(report->message, sizeof report->message, "%s", message);
+        ur_c_snprintf(report->message, sizeof report->message, "%s", message);
     strip_trailing_space(report->message);
 }
 
@@ -379,7 +380,7 @@ static ur_status reader_fail(const ur_reader *reader, xmlNodePtr node, const cha
     char message[512];
     va_list args;
     va_start(args, format);
-    vsnprintf(message, sizeof message, format, args);
+    ur_c_vsnprintf(message, sizeof message, format, args);
     va_end(args);
     long line = node ? xmlGetLineNo(node) : -1;
     if (line > 0)
@@ -422,7 +423,7 @@ static ur_status parse_number(const ur_reader *reader, xmlNodePtr node, const ch
     while (isspace((unsigned char)*text))
         text++;
     char *end = NULL;
-    double parsed = strtod(text, &end);
+    double parsed = ur_c_strtod(text, &end);
     if (end != text)
         while (isspace((unsigned char)*end))
             end++;
@@ -460,7 +461,7 @@ static ur_status attribute_number(const ur_reader *reader, xmlNodePtr element, c
                            name);
     }
     char what[128];
-    snprintf(what, sizeof what, "%s %s", (const char *)element->name, name);
+    ur_c_snprintf(what, sizeof what, "%s %s", (const char *)element->name, name);
     ur_status status = parse_number(reader, element, what, (const char *)text, range, value);
     xmlFree(text);
     return status;
@@ -609,7 +610,7 @@ static ur_status read_dash(const ur_reader *reader, xmlNodePtr element, char *da
     int lengths = 0;
     while (*p) {
         char *end;
-        double length = strtod(p, &end);
+        double length = ur_c_strtod(p, &end);
         if (end == p || !(length > 0) || !isfinite(length) || (*end && *end != ' '))
             return reader_fail(reader, element,
                                "dash must be lengths in mm separated by spaces, not '%s'", dash);
@@ -1107,7 +1108,7 @@ static ur_status add_entry(ur_entry_list *list, ur_profile_kind kind, const char
     memset(entry, 0, sizeof *entry);
     entry->kind = kind;
     strcpy(entry->name, name);
-    int length = snprintf(entry->source, sizeof entry->source, "%s/%s", folder, file);
+    int length = ur_c_snprintf(entry->source, sizeof entry->source, "%s/%s", folder, file);
     if (length < 0 || (size_t)length >= sizeof entry->source)
         return ur_error_set(error, UR_ERROR_INPUT, "%s/%s: path too long", folder, file);
     if (valid_name(entry->name) && strlen(file) == stem_length + 4)
@@ -1124,7 +1125,7 @@ static ur_status list_folder(const char *root, ur_profile_kind kind, ur_entry_li
                              ur_error *error)
 {
     char folder[UR_PATH_MAX];
-    int length = snprintf(folder, sizeof folder, "%s/%s", root, kind_folder(kind));
+    int length = ur_c_snprintf(folder, sizeof folder, "%s/%s", root, kind_folder(kind));
     if (length < 0 || (size_t)length >= sizeof folder)
         return ur_error_set(error, UR_ERROR_INPUT, "%s: path too long", root);
     DIR *dir = opendir(folder);

@@ -21,6 +21,7 @@
 #include <libxml/parser.h>
 #include <libxml/tree.h>
 #include <libxml/xmlerror.h>
+#include "../base/c_locale.h"
 
 #define SVG_NAMESPACE "http://www.w3.org/2000/svg"
 
@@ -142,7 +143,7 @@ static bool scan_number(svg_scanner *scanner, double *value)
         return false;
     memcpy(text, scanner->at, length);
     text[length] = '\0';
-    *value = strtod(text, NULL);
+    *value = ur_c_strtod(text, NULL);
     if (!isfinite(*value))
         return false;
     scanner->at = p;
@@ -186,7 +187,7 @@ static bool parse_length_text(const char *text, double *value, char *unit, size_
         length--;
     if (length >= unit_size)
         return false;
-    snprintf(unit, unit_size, "%.*s", (int)length, rest);
+    ur_c_snprintf(unit, unit_size, "%.*s", (int)length, rest);
     return true;
 }
 
@@ -212,7 +213,8 @@ static ur_status length_attribute(svg_element *element, const char *name, double
         *value = number * px;
     else {
         char message[128];
-        snprintf(message, sizeof message, "%s=\"%.*s\" is not a length", name, SVG_QUOTE_MAX, text);
+        ur_c_snprintf(message, sizeof message, "%s=\"%.*s\" is not a length", name, SVG_QUOTE_MAX,
+                      text);
         status = element_error(element, error, message);
     }
     xmlFree(text);
@@ -299,8 +301,8 @@ static ur_status parse_transform(svg_element *element, parts_matrix *matrix, ur_
     ur_status status = UR_OK;
     if (!good) {
         char message[128];
-        snprintf(message, sizeof message, "transform=\"%.*s\" is not a transform", SVG_QUOTE_MAX,
-                 text);
+        ur_c_snprintf(message, sizeof message, "transform=\"%.*s\" is not a transform",
+                      SVG_QUOTE_MAX, text);
         status = element_error(element, error, message);
     }
     xmlFree(text);
@@ -350,9 +352,10 @@ static ur_status path_data_error(svg_path_state *state, const char *at, ur_error
 {
     char message[128];
     if (*at)
-        snprintf(message, sizeof message, "bad path data at \"%.*s\"", SVG_QUOTE_MAX, at);
+        ur_c_snprintf(message, sizeof message, "bad path data at \"%.*s\"", SVG_QUOTE_MAX, at);
     else
-        snprintf(message, sizeof message, "path data ends before its last command is complete");
+        ur_c_snprintf(message, sizeof message,
+                      "path data ends before its last command is complete");
     return element_error(state->element, error, message);
 }
 
@@ -654,7 +657,7 @@ static ur_status positive(svg_element *element, const char *name, double value, 
     if (value > 0)
         return UR_OK;
     char message[96];
-    snprintf(message, sizeof message, "%s must be positive, not %g", name, value);
+    ur_c_snprintf(message, sizeof message, "%s must be positive, not %g", name, value);
     return element_error(element, error, message);
 }
 
@@ -748,7 +751,7 @@ static ur_status read_poly(svg_element *element, bool polygon, ur_error *error)
         const char *at = scanner.at;
         if (!scan_number(&scanner, &x) || !scan_number(&scanner, &y)) {
             char message[128];
-            snprintf(message, sizeof message, "bad points at \"%.*s\"", SVG_QUOTE_MAX, at);
+            ur_c_snprintf(message, sizeof message, "bad points at \"%.*s\"", SVG_QUOTE_MAX, at);
             status = element_error(element, error, message);
         } else
             status = parts_points_push(&points, ur_vec2_make(x, y), error);
@@ -829,12 +832,12 @@ static void describe(svg_element *element)
     char *id = attribute(element->node, "id");
     /* A copy drawn through use is no longer the element of that id: its parts are numbered. */
     bool copy = element->reader && element->reader->using_count > 0;
-    snprintf(element->id, sizeof element->id, "%s", id && !copy ? id : "");
+    ur_c_snprintf(element->id, sizeof element->id, "%s", id && !copy ? id : "");
     if (id)
-        snprintf(element->what, sizeof element->what, "%s id=\"%.40s\"",
-                 (const char *)element->node->name, id);
+        ur_c_snprintf(element->what, sizeof element->what, "%s id=\"%.40s\"",
+                      (const char *)element->node->name, id);
     else
-        snprintf(element->what, sizeof element->what, "%s", (const char *)element->node->name);
+        ur_c_snprintf(element->what, sizeof element->what, "%s", (const char *)element->node->name);
     xmlFree(id);
     long line = xmlGetLineNo(element->node);
     element->line = line > 0 && line < 1000000000 ? (int)line : 0;
@@ -879,9 +882,9 @@ static ur_status read_viewbox(svg_element *element, svg_viewbox *box, ur_error *
     ur_status status = UR_OK;
     if (!good) {
         char message[128];
-        snprintf(message, sizeof message,
-                 "viewBox=\"%.*s\" is not four numbers with a positive width and height",
-                 SVG_QUOTE_MAX, text);
+        ur_c_snprintf(message, sizeof message,
+                      "viewBox=\"%.*s\" is not four numbers with a positive width and height",
+                      SVG_QUOTE_MAX, text);
         status = element_error(element, error, message);
     }
     box->given = good;
@@ -972,18 +975,18 @@ static ur_status use_target(svg_element *element, xmlNodePtr *target, ur_error *
     char message[160];
     *target = NULL;
     if (!href)
-        snprintf(message, sizeof message, "no href: the use points at nothing");
+        ur_c_snprintf(message, sizeof message, "no href: the use points at nothing");
     else if (href[0] != '#')
-        snprintf(message, sizeof message,
-                 "href=\"%.*s\" points outside the file: only \"#id\" is read", SVG_QUOTE_MAX,
-                 href);
+        ur_c_snprintf(message, sizeof message,
+                      "href=\"%.*s\" points outside the file: only \"#id\" is read", SVG_QUOTE_MAX,
+                      href);
     else if ((*target = element_by_id(xmlDocGetRootElement(element->node->doc), href + 1)) == NULL)
-        snprintf(message, sizeof message, "href=\"%.*s\" points at no element of the file",
-                 SVG_QUOTE_MAX, href);
+        ur_c_snprintf(message, sizeof message, "href=\"%.*s\" points at no element of the file",
+                      SVG_QUOTE_MAX, href);
     else if (loops(element, *target))
-        snprintf(message, sizeof message,
-                 "href=\"%.*s\" refers to itself (directly or through other uses)", SVG_QUOTE_MAX,
-                 href);
+        ur_c_snprintf(message, sizeof message,
+                      "href=\"%.*s\" refers to itself (directly or through other uses)",
+                      SVG_QUOTE_MAX, href);
     else
         message[0] = '\0';
     xmlFree(href);
@@ -1160,9 +1163,9 @@ static ur_status root_size(svg_element *root, const char *name, svg_size *size, 
         size->mm = size->value * mm;
     } else {
         char message[160];
-        snprintf(message, sizeof message,
-                 "%s=\"%.*s\" is not a positive length in mm, cm, in, pt, pc or px", name,
-                 SVG_QUOTE_MAX, text);
+        ur_c_snprintf(message, sizeof message,
+                      "%s=\"%.*s\" is not a positive length in mm, cm, in, pt, pc or px", name,
+                      SVG_QUOTE_MAX, text);
         status = element_error(root, error, message);
     }
     xmlFree(text);
@@ -1228,8 +1231,8 @@ static void collect_error(void *context, svg_xml_error *xml_error)
         return;
     report->have = true;
     report->line = xml_error->line;
-    snprintf(report->message, sizeof report->message, "%s",
-             xml_error->message ? xml_error->message : "unknown XML error");
+    ur_c_snprintf(report->message, sizeof report->message, "%s",
+                  xml_error->message ? xml_error->message : "unknown XML error");
     size_t length = strlen(report->message);
     while (length > 0 && isspace((unsigned char)report->message[length - 1]))
         report->message[--length] = '\0';

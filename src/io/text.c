@@ -6,6 +6,7 @@
 #include <ctype.h>
 #include <stdio.h>
 #include <string.h>
+#include "../base/c_locale.h"
 
 char *io_trim(char *text)
 {
@@ -23,5 +24,5 @@ void io_file_stem(const char *path, char *stem, size_t size)
     const char *name = slash ? slash + 1 : path;
     const char *dot = strrchr(name, '.');
     size_t length = dot && dot != name ? (size_t)(dot - name) : strlen(name);
-    snprintf(stem, size, "%.*s", (int)length, name);
+    ur_c_snprintf(stem, size, "%.*s", (int)length, name);
 }

@@ -17,6 +17,7 @@
 #include <strings.h>
 
 #include "atomic.h"
+#include "../base/c_locale.h"
 
 /*
  * Cutting order: engrave and mark while the sheet is still whole, then fold
@@ -55,7 +56,7 @@ ur_status ur_sheet_file_name(const char *output_path, size_t sheet_index, size_t
                             sheet_index + 1, sheet_count);
     int length;
     if (sheet_count == 1) {
-        length = snprintf(name, name_size, "%s", output_path);
+        length = ur_c_snprintf(name, name_size, "%s", output_path);
     } else {
         /* The extension is that of the base name: "dir.v2/net" has none. */
         const char *slash = strrchr(output_path, '/');
@@ -63,8 +64,8 @@ ur_status ur_sheet_file_name(const char *output_path, size_t sheet_index, size_t
         const char *dot = strrchr(base, '.');
         if (!dot || dot == base) /* ".hidden" is a name, not an extension */
             dot = base + strlen(base);
-        length = snprintf(name, name_size, "%.*s-%zu%s", (int)(dot - output_path), output_path,
-                          sheet_index + 1, dot);
+        length = ur_c_snprintf(name, name_size, "%.*s-%zu%s", (int)(dot - output_path), output_path,
+                               sheet_index + 1, dot);
     }
     if (length < 0 || (size_t)length >= name_size)
         return ur_error_set(error, UR_ERROR_INPUT, "output name '%s' is too long", output_path);
@@ -414,7 +415,8 @@ static ur_status write_one(const ur_writer *writer, const char *output_path,
                            const ur_format_options *format_options, ur_error *error)
 {
     target t = {writer, ""};
-    if (output_path && snprintf(t.path, sizeof t.path, "%s", output_path) >= (int)sizeof t.path)
+    if (output_path &&
+        ur_c_snprintf(t.path, sizeof t.path, "%s", output_path) >= (int)sizeof t.path)
         return ur_error_set(error, UR_ERROR_INPUT, "output name '%s' is too long", output_path);
     if (!output_path)
         return check_arguments(NULL, layout, pieces, machine, error);
@@ -523,9 +525,9 @@ static ur_status make_targets(const char *path, unsigned formats, target *target
         target *t = &targets[(*count)++];
         t->writer = formats_known[i].writer;
         int length = strcmp(path, "-") == 0 || formats_known[i].format == named
-                         ? snprintf(t->path, sizeof t->path, "%s", path)
-                         : snprintf(t->path, sizeof t->path, "%.*s.%s", (int)stem, path,
-                                    t->writer->extension);
+                         ? ur_c_snprintf(t->path, sizeof t->path, "%s", path)
+                         : ur_c_snprintf(t->path, sizeof t->path, "%.*s.%s", (int)stem, path,
+                                         t->writer->extension);
         if (length < 0 || (size_t)length >= sizeof t->path)
             return ur_error_set(error, UR_ERROR_INPUT, "output name '%s' is too long", path);
     }

@@ -10,6 +10,7 @@
 #include <gsl/gsl_integration.h>
 #include <stdio.h>
 #include <string.h>
+#include "../base/c_locale.h"
 
 static ur_status take_curve(ur_ruled *ruled, ur_ruled_kind kind, ur_curve *curve)
 {
@@ -275,11 +276,11 @@ void describe_place(ur_ruled *ruled, double u, char *text, size_t size)
             fabs(ur_curve_point_parameter(ruled->curve, nearest) - u))
             nearest = i;
     if (points > 0)
-        snprintf(text, size, "near point %zu (%.4g, %.4g, %.4g), %.4g mm along the curve",
-                 nearest + 1, d[0].x, d[0].y, d[0].z, arc);
+        ur_c_snprintf(text, size, "near point %zu (%.4g, %.4g, %.4g), %.4g mm along the curve",
+                      nearest + 1, d[0].x, d[0].y, d[0].z, arc);
     else
-        snprintf(text, size, "at (%.4g, %.4g, %.4g), %.4g mm along the curve", d[0].x, d[0].y,
-                 d[0].z, arc);
+        ur_c_snprintf(text, size, "at (%.4g, %.4g, %.4g), %.4g mm along the curve", d[0].x, d[0].y,
+                      d[0].z, arc);
 }
 
 enum { CHECK_SAMPLES = 4000 };
