@@ -22,9 +22,6 @@
 #include <string.h>
 #include "../base/c_locale.h"
 
-/* Larger than this is not a drawing of parts: refuse before reading it all. */
-#define DXF_MAX_BYTES (1024L * 1024 * 1024)
-
 /* Kinds of entities left out, counted for one warning each. */
 #define DXF_MAX_IGNORED_KINDS 16
 
@@ -64,7 +61,7 @@ typedef struct dxf_block {
 typedef struct dxf_reader {
     parts_collection *collection;
     const char *path;
-    char *text;
+    char *text; /* the collection's, cut into lines in place */
     dxf_pair *pairs;
     size_t count;
     double scale;        /* mm per drawing unit */
@@ -99,33 +96,6 @@ static ur_status entity_error(const dxf_entity *entity, ur_error *error, const c
 }
 
 /* ---- The file as pairs ---------------------------------------------------- */
-
-static ur_status read_text(const char *path, char **text, size_t *size, ur_error *error)
-{
-    FILE *file = fopen(path, "rb");
-    if (!file)
-        return ur_error_set(error, UR_ERROR_INPUT, "%s: cannot open: %s", path, strerror(errno));
-    long length = fseek(file, 0, SEEK_END) == 0 ? ftell(file) : -1;
-    ur_status status = UR_OK;
-    if (length < 0 || fseek(file, 0, SEEK_SET) != 0)
-        status = ur_error_set(error, UR_ERROR_INPUT, "%s: cannot read: %s", path, strerror(errno));
-    else if (length > DXF_MAX_BYTES)
-        status = ur_error_set(error, UR_ERROR_INPUT,
-                              "%s: %ld bytes: too large for a drawing of "
-                              "parts",
-                              path, length);
-    else if ((*text = ur_alloc_array((size_t)length + 1, 1, error)) == NULL)
-        status = UR_ERROR_INTERNAL;
-    else if (fread(*text, 1, (size_t)length, file) != (size_t)length)
-        status = ur_error_set(error, UR_ERROR_INPUT, "%s: cannot read: %s", path,
-                              strerror(errno ? errno : EIO));
-    fclose(file);
-    if (status == UR_OK) {
-        (*text)[length] = '\0';
-        *size = (size_t)length;
-    }
-    return status;
-}
 
 /* Cuts the text into lines in place; *lines points into it. */
 static ur_status split_lines(dxf_reader *reader, size_t size, char ***lines, size_t *count,
@@ -190,16 +160,15 @@ static ur_status make_pairs(dxf_reader *reader, char **lines, size_t line_count,
 
 static ur_status read_pairs(dxf_reader *reader, ur_error *error)
 {
-    size_t size = 0;
-    ur_status status = read_text(reader->path, &reader->text, &size, error);
-    if (status != UR_OK)
-        return status;
+    /* The collection's copy of the file, which split_lines cuts up in place. */
+    reader->text = reader->collection->text;
+    size_t size = reader->collection->size;
     if (strncmp(reader->text, "AutoCAD Binary DXF", 18) == 0)
         return ur_error_set(error, UR_ERROR_INPUT, "%s: a binary DXF file: save it as ASCII DXF",
                             reader->path);
     char **lines = NULL;
     size_t line_count = 0;
-    status = split_lines(reader, size, &lines, &line_count, error);
+    ur_status status = split_lines(reader, size, &lines, &line_count, error);
     if (status == UR_OK)
         status = make_pairs(reader, lines, line_count, error);
     free(lines);
@@ -1145,6 +1114,5 @@ ur_status parts_read_dxf(parts_collection *collection, ur_error *error)
     free(reader.segments);
     free(reader.blocks);
     free(reader.pairs);
-    free(reader.text);
     return status;
 }

@@ -143,19 +143,33 @@ static ur_status read_job(const char *path, xmlNodePtr root, ur_job *job, ur_err
     return status;
 }
 
-ur_status ur_job_read(const char *path, ur_job *job, ur_error *error)
+/* Either the file at path (text NULL) or size bytes of text named path. */
+static ur_status read_job_from(const char *path, const char *text, size_t size, ur_job *job,
+                               ur_error *error)
 {
     memset(job, 0, sizeof *job);
     if (ur_c_snprintf(job->source, sizeof job->source, "%s", path) >= (int)sizeof job->source)
         return ur_error_set(error, UR_ERROR_INPUT, "%s: path too long", path);
     xmlDocPtr doc = NULL;
-    ur_status status = io_xml_load("job", path, &doc, error);
+    ur_status status = text ? io_xml_load_buffer("job", path, text, size, &doc, error)
+                            : io_xml_load("job", path, &doc, error);
     if (status == UR_OK)
         status = read_job(path, xmlDocGetRootElement(doc), job, error);
     xmlFreeDoc(doc);
     if (status != UR_OK)
         ur_job_free(job);
     return status;
+}
+
+ur_status ur_job_read(const char *path, ur_job *job, ur_error *error)
+{
+    return read_job_from(path, NULL, 0, job, error);
+}
+
+ur_status ur_job_read_buffer(const char *name, const void *data, size_t size, ur_job *job,
+                             ur_error *error)
+{
+    return read_job_from(name, data, size, job, error);
 }
 
 void ur_job_free(ur_job *job)

@@ -416,13 +416,18 @@ static ur_status check_stl_header(const char *path, FILE *file, off_t size, ur_e
     return UR_OK;
 }
 
-/* What a header says about the size, for the formats that assimp trusts blindly. */
-static ur_status check_header(const char *path, off_t size, ur_error *error)
+/*
+ * What a header says about the size, for the formats that assimp trusts
+ * blindly: of the file at path, or of size bytes of data when data is not
+ * NULL (read through a stream over them: the same code).
+ */
+static ur_status check_header(const char *path, const void *data, off_t size, ur_error *error)
 {
     bool ply = has_extension(path, "ply");
     if (!ply && !has_extension(path, "stl"))
         return UR_OK;
-    FILE *file = fopen(path, "rb");
+    /* "r": the buffer is only read */
+    FILE *file = data ? fmemopen((void *)data, (size_t)size, "r") : fopen(path, "rb");
     if (!file)
         return ur_error_set(error, UR_ERROR_INPUT, "%s: cannot open: %s", path, strerror(errno));
     ur_status status =
@@ -445,7 +450,21 @@ static ur_status check_file(const char *path, ur_error *error)
     ur_status status = check_extension(path, error);
     if (status != UR_OK)
         return status;
-    return check_header(path, info.st_size, error);
+    return check_header(path, NULL, info.st_size, error);
+}
+
+static ur_status check_buffer(const char *name, const void *data, size_t size, ur_error *error)
+{
+    if (size == 0)
+        return ur_error_set(error, UR_ERROR_INPUT, "%s: the file is empty", name);
+    /* assimp takes the length as an unsigned int */
+    if (size > UINT_MAX)
+        return ur_error_set(error, UR_ERROR_INPUT, "%s: %zu bytes: too large to read from memory",
+                            name, size);
+    ur_status status = check_extension(name, error);
+    if (status != UR_OK)
+        return status;
+    return check_header(name, data, (off_t)size, error);
 }
 
 static ur_status check_options(const ur_mesh_import_options *options, ur_error *error)
@@ -556,11 +575,18 @@ size_t ur_mesh_import_memory_estimate(const char *path)
     return size > SIZE_MAX / 40 ? SIZE_MAX : 40 * size;
 }
 
-/* Reads the file and post-processes it; the caller releases *scene. */
-static ur_status load_scene(const char *path, const struct aiScene **scene, ur_error *error)
+/*
+ * Reads the file at path, or size bytes of data when data is not NULL (the
+ * format told by path's extension), and post-processes it; the caller
+ * releases *scene.  A file is read by assimp itself, so that a .gltf finds
+ * the .bin files beside it.
+ */
+static ur_status load_scene(const char *path, const void *data, size_t size,
+                            const struct aiScene **scene, ur_error *error)
 {
     /* assimp keeps its last message even after a success: read it only on failure. */
-    *scene = aiImportFile(path, 0);
+    *scene = data ? aiImportFileFromMemory(data, (unsigned)size, 0, strrchr(path, '.') + 1)
+                  : aiImportFile(path, 0);
     if (!*scene)
         return ur_error_set(error, UR_ERROR_INPUT, "%s: cannot read as a mesh: %s", path,
                             aiGetErrorString());
@@ -965,8 +991,10 @@ static void hand_over(import_state *state, ur_mesh *mesh, char (**group_names)[6
     state_free(state);
 }
 
-ur_status ur_mesh_import(const char *path, const ur_mesh_import_options *options, ur_mesh *mesh,
-                         char (**group_names)[64], ur_error *error)
+/* The file at path, or size bytes of data named path when data is not NULL. */
+static ur_status import_mesh(const char *path, const void *data, size_t size,
+                             const ur_mesh_import_options *options, ur_mesh *mesh,
+                             char (**group_names)[64], ur_error *error)
 {
     *mesh = (ur_mesh){0};
     if (group_names)
@@ -977,10 +1005,10 @@ ur_status ur_mesh_import(const char *path, const ur_mesh_import_options *options
         options = &defaults;
     ur_status status = check_options(options, error);
     if (status == UR_OK)
-        status = check_file(path, error);
+        status = data ? check_buffer(path, data, size, error) : check_file(path, error);
     import_state state = {.path = path};
     if (status == UR_OK)
-        status = load_scene(path, &state.scene, error);
+        status = load_scene(path, data, size, &state.scene, error);
     if (status != UR_OK)
         return status;
     state.factor = ur_length_unit_mm(options->unit) * options->scale;
@@ -992,4 +1020,18 @@ ur_status ur_mesh_import(const char *path, const ur_mesh_import_options *options
     }
     hand_over(&state, mesh, group_names);
     return UR_OK;
+}
+
+ur_status ur_mesh_import(const char *path, const ur_mesh_import_options *options, ur_mesh *mesh,
+                         char (**group_names)[64], ur_error *error)
+{
+    return import_mesh(path, NULL, 0, options, mesh, group_names, error);
+}
+
+ur_status ur_mesh_import_buffer(const char *name, const void *data, size_t size,
+                                const ur_mesh_import_options *options, ur_mesh *mesh,
+                                char (**group_names)[64], ur_error *error)
+{
+    static const char nothing = 0; /* data NULL would mean a file: an empty buffer is refused */
+    return import_mesh(name, data ? data : &nothing, size, options, mesh, group_names, error);
 }

@@ -301,6 +301,8 @@ void parts_collection_free(parts_collection *collection)
     collection->lines = NULL;
     collection->line_count = collection->line_capacity = 0;
     free(collection->warnings);
+    free(collection->text);
+    collection->text = NULL;
     collection->rings = NULL;
     collection->warnings = NULL;
     collection->count = collection->capacity = collection->warning_count = 0;
@@ -966,35 +968,79 @@ static ur_status check_options(const char *path, const ur_parts_import_options *
     return UR_OK;
 }
 
-ur_status ur_parts_import(const char *path, const ur_parts_import_options *options, ur_parts *parts,
-                          ur_error *error)
+/* Reads the parts of text (taken: freed here), size bytes named path, known as SVG or DXF. */
+static ur_status import_text(const char *path, bool svg, char *text, size_t size,
+                             const ur_parts_import_options *options, ur_parts *parts,
+                             ur_error *error)
 {
-    memset(parts, 0, sizeof *parts);
-    ur_parts_import_options defaults;
-    ur_parts_import_options_default(&defaults);
-    if (!options)
-        options = &defaults;
-    bool svg = has_extension(path, ".svg"), dxf = has_extension(path, ".dxf");
-    if (!svg && !dxf)
-        return ur_error_set(error, UR_ERROR_INPUT,
-                            "%s: unknown kind of file: parts are read from .svg and .dxf files",
-                            path);
-    ur_status status = check_options(path, options, error);
-    if (status == UR_OK)
-        status = check_file(path, error);
-    if (status != UR_OK)
-        return status;
     parts_collection collection = {.path = path,
+                                   .text = text,
+                                   .size = size,
                                    .tolerance = options->tolerance,
                                    .unit = options->unit,
                                    .strict = options->strict};
-    status = svg ? parts_read_svg(&collection, error) : parts_read_dxf(&collection, error);
+    ur_status status =
+        svg ? parts_read_svg(&collection, error) : parts_read_dxf(&collection, error);
     if (status == UR_OK)
         status = parts_assemble(&collection, parts, error);
     parts_collection_free(&collection);
     if (status != UR_OK)
         ur_parts_free(parts);
     return status;
+}
+
+/* The kind path's extension names, and the options with defaults; UR_ERROR_INPUT when neither. */
+static ur_status start(const char *path, const ur_parts_import_options **options,
+                       ur_parts_import_options *defaults, ur_parts *parts, bool *svg,
+                       ur_error *error)
+{
+    memset(parts, 0, sizeof *parts);
+    ur_parts_import_options_default(defaults);
+    if (!*options)
+        *options = defaults;
+    *svg = has_extension(path, ".svg");
+    if (!*svg && !has_extension(path, ".dxf"))
+        return ur_error_set(error, UR_ERROR_INPUT,
+                            "%s: unknown kind of file: parts are read from .svg and .dxf files",
+                            path);
+    return check_options(path, *options, error);
+}
+
+ur_status ur_parts_import(const char *path, const ur_parts_import_options *options, ur_parts *parts,
+                          ur_error *error)
+{
+    ur_parts_import_options defaults;
+    bool svg;
+    ur_status status = start(path, &options, &defaults, parts, &svg, error);
+    if (status == UR_OK)
+        status = check_file(path, error);
+    char *text = NULL;
+    size_t size = 0;
+    if (status == UR_OK)
+        status = io_read_file(path, PARTS_MAX_BYTES, "a drawing of parts", &text, &size, error);
+    if (status != UR_OK)
+        return status;
+    return import_text(path, svg, text, size, options, parts, error);
+}
+
+ur_status ur_parts_import_buffer(const char *name, const void *data, size_t size,
+                                 const ur_parts_import_options *options, ur_parts *parts,
+                                 ur_error *error)
+{
+    ur_parts_import_options defaults;
+    bool svg;
+    ur_status status = start(name, &options, &defaults, parts, &svg, error);
+    if (status != UR_OK)
+        return status;
+    if (size == 0)
+        return ur_error_set(error, UR_ERROR_INPUT, "%s: the file is empty", name);
+    if (size > (size_t)PARTS_MAX_BYTES)
+        return ur_error_set(error, UR_ERROR_INPUT,
+                            "%s: %zu bytes: too large for a drawing of parts", name, size);
+    char *text = io_copy_text(data, size, error);
+    if (!text)
+        return UR_ERROR_INTERNAL;
+    return import_text(name, svg, text, size, options, parts, error);
 }
 
 void ur_parts_free(ur_parts *parts)

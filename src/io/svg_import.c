@@ -3,14 +3,15 @@
  * y up, for parts_import.c to sort into parts and holes.
  *
  * libxml2 reads the file without network access and without substituting
- * entities; its messages are collected (never printed) and the first
- * becomes "FILE:LINE: message".  The walk keeps the transform from user
+ * entities; its messages are collected (never printed, xml_errors.c) and
+ * the first becomes "FILE:LINE: message".  The walk keeps the transform from user
  * units to millimetres (the root's size and viewBox, every g's and the
  * element's own transform) and flattens curves in the element's own
  * coordinates with the tolerance scaled by how much that transform can
  * stretch, so the flattened curve is within tolerance once in millimetres.
  */
 #include "parts_internal.h"
+#include "xml_errors.h"
 
 #include <ctype.h>
 #include <math.h>
@@ -27,13 +28,6 @@
 
 /* Longest piece of attribute text quoted back in a message. */
 #define SVG_QUOTE_MAX 24
-
-/* libxml2 2.12 made the structured error callback take a const error. */
-#if LIBXML_VERSION >= 21200
-typedef const xmlError svg_xml_error;
-#else
-typedef xmlError svg_xml_error;
-#endif
 
 /* ---- Reading state ------------------------------------------------------ */
 
@@ -1216,58 +1210,6 @@ static ur_status root_matrix(svg_element *root, parts_matrix *matrix, ur_error *
     return UR_OK;
 }
 
-/* ---- libxml2 ------------------------------------------------------------------- */
-
-typedef struct svg_xml_report {
-    bool have;
-    int line;
-    char message[512];
-} svg_xml_report;
-
-static void collect_error(void *context, svg_xml_error *xml_error)
-{
-    svg_xml_report *report = context;
-    if (report->have || !xml_error || xml_error->level == XML_ERR_WARNING)
-        return;
-    report->have = true;
-    report->line = xml_error->line;
-    ur_c_snprintf(report->message, sizeof report->message, "%s",
-                  xml_error->message ? xml_error->message : "unknown XML error");
-    size_t length = strlen(report->message);
-    while (length > 0 && isspace((unsigned char)report->message[length - 1]))
-        report->message[--length] = '\0';
-}
-
-static void ignore_generic_error(void *context, const char *format, ...)
-{
-    (void)context;
-    (void)format;
-}
-
-/* Parses with our error handlers in place of libxml2's, which print. */
-static ur_status parse_document(const char *path, xmlDocPtr *doc, ur_error *error)
-{
-    svg_xml_report report = {0};
-    xmlStructuredErrorFunc saved_structured = xmlStructuredError;
-    void *saved_structured_context = xmlStructuredErrorContext;
-    xmlGenericErrorFunc saved_generic = xmlGenericError;
-    void *saved_generic_context = xmlGenericErrorContext;
-    xmlSetStructuredErrorFunc(&report, collect_error);
-    xmlSetGenericErrorFunc(NULL, ignore_generic_error);
-    *doc = xmlReadFile(path, NULL, XML_PARSE_NONET | XML_PARSE_BIG_LINES);
-    xmlSetStructuredErrorFunc(saved_structured_context, saved_structured);
-    xmlSetGenericErrorFunc(saved_generic_context, saved_generic);
-    if (*doc && !report.have)
-        return UR_OK;
-    xmlFreeDoc(*doc);
-    *doc = NULL;
-    if (!report.have)
-        return ur_error_set(error, UR_ERROR_INPUT, "%s: cannot parse as XML", path);
-    if (report.line > 0)
-        return ur_error_set(error, UR_ERROR_INPUT, "%s:%d: %s", path, report.line, report.message);
-    return ur_error_set(error, UR_ERROR_INPUT, "%s: %s", path, report.message);
-}
-
 static ur_status read_root(svg_reader *reader, xmlNodePtr node, ur_error *error)
 {
     svg_element root;
@@ -1290,7 +1232,8 @@ static ur_status read_root(svg_reader *reader, xmlNodePtr node, ur_error *error)
 ur_status parts_read_svg(parts_collection *collection, ur_error *error)
 {
     xmlDocPtr doc = NULL;
-    ur_status status = parse_document(collection->path, &doc, error);
+    ur_status status = io_xml_parse(collection->path, collection->text, collection->size,
+                                    XML_PARSE_BIG_LINES, "cannot parse as XML", &doc, error);
     if (status != UR_OK)
         return status;
     svg_reader reader = {.collection = collection, .path = collection->path, .op = UR_OP_CUT};

@@ -69,4 +69,11 @@ typedef bool (*ur_emitter)(FILE *stream, const void *data);
 ur_status ur_atomic_write(const char *path, ur_emitter emit, const void *data, const char *what,
                           ur_error *error);
 
+/*
+ * Writes what emit produces to a stream the caller owns (and closes), and
+ * flushes it: the writers' FILE * versions, and "-".
+ */
+ur_status ur_stream_write(FILE *stream, ur_emitter emit, const void *data, const char *what,
+                          ur_error *error);
+
 #endif

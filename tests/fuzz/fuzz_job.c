@@ -46,11 +46,9 @@ static void check_job(const ur_job *job)
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    char path[1024];
-    fuzz_write_file("job.xml", data, size, path, sizeof path);
     ur_job job;
     ur_error error;
-    if (ur_job_read(path, &job, &error) == UR_OK) {
+    if (ur_job_read_buffer("job.xml", data, size, &job, &error) == UR_OK) {
         check_job(&job);
         ur_job_free(&job);
     } else {
