@@ -198,13 +198,13 @@ static ur_status validate_document(xmlDocPtr doc, const char *schema_path, const
     if (!parser) {
         status = ur_error_out_of_memory(error);
     } else {
-        io_xml_report report = {0};
-        xmlRelaxNGSetParserStructuredErrors(parser, io_xml_collect_error, &report);
+        /* The schema's errors come through the parser's handler or the thread's: one report. */
+        xmlRelaxNGSetParserStructuredErrors(parser, io_xml_collect_error, &capture.report);
         schema = xmlRelaxNGParse(parser);
         xmlRelaxNGFreeParserCtxt(parser);
         /* A broken schema is a broken installation, not bad user input. */
         if (!schema)
-            status = io_xml_report_error(&report, schema_path, UR_ERROR_INTERNAL,
+            status = io_xml_report_error(&capture.report, schema_path, UR_ERROR_INTERNAL,
                                          "cannot read the schema", error);
     }
     if (status == UR_OK)
