@@ -12,8 +12,8 @@
 #include <stdbool.h>
 #include <stddef.h>
 
-#include "unroll/allow.h"
 #include "unroll/base.h"
+#include "unroll/core.h"
 #include "unroll/geom.h"
 #include "unroll/mesh.h"
 
