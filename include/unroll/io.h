@@ -11,6 +11,7 @@
 
 #include <stdbool.h>
 #include <stddef.h>
+#include <stdio.h>
 
 #include "unroll/base.h"
 #include "unroll/core.h"
@@ -37,9 +38,23 @@ UR_API ur_status ur_curve_csv_read(const char *path, ur_vec3 **points, size_t *c
 UR_API ur_status ur_points_csv_read(const char *path, size_t min_count, ur_vec3 **points,
                                     size_t *count, bool *closed, ur_error *error);
 
+/*
+ * The same for size bytes of CSV in memory (no NUL needed), name standing
+ * for the file in messages.
+ */
+UR_API ur_status ur_curve_csv_read_buffer(const char *name, const void *data, size_t size,
+                                   ur_vec3 **points, size_t *count, bool *closed, ur_error *error);
+UR_API ur_status ur_points_csv_read_buffer(const char *name, const void *data, size_t size,
+                                    size_t min_count, ur_vec3 **points, size_t *count, bool *closed,
+                                    ur_error *error);
+
 /* Writes points as CSV, atomically (temporary file, then rename). */
 UR_API ur_status ur_curve_csv_write(const char *path, const ur_vec3 *points, size_t count,
                                     ur_context *context, ur_error *error);
+
+/* The same bytes to a stream the caller owns (flushed, not closed). */
+UR_API ur_status ur_curve_csv_write_stream(FILE *stream, const ur_vec3 *points, size_t count,
+                                    ur_error *error);
 
 /* ---- Profiles ---------------------------------------------------------- */
 
@@ -177,6 +192,18 @@ UR_API ur_status ur_machine_read(const char *const *roots, const char *path, ur_
 UR_API ur_status ur_material_read(const char *const *roots, const char *path, ur_material *material,
                                   ur_error *error);
 
+/*
+ * The same for a profile's size bytes in memory (no NUL needed).  name
+ * stands for the file: messages name it, and the profile is named by it as
+ * by a path ("dir/paper.xml" gives "paper"); source is name.  The schema
+ * comes from roots.
+ */
+UR_API ur_status ur_machine_read_buffer(const char *const *roots, const char *name, const void *data,
+                                        size_t size, ur_machine *machine, ur_error *error);
+UR_API ur_status ur_material_read_buffer(const char *const *roots, const char *name,
+                                         const void *data, size_t size, ur_material *material,
+                                         ur_error *error);
+
 /* Finds NAME in the roots, then reads it. */
 UR_API ur_status ur_machine_load(const char *const *roots, const char *name, ur_machine *machine,
                                  ur_error *error);
@@ -271,6 +298,16 @@ UR_API size_t ur_mesh_import_memory_estimate(const char *path);
 UR_API ur_status ur_mesh_import(const char *path, const ur_mesh_import_options *options,
                                 ur_mesh *mesh, char (**group_names)[64], ur_error *error);
 
+/*
+ * The same for a file's size bytes in memory.  name stands for the file:
+ * its extension says the format, messages and unnamed groups take it.  A
+ * .gltf whose buffers are files of their own cannot find them from memory
+ * (give .glb, or a .gltf with its buffers embedded).
+ */
+UR_API ur_status ur_mesh_import_buffer(const char *name, const void *data, size_t size,
+                                const ur_mesh_import_options *options, ur_mesh *mesh,
+                                char (**group_names)[64], ur_error *error);
+
 /* ---- Job files ---------------------------------------------------------- */
 
 /*
@@ -321,6 +358,13 @@ typedef struct ur_job {
  */
 UR_API ur_status ur_job_read(const char *const *roots, const char *path, ur_job *job,
                              ur_error *error);
+
+/*
+ * The same for a job file's size bytes in memory; name stands for the file
+ * (messages name it, and relative paths are joined to its directory).
+ */
+UR_API ur_status ur_job_read_buffer(const char *const *roots, const char *name, const void *data,
+                                    size_t size, ur_job *job, ur_error *error);
 UR_API void ur_job_free(ur_job *job);
 
 /* ---- Parts from SVG and DXF -------------------------------------------- */
@@ -438,6 +482,15 @@ typedef struct ur_parts {
  */
 UR_API ur_status ur_parts_import(const char *path, const ur_parts_import_options *options,
                                  ur_parts *parts, ur_error *error);
+
+/*
+ * The same for a file's size bytes in memory (no NUL needed).  name stands
+ * for the file: its extension says SVG or DXF, messages name it, and parts
+ * without an id are named after it.
+ */
+UR_API ur_status ur_parts_import_buffer(const char *name, const void *data, size_t size,
+                                        const ur_parts_import_options *options, ur_parts *parts,
+                                        ur_error *error);
 
 UR_API void ur_parts_free(ur_parts *parts);
 

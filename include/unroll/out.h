@@ -101,6 +101,19 @@ UR_API ur_status ur_write_outputs(const char *path, unsigned formats, const ur_l
                                   const ur_format_options *format_options, ur_error *error);
 
 /*
+ * ur_write_outputs for one format (one ur_format bit) to a stream the
+ * caller owns (flushed, not closed), as to "-": the same bytes as that
+ * format's file.  SVG, DXF and PNG take a layout of one sheet (more is
+ * UR_ERROR_INPUT), PDF any number of sheets.  With the same options, an
+ * SVG or DXF is the file ur_write_outputs writes, and with drawing_order
+ * the one ur_write_svg and ur_write_dxf write.
+ */
+UR_API ur_status ur_write_stream(FILE *stream, ur_format format, const ur_layout *layout,
+                          const ur_piece *pieces, const ur_machine *machine,
+                          const ur_output_options *options, const ur_format_options *format_options,
+                          ur_error *error);
+
+/*
  * Writes one SVG per sheet.  With one sheet the file is output_path; with
  * several, NAME.svg becomes NAME-1.svg, NAME-2.svg, ...  Each file is
  * width × height mm with a matching viewBox, one layer group per operation
@@ -225,6 +238,11 @@ typedef struct ur_report_context {
 UR_API ur_status ur_report_write(const char *path, const ur_report_context *context,
                                  const ur_piece *pieces, size_t piece_count,
                                  const ur_layout *layout, ur_context *run, ur_error *error);
+
+/* The same bytes to a stream the caller owns (flushed, not closed). */
+UR_API ur_status ur_report_write_stream(FILE *stream, const ur_report_context *context,
+                                 const ur_piece *pieces, size_t piece_count,
+                                 const ur_layout *layout, ur_error *error);
 
 /*
  * The file names an output of sheet_count sheets gets: output_path itself for

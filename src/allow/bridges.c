@@ -25,6 +25,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "../base/c_locale.h"
 
 #define BRIDGE_CORNER_TURN (30.0 * M_PI / 180.0)
 #define BRIDGE_CORNER_REACH 3.0        /* gap widths */
@@ -438,14 +439,15 @@ static ur_status record(ur_piece *piece, size_t asked, size_t placed, double wid
     entry.where = ur_vec2_make((piece->box.min.x + piece->box.max.x) / 2,
                                (piece->box.min.y + piece->box.max.y) / 2);
     if (placed < asked)
-        snprintf(entry.reason, sizeof entry.reason,
-                 "only %zu of %zu bridges of %g mm fit: the rest of the outline is too near "
-                 "corners, tight curves or the other bridges",
-                 placed, asked, width);
+        ur_c_snprintf(entry.reason, sizeof entry.reason,
+                      "only %zu of %zu bridges of %g mm fit: the rest of the outline is too near "
+                      "corners, tight curves or the other bridges",
+                      placed, asked, width);
     else
-        snprintf(entry.reason, sizeof entry.reason,
-                 "%zu bridge%s of %g mm left uncut in the outline to hold the part%s", placed,
-                 placed == 1 ? "" : "s", width, automatic ? " (one per 300 mm of outline)" : "");
+        ur_c_snprintf(entry.reason, sizeof entry.reason,
+                      "%zu bridge%s of %g mm left uncut in the outline to hold the part%s", placed,
+                      placed == 1 ? "" : "s", width,
+                      automatic ? " (one per 300 mm of outline)" : "");
     return ur_piece_record(piece, &entry, error);
 }
 

@@ -31,6 +31,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "../base/c_locale.h"
 
 /* A tab on stock at least this thick (mm) wraps the other piece's edge. */
 #define THICK_STOCK 1.0
@@ -84,7 +85,7 @@ void ur_seam_label(int seam, char *label, size_t size)
     for (size_t i = 0; i < length; i++)
         prefix[i] = reversed[length - 1 - i];
     prefix[length] = '\0';
-    snprintf(label, size, "%s%d", prefix, number);
+    ur_c_snprintf(label, size, "%s%d", prefix, number);
 }
 
 /* ---- The shape of a joint ----------------------------------------------- */
@@ -432,7 +433,7 @@ static void describe(const joiner *j, const seam_job *sj, int k, const stretch *
     const ur_piece *piece = &j->pieces[sj->s->net[k]];
     run r = {0};
     if (sub_run(&sj->runs[k], local_first(sj, k, st), local_count(sj, k, st), &r, NULL) != UR_OK) {
-        snprintf(text, size, "on %s no room", piece->name);
+        ur_c_snprintf(text, size, "on %s no room", piece->name);
         return;
     }
     ur_vec2 middle = run_middle(&r);
@@ -443,15 +444,17 @@ static void describe(const joiner *j, const seam_job *sj, int k, const stretch *
     if (point)
         GEOSGeom_destroy_r(j->geos, point);
     if (v->by == ALLOW_BLOCKED_OUTLINE && on_other_side(j, sj, k, v->edge))
-        snprintf(text, size, "on %s the seam's other side comes within %.1f mm (a narrow slit)",
-                 piece->name, distance);
+        ur_c_snprintf(text, size,
+                      "on %s the seam's other side comes within %.1f mm (a narrow slit)",
+                      piece->name, distance);
     else if (v->by == ALLOW_BLOCKED_OUTLINE)
-        snprintf(text, size, "on %s its own outline comes within %.1f mm", piece->name, distance);
+        ur_c_snprintf(text, size, "on %s its own outline comes within %.1f mm", piece->name,
+                      distance);
     else if (v->by == ALLOW_BLOCKED_JOINT)
-        snprintf(text, size, "on %s another %s comes within %.1f mm", piece->name,
-                 j->options->lap ? "lap" : "tab", distance);
+        ur_c_snprintf(text, size, "on %s another %s comes within %.1f mm", piece->name,
+                      j->options->lap ? "lap" : "tab", distance);
     else
-        snprintf(text, size, "on %s the edge (%.1f mm) is too short", piece->name, r.length);
+        ur_c_snprintf(text, size, "on %s the edge (%.1f mm) is too short", piece->name, r.length);
     free(r.points);
 }
 
@@ -473,7 +476,7 @@ static ur_status record(ur_piece *piece, ur_allowance_kind kind, ur_vec2 where, 
                                  .warning = warning};
     va_list args;
     va_start(args, format);
-    vsnprintf(entry.reason, sizeof entry.reason, format, args);
+    ur_c_vsnprintf(entry.reason, sizeof entry.reason, format, args);
     va_end(args);
     return ur_piece_record(piece, &entry, error);
 }
@@ -493,7 +496,7 @@ static ur_status warn_stretch(joiner *j, const seam_job *sj, const stretch *st, 
     size_t total = sj->edges[0];
     char which[48] = "";
     if (total > 1 && sj->edges[0] == sj->edges[1])
-        snprintf(which, sizeof which, " (edge %zu of %zu)", st->first + 1, total);
+        ur_c_snprintf(which, sizeof which, " (edge %zu of %zu)", st->first + 1, total);
     status = record(&j->pieces[sj->s->net[first_side]], UR_ALLOWANCE_JOINT, run_middle(&r), 0, true,
                     error, "no room for a %s on seam %s%s: %s, %s: join it by hand",
                     j->options->lap ? "lap" : "glue tab", sj->label, which, sides[first_side],
@@ -519,9 +522,9 @@ static ur_status splice_stretch(joiner *j, const seam_job *sj, const stretch *st
     const ur_piece *a = &j->pieces[sj->s->net[side]], *b = &j->pieces[sj->s->net[1 - side]];
     char name[32];
     if (sj->edges[0] > 1 && sj->edges[0] == sj->edges[1])
-        snprintf(name, sizeof name, "S-%s.%zu", sj->label, st->first + 1);
+        ur_c_snprintf(name, sizeof name, "S-%s.%zu", sj->label, st->first + 1);
     else
-        snprintf(name, sizeof name, "S-%s", sj->label);
+        ur_c_snprintf(name, sizeof name, "S-%s", sj->label);
     ur_splice_request request = {.seam = r.points,
                                  .count = r.count,
                                  .width = full_depth(o),
@@ -1193,7 +1196,7 @@ static ur_status record_seam(joiner *j, size_t from, size_t to, ur_error *error)
         ur_piece *piece = p ? &j->pieces[p->piece] : NULL;
         char smaller[48] = "";
         if (reduced)
-            snprintf(smaller, sizeof smaller, " (%zu made smaller to fit)", reduced);
+            ur_c_snprintf(smaller, sizeof smaller, " (%zu made smaller to fit)", reduced);
         if (p && j->options->lap)
             status = record(piece, UR_ALLOWANCE_JOINT, run_middle(&p->base), kept, false, error,
                             "lap %.3g mm under seam %s, marked on both pieces%s", depth, label,

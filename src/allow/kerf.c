@@ -18,6 +18,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "../base/c_locale.h"
 
 /*
  * GEOS's mitre limit is the mitre's length over the offset distance.  10
@@ -214,22 +215,22 @@ static ur_status record(ur_piece *piece, double kerf, size_t holes, size_t slots
                                        .limit = NAN,
                                        .where = slot_at,
                                        .warning = true};
-        snprintf(warning.reason, sizeof warning.reason,
-                 "%zu slot%s of the outline narrower than the kerf (%g mm), near (%.1f, %.1f), "
-                 "closed as the outline moved out: filled, as the cutter could not cut %s",
-                 slots, slots == 1 ? "" : "s", kerf, slot_at.x, slot_at.y,
-                 slots == 1 ? "it" : "them");
+        ur_c_snprintf(
+            warning.reason, sizeof warning.reason,
+            "%zu slot%s of the outline narrower than the kerf (%g mm), near (%.1f, %.1f), "
+            "closed as the outline moved out: filled, as the cutter could not cut %s",
+            slots, slots == 1 ? "" : "s", kerf, slot_at.x, slot_at.y, slots == 1 ? "it" : "them");
         ur_status status = ur_piece_record(piece, &warning, error);
         if (status != UR_OK)
             return status;
     }
     if (holes == 0)
-        snprintf(entry.reason, sizeof entry.reason,
-                 "outline offset outward by half the kerf, %g mm", kerf / 2);
+        ur_c_snprintf(entry.reason, sizeof entry.reason,
+                      "outline offset outward by half the kerf, %g mm", kerf / 2);
     else
-        snprintf(entry.reason, sizeof entry.reason,
-                 "outline offset outward and %zu hole%s inward by half the kerf, %g mm", holes,
-                 holes == 1 ? "" : "s", kerf / 2);
+        ur_c_snprintf(entry.reason, sizeof entry.reason,
+                      "outline offset outward and %zu hole%s inward by half the kerf, %g mm", holes,
+                      holes == 1 ? "" : "s", kerf / 2);
     return ur_piece_record(piece, &entry, error);
 }
 

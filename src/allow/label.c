@@ -36,6 +36,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "../base/c_locale.h"
 
 #define DEFAULT_FONT "rowmans"
 #define FONT_PACKAGE "hershey-fonts-data"
@@ -117,7 +118,7 @@ ur_status ur_font_open(const char *name, ur_font **font, ur_error *error)
             name);
     }
     measure_font(opened);
-    snprintf(opened->name, sizeof opened->name, "%s", name);
+    ur_c_snprintf(opened->name, sizeof opened->name, "%s", name);
     *font = opened;
     return UR_OK;
 }
@@ -693,7 +694,7 @@ static ur_status engrave(ur_piece *piece, const unit_text *text, const char *lab
                                   .first_path = old_count,
                                   .path_count = text->count,
                                   .direction = f->along};
-    snprintf(record.reason, sizeof record.reason, "label '%.64s' %.3g mm high", label, height);
+    ur_c_snprintf(record.reason, sizeof record.reason, "label '%.64s' %.3g mm high", label, height);
     if (status == UR_OK)
         status = ur_piece_record(piece, &record, error);
     if (status != UR_OK)

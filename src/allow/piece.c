@@ -13,6 +13,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "../base/c_locale.h"
 
 double ur_arc_sweep(ur_vec2 centre, const ur_vec2 *points, size_t count)
 {
@@ -59,7 +60,7 @@ ur_status ur_piece_from_net(const ur_net *net, const ur_allowance_options *optio
                             ur_error *error)
 {
     memset(piece, 0, sizeof *piece);
-    snprintf(piece->name, sizeof piece->name, "%s", net->name);
+    ur_c_snprintf(piece->name, sizeof piece->name, "%s", net->name);
     piece->measures.area_3d = net->area_3d;
     piece->measures.flat_area = net->flat_area;
     piece->measures.edge_error = net->edge_error;

@@ -5,6 +5,8 @@
  */
 #include "relief_internal.h"
 
+#include "../base/c_locale.h"
+
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -353,16 +355,16 @@ ur_status relief_record_need(relief_job *job, const relief_need *need, const cha
     record.warning = need->cut < need->wanted;
     char missing[96] = "", reason[512];
     if (record.warning)
-        snprintf(missing, sizeof missing, "; only %zu fit, %.3g mm clear of the outline and slits",
+        ur_c_snprintf(missing, sizeof missing, "; only %zu fit, %.3g mm clear of the outline and slits",
                  need->cut, job->limits->margin);
     if (kerfing)
-        snprintf(reason, sizeof reason,
+        ur_c_snprintf(reason, sizeof reason,
                  "the net is %.3g mm shorter than the surface %s (forming needs %.3g %% stretch, "
                  "the material takes %.3g %%): %zu kerfing slits opening up to %.3g mm%s",
                  need->length, across, 100 * need->value, 100 * need->limit, need->wanted,
                  job->limits->opening, missing);
     else
-        snprintf(reason, sizeof reason,
+        ur_c_snprintf(reason, sizeof reason,
                  "the net is %.3g mm longer than the surface %s (forming needs %.3g %% "
                  "compression, the material takes %.3g %%): %zu overlap %s %.3g mm%s",
                  need->length, across, 100 * need->value, 100 * need->limit, need->wanted,

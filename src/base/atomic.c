@@ -360,16 +360,22 @@ void ur_atomic_discard(ur_atomic_file *file)
     memset(file, 0, sizeof *file);
 }
 
+ur_status ur_stream_write(FILE *stream, ur_emitter emit, const void *data, const char *what,
+                          ur_error *error)
+{
+    errno = 0;
+    if (!emit(stream, data) || fflush(stream) != 0 || ferror(stream))
+        return ur_error_set(error, UR_ERROR_IO, "cannot write the %s to %s: %s", what,
+                            stream == stdout ? "standard output" : "its stream",
+                            errno ? strerror(errno) : "write error");
+    return UR_OK;
+}
+
 ur_status ur_atomic_write(const char *path, ur_emitter emit, const void *data, const char *what,
                           ur_context *context, ur_error *error)
 {
-    if (strcmp(path, "-") == 0) {
-        errno = 0;
-        if (!emit(stdout, data) || fflush(stdout) != 0)
-            return ur_error_set(error, UR_ERROR_IO, "cannot write the %s to standard output: %s",
-                                what, errno ? strerror(errno) : "write error");
-        return UR_OK;
-    }
+    if (strcmp(path, "-") == 0)
+        return ur_stream_write(stdout, emit, data, what, error);
     ur_atomic_file file;
     ur_status status = ur_atomic_open(&file, path, context, error);
     if (status != UR_OK)

@@ -74,4 +74,11 @@ ur_status ur_atomic_write(const char *path, ur_emitter emit, const void *data, c
 /* Removes every temporary context's output set holds and forgets them (context.c's free). */
 void ur_atomic_set_discard(ur_context *context);
 
+/*
+ * Writes what emit produces to a stream the caller owns (and closes), and
+ * flushes it: the writers' FILE * versions, and "-".
+ */
+ur_status ur_stream_write(FILE *stream, ur_emitter emit, const void *data, const char *what,
+                          ur_error *error);
+
 #endif

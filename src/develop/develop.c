@@ -18,6 +18,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "../base/c_locale.h"
+#include "../base/gsl_errors.h"
 
 const char *ur_method_name(ur_method method)
 {
@@ -172,12 +174,11 @@ static void lay_off_ruling(ur_ruled *ruled, strip *s, size_t i, const double y[3
 
 enum { DENSE_SAMPLES = 20000 };
 
-ur_status develop_exact_at(ur_ruled *ruled, strip *s, ur_error *error)
+static ur_status integrate_flat_curve(ur_ruled *ruled, strip *s, ur_error *error)
 {
     if (s->count < 2 || !(s->u[s->count - 1] > s->u[0]))
         return ur_error_set(error, UR_ERROR_INTERNAL,
                             "the development needs at least two increasing parameters");
-    gsl_set_error_handler_off(); /* GSL's default handler would abort */
     gsl_odeiv2_system system = {flat_curve_rhs, NULL, 3, ruled};
     double span = s->u[s->count - 1] - s->u[0];
     /*
@@ -548,7 +549,7 @@ static ur_status nets_from_strip(ur_ruled *ruled, const strip *s, const size_t *
     bool closed = ur_ruled_is_closed(ruled);
     for (size_t k = 0; k < piece_count; k++) {
         ur_net *net = &nets->nets[k];
-        snprintf(net->name, sizeof net->name, "P%zu", k + 1);
+        ur_c_snprintf(net->name, sizeof net->name, "P%zu", k + 1);
         ur_status status = fill_net(ruled, s, cuts[k], cuts[k + 1], k > 0 || closed,
                                     k + 1 < piece_count || closed, net, error);
         if (status == UR_OK)
@@ -561,11 +562,18 @@ static ur_status nets_from_strip(ur_ruled *ruled, const strip *s, const size_t *
     return UR_OK;
 }
 
-ur_status ur_develop(ur_ruled *ruled, const ur_develop_options *options, ur_net_list *nets,
-                     ur_error *error)
+ur_status develop_exact_at(ur_ruled *ruled, strip *s, ur_error *error)
+{
+    ur_gsl_errors_off(); /* GSL's default handler would abort */
+    ur_status status = integrate_flat_curve(ruled, s, error);
+    ur_gsl_errors_restore();
+    return status;
+}
+
+static ur_status develop(ur_ruled *ruled, const ur_develop_options *options, ur_net_list *nets,
+                         ur_error *error)
 {
     memset(nets, 0, sizeof *nets);
-    gsl_set_error_handler_off();
     if (!(options->tolerance > 0))
         return ur_error_set(error, UR_ERROR_INPUT, "the tolerance must be positive");
     ur_status status = ur_ruled_check(ruled, error);
@@ -591,5 +599,14 @@ ur_status ur_develop(ur_ruled *ruled, const ur_develop_options *options, ur_net_
         status = nets_from_strip(ruled, &s, cuts, piece_count, nets, error);
     free(cuts);
     strip_free(&s);
+    return status;
+}
+
+ur_status ur_develop(ur_ruled *ruled, const ur_develop_options *options, ur_net_list *nets,
+                     ur_error *error)
+{
+    ur_gsl_errors_off();
+    ur_status status = develop(ruled, options, nets, error);
+    ur_gsl_errors_restore();
     return status;
 }

@@ -20,6 +20,7 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
+#include "../base/c_locale.h"
 
 /* A curve shorter than this has no usable tangent, normal and binormal. */
 #define UR_CURVE_MIN_POINTS 4
@@ -73,7 +74,7 @@ static ur_status parse_coordinate(const char *path, size_t line, char *field, do
     if (*field == '\0')
         return ur_error_set(error, UR_ERROR_INPUT, "%s:%zu: empty field", path, line);
     char *end = NULL;
-    double parsed = strtod(field, &end);
+    double parsed = ur_c_strtod(field, &end);
     if (end == field || *end != '\0')
         return ur_error_set(error, UR_ERROR_INPUT, "%s:%zu: '%.*s' is not a number", path, line,
                             UR_FIELD_QUOTE_MAX, field);
@@ -191,19 +192,12 @@ ur_status ur_curve_csv_read(const char *path, ur_vec3 **points, size_t *count, b
     return ur_points_csv_read(path, UR_CURVE_MIN_POINTS, points, count, closed, error);
 }
 
-ur_status ur_points_csv_read(const char *path, size_t min_count, ur_vec3 **points, size_t *count,
-                             bool *closed, ur_error *error)
+/* Reads the points of file, named path in messages; the file stays the caller's. */
+static ur_status read_points(FILE *file, const char *path, size_t min_count, ur_vec3 **points,
+                             size_t *count, bool *closed, ur_error *error)
 {
-    *points = NULL;
-    *count = 0;
-    *closed = false;
-    FILE *file = fopen(path, "r");
-    if (!file)
-        return ur_error_set(error, UR_ERROR_INPUT, "%s: cannot open: %s", path, strerror(errno));
     ur_point_list list = {0};
-    ur_status status = read_all_lines(file, path, &list, error);
-    if (fclose(file) != 0 && status == UR_OK)
-        status = ur_error_set(error, UR_ERROR_INPUT, "%s: cannot read: %s", path, strerror(errno));
+    ur_status status = file ? read_all_lines(file, path, &list, error) : UR_OK;
     if (status != UR_OK) {
         point_list_free(&list);
         return status;
@@ -225,6 +219,53 @@ ur_status ur_points_csv_read(const char *path, size_t min_count, ur_vec3 **point
     return UR_OK;
 }
 
+ur_status ur_points_csv_read(const char *path, size_t min_count, ur_vec3 **points, size_t *count,
+                             bool *closed, ur_error *error)
+{
+    *points = NULL;
+    *count = 0;
+    *closed = false;
+    FILE *file = fopen(path, "r");
+    if (!file)
+        return ur_error_set(error, UR_ERROR_INPUT, "%s: cannot open: %s", path, strerror(errno));
+    ur_status status = read_points(file, path, min_count, points, count, closed, error);
+    if (fclose(file) != 0 && status == UR_OK) {
+        status = ur_error_set(error, UR_ERROR_INPUT, "%s: cannot read: %s", path, strerror(errno));
+        free(*points);
+        *points = NULL;
+        *count = 0;
+    }
+    return status;
+}
+
+ur_status ur_points_csv_read_buffer(const char *name, const void *data, size_t size,
+                                    size_t min_count, ur_vec3 **points, size_t *count, bool *closed,
+                                    ur_error *error)
+{
+    *points = NULL;
+    *count = 0;
+    *closed = false;
+    /* Read through a stream over the buffer: the very code that reads a file. */
+    FILE *file = NULL;
+    if (size > 0) {
+        file = fmemopen((void *)data, size, "r"); /* "r": the buffer is only read */
+        if (!file)
+            return ur_error_set(error, UR_ERROR_INTERNAL, "%s: cannot read the buffer: %s", name,
+                                strerror(errno));
+    }
+    ur_status status = read_points(file, name, min_count, points, count, closed, error);
+    if (file)
+        fclose(file); /* nothing was written: closing cannot lose anything */
+    return status;
+}
+
+ur_status ur_curve_csv_read_buffer(const char *name, const void *data, size_t size,
+                                   ur_vec3 **points, size_t *count, bool *closed, ur_error *error)
+{
+    return ur_points_csv_read_buffer(name, data, size, UR_CURVE_MIN_POINTS, points, count, closed,
+                                     error);
+}
+
 /* ---- Writing ----------------------------------------------------------- */
 
 typedef struct curve_text {
@@ -236,12 +277,12 @@ typedef struct curve_text {
 static bool emit_points(FILE *file, const void *data)
 {
     const curve_text *curve = data;
-    if (fprintf(file, "# unroll curve: x,y,z in mm, %zu points\n", curve->count) < 0)
+    if (ur_c_fprintf(file, "# unroll curve: x,y,z in mm, %zu points\n", curve->count) < 0)
         return false;
     for (size_t i = 0; i < curve->count; i++) {
         const ur_vec3 *p = &curve->points[i];
         /* %.17g round-trips every double exactly. */
-        if (fprintf(file, "%.17g,%.17g,%.17g\n", p->x, p->y, p->z) < 0)
+        if (ur_c_fprintf(file, "%.17g,%.17g,%.17g\n", p->x, p->y, p->z) < 0)
             return false;
     }
     return true;
@@ -266,4 +307,14 @@ ur_status ur_curve_csv_write(const char *path, const ur_vec3 *points, size_t cou
         return status;
     curve_text curve = {points, count};
     return ur_atomic_write(path, emit_points, &curve, "curve", context, error);
+}
+
+ur_status ur_curve_csv_write_stream(FILE *stream, const ur_vec3 *points, size_t count,
+                                    ur_error *error)
+{
+    ur_status status = check_finite("the curve", points, count, error);
+    if (status != UR_OK)
+        return status;
+    curve_text curve = {points, count};
+    return ur_stream_write(stream, emit_points, &curve, "curve", error);
 }

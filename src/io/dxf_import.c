@@ -20,9 +20,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-/* Larger than this is not a drawing of parts: refuse before reading it all. */
-#define DXF_MAX_BYTES (1024L * 1024 * 1024)
+#include "../base/c_locale.h"
 
 /* Kinds of entities left out, counted for one warning each. */
 #define DXF_MAX_IGNORED_KINDS 16
@@ -63,7 +61,7 @@ typedef struct dxf_block {
 typedef struct dxf_reader {
     parts_collection *collection;
     const char *path;
-    char *text;
+    char *text; /* the collection's, cut into lines in place */
     dxf_pair *pairs;
     size_t count;
     double scale;        /* mm per drawing unit */
@@ -98,33 +96,6 @@ static ur_status entity_error(const dxf_entity *entity, ur_error *error, const c
 }
 
 /* ---- The file as pairs ---------------------------------------------------- */
-
-static ur_status read_text(const char *path, char **text, size_t *size, ur_error *error)
-{
-    FILE *file = fopen(path, "rb");
-    if (!file)
-        return ur_error_set(error, UR_ERROR_INPUT, "%s: cannot open: %s", path, strerror(errno));
-    long length = fseek(file, 0, SEEK_END) == 0 ? ftell(file) : -1;
-    ur_status status = UR_OK;
-    if (length < 0 || fseek(file, 0, SEEK_SET) != 0)
-        status = ur_error_set(error, UR_ERROR_INPUT, "%s: cannot read: %s", path, strerror(errno));
-    else if (length > DXF_MAX_BYTES)
-        status = ur_error_set(error, UR_ERROR_INPUT,
-                              "%s: %ld bytes: too large for a drawing of "
-                              "parts",
-                              path, length);
-    else if ((*text = ur_alloc_array((size_t)length + 1, 1, error)) == NULL)
-        status = UR_ERROR_INTERNAL;
-    else if (fread(*text, 1, (size_t)length, file) != (size_t)length)
-        status = ur_error_set(error, UR_ERROR_INPUT, "%s: cannot read: %s", path,
-                              strerror(errno ? errno : EIO));
-    fclose(file);
-    if (status == UR_OK) {
-        (*text)[length] = '\0';
-        *size = (size_t)length;
-    }
-    return status;
-}
 
 /* Cuts the text into lines in place; *lines points into it. */
 static ur_status split_lines(dxf_reader *reader, size_t size, char ***lines, size_t *count,
@@ -189,16 +160,15 @@ static ur_status make_pairs(dxf_reader *reader, char **lines, size_t line_count,
 
 static ur_status read_pairs(dxf_reader *reader, ur_error *error)
 {
-    size_t size = 0;
-    ur_status status = read_text(reader->path, &reader->text, &size, error);
-    if (status != UR_OK)
-        return status;
+    /* The collection's copy of the file, which split_lines cuts up in place. */
+    reader->text = reader->collection->text;
+    size_t size = reader->collection->size;
     if (strncmp(reader->text, "AutoCAD Binary DXF", 18) == 0)
         return ur_error_set(error, UR_ERROR_INPUT, "%s: a binary DXF file: save it as ASCII DXF",
                             reader->path);
     char **lines = NULL;
     size_t line_count = 0;
-    status = split_lines(reader, size, &lines, &line_count, error);
+    ur_status status = split_lines(reader, size, &lines, &line_count, error);
     if (status == UR_OK)
         status = make_pairs(reader, lines, line_count, error);
     free(lines);
@@ -211,7 +181,7 @@ static ur_status pair_number(const dxf_reader *reader, const dxf_pair *pair, dou
                              ur_error *error)
 {
     char *end = NULL;
-    *value = strtod(pair->value, &end);
+    *value = ur_c_strtod(pair->value, &end);
     if (end == pair->value || *end != '\0' || !isfinite(*value))
         return ur_error_set(error, UR_ERROR_INPUT,
                             "%s:%d: \"%.24s\" is not a finite number (group code %d)", reader->path,
@@ -373,7 +343,7 @@ static ur_status emit(const dxf_entity *entity, parts_points *points, bool close
     dxf_segment *segment = &segments[reader->segment_count++];
     segment->points = *points;
     segment->line = entity->line;
-    snprintf(segment->what, sizeof segment->what, "%s", entity->type);
+    ur_c_snprintf(segment->what, sizeof segment->what, "%s", entity->type);
     memset(points, 0, sizeof *points);
     return UR_OK;
 }
@@ -406,7 +376,7 @@ static ur_status positive_radius(const dxf_entity *entity, double radius, ur_err
     if (radius > 0)
         return UR_OK;
     char message[64];
-    snprintf(message, sizeof message, "radius %g is not positive", radius);
+    ur_c_snprintf(message, sizeof message, "radius %g is not positive", radius);
     return entity_error(entity, error, message);
 }
 
@@ -534,33 +504,35 @@ static ur_status check_spline(const dxf_entity *entity, const dxf_spline *spline
     char message[160];
     size_t n = spline->points.count, p = (size_t)(spline->degree > 0 ? spline->degree : 0);
     if (spline->degree < 1 || spline->degree > DXF_MAX_SPLINE_DEGREE)
-        snprintf(message, sizeof message, "degree %d: a spline's degree is from 1 to %d",
-                 spline->degree, DXF_MAX_SPLINE_DEGREE);
+        ur_c_snprintf(message, sizeof message, "degree %d: a spline's degree is from 1 to %d",
+                      spline->degree, DXF_MAX_SPLINE_DEGREE);
     else if (n == 0 && spline->fit.count > 0)
-        snprintf(message, sizeof message,
-                 "a spline given by fit points only is not read: save it with its control "
-                 "points");
+        ur_c_snprintf(message, sizeof message,
+                      "a spline given by fit points only is not read: save it with its control "
+                      "points");
     else if (n < p + 1)
-        snprintf(message, sizeof message, "%zu control points: a spline of degree %zu needs %zu", n,
-                 p, p + 1);
+        ur_c_snprintf(message, sizeof message,
+                      "%zu control points: a spline of degree %zu needs %zu", n, p, p + 1);
     else if (spline->knot_count != n + p + 1)
-        snprintf(message, sizeof message, "%zu knots: %zu control points of degree %zu need %zu",
-                 spline->knot_count, n, p, n + p + 1);
+        ur_c_snprintf(message, sizeof message,
+                      "%zu knots: %zu control points of degree %zu need %zu", spline->knot_count, n,
+                      p, n + p + 1);
     else if (spline->weight_count != 0 && spline->weight_count != n)
-        snprintf(message, sizeof message, "%zu weights for %zu control points",
-                 spline->weight_count, n);
+        ur_c_snprintf(message, sizeof message, "%zu weights for %zu control points",
+                      spline->weight_count, n);
     else
         message[0] = '\0';
     for (size_t i = 0; !message[0] && i + 1 < spline->knot_count; i++)
         if (spline->knots[i + 1] < spline->knots[i])
-            snprintf(message, sizeof message, "its knots decrease (knot %zu is %g, knot %zu %g)",
-                     i + 1, spline->knots[i], i + 2, spline->knots[i + 1]);
+            ur_c_snprintf(message, sizeof message,
+                          "its knots decrease (knot %zu is %g, knot %zu %g)", i + 1,
+                          spline->knots[i], i + 2, spline->knots[i + 1]);
     for (size_t i = 0; !message[0] && i < spline->weight_count; i++)
         if (!(spline->weights[i] > 0))
-            snprintf(message, sizeof message, "weight %zu is %g: weights must be positive", i + 1,
-                     spline->weights[i]);
+            ur_c_snprintf(message, sizeof message, "weight %zu is %g: weights must be positive",
+                          i + 1, spline->weights[i]);
     if (!message[0] && !(spline->knots[n] > spline->knots[p]))
-        snprintf(message, sizeof message, "its knots span nothing (all %g)", spline->knots[p]);
+        ur_c_snprintf(message, sizeof message, "its knots span nothing (all %g)", spline->knots[p]);
     return message[0] ? entity_error(entity, error, message) : UR_OK;
 }
 
@@ -749,7 +721,8 @@ static ur_status note_ignored(dxf_reader *reader, const dxf_entity *entity)
             k--; /* the last kind counts the rest */
         else {
             reader->ignored_count++;
-            snprintf(reader->ignored[k].type, sizeof reader->ignored[k].type, "%s", entity->type);
+            ur_c_snprintf(reader->ignored[k].type, sizeof reader->ignored[k].type, "%s",
+                          entity->type);
             reader->ignored[k].line = entity->line;
         }
     }
@@ -919,14 +892,14 @@ static ur_status read_insertion(const dxf_entity *entity, dxf_insertion *at, ur_
     }
     char message[128];
     if (at->v[SCALE_X] == 0 || at->v[SCALE_Y] == 0) {
-        snprintf(message, sizeof message, "a scale of 0 (%g by %g) draws nothing", at->v[SCALE_X],
-                 at->v[SCALE_Y]);
+        ur_c_snprintf(message, sizeof message, "a scale of 0 (%g by %g) draws nothing",
+                      at->v[SCALE_X], at->v[SCALE_Y]);
         return entity_error(entity, error, message);
     }
     if (!(at->v[COLUMNS] >= 1 && at->v[COLUMNS] <= 32767 && at->v[ROWS] >= 1 &&
           at->v[ROWS] <= 32767)) {
-        snprintf(message, sizeof message, "%g columns by %g rows: not from 1 to 32767",
-                 at->v[COLUMNS], at->v[ROWS]);
+        ur_c_snprintf(message, sizeof message, "%g columns by %g rows: not from 1 to 32767",
+                      at->v[COLUMNS], at->v[ROWS]);
         return entity_error(entity, error, message);
     }
     return UR_OK;
@@ -991,13 +964,13 @@ static ur_status read_insert(const dxf_entity *entity, ur_error *error)
     dxf_block *block = find_block(reader, name);
     char message[160];
     if (!block) {
-        snprintf(message, sizeof message, "block '%.60s' is not defined in the drawing",
-                 name ? name : "");
+        ur_c_snprintf(message, sizeof message, "block '%.60s' is not defined in the drawing",
+                      name ? name : "");
         return entity_error(entity, error, message);
     }
     if (block->inserting) {
-        snprintf(message, sizeof message,
-                 "block '%.60s' refers to itself (directly or through other blocks)", name);
+        ur_c_snprintf(message, sizeof message,
+                      "block '%.60s' refers to itself (directly or through other blocks)", name);
         return entity_error(entity, error, message);
     }
     if (reader->depth >= PARTS_MAX_DEPTH)
@@ -1141,6 +1114,5 @@ ur_status parts_read_dxf(parts_collection *collection, ur_error *error)
     free(reader.segments);
     free(reader.blocks);
     free(reader.pairs);
-    free(reader.text);
     return status;
 }

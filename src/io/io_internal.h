@@ -1,10 +1,13 @@
 /*
- * io_internal.h: what the readers of XML files share (profile.c, job.c):
- * reading a file and validating it against its RelaxNG schema, with
- * libxml2's messages turned into "FILE:LINE: message" errors.
+ * io_internal.h: what the readers share: reading an XML file (profile.c,
+ * job.c) and validating it against its RelaxNG schema, with libxml2's
+ * messages turned into "FILE:LINE: message" errors; reading a whole file
+ * into memory; small text helpers.
  */
 #ifndef UNROLL_IO_INTERNAL_H
 #define UNROLL_IO_INTERNAL_H
+
+#include <stddef.h>
 
 #include <libxml/tree.h>
 
@@ -17,6 +20,25 @@
  */
 ur_status io_xml_load(const char *const *roots, const char *schema, const char *path,
                       xmlDocPtr *doc, ur_error *error);
+
+/*
+ * The same for size bytes of text in memory, name standing for the file in
+ * messages (and, for a job file, the place its relative paths start from).
+ */
+ur_status io_xml_load_buffer(const char *const *roots, const char *schema, const char *name,
+                             const char *text, size_t size, xmlDocPtr *doc, ur_error *error);
+
+/*
+ * Reads the whole file at path into *text, NUL-terminated after its *size
+ * bytes; the caller frees *text.  UR_ERROR_INPUT "path: cannot open: why"
+ * or "cannot read", and for a file over max_bytes (0: no limit) "path: N
+ * bytes: too large for WHAT".
+ */
+ur_status io_read_file(const char *path, long max_bytes, const char *what, char **text,
+                       size_t *size, ur_error *error);
+
+/* A copy of size bytes of data with a NUL after them, or NULL with error set; free() it. */
+char *io_copy_text(const void *data, size_t size, ur_error *error);
 
 /* Trims white space (the '\r' of CRLF files too) at both ends, in place. */
 char *io_trim(char *text);

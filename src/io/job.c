@@ -13,6 +13,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "../base/c_locale.h"
 
 static bool is_element(xmlNodePtr node, const char *name)
 {
@@ -26,7 +27,7 @@ static bool attribute(xmlNodePtr node, const char *name, char *out, size_t size)
     xmlChar *text = xmlGetProp(node, BAD_CAST name);
     if (!text)
         return true;
-    int length = snprintf(out, size, "%s", (const char *)text);
+    int length = ur_c_snprintf(out, size, "%s", (const char *)text);
     xmlFree(text);
     return length >= 0 && (size_t)length < size;
 }
@@ -34,7 +35,7 @@ static bool attribute(xmlNodePtr node, const char *name, char *out, size_t size)
 static bool element_text(xmlNodePtr node, char *out, size_t size)
 {
     xmlChar *text = xmlNodeGetContent(node);
-    int length = snprintf(out, size, "%s", text ? (const char *)text : "");
+    int length = ur_c_snprintf(out, size, "%s", text ? (const char *)text : "");
     xmlFree(text);
     return length >= 0 && (size_t)length < size;
 }
@@ -44,8 +45,8 @@ static bool relative_to(const char *job_path, const char *path, char *out, size_
 {
     const char *slash = strrchr(job_path, '/');
     int length = path[0] == '/' || !slash
-                     ? snprintf(out, size, "%s", path)
-                     : snprintf(out, size, "%.*s/%s", (int)(slash - job_path), job_path, path);
+                     ? ur_c_snprintf(out, size, "%s", path)
+                     : ur_c_snprintf(out, size, "%.*s/%s", (int)(slash - job_path), job_path, path);
     return length >= 0 && (size_t)length < size;
 }
 
@@ -142,19 +143,33 @@ static ur_status read_job(const char *path, xmlNodePtr root, ur_job *job, ur_err
     return status;
 }
 
-ur_status ur_job_read(const char *const *roots, const char *path, ur_job *job, ur_error *error)
+/* Either the file at path (text NULL) or size bytes of text named path. */
+static ur_status read_job_from(const char *const *roots, const char *path, const char *text,
+                               size_t size, ur_job *job, ur_error *error)
 {
     memset(job, 0, sizeof *job);
-    if (snprintf(job->source, sizeof job->source, "%s", path) >= (int)sizeof job->source)
+    if (ur_c_snprintf(job->source, sizeof job->source, "%s", path) >= (int)sizeof job->source)
         return ur_error_set(error, UR_ERROR_INPUT, "%s: path too long", path);
     xmlDocPtr doc = NULL;
-    ur_status status = io_xml_load(roots, "job", path, &doc, error);
+    ur_status status = text ? io_xml_load_buffer(roots, "job", path, text, size, &doc, error)
+                            : io_xml_load(roots, "job", path, &doc, error);
     if (status == UR_OK)
         status = read_job(path, xmlDocGetRootElement(doc), job, error);
     xmlFreeDoc(doc);
     if (status != UR_OK)
         ur_job_free(job);
     return status;
+}
+
+ur_status ur_job_read(const char *const *roots, const char *path, ur_job *job, ur_error *error)
+{
+    return read_job_from(roots, path, NULL, 0, job, error);
+}
+
+ur_status ur_job_read_buffer(const char *const *roots, const char *name, const void *data,
+                             size_t size, ur_job *job, ur_error *error)
+{
+    return read_job_from(roots, name, data, size, job, error);
 }
 
 void ur_job_free(ur_job *job)

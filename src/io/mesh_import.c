@@ -25,6 +25,7 @@
 #include <assimp/cimport.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include "../base/c_locale.h"
 
 /* Assimp builds its node tree recursively: deeper than this is not a model. */
 #define UR_IMPORT_MAX_DEPTH 1000
@@ -105,9 +106,9 @@ static bool name_usable(const struct aiString *name)
 static const char *mesh_label(const struct aiMesh *mesh, unsigned index, char *buffer, size_t size)
 {
     if (name_usable(&mesh->mName))
-        snprintf(buffer, size, "mesh '%.200s'", mesh->mName.data);
+        ur_c_snprintf(buffer, size, "mesh '%.200s'", mesh->mName.data);
     else
-        snprintf(buffer, size, "mesh %u", index + 1);
+        ur_c_snprintf(buffer, size, "mesh %u", index + 1);
     return buffer;
 }
 
@@ -415,13 +416,18 @@ static ur_status check_stl_header(const char *path, FILE *file, off_t size, ur_e
     return UR_OK;
 }
 
-/* What a header says about the size, for the formats that assimp trusts blindly. */
-static ur_status check_header(const char *path, off_t size, ur_error *error)
+/*
+ * What a header says about the size, for the formats that assimp trusts
+ * blindly: of the file at path, or of size bytes of data when data is not
+ * NULL (read through a stream over them: the same code).
+ */
+static ur_status check_header(const char *path, const void *data, off_t size, ur_error *error)
 {
     bool ply = has_extension(path, "ply");
     if (!ply && !has_extension(path, "stl"))
         return UR_OK;
-    FILE *file = fopen(path, "rb");
+    /* "r": the buffer is only read */
+    FILE *file = data ? fmemopen((void *)data, (size_t)size, "r") : fopen(path, "rb");
     if (!file)
         return ur_error_set(error, UR_ERROR_INPUT, "%s: cannot open: %s", path, strerror(errno));
     ur_status status =
@@ -444,7 +450,21 @@ static ur_status check_file(const char *path, ur_error *error)
     ur_status status = check_extension(path, error);
     if (status != UR_OK)
         return status;
-    return check_header(path, info.st_size, error);
+    return check_header(path, NULL, info.st_size, error);
+}
+
+static ur_status check_buffer(const char *name, const void *data, size_t size, ur_error *error)
+{
+    if (size == 0)
+        return ur_error_set(error, UR_ERROR_INPUT, "%s: the file is empty", name);
+    /* assimp takes the length as an unsigned int */
+    if (size > UINT_MAX)
+        return ur_error_set(error, UR_ERROR_INPUT, "%s: %zu bytes: too large to read from memory",
+                            name, size);
+    ur_status status = check_extension(name, error);
+    if (status != UR_OK)
+        return status;
+    return check_header(name, data, (off_t)size, error);
 }
 
 static ur_status check_options(const ur_mesh_import_options *options, ur_error *error)
@@ -481,7 +501,7 @@ static ur_status refuse_vertex(const char *path, const struct aiMesh *mesh, unsi
     char face[64] = "";
     unsigned f = face_using(mesh, vertex);
     if (f > 0)
-        snprintf(face, sizeof face, " (in face %u)", f);
+        ur_c_snprintf(face, sizeof face, " (in face %u)", f);
     struct aiVector3D v = mesh->mVertices[vertex];
     bool nan = isnan(v.x) || isnan(v.y) || isnan(v.z);
     /* A number too large for assimp's floats arrives here as infinity. */
@@ -555,11 +575,18 @@ size_t ur_mesh_import_memory_estimate(const char *path)
     return size > SIZE_MAX / 40 ? SIZE_MAX : 40 * size;
 }
 
-/* Reads the file and post-processes it; the caller releases *scene. */
-static ur_status load_scene(const char *path, const struct aiScene **scene, ur_error *error)
+/*
+ * Reads the file at path, or size bytes of data when data is not NULL (the
+ * format told by path's extension), and post-processes it; the caller
+ * releases *scene.  A file is read by assimp itself, so that a .gltf finds
+ * the .bin files beside it.
+ */
+static ur_status load_scene(const char *path, const void *data, size_t size,
+                            const struct aiScene **scene, ur_error *error)
 {
     /* assimp keeps its last message even after a success: read it only on failure. */
-    *scene = aiImportFile(path, 0);
+    *scene = data ? aiImportFileFromMemory(data, (unsigned)size, 0, strrchr(path, '.') + 1)
+                  : aiImportFile(path, 0);
     if (!*scene)
         return ur_error_set(error, UR_ERROR_INPUT, "%s: cannot read as a mesh: %s", path,
                             aiGetErrorString());
@@ -867,7 +894,7 @@ static void name_unnamed(import_state *state)
             continue;
         char suffix[32] = "";
         if (unnamed > 1)
-            snprintf(suffix, sizeof suffix, "-%zu", ++number);
+            ur_c_snprintf(suffix, sizeof suffix, "-%zu", ++number);
         size_t room = UR_GROUP_NAME_SIZE - strlen(suffix);
         copy_name(state->names[g], room, stem, strlen(stem));
         strcat(state->names[g], suffix);
@@ -964,8 +991,10 @@ static void hand_over(import_state *state, ur_mesh *mesh, char (**group_names)[6
     state_free(state);
 }
 
-ur_status ur_mesh_import(const char *path, const ur_mesh_import_options *options, ur_mesh *mesh,
-                         char (**group_names)[64], ur_error *error)
+/* The file at path, or size bytes of data named path when data is not NULL. */
+static ur_status import_mesh(const char *path, const void *data, size_t size,
+                             const ur_mesh_import_options *options, ur_mesh *mesh,
+                             char (**group_names)[64], ur_error *error)
 {
     *mesh = (ur_mesh){0};
     if (group_names)
@@ -976,10 +1005,10 @@ ur_status ur_mesh_import(const char *path, const ur_mesh_import_options *options
         options = &defaults;
     ur_status status = check_options(options, error);
     if (status == UR_OK)
-        status = check_file(path, error);
+        status = data ? check_buffer(path, data, size, error) : check_file(path, error);
     import_state state = {.path = path};
     if (status == UR_OK)
-        status = load_scene(path, &state.scene, error);
+        status = load_scene(path, data, size, &state.scene, error);
     if (status != UR_OK)
         return status;
     state.factor = ur_length_unit_mm(options->unit) * options->scale;
@@ -991,4 +1020,18 @@ ur_status ur_mesh_import(const char *path, const ur_mesh_import_options *options
     }
     hand_over(&state, mesh, group_names);
     return UR_OK;
+}
+
+ur_status ur_mesh_import(const char *path, const ur_mesh_import_options *options, ur_mesh *mesh,
+                         char (**group_names)[64], ur_error *error)
+{
+    return import_mesh(path, NULL, 0, options, mesh, group_names, error);
+}
+
+ur_status ur_mesh_import_buffer(const char *name, const void *data, size_t size,
+                                const ur_mesh_import_options *options, ur_mesh *mesh,
+                                char (**group_names)[64], ur_error *error)
+{
+    static const char nothing = 0; /* data NULL would mean a file: an empty buffer is refused */
+    return import_mesh(name, data ? data : &nothing, size, options, mesh, group_names, error);
 }

@@ -22,6 +22,7 @@
 #include <sys/stat.h>
 
 #include "../geom/geos_polygon.h"
+#include "../base/c_locale.h"
 
 #define PARTS_DEFAULT_TOLERANCE 0.01
 
@@ -208,8 +209,8 @@ ur_status parts_add_ring(parts_collection *collection, parts_points *points, int
     ring->sub = sub;
     if (circle)
         ring->circle = *circle;
-    snprintf(ring->what, sizeof ring->what, "%s", what);
-    snprintf(ring->id, sizeof ring->id, "%s", id ? id : "");
+    ur_c_snprintf(ring->what, sizeof ring->what, "%s", what);
+    ur_c_snprintf(ring->id, sizeof ring->id, "%s", id ? id : "");
     points->items = NULL;
     points->count = points->capacity = 0;
     return UR_OK;
@@ -238,7 +239,7 @@ ur_status parts_add_line(parts_collection *collection, parts_points *points, boo
     added->closed = closed && points->count > 2;
     added->op = op;
     added->line = line;
-    snprintf(added->what, sizeof added->what, "%s", what);
+    ur_c_snprintf(added->what, sizeof added->what, "%s", what);
     points->items = NULL;
     points->count = points->capacity = 0;
     return UR_OK;
@@ -284,7 +285,7 @@ ur_status parts_warn(parts_collection *collection, ur_error *error, const char *
     collection->warnings = warnings;
     va_list arguments;
     va_start(arguments, format);
-    vsnprintf(warnings[collection->warning_count++], sizeof *warnings, format, arguments);
+    ur_c_vsnprintf(warnings[collection->warning_count++], sizeof *warnings, format, arguments);
     va_end(arguments);
     return UR_OK;
 }
@@ -300,6 +301,8 @@ void parts_collection_free(parts_collection *collection)
     collection->lines = NULL;
     collection->line_count = collection->line_capacity = 0;
     free(collection->warnings);
+    free(collection->text);
+    collection->text = NULL;
     collection->rings = NULL;
     collection->warnings = NULL;
     collection->count = collection->capacity = collection->warning_count = 0;
@@ -445,9 +448,9 @@ static ur_status check_coordinates(const parts_collection *collection, const ur_
         if (fabs(p.x) > UR_PARTS_IMPORT_MAX_COORDINATE ||
             fabs(p.y) > UR_PARTS_IMPORT_MAX_COORDINATE) {
             char message[160];
-            snprintf(message, sizeof message,
-                     "the point (%.6g, %.6g) mm lies beyond %g mm: check the units", p.x, p.y,
-                     UR_PARTS_IMPORT_MAX_COORDINATE);
+            ur_c_snprintf(message, sizeof message,
+                          "the point (%.6g, %.6g) mm lies beyond %g mm: check the units", p.x, p.y,
+                          UR_PARTS_IMPORT_MAX_COORDINATE);
             return shape_error(collection, line, what, error, message);
         }
     }
@@ -510,7 +513,7 @@ static ur_status two_rings_error(const parts_collection *collection, const parts
                                  const parts_ring *other, const char *relation, ur_error *error)
 {
     char message[256];
-    snprintf(message, sizeof message, "%s %s on line %d", relation, other->what, other->line);
+    ur_c_snprintf(message, sizeof message, "%s %s on line %d", relation, other->what, other->line);
     return ring_error(collection, ring, error, message);
 }
 
@@ -569,15 +572,15 @@ static void piece_name(const parts_collection *collection, const parts_ring *rin
 {
     char full[96];
     if (ring->id[0] && ring->sub > 1)
-        snprintf(full, sizeof full, "%.24s-%d", ring->id, ring->sub);
+        ur_c_snprintf(full, sizeof full, "%.24s-%d", ring->id, ring->sub);
     else if (ring->id[0])
-        snprintf(full, sizeof full, "%s", ring->id);
+        ur_c_snprintf(full, sizeof full, "%s", ring->id);
     else {
         char base[32];
         io_file_stem(collection->path, base, 20);
-        snprintf(full, sizeof full, "%s-%zu", base, number);
+        ur_c_snprintf(full, sizeof full, "%s-%zu", base, number);
     }
-    snprintf(name, size, "%.*s", (int)(size - 1), full);
+    ur_c_snprintf(name, size, "%.*s", (int)(size - 1), full);
 }
 
 static ur_status build_piece(parts_job *job, size_t outer, size_t number, ur_piece *piece,
@@ -747,12 +750,14 @@ static ur_status left_out_error(const parts_collection *collection, const parts_
     char message[256];
     ur_vec2 a = line->points[0], b = line->points[line->count - 1];
     if (line->op == UR_OP_CUT && !line->closed)
-        snprintf(message, sizeof message,
-                 "the shape is open (it starts at (%.6g, %.6g) mm and ends at (%.6g, %.6g) mm): "
-                 "only closed shapes can be parts",
-                 a.x, a.y, b.x, b.y);
+        ur_c_snprintf(
+            message, sizeof message,
+            "the shape is open (it starts at (%.6g, %.6g) mm and ends at (%.6g, %.6g) mm): "
+            "only closed shapes can be parts",
+            a.x, a.y, b.x, b.y);
     else
-        snprintf(message, sizeof message, "a %s line outside every part", ur_op_name(line->op));
+        ur_c_snprintf(message, sizeof message, "a %s line outside every part",
+                      ur_op_name(line->op));
     return shape_error(collection, line->line, line->what, error, message);
 }
 
@@ -768,10 +773,10 @@ static ur_status warn_left_out(parts_collection *collection, const size_t *left,
     char where[96] = "";
     size_t used = 0;
     for (size_t k = 0; k < count && k < 6 && used < sizeof where; k++)
-        used += (size_t)snprintf(where + used, sizeof where - used, "%s%d", k ? ", " : "",
-                                 collection->lines[left[k]].line);
+        used += (size_t)ur_c_snprintf(where + used, sizeof where - used, "%s%d", k ? ", " : "",
+                                      collection->lines[left[k]].line);
     if (count > 6 && used < sizeof where)
-        snprintf(where + used, sizeof where - used, " and %zu more", count - 6);
+        ur_c_snprintf(where + used, sizeof where - used, " and %zu more", count - 6);
     const parts_line *first = &collection->lines[left[0]];
     return parts_warn(collection, error, "%s:%d: %zu %s left out (%s on line%s %s): %s",
                       collection->path, first->line, count,
@@ -963,35 +968,79 @@ static ur_status check_options(const char *path, const ur_parts_import_options *
     return UR_OK;
 }
 
-ur_status ur_parts_import(const char *path, const ur_parts_import_options *options, ur_parts *parts,
-                          ur_error *error)
+/* Reads the parts of text (taken: freed here), size bytes named path, known as SVG or DXF. */
+static ur_status import_text(const char *path, bool svg, char *text, size_t size,
+                             const ur_parts_import_options *options, ur_parts *parts,
+                             ur_error *error)
 {
-    memset(parts, 0, sizeof *parts);
-    ur_parts_import_options defaults;
-    ur_parts_import_options_default(&defaults);
-    if (!options)
-        options = &defaults;
-    bool svg = has_extension(path, ".svg"), dxf = has_extension(path, ".dxf");
-    if (!svg && !dxf)
-        return ur_error_set(error, UR_ERROR_INPUT,
-                            "%s: unknown kind of file: parts are read from .svg and .dxf files",
-                            path);
-    ur_status status = check_options(path, options, error);
-    if (status == UR_OK)
-        status = check_file(path, error);
-    if (status != UR_OK)
-        return status;
     parts_collection collection = {.path = path,
+                                   .text = text,
+                                   .size = size,
                                    .tolerance = options->tolerance,
                                    .unit = options->unit,
                                    .strict = options->strict};
-    status = svg ? parts_read_svg(&collection, error) : parts_read_dxf(&collection, error);
+    ur_status status =
+        svg ? parts_read_svg(&collection, error) : parts_read_dxf(&collection, error);
     if (status == UR_OK)
         status = parts_assemble(&collection, parts, error);
     parts_collection_free(&collection);
     if (status != UR_OK)
         ur_parts_free(parts);
     return status;
+}
+
+/* The kind path's extension names, and the options with defaults; UR_ERROR_INPUT when neither. */
+static ur_status start(const char *path, const ur_parts_import_options **options,
+                       ur_parts_import_options *defaults, ur_parts *parts, bool *svg,
+                       ur_error *error)
+{
+    memset(parts, 0, sizeof *parts);
+    ur_parts_import_options_default(defaults);
+    if (!*options)
+        *options = defaults;
+    *svg = has_extension(path, ".svg");
+    if (!*svg && !has_extension(path, ".dxf"))
+        return ur_error_set(error, UR_ERROR_INPUT,
+                            "%s: unknown kind of file: parts are read from .svg and .dxf files",
+                            path);
+    return check_options(path, *options, error);
+}
+
+ur_status ur_parts_import(const char *path, const ur_parts_import_options *options, ur_parts *parts,
+                          ur_error *error)
+{
+    ur_parts_import_options defaults;
+    bool svg;
+    ur_status status = start(path, &options, &defaults, parts, &svg, error);
+    if (status == UR_OK)
+        status = check_file(path, error);
+    char *text = NULL;
+    size_t size = 0;
+    if (status == UR_OK)
+        status = io_read_file(path, PARTS_MAX_BYTES, "a drawing of parts", &text, &size, error);
+    if (status != UR_OK)
+        return status;
+    return import_text(path, svg, text, size, options, parts, error);
+}
+
+ur_status ur_parts_import_buffer(const char *name, const void *data, size_t size,
+                                 const ur_parts_import_options *options, ur_parts *parts,
+                                 ur_error *error)
+{
+    ur_parts_import_options defaults;
+    bool svg;
+    ur_status status = start(name, &options, &defaults, parts, &svg, error);
+    if (status != UR_OK)
+        return status;
+    if (size == 0)
+        return ur_error_set(error, UR_ERROR_INPUT, "%s: the file is empty", name);
+    if (size > (size_t)PARTS_MAX_BYTES)
+        return ur_error_set(error, UR_ERROR_INPUT,
+                            "%s: %zu bytes: too large for a drawing of parts", name, size);
+    char *text = io_copy_text(data, size, error);
+    if (!text)
+        return UR_ERROR_INTERNAL;
+    return import_text(name, svg, text, size, options, parts, error);
 }
 
 void ur_parts_free(ur_parts *parts)

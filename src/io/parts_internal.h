@@ -119,8 +119,13 @@ typedef struct parts_line {
     char what[96];
 } parts_line;
 
+/* Larger than this is not a drawing of parts: refused before it is read. */
+#define PARTS_MAX_BYTES (1024L * 1024 * 1024)
+
 typedef struct parts_collection {
-    const char *path;
+    const char *path; /* the file, or the name a buffer goes by: for messages */
+    char *text;       /* owned: the whole file, NUL-terminated; the DXF reader cuts it up */
+    size_t size;      /* bytes before the NUL */
     double tolerance; /* mm */
     double unit;      /* options->unit */
     bool strict;      /* options->strict: refuse what would be left out */

@@ -4,13 +4,14 @@
  * turning them into ur_machine and ur_material, and listing them.
  *
  * libxml2 reports problems through callbacks and, left alone, prints them on
- * stderr.  Every call into it here runs with our handlers installed (and the
- * previous ones restored afterwards), so the library stays silent and the
- * first error becomes one "FILE:LINE: message".
+ * stderr.  Every call into it here runs with our handlers installed and the
+ * caller's restored afterwards (xml_errors.c), so the library stays silent
+ * and the first error becomes one "FILE:LINE: message".
  */
 #include "unroll/io.h"
 
 #include "io_internal.h"
+#include "xml_errors.h"
 
 #include <ctype.h>
 #include <dirent.h>
@@ -27,15 +28,9 @@
 #include <libxml/relaxng.h>
 #include <libxml/tree.h>
 #include <libxml/xmlerror.h>
+#include "../base/c_locale.h"
 
 #define UR_PATH_MAX 1024
-
-/* libxml2 2.12 made the structured error callback take a const error. */
-#if LIBXML_VERSION >= 21200
-typedef const xmlError ur_xml_error;
-#else
-typedef xmlError ur_xml_error;
-#endif
 
 static const char *kind_folder(ur_profile_kind kind)
 {
@@ -62,19 +57,19 @@ static void describe_roots(const char *const *roots, char *text, size_t size)
     size_t used = 0;
     text[0] = '\0';
     for (const char *const *root = roots; root && *root && used < size; root++) {
-        int length = snprintf(text + used, size - used, "%s%s", used ? ", " : "", *root);
+        int length = ur_c_snprintf(text + used, size - used, "%s%s", used ? ", " : "", *root);
         if (length < 0)
             break;
         used += (size_t)length;
     }
     if (!text[0])
-        snprintf(text, size, "no profile directory given");
+        ur_c_snprintf(text, size, "no profile directory given");
 }
 
 static ur_status join_path(char *out, size_t size, const char *root, const char *folder,
                            const char *file, ur_error *error)
 {
-    int length = snprintf(out, size, "%s/%s/%s", root, folder, file);
+    int length = ur_c_snprintf(out, size, "%s/%s/%s", root, folder, file);
     if (length < 0 || (size_t)length >= size)
         return ur_error_set(error, UR_ERROR_INPUT, "%s/%s: path too long", root, folder);
     return UR_OK;
@@ -113,7 +108,7 @@ ur_status ur_profile_find(const char *const *roots, ur_profile_kind kind, const 
     if (status != UR_OK)
         return status;
     char file[80];
-    snprintf(file, sizeof file, "%s.xml", name);
+    ur_c_snprintf(file, sizeof file, "%s.xml", name);
     for (const char *const *root = roots; root && *root; root++) {
         char candidate[UR_PATH_MAX];
         status = join_path(candidate, sizeof candidate, *root, kind_folder(kind), file, error);
@@ -143,7 +138,7 @@ static ur_status find_schema(const char *const *roots, const char *word, char *p
                              ur_error *error)
 {
     char file[32];
-    snprintf(file, sizeof file, "%s.rng", word);
+    ur_c_snprintf(file, sizeof file, "%s.rng", word);
     for (const char *const *root = roots; root && *root; root++) {
         ur_status status = join_path(path, size, *root, "schema", file, error);
         if (status != UR_OK)
@@ -158,108 +153,7 @@ static ur_status find_schema(const char *const *roots, const char *word, char *p
                         file, searched);
 }
 
-/* ---- libxml2 errors ---------------------------------------------------- */
-
-/* The first error libxml2 reports; later ones are mostly consequences. */
-typedef struct ur_xml_report {
-    bool have;
-    char file[UR_PATH_MAX];
-    int line;
-    char message[512];
-} ur_xml_report;
-
-static void strip_trailing_space(char *text)
-{
-    size_t length = strlen(text);
-    while (length > 0 && isspace((unsigned char)text[length - 1]))
-        text[--length] = '\0';
-}
-
-static void collect_error(void *context, ur_xml_error *xml_error)
-{
-    ur_xml_report *report = context;
-    if (report->have || !xml_error || xml_error->level == XML_ERR_WARNING)
-        return;
-    report->have = true;
-    report->line = xml_error->line;
-    snprintf(report->file, sizeof report->file, "%s", xml_error->file ? xml_error->file : "");
-    const char *message = xml_error->message ? xml_error->message : "unknown XML error";
-    xmlNodePtr node = xml_error->node;
-    /* Validity messages do not always say which element: add it, as xmllint does. */
-    if (xml_error->domain == XML_FROM_RELAXNGV && node && node->type == XML_ELEMENT_NODE &&
-        !strstr(message, (const char *)node->name))
-        snprintf(report->message, sizeof report->message, "element %s: %s",
-                 (const char *)node->name, message);
-    else
-        snprintf(report->message, sizeof report->message, "%s", message);
-    strip_trailing_space(report->message);
-}
-
-static void ignore_generic_error(void *context, const char *format, ...)
-{
-    (void)context;
-    (void)format;
-}
-
-/* The handlers in place before ours, put back by xml_handlers_restore. */
-typedef struct ur_xml_handlers {
-    xmlStructuredErrorFunc structured;
-    void *structured_context;
-    xmlGenericErrorFunc generic;
-    void *generic_context;
-} ur_xml_handlers;
-
-static void xml_handlers_install(ur_xml_handlers *saved, ur_xml_report *report)
-{
-    saved->structured = xmlStructuredError;
-    saved->structured_context = xmlStructuredErrorContext;
-    saved->generic = xmlGenericError;
-    saved->generic_context = xmlGenericErrorContext;
-    xmlSetStructuredErrorFunc(report, collect_error);
-    xmlSetGenericErrorFunc(NULL, ignore_generic_error);
-}
-
-static void xml_handlers_restore(const ur_xml_handlers *saved)
-{
-    xmlSetStructuredErrorFunc(saved->structured_context, saved->structured);
-    xmlSetGenericErrorFunc(saved->generic_context, saved->generic);
-}
-
-/* "FILE:LINE: message" from a report, or fallback when libxml2 said nothing. */
-static ur_status report_error(const ur_xml_report *report, const char *path, ur_status status,
-                              const char *fallback, ur_error *error)
-{
-    if (!report->have)
-        return ur_error_set(error, status, "%s: %s", path, fallback);
-    const char *file = report->file[0] ? report->file : path;
-    if (report->line > 0)
-        return ur_error_set(error, status, "%s:%d: %s", file, report->line, report->message);
-    return ur_error_set(error, status, "%s: %s", file, report->message);
-}
-
 /* ---- Parsing and validation -------------------------------------------- */
-
-static ur_status parse_document(const char *path, xmlDocPtr *doc, ur_error *error)
-{
-    *doc = NULL;
-    /* Our own check first: libxml2's wording for a missing file is vague. */
-    struct stat info;
-    if (stat(path, &info) != 0 || access(path, R_OK) != 0)
-        return ur_error_set(error, UR_ERROR_INPUT, "%s: cannot open: %s", path, strerror(errno));
-    if (!S_ISREG(info.st_mode))
-        return ur_error_set(error, UR_ERROR_INPUT, "%s: not a regular file", path);
-    ur_xml_report report = {0};
-    ur_xml_handlers saved;
-    xml_handlers_install(&saved, &report);
-    *doc = xmlReadFile(path, NULL, XML_PARSE_NONET);
-    xml_handlers_restore(&saved);
-    /* Namespace errors leave a document behind: refuse it all the same. */
-    if (*doc && !report.have)
-        return UR_OK;
-    xmlFreeDoc(*doc);
-    *doc = NULL;
-    return report_error(&report, path, UR_ERROR_INPUT, "cannot parse", error);
-}
 
 static ur_status validate_with(xmlRelaxNGPtr schema, xmlDocPtr doc, const char *path,
                                ur_error *error)
@@ -267,66 +161,85 @@ static ur_status validate_with(xmlRelaxNGPtr schema, xmlDocPtr doc, const char *
     xmlRelaxNGValidCtxtPtr context = xmlRelaxNGNewValidCtxt(schema);
     if (!context)
         return ur_error_out_of_memory(error);
-    ur_xml_report report = {0};
-    xmlRelaxNGSetValidStructuredErrors(context, collect_error, &report);
+    io_xml_report report = {0};
+    xmlRelaxNGSetValidStructuredErrors(context, io_xml_collect_error, &report);
     int result = xmlRelaxNGValidateDoc(context, doc);
     xmlRelaxNGFreeValidCtxt(context);
     if (result == 0)
         return UR_OK;
     if (result < 0)
-        return report_error(&report, path, UR_ERROR_INTERNAL, "cannot validate", error);
-    return report_error(&report, path, UR_ERROR_INPUT, "does not match its schema", error);
+        return io_xml_report_error(&report, path, UR_ERROR_INTERNAL, "cannot validate", error);
+    return io_xml_report_error(&report, path, UR_ERROR_INPUT, "does not match its schema", error);
 }
 
 static ur_status validate_document(xmlDocPtr doc, const char *schema_path, const char *path,
                                    ur_error *error)
 {
-    ur_xml_report report = {0};
-    ur_xml_handlers saved;
-    xml_handlers_install(&saved, &report);
+    io_xml_capture capture;
+    io_xml_capture_begin(&capture);
     ur_status status = UR_OK;
     xmlRelaxNGPtr schema = NULL;
     xmlRelaxNGParserCtxtPtr parser = xmlRelaxNGNewParserCtxt(schema_path);
     if (!parser) {
         status = ur_error_out_of_memory(error);
     } else {
-        xmlRelaxNGSetParserStructuredErrors(parser, collect_error, &report);
+        /* The schema's errors come through the parser's handler or the thread's: one report. */
+        xmlRelaxNGSetParserStructuredErrors(parser, io_xml_collect_error, &capture.report);
         schema = xmlRelaxNGParse(parser);
         xmlRelaxNGFreeParserCtxt(parser);
         /* A broken schema is a broken installation, not bad user input. */
         if (!schema)
-            status = report_error(&report, schema_path, UR_ERROR_INTERNAL, "cannot read the schema",
-                                  error);
+            status = io_xml_report_error(&capture.report, schema_path, UR_ERROR_INTERNAL,
+                                         "cannot read the schema", error);
     }
     if (status == UR_OK)
         status = validate_with(schema, doc, path, error);
     xmlRelaxNGFree(schema);
-    xml_handlers_restore(&saved);
+    io_xml_capture_end(&capture);
     return status;
 }
 
-/* Parses path and validates it against the schema of its kind. */
-static ur_status load_document(const char *const *roots, ur_profile_kind kind, const char *path,
-                               xmlDocPtr *doc, ur_error *error)
+ur_status io_xml_load_buffer(const char *const *roots, const char *schema, const char *name,
+                             const char *text, size_t size, xmlDocPtr *doc, ur_error *error)
 {
-    return io_xml_load(roots, kind_word(kind), path, doc, error);
+    *doc = NULL;
+    char schema_path[UR_PATH_MAX];
+    ur_status status = find_schema(roots, schema, schema_path, sizeof schema_path, error);
+    if (status != UR_OK)
+        return status;
+    status = io_xml_parse(name, text, size, 0, "cannot parse", doc, error);
+    if (status != UR_OK)
+        return status;
+    status = validate_document(*doc, schema_path, name, error);
+    if (status != UR_OK) {
+        xmlFreeDoc(*doc);
+        *doc = NULL;
+    }
+    return status;
+}
+
+/* The whole of the file at path, after our own checks: libxml2's wording for them is vague. */
+static ur_status read_xml_file(const char *path, char **text, size_t *size, ur_error *error)
+{
+    *text = NULL;
+    struct stat info;
+    if (stat(path, &info) != 0 || access(path, R_OK) != 0)
+        return ur_error_set(error, UR_ERROR_INPUT, "%s: cannot open: %s", path, strerror(errno));
+    if (!S_ISREG(info.st_mode))
+        return ur_error_set(error, UR_ERROR_INPUT, "%s: not a regular file", path);
+    return io_read_file(path, 0, "", text, size, error);
 }
 
 ur_status io_xml_load(const char *const *roots, const char *schema, const char *path,
                       xmlDocPtr *doc, ur_error *error)
 {
-    char schema_path[UR_PATH_MAX];
-    ur_status status = find_schema(roots, schema, schema_path, sizeof schema_path, error);
-    if (status != UR_OK)
-        return status;
-    status = parse_document(path, doc, error);
-    if (status != UR_OK)
-        return status;
-    status = validate_document(*doc, schema_path, path, error);
-    if (status != UR_OK) {
-        xmlFreeDoc(*doc);
-        *doc = NULL;
-    }
+    *doc = NULL;
+    char *text;
+    size_t size;
+    ur_status status = read_xml_file(path, &text, &size, error);
+    if (status == UR_OK)
+        status = io_xml_load_buffer(roots, schema, path, text, size, doc, error);
+    free(text);
     return status;
 }
 
@@ -365,7 +278,7 @@ static ur_status reader_fail(const ur_reader *reader, xmlNodePtr node, const cha
     char message[512];
     va_list args;
     va_start(args, format);
-    vsnprintf(message, sizeof message, format, args);
+    ur_c_vsnprintf(message, sizeof message, format, args);
     va_end(args);
     long line = node ? xmlGetLineNo(node) : -1;
     if (line > 0)
@@ -408,7 +321,7 @@ static ur_status parse_number(const ur_reader *reader, xmlNodePtr node, const ch
     while (isspace((unsigned char)*text))
         text++;
     char *end = NULL;
-    double parsed = strtod(text, &end);
+    double parsed = ur_c_strtod(text, &end);
     if (end != text)
         while (isspace((unsigned char)*end))
             end++;
@@ -446,7 +359,7 @@ static ur_status attribute_number(const ur_reader *reader, xmlNodePtr element, c
                            name);
     }
     char what[128];
-    snprintf(what, sizeof what, "%s %s", (const char *)element->name, name);
+    ur_c_snprintf(what, sizeof what, "%s %s", (const char *)element->name, name);
     ur_status status = parse_number(reader, element, what, (const char *)text, range, value);
     xmlFree(text);
     return status;
@@ -595,7 +508,7 @@ static ur_status read_dash(const ur_reader *reader, xmlNodePtr element, char *da
     int lengths = 0;
     while (*p) {
         char *end;
-        double length = strtod(p, &end);
+        double length = ur_c_strtod(p, &end);
         if (end == p || !(length > 0) || !isfinite(length) || (*end && *end != ' '))
             return reader_fail(reader, element,
                                "dash must be lengths in mm separated by spaces, not '%s'", dash);
@@ -706,11 +619,11 @@ static ur_status machine_fields(const ur_reader *reader, xmlNodePtr root, void *
 }
 
 /*
- * What machine and material reading share: name and source from the path,
- * the parsed and validated document, its root element, then the kind's own
- * fields.
+ * What machine and material reading share: name and source from the name
+ * of the file (or buffer), the parsed and validated document, its root
+ * element, then the kind's own fields.
  */
-static ur_status read_profile(const char *const *roots, ur_profile_kind kind, const char *path,
+static ur_status read_profile(const char *const *roots, ur_profile_kind kind, const char *path, const void *data, size_t size,
                               char *name, size_t name_size, char *source, size_t source_size,
                               field_reader read_fields, void *profile, ur_error *error)
 {
@@ -718,7 +631,7 @@ static ur_status read_profile(const char *const *roots, ur_profile_kind kind, co
     if (status != UR_OK)
         return status;
     xmlDocPtr doc = NULL;
-    status = load_document(roots, kind, path, &doc, error);
+    status = io_xml_load_buffer(roots, kind_word(kind), path, data, size, &doc, error);
     if (status != UR_OK)
         return status;
     const char *root_name = kind == UR_PROFILE_MACHINE ? "machine" : "material";
@@ -732,12 +645,24 @@ static ur_status read_profile(const char *const *roots, ur_profile_kind kind, co
     return status;
 }
 
-ur_status ur_machine_read(const char *const *roots, const char *path, ur_machine *machine,
-                          ur_error *error)
+ur_status ur_machine_read_buffer(const char *const *roots, const char *name, const void *data, size_t size,
+                                 ur_machine *machine, ur_error *error)
 {
     memset(machine, 0, sizeof *machine);
-    return read_profile(roots, UR_PROFILE_MACHINE, path, machine->name, sizeof machine->name,
+    return read_profile(roots, UR_PROFILE_MACHINE, name, data, size, machine->name, sizeof machine->name,
                         machine->source, sizeof machine->source, machine_fields, machine, error);
+}
+
+ur_status ur_machine_read(const char *const *roots, const char *path, ur_machine *machine, ur_error *error)
+{
+    memset(machine, 0, sizeof *machine);
+    char *text;
+    size_t size;
+    ur_status status = read_xml_file(path, &text, &size, error);
+    if (status == UR_OK)
+        status = ur_machine_read_buffer(roots, path, text, size, machine, error);
+    free(text);
+    return status;
 }
 
 /* ---- Materials --------------------------------------------------------- */
@@ -968,13 +893,25 @@ static ur_status material_fields(const ur_reader *reader, xmlNodePtr root, void 
     return read_material_fields(reader, root, profile);
 }
 
-ur_status ur_material_read(const char *const *roots, const char *path, ur_material *material,
-                           ur_error *error)
+ur_status ur_material_read_buffer(const char *const *roots, const char *name, const void *data, size_t size,
+                                  ur_material *material, ur_error *error)
 {
     memset(material, 0, sizeof *material);
-    return read_profile(roots, UR_PROFILE_MATERIAL, path, material->name, sizeof material->name,
-                        material->source, sizeof material->source, material_fields, material,
-                        error);
+    return read_profile(roots, UR_PROFILE_MATERIAL, name, data, size, material->name,
+                        sizeof material->name, material->source, sizeof material->source,
+                        material_fields, material, error);
+}
+
+ur_status ur_material_read(const char *const *roots, const char *path, ur_material *material, ur_error *error)
+{
+    memset(material, 0, sizeof *material);
+    char *text;
+    size_t size;
+    ur_status status = read_xml_file(path, &text, &size, error);
+    if (status == UR_OK)
+        status = ur_material_read_buffer(roots, path, text, size, material, error);
+    free(text);
+    return status;
 }
 
 /* ---- Loading by name --------------------------------------------------- */
@@ -1098,7 +1035,7 @@ static ur_status add_entry(const char *const *roots, ur_entry_list *list, ur_pro
     memset(entry, 0, sizeof *entry);
     entry->kind = kind;
     strcpy(entry->name, name);
-    int length = snprintf(entry->source, sizeof entry->source, "%s/%s", folder, file);
+    int length = ur_c_snprintf(entry->source, sizeof entry->source, "%s/%s", folder, file);
     if (length < 0 || (size_t)length >= sizeof entry->source)
         return ur_error_set(error, UR_ERROR_INPUT, "%s/%s: path too long", folder, file);
     if (valid_name(entry->name) && strlen(file) == stem_length + 4)
@@ -1115,7 +1052,7 @@ static ur_status list_folder(const char *const *roots, const char *root, ur_prof
                              ur_entry_list *list, ur_error *error)
 {
     char folder[UR_PATH_MAX];
-    int length = snprintf(folder, sizeof folder, "%s/%s", root, kind_folder(kind));
+    int length = ur_c_snprintf(folder, sizeof folder, "%s/%s", root, kind_folder(kind));
     if (length < 0 || (size_t)length >= sizeof folder)
         return ur_error_set(error, UR_ERROR_INPUT, "%s: path too long", root);
     DIR *dir = opendir(folder);

@@ -1,11 +1,17 @@
 /*
- * text.c: small text helpers the readers share (io_internal.h).
+ * text.c: small text helpers the readers share (io_internal.h), and
+ * reading a whole file into memory for the readers that take a path: each
+ * reads bytes in memory, so that its path and buffer versions are one code.
  */
 #include "io_internal.h"
 
 #include <ctype.h>
+#include <errno.h>
+#include <stdint.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+#include "../base/c_locale.h"
 
 char *io_trim(char *text)
 {
@@ -23,5 +29,51 @@ void io_file_stem(const char *path, char *stem, size_t size)
     const char *name = slash ? slash + 1 : path;
     const char *dot = strrchr(name, '.');
     size_t length = dot && dot != name ? (size_t)(dot - name) : strlen(name);
-    snprintf(stem, size, "%.*s", (int)length, name);
+    ur_c_snprintf(stem, size, "%.*s", (int)length, name);
+}
+
+ur_status io_read_file(const char *path, long max_bytes, const char *what, char **text,
+                       size_t *size, ur_error *error)
+{
+    *text = NULL;
+    *size = 0;
+    FILE *file = fopen(path, "rb");
+    if (!file)
+        return ur_error_set(error, UR_ERROR_INPUT, "%s: cannot open: %s", path, strerror(errno));
+    long length = fseek(file, 0, SEEK_END) == 0 ? ftell(file) : -1;
+    ur_status status = UR_OK;
+    if (length < 0 || fseek(file, 0, SEEK_SET) != 0)
+        status = ur_error_set(error, UR_ERROR_INPUT, "%s: cannot read: %s", path, strerror(errno));
+    else if (max_bytes > 0 && length > max_bytes)
+        status = ur_error_set(error, UR_ERROR_INPUT, "%s: %ld bytes: too large for %s", path,
+                              length, what);
+    else if ((*text = ur_alloc_array((size_t)length + 1, 1, error)) == NULL)
+        status = UR_ERROR_INTERNAL;
+    else if (fread(*text, 1, (size_t)length, file) != (size_t)length)
+        status = ur_error_set(error, UR_ERROR_INPUT, "%s: cannot read: %s", path,
+                              strerror(errno ? errno : EIO));
+    fclose(file);
+    if (status != UR_OK) {
+        free(*text);
+        *text = NULL;
+        return status;
+    }
+    (*text)[length] = '\0';
+    *size = (size_t)length;
+    return UR_OK;
+}
+
+char *io_copy_text(const void *data, size_t size, ur_error *error)
+{
+    if (size == SIZE_MAX) {
+        ur_error_out_of_memory(error);
+        return NULL;
+    }
+    char *text = ur_alloc_array(size + 1, 1, error);
+    if (text) {
+        if (size > 0)
+            memcpy(text, data, size);
+        text[size] = '\0';
+    }
+    return text;
 }

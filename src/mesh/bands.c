@@ -16,6 +16,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include "../base/gsl_errors.h"
 
 /*
  * Below this (a fraction of the area, normals being unit vectors) the
@@ -105,11 +106,15 @@ static ur_status largest_axis(const outer_sum *sum, ur_vec3 *axis, double *value
     gsl_matrix_view matrix = gsl_matrix_view_array(entries, 3, 3);
     gsl_matrix_view evec = gsl_matrix_view_array(vectors, 3, 3);
     gsl_vector_view eval = gsl_vector_view_array(values, 3);
+    ur_gsl_errors_off();
     gsl_eigen_symmv_workspace *work = gsl_eigen_symmv_alloc(3);
-    if (!work)
+    bool allocated = work != NULL;
+    int failed = allocated ? gsl_eigen_symmv(&matrix.matrix, &eval.vector, &evec.matrix, work) : 0;
+    if (allocated)
+        gsl_eigen_symmv_free(work);
+    ur_gsl_errors_restore();
+    if (!allocated)
         return ur_error_out_of_memory(error);
-    int failed = gsl_eigen_symmv(&matrix.matrix, &eval.vector, &evec.matrix, work);
-    gsl_eigen_symmv_free(work);
     if (failed)
         return ur_error_set(error, UR_ERROR_INTERNAL, "no eigenvectors of the normals' spread");
     gsl_eigen_symmv_sort(&eval.vector, &evec.matrix, GSL_EIGEN_SORT_VAL_DESC);

@@ -26,6 +26,7 @@
 #include <geos_c.h>
 
 #include "../geom/geos_polygon.h"
+#include "../base/c_locale.h"
 
 /* Positions tried for each cut across its window. */
 #define CUT_SAMPLES 41
@@ -160,7 +161,7 @@ static ur_status face_part(const splitter *s, const GEOSGeometry *face, const ur
     ur_status status = shell ? ring_points(s->geos, shell, false, &ring, s->error)
                              : geos_failed(s->error, "reading a face");
     if (status == UR_OK) {
-        snprintf(net->name, sizeof net->name, "%.24s.%zu", part->name, index + 1);
+        ur_c_snprintf(net->name, sizeof net->name, "%.24s.%zu", part->name, index + 1);
         net->outline = ring.items;
         net->outline_count = ring.count;
         ring = (ur_points){0};

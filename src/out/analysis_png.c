@@ -29,6 +29,7 @@
 #include "../base/atomic.h"
 #include "draw.h"
 #include "png.h"
+#include "../base/c_locale.h"
 
 /* The layout, in pixels. */
 enum {
@@ -406,7 +407,8 @@ static bool draw_min_bend(cairo_t *cr, const map *m, const ur_analysis *analysis
         double x = map_x(m, ruling->arc), y = map_y(m, ruling->bend_v * ruling_length(ruling));
         bend_marker(cr, x, y);
         char label[80];
-        snprintf(label, sizeof label, "smallest bend radius %.4g mm", analysis->min_bend_radius);
+        ur_c_snprintf(label, sizeof label, "smallest bend radius %.4g mm",
+                      analysis->min_bend_radius);
         ur_draw_set_font(cr, 12, false);
         bool left = x + 12 + ur_draw_text_width(cr, label) > WIDTH - 4;
         double baseline = fmin(fmax(y + 4, m->bottom - m->height + 12), m->bottom - 4);
@@ -442,7 +444,7 @@ static void draw_ticks(cairo_t *cr, const map *m, bool vertical)
     cairo_set_line_width(cr, 1.0);
     for (double t = 0; t <= range * (1 + 1e-9); t += step) {
         char label[32];
-        snprintf(label, sizeof label, "%.6g", t);
+        ur_c_snprintf(label, sizeof label, "%.6g", t);
         if (vertical) {
             double y = map_y(m, t);
             ur_draw_line(cr, m->left - 2, y, m->left - 7, y);
@@ -499,7 +501,8 @@ static void draw_colour_bar(cairo_t *cr, const map *m, const grid *g)
     cairo_set_line_width(cr, 1.0);
     for (int tick = 0; tick <= 3; tick++) {
         char label[32];
-        snprintf(label, sizeof label, "%.2g", -g->lower * pow(g->upper / g->lower, tick / 3.0));
+        ur_c_snprintf(label, sizeof label, "%.2g",
+                      -g->lower * pow(g->upper / g->lower, tick / 3.0));
         double at = bar + width * tick / 3;
         ur_draw_line(cr, at, y + height, at, y + height + 4);
         ur_draw_show_text(cr, at, y + height + 17, UR_ALIGN_CENTRE, label);
@@ -516,10 +519,11 @@ static void draw_flat_legend(cairo_t *cr, const map *m, const ur_analysis *analy
     cairo_rectangle(cr, MAP_LEFT, m->legend_top, 26, 16);
     cairo_fill(cr);
     char label[128];
-    snprintf(label, sizeof label,
-             analysis->developable ? "K = 0: developable (largest residual %.2g rad)"
-                                   : "K = 0 at every sample, yet the residual reaches %.2g rad",
-             analysis->max_residual);
+    ur_c_snprintf(label, sizeof label,
+                  analysis->developable
+                      ? "K = 0: developable (largest residual %.2g rad)"
+                      : "K = 0 at every sample, yet the residual reaches %.2g rad",
+                  analysis->max_residual);
     ur_draw_set_font(cr, 12, false);
     cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
     ur_draw_show_text(cr, MAP_LEFT + 36, m->legend_top + 13, UR_ALIGN_LEFT, label);
@@ -569,7 +573,7 @@ static void draw_scale_bar(cairo_t *cr, const map *m)
     cairo_rectangle(cr, right - pixels, y - 6, pixels, 6);
     cairo_fill(cr);
     char label[32];
-    snprintf(label, sizeof label, "%.6g mm", length);
+    ur_c_snprintf(label, sizeof label, "%.6g mm", length);
     ur_draw_set_font(cr, 12, false);
     ur_draw_show_text(cr, right - pixels - 8, y, UR_ALIGN_RIGHT, label);
 }
@@ -587,21 +591,22 @@ static void draw_header(cairo_t *cr, const ur_analysis *analysis, const char *ti
         ur_draw_set_font(cr, --size, true);
     ur_draw_show_text(cr, 20, 32, UR_ALIGN_LEFT, title);
     char line[256];
-    snprintf(line, sizeof line, "area %.6g mm\xc2\xb2 \xc2\xb7 %s (largest residual %.2g rad)",
-             analysis->area_3d, analysis->developable ? "developable" : "not developable",
-             analysis->max_residual);
+    ur_c_snprintf(line, sizeof line, "area %.6g mm\xc2\xb2 \xc2\xb7 %s (largest residual %.2g rad)",
+                  analysis->area_3d, analysis->developable ? "developable" : "not developable",
+                  analysis->max_residual);
     ur_draw_set_font(cr, 13, false);
     ur_draw_show_text(cr, 20, 54, UR_ALIGN_LEFT, line);
     char bend[96];
     if (isfinite(analysis->min_bend_radius))
-        snprintf(bend, sizeof bend, "smallest bend radius %.4g mm%s", analysis->min_bend_radius,
-                 analysis->min_bend_radius > 0 ? "" : " (at a singular point)");
+        ur_c_snprintf(bend, sizeof bend, "smallest bend radius %.4g mm%s",
+                      analysis->min_bend_radius,
+                      analysis->min_bend_radius > 0 ? "" : " (at a singular point)");
     else
-        snprintf(bend, sizeof bend, "flat: no bending");
+        ur_c_snprintf(bend, sizeof bend, "flat: no bending");
     /* + 0.0 turns -0 into 0 */
-    snprintf(line, sizeof line, "K from %.3g to %.3g 1/mm\xc2\xb2 (mean %.3g) \xc2\xb7 %s",
-             analysis->gaussian_min + 0.0, analysis->gaussian_max + 0.0,
-             analysis->gaussian_mean + 0.0, bend);
+    ur_c_snprintf(line, sizeof line, "K from %.3g to %.3g 1/mm\xc2\xb2 (mean %.3g) \xc2\xb7 %s",
+                  analysis->gaussian_min + 0.0, analysis->gaussian_max + 0.0,
+                  analysis->gaussian_mean + 0.0, bend);
     ur_draw_show_text(cr, 20, 72, UR_ALIGN_LEFT, line);
 }
 

@@ -35,6 +35,7 @@
 #include "../base/atomic.h"
 #include "draw.h"
 #include "png.h"
+#include "../base/c_locale.h"
 
 /* About 297 mm wide: A3's short side, A4 landscape at 70 %. */
 static const double PDF_SCALE = 0.355;
@@ -165,7 +166,7 @@ static ur_status place_labels(cairo_t *cr, const view *v, int index, const model
         if (!named[k][index])
             continue;
         label l = {.name = true, .point = v->name_point[k]};
-        snprintf(l.text, sizeof l.text, "%s", m->names[k]);
+        ur_c_snprintf(l.text, sizeof l.text, "%s", m->names[k]);
         place_label(cr, v, labels, &l);
     }
     double tolerance = 1e-4 * m->size;
@@ -331,16 +332,17 @@ static void draw_header(cairo_t *cr, const model *m, const char *title, size_t s
     char text[512];
     cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
     ur_draw_set_font(cr, TITLE_SIZE, true);
-    snprintf(text, sizeof text, "%s%sassembly guide: %zu piece%s, %zu seam%s", title ? title : "",
-             title ? ": " : "", m->pieces_drawn, m->pieces_drawn == 1 ? "" : "s", m->seam_count,
-             m->seam_count == 1 ? "" : "s");
+    ur_c_snprintf(text, sizeof text, "%s%sassembly guide: %zu piece%s, %zu seam%s",
+                  title ? title : "", title ? ": " : "", m->pieces_drawn,
+                  m->pieces_drawn == 1 ? "" : "s", m->seam_count, m->seam_count == 1 ? "" : "s");
     ur_draw_show_text(cr, MARGIN, MARGIN + TITLE_SIZE, UR_ALIGN_LEFT, text);
     ur_draw_set_font(cr, KEY_SIZE, false);
-    snprintf(text, sizeof text,
-             "Each piece has its own colour and its name. Edges with the same label are glued "
-             "together (labels of %zu of the %zu seams have room here; the cut pieces carry all). "
-             "Thick lines: cuts between pieces; thin: folds.",
-             seams_shown, m->seam_count);
+    ur_c_snprintf(
+        text, sizeof text,
+        "Each piece has its own colour and its name. Edges with the same label are glued "
+        "together (labels of %zu of the %zu seams have room here; the cut pieces carry all). "
+        "Thick lines: cuts between pieces; thin: folds.",
+        seams_shown, m->seam_count);
     ur_draw_show_text(cr, MARGIN, MARGIN + TITLE_SIZE + 14 + KEY_SIZE, UR_ALIGN_LEFT, text);
     double x = MARGIN, y = MARGIN + TITLE_SIZE + 2 * KEY_SIZE + 36;
     int row = 0;

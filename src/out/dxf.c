@@ -33,6 +33,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
+#include "../base/c_locale.h"
 
 /* Enough for "%.9f" of any finite double. */
 enum { NUMBER_SIZE = 400 };
@@ -177,7 +178,7 @@ typedef struct dxf_sheet {
 /* Nanometre resolution with a decimal point ("100.0"), as strict readers want for reals. */
 static void format_real(double value, char text[NUMBER_SIZE])
 {
-    snprintf(text, NUMBER_SIZE, "%.9f", value);
+    ur_c_snprintf(text, NUMBER_SIZE, "%.9f", value);
     char *end = text + strlen(text);
     while (end[-1] == '0' && end[-2] != '.')
         *--end = '\0';
@@ -187,12 +188,12 @@ static void format_real(double value, char text[NUMBER_SIZE])
 
 static void group(FILE *file, int code, const char *value)
 {
-    fprintf(file, "%3d\n%s\n", code, value);
+    ur_c_fprintf(file, "%3d\n%s\n", code, value);
 }
 
 static void group_int(FILE *file, int code, long value)
 {
-    fprintf(file, "%3d\n%ld\n", code, value);
+    ur_c_fprintf(file, "%3d\n%ld\n", code, value);
 }
 
 static void group_real(FILE *file, int code, double value)
@@ -204,7 +205,7 @@ static void group_real(FILE *file, int code, double value)
 
 static void group_handle(FILE *file, int code, unsigned long handle)
 {
-    fprintf(file, "%3d\n%lX\n", code, handle);
+    ur_c_fprintf(file, "%3d\n%lX\n", code, handle);
 }
 
 /* A point's x, y, z under codes base, base + 10, base + 20. */
@@ -238,7 +239,7 @@ static void subclass(const dxf_sheet *sheet, FILE *file, const char *name)
 /* Characters no DXF name may hold become '_'; an empty name takes the operation's. */
 static void layer_name(const ur_op_style *style, ur_op op, char name[64])
 {
-    snprintf(name, 64, "%s", style->layer[0] ? style->layer : ur_op_name(op));
+    ur_c_snprintf(name, 64, "%s", style->layer[0] ? style->layer : ur_op_name(op));
     for (char *c = name; *c; c++)
         if ((unsigned char)*c < 0x20 || strchr("<>/\\\":;?*|=`,", *c))
             *c = '_';
@@ -281,7 +282,7 @@ static size_t find_linetype(dxf_sheet *sheet, const ur_op_style *style)
     dxf_linetype made = {"DASH", {0}, 0};
     size_t used = strlen(made.name);
     for (size_t i = 0; i < count && used < sizeof made.name; i++)
-        used += (size_t)snprintf(made.name + used, sizeof made.name - used, "_%g", dashes[i]);
+        used += (size_t)ur_c_snprintf(made.name + used, sizeof made.name - used, "_%g", dashes[i]);
     for (size_t round = 0; round < (count % 2 ? 2 : 1); round++)
         for (size_t i = 0; i < count; i++, made.count++)
             made.elements[made.count] = made.count % 2 ? -dashes[i] : dashes[i];
@@ -293,10 +294,10 @@ static size_t find_linetype(dxf_sheet *sheet, const ur_op_style *style)
     }
     /* A name too long for its buffer, odd, or cut to another's, is numbered instead. */
     if (used >= sizeof made.name || !plain_name(made.name))
-        snprintf(made.name, sizeof made.name, "DASH%zu", sheet->linetype_count + 1);
+        ur_c_snprintf(made.name, sizeof made.name, "DASH%zu", sheet->linetype_count + 1);
     for (size_t i = 0; i < sheet->linetype_count; i++)
         if (strcasecmp(sheet->linetypes[i].name, made.name) == 0)
-            snprintf(made.name, sizeof made.name, "DASH%zu", sheet->linetype_count + 1);
+            ur_c_snprintf(made.name, sizeof made.name, "DASH%zu", sheet->linetype_count + 1);
     sheet->linetypes[sheet->linetype_count] = made;
     return sheet->linetype_count++;
 }
@@ -350,7 +351,7 @@ static void end_section(FILE *file)
  */
 static void write_comment(FILE *file, const char *label, const char *text)
 {
-    fprintf(file, "999\n%s", label);
+    ur_c_fprintf(file, "999\n%s", label);
     for (const unsigned char *c = (const unsigned char *)text; *c; c++)
         if (*c >= 0x20 && *c <= 0x7E)
             fputc(*c, file);
@@ -459,8 +460,8 @@ static void write_linetypes(const dxf_sheet *sheet)
         char description[128] = "Dashes (mm):";
         size_t used = strlen(description);
         for (size_t k = 0; k < linetype->count && used < sizeof description; k++)
-            used += (size_t)snprintf(description + used, sizeof description - used, " %g",
-                                     fabs(linetype->elements[k]));
+            used += (size_t)ur_c_snprintf(description + used, sizeof description - used, " %g",
+                                          fabs(linetype->elements[k]));
         write_linetype(sheet, H_FIRST_LTYPE + i, linetype->name, description, linetype->elements,
                        linetype->count);
     }

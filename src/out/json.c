@@ -48,3 +48,8 @@ ur_status ur_json_write(const char *path, json_t *root, ur_context *context, ur_
 {
     return ur_atomic_write(path, emit_json, root, "report", context, error);
 }
+
+ur_status ur_json_write_stream(FILE *stream, json_t *root, ur_error *error)
+{
+    return ur_stream_write(stream, emit_json, root, "report", error);
+}

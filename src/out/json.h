@@ -11,6 +11,9 @@
 /* Writes root to path ("-" for standard output), atomically for a file. */
 ur_status ur_json_write(const char *path, json_t *root, ur_context *context, ur_error *error);
 
+/* The same to a stream the caller owns (flushed, not closed). */
+ur_status ur_json_write_stream(FILE *stream, json_t *root, ur_error *error);
+
 /* A number, or null when it is not finite (JSON has no NaN or infinity). */
 json_t *ur_json_number(double value);
 

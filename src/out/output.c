@@ -17,6 +17,7 @@
 #include <strings.h>
 
 #include "../base/atomic.h"
+#include "../base/c_locale.h"
 
 /*
  * Cutting order: engrave and mark while the sheet is still whole, then fold
@@ -55,7 +56,7 @@ ur_status ur_sheet_file_name(const char *output_path, size_t sheet_index, size_t
                             sheet_index + 1, sheet_count);
     int length;
     if (sheet_count == 1) {
-        length = snprintf(name, name_size, "%s", output_path);
+        length = ur_c_snprintf(name, name_size, "%s", output_path);
     } else {
         /* The extension is that of the base name: "dir.v2/net" has none. */
         const char *slash = strrchr(output_path, '/');
@@ -63,8 +64,8 @@ ur_status ur_sheet_file_name(const char *output_path, size_t sheet_index, size_t
         const char *dot = strrchr(base, '.');
         if (!dot || dot == base) /* ".hidden" is a name, not an extension */
             dot = base + strlen(base);
-        length = snprintf(name, name_size, "%.*s-%zu%s", (int)(dot - output_path), output_path,
-                          sheet_index + 1, dot);
+        length = ur_c_snprintf(name, name_size, "%.*s-%zu%s", (int)(dot - output_path), output_path,
+                               sheet_index + 1, dot);
     }
     if (length < 0 || (size_t)length >= name_size)
         return ur_error_set(error, UR_ERROR_INPUT, "output name '%s' is too long", output_path);
@@ -318,13 +319,15 @@ static ur_status write_all(const target *targets, size_t target_count, const ur_
     return status;
 }
 
-/* A stream that is not ours to close: the document, or the one sheet, to standard output. */
-static ur_status write_stdout(const target *t, const ur_write_job *job, ur_error *error)
+/* A stream that is not ours to close: the document, or the one sheet, to it. */
+static ur_status write_stream(const target *t, const ur_write_job *job, FILE *stream,
+                              ur_error *error)
 {
+    const char *where = stream == stdout ? "standard output" : "a stream";
     if (!t->writer->one_file && job->layout->sheet_count != 1)
         return ur_error_set(error, UR_ERROR_INPUT,
-                            "cannot write %zu sheets of %s to standard output: name a file",
-                            job->layout->sheet_count, t->writer->format);
+                            "cannot write %zu sheets of %s to %s: name a file",
+                            job->layout->sheet_count, t->writer->format, where);
     ur_vec2 *scratch =
         ur_alloc_array(2 * (longest_path(job->layout, job->pieces) + 1), sizeof *scratch, error);
     if (!scratch)
@@ -333,17 +336,17 @@ static ur_status write_stdout(const target *t, const ur_write_job *job, ur_error
     void *document = NULL;
     ur_status status =
         writer->begin_document ? writer->begin_document(&document, job, error) : UR_OK;
-    FILE *file = writer->one_file ? NULL : stdout;
+    FILE *file = writer->one_file ? NULL : stream;
     for (size_t i = 0; status == UR_OK && i < job->layout->sheet_count; i++)
         status = write_sheet(writer, document, file, i, job, scratch, error);
     if (status == UR_OK && writer->end_document)
-        status = writer->end_document(document, writer->one_file ? stdout : NULL, error);
+        status = writer->end_document(document, writer->one_file ? stream : NULL, error);
     else if (document && writer->discard_document)
         writer->discard_document(document);
     free(scratch);
-    if (status == UR_OK && (fflush(stdout) != 0 || ferror(stdout)))
-        status = ur_error_set(error, UR_ERROR_IO, "cannot write the %s to standard output",
-                              writer->format);
+    if (status == UR_OK && (fflush(stream) != 0 || ferror(stream)))
+        status =
+            ur_error_set(error, UR_ERROR_IO, "cannot write the %s to %s", writer->format, where);
     return status;
 }
 
@@ -382,10 +385,10 @@ static ur_status check_options(const ur_write_settings *options, ur_error *error
     return UR_OK;
 }
 
-/* Checks everything, fills in the defaults, then writes to stdout or the files. */
-static ur_status write_targets(const target *targets, size_t target_count, const ur_layout *layout,
-                               const ur_piece *pieces, const ur_machine *machine,
-                               const ur_output_options *options,
+/* Checks everything, fills in the defaults, then writes to stream (when not NULL) or the files. */
+static ur_status write_targets(const target *targets, size_t target_count, FILE *stream,
+                               const ur_layout *layout, const ur_piece *pieces,
+                               const ur_machine *machine, const ur_output_options *options,
                                const ur_format_options *format_options, ur_error *error)
 {
     ur_write_settings chosen = {NULL, NULL, UR_DXF_R12, UR_PNG_DPI, false, NULL};
@@ -405,8 +408,10 @@ static ur_status write_targets(const target *targets, size_t target_count, const
     if (status != UR_OK)
         return status;
     ur_write_job job = {layout, pieces, machine, &chosen};
+    if (stream)
+        return write_stream(&targets[0], &job, stream, error);
     if (strcmp(targets[0].path, "-") == 0)
-        return write_stdout(&targets[0], &job, error);
+        return write_stream(&targets[0], &job, stdout, error);
     return write_all(targets, target_count, &job, error);
 }
 
@@ -417,11 +422,12 @@ static ur_status write_one(const ur_writer *writer, const char *output_path,
                            const ur_format_options *format_options, ur_error *error)
 {
     target t = {writer, ""};
-    if (output_path && snprintf(t.path, sizeof t.path, "%s", output_path) >= (int)sizeof t.path)
+    if (output_path &&
+        ur_c_snprintf(t.path, sizeof t.path, "%s", output_path) >= (int)sizeof t.path)
         return ur_error_set(error, UR_ERROR_INPUT, "output name '%s' is too long", output_path);
     if (!output_path)
         return check_arguments(NULL, layout, pieces, machine, error);
-    return write_targets(&t, 1, layout, pieces, machine, options, format_options, error);
+    return write_targets(&t, 1, NULL, layout, pieces, machine, options, format_options, error);
 }
 
 ur_status ur_write_svg(const char *output_path, const ur_layout *layout, const ur_piece *pieces,
@@ -526,9 +532,9 @@ static ur_status make_targets(const char *path, unsigned formats, target *target
         target *t = &targets[(*count)++];
         t->writer = formats_known[i].writer;
         int length = strcmp(path, "-") == 0 || formats_known[i].format == named
-                         ? snprintf(t->path, sizeof t->path, "%s", path)
-                         : snprintf(t->path, sizeof t->path, "%.*s.%s", (int)stem, path,
-                                    t->writer->extension);
+                         ? ur_c_snprintf(t->path, sizeof t->path, "%s", path)
+                         : ur_c_snprintf(t->path, sizeof t->path, "%.*s.%s", (int)stem, path,
+                                         t->writer->extension);
         if (length < 0 || (size_t)length >= sizeof t->path)
             return ur_error_set(error, UR_ERROR_INPUT, "output name '%s' is too long", path);
     }
@@ -570,7 +576,23 @@ ur_status ur_write_outputs(const char *path, unsigned formats, const ur_layout *
         status = make_targets(path, formats, targets, &count, error);
     if (status != UR_OK)
         return status;
-    return write_targets(targets, count, layout, pieces, machine, options, format_options, error);
+    return write_targets(targets, count, NULL, layout, pieces, machine, options, format_options,
+                         error);
+}
+
+ur_status ur_write_stream(FILE *stream, ur_format format, const ur_layout *layout,
+                          const ur_piece *pieces, const ur_machine *machine,
+                          const ur_output_options *options, const ur_format_options *format_options,
+                          ur_error *error)
+{
+    target t = {NULL, "(stream)"};
+    for (size_t i = 0; i < FORMAT_COUNT; i++)
+        if (formats_known[i].format == format)
+            t.writer = formats_known[i].writer;
+    if (!stream || !t.writer)
+        return ur_error_set(error, UR_ERROR_INTERNAL, "stream writer called without %s",
+                            stream ? "one known format" : "a stream");
+    return write_targets(&t, 1, stream, layout, pieces, machine, options, format_options, error);
 }
 
 ur_status ur_output_files(const char *path, unsigned formats, size_t sheet_count,

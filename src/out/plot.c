@@ -19,6 +19,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
+#include "../base/c_locale.h"
 
 #define PLOT_FLOOR 1e-16
 
@@ -99,7 +100,7 @@ static double to_y(const panel *p, double value)
 static void show_power(cairo_t *cr, double x, double y, ur_align align, int exponent)
 {
     char power[16];
-    snprintf(power, sizeof power, "%d", exponent);
+    ur_c_snprintf(power, sizeof power, "%d", exponent);
     ur_draw_set_font(cr, 12, false);
     double base = ur_draw_text_width(cr, "10");
     ur_draw_set_font(cr, 9, false);
@@ -249,10 +250,10 @@ static void legend(cairo_t *cr, const ur_compare_table *table, double y)
     for (int k = 0; k < UR_COMPARE_METHODS; k++) {
         char label[64];
         bool drawn = method_drawn(table, k);
-        snprintf(label, sizeof label, "%s%s", method_names[k],
-                 !drawn                  ? " (not applicable)"
-                 : k == UR_COMPARE_EXACT ? " (distance 0 by definition)"
-                                         : "");
+        ur_c_snprintf(label, sizeof label, "%s%s", method_names[k],
+                      !drawn                  ? " (not applicable)"
+                      : k == UR_COMPARE_EXACT ? " (distance 0 by definition)"
+                                              : "");
         if (drawn)
             set_colour(cr, k);
         else
@@ -333,14 +334,14 @@ ur_status ur_compare_plot_png(const char *path, const ur_compare_table *table, c
 /* One field: the number to full precision, or empty where there is none. */
 static bool emit_number(FILE *stream, double value, bool available, bool last)
 {
-    int written = available && isfinite(value) ? fprintf(stream, "%.17g", value) : 0;
+    int written = available && isfinite(value) ? ur_c_fprintf(stream, "%.17g", value) : 0;
     return written >= 0 && fputc(last ? '\n' : ',', stream) != EOF;
 }
 
 static bool emit_row(FILE *stream, const ur_compare_row *row)
 {
     const double *columns[] = {row->area_error, row->edge_error, row->distance};
-    bool ok = fprintf(stream, "%zu,", row->n) >= 0;
+    bool ok = ur_c_fprintf(stream, "%zu,", row->n) >= 0;
     for (int c = 0; ok && c < 3; c++) {
         int methods = c == 2 ? UR_COMPARE_EXACT : UR_COMPARE_METHODS; /* no exact distance */
         for (int k = 0; ok && k < methods; k++)

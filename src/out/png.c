@@ -23,6 +23,7 @@
 
 #include "draw.h"
 #include "png.h"
+#include "../base/c_locale.h"
 
 /* cairo's largest image side; more pixels than MAX_PIXELS (400 MB) are refused as well. */
 enum { MAX_SIDE = 32767 };
@@ -296,16 +297,16 @@ static void measure_legend(png_sheet *s, double unit, legend *l)
 {
     cairo_t *cr = s->cr;
     l->unit = unit;
-    snprintf(l->title, sizeof l->title, "sheet %zu of %zu, %g \xc3\x97 %g mm", s->index + 1,
-             s->count, s->sheet->width, s->sheet->height);
+    ur_c_snprintf(l->title, sizeof l->title, "sheet %zu of %zu, %g \xc3\x97 %g mm", s->index + 1,
+                  s->count, s->sheet->width, s->sheet->height);
     if (s->range > 0)
-        snprintf(l->strain, sizeof l->strain,
-                 "fill: strain, blue \xe2\x88\x92%.3g%% to red +%.3g%%", 100 * s->range,
-                 100 * s->range);
+        ur_c_snprintf(l->strain, sizeof l->strain,
+                      "fill: strain, blue \xe2\x88\x92%.3g%% to red +%.3g%%", 100 * s->range,
+                      100 * s->range);
     else
-        snprintf(l->strain, sizeof l->strain, "no strain on any piece");
+        ur_c_snprintf(l->strain, sizeof l->strain, "no strain on any piece");
     l->scale_length = ur_draw_nice_below(SCALE_LONGEST * unit / s->scale);
-    snprintf(l->scale_label, sizeof l->scale_label, "%g mm", l->scale_length);
+    ur_c_snprintf(l->scale_label, sizeof l->scale_label, "%g mm", l->scale_length);
     double width = fmax(ur_draw_text_width_at(cr, l->title, 12, true),
                         ur_draw_text_width_at(cr, l->strain, 11, false));
     width = fmax(width, l->scale_length * s->scale / unit + 6 +

@@ -327,21 +327,39 @@ static ur_status check_layout(const ur_layout *layout, size_t piece_count, ur_er
     return UR_OK;
 }
 
-ur_status ur_report_write(const char *path, const ur_report_context *context,
-                          const ur_piece *pieces, size_t piece_count, const ur_layout *layout,
-                          ur_context *run, ur_error *error)
+/* To path, or to stream when path is NULL. */
+static ur_status write_report(const char *path, FILE *stream, const ur_report_context *context,
+                              const ur_piece *pieces, size_t piece_count, const ur_layout *layout,
+                              ur_context *run, ur_error *error)
 {
-    if (!path || !context || (!pieces && piece_count > 0))
+    if ((!path && !stream) || !context || (!pieces && piece_count > 0))
         return ur_error_set(error, UR_ERROR_INTERNAL, "report writer called without %s",
-                            !path      ? "a path"
-                            : !context ? "a context"
-                                       : "pieces");
+                            !path && !stream ? "a path"
+                            : !context       ? "a context"
+                                             : "pieces");
     ur_status status = check_layout(layout, piece_count, error);
     json_t *root = NULL;
     if (status == UR_OK)
         status = report_json(context, pieces, piece_count, layout, &root, error);
     if (status == UR_OK)
-        status = ur_json_write(path, root, run, error);
+        status =
+            path ? ur_json_write(path, root, run, error) : ur_json_write_stream(stream, root, error);
     json_decref(root);
     return status;
+}
+
+ur_status ur_report_write(const char *path, const ur_report_context *context,
+                          const ur_piece *pieces, size_t piece_count, const ur_layout *layout,
+                          ur_context *run, ur_error *error)
+{
+    if (!path)
+        return ur_error_set(error, UR_ERROR_INTERNAL, "report writer called without a path");
+    return write_report(path, NULL, context, pieces, piece_count, layout, run, error);
+}
+
+ur_status ur_report_write_stream(FILE *stream, const ur_report_context *context,
+                                 const ur_piece *pieces, size_t piece_count,
+                                 const ur_layout *layout, ur_error *error)
+{
+    return write_report(NULL, stream, context, pieces, piece_count, layout, NULL, error);
 }

@@ -37,6 +37,7 @@
 #include "../base/atomic.h"
 #include "draw.h"
 #include "png.h"
+#include "../base/c_locale.h"
 
 /* Longest file name built; longer output names are refused, not cut off. */
 enum { NAME_SIZE = 4096 };
@@ -177,9 +178,9 @@ static void format_percent(double strain, char *text, size_t size)
 {
     double percent = 100 * strain;
     if (fabs(percent) < 5e-7)
-        snprintf(text, size, "0%%");
+        ur_c_snprintf(text, size, "0%%");
     else
-        snprintf(text, size, "%+.3g%%", percent);
+        ur_c_snprintf(text, size, "%+.3g%%", percent);
 }
 
 /* ---- Pieces ------------------------------------------------------------- */
@@ -274,7 +275,7 @@ static ur_vec2 label_point(const canvas *c, const ur_placement *placement, const
 static void strain_note(const ur_piece *piece, char *text, size_t size)
 {
     if (piece->shading.count == 0) {
-        snprintf(text, size, "exact: no strain");
+        ur_c_snprintf(text, size, "exact: no strain");
         return;
     }
     double low = 0, high = 0;
@@ -285,7 +286,7 @@ static void strain_note(const ur_piece *piece, char *text, size_t size)
     char from[32], to[32];
     format_percent(low, from, sizeof from);
     format_percent(high, to, sizeof to);
-    snprintf(text, size, "%s to %s", from, to);
+    ur_c_snprintf(text, size, "%s to %s", from, to);
 }
 
 /* The name, and the note below it, on a white box so that they read on any colour. */
@@ -360,8 +361,8 @@ static const char no_strain[] = "no strain on any piece";
 static void measure_legend(cairo_t *cr, const canvas *c, const picture *p, double unit, legend *l)
 {
     l->unit = unit;
-    snprintf(l->title, sizeof l->title, "strain \xc2\xb7 sheet %zu of %zu, %g \xc3\x97 %g mm",
-             c->index + 1, p->layout->sheet_count, c->sheet->width, c->sheet->height);
+    ur_c_snprintf(l->title, sizeof l->title, "strain \xc2\xb7 sheet %zu of %zu, %g \xc3\x97 %g mm",
+                  c->index + 1, p->layout->sheet_count, c->sheet->width, c->sheet->height);
     double widest_tick = 0;
     for (int k = 0; k < TICKS; k++) {
         format_percent(p->range * (k - TICKS / 2) / (TICKS / 2), l->ticks[k], sizeof l->ticks[k]);
@@ -369,7 +370,7 @@ static void measure_legend(cairo_t *cr, const canvas *c, const picture *p, doubl
     }
     l->side = widest_tick / 2 + 2;
     l->scale_length = ur_draw_nice_below(SCALE_LONGEST * unit / c->scale);
-    snprintf(l->scale_label, sizeof l->scale_label, "%g mm", l->scale_length);
+    ur_c_snprintf(l->scale_label, sizeof l->scale_label, "%g mm", l->scale_length);
     double scale_points = l->scale_length * c->scale / unit;
     double width = fmax(BAR_WIDTH + 2 * l->side, ur_draw_text_width_at(cr, l->title, 12, true));
     width = fmax(width, ur_draw_text_width_at(cr, p->range > 0 ? caption : no_strain, 11, false));

@@ -8,6 +8,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include "../base/c_locale.h"
 
 static bool is_colour(const char *colour)
 {
@@ -49,7 +50,7 @@ size_t ur_style_dashes(const ur_op_style *style, double *dashes, size_t max)
     size_t count = 0;
     while (count < max) {
         char *end;
-        double value = strtod(at, &end);
+        double value = ur_c_strtod(at, &end);
         if (end == at || !(value > 0) || !isfinite(value))
             break;
         dashes[count++] = value;

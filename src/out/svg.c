@@ -21,6 +21,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include "../base/c_locale.h"
 
 #define SVG_NAMESPACE "http://www.w3.org/2000/svg"
 #define INKSCAPE_NAMESPACE "http://www.inkscape.org/namespaces/inkscape"
@@ -50,7 +51,7 @@ typedef struct svg_sheet {
 static void format_coordinate(double value, char text[NUMBER_SIZE])
 {
     if (!(fabs(value) < 1e12)) {
-        snprintf(text, NUMBER_SIZE, "%.6f", value);
+        ur_c_snprintf(text, NUMBER_SIZE, "%.6f", value);
     } else {
         long long nanometres = llround(value * 1e6);
         unsigned long long magnitude =
@@ -133,9 +134,9 @@ static ur_status write_root(svg_sheet *sheet, double width, double height, ur_er
     char width_mm[NUMBER_SIZE + 2], height_mm[NUMBER_SIZE + 2], view_box[2 * NUMBER_SIZE + 8];
     format_coordinate(width, width_text);
     format_coordinate(height, height_text);
-    snprintf(width_mm, sizeof width_mm, "%smm", width_text);
-    snprintf(height_mm, sizeof height_mm, "%smm", height_text);
-    snprintf(view_box, sizeof view_box, "0 0 %s %s", width_text, height_text);
+    ur_c_snprintf(width_mm, sizeof width_mm, "%smm", width_text);
+    ur_c_snprintf(height_mm, sizeof height_mm, "%smm", height_text);
+    ur_c_snprintf(view_box, sizeof view_box, "0 0 %s %s", width_text, height_text);
     const char *const attributes[][2] = {
         {"xmlns", SVG_NAMESPACE}, {"xmlns:inkscape", INKSCAPE_NAMESPACE},
         {"version", "1.1"},       {"width", width_mm},
@@ -250,7 +251,7 @@ static ur_status svg_begin_layer(void *state, ur_op op, ur_error *error)
         return status;
     const ur_op_style *style = &sheet->machine->styles[op];
     char width[NUMBER_SIZE];
-    snprintf(width, sizeof width, "%.6g", style->line_width); /* %g: never rounds to 0 */
+    ur_c_snprintf(width, sizeof width, "%.6g", style->line_width); /* %g: never rounds to 0 */
     const char *const attributes[][2] = {
         {"id", ur_op_name(op)},
         {"inkscape:groupmode", "layer"},
@@ -331,7 +332,7 @@ static ur_status append_arc(svg_sheet *sheet, const ur_path_circle *circle, ur_v
 {
     char r[NUMBER_SIZE], flags[16];
     format_coordinate(circle->radius, r);
-    snprintf(flags, sizeof flags, " 0 %d %d", fabs(circle->sweep) > M_PI, circle->sweep < 0);
+    ur_c_snprintf(flags, sizeof flags, " 0 %d %d", fabs(circle->sweep) > M_PI, circle->sweep < 0);
     const char *const parts[] = {" A ", r, " ", r, flags};
     ur_status status = UR_OK;
     for (size_t i = 0; status == UR_OK && i < sizeof parts / sizeof *parts; i++)

@@ -32,6 +32,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "../base/gsl_errors.h"
+
 enum {
     LOCAL_MARGIN = 30, /* knots of rail 2 kept on each side of the moved points */
     MOVED_MARGIN = 2,  /* extra points moved on each side of the window */
@@ -421,11 +423,10 @@ static ur_status repair_gaps(ur_ruled *strip, problem *p, size_t count1, ur_erro
     return status;
 }
 
-ur_status ur_strip_adjust_rail2(const ur_vec3 *rail1, size_t count1, ur_vec3 *rail2, size_t count2,
-                                const ur_vec3 *direction, double *largest, ur_error *error)
+static ur_status adjust_rail2(const ur_vec3 *rail1, size_t count1, ur_vec3 *rail2, size_t count2,
+                              const ur_vec3 *direction, double *largest, ur_error *error)
 {
     *largest = 0.0;
-    gsl_set_error_handler_off();
     ur_vec3 unit;
     if (direction) {
         double length = ur_vec3_length(*direction);
@@ -475,5 +476,14 @@ ur_status ur_strip_adjust_rail2(const ur_vec3 *rail1, size_t count1, ur_vec3 *ra
     free(start);
     free(knots);
     ur_ruled_free(&strip);
+    return status;
+}
+
+ur_status ur_strip_adjust_rail2(const ur_vec3 *rail1, size_t count1, ur_vec3 *rail2, size_t count2,
+                                const ur_vec3 *direction, double *largest, ur_error *error)
+{
+    ur_gsl_errors_off();
+    ur_status status = adjust_rail2(rail1, count1, rail2, count2, direction, largest, error);
+    ur_gsl_errors_restore();
     return status;
 }

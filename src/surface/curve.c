@@ -24,6 +24,7 @@
 #include <gsl/gsl_integration.h>
 #include <gsl/gsl_spline.h>
 #include <stdlib.h>
+#include "../base/gsl_errors.h"
 
 enum curve_kind { CURVE_HELIX, CURVE_SPLINE };
 
@@ -50,7 +51,6 @@ static ur_curve *curve_alloc(ur_error *error)
     ur_curve *curve = calloc(1, sizeof *curve);
     if (!curve)
         ur_error_out_of_memory(error);
-    gsl_set_error_handler_off();
     return curve;
 }
 
@@ -142,6 +142,7 @@ static ur_status keep_cubics(ur_curve *curve, const double *values, int axis, ur
 {
     const double *knots = curve->knots;
     size_t n = curve->knot_count;
+    ur_gsl_errors_off();
     gsl_spline *spline =
         gsl_spline_alloc(curve->closed ? gsl_interp_cspline_periodic : gsl_interp_cspline, n);
     gsl_interp_accel *accel = gsl_interp_accel_alloc();
@@ -161,6 +162,7 @@ static ur_status keep_cubics(ur_curve *curve, const double *values, int axis, ur
         gsl_spline_free(spline);
     if (accel)
         gsl_interp_accel_free(accel);
+    ur_gsl_errors_restore();
     return built ? UR_OK
                  : ur_error_set(error, UR_ERROR_INTERNAL, "cannot build the curve's spline");
 }
@@ -320,14 +322,19 @@ ur_status ur_curve_length(ur_curve *curve, double u_start, double u_end, double 
                           ur_error *error)
 {
     enum { LIMIT = 2000 };
+    ur_gsl_errors_off();
     gsl_integration_workspace *workspace = gsl_integration_workspace_alloc(LIMIT);
-    if (!workspace)
-        return ur_error_out_of_memory(error);
+    bool allocated = workspace != NULL;
     gsl_function f = {speed_at, curve};
-    double estimate;
-    int code = gsl_integration_qag(&f, u_start, u_end, 0.0, 1e-12, LIMIT, GSL_INTEG_GAUSS41,
-                                   workspace, length, &estimate);
-    gsl_integration_workspace_free(workspace);
+    double estimate = 0.0;
+    int code = allocated ? gsl_integration_qag(&f, u_start, u_end, 0.0, 1e-12, LIMIT,
+                                               GSL_INTEG_GAUSS41, workspace, length, &estimate)
+                         : GSL_ENOMEM;
+    if (allocated)
+        gsl_integration_workspace_free(workspace);
+    ur_gsl_errors_restore();
+    if (!allocated)
+        return ur_error_out_of_memory(error);
     if (code && !(estimate <= 1e-9 * fabs(*length)))
         return ur_error_set(error, UR_ERROR_INTERNAL, "curve length did not converge: %s",
                             gsl_strerror(code));

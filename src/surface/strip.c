@@ -11,6 +11,7 @@
 #include <gsl/gsl_errno.h>
 #include <stdlib.h>
 #include <string.h>
+#include "../base/gsl_errors.h"
 
 /* Samples of a pairing by arc length. */
 enum { ARC_SAMPLES = 4096 };
@@ -57,9 +58,11 @@ void pairing_eval(ur_pairing *pairing, double u, double low, double high, double
                   double *slope)
 {
     if (!pairing->solved) {
+        ur_gsl_errors_off(); /* u outside the table: NaN, not an abort */
         *sigma = gsl_interp_eval(pairing->interp, pairing->u, pairing->sigma, u, pairing->accel);
         *slope =
             gsl_interp_eval_deriv(pairing->interp, pairing->u, pairing->sigma, u, pairing->accel);
+        ur_gsl_errors_restore();
         return;
     }
     ur_vec3 c1[3], d2[3];
@@ -92,7 +95,6 @@ static ur_status take_rails(ur_curve *rail1, ur_curve *rail2, ur_ruled_kind kind
                             ur_error *error)
 {
     memset(ruled, 0, sizeof *ruled);
-    gsl_set_error_handler_off();
     ruled->kind = kind;
     ruled->curve = rail1;
     ruled->rail2 = rail2;
@@ -174,11 +176,16 @@ static ur_status point_pairing(ur_pairing *pairing, ur_error *error)
 
 static ur_status interpolate_pairing(ur_pairing *pairing, ur_error *error)
 {
+    ur_gsl_errors_off();
     pairing->interp = gsl_interp_alloc(gsl_interp_steffen, pairing->count);
     pairing->accel = gsl_interp_accel_alloc();
-    if (!pairing->interp || !pairing->accel)
+    bool made = pairing->interp && pairing->accel;
+    int code = made ? gsl_interp_init(pairing->interp, pairing->u, pairing->sigma, pairing->count)
+                    : GSL_ENOMEM;
+    ur_gsl_errors_restore();
+    if (!made)
         return ur_error_out_of_memory(error);
-    if (gsl_interp_init(pairing->interp, pairing->u, pairing->sigma, pairing->count) != GSL_SUCCESS)
+    if (code != GSL_SUCCESS)
         return ur_error_set(error, UR_ERROR_INPUT,
                             "the rails' pairing is not monotonic (repeated points?)");
     for (size_t i = 0; i < pairing->count; i++)

@@ -34,6 +34,7 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include "../base/gsl_errors.h"
 
 enum {
     MIN_SAMPLES = 2048,  /* rail 1 samples of the root table */
@@ -131,7 +132,7 @@ static bool near_rail2(const ur_pairing *pairing, double sigma)
 }
 
 /* Brent's method on a bracket with a sign change. */
-static double brent(ur_pairing *pairing, const ur_vec3 c1[3], double low, double high)
+static double brent_steps(ur_pairing *pairing, const ur_vec3 c1[3], double low, double high)
 {
     root_context context = {pairing, c1};
     gsl_function f = {condition_at, &context};
@@ -148,6 +149,14 @@ static double brent(ur_pairing *pairing, const ur_vec3 c1[3], double low, double
         if (gsl_root_test_interval(low, high, tolerance, 0.0) == GSL_SUCCESS)
             break;
     }
+    return root;
+}
+
+static double brent(ur_pairing *pairing, const ur_vec3 c1[3], double low, double high)
+{
+    ur_gsl_errors_off();
+    double root = brent_steps(pairing, c1, low, high);
+    ur_gsl_errors_restore();
     return root;
 }
 
@@ -974,7 +983,9 @@ double pairing_solved_slope(ur_pairing *pairing, double u, const ur_vec3 c1[3], 
 ur_status pairing_track(ur_pairing *pairing, ur_error *error)
 {
     pairing->solved = true;
+    ur_gsl_errors_off();
     pairing->solver = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
+    ur_gsl_errors_restore();
     if (!pairing->solver)
         return ur_error_out_of_memory(error);
     size_t points = ur_curve_point_count(pairing->rail1);

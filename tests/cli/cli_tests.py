@@ -2661,6 +2661,33 @@ def run_env(work, args, **env):
 
 
 @test
+def outputs_do_not_depend_on_the_locale(work):
+    """The command writes the same files, and reads the same numbers, under
+    a comma-decimal locale (de_DE.UTF-8, which scripts/install-deps
+    generates) as under C: a surface to SVG, DXF and a report, and parts
+    read from an SVG and a DXF and nested."""
+    runs = {}
+    for name, locale in (("c", "C"), ("de", "de_DE.UTF-8")):
+        # The same names in a directory of each run's own: the report names its files.
+        directory = os.path.join(work, name)
+        os.mkdir(directory)
+        write(directory, "plate.svg", PLATE_SVG_MM)
+        for args in ([*HELICOID, "--format", "svg,dxf", "-o", "h.svg", "--report", "h.json"],
+                     ["nest", "plate.svg:2", "--sheet", "250x120.5", "--margin", "2.5",
+                      "--nest-time", "0", "--format", "svg,dxf", "-o", "p.svg", "--quiet"],
+                     ["nest", "p.dxf", "--sheet", "250x120.5", "--nest-time", "0", "-o", "q.svg",
+                      "--quiet"]):
+            result = run_env(directory, args, LC_ALL=locale, LANG=locale)
+            check(result.returncode == 0, "%s under %s: exit %d: %s"
+                  % (" ".join(args), locale, result.returncode, result.stderr.strip()))
+        runs[name] = sorted(os.listdir(directory))
+    check(runs["c"] == runs["de"] and len(runs["c"]) == 7, "files: %s" % runs)
+    for file in runs["c"]:
+        with open(os.path.join(work, "c", file), "rb") as a, \
+                open(os.path.join(work, "de", file), "rb") as b:
+            check(a.read() == b.read(), file + " differs under de_DE.UTF-8")
+
+@test
 def failed_writes_leave_the_old_files(work):
     """UNROLL_TEST_FAIL_WRITE_AFTER=N (a test-only switch of the atomic
     writer) makes every write fail with EIO once N bytes have gone out, as a

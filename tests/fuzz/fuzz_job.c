@@ -48,11 +48,9 @@ static const char *const roots[] = {"./profiles", NULL};
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    char path[1024];
-    fuzz_write_file("job.xml", data, size, path, sizeof path);
     ur_job job;
     ur_error error;
-    if (ur_job_read(roots, path, &job, &error) == UR_OK) {
+    if (ur_job_read_buffer(roots, "job.xml", data, size, &job, &error) == UR_OK) {
         check_job(&job);
         ur_job_free(&job);
     } else {

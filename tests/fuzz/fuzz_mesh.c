@@ -20,11 +20,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     if (size < 1)
         return 0;
-    char path[1024];
-    fuzz_write_file(names[data[0] % 4], data + 1, size - 1, path, sizeof path);
     ur_mesh mesh;
     ur_error error;
-    if (ur_mesh_import(path, NULL, &mesh, NULL, &error) != UR_OK) {
+    if (ur_mesh_import_buffer(names[data[0] % 4], data + 1, size - 1, NULL, &mesh, NULL, &error) !=
+        UR_OK) {
         FUZZ_CHECK(strstr(error.message, "mesh.") != NULL);
         return 0;
     }

@@ -50,16 +50,14 @@ static const char *const roots[] = {"./profiles", NULL};
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    char path[1024];
-    fuzz_write_file("profile.xml", data, size, path, sizeof path);
     ur_error error;
     ur_machine machine;
-    if (ur_machine_read(roots, path, &machine, &error) == UR_OK)
+    if (ur_machine_read_buffer(roots, "profile.xml", data, size, &machine, &error) == UR_OK)
         check_machine(&machine);
     else
         FUZZ_CHECK(strstr(error.message, "profile.xml") != NULL);
     ur_material material;
-    if (ur_material_read(roots, path, &material, &error) == UR_OK)
+    if (ur_material_read_buffer(roots, "profile.xml", data, size, &material, &error) == UR_OK)
         check_material(&material);
     else
         FUZZ_CHECK(strstr(error.message, "profile.xml") != NULL);

@@ -62,15 +62,18 @@ static inline void check_parts(const ur_parts *parts)
         FUZZ_CHECK(memchr(parts->warnings[i], '\0', sizeof parts->warnings[i]) != NULL);
 }
 
-/* Reads the file at path as parts, in millimetres when it does not say, and checks them. */
-static inline void import_and_check(const char *path)
+/*
+ * Reads size bytes of data as parts of a file called name, in millimetres
+ * when it does not say, and checks them.
+ */
+static inline void import_and_check(const char *name, const uint8_t *data, size_t size)
 {
     ur_parts_import_options options;
     ur_parts_import_options_default(&options);
     options.unit = 1.0; /* so that files without units are read on, not refused */
     ur_parts parts;
     ur_error error;
-    if (ur_parts_import(path, &options, &parts, &error) == UR_OK) {
+    if (ur_parts_import_buffer(name, data, size, &options, &parts, &error) == UR_OK) {
         check_parts(&parts);
         ur_parts_free(&parts);
     } else {

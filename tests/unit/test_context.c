@@ -154,7 +154,7 @@ static void test_write_budget_fails_like_a_full_disk(void **state)
     ur_error error = {0};
     char path[256];
     ur_context_fail_writes_after(context, 10);
-    assert_int_equal(write_curve(context, "full.csv", path, sizeof path, &error), UR_ERROR_INPUT);
+    assert_int_equal(write_curve(context, "full.csv", path, sizeof path, &error), UR_ERROR_IO);
     assert_non_null(strstr(error.message, path));
     assert_false(exists(path));
     assert_int_equal(entries_in(directory), 0);
