@@ -56,7 +56,7 @@ CFLAGS_ALL = -std=c11 -D_XOPEN_SOURCE=700 -Wall -Wextra -Wpedantic -Werror \
 LDLIBS_ALL = $(shell $(PKG_CONFIG) --libs $(PACKAGES)) -lcholmod -lhersheyfont -lhpdf -lm $(LDLIBS)
 LDFLAGS_ALL = $(SANITIZE_FLAGS) $(LDFLAGS)
 
-LIB_SOURCES = $(wildcard src/base/*.c src/geom/*.c src/surface/*.c src/develop/*.c \
+LIB_SOURCES = $(wildcard src/base/*.c src/geom/*.c src/core/*.c src/surface/*.c src/develop/*.c \
 	src/analyze/*.c src/mesh/*.c src/flatten/*.c src/allow/*.c src/nest/*.c src/io/*.c src/out/*.c)
 CLI_SOURCES = $(wildcard src/cli/*.c)
 UNIT_SOURCES = $(wildcard tests/unit/test_*.c)

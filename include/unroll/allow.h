@@ -18,6 +18,7 @@
 #ifndef UNROLL_ALLOW_H
 #define UNROLL_ALLOW_H
 
+#include "unroll/core.h"
 #include "unroll/develop.h"
 #include "unroll/geom.h"
 
@@ -25,120 +26,9 @@
 extern "C" {
 #endif
 
-/*
- * The circle a path exactly is, or is an arc of, when it is known to be
- * one (a circle or arc read from a file, and what kerf compensation and
- * bridges make of it): the cut follows the circle, not the chords between
- * the points.  The points all lie on the circle and are its flattening,
- * for everything that works on polylines (nesting, areas, cut order, the
- * preview).  A closed path is the whole circle; an open one the arc from
- * its first point to its last, turning by sweep radians about the centre
- * (> 0 counter-clockwise).  radius 0 (a zeroed value) is no circle: the
- * path is its polyline.  Only exact knowledge sets it, never a fit.
- */
-typedef struct ur_path_circle {
-    ur_vec2 centre;
-    double radius; /* mm; 0: the path is no circle */
-    double sweep;  /* open paths: radians from the first point to the last */
-} ur_path_circle;
-
-typedef struct ur_path {
-    ur_op op;
-    bool closed;
-    ur_vec2 *points; /* owned by the path */
-    size_t count;
-    ur_path_circle circle; /* radius 0 unless the path is exactly a circle or arc */
-} ur_path;
-
-/* What the report says of a piece: copied from its net. */
-typedef struct ur_piece_measures {
-    double area_3d;                      /* of the part of the surface the piece covers */
-    double flat_area;                    /* enclosed by the outline */
-    double edge_error;                   /* largest relative error of a flat edge length */
-    double max_stretch, max_compression; /* of an approximate flattening; 0 when exact */
-} ur_piece_measures;
-
-/* ---- What was added and why ----------------------------------------- */
-
-typedef enum ur_allowance_kind {
-    UR_ALLOWANCE_JOINT,             /* a glue tab or lap on a seam */
-    UR_ALLOWANCE_LABEL,             /* an engraved seam label or piece name */
-    UR_ALLOWANCE_KERFING,           /* slits where the net under-covers */
-    UR_ALLOWANCE_OVERLAP,           /* slits or darts with overlap zones where it over-covers */
-    UR_ALLOWANCE_BENDING,           /* bending kerfs where the bend is too tight */
-    UR_ALLOWANCE_KERF_COMPENSATION, /* outline offset by half the kerf */
-    UR_ALLOWANCE_BRIDGES,           /* uncut gaps holding the part in the sheet */
-    UR_ALLOWANCE_KIND_COUNT
-} ur_allowance_kind;
-
-/* "joint", "label", "kerfing", "overlap", "bending", "kerf-compensation", "bridges". */
-UR_API const char *ur_allowance_kind_name(ur_allowance_kind kind);
-
-/*
- * One allowance added to a piece (or one that could not be added: warning),
- * for the report.  value and limit are what triggered it (a strain as a
- * fraction, a radius or a length in mm) and the profile's limit it
- * exceeded; NAN when there is none (a joint on a seam needs no trigger).
- */
-typedef struct ur_allowance_record {
-    ur_allowance_kind kind;
-    size_t count;     /* cuts, tabs, bridges ... added */
-    double value;     /* what triggered it, NAN when nothing did */
-    double limit;     /* the limit it exceeded, NAN when none */
-    ur_vec2 where;    /* piece coordinates: the middle of the region */
-    bool warning;     /* not done, or only partly: the reason says what is missing */
-    char reason[256]; /* one sentence for the report */
-    /*
-     * A label's strokes are paths[first_path .. first_path + path_count - 1]
-     * of the piece, centred on where, their baseline along direction (unit);
-     * path_count is 0 for other records.
-     */
-    size_t first_path, path_count;
-    ur_vec2 direction;
-    /*
-     * Bending kerfs: the largest angle one groove or hinge row turns the
-     * sheet by (degrees, between the tangent planes of consecutive rows)
-     * and how many rows (grooves) the region has; 0 for other records.
-     */
-    double facet_angle;
-    size_t rows;
-} ur_allowance_record;
-
-typedef struct ur_piece {
-    char name[32];
-    ur_path *paths; /* owned; paths[0] is the outer outline */
-    size_t path_count;
-    ur_box box; /* of every path, in piece coordinates */
-    ur_piece_measures measures;
-    /*
-     * Per-triangle strain copied from the net, in piece coordinates (those
-     * of paths[0]); empty (NULL, 0) for a development.  Owned: ur_piece_free
-     * frees it.  Only the strain picture draws it; nothing is cut from it.
-     */
-    ur_shading shading;
-    ur_allowance_record *records; /* owned; what was added and why */
-    size_t record_count;
-    bool bridged; /* bridges or merged lines opened the outline: paths[0] is no longer a ring */
-    double outline_area; /* what the outline enclosed before it was opened; 0 until then */
-    /*
-     * The direction of the piece's rulings (its bending axes), radians in
-     * piece coordinates, taken modulo a half turn, when has_rulings (not a
-     * mesh's piece or a part from a file).  Nesting turns it to the
-     * material's grain.
-     */
-    bool has_rulings;
-    double ruling_angle;
-    /* The piece's own allowed turns for nesting (as ur_nest_options.rotations); 0: the nesting's */
-    size_t rotations;
-} ur_piece;
-
 typedef struct ur_allowance_options {
     bool draw_rulings; /* rulings as SCORE lines */
 } ur_allowance_options;
-
-/* Copies points into a new path of the piece (no circle) and grows its box. */
-UR_API ur_status ur_piece_add_path(ur_piece *piece, ur_op op, const ur_vec2 *points, size_t count,
-                                   bool closed, ur_error *error);
 
 /*
  * The angle the polyline turns through about centre from its first point
@@ -153,18 +43,6 @@ UR_API double ur_arc_sweep(ur_vec2 centre, const ur_vec2 *points, size_t count);
  */
 UR_API ur_status ur_piece_from_net(const ur_net *net, const ur_allowance_options *options,
                                    ur_piece *piece, ur_error *error);
-
-UR_API void ur_piece_free(ur_piece *piece);
-
-/* A deep copy of a piece (a second part of the same shape); free it with ur_piece_free. */
-UR_API ur_status ur_piece_copy(const ur_piece *from, ur_piece *to, ur_error *error);
-
-/* The piece's box, measured again on every path (after paths moved or went). */
-UR_API void ur_piece_recompute_box(ur_piece *piece);
-
-/* Appends a copy of record to the piece's records. */
-UR_API ur_status ur_piece_record(ur_piece *piece, const ur_allowance_record *record,
-                                 ur_error *error);
 
 /* ---- Labels: single-stroke engraved text (label.c) -------------------- */
 
@@ -189,8 +67,6 @@ UR_API void ur_font_close(ur_font *font);
  */
 UR_API ur_status ur_text_strokes(const ur_font *font, const char *text, double height,
                                  ur_path **paths, size_t *count, double *width, ur_error *error);
-
-UR_API void ur_paths_free(ur_path *paths, size_t count);
 
 /*
  * Engraves text on the piece as ENGRAVE paths: inside the piece (outline
@@ -443,8 +319,6 @@ UR_API ur_status ur_piece_add_relief(ur_piece *piece, const ur_net *net,
  * UR_ERROR_INPUT for sizes that are not positive, a facet angle outside
  * [0, 90] or a negative minimum web, kerf or thickness.  See bending.c.
  */
-#define UR_DEFAULT_FACET_ANGLE 5.0 /* degrees */
-
 typedef struct ur_bending_options {
     double min_radius;   /* the material's smallest bend radius, mm */
     bool router;         /* grooves (router) or through-cut hinge (laser) */

@@ -18,6 +18,7 @@
 #ifndef UNROLL_DEVELOP_H
 #define UNROLL_DEVELOP_H
 
+#include "unroll/core.h"
 #include "unroll/geom.h"
 #include "unroll/surface.h"
 
@@ -30,106 +31,6 @@ typedef enum ur_method { UR_METHOD_EXACT, UR_METHOD_TRIANGLE, UR_METHOD_QUAD } u
 /* "exact", "triangle", "quad"; ur_method_from_name returns -1 when unknown. */
 UR_API const char *ur_method_name(ur_method method);
 UR_API int ur_method_from_name(const char *name);
-
-typedef struct ur_segment {
-    ur_vec2 start, end;
-} ur_segment;
-
-/*
- * The strain of an approximate flattening triangle by triangle, for the
- * strain picture (ur_strain_png_write).  Each triangle of the flattened
- * mesh is given by its three flat corners, in the same coordinates as the
- * outline of the net (or piece) that carries it, with its dominant strain:
- * with sigma1 >= sigma2 the singular values of its 3D-to-flat map (see
- * flatten.h), the strain is sigma1 - 1 (stretch, >= 0) when
- * sigma1 - 1 >= 1 - sigma2, and -(1 - sigma2) (compression, < 0)
- * otherwise.  One signed number per triangle is what a diverging colour
- * can show, and the larger of the two deviations is the one that tears or
- * buckles the material.  A development keeps every length and has none:
- * triangles NULL, strain NULL, count 0.
- */
-typedef struct ur_shading {
-    ur_vec2 (*triangles)[3]; /* owned by the net or piece */
-    double *strain;          /* owned: one per triangle, signed as above */
-    /*
-     * Owned: one per triangle, the flat unit direction of that dominant
-     * strain (the left singular vector of sigma1 for stretch, of sigma2 for
-     * compression): the direction in which the flat triangle is longer (or
-     * shorter) than the 3D one.  Kerfing cuts go across it.
-     */
-    ur_vec2 *direction;
-    size_t count;
-} ur_shading;
-
-/*
- * One side of a seam: a run of the outline that was cut from a neighbouring
- * part of the surface (another piece, or another run of the same piece, as
- * the two edges of a closed cylinder's cut ruling).  The two sides of a seam
- * carry the same seam number, unique within one ur_net_list, and each
- * follows its own outline counter-clockwise, so in 3D they run in opposite
- * directions: the first point of one side is the last point of the other.
- * A boundary of the surface itself is no seam.
- */
-typedef struct ur_seam_side {
-    size_t first; /* outline index of the run's first point */
-    size_t count; /* points in the run, >= 2; indices wrap around the outline */
-    int seam;     /* seam number, >= 1 */
-} ur_seam_side;
-
-/* One flat piece.  All arrays are owned by the net. */
-typedef struct ur_net {
-    char name[32];
-    ur_vec2 *outline; /* closed ring, counter-clockwise, first point not repeated */
-    size_t outline_count;
-    ur_segment *rulings; /* rulings to draw (fold or score lines) */
-    /*
-     * Parallel to rulings for a development: the surface parameter u of
-     * each drawn ruling, so that allowances can ask the surface about it
-     * (bend radius, for bending kerfs).  NULL for a flattened mesh.
-     */
-    double *ruling_parameters;
-    size_t ruling_count;
-    ur_segment seams[2]; /* outline edges cut from a neighbouring piece */
-    size_t seam_count;
-    ur_seam_side *seam_sides; /* every seam side of the outline; owned */
-    size_t seam_side_count;
-    /*
-     * A flattened or unfolded mesh piece: the 3D point of each outline
-     * point (owned), from which ur_net_list_find_seams pairs the seams.
-     * NULL for a development, whose seams are its cut rulings.
-     */
-    ur_vec3 *outline_3d;
-    double u_start, u_end; /* the part of the surface this piece covers */
-    double area_3d;        /* 3D area of that part (quadrature) */
-    double flat_area;      /* area enclosed by the outline */
-    double edge_error;     /* largest relative error of a flat boundary length */
-    /*
-     * Strain of an approximate flattening (flatten.h): the largest sigma1 - 1
-     * and 1 - sigma2 over the piece's triangles.  Zero for an exact
-     * development, which keeps every length.
-     */
-    double max_stretch, max_compression;
-    /*
-     * Fold lines of an unfolded polyhedron (flatten.h): always drawn, as
-     * mountain (SCORE) or valley (SCORE_VALLEY) folds.  NULL, 0 otherwise.
-     */
-    ur_segment *folds;
-    bool *fold_valley;
-    size_t fold_count;
-    ur_shading shading; /* per-triangle strain of a flattening; empty for a development */
-    /*
-     * A mesh piece's triangles in 3D (owned), corners counter-clockwise
-     * seen from the outside as in the mesh, for the assembly guide
-     * (ur_assembly_write).  NULL, 0 for a development.
-     */
-    ur_vec3 (*faces_3d)[3];
-    size_t face_count;
-} ur_net;
-
-typedef struct ur_net_list {
-    ur_net *nets;
-    size_t count;
-} ur_net_list;
 
 typedef struct ur_develop_options {
     ur_method method;
@@ -150,8 +51,6 @@ UR_API void ur_develop_options_default(ur_develop_options *options);
 UR_API ur_status ur_develop(ur_ruled *ruled, const ur_develop_options *options, ur_net_list *nets,
                             ur_error *error);
 
-UR_API void ur_net_list_free(ur_net_list *nets);
-
 /*
  * Finds the seams between nets that carry outline_3d (meshes): an outline
  * edge from P to Q pairs with an edge from Q to P of another net, or of the
@@ -168,9 +67,6 @@ UR_API ur_status ur_net_list_find_seams(ur_net_list *nets, int first_seam, int *
 
 /* The largest seam number of the list's nets, 0 when there is none. */
 UR_API int ur_net_list_last_seam(const ur_net_list *nets);
-
-/* Frees one net's arrays (not the net itself). */
-UR_API void ur_net_free(ur_net *net);
 
 /* Whether a closed ring (first point not repeated) is a simple polygon (GEOS). */
 UR_API bool ur_outline_is_simple(const ur_vec2 *ring, size_t count);

@@ -13,8 +13,8 @@
 #include <stddef.h>
 #include <stdio.h>
 
-#include "unroll/allow.h"
 #include "unroll/base.h"
+#include "unroll/core.h"
 #include "unroll/geom.h"
 #include "unroll/mesh.h"
 

@@ -10,43 +10,12 @@
 #define UNROLL_NEST_H
 
 #include "unroll/allow.h"
+#include "unroll/core.h"
 #include "unroll/geom.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
-
-typedef struct ur_placement {
-    size_t piece_index;
-    ur_transform2 transform;
-} ur_placement;
-
-typedef struct ur_sheet {
-    double width, height;
-    ur_placement *placements; /* owned */
-    size_t placement_count;
-    /* Set by the caller when a job mixes materials: this sheet's; "" otherwise. */
-    char material[64];
-    bool remnant; /* one of ur_nest_options.remnants, not a stock sheet */
-    /*
-     * True-shape nesting on sheets, the last stock sheet: the offcut its
-     * parts leave at its right end, as tall as the sheet, from their right
-     * edges and the spacing to the sheet's edge (mm); 0 on other sheets.
-     */
-    double offcut_width;
-} ur_sheet;
-
-/* A sheet left over from an earlier job (an offcut), given by its size in mm. */
-typedef struct ur_remnant {
-    double width, height;
-} ur_remnant;
-
-typedef struct ur_layout {
-    ur_sheet *sheets; /* owned */
-    size_t sheet_count;
-    size_t *not_placed; /* owned: pieces left out when the sheets ran out (max_sheets) */
-    size_t not_placed_count;
-} ur_layout;
 
 typedef struct ur_layout_options {
     double sheet_width, sheet_height;
@@ -204,11 +173,6 @@ typedef struct ur_split_parts {
 UR_API ur_status ur_part_split(const ur_piece *part, double room_length, double room_width,
                                double id, ur_split_parts *out, ur_error *error);
 UR_API void ur_split_parts_free(ur_split_parts *parts);
-
-/* Share of the sheet's area covered by the outlines placed on it, 0..1. */
-UR_API double ur_sheet_utilisation(const ur_sheet *sheet, const ur_piece *pieces);
-
-UR_API void ur_layout_free(ur_layout *layout);
 
 #ifdef __cplusplus
 }

@@ -7,6 +7,7 @@
 
 #include "unroll/base.h"
 #include "unroll/geom.h"
+#include "unroll/core.h"
 #include "unroll/surface.h"
 #include "unroll/develop.h"
 #include "unroll/analyze.h"

@@ -131,17 +131,6 @@ void ur_font_close(ur_font *font)
     free(font);
 }
 
-/* ---- Text as strokes ---------------------------------------------------- */
-
-void ur_paths_free(ur_path *paths, size_t count)
-{
-    if (!paths)
-        return;
-    for (size_t i = 0; i < count; i++)
-        free(paths[i].points);
-    free(paths);
-}
-
 /* The glyph for text[at]; an error saying where when it is not printable ASCII the font has. */
 static ur_status text_glyph(const ur_font *font, const char *text, size_t at,
                             const struct hershey_glyph **glyph, ur_error *error)

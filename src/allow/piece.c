@@ -15,30 +15,6 @@
 #include <string.h>
 #include "../base/c_locale.h"
 
-ur_status ur_piece_add_path(ur_piece *piece, ur_op op, const ur_vec2 *points, size_t count,
-                            bool closed, ur_error *error)
-{
-    ur_path *paths = realloc(piece->paths, (piece->path_count + 1) * sizeof *paths);
-    if (!paths)
-        return ur_error_out_of_memory(error);
-    piece->paths = paths;
-    ur_vec2 *copy = ur_alloc_array(count, sizeof *copy, error);
-    if (!copy)
-        return UR_ERROR_INTERNAL;
-    memcpy(copy, points, count * sizeof *copy);
-    if (piece->path_count == 0)
-        piece->box = ur_box_empty();
-    for (size_t i = 0; i < count; i++)
-        ur_box_add(&piece->box, points[i]);
-    ur_path *path = &piece->paths[piece->path_count++];
-    path->op = op;
-    path->closed = closed;
-    path->points = copy;
-    path->count = count;
-    path->circle = (ur_path_circle){{0, 0}, 0, 0};
-    return UR_OK;
-}
-
 double ur_arc_sweep(ur_vec2 centre, const ur_vec2 *points, size_t count)
 {
     double sweep = 0;
@@ -80,32 +56,6 @@ static double ruling_angle(const ur_net *net)
     return c == 0 && s == 0 ? NAN : 0.5 * atan2(s, c);
 }
 
-/* The piece's own copy of the net's per-triangle strain, for the strain picture. */
-static ur_status copy_shading(ur_piece *piece, const ur_shading *shading, ur_error *error)
-{
-    if (shading->count == 0)
-        return UR_OK;
-    if (!shading->triangles || !shading->strain)
-        return ur_error_set(error, UR_ERROR_INTERNAL,
-                            "net '%s' has %zu shaded triangles but no data", piece->name,
-                            shading->count);
-    ur_shading *copy = &piece->shading;
-    copy->triangles = ur_alloc_array(shading->count, sizeof *copy->triangles, error);
-    copy->strain = ur_alloc_array(shading->count, sizeof *copy->strain, error);
-    if (!copy->triangles || !copy->strain)
-        return UR_ERROR_INTERNAL; /* ur_piece_free frees what was allocated */
-    memcpy(copy->triangles, shading->triangles, shading->count * sizeof *copy->triangles);
-    memcpy(copy->strain, shading->strain, shading->count * sizeof *copy->strain);
-    if (shading->direction) {
-        copy->direction = ur_alloc_array(shading->count, sizeof *copy->direction, error);
-        if (!copy->direction)
-            return UR_ERROR_INTERNAL;
-        memcpy(copy->direction, shading->direction, shading->count * sizeof *copy->direction);
-    }
-    copy->count = shading->count;
-    return UR_OK;
-}
-
 ur_status ur_piece_from_net(const ur_net *net, const ur_allowance_options *options, ur_piece *piece,
                             ur_error *error)
 {
@@ -130,78 +80,8 @@ ur_status ur_piece_from_net(const ur_net *net, const ur_allowance_options *optio
                                    ends, 2, false, error);
     }
     if (status == UR_OK)
-        status = copy_shading(piece, &net->shading, error);
+        status = ur_shading_copy(&net->shading, &piece->shading, error);
     if (status != UR_OK)
         ur_piece_free(piece);
     return status;
-}
-
-void ur_piece_free(ur_piece *piece)
-{
-    for (size_t i = 0; i < piece->path_count; i++)
-        free(piece->paths[i].points);
-    free(piece->paths);
-    piece->paths = NULL;
-    piece->path_count = 0;
-    free(piece->shading.triangles);
-    free(piece->shading.strain);
-    free(piece->shading.direction);
-    memset(&piece->shading, 0, sizeof piece->shading);
-    free(piece->records);
-    piece->records = NULL;
-    piece->record_count = 0;
-}
-
-ur_status ur_piece_copy(const ur_piece *from, ur_piece *to, ur_error *error)
-{
-    memset(to, 0, sizeof *to);
-    memcpy(to->name, from->name, sizeof to->name);
-    to->measures = from->measures;
-    to->bridged = from->bridged;
-    to->outline_area = from->outline_area;
-    to->rotations = from->rotations;
-    to->ruling_angle = from->ruling_angle;
-    to->has_rulings = from->has_rulings;
-    ur_status status = UR_OK;
-    for (size_t k = 0; status == UR_OK && k < from->path_count; k++) {
-        status = ur_piece_add_path(to, from->paths[k].op, from->paths[k].points,
-                                   from->paths[k].count, from->paths[k].closed, error);
-        if (status == UR_OK)
-            to->paths[k].circle = from->paths[k].circle;
-    }
-    if (status == UR_OK)
-        status = copy_shading(to, &from->shading, error);
-    for (size_t r = 0; status == UR_OK && r < from->record_count; r++)
-        status = ur_piece_record(to, &from->records[r], error);
-    if (status != UR_OK)
-        ur_piece_free(to);
-    else
-        to->box = from->box;
-    return status;
-}
-
-void ur_piece_recompute_box(ur_piece *piece)
-{
-    piece->box = ur_box_empty();
-    for (size_t i = 0; i < piece->path_count; i++)
-        for (size_t k = 0; k < piece->paths[i].count; k++)
-            ur_box_add(&piece->box, piece->paths[i].points[k]);
-}
-
-ur_status ur_piece_record(ur_piece *piece, const ur_allowance_record *record, ur_error *error)
-{
-    ur_allowance_record *records =
-        realloc(piece->records, (piece->record_count + 1) * sizeof *records);
-    if (!records)
-        return ur_error_out_of_memory(error);
-    piece->records = records;
-    piece->records[piece->record_count++] = *record;
-    return UR_OK;
-}
-
-const char *ur_allowance_kind_name(ur_allowance_kind kind)
-{
-    static const char *const names[UR_ALLOWANCE_KIND_COUNT] = {
-        "joint", "label", "kerfing", "overlap", "bending", "kerf-compensation", "bridges"};
-    return (unsigned)kind < UR_ALLOWANCE_KIND_COUNT ? names[kind] : "?";
 }

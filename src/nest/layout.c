@@ -205,28 +205,3 @@ ur_status ur_outline_level_size(const ur_vec2 *outline, size_t count, double *le
     *width = count ? fmin(ur_box_width(box), ur_box_height(box)) : 0;
     return UR_OK;
 }
-
-double ur_sheet_utilisation(const ur_sheet *sheet, const ur_piece *pieces)
-{
-    double used = 0.0;
-    for (size_t k = 0; k < sheet->placement_count; k++) {
-        const ur_piece *piece = &pieces[sheet->placements[k].piece_index];
-        if (piece->bridged) /* the outline is open: what it enclosed before */
-            used += piece->outline_area;
-        else if (piece->path_count > 0)
-            used += fabs(ur_polygon_signed_area(piece->paths[0].points, piece->paths[0].count));
-    }
-    return used / (sheet->width * sheet->height);
-}
-
-void ur_layout_free(ur_layout *layout)
-{
-    for (size_t s = 0; s < layout->sheet_count; s++)
-        free(layout->sheets[s].placements);
-    free(layout->sheets);
-    layout->sheets = NULL;
-    layout->sheet_count = 0;
-    free(layout->not_placed);
-    layout->not_placed = NULL;
-    layout->not_placed_count = 0;
-}
