@@ -8,6 +8,8 @@
  * writes, byte for byte.
  */
 #include "cli.h"
+/* The stages a job file shares with a surface job; to become public API (see job.h). */
+#include "../job/stages.h"
 
 #include <errno.h>
 #include <stdio.h>
@@ -35,7 +37,7 @@ static bool add_word(words *w, const char *word)
     return true;
 }
 
-static bool add_options(words *w, const ur_job_option *options, size_t count)
+static bool add_options(words *w, const ur_job_file_option *options, size_t count)
 {
     for (size_t k = 0; k < count; k++) {
         char flag[80];
@@ -47,7 +49,7 @@ static bool add_options(words *w, const ur_job_option *options, size_t count)
 }
 
 /* The output files' path: DIRECTORY/NAME with the first format's extension. */
-static void output_path(const ur_job *job, char *path, size_t size)
+static void output_path(const ur_job_file *job, char *path, size_t size)
 {
     char first[16] = "svg";
     if (job->formats[0])
@@ -60,7 +62,8 @@ static void output_path(const ur_job *job, char *path, size_t size)
  * options, then the part's own material and options (the last word wins, so
  * a part's own override the job's), formats, -o.
  */
-static bool part_words(const ur_job *job, const ur_job_part *part, const char *out, words *w)
+static bool part_words(const ur_job_file *job, const ur_job_file_part *part, const char *out,
+                       words *w)
 {
     bool ok = add_word(w, part->surface) && (!part->file[0] || add_word(w, part->file));
     if (ok && job->machine[0])
@@ -77,8 +80,8 @@ static bool part_words(const ur_job *job, const ur_job_part *part, const char *o
 }
 
 /* Appends quantity copies of the part's pieces, numbered #k when there are several. */
-static ur_status add_copies(const ur_job_part *part, const cli_pieces *made, ur_piece **all,
-                            size_t *count, ur_error *error)
+static ur_status add_copies(const ur_job_file_part *part, const job_pieces_made *made,
+                            ur_piece **all, size_t *count, ur_error *error)
 {
     size_t more = made->count * (size_t)part->quantity;
     ur_piece *grown = realloc(*all, (*count + more + 1) * sizeof *grown);
@@ -114,12 +117,12 @@ enum { MOST_MATERIALS = 32 };
 
 typedef struct job_materials {
     ur_material list[MOST_MATERIALS];
-    cli_job placing[MOST_MATERIALS]; /* the first part's options, for placing only */
+    ur_job placing[MOST_MATERIALS]; /* the first part's options, for placing only */
     size_t count;
     size_t *of_piece; /* owned: each piece's index in list */
 } job_materials;
 
-static bool same_remnants(const cli_job *a, const cli_job *b)
+static bool same_remnants(const ur_job *a, const ur_job *b)
 {
     return a->remnant_count == b->remnant_count &&
            (a->remnant_count == 0 ||
@@ -127,7 +130,7 @@ static bool same_remnants(const cli_job *a, const cli_job *b)
 }
 
 /* Whether two parts' options nest them alike. */
-static bool same_placing(const cli_job *a, const cli_job *b)
+static bool same_placing(const ur_job *a, const ur_job *b)
 {
     return a->sheet_width == b->sheet_width && a->sheet_height == b->sheet_height &&
            a->roll_width == b->roll_width && a->margin == b->margin && a->spacing == b->spacing &&
@@ -137,7 +140,7 @@ static bool same_placing(const cli_job *a, const cli_job *b)
 
 /* Notes that pieces first .. first + count - 1 are of material, placed as placing says. */
 static ur_status note_material(job_materials *materials, const ur_material *material,
-                               const cli_job *placing, size_t first, size_t count, ur_error *error)
+                               const ur_job *placing, size_t first, size_t count, ur_error *error)
 {
     size_t k = 0;
     while (k < materials->count && (strcmp(materials->list[k].name, material->name) != 0 ||
@@ -162,7 +165,7 @@ static ur_status note_material(job_materials *materials, const ur_material *mate
     return UR_OK;
 }
 
-static void free_made(cli_pieces *made)
+static void free_made(job_pieces_made *made)
 {
     for (size_t k = 0; k < made->count; k++)
         ur_piece_free(&made->pieces[k]);
@@ -174,10 +177,11 @@ static void free_made(cli_pieces *made)
  * Parses one part's command line into job (whose strings point into w, to
  * be kept as long as job is used) and makes its pieces.
  */
-static int make_part(const ur_job *file, size_t index, const char *out, words *w, char *command,
-                     size_t command_size, int seam_offset, cli_job *job, cli_pieces *made)
+static int make_part(const ur_job_file *file, size_t index, const char *out, words *w,
+                     char *command, size_t command_size, int seam_offset, ur_job *job,
+                     job_pieces_made *made)
 {
-    const ur_job_part *part = &file->parts[index];
+    const ur_job_file_part *part = &file->parts[index];
     if (!part_words(file, part, out, w)) {
         cli_message("%s:%d: the part has too many options", file->source, part->line);
         return EXIT_USAGE;
@@ -198,15 +202,22 @@ static int make_part(const ur_job *file, size_t index, const char *out, words *w
         job->quiet = true;
         job->seam_offset = seam_offset; /* labels stay unique across the parts */
         job->piece_prefix = part->name[0] ? part->name : NULL;
-        code = cli_job_pieces(job, made);
+        ur_job_callbacks callbacks = cli_callbacks(job);
+        ur_error error;
+        job_run run = job_run_make(job, &callbacks, &error);
+        if (job_pieces(&run, made) != UR_OK) {
+            cli_message("%s", error.message);
+            code = cli_exit_status(&error);
+        }
     }
     cli_message_context(NULL);
     return code;
 }
 
 /* The job's pieces, every part's, as many as asked; *layout_job describes the sheets and files. */
-static int all_pieces(const ur_job *file, const char *out, words *first_words, cli_job *layout_job,
-                      char *command, size_t command_size, cli_pieces *all, job_materials *materials)
+static int all_pieces(const ur_job_file *file, const char *out, words *first_words,
+                      ur_job *layout_job, char *command, size_t command_size, job_pieces_made *all,
+                      job_materials *materials)
 {
     words *w = calloc(1, sizeof *w);
     if (!w) {
@@ -217,8 +228,8 @@ static int all_pieces(const ur_job *file, const char *out, words *first_words, c
     ur_error error;
     for (size_t p = 0; !code && p < file->part_count; p++) {
         char part_command[1200];
-        cli_job job;
-        cli_pieces made;
+        ur_job job;
+        job_pieces_made made;
         words *use = p == 0 ? first_words : w;
         memset(use, 0, sizeof *use);
         code = make_part(file, p, out, use, p == 0 ? command : part_command,
@@ -253,7 +264,7 @@ static int all_pieces(const ur_job *file, const char *out, words *first_words, c
  * Moves the pieces of each material together, the first used first, in
  * their order within one; starts[g] is where material g's begin.
  */
-static ur_status group_by_material(cli_pieces *all, job_materials *materials, size_t *starts,
+static ur_status group_by_material(job_pieces_made *all, job_materials *materials, size_t *starts,
                                    ur_error *error)
 {
     ur_piece *sorted = malloc((all->count + 1) * sizeof *sorted);
@@ -311,19 +322,22 @@ static ur_status append_layout(ur_layout *layout, ur_layout *part, size_t offset
 }
 
 /* Nests the pieces of each kind of stock on sheets of their own. */
-static ur_status place_by_material(const cli_job *job, cli_pieces *all, job_materials *materials,
-                                   ur_layout *layout, ur_error *error)
+static ur_status place_by_material(const ur_job *job, job_pieces_made *all,
+                                   job_materials *materials, ur_layout *layout, ur_error *error)
 {
+    ur_job_callbacks callbacks = cli_callbacks(job);
+    job_run run = job_run_make(job, &callbacks, error);
     if (materials->count <= 1)
-        return cli_place_pieces(job, &all->machine, &all->material, all->pieces, all->count, layout,
-                                error);
+        return job_place_pieces(&run, &all->machine, &all->material, all->pieces, all->count,
+                                layout, error);
     size_t starts[MOST_MATERIALS + 1];
     ur_status status = group_by_material(all, materials, starts, error);
     for (size_t g = 0; status == UR_OK && g < materials->count; g++) {
         ur_layout part = {NULL, 0, NULL, 0};
         if (g > 0 && same_remnants(&materials->placing[g], &materials->placing[0]))
             materials->placing[g].remnant_count = 0; /* the job's offcuts: the first stock's */
-        status = cli_place_pieces(&materials->placing[g], &all->machine, &materials->list[g],
+        job_run placing = job_run_make(&materials->placing[g], &callbacks, error);
+        status = job_place_pieces(&placing, &all->machine, &materials->list[g],
                                   all->pieces + starts[g], starts[g + 1] - starts[g], &part, error);
         if (status == UR_OK)
             status = append_layout(layout, &part, starts[g], materials->list[g].name, error);
@@ -332,19 +346,22 @@ static ur_status place_by_material(const cli_job *job, cli_pieces *all, job_mate
     return status;
 }
 
-static int place_and_write(const ur_job *file, cli_job *job, cli_pieces *all,
+static int place_and_write(const ur_job_file *file, ur_job *job, job_pieces_made *all,
                            job_materials *materials, bool quiet)
 {
     ur_layout layout = {NULL, 0, NULL, 0};
     ur_error error;
     ur_status status = place_by_material(job, all, materials, &layout, &error);
+    ur_job_callbacks callbacks = cli_callbacks(job);
+    job_run run = job_run_make(job, &callbacks, &error);
     if (status == UR_OK)
-        status = cli_allowances_after_placing(job, &all->machine, &layout, all->pieces, all->count,
+        status = job_allowances_after_placing(&run, &all->machine, &layout, all->pieces, all->count,
                                               &error);
     if (status == UR_OK) {
         job->quiet = quiet;
-        cli_allowance_warnings(job, all->pieces, all->count);
-        cli_not_placed_warning(job, &layout, all->pieces);
+        run = job_run_make(job, &callbacks, &error);
+        job_allowance_warnings(&run, all->pieces, all->count);
+        job_not_placed_warning(&run, &layout, all->pieces);
         ur_report_context context = {.surface =
                                          file->part_count == 1 ? file->parts[0].surface : "job",
                                      .method = file->name,
@@ -352,7 +369,7 @@ static int place_and_write(const ur_job *file, cli_job *job, cli_pieces *all,
                                      .material = &all->material,
                                      .surface_area = all->surface_area,
                                      .sheet_path = job->output_path};
-        status = cli_write_outputs(job, &all->machine, &layout, all->pieces, all->count, &context,
+        status = job_write_outputs(&run, &all->machine, &layout, all->pieces, all->count, &context,
                                    &error);
     }
     int code = 0;
@@ -361,7 +378,7 @@ static int place_and_write(const ur_job *file, cli_job *job, cli_pieces *all,
         code = cli_exit_status(&error);
     } else if (!quiet) {
         char cutting[256];
-        cli_describe_cutting(job, &all->machine, &layout, all->pieces, cutting, sizeof cutting);
+        job_describe_cutting(&run, &all->machine, &layout, all->pieces, cutting, sizeof cutting);
         cli_message("job %s: %zu piece%s on %zu sheet%s%s -> %s", file->name, all->count,
                     all->count == 1 ? "" : "s", layout.sheet_count,
                     layout.sheet_count == 1 ? "" : "s", cutting, job->output_path);
@@ -404,9 +421,9 @@ int cli_job_command(int argc, char **argv)
     int code = parse_job_command(argc, argv, &path, &directory, &quiet);
     if (code)
         return code;
-    ur_job file;
+    ur_job_file file;
     ur_error error;
-    if (ur_job_read(path, &file, &error) != UR_OK) {
+    if (ur_job_file_read(path, &file, &error) != UR_OK) {
         cli_message("%s", error.message);
         return cli_exit_status(&error);
     }
@@ -417,8 +434,8 @@ int cli_job_command(int argc, char **argv)
     output_path(&file, out, sizeof out);
     snprintf(report, sizeof report, "%s/%s", file.output_directory, file.report);
     words *first = calloc(1, sizeof *first);
-    cli_job job;
-    cli_pieces all;
+    ur_job job;
+    job_pieces_made all;
     memset(&all, 0, sizeof all);
     job_materials *materials = calloc(1, sizeof *materials);
     if (first && materials)
@@ -452,6 +469,6 @@ int cli_job_command(int argc, char **argv)
         free(materials->of_piece);
     free(materials);
     free(first);
-    ur_job_free(&file);
+    ur_job_file_free(&file);
     return code;
 }

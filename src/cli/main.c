@@ -184,7 +184,7 @@ int cli_print_help(const char *subcommand)
 
 static int surface_command(int argc, char **argv)
 {
-    cli_job job;
+    ur_job job;
     int code = cli_parse_job(argc, argv, CLI_DEVELOP, argv[0], &job);
     if (code == -1)
         return 0; /* help was asked for and printed */
@@ -209,7 +209,7 @@ static int study_command(int argc, char **argv, cli_action action)
                     command, command, command);
         return EXIT_USAGE;
     }
-    cli_job job;
+    ur_job job;
     int code = cli_parse_job(argc - 1, argv + 1, action, command, &job);
     if (code == -1)
         return 0;

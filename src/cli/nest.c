@@ -8,6 +8,8 @@
  * nothing.
  */
 #include "cli.h"
+/* The stages a nest shares with a surface job; to become public API (see job.h). */
+#include "../job/stages.h"
 
 #include <getopt.h>
 #include <math.h>
@@ -80,7 +82,9 @@ static const struct option nest_options[] = {
 
 /* What the command line says beyond what a surface job holds. */
 typedef struct nest_job {
-    cli_job job;    /* output, profiles, sheet, margin, spacing, report, quiet */
+    ur_job job;     /* output, profiles, sheet, margin, spacing, report, quiet */
+    job_run run;    /* the library's stages run job, reporting through the command */
+    ur_error error; /* where the stages leave a failure */
     double unit_mm; /* --units: mm per unit of a file that gives none; 0 when not given */
     long copies;    /* --copies: of every part, unless FILE:N says otherwise */
     char **files;   /* argv's file arguments, FILE or FILE:N */
@@ -110,7 +114,7 @@ static bool parse_length(const char *what, const char *value, double *length)
     return true;
 }
 
-static bool parse_sheet_size(const char *value, cli_job *job)
+static bool parse_sheet_size(const char *value, ur_job *job)
 {
     char *end = NULL;
     double width = strtod(value, &end);
@@ -128,7 +132,7 @@ static bool parse_sheet_size(const char *value, cli_job *job)
 
 static bool take_nest_option(nest_job *n, int id, const char *value)
 {
-    cli_job *job = &n->job;
+    ur_job *job = &n->job;
     switch (id) {
     case 'o':
         job->output_path = value;
@@ -232,7 +236,7 @@ static int parse_nest(int argc, char **argv, nest_job *n)
 {
     memset(n, 0, sizeof *n);
     n->copies = 1;
-    cli_job *job = &n->job;
+    ur_job *job = &n->job;
     job->command = "nest";
     job->surface = "nest";
     job->machine_name = "co2-60w";
@@ -357,7 +361,7 @@ static void print_nest_summary(const nest_job *n, const ur_machine *machine, con
         return;
     double margin = n->job.margin >= 0 ? n->job.margin : machine->margin;
     char cutting[256];
-    cli_describe_cutting(&n->job, machine, layout, pieces, cutting, sizeof cutting);
+    job_describe_cutting(&n->run, machine, layout, pieces, cutting, sizeof cutting);
     const ur_sheet *stock = NULL; /* the first stock sheet, the roll on roll stock */
     for (size_t s = 0; s < layout->sheet_count; s++) {
         const ur_sheet *sheet = &layout->sheets[s];
@@ -380,9 +384,9 @@ static void print_nest_summary(const nest_job *n, const ur_machine *machine, con
         return;
     }
     char used[1024];
-    cli_describe_sheets(layout, used, sizeof used);
+    job_describe_sheets(layout, used, sizeof used);
     size_t placed = count - layout->not_placed_count;
-    double bound = cli_sheets_lower_bound(pieces, count, layout, margin);
+    double bound = job_sheets_lower_bound(pieces, count, layout, margin);
     if (stock)
         cli_message("nest: %zu part%s on %s (lower bound %.0f stock sheet%s)%s -> %s", placed,
                     plural(placed), used, bound, bound == 1 ? "" : "s", cutting,
@@ -427,7 +431,7 @@ static ur_status split_long_parts(const nest_job *n, const ur_machine *machine,
                                   const ur_material *material, ur_piece **pieces, size_t *count,
                                   ur_error *error)
 {
-    cli_room room = cli_fit_room(&n->job, machine, material);
+    job_room room = job_fit_room(&n->run, machine, material);
     if (n->no_split || room.length <= 0)
         return UR_OK;
     ur_split_parts split = {{NULL, 0}, NULL};
@@ -441,7 +445,7 @@ static ur_status split_long_parts(const nest_job *n, const ur_machine *machine,
             width > room.width) /* too wide for cuts across it to help: nesting says so */
             continue;
         bool fits = false;
-        status = cli_piece_fits_stock(&n->job, machine, material, &(*pieces)[k], &fits, error);
+        status = job_piece_fits_stock(&n->run, machine, material, &(*pieces)[k], &fits, error);
         if (status != UR_OK || fits)
             continue;
         size_t before = split.nets.count;
@@ -458,7 +462,7 @@ static ur_status split_long_parts(const nest_job *n, const ur_machine *machine,
     if (status == UR_OK && split.nets.count > 0)
         status = ur_net_list_find_seams(&split.nets, 1, &next_seam, error);
     if (status == UR_OK && split.nets.count > 0)
-        status = cli_add_joints(NULL, material, &split.nets, split.pieces, NULL, error);
+        status = job_add_joints(NULL, material, &split.nets, split.pieces, NULL, error);
     if (status == UR_OK && split.nets.count > 0)
         status = replace_split(&split, cut, pieces, count, error);
     ur_split_parts_free(&split);
@@ -488,7 +492,7 @@ static ur_status write_nest(const nest_job *n, const ur_machine *machine,
                                  .sheet_path = n->job.output_path};
     for (size_t k = 0; k < count; k++)
         context.surface_area += pieces[k].measures.flat_area;
-    return cli_write_outputs(&n->job, machine, layout, pieces, count, &context, error);
+    return job_write_outputs(&n->run, machine, layout, pieces, count, &context, error);
 }
 
 /* Reads, compensates, places and writes; the pieces and layout are the caller's to free. */
@@ -509,12 +513,12 @@ static int run_nest(const nest_job *n, ur_piece **pieces, size_t *count, ur_layo
     if (status == UR_OK)
         status = compensate(n, &machine, &material, *pieces, *count, &error);
     if (status == UR_OK)
-        status = cli_place_pieces(&n->job, &machine, &material, *pieces, *count, layout, &error);
+        status = job_place_pieces(&n->run, &machine, &material, *pieces, *count, layout, &error);
     if (status == UR_OK)
-        status = cli_merge_lines(&n->job, layout, *pieces, *count, &error);
+        status = job_merge_lines(&n->run, layout, *pieces, *count, &error);
     if (status == UR_OK) {
-        cli_allowance_warnings(&n->job, *pieces, *count);
-        cli_not_placed_warning(&n->job, layout, *pieces);
+        job_allowance_warnings(&n->run, *pieces, *count);
+        job_not_placed_warning(&n->run, layout, *pieces);
         status = write_nest(n, &machine, &material, *pieces, *count, layout, &error);
     }
     if (status != UR_OK) {
@@ -537,6 +541,8 @@ int cli_nest(int argc, char **argv)
         (n.job.report_path && strcmp(n.job.report_path, "-") != 0 &&
          !cli_directory_exists("--report", n.job.report_path)))
         return EXIT_USAGE;
+    ur_job_callbacks callbacks = cli_callbacks(&n.job);
+    n.run = job_run_make(&n.job, &callbacks, &n.error);
     ur_piece *pieces = NULL;
     size_t count = 0;
     ur_layout layout = {NULL, 0, NULL, 0};

@@ -309,7 +309,7 @@ static bool parse_corners(const char *surface, const char *text, ur_vec3 corners
     return true;
 }
 
-static bool parse_sheet(const char *surface, const char *text, cli_job *job)
+static bool parse_sheet(const char *surface, const char *text, ur_job *job)
 {
     char *end;
     errno = 0;
@@ -340,7 +340,7 @@ static bool parse_count(const char *surface, const char *text, size_t *count)
     return true;
 }
 
-static bool parse_iterations(cli_job *job, const char *text)
+static bool parse_iterations(ur_job *job, const char *text)
 {
     long value;
     if (!cli_whole_number(text, 1, 100000, &value)) {
@@ -353,11 +353,11 @@ static bool parse_iterations(cli_job *job, const char *text)
 }
 
 /* --surface: which layer of the material the 3D surface is; only a development uses it. */
-static bool parse_surface_layer(cli_job *job, const char *text)
+static bool parse_surface_layer(ur_job *job, cli_action action, const char *text)
 {
-    if (job->action != CLI_DEVELOP) {
+    if (action != CLI_DEVELOP) {
         cli_message("%s: --surface does not apply to '%s' (see 'unroll help %s')", job->command,
-                    action_name(job->action), job->command);
+                    action_name(action), job->command);
         return false;
     }
     job->surface_layer = ur_surface_layer_from_name(text);
@@ -368,7 +368,7 @@ static bool parse_surface_layer(cli_job *job, const char *text)
 }
 
 /* --assembly FILE: its extension says the format, and only two are drawn. */
-static bool parse_assembly(cli_job *job, const char *path)
+static bool parse_assembly(ur_job *job, const char *path)
 {
     size_t length = strlen(path);
     const char *extension = length > 4 ? path + length - 4 : "";
@@ -382,7 +382,7 @@ static bool parse_assembly(cli_job *job, const char *path)
     return true;
 }
 
-static double *number_slot(cli_job *job, int id)
+static double *number_slot(ur_job *job, int id)
 {
     switch (id) {
     case OPT_SCALE:
@@ -413,7 +413,7 @@ static double *number_slot(cli_job *job, int id)
 }
 
 /* Handles one option; returns false after printing a message. */
-static bool take_option(cli_job *job, int id, const char *value)
+static bool take_option(ur_job *job, cli_action action, int id, const char *value)
 {
     const char *surface = job->surface;
     if (id >= OPT_RADIUS && id <= OPT_MAX_STRAIN && !accepts(surface, option_name(id))) {
@@ -422,9 +422,9 @@ static bool take_option(cli_job *job, int id, const char *value)
         return false;
     }
     const char *name = id == 'o' ? "output" : id == 'n' ? "parts" : option_name(id);
-    if (foreign_to_action(job->action, name)) {
+    if (foreign_to_action(action, name)) {
         cli_message("%s: --%s does not apply to '%s' (see 'unroll help %s')", job->command, name,
-                    action_name(job->action), job->command);
+                    action_name(action), job->command);
         return false;
     }
     double *slot = number_slot(job, id);
@@ -463,7 +463,7 @@ static bool take_option(cli_job *job, int id, const char *value)
     case OPT_CORNERS:
         return job->has_corners = parse_corners(surface, value, job->corners);
     case OPT_SURFACE:
-        return parse_surface_layer(job, value);
+        return parse_surface_layer(job, action, value);
     case OPT_UNITS:
         if (ur_length_unit_from_name(value) < 0) {
             cli_message("%s: --units: '%s' is not one of mm, cm, m, in", job->command, value);
@@ -598,31 +598,10 @@ static bool take_option(cli_job *job, int id, const char *value)
     }
 }
 
-static void job_defaults(cli_job *job, cli_action action, const char *command, const char *surface)
+int cli_parse_job(int argc, char **argv, cli_action action, const char *command, ur_job *job)
 {
-    memset(job, 0, sizeof *job);
-    job->action = action;
+    ur_job_init(job, argv[0]);
     job->command = command;
-    job->surface = surface;
-    job->radius = job->height = job->top_radius = job->pitch = NAN;
-    job->turns = job->width = job->offset = job->cut = NAN;
-    job->scale = NAN;
-    job->max_strain = NAN;
-    job->flatten = -1;
-    job->surface_layer = -1;
-    job->allowances_auto = true;
-    job->bridges = CLI_BRIDGES_UNSET;
-    job->margin = job->spacing = -1;
-    job->level = true;
-    job->nest_time = NAN;
-    job->machine_name = "co2-60w";
-    job->material_name = "plywood-3mm";
-    ur_develop_options_default(&job->develop);
-}
-
-int cli_parse_job(int argc, char **argv, cli_action action, const char *command, cli_job *job)
-{
-    job_defaults(job, action, command, argv[0]);
     opterr = 0;
     optind = 1;
     int id;
@@ -636,7 +615,7 @@ int cli_parse_job(int argc, char **argv, cli_action action, const char *command,
                         job->command, word, job->command);
             return EXIT_USAGE;
         }
-        if (!take_option(job, id, optarg))
+        if (!take_option(job, action, id, optarg))
             return EXIT_USAGE;
     }
     if (optind < argc && strcmp(job->surface, "mesh") == 0)
@@ -645,11 +624,11 @@ int cli_parse_job(int argc, char **argv, cli_action action, const char *command,
         cli_message("%s: unexpected argument '%s'", job->command, argv[optind]);
         return EXIT_USAGE;
     }
-    if (job->action == CLI_DEVELOP && !job->output_path) {
+    if (action == CLI_DEVELOP && !job->output_path) {
         cli_message("%s: no output file: give -o FILE.svg", job->command);
         return EXIT_USAGE;
     }
-    if (job->action == CLI_DEVELOP && !cli_check_output(job))
+    if (action == CLI_DEVELOP && !cli_check_output(job))
         return EXIT_USAGE;
     if (!(job->develop.tolerance > 0)) {
         cli_message("%s: --tolerance must be positive", job->command);

@@ -1,0 +1,280 @@
+/*
+ * test_job.c: whole jobs through the library alone (ur_job_run), as a
+ * program other than unroll would run them: a cube mesh unfolded with
+ * tabs, and a cylinder developed, each nested and written as SVG with a
+ * report into a directory under /tmp.  The files are read back with
+ * libxml2 and jansson; the figures are checked against the cube's and
+ * the cylinder's known areas and against the unfolding's own count of
+ * pieces; nothing may reach stderr.
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+
+#include <fcntl.h>
+#include <jansson.h>
+#include <libxml/parser.h>
+#include <libxml/tree.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "unroll/job.h"
+#include "unroll/out.h"
+
+#include "test_support.h"
+
+/* samples/cube.obj (samples/make-meshes.py): a cube of side 100 mm. */
+#define CUBE_PATH "samples/cube.obj"
+#define CUBE_SIDE 100.0
+
+typedef struct heard {
+    size_t warnings;
+    bool unfolded_note; /* the note that says how the mesh was unfolded */
+    size_t summaries;
+    size_t progress_after_done; /* nesting reports after the nesting said it was done */
+    bool nesting_done;
+} heard;
+
+static void on_warning(void *user, const char *message)
+{
+    heard *h = user;
+    h->warnings++;
+    if (strstr(message, "unfolded into"))
+        h->unfolded_note = true;
+}
+
+static void on_progress(void *user, const ur_job_progress *progress)
+{
+    heard *h = user;
+    if (progress->kind == UR_JOB_NESTING_DONE)
+        h->nesting_done = true;
+    else if (progress->kind == UR_JOB_NESTING && h->nesting_done)
+        h->progress_after_done++;
+}
+
+static void on_summary(void *user, const ur_job_result *result)
+{
+    (void)result;
+    ((heard *)user)->summaries++;
+}
+
+static int setup(void **state)
+{
+    char *directory = strdup("/tmp/unroll-test-job-XXXXXX");
+    if (!directory || !mkdtemp(directory)) {
+        free(directory);
+        return -1;
+    }
+    *state = directory;
+    return 0;
+}
+
+static int teardown(void **state)
+{
+    int status = remove_test_directory(*state);
+    free(*state);
+    return status;
+}
+
+/*
+ * Runs job with stderr sent to a file, and checks that nothing was
+ * written there: the library reports through the callbacks only.
+ */
+static ur_status run_silently(const ur_job *job, const ur_job_callbacks *callbacks,
+                              ur_job_result *result, ur_error *error, const char *directory)
+{
+    char path[512];
+    path_in(directory, "stderr.txt", path, sizeof path);
+    fflush(stderr);
+    int saved = dup(STDERR_FILENO);
+    int file = open(path, O_WRONLY | O_CREAT | O_TRUNC, 0600);
+    assert_true(saved >= 0 && file >= 0);
+    assert_true(dup2(file, STDERR_FILENO) >= 0);
+    ur_status status = ur_job_run(job, callbacks, result, error);
+    fflush(stderr);
+    assert_true(dup2(saved, STDERR_FILENO) >= 0);
+    close(saved);
+    off_t size = lseek(file, 0, SEEK_END);
+    close(file);
+    unlink(path);
+    assert_int_equal(size, 0);
+    return status;
+}
+
+/* How many elements named name lie under node, at any depth. */
+static size_t count_elements(xmlNodePtr node, const char *name)
+{
+    size_t count = 0;
+    for (xmlNodePtr child = node->children; child; child = child->next)
+        if (child->type == XML_ELEMENT_NODE) {
+            count += xmlStrcmp(child->name, (const xmlChar *)name) == 0;
+            count += count_elements(child, name);
+        }
+    return count;
+}
+
+/* The layer <g id="id"> of an SVG, or NULL. */
+static xmlNodePtr layer(xmlNodePtr root, const char *id)
+{
+    for (xmlNodePtr child = root->children; child; child = child->next) {
+        if (child->type != XML_ELEMENT_NODE)
+            continue;
+        xmlChar *value = xmlGetProp(child, (const xmlChar *)"id");
+        bool match = value && xmlStrcmp(value, (const xmlChar *)id) == 0;
+        xmlFree(value);
+        if (match)
+            return child;
+    }
+    return NULL;
+}
+
+/*
+ * Every sheet's SVG exists and parses, and has outlines to cut; returns
+ * the paths cut over all sheets.
+ */
+static size_t check_sheets(const char *output, size_t sheet_count)
+{
+    size_t cut_paths = 0;
+    for (size_t s = 0; s < sheet_count; s++) {
+        char name[600];
+        ur_error error;
+        assert_int_equal(ur_sheet_file_name(output, s, sheet_count, name, sizeof name, &error),
+                         UR_OK);
+        assert_true(exists(name));
+        xmlDocPtr document = xmlReadFile(name, NULL, XML_PARSE_NONET);
+        assert_non_null(document);
+        xmlNodePtr root = xmlDocGetRootElement(document);
+        assert_non_null(root);
+        assert_string_equal((const char *)root->name, "svg");
+        xmlNodePtr cut = layer(root, "cut");
+        assert_non_null(cut);
+        size_t paths = count_elements(cut, "path") + count_elements(cut, "polygon") +
+                       count_elements(cut, "polyline");
+        assert_true(paths > 0);
+        cut_paths += paths;
+        xmlFreeDoc(document);
+    }
+    return cut_paths;
+}
+
+/* The report parses, names every sheet's file, and lists count pieces. */
+static void check_report(const char *path, size_t count, size_t sheet_count)
+{
+    json_error_t json_error;
+    json_t *report = json_load_file(path, 0, &json_error);
+    assert_non_null(report);
+    assert_int_equal(json_array_size(json_object_get(report, "pieces")), count);
+    assert_int_equal(json_array_size(json_object_get(report, "sheets")), sheet_count);
+    assert_int_equal(json_array_size(json_object_get(report, "outputs")), sheet_count);
+    json_decref(report);
+}
+
+static void test_mesh_with_tabs_nested_to_svg(void **state)
+{
+    const char *directory = *state;
+    char output[512], report[512];
+    path_in(directory, "cube.svg", output, sizeof output);
+    path_in(directory, "cube.json", report, sizeof report);
+    ur_job job;
+    ur_job_init(&job, "mesh");
+    job.mesh_path = CUBE_PATH;
+    job.unfold = true;
+    job.material_name = "paper-0.3mm"; /* glue tabs on the seams */
+    job.output_path = output;
+    job.report_path = report;
+    heard h = {0};
+    ur_job_callbacks callbacks = {&h, on_warning, on_progress, on_summary};
+    ur_job_result result;
+    ur_error error;
+    ur_status status = run_silently(&job, &callbacks, &result, &error, directory);
+    if (status != UR_OK)
+        fail_msg("ur_job_run: %s", error.message);
+
+    /* Every piece holds at least one of the six faces, and none is cut in two. */
+    assert_true(result.piece_count >= 1 && result.piece_count <= 6);
+    assert_string_equal(result.method, "unfold");
+    assert_relative(result.surface_area, 6 * CUBE_SIDE * CUBE_SIDE, 1e-9);
+    assert_relative(result.flat_area, 6 * CUBE_SIDE * CUBE_SIDE, 1e-9); /* every face exact */
+    assert_string_equal(result.material, "paper-0.3mm");
+    assert_true(result.sheet_count >= 1);
+    assert_true(check_sheets(output, result.sheet_count) >= result.piece_count);
+    check_report(report, result.piece_count, result.sheet_count);
+    assert_true(h.unfolded_note);
+    assert_int_equal(h.summaries, 1);
+    assert_int_equal(h.progress_after_done, 0);
+}
+
+static void test_cylinder_developed_to_svg(void **state)
+{
+    const char *directory = *state;
+    char output[512], report[512];
+    path_in(directory, "cylinder.svg", output, sizeof output);
+    path_in(directory, "cylinder.json", report, sizeof report);
+    ur_job job;
+    ur_job_init(&job, "cylinder");
+    job.radius = 30;
+    job.height = 50;
+    job.output_path = output;
+    job.report_path = report;
+    job.quiet = true; /* no notes, no summary: warnings only */
+    heard h = {0};
+    ur_job_callbacks callbacks = {&h, on_warning, on_progress, on_summary};
+    ur_job_result result;
+    ur_error error;
+    ur_status status = run_silently(&job, &callbacks, &result, &error, directory);
+    if (status != UR_OK)
+        fail_msg("ur_job_run: %s", error.message);
+    double area = 2 * M_PI * 30 * 50;
+    /* What developing the same cylinder says, with the same default options. */
+    ur_curve *circle = NULL;
+    ur_ruled cylinder;
+    assert_int_equal(ur_curve_new_circle(30, &circle, &error), UR_OK);
+    assert_int_equal(ur_ruled_cylinder(circle, ur_vec3_make(0, 0, 1), 50, &cylinder, &error),
+                     UR_OK);
+    ur_develop_options options;
+    ur_develop_options_default(&options);
+    ur_net_list nets;
+    assert_int_equal(ur_develop(&cylinder, &options, &nets, &error), UR_OK);
+    assert_int_equal(result.piece_count, nets.count);
+    ur_net_list_free(&nets);
+    ur_ruled_free(&cylinder);
+    assert_relative(result.surface_area, area, 1e-3);
+    assert_relative(result.flat_area, area, 1e-3); /* a cylinder develops without strain */
+    assert_true(result.piece_count >= 1);
+    assert_true(check_sheets(output, result.sheet_count) >= result.piece_count);
+    check_report(report, result.piece_count, result.sheet_count);
+    assert_int_equal(h.summaries, 0);
+}
+
+/* A job that cannot be made fails with a message naming no command-line flag. */
+static void test_missing_mesh_is_bad_input(void **state)
+{
+    const char *directory = *state;
+    char output[512];
+    path_in(directory, "none.svg", output, sizeof output);
+    ur_job job;
+    ur_job_init(&job, "mesh");
+    job.mesh_path = "samples/no-such-mesh.obj";
+    job.output_path = output;
+    ur_error error;
+    assert_int_equal(run_silently(&job, NULL, NULL, &error, directory), UR_ERROR_INPUT);
+    assert_non_null(strstr(error.message, "no-such-mesh.obj"));
+    assert_null(strstr(error.message, "--"));
+    assert_false(exists(output));
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test_setup_teardown(test_mesh_with_tabs_nested_to_svg, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_cylinder_developed_to_svg, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_missing_mesh_is_bad_input, setup, teardown),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
