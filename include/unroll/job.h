@@ -174,6 +174,8 @@ struct ur_job_result {
     char sheets[1024];     /* "2 sheets of 600 x 400 mm, the last leaving an offcut of ..." */
     char cutting[256];     /* ", utilisation 21.2 %, cut 3.54 m in about 4 min 6 s"; "" unknown */
     char first_file[4200]; /* the first cut file, "NAME-1.svg ... -3" for several */
+    double
+        sheets_lower_bound; /* ur_job_nest: the fewest stock sheets any layout needs; 0 unknown */
 };
 
 /*
@@ -199,5 +201,51 @@ ur_status ur_job_surface(const ur_job *job, const ur_job_callbacks *callbacks, u
  */
 ur_status ur_job_surface_with_curves(const ur_job *job, const ur_job_callbacks *callbacks,
                                      ur_ruled *ruled, ur_error *error);
+
+/* ---- Several parts nested together (a job file) -------------------------- */
+
+typedef struct ur_job_parts ur_job_parts;
+
+/* An empty set of parts (NULL when out of memory); free with ur_job_parts_free. */
+ur_job_parts *ur_job_parts_new(void);
+void ur_job_parts_free(ur_job_parts *parts);
+
+/*
+ * Makes one part's pieces as job would (quietly; its seams numbered on
+ * from the earlier parts', its pieces named after job->piece_prefix), and
+ * adds quantity copies of them, named NAME#1, NAME#2 ... when several.
+ * The part goes on the sheets of the earlier parts of its material and
+ * nesting options, else on stock of its own.  The first part's machine
+ * and material are the whole job's.
+ */
+ur_status ur_job_parts_add(ur_job_parts *parts, const ur_job *job, long quantity,
+                           const ur_job_callbacks *callbacks, ur_error *error);
+
+/*
+ * Nests every part's pieces, each kind of stock on sheets of its own, and
+ * writes them once as job says (output, formats, report; the report names
+ * surface and, as its method, name).  result: the pieces, sheets and
+ * cutting of the whole job (method "job", first_file the output path).
+ */
+ur_status ur_job_parts_run(ur_job_parts *parts, const ur_job *job, const char *surface,
+                           const char *name, const ur_job_callbacks *callbacks,
+                           ur_job_result *result, ur_error *error);
+
+/* ---- Parts drawn elsewhere (unroll nest) --------------------------------- */
+
+/*
+ * Nests pieces already cut out (read with ur_parts_import) as job says,
+ * on the machine and material it gives loaded (job->machine and
+ * job->material, required): with split, a part that fits no sheet in any
+ * turn and is longer than the room a sheet leaves is cut into parts that
+ * fit, joined again with joints; then kerf compensation (unless
+ * no_kerf_compensation), nesting, shared lines merged (merge_lines), and
+ * the cut files and report.  *pieces may be reallocated (split parts);
+ * layout receives the sheets for the caller's summary; both are the
+ * caller's to free.
+ */
+ur_status ur_job_nest(const ur_job *job, const ur_job_callbacks *callbacks, bool split,
+                      ur_piece **pieces, size_t *count, ur_layout *layout, ur_job_result *result,
+                      ur_error *error);
 
 #endif

@@ -89,6 +89,30 @@ bool cli_parse_threads(ur_job *job, const char *value);
 /* --job-name NAME: the name the files record; false after a message. */
 bool cli_parse_job_name(ur_job *job, const char *value);
 
+/*
+ * The options every command that writes cut files takes alike (surface
+ * jobs, job files' parts, nest), described once (values.c).  In a getopt
+ * table their ids are CLI_SHARED_OPTION + their index.
+ */
+typedef struct cli_option {
+    const char *name;
+    bool takes_value;
+    bool (*take)(ur_job *job, const char *value); /* false after a message naming it */
+} cli_option;
+
+enum { CLI_SHARED_OPTION = 1000 };
+
+extern const cli_option cli_shared_options[];
+extern const size_t cli_shared_option_count;
+
+/*
+ * A getopt table: own's entries (up to its {NULL}), then the shared
+ * options, then {NULL}, in at most `most` entries; returns the entries
+ * before the {NULL}.
+ */
+struct option;
+size_t cli_option_table(const struct option *own, struct option *table, size_t most);
+
 /* Whether -o and --format say which files to write; false after a message (values.c). */
 bool cli_check_output(const ur_job *job);
 

@@ -51,32 +51,13 @@ enum option_id {
     OPT_STRAIN_PNG,
     OPT_ASSEMBLY,
     OPT_ASSEMBLY_UP,
-    OPT_MACHINE,
-    OPT_MATERIAL,
     OPT_SHEET,
     OPT_METHOD,
     OPT_RULINGS,
-    OPT_REPORT,
     OPT_TOLERANCE,
     OPT_NO_SPLIT,
-    OPT_QUIET,
     OPT_ALLOWANCES,
     OPT_BRIDGES,
-    OPT_NO_KERF_COMPENSATION,
-    OPT_FORMAT,
-    OPT_DXF_VERSION,
-    OPT_DPI,
-    OPT_JOB_NAME,
-    OPT_ORDER,
-    OPT_ROTATIONS,
-    OPT_NO_HOLES,
-    OPT_MERGE_LINES,
-    OPT_ROLL,
-    OPT_SHEETS,
-    OPT_REMNANT,
-    OPT_NEST_TIME,
-    OPT_SEED,
-    OPT_THREADS,
 };
 
 static const struct option long_options[] = {
@@ -113,33 +94,14 @@ static const struct option long_options[] = {
     {"assembly", required_argument, NULL, OPT_ASSEMBLY},
     {"assembly-up", required_argument, NULL, OPT_ASSEMBLY_UP},
     {"output", required_argument, NULL, 'o'},
-    {"machine", required_argument, NULL, OPT_MACHINE},
-    {"material", required_argument, NULL, OPT_MATERIAL},
     {"sheet", required_argument, NULL, OPT_SHEET},
     {"method", required_argument, NULL, OPT_METHOD},
     {"parts", required_argument, NULL, 'n'},
     {"rulings", no_argument, NULL, OPT_RULINGS},
-    {"report", required_argument, NULL, OPT_REPORT},
     {"tolerance", required_argument, NULL, OPT_TOLERANCE},
     {"no-split", no_argument, NULL, OPT_NO_SPLIT},
-    {"quiet", no_argument, NULL, OPT_QUIET},
     {"allowances", required_argument, NULL, OPT_ALLOWANCES},
     {"bridges", required_argument, NULL, OPT_BRIDGES},
-    {"no-kerf-compensation", no_argument, NULL, OPT_NO_KERF_COMPENSATION},
-    {"format", required_argument, NULL, OPT_FORMAT},
-    {"dxf-version", required_argument, NULL, OPT_DXF_VERSION},
-    {"dpi", required_argument, NULL, OPT_DPI},
-    {"job-name", required_argument, NULL, OPT_JOB_NAME},
-    {"order", required_argument, NULL, OPT_ORDER},
-    {"rotations", required_argument, NULL, OPT_ROTATIONS},
-    {"no-holes", no_argument, NULL, OPT_NO_HOLES},
-    {"merge-lines", no_argument, NULL, OPT_MERGE_LINES},
-    {"roll", required_argument, NULL, OPT_ROLL},
-    {"sheets", required_argument, NULL, OPT_SHEETS},
-    {"remnant", required_argument, NULL, OPT_REMNANT},
-    {"nest-time", required_argument, NULL, OPT_NEST_TIME},
-    {"seed", required_argument, NULL, OPT_SEED},
-    {"threads", required_argument, NULL, OPT_THREADS},
     {"help", no_argument, NULL, 'h'},
     {NULL, 0, NULL, 0},
 };
@@ -244,6 +206,8 @@ bool cli_whole_number(const char *text, long least, long most, long *value)
 
 static const char *option_name(int id)
 {
+    if (id >= CLI_SHARED_OPTION)
+        return cli_shared_options[id - CLI_SHARED_OPTION].name;
     for (const struct option *o = long_options; o->name; o++)
         if (o->val == id)
             return o->name;
@@ -427,6 +391,8 @@ static bool take_option(ur_job *job, cli_action action, int id, const char *valu
                     action_name(action), job->command);
         return false;
     }
+    if (id >= CLI_SHARED_OPTION)
+        return cli_shared_options[id - CLI_SHARED_OPTION].take(job, value);
     double *slot = number_slot(job, id);
     if (slot)
         return parse_number(surface, id, value, slot);
@@ -525,63 +491,18 @@ static bool take_option(ur_job *job, cli_action action, int id, const char *valu
     case 'o':
         job->output_path = value;
         return true;
-    case OPT_MACHINE:
-        job->machine_name = value;
-        return true;
-    case OPT_MATERIAL:
-        job->material_name = value;
-        return true;
     case OPT_SHEET:
         return parse_sheet(surface, value, job);
     case OPT_RULINGS:
         job->draw_rulings = true;
         return true;
-    case OPT_REPORT:
-        job->report_path = value;
-        return true;
     case OPT_NO_SPLIT:
         job->develop.split = false;
-        return true;
-    case OPT_QUIET:
-        job->quiet = true;
         return true;
     case OPT_ALLOWANCES:
         return cli_parse_allowances(job, value);
     case OPT_BRIDGES:
         return cli_parse_bridges(job, value);
-    case OPT_NO_KERF_COMPENSATION:
-        job->no_kerf_compensation = true;
-        return true;
-    case OPT_FORMAT:
-        return cli_parse_formats(job, value);
-    case OPT_DXF_VERSION:
-        return cli_parse_dxf_version(job, value);
-    case OPT_DPI:
-        return cli_parse_dpi(job, value);
-    case OPT_JOB_NAME:
-        return cli_parse_job_name(job, value);
-    case OPT_ORDER:
-        return cli_parse_order(job, value);
-    case OPT_ROTATIONS:
-        return cli_parse_rotations(job, value);
-    case OPT_NO_HOLES:
-        job->no_holes = true;
-        return true;
-    case OPT_MERGE_LINES:
-        job->merge_lines = true;
-        return true;
-    case OPT_ROLL:
-        return cli_parse_roll(job, value);
-    case OPT_SHEETS:
-        return cli_parse_sheet_count(job, value);
-    case OPT_REMNANT:
-        return cli_parse_remnant(job, value);
-    case OPT_NEST_TIME:
-        return cli_parse_nest_time(job, value);
-    case OPT_SEED:
-        return cli_parse_seed(job, value);
-    case OPT_THREADS:
-        return cli_parse_threads(job, value);
     case 'n':
         return parse_count(surface, value, &job->develop.rulings);
     case OPT_METHOD: {
@@ -605,7 +526,9 @@ int cli_parse_job(int argc, char **argv, cli_action action, const char *command,
     opterr = 0;
     optind = 1;
     int id;
-    while ((id = getopt_long(argc, argv, ":o:n:h", long_options, NULL)) != -1) {
+    struct option table[sizeof long_options / sizeof long_options[0] + 32];
+    cli_option_table(long_options, table, sizeof table / sizeof table[0]);
+    while ((id = getopt_long(argc, argv, ":o:n:h", table, NULL)) != -1) {
         if (id == 'h')
             return cli_print_help(job->command) == 0 ? -1 : EXIT_USAGE;
         if (id == '?' || id == ':') {

@@ -3,11 +3,14 @@
  * allowances it gets and which files it writes (--allowances, --bridges,
  * --format, --dxf-version, --dpi, --order, --rotations, --roll, --sheets,
  * --remnant, --nest-time, --threads, --seed, --job-name), each checked
- * where the option's name is known so that the message names it.
+ * where the option's name is known so that the message names it; and the
+ * table of the options every command that writes cut files takes alike
+ * (surface jobs, job files' parts and nest), described once.
  */
 #include "cli.h"
 
 #include <errno.h>
+#include <getopt.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -252,4 +255,88 @@ bool cli_check_output(const ur_job *job)
     if (status != UR_OK)
         cli_message("%s: -o: %s", job->command, error.message);
     return status == UR_OK;
+}
+
+static bool take_machine(ur_job *job, const char *value)
+{
+    job->machine_name = value;
+    return true;
+}
+
+static bool take_material(ur_job *job, const char *value)
+{
+    job->material_name = value;
+    return true;
+}
+
+static bool take_report(ur_job *job, const char *value)
+{
+    job->report_path = value;
+    return true;
+}
+
+static bool take_quiet(ur_job *job, const char *value)
+{
+    (void)value;
+    job->quiet = true;
+    return true;
+}
+
+static bool take_no_kerf_compensation(ur_job *job, const char *value)
+{
+    (void)value;
+    job->no_kerf_compensation = true;
+    return true;
+}
+
+static bool take_no_holes(ur_job *job, const char *value)
+{
+    (void)value;
+    job->no_holes = true;
+    return true;
+}
+
+static bool take_merge_lines(ur_job *job, const char *value)
+{
+    (void)value;
+    job->merge_lines = true;
+    return true;
+}
+
+const cli_option cli_shared_options[] = {
+    {"machine", true, take_machine},
+    {"material", true, take_material},
+    {"report", true, take_report},
+    {"quiet", false, take_quiet},
+    {"no-kerf-compensation", false, take_no_kerf_compensation},
+    {"format", true, cli_parse_formats},
+    {"dxf-version", true, cli_parse_dxf_version},
+    {"dpi", true, cli_parse_dpi},
+    {"job-name", true, cli_parse_job_name},
+    {"order", true, cli_parse_order},
+    {"rotations", true, cli_parse_rotations},
+    {"no-holes", false, take_no_holes},
+    {"merge-lines", false, take_merge_lines},
+    {"roll", true, cli_parse_roll},
+    {"sheets", true, cli_parse_sheet_count},
+    {"remnant", true, cli_parse_remnant},
+    {"nest-time", true, cli_parse_nest_time},
+    {"seed", true, cli_parse_seed},
+    {"threads", true, cli_parse_threads},
+};
+
+const size_t cli_shared_option_count = sizeof cli_shared_options / sizeof cli_shared_options[0];
+
+size_t cli_option_table(const struct option *own, struct option *table, size_t most)
+{
+    size_t count = 0;
+    for (; own[count].name && count + 1 < most; count++)
+        table[count] = own[count];
+    for (size_t k = 0; k < cli_shared_option_count && count + 1 < most; k++)
+        table[count++] =
+            (struct option){cli_shared_options[k].name,
+                            cli_shared_options[k].takes_value ? required_argument : no_argument,
+                            NULL, CLI_SHARED_OPTION + (int)k};
+    table[count] = (struct option){NULL, 0, NULL, 0};
+    return count;
 }

@@ -1,11 +1,10 @@
 /*
  * test_job.c: whole jobs through the library alone (ur_job_run), as a
  * program other than unroll would run them: a cube mesh unfolded with
- * tabs, and a cylinder developed, each nested and written as SVG with a
- * report into a directory under /tmp.  The files are read back with
- * libxml2 and jansson; the figures are checked against the cube's and
- * the cylinder's known areas and against the unfolding's own count of
- * pieces; nothing may reach stderr.
+ * tabs, a cylinder developed, and two parts nested together as a job
+ * file's, each written as SVG with a report into a directory under /tmp.  The files are read back
+ * with libxml2 and jansson; the figures are checked against the cube's and the cylinder's known
+ * areas and against the unfolding's own count of pieces; nothing may reach stderr.
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -252,6 +251,73 @@ static void test_cylinder_developed_to_svg(void **state)
     assert_int_equal(h.summaries, 0);
 }
 
+/* How many of the report's pieces are named name. */
+static size_t pieces_named(const char *report_path, const char *name)
+{
+    json_error_t json_error;
+    json_t *report = json_load_file(report_path, 0, &json_error);
+    assert_non_null(report);
+    json_t *pieces = json_object_get(report, "pieces");
+    size_t count = 0;
+    for (size_t k = 0; k < json_array_size(pieces); k++) {
+        const char *piece = json_string_value(json_object_get(json_array_get(pieces, k), "name"));
+        count += piece && strcmp(piece, name) == 0;
+    }
+    json_decref(report);
+    return count;
+}
+
+/*
+ * Two parts nested together, as a job file's: two drums and a cone, each
+ * made as its own job would make it, on shared sheets with one report.
+ */
+static void test_parts_nested_together(void **state)
+{
+    const char *directory = *state;
+    char alone[512], output[512], report[512];
+    path_in(directory, "alone.svg", alone, sizeof alone);
+    path_in(directory, "parts.svg", output, sizeof output);
+    path_in(directory, "parts.json", report, sizeof report);
+    ur_job drum, cone;
+    ur_job_init(&drum, "cylinder");
+    drum.radius = 30;
+    drum.height = 50;
+    drum.quiet = true;
+    drum.output_path = alone;
+    ur_job_result result;
+    ur_error error;
+    assert_int_equal(ur_job_run(&drum, NULL, &result, &error), UR_OK);
+    size_t drum_pieces = result.piece_count;
+    double drum_area = result.surface_area;
+    ur_job_init(&cone, "cone");
+    cone.radius = 40;
+    cone.height = 30;
+    cone.piece_prefix = "cap";
+    drum.piece_prefix = "drum";
+
+    ur_job_parts *parts = ur_job_parts_new();
+    assert_non_null(parts);
+    assert_int_equal(ur_job_parts_add(parts, &drum, 2, NULL, &error), UR_OK);
+    assert_int_equal(ur_job_parts_add(parts, &cone, 1, NULL, &error), UR_OK);
+    ur_job layout = drum;
+    layout.output_path = output;
+    layout.report_path = report;
+    ur_status status = ur_job_parts_run(parts, &layout, "job", "test", NULL, &result, &error);
+    ur_job_parts_free(parts);
+    if (status != UR_OK)
+        fail_msg("ur_job_parts_run: %s", error.message);
+    assert_true(result.piece_count > 2 * drum_pieces);
+    /* the cone's lateral area, pi r s, with s the slant height */
+    double cone_area = M_PI * 40 * sqrt(40 * 40 + 30 * 30);
+    assert_relative(result.surface_area, 2 * drum_area + cone_area, 1e-3);
+    check_sheets(output, result.sheet_count);
+    check_report(report, result.piece_count, result.sheet_count);
+    assert_int_equal(pieces_named(report, "drum-P1#1"), 1);
+    assert_int_equal(pieces_named(report, "drum-P1#2"), 1);
+    assert_int_equal(pieces_named(report, "cap-P1"), 1);
+    unlink(alone);
+}
+
 /* A job that cannot be made fails with a message naming no command-line flag. */
 static void test_missing_mesh_is_bad_input(void **state)
 {
@@ -274,6 +340,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_setup_teardown(test_mesh_with_tabs_nested_to_svg, setup, teardown),
         cmocka_unit_test_setup_teardown(test_cylinder_developed_to_svg, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_parts_nested_together, setup, teardown),
         cmocka_unit_test_setup_teardown(test_missing_mesh_is_bad_input, setup, teardown),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
