@@ -120,6 +120,24 @@ typedef struct ur_job {
     const char *job_name; /* the name the files record; NULL: the surface's */
 } ur_job;
 
+/*
+ * The settings a job takes by name (a command line's options, a job
+ * file's <option name="..." value="..."/>): how it is nested, which
+ * files it writes, on which profiles.  A setting without a value is a
+ * flag.  ur_job_option_name gives the name of setting index ("format",
+ * "nest-time", ...) and whether it takes a value; NULL past the last.
+ */
+size_t ur_job_option_count(void);
+const char *ur_job_option_name(size_t index, bool *takes_value);
+
+/*
+ * Sets the named setting (one of ur_job_option_name's) from its value (NULL
+ * for a flag); the value is borrowed.  UR_ERROR_INPUT with a message
+ * saying what is wrong with the value, not naming the setting (the
+ * caller says where it came from).
+ */
+ur_status ur_job_option_set(ur_job *job, const char *name, const char *value, ur_error *error);
+
 /* The defaults: co2-60w, plywood-3mm, the allowances the job needs, every number unset. */
 void ur_job_init(ur_job *job, const char *surface);
 
@@ -174,8 +192,8 @@ struct ur_job_result {
     char sheets[1024];     /* "2 sheets of 600 x 400 mm, the last leaving an offcut of ..." */
     char cutting[256];     /* ", utilisation 21.2 %, cut 3.54 m in about 4 min 6 s"; "" unknown */
     char first_file[4200]; /* the first cut file, "NAME-1.svg ... -3" for several */
-    double
-        sheets_lower_bound; /* ur_job_nest: the fewest stock sheets any layout needs; 0 unknown */
+    /* ur_job_nest: the fewest stock sheets any layout needs; 0 unknown */
+    double sheets_lower_bound;
 };
 
 /*

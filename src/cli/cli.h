@@ -72,38 +72,11 @@ int cli_exit_status(const ur_error *error);
 ur_job_callbacks cli_callbacks(const ur_job *job);
 
 /*
- * --format LIST, --dxf-version 12|2000, --dpi N, ... (values.c): false
- * after a message naming the option.
- */
-bool cli_parse_formats(ur_job *job, const char *value);
-bool cli_parse_dxf_version(ur_job *job, const char *value);
-bool cli_parse_dpi(ur_job *job, const char *value);
-bool cli_parse_order(ur_job *job, const char *value);
-bool cli_parse_rotations(ur_job *job, const char *value);
-bool cli_parse_roll(ur_job *job, const char *value);
-bool cli_parse_sheet_count(ur_job *job, const char *value);
-bool cli_parse_remnant(ur_job *job, const char *value);
-bool cli_parse_nest_time(ur_job *job, const char *value);
-bool cli_parse_seed(ur_job *job, const char *value);
-bool cli_parse_threads(ur_job *job, const char *value);
-/* --job-name NAME: the name the files record; false after a message. */
-bool cli_parse_job_name(ur_job *job, const char *value);
-
-/*
  * The options every command that writes cut files takes alike (surface
- * jobs, job files' parts, nest), described once (values.c).  In a getopt
- * table their ids are CLI_SHARED_OPTION + their index.
+ * jobs, job files' parts, nest): the library's settings (ur_job_option_name),
+ * in a getopt table with ids CLI_SHARED_OPTION + their index (values.c).
  */
-typedef struct cli_option {
-    const char *name;
-    bool takes_value;
-    bool (*take)(ur_job *job, const char *value); /* false after a message naming it */
-} cli_option;
-
 enum { CLI_SHARED_OPTION = 1000 };
-
-extern const cli_option cli_shared_options[];
-extern const size_t cli_shared_option_count;
 
 /*
  * A getopt table: own's entries (up to its {NULL}), then the shared
@@ -112,6 +85,9 @@ extern const size_t cli_shared_option_count;
  */
 struct option;
 size_t cli_option_table(const struct option *own, struct option *table, size_t most);
+
+/* Takes the shared option id's value into job; false after a message naming it. */
+bool cli_take_shared_option(ur_job *job, int id, const char *value);
 
 /* Whether -o and --format say which files to write; false after a message (values.c). */
 bool cli_check_output(const ur_job *job);

@@ -92,7 +92,7 @@ static bool take_nest_option(nest_job *n, int id, const char *value)
 {
     ur_job *job = &n->job;
     if (id >= CLI_SHARED_OPTION)
-        return cli_shared_options[id - CLI_SHARED_OPTION].take(job, value);
+        return cli_take_shared_option(job, id, value);
     switch (id) {
     case 'o':
         job->output_path = value;

@@ -207,7 +207,7 @@ bool cli_whole_number(const char *text, long least, long most, long *value)
 static const char *option_name(int id)
 {
     if (id >= CLI_SHARED_OPTION)
-        return cli_shared_options[id - CLI_SHARED_OPTION].name;
+        return ur_job_option_name((size_t)(id - CLI_SHARED_OPTION), NULL);
     for (const struct option *o = long_options; o->name; o++)
         if (o->val == id)
             return o->name;
@@ -392,7 +392,7 @@ static bool take_option(ur_job *job, cli_action action, int id, const char *valu
         return false;
     }
     if (id >= CLI_SHARED_OPTION)
-        return cli_shared_options[id - CLI_SHARED_OPTION].take(job, value);
+        return cli_take_shared_option(job, id, value);
     double *slot = number_slot(job, id);
     if (slot)
         return parse_number(surface, id, value, slot);

@@ -42,7 +42,7 @@ void job_warn(const job_run *run, const char *format, ...)
 {
     if (!run->callbacks.warning)
         return;
-    char message[2048];
+    char message[8192]; /* a warning names pieces and paths: room for many */
     va_list args;
     va_start(args, format);
     vsnprintf(message, sizeof message, format, args);
