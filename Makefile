@@ -57,7 +57,8 @@ LDLIBS_ALL = $(shell $(PKG_CONFIG) --libs $(PACKAGES)) -lcholmod -lhersheyfont -
 LDFLAGS_ALL = $(SANITIZE_FLAGS) $(LDFLAGS)
 
 LIB_SOURCES = $(wildcard src/base/*.c src/geom/*.c src/core/*.c src/surface/*.c src/develop/*.c \
-	src/analyze/*.c src/mesh/*.c src/flatten/*.c src/allow/*.c src/nest/*.c src/io/*.c src/out/*.c)
+	src/analyze/*.c src/mesh/*.c src/flatten/*.c src/allow/*.c src/nest/*.c src/io/*.c src/out/*.c \
+	src/job/*.c)
 CLI_SOURCES = $(wildcard src/cli/*.c)
 UNIT_SOURCES = $(wildcard tests/unit/test_*.c)
 BENCH_SOURCES = $(wildcard bench/*.c)

@@ -134,6 +134,15 @@ UR_API void ur_context_message(const ur_context *context, ur_message_kind kind, 
     ;
 
 /*
+ * Where profiles are searched: a NULL-terminated list of directories,
+ * borrowed (it must outlive the context's use), as ur_profile_find takes
+ * it; NULL for none.  The library reads no environment and no working
+ * directory of its own: the caller says where.
+ */
+UR_API void ur_context_set_profile_roots(ur_context *context, const char *const *roots);
+UR_API const char *const *ur_context_profile_roots(const ur_context *context);
+
+/*
  * For tests only: every write to a file the library writes in this context
  * fails with EIO once bytes bytes in all have gone to such files, as on a
  * full disk; a negative count lifts the limit.
@@ -148,7 +157,8 @@ UR_API void ur_context_fail_writes_after(ur_context *context, long long bytes);
  * files of a whole run appear together or not at all.  Sets nest: only the
  * outermost end renames, and a set that any end refused (commit false) is
  * removed.  ur_output_set_end fails, renaming nothing, when context was
- * cancelled.  context must not be NULL.
+ * cancelled.  With a NULL context there is no set: each file is renamed
+ * into place as it is complete, and both calls do nothing.
  */
 UR_API void ur_output_set_begin(ur_context *context);
 UR_API ur_status ur_output_set_end(ur_context *context, bool commit, ur_error *error);

@@ -315,37 +315,37 @@ UR_API ur_status ur_mesh_import_buffer(const char *name, const void *data, size_
  * a value, a path (already made relative to the working directory: the job
  * file's directory joined in front) or neither (a flag).
  */
-typedef struct ur_job_option {
+typedef struct ur_job_file_option {
     char name[64];
     char value[2048];
     bool has_value;
     int line; /* in the job file, for messages */
-} ur_job_option;
+} ur_job_file_option;
 
-typedef struct ur_job_part {
+typedef struct ur_job_file_part {
     char surface[16];  /* cylinder, cone, ..., mesh */
     char name[64];     /* "" when not given */
     long quantity;     /* 1 when not given */
     char file[2048];   /* a mesh part's file, relative to the working directory; "" otherwise */
     char material[64]; /* the part's own material, "" for the job's */
-    ur_job_option *options; /* owned */
+    ur_job_file_option *options; /* owned */
     size_t option_count;
     int line;
-} ur_job_part;
+} ur_job_file_part;
 
-typedef struct ur_job {
+typedef struct ur_job_file {
     char name[64];
     char source[1024];              /* the job file */
     char machine[64], material[64]; /* "" when not given */
-    ur_job_option *options;         /* owned: for every part, the sheets and the files */
+    ur_job_file_option *options;         /* owned: for every part, the sheets and the files */
     size_t option_count;
-    ur_job_part *parts; /* owned */
+    ur_job_file_part *parts; /* owned */
     size_t part_count;
     char output_directory[2048]; /* relative to the working directory; "." when not given */
     char output_name[64];
     char formats[64]; /* "" when not given: SVG */
     char report[64];  /* a file name in the output directory; "" for none */
-} ur_job;
+} ur_job_file;
 
 /*
  * Reads and validates a job file (schema/job.rng from the profile roots;
@@ -354,18 +354,19 @@ typedef struct ur_job {
  * relative to the job file and come back joined to its directory.  Refuses
  * with UR_ERROR_INPUT, "FILE:LINE: message": a file that is not well formed
  * or not valid (the schema's message), two parts of one name, a path too
- * long.  Free with ur_job_free.
+ * long.  Free with ur_job_file_free.
  */
-UR_API ur_status ur_job_read(const char *const *roots, const char *path, ur_job *job,
-                             ur_error *error);
+UR_API ur_status ur_job_file_read(const char *const *roots, const char *path, ur_job_file *job,
+                                  ur_error *error);
 
 /*
  * The same for a job file's size bytes in memory; name stands for the file
  * (messages name it, and relative paths are joined to its directory).
  */
-UR_API ur_status ur_job_read_buffer(const char *const *roots, const char *name, const void *data,
-                                    size_t size, ur_job *job, ur_error *error);
-UR_API void ur_job_free(ur_job *job);
+UR_API ur_status ur_job_file_read_buffer(const char *const *roots, const char *name,
+                                         const void *data, size_t size, ur_job_file *job,
+                                         ur_error *error);
+UR_API void ur_job_file_free(ur_job_file *job);
 
 /* ---- Parts from SVG and DXF -------------------------------------------- */
 

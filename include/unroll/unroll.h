@@ -17,5 +17,6 @@
 #include "unroll/nest.h"
 #include "unroll/io.h"
 #include "unroll/out.h"
+#include "unroll/job.h"
 
 #endif

@@ -275,7 +275,8 @@ ur_status ur_atomic_close(ur_atomic_file *file, ur_error *error)
 
 void ur_output_set_begin(ur_context *context)
 {
-    context->output_set.depth++;
+    if (context)
+        context->output_set.depth++;
 }
 
 void ur_atomic_set_discard(ur_context *context)
@@ -289,6 +290,8 @@ void ur_atomic_set_discard(ur_context *context)
 
 ur_status ur_output_set_end(ur_context *context, bool commit, ur_error *error)
 {
+    if (!context)
+        return UR_OK;
     if (context->output_set.depth == 0)
         return ur_error_set(error, UR_ERROR_INTERNAL, "an output set ended that was not begun");
     if (!commit)

@@ -74,6 +74,18 @@ void ur_context_message(const ur_context *context, ur_message_kind kind, const c
     context->message_handler(context->message_data, kind, message);
 }
 
+void ur_context_set_profile_roots(ur_context *context, const char *const *roots)
+{
+    if (context)
+        context->profile_roots = roots;
+}
+
+const char *const *ur_context_profile_roots(const ur_context *context)
+{
+    static const char *const none[] = {NULL};
+    return context && context->profile_roots ? context->profile_roots : none;
+}
+
 void ur_context_fail_writes_after(ur_context *context, long long bytes)
 {
     if (context)

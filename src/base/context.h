@@ -35,6 +35,7 @@ struct ur_context {
     long long write_budget;
     ur_message_handler message_handler;
     void *message_data;
+    const char *const *profile_roots; /* borrowed; NULL for none */
 };
 
 #endif

@@ -6,8 +6,6 @@
  * Both print their findings on standard output.
  */
 #include "cli.h"
-#include "domain.h"
-#include "surfaces.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -23,7 +21,7 @@ static bool to_stdout(const char *path)
 }
 
 /* Where the findings go: standard output, unless a file written there takes it. */
-static FILE *findings(const cli_job *job)
+static FILE *findings(const ur_job *job)
 {
     bool taken = to_stdout(job->report_path) || to_stdout(job->png_path) ||
                  to_stdout(job->csv_path) || to_stdout(job->regression_path) ||
@@ -37,7 +35,7 @@ static double shown(double value)
     return value == 0 ? 0.0 : value;
 }
 
-static bool outputs_possible(const cli_job *job)
+static bool outputs_possible(const ur_job *job)
 {
     const char *options[] = {"--png", "--csv", "--report", "--regression", "--adjusted-rail"};
     const char *paths[] = {job->png_path, job->csv_path, job->report_path, job->regression_path,
@@ -96,7 +94,7 @@ static void print_regression(FILE *out, const ur_analysis *analysis)
                 inside ? "passes through the surface" : "outside the surface", inside, known);
 }
 
-static void print_analysis(const cli_job *job, ur_ruled *ruled, const ur_analysis *analysis)
+static void print_analysis(const ur_job *job, ur_ruled *ruled, const ur_analysis *analysis)
 {
     FILE *out = findings(job);
     const ur_ruling_analysis *worst = &analysis->rulings[analysis->worst_ruling];
@@ -127,7 +125,7 @@ static void print_analysis(const cli_job *job, ur_ruled *ruled, const ur_analysi
     print_regression(out, analysis);
 }
 
-static int analysis_outputs(const cli_job *job, ur_ruled *ruled, const ur_analysis *analysis)
+static int analysis_outputs(const ur_job *job, ur_ruled *ruled, const ur_analysis *analysis)
 {
     ur_error error;
     char title[256];
@@ -145,26 +143,20 @@ static int analysis_outputs(const cli_job *job, ur_ruled *ruled, const ur_analys
     return 0;
 }
 
-int cli_analyze(const cli_job *job)
+int cli_analyze(const ur_job *job)
 {
     if (!outputs_possible(job))
         return EXIT_IO;
     ur_ruled ruled;
-    cli_adjusted_rail adjusted;
-    int code = cli_build_surface(job, &ruled, &adjusted);
-    if (code) {
-        free(adjusted.points);
-        return code;
+    ur_job_callbacks callbacks = cli_callbacks(job);
+    ur_error error;
+    if (ur_job_surface_with_curves(job, &callbacks, &ruled, &error) != UR_OK) {
+        cli_message("%s", error.message);
+        return cli_exit_status(&error);
     }
-    ur_vec3 *edge = NULL;
-    size_t edge_count = 0;
-    if (job->strict)
-        code = cli_check_domain(job, &ruled);
-    if (!code && job->regression_path)
-        code = cli_regression_points(job, &ruled, &edge, &edge_count);
+    int code = 0;
     ur_analysis analysis;
     memset(&analysis, 0, sizeof analysis);
-    ur_error error;
     if (!code && ur_analyze(&ruled, NULL, &analysis, &error) != UR_OK) {
         cli_message("analyze: %s", error.message);
         code = cli_exit_status(&error);
@@ -173,12 +165,6 @@ int cli_analyze(const cli_job *job)
         print_analysis(job, &ruled, &analysis);
         code = analysis_outputs(job, &ruled, &analysis);
     }
-    if (!code && edge)
-        code = cli_write_regression(job, edge, edge_count);
-    if (!code)
-        code = cli_write_adjusted_rail(job, &adjusted);
-    free(edge);
-    free(adjusted.points);
     ur_analysis_free(&analysis);
     ur_ruled_free(&ruled);
     return code;
@@ -188,7 +174,7 @@ int cli_analyze(const cli_job *job)
 
 enum { COMPARE_FIRST = 8, COMPARE_LAST = 4096 };
 
-static void print_table(const cli_job *job, const ur_compare_table *table)
+static void print_table(const ur_job *job, const ur_compare_table *table)
 {
     FILE *out = findings(job);
     fprintf(out,
@@ -207,16 +193,19 @@ static void print_table(const cli_job *job, const ur_compare_table *table)
     }
 }
 
-int cli_compare(const cli_job *job)
+int cli_compare(const ur_job *job)
 {
     if (!outputs_possible(job))
         return EXIT_IO;
     ur_ruled ruled;
-    int code = cli_build_surface(job, &ruled, NULL);
-    if (code)
-        return code;
-    ur_compare_table table = {NULL, 0, 0.0};
+    ur_job_callbacks callbacks = cli_callbacks(job);
     ur_error error;
+    if (ur_job_surface(job, &callbacks, &ruled, &error) != UR_OK) {
+        cli_message("%s", error.message);
+        return cli_exit_status(&error);
+    }
+    int code = 0;
+    ur_compare_table table = {NULL, 0, 0.0};
     ur_status status = ur_ruled_check(&ruled, &error);
     if (status == UR_OK)
         status = ur_compare(&ruled, COMPARE_FIRST, COMPARE_LAST, &table, &error);

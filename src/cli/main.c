@@ -186,7 +186,7 @@ int cli_print_help(const char *subcommand)
 
 static int surface_command(int argc, char **argv)
 {
-    cli_job job;
+    ur_job job;
     int code = cli_parse_job(argc, argv, CLI_DEVELOP, argv[0], &job);
     if (code == -1)
         return 0; /* help was asked for and printed */
@@ -211,7 +211,7 @@ static int study_command(int argc, char **argv, cli_action action)
                     command, command, command);
         return EXIT_USAGE;
     }
-    cli_job job;
+    ur_job job;
     int code = cli_parse_job(argc - 1, argv + 1, action, command, &job);
     if (code == -1)
         return 0;
@@ -262,8 +262,9 @@ int main(int argc, char **argv)
 {
     if (!cli_context_open()) {
         cli_message("out of memory");
-        return EXIT_INTERNAL;
+        return EXIT_MEMORY;
     }
+    ur_context_set_profile_roots(cli_context(), cli_profile_roots());
     if (!cli_catch_signals()) {
         cli_message("cannot install the SIGINT and SIGTERM handlers");
         cli_context_close();

@@ -18,61 +18,23 @@
 #include "unroll/out.h"
 
 enum nest_option {
-    NEST_MACHINE = 256,
-    NEST_MATERIAL,
-    NEST_SHEET,
+    NEST_SHEET = 256,
     NEST_UNITS,
     NEST_COPIES,
     NEST_MARGIN,
     NEST_SPACING,
-    NEST_REPORT,
-    NEST_QUIET,
-    NEST_NO_KERF,
-    NEST_FORMAT,
-    NEST_DXF_VERSION,
-    NEST_DPI,
-    NEST_JOB_NAME,
-    NEST_ORDER,
-    NEST_ROTATIONS,
-    NEST_NO_HOLES,
-    NEST_MERGE_LINES,
     NEST_NO_SPLIT,
-    NEST_ROLL,
-    NEST_SHEETS,
-    NEST_REMNANT,
-    NEST_NEST_TIME,
-    NEST_SEED,
-    NEST_THREADS,
     NEST_STRICT,
 };
 
 static const struct option nest_options[] = {
     {"output", required_argument, NULL, 'o'},
-    {"machine", required_argument, NULL, NEST_MACHINE},
-    {"material", required_argument, NULL, NEST_MATERIAL},
     {"sheet", required_argument, NULL, NEST_SHEET},
     {"units", required_argument, NULL, NEST_UNITS},
     {"copies", required_argument, NULL, NEST_COPIES},
     {"margin", required_argument, NULL, NEST_MARGIN},
     {"spacing", required_argument, NULL, NEST_SPACING},
-    {"report", required_argument, NULL, NEST_REPORT},
-    {"quiet", no_argument, NULL, NEST_QUIET},
-    {"no-kerf-compensation", no_argument, NULL, NEST_NO_KERF},
-    {"format", required_argument, NULL, NEST_FORMAT},
-    {"dxf-version", required_argument, NULL, NEST_DXF_VERSION},
-    {"dpi", required_argument, NULL, NEST_DPI},
-    {"job-name", required_argument, NULL, NEST_JOB_NAME},
-    {"order", required_argument, NULL, NEST_ORDER},
-    {"rotations", required_argument, NULL, NEST_ROTATIONS},
-    {"no-holes", no_argument, NULL, NEST_NO_HOLES},
-    {"merge-lines", no_argument, NULL, NEST_MERGE_LINES},
     {"no-split", no_argument, NULL, NEST_NO_SPLIT},
-    {"roll", required_argument, NULL, NEST_ROLL},
-    {"sheets", required_argument, NULL, NEST_SHEETS},
-    {"remnant", required_argument, NULL, NEST_REMNANT},
-    {"nest-time", required_argument, NULL, NEST_NEST_TIME},
-    {"seed", required_argument, NULL, NEST_SEED},
-    {"threads", required_argument, NULL, NEST_THREADS},
     {"strict", no_argument, NULL, NEST_STRICT},
     {"help", no_argument, NULL, 'h'},
     {NULL, 0, NULL, 0},
@@ -80,7 +42,7 @@ static const struct option nest_options[] = {
 
 /* What the command line says beyond what a surface job holds. */
 typedef struct nest_job {
-    cli_job job;    /* output, profiles, sheet, margin, spacing, report, quiet */
+    ur_job job;     /* output, profiles, sheet, margin, spacing, report, quiet */
     double unit_mm; /* --units: mm per unit of a file that gives none; 0 when not given */
     long copies;    /* --copies: of every part, unless FILE:N says otherwise */
     char **files;   /* argv's file arguments, FILE or FILE:N */
@@ -110,7 +72,7 @@ static bool parse_length(const char *what, const char *value, double *length)
     return true;
 }
 
-static bool parse_sheet_size(const char *value, cli_job *job)
+static bool parse_sheet_size(const char *value, ur_job *job)
 {
     char *end = NULL;
     double width = strtod(value, &end);
@@ -128,7 +90,9 @@ static bool parse_sheet_size(const char *value, cli_job *job)
 
 static bool take_nest_option(nest_job *n, int id, const char *value)
 {
-    cli_job *job = &n->job;
+    ur_job *job = &n->job;
+    if (id >= CLI_SHARED_OPTION)
+        return cli_take_shared_option(job, id, value);
     switch (id) {
     case 'o':
         job->output_path = value;
@@ -138,12 +102,6 @@ static bool take_nest_option(nest_job *n, int id, const char *value)
         return true;
     case NEST_STRICT:
         n->strict = true;
-        return true;
-    case NEST_MACHINE:
-        job->machine_name = value;
-        return true;
-    case NEST_MATERIAL:
-        job->material_name = value;
         return true;
     case NEST_SHEET:
         return parse_sheet_size(value, job);
@@ -159,45 +117,6 @@ static bool take_nest_option(nest_job *n, int id, const char *value)
         return parse_length("--margin", value, &job->margin);
     case NEST_SPACING:
         return parse_length("--spacing", value, &job->spacing);
-    case NEST_REPORT:
-        job->report_path = value;
-        return true;
-    case NEST_QUIET:
-        job->quiet = true;
-        return true;
-    case NEST_NO_KERF:
-        job->no_kerf_compensation = true;
-        return true;
-    case NEST_FORMAT:
-        return cli_parse_formats(job, value);
-    case NEST_DXF_VERSION:
-        return cli_parse_dxf_version(job, value);
-    case NEST_DPI:
-        return cli_parse_dpi(job, value);
-    case NEST_JOB_NAME:
-        return cli_parse_job_name(job, value);
-    case NEST_ORDER:
-        return cli_parse_order(job, value);
-    case NEST_ROTATIONS:
-        return cli_parse_rotations(job, value);
-    case NEST_NO_HOLES:
-        job->no_holes = true;
-        return true;
-    case NEST_MERGE_LINES:
-        job->merge_lines = true;
-        return true;
-    case NEST_ROLL:
-        return cli_parse_roll(job, value);
-    case NEST_SHEETS:
-        return cli_parse_sheet_count(job, value);
-    case NEST_REMNANT:
-        return cli_parse_remnant(job, value);
-    case NEST_NEST_TIME:
-        return cli_parse_nest_time(job, value);
-    case NEST_SEED:
-        return cli_parse_seed(job, value);
-    case NEST_THREADS:
-        return cli_parse_threads(job, value);
     default:
         return false;
     }
@@ -232,7 +151,8 @@ static int parse_nest(int argc, char **argv, nest_job *n)
 {
     memset(n, 0, sizeof *n);
     n->copies = 1;
-    cli_job *job = &n->job;
+    ur_job *job = &n->job;
+    job->context = cli_context();
     job->command = "nest";
     job->surface = "nest";
     job->machine_name = "co2-60w";
@@ -242,7 +162,9 @@ static int parse_nest(int argc, char **argv, nest_job *n)
     opterr = 0;
     optind = 1;
     int id;
-    while ((id = getopt_long(argc, argv, ":o:h", nest_options, NULL)) != -1) {
+    struct option table[sizeof nest_options / sizeof nest_options[0] + 32];
+    cli_option_table(nest_options, table, sizeof table / sizeof table[0]);
+    while ((id = getopt_long(argc, argv, ":o:h", table, NULL)) != -1) {
         if (id == 'h') {
             fputs(nest_help, stdout);
             return -1;
@@ -350,14 +272,12 @@ static const char *plural(size_t count)
     return count == 1 ? "" : "s";
 }
 
-static void print_nest_summary(const nest_job *n, const ur_machine *machine, const ur_piece *pieces,
-                               size_t count, const ur_layout *layout)
+static void print_nest_summary(const nest_job *n, const ur_job_result *result,
+                               const ur_piece *pieces, size_t count, const ur_layout *layout)
 {
     if (n->job.quiet || layout->sheet_count == 0)
         return;
-    double margin = n->job.margin >= 0 ? n->job.margin : machine->margin;
-    char cutting[256];
-    cli_describe_cutting(&n->job, machine, layout, pieces, cutting, sizeof cutting);
+    const char *cutting = result->cutting;
     const ur_sheet *stock = NULL; /* the first stock sheet, the roll on roll stock */
     for (size_t s = 0; s < layout->sheet_count; s++) {
         const ur_sheet *sheet = &layout->sheets[s];
@@ -379,10 +299,9 @@ static void print_nest_summary(const nest_job *n, const ur_machine *machine, con
                     n->job.output_path);
         return;
     }
-    char used[1024];
-    cli_describe_sheets(layout, used, sizeof used);
+    const char *used = result->sheets;
     size_t placed = count - layout->not_placed_count;
-    double bound = cli_sheets_lower_bound(pieces, count, layout, margin);
+    double bound = result->sheets_lower_bound;
     if (stock)
         cli_message("nest: %zu part%s on %s (lower bound %.0f stock sheet%s)%s -> %s", placed,
                     plural(placed), used, bound, bound == 1 ? "" : "s", cutting,
@@ -392,107 +311,8 @@ static void print_nest_summary(const nest_job *n, const ur_machine *machine, con
                     n->job.output_path);
 }
 
-/* Puts the split parts' pieces at the end of the list instead of the parts marked cut. */
-static ur_status replace_split(ur_split_parts *split, const bool *cut, ur_piece **pieces,
-                               size_t *count, ur_error *error)
-{
-    ur_piece *all = malloc((*count + split->nets.count + 1) * sizeof *all);
-    if (!all)
-        return ur_error_out_of_memory(error);
-    size_t kept = 0;
-    for (size_t k = 0; k < *count; k++)
-        if (cut[k])
-            ur_piece_free(&(*pieces)[k]);
-        else
-            all[kept++] = (*pieces)[k];
-    for (size_t k = 0; k < split->nets.count; k++) {
-        all[kept++] = split->pieces[k];
-        memset(&split->pieces[k], 0, sizeof split->pieces[k]); /* all's now */
-    }
-    free(*pieces);
-    *pieces = all;
-    *count = kept;
-    return UR_OK;
-}
-
-/*
- * A part that fits no empty stock sheet in any allowed turn, and is
- * longer than the room a sheet leaves (inside the margin, less the kerf
- * and a joint at each end), is cut into the fewest parts that fit the
- * room, each cut joined again with a joint and matching labels; --no-split
- * leaves it for nesting to refuse.  A part that fits some sheet whole
- * stays whole, however the room compares.
- */
-static ur_status split_long_parts(const nest_job *n, const ur_machine *machine,
-                                  const ur_material *material, ur_piece **pieces, size_t *count,
-                                  ur_error *error)
-{
-    cli_room room = cli_fit_room(&n->job, machine, material);
-    if (n->no_split || room.length <= 0)
-        return UR_OK;
-    ur_split_parts split = {{NULL, 0}, NULL};
-    bool *cut = calloc(*count + 1, sizeof *cut);
-    ur_status status = cut ? UR_OK : ur_error_out_of_memory(error);
-    for (size_t k = 0; status == UR_OK && k < *count; k++) {
-        const ur_path *outline = &(*pieces)[k].paths[0];
-        double length, width;
-        status = ur_outline_level_size(outline->points, outline->count, &length, &width, error);
-        if (status != UR_OK || (length <= room.length && width <= room.width) ||
-            width > room.width) /* too wide for cuts across it to help: nesting says so */
-            continue;
-        bool fits = false;
-        status = cli_piece_fits_stock(&n->job, machine, material, &(*pieces)[k], &fits, error);
-        if (status != UR_OK || fits)
-            continue;
-        size_t before = split.nets.count;
-        status = ur_part_split(&(*pieces)[k], room.length, room.width, (double)k, &split, error);
-        cut[k] = status == UR_OK;
-        if (status == UR_OK && !n->job.quiet)
-            cli_message("nest: part %s (%.0f x %.0f mm) fits no sheet in any allowed turn: cut "
-                        "into %zu to fit the %.0f x %.0f mm a sheet leaves a part with joints "
-                        "(--no-split refuses instead)",
-                        (*pieces)[k].name, length, width, split.nets.count - before, room.length,
-                        room.width);
-    }
-    int next_seam = 0;
-    if (status == UR_OK && split.nets.count > 0)
-        status = ur_net_list_find_seams(&split.nets, 1, &next_seam, error);
-    if (status == UR_OK && split.nets.count > 0)
-        status = cli_add_joints(NULL, material, &split.nets, split.pieces, NULL, error);
-    if (status == UR_OK && split.nets.count > 0)
-        status = replace_split(&split, cut, pieces, count, error);
-    ur_split_parts_free(&split);
-    free(cut);
-    return status;
-}
-
-static ur_status compensate(const nest_job *n, const ur_machine *machine,
-                            const ur_material *material, ur_piece *pieces, size_t count,
-                            ur_error *error)
-{
-    double kerf = ur_effective_kerf(machine, material);
-    ur_status status = UR_OK;
-    for (size_t k = 0; status == UR_OK && !n->job.no_kerf_compensation && k < count; k++)
-        status = ur_piece_compensate_kerf(&pieces[k], kerf, error);
-    return status;
-}
-
-static ur_status write_nest(const nest_job *n, const ur_machine *machine,
-                            const ur_material *material, const ur_piece *pieces, size_t count,
-                            const ur_layout *layout, ur_error *error)
-{
-    ur_report_context context = {.surface = "nest",
-                                 .method = "nest",
-                                 .machine = machine,
-                                 .material = material,
-                                 .sheet_path = n->job.output_path};
-    for (size_t k = 0; k < count; k++)
-        context.surface_area += pieces[k].measures.flat_area;
-    return cli_write_outputs(&n->job, machine, layout, pieces, count, &context, error);
-}
-
 /* Reads, compensates, places and writes; the pieces and layout are the caller's to free. */
-static int run_nest(const nest_job *n, ur_piece **pieces, size_t *count, ur_layout *layout)
+static int run_nest(nest_job *n, ur_piece **pieces, size_t *count, ur_layout *layout)
 {
     ur_machine machine;
     ur_material material;
@@ -505,23 +325,16 @@ static int run_nest(const nest_job *n, ur_piece **pieces, size_t *count, ur_layo
     int code = read_files(n, pieces, count);
     if (code)
         return code;
-    ur_status status = split_long_parts(n, &machine, &material, pieces, count, &error);
-    if (status == UR_OK)
-        status = compensate(n, &machine, &material, *pieces, *count, &error);
-    if (status == UR_OK)
-        status = cli_place_pieces(&n->job, &machine, &material, *pieces, *count, layout, &error);
-    if (status == UR_OK)
-        status = cli_merge_lines(&n->job, layout, *pieces, *count, &error);
-    if (status == UR_OK) {
-        cli_allowance_warnings(&n->job, *pieces, *count);
-        cli_not_placed_warning(&n->job, layout, *pieces);
-        status = write_nest(n, &machine, &material, *pieces, *count, layout, &error);
-    }
-    if (status != UR_OK) {
+    n->job.machine = &machine;
+    n->job.material = &material;
+    ur_job_callbacks callbacks = cli_callbacks(&n->job);
+    ur_job_result result;
+    if (ur_job_nest(&n->job, &callbacks, !n->no_split, pieces, count, layout, &result, &error) !=
+        UR_OK) {
         cli_message("nest: %s", error.message);
         return cli_exit_status(&error);
     }
-    print_nest_summary(n, &machine, *pieces, *count, layout);
+    print_nest_summary(n, &result, *pieces, *count, layout);
     return 0;
 }
 

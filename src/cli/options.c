@@ -51,32 +51,13 @@ enum option_id {
     OPT_STRAIN_PNG,
     OPT_ASSEMBLY,
     OPT_ASSEMBLY_UP,
-    OPT_MACHINE,
-    OPT_MATERIAL,
     OPT_SHEET,
     OPT_METHOD,
     OPT_RULINGS,
-    OPT_REPORT,
     OPT_TOLERANCE,
     OPT_NO_SPLIT,
-    OPT_QUIET,
     OPT_ALLOWANCES,
     OPT_BRIDGES,
-    OPT_NO_KERF_COMPENSATION,
-    OPT_FORMAT,
-    OPT_DXF_VERSION,
-    OPT_DPI,
-    OPT_JOB_NAME,
-    OPT_ORDER,
-    OPT_ROTATIONS,
-    OPT_NO_HOLES,
-    OPT_MERGE_LINES,
-    OPT_ROLL,
-    OPT_SHEETS,
-    OPT_REMNANT,
-    OPT_NEST_TIME,
-    OPT_SEED,
-    OPT_THREADS,
 };
 
 static const struct option long_options[] = {
@@ -113,33 +94,14 @@ static const struct option long_options[] = {
     {"assembly", required_argument, NULL, OPT_ASSEMBLY},
     {"assembly-up", required_argument, NULL, OPT_ASSEMBLY_UP},
     {"output", required_argument, NULL, 'o'},
-    {"machine", required_argument, NULL, OPT_MACHINE},
-    {"material", required_argument, NULL, OPT_MATERIAL},
     {"sheet", required_argument, NULL, OPT_SHEET},
     {"method", required_argument, NULL, OPT_METHOD},
     {"parts", required_argument, NULL, 'n'},
     {"rulings", no_argument, NULL, OPT_RULINGS},
-    {"report", required_argument, NULL, OPT_REPORT},
     {"tolerance", required_argument, NULL, OPT_TOLERANCE},
     {"no-split", no_argument, NULL, OPT_NO_SPLIT},
-    {"quiet", no_argument, NULL, OPT_QUIET},
     {"allowances", required_argument, NULL, OPT_ALLOWANCES},
     {"bridges", required_argument, NULL, OPT_BRIDGES},
-    {"no-kerf-compensation", no_argument, NULL, OPT_NO_KERF_COMPENSATION},
-    {"format", required_argument, NULL, OPT_FORMAT},
-    {"dxf-version", required_argument, NULL, OPT_DXF_VERSION},
-    {"dpi", required_argument, NULL, OPT_DPI},
-    {"job-name", required_argument, NULL, OPT_JOB_NAME},
-    {"order", required_argument, NULL, OPT_ORDER},
-    {"rotations", required_argument, NULL, OPT_ROTATIONS},
-    {"no-holes", no_argument, NULL, OPT_NO_HOLES},
-    {"merge-lines", no_argument, NULL, OPT_MERGE_LINES},
-    {"roll", required_argument, NULL, OPT_ROLL},
-    {"sheets", required_argument, NULL, OPT_SHEETS},
-    {"remnant", required_argument, NULL, OPT_REMNANT},
-    {"nest-time", required_argument, NULL, OPT_NEST_TIME},
-    {"seed", required_argument, NULL, OPT_SEED},
-    {"threads", required_argument, NULL, OPT_THREADS},
     {"help", no_argument, NULL, 'h'},
     {NULL, 0, NULL, 0},
 };
@@ -244,6 +206,8 @@ bool cli_whole_number(const char *text, long least, long most, long *value)
 
 static const char *option_name(int id)
 {
+    if (id >= CLI_SHARED_OPTION)
+        return ur_job_option_name((size_t)(id - CLI_SHARED_OPTION), NULL);
     for (const struct option *o = long_options; o->name; o++)
         if (o->val == id)
             return o->name;
@@ -309,7 +273,7 @@ static bool parse_corners(const char *surface, const char *text, ur_vec3 corners
     return true;
 }
 
-static bool parse_sheet(const char *surface, const char *text, cli_job *job)
+static bool parse_sheet(const char *surface, const char *text, ur_job *job)
 {
     char *end;
     errno = 0;
@@ -340,7 +304,7 @@ static bool parse_count(const char *surface, const char *text, size_t *count)
     return true;
 }
 
-static bool parse_iterations(cli_job *job, const char *text)
+static bool parse_iterations(ur_job *job, const char *text)
 {
     long value;
     if (!cli_whole_number(text, 1, 100000, &value)) {
@@ -353,11 +317,11 @@ static bool parse_iterations(cli_job *job, const char *text)
 }
 
 /* --surface: which layer of the material the 3D surface is; only a development uses it. */
-static bool parse_surface_layer(cli_job *job, const char *text)
+static bool parse_surface_layer(ur_job *job, cli_action action, const char *text)
 {
-    if (job->action != CLI_DEVELOP) {
+    if (action != CLI_DEVELOP) {
         cli_message("%s: --surface does not apply to '%s' (see 'unroll help %s')", job->command,
-                    action_name(job->action), job->command);
+                    action_name(action), job->command);
         return false;
     }
     job->surface_layer = ur_surface_layer_from_name(text);
@@ -368,7 +332,7 @@ static bool parse_surface_layer(cli_job *job, const char *text)
 }
 
 /* --assembly FILE: its extension says the format, and only two are drawn. */
-static bool parse_assembly(cli_job *job, const char *path)
+static bool parse_assembly(ur_job *job, const char *path)
 {
     size_t length = strlen(path);
     const char *extension = length > 4 ? path + length - 4 : "";
@@ -382,7 +346,7 @@ static bool parse_assembly(cli_job *job, const char *path)
     return true;
 }
 
-static double *number_slot(cli_job *job, int id)
+static double *number_slot(ur_job *job, int id)
 {
     switch (id) {
     case OPT_SCALE:
@@ -413,7 +377,7 @@ static double *number_slot(cli_job *job, int id)
 }
 
 /* Handles one option; returns false after printing a message. */
-static bool take_option(cli_job *job, int id, const char *value)
+static bool take_option(ur_job *job, cli_action action, int id, const char *value)
 {
     const char *surface = job->surface;
     if (id >= OPT_RADIUS && id <= OPT_MAX_STRAIN && !accepts(surface, option_name(id))) {
@@ -422,11 +386,13 @@ static bool take_option(cli_job *job, int id, const char *value)
         return false;
     }
     const char *name = id == 'o' ? "output" : id == 'n' ? "parts" : option_name(id);
-    if (foreign_to_action(job->action, name)) {
+    if (foreign_to_action(action, name)) {
         cli_message("%s: --%s does not apply to '%s' (see 'unroll help %s')", job->command, name,
-                    action_name(job->action), job->command);
+                    action_name(action), job->command);
         return false;
     }
+    if (id >= CLI_SHARED_OPTION)
+        return cli_take_shared_option(job, id, value);
     double *slot = number_slot(job, id);
     if (slot)
         return parse_number(surface, id, value, slot);
@@ -463,7 +429,7 @@ static bool take_option(cli_job *job, int id, const char *value)
     case OPT_CORNERS:
         return job->has_corners = parse_corners(surface, value, job->corners);
     case OPT_SURFACE:
-        return parse_surface_layer(job, value);
+        return parse_surface_layer(job, action, value);
     case OPT_UNITS:
         if (ur_length_unit_from_name(value) < 0) {
             cli_message("%s: --units: '%s' is not one of mm, cm, m, in", job->command, value);
@@ -525,63 +491,18 @@ static bool take_option(cli_job *job, int id, const char *value)
     case 'o':
         job->output_path = value;
         return true;
-    case OPT_MACHINE:
-        job->machine_name = value;
-        return true;
-    case OPT_MATERIAL:
-        job->material_name = value;
-        return true;
     case OPT_SHEET:
         return parse_sheet(surface, value, job);
     case OPT_RULINGS:
         job->draw_rulings = true;
         return true;
-    case OPT_REPORT:
-        job->report_path = value;
-        return true;
     case OPT_NO_SPLIT:
         job->develop.split = false;
-        return true;
-    case OPT_QUIET:
-        job->quiet = true;
         return true;
     case OPT_ALLOWANCES:
         return cli_parse_allowances(job, value);
     case OPT_BRIDGES:
         return cli_parse_bridges(job, value);
-    case OPT_NO_KERF_COMPENSATION:
-        job->no_kerf_compensation = true;
-        return true;
-    case OPT_FORMAT:
-        return cli_parse_formats(job, value);
-    case OPT_DXF_VERSION:
-        return cli_parse_dxf_version(job, value);
-    case OPT_DPI:
-        return cli_parse_dpi(job, value);
-    case OPT_JOB_NAME:
-        return cli_parse_job_name(job, value);
-    case OPT_ORDER:
-        return cli_parse_order(job, value);
-    case OPT_ROTATIONS:
-        return cli_parse_rotations(job, value);
-    case OPT_NO_HOLES:
-        job->no_holes = true;
-        return true;
-    case OPT_MERGE_LINES:
-        job->merge_lines = true;
-        return true;
-    case OPT_ROLL:
-        return cli_parse_roll(job, value);
-    case OPT_SHEETS:
-        return cli_parse_sheet_count(job, value);
-    case OPT_REMNANT:
-        return cli_parse_remnant(job, value);
-    case OPT_NEST_TIME:
-        return cli_parse_nest_time(job, value);
-    case OPT_SEED:
-        return cli_parse_seed(job, value);
-    case OPT_THREADS:
-        return cli_parse_threads(job, value);
     case 'n':
         return parse_count(surface, value, &job->develop.rulings);
     case OPT_METHOD: {
@@ -598,35 +519,17 @@ static bool take_option(cli_job *job, int id, const char *value)
     }
 }
 
-static void job_defaults(cli_job *job, cli_action action, const char *command, const char *surface)
+int cli_parse_job(int argc, char **argv, cli_action action, const char *command, ur_job *job)
 {
-    memset(job, 0, sizeof *job);
-    job->action = action;
+    ur_job_init(job, argv[0]);
+    job->context = cli_context();
     job->command = command;
-    job->surface = surface;
-    job->radius = job->height = job->top_radius = job->pitch = NAN;
-    job->turns = job->width = job->offset = job->cut = NAN;
-    job->scale = NAN;
-    job->max_strain = NAN;
-    job->flatten = -1;
-    job->surface_layer = -1;
-    job->allowances_auto = true;
-    job->bridges = CLI_BRIDGES_UNSET;
-    job->margin = job->spacing = -1;
-    job->level = true;
-    job->nest_time = NAN;
-    job->machine_name = "co2-60w";
-    job->material_name = "plywood-3mm";
-    ur_develop_options_default(&job->develop);
-}
-
-int cli_parse_job(int argc, char **argv, cli_action action, const char *command, cli_job *job)
-{
-    job_defaults(job, action, command, argv[0]);
     opterr = 0;
     optind = 1;
     int id;
-    while ((id = getopt_long(argc, argv, ":o:n:h", long_options, NULL)) != -1) {
+    struct option table[sizeof long_options / sizeof long_options[0] + 32];
+    cli_option_table(long_options, table, sizeof table / sizeof table[0]);
+    while ((id = getopt_long(argc, argv, ":o:n:h", table, NULL)) != -1) {
         if (id == 'h')
             return cli_print_help(job->command) == 0 ? -1 : EXIT_USAGE;
         if (id == '?' || id == ':') {
@@ -636,7 +539,7 @@ int cli_parse_job(int argc, char **argv, cli_action action, const char *command,
                         job->command, word, job->command);
             return EXIT_USAGE;
         }
-        if (!take_option(job, id, optarg))
+        if (!take_option(job, action, id, optarg))
             return EXIT_USAGE;
     }
     if (optind < argc && strcmp(job->surface, "mesh") == 0)
@@ -645,11 +548,11 @@ int cli_parse_job(int argc, char **argv, cli_action action, const char *command,
         cli_message("%s: unexpected argument '%s'", job->command, argv[optind]);
         return EXIT_USAGE;
     }
-    if (job->action == CLI_DEVELOP && !job->output_path) {
+    if (action == CLI_DEVELOP && !job->output_path) {
         cli_message("%s: no output file: give -o FILE.svg", job->command);
         return EXIT_USAGE;
     }
-    if (job->action == CLI_DEVELOP && !cli_check_output(job))
+    if (action == CLI_DEVELOP && !cli_check_output(job))
         return EXIT_USAGE;
     if (!(job->develop.tolerance > 0)) {
         cli_message("%s: --tolerance must be positive", job->command);

@@ -3,7 +3,7 @@
  * material, options for every part, the parts (any surface the command
  * line can describe, with a quantity), and the output.  The file is
  * validated against schema/job.rng; this file turns the tree into an
- * ur_job and makes its paths relative to where unroll runs.
+ * ur_job_file and makes its paths relative to where unroll runs.
  */
 #include "unroll/io.h"
 
@@ -56,14 +56,14 @@ static ur_status too_long(const char *path, xmlNodePtr node, ur_error *error)
                         xmlGetLineNo(node));
 }
 
-static ur_status read_option(const char *path, xmlNodePtr node, ur_job_option **options,
+static ur_status read_option(const char *path, xmlNodePtr node, ur_job_file_option **options,
                              size_t *count, ur_error *error)
 {
-    ur_job_option *grown = realloc(*options, (*count + 1) * sizeof *grown);
+    ur_job_file_option *grown = realloc(*options, (*count + 1) * sizeof *grown);
     if (!grown)
         return ur_error_out_of_memory(error);
     *options = grown;
-    ur_job_option *option = &grown[*count];
+    ur_job_file_option *option = &grown[*count];
     memset(option, 0, sizeof *option);
     option->line = (int)xmlGetLineNo(node);
     char file[sizeof option->value];
@@ -78,13 +78,13 @@ static ur_status read_option(const char *path, xmlNodePtr node, ur_job_option **
     return UR_OK;
 }
 
-static ur_status read_part(const char *path, xmlNodePtr node, ur_job *job, ur_error *error)
+static ur_status read_part(const char *path, xmlNodePtr node, ur_job_file *job, ur_error *error)
 {
-    ur_job_part *grown = realloc(job->parts, (job->part_count + 1) * sizeof *grown);
+    ur_job_file_part *grown = realloc(job->parts, (job->part_count + 1) * sizeof *grown);
     if (!grown)
         return ur_error_out_of_memory(error);
     job->parts = grown;
-    ur_job_part *part = &grown[job->part_count++];
+    ur_job_file_part *part = &grown[job->part_count++];
     memset(part, 0, sizeof *part);
     part->line = (int)xmlGetLineNo(node);
     char quantity[32], file[sizeof part->file];
@@ -109,7 +109,7 @@ static ur_status read_part(const char *path, xmlNodePtr node, ur_job *job, ur_er
     return status;
 }
 
-static ur_status read_output(const char *path, xmlNodePtr node, ur_job *job, ur_error *error)
+static ur_status read_output(const char *path, xmlNodePtr node, ur_job_file *job, ur_error *error)
 {
     char directory[sizeof job->output_directory];
     if (!attribute(node, "name", job->output_name, sizeof job->output_name) ||
@@ -122,7 +122,7 @@ static ur_status read_output(const char *path, xmlNodePtr node, ur_job *job, ur_
     return UR_OK;
 }
 
-static ur_status read_job(const char *path, xmlNodePtr root, ur_job *job, ur_error *error)
+static ur_status read_job(const char *path, xmlNodePtr root, ur_job_file *job, ur_error *error)
 {
     if (!attribute(root, "name", job->name, sizeof job->name))
         return too_long(path, root, error);
@@ -145,7 +145,7 @@ static ur_status read_job(const char *path, xmlNodePtr root, ur_job *job, ur_err
 
 /* Either the file at path (text NULL) or size bytes of text named path. */
 static ur_status read_job_from(const char *const *roots, const char *path, const char *text,
-                               size_t size, ur_job *job, ur_error *error)
+                               size_t size, ur_job_file *job, ur_error *error)
 {
     memset(job, 0, sizeof *job);
     if (ur_c_snprintf(job->source, sizeof job->source, "%s", path) >= (int)sizeof job->source)
@@ -157,22 +157,22 @@ static ur_status read_job_from(const char *const *roots, const char *path, const
         status = read_job(path, xmlDocGetRootElement(doc), job, error);
     xmlFreeDoc(doc);
     if (status != UR_OK)
-        ur_job_free(job);
+        ur_job_file_free(job);
     return status;
 }
 
-ur_status ur_job_read(const char *const *roots, const char *path, ur_job *job, ur_error *error)
+ur_status ur_job_file_read(const char *const *roots, const char *path, ur_job_file *job, ur_error *error)
 {
     return read_job_from(roots, path, NULL, 0, job, error);
 }
 
-ur_status ur_job_read_buffer(const char *const *roots, const char *name, const void *data,
-                             size_t size, ur_job *job, ur_error *error)
+ur_status ur_job_file_read_buffer(const char *const *roots, const char *name, const void *data,
+                             size_t size, ur_job_file *job, ur_error *error)
 {
     return read_job_from(roots, name, data, size, job, error);
 }
 
-void ur_job_free(ur_job *job)
+void ur_job_file_free(ur_job_file *job)
 {
     for (size_t k = 0; k < job->part_count; k++)
         free(job->parts[k].options);

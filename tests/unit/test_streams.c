@@ -265,7 +265,8 @@ static void test_profiles_from_a_buffer(void **state)
     free(text);
 }
 
-static void assert_same_options(const ur_job_option *a, const ur_job_option *b, size_t count)
+static void assert_same_options(const ur_job_file_option *a, const ur_job_file_option *b,
+                                size_t count)
 {
     for (size_t i = 0; i < count; i++) {
         assert_string_equal(a[i].name, b[i].name);
@@ -282,9 +283,9 @@ static void test_job_from_a_buffer(void **state)
     ur_error error;
     size_t size;
     char *text = read_all(path, &size);
-    ur_job from_file, from_buffer;
-    assert_int_equal(ur_job_read(profile_roots, path, &from_file, &error), UR_OK);
-    assert_int_equal(ur_job_read_buffer(profile_roots, path, text, size, &from_buffer, &error),
+    ur_job_file from_file, from_buffer;
+    assert_int_equal(ur_job_file_read(profile_roots, path, &from_file, &error), UR_OK);
+    assert_int_equal(ur_job_file_read_buffer(profile_roots, path, text, size, &from_buffer, &error),
                      UR_OK);
     assert_true(from_file.part_count > 0);
     assert_int_equal(from_file.part_count, from_buffer.part_count);
@@ -299,8 +300,8 @@ static void test_job_from_a_buffer(void **state)
         assert_same_options(from_file.parts[k].options, from_buffer.parts[k].options,
                             from_file.parts[k].option_count);
     }
-    ur_job_free(&from_file);
-    ur_job_free(&from_buffer);
+    ur_job_file_free(&from_file);
+    ur_job_file_free(&from_buffer);
     free(text);
 }
 

@@ -1,98 +1,33 @@
 /*
  * allowances.c: what the material needs besides the net's outline, as the
- * command line asks for it (--allowances, --bridges,
- * --no-kerf-compensation) and sized from the material and machine
- * profiles.  The library adds each allowance (allow.h); this file decides
- * which, in what order, and tells the user what could not be done.
+ * job asks for it (allowances, bridges, kerf compensation) and sized from
+ * the material and machine profiles.  allow.h adds each allowance; this
+ * file decides which, in what order, and warns of what could not be done.
  */
-#include "cli.h"
+#include "stages.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-static const struct {
-    const char *name;
-    unsigned bit;
-} allowance_names[] = {
-    {"tabs", CLI_ALLOW_TABS},         {"kerfing", CLI_ALLOW_KERFING},
-    {"overlaps", CLI_ALLOW_OVERLAPS}, {"bending", CLI_ALLOW_BENDING},
-    {"bridges", CLI_ALLOW_BRIDGES},
-};
-
-static const size_t allowance_name_count = sizeof allowance_names / sizeof allowance_names[0];
-
-/* One name of a LIST, length bytes long. */
-static bool add_allowance(cli_job *job, const char *name, size_t length)
+unsigned job_allowances_chosen(const job_run *run, const ur_machine *machine)
 {
-    for (size_t k = 0; k < allowance_name_count; k++)
-        if (strlen(allowance_names[k].name) == length &&
-            strncmp(allowance_names[k].name, name, length) == 0) {
-            job->allowances |= allowance_names[k].bit;
-            return true;
-        }
-    cli_message("%s: --allowances: '%.*s' is not one of tabs, kerfing, overlaps, bending, bridges "
-                "(or give auto or none)",
-                job->command, (int)length, name);
-    return false;
-}
-
-bool cli_parse_allowances(cli_job *job, const char *value)
-{
-    job->allowances = 0;
-    job->allowances_auto = strcmp(value, "auto") == 0;
-    if (job->allowances_auto || strcmp(value, "none") == 0)
-        return true;
-    const char *start = value;
-    for (;;) {
-        const char *comma = strchr(start, ',');
-        size_t length = comma ? (size_t)(comma - start) : strlen(start);
-        if (!add_allowance(job, start, length))
-            return false;
-        if (!comma)
-            return true;
-        start = comma + 1;
-    }
-}
-
-bool cli_parse_bridges(cli_job *job, const char *value)
-{
-    if (strcmp(value, "auto") == 0) {
-        job->bridges = -1;
-        return true;
-    }
-    if (strcmp(value, "none") == 0) {
-        job->bridges = 0;
-        return true;
-    }
-    long count;
-    if (!cli_whole_number(value, 1, 1000, &count)) {
-        cli_message("%s: --bridges: '%s' is not auto, none or a count from 1 to 1000", job->command,
-                    value);
-        return false;
-    }
-    job->bridges = count;
-    return true;
-}
-
-unsigned cli_allowances_chosen(const cli_job *job, const ur_machine *machine)
-{
-    unsigned set = job->allowances;
-    if (job->allowances_auto) {
-        set = CLI_ALLOW_TABS | CLI_ALLOW_KERFING | CLI_ALLOW_OVERLAPS | CLI_ALLOW_BENDING;
+    unsigned set = run->job.allowances;
+    if (run->job.allowances_auto) {
+        set = UR_ALLOW_TABS | UR_ALLOW_KERFING | UR_ALLOW_OVERLAPS | UR_ALLOW_BENDING;
         if (machine->bridges_by_default)
-            set |= CLI_ALLOW_BRIDGES;
+            set |= UR_ALLOW_BRIDGES;
     }
-    if (job->bridges == 0)
-        set &= ~(unsigned)CLI_ALLOW_BRIDGES;
-    else if (job->bridges != CLI_BRIDGES_UNSET)
-        set |= CLI_ALLOW_BRIDGES;
+    if (run->job.bridges == 0)
+        set &= ~(unsigned)UR_ALLOW_BRIDGES;
+    else if (run->job.bridges != UR_JOB_BRIDGES_UNSET)
+        set |= UR_ALLOW_BRIDGES;
     return set;
 }
 
-bool cli_makes_joints(const cli_job *job)
+bool job_makes_joints(const job_run *run)
 {
-    return job->allowances_auto || (job->allowances & CLI_ALLOW_TABS);
+    return run->job.allowances_auto || (run->job.allowances & UR_ALLOW_TABS);
 }
 
 static ur_status add_relief(unsigned set, const ur_material *material, const ur_net_list *nets,
@@ -104,8 +39,8 @@ static ur_status add_relief(unsigned set, const ur_material *material, const ur_
         .opening = material->kerfing_opening,
         .margin = material->kerfing_margin,
         .darts = material->overlap == UR_OVERLAP_DART,
-        .kerfing = (set & CLI_ALLOW_KERFING) != 0,
-        .overlaps = (set & CLI_ALLOW_OVERLAPS) != 0,
+        .kerfing = (set & UR_ALLOW_KERFING) != 0,
+        .overlaps = (set & UR_ALLOW_OVERLAPS) != 0,
     };
     ur_status status = UR_OK;
     for (size_t k = 0; status == UR_OK && k < count; k++)
@@ -113,7 +48,7 @@ static ur_status add_relief(unsigned set, const ur_material *material, const ur_
     return status;
 }
 
-double cli_smallest_bend_radius(const ur_material *material)
+double job_smallest_bend_radius(const ur_material *material)
 {
     return material->grain == UR_GRAIN_ALONG ? material->bend_radius_with_grain
                                              : material->bend_radius_across_grain;
@@ -124,7 +59,7 @@ double cli_smallest_bend_radius(const ur_material *material)
  * three kerfs of the laser (in this material; 0.2 mm when it gives none),
  * the usual rule for what survives the cut and the bending.
  */
-double cli_min_web(const ur_machine *machine, const ur_material *material)
+double job_min_web(const ur_machine *machine, const ur_material *material)
 {
     if (material->min_web > 0)
         return material->min_web;
@@ -138,7 +73,7 @@ static ur_status add_bending(const ur_machine *machine, const ur_material *mater
                              size_t count, ur_error *error)
 {
     ur_bending_options options = {
-        .min_radius = cli_smallest_bend_radius(material),
+        .min_radius = job_smallest_bend_radius(material),
         .router = machine->kind == UR_MACHINE_ROUTER,
         .groove_width = ur_effective_kerf(machine, material),
         .groove_depth = material->thickness - material->groove_skin,
@@ -146,7 +81,7 @@ static ur_status add_bending(const ur_machine *machine, const ur_material *mater
         .hinge_connection = material->hinge_connection,
         .hinge_distance = material->hinge_distance,
         .facet_angle = material->facet_angle,
-        .min_web = cli_min_web(machine, material),
+        .min_web = job_min_web(machine, material),
         .kerf = machine->kind == UR_MACHINE_LASER ? ur_effective_kerf(machine, material) : 0.0,
         .thickness = material->thickness,
     };
@@ -158,9 +93,9 @@ static ur_status add_bending(const ur_machine *machine, const ur_material *mater
     return status;
 }
 
-ur_status cli_add_joints(const ur_machine *machine, const ur_material *material,
+ur_status job_add_joints(const ur_machine *machine, const ur_material *material,
                          const ur_net_list *nets, ur_piece *pieces, ur_splice_list *splices,
-                         ur_error *error)
+                         const ur_context *context, ur_error *error)
 {
     ur_font *font = NULL;
     ur_status status = ur_font_open(NULL, &font, error);
@@ -179,7 +114,7 @@ ur_status cli_add_joints(const ur_machine *machine, const ur_material *material,
         .lap_kerfs = machine != NULL,
         .lap_kerf_margin =
             machine && machine->kind == UR_MACHINE_LASER ? material->hinge_connection : 0.0,
-        .context = cli_context(),
+        .context = context,
     };
     status = ur_pieces_add_joints(pieces, nets, &options, error);
     ur_font_close(font);
@@ -194,7 +129,7 @@ ur_status cli_add_joints(const ur_machine *machine, const ur_material *material,
 static ur_status keep_kerfs_off_joints(const ur_machine *machine, const ur_material *material,
                                        ur_piece *piece, size_t first, ur_error *error)
 {
-    double web = cli_min_web(machine, material);
+    double web = job_min_web(machine, material);
     double clearance = 0.5 * ur_effective_kerf(machine, material) + web;
     size_t trimmed = 0;
     return ur_piece_keep_kerfs_off_joints(piece, first, clearance, web, &trimmed, error);
@@ -218,18 +153,18 @@ static ur_status append_splices(ur_splice_list *splices, ur_piece **pieces, size
     return UR_OK;
 }
 
-ur_status cli_allowances_before_placing(const cli_job *job, const ur_machine *machine,
+ur_status job_allowances_before_placing(const job_run *run, const ur_machine *machine,
                                         const ur_material *material, const ur_net_list *nets,
                                         ur_ruled *const *surfaces, ur_piece **pieces, size_t *count,
                                         ur_error *error)
 {
-    unsigned set = cli_allowances_chosen(job, machine);
+    unsigned set = job_allowances_chosen(run, machine);
     ur_status status = UR_OK;
-    if (set & (CLI_ALLOW_KERFING | CLI_ALLOW_OVERLAPS))
+    if (set & (UR_ALLOW_KERFING | UR_ALLOW_OVERLAPS))
         status = add_relief(set, material, nets, *pieces, *count, error);
-    if (status == UR_OK && surfaces && (set & CLI_ALLOW_BENDING))
+    if (status == UR_OK && surfaces && (set & UR_ALLOW_BENDING))
         status = add_bending(machine, material, nets, surfaces, *pieces, *count, error);
-    if (status == UR_OK && (set & CLI_ALLOW_TABS)) {
+    if (status == UR_OK && (set & UR_ALLOW_TABS)) {
         ur_splice_list splices = {NULL, 0};
         size_t *first = ur_alloc_array(*count ? *count : 1, sizeof *first, error);
         for (size_t k = 0; first && k < *count; k++)
@@ -239,10 +174,10 @@ ur_status cli_allowances_before_placing(const cli_job *job, const ur_machine *ma
          * strip for each would be hundreds of pieces (a 100,000-face
          * sphere: 955), so they are said, to join by hand, as in papercraft.
          */
-        bool mesh = strcmp(job->command, "mesh") == 0;
-        status =
-            first ? cli_add_joints(machine, material, nets, *pieces, mesh ? NULL : &splices, error)
-                  : UR_ERROR_INTERNAL;
+        bool mesh = strcmp(run->job.command, "mesh") == 0;
+        status = first ? job_add_joints(machine, material, nets, *pieces, mesh ? NULL : &splices,
+                                        run->job.context, error)
+                       : UR_ERROR_INTERNAL;
         for (size_t k = 0; status == UR_OK && k < *count; k++)
             status = keep_kerfs_off_joints(machine, material, &(*pieces)[k], first[k], error);
         free(first);
@@ -251,12 +186,12 @@ ur_status cli_allowances_before_placing(const cli_job *job, const ur_machine *ma
         ur_splice_list_free(&splices);
     }
     double kerf = ur_effective_kerf(machine, material);
-    for (size_t k = 0; status == UR_OK && !job->no_kerf_compensation && k < *count; k++)
+    for (size_t k = 0; status == UR_OK && !run->job.no_kerf_compensation && k < *count; k++)
         status = ur_piece_compensate_kerf(&(*pieces)[k], kerf, error);
     return status;
 }
 
-ur_status cli_allowances_after_placing(const cli_job *job, const ur_machine *machine,
+ur_status job_allowances_after_placing(const job_run *run, const ur_machine *machine,
                                        const ur_layout *layout, ur_piece *pieces, size_t count,
                                        ur_error *error)
 {
@@ -268,14 +203,14 @@ ur_status cli_allowances_after_placing(const cli_job *job, const ur_machine *mac
                                      atan2(placement->transform.sine, placement->transform.cosine));
         }
     ur_status status = UR_OK;
-    if (cli_allowances_chosen(job, machine) & CLI_ALLOW_BRIDGES) {
-        size_t bridges = job->bridges > 0 ? (size_t)job->bridges : 0;
+    if (job_allowances_chosen(run, machine) & UR_ALLOW_BRIDGES) {
+        size_t bridges = run->job.bridges > 0 ? (size_t)run->job.bridges : 0;
         bool router = machine->kind == UR_MACHINE_ROUTER;
         for (size_t k = 0; status == UR_OK && k < count; k++)
             status =
                 ur_piece_add_bridges(&pieces[k], bridges, machine->bridge_width, router, error);
     }
-    return status == UR_OK ? cli_merge_lines(job, layout, pieces, count, error) : status;
+    return status == UR_OK ? job_merge_lines(run, layout, pieces, count, error) : status;
 }
 
 /*
@@ -283,9 +218,9 @@ ur_status cli_allowances_after_placing(const cli_job *job, const ur_machine *mac
  * and how many more there are (all are in the report), so that a strongly
  * strained piece does not bury the summary.
  */
-void cli_allowance_warnings(const cli_job *job, const ur_piece *pieces, size_t count)
+void job_allowance_warnings(const job_run *run, const ur_piece *pieces, size_t count)
 {
-    if (job->quiet)
+    if (run->job.quiet)
         return;
     for (size_t k = 0; k < count; k++)
         for (int kind = 0; kind < UR_ALLOWANCE_KIND_COUNT; kind++) {
@@ -303,11 +238,11 @@ void cli_allowance_warnings(const cli_job *job, const ur_piece *pieces, size_t c
             if (!first)
                 continue;
             if (more)
-                cli_message("%s: warning: piece %s: %s (and %zu more %s warning%s in the report)",
-                            job->command, pieces[k].name, first->reason, more,
-                            ur_allowance_kind_name((ur_allowance_kind)kind), more == 1 ? "" : "s");
+                job_warn(run, "%s: warning: piece %s: %s (and %zu more %s warning%s in the report)",
+                         run->job.command, pieces[k].name, first->reason, more,
+                         ur_allowance_kind_name((ur_allowance_kind)kind), more == 1 ? "" : "s");
             else
-                cli_message("%s: warning: piece %s: %s", job->command, pieces[k].name,
-                            first->reason);
+                job_warn(run, "%s: warning: piece %s: %s", run->job.command, pieces[k].name,
+                         first->reason);
         }
 }

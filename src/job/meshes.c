@@ -6,7 +6,7 @@
  * that carries its strain; a mesh from a file is by default first cut into
  * charts that each lie flat within the material's strain (ur_flatten_charts).
  */
-#include "cli.h"
+#include "stages.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -21,62 +21,52 @@
 /* Triangulation of a ruled surface for flattening: rulings along, parts across. */
 enum { RULED_ALONG = 96, RULED_ACROSS = 24 };
 
-static int fail(const cli_job *job, const ur_error *error)
+static ur_status fail(const job_run *run, const ur_error *error)
 {
-    cli_message("%s: %s", job->command, error->message);
-    return cli_exit_status(error);
+    return job_fail(run, error->status, "%s: %s", run->job.command, error->message);
 }
 
-/*
- * On a terminal, long flattening shows a progress line on stderr that is
- * overwritten in place and cleared at the end; --quiet or a pipe shows none.
- */
-static void show_progress(void *context, size_t iteration, double energy)
+/* Long flattening reports its progress, and its end, to the progress callback. */
+static void report_flattening(void *context, size_t iteration, double energy)
 {
-    const cli_job *job = context;
-    fprintf(stderr, "\runroll: %s: flattening, ARAP iteration %zu, energy %.3g   ", job->command,
-            iteration, energy);
-    fflush(stderr);
+    ur_job_progress progress = {
+        .kind = UR_JOB_FLATTENING, .iteration = iteration, .energy = energy};
+    job_progress(context, &progress);
 }
 
-static bool shows_progress(const cli_job *job)
+static void end_progress(const job_run *run)
 {
-    return !job->quiet && isatty(STDERR_FILENO);
+    ur_job_progress done = {.kind = UR_JOB_FLATTENING_DONE};
+    job_progress(run, &done);
 }
 
-static void end_progress(const cli_job *job)
-{
-    if (shows_progress(job))
-        fputs("\r\033[K", stderr);
-}
-
-static void flatten_options(const cli_job *job, ur_flatten_options *options)
+static void flatten_options(const job_run *run, ur_flatten_options *options)
 {
     ur_flatten_options_default(options);
-    options->context = cli_context();
-    if (shows_progress(job)) {
-        options->progress = show_progress;
-        options->progress_context = (void *)job;
+    options->context = run->job.context;
+    if (job_shows_progress(run)) {
+        options->progress = report_flattening;
+        options->progress_context = (void *)run;
     }
-    if (job->flatten >= 0)
-        options->method = (ur_flatten_method)job->flatten;
-    if (job->iterations > 0)
-        options->iterations = job->iterations;
+    if (run->job.flatten >= 0)
+        options->method = (ur_flatten_method)run->job.flatten;
+    if (run->job.iterations > 0)
+        options->iterations = run->job.iterations;
 }
 
 /* Appends a net to the list (taking its arrays). */
-static int append_net(const cli_job *job, ur_net_list *nets, ur_net *net)
+static ur_status append_net(const job_run *run, ur_net_list *nets, ur_net *net)
 {
     ur_error error;
     ur_net *grown = realloc(nets->nets, (nets->count + 1) * sizeof *grown);
     if (!grown) {
         ur_net_free(net);
         ur_error_out_of_memory(&error);
-        return fail(job, &error);
+        return fail(run, &error);
     }
     nets->nets = grown;
     nets->nets[nets->count++] = *net;
-    return 0;
+    return UR_OK;
 }
 
 enum { MOST_SPLITS = 6 }; /* cuts of a piece whose flat outline crosses itself or is too long */
@@ -86,32 +76,32 @@ enum { MOST_SPLITS = 6 }; /* cuts of a piece whose flat outline crosses itself o
  * a sheet, and the strain every layout is scaled into where it can be.
  */
 typedef struct flattening {
-    const cli_job *job;
+    const job_run *run;
     ur_flatten_options options;
-    cli_room room;                 /* 0 x 0: pieces are not cut to fit */
+    job_room room;                 /* 0 x 0: pieces are not cut to fit */
     const ur_strip_limits *limits; /* NULL: layouts are kept at the 3D area */
 } flattening;
 
-static int flatten_piece(const flattening *f, const ur_mesh *piece, size_t depth, ur_net_list *nets,
-                         double *area);
+static ur_status flatten_piece(const flattening *f, const ur_mesh *piece, size_t depth,
+                               ur_net_list *nets, double *area);
 
 /*
  * A piece cut into parts along its length (ur_mesh_split_along), each
  * flattened: a flat outline that crosses itself cannot be cut (2 parts),
  * nor can one longer than any sheet.
  */
-static int split_piece(const flattening *f, const ur_mesh *piece, size_t parts, size_t depth,
-                       ur_net_list *nets, double *area)
+static ur_status split_piece(const flattening *f, const ur_mesh *piece, size_t parts, size_t depth,
+                             ur_net_list *nets, double *area)
 {
     ur_error error;
     ur_mesh split;
     ur_mesh_piece *pieces = NULL;
     size_t piece_count = 0;
     if (ur_mesh_split_along(piece, parts, &split, &error) != UR_OK)
-        return fail(f->job, &error);
-    int code = ur_mesh_pieces(&split, NULL, 0, &pieces, &piece_count, &error) == UR_OK
-                   ? 0
-                   : fail(f->job, &error);
+        return fail(f->run, &error);
+    ur_status code = ur_mesh_pieces(&split, NULL, 0, &pieces, &piece_count, &error) == UR_OK
+                         ? 0
+                         : fail(f->run, &error);
     for (size_t k = 0; !code && k < piece_count; k++)
         code = flatten_piece(f, &pieces[k].mesh, depth + 1, nets, area);
     ur_mesh_pieces_free(pieces, piece_count);
@@ -134,21 +124,21 @@ static bool fits_room(const flattening *f, const ur_net *net, double *length, do
  * at a time (the cut follows the mesh's edges, so parts come out a little
  * longer than an even share), then halving whatever still does not fit.
  */
-static int split_to_fit(const flattening *f, const ur_mesh *piece, double length, double width,
-                        size_t depth, ur_net_list *nets, double *area)
+static ur_status split_to_fit(const flattening *f, const ur_mesh *piece, double length,
+                              double width, size_t depth, ur_net_list *nets, double *area)
 {
     flattening no_fit = *f; /* the trials halve only outlines that cross themselves */
-    no_fit.room = (cli_room){0, 0};
+    no_fit.room = (job_room){0, 0};
     size_t first = (size_t)fmax(2, ceil(length / f->room.length));
     for (size_t parts = first; parts < first + 3; parts++) {
         ur_net_list trial = {NULL, 0};
         double trial_area = 0, l, w;
-        int code = split_piece(&no_fit, piece, parts, depth, &trial, &trial_area);
+        ur_status code = split_piece(&no_fit, piece, parts, depth, &trial, &trial_area);
         bool all = !code;
         for (size_t k = 0; all && k < trial.count; k++)
             all = fits_room(f, &trial.nets[k], &l, &w);
         for (size_t k = 0; all && !code && k < trial.count; k++) {
-            code = append_net(f->job, nets, &trial.nets[k]);
+            code = append_net(f->run, nets, &trial.nets[k]);
             trial.nets[k] = (ur_net){0};
         }
         ur_net_list_free(&trial);
@@ -156,12 +146,13 @@ static int split_to_fit(const flattening *f, const ur_mesh *piece, double length
             return code;
         if (all) {
             *area += trial_area;
-            if (!f->job->quiet)
-                cli_message("%s: a piece %.0f x %.0f mm does not fit the %.0f x %.0f mm a sheet "
-                            "leaves it: cut into %zu along its length (--no-split refuses "
-                            "instead)",
-                            f->job->command, length, width, f->room.length, f->room.width, parts);
-            return 0;
+            if (!f->run->job.quiet)
+                job_warn(f->run,
+                         "%s: a piece %.0f x %.0f mm does not fit the %.0f x %.0f mm a sheet "
+                         "leaves it: cut into %zu along its length (--no-split refuses "
+                         "instead)",
+                         f->run->job.command, length, width, f->room.length, f->room.width, parts);
+            return UR_OK;
         }
     }
     return split_piece(f, piece, 2, depth, nets, area);
@@ -172,38 +163,38 @@ static int split_to_fit(const flattening *f, const ur_mesh *piece, double length
  * triangle is turned over, which only a piece with holes can keep) or it
  * does not fit the room, cut into parts that are each flattened again.
  */
-static int place_flat(const flattening *f, const ur_mesh *piece, const ur_flat_piece *flat,
-                      size_t depth, ur_net_list *nets, double *area)
+static ur_status place_flat(const flattening *f, const ur_mesh *piece, const ur_flat_piece *flat,
+                            size_t depth, ur_net_list *nets, double *area)
 {
     ur_net net;
     ur_error error;
     if (ur_net_from_flat(piece, flat, "", &net, &error) != UR_OK)
-        return fail(f->job, &error);
+        return fail(f->run, &error);
     if ((flat->flipped || !ur_outline_is_simple(net.outline, net.outline_count)) &&
         depth < MOST_SPLITS) {
         ur_net_free(&net);
         return split_piece(f, piece, 2, depth, nets, area);
     }
     double length, width;
-    if (f->job->develop.split && f->room.length > 0 && depth < MOST_SPLITS &&
+    if (f->run->job.develop.split && f->room.length > 0 && depth < MOST_SPLITS &&
         !fits_room(f, &net, &length, &width)) {
         ur_net_free(&net);
         return split_to_fit(f, piece, length, width, depth, nets, area);
     }
     *area += net.area_3d;
-    return append_net(f->job, nets, &net);
+    return append_net(f->run, nets, &net);
 }
 
-static int flatten_piece(const flattening *f, const ur_mesh *piece, size_t depth, ur_net_list *nets,
-                         double *area)
+static ur_status flatten_piece(const flattening *f, const ur_mesh *piece, size_t depth,
+                               ur_net_list *nets, double *area)
 {
     ur_flat_piece flat;
     ur_error error;
     if (ur_flatten(piece, &f->options, &flat, &error) != UR_OK)
-        return fail(f->job, &error);
+        return fail(f->run, &error);
     if (f->limits)
         ur_flat_piece_fit_limits(&flat, f->limits);
-    int code = place_flat(f, piece, &flat, depth, nets, area);
+    ur_status code = place_flat(f, piece, &flat, depth, nets, area);
     ur_flat_piece_free(&flat);
     return code;
 }
@@ -216,13 +207,14 @@ static void name_nets(ur_net_list *nets)
 }
 
 /* Flattens every piece (halving any whose outline crosses itself); nets P1, P2, ... */
-static int flatten_pieces(const cli_job *job, const cli_room *room, const ur_mesh_piece *pieces,
-                          size_t count, ur_net_list *nets, double *area)
+static ur_status flatten_pieces(const job_run *run, const job_room *room,
+                                const ur_mesh_piece *pieces, size_t count, ur_net_list *nets,
+                                double *area)
 {
-    flattening f = {.job = job, .room = *room};
-    flatten_options(job, &f.options);
+    flattening f = {.run = run, .room = *room};
+    flatten_options(run, &f.options);
     *area = 0.0;
-    int code = 0;
+    ur_status code = 0;
     for (size_t k = 0; !code && k < count; k++)
         code = flatten_piece(&f, &pieces[k].mesh, 0, nets, area);
     name_nets(nets);
@@ -230,18 +222,18 @@ static int flatten_pieces(const cli_job *job, const cli_room *room, const ur_mes
 }
 
 /* A seam file: a path of mesh vertices, one x,y,z per line. */
-static int read_seam(const cli_job *job, const char *path, const ur_mesh *mesh, double tolerance,
-                     ur_seam **seams, size_t *seam_count)
+static ur_status read_seam(const job_run *run, const char *path, const ur_mesh *mesh,
+                           double tolerance, ur_seam **seams, size_t *seam_count)
 {
     ur_vec3 *points = NULL;
     size_t count = 0;
     bool closed = false;
     ur_error error;
     if (ur_points_csv_read(path, 2, &points, &count, &closed, &error) != UR_OK)
-        return fail(job, &error);
+        return fail(run, &error);
     size_t *vertices = ur_alloc_array(count, sizeof *vertices, &error);
     ur_seam *grown = realloc(*seams, (*seam_count + count) * sizeof *grown);
-    int code = vertices && grown ? 0 : fail(job, &error);
+    ur_status code = vertices && grown ? UR_OK : fail(run, &error);
     if (grown)
         *seams = grown;
     for (size_t i = 0; !code && i < count; i++) {
@@ -251,9 +243,9 @@ static int read_seam(const cli_job *job, const char *path, const ur_mesh *mesh, 
                 ur_vec3_distance(mesh->vertices[best], points[i]))
                 best = v;
         if (!(ur_vec3_distance(mesh->vertices[best], points[i]) <= tolerance)) {
-            cli_message("%s: --seams %s: point %zu (%g, %g, %g) is no vertex of the mesh",
-                        job->command, path, i + 1, points[i].x, points[i].y, points[i].z);
-            code = EXIT_USAGE;
+            code = job_fail(run, UR_ERROR_INPUT,
+                            "%s: --seams %s: point %zu (%g, %g, %g) is no vertex of the mesh",
+                            run->job.command, path, i + 1, points[i].x, points[i].y, points[i].z);
         }
         vertices[i] = best;
     }
@@ -264,26 +256,27 @@ static int read_seam(const cli_job *job, const char *path, const ur_mesh *mesh, 
     return code;
 }
 
-static int read_seams(const cli_job *job, const ur_mesh *mesh, double tolerance, ur_seam **seams,
-                      size_t *count)
+static ur_status read_seams(const job_run *run, const ur_mesh *mesh, double tolerance,
+                            ur_seam **seams, size_t *count)
 {
     *seams = NULL;
     *count = 0;
-    int code = 0;
-    for (size_t k = 0; !code && k < job->seam_count; k++)
-        code = read_seam(job, job->seam_paths[k], mesh, tolerance, seams, count);
+    ur_status code = 0;
+    for (size_t k = 0; !code && k < run->job.seam_count; k++)
+        code = read_seam(run, run->job.seam_paths[k], mesh, tolerance, seams, count);
     return code;
 }
 
-static void say_repairs(const cli_job *job, const ur_mesh_repairs *repairs)
+static void say_repairs(const job_run *run, const ur_mesh_repairs *repairs)
 {
-    if (job->quiet)
+    if (run->job.quiet)
         return;
     if (repairs->welded || repairs->degenerate || repairs->isolated || repairs->flipped)
-        cli_message("%s: repaired: %zu vertices welded, %zu zero-area triangles and %zu unused "
-                    "vertices dropped, %zu triangles turned to agree with their neighbours",
-                    job->command, repairs->welded, repairs->degenerate, repairs->isolated,
-                    repairs->flipped);
+        job_warn(run,
+                 "%s: repaired: %zu vertices welded, %zu zero-area triangles and %zu unused "
+                 "vertices dropped, %zu triangles turned to agree with their neighbours",
+                 run->job.command, repairs->welded, repairs->degenerate, repairs->isolated,
+                 repairs->flipped);
 }
 
 /* A piece of an unfolding as a net: its outline, its folds, no strain. */
@@ -314,12 +307,11 @@ static ur_status net_of_unfolded(const ur_mesh *mesh, const ur_unfolded_piece *p
     return ur_net_set_faces(net, mesh, piece->triangles, piece->triangle_count, error);
 }
 
-/* The unfolding's progress line, as show_progress's. */
-static void show_unfold_progress(void *context, const char *phase, double fraction)
+/* The unfolding's progress, as report_flattening's. */
+static void report_unfolding(void *context, const char *phase, double fraction)
 {
-    const cli_job *job = context;
-    fprintf(stderr, "\runroll: %s: %s, %.0f %%   ", job->command, phase, 100 * fraction);
-    fflush(stderr);
+    ur_job_progress progress = {.kind = UR_JOB_UNFOLDING, .phase = phase, .fraction = fraction};
+    job_progress(context, &progress);
 }
 
 /*
@@ -355,51 +347,52 @@ enum { UNFOLD_STEPS = 200 };
  * length leaves one at each end already.  The search for fewer pieces takes the
  * library's default time (1 s) with the job's --seed.
  */
-static int unfold_mesh(const cli_job *job, const cli_room *room, const ur_material *material,
-                       const ur_mesh *mesh, const ur_seam *seams, size_t seam_count,
-                       ur_net_list *nets, double *area)
+static ur_status unfold_mesh(const job_run *run, const job_room *room, const ur_material *material,
+                             const ur_mesh *mesh, const ur_seam *seams, size_t seam_count,
+                             ur_net_list *nets, double *area)
 {
     double joint = (material->joint == UR_JOINT_LAP ? material->lap_width : material->tab_depth) +
                    material->thickness;
     ur_unfold_options options;
     ur_unfold_options_default(&options);
-    if (job->develop.split && room->width - 2 * joint > 0) { /* --no-split: refuse instead */
+    if (run->job.develop.split && room->width - 2 * joint > 0) { /* --no-split: refuse instead */
         options.room_length = room->length;
         options.room_width = room->width - 2 * joint;
     }
-    options.seed = (uint64_t)job->seed;
+    options.seed = (uint64_t)run->job.seed;
     options.max_steps = UNFOLD_STEPS;
     options.time_budget = UNFOLD_SECONDS;
     double tab = material->joint == UR_JOINT_LAP ? material->lap_width : material->tab_depth;
-    if (cli_makes_joints(job) && mean_edge_length(mesh) >= tab)
+    if (job_makes_joints(run) && mean_edge_length(mesh) >= tab)
         options.min_gap = tab / 2;
-    if (shows_progress(job)) {
-        options.progress = show_unfold_progress;
-        options.progress_context = (void *)job;
+    if (job_shows_progress(run)) {
+        options.progress = report_unfolding;
+        options.progress_context = (void *)run;
     }
     ur_unfolding unfolding;
     ur_error error;
     ur_status status =
         ur_unfold_with_options(mesh, seams, seam_count, &options, &unfolding, &error);
-    end_progress(job);
+    end_progress(run);
     if (status != UR_OK)
-        return fail(job, &error);
-    int code = 0;
+        return fail(run, &error);
+    ur_status code = 0;
     nets->nets = ur_alloc_array(unfolding.count, sizeof *nets->nets, &error);
     if (!nets->nets)
-        code = fail(job, &error);
+        code = fail(run, &error);
     *area = 0.0;
     for (size_t k = 0; !code && k < unfolding.count; k++) {
         nets->count++;
         if (net_of_unfolded(mesh, &unfolding.pieces[k], k, &nets->nets[k], &error) != UR_OK)
-            code = fail(job, &error);
+            code = fail(run, &error);
         *area += unfolding.pieces[k].area_3d;
     }
-    if (!code && !job->quiet)
-        cli_message("%s: unfolded into %zu piece%s (%zu of a single face): %zu folds (%zu "
-                    "valleys), %zu seams",
-                    job->command, unfolding.count, unfolding.count == 1 ? "" : "s",
-                    unfolding.single_face, unfolding.folds, unfolding.valleys, unfolding.seams);
+    if (!code && !run->job.quiet)
+        job_warn(run,
+                 "%s: unfolded into %zu piece%s (%zu of a single face): %zu folds (%zu "
+                 "valleys), %zu seams",
+                 run->job.command, unfolding.count, unfolding.count == 1 ? "" : "s",
+                 unfolding.single_face, unfolding.folds, unfolding.valleys, unfolding.seams);
     ur_unfolding_free(&unfolding);
     return code;
 }
@@ -412,22 +405,22 @@ static int unfold_mesh(const cli_job *job, const cli_room *room, const ur_materi
  * compresses the material must stretch: so the material's compression
  * bounds the map's stretch, and its stretch the map's compression.
  */
-static ur_strip_limits strip_limits(const cli_job *job, const ur_material *material)
+static ur_strip_limits strip_limits(const job_run *run, const ur_material *material)
 {
     ur_strip_limits limits = {material->max_compression, material->max_stretch, 64};
-    if (!isnan(job->max_strain))
-        limits.max_stretch = limits.max_compression = job->max_strain;
+    if (!isnan(run->job.max_strain))
+        limits.max_stretch = limits.max_compression = run->job.max_strain;
     return limits;
 }
 
 /* The strips' pieces as nets S1, S2, ... in order across the surface. */
-static int nets_of_strips(const cli_job *job, const ur_strips *strips,
-                          const ur_strip_limits *limits, ur_net_list *nets, double *area)
+static ur_status nets_of_strips(const job_run *run, const ur_strips *strips,
+                                const ur_strip_limits *limits, ur_net_list *nets, double *area)
 {
     ur_error error;
     nets->nets = ur_alloc_array(strips->count, sizeof *nets->nets, &error);
     if (!nets->nets)
-        return fail(job, &error);
+        return fail(run, &error);
     *area = 0.0;
     for (size_t k = 0; k < strips->count; k++) {
         const ur_strip *strip = &strips->strips[k];
@@ -435,39 +428,40 @@ static int nets_of_strips(const cli_job *job, const ur_strips *strips,
         snprintf(name, sizeof name, "S%zu", strip->band + 1);
         if (ur_net_from_flat(&strip->piece.mesh, &strip->flat, name, &nets->nets[k], &error) !=
             UR_OK)
-            return fail(job, &error);
+            return fail(run, &error);
         nets->count++;
         *area += nets->nets[k].area_3d;
     }
-    if (!job->quiet)
-        cli_message("%s: %zu strip%s keep the strain within %.3g %% stretch and %.3g %% "
-                    "compression (at most %.3g %% and %.3g %%)",
-                    job->command, strips->bands, strips->bands == 1 ? "" : "s",
-                    100 * limits->max_stretch, 100 * limits->max_compression,
-                    100 * strips->max_stretch, 100 * strips->max_compression);
-    return 0;
+    if (!run->job.quiet)
+        job_warn(run,
+                 "%s: %zu strip%s keep the strain within %.3g %% stretch and %.3g %% "
+                 "compression (at most %.3g %% and %.3g %%)",
+                 run->job.command, strips->bands, strips->bands == 1 ? "" : "s",
+                 100 * limits->max_stretch, 100 * limits->max_compression,
+                 100 * strips->max_stretch, 100 * strips->max_compression);
+    return UR_OK;
 }
 
 /* --flatten strips on a mesh or a ruled surface (mesh NULL), with the material's limits. */
 /* seams: the user's (--seams), on the mesh; none for a ruled surface. */
-static int flatten_in_strips(const cli_job *job, const ur_material *material, ur_mesh *mesh,
-                             const ur_seam *seams, size_t seam_count, ur_ruled *ruled,
-                             ur_net_list *nets, double *area)
+static ur_status flatten_in_strips(const job_run *run, const ur_material *material, ur_mesh *mesh,
+                                   const ur_seam *seams, size_t seam_count, ur_ruled *ruled,
+                                   ur_net_list *nets, double *area)
 {
-    ur_strip_limits limits = strip_limits(job, material);
+    ur_strip_limits limits = strip_limits(run, material);
     ur_flatten_options options;
-    flatten_options(job, &options);
+    flatten_options(run, &options);
     ur_strips strips;
     ur_error error;
     ur_status status = mesh ? ur_flatten_strips_mesh(mesh, seams, seam_count, NULL, &limits,
                                                      &options, &strips, &error)
                             : ur_flatten_strips_ruled(ruled, &limits, &options, &strips, &error);
-    end_progress(job);
+    end_progress(run);
     if (status != UR_OK) {
-        cli_message("%s: %s (--max-strain sets another limit)", job->command, error.message);
-        return cli_exit_status(&error);
+        return job_fail(run, error.status, "%s: %s (--max-strain sets another limit)",
+                        run->job.command, error.message);
     }
-    int code = nets_of_strips(job, &strips, &limits, nets, area);
+    ur_status code = nets_of_strips(run, &strips, &limits, nets, area);
     ur_strips_free(&strips);
     return code;
 }
@@ -477,79 +471,81 @@ static int flatten_in_strips(const cli_job *job, const ur_material *material, ur
  * --max-strain), each placed as a net (cut again where its outline
  * crosses itself or it does not fit the room).
  */
-static int flatten_charts(const cli_job *job, const cli_room *room, const ur_material *material,
-                          const ur_mesh *mesh, const ur_seam *seams, size_t seam_count,
-                          ur_net_list *nets, double *area)
+static ur_status flatten_charts(const job_run *run, const job_room *room,
+                                const ur_material *material, const ur_mesh *mesh,
+                                const ur_seam *seams, size_t seam_count, ur_net_list *nets,
+                                double *area)
 {
-    ur_strip_limits limits = strip_limits(job, material);
-    flattening f = {.job = job, .room = *room, .limits = &limits};
-    flatten_options(job, &f.options);
+    ur_strip_limits limits = strip_limits(run, material);
+    flattening f = {.run = run, .room = *room, .limits = &limits};
+    flatten_options(run, &f.options);
     f.options.method = UR_FLATTEN_ARAP;
     f.options.progress = NULL; /* one line per layout would only flicker */
     ur_charts charts;
     ur_error error;
     if (ur_flatten_charts(mesh, seams, seam_count, &limits, &f.options, &charts, &error) != UR_OK)
-        return fail(job, &error);
+        return fail(run, &error);
     *area = 0.0;
-    int code = 0;
+    ur_status code = 0;
     for (size_t k = 0; !code && k < charts.count; k++)
         code = place_flat(&f, &charts.charts[k].piece.mesh, &charts.charts[k].flat, 0, nets, area);
     name_nets(nets);
-    if (!code && !job->quiet)
-        cli_message("%s: %zu chart%s (cut at %zu sharp edges, then where over the strain) keep "
-                    "within %.3g %% stretch and %.3g %% compression (at most %.3g %% and %.3g %%)",
-                    job->command, charts.count, charts.count == 1 ? "" : "s", charts.sharp_edges,
-                    100 * limits.max_stretch, 100 * limits.max_compression,
-                    100 * charts.max_stretch, 100 * charts.max_compression);
+    if (!code && !run->job.quiet)
+        job_warn(run,
+                 "%s: %zu chart%s (cut at %zu sharp edges, then where over the strain) keep "
+                 "within %.3g %% stretch and %.3g %% compression (at most %.3g %% and %.3g %%)",
+                 run->job.command, charts.count, charts.count == 1 ? "" : "s", charts.sharp_edges,
+                 100 * limits.max_stretch, 100 * limits.max_compression, 100 * charts.max_stretch,
+                 100 * charts.max_compression);
     ur_charts_free(&charts);
     return code;
 }
 
 /* Cleans, cuts into disks and flattens; repairs are news only for a mesh from a file. */
-static int nets_of_mesh(const cli_job *job, const cli_room *room, const ur_material *material,
-                        ur_mesh *mesh, bool tell_repairs, ur_net_list *nets, double *area)
+static ur_status nets_of_mesh(const job_run *run, const job_room *room, const ur_material *material,
+                              ur_mesh *mesh, bool tell_repairs, ur_net_list *nets, double *area)
 {
     ur_error error;
     ur_mesh_repairs repairs;
     double size = mesh->vertex_count ? ur_mesh_size(mesh) : 0.0;
     double weld = 1e-6 * size; /* well below any modelling detail, above float rounding */
     if (ur_mesh_clean(mesh, weld, &repairs, &error) != UR_OK) {
-        if (tell_repairs && job->mesh_path) /* the library does not know the file's name */
-            ur_error_prefix(&error, "%s: ", job->mesh_path);
-        return fail(job, &error);
+        if (tell_repairs && run->job.mesh_path) /* the library does not know the file's name */
+            ur_error_prefix(&error, "%s: ", run->job.mesh_path);
+        return fail(run, &error);
     }
     if (tell_repairs)
-        say_repairs(job, &repairs);
+        say_repairs(run, &repairs);
     char what[64];
     snprintf(what, sizeof what, "flattening %zu triangles", mesh->triangle_count);
-    int code = cli_check_memory(job, what, ur_flatten_memory_estimate(mesh->triangle_count));
+    ur_status code = job_check_memory(run, what, ur_flatten_memory_estimate(mesh->triangle_count));
     if (code)
         return code;
     ur_seam *seams = NULL;
     size_t seam_count = 0;
-    code = read_seams(job, mesh, 1e-4 * size, &seams, &seam_count);
-    if (!code && job->strips) {
-        code = flatten_in_strips(job, material, mesh, seams, seam_count, NULL, nets, area);
+    code = read_seams(run, mesh, 1e-4 * size, &seams, &seam_count);
+    if (!code && run->job.strips) {
+        code = flatten_in_strips(run, material, mesh, seams, seam_count, NULL, nets, area);
         free(seams);
         return code;
     }
-    if (!code && job->unfold) {
-        code = unfold_mesh(job, room, material, mesh, seams, seam_count, nets, area);
+    if (!code && run->job.unfold) {
+        code = unfold_mesh(run, room, material, mesh, seams, seam_count, nets, area);
         free(seams);
         return code;
     }
-    if (!code && job->flatten < 0 && strcmp(job->surface, "mesh") == 0) {
-        code = flatten_charts(job, room, material, mesh, seams, seam_count, nets, area);
+    if (!code && run->job.flatten < 0 && strcmp(run->job.surface, "mesh") == 0) {
+        code = flatten_charts(run, room, material, mesh, seams, seam_count, nets, area);
         free(seams);
         return code;
     }
     ur_mesh_piece *pieces = NULL;
     size_t piece_count = 0;
     if (!code && ur_mesh_pieces(mesh, seams, seam_count, &pieces, &piece_count, &error) != UR_OK)
-        code = fail(job, &error);
+        code = fail(run, &error);
     if (!code)
-        code = flatten_pieces(job, room, pieces, piece_count, nets, area);
-    end_progress(job);
+        code = flatten_pieces(run, room, pieces, piece_count, nets, area);
+    end_progress(run);
     ur_mesh_pieces_free(pieces, piece_count);
     free(seams);
     return code;
@@ -563,9 +559,9 @@ static int nets_of_mesh(const cli_job *job, const cli_room *room, const ur_mater
 #define TINY_MODEL 10.0
 
 /* Without --units or --scale, a mesh smaller than TINY_MODEL gets a warning naming both. */
-static void warn_if_tiny(const cli_job *job, const ur_mesh *mesh)
+static void warn_if_tiny(const job_run *run, const ur_mesh *mesh)
 {
-    if (job->quiet || mesh->vertex_count == 0)
+    if (run->job.quiet || mesh->vertex_count == 0)
         return;
     ur_vec3 low = mesh->vertices[0], high = mesh->vertices[0];
     for (size_t v = 1; v < mesh->vertex_count; v++) {
@@ -576,51 +572,53 @@ static void warn_if_tiny(const cli_job *job, const ur_mesh *mesh)
     double size = fmax(high.x - low.x, fmax(high.y - low.y, high.z - low.z));
     if (!(size < TINY_MODEL) || !(size > 0))
         return;
-    cli_message("%s: warning: %s is only %.3g mm across, read in millimetres; if it was "
-                "modelled in metres (as Blender's are) give --units m (%.4g mm), in inches "
-                "--units in (%.4g mm), or --scale S",
-                job->command, job->mesh_path, size, size * 1000, size * 25.4);
+    job_warn(run,
+             "%s: warning: %s is only %.3g mm across, read in millimetres; if it was "
+             "modelled in metres (as Blender's are) give --units m (%.4g mm), in inches "
+             "--units in (%.4g mm), or --scale S",
+             run->job.command, run->job.mesh_path, size, size * 1000, size * 25.4);
 }
 
-int cli_mesh_nets(const cli_job *job, const cli_room *room, const ur_material *material,
-                  ur_net_list *nets, double *area)
+ur_status job_mesh_nets(const job_run *run, const job_room *room, const ur_material *material,
+                        ur_net_list *nets, double *area)
 {
-    if (!job->mesh_path) {
-        cli_message("mesh: give the mesh file: unroll mesh FILE -o OUT.svg");
-        return EXIT_USAGE;
+    if (!run->job.mesh_path) {
+        return job_fail(run, UR_ERROR_INPUT,
+                        "mesh: give the mesh file: unroll mesh FILE -o OUT.svg");
     }
     ur_mesh_import_options options;
     ur_mesh_import_options_default(&options);
-    if (job->unit_name)
-        options.unit = (ur_length_unit)ur_length_unit_from_name(job->unit_name);
-    if (!isnan(job->scale))
-        options.scale = job->scale;
+    if (run->job.unit_name)
+        options.unit = (ur_length_unit)ur_length_unit_from_name(run->job.unit_name);
+    if (!isnan(run->job.scale))
+        options.scale = run->job.scale;
     char what[64 + 1024];
-    snprintf(what, sizeof what, "reading %s", job->mesh_path);
-    int code = cli_check_memory(job, what, ur_mesh_import_memory_estimate(job->mesh_path));
+    snprintf(what, sizeof what, "reading %s", run->job.mesh_path);
+    ur_status code =
+        job_check_memory(run, what, ur_mesh_import_memory_estimate(run->job.mesh_path));
     if (code)
         return code;
     ur_mesh mesh;
     ur_error error;
-    if (ur_mesh_import(job->mesh_path, &options, &mesh, NULL, &error) != UR_OK)
-        return fail(job, &error);
-    if (!job->unit_name && isnan(job->scale))
-        warn_if_tiny(job, &mesh);
-    code = nets_of_mesh(job, room, material, &mesh, true, nets, area);
+    if (ur_mesh_import(run->job.mesh_path, &options, &mesh, NULL, &error) != UR_OK)
+        return fail(run, &error);
+    if (!run->job.unit_name && isnan(run->job.scale))
+        warn_if_tiny(run, &mesh);
+    code = nets_of_mesh(run, room, material, &mesh, true, nets, area);
     ur_mesh_free(&mesh);
     return code;
 }
 
-int cli_flatten_ruled(const cli_job *job, const cli_room *room, const ur_material *material,
-                      ur_ruled *ruled, ur_net_list *nets, double *area)
+ur_status job_flatten_ruled(const job_run *run, const job_room *room, const ur_material *material,
+                            ur_ruled *ruled, ur_net_list *nets, double *area)
 {
-    if (job->strips)
-        return flatten_in_strips(job, material, NULL, NULL, 0, ruled, nets, area);
+    if (run->job.strips)
+        return flatten_in_strips(run, material, NULL, NULL, 0, ruled, nets, area);
     ur_mesh mesh;
     ur_error error;
     if (ur_mesh_from_ruled(ruled, RULED_ALONG, RULED_ACROSS, &mesh, &error) != UR_OK)
-        return fail(job, &error);
-    int code = nets_of_mesh(job, room, material, &mesh, false, nets, area);
+        return fail(run, &error);
+    ur_status code = nets_of_mesh(run, room, material, &mesh, false, nets, area);
     ur_mesh_free(&mesh);
     return code;
 }

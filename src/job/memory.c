@@ -4,7 +4,7 @@
  * than failing half-way (or being killed by the system) after minutes of
  * work.
  */
-#include "cli.h"
+#include "stages.h"
 
 #include <stdint.h>
 #include <stdio.h>
@@ -54,14 +54,14 @@ static double gigabytes(size_t bytes)
     return (double)bytes / (1024.0 * 1024.0 * 1024.0);
 }
 
-int cli_check_memory(const cli_job *job, const char *what, size_t needed)
+ur_status job_check_memory(const job_run *run, const char *what, size_t needed)
 {
     size_t system = system_available(), limit = limit_left();
     size_t available = system < limit ? system : limit;
     if (available == SIZE_MAX || needed <= available)
-        return 0;
-    cli_message("%s: %s needs about %.2f GB of memory, but only %.2f GB is available%s",
-                job->command, what, gigabytes(needed), gigabytes(available),
-                limit < system ? " under this process's limit (ulimit -v)" : "");
-    return EXIT_MEMORY;
+        return UR_OK;
+    return job_fail(run, UR_ERROR_INTERNAL,
+                    "%s: %s needs about %.2f GB of memory, but only %.2f GB is available%s",
+                    run->job.command, what, gigabytes(needed), gigabytes(available),
+                    limit < system ? " under this process's limit (ulimit -v)" : "");
 }

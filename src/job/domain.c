@@ -1,10 +1,9 @@
 /*
- * domain.c: what the command says and writes about a two-rail surface
- * beyond its net: the domain of existence of a strip (with --strict), its
- * edge of regression (--regression), and the refusal to develop a surface
- * that is not developable.
+ * domain.c: what a job says and writes about a two-rail surface beyond
+ * its net: the domain of existence of a strip (refused when strict), and
+ * its edge of regression.
  */
-#include "cli.h"
+#include "stages.h"
 #include "domain.h"
 
 #include <stdio.h>
@@ -31,13 +30,13 @@ static void describe_gap(const ur_interval *gap, char *text, size_t size)
              gap->start.z, gap->end.x, gap->end.y, gap->end.z);
 }
 
-int cli_check_domain(const cli_job *job, ur_ruled *ruled)
+ur_status job_check_domain(const job_run *run, ur_ruled *ruled)
 {
     const ur_interval *gaps;
     size_t count = ur_ruled_gaps(ruled, &gaps);
     if (count == 0)
-        return 0;
-    if (job->strict) {
+        return UR_OK;
+    if (run->job.strict) {
         char text[4096];
         size_t used = 0;
         for (size_t k = 0; k < count && used < sizeof text; k++) {
@@ -47,28 +46,30 @@ int cli_check_domain(const cli_job *job, ur_ruled *ruled)
                 text + used, sizeof text - used, "%s%s (%s)", k ? "; " : "", place,
                 gaps[k].reason == UR_GAP_NO_RULING ? "no ruling" : "rulings cross");
         }
-        cli_message("%s: --strict: the strip does not exist along the whole of rail 1: %s",
-                    job->command, text);
-        return EXIT_USAGE;
+        return job_fail(run, UR_ERROR_INPUT,
+                        "%s: --strict: the strip does not exist along the whole of rail 1: %s",
+                        run->job.command, text);
     }
-    if (job->quiet)
-        return 0;
+    if (run->job.quiet)
+        return UR_OK;
     size_t parts = ur_ruled_domain(ruled, NULL, 0);
     if (parts == 1)
-        cli_message("%s: the strip's domain of existence leaves out %zu part%s of rail 1; the "
-                    "rest is developed:",
-                    job->command, count, count == 1 ? "" : "s");
+        job_warn(run,
+                 "%s: the strip's domain of existence leaves out %zu part%s of rail 1; the "
+                 "rest is developed:",
+                 run->job.command, count, count == 1 ? "" : "s");
     else
-        cli_message("%s: the strip's domain of existence leaves out %zu part%s of rail 1; the "
-                    "%zu parts that exist are developed separately:",
-                    job->command, count, count == 1 ? "" : "s", parts);
+        job_warn(run,
+                 "%s: the strip's domain of existence leaves out %zu part%s of rail 1; the "
+                 "%zu parts that exist are developed separately:",
+                 run->job.command, count, count == 1 ? "" : "s", parts);
     for (size_t k = 0; k < count; k++) {
         char place[512];
         describe_gap(&gaps[k], place, sizeof place);
-        cli_message("  %s: %s%s", place, gap_reason(gaps[k].reason),
-                    gaps[k].reason == UR_GAP_RULINGS_CROSS ? "; the strip is split there" : "");
+        job_warn(run, "  %s: %s%s", place, gap_reason(gaps[k].reason),
+                 gaps[k].reason == UR_GAP_RULINGS_CROSS ? "; the strip is split there" : "");
     }
-    return 0;
+    return UR_OK;
 }
 
 /* Inside a part of rail 1 that has no ruling at all. */
@@ -84,14 +85,14 @@ static bool in_empty_gap(const ur_ruled *ruled, double u)
 
 enum { REGRESSION_POINTS = 1000 };
 
-int cli_regression_points(const cli_job *job, ur_ruled *ruled, ur_vec3 **points, size_t *count)
+ur_status job_regression_points(const job_run *run, ur_ruled *ruled, ur_vec3 **points,
+                                size_t *count)
 {
     ur_error error;
     *count = 0;
     *points = ur_alloc_array(REGRESSION_POINTS + 1, sizeof **points, &error);
     if (!*points) {
-        cli_message("%s: %s", job->command, error.message);
-        return cli_exit_status(&error);
+        return job_fail(run, UR_ERROR_INTERNAL, "%s: %s", run->job.command, error.message);
     }
     double u0 = ur_ruled_start(ruled), u1 = ur_ruled_end(ruled);
     for (int i = 0; i <= REGRESSION_POINTS; i++) {
@@ -102,23 +103,25 @@ int cli_regression_points(const cli_job *job, ur_ruled *ruled, ur_vec3 **points,
     if (*count < 4) {
         free(*points);
         *points = NULL;
-        cli_message("%s: --regression: the rulings are parallel (the surface is a cylinder), so "
-                    "the edge of regression is at infinity and there is nothing to write",
-                    job->command);
-        return EXIT_USAGE;
+        return job_fail(
+            run, UR_ERROR_INPUT,
+            "%s: --regression: the rulings are parallel (the surface is a cylinder), so "
+            "the edge of regression is at infinity and there is nothing to write",
+            run->job.command);
     }
-    return 0;
+    return UR_OK;
 }
 
-int cli_write_regression(const cli_job *job, const ur_vec3 *points, size_t count)
+ur_status job_write_regression(const job_run *run, const ur_vec3 *points, size_t count)
 {
     ur_error error;
-    if (ur_curve_csv_write(job->regression_path, points, count, cli_context(), &error) != UR_OK) {
-        cli_message("%s: --regression %s: %s", job->command, job->regression_path, error.message);
-        return cli_exit_status(&error);
+    if (ur_curve_csv_write(run->job.regression_path, points, count, run->job.context, &error) !=
+        UR_OK) {
+        return job_fail(run, error.status, "%s: --regression %s: %s", run->job.command,
+                        run->job.regression_path, error.message);
     }
-    if (!job->quiet)
-        cli_message("%s: edge of regression: %zu points -> %s", job->command, count,
-                    job->regression_path);
-    return 0;
+    if (!run->job.quiet)
+        job_warn(run, "%s: edge of regression: %zu points -> %s", run->job.command, count,
+                 run->job.regression_path);
+    return UR_OK;
 }

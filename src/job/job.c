@@ -1,0 +1,72 @@
+/*
+ * job.c: a job's defaults, and how one run of it reports: warnings and
+ * progress to the caller's callbacks, a failure into the caller's error.
+ */
+#include "stages.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <string.h>
+
+void ur_job_init(ur_job *job, const char *surface)
+{
+    memset(job, 0, sizeof *job);
+    job->command = surface;
+    job->surface = surface;
+    job->radius = job->height = job->top_radius = job->pitch = NAN;
+    job->turns = job->width = job->offset = job->cut = NAN;
+    job->scale = NAN;
+    job->max_strain = NAN;
+    job->flatten = -1;
+    job->surface_layer = -1;
+    job->allowances_auto = true;
+    job->bridges = UR_JOB_BRIDGES_UNSET;
+    job->margin = job->spacing = -1;
+    job->level = true;
+    job->nest_time = NAN;
+    job->machine_name = "co2-60w";
+    job->material_name = "plywood-3mm";
+    ur_develop_options_default(&job->develop);
+}
+
+job_run job_run_make(const ur_job *job, const ur_job_callbacks *callbacks, ur_error *error)
+{
+    job_run run = {.job = *job, .error = error};
+    if (callbacks)
+        run.callbacks = *callbacks;
+    return run;
+}
+
+void job_warn(const job_run *run, const char *format, ...)
+{
+    if (!run->callbacks.warning)
+        return;
+    char message[8192]; /* a warning names pieces and paths: room for many */
+    va_list args;
+    va_start(args, format);
+    vsnprintf(message, sizeof message, format, args);
+    va_end(args);
+    run->callbacks.warning(run->callbacks.user, message);
+}
+
+ur_status job_fail(const job_run *run, ur_status status, const char *format, ...)
+{
+    run->error->status = status;
+    va_list args;
+    va_start(args, format);
+    vsnprintf(run->error->message, sizeof run->error->message, format, args);
+    va_end(args);
+    return status;
+}
+
+bool job_shows_progress(const job_run *run)
+{
+    return run->callbacks.progress && !run->job.quiet;
+}
+
+void job_progress(const job_run *run, const ur_job_progress *progress)
+{
+    if (job_shows_progress(run))
+        run->callbacks.progress(run->callbacks.user, progress);
+}

@@ -1,0 +1,189 @@
+/*
+ * outputs.c: the cut files a job writes: the formats asked for (or the
+ * output's extension), the DXF version and the preview's resolution, and
+ * the report that names them, every one written all or nothing together
+ * (one output set, unroll/out.h); and the summary's words for them.
+ */
+#include "stages.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/*
+ * What the layout uses, for the summary line: "2 sheets of 600 x 400 mm",
+ * "remnant 200 x 120 mm (sheet 1) and 1 sheet of 600 x 400 mm", ..., and
+ * the offcut the last stock sheet leaves (", the last leaving an offcut of
+ * 265 x 200 mm").  Stock sheets all have one size; remnants are named one
+ * by one.
+ */
+void job_describe_sheets(const ur_layout *layout, char *text, size_t size)
+{
+    size_t used = 0, stock = 0;
+    const ur_sheet *stock_sheet = NULL;
+    text[0] = '\0';
+    for (size_t s = 0; s < layout->sheet_count; s++) {
+        const ur_sheet *sheet = &layout->sheets[s];
+        if (!sheet->remnant) {
+            stock++;
+            stock_sheet = sheet;
+            continue;
+        }
+        int n = snprintf(text + used, size - used, "%sremnant %g x %g mm (sheet %zu)",
+                         used ? ", " : "", sheet->width, sheet->height, s + 1);
+        if (n < 0 || (size_t)n >= size - used)
+            return; /* cut short: the report has every sheet */
+        used += (size_t)n;
+    }
+    if (stock_sheet || used == 0) {
+        int n =
+            snprintf(text + used, size - used, "%s%zu sheet%s of %g x %g mm", used ? " and " : "",
+                     stock, stock == 1 ? "" : "s", stock_sheet ? stock_sheet->width : 0.0,
+                     stock_sheet ? stock_sheet->height : 0.0);
+        if (n < 0 || (size_t)n >= size - used)
+            return;
+        used += (size_t)n;
+    }
+    if (stock_sheet && stock_sheet->offcut_width >= 1) /* less is no offcut to keep */
+        snprintf(text + used, size - used, ", the last leaving an offcut of %.0f x %g mm",
+                 floor(stock_sheet->offcut_width), stock_sheet->height);
+}
+
+/* "812 mm" or "3.54 m": a cut length as a maker reads it. */
+static void describe_length(double millimetres, char *text, size_t size)
+{
+    if (millimetres < 1000)
+        snprintf(text, size, "%.0f mm", millimetres);
+    else
+        snprintf(text, size, "%.2f m", millimetres / 1000);
+}
+
+/* "45 s", "4 min 6 s" or "1 h 5 min": a machine time as a maker reads it. */
+static void describe_time(double seconds, char *text, size_t size)
+{
+    long whole = lround(seconds);
+    if (whole < 60)
+        snprintf(text, size, "%ld s", whole);
+    else if (whole < 3600)
+        snprintf(text, size, "%ld min %ld s", whole / 60, whole % 60);
+    else
+        snprintf(text, size, "%ld h %ld min", whole / 3600, (whole % 3600 + 30) / 60);
+}
+
+void job_describe_cutting(const job_run *run, const ur_machine *machine, const ur_layout *layout,
+                          const ur_piece *pieces, char *text, size_t size)
+{
+    double used = 0.0, room = 0.0, cut = 0.0, seconds = 0.0;
+    for (size_t s = 0; s < layout->sheet_count; s++) {
+        const ur_sheet *sheet = &layout->sheets[s];
+        double area = sheet->width * sheet->height;
+        used += ur_sheet_utilisation(sheet, pieces) * area;
+        room += area;
+        ur_cut_plan plan;
+        ur_error error;
+        /* As the report does: the files' order (ur_report_write's cutting_json). */
+        if (ur_sheet_cut_plan(sheet, pieces, ur_operation_order(), !run->job.drawing_order, machine,
+                              &plan, &error) != UR_OK) {
+            text[0] = '\0';
+            return;
+        }
+        ur_cut_plan_free(&plan);
+        cut += plan.cut_length;
+        seconds += plan.seconds;
+    }
+    char length[64], time[64];
+    describe_length(cut, length, sizeof length);
+    describe_time(seconds, time, sizeof time);
+    snprintf(text, size, ", utilisation %.1f %%, cut %s in about %s",
+             room > 0 ? 100 * used / room : 0.0, length, time);
+}
+
+void job_not_placed_warning(const job_run *run, const ur_layout *layout, const ur_piece *pieces)
+{
+    if (layout->not_placed_count == 0)
+        return;
+    char names[512] = "";
+    size_t used = 0;
+    for (size_t k = 0; k < layout->not_placed_count && used + 40 < sizeof names; k++)
+        used += (size_t)snprintf(names + used, sizeof names - used, "%s%s", k ? ", " : "",
+                                 pieces[layout->not_placed[k]].name);
+    job_warn(run,
+             "%s: warning: %zu piece%s found no room on the %zu sheet%s allowed (--sheets): "
+             "%s%s",
+             run->job.command, layout->not_placed_count, layout->not_placed_count == 1 ? "" : "s",
+             layout->sheet_count, layout->sheet_count == 1 ? "" : "s", names,
+             used + 40 >= sizeof names ? ", ..." : "");
+}
+
+/* The formats to write: -o - without --format is an SVG, as a program reading a pipe expects. */
+static unsigned formats_asked(const job_run *run)
+{
+    return run->job.formats == 0 && strcmp(run->job.output_path, "-") == 0 ? UR_FORMAT_SVG
+                                                                           : run->job.formats;
+}
+
+double job_sheets_lower_bound(const ur_piece *pieces, size_t count, const ur_layout *layout,
+                              double margin)
+{
+    const ur_sheet *stock = NULL;
+    double area = 0.0;
+    for (size_t k = 0; k < count; k++)
+        area += pieces[k].measures.flat_area;
+    for (size_t s = 0; s < layout->sheet_count; s++) {
+        const ur_sheet *sheet = &layout->sheets[s];
+        if (sheet->remnant) /* what a remnant holds, no stock sheet need */
+            area -= fmax(0, (sheet->width - 2 * margin) * (sheet->height - 2 * margin));
+        else if (!stock)
+            stock = sheet;
+        else if (sheet->width != stock->width || sheet->height != stock->height ||
+                 strcmp(sheet->material, stock->material) != 0)
+            return 0; /* stock of several kinds: no one bound */
+    }
+    double room = stock ? (stock->width - 2 * margin) * (stock->height - 2 * margin) : 0;
+    return room > 0 ? fmax(0, ceil(area / room - 1e-9)) : 0;
+}
+
+ur_status job_write_outputs(const job_run *run, const ur_machine *machine, const ur_layout *layout,
+                            const ur_piece *pieces, size_t count, ur_report_context *context,
+                            ur_error *error)
+{
+    char title[128];
+    snprintf(title, sizeof title, "unroll %s", run->job.command);
+    ur_output_options output = {title, run->job.context};
+    ur_format_options formats = {.job_name =
+                                     run->job.job_name ? run->job.job_name : run->job.surface,
+                                 .dxf_version = (ur_dxf_version)run->job.dxf_version,
+                                 .dpi = run->job.dpi,
+                                 .drawing_order = run->job.drawing_order};
+    unsigned asked = formats_asked(run);
+    if (run->job.roll_width <= 0)
+        context->sheets_lower_bound = job_sheets_lower_bound(
+            pieces, count, layout, run->job.margin >= 0 ? run->job.margin : machine->margin);
+    char(*names)[UR_OUTPUT_NAME_SIZE] = NULL;
+    size_t name_count = 0;
+    ur_output_set_begin(run->job.context); /* the cut files and the report appear together */
+    ur_status status = ur_output_files(run->job.output_path, asked, layout->sheet_count, &names,
+                                       &name_count, error);
+    if (status == UR_OK)
+        status = ur_write_outputs(run->job.output_path, asked, layout, pieces, machine, &output,
+                                  &formats, error);
+    const char **outputs = NULL;
+    if (status == UR_OK && run->job.report_path) {
+        outputs = ur_alloc_array(name_count + 1, sizeof *outputs, error);
+        if (!outputs)
+            status = UR_ERROR_INTERNAL;
+        for (size_t k = 0; outputs && k < name_count; k++)
+            outputs[k] = names[k];
+        context->outputs = outputs;
+        context->drawing_order = run->job.drawing_order;
+        if (status == UR_OK)
+            status = ur_report_write(run->job.report_path, context, pieces, count, layout,
+                                     run->job.context, error);
+    }
+    free(outputs);
+    free(names);
+    ur_status ended = ur_output_set_end(run->job.context, status == UR_OK, error);
+    return status == UR_OK ? ended : status;
+}
