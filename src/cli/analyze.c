@@ -152,7 +152,7 @@ int cli_analyze(const cli_job *job)
     cli_adjusted_rail adjusted;
     int code = cli_build_surface(job, &ruled, &adjusted);
     if (code) {
-        free(adjusted.points);
+        cli_adjusted_rail_free(&adjusted);
         return code;
     }
     ur_vec3 *edge = NULL;
@@ -177,7 +177,7 @@ int cli_analyze(const cli_job *job)
     if (!code)
         code = cli_write_adjusted_rail(job, &adjusted);
     free(edge);
-    free(adjusted.points);
+    cli_adjusted_rail_free(&adjusted);
     ur_analysis_free(&analysis);
     ur_ruled_free(&ruled);
     return code;

@@ -39,10 +39,12 @@ typedef struct cli_job {
     bool natural_pairing; /* strip --pairing natural */
     bool strict;
     const char *regression_path;
-    bool adjust_rail2;
-    ur_vec3 adjust_direction;
-    bool has_adjust_direction;
-    const char *adjusted_rail_path;
+    unsigned adjust_rails; /* --adjust: 0, or UR_REPAIR_RAIL1, _RAIL2 or _BOTH */
+    ur_vec3 adjust_direction, adjust_plane;
+    bool has_adjust_direction, has_adjust_plane;
+    bool adjust_ends;
+    double adjust_max; /* NAN when not given */
+    const char *adjusted_rail_path, *adjusted_rail1_path;
     ur_vec3 corners[4];
     bool has_corners;
     /* meshes, and non-developable surfaces flattened with strain */

@@ -694,6 +694,8 @@ int cli_run_job(const cli_job *job)
         (job->regression_path && !cli_directory_exists("--regression", job->regression_path)) ||
         (job->adjusted_rail_path &&
          !cli_directory_exists("--adjusted-rail", job->adjusted_rail_path)) ||
+        (job->adjusted_rail1_path &&
+         !cli_directory_exists("--adjusted-rail1", job->adjusted_rail1_path)) ||
         (job->strain_png_path && strcmp(job->strain_png_path, "-") != 0 &&
          !cli_directory_exists("--strain-png", job->strain_png_path)) ||
         (job->assembly_path && !cli_directory_exists("--assembly", job->assembly_path)))
@@ -708,7 +710,7 @@ int cli_run_job(const cli_job *job)
         cli_message("%s", error.message);
         return cli_exit_status(&error);
     }
-    cli_adjusted_rail adjusted = {NULL, 0, 0.0};
+    cli_adjusted_rail adjusted = {{NULL, NULL}, {0, 0}, {0}};
     ur_vec3 *edge = NULL;
     size_t edge_count = 0;
     int code = make_nets(job, &state, &adjusted, &edge, &edge_count);
@@ -718,7 +720,7 @@ int cli_run_job(const cli_job *job)
         code = check_assembly(job, &state);
     if (code) {
         free(edge);
-        free(adjusted.points);
+        cli_adjusted_rail_free(&adjusted);
         state_free(&state);
         return code;
     }
@@ -749,7 +751,7 @@ int cli_run_job(const cli_job *job)
         code = cli_exit_status(&error);
     }
     free(edge);
-    free(adjusted.points);
+    cli_adjusted_rail_free(&adjusted);
     state_free(&state);
     return code;
 }
@@ -767,12 +769,12 @@ int cli_job_pieces(const cli_job *job, cli_pieces *out)
         cli_message("%s: %s", job->command, error.message);
         return cli_exit_status(&error);
     }
-    cli_adjusted_rail adjusted = {NULL, 0, 0.0};
+    cli_adjusted_rail adjusted = {{NULL, NULL}, {0, 0}, {0}};
     ur_vec3 *edge = NULL;
     size_t edge_count = 0;
     int code = make_nets(job, &state, &adjusted, &edge, &edge_count);
     free(edge);
-    free(adjusted.points);
+    cli_adjusted_rail_free(&adjusted);
     if (!code)
         code = find_seams(job, &state);
     if (!code) {

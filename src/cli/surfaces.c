@@ -274,54 +274,94 @@ static int check_rails_apart(const cli_job *job, const ur_vec3 *first, size_t fi
     return 0;
 }
 
-/* --adjust-rail2: moves rail 2's points and keeps a copy for --adjusted-rail. */
-static int adjust_rail2(const cli_job *job, const ur_vec3 *first, size_t first_count,
-                        ur_vec3 *second, size_t second_count, bool closed,
+/* A copy of a rail's points for --adjusted-rail, or NULL with *code set. */
+static ur_vec3 *copy_rail(const cli_job *job, const ur_vec3 *points, size_t count, int *code)
+{
+    ur_error error;
+    ur_vec3 *copy = ur_alloc_array(count, sizeof *copy, &error);
+    if (!copy)
+        *code = fail(&error, job);
+    else
+        memcpy(copy, points, count * sizeof *copy);
+    return copy;
+}
+
+static const char *const adjust_names[4] = {"", "rail 1", "rail 2", "the rails"};
+
+/* --adjust: reshapes the rails and keeps a copy of each moved one for --adjusted-rail. */
+static int adjust_rails(const cli_job *job, ur_vec3 *points[2], const size_t count[2], bool closed,
                         cli_adjusted_rail *adjusted)
 {
     if (closed) {
-        cli_message("%s: --adjust-rail2 works on open rails only", job->command);
+        cli_message("%s: --adjust works on open rails only", job->command);
         return EXIT_USAGE;
     }
+    ur_rail_repair_options options = {
+        .rails = job->adjust_rails,
+        .move_ends = job->adjust_ends,
+        .direction = job->has_adjust_direction ? &job->adjust_direction : NULL,
+        .plane_normal = job->has_adjust_plane ? &job->adjust_plane : NULL,
+        .max_displacement = isnan(job->adjust_max) ? 0.0 : job->adjust_max};
+    ur_rail_repair_report report;
     ur_error error;
-    double largest;
-    if (ur_strip_adjust_rail2(first, first_count, second, second_count,
-                              job->has_adjust_direction ? &job->adjust_direction : NULL, &largest,
-                              &error) != UR_OK)
+    if (ur_rails_repair(points[0], count[0], points[1], count[1], &options, &report, &error) !=
+        UR_OK)
         return fail(&error, job);
-    if (!job->quiet)
-        cli_message(largest > 0 ? "%s: --adjust-rail2: rail 2 moved by at most %.4g mm"
-                                : "%s: --adjust-rail2: the strip exists along all of rail 1; "
-                                  "rail 2 is unchanged",
-                    job->command, largest);
-    if (adjusted) {
-        adjusted->points = ur_alloc_array(second_count, sizeof *adjusted->points, &error);
-        if (!adjusted->points)
-            return fail(&error, job);
-        memcpy(adjusted->points, second, second_count * sizeof *second);
-        adjusted->count = second_count;
-        adjusted->largest_move = largest;
+    char written[300] = "";
+    if (job->adjusted_rail_path && report.largest > 0)
+        snprintf(written, sizeof written, "; written to %s%s%s", job->adjusted_rail_path,
+                 job->adjusted_rail1_path ? " and " : "",
+                 job->adjusted_rail1_path ? job->adjusted_rail1_path : "");
+    if (!job->quiet && report.largest > 0)
+        cli_message("%s: --adjust: %s moved by at most %.4g mm (point %zu of rail %d, %.1f mm "
+                    "along it), %.4g mm on average%s",
+                    job->command, adjust_names[job->adjust_rails], report.largest,
+                    report.largest_point + 1, report.largest_rail, report.largest_along,
+                    report.mean, written);
+    else if (!job->quiet)
+        cli_message("%s: --adjust: the strip exists along all of rail 1; %s unchanged",
+                    job->command,
+                    job->adjust_rails == UR_REPAIR_BOTH ? "the rails are" : "the rail is");
+    if (!adjusted)
+        return 0;
+    int code = 0;
+    adjusted->report = report;
+    for (int k = 0; k < 2 && !code; k++) {
+        if (!(job->adjust_rails & (1u << k)))
+            continue;
+        adjusted->rails[k] = copy_rail(job, points[k], count[k], &code);
+        adjusted->counts[k] = count[k];
     }
-    return 0;
+    return code;
+}
+
+/* The path --adjusted-rail writes rail k to, or NULL. */
+static const char *adjusted_path(const cli_job *job, int k)
+{
+    if (k == 1)
+        return job->adjusted_rail_path;
+    return job->adjust_rails == UR_REPAIR_RAIL1 ? job->adjusted_rail_path
+                                                : job->adjusted_rail1_path;
 }
 
 int cli_write_adjusted_rail(const cli_job *job, const cli_adjusted_rail *adjusted)
 {
-    if (!job->adjusted_rail_path || !adjusted->points)
-        return 0;
-    ur_error error;
-    if (ur_curve_csv_write(job->adjusted_rail_path, adjusted->points, adjusted->count, &error) !=
-        UR_OK) {
-        cli_message("%s: --adjusted-rail %s: %s", job->command, job->adjusted_rail_path,
-                    error.message);
-        return cli_exit_status(&error);
+    for (int k = 0; k < 2; k++) {
+        const char *path = adjusted_path(job, k);
+        if (!path || !adjusted->rails[k])
+            continue;
+        ur_error error;
+        if (ur_curve_csv_write(path, adjusted->rails[k], adjusted->counts[k], &error) != UR_OK) {
+            cli_message("%s: --adjusted-rail %s: %s", job->command, path, error.message);
+            return cli_exit_status(&error);
+        }
     }
     return 0;
 }
 
 /*
  * Reads both rails, checks them, orients rail 2 like rail 1 and, with
- * --adjust-rail2, moves it.
+ * --adjust, moves them.
  */
 static int read_rails(const cli_job *job, ur_curve *rails[2], bool *same_count,
                       cli_adjusted_rail *adjusted)
@@ -352,8 +392,8 @@ static int read_rails(const cli_job *job, ur_curve *rails[2], bool *same_count,
         if (!job->quiet)
             cli_message("note: --rail2 runs against --rail1; using it reversed");
     }
-    if (!code && job->adjust_rail2)
-        code = adjust_rail2(job, points[0], count[0], points[1], count[1], closed[0], adjusted);
+    if (!code && job->adjust_rails)
+        code = adjust_rails(job, points, count, closed[0], adjusted);
     ur_error error;
     for (int k = 0; k < 2 && !code; k++)
         if (ur_curve_new_interpolating(points[k], count[k], closed[k], &rails[k], &error) !=
@@ -374,8 +414,8 @@ static int read_rails(const cli_job *job, ur_curve *rails[2], bool *same_count,
 
 static int build_strip(const cli_job *job, ur_ruled *ruled, cli_adjusted_rail *adjusted)
 {
-    if (job->adjust_rail2 && job->natural_pairing) {
-        cli_message("strip: --adjust-rail2 goes with --pairing developable");
+    if (job->adjust_rails && job->natural_pairing) {
+        cli_message("strip: --adjust goes with --pairing developable");
         return EXIT_USAGE;
     }
     ur_curve *rails[2];
@@ -502,4 +542,11 @@ int cli_build_surface(const cli_job *job, ur_ruled *ruled, cli_adjusted_rail *ad
     if (strcmp(job->surface, "helicoid") == 0)
         return build_helicoid(job, ruled);
     return build_tangent(job, ruled);
+}
+
+void cli_adjusted_rail_free(cli_adjusted_rail *adjusted)
+{
+    free(adjusted->rails[0]);
+    free(adjusted->rails[1]);
+    adjusted->rails[0] = adjusted->rails[1] = NULL;
 }

@@ -7,19 +7,21 @@
 #include "cli.h"
 #include "unroll/surface.h"
 
-/* Rail 2 as --adjust-rail2 moved it, for --adjusted-rail. */
+/* The rails as --adjust moved them, for --adjusted-rail and the report. */
 typedef struct cli_adjusted_rail {
-    ur_vec3 *points; /* owned; NULL when rail 2 was not adjusted */
-    size_t count;
-    double largest_move;
+    ur_vec3 *rails[2]; /* owned; NULL for a rail not adjusted */
+    size_t counts[2];
+    ur_rail_repair_report report;
 } cli_adjusted_rail;
 
 /*
  * Returns 0 with *ruled built, or an exit status after printing a message.
- * adjusted (may be NULL) receives rail 2 as --adjust-rail2 left it; the
- * caller frees its points.
+ * adjusted (may be NULL) receives the rails as --adjust left them; the
+ * caller frees them with cli_adjusted_rail_free.
  */
 int cli_build_surface(const cli_job *job, ur_ruled *ruled, cli_adjusted_rail *adjusted);
+
+void cli_adjusted_rail_free(cli_adjusted_rail *adjusted);
 
 /* Writes --adjusted-rail, if asked for; returns 0 or an exit status. */
 int cli_write_adjusted_rail(const cli_job *job, const cli_adjusted_rail *adjusted);
