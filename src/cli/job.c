@@ -217,7 +217,7 @@ int cli_job_command(int argc, char **argv)
         if (!made_directory && errno != EEXIST) {
             cli_message("%s: cannot make the output directory %s: %s", file.source,
                         file.output_directory, strerror(errno));
-            code = EXIT_USAGE;
+            code = EXIT_IO;
         }
     }
     if (!code) {

@@ -42,8 +42,7 @@ static bool positive(const job_run *run, double value, const char *option)
 
 static ur_status fail(const ur_error *error, const job_run *run)
 {
-    return job_fail(run, error->status == UR_ERROR_INPUT ? UR_ERROR_INPUT : UR_ERROR_INTERNAL,
-                    "%s: %s", run->job.command, error->message);
+    return job_fail(run, error->status, "%s: %s", run->job.command, error->message);
 }
 
 static ur_status curve_from_file(const job_run *run, ur_curve **curve)
@@ -335,9 +334,7 @@ static ur_status adjust_rails(const job_run *run, ur_vec3 *points[2], const size
     ur_error error;
     if (ur_rails_repair(points[0], count[0], points[1], count[1], &options, &report, &error) !=
         UR_OK)
-        return error.status == UR_ERROR_CANCELLED
-                   ? job_fail(run, error.status, "%s: %s", job->command, error.message)
-                   : fail(&error, run);
+        return fail(&error, run);
     note_repair(run, &report);
     if (!adjusted)
         return UR_OK;
