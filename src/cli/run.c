@@ -117,7 +117,7 @@ static bool directories_exist(const ur_job *job)
 int cli_run_job(const ur_job *job)
 {
     if (!directories_exist(job))
-        return EXIT_USAGE;
+        return EXIT_IO;
     ur_job_callbacks callbacks = cli_callbacks(job);
     ur_error error;
     if (ur_job_run(job, &callbacks, NULL, &error) != UR_OK) {

@@ -60,7 +60,7 @@ ur_status job_check_memory(const job_run *run, const char *what, size_t needed)
     size_t available = system < limit ? system : limit;
     if (available == SIZE_MAX || needed <= available)
         return UR_OK;
-    return job_fail(run, UR_ERROR_INTERNAL,
+    return job_fail(run, UR_ERROR_MEMORY,
                     "%s: %s needs about %.2f GB of memory, but only %.2f GB is available%s",
                     run->job.command, what, gigabytes(needed), gigabytes(available),
                     limit < system ? " under this process's limit (ulimit -v)" : "");
