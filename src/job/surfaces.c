@@ -41,8 +41,8 @@ static bool positive(const job_run *run, double value, const char *option)
 
 static ur_status fail(const ur_error *error, const job_run *run)
 {
-    return job_fail(run, error->status == UR_ERROR_INPUT ? UR_ERROR_INPUT : UR_ERROR_INTERNAL,
-                    "%s: %s", run->job.command, error->message);
+    return job_fail(run, error->status != UR_OK ? error->status : UR_ERROR_INTERNAL, "%s: %s",
+                    run->job.command, error->message);
 }
 
 static ur_status curve_from_file(const job_run *run, ur_curve **curve)
