@@ -30,7 +30,7 @@
 #include <libxml/xmlerror.h>
 #include "../base/c_locale.h"
 
-#define UR_PATH_MAX 1024
+#define PROFILE_PATH_MAX 1024
 
 /* ---- Parsing and validation -------------------------------------------- */
 
@@ -82,7 +82,7 @@ ur_status io_xml_load_buffer(const char *const *roots, const char *schema, const
                              const char *text, size_t size, xmlDocPtr *doc, ur_error *error)
 {
     *doc = NULL;
-    char schema_path[UR_PATH_MAX];
+    char schema_path[PROFILE_PATH_MAX];
     ur_status status = profile_find_schema(roots, schema, schema_path, sizeof schema_path, error);
     if (status != UR_OK)
         return status;
@@ -128,36 +128,36 @@ ur_status io_xml_load(const char *const *roots, const char *schema, const char *
  * The schema already guarantees what is checked here; the loader checks
  * again so that a hand-edited schema cannot feed nonsense to the geometry.
  */
-typedef struct ur_reader {
+typedef struct profile_reader {
     const char *path;
     ur_error *error;
-} ur_reader;
+} profile_reader;
 
-typedef struct ur_range {
+typedef struct value_range {
     double low, high;
     bool low_open, high_open;
     const char *wording;
-} ur_range;
+} value_range;
 
-static const ur_range positive = {0.0, INFINITY, true, false, "a positive number"};
-static const ur_range non_negative = {0.0, INFINITY, false, false, "a number >= 0"};
-static const ur_range strain = {0.0, 1.0, false, true, "a fraction from 0 to below 1"};
-static const ur_range unit = {0.0, 1.0, false, false, "a fraction from 0 to 1"};
-static const ur_range tab_angle = {0.0, 90.0, true, false, "an angle above 0 and up to 90"};
-static const ur_range tolerance = {0.0, 90.0, false, false, "an angle from 0 to 90"};
+static const value_range positive = {0.0, INFINITY, true, false, "a positive number"};
+static const value_range non_negative = {0.0, INFINITY, false, false, "a number >= 0"};
+static const value_range strain = {0.0, 1.0, false, true, "a fraction from 0 to below 1"};
+static const value_range unit = {0.0, 1.0, false, false, "a fraction from 0 to 1"};
+static const value_range tab_angle = {0.0, 90.0, true, false, "an angle above 0 and up to 90"};
+static const value_range tolerance = {0.0, 90.0, false, false, "an angle from 0 to 90"};
 
-static ur_status reader_fail(const ur_reader *reader, xmlNodePtr node, const char *format, ...)
+static ur_status reader_fail(const profile_reader *reader, xmlNodePtr node, const char *format, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 3, 4)))
 #endif
     ;
 
-static ur_status reader_fail(const ur_reader *reader, xmlNodePtr node, const char *format, ...)
+static ur_status reader_fail(const profile_reader *reader, xmlNodePtr node, const char *format, ...)
 {
     char message[512];
     va_list args;
     va_start(args, format);
-    ur_c_vsnprintf(message, sizeof message, format, args);
+    c_vsnprintf(message, sizeof message, format, args);
     va_end(args);
     long line = node ? xmlGetLineNo(node) : -1;
     if (line > 0)
@@ -178,7 +178,7 @@ static xmlNodePtr next_element(xmlNodePtr node, const char *name)
     return node;
 }
 
-static ur_status need_element(const ur_reader *reader, xmlNodePtr parent, const char *name,
+static ur_status need_element(const profile_reader *reader, xmlNodePtr parent, const char *name,
                               xmlNodePtr *element)
 {
     *element = next_element(parent->children, name);
@@ -187,20 +187,20 @@ static ur_status need_element(const ur_reader *reader, xmlNodePtr parent, const 
     return UR_OK;
 }
 
-static bool in_range(double value, const ur_range *range)
+static bool in_range(double value, const value_range *range)
 {
     bool above = range->low_open ? value > range->low : value >= range->low;
     bool below = range->high_open ? value < range->high : value <= range->high;
     return above && below;
 }
 
-static ur_status parse_number(const ur_reader *reader, xmlNodePtr node, const char *what,
-                              const char *text, const ur_range *range, double *value)
+static ur_status parse_number(const profile_reader *reader, xmlNodePtr node, const char *what,
+                              const char *text, const value_range *range, double *value)
 {
     while (isspace((unsigned char)*text))
         text++;
     char *end = NULL;
-    double parsed = ur_c_strtod(text, &end);
+    double parsed = c_strtod(text, &end);
     if (end != text)
         while (isspace((unsigned char)*end))
             end++;
@@ -211,8 +211,8 @@ static ur_status parse_number(const ur_reader *reader, xmlNodePtr node, const ch
 }
 
 /* The number in an element's text, e.g. <kerf>0.2</kerf>. */
-static ur_status element_number(const ur_reader *reader, xmlNodePtr parent, const char *name,
-                                const ur_range *range, double *value)
+static ur_status element_number(const profile_reader *reader, xmlNodePtr parent, const char *name,
+                                const value_range *range, double *value)
 {
     xmlNodePtr element;
     ur_status status = need_element(reader, parent, name, &element);
@@ -227,8 +227,9 @@ static ur_status element_number(const ur_reader *reader, xmlNodePtr parent, cons
 }
 
 /* An attribute's number; a missing optional attribute leaves *value alone. */
-static ur_status attribute_number(const ur_reader *reader, xmlNodePtr element, const char *name,
-                                  bool required, const ur_range *range, double *value)
+static ur_status attribute_number(const profile_reader *reader, xmlNodePtr element,
+                                  const char *name, bool required, const value_range *range,
+                                  double *value)
 {
     xmlChar *text = xmlGetProp(element, BAD_CAST name);
     if (!text) {
@@ -238,14 +239,14 @@ static ur_status attribute_number(const ur_reader *reader, xmlNodePtr element, c
                            name);
     }
     char what[128];
-    ur_c_snprintf(what, sizeof what, "%s %s", (const char *)element->name, name);
+    c_snprintf(what, sizeof what, "%s %s", (const char *)element->name, name);
     ur_status status = parse_number(reader, element, what, (const char *)text, range, value);
     xmlFree(text);
     return status;
 }
 
 /* Copies text with runs of white space collapsed, so descriptions may wrap. */
-static ur_status copy_text(const ur_reader *reader, xmlNodePtr node, const char *what,
+static ur_status copy_text(const profile_reader *reader, xmlNodePtr node, const char *what,
                            const char *text, char *out, size_t size)
 {
     size_t length = 0;
@@ -268,7 +269,7 @@ static ur_status copy_text(const ur_reader *reader, xmlNodePtr node, const char 
     return UR_OK;
 }
 
-static ur_status element_text(const ur_reader *reader, xmlNodePtr parent, const char *name,
+static ur_status element_text(const profile_reader *reader, xmlNodePtr parent, const char *name,
                               char *out, size_t size)
 {
     xmlNodePtr element;
@@ -283,7 +284,7 @@ static ur_status element_text(const ur_reader *reader, xmlNodePtr parent, const 
     return status;
 }
 
-static ur_status attribute_text(const ur_reader *reader, xmlNodePtr element, const char *name,
+static ur_status attribute_text(const profile_reader *reader, xmlNodePtr element, const char *name,
                                 char *out, size_t size)
 {
     xmlChar *text = xmlGetProp(element, BAD_CAST name);
@@ -299,8 +300,8 @@ static ur_status attribute_text(const ur_reader *reader, xmlNodePtr element, con
  * An optional attribute naming one of choices (a NULL-terminated list):
  * *index is its position; a missing attribute leaves *index alone.
  */
-static ur_status attribute_choice(const ur_reader *reader, xmlNodePtr element, const char *name,
-                                  const char *const *choices, int *index)
+static ur_status attribute_choice(const profile_reader *reader, xmlNodePtr element,
+                                  const char *name, const char *const *choices, int *index)
 {
     if (!xmlHasProp(element, BAD_CAST name))
         return UR_OK;
@@ -339,7 +340,8 @@ static ur_status set_identity(const char *path, char *name, size_t name_size, ch
 
 /* ---- Machines ---------------------------------------------------------- */
 
-static ur_status read_machine_kind(const ur_reader *reader, xmlNodePtr root, ur_machine_kind *kind)
+static ur_status read_machine_kind(const profile_reader *reader, xmlNodePtr root,
+                                   ur_machine_kind *kind)
 {
     char text[16];
     xmlNodePtr element;
@@ -357,7 +359,7 @@ static ur_status read_machine_kind(const ur_reader *reader, xmlNodePtr root, ur_
     return UR_OK;
 }
 
-static ur_status read_colour(const ur_reader *reader, xmlNodePtr element, char colour[8])
+static ur_status read_colour(const profile_reader *reader, xmlNodePtr element, char colour[8])
 {
     char text[16];
     ur_status status = attribute_text(reader, element, "colour", text, sizeof text);
@@ -375,7 +377,8 @@ static ur_status read_colour(const ur_reader *reader, xmlNodePtr element, char c
 }
 
 /* An optional dash="3 1.5": positive lengths in mm separated by spaces. */
-static ur_status read_dash(const ur_reader *reader, xmlNodePtr element, char *dash, size_t size)
+static ur_status read_dash(const profile_reader *reader, xmlNodePtr element, char *dash,
+                           size_t size)
 {
     dash[0] = '\0';
     if (!xmlHasProp(element, BAD_CAST "dash"))
@@ -387,7 +390,7 @@ static ur_status read_dash(const ur_reader *reader, xmlNodePtr element, char *da
     int lengths = 0;
     while (*p) {
         char *end;
-        double length = ur_c_strtod(p, &end);
+        double length = c_strtod(p, &end);
         if (end == p || !(length > 0) || !isfinite(length) || (*end && *end != ' '))
             return reader_fail(reader, element,
                                "dash must be lengths in mm separated by spaces, not '%s'", dash);
@@ -399,7 +402,7 @@ static ur_status read_dash(const ur_reader *reader, xmlNodePtr element, char *da
     return UR_OK;
 }
 
-static ur_status read_style(const ur_reader *reader, xmlNodePtr element, ur_op_style *style)
+static ur_status read_style(const profile_reader *reader, xmlNodePtr element, ur_op_style *style)
 {
     ur_status status = attribute_text(reader, element, "layer", style->layer, sizeof style->layer);
     if (status == UR_OK)
@@ -413,7 +416,7 @@ static ur_status read_style(const ur_reader *reader, xmlNodePtr element, ur_op_s
 }
 
 /* One <operation> per ur_op, each exactly once. */
-static ur_status read_operations(const ur_reader *reader, xmlNodePtr root, ur_machine *machine)
+static ur_status read_operations(const profile_reader *reader, xmlNodePtr root, ur_machine *machine)
 {
     bool seen[UR_OP_COUNT] = {false};
     for (xmlNodePtr node = next_element(root->children, "operation"); node;
@@ -439,7 +442,7 @@ static ur_status read_operations(const ur_reader *reader, xmlNodePtr root, ur_ma
 }
 
 /* <bridge width=".." default="none|auto"/> is optional: defaults by kind. */
-static ur_status read_bridges(const ur_reader *reader, xmlNodePtr root, ur_machine *machine)
+static ur_status read_bridges(const profile_reader *reader, xmlNodePtr root, ur_machine *machine)
 {
     static const char *const defaults[] = {"none", "auto", NULL};
     bool router = machine->kind == UR_MACHINE_ROUTER;
@@ -457,7 +460,8 @@ static ur_status read_bridges(const ur_reader *reader, xmlNodePtr root, ur_machi
     return status;
 }
 
-static ur_status read_machine_fields(const ur_reader *reader, xmlNodePtr root, ur_machine *machine)
+static ur_status read_machine_fields(const profile_reader *reader, xmlNodePtr root,
+                                     ur_machine *machine)
 {
     xmlNodePtr bed, speed;
     ur_status status = element_text(reader, root, "description", machine->description,
@@ -490,9 +494,9 @@ static ur_status read_machine_fields(const ur_reader *reader, xmlNodePtr root, u
 }
 
 /* Fills one kind of profile from its root element. */
-typedef ur_status (*field_reader)(const ur_reader *reader, xmlNodePtr root, void *profile);
+typedef ur_status (*field_reader)(const profile_reader *reader, xmlNodePtr root, void *profile);
 
-static ur_status machine_fields(const ur_reader *reader, xmlNodePtr root, void *profile)
+static ur_status machine_fields(const profile_reader *reader, xmlNodePtr root, void *profile)
 {
     return read_machine_fields(reader, root, profile);
 }
@@ -515,7 +519,7 @@ static ur_status read_profile(const char *const *roots, ur_profile_kind kind, co
     if (status != UR_OK)
         return status;
     const char *root_name = kind == UR_PROFILE_MACHINE ? "machine" : "material";
-    ur_reader reader = {path, error};
+    profile_reader reader = {path, error};
     xmlNodePtr root = xmlDocGetRootElement(doc);
     if (!is_element(root, root_name))
         status = reader_fail(&reader, root, "not a <%s> profile", root_name);
@@ -549,7 +553,7 @@ ur_status ur_machine_read(const char *const *roots, const char *path, ur_machine
 
 /* ---- Materials --------------------------------------------------------- */
 
-static ur_status read_stock(const ur_reader *reader, xmlNodePtr root, ur_material *material)
+static ur_status read_stock(const profile_reader *reader, xmlNodePtr root, ur_material *material)
 {
     for (xmlNodePtr node = next_element(root->children, "stock"); node;
          node = next_element(node->next, "stock")) {
@@ -569,7 +573,8 @@ static ur_status read_stock(const ur_reader *reader, xmlNodePtr root, ur_materia
 }
 
 /* <kerf laser=".." router=".."/> is optional, and so is each attribute. */
-static ur_status read_material_kerf(const ur_reader *reader, xmlNodePtr root, ur_material *material)
+static ur_status read_material_kerf(const profile_reader *reader, xmlNodePtr root,
+                                    ur_material *material)
 {
     xmlNodePtr kerf = next_element(root->children, "kerf");
     if (!kerf)
@@ -581,7 +586,7 @@ static ur_status read_material_kerf(const ur_reader *reader, xmlNodePtr root, ur
     return status;
 }
 
-static ur_status read_grain(const ur_reader *reader, xmlNodePtr root, ur_material *material)
+static ur_status read_grain(const profile_reader *reader, xmlNodePtr root, ur_material *material)
 {
     xmlNodePtr grain;
     char rule[16];
@@ -605,7 +610,7 @@ static ur_status read_grain(const ur_reader *reader, xmlNodePtr root, ur_materia
                             &material->grain_tolerance);
 }
 
-static ur_status read_bending(const ur_reader *reader, xmlNodePtr root, ur_material *material)
+static ur_status read_bending(const profile_reader *reader, xmlNodePtr root, ur_material *material)
 {
     xmlNodePtr radius, strain_element;
     ur_status status = need_element(reader, root, "bend-radius", &radius);
@@ -628,7 +633,8 @@ static ur_status read_bending(const ur_reader *reader, xmlNodePtr root, ur_mater
     return status;
 }
 
-static ur_status read_tab_and_hinge(const ur_reader *reader, xmlNodePtr root, ur_material *material)
+static ur_status read_tab_and_hinge(const profile_reader *reader, xmlNodePtr root,
+                                    ur_material *material)
 {
     xmlNodePtr tab, hinge;
     ur_status status = need_element(reader, root, "tab", &tab);
@@ -687,8 +693,8 @@ static void allowance_defaults(ur_material *material)
 }
 
 /* An optional element's optional number attribute. */
-static ur_status optional_number(const ur_reader *reader, xmlNodePtr root, const char *element_name,
-                                 const char *name, double *value)
+static ur_status optional_number(const profile_reader *reader, xmlNodePtr root,
+                                 const char *element_name, const char *name, double *value)
 {
     xmlNodePtr element = next_element(root->children, element_name);
     if (!element)
@@ -697,8 +703,9 @@ static ur_status optional_number(const ur_reader *reader, xmlNodePtr root, const
 }
 
 /* An optional element's optional choice attribute. */
-static ur_status optional_choice(const ur_reader *reader, xmlNodePtr root, const char *element_name,
-                                 const char *name, const char *const *choices, int *index)
+static ur_status optional_choice(const profile_reader *reader, xmlNodePtr root,
+                                 const char *element_name, const char *name,
+                                 const char *const *choices, int *index)
 {
     xmlNodePtr element = next_element(root->children, element_name);
     if (!element)
@@ -707,7 +714,8 @@ static ur_status optional_choice(const ur_reader *reader, xmlNodePtr root, const
 }
 
 /* <joint>, <label>, <kerfing>, <overlap>, <groove>, <bending>, <surface>: all optional. */
-static ur_status read_allowances(const ur_reader *reader, xmlNodePtr root, ur_material *material)
+static ur_status read_allowances(const profile_reader *reader, xmlNodePtr root,
+                                 ur_material *material)
 {
     static const char *const joints[] = {"tab", "lap", NULL};
     static const char *const overlaps[] = {"slit", "dart", NULL};
@@ -748,7 +756,7 @@ static ur_status read_allowances(const ur_reader *reader, xmlNodePtr root, ur_ma
     return status;
 }
 
-static ur_status read_material_fields(const ur_reader *reader, xmlNodePtr root,
+static ur_status read_material_fields(const profile_reader *reader, xmlNodePtr root,
                                       ur_material *material)
 {
     ur_status status = element_text(reader, root, "description", material->description,
@@ -770,7 +778,7 @@ static ur_status read_material_fields(const ur_reader *reader, xmlNodePtr root,
     return status;
 }
 
-static ur_status material_fields(const ur_reader *reader, xmlNodePtr root, void *profile)
+static ur_status material_fields(const profile_reader *reader, xmlNodePtr root, void *profile)
 {
     return read_material_fields(reader, root, profile);
 }

@@ -25,7 +25,7 @@
 #include <libxml/xmlerror.h>
 #include "../base/c_locale.h"
 
-#define UR_PATH_MAX 1024
+#define PROFILE_PATH_MAX 1024
 
 static const char *profile_kind_folder(ur_profile_kind kind)
 {
@@ -52,19 +52,19 @@ static void describe_roots(const char *const *roots, char *text, size_t size)
     size_t used = 0;
     text[0] = '\0';
     for (const char *const *root = roots; root && *root && used < size; root++) {
-        int length = ur_c_snprintf(text + used, size - used, "%s%s", used ? ", " : "", *root);
+        int length = c_snprintf(text + used, size - used, "%s%s", used ? ", " : "", *root);
         if (length < 0)
             break;
         used += (size_t)length;
     }
     if (!text[0])
-        ur_c_snprintf(text, size, "no profile directory given");
+        c_snprintf(text, size, "no profile directory given");
 }
 
 static ur_status join_path(char *out, size_t size, const char *root, const char *folder,
                            const char *file, ur_error *error)
 {
-    int length = ur_c_snprintf(out, size, "%s/%s/%s", root, folder, file);
+    int length = c_snprintf(out, size, "%s/%s/%s", root, folder, file);
     if (length < 0 || (size_t)length >= size)
         return ur_error_set(error, UR_ERROR_INPUT, "%s/%s: path too long", root, folder);
     return UR_OK;
@@ -103,9 +103,9 @@ ur_status ur_profile_find(const char *const *roots, ur_profile_kind kind, const 
     if (status != UR_OK)
         return status;
     char file[80];
-    ur_c_snprintf(file, sizeof file, "%s.xml", name);
+    c_snprintf(file, sizeof file, "%s.xml", name);
     for (const char *const *root = roots; root && *root; root++) {
-        char candidate[UR_PATH_MAX];
+        char candidate[PROFILE_PATH_MAX];
         status =
             join_path(candidate, sizeof candidate, *root, profile_kind_folder(kind), file, error);
         if (status != UR_OK)
@@ -122,7 +122,7 @@ ur_status ur_profile_find(const char *const *roots, ur_profile_kind kind, const 
             return ur_error_set(error, UR_ERROR_INPUT, "%s: cannot open: %s", candidate,
                                 strerror(errno));
     }
-    char searched[UR_PATH_MAX];
+    char searched[PROFILE_PATH_MAX];
     describe_roots(roots, searched, sizeof searched);
     return ur_error_set(error, UR_ERROR_INPUT,
                         "unknown %s '%s' (searched %s); 'unroll profiles' lists them",
@@ -134,7 +134,7 @@ ur_status profile_find_schema(const char *const *roots, const char *word, char *
                               ur_error *error)
 {
     char file[32];
-    ur_c_snprintf(file, sizeof file, "%s.rng", word);
+    c_snprintf(file, sizeof file, "%s.rng", word);
     for (const char *const *root = roots; root && *root; root++) {
         ur_status status = join_path(path, size, *root, "schema", file, error);
         if (status != UR_OK)
@@ -142,7 +142,7 @@ ur_status profile_find_schema(const char *const *roots, const char *word, char *
         if (access(path, R_OK) == 0)
             return UR_OK;
     }
-    char searched[UR_PATH_MAX];
+    char searched[PROFILE_PATH_MAX];
     describe_roots(roots, searched, sizeof searched);
     /* The schemas ship with unroll: without them the installation is broken. */
     return ur_error_set(error, UR_ERROR_INTERNAL, "no schema/%s in any profile root (searched %s)",
@@ -154,7 +154,7 @@ ur_status profile_find_schema(const char *const *roots, const char *word, char *
 ur_status ur_machine_load(const char *const *roots, const char *name, ur_machine *machine,
                           ur_error *error)
 {
-    char path[UR_PATH_MAX];
+    char path[PROFILE_PATH_MAX];
     ur_status status = ur_profile_find(roots, UR_PROFILE_MACHINE, name, path, sizeof path, error);
     if (status != UR_OK)
         return status;
@@ -164,7 +164,7 @@ ur_status ur_machine_load(const char *const *roots, const char *name, ur_machine
 ur_status ur_material_load(const char *const *roots, const char *name, ur_material *material,
                            ur_error *error)
 {
-    char path[UR_PATH_MAX];
+    char path[PROFILE_PATH_MAX];
     ur_status status = ur_profile_find(roots, UR_PROFILE_MATERIAL, name, path, sizeof path, error);
     if (status != UR_OK)
         return status;
@@ -184,12 +184,12 @@ double ur_effective_kerf(const ur_machine *machine, const ur_material *material)
 
 /* ---- Listing ----------------------------------------------------------- */
 
-typedef struct ur_entry_list {
+typedef struct entry_list {
     ur_profile_entry *items;
     size_t count, capacity;
-} ur_entry_list;
+} entry_list;
 
-static bool entry_listed(const ur_entry_list *list, ur_profile_kind kind, const char *name)
+static bool entry_listed(const entry_list *list, ur_profile_kind kind, const char *name)
 {
     for (size_t i = 0; i < list->count; i++)
         if (list->items[i].kind == kind && strcmp(list->items[i].name, name) == 0)
@@ -197,7 +197,7 @@ static bool entry_listed(const ur_entry_list *list, ur_profile_kind kind, const 
     return false;
 }
 
-static ur_status entry_list_grow(ur_entry_list *list, ur_error *error)
+static ur_status entry_list_grow(entry_list *list, ur_error *error)
 {
     if (list->count < list->capacity)
         return UR_OK;
@@ -251,7 +251,7 @@ static void describe_entry(const char *const *roots, ur_profile_entry *entry)
         describe_invalid(entry->description, sizeof entry->description, error.message);
 }
 
-static ur_status add_entry(const char *const *roots, ur_entry_list *list, ur_profile_kind kind,
+static ur_status add_entry(const char *const *roots, entry_list *list, ur_profile_kind kind,
                            const char *folder, const char *file, size_t stem_length,
                            ur_error *error)
 {
@@ -270,7 +270,7 @@ static ur_status add_entry(const char *const *roots, ur_entry_list *list, ur_pro
     memset(entry, 0, sizeof *entry);
     entry->kind = kind;
     strcpy(entry->name, name);
-    int length = ur_c_snprintf(entry->source, sizeof entry->source, "%s/%s", folder, file);
+    int length = c_snprintf(entry->source, sizeof entry->source, "%s/%s", folder, file);
     if (length < 0 || (size_t)length >= sizeof entry->source)
         return ur_error_set(error, UR_ERROR_INPUT, "%s/%s: path too long", folder, file);
     if (valid_name(entry->name) && strlen(file) == stem_length + 4)
@@ -284,10 +284,10 @@ static ur_status add_entry(const char *const *roots, ur_entry_list *list, ur_pro
 
 /* Adds every ROOT/FOLDER/NAME.xml; dot files are hidden, as ls does. */
 static ur_status list_folder(const char *const *roots, const char *root, ur_profile_kind kind,
-                             ur_entry_list *list, ur_error *error)
+                             entry_list *list, ur_error *error)
 {
-    char folder[UR_PATH_MAX];
-    int length = ur_c_snprintf(folder, sizeof folder, "%s/%s", root, profile_kind_folder(kind));
+    char folder[PROFILE_PATH_MAX];
+    int length = c_snprintf(folder, sizeof folder, "%s/%s", root, profile_kind_folder(kind));
     if (length < 0 || (size_t)length >= sizeof folder)
         return ur_error_set(error, UR_ERROR_INPUT, "%s: path too long", root);
     DIR *dir = opendir(folder);
@@ -321,7 +321,7 @@ ur_status ur_profile_list(const char *const *roots, ur_profile_entry **entries, 
 {
     *entries = NULL;
     *count = 0;
-    ur_entry_list list = {0};
+    entry_list list = {0};
     static const ur_profile_kind kinds[] = {UR_PROFILE_MACHINE, UR_PROFILE_MATERIAL};
     for (size_t k = 0; k < 2; k++) {
         for (const char *const *root = roots; root && *root; root++) {

@@ -203,7 +203,7 @@ static ur_status flatten_piece(const flattening *f, const ur_mesh *piece, size_t
 static void name_nets(ur_net_list *nets)
 {
     for (size_t k = 0; k < nets->count; k++)
-        ur_c_snprintf(nets->nets[k].name, sizeof nets->nets[k].name, "P%zu", k + 1);
+        c_snprintf(nets->nets[k].name, sizeof nets->nets[k].name, "P%zu", k + 1);
 }
 
 /* Flattens every piece (halving any whose outline crosses itself); nets P1, P2, ... */
@@ -284,7 +284,7 @@ static ur_status net_of_unfolded(const ur_mesh *mesh, const ur_unfolded_piece *p
                                  ur_net *net, ur_error *error)
 {
     memset(net, 0, sizeof *net);
-    ur_c_snprintf(net->name, sizeof net->name, "P%zu", index + 1);
+    c_snprintf(net->name, sizeof net->name, "P%zu", index + 1);
     net->outline_3d = ur_alloc_array(piece->outline_count, sizeof *net->outline_3d, error);
     if (!net->outline_3d)
         return UR_ERROR_INTERNAL;
@@ -429,7 +429,7 @@ static ur_status nets_of_strips(const job_run *run, const ur_strips *strips,
     for (size_t k = 0; k < strips->count; k++) {
         const ur_strip *strip = &strips->strips[k];
         char name[32];
-        ur_c_snprintf(name, sizeof name, "S%zu", strip->band + 1);
+        c_snprintf(name, sizeof name, "S%zu", strip->band + 1);
         if (ur_net_from_flat(&strip->piece.mesh, &strip->flat, name, &nets->nets[k], &error) !=
             UR_OK)
             return fail(run, &error);
@@ -521,7 +521,7 @@ static ur_status nets_of_mesh(const job_run *run, const job_room *room, const ur
     if (tell_repairs)
         say_repairs(run, &repairs);
     char what[64];
-    ur_c_snprintf(what, sizeof what, "flattening %zu triangles", mesh->triangle_count);
+    c_snprintf(what, sizeof what, "flattening %zu triangles", mesh->triangle_count);
     ur_status code = job_check_memory(run, what, ur_flatten_memory_estimate(mesh->triangle_count));
     if (code)
         return code;
@@ -597,7 +597,7 @@ ur_status job_mesh_nets(const job_run *run, const job_room *room, const ur_mater
     if (!isnan(run->job.scale))
         options.scale = run->job.scale;
     char what[64 + 1024];
-    ur_c_snprintf(what, sizeof what, "reading %s", run->job.mesh_path);
+    c_snprintf(what, sizeof what, "reading %s", run->job.mesh_path);
     ur_status code =
         job_check_memory(run, what, ur_mesh_import_memory_estimate(run->job.mesh_path));
     if (code)
