@@ -69,10 +69,14 @@ typedef struct ur_job {
     bool natural_pairing; /* a strip's rulings pair points naturally, not developably */
     bool strict;          /* a strip's domain must be the whole of rail 1 */
     const char *regression_path;
-    bool adjust_rail2;
-    ur_vec3 adjust_direction;
-    bool has_adjust_direction;
-    const char *adjusted_rail_path;
+    /* the rails a strip reshapes (ur_rails_repair): 0, or UR_REPAIR_RAIL1, _RAIL2 or _BOTH */
+    unsigned adjust_rails;
+    ur_vec3 adjust_direction, adjust_plane; /* moves along a direction, or within planes */
+    bool has_adjust_direction, has_adjust_plane;
+    bool adjust_ends;  /* the rails' end points may move too */
+    double adjust_max; /* the largest move allowed, mm; NAN: a quarter of the rails' distance */
+    /* where the moved rail goes (rail 2 when both move), and rail 1 when both move; NULL */
+    const char *adjusted_rail_path, *adjusted_rail1_path;
     ur_vec3 corners[4];
     bool has_corners;
     /* meshes, and non-developable surfaces flattened with strain */

@@ -140,6 +140,45 @@ UR_API ur_status ur_strip_adjust_rail2(const ur_vec3 *rail1, size_t count1, ur_v
                                        size_t count2, const ur_vec3 *direction, double *largest,
                                        ur_error *error);
 
+/* Which rails ur_rails_repair may move. */
+enum { UR_REPAIR_RAIL1 = 1, UR_REPAIR_RAIL2 = 2, UR_REPAIR_BOTH = 3 };
+
+typedef struct ur_rail_repair_options {
+    unsigned rails;              /* UR_REPAIR_RAIL1, _RAIL2 or _BOTH */
+    bool move_ends;              /* the rails' end points may move too */
+    const ur_vec3 *direction;    /* each point moves along this only, or NULL */
+    const ur_vec3 *plane_normal; /* each point stays in the plane through it normal to this */
+    double max_displacement;     /* mm; 0: a quarter of the rails' distance */
+    const ur_context *context;   /* its cancel flag stops the repair; NULL: never */
+} ur_rail_repair_options;
+
+typedef struct ur_rail_repair_report {
+    bool everywhere;        /* the strip exists along all of rail 1 (before or after) */
+    double largest, mean;   /* displacement of the moving rails' points, mm */
+    int largest_rail;       /* 1 or 2: where the largest is */
+    size_t largest_point;   /* its point, from 0 */
+    double largest_along;   /* mm along that rail (its polyline, as given) */
+    double limit;           /* the largest displacement allowed, mm (0: nothing to repair) */
+    size_t iterations;      /* of the least-squares solver, all rounds */
+    bool from_local_repair; /* started from ur_strip_adjust_rail2's result */
+    bool used_local_repair; /* ... and kept it: it moved rail 2 less */
+} ur_rail_repair_report;
+
+/*
+ * Reshapes open rails as little as possible so that the developable strip
+ * between them exists along the whole of rail 1, with no fold, no gap and
+ * its edge of regression outside the strip (rail_repair.c says how): a
+ * smooth displacement of every point of the moving rails, each keeping its
+ * number of points, the ends fixed unless options->move_ends.  Rails that
+ * already have a strip everywhere come back unchanged (report->largest 0).
+ * UR_ERROR_INPUT, with the rails unchanged, when the repair would move a
+ * point by more than the limit (the message names the part of rail 1 and
+ * the displacement needed) or none is found.
+ */
+UR_API ur_status ur_rails_repair(ur_vec3 *rail1, size_t count1, ur_vec3 *rail2, size_t count2,
+                                 const ur_rail_repair_options *options,
+                                 ur_rail_repair_report *report, ur_error *error);
+
 /* The pairing at u: the parameter on rail 2 and its derivative. */
 UR_API void ur_ruled_pairing(ur_ruled *ruled, double u, double *sigma, double *slope);
 

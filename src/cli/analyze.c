@@ -25,7 +25,7 @@ static FILE *findings(const ur_job *job)
 {
     bool taken = to_stdout(job->report_path) || to_stdout(job->png_path) ||
                  to_stdout(job->csv_path) || to_stdout(job->regression_path) ||
-                 to_stdout(job->adjusted_rail_path);
+                 to_stdout(job->adjusted_rail_path) || to_stdout(job->adjusted_rail1_path);
     return taken ? stderr : stdout;
 }
 
@@ -37,10 +37,11 @@ static double shown(double value)
 
 static bool outputs_possible(const ur_job *job)
 {
-    const char *options[] = {"--png", "--csv", "--report", "--regression", "--adjusted-rail"};
-    const char *paths[] = {job->png_path, job->csv_path, job->report_path, job->regression_path,
-                           job->adjusted_rail_path};
-    for (int k = 0; k < 5; k++)
+    const char *options[] = {"--png",        "--csv",           "--report",
+                             "--regression", "--adjusted-rail", "--adjusted-rail1"};
+    const char *paths[] = {job->png_path,        job->csv_path,           job->report_path,
+                           job->regression_path, job->adjusted_rail_path, job->adjusted_rail1_path};
+    for (int k = 0; k < 6; k++)
         if (paths[k] && strcmp(paths[k], "-") != 0 && !cli_directory_exists(options[k], paths[k]))
             return false;
     return true;

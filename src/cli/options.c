@@ -35,9 +35,14 @@ enum option_id {
     OPT_PAIRING,
     OPT_STRICT,
     OPT_REGRESSION,
+    OPT_ADJUST,
     OPT_ADJUST_RAIL2,
     OPT_ADJUST_DIRECTION,
+    OPT_ADJUST_PLANE,
+    OPT_ADJUST_ENDS,
+    OPT_ADJUST_MAX,
     OPT_ADJUSTED_RAIL,
+    OPT_ADJUSTED_RAIL1,
     OPT_CORNERS,
     OPT_SURFACE,
     OPT_UNITS,
@@ -77,9 +82,14 @@ static const struct option long_options[] = {
     {"pairing", required_argument, NULL, OPT_PAIRING},
     {"strict", no_argument, NULL, OPT_STRICT},
     {"regression", required_argument, NULL, OPT_REGRESSION},
+    {"adjust", required_argument, NULL, OPT_ADJUST},
     {"adjust-rail2", no_argument, NULL, OPT_ADJUST_RAIL2},
     {"adjust-direction", required_argument, NULL, OPT_ADJUST_DIRECTION},
+    {"adjust-plane", required_argument, NULL, OPT_ADJUST_PLANE},
+    {"adjust-ends", no_argument, NULL, OPT_ADJUST_ENDS},
+    {"adjust-max", required_argument, NULL, OPT_ADJUST_MAX},
     {"adjusted-rail", required_argument, NULL, OPT_ADJUSTED_RAIL},
+    {"adjusted-rail1", required_argument, NULL, OPT_ADJUSTED_RAIL1},
     {"corners", required_argument, NULL, OPT_CORNERS},
     {"surface", required_argument, NULL, OPT_SURFACE},
     {"units", required_argument, NULL, OPT_UNITS},
@@ -115,8 +125,9 @@ static const struct {
     {"cone", " radius height top-radius curve apex cut surface "},
     {"helicoid", " radius pitch turns width offset surface "},
     {"tangent", " curve width offset surface "},
-    {"strip", " rail1 rail2 pairing strict regression adjust-rail2 adjust-direction "
-              "adjusted-rail flatten iterations max-strain surface "},
+    {"strip", " rail1 rail2 pairing strict regression adjust adjust-rail2 adjust-direction "
+              "adjust-plane adjust-ends adjust-max adjusted-rail adjusted-rail1 flatten iterations "
+              "max-strain surface "},
     {"ruled", " rail1 rail2 flatten iterations max-strain surface "},
     {"hypar", " corners flatten iterations max-strain surface "},
     {"mesh", " units scale seams flatten iterations max-strain "},
@@ -316,6 +327,19 @@ static bool parse_iterations(ur_job *job, const char *text)
     return true;
 }
 
+/* --adjust rail1|rail2|both */
+static bool parse_adjust(ur_job *job, const char *text)
+{
+    const char *names[] = {"rail1", "rail2", "both"};
+    for (unsigned k = 0; k < 3; k++)
+        if (strcmp(text, names[k]) == 0) {
+            job->adjust_rails = k + 1;
+            return true;
+        }
+    cli_message("%s: --adjust: '%s' is not one of rail1, rail2, both", job->command, text);
+    return false;
+}
+
 /* --surface: which layer of the material the 3D surface is; only a development uses it. */
 static bool parse_surface_layer(ur_job *job, cli_action action, const char *text)
 {
@@ -418,13 +442,26 @@ static bool take_option(ur_job *job, cli_action action, int id, const char *valu
     case OPT_REGRESSION:
         job->regression_path = value;
         return true;
-    case OPT_ADJUST_RAIL2:
-        job->adjust_rail2 = true;
+    case OPT_ADJUST:
+        return parse_adjust(job, value);
+    case OPT_ADJUST_RAIL2: /* as before --adjust: rail 2's ends move when they must */
+        job->adjust_rails = UR_REPAIR_RAIL2;
+        job->adjust_ends = true;
         return true;
     case OPT_ADJUST_DIRECTION:
         return job->has_adjust_direction = parse_vector(surface, id, value, &job->adjust_direction);
+    case OPT_ADJUST_PLANE:
+        return job->has_adjust_plane = parse_vector(surface, id, value, &job->adjust_plane);
+    case OPT_ADJUST_ENDS:
+        job->adjust_ends = true;
+        return true;
+    case OPT_ADJUST_MAX:
+        return parse_number(surface, id, value, &job->adjust_max);
     case OPT_ADJUSTED_RAIL:
         job->adjusted_rail_path = value;
+        return true;
+    case OPT_ADJUSTED_RAIL1:
+        job->adjusted_rail1_path = value;
         return true;
     case OPT_CORNERS:
         return job->has_corners = parse_corners(surface, value, job->corners);
@@ -568,9 +605,30 @@ int cli_parse_job(int argc, char **argv, cli_action action, const char *command,
         cli_message("%s: --max-strain goes with --flatten strips or charts", job->command);
         return EXIT_USAGE;
     }
-    if ((job->has_adjust_direction || job->adjusted_rail_path) && !job->adjust_rail2) {
-        cli_message("%s: --adjust-direction and --adjusted-rail go with --adjust-rail2",
+    bool adjusting = job->has_adjust_direction || job->has_adjust_plane || job->adjust_ends ||
+                     !isnan(job->adjust_max) || job->adjusted_rail_path || job->adjusted_rail1_path;
+    if (adjusting && !job->adjust_rails) {
+        cli_message("%s: --adjust-direction, --adjust-plane, --adjust-ends, --adjust-max and "
+                    "--adjusted-rail go with --adjust (or --adjust-rail2)",
                     job->command);
+        return EXIT_USAGE;
+    }
+    if (!isnan(job->adjust_max) && !(job->adjust_max > 0)) {
+        cli_message("%s: --adjust-max must be positive", job->command);
+        return EXIT_USAGE;
+    }
+    if (job->has_adjust_direction && job->has_adjust_plane) {
+        cli_message("%s: give --adjust-direction or --adjust-plane, not both", job->command);
+        return EXIT_USAGE;
+    }
+    if ((job->has_adjust_direction && !(ur_vec3_length(job->adjust_direction) > 0)) ||
+        (job->has_adjust_plane && !(ur_vec3_length(job->adjust_plane) > 0))) {
+        cli_message("%s: %s must not be zero", job->command,
+                    job->has_adjust_direction ? "--adjust-direction" : "--adjust-plane");
+        return EXIT_USAGE;
+    }
+    if (job->adjusted_rail1_path && !(job->adjust_rails & UR_REPAIR_RAIL1)) {
+        cli_message("%s: --adjusted-rail1 goes with --adjust rail1 or both", job->command);
         return EXIT_USAGE;
     }
     return 0;

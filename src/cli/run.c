@@ -109,6 +109,8 @@ static bool directories_exist(const ur_job *job)
            (!job->regression_path || cli_directory_exists("--regression", job->regression_path)) &&
            (!job->adjusted_rail_path ||
             cli_directory_exists("--adjusted-rail", job->adjusted_rail_path)) &&
+           (!job->adjusted_rail1_path ||
+            cli_directory_exists("--adjusted-rail1", job->adjusted_rail1_path)) &&
            (!job->strain_png_path || strcmp(job->strain_png_path, "-") == 0 ||
             cli_directory_exists("--strain-png", job->strain_png_path)) &&
            (!job->assembly_path || cli_directory_exists("--assembly", job->assembly_path));

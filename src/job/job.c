@@ -20,6 +20,7 @@ void ur_job_init(ur_job *job, const char *surface)
     job->turns = job->width = job->offset = job->cut = NAN;
     job->scale = NAN;
     job->max_strain = NAN;
+    job->adjust_max = NAN;
     job->flatten = -1;
     job->surface_layer = -1;
     job->allowances_auto = true;

@@ -695,7 +695,7 @@ static ur_status run_job(const job_run *run, ur_job_result *result)
         state_free(&state);
         return job_fail(run, error.status, "%s", error.message);
     }
-    job_adjusted_rail adjusted = {NULL, 0, 0.0};
+    job_adjusted_rail adjusted = {{NULL, NULL}, {0, 0}};
     ur_vec3 *edge = NULL;
     size_t edge_count = 0;
     ur_status code = make_nets(run, &state, &adjusted, &edge, &edge_count);
@@ -705,7 +705,7 @@ static ur_status run_job(const job_run *run, ur_job_result *result)
         code = check_assembly(run, &state);
     if (code) {
         free(edge);
-        free(adjusted.points);
+        job_adjusted_rail_free(&adjusted);
         state_free(&state);
         return code;
     }
@@ -735,7 +735,7 @@ static ur_status run_job(const job_run *run, ur_job_result *result)
         code = job_fail(run, error.status, "%s: %s", run->job.command, error.message);
     }
     free(edge);
-    free(adjusted.points);
+    job_adjusted_rail_free(&adjusted);
     state_free(&state);
     return code;
 }
@@ -751,12 +751,12 @@ ur_status job_pieces(const job_run *run, job_pieces_made *out)
         state_free(&state);
         return job_fail(run, error.status, "%s: %s", run->job.command, error.message);
     }
-    job_adjusted_rail adjusted = {NULL, 0, 0.0};
+    job_adjusted_rail adjusted = {{NULL, NULL}, {0, 0}};
     ur_vec3 *edge = NULL;
     size_t edge_count = 0;
     ur_status code = make_nets(run, &state, &adjusted, &edge, &edge_count);
     free(edge);
-    free(adjusted.points);
+    job_adjusted_rail_free(&adjusted);
     if (!code)
         code = find_seams(run, &state);
     if (!code) {

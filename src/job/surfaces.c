@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "../base/c_locale.h"
 #include "unroll/io.h"
 
 static bool given(double value)
@@ -275,54 +276,117 @@ static ur_status check_rails_apart(const job_run *run, const ur_vec3 *first, siz
     return UR_OK;
 }
 
-/* --adjust-rail2: moves rail 2's points and keeps a copy for --adjusted-rail. */
-static ur_status adjust_rail2(const job_run *run, const ur_vec3 *first, size_t first_count,
-                              ur_vec3 *second, size_t second_count, bool closed,
-                              job_adjusted_rail *adjusted)
+/* A copy of a rail's points for the adjusted rail files, or NULL with the run's error set. */
+static ur_vec3 *copy_rail(const job_run *run, const ur_vec3 *points, size_t count)
+{
+    ur_error error;
+    ur_vec3 *copy = ur_alloc_array(count, sizeof *copy, &error);
+    if (!copy)
+        fail(&error, run);
+    else
+        memcpy(copy, points, count * sizeof *copy);
+    return copy;
+}
+
+static const char *const adjust_names[4] = {"", "rail 1", "rail 2", "the rails"};
+
+/* What the repair did, as a note; the files named are written at the end of the run. */
+static void note_repair(const job_run *run, const ur_rail_repair_report *report)
+{
+    if (run->job.quiet)
+        return;
+    if (!(report->largest > 0)) {
+        job_warn(run, "%s: the strip exists along all of rail 1; %s unchanged", run->job.command,
+                 run->job.adjust_rails == UR_REPAIR_BOTH ? "the rails are" : "the rail is");
+        return;
+    }
+    char written[300] = "";
+    const char *second = run->job.adjusted_rail1_path;
+    if (run->job.adjusted_rail_path)
+        ur_c_snprintf(written, sizeof written, "; written to %s%s%s", run->job.adjusted_rail_path,
+                      second ? " and " : "", second ? second : "");
+    char figures[300];
+    ur_c_snprintf(figures, sizeof figures,
+                  "moved by at most %.4g mm (point %zu of rail %d, %.1f mm along it), %.4g mm on "
+                  "average",
+                  report->largest, report->largest_point + 1, report->largest_rail,
+                  report->largest_along, report->mean);
+    job_warn(run, "%s: %s %s%s", run->job.command, adjust_names[run->job.adjust_rails], figures,
+             written);
+}
+
+/* The repair the job asks for (adjust_rails); a copy of each moved rail kept for its file. */
+static ur_status adjust_rails(const job_run *run, ur_vec3 *points[2], const size_t count[2],
+                              bool closed, job_adjusted_rail *adjusted)
 {
     if (closed) {
-        return job_fail(run, UR_ERROR_INPUT, "%s: --adjust-rail2 works on open rails only",
+        return job_fail(run, UR_ERROR_INPUT, "%s: --adjust works on open rails only",
                         run->job.command);
     }
+    const ur_job *job = &run->job;
+    ur_rail_repair_options options = {
+        .rails = job->adjust_rails,
+        .move_ends = job->adjust_ends,
+        .direction = job->has_adjust_direction ? &job->adjust_direction : NULL,
+        .plane_normal = job->has_adjust_plane ? &job->adjust_plane : NULL,
+        .max_displacement = isnan(job->adjust_max) ? 0.0 : job->adjust_max,
+        .context = job->context};
+    ur_rail_repair_report report;
     ur_error error;
-    double largest;
-    if (ur_strip_adjust_rail2(first, first_count, second, second_count,
-                              run->job.has_adjust_direction ? &run->job.adjust_direction : NULL,
-                              &largest, &error) != UR_OK)
-        return fail(&error, run);
-    if (!run->job.quiet)
-        job_warn(run,
-                 largest > 0 ? "%s: --adjust-rail2: rail 2 moved by at most %.4g mm"
-                             : "%s: --adjust-rail2: the strip exists along all of rail 1; "
-                               "rail 2 is unchanged",
-                 run->job.command, largest);
-    if (adjusted) {
-        adjusted->points = ur_alloc_array(second_count, sizeof *adjusted->points, &error);
-        if (!adjusted->points)
-            return fail(&error, run);
-        memcpy(adjusted->points, second, second_count * sizeof *second);
-        adjusted->count = second_count;
-        adjusted->largest_move = largest;
+    if (ur_rails_repair(points[0], count[0], points[1], count[1], &options, &report, &error) !=
+        UR_OK)
+        return error.status == UR_ERROR_CANCELLED
+                   ? job_fail(run, error.status, "%s: %s", job->command, error.message)
+                   : fail(&error, run);
+    note_repair(run, &report);
+    if (!adjusted)
+        return UR_OK;
+    for (int k = 0; k < 2; k++) {
+        if (!(job->adjust_rails & (1u << k)))
+            continue;
+        adjusted->rails[k] = copy_rail(run, points[k], count[k]);
+        if (!adjusted->rails[k])
+            return run->error->status;
+        adjusted->counts[k] = count[k];
     }
     return UR_OK;
+}
+
+/* The file rail k (0 or 1) is written to, or NULL: the moved rail, rail 2 when both move. */
+static const char *adjusted_path(const ur_job *job, int k)
+{
+    if (k == 1)
+        return job->adjusted_rail_path;
+    return job->adjust_rails == UR_REPAIR_RAIL1 ? job->adjusted_rail_path
+                                                : job->adjusted_rail1_path;
 }
 
 ur_status job_write_adjusted_rail(const job_run *run, const job_adjusted_rail *adjusted)
 {
-    if (!run->job.adjusted_rail_path || !adjusted->points)
-        return UR_OK;
-    ur_error error;
-    if (ur_curve_csv_write(run->job.adjusted_rail_path, adjusted->points, adjusted->count,
-                           run->job.context, &error) != UR_OK) {
-        return job_fail(run, error.status, "%s: --adjusted-rail %s: %s", run->job.command,
-                        run->job.adjusted_rail_path, error.message);
+    for (int k = 0; k < 2; k++) {
+        const char *path = adjusted_path(&run->job, k);
+        if (!path || !adjusted->rails[k])
+            continue;
+        ur_error error;
+        if (ur_curve_csv_write(path, adjusted->rails[k], adjusted->counts[k], run->job.context,
+                               &error) != UR_OK) {
+            return job_fail(run, error.status, "%s: --adjusted-rail %s: %s", run->job.command, path,
+                            error.message);
+        }
     }
     return UR_OK;
 }
 
+void job_adjusted_rail_free(job_adjusted_rail *adjusted)
+{
+    free(adjusted->rails[0]);
+    free(adjusted->rails[1]);
+    adjusted->rails[0] = adjusted->rails[1] = NULL;
+}
+
 /*
- * Reads both rails, checks them, orients rail 2 like rail 1 and, with
- * --adjust-rail2, moves it.
+ * Reads both rails, checks them, orients rail 2 like rail 1 and, when the
+ * job asks, reshapes them.
  */
 static ur_status read_rails(const job_run *run, ur_curve *rails[2], bool *same_count,
                             job_adjusted_rail *adjusted)
@@ -354,8 +418,8 @@ static ur_status read_rails(const job_run *run, ur_curve *rails[2], bool *same_c
         if (!run->job.quiet)
             job_warn(run, "note: --rail2 runs against --rail1; using it reversed");
     }
-    if (!code && run->job.adjust_rail2)
-        code = adjust_rail2(run, points[0], count[0], points[1], count[1], closed[0], adjusted);
+    if (!code && run->job.adjust_rails)
+        code = adjust_rails(run, points, count, closed[0], adjusted);
     ur_error error;
     for (int k = 0; k < 2 && !code; k++)
         if (ur_curve_new_interpolating(points[k], count[k], closed[k], &rails[k], &error) !=
@@ -376,9 +440,8 @@ static ur_status read_rails(const job_run *run, ur_curve *rails[2], bool *same_c
 
 static ur_status build_strip(const job_run *run, ur_ruled *ruled, job_adjusted_rail *adjusted)
 {
-    if (run->job.adjust_rail2 && run->job.natural_pairing) {
-        return job_fail(run, UR_ERROR_INPUT,
-                        "strip: --adjust-rail2 goes with --pairing developable");
+    if (run->job.adjust_rails && run->job.natural_pairing) {
+        return job_fail(run, UR_ERROR_INPUT, "strip: --adjust goes with --pairing developable");
     }
     ur_curve *rails[2];
     bool same_count;

@@ -7,21 +7,22 @@
 #include "stages.h"
 #include "unroll/surface.h"
 
-/* Rail 2 as --adjust-rail2 moved it, for --adjusted-rail. */
+/* The rails as the job's repair (adjust_rails) left them, for the adjusted rail files. */
 typedef struct job_adjusted_rail {
-    ur_vec3 *points; /* owned; NULL when rail 2 was not adjusted */
-    size_t count;
-    double largest_move;
+    ur_vec3 *rails[2]; /* owned; NULL for a rail not adjusted */
+    size_t counts[2];
 } job_adjusted_rail;
 
 /*
  * UR_OK with *ruled built, or a status with the run's error set.
- * adjusted (may be NULL) receives rail 2 as --adjust-rail2 left it; the
- * caller frees its points.
+ * adjusted (may be NULL) receives the rails as the repair left them; the
+ * caller frees them with job_adjusted_rail_free.
  */
 ur_status job_build_surface(const job_run *run, ur_ruled *ruled, job_adjusted_rail *adjusted);
 
-/* Writes the adjusted rail 2, if the job names a file for it. */
+void job_adjusted_rail_free(job_adjusted_rail *adjusted);
+
+/* Writes the adjusted rails, if the job names files for them. */
 ur_status job_write_adjusted_rail(const job_run *run, const job_adjusted_rail *adjusted);
 
 #endif

@@ -719,12 +719,73 @@ def adjust_rail2_repairs_a_short_rail(work):
     run(work, "strip", "--rail1", "low.csv", "--rail2", "moved.csv", "--strict", "-o", "t.svg")
     write_points(work, "ring1.csv", circle_points(50, 0, 0, 2 * math.pi, 60, closed=True))
     write_points(work, "ring2.csv", circle_points(30, 40, 0, 2 * math.pi, 60, closed=True))
-    bad(work, r"--adjust-rail2 works on open rails", "strip", "--rail1", "ring1.csv", "--rail2",
+    bad(work, r"--adjust works on open rails", "strip", "--rail1", "ring1.csv", "--rail2",
         "ring2.csv", "--adjust-rail2", "-o", "x.svg")
-    bad(work, r"--adjusted-rail go with --adjust-rail2", "strip", "--rail1", "low.csv", "--rail2",
+    bad(work, r"--adjusted-rail go with --adjust", "strip", "--rail1", "low.csv", "--rail2",
         "late.csv", "--adjusted-rail", "m.csv", "-o", "x.svg")
     bad(work, r"--adjust-direction must not be zero", "strip", "--rail1", "low.csv", "--rail2",
         "late.csv", "--adjust-rail2", "--adjust-direction", "0,0,0", "-o", "x.svg")
+
+
+@test
+def adjust_reshapes_a_wavy_rail(work):
+    """Issue 25's rails (samples/make-gap-rails.py): the strip folds 103.5 mm along rail 1
+    and is missing at its end; --adjust rail2 reshapes rail 2, ends fixed, by less than
+    its 4 mm wave, and the strip then exists along all of rail 1, its net an isometry."""
+    rail1, rail2 = (os.path.join(REPO, "samples", "gap-rail%d.csv" % k) for k in (1, 2))
+    bad(work, r"--strict.*|domain of existence", "strip", "--rail1", rail1, "--rail2", rail2,
+        "--strict", "-o", "x.svg")
+    result = run(work, "strip", "--rail1", rail1, "--rail2", rail2, "--adjust", "rail2",
+                 "--adjusted-rail", "moved.csv", "-o", "s.svg")
+    found = re.search(r"rail 2 moved by at most ([0-9.e-]+) mm \(point (\d+) of rail 2, "
+                      r"([0-9.]+) mm along it\), ([0-9.e-]+) mm on average; written to moved.csv",
+                      result.stderr)
+    check(found, result.stderr)
+    before, moved = read_points(rail2), read_points(os.path.join(work, "moved.csv"))
+    check(len(moved) == len(before), "%d points written, %d read" % (len(moved), len(before)))
+    distances = [math.dist(p, q) for p, q in zip(moved, before)]
+    close(float(found.group(1)), max(distances), 1e-3, "reported largest displacement")
+    close(float(found.group(4)), sum(distances) / len(distances), 1e-3, "reported mean")
+    where = int(found.group(2)) - 1
+    check(distances[where] == max(distances), "largest displacement not at point %d" % (where + 1))
+    close(float(found.group(3)), sum(math.dist(before[i], before[i + 1]) for i in range(where)),
+          1e-3, "where along rail 2")
+    check(0 < max(distances) < 4, "moved by %g mm, not less than the 4 mm wave" % max(distances))
+    check(distances[0] == 0 and distances[-1] == 0, "an end moved")
+    run(work, "strip", "--rail1", rail1, "--rail2", "moved.csv", "--strict", "-o", "t.svg",
+        "--report", "t.json", *FINE)
+    [piece] = report(work, "t.json")["pieces"]
+    close(piece["flat_area_mm2"], piece["area_3d_mm2"], 1e-6, "flat vs 3D area")
+    check(piece["edge_length_error"] < 1e-6, "edge length error %g" % piece["edge_length_error"])
+    found = run(work, "analyze", "strip", "--rail1", rail1, "--rail2", "moved.csv").stdout
+    check(re.search(r"strip: developable", found) and "the whole of rail 1" in found,
+          "analyze: " + found)
+    # A pair that already has a strip everywhere comes back unchanged.
+    write_points(work, "low.csv", circle_points(50, 0, 0, math.pi, 60))
+    write_points(work, "high.csv", circle_points(30, 40, 0, math.pi, 60))
+    result = run(work, "strip", "--rail1", "low.csv", "--rail2", "high.csv", "--adjust", "both",
+                 "--adjusted-rail", "same.csv", "-o", "u.svg")
+    check("the rails are unchanged" in result.stderr, result.stderr)
+    check(read_points(os.path.join(work, "same.csv")) == read_points(os.path.join(work, "high.csv")),
+          "an unchanged rail 2 was written differently")
+    # Bad input: each refused with one line, exit 2 and no files.
+    bad(work, r"along rail 1.*0\.5 mm|0\.5 mm.*along rail 1", "strip", "--rail1", rail1, "--rail2", rail2, "--adjust",
+        "rail2", "--adjust-max", "0.5", "--adjusted-rail", "m.csv", "-o", "x.svg")
+    write_points(work, "late.csv", circle_points(30, 40, 0.3, math.pi, 60))
+    bad(work, r"rail 2 is too short there with its ends fixed; give --adjust-ends", "strip",
+        "--rail1", "low.csv", "--rail2", "late.csv", "--adjust", "rail2", "-o", "x.svg")
+    write_points(work, "across.csv", [(50 * math.cos(t), 50 * math.sin(t), 20 - 40 * t / math.pi)
+                                      for t in (math.pi * i / 59 for i in range(60))])
+    bad(work, r"the rails meet or cross", "strip", "--rail1", "low.csv", "--rail2", "across.csv",
+        "--adjust", "rail2", "-o", "x.svg")
+    bad(work, r"--adjust: 'rail3' is not one of rail1, rail2, both", "strip", "--rail1",
+        "low.csv", "--rail2", "late.csv", "--adjust", "rail3", "-o", "x.svg")
+    bad(work, r"--adjust-plane must not be zero", "strip", "--rail1", "low.csv", "--rail2",
+        "late.csv", "--adjust", "rail2", "--adjust-plane", "0,0,0", "-o", "x.svg")
+    bad(work, r"not both", "strip", "--rail1", "low.csv", "--rail2", "late.csv", "--adjust",
+        "rail2", "--adjust-plane", "0,0,1", "--adjust-direction", "0,0,1", "-o", "x.svg")
+    bad(work, r"go with --adjust", "strip", "--rail1", "low.csv", "--rail2", "late.csv",
+        "--adjust-max", "3", "-o", "x.svg")
 
 
 @test

@@ -1,0 +1,160 @@
+/*
+ * test_rail_repair.c: ur_rails_repair, the global reshaping of a rail so
+ * that the developable strip exists along all of rail 1 (issue 25's rails),
+ * against what the strip itself says afterwards.
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "unroll/surface.h"
+
+#include "test_support.h"
+
+enum { N = 200 };
+
+/* To nine decimals, as samples/make-gap-rails.py writes them. */
+static ur_vec3 written(double x, double y, double z)
+{
+    return ur_vec3_make(round(x * 1e9) / 1e9, round(y * 1e9) / 1e9, round(z * 1e9) / 1e9);
+}
+
+/* Issue 25: half an ellipse at z = 0, a wavy curve above it (4 mm and 6 mm waves). */
+static void issue_rails(ur_vec3 *rail1, ur_vec3 *rail2)
+{
+    for (int i = 0; i < N; i++) {
+        double t = M_PI * i / (N - 1);
+        rail1[i] = written(60 * cos(t), 40 * sin(t), 0);
+        rail2[i] = written(35 * cos(t), 20 * sin(t) + 4 * sin(3 * t), 45 + 6 * sin(2 * t));
+    }
+}
+
+static void arc_points(ur_vec3 *points, double r, double z, double a, double b)
+{
+    for (int i = 0; i < N; i++) {
+        double t = a + (b - a) * i / (N - 1);
+        points[i] = ur_vec3_make(r * cos(t), r * sin(t), z);
+    }
+}
+
+static size_t gaps_between(const ur_vec3 *rail1, const ur_vec3 *rail2)
+{
+    ur_curve *c1, *c2;
+    assert_int_equal(ur_curve_new_interpolating(rail1, N, false, &c1, NULL), UR_OK);
+    assert_int_equal(ur_curve_new_interpolating(rail2, N, false, &c2, NULL), UR_OK);
+    ur_ruled ruled;
+    assert_int_equal(ur_ruled_strip(c1, c2, &ruled, NULL), UR_OK);
+    const ur_interval *gaps;
+    size_t count = ur_ruled_gaps(&ruled, &gaps);
+    ur_ruled_free(&ruled);
+    return count;
+}
+
+/*
+ * The strip folds and misses the end of rail 1; after the repair it exists
+ * everywhere, rail 2's ends are where they were, and the report's figures
+ * are the displacements measured here, the largest below the 4 mm wave.
+ */
+static void test_repair_reshapes_the_wavy_rail(void **state)
+{
+    (void)state;
+    static ur_vec3 rail1[N], rail2[N], before[N], rail1_before[N];
+    issue_rails(rail1, rail2);
+    memcpy(before, rail2, sizeof before);
+    memcpy(rail1_before, rail1, sizeof rail1_before);
+    assert_true(gaps_between(rail1, rail2) > 0);
+    ur_rail_repair_options options = {.rails = UR_REPAIR_RAIL2};
+    ur_rail_repair_report report;
+    ur_error error;
+    if (ur_rails_repair(rail1, N, rail2, N, &options, &report, &error) != UR_OK)
+        fail_msg("repair: %s", error.message);
+    assert_int_equal(gaps_between(rail1, rail2), 0);
+    assert_true(report.everywhere);
+    assert_memory_equal(rail1, rail1_before, sizeof rail1_before);
+    assert_true(ur_vec3_distance(rail2[0], before[0]) == 0);
+    assert_true(ur_vec3_distance(rail2[N - 1], before[N - 1]) == 0);
+    double largest = 0, sum = 0;
+    size_t where = 0;
+    for (int i = 0; i < N; i++) {
+        double moved = ur_vec3_distance(rail2[i], before[i]);
+        sum += moved;
+        if (moved > largest) {
+            largest = moved;
+            where = (size_t)i;
+        }
+    }
+    assert_relative(report.largest, largest, 1e-12);
+    assert_relative(report.mean, sum / N, 1e-12);
+    assert_int_equal(report.largest_rail, 2);
+    assert_int_equal(report.largest_point, where);
+    if (!(largest > 0 && largest < 4))
+        fail_msg("moved by %g mm, not less than the 4 mm wave", largest);
+}
+
+/* A frustum's two arcs have a strip everywhere: nothing moves, whichever rail may. */
+static void test_repair_leaves_a_good_pair_alone(void **state)
+{
+    (void)state;
+    static ur_vec3 rail1[N], rail2[N], before1[N], before2[N];
+    arc_points(rail1, 50, 0, 0, M_PI);
+    arc_points(rail2, 30, 40, 0, M_PI);
+    memcpy(before1, rail1, sizeof before1);
+    memcpy(before2, rail2, sizeof before2);
+    ur_rail_repair_options options = {.rails = UR_REPAIR_BOTH};
+    ur_rail_repair_report report;
+    ur_error error;
+    if (ur_rails_repair(rail1, N, rail2, N, &options, &report, &error) != UR_OK)
+        fail_msg("repair: %s", error.message);
+    assert_true(report.everywhere);
+    assert_true(report.largest == 0 && report.mean == 0);
+    assert_memory_equal(rail1, before1, sizeof before1);
+    assert_memory_equal(rail2, before2, sizeof before2);
+}
+
+/*
+ * Refusals leave the rails as they were: a limit far below what the repair
+ * needs, a rail 2 that starts late with its ends fixed, and a zero normal.
+ */
+static void test_repair_refuses_what_it_cannot_do(void **state)
+{
+    (void)state;
+    static ur_vec3 rail1[N], rail2[N], before[N];
+    issue_rails(rail1, rail2);
+    memcpy(before, rail2, sizeof before);
+    ur_rail_repair_options options = {.rails = UR_REPAIR_RAIL2, .max_displacement = 0.05};
+    ur_rail_repair_report report;
+    ur_error error;
+    assert_int_equal(ur_rails_repair(rail1, N, rail2, N, &options, &report, &error),
+                     UR_ERROR_INPUT);
+    assert_non_null(strstr(error.message, "along rail 1"));
+    assert_memory_equal(rail2, before, sizeof before);
+
+    arc_points(rail1, 50, 0, 0, M_PI);
+    arc_points(rail2, 30, 40, 0.3, M_PI);
+    memcpy(before, rail2, sizeof before);
+    options.max_displacement = 0;
+    assert_int_equal(ur_rails_repair(rail1, N, rail2, N, &options, &report, &error),
+                     UR_ERROR_INPUT);
+    assert_non_null(strstr(error.message, "too short"));
+    assert_memory_equal(rail2, before, sizeof before);
+
+    ur_vec3 zero = {0, 0, 0};
+    options.plane_normal = &zero;
+    assert_int_equal(ur_rails_repair(rail1, N, rail2, N, &options, &report, &error),
+                     UR_ERROR_INPUT);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_repair_reshapes_the_wavy_rail),
+        cmocka_unit_test(test_repair_leaves_a_good_pair_alone),
+        cmocka_unit_test(test_repair_refuses_what_it_cannot_do),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
