@@ -793,11 +793,11 @@ static void set_reason(ur_allowance_record *record, const char *text)
 static void spacing_text(const bend_region *region, char *text, size_t size)
 {
     if (region->rows < 2 || !isfinite(region->closest))
-        ur_c_snprintf(text, size, "one row");
+        c_snprintf(text, size, "one row");
     else if (region->farthest - region->closest <= 1e-3 * region->farthest)
-        ur_c_snprintf(text, size, "every %.4g mm", region->closest);
+        c_snprintf(text, size, "every %.4g mm", region->closest);
     else
-        ur_c_snprintf(text, size, "every %.4g to %.4g mm", region->closest, region->farthest);
+        c_snprintf(text, size, "every %.4g to %.4g mm", region->closest, region->farthest);
 }
 
 static ur_allowance_record region_record(const bend_job *job, const bend_region *region)
@@ -821,32 +821,32 @@ static ur_status record_main(bend_job *job, const bend_region *region)
     char reason[512], spacing[64], stopped[160] = "";
     spacing_text(region, spacing, sizeof spacing);
     if (region->stopped > 0)
-        ur_c_snprintf(stopped, sizeof stopped,
-                      "; %zu %s stop short where the rulings converge, fanned out alternately to "
-                      "keep webs of %.3g mm",
-                      region->stopped, o->router ? "grooves" : "rows", o->min_web);
+        c_snprintf(stopped, sizeof stopped,
+                   "; %zu %s stop short where the rulings converge, fanned out alternately to "
+                   "keep webs of %.3g mm",
+                   region->stopped, o->router ? "grooves" : "rows", o->min_web);
     if (o->router)
-        ur_c_snprintf(reason, sizeof reason,
-                      "bend radius %.4g mm < %.4g mm: %zu grooves %.4g mm wide, %.4g mm deep, %s, "
-                      "%.2g degrees each%s%s",
-                      region->smallest, o->min_radius, region->lines, o->groove_width,
-                      o->groove_depth, spacing, record.facet_angle,
-                      region->merged ? "; the grooves would merge: they touch, and bend only to "
-                                       "about the depth's radius"
-                                     : "",
-                      stopped);
+        c_snprintf(reason, sizeof reason,
+                   "bend radius %.4g mm < %.4g mm: %zu grooves %.4g mm wide, %.4g mm deep, %s, "
+                   "%.2g degrees each%s%s",
+                   region->smallest, o->min_radius, region->lines, o->groove_width, o->groove_depth,
+                   spacing, record.facet_angle,
+                   region->merged ? "; the grooves would merge: they touch, and bend only to "
+                                    "about the depth's radius"
+                                  : "",
+                   stopped);
     else if (region->lines == 0)
-        ur_c_snprintf(reason, sizeof reason,
-                      "bend radius %.4g mm < %.4g mm: no living-hinge slit (%.4g mm long with "
-                      "%.4g mm bridges) fits inside the margins there%s",
-                      region->smallest, o->min_radius, o->hinge_cut_length, o->hinge_connection,
-                      stopped);
+        c_snprintf(reason, sizeof reason,
+                   "bend radius %.4g mm < %.4g mm: no living-hinge slit (%.4g mm long with "
+                   "%.4g mm bridges) fits inside the margins there%s",
+                   region->smallest, o->min_radius, o->hinge_cut_length, o->hinge_connection,
+                   stopped);
     else
-        ur_c_snprintf(reason, sizeof reason,
-                      "bend radius %.4g mm < %.4g mm: living hinge, %zu slits %.4g mm long with "
-                      "%.4g mm bridges in %zu rows %s, %.2g degrees each%s",
-                      region->smallest, o->min_radius, region->lines, o->hinge_cut_length,
-                      o->hinge_connection, region->rows, spacing, record.facet_angle, stopped);
+        c_snprintf(reason, sizeof reason,
+                   "bend radius %.4g mm < %.4g mm: living hinge, %zu slits %.4g mm long with "
+                   "%.4g mm bridges in %zu rows %s, %.2g degrees each%s",
+                   region->smallest, o->min_radius, region->lines, o->hinge_cut_length,
+                   o->hinge_connection, region->rows, spacing, record.facet_angle, stopped);
     set_reason(&record, reason);
     return ur_piece_record(job->piece, &record, job->error);
 }
@@ -861,13 +861,13 @@ static ur_status record_thin(bend_job *job, const bend_region *region)
     ur_allowance_record record = region_record(job, region);
     record.warning = true;
     char reason[512];
-    ur_c_snprintf(reason, sizeof reason,
-                  "bend radius %.4g mm: %s closer than %.4g mm would leave webs under %.4g mm, so "
-                  "each turns by up to %.2g degrees, more than %.2g: %s",
-                  region->smallest, o->router ? "grooves" : "hinge rows", narrowest_spacing(o),
-                  o->min_web, record.facet_angle, facet_limit(o) * 180.0 / M_PI,
-                  o->router ? "use the laser's living hinge or a thinner material"
-                            : "use a thinner material or a larger radius");
+    c_snprintf(reason, sizeof reason,
+               "bend radius %.4g mm: %s closer than %.4g mm would leave webs under %.4g mm, so "
+               "each turns by up to %.2g degrees, more than %.2g: %s",
+               region->smallest, o->router ? "grooves" : "hinge rows", narrowest_spacing(o),
+               o->min_web, record.facet_angle, facet_limit(o) * 180.0 / M_PI,
+               o->router ? "use the laser's living hinge or a thinner material"
+                         : "use a thinner material or a larger radius");
     set_reason(&record, reason);
     return ur_piece_record(job->piece, &record, job->error);
 }
@@ -890,11 +890,11 @@ static ur_status record_skin(bend_job *job, const bend_region *region)
     ur_allowance_record record = region_record(job, region);
     record.warning = true;
     char reason[512];
-    ur_c_snprintf(reason, sizeof reason,
-                  "bend radius %.4g mm: the %.4g mm skin under the grooves bends no tighter than "
-                  "%.4g mm; this radius needs a skin of %.3g mm, grooves deeper than the material "
-                  "allows: use the laser's living hinge or another material",
-                  region->smallest, skin, o->min_radius * skin / o->thickness, needed);
+    c_snprintf(reason, sizeof reason,
+               "bend radius %.4g mm: the %.4g mm skin under the grooves bends no tighter than "
+               "%.4g mm; this radius needs a skin of %.3g mm, grooves deeper than the material "
+               "allows: use the laser's living hinge or another material",
+               region->smallest, skin, o->min_radius * skin / o->thickness, needed);
     set_reason(&record, reason);
     return ur_piece_record(job->piece, &record, job->error);
 }
@@ -989,10 +989,10 @@ static ur_status too_few_rulings(bend_job *job)
     record.limit = job->options->min_radius;
     record.where = net->outline_count ? net->outline[0] : ur_vec2_make(0, 0);
     record.warning = true;
-    ur_c_snprintf(record.reason, sizeof record.reason,
-                  "bend radius %.4g mm < %.4g mm, but the net has fewer than 2 rulings drawn to "
-                  "place bending kerfs along: develop it with more parts",
-                  smallest, job->options->min_radius);
+    c_snprintf(record.reason, sizeof record.reason,
+               "bend radius %.4g mm < %.4g mm, but the net has fewer than 2 rulings drawn to "
+               "place bending kerfs along: develop it with more parts",
+               smallest, job->options->min_radius);
     return ur_piece_record(job->piece, &record, job->error);
 }
 

@@ -439,15 +439,14 @@ static ur_status record(ur_piece *piece, size_t asked, size_t placed, double wid
     entry.where = ur_vec2_make((piece->box.min.x + piece->box.max.x) / 2,
                                (piece->box.min.y + piece->box.max.y) / 2);
     if (placed < asked)
-        ur_c_snprintf(entry.reason, sizeof entry.reason,
-                      "only %zu of %zu bridges of %g mm fit: the rest of the outline is too near "
-                      "corners, tight curves or the other bridges",
-                      placed, asked, width);
+        c_snprintf(entry.reason, sizeof entry.reason,
+                   "only %zu of %zu bridges of %g mm fit: the rest of the outline is too near "
+                   "corners, tight curves or the other bridges",
+                   placed, asked, width);
     else
-        ur_c_snprintf(entry.reason, sizeof entry.reason,
-                      "%zu bridge%s of %g mm left uncut in the outline to hold the part%s", placed,
-                      placed == 1 ? "" : "s", width,
-                      automatic ? " (one per 300 mm of outline)" : "");
+        c_snprintf(entry.reason, sizeof entry.reason,
+                   "%zu bridge%s of %g mm left uncut in the outline to hold the part%s", placed,
+                   placed == 1 ? "" : "s", width, automatic ? " (one per 300 mm of outline)" : "");
     return ur_piece_record(piece, &entry, error);
 }
 

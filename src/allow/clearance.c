@@ -215,7 +215,7 @@ static GEOSGeometry *clip_outward(const allow_board *b, const GEOSGeometry *poly
         previous = point;
     }
     GEOSGeometry *clipped =
-        !failed && kept.count >= 3 ? ur_geos_polygon(b->geos, kept.items, kept.count) : NULL;
+        !failed && kept.count >= 3 ? geos_polygon_of_ring(b->geos, kept.items, kept.count) : NULL;
     ur_points_free(&kept);
     return clipped;
 }
@@ -254,7 +254,7 @@ static GEOSGeometry *offset_convex(const allow_board *b, const ur_vec2 *ring, si
         ur_vec2 n1 = ur_vec2_scale(ur_vec2_make(d1.y, -d1.x), 1 / ur_vec2_length(d1));
         moved[i] = ur_vec2_add_scaled(q, ur_vec2_add(n0, n1), distance / (1 + ur_vec2_dot(n0, n1)));
     }
-    GEOSGeometry *polygon = ur_geos_polygon(b->geos, moved, n);
+    GEOSGeometry *polygon = geos_polygon_of_ring(b->geos, moved, n);
     free(moved);
     return polygon;
 }

@@ -1,6 +1,6 @@
 /*
  * geos.c: lines to GEOS and polygons back to rings of points, for the
- * allowance files (allow_internal.h); rings to polygons are ur_geos_polygon.
+ * allowance files (allow_internal.h); rings to polygons are geos_polygon_of_ring.
  */
 #include "allow_internal.h"
 
@@ -57,7 +57,7 @@ GEOSGeometry *allow_inside(GEOSContextHandle_t geos, const ur_vec2 *ring, size_t
                            double margin, int quadrant_segments)
 {
     double tolerance = fmin(5e-3, margin / 100);
-    GEOSGeometry *polygon = ur_geos_polygon(geos, ring, count);
+    GEOSGeometry *polygon = geos_polygon_of_ring(geos, ring, count);
     GEOSGeometry *simple =
         polygon ? GEOSTopologyPreserveSimplify_r(geos, polygon, tolerance) : NULL;
     GEOSGeometry *inside =

@@ -85,7 +85,7 @@ void ur_seam_label(int seam, char *label, size_t size)
     for (size_t i = 0; i < length; i++)
         prefix[i] = reversed[length - 1 - i];
     prefix[length] = '\0';
-    ur_c_snprintf(label, size, "%s%d", prefix, number);
+    c_snprintf(label, size, "%s%d", prefix, number);
 }
 
 /* ---- The shape of a joint ----------------------------------------------- */
@@ -293,7 +293,7 @@ static GEOSGeometry *joint_shape(const joiner *j, const run *base, double share,
     ur_points ring = {0};
     GEOSGeometry *polygon = NULL;
     if (joint_ring(base, 0.0, height, inset, &ring, error) == UR_OK)
-        polygon = ur_geos_polygon(j->geos, ring.items, ring.count);
+        polygon = geos_polygon_of_ring(j->geos, ring.items, ring.count);
     ur_points_free(&ring);
     return polygon;
 }
@@ -433,7 +433,7 @@ static void describe(const joiner *j, const seam_job *sj, int k, const stretch *
     const ur_piece *piece = &j->pieces[sj->s->net[k]];
     run r = {0};
     if (sub_run(&sj->runs[k], local_first(sj, k, st), local_count(sj, k, st), &r, NULL) != UR_OK) {
-        ur_c_snprintf(text, size, "on %s no room", piece->name);
+        c_snprintf(text, size, "on %s no room", piece->name);
         return;
     }
     ur_vec2 middle = run_middle(&r);
@@ -444,17 +444,15 @@ static void describe(const joiner *j, const seam_job *sj, int k, const stretch *
     if (point)
         GEOSGeom_destroy_r(j->geos, point);
     if (v->by == ALLOW_BLOCKED_OUTLINE && on_other_side(j, sj, k, v->edge))
-        ur_c_snprintf(text, size,
-                      "on %s the seam's other side comes within %.1f mm (a narrow slit)",
-                      piece->name, distance);
+        c_snprintf(text, size, "on %s the seam's other side comes within %.1f mm (a narrow slit)",
+                   piece->name, distance);
     else if (v->by == ALLOW_BLOCKED_OUTLINE)
-        ur_c_snprintf(text, size, "on %s its own outline comes within %.1f mm", piece->name,
-                      distance);
+        c_snprintf(text, size, "on %s its own outline comes within %.1f mm", piece->name, distance);
     else if (v->by == ALLOW_BLOCKED_JOINT)
-        ur_c_snprintf(text, size, "on %s another %s comes within %.1f mm", piece->name,
-                      j->options->lap ? "lap" : "tab", distance);
+        c_snprintf(text, size, "on %s another %s comes within %.1f mm", piece->name,
+                   j->options->lap ? "lap" : "tab", distance);
     else
-        ur_c_snprintf(text, size, "on %s the edge (%.1f mm) is too short", piece->name, r.length);
+        c_snprintf(text, size, "on %s the edge (%.1f mm) is too short", piece->name, r.length);
     free(r.points);
 }
 
@@ -476,7 +474,7 @@ static ur_status record(ur_piece *piece, ur_allowance_kind kind, ur_vec2 where, 
                                  .warning = warning};
     va_list args;
     va_start(args, format);
-    ur_c_vsnprintf(entry.reason, sizeof entry.reason, format, args);
+    c_vsnprintf(entry.reason, sizeof entry.reason, format, args);
     va_end(args);
     return ur_piece_record(piece, &entry, error);
 }
@@ -496,7 +494,7 @@ static ur_status warn_stretch(joiner *j, const seam_job *sj, const stretch *st, 
     size_t total = sj->edges[0];
     char which[48] = "";
     if (total > 1 && sj->edges[0] == sj->edges[1])
-        ur_c_snprintf(which, sizeof which, " (edge %zu of %zu)", st->first + 1, total);
+        c_snprintf(which, sizeof which, " (edge %zu of %zu)", st->first + 1, total);
     status = record(&j->pieces[sj->s->net[first_side]], UR_ALLOWANCE_JOINT, run_middle(&r), 0, true,
                     error, "no room for a %s on seam %s%s: %s, %s: join it by hand",
                     j->options->lap ? "lap" : "glue tab", sj->label, which, sides[first_side],
@@ -522,9 +520,9 @@ static ur_status splice_stretch(joiner *j, const seam_job *sj, const stretch *st
     const ur_piece *a = &j->pieces[sj->s->net[side]], *b = &j->pieces[sj->s->net[1 - side]];
     char name[32];
     if (sj->edges[0] > 1 && sj->edges[0] == sj->edges[1])
-        ur_c_snprintf(name, sizeof name, "S-%s.%zu", sj->label, st->first + 1);
+        c_snprintf(name, sizeof name, "S-%s.%zu", sj->label, st->first + 1);
     else
-        ur_c_snprintf(name, sizeof name, "S-%s", sj->label);
+        c_snprintf(name, sizeof name, "S-%s", sj->label);
     ur_splice_request request = {.seam = r.points,
                                  .count = r.count,
                                  .width = full_depth(o),
@@ -824,7 +822,7 @@ static GEOSGeometry *rim_cleaned(const joiner *j, const GEOSGeometry *polygon)
     if (allow_exterior_ring(j->geos, polygon, &ring, &count, NULL) != UR_OK)
         return NULL;
     count = clean_ring(ring, count);
-    GEOSGeometry *rim = count >= 3 ? ur_geos_polygon(j->geos, ring, count) : NULL;
+    GEOSGeometry *rim = count >= 3 ? geos_polygon_of_ring(j->geos, ring, count) : NULL;
     free(ring);
     return rim;
 }
@@ -986,7 +984,8 @@ static ur_status grow_piece(joiner *j, size_t index, ur_error *error)
     if (count == 0)
         return UR_OK;
     const GEOSGeometry **shapes = calloc(count, sizeof *shapes);
-    GEOSGeometry *outline = ur_geos_polygon(j->geos, piece->paths[0].points, piece->paths[0].count);
+    GEOSGeometry *outline =
+        geos_polygon_of_ring(j->geos, piece->paths[0].points, piece->paths[0].count);
     if (!shapes || !outline) {
         free(shapes);
         if (outline)
@@ -1063,10 +1062,11 @@ static ur_status mark_under(const joiner *j, ur_piece *piece, const run *r, ur_e
 {
     ur_points ring = {0};
     ur_status status = joint_ring(r, 0.0, -j->options->lap_width, 0.0, &ring, error);
-    GEOSGeometry *zone = status == UR_OK ? ur_geos_polygon(j->geos, ring.items, ring.count) : NULL;
+    GEOSGeometry *zone =
+        status == UR_OK ? geos_polygon_of_ring(j->geos, ring.items, ring.count) : NULL;
     ur_points_free(&ring);
     GEOSGeometry *outline =
-        zone ? ur_geos_polygon(j->geos, piece->paths[0].points, piece->paths[0].count) : NULL;
+        zone ? geos_polygon_of_ring(j->geos, piece->paths[0].points, piece->paths[0].count) : NULL;
     GEOSGeometry *valid = zone ? GEOSMakeValid_r(j->geos, zone) : NULL;
     GEOSGeometry *clipped = outline && valid ? GEOSIntersection_r(j->geos, outline, valid) : NULL;
     if (status == UR_OK && clipped)
@@ -1196,7 +1196,7 @@ static ur_status record_seam(joiner *j, size_t from, size_t to, ur_error *error)
         ur_piece *piece = p ? &j->pieces[p->piece] : NULL;
         char smaller[48] = "";
         if (reduced)
-            ur_c_snprintf(smaller, sizeof smaller, " (%zu made smaller to fit)", reduced);
+            c_snprintf(smaller, sizeof smaller, " (%zu made smaller to fit)", reduced);
         if (p && j->options->lap)
             status = record(piece, UR_ALLOWANCE_JOINT, run_middle(&p->base), kept, false, error,
                             "lap %.3g mm under seam %s, marked on both pieces%s", depth, label,

@@ -101,7 +101,7 @@ static ur_status offset_ring(GEOSContextHandle_t geos, const GEOSBufferParams *p
 {
     const ur_path *path = &piece->paths[index];
     ur_vec2 at = path_middle(path);
-    GEOSGeometry *polygon = ur_geos_polygon(geos, path->points, path->count);
+    GEOSGeometry *polygon = geos_polygon_of_ring(geos, path->points, path->count);
     GEOSGeometry *buffered =
         polygon ? GEOSBufferWithParams_r(geos, polygon, params, distance) : NULL;
     ur_status status = UR_OK;
@@ -215,22 +215,22 @@ static ur_status record(ur_piece *piece, double kerf, size_t holes, size_t slots
                                        .limit = NAN,
                                        .where = slot_at,
                                        .warning = true};
-        ur_c_snprintf(
-            warning.reason, sizeof warning.reason,
-            "%zu slot%s of the outline narrower than the kerf (%g mm), near (%.1f, %.1f), "
-            "closed as the outline moved out: filled, as the cutter could not cut %s",
-            slots, slots == 1 ? "" : "s", kerf, slot_at.x, slot_at.y, slots == 1 ? "it" : "them");
+        c_snprintf(warning.reason, sizeof warning.reason,
+                   "%zu slot%s of the outline narrower than the kerf (%g mm), near (%.1f, %.1f), "
+                   "closed as the outline moved out: filled, as the cutter could not cut %s",
+                   slots, slots == 1 ? "" : "s", kerf, slot_at.x, slot_at.y,
+                   slots == 1 ? "it" : "them");
         ur_status status = ur_piece_record(piece, &warning, error);
         if (status != UR_OK)
             return status;
     }
     if (holes == 0)
-        ur_c_snprintf(entry.reason, sizeof entry.reason,
-                      "outline offset outward by half the kerf, %g mm", kerf / 2);
+        c_snprintf(entry.reason, sizeof entry.reason,
+                   "outline offset outward by half the kerf, %g mm", kerf / 2);
     else
-        ur_c_snprintf(entry.reason, sizeof entry.reason,
-                      "outline offset outward and %zu hole%s inward by half the kerf, %g mm", holes,
-                      holes == 1 ? "" : "s", kerf / 2);
+        c_snprintf(entry.reason, sizeof entry.reason,
+                   "outline offset outward and %zu hole%s inward by half the kerf, %g mm", holes,
+                   holes == 1 ? "" : "s", kerf / 2);
     return ur_piece_record(piece, &entry, error);
 }
 

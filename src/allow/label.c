@@ -118,7 +118,7 @@ ur_status ur_font_open(const char *name, ur_font **font, ur_error *error)
             name);
     }
     measure_font(opened);
-    ur_c_snprintf(opened->name, sizeof opened->name, "%s", name);
+    c_snprintf(opened->name, sizeof opened->name, "%s", name);
     *font = opened;
     return UR_OK;
 }
@@ -347,7 +347,7 @@ ur_status allow_room_open(ur_piece *piece, allow_room **room, ur_error *error)
     if (status == UR_OK)
         status = allow_grid_init(&r->labels, region, fmax(size / 64, 1e-3), error);
     if (status == UR_OK) {
-        r->outline = ur_geos_polygon(r->geos, piece->paths[0].points, piece->paths[0].count);
+        r->outline = geos_polygon_of_ring(r->geos, piece->paths[0].points, piece->paths[0].count);
         r->outline_fast = r->outline ? GEOSPrepare_r(r->geos, r->outline) : NULL;
         if (!r->outline_fast)
             status = ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not prepare piece '%s'",
@@ -694,7 +694,7 @@ static ur_status engrave(ur_piece *piece, const unit_text *text, const char *lab
                                   .first_path = old_count,
                                   .path_count = text->count,
                                   .direction = f->along};
-    ur_c_snprintf(record.reason, sizeof record.reason, "label '%.64s' %.3g mm high", label, height);
+    c_snprintf(record.reason, sizeof record.reason, "label '%.64s' %.3g mm high", label, height);
     if (status == UR_OK)
         status = ur_piece_record(piece, &record, error);
     if (status != UR_OK)

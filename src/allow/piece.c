@@ -60,7 +60,7 @@ ur_status ur_piece_from_net(const ur_net *net, const ur_allowance_options *optio
                             ur_error *error)
 {
     memset(piece, 0, sizeof *piece);
-    ur_c_snprintf(piece->name, sizeof piece->name, "%s", net->name);
+    c_snprintf(piece->name, sizeof piece->name, "%s", net->name);
     piece->measures.area_3d = net->area_3d;
     piece->measures.flat_area = net->flat_area;
     piece->measures.edge_error = net->edge_error;

@@ -20,7 +20,7 @@
  * its compression limit against the flattening's stretch.  (The material
  * strain measured on the flat length is 1 / sigma2 - 1 and 1 - 1 / sigma1;
  * the triggers use the figures the report shows, equal to first order.)
- * A triangle whose dominant strain is below UR_RELIEF_NEGLIGIBLE (0.01 %)
+ * A triangle whose dominant strain is below RELIEF_NEGLIGIBLE (0.01 %)
  * is never relieved, whatever the limits: no material is that exact, and an
  * exact development meets its 3D lengths to quadrature accuracy only.
  *
@@ -97,7 +97,7 @@
  * slits are clipped as above; overlap slits run from the ruling's start
  * (on the outline) to `margin` short of the outline at its other end, each
  * with a zone (or as a dart) of width w = excess / n.  An exact net
- * (coverage 1 within UR_RELIEF_NEGLIGIBLE) gets neither.
+ * (coverage 1 within RELIEF_NEGLIGIBLE) gets neither.
  *
  * Slits never cross.  Overlap regions are relieved first, then kerfing
  * regions; once a region is done its cuts, buffered by `margin`, are kept
@@ -133,7 +133,7 @@
  */
 #define RELIEF_UNNOTICED 0.25
 
-#define UR_RELIEF_NEGLIGIBLE 1e-4
+#define RELIEF_NEGLIGIBLE 1e-4
 #define RELIEF_LINES 64    /* lines across a region on which its deficit is measured */
 #define RELIEF_SMOOTHING 4 /* passes smoothing the axes before they are sorted into sectors */
 
@@ -303,7 +303,7 @@ static GEOSGeometry *region_geometry(relief_job *job, const ur_shading *shading,
             ring[1] = c[2];
             ring[2] = c[1];
         }
-        polygons[made] = ur_geos_polygon(job->geos, ring, 3);
+        polygons[made] = geos_polygon_of_ring(job->geos, ring, 3);
         if (!polygons[made])
             break;
     }
@@ -424,9 +424,9 @@ static ur_status relieve_region(relief_job *job, region *r, relief_kind kind)
 /* Which relief each triangle asks for, by its dominant strain. */
 static relief_kind triangle_kind(const ur_relief_limits *limits, double strain)
 {
-    if (limits->kerfing && -strain > fmax(limits->max_stretch, UR_RELIEF_NEGLIGIBLE))
+    if (limits->kerfing && -strain > fmax(limits->max_stretch, RELIEF_NEGLIGIBLE))
         return RELIEF_KERFING;
-    if (limits->overlaps && strain > fmax(limits->max_compression, UR_RELIEF_NEGLIGIBLE))
+    if (limits->overlaps && strain > fmax(limits->max_compression, RELIEF_NEGLIGIBLE))
         return RELIEF_OVERLAP;
     return RELIEF_NONE;
 }
@@ -658,9 +658,9 @@ static ur_status relieve_developed(relief_job *job)
     double coverage = net->flat_area / net->area_3d;
     const ur_relief_limits *limits = job->limits;
     relief_need need = {RELIEF_NONE, 0, 0, 0, {0, 0}, 0, 0};
-    if (limits->kerfing && 1 - coverage > fmax(limits->max_stretch, UR_RELIEF_NEGLIGIBLE))
+    if (limits->kerfing && 1 - coverage > fmax(limits->max_stretch, RELIEF_NEGLIGIBLE))
         need = (relief_need){RELIEF_KERFING, 1 - coverage, limits->max_stretch, 0, {0, 0}, 0, 0};
-    else if (limits->overlaps && coverage - 1 > fmax(limits->max_compression, UR_RELIEF_NEGLIGIBLE))
+    else if (limits->overlaps && coverage - 1 > fmax(limits->max_compression, RELIEF_NEGLIGIBLE))
         need =
             (relief_need){RELIEF_OVERLAP, coverage - 1, limits->max_compression, 0, {0, 0}, 0, 0};
     return need.kind == RELIEF_NONE ? UR_OK : relieve_rulings(job, &need);
@@ -689,7 +689,7 @@ static ur_status open_job(relief_job *job)
         return ur_error_out_of_memory(job->error);
     ur_box box = ur_box_of_points(net->outline, net->outline_count);
     job->size = hypot(ur_box_width(box), ur_box_height(box));
-    job->outline = ur_geos_polygon(job->geos, net->outline, net->outline_count);
+    job->outline = geos_polygon_of_ring(job->geos, net->outline, net->outline_count);
     if (job->outline)
         job->inner =
             job->limits->margin > 0

@@ -268,7 +268,7 @@ static ur_status overlap_slit(relief_job *job, ur_vec2 start, ur_vec2 u, double 
         zone[1] = zone[3];
         zone[3] = swap;
     }
-    GEOSGeometry *polygon = ur_geos_polygon(job->geos, zone, 4);
+    GEOSGeometry *polygon = geos_polygon_of_ring(job->geos, zone, 4);
     GEOSGeometry *inside = polygon ? GEOSIntersection_r(job->geos, polygon, job->outline) : NULL;
     status = inside ? add_rings(job, inside, UR_OP_MARK) : relief_geos_failed(job, "mark a zone");
     if (inside)
@@ -355,22 +355,23 @@ ur_status relief_record_need(relief_job *job, const relief_need *need, const cha
     record.warning = need->cut < need->wanted;
     char missing[96] = "", reason[512];
     if (record.warning)
-        ur_c_snprintf(missing, sizeof missing, "; only %zu fit, %.3g mm clear of the outline and slits",
-                 need->cut, job->limits->margin);
+        c_snprintf(missing, sizeof missing,
+                   "; only %zu fit, %.3g mm clear of the outline and slits", need->cut,
+                   job->limits->margin);
     if (kerfing)
-        ur_c_snprintf(reason, sizeof reason,
-                 "the net is %.3g mm shorter than the surface %s (forming needs %.3g %% stretch, "
-                 "the material takes %.3g %%): %zu kerfing slits opening up to %.3g mm%s",
-                 need->length, across, 100 * need->value, 100 * need->limit, need->wanted,
-                 job->limits->opening, missing);
+        c_snprintf(reason, sizeof reason,
+                   "the net is %.3g mm shorter than the surface %s (forming needs %.3g %% stretch, "
+                   "the material takes %.3g %%): %zu kerfing slits opening up to %.3g mm%s",
+                   need->length, across, 100 * need->value, 100 * need->limit, need->wanted,
+                   job->limits->opening, missing);
     else
-        ur_c_snprintf(reason, sizeof reason,
-                 "the net is %.3g mm longer than the surface %s (forming needs %.3g %% "
-                 "compression, the material takes %.3g %%): %zu overlap %s %.3g mm%s",
-                 need->length, across, 100 * need->value, 100 * need->limit, need->wanted,
-                 job->limits->darts ? "darts, each as wide at the outline as"
-                                    : "slits, each lapping",
-                 need->length / (double)need->wanted, missing);
+        c_snprintf(reason, sizeof reason,
+                   "the net is %.3g mm longer than the surface %s (forming needs %.3g %% "
+                   "compression, the material takes %.3g %%): %zu overlap %s %.3g mm%s",
+                   need->length, across, 100 * need->value, 100 * need->limit, need->wanted,
+                   job->limits->darts ? "darts, each as wide at the outline as"
+                                      : "slits, each lapping",
+                   need->length / (double)need->wanted, missing);
     size_t length = strlen(reason); /* at most what the record holds */
     length = length < sizeof record.reason ? length : sizeof record.reason - 1;
     memcpy(record.reason, reason, length);

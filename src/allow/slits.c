@@ -117,7 +117,7 @@ ur_status allow_open_slits(ur_piece *piece, ur_error *error)
     GEOSContextHandle_t geos = GEOS_init_r();
     if (!geos)
         return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not be started");
-    GEOSGeometry *drawn = ur_geos_polygon(geos, outline->points, outline->count);
+    GEOSGeometry *drawn = geos_polygon_of_ring(geos, outline->points, outline->count);
     GEOSGeometry *valid = drawn ? GEOSMakeValid_r(geos, drawn) : NULL;
     const GEOSGeometry *polygon = valid ? only_polygon(geos, valid) : NULL;
     double area = fabs(ur_polygon_signed_area(outline->points, outline->count)), valid_area = 0;

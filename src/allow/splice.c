@@ -74,7 +74,7 @@ static ur_status label_half(ur_piece *piece, const ur_splice_request *request, c
     ur_vec2 right =
         length > 0 ? ur_vec2_make(along.y / length, -along.x / length) : ur_vec2_make(0, -1);
     char text[80];
-    ur_c_snprintf(text, sizeof text, "%s %s", name, request->label);
+    c_snprintf(text, sizeof text, "%s %s", name, request->label);
     double height = fmin(request->label_height, 0.6 * request->width);
     bool placed = false;
     ur_status status = ur_piece_add_label(
@@ -85,8 +85,7 @@ static ur_status label_half(ur_piece *piece, const ur_splice_request *request, c
         return status;
     ur_allowance_record warning = {
         .kind = UR_ALLOWANCE_LABEL, .value = NAN, .limit = NAN, .where = middle, .warning = true};
-    ur_c_snprintf(warning.reason, sizeof warning.reason, "no room for label %s on the splice",
-                  text);
+    c_snprintf(warning.reason, sizeof warning.reason, "no room for label %s on the splice", text);
     return ur_piece_record(piece, &warning, error);
 }
 
@@ -108,7 +107,7 @@ ur_status ur_splice_piece(const ur_splice_request *request, ur_piece *piece, ur_
     ur_status status = check_request(request, error);
     if (status != UR_OK)
         return status;
-    ur_c_snprintf(piece->name, sizeof piece->name, "%s", request->name);
+    c_snprintf(piece->name, sizeof piece->name, "%s", request->name);
     ur_vec2 *ring = NULL;
     size_t ring_count = 0;
     status = strip_ring(request->seam, request->count, request->width, &ring, &ring_count, error);
@@ -128,10 +127,10 @@ ur_status ur_splice_piece(const ur_splice_request *request, ur_piece *piece, ur_
                                      .value = NAN,
                                      .limit = NAN,
                                      .where = piece->paths[1].points[0]};
-        ur_c_snprintf(entry.reason, sizeof entry.reason,
-                      "%s for seam %s, glued behind it under %s and %s, %g mm on each side",
-                      request->strap ? "butt strap" : "splice strip", request->label,
-                      request->piece_a, request->piece_b, request->width);
+        c_snprintf(entry.reason, sizeof entry.reason,
+                   "%s for seam %s, glued behind it under %s and %s, %g mm on each side",
+                   request->strap ? "butt strap" : "splice strip", request->label, request->piece_a,
+                   request->piece_b, request->width);
         status = ur_piece_record(piece, &entry, error);
     }
     if (status != UR_OK)

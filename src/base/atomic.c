@@ -204,7 +204,7 @@ static int open_unique(char *name)
 }
 
 /* Creates the temporary and opens a stream on it; removes it on failure. */
-static ur_status create_temp(ur_atomic_file *file, ur_error *error)
+static ur_status create_temp(atomic_file *file, ur_error *error)
 {
     int fd = open_unique(file->temp_path);
     if (fd < 0) {
@@ -224,8 +224,7 @@ static ur_status create_temp(ur_atomic_file *file, ur_error *error)
     return UR_OK;
 }
 
-ur_status ur_atomic_open(ur_atomic_file *file, const char *path, ur_context *context,
-                         ur_error *error)
+ur_status atomic_open(atomic_file *file, const char *path, ur_context *context, ur_error *error)
 {
     memset(file, 0, sizeof *file);
     file->context = context;
@@ -237,16 +236,16 @@ ur_status ur_atomic_open(ur_atomic_file *file, const char *path, ur_context *con
         return UR_ERROR_INTERNAL;
     file->temp_path = temp_template(path, error);
     if (!file->temp_path) {
-        ur_atomic_discard(file);
+        atomic_discard(file);
         return UR_ERROR_INTERNAL;
     }
     status = create_temp(file, error);
     if (status != UR_OK)
-        ur_atomic_discard(file);
+        atomic_discard(file);
     return status;
 }
 
-ur_status ur_atomic_close(ur_atomic_file *file, ur_error *error)
+ur_status atomic_close(atomic_file *file, ur_error *error)
 {
     if (!file->stream)
         return ur_error_set(error, UR_ERROR_INTERNAL, "'%s' is not open", file->path);
@@ -279,10 +278,10 @@ void ur_output_set_begin(ur_context *context)
         context->output_set.depth++;
 }
 
-void ur_atomic_set_discard(ur_context *context)
+void atomic_set_discard(ur_context *context)
 {
     for (size_t i = 0; i < context->output_set.count; i++)
-        ur_atomic_discard(&context->output_set.held[i]);
+        atomic_discard(&context->output_set.held[i]);
     free(context->output_set.held);
     context->output_set.held = NULL;
     context->output_set.count = context->output_set.capacity = 0;
@@ -303,21 +302,20 @@ ur_status ur_output_set_end(ur_context *context, bool commit, ur_error *error)
         status = ur_context_check(context, error);
         for (size_t i = 0; status == UR_OK && i < context->output_set.count; i++) {
             context->output_set.held[i].context = NULL; /* renamed now, not held again */
-            status = ur_atomic_commit(&context->output_set.held[i], error);
+            status = atomic_commit(&context->output_set.held[i], error);
         }
     }
-    ur_atomic_set_discard(context); /* removes what was not renamed */
+    atomic_set_discard(context); /* removes what was not renamed */
     context->output_set.refused = false;
     return status;
 }
 
 /* Takes over a closed temporary until the set ends; file is left empty. */
-static ur_status set_hold(ur_context *context, ur_atomic_file *file, ur_error *error)
+static ur_status set_hold(ur_context *context, atomic_file *file, ur_error *error)
 {
     if (context->output_set.count == context->output_set.capacity) {
-        ur_atomic_file *held =
-            ur_array_grow(context->output_set.held, &context->output_set.capacity,
-                          context->output_set.count, sizeof *held, 8, error);
+        atomic_file *held = ur_array_grow(context->output_set.held, &context->output_set.capacity,
+                                          context->output_set.count, sizeof *held, 8, error);
         if (!held)
             return UR_ERROR_INTERNAL;
         context->output_set.held = held;
@@ -327,7 +325,7 @@ static ur_status set_hold(ur_context *context, ur_atomic_file *file, ur_error *e
     return UR_OK;
 }
 
-ur_status ur_atomic_commit(ur_atomic_file *file, ur_error *error)
+ur_status atomic_commit(atomic_file *file, ur_error *error)
 {
     if (file->stream || !file->temp_path)
         return ur_error_set(error, UR_ERROR_INTERNAL, "'%s' is not ready to commit",
@@ -344,15 +342,15 @@ ur_status ur_atomic_commit(ur_atomic_file *file, ur_error *error)
     return UR_OK;
 }
 
-ur_status ur_atomic_commit_all(ur_atomic_file *files, size_t count, ur_error *error)
+ur_status atomic_commit_all(atomic_file *files, size_t count, ur_error *error)
 {
     ur_status status = count > 0 ? ur_context_check(files[0].context, error) : UR_OK;
     for (size_t i = 0; status == UR_OK && i < count; i++)
-        status = ur_atomic_commit(&files[i], error);
+        status = atomic_commit(&files[i], error);
     return status;
 }
 
-void ur_atomic_discard(ur_atomic_file *file)
+void atomic_discard(atomic_file *file)
 {
     if (file->stream)
         (void)fclose(file->stream); /* the data is thrown away: errors do not matter */
@@ -363,8 +361,8 @@ void ur_atomic_discard(ur_atomic_file *file)
     memset(file, 0, sizeof *file);
 }
 
-ur_status ur_stream_write(FILE *stream, ur_emitter emit, const void *data, const char *what,
-                          ur_error *error)
+ur_status atomic_stream_write(FILE *stream, atomic_emitter emit, const void *data, const char *what,
+                              ur_error *error)
 {
     errno = 0;
     if (!emit(stream, data) || fflush(stream) != 0 || ferror(stream))
@@ -374,13 +372,13 @@ ur_status ur_stream_write(FILE *stream, ur_emitter emit, const void *data, const
     return UR_OK;
 }
 
-ur_status ur_atomic_write(const char *path, ur_emitter emit, const void *data, const char *what,
-                          ur_context *context, ur_error *error)
+ur_status atomic_write(const char *path, atomic_emitter emit, const void *data, const char *what,
+                       ur_context *context, ur_error *error)
 {
     if (strcmp(path, "-") == 0)
-        return ur_stream_write(stdout, emit, data, what, error);
-    ur_atomic_file file;
-    ur_status status = ur_atomic_open(&file, path, context, error);
+        return atomic_stream_write(stdout, emit, data, what, error);
+    atomic_file file;
+    ur_status status = atomic_open(&file, path, context, error);
     if (status != UR_OK)
         return status;
     errno = 0;
@@ -388,9 +386,9 @@ ur_status ur_atomic_write(const char *path, ur_emitter emit, const void *data, c
         status = ur_error_set(error, UR_ERROR_IO, "cannot write '%s': %s", path,
                               errno ? strerror(errno) : "write error");
     if (status == UR_OK)
-        status = ur_atomic_close(&file, error);
+        status = atomic_close(&file, error);
     if (status == UR_OK)
-        status = ur_atomic_commit_all(&file, 1, error);
-    ur_atomic_discard(&file); /* after a commit there is nothing left to remove */
+        status = atomic_commit_all(&file, 1, error);
+    atomic_discard(&file); /* after a commit there is nothing left to remove */
     return status;
 }

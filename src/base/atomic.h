@@ -10,14 +10,14 @@
  * every one is complete; any failure before that discards every temporary
  * and leaves what was on disk untouched.
  *
- * Life of a file: ur_atomic_open, write to ->stream, ur_atomic_close, then
- * ur_atomic_commit; ur_atomic_discard at any point undoes what is not yet
- * committed and frees everything.  A zeroed ur_atomic_file is "nothing yet",
+ * Life of a file: atomic_open, write to ->stream, atomic_close, then
+ * atomic_commit; atomic_discard at any point undoes what is not yet
+ * committed and frees everything.  A zeroed atomic_file is "nothing yet",
  * safe to discard.  A file belongs to the context it was opened in (which
  * may be NULL): inside that context's output set (ur_output_set_begin,
- * unroll/base.h) ur_atomic_commit only hands the temporary to the set,
+ * unroll/base.h) atomic_commit only hands the temporary to the set,
  * which renames everything at its end.  In a cancelled context nothing is
- * renamed: ur_atomic_commit_all and ur_atomic_write then fail with
+ * renamed: atomic_commit_all and atomic_write then fail with
  * UR_ERROR_CANCELLED.  The context's write budget
  * (ur_context_fail_writes_after) applies to every file opened in it.
  */
@@ -29,56 +29,55 @@
 
 #include "unroll/base.h"
 
-typedef struct ur_atomic_file {
+typedef struct atomic_file {
     char *path;          /* owned: the final name */
     char *temp_path;     /* owned: the temporary; NULL once renamed or removed */
-    FILE *stream;        /* open between ur_atomic_open and ur_atomic_close */
+    FILE *stream;        /* open between atomic_open and atomic_close */
     int fd;              /* the temporary's descriptor, under stream, for fsync */
     ur_context *context; /* not owned; NULL for none */
-} ur_atomic_file;
+} atomic_file;
 
 /*
  * Creates the temporary for path, readable as a newly created file would be
  * (0666 less the umask).  Fails with UR_ERROR_INPUT, naming the directory,
  * when the directory does not exist.
  */
-ur_status ur_atomic_open(ur_atomic_file *file, const char *path, ur_context *context,
-                         ur_error *error);
+ur_status atomic_open(atomic_file *file, const char *path, ur_context *context, ur_error *error);
 
 /* Flushes, syncs and closes the stream; the temporary stays until commit. */
-ur_status ur_atomic_close(ur_atomic_file *file, ur_error *error);
+ur_status atomic_close(atomic_file *file, ur_error *error);
 
 /* Renames the closed temporary to the final name and frees the names. */
-ur_status ur_atomic_commit(ur_atomic_file *file, ur_error *error);
+ur_status atomic_commit(atomic_file *file, ur_error *error);
 
 /*
  * Commits files[0 .. count - 1], all closed, in order; fails before the
  * first rename, renaming none, when the run was cancelled.
  */
-ur_status ur_atomic_commit_all(ur_atomic_file *files, size_t count, ur_error *error);
+ur_status atomic_commit_all(atomic_file *files, size_t count, ur_error *error);
 
 /* Closes and removes whatever is not committed and frees everything. */
-void ur_atomic_discard(ur_atomic_file *file);
+void atomic_discard(atomic_file *file);
 
 /* Writes a whole document to stream; false on a write error (errno may say why). */
-typedef bool (*ur_emitter)(FILE *stream, const void *data);
+typedef bool (*atomic_emitter)(FILE *stream, const void *data);
 
 /*
  * Writes what emit produces to path: to standard output for "-", else
  * atomically (nothing left behind on failure, an existing file untouched).
  * what names the document in messages ("plot", "report").
  */
-ur_status ur_atomic_write(const char *path, ur_emitter emit, const void *data, const char *what,
-                          ur_context *context, ur_error *error);
+ur_status atomic_write(const char *path, atomic_emitter emit, const void *data, const char *what,
+                       ur_context *context, ur_error *error);
 
 /* Removes every temporary context's output set holds and forgets them (context.c's free). */
-void ur_atomic_set_discard(ur_context *context);
+void atomic_set_discard(ur_context *context);
 
 /*
  * Writes what emit produces to a stream the caller owns (and closes), and
  * flushes it: the writers' FILE * versions, and "-".
  */
-ur_status ur_stream_write(FILE *stream, ur_emitter emit, const void *data, const char *what,
-                          ur_error *error);
+ur_status atomic_stream_write(FILE *stream, atomic_emitter emit, const void *data, const char *what,
+                              ur_error *error);
 
 #endif

@@ -14,7 +14,7 @@ ur_status ur_error_set(ur_error *error, ur_status status, const char *format, ..
     if (error) {
         va_list args;
         va_start(args, format);
-        ur_c_vsnprintf(error->message, sizeof error->message, format, args);
+        c_vsnprintf(error->message, sizeof error->message, format, args);
         va_end(args);
         error->status = status;
     }
@@ -28,7 +28,7 @@ ur_status ur_error_prefix(ur_error *error, const char *format, ...)
     char combined[sizeof error->message];
     va_list args;
     va_start(args, format);
-    ur_c_vsnprintf(combined, sizeof combined, format, args);
+    c_vsnprintf(combined, sizeof combined, format, args);
     va_end(args);
     /* Messages are short; whatever does not fit is cut off at the end. */
     size_t used = strlen(combined);

@@ -35,7 +35,7 @@ static void leave_c_locale(locale_switch s)
     }
 }
 
-int ur_c_vsnprintf(char *text, size_t size, const char *format, va_list arguments)
+int c_vsnprintf(char *text, size_t size, const char *format, va_list arguments)
 {
     locale_switch s = enter_c_locale();
     int written = vsnprintf(text, size, format, arguments);
@@ -43,16 +43,16 @@ int ur_c_vsnprintf(char *text, size_t size, const char *format, va_list argument
     return written;
 }
 
-int ur_c_snprintf(char *text, size_t size, const char *format, ...)
+int c_snprintf(char *text, size_t size, const char *format, ...)
 {
     va_list arguments;
     va_start(arguments, format);
-    int written = ur_c_vsnprintf(text, size, format, arguments);
+    int written = c_vsnprintf(text, size, format, arguments);
     va_end(arguments);
     return written;
 }
 
-int ur_c_fprintf(FILE *stream, const char *format, ...)
+int c_fprintf(FILE *stream, const char *format, ...)
 {
     va_list arguments;
     va_start(arguments, format);
@@ -63,7 +63,7 @@ int ur_c_fprintf(FILE *stream, const char *format, ...)
     return written;
 }
 
-double ur_c_strtod(const char *text, char **end)
+double c_strtod(const char *text, char **end)
 {
     locale_switch s = enter_c_locale();
     double value = strtod(text, end);

@@ -18,19 +18,18 @@
 #include <stdio.h>
 
 #if defined(__GNUC__)
-#define UR_PRINTF_LIKE(format_index, first_argument)                                               \
+#define PRINTF_LIKE(format_index, first_argument)                                                  \
     __attribute__((format(printf, format_index, first_argument)))
 #else
-#define UR_PRINTF_LIKE(format_index, first_argument)
+#define PRINTF_LIKE(format_index, first_argument)
 #endif
 
 /* snprintf, vsnprintf and fprintf in the "C" locale. */
-int ur_c_snprintf(char *text, size_t size, const char *format, ...) UR_PRINTF_LIKE(3, 4);
-int ur_c_vsnprintf(char *text, size_t size, const char *format, va_list arguments)
-    UR_PRINTF_LIKE(3, 0);
-int ur_c_fprintf(FILE *stream, const char *format, ...) UR_PRINTF_LIKE(2, 3);
+int c_snprintf(char *text, size_t size, const char *format, ...) PRINTF_LIKE(3, 4);
+int c_vsnprintf(char *text, size_t size, const char *format, va_list arguments) PRINTF_LIKE(3, 0);
+int c_fprintf(FILE *stream, const char *format, ...) PRINTF_LIKE(2, 3);
 
 /* strtod in the "C" locale: '.' is the decimal point. */
-double ur_c_strtod(const char *text, char **end);
+double c_strtod(const char *text, char **end);
 
 #endif

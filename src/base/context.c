@@ -25,7 +25,7 @@ void ur_context_free(ur_context *context)
 {
     if (!context)
         return;
-    ur_atomic_set_discard(context);
+    atomic_set_discard(context);
     free(context);
 }
 

@@ -12,7 +12,7 @@
 
 #include "unroll/base.h"
 
-struct ur_atomic_file;
+struct atomic_file;
 
 /*
  * The cancel flag is stored from a signal handler, which may only touch a
@@ -26,9 +26,9 @@ struct ur_atomic_file;
 struct ur_context {
     atomic_int cancelled;
     struct {
-        size_t depth;                /* begins not yet ended */
-        bool refused;                /* an end said not to commit */
-        struct ur_atomic_file *held; /* closed temporaries, renamed at the outermost end */
+        size_t depth;             /* begins not yet ended */
+        bool refused;             /* an end said not to commit */
+        struct atomic_file *held; /* closed temporaries, renamed at the outermost end */
         size_t count, capacity;
     } output_set;
     /* Test hook: bytes the writers may still write in all; -1 for no limit. */

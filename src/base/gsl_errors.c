@@ -20,7 +20,7 @@ static pthread_mutex_t lock = PTHREAD_MUTEX_INITIALIZER;
 static size_t open_brackets;               /* guarded by lock */
 static gsl_error_handler_t *saved_handler; /* guarded by lock: the caller's, while open */
 
-void ur_gsl_errors_off(void)
+void gsl_errors_off(void)
 {
     pthread_mutex_lock(&lock);
     if (open_brackets++ == 0)
@@ -28,7 +28,7 @@ void ur_gsl_errors_off(void)
     pthread_mutex_unlock(&lock);
 }
 
-void ur_gsl_errors_restore(void)
+void gsl_errors_restore(void)
 {
     pthread_mutex_lock(&lock);
     if (open_brackets > 0 && --open_brackets == 0)

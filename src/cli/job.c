@@ -121,7 +121,7 @@ static int all_pieces(const ur_job_file *file, const char *out, words *first_wor
     words *w = calloc(1, sizeof *w);
     if (!w) {
         cli_message("job: out of memory");
-        return EXIT_INTERNAL;
+        return EXIT_MEMORY;
     }
     int code = 0;
     for (size_t p = 0; !code && p < file->part_count; p++) {
@@ -208,7 +208,7 @@ int cli_job_command(int argc, char **argv)
         code = all_pieces(&file, out, first, &job, command, sizeof command, parts);
     else {
         cli_message("job: out of memory");
-        code = EXIT_INTERNAL;
+        code = EXIT_MEMORY;
     }
     /* The output directory is made when missing (its parent must exist), only now. */
     bool made_directory = false;

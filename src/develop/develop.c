@@ -252,7 +252,7 @@ static size_t drop_repeated(ur_vec2 *ring, size_t n)
 
 static bool ring_is_simple(GEOSContextHandle_t geos, const ur_vec2 *ring, size_t n)
 {
-    GEOSGeometry *polygon = ur_geos_polygon(geos, ring, n);
+    GEOSGeometry *polygon = geos_polygon_of_ring(geos, ring, n);
     if (!polygon)
         return false;
     bool simple = GEOSisValid_r(geos, polygon) == 1;
@@ -549,7 +549,7 @@ static ur_status nets_from_strip(ur_ruled *ruled, const strip *s, const size_t *
     bool closed = ur_ruled_is_closed(ruled);
     for (size_t k = 0; k < piece_count; k++) {
         ur_net *net = &nets->nets[k];
-        ur_c_snprintf(net->name, sizeof net->name, "P%zu", k + 1);
+        c_snprintf(net->name, sizeof net->name, "P%zu", k + 1);
         ur_status status = fill_net(ruled, s, cuts[k], cuts[k + 1], k > 0 || closed,
                                     k + 1 < piece_count || closed, net, error);
         if (status == UR_OK)
@@ -564,9 +564,9 @@ static ur_status nets_from_strip(ur_ruled *ruled, const strip *s, const size_t *
 
 ur_status develop_exact_at(ur_ruled *ruled, strip *s, ur_error *error)
 {
-    ur_gsl_errors_off(); /* GSL's default handler would abort */
+    gsl_errors_off(); /* GSL's default handler would abort */
     ur_status status = integrate_flat_curve(ruled, s, error);
-    ur_gsl_errors_restore();
+    gsl_errors_restore();
     return status;
 }
 
@@ -605,8 +605,8 @@ static ur_status develop(ur_ruled *ruled, const ur_develop_options *options, ur_
 ur_status ur_develop(ur_ruled *ruled, const ur_develop_options *options, ur_net_list *nets,
                      ur_error *error)
 {
-    ur_gsl_errors_off();
+    gsl_errors_off();
     ur_status status = develop(ruled, options, nets, error);
-    ur_gsl_errors_restore();
+    gsl_errors_restore();
     return status;
 }

@@ -85,7 +85,7 @@ ur_status ur_net_from_flat(const ur_mesh *piece, const ur_flat_piece *flat, cons
     if (status != UR_OK)
         return status;
     memset(net, 0, sizeof *net);
-    ur_c_snprintf(net->name, sizeof net->name, "%s", name);
+    c_snprintf(net->name, sizeof net->name, "%s", name);
     net->outline = ur_alloc_array(count, sizeof *net->outline, error);
     net->outline_3d = ur_alloc_array(count, sizeof *net->outline_3d, error);
     if (!net->outline || !net->outline_3d) {

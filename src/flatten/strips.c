@@ -414,11 +414,11 @@ static ur_status refuse(const ur_strip_limits *limits, const strip_failure *fail
     size_t n = limits->max_strips;
     char why[160];
     if (failure->flipped)
-        ur_c_snprintf(why, sizeof why, "strip %zu comes out with a triangle turned over",
-                      failure->band + 1);
+        c_snprintf(why, sizeof why, "strip %zu comes out with a triangle turned over",
+                   failure->band + 1);
     else
-        ur_c_snprintf(why, sizeof why, "strip %zu still stretches %.3g %% and compresses %.3g %%",
-                      failure->band + 1, 100 * failure->stretch, 100 * failure->compression);
+        c_snprintf(why, sizeof why, "strip %zu still stretches %.3g %% and compresses %.3g %%",
+                   failure->band + 1, 100 * failure->stretch, 100 * failure->compression);
     return ur_error_set(error, UR_ERROR_INPUT,
                         "the surface needs more than %zu strip%s to stay within %g %% stretch "
                         "and %g %% compression: with %zu, %s",

@@ -172,7 +172,7 @@ static bool slit_outline_sound(GEOSContextHandle_t geos, GEOSGeometry *polygon,
 static ur_status check_simple(const unfolder *u, size_t index, GEOSContextHandle_t geos,
                               const ur_unfolded_piece *piece, ur_error *error)
 {
-    GEOSGeometry *polygon = ur_geos_polygon(geos, piece->outline, piece->outline_count);
+    GEOSGeometry *polygon = geos_polygon_of_ring(geos, piece->outline, piece->outline_count);
     if (!polygon)
         return ur_error_set(error, UR_ERROR_INTERNAL,
                             "GEOS could not build the outline of "

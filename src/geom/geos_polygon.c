@@ -3,7 +3,7 @@
  */
 #include "geos_polygon.h"
 
-GEOSGeometry *ur_geos_polygon(GEOSContextHandle_t geos, const ur_vec2 *ring, size_t count)
+GEOSGeometry *geos_polygon_of_ring(GEOSContextHandle_t geos, const ur_vec2 *ring, size_t count)
 {
     if (count < 3)
         return NULL;

@@ -12,6 +12,6 @@
 #include "unroll/geom.h"
 
 /* A polygon from a ring (first point not repeated, at least 3 points), or NULL. */
-GEOSGeometry *ur_geos_polygon(GEOSContextHandle_t geos, const ur_vec2 *ring, size_t count);
+GEOSGeometry *geos_polygon_of_ring(GEOSContextHandle_t geos, const ur_vec2 *ring, size_t count);
 
 #endif

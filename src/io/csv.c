@@ -23,20 +23,20 @@
 #include "../base/c_locale.h"
 
 /* A curve shorter than this has no usable tangent, normal and binormal. */
-#define UR_CURVE_MIN_POINTS 4
+#define CURVE_MIN_POINTS 4
 
 /* Longest field quoted back in a message: enough to recognise it. */
-#define UR_FIELD_QUOTE_MAX 40
+#define FIELD_QUOTE_MAX 40
 
 /* ---- Reading ----------------------------------------------------------- */
 
-typedef struct ur_point_list {
+typedef struct point_list {
     ur_vec3 *items;
     size_t count, capacity;
     size_t *lines; /* the line each point came from, for "repeats" messages */
-} ur_point_list;
+} point_list;
 
-static void point_list_free(ur_point_list *list)
+static void point_list_free(point_list *list)
 {
     free(list->items);
     free(list->lines);
@@ -45,7 +45,7 @@ static void point_list_free(ur_point_list *list)
     list->count = list->capacity = 0;
 }
 
-static ur_status point_list_push(ur_point_list *list, ur_vec3 point, size_t line, ur_error *error)
+static ur_status point_list_push(point_list *list, ur_vec3 point, size_t line, ur_error *error)
 {
     if (list->count == list->capacity) {
         size_t capacity = list->capacity ? 2 * list->capacity : 64;
@@ -74,18 +74,18 @@ static ur_status parse_coordinate(const char *path, size_t line, char *field, do
     if (*field == '\0')
         return ur_error_set(error, UR_ERROR_INPUT, "%s:%zu: empty field", path, line);
     char *end = NULL;
-    double parsed = ur_c_strtod(field, &end);
+    double parsed = c_strtod(field, &end);
     if (end == field || *end != '\0')
         return ur_error_set(error, UR_ERROR_INPUT, "%s:%zu: '%.*s' is not a number", path, line,
-                            UR_FIELD_QUOTE_MAX, field);
+                            FIELD_QUOTE_MAX, field);
     /* strtod accepts "nan" and "inf" and overflows to infinity: refuse all. */
     if (!isfinite(parsed))
         return ur_error_set(error, UR_ERROR_INPUT, "%s:%zu: '%.*s' is not a finite number", path,
-                            line, UR_FIELD_QUOTE_MAX, field);
+                            line, FIELD_QUOTE_MAX, field);
     if (fabs(parsed) > UR_LENGTH_MAX)
         return ur_error_set(error, UR_ERROR_INPUT,
                             "%s:%zu: '%.*s' is beyond the largest coordinate unroll takes, %g mm",
-                            path, line, UR_FIELD_QUOTE_MAX, field, UR_LENGTH_MAX);
+                            path, line, FIELD_QUOTE_MAX, field, UR_LENGTH_MAX);
     *value = parsed;
     return UR_OK;
 }
@@ -126,7 +126,7 @@ static bool same_point(ur_vec3 a, ur_vec3 b)
 }
 
 /* Handles one line of the file; blank and comment-only lines add nothing. */
-static ur_status read_line(const char *path, size_t line, char *text, ur_point_list *list,
+static ur_status read_line(const char *path, size_t line, char *text, point_list *list,
                            ur_error *error)
 {
     char *comment = strchr(text, '#');
@@ -153,7 +153,7 @@ static ur_status read_line(const char *path, size_t line, char *text, ur_point_l
  */
 enum { LINE_LENGTH_MAX = 4096 };
 
-static ur_status read_all_lines(FILE *file, const char *path, ur_point_list *list, ur_error *error)
+static ur_status read_all_lines(FILE *file, const char *path, point_list *list, ur_error *error)
 {
     char buffer[LINE_LENGTH_MAX + 1];
     size_t length = 0, line = 1;
@@ -189,14 +189,14 @@ static ur_status read_all_lines(FILE *file, const char *path, ur_point_list *lis
 ur_status ur_curve_csv_read(const char *path, ur_vec3 **points, size_t *count, bool *closed,
                             ur_error *error)
 {
-    return ur_points_csv_read(path, UR_CURVE_MIN_POINTS, points, count, closed, error);
+    return ur_points_csv_read(path, CURVE_MIN_POINTS, points, count, closed, error);
 }
 
 /* Reads the points of file, named path in messages; the file stays the caller's. */
 static ur_status read_points(FILE *file, const char *path, size_t min_count, ur_vec3 **points,
                              size_t *count, bool *closed, ur_error *error)
 {
-    ur_point_list list = {0};
+    point_list list = {0};
     ur_status status = file ? read_all_lines(file, path, &list, error) : UR_OK;
     if (status != UR_OK) {
         point_list_free(&list);
@@ -209,8 +209,8 @@ static ur_status read_points(FILE *file, const char *path, size_t min_count, ur_
         size_t found = list.count;
         point_list_free(&list);
         return ur_error_set(error, UR_ERROR_INPUT, "%s: %s needs at least %zu points, found %zu",
-                            path, min_count == UR_CURVE_MIN_POINTS ? "a curve" : "a path",
-                            min_count, found);
+                            path, min_count == CURVE_MIN_POINTS ? "a curve" : "a path", min_count,
+                            found);
     }
     free(list.lines);
     *points = list.items;
@@ -262,7 +262,7 @@ ur_status ur_points_csv_read_buffer(const char *name, const void *data, size_t s
 ur_status ur_curve_csv_read_buffer(const char *name, const void *data, size_t size,
                                    ur_vec3 **points, size_t *count, bool *closed, ur_error *error)
 {
-    return ur_points_csv_read_buffer(name, data, size, UR_CURVE_MIN_POINTS, points, count, closed,
+    return ur_points_csv_read_buffer(name, data, size, CURVE_MIN_POINTS, points, count, closed,
                                      error);
 }
 
@@ -273,16 +273,16 @@ typedef struct curve_text {
     size_t count;
 } curve_text;
 
-/* The emitter for ur_atomic_write: a comment line, then one point per line. */
+/* The emitter for atomic_write: a comment line, then one point per line. */
 static bool emit_points(FILE *file, const void *data)
 {
     const curve_text *curve = data;
-    if (ur_c_fprintf(file, "# unroll curve: x,y,z in mm, %zu points\n", curve->count) < 0)
+    if (c_fprintf(file, "# unroll curve: x,y,z in mm, %zu points\n", curve->count) < 0)
         return false;
     for (size_t i = 0; i < curve->count; i++) {
         const ur_vec3 *p = &curve->points[i];
         /* %.17g round-trips every double exactly. */
-        if (ur_c_fprintf(file, "%.17g,%.17g,%.17g\n", p->x, p->y, p->z) < 0)
+        if (c_fprintf(file, "%.17g,%.17g,%.17g\n", p->x, p->y, p->z) < 0)
             return false;
     }
     return true;
@@ -306,7 +306,7 @@ ur_status ur_curve_csv_write(const char *path, const ur_vec3 *points, size_t cou
     if (status != UR_OK)
         return status;
     curve_text curve = {points, count};
-    return ur_atomic_write(path, emit_points, &curve, "curve", context, error);
+    return atomic_write(path, emit_points, &curve, "curve", context, error);
 }
 
 ur_status ur_curve_csv_write_stream(FILE *stream, const ur_vec3 *points, size_t count,
@@ -316,5 +316,5 @@ ur_status ur_curve_csv_write_stream(FILE *stream, const ur_vec3 *points, size_t 
     if (status != UR_OK)
         return status;
     curve_text curve = {points, count};
-    return ur_stream_write(stream, emit_points, &curve, "curve", error);
+    return atomic_stream_write(stream, emit_points, &curve, "curve", error);
 }

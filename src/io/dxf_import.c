@@ -181,7 +181,7 @@ static ur_status pair_number(const dxf_reader *reader, const dxf_pair *pair, dou
                              ur_error *error)
 {
     char *end = NULL;
-    *value = ur_c_strtod(pair->value, &end);
+    *value = c_strtod(pair->value, &end);
     if (end == pair->value || *end != '\0' || !isfinite(*value))
         return ur_error_set(error, UR_ERROR_INPUT,
                             "%s:%d: \"%.24s\" is not a finite number (group code %d)", reader->path,
@@ -343,7 +343,7 @@ static ur_status emit(const dxf_entity *entity, parts_points *points, bool close
     dxf_segment *segment = &segments[reader->segment_count++];
     segment->points = *points;
     segment->line = entity->line;
-    ur_c_snprintf(segment->what, sizeof segment->what, "%s", entity->type);
+    c_snprintf(segment->what, sizeof segment->what, "%s", entity->type);
     memset(points, 0, sizeof *points);
     return UR_OK;
 }
@@ -376,7 +376,7 @@ static ur_status positive_radius(const dxf_entity *entity, double radius, ur_err
     if (radius > 0)
         return UR_OK;
     char message[64];
-    ur_c_snprintf(message, sizeof message, "radius %g is not positive", radius);
+    c_snprintf(message, sizeof message, "radius %g is not positive", radius);
     return entity_error(entity, error, message);
 }
 
@@ -504,35 +504,33 @@ static ur_status check_spline(const dxf_entity *entity, const dxf_spline *spline
     char message[160];
     size_t n = spline->points.count, p = (size_t)(spline->degree > 0 ? spline->degree : 0);
     if (spline->degree < 1 || spline->degree > DXF_MAX_SPLINE_DEGREE)
-        ur_c_snprintf(message, sizeof message, "degree %d: a spline's degree is from 1 to %d",
-                      spline->degree, DXF_MAX_SPLINE_DEGREE);
+        c_snprintf(message, sizeof message, "degree %d: a spline's degree is from 1 to %d",
+                   spline->degree, DXF_MAX_SPLINE_DEGREE);
     else if (n == 0 && spline->fit.count > 0)
-        ur_c_snprintf(message, sizeof message,
-                      "a spline given by fit points only is not read: save it with its control "
-                      "points");
+        c_snprintf(message, sizeof message,
+                   "a spline given by fit points only is not read: save it with its control "
+                   "points");
     else if (n < p + 1)
-        ur_c_snprintf(message, sizeof message,
-                      "%zu control points: a spline of degree %zu needs %zu", n, p, p + 1);
+        c_snprintf(message, sizeof message, "%zu control points: a spline of degree %zu needs %zu",
+                   n, p, p + 1);
     else if (spline->knot_count != n + p + 1)
-        ur_c_snprintf(message, sizeof message,
-                      "%zu knots: %zu control points of degree %zu need %zu", spline->knot_count, n,
-                      p, n + p + 1);
+        c_snprintf(message, sizeof message, "%zu knots: %zu control points of degree %zu need %zu",
+                   spline->knot_count, n, p, n + p + 1);
     else if (spline->weight_count != 0 && spline->weight_count != n)
-        ur_c_snprintf(message, sizeof message, "%zu weights for %zu control points",
-                      spline->weight_count, n);
+        c_snprintf(message, sizeof message, "%zu weights for %zu control points",
+                   spline->weight_count, n);
     else
         message[0] = '\0';
     for (size_t i = 0; !message[0] && i + 1 < spline->knot_count; i++)
         if (spline->knots[i + 1] < spline->knots[i])
-            ur_c_snprintf(message, sizeof message,
-                          "its knots decrease (knot %zu is %g, knot %zu %g)", i + 1,
-                          spline->knots[i], i + 2, spline->knots[i + 1]);
+            c_snprintf(message, sizeof message, "its knots decrease (knot %zu is %g, knot %zu %g)",
+                       i + 1, spline->knots[i], i + 2, spline->knots[i + 1]);
     for (size_t i = 0; !message[0] && i < spline->weight_count; i++)
         if (!(spline->weights[i] > 0))
-            ur_c_snprintf(message, sizeof message, "weight %zu is %g: weights must be positive",
-                          i + 1, spline->weights[i]);
+            c_snprintf(message, sizeof message, "weight %zu is %g: weights must be positive", i + 1,
+                       spline->weights[i]);
     if (!message[0] && !(spline->knots[n] > spline->knots[p]))
-        ur_c_snprintf(message, sizeof message, "its knots span nothing (all %g)", spline->knots[p]);
+        c_snprintf(message, sizeof message, "its knots span nothing (all %g)", spline->knots[p]);
     return message[0] ? entity_error(entity, error, message) : UR_OK;
 }
 
@@ -721,8 +719,7 @@ static ur_status note_ignored(dxf_reader *reader, const dxf_entity *entity)
             k--; /* the last kind counts the rest */
         else {
             reader->ignored_count++;
-            ur_c_snprintf(reader->ignored[k].type, sizeof reader->ignored[k].type, "%s",
-                          entity->type);
+            c_snprintf(reader->ignored[k].type, sizeof reader->ignored[k].type, "%s", entity->type);
             reader->ignored[k].line = entity->line;
         }
     }
@@ -892,14 +889,14 @@ static ur_status read_insertion(const dxf_entity *entity, dxf_insertion *at, ur_
     }
     char message[128];
     if (at->v[SCALE_X] == 0 || at->v[SCALE_Y] == 0) {
-        ur_c_snprintf(message, sizeof message, "a scale of 0 (%g by %g) draws nothing",
-                      at->v[SCALE_X], at->v[SCALE_Y]);
+        c_snprintf(message, sizeof message, "a scale of 0 (%g by %g) draws nothing", at->v[SCALE_X],
+                   at->v[SCALE_Y]);
         return entity_error(entity, error, message);
     }
     if (!(at->v[COLUMNS] >= 1 && at->v[COLUMNS] <= 32767 && at->v[ROWS] >= 1 &&
           at->v[ROWS] <= 32767)) {
-        ur_c_snprintf(message, sizeof message, "%g columns by %g rows: not from 1 to 32767",
-                      at->v[COLUMNS], at->v[ROWS]);
+        c_snprintf(message, sizeof message, "%g columns by %g rows: not from 1 to 32767",
+                   at->v[COLUMNS], at->v[ROWS]);
         return entity_error(entity, error, message);
     }
     return UR_OK;
@@ -964,13 +961,13 @@ static ur_status read_insert(const dxf_entity *entity, ur_error *error)
     dxf_block *block = find_block(reader, name);
     char message[160];
     if (!block) {
-        ur_c_snprintf(message, sizeof message, "block '%.60s' is not defined in the drawing",
-                      name ? name : "");
+        c_snprintf(message, sizeof message, "block '%.60s' is not defined in the drawing",
+                   name ? name : "");
         return entity_error(entity, error, message);
     }
     if (block->inserting) {
-        ur_c_snprintf(message, sizeof message,
-                      "block '%.60s' refers to itself (directly or through other blocks)", name);
+        c_snprintf(message, sizeof message,
+                   "block '%.60s' refers to itself (directly or through other blocks)", name);
         return entity_error(entity, error, message);
     }
     if (reader->depth >= PARTS_MAX_DEPTH)

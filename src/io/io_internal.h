@@ -12,6 +12,14 @@
 #include <libxml/tree.h>
 
 #include "unroll/base.h"
+#include "unroll/io.h"
+
+/* "machine" or "material": a profile kind's schema and root element. */
+const char *profile_kind_word(ur_profile_kind kind);
+
+/* The path of schema/WORD.rng in the first root that has it; UR_ERROR_INTERNAL naming the roots. */
+ur_status profile_find_schema(const char *const *roots, const char *word, char *path, size_t size,
+                              ur_error *error);
 
 /*
  * Parses path (no network) and validates it against schema/SCHEMA.rng from

@@ -27,7 +27,7 @@ static bool attribute(xmlNodePtr node, const char *name, char *out, size_t size)
     xmlChar *text = xmlGetProp(node, BAD_CAST name);
     if (!text)
         return true;
-    int length = ur_c_snprintf(out, size, "%s", (const char *)text);
+    int length = c_snprintf(out, size, "%s", (const char *)text);
     xmlFree(text);
     return length >= 0 && (size_t)length < size;
 }
@@ -35,7 +35,7 @@ static bool attribute(xmlNodePtr node, const char *name, char *out, size_t size)
 static bool element_text(xmlNodePtr node, char *out, size_t size)
 {
     xmlChar *text = xmlNodeGetContent(node);
-    int length = ur_c_snprintf(out, size, "%s", text ? (const char *)text : "");
+    int length = c_snprintf(out, size, "%s", text ? (const char *)text : "");
     xmlFree(text);
     return length >= 0 && (size_t)length < size;
 }
@@ -45,8 +45,8 @@ static bool relative_to(const char *job_path, const char *path, char *out, size_
 {
     const char *slash = strrchr(job_path, '/');
     int length = path[0] == '/' || !slash
-                     ? ur_c_snprintf(out, size, "%s", path)
-                     : ur_c_snprintf(out, size, "%.*s/%s", (int)(slash - job_path), job_path, path);
+                     ? c_snprintf(out, size, "%s", path)
+                     : c_snprintf(out, size, "%.*s/%s", (int)(slash - job_path), job_path, path);
     return length >= 0 && (size_t)length < size;
 }
 
@@ -148,7 +148,7 @@ static ur_status read_job_from(const char *const *roots, const char *path, const
                                size_t size, ur_job_file *job, ur_error *error)
 {
     memset(job, 0, sizeof *job);
-    if (ur_c_snprintf(job->source, sizeof job->source, "%s", path) >= (int)sizeof job->source)
+    if (c_snprintf(job->source, sizeof job->source, "%s", path) >= (int)sizeof job->source)
         return ur_error_set(error, UR_ERROR_INPUT, "%s: path too long", path);
     xmlDocPtr doc = NULL;
     ur_status status = text ? io_xml_load_buffer(roots, "job", path, text, size, &doc, error)
@@ -161,13 +161,14 @@ static ur_status read_job_from(const char *const *roots, const char *path, const
     return status;
 }
 
-ur_status ur_job_file_read(const char *const *roots, const char *path, ur_job_file *job, ur_error *error)
+ur_status ur_job_file_read(const char *const *roots, const char *path, ur_job_file *job,
+                           ur_error *error)
 {
     return read_job_from(roots, path, NULL, 0, job, error);
 }
 
 ur_status ur_job_file_read_buffer(const char *const *roots, const char *name, const void *data,
-                             size_t size, ur_job_file *job, ur_error *error)
+                                  size_t size, ur_job_file *job, ur_error *error)
 {
     return read_job_from(roots, name, data, size, job, error);
 }

@@ -28,10 +28,10 @@
 #include "../base/c_locale.h"
 
 /* Assimp builds its node tree recursively: deeper than this is not a model. */
-#define UR_IMPORT_MAX_DEPTH 1000
+#define IMPORT_MAX_DEPTH 1000
 
 /* Space for a group name and its terminating NUL, as ur_mesh_import returns it. */
-#define UR_GROUP_NAME_SIZE 64
+#define GROUP_NAME_SIZE 64
 
 /* ---- Units ------------------------------------------------------------- */
 
@@ -45,11 +45,11 @@ static const struct {
     [UR_UNIT_IN] = {"in", 25.4},
 };
 
-#define UR_UNIT_COUNT (sizeof unit_table / sizeof unit_table[0])
+#define UNIT_COUNT (sizeof unit_table / sizeof unit_table[0])
 
 static bool unit_valid(ur_length_unit unit)
 {
-    return (unsigned)unit < UR_UNIT_COUNT;
+    return (unsigned)unit < UNIT_COUNT;
 }
 
 const char *ur_length_unit_name(ur_length_unit unit)
@@ -59,7 +59,7 @@ const char *ur_length_unit_name(ur_length_unit unit)
 
 int ur_length_unit_from_name(const char *name)
 {
-    for (size_t i = 0; name && i < UR_UNIT_COUNT; i++)
+    for (size_t i = 0; name && i < UNIT_COUNT; i++)
         if (strcmp(name, unit_table[i].name) == 0)
             return (int)i;
     return -1;
@@ -106,9 +106,9 @@ static bool name_usable(const struct aiString *name)
 static const char *mesh_label(const struct aiMesh *mesh, unsigned index, char *buffer, size_t size)
 {
     if (name_usable(&mesh->mName))
-        ur_c_snprintf(buffer, size, "mesh '%.200s'", mesh->mName.data);
+        c_snprintf(buffer, size, "mesh '%.200s'", mesh->mName.data);
     else
-        ur_c_snprintf(buffer, size, "mesh %u", index + 1);
+        c_snprintf(buffer, size, "mesh %u", index + 1);
     return buffer;
 }
 
@@ -501,7 +501,7 @@ static ur_status refuse_vertex(const char *path, const struct aiMesh *mesh, unsi
     char face[64] = "";
     unsigned f = face_using(mesh, vertex);
     if (f > 0)
-        ur_c_snprintf(face, sizeof face, " (in face %u)", f);
+        c_snprintf(face, sizeof face, " (in face %u)", f);
     struct aiVector3D v = mesh->mVertices[vertex];
     bool nan = isnan(v.x) || isnan(v.y) || isnan(v.z);
     /* A number too large for assimp's floats arrives here as infinity. */
@@ -667,12 +667,12 @@ typedef struct import_state {
     double factor; /* millimetres per file unit, times the scale */
     /* Counted by count_node, then used as cursors by fill_node. */
     size_t vertex_count, triangle_count, group_count;
-    size_t stray_count;                /* points and lines, which are not surface */
-    ur_vec3 *vertices;                 /* owned until handed to the mesh */
-    size_t (*triangles)[3];            /* likewise */
-    size_t *groups;                    /* likewise */
-    char (*names)[UR_GROUP_NAME_SIZE]; /* likewise */
-    bool *named;                       /* owned: whether the file named the group */
+    size_t stray_count;             /* points and lines, which are not surface */
+    ur_vec3 *vertices;              /* owned until handed to the mesh */
+    size_t (*triangles)[3];         /* likewise */
+    size_t *groups;                 /* likewise */
+    char (*names)[GROUP_NAME_SIZE]; /* likewise */
+    bool *named;                    /* owned: whether the file named the group */
 } import_state;
 
 static void state_free(import_state *state)
@@ -718,9 +718,9 @@ static ur_status node_mesh(const import_state *state, const struct aiNode *node,
 static ur_status count_node(import_state *state, const struct aiNode *node, int depth,
                             ur_error *error)
 {
-    if (depth > UR_IMPORT_MAX_DEPTH)
+    if (depth > IMPORT_MAX_DEPTH)
         return ur_error_set(error, UR_ERROR_INPUT, "%s: nodes nested more than %d deep",
-                            state->path, UR_IMPORT_MAX_DEPTH);
+                            state->path, IMPORT_MAX_DEPTH);
     bool has_triangles = false;
     for (unsigned i = 0; i < node->mNumMeshes; i++) {
         const struct aiMesh *mesh = NULL;
@@ -775,7 +775,7 @@ static void name_group(import_state *state, const struct aiNode *node,
                                                                     : NULL;
     state->named[group] = name != NULL;
     if (name)
-        copy_name(state->names[group], UR_GROUP_NAME_SIZE, name->data,
+        copy_name(state->names[group], GROUP_NAME_SIZE, name->data,
                   strnlen(name->data, sizeof name->data));
 }
 
@@ -883,7 +883,7 @@ static int compare_keys(const void *a, const void *b)
  */
 static void name_unnamed(import_state *state)
 {
-    char stem[UR_GROUP_NAME_SIZE];
+    char stem[GROUP_NAME_SIZE];
     file_stem(state->path, stem, sizeof stem);
     size_t unnamed = 0;
     for (size_t g = 0; g < state->group_count; g++)
@@ -894,8 +894,8 @@ static void name_unnamed(import_state *state)
             continue;
         char suffix[32] = "";
         if (unnamed > 1)
-            ur_c_snprintf(suffix, sizeof suffix, "-%zu", ++number);
-        size_t room = UR_GROUP_NAME_SIZE - strlen(suffix);
+            c_snprintf(suffix, sizeof suffix, "-%zu", ++number);
+        size_t room = GROUP_NAME_SIZE - strlen(suffix);
         copy_name(state->names[g], room, stem, strlen(stem));
         strcat(state->names[g], suffix);
     }
@@ -928,7 +928,7 @@ static ur_status merge_groups(import_state *state, ur_error *error)
     size_t kept = 0;
     for (size_t g = 0; g < count; g++) {
         if (renumber[g] == g) {
-            memmove(state->names[kept], state->names[g], UR_GROUP_NAME_SIZE);
+            memmove(state->names[kept], state->names[g], GROUP_NAME_SIZE);
             renumber[g] = kept++;
         } else {
             renumber[g] = renumber[renumber[g]]; /* the earlier group is renumbered already */

@@ -209,8 +209,8 @@ ur_status parts_add_ring(parts_collection *collection, parts_points *points, int
     ring->sub = sub;
     if (circle)
         ring->circle = *circle;
-    ur_c_snprintf(ring->what, sizeof ring->what, "%s", what);
-    ur_c_snprintf(ring->id, sizeof ring->id, "%s", id ? id : "");
+    c_snprintf(ring->what, sizeof ring->what, "%s", what);
+    c_snprintf(ring->id, sizeof ring->id, "%s", id ? id : "");
     points->items = NULL;
     points->count = points->capacity = 0;
     return UR_OK;
@@ -239,7 +239,7 @@ ur_status parts_add_line(parts_collection *collection, parts_points *points, boo
     added->closed = closed && points->count > 2;
     added->op = op;
     added->line = line;
-    ur_c_snprintf(added->what, sizeof added->what, "%s", what);
+    c_snprintf(added->what, sizeof added->what, "%s", what);
     points->items = NULL;
     points->count = points->capacity = 0;
     return UR_OK;
@@ -285,7 +285,7 @@ ur_status parts_warn(parts_collection *collection, ur_error *error, const char *
     collection->warnings = warnings;
     va_list arguments;
     va_start(arguments, format);
-    ur_c_vsnprintf(warnings[collection->warning_count++], sizeof *warnings, format, arguments);
+    c_vsnprintf(warnings[collection->warning_count++], sizeof *warnings, format, arguments);
     va_end(arguments);
     return UR_OK;
 }
@@ -428,7 +428,7 @@ static ur_status repair_ring(parts_job *job, size_t i, ur_error *error)
         return status;
     double after = fabs(ur_polygon_signed_area(ring->points, ring->count));
     GEOSGeom_destroy_r(job->geos, job->polygons[i]);
-    job->polygons[i] = ur_geos_polygon(job->geos, ring->points, ring->count);
+    job->polygons[i] = geos_polygon_of_ring(job->geos, ring->points, ring->count);
     if (!job->polygons[i])
         return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not make a polygon");
     return parts_warn(collection, error,
@@ -448,9 +448,9 @@ static ur_status check_coordinates(const parts_collection *collection, const ur_
         if (fabs(p.x) > UR_PARTS_IMPORT_MAX_COORDINATE ||
             fabs(p.y) > UR_PARTS_IMPORT_MAX_COORDINATE) {
             char message[160];
-            ur_c_snprintf(message, sizeof message,
-                          "the point (%.6g, %.6g) mm lies beyond %g mm: check the units", p.x, p.y,
-                          UR_PARTS_IMPORT_MAX_COORDINATE);
+            c_snprintf(message, sizeof message,
+                       "the point (%.6g, %.6g) mm lies beyond %g mm: check the units", p.x, p.y,
+                       UR_PARTS_IMPORT_MAX_COORDINATE);
             return shape_error(collection, line, what, error, message);
         }
     }
@@ -470,7 +470,7 @@ static ur_status prepare_ring(parts_job *job, size_t i, ur_error *error)
         return no_area_error(collection, ring, error);
     double area = ur_polygon_signed_area(ring->points, ring->count);
     double least = collection->tolerance * collection->tolerance;
-    job->polygons[i] = ur_geos_polygon(job->geos, ring->points, ring->count);
+    job->polygons[i] = geos_polygon_of_ring(job->geos, ring->points, ring->count);
     if (!job->polygons[i])
         return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not make a polygon");
     char valid = GEOSisValid_r(job->geos, job->polygons[i]);
@@ -513,7 +513,7 @@ static ur_status two_rings_error(const parts_collection *collection, const parts
                                  const parts_ring *other, const char *relation, ur_error *error)
 {
     char message[256];
-    ur_c_snprintf(message, sizeof message, "%s %s on line %d", relation, other->what, other->line);
+    c_snprintf(message, sizeof message, "%s %s on line %d", relation, other->what, other->line);
     return ring_error(collection, ring, error, message);
 }
 
@@ -572,15 +572,15 @@ static void piece_name(const parts_collection *collection, const parts_ring *rin
 {
     char full[96];
     if (ring->id[0] && ring->sub > 1)
-        ur_c_snprintf(full, sizeof full, "%.24s-%d", ring->id, ring->sub);
+        c_snprintf(full, sizeof full, "%.24s-%d", ring->id, ring->sub);
     else if (ring->id[0])
-        ur_c_snprintf(full, sizeof full, "%s", ring->id);
+        c_snprintf(full, sizeof full, "%s", ring->id);
     else {
         char base[32];
         io_file_stem(collection->path, base, 20);
-        ur_c_snprintf(full, sizeof full, "%s-%zu", base, number);
+        c_snprintf(full, sizeof full, "%s-%zu", base, number);
     }
-    ur_c_snprintf(name, size, "%.*s", (int)(size - 1), full);
+    c_snprintf(name, size, "%.*s", (int)(size - 1), full);
 }
 
 static ur_status build_piece(parts_job *job, size_t outer, size_t number, ur_piece *piece,
@@ -750,14 +750,12 @@ static ur_status left_out_error(const parts_collection *collection, const parts_
     char message[256];
     ur_vec2 a = line->points[0], b = line->points[line->count - 1];
     if (line->op == UR_OP_CUT && !line->closed)
-        ur_c_snprintf(
-            message, sizeof message,
-            "the shape is open (it starts at (%.6g, %.6g) mm and ends at (%.6g, %.6g) mm): "
-            "only closed shapes can be parts",
-            a.x, a.y, b.x, b.y);
+        c_snprintf(message, sizeof message,
+                   "the shape is open (it starts at (%.6g, %.6g) mm and ends at (%.6g, %.6g) mm): "
+                   "only closed shapes can be parts",
+                   a.x, a.y, b.x, b.y);
     else
-        ur_c_snprintf(message, sizeof message, "a %s line outside every part",
-                      ur_op_name(line->op));
+        c_snprintf(message, sizeof message, "a %s line outside every part", ur_op_name(line->op));
     return shape_error(collection, line->line, line->what, error, message);
 }
 
@@ -773,10 +771,10 @@ static ur_status warn_left_out(parts_collection *collection, const size_t *left,
     char where[96] = "";
     size_t used = 0;
     for (size_t k = 0; k < count && k < 6 && used < sizeof where; k++)
-        used += (size_t)ur_c_snprintf(where + used, sizeof where - used, "%s%d", k ? ", " : "",
-                                      collection->lines[left[k]].line);
+        used += (size_t)c_snprintf(where + used, sizeof where - used, "%s%d", k ? ", " : "",
+                                   collection->lines[left[k]].line);
     if (count > 6 && used < sizeof where)
-        ur_c_snprintf(where + used, sizeof where - used, " and %zu more", count - 6);
+        c_snprintf(where + used, sizeof where - used, " and %zu more", count - 6);
     const parts_line *first = &collection->lines[left[0]];
     return parts_warn(collection, error, "%s:%d: %zu %s left out (%s on line%s %s): %s",
                       collection->path, first->line, count,
@@ -863,7 +861,7 @@ static int bad_chain(GEOSContextHandle_t geos, const parts_collection *collectio
     double least = collection->tolerance * collection->tolerance;
     if (ring->count < 3 || fabs(ur_polygon_signed_area(ring->points, ring->count)) <= least)
         return 1;
-    GEOSGeometry *polygon = ur_geos_polygon(geos, ring->points, ring->count);
+    GEOSGeometry *polygon = geos_polygon_of_ring(geos, ring->points, ring->count);
     char valid = polygon ? GEOSisValid_r(geos, polygon) : 2;
     if (polygon)
         GEOSGeom_destroy_r(geos, polygon);

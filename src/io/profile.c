@@ -1,7 +1,7 @@
 /*
- * profile.c: machine and material profiles: finding them in the roots given,
- * reading them with libxml2, validating them against the RelaxNG schemas,
- * turning them into ur_machine and ur_material, and listing them.
+ * profile.c: machine and material profiles: reading them with libxml2,
+ * validating them against the RelaxNG schemas and turning them into
+ * ur_machine and ur_material (profile_find.c finds and lists them).
  *
  * libxml2 reports problems through callbacks and, left alone, prints them on
  * stderr.  Every call into it here runs with our handlers installed and the
@@ -30,128 +30,7 @@
 #include <libxml/xmlerror.h>
 #include "../base/c_locale.h"
 
-#define UR_PATH_MAX 1024
-
-static const char *kind_folder(ur_profile_kind kind)
-{
-    return kind == UR_PROFILE_MACHINE ? "machines" : "materials";
-}
-
-static const char *kind_word(ur_profile_kind kind)
-{
-    return kind == UR_PROFILE_MACHINE ? "machine" : "material";
-}
-
-/* ---- Search path ------------------------------------------------------- */
-
-/*
- * The caller's roots, in search order: a NULL-terminated list (NULL for
- * none).  A root that does not exist is simply empty.  The library reads no
- * environment variable and no directory of its own: the command decides
- * where profiles are (unroll(1), PROFILES).
- */
-
-/* "DIR1, DIR2, ...", for "not found" messages. */
-static void describe_roots(const char *const *roots, char *text, size_t size)
-{
-    size_t used = 0;
-    text[0] = '\0';
-    for (const char *const *root = roots; root && *root && used < size; root++) {
-        int length = ur_c_snprintf(text + used, size - used, "%s%s", used ? ", " : "", *root);
-        if (length < 0)
-            break;
-        used += (size_t)length;
-    }
-    if (!text[0])
-        ur_c_snprintf(text, size, "no profile directory given");
-}
-
-static ur_status join_path(char *out, size_t size, const char *root, const char *folder,
-                           const char *file, ur_error *error)
-{
-    int length = ur_c_snprintf(out, size, "%s/%s/%s", root, folder, file);
-    if (length < 0 || (size_t)length >= size)
-        return ur_error_set(error, UR_ERROR_INPUT, "%s/%s: path too long", root, folder);
-    return UR_OK;
-}
-
-/* [A-Za-z0-9._-]+ not starting with '.': no way out of the profile folder. */
-static bool valid_name(const char *name)
-{
-    size_t length = strlen(name);
-    if (length == 0 || length >= sizeof(((ur_machine *)0)->name) || name[0] == '.')
-        return false;
-    for (size_t i = 0; i < length; i++) {
-        char c = name[i];
-        bool allowed = (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') ||
-                       c == '.' || c == '_' || c == '-';
-        if (!allowed)
-            return false;
-    }
-    return true;
-}
-
-static ur_status check_name(ur_profile_kind kind, const char *name, ur_error *error)
-{
-    if (valid_name(name))
-        return UR_OK;
-    return ur_error_set(error, UR_ERROR_INPUT,
-                        "bad %s name '%.64s': use up to 63 letters, digits, '.', '_' and '-', "
-                        "not starting with '.'",
-                        kind_word(kind), name);
-}
-
-ur_status ur_profile_find(const char *const *roots, ur_profile_kind kind, const char *name,
-                          char *path, size_t path_size, ur_error *error)
-{
-    ur_status status = check_name(kind, name, error);
-    if (status != UR_OK)
-        return status;
-    char file[80];
-    ur_c_snprintf(file, sizeof file, "%s.xml", name);
-    for (const char *const *root = roots; root && *root; root++) {
-        char candidate[UR_PATH_MAX];
-        status = join_path(candidate, sizeof candidate, *root, kind_folder(kind), file, error);
-        if (status != UR_OK)
-            return status;
-        struct stat info;
-        if (stat(candidate, &info) == 0) {
-            if (strlen(candidate) >= path_size)
-                return ur_error_set(error, UR_ERROR_INPUT, "%s: path too long", candidate);
-            strcpy(path, candidate);
-            return UR_OK;
-        }
-        /* Anything but "not there" would hide a profile: say so. */
-        if (errno != ENOENT && errno != ENOTDIR)
-            return ur_error_set(error, UR_ERROR_INPUT, "%s: cannot open: %s", candidate,
-                                strerror(errno));
-    }
-    char searched[UR_PATH_MAX];
-    describe_roots(roots, searched, sizeof searched);
-    return ur_error_set(error, UR_ERROR_INPUT,
-                        "unknown %s '%s' (searched %s); 'unroll profiles' lists them",
-                        kind_word(kind), name, searched);
-}
-
-/* ROOT/schema/KIND.rng from the first root that has it. */
-static ur_status find_schema(const char *const *roots, const char *word, char *path, size_t size,
-                             ur_error *error)
-{
-    char file[32];
-    ur_c_snprintf(file, sizeof file, "%s.rng", word);
-    for (const char *const *root = roots; root && *root; root++) {
-        ur_status status = join_path(path, size, *root, "schema", file, error);
-        if (status != UR_OK)
-            return status;
-        if (access(path, R_OK) == 0)
-            return UR_OK;
-    }
-    char searched[UR_PATH_MAX];
-    describe_roots(roots, searched, sizeof searched);
-    /* The schemas ship with unroll: without them the installation is broken. */
-    return ur_error_set(error, UR_ERROR_INTERNAL, "no schema/%s in any profile root (searched %s)",
-                        file, searched);
-}
+#define PROFILE_PATH_MAX 1024
 
 /* ---- Parsing and validation -------------------------------------------- */
 
@@ -203,8 +82,8 @@ ur_status io_xml_load_buffer(const char *const *roots, const char *schema, const
                              const char *text, size_t size, xmlDocPtr *doc, ur_error *error)
 {
     *doc = NULL;
-    char schema_path[UR_PATH_MAX];
-    ur_status status = find_schema(roots, schema, schema_path, sizeof schema_path, error);
+    char schema_path[PROFILE_PATH_MAX];
+    ur_status status = profile_find_schema(roots, schema, schema_path, sizeof schema_path, error);
     if (status != UR_OK)
         return status;
     status = io_xml_parse(name, text, size, 0, "cannot parse", doc, error);
@@ -249,36 +128,36 @@ ur_status io_xml_load(const char *const *roots, const char *schema, const char *
  * The schema already guarantees what is checked here; the loader checks
  * again so that a hand-edited schema cannot feed nonsense to the geometry.
  */
-typedef struct ur_reader {
+typedef struct profile_reader {
     const char *path;
     ur_error *error;
-} ur_reader;
+} profile_reader;
 
-typedef struct ur_range {
+typedef struct value_range {
     double low, high;
     bool low_open, high_open;
     const char *wording;
-} ur_range;
+} value_range;
 
-static const ur_range positive = {0.0, INFINITY, true, false, "a positive number"};
-static const ur_range non_negative = {0.0, INFINITY, false, false, "a number >= 0"};
-static const ur_range strain = {0.0, 1.0, false, true, "a fraction from 0 to below 1"};
-static const ur_range unit = {0.0, 1.0, false, false, "a fraction from 0 to 1"};
-static const ur_range tab_angle = {0.0, 90.0, true, false, "an angle above 0 and up to 90"};
-static const ur_range tolerance = {0.0, 90.0, false, false, "an angle from 0 to 90"};
+static const value_range positive = {0.0, INFINITY, true, false, "a positive number"};
+static const value_range non_negative = {0.0, INFINITY, false, false, "a number >= 0"};
+static const value_range strain = {0.0, 1.0, false, true, "a fraction from 0 to below 1"};
+static const value_range unit = {0.0, 1.0, false, false, "a fraction from 0 to 1"};
+static const value_range tab_angle = {0.0, 90.0, true, false, "an angle above 0 and up to 90"};
+static const value_range tolerance = {0.0, 90.0, false, false, "an angle from 0 to 90"};
 
-static ur_status reader_fail(const ur_reader *reader, xmlNodePtr node, const char *format, ...)
+static ur_status reader_fail(const profile_reader *reader, xmlNodePtr node, const char *format, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 3, 4)))
 #endif
     ;
 
-static ur_status reader_fail(const ur_reader *reader, xmlNodePtr node, const char *format, ...)
+static ur_status reader_fail(const profile_reader *reader, xmlNodePtr node, const char *format, ...)
 {
     char message[512];
     va_list args;
     va_start(args, format);
-    ur_c_vsnprintf(message, sizeof message, format, args);
+    c_vsnprintf(message, sizeof message, format, args);
     va_end(args);
     long line = node ? xmlGetLineNo(node) : -1;
     if (line > 0)
@@ -299,7 +178,7 @@ static xmlNodePtr next_element(xmlNodePtr node, const char *name)
     return node;
 }
 
-static ur_status need_element(const ur_reader *reader, xmlNodePtr parent, const char *name,
+static ur_status need_element(const profile_reader *reader, xmlNodePtr parent, const char *name,
                               xmlNodePtr *element)
 {
     *element = next_element(parent->children, name);
@@ -308,20 +187,20 @@ static ur_status need_element(const ur_reader *reader, xmlNodePtr parent, const 
     return UR_OK;
 }
 
-static bool in_range(double value, const ur_range *range)
+static bool in_range(double value, const value_range *range)
 {
     bool above = range->low_open ? value > range->low : value >= range->low;
     bool below = range->high_open ? value < range->high : value <= range->high;
     return above && below;
 }
 
-static ur_status parse_number(const ur_reader *reader, xmlNodePtr node, const char *what,
-                              const char *text, const ur_range *range, double *value)
+static ur_status parse_number(const profile_reader *reader, xmlNodePtr node, const char *what,
+                              const char *text, const value_range *range, double *value)
 {
     while (isspace((unsigned char)*text))
         text++;
     char *end = NULL;
-    double parsed = ur_c_strtod(text, &end);
+    double parsed = c_strtod(text, &end);
     if (end != text)
         while (isspace((unsigned char)*end))
             end++;
@@ -332,8 +211,8 @@ static ur_status parse_number(const ur_reader *reader, xmlNodePtr node, const ch
 }
 
 /* The number in an element's text, e.g. <kerf>0.2</kerf>. */
-static ur_status element_number(const ur_reader *reader, xmlNodePtr parent, const char *name,
-                                const ur_range *range, double *value)
+static ur_status element_number(const profile_reader *reader, xmlNodePtr parent, const char *name,
+                                const value_range *range, double *value)
 {
     xmlNodePtr element;
     ur_status status = need_element(reader, parent, name, &element);
@@ -348,8 +227,9 @@ static ur_status element_number(const ur_reader *reader, xmlNodePtr parent, cons
 }
 
 /* An attribute's number; a missing optional attribute leaves *value alone. */
-static ur_status attribute_number(const ur_reader *reader, xmlNodePtr element, const char *name,
-                                  bool required, const ur_range *range, double *value)
+static ur_status attribute_number(const profile_reader *reader, xmlNodePtr element,
+                                  const char *name, bool required, const value_range *range,
+                                  double *value)
 {
     xmlChar *text = xmlGetProp(element, BAD_CAST name);
     if (!text) {
@@ -359,14 +239,14 @@ static ur_status attribute_number(const ur_reader *reader, xmlNodePtr element, c
                            name);
     }
     char what[128];
-    ur_c_snprintf(what, sizeof what, "%s %s", (const char *)element->name, name);
+    c_snprintf(what, sizeof what, "%s %s", (const char *)element->name, name);
     ur_status status = parse_number(reader, element, what, (const char *)text, range, value);
     xmlFree(text);
     return status;
 }
 
 /* Copies text with runs of white space collapsed, so descriptions may wrap. */
-static ur_status copy_text(const ur_reader *reader, xmlNodePtr node, const char *what,
+static ur_status copy_text(const profile_reader *reader, xmlNodePtr node, const char *what,
                            const char *text, char *out, size_t size)
 {
     size_t length = 0;
@@ -389,7 +269,7 @@ static ur_status copy_text(const ur_reader *reader, xmlNodePtr node, const char 
     return UR_OK;
 }
 
-static ur_status element_text(const ur_reader *reader, xmlNodePtr parent, const char *name,
+static ur_status element_text(const profile_reader *reader, xmlNodePtr parent, const char *name,
                               char *out, size_t size)
 {
     xmlNodePtr element;
@@ -404,7 +284,7 @@ static ur_status element_text(const ur_reader *reader, xmlNodePtr parent, const 
     return status;
 }
 
-static ur_status attribute_text(const ur_reader *reader, xmlNodePtr element, const char *name,
+static ur_status attribute_text(const profile_reader *reader, xmlNodePtr element, const char *name,
                                 char *out, size_t size)
 {
     xmlChar *text = xmlGetProp(element, BAD_CAST name);
@@ -420,8 +300,8 @@ static ur_status attribute_text(const ur_reader *reader, xmlNodePtr element, con
  * An optional attribute naming one of choices (a NULL-terminated list):
  * *index is its position; a missing attribute leaves *index alone.
  */
-static ur_status attribute_choice(const ur_reader *reader, xmlNodePtr element, const char *name,
-                                  const char *const *choices, int *index)
+static ur_status attribute_choice(const profile_reader *reader, xmlNodePtr element,
+                                  const char *name, const char *const *choices, int *index)
 {
     if (!xmlHasProp(element, BAD_CAST name))
         return UR_OK;
@@ -460,7 +340,8 @@ static ur_status set_identity(const char *path, char *name, size_t name_size, ch
 
 /* ---- Machines ---------------------------------------------------------- */
 
-static ur_status read_machine_kind(const ur_reader *reader, xmlNodePtr root, ur_machine_kind *kind)
+static ur_status read_machine_kind(const profile_reader *reader, xmlNodePtr root,
+                                   ur_machine_kind *kind)
 {
     char text[16];
     xmlNodePtr element;
@@ -478,7 +359,7 @@ static ur_status read_machine_kind(const ur_reader *reader, xmlNodePtr root, ur_
     return UR_OK;
 }
 
-static ur_status read_colour(const ur_reader *reader, xmlNodePtr element, char colour[8])
+static ur_status read_colour(const profile_reader *reader, xmlNodePtr element, char colour[8])
 {
     char text[16];
     ur_status status = attribute_text(reader, element, "colour", text, sizeof text);
@@ -496,7 +377,8 @@ static ur_status read_colour(const ur_reader *reader, xmlNodePtr element, char c
 }
 
 /* An optional dash="3 1.5": positive lengths in mm separated by spaces. */
-static ur_status read_dash(const ur_reader *reader, xmlNodePtr element, char *dash, size_t size)
+static ur_status read_dash(const profile_reader *reader, xmlNodePtr element, char *dash,
+                           size_t size)
 {
     dash[0] = '\0';
     if (!xmlHasProp(element, BAD_CAST "dash"))
@@ -508,7 +390,7 @@ static ur_status read_dash(const ur_reader *reader, xmlNodePtr element, char *da
     int lengths = 0;
     while (*p) {
         char *end;
-        double length = ur_c_strtod(p, &end);
+        double length = c_strtod(p, &end);
         if (end == p || !(length > 0) || !isfinite(length) || (*end && *end != ' '))
             return reader_fail(reader, element,
                                "dash must be lengths in mm separated by spaces, not '%s'", dash);
@@ -520,7 +402,7 @@ static ur_status read_dash(const ur_reader *reader, xmlNodePtr element, char *da
     return UR_OK;
 }
 
-static ur_status read_style(const ur_reader *reader, xmlNodePtr element, ur_op_style *style)
+static ur_status read_style(const profile_reader *reader, xmlNodePtr element, ur_op_style *style)
 {
     ur_status status = attribute_text(reader, element, "layer", style->layer, sizeof style->layer);
     if (status == UR_OK)
@@ -534,7 +416,7 @@ static ur_status read_style(const ur_reader *reader, xmlNodePtr element, ur_op_s
 }
 
 /* One <operation> per ur_op, each exactly once. */
-static ur_status read_operations(const ur_reader *reader, xmlNodePtr root, ur_machine *machine)
+static ur_status read_operations(const profile_reader *reader, xmlNodePtr root, ur_machine *machine)
 {
     bool seen[UR_OP_COUNT] = {false};
     for (xmlNodePtr node = next_element(root->children, "operation"); node;
@@ -560,7 +442,7 @@ static ur_status read_operations(const ur_reader *reader, xmlNodePtr root, ur_ma
 }
 
 /* <bridge width=".." default="none|auto"/> is optional: defaults by kind. */
-static ur_status read_bridges(const ur_reader *reader, xmlNodePtr root, ur_machine *machine)
+static ur_status read_bridges(const profile_reader *reader, xmlNodePtr root, ur_machine *machine)
 {
     static const char *const defaults[] = {"none", "auto", NULL};
     bool router = machine->kind == UR_MACHINE_ROUTER;
@@ -578,7 +460,8 @@ static ur_status read_bridges(const ur_reader *reader, xmlNodePtr root, ur_machi
     return status;
 }
 
-static ur_status read_machine_fields(const ur_reader *reader, xmlNodePtr root, ur_machine *machine)
+static ur_status read_machine_fields(const profile_reader *reader, xmlNodePtr root,
+                                     ur_machine *machine)
 {
     xmlNodePtr bed, speed;
     ur_status status = element_text(reader, root, "description", machine->description,
@@ -611,9 +494,9 @@ static ur_status read_machine_fields(const ur_reader *reader, xmlNodePtr root, u
 }
 
 /* Fills one kind of profile from its root element. */
-typedef ur_status (*field_reader)(const ur_reader *reader, xmlNodePtr root, void *profile);
+typedef ur_status (*field_reader)(const profile_reader *reader, xmlNodePtr root, void *profile);
 
-static ur_status machine_fields(const ur_reader *reader, xmlNodePtr root, void *profile)
+static ur_status machine_fields(const profile_reader *reader, xmlNodePtr root, void *profile)
 {
     return read_machine_fields(reader, root, profile);
 }
@@ -623,19 +506,20 @@ static ur_status machine_fields(const ur_reader *reader, xmlNodePtr root, void *
  * of the file (or buffer), the parsed and validated document, its root
  * element, then the kind's own fields.
  */
-static ur_status read_profile(const char *const *roots, ur_profile_kind kind, const char *path, const void *data, size_t size,
-                              char *name, size_t name_size, char *source, size_t source_size,
-                              field_reader read_fields, void *profile, ur_error *error)
+static ur_status read_profile(const char *const *roots, ur_profile_kind kind, const char *path,
+                              const void *data, size_t size, char *name, size_t name_size,
+                              char *source, size_t source_size, field_reader read_fields,
+                              void *profile, ur_error *error)
 {
     ur_status status = set_identity(path, name, name_size, source, source_size, error);
     if (status != UR_OK)
         return status;
     xmlDocPtr doc = NULL;
-    status = io_xml_load_buffer(roots, kind_word(kind), path, data, size, &doc, error);
+    status = io_xml_load_buffer(roots, profile_kind_word(kind), path, data, size, &doc, error);
     if (status != UR_OK)
         return status;
     const char *root_name = kind == UR_PROFILE_MACHINE ? "machine" : "material";
-    ur_reader reader = {path, error};
+    profile_reader reader = {path, error};
     xmlNodePtr root = xmlDocGetRootElement(doc);
     if (!is_element(root, root_name))
         status = reader_fail(&reader, root, "not a <%s> profile", root_name);
@@ -645,15 +529,17 @@ static ur_status read_profile(const char *const *roots, ur_profile_kind kind, co
     return status;
 }
 
-ur_status ur_machine_read_buffer(const char *const *roots, const char *name, const void *data, size_t size,
-                                 ur_machine *machine, ur_error *error)
+ur_status ur_machine_read_buffer(const char *const *roots, const char *name, const void *data,
+                                 size_t size, ur_machine *machine, ur_error *error)
 {
     memset(machine, 0, sizeof *machine);
-    return read_profile(roots, UR_PROFILE_MACHINE, name, data, size, machine->name, sizeof machine->name,
-                        machine->source, sizeof machine->source, machine_fields, machine, error);
+    return read_profile(roots, UR_PROFILE_MACHINE, name, data, size, machine->name,
+                        sizeof machine->name, machine->source, sizeof machine->source,
+                        machine_fields, machine, error);
 }
 
-ur_status ur_machine_read(const char *const *roots, const char *path, ur_machine *machine, ur_error *error)
+ur_status ur_machine_read(const char *const *roots, const char *path, ur_machine *machine,
+                          ur_error *error)
 {
     memset(machine, 0, sizeof *machine);
     char *text;
@@ -667,7 +553,7 @@ ur_status ur_machine_read(const char *const *roots, const char *path, ur_machine
 
 /* ---- Materials --------------------------------------------------------- */
 
-static ur_status read_stock(const ur_reader *reader, xmlNodePtr root, ur_material *material)
+static ur_status read_stock(const profile_reader *reader, xmlNodePtr root, ur_material *material)
 {
     for (xmlNodePtr node = next_element(root->children, "stock"); node;
          node = next_element(node->next, "stock")) {
@@ -687,7 +573,8 @@ static ur_status read_stock(const ur_reader *reader, xmlNodePtr root, ur_materia
 }
 
 /* <kerf laser=".." router=".."/> is optional, and so is each attribute. */
-static ur_status read_material_kerf(const ur_reader *reader, xmlNodePtr root, ur_material *material)
+static ur_status read_material_kerf(const profile_reader *reader, xmlNodePtr root,
+                                    ur_material *material)
 {
     xmlNodePtr kerf = next_element(root->children, "kerf");
     if (!kerf)
@@ -699,7 +586,7 @@ static ur_status read_material_kerf(const ur_reader *reader, xmlNodePtr root, ur
     return status;
 }
 
-static ur_status read_grain(const ur_reader *reader, xmlNodePtr root, ur_material *material)
+static ur_status read_grain(const profile_reader *reader, xmlNodePtr root, ur_material *material)
 {
     xmlNodePtr grain;
     char rule[16];
@@ -723,7 +610,7 @@ static ur_status read_grain(const ur_reader *reader, xmlNodePtr root, ur_materia
                             &material->grain_tolerance);
 }
 
-static ur_status read_bending(const ur_reader *reader, xmlNodePtr root, ur_material *material)
+static ur_status read_bending(const profile_reader *reader, xmlNodePtr root, ur_material *material)
 {
     xmlNodePtr radius, strain_element;
     ur_status status = need_element(reader, root, "bend-radius", &radius);
@@ -746,7 +633,8 @@ static ur_status read_bending(const ur_reader *reader, xmlNodePtr root, ur_mater
     return status;
 }
 
-static ur_status read_tab_and_hinge(const ur_reader *reader, xmlNodePtr root, ur_material *material)
+static ur_status read_tab_and_hinge(const profile_reader *reader, xmlNodePtr root,
+                                    ur_material *material)
 {
     xmlNodePtr tab, hinge;
     ur_status status = need_element(reader, root, "tab", &tab);
@@ -805,8 +693,8 @@ static void allowance_defaults(ur_material *material)
 }
 
 /* An optional element's optional number attribute. */
-static ur_status optional_number(const ur_reader *reader, xmlNodePtr root, const char *element_name,
-                                 const char *name, double *value)
+static ur_status optional_number(const profile_reader *reader, xmlNodePtr root,
+                                 const char *element_name, const char *name, double *value)
 {
     xmlNodePtr element = next_element(root->children, element_name);
     if (!element)
@@ -815,8 +703,9 @@ static ur_status optional_number(const ur_reader *reader, xmlNodePtr root, const
 }
 
 /* An optional element's optional choice attribute. */
-static ur_status optional_choice(const ur_reader *reader, xmlNodePtr root, const char *element_name,
-                                 const char *name, const char *const *choices, int *index)
+static ur_status optional_choice(const profile_reader *reader, xmlNodePtr root,
+                                 const char *element_name, const char *name,
+                                 const char *const *choices, int *index)
 {
     xmlNodePtr element = next_element(root->children, element_name);
     if (!element)
@@ -825,7 +714,8 @@ static ur_status optional_choice(const ur_reader *reader, xmlNodePtr root, const
 }
 
 /* <joint>, <label>, <kerfing>, <overlap>, <groove>, <bending>, <surface>: all optional. */
-static ur_status read_allowances(const ur_reader *reader, xmlNodePtr root, ur_material *material)
+static ur_status read_allowances(const profile_reader *reader, xmlNodePtr root,
+                                 ur_material *material)
 {
     static const char *const joints[] = {"tab", "lap", NULL};
     static const char *const overlaps[] = {"slit", "dart", NULL};
@@ -866,7 +756,7 @@ static ur_status read_allowances(const ur_reader *reader, xmlNodePtr root, ur_ma
     return status;
 }
 
-static ur_status read_material_fields(const ur_reader *reader, xmlNodePtr root,
+static ur_status read_material_fields(const profile_reader *reader, xmlNodePtr root,
                                       ur_material *material)
 {
     ur_status status = element_text(reader, root, "description", material->description,
@@ -888,13 +778,13 @@ static ur_status read_material_fields(const ur_reader *reader, xmlNodePtr root,
     return status;
 }
 
-static ur_status material_fields(const ur_reader *reader, xmlNodePtr root, void *profile)
+static ur_status material_fields(const profile_reader *reader, xmlNodePtr root, void *profile)
 {
     return read_material_fields(reader, root, profile);
 }
 
-ur_status ur_material_read_buffer(const char *const *roots, const char *name, const void *data, size_t size,
-                                  ur_material *material, ur_error *error)
+ur_status ur_material_read_buffer(const char *const *roots, const char *name, const void *data,
+                                  size_t size, ur_material *material, ur_error *error)
 {
     memset(material, 0, sizeof *material);
     return read_profile(roots, UR_PROFILE_MATERIAL, name, data, size, material->name,
@@ -902,7 +792,8 @@ ur_status ur_material_read_buffer(const char *const *roots, const char *name, co
                         material_fields, material, error);
 }
 
-ur_status ur_material_read(const char *const *roots, const char *path, ur_material *material, ur_error *error)
+ur_status ur_material_read(const char *const *roots, const char *path, ur_material *material,
+                           ur_error *error)
 {
     memset(material, 0, sizeof *material);
     char *text;
@@ -912,194 +803,4 @@ ur_status ur_material_read(const char *const *roots, const char *path, ur_materi
         status = ur_material_read_buffer(roots, path, text, size, material, error);
     free(text);
     return status;
-}
-
-/* ---- Loading by name --------------------------------------------------- */
-
-ur_status ur_machine_load(const char *const *roots, const char *name, ur_machine *machine,
-                          ur_error *error)
-{
-    char path[UR_PATH_MAX];
-    ur_status status = ur_profile_find(roots, UR_PROFILE_MACHINE, name, path, sizeof path, error);
-    if (status != UR_OK)
-        return status;
-    return ur_machine_read(roots, path, machine, error);
-}
-
-ur_status ur_material_load(const char *const *roots, const char *name, ur_material *material,
-                           ur_error *error)
-{
-    char path[UR_PATH_MAX];
-    ur_status status = ur_profile_find(roots, UR_PROFILE_MATERIAL, name, path, sizeof path, error);
-    if (status != UR_OK)
-        return status;
-    return ur_material_read(roots, path, material, error);
-}
-
-double ur_effective_kerf(const ur_machine *machine, const ur_material *material)
-{
-    if (material) {
-        double kerf =
-            machine->kind == UR_MACHINE_LASER ? material->kerf_laser : material->kerf_router;
-        if (kerf > 0.0)
-            return kerf;
-    }
-    return machine->kerf;
-}
-
-/* ---- Listing ----------------------------------------------------------- */
-
-typedef struct ur_entry_list {
-    ur_profile_entry *items;
-    size_t count, capacity;
-} ur_entry_list;
-
-static bool entry_listed(const ur_entry_list *list, ur_profile_kind kind, const char *name)
-{
-    for (size_t i = 0; i < list->count; i++)
-        if (list->items[i].kind == kind && strcmp(list->items[i].name, name) == 0)
-            return true;
-    return false;
-}
-
-static ur_status entry_list_grow(ur_entry_list *list, ur_error *error)
-{
-    if (list->count < list->capacity)
-        return UR_OK;
-    size_t capacity = list->capacity ? 2 * list->capacity : 16;
-    if (capacity > SIZE_MAX / sizeof(ur_profile_entry))
-        return ur_error_out_of_memory(error);
-    ur_profile_entry *items = realloc(list->items, capacity * sizeof *items);
-    if (!items)
-        return ur_error_out_of_memory(error);
-    list->items = items;
-    list->capacity = capacity;
-    return UR_OK;
-}
-
-/* "(invalid: MESSAGE)", shortened with "..." to fit the description. */
-static void describe_invalid(char *out, size_t size, const char *message)
-{
-    static const char head[] = "(invalid: ", tail[] = ")", dots[] = "...";
-    size_t room = size - sizeof head - sizeof tail - sizeof dots + 2;
-    size_t length = strlen(message);
-    bool shortened = length > room;
-    if (shortened)
-        length = room;
-    memcpy(out, head, sizeof head - 1);
-    memcpy(out + sizeof head - 1, message, length);
-    char *end = out + sizeof head - 1 + length;
-    if (shortened) {
-        memcpy(end, dots, sizeof dots - 1);
-        end += sizeof dots - 1;
-    }
-    memcpy(end, tail, sizeof tail);
-}
-
-/* Reads a profile only for its description; a bad file is listed, not hidden. */
-static void describe_entry(const char *const *roots, ur_profile_entry *entry)
-{
-    ur_error error = {0};
-    ur_status status;
-    if (entry->kind == UR_PROFILE_MACHINE) {
-        ur_machine machine;
-        status = ur_machine_read(roots, entry->source, &machine, &error);
-        if (status == UR_OK)
-            strcpy(entry->description, machine.description);
-    } else {
-        ur_material material;
-        status = ur_material_read(roots, entry->source, &material, &error);
-        if (status == UR_OK)
-            strcpy(entry->description, material.description);
-    }
-    if (status != UR_OK)
-        describe_invalid(entry->description, sizeof entry->description, error.message);
-}
-
-static ur_status add_entry(const char *const *roots, ur_entry_list *list, ur_profile_kind kind,
-                           const char *folder, const char *file, size_t stem_length,
-                           ur_error *error)
-{
-    char name[sizeof list->items[0].name];
-    if (stem_length >= sizeof name)
-        stem_length = sizeof name - 1;
-    memcpy(name, file, stem_length);
-    name[stem_length] = '\0';
-    /* An earlier root has this name: that one hides this one. */
-    if (entry_listed(list, kind, name))
-        return UR_OK;
-    ur_status status = entry_list_grow(list, error);
-    if (status != UR_OK)
-        return status;
-    ur_profile_entry *entry = &list->items[list->count];
-    memset(entry, 0, sizeof *entry);
-    entry->kind = kind;
-    strcpy(entry->name, name);
-    int length = ur_c_snprintf(entry->source, sizeof entry->source, "%s/%s", folder, file);
-    if (length < 0 || (size_t)length >= sizeof entry->source)
-        return ur_error_set(error, UR_ERROR_INPUT, "%s/%s: path too long", folder, file);
-    if (valid_name(entry->name) && strlen(file) == stem_length + 4)
-        describe_entry(roots, entry);
-    else
-        describe_invalid(entry->description, sizeof entry->description,
-                         "the file name is not a usable profile name");
-    list->count++;
-    return UR_OK;
-}
-
-/* Adds every ROOT/FOLDER/NAME.xml; dot files are hidden, as ls does. */
-static ur_status list_folder(const char *const *roots, const char *root, ur_profile_kind kind,
-                             ur_entry_list *list, ur_error *error)
-{
-    char folder[UR_PATH_MAX];
-    int length = ur_c_snprintf(folder, sizeof folder, "%s/%s", root, kind_folder(kind));
-    if (length < 0 || (size_t)length >= sizeof folder)
-        return ur_error_set(error, UR_ERROR_INPUT, "%s: path too long", root);
-    DIR *dir = opendir(folder);
-    if (!dir) {
-        if (errno == ENOENT || errno == ENOTDIR)
-            return UR_OK;
-        return ur_error_set(error, UR_ERROR_INPUT, "%s: cannot list: %s", folder, strerror(errno));
-    }
-    ur_status status = UR_OK;
-    for (struct dirent *item = readdir(dir); item && status == UR_OK; item = readdir(dir)) {
-        size_t name_length = strlen(item->d_name);
-        if (item->d_name[0] == '.' || name_length <= 4 ||
-            strcmp(item->d_name + name_length - 4, ".xml") != 0)
-            continue;
-        status = add_entry(roots, list, kind, folder, item->d_name, name_length - 4, error);
-    }
-    closedir(dir);
-    return status;
-}
-
-static int compare_entries(const void *a, const void *b)
-{
-    const ur_profile_entry *left = a, *right = b;
-    if (left->kind != right->kind)
-        return left->kind < right->kind ? -1 : 1;
-    return strcmp(left->name, right->name);
-}
-
-ur_status ur_profile_list(const char *const *roots, ur_profile_entry **entries, size_t *count,
-                          ur_error *error)
-{
-    *entries = NULL;
-    *count = 0;
-    ur_entry_list list = {0};
-    static const ur_profile_kind kinds[] = {UR_PROFILE_MACHINE, UR_PROFILE_MATERIAL};
-    for (size_t k = 0; k < 2; k++) {
-        for (const char *const *root = roots; root && *root; root++) {
-            ur_status status = list_folder(roots, *root, kinds[k], &list, error);
-            if (status != UR_OK) {
-                free(list.items);
-                return status;
-            }
-        }
-    }
-    if (list.count > 1)
-        qsort(list.items, list.count, sizeof *list.items, compare_entries);
-    *entries = list.items;
-    *count = list.count;
-    return UR_OK;
 }

@@ -115,12 +115,12 @@ static void describe(svg_element *element)
     char *id = svg_attribute(element->node, "id");
     /* A copy drawn through use is no longer the element of that id: its parts are numbered. */
     bool copy = element->reader && element->reader->using_count > 0;
-    ur_c_snprintf(element->id, sizeof element->id, "%s", id && !copy ? id : "");
+    c_snprintf(element->id, sizeof element->id, "%s", id && !copy ? id : "");
     if (id)
-        ur_c_snprintf(element->what, sizeof element->what, "%s id=\"%.40s\"",
-                      (const char *)element->node->name, id);
+        c_snprintf(element->what, sizeof element->what, "%s id=\"%.40s\"",
+                   (const char *)element->node->name, id);
     else
-        ur_c_snprintf(element->what, sizeof element->what, "%s", (const char *)element->node->name);
+        c_snprintf(element->what, sizeof element->what, "%s", (const char *)element->node->name);
     xmlFree(id);
     long line = xmlGetLineNo(element->node);
     element->line = line > 0 && line < 1000000000 ? (int)line : 0;
@@ -160,9 +160,9 @@ ur_status svg_read_viewbox(svg_element *element, svg_viewbox *box, ur_error *err
     ur_status status = UR_OK;
     if (!good) {
         char message[128];
-        ur_c_snprintf(message, sizeof message,
-                      "viewBox=\"%.*s\" is not four numbers with a positive width and height",
-                      SVG_QUOTE_MAX, text);
+        c_snprintf(message, sizeof message,
+                   "viewBox=\"%.*s\" is not four numbers with a positive width and height",
+                   SVG_QUOTE_MAX, text);
         status = svg_element_error(element, error, message);
     }
     box->given = good;
@@ -312,9 +312,9 @@ static ur_status root_size(svg_element *root, const char *name, svg_size *size, 
         size->mm = size->value * mm;
     } else {
         char message[160];
-        ur_c_snprintf(message, sizeof message,
-                      "%s=\"%.*s\" is not a positive length in mm, cm, in, pt, pc or px", name,
-                      SVG_QUOTE_MAX, text);
+        c_snprintf(message, sizeof message,
+                   "%s=\"%.*s\" is not a positive length in mm, cm, in, pt, pc or px", name,
+                   SVG_QUOTE_MAX, text);
         status = svg_element_error(root, error, message);
     }
     xmlFree(text);

@@ -57,10 +57,9 @@ static ur_status path_data_error(svg_path_state *state, const char *at, ur_error
 {
     char message[128];
     if (*at)
-        ur_c_snprintf(message, sizeof message, "bad path data at \"%.*s\"", SVG_QUOTE_MAX, at);
+        c_snprintf(message, sizeof message, "bad path data at \"%.*s\"", SVG_QUOTE_MAX, at);
     else
-        ur_c_snprintf(message, sizeof message,
-                      "path data ends before its last command is complete");
+        c_snprintf(message, sizeof message, "path data ends before its last command is complete");
     return svg_element_error(state->element, error, message);
 }
 

@@ -40,7 +40,7 @@ static ur_status positive(svg_element *element, const char *name, double value, 
     if (value > 0)
         return UR_OK;
     char message[96];
-    ur_c_snprintf(message, sizeof message, "%s must be positive, not %g", name, value);
+    c_snprintf(message, sizeof message, "%s must be positive, not %g", name, value);
     return svg_element_error(element, error, message);
 }
 
@@ -134,7 +134,7 @@ ur_status svg_read_poly(svg_element *element, bool polygon, ur_error *error)
         const char *at = scanner.at;
         if (!svg_scan_number(&scanner, &x) || !svg_scan_number(&scanner, &y)) {
             char message[128];
-            ur_c_snprintf(message, sizeof message, "bad points at \"%.*s\"", SVG_QUOTE_MAX, at);
+            c_snprintf(message, sizeof message, "bad points at \"%.*s\"", SVG_QUOTE_MAX, at);
             status = svg_element_error(element, error, message);
         } else
             status = parts_points_push(&points, ur_vec2_make(x, y), error);

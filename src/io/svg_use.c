@@ -55,18 +55,18 @@ static ur_status use_target(svg_element *element, xmlNodePtr *target, ur_error *
     char message[160];
     *target = NULL;
     if (!href)
-        ur_c_snprintf(message, sizeof message, "no href: the use points at nothing");
+        c_snprintf(message, sizeof message, "no href: the use points at nothing");
     else if (href[0] != '#')
-        ur_c_snprintf(message, sizeof message,
-                      "href=\"%.*s\" points outside the file: only \"#id\" is read", SVG_QUOTE_MAX,
-                      href);
+        c_snprintf(message, sizeof message,
+                   "href=\"%.*s\" points outside the file: only \"#id\" is read", SVG_QUOTE_MAX,
+                   href);
     else if ((*target = element_by_id(xmlDocGetRootElement(element->node->doc), href + 1)) == NULL)
-        ur_c_snprintf(message, sizeof message, "href=\"%.*s\" points at no element of the file",
-                      SVG_QUOTE_MAX, href);
+        c_snprintf(message, sizeof message, "href=\"%.*s\" points at no element of the file",
+                   SVG_QUOTE_MAX, href);
     else if (loops(element, *target))
-        ur_c_snprintf(message, sizeof message,
-                      "href=\"%.*s\" refers to itself (directly or through other uses)",
-                      SVG_QUOTE_MAX, href);
+        c_snprintf(message, sizeof message,
+                   "href=\"%.*s\" refers to itself (directly or through other uses)", SVG_QUOTE_MAX,
+                   href);
     else
         message[0] = '\0';
     xmlFree(href);

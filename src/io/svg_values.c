@@ -54,7 +54,7 @@ bool svg_scan_number(svg_scanner *scanner, double *value)
         return false;
     memcpy(text, scanner->at, length);
     text[length] = '\0';
-    *value = ur_c_strtod(text, NULL);
+    *value = c_strtod(text, NULL);
     if (!isfinite(*value))
         return false;
     scanner->at = p;
@@ -98,7 +98,7 @@ bool svg_parse_length_text(const char *text, double *value, char *unit, size_t u
         length--;
     if (length >= unit_size)
         return false;
-    ur_c_snprintf(unit, unit_size, "%.*s", (int)length, rest);
+    c_snprintf(unit, unit_size, "%.*s", (int)length, rest);
     return true;
 }
 
@@ -124,8 +124,8 @@ ur_status svg_length_attribute(svg_element *element, const char *name, double fa
         *value = number * px;
     else {
         char message[128];
-        ur_c_snprintf(message, sizeof message, "%s=\"%.*s\" is not a length", name, SVG_QUOTE_MAX,
-                      text);
+        c_snprintf(message, sizeof message, "%s=\"%.*s\" is not a length", name, SVG_QUOTE_MAX,
+                   text);
         status = svg_element_error(element, error, message);
     }
     xmlFree(text);
@@ -212,8 +212,8 @@ ur_status svg_parse_transform(svg_element *element, parts_matrix *matrix, ur_err
     ur_status status = UR_OK;
     if (!good) {
         char message[128];
-        ur_c_snprintf(message, sizeof message, "transform=\"%.*s\" is not a transform",
-                      SVG_QUOTE_MAX, text);
+        c_snprintf(message, sizeof message, "transform=\"%.*s\" is not a transform", SVG_QUOTE_MAX,
+                   text);
         status = svg_element_error(element, error, message);
     }
     xmlFree(text);

@@ -29,7 +29,7 @@ void io_file_stem(const char *path, char *stem, size_t size)
     const char *name = slash ? slash + 1 : path;
     const char *dot = strrchr(name, '.');
     size_t length = dot && dot != name ? (size_t)(dot - name) : strlen(name);
-    ur_c_snprintf(stem, size, "%.*s", (int)length, name);
+    c_snprintf(stem, size, "%.*s", (int)length, name);
 }
 
 ur_status io_read_file(const char *path, long max_bytes, const char *what, char **text,

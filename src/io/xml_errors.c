@@ -26,16 +26,16 @@ void io_xml_collect_error(void *context, io_xml_error *xml_error)
         return;
     report->have = true;
     report->line = xml_error->line;
-    ur_c_snprintf(report->file, sizeof report->file, "%s", xml_error->file ? xml_error->file : "");
+    c_snprintf(report->file, sizeof report->file, "%s", xml_error->file ? xml_error->file : "");
     const char *message = xml_error->message ? xml_error->message : "unknown XML error";
     xmlNodePtr node = xml_error->node;
     /* Validity messages do not always say which element: add it, as xmllint does. */
     if (xml_error->domain == XML_FROM_RELAXNGV && node && node->type == XML_ELEMENT_NODE &&
         !strstr(message, (const char *)node->name))
-        ur_c_snprintf(report->message, sizeof report->message, "element %s: %s",
-                      (const char *)node->name, message);
+        c_snprintf(report->message, sizeof report->message, "element %s: %s",
+                   (const char *)node->name, message);
     else
-        ur_c_snprintf(report->message, sizeof report->message, "%s", message);
+        c_snprintf(report->message, sizeof report->message, "%s", message);
     strip_trailing_space(report->message);
 }
 

@@ -23,11 +23,11 @@ static const char *gap_reason(ur_gap_reason reason)
 /* "u 0 to 0.4, 0 to 20 mm along rail 1, from (50, 0, 0) to (46, 19.5, 0)" */
 static void describe_gap(const ur_interval *gap, char *text, size_t size)
 {
-    snprintf(text, size,
-             "u %.6g to %.6g, %.6g to %.6g mm along rail 1, from (%.4g, %.4g, %.4g) to (%.4g, "
-             "%.4g, %.4g)",
-             gap->u_start, gap->u_end, gap->arc_start, gap->arc_end, gap->start.x, gap->start.y,
-             gap->start.z, gap->end.x, gap->end.y, gap->end.z);
+    c_snprintf(text, size,
+               "u %.6g to %.6g, %.6g to %.6g mm along rail 1, from (%.4g, %.4g, %.4g) to (%.4g, "
+               "%.4g, %.4g)",
+               gap->u_start, gap->u_end, gap->arc_start, gap->arc_end, gap->start.x, gap->start.y,
+               gap->start.z, gap->end.x, gap->end.y, gap->end.z);
 }
 
 ur_status job_check_domain(const job_run *run, ur_ruled *ruled)
@@ -42,7 +42,7 @@ ur_status job_check_domain(const job_run *run, ur_ruled *ruled)
         for (size_t k = 0; k < count && used < sizeof text; k++) {
             char place[512];
             describe_gap(&gaps[k], place, sizeof place);
-            used += (size_t)snprintf(
+            used += (size_t)c_snprintf(
                 text + used, sizeof text - used, "%s%s (%s)", k ? "; " : "", place,
                 gaps[k].reason == UR_GAP_NO_RULING ? "no ruling" : "rulings cross");
         }

@@ -4,6 +4,8 @@
  */
 #include "stages.h"
 
+#include "../base/c_locale.h"
+
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -46,7 +48,7 @@ void job_warn(const job_run *run, const char *format, ...)
     char message[8192]; /* a warning names pieces and paths: room for many */
     va_list args;
     va_start(args, format);
-    vsnprintf(message, sizeof message, format, args);
+    c_vsnprintf(message, sizeof message, format, args);
     va_end(args);
     run->callbacks.warning(run->callbacks.user, message);
 }
@@ -56,7 +58,7 @@ ur_status job_fail(const job_run *run, ur_status status, const char *format, ...
     run->error->status = status;
     va_list args;
     va_start(args, format);
-    vsnprintf(run->error->message, sizeof run->error->message, format, args);
+    c_vsnprintf(run->error->message, sizeof run->error->message, format, args);
     va_end(args);
     return status;
 }

@@ -126,7 +126,7 @@ static void fill_result(const job_run *run, const ur_machine *machine, const ur_
     job_describe_cutting(run, machine, layout, pieces, result->cutting, sizeof result->cutting);
     double margin = run->job.margin >= 0 ? run->job.margin : machine->margin;
     result->sheets_lower_bound = job_sheets_lower_bound(pieces, count, layout, margin);
-    snprintf(result->first_file, sizeof result->first_file, "%s", run->job.output_path);
+    c_snprintf(result->first_file, sizeof result->first_file, "%s", run->job.output_path);
 }
 
 static ur_status nest_pieces(const job_run *run, bool split, ur_piece **pieces, size_t *count,

@@ -6,6 +6,8 @@
  */
 #include "stages.h"
 
+#include "../base/c_locale.h"
+
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -50,7 +52,7 @@ static ur_status set_dpi(ur_job *job, const char *value, ur_error *error)
 {
     char *end = NULL;
     errno = 0;
-    double dpi = strtod(value, &end);
+    double dpi = c_strtod(value, &end);
     if (end == value || *end != '\0' || !isfinite(dpi) || dpi < 10 || dpi > 2400)
         return ur_error_set(error, UR_ERROR_INPUT,
                             "'%s' is not a resolution from 10 to 2400 dots per inch", value);
@@ -79,7 +81,7 @@ static ur_status set_rotations(ur_job *job, const char *value, ur_error *error)
 static ur_status set_roll(ur_job *job, const char *value, ur_error *error)
 {
     char *end = NULL;
-    double width = strtod(value, &end);
+    double width = c_strtod(value, &end);
     if (end == value || *end != '\0' || !(width > 0) || !(width <= UR_LENGTH_MAX))
         return ur_error_set(error, UR_ERROR_INPUT, "'%s' is not a width in mm up to %g", value,
                             UR_LENGTH_MAX);
@@ -101,8 +103,8 @@ static ur_status set_sheet_count(ur_job *job, const char *value, ur_error *error
 static ur_status set_remnant(ur_job *job, const char *value, ur_error *error)
 {
     char *end = NULL;
-    double width = strtod(value, &end);
-    double height = end != value && (*end == 'x' || *end == 'X') ? strtod(end + 1, &end) : NAN;
+    double width = c_strtod(value, &end);
+    double height = end != value && (*end == 'x' || *end == 'X') ? c_strtod(end + 1, &end) : NAN;
     if (*end != '\0' || !isfinite(width) || !isfinite(height) || !(width > 0) || !(height > 0))
         return ur_error_set(error, UR_ERROR_INPUT, "'%s' is not WIDTHxHEIGHT in mm, e.g. 300x200",
                             value);
@@ -115,7 +117,7 @@ static ur_status set_remnant(ur_job *job, const char *value, ur_error *error)
 static ur_status set_nest_time(ur_job *job, const char *value, ur_error *error)
 {
     char *end = NULL;
-    double seconds = strtod(value, &end);
+    double seconds = c_strtod(value, &end);
     if (end == value || *end != '\0' || !isfinite(seconds) || seconds < 0 || seconds > 3600)
         return ur_error_set(error, UR_ERROR_INPUT, "'%s' is not a number of seconds from 0 to 3600",
                             value);

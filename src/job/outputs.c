@@ -31,33 +31,33 @@ void job_describe_sheets(const ur_layout *layout, char *text, size_t size)
             stock_sheet = sheet;
             continue;
         }
-        int n = snprintf(text + used, size - used, "%sremnant %g x %g mm (sheet %zu)",
-                         used ? ", " : "", sheet->width, sheet->height, s + 1);
+        int n = c_snprintf(text + used, size - used, "%sremnant %g x %g mm (sheet %zu)",
+                           used ? ", " : "", sheet->width, sheet->height, s + 1);
         if (n < 0 || (size_t)n >= size - used)
             return; /* cut short: the report has every sheet */
         used += (size_t)n;
     }
     if (stock_sheet || used == 0) {
         int n =
-            snprintf(text + used, size - used, "%s%zu sheet%s of %g x %g mm", used ? " and " : "",
-                     stock, stock == 1 ? "" : "s", stock_sheet ? stock_sheet->width : 0.0,
-                     stock_sheet ? stock_sheet->height : 0.0);
+            c_snprintf(text + used, size - used, "%s%zu sheet%s of %g x %g mm", used ? " and " : "",
+                       stock, stock == 1 ? "" : "s", stock_sheet ? stock_sheet->width : 0.0,
+                       stock_sheet ? stock_sheet->height : 0.0);
         if (n < 0 || (size_t)n >= size - used)
             return;
         used += (size_t)n;
     }
     if (stock_sheet && stock_sheet->offcut_width >= 1) /* less is no offcut to keep */
-        snprintf(text + used, size - used, ", the last leaving an offcut of %.0f x %g mm",
-                 floor(stock_sheet->offcut_width), stock_sheet->height);
+        c_snprintf(text + used, size - used, ", the last leaving an offcut of %.0f x %g mm",
+                   floor(stock_sheet->offcut_width), stock_sheet->height);
 }
 
 /* "812 mm" or "3.54 m": a cut length as a maker reads it. */
 static void describe_length(double millimetres, char *text, size_t size)
 {
     if (millimetres < 1000)
-        snprintf(text, size, "%.0f mm", millimetres);
+        c_snprintf(text, size, "%.0f mm", millimetres);
     else
-        snprintf(text, size, "%.2f m", millimetres / 1000);
+        c_snprintf(text, size, "%.2f m", millimetres / 1000);
 }
 
 /* "45 s", "4 min 6 s" or "1 h 5 min": a machine time as a maker reads it. */
@@ -65,11 +65,11 @@ static void describe_time(double seconds, char *text, size_t size)
 {
     long whole = lround(seconds);
     if (whole < 60)
-        snprintf(text, size, "%ld s", whole);
+        c_snprintf(text, size, "%ld s", whole);
     else if (whole < 3600)
-        snprintf(text, size, "%ld min %ld s", whole / 60, whole % 60);
+        c_snprintf(text, size, "%ld min %ld s", whole / 60, whole % 60);
     else
-        snprintf(text, size, "%ld h %ld min", whole / 3600, (whole % 3600 + 30) / 60);
+        c_snprintf(text, size, "%ld h %ld min", whole / 3600, (whole % 3600 + 30) / 60);
 }
 
 void job_describe_cutting(const job_run *run, const ur_machine *machine, const ur_layout *layout,
@@ -96,8 +96,8 @@ void job_describe_cutting(const job_run *run, const ur_machine *machine, const u
     char length[64], time[64];
     describe_length(cut, length, sizeof length);
     describe_time(seconds, time, sizeof time);
-    snprintf(text, size, ", utilisation %.1f %%, cut %s in about %s",
-             room > 0 ? 100 * used / room : 0.0, length, time);
+    c_snprintf(text, size, ", utilisation %.1f %%, cut %s in about %s",
+               room > 0 ? 100 * used / room : 0.0, length, time);
 }
 
 void job_not_placed_warning(const job_run *run, const ur_layout *layout, const ur_piece *pieces)
@@ -107,8 +107,8 @@ void job_not_placed_warning(const job_run *run, const ur_layout *layout, const u
     char names[512] = "";
     size_t used = 0;
     for (size_t k = 0; k < layout->not_placed_count && used + 40 < sizeof names; k++)
-        used += (size_t)snprintf(names + used, sizeof names - used, "%s%s", k ? ", " : "",
-                                 pieces[layout->not_placed[k]].name);
+        used += (size_t)c_snprintf(names + used, sizeof names - used, "%s%s", k ? ", " : "",
+                                   pieces[layout->not_placed[k]].name);
     job_warn(run,
              "%s: warning: %zu piece%s found no room on the %zu sheet%s allowed (--sheets): "
              "%s%s",
@@ -150,7 +150,7 @@ ur_status job_write_outputs(const job_run *run, const ur_machine *machine, const
                             ur_error *error)
 {
     char title[128];
-    snprintf(title, sizeof title, "unroll %s", run->job.command);
+    c_snprintf(title, sizeof title, "unroll %s", run->job.command);
     ur_output_options output = {title, run->job.context};
     ur_format_options formats = {.job_name =
                                      run->job.job_name ? run->job.job_name : run->job.surface,

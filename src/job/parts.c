@@ -116,8 +116,8 @@ static ur_status add_copies(long quantity, const job_pieces_made *made, ur_piece
             if (quantity == 1)
                 continue; /* the names the part's pieces were made with */
             char name[160];
-            snprintf(name, sizeof name, "%s#%ld", made->pieces[k].name, copy + 1);
-            snprintf(piece->name, sizeof piece->name, "%.31s", name);
+            c_snprintf(name, sizeof name, "%s#%ld", made->pieces[k].name, copy + 1);
+            c_snprintf(piece->name, sizeof piece->name, "%.31s", name);
         }
     return UR_OK;
 }
@@ -209,7 +209,7 @@ static ur_status append_layout(ur_layout *layout, ur_layout *part, size_t offset
     for (size_t s = 0; s < part->sheet_count; s++) {
         ur_sheet *sheet = &sheets[layout->sheet_count++];
         *sheet = part->sheets[s];
-        snprintf(sheet->material, sizeof sheet->material, "%s", material);
+        c_snprintf(sheet->material, sizeof sheet->material, "%s", material);
         for (size_t k = 0; k < sheet->placement_count; k++)
             sheet->placements[k].piece_index += offset;
     }
@@ -255,10 +255,10 @@ static void fill_result(const job_run *run, const ur_job_parts *parts, const ur_
     for (size_t k = 0; k < parts->count; k++)
         result->flat_area += parts->pieces[k].measures.flat_area;
     result->sheet_count = layout->sheet_count;
-    snprintf(result->machine, sizeof result->machine, "%s", parts->machine.name);
-    snprintf(result->material, sizeof result->material, "%s", parts->material.name);
+    c_snprintf(result->machine, sizeof result->machine, "%s", parts->machine.name);
+    c_snprintf(result->material, sizeof result->material, "%s", parts->material.name);
     job_describe_sheets(layout, result->sheets, sizeof result->sheets);
-    snprintf(result->first_file, sizeof result->first_file, "%s", run->job.output_path);
+    c_snprintf(result->first_file, sizeof result->first_file, "%s", run->job.output_path);
     job_describe_cutting(run, &parts->machine, layout, parts->pieces, result->cutting,
                          sizeof result->cutting);
 }

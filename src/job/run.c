@@ -121,8 +121,8 @@ static ur_status make_pieces(const job_run *run, job_state *state, ur_error *err
         state->piece_count++;
         if (run->job.piece_prefix) { /* a job file's part: its name goes first, engraved too */
             char name[96];
-            snprintf(name, sizeof name, "%s-%s", run->job.piece_prefix, state->nets.nets[k].name);
-            snprintf(state->pieces[k].name, sizeof state->pieces[k].name, "%.31s", name);
+            c_snprintf(name, sizeof name, "%s-%s", run->job.piece_prefix, state->nets.nets[k].name);
+            c_snprintf(state->pieces[k].name, sizeof state->pieces[k].name, "%.31s", name);
         }
     }
     return UR_OK;
@@ -141,7 +141,7 @@ static ur_status append_nets(ur_net_list *all, ur_net_list *part, ur_error *erro
             part->nets[k].seam_sides[j].seam += seams_before;
     for (size_t k = 0; k < part->count; k++) {
         all->nets[all->count] = part->nets[k];
-        snprintf(all->nets[all->count].name, sizeof all->nets[0].name, "P%zu", all->count + 1);
+        c_snprintf(all->nets[all->count].name, sizeof all->nets[0].name, "P%zu", all->count + 1);
         all->count++;
     }
     free(part->nets);
@@ -489,15 +489,15 @@ static void fill_result(const job_run *run, const job_state *state, ur_job_resul
     for (size_t k = 0; k < state->piece_count; k++)
         result->flat_area += state->pieces[k].measures.flat_area;
     result->sheet_count = state->layout.sheet_count;
-    snprintf(result->machine, sizeof result->machine, "%s", state->machine.name);
-    snprintf(result->material, sizeof result->material, "%s", state->material.name);
+    c_snprintf(result->machine, sizeof result->machine, "%s", state->machine.name);
+    c_snprintf(result->material, sizeof result->material, "%s", state->material.name);
     job_describe_sheets(&state->layout, result->sheets, sizeof result->sheets);
     char *first_file = result->first_file;
     size_t size = sizeof result->first_file, sheets = state->layout.sheet_count;
     if (ur_sheet_file_name(run->job.output_path, 0, sheets, first_file, size, NULL))
-        snprintf(first_file, size, "%s", run->job.output_path);
+        c_snprintf(first_file, size, "%s", run->job.output_path);
     if (sheets > 1) /* "net-1.svg ... net-3.svg" */
-        snprintf(first_file + strlen(first_file), size - strlen(first_file), " ... -%zu", sheets);
+        c_snprintf(first_file + strlen(first_file), size - strlen(first_file), " ... -%zu", sheets);
     job_describe_cutting(run, &state->machine, &state->layout, state->pieces, result->cutting,
                          sizeof result->cutting);
 }

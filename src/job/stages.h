@@ -17,6 +17,8 @@
 #include "unroll/nest.h"
 #include "unroll/out.h"
 
+#include "../base/c_locale.h"
+
 /*
  * One run of a job: the job (a copy, so that a stage may run a variant of
  * it), where its warnings and progress go, and where a stage that fails

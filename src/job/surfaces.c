@@ -42,7 +42,8 @@ static bool positive(const job_run *run, double value, const char *option)
 
 static ur_status fail(const ur_error *error, const job_run *run)
 {
-    return job_fail(run, error->status, "%s: %s", run->job.command, error->message);
+    return job_fail(run, error->status != UR_OK ? error->status : UR_ERROR_INTERNAL, "%s: %s",
+                    run->job.command, error->message);
 }
 
 static ur_status curve_from_file(const job_run *run, ur_curve **curve)
@@ -302,14 +303,14 @@ static void note_repair(const job_run *run, const ur_rail_repair_report *report)
     char written[300] = "";
     const char *second = run->job.adjusted_rail1_path;
     if (run->job.adjusted_rail_path)
-        ur_c_snprintf(written, sizeof written, "; written to %s%s%s", run->job.adjusted_rail_path,
-                      second ? " and " : "", second ? second : "");
+        c_snprintf(written, sizeof written, "; written to %s%s%s", run->job.adjusted_rail_path,
+                   second ? " and " : "", second ? second : "");
     char figures[300];
-    ur_c_snprintf(figures, sizeof figures,
-                  "moved by at most %.4g mm (point %zu of rail %d, %.1f mm along it), %.4g mm on "
-                  "average",
-                  report->largest, report->largest_point + 1, report->largest_rail,
-                  report->largest_along, report->mean);
+    c_snprintf(figures, sizeof figures,
+               "moved by at most %.4g mm (point %zu of rail %d, %.1f mm along it), %.4g mm on "
+               "average",
+               report->largest, report->largest_point + 1, report->largest_rail,
+               report->largest_along, report->mean);
     job_warn(run, "%s: %s %s%s", run->job.command, adjust_names[run->job.adjust_rails], figures,
              written);
 }

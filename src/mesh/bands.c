@@ -106,13 +106,13 @@ static ur_status largest_axis(const outer_sum *sum, ur_vec3 *axis, double *value
     gsl_matrix_view matrix = gsl_matrix_view_array(entries, 3, 3);
     gsl_matrix_view evec = gsl_matrix_view_array(vectors, 3, 3);
     gsl_vector_view eval = gsl_vector_view_array(values, 3);
-    ur_gsl_errors_off();
+    gsl_errors_off();
     gsl_eigen_symmv_workspace *work = gsl_eigen_symmv_alloc(3);
     bool allocated = work != NULL;
     int failed = allocated ? gsl_eigen_symmv(&matrix.matrix, &eval.vector, &evec.matrix, work) : 0;
     if (allocated)
         gsl_eigen_symmv_free(work);
-    ur_gsl_errors_restore();
+    gsl_errors_restore();
     if (!allocated)
         return ur_error_out_of_memory(error);
     if (failed)

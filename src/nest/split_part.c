@@ -48,12 +48,12 @@ static ur_status geos_failed(ur_error *error, const char *what)
 /* The part's polygon: outline and every other closed CUT path inside it as a hole. */
 static GEOSGeometry *part_polygon(GEOSContextHandle_t geos, const ur_piece *part)
 {
-    GEOSGeometry *polygon = ur_geos_polygon(geos, part->paths[0].points, part->paths[0].count);
+    GEOSGeometry *polygon = geos_polygon_of_ring(geos, part->paths[0].points, part->paths[0].count);
     for (size_t k = 1; polygon && k < part->path_count; k++) {
         const ur_path *path = &part->paths[k];
         if (path->op != UR_OP_CUT || !path->closed || path->count < 3)
             continue;
-        GEOSGeometry *hole = ur_geos_polygon(geos, path->points, path->count);
+        GEOSGeometry *hole = geos_polygon_of_ring(geos, path->points, path->count);
         GEOSGeometry *less = hole ? GEOSDifference_r(geos, polygon, hole) : NULL;
         GEOSGeom_destroy_r(geos, hole);
         GEOSGeom_destroy_r(geos, polygon);
@@ -161,7 +161,7 @@ static ur_status face_part(const splitter *s, const GEOSGeometry *face, const ur
     ur_status status = shell ? ring_points(s->geos, shell, false, &ring, s->error)
                              : geos_failed(s->error, "reading a face");
     if (status == UR_OK) {
-        ur_c_snprintf(net->name, sizeof net->name, "%.24s.%zu", part->name, index + 1);
+        c_snprintf(net->name, sizeof net->name, "%.24s.%zu", part->name, index + 1);
         net->outline = ring.items;
         net->outline_count = ring.count;
         ring = (ur_points){0};

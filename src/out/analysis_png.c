@@ -181,14 +181,14 @@ static void set_gaussian_colour(cairo_t *cr, const grid *g, double gaussian)
 /* ---- Text --------------------------------------------------------------- */
 
 /* Text on the map: dark on a white box, so that it reads on any colour. */
-static void show_boxed_text(cairo_t *cr, double x, double y, ur_align align, const char *text)
+static void show_boxed_text(cairo_t *cr, double x, double y, text_align align, const char *text)
 {
-    double width = ur_draw_text_width(cr, text);
-    cairo_rectangle(cr, ur_draw_left(x, width, align) - 3, y - 12, width + 6, 16);
+    double width = draw_text_width(cr, text);
+    cairo_rectangle(cr, draw_left(x, width, align) - 3, y - 12, width + 6, 16);
     cairo_set_source_rgba(cr, 1, 1, 1, 0.85);
     cairo_fill(cr);
     cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
-    ur_draw_show_text(cr, x, y, align, text);
+    draw_show_text(cr, x, y, align, text);
 }
 
 /* ---- Map ---------------------------------------------------------------- */
@@ -331,21 +331,21 @@ static bool draw_gaps(cairo_t *cr, const map *m, const ur_analysis *analysis, ur
 {
     const ur_interval *gaps = NULL;
     size_t count = ur_ruled_gaps(ruled, &gaps);
-    ur_draw_set_font(cr, 12, false);
+    draw_set_font(cr, 12, false);
     for (size_t k = 0; k < count; k++) {
         double x0 = map_x(m, arc_at(analysis, gaps[k].u_start));
         double x1 = map_x(m, arc_at(analysis, gaps[k].u_end));
         double top = m->bottom - m->height;
         hatch(cr, x0, top, fmax(x1, x0 + 1), m->bottom);
         const char *label = gap_label(gaps[k].reason);
-        double width = ur_draw_text_width(cr, label);
+        double width = draw_text_width(cr, label);
         if (width + 8 < x1 - x0) {
-            show_boxed_text(cr, (x0 + x1) / 2, top + m->height / 2, UR_ALIGN_CENTRE, label);
+            show_boxed_text(cr, (x0 + x1) / 2, top + m->height / 2, ALIGN_CENTRE, label);
         } else if (width + 8 < m->height) {
             cairo_save(cr);
             cairo_translate(cr, (x0 + x1) / 2 + 4, top + m->height / 2);
             cairo_rotate(cr, -M_PI / 2);
-            show_boxed_text(cr, 0, 0, UR_ALIGN_CENTRE, label);
+            show_boxed_text(cr, 0, 0, ALIGN_CENTRE, label);
             cairo_restore(cr);
         }
     }
@@ -407,12 +407,11 @@ static bool draw_min_bend(cairo_t *cr, const map *m, const ur_analysis *analysis
         double x = map_x(m, ruling->arc), y = map_y(m, ruling->bend_v * ruling_length(ruling));
         bend_marker(cr, x, y);
         char label[80];
-        ur_c_snprintf(label, sizeof label, "smallest bend radius %.4g mm",
-                      analysis->min_bend_radius);
-        ur_draw_set_font(cr, 12, false);
-        bool left = x + 12 + ur_draw_text_width(cr, label) > WIDTH - 4;
+        c_snprintf(label, sizeof label, "smallest bend radius %.4g mm", analysis->min_bend_radius);
+        draw_set_font(cr, 12, false);
+        bool left = x + 12 + draw_text_width(cr, label) > WIDTH - 4;
         double baseline = fmin(fmax(y + 4, m->bottom - m->height + 12), m->bottom - 4);
-        show_boxed_text(cr, left ? x - 12 : x + 12, baseline, left ? UR_ALIGN_RIGHT : UR_ALIGN_LEFT,
+        show_boxed_text(cr, left ? x - 12 : x + 12, baseline, left ? ALIGN_RIGHT : ALIGN_LEFT,
                         label);
         return true;
     }
@@ -439,20 +438,20 @@ static void draw_ticks(cairo_t *cr, const map *m, bool vertical)
 {
     double pixels = vertical ? m->height : m->width, range = pixels / m->scale;
     double step = nice_step(range, fmax(pixels / (vertical ? 45 : 90), 2));
-    ur_draw_set_font(cr, 12, false);
+    draw_set_font(cr, 12, false);
     cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
     cairo_set_line_width(cr, 1.0);
     for (double t = 0; t <= range * (1 + 1e-9); t += step) {
         char label[32];
-        ur_c_snprintf(label, sizeof label, "%.6g", t);
+        c_snprintf(label, sizeof label, "%.6g", t);
         if (vertical) {
             double y = map_y(m, t);
-            ur_draw_line(cr, m->left - 2, y, m->left - 7, y);
-            ur_draw_show_text(cr, m->left - 10, y + 4, UR_ALIGN_RIGHT, label);
+            draw_line(cr, m->left - 2, y, m->left - 7, y);
+            draw_show_text(cr, m->left - 10, y + 4, ALIGN_RIGHT, label);
         } else {
             double x = map_x(m, t);
-            ur_draw_line(cr, x, m->bottom + 2, x, m->bottom + 7);
-            ur_draw_show_text(cr, x, m->bottom + 20, UR_ALIGN_CENTRE, label);
+            draw_line(cr, x, m->bottom + 2, x, m->bottom + 7);
+            draw_show_text(cr, x, m->bottom + 20, ALIGN_CENTRE, label);
         }
     }
 }
@@ -461,22 +460,22 @@ static void draw_x_axis(cairo_t *cr, const map *m)
 {
     draw_ticks(cr, m, false);
     const char *title = "arc length along rail a (mm)";
-    double centre = fmax(m->left + m->width / 2, m->left + ur_draw_text_width(cr, title) / 2);
-    ur_draw_show_text(cr, centre, m->bottom + 38, UR_ALIGN_CENTRE, title);
+    double centre = fmax(m->left + m->width / 2, m->left + draw_text_width(cr, title) / 2);
+    draw_show_text(cr, centre, m->bottom + 38, ALIGN_CENTRE, title);
 }
 
 static void draw_y_axis(cairo_t *cr, const map *m)
 {
     draw_ticks(cr, m, true);
     const char *title = "along the ruling (mm)";
-    if (m->height < ur_draw_text_width(cr, title) + 20) { /* too short to write it alongside */
-        ur_draw_show_text(cr, 20, m->bottom - m->height - 10, UR_ALIGN_LEFT, title);
+    if (m->height < draw_text_width(cr, title) + 20) { /* too short to write it alongside */
+        draw_show_text(cr, 20, m->bottom - m->height - 10, ALIGN_LEFT, title);
         return;
     }
     cairo_save(cr);
     cairo_translate(cr, 26, m->bottom - m->height / 2);
     cairo_rotate(cr, -M_PI / 2);
-    ur_draw_show_text(cr, 0, 0, UR_ALIGN_CENTRE, title);
+    draw_show_text(cr, 0, 0, ALIGN_CENTRE, title);
     cairo_restore(cr);
 }
 
@@ -495,21 +494,20 @@ static void draw_colour_bar(cairo_t *cr, const map *m, const grid *g)
         cairo_fill(cr);
     }
     cairo_set_antialias(cr, CAIRO_ANTIALIAS_DEFAULT);
-    ur_draw_set_font(cr, 11, false);
+    draw_set_font(cr, 11, false);
     cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
-    ur_draw_show_text(cr, x + 13, y + height + 17, UR_ALIGN_CENTRE, "0");
+    draw_show_text(cr, x + 13, y + height + 17, ALIGN_CENTRE, "0");
     cairo_set_line_width(cr, 1.0);
     for (int tick = 0; tick <= 3; tick++) {
         char label[32];
-        ur_c_snprintf(label, sizeof label, "%.2g",
-                      -g->lower * pow(g->upper / g->lower, tick / 3.0));
+        c_snprintf(label, sizeof label, "%.2g", -g->lower * pow(g->upper / g->lower, tick / 3.0));
         double at = bar + width * tick / 3;
-        ur_draw_line(cr, at, y + height, at, y + height + 4);
-        ur_draw_show_text(cr, at, y + height + 17, UR_ALIGN_CENTRE, label);
+        draw_line(cr, at, y + height, at, y + height + 4);
+        draw_show_text(cr, at, y + height + 17, ALIGN_CENTRE, label);
     }
-    ur_draw_set_font(cr, 12, false);
-    ur_draw_show_text(cr, x, y + height + 38, UR_ALIGN_LEFT,
-                      "Gaussian curvature K (1/mm\xc2\xb2), log scale of |K|; green: K = 0");
+    draw_set_font(cr, 12, false);
+    draw_show_text(cr, x, y + height + 38, ALIGN_LEFT,
+                   "Gaussian curvature K (1/mm\xc2\xb2), log scale of |K|; green: K = 0");
 }
 
 /* Everything green: say why, and say so when the residual disagrees. */
@@ -519,28 +517,26 @@ static void draw_flat_legend(cairo_t *cr, const map *m, const ur_analysis *analy
     cairo_rectangle(cr, MAP_LEFT, m->legend_top, 26, 16);
     cairo_fill(cr);
     char label[128];
-    ur_c_snprintf(label, sizeof label,
-                  analysis->developable
-                      ? "K = 0: developable (largest residual %.2g rad)"
-                      : "K = 0 at every sample, yet the residual reaches %.2g rad",
-                  analysis->max_residual);
-    ur_draw_set_font(cr, 12, false);
+    c_snprintf(label, sizeof label,
+               analysis->developable ? "K = 0: developable (largest residual %.2g rad)"
+                                     : "K = 0 at every sample, yet the residual reaches %.2g rad",
+               analysis->max_residual);
+    draw_set_font(cr, 12, false);
     cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
-    ur_draw_show_text(cr, MAP_LEFT + 36, m->legend_top + 13, UR_ALIGN_LEFT, label);
-    ur_draw_show_text(cr, MAP_LEFT, m->legend_top + 54, UR_ALIGN_LEFT,
-                      "Gaussian curvature K (1/mm\xc2\xb2)");
+    draw_show_text(cr, MAP_LEFT + 36, m->legend_top + 13, ALIGN_LEFT, label);
+    draw_show_text(cr, MAP_LEFT, m->legend_top + 54, ALIGN_LEFT,
+                   "Gaussian curvature K (1/mm\xc2\xb2)");
 }
 
 /* The keys for what is drawn over the colours, one line each. */
 static void draw_keys(cairo_t *cr, const map *m, bool gaps, bool striction, bool bend)
 {
     double y = m->legend_top + 8;
-    ur_draw_set_font(cr, 12, false);
+    draw_set_font(cr, 12, false);
     if (gaps) {
         hatch(cr, KEY_LEFT, y - 7, KEY_LEFT + 30, y + 7);
         cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
-        ur_draw_show_text(cr, KEY_LEFT + 40, y + 4, UR_ALIGN_LEFT,
-                          "gap in the domain of existence");
+        draw_show_text(cr, KEY_LEFT + 40, y + 4, ALIGN_LEFT, "gap in the domain of existence");
         y += 22;
     }
     if (striction) {
@@ -553,29 +549,29 @@ static void draw_keys(cairo_t *cr, const map *m, bool gaps, bool striction, bool
         cairo_stroke(cr);
         cairo_set_dash(cr, NULL, 0, 0);
         cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
-        ur_draw_show_text(cr, KEY_LEFT + 40, y + 4, UR_ALIGN_LEFT,
-                          "striction line (edge of regression of a developable)");
+        draw_show_text(cr, KEY_LEFT + 40, y + 4, ALIGN_LEFT,
+                       "striction line (edge of regression of a developable)");
         y += 22;
     }
     if (bend) {
         bend_marker(cr, KEY_LEFT + 15, y);
         cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
-        ur_draw_show_text(cr, KEY_LEFT + 40, y + 4, UR_ALIGN_LEFT, "smallest bend radius");
+        draw_show_text(cr, KEY_LEFT + 40, y + 4, ALIGN_LEFT, "smallest bend radius");
     }
 }
 
 /* About a quarter of the map's longer side, and no longer than 250 px. */
 static void draw_scale_bar(cairo_t *cr, const map *m)
 {
-    double length = ur_draw_nice_below(fmin(fmax(m->width, m->height) / 4, 250) / m->scale);
+    double length = draw_nice_below(fmin(fmax(m->width, m->height) / 4, 250) / m->scale);
     double pixels = length * m->scale, right = MAP_RIGHT, y = m->image_height - 14;
     cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
     cairo_rectangle(cr, right - pixels, y - 6, pixels, 6);
     cairo_fill(cr);
     char label[32];
-    ur_c_snprintf(label, sizeof label, "%.6g mm", length);
-    ur_draw_set_font(cr, 12, false);
-    ur_draw_show_text(cr, right - pixels - 8, y, UR_ALIGN_RIGHT, label);
+    c_snprintf(label, sizeof label, "%.6g mm", length);
+    draw_set_font(cr, 12, false);
+    draw_show_text(cr, right - pixels - 8, y, ALIGN_RIGHT, label);
 }
 
 /* ---- Header and the whole picture --------------------------------------- */
@@ -586,28 +582,27 @@ static void draw_header(cairo_t *cr, const ur_analysis *analysis, const char *ti
     title = title ? title : "surface analysis";
     /* A long title (a whole command line) gets a smaller font rather than cut off. */
     double size = 20;
-    ur_draw_set_font(cr, size, true);
-    while (size > 11 && ur_draw_text_width(cr, title) > WIDTH - 40)
-        ur_draw_set_font(cr, --size, true);
-    ur_draw_show_text(cr, 20, 32, UR_ALIGN_LEFT, title);
+    draw_set_font(cr, size, true);
+    while (size > 11 && draw_text_width(cr, title) > WIDTH - 40)
+        draw_set_font(cr, --size, true);
+    draw_show_text(cr, 20, 32, ALIGN_LEFT, title);
     char line[256];
-    ur_c_snprintf(line, sizeof line, "area %.6g mm\xc2\xb2 \xc2\xb7 %s (largest residual %.2g rad)",
-                  analysis->area_3d, analysis->developable ? "developable" : "not developable",
-                  analysis->max_residual);
-    ur_draw_set_font(cr, 13, false);
-    ur_draw_show_text(cr, 20, 54, UR_ALIGN_LEFT, line);
+    c_snprintf(line, sizeof line, "area %.6g mm\xc2\xb2 \xc2\xb7 %s (largest residual %.2g rad)",
+               analysis->area_3d, analysis->developable ? "developable" : "not developable",
+               analysis->max_residual);
+    draw_set_font(cr, 13, false);
+    draw_show_text(cr, 20, 54, ALIGN_LEFT, line);
     char bend[96];
     if (isfinite(analysis->min_bend_radius))
-        ur_c_snprintf(bend, sizeof bend, "smallest bend radius %.4g mm%s",
-                      analysis->min_bend_radius,
-                      analysis->min_bend_radius > 0 ? "" : " (at a singular point)");
+        c_snprintf(bend, sizeof bend, "smallest bend radius %.4g mm%s", analysis->min_bend_radius,
+                   analysis->min_bend_radius > 0 ? "" : " (at a singular point)");
     else
-        ur_c_snprintf(bend, sizeof bend, "flat: no bending");
+        c_snprintf(bend, sizeof bend, "flat: no bending");
     /* + 0.0 turns -0 into 0 */
-    ur_c_snprintf(line, sizeof line, "K from %.3g to %.3g 1/mm\xc2\xb2 (mean %.3g) \xc2\xb7 %s",
-                  analysis->gaussian_min + 0.0, analysis->gaussian_max + 0.0,
-                  analysis->gaussian_mean + 0.0, bend);
-    ur_draw_show_text(cr, 20, 72, UR_ALIGN_LEFT, line);
+    c_snprintf(line, sizeof line, "K from %.3g to %.3g 1/mm\xc2\xb2 (mean %.3g) \xc2\xb7 %s",
+               analysis->gaussian_min + 0.0, analysis->gaussian_max + 0.0,
+               analysis->gaussian_mean + 0.0, bend);
+    draw_show_text(cr, 20, 72, ALIGN_LEFT, line);
 }
 
 static ur_status render(cairo_t *cr, const map *m, ur_ruled *ruled, const ur_analysis *analysis,
@@ -659,7 +654,7 @@ ur_status ur_analysis_png_write(const char *path, ur_ruled *ruled, const ur_anal
                               cairo_status_to_string(cairo_status(cr)));
     cairo_destroy(cr);
     if (status == UR_OK)
-        status = ur_atomic_write(path, png_emit, surface, "picture", context, error);
+        status = atomic_write(path, png_emit, surface, "picture", context, error);
     cairo_surface_destroy(surface);
     return status;
 }

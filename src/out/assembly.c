@@ -94,7 +94,7 @@ static box box_round(ur_vec2 centre, double width, double height)
 /* Sets the label's font on cr. */
 static void label_font(cairo_t *cr, bool name)
 {
-    ur_draw_set_font(cr, name ? NAME_SIZE : SEAM_SIZE, name);
+    draw_set_font(cr, name ? NAME_SIZE : SEAM_SIZE, name);
 }
 
 /*
@@ -105,7 +105,7 @@ static bool place_label(cairo_t *cr, const view *v, label_list *labels, label *l
 {
     label_font(cr, l->name);
     double size = l->name ? NAME_SIZE : SEAM_SIZE;
-    double width = ur_draw_text_width(cr, l->text) + (l->name ? 8 : 10);
+    double width = draw_text_width(cr, l->text) + (l->name ? 8 : 10);
     double height = size * (l->name ? 1.2 : 1.45);
     static const double aside[][2] = {{0, 0},  {0, -1},  {0, 1},  {1, 0},  {-1, 0},
                                       {1, -1}, {-1, -1}, {1, 1},  {-1, 1}, {0, -2},
@@ -166,7 +166,7 @@ static ur_status place_labels(cairo_t *cr, const view *v, int index, const model
         if (!named[k][index])
             continue;
         label l = {.name = true, .point = v->name_point[k]};
-        ur_c_snprintf(l.text, sizeof l.text, "%s", m->names[k]);
+        c_snprintf(l.text, sizeof l.text, "%s", m->names[k]);
         place_label(cr, v, labels, &l);
     }
     double tolerance = 1e-4 * m->size;
@@ -176,8 +176,8 @@ static ur_status place_labels(cairo_t *cr, const view *v, int index, const model
             if (earlier != (pass == 1) || first_view[s] == index)
                 continue;
             ur_vec3 point = m->seams[s].point;
-            ur_vec2 q = ur_assembly_picture_point(v, m, point);
-            if (!ur_assembly_in_sight(v, q, ur_assembly_depth(v, m, point), tolerance))
+            ur_vec2 q = assembly_picture_point(v, m, point);
+            if (!assembly_in_sight(v, q, assembly_depth(v, m, point), tolerance))
                 continue;
             label l = {.name = false, .point = q};
             ur_seam_label(m->seams[s].seam, l.text, sizeof l.text);
@@ -201,7 +201,7 @@ static double lighting(const view *v, ur_vec3 normal)
 
 static void face_colour(const view *v, const model *m, const face *f, double rgb[3])
 {
-    bool front = ur_assembly_faces_viewer(v, f);
+    bool front = assembly_faces_viewer(v, f);
     double light = lighting(v, front ? f->normal : ur_vec3_scale(f->normal, -1));
     for (int k = 0; k < 3; k++) {
         double c = m->colours[f->piece][k];
@@ -222,7 +222,7 @@ static void draw_face(cairo_t *cr, const view *v, const model *m, size_t index)
     cairo_line_to(cr, p[2].x, p[2].y);
     cairo_close_path(cr);
     cairo_set_source_rgb(cr, rgb[0], rgb[1], rgb[2]);
-    if (ur_assembly_face_area(p) < SMALL_FACE) {
+    if (assembly_face_area(p) < SMALL_FACE) {
         /*
          * Small faces of a fine mesh, filled whole pixels at a time: they
          * meet without the hairline gaps antialiasing leaves, and a stroke
@@ -248,7 +248,7 @@ static void draw_face(cairo_t *cr, const view *v, const model *m, size_t index)
         } else
             continue;
         cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
-        ur_draw_line(cr, a.x, a.y, b.x, b.y);
+        draw_line(cr, a.x, a.y, b.x, b.y);
     }
 }
 
@@ -261,17 +261,17 @@ static void draw_label(cairo_t *cr, const label *l)
                                    fmax(l->extent.top, fmin(l->point.y, l->extent.bottom)));
         cairo_set_source_rgb(cr, 1, 1, 1);
         cairo_set_line_width(cr, 3.2);
-        ur_draw_line(cr, l->point.x, l->point.y, end.x, end.y);
+        draw_line(cr, l->point.x, l->point.y, end.x, end.y);
         cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
         cairo_set_line_width(cr, 1.2);
-        ur_draw_line(cr, l->point.x, l->point.y, end.x, end.y);
+        draw_line(cr, l->point.x, l->point.y, end.x, end.y);
         cairo_arc(cr, l->point.x, l->point.y, l->name ? 3.5 : 2.5, 0, 2 * M_PI);
         cairo_fill(cr);
     }
     double size = l->name ? NAME_SIZE : SEAM_SIZE;
     double baseline = l->centre.y + 0.36 * size;
     if (l->name) { /* bold on a white halo, over its own colour */
-        double width = ur_draw_text_width(cr, l->text);
+        double width = draw_text_width(cr, l->text);
         cairo_move_to(cr, l->centre.x - width / 2, baseline);
         cairo_text_path(cr, l->text);
         cairo_set_source_rgb(cr, 1, 1, 1);
@@ -296,7 +296,7 @@ static void draw_label(cairo_t *cr, const label *l)
     cairo_set_line_width(cr, 0.9);
     cairo_stroke(cr);
     cairo_set_source_rgb(cr, 0.05, 0.05, 0.05);
-    ur_draw_show_text(cr, l->centre.x, baseline, UR_ALIGN_CENTRE, l->text);
+    draw_show_text(cr, l->centre.x, baseline, ALIGN_CENTRE, l->text);
 }
 
 static void draw_view_frame(cairo_t *cr, const view *v)
@@ -308,9 +308,9 @@ static void draw_view_frame(cairo_t *cr, const view *v)
     cairo_set_source_rgb(cr, 0.7, 0.7, 0.7);
     cairo_set_line_width(cr, 1);
     cairo_stroke(cr);
-    ur_draw_set_font(cr, CAPTION_SIZE, true);
+    draw_set_font(cr, CAPTION_SIZE, true);
     cairo_set_source_rgb(cr, 0.15, 0.15, 0.15);
-    ur_draw_show_text(cr, left + 14, top + CAPTION - 12, UR_ALIGN_LEFT, v->camera.caption);
+    draw_show_text(cr, left + 14, top + CAPTION - 12, ALIGN_LEFT, v->camera.caption);
 }
 
 static void draw_view(cairo_t *cr, const view *v, const model *m, const label_list *labels)
@@ -331,28 +331,28 @@ static void draw_header(cairo_t *cr, const model *m, const char *title, size_t s
 {
     char text[512];
     cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
-    ur_draw_set_font(cr, TITLE_SIZE, true);
-    ur_c_snprintf(text, sizeof text, "%s%sassembly guide: %zu piece%s, %zu seam%s",
-                  title ? title : "", title ? ": " : "", m->pieces_drawn,
-                  m->pieces_drawn == 1 ? "" : "s", m->seam_count, m->seam_count == 1 ? "" : "s");
-    ur_draw_show_text(cr, MARGIN, MARGIN + TITLE_SIZE, UR_ALIGN_LEFT, text);
-    ur_draw_set_font(cr, KEY_SIZE, false);
-    ur_c_snprintf(
+    draw_set_font(cr, TITLE_SIZE, true);
+    c_snprintf(text, sizeof text, "%s%sassembly guide: %zu piece%s, %zu seam%s", title ? title : "",
+               title ? ": " : "", m->pieces_drawn, m->pieces_drawn == 1 ? "" : "s", m->seam_count,
+               m->seam_count == 1 ? "" : "s");
+    draw_show_text(cr, MARGIN, MARGIN + TITLE_SIZE, ALIGN_LEFT, text);
+    draw_set_font(cr, KEY_SIZE, false);
+    c_snprintf(
         text, sizeof text,
         "Each piece has its own colour and its name. Edges with the same label are glued "
         "together (labels of %zu of the %zu seams have room here; the cut pieces carry all). "
         "Thick lines: cuts between pieces; thin: folds.",
         seams_shown, m->seam_count);
-    ur_draw_show_text(cr, MARGIN, MARGIN + TITLE_SIZE + 14 + KEY_SIZE, UR_ALIGN_LEFT, text);
+    draw_show_text(cr, MARGIN, MARGIN + TITLE_SIZE + 14 + KEY_SIZE, ALIGN_LEFT, text);
     double x = MARGIN, y = MARGIN + TITLE_SIZE + 2 * KEY_SIZE + 36;
     int row = 0;
-    ur_draw_set_font(cr, KEY_SIZE, true);
+    draw_set_font(cr, KEY_SIZE, true);
     for (size_t k = 0; k < m->piece_count; k++) {
-        double width = ur_draw_text_width(cr, m->names[k]);
+        double width = draw_text_width(cr, m->names[k]);
         if (x + 26 + width > CANVAS_WIDTH - MARGIN - 60) {
             if (++row == SWATCH_ROWS) {
                 cairo_set_source_rgb(cr, 0.2, 0.2, 0.2);
-                ur_draw_show_text(cr, x, y, UR_ALIGN_LEFT, "...");
+                draw_show_text(cr, x, y, ALIGN_LEFT, "...");
                 break;
             }
             x = MARGIN;
@@ -364,7 +364,7 @@ static void draw_header(cairo_t *cr, const model *m, const char *title, size_t s
         cairo_set_source_rgb(cr, 0.2, 0.2, 0.2);
         cairo_set_line_width(cr, 1);
         cairo_stroke(cr);
-        ur_draw_show_text(cr, x + 26, y, UR_ALIGN_LEFT, m->names[k]);
+        draw_show_text(cr, x + 26, y, ALIGN_LEFT, m->names[k]);
         x += 26 + width + 22;
     }
 }
@@ -381,8 +381,8 @@ typedef struct guide {
 static void guide_free(guide *g)
 {
     for (int v = 0; v < VIEWS; v++)
-        ur_assembly_view_free(&g->views[v]);
-    ur_assembly_model_free(&g->model);
+        assembly_view_free(&g->views[v]);
+    assembly_model_free(&g->model);
 }
 
 /* The whole picture on cr, in pixels of the PNG. */
@@ -444,7 +444,7 @@ static ur_status write_png(const char *path, guide *g, ur_error *error)
     cairo_destroy(cr);
     cairo_surface_flush(surface);
     if (status == UR_OK)
-        status = ur_atomic_write(path, png_emit, surface, "assembly guide", g->context, error);
+        status = atomic_write(path, png_emit, surface, "assembly guide", g->context, error);
     cairo_surface_destroy(surface);
     return status;
 }
@@ -455,7 +455,7 @@ static cairo_status_t pdf_write_bytes(void *stream, const unsigned char *data, u
                                                      : CAIRO_STATUS_WRITE_ERROR;
 }
 
-/* An ur_emitter: the guide as a one-page PDF, drawn straight into the stream. */
+/* An atomic_emitter: the guide as a one-page PDF, drawn straight into the stream. */
 static bool pdf_emit(FILE *stream, const void *data)
 {
     guide *g = (guide *)data;
@@ -483,7 +483,7 @@ static ur_status write_pdf(const char *path, guide *g, ur_error *error)
     ur_error_clear(&drawing);
     g->error = &drawing;
     g->status = UR_OK;
-    ur_status status = ur_atomic_write(path, pdf_emit, g, "assembly guide", g->context, error);
+    ur_status status = atomic_write(path, pdf_emit, g, "assembly guide", g->context, error);
     if (g->status != UR_OK) { /* the drawing's own reason, not "cannot write" */
         *error = drawing;
         status = g->status;
@@ -508,9 +508,9 @@ ur_status ur_assembly_write(const ur_net_list *nets, const char *path,
     memset(&g, 0, sizeof g);
     g.title = options->title;
     g.context = options->context;
-    ur_status status = ur_assembly_model_build(nets, options, &g.model, error);
+    ur_status status = assembly_model_build(nets, options, &g.model, error);
     if (status == UR_OK)
-        status = ur_assembly_views_prepare(g.views, &g.model, options->y_up, error);
+        status = assembly_views_prepare(g.views, &g.model, options->y_up, error);
     if (status == UR_OK)
         status = png ? write_png(path, &g, error) : write_pdf(path, &g, error);
     guide_free(&g);

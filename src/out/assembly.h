@@ -66,11 +66,11 @@ typedef struct model {
  * The model of the nets' faces (the nets with none are not drawn but keep
  * their colour), their edges marked, the seams placed and the pieces'
  * colours chosen.  UR_ERROR_INPUT when no net has a face; free with
- * ur_assembly_model_free, whole or not.
+ * assembly_model_free, whole or not.
  */
-ur_status ur_assembly_model_build(const ur_net_list *nets, const ur_assembly_options *options,
-                                  model *m, ur_error *error);
-void ur_assembly_model_free(model *m);
+ur_status assembly_model_build(const ur_net_list *nets, const ur_assembly_options *options,
+                               model *m, ur_error *error);
+void assembly_model_free(model *m);
 
 /* ---- The views (assembly_view.c) ----------------------------------------- */
 
@@ -105,25 +105,25 @@ typedef struct view {
 /*
  * The four views in their squares of the picture, at one scale: the faces
  * drawn far to near, indexed, and what each shows of each piece.  Free
- * each with ur_assembly_view_free, whole or not.
+ * each with assembly_view_free, whole or not.
  */
-ur_status ur_assembly_views_prepare(view views[VIEWS], const model *m, bool y_up, ur_error *error);
-void ur_assembly_view_free(view *v);
+ur_status assembly_views_prepare(view views[VIEWS], const model *m, bool y_up, ur_error *error);
+void assembly_view_free(view *v);
 
 /* Where a model point is drawn in the view, and its depth (larger nearer the viewer). */
-ur_vec2 ur_assembly_picture_point(const view *v, const model *m, ur_vec3 p);
-double ur_assembly_depth(const view *v, const model *m, ur_vec3 p);
+ur_vec2 assembly_picture_point(const view *v, const model *m, ur_vec3 p);
+double assembly_depth(const view *v, const model *m, ur_vec3 p);
 
 /*
  * Whether the model point drawn at q with that depth is in sight: no face
  * drawn over q lies nearer the viewer by more than tolerance.
  */
-bool ur_assembly_in_sight(const view *v, ur_vec2 q, double depth, double tolerance);
+bool assembly_in_sight(const view *v, ur_vec2 q, double depth, double tolerance);
 
 /* Whether the face turns toward the viewer. */
-bool ur_assembly_faces_viewer(const view *v, const face *f);
+bool assembly_faces_viewer(const view *v, const face *f);
 
 /* The area of a triangle on the picture, pixels^2. */
-double ur_assembly_face_area(const ur_vec2 p[3]);
+double assembly_face_area(const ur_vec2 p[3]);
 
 #endif

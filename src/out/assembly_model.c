@@ -24,7 +24,7 @@
 /* A fold is a fold where its faces turn by more than this (radians): 2 degrees. */
 static const double FOLD_MIN_ANGLE = 0.035;
 
-void ur_assembly_model_free(model *m)
+void assembly_model_free(model *m)
 {
     free(m->faces);
     free(m->outlined);
@@ -475,8 +475,8 @@ static void measure_model(model *m)
     m->size = ur_vec3_distance(low, high);
 }
 
-ur_status ur_assembly_model_build(const ur_net_list *nets, const ur_assembly_options *options,
-                                  model *m, ur_error *error)
+ur_status assembly_model_build(const ur_net_list *nets, const ur_assembly_options *options,
+                               model *m, ur_error *error)
 {
     memset(m, 0, sizeof *m);
     size_t faces = 0;

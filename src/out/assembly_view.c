@@ -49,7 +49,7 @@ static void make_cameras(bool y_up, camera cameras[VIEWS])
     }
 }
 
-void ur_assembly_view_free(view *v)
+void assembly_view_free(view *v)
 {
     free(v->points);
     free(v->depth);
@@ -78,12 +78,12 @@ static ur_vec2 to_picture(const view *v, ur_vec2 plane)
                         v->top + v->height / 2 - (plane.y - v->middle.y) * v->scale);
 }
 
-ur_vec2 ur_assembly_picture_point(const view *v, const model *m, ur_vec3 p)
+ur_vec2 assembly_picture_point(const view *v, const model *m, ur_vec3 p)
 {
     return to_picture(v, plane_point(&v->camera, m, p));
 }
 
-double ur_assembly_depth(const view *v, const model *m, ur_vec3 p)
+double assembly_depth(const view *v, const model *m, ur_vec3 p)
 {
     return depth_of(&v->camera, m, p);
 }
@@ -117,7 +117,7 @@ static int compare_depths(const void *a, const void *b)
     return (p->face > q->face) - (p->face < q->face);
 }
 
-bool ur_assembly_faces_viewer(const view *v, const face *f)
+bool assembly_faces_viewer(const view *v, const face *f)
 {
     return ur_vec3_dot(f->normal, v->camera.toward) > 0;
 }
@@ -133,7 +133,7 @@ static ur_status sort_faces(view *v, const model *m, ur_error *error)
     }
     v->drawn = 0;
     for (size_t f = 0; f < m->face_count; f++)
-        if (!m->closed || ur_assembly_faces_viewer(v, &m->faces[f]))
+        if (!m->closed || assembly_faces_viewer(v, &m->faces[f]))
             keys[v->drawn++] =
                 (depth_key){(v->depth[f][0] + v->depth[f][1] + v->depth[f][2]) / 3, f};
     qsort(keys, v->drawn, sizeof *keys, compare_depths);
@@ -235,7 +235,7 @@ static void faces_near(const view *v, ur_vec2 q, size_t *first, size_t *end)
  * Whether the model point drawn at q with that depth is in sight: no face
  * drawn over q lies nearer the viewer by more than tolerance.
  */
-bool ur_assembly_in_sight(const view *v, ur_vec2 q, double depth, double tolerance)
+bool assembly_in_sight(const view *v, ur_vec2 q, double depth, double tolerance)
 {
     size_t first, end;
     faces_near(v, q, &first, &end);
@@ -261,7 +261,7 @@ static size_t face_seen_at(const view *v, ur_vec2 q)
     return seen;
 }
 
-double ur_assembly_face_area(const ur_vec2 p[3])
+double assembly_face_area(const ur_vec2 p[3])
 {
     return 0.5 * fabs(ur_vec2_cross(ur_vec2_sub(p[1], p[0]), ur_vec2_sub(p[2], p[0])));
 }
@@ -349,9 +349,9 @@ static ur_status measure_pieces(view *v, const model *m, ur_error *error)
         size_t f = v->order[i];
         ur_vec2 middle = face_middle(v, f);
         double depth = (v->depth[f][0] + v->depth[f][1] + v->depth[f][2]) / 3;
-        if (!ur_assembly_in_sight(v, middle, depth, tolerance))
+        if (!assembly_in_sight(v, middle, depth, tolerance))
             continue; /* the faces drawn are those that can be seen: an open mesh's inside too */
-        double area = ur_assembly_face_area(v->points[f]);
+        double area = assembly_face_area(v->points[f]);
         size_t piece = m->faces[f].piece;
         v->seen_area[piece] += area;
         weighted[piece] = ur_vec2_add_scaled(weighted[piece], middle, area);
@@ -389,7 +389,7 @@ static ur_status prepare_view(view *v, const model *m, ur_error *error)
 }
 
 /* The views in their squares, all at one scale, so that the model keeps its size. */
-ur_status ur_assembly_views_prepare(view views[VIEWS], const model *m, bool y_up, ur_error *error)
+ur_status assembly_views_prepare(view views[VIEWS], const model *m, bool y_up, ur_error *error)
 {
     camera cameras[VIEWS];
     make_cameras(y_up, cameras);

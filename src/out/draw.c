@@ -6,7 +6,7 @@
 
 #include <math.h>
 
-void ur_draw_set_font(cairo_t *cr, double size, bool bold)
+void draw_set_font(cairo_t *cr, double size, bool bold)
 {
     cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL,
                            bold ? CAIRO_FONT_WEIGHT_BOLD : CAIRO_FONT_WEIGHT_NORMAL);
@@ -14,32 +14,32 @@ void ur_draw_set_font(cairo_t *cr, double size, bool bold)
 }
 
 /* The advance, not the ink extent: text placed one after another meets without overlap. */
-double ur_draw_text_width(cairo_t *cr, const char *text)
+double draw_text_width(cairo_t *cr, const char *text)
 {
     cairo_text_extents_t extents;
     cairo_text_extents(cr, text, &extents);
     return extents.x_advance;
 }
 
-double ur_draw_text_width_at(cairo_t *cr, const char *text, double size, bool bold)
+double draw_text_width_at(cairo_t *cr, const char *text, double size, bool bold)
 {
-    ur_draw_set_font(cr, size, bold);
-    return ur_draw_text_width(cr, text);
+    draw_set_font(cr, size, bold);
+    return draw_text_width(cr, text);
 }
 
-double ur_draw_left(double x, double width, ur_align align)
+double draw_left(double x, double width, text_align align)
 {
-    return align == UR_ALIGN_LEFT ? x : align == UR_ALIGN_CENTRE ? x - width / 2 : x - width;
+    return align == ALIGN_LEFT ? x : align == ALIGN_CENTRE ? x - width / 2 : x - width;
 }
 
-void ur_draw_show_text(cairo_t *cr, double x, double y, ur_align align, const char *text)
+void draw_show_text(cairo_t *cr, double x, double y, text_align align, const char *text)
 {
-    cairo_move_to(cr, ur_draw_left(x, ur_draw_text_width(cr, text), align), y);
+    cairo_move_to(cr, draw_left(x, draw_text_width(cr, text), align), y);
     cairo_show_text(cr, text);
     cairo_new_path(cr); /* show_text leaves a current point the next path would start from */
 }
 
-void ur_draw_line(cairo_t *cr, double x0, double y0, double x1, double y1)
+void draw_line(cairo_t *cr, double x0, double y0, double x1, double y1)
 {
     cairo_move_to(cr, x0, y0);
     cairo_line_to(cr, x1, y1);
@@ -59,7 +59,7 @@ static const unsigned char compression_stops[STOPS][3] = {
     {255, 255, 255}, {209, 229, 240}, {146, 197, 222}, {67, 147, 195}, {33, 102, 172}, {5, 48, 97},
 };
 
-void ur_draw_strain_colour(cairo_t *cr, double strain, double range)
+void draw_strain_colour(cairo_t *cr, double strain, double range)
 {
     double t = range > 0 ? fmin(fabs(strain) / range, 1.0) : 0.0;
     const unsigned char(*stops)[3] = strain >= 0 ? stretch_stops : compression_stops;
@@ -71,21 +71,21 @@ void ur_draw_strain_colour(cairo_t *cr, double strain, double range)
     cairo_set_source_rgb(cr, rgb[0], rgb[1], rgb[2]);
 }
 
-double ur_draw_nice_below(double limit)
+double draw_nice_below(double limit)
 {
     double magnitude = pow(10, floor(log10(limit)));
     double fraction = limit / magnitude;
     return (fraction >= 5 ? 5 : fraction >= 2 ? 2 : 1) * magnitude;
 }
 
-double ur_draw_overlap(double a0, double a1, double b0, double b1)
+double draw_overlap(double a0, double a1, double b0, double b1)
 {
     return fmax(0.0, fmin(a1, b1) - fmax(a0, b0));
 }
 
-void ur_draw_legend_corner(double picture_width, double picture_height, double inset,
-                           double box_width, double box_height, ur_draw_cover *covered,
-                           const void *context, double *left, double *top)
+void draw_legend_corner(double picture_width, double picture_height, double inset, double box_width,
+                        double box_height, draw_cover *covered, const void *context, double *left,
+                        double *top)
 {
     double right = picture_width - inset - box_width, bottom = picture_height - inset - box_height;
     const double corners[4][2] = {{right, bottom}, {inset, bottom}, {right, inset}, {inset, inset}};
@@ -100,8 +100,8 @@ void ur_draw_legend_corner(double picture_width, double picture_height, double i
     }
 }
 
-void ur_draw_legend_frame(cairo_t *cr, double left, double top, double width, double height,
-                          double unit)
+void draw_legend_frame(cairo_t *cr, double left, double top, double width, double height,
+                       double unit)
 {
     cairo_rectangle(cr, left, top, width, height);
     cairo_set_source_rgba(cr, 1, 1, 1, 0.9);

@@ -42,7 +42,7 @@ enum { NUMBER_SIZE = 400 };
 enum { MAX_LAYERS = UR_OP_COUNT + 1 };
 
 /*
- * The most dash lengths a pattern keeps (ur_style_dashes), and elements of
+ * The most dash lengths a pattern keeps (style_dashes), and elements of
  * a DXF linetype: an odd list is said twice, as SVG and PDF repeat it.
  */
 enum { MAX_DASHES = 16, MAX_ELEMENTS = 2 * MAX_DASHES };
@@ -178,7 +178,7 @@ typedef struct dxf_sheet {
 /* Nanometre resolution with a decimal point ("100.0"), as strict readers want for reals. */
 static void format_real(double value, char text[NUMBER_SIZE])
 {
-    ur_c_snprintf(text, NUMBER_SIZE, "%.9f", value);
+    c_snprintf(text, NUMBER_SIZE, "%.9f", value);
     char *end = text + strlen(text);
     while (end[-1] == '0' && end[-2] != '.')
         *--end = '\0';
@@ -188,12 +188,12 @@ static void format_real(double value, char text[NUMBER_SIZE])
 
 static void group(FILE *file, int code, const char *value)
 {
-    ur_c_fprintf(file, "%3d\n%s\n", code, value);
+    c_fprintf(file, "%3d\n%s\n", code, value);
 }
 
 static void group_int(FILE *file, int code, long value)
 {
-    ur_c_fprintf(file, "%3d\n%ld\n", code, value);
+    c_fprintf(file, "%3d\n%ld\n", code, value);
 }
 
 static void group_real(FILE *file, int code, double value)
@@ -205,7 +205,7 @@ static void group_real(FILE *file, int code, double value)
 
 static void group_handle(FILE *file, int code, unsigned long handle)
 {
-    ur_c_fprintf(file, "%3d\n%lX\n", code, handle);
+    c_fprintf(file, "%3d\n%lX\n", code, handle);
 }
 
 /* A point's x, y, z under codes base, base + 10, base + 20. */
@@ -239,7 +239,7 @@ static void subclass(const dxf_sheet *sheet, FILE *file, const char *name)
 /* Characters no DXF name may hold become '_'; an empty name takes the operation's. */
 static void layer_name(const ur_op_style *style, ur_op op, char name[64])
 {
-    ur_c_snprintf(name, 64, "%s", style->layer[0] ? style->layer : ur_op_name(op));
+    c_snprintf(name, 64, "%s", style->layer[0] ? style->layer : ur_op_name(op));
     for (char *c = name; *c; c++)
         if ((unsigned char)*c < 0x20 || strchr("<>/\\\":;?*|=`,", *c))
             *c = '_';
@@ -276,13 +276,13 @@ static bool plain_name(char *name)
 static size_t find_linetype(dxf_sheet *sheet, const ur_op_style *style)
 {
     double dashes[MAX_DASHES];
-    size_t count = ur_style_dashes(style, dashes, MAX_DASHES);
+    size_t count = style_dashes(style, dashes, MAX_DASHES);
     if (count == 0)
         return LINETYPE_SOLID;
     dxf_linetype made = {"DASH", {0}, 0};
     size_t used = strlen(made.name);
     for (size_t i = 0; i < count && used < sizeof made.name; i++)
-        used += (size_t)ur_c_snprintf(made.name + used, sizeof made.name - used, "_%g", dashes[i]);
+        used += (size_t)c_snprintf(made.name + used, sizeof made.name - used, "_%g", dashes[i]);
     for (size_t round = 0; round < (count % 2 ? 2 : 1); round++)
         for (size_t i = 0; i < count; i++, made.count++)
             made.elements[made.count] = made.count % 2 ? -dashes[i] : dashes[i];
@@ -294,10 +294,10 @@ static size_t find_linetype(dxf_sheet *sheet, const ur_op_style *style)
     }
     /* A name too long for its buffer, odd, or cut to another's, is numbered instead. */
     if (used >= sizeof made.name || !plain_name(made.name))
-        ur_c_snprintf(made.name, sizeof made.name, "DASH%zu", sheet->linetype_count + 1);
+        c_snprintf(made.name, sizeof made.name, "DASH%zu", sheet->linetype_count + 1);
     for (size_t i = 0; i < sheet->linetype_count; i++)
         if (strcasecmp(sheet->linetypes[i].name, made.name) == 0)
-            ur_c_snprintf(made.name, sizeof made.name, "DASH%zu", sheet->linetype_count + 1);
+            c_snprintf(made.name, sizeof made.name, "DASH%zu", sheet->linetype_count + 1);
     sheet->linetypes[sheet->linetype_count] = made;
     return sheet->linetype_count++;
 }
@@ -308,7 +308,7 @@ static ur_status make_layers(dxf_sheet *sheet, const ur_machine *machine, ur_err
     sheet->layers[0] = (dxf_layer){"0", 7, 0xFFFFFF, LINETYPE_SOLID};
     sheet->layer_count = 1;
     for (int op = 0; op < UR_OP_COUNT; op++) {
-        ur_status status = ur_style_check(machine, (ur_op)op, error);
+        ur_status status = style_check(machine, (ur_op)op, error);
         if (status != UR_OK)
             return status;
         const ur_op_style *style = &machine->styles[op];
@@ -321,7 +321,7 @@ static ur_status make_layers(dxf_sheet *sheet, const ur_machine *machine, ur_err
             if (index == sheet->layer_count)
                 sheet->layer_count++;
             memcpy(layer->name, name, sizeof layer->name);
-            layer->rgb = ur_style_rgb(style);
+            layer->rgb = style_rgb(style);
             layer->aci = nearest_aci(layer->rgb);
             layer->linetype = find_linetype(sheet, style);
         }
@@ -351,7 +351,7 @@ static void end_section(FILE *file)
  */
 static void write_comment(FILE *file, const char *label, const char *text)
 {
-    ur_c_fprintf(file, "999\n%s", label);
+    c_fprintf(file, "999\n%s", label);
     for (const unsigned char *c = (const unsigned char *)text; *c; c++)
         if (*c >= 0x20 && *c <= 0x7E)
             fputc(*c, file);
@@ -460,8 +460,8 @@ static void write_linetypes(const dxf_sheet *sheet)
         char description[128] = "Dashes (mm):";
         size_t used = strlen(description);
         for (size_t k = 0; k < linetype->count && used < sizeof description; k++)
-            used += (size_t)ur_c_snprintf(description + used, sizeof description - used, " %g",
-                                          fabs(linetype->elements[k]));
+            used += (size_t)c_snprintf(description + used, sizeof description - used, " %g",
+                                       fabs(linetype->elements[k]));
         write_linetype(sheet, H_FIRST_LTYPE + i, linetype->name, description, linetype->elements,
                        linetype->count);
     }
@@ -716,7 +716,7 @@ static void free_sheet(dxf_sheet *sheet)
 }
 
 static ur_status dxf_begin_sheet(void **state, void *document, FILE *file, size_t index,
-                                 const ur_write_job *job, ur_error *error)
+                                 const write_job *job, ur_error *error)
 {
     (void)document;
     *state = NULL;
@@ -801,7 +801,7 @@ static void dxf_discard_sheet(void *state)
     free_sheet(state);
 }
 
-const ur_writer ur_dxf_writer = {
+const format_writer dxf_writer = {
     .format = "DXF",
     .extension = "dxf",
     .begin_sheet = dxf_begin_sheet,

@@ -31,12 +31,12 @@ static const ur_op cut_order[UR_OP_COUNT] = {UR_OP_ENGRAVE,      UR_OP_MARK, UR_
 /* Every format, in the order their files are written; a new format adds a line. */
 static const struct {
     ur_format format;
-    const ur_writer *writer;
+    const format_writer *writer;
 } formats_known[] = {
-    {UR_FORMAT_SVG, &ur_svg_writer},
-    {UR_FORMAT_DXF, &ur_dxf_writer},
-    {UR_FORMAT_PDF, &ur_pdf_writer},
-    {UR_FORMAT_PNG, &ur_png_writer},
+    {UR_FORMAT_SVG, &svg_writer},
+    {UR_FORMAT_DXF, &dxf_writer},
+    {UR_FORMAT_PDF, &pdf_writer},
+    {UR_FORMAT_PNG, &png_writer},
 };
 enum { FORMAT_COUNT = sizeof formats_known / sizeof *formats_known };
 
@@ -56,7 +56,7 @@ ur_status ur_sheet_file_name(const char *output_path, size_t sheet_index, size_t
                             sheet_index + 1, sheet_count);
     int length;
     if (sheet_count == 1) {
-        length = ur_c_snprintf(name, name_size, "%s", output_path);
+        length = c_snprintf(name, name_size, "%s", output_path);
     } else {
         /* The extension is that of the base name: "dir.v2/net" has none. */
         const char *slash = strrchr(output_path, '/');
@@ -64,8 +64,8 @@ ur_status ur_sheet_file_name(const char *output_path, size_t sheet_index, size_t
         const char *dot = strrchr(base, '.');
         if (!dot || dot == base) /* ".hidden" is a name, not an extension */
             dot = base + strlen(base);
-        length = ur_c_snprintf(name, name_size, "%.*s-%zu%s", (int)(dot - output_path), output_path,
-                               sheet_index + 1, dot);
+        length = c_snprintf(name, name_size, "%.*s-%zu%s", (int)(dot - output_path), output_path,
+                            sheet_index + 1, dot);
     }
     if (length < 0 || (size_t)length >= name_size)
         return ur_error_set(error, UR_ERROR_INPUT, "output name '%s' is too long", output_path);
@@ -113,7 +113,7 @@ static size_t start_on_straight(const ur_path *path, ur_vec2 *scratch)
     return n + 1;
 }
 
-static ur_status write_path(const ur_writer *writer, void *state, const ur_path *path,
+static ur_status write_path(const format_writer *writer, void *state, const ur_path *path,
                             const ur_placement *placement, const ur_piece *piece, ur_vec2 *scratch,
                             bool ordered, ur_error *error)
 {
@@ -139,7 +139,7 @@ static ur_status write_path(const ur_writer *writer, void *state, const ur_path 
  * outline, so it goes last: inner contours are cut while the part still
  * holds in the sheet.
  */
-static ur_status write_piece_paths(const ur_writer *writer, void *state, ur_op op,
+static ur_status write_piece_paths(const format_writer *writer, void *state, ur_op op,
                                    const ur_placement *placement, const ur_piece *piece,
                                    ur_vec2 *scratch, bool ordered, ur_error *error)
 {
@@ -155,9 +155,9 @@ static ur_status write_piece_paths(const ur_writer *writer, void *state, ur_op o
     return UR_OK;
 }
 
-static ur_status write_layer(const ur_writer *writer, void *state, ur_op op, const ur_sheet *sheet,
-                             const ur_piece *pieces, const ur_cut_plan *plan, bool ordered,
-                             ur_vec2 *scratch, ur_error *error)
+static ur_status write_layer(const format_writer *writer, void *state, ur_op op,
+                             const ur_sheet *sheet, const ur_piece *pieces, const ur_cut_plan *plan,
+                             bool ordered, ur_vec2 *scratch, ur_error *error)
 {
     ur_status status = writer->begin_layer ? writer->begin_layer(state, op, error) : UR_OK;
     for (size_t i = 0; status == UR_OK && i < sheet->placement_count; i++) {
@@ -171,7 +171,7 @@ static ur_status write_layer(const ur_writer *writer, void *state, ur_op op, con
 }
 
 /* The pieces placed on the sheet, before any layer: formats that fill or label them. */
-static ur_status write_pieces(const ur_writer *writer, void *state, const ur_sheet *sheet,
+static ur_status write_pieces(const format_writer *writer, void *state, const ur_sheet *sheet,
                               const ur_piece *pieces, ur_error *error)
 {
     ur_status status = UR_OK;
@@ -182,8 +182,8 @@ static ur_status write_pieces(const ur_writer *writer, void *state, const ur_she
     return status;
 }
 
-static ur_status write_sheet(const ur_writer *writer, void *document, FILE *file, size_t index,
-                             const ur_write_job *job, ur_vec2 *scratch, ur_error *error)
+static ur_status write_sheet(const format_writer *writer, void *document, FILE *file, size_t index,
+                             const write_job *job, ur_vec2 *scratch, ur_error *error)
 {
     const ur_sheet *sheet = &job->layout->sheets[index];
     void *state = NULL;
@@ -225,7 +225,7 @@ static size_t longest_path(const ur_layout *layout, const ur_piece *pieces)
 
 /* One target of a write: a format and the name its file or files are numbered from. */
 typedef struct target {
-    const ur_writer *writer;
+    const format_writer *writer;
     char path[NAME_SIZE];
 } target;
 
@@ -236,11 +236,11 @@ static size_t file_count(const target *t, const ur_layout *layout)
 }
 
 /* Every sheet of a one-file format into one temporary, *file. */
-static ur_status write_document(const target *t, const ur_write_job *job, ur_vec2 *scratch,
-                                ur_atomic_file *file, ur_error *error)
+static ur_status write_document(const target *t, const write_job *job, ur_vec2 *scratch,
+                                atomic_file *file, ur_error *error)
 {
-    const ur_writer *writer = t->writer;
-    ur_status status = ur_atomic_open(file, t->path, job->options->context, error);
+    const format_writer *writer = t->writer;
+    ur_status status = atomic_open(file, t->path, job->options->context, error);
     void *document = NULL;
     if (status == UR_OK && writer->begin_document)
         status = writer->begin_document(&document, job, error);
@@ -255,14 +255,14 @@ static ur_status write_document(const target *t, const ur_write_job *job, ur_vec
     /* a write error (or bad input): the format's message does not name the file */
     if (status == UR_ERROR_IO || status == UR_ERROR_INPUT)
         ur_error_prefix(error, "%s: ", t->path);
-    return status == UR_OK ? ur_atomic_close(file, error) : status;
+    return status == UR_OK ? atomic_close(file, error) : status;
 }
 
 /* Each sheet into its own temporary, files[0 .. sheet_count - 1]. */
-static ur_status write_sheets(const target *t, const ur_write_job *job, ur_vec2 *scratch,
-                              ur_atomic_file *files, ur_error *error)
+static ur_status write_sheets(const target *t, const write_job *job, ur_vec2 *scratch,
+                              atomic_file *files, ur_error *error)
 {
-    const ur_writer *writer = t->writer;
+    const format_writer *writer = t->writer;
     void *document = NULL;
     ur_status status =
         writer->begin_document ? writer->begin_document(&document, job, error) : UR_OK;
@@ -271,14 +271,14 @@ static ur_status write_sheets(const target *t, const ur_write_job *job, ur_vec2 
         char name[NAME_SIZE];
         status = ur_sheet_file_name(t->path, i, count, name, sizeof name, error);
         if (status == UR_OK)
-            status = ur_atomic_open(&files[i], name, job->options->context, error);
+            status = atomic_open(&files[i], name, job->options->context, error);
         if (status == UR_OK) {
             status = write_sheet(writer, document, files[i].stream, i, job, scratch, error);
             if (status == UR_ERROR_IO || status == UR_ERROR_INPUT) /* as in write_document */
                 ur_error_prefix(error, "%s: ", name);
         }
         if (status == UR_OK)
-            status = ur_atomic_close(&files[i], error);
+            status = atomic_close(&files[i], error);
     }
     if (status == UR_OK && writer->end_document)
         return writer->end_document(document, NULL, error);
@@ -293,13 +293,13 @@ static ur_status write_sheets(const target *t, const ur_write_job *job, ur_vec2 
  * the one case that can leave some files new and some old; the message then
  * says which file.
  */
-static ur_status write_all(const target *targets, size_t target_count, const ur_write_job *job,
+static ur_status write_all(const target *targets, size_t target_count, const write_job *job,
                            ur_error *error)
 {
     size_t count = 0;
     for (size_t t = 0; t < target_count; t++)
         count += file_count(&targets[t], job->layout);
-    ur_atomic_file *files = ur_alloc_array(count, sizeof *files, error);
+    atomic_file *files = ur_alloc_array(count, sizeof *files, error);
     ur_vec2 *scratch = files ? ur_alloc_array(2 * (longest_path(job->layout, job->pieces) + 1),
                                               sizeof *scratch, error)
                              : NULL;
@@ -311,17 +311,16 @@ static ur_status write_all(const target *targets, size_t target_count, const ur_
         first += file_count(&targets[t], job->layout);
     }
     if (status == UR_OK)
-        status = ur_atomic_commit_all(files, count, error);
+        status = atomic_commit_all(files, count, error);
     for (size_t i = 0; files && i < count; i++)
-        ur_atomic_discard(&files[i]); /* removes what was not committed */
+        atomic_discard(&files[i]); /* removes what was not committed */
     free(files);
     free(scratch);
     return status;
 }
 
 /* A stream that is not ours to close: the document, or the one sheet, to it. */
-static ur_status write_stream(const target *t, const ur_write_job *job, FILE *stream,
-                              ur_error *error)
+static ur_status write_stream(const target *t, const write_job *job, FILE *stream, ur_error *error)
 {
     const char *where = stream == stdout ? "standard output" : "a stream";
     if (!t->writer->one_file && job->layout->sheet_count != 1)
@@ -332,7 +331,7 @@ static ur_status write_stream(const target *t, const ur_write_job *job, FILE *st
         ur_alloc_array(2 * (longest_path(job->layout, job->pieces) + 1), sizeof *scratch, error);
     if (!scratch)
         return UR_ERROR_INTERNAL;
-    const ur_writer *writer = t->writer;
+    const format_writer *writer = t->writer;
     void *document = NULL;
     ur_status status =
         writer->begin_document ? writer->begin_document(&document, job, error) : UR_OK;
@@ -372,7 +371,7 @@ static ur_status check_arguments(const char *output_path, const ur_layout *layou
     return UR_OK;
 }
 
-static ur_status check_options(const ur_write_settings *options, ur_error *error)
+static ur_status check_options(const write_settings *options, ur_error *error)
 {
     if (options->dxf_version != UR_DXF_R12 && options->dxf_version != UR_DXF_R2000)
         return ur_error_set(error, UR_ERROR_INPUT, "unknown DXF version %d",
@@ -391,7 +390,7 @@ static ur_status write_targets(const target *targets, size_t target_count, FILE 
                                const ur_machine *machine, const ur_output_options *options,
                                const ur_format_options *format_options, ur_error *error)
 {
-    ur_write_settings chosen = {NULL, NULL, UR_DXF_R12, UR_PNG_DPI, false, NULL};
+    write_settings chosen = {NULL, NULL, UR_DXF_R12, UR_PNG_DPI, false, NULL};
     if (options) {
         chosen.title = options->title;
         chosen.context = options->context;
@@ -407,7 +406,7 @@ static ur_status write_targets(const target *targets, size_t target_count, FILE 
         status = check_options(&chosen, error);
     if (status != UR_OK)
         return status;
-    ur_write_job job = {layout, pieces, machine, &chosen};
+    write_job job = {layout, pieces, machine, &chosen};
     if (stream)
         return write_stream(&targets[0], &job, stream, error);
     if (strcmp(targets[0].path, "-") == 0)
@@ -416,14 +415,13 @@ static ur_status write_targets(const target *targets, size_t target_count, FILE 
 }
 
 /* One format, its file or files named from output_path as it is. */
-static ur_status write_one(const ur_writer *writer, const char *output_path,
+static ur_status write_one(const format_writer *writer, const char *output_path,
                            const ur_layout *layout, const ur_piece *pieces,
                            const ur_machine *machine, const ur_output_options *options,
                            const ur_format_options *format_options, ur_error *error)
 {
     target t = {writer, ""};
-    if (output_path &&
-        ur_c_snprintf(t.path, sizeof t.path, "%s", output_path) >= (int)sizeof t.path)
+    if (output_path && c_snprintf(t.path, sizeof t.path, "%s", output_path) >= (int)sizeof t.path)
         return ur_error_set(error, UR_ERROR_INPUT, "output name '%s' is too long", output_path);
     if (!output_path)
         return check_arguments(NULL, layout, pieces, machine, error);
@@ -434,15 +432,14 @@ ur_status ur_write_svg(const char *output_path, const ur_layout *layout, const u
                        const ur_machine *machine, const ur_output_options *options, ur_error *error)
 {
     static const ur_format_options as_drawn = {.drawing_order = true};
-    return write_one(&ur_svg_writer, output_path, layout, pieces, machine, options, &as_drawn,
-                     error);
+    return write_one(&svg_writer, output_path, layout, pieces, machine, options, &as_drawn, error);
 }
 
 ur_status ur_write_dxf(const char *output_path, const ur_layout *layout, const ur_piece *pieces,
                        const ur_machine *machine, const ur_output_options *options,
                        const ur_format_options *format_options, ur_error *error)
 {
-    return write_one(&ur_dxf_writer, output_path, layout, pieces, machine, options, format_options,
+    return write_one(&dxf_writer, output_path, layout, pieces, machine, options, format_options,
                      error);
 }
 
@@ -450,7 +447,7 @@ ur_status ur_write_pdf(const char *output_path, const ur_layout *layout, const u
                        const ur_machine *machine, const ur_output_options *options,
                        const ur_format_options *format_options, ur_error *error)
 {
-    return write_one(&ur_pdf_writer, output_path, layout, pieces, machine, options, format_options,
+    return write_one(&pdf_writer, output_path, layout, pieces, machine, options, format_options,
                      error);
 }
 
@@ -458,7 +455,7 @@ ur_status ur_write_png(const char *output_path, const ur_layout *layout, const u
                        const ur_machine *machine, const ur_output_options *options,
                        const ur_format_options *format_options, ur_error *error)
 {
-    return write_one(&ur_png_writer, output_path, layout, pieces, machine, options, format_options,
+    return write_one(&png_writer, output_path, layout, pieces, machine, options, format_options,
                      error);
 }
 
@@ -532,9 +529,9 @@ static ur_status make_targets(const char *path, unsigned formats, target *target
         target *t = &targets[(*count)++];
         t->writer = formats_known[i].writer;
         int length = strcmp(path, "-") == 0 || formats_known[i].format == named
-                         ? ur_c_snprintf(t->path, sizeof t->path, "%s", path)
-                         : ur_c_snprintf(t->path, sizeof t->path, "%.*s.%s", (int)stem, path,
-                                         t->writer->extension);
+                         ? c_snprintf(t->path, sizeof t->path, "%s", path)
+                         : c_snprintf(t->path, sizeof t->path, "%.*s.%s", (int)stem, path,
+                                      t->writer->extension);
         if (length < 0 || (size_t)length >= sizeof t->path)
             return ur_error_set(error, UR_ERROR_INPUT, "output name '%s' is too long", path);
     }

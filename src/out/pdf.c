@@ -103,7 +103,7 @@ static ur_status set_info(pdf_document *document, HPDF_InfoType type, const char
     return status;
 }
 
-static ur_status set_metadata(pdf_document *document, const ur_write_settings *options,
+static ur_status set_metadata(pdf_document *document, const write_settings *options,
                               ur_error *error)
 {
     ur_status status = set_info(document, HPDF_INFO_TITLE, "title", options->title, error);
@@ -121,7 +121,7 @@ static void free_document(pdf_document *document)
     free(document);
 }
 
-static ur_status pdf_begin_document(void **state, const ur_write_job *job, ur_error *error)
+static ur_status pdf_begin_document(void **state, const write_job *job, ur_error *error)
 {
     *state = NULL;
     pdf_document *document = calloc(1, sizeof *document);
@@ -138,7 +138,7 @@ static ur_status pdf_begin_document(void **state, const ur_write_job *job, ur_er
     if (status == UR_OK)
         status = set_metadata(document, job->options, error);
     for (int op = 0; status == UR_OK && op < UR_OP_COUNT; op++)
-        status = ur_style_check(job->machine, (ur_op)op, error);
+        status = style_check(job->machine, (ur_op)op, error);
     if (status != UR_OK) {
         free_document(document);
         return status;
@@ -196,7 +196,7 @@ static ur_status check_page_size(double width, double height, size_t index, ur_e
 }
 
 static ur_status pdf_begin_sheet(void **state, void *document_state, FILE *file, size_t index,
-                                 const ur_write_job *job, ur_error *error)
+                                 const write_job *job, ur_error *error)
 {
     (void)file;
     *state = NULL;
@@ -259,9 +259,9 @@ static ur_status pdf_begin_layer(void *state, ur_op op, ur_error *error)
     pdf_sheet *sheet = state;
     HPDF_Page page = sheet->page;
     const ur_op_style *style = &sheet->document->machine->styles[op];
-    unsigned long rgb = ur_style_rgb(style);
+    unsigned long rgb = style_rgb(style);
     double dashes[MAX_DASHES];
-    size_t count = ur_style_dashes(style, dashes, MAX_DASHES);
+    size_t count = style_dashes(style, dashes, MAX_DASHES);
     sheet->unit = layer_unit(sheet, dashes, count);
     HPDF_UINT16 pattern[MAX_DASHES];
     for (size_t i = 0; i < count; i++)
@@ -319,7 +319,7 @@ static void pdf_discard_sheet(void *state)
     free(state);
 }
 
-const ur_writer ur_pdf_writer = {
+const format_writer pdf_writer = {
     .format = "PDF",
     .extension = "pdf",
     .one_file = true,

@@ -97,18 +97,18 @@ static double to_y(const panel *p, double value)
 /* ---- Text --------------------------------------------------------------- */
 
 /* "10" with the exponent raised, as a tick label. */
-static void show_power(cairo_t *cr, double x, double y, ur_align align, int exponent)
+static void show_power(cairo_t *cr, double x, double y, text_align align, int exponent)
 {
     char power[16];
-    ur_c_snprintf(power, sizeof power, "%d", exponent);
-    ur_draw_set_font(cr, 12, false);
-    double base = ur_draw_text_width(cr, "10");
-    ur_draw_set_font(cr, 9, false);
-    double left = ur_draw_left(x, base + ur_draw_text_width(cr, power), align);
-    ur_draw_set_font(cr, 12, false);
-    ur_draw_show_text(cr, left, y, UR_ALIGN_LEFT, "10");
-    ur_draw_set_font(cr, 9, false);
-    ur_draw_show_text(cr, left + base, y - 6, UR_ALIGN_LEFT, power);
+    c_snprintf(power, sizeof power, "%d", exponent);
+    draw_set_font(cr, 12, false);
+    double base = draw_text_width(cr, "10");
+    draw_set_font(cr, 9, false);
+    double left = draw_left(x, base + draw_text_width(cr, power), align);
+    draw_set_font(cr, 12, false);
+    draw_show_text(cr, left, y, ALIGN_LEFT, "10");
+    draw_set_font(cr, 9, false);
+    draw_show_text(cr, left + base, y - 6, ALIGN_LEFT, power);
 }
 
 /* ---- Axes --------------------------------------------------------------- */
@@ -124,12 +124,12 @@ static void x_ticks(cairo_t *cr, const panel *p)
                 continue;
             if (m == 1) {
                 cairo_set_source_rgb(cr, 0.85, 0.85, 0.85);
-                ur_draw_line(cr, x, p->top, x, p->bottom);
+                draw_line(cr, x, p->top, x, p->bottom);
             }
             cairo_set_source_rgb(cr, 0, 0, 0);
-            ur_draw_line(cr, x, p->bottom, x, p->bottom + (m == 1 ? 6 : 3));
+            draw_line(cr, x, p->bottom, x, p->bottom + (m == 1 ? 6 : 3));
             if (m == 1)
-                show_power(cr, x, p->bottom + 22, UR_ALIGN_CENTRE, decade);
+                show_power(cr, x, p->bottom + 22, ALIGN_CENTRE, decade);
         }
 }
 
@@ -141,14 +141,14 @@ static void y_ticks(cairo_t *cr, const panel *p)
     for (int decade = (int)p->y_low; decade <= (int)p->y_high; decade++) {
         double y = to_y(p, pow(10, decade));
         cairo_set_source_rgb(cr, 0.85, 0.85, 0.85);
-        ur_draw_line(cr, p->left, y, p->right, y);
+        draw_line(cr, p->left, y, p->right, y);
         cairo_set_source_rgb(cr, 0, 0, 0);
-        ur_draw_line(cr, p->left - 6, y, p->left, y);
+        draw_line(cr, p->left - 6, y, p->left, y);
         if ((decade - (int)p->y_low) % step == 0)
-            show_power(cr, p->left - 9, y + 4, UR_ALIGN_RIGHT, decade);
+            show_power(cr, p->left - 9, y + 4, ALIGN_RIGHT, decade);
         for (int m = 2; step == 1 && decade < (int)p->y_high && m <= 9; m++) {
             double minor = to_y(p, m * pow(10, decade));
-            ur_draw_line(cr, p->left - 3, minor, p->left, minor);
+            draw_line(cr, p->left - 3, minor, p->left, minor);
         }
     }
 }
@@ -161,12 +161,12 @@ static void axes(cairo_t *cr, const panel *p, const char *x_title, const char *y
     cairo_set_line_width(cr, 1.2);
     cairo_rectangle(cr, p->left, p->top, p->right - p->left, p->bottom - p->top);
     cairo_stroke(cr);
-    ur_draw_set_font(cr, 13, false);
-    ur_draw_show_text(cr, (p->left + p->right) / 2, p->bottom + 44, UR_ALIGN_CENTRE, x_title);
+    draw_set_font(cr, 13, false);
+    draw_show_text(cr, (p->left + p->right) / 2, p->bottom + 44, ALIGN_CENTRE, x_title);
     cairo_save(cr);
     cairo_translate(cr, p->left - 52, (p->top + p->bottom) / 2);
     cairo_rotate(cr, -M_PI / 2);
-    ur_draw_show_text(cr, 0, 0, UR_ALIGN_CENTRE, y_title);
+    draw_show_text(cr, 0, 0, ALIGN_CENTRE, y_title);
     cairo_restore(cr);
 }
 
@@ -246,29 +246,29 @@ static void panel_plot(cairo_t *cr, const panel *p, const ur_compare_table *tabl
 static void legend(cairo_t *cr, const ur_compare_table *table, double y)
 {
     double x = 85;
-    ur_draw_set_font(cr, 13, false);
+    draw_set_font(cr, 13, false);
     for (int k = 0; k < UR_COMPARE_METHODS; k++) {
         char label[64];
         bool drawn = method_drawn(table, k);
-        ur_c_snprintf(label, sizeof label, "%s%s", method_names[k],
-                      !drawn                  ? " (not applicable)"
-                      : k == UR_COMPARE_EXACT ? " (distance 0 by definition)"
-                                              : "");
+        c_snprintf(label, sizeof label, "%s%s", method_names[k],
+                   !drawn                  ? " (not applicable)"
+                   : k == UR_COMPARE_EXACT ? " (distance 0 by definition)"
+                                           : "");
         if (drawn)
             set_colour(cr, k);
         else
             cairo_set_source_rgb(cr, 0.75, 0.75, 0.75); /* greyed out: no data */
         cairo_set_line_width(cr, 2);
-        ur_draw_line(cr, x, y - 4, x + 28, y - 4);
+        draw_line(cr, x, y - 4, x + 28, y - 4);
         marker(cr, k, x + 14, y - 4);
         cairo_set_source_rgb(cr, 0, 0, 0);
-        ur_draw_show_text(cr, x + 36, y, UR_ALIGN_LEFT, label);
-        x += 36 + ur_draw_text_width(cr, label) + 30;
+        draw_show_text(cr, x + 36, y, ALIGN_LEFT, label);
+        x += 36 + draw_text_width(cr, label) + 30;
     }
-    ur_draw_set_font(cr, 11, false);
+    draw_set_font(cr, 11, false);
     cairo_set_source_rgb(cr, 0.3, 0.3, 0.3);
-    ur_draw_show_text(
-        cr, 85, y + 20, UR_ALIGN_LEFT,
+    draw_show_text(
+        cr, 85, y + 20, ALIGN_LEFT,
         "values below 1e-16 (and zeros) are drawn at 1e-16; distances after the best rigid "
         "fit to the exact net");
 }
@@ -278,8 +278,8 @@ static void draw(cairo_t *cr, const ur_compare_table *table, const char *title)
     cairo_set_source_rgb(cr, 1, 1, 1);
     cairo_paint(cr);
     cairo_set_source_rgb(cr, 0, 0, 0);
-    ur_draw_set_font(cr, 18, true);
-    ur_draw_show_text(cr, WIDTH / 2.0, 32, UR_ALIGN_CENTRE, title ? title : "unroll compare");
+    draw_set_font(cr, 18, true);
+    draw_show_text(cr, WIDTH / 2.0, 32, ALIGN_CENTRE, title ? title : "unroll compare");
     panel area = {85, 435, 60, 480, 0, 0, 0, 0};
     panel distance = {535, 885, 60, 480, 0, 0, 0, 0};
     x_range(table, &area);
@@ -324,7 +324,7 @@ ur_status ur_compare_plot_png(const char *path, const ur_compare_table *table, c
         status = ur_error_set(error, UR_ERROR_INTERNAL, "cannot draw the plot: %s",
                               cairo_status_to_string(drawn));
     else
-        status = ur_atomic_write(path, png_emit, surface, "plot", context, error);
+        status = atomic_write(path, png_emit, surface, "plot", context, error);
     cairo_surface_destroy(surface);
     return status;
 }
@@ -334,14 +334,14 @@ ur_status ur_compare_plot_png(const char *path, const ur_compare_table *table, c
 /* One field: the number to full precision, or empty where there is none. */
 static bool emit_number(FILE *stream, double value, bool available, bool last)
 {
-    int written = available && isfinite(value) ? ur_c_fprintf(stream, "%.17g", value) : 0;
+    int written = available && isfinite(value) ? c_fprintf(stream, "%.17g", value) : 0;
     return written >= 0 && fputc(last ? '\n' : ',', stream) != EOF;
 }
 
 static bool emit_row(FILE *stream, const ur_compare_row *row)
 {
     const double *columns[] = {row->area_error, row->edge_error, row->distance};
-    bool ok = ur_c_fprintf(stream, "%zu,", row->n) >= 0;
+    bool ok = c_fprintf(stream, "%zu,", row->n) >= 0;
     for (int c = 0; ok && c < 3; c++) {
         int methods = c == 2 ? UR_COMPARE_EXACT : UR_COMPARE_METHODS; /* no exact distance */
         for (int k = 0; ok && k < methods; k++)
@@ -370,5 +370,5 @@ ur_status ur_compare_csv_write(const char *path, const ur_compare_table *table, 
     ur_status status = check_table(table, error);
     if (status != UR_OK)
         return status;
-    return ur_atomic_write(path, emit_csv, table, "comparison", context, error);
+    return atomic_write(path, emit_csv, table, "comparison", context, error);
 }

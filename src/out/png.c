@@ -82,7 +82,7 @@ static ur_status check_size(const ur_sheet *sheet, size_t index, double dpi, ur_
 }
 
 /* The largest |strain| of every placed piece, so that all sheets share one scale. */
-static ur_status strain_range(const ur_write_job *job, double *range, ur_error *error)
+static ur_status strain_range(const write_job *job, double *range, ur_error *error)
 {
     *range = 0;
     for (size_t s = 0; s < job->layout->sheet_count; s++) {
@@ -138,7 +138,7 @@ static ur_status start_picture(png_sheet *s, ur_error *error)
 }
 
 static ur_status png_begin_sheet(void **state, void *document, FILE *file, size_t index,
-                                 const ur_write_job *job, ur_error *error)
+                                 const write_job *job, ur_error *error)
 {
     (void)document;
     *state = NULL;
@@ -146,7 +146,7 @@ static ur_status png_begin_sheet(void **state, void *document, FILE *file, size_
     double dpi = job->options->dpi;
     ur_status status = check_size(sheet, index, dpi, error);
     for (int op = 0; status == UR_OK && op < UR_OP_COUNT; op++)
-        status = ur_style_check(job->machine, (ur_op)op, error);
+        status = style_check(job->machine, (ur_op)op, error);
     if (status != UR_OK)
         return status;
     png_sheet *s = calloc(1, sizeof *s);
@@ -197,7 +197,7 @@ static void fill_strain(png_sheet *s, const ur_piece *piece, ur_transform2 trans
             cairo_line_to(cr, corner.x, corner.y);
         }
         cairo_close_path(cr);
-        ur_draw_strain_colour(cr, shading->strain[t], s->range);
+        draw_strain_colour(cr, shading->strain[t], s->range);
         cairo_fill_preserve(cr);
         cairo_stroke(cr);
     }
@@ -233,12 +233,12 @@ static ur_status png_begin_layer(void *state, ur_op op, ur_error *error)
 {
     png_sheet *s = state;
     const ur_op_style *style = &s->machine->styles[op];
-    unsigned long rgb = ur_style_rgb(style);
+    unsigned long rgb = style_rgb(style);
     cairo_set_source_rgb(s->cr, (rgb >> 16 & 0xFF) / 255.0, (rgb >> 8 & 0xFF) / 255.0,
                          (rgb & 0xFF) / 255.0);
     cairo_set_line_width(s->cr, fmax(style->line_width * s->scale, s->unit));
     double dashes[8];
-    size_t count = ur_style_dashes(style, dashes, 8);
+    size_t count = style_dashes(style, dashes, 8);
     for (size_t i = 0; i < count; i++)
         dashes[i] *= s->scale;
     cairo_set_dash(s->cr, dashes, (int)count, 0);
@@ -270,16 +270,16 @@ static void draw_labels(png_sheet *s)
     cairo_t *cr = s->cr;
     double u = s->unit;
     cairo_set_dash(cr, NULL, 0, 0);
-    ur_draw_set_font(cr, 12 * u, true);
+    draw_set_font(cr, 12 * u, true);
     for (size_t i = 0; i < s->label_count; i++) {
         const png_label *label = &s->labels[i];
-        double width = ur_draw_text_width(cr, label->name);
+        double width = draw_text_width(cr, label->name);
         cairo_rectangle(cr, label->at.x - width / 2 - 3 * u, label->at.y - 11 * u, width + 6 * u,
                         15 * u);
         cairo_set_source_rgba(cr, 1, 1, 1, 0.8);
         cairo_fill(cr);
         cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
-        ur_draw_show_text(cr, label->at.x, label->at.y, UR_ALIGN_CENTRE, label->name);
+        draw_show_text(cr, label->at.x, label->at.y, ALIGN_CENTRE, label->name);
     }
 }
 
@@ -297,20 +297,20 @@ static void measure_legend(png_sheet *s, double unit, legend *l)
 {
     cairo_t *cr = s->cr;
     l->unit = unit;
-    ur_c_snprintf(l->title, sizeof l->title, "sheet %zu of %zu, %g \xc3\x97 %g mm", s->index + 1,
-                  s->count, s->sheet->width, s->sheet->height);
+    c_snprintf(l->title, sizeof l->title, "sheet %zu of %zu, %g \xc3\x97 %g mm", s->index + 1,
+               s->count, s->sheet->width, s->sheet->height);
     if (s->range > 0)
-        ur_c_snprintf(l->strain, sizeof l->strain,
-                      "fill: strain, blue \xe2\x88\x92%.3g%% to red +%.3g%%", 100 * s->range,
-                      100 * s->range);
+        c_snprintf(l->strain, sizeof l->strain,
+                   "fill: strain, blue \xe2\x88\x92%.3g%% to red +%.3g%%", 100 * s->range,
+                   100 * s->range);
     else
-        ur_c_snprintf(l->strain, sizeof l->strain, "no strain on any piece");
-    l->scale_length = ur_draw_nice_below(SCALE_LONGEST * unit / s->scale);
-    ur_c_snprintf(l->scale_label, sizeof l->scale_label, "%g mm", l->scale_length);
-    double width = fmax(ur_draw_text_width_at(cr, l->title, 12, true),
-                        ur_draw_text_width_at(cr, l->strain, 11, false));
+        c_snprintf(l->strain, sizeof l->strain, "no strain on any piece");
+    l->scale_length = draw_nice_below(SCALE_LONGEST * unit / s->scale);
+    c_snprintf(l->scale_label, sizeof l->scale_label, "%g mm", l->scale_length);
+    double width = fmax(draw_text_width_at(cr, l->title, 12, true),
+                        draw_text_width_at(cr, l->strain, 11, false));
     width = fmax(width, l->scale_length * s->scale / unit + 6 +
-                            ur_draw_text_width_at(cr, l->scale_label, 11, false));
+                            draw_text_width_at(cr, l->scale_label, 11, false));
     l->rows = 0;
     for (int op = 0; op < UR_OP_COUNT; op++) {
         if (!s->drawn[op])
@@ -319,7 +319,7 @@ static void measure_legend(png_sheet *s, double unit, legend *l)
         const ur_op_style *style = &s->machine->styles[op];
         width = fmax(
             width, SWATCH + 6 +
-                       ur_draw_text_width_at(
+                       draw_text_width_at(
                            cr, style->layer[0] ? style->layer : ur_op_name((ur_op)op), 11, false));
     }
     l->width = (width + 2 * PAD) * unit;
@@ -334,8 +334,8 @@ static double labels_covered(const void *context, double left, double top, doubl
     double area = 0, around = 60 * s->unit;
     for (size_t i = 0; i < s->label_count; i++) {
         ur_vec2 at = s->labels[i].at;
-        area += ur_draw_overlap(left, left + width, at.x - around, at.x + around) *
-                ur_draw_overlap(top, top + height, at.y - around, at.y + around);
+        area += draw_overlap(left, left + width, at.x - around, at.x + around) *
+                draw_overlap(top, top + height, at.y - around, at.y + around);
     }
     return area;
 }
@@ -348,15 +348,15 @@ static void draw_operations(png_sheet *s, const legend *l, double *y)
         if (!s->drawn[op])
             continue;
         const ur_op_style *style = &s->machine->styles[op];
-        unsigned long rgb = ur_style_rgb(style);
+        unsigned long rgb = style_rgb(style);
         cairo_set_source_rgb(cr, (rgb >> 16 & 0xFF) / 255.0, (rgb >> 8 & 0xFF) / 255.0,
                              (rgb & 0xFF) / 255.0);
         cairo_set_line_width(cr, 2 * u);
-        ur_draw_line(cr, x, *y - 4 * u, x + SWATCH * u, *y - 4 * u);
+        draw_line(cr, x, *y - 4 * u, x + SWATCH * u, *y - 4 * u);
         cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
-        ur_draw_set_font(cr, 11 * u, false);
-        ur_draw_show_text(cr, x + (SWATCH + 6) * u, *y, UR_ALIGN_LEFT,
-                          style->layer[0] ? style->layer : ur_op_name((ur_op)op));
+        draw_set_font(cr, 11 * u, false);
+        draw_show_text(cr, x + (SWATCH + 6) * u, *y, ALIGN_LEFT,
+                       style->layer[0] ? style->layer : ur_op_name((ur_op)op));
         *y += ROW * u;
     }
 }
@@ -370,23 +370,23 @@ static void draw_legend(png_sheet *s)
                        (s->height - 2 * INSET * s->unit) / l.height);
     if (room < 1) /* a small sheet: a smaller legend */
         measure_legend(s, s->unit * fmax(room, 0.25), &l);
-    ur_draw_legend_corner(s->width, s->height, INSET * l.unit, l.width, l.height, labels_covered, s,
-                          &l.left, &l.top);
+    draw_legend_corner(s->width, s->height, INSET * l.unit, l.width, l.height, labels_covered, s,
+                       &l.left, &l.top);
     double u = l.unit, x = l.left + PAD * u, y = l.top + (PAD + 12) * u;
-    ur_draw_legend_frame(cr, l.left, l.top, l.width, l.height, u);
+    draw_legend_frame(cr, l.left, l.top, l.width, l.height, u);
     cairo_set_source_rgb(cr, 0.05, 0.05, 0.05);
-    ur_draw_set_font(cr, 12 * u, true);
-    ur_draw_show_text(cr, x, y, UR_ALIGN_LEFT, l.title);
+    draw_set_font(cr, 12 * u, true);
+    draw_show_text(cr, x, y, ALIGN_LEFT, l.title);
     y += ROW * u;
     draw_operations(s, &l, &y);
     cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
-    ur_draw_set_font(cr, 11 * u, false);
-    ur_draw_show_text(cr, x, y, UR_ALIGN_LEFT, l.strain);
+    draw_set_font(cr, 11 * u, false);
+    draw_show_text(cr, x, y, ALIGN_LEFT, l.strain);
     y += 6 * u;
     double length = l.scale_length * s->scale;
     cairo_rectangle(cr, x, y, length, 6 * u);
     cairo_fill(cr);
-    ur_draw_show_text(cr, x + length + 6 * u, y + 7 * u, UR_ALIGN_LEFT, l.scale_label);
+    draw_show_text(cr, x + length + 6 * u, y + 7 * u, ALIGN_LEFT, l.scale_label);
 }
 
 /* ---- Finishing ---------------------------------------------------------- */
@@ -418,7 +418,7 @@ static void png_discard_sheet(void *state)
     free_sheet(state);
 }
 
-const ur_writer ur_png_writer = {
+const format_writer png_writer = {
     .format = "PNG",
     .extension = "png",
     .begin_sheet = png_begin_sheet,

@@ -1,5 +1,5 @@
 /*
- * png.h: a cairo image as a PNG document for ur_atomic_write (private to
+ * png.h: a cairo image as a PNG document for atomic_write (private to
  * src/out), shared by the plots that write PNG.
  */
 #ifndef UNROLL_OUT_PNG_H
@@ -16,7 +16,7 @@ static inline cairo_status_t png_write_bytes(void *stream, const unsigned char *
                                                      : CAIRO_STATUS_WRITE_ERROR;
 }
 
-/* An ur_emitter: data is the cairo_surface_t to write. */
+/* An atomic_emitter: data is the cairo_surface_t to write. */
 static inline bool png_emit(FILE *stream, const void *surface)
 {
     return cairo_surface_write_to_png_stream((cairo_surface_t *)surface, png_write_bytes, stream) ==

@@ -43,9 +43,9 @@ static json_t *box_json(ur_box box)
     bool known = box.min.x <= box.max.x && box.min.y <= box.max.y; /* not empty */
     if (!object ||
         json_object_set_new(object, "width_mm",
-                            known ? ur_json_number(ur_box_width(box)) : json_null()) != 0 ||
+                            known ? json_number(ur_box_width(box)) : json_null()) != 0 ||
         json_object_set_new(object, "height_mm",
-                            known ? ur_json_number(ur_box_height(box)) : json_null()) != 0) {
+                            known ? json_number(ur_box_height(box)) : json_null()) != 0) {
         json_decref(object);
         return NULL;
     }
@@ -55,7 +55,7 @@ static json_t *box_json(ur_box box)
 /* A figure of a record, or null where it has none (NAN). */
 static json_t *figure_json(double value)
 {
-    return isnan(value) ? json_null() : ur_json_number(value);
+    return isnan(value) ? json_null() : json_number(value);
 }
 
 static json_t *record_json(const ur_allowance_record *record)
@@ -71,7 +71,7 @@ static json_t *record_json(const ur_allowance_record *record)
         json_object_set_new(object, "at_mm", where) != 0 ||
         json_object_set_new(object, "warning", json_boolean(record->warning)) != 0 ||
         (record->kind == UR_ALLOWANCE_BENDING &&
-         (json_object_set_new(object, "facet_angle_degrees", ur_json_number(record->facet_angle)) !=
+         (json_object_set_new(object, "facet_angle_degrees", json_number(record->facet_angle)) !=
               0 ||
           json_object_set_new(object, "rows", json_integer((json_int_t)record->rows)) != 0)) ||
         json_object_set_new(object, "reason", name_of(record->reason, sizeof record->reason)) !=
@@ -117,15 +117,15 @@ static json_t *piece_json(const ur_piece *piece, size_t sheet)
     json_t *object = json_object();
     if (!object ||
         json_object_set_new(object, "name", name_of(piece->name, sizeof piece->name)) != 0 ||
-        json_object_set_new(object, "area_3d_mm2", ur_json_number(m->area_3d)) != 0 ||
-        json_object_set_new(object, "flat_area_mm2", ur_json_number(m->flat_area)) != 0 ||
+        json_object_set_new(object, "area_3d_mm2", json_number(m->area_3d)) != 0 ||
+        json_object_set_new(object, "flat_area_mm2", json_number(m->flat_area)) != 0 ||
         json_object_set_new(object, "coverage",
-                            m->area_3d > 0 ? ur_json_number(m->flat_area / m->area_3d)
+                            m->area_3d > 0 ? json_number(m->flat_area / m->area_3d)
                                            : json_null()) != 0 ||
         json_object_set_new(object, "bounding_box", box_json(piece->box)) != 0 ||
-        json_object_set_new(object, "edge_length_error", ur_json_number(m->edge_error)) != 0 ||
-        json_object_set_new(object, "max_stretch", ur_json_number(m->max_stretch)) != 0 ||
-        json_object_set_new(object, "max_compression", ur_json_number(m->max_compression)) != 0 ||
+        json_object_set_new(object, "edge_length_error", json_number(m->edge_error)) != 0 ||
+        json_object_set_new(object, "max_stretch", json_number(m->max_stretch)) != 0 ||
+        json_object_set_new(object, "max_compression", json_number(m->max_compression)) != 0 ||
         json_object_set_new(object, "allowances", records_json(piece)) != 0 ||
         json_object_set_new(object, "sheet",
                             sheet ? json_integer((json_int_t)sheet) : json_null()) != 0) {
@@ -172,9 +172,9 @@ static json_t *cutting_json(const ur_report_context *context, const ur_sheet *sh
                           context->machine, &plan, &error) != UR_OK)
         return NULL;
     ur_cut_plan_free(&plan);
-    return json_pack("{s:o, s:o, s:o}", "cut_length_mm", ur_json_number(plan.cut_length),
-                     "travel_mm", ur_json_number(plan.travel_length), "time_s",
-                     context->machine ? ur_json_number(plan.seconds) : json_null());
+    return json_pack("{s:o, s:o, s:o}", "cut_length_mm", json_number(plan.cut_length), "travel_mm",
+                     json_number(plan.travel_length), "time_s",
+                     context->machine ? json_number(plan.seconds) : json_null());
 }
 
 /* The offcut the parts leave at the sheet's right end (nesting's last sheet), or null. */
@@ -182,8 +182,8 @@ static json_t *offcut_json(const ur_sheet *sheet)
 {
     if (!(sheet->offcut_width > 0))
         return json_null();
-    return json_pack("{s:o, s:o}", "width_mm", ur_json_number(sheet->offcut_width), "height_mm",
-                     ur_json_number(sheet->height));
+    return json_pack("{s:o, s:o}", "width_mm", json_number(sheet->offcut_width), "height_mm",
+                     json_number(sheet->height));
 }
 
 static json_t *sheet_json(const ur_report_context *context, const ur_layout *layout, size_t index,
@@ -192,13 +192,13 @@ static json_t *sheet_json(const ur_report_context *context, const ur_layout *lay
     const ur_sheet *sheet = &layout->sheets[index];
     json_t *object = json_object();
     if (!object || json_object_set_new(object, "index", json_integer((json_int_t)index + 1)) != 0 ||
-        json_object_set_new(object, "width_mm", ur_json_number(sheet->width)) != 0 ||
-        json_object_set_new(object, "height_mm", ur_json_number(sheet->height)) != 0 ||
+        json_object_set_new(object, "width_mm", json_number(sheet->width)) != 0 ||
+        json_object_set_new(object, "height_mm", json_number(sheet->height)) != 0 ||
         json_object_set_new(object, "remnant", json_boolean(sheet->remnant)) != 0 ||
         json_object_set_new(object, "pieces", json_integer((json_int_t)sheet->placement_count)) !=
             0 ||
         json_object_set_new(object, "utilisation",
-                            ur_json_number(ur_sheet_utilisation(sheet, pieces))) != 0 ||
+                            json_number(ur_sheet_utilisation(sheet, pieces))) != 0 ||
         json_object_update_new(object, cutting_json(context, sheet, pieces)) != 0 ||
         json_object_set_new(object, "offcut", offcut_json(sheet)) != 0 ||
         (sheet->material[0] &&
@@ -252,9 +252,9 @@ static json_t *layer_json(const ur_report_layer *layer)
     json_t *object = json_object();
     if (!object || json_object_set_new(object, "surface", text_or_null(layer->surface)) != 0 ||
         json_object_set_new(object, "developed", text_or_null(layer->developed)) != 0 ||
-        json_object_set_new(object, "offset_mm", ur_json_number(layer->offset)) != 0 ||
-        json_object_set_new(object, "k_factor", ur_json_number(layer->k_factor)) != 0 ||
-        json_object_set_new(object, "thickness_mm", ur_json_number(layer->thickness)) != 0) {
+        json_object_set_new(object, "offset_mm", json_number(layer->offset)) != 0 ||
+        json_object_set_new(object, "k_factor", json_number(layer->k_factor)) != 0 ||
+        json_object_set_new(object, "thickness_mm", json_number(layer->thickness)) != 0) {
         json_decref(object);
         return NULL;
     }
@@ -284,14 +284,13 @@ static ur_status report_json(const ur_report_context *context, const ur_piece *p
         json_object_set_new(*root, "material",
                             material ? name_of(material->name, sizeof material->name)
                                      : json_null()) != 0 ||
-        json_object_set_new(*root, "surface_area_mm2", ur_json_number(context->surface_area)) !=
-            0 ||
+        json_object_set_new(*root, "surface_area_mm2", json_number(context->surface_area)) != 0 ||
         json_object_set_new(*root, "pieces", pieces_json(pieces, piece_count, layout)) != 0 ||
         json_object_set(*root, "sheets", sheets) != 0 ||
         json_object_set_new(*root, "outputs", outputs_json(context->outputs)) != 0 ||
         json_object_set_new(*root, "not_placed", not_placed_json(layout, pieces)) != 0 ||
         json_object_set_new(*root, "domain_gaps",
-                            ur_json_intervals(context->gaps, context->gap_count)) != 0) {
+                            json_intervals(context->gaps, context->gap_count)) != 0) {
         json_decref(sheets);
         json_decref(*root);
         *root = NULL;
@@ -342,8 +341,7 @@ static ur_status write_report(const char *path, FILE *stream, const ur_report_co
     if (status == UR_OK)
         status = report_json(context, pieces, piece_count, layout, &root, error);
     if (status == UR_OK)
-        status =
-            path ? ur_json_write(path, root, run, error) : ur_json_write_stream(stream, root, error);
+        status = path ? json_write(path, root, run, error) : json_write_stream(stream, root, error);
     json_decref(root);
     return status;
 }

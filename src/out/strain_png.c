@@ -170,7 +170,7 @@ static ur_status check_arguments(const char *path, const ur_layout *layout, cons
 /* strain on the scale -range..range (draw.h). */
 static void set_strain_colour(cairo_t *cr, double strain, double range)
 {
-    ur_draw_strain_colour(cr, strain, range);
+    draw_strain_colour(cr, strain, range);
 }
 
 /* Strain as per cent with its sign: "+1.73%", "-0.5%", "0%". */
@@ -178,9 +178,9 @@ static void format_percent(double strain, char *text, size_t size)
 {
     double percent = 100 * strain;
     if (fabs(percent) < 5e-7)
-        ur_c_snprintf(text, size, "0%%");
+        c_snprintf(text, size, "0%%");
     else
-        ur_c_snprintf(text, size, "%+.3g%%", percent);
+        c_snprintf(text, size, "%+.3g%%", percent);
 }
 
 /* ---- Pieces ------------------------------------------------------------- */
@@ -275,7 +275,7 @@ static ur_vec2 label_point(const canvas *c, const ur_placement *placement, const
 static void strain_note(const ur_piece *piece, char *text, size_t size)
 {
     if (piece->shading.count == 0) {
-        ur_c_snprintf(text, size, "exact: no strain");
+        c_snprintf(text, size, "exact: no strain");
         return;
     }
     double low = 0, high = 0;
@@ -286,7 +286,7 @@ static void strain_note(const ur_piece *piece, char *text, size_t size)
     char from[32], to[32];
     format_percent(low, from, sizeof from);
     format_percent(high, to, sizeof to);
-    ur_c_snprintf(text, size, "%s to %s", from, to);
+    c_snprintf(text, size, "%s to %s", from, to);
 }
 
 /* The name, and the note below it, on a white box so that they read on any colour. */
@@ -295,17 +295,17 @@ static void draw_label(cairo_t *cr, const canvas *c, ur_vec2 at, const ur_piece 
     char note[80];
     strain_note(piece, note, sizeof note);
     double u = c->unit;
-    ur_draw_set_font(cr, 10 * u, false);
-    double width = ur_draw_text_width(cr, note);
-    ur_draw_set_font(cr, 13 * u, true);
-    width = fmax(width, ur_draw_text_width(cr, piece->name));
+    draw_set_font(cr, 10 * u, false);
+    double width = draw_text_width(cr, note);
+    draw_set_font(cr, 13 * u, true);
+    width = fmax(width, draw_text_width(cr, piece->name));
     cairo_rectangle(cr, at.x - width / 2 - 3 * u, at.y - 15 * u, width + 6 * u, 30 * u);
     cairo_set_source_rgba(cr, 1, 1, 1, 0.8);
     cairo_fill(cr);
     cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
-    ur_draw_show_text(cr, at.x, at.y - 2 * u, UR_ALIGN_CENTRE, piece->name);
-    ur_draw_set_font(cr, 10 * u, false);
-    ur_draw_show_text(cr, at.x, at.y + 11 * u, UR_ALIGN_CENTRE, note);
+    draw_show_text(cr, at.x, at.y - 2 * u, ALIGN_CENTRE, piece->name);
+    draw_set_font(cr, 10 * u, false);
+    draw_show_text(cr, at.x, at.y + 11 * u, ALIGN_CENTRE, note);
 }
 
 static ur_status draw_labels(cairo_t *cr, const canvas *c, const picture *p, ur_error *error)
@@ -361,20 +361,20 @@ static const char no_strain[] = "no strain on any piece";
 static void measure_legend(cairo_t *cr, const canvas *c, const picture *p, double unit, legend *l)
 {
     l->unit = unit;
-    ur_c_snprintf(l->title, sizeof l->title, "strain \xc2\xb7 sheet %zu of %zu, %g \xc3\x97 %g mm",
-                  c->index + 1, p->layout->sheet_count, c->sheet->width, c->sheet->height);
+    c_snprintf(l->title, sizeof l->title, "strain \xc2\xb7 sheet %zu of %zu, %g \xc3\x97 %g mm",
+               c->index + 1, p->layout->sheet_count, c->sheet->width, c->sheet->height);
     double widest_tick = 0;
     for (int k = 0; k < TICKS; k++) {
         format_percent(p->range * (k - TICKS / 2) / (TICKS / 2), l->ticks[k], sizeof l->ticks[k]);
-        widest_tick = fmax(widest_tick, ur_draw_text_width_at(cr, l->ticks[k], 11, false));
+        widest_tick = fmax(widest_tick, draw_text_width_at(cr, l->ticks[k], 11, false));
     }
     l->side = widest_tick / 2 + 2;
-    l->scale_length = ur_draw_nice_below(SCALE_LONGEST * unit / c->scale);
-    ur_c_snprintf(l->scale_label, sizeof l->scale_label, "%g mm", l->scale_length);
+    l->scale_length = draw_nice_below(SCALE_LONGEST * unit / c->scale);
+    c_snprintf(l->scale_label, sizeof l->scale_label, "%g mm", l->scale_length);
     double scale_points = l->scale_length * c->scale / unit;
-    double width = fmax(BAR_WIDTH + 2 * l->side, ur_draw_text_width_at(cr, l->title, 12, true));
-    width = fmax(width, ur_draw_text_width_at(cr, p->range > 0 ? caption : no_strain, 11, false));
-    width = fmax(width, scale_points + 6 + ur_draw_text_width_at(cr, l->scale_label, 11, false));
+    double width = fmax(BAR_WIDTH + 2 * l->side, draw_text_width_at(cr, l->title, 12, true));
+    width = fmax(width, draw_text_width_at(cr, p->range > 0 ? caption : no_strain, 11, false));
+    width = fmax(width, scale_points + 6 + draw_text_width_at(cr, l->scale_label, 11, false));
     l->width = (width + 2 * PAD) * unit;
     l->height = LEGEND_HEIGHT * unit;
 }
@@ -399,8 +399,8 @@ static double pieces_covered(const void *context, double left, double top, doubl
         for (size_t k = 0; k < piece->path_count; k++)
             for (size_t j = 0; j < piece->paths[k].count; j++)
                 ur_box_add(&box, place(c, placement, piece->paths[k].points[j]));
-        area += ur_draw_overlap(left, left + width, box.min.x, box.max.x) *
-                ur_draw_overlap(top, top + height, box.min.y, box.max.y);
+        area += draw_overlap(left, left + width, box.min.x, box.max.x) *
+                draw_overlap(top, top + height, box.min.y, box.max.y);
     }
     return area;
 }
@@ -414,8 +414,8 @@ static void fit_legend(cairo_t *cr, const canvas *c, const picture *p, legend *l
     if (room < 1)
         measure_legend(cr, c, p, c->unit * fmax(room, 0.25), l);
     sheet_picture sheet = {c, p};
-    ur_draw_legend_corner(c->width, c->height, INSET * l->unit, l->width, l->height, pieces_covered,
-                          &sheet, &l->left, &l->top);
+    draw_legend_corner(c->width, c->height, INSET * l->unit, l->width, l->height, pieces_covered,
+                       &sheet, &l->left, &l->top);
 }
 
 static void draw_colour_bar(cairo_t *cr, const legend *l, double range)
@@ -432,14 +432,14 @@ static void draw_colour_bar(cairo_t *cr, const legend *l, double range)
     cairo_set_line_width(cr, 0.8 * u);
     cairo_rectangle(cr, x, y, width, height);
     cairo_stroke(cr);
-    ur_draw_set_font(cr, 11 * u, false);
+    draw_set_font(cr, 11 * u, false);
     cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
     for (int k = 0; k < TICKS; k++) {
         double at = x + width * k / (TICKS - 1);
-        ur_draw_line(cr, at, y + height, at, y + height + 4 * u);
-        ur_draw_show_text(cr, at, y + height + 16 * u, UR_ALIGN_CENTRE, l->ticks[k]);
+        draw_line(cr, at, y + height, at, y + height + 4 * u);
+        draw_show_text(cr, at, y + height + 16 * u, ALIGN_CENTRE, l->ticks[k]);
     }
-    ur_draw_show_text(cr, l->left + PAD * u, l->top + CAPTION * u, UR_ALIGN_LEFT, caption);
+    draw_show_text(cr, l->left + PAD * u, l->top + CAPTION * u, ALIGN_LEFT, caption);
 }
 
 /* Nothing strained: a white swatch that says so. */
@@ -450,9 +450,9 @@ static void draw_no_strain(cairo_t *cr, const legend *l)
     cairo_set_source_rgb(cr, 0.3, 0.3, 0.3);
     cairo_set_line_width(cr, 0.8 * u);
     cairo_stroke(cr);
-    ur_draw_set_font(cr, 11 * u, false);
+    draw_set_font(cr, 11 * u, false);
     cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
-    ur_draw_show_text(cr, x + 34 * u, y + 11 * u, UR_ALIGN_LEFT, no_strain);
+    draw_show_text(cr, x + 34 * u, y + 11 * u, ALIGN_LEFT, no_strain);
 }
 
 static void draw_scale_bar(cairo_t *cr, const canvas *c, const legend *l)
@@ -462,8 +462,8 @@ static void draw_scale_bar(cairo_t *cr, const canvas *c, const legend *l)
     cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
     cairo_rectangle(cr, x, y, length, 6 * u);
     cairo_fill(cr);
-    ur_draw_set_font(cr, 11 * u, false);
-    ur_draw_show_text(cr, x + length + 6 * u, y + 7 * u, UR_ALIGN_LEFT, l->scale_label);
+    draw_set_font(cr, 11 * u, false);
+    draw_show_text(cr, x + length + 6 * u, y + 7 * u, ALIGN_LEFT, l->scale_label);
 }
 
 static void draw_legend(cairo_t *cr, const canvas *c, const picture *p)
@@ -471,10 +471,10 @@ static void draw_legend(cairo_t *cr, const canvas *c, const picture *p)
     legend l;
     fit_legend(cr, c, p, &l);
     double u = l.unit;
-    ur_draw_legend_frame(cr, l.left, l.top, l.width, l.height, u);
-    ur_draw_set_font(cr, 12 * u, true);
+    draw_legend_frame(cr, l.left, l.top, l.width, l.height, u);
+    draw_set_font(cr, 12 * u, true);
     cairo_set_source_rgb(cr, 0.05, 0.05, 0.05);
-    ur_draw_show_text(cr, l.left + PAD * u, l.top + 20 * u, UR_ALIGN_LEFT, l.title);
+    draw_show_text(cr, l.left + PAD * u, l.top + 20 * u, ALIGN_LEFT, l.title);
     if (p->range > 0)
         draw_colour_bar(cr, &l, p->range);
     else
@@ -537,13 +537,13 @@ static ur_status draw_sheet(const picture *p, size_t index, cairo_surface_t **su
 
 /* Sheet index drawn into a new temporary, files[index], closed but not yet renamed. */
 static ur_status write_sheet_file(const char *path, const picture *p, size_t index,
-                                  ur_atomic_file *files, ur_error *error)
+                                  atomic_file *files, ur_error *error)
 {
     char name[NAME_SIZE];
     ur_status status =
         ur_sheet_file_name(path, index, p->layout->sheet_count, name, sizeof name, error);
     if (status == UR_OK)
-        status = ur_atomic_open(&files[index], name, p->context, error);
+        status = atomic_open(&files[index], name, p->context, error);
     cairo_surface_t *surface = NULL;
     if (status == UR_OK)
         status = draw_sheet(p, index, &surface, error);
@@ -552,7 +552,7 @@ static ur_status write_sheet_file(const char *path, const picture *p, size_t ind
         status = ur_error_set(error, UR_ERROR_IO, "cannot write '%s': %s", name,
                               errno ? strerror(errno) : "write error");
     if (status == UR_OK)
-        status = ur_atomic_close(&files[index], error);
+        status = atomic_close(&files[index], error);
     if (surface)
         cairo_surface_destroy(surface);
     return status;
@@ -562,16 +562,16 @@ static ur_status write_sheet_file(const char *path, const picture *p, size_t ind
 static ur_status write_files(const char *path, const picture *p, ur_error *error)
 {
     size_t count = p->layout->sheet_count;
-    ur_atomic_file *files = ur_alloc_array(count, sizeof *files, error);
+    atomic_file *files = ur_alloc_array(count, sizeof *files, error);
     if (!files)
         return UR_ERROR_INTERNAL;
     ur_status status = UR_OK;
     for (size_t i = 0; status == UR_OK && i < count; i++)
         status = write_sheet_file(path, p, i, files, error);
     if (status == UR_OK)
-        status = ur_atomic_commit_all(files, count, error);
+        status = atomic_commit_all(files, count, error);
     for (size_t i = 0; i < count; i++)
-        ur_atomic_discard(&files[i]); /* removes what was not committed */
+        atomic_discard(&files[i]); /* removes what was not committed */
     free(files);
     return status;
 }
@@ -586,7 +586,7 @@ static ur_status write_stdout(const picture *p, ur_error *error)
     cairo_surface_t *surface = NULL;
     ur_status status = draw_sheet(p, 0, &surface, error);
     if (status == UR_OK)
-        status = ur_atomic_write("-", png_emit, surface, "strain picture", p->context, error);
+        status = atomic_write("-", png_emit, surface, "strain picture", p->context, error);
     if (surface)
         cairo_surface_destroy(surface);
     return status;

@@ -20,7 +20,7 @@ static bool is_colour(const char *colour)
     return true;
 }
 
-ur_status ur_style_check(const ur_machine *machine, ur_op op, ur_error *error)
+ur_status style_check(const ur_machine *machine, ur_op op, ur_error *error)
 {
     const ur_op_style *style = &machine->styles[op];
     const char *name = memchr(machine->name, '\0', sizeof machine->name) ? machine->name : "?";
@@ -39,18 +39,18 @@ ur_status ur_style_check(const ur_machine *machine, ur_op op, ur_error *error)
     return UR_OK;
 }
 
-unsigned long ur_style_rgb(const ur_op_style *style)
+unsigned long style_rgb(const ur_op_style *style)
 {
     return strtoul(style->colour + 1, NULL, 16);
 }
 
-size_t ur_style_dashes(const ur_op_style *style, double *dashes, size_t max)
+size_t style_dashes(const ur_op_style *style, double *dashes, size_t max)
 {
     const char *at = style->dash;
     size_t count = 0;
     while (count < max) {
         char *end;
-        double value = ur_c_strtod(at, &end);
+        double value = c_strtod(at, &end);
         if (end == at || !(value > 0) || !isfinite(value))
             break;
         dashes[count++] = value;

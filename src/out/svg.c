@@ -51,7 +51,7 @@ typedef struct svg_sheet {
 static void format_coordinate(double value, char text[NUMBER_SIZE])
 {
     if (!(fabs(value) < 1e12)) {
-        ur_c_snprintf(text, NUMBER_SIZE, "%.6f", value);
+        c_snprintf(text, NUMBER_SIZE, "%.6f", value);
     } else {
         long long nanometres = llround(value * 1e6);
         unsigned long long magnitude =
@@ -123,7 +123,7 @@ static ur_status check_text(const char *what, const char *text, ur_error *error)
 /* A machine filled by hand may carry anything: refuse what SVG cannot show. */
 static ur_status check_style(const ur_machine *machine, ur_op op, ur_error *error)
 {
-    ur_status status = ur_style_check(machine, op, error);
+    ur_status status = style_check(machine, op, error);
     return status == UR_OK ? check_text("the layer name", machine->styles[op].layer, error)
                            : status;
 }
@@ -134,9 +134,9 @@ static ur_status write_root(svg_sheet *sheet, double width, double height, ur_er
     char width_mm[NUMBER_SIZE + 2], height_mm[NUMBER_SIZE + 2], view_box[2 * NUMBER_SIZE + 8];
     format_coordinate(width, width_text);
     format_coordinate(height, height_text);
-    ur_c_snprintf(width_mm, sizeof width_mm, "%smm", width_text);
-    ur_c_snprintf(height_mm, sizeof height_mm, "%smm", height_text);
-    ur_c_snprintf(view_box, sizeof view_box, "0 0 %s %s", width_text, height_text);
+    c_snprintf(width_mm, sizeof width_mm, "%smm", width_text);
+    c_snprintf(height_mm, sizeof height_mm, "%smm", height_text);
+    c_snprintf(view_box, sizeof view_box, "0 0 %s %s", width_text, height_text);
     const char *const attributes[][2] = {
         {"xmlns", SVG_NAMESPACE}, {"xmlns:inkscape", INKSCAPE_NAMESPACE},
         {"version", "1.1"},       {"width", width_mm},
@@ -161,7 +161,7 @@ static ur_status write_element(svg_sheet *sheet, const char *name, const char *t
  * Dublin Core in RDF, where Inkscape keeps a drawing's title and creator:
  * the title, the program that made it and the job it comes from.
  */
-static ur_status write_metadata(svg_sheet *sheet, const ur_write_settings *options, ur_error *error)
+static ur_status write_metadata(svg_sheet *sheet, const write_settings *options, ur_error *error)
 {
     const char *const rdf[][2] = {{"xmlns:rdf", RDF_NAMESPACE}, {"xmlns:dc", DC_NAMESPACE}};
     const char *const about[][2] = {{"rdf:about", ""}};
@@ -185,7 +185,7 @@ static ur_status write_metadata(svg_sheet *sheet, const ur_write_settings *optio
     return status;
 }
 
-static ur_status write_title_and_desc(svg_sheet *sheet, const ur_write_settings *options,
+static ur_status write_title_and_desc(svg_sheet *sheet, const write_settings *options,
                                       ur_error *error)
 {
     ur_status status = UR_OK;
@@ -212,13 +212,13 @@ static void free_sheet(svg_sheet *sheet)
 }
 
 static ur_status svg_begin_sheet(void **state, void *document, FILE *file, size_t index,
-                                 const ur_write_job *job, ur_error *error)
+                                 const write_job *job, ur_error *error)
 {
     (void)document;
     const ur_sheet *page = &job->layout->sheets[index];
     double width = page->width, height = page->height;
     const ur_machine *machine = job->machine;
-    const ur_write_settings *options = job->options;
+    const write_settings *options = job->options;
     *state = NULL;
     svg_sheet *sheet = calloc(1, sizeof *sheet);
     if (!sheet)
@@ -251,7 +251,7 @@ static ur_status svg_begin_layer(void *state, ur_op op, ur_error *error)
         return status;
     const ur_op_style *style = &sheet->machine->styles[op];
     char width[NUMBER_SIZE];
-    ur_c_snprintf(width, sizeof width, "%.6g", style->line_width); /* %g: never rounds to 0 */
+    c_snprintf(width, sizeof width, "%.6g", style->line_width); /* %g: never rounds to 0 */
     const char *const attributes[][2] = {
         {"id", ur_op_name(op)},
         {"inkscape:groupmode", "layer"},
@@ -332,7 +332,7 @@ static ur_status append_arc(svg_sheet *sheet, const ur_path_circle *circle, ur_v
 {
     char r[NUMBER_SIZE], flags[16];
     format_coordinate(circle->radius, r);
-    ur_c_snprintf(flags, sizeof flags, " 0 %d %d", fabs(circle->sweep) > M_PI, circle->sweep < 0);
+    c_snprintf(flags, sizeof flags, " 0 %d %d", fabs(circle->sweep) > M_PI, circle->sweep < 0);
     const char *const parts[] = {" A ", r, " ", r, flags};
     ur_status status = UR_OK;
     for (size_t i = 0; status == UR_OK && i < sizeof parts / sizeof *parts; i++)
@@ -394,7 +394,7 @@ static void svg_discard_sheet(void *state)
     free_sheet(state);
 }
 
-const ur_writer ur_svg_writer = {
+const format_writer svg_writer = {
     .format = "SVG",
     .extension = "svg",
     .begin_sheet = svg_begin_sheet,

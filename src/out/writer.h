@@ -22,7 +22,7 @@
  * begin_sheet; a one-file format (PDF) gets NULL there and its one file in
  * end_document, where it writes the whole document.
  *
- * Adding a format is one more file defining one more ur_writer, and one
+ * Adding a format is one more file defining one more format_writer, and one
  * more entry in output.c's table of formats.
  */
 #ifndef UNROLL_OUT_WRITER_H
@@ -34,24 +34,24 @@
 #include "unroll/out.h"
 
 /* The options of ur_output_options and ur_format_options together, defaults filled in. */
-typedef struct ur_write_settings {
+typedef struct write_settings {
     const char *title;    /* NULL for none */
     const char *job_name; /* NULL for none */
     ur_dxf_version dxf_version;
     double dpi;          /* > 0 */
     bool drawing_order;  /* paths as drawn, not in cutting order */
     ur_context *context; /* the files are opened in it; NULL for none */
-} ur_write_settings;
+} write_settings;
 
 /* What every format may look at: the whole job, for the whole write. */
-typedef struct ur_write_job {
+typedef struct write_job {
     const ur_layout *layout;
     const ur_piece *pieces;
     const ur_machine *machine;
-    const ur_write_settings *options; /* never NULL */
-} ur_write_job;
+    const write_settings *options; /* never NULL */
+} write_job;
 
-typedef struct ur_writer {
+typedef struct format_writer {
     const char *format;    /* for messages: "SVG" */
     const char *extension; /* without the dot: "svg" */
     bool one_file;         /* every sheet in one file (PDF pages) */
@@ -60,7 +60,7 @@ typedef struct ur_writer {
      * Optional.  Sets *document, owned by the writer until end_document or
      * discard_document, before any sheet.
      */
-    ur_status (*begin_document)(void **document, const ur_write_job *job, ur_error *error);
+    ur_status (*begin_document)(void **document, const write_job *job, ur_error *error);
 
     /*
      * Starts sheet index (of job->layout) on file and sets *state, owned by
@@ -68,7 +68,7 @@ typedef struct ur_writer {
      * (NULL for a one-file format); document is begin_document's (or NULL).
      */
     ur_status (*begin_sheet)(void **state, void *document, FILE *file, size_t index,
-                             const ur_write_job *job, ur_error *error);
+                             const write_job *job, ur_error *error);
 
     /* Optional: each piece placed on the sheet, before any layer (fills, labels). */
     ur_status (*piece)(void *state, const ur_piece *piece, const ur_placement *placement,
@@ -102,25 +102,25 @@ typedef struct ur_writer {
 
     /* Optional (needed with begin_document): frees the document after a failure. */
     void (*discard_document)(void *document);
-} ur_writer;
+} format_writer;
 
 /* Checks shared by the formats (style.c). */
 
 /* The machine's style for op, refused when a format could not show it. */
-ur_status ur_style_check(const ur_machine *machine, ur_op op, ur_error *error);
+ur_status style_check(const ur_machine *machine, ur_op op, ur_error *error);
 
 /* "#RRGGBB" as 0xRRGGBB; the style has been checked. */
-unsigned long ur_style_rgb(const ur_op_style *style);
+unsigned long style_rgb(const ur_op_style *style);
 
 /*
  * The dash pattern of a style in mm, at most max numbers, into dashes;
  * returns how many (0: solid).  Numbers that are not positive end it.
  */
-size_t ur_style_dashes(const ur_op_style *style, double *dashes, size_t max);
+size_t style_dashes(const ur_op_style *style, double *dashes, size_t max);
 
-extern const ur_writer ur_svg_writer;
-extern const ur_writer ur_dxf_writer;
-extern const ur_writer ur_pdf_writer;
-extern const ur_writer ur_png_writer;
+extern const format_writer svg_writer;
+extern const format_writer dxf_writer;
+extern const format_writer pdf_writer;
+extern const format_writer png_writer;
 
 #endif

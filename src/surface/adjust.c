@@ -482,8 +482,8 @@ static ur_status adjust_rail2(const ur_vec3 *rail1, size_t count1, ur_vec3 *rail
 ur_status ur_strip_adjust_rail2(const ur_vec3 *rail1, size_t count1, ur_vec3 *rail2, size_t count2,
                                 const ur_vec3 *direction, double *largest, ur_error *error)
 {
-    ur_gsl_errors_off();
+    gsl_errors_off();
     ur_status status = adjust_rail2(rail1, count1, rail2, count2, direction, largest, error);
-    ur_gsl_errors_restore();
+    gsl_errors_restore();
     return status;
 }

@@ -142,7 +142,7 @@ static ur_status keep_cubics(ur_curve *curve, const double *values, int axis, ur
 {
     const double *knots = curve->knots;
     size_t n = curve->knot_count;
-    ur_gsl_errors_off();
+    gsl_errors_off();
     gsl_spline *spline =
         gsl_spline_alloc(curve->closed ? gsl_interp_cspline_periodic : gsl_interp_cspline, n);
     gsl_interp_accel *accel = gsl_interp_accel_alloc();
@@ -162,7 +162,7 @@ static ur_status keep_cubics(ur_curve *curve, const double *values, int axis, ur
         gsl_spline_free(spline);
     if (accel)
         gsl_interp_accel_free(accel);
-    ur_gsl_errors_restore();
+    gsl_errors_restore();
     return built ? UR_OK
                  : ur_error_set(error, UR_ERROR_INTERNAL, "cannot build the curve's spline");
 }
@@ -322,7 +322,7 @@ ur_status ur_curve_length(ur_curve *curve, double u_start, double u_end, double 
                           ur_error *error)
 {
     enum { LIMIT = 2000 };
-    ur_gsl_errors_off();
+    gsl_errors_off();
     gsl_integration_workspace *workspace = gsl_integration_workspace_alloc(LIMIT);
     bool allocated = workspace != NULL;
     gsl_function f = {speed_at, curve};
@@ -332,7 +332,7 @@ ur_status ur_curve_length(ur_curve *curve, double u_start, double u_end, double 
                          : GSL_ENOMEM;
     if (allocated)
         gsl_integration_workspace_free(workspace);
-    ur_gsl_errors_restore();
+    gsl_errors_restore();
     if (!allocated)
         return ur_error_out_of_memory(error);
     if (code && !(estimate <= 1e-9 * fabs(*length)))

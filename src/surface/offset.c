@@ -186,8 +186,8 @@ static ur_status check_fold(ur_ruled *ruled, const bend_survey *survey, double s
     double v = signed_distance > 0 ? survey->most_v : survey->least_v;
     char place[256], radius[64];
     describe_place(ruled, u, place, sizeof place);
-    ur_c_snprintf(radius, sizeof radius,
-                  isinf(k) ? "0 mm (an apex or edge of regression)" : "%.4g mm", 1.0 / fabs(k));
+    c_snprintf(radius, sizeof radius, isinf(k) ? "0 mm (an apex or edge of regression)" : "%.4g mm",
+               1.0 / fabs(k));
     return ur_error_set(error, UR_ERROR_INPUT,
                         "moving the surface %.4g mm %s its bend would fold it over itself: the "
                         "bend radius there is only %s, %s, %.0f %% of the way along the ruling; "

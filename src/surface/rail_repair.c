@@ -690,11 +690,11 @@ static const char *rail_names[4] = {"", "rail 1", "rail 2", "both rails"};
 static void describe_gaps(const ur_interval *gaps, size_t gap_count, char *text, size_t size)
 {
     if (gap_count == 1)
-        ur_c_snprintf(text, size, "from %.1f to %.1f mm along rail 1", gaps[0].arc_start,
-                      gaps[0].arc_end);
+        c_snprintf(text, size, "from %.1f to %.1f mm along rail 1", gaps[0].arc_start,
+                   gaps[0].arc_end);
     else
-        ur_c_snprintf(text, size, "from %.1f to %.1f mm along rail 1 (the first of %zu gaps)",
-                      gaps[0].arc_start, gaps[0].arc_end, gap_count);
+        c_snprintf(text, size, "from %.1f to %.1f mm along rail 1 (the first of %zu gaps)",
+                   gaps[0].arc_start, gaps[0].arc_end, gap_count);
 }
 
 static ur_status refuse_too_far(const problem *p, const ur_rail_repair_options *options,
@@ -897,8 +897,8 @@ ur_status ur_rails_repair(ur_vec3 *rail1, size_t count1, ur_vec3 *rail2, size_t 
                           const ur_rail_repair_options *options, ur_rail_repair_report *report,
                           ur_error *error)
 {
-    ur_gsl_errors_off();
+    gsl_errors_off();
     ur_status status = repair_rails(rail1, count1, rail2, count2, options, report, error);
-    ur_gsl_errors_restore();
+    gsl_errors_restore();
     return status;
 }

@@ -276,11 +276,11 @@ void describe_place(ur_ruled *ruled, double u, char *text, size_t size)
             fabs(ur_curve_point_parameter(ruled->curve, nearest) - u))
             nearest = i;
     if (points > 0)
-        ur_c_snprintf(text, size, "near point %zu (%.4g, %.4g, %.4g), %.4g mm along the curve",
-                      nearest + 1, d[0].x, d[0].y, d[0].z, arc);
+        c_snprintf(text, size, "near point %zu (%.4g, %.4g, %.4g), %.4g mm along the curve",
+                   nearest + 1, d[0].x, d[0].y, d[0].z, arc);
     else
-        ur_c_snprintf(text, size, "at (%.4g, %.4g, %.4g), %.4g mm along the curve", d[0].x, d[0].y,
-                      d[0].z, arc);
+        c_snprintf(text, size, "at (%.4g, %.4g, %.4g), %.4g mm along the curve", d[0].x, d[0].y,
+                   d[0].z, arc);
 }
 
 enum { CHECK_SAMPLES = 4000 };
@@ -611,10 +611,10 @@ static ur_status integrate_pieces(ur_ruled *ruled, gsl_function *f, bool through
                     .through_rail2 = through_rail2 && two_rails(ruled),
                     .relative = relative,
                     .rule = quadrature_rule(ruled, false)};
-    ur_gsl_errors_off();
+    gsl_errors_off();
     q.workspace = gsl_integration_workspace_alloc(QUADRATURE_LIMIT);
     if (!q.workspace) {
-        ur_gsl_errors_restore();
+        gsl_errors_restore();
         return ur_error_out_of_memory(error);
     }
     double sigma = 0.0, slope;
@@ -628,7 +628,7 @@ static ur_status integrate_pieces(ur_ruled *ruled, gsl_function *f, bool through
         from = to;
     }
     gsl_integration_workspace_free(q.workspace);
-    ur_gsl_errors_restore();
+    gsl_errors_restore();
     *result = q.total;
     if (q.failure)
         return ur_error_set(error, UR_ERROR_INTERNAL, "quadrature did not converge: %s",
@@ -674,9 +674,9 @@ ur_status ur_ruled_area(ur_ruled *ruled, double u_start, double u_end, double *a
                         ur_error *error)
 {
     area_context context = {.ruled = ruled};
-    ur_gsl_errors_off();
+    gsl_errors_off();
     context.inner = gsl_integration_workspace_alloc(QUADRATURE_LIMIT);
-    ur_gsl_errors_restore();
+    gsl_errors_restore();
     if (!context.inner)
         return ur_error_out_of_memory(error);
     gsl_function f = {ruling_integral, &context};

@@ -58,11 +58,11 @@ void pairing_eval(ur_pairing *pairing, double u, double low, double high, double
                   double *slope)
 {
     if (!pairing->solved) {
-        ur_gsl_errors_off(); /* u outside the table: NaN, not an abort */
+        gsl_errors_off(); /* u outside the table: NaN, not an abort */
         *sigma = gsl_interp_eval(pairing->interp, pairing->u, pairing->sigma, u, pairing->accel);
         *slope =
             gsl_interp_eval_deriv(pairing->interp, pairing->u, pairing->sigma, u, pairing->accel);
-        ur_gsl_errors_restore();
+        gsl_errors_restore();
         return;
     }
     ur_vec3 c1[3], d2[3];
@@ -176,13 +176,13 @@ static ur_status point_pairing(ur_pairing *pairing, ur_error *error)
 
 static ur_status interpolate_pairing(ur_pairing *pairing, ur_error *error)
 {
-    ur_gsl_errors_off();
+    gsl_errors_off();
     pairing->interp = gsl_interp_alloc(gsl_interp_steffen, pairing->count);
     pairing->accel = gsl_interp_accel_alloc();
     bool made = pairing->interp && pairing->accel;
     int code = made ? gsl_interp_init(pairing->interp, pairing->u, pairing->sigma, pairing->count)
                     : GSL_ENOMEM;
-    ur_gsl_errors_restore();
+    gsl_errors_restore();
     if (!made)
         return ur_error_out_of_memory(error);
     if (code != GSL_SUCCESS)

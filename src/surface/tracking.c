@@ -154,9 +154,9 @@ static double brent_steps(ur_pairing *pairing, const ur_vec3 c1[3], double low, 
 
 static double brent(ur_pairing *pairing, const ur_vec3 c1[3], double low, double high)
 {
-    ur_gsl_errors_off();
+    gsl_errors_off();
     double root = brent_steps(pairing, c1, low, high);
-    ur_gsl_errors_restore();
+    gsl_errors_restore();
     return root;
 }
 
@@ -983,9 +983,9 @@ double pairing_solved_slope(ur_pairing *pairing, double u, const ur_vec3 c1[3], 
 ur_status pairing_track(ur_pairing *pairing, ur_error *error)
 {
     pairing->solved = true;
-    ur_gsl_errors_off();
+    gsl_errors_off();
     pairing->solver = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
-    ur_gsl_errors_restore();
+    gsl_errors_restore();
     if (!pairing->solver)
         return ur_error_out_of_memory(error);
     size_t points = ur_curve_point_count(pairing->rail1);
