@@ -88,11 +88,10 @@ REPLAY_BINARIES = $(FUZZ_SOURCES:tests/fuzz/%.c=$(BUILD)/replay/%)
 #     and then where it stops depends on the machine's load;
 #   signals_stop_cleanly: it signals unroll 0.3 s and 1 s after starting it,
 #     which under valgrind can be before unroll has set its handlers up;
-#   papercraft_of_the_sample_meshes: its five unfoldings with tabs take 12 s,
+#   papercraft_of_the_sample_meshes: its five unfoldings with tabs take 9 s,
 #     well over half an hour under valgrind (one UV sphere alone ran 9
-#     minutes), and the unfolding's search stops at 5 s of wall-clock time,
-#     so that there it would not unfold as the test expects.  The same code
-#     runs under valgrind in the assembly guide's and the seams' tests;
+#     minutes).  The same code runs under valgrind in the assembly guide's
+#     and the seams' tests;
 #   adjust_reshapes_a_wavy_rail: its least-squares repairs of rail 2 take
 #     12 s, 5 to 10 minutes under valgrind; the sanitizer build runs it, and
 #     test_rail_repair the same repair, and adjust_rail2_repairs_a_short_rail
