@@ -377,26 +377,11 @@ static ur_status adjust_window(problem *p, const window *w, ur_error *error)
 
 /* ---- All the gaps ------------------------------------------------------- */
 
-/* Builds the strip on the given points; the caller frees it. */
-static ur_status strip_of(const ur_vec3 *rail1, size_t count1, const ur_vec3 *rail2, size_t count2,
-                          ur_ruled *strip, ur_error *error)
-{
-    ur_curve *curves[2] = {NULL, NULL};
-    ur_status status = ur_curve_new_interpolating(rail1, count1, false, &curves[0], error);
-    if (status == UR_OK)
-        status = ur_curve_new_interpolating(rail2, count2, false, &curves[1], error);
-    if (status != UR_OK) {
-        ur_curve_free(curves[0]);
-        return status;
-    }
-    return ur_ruled_strip(curves[0], curves[1], strip, error);
-}
-
 static bool strip_everywhere(const ur_vec3 *rail1, size_t count1, const ur_vec3 *rail2,
                              size_t count2)
 {
     ur_ruled strip;
-    if (strip_of(rail1, count1, rail2, count2, &strip, NULL) != UR_OK)
+    if (surface_strip_of_points(rail1, count1, rail2, count2, &strip, NULL) != UR_OK)
         return false;
     const ur_interval *gaps;
     bool everywhere = ur_ruled_gaps(&strip, &gaps) == 0;
@@ -436,7 +421,7 @@ static ur_status adjust_rail2(const ur_vec3 *rail1, size_t count1, ur_vec3 *rail
         direction = &unit;
     }
     ur_ruled strip;
-    ur_status status = strip_of(rail1, count1, rail2, count2, &strip, error);
+    ur_status status = surface_strip_of_points(rail1, count1, rail2, count2, &strip, error);
     if (status != UR_OK)
         return status;
     const ur_interval *gaps;

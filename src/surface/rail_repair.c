@@ -590,21 +590,6 @@ static ur_status solve(problem *p, gsl_vector *x, size_t *iterations, ur_error *
     return UR_OK;
 }
 
-/* Builds the strip between the given points; the caller frees it. */
-static ur_status strip_of(const ur_vec3 *rail1, size_t count1, const ur_vec3 *rail2, size_t count2,
-                          ur_ruled *strip, ur_error *error)
-{
-    ur_curve *curves[2] = {NULL, NULL};
-    ur_status status = ur_curve_new_interpolating(rail1, count1, false, &curves[0], error);
-    if (status == UR_OK)
-        status = ur_curve_new_interpolating(rail2, count2, false, &curves[1], error);
-    if (status != UR_OK) {
-        ur_curve_free(curves[0]);
-        return status;
-    }
-    return ur_ruled_strip(curves[0], curves[1], strip, error);
-}
-
 /*
  * Whether the strip exists along all of rail 1 with its edge of regression
  * clear of the strip: at each of SAMPLES_PER_POINT samples per point of
@@ -615,7 +600,7 @@ static bool strip_everywhere(const ur_vec3 *rail1, size_t count1, const ur_vec3 
                              size_t count2)
 {
     ur_ruled strip;
-    if (strip_of(rail1, count1, rail2, count2, &strip, NULL) != UR_OK)
+    if (surface_strip_of_points(rail1, count1, rail2, count2, &strip, NULL) != UR_OK)
         return false;
     const ur_interval *gaps;
     bool everywhere = ur_ruled_gaps(&strip, &gaps) == 0;
@@ -842,7 +827,7 @@ static ur_status repair_rails(ur_vec3 *rail1, size_t count1, ur_vec3 *rail2, siz
     if (status != UR_OK)
         return status;
     ur_ruled strip;
-    status = strip_of(rail1, count1, rail2, count2, &strip, error);
+    status = surface_strip_of_points(rail1, count1, rail2, count2, &strip, error);
     if (status != UR_OK)
         return status;
     const ur_interval *gaps;

@@ -7,6 +7,7 @@
  * through GSL's monotone Steffen interpolation.
  */
 #include "pairing.h"
+#include "surface_internal.h"
 
 #include <gsl/gsl_errno.h>
 #include <stdlib.h>
@@ -287,4 +288,19 @@ ur_status ur_ruled_strip(ur_curve *rail1, ur_curve *rail2, ur_ruled *ruled, ur_e
     if (status != UR_OK)
         ur_ruled_free(ruled);
     return status;
+}
+
+/* The strip between two rails given as points (surface_internal.h). */
+ur_status surface_strip_of_points(const ur_vec3 *rail1, size_t count1, const ur_vec3 *rail2,
+                                  size_t count2, ur_ruled *strip, ur_error *error)
+{
+    ur_curve *curves[2] = {NULL, NULL};
+    ur_status status = ur_curve_new_interpolating(rail1, count1, false, &curves[0], error);
+    if (status == UR_OK)
+        status = ur_curve_new_interpolating(rail2, count2, false, &curves[1], error);
+    if (status != UR_OK) {
+        ur_curve_free(curves[0]);
+        return status;
+    }
+    return ur_ruled_strip(curves[0], curves[1], strip, error);
 }

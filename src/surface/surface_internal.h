@@ -30,4 +30,12 @@ void describe_place(ur_ruled *ruled, double u, char *text, size_t size);
 /* The first gap of the domain of existence inside the part in use, or NULL (ruled.c). */
 const ur_interval *ruled_gap_in_use(ur_ruled *ruled);
 
+/*
+ * The strip between rails through the given points (open curves through
+ * them, as the command reads rails); the caller frees it with
+ * ur_ruled_free.  Shared by the local and the global rail repairs.
+ */
+ur_status surface_strip_of_points(const ur_vec3 *rail1, size_t count1, const ur_vec3 *rail2,
+                                  size_t count2, ur_ruled *strip, ur_error *error);
+
 #endif
