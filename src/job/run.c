@@ -53,6 +53,18 @@ static size_t sheet_choices(const job_run *run, const ur_machine *machine,
     return count;
 }
 
+/*
+ * The sheets to try, as sheet_choices, without its note: placing says it
+ * when no stock fits the bed, and this is asked before placing.
+ */
+static size_t quiet_sheet_choices(const job_run *run, const ur_machine *machine,
+                                  const ur_material *material, ur_sheet_size *choices)
+{
+    job_run quiet = *run;
+    quiet.job.quiet = true;
+    return sheet_choices(&quiet, machine, material, choices);
+}
+
 typedef struct job_state {
     ur_machine machine;
     ur_material material;
@@ -174,9 +186,7 @@ job_room job_fit_room(const job_run *run, const ur_machine *machine, const ur_ma
     if (run->job.roll_width > 0)
         return room;
     ur_sheet_size choices[UR_MAX_STOCK_SIZES + 1];
-    job_run quiet = *run; /* placing says it when no stock fits the bed */
-    quiet.job.quiet = true;
-    size_t count = sheet_choices(&quiet, machine, material, choices);
+    size_t count = quiet_sheet_choices(run, machine, material, choices);
     double length = 0, width = 0;
     for (size_t k = 0; k < count; k++) {
         double a = fmax(choices[k].width, choices[k].height);
@@ -323,9 +333,9 @@ ur_status job_piece_fits_stock(const job_run *run, const ur_machine *machine,
     if (run->job.roll_width > 0)
         return UR_OK;
     ur_sheet_size choices[UR_MAX_STOCK_SIZES + 1];
-    job_run quiet = *run; /* placing says it when no stock fits the bed */
+    size_t choice_count = quiet_sheet_choices(run, machine, material, choices);
+    job_run quiet = *run; /* a trial placing: no progress lines */
     quiet.job.quiet = true;
-    size_t choice_count = sheet_choices(&quiet, machine, material, choices);
     ur_nest_options options = nest_options_of(&quiet, machine, material, 1);
     options.remnants = NULL;
     options.remnant_count = 0;
