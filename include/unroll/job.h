@@ -138,22 +138,53 @@ typedef struct ur_job {
 
 /*
  * The settings a job takes by name (a command line's options, a job
- * file's <option name="..." value="..."/>): how it is nested, which
- * files it writes, on which profiles.  A setting without a value is a
- * flag.  ur_job_option_name gives the name of setting index ("format",
+ * file's <option name="..." value="..."/>): the surface and its
+ * parameters, how it becomes pieces, how they are nested, which files are
+ * written, on which profiles.  A setting without a value is a flag.
+ * ur_job_option_name gives the name of setting index ("radius", "format",
  * "nest-time", ...) and whether it takes a value; NULL past the last.
  */
 UR_API size_t ur_job_option_count(void);
 UR_API const char *ur_job_option_name(size_t index, bool *takes_value);
 
+/* Which jobs a setting is for. */
+typedef enum ur_job_option_kind {
+    /* profiles, stock, nesting and files: every job that writes cut files (ur_job_run,
+       ur_job_nest) */
+    UR_JOB_OPTION_OUTPUT,
+    /* the surface and how it becomes pieces (ur_job_run), on the surfaces ur_job_option_applies
+       names */
+    UR_JOB_OPTION_SURFACE,
+    /* the pictures and tables of a surface's analysis (png, csv), which no run writes */
+    UR_JOB_OPTION_ANALYSIS,
+} ur_job_option_kind;
+
+/* The kind of setting index (UR_JOB_OPTION_OUTPUT past the last). */
+UR_API ur_job_option_kind ur_job_option_kind_at(size_t index);
+
+/*
+ * Whether the named setting applies to a surface ("cylinder", ..., "mesh"):
+ * "pitch" to a helicoid, not to a cylinder.  False for an unknown name.
+ */
+UR_API bool ur_job_option_applies(const char *name, const char *surface);
+
 /*
  * Sets the named setting (one of ur_job_option_name's) from its value (NULL
  * for a flag); the value is borrowed.  UR_ERROR_INPUT with a message
  * saying what is wrong with the value, not naming the setting (the
- * caller says where it came from).
+ * caller says where it came from): a value that is not one, a flag given
+ * a value, a setting that does not apply to job->surface.
  */
 UR_API ur_status ur_job_option_set(ur_job *job, const char *name, const char *value,
                                    ur_error *error);
+
+/*
+ * Whether the job's settings go together (max-strain with a flattening by
+ * strips or charts, the adjust- settings with adjust, ...): UR_ERROR_INPUT
+ * with a message starting with job->command otherwise.  ur_job_run and
+ * ur_job_parts_add check it first.
+ */
+UR_API ur_status ur_job_check(const ur_job *job, ur_error *error);
 
 /* The defaults: co2-60w, plywood-3mm, the allowances the job needs, every number unset. */
 UR_API void ur_job_init(ur_job *job, const char *surface);

@@ -23,10 +23,6 @@ enum { EXIT_INTERNAL = 1, EXIT_USAGE = 2, EXIT_IO = 3, EXIT_MEMORY = 4 };
 /* What is done with the surface. */
 typedef enum cli_action { CLI_DEVELOP, CLI_ANALYZE, CLI_COMPARE } cli_action;
 
-/* --allowances auto|none|LIST and --bridges auto|N|none (values.c); false after a message. */
-bool cli_parse_allowances(ur_job *job, const char *value);
-bool cli_parse_bridges(ur_job *job, const char *value);
-
 /*
  * Messages from now on say where the words came from, as "FILE:LINE"
  * ("unroll: FILE:LINE: message"); NULL or "" for the command line.
@@ -73,22 +69,24 @@ int cli_exit_status(const ur_error *error);
 ur_job_callbacks cli_callbacks(const ur_job *job);
 
 /*
- * The options every command that writes cut files takes alike (surface
- * jobs, job files' parts, nest): the library's settings (ur_job_option_name),
- * in a getopt table with ids CLI_SHARED_OPTION + their index (values.c).
+ * The options of the commands that write cut files are the library's
+ * settings (ur_job_option_name), in a getopt table with ids
+ * CLI_SHARED_OPTION + their index (values.c).
  */
 enum { CLI_SHARED_OPTION = 1000 };
 
 /*
- * A getopt table: own's entries (up to its {NULL}), then the shared
- * options, then {NULL}, in at most `most` entries; returns the entries
- * before the {NULL}.
+ * A getopt table: own's entries (up to its {NULL}), then the library's
+ * settings (all of them for a surface job, else those of every job,
+ * UR_JOB_OPTION_OUTPUT), then {NULL}, in at most `most` entries; returns
+ * the entries before the {NULL}.
  */
 struct option;
-size_t cli_option_table(const struct option *own, struct option *table, size_t most);
+size_t cli_option_table(const struct option *own, bool surface_jobs, struct option *table,
+                        size_t most);
 
-/* Takes the shared option id's value into job; false after a message naming it. */
-bool cli_take_shared_option(ur_job *job, int id, const char *value);
+/* Sets the named setting into job (ur_job_option_set); false after a message naming it. */
+bool cli_set_option(ur_job *job, const char *name, const char *value);
 
 /* Whether -o and --format say which files to write; false after a message (values.c). */
 bool cli_check_output(const ur_job *job);

@@ -63,6 +63,7 @@ static const char usage[] =
     "  --sheets N             at most N sheets; --remnant WxH  an offcut, filled first\n"
     "  --nest-time S --seed N the search for a better layout (default 1 s, seed 0)\n"
     "  --threads N            roll searches side by side (default one per processor)\n"
+    "  --margin MM --spacing MM  free along the sheet's edges and between pieces\n"
     "  --merge-lines          parts may touch; a line two parts share is cut once\n"
     "  --report FILE.json     write a JSON report ('-' for standard output)\n"
     "  --quiet                no summary on standard error\n"

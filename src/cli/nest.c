@@ -10,31 +10,22 @@
 #include "cli.h"
 
 #include <getopt.h>
-#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "unroll/out.h"
 
+/* nest's own options, about the files it reads; the library's settings follow them. */
 enum nest_option {
-    NEST_SHEET = 256,
-    NEST_UNITS,
+    NEST_UNITS = 256,
     NEST_COPIES,
-    NEST_MARGIN,
-    NEST_SPACING,
-    NEST_NO_SPLIT,
     NEST_STRICT,
 };
 
 static const struct option nest_options[] = {
-    {"output", required_argument, NULL, 'o'},
-    {"sheet", required_argument, NULL, NEST_SHEET},
     {"units", required_argument, NULL, NEST_UNITS},
     {"copies", required_argument, NULL, NEST_COPIES},
-    {"margin", required_argument, NULL, NEST_MARGIN},
-    {"spacing", required_argument, NULL, NEST_SPACING},
-    {"no-split", no_argument, NULL, NEST_NO_SPLIT},
     {"strict", no_argument, NULL, NEST_STRICT},
     {"help", no_argument, NULL, 'h'},
     {NULL, 0, NULL, 0},
@@ -42,13 +33,12 @@ static const struct option nest_options[] = {
 
 /* What the command line says beyond what a surface job holds. */
 typedef struct nest_job {
-    ur_job job;     /* output, profiles, sheet, margin, spacing, report, quiet */
+    ur_job job;     /* output, profiles, sheet, margin, spacing, split, report, quiet */
     double unit_mm; /* --units: mm per unit of a file that gives none; 0 when not given */
     long copies;    /* --copies: of every part, unless FILE:N says otherwise */
     char **files;   /* argv's file arguments, FILE or FILE:N */
     size_t file_count;
-    bool no_split; /* --no-split: a part longer than any sheet is an error, not cut */
-    bool strict;   /* --strict: a file with open shapes (or lines no part holds) is refused */
+    bool strict; /* --strict: a file with open shapes (or lines no part holds) is refused */
 } nest_job;
 
 static bool parse_positive_count(const char *what, const char *value, long most, long *count)
@@ -60,51 +50,18 @@ static bool parse_positive_count(const char *what, const char *value, long most,
     return true;
 }
 
-static bool parse_length(const char *what, const char *value, double *length)
-{
-    char *end = NULL;
-    double parsed = strtod(value, &end);
-    if (end == value || *end != '\0' || !(parsed >= 0) || !(parsed <= UR_LENGTH_MAX)) {
-        cli_message("nest: %s: '%s' is not a length from 0 to %g mm", what, value, UR_LENGTH_MAX);
-        return false;
-    }
-    *length = parsed;
-    return true;
-}
-
-static bool parse_sheet_size(const char *value, ur_job *job)
-{
-    char *end = NULL;
-    double width = strtod(value, &end);
-    double height = end && *end == 'x' ? strtod(end + 1, &end) : NAN;
-    if (!end || *end != '\0' || !(width > 0) || !(height > 0) || !(width <= UR_LENGTH_MAX) ||
-        !(height <= UR_LENGTH_MAX)) {
-        cli_message("nest: --sheet: '%s' is not WxH in mm up to %g, e.g. 600x400", value,
-                    UR_LENGTH_MAX);
-        return false;
-    }
-    job->sheet_width = width;
-    job->sheet_height = height;
-    return true;
-}
-
 static bool take_nest_option(nest_job *n, int id, const char *value)
 {
     ur_job *job = &n->job;
+    if (id == 'o')
+        return cli_set_option(job, "output", value);
     if (id >= CLI_SHARED_OPTION)
-        return cli_take_shared_option(job, id, value);
+        return cli_set_option(job, ur_job_option_name((size_t)(id - CLI_SHARED_OPTION), NULL),
+                              value);
     switch (id) {
-    case 'o':
-        job->output_path = value;
-        return true;
-    case NEST_NO_SPLIT:
-        n->no_split = true;
-        return true;
     case NEST_STRICT:
         n->strict = true;
         return true;
-    case NEST_SHEET:
-        return parse_sheet_size(value, job);
     case NEST_UNITS:
         n->unit_mm = ur_parts_unit_mm(value);
         if (n->unit_mm > 0)
@@ -113,10 +70,6 @@ static bool take_nest_option(nest_job *n, int id, const char *value)
         return false;
     case NEST_COPIES:
         return parse_positive_count("--copies", value, 10000, &n->copies);
-    case NEST_MARGIN:
-        return parse_length("--margin", value, &job->margin);
-    case NEST_SPACING:
-        return parse_length("--spacing", value, &job->spacing);
     default:
         return false;
     }
@@ -158,12 +111,13 @@ static int parse_nest(int argc, char **argv, nest_job *n)
     job->machine_name = "co2-60w";
     job->material_name = "plywood-3mm";
     job->margin = job->spacing = -1;
+    job->develop.split = true;
     job->nest_time = 2.0;
     opterr = 0;
     optind = 1;
     int id;
     struct option table[sizeof nest_options / sizeof nest_options[0] + 32];
-    cli_option_table(nest_options, table, sizeof table / sizeof table[0]);
+    cli_option_table(nest_options, false, table, sizeof table / sizeof table[0]);
     while ((id = getopt_long(argc, argv, ":o:h", table, NULL)) != -1) {
         if (id == 'h') {
             fputs(nest_help, stdout);
@@ -329,8 +283,8 @@ static int run_nest(nest_job *n, ur_piece **pieces, size_t *count, ur_layout *la
     n->job.material = &material;
     ur_job_callbacks callbacks = cli_callbacks(&n->job);
     ur_job_result result;
-    if (ur_job_nest(&n->job, &callbacks, !n->no_split, pieces, count, layout, &result, &error) !=
-        UR_OK) {
+    if (ur_job_nest(&n->job, &callbacks, n->job.develop.split, pieces, count, layout, &result,
+                    &error) != UR_OK) {
         cli_message("nest: %s", error.message);
         return cli_exit_status(&error);
     }

@@ -1,9 +1,11 @@
 /*
  * options.c: the settings a job takes by name, as words (a command line's
- * options, a job file's <option> elements), described once: each value
- * checked here, with a message that says what is wrong with it (the
- * caller names the setting).
+ * options, a job file's <option> elements), looked up in one table (the
+ * surface's in surface_options.c, the rest in output_options.c); the
+ * parsers their values share; and whether a job's settings go together.
+ * Messages say what is wrong with a value; the caller names the setting.
  */
+#include "options.h"
 #include "stages.h"
 
 #include "../base/c_locale.h"
@@ -14,8 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Whether text is a whole number from least to most (decimal, nothing after it). */
-static bool whole_number(const char *text, long least, long most, long *value)
+bool job_whole_number(const char *text, long least, long most, long *value)
 {
     char *end = NULL;
     errno = 0;
@@ -26,247 +27,138 @@ static bool whole_number(const char *text, long least, long most, long *value)
     return true;
 }
 
-static ur_status set_formats(ur_job *job, const char *value, ur_error *error)
+ur_status job_number(const char *text, double *value, ur_error *error)
 {
-    ur_error parsed;
-    if (ur_formats_parse(value, &job->formats, &parsed) == UR_OK)
-        return UR_OK;
-    return ur_error_set(error, UR_ERROR_INPUT,
-                        "%s (give svg, dxf, pdf or png, or several: svg,dxf)", parsed.message);
-}
-
-static ur_status set_dxf_version(ur_job *job, const char *value, ur_error *error)
-{
-    if (strcmp(value, "12") == 0 || strcmp(value, "R12") == 0) {
-        job->dxf_version = UR_DXF_R12;
-        return UR_OK;
-    }
-    if (strcmp(value, "2000") == 0 || strcmp(value, "R2000") == 0) {
-        job->dxf_version = UR_DXF_R2000;
-        return UR_OK;
-    }
-    return ur_error_set(error, UR_ERROR_INPUT, "'%s' is not 12 or 2000", value);
-}
-
-static ur_status set_dpi(ur_job *job, const char *value, ur_error *error)
-{
-    char *end = NULL;
+    char *end;
     errno = 0;
-    double dpi = c_strtod(value, &end);
-    if (end == value || *end != '\0' || !isfinite(dpi) || dpi < 10 || dpi > 2400)
+    double parsed = c_strtod(text, &end);
+    if (end == text || *end != '\0' || errno == ERANGE || !isfinite(parsed))
+        return ur_error_set(error, UR_ERROR_INPUT, "'%s' is not a finite number", text);
+    if (fabs(parsed) > UR_LENGTH_MAX)
         return ur_error_set(error, UR_ERROR_INPUT,
-                            "'%s' is not a resolution from 10 to 2400 dots per inch", value);
-    job->dpi = dpi;
-    return UR_OK;
-}
-
-static ur_status set_order(ur_job *job, const char *value, ur_error *error)
-{
-    job->drawing_order = strcmp(value, "none") == 0;
-    if (job->drawing_order || strcmp(value, "cut") == 0)
-        return UR_OK;
-    return ur_error_set(error, UR_ERROR_INPUT, "'%s' is not cut or none", value);
-}
-
-static ur_status set_rotations(ur_job *job, const char *value, ur_error *error)
-{
-    long count;
-    if (!whole_number(value, 1, 360, &count))
-        return ur_error_set(error, UR_ERROR_INPUT, "'%s' is not a count of turns from 1 to 360",
-                            value);
-    job->rotations = count;
-    return UR_OK;
-}
-
-static ur_status set_roll(ur_job *job, const char *value, ur_error *error)
-{
-    char *end = NULL;
-    double width = c_strtod(value, &end);
-    if (end == value || *end != '\0' || !(width > 0) || !(width <= UR_LENGTH_MAX))
-        return ur_error_set(error, UR_ERROR_INPUT, "'%s' is not a width in mm up to %g", value,
+                            "'%s' is beyond the largest number unroll takes, %g", text,
                             UR_LENGTH_MAX);
-    job->roll_width = width;
+    *value = parsed;
     return UR_OK;
 }
 
-static ur_status set_sheet_count(ur_job *job, const char *value, ur_error *error)
+const char *job_scan_vector(const char *text, char last, ur_vec3 *vector)
 {
-    long count;
-    if (!whole_number(value, 1, 10000, &count))
-        return ur_error_set(error, UR_ERROR_INPUT, "'%s' is not a count of sheets from 1 to 10000",
-                            value);
-    job->max_sheets = count;
-    return UR_OK;
+    char *end;
+    double c[3];
+    for (int k = 0; k < 3; k++) {
+        errno = 0;
+        c[k] = c_strtod(text, &end);
+        bool separator_ok = k < 2 ? *end == ',' : *end == last;
+        if (end == text || !separator_ok || errno == ERANGE || !isfinite(c[k]) ||
+            fabs(c[k]) > UR_LENGTH_MAX)
+            return NULL;
+        text = end + 1;
+    }
+    *vector = ur_vec3_make(c[0], c[1], c[2]);
+    return text;
 }
 
-/* WIDTHxHEIGHT, repeatable: one more remnant sheet, filled before stock. */
-static ur_status set_remnant(ur_job *job, const char *value, ur_error *error)
+/* Setting index of the one table: the output settings, then the surface's. */
+static const job_setting *setting_at(size_t index)
 {
-    char *end = NULL;
-    double width = c_strtod(value, &end);
-    double height = end != value && (*end == 'x' || *end == 'X') ? c_strtod(end + 1, &end) : NAN;
-    if (*end != '\0' || !isfinite(width) || !isfinite(height) || !(width > 0) || !(height > 0))
-        return ur_error_set(error, UR_ERROR_INPUT, "'%s' is not WIDTHxHEIGHT in mm, e.g. 300x200",
-                            value);
-    if (job->remnant_count == UR_JOB_MAX_REMNANTS)
-        return ur_error_set(error, UR_ERROR_INPUT, "more than %d remnants", UR_JOB_MAX_REMNANTS);
-    job->remnants[job->remnant_count++] = (ur_remnant){width, height};
-    return UR_OK;
+    if (index < job_output_setting_count)
+        return &job_output_settings[index];
+    index -= job_output_setting_count;
+    return index < job_surface_setting_count ? &job_surface_settings[index] : NULL;
 }
 
-static ur_status set_nest_time(ur_job *job, const char *value, ur_error *error)
+static const job_setting *setting_named(const char *name)
 {
-    char *end = NULL;
-    double seconds = c_strtod(value, &end);
-    if (end == value || *end != '\0' || !isfinite(seconds) || seconds < 0 || seconds > 3600)
-        return ur_error_set(error, UR_ERROR_INPUT, "'%s' is not a number of seconds from 0 to 3600",
-                            value);
-    job->nest_time = seconds;
-    return UR_OK;
+    const job_setting *setting;
+    for (size_t k = 0; (setting = setting_at(k)); k++)
+        if (strcmp(setting->name, name) == 0)
+            return setting;
+    return NULL;
 }
 
-static ur_status set_threads(ur_job *job, const char *value, ur_error *error)
+ur_job_option_kind job_setting_kind(const char *name)
 {
-    long threads;
-    if (!whole_number(value, 1, UR_NEST_MAX_THREADS, &threads))
-        return ur_error_set(error, UR_ERROR_INPUT, "'%s' is not a whole number from 1 to %d", value,
-                            UR_NEST_MAX_THREADS);
-    job->threads = (size_t)threads;
-    return UR_OK;
+    const job_setting *setting = setting_named(name);
+    return setting ? setting->kind : UR_JOB_OPTION_OUTPUT;
 }
-
-static ur_status set_seed(ur_job *job, const char *value, ur_error *error)
-{
-    char *end = NULL;
-    errno = 0;
-    unsigned long long seed = strtoull(value, &end, 10);
-    if (end == value || *end != '\0' || errno != 0 || value[0] == '-')
-        return ur_error_set(error, UR_ERROR_INPUT, "'%s' is not a whole number of 0 or more",
-                            value);
-    job->seed = seed;
-    return UR_OK;
-}
-
-/* The most bytes a job name may have: it is a title, not a description. */
-enum { JOB_NAME_MAX = 200 };
-
-static ur_status set_job_name(ur_job *job, const char *value, ur_error *error)
-{
-    size_t length = strlen(value);
-    bool control = false;
-    for (const unsigned char *c = (const unsigned char *)value; *c; c++)
-        control = control || *c < 0x20 || *c == 0x7F;
-    if (length == 0 || length > JOB_NAME_MAX || control)
-        return ur_error_set(error, UR_ERROR_INPUT,
-                            "give a name of 1 to %d bytes without control characters",
-                            JOB_NAME_MAX);
-    job->job_name = value;
-    return UR_OK;
-}
-
-static ur_status set_machine(ur_job *job, const char *value, ur_error *error)
-{
-    (void)error;
-    job->machine_name = value;
-    return UR_OK;
-}
-
-static ur_status set_material(ur_job *job, const char *value, ur_error *error)
-{
-    (void)error;
-    job->material_name = value;
-    return UR_OK;
-}
-
-static ur_status set_report(ur_job *job, const char *value, ur_error *error)
-{
-    (void)error;
-    job->report_path = value;
-    return UR_OK;
-}
-
-static ur_status set_quiet(ur_job *job, const char *value, ur_error *error)
-{
-    (void)value;
-    (void)error;
-    job->quiet = true;
-    return UR_OK;
-}
-
-static ur_status set_no_kerf_compensation(ur_job *job, const char *value, ur_error *error)
-{
-    (void)value;
-    (void)error;
-    job->no_kerf_compensation = true;
-    return UR_OK;
-}
-
-static ur_status set_no_holes(ur_job *job, const char *value, ur_error *error)
-{
-    (void)value;
-    (void)error;
-    job->no_holes = true;
-    return UR_OK;
-}
-
-static ur_status set_merge_lines(ur_job *job, const char *value, ur_error *error)
-{
-    (void)value;
-    (void)error;
-    job->merge_lines = true;
-    return UR_OK;
-}
-
-/* Every setting a job takes by name, described once. */
-static const struct {
-    const char *name;
-    bool takes_value;
-    ur_status (*set)(ur_job *job, const char *value, ur_error *error);
-} settings[] = {
-    {"machine", true, set_machine},
-    {"material", true, set_material},
-    {"report", true, set_report},
-    {"quiet", false, set_quiet},
-    {"no-kerf-compensation", false, set_no_kerf_compensation},
-    {"format", true, set_formats},
-    {"dxf-version", true, set_dxf_version},
-    {"dpi", true, set_dpi},
-    {"job-name", true, set_job_name},
-    {"order", true, set_order},
-    {"rotations", true, set_rotations},
-    {"no-holes", false, set_no_holes},
-    {"merge-lines", false, set_merge_lines},
-    {"roll", true, set_roll},
-    {"sheets", true, set_sheet_count},
-    {"remnant", true, set_remnant},
-    {"nest-time", true, set_nest_time},
-    {"seed", true, set_seed},
-    {"threads", true, set_threads},
-};
-
-enum { SETTING_COUNT = sizeof settings / sizeof settings[0] };
 
 size_t ur_job_option_count(void)
 {
-    return SETTING_COUNT;
+    return job_output_setting_count + job_surface_setting_count;
 }
 
 const char *ur_job_option_name(size_t index, bool *takes_value)
 {
-    if (index >= SETTING_COUNT)
+    const job_setting *setting = setting_at(index);
+    if (!setting)
         return NULL;
     if (takes_value)
-        *takes_value = settings[index].takes_value;
-    return settings[index].name;
+        *takes_value = setting->takes_value;
+    return setting->name;
+}
+
+ur_job_option_kind ur_job_option_kind_at(size_t index)
+{
+    const job_setting *setting = setting_at(index);
+    return setting ? setting->kind : UR_JOB_OPTION_OUTPUT;
+}
+
+static bool applies(const job_setting *setting, const char *surface)
+{
+    if (!setting->surfaces)
+        return true;
+    char word[64];
+    c_snprintf(word, sizeof word, " %s ", surface);
+    return strstr(setting->surfaces, word) != NULL;
+}
+
+bool ur_job_option_applies(const char *name, const char *surface)
+{
+    const job_setting *setting = setting_named(name);
+    return setting && surface && applies(setting, surface);
 }
 
 ur_status ur_job_option_set(ur_job *job, const char *name, const char *value, ur_error *error)
 {
-    for (size_t k = 0; k < SETTING_COUNT; k++)
-        if (strcmp(settings[k].name, name) == 0) {
-            if (settings[k].takes_value && !value)
-                return ur_error_set(error, UR_ERROR_INPUT, "needs a value");
-            return settings[k].set(job, value, error);
-        }
-    return ur_error_set(error, UR_ERROR_INPUT, "'%s' is no setting of a job", name);
+    const job_setting *setting = setting_named(name);
+    if (!setting)
+        return ur_error_set(error, UR_ERROR_INPUT, "no such setting");
+    if (setting->takes_value && !value)
+        return ur_error_set(error, UR_ERROR_INPUT, "needs a value");
+    if (!setting->takes_value && value)
+        return ur_error_set(error, UR_ERROR_INPUT, "takes no value (it is a flag), not '%s'",
+                            value);
+    if (job->surface && !applies(setting, job->surface))
+        return ur_error_set(error, UR_ERROR_INPUT, "does not apply to a %s", job->surface);
+    return setting->set(job, value, error);
+}
+
+/* The settings that say how a strip's rails move, which need adjust to say which move. */
+static bool adjusting(const ur_job *job)
+{
+    return job->has_adjust_direction || job->has_adjust_plane || job->adjust_ends ||
+           !isnan(job->adjust_max) || job->adjusted_rail_path || job->adjusted_rail1_path;
+}
+
+ur_status ur_job_check(const ur_job *job, ur_error *error)
+{
+    const char *command = job->command ? job->command : job->surface ? job->surface : "job";
+    bool mesh = job->surface && strcmp(job->surface, "mesh") == 0;
+    bool charts = mesh && job->flatten < 0 && !job->unfold;
+    if (!isnan(job->max_strain) && !job->strips && !charts)
+        return ur_error_set(error, UR_ERROR_INPUT,
+                            "%s: max-strain goes with flatten strips or charts", command);
+    if (adjusting(job) && !job->adjust_rails)
+        return ur_error_set(error, UR_ERROR_INPUT,
+                            "%s: adjust-direction, adjust-plane, adjust-ends, adjust-max and "
+                            "adjusted-rail go with adjust (or adjust-rail2)",
+                            command);
+    if (job->has_adjust_direction && job->has_adjust_plane)
+        return ur_error_set(error, UR_ERROR_INPUT,
+                            "%s: give adjust-direction or adjust-plane, not both", command);
+    if (job->adjusted_rail1_path && !(job->adjust_rails & UR_REPAIR_RAIL1))
+        return ur_error_set(error, UR_ERROR_INPUT,
+                            "%s: adjusted-rail1 goes with adjust rail1 or both", command);
+    return UR_OK;
 }

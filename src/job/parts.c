@@ -133,6 +133,8 @@ static void free_made(job_pieces_made *made)
 ur_status ur_job_parts_add(ur_job_parts *parts, const ur_job *job, long quantity,
                            const ur_job_callbacks *callbacks, ur_error *error)
 {
+    if (ur_job_check(job, error) != UR_OK)
+        return error->status;
     job_run run = job_run_make(job, callbacks, error);
     run.job.quiet = true;
     run.job.seam_offset = parts->last_seam; /* labels stay unique across the parts */

@@ -796,6 +796,8 @@ ur_status job_pieces(const job_run *run, job_pieces_made *out)
 ur_status ur_job_run(const ur_job *job, const ur_job_callbacks *callbacks, ur_job_result *result,
                      ur_error *error)
 {
+    if (ur_job_check(job, error) != UR_OK)
+        return error->status;
     job_run *run = malloc(sizeof *run); /* a job is large: its remnants */
     if (!run)
         return ur_error_out_of_memory(error);
