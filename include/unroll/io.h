@@ -311,9 +311,11 @@ UR_API ur_status ur_mesh_import_buffer(const char *name, const void *data, size_
 /* ---- Job files ---------------------------------------------------------- */
 
 /*
- * One option of a job, named as on the command line without its dashes:
- * a value, a path (already made relative to the working directory: the job
- * file's directory joined in front) or neither (a flag).
+ * One option of a job, named as the job's settings are (ur_job_option_name,
+ * the command line's options without their dashes): a value, a path
+ * (already made relative to the working directory: the job file's
+ * directory joined in front) or neither (a flag).  ur_job_file_run
+ * (job.h) runs a job file read.
  */
 typedef struct ur_job_file_option {
     char name[64];
@@ -345,6 +347,7 @@ typedef struct ur_job_file {
     char output_name[64];
     char formats[64]; /* "" when not given: SVG */
     char report[64];  /* a file name in the output directory; "" for none */
+    int output_line;  /* of <output>, for messages */
 } ur_job_file;
 
 /*

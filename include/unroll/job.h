@@ -297,6 +297,28 @@ UR_API ur_status ur_job_parts_run(ur_job_parts *parts, const ur_job *job, const 
                                   const char *name, const ur_job_callbacks *callbacks,
                                   ur_job_result *result, ur_error *error);
 
+/* ---- A job file ---------------------------------------------------------- */
+
+/*
+ * Runs a job file (read with ur_job_file_read, unroll-job(5)) as the
+ * parts above: each part a job of its surface and file, the job's
+ * machine, material and settings (<option>), then the part's own material
+ * and settings (so that the part's win), the file's formats; its pieces
+ * made and added as many times as its quantity, named after the part.
+ * Then all are nested together and written once, with one report, into
+ * output_directory (NULL: the file's), which is made when missing (not its
+ * parents) and removed again when the run fails.  The jobs run in context
+ * (as ur_job.context).  quiet: no notes and no progress.  A part's
+ * warnings and failure name the job file and the part's line
+ * ("lamp.xml:7: helicoid: ..."); a setting a part's job refuses,
+ * UR_ERROR_INPUT with nothing written.  result (may be NULL): as
+ * ur_job_parts_run's, first_file the cut files' path.
+ */
+UR_API ur_status ur_job_file_run(const ur_job_file *file, ur_context *context,
+                                 const char *output_directory, bool quiet,
+                                 const ur_job_callbacks *callbacks, ur_job_result *result,
+                                 ur_error *error);
+
 /* ---- Parts drawn elsewhere (unroll nest) --------------------------------- */
 
 /*

@@ -24,12 +24,6 @@ enum { EXIT_INTERNAL = 1, EXIT_USAGE = 2, EXIT_IO = 3, EXIT_MEMORY = 4 };
 typedef enum cli_action { CLI_DEVELOP, CLI_ANALYZE, CLI_COMPARE } cli_action;
 
 /*
- * Messages from now on say where the words came from, as "FILE:LINE"
- * ("unroll: FILE:LINE: message"); NULL or "" for the command line.
- */
-void cli_message_context(const char *context);
-
-/*
  * Whether text is a whole number from least to most (decimal, nothing
  * after it), stored in *value when it is; no message.
  */

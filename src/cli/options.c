@@ -65,21 +65,11 @@ bool cli_is_surface(const char *name)
     return false;
 }
 
-/* Where the words being parsed come from, when not the command line (a job file's line). */
-static char message_context[1200];
-
-void cli_message_context(const char *context)
-{
-    snprintf(message_context, sizeof message_context, "%s", context ? context : "");
-}
-
 void cli_message(const char *format, ...)
 {
     va_list args;
     va_start(args, format);
     fputs("unroll: ", stderr);
-    if (message_context[0])
-        fprintf(stderr, "%s: ", message_context);
     vfprintf(stderr, format, args);
     fputc('\n', stderr);
     va_end(args);

@@ -112,6 +112,7 @@ static ur_status read_part(const char *path, xmlNodePtr node, ur_job_file *job, 
 static ur_status read_output(const char *path, xmlNodePtr node, ur_job_file *job, ur_error *error)
 {
     char directory[sizeof job->output_directory];
+    job->output_line = (int)xmlGetLineNo(node);
     if (!attribute(node, "name", job->output_name, sizeof job->output_name) ||
         !attribute(node, "directory", directory, sizeof directory) ||
         !attribute(node, "formats", job->formats, sizeof job->formats) ||

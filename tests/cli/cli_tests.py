@@ -2702,13 +2702,13 @@ def bad_jobs(work):
         ("quantity.xml", JOB_HEAD + part.replace('surface="cylinder"', 'surface="cylinder" quantity="0"')
          + "  <output name=\"x\"/>\n</job>\n", r"quantity\.xml:4: "),
         ("badoption.xml", JOB_HEAD + part.replace('value="40"', 'value="forty"')
-         + "  <output name=\"x\"/>\n</job>\n", r"badoption\.xml:4: cylinder: --radius"),
+         + "  <output name=\"x\"/>\n</job>\n", r"badoption\.xml:4: cylinder: option radius: 'forty' is not a finite number"),
         ("nomesh.xml", JOB_HEAD + '  <part surface="mesh" file="missing.obj"/>\n'
          + "  <output name=\"x\"/>\n</job>\n", r"missing\.obj"),
         ("assembly.xml", JOB_HEAD + part.replace('<option name="height" value="50"/>',
                                                  '<option name="height" value="50"/>'
                                                  '<option name="assembly" value="g.png"/>')
-         + "  <output name=\"x\"/>\n</job>\n", r"assembly\.xml:4: cylinder: --assembly is not taken"),
+         + "  <output name=\"x\"/>\n</job>\n", r"assembly\.xml:4: cylinder: the assembly guide is not drawn from a job file"),
     ]
     for name, text, pattern in cases:
         write(work, name, text)
