@@ -2416,6 +2416,42 @@ def nest_keeps_the_folds_and_labels_of_unroll_files(work):
 
 
 @test
+def a_surface_jobs_margin_and_spacing(work):
+    """--margin and --spacing replace the machine's for a surface job as for
+    nest: a drum's net (2 pi r by h) alone on a 200 x 100 sheet leaves an
+    offcut of the sheet's width less the net's, less the margin before it;
+    a job file's part takes them as options too."""
+    drum = ["cylinder", "--radius", "10", "--height", "30", "--sheet", "200x100",
+            "--allowances", "none", "--no-kerf-compensation", "--spacing", "0", "--quiet"]
+    for margin in (0, 20):
+        run(work, *drum, "--margin", str(margin), "-o", "m.svg", "--report", "m.json")
+        [sheet] = report(work, "m.json")["sheets"]
+        close(sheet["offcut"]["width_mm"], 200 - margin - 2 * math.pi * 10, 1e-6,
+              "offcut with a %d mm margin" % margin)
+    write(work, "margin.xml", JOB_HEAD + """  <option name="margin" value="20"/>
+  <part surface="cylinder" material="plywood-3mm">
+    <option name="radius" value="10"/><option name="height" value="30"/>
+    <option name="sheet" value="200x100"/><option name="allowances" value="none"/>
+    <option name="no-kerf-compensation"/><option name="spacing" value="0"/>
+  </part>
+  <output name="m" report="m.json"/>
+</job>
+""")
+    run(work, "job", "margin.xml", "-o", "out", "--quiet")
+    [sheet] = report(work, os.path.join("out", "m.json"))["sheets"]
+    close(sheet["offcut"]["width_mm"], 200 - 20 - 2 * math.pi * 10, 1e-6, "a job file's margin")
+    write(work, "spacing.xml", JOB_HEAD + """  <part surface="cylinder">
+    <option name="radius" value="10"/><option name="height" value="30"/>
+    <option name="spacing" value="-1"/>
+  </part>
+  <output name="m"/>
+</job>
+""")
+    bad(work, r"spacing\.xml:4: cylinder: option spacing: '-1' is not a length from 0",
+        "job", "spacing.xml", "-o", "out2")
+
+
+@test
 def nest_merge_lines_cuts_shared_lines_once(work):
     """Four 100 x 50 plates tile a 200 x 100 sheet; cut one by one that is
     4 x 300 = 1200 mm, but the grid they make is 600 around and 100 + 200
