@@ -8,8 +8,9 @@
  *   ./run_job drum.svg "$(pkg-config --variable=profiledir unroll)"
  *
  * The last argument is where the machine and material profiles are (the
- * installed ones).  Warnings and the summary come back through callbacks;
- * the library prints nothing itself.  The program fails unless the flat
+ * installed ones).  Warnings and notes come back through the context's
+ * message handler, the summary through a callback; the library prints
+ * nothing itself.  The program fails unless the flat
  * piece covers the drum's side exactly, 2 pi r h.
  */
 #include <math.h>
@@ -22,9 +23,10 @@
 #define HEIGHT 60.0
 #define PI 3.14159265358979323846
 
-static void print_warning(void *user, const char *message)
+static void print_message(void *data, ur_message_kind kind, const char *message)
 {
-    (void)user;
+    (void)data;
+    (void)kind; /* warnings and notes alike: each sentence says which it is */
     fprintf(stderr, "run_job: %s\n", message);
 }
 
@@ -60,6 +62,7 @@ int main(int argc, char **argv)
         return 1;
     }
     ur_context_set_profile_roots(context, roots);
+    ur_context_set_message_handler(context, print_message, NULL);
 
     ur_job job;
     ur_job_init(&job, "cylinder");
@@ -74,7 +77,7 @@ int main(int argc, char **argv)
     job.output_path = argv[1];
     job.report_path = report;
 
-    ur_job_callbacks callbacks = {NULL, print_warning, NULL, print_summary};
+    ur_job_callbacks callbacks = {NULL, NULL, print_summary};
     ur_job_result result;
     ur_error error;
     ur_status status = ur_job_run(&job, &callbacks, &result, &error);

@@ -88,7 +88,9 @@ UR_API ur_status ur_error_out_of_memory(ur_error *error);
  *   read the flag without a data race.
  * - The output set (ur_output_set_begin): the files of a run held back so
  *   that they appear together or not at all.
- * - Messages: warnings go to the handler set here (none: they are dropped).
+ * - Messages: the warnings and notes of every computation in the context
+ *   (a job's among them: unroll/job.h) go to the handler set here, the one
+ *   route they take; with no handler they are dropped.
  * - A test hook that makes the writers fail as a full disk would.
  *
  * A NULL context is allowed wherever one is taken: never cancelled, no
@@ -103,6 +105,11 @@ typedef enum ur_message_kind {
     UR_MESSAGE_NOTE         /* what was chosen or done, for a verbose caller */
 } ur_message_kind;
 
+/*
+ * Gets each message as the sentence to show, whole, with no newline
+ * ("strip: warning: piece P2: ...", "hypar: note: ..."), from the thread
+ * that runs the computation; data is what was given with the handler.
+ */
 typedef void (*ur_message_handler)(void *data, ur_message_kind kind, const char *message);
 
 /* A new context, or NULL when out of memory.  Freed with ur_context_free. */

@@ -6,6 +6,7 @@
 #include "context.h"
 
 #include "atomic.h"
+#include "c_locale.h"
 
 #include <stdarg.h>
 #include <stdio.h>
@@ -66,10 +67,10 @@ void ur_context_message(const ur_context *context, ur_message_kind kind, const c
 {
     if (!context || !context->message_handler)
         return;
-    char message[1024];
+    char message[8192]; /* a warning may name many pieces and paths */
     va_list args;
     va_start(args, format);
-    vsnprintf(message, sizeof message, format, args);
+    c_vsnprintf(message, sizeof message, format, args);
     va_end(args);
     context->message_handler(context->message_data, kind, message);
 }

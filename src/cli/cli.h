@@ -66,9 +66,9 @@ bool cli_directory_exists(const char *option, const char *path);
 int cli_exit_status(const ur_error *error);
 
 /*
- * Callbacks that print the library's warnings ("unroll: ..."), its
- * progress on a terminal (one line rewritten in place) and the summary of
- * a surface job (run.c).
+ * Callbacks that print the library's progress on a terminal (one line
+ * rewritten in place) and the summary of a surface job (run.c); its
+ * warnings and notes go through the context's handler (signals.c).
  */
 ur_job_callbacks cli_callbacks(const ur_job *job);
 
@@ -101,7 +101,9 @@ int cli_nest(int argc, char **argv);
 
 /*
  * The run's library context (signals.c): opened once in main, before the
- * signal handlers, which cancel it; false when out of memory.
+ * signal handlers, which cancel it, with a message handler that prints
+ * the library's warnings and notes ("unroll: ..."); false when out of
+ * memory.
  */
 bool cli_context_open(void);
 ur_context *cli_context(void);

@@ -121,7 +121,7 @@ ur_status job_write_regression(const job_run *run, const ur_vec3 *points, size_t
                         run->job.regression_path, error.message);
     }
     if (!run->job.quiet)
-        job_warn(run, "%s: edge of regression: %zu points -> %s", run->job.command, count,
+        job_note(run, "%s: edge of regression: %zu points -> %s", run->job.command, count,
                  run->job.regression_path);
     return UR_OK;
 }

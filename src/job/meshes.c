@@ -147,7 +147,7 @@ static ur_status split_to_fit(const flattening *f, const ur_mesh *piece, double 
         if (all) {
             *area += trial_area;
             if (!f->run->job.quiet)
-                job_warn(f->run,
+                job_note(f->run,
                          "%s: a piece %.0f x %.0f mm does not fit the %.0f x %.0f mm a sheet "
                          "leaves it: cut into %zu along its length (--no-split refuses "
                          "instead)",
@@ -272,7 +272,7 @@ static void say_repairs(const job_run *run, const ur_mesh_repairs *repairs)
     if (run->job.quiet)
         return;
     if (repairs->welded || repairs->degenerate || repairs->isolated || repairs->flipped)
-        job_warn(run,
+        job_note(run,
                  "%s: repaired: %zu vertices welded, %zu zero-area triangles and %zu unused "
                  "vertices dropped, %zu triangles turned to agree with their neighbours",
                  run->job.command, repairs->welded, repairs->degenerate, repairs->isolated,
@@ -392,7 +392,7 @@ static ur_status unfold_mesh(const job_run *run, const job_room *room, const ur_
         *area += unfolding.pieces[k].area_3d;
     }
     if (!code && !run->job.quiet)
-        job_warn(run,
+        job_note(run,
                  "%s: unfolded into %zu piece%s (%zu of a single face): %zu folds (%zu "
                  "valleys), %zu seams",
                  run->job.command, unfolding.count, unfolding.count == 1 ? "" : "s",
@@ -437,7 +437,7 @@ static ur_status nets_of_strips(const job_run *run, const ur_strips *strips,
         *area += nets->nets[k].area_3d;
     }
     if (!run->job.quiet)
-        job_warn(run,
+        job_note(run,
                  "%s: %zu strip%s keep the strain within %.3g %% stretch and %.3g %% "
                  "compression (at most %.3g %% and %.3g %%)",
                  run->job.command, strips->bands, strips->bands == 1 ? "" : "s",
@@ -495,7 +495,7 @@ static ur_status flatten_charts(const job_run *run, const job_room *room,
         code = place_flat(&f, &charts.charts[k].piece.mesh, &charts.charts[k].flat, 0, nets, area);
     name_nets(nets);
     if (!code && !run->job.quiet)
-        job_warn(run,
+        job_note(run,
                  "%s: %zu chart%s (cut at %zu sharp edges, then where over the strain) keep "
                  "within %.3g %% stretch and %.3g %% compression (at most %.3g %% and %.3g %%)",
                  run->job.command, charts.count, charts.count == 1 ? "" : "s", charts.sharp_edges,

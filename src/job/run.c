@@ -45,7 +45,7 @@ static size_t sheet_choices(const job_run *run, const ur_machine *machine,
         choices[count].width = machine->bed_width;
         choices[count++].height = machine->bed_height;
         if (!run->job.quiet)
-            job_warn(run,
+            job_note(run,
                      "note: no stock size of %s fits the %s bed; using sheets cut to the "
                      "bed, %g x %g mm",
                      material->name, machine->name, machine->bed_width, machine->bed_height);
@@ -421,7 +421,7 @@ ur_status job_merge_lines(const job_run *run, const ur_layout *layout, ur_piece 
     double saved = 0;
     ur_status status = ur_layout_merge_lines(layout, pieces, count, MERGE_TOLERANCE, &saved, error);
     if (status == UR_OK && !run->job.quiet)
-        job_warn(run, "%s: merged lines: %.1f mm of shared cuts cut once", run->job.command, saved);
+        job_note(run, "%s: merged lines: %.1f mm of shared cuts cut once", run->job.command, saved);
     return status;
 }
 
@@ -529,7 +529,7 @@ static ur_status flatten_if_needed(const job_run *run, job_state *state, bool *f
     }
     bool developable = analysis.developable;
     if (!developable && !run->job.quiet)
-        job_warn(run,
+        job_note(run,
                  "%s: not developable (the tangent plane turns by up to %.3g degrees along a "
                  "ruling, K down to %.3g 1/mm2): flattened with %s, with strain",
                  run->job.command, analysis.max_residual * 180 / M_PI, analysis.gaussian_min,
@@ -597,7 +597,7 @@ static void print_layer(const job_run *run, const job_state *state)
 {
     const ur_material *material = &state->material;
     if (state->layer_offset != 0.0 && !run->job.quiet)
-        job_warn(run,
+        job_note(run,
                  "%s: the surface is the %s face of %g mm %s: developing the neutral layer "
                  "(K %g%s), %.4g mm %s the bend",
                  run->job.command, ur_surface_layer_name(state->layer), material->thickness,

@@ -21,7 +21,7 @@
 
 /*
  * One run of a job: the job (a copy, so that a stage may run a variant of
- * it), where its warnings and progress go, and where a stage that fails
+ * it; its context takes the warnings), where its progress goes, and where a stage that fails
  * leaves its message (job_fail).
  */
 typedef struct job_run {
@@ -33,8 +33,17 @@ typedef struct job_run {
 /* A run of job reporting to callbacks (may be NULL), failing into error. */
 job_run job_run_make(const ur_job *job, const ur_job_callbacks *callbacks, ur_error *error);
 
-/* Hands a warning or note, formatted, to the warning callback. */
+/*
+ * Hands a warning (UR_MESSAGE_WARNING), or a note of what was chosen or
+ * done (UR_MESSAGE_NOTE), formatted, to the message handler of the job's
+ * context.
+ */
 void job_warn(const job_run *run, const char *format, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+void job_note(const job_run *run, const char *format, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 2, 3)))
 #endif

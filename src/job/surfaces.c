@@ -296,7 +296,7 @@ static void note_repair(const job_run *run, const ur_rail_repair_report *report)
     if (run->job.quiet)
         return;
     if (!(report->largest > 0)) {
-        job_warn(run, "%s: the strip exists along all of rail 1; %s unchanged", run->job.command,
+        job_note(run, "%s: the strip exists along all of rail 1; %s unchanged", run->job.command,
                  run->job.adjust_rails == UR_REPAIR_BOTH ? "the rails are" : "the rail is");
         return;
     }
@@ -311,7 +311,7 @@ static void note_repair(const job_run *run, const ur_rail_repair_report *report)
                "average",
                report->largest, report->largest_point + 1, report->largest_rail,
                report->largest_along, report->mean);
-    job_warn(run, "%s: %s %s%s", run->job.command, adjust_names[run->job.adjust_rails], figures,
+    job_note(run, "%s: %s %s%s", run->job.command, adjust_names[run->job.adjust_rails], figures,
              written);
 }
 
@@ -414,7 +414,7 @@ static ur_status read_rails(const job_run *run, ur_curve *rails[2], bool *same_c
     if (!code && runs_against(points[0], count[0], closed[0], points[1], count[1])) {
         reverse_points(points[1], count[1]);
         if (!run->job.quiet)
-            job_warn(run, "note: --rail2 runs against --rail1; using it reversed");
+            job_note(run, "note: --rail2 runs against --rail1; using it reversed");
     }
     if (!code && run->job.adjust_rails)
         code = adjust_rails(run, points, count, closed[0], adjusted);
@@ -483,7 +483,7 @@ static ur_status build_triangle(const job_run *run, const ur_vec3 *c, int apex, 
 {
     int first = (apex + 2) % 4, second = (apex + 3) % 4;
     if (!run->job.quiet)
-        job_warn(run,
+        job_note(run,
                  "note: corners %d and %d are the same point: the hypar is a flat triangle, "
                  "developed exactly",
                  apex + 1, (apex + 1) % 4 + 1);
@@ -535,7 +535,7 @@ static ur_status build_hypar(const job_run *run, ur_ruled *ruled)
     }
     double lift = fabs(ur_vec3_dot(ur_vec3_sub(c[2], c[0]), normal)) / ur_vec3_length(normal);
     if (lift <= 1e-9 * size && !run->job.quiet)
-        job_warn(run, "note: the four corners lie in one plane: the hypar is a flat quadrilateral, "
+        job_note(run, "note: the four corners lie in one plane: the hypar is a flat quadrilateral, "
                       "developed exactly");
     ur_curve *rails[2] = {NULL, NULL};
     ur_error error;

@@ -33,18 +33,22 @@
 #define CUBE_SIDE 100.0
 
 typedef struct heard {
-    size_t warnings;
+    size_t warnings, notes;
     bool unfolded_note; /* the note that says how the mesh was unfolded */
     size_t summaries;
     size_t progress_after_done; /* nesting reports after the nesting said it was done */
     bool nesting_done;
 } heard;
 
-static void on_warning(void *user, const char *message)
+/* The context's message handler: a job's warnings and notes come only this way. */
+static void on_message(void *user, ur_message_kind kind, const char *message)
 {
     heard *h = user;
-    h->warnings++;
-    if (strstr(message, "unfolded into"))
+    if (kind == UR_MESSAGE_WARNING)
+        h->warnings++;
+    else
+        h->notes++;
+    if (kind == UR_MESSAGE_NOTE && strstr(message, "unfolded into"))
         h->unfolded_note = true;
 }
 
@@ -104,6 +108,7 @@ static int setup(void **state)
 
 static int teardown(void **state)
 {
+    ur_context_set_message_handler(context, NULL, NULL); /* a test's handler data is its own */
     int status = remove_test_directory(*state);
     free(*state);
     return status;
@@ -111,7 +116,8 @@ static int teardown(void **state)
 
 /*
  * Runs job with stderr sent to a file, and checks that nothing was
- * written there: the library reports through the callbacks only.
+ * written there: the library reports through its context's message
+ * handler and the callbacks only.
  */
 static ur_status run_silently(const ur_job *job, const ur_job_callbacks *callbacks,
                               ur_job_result *result, ur_error *error, const char *directory)
@@ -216,7 +222,8 @@ static void test_mesh_with_tabs_nested_to_svg(void **state)
     job.output_path = output;
     job.report_path = report;
     heard h = {0};
-    ur_job_callbacks callbacks = {&h, on_warning, on_progress, on_summary};
+    ur_context_set_message_handler(context, on_message, &h);
+    ur_job_callbacks callbacks = {&h, on_progress, on_summary};
     ur_job_result result;
     ur_error error;
     ur_status status = run_silently(&job, &callbacks, &result, &error, directory);
@@ -251,7 +258,8 @@ static void test_cylinder_developed_to_svg(void **state)
     job.report_path = report;
     job.quiet = true; /* no notes, no summary: warnings only */
     heard h = {0};
-    ur_job_callbacks callbacks = {&h, on_warning, on_progress, on_summary};
+    ur_context_set_message_handler(context, on_message, &h);
+    ur_job_callbacks callbacks = {&h, on_progress, on_summary};
     ur_job_result result;
     ur_error error;
     ur_status status = run_silently(&job, &callbacks, &result, &error, directory);
@@ -277,6 +285,7 @@ static void test_cylinder_developed_to_svg(void **state)
     assert_true(check_sheets(output, result.sheet_count) >= result.piece_count);
     check_report(report, result.piece_count, result.sheet_count);
     assert_int_equal(h.summaries, 0);
+    assert_int_equal(h.notes, 0);
 }
 
 /* How many of the report's pieces are named name. */
