@@ -23,10 +23,13 @@
 #define HEIGHT 60.0
 #define PI 3.14159265358979323846
 
-static void print_message(void *data, ur_message_kind kind, const char *message)
+/* Warnings and notes alike: each sentence says which it is, and names its settings. */
+static void print_message(void *data, ur_message_kind kind, const char *message,
+                          const char *setting)
 {
     (void)data;
-    (void)kind; /* warnings and notes alike: each sentence says which it is */
+    (void)kind;
+    (void)setting;
     fprintf(stderr, "run_job: %s\n", message);
 }
 
@@ -83,7 +86,9 @@ int main(int argc, char **argv)
     ur_status status = ur_job_run(&job, &callbacks, &result, &error);
     ur_context_free(context);
     if (status != UR_OK) {
-        fprintf(stderr, "run_job: %s\n", error.message);
+        /* error.setting names the settings the message is about, if any. */
+        fprintf(stderr, "run_job: %s%s%s%s\n", error.message,
+                error.setting[0] ? " (settings: " : "", error.setting, error.setting[0] ? ")" : "");
         return 1;
     }
     double side = 2 * PI * RADIUS * HEIGHT;

@@ -117,7 +117,7 @@ int cli_run_job(const ur_job *job)
     ur_job_callbacks callbacks = cli_callbacks(job);
     ur_error error;
     if (ur_job_run(job, &callbacks, NULL, &error) != UR_OK) {
-        cli_message("%s", error.message);
+        cli_error(NULL, &error);
         return cli_exit_status(&error);
     }
     return 0;

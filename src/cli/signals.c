@@ -44,12 +44,18 @@ static void set_test_hooks(ur_context *context)
         ur_context_fail_writes_after(context, bytes);
 }
 
-/* Every warning and note of the library, as it words them: "unroll: strip: warning: ...". */
-static void print_message(void *data, ur_message_kind kind, const char *message)
+/*
+ * Every warning and note of the library, as it words them, its settings
+ * as flags: "unroll: strip: warning: ... (--no-split refuses instead)".
+ */
+static void print_message(void *data, ur_message_kind kind, const char *message,
+                          const char *setting)
 {
     (void)data;
     (void)kind;
-    cli_message("%s", message);
+    char flagged[8192];
+    cli_with_flags(message, setting, flagged, sizeof flagged);
+    cli_message("%s", flagged);
 }
 
 bool cli_context_open(void)

@@ -23,7 +23,7 @@ enum { RULED_ALONG = 96, RULED_ACROSS = 24 };
 
 static ur_status fail(const job_run *run, const ur_error *error)
 {
-    return job_fail(run, error->status, "%s: %s", run->job.command, error->message);
+    return job_fail_from(run, error);
 }
 
 /* Long flattening reports its progress, and its end, to the progress callback. */
@@ -147,11 +147,12 @@ static ur_status split_to_fit(const flattening *f, const ur_mesh *piece, double 
         if (all) {
             *area += trial_area;
             if (!f->run->job.quiet)
-                job_note(f->run,
-                         "%s: a piece %.0f x %.0f mm does not fit the %.0f x %.0f mm a sheet "
-                         "leaves it: cut into %zu along its length (--no-split refuses "
-                         "instead)",
-                         f->run->job.command, length, width, f->room.length, f->room.width, parts);
+                job_note_about(f->run, "no-split",
+                               "%s: a piece %.0f x %.0f mm does not fit the %.0f x %.0f mm a "
+                               "sheet leaves it: cut into %zu along its length (no-split refuses "
+                               "instead)",
+                               f->run->job.command, length, width, f->room.length, f->room.width,
+                               parts);
             return UR_OK;
         }
     }
@@ -243,9 +244,10 @@ static ur_status read_seam(const job_run *run, const char *path, const ur_mesh *
                 ur_vec3_distance(mesh->vertices[best], points[i]))
                 best = v;
         if (!(ur_vec3_distance(mesh->vertices[best], points[i]) <= tolerance)) {
-            code = job_fail(run, UR_ERROR_INPUT,
-                            "%s: --seams %s: point %zu (%g, %g, %g) is no vertex of the mesh",
-                            run->job.command, path, i + 1, points[i].x, points[i].y, points[i].z);
+            code = job_fail_about(run, UR_ERROR_INPUT, "seams",
+                                  "%s: seams %s: point %zu (%g, %g, %g) is no vertex of the mesh",
+                                  run->job.command, path, i + 1, points[i].x, points[i].y,
+                                  points[i].z);
         }
         vertices[i] = best;
     }
@@ -462,8 +464,9 @@ static ur_status flatten_in_strips(const job_run *run, const ur_material *materi
                             : ur_flatten_strips_ruled(ruled, &limits, &options, &strips, &error);
     end_progress(run);
     if (status != UR_OK) {
-        return job_fail(run, error.status, "%s: %s (--max-strain sets another limit)",
-                        run->job.command, error.message);
+        return job_fail_about(run, error.status, "max-strain",
+                              "%s: %s (max-strain sets another limit)", run->job.command,
+                              error.message);
     }
     ur_status code = nets_of_strips(run, &strips, &limits, nets, area);
     ur_strips_free(&strips);
@@ -562,7 +565,7 @@ static ur_status nets_of_mesh(const job_run *run, const job_room *room, const ur
  */
 #define TINY_MODEL 10.0
 
-/* Without --units or --scale, a mesh smaller than TINY_MODEL gets a warning naming both. */
+/* Without units or a scale, a mesh smaller than TINY_MODEL gets a warning naming both. */
 static void warn_if_tiny(const job_run *run, const ur_mesh *mesh)
 {
     if (run->job.quiet || mesh->vertex_count == 0)
@@ -576,11 +579,11 @@ static void warn_if_tiny(const job_run *run, const ur_mesh *mesh)
     double size = fmax(high.x - low.x, fmax(high.y - low.y, high.z - low.z));
     if (!(size < TINY_MODEL) || !(size > 0))
         return;
-    job_warn(run,
-             "%s: warning: %s is only %.3g mm across, read in millimetres; if it was "
-             "modelled in metres (as Blender's are) give --units m (%.4g mm), in inches "
-             "--units in (%.4g mm), or --scale S",
-             run->job.command, run->job.mesh_path, size, size * 1000, size * 25.4);
+    job_warn_about(run, "units units scale",
+                   "%s: warning: %s is only %.3g mm across, read in millimetres; if it was "
+                   "modelled in metres (as Blender's are) give units m (%.4g mm), in inches "
+                   "units in (%.4g mm), or scale S",
+                   run->job.command, run->job.mesh_path, size, size * 1000, size * 25.4);
 }
 
 ur_status job_mesh_nets(const job_run *run, const job_room *room, const ur_material *material,
@@ -588,7 +591,7 @@ ur_status job_mesh_nets(const job_run *run, const job_room *room, const ur_mater
 {
     if (!run->job.mesh_path) {
         return job_fail(run, UR_ERROR_INPUT,
-                        "mesh: give the mesh file: unroll mesh FILE -o OUT.svg");
+                        "mesh: give the mesh file to read");
     }
     ur_mesh_import_options options;
     ur_mesh_import_options_default(&options);

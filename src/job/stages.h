@@ -49,12 +49,35 @@ void job_note(const job_run *run, const char *format, ...)
 #endif
     ;
 
+/* The same for a sentence that names settings, listed in setting as ur_error's. */
+void job_warn_about(const job_run *run, const char *setting, const char *format, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+void job_note_about(const job_run *run, const char *setting, const char *format, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+
 /* Sets the run's error to status and the formatted message; returns status. */
 ur_status job_fail(const job_run *run, ur_status status, const char *format, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 3, 4)))
 #endif
     ;
+
+/* The same, naming settings: setting lists them as ur_error's does ("max-strain"). */
+ur_status job_fail_about(const job_run *run, ur_status status, const char *setting,
+                         const char *format, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 4, 5)))
+#endif
+    ;
+
+/* Fails with a stage's error, its message after the job's command, its setting kept. */
+ur_status job_fail_from(const job_run *run, const ur_error *cause);
 
 /* Hands a progress report to the progress callback, unless quiet. */
 void job_progress(const job_run *run, const ur_job_progress *progress);
