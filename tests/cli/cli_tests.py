@@ -449,7 +449,9 @@ def bad_inputs(work):
     bad(work, r"does not fit.*--sheet", "cylinder", "--radius", "100", "--height", "700", "-o", "x.svg")
     bad(work, r"--sheet: '12'", *HELICOID, "--sheet", "12", "-o", "x.svg")
     bad(work, r"--method: 'smash'", *HELICOID, "--method", "smash", "-o", "x.svg")
-    bad(work, r"triangle", "cylinder", "--radius", "3", "--height", "4", "--method", "triangle", "-o", "x.svg")
+    # The library names the setting; the command writes it as the flag, both times.
+    bad(work, r"cylinder: --method triangle: .*; use --method quad or exact", "cylinder",
+        "--radius", "3", "--height", "4", "--method", "triangle", "-o", "x.svg")
     env_result = subprocess.run([UNROLL, *HELICOID, "--material", "broken", "-o", "x.svg"], cwd=work,
                                 capture_output=True, text=True,
                                 env=dict(os.environ, UNROLL_PROFILES=os.path.join(work, "profiles-bad")))
