@@ -129,7 +129,9 @@ int main(int argc, char **argv)
     ur_status status = run_frustum(&run, argv[1], argv[2], &error);
     free_run(&run);
     if (status != UR_OK) {
-        fprintf(stderr, "develop_frustum: %s\n", error.message);
+        /* error.setting names the settings the message is about, if any. */
+        fprintf(stderr, "develop_frustum: %s%s%s%s\n", error.message,
+                error.setting[0] ? " (settings: " : "", error.setting, error.setting[0] ? ")" : "");
         return 1;
     }
     printf("frustum: wrote %s\n", argv[1]);

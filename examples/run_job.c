@@ -11,8 +11,8 @@
  * the job file's schema) are: the installed ones.  Without JOB.xml the
  * program runs the job file below, read from memory, writing the first
  * argument; with it, that file (samples/jobs/lamp.xml, say), writing into
- * the first argument's directory.  Warnings come back through a callback;
- * the library prints nothing itself.  The program fails unless the flat
+ * the first argument's directory.  Warnings and notes come back through the
+ * context's message handler; the library prints nothing itself.  The program fails unless the flat
  * pieces of its own job cover the two drums' sides exactly, 2 x 2 pi r h.
  */
 #include <math.h>
@@ -39,9 +39,13 @@ static const char job_text[] = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
                                "  <output name=\"%s\" report=\"%s.json\"/>\n"
                                "</job>\n";
 
-static void print_warning(void *user, const char *message)
+/* Warnings and notes alike: each sentence says which it is, and names its settings. */
+static void print_message(void *data, ur_message_kind kind, const char *message,
+                          const char *setting)
 {
-    (void)user;
+    (void)data;
+    (void)kind;
+    (void)setting;
     fprintf(stderr, "run_job: %s\n", message);
 }
 
@@ -89,11 +93,12 @@ int main(int argc, char **argv)
         return 1;
     }
     ur_context_set_profile_roots(context, roots);
+    ur_context_set_message_handler(context, print_message, NULL);
 
     ur_job_file file;
     ur_error error;
     ur_status status = read_job(roots, job_path, name, &file, &error);
-    ur_job_callbacks callbacks = {NULL, print_warning, NULL, NULL};
+    ur_job_callbacks callbacks = {NULL, NULL, NULL};
     ur_job_result result;
     if (status == UR_OK) {
         status = ur_job_file_run(&file, context, directory, true, &callbacks, &result, &error);
@@ -101,7 +106,9 @@ int main(int argc, char **argv)
     }
     ur_context_free(context);
     if (status != UR_OK) {
-        fprintf(stderr, "run_job: %s\n", error.message);
+        /* error.setting names the settings the message is about, if any. */
+        fprintf(stderr, "run_job: %s%s%s%s\n", error.message,
+                error.setting[0] ? " (settings: " : "", error.setting, error.setting[0] ? ")" : "");
         return 1;
     }
     fprintf(stderr, "run_job: %zu pieces, %s -> %s\n", result.piece_count, result.sheets,

@@ -51,19 +51,43 @@ typedef enum ur_status {
     UR_ERROR_MEMORY = 5     /* out of memory */
 } ur_status;
 
+/*
+ * A failure: its status, one sentence, and the settings it is about.
+ * Messages name no command-line flag.  They name a job's settings by
+ * their names, the ones a job file's <option name="..."/> and
+ * ur_job_option_name use ("cone: top-radius must be zero or positive";
+ * "give units m"), and setting lists those names, separated by spaces,
+ * the one the failure is about first ("top-radius"; "apex cut curve radius
+ * top-radius"), so that a caller can point at them in its own terms: the
+ * command writes the first use of each as its flag, "--top-radius" (a name
+ * listed twice, its first two uses), and puts a listed name the sentence
+ * does not use as a word in front ("--sheet: piece P1 does not fit ...").
+ * "" when the message is about no setting.
+ */
 typedef struct ur_error {
     ur_status status;
     char message[1024];
+    char setting[64];
 } ur_error;
 
-/* Fills error (which may be NULL) with a printf-style message; returns status. */
+/*
+ * Fills error (which may be NULL) with a printf-style message and no
+ * setting; returns status.
+ */
 UR_API ur_status ur_error_set(ur_error *error, ur_status status, const char *format, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 3, 4)))
 #endif
     ;
 
-/* Prefixes an existing message with more context, e.g. the option name. */
+/*
+ * Says which settings error's message names (see ur_error: their names,
+ * space-separated, the one it is about first), after ur_error_set;
+ * returns error's status.
+ */
+UR_API ur_status ur_error_set_setting(ur_error *error, const char *setting);
+
+/* Prefixes an existing message with more context, e.g. a file's name; keeps the setting. */
 UR_API ur_status ur_error_prefix(ur_error *error, const char *format, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 2, 3)))
@@ -88,7 +112,9 @@ UR_API ur_status ur_error_out_of_memory(ur_error *error);
  *   read the flag without a data race.
  * - The output set (ur_output_set_begin): the files of a run held back so
  *   that they appear together or not at all.
- * - Messages: warnings go to the handler set here (none: they are dropped).
+ * - Messages: the warnings and notes of every computation in the context
+ *   (a job's among them: unroll/job.h) go to the handler set here, the one
+ *   route they take; with no handler they are dropped.
  * - A test hook that makes the writers fail as a full disk would.
  *
  * A NULL context is allowed wherever one is taken: never cancelled, no
@@ -103,7 +129,15 @@ typedef enum ur_message_kind {
     UR_MESSAGE_NOTE         /* what was chosen or done, for a verbose caller */
 } ur_message_kind;
 
-typedef void (*ur_message_handler)(void *data, ur_message_kind kind, const char *message);
+/*
+ * Gets each message as the sentence to show, whole, with no newline
+ * ("strip: warning: piece P2: ...", "hypar: note: ..."), from the thread
+ * that runs the computation; data is what was given with the handler.
+ * setting lists the settings the sentence names, as ur_error's does
+ * ("no-split"; "" for none).
+ */
+typedef void (*ur_message_handler)(void *data, ur_message_kind kind, const char *message,
+                                   const char *setting);
 
 /* A new context, or NULL when out of memory.  Freed with ur_context_free. */
 UR_API ur_context *ur_context_new(void);
@@ -125,11 +159,23 @@ UR_API ur_status ur_context_check(const ur_context *context, ur_error *error);
 UR_API void ur_context_set_message_handler(ur_context *context, ur_message_handler handler,
                                            void *data);
 
-/* Passes a printf-style message to context's handler, if it has one. */
+/* The handler and data set (NULL for both when none), to wrap or restore it. */
+UR_API void ur_context_message_handler(const ur_context *context, ur_message_handler *handler,
+                                       void **data);
+
+/* Passes a printf-style message that names no setting to context's handler, if it has one. */
 UR_API void ur_context_message(const ur_context *context, ur_message_kind kind, const char *format,
                                ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+
+/* The same for a message that names the settings listed in setting (as ur_error's). */
+UR_API void ur_context_message_about(const ur_context *context, ur_message_kind kind,
+                                     const char *setting, const char *format, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 4, 5)))
 #endif
     ;
 

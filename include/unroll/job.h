@@ -5,10 +5,12 @@
  * does; a program fills a ur_job (ur_job_init gives the defaults) and
  * calls ur_job_run.
  *
- * The library never prints: warnings, notes and progress go to the
- * callbacks, the figures of the run into a ur_job_result.  Messages name
- * no command-line flag; the settings they are about have the names of
- * the job's fields.
+ * The library never prints: warnings and notes go to the message handler
+ * of the job's context (ur_context_set_message_handler, unroll/base.h),
+ * progress and the summary to the callbacks, the figures of the run into
+ * a ur_job_result.  Messages name no command-line flag; the settings they
+ * are about have the names of the job's settings (ur_job_option_name),
+ * and an error about one says which in its setting field.
  */
 #ifndef UNROLL_JOB_H
 #define UNROLL_JOB_H
@@ -51,8 +53,9 @@ typedef struct ur_job {
      * The context the job runs in (unroll/base.h): its cancel flag stops
      * the run, its output set holds the files back until all are written,
      * its profile roots are where machine_name and material_name are
-     * found.  NULL: never cancelled, no output set, no roots (the
-     * profiles must then be given loaded, machine and material).
+     * found, its message handler gets the warnings and notes.  NULL:
+     * never cancelled, no output set, no roots (the profiles must then be
+     * given loaded, machine and material), messages dropped.
      */
     ur_context *context;
     /* The word messages start with: the surface, or "job" for a job file. */
@@ -105,7 +108,7 @@ typedef struct ur_job {
     const ur_material *material;
     double sheet_width, sheet_height; /* 0 when not given */
     bool draw_rulings;
-    bool quiet;        /* no notes (warnings still go to the callback) and no progress */
+    bool quiet; /* no progress, no notes, and of the warnings only pieces left off the sheets */
     int surface_layer; /* a ur_surface_layer, or -1 for the material's */
     ur_develop_options develop;
     /* fabrication allowances */
@@ -213,16 +216,16 @@ typedef struct ur_job_progress {
 } ur_job_progress;
 
 /*
- * Where a run reports as it goes; any callback may be NULL.  warning gets
- * every warning and note as a sentence ("strip: warning: piece P2: ...");
- * progress is called only when the job is not quiet, often, from the
- * thread that runs the job.
+ * Where a run reports as it goes; any callback may be NULL.  progress is
+ * called only when the job is not quiet, often, from the thread that runs
+ * the job.  Warnings and notes are not here: they go to the message
+ * handler of the job's context, as a sentence ("strip: warning: piece P2:
+ * ...") of kind UR_MESSAGE_WARNING or UR_MESSAGE_NOTE.
  */
 typedef struct ur_job_result ur_job_result;
 
 typedef struct ur_job_callbacks {
     void *user;
-    void (*warning)(void *user, const char *message);
     void (*progress)(void *user, const ur_job_progress *progress);
     /* Once the cut files are written (before the curves a strip job writes), unless quiet. */
     void (*summary)(void *user, const ur_job_result *result);

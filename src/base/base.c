@@ -17,8 +17,17 @@ ur_status ur_error_set(ur_error *error, ur_status status, const char *format, ..
         c_vsnprintf(error->message, sizeof error->message, format, args);
         va_end(args);
         error->status = status;
+        error->setting[0] = '\0';
     }
     return status;
+}
+
+ur_status ur_error_set_setting(ur_error *error, const char *setting)
+{
+    if (!error)
+        return UR_ERROR_INTERNAL;
+    c_snprintf(error->setting, sizeof error->setting, "%s", setting ? setting : "");
+    return error->status;
 }
 
 ur_status ur_error_prefix(ur_error *error, const char *format, ...)
@@ -47,6 +56,7 @@ void ur_error_clear(ur_error *error)
     if (error) {
         error->status = UR_OK;
         error->message[0] = '\0';
+        error->setting[0] = '\0';
     }
 }
 

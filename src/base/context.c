@@ -6,6 +6,7 @@
 #include "context.h"
 
 #include "atomic.h"
+#include "c_locale.h"
 
 #include <stdarg.h>
 #include <stdio.h>
@@ -62,16 +63,39 @@ void ur_context_set_message_handler(ur_context *context, ur_message_handler hand
     context->message_data = data;
 }
 
+void ur_context_message_handler(const ur_context *context, ur_message_handler *handler, void **data)
+{
+    *handler = context ? context->message_handler : NULL;
+    *data = context ? context->message_data : NULL;
+}
+
+static void message_about(const ur_context *context, ur_message_kind kind, const char *setting,
+                          const char *format, va_list args)
+{
+    char message[8192]; /* a warning may name many pieces and paths */
+    c_vsnprintf(message, sizeof message, format, args);
+    context->message_handler(context->message_data, kind, message, setting ? setting : "");
+}
+
 void ur_context_message(const ur_context *context, ur_message_kind kind, const char *format, ...)
 {
     if (!context || !context->message_handler)
         return;
-    char message[1024];
     va_list args;
     va_start(args, format);
-    vsnprintf(message, sizeof message, format, args);
+    message_about(context, kind, "", format, args);
     va_end(args);
-    context->message_handler(context->message_data, kind, message);
+}
+
+void ur_context_message_about(const ur_context *context, ur_message_kind kind, const char *setting,
+                              const char *format, ...)
+{
+    if (!context || !context->message_handler)
+        return;
+    va_list args;
+    va_start(args, format);
+    message_about(context, kind, setting, format, args);
+    va_end(args);
 }
 
 void ur_context_set_profile_roots(ur_context *context, const char *const *roots)

@@ -152,14 +152,14 @@ int cli_analyze(const ur_job *job)
     ur_job_callbacks callbacks = cli_callbacks(job);
     ur_error error;
     if (ur_job_surface_with_curves(job, &callbacks, &ruled, &error) != UR_OK) {
-        cli_message("%s", error.message);
+        cli_error(NULL, &error);
         return cli_exit_status(&error);
     }
     int code = 0;
     ur_analysis analysis;
     memset(&analysis, 0, sizeof analysis);
     if (!code && ur_analyze(&ruled, NULL, &analysis, &error) != UR_OK) {
-        cli_message("analyze: %s", error.message);
+        cli_error("analyze", &error);
         code = cli_exit_status(&error);
     }
     if (!code) {
@@ -202,7 +202,7 @@ int cli_compare(const ur_job *job)
     ur_job_callbacks callbacks = cli_callbacks(job);
     ur_error error;
     if (ur_job_surface(job, &callbacks, &ruled, &error) != UR_OK) {
-        cli_message("%s", error.message);
+        cli_error(NULL, &error);
         return cli_exit_status(&error);
     }
     int code = 0;
@@ -221,7 +221,7 @@ int cli_compare(const ur_job *job)
     if (status == UR_OK && job->png_path)
         status = ur_compare_plot_png(job->png_path, &table, title, cli_context(), &error);
     if (status != UR_OK) {
-        cli_message("compare: %s", error.message);
+        cli_error("compare", &error);
         code = cli_exit_status(&error);
     }
     ur_compare_table_free(&table);

@@ -56,9 +56,26 @@ bool cli_directory_exists(const char *option, const char *path);
 int cli_exit_status(const ur_error *error);
 
 /*
- * Callbacks that print the library's warnings ("unroll: ..."), its
- * progress on a terminal (one line rewritten in place) and the summary of
- * a surface job (run.c).
+ * flags.c: a library message with the settings it names (setting: their names,
+ * space-separated, as ur_error's) written as the command's flags: each
+ * name's first use as a word gets its dashes ("cone: top-radius must be
+ * ..." becomes "cone: --top-radius must be ..."; a name listed twice, its
+ * first two uses), and a name the message does not use goes in front,
+ * after the command and "warning: " ("mesh: --sheet: piece P1 ...").
+ * Written into text (size bytes, cut off if longer).
+ */
+void cli_with_flags(const char *message, const char *setting, char *text, size_t size);
+
+/*
+ * Prints a library error, "unroll: COMMAND: message" (command may be
+ * NULL), its settings as flags (cli_with_flags).
+ */
+void cli_error(const char *command, const ur_error *error);
+
+/*
+ * Callbacks that print the library's progress on a terminal (one line
+ * rewritten in place) and the summary of a surface job (run.c); its
+ * warnings and notes go through the context's handler (signals.c).
  */
 ur_job_callbacks cli_callbacks(const ur_job *job);
 
@@ -93,7 +110,9 @@ int cli_nest(int argc, char **argv);
 
 /*
  * The run's library context (signals.c): opened once in main, before the
- * signal handlers, which cancel it; false when out of memory.
+ * signal handlers, which cancel it, with a message handler that prints
+ * the library's warnings and notes ("unroll: ..."); false when out of
+ * memory.
  */
 bool cli_context_open(void);
 ur_context *cli_context(void);

@@ -206,7 +206,7 @@ static int read_files(const nest_job *n, ur_piece **pieces, size_t *count)
         ur_error error;
         ur_status status = ur_parts_import(path, &options, &parts, &error);
         if (status != UR_OK) {
-            cli_message("nest: %s", error.message);
+            cli_error("nest", &error);
             return cli_exit_status(&error);
         }
         for (size_t w = 0; !n->job.quiet && w < parts.warning_count; w++)
@@ -214,7 +214,7 @@ static int read_files(const nest_job *n, ur_piece **pieces, size_t *count)
         status = add_parts(&parts, copies, pieces, count, &error);
         ur_parts_free(&parts);
         if (status != UR_OK) {
-            cli_message("nest: %s", error.message);
+            cli_error("nest", &error);
             return cli_exit_status(&error);
         }
     }
@@ -273,7 +273,7 @@ static int run_nest(nest_job *n, ur_piece **pieces, size_t *count, ur_layout *la
     ur_error error;
     if (ur_machine_load(cli_profile_roots(), n->job.machine_name, &machine, &error) != UR_OK ||
         ur_material_load(cli_profile_roots(), n->job.material_name, &material, &error) != UR_OK) {
-        cli_message("%s", error.message);
+        cli_error(NULL, &error);
         return cli_exit_status(&error);
     }
     int code = read_files(n, pieces, count);
@@ -285,7 +285,7 @@ static int run_nest(nest_job *n, ur_piece **pieces, size_t *count, ur_layout *la
     ur_job_result result;
     if (ur_job_nest(&n->job, &callbacks, n->job.develop.split, pieces, count, layout, &result,
                     &error) != UR_OK) {
-        cli_message("nest: %s", error.message);
+        cli_error("nest", &error);
         return cli_exit_status(&error);
     }
     print_nest_summary(n, &result, *pieces, *count, layout);

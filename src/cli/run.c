@@ -1,6 +1,7 @@
 /*
- * run.c: one surface job through the library (ur_job_run), its warnings,
- * progress and summary on stderr, its failure as a message and exit status.
+ * run.c: one surface job through the library (ur_job_run), its progress
+ * and summary on stderr, its failure as a message and exit status (its
+ * warnings and notes come through the context's handler, signals.c).
  */
 #include "cli.h"
 
@@ -39,12 +40,6 @@ int cli_exit_status(const ur_error *error)
     default: /* UR_ERROR_CANCELLED ends in 128 + the signal (cli_signal_exit) */
         return EXIT_INTERNAL;
     }
-}
-
-static void print_warning(void *user, const char *message)
-{
-    (void)user;
-    cli_message("%s", message);
 }
 
 /* On a terminal: each report on one line rewritten in place, cleared or ended when done. */
@@ -94,7 +89,6 @@ ur_job_callbacks cli_callbacks(const ur_job *job)
 {
     return (ur_job_callbacks){
         .user = (void *)job,
-        .warning = print_warning,
         .progress = isatty(STDERR_FILENO) ? print_progress : NULL,
         .summary = print_summary,
     };
@@ -123,7 +117,7 @@ int cli_run_job(const ur_job *job)
     ur_job_callbacks callbacks = cli_callbacks(job);
     ur_error error;
     if (ur_job_run(job, &callbacks, NULL, &error) != UR_OK) {
-        cli_message("%s", error.message);
+        cli_error(NULL, &error);
         return cli_exit_status(&error);
     }
     return 0;

@@ -1,5 +1,6 @@
 /*
- * signals.c: the command's one library context, and SIGINT and SIGTERM
+ * signals.c: the command's one library context, whose message handler
+ * prints the library's warnings and notes, and SIGINT and SIGTERM
  * stopping a run cleanly.  The handler only cancels the context
  * (ur_context_cancel): the long loops notice at their
  * next check and every writer removes its temporary files, so nothing is
@@ -43,11 +44,26 @@ static void set_test_hooks(ur_context *context)
         ur_context_fail_writes_after(context, bytes);
 }
 
+/*
+ * Every warning and note of the library, as it words them, its settings
+ * as flags: "unroll: strip: warning: ... (--no-split refuses instead)".
+ */
+static void print_message(void *data, ur_message_kind kind, const char *message,
+                          const char *setting)
+{
+    (void)data;
+    (void)kind;
+    char flagged[8192];
+    cli_with_flags(message, setting, flagged, sizeof flagged);
+    cli_message("%s", flagged);
+}
+
 bool cli_context_open(void)
 {
     ur_context *context = ur_context_new();
     if (!context)
         return false;
+    ur_context_set_message_handler(context, print_message, NULL);
     set_test_hooks(context);
     atomic_store(&run_context, context);
     return true;

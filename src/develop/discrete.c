@@ -130,14 +130,18 @@ static void unroll_quads(const ur_vec3 *p, const ur_vec3 *a, strip *s)
 ur_status develop_discrete(ur_ruled *ruled, const ur_develop_options *options, strip *s,
                            ur_error *error)
 {
-    if (options->method == UR_METHOD_TRIANGLE && ruled->kind != UR_RULED_TANGENT)
-        return ur_error_set(error, UR_ERROR_INPUT,
-                            "--method triangle: the paper's triangle method relies on "
-                            "consecutive tangents nearly meeting, so it applies only to tangent "
-                            "developables (helicoid, tangent); use --method quad or exact");
+    if (options->method == UR_METHOD_TRIANGLE && ruled->kind != UR_RULED_TANGENT) {
+        ur_error_set(error, UR_ERROR_INPUT,
+                     "method triangle: the paper's triangle construction relies on consecutive "
+                     "tangents nearly meeting, so it applies only to tangent developables "
+                     "(helicoid, tangent); use method quad or exact");
+        return ur_error_set_setting(error, "method method");
+    }
     size_t n = options->rulings;
-    if (n < 1)
-        return ur_error_set(error, UR_ERROR_INPUT, "-n must be at least 1");
+    if (n < 1) {
+        ur_error_set(error, UR_ERROR_INPUT, "rulings must be at least 1");
+        return ur_error_set_setting(error, "rulings");
+    }
     ur_status status = strip_alloc(s, n + 1, error);
     if (status != UR_OK)
         return status;

@@ -282,16 +282,19 @@ static ur_status find_units(dxf_reader *reader, ur_error *error)
                             reader->path, line, code);
     if (code == 0)
         unit = reader->collection->unit;
-    if (unit <= 0 && line > 0)
-        return ur_error_set(error, UR_ERROR_INPUT,
-                            "%s:%d: the drawing gives no unit ($INSUNITS is 0, unitless): give "
-                            "its unit with --units",
-                            reader->path, line);
-    if (unit <= 0)
-        return ur_error_set(error, UR_ERROR_INPUT,
-                            "%s: the drawing gives no unit (no $INSUNITS): give its unit with "
-                            "--units",
-                            reader->path);
+    if (unit <= 0 && line > 0) {
+        ur_error_set(error, UR_ERROR_INPUT,
+                     "%s:%d: the drawing gives no unit ($INSUNITS is 0, unitless): give its "
+                     "unit with units",
+                     reader->path, line);
+        return ur_error_set_setting(error, "units");
+    }
+    if (unit <= 0) {
+        ur_error_set(error, UR_ERROR_INPUT,
+                     "%s: the drawing gives no unit (no $INSUNITS): give its unit with units",
+                     reader->path);
+        return ur_error_set_setting(error, "units");
+    }
     reader->scale = unit;
     reader->tolerance = reader->collection->tolerance / unit;
     return UR_OK;

@@ -349,10 +349,12 @@ static ur_status root_matrix(svg_element *root, parts_matrix *matrix, ur_error *
     double unit = root->reader->collection->unit;
     double sx = axis_scale(&width, box.given, box.width, unit);
     double sy = axis_scale(&height, box.given, box.height, unit);
-    if (!width.physical && !height.physical && unit <= 0)
-        return svg_element_error(root, error,
-                                 "the drawing gives no physical size (width and height in mm, cm, "
-                                 "in, pt, pc or px): give its unit with --units");
+    if (!width.physical && !height.physical && unit <= 0) {
+        svg_element_error(root, error,
+                          "the drawing gives no physical size (width and height in mm, cm, in, pt, "
+                          "pc or px): give its unit with units");
+        return ur_error_set_setting(error, "units");
+    }
     double s = width.physical && height.physical ? fmin(sx, sy) : width.physical ? sx : sy;
     if (!width.physical && !height.physical)
         s = width.given ? sx : sy;

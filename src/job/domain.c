@@ -46,9 +46,9 @@ ur_status job_check_domain(const job_run *run, ur_ruled *ruled)
                 text + used, sizeof text - used, "%s%s (%s)", k ? "; " : "", place,
                 gaps[k].reason == UR_GAP_NO_RULING ? "no ruling" : "rulings cross");
         }
-        return job_fail(run, UR_ERROR_INPUT,
-                        "%s: --strict: the strip does not exist along the whole of rail 1: %s",
-                        run->job.command, text);
+        return job_fail_about(run, UR_ERROR_INPUT, "strict",
+                              "%s: strict: the strip does not exist along the whole of rail 1: %s",
+                              run->job.command, text);
     }
     if (run->job.quiet)
         return UR_OK;
@@ -103,9 +103,9 @@ ur_status job_regression_points(const job_run *run, ur_ruled *ruled, ur_vec3 **p
     if (*count < 4) {
         free(*points);
         *points = NULL;
-        return job_fail(
-            run, UR_ERROR_INPUT,
-            "%s: --regression: the rulings are parallel (the surface is a cylinder), so "
+        return job_fail_about(
+            run, UR_ERROR_INPUT, "regression",
+            "%s: regression: the rulings are parallel (the surface is a cylinder), so "
             "the edge of regression is at infinity and there is nothing to write",
             run->job.command);
     }
@@ -117,11 +117,11 @@ ur_status job_write_regression(const job_run *run, const ur_vec3 *points, size_t
     ur_error error;
     if (ur_curve_csv_write(run->job.regression_path, points, count, run->job.context, &error) !=
         UR_OK) {
-        return job_fail(run, error.status, "%s: --regression %s: %s", run->job.command,
-                        run->job.regression_path, error.message);
+        return job_fail_about(run, error.status, "regression", "%s: regression %s: %s",
+                              run->job.command, run->job.regression_path, error.message);
     }
     if (!run->job.quiet)
-        job_warn(run, "%s: edge of regression: %zu points -> %s", run->job.command, count,
+        job_note(run, "%s: edge of regression: %zu points -> %s", run->job.command, count,
                  run->job.regression_path);
     return UR_OK;
 }

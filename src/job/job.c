@@ -1,6 +1,7 @@
 /*
  * job.c: a job's defaults, and how one run of it reports: warnings and
- * progress to the caller's callbacks, a failure into the caller's error.
+ * notes to its context's message handler, progress to the caller's
+ * callbacks, a failure into the caller's error.
  */
 #include "stages.h"
 
@@ -41,26 +42,73 @@ job_run job_run_make(const ur_job *job, const ur_job_callbacks *callbacks, ur_er
     return run;
 }
 
+/* A warning or note as the sentence shown, to the job's context's message handler. */
+static void job_message(const job_run *run, ur_message_kind kind, const char *setting,
+                        const char *format, va_list args)
+{
+    char message[8192]; /* a warning names pieces and paths: room for many */
+    c_vsnprintf(message, sizeof message, format, args);
+    ur_context_message_about(run->job.context, kind, setting, "%s", message);
+}
+
 void job_warn(const job_run *run, const char *format, ...)
 {
-    if (!run->callbacks.warning)
-        return;
-    char message[8192]; /* a warning names pieces and paths: room for many */
     va_list args;
     va_start(args, format);
-    c_vsnprintf(message, sizeof message, format, args);
+    job_message(run, UR_MESSAGE_WARNING, "", format, args);
     va_end(args);
-    run->callbacks.warning(run->callbacks.user, message);
+}
+
+void job_warn_about(const job_run *run, const char *setting, const char *format, ...)
+{
+    va_list args;
+    va_start(args, format);
+    job_message(run, UR_MESSAGE_WARNING, setting, format, args);
+    va_end(args);
+}
+
+void job_note(const job_run *run, const char *format, ...)
+{
+    va_list args;
+    va_start(args, format);
+    job_message(run, UR_MESSAGE_NOTE, "", format, args);
+    va_end(args);
+}
+
+void job_note_about(const job_run *run, const char *setting, const char *format, ...)
+{
+    va_list args;
+    va_start(args, format);
+    job_message(run, UR_MESSAGE_NOTE, setting, format, args);
+    va_end(args);
 }
 
 ur_status job_fail(const job_run *run, ur_status status, const char *format, ...)
+{
+    run->error->status = status;
+    run->error->setting[0] = '\0';
+    va_list args;
+    va_start(args, format);
+    c_vsnprintf(run->error->message, sizeof run->error->message, format, args);
+    va_end(args);
+    return status;
+}
+
+ur_status job_fail_about(const job_run *run, ur_status status, const char *setting,
+                         const char *format, ...)
 {
     run->error->status = status;
     va_list args;
     va_start(args, format);
     c_vsnprintf(run->error->message, sizeof run->error->message, format, args);
     va_end(args);
-    return status;
+    return ur_error_set_setting(run->error, setting);
+}
+
+ur_status job_fail_from(const job_run *run, const ur_error *cause)
+{
+    job_fail(run, cause->status, "%s: %s", run->job.command, cause->message);
+    return ur_error_set_setting(run->error, cause->setting);
 }
 
 bool job_shows_progress(const job_run *run)

@@ -30,18 +30,24 @@ typedef struct file_run {
     ur_job layout; /* the first part's job: the sheets and files of the whole */
 } file_run;
 
-/* A part's warnings go to the caller's callback prefixed with the file and the part's line. */
-typedef struct located_warnings {
-    const ur_job_callbacks *callbacks;
+/*
+ * A part's warnings and notes go to the handler the context had, prefixed
+ * with the file and the part's line: the part's run has this one in its
+ * place.
+ */
+typedef struct located_messages {
+    ur_message_handler handler;
+    void *data;
     char where[1100];
-} located_warnings;
+} located_messages;
 
-static void located_warning(void *user, const char *message)
+static void located_message(void *data, ur_message_kind kind, const char *message,
+                            const char *setting)
 {
-    const located_warnings *located = user;
+    const located_messages *located = data;
     char text[9300];
     c_snprintf(text, sizeof text, "%s: %s", located->where, message);
-    located->callbacks->warning(located->callbacks->user, text);
+    located->handler(located->data, kind, text, setting);
 }
 
 /* The job's settings, or a part's, on a part's job; the message names the file and line. */
@@ -109,12 +115,14 @@ static ur_status add_part(file_run *run, size_t index, ur_job_parts *parts,
         return ur_error_out_of_memory(error);
     ur_status status = part_job(run, index, job, error);
     if (status == UR_OK) {
-        located_warnings located = {callbacks, ""};
+        located_messages located;
+        ur_context_message_handler(run->context, &located.handler, &located.data);
         c_snprintf(located.where, sizeof located.where, "%s:%d", run->file->source, part->line);
-        ur_job_callbacks part_callbacks = {&located, NULL, NULL, NULL};
-        if (callbacks && callbacks->warning)
-            part_callbacks.warning = located_warning;
-        status = ur_job_parts_add(parts, job, part->quantity, &part_callbacks, error);
+        if (located.handler)
+            ur_context_set_message_handler(run->context, located_message, &located);
+        status = ur_job_parts_add(parts, job, part->quantity, callbacks, error);
+        if (located.handler)
+            ur_context_set_message_handler(run->context, located.handler, located.data);
         if (status != UR_OK)
             ur_error_prefix(error, "%s:%d: ", run->file->source, part->line);
     }

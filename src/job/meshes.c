@@ -23,7 +23,7 @@ enum { RULED_ALONG = 96, RULED_ACROSS = 24 };
 
 static ur_status fail(const job_run *run, const ur_error *error)
 {
-    return job_fail(run, error->status, "%s: %s", run->job.command, error->message);
+    return job_fail_from(run, error);
 }
 
 /* Long flattening reports its progress, and its end, to the progress callback. */
@@ -147,11 +147,12 @@ static ur_status split_to_fit(const flattening *f, const ur_mesh *piece, double 
         if (all) {
             *area += trial_area;
             if (!f->run->job.quiet)
-                job_warn(f->run,
-                         "%s: a piece %.0f x %.0f mm does not fit the %.0f x %.0f mm a sheet "
-                         "leaves it: cut into %zu along its length (--no-split refuses "
-                         "instead)",
-                         f->run->job.command, length, width, f->room.length, f->room.width, parts);
+                job_note_about(f->run, "no-split",
+                               "%s: a piece %.0f x %.0f mm does not fit the %.0f x %.0f mm a "
+                               "sheet leaves it: cut into %zu along its length (no-split refuses "
+                               "instead)",
+                               f->run->job.command, length, width, f->room.length, f->room.width,
+                               parts);
             return UR_OK;
         }
     }
@@ -243,9 +244,10 @@ static ur_status read_seam(const job_run *run, const char *path, const ur_mesh *
                 ur_vec3_distance(mesh->vertices[best], points[i]))
                 best = v;
         if (!(ur_vec3_distance(mesh->vertices[best], points[i]) <= tolerance)) {
-            code = job_fail(run, UR_ERROR_INPUT,
-                            "%s: --seams %s: point %zu (%g, %g, %g) is no vertex of the mesh",
-                            run->job.command, path, i + 1, points[i].x, points[i].y, points[i].z);
+            code = job_fail_about(run, UR_ERROR_INPUT, "seams",
+                                  "%s: seams %s: point %zu (%g, %g, %g) is no vertex of the mesh",
+                                  run->job.command, path, i + 1, points[i].x, points[i].y,
+                                  points[i].z);
         }
         vertices[i] = best;
     }
@@ -272,7 +274,7 @@ static void say_repairs(const job_run *run, const ur_mesh_repairs *repairs)
     if (run->job.quiet)
         return;
     if (repairs->welded || repairs->degenerate || repairs->isolated || repairs->flipped)
-        job_warn(run,
+        job_note(run,
                  "%s: repaired: %zu vertices welded, %zu zero-area triangles and %zu unused "
                  "vertices dropped, %zu triangles turned to agree with their neighbours",
                  run->job.command, repairs->welded, repairs->degenerate, repairs->isolated,
@@ -392,7 +394,7 @@ static ur_status unfold_mesh(const job_run *run, const job_room *room, const ur_
         *area += unfolding.pieces[k].area_3d;
     }
     if (!code && !run->job.quiet)
-        job_warn(run,
+        job_note(run,
                  "%s: unfolded into %zu piece%s (%zu of a single face): %zu folds (%zu "
                  "valleys), %zu seams",
                  run->job.command, unfolding.count, unfolding.count == 1 ? "" : "s",
@@ -437,7 +439,7 @@ static ur_status nets_of_strips(const job_run *run, const ur_strips *strips,
         *area += nets->nets[k].area_3d;
     }
     if (!run->job.quiet)
-        job_warn(run,
+        job_note(run,
                  "%s: %zu strip%s keep the strain within %.3g %% stretch and %.3g %% "
                  "compression (at most %.3g %% and %.3g %%)",
                  run->job.command, strips->bands, strips->bands == 1 ? "" : "s",
@@ -462,8 +464,9 @@ static ur_status flatten_in_strips(const job_run *run, const ur_material *materi
                             : ur_flatten_strips_ruled(ruled, &limits, &options, &strips, &error);
     end_progress(run);
     if (status != UR_OK) {
-        return job_fail(run, error.status, "%s: %s (--max-strain sets another limit)",
-                        run->job.command, error.message);
+        return job_fail_about(run, error.status, "max-strain",
+                              "%s: %s (max-strain sets another limit)", run->job.command,
+                              error.message);
     }
     ur_status code = nets_of_strips(run, &strips, &limits, nets, area);
     ur_strips_free(&strips);
@@ -495,7 +498,7 @@ static ur_status flatten_charts(const job_run *run, const job_room *room,
         code = place_flat(&f, &charts.charts[k].piece.mesh, &charts.charts[k].flat, 0, nets, area);
     name_nets(nets);
     if (!code && !run->job.quiet)
-        job_warn(run,
+        job_note(run,
                  "%s: %zu chart%s (cut at %zu sharp edges, then where over the strain) keep "
                  "within %.3g %% stretch and %.3g %% compression (at most %.3g %% and %.3g %%)",
                  run->job.command, charts.count, charts.count == 1 ? "" : "s", charts.sharp_edges,
@@ -562,7 +565,7 @@ static ur_status nets_of_mesh(const job_run *run, const job_room *room, const ur
  */
 #define TINY_MODEL 10.0
 
-/* Without --units or --scale, a mesh smaller than TINY_MODEL gets a warning naming both. */
+/* Without units or a scale, a mesh smaller than TINY_MODEL gets a warning naming both. */
 static void warn_if_tiny(const job_run *run, const ur_mesh *mesh)
 {
     if (run->job.quiet || mesh->vertex_count == 0)
@@ -576,11 +579,11 @@ static void warn_if_tiny(const job_run *run, const ur_mesh *mesh)
     double size = fmax(high.x - low.x, fmax(high.y - low.y, high.z - low.z));
     if (!(size < TINY_MODEL) || !(size > 0))
         return;
-    job_warn(run,
-             "%s: warning: %s is only %.3g mm across, read in millimetres; if it was "
-             "modelled in metres (as Blender's are) give --units m (%.4g mm), in inches "
-             "--units in (%.4g mm), or --scale S",
-             run->job.command, run->job.mesh_path, size, size * 1000, size * 25.4);
+    job_warn_about(run, "units units scale",
+                   "%s: warning: %s is only %.3g mm across, read in millimetres; if it was "
+                   "modelled in metres (as Blender's are) give units m (%.4g mm), in inches "
+                   "units in (%.4g mm), or scale S",
+                   run->job.command, run->job.mesh_path, size, size * 1000, size * 25.4);
 }
 
 ur_status job_mesh_nets(const job_run *run, const job_room *room, const ur_material *material,
@@ -588,7 +591,7 @@ ur_status job_mesh_nets(const job_run *run, const job_room *room, const ur_mater
 {
     if (!run->job.mesh_path) {
         return job_fail(run, UR_ERROR_INPUT,
-                        "mesh: give the mesh file: unroll mesh FILE -o OUT.svg");
+                        "mesh: give the mesh file to read");
     }
     ur_mesh_import_options options;
     ur_mesh_import_options_default(&options);

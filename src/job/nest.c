@@ -66,12 +66,12 @@ static ur_status split_long_parts(const job_run *run, const ur_machine *machine,
         status = ur_part_split(&(*pieces)[k], room.length, room.width, (double)k, &split, error);
         cut[k] = status == UR_OK;
         if (status == UR_OK && !run->job.quiet)
-            job_warn(run,
-                     "%s: part %s (%.0f x %.0f mm) fits no sheet in any allowed turn: cut "
-                     "into %zu to fit the %.0f x %.0f mm a sheet leaves a part with joints "
-                     "(--no-split refuses instead)",
-                     run->job.command, (*pieces)[k].name, length, width, split.nets.count - before,
-                     room.length, room.width);
+            job_note_about(run, "no-split",
+                           "%s: part %s (%.0f x %.0f mm) fits no sheet in any allowed turn: cut "
+                           "into %zu to fit the %.0f x %.0f mm a sheet leaves a part with joints "
+                           "(no-split refuses instead)",
+                           run->job.command, (*pieces)[k].name, length, width,
+                           split.nets.count - before, room.length, room.width);
     }
     int next_seam = 0;
     if (status == UR_OK && split.nets.count > 0)

@@ -109,12 +109,12 @@ void job_not_placed_warning(const job_run *run, const ur_layout *layout, const u
     for (size_t k = 0; k < layout->not_placed_count && used + 40 < sizeof names; k++)
         used += (size_t)c_snprintf(names + used, sizeof names - used, "%s%s", k ? ", " : "",
                                    pieces[layout->not_placed[k]].name);
-    job_warn(run,
-             "%s: warning: %zu piece%s found no room on the %zu sheet%s allowed (--sheets): "
-             "%s%s",
-             run->job.command, layout->not_placed_count, layout->not_placed_count == 1 ? "" : "s",
-             layout->sheet_count, layout->sheet_count == 1 ? "" : "s", names,
-             used + 40 >= sizeof names ? ", ..." : "");
+    /* Only a limit on the sheets leaves pieces off: the warning says which. */
+    size_t allowed = run->job.max_sheets > 0 ? (size_t)run->job.max_sheets : layout->sheet_count;
+    job_warn_about(run, "sheets", "%s: warning: sheets %zu: %zu piece%s found no room: %s%s",
+                   run->job.command, allowed, layout->not_placed_count,
+                   layout->not_placed_count == 1 ? "" : "s", names,
+                   used + 40 >= sizeof names ? ", ..." : "");
 }
 
 /* The formats to write: -o - without --format is an SVG, as a program reading a pipe expects. */

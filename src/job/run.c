@@ -45,7 +45,7 @@ static size_t sheet_choices(const job_run *run, const ur_machine *machine,
         choices[count].width = machine->bed_width;
         choices[count++].height = machine->bed_height;
         if (!run->job.quiet)
-            job_warn(run,
+            job_note(run,
                      "note: no stock size of %s fits the %s bed; using sheets cut to the "
                      "bed, %g x %g mm",
                      material->name, machine->name, machine->bed_width, machine->bed_height);
@@ -173,10 +173,12 @@ static ur_status neutral_layer(job_state *state, ur_ruled *moved, ur_ruled **use
     if (state->layer_offset == 0.0)
         return UR_OK;
     ur_status status = ur_ruled_offset(&state->ruled, state->layer_offset, moved, error);
-    if (status == UR_OK)
+    if (status == UR_OK) {
         *use = moved;
-    else
-        ur_error_prefix(error, "--surface %s: ", ur_surface_layer_name(state->layer));
+    } else {
+        ur_error_prefix(error, "surface %s: ", ur_surface_layer_name(state->layer));
+        ur_error_set_setting(error, "surface");
+    }
     return status;
 }
 
@@ -377,17 +379,18 @@ ur_status job_place_pieces(const job_run *run, const ur_machine *machine,
         options.roll_width = run->job.roll_width;
         status = ur_layout_nest(pieces, count, &options, layout, error);
     }
-    ur_error largest = {UR_OK, ""};
+    ur_error largest = {UR_OK, "", ""};
     double largest_area = 0;
     for (size_t k = 0; run->job.roll_width <= 0 && k < choice_count; k++) {
         options.sheet_width = choices[k].width;
         options.sheet_height = choices[k].height;
         if (count > 1 && options.spacing >= fmax(options.sheet_width, options.sheet_height)) {
             /* every part would take a sheet of its own: surely a mistake */
-            status = ur_error_set(error, UR_ERROR_INPUT,
-                                  "--spacing %g mm is not less than the %g x %g mm sheet: no two "
-                                  "parts could share a sheet",
-                                  options.spacing, options.sheet_width, options.sheet_height);
+            ur_error_set(error, UR_ERROR_INPUT,
+                         "spacing %g mm is not less than the %g x %g mm sheet: no two parts could "
+                         "share a sheet",
+                         options.spacing, options.sheet_width, options.sheet_height);
+            status = ur_error_set_setting(error, "spacing");
             continue;
         }
         status = ur_layout_nest(pieces, count, &options, layout, error);
@@ -421,7 +424,7 @@ ur_status job_merge_lines(const job_run *run, const ur_layout *layout, ur_piece 
     double saved = 0;
     ur_status status = ur_layout_merge_lines(layout, pieces, count, MERGE_TOLERANCE, &saved, error);
     if (status == UR_OK && !run->job.quiet)
-        job_warn(run, "%s: merged lines: %.1f mm of shared cuts cut once", run->job.command, saved);
+        job_note(run, "%s: merged lines: %.1f mm of shared cuts cut once", run->job.command, saved);
     return status;
 }
 
@@ -449,8 +452,10 @@ static ur_status write_assembly(const job_run *run, const job_state *state, ur_e
                                    .y_up = run->job.assembly_y_up,
                                    .context = run->job.context};
     ur_status status = ur_assembly_write(&state->nets, run->job.assembly_path, &options, error);
-    if (status != UR_OK)
-        ur_error_prefix(error, "--assembly %s: ", run->job.assembly_path);
+    if (status != UR_OK) {
+        ur_error_prefix(error, "assembly %s: ", run->job.assembly_path);
+        ur_error_set_setting(error, "assembly");
+    }
     free(names);
     return status;
 }
@@ -462,8 +467,10 @@ static ur_status write_all(const job_run *run, job_state *state, ur_error *error
     if (status == UR_OK && run->job.strain_png_path) {
         status = ur_strain_png_write(run->job.strain_png_path, &state->layout, state->pieces,
                                      state->piece_count, 0, run->job.context, error);
-        if (status != UR_OK)
-            ur_error_prefix(error, "--strain-png %s: ", run->job.strain_png_path);
+        if (status != UR_OK) {
+            ur_error_prefix(error, "strain-png %s: ", run->job.strain_png_path);
+            ur_error_set_setting(error, "strain-png");
+        }
     }
     if (status == UR_OK && run->job.assembly_path)
         status = write_assembly(run, state, error);
@@ -525,11 +532,11 @@ static ur_status flatten_if_needed(const job_run *run, job_state *state, bool *f
     ur_error error;
     if (ur_analyze(&state->ruled, NULL, &analysis, &error) != UR_OK) {
         ur_analysis_free(&analysis);
-        return job_fail(run, error.status, "%s: %s", run->job.command, error.message);
+        return job_fail_from(run, &error);
     }
     bool developable = analysis.developable;
     if (!developable && !run->job.quiet)
-        job_warn(run,
+        job_note(run,
                  "%s: not developable (the tangent plane turns by up to %.3g degrees along a "
                  "ruling, K down to %.3g 1/mm2): flattened with %s, with strain",
                  run->job.command, analysis.max_residual * 180 / M_PI, analysis.gaussian_min,
@@ -543,7 +550,7 @@ static ur_status flatten_if_needed(const job_run *run, job_state *state, bool *f
     *flattened = true;
     ur_ruled moved, *surface;
     if (neutral_layer(state, &moved, &surface, &error) != UR_OK) {
-        return job_fail(run, error.status, "%s: %s", run->job.command, error.message);
+        return job_fail_from(run, &error);
     }
     job_room room = job_fit_room(run, &state->machine, &state->material);
     ur_status code = job_flatten_ruled(run, &room, &state->material, surface, &state->nets,
@@ -597,7 +604,7 @@ static void print_layer(const job_run *run, const job_state *state)
 {
     const ur_material *material = &state->material;
     if (state->layer_offset != 0.0 && !run->job.quiet)
-        job_warn(run,
+        job_note(run,
                  "%s: the surface is the %s face of %g mm %s: developing the neutral layer "
                  "(K %g%s), %.4g mm %s the bend",
                  run->job.command, ur_surface_layer_name(state->layer), material->thickness,
@@ -638,7 +645,7 @@ static ur_status make_nets(const job_run *run, job_state *state, job_adjusted_ra
     if (!flattened)
         state->method = ur_method_name(run->job.develop.method);
     if (!code && !flattened && develop_parts(run, state, &error) != UR_OK) {
-        code = job_fail(run, error.status, "%s: %s", run->job.command, error.message);
+        code = job_fail_from(run, &error);
     }
     if (!code)
         print_layer(run, state);
@@ -658,7 +665,7 @@ static ur_status find_seams(const job_run *run, job_state *state)
     if (first <= run->job.seam_offset)
         first = run->job.seam_offset + 1;
     if (ur_net_list_find_seams(&state->nets, first, &next_seam, &error) != UR_OK) {
-        return job_fail(run, error.status, "%s: %s", run->job.command, error.message);
+        return job_fail_from(run, &error);
     }
     return UR_OK;
 }
@@ -671,9 +678,9 @@ static ur_status check_assembly(const job_run *run, const job_state *state)
     for (size_t k = 0; k < state->nets.count; k++)
         if (state->nets.nets[k].face_count > 0)
             return UR_OK;
-    return job_fail(
-        run, UR_ERROR_INPUT,
-        "%s: --assembly is for meshes (and surfaces flattened as meshes): a %s developed "
+    return job_fail_about(
+        run, UR_ERROR_INPUT, "assembly",
+        "%s: assembly is for meshes (and surfaces flattened as meshes): a %s developed "
         "%s has no faces to draw",
         run->job.command, run->job.surface, state->method);
 }
@@ -731,7 +738,7 @@ static ur_status run_job(const job_run *run, ur_job_result *result)
         status = write_all(run, &state, &error);
     }
     if (status != UR_OK) {
-        code = job_fail(run, error.status, "%s: %s", run->job.command, error.message);
+        code = job_fail_from(run, &error);
     } else {
         fill_result(run, &state, result);
         if (!run->job.quiet && run->callbacks.summary)
@@ -742,7 +749,7 @@ static ur_status run_job(const job_run *run, ur_job_result *result)
             code = job_write_adjusted_rail(run, &adjusted);
     }
     if (ur_output_set_end(run->job.context, code == 0, &error) != UR_OK && code == 0) {
-        code = job_fail(run, error.status, "%s: %s", run->job.command, error.message);
+        code = job_fail_from(run, &error);
     }
     free(edge);
     job_adjusted_rail_free(&adjusted);
@@ -759,7 +766,7 @@ ur_status job_pieces(const job_run *run, job_pieces_made *out)
     ur_status status = load_profiles(run, &state, &error);
     if (status != UR_OK) {
         state_free(&state);
-        return job_fail(run, error.status, "%s: %s", run->job.command, error.message);
+        return job_fail_from(run, &error);
     }
     job_adjusted_rail adjusted = {{NULL, NULL}, {0, 0}};
     ur_vec3 *edge = NULL;
@@ -776,7 +783,7 @@ ur_status job_pieces(const job_run *run, job_pieces_made *out)
                                                    &state.nets, state.net_surfaces, &state.pieces,
                                                    &state.piece_count, &error);
         if (status != UR_OK) {
-            code = job_fail(run, error.status, "%s: %s", run->job.command, error.message);
+            code = job_fail_from(run, &error);
         }
     }
     if (!code) { /* the pieces leave the state for the caller */

@@ -21,7 +21,7 @@
 
 /*
  * One run of a job: the job (a copy, so that a stage may run a variant of
- * it), where its warnings and progress go, and where a stage that fails
+ * it; its context takes the warnings), where its progress goes, and where a stage that fails
  * leaves its message (job_fail).
  */
 typedef struct job_run {
@@ -33,10 +33,31 @@ typedef struct job_run {
 /* A run of job reporting to callbacks (may be NULL), failing into error. */
 job_run job_run_make(const ur_job *job, const ur_job_callbacks *callbacks, ur_error *error);
 
-/* Hands a warning or note, formatted, to the warning callback. */
+/*
+ * Hands a warning (UR_MESSAGE_WARNING), or a note of what was chosen or
+ * done (UR_MESSAGE_NOTE), formatted, to the message handler of the job's
+ * context.
+ */
 void job_warn(const job_run *run, const char *format, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+void job_note(const job_run *run, const char *format, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+
+/* The same for a sentence that names settings, listed in setting as ur_error's. */
+void job_warn_about(const job_run *run, const char *setting, const char *format, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+void job_note_about(const job_run *run, const char *setting, const char *format, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
 #endif
     ;
 
@@ -46,6 +67,17 @@ ur_status job_fail(const job_run *run, ur_status status, const char *format, ...
     __attribute__((format(printf, 3, 4)))
 #endif
     ;
+
+/* The same, naming settings: setting lists them as ur_error's does ("max-strain"). */
+ur_status job_fail_about(const job_run *run, ur_status status, const char *setting,
+                         const char *format, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 4, 5)))
+#endif
+    ;
+
+/* Fails with a stage's error, its message after the job's command, its setting kept. */
+ur_status job_fail_from(const job_run *run, const ur_error *cause);
 
 /* Hands a progress report to the progress callback, unless quiet. */
 void job_progress(const job_run *run, const ur_job_progress *progress);

@@ -21,8 +21,7 @@ static bool given(double value)
 static bool require(const job_run *run, double value, const char *option)
 {
     if (!given(value)) {
-        job_fail(run, UR_ERROR_INPUT, "%s: --%s is required (see 'unroll help %s')",
-                 run->job.surface, option, run->job.surface);
+        job_fail_about(run, UR_ERROR_INPUT, option, "%s: %s is required", run->job.surface, option);
         return false;
     }
     return true;
@@ -33,8 +32,8 @@ static bool positive(const job_run *run, double value, const char *option)
     if (!require(run, value, option))
         return false;
     if (!(value > 0)) {
-        job_fail(run, UR_ERROR_INPUT, "%s: --%s must be positive (got %g)", run->job.surface,
-                 option, value);
+        job_fail_about(run, UR_ERROR_INPUT, option, "%s: %s must be positive (got %g)",
+                       run->job.surface, option, value);
         return false;
     }
     return true;
@@ -42,8 +41,9 @@ static bool positive(const job_run *run, double value, const char *option)
 
 static ur_status fail(const ur_error *error, const job_run *run)
 {
-    return job_fail(run, error->status != UR_OK ? error->status : UR_ERROR_INTERNAL, "%s: %s",
-                    run->job.command, error->message);
+    job_fail(run, error->status != UR_OK ? error->status : UR_ERROR_INTERNAL, "%s: %s",
+             run->job.command, error->message);
+    return ur_error_set_setting(run->error, error->setting);
 }
 
 static ur_status curve_from_file(const job_run *run, ur_curve **curve)
@@ -62,12 +62,12 @@ static ur_status curve_from_file(const job_run *run, ur_curve **curve)
     return status == UR_OK ? UR_OK : fail(&error, run);
 }
 
-/* Either --radius or --curve, never both. */
+/* Either a radius or a curve, never both. */
 static ur_status base_curve(const job_run *run, ur_curve **curve)
 {
     if (run->job.curve_path && given(run->job.radius)) {
-        return job_fail(run, UR_ERROR_INPUT, "%s: give either --radius or --curve, not both",
-                        run->job.surface);
+        return job_fail_about(run, UR_ERROR_INPUT, "radius curve",
+                              "%s: give either radius or curve, not both", run->job.surface);
     }
     if (run->job.curve_path)
         return curve_from_file(run, curve);
@@ -82,9 +82,9 @@ static ur_status build_cylinder(const job_run *run, ur_ruled *ruled)
     if (!positive(run, run->job.height, "height"))
         return UR_ERROR_INPUT;
     if (run->job.has_direction && !run->job.curve_path) {
-        return job_fail(
-            run, UR_ERROR_INPUT,
-            "cylinder: --direction goes with --curve (a --radius cylinder stands on z)");
+        return job_fail_about(
+            run, UR_ERROR_INPUT, "direction curve radius",
+            "cylinder: direction goes with curve (a cylinder given its radius stands on z)");
     }
     ur_curve *curve = NULL;
     ur_status code = base_curve(run, &curve);
@@ -93,7 +93,8 @@ static ur_status build_cylinder(const job_run *run, ur_ruled *ruled)
     ur_vec3 direction = run->job.has_direction ? run->job.direction : ur_vec3_make(0, 0, 1);
     ur_error error;
     if (ur_ruled_cylinder(curve, direction, run->job.height, ruled, &error) != UR_OK) {
-        ur_error_prefix(&error, "--direction: ");
+        ur_error_prefix(&error, "direction: ");
+        ur_error_set_setting(&error, "direction");
         return fail(&error, run);
     }
     return UR_OK;
@@ -105,18 +106,18 @@ static ur_status build_right_cone(const job_run *run, ur_ruled *ruled)
     if (!positive(run, run->job.radius, "radius") || !positive(run, run->job.height, "height"))
         return UR_ERROR_INPUT;
     if (given(run->job.cut) || run->job.has_apex) {
-        return job_fail(run, UR_ERROR_INPUT,
-                        "cone: --apex and --cut go with --curve; with --radius use --top-radius");
+        return job_fail_about(run, UR_ERROR_INPUT, "apex cut curve radius top-radius",
+                              "cone: apex and cut go with curve; with radius use top-radius");
     }
     double top = given(run->job.top_radius) ? run->job.top_radius : 0.0;
     if (!(top >= 0)) {
-        return job_fail(run, UR_ERROR_INPUT, "cone: --top-radius must be zero or positive (got %g)",
-                        top);
+        return job_fail_about(run, UR_ERROR_INPUT, "top-radius",
+                              "cone: top-radius must be zero or positive (got %g)", top);
     }
     if (fabs(top - run->job.radius) <= 1e-12 * run->job.radius) {
-        return job_fail(
-            run, UR_ERROR_INPUT,
-            "cone: --top-radius equals --radius: that is a cylinder ('unroll cylinder')");
+        return job_fail_about(
+            run, UR_ERROR_INPUT, "top-radius radius",
+            "cone: top-radius equals radius: that is a cylinder ('unroll cylinder')");
     }
     /* The rulings of a frustum meet at height H R / (R - r); the top is that far along. */
     double apex_height = run->job.height * run->job.radius / (run->job.radius - top);
@@ -134,16 +135,18 @@ static ur_status build_cone(const job_run *run, ur_ruled *ruled)
     if (!run->job.curve_path)
         return build_right_cone(run, ruled);
     if (given(run->job.radius) || given(run->job.height) || given(run->job.top_radius)) {
-        return job_fail(run, UR_ERROR_INPUT,
-                        "cone: with --curve give --apex (and --cut), not --radius, --height or "
-                        "--top-radius");
+        return job_fail_about(run, UR_ERROR_INPUT, "curve apex cut radius height top-radius",
+                              "cone: with curve give apex (and cut), not radius, height or "
+                              "top-radius");
     }
     if (!run->job.has_apex) {
-        return job_fail(run, UR_ERROR_INPUT, "cone: --apex X,Y,Z is required with --curve");
+        return job_fail_about(run, UR_ERROR_INPUT, "apex curve",
+                              "cone: apex X,Y,Z is required with curve");
     }
     double cut = given(run->job.cut) ? run->job.cut : 1.0;
     if (!(cut > 0 && cut <= 1)) {
-        return job_fail(run, UR_ERROR_INPUT, "cone: --cut must be in (0, 1] (got %g)", cut);
+        return job_fail_about(run, UR_ERROR_INPUT, "cut", "cone: cut must be in (0, 1] (got %g)",
+                              cut);
     }
     ur_curve *curve = NULL;
     ur_status code = curve_from_file(run, &curve);
@@ -159,8 +162,9 @@ static ur_status build_tangent_of(const job_run *run, ur_curve *curve, ur_ruled 
     double offset = given(run->job.offset) ? run->job.offset : 0.0;
     if (!(offset >= 0)) {
         ur_curve_free(curve);
-        return job_fail(run, UR_ERROR_INPUT, "%s: --offset must be zero or positive (got %g)",
-                        run->job.surface, offset);
+        return job_fail_about(run, UR_ERROR_INPUT, "offset",
+                              "%s: offset must be zero or positive (got %g)", run->job.surface,
+                              offset);
     }
     ur_error error;
     if (ur_ruled_tangent(curve, offset, run->job.width, ruled, &error) != UR_OK)
@@ -184,7 +188,7 @@ static ur_status build_helicoid(const job_run *run, ur_ruled *ruled)
 static ur_status build_tangent(const job_run *run, ur_ruled *ruled)
 {
     if (!run->job.curve_path) {
-        return job_fail(run, UR_ERROR_INPUT, "tangent: --curve EDGE.csv is required");
+        return job_fail_about(run, UR_ERROR_INPUT, "curve", "tangent: curve EDGE.csv is required");
     }
     if (!positive(run, run->job.width, "width"))
         return UR_ERROR_INPUT;
@@ -267,9 +271,9 @@ static ur_status check_rails_apart(const job_run *run, const ur_vec3 *first, siz
                           &error) != UR_OK)
         return fail(&error, run);
     if (meet) {
-        return job_fail(
-            run, UR_ERROR_INPUT,
-            "%s: the rails meet or cross between points %zu and %zu of --rail1 (%g, %g, "
+        return job_fail_about(
+            run, UR_ERROR_INPUT, "rail1",
+            "%s: the rails meet or cross between points %zu and %zu of rail1 (%g, %g, "
             "%g): a strip needs them apart everywhere",
             run->job.command, where + 1, where + 2, first[where].x, first[where].y, first[where].z);
     }
@@ -296,7 +300,7 @@ static void note_repair(const job_run *run, const ur_rail_repair_report *report)
     if (run->job.quiet)
         return;
     if (!(report->largest > 0)) {
-        job_warn(run, "%s: the strip exists along all of rail 1; %s unchanged", run->job.command,
+        job_note(run, "%s: the strip exists along all of rail 1; %s unchanged", run->job.command,
                  run->job.adjust_rails == UR_REPAIR_BOTH ? "the rails are" : "the rail is");
         return;
     }
@@ -311,7 +315,7 @@ static void note_repair(const job_run *run, const ur_rail_repair_report *report)
                "average",
                report->largest, report->largest_point + 1, report->largest_rail,
                report->largest_along, report->mean);
-    job_warn(run, "%s: %s %s%s", run->job.command, adjust_names[run->job.adjust_rails], figures,
+    job_note(run, "%s: %s %s%s", run->job.command, adjust_names[run->job.adjust_rails], figures,
              written);
 }
 
@@ -320,8 +324,8 @@ static ur_status adjust_rails(const job_run *run, ur_vec3 *points[2], const size
                               bool closed, job_adjusted_rail *adjusted)
 {
     if (closed) {
-        return job_fail(run, UR_ERROR_INPUT, "%s: --adjust works on open rails only",
-                        run->job.command);
+        return job_fail_about(run, UR_ERROR_INPUT, "adjust", "%s: adjust works on open rails only",
+                              run->job.command);
     }
     const ur_job *job = &run->job;
     ur_rail_repair_options options = {
@@ -368,8 +372,10 @@ ur_status job_write_adjusted_rail(const job_run *run, const job_adjusted_rail *a
         ur_error error;
         if (ur_curve_csv_write(path, adjusted->rails[k], adjusted->counts[k], run->job.context,
                                &error) != UR_OK) {
-            return job_fail(run, error.status, "%s: --adjusted-rail %s: %s", run->job.command, path,
-                            error.message);
+            const char *setting =
+                path == run->job.adjusted_rail_path ? "adjusted-rail" : "adjusted-rail1";
+            return job_fail_about(run, error.status, setting, "%s: %s %s: %s", run->job.command,
+                                  setting, path, error.message);
         }
     }
     return UR_OK;
@@ -397,24 +403,24 @@ static ur_status read_rails(const job_run *run, ur_curve *rails[2], bool *same_c
     rails[0] = rails[1] = NULL;
     for (int k = 0; k < 2 && !code; k++) {
         if (!run->job.rail_paths[k]) {
-            code = job_fail(run, UR_ERROR_INPUT, "%s: --%s FILE.csv is required", run->job.command,
-                            options[k]);
+            code = job_fail_about(run, UR_ERROR_INPUT, options[k], "%s: %s FILE.csv is required",
+                                  run->job.command, options[k]);
         } else {
             code = read_points(run, run->job.rail_paths[k], &points[k], &count[k], &closed[k]);
         }
     }
     if (!code && closed[0] != closed[1]) {
-        code = job_fail(run, UR_ERROR_INPUT,
-                        "%s: --rail1 is %s but --rail2 is %s: give two open or two closed rails",
-                        run->job.command, closed[0] ? "closed" : "open",
-                        closed[1] ? "closed" : "open");
+        code = job_fail_about(run, UR_ERROR_INPUT, "rail1 rail2",
+                              "%s: rail1 is %s but rail2 is %s: give two open or two closed rails",
+                              run->job.command, closed[0] ? "closed" : "open",
+                              closed[1] ? "closed" : "open");
     }
     if (!code)
         code = check_rails_apart(run, points[0], count[0], points[1], count[1]);
     if (!code && runs_against(points[0], count[0], closed[0], points[1], count[1])) {
         reverse_points(points[1], count[1]);
         if (!run->job.quiet)
-            job_warn(run, "note: --rail2 runs against --rail1; using it reversed");
+            job_note_about(run, "rail2 rail1", "note: rail2 runs against rail1; using it reversed");
     }
     if (!code && run->job.adjust_rails)
         code = adjust_rails(run, points, count, closed[0], adjusted);
@@ -439,7 +445,8 @@ static ur_status read_rails(const job_run *run, ur_curve *rails[2], bool *same_c
 static ur_status build_strip(const job_run *run, ur_ruled *ruled, job_adjusted_rail *adjusted)
 {
     if (run->job.adjust_rails && run->job.natural_pairing) {
-        return job_fail(run, UR_ERROR_INPUT, "strip: --adjust goes with --pairing developable");
+        return job_fail_about(run, UR_ERROR_INPUT, "adjust pairing",
+                              "strip: adjust goes with pairing developable");
     }
     ur_curve *rails[2];
     bool same_count;
@@ -483,7 +490,7 @@ static ur_status build_triangle(const job_run *run, const ur_vec3 *c, int apex, 
 {
     int first = (apex + 2) % 4, second = (apex + 3) % 4;
     if (!run->job.quiet)
-        job_warn(run,
+        job_note(run,
                  "note: corners %d and %d are the same point: the hypar is a flat triangle, "
                  "developed exactly",
                  apex + 1, (apex + 1) % 4 + 1);
@@ -512,8 +519,8 @@ static ur_status repeated_corner(const ur_vec3 *c, double size)
 static ur_status build_hypar(const job_run *run, ur_ruled *ruled)
 {
     if (!run->job.has_corners) {
-        return job_fail(run, UR_ERROR_INPUT,
-                        "hypar: --corners X,Y,Z:X,Y,Z:X,Y,Z:X,Y,Z is required");
+        return job_fail_about(run, UR_ERROR_INPUT, "corners",
+                              "hypar: corners X,Y,Z:X,Y,Z:X,Y,Z:X,Y,Z is required");
     }
     const ur_vec3 *c = run->job.corners;
     double size = 0.0;
@@ -522,20 +529,20 @@ static ur_status build_hypar(const job_run *run, ur_ruled *ruled)
             size = fmax(size, ur_vec3_distance(c[i], c[j]));
     int repeated = repeated_corner(c, size);
     if (repeated == 4 || !(size > 0)) {
-        return job_fail(run, UR_ERROR_INPUT,
-                        "hypar: --corners: opposite or more than two corners are the same point: "
-                        "that is no surface");
+        return job_fail_about(run, UR_ERROR_INPUT, "corners",
+                              "hypar: corners: opposite or more than two corners are the same "
+                              "point: that is no surface");
     }
     if (repeated >= 0)
         return build_triangle(run, c, repeated, ruled);
     ur_vec3 normal = ur_vec3_cross(ur_vec3_sub(c[1], c[0]), ur_vec3_sub(c[3], c[0]));
     if (!(ur_vec3_length(normal) > 1e-12 * size * size)) {
-        return job_fail(run, UR_ERROR_INPUT,
-                        "hypar: --corners: corners 1, 2 and 4 lie on one line");
+        return job_fail_about(run, UR_ERROR_INPUT, "corners",
+                              "hypar: corners: corners 1, 2 and 4 lie on one line");
     }
     double lift = fabs(ur_vec3_dot(ur_vec3_sub(c[2], c[0]), normal)) / ur_vec3_length(normal);
     if (lift <= 1e-9 * size && !run->job.quiet)
-        job_warn(run, "note: the four corners lie in one plane: the hypar is a flat quadrilateral, "
+        job_note(run, "note: the four corners lie in one plane: the hypar is a flat quadrilateral, "
                       "developed exactly");
     ur_curve *rails[2] = {NULL, NULL};
     ur_error error;

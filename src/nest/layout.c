@@ -83,13 +83,13 @@ static ur_status orient(const ur_piece *piece, GEOSContextHandle_t geos,
             return UR_OK;
     }
     out->box = turned_box(piece, angle);
-    return ur_error_set(error, UR_ERROR_INPUT,
-                        "piece %s (%.1f x %.1f mm) does not fit the %.1f x %.1f mm sheet "
-                        "(%.1f x %.1f mm inside its %.1f mm margin) in any orientation; give a "
-                        "larger sheet with --sheet WxH or a material with larger stock",
-                        piece->name, ur_box_width(out->box), ur_box_height(out->box),
-                        options->sheet_width, options->sheet_height, width, height,
-                        options->margin);
+    ur_error_set(error, UR_ERROR_INPUT,
+                 "piece %s (%.1f x %.1f mm) does not fit in any orientation: give a larger sheet "
+                 "than %.1f x %.1f mm (%.1f x %.1f mm inside its %.1f mm margin) or a material "
+                 "with larger stock",
+                 piece->name, ur_box_width(out->box), ur_box_height(out->box), options->sheet_width,
+                 options->sheet_height, width, height, options->margin);
+    return ur_error_set_setting(error, "sheet");
 }
 
 static int taller_first(const void *a, const void *b)

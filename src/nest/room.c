@@ -381,14 +381,15 @@ ur_status nest_place_piece(nester *n, size_t piece, size_t held)
             n->sheet_area[sheet] += nest_shape_of(n, piece, 0)->area;
             return UR_OK;
         }
-        if (sheet == n->sheet_count) /* it fits no empty sheet either */
-            return ur_error_set(n->error, UR_ERROR_INPUT,
-                                "piece %s (%.1f x %.1f mm) does not fit the %.1f x %.1f mm sheet "
-                                "(%.1f mm margin) in any allowed turn; give a larger sheet with "
-                                "--sheet WxH",
-                                n->pieces[piece].name, ur_box_width(n->pieces[piece].box),
-                                ur_box_height(n->pieces[piece].box), n->options->sheet_width,
-                                n->options->sheet_height, n->options->margin);
+        if (sheet == n->sheet_count) { /* it fits no empty sheet either */
+            ur_error_set(n->error, UR_ERROR_INPUT,
+                         "piece %s (%.1f x %.1f mm) does not fit in any allowed turn: give a "
+                         "larger sheet than %.1f x %.1f mm (%.1f mm margin)",
+                         n->pieces[piece].name, ur_box_width(n->pieces[piece].box),
+                         ur_box_height(n->pieces[piece].box), n->options->sheet_width,
+                         n->options->sheet_height, n->options->margin);
+            return ur_error_set_setting(n->error, "sheet");
+        }
     }
     return UR_OK;
 }

@@ -339,28 +339,34 @@ static ur_status solve(problem *p, ur_error *error)
         place_points(p, gsl_multifit_nlinear_position(solver));
     gsl_multifit_nlinear_free(solver);
     gsl_vector_free(x);
-    if (code != GSL_SUCCESS && code != GSL_EMAXITER)
-        return ur_error_set(error, UR_ERROR_INPUT, "--adjust-rail2: the solver failed: %s",
-                            gsl_strerror(code));
+    if (code != GSL_SUCCESS && code != GSL_EMAXITER) {
+        ur_error_set(error, UR_ERROR_INPUT, "adjust-rail2: the solver failed: %s",
+                     gsl_strerror(code));
+        return ur_error_set_setting(error, "adjust-rail2");
+    }
     return UR_OK;
 }
 
 static ur_status adjust_window(problem *p, const window *w, ur_error *error)
 {
-    if (!(w->sigma_end > w->sigma_start))
-        return ur_error_set(error, UR_ERROR_INPUT,
-                            "--adjust-rail2: rail 2 runs backwards across the gap from %g to %g "
-                            "along rail 1; no small move fixes that",
-                            w->u_start, w->u_end);
+    if (!(w->sigma_end > w->sigma_start)) {
+        ur_error_set(error, UR_ERROR_INPUT,
+                     "adjust-rail2: rail 2 runs backwards across the gap from %g to %g along "
+                     "rail 1; no small move fixes that",
+                     w->u_start, w->u_end);
+        return ur_error_set_setting(error, "adjust-rail2");
+    }
     p->w = *w;
     double from = floor(index_of(p, w->sigma_start)), to = ceil(index_of(p, w->sigma_end));
     p->first = (size_t)fmax(0.0, from - MOVED_MARGIN);
     p->last = (size_t)fmin((double)(p->count - 1), to + MOVED_MARGIN);
-    if (p->last - p->first + 1 > MAX_MOVED)
-        return ur_error_set(error, UR_ERROR_INPUT,
-                            "--adjust-rail2: the gap from %g to %g along rail 1 spans %zu points "
-                            "of rail 2, more than a repair moves (%d)",
-                            w->u_start, w->u_end, p->last - p->first + 1, MAX_MOVED);
+    if (p->last - p->first + 1 > MAX_MOVED) {
+        ur_error_set(error, UR_ERROR_INPUT,
+                     "adjust-rail2: the gap from %g to %g along rail 1 spans %zu points of rail "
+                     "2, more than a repair moves (%d)",
+                     w->u_start, w->u_end, p->last - p->first + 1, MAX_MOVED);
+        return ur_error_set_setting(error, "adjust-rail2");
+    }
     p->local_first = p->first > LOCAL_MARGIN ? p->first - LOCAL_MARGIN : 0;
     p->local_last = p->last + LOCAL_MARGIN < p->count ? p->last + LOCAL_MARGIN : p->count - 1;
     p->samples = SAMPLES_PER_POINT * (p->last - p->first + 1);
@@ -415,8 +421,10 @@ static ur_status adjust_rail2(const ur_vec3 *rail1, size_t count1, ur_vec3 *rail
     ur_vec3 unit;
     if (direction) {
         double length = ur_vec3_length(*direction);
-        if (!(length > 0) || !isfinite(length))
-            return ur_error_set(error, UR_ERROR_INPUT, "--adjust-direction must not be zero");
+        if (!(length > 0) || !isfinite(length)) {
+            ur_error_set(error, UR_ERROR_INPUT, "adjust-direction must not be zero");
+            return ur_error_set_setting(error, "adjust-direction");
+        }
         unit = ur_vec3_scale(*direction, 1.0 / length);
         direction = &unit;
     }
@@ -447,12 +455,14 @@ static ur_status adjust_rail2(const ur_vec3 *rail1, size_t count1, ur_vec3 *rail
                      .direction = direction};
         status = repair_gaps(&strip, &p, count1, error);
     }
-    if (status == UR_OK && !strip_everywhere(rail1, count1, moved, count2))
-        status = ur_error_set(error, UR_ERROR_INPUT,
-                              "--adjust-rail2: no small move of rail 2 gives a strip along the "
-                              "whole of rail 1 (the first gap is %.6g to %.6g mm along rail 1); "
-                              "change the rails' shape there",
-                              gaps[0].arc_start, gaps[0].arc_end);
+    if (status == UR_OK && !strip_everywhere(rail1, count1, moved, count2)) {
+        ur_error_set(error, UR_ERROR_INPUT,
+                     "adjust-rail2: no small move of rail 2 gives a strip along the whole of rail "
+                     "1 (the first gap is %.6g to %.6g mm along rail 1); change the rails' shape "
+                     "there",
+                     gaps[0].arc_start, gaps[0].arc_end);
+        status = ur_error_set_setting(error, "adjust-rail2");
+    }
     for (size_t j = 0; status == UR_OK && j < count2; j++) {
         *largest = fmax(*largest, ur_vec3_distance(moved[j], rail2[j]));
         rail2[j] = moved[j];

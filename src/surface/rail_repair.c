@@ -691,18 +691,21 @@ static ur_status refuse_too_far(const problem *p, const ur_rail_repair_options *
     const rail *at = &p->rails[report->largest_rail - 1];
     size_t tenth = at->count / 10;
     bool near_end = report->largest_point < tenth || report->largest_point + tenth >= at->count;
-    if (near_end && !options->move_ends)
-        return ur_error_set(
-            error, UR_ERROR_INPUT,
-            "--adjust: %s is too short for a strip %s: with its ends fixed, it would move by "
-            "%.3g mm (%.1f mm along it), more than --adjust-max %.3g mm; give --adjust-ends or a "
-            "longer rail",
-            rail_names[report->largest_rail], part, report->largest, report->largest_along, limit);
-    return ur_error_set(error, UR_ERROR_INPUT,
-                        "--adjust: a strip %s needs %s moved by %.3g mm (%.1f mm along it), more "
-                        "than --adjust-max %.3g mm; change the rails' shape there",
-                        part, rail_names[report->largest_rail], report->largest,
-                        report->largest_along, limit);
+    if (near_end && !options->move_ends) {
+        ur_error_set(error, UR_ERROR_INPUT,
+                     "adjust: %s is too short for a strip %s: with its ends fixed, it would move "
+                     "by %.3g mm (%.1f mm along it), more than adjust-max %.3g mm; give "
+                     "adjust-ends or a longer rail",
+                     rail_names[report->largest_rail], part, report->largest, report->largest_along,
+                     limit);
+        return ur_error_set_setting(error, "adjust adjust-max adjust-ends");
+    }
+    ur_error_set(error, UR_ERROR_INPUT,
+                 "adjust: a strip %s needs %s moved by %.3g mm (%.1f mm along it), more than "
+                 "adjust-max %.3g mm; change the rails' shape there",
+                 part, rail_names[report->largest_rail], report->largest, report->largest_along,
+                 limit);
+    return ur_error_set_setting(error, "adjust adjust-max");
 }
 
 /* The gap at the start of rail 1, or else the last one. */
@@ -853,21 +856,23 @@ static ur_status repair_rails(ur_vec3 *rail1, size_t count1, ur_vec3 *rail2, siz
         status = refuse_too_far(&p, options, report, limit, gaps, gap_count, error);
     bool at_an_end = gaps[0].u_start <= ur_curve_start(strip.curve) ||
                      gaps[gap_count - 1].u_end >= ur_curve_end(strip.curve);
-    if (status == UR_OK && !report->everywhere && at_an_end && !options->move_ends)
-        status = ur_error_set(error, UR_ERROR_INPUT,
-                              "--adjust: the strip is missing at an end of rail 1 (%.1f to %.1f mm "
-                              "along it): rail 2 is too short there with its ends fixed; give "
-                              "--adjust-ends to let them move, or a longer rail 2",
-                              at_start_or_end(&strip, gaps, gap_count)->arc_start,
-                              at_start_or_end(&strip, gaps, gap_count)->arc_end);
+    if (status == UR_OK && !report->everywhere && at_an_end && !options->move_ends) {
+        ur_error_set(error, UR_ERROR_INPUT,
+                     "adjust: the strip is missing at an end of rail 1 (%.1f to %.1f mm along "
+                     "it): rail 2 is too short there with its ends fixed; give adjust-ends to let "
+                     "them move, or a longer rail 2",
+                     at_start_or_end(&strip, gaps, gap_count)->arc_start,
+                     at_start_or_end(&strip, gaps, gap_count)->arc_end);
+        status = ur_error_set_setting(error, "adjust adjust-ends");
+    }
     if (status == UR_OK && !report->everywhere) {
         char part[160];
         describe_gaps(gaps, gap_count, part, sizeof part);
-        status = ur_error_set(error, UR_ERROR_INPUT,
-                              "--adjust: no smooth reshaping of %s within %.3g mm gives a strip "
-                              "along all of rail 1; the strip is missing %s; change the rails' "
-                              "shape there",
-                              rail_names[options->rails & UR_REPAIR_BOTH], limit, part);
+        ur_error_set(error, UR_ERROR_INPUT,
+                     "adjust: no smooth reshaping of %s within %.3g mm gives a strip along all "
+                     "of rail 1; the strip is missing %s; change the rails' shape there",
+                     rail_names[options->rails & UR_REPAIR_BOTH], limit, part);
+        status = ur_error_set_setting(error, "adjust");
     }
     if (status == UR_OK) {
         memcpy(rail1, p.rails[0].points, count1 * sizeof *rail1);

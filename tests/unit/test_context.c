@@ -166,13 +166,14 @@ static void test_write_budget_fails_like_a_full_disk(void **state)
 }
 
 static ur_message_kind seen_kind;
-static char seen_message[64];
+static char seen_message[64], seen_setting[64];
 
-static void remember(void *data, ur_message_kind kind, const char *message)
+static void remember(void *data, ur_message_kind kind, const char *message, const char *setting)
 {
     *(int *)data += 1;
     seen_kind = kind;
     snprintf(seen_message, sizeof seen_message, "%s", message);
+    snprintf(seen_setting, sizeof seen_setting, "%s", setting);
 }
 
 static void test_messages_go_to_the_handler(void **state)
@@ -186,8 +187,14 @@ static void test_messages_go_to_the_handler(void **state)
     assert_int_equal(calls, 1);
     assert_int_equal(seen_kind, UR_MESSAGE_WARNING);
     assert_string_equal(seen_message, "seam A3 has no tab");
+    assert_string_equal(seen_setting, "");
+    ur_context_message_about(context, UR_MESSAGE_NOTE, "no-split", "cut into %d", 2);
+    assert_int_equal(calls, 2);
+    assert_int_equal(seen_kind, UR_MESSAGE_NOTE);
+    assert_string_equal(seen_message, "cut into 2");
+    assert_string_equal(seen_setting, "no-split");
     ur_context_message(NULL, UR_MESSAGE_NOTE, "nobody hears this");
-    assert_int_equal(calls, 1);
+    assert_int_equal(calls, 2);
     ur_context_free(context);
 }
 

@@ -33,18 +33,28 @@
 #define CUBE_SIDE 100.0
 
 typedef struct heard {
-    size_t warnings;
-    bool unfolded_note; /* the note that says how the mesh was unfolded */
+    size_t warnings, notes;
+    bool unfolded_note;    /* the note that says how the mesh was unfolded */
+    char tiny_setting[64]; /* the settings the warning on a tiny mesh names */
+    size_t flags;          /* messages that name a command-line flag */
     size_t summaries;
     size_t progress_after_done; /* nesting reports after the nesting said it was done */
     bool nesting_done;
 } heard;
 
-static void on_warning(void *user, const char *message)
+/* The context's message handler: a job's warnings and notes come only this way. */
+static void on_message(void *user, ur_message_kind kind, const char *message, const char *setting)
 {
     heard *h = user;
-    h->warnings++;
-    if (strstr(message, "unfolded into"))
+    if (kind == UR_MESSAGE_WARNING && strstr(message, "mm across"))
+        snprintf(h->tiny_setting, sizeof h->tiny_setting, "%s", setting);
+    if (strstr(message, " --"))
+        h->flags++;
+    if (kind == UR_MESSAGE_WARNING)
+        h->warnings++;
+    else
+        h->notes++;
+    if (kind == UR_MESSAGE_NOTE && strstr(message, "unfolded into"))
         h->unfolded_note = true;
 }
 
@@ -104,6 +114,7 @@ static int setup(void **state)
 
 static int teardown(void **state)
 {
+    ur_context_set_message_handler(context, NULL, NULL); /* a test's handler data is its own */
     int status = remove_test_directory(*state);
     free(*state);
     return status;
@@ -111,7 +122,8 @@ static int teardown(void **state)
 
 /*
  * Runs job with stderr sent to a file, and checks that nothing was
- * written there: the library reports through the callbacks only.
+ * written there: the library reports through its context's message
+ * handler and the callbacks only.
  */
 static ur_status run_silently(const ur_job *job, const ur_job_callbacks *callbacks,
                               ur_job_result *result, ur_error *error, const char *directory)
@@ -216,7 +228,8 @@ static void test_mesh_with_tabs_nested_to_svg(void **state)
     job.output_path = output;
     job.report_path = report;
     heard h = {0};
-    ur_job_callbacks callbacks = {&h, on_warning, on_progress, on_summary};
+    ur_context_set_message_handler(context, on_message, &h);
+    ur_job_callbacks callbacks = {&h, on_progress, on_summary};
     ur_job_result result;
     ur_error error;
     ur_status status = run_silently(&job, &callbacks, &result, &error, directory);
@@ -251,7 +264,8 @@ static void test_cylinder_developed_to_svg(void **state)
     job.report_path = report;
     job.quiet = true; /* no notes, no summary: warnings only */
     heard h = {0};
-    ur_job_callbacks callbacks = {&h, on_warning, on_progress, on_summary};
+    ur_context_set_message_handler(context, on_message, &h);
+    ur_job_callbacks callbacks = {&h, on_progress, on_summary};
     ur_job_result result;
     ur_error error;
     ur_status status = run_silently(&job, &callbacks, &result, &error, directory);
@@ -277,6 +291,7 @@ static void test_cylinder_developed_to_svg(void **state)
     assert_true(check_sheets(output, result.sheet_count) >= result.piece_count);
     check_report(report, result.piece_count, result.sheet_count);
     assert_int_equal(h.summaries, 0);
+    assert_int_equal(h.notes, 0);
 }
 
 /* How many of the report's pieces are named name. */
@@ -363,6 +378,103 @@ static void test_missing_mesh_is_bad_input(void **state)
     assert_false(exists(output));
 }
 
+/* A failed run of job in the tests' directory: its status, and that it wrote nothing. */
+static ur_status run_failing(const ur_job *job, ur_error *error, const char *directory)
+{
+    ur_status status = run_silently(job, NULL, NULL, error, directory);
+    assert_int_equal(entries_in(directory), 0);
+    return status;
+}
+
+/*
+ * An error about a setting names it as the job's settings are named, in
+ * the message and in error.setting, and never as a flag; the setting of
+ * an earlier error does not stay behind.  Errors from the stages below
+ * the job (developing, nesting) keep the setting they name.
+ */
+static void test_errors_name_their_setting(void **state)
+{
+    const char *directory = *state;
+    char output[512];
+    path_in(directory, "x.svg", output, sizeof output);
+    ur_job job;
+    ur_error error;
+
+    job_init(&job, "cone");
+    job.radius = 40;
+    job.height = 30;
+    job.top_radius = -1;
+    job.output_path = output;
+    assert_int_equal(run_failing(&job, &error, directory), UR_ERROR_INPUT);
+    assert_string_equal(error.setting, "top-radius");
+    assert_non_null(strstr(error.message, "top-radius"));
+    assert_null(strstr(error.message, "--"));
+
+    job.top_radius = 20;
+    job.develop.method = UR_METHOD_TRIANGLE; /* for tangent developables only */
+    assert_int_equal(run_failing(&job, &error, directory), UR_ERROR_INPUT);
+    assert_int_equal(strncmp(error.setting, "method", 6), 0);
+    assert_null(strstr(error.message, "--"));
+
+    job_init(&job, "cylinder");
+    job.radius = 100; /* 628 mm round: no piece fits a 600 x 400 mm sheet in any turn */
+    job.height = 700;
+    job.output_path = output;
+    job.sheet_width = 600;
+    job.sheet_height = 400;
+    assert_int_equal(run_failing(&job, &error, directory), UR_ERROR_INPUT);
+    assert_string_equal(error.setting, "sheet");
+    assert_null(strstr(error.message, "--"));
+
+    job.radius = -3;
+    assert_int_equal(run_failing(&job, &error, directory), UR_ERROR_INPUT);
+    assert_string_equal(error.setting, "radius");
+    assert_null(strstr(error.message, "--"));
+
+    /* No stale setting: an error about no setting has none. */
+    assert_int_equal(ur_error_set(&error, UR_ERROR_INPUT, "no file"), UR_ERROR_INPUT);
+    assert_string_equal(error.setting, "");
+    assert_int_equal(ur_error_set_setting(&error, "units"), UR_ERROR_INPUT);
+    ur_error_prefix(&error, "a.dxf: ");
+    assert_string_equal(error.setting, "units");
+    ur_error_clear(&error);
+    assert_string_equal(error.setting, "");
+}
+
+/*
+ * A warning that advises a setting names it to the message handler: a
+ * mesh 2 mm across is read as millimetres, and the warning names units
+ * (twice: metres and inches) and scale.
+ */
+static void test_warnings_name_their_settings(void **state)
+{
+    const char *directory = *state;
+    char output[512], mesh[512];
+    path_in(directory, "tiny.svg", output, sizeof output);
+    path_in(directory, "tiny.obj", mesh, sizeof mesh);
+    FILE *file = fopen(mesh, "w");
+    assert_non_null(file);
+    for (int corner = 0; corner < 8; corner++) /* a cube 2 units across, as Blender's default */
+        fprintf(file, "v %d %d %d\n", corner & 1 ? 1 : -1, corner & 2 ? 1 : -1,
+                corner & 4 ? 1 : -1);
+    fputs("f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n", file);
+    assert_int_equal(fclose(file), 0);
+    ur_job job;
+    job_init(&job, "mesh");
+    job.mesh_path = mesh;
+    job.material_name = "paper-0.3mm";
+    job.unfold = true;
+    job.output_path = output;
+    heard h = {0};
+    ur_context_set_message_handler(context, on_message, &h);
+    ur_error error;
+    ur_status status = run_silently(&job, NULL, NULL, &error, directory);
+    if (status != UR_OK)
+        fail_msg("ur_job_run: %s", error.message);
+    assert_string_equal(h.tiny_setting, "units units scale");
+    assert_int_equal(h.flags, 0);
+}
+
 /*
  * A cancelled context stops the job and leaves nothing on disk; cleared,
  * the same context runs it, and the files appear together.
@@ -400,6 +512,8 @@ int main(void)
         cmocka_unit_test_setup_teardown(test_cylinder_developed_to_svg, setup, teardown),
         cmocka_unit_test_setup_teardown(test_parts_nested_together, setup, teardown),
         cmocka_unit_test_setup_teardown(test_missing_mesh_is_bad_input, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_errors_name_their_setting, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_warnings_name_their_settings, setup, teardown),
         cmocka_unit_test_setup_teardown(test_cancelled_context_writes_nothing, setup, teardown),
     };
     return cmocka_run_group_tests(tests, make_context, free_context);

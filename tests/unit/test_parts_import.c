@@ -47,6 +47,9 @@ static ur_parts import_text(const char *name, const char *text, double unit)
     return parts;
 }
 
+/* The settings the last refusal's error named (ur_error's setting). */
+static char refused_setting[64];
+
 /* Expects text written as name to be refused with a message "PATH<location>: ...fragment...". */
 static void expect_refusal_of(const char *name, const char *text, double unit, bool strict,
                               const char *location, const char *fragment)
@@ -66,6 +69,7 @@ static void expect_refusal_of(const char *name, const char *text, double unit, b
     snprintf(prefix, sizeof prefix, "%s%s: ", path, location);
     if (strncmp(error.message, prefix, strlen(prefix)) != 0 || !strstr(error.message, fragment))
         fail_msg("message '%s' lacks '%s' or '%s'", error.message, prefix, fragment);
+    snprintf(refused_setting, sizeof refused_setting, "%s", error.setting);
 }
 
 static void expect_refusal(const char *name, const char *text, double unit, const char *location,
@@ -239,7 +243,9 @@ static void test_units_required(void **state)
     (void)state;
     const char *svg = "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 10 10\">\n"
                       "<rect x=\"0\" y=\"0\" width=\"4\" height=\"2\"/></svg>\n";
-    expect_refusal("nounits.svg", svg, 0, ":1", "--units");
+    /* The message names the setting that gives the unit, as the library names it, no flag. */
+    expect_refusal("nounits.svg", svg, 0, ":1", "give its unit with units");
+    assert_string_equal(refused_setting, "units");
     ur_parts parts = import_text("nounits.svg", svg, 25.4);
     assert_true(fabs(path_area(&parts.pieces[0].paths[0]) - 8 * 25.4 * 25.4) < 1e-6);
     ur_parts_free(&parts);
@@ -252,11 +258,13 @@ static void test_units_required(void **state)
     ur_parts_free(&parts);
     char text[2048];
     plate_dxf(text, sizeof text, 0, 1);
-    expect_refusal("nounits.dxf", text, 0, ":7", "--units");
+    expect_refusal("nounits.dxf", text, 0, ":7", "give its unit with units");
+    assert_string_equal(refused_setting, "units");
     /* No $INSUNITS at all. */
     expect_refusal("noheader.dxf",
                    "0\nSECTION\n2\nENTITIES\n0\nCIRCLE\n10\n0\n20\n0\n40\n1\n0\nENDSEC\n0\nEOF\n",
-                   0, "", "--units");
+                   0, "", "give its unit with units");
+    assert_string_equal(refused_setting, "units");
 }
 
 static void test_nesting(void **state)
