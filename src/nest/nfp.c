@@ -489,7 +489,8 @@ void nest_shape_free(GEOSContextHandle_t geos, nest_shape *shape)
 }
 
 /* The exterior vertices of a polygon (last not repeated), allocated; how many (0 on failure). */
-static size_t vertices(GEOSContextHandle_t geos, const GEOSGeometry *polygon, ur_vec2 **points)
+static size_t vertices(GEOSContextHandle_t geos, const GEOSGeometry *polygon, ur_vec2 **points,
+                       bool *out_of_memory)
 {
     *points = NULL;
     const GEOSGeometry *ring = GEOSGetExteriorRing_r(geos, polygon);
@@ -498,8 +499,10 @@ static size_t vertices(GEOSContextHandle_t geos, const GEOSGeometry *polygon, ur
     if (!sequence || !GEOSCoordSeq_getSize_r(geos, sequence, &size) || size < 2)
         return 0;
     *points = malloc((size - 1) * sizeof **points);
-    if (!*points)
+    if (!*points) {
+        *out_of_memory = true;
         return 0;
+    }
     for (unsigned i = 0; i + 1 < size; i++)
         GEOSCoordSeq_getXY_r(geos, sequence, i, &(*points)[i].x, &(*points)[i].y);
     return size - 1;
@@ -507,10 +510,10 @@ static size_t vertices(GEOSContextHandle_t geos, const GEOSGeometry *polygon, ur
 
 /* The convex hull of a + (-b) for two convex polygons. */
 static GEOSGeometry *convex_sum(GEOSContextHandle_t geos, const GEOSGeometry *a,
-                                const GEOSGeometry *b)
+                                const GEOSGeometry *b, bool *out_of_memory)
 {
     ur_vec2 *pa, *pb;
-    size_t na = vertices(geos, a, &pa), nb = vertices(geos, b, &pb);
+    size_t na = vertices(geos, a, &pa, out_of_memory), nb = vertices(geos, b, &pb, out_of_memory);
     GEOSCoordSequence *sequence =
         na && nb ? GEOSCoordSeq_create_r(geos, (unsigned)(na * nb), 2) : NULL;
     for (size_t i = 0; sequence && i < na; i++)
@@ -526,16 +529,19 @@ static GEOSGeometry *convex_sum(GEOSContextHandle_t geos, const GEOSGeometry *a,
     return hull;
 }
 
-GEOSGeometry *nest_sums(GEOSContextHandle_t geos, const nest_shape *a, const nest_shape *b)
+GEOSGeometry *nest_sums(GEOSContextHandle_t geos, const nest_shape *a, const nest_shape *b,
+                        bool *out_of_memory)
 {
     size_t count = a->convex_count * b->convex_count, made = 0;
     GEOSGeometry **sums = calloc(count ? count : 1, sizeof *sums);
-    if (!sums)
+    if (!sums) {
+        *out_of_memory = true;
         return NULL;
+    }
     bool failed = false; /* a sum left out would let pieces overlap: none or all */
     for (size_t i = 0; !failed && i < a->convex_count; i++)
         for (size_t j = 0; !failed && j < b->convex_count; j++) {
-            GEOSGeometry *sum = convex_sum(geos, a->convex[i], b->convex[j]);
+            GEOSGeometry *sum = convex_sum(geos, a->convex[i], b->convex[j], out_of_memory);
             failed = !sum;
             if (sum && GEOSGeomTypeId_r(geos, sum) == GEOS_POLYGON)
                 sums[made++] = sum;

@@ -211,7 +211,7 @@ static bool same_snapshot(const snapshot *a, const snapshot *b)
     return a->size == b->size && memcmp(a->bytes, b->bytes, a->size) == 0;
 }
 
-/* One run of the job number fail_at (0: none) refused; returns its status. */
+/* One run of the job with allocation number fail_at (0: none) refused; returns its status. */
 static ur_status run_failing(job_maker make, ur_context *context, const char *directory,
                              long fail_at, ur_error *error)
 {
@@ -314,6 +314,41 @@ static void test_profiles(void **state)
     printf("profiles: %ld allocations, %ld runs failed\n", total, failed_runs);
 }
 
+/*
+ * The parts drawn in samples/brackets.dxf (samples/make-drawings.py), read with each allocation
+ * refused in turn (nesting them takes seconds a run: the jobs above nest fewer parts).
+ */
+static void test_parts_read(void **state)
+{
+    (void)state;
+    ur_parts_import_options options;
+    ur_parts_import_options_default(&options);
+    ur_parts parts;
+    ur_error error;
+    atomic_store(&allocations, 0);
+    assert_int_equal(ur_parts_import("samples/brackets.dxf", &options, &parts, &error), UR_OK);
+    long total = atomic_load(&allocations), failed_runs = 0;
+    size_t count = parts.count;
+    ur_parts_free(&parts);
+    for (long n = 1; n <= total; n++) {
+        atomic_store(&allocations, 0);
+        atomic_store(&failing, n);
+        ur_status status = ur_parts_import("samples/brackets.dxf", &options, &parts, &error);
+        atomic_store(&failing, 0);
+        if (status != UR_OK && status != UR_ERROR_MEMORY)
+            fail_msg("parts, allocation %ld of %ld refused: status %d: %s", n, total, status,
+                     error.message);
+        if (status == UR_OK && parts.count != count)
+            fail_msg("parts, allocation %ld refused: %zu parts read, not %zu", n, parts.count,
+                     count);
+        if (status == UR_OK)
+            ur_parts_free(&parts);
+        failed_runs += status != UR_OK;
+    }
+    printf("parts: %ld allocations, %ld runs failed\n", total, failed_runs);
+    assert_true(failed_runs > 0);
+}
+
 static int load_profiles(void **state)
 {
     (void)state;
@@ -355,6 +390,7 @@ int main(void)
     setvbuf(stdout, NULL, _IOLBF, 0);
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_profiles),
+        cmocka_unit_test(test_parts_read),
         cmocka_unit_test(test_cylinder_with_tabs),
         cmocka_unit_test(test_cube_unfolded),
         cmocka_unit_test(test_band_in_three_formats),
