@@ -162,7 +162,14 @@ $(PROGRAM): $(CLI_OBJECTS) $(LIBRARY)
 $(BUILD)/tests/%: tests/unit/%.c tests/unit/test_support.h tests/unit/nest_sets.h $(OBJECT_ARCHIVE)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_ALL) $(shell $(PKG_CONFIG) --cflags $(TEST_PACKAGES)) -o $@ $< \
-		$(OBJECT_ARCHIVE) $(LDFLAGS_ALL) $(LDLIBS_ALL) $(shell $(PKG_CONFIG) --libs $(TEST_PACKAGES))
+		$(OBJECT_ARCHIVE) $(LDFLAGS_ALL) $(TEST_LDFLAGS) $(LDLIBS_ALL) \
+		$(shell $(PKG_CONFIG) --libs $(TEST_PACKAGES))
+
+# The library's own calls to the allocator (its objects' and the test's,
+# not those of GEOS, cairo or the C library) go through the test's
+# __wrap_ functions, which refuse one of them at a time.
+$(BUILD)/tests/test_out_of_memory: TEST_LDFLAGS = \
+	-Wl,--wrap=malloc,--wrap=calloc,--wrap=realloc,--wrap=strdup
 
 $(BUILD)/bench/%: bench/%.c tests/unit/nest_sets.h $(OBJECT_ARCHIVE)
 	@mkdir -p $(dir $@)

@@ -259,7 +259,7 @@ static ur_status place_knots(bend_job *job)
     job->knot_t = ur_alloc_array(job->knot_count, sizeof *job->knot_t, job->error);
     job->knot_u = ur_alloc_array(job->knot_count, sizeof *job->knot_u, job->error);
     if (!job->knot_t || !job->knot_u)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     job->knot_t[1] = 0.0;
     for (size_t k = 0; k < count; k++) {
         if (k > 0)
@@ -298,7 +298,7 @@ static ur_status sample_radii(bend_job *job)
     job->sample_count = (job->knot_count - 1) * SUBSTEPS + 1;
     job->samples = ur_alloc_array(job->sample_count, sizeof *job->samples, job->error);
     if (!job->samples)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     for (size_t k = 0; k < job->sample_count; k++) {
         size_t knot = k / SUBSTEPS, step = k % SUBSTEPS;
         bend_sample *s = &job->samples[k];
@@ -478,7 +478,7 @@ static ur_status place_rows(bend_job *job, bend_region *region, double **positio
         size_t n = 0, cursor = 0;
         density_point *points = region_density(job, region, &n);
         if (!points)
-            return UR_ERROR_INTERNAL;
+            return UR_ERROR_MEMORY;
         double total = points[n - 1].phi;
         double rows = fmax(1.0, ceil(total - 1e-9));
         if (rows > MAX_ROWS) {
@@ -492,7 +492,7 @@ static ur_status place_rows(bend_job *job, bend_region *region, double **positio
         *positions = ur_alloc_array(*count, sizeof **positions, job->error);
         if (!*positions) {
             free(points);
-            return UR_ERROR_INTERNAL;
+            return UR_ERROR_MEMORY;
         }
         double first = 0.5 * (total - (rows - 1));
         for (size_t k = 0; k < *count; k++)

@@ -55,7 +55,7 @@ static ur_status spans_push(spans *list, double lo, double hi, ur_error *error)
     span *items =
         ur_array_grow(list->items, &list->capacity, list->count, sizeof *list->items, 16, error);
     if (!items)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     list->items = items;
     list->items[list->count++] = (span){lo, hi};
     return UR_OK;
@@ -401,7 +401,7 @@ static ur_status measure(const ur_piece *piece, ur_vec2 **points, ring *r, doubl
     r->at = ur_alloc_array(n, sizeof *r->at, error);
     *turn = ur_alloc_array(n, sizeof **turn, error);
     if (!*points || !r->at || !*turn)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     for (size_t i = 0; i < n; i++)
         if (kept == 0 || ur_vec2_distance(outline->points[i], (*points)[kept - 1]) > 0)
             (*points)[kept++] = outline->points[i];
@@ -488,7 +488,7 @@ ur_status ur_piece_add_bridges(ur_piece *piece, size_t count, double width, bool
         centres = ur_alloc_array(asked, sizeof *centres, error);
         status = centres
                      ? place(&allowed, &forbidden, r.length, asked, width, centres, &placed, error)
-                     : UR_ERROR_INTERNAL;
+                     : UR_ERROR_MEMORY;
     }
     if (status == UR_OK && placed > 0)
         status = open_outline(piece, &r, centres, placed, width, error);

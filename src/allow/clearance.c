@@ -150,6 +150,7 @@ static void collect_edge(void *item, void *userdata)
 typedef struct regions {
     GEOSGeometry *shrunk, *grown, *clipped;
     const GEOSPreparedGeometry *inner, *outer;
+    bool out_of_memory; /* making them: not a joint that cannot go, a run that must stop */
 } regions;
 
 static void regions_free(const allow_board *b, regions *r)
@@ -190,7 +191,7 @@ static bool outward_line(const ur_vec2 *base, size_t count, ur_vec2 *out, double
  * the clipped ring is too), as a polygon; NULL when nothing is left.
  */
 static GEOSGeometry *clip_outward(const allow_board *b, const GEOSGeometry *polygon, ur_vec2 out,
-                                  double level)
+                                  double level, bool *out_of_memory)
 {
     const GEOSGeometry *shell = GEOSGetExteriorRing_r(b->geos, polygon);
     const GEOSCoordSequence *sequence = shell ? GEOSGeom_getCoordSeq_r(b->geos, shell) : NULL;
@@ -217,6 +218,7 @@ static GEOSGeometry *clip_outward(const allow_board *b, const GEOSGeometry *poly
     GEOSGeometry *clipped =
         !failed && kept.count >= 3 ? geos_polygon_of_ring(b->geos, kept.items, kept.count) : NULL;
     ur_points_free(&kept);
+    *out_of_memory = failed;
     return clipped;
 }
 
@@ -242,11 +244,13 @@ static bool convex_ring(const ur_vec2 *ring, size_t n)
  * than 45 degrees, so a mitre is at most 2.7 times the distance.
  */
 static GEOSGeometry *offset_convex(const allow_board *b, const ur_vec2 *ring, size_t n,
-                                   double distance)
+                                   double distance, bool *out_of_memory)
 {
     ur_vec2 *moved = malloc(n * sizeof *moved);
-    if (!moved)
+    if (!moved) {
+        *out_of_memory = true;
         return NULL;
+    }
     for (size_t i = 0; i < n; i++) {
         ur_vec2 p = ring[(i + n - 1) % n], q = ring[i], r = ring[(i + 1) % n];
         ur_vec2 d0 = ur_vec2_sub(q, p), d1 = ur_vec2_sub(r, q);
@@ -264,9 +268,13 @@ static void shrink_and_grow(const allow_board *b, const GEOSGeometry *joint, reg
 {
     ur_vec2 *ring = NULL;
     size_t n = 0;
-    if (allow_exterior_ring(b->geos, joint, &ring, &n, NULL) == UR_OK && convex_ring(ring, n)) {
-        r->shrunk = offset_convex(b, ring, n, -TOUCH);
-        r->grown = offset_convex(b, ring, n, b->gap);
+    ur_status status = allow_exterior_ring(b->geos, joint, &ring, &n, NULL);
+    r->out_of_memory = status == UR_ERROR_MEMORY;
+    if (r->out_of_memory)
+        return;
+    if (status == UR_OK && convex_ring(ring, n)) {
+        r->shrunk = offset_convex(b, ring, n, -TOUCH, &r->out_of_memory);
+        r->grown = offset_convex(b, ring, n, b->gap, &r->out_of_memory);
     } else {
         r->shrunk = GEOSBuffer_r(b->geos, joint, -TOUCH, 1);
         r->grown = GEOSBuffer_r(b->geos, joint, b->gap, 2);
@@ -285,7 +293,7 @@ static bool regions_make(const allow_board *b, const GEOSGeometry *joint, const 
         GEOSGeomTypeId_r(b->geos, r->grown) != GEOS_POLYGON ||
         !outward_line(base, count, &out, &level))
         return false;
-    r->clipped = clip_outward(b, r->grown, out, level);
+    r->clipped = clip_outward(b, r->grown, out, level, &r->out_of_memory);
     if (!r->clipped)
         return false;
     r->inner = GEOSPrepare_r(b->geos, r->shrunk);
@@ -347,6 +355,8 @@ ur_status allow_board_test(allow_board *b, const GEOSGeometry *joint, const ur_v
     if (regions_make(b, joint, base, count, &r)) {
         *v = (allow_verdict){ALLOW_BLOCKED_NOT, NULL, 0};
         status = test_near(b, &r, first, edges, v, error);
+    } else if (r.out_of_memory) {
+        status = ur_error_out_of_memory(error);
     }
     regions_free(b, &r);
     return status;

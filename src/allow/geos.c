@@ -28,9 +28,10 @@ ur_status allow_exterior_ring(GEOSContextHandle_t geos, const GEOSGeometry *poly
 {
     *ring = NULL;
     *count = 0;
-    if (GEOSGeomTypeId_r(geos, polygon) != GEOS_POLYGON)
+    int type = GEOSGeomTypeId_r(geos, polygon);
+    if (type != GEOS_POLYGON)
         return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS gave a %s where a polygon was due",
-                            GEOSGeomType_r(geos, polygon) ? "other geometry" : "nothing");
+                            type >= 0 ? "other geometry" : "nothing");
     const GEOSGeometry *shell = GEOSGetExteriorRing_r(geos, polygon);
     const GEOSCoordSequence *sequence = shell ? GEOSGeom_getCoordSeq_r(geos, shell) : NULL;
     unsigned size = 0;
@@ -39,7 +40,7 @@ ur_status allow_exterior_ring(GEOSContextHandle_t geos, const GEOSGeometry *poly
     size_t n = size - 1; /* GEOS repeats the first point at the end */
     ur_vec2 *points = ur_alloc_array(n, sizeof *points, error);
     if (!points)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     for (size_t i = 0; i < n; i++)
         GEOSCoordSeq_getXY_r(geos, sequence, (unsigned)i, &points[i].x, &points[i].y);
     if (ur_polygon_signed_area(points, n) < 0)

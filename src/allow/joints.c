@@ -100,7 +100,7 @@ static ur_status run_of(const ur_net *net, const ur_seam_side *side, run *r, ur_
 {
     r->points = ur_alloc_array(side->count, sizeof *r->points, error);
     if (!r->points)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     for (size_t k = 0; k < side->count; k++)
         r->points[k] = net->outline[(side->first + k) % net->outline_count];
     r->count = side->count;
@@ -192,7 +192,7 @@ static ur_status sub_run(const run *r, size_t first, size_t edges, run *out, ur_
 {
     out->points = ur_alloc_array(edges + 1, sizeof *out->points, error);
     if (!out->points)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     memcpy(out->points, r->points + first, (edges + 1) * sizeof *out->points);
     out->count = edges + 1;
     out->length = ur_polyline_length(out->points, out->count, false);
@@ -210,7 +210,7 @@ static ur_status shortened(const run *r, double from, run *out, ur_error *error)
     ur_vec2 end = point_at(r, r->length - from, &last_segment);
     out->points = ur_alloc_array(last_segment - first_segment + 2, sizeof *out->points, error);
     if (!out->points)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     out->count = 0;
     out->points[out->count++] = start;
     for (size_t k = first_segment + 1; k <= last_segment; k++)
@@ -265,14 +265,16 @@ static double band_of(const ur_joint_options *o)
 }
 
 /*
- * The joint's shape on base at a share of the full depth, or NULL when it
- * would be too small to glue.  A tab is tapered from its base at the tab
- * angle, band and all; on a short base its sides are steeper, and it is
- * made lower, so that some of its top is left.
+ * The joint's shape on base at a share of the full depth in *joint, NULL
+ * when it would be too small to glue (or GEOS could not make it).  A tab
+ * is tapered from its base at the tab angle, band and all; on a short base
+ * its sides are steeper, and it is made lower, so that some of its top is
+ * left.
  */
-static GEOSGeometry *joint_shape(const joiner *j, const run *base, double share, double *depth,
-                                 ur_error *error)
+static ur_status joint_shape(const joiner *j, const run *base, double share, double *depth,
+                             GEOSGeometry **joint, ur_error *error)
 {
+    *joint = NULL;
     const ur_joint_options *o = j->options;
     double band = band_of(o);
     *depth = full_depth(o) * share;
@@ -289,13 +291,13 @@ static GEOSGeometry *joint_shape(const joiner *j, const run *base, double share,
         }
     }
     if (!o->lap && *depth < LOWEST_SHARE * o->tab_depth)
-        return NULL;
+        return UR_OK;
     ur_points ring = {0};
-    GEOSGeometry *polygon = NULL;
-    if (joint_ring(base, 0.0, height, inset, &ring, error) == UR_OK)
-        polygon = geos_polygon_of_ring(j->geos, ring.items, ring.count);
+    ur_status status = joint_ring(base, 0.0, height, inset, &ring, error);
+    if (status == UR_OK)
+        *joint = geos_polygon_of_ring(j->geos, ring.items, ring.count);
     ur_points_free(&ring);
-    return polygon;
+    return status;
 }
 
 /* ---- One seam -------------------------------------------------------------- */
@@ -378,8 +380,9 @@ static ur_status try_shapes(joiner *j, const seam_job *sj, int k, const stretch 
             status = shortened(&whole, shapes[step].shorten * whole.length, &base, error);
         free(whole.points);
         double depth = 0;
-        GEOSGeometry *joint =
-            status == UR_OK ? joint_shape(j, &base, shapes[step].depth, &depth, error) : NULL;
+        GEOSGeometry *joint = NULL;
+        if (status == UR_OK)
+            status = joint_shape(j, &base, shapes[step].depth, &depth, &joint, error);
         allow_verdict tried = {ALLOW_BLOCKED_SHAPE, NULL, 0};
         if (status == UR_OK)
             status = allow_board_test(j->boards[piece], joint, base.points, base.count, edge, count,
@@ -663,7 +666,7 @@ static ur_status find_stretches(const joiner *j, const seam_job *sj, stretch **o
     *count = 0;
     *out = ur_alloc_array(m ? m : 1, sizeof **out, error);
     if (!*out)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     if (!paired || (j->options->lap && m < 2)) {
         (*out)[(*count)++] = (stretch){0, m};
         return UR_OK;
@@ -702,8 +705,9 @@ static ur_status first_side(joiner *j, const seam_job *sj, const stretch *stretc
             status =
                 sub_run(&sj->runs[k], local_first(sj, k, st), local_count(sj, k, st), &base, error);
             double depth;
-            GEOSGeometry *joint =
-                status == UR_OK ? joint_shape(j, &base, shapes[0].depth, &depth, error) : NULL;
+            GEOSGeometry *joint = NULL;
+            if (status == UR_OK)
+                status = joint_shape(j, &base, shapes[0].depth, &depth, &joint, error);
             allow_verdict v;
             if (status == UR_OK)
                 status = allow_board_test(j->boards[sj->s->net[k]], joint, base.points, base.count,
@@ -742,7 +746,7 @@ static ur_status join_seam(joiner *j, const seam_sides *s, int seam, ur_error *e
     bool *done = status == UR_OK ? ur_alloc_array(count ? count : 1, sizeof *done, error) : NULL;
     allow_verdict(*why)[2] = done ? ur_alloc_array(count ? count : 1, sizeof *why, error) : NULL;
     if (status == UR_OK && !why)
-        status = UR_ERROR_INTERNAL;
+        status = UR_ERROR_MEMORY;
     for (size_t k = 0; status == UR_OK && k < count; k++)
         status = join_stretch(j, &sj, &stretches[k], side, &done[k], why[k], error);
     if (status == UR_OK)
@@ -990,6 +994,8 @@ static ur_status grow_piece(joiner *j, size_t index, ur_error *error)
         free(shapes);
         if (outline)
             GEOSGeom_destroy_r(j->geos, outline);
+        if (!shapes)
+            return ur_error_out_of_memory(error);
         return ur_error_set(error, UR_ERROR_INTERNAL, "could not grow the outline of piece %s",
                             piece->name);
     }
@@ -1014,7 +1020,7 @@ static ur_status add_open_path(ur_piece *piece, ur_op op, const run *r, double o
 {
     ur_vec2 *points = ur_alloc_array(r->count, sizeof *points, error);
     if (!points)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     for (size_t k = 0; k < r->count; k++)
         points[k] = ur_vec2_add_scaled(r->points[k], vertex_normal(r, k), offset);
     ur_status status = ur_piece_add_path(piece, op, points, r->count, false, error);
@@ -1100,7 +1106,7 @@ static ur_status carry_line(const joiner *j, const placed_joint *p, const ur_pat
 {
     ur_vec2 *moved = ur_alloc_array(line->count, sizeof *moved, error);
     if (!moved)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     for (size_t k = 0; k < line->count; k++)
         moved[k] = onto_lap(p, line->points[k]);
     GEOSGeometry *carried = allow_line(j->geos, moved, line->count);

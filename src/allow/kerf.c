@@ -155,7 +155,7 @@ static ur_status offset_circle(const ur_piece *piece, size_t index, double dista
                             piece->name, circle.centre.x, circle.centre.y, -2 * distance);
     *ring = ur_alloc_array(path->count, sizeof **ring, error);
     if (!*ring)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     for (size_t k = 0; k < path->count; k++) {
         ur_vec2 out = ur_vec2_sub(path->points[k], circle.centre);
         double length = ur_vec2_length(out);

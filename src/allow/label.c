@@ -171,7 +171,7 @@ static ur_status glyph_stroke(const ur_font *font, const struct hershey_path *st
     path->closed = false;
     path->points = ur_alloc_array(stroke->nverts, sizeof *path->points, error);
     if (!path->points)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     for (unsigned i = 0; i < stroke->nverts; i++)
         path->points[i] = ur_vec2_make((advance + stroke->verts[i].x) * scale,
                                        (stroke->verts[i].y - font->baseline) * scale);
@@ -195,7 +195,7 @@ ur_status ur_text_strokes(const ur_font *font, const char *text, double height, 
         return status;
     ur_path *out = ur_alloc_array(total, sizeof *out, error);
     if (!out)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     double scale = height / font->cap_height, advance = 0;
     size_t made = 0;
     for (size_t at = 0; status == UR_OK && text[at]; at++) {
@@ -311,7 +311,7 @@ static ur_status find_holes(allow_room *r, ur_error *error)
     const ur_piece *piece = r->piece;
     r->holes = ur_alloc_array(piece->path_count, sizeof *r->holes, error);
     if (!r->holes)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     for (size_t i = 1; i < piece->path_count; i++) {
         const ur_path *path = &piece->paths[i];
         if (path->closed && path->count >= 3 && (path->op == UR_OP_CUT || path->op == UR_OP_KERF))
@@ -338,7 +338,7 @@ ur_status allow_room_open(ur_piece *piece, allow_room **room, ur_error *error)
     if (status == UR_OK) {
         r->walls = ur_alloc_array(total ? total : 1, sizeof *r->walls, error);
         if (!r->walls)
-            status = UR_ERROR_INTERNAL;
+            status = UR_ERROR_MEMORY;
     }
     for (size_t i = 0; status == UR_OK && i < piece->path_count; i++)
         status = add_path_walls(r, &piece->paths[i], error);
@@ -676,7 +676,7 @@ static ur_status engrave(ur_piece *piece, const unit_text *text, const char *lab
         const ur_path *stroke = &text->strokes[i];
         ur_vec2 *points = ur_alloc_array(stroke->count, sizeof *points, error);
         if (!points) {
-            status = UR_ERROR_INTERNAL;
+            status = UR_ERROR_MEMORY;
             break;
         }
         for (size_t k = 0; k < stroke->count; k++)

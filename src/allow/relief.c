@@ -171,7 +171,7 @@ static ur_status neighbour_pairs(const ur_shading *shading, const relief_kind *k
     *pair_count = 0;
     if (!edges || !*pairs) {
         free(edges);
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     }
     for (size_t t = 0; t < count; t++)
         for (int k = 0; k < 3; k++) {
@@ -289,12 +289,14 @@ static double region_length(const ur_shading *shading, const region *r, double l
     return largest;
 }
 
-/* The region as one GEOS geometry: the union of its triangles. */
-static GEOSGeometry *region_geometry(relief_job *job, const ur_shading *shading, const region *r)
+/* The region as one GEOS geometry in *area: the union of its triangles. */
+static ur_status region_geometry(relief_job *job, const ur_shading *shading, const region *r,
+                                 GEOSGeometry **area)
 {
+    *area = NULL;
     GEOSGeometry **polygons = ur_alloc_array(r->count, sizeof *polygons, job->error);
     if (!polygons)
-        return NULL;
+        return UR_ERROR_MEMORY;
     size_t made = 0;
     for (; made < r->count; made++) {
         const ur_vec2 *c = shading->triangles[r->triangles[made]];
@@ -319,9 +321,8 @@ static GEOSGeometry *region_geometry(relief_job *job, const ur_shading *shading,
         uni = GEOSUnaryUnion_r(job->geos, collection);
         GEOSGeom_destroy_r(job->geos, collection);
     }
-    if (!uni)
-        relief_geos_failed(job, "join a region's triangles");
-    return uni;
+    *area = uni;
+    return uni ? UR_OK : relief_geos_failed(job, "join a region's triangles");
 }
 
 /* The ends of the line across the region at distance c along d, reaching past it. */
@@ -409,12 +410,13 @@ static ur_status relieve_region(relief_job *job, region *r, relief_kind kind)
     if (!(need.length > RELIEF_UNNOTICED * job->limits->opening))
         return UR_OK;
     need.wanted = relief_slit_count(need.length, job->limits->opening, r->high - r->low);
-    GEOSGeometry *area = region_geometry(job, shading, r);
-    if (!area)
-        return UR_ERROR_INTERNAL;
+    GEOSGeometry *area;
+    ur_status status = region_geometry(job, shading, r, &area);
+    if (status != UR_OK)
+        return status;
     size_t first = job->piece->path_count;
-    ur_status status = kind == RELIEF_KERFING ? region_kerfing(job, r, area, &need)
-                                              : region_overlaps(job, r, area, &need);
+    status = kind == RELIEF_KERFING ? region_kerfing(job, r, area, &need)
+                                    : region_overlaps(job, r, area, &need);
     GEOSGeom_destroy_r(job->geos, area);
     if (status == UR_OK)
         status = relief_keep_out_since(job, first);
@@ -443,7 +445,7 @@ static ur_status smooth_axes(const ur_shading *shading, const size_t (*pairs)[2]
     size_t count = shading->count;
     ur_vec2 *next = ur_alloc_array(count, sizeof *next, error);
     if (!next)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     for (size_t t = 0; t < count; t++) {
         ur_vec2 d = shading->direction[t];
         double weight = triangle_area(shading->triangles[t]) * fabs(shading->strain[t]);
@@ -503,7 +505,7 @@ static ur_status relieve_regions(relief_job *job, const relief_kind *kind, size_
     size_t count = job->net->shading.count, used = 0;
     member *members = ur_alloc_array(count, sizeof *members, job->error);
     size_t *triangles = ur_alloc_array(count, sizeof *triangles, job->error);
-    ur_status status = members && triangles ? UR_OK : UR_ERROR_INTERNAL;
+    ur_status status = members && triangles ? UR_OK : UR_ERROR_MEMORY;
     for (size_t t = 0; status == UR_OK && t < count; t++)
         if (kind[t] != RELIEF_NONE)
             members[used++] = (member){union_find_root(parent, t), t};
@@ -538,7 +540,7 @@ static ur_status relieve_flattened(relief_job *job)
     relief_kind *kind = ur_alloc_array(count, sizeof *kind, job->error);
     ur_vec2 *axes = ur_alloc_array(count, sizeof *axes, job->error);
     size_t *parent = ur_alloc_array(count, sizeof *parent, job->error);
-    ur_status status = kind && axes && parent ? UR_OK : UR_ERROR_INTERNAL;
+    ur_status status = kind && axes && parent ? UR_OK : UR_ERROR_MEMORY;
     for (size_t t = 0; status == UR_OK && t < count; t++)
         kind[t] = triangle_kind(job->limits, shading->strain[t]);
     if (status == UR_OK)

@@ -25,23 +25,28 @@ ur_vec2 relief_perpendicular(ur_vec2 v)
 
 /* ---- GEOS helpers --------------------------------------------------- */
 
-/* The points of a line string or a ring (closed: its last point is dropped); false if none. */
-static bool geometry_points(GEOSContextHandle_t geos, const GEOSGeometry *line, ur_points *points,
-                            bool drop_last, ur_error *error)
+/*
+ * The points of a line string or a ring (closed: its last point is dropped);
+ * when GEOS cannot give them, the job fails saying it could not do what.
+ */
+static ur_status geometry_points(relief_job *job, const GEOSGeometry *line, ur_points *points,
+                                 bool drop_last, const char *what)
 {
-    const GEOSCoordSequence *sequence = GEOSGeom_getCoordSeq_r(geos, line);
+    GEOSContextHandle_t geos = job->geos;
+    const GEOSCoordSequence *sequence = line ? GEOSGeom_getCoordSeq_r(geos, line) : NULL;
     unsigned size = 0;
     if (!sequence || !GEOSCoordSeq_getSize_r(geos, sequence, &size))
-        return false;
+        return relief_geos_failed(job, what);
     if (drop_last && size > 0)
         size--;
     for (unsigned i = 0; i < size; i++) {
         ur_vec2 p;
         GEOSCoordSeq_getXY_r(geos, sequence, i, &p.x, &p.y);
-        if (ur_points_push(points, p, error) != UR_OK)
-            return false;
+        ur_status status = ur_points_push(points, p, job->error);
+        if (status != UR_OK)
+            return status;
     }
-    return true;
+    return UR_OK;
 }
 
 /* The ends of each line string part of geometry, in order: parts[2 k], parts[2 k + 1]. */
@@ -53,11 +58,11 @@ static ur_status line_parts(relief_job *job, const GEOSGeometry *geometry, ur_po
         if (!part || GEOSGeomTypeId_r(job->geos, part) != GEOS_LINESTRING)
             continue;
         ur_points points = {0};
-        if (!geometry_points(job->geos, part, &points, false, job->error)) {
+        ur_status status = geometry_points(job, part, &points, false, "read a line");
+        if (status != UR_OK) {
             ur_points_free(&points);
-            return relief_geos_failed(job, "read a line");
+            return status;
         }
-        ur_status status = UR_OK;
         if (points.count >= 2) {
             status = ur_points_push(ends, points.items[0], job->error);
             if (status == UR_OK)
@@ -102,9 +107,8 @@ static ur_status add_rings(relief_job *job, const GEOSGeometry *geometry, ur_op 
             continue;
         const GEOSGeometry *ring = GEOSGetExteriorRing_r(job->geos, part);
         ur_points points = {0};
-        if (!ring || !geometry_points(job->geos, ring, &points, true, job->error))
-            status = relief_geos_failed(job, "read an overlap zone");
-        else if (points.count >= 3)
+        status = geometry_points(job, ring, &points, true, "read an overlap zone");
+        if (status == UR_OK && points.count >= 3)
             status =
                 ur_piece_add_path(job->piece, op, points.items, points.count, true, job->error);
         ur_points_free(&points);
@@ -127,9 +131,8 @@ static ur_status add_clipped_polyline(relief_job *job, const ur_vec2 *points, si
         if (!part || GEOSGeomTypeId_r(job->geos, part) != GEOS_LINESTRING)
             continue;
         ur_points got = {0};
-        if (!geometry_points(job->geos, part, &got, false, job->error))
-            status = relief_geos_failed(job, "read a dart");
-        else if (got.count >= 2)
+        status = geometry_points(job, part, &got, false, "read a dart");
+        if (status == UR_OK && got.count >= 2)
             status = ur_piece_add_path(job->piece, op, got.items, got.count, false, job->error);
         ur_points_free(&got);
     }

@@ -206,7 +206,7 @@ static ur_status domain_parts(ur_ruled *ruled, ur_interval **parts, size_t *coun
     *count = ur_ruled_domain(ruled, &probe, 1);
     *parts = ur_alloc_array(*count, sizeof **parts, error);
     if (!*parts)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     *count = ur_ruled_domain(ruled, *parts, *count);
     return UR_OK;
 }
@@ -399,7 +399,7 @@ ur_status ur_analyze(ur_ruled *ruled, const ur_analysis_options *options, ur_ana
         return status;
     analysis->rulings = ur_alloc_array(options->rulings, sizeof *analysis->rulings, error);
     if (!analysis->rulings)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     analysis->ruling_count = options->rulings;
     analysis->across = options->across;
     ur_interval *parts = NULL;

@@ -67,7 +67,7 @@ static ur_status check_directory(const char *path, ur_error *error)
         return ur_error_set(error, UR_ERROR_INPUT, "cannot write '%s': it names a directory", path);
     char *directory = directory_of(path, error);
     if (!directory)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     struct stat info;
     ur_status status = UR_OK;
     if (stat(directory, &info) != 0) {
@@ -154,8 +154,10 @@ static FILE *open_stream(int fd, ur_context *context)
     if (!context || context->write_budget < 0)
         return fdopen(fd, "w");
     limited_sink *sink = malloc(sizeof *sink);
-    if (!sink)
+    if (!sink) {
+        errno = ENOMEM;
         return NULL;
+    }
     sink->fd = fd;
     sink->budget = &context->write_budget;
     cookie_io_functions_t functions = {.write = limited_write, .close = limited_close};
@@ -217,9 +219,12 @@ static ur_status create_temp(atomic_file *file, ur_error *error)
     file->fd = fd;
     file->stream = open_stream(fd, file->context);
     if (!file->stream) {
-        ur_error_set(error, UR_ERROR_IO, "cannot write '%s': %s", file->path, strerror(errno));
+        ur_status status = errno == ENOMEM
+                               ? ur_error_out_of_memory(error)
+                               : ur_error_set(error, UR_ERROR_IO, "cannot write '%s': %s",
+                                              file->path, strerror(errno));
         close(fd);
-        return UR_ERROR_IO;
+        return status;
     }
     return UR_OK;
 }
@@ -233,11 +238,11 @@ ur_status atomic_open(atomic_file *file, const char *path, ur_context *context, 
         return status;
     file->path = copy_string(path, error);
     if (!file->path)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     file->temp_path = temp_template(path, error);
     if (!file->temp_path) {
         atomic_discard(file);
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     }
     status = create_temp(file, error);
     if (status != UR_OK)
@@ -317,7 +322,7 @@ static ur_status set_hold(ur_context *context, atomic_file *file, ur_error *erro
         atomic_file *held = ur_array_grow(context->output_set.held, &context->output_set.capacity,
                                           context->output_set.count, sizeof *held, 8, error);
         if (!held)
-            return UR_ERROR_INTERNAL;
+            return UR_ERROR_MEMORY;
         context->output_set.held = held;
     }
     context->output_set.held[context->output_set.count++] = *file;

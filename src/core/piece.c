@@ -17,7 +17,7 @@ ur_status ur_piece_add_path(ur_piece *piece, ur_op op, const ur_vec2 *points, si
     piece->paths = paths;
     ur_vec2 *copy = ur_alloc_array(count, sizeof *copy, error);
     if (!copy)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     memcpy(copy, points, count * sizeof *copy);
     if (piece->path_count == 0)
         piece->box = ur_box_empty();

@@ -326,7 +326,7 @@ ur_status ur_compare(ur_ruled *ruled, size_t n_min, size_t n_max, ur_compare_tab
     table->rows = ur_alloc_array(table->count, sizeof *table->rows, error);
     if (!table->rows) {
         table->count = 0;
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     }
     status = fill_rows(ruled, n_min, &against, table, error);
     if (status != UR_OK)

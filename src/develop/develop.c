@@ -54,7 +54,7 @@ ur_status strip_alloc(strip *s, size_t count, ur_error *error)
     s->drawn = ur_alloc_array(count, sizeof *s->drawn, error);
     if (!s->u || !s->near || !s->far || !s->drawn) {
         strip_free(s);
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     }
     return UR_OK;
 }
@@ -113,7 +113,7 @@ static ur_status exact_parameters(ur_ruled *ruled, const ur_develop_options *opt
     size_t parts = options->rulings > 0 ? options->rulings : 1;
     double *u = ur_alloc_array(total + parts + 1, sizeof *u, error);
     if (!u)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     size_t count = 0;
     for (int c = 0; c < CELLS; c++)
         for (size_t k = 0; k < steps[c]; k++)
@@ -352,7 +352,7 @@ static ur_status split_points(const strip *s, const room *r, size_t **cuts, size
         free(greedy);
         if (geos)
             GEOS_finish_r(geos);
-        return geos ? UR_ERROR_INTERNAL : ur_error_out_of_memory(error);
+        return ur_error_out_of_memory(error);
     }
     size_t count = 0;
     greedy[0] = 0;
@@ -389,7 +389,7 @@ static ur_status split_points(const strip *s, const room *r, size_t **cuts, size
     GEOS_finish_r(geos);
     if (!even) {
         free(greedy);
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     }
     if (even_ok) {
         free(greedy);
@@ -453,7 +453,7 @@ static ur_status fill_net(ur_ruled *ruled, const strip *s, size_t first, size_t 
     net->ruling_parameters =
         ur_alloc_array(last - first + 1, sizeof *net->ruling_parameters, error);
     if (!net->outline || !net->rulings || !net->ruling_parameters)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     net->outline_count = drop_repeated(net->outline, piece_ring(s, first, last, 1, net->outline));
     double area = ur_polygon_signed_area(net->outline, net->outline_count);
     if (area < 0)
@@ -544,7 +544,7 @@ static ur_status nets_from_strip(ur_ruled *ruled, const strip *s, const size_t *
 {
     nets->nets = ur_alloc_array(piece_count, sizeof *nets->nets, error);
     if (!nets->nets)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     nets->count = piece_count;
     bool closed = ur_ruled_is_closed(ruled);
     for (size_t k = 0; k < piece_count; k++) {

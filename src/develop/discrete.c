@@ -151,7 +151,7 @@ ur_status develop_discrete(ur_ruled *ruled, const ur_develop_options *options, s
         free(p);
         free(a);
         strip_free(s);
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     }
     double u0 = ur_ruled_start(ruled), u1 = ur_ruled_end(ruled);
     for (size_t i = 0; i <= n; i++) {

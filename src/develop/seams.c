@@ -212,7 +212,7 @@ ur_status ur_net_list_find_seams(ur_net_list *nets, int first_seam, int *next_se
     int **run_seam = NULL;
     size_t edge_count = count_edges(nets);
     edge_entry *entries = ur_alloc_array(edge_count ? edge_count : 1, sizeof *entries, error);
-    ur_status status = entries ? make_tables(nets, &partners, &run_seam, error) : UR_ERROR_INTERNAL;
+    ur_status status = entries ? make_tables(nets, &partners, &run_seam, error) : UR_ERROR_MEMORY;
     if (status == UR_OK) {
         pair_edges(entries, collect_edges(nets, entries), partners);
         for (size_t n = 0; n < nets->count; n++) {

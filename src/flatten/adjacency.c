@@ -70,7 +70,7 @@ static ur_status scan_alloc(scan *s, const ur_mesh *mesh, ur_error *error)
     s->on_boundary = ur_alloc_array(vertices, sizeof *s->on_boundary, error);
     if (!s->keys || !s->start || !s->parts || !s->loops || !s->on_boundary) {
         scan_free(s);
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     }
     for (size_t v = 0; v < vertices; v++)
         s->parts[v] = s->loops[v] = v;
@@ -241,7 +241,7 @@ static ur_status build(scan *s, flat_topology *topology, ur_error *error)
     topology->edges = ur_alloc_array(halves, sizeof *topology->edges, error);
     topology->edge_of = ur_alloc_array(halves, sizeof *topology->edge_of, error);
     if (!topology->edges || !topology->edge_of)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     bucket_halves(s);
     ur_status status = take_edges(s, topology, error);
     if (!status)

@@ -92,7 +92,7 @@ static ur_status arap_alloc(arap *a, ur_error *error)
     a->pinned = ur_alloc_array(2 * a->free_count, sizeof *a->pinned, error);
     a->next = ur_alloc_array(a->mesh->vertex_count, sizeof *a->next, error);
     if (!a->weight || !a->pinned || !a->next)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     a->area = 0;
     for (size_t k = 0; k < t; k++) {
         memcpy(&a->weight[3 * k], a->frames[k].cot, sizeof a->frames[k].cot);
@@ -112,7 +112,7 @@ static ur_status edge_weights(const arap *a, double **weights, ur_error *error)
 {
     double *w = ur_alloc_array(a->topology->edge_count, sizeof *w, error);
     if (!w)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     for (size_t t = 0; t < a->mesh->triangle_count; t++)
         for (int k = 0; k < 3; k++)
             w[a->topology->edge_of[3 * t + k]] += edge_weight(a, t, k);

@@ -91,7 +91,7 @@ static ur_status measure_triangles(charting *c, ur_error *error)
     c->region = ur_alloc_array(m->triangle_count, sizeof *c->region, error);
     c->vertex_map = ur_alloc_array(m->vertex_count, sizeof *c->vertex_map, error);
     if (!c->normals || !c->centres || !c->areas || !c->region || !c->vertex_map)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     for (size_t t = 0; t < m->triangle_count; t++) {
         ur_vec3 a = m->vertices[m->triangles[t][0]], b = m->vertices[m->triangles[t][1]];
         ur_vec3 d = m->vertices[m->triangles[t][2]];
@@ -144,7 +144,7 @@ static ur_status mark_seams(charting *c, const ur_seam *seams, size_t seam_count
     const ur_mesh *m = c->mesh;
     edge_key *keys = ur_alloc_array(seam_count, sizeof *keys, error);
     if (!keys)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     for (size_t k = 0; k < seam_count; k++)
         keys[k] = key_of(seams[k].a, seams[k].b);
     qsort(keys, seam_count, sizeof *keys, compare_keys);
@@ -179,7 +179,7 @@ static ur_status cut_edges(charting *c, const ur_seam *seams, size_t seam_count,
     c->cut = ur_alloc_array(3 * m->triangle_count, sizeof *c->cut, error);
     *cuts = ur_alloc_array(seam_count + 3 * m->triangle_count / 2 + 1, sizeof **cuts, error);
     if (!*cuts || !c->cut)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     ur_status status = mark_seams(c, seams, seam_count, error);
     if (status)
         return status;
@@ -206,7 +206,7 @@ static ur_status queue_set(charting *c, triangle_set set, ur_error *error)
         ur_array_grow(c->queue, &c->queue_capacity, c->queued, sizeof *grown, 16, error);
     if (!grown) {
         free(set.triangles);
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     }
     c->queue = grown;
     c->queue[c->queued++] = set;
@@ -218,7 +218,7 @@ static ur_status add_chart(charting *c, ur_mesh_piece *piece, ur_flat_piece *fla
     ur_chart *grown = ur_array_grow(c->charts->charts, &c->chart_capacity, c->charts->count,
                                     sizeof *grown, 16, error);
     if (!grown)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     c->charts->charts = grown;
     c->charts->charts[c->charts->count++] = (ur_chart){*piece, *flat};
     memset(piece, 0, sizeof *piece);
@@ -238,7 +238,7 @@ static ur_status subset_mesh(charting *c, const triangle_set *set, ur_mesh *sub,
     size_t *original = ur_alloc_array(3 * set->count, sizeof *original, error);
     ur_vec3 *vertices = ur_alloc_array(3 * set->count, sizeof *vertices, error);
     size_t used = 0;
-    ur_status status = triangles && original && vertices ? UR_OK : UR_ERROR_INTERNAL;
+    ur_status status = triangles && original && vertices ? UR_OK : UR_ERROR_MEMORY;
     for (size_t i = 0; !status && i < set->count; i++)
         for (int k = 0; k < 3; k++) {
             size_t v = m->triangles[set->triangles[i]][k];
@@ -465,7 +465,7 @@ static ur_status cut_in_two(charting *c, const triangle_set *set, triangle_set h
         free(h.items);
         free(halves[0].triangles);
         free(halves[1].triangles);
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     }
     split s;
     first_seeds(c, set, &s);
@@ -498,7 +498,7 @@ static ur_status set_of(const ur_mesh_piece *disk, triangle_set *set, ur_error *
     set->count = disk->mesh.triangle_count;
     set->triangles = ur_alloc_array(set->count, sizeof *set->triangles, error);
     if (!set->triangles)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     memcpy(set->triangles, disk->source_triangles, set->count * sizeof *set->triangles);
     return UR_OK;
 }
@@ -623,7 +623,7 @@ static ur_status find_neighbours(const charting *c, const size_t *chart_of, neig
     *count = 0;
     *pairs = ur_alloc_array(3 * m->triangle_count / 2 + 1, sizeof **pairs, error);
     if (!*pairs)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     for (size_t h = 0; h < 3 * m->triangle_count; h++) {
         size_t twin = c->twins[h];
         if (twin == NONE || twin < h || c->cut[h])
@@ -660,7 +660,7 @@ static ur_status union_set(const ur_chart *a, const ur_chart *b, triangle_set *s
     set->count = na + nb;
     set->triangles = ur_alloc_array(set->count, sizeof *set->triangles, error);
     if (!set->triangles)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     memcpy(set->triangles, a->piece.source_triangles, na * sizeof *set->triangles);
     memcpy(set->triangles + na, b->piece.source_triangles, nb * sizeof *set->triangles);
     return UR_OK;
@@ -744,7 +744,7 @@ static ur_status join_neighbours(charting *c, ur_error *error)
     size_t *parent = ur_alloc_array(charts->count, sizeof *parent, error);
     neighbours *pairs = NULL;
     size_t pair_count = 0;
-    ur_status status = chart_of && parent ? UR_OK : UR_ERROR_INTERNAL;
+    ur_status status = chart_of && parent ? UR_OK : UR_ERROR_MEMORY;
     for (size_t k = 0; !status && k < charts->count; k++) {
         parent[k] = k;
         for (size_t t = 0; t < charts->charts[k].piece.mesh.triangle_count; t++)
@@ -830,7 +830,7 @@ static ur_status moved_set(const ur_chart *chart, const jut *juts, size_t count,
     set->triangles = ur_alloc_array(n + count, sizeof *set->triangles, error);
     set->count = 0;
     if (!set->triangles)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     for (size_t t = 0; t < n; t++)
         if (add || chart_of[chart->piece.source_triangles[t]] == k)
             set->triangles[set->count++] = chart->piece.source_triangles[t];
@@ -887,7 +887,7 @@ static ur_status smooth_borders(charting *c, ur_error *error)
     const ur_mesh *m = c->mesh;
     size_t *chart_of = ur_alloc_array(m->triangle_count, sizeof *chart_of, error);
     jut *juts = ur_alloc_array(m->triangle_count, sizeof *juts, error);
-    ur_status status = chart_of && juts ? UR_OK : UR_ERROR_INTERNAL;
+    ur_status status = chart_of && juts ? UR_OK : UR_ERROR_MEMORY;
     size_t moved = 1;
     for (int round = 0; !status && moved > 0 && round < SMOOTHING_ROUNDS; round++) {
         moved = 0;

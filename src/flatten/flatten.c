@@ -85,7 +85,7 @@ static ur_status measure(const ur_mesh *mesh, const flat_frame *frames, ur_flat_
 {
     flat->strain = ur_alloc_array(mesh->triangle_count, sizeof *flat->strain, error);
     if (!flat->strain)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     flat->vertex_count = mesh->vertex_count;
     flat->triangle_count = mesh->triangle_count;
     for (size_t t = 0; t < mesh->triangle_count; t++) {
@@ -144,7 +144,7 @@ static ur_status lay_out(const ur_mesh *mesh, const flat_frame *frames,
 {
     flat->flat = ur_alloc_array(mesh->vertex_count, sizeof *flat->flat, error);
     if (!flat->flat)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     bool tutte = false;
     ur_status status = first_layout(mesh, frames, topology, flat->flat, &tutte, error);
     if (!status && (options->method == UR_FLATTEN_ARAP || tutte)) {
@@ -194,7 +194,7 @@ ur_status ur_flat_piece_measure(const ur_mesh *piece, const ur_vec2 *layout, ur_
         return status;
     flat->flat = ur_alloc_array(piece->vertex_count, sizeof *flat->flat, error);
     if (!flat->flat)
-        status = UR_ERROR_INTERNAL;
+        status = UR_ERROR_MEMORY;
     if (!status) {
         memcpy(flat->flat, layout, piece->vertex_count * sizeof *flat->flat);
         status = measure(piece, frames, flat, error);

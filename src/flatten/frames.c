@@ -77,7 +77,7 @@ ur_status flat_frames(const ur_mesh *mesh, flat_frame **frames, ur_error *error)
         return status;
     flat_frame *made = ur_alloc_array(mesh->triangle_count, sizeof *made, error);
     if (!made)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     double size = ur_mesh_size(mesh);
     double smallest = UR_MESH_ZERO_AREA * size * size;
     for (size_t t = 0; t < mesh->triangle_count; t++) {

@@ -56,7 +56,7 @@ static ur_status sums_alloc(lscm_sums *s, size_t vertices, size_t edges, ur_erro
     s->index = ur_alloc_array(vertices, sizeof *s->index, error);
     if (!s->diagonal || !s->sym || !s->skew || !s->uses || !s->index) {
         sums_free(s);
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     }
     return UR_OK;
 }

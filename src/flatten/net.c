@@ -66,7 +66,7 @@ static ur_status fill_shading(const ur_mesh *piece, const ur_flat_piece *flat, u
     shading->strain = ur_alloc_array(count, sizeof *shading->strain, error);
     shading->direction = ur_alloc_array(count, sizeof *shading->direction, error);
     if (!shading->triangles || !shading->strain || !shading->direction)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     for (size_t t = 0; t < count; t++) {
         for (int k = 0; k < 3; k++)
             shading->triangles[t][k] = flat->flat[piece->triangles[t][k]];
@@ -91,7 +91,7 @@ ur_status ur_net_from_flat(const ur_mesh *piece, const ur_flat_piece *flat, cons
     if (!net->outline || !net->outline_3d) {
         free(loop);
         ur_net_free(net);
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     }
     double area = 0.0;
     for (size_t i = 0; i < count; i++)
@@ -127,7 +127,7 @@ ur_status ur_net_set_faces(ur_net *net, const ur_mesh *mesh, const size_t *trian
         return UR_OK;
     net->faces_3d = ur_alloc_array(count, sizeof *net->faces_3d, error);
     if (!net->faces_3d)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     for (size_t f = 0; f < count; f++) {
         size_t t = triangles ? triangles[f] : f;
         if (t >= mesh->triangle_count)

@@ -256,7 +256,7 @@ static ur_status neighbours_build(const ur_mesh *mesh, neighbours *n, ur_error *
     size_t *fill = ur_alloc_array(v_count + 1, sizeof *fill, error);
     if (!fill) {
         neighbours_free(n);
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     }
     memcpy(fill, n->start, (v_count + 1) * sizeof *fill);
     for (size_t t = 0; t < t_count; t++)
@@ -376,7 +376,7 @@ static ur_status mesh_trial(const strip_job *job, size_t count, ur_strips *strip
 {
     double *planes = ur_alloc_array(count - 1, sizeof *planes, error);
     if (!planes)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     ur_mesh banded;
     ur_status status = ur_mesh_band_planes(job->mesh, job->direction, count, planes, error);
     if (status == UR_OK)

@@ -128,7 +128,7 @@ ur_status flat_tutte(const ur_mesh *mesh, const flat_frame *frames, const flat_t
     size_t *index = ur_alloc_array(mesh->vertex_count, sizeof *index, error);
     if (!index) {
         free(loop);
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     }
     place_boundary(mesh, loop, count, layout);
     size_t inner = number_inner(mesh, loop, count, index);

@@ -54,7 +54,7 @@ static ur_status rank_edges(const unfolder *u, size_t **order, size_t *count, ur
     *order = ur_alloc_array(halves, sizeof **order, error);
     if (!ranked || !*order) {
         free(ranked);
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     }
     for (size_t h = 0; h < halves; h++) {
         size_t g = u->edges.twins[h];
@@ -125,8 +125,9 @@ static ur_status restart(unfolder *u, ur_error *error)
                 island->hull[k] = u->flat[t][k];
         }
         island->hull_count = u->room ? 3 : 0;
-        if (unfold_grid_add(&u->grid, ur_box_of_points(u->flat[t], 3), t, t, error) != UR_OK)
-            return UR_ERROR_INTERNAL;
+        ur_status status = unfold_grid_add(&u->grid, ur_box_of_points(u->flat[t], 3), t, t, error);
+        if (status != UR_OK)
+            return status;
     }
     return UR_OK;
 }
@@ -135,8 +136,9 @@ static ur_status join_all(unfolder *u, const size_t *order, size_t count, ur_err
 {
     for (size_t i = 0; i < count; i++) {
         bool joined;
-        if (unfold_try_join(u, order[i], &joined, error) != UR_OK)
-            return UR_ERROR_INTERNAL;
+        ur_status status = unfold_try_join(u, order[i], &joined, error);
+        if (status != UR_OK)
+            return status;
     }
     return UR_OK;
 }
@@ -266,17 +268,17 @@ static ur_status alloc_run(unfolder *u, ur_error *error)
     u->nearby = ur_alloc_array(n, sizeof *u->nearby, error);
     if (!u->piece || !u->flat || !u->joined || !u->parent || !u->next_member || !u->islands ||
         !u->pair_small || !u->pair_large || !u->roots || !u->nearby)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     if (!u->room)
         return UR_OK;
     u->hull_points = ur_alloc_array(3 * n + 1, sizeof *u->hull_points, error);
     u->hull_chain = ur_alloc_array(6 * n + 2, sizeof *u->hull_chain, error);
     if (!u->hull_points || !u->hull_chain)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     for (size_t t = 0; t < n; t++) {
         u->islands[t].hull = ur_alloc_array(3, sizeof *u->islands[t].hull, error);
         if (!u->islands[t].hull)
-            return UR_ERROR_INTERNAL;
+            return UR_ERROR_MEMORY;
         u->islands[t].hull_capacity = 3;
     }
     return UR_OK;
@@ -334,8 +336,9 @@ static void unfolder_free(unfolder *u)
 static ur_status check_faces_fit(unfolder *u, ur_error *error)
 {
     unfold_score score;
-    if (unfold_run(u, NULL, 0, &score, error) != UR_OK)
-        return UR_ERROR_INTERNAL;
+    ur_status status = unfold_run(u, NULL, 0, &score, error);
+    if (status != UR_OK)
+        return status;
     for (size_t t = 0; t < u->mesh->triangle_count; t++) {
         const unfold_island *island = &u->islands[t];
         if (island->triangle_count == 0 || unfold_hull_fits(u, island->hull, island->hull_count))
@@ -387,7 +390,7 @@ static ur_status build_pieces(const unfolder *u, GEOSContextHandle_t geos, ur_un
         count += u->islands[p].triangle_count > 0;
     out->pieces = ur_alloc_array(count, sizeof *out->pieces, error);
     bool *done = ur_alloc_array(n, sizeof *done, error);
-    ur_status status = out->pieces && done ? UR_OK : UR_ERROR_INTERNAL;
+    ur_status status = out->pieces && done ? UR_OK : UR_ERROR_MEMORY;
     for (size_t t = 0; t < n && status == UR_OK; t++) {
         size_t p = u->piece[t];
         if (done[p])

@@ -170,7 +170,7 @@ ur_status unfold_grid_init(unfold_grid *grid, size_t triangle_count, double cell
     grid->found = ur_alloc_array(triangle_count, sizeof *grid->found, error);
     if (!grid->head || !grid->head_stamp || !grid->entry_item || !grid->entry_piece ||
         !grid->entry_next || !grid->seen || !grid->found)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     grid->stamp = 1;
     return UR_OK;
 }
@@ -214,8 +214,10 @@ static ur_status grow_entries(unfold_grid *grid, ur_error *error)
 static ur_status add_to_cell(unfold_grid *grid, size_t piece, int64_t x, int64_t y, size_t triangle,
                              ur_error *error)
 {
-    if (grid->entry_count == grid->entry_capacity && grow_entries(grid, error) != UR_OK)
-        return UR_ERROR_INTERNAL;
+    ur_status status =
+        grid->entry_count == grid->entry_capacity ? grow_entries(grid, error) : UR_OK;
+    if (status != UR_OK)
+        return status;
     size_t slot = slot_of(grid, piece, x, y), entry = grid->entry_count++;
     if (grid->head_stamp[slot] != grid->stamp) {
         grid->head_stamp[slot] = grid->stamp;
@@ -237,7 +239,7 @@ ur_status unfold_grid_add(unfold_grid *grid, ur_box box, size_t piece, size_t tr
     for (int64_t x = r.x0; x <= r.x1; x++)
         for (int64_t y = r.y0; y <= r.y1; y++)
             if (add_to_cell(grid, piece, x, y, triangle, error) != UR_OK)
-                return UR_ERROR_INTERNAL;
+                return UR_ERROR_MEMORY; /* the only way add_to_cell fails */
     return UR_OK;
 }
 

@@ -145,7 +145,7 @@ static ur_status mark_user_seams(const ur_mesh *mesh, const ur_seam *seams, size
 {
     seam_key *keys = ur_alloc_array(count, sizeof *keys, error);
     bool *found = ur_alloc_array(count, sizeof *found, error);
-    ur_status status = keys && found ? UR_OK : UR_ERROR_INTERNAL;
+    ur_status status = keys && found ? UR_OK : UR_ERROR_MEMORY;
     if (status == UR_OK)
         status = seam_keys(seams, count, mesh->vertex_count, keys, error);
     for (size_t h = 0; h < 3 * mesh->triangle_count && status == UR_OK && count > 0; h++) {
@@ -191,7 +191,7 @@ ur_status unfold_edges_build(const ur_mesh *mesh, const ur_seam *seams, size_t s
     edges->bend = ur_alloc_array(halves, sizeof *edges->bend, error);
     edges->cut = ur_alloc_array(halves, sizeof *edges->cut, error);
     if (!edges->bend || !edges->cut)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     classify(mesh, edges);
     return mark_user_seams(mesh, seams, seam_count, edges, error);
 }

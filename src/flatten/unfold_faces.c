@@ -194,7 +194,7 @@ ur_status unfold_faces_build(const ur_mesh *mesh, const unfold_edges *edges, dou
     ur_status status = UR_OK;
     if (!faces->face || !faces->home || !faces->flat || !faces->order || !members || !grown ||
         !heap.half || !heap.length)
-        status = UR_ERROR_INTERNAL;
+        status = UR_ERROR_MEMORY;
     for (size_t t = 0; t < n && status == UR_OK; t++)
         faces->face[t] = UNFOLD_NONE;
     for (size_t t = 0; t < n && status == UR_OK; t++) {

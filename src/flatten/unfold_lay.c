@@ -429,8 +429,10 @@ static ur_status commit(unfolder *u, const unfold_motion *m, size_t small, size_
     for (size_t s = a->first; s != UNFOLD_NONE; s = u->next_member[s]) {
         move_triangle(m, u->flat[s], u->flat[s]);
         u->piece[s] = large;
-        if (unfold_grid_add(&u->grid, ur_box_of_points(u->flat[s], 3), large, s, error) != UR_OK)
-            return UR_ERROR_INTERNAL;
+        ur_status status =
+            unfold_grid_add(&u->grid, ur_box_of_points(u->flat[s], 3), large, s, error);
+        if (status != UR_OK)
+            return status;
     }
     u->next_member[b->last] = a->first;
     b->last = a->last;
@@ -495,8 +497,9 @@ ur_status unfold_try_join(unfolder *u, size_t h, bool *joined, ur_error *error)
         count_failure(u, small, large);
         return UR_OK;
     }
-    if (u->room && keep_hull(u, large, hull_count, error) != UR_OK)
-        return UR_ERROR_INTERNAL;
+    ur_status status = u->room ? keep_hull(u, large, hull_count, error) : UR_OK;
+    if (status != UR_OK)
+        return status;
     *joined = true;
     return commit(u, &m, small, large, error);
 }

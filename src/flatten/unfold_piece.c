@@ -27,7 +27,7 @@ static ur_status count_faces(const unfolder *u, ur_unfolded_piece *piece, ur_err
     size_t n = piece->triangle_count;
     size_t *faces = ur_alloc_array(n, sizeof *faces, error);
     if (!faces)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     for (size_t i = 0; i < n; i++)
         faces[i] = u->faces.face[piece->triangles[i]];
     qsort(faces, n, sizeof *faces, compare_sizes);
@@ -44,7 +44,7 @@ static ur_status copy_triangles(const unfolder *u, size_t p, ur_unfolded_piece *
     piece->triangles = ur_alloc_array(n, sizeof *piece->triangles, error);
     piece->flat = ur_alloc_array(n, sizeof *piece->flat, error);
     if (!piece->triangles || !piece->flat)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     const ur_mesh *mesh = u->mesh;
     size_t i = 0;
     for (size_t t = u->islands[p].first; t != UNFOLD_NONE; t = u->next_member[t], i++) {
@@ -74,7 +74,7 @@ static ur_status collect_folds(const unfolder *u, ur_unfolded_piece *piece, ur_e
             count += is_fold(u, h);
     piece->folds = ur_alloc_array(count, sizeof *piece->folds, error);
     if (!piece->folds)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     for (size_t i = 0; i < piece->triangle_count; i++)
         for (size_t h = 3 * piece->triangles[i]; h < 3 * piece->triangles[i] + 3; h++) {
             if (!is_fold(u, h))
@@ -114,7 +114,7 @@ static ur_status walk_outline(const unfolder *u, size_t index, ur_unfolded_piece
     piece->outline = ur_alloc_array(count, sizeof *piece->outline, error);
     piece->outline_vertices = ur_alloc_array(count, sizeof *piece->outline_vertices, error);
     if (!piece->outline || !piece->outline_vertices)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     size_t h = start;
     do {
         if (piece->outline_count == count)

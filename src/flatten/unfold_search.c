@@ -190,8 +190,9 @@ static ur_status step_once(search *s, double progress, bool *moved, ur_error *er
     if (!*moved)
         return UR_OK;
     unfold_score score;
-    if (unfold_run(s->u, s->trial, s->count, &score, error) != UR_OK)
-        return UR_ERROR_INTERNAL;
+    ur_status status = unfold_run(s->u, s->trial, s->count, &score, error);
+    if (status != UR_OK)
+        return status;
     if (accept(s, score, progress)) {
         memcpy(s->order, s->trial, s->count * sizeof *s->order);
         s->current = score;
@@ -215,8 +216,9 @@ static ur_status run_search(search *s, size_t least, size_t *steps, ur_error *er
             o->progress(o->progress_context, "improving", progress);
         unfold_score before = s->top;
         bool moved;
-        if (step_once(s, progress, &moved, error) != UR_OK)
-            return UR_ERROR_INTERNAL;
+        ur_status status = step_once(s, progress, &moved, error);
+        if (status != UR_OK)
+            return status;
         if (!moved)
             return UR_OK;
         *steps = step + 1;
@@ -233,8 +235,9 @@ ur_status unfold_search(unfolder *u, size_t *order, size_t count, size_t *steps,
 {
     *steps = 0;
     unfold_score first;
-    if (unfold_run(u, order, count, &first, error) != UR_OK)
-        return UR_ERROR_INTERNAL;
+    ur_status status = unfold_run(u, order, count, &first, error);
+    if (status != UR_OK)
+        return status;
     const ur_unfold_options *o = &u->options;
     if (count == 0 || (o->time_budget <= 0 && o->max_steps == 0))
         return UR_OK;
@@ -249,7 +252,7 @@ ur_status unfold_search(unfolder *u, size_t *order, size_t count, size_t *steps,
     s.trial = ur_alloc_array(count, sizeof *s.trial, error);
     s.best = ur_alloc_array(count, sizeof *s.best, error);
     s.pieces = ur_alloc_array(n, sizeof *s.pieces, error);
-    ur_status status = s.trial && s.best && s.pieces ? UR_OK : UR_ERROR_INTERNAL;
+    status = s.trial && s.best && s.pieces ? UR_OK : UR_ERROR_MEMORY;
     if (status == UR_OK) {
         memcpy(s.best, order, count * sizeof *s.best);
         for (size_t h = 0; h < 3 * n; h++)

@@ -87,7 +87,7 @@ ur_status ur_polylines_meet(const ur_vec3 *a, size_t a_count, const ur_vec3 *b, 
         return UR_OK;
     sorted_segment *sorted = ur_alloc_array(b_count - 1, sizeof *sorted, error);
     if (!sorted)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     int axis = longest_axis(b, b_count);
     for (size_t j = 0; j + 1 < b_count; j++) {
         double x0 = along(b[j], axis), x1 = along(b[j + 1], axis);

@@ -80,7 +80,7 @@ ur_status ur_points_push(ur_points *points, ur_vec2 point, ur_error *error)
     ur_vec2 *items = ur_array_grow(points->items, &points->capacity, points->count,
                                    sizeof *points->items, 64, error);
     if (!items)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     points->items = items;
     points->items[points->count++] = point;
     return UR_OK;

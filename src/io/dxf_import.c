@@ -106,7 +106,7 @@ static ur_status split_lines(dxf_reader *reader, size_t size, char ***lines, siz
         n += reader->text[i] == '\n';
     *lines = ur_alloc_array(n, sizeof **lines, error);
     if (!*lines)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     *count = 0;
     char *start = reader->text;
     for (char *p = reader->text;; p++) {
@@ -138,7 +138,7 @@ static ur_status make_pairs(dxf_reader *reader, char **lines, size_t line_count,
 {
     reader->pairs = ur_alloc_array(line_count / 2 + 1, sizeof *reader->pairs, error);
     if (!reader->pairs)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     for (size_t i = 0; i < line_count; i += 2) {
         if (i + 1 == line_count && lines[i][0] == '\0')
             break; /* the newline after the last value */
@@ -461,7 +461,7 @@ static ur_status push_number(double **items, size_t *count, size_t *capacity, do
 {
     double *grown = ur_array_grow(*items, capacity, *count, sizeof **items, 16, error);
     if (!grown)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     *items = grown;
     grown[(*count)++] = value;
     return UR_OK;
@@ -490,7 +490,7 @@ static ur_status spline_field(const dxf_entity *entity, const dxf_pair *pair, dx
         ur_vec2 *items = ur_array_grow(points->items, &points->capacity, points->count,
                                        sizeof *points->items, 16, error);
         if (!items)
-            return UR_ERROR_INTERNAL;
+            return UR_ERROR_MEMORY;
         points->items = items;
         items[points->count++] = ur_vec2_make(value, 0);
         return UR_OK;
@@ -584,7 +584,7 @@ static ur_status vertices_push(dxf_vertices *vertices, ur_error *error)
     dxf_vertex *items = ur_array_grow(vertices->items, &vertices->capacity, vertices->count,
                                       sizeof *vertices->items, 16, error);
     if (!items)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     vertices->items = items;
     vertices->items[vertices->count++] = (dxf_vertex){{0, 0}, 0};
     return UR_OK;
@@ -845,7 +845,7 @@ static ur_status find_blocks(dxf_reader *reader, ur_error *error)
         dxf_block *blocks = ur_array_grow(reader->blocks, &capacity, reader->block_count,
                                           sizeof *reader->blocks, 16, error);
         if (!blocks)
-            return UR_ERROR_INTERNAL;
+            return UR_ERROR_MEMORY;
         reader->blocks = blocks;
         dxf_block *block = &blocks[reader->block_count++];
         memset(block, 0, sizeof *block);
@@ -1084,7 +1084,7 @@ static ur_status chain_segments(dxf_reader *reader, ur_error *error)
         return UR_OK;
     bool *used = ur_alloc_array(reader->segment_count, sizeof *used, error);
     if (!used)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     memset(used, 0, reader->segment_count * sizeof *used);
     ur_status status = UR_OK;
     for (size_t k = 0; status == UR_OK && k < reader->segment_count; k++)

@@ -759,7 +759,7 @@ static ur_status allocate(import_state *state, ur_error *error)
     state->names = ur_alloc_array(state->group_count, sizeof *state->names, error);
     state->named = ur_alloc_array(state->group_count, sizeof *state->named, error);
     if (!state->vertices || !state->triangles || !state->groups || !state->names || !state->named)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     /* The counts come back as fill_node moves its cursors over the arrays. */
     state->vertex_count = state->triangle_count = state->group_count = 0;
     return UR_OK;
@@ -914,7 +914,7 @@ static ur_status merge_groups(import_state *state, ur_error *error)
     if (!keys || !renumber) {
         free(keys);
         free(renumber);
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     }
     for (size_t g = 0; g < count; g++)
         keys[g] = (group_key){state->names[g], g};

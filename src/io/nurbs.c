@@ -109,7 +109,7 @@ ur_status parts_flatten_nurbs(parts_points *points, const parts_nurbs *curve, do
     size_t p = (size_t)curve->degree;
     nurbs_point *work = ur_alloc_array(p + 1, sizeof *work, error);
     if (!work)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     nurbs_flattening f = {curve, points, work, tolerance, 0};
     double first = curve->knots[p], last = curve->knots[curve->control_count];
     ur_vec2 a = evaluate(curve, first, work);

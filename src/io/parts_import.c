@@ -187,7 +187,7 @@ ur_status parts_add_ring(parts_collection *collection, parts_points *points, int
     parts_ring *rings = ur_array_grow(collection->rings, &collection->capacity, collection->count,
                                       sizeof *collection->rings, 16, error);
     if (!rings)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     collection->rings = rings;
     /*
      * The closing point repeats the first: rings here never do.  Nor a last
@@ -230,7 +230,7 @@ ur_status parts_add_line(parts_collection *collection, parts_points *points, boo
     parts_line *lines = ur_array_grow(collection->lines, &collection->line_capacity,
                                       collection->line_count, sizeof *collection->lines, 16, error);
     if (!lines)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     collection->lines = lines;
     parts_line *added = &lines[collection->line_count++];
     memset(added, 0, sizeof *added);
@@ -363,7 +363,7 @@ static ur_status take_exterior(GEOSContextHandle_t geos, const GEOSGeometry *pol
         return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS gave a polygon without a ring");
     ur_vec2 *points = ur_alloc_array(size - 1, sizeof *points, error);
     if (!points)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     for (unsigned i = 0; i + 1 < size; i++)
         GEOSCoordSeq_getXY_r(geos, sequence, i, &points[i].x, &points[i].y);
     free(ring->points);
@@ -623,7 +623,7 @@ static ur_status build_pieces(parts_job *job, ur_parts *parts, ur_error *error)
         outers += job->depth[i] % 2 == 0;
     parts->pieces = ur_alloc_array(outers, sizeof *parts->pieces, error);
     if (!parts->pieces)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     /* In the order the file draws them: chained DXF loops come last otherwise. */
     for (size_t i = 0; i < n; i++)
         job->order[i] = (parts_order){(double)job->collection->rings[i].line, i};
@@ -655,7 +655,7 @@ static ur_status job_allocate(parts_job *job, size_t n, ur_error *error)
     job->grown = ur_alloc_array(n, sizeof *job->grown, error);
     if (!job->polygons || !job->areas || !job->boxes || !job->parent || !job->depth ||
         !job->order || !job->piece_of || !job->grown)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     memset(job->polygons, 0, n * sizeof *job->polygons);
     memset(job->grown, 0, n * sizeof *job->grown);
     return UR_OK;
@@ -802,7 +802,7 @@ static ur_status attach_lines(parts_job *job, ur_parts *parts, ur_error *error)
     parts_collection *collection = job->collection;
     size_t *left = ur_alloc_array(collection->line_count + 1, sizeof *left, error);
     if (!left)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     size_t left_count = 0;
     ur_status status = UR_OK;
     for (size_t k = 0; status == UR_OK && k < collection->line_count; k++) {
@@ -1037,7 +1037,7 @@ ur_status ur_parts_import_buffer(const char *name, const void *data, size_t size
                             "%s: %zu bytes: too large for a drawing of parts", name, size);
     char *text = io_copy_text(data, size, error);
     if (!text)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     return import_text(name, svg, text, size, options, parts, error);
 }
 

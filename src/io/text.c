@@ -48,7 +48,7 @@ ur_status io_read_file(const char *path, long max_bytes, const char *what, char 
         status = ur_error_set(error, UR_ERROR_INPUT, "%s: %ld bytes: too large for %s", path,
                               length, what);
     else if ((*text = ur_alloc_array((size_t)length + 1, 1, error)) == NULL)
-        status = UR_ERROR_INTERNAL;
+        status = UR_ERROR_MEMORY;
     else if (fread(*text, 1, (size_t)length, file) != (size_t)length)
         status = ur_error_set(error, UR_ERROR_INPUT, "%s: cannot read: %s", path,
                               strerror(errno ? errno : EIO));

@@ -177,7 +177,7 @@ ur_status job_allowances_before_placing(const job_run *run, const ur_machine *ma
         bool mesh = strcmp(run->job.command, "mesh") == 0;
         status = first ? job_add_joints(machine, material, nets, *pieces, mesh ? NULL : &splices,
                                         run->job.context, error)
-                       : UR_ERROR_INTERNAL;
+                       : UR_ERROR_MEMORY;
         for (size_t k = 0; status == UR_OK && k < *count; k++)
             status = keep_kerfs_off_joints(machine, material, &(*pieces)[k], first[k], error);
         free(first);

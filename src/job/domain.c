@@ -92,7 +92,7 @@ ur_status job_regression_points(const job_run *run, ur_ruled *ruled, ur_vec3 **p
     *count = 0;
     *points = ur_alloc_array(REGRESSION_POINTS + 1, sizeof **points, &error);
     if (!*points) {
-        return job_fail(run, UR_ERROR_INTERNAL, "%s: %s", run->job.command, error.message);
+        return job_fail(run, UR_ERROR_MEMORY, "%s: %s", run->job.command, error.message);
     }
     double u0 = ur_ruled_start(ruled), u1 = ur_ruled_end(ruled);
     for (int i = 0; i <= REGRESSION_POINTS; i++) {

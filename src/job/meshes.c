@@ -289,14 +289,14 @@ static ur_status net_of_unfolded(const ur_mesh *mesh, const ur_unfolded_piece *p
     c_snprintf(net->name, sizeof net->name, "P%zu", index + 1);
     net->outline_3d = ur_alloc_array(piece->outline_count, sizeof *net->outline_3d, error);
     if (!net->outline_3d)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     for (size_t i = 0; i < piece->outline_count; i++)
         net->outline_3d[i] = mesh->vertices[piece->outline_vertices[i]];
     net->outline = ur_alloc_array(piece->outline_count, sizeof *net->outline, error);
     net->folds = ur_alloc_array(piece->fold_count, sizeof *net->folds, error);
     net->fold_valley = ur_alloc_array(piece->fold_count, sizeof *net->fold_valley, error);
     if (!net->outline || !net->folds || !net->fold_valley)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     memcpy(net->outline, piece->outline, piece->outline_count * sizeof *net->outline);
     net->outline_count = piece->outline_count;
     for (size_t k = 0; k < piece->fold_count; k++) {

@@ -173,7 +173,7 @@ ur_status job_write_outputs(const job_run *run, const ur_machine *machine, const
     if (status == UR_OK && run->job.report_path) {
         outputs = ur_alloc_array(name_count + 1, sizeof *outputs, error);
         if (!outputs)
-            status = UR_ERROR_INTERNAL;
+            status = UR_ERROR_MEMORY;
         for (size_t k = 0; outputs && k < name_count; k++)
             outputs[k] = names[k];
         context->outputs = outputs;

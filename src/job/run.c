@@ -123,7 +123,7 @@ static ur_status make_pieces(const job_run *run, job_state *state, ur_error *err
 {
     state->pieces = ur_alloc_array(state->nets.count, sizeof *state->pieces, error);
     if (!state->pieces)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     ur_allowance_options options = {run->job.draw_rulings};
     for (size_t k = 0; k < state->nets.count; k++) {
         ur_status status =
@@ -221,7 +221,7 @@ static ur_status develop_parts(const job_run *run, job_state *state, ur_error *e
     size_t count = ur_ruled_domain(&state->ruled, NULL, 0);
     ur_interval *parts = ur_alloc_array(count, sizeof *parts, error);
     if (!parts)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     ur_ruled_domain(&state->ruled, parts, count);
     const ur_interval *gaps;
     bool whole = ur_ruled_gaps(&state->ruled, &gaps) == 0;
@@ -231,7 +231,7 @@ static ur_status develop_parts(const job_run *run, job_state *state, ur_error *e
     state->surface_area = 0.0;
     state->moved = ur_alloc_array(count, sizeof *state->moved, error);
     if (!state->moved)
-        status = UR_ERROR_INTERNAL;
+        status = UR_ERROR_MEMORY;
     for (size_t k = 0; k < count && status == UR_OK; k++) {
         if (!whole)
             ur_ruled_restrict(&state->ruled, parts[k].u_start, parts[k].u_end);
@@ -439,7 +439,7 @@ static ur_status write_assembly(const job_run *run, const job_state *state, ur_e
     const char **names =
         ur_alloc_array(state->nets.count ? state->nets.count : 1, sizeof *names, error);
     if (!names)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     for (size_t k = 0; k < state->nets.count; k++)
         names[k] = k < state->piece_count ? state->pieces[k].name : NULL;
     const char *title = run->job.job_name ? run->job.job_name : run->job.surface;

@@ -304,7 +304,7 @@ ur_status ur_mesh_band_planes(const ur_mesh *mesh, ur_vec3 direction, size_t cou
         return status;
     width_bins *bins = ur_alloc_array(1, sizeof *bins, error);
     if (!bins)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     double high;
     extent(mesh, d, &bins->low, &high);
     bins->step = (high - bins->low) / WIDTH_BINS;
@@ -408,7 +408,7 @@ static ur_status find_crossings(band_cut *c, ur_error *error)
     size_t count = list_crossings(c, NULL);
     c->crossings = ur_alloc_array(count, sizeof *c->crossings, error);
     if (!c->crossings)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     list_crossings(c, c->crossings);
     qsort(c->crossings, count, sizeof *c->crossings, compare_crossings);
     size_t kept = 0;
@@ -538,7 +538,7 @@ static ur_status build_banded(const band_cut *c, ur_mesh *banded, ur_error *erro
     banded->triangles = ur_alloc_array(triangle_count, sizeof *banded->triangles, error);
     banded->groups = ur_alloc_array(triangle_count, sizeof *banded->groups, error);
     if (!banded->vertices || !banded->triangles || !banded->groups)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     memcpy(banded->vertices, mesh->vertices, mesh->vertex_count * sizeof *mesh->vertices);
     for (size_t i = 0; i < c->crossing_count; i++)
         banded->vertices[mesh->vertex_count + i] = crossing_point(c, &c->crossings[i]);
@@ -561,7 +561,7 @@ ur_status ur_mesh_bands(const ur_mesh *mesh, ur_vec3 direction, const double *pl
         return status;
     double *field = ur_alloc_array(mesh->vertex_count + 1, sizeof *field, error);
     if (!field)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     for (size_t v = 0; v < mesh->vertex_count; v++)
         field[v] = ur_vec3_dot(mesh->vertices[v], d);
     status = mesh_bands_of_field(mesh, field, planes, count, banded, error);
@@ -583,7 +583,7 @@ ur_status mesh_bands_of_field(const ur_mesh *mesh, const double *field, const do
     band_cut c = {.mesh = mesh, .planes = planes, .plane_count = count - 1};
     c.s = ur_alloc_array(mesh->vertex_count, sizeof *c.s, error);
     if (!c.s)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     snap_offsets(&c, field);
     status = find_crossings(&c, error);
     if (status == UR_OK)

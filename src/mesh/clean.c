@@ -77,7 +77,7 @@ static ur_status drop_degenerate(cleaning *c, ur_error *error)
     c->groups = ur_alloc_array(mesh->triangle_count, sizeof *c->groups, error);
     c->source = ur_alloc_array(mesh->triangle_count, sizeof *c->source, error);
     if (!c->triangles || !c->groups || !c->source)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     double size = ur_mesh_size(mesh), smallest = UR_MESH_ZERO_AREA * size * size;
     for (size_t t = 0; t < mesh->triangle_count; t++) {
         size_t welded[3];
@@ -107,7 +107,7 @@ static ur_status renumber(cleaning *c, ur_error *error)
     const ur_mesh *mesh = c->mesh;
     size_t *index = ur_alloc_array(mesh->vertex_count, sizeof *index, error);
     if (!index)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     for (size_t v = 0; v < mesh->vertex_count; v++)
         index[v] = UR_NO_VERTEX;
     for (size_t t = 0; t < c->triangle_count; t++)
@@ -123,7 +123,7 @@ static ur_status renumber(cleaning *c, ur_error *error)
     c->original = ur_alloc_array(c->vertex_count, sizeof *c->original, error);
     if (!c->vertices || !c->original) {
         free(index);
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     }
     for (size_t v = 0; v < mesh->vertex_count; v++)
         if (index[v] != UR_NO_VERTEX) {
@@ -159,7 +159,7 @@ static ur_status orient(cleaning *c, ur_error *error)
 {
     size_t *twins = ur_alloc_array(3 * c->triangle_count, sizeof *twins, error);
     bool *flipped = ur_alloc_array(c->triangle_count, sizeof *flipped, error);
-    ur_status status = twins && flipped ? pair_edges(c, twins, error) : UR_ERROR_INTERNAL;
+    ur_status status = twins && flipped ? pair_edges(c, twins, error) : UR_ERROR_MEMORY;
     mesh_conflict conflict = {0, 0, 0, 0};
     if (status == UR_OK) {
         status = mesh_orient(c->triangles, c->triangle_count, twins, c->vertices, flipped,
@@ -202,7 +202,7 @@ static ur_status clean_once(cleaning *c, double weld_tolerance, const bool *apar
     c->map = ur_alloc_array(mesh->vertex_count, sizeof *c->map, error);
     ur_status status = c->map ? mesh_weld(mesh->vertices, mesh->vertex_count, weld_tolerance,
                                           c->map, &c->repairs.welded, error)
-                              : UR_ERROR_INTERNAL;
+                              : UR_ERROR_MEMORY;
     for (size_t v = 0; status == UR_OK && apart && v < mesh->vertex_count; v++)
         if (c->map[v] != v && (apart[v] || apart[c->map[v]])) {
             c->map[v] = v;
@@ -262,7 +262,7 @@ ur_status ur_mesh_clean_map(ur_mesh *mesh, double weld_tolerance, ur_mesh_repair
         if (!apart) {
             apart = ur_alloc_array(mesh->vertex_count, sizeof *apart, error);
             if (!apart) {
-                status = UR_ERROR_INTERNAL;
+                status = UR_ERROR_MEMORY;
                 break;
             }
             memset(apart, 0, mesh->vertex_count * sizeof *apart);

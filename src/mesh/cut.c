@@ -69,7 +69,7 @@ static ur_status graph_alloc(graph *g, const cutter *c, const bool *cutting, ur_
     g->incident = ur_alloc_array(2 * g->edge_count, sizeof *g->incident, error);
     g->degree = ur_alloc_array(c->vertex_count, sizeof *g->degree, error);
     if (!g->ends || !g->half_edge || !g->alive || !g->start || !g->incident || !g->degree)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     return UR_OK;
 }
 
@@ -94,7 +94,7 @@ static ur_status graph_build(graph *g, const cutter *c, const bool *cutting, ur_
         g->start[v + 1] = g->start[v] + g->degree[v];
     size_t *fill = ur_alloc_array(c->vertex_count, sizeof *fill, error);
     if (!fill)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     for (size_t i = 0; i < g->edge_count; i++)
         for (int k = 0; k < 2; k++) {
             size_t v = g->ends[i][k];
@@ -185,7 +185,7 @@ static ur_status state_alloc(cutting_state *s, const cutter *c, ur_error *error)
     s->sources = ur_alloc_array(c->vertex_count, sizeof *s->sources, error);
     if (!s->cutting || !s->sphere || !s->general || !s->first_vertex || !s->first_seam ||
         !s->start || !s->outgoing || !s->sources)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     return UR_OK;
 }
 
@@ -275,7 +275,7 @@ static ur_status mark_tree_edges(const cutter *c, const mesh_paths *p, bool **sh
 {
     *shortest = ur_alloc_array(c->half_edge_count, sizeof **shortest, error);
     if (!*shortest)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     for (size_t v = 0; v < c->vertex_count; v++) {
         size_t h = p->via[v];
         if (h == UR_NO_EDGE)
@@ -329,7 +329,7 @@ static ur_status grow_trees(cutter *c, const bool *general, const bool *shortest
     frontier f = {0};
     f.cheap = ur_alloc_array(c->half_edge_count, sizeof *f.cheap, error);
     f.dear = ur_alloc_array(c->half_edge_count, sizeof *f.dear, error);
-    ur_status status = reached && f.cheap && f.dear ? UR_OK : UR_ERROR_INTERNAL;
+    ur_status status = reached && f.cheap && f.dear ? UR_OK : UR_ERROR_MEMORY;
     for (size_t t = 0; t < triangle_count && status == UR_OK; t++)
         if (general[c->part[t]] && !reached[t])
             grow_tree(c, t, shortest, reached, &f);
@@ -344,7 +344,7 @@ static ur_status cut_along_graph(cutter *c, const bool *general, ur_error *error
 {
     graph g = {0};
     size_t *queue = ur_alloc_array(c->vertex_count, sizeof *queue, error);
-    ur_status status = queue ? graph_build(&g, c, general, error) : UR_ERROR_INTERNAL;
+    ur_status status = queue ? graph_build(&g, c, general, error) : UR_ERROR_MEMORY;
     if (status == UR_OK) {
         graph_prune(&g, c->vertex_count, queue);
         /* What is left besides the boundary is the cut. */
@@ -393,7 +393,7 @@ static ur_status cut_parts(cutter *c, cutting_state *s, ur_error *error)
     size_t *far =
         status == UR_OK && any_sphere ? ur_alloc_array(c->part_count, sizeof *far, error) : NULL;
     if (status == UR_OK && any_sphere && !far)
-        status = UR_ERROR_INTERNAL;
+        status = UR_ERROR_MEMORY;
     if (status == UR_OK && any_sphere)
         slit_spheres(c, s, &p, far);
     free(far);

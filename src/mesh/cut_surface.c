@@ -15,7 +15,7 @@ ur_status cutter_corners(cutter *c, ur_error *error)
     size_t n = c->half_edge_count;
     size_t *parent = ur_alloc_array(n, sizeof *parent, error);
     if (!parent)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     union_find_init(parent, n);
     /* Across a glued edge a -> b (twin b -> a), the corners at a meet, and those at b. */
     for (size_t h = 0; h < n; h++) {
@@ -40,7 +40,7 @@ static ur_status count_loops(const cutter *c, part_shape *shapes, ur_error *erro
 {
     size_t *outgoing = ur_alloc_array(c->vertex_count, sizeof *outgoing, error);
     if (!outgoing)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     for (size_t v = 0; v < c->vertex_count; v++)
         outgoing[v] = UR_NO_EDGE;
     for (size_t h = 0; h < c->half_edge_count; h++)
@@ -67,7 +67,7 @@ ur_status cutter_shapes(const cutter *c, part_shape *shapes, ur_error *error)
 {
     bool *seen = ur_alloc_array(c->vertex_count, sizeof *seen, error);
     if (!seen)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     for (size_t p = 0; p < c->part_count; p++) {
         shapes[p] = (part_shape){0, 0, c->part_size[p], 0, false};
     }
@@ -98,7 +98,7 @@ ur_status cutter_open_slits(cutter *c, ur_error *error)
     for (size_t h = 0; h < c->half_edge_count; h++)
         if (c->seam[h] && c->twins[h] != UR_NO_EDGE && h < c->twins[h] && is_slit(c, h)) {
             if (!slits && !(slits = ur_alloc_array(c->half_edge_count, sizeof *slits, error)))
-                return UR_ERROR_INTERNAL;
+                return UR_ERROR_MEMORY;
             slits[count++] = h;
         }
     if (count == 0)

@@ -55,7 +55,7 @@ static ur_status area_levels(const ur_mesh *mesh, const double *field, double *l
     size_t n = mesh->triangle_count;
     double(*pairs)[2] = ur_alloc_array(n, sizeof *pairs, error); /* mean, area */
     if (!pairs)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     double total = 0;
     for (size_t t = 0; t < n; t++) {
         const size_t *v = mesh->triangles[t];
@@ -85,7 +85,7 @@ static ur_status vertex_field(const cutter *c, const double *distance, double **
     const ur_mesh *mesh = c->mesh;
     *field = ur_alloc_array(mesh->vertex_count, sizeof **field, error);
     if (!*field)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     for (size_t v = 0; v < mesh->vertex_count; v++)
         (*field)[v] = INFINITY;
     for (size_t h = 0; h < c->half_edge_count; h++) {
@@ -109,7 +109,7 @@ ur_status ur_mesh_split_along(const ur_mesh *mesh, size_t parts, ur_mesh *split,
     double *distance = NULL, *field = NULL;
     double *levels = ur_alloc_array(parts, sizeof *levels, error);
     size_t start, end;
-    ur_status status = levels ? cutter_init(&c, mesh, error) : UR_ERROR_INTERNAL;
+    ur_status status = levels ? cutter_init(&c, mesh, error) : UR_ERROR_MEMORY;
     if (!levels)
         return status;
     if (status == UR_OK) {

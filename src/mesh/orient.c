@@ -105,7 +105,7 @@ ur_status mesh_orient(size_t (*triangles)[3], size_t triangle_count, const size_
     walk w = {(const size_t(*)[3])triangles, twins, NULL, NULL, 0};
     w.turn = ur_alloc_array(triangle_count, sizeof *w.turn, error);
     w.queue = ur_alloc_array(triangle_count, sizeof *w.queue, error);
-    ur_status status = w.turn && w.queue ? UR_OK : UR_ERROR_INTERNAL;
+    ur_status status = w.turn && w.queue ? UR_OK : UR_ERROR_MEMORY;
     for (size_t t = 0; t < triangle_count && status == UR_OK; t++)
         w.turn[t] = UNSEEN;
     for (size_t seed = 0; seed < triangle_count && status == UR_OK; seed++) {

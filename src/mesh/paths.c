@@ -28,7 +28,7 @@ static ur_status adjacency_build(adjacency *a, const cutter *c, const bool *cutt
     size_t *fill = ur_alloc_array(c->vertex_count, sizeof *fill, error);
     if (!a->start || !fill) {
         free(fill);
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     }
     for (size_t h = 0; h < c->half_edge_count; h++)
         if (names_edge(c, cutting, h)) {
@@ -40,7 +40,7 @@ static ur_status adjacency_build(adjacency *a, const cutter *c, const bool *cutt
     a->edge = ur_alloc_array(a->start[c->vertex_count], sizeof *a->edge, error);
     if (!a->edge) {
         free(fill);
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     }
     for (size_t h = 0; h < c->half_edge_count; h++)
         if (names_edge(c, cutting, h)) {
@@ -128,7 +128,7 @@ ur_status mesh_paths_from(const cutter *c, const bool *cutting, const size_t *so
         out->via = ur_alloc_array(c->vertex_count, sizeof *out->via, error);
         out->distance = ur_alloc_array(c->vertex_count, sizeof *out->distance, error);
         if (!q.items || !out->via || !out->distance)
-            status = UR_ERROR_INTERNAL;
+            status = UR_ERROR_MEMORY;
     }
     if (status == UR_OK) {
         for (size_t v = 0; v < c->vertex_count; v++) {

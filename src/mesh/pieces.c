@@ -63,7 +63,7 @@ ur_status cutter_init(cutter *c, const ur_mesh *mesh, ur_error *error)
     c->part_size = ur_alloc_array(mesh->triangle_count, sizeof *c->part_size, error);
     c->corner = ur_alloc_array(c->half_edge_count, sizeof *c->corner, error);
     if (!c->seam || !c->tree || !c->part || !c->part_size || !c->corner)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     return check_mesh(c, error);
 }
 
@@ -109,7 +109,7 @@ static ur_status sort_seams(const ur_seam *seams, size_t *count, size_t vertex_c
 {
     *keys = ur_alloc_array(*count, sizeof **keys, error);
     if (!*keys)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     for (size_t i = 0; i < *count; i++) {
         ur_status status = check_seam(&seams[i], i, vertex_count, error);
         if (status != UR_OK)
@@ -133,7 +133,7 @@ static ur_status mark_user_seams(cutter *c, const ur_seam *seams, size_t count, 
     bool *found = NULL;
     ur_status status = sort_seams(seams, &count, c->mesh->vertex_count, &keys, error);
     if (status == UR_OK && !(found = ur_alloc_array(count, sizeof *found, error)))
-        status = UR_ERROR_INTERNAL;
+        status = UR_ERROR_MEMORY;
     for (size_t h = 0; h < c->half_edge_count && status == UR_OK && count > 0; h++) {
         if (c->twins[h] != UR_NO_EDGE && c->twins[h] < h)
             continue;
@@ -177,7 +177,7 @@ static ur_status find_parts(cutter *c, ur_error *error)
     size_t triangle_count = c->mesh->triangle_count;
     size_t *queue = ur_alloc_array(triangle_count, sizeof *queue, error);
     if (!queue)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     for (size_t t = 0; t < triangle_count; t++)
         c->part[t] = NO_PART;
     size_t head = 0, tail = 0;
@@ -227,7 +227,7 @@ static ur_status cut_open(cutter *c, const ur_seam *seams, size_t seam_count, pa
     if (status == UR_OK)
         status = find_parts(c, error);
     if (status == UR_OK && !(*shapes = ur_alloc_array(c->part_count, sizeof **shapes, error)))
-        status = UR_ERROR_INTERNAL;
+        status = UR_ERROR_MEMORY;
     if (status == UR_OK)
         status = cutter_shapes(c, *shapes, error);
     if (status == UR_OK)
@@ -252,7 +252,7 @@ static ur_status alloc_piece(ur_mesh_piece *piece, const part_shape *shape, ur_e
         ur_alloc_array(shape->triangles, sizeof *piece->source_triangles, error);
     if (!mesh->vertices || !mesh->triangles || !mesh->groups || !piece->original ||
         !piece->source_triangles)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     return UR_OK;
 }
 
@@ -286,7 +286,7 @@ static ur_status build_pieces(const cutter *c, const part_shape *shapes, ur_mesh
     }
     size_t *local = ur_alloc_array(c->vertex_count, sizeof *local, error);
     if (!local)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     for (size_t v = 0; v < c->vertex_count; v++)
         local[v] = UR_NO_VERTEX;
     for (size_t t = 0; t < c->mesh->triangle_count; t++)
@@ -323,7 +323,7 @@ ur_status ur_mesh_pieces(const ur_mesh *mesh, const ur_seam *seams, size_t seam_
     if (status == UR_OK)
         status = cut_open(&c, seams, seam_count, &shapes, error);
     if (status == UR_OK && !(*pieces = ur_alloc_array(c.part_count, sizeof **pieces, error)))
-        status = UR_ERROR_INTERNAL;
+        status = UR_ERROR_MEMORY;
     if (status == UR_OK) {
         *piece_count = c.part_count;
         status = build_pieces(&c, shapes, *pieces, error);

@@ -109,7 +109,7 @@ ur_status mesh_pair_edges(const size_t (*triangles)[3], size_t triangle_count, s
     size_t *start = ur_alloc_array(vertex_count + 1, sizeof *start, error);
     size_t *order = ur_alloc_array(half_edge_count, sizeof *order, error);
     keyed *scratch = NULL;
-    ur_status status = UR_ERROR_INTERNAL;
+    ur_status status = UR_ERROR_MEMORY;
     if (!start || !order)
         goto done;
     size_t largest = bucket_half_edges(triangles, half_edge_count, vertex_count, start, order);
@@ -131,7 +131,7 @@ ur_status ur_mesh_twins(const ur_mesh *mesh, size_t **twins, ur_error *error)
 {
     *twins = ur_alloc_array(3 * mesh->triangle_count, sizeof **twins, error);
     if (!*twins)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     mesh_bad_edge bad = {0, 0, 0};
     ur_status status = mesh_check_triangles((const size_t(*)[3])mesh->triangles,
                                             mesh->triangle_count, mesh->vertex_count, error);
@@ -246,14 +246,14 @@ ur_status mesh_shape_of(const ur_mesh *mesh, const size_t *twins, mesh_shape *sh
 {
     bool *used = ur_alloc_array(mesh->vertex_count, sizeof *used, error);
     if (!used)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     shape->vertices = count_used(mesh, used);
     free(used);
     shape->triangles = mesh->triangle_count;
     count_edges(mesh, twins, shape);
     size_t *outgoing = boundary_outgoing(mesh, twins, &shape->pinched, error);
     if (!outgoing)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     count_loops(mesh, twins, outgoing, shape);
     free(outgoing);
     return UR_OK;
@@ -291,7 +291,7 @@ static ur_status disk_loop(const ur_mesh *mesh, const size_t *twins, size_t leng
     *loop = outgoing ? ur_alloc_array(length, sizeof **loop, error) : NULL;
     if (!*loop) {
         free(outgoing);
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     }
     const size_t(*triangles)[3] = (const size_t(*)[3])mesh->triangles;
     size_t h0 = 0;

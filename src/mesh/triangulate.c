@@ -81,7 +81,7 @@ ur_status ur_mesh_from_ruled(ur_ruled *ruled, size_t along, size_t across, ur_me
     mesh->groups = ur_alloc_array(triangle_count, sizeof *mesh->groups, error);
     if (!mesh->vertices || !mesh->triangles || !mesh->groups) {
         ur_mesh_free(mesh);
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     }
     ur_status status = sample(ruled, along, across, mesh->vertices, error);
     if (status != UR_OK) {

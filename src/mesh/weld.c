@@ -83,7 +83,7 @@ static ur_status grid_init(grid *g, const ur_vec3 *vertices, size_t count, doubl
     g->heads = ur_alloc_array(slots, sizeof *g->heads, error);
     g->next = ur_alloc_array(count, sizeof *g->next, error);
     if (!g->heads || !g->next)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     for (size_t s = 0; s < slots; s++)
         g->heads[s] = UR_NO_VERTEX;
     return UR_OK;

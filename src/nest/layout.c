@@ -114,7 +114,7 @@ static ur_status new_sheet(ur_layout *layout, const ur_layout_options *options, 
     sheet->height = options->sheet_height;
     sheet->placements = ur_alloc_array(capacity, sizeof *sheet->placements, error);
     if (!sheet->placements)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     layout->sheet_count++;
     return UR_OK;
 }

@@ -115,7 +115,7 @@ static ur_status grid_add(grid *g, ur_vec2 a, ur_vec2 b, ur_error *error)
             size_t *items =
                 ur_array_grow(here->items, &here->capacity, here->count, sizeof *items, 8, error);
             if (!items)
-                return UR_ERROR_INTERNAL;
+                return UR_ERROR_MEMORY;
             here->items = items;
             items[here->count++] = index;
         }
@@ -170,7 +170,7 @@ static ur_status covered(grid *g, ur_vec2 p, ur_vec2 q, intervals *out, ur_error
                 interval *items =
                     ur_array_grow(out->items, &out->capacity, out->count, sizeof *items, 8, error);
                 if (!items)
-                    return UR_ERROR_INTERNAL;
+                    return UR_ERROR_MEMORY;
                 out->items = items;
                 items[out->count++] = stretch;
             }
@@ -215,7 +215,7 @@ static ur_status keep(stretches *list, ur_vec2 a, ur_vec2 b, bool starts_segment
         ur_points *items =
             ur_array_grow(list->items, &list->capacity, list->count, sizeof *items, 4, error);
         if (!items)
-            return UR_ERROR_INTERNAL;
+            return UR_ERROR_MEMORY;
         list->items = items;
         items[list->count] = (ur_points){0};
         ur_status status = ur_points_push(&items[list->count++], a, error);

@@ -223,7 +223,7 @@ static const GEOSGeometry *cached_pair(nester *n, GEOSGeometry **cache, pair_mak
 
 static GEOSGeometry *make_sums(nester *n, size_t a, size_t ta, size_t b, size_t tb)
 {
-    return nest_sums(n->geos, nest_shape_of(n, a, ta), nest_shape_of(n, b, tb));
+    return nest_sums(n->geos, nest_shape_of(n, a, ta), nest_shape_of(n, b, tb), &n->out_of_memory);
 }
 
 static GEOSGeometry *make_union(nester *n, size_t a, size_t ta, size_t b, size_t tb)

@@ -65,9 +65,11 @@ void nest_shape_free(GEOSContextHandle_t geos, nest_shape *shape);
  * The no-fit polygon of moving shape b around fixed shape a, both at their
  * origins, where b's origin may not go (a + (-b)), as the sums of their
  * convex parts, one convex polygon each, in a collection: they overlap, so
- * the collection is no valid polygon itself.  NULL when GEOS fails.
+ * the collection is no valid polygon itself.  NULL when GEOS fails, or
+ * when memory runs out (then *out_of_memory is set).
  */
-GEOSGeometry *nest_sums(GEOSContextHandle_t geos, const nest_shape *a, const nest_shape *b);
+GEOSGeometry *nest_sums(GEOSContextHandle_t geos, const nest_shape *a, const nest_shape *b,
+                        bool *out_of_memory);
 
 /* The no-fit polygon itself, the union of the sums; NULL when GEOS fails. */
 GEOSGeometry *nest_union_of_sums(GEOSContextHandle_t geos, const GEOSGeometry *sums);
@@ -142,6 +144,11 @@ typedef struct nester {
     size_t run_length;
     double *sheet_area; /* per sheet: area of the parts on it */
     bool first_run;     /* the first layout is being made: options->placing hears of it */
+    /*
+     * Memory ran out making a no-fit polygon or a room: a place not found
+     * then says nothing of the part, and placing stops (UR_ERROR_MEMORY).
+     */
+    bool out_of_memory;
     ur_error *error;
 } nester;
 

@@ -69,10 +69,11 @@ static bool is_hole(const ur_path *path)
     return path->op == UR_OP_CUT && path->closed && path->count >= 3;
 }
 
-/* The piece's outline and (with holes) its holes as one turned polygon. */
-static GEOSGeometry *piece_polygon(GEOSContextHandle_t geos, const ur_piece *piece, double angle,
-                                   bool holes)
+/* The piece's outline and (with holes) its holes as one turned polygon, in *polygon. */
+static ur_status piece_polygon(GEOSContextHandle_t geos, const ur_piece *piece, double angle,
+                               bool holes, GEOSGeometry **polygon, ur_error *error)
 {
+    *polygon = NULL;
     GEOSGeometry *shell = turned_ring(geos, &piece->paths[0], angle);
     size_t hole_count = 0;
     GEOSGeometry **rings = calloc(piece->path_count + 1, sizeof *rings);
@@ -80,7 +81,9 @@ static GEOSGeometry *piece_polygon(GEOSContextHandle_t geos, const ur_piece *pie
         if (shell)
             GEOSGeom_destroy_r(geos, shell);
         free(rings);
-        return NULL;
+        return shell ? ur_error_out_of_memory(error)
+                     : ur_error_set(error, UR_ERROR_INTERNAL,
+                                    "GEOS could not prepare a piece to nest");
     }
     for (size_t k = 1; holes && k < piece->path_count; k++)
         if (is_hole(&piece->paths[k])) {
@@ -88,9 +91,11 @@ static GEOSGeometry *piece_polygon(GEOSContextHandle_t geos, const ur_piece *pie
             if (ring)
                 rings[hole_count++] = ring;
         }
-    GEOSGeometry *polygon = GEOSGeom_createPolygon_r(geos, shell, rings, (unsigned)hole_count);
+    *polygon = GEOSGeom_createPolygon_r(geos, shell, rings, (unsigned)hole_count);
     free(rings);
-    return polygon;
+    return *polygon
+               ? UR_OK
+               : ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not prepare a piece to nest");
 }
 
 /* The polygon made valid, simplified by tolerance and grown by grow + tolerance (mitred). */
@@ -283,10 +288,11 @@ static bool grow_parts(nest_shape *shape, size_t more, size_t *room)
  * triangulation fails on some valid polygons ("unable to find a convex
  * corner", on long zigzag outlines such as a papercraft net's); cut in two
  * across its longer side, each half triangulates, and merge_parts joins
- * the triangles across the cut again.  False on failure.
+ * the triangles across the cut again.  UR_ERROR_INTERNAL (with no message)
+ * when GEOS fails.
  */
-static bool triangulate(GEOSContextHandle_t geos, const GEOSGeometry *polygon, int halvings,
-                        nest_shape *shape, size_t *room)
+static ur_status triangulate(GEOSContextHandle_t geos, const GEOSGeometry *polygon, int halvings,
+                             nest_shape *shape, size_t *room, ur_error *error)
 {
     GEOSGeometry *triangles = GEOSConstrainedDelaunayTriangulation_r(geos, polygon);
     if (triangles) {
@@ -295,16 +301,16 @@ static bool triangulate(GEOSContextHandle_t geos, const GEOSGeometry *polygon, i
         if (grown)
             take_triangles(geos, triangles, shape);
         GEOSGeom_destroy_r(geos, triangles);
-        return grown;
+        return grown ? UR_OK : ur_error_out_of_memory(error);
     }
     if (halvings >= MOST_HALVINGS)
-        return false;
+        return UR_ERROR_INTERNAL;
     double box[4];
     box_of(geos, polygon, box);
     bool across_x = box[2] - box[0] >= box[3] - box[1];
     double middle = across_x ? (box[0] + box[2]) / 2 : (box[1] + box[3]) / 2;
-    bool done = true;
-    for (int half = 0; done && half < 2; half++) {
+    ur_status status = UR_OK;
+    for (int half = 0; status == UR_OK && half < 2; half++) {
         double x0 = box[0], y0 = box[1], x1 = box[2], y1 = box[3];
         if (across_x)
             *(half ? &x0 : &x1) = middle;
@@ -312,16 +318,16 @@ static bool triangulate(GEOSContextHandle_t geos, const GEOSGeometry *polygon, i
             *(half ? &y0 : &y1) = middle;
         GEOSGeometry *part = GEOSClipByRect_r(geos, polygon, x0, y0, x1, y1);
         int count = part ? GEOSGetNumGeometries_r(geos, part) : -1;
-        done = count >= 0;
-        for (int k = 0; done && k < count; k++) {
+        status = count >= 0 ? UR_OK : UR_ERROR_INTERNAL;
+        for (int k = 0; status == UR_OK && k < count; k++) {
             const GEOSGeometry *piece = GEOSGetGeometryN_r(geos, part, k);
             if (GEOSGeomTypeId_r(geos, piece) == GEOS_POLYGON && !GEOSisEmpty_r(geos, piece))
-                done = triangulate(geos, piece, halvings + 1, shape, room);
+                status = triangulate(geos, piece, halvings + 1, shape, room, error);
         }
         if (part)
             GEOSGeom_destroy_r(geos, part);
     }
-    return done;
+    return status;
 }
 
 /* The polygon without its holes; NULL on failure. */
@@ -343,8 +349,8 @@ static ur_status convex_parts(GEOSContextHandle_t geos, const GEOSGeometry *poly
                               nest_shape *shape, ur_error *error)
 {
     size_t room = 0;
-    bool done = triangulate(geos, polygon, 0, shape, &room);
-    if (!done && GEOSGetNumInteriorRings_r(geos, polygon) > 0) {
+    ur_status status = triangulate(geos, polygon, 0, shape, &room, error);
+    if (status == UR_ERROR_INTERNAL && GEOSGetNumInteriorRings_r(geos, polygon) > 0) {
         /*
          * GEOS cannot always join holes that touch the shell to it, as
          * growing a piece makes of the gaps between its glue tabs; then the
@@ -355,12 +361,14 @@ static ur_status convex_parts(GEOSContextHandle_t geos, const GEOSGeometry *poly
             GEOSGeom_destroy_r(geos, shape->convex[k]);
         shape->convex_count = 0;
         GEOSGeometry *filled = filled_shell(geos, polygon);
-        done = filled && triangulate(geos, filled, 0, shape, &room);
+        status = filled ? triangulate(geos, filled, 0, shape, &room, error) : UR_ERROR_INTERNAL;
         if (filled)
             GEOSGeom_destroy_r(geos, filled);
     }
-    if (!done)
+    if (status == UR_ERROR_INTERNAL)
         return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not triangulate a piece");
+    if (status != UR_OK)
+        return status;
     merge_parts(geos, shape);
     if (!shrink_parts(geos, shape))
         return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not shrink a piece's parts");
@@ -408,9 +416,11 @@ static ur_status coarseness(GEOSContextHandle_t geos, const ur_piece *piece, dou
         points += piece->paths[k].count;
     double tolerance = points > SIMPLIFY_ABOVE ? fmax(0.05, 2e-3 * size) : 0.0;
     double closing = points > SIMPLIFY_ABOVE ? CLOSING * size : 0.0;
-    GEOSGeometry *exact = piece_polygon(geos, piece, 0.0, holes);
+    GEOSGeometry *exact;
+    ur_status status = piece_polygon(geos, piece, 0.0, holes, &exact, error);
     shape->area = area_of(geos, exact);
-    ur_status status = shape_parts(geos, exact, grow, tolerance, closing, shape, error);
+    if (status == UR_OK)
+        status = shape_parts(geos, exact, grow, tolerance, closing, shape, error);
     while (status == UR_OK && shape->convex_count > MOST_PARTS && tolerance > 0 &&
            2 * tolerance <= COARSEST * size) {
         tolerance *= 2;
@@ -453,8 +463,10 @@ ur_status nest_shape_make(GEOSContextHandle_t geos, const ur_piece *piece, doubl
         status = coarseness(geos, piece, grow, holes, shape, error);
     }
     if (status == UR_OK && (like || angle != 0.0)) {
-        GEOSGeometry *exact = piece_polygon(geos, piece, angle, holes);
-        status = shape_parts(geos, exact, grow, shape->tolerance, shape->closing, shape, error);
+        GEOSGeometry *exact;
+        status = piece_polygon(geos, piece, angle, holes, &exact, error);
+        if (status == UR_OK)
+            status = shape_parts(geos, exact, grow, shape->tolerance, shape->closing, shape, error);
         if (exact)
             GEOSGeom_destroy_r(geos, exact);
     }
@@ -477,7 +489,8 @@ void nest_shape_free(GEOSContextHandle_t geos, nest_shape *shape)
 }
 
 /* The exterior vertices of a polygon (last not repeated), allocated; how many (0 on failure). */
-static size_t vertices(GEOSContextHandle_t geos, const GEOSGeometry *polygon, ur_vec2 **points)
+static size_t vertices(GEOSContextHandle_t geos, const GEOSGeometry *polygon, ur_vec2 **points,
+                       bool *out_of_memory)
 {
     *points = NULL;
     const GEOSGeometry *ring = GEOSGetExteriorRing_r(geos, polygon);
@@ -486,8 +499,10 @@ static size_t vertices(GEOSContextHandle_t geos, const GEOSGeometry *polygon, ur
     if (!sequence || !GEOSCoordSeq_getSize_r(geos, sequence, &size) || size < 2)
         return 0;
     *points = malloc((size - 1) * sizeof **points);
-    if (!*points)
+    if (!*points) {
+        *out_of_memory = true;
         return 0;
+    }
     for (unsigned i = 0; i + 1 < size; i++)
         GEOSCoordSeq_getXY_r(geos, sequence, i, &(*points)[i].x, &(*points)[i].y);
     return size - 1;
@@ -495,10 +510,10 @@ static size_t vertices(GEOSContextHandle_t geos, const GEOSGeometry *polygon, ur
 
 /* The convex hull of a + (-b) for two convex polygons. */
 static GEOSGeometry *convex_sum(GEOSContextHandle_t geos, const GEOSGeometry *a,
-                                const GEOSGeometry *b)
+                                const GEOSGeometry *b, bool *out_of_memory)
 {
     ur_vec2 *pa, *pb;
-    size_t na = vertices(geos, a, &pa), nb = vertices(geos, b, &pb);
+    size_t na = vertices(geos, a, &pa, out_of_memory), nb = vertices(geos, b, &pb, out_of_memory);
     GEOSCoordSequence *sequence =
         na && nb ? GEOSCoordSeq_create_r(geos, (unsigned)(na * nb), 2) : NULL;
     for (size_t i = 0; sequence && i < na; i++)
@@ -514,22 +529,31 @@ static GEOSGeometry *convex_sum(GEOSContextHandle_t geos, const GEOSGeometry *a,
     return hull;
 }
 
-GEOSGeometry *nest_sums(GEOSContextHandle_t geos, const nest_shape *a, const nest_shape *b)
+GEOSGeometry *nest_sums(GEOSContextHandle_t geos, const nest_shape *a, const nest_shape *b,
+                        bool *out_of_memory)
 {
     size_t count = a->convex_count * b->convex_count, made = 0;
     GEOSGeometry **sums = calloc(count ? count : 1, sizeof *sums);
-    if (!sums)
+    if (!sums) {
+        *out_of_memory = true;
         return NULL;
-    for (size_t i = 0; i < a->convex_count; i++)
-        for (size_t j = 0; j < b->convex_count; j++) {
-            GEOSGeometry *sum = convex_sum(geos, a->convex[i], b->convex[j]);
+    }
+    bool failed = false; /* a sum left out would let pieces overlap: none or all */
+    for (size_t i = 0; !failed && i < a->convex_count; i++)
+        for (size_t j = 0; !failed && j < b->convex_count; j++) {
+            GEOSGeometry *sum = convex_sum(geos, a->convex[i], b->convex[j], out_of_memory);
+            failed = !sum;
             if (sum && GEOSGeomTypeId_r(geos, sum) == GEOS_POLYGON)
                 sums[made++] = sum;
             else if (sum)
                 GEOSGeom_destroy_r(geos, sum);
         }
     GEOSGeometry *collection =
-        GEOSGeom_createCollection_r(geos, GEOS_GEOMETRYCOLLECTION, sums, (unsigned)made);
+        failed ? NULL
+               : GEOSGeom_createCollection_r(geos, GEOS_GEOMETRYCOLLECTION, sums, (unsigned)made);
+    if (failed)
+        for (size_t k = 0; k < made; k++)
+            GEOSGeom_destroy_r(geos, sums[k]);
     free(sums);
     return collection;
 }

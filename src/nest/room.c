@@ -98,6 +98,7 @@ static bool grid_make(nester *n, size_t sheet, size_t piece, size_t turn, room_g
     grid->cut_by = calloc(cells, sizeof *grid->cut_by);
     if (!grid->free || !grid->applied || !grid->cut_by) {
         nest_grid_free(n->geos, grid);
+        n->out_of_memory = true;
         return false;
     }
     for (size_t c = 0; c < cells; c++) {
@@ -347,8 +348,11 @@ ur_status nest_place_piece(nester *n, size_t piece, size_t held)
         size_t first = held < turns ? held : 0, last = held < turns ? held + 1 : turns;
         for (size_t t = first; t < last; t++) {
             ur_vec2 at = {0, 0};
-            if (!place_on(n, sheet, piece, t, &at))
+            if (!place_on(n, sheet, piece, t, &at)) {
+                if (n->out_of_memory)
+                    return ur_error_out_of_memory(n->error);
                 continue;
+            }
             /*
              * Turns compare by where the part itself lies (its box's lower
              * left corner), not by its origin, which sits elsewhere in each.

@@ -166,7 +166,7 @@ static ur_status face_part(const splitter *s, const GEOSGeometry *face, const ur
         net->outline_count = ring.count;
         ring = (ur_points){0};
         net->outline_3d = ur_alloc_array(net->outline_count, sizeof *net->outline_3d, s->error);
-        status = net->outline_3d ? UR_OK : UR_ERROR_INTERNAL;
+        status = net->outline_3d ? UR_OK : UR_ERROR_MEMORY;
     }
     for (size_t i = 0; status == UR_OK && i < net->outline_count; i++)
         net->outline_3d[i] = (ur_vec3){net->outline[i].x, net->outline[i].y, id};

@@ -96,7 +96,7 @@ static ur_status choose_columns(const ur_analysis *analysis, grid *g, ur_error *
     size_t stride = (count + MAX_COLUMNS - 1) / MAX_COLUMNS;
     g->columns = ur_alloc_array(count / stride + 2, sizeof *g->columns, error);
     if (!g->columns)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     for (size_t i = 0; i < count; i += stride)
         g->columns[g->column_count++] = i;
     if (g->columns[g->column_count - 1] != count - 1)
@@ -123,12 +123,13 @@ static ur_status compute_grid(ur_ruled *ruled, const ur_analysis *analysis, grid
                               ur_error *error)
 {
     memset(g, 0, sizeof *g);
-    if (choose_columns(analysis, g, error) != UR_OK)
-        return UR_ERROR_INTERNAL;
+    ur_status status = choose_columns(analysis, g, error);
+    if (status != UR_OK)
+        return status;
     g->gaussian = ur_alloc_array(g->column_count * (PNG_ACROSS + 1), sizeof *g->gaussian, error);
     if (!g->gaussian) {
         grid_free(g);
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     }
     for (size_t c = 0; c < g->column_count; c++) {
         const ur_ruling_analysis *ruling = &analysis->rulings[g->columns[c]];
@@ -645,8 +646,9 @@ ur_status ur_analysis_png_write(const char *path, ur_ruled *ruled, const ur_anal
         cairo_image_surface_create(CAIRO_FORMAT_RGB24, WIDTH, layout.image_height);
     cairo_t *cr = cairo_create(surface); /* an error object, never NULL */
     if (cairo_status(cr) != CAIRO_STATUS_SUCCESS)
-        status = ur_error_set(error, UR_ERROR_INTERNAL, "cannot draw the analysis: %s",
-                              cairo_status_to_string(cairo_status(cr)));
+        status =
+            ur_error_set(error, draw_failure_status(cairo_status(cr)),
+                         "cannot draw the analysis: %s", cairo_status_to_string(cairo_status(cr)));
     if (status == UR_OK)
         status = render(cr, &layout, ruled, analysis, title, error);
     if (status == UR_OK && cairo_status(cr) != CAIRO_STATUS_SUCCESS)

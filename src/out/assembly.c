@@ -161,7 +161,7 @@ static ur_status place_labels(cairo_t *cr, const view *v, int index, const model
     labels->items =
         ur_alloc_array(labels->capacity ? labels->capacity : 1, sizeof *labels->items, error);
     if (!labels->items)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     for (size_t k = 0; k < m->piece_count; k++) {
         if (!named[k][index])
             continue;
@@ -413,7 +413,8 @@ static ur_status draw_guide(cairo_t *cr, guide *g, ur_error *error)
     free(named);
     free(first_view);
     if (status == UR_OK && cairo_status(cr) != CAIRO_STATUS_SUCCESS)
-        status = ur_error_set(error, UR_ERROR_INTERNAL, "drawing the assembly guide: %s",
+        status = ur_error_set(error, draw_failure_status(cairo_status(cr)),
+                              "drawing the assembly guide: %s",
                               cairo_status_to_string(cairo_status(cr)));
     return status;
 }
@@ -436,11 +437,11 @@ static ur_status write_png(const char *path, guide *g, ur_error *error)
     cairo_surface_t *surface =
         cairo_image_surface_create(CAIRO_FORMAT_RGB24, CANVAS_WIDTH, CANVAS_HEIGHT);
     cairo_t *cr = cairo_create(surface);
-    ur_status status =
-        cairo_status(cr) == CAIRO_STATUS_SUCCESS
-            ? draw_guide(cr, g, error)
-            : ur_error_set(error, UR_ERROR_INTERNAL, "cannot make a %d x %d picture: %s",
-                           CANVAS_WIDTH, CANVAS_HEIGHT, cairo_status_to_string(cairo_status(cr)));
+    ur_status status = cairo_status(cr) == CAIRO_STATUS_SUCCESS
+                           ? draw_guide(cr, g, error)
+                           : ur_error_set(error, draw_failure_status(cairo_status(cr)),
+                                          "cannot make a %d x %d picture: %s", CANVAS_WIDTH,
+                                          CANVAS_HEIGHT, cairo_status_to_string(cairo_status(cr)));
     cairo_destroy(cr);
     cairo_surface_flush(surface);
     if (status == UR_OK)
@@ -466,10 +467,11 @@ static bool pdf_emit(FILE *stream, const void *data)
     cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_CREATOR, "unroll");
     cairo_t *cr = cairo_create(surface);
     cairo_scale(cr, PDF_SCALE, PDF_SCALE);
-    g->status = cairo_status(cr) == CAIRO_STATUS_SUCCESS
-                    ? draw_guide(cr, g, g->error)
-                    : ur_error_set(g->error, UR_ERROR_INTERNAL, "cannot start a PDF: %s",
-                                   cairo_status_to_string(cairo_status(cr)));
+    g->status =
+        cairo_status(cr) == CAIRO_STATUS_SUCCESS
+            ? draw_guide(cr, g, g->error)
+            : ur_error_set(g->error, draw_failure_status(cairo_status(cr)),
+                           "cannot start a PDF: %s", cairo_status_to_string(cairo_status(cr)));
     cairo_destroy(cr);
     cairo_surface_finish(surface);
     bool written = cairo_surface_status(surface) == CAIRO_STATUS_SUCCESS;

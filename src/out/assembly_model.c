@@ -210,7 +210,7 @@ static ur_status choose_colours(model *m, pair_list *pairs, ur_error *error)
     size_t n = m->piece_count;
     neighbours near = {NULL, NULL};
     size_t *slot = ur_alloc_array(n ? n : 1, sizeof *slot, error);
-    ur_status status = slot ? find_neighbours(pairs, n, &near, error) : UR_ERROR_INTERNAL;
+    ur_status status = slot ? find_neighbours(pairs, n, &near, error) : UR_ERROR_MEMORY;
     if (status == UR_OK) {
         choose_slots(n, &near, slot);
         for (size_t k = 0; k < n; k++)
@@ -273,7 +273,7 @@ static ur_status number_points(const model *m, const ur_net_list *nets, size_t c
 {
     point_ref *points = ur_alloc_array(count, sizeof *points, error);
     if (!points)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     size_t n = 0;
     for (size_t f = 0; f < m->face_count; f++)
         for (int k = 0; k < 3; k++, n++)
@@ -365,7 +365,7 @@ static ur_status classify_edges(model *m, const ur_net_list *nets, pair_list *pa
     size_t *numbers = ur_alloc_array(count, sizeof *numbers, error);
     edge_ref *edges = ur_alloc_array(count, sizeof *edges, error);
     ur_status status =
-        numbers && edges ? number_points(m, nets, count, numbers, error) : UR_ERROR_INTERNAL;
+        numbers && edges ? number_points(m, nets, count, numbers, error) : UR_ERROR_MEMORY;
     if (status == UR_OK) {
         list_edges(m, nets, numbers, edges);
         qsort(edges, count, sizeof *edges, compare_edges);
@@ -445,7 +445,7 @@ static ur_status find_seam_marks(model *m, const ur_net_list *nets, ur_error *er
         sides += nets->nets[k].outline_3d ? nets->nets[k].seam_side_count : 0;
     m->seams = ur_alloc_array(sides ? sides : 1, sizeof *m->seams, error);
     if (!m->seams)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     size_t count = 0;
     for (size_t k = 0; k < nets->count; k++) {
         const ur_net *net = &nets->nets[k];
@@ -498,7 +498,7 @@ ur_status assembly_model_build(const ur_net_list *nets, const ur_assembly_option
     m->colours = ur_alloc_array(nets->count, sizeof *m->colours, error);
     m->outlined = ur_alloc_array(nets->count, sizeof *m->outlined, error);
     if (!m->faces || !m->names || !m->colours || !m->outlined)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     for (size_t k = 0; k < nets->count; k++) {
         const ur_net *net = &nets->nets[k];
         m->names[k] = options->names && options->names[k] ? options->names[k] : net->name;

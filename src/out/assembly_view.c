@@ -129,7 +129,7 @@ static ur_status sort_faces(view *v, const model *m, ur_error *error)
     v->order = ur_alloc_array(m->face_count, sizeof *v->order, error);
     if (!keys || !v->order) {
         free(keys);
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     }
     v->drawn = 0;
     for (size_t f = 0; f < m->face_count; f++)
@@ -191,7 +191,7 @@ static ur_status build_grid(view *v, ur_error *error)
             g->faces =
                 ur_alloc_array(g->start[cells] ? g->start[cells] : 1, sizeof *g->faces, error);
             if (!g->faces)
-                return UR_ERROR_INTERNAL;
+                return UR_ERROR_MEMORY;
         }
     }
     for (size_t c = cells; c > 0; c--) /* the fill moved each start to the next cell's */
@@ -373,7 +373,7 @@ static ur_status prepare_view(view *v, const model *m, ur_error *error)
     v->points = ur_alloc_array(m->face_count, sizeof *v->points, error);
     v->depth = ur_alloc_array(m->face_count, sizeof *v->depth, error);
     if (!v->points || !v->depth)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     for (size_t f = 0; f < m->face_count; f++)
         for (int k = 0; k < 3; k++) {
             ur_vec3 p = m->faces[f].corner[k];

@@ -110,3 +110,12 @@ void draw_legend_frame(cairo_t *cr, double left, double top, double width, doubl
     cairo_set_line_width(cr, 0.8 * unit);
     cairo_stroke(cr);
 }
+
+ur_status draw_failure_status(cairo_status_t status)
+{
+    if (status == CAIRO_STATUS_NO_MEMORY)
+        return UR_ERROR_MEMORY;
+    if (status == CAIRO_STATUS_WRITE_ERROR)
+        return UR_ERROR_IO;
+    return UR_ERROR_INTERNAL;
+}

@@ -10,6 +10,8 @@
 #include <cairo.h>
 #include <stdbool.h>
 
+#include "unroll/base.h"
+
 /* Where a piece of text stands relative to the x it is drawn at. */
 typedef enum text_align { ALIGN_LEFT, ALIGN_CENTRE, ALIGN_RIGHT } text_align;
 
@@ -60,5 +62,8 @@ void draw_legend_corner(double picture_width, double picture_height, double inse
 /* A legend's box: white, nine tenths opaque, in a grey frame unit pixels a point. */
 void draw_legend_frame(cairo_t *cr, double left, double top, double width, double height,
                        double unit);
+
+/* What a failed cairo status is to the caller: out of memory, a refused write, else ours. */
+ur_status draw_failure_status(cairo_status_t status);
 
 #endif

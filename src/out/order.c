@@ -152,7 +152,7 @@ ur_status ur_sheet_cut_plan(const ur_sheet *sheet, const ur_piece *pieces, const
     if (!plan->order || !points) {
         free(points);
         ur_cut_plan_free(plan);
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     }
     for (size_t p = 0; p < count; p++) {
         points[p] = piece_point(sheet, pieces, p);

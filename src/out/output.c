@@ -303,7 +303,7 @@ static ur_status write_all(const target *targets, size_t target_count, const wri
     ur_vec2 *scratch = files ? ur_alloc_array(2 * (longest_path(job->layout, job->pieces) + 1),
                                               sizeof *scratch, error)
                              : NULL;
-    ur_status status = files && scratch ? UR_OK : UR_ERROR_INTERNAL;
+    ur_status status = files && scratch ? UR_OK : UR_ERROR_MEMORY;
     for (size_t t = 0, first = 0; status == UR_OK && t < target_count; t++) {
         status = targets[t].writer->one_file
                      ? write_document(&targets[t], job, scratch, &files[first], error)
@@ -330,7 +330,7 @@ static ur_status write_stream(const target *t, const write_job *job, FILE *strea
     ur_vec2 *scratch =
         ur_alloc_array(2 * (longest_path(job->layout, job->pieces) + 1), sizeof *scratch, error);
     if (!scratch)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     const format_writer *writer = t->writer;
     void *document = NULL;
     ur_status status =
@@ -608,7 +608,7 @@ ur_status ur_output_files(const char *path, unsigned formats, size_t sheet_count
     if (status == UR_OK) {
         *names = ur_alloc_array(total, sizeof **names, error);
         if (!*names)
-            status = UR_ERROR_INTERNAL;
+            status = UR_ERROR_MEMORY;
     }
     for (size_t t = 0; status == UR_OK && t < target_count; t++) {
         size_t files = targets[t].writer->one_file ? 1 : sheet_count;

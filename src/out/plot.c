@@ -321,7 +321,7 @@ ur_status ur_compare_plot_png(const char *path, const ur_compare_table *table, c
     if (drawn == CAIRO_STATUS_SUCCESS)
         drawn = cairo_surface_status(surface);
     if (drawn != CAIRO_STATUS_SUCCESS)
-        status = ur_error_set(error, UR_ERROR_INTERNAL, "cannot draw the plot: %s",
+        status = ur_error_set(error, draw_failure_status(drawn), "cannot draw the plot: %s",
                               cairo_status_to_string(drawn));
     else
         status = atomic_write(path, png_emit, surface, "plot", context, error);

@@ -108,7 +108,8 @@ static ur_status strain_range(const write_job *job, double *range, ur_error *err
 
 static ur_status cairo_failed(const png_sheet *s, ur_error *error)
 {
-    return ur_error_set(error, UR_ERROR_INTERNAL, "cannot draw sheet %zu: %s", s->index + 1,
+    return ur_error_set(error, draw_failure_status(cairo_status(s->cr)),
+                        "cannot draw sheet %zu: %s", s->index + 1,
                         cairo_status_to_string(cairo_status(s->cr)));
 }
 
@@ -165,7 +166,7 @@ static ur_status png_begin_sheet(void **state, void *document, FILE *file, size_
     if (status == UR_OK && sheet->placement_count > 0) {
         s->labels = ur_alloc_array(sheet->placement_count, sizeof *s->labels, error);
         if (!s->labels)
-            status = UR_ERROR_INTERNAL;
+            status = UR_ERROR_MEMORY;
     }
     if (status == UR_OK)
         status = start_picture(s, error);

@@ -317,7 +317,7 @@ static ur_status draw_labels(cairo_t *cr, const canvas *c, const picture *p, ur_
             continue;
         double *crossings = ur_alloc_array(piece->paths[0].count, sizeof *crossings, error);
         if (!crossings)
-            return UR_ERROR_INTERNAL;
+            return UR_ERROR_MEMORY;
         draw_label(cr, c, label_point(c, placement, &piece->paths[0], crossings), piece);
         free(crossings);
     }
@@ -503,7 +503,7 @@ static ur_status render(cairo_t *cr, const canvas *c, const picture *p, ur_error
 
 static ur_status cairo_failed(cairo_status_t cause, size_t index, ur_error *error)
 {
-    return ur_error_set(error, UR_ERROR_INTERNAL, "cannot draw sheet %zu: %s", index + 1,
+    return ur_error_set(error, draw_failure_status(cause), "cannot draw sheet %zu: %s", index + 1,
                         cairo_status_to_string(cause));
 }
 
@@ -564,7 +564,7 @@ static ur_status write_files(const char *path, const picture *p, ur_error *error
     size_t count = p->layout->sheet_count;
     atomic_file *files = ur_alloc_array(count, sizeof *files, error);
     if (!files)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     ur_status status = UR_OK;
     for (size_t i = 0; status == UR_OK && i < count; i++)
         status = write_sheet_file(path, p, i, files, error);

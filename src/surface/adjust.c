@@ -441,7 +441,7 @@ static ur_status adjust_rail2(const ur_vec3 *rail1, size_t count1, ur_vec3 *rail
     ur_vec3 *start = ur_alloc_array(count2, sizeof *start, error);
     double *knots = ur_alloc_array(count2, sizeof *knots, error);
     if (!moved || !start || !knots)
-        status = UR_ERROR_INTERNAL;
+        status = UR_ERROR_MEMORY;
     for (size_t j = 0; status == UR_OK && j < count2; j++) {
         knots[j] = ur_curve_point_parameter(strip.rail2, j);
         moved[j] = start[j] = rail2[j];

@@ -61,7 +61,7 @@ ur_status ur_curve_new_helix(double radius, double pitch, double t_start, double
         return ur_error_set(error, UR_ERROR_INPUT, "helix needs a positive radius and turns");
     *curve = curve_alloc(error);
     if (!*curve)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     (*curve)->kind = CURVE_HELIX;
     (*curve)->radius = radius;
     (*curve)->rise = pitch / (2 * M_PI);
@@ -174,7 +174,7 @@ ur_status ur_curve_new_interpolating(const ur_vec3 *points, size_t count, bool c
         return ur_error_set(error, UR_ERROR_INPUT, "a curve needs at least 4 points");
     ur_curve *curve = curve_alloc(error);
     if (!curve)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     curve->kind = CURVE_SPLINE;
     curve->closed = closed;
     curve->point_count = count;
@@ -186,14 +186,14 @@ ur_status ur_curve_new_interpolating(const ur_vec3 *points, size_t count, bool c
     for (int axis = 0; axis < 3; axis++)
         values[axis] = ur_alloc_array(knot_count, sizeof(double), error);
     if (!curve->knots || !values[0] || !values[1] || !values[2]) {
-        status = UR_ERROR_INTERNAL;
+        status = UR_ERROR_MEMORY;
         goto done;
     }
     spline_data(points, count, closed, curve->knots, values);
     curve->knot_count = knot_count;
     curve->cubics = ur_alloc_array(knot_count - 1, sizeof *curve->cubics, error);
     if (!curve->cubics) {
-        status = UR_ERROR_INTERNAL;
+        status = UR_ERROR_MEMORY;
         goto done;
     }
     for (int axis = 0; axis < 3 && status == UR_OK; axis++)

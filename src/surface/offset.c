@@ -309,7 +309,7 @@ ur_status ur_ruled_offset(ur_ruled *ruled, double distance, ur_ruled *offset, ur
     ur_vec3 *points[2];
     points[0] = ur_alloc_array(count, sizeof *points[0], error);
     points[1] = ur_alloc_array(count, sizeof *points[1], error);
-    status = points[0] && points[1] ? UR_OK : UR_ERROR_INTERNAL;
+    status = points[0] && points[1] ? UR_OK : UR_ERROR_MEMORY;
     if (status == UR_OK)
         status = sample_rails(ruled, signed_distance, count, closed, points, error);
     if (status == UR_OK)

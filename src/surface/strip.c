@@ -106,7 +106,7 @@ static ur_status take_rails(ur_curve *rail1, ur_curve *rail2, ur_ruled_kind kind
     ruled->pairing = pairing_new(rail1, rail2, error);
     if (!ruled->pairing) {
         ur_ruled_free(ruled);
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     }
     return UR_OK;
 }
@@ -136,7 +136,7 @@ static ur_status arc_length_pairing(ur_pairing *pairing, ur_error *error)
     double *s = ur_alloc_array(n, sizeof *s, error);
     double *length1 = ur_alloc_array(n, sizeof *length1, error);
     double *length2 = ur_alloc_array(n, sizeof *length2, error);
-    ur_status status = s && length1 && length2 ? UR_OK : UR_ERROR_INTERNAL;
+    ur_status status = s && length1 && length2 ? UR_OK : UR_ERROR_MEMORY;
     if (status == UR_OK)
         status = pairing_table_alloc(pairing, n, error);
     if (status == UR_OK)

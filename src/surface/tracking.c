@@ -553,7 +553,7 @@ ur_status pairing_table_alloc(ur_pairing *pairing, size_t count, ur_error *error
     pairing->bridged = ur_alloc_array(count, sizeof *pairing->bridged, error);
     if (!pairing->u || !pairing->sigma || !pairing->slope || !pairing->state || !pairing->joined ||
         !pairing->bridged)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     double u0 = ur_curve_start(pairing->rail1), u1 = ur_curve_end(pairing->rail1);
     for (size_t i = 0; i < count; i++) {
         pairing->u[i] = u0 + (u1 - u0) * (double)i / (double)(count - 1);
@@ -572,7 +572,7 @@ static ur_status scan_alloc(ur_pairing *pairing, ur_error *error)
     pairing->scan_position = ur_alloc_array(n + 1, sizeof(ur_vec3), error);
     pairing->scan_tangent = ur_alloc_array(n + 1, sizeof(ur_vec3), error);
     if (!pairing->scan_position || !pairing->scan_tangent)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_MEMORY;
     for (size_t j = 0; j <= n; j++) {
         ur_vec3 d2[3];
         pairing_rail2(pairing, pairing->s0 + pairing->step * (double)j, d2);
