@@ -162,6 +162,8 @@ typedef struct ur_rail_repair_report {
     size_t iterations;      /* of the least-squares solver, all rounds */
     bool from_local_repair; /* started from ur_strip_adjust_rail2's result */
     bool used_local_repair; /* ... and kept it: it moved rail 2 less */
+    bool
+        edge_too_close; /* the strip's edge of regression comes close to a rail: it bends sharply */
 } ur_rail_repair_report;
 
 /*

@@ -34,7 +34,11 @@
  *
  * The result is checked by building the strip again (ur_ruled_strip) and
  * following its edge of regression; while it fails, the penalties weigh
- * ten times more, a few times.  The pairing is first guessed in proportion
+ * ten times more, a few times.  A repair that only just straightens what
+ * was in the way leaves the edge of regression touching a rail, where the
+ * rulings crowd together and the strip bends as sharply as a crease; its
+ * displacement is then stretched, in steps of 5 %, until the edge stays
+ * EDGE_CLEARANCE rulings beyond both rails.  The pairing is first guessed in proportion
  * along the rails, then, if that fails, from the strip as it is.  This is
  * a local method: it finds the repair the first guesses lead to, not
  * always the smallest, and may find none where one exists (the caller is
@@ -64,8 +68,13 @@ enum {
     SAMPLES_PER_POINT = 4, /* of rail 1, checking the edge of regression */
 };
 
-/* How far beyond the rails, in rulings, the edge of regression must stay. */
-#define EDGE_CLEARANCE 0.0
+/*
+ * How far beyond the rails, in rulings, the edge of regression must stay:
+ * near a rail the rulings crowd together on it and the strip bends sharply
+ * there (the bend radius on the rail is about this fraction of the one on
+ * the other rail).
+ */
+#define EDGE_CLEARANCE 0.015
 
 #define TANGENCY 1e-4  /* radians of G that weigh as much as 1 mm of displacement */
 #define MARGIN 0.02    /* q_k wanted, so that the edge of regression stays clear */
@@ -549,12 +558,14 @@ static void guess_pairing(problem *p, bool proportional, gsl_vector *x)
     }
 }
 
-static ur_status first_guess(problem *p, const ur_vec3 *local_repair, bool proportional,
+static ur_status first_guess(problem *p, const ur_vec3 *const starts[2], bool proportional,
                              gsl_vector *x, ur_error *error)
 {
     gsl_vector_set_zero(x);
-    if (local_repair) {
-        ur_status status = fit_displacements(p, &p->rails[1], local_repair, x, error);
+    for (int r = 0; r < 2; r++) {
+        if (!starts[r] || !p->rails[r].moves)
+            continue;
+        ur_status status = fit_displacements(p, &p->rails[r], starts[r], x, error);
         if (status != UR_OK)
             return status;
     }
@@ -593,11 +604,12 @@ static ur_status solve(problem *p, gsl_vector *x, size_t *iterations, ur_error *
 /*
  * Whether the strip exists along all of rail 1 with its edge of regression
  * clear of the strip: at each of SAMPLES_PER_POINT samples per point of
- * rail 1 it lies beyond either rail by EDGE_CLEARANCE of the ruling, or at
- * infinity.
+ * rail 1 it lies beyond either rail by clearance of the ruling, or at
+ * infinity; if developable, the ruling is developable too (the stretched
+ * rails can pass by a place where the tracking misses the root).
  */
 static bool strip_everywhere(const ur_vec3 *rail1, size_t count1, const ur_vec3 *rail2,
-                             size_t count2)
+                             size_t count2, double clearance, bool developable)
 {
     ur_ruled strip;
     if (surface_strip_of_points(rail1, count1, rail2, count2, &strip, NULL) != UR_OK)
@@ -610,7 +622,9 @@ static bool strip_everywhere(const ur_vec3 *rail1, size_t count1, const ur_vec3 
         ur_vec3 edge;
         double v, u = start + (end - start) * (double)k / (double)samples;
         if (ur_ruled_regression(&strip, u, &edge, &v))
-            everywhere = v < -EDGE_CLEARANCE || v > 1 + EDGE_CLEARANCE;
+            everywhere = v < -clearance || v > 1 + clearance;
+        if (developable)
+            everywhere = everywhere && ur_ruled_residual(&strip, u) <= UR_DEVELOPABLE_RESIDUAL;
     }
     ur_ruled_free(&strip);
     return everywhere;
@@ -712,6 +726,24 @@ static const ur_interval *at_start_or_end(const ur_ruled *strip, const ur_interv
     return gaps[0].u_start <= ur_curve_start(strip->curve) ? &gaps[0] : &gaps[gap_count - 1];
 }
 
+/* ---- Keeping the edge of regression clear -------------------------------- */
+
+enum { STRETCHES = 20 };
+#define STRETCH 0.05
+
+/* Whether the rails moved by share of their moves have a strip everywhere; they are placed so. */
+static bool share_works(problem *p, ur_vec3 *const moves[2], double share)
+{
+    for (int r = 0; r < 2; r++) {
+        rail *q = &p->rails[r];
+        for (size_t i = 0; i < q->count; i++)
+            q->points[i] =
+                moves[r] ? ur_vec3_add_scaled(q->original[i], moves[r][i], share) : q->original[i];
+    }
+    return strip_everywhere(p->rails[0].points, p->rails[0].count, p->rails[1].points,
+                            p->rails[1].count, EDGE_CLEARANCE, true);
+}
+
 /* ---- The whole repair --------------------------------------------------- */
 
 /* adjust.c's local repair of rail 2, when there is one, as a first guess; else NULL. */
@@ -737,13 +769,13 @@ static ur_vec3 *local_repair(const ur_vec3 *rail1, size_t count1, const ur_vec3 
  * One attempt from one first guess, in rounds that weigh the penalties ten
  * times more while the strip is not everywhere.
  */
-static ur_status attempt(problem *p, const ur_vec3 *start, bool proportional,
+static ur_status attempt(problem *p, const ur_vec3 *const starts[2], bool proportional,
                          ur_rail_repair_report *report, ur_error *error)
 {
     gsl_vector *x = gsl_vector_alloc(p->unknowns);
     if (!x)
         return ur_error_out_of_memory(error);
-    ur_status status = first_guess(p, start, proportional, x, error);
+    ur_status status = first_guess(p, starts, proportional, x, error);
     report->everywhere = false;
     p->strength = 1.0;
     for (int round = 0; status == UR_OK && round < ROUNDS && !report->everywhere; round++) {
@@ -753,7 +785,7 @@ static ur_status attempt(problem *p, const ur_vec3 *start, bool proportional,
         for (int r = 0; r < 2; r++)
             place_points(p, &p->rails[r], x);
         report->everywhere = strip_everywhere(p->rails[0].points, p->rails[0].count,
-                                              p->rails[1].points, p->rails[1].count);
+                                              p->rails[1].points, p->rails[1].count, 0.0, false);
         p->strength *= 10;
         status = ur_context_check(p->context, error);
     }
@@ -762,16 +794,56 @@ static ur_status attempt(problem *p, const ur_vec3 *start, bool proportional,
 }
 
 /*
+ * From a repair whose edge of regression comes too close to a rail (the
+ * repair only just straightened what was in the way, and the rulings crowd
+ * together on the rail), the same displacement a little larger, the
+ * smallest of STRETCHES steps of STRETCH that keeps the edge clear; else
+ * the repair as it is, told so.
+ */
+static ur_status clear_the_edge(problem *p, ur_rail_repair_report *report, ur_error *error)
+{
+    ur_vec3 *moves[2] = {NULL, NULL};
+    ur_status status = UR_OK;
+    for (int r = 0; status == UR_OK && r < 2; r++)
+        if (p->rails[r].moves) {
+            moves[r] = ur_alloc_array(p->rails[r].count, sizeof *moves[r], error);
+            if (!moves[r])
+                status = UR_ERROR_MEMORY;
+            for (size_t i = 0; moves[r] && i < p->rails[r].count; i++)
+                moves[r][i] = ur_vec3_sub(p->rails[r].points[i], p->rails[r].original[i]);
+        }
+    bool clear = false;
+    for (int step = 1; status == UR_OK && !clear && step <= STRETCHES; step++) {
+        clear = share_works(p, moves, 1.0 + STRETCH * step);
+        status = ur_context_check(p->context, error);
+    }
+    if (status == UR_OK && !clear) {
+        share_works(p, moves, 1.0);
+        report->edge_too_close = true;
+    }
+    free(moves[0]);
+    free(moves[1]);
+    return status;
+}
+
+/*
  * The pairing is guessed first in proportion along the rails, which lets
  * the solver straighten a fold, then as the strip on the start rails pairs
- * them where it exists, which stays near a repair of the ends.
+ * them where it exists, which stays near a repair of the ends.  A repair
+ * whose edge of regression comes close to a rail (the strip would bend
+ * sharply there) is stretched until the edge is clear.
  */
-static ur_status repair(problem *p, const ur_vec3 *start, ur_rail_repair_report *report,
+static ur_status repair(problem *p, const ur_vec3 *local, ur_rail_repair_report *report,
                         ur_error *error)
 {
-    ur_status status = attempt(p, start, true, report, error);
+    const ur_vec3 *starts[2] = {NULL, local};
+    ur_status status = attempt(p, starts, true, report, error);
     if (status == UR_OK && !report->everywhere)
-        status = attempt(p, start, false, report, error);
+        status = attempt(p, starts, false, report, error);
+    if (status == UR_OK && report->everywhere &&
+        !strip_everywhere(p->rails[0].points, p->rails[0].count, p->rails[1].points,
+                          p->rails[1].count, EDGE_CLEARANCE, false))
+        status = clear_the_edge(p, report, error);
     if (status == UR_OK)
         measure(p, report);
     return status;
@@ -797,7 +869,8 @@ static void prefer_local_repair(problem *p, const ur_vec3 *start, bool move_ends
         largest = fmax(largest, ur_vec3_distance(start[i], two->original[i]));
     if (report->everywhere && largest >= report->largest)
         return;
-    if (!strip_everywhere(p->rails[0].points, p->rails[0].count, start, two->count))
+    if (!strip_everywhere(p->rails[0].points, p->rails[0].count, start, two->count, EDGE_CLEARANCE,
+                          false))
         return;
     memcpy(two->points, start, two->count * sizeof *two->points);
     report->everywhere = true;

@@ -56,6 +56,51 @@ static size_t gaps_between(const ur_vec3 *rail1, const ur_vec3 *rail2)
 }
 
 /*
+ * The smallest bend radius of the strip between the rails, from its rulings
+ * alone: at each ruling the normal's turning rate and the speed across the
+ * ruling of its ends, by central differences over neighbouring rulings.
+ * The speed across is linear along a ruling of a developable, so the
+ * smallest radius is at an end.
+ */
+static double smallest_bend_radius(const ur_vec3 *rail1, const ur_vec3 *rail2)
+{
+    enum { RULINGS = 4000 };
+    ur_curve *c1, *c2;
+    assert_int_equal(ur_curve_new_interpolating(rail1, N, false, &c1, NULL), UR_OK);
+    assert_int_equal(ur_curve_new_interpolating(rail2, N, false, &c2, NULL), UR_OK);
+    ur_ruled ruled;
+    assert_int_equal(ur_ruled_strip(c1, c2, &ruled, NULL), UR_OK);
+    double start = ur_ruled_start(&ruled), end = ur_ruled_end(&ruled);
+    static ur_vec3 ends[RULINGS + 1][2];
+    for (int k = 0; k <= RULINGS; k++) {
+        ur_vec3 rails[4];
+        ur_ruled_rails(&ruled, start + (end - start) * k / RULINGS, rails);
+        ends[k][0] = rails[0];
+        ends[k][1] = rails[2];
+    }
+    ur_ruled_free(&ruled);
+    double smallest = INFINITY;
+    for (int k = 2; k + 2 <= RULINGS; k++) {
+        ur_vec3 normal[3], ruling = ur_vec3_sub(ends[k][1], ends[k][0]);
+        for (int j = -1; j <= 1; j++) {
+            ur_vec3 along = ur_vec3_sub(ends[k + j + 1][0], ends[k + j - 1][0]);
+            ur_vec3 n = ur_vec3_cross(along, ur_vec3_sub(ends[k + j][1], ends[k + j][0]));
+            normal[j + 1] = ur_vec3_scale(n, 1.0 / ur_vec3_length(n));
+        }
+        double turning = ur_vec3_distance(normal[2], normal[0]);
+        ur_vec3 direction = ur_vec3_scale(ruling, 1.0 / ur_vec3_length(ruling));
+        for (int e = 0; e < 2; e++) {
+            ur_vec3 step = ur_vec3_sub(ends[k + 1][e], ends[k - 1][e]);
+            ur_vec3 across = ur_vec3_add_scaled(step, direction, -ur_vec3_dot(step, direction));
+            across = ur_vec3_add_scaled(across, normal[1], -ur_vec3_dot(across, normal[1]));
+            if (turning > 0)
+                smallest = fmin(smallest, ur_vec3_length(across) / turning);
+        }
+    }
+    return smallest;
+}
+
+/*
  * The strip folds and misses the end of rail 1; after the repair it exists
  * everywhere, rail 2's ends are where they were, and the report's figures
  * are the displacements measured here, the largest below the 4 mm wave.
@@ -94,6 +139,14 @@ static void test_repair_reshapes_the_wavy_rail(void **state)
     assert_int_equal(report.largest_point, where);
     if (!(largest > 0 && largest < 4))
         fail_msg("moved by %g mm, not less than the 4 mm wave", largest);
+    /*
+     * The rulings do not crowd together on rail 2: the strip bends no
+     * tighter than a hundredth of the rails' distance (45 mm and more).
+     */
+    double radius = smallest_bend_radius(rail1, rail2);
+    print_message("smallest bend radius %g mm\n", radius);
+    if (!(radius > 0.45))
+        fail_msg("the repaired strip bends with a radius of %g mm", radius);
 }
 
 /* A frustum's two arcs have a strip everywhere: nothing moves, whichever rail may. */
