@@ -344,6 +344,8 @@ static ur_status adjust_rails(const job_run *run, ur_vec3 *points[2], const size
     note_repair(run, &report);
     if (!adjusted)
         return UR_OK;
+    adjusted->repaired = true;
+    adjusted->report = report;
     for (int k = 0; k < 2; k++) {
         if (!(job->adjust_rails & (1u << k)))
             continue;

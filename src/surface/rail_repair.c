@@ -679,6 +679,7 @@ static void measure(const problem *p, ur_rail_repair_report *report)
     report->mean = count ? sum / (double)count : 0.0;
     const rail *at = &p->rails[report->largest_rail - 1];
     report->largest_along = along_polyline(at->original, report->largest_point);
+    report->largest_position = at->original[report->largest_point];
 }
 
 /* ---- Refusing ----------------------------------------------------------- */

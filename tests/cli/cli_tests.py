@@ -736,7 +736,7 @@ def adjust_reshapes_a_wavy_rail(work):
     bad(work, r"--strict.*|domain of existence", "strip", "--rail1", rail1, "--rail2", rail2,
         "--strict", "-o", "x.svg")
     result = run(work, "strip", "--rail1", rail1, "--rail2", rail2, "--adjust", "rail2",
-                 "--adjusted-rail", "moved.csv", "-o", "s.svg")
+                 "--adjusted-rail", "moved.csv", "-o", "s.svg", "--report", "s.json")
     found = re.search(r"rail 2 moved by at most ([0-9.e-]+) mm \(point (\d+) of rail 2, "
                       r"([0-9.]+) mm along it\), ([0-9.e-]+) mm on average; written to moved.csv",
                       result.stderr)
@@ -752,6 +752,14 @@ def adjust_reshapes_a_wavy_rail(work):
           1e-3, "where along rail 2")
     check(0 < max(distances) < 4, "moved by %g mm, not less than the 4 mm wave" % max(distances))
     check(distances[0] == 0 and distances[-1] == 0, "an end moved")
+    # The report says the same, from the files.
+    repair = report(work, "s.json")["rail_repair"]
+    check(repair["rails"] == "rail2" and repair["adjusted_rail"] == "moved.csv", str(repair))
+    close(repair["largest_displacement_mm"], max(distances), 1e-9, "report: largest displacement")
+    close(repair["mean_displacement_mm"], sum(distances) / len(distances), 1e-9, "report: mean")
+    at = repair["largest_at"]
+    check(at["rail"] == 2 and at["point"] == where + 1, "report: largest at %s" % at)
+    check(math.dist(at["position"], before[where]) < 1e-9, "report: position %s" % at)
     run(work, "strip", "--rail1", rail1, "--rail2", "moved.csv", "--strict", "-o", "t.svg",
         "--report", "t.json", *FINE)
     [piece] = report(work, "t.json")["pieces"]
