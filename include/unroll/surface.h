@@ -164,6 +164,7 @@ typedef struct ur_rail_repair_report {
     bool from_local_repair;   /* started from ur_strip_adjust_rail2's result */
     bool used_local_repair;   /* ... and kept it: it moved rail 2 less */
     bool edge_too_close;      /* the edge of regression stays near a rail: a sharp bend */
+    bool smoothed;            /* the repair is the rails partly smoothed (the solver found none) */
 } ur_rail_repair_report;
 
 /*
