@@ -95,9 +95,11 @@ REPLAY_BINARIES = $(FUZZ_SOURCES:tests/fuzz/%.c=$(BUILD)/replay/%)
 #   adjust_reshapes_a_wavy_rail: its least-squares repairs of rail 2 take
 #     12 s, 5 to 10 minutes under valgrind; the sanitizer build runs it, and
 #     test_rail_repair the same repair, and adjust_rail2_repairs_a_short_rail
-#     runs the repair's code under valgrind.
+#     runs the repair's code under valgrind; adjust_irons_out_a_bump_and_a_dent
+#     likewise (5 s; test_rail_repair repairs the same rails).
 VALGRIND_SKIP = a_mesh_too_large_for_memory_fails_cleanly nest_search_is_repeatable \
-	signals_stop_cleanly papercraft_of_the_sample_meshes adjust_reshapes_a_wavy_rail
+	signals_stop_cleanly papercraft_of_the_sample_meshes adjust_reshapes_a_wavy_rail \
+	adjust_irons_out_a_bump_and_a_dent
 ifeq ($(VALGRIND)$(SANITIZE),11)
 $(error VALGRIND=1 and SANITIZE=1 do not mix: valgrind cannot run ASan's build)
 endif

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes the rails whose strip has a gap, for `--adjust` in `make demo` and the tests.
+"""Writes the rails whose strip has gaps, for `--adjust` in `make demo` and the tests.
 
     samples/make-gap-rails.py     # rewrites the files below, in samples/
 
@@ -12,7 +12,19 @@ The developable strip between them folds back about 103.5 mm along rail 1
 (two roots of the tangency condition merge and the next ruling lands on rail
 2 far away) and is missing at the end of rail 1: rail 2's 4 mm and 6 mm
 waves are in the way.  `unroll strip --adjust rail2` reshapes rail 2 so that
-the strip exists along all of rail 1.  Only the standard library is used.
+the strip exists along all of rail 1.
+
+arc-rail1.csv    half a circle of radius 50 mm in z = 0, t from 0 to pi in
+                 120 points: rail 1 of the two below
+bump-rail2.csv   half a circle of radius 30 mm in z = 40 with a bump 6 mm
+                 high in its middle: z = 40 + 6 exp(-((t - pi/2) / 0.2)^2)
+dent-rail2.csv   half a circle of radius 30 mm in z = 40 with a dent 2 mm
+                 deep toward the centre in its middle, radius
+                 30 - 2 exp(-((t - pi/2) / 0.15)^2): it stays in z = 40, for
+                 --adjust-plane 0,0,1
+
+Without the bump or the dent the strip is a frustum of a cone; with them it
+has gaps.  Only the standard library is used.
 """
 import math
 import os
@@ -20,10 +32,11 @@ import os
 HERE = os.path.dirname(os.path.abspath(__file__))
 
 POINTS = 200
+ARC_POINTS = 120
 
 
-def curve(point):
-    return [point(math.pi * i / (POINTS - 1)) for i in range(POINTS)]
+def curve(point, points=POINTS):
+    return [point(math.pi * i / (points - 1)) for i in range(points)]
 
 
 def ellipse(t):
@@ -32,6 +45,19 @@ def ellipse(t):
 
 def wavy(t):
     return (35 * math.cos(t), 20 * math.sin(t) + 4 * math.sin(3 * t), 45 + 6 * math.sin(2 * t))
+
+
+def arc(t):
+    return (50 * math.cos(t), 50 * math.sin(t), 0.0)
+
+
+def bump(t):
+    return (30 * math.cos(t), 30 * math.sin(t), 40 + 6 * math.exp(-((t - math.pi / 2) / 0.2) ** 2))
+
+
+def dent(t):
+    radius = 30 - 2 * math.exp(-((t - math.pi / 2) / 0.15) ** 2)
+    return (radius * math.cos(t), radius * math.sin(t), 40.0)
 
 
 def write(name, header, points):
@@ -49,6 +75,15 @@ def main():
     write("gap-rail2.csv", ["Rail 2 of a strip with a gap (samples/make-gap-rails.py): the wavy",
                             "curve (35 cos t, 20 sin t + 4 sin 3t, 45 + 6 sin 2t), t from 0 to pi",
                             "in %d points. x,y,z in mm." % POINTS], curve(wavy))
+    write("arc-rail1.csv", ["Rail 1 of the bump and dent rails (samples/make-gap-rails.py): half a",
+                            "circle (50 cos t, 50 sin t, 0), t from 0 to pi in %d points." % ARC_POINTS,
+                            "x,y,z in mm."], curve(arc, ARC_POINTS))
+    write("bump-rail2.csv", ["Rail 2 with a bump (samples/make-gap-rails.py): (30 cos t, 30 sin t,",
+                             "40 + 6 exp(-((t - pi/2) / 0.2)^2)), t from 0 to pi in %d points."
+                             % ARC_POINTS, "x,y,z in mm."], curve(bump, ARC_POINTS))
+    write("dent-rail2.csv", ["Rail 2 with a dent (samples/make-gap-rails.py): radius",
+                             "30 - 2 exp(-((t - pi/2) / 0.15)^2) in z = 40, t from 0 to pi in %d"
+                             % ARC_POINTS, "points. x,y,z in mm."], curve(dent, ARC_POINTS))
 
 
 if __name__ == "__main__":

@@ -83,7 +83,8 @@ UR_API ur_status ur_error_set(ur_error *error, ur_status status, const char *for
 /*
  * Says which settings error's message names (see ur_error: their names,
  * space-separated, the one it is about first), after ur_error_set;
- * returns error's status.
+ * returns error's status, or UR_ERROR_INPUT when error is NULL (a message
+ * naming a setting is one about bad input).
  */
 UR_API ur_status ur_error_set_setting(ur_error *error, const char *setting);
 

@@ -212,6 +212,18 @@ typedef struct ur_report_layer {
     double thickness;      /* mm */
 } ur_report_layer;
 
+/* What --adjust did to the rails (ur_rails_repair's report), for the report. */
+typedef struct ur_report_repair {
+    const char *rails;        /* "rail1", "rail2" or "both" */
+    double largest, mean;     /* displacement, mm */
+    int largest_rail;         /* 1 or 2 */
+    size_t largest_point;     /* from 0 */
+    ur_vec3 largest_position; /* where that point was, as given */
+    double largest_along;     /* mm along that rail as given */
+    /* the files written (--adjusted-rail, --adjusted-rail1); may be NULL */
+    const char *adjusted_rail, *adjusted_rail1;
+} ur_report_repair;
+
 typedef struct ur_report_context {
     const char *surface; /* e.g. "helicoid" */
     const char *method;  /* "exact", "triangle" or "quad" */
@@ -228,6 +240,7 @@ typedef struct ur_report_context {
     bool drawing_order;                  /* the files keep the drawing order (--order none) */
     /* ceil(part area / usable sheet area), the fewest sheets any layout needs; 0: not known */
     double sheets_lower_bound;
+    const ur_report_repair *repair; /* the rails' repair; NULL: none asked */
 } ur_report_context;
 
 /*

@@ -153,15 +153,18 @@ typedef struct ur_rail_repair_options {
 } ur_rail_repair_options;
 
 typedef struct ur_rail_repair_report {
-    bool everywhere;        /* the strip exists along all of rail 1 (before or after) */
-    double largest, mean;   /* displacement of the moving rails' points, mm */
-    int largest_rail;       /* 1 or 2: where the largest is */
-    size_t largest_point;   /* its point, from 0 */
-    double largest_along;   /* mm along that rail (its polyline, as given) */
-    double limit;           /* the largest displacement allowed, mm (0: nothing to repair) */
-    size_t iterations;      /* of the least-squares solver, all rounds */
-    bool from_local_repair; /* started from ur_strip_adjust_rail2's result */
-    bool used_local_repair; /* ... and kept it: it moved rail 2 less */
+    bool everywhere;          /* the strip exists along all of rail 1 (before or after) */
+    double largest, mean;     /* displacement of the moving rails' points, mm */
+    int largest_rail;         /* 1 or 2: where the largest is */
+    size_t largest_point;     /* its point, from 0 */
+    double largest_along;     /* mm along that rail (its polyline, as given) */
+    ur_vec3 largest_position; /* where that point was, as given */
+    double limit;             /* the largest displacement allowed, mm (0: nothing to repair) */
+    size_t iterations;        /* of the least-squares solver, all rounds */
+    bool from_local_repair;   /* started from ur_strip_adjust_rail2's result */
+    bool used_local_repair;   /* ... and kept it: it moved rail 2 less */
+    bool edge_too_close;      /* the edge of regression stays near a rail: a sharp bend */
+    bool smoothed;            /* the repair is the rails partly smoothed (the solver found none) */
 } ur_rail_repair_report;
 
 /*

@@ -25,7 +25,7 @@ ur_status ur_error_set(ur_error *error, ur_status status, const char *format, ..
 ur_status ur_error_set_setting(ur_error *error, const char *setting)
 {
     if (!error)
-        return UR_ERROR_INTERNAL;
+        return UR_ERROR_INPUT;
     c_snprintf(error->setting, sizeof error->setting, "%s", setting ? setting : "");
     return error->status;
 }

@@ -90,7 +90,24 @@ typedef struct job_state {
     ur_ruled **net_surfaces;
     ur_ruled *moved;
     size_t moved_count;
+    const ur_report_repair *repair; /* what --adjust did, for the report; NULL: nothing asked */
 } job_state;
+
+/* What the rails' repair did, as the report gives it. */
+static void repair_for_report(const job_run *run, const ur_rail_repair_report *report,
+                              ur_report_repair *repair)
+{
+    static const char *const rails[4] = {"", "rail1", "rail2", "both"};
+    *repair = (ur_report_repair){.rails = rails[run->job.adjust_rails & UR_REPAIR_BOTH],
+                                 .largest = report->largest,
+                                 .mean = report->mean,
+                                 .largest_rail = report->largest_rail,
+                                 .largest_point = report->largest_point,
+                                 .largest_position = report->largest_position,
+                                 .largest_along = report->largest_along,
+                                 .adjusted_rail = run->job.adjusted_rail_path,
+                                 .adjusted_rail1 = run->job.adjusted_rail1_path};
+}
 
 static void state_free(job_state *state)
 {
@@ -492,6 +509,7 @@ static ur_status write_outputs(const job_run *run, job_state *state, ur_error *e
     if (state->have_ruled)
         context.layer = &layer;
     context.gap_count = ur_ruled_gaps(&state->ruled, &context.gaps);
+    context.repair = state->repair;
     return job_write_outputs(run, &state->machine, &state->layout, state->pieces,
                              state->piece_count, &context, error);
 }
@@ -712,10 +730,15 @@ static ur_status run_job(const job_run *run, ur_job_result *result)
         state_free(&state);
         return job_fail(run, error.status, "%s", error.message);
     }
-    job_adjusted_rail adjusted = {{NULL, NULL}, {0, 0}};
+    job_adjusted_rail adjusted = {.rails = {NULL, NULL}};
     ur_vec3 *edge = NULL;
     size_t edge_count = 0;
     ur_status code = make_nets(run, &state, &adjusted, &edge, &edge_count);
+    ur_report_repair repair;
+    if (!code && adjusted.repaired) {
+        repair_for_report(run, &adjusted.report, &repair);
+        state.repair = &repair;
+    }
     if (!code)
         code = find_seams(run, &state);
     if (!code)
@@ -768,7 +791,7 @@ ur_status job_pieces(const job_run *run, job_pieces_made *out)
         state_free(&state);
         return job_fail_from(run, &error);
     }
-    job_adjusted_rail adjusted = {{NULL, NULL}, {0, 0}};
+    job_adjusted_rail adjusted = {.rails = {NULL, NULL}};
     ur_vec3 *edge = NULL;
     size_t edge_count = 0;
     ur_status code = make_nets(run, &state, &adjusted, &edge, &edge_count);

@@ -37,7 +37,7 @@ ur_status ur_job_surface_with_curves(const ur_job *job, const ur_job_callbacks *
                                      ur_ruled *ruled, ur_error *error)
 {
     job_run run = job_run_make(job, callbacks, error);
-    job_adjusted_rail adjusted = {{NULL, NULL}, {0, 0}};
+    job_adjusted_rail adjusted = {.rails = {NULL, NULL}};
     ur_status status = job_build_surface(&run, ruled, &adjusted);
     if (status == UR_OK) {
         status = curves(&run, ruled, &adjusted);

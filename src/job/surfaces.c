@@ -317,6 +317,11 @@ static void note_repair(const job_run *run, const ur_rail_repair_report *report)
                report->largest_along, report->mean);
     job_note(run, "%s: %s %s%s", run->job.command, adjust_names[run->job.adjust_rails], figures,
              written);
+    if (report->edge_too_close)
+        job_warn(run,
+                 "%s: warning: the repaired strip's edge of regression comes close to a rail: it "
+                 "bends sharply there (see analyze)",
+                 run->job.command);
 }
 
 /* The repair the job asks for (adjust_rails); a copy of each moved rail kept for its file. */
@@ -343,6 +348,8 @@ static ur_status adjust_rails(const job_run *run, ur_vec3 *points[2], const size
     note_repair(run, &report);
     if (!adjusted)
         return UR_OK;
+    adjusted->repaired = true;
+    adjusted->report = report;
     for (int k = 0; k < 2; k++) {
         if (!(job->adjust_rails & (1u << k)))
             continue;

@@ -11,6 +11,8 @@
 typedef struct job_adjusted_rail {
     ur_vec3 *rails[2]; /* owned; NULL for a rail not adjusted */
     size_t counts[2];
+    bool repaired;                /* the job asked for a repair and it was done */
+    ur_rail_repair_report report; /* then what it did */
 } job_adjusted_rail;
 
 /*

@@ -261,6 +261,30 @@ static json_t *layer_json(const ur_report_layer *layer)
     return object;
 }
 
+/* "rail_repair": how far the rails moved, where most, and the files of the moved rails. */
+static json_t *repair_json(const ur_report_repair *repair)
+{
+    json_t *object = json_object(), *where = json_object();
+    if (!object || !where ||
+        json_object_set_new(where, "rail", json_integer(repair->largest_rail)) != 0 ||
+        json_object_set_new(where, "point", json_integer((json_int_t)repair->largest_point + 1)) !=
+            0 ||
+        json_object_set_new(where, "position", json_point(repair->largest_position)) != 0 ||
+        json_object_set_new(where, "along_mm", json_number(repair->largest_along)) != 0 ||
+        json_object_set_new(object, "rails", text_or_null(repair->rails)) != 0 ||
+        json_object_set_new(object, "largest_displacement_mm", json_number(repair->largest)) != 0 ||
+        json_object_set_new(object, "mean_displacement_mm", json_number(repair->mean)) != 0 ||
+        json_object_set(object, "largest_at", where) != 0 ||
+        json_object_set_new(object, "adjusted_rail", text_or_null(repair->adjusted_rail)) != 0 ||
+        json_object_set_new(object, "adjusted_rail1", text_or_null(repair->adjusted_rail1)) != 0) {
+        json_decref(where);
+        json_decref(object);
+        return NULL;
+    }
+    json_decref(where); /* set without _new: object holds its own reference */
+    return object;
+}
+
 /* The top-level object; on failure *root is NULL and error says why. */
 static ur_status report_json(const ur_report_context *context, const ur_piece *pieces,
                              size_t piece_count, const ur_layout *layout, json_t **root,
@@ -307,6 +331,12 @@ static ur_status report_json(const ur_report_context *context, const ur_piece *p
         return ur_error_out_of_memory(error);
     }
     if (context->layer && json_object_set_new(*root, "layer", layer_json(context->layer)) != 0) {
+        json_decref(*root);
+        *root = NULL;
+        return ur_error_out_of_memory(error);
+    }
+    if (context->repair &&
+        json_object_set_new(*root, "rail_repair", repair_json(context->repair)) != 0) {
         json_decref(*root);
         *root = NULL;
         return ur_error_out_of_memory(error);

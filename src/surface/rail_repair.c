@@ -4,7 +4,10 @@
  * the whole of rail 1, what the seed's Tapeworm script does by hand.
  *
  * Unlike adjust.c, which moves rail 2 over a window round each gap, this
- * moves the whole rail at once, by a smooth displacement: a cubic B-spline
+ * moves the whole rail at once.  It first tries smoothing (repair_by_smoothing):
+ * the rail fitted with a few B-splines, which irons out a dent or a bump,
+ * and the smallest share of the way there that gives a strip everywhere.
+ * When that fails, by a smooth displacement: a cubic B-spline
  * of the point index with about one coefficient per six points (per axis
  * along which the points may move), added to each point.  The rail keeps
  * its number of points; its ends stay put unless asked otherwise.  The
@@ -34,7 +37,11 @@
  *
  * The result is checked by building the strip again (ur_ruled_strip) and
  * following its edge of regression; while it fails, the penalties weigh
- * ten times more, a few times.  The pairing is first guessed in proportion
+ * ten times more, a few times.  A repair that only just straightens what
+ * was in the way leaves the edge of regression touching a rail, where the
+ * rulings crowd together and the strip bends as sharply as a crease; its
+ * displacement is then stretched, in steps of 5 %, until the edge stays
+ * EDGE_CLEARANCE rulings beyond both rails.  The pairing is first guessed in proportion
  * along the rails, then, if that fails, from the strip as it is.  This is
  * a local method: it finds the repair the first guesses lead to, not
  * always the smallest, and may find none where one exists (the caller is
@@ -64,8 +71,13 @@ enum {
     SAMPLES_PER_POINT = 4, /* of rail 1, checking the edge of regression */
 };
 
-/* How far beyond the rails, in rulings, the edge of regression must stay. */
-#define EDGE_CLEARANCE 0.0
+/*
+ * How far beyond the rails, in rulings, the edge of regression must stay:
+ * near a rail the rulings crowd together on it and the strip bends sharply
+ * there (the bend radius on the rail is about this fraction of the one on
+ * the other rail).
+ */
+#define EDGE_CLEARANCE 0.015
 
 #define TANGENCY 1e-4  /* radians of G that weigh as much as 1 mm of displacement */
 #define MARGIN 0.02    /* q_k wanted, so that the edge of regression stays clear */
@@ -549,12 +561,14 @@ static void guess_pairing(problem *p, bool proportional, gsl_vector *x)
     }
 }
 
-static ur_status first_guess(problem *p, const ur_vec3 *local_repair, bool proportional,
+static ur_status first_guess(problem *p, const ur_vec3 *const starts[2], bool proportional,
                              gsl_vector *x, ur_error *error)
 {
     gsl_vector_set_zero(x);
-    if (local_repair) {
-        ur_status status = fit_displacements(p, &p->rails[1], local_repair, x, error);
+    for (int r = 0; r < 2; r++) {
+        if (!starts[r] || !p->rails[r].moves)
+            continue;
+        ur_status status = fit_displacements(p, &p->rails[r], starts[r], x, error);
         if (status != UR_OK)
             return status;
     }
@@ -593,11 +607,12 @@ static ur_status solve(problem *p, gsl_vector *x, size_t *iterations, ur_error *
 /*
  * Whether the strip exists along all of rail 1 with its edge of regression
  * clear of the strip: at each of SAMPLES_PER_POINT samples per point of
- * rail 1 it lies beyond either rail by EDGE_CLEARANCE of the ruling, or at
- * infinity.
+ * rail 1 it lies beyond either rail by clearance of the ruling, or at
+ * infinity; if developable, the ruling is developable too (the stretched
+ * rails can pass by a place where the tracking misses the root).
  */
 static bool strip_everywhere(const ur_vec3 *rail1, size_t count1, const ur_vec3 *rail2,
-                             size_t count2)
+                             size_t count2, double clearance, bool developable)
 {
     ur_ruled strip;
     if (surface_strip_of_points(rail1, count1, rail2, count2, &strip, NULL) != UR_OK)
@@ -610,7 +625,9 @@ static bool strip_everywhere(const ur_vec3 *rail1, size_t count1, const ur_vec3 
         ur_vec3 edge;
         double v, u = start + (end - start) * (double)k / (double)samples;
         if (ur_ruled_regression(&strip, u, &edge, &v))
-            everywhere = v < -EDGE_CLEARANCE || v > 1 + EDGE_CLEARANCE;
+            everywhere = v < -clearance || v > 1 + clearance;
+        if (developable)
+            everywhere = everywhere && ur_ruled_residual(&strip, u) <= UR_DEVELOPABLE_RESIDUAL;
     }
     ur_ruled_free(&strip);
     return everywhere;
@@ -665,6 +682,7 @@ static void measure(const problem *p, ur_rail_repair_report *report)
     report->mean = count ? sum / (double)count : 0.0;
     const rail *at = &p->rails[report->largest_rail - 1];
     report->largest_along = along_polyline(at->original, report->largest_point);
+    report->largest_position = at->original[report->largest_point];
 }
 
 /* ---- Refusing ----------------------------------------------------------- */
@@ -715,6 +733,223 @@ static const ur_interval *at_start_or_end(const ur_ruled *strip, const ur_interv
     return gaps[0].u_start <= ur_curve_start(strip->curve) ? &gaps[0] : &gaps[gap_count - 1];
 }
 
+/* The moves allowed, for a message: "", " along X,Y,Z" or " each in its plane normal to X,Y,Z". */
+static void describe_moves(const ur_rail_repair_options *options, char *text, size_t size)
+{
+    const ur_vec3 *given = options->direction ? options->direction : options->plane_normal;
+    if (!given)
+        c_snprintf(text, size, "%s", "");
+    else
+        c_snprintf(text, size,
+                   options->direction ? " along %g,%g,%g"
+                                      : " (each point in its plane normal to %g,%g,%g)",
+                   given->x, given->y, given->z);
+}
+
+/*
+ * No repair found.  Rail 2 is called too short only when the strip is
+ * missing at an end of rail 1 and nowhere else, with the ends fixed.
+ */
+static ur_status refuse_no_repair(const ur_ruled *strip, const ur_rail_repair_options *options,
+                                  double limit, const ur_interval *gaps, size_t gap_count,
+                                  ur_error *error)
+{
+    bool at_start = gaps[0].u_start <= ur_curve_start(strip->curve);
+    bool at_end = gaps[gap_count - 1].u_end >= ur_curve_end(strip->curve);
+    bool only_at_ends = (size_t)at_start + (size_t)at_end >= gap_count;
+    if (only_at_ends && !options->move_ends && !options->direction && !options->plane_normal) {
+        ur_error_set(error, UR_ERROR_INPUT,
+                     "adjust: the strip is missing at an end of rail 1 (%.1f to %.1f mm along "
+                     "it): rail 2 is too short there with its ends fixed; give adjust-ends to let "
+                     "them move, or a longer rail 2",
+                     at_start_or_end(strip, gaps, gap_count)->arc_start,
+                     at_start_or_end(strip, gaps, gap_count)->arc_end);
+        return ur_error_set_setting(error, "adjust adjust-ends");
+    }
+    char part[160], moves[120];
+    describe_gaps(gaps, gap_count, part, sizeof part);
+    describe_moves(options, moves, sizeof moves);
+    ur_error_set(error, UR_ERROR_INPUT,
+                 "adjust: no smooth reshaping of %s%s within %.3g mm gives a strip along all of "
+                 "rail 1; the strip is missing %s; change the rails' shape there",
+                 rail_names[options->rails & UR_REPAIR_BOTH], moves, limit, part);
+    return ur_error_set_setting(error, "adjust");
+}
+
+/* ---- Keeping the edge of regression clear -------------------------------- */
+
+enum { STRETCHES = 20 };
+#define STRETCH 0.05
+
+/* Whether the rails moved by share of their moves have a strip everywhere; they are placed so. */
+static bool share_works(problem *p, ur_vec3 *const moves[2], double share)
+{
+    for (int r = 0; r < 2; r++) {
+        rail *q = &p->rails[r];
+        for (size_t i = 0; i < q->count; i++)
+            q->points[i] =
+                moves[r] ? ur_vec3_add_scaled(q->original[i], moves[r][i], share) : q->original[i];
+    }
+    return strip_everywhere(p->rails[0].points, p->rails[0].count, p->rails[1].points,
+                            p->rails[1].count, EDGE_CLEARANCE, true);
+}
+
+/* ---- A repair by smoothing ---------------------------------------------- */
+
+enum { BISECTIONS = 12 };
+#define SHARE_MARGIN 1.25
+
+static double coordinate(ur_vec3 v, int axis)
+{
+    return axis == 0 ? v.x : axis == 1 ? v.y : v.z;
+}
+
+static void set_coordinate(ur_vec3 *v, int axis, double value)
+{
+    *(axis == 0 ? &v->x : axis == 1 ? &v->y : &v->z) = value;
+}
+
+/*
+ * The points of a rail fitted (least squares) by `coefficients` cubic
+ * B-splines of the point index, through its end points: the rail with its
+ * dents and bumps ironed out.
+ */
+static ur_status smooth_rail(const rail *r, size_t coefficients, ur_vec3 *smooth, ur_error *error)
+{
+    size_t inner = coefficients - 2;
+    gsl_bspline_workspace *splines = gsl_bspline_alloc(4, coefficients - 2);
+    gsl_vector *values = gsl_vector_alloc(coefficients), *fit = gsl_vector_alloc(inner);
+    gsl_matrix *basis = gsl_matrix_alloc(r->count, coefficients);
+    gsl_matrix *design = gsl_matrix_alloc(r->count, inner);
+    gsl_matrix *covariance = gsl_matrix_alloc(inner, inner);
+    gsl_vector *observed = gsl_vector_alloc(r->count);
+    gsl_multifit_linear_workspace *work = gsl_multifit_linear_alloc(r->count, inner);
+    ur_status status = splines && values && fit && basis && design && covariance && observed && work
+                           ? UR_OK
+                           : ur_error_out_of_memory(error);
+    if (status == UR_OK) {
+        gsl_bspline_knots_uniform(0.0, (double)(r->count - 1), splines);
+        for (size_t i = 0; i < r->count; i++) {
+            gsl_bspline_eval((double)i, values, splines);
+            gsl_matrix_set_row(basis, i, values);
+        }
+        gsl_matrix_const_view middle = gsl_matrix_const_submatrix(basis, 0, 1, r->count, inner);
+        gsl_matrix_memcpy(design, &middle.matrix);
+    }
+    const ur_vec3 first = r->original[0], last = r->original[r->count - 1];
+    for (int axis = 0; status == UR_OK && axis < 3; axis++) {
+        for (size_t i = 0; i < r->count; i++) {
+            double ends = coordinate(first, axis) * gsl_matrix_get(basis, i, 0) +
+                          coordinate(last, axis) * gsl_matrix_get(basis, i, coefficients - 1);
+            gsl_vector_set(observed, i, coordinate(r->original[i], axis) - ends);
+        }
+        double chi_squared;
+        if (gsl_multifit_linear(design, observed, fit, covariance, &chi_squared, work) !=
+            GSL_SUCCESS) {
+            status =
+                ur_error_set(error, UR_ERROR_INTERNAL, "reshaping the rails: smoothing failed");
+            break;
+        }
+        for (size_t i = 0; i < r->count; i++) {
+            double ends = coordinate(first, axis) * gsl_matrix_get(basis, i, 0) +
+                          coordinate(last, axis) * gsl_matrix_get(basis, i, coefficients - 1);
+            gsl_vector_const_view row = gsl_matrix_const_row(design, i);
+            double value;
+            gsl_blas_ddot(&row.vector, fit, &value);
+            set_coordinate(&smooth[i], axis, ends + value);
+        }
+    }
+    if (splines)
+        gsl_bspline_free(splines);
+    gsl_vector_free(values);
+    gsl_vector_free(fit);
+    gsl_matrix_free(basis);
+    gsl_matrix_free(design);
+    gsl_matrix_free(covariance);
+    gsl_vector_free(observed);
+    if (work)
+        gsl_multifit_linear_free(work);
+    return status;
+}
+
+/* The moves from a rail to its smoothed points, along the directions the points may move. */
+static void allowed_moves(const problem *p, const rail *r, ur_vec3 *moves)
+{
+    for (size_t i = 0; i < r->count; i++) {
+        ur_vec3 move = ur_vec3_sub(moves[i], r->original[i]), allowed = ur_vec3_make(0, 0, 0);
+        for (size_t a = 0; a < p->axis_count; a++)
+            allowed = ur_vec3_add_scaled(allowed, p->axes[a], ur_vec3_dot(move, p->axes[a]));
+        moves[i] = allowed;
+    }
+}
+
+/* Smooths the moving rails with `coefficients` B-splines; moves[r] gets each point's move. */
+static ur_status smoothing_moves(const problem *p, size_t coefficients, ur_vec3 *const moves[2],
+                                 ur_error *error)
+{
+    for (int r = 0; r < 2; r++) {
+        if (!moves[r])
+            continue;
+        const rail *q = &p->rails[r];
+        ur_status status =
+            smooth_rail(q, coefficients < q->count ? coefficients : q->count, moves[r], error);
+        if (status != UR_OK)
+            return status;
+        allowed_moves(p, q, moves[r]);
+    }
+    return UR_OK;
+}
+
+/*
+ * A repair by smoothing: the moving rails smoothed with fewer
+ * and fewer B-splines until the strip between them exists everywhere (the
+ * smoothing irons out the dent or bump that caused the gap, so the
+ * displacement stays below its size), then moved only the smallest share
+ * of the way there that keeps it so (bisection).  The rails are left so
+ * placed when it works (report->everywhere).
+ */
+static ur_status repair_by_smoothing(problem *p, ur_rail_repair_report *report, ur_error *error)
+{
+    static const size_t coefficient_counts[] = {12, 8, 6, 5, 4};
+    ur_vec3 *moves[2] = {NULL, NULL};
+    ur_status status = UR_OK;
+    for (int r = 0; status == UR_OK && r < 2; r++)
+        if (p->rails[r].moves) {
+            moves[r] = ur_alloc_array(p->rails[r].count, sizeof *moves[r], error);
+            if (!moves[r])
+                status = UR_ERROR_MEMORY;
+        }
+    bool found = false;
+    size_t levels = sizeof coefficient_counts / sizeof *coefficient_counts;
+    for (size_t level = 0; status == UR_OK && !found && level < levels; level++) {
+        status = smoothing_moves(p, coefficient_counts[level], moves, error);
+        if (status == UR_OK)
+            found = share_works(p, moves, 1.0);
+    }
+    double low = 0.0, high = 1.0;
+    for (int step = 0; found && status == UR_OK && step < BISECTIONS; step++) {
+        double middle = 0.5 * (low + high);
+        if (share_works(p, moves, middle))
+            high = middle;
+        else
+            low = middle;
+        status = ur_context_check(p->context, error);
+    }
+    /*
+     * The bisection ends next to rails with no strip, where the strip is
+     * nearly singular; a little further from them, when that works too.
+     */
+    if (found && status == UR_OK && !share_works(p, moves, fmin(1.0, SHARE_MARGIN * high)))
+        share_works(p, moves, high);
+    if (found && status == UR_OK) {
+        report->everywhere = true;
+        report->smoothed = true;
+    }
+    free(moves[0]);
+    free(moves[1]);
+    return status;
+}
+
 /* ---- The whole repair --------------------------------------------------- */
 
 /* adjust.c's local repair of rail 2, when there is one, as a first guess; else NULL. */
@@ -740,13 +975,13 @@ static ur_vec3 *local_repair(const ur_vec3 *rail1, size_t count1, const ur_vec3 
  * One attempt from one first guess, in rounds that weigh the penalties ten
  * times more while the strip is not everywhere.
  */
-static ur_status attempt(problem *p, const ur_vec3 *start, bool proportional,
+static ur_status attempt(problem *p, const ur_vec3 *const starts[2], bool proportional,
                          ur_rail_repair_report *report, ur_error *error)
 {
     gsl_vector *x = gsl_vector_alloc(p->unknowns);
     if (!x)
         return ur_error_out_of_memory(error);
-    ur_status status = first_guess(p, start, proportional, x, error);
+    ur_status status = first_guess(p, starts, proportional, x, error);
     report->everywhere = false;
     p->strength = 1.0;
     for (int round = 0; status == UR_OK && round < ROUNDS && !report->everywhere; round++) {
@@ -756,7 +991,7 @@ static ur_status attempt(problem *p, const ur_vec3 *start, bool proportional,
         for (int r = 0; r < 2; r++)
             place_points(p, &p->rails[r], x);
         report->everywhere = strip_everywhere(p->rails[0].points, p->rails[0].count,
-                                              p->rails[1].points, p->rails[1].count);
+                                              p->rails[1].points, p->rails[1].count, 0.0, false);
         p->strength *= 10;
         status = ur_context_check(p->context, error);
     }
@@ -765,16 +1000,60 @@ static ur_status attempt(problem *p, const ur_vec3 *start, bool proportional,
 }
 
 /*
- * The pairing is guessed first in proportion along the rails, which lets
- * the solver straighten a fold, then as the strip on the start rails pairs
- * them where it exists, which stays near a repair of the ends.
+ * From a repair whose edge of regression comes too close to a rail (the
+ * repair only just straightened what was in the way, and the rulings crowd
+ * together on the rail), the same displacement a little larger, the
+ * smallest of STRETCHES steps of STRETCH that keeps the edge clear; else
+ * the repair as it is, told so.
  */
-static ur_status repair(problem *p, const ur_vec3 *start, ur_rail_repair_report *report,
+static ur_status clear_the_edge(problem *p, ur_rail_repair_report *report, ur_error *error)
+{
+    ur_vec3 *moves[2] = {NULL, NULL};
+    ur_status status = UR_OK;
+    for (int r = 0; status == UR_OK && r < 2; r++)
+        if (p->rails[r].moves) {
+            moves[r] = ur_alloc_array(p->rails[r].count, sizeof *moves[r], error);
+            if (!moves[r])
+                status = UR_ERROR_MEMORY;
+            for (size_t i = 0; moves[r] && i < p->rails[r].count; i++)
+                moves[r][i] = ur_vec3_sub(p->rails[r].points[i], p->rails[r].original[i]);
+        }
+    bool clear = false;
+    for (int step = 1; status == UR_OK && !clear && step <= STRETCHES; step++) {
+        clear = share_works(p, moves, 1.0 + STRETCH * step);
+        status = ur_context_check(p->context, error);
+    }
+    if (status == UR_OK && !clear) {
+        share_works(p, moves, 1.0);
+        report->edge_too_close = true;
+    }
+    free(moves[0]);
+    free(moves[1]);
+    return status;
+}
+
+/*
+ * First by smoothing, which is quick and irons out a dent or a bump; when
+ * no smoothing gives a strip everywhere, by the solver, the pairing
+ * guessed first in proportion along the rails, which lets the solver
+ * straighten a fold, then as the strip on the start rails pairs them where
+ * it exists, which stays near a repair of the ends.  A solver's repair
+ * whose edge of regression comes close to a rail (the strip would bend
+ * sharply there) is stretched until the edge is clear.
+ */
+static ur_status repair(problem *p, const ur_vec3 *local, ur_rail_repair_report *report,
                         ur_error *error)
 {
-    ur_status status = attempt(p, start, true, report, error);
+    ur_status status = repair_by_smoothing(p, report, error);
+    const ur_vec3 *starts[2] = {NULL, local};
     if (status == UR_OK && !report->everywhere)
-        status = attempt(p, start, false, report, error);
+        status = attempt(p, starts, true, report, error);
+    if (status == UR_OK && !report->everywhere)
+        status = attempt(p, starts, false, report, error);
+    if (status == UR_OK && report->everywhere &&
+        !strip_everywhere(p->rails[0].points, p->rails[0].count, p->rails[1].points,
+                          p->rails[1].count, EDGE_CLEARANCE, false))
+        status = clear_the_edge(p, report, error);
     if (status == UR_OK)
         measure(p, report);
     return status;
@@ -800,7 +1079,8 @@ static void prefer_local_repair(problem *p, const ur_vec3 *start, bool move_ends
         largest = fmax(largest, ur_vec3_distance(start[i], two->original[i]));
     if (report->everywhere && largest >= report->largest)
         return;
-    if (!strip_everywhere(p->rails[0].points, p->rails[0].count, start, two->count))
+    if (!strip_everywhere(p->rails[0].points, p->rails[0].count, start, two->count, EDGE_CLEARANCE,
+                          false))
         return;
     memcpy(two->points, start, two->count * sizeof *two->points);
     report->everywhere = true;
@@ -854,26 +1134,8 @@ static ur_status repair_rails(ur_vec3 *rail1, size_t count1, ur_vec3 *rail2, siz
     free(start);
     if (status == UR_OK && report->largest > limit)
         status = refuse_too_far(&p, options, report, limit, gaps, gap_count, error);
-    bool at_an_end = gaps[0].u_start <= ur_curve_start(strip.curve) ||
-                     gaps[gap_count - 1].u_end >= ur_curve_end(strip.curve);
-    if (status == UR_OK && !report->everywhere && at_an_end && !options->move_ends) {
-        ur_error_set(error, UR_ERROR_INPUT,
-                     "adjust: the strip is missing at an end of rail 1 (%.1f to %.1f mm along "
-                     "it): rail 2 is too short there with its ends fixed; give adjust-ends to let "
-                     "them move, or a longer rail 2",
-                     at_start_or_end(&strip, gaps, gap_count)->arc_start,
-                     at_start_or_end(&strip, gaps, gap_count)->arc_end);
-        status = ur_error_set_setting(error, "adjust adjust-ends");
-    }
-    if (status == UR_OK && !report->everywhere) {
-        char part[160];
-        describe_gaps(gaps, gap_count, part, sizeof part);
-        ur_error_set(error, UR_ERROR_INPUT,
-                     "adjust: no smooth reshaping of %s within %.3g mm gives a strip along all "
-                     "of rail 1; the strip is missing %s; change the rails' shape there",
-                     rail_names[options->rails & UR_REPAIR_BOTH], limit, part);
-        status = ur_error_set_setting(error, "adjust");
-    }
+    if (status == UR_OK && !report->everywhere)
+        status = refuse_no_repair(&strip, options, limit, gaps, gap_count, error);
     if (status == UR_OK) {
         memcpy(rail1, p.rails[0].points, count1 * sizeof *rail1);
         memcpy(rail2, p.rails[1].points, count2 * sizeof *rail2);

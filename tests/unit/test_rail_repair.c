@@ -42,17 +42,67 @@ static void arc_points(ur_vec3 *points, double r, double z, double a, double b)
     }
 }
 
-static size_t gaps_between(const ur_vec3 *rail1, const ur_vec3 *rail2)
+static size_t gaps_of(const ur_vec3 *rail1, const ur_vec3 *rail2, size_t count)
 {
     ur_curve *c1, *c2;
-    assert_int_equal(ur_curve_new_interpolating(rail1, N, false, &c1, NULL), UR_OK);
-    assert_int_equal(ur_curve_new_interpolating(rail2, N, false, &c2, NULL), UR_OK);
+    assert_int_equal(ur_curve_new_interpolating(rail1, count, false, &c1, NULL), UR_OK);
+    assert_int_equal(ur_curve_new_interpolating(rail2, count, false, &c2, NULL), UR_OK);
     ur_ruled ruled;
     assert_int_equal(ur_ruled_strip(c1, c2, &ruled, NULL), UR_OK);
     const ur_interval *gaps;
-    size_t count = ur_ruled_gaps(&ruled, &gaps);
+    size_t gap_count = ur_ruled_gaps(&ruled, &gaps);
     ur_ruled_free(&ruled);
-    return count;
+    return gap_count;
+}
+
+static size_t gaps_between(const ur_vec3 *rail1, const ur_vec3 *rail2)
+{
+    return gaps_of(rail1, rail2, N);
+}
+
+/*
+ * The smallest bend radius of the strip between the rails, from its rulings
+ * alone: at each ruling the normal's turning rate and the speed across the
+ * ruling of its ends, by central differences over neighbouring rulings.
+ * The speed across is linear along a ruling of a developable, so the
+ * smallest radius is at an end.
+ */
+static double smallest_bend_radius(const ur_vec3 *rail1, const ur_vec3 *rail2, size_t count)
+{
+    enum { RULINGS = 4000 };
+    ur_curve *c1, *c2;
+    assert_int_equal(ur_curve_new_interpolating(rail1, count, false, &c1, NULL), UR_OK);
+    assert_int_equal(ur_curve_new_interpolating(rail2, count, false, &c2, NULL), UR_OK);
+    ur_ruled ruled;
+    assert_int_equal(ur_ruled_strip(c1, c2, &ruled, NULL), UR_OK);
+    double start = ur_ruled_start(&ruled), end = ur_ruled_end(&ruled);
+    static ur_vec3 ends[RULINGS + 1][2];
+    for (int k = 0; k <= RULINGS; k++) {
+        ur_vec3 rails[4];
+        ur_ruled_rails(&ruled, start + (end - start) * k / RULINGS, rails);
+        ends[k][0] = rails[0];
+        ends[k][1] = rails[2];
+    }
+    ur_ruled_free(&ruled);
+    double smallest = INFINITY;
+    for (int k = 2; k + 2 <= RULINGS; k++) {
+        ur_vec3 normal[3], ruling = ur_vec3_sub(ends[k][1], ends[k][0]);
+        for (int j = -1; j <= 1; j++) {
+            ur_vec3 along = ur_vec3_sub(ends[k + j + 1][0], ends[k + j - 1][0]);
+            ur_vec3 n = ur_vec3_cross(along, ur_vec3_sub(ends[k + j][1], ends[k + j][0]));
+            normal[j + 1] = ur_vec3_scale(n, 1.0 / ur_vec3_length(n));
+        }
+        double turning = ur_vec3_distance(normal[2], normal[0]);
+        ur_vec3 direction = ur_vec3_scale(ruling, 1.0 / ur_vec3_length(ruling));
+        for (int e = 0; e < 2; e++) {
+            ur_vec3 step = ur_vec3_sub(ends[k + 1][e], ends[k - 1][e]);
+            ur_vec3 across = ur_vec3_add_scaled(step, direction, -ur_vec3_dot(step, direction));
+            across = ur_vec3_add_scaled(across, normal[1], -ur_vec3_dot(across, normal[1]));
+            if (turning > 0)
+                smallest = fmin(smallest, ur_vec3_length(across) / turning);
+        }
+    }
+    return smallest;
 }
 
 /*
@@ -94,6 +144,14 @@ static void test_repair_reshapes_the_wavy_rail(void **state)
     assert_int_equal(report.largest_point, where);
     if (!(largest > 0 && largest < 4))
         fail_msg("moved by %g mm, not less than the 4 mm wave", largest);
+    /*
+     * The rulings do not crowd together on rail 2: the strip bends no
+     * tighter than a hundredth of the rails' distance (45 mm and more).
+     */
+    double radius = smallest_bend_radius(rail1, rail2, N);
+    print_message("smallest bend radius %g mm\n", radius);
+    if (!(radius > 0.45))
+        fail_msg("the repaired strip bends with a radius of %g mm", radius);
 }
 
 /* A frustum's two arcs have a strip everywhere: nothing moves, whichever rail may. */
@@ -149,12 +207,119 @@ static void test_repair_refuses_what_it_cannot_do(void **state)
                      UR_ERROR_INPUT);
 }
 
+enum { ARC = 120 };
+
+/*
+ * samples/make-gap-rails.py's arc-rail1.csv and, with depth > 0, its
+ * dent-rail2.csv (a dent toward the centre in z = 40) or, with height > 0,
+ * bump-rail2.csv (a bump upward).
+ */
+static void arc_rails(ur_vec3 *rail1, ur_vec3 *rail2, double height, double depth)
+{
+    for (int i = 0; i < ARC; i++) {
+        double t = M_PI * i / (ARC - 1), middle = (t - M_PI / 2);
+        double radius = 30 - depth * exp(-(middle / 0.15) * (middle / 0.15));
+        rail1[i] = written(50 * cos(t), 50 * sin(t), 0);
+        rail2[i] = written(radius * cos(t), radius * sin(t),
+                           40 + height * exp(-(middle / 0.2) * (middle / 0.2)));
+    }
+}
+
+/* The largest residual angle of the strip between the rails, at many rulings. */
+static double largest_residual(const ur_vec3 *rail1, const ur_vec3 *rail2, size_t count)
+{
+    ur_curve *c1, *c2;
+    assert_int_equal(ur_curve_new_interpolating(rail1, count, false, &c1, NULL), UR_OK);
+    assert_int_equal(ur_curve_new_interpolating(rail2, count, false, &c2, NULL), UR_OK);
+    ur_ruled ruled;
+    assert_int_equal(ur_ruled_strip(c1, c2, &ruled, NULL), UR_OK);
+    double start = ur_ruled_start(&ruled), end = ur_ruled_end(&ruled), largest = 0;
+    for (int k = 0; k <= 1000; k++)
+        largest = fmax(largest, ur_ruled_residual(&ruled, start + (end - start) * k / 1000));
+    ur_ruled_free(&ruled);
+    return largest;
+}
+
+static double largest_move(const ur_vec3 *before, const ur_vec3 *after, size_t count)
+{
+    double largest = 0;
+    for (size_t i = 0; i < count; i++)
+        largest = fmax(largest, ur_vec3_distance(before[i], after[i]));
+    return largest;
+}
+
+/*
+ * A 6 mm bump on rail 2 leaves the strip with gaps; the repair irons it
+ * out by less than its height, and the strip is developable everywhere,
+ * not bent sharply anywhere.
+ */
+static void test_repair_irons_out_a_bump(void **state)
+{
+    (void)state;
+    static ur_vec3 rail1[ARC], rail2[ARC], before[ARC];
+    arc_rails(rail1, rail2, 6, 0);
+    memcpy(before, rail2, sizeof before);
+    assert_true(gaps_of(rail1, rail2, ARC) > 0);
+    ur_rail_repair_options options = {.rails = UR_REPAIR_RAIL2};
+    ur_rail_repair_report report;
+    ur_error error;
+    if (ur_rails_repair(rail1, ARC, rail2, ARC, &options, &report, &error) != UR_OK)
+        fail_msg("repair: %s", error.message);
+    assert_int_equal(gaps_of(rail1, rail2, ARC), 0);
+    assert_true(largest_residual(rail1, rail2, ARC) <= UR_DEVELOPABLE_RESIDUAL);
+    double largest = largest_move(before, rail2, ARC);
+    assert_relative(report.largest, largest, 1e-12);
+    if (!(largest > 0 && largest < 6))
+        fail_msg("moved by %g mm, not less than the 6 mm bump", largest);
+    assert_true(ur_vec3_distance(rail2[0], before[0]) == 0);
+    assert_true(ur_vec3_distance(rail2[ARC - 1], before[ARC - 1]) == 0);
+    double radius = smallest_bend_radius(rail1, rail2, ARC);
+    print_message("bump: moved by %g mm, smallest bend radius %g mm\n", largest, radius);
+    if (!(radius > 0.45))
+        fail_msg("the repaired strip bends with a radius of %g mm", radius);
+}
+
+/*
+ * A 2 mm dent in rail 2, which lies in z = 40: repaired with each point in
+ * its plane z = const, the rail stays in z = 40; along y only, x and z stay.
+ */
+static void test_repair_keeps_points_in_their_planes(void **state)
+{
+    (void)state;
+    static ur_vec3 rail1[ARC], rail2[ARC], before[ARC];
+    ur_vec3 up = {0, 0, 1}, sideways = {0, 1, 0};
+    ur_rail_repair_options plane = {.rails = UR_REPAIR_RAIL2, .plane_normal = &up};
+    ur_rail_repair_options direction = {.rails = UR_REPAIR_RAIL2, .direction = &sideways};
+    const ur_rail_repair_options *options[2] = {&plane, &direction};
+    for (int k = 0; k < 2; k++) {
+        arc_rails(rail1, rail2, 0, 2);
+        memcpy(before, rail2, sizeof before);
+        assert_true(gaps_of(rail1, rail2, ARC) > 0);
+        ur_rail_repair_report report;
+        ur_error error;
+        if (ur_rails_repair(rail1, ARC, rail2, ARC, options[k], &report, &error) != UR_OK)
+            fail_msg("repair: %s", error.message);
+        assert_int_equal(gaps_of(rail1, rail2, ARC), 0);
+        assert_true(largest_residual(rail1, rail2, ARC) <= UR_DEVELOPABLE_RESIDUAL);
+        double largest = largest_move(before, rail2, ARC);
+        if (!(largest > 0 && largest < 2))
+            fail_msg("moved by %g mm, not less than the 2 mm dent", largest);
+        for (int i = 0; i < ARC; i++) {
+            assert_true(fabs(rail2[i].z - 40) < 1e-12);
+            if (k == 1)
+                assert_true(fabs(rail2[i].x - before[i].x) < 1e-12);
+        }
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_repair_reshapes_the_wavy_rail),
         cmocka_unit_test(test_repair_leaves_a_good_pair_alone),
         cmocka_unit_test(test_repair_refuses_what_it_cannot_do),
+        cmocka_unit_test(test_repair_irons_out_a_bump),
+        cmocka_unit_test(test_repair_keeps_points_in_their_planes),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
