@@ -623,9 +623,10 @@ static size_t sheets_for(const ur_piece *pieces, size_t count, ur_nest_options *
  * one: where the roll search (a roll as wide as the sheet is tall) fits it
  * in a sheet's length, the sheet search puts it on one sheet, every part
  * apart (GEOS); in general on no more sheets than the roll's length
- * shows enough.  The sheet search has twice the roll's budget: it shares
- * its budget with the search over orders and the last sheet's, and the
- * machine may be slow (a sanitizer's build, other work).
+ * shows enough.  The sheet search has four times the roll's budget: it
+ * shares its budget with the search over orders and the last sheet's, and
+ * the machine may be slow (a sanitizer's build, other work: twice the
+ * budget failed under ASan with five other builds running).
  */
 static void check_sheets_at_the_roll(ur_piece *pieces, size_t count, double width, double height,
                                      double budget)
@@ -638,7 +639,7 @@ static void check_sheets_at_the_roll(ur_piece *pieces, size_t count, double widt
     assert_true(area <= width * height); /* the area bound: one sheet */
     size_t first = sheets_for(pieces, count, &o, 0);
     double roll = roll_for(pieces, count, &o, budget);
-    size_t searched = sheets_for(pieces, count, &o, 2 * budget);
+    size_t searched = sheets_for(pieces, count, &o, 4 * budget);
     print_message("%s...: first layout %zu sheets, roll %.1f mm of %g, searched %zu sheets\n",
                   pieces[0].name, first, roll, width, searched);
     assert_int_equal(first, 2); /* else the set tests nothing */
