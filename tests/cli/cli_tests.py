@@ -1252,6 +1252,32 @@ def papercraft_of_the_sample_meshes(work):
 
 
 @test
+def papercraft_nets_on_a3_in_few_pieces(work):
+    # Bounds from the meshes themselves, on A3 (420 x 297 mm) with tabs:
+    # the UV sphere (radius 50 mm, 32 segments, 16 rings) can always be cut
+    # into its 16 rings of faces, each one piece: a band opens into an arc at
+    # most 2 pi 50 = 314 mm long and 10 mm wide, a pole's fan into a disc of
+    # 10 mm radius, each within the sheet with a tab on either side; the
+    # torus (radii 60 and 20 mm, 24 x 12 planar quads) into its 24 rings of
+    # 12 quads round the tube, each a strip 2 pi 20 = 126 mm long.  Fewer
+    # than one piece per ring is what the unfolding is for; no two pieces
+    # may overlap.
+    for name, most in (("uvsphere.obj", 16), ("torus.obj", 24)):
+        mesh = os.path.join(REPO, "samples", name)
+        run(work, "mesh", mesh, "--flatten", "unfold", "--material", "paper-0.3mm",
+            "--sheet", "420x297", "--nest-time", "0", "-o", "a3.svg", "--report", "a3.json")
+        data = report(work, "a3.json")
+        check(not data["not_placed"], "%s: pieces not placed" % name)
+        check(1 <= len(data["pieces"]) <= most, "%s: %d pieces, more than %d"
+              % (name, len(data["pieces"]), most))
+        for sheet in data["sheets"]:
+            rings = outlines(os.path.join(work, os.path.basename(sheet["file"])))
+            for i in range(len(rings)):
+                for j in range(i):
+                    check(rings_apart(rings[i], rings[j]), "%s: two pieces overlap" % name)
+
+
+@test
 def unfolding_fits_the_sheet(work):
     # A 100 mm cube on a 250 x 180 mm sheet: inside the margins and with
     # room for a tab on each side, two squares side by side fit but three in
