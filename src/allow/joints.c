@@ -783,6 +783,9 @@ static ur_status set_outline(const joiner *j, ur_piece *piece, const GEOSGeometr
  */
 #define SIMPLIFY_BY_HAND 2000
 
+/* How far a grown outline is simplified: a micrometre. */
+#define SIMPLIFY_TOLERANCE 1e-3
+
 /*
  * Drops the points of a ring within a micrometre of the chord between their
  * neighbours (straight runs, wiggles) and the tips of spikes that fold back
@@ -790,7 +793,7 @@ static ur_status set_outline(const joiner *j, ur_piece *piece, const GEOSGeometr
  */
 static size_t clean_ring(ur_vec2 *ring, size_t count)
 {
-    const double tolerance = 1e-3;
+    const double tolerance = SIMPLIFY_TOLERANCE;
     size_t top = 0;
     for (size_t i = 0; i < count; i++) {
         ring[top++] = ring[i];
@@ -844,8 +847,8 @@ static GEOSGeometry *simplified(const joiner *j, GEOSGeometry *exact)
     const GEOSGeometry *shell = exact ? GEOSGetExteriorRing_r(j->geos, exact) : NULL;
     int points = shell ? GEOSGeomGetNumPoints_r(j->geos, shell) : 0;
     GEOSGeometry *simple = points > SIMPLIFY_BY_HAND ? rim_cleaned(j, exact)
-                           : exact                   ? GEOSSimplify_r(j->geos, exact, 1e-3)
-                                                     : NULL;
+                           : exact ? GEOSSimplify_r(j->geos, exact, SIMPLIFY_TOLERANCE)
+                                   : NULL;
     if (simple && (GEOSGeomTypeId_r(j->geos, simple) != GEOS_POLYGON ||
                    GEOSisValid_r(j->geos, simple) != 1)) {
         GEOSGeom_destroy_r(j->geos, simple);
@@ -947,6 +950,33 @@ static GEOSGeometry *grown_at_once(joiner *j, const allow_board *b, const GEOSGe
 }
 
 /*
+ * The outline united with one joint, as one polygon; NULL if it is not.
+ * The outline has been simplified (by up to SIMPLIFY_TOLERANCE) since the
+ * joint was placed on it, so a joint's base may lie a hair off it and
+ * the union fall apart (a torus's tab on a 5-piece net): then the joint
+ * grown by twice as much, which no cutter can tell, is tried.
+ */
+static GEOSGeometry *united_with(const joiner *j, const GEOSGeometry *grown,
+                                 const GEOSGeometry *joint)
+{
+    GEOSGeometry *pair = collection(j, grown, &joint, 1);
+    GEOSGeometry *next = united(j, pair);
+    if (pair)
+        GEOSGeom_destroy_r(j->geos, pair);
+    if (next)
+        return next;
+    GEOSGeometry *wider = GEOSBufferWithStyle_r(j->geos, joint, 2 * SIMPLIFY_TOLERANCE, 1,
+                                                GEOSBUF_CAP_FLAT, GEOSBUF_JOIN_MITRE, 2.0);
+    pair = wider ? collection(j, grown, (const GEOSGeometry *const *)&wider, 1) : NULL;
+    next = united(j, pair);
+    if (pair)
+        GEOSGeom_destroy_r(j->geos, pair);
+    if (wider)
+        GEOSGeom_destroy_r(j->geos, wider);
+    return next;
+}
+
+/*
  * Adds to grown (taken over, returned) the joints not kept yet, one at a
  * time, leaving off any that would break the outline.
  */
@@ -957,10 +987,7 @@ static GEOSGeometry *grown_one_at_a_time(joiner *j, const allow_board *b, GEOSGe
         placed_joint *p = &j->placed[allow_board_joint_tag(b, k)];
         if (p->kept)
             continue;
-        GEOSGeometry *pair = collection(j, grown, &shapes[k], 1);
-        GEOSGeometry *next = united(j, pair);
-        if (pair)
-            GEOSGeom_destroy_r(j->geos, pair);
+        GEOSGeometry *next = united_with(j, grown, shapes[k]);
         if (next && GEOSGetNumInteriorRings_r(j->geos, next) == 0) {
             GEOSGeom_destroy_r(j->geos, grown);
             grown = next;
