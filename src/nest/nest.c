@@ -361,13 +361,13 @@ static void nester_free(nester *n)
 /*
  * The size of the rooms' cells: twice the mean part's larger side, so that
  * a no-fit polygon (about two parts across) reaches a few cells and a cell
- * holds a few parts' edges.  At most a sixth of the sheet's shorter side:
+ * holds a few parts' edges.  At most a third of the sheet's shorter side:
  * parts nearly as large as the sheet (a papercraft net's) would otherwise
  * make the whole sheet one cell, whose room grows more complex with each
  * part cut out of it, and each cut costs more the more it holds (a 2,208
- * triangle sphere's 15 nets: 9.7 s of CPU, 5.5 s with a third of the side
- * as the cap; its 13 nets: 5.1 s with a third, 4.8 s with a sixth, the
- * same layout, and no less with a tenth).
+ * triangle sphere's 15 nets: 9.7 s of CPU, 5.5 s with this cap).  A sixth
+ * saved that sphere's 13 nets a few per cent but cost test_nest's large
+ * parts a third more.
  */
 static double cell_size_of(const ur_nest_options *options, const ur_piece *pieces, size_t count)
 {
@@ -375,7 +375,7 @@ static double cell_size_of(const ur_nest_options *options, const ur_piece *piece
     for (size_t k = 0; k < count; k++)
         sum += fmax(ur_box_width(pieces[k].box), ur_box_height(pieces[k].box)) + options->spacing;
     double size = count ? 2 * sum / (double)count : 0;
-    double most = fmin(options->sheet_width, options->sheet_height) / 6;
+    double most = fmin(options->sheet_width, options->sheet_height) / 3;
     if (most > 0 && size > most)
         size = most;
     return size > 0 && isfinite(size) ? size : 1.0;
