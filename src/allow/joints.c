@@ -8,7 +8,9 @@
  *
  * Tabs: one per straight stretch of the seam, which on a folded mesh is
  * one per edge, since the tab on each edge is glued under a different
- * face of the other piece and must fold on its own line.  A tab is a
+ * face of the other piece and must fold on its own line; on a fine mesh,
+ * where each edge is too short for a tab, one tab spans the edges of a
+ * nearly straight stretch (NEARLY_STRAIGHT_SHARE).  A tab is a
  * trapezoid on its stretch, tapered at the tab angle from its base, so
  * that the tabs of neighbouring edges leave a notch between them down to
  * the seam's corner and fold apart.  On thick stock its first `thickness`
@@ -653,10 +655,52 @@ static bool stretch_straight(const joiner *j, const seam_job *sj, size_t first, 
 }
 
 /*
+ * How far a stretch of short edges may stray from its chord and still
+ * carry one tab, as a share of the tab depth: on a fine mesh (a sphere's
+ * 1 mm edges) no single edge is long enough for a tab, and the few
+ * faces a tab then lies under turn so little from one another that the
+ * paper follows them (a 15 mm stretch of a 60 mm sphere's seam strays
+ * 0.5 mm, this share of a 6 mm tab).
+ */
+#define NEARLY_STRAIGHT_SHARE 0.1
+
+/* The length of side 0's edges [first, first + count). */
+static double stretch_length(const seam_job *sj, size_t first, size_t count)
+{
+    double length = 0;
+    for (size_t i = first; i < first + count; i++)
+        length += ur_vec2_distance(sj->runs[0].points[i], sj->runs[0].points[i + 1]);
+    return length;
+}
+
+/* Whether a stretch is too short for a full tab (its tapered sides would meet). */
+static bool too_short_for_a_tab(const joiner *j, const seam_job *sj, size_t first, size_t count)
+{
+    const ur_joint_options *o = j->options;
+    if (o->tab_angle >= 90.0)
+        return false;
+    double inset = (band_of(o) + o->tab_depth) / tan(o->tab_angle * M_PI / 180.0);
+    return 2 * inset > 0.8 * stretch_length(sj, first, count); /* as joint_shape steepens */
+}
+
+/* Whether side 0's edges [first, first + count) and side 1's stray less than tolerance. */
+static bool within(const joiner *j, const seam_job *sj, size_t first, size_t count,
+                   double tolerance)
+{
+    const ur_net *net = &j->nets->nets[sj->s->net[0]];
+    size_t other_first = sj->edges[1] - first - count;
+    return straight_2d(sj->runs[0].points + first, count + 1, tolerance) &&
+           straight_2d(sj->runs[1].points + other_first, count + 1, tolerance) &&
+           (!net->outline_3d ||
+            straight_3d(net, net->seam_sides[sj->s->side[0]].first + first, count + 1, tolerance));
+}
+
+/*
  * The seam cut into stretches: for tabs, its straight stretches (on a
  * folded mesh each edge, unless neighbouring edges run on in a straight
- * line on both pieces and in space); for laps, all of it, or each half of
- * a closed loop.
+ * line on both pieces and in space), and a stretch too short for a tab
+ * taken on over the next edges while it stays nearly straight; for laps,
+ * all of it, or each half of a closed loop.
  */
 static ur_status find_stretches(const joiner *j, const seam_job *sj, stretch **out, size_t *count,
                                 ur_error *error)
@@ -684,6 +728,9 @@ static ur_status find_stretches(const joiner *j, const seam_job *sj, stretch **o
     for (size_t first = 0; first < m;) {
         size_t length = 1;
         while (first + length < m && stretch_straight(j, sj, first, length + 1))
+            length++;
+        while (first + length < m && too_short_for_a_tab(j, sj, first, length) &&
+               within(j, sj, first, length + 1, NEARLY_STRAIGHT_SHARE * j->options->tab_depth))
             length++;
         (*out)[(*count)++] = (stretch){first, length};
         first += length;
@@ -787,6 +834,9 @@ static ur_status set_outline(const joiner *j, ur_piece *piece, const GEOSGeometr
  */
 #define SIMPLIFY_BY_HAND 2000
 
+/* How far a grown outline is simplified: a micrometre. */
+#define SIMPLIFY_TOLERANCE 1e-3
+
 /*
  * Drops the points of a ring within a micrometre of the chord between their
  * neighbours (straight runs, wiggles) and the tips of spikes that fold back
@@ -794,7 +844,7 @@ static ur_status set_outline(const joiner *j, ur_piece *piece, const GEOSGeometr
  */
 static size_t clean_ring(ur_vec2 *ring, size_t count)
 {
-    const double tolerance = 1e-3;
+    const double tolerance = SIMPLIFY_TOLERANCE;
     size_t top = 0;
     for (size_t i = 0; i < count; i++) {
         ring[top++] = ring[i];
@@ -848,8 +898,8 @@ static GEOSGeometry *simplified(const joiner *j, GEOSGeometry *exact)
     const GEOSGeometry *shell = exact ? GEOSGetExteriorRing_r(j->geos, exact) : NULL;
     int points = shell ? GEOSGeomGetNumPoints_r(j->geos, shell) : 0;
     GEOSGeometry *simple = points > SIMPLIFY_BY_HAND ? rim_cleaned(j, exact)
-                           : exact                   ? GEOSSimplify_r(j->geos, exact, 1e-3)
-                                                     : NULL;
+                           : exact ? GEOSSimplify_r(j->geos, exact, SIMPLIFY_TOLERANCE)
+                                   : NULL;
     if (simple && (GEOSGeomTypeId_r(j->geos, simple) != GEOS_POLYGON ||
                    GEOSisValid_r(j->geos, simple) != 1)) {
         GEOSGeom_destroy_r(j->geos, simple);
@@ -951,6 +1001,33 @@ static GEOSGeometry *grown_at_once(joiner *j, const allow_board *b, const GEOSGe
 }
 
 /*
+ * The outline united with one joint, as one polygon; NULL if it is not.
+ * The outline has been simplified (by up to SIMPLIFY_TOLERANCE) since the
+ * joint was placed on it, so a joint's base may lie a hair off it and
+ * the union fall apart (a torus's tab on a 5-piece net): then the joint
+ * grown by twice as much, which no cutter can tell, is tried.
+ */
+static GEOSGeometry *united_with(const joiner *j, const GEOSGeometry *grown,
+                                 const GEOSGeometry *joint)
+{
+    GEOSGeometry *pair = collection(j, grown, &joint, 1);
+    GEOSGeometry *next = united(j, pair);
+    if (pair)
+        GEOSGeom_destroy_r(j->geos, pair);
+    if (next)
+        return next;
+    GEOSGeometry *wider = GEOSBufferWithStyle_r(j->geos, joint, 2 * SIMPLIFY_TOLERANCE, 1,
+                                                GEOSBUF_CAP_FLAT, GEOSBUF_JOIN_MITRE, 2.0);
+    pair = wider ? collection(j, grown, (const GEOSGeometry *const *)&wider, 1) : NULL;
+    next = united(j, pair);
+    if (pair)
+        GEOSGeom_destroy_r(j->geos, pair);
+    if (wider)
+        GEOSGeom_destroy_r(j->geos, wider);
+    return next;
+}
+
+/*
  * Adds to grown (taken over, returned) the joints not kept yet, one at a
  * time, leaving off any that would break the outline.
  */
@@ -961,10 +1038,7 @@ static GEOSGeometry *grown_one_at_a_time(joiner *j, const allow_board *b, GEOSGe
         placed_joint *p = &j->placed[allow_board_joint_tag(b, k)];
         if (p->kept)
             continue;
-        GEOSGeometry *pair = collection(j, grown, &shapes[k], 1);
-        GEOSGeometry *next = united(j, pair);
-        if (pair)
-            GEOSGeom_destroy_r(j->geos, pair);
+        GEOSGeometry *next = united_with(j, grown, shapes[k]);
         if (next && GEOSGetNumInteriorRings_r(j->geos, next) == 0) {
             GEOSGeom_destroy_r(j->geos, grown);
             grown = next;

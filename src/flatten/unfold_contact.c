@@ -66,18 +66,30 @@ static double squared_segment_distance(ur_vec2 p, ur_vec2 a, ur_vec2 b)
     return ur_vec2_dot(e, e);
 }
 
-/* Whether p is within eps of the counter-clockwise triangle q (or inside it). */
+/*
+ * Whether p is within eps of the counter-clockwise triangle q (or inside
+ * it).  A point more than eps outside the line of an edge is further than
+ * eps from the whole triangle, which lies on the line's inner side: most
+ * points a join asks about are, and need no distance to a segment.
+ */
 static bool near_triangle(ur_vec2 p, const ur_vec2 q[3], double eps)
 {
     bool inside = true;
     for (int k = 0; k < 3; k++) {
-        ur_vec2 a = q[k], b = q[(k + 1) % 3];
-        if (ur_vec2_cross(ur_vec2_sub(b, a), ur_vec2_sub(p, a)) < 0)
+        ur_vec2 a = q[k], d = ur_vec2_sub(q[(k + 1) % 3], a);
+        double cross = ur_vec2_cross(d, ur_vec2_sub(p, a));
+        if (cross < 0) {
+            if (cross * cross > eps * eps * ur_vec2_dot(d, d))
+                return false;
             inside = false;
-        if (squared_segment_distance(p, a, b) <= eps * eps)
-            return true;
+        }
     }
-    return inside;
+    if (inside)
+        return true;
+    for (int k = 0; k < 3; k++)
+        if (squared_segment_distance(p, q[k], q[(k + 1) % 3]) <= eps * eps)
+            return true;
+    return false;
 }
 
 unfold_contact unfold_triangle_contact(const ur_vec2 t[3], const ur_vec2 q[3], double eps)
@@ -111,12 +123,16 @@ double unfold_edge_gap(ur_vec2 a, ur_vec2 b, ur_vec2 c, ur_vec2 d, ur_vec2 *on_a
     ur_vec2 nearest[4] = {nearest_on_segment(a, c, d), nearest_on_segment(b, c, d),
                           nearest_on_segment(c, a, b), nearest_on_segment(d, a, b)};
     int best = 0;
-    for (int k = 1; k < 4; k++)
-        if (ur_vec2_distance(ends[k], nearest[k]) < ur_vec2_distance(ends[best], nearest[best]))
+    double squared[4];
+    for (int k = 0; k < 4; k++) {
+        ur_vec2 e = ur_vec2_sub(ends[k], nearest[k]);
+        squared[k] = ur_vec2_dot(e, e);
+        if (squared[k] < squared[best])
             best = k;
+    }
     *on_ab = best < 2 ? ends[best] : nearest[best];
     *on_cd = best < 2 ? nearest[best] : ends[best];
-    return ur_vec2_distance(ends[best], nearest[best]);
+    return sqrt(squared[best]);
 }
 
 bool unfold_point_near_triangle(ur_vec2 p, const ur_vec2 q[3], double eps)

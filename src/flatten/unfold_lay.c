@@ -254,6 +254,17 @@ static double edge_gap(const unfolder *u, ur_vec2 a, ur_vec2 b, ur_vec2 c, ur_ve
 }
 
 /*
+ * Whether the boxes of edges ab and cd come within gap of each other: if
+ * not, neither do the edges, nor the wedge between them (most pairs of
+ * edges a join looks at).
+ */
+static bool boxes_within(ur_vec2 a, ur_vec2 b, ur_vec2 c, ur_vec2 d, double gap)
+{
+    return fmin(c.x, d.x) - fmax(a.x, b.x) < gap && fmin(a.x, b.x) - fmax(c.x, d.x) < gap &&
+           fmin(c.y, d.y) - fmax(a.y, b.y) < gap && fmin(a.y, b.y) - fmax(c.y, d.y) < gap;
+}
+
+/*
  * Whether outline edges ab (of the moved small piece) and cd (of the large
  * one) come closer than the gap with the outside between them: a slit.
  * Where the middle of the shortest way between them is on a piece, it is
@@ -265,7 +276,7 @@ static bool slit_between(unfolder *u, const unfold_motion *m, size_t small, size
 {
     ur_vec2 on_ab, on_cd;
     double gap = u->options.min_gap;
-    if (!(edge_gap(u, a, b, c, d, &on_ab, &on_cd) < gap))
+    if (!boxes_within(a, b, c, d, gap) || !(edge_gap(u, a, b, c, d, &on_ab, &on_cd) < gap))
         return false;
     ur_vec2 middle = ur_vec2_scale(ur_vec2_add(on_ab, on_cd), 0.5);
     return !covered(u, large, NULL, middle, u->eps) && !covered(u, small, m, middle, u->eps);

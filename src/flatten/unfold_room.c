@@ -79,9 +79,16 @@ bool unfold_hull_fits(const unfolder *u, const ur_vec2 *hull, size_t count)
 {
     if (!u->room)
         return true;
-    double length, width;
-    unfold_hull_size(hull, count, &length, &width);
     double room_length = fmax(u->options.room_length, u->options.room_width);
     double room_width = fmin(u->options.room_length, u->options.room_width);
+    /*
+     * A hull whose box's diagonal is within the room's width fits in any
+     * direction (most joins of small pieces): no rectangle to look for.
+     */
+    ur_box box = ur_box_of_points(hull, count);
+    if (count > 0 && hypot(ur_box_width(box), ur_box_height(box)) <= room_width)
+        return true;
+    double length, width;
+    unfold_hull_size(hull, count, &length, &width);
     return length <= room_length && width <= room_width;
 }

@@ -508,25 +508,82 @@ static size_t vertices(GEOSContextHandle_t geos, const GEOSGeometry *polygon, ur
     return size - 1;
 }
 
-/* The convex hull of a + (-b) for two convex polygons. */
+static int compare_points(const void *a, const void *b)
+{
+    const ur_vec2 *p = a, *q = b;
+    if (p->x != q->x)
+        return p->x < q->x ? -1 : 1;
+    return (p->y > q->y) - (p->y < q->y);
+}
+
+static double turn_of(ur_vec2 o, ur_vec2 a, ur_vec2 b)
+{
+    return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
+}
+
+/*
+ * The convex hull of points (sorted in place), counter-clockwise and
+ * without collinear points, into hull (room for count + 1); its count.
+ * Andrew's monotone chain.
+ */
+static size_t hull_of(ur_vec2 *points, size_t count, ur_vec2 *hull)
+{
+    qsort(points, count, sizeof *points, compare_points);
+    size_t k = 0;
+    for (size_t i = 0; i < count; i++) {
+        while (k >= 2 && turn_of(hull[k - 2], hull[k - 1], points[i]) <= 0)
+            k--;
+        hull[k++] = points[i];
+    }
+    for (size_t i = count - 1, lower = k + 1; i-- > 0;) {
+        while (k >= lower && turn_of(hull[k - 2], hull[k - 1], points[i]) <= 0)
+            k--;
+        hull[k++] = points[i];
+    }
+    return k > 0 ? k - 1 : 0; /* the first point came again */
+}
+
+/* A closed ring of points as a GEOS polygon; NULL on failure. */
+static GEOSGeometry *polygon_of(GEOSContextHandle_t geos, const ur_vec2 *points, size_t count)
+{
+    GEOSCoordSequence *sequence = GEOSCoordSeq_create_r(geos, (unsigned)count + 1, 2);
+    if (!sequence)
+        return NULL;
+    for (size_t i = 0; i <= count; i++)
+        GEOSCoordSeq_setXY_r(geos, sequence, (unsigned)i, points[i % count].x, points[i % count].y);
+    GEOSGeometry *ring = GEOSGeom_createLinearRing_r(geos, sequence);
+    return ring ? GEOSGeom_createPolygon_r(geos, ring, NULL, 0) : NULL;
+}
+
+/*
+ * The convex hull of a + (-b) for two convex polygons: the hull of the
+ * sums of their vertices, made here (GEOS's hull of the same points took
+ * an eighth of a papercraft sphere's nesting).  NULL when it has no
+ * area, and when memory ran out (then *out_of_memory is set).
+ */
 static GEOSGeometry *convex_sum(GEOSContextHandle_t geos, const GEOSGeometry *a,
                                 const GEOSGeometry *b, bool *out_of_memory)
 {
     ur_vec2 *pa, *pb;
     size_t na = vertices(geos, a, &pa, out_of_memory), nb = vertices(geos, b, &pb, out_of_memory);
-    GEOSCoordSequence *sequence =
-        na && nb ? GEOSCoordSeq_create_r(geos, (unsigned)(na * nb), 2) : NULL;
-    for (size_t i = 0; sequence && i < na; i++)
-        for (size_t j = 0; j < nb; j++)
-            GEOSCoordSeq_setXY_r(geos, sequence, (unsigned)(i * nb + j), pa[i].x - pb[j].x,
-                                 pa[i].y - pb[j].y);
+    ur_vec2 *sums = na && nb ? malloc((2 * na * nb + 1) * sizeof *sums) : NULL;
+    if (na && nb && !sums)
+        *out_of_memory = true;
+    GEOSGeometry *polygon = NULL;
+    if (sums) {
+        for (size_t i = 0; i < na; i++)
+            for (size_t j = 0; j < nb; j++)
+                sums[i * nb + j] = ur_vec2_make(pa[i].x - pb[j].x, pa[i].y - pb[j].y);
+        size_t count = hull_of(sums, na * nb, sums + na * nb);
+        if (count >= 3) {
+            polygon = polygon_of(geos, sums + na * nb, count);
+            *out_of_memory = *out_of_memory || !polygon; /* GEOS could not allocate it */
+        }
+    }
+    free(sums);
     free(pa);
     free(pb);
-    GEOSGeometry *cloud = sequence ? GEOSGeom_createLineString_r(geos, sequence) : NULL;
-    GEOSGeometry *hull = cloud ? GEOSConvexHull_r(geos, cloud) : NULL;
-    if (cloud)
-        GEOSGeom_destroy_r(geos, cloud);
-    return hull;
+    return polygon;
 }
 
 GEOSGeometry *nest_sums(GEOSContextHandle_t geos, const nest_shape *a, const nest_shape *b,
@@ -541,12 +598,11 @@ GEOSGeometry *nest_sums(GEOSContextHandle_t geos, const nest_shape *a, const nes
     bool failed = false; /* a sum left out would let pieces overlap: none or all */
     for (size_t i = 0; !failed && i < a->convex_count; i++)
         for (size_t j = 0; !failed && j < b->convex_count; j++) {
+            /* NULL also for a sum with no area (two parts' edges in line): nothing to add */
             GEOSGeometry *sum = convex_sum(geos, a->convex[i], b->convex[j], out_of_memory);
-            failed = !sum;
-            if (sum && GEOSGeomTypeId_r(geos, sum) == GEOS_POLYGON)
+            failed = *out_of_memory;
+            if (sum)
                 sums[made++] = sum;
-            else if (sum)
-                GEOSGeom_destroy_r(geos, sum);
         }
     GEOSGeometry *collection =
         failed ? NULL

@@ -1299,6 +1299,67 @@ def papercraft_of_the_sample_meshes(work):
 
 
 @test
+def papercraft_nets_on_a3_in_few_pieces(work):
+    # Bounds from the meshes themselves, on A3 (420 x 297 mm) with tabs:
+    # the UV sphere (radius 50 mm, 32 segments, 16 rings) can always be cut
+    # into its 16 rings of faces, each one piece: a band opens into an arc at
+    # most 2 pi 50 = 314 mm long and 10 mm wide, a pole's fan into a disc of
+    # 10 mm radius, each within the sheet with a tab on either side; the
+    # torus (radii 60 and 20 mm, 24 x 12 planar quads) into its 24 rings of
+    # 12 quads round the tube, each a strip 2 pi 20 = 126 mm long.  Fewer
+    # than one piece per ring is what the unfolding is for; no two pieces
+    # may overlap.
+    for name, most in (("uvsphere.obj", 16), ("torus.obj", 24)):
+        mesh = os.path.join(REPO, "samples", name)
+        run(work, "mesh", mesh, "--flatten", "unfold", "--material", "paper-0.3mm",
+            "--sheet", "420x297", "--nest-time", "0", "-o", "a3.svg", "--report", "a3.json")
+        data = report(work, "a3.json")
+        check(not data["not_placed"], "%s: pieces not placed" % name)
+        check(1 <= len(data["pieces"]) <= most, "%s: %d pieces, more than %d"
+              % (name, len(data["pieces"]), most))
+        for sheet in data["sheets"]:
+            rings = outlines(os.path.join(work, os.path.basename(sheet["file"])))
+            for i in range(len(rings)):
+                for j in range(i):
+                    check(rings_apart(rings[i], rings[j]), "%s: two pieces overlap" % name)
+
+
+@test
+def one_tab_spans_short_edges(work):
+    # An open tube (radius 25 mm, 64 quads round, two rings of 20 mm) whose
+    # rings are two groups: the seam between them is 64 edges of 2.45 mm,
+    # each too short for a 6 mm tab at 45 degrees (which needs 15 mm).  It
+    # unrolls straight on both pieces, and in space a run of k edges strays
+    # 25 (1 - cos(k pi / 64)) mm from its chord: 0.48 mm for 4 edges, 0.75
+    # for 5, so at a tenth of the tab depth (0.6 mm) one tab spans 4 edges
+    # (9.8 mm, enough for a full-depth tab with steeper sides): 16 tabs.
+    n, r = 64, 25.0
+    lines = []
+    for k in range(3):
+        for i in range(n):
+            a = 2 * math.pi * i / n
+            lines.append("v %.9f %.9f %.9f" % (r * math.cos(a), r * math.sin(a), 20.0 * k))
+    for k, group in ((0, "lower"), (1, "upper")):
+        lines.append("g " + group)
+        for i in range(n):
+            a, b = k * n + i + 1, k * n + (i + 1) % n + 1
+            lines.append("f %d %d %d %d" % (a, b, b + n, a + n))
+    write(work, "tube.obj", "\n".join(lines) + "\n")
+    run(work, "mesh", "tube.obj", "--flatten", "unfold", "--material", "paper-0.3mm",
+        "--nest-time", "0", "-o", "t.svg", "--report", "t.json")
+    data = report(work, "t.json")
+    check(len(data["pieces"]) == 2, "%d pieces, not the two rings" % len(data["pieces"]))
+    joints = [a for piece in data["pieces"] for a in piece["allowances"] if a["kind"] == "joint"]
+    check(not any(a["warning"] for a in joints), "a seam edge without a tab")
+    ring = [a for a in joints if a["count"] > 1]
+    check(len(ring) == 1, "%d seams with several tabs" % len(ring))
+    check(ring[0]["count"] == 16 and ring[0]["reason"].endswith("up to 6 mm deep"),
+          ring[0]["reason"])
+    rings = outlines(os.path.join(work, "t.svg"))
+    check(len(rings) == 2 and rings_apart(rings[0], rings[1]), "the two pieces overlap")
+
+
+@test
 def unfolding_fits_the_sheet(work):
     # A 100 mm cube on a 250 x 180 mm sheet: inside the margins and with
     # room for a tab on each side, two squares side by side fit but three in

@@ -98,12 +98,6 @@ static ur_material material;
 
 typedef void (*job_maker)(ur_job *job, const char *directory, char *output, char *report);
 
-static void ignore_warning(void *user, const char *message)
-{
-    (void)user;
-    (void)message;
-}
-
 /* A paper drum, its seam given a glue tab and labels, nested, as SVG with a report. */
 static void cylinder_with_tabs(ur_job *job, const char *directory, char *output, char *report)
 {
@@ -224,12 +218,11 @@ static ur_status run_failing(job_maker make, ur_context *context, const char *di
     job.quiet = true;
     job.nest_time = 0; /* no search: the same allocations every run */
     job.threads = 1;
-    ur_job_callbacks callbacks = {NULL, ignore_warning, NULL, NULL};
     ur_job_result result;
     error->status = UR_OK;
     atomic_store(&allocations, 0);
     atomic_store(&failing, fail_at);
-    ur_status status = ur_job_run(&job, &callbacks, &result, error);
+    ur_status status = ur_job_run(&job, NULL, &result, error);
     atomic_store(&failing, 0);
     return status;
 }
