@@ -619,6 +619,47 @@ static size_t sheets_for(const ur_piece *pieces, size_t count, ur_nest_options *
 }
 
 /*
+ * A band 230 x 120 mm with a disc of radius 60 on its long side near one
+ * end, as a cylinder's side and cap unfold: the least area any turned box
+ * of it has, found by trying every hundredth of a degree, is what
+ * ur_outline_level_size gives, about 240 x 240 mm.  The narrowest box
+ * (GEOS's MinimumRotatedRectangle before 3.12) is 234 x 312 mm, too long
+ * for a 250 mm square room the smallest box fits; so was a Blender
+ * cylinder's net on A3.
+ */
+static void test_level_box_is_the_smallest(void **state)
+{
+    (void)state;
+    enum { ARC = 64 };
+    ur_vec2 outline[4 + ARC];
+    size_t count = 0;
+    outline[count++] = ur_vec2_make(0, 0);
+    outline[count++] = ur_vec2_make(230, 0);
+    outline[count++] = ur_vec2_make(230, 120);
+    for (size_t k = 0; k < ARC; k++) { /* round the disc from where it touches the band */
+        double t = -M_PI / 2 + 2 * M_PI * (double)k / ARC;
+        outline[count++] = ur_vec2_make(50 + 60 * cos(t), 180 + 60 * sin(t));
+    }
+    outline[count++] = ur_vec2_make(0, 120);
+    double least = INFINITY;
+    for (int step = 0; step < 18000; step++) {
+        double a = step * M_PI / 18000, c = cos(a), s = sin(a);
+        ur_box box = ur_box_empty();
+        for (size_t k = 0; k < count; k++)
+            ur_box_add(&box, ur_vec2_make(c * outline[k].x - s * outline[k].y,
+                                          s * outline[k].x + c * outline[k].y));
+        least = fmin(least, ur_box_width(box) * ur_box_height(box));
+    }
+    double length, width;
+    ur_error error;
+    assert_int_equal(ur_outline_level_size(outline, count, &length, &width, &error), UR_OK);
+    print_message("level box %.2f x %.2f = %.0f mm2, least by search %.0f mm2\n", length, width,
+                  length * width, least);
+    assert_true(length * width <= least * (1 + 1e-6) + 1e-6);
+    assert_true(length >= width && length <= 250);
+}
+
+/*
  * A set that the first layout puts on two sheets though its area fits
  * one: where the roll search (a roll as wide as the sheet is tall) fits it
  * in a sheet's length, the sheet search puts it on one sheet, every part
@@ -769,6 +810,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_rectangles_tile_one_sheet),
+        cmocka_unit_test(test_level_box_is_the_smallest),
         cmocka_unit_test(test_part_goes_in_a_hole),
         cmocka_unit_test(test_search_keeps_every_part),
         cmocka_unit_test(test_l_shapes_interlock),
