@@ -918,19 +918,23 @@ static GEOSGeometry *united(const joiner *j, GEOSGeometry *all)
     return simplified(j, all ? GEOSUnaryUnion_r(j->geos, all) : NULL);
 }
 
-/* The collection of the polygon and the shapes (cloned), or NULL. */
+/* The collection of the polygon and the shapes (cloned), or NULL (*out_of_memory when so). */
 static GEOSGeometry *collection(const joiner *j, const GEOSGeometry *outline,
-                                const GEOSGeometry *const *shapes, size_t count)
+                                const GEOSGeometry *const *shapes, size_t count,
+                                bool *out_of_memory)
 {
     GEOSGeometry **parts = calloc(count + 1, sizeof *parts);
-    if (!parts)
+    if (!parts) {
+        *out_of_memory = true;
         return NULL;
+    }
     bool failed = false;
     for (size_t k = 0; k <= count && !failed; k++)
         failed = !(parts[k] = GEOSGeom_clone_r(j->geos, k == 0 ? outline : shapes[k - 1]));
     GEOSGeometry *all = failed ? NULL
                                : GEOSGeom_createCollection_r(j->geos, GEOS_GEOMETRYCOLLECTION,
                                                              parts, (unsigned)(count + 1));
+    *out_of_memory = !all; /* GEOS fails to copy or collect only for want of memory */
     if (!all)
         for (size_t k = 0; k <= count; k++)
             if (parts[k])
@@ -974,12 +978,13 @@ static bool on_grown(const joiner *j, const GEOSPreparedGeometry *grown, const G
  * hair long), the part holding the outline is kept and the joints off it
  * are left off: one union for the piece, where adding them one at a time
  * cost one union per joint (a 100,000-face sphere: 935 unions of a
- * 40,000-point outline).  NULL when even that fails.
+ * 40,000-point outline).  NULL when even that fails, or when memory ran
+ * out (*out_of_memory: then the joints must not be left off).
  */
 static GEOSGeometry *grown_at_once(joiner *j, const allow_board *b, const GEOSGeometry *outline,
-                                   const GEOSGeometry **shapes, size_t count)
+                                   const GEOSGeometry **shapes, size_t count, bool *out_of_memory)
 {
-    GEOSGeometry *all = collection(j, outline, shapes, count);
+    GEOSGeometry *all = collection(j, outline, shapes, count, out_of_memory);
     GEOSGeometry *exact = all ? GEOSUnaryUnion_r(j->geos, all) : NULL;
     if (all)
         GEOSGeom_destroy_r(j->geos, all);
@@ -1008,17 +1013,18 @@ static GEOSGeometry *grown_at_once(joiner *j, const allow_board *b, const GEOSGe
  * grown by twice as much, which no cutter can tell, is tried.
  */
 static GEOSGeometry *united_with(const joiner *j, const GEOSGeometry *grown,
-                                 const GEOSGeometry *joint)
+                                 const GEOSGeometry *joint, bool *out_of_memory)
 {
-    GEOSGeometry *pair = collection(j, grown, &joint, 1);
+    GEOSGeometry *pair = collection(j, grown, &joint, 1, out_of_memory);
     GEOSGeometry *next = united(j, pair);
     if (pair)
         GEOSGeom_destroy_r(j->geos, pair);
-    if (next)
+    if (next || *out_of_memory)
         return next;
     GEOSGeometry *wider = GEOSBufferWithStyle_r(j->geos, joint, 2 * SIMPLIFY_TOLERANCE, 1,
                                                 GEOSBUF_CAP_FLAT, GEOSBUF_JOIN_MITRE, 2.0);
-    pair = wider ? collection(j, grown, (const GEOSGeometry *const *)&wider, 1) : NULL;
+    pair =
+        wider ? collection(j, grown, (const GEOSGeometry *const *)&wider, 1, out_of_memory) : NULL;
     next = united(j, pair);
     if (pair)
         GEOSGeom_destroy_r(j->geos, pair);
@@ -1029,16 +1035,18 @@ static GEOSGeometry *united_with(const joiner *j, const GEOSGeometry *grown,
 
 /*
  * Adds to grown (taken over, returned) the joints not kept yet, one at a
- * time, leaving off any that would break the outline.
+ * time, leaving off any that would break the outline; stops when memory
+ * runs out (*out_of_memory).
  */
 static GEOSGeometry *grown_one_at_a_time(joiner *j, const allow_board *b, GEOSGeometry *grown,
-                                         const GEOSGeometry **shapes, size_t count)
+                                         const GEOSGeometry **shapes, size_t count,
+                                         bool *out_of_memory)
 {
-    for (size_t k = 0; k < count; k++) {
+    for (size_t k = 0; k < count && !*out_of_memory; k++) {
         placed_joint *p = &j->placed[allow_board_joint_tag(b, k)];
         if (p->kept)
             continue;
-        GEOSGeometry *next = united_with(j, grown, shapes[k]);
+        GEOSGeometry *next = united_with(j, grown, shapes[k], out_of_memory);
         if (next && GEOSGetNumInteriorRings_r(j->geos, next) == 0) {
             GEOSGeom_destroy_r(j->geos, grown);
             grown = next;
@@ -1075,13 +1083,20 @@ static ur_status grow_piece(joiner *j, size_t index, ur_error *error)
     }
     for (size_t k = 0; k < count; k++)
         shapes[k] = j->placed[allow_board_joint_tag(b, k)].shape;
-    GEOSGeometry *grown = grown_at_once(j, b, outline, shapes, count);
+    bool out_of_memory = false;
+    GEOSGeometry *grown = grown_at_once(j, b, outline, shapes, count, &out_of_memory);
+    if (out_of_memory) {
+        GEOSGeom_destroy_r(j->geos, outline);
+        free(shapes);
+        return ur_error_out_of_memory(error);
+    }
     if (!grown) {
         grown = outline;
         outline = NULL;
     }
-    grown = grown_one_at_a_time(j, b, grown, shapes, count);
-    ur_status status = set_outline(j, piece, grown, error);
+    grown = grown_one_at_a_time(j, b, grown, shapes, count, &out_of_memory);
+    ur_status status =
+        out_of_memory ? ur_error_out_of_memory(error) : set_outline(j, piece, grown, error);
     GEOSGeom_destroy_r(j->geos, grown);
     if (outline)
         GEOSGeom_destroy_r(j->geos, outline);
