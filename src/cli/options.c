@@ -146,7 +146,7 @@ int cli_parse_job(int argc, char **argv, cli_action action, const char *command,
         return EXIT_USAGE;
     ur_error error;
     if (ur_job_check(job, &error) != UR_OK) {
-        cli_message("%s", error.message);
+        cli_error(NULL, &error);
         return EXIT_USAGE;
     }
     return 0;

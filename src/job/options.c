@@ -146,19 +146,28 @@ ur_status ur_job_check(const ur_job *job, ur_error *error)
     const char *command = job->command ? job->command : job->surface ? job->surface : "job";
     bool mesh = job->surface && strcmp(job->surface, "mesh") == 0;
     bool charts = mesh && job->flatten < 0 && !job->unfold;
-    if (!isnan(job->max_strain) && !job->strips && !charts)
-        return ur_error_set(error, UR_ERROR_INPUT,
-                            "%s: max-strain goes with flatten strips or charts", command);
-    if (adjusting(job) && !job->adjust_rails)
-        return ur_error_set(error, UR_ERROR_INPUT,
-                            "%s: adjust-direction, adjust-plane, adjust-ends, adjust-max and "
-                            "adjusted-rail go with adjust (or adjust-rail2)",
-                            command);
-    if (job->has_adjust_direction && job->has_adjust_plane)
-        return ur_error_set(error, UR_ERROR_INPUT,
-                            "%s: give adjust-direction or adjust-plane, not both", command);
-    if (job->adjusted_rail1_path && !(job->adjust_rails & UR_REPAIR_RAIL1))
-        return ur_error_set(error, UR_ERROR_INPUT,
-                            "%s: adjusted-rail1 goes with adjust rail1 or both", command);
+    if (!isnan(job->max_strain) && !job->strips && !charts) {
+        ur_error_set(error, UR_ERROR_INPUT, "%s: max-strain goes with flatten strips or charts",
+                     command);
+        return ur_error_set_setting(error, "max-strain flatten");
+    }
+    if (adjusting(job) && !job->adjust_rails) {
+        ur_error_set(error, UR_ERROR_INPUT,
+                     "%s: adjust-direction, adjust-plane, adjust-ends, adjust-max and "
+                     "adjusted-rail go with adjust (or adjust-rail2)",
+                     command);
+        return ur_error_set_setting(error, "adjust-direction adjust-plane adjust-ends adjust-max "
+                                           "adjusted-rail adjust adjust-rail2");
+    }
+    if (job->has_adjust_direction && job->has_adjust_plane) {
+        ur_error_set(error, UR_ERROR_INPUT, "%s: give adjust-direction or adjust-plane, not both",
+                     command);
+        return ur_error_set_setting(error, "adjust-direction adjust-plane");
+    }
+    if (job->adjusted_rail1_path && !(job->adjust_rails & UR_REPAIR_RAIL1)) {
+        ur_error_set(error, UR_ERROR_INPUT, "%s: adjusted-rail1 goes with adjust rail1 or both",
+                     command);
+        return ur_error_set_setting(error, "adjusted-rail1 adjust");
+    }
     return UR_OK;
 }

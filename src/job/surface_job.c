@@ -11,6 +11,9 @@
 ur_status ur_job_surface(const ur_job *job, const ur_job_callbacks *callbacks, ur_ruled *ruled,
                          ur_error *error)
 {
+    ur_status status = ur_job_check(job, error);
+    if (status != UR_OK)
+        return status;
     job_run run = job_run_make(job, callbacks, error);
     return job_build_surface(&run, ruled, NULL);
 }
@@ -36,9 +39,12 @@ static ur_status curves(const job_run *run, ur_ruled *ruled, const job_adjusted_
 ur_status ur_job_surface_with_curves(const ur_job *job, const ur_job_callbacks *callbacks,
                                      ur_ruled *ruled, ur_error *error)
 {
+    ur_status status = ur_job_check(job, error);
+    if (status != UR_OK)
+        return status;
     job_run run = job_run_make(job, callbacks, error);
     job_adjusted_rail adjusted = {.rails = {NULL, NULL}};
-    ur_status status = job_build_surface(&run, ruled, &adjusted);
+    status = job_build_surface(&run, ruled, &adjusted);
     if (status == UR_OK) {
         status = curves(&run, ruled, &adjusted);
         if (status != UR_OK)

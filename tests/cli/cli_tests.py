@@ -792,7 +792,7 @@ def adjust_reshapes_a_wavy_rail(work):
         "low.csv", "--rail2", "late.csv", "--adjust", "rail3", "-o", "x.svg")
     bad(work, r"--adjust-plane: '0,0,0' must not be zero", "strip", "--rail1", "low.csv", "--rail2",
         "late.csv", "--adjust", "rail2", "--adjust-plane", "0,0,0", "-o", "x.svg")
-    bad(work, r"strip: give adjust-direction or adjust-plane, not both", "strip", "--rail1", "low.csv", "--rail2", "late.csv", "--adjust",
+    bad(work, r"strip: give --adjust-direction or --adjust-plane, not both", "strip", "--rail1", "low.csv", "--rail2", "late.csv", "--adjust",
         "rail2", "--adjust-plane", "0,0,1", "--adjust-direction", "0,0,1", "-o", "x.svg")
     bad(work, r"adjust-max and adjusted-rail go with adjust \(or adjust-rail2\)", "strip", "--rail1", "low.csv", "--rail2", "late.csv",
         "--adjust-max", "3", "-o", "x.svg")
@@ -908,7 +908,7 @@ def strips_keep_the_strain_within_the_material(work):
         "--max-strain", "0.00001", "-o", "x.svg", "--quiet")
     bad(work, r"--max-strain: '2' is not a fraction between 0 and 1", "hypar", "--corners", HYPAR, "--flatten",
         "strips", "--max-strain", "2", "-o", "x.svg")
-    bad(work, r"hypar: max-strain goes with flatten strips or charts", "hypar", "--corners", HYPAR,
+    bad(work, r"hypar: --max-strain goes with --flatten strips or charts", "hypar", "--corners", HYPAR,
         "--max-strain", "0.01", "-o", "x.svg")
 
 

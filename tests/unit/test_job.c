@@ -431,6 +431,17 @@ static void test_errors_name_their_setting(void **state)
     assert_string_equal(error.setting, "radius");
     assert_null(strstr(error.message, "--"));
 
+    /* Settings that do not go together: both named, for the surface alone too. */
+    job_init(&job, "hypar");
+    job.max_strain = 0.01; /* for flatten strips or charts only */
+    job.output_path = output;
+    assert_int_equal(run_failing(&job, &error, directory), UR_ERROR_INPUT);
+    assert_string_equal(error.setting, "max-strain flatten");
+    assert_null(strstr(error.message, "--"));
+    ur_ruled ruled;
+    assert_int_equal(ur_job_surface(&job, NULL, &ruled, &error), UR_ERROR_INPUT);
+    assert_string_equal(error.setting, "max-strain flatten");
+
     /* No stale setting: an error about no setting has none. */
     assert_int_equal(ur_error_set(&error, UR_ERROR_INPUT, "no file"), UR_ERROR_INPUT);
     assert_string_equal(error.setting, "");
