@@ -25,6 +25,8 @@
  */
 #include "nest_internal.h"
 
+#include "../geom/hull.h"
+
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -508,41 +510,6 @@ static size_t vertices(GEOSContextHandle_t geos, const GEOSGeometry *polygon, ur
     return size - 1;
 }
 
-static int compare_points(const void *a, const void *b)
-{
-    const ur_vec2 *p = a, *q = b;
-    if (p->x != q->x)
-        return p->x < q->x ? -1 : 1;
-    return (p->y > q->y) - (p->y < q->y);
-}
-
-static double turn_of(ur_vec2 o, ur_vec2 a, ur_vec2 b)
-{
-    return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
-}
-
-/*
- * The convex hull of points (sorted in place), counter-clockwise and
- * without collinear points, into hull (room for count + 1); its count.
- * Andrew's monotone chain.
- */
-static size_t hull_of(ur_vec2 *points, size_t count, ur_vec2 *hull)
-{
-    qsort(points, count, sizeof *points, compare_points);
-    size_t k = 0;
-    for (size_t i = 0; i < count; i++) {
-        while (k >= 2 && turn_of(hull[k - 2], hull[k - 1], points[i]) <= 0)
-            k--;
-        hull[k++] = points[i];
-    }
-    for (size_t i = count - 1, lower = k + 1; i-- > 0;) {
-        while (k >= lower && turn_of(hull[k - 2], hull[k - 1], points[i]) <= 0)
-            k--;
-        hull[k++] = points[i];
-    }
-    return k > 0 ? k - 1 : 0; /* the first point came again */
-}
-
 /* A closed ring of points as a GEOS polygon; NULL on failure. */
 static GEOSGeometry *polygon_of(GEOSContextHandle_t geos, const ur_vec2 *points, size_t count)
 {
@@ -574,7 +541,7 @@ static GEOSGeometry *convex_sum(GEOSContextHandle_t geos, const GEOSGeometry *a,
         for (size_t i = 0; i < na; i++)
             for (size_t j = 0; j < nb; j++)
                 sums[i * nb + j] = ur_vec2_make(pa[i].x - pb[j].x, pa[i].y - pb[j].y);
-        size_t count = hull_of(sums, na * nb, sums + na * nb);
+        size_t count = geom_convex_hull(sums, na * nb, sums + na * nb);
         if (count >= 3) {
             polygon = polygon_of(geos, sums + na * nb, count);
             *out_of_memory = *out_of_memory || !polygon; /* GEOS could not allocate it */
