@@ -642,16 +642,22 @@ static bool straight_3d(const ur_net *net, size_t first, size_t count, double to
     return true;
 }
 
-/* Whether side 0's edges [first, first + count) and the same edges of side 1 are straight. */
-static bool stretch_straight(const joiner *j, const seam_job *sj, size_t first, size_t count)
+/* Whether side 0's edges [first, first + count) and side 1's stray less than tolerance. */
+static bool within(const joiner *j, const seam_job *sj, size_t first, size_t count,
+                   double tolerance)
 {
-    double tolerance = STRAIGHT_SHARE * j->options->tab_depth;
     const ur_net *net = &j->nets->nets[sj->s->net[0]];
     size_t other_first = sj->edges[1] - first - count;
     return straight_2d(sj->runs[0].points + first, count + 1, tolerance) &&
            straight_2d(sj->runs[1].points + other_first, count + 1, tolerance) &&
            (!net->outline_3d ||
             straight_3d(net, net->seam_sides[sj->s->side[0]].first + first, count + 1, tolerance));
+}
+
+/* Whether side 0's edges [first, first + count) and the same edges of side 1 are straight. */
+static bool stretch_straight(const joiner *j, const seam_job *sj, size_t first, size_t count)
+{
+    return within(j, sj, first, count, STRAIGHT_SHARE * j->options->tab_depth);
 }
 
 /*
@@ -681,18 +687,6 @@ static bool too_short_for_a_tab(const joiner *j, const seam_job *sj, size_t firs
         return false;
     double inset = (band_of(o) + o->tab_depth) / tan(o->tab_angle * M_PI / 180.0);
     return 2 * inset > 0.8 * stretch_length(sj, first, count); /* as joint_shape steepens */
-}
-
-/* Whether side 0's edges [first, first + count) and side 1's stray less than tolerance. */
-static bool within(const joiner *j, const seam_job *sj, size_t first, size_t count,
-                   double tolerance)
-{
-    const ur_net *net = &j->nets->nets[sj->s->net[0]];
-    size_t other_first = sj->edges[1] - first - count;
-    return straight_2d(sj->runs[0].points + first, count + 1, tolerance) &&
-           straight_2d(sj->runs[1].points + other_first, count + 1, tolerance) &&
-           (!net->outline_3d ||
-            straight_3d(net, net->seam_sides[sj->s->side[0]].first + first, count + 1, tolerance));
 }
 
 /*
