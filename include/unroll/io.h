@@ -308,6 +308,27 @@ UR_API ur_status ur_mesh_import_buffer(const char *name, const void *data, size_
                                 const ur_mesh_import_options *options, ur_mesh *mesh,
                                 char (**group_names)[64], ur_error *error);
 
+/*
+ * Which axis of a mesh file's coordinates points up, for drawings of the
+ * model (the assembly guide): UR_UP_Y for glTF (.gltf, .glb: +y up by its
+ * specification) and for an OBJ file Blender wrote (its first comment
+ * lines start "# Blender"; its OBJ export is +y up unless told otherwise),
+ * UR_UP_Z for every other file (CAD programs, STL files, Blender's STL
+ * export).  A guess from the writer, never from the shape: a file exported
+ * with another axis up needs to be told.  ur_mesh_up_axis reads the name's
+ * extension and size bytes of the file's start (head, which may be NULL);
+ * ur_mesh_file_up_axis reads the start of the file at path (UR_UP_Z when
+ * it cannot).  Never UR_UP_AUTO.
+ */
+typedef enum ur_up_axis {
+    UR_UP_AUTO = 0, /* not decided: guess it from the file */
+    UR_UP_Z,
+    UR_UP_Y
+} ur_up_axis;
+
+UR_API ur_up_axis ur_mesh_up_axis(const char *name, const void *head, size_t size);
+UR_API ur_up_axis ur_mesh_file_up_axis(const char *path);
+
 /* ---- Job files ---------------------------------------------------------- */
 
 /*

@@ -95,7 +95,7 @@ typedef struct ur_job {
     size_t iterations;           /* 0: the default */
     const char *strain_png_path; /* the strain preview; NULL for none */
     const char *assembly_path;   /* the assembly guide (.png or .pdf); NULL for none */
-    bool assembly_y_up;          /* the model's up is +y, not +z */
+    ur_up_axis assembly_up;      /* the model's up; UR_UP_AUTO (default): the file's guess */
     /* analyze and compare (the command's other actions) */
     const char *png_path, *csv_path;
     /* output */

@@ -26,7 +26,7 @@ static const char usage[] =
     "                        a mesh, arap for a surface)\n"
     "  --iterations N --max-strain S --strain-png FILE.png\n"
     "  --assembly FILE.png|pdf  the assembly guide: the mesh from four sides, pieces\n"
-    "                         coloured and named, seam labels (--assembly-up y|z)\n"
+    "                         coloured and named, seam labels (--assembly-up auto|y|z)\n"
     "study a surface (SURFACE and its options as above, no -o):\n"
     "  analyze SURFACE ... [--png FILE.png] [--report FILE.json]\n"
     "  compare SURFACE ... [--csv FILE.csv] [--png FILE.png]\n"
@@ -155,7 +155,8 @@ static const struct {
              "  --iterations N         most ARAP iterations; --strain-png FILE.png the strain\n"
              "  --assembly FILE.png|pdf  where each piece goes: the mesh from four sides,\n"
              "                         pieces coloured and named, seam labels where they lie;\n"
-             "                         --assembly-up y for a mesh with Y up (default z)\n"},
+             "                         --assembly-up y|z: the axis up (default auto: y for\n"
+             "                         glTF and Blender's OBJ, z otherwise)\n"},
     {"job", "unroll job FILE.xml [-o DIR] [--quiet]\n"
             "  Runs a job file: machine, material, options, parts (any surface, with a\n"
             "  quantity) nested together, and the outputs; -o DIR overrides its directory.\n"

@@ -448,6 +448,23 @@ ur_status job_merge_lines(const job_run *run, const ur_layout *layout, ur_piece 
 static ur_status write_outputs(const job_run *run, job_state *state, ur_error *error);
 
 /*
+ * Whether the guide draws the model +y up: as asked, or as the mesh file's
+ * writer suggests (a note says so when that is +y, the less usual).
+ */
+static bool assembly_y_up(const job_run *run)
+{
+    if (run->job.assembly_up != UR_UP_AUTO || !run->job.mesh_path)
+        return run->job.assembly_up == UR_UP_Y;
+    bool y_up = ur_mesh_file_up_axis(run->job.mesh_path) == UR_UP_Y;
+    if (y_up && !run->job.quiet)
+        job_note_about(run, "assembly-up",
+                       "%s: the assembly guide stands the model +y up, as %s was written "
+                       "(assembly-up z stands it +z up)",
+                       run->job.command, run->job.mesh_path);
+    return y_up;
+}
+
+/*
  * The assembly guide: the nets' faces, named as the cut pieces are (a job
  * file's prefix included), under the model's name.
  */
@@ -464,10 +481,8 @@ static ur_status write_assembly(const job_run *run, const job_state *state, ur_e
         const char *slash = strrchr(run->job.mesh_path, '/');
         title = slash ? slash + 1 : run->job.mesh_path;
     }
-    ur_assembly_options options = {.title = title,
-                                   .names = names,
-                                   .y_up = run->job.assembly_y_up,
-                                   .context = run->job.context};
+    ur_assembly_options options = {
+        .title = title, .names = names, .y_up = assembly_y_up(run), .context = run->job.context};
     ur_status status = ur_assembly_write(&state->nets, run->job.assembly_path, &options, error);
     if (status != UR_OK) {
         ur_error_prefix(error, "assembly %s: ", run->job.assembly_path);

@@ -259,10 +259,15 @@ static ur_status set_assembly(ur_job *job, const char *value, ur_error *error)
 
 static ur_status set_assembly_up(ur_job *job, const char *value, ur_error *error)
 {
-    if (strcmp(value, "y") != 0 && strcmp(value, "z") != 0)
-        return ur_error_set(error, UR_ERROR_INPUT, "'%s' is not y or z (the axis that points up)",
-                            value);
-    job->assembly_y_up = strcmp(value, "y") == 0;
+    if (strcmp(value, "auto") == 0)
+        job->assembly_up = UR_UP_AUTO;
+    else if (strcmp(value, "y") == 0)
+        job->assembly_up = UR_UP_Y;
+    else if (strcmp(value, "z") == 0)
+        job->assembly_up = UR_UP_Z;
+    else
+        return ur_error_set(error, UR_ERROR_INPUT,
+                            "'%s' is not auto, y or z (the axis that points up)", value);
     return UR_OK;
 }
 

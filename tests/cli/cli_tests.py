@@ -1033,8 +1033,63 @@ def assembly_guide_shows_each_piece_in_its_colour(work):
         "--assembly", "guide.svg")
     bad(work, r"--assembly is for meshes", "cylinder", "--radius", "20", "--height", "30",
         "-o", "c.svg", "--assembly", "c.png", "--quiet")
-    bad(work, r"--assembly-up: 'x' is not y or z", *common, "-o", "z.svg", "--assembly",
+    bad(work, r"--assembly-up: 'x' is not auto, y or z", *common, "-o", "z.svg", "--assembly",
         "g.png", "--assembly-up", "x")
+
+
+def coloured_box(width, height, rows, left, top, right, bottom):
+    """The box (width, height) round the clearly coloured pixels in a part of
+    a picture (fractions of its size)."""
+    xs, ys = [], []
+    for y in range(int(top * height), int(bottom * height), 2):
+        row = rows[y]
+        for x in range(int(left * width), int(right * width), 2):
+            r, g, b = row[3 * x], row[3 * x + 1], row[3 * x + 2]
+            if max(r, g, b) - min(r, g, b) >= 40:
+                xs.append(x)
+                ys.append(y)
+    check(xs, "nothing coloured in the view")
+    return max(xs) - min(xs), max(ys) - min(ys)
+
+
+@test
+def assembly_guide_stands_a_blender_obj_up(work):
+    """--assembly-up auto (the default) stands a mesh +y up when Blender
+    wrote it as OBJ (its export's axis; it says so on its first line), and
+    says so; +z up for any other OBJ.  A box 60 mm tall along +y, written
+    with Blender's first line: in every view of the guide it stands taller
+    than wide, as with --assembly-up y; with --assembly-up z it lies down."""
+    corners = [(x, y, z) for x in (0, 20) for y in (0, 60) for z in (0, 20)]
+    quads = [(1, 2, 4, 3), (5, 7, 8, 6), (1, 5, 6, 2), (3, 4, 8, 7), (1, 3, 7, 5), (2, 6, 8, 4)]
+    body = "".join("v %g %g %g\n" % c for c in corners) + "".join(
+        "f %d %d %d %d\n" % q for q in quads)
+    for name, head in (("blender.obj", "# Blender v3.4.1 OBJ File: ''\n# www.blender.org\n"),
+                       ("other.obj", "# a box\n")):
+        with open(os.path.join(work, name), "w") as f:
+            f.write(head + body)
+    common = ["--flatten", "unfold", "--material", "paper-0.3mm", "--allowances", "none"]
+
+    def guide(mesh, png, *more):
+        result = run(work, "mesh", mesh, *common, "-o", png + ".svg", "--assembly", png, *more)
+        return result.stderr, open(os.path.join(work, png), "rb").read()
+
+    said, auto = guide("blender.obj", "auto.png")
+    check(re.search(r"assembly guide stands the model \+y up, as blender\.obj was written "
+                    r"\(--assembly-up z", said), "no note: " + said)
+    check(guide("blender.obj", "y.png", "--assembly-up", "y")[1] == auto,
+          "auto is not y for Blender's OBJ")
+    said, lying = guide("blender.obj", "z.png", "--assembly-up", "z")
+    check("+y up" not in said and lying != auto, "--assembly-up z: " + said)
+    said, other = guide("other.obj", "other.png")
+    check("+y up" not in said, "another OBJ is not +z up: " + said)
+    views = ((0.0, 0.08, 0.5, 0.53), (0.5, 0.08, 1.0, 0.53), (0.0, 0.53, 0.5, 0.98),
+             (0.5, 0.53, 1.0, 0.98))
+    for png, standing in (("auto.png", True), ("z.png", False), ("other.png", False)):
+        pixels = png_pixels(work, os.path.join(work, png))
+        for view in views:
+            wide, tall = coloured_box(*pixels, *view)
+            check((tall > 1.3 * wide) == standing,
+                  "%s: a view %d wide and %d tall" % (png, wide, tall))
 
 
 @test

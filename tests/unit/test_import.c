@@ -578,6 +578,31 @@ static void test_bad_index_and_options(void **state)
     }
 }
 
+/* The up axis is the writer's: glTF's by its specification, Blender's OBJ export's, else +z. */
+static void test_up_axis_from_the_writer(void **state)
+{
+    (void)state;
+    const char legacy[] = "# Blender v3.4.1 OBJ File: ''\n# www.blender.org\nv 0 0 0\n";
+    const char current[] = "# Blender 4.0.2\n# www.blender.org\nmtllib x.mtl\n";
+    const char plain[] = "# written by hand\nv 0 0 0\n";
+    const char later[] = "v 0 0 0\n# Blender 4.0.2\n"; /* not a first comment line */
+    const char stl[] = "solid Exported from Blender-3.4.1\n";
+    assert_int_equal(ur_mesh_up_axis("m.obj", legacy, sizeof legacy - 1), UR_UP_Y);
+    assert_int_equal(ur_mesh_up_axis("M.OBJ", current, sizeof current - 1), UR_UP_Y);
+    assert_int_equal(ur_mesh_up_axis("m.obj", plain, sizeof plain - 1), UR_UP_Z);
+    assert_int_equal(ur_mesh_up_axis("m.obj", later, sizeof later - 1), UR_UP_Z);
+    assert_int_equal(ur_mesh_up_axis("m.obj", legacy, 5), UR_UP_Z); /* cut before the name */
+    assert_int_equal(ur_mesh_up_axis("m.obj", NULL, 0), UR_UP_Z);
+    assert_int_equal(ur_mesh_up_axis("m.stl", stl, sizeof stl - 1), UR_UP_Z);
+    assert_int_equal(ur_mesh_up_axis("scene.gltf", NULL, 0), UR_UP_Y);
+    assert_int_equal(ur_mesh_up_axis("scene.glb", NULL, 0), UR_UP_Y);
+    assert_int_equal(ur_mesh_up_axis("part.ply", NULL, 0), UR_UP_Z);
+    /* From a file: the project's own samples are +z up; a file Blender wrote is read. */
+    assert_int_equal(ur_mesh_file_up_axis("samples/lampshade.obj"), UR_UP_Z);
+    assert_int_equal(ur_mesh_file_up_axis(write_file("blender.obj", legacy)), UR_UP_Y);
+    assert_int_equal(ur_mesh_file_up_axis("no/such/file.obj"), UR_UP_Z);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -600,6 +625,7 @@ int main(void)
         cmocka_unit_test(test_headers_claiming_too_much),
         cmocka_unit_test(test_ply_header_checked),
         cmocka_unit_test(test_bad_index_and_options),
+        cmocka_unit_test(test_up_axis_from_the_writer),
     };
     return cmocka_run_group_tests(tests, make_directory, remove_directory);
 }

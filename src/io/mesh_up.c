@@ -1,0 +1,61 @@
+/*
+ * mesh_up.c: which axis of a mesh file points up, guessed from what wrote
+ * it, for drawings of the model (the assembly guide).
+ *
+ * A mesh file does not say which way is up, but its format or its writer
+ * often does: glTF is +y up by its specification, and Blender writes OBJ
+ * files +y up unless told otherwise (and says so in the comment it puts on
+ * the first line).  Everything else is taken as +z up, as CAD programs,
+ * STL files (Blender's STL export included) and this project's samples are.
+ */
+#include "unroll/io.h"
+
+#include <stdio.h>
+#include <string.h>
+#include <strings.h>
+
+/* Enough of a file's start for the comment lines a writer puts there. */
+#define HEAD_SIZE 1024
+
+static bool has_extension(const char *name, const char *extension)
+{
+    const char *dot = name ? strrchr(name, '.') : NULL;
+    return dot && !strchr(dot, '/') && strcasecmp(dot + 1, extension) == 0;
+}
+
+/* Whether the OBJ's leading comment lines name Blender (its exporter writes "# Blender ..."). */
+static bool obj_written_by_blender(const char *head, size_t size)
+{
+    size_t at = 0;
+    while (at < size && head[at] == '#') {
+        size_t end = at;
+        while (end < size && head[end] != '\n')
+            end++;
+        /* "# Blender v3.4.1 OBJ File" (the legacy exporter) or "# Blender 4.0.2". */
+        if (end - at >= 9 && strncmp(head + at, "# Blender", 9) == 0)
+            return true;
+        at = end + 1;
+    }
+    return false;
+}
+
+ur_up_axis ur_mesh_up_axis(const char *name, const void *head, size_t size)
+{
+    if (has_extension(name, "gltf") || has_extension(name, "glb"))
+        return UR_UP_Y;
+    if (has_extension(name, "obj") && head && obj_written_by_blender(head, size))
+        return UR_UP_Y;
+    return UR_UP_Z;
+}
+
+ur_up_axis ur_mesh_file_up_axis(const char *path)
+{
+    char head[HEAD_SIZE];
+    size_t size = 0;
+    FILE *file = has_extension(path, "obj") ? fopen(path, "rb") : NULL;
+    if (file) {
+        size = fread(head, 1, sizeof head, file);
+        fclose(file);
+    }
+    return ur_mesh_up_axis(path, size ? head : NULL, size);
+}
