@@ -1360,12 +1360,40 @@ static ur_status engrave_label(allow_room *room, const ur_piece *piece, const ur
     return status;
 }
 
-/* The rooms for labels, one per piece, opened when first needed. */
+/* A label that found no room on its piece beside its seam, to try again on its tab. */
+typedef struct unplaced_label {
+    size_t piece;
+    int seam, side; /* side: -1 for the piece's name */
+    ur_vec2 where;
+} unplaced_label;
+
+/* The rooms for labels, one per piece, opened when first needed; the labels left over. */
 typedef struct rooms {
     allow_room **of;
     ur_piece *pieces;
     size_t count;
+    unplaced_label *unplaced;
+    size_t unplaced_count;
 } rooms;
+
+static ur_status leave_for_tabs(rooms *r, size_t piece, int seam, int side, ur_vec2 where,
+                                ur_error *error)
+{
+    unplaced_label *grown = realloc(r->unplaced, (r->unplaced_count + 1) * sizeof *grown);
+    if (!grown)
+        return ur_error_out_of_memory(error);
+    r->unplaced = grown;
+    r->unplaced[r->unplaced_count++] = (unplaced_label){piece, seam, side, where};
+    return UR_OK;
+}
+
+static void rooms_close(rooms *r)
+{
+    for (size_t n = 0; r->of && n < r->count; n++) {
+        allow_room_close(r->of[n]);
+        r->of[n] = NULL;
+    }
+}
 
 static ur_status room_of(rooms *r, size_t piece, allow_room **room, ur_error *error)
 {
@@ -1379,7 +1407,7 @@ static ur_status room_of(rooms *r, size_t piece, allow_room **room, ur_error *er
 }
 
 static ur_status label_side(const joiner *j, rooms *r, size_t piece_index, const run *seam_run,
-                            const char *text, ur_error *error)
+                            int seam, int side, const char *text, ur_error *error)
 {
     const ur_joint_options *o = j->options;
     ur_piece *piece = &j->pieces[piece_index];
@@ -1399,15 +1427,16 @@ static ur_status label_side(const joiner *j, rooms *r, size_t piece_index, const
         status = engrave_label(room, piece, o->font, text, near, direction_at(seam_run, segment),
                                o->label_height, clearance, reach, &placed, error);
     if (status == UR_OK && !placed)
-        status = record(piece, UR_ALLOWANCE_LABEL, middle, 0, true, error,
-                        "no room for label %s beside its seam", text);
+        status = leave_for_tabs(r, piece_index, seam, side, middle, error);
     return status;
 }
 
 /*
  * Both sides of a seam get its label.  Labels go on before the joints, so
- * that they are placed within the net's own outline and never on a tab
- * (which is glued out of sight).
+ * that they are placed within the net's own outline where they stay in
+ * sight; one with no room there goes on its side's tab once the tabs are
+ * on (label_on_tabs), where it still tells the maker which edge the tab
+ * goes under, as Blender's paper model numbers its tabs.
  */
 static ur_status label_seam(const joiner *j, rooms *r, const seam_sides *s, int seam,
                             ur_error *error)
@@ -1420,7 +1449,7 @@ static ur_status label_seam(const joiner *j, rooms *r, const seam_sides *s, int 
         run seam_run = {0};
         status = run_of(net, &net->seam_sides[s->side[k]], &seam_run, error);
         if (status == UR_OK)
-            status = label_side(j, r, s->net[k], &seam_run, label, error);
+            status = label_side(j, r, s->net[k], &seam_run, seam, k, label, error);
         free(seam_run.points);
     }
     return status;
@@ -1440,8 +1469,65 @@ static ur_status name_piece(const joiner *j, rooms *r, size_t index, ur_error *e
                                o->label_height, fmax(0.3, 0.15 * o->label_height), INFINITY,
                                &placed, error);
     if (status == UR_OK && !placed)
-        status = record(piece, UR_ALLOWANCE_LABEL, centre, 0, true, error,
-                        "no room to engrave the piece's name %s", piece->name);
+        status = leave_for_tabs(r, index, 0, -1, centre, error);
+    return status;
+}
+
+/*
+ * Tries a label left over on the piece's tabs: those of its seam side, or
+ * (the piece's name) any, each from the middle of its top half.
+ */
+static ur_status label_on_a_tab(const joiner *j, allow_room *room, const unplaced_label *u,
+                                const char *text, bool *placed, ur_error *error)
+{
+    const ur_joint_options *o = j->options;
+    ur_status status = UR_OK;
+    *placed = false;
+    for (size_t k = 0; status == UR_OK && !*placed && k < j->placed_count; k++) {
+        const placed_joint *p = &j->placed[k];
+        if (!p->kept || p->piece != u->piece ||
+            (u->side >= 0 && (p->seam != u->seam || p->side != u->side)))
+            continue;
+        size_t segment;
+        ur_vec2 middle = point_at(&p->base, p->base.length / 2, &segment);
+        ur_vec2 outward = segment_normal(&p->base, segment);
+        ur_vec2 near = ur_vec2_add_scaled(middle, outward, band_of(o) + 0.5 * p->depth);
+        status = engrave_label(room, &j->pieces[u->piece], o->font, text, near,
+                               direction_at(&p->base, segment), o->label_height,
+                               fmax(0.2, 0.1 * o->label_height), 0.5 * (p->base.length + p->depth),
+                               placed, error);
+    }
+    return status;
+}
+
+/*
+ * The labels that found no room beside their seams, on their tabs now
+ * that the outlines have grown by them; a warning for each that still
+ * finds none.
+ */
+static ur_status label_on_tabs(const joiner *j, rooms *r, ur_error *error)
+{
+    ur_status status = UR_OK;
+    for (size_t k = 0; status == UR_OK && k < r->unplaced_count; k++) {
+        const unplaced_label *u = &r->unplaced[k];
+        ur_piece *piece = &j->pieces[u->piece];
+        char text[16];
+        if (u->side >= 0)
+            ur_seam_label(u->seam, text, sizeof text);
+        allow_room *room;
+        bool placed = false;
+        status = room_of(r, u->piece, &room, error);
+        if (status == UR_OK && !j->options->lap)
+            status = label_on_a_tab(j, room, u, u->side >= 0 ? text : piece->name, &placed, error);
+        if (status != UR_OK || placed)
+            continue;
+        if (u->side >= 0)
+            status = record(piece, UR_ALLOWANCE_LABEL, u->where, 0, true, error,
+                            "no room for label %s beside its seam or on a tab", text);
+        else
+            status = record(piece, UR_ALLOWANCE_LABEL, u->where, 0, true, error,
+                            "no room to engrave the piece's name %s", piece->name);
+    }
     return status;
 }
 
@@ -1467,23 +1553,19 @@ static ur_status gather_seams(const ur_net_list *nets, seam_sides **seams, int *
     return UR_OK;
 }
 
-static ur_status add_labels(joiner *j, const seam_sides *seams, int last, ur_error *error)
+static ur_status add_labels(joiner *j, rooms *r, const seam_sides *seams, int last, ur_error *error)
 {
-    rooms r = {calloc(j->nets->count + 1, sizeof(allow_room *)), j->pieces, j->nets->count};
-    if (!r.of)
-        return ur_error_out_of_memory(error);
     ur_status status = UR_OK;
     for (int seam = 1; status == UR_OK && seam <= last; seam++)
         if (seams[seam].found == 2) {
             status = ur_context_check(j->options->context, error);
             if (status == UR_OK)
-                status = label_seam(j, &r, &seams[seam], seam, error);
+                status = label_seam(j, r, &seams[seam], seam, error);
         }
     for (size_t n = 0; status == UR_OK && j->options->name_pieces && n < j->nets->count; n++)
-        status = name_piece(j, &r, n, error);
-    for (size_t n = 0; n < r.count; n++)
-        allow_room_close(r.of[n]);
-    free(r.of);
+        status = name_piece(j, r, n, error);
+    /* The tabs change the pieces: rooms are opened again for what is left. */
+    rooms_close(r);
     return status;
 }
 
@@ -1544,6 +1626,7 @@ ur_status ur_pieces_add_joints(ur_piece *pieces, const ur_net_list *nets,
                                 pieces[n].name);
     seam_sides *seams = NULL;
     int last = 0;
+    rooms r = {calloc(nets->count + 1, sizeof(allow_room *)), pieces, nets->count, NULL, 0};
     joiner j = {.geos = GEOS_init_r(),
                 .pieces = pieces,
                 .nets = nets,
@@ -1551,14 +1634,19 @@ ur_status ur_pieces_add_joints(ur_piece *pieces, const ur_net_list *nets,
                 .boards = calloc(nets->count + 1, sizeof(allow_board *)),
                 .tab_count = calloc(nets->count + 1, sizeof(size_t)),
                 .gap = fmax(0.2, 0.5 * options->thickness)};
-    if (!j.geos || !j.boards || !j.tab_count)
+    if (!j.geos || !j.boards || !j.tab_count || !r.of)
         status = ur_error_out_of_memory(error);
     if (status == UR_OK)
         status = gather_seams(nets, &seams, &last, error);
     if (status == UR_OK && options->font)
-        status = add_labels(&j, seams, last, error);
+        status = add_labels(&j, &r, seams, last, error);
     if (status == UR_OK)
         status = add_all_joints(&j, seams, last, error);
+    if (status == UR_OK && options->font)
+        status = label_on_tabs(&j, &r, error);
+    rooms_close(&r);
+    free(r.of);
+    free(r.unplaced);
     free(seams);
     joiner_free(&j);
     return status;

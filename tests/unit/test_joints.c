@@ -528,6 +528,76 @@ static void test_every_seam_joined(void **state)
     ur_font_close(font);
 }
 
+/* Whether every engraved point of the piece lies inside ring and none inside net's outline. */
+static bool engraved_on(const ur_piece *piece, const GEOSGeometry *ring, const ur_net *net)
+{
+    GEOSGeometry *outline = polygon(net->outline, net->outline_count);
+    bool on = false, off = false;
+    for (size_t k = 0; k < piece->path_count; k++) {
+        const ur_path *path = &piece->paths[k];
+        for (size_t i = 0; path->op == UR_OP_ENGRAVE && i < path->count; i++) {
+            GEOSGeometry *point =
+                GEOSGeom_createPointFromXY_r(geos, path->points[i].x, path->points[i].y);
+            on = on || GEOSContains_r(geos, ring, point) == 1;
+            off = off || GEOSContains_r(geos, ring, point) != 1 ||
+                  GEOSContains_r(geos, outline, point) == 1;
+            GEOSGeom_destroy_r(geos, point);
+        }
+    }
+    GEOSGeom_destroy_r(geos, outline);
+    return on && !off;
+}
+
+/*
+ * A strip 3 mm wide seamed along its 40 mm side to a 40 mm square: a 5 mm
+ * label (2.5 mm at the least, 0.75 mm clear of the edges) has no room on
+ * the strip, so it goes on the strip's tab, 12 mm deep; the square keeps
+ * its label beside the seam.  Without the tab (laps, which are not
+ * labelled over) the strip's label is a warning as before.
+ */
+static void test_label_goes_on_the_tab(void **state)
+{
+    (void)state;
+    static const ur_vec2 strip[] = {{0, 0}, {40, 0}, {40, 3}, {0, 3}};
+    static const ur_vec2 square_grid[] = {{0, 3}, {40, 3}, {40, 43}, {0, 43}};
+    ur_vec2 square_flat[4];
+    for (size_t i = 0; i < 4; i++)
+        square_flat[i] = ur_vec2_add(square_grid[i], ur_vec2_make(100, 0));
+    ur_font *font;
+    ur_error error;
+    assert_int_equal(ur_font_open(NULL, &font, &error), UR_OK);
+    for (int lap = 0; lap < 2; lap++) {
+        ur_net_list nets = {calloc(2, sizeof(ur_net)), 2};
+        assert_non_null(nets.nets);
+        nets.nets[0] = grid_net("P1", strip, strip, 4);
+        nets.nets[1] = grid_net("P2", square_flat, square_grid, 4);
+        int next;
+        assert_int_equal(ur_net_list_find_seams(&nets, 1, &next, &error), UR_OK);
+        assert_int_equal(ur_net_list_last_seam(&nets), 1);
+        ur_piece *pieces = pieces_of(&nets);
+        ur_joint_options options = tab_options(font);
+        options.lap = lap;
+        assert_int_equal(ur_pieces_add_joints(pieces, &nets, &options, &error), UR_OK);
+        assert_int_equal(count_records(&pieces[1], UR_ALLOWANCE_LABEL, true), 0);
+        check_engraving_inside(&pieces[1], &nets.nets[1]);
+        if (!lap) {
+            /* The tab went on the strip; its label stands on it, inside the grown outline. */
+            assert_int_equal(count_joints(&pieces[0]), 1);
+            assert_int_equal(count_records(&pieces[0], UR_ALLOWANCE_LABEL, true), 0);
+            assert_int_equal(count_records(&pieces[0], UR_ALLOWANCE_LABEL, false), 1);
+            GEOSGeometry *grown = polygon(pieces[0].paths[0].points, pieces[0].paths[0].count);
+            assert_true(engraved_on(&pieces[0], grown, &nets.nets[0]));
+            GEOSGeom_destroy_r(geos, grown);
+            check_nothing_crosses_outline(&pieces[0]);
+        } else {
+            assert_int_equal(count_records(&pieces[0], UR_ALLOWANCE_LABEL, true), 1);
+        }
+        free_pieces(pieces, nets.count);
+        ur_net_list_free(&nets);
+    }
+    ur_font_close(font);
+}
+
 static void test_bad_options(void **state)
 {
     (void)state;
@@ -544,10 +614,11 @@ static void test_bad_options(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_seam_labels),          cmocka_unit_test(test_cylinder_tab),
-        cmocka_unit_test(test_helicoid_labels_pair), cmocka_unit_test(test_every_seam_joined),
-        cmocka_unit_test(test_unfolded_tabs_clear),  cmocka_unit_test(test_loop_seams_joined),
-        cmocka_unit_test(test_laps_marked_on_both),  cmocka_unit_test(test_bad_options),
+        cmocka_unit_test(test_seam_labels),           cmocka_unit_test(test_cylinder_tab),
+        cmocka_unit_test(test_helicoid_labels_pair),  cmocka_unit_test(test_every_seam_joined),
+        cmocka_unit_test(test_unfolded_tabs_clear),   cmocka_unit_test(test_loop_seams_joined),
+        cmocka_unit_test(test_laps_marked_on_both),   cmocka_unit_test(test_bad_options),
+        cmocka_unit_test(test_label_goes_on_the_tab),
     };
     return cmocka_run_group_tests(tests, start, finish);
 }
