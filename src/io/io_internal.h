@@ -7,6 +7,7 @@
 #ifndef UNROLL_IO_INTERNAL_H
 #define UNROLL_IO_INTERNAL_H
 
+#include <stdbool.h>
 #include <stddef.h>
 
 #include <libxml/tree.h>
@@ -50,6 +51,9 @@ char *io_copy_text(const void *data, size_t size, ur_error *error);
 
 /* Trims white space (the '\r' of CRLF files too) at both ends, in place. */
 char *io_trim(char *text);
+
+/* Whether path's file name ends in "." and extension, in any case ("obj": x.OBJ). */
+bool io_has_extension(const char *path, const char *extension);
 
 /* "plate" from "dir/plate.svg": the file name without directory and extension. */
 void io_file_stem(const char *path, char *stem, size_t size);

@@ -10,7 +10,7 @@
  * turned back to face outwards.  Nothing is welded across meshes or nodes:
  * ur_mesh_clean does that with the user's tolerance.
  */
-#include "unroll/io.h"
+#include "io_internal.h"
 
 #include <errno.h>
 #include <limits.h>
@@ -126,12 +126,6 @@ static void file_stem(const char *path, char *stem, size_t size)
 
 static const char *const supported_extensions[] = {"obj", "stl", "ply", "gltf", "glb"};
 
-static bool has_extension(const char *path, const char *extension)
-{
-    const char *dot = strrchr(path, '.');
-    return dot && !strchr(dot, '/') && strcasecmp(dot + 1, extension) == 0;
-}
-
 /*
  * assimp reads dozens of formats, but some of them (Collada, FBX) carry units
  * that it applies or not depending on settings: only the formats whose
@@ -140,7 +134,7 @@ static bool has_extension(const char *path, const char *extension)
 static ur_status check_extension(const char *path, ur_error *error)
 {
     for (size_t i = 0; i < sizeof supported_extensions / sizeof supported_extensions[0]; i++)
-        if (has_extension(path, supported_extensions[i]))
+        if (io_has_extension(path, supported_extensions[i]))
             return UR_OK;
     return ur_error_set(error, UR_ERROR_INPUT,
                         "%s: unsupported file type: unroll reads meshes from .obj, .stl, .ply, "
@@ -423,8 +417,8 @@ static ur_status check_stl_header(const char *path, FILE *file, off_t size, ur_e
  */
 static ur_status check_header(const char *path, const void *data, off_t size, ur_error *error)
 {
-    bool ply = has_extension(path, "ply");
-    if (!ply && !has_extension(path, "stl"))
+    bool ply = io_has_extension(path, "ply");
+    if (!ply && !io_has_extension(path, "stl"))
         return UR_OK;
     /* "r": the buffer is only read */
     FILE *file = data ? fmemopen((void *)data, (size_t)size, "r") : fopen(path, "rb");

@@ -8,20 +8,13 @@
  * the first line).  Everything else is taken as +z up, as CAD programs,
  * STL files (Blender's STL export included) and this project's samples are.
  */
-#include "unroll/io.h"
+#include "io_internal.h"
 
 #include <stdio.h>
 #include <string.h>
-#include <strings.h>
 
 /* Enough of a file's start for the comment lines a writer puts there. */
 #define HEAD_SIZE 1024
-
-static bool has_extension(const char *name, const char *extension)
-{
-    const char *dot = name ? strrchr(name, '.') : NULL;
-    return dot && !strchr(dot, '/') && strcasecmp(dot + 1, extension) == 0;
-}
 
 /* Whether the OBJ's leading comment lines name Blender (its exporter writes "# Blender ..."). */
 static bool obj_written_by_blender(const char *head, size_t size)
@@ -41,9 +34,9 @@ static bool obj_written_by_blender(const char *head, size_t size)
 
 ur_up_axis ur_mesh_up_axis(const char *name, const void *head, size_t size)
 {
-    if (has_extension(name, "gltf") || has_extension(name, "glb"))
+    if (io_has_extension(name, "gltf") || io_has_extension(name, "glb"))
         return UR_UP_Y;
-    if (has_extension(name, "obj") && head && obj_written_by_blender(head, size))
+    if (io_has_extension(name, "obj") && head && obj_written_by_blender(head, size))
         return UR_UP_Y;
     return UR_UP_Z;
 }
@@ -52,7 +45,7 @@ ur_up_axis ur_mesh_file_up_axis(const char *path)
 {
     char head[HEAD_SIZE];
     size_t size = 0;
-    FILE *file = has_extension(path, "obj") ? fopen(path, "rb") : NULL;
+    FILE *file = io_has_extension(path, "obj") ? fopen(path, "rb") : NULL;
     if (file) {
         size = fread(head, 1, sizeof head, file);
         fclose(file);

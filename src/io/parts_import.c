@@ -935,12 +935,6 @@ ur_status parts_assemble(parts_collection *collection, ur_parts *parts, ur_error
 
 /* ---- The entry point -------------------------------------------------------- */
 
-static bool has_extension(const char *path, const char *extension)
-{
-    size_t length = strlen(path), wanted = strlen(extension);
-    return length > wanted && strcasecmp(path + length - wanted, extension) == 0;
-}
-
 static ur_status check_file(const char *path, ur_error *error)
 {
     struct stat info;
@@ -996,8 +990,8 @@ static ur_status start(const char *path, const ur_parts_import_options **options
     ur_parts_import_options_default(defaults);
     if (!*options)
         *options = defaults;
-    *svg = has_extension(path, ".svg");
-    if (!*svg && !has_extension(path, ".dxf"))
+    *svg = io_has_extension(path, "svg");
+    if (!*svg && !io_has_extension(path, "dxf"))
         return ur_error_set(error, UR_ERROR_INPUT,
                             "%s: unknown kind of file: parts are read from .svg and .dxf files",
                             path);

@@ -11,7 +11,14 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include "../base/c_locale.h"
+
+bool io_has_extension(const char *path, const char *extension)
+{
+    const char *dot = path ? strrchr(path, '.') : NULL;
+    return dot && !strchr(dot, '/') && strcasecmp(dot + 1, extension) == 0;
+}
 
 char *io_trim(char *text)
 {
