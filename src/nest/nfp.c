@@ -624,6 +624,40 @@ static GEOSGeometry *convex_sum(GEOSContextHandle_t geos, const GEOSGeometry *a,
     return polygon;
 }
 
+/* A sum and its area, to sort the sums. */
+typedef struct sized_sum {
+    double area;
+    size_t index;
+    GEOSGeometry *sum;
+} sized_sum;
+
+static int larger_first(const void *a, const void *b)
+{
+    const sized_sum *x = a, *y = b;
+    if (x->area != y->area)
+        return x->area > y->area ? -1 : 1;
+    return (x->index > y->index) - (x->index < y->index);
+}
+
+/*
+ * Sorts the sums largest first: room.c cuts a pair's sums out of a room
+ * in this order and skips those that no longer meet it, and a large sum
+ * cut early leaves more of the smaller ones nothing to take.  Left as
+ * they are when there is no memory to sort them.
+ */
+static void largest_first(GEOSContextHandle_t geos, GEOSGeometry **sums, size_t count)
+{
+    sized_sum *sized = malloc((count + 1) * sizeof *sized);
+    if (!sized)
+        return;
+    for (size_t k = 0; k < count; k++)
+        sized[k] = (sized_sum){area_of(geos, sums[k]), k, sums[k]};
+    qsort(sized, count, sizeof *sized, larger_first);
+    for (size_t k = 0; k < count; k++)
+        sums[k] = sized[k].sum;
+    free(sized);
+}
+
 GEOSGeometry *nest_sums(GEOSContextHandle_t geos, const nest_shape *a, const nest_shape *b,
                         bool *out_of_memory)
 {
@@ -642,6 +676,8 @@ GEOSGeometry *nest_sums(GEOSContextHandle_t geos, const nest_shape *a, const nes
             if (sum)
                 sums[made++] = sum;
         }
+    if (!failed)
+        largest_first(geos, sums, made);
     GEOSGeometry *collection =
         failed ? NULL
                : GEOSGeom_createCollection_r(geos, GEOS_GEOMETRYCOLLECTION, sums, (unsigned)made);
