@@ -274,7 +274,7 @@ typedef struct ur_unfolding {
  * joining is done again; a change that leaves fewer pieces, or as many with
  * fewer of a single face, or as many with a shorter cut, is kept (worse
  * ones now and then early on, annealing).  The search stops early when the
- * pieces are as few as the mesh's parts, or after many steps with nothing
+ * pieces are as few as the mesh's parts, or after 100 steps with nothing
  * better.  For a seed and a number of steps the result is always the same;
  * within a time budget the number of steps depends on the machine.  Every
  * edge was tried, so a piece of one face had nowhere to go: across every

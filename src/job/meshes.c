@@ -335,8 +335,9 @@ static double mean_edge_length(const ur_mesh *mesh)
 }
 
 /*
- * The search for fewer pieces takes UNFOLD_STEPS steps, so that a mesh
- * unfolds the same way every time and on every machine, however loaded.
+ * The search for fewer pieces takes at most UNFOLD_STEPS steps (fewer
+ * when 100 in a row find nothing better), counted, so that a mesh unfolds
+ * the same way every time and on every machine, however loaded.
  * Only a mesh of more than UNFOLD_TIMED_ABOVE triangles, whose steps take
  * long, stops early after UNFOLD_SECONDS of wall-clock time, and may then
  * unfold differently from one run to the next.  (A 2,208-triangle sphere
@@ -590,8 +591,7 @@ ur_status job_mesh_nets(const job_run *run, const job_room *room, const ur_mater
                         ur_net_list *nets, double *area)
 {
     if (!run->job.mesh_path) {
-        return job_fail(run, UR_ERROR_INPUT,
-                        "mesh: give the mesh file to read");
+        return job_fail(run, UR_ERROR_INPUT, "mesh: give the mesh file to read");
     }
     ur_mesh_import_options options;
     ur_mesh_import_options_default(&options);

@@ -523,34 +523,139 @@ static GEOSGeometry *polygon_of(GEOSContextHandle_t geos, const ur_vec2 *points,
 }
 
 /*
- * The convex hull of a + (-b) for two convex polygons: the hull of the
- * sums of their vertices, made here (GEOS's hull of the same points took
- * an eighth of a papercraft sphere's nesting).  NULL when it has no
- * area, and when memory ran out (then *out_of_memory is set).
+ * Which half of the turn an edge's direction lies in, counting from
+ * straight down: 0 for (-90, 90] degrees, 1 for (90, 270].  Edges of a
+ * convex polygon walked counter-clockwise from its lowest-leftmost vertex
+ * come in that order, and within a half two directions compare by their
+ * cross product.
+ */
+static int half_turn(ur_vec2 d)
+{
+    return d.x > 0 || (d.x == 0 && d.y > 0) ? 0 : 1;
+}
+
+/* Whether direction d comes before e, both walked from straight down. */
+static bool turns_before(ur_vec2 d, ur_vec2 e, bool *parallel)
+{
+    int hd = half_turn(d), he = half_turn(e);
+    double cross = ur_vec2_cross(d, e);
+    *parallel = hd == he && cross == 0;
+    return hd != he ? hd < he : cross > 0;
+}
+
+/*
+ * The sum of two convex polygons (each counter-clockwise from its leftmost,
+ * then lowest, vertex, as geom_convex_hull gives them) by merging their
+ * edges in the order of their directions, into sum (room for na + nb);
+ * its count.  Each vertex is a sum of one vertex of each, as the hull of
+ * all such sums would have it, in time linear in na + nb.
+ */
+static size_t merge_edges(const ur_vec2 *a, size_t na, const ur_vec2 *b, size_t nb, ur_vec2 *sum)
+{
+    size_t i = 0, j = 0, count = 0;
+    while (i < na || j < nb) {
+        sum[count++] = ur_vec2_make(a[i % na].x + b[j % nb].x, a[i % na].y + b[j % nb].y);
+        if (count > na + nb)
+            return 0; /* not convex after all: cannot happen with hulls, but never loop */
+        bool parallel = false;
+        ur_vec2 da = ur_vec2_sub(a[(i + 1) % na], a[i % na]);
+        ur_vec2 db = ur_vec2_sub(b[(j + 1) % nb], b[j % nb]);
+        bool take_a = j == nb || (i < na && turns_before(da, db, &parallel));
+        if (take_a || parallel)
+            i++;
+        if (!take_a || parallel)
+            j++;
+    }
+    return count;
+}
+
+/* The hull of every sum of a point of a and one of b, into sum; its count. */
+static size_t hull_of_sums(const ur_vec2 *a, size_t na, const ur_vec2 *b, size_t nb, ur_vec2 *sum,
+                           bool *out_of_memory)
+{
+    ur_vec2 *all = malloc((na * nb + 1) * sizeof *all);
+    if (!all) {
+        *out_of_memory = true;
+        return 0;
+    }
+    for (size_t i = 0; i < na; i++)
+        for (size_t j = 0; j < nb; j++)
+            all[i * nb + j] = ur_vec2_make(a[i].x + b[j].x, a[i].y + b[j].y);
+    size_t count = geom_convex_hull(all, na * nb, sum);
+    free(all);
+    return count;
+}
+
+/*
+ * The convex hull of a + (-b) for two convex polygons: the sum of their
+ * hulls, edge by edge (the hull of all the sums of their vertices took an
+ * eighth of a papercraft sphere's nesting, and GEOS's hull of them more).
+ * NULL when it has no area, and when memory ran out (then *out_of_memory
+ * is set).
  */
 static GEOSGeometry *convex_sum(GEOSContextHandle_t geos, const GEOSGeometry *a,
                                 const GEOSGeometry *b, bool *out_of_memory)
 {
     ur_vec2 *pa, *pb;
     size_t na = vertices(geos, a, &pa, out_of_memory), nb = vertices(geos, b, &pb, out_of_memory);
-    ur_vec2 *sums = na && nb ? malloc((2 * na * nb + 1) * sizeof *sums) : NULL;
-    if (na && nb && !sums)
+    /* Room for both hulls (one more point each), then their sum (or, with a hull of less than
+     * three points, every sum of their points). */
+    size_t sum_room = na * nb > na + nb ? na * nb + 1 : na + nb + 1;
+    ur_vec2 *room = na && nb ? malloc((na + nb + 2 + sum_room) * sizeof *room) : NULL;
+    if (na && nb && !room)
         *out_of_memory = true;
     GEOSGeometry *polygon = NULL;
-    if (sums) {
-        for (size_t i = 0; i < na; i++)
-            for (size_t j = 0; j < nb; j++)
-                sums[i * nb + j] = ur_vec2_make(pa[i].x - pb[j].x, pa[i].y - pb[j].y);
-        size_t count = geom_convex_hull(sums, na * nb, sums + na * nb);
+    if (room) {
+        for (size_t j = 0; j < nb; j++)
+            pb[j] = ur_vec2_make(-pb[j].x, -pb[j].y);
+        ur_vec2 *hull_a = room, *hull_b = room + na + 1, *sum = room + na + nb + 2;
+        size_t ha = geom_convex_hull(pa, na, hull_a), hb = geom_convex_hull(pb, nb, hull_b);
+        size_t count = ha >= 3 && hb >= 3
+                           ? merge_edges(hull_a, ha, hull_b, hb, sum)
+                           : hull_of_sums(hull_a, ha, hull_b, hb, sum, out_of_memory);
         if (count >= 3) {
-            polygon = polygon_of(geos, sums + na * nb, count);
+            polygon = polygon_of(geos, sum, count);
             *out_of_memory = *out_of_memory || !polygon; /* GEOS could not allocate it */
         }
     }
-    free(sums);
+    free(room);
     free(pa);
     free(pb);
     return polygon;
+}
+
+/* A sum and its area, to sort the sums. */
+typedef struct sized_sum {
+    double area;
+    size_t index;
+    GEOSGeometry *sum;
+} sized_sum;
+
+static int larger_first(const void *a, const void *b)
+{
+    const sized_sum *x = a, *y = b;
+    if (x->area != y->area)
+        return x->area > y->area ? -1 : 1;
+    return (x->index > y->index) - (x->index < y->index);
+}
+
+/*
+ * Sorts the sums largest first: room.c cuts a pair's sums out of a room
+ * in this order and skips those that no longer meet it, and a large sum
+ * cut early leaves more of the smaller ones nothing to take.  Left as
+ * they are when there is no memory to sort them.
+ */
+static void largest_first(GEOSContextHandle_t geos, GEOSGeometry **sums, size_t count)
+{
+    sized_sum *sized = malloc((count + 1) * sizeof *sized);
+    if (!sized)
+        return;
+    for (size_t k = 0; k < count; k++)
+        sized[k] = (sized_sum){area_of(geos, sums[k]), k, sums[k]};
+    qsort(sized, count, sizeof *sized, larger_first);
+    for (size_t k = 0; k < count; k++)
+        sums[k] = sized[k].sum;
+    free(sized);
 }
 
 GEOSGeometry *nest_sums(GEOSContextHandle_t geos, const nest_shape *a, const nest_shape *b,
@@ -571,6 +676,8 @@ GEOSGeometry *nest_sums(GEOSContextHandle_t geos, const nest_shape *a, const nes
             if (sum)
                 sums[made++] = sum;
         }
+    if (!failed)
+        largest_first(geos, sums, made);
     GEOSGeometry *collection =
         failed ? NULL
                : GEOSGeom_createCollection_r(geos, GEOS_GEOMETRYCOLLECTION, sums, (unsigned)made);
