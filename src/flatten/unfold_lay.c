@@ -21,6 +21,8 @@
  */
 #include "unfold_internal.h"
 
+#include "../geom/hull.h"
+
 #include "../base/union_find.h"
 
 #include <stdlib.h>
@@ -408,7 +410,12 @@ static size_t joined_hull(unfolder *u, const unfold_motion *m, size_t small, siz
         u->hull_points[count++] = unfold_move(m, a->hull[i]);
     for (size_t i = 0; i < b->hull_count; i++)
         u->hull_points[count++] = b->hull[i];
-    return unfold_hull(u->hull_points, count, u->hull_chain, u->hull_points);
+    /* Two convex hulls: joined in linear time, not sorted again (the search does this often). */
+    size_t k = geom_convex_hull_of_two(u->hull_points, a->hull_count, b->hull_count,
+                                       u->hull_chain + count + 1, u->hull_chain);
+    for (size_t i = 0; i < k; i++)
+        u->hull_points[i] = u->hull_chain[i];
+    return k;
 }
 
 static ur_status keep_hull(unfolder *u, size_t large, size_t count, ur_error *error)

@@ -7,6 +7,7 @@
 #include "hull.h"
 
 #include <math.h>
+#include <stdbool.h>
 #include <stdlib.h>
 
 static int compare_points(const void *a, const void *b)
@@ -22,14 +23,9 @@ static double turn(ur_vec2 o, ur_vec2 a, ur_vec2 b)
     return ur_vec2_cross(ur_vec2_sub(a, o), ur_vec2_sub(b, o));
 }
 
-size_t geom_convex_hull(ur_vec2 *points, size_t count, ur_vec2 *hull)
+/* Andrew's chain over points already sorted by compare_points. */
+static size_t chain_sorted(const ur_vec2 *points, size_t count, ur_vec2 *hull)
 {
-    if (count < 3) {
-        for (size_t i = 0; i < count; i++)
-            hull[i] = points[i];
-        return count;
-    }
-    qsort(points, count, sizeof *points, compare_points);
     size_t k = 0;
     for (size_t i = 0; i < count; i++) {
         while (k >= 2 && turn(hull[k - 2], hull[k - 1], points[i]) <= 0)
@@ -42,6 +38,85 @@ size_t geom_convex_hull(ur_vec2 *points, size_t count, ur_vec2 *hull)
         hull[k++] = points[i];
     }
     return k - 1; /* the first point came again */
+}
+
+size_t geom_convex_hull(ur_vec2 *points, size_t count, ur_vec2 *hull)
+{
+    if (count < 3) {
+        for (size_t i = 0; i < count; i++)
+            hull[i] = points[i];
+        return count;
+    }
+    qsort(points, count, sizeof *points, compare_points);
+    return chain_sorted(points, count, hull);
+}
+
+/* Merges the sorted runs a and b (na and nb points) into out. */
+static void merge_sorted(const ur_vec2 *a, size_t na, const ur_vec2 *b, size_t nb, ur_vec2 *out)
+{
+    size_t i = 0, j = 0, k = 0;
+    while (i < na && j < nb)
+        out[k++] = compare_points(&a[i], &b[j]) <= 0 ? a[i++] : b[j++];
+    while (i < na)
+        out[k++] = a[i++];
+    while (j < nb)
+        out[k++] = b[j++];
+}
+
+/*
+ * A convex polygon's points sorted, in linear time: from its least point
+ * to its greatest, the chain that runs forward and the one that runs
+ * backward each come in order, and are merged.
+ */
+static void sort_convex(const ur_vec2 *polygon, size_t count, ur_vec2 *out)
+{
+    size_t least = 0, greatest = 0;
+    for (size_t i = 1; i < count; i++) {
+        if (compare_points(&polygon[i], &polygon[least]) < 0)
+            least = i;
+        if (compare_points(&polygon[i], &polygon[greatest]) > 0)
+            greatest = i;
+    }
+    size_t k = 0;
+    out[k++] = polygon[least];
+    size_t forward = (least + 1) % count, backward = (least + count - 1) % count;
+    while (forward != greatest || backward != greatest) {
+        bool take_forward =
+            backward == greatest ||
+            (forward != greatest && compare_points(&polygon[forward], &polygon[backward]) <= 0);
+        if (take_forward) {
+            out[k++] = polygon[forward];
+            forward = (forward + 1) % count;
+        } else {
+            out[k++] = polygon[backward];
+            backward = (backward + count - 1) % count;
+        }
+    }
+    if (greatest != least)
+        out[k++] = polygon[greatest];
+}
+
+static bool is_sorted(const ur_vec2 *points, size_t count)
+{
+    for (size_t i = 1; i < count; i++)
+        if (compare_points(&points[i - 1], &points[i]) > 0)
+            return false;
+    return true;
+}
+
+size_t geom_convex_hull_of_two(ur_vec2 *points, size_t first, size_t second, ur_vec2 *work,
+                               ur_vec2 *hull)
+{
+    size_t count = first + second;
+    if (first < 3 || second < 3)
+        return geom_convex_hull(points, count, hull);
+    sort_convex(points, first, work);
+    sort_convex(points + first, second, work + first);
+    merge_sorted(work, first, work + first, second, points);
+    /* Rounding can leave a moved polygon a hair off convex, and its chains out of order. */
+    if (!is_sorted(points, count))
+        qsort(points, count, sizeof *points, compare_points);
+    return chain_sorted(points, count, hull);
 }
 
 double geom_least_area_box(const ur_vec2 *hull, size_t count, double *length, double *width)

@@ -19,6 +19,15 @@
 size_t geom_convex_hull(ur_vec2 *points, size_t count, ur_vec2 *hull);
 
 /*
+ * The same for two convex polygons, counter-clockwise (as geom_convex_hull
+ * gives them), in points one after the other (first, then second points;
+ * overwritten), in linear time: each polygon's points come sorted by
+ * walking it, and are merged.  work: room for first + second points.
+ */
+size_t geom_convex_hull_of_two(ur_vec2 *points, size_t first, size_t second, ur_vec2 *work,
+                               ur_vec2 *hull);
+
+/*
  * The least-area rectangle round a convex polygon (hull, counter-clockwise):
  * its longer side in *length, the other in *width; returns the angle of
  * its longer side (radians).  0 and 0 x 0 for fewer than 2 distinct points.

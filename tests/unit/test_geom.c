@@ -11,6 +11,11 @@
 
 #include "unroll/geom.h"
 
+#include <math.h>
+#include <string.h>
+
+#include "../../src/geom/hull.h" /* internal: the unfolder's and nester's hulls */
+
 static void test_segment_distance(void **state)
 {
     (void)state;
@@ -67,11 +72,62 @@ static void test_polylines_meet(void **state)
     assert_true(meet);
 }
 
+/* A number in [0, 1) from a small linear congruential generator: the same everywhere. */
+static double next_unit(uint64_t *state)
+{
+    *state = *state * 6364136223846793005u + 1442695040888963407u;
+    return (double)(*state >> 11) / 9007199254740992.0;
+}
+
+/*
+ * The hull of two convex polygons joined in linear time is the hull of all
+ * their points sorted afresh, point for point: random hulls, one turned
+ * about by an angle that rounds its coordinates (as the unfolder moves a
+ * piece), or both the same square (every point twice), or sharing a
+ * vertical edge.
+ */
+static void test_hull_of_two(void **state)
+{
+    (void)state;
+    uint64_t seed = 7;
+    enum { MOST = 64 };
+    for (int round = 0; round < 500; round++) {
+        ur_vec2 cloud[2][MOST], hulls[2][MOST + 1];
+        size_t counts[2];
+        for (int h = 0; h < 2; h++) {
+            size_t n = 3 + (size_t)(next_unit(&seed) * (MOST - 3));
+            double angle = 2 * M_PI * next_unit(&seed), c = cos(angle), s = sin(angle);
+            for (size_t i = 0; i < n; i++) {
+                double x = 100 * next_unit(&seed), y = 40 * next_unit(&seed);
+                if (round % 5 == 0) /* a square's corners only, both the same */
+                    x = (i & 1) ? 10 : 0, y = (i & 2) ? 10 : 0;
+                if (round % 5 == 1 && h == 1) /* beside the first: x = 100 on both */
+                    x = 100 + x / 10;
+                cloud[h][i] = round % 5 < 2 ? ur_vec2_make(x, y)
+                                            : ur_vec2_make(c * x - s * y + 50 * h, s * x + c * y);
+            }
+            counts[h] = geom_convex_hull(cloud[h], n, hulls[h]);
+        }
+        ur_vec2 joined[2 * MOST], all[2 * MOST], work[2 * MOST], fast[2 * MOST + 1],
+            slow[2 * MOST + 1];
+        size_t count = 0;
+        for (int h = 0; h < 2; h++)
+            for (size_t i = 0; i < counts[h]; i++)
+                joined[count] = all[count] = hulls[h][i], count++;
+        size_t k = geom_convex_hull_of_two(joined, counts[0], counts[1], work, fast);
+        size_t expected = geom_convex_hull(all, count, slow);
+        assert_int_equal(k, expected);
+        assert_true(k >= 3);
+        assert_memory_equal(fast, slow, k * sizeof *fast);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_segment_distance),
         cmocka_unit_test(test_polylines_meet),
+        cmocka_unit_test(test_hull_of_two),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
