@@ -156,17 +156,20 @@ static ur_status join_all(unfolder *u, const size_t *order, size_t count, ur_err
  * triangles, which no join lays clear of their neighbours) to a neighbour
  * without it, counting the joins: a stray face costs the maker more than
  * a seam whose tab may find no room (the tabs then say so), and the
- * search weighs such joins as pieces.  Every edge was tried with the gap
- * before and joins only add to pieces, so each join here breaks it.
+ * search weighs such joins as pieces.  With options.gap_break_cost below
+ * one, pieces of any size are joined so, each join costing less than the
+ * piece it saves.  Every edge was tried with the gap before and joins
+ * only add to pieces, so each join here breaks it.
  */
 static ur_status join_single_faces(unfolder *u, const size_t *order, size_t count, size_t *joins,
                                    ur_error *error)
 {
     u->gap_waived = true;
+    bool any_piece = u->options.gap_break_cost < 1.0;
     ur_status status = UR_OK;
     for (size_t i = 0; i < count && status == UR_OK; i++) {
         size_t h = order[i], g = u->edges.twins[h];
-        if (u->islands[u->piece[h / 3]].face_count != 1 &&
+        if (!any_piece && u->islands[u->piece[h / 3]].face_count != 1 &&
             u->islands[u->piece[g / 3]].face_count != 1)
             continue;
         bool joined;
@@ -188,7 +191,7 @@ static bool one_face(const unfolder *u, size_t p)
 
 static unfold_score score_of(const unfolder *u)
 {
-    unfold_score score = {0, 0, 0, 0.0};
+    unfold_score score = {0, 0, 0, 0.0, 0.0};
     size_t n = u->mesh->triangle_count;
     for (size_t p = 0; p < n; p++) {
         if (u->islands[p].triangle_count == 0)
@@ -237,6 +240,7 @@ ur_status unfold_run(unfolder *u, const size_t *order, size_t count, unfold_scor
     if (status == UR_OK) {
         *score = score_of(u);
         score->gap_breaks = u->gap_breaks;
+        score->cost = (double)score->pieces + u->options.gap_break_cost * (double)score->gap_breaks;
     }
     return status;
 }
@@ -258,6 +262,9 @@ static ur_status check_options(const ur_unfold_options *o, ur_error *error)
     if (!(o->min_gap >= 0 && isfinite(o->min_gap)))
         return ur_error_set(error, UR_ERROR_INPUT,
                             "the narrowest gap between a piece's edges must be a length >= 0");
+    if (!(o->gap_break_cost >= 0 && o->gap_break_cost <= 1))
+        return ur_error_set(error, UR_ERROR_INPUT,
+                            "what a join without the gap costs must be from 0 to 1 piece");
     return UR_OK;
 }
 
@@ -486,6 +493,7 @@ void ur_unfold_options_default(ur_unfold_options *options)
         .flat_angle = UR_UNFOLD_FLAT_ANGLE,
         .time_budget = 1.0,
         .seed = 1,
+        .gap_break_cost = 1.0,
     };
 }
 

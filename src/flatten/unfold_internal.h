@@ -256,14 +256,15 @@ bool unfold_hull_fits(const unfolder *u, const ur_vec2 *hull, size_t count);
 /* The outcome of a run, compared: fewer pieces, then fewer of one face, then less cut. */
 typedef struct unfold_score {
     size_t pieces, single_face;
-    size_t gap_breaks; /* joins of single faces made without the options' gap */
+    size_t gap_breaks; /* joins made without the options' gap */
     double seam_length;
+    double cost; /* the pieces and the gap's breaks, each at options.gap_break_cost */
 } unfold_score;
 
-/* What a run costs the maker: a piece, or a seam whose tab may find no room, each one. */
-static inline size_t unfold_score_cost(unfold_score score)
+/* What a run costs the maker: a piece, and a seam whose tab may find no room. */
+static inline double unfold_score_cost(unfold_score score)
 {
-    return score.pieces + score.gap_breaks;
+    return score.cost;
 }
 
 /* -1, 0, 1 as a is better than, as good as or worse than b. */

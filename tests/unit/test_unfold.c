@@ -1306,6 +1306,47 @@ static void test_gap_spares_single_faces(void **state)
     length_tolerance = 1e-9;
 }
 
+/*
+ * Joins without the gap at a cost below a piece: pieces of any size the
+ * gap kept apart are joined at the end of the run, not only single faces
+ * (fewer pieces than at the default cost), so that with the same first
+ * order there are exactly as many pieces fewer as joins made so, and the
+ * pieces still lie flat without overlap.  A cost outside 0 to 1 is
+ * refused.
+ */
+static void test_gap_break_cost(void **state)
+{
+    (void)state;
+    allow_projection();
+    ur_mesh mesh = uv_sphere(48, 24, 60);
+    ur_unfold_options options;
+    ur_unfold_options_default(&options);
+    options.max_steps = 0;
+    options.time_budget = 0;
+    options.min_gap = 2.5;
+    options.gap_strands_faces = true;
+    ur_unfolding strict = unfold_with(&mesh, &options);
+    check_unfolding(&mesh, &strict, NULL, 0);
+    options.gap_strands_faces = false;
+    ur_unfolding faces_only = unfold_with(&mesh, &options); /* the default cost, one piece */
+    options.gap_break_cost = 0.5;
+    ur_unfolding cheap = unfold_with(&mesh, &options);
+    check_unfolding(&mesh, &cheap, NULL, 0);
+    assert_int_equal(cheap.count + cheap.gap_breaks, strict.count);
+    assert_true(cheap.count < faces_only.count);
+    assert_int_equal(cheap.single_face, 0);
+    ur_unfolding refused;
+    ur_error error;
+    options.gap_break_cost = 1.5;
+    assert_int_equal(ur_unfold_with_options(&mesh, NULL, 0, &options, &refused, &error),
+                     UR_ERROR_INPUT);
+    ur_unfolding_free(&strict);
+    ur_unfolding_free(&faces_only);
+    ur_unfolding_free(&cheap);
+    ur_mesh_free(&mesh);
+    length_tolerance = 1e-9;
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1327,6 +1368,7 @@ int main(void)
         cmocka_unit_test(test_face_larger_than_room),
         cmocka_unit_test(test_search_repeats),
         cmocka_unit_test(test_min_gap),
+        cmocka_unit_test(test_gap_break_cost),
         cmocka_unit_test(test_gap_spares_single_faces),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
