@@ -228,6 +228,17 @@ typedef struct unfolder {
     size_t *roots; /* 2 per pair: the flat vertices it makes one, small's then large's */
     ur_vec2 *hull_points, *hull_chain; /* room for the hull of every corner */
     size_t culprits[UNFOLD_CULPRITS];  /* the triangles that stopped the last joins */
+    /*
+     * The last pass of the last run (tabs_to_twins): a join may leave a
+     * slit narrower than the gap when both its edges can give their tabs to
+     * their twins; per half-edge on an outline, whether it lies in such a
+     * slit, so that its seam's tab goes on its twin, which must have the
+     * room.
+     */
+    bool last_run, tabs_to_twins;
+    bool *tab_on_twin;
+    size_t *slit_sides; /* the half-edges the join under way puts in slits, to mark */
+    size_t slit_side_count;
 } unfolder;
 
 /* The union-find root of corner c (with path halving). */
