@@ -128,6 +128,7 @@ static ur_status restart(unfolder *u, ur_error *error)
         for (int k = 0; k < 3; k++) {
             u->flat[t][k] = u->faces.home[t][k];
             u->joined[3 * t + (size_t)k] = false;
+            u->tab_on_twin[3 * t + (size_t)k] = false;
             u->parent[3 * t + (size_t)k] = 3 * t + (size_t)k;
             if (u->room)
                 island->hull[k] = u->flat[t][k];
@@ -152,21 +153,44 @@ static ur_status join_all(unfolder *u, const size_t *order, size_t count, ur_err
 }
 
 /*
+ * Tries every edge again, a slit narrower than the gap now allowed where
+ * the tabs of both its edges can go on their twins (unfold_lay.c): the
+ * gap keeps room for a tab on both sides of a slit, where one side is
+ * enough.  Only in the last run: the joins it adds to the search's best
+ * are free (no tab loses its room), and a pass more in every step of the
+ * search would slow it for no better choice of the order.  The failures
+ * counted before are forgotten: the joins they gave up may fit now.
+ */
+static ur_status join_with_tabs_on_twins(unfolder *u, const size_t *order, size_t count,
+                                         ur_error *error)
+{
+    for (size_t t = 0; t < u->mesh->triangle_count; t++)
+        u->islands[t].failures = 0;
+    u->tabs_to_twins = true;
+    ur_status status = join_all(u, order, count, error);
+    u->tabs_to_twins = false;
+    return status;
+}
+
+/*
  * Joins the pieces of a single face the gap left (a sphere's thin pole
  * triangles, which no join lays clear of their neighbours) to a neighbour
  * without it, counting the joins: a stray face costs the maker more than
  * a seam whose tab may find no room (the tabs then say so), and the
- * search weighs such joins as pieces.  Every edge was tried with the gap
- * before and joins only add to pieces, so each join here breaks it.
+ * search weighs such joins as pieces.  With options.gap_break_cost below
+ * one, pieces of any size are joined so, each join costing less than the
+ * piece it saves.  Every edge was tried with the gap before and joins
+ * only add to pieces, so each join here breaks it.
  */
 static ur_status join_single_faces(unfolder *u, const size_t *order, size_t count, size_t *joins,
                                    ur_error *error)
 {
     u->gap_waived = true;
+    bool any_piece = u->options.gap_break_cost < 1.0;
     ur_status status = UR_OK;
     for (size_t i = 0; i < count && status == UR_OK; i++) {
         size_t h = order[i], g = u->edges.twins[h];
-        if (u->islands[u->piece[h / 3]].face_count != 1 &&
+        if (!any_piece && u->islands[u->piece[h / 3]].face_count != 1 &&
             u->islands[u->piece[g / 3]].face_count != 1)
             continue;
         bool joined;
@@ -188,7 +212,7 @@ static bool one_face(const unfolder *u, size_t p)
 
 static unfold_score score_of(const unfolder *u)
 {
-    unfold_score score = {0, 0, 0, 0.0};
+    unfold_score score = {0, 0, 0, 0.0, 0.0};
     size_t n = u->mesh->triangle_count;
     for (size_t p = 0; p < n; p++) {
         if (u->islands[p].triangle_count == 0)
@@ -234,9 +258,12 @@ ur_status unfold_run(unfolder *u, const size_t *order, size_t count, unfold_scor
     u->gap_breaks = 0;
     if (status == UR_OK && u->options.min_gap > 0 && !u->options.gap_strands_faces)
         status = join_single_faces(u, order, count, &u->gap_breaks, error);
+    if (status == UR_OK && u->last_run && u->options.min_gap > 0)
+        status = join_with_tabs_on_twins(u, order, count, error);
     if (status == UR_OK) {
         *score = score_of(u);
         score->gap_breaks = u->gap_breaks;
+        score->cost = (double)score->pieces + u->options.gap_break_cost * (double)score->gap_breaks;
     }
     return status;
 }
@@ -258,6 +285,9 @@ static ur_status check_options(const ur_unfold_options *o, ur_error *error)
     if (!(o->min_gap >= 0 && isfinite(o->min_gap)))
         return ur_error_set(error, UR_ERROR_INPUT,
                             "the narrowest gap between a piece's edges must be a length >= 0");
+    if (!(o->gap_break_cost >= 0 && o->gap_break_cost <= 1))
+        return ur_error_set(error, UR_ERROR_INPUT,
+                            "what a join without the gap costs must be from 0 to 1 piece");
     return UR_OK;
 }
 
@@ -274,8 +304,11 @@ static ur_status alloc_run(unfolder *u, ur_error *error)
     u->pair_large = ur_alloc_array(3 * n + 2, sizeof *u->pair_large, error);
     u->roots = ur_alloc_array(4 * (3 * n + 2), sizeof *u->roots, error);
     u->nearby = ur_alloc_array(n, sizeof *u->nearby, error);
+    u->tab_on_twin = ur_alloc_array(3 * n, sizeof *u->tab_on_twin, error);
+    u->slit_sides = ur_alloc_array(3 * n, sizeof *u->slit_sides, error);
     if (!u->piece || !u->flat || !u->joined || !u->parent || !u->next_member || !u->islands ||
-        !u->pair_small || !u->pair_large || !u->roots || !u->nearby)
+        !u->pair_small || !u->pair_large || !u->roots || !u->nearby || !u->tab_on_twin ||
+        !u->slit_sides)
         return UR_ERROR_MEMORY;
     if (!u->room)
         return UR_OK;
@@ -333,6 +366,8 @@ static void unfolder_free(unfolder *u)
     free(u->pair_large);
     free(u->roots);
     free(u->nearby);
+    free(u->tab_on_twin);
+    free(u->slit_sides);
     free(u->hull_points);
     free(u->hull_chain);
     unfold_grid_free(&u->grid);
@@ -465,6 +500,11 @@ static ur_status unfold(unfolder *u, ur_unfolding *out, ur_error *error)
         status = first_order(u, &order, &count, error);
     if (status == UR_OK)
         status = unfold_search(u, order, count, &out->steps, error);
+    if (status == UR_OK && u->options.min_gap > 0 && !u->options.gap_both_sides) {
+        unfold_score last;
+        u->last_run = true;
+        status = unfold_run(u, order, count, &last, error);
+    }
     out->gap_breaks = u->gap_breaks;
     free(order);
     GEOSContextHandle_t geos = status == UR_OK ? GEOS_init_r() : NULL;
@@ -486,6 +526,7 @@ void ur_unfold_options_default(ur_unfold_options *options)
         .flat_angle = UR_UNFOLD_FLAT_ANGLE,
         .time_budget = 1.0,
         .seed = 1,
+        .gap_break_cost = 1.0,
     };
 }
 

@@ -228,6 +228,17 @@ typedef struct unfolder {
     size_t *roots; /* 2 per pair: the flat vertices it makes one, small's then large's */
     ur_vec2 *hull_points, *hull_chain; /* room for the hull of every corner */
     size_t culprits[UNFOLD_CULPRITS];  /* the triangles that stopped the last joins */
+    /*
+     * The last pass of the last run (tabs_to_twins): a join may leave a
+     * slit narrower than the gap when both its edges can give their tabs to
+     * their twins; per half-edge on an outline, whether it lies in such a
+     * slit, so that its seam's tab goes on its twin, which must have the
+     * room.
+     */
+    bool last_run, tabs_to_twins;
+    bool *tab_on_twin;
+    size_t *slit_sides; /* the half-edges the join under way puts in slits, to mark */
+    size_t slit_side_count;
 } unfolder;
 
 /* The union-find root of corner c (with path halving). */
@@ -256,14 +267,15 @@ bool unfold_hull_fits(const unfolder *u, const ur_vec2 *hull, size_t count);
 /* The outcome of a run, compared: fewer pieces, then fewer of one face, then less cut. */
 typedef struct unfold_score {
     size_t pieces, single_face;
-    size_t gap_breaks; /* joins of single faces made without the options' gap */
+    size_t gap_breaks; /* joins made without the options' gap */
     double seam_length;
+    double cost; /* the pieces and the gap's breaks, each at options.gap_break_cost */
 } unfold_score;
 
-/* What a run costs the maker: a piece, or a seam whose tab may find no room, each one. */
-static inline size_t unfold_score_cost(unfold_score score)
+/* What a run costs the maker: a piece, and a seam whose tab may find no room. */
+static inline double unfold_score_cost(unfold_score score)
 {
-    return score.pieces + score.gap_breaks;
+    return score.cost;
 }
 
 /* -1, 0, 1 as a is better than, as good as or worse than b. */

@@ -284,18 +284,68 @@ static bool slit_between(unfolder *u, const unfold_motion *m, size_t small, size
     return !covered(u, large, NULL, middle, u->eps) && !covered(u, small, m, middle, u->eps);
 }
 
+static bool marked_by_join(const unfolder *u, size_t h)
+{
+    for (size_t i = 0; i < u->slit_side_count; i++)
+        if (u->slit_sides[i] == h)
+            return true;
+    return false;
+}
+
+/*
+ * Whether outline edge h may lie in a narrow slit beside outline edge
+ * other: it needs no tab (the mesh's boundary), or its seam's tab can go
+ * on its twin instead, which is neither the other side of the slit nor in
+ * a slit itself.
+ */
+static bool tab_may_go_to_twin(const unfolder *u, size_t h, size_t other)
+{
+    size_t g = u->edges.twins[h];
+    if (g == UR_NO_EDGE)
+        return true;
+    return g != other && !u->tab_on_twin[g] && !marked_by_join(u, g);
+}
+
+static void mark_for_join(unfolder *u, size_t h)
+{
+    if (u->edges.twins[h] != UR_NO_EDGE && !u->tab_on_twin[h] && !marked_by_join(u, h))
+        u->slit_sides[u->slit_side_count++] = h;
+}
+
+/*
+ * Whether outline edges hs of moved s and hq of q leave a slit between
+ * them that no tab can use: a slit whose two edges both hand their tabs
+ * to their twins is kept (the tabs of a seam go on one side only, as in
+ * Blender's paper model), and the two edges are marked so when the join is
+ * made.
+ */
+static bool blocking_slit(unfolder *u, const unfold_motion *m, size_t hs, ur_vec2 a, ur_vec2 b,
+                          size_t hq, ur_vec2 c, ur_vec2 d)
+{
+    size_t s = hs / 3, q = hq / 3;
+    if (!slit_between(u, m, u->piece[s], u->piece[q], a, b, c, d))
+        return false;
+    if (!u->tabs_to_twins || !tab_may_go_to_twin(u, hs, hq) || !tab_may_go_to_twin(u, hq, hs))
+        return true;
+    mark_for_join(u, hs);
+    mark_for_join(u, hq);
+    return false;
+}
+
 /* Whether an outline edge of moved s and one of q leave a slit between them. */
 static bool leaves_slit(unfolder *u, const unfold_motion *m, size_t s, const ur_vec2 moved[3],
                         size_t q)
 {
     for (int i = 0; i < 3; i++) {
-        if (!stays_outline(u, 3 * s + (size_t)i))
+        size_t hs = 3 * s + (size_t)i;
+        if (!stays_outline(u, hs))
             continue;
-        for (int j = 0; j < 3; j++)
-            if (stays_outline(u, 3 * q + (size_t)j) &&
-                slit_between(u, m, u->piece[s], u->piece[q], moved[i], moved[(i + 1) % 3],
-                             u->flat[q][j], u->flat[q][(j + 1) % 3]))
+        for (int j = 0; j < 3; j++) {
+            size_t hq = 3 * q + (size_t)j;
+            if (stays_outline(u, hq) && blocking_slit(u, m, hs, moved[i], moved[(i + 1) % 3], hq,
+                                                      u->flat[q][j], u->flat[q][(j + 1) % 3]))
                 return true;
+        }
     }
     return false;
 }
@@ -437,6 +487,8 @@ static ur_status keep_hull(unfolder *u, size_t large, size_t count, ur_error *er
 static ur_status commit(unfolder *u, const unfold_motion *m, size_t small, size_t large,
                         ur_error *error)
 {
+    for (size_t i = 0; i < u->slit_side_count; i++)
+        u->tab_on_twin[u->slit_sides[i]] = true;
     for (size_t i = 0; i < u->pair_count; i++) {
         size_t s = u->pair_small[i], l = u->pair_large[i];
         u->joined[s] = u->joined[l] = true;
@@ -488,6 +540,7 @@ static void count_failure(unfolder *u, size_t small, size_t large)
 ur_status unfold_try_join(unfolder *u, size_t h, bool *joined, ur_error *error)
 {
     *joined = false;
+    u->slit_side_count = 0;
     size_t g = u->edges.twins[h];
     if (g == UR_NO_EDGE || u->edges.cut[h] || u->joined[h])
         return UR_OK;

@@ -367,6 +367,8 @@ static ur_status unfold_mesh(const job_run *run, const job_room *room, const ur_
         options.room_width = room->width - 2 * joint;
     }
     options.seed = (uint64_t)run->job.seed;
+    if (run->job.fewer_pieces) /* a seam joined by hand costs half a piece */
+        options.gap_break_cost = 0.5;
     options.max_steps = UNFOLD_STEPS;
     options.time_budget = mesh->triangle_count > UNFOLD_TIMED_ABOVE ? UNFOLD_SECONDS : 0.0;
     double tab = material->joint == UR_JOINT_LAP ? material->lap_width : material->tab_depth;

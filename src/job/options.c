@@ -151,6 +151,10 @@ ur_status ur_job_check(const ur_job *job, ur_error *error)
                      command);
         return ur_error_set_setting(error, "max-strain flatten");
     }
+    if (job->fewer_pieces && !(mesh && job->unfold)) {
+        ur_error_set(error, UR_ERROR_INPUT, "%s: fewer-pieces goes with flatten unfold", command);
+        return ur_error_set_setting(error, "fewer-pieces flatten");
+    }
     if (adjusting(job) && !job->adjust_rails) {
         ur_error_set(error, UR_ERROR_INPUT,
                      "%s: adjust-direction, adjust-plane, adjust-ends, adjust-max and "

@@ -131,6 +131,14 @@ static ur_status set_strict(ur_job *job, const char *value, ur_error *error)
     return UR_OK;
 }
 
+static ur_status set_fewer_pieces(ur_job *job, const char *value, ur_error *error)
+{
+    (void)value;
+    (void)error;
+    job->fewer_pieces = true;
+    return UR_OK;
+}
+
 /* rail1, rail2 or both: the rails a strip reshapes. */
 static ur_status set_adjust(ur_job *job, const char *value, ur_error *error)
 {
@@ -410,6 +418,7 @@ const job_setting job_surface_settings[] = {
     {"flatten", true, UR_JOB_OPTION_SURFACE, FLATTENED, set_flatten},
     {"iterations", true, UR_JOB_OPTION_SURFACE, FLATTENED, set_iterations},
     {"max-strain", true, UR_JOB_OPTION_SURFACE, FLATTENED, set_max_strain},
+    {"fewer-pieces", false, UR_JOB_OPTION_SURFACE, " mesh ", set_fewer_pieces},
     {"method", true, UR_JOB_OPTION_SURFACE, NULL, set_method},
     {"parts", true, UR_JOB_OPTION_SURFACE, NULL, set_parts},
     {"rulings", false, UR_JOB_OPTION_SURFACE, NULL, set_rulings},

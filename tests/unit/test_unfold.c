@@ -1259,6 +1259,7 @@ static void test_min_gap(void **state)
     ur_unfold_options_default(&options);
     options.max_steps = 50;
     options.gap_strands_faces = true;
+    options.gap_both_sides = true;
     double gap = 3.0;
     ur_unfolding any = unfold_with(&mesh, &options);
     check_unfolding(&mesh, &any, NULL, 0);
@@ -1290,6 +1291,7 @@ static void test_gap_spares_single_faces(void **state)
     options.time_budget = 0;
     options.min_gap = 2.5;
     options.gap_strands_faces = true;
+    options.gap_both_sides = true;
     ur_unfolding strict = unfold_with(&mesh, &options);
     check_unfolding(&mesh, &strict, NULL, 0);
     assert_true(strict.single_face > 0);
@@ -1302,6 +1304,121 @@ static void test_gap_spares_single_faces(void **state)
     assert_int_equal(spared.count + spared.gap_breaks, strict.count);
     ur_unfolding_free(&strict);
     ur_unfolding_free(&spared);
+    ur_mesh_free(&mesh);
+    length_tolerance = 1e-9;
+}
+
+/*
+ * The outline edges of the pieces that come closer than gap to another
+ * (as narrow_gaps counts them), as pairs of mesh vertices in the order
+ * the outline runs; their count.
+ */
+static size_t narrow_edges(const ur_mesh *mesh, const ur_unfolding *u, double gap,
+                           size_t (*edges)[2], size_t most)
+{
+    double tolerance = 2e-6 * mesh_size(mesh);
+    size_t count = 0;
+    for (size_t p = 0; p < u->count; p++) {
+        const ur_unfolded_piece *piece = &u->pieces[p];
+        size_t n = piece->outline_count;
+        const ur_vec2 *o = piece->outline;
+        for (size_t i = 0; i < n; i++)
+            for (size_t k = i + 2; k < n; k++) {
+                if ((k + 1) % n == i ||
+                    segment_distance(o[i], o[(i + 1) % n], o[k], o[(k + 1) % n]) >= gap)
+                    continue;
+                size_t t = triangle_of_outline_edge(piece, i, tolerance);
+                size_t q = triangle_of_outline_edge(piece, k, tolerance);
+                if (share_flat_vertex(mesh, piece, t, q, tolerance))
+                    continue;
+                size_t ends[2][2] = {{i, (i + 1) % n}, {k, (k + 1) % n}};
+                for (int e = 0; e < 2 && count < most; e++) {
+                    edges[count][0] = piece->outline_vertices[ends[e][0]];
+                    edges[count][1] = piece->outline_vertices[ends[e][1]];
+                    count++;
+                }
+            }
+    }
+    return count;
+}
+
+/*
+ * A seam needs its tab on one side only: by default the last run also
+ * makes joins that leave slits narrower than the gap where the tabs can
+ * go on the other sides, and only adds joins to the search's best: fewer
+ * pieces than with the gap kept on both sides, and still no seam with
+ * both its sides (which run between the same two mesh vertices in
+ * opposite directions) closer than the gap to another outline edge.
+ */
+static void test_gap_one_side(void **state)
+{
+    (void)state;
+    allow_projection();
+    ur_mesh mesh = sphere(48, 23, 80);
+    ur_unfold_options options;
+    ur_unfold_options_default(&options);
+    options.max_steps = 50;
+    options.min_gap = 3.0;
+    options.gap_strands_faces = true; /* no join without the gap */
+    options.gap_both_sides = true;
+    ur_unfolding both = unfold_with(&mesh, &options);
+    check_unfolding(&mesh, &both, NULL, 0);
+    options.gap_both_sides = false;
+    ur_unfolding one = unfold_with(&mesh, &options);
+    check_unfolding(&mesh, &one, NULL, 0);
+    assert_true(one.count < both.count);
+    size_t most = 4 * 3 * mesh.triangle_count;
+    size_t(*edges)[2] = calloc(most, sizeof *edges);
+    assert_non_null(edges);
+    size_t count = narrow_edges(&mesh, &one, 3.0, edges, most);
+    for (size_t i = 0; i < count; i++)
+        for (size_t j = 0; j < count; j++)
+            assert_false(edges[i][0] == edges[j][1] && edges[i][1] == edges[j][0]);
+    free(edges);
+    ur_unfolding_free(&both);
+    ur_unfolding_free(&one);
+    ur_mesh_free(&mesh);
+    length_tolerance = 1e-9;
+}
+
+/*
+ * Joins without the gap at a cost below a piece: pieces of any size the
+ * gap kept apart are joined at the end of the run, not only single faces
+ * (fewer pieces than at the default cost), so that with the same first
+ * order there are exactly as many pieces fewer as joins made so, and the
+ * pieces still lie flat without overlap.  A cost outside 0 to 1 is
+ * refused.
+ */
+static void test_gap_break_cost(void **state)
+{
+    (void)state;
+    allow_projection();
+    ur_mesh mesh = uv_sphere(48, 24, 60);
+    ur_unfold_options options;
+    ur_unfold_options_default(&options);
+    options.max_steps = 0;
+    options.time_budget = 0;
+    options.min_gap = 2.5;
+    options.gap_strands_faces = true;
+    options.gap_both_sides = true;
+    ur_unfolding strict = unfold_with(&mesh, &options);
+    check_unfolding(&mesh, &strict, NULL, 0);
+    options.gap_strands_faces = false;
+    ur_unfolding faces_only = unfold_with(&mesh, &options); /* the default cost, one piece */
+    options.gap_break_cost = 0.5;
+    ur_unfolding cheap = unfold_with(&mesh, &options);
+    check_unfolding(&mesh, &cheap, NULL, 0);
+    assert_int_equal(cheap.count + cheap.gap_breaks, strict.count);
+    assert_true(cheap.count < faces_only.count);
+    assert_int_equal(cheap.single_face, 0);
+    ur_unfolding refused;
+    ur_error error;
+    options.gap_break_cost = 1.5;
+    assert_int_equal(ur_unfold_with_options(&mesh, NULL, 0, &options, &refused, &error),
+                     UR_ERROR_INPUT);
+    ur_unfolding_free(&strict);
+    ur_unfolding_free(&faces_only);
+    ur_unfolding_free(&cheap);
     ur_mesh_free(&mesh);
     length_tolerance = 1e-9;
 }
@@ -1327,6 +1444,8 @@ int main(void)
         cmocka_unit_test(test_face_larger_than_room),
         cmocka_unit_test(test_search_repeats),
         cmocka_unit_test(test_min_gap),
+        cmocka_unit_test(test_gap_break_cost),
+        cmocka_unit_test(test_gap_one_side),
         cmocka_unit_test(test_gap_spares_single_faces),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
