@@ -854,6 +854,36 @@ def adjust_irons_out_a_bump_and_a_dent(work):
 
 
 @test
+def adjust_untwists_a_twisted_rail(work):
+    """samples/make-gap-rails.py's twisted rails: rail 2 is rail 1 lifted by 40 mm and
+    turned about rail 1's tangent by up to 1.2 rad round its middle, which leaves the strip
+    missing there; --adjust rail2 repairs it by less than the twist moved rail 2 sideways,
+    and the repaired strip is developable along all of rail 1, its net an isometry."""
+    rail1, rail2 = (os.path.join(REPO, "samples", "twist-rail%d.csv" % k) for k in (1, 2))
+    bad(work, r"--strict.*|domain of existence", "strip", "--rail1", rail1, "--rail2", rail2,
+        "--strict", "-o", "x.svg")
+    run(work, "strip", "--rail1", rail1, "--rail2", rail2, "--adjust", "rail2",
+        "--adjusted-rail", "moved.csv", "-o", "s.svg")
+    before, moved = read_points(rail2), read_points(os.path.join(work, "moved.csv"))
+    # How far the twist moves rail 2 sideways, by hand, and as the files have it.
+    sideways = 40 * math.sin(1.2)
+    offsets = [math.dist(p[:2], q[:2]) for p, q in zip(before, read_points(rail1))]
+    check(0.99 * sideways < max(offsets) <= sideways, "sideways by %g mm" % max(offsets))
+    largest = max(math.dist(p, q) for p, q in zip(moved, before))
+    check(0 < largest < sideways, "moved by %g mm, not less than the twist's %g mm" %
+          (largest, sideways))
+    check(moved[0] == before[0] and moved[-1] == before[-1], "an end moved")
+    run(work, "strip", "--rail1", rail1, "--rail2", "moved.csv", "--strict", "-o", "t.svg",
+        "--report", "t.json", *FINE)
+    [piece] = report(work, "t.json")["pieces"]
+    close(piece["flat_area_mm2"], piece["area_3d_mm2"], 1e-6, "flat vs 3D area")
+    check(piece["edge_length_error"] < 1e-6, "edge length error %g" % piece["edge_length_error"])
+    found = run(work, "analyze", "strip", "--rail1", rail1, "--rail2", "moved.csv").stdout
+    check(re.search(r"strip: developable", found) and "the whole of rail 1" in found,
+          "analyze: " + found)
+
+
+@test
 def non_developable_surfaces_are_flattened_with_strain(work):
     low = [(100.0 * i / 39, 0.0, 0.0) for i in range(40)]
     twisted = [(100.0 * i / 39 * math.cos(0.02 * i), 60.0 + 10 * math.sin(0.1 * i), 40.0 * i / 39)
