@@ -43,15 +43,19 @@
  * that passes is the answer.  While none does, the penalties weigh ten
  * times more, a few times; a round ends early when the cost stalls, and
  * all rounds share a budget of SOLVER_BUDGET steps, so that a pair the
- * solver cannot repair is refused in seconds.  A repair that only just straightens what
- * was in the way leaves the edge of regression touching a rail, where the
- * rulings crowd together and the strip bends as sharply as a crease; its
- * displacement is then stretched, in steps of 5 %, until the edge stays
- * EDGE_CLEARANCE rulings beyond both rails.  The pairing is first guessed in proportion
- * along the rails, then, if that fails, from the strip as it is.  This is
- * a local method: it finds the repair the first guesses lead to, not
- * always the smallest, and may find none where one exists (the caller is
- * told so).
+ * solver cannot repair is refused in seconds.
+ *
+ * A repair that only just straightens what was in the way leaves the edge
+ * of regression touching a rail, where the rulings crowd together and the
+ * strip bends as sharply as a crease; its displacement is then stretched,
+ * in steps of 5 %, until the edge stays EDGE_CLEARANCE rulings beyond both
+ * rails and the strip bends no tighter than BEND times the rails' distance
+ * (or, when no step does that, only until the edge is clear).
+ *
+ * The pairing is first guessed in proportion along the rails, then, if
+ * that fails, from the strip as it is.  This is a local method: it finds
+ * the repair the first guesses lead to, not always the smallest, and may
+ * find none where one exists (the caller is told so).
  */
 #include "surface_internal.h"
 
@@ -89,6 +93,14 @@ enum {
  */
 #define EDGE_CLEARANCE 0.015
 
+/*
+ * The smallest bend radius a repair is stretched to leave, as a share of
+ * the rails' distance: a crease is what the repair is there to avoid.  On
+ * issue 25's rails the strip breaks when the repair is stretched by more
+ * than about 15 %, which leaves radii up to about 1.5 % of the distance.
+ */
+#define BEND 0.015
+
 #define TANGENCY 1e-4  /* radians of G that weigh as much as 1 mm of displacement */
 #define MARGIN 0.02    /* q_k wanted, so that the edge of regression stays clear */
 #define STEEPNESS 0.05 /* sin 2 phi wanted: the slope between about 1/40 and 40 */
@@ -124,6 +136,7 @@ typedef struct problem {
     size_t first_pairing; /* where the K - 1 increments start */
     size_t unknowns, residual_count;
     double strength; /* the penalties' weight, raised round by round */
+    double bend;     /* the smallest bend radius a repair should leave, mm */
     double *sigma;   /* K, scratch */
     const ur_context *context;
 } problem;
@@ -454,6 +467,7 @@ static ur_status smooth_away_noise(const problem *p, rail *r, ur_error *error)
     ur_status status = smooth_rail(r, coefficients, r->smoothed, error);
     if (status != UR_OK)
         return status;
+    r->base = r->original;
     allowed_moves(p, r, r->smoothed);
     for (size_t i = 0; i < r->count; i++)
         r->smoothed[i] = ur_vec3_add(r->original[i], r->smoothed[i]);
@@ -876,7 +890,7 @@ static bool share_works(problem *p, ur_vec3 *const moves[2], double share)
         rail *q = &p->rails[r];
         for (size_t i = 0; i < q->count; i++)
             q->points[i] =
-                moves[r] ? ur_vec3_add_scaled(q->original[i], moves[r][i], share) : q->original[i];
+                moves[r] ? ur_vec3_add_scaled(q->base[i], moves[r][i], share) : q->base[i];
     }
     return strip_everywhere(p->rails[0].points, p->rails[0].count, p->rails[1].points,
                             p->rails[1].count, EDGE_CLEARANCE, true);
@@ -964,7 +978,7 @@ static ur_status smooth_rail(const rail *r, size_t coefficients, ur_vec3 *smooth
 static void allowed_moves(const problem *p, const rail *r, ur_vec3 *moves)
 {
     for (size_t i = 0; i < r->count; i++) {
-        ur_vec3 move = ur_vec3_sub(moves[i], r->original[i]), allowed = ur_vec3_make(0, 0, 0);
+        ur_vec3 move = ur_vec3_sub(moves[i], r->base[i]), allowed = ur_vec3_make(0, 0, 0);
         for (size_t a = 0; a < p->axis_count; a++)
             allowed = ur_vec3_add_scaled(allowed, p->axes[a], ur_vec3_dot(move, p->axes[a]));
         moves[i] = allowed;
@@ -1095,15 +1109,75 @@ static ur_status attempt(problem *p, const ur_vec3 *const starts[2], bool propor
     return status;
 }
 
-/*
- * From a repair whose edge of regression comes too close to a rail (the
- * repair only just straightened what was in the way, and the rulings crowd
- * together on the rail), the same displacement a little larger, the
- * smallest of STRETCHES steps of STRETCH that keeps the edge clear; else
- * the repair as it is, told so.
- */
-static ur_status clear_the_edge(problem *p, ur_rail_repair_report *report, ur_error *error)
+/* The unit normal of the strip along a ruling, from its ends as ur_ruled_rails gives them. */
+static ur_vec3 strip_normal(const ur_vec3 rails[4])
 {
+    ur_vec3 normal = ur_vec3_cross(rails[1], ur_vec3_sub(rails[2], rails[0]));
+    return ur_vec3_scale(normal, 1.0 / ur_vec3_length(normal));
+}
+
+/* The speed of a ruling's end across the ruling (direction the ruling's unit vector). */
+static double speed_across(ur_vec3 velocity, ur_vec3 direction)
+{
+    return ur_vec3_length(
+        ur_vec3_add_scaled(velocity, direction, -ur_vec3_dot(velocity, direction)));
+}
+
+/*
+ * The smallest bend radius of the strip between the rails as placed, at
+ * both ends of SAMPLES_PER_POINT rulings per point of rail 1: on a
+ * developable the curvature across a ruling varies as one over the
+ * distance from the edge of regression, so it is largest at an end.
+ * There the radius is the end's speed across the ruling over the rate at
+ * which the tangent plane's normal turns.  0 when there is no strip.
+ */
+static double smallest_bend_radius(const ur_vec3 *rail1, size_t count1, const ur_vec3 *rail2,
+                                   size_t count2)
+{
+    ur_ruled strip;
+    if (surface_strip_of_points(rail1, count1, rail2, count2, &strip, NULL) != UR_OK)
+        return 0.0;
+    double start = ur_ruled_start(&strip), end = ur_ruled_end(&strip), smallest = INFINITY;
+    size_t samples = SAMPLES_PER_POINT * count1;
+    double step = (end - start) / (double)samples;
+    for (size_t k = 1; k < samples; k++) {
+        ur_vec3 here[4], before[4], after[4];
+        double u = start + step * (double)k;
+        ur_ruled_rails(&strip, u, here);
+        ur_ruled_rails(&strip, u - 0.5 * step, before);
+        ur_ruled_rails(&strip, u + 0.5 * step, after);
+        double turning = ur_vec3_distance(strip_normal(after), strip_normal(before)) / step;
+        ur_vec3 ruling = ur_vec3_sub(here[2], here[0]);
+        ur_vec3 direction = ur_vec3_scale(ruling, 1.0 / ur_vec3_length(ruling));
+        double across = fmin(speed_across(here[1], direction), speed_across(here[3], direction));
+        if (turning > 0)
+            smallest = fmin(smallest, across / turning);
+    }
+    ur_ruled_free(&strip);
+    return smallest;
+}
+
+static bool placed_bend_radius_enough(const problem *p)
+{
+    return smallest_bend_radius(p->rails[0].points, p->rails[0].count, p->rails[1].points,
+                                p->rails[1].count) >= p->bend;
+}
+
+/*
+ * A repair that only just straightens what was in the way leaves the edge
+ * of regression near a rail, where the rulings crowd together and the
+ * strip bends as sharply as a crease.  Its displacement is then made a
+ * little larger: the smallest of STRETCHES steps of STRETCH that keeps the
+ * edge clear and bends no tighter than p->bend; when none does, the
+ * smallest that keeps the edge clear; when none does either, the repair as
+ * it is, told so.
+ */
+static ur_status ease_the_bend(problem *p, ur_rail_repair_report *report, ur_error *error)
+{
+    if (strip_everywhere(p->rails[0].points, p->rails[0].count, p->rails[1].points,
+                         p->rails[1].count, EDGE_CLEARANCE, false) &&
+        placed_bend_radius_enough(p))
+        return UR_OK;
     ur_vec3 *moves[2] = {NULL, NULL};
     ur_status status = UR_OK;
     for (int r = 0; status == UR_OK && r < 2; r++)
@@ -1112,16 +1186,20 @@ static ur_status clear_the_edge(problem *p, ur_rail_repair_report *report, ur_er
             if (!moves[r])
                 status = UR_ERROR_MEMORY;
             for (size_t i = 0; moves[r] && i < p->rails[r].count; i++)
-                moves[r][i] = ur_vec3_sub(p->rails[r].points[i], p->rails[r].original[i]);
+                moves[r][i] = ur_vec3_sub(p->rails[r].points[i], p->rails[r].base[i]);
         }
-    bool clear = false;
-    for (int step = 1; status == UR_OK && !clear && step <= STRETCHES; step++) {
-        clear = share_works(p, moves, 1.0 + STRETCH * step);
+    double clear = 0.0, eased = 0.0;
+    for (int step = 1; status == UR_OK && !(eased > 0) && step <= STRETCHES; step++) {
+        double share = 1.0 + STRETCH * step;
+        if (share_works(p, moves, share)) {
+            clear = clear > 0 ? clear : share;
+            eased = placed_bend_radius_enough(p) ? share : 0.0;
+        }
         status = ur_context_check(p->context, error);
     }
-    if (status == UR_OK && !clear) {
-        share_works(p, moves, 1.0);
-        report->edge_too_close = true;
+    if (status == UR_OK && !(eased > 0)) {
+        share_works(p, moves, clear > 0 ? clear : 1.0);
+        report->edge_too_close = !(clear > 0);
     }
     free(moves[0]);
     free(moves[1]);
@@ -1147,10 +1225,8 @@ static ur_status repair(problem *p, const ur_vec3 *local, ur_rail_repair_report 
         status = attempt(p, starts, true, &budget, report, error);
     if (status == UR_OK && !report->everywhere)
         status = attempt(p, starts, false, &budget, report, error);
-    if (status == UR_OK && report->everywhere &&
-        !strip_everywhere(p->rails[0].points, p->rails[0].count, p->rails[1].points,
-                          p->rails[1].count, EDGE_CLEARANCE, false))
-        status = clear_the_edge(p, report, error);
+    if (status == UR_OK && report->everywhere)
+        status = ease_the_bend(p, report, error);
     if (status == UR_OK)
         measure(p, report);
     return status;
@@ -1178,6 +1254,10 @@ static void prefer_local_repair(problem *p, const ur_vec3 *start, bool move_ends
         return;
     if (!strip_everywhere(p->rails[0].points, p->rails[0].count, start, two->count, EDGE_CLEARANCE,
                           false))
+        return;
+    /* A repair that bends as it should is not traded for a smaller one that does not. */
+    if (report->everywhere && !report->edge_too_close &&
+        smallest_bend_radius(p->rails[0].points, p->rails[0].count, start, two->count) < p->bend)
         return;
     memcpy(two->points, start, two->count * sizeof *two->points);
     report->everywhere = true;
@@ -1217,10 +1297,10 @@ static ur_status repair_rails(ur_vec3 *rail1, size_t count1, ur_vec3 *rail2, siz
         ur_ruled_free(&strip);
         return UR_OK;
     }
-    double limit = options->max_displacement > 0
-                       ? options->max_displacement
-                       : 0.25 * rails_distance(rail1, count1, rail2, count2);
+    double distance = rails_distance(rail1, count1, rail2, count2);
+    double limit = options->max_displacement > 0 ? options->max_displacement : 0.25 * distance;
     report->limit = limit;
+    p.bend = BEND * distance;
     ur_vec3 *start = local_repair(rail1, count1, rail2, count2, options);
     report->from_local_repair = start != NULL;
     status = set_up(&p, options, error);

@@ -145,12 +145,15 @@ static void test_repair_reshapes_the_wavy_rail(void **state)
     if (!(largest > 0 && largest < 4))
         fail_msg("moved by %g mm, not less than the 4 mm wave", largest);
     /*
-     * The rulings do not crowd together on rail 2: the strip bends no
-     * tighter than a hundredth of the rails' distance (45 mm and more).
+     * The rulings do not crowd together on rail 2: the repair is stretched
+     * until the strip bends no tighter than 1.5 % of the rails' distance
+     * (49 mm on average, so 0.74 mm); 0.7 mm leaves room for the two ways
+     * of estimating it (a repair stretched only to keep the edge of
+     * regression clear bends at 0.66 mm).
      */
     double radius = smallest_bend_radius(rail1, rail2, N);
     print_message("smallest bend radius %g mm\n", radius);
-    if (!(radius > 0.45))
+    if (!(radius > 0.7))
         fail_msg("the repaired strip bends with a radius of %g mm", radius);
 }
 
