@@ -92,9 +92,10 @@ REPLAY_BINARIES = $(FUZZ_SOURCES:tests/fuzz/%.c=$(BUILD)/replay/%)
 #     well over half an hour under valgrind (one UV sphere alone ran 9
 #     minutes).  The same code runs under valgrind in the assembly guide's
 #     and the seams' tests;
-#   adjust_reshapes_a_wavy_rail: its least-squares repairs of rail 2 take
-#     12 s, 5 to 10 minutes under valgrind; the sanitizer build runs it, and
-#     test_rail_repair the same repair, and adjust_rail2_repairs_a_short_rail
+#   adjust_reshapes_a_wavy_rail: its least-squares repairs of rail 2 (as
+#     written and to 3 decimals) take 20 s, 10 to 20 minutes under
+#     valgrind; the sanitizer build runs it, and test_rail_repair the same
+#     repair, and adjust_rail2_repairs_a_short_rail
 #     runs the repair's code under valgrind; adjust_irons_out_a_bump_and_a_dent
 #     likewise (5 s; test_rail_repair repairs the same rails).
 VALGRIND_SKIP = a_mesh_too_large_for_memory_fails_cleanly nest_search_is_repeatable \

@@ -24,7 +24,19 @@ dent-rail2.csv   half a circle of radius 30 mm in z = 40 with a dent 2 mm
                  --adjust-plane 0,0,1
 
 Without the bump or the dent the strip is a frustum of a cone; with them it
-has gaps.  Only the standard library is used.
+has gaps.
+
+twist-rail1.csv  an arc of radius 150 mm in z = 0, 150 mm long, in 120 points:
+                 (150 sin(s/150), 150 (1 - cos(s/150)), 0), s from 0 to 150
+twist-rail2.csv  rail 1 lifted by 40 mm and twisted against it about its
+                 tangent: rail 1 + 40 (sin a n + cos a z), n the arc's unit
+                 normal toward its centre, a = 1.2 exp(-((s - 75) / 20)^2):
+                 the twist moves rail 2 sideways by up to 40 sin 1.2 =
+                 37.3 mm in the middle
+
+Without the twist the strip is a general cylinder, its rulings upright;
+with it the strip is missing round the twist.  Only the standard library is
+used.
 """
 import math
 import os
@@ -60,6 +72,26 @@ def dent(t):
     return (radius * math.cos(t), radius * math.sin(t), 40.0)
 
 
+TWIST_RADIUS, TWIST_LENGTH, TWIST_HEIGHT, TWIST_POINTS = 150.0, 150.0, 40.0, 120
+
+
+def twist_rail1(s):
+    t = s / TWIST_RADIUS
+    return (TWIST_RADIUS * math.sin(t), TWIST_RADIUS * (1 - math.cos(t)), 0.0)
+
+
+def twist_rail2(s):
+    x, y, _ = twist_rail1(s)
+    a = 1.2 * math.exp(-((s - TWIST_LENGTH / 2) / 20) ** 2)
+    t = s / TWIST_RADIUS
+    sideways = TWIST_HEIGHT * math.sin(a)
+    return (x - sideways * math.sin(t), y + sideways * math.cos(t), TWIST_HEIGHT * math.cos(a))
+
+
+def along_twist(point):
+    return [point(TWIST_LENGTH * i / (TWIST_POINTS - 1)) for i in range(TWIST_POINTS)]
+
+
 def write(name, header, points):
     with open(os.path.join(HERE, name), "w") as f:
         for line in header:
@@ -84,6 +116,13 @@ def main():
     write("dent-rail2.csv", ["Rail 2 with a dent (samples/make-gap-rails.py): radius",
                              "30 - 2 exp(-((t - pi/2) / 0.15)^2) in z = 40, t from 0 to pi in %d"
                              % ARC_POINTS, "points. x,y,z in mm."], curve(dent, ARC_POINTS))
+    write("twist-rail1.csv", ["Rail 1 of the twisted rails (samples/make-gap-rails.py): an arc",
+                              "(150 sin(s/150), 150 (1 - cos(s/150)), 0), s from 0 to 150 mm in",
+                              "%d points. x,y,z in mm." % TWIST_POINTS], along_twist(twist_rail1))
+    write("twist-rail2.csv", ["Rail 2 twisted against rail 1 (samples/make-gap-rails.py): rail 1",
+                              "+ 40 (sin a n + cos a z), n its normal toward its centre,",
+                              "a = 1.2 exp(-((s - 75) / 20)^2), s from 0 to 150 mm in %d points."
+                              % TWIST_POINTS, "x,y,z in mm."], along_twist(twist_rail2))
 
 
 if __name__ == "__main__":

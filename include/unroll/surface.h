@@ -172,7 +172,10 @@ typedef struct ur_rail_repair_report {
  * between them exists along the whole of rail 1, with no fold, no gap and
  * its edge of regression outside the strip (rail_repair.c says how): a
  * smooth displacement of every point of the moving rails, each keeping its
- * number of points, the ends fixed unless options->move_ends.  Rails that
+ * number of points, the ends fixed unless options->move_ends, made larger
+ * where that helps until the strip bends no tighter than 1.5 % of the
+ * rails' distance (else report->edge_too_close when its edge of regression
+ * stays near a rail).  Rails that
  * already have a strip everywhere come back unchanged (report->largest 0).
  * UR_ERROR_INPUT, with the rails unchanged, when the repair would move a
  * point by more than the limit (the message names the part of rail 1 and

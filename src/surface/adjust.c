@@ -39,7 +39,7 @@ enum {
     MOVED_MARGIN = 2,  /* extra points moved on each side of the window */
     MAX_MOVED = 80,    /* points of rail 2 one window may move */
     SAMPLES_PER_POINT = 3,
-    MAX_ITERATIONS = 100,
+    MAX_ITERATIONS = 40,
 };
 
 #define SMOOTHING 10.0

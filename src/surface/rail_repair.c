@@ -35,17 +35,27 @@
  * The penalties vanish exactly when the sampled pairing is developable,
  * monotone, end to end, keeps to one branch and its rulings do not cross.
  *
- * The result is checked by building the strip again (ur_ruled_strip) and
- * following its edge of regression; while it fails, the penalties weigh
- * ten times more, a few times.  A repair that only just straightens what
- * was in the way leaves the edge of regression touching a rail, where the
- * rulings crowd together and the strip bends as sharply as a crease; its
- * displacement is then stretched, in steps of 5 %, until the edge stays
- * EDGE_CLEARANCE rulings beyond both rails.  The pairing is first guessed in proportion
- * along the rails, then, if that fails, from the strip as it is.  This is
- * a local method: it finds the repair the first guesses lead to, not
- * always the smallest, and may find none where one exists (the caller is
- * told so).
+ * The moving rails are first fitted with one B-spline per four points,
+ * which leaves their shape and smooths away the rounding of their last
+ * digits (the solver's terms use second derivatives, which magnify it).
+ * Every few steps the rails are checked by building the strip again
+ * (ur_ruled_strip) and following its edge of regression; the first step
+ * that passes is the answer.  While none does, the penalties weigh ten
+ * times more, a few times; a round ends early when the cost stalls, and
+ * all rounds share a budget of SOLVER_BUDGET steps, so that a pair the
+ * solver cannot repair is refused in seconds.
+ *
+ * A repair that only just straightens what was in the way leaves the edge
+ * of regression touching a rail, where the rulings crowd together and the
+ * strip bends as sharply as a crease; its displacement is then stretched,
+ * in steps of 5 %, until the edge stays EDGE_CLEARANCE rulings beyond both
+ * rails and the strip bends no tighter than BEND times the rails' distance
+ * (or, when no step does that, only until the edge is clear).
+ *
+ * The pairing is first guessed in proportion along the rails, then, if
+ * that fails, from the strip as it is.  This is a local method: it finds
+ * the repair the first guesses lead to, not always the smallest, and may
+ * find none where one exists (the caller is told so).
  */
 #include "surface_internal.h"
 
@@ -69,6 +79,10 @@ enum {
     MAX_ITERATIONS = 100,
     ROUNDS = 4,
     SAMPLES_PER_POINT = 4, /* of rail 1, checking the edge of regression */
+    NOISE_POINTS = 4,
+    CHECK_EVERY = 5,     /* solver steps between looks at the strip */
+    STALL_CHECKS = 4,    /* looks over which the cost must fall by STALL */
+    SOLVER_BUDGET = 150, /* solver steps in all */
 };
 
 /*
@@ -79,6 +93,14 @@ enum {
  */
 #define EDGE_CLEARANCE 0.015
 
+/*
+ * The smallest bend radius a repair is stretched to leave, as a share of
+ * the rails' distance: a crease is what the repair is there to avoid.  On
+ * issue 25's rails the strip breaks when the repair is stretched by more
+ * than about 15 %, which leaves radii up to about 1.5 % of the distance.
+ */
+#define BEND 0.015
+
 #define TANGENCY 1e-4  /* radians of G that weigh as much as 1 mm of displacement */
 #define MARGIN 0.02    /* q_k wanted, so that the edge of regression stays clear */
 #define STEEPNESS 0.05 /* sin 2 phi wanted: the slope between about 1/40 and 40 */
@@ -87,10 +109,13 @@ enum {
 #define PAIRING 0.1    /* weight of the pairing's smoothness */
 #define CHORD 10.0     /* weight of the chords' mismatch with the root curve */
 #define SMOOTHING 1.0
+#define STALL 0.02
 
 /* One rail: where its points were, where they are, and how they may move. */
 typedef struct rail {
     const ur_vec3 *original;
+    ur_vec3 *smoothed;   /* original with the noise of its last digits fitted away, or NULL */
+    const ur_vec3 *base; /* what the solver's displacement is added to: smoothed, or original */
     ur_vec3 *points;
     size_t count;
     bool moves;
@@ -111,6 +136,7 @@ typedef struct problem {
     size_t first_pairing; /* where the K - 1 increments start */
     size_t unknowns, residual_count;
     double strength; /* the penalties' weight, raised round by round */
+    double bend;     /* the smallest bend radius a repair should leave, mm */
     double *sigma;   /* K, scratch */
     const ur_context *context;
 } problem;
@@ -160,7 +186,7 @@ static size_t rail_unknowns(const rail *r, const problem *p)
 /* The points of a rail moved by the coefficients in x (read through gsl_vector_get). */
 static void place_points(const problem *p, rail *r, const gsl_vector *x)
 {
-    memcpy(r->points, r->original, r->count * sizeof *r->points);
+    memcpy(r->points, r->base, r->count * sizeof *r->points);
     if (!r->moves)
         return;
     for (size_t m = 0; m < r->free_count; m++) {
@@ -239,7 +265,7 @@ static ruling_terms terms_at(problem *p, size_t k)
     double run = determinant3(c1[1], c2[2], ruling) * speed1;
     double size = rise * rise + run * run;
     t.steepness = size > 0 ? 2 * rise * run / size : 0.0;
-    t.gradient = sqrt(size) / (speed1 * speed1 * speed2 * speed2 * length);
+    t.gradient = sqrt(size) / (speed1 * speed1 * speed2 * speed2);
     t.slope = rise / run;
     ur_vec3 normal = ur_vec3_cross(c1[1], ruling);
     double across_size = ur_vec3_length(normal);
@@ -420,6 +446,35 @@ static ur_status set_axes(problem *p, const ur_rail_repair_options *options, ur_
     return UR_OK;
 }
 
+static ur_status smooth_rail(const rail *r, size_t coefficients, ur_vec3 *smooth, ur_error *error);
+static void allowed_moves(const problem *p, const rail *r, ur_vec3 *moves);
+
+/*
+ * The solver works on derivatives of the rails up to the second, which
+ * magnify the rounding of their points' last digits (3 decimals give the
+ * wavy rail's curvature errors of a tenth of itself); it starts from the
+ * rail fitted with one B-spline per NOISE_POINTS points, which leaves its
+ * shape (a few micrometres off) and smooths that noise away.
+ */
+static ur_status smooth_away_noise(const problem *p, rail *r, ur_error *error)
+{
+    size_t coefficients = r->count / NOISE_POINTS;
+    if (coefficients < 8)
+        return UR_OK;
+    r->smoothed = ur_alloc_array(r->count, sizeof *r->smoothed, error);
+    if (!r->smoothed)
+        return UR_ERROR_MEMORY;
+    ur_status status = smooth_rail(r, coefficients, r->smoothed, error);
+    if (status != UR_OK)
+        return status;
+    r->base = r->original;
+    allowed_moves(p, r, r->smoothed);
+    for (size_t i = 0; i < r->count; i++)
+        r->smoothed[i] = ur_vec3_add(r->original[i], r->smoothed[i]);
+    r->base = r->smoothed;
+    return UR_OK;
+}
+
 static ur_status set_up(problem *p, const ur_rail_repair_options *options, ur_error *error)
 {
     size_t unknowns = 0, most = 0;
@@ -429,9 +484,12 @@ static ur_status set_up(problem *p, const ur_rail_repair_options *options, ur_er
         if (!q->points)
             return UR_ERROR_MEMORY;
         memcpy(q->points, q->original, q->count * sizeof *q->points);
+        q->base = q->original;
         if (!q->moves)
             continue;
         ur_status status = make_basis(q, options->move_ends, error);
+        if (status == UR_OK)
+            status = smooth_away_noise(p, q, error);
         if (status != UR_OK)
             return status;
         q->first_unknown = unknowns;
@@ -458,6 +516,7 @@ static void free_problem(problem *p)
 {
     for (int r = 0; r < 2; r++) {
         free(p->rails[r].points);
+        free(p->rails[r].smoothed);
         ur_curve_free(p->rails[r].curve);
         gsl_matrix_free(p->rails[r].basis);
         gsl_matrix_free(p->rails[r].gram);
@@ -485,8 +544,7 @@ static ur_status fit_displacements(const problem *p, const rail *r, const ur_vec
             gsl_matrix_set(design, i, m, gsl_matrix_get(r->basis, i, r->first_free + m));
     for (size_t a = 0; status == UR_OK && a < p->axis_count; a++) {
         for (size_t i = 0; i < r->count; i++)
-            gsl_vector_set(observed, i,
-                           ur_vec3_dot(ur_vec3_sub(moved[i], r->original[i]), p->axes[a]));
+            gsl_vector_set(observed, i, ur_vec3_dot(ur_vec3_sub(moved[i], r->base[i]), p->axes[a]));
         double chi_squared;
         if (gsl_multifit_linear(design, observed, fit, covariance, &chi_squared, work) !=
             GSL_SUCCESS)
@@ -578,7 +636,35 @@ static ur_status first_guess(problem *p, const ur_vec3 *const starts[2], bool pr
 
 /* ---- Solving and checking ----------------------------------------------- */
 
-static ur_status solve(problem *p, gsl_vector *x, size_t *iterations, ur_error *error)
+static bool strip_everywhere(const ur_vec3 *rail1, size_t count1, const ur_vec3 *rail2,
+                             size_t count2, double clearance, bool developable);
+
+/* Whether the rails as x places them have a strip everywhere; they are left so placed. */
+static bool placed_everywhere(problem *p, const gsl_vector *x)
+{
+    for (int r = 0; r < 2; r++)
+        place_points(p, &p->rails[r], x);
+    return strip_everywhere(p->rails[0].points, p->rails[0].count, p->rails[1].points,
+                            p->rails[1].count, 0.0, true);
+}
+
+static double squared_norm(const gsl_vector *v)
+{
+    double norm = gsl_blas_dnrm2(v);
+    return norm * norm;
+}
+
+/*
+ * Levenberg-Marquardt steps from x until the rails have a strip
+ * everywhere (looked at every CHECK_EVERY steps: the first such step is
+ * the answer, which makes it the same for inputs that differ in their last
+ * digits, where the end of a long walk is not), the solver stalls or
+ * stops, MAX_ITERATIONS, or the budget of steps runs out.  x is left where
+ * it got to.
+ */
+
+static ur_status solve(problem *p, gsl_vector *x, size_t *iterations, size_t *budget,
+                       bool *everywhere, ur_error *error)
 {
     gsl_multifit_nlinear_parameters parameters = gsl_multifit_nlinear_default_parameters();
     /* The pairing's softmax has a direction that changes nothing: plain damping copes. */
@@ -590,18 +676,34 @@ static ur_status solve(problem *p, gsl_vector *x, size_t *iterations, ur_error *
         return ur_error_out_of_memory(error);
     gsl_multifit_nlinear_fdf fdf = {residuals, NULL, NULL, p->residual_count, p->unknowns, p,
                                     0,         0,    0};
-    int info, code = gsl_multifit_nlinear_init(x, &fdf, solver);
-    if (code == GSL_SUCCESS) /* reaching MAX_ITERATIONS is not failure: the result is checked */
-        code = gsl_multifit_nlinear_driver(MAX_ITERATIONS, 1e-10, 1e-10, 1e-12, NULL, NULL, &info,
-                                           solver);
-    if (code == GSL_SUCCESS || code == GSL_EMAXITER)
-        gsl_vector_memcpy(x, gsl_multifit_nlinear_position(solver));
+    *everywhere = false;
+    ur_status status = UR_OK;
+    if (gsl_multifit_nlinear_init(x, &fdf, solver) != GSL_SUCCESS)
+        status = ur_error_set(error, UR_ERROR_INTERNAL,
+                              "reshaping the rails: the solver could not start");
+    double costs[STALL_CHECKS] = {0};
+    size_t checks = 0;
+    for (size_t step = 1; status == UR_OK && step <= MAX_ITERATIONS && *budget > 0; step++) {
+        --*budget;
+        int info, code = gsl_multifit_nlinear_iterate(solver);
+        bool still = code != GSL_SUCCESS ||
+                     gsl_multifit_nlinear_test(1e-10, 1e-10, 1e-12, &info, solver) != GSL_CONTINUE;
+        if (still || step % CHECK_EVERY == 0) {
+            *everywhere = placed_everywhere(p, gsl_multifit_nlinear_position(solver));
+            status = ur_context_check(p->context, error);
+            /* Stalled: the cost fell by less than STALL over the last checks. */
+            double cost = squared_norm(gsl_multifit_nlinear_residual(solver));
+            still = still ||
+                    (checks >= STALL_CHECKS && cost > (1 - STALL) * costs[checks % STALL_CHECKS]);
+            costs[checks++ % STALL_CHECKS] = cost;
+        }
+        if (still || *everywhere)
+            break;
+    }
+    gsl_vector_memcpy(x, gsl_multifit_nlinear_position(solver));
     *iterations += gsl_multifit_nlinear_niter(solver);
     gsl_multifit_nlinear_free(solver);
-    if (code != GSL_SUCCESS && code != GSL_EMAXITER)
-        return ur_error_set(error, UR_ERROR_INTERNAL, "reshaping the rails: the solver failed: %s",
-                            gsl_strerror(code));
-    return UR_OK;
+    return status;
 }
 
 /*
@@ -788,7 +890,7 @@ static bool share_works(problem *p, ur_vec3 *const moves[2], double share)
         rail *q = &p->rails[r];
         for (size_t i = 0; i < q->count; i++)
             q->points[i] =
-                moves[r] ? ur_vec3_add_scaled(q->original[i], moves[r][i], share) : q->original[i];
+                moves[r] ? ur_vec3_add_scaled(q->base[i], moves[r][i], share) : q->base[i];
     }
     return strip_everywhere(p->rails[0].points, p->rails[0].count, p->rails[1].points,
                             p->rails[1].count, EDGE_CLEARANCE, true);
@@ -876,7 +978,7 @@ static ur_status smooth_rail(const rail *r, size_t coefficients, ur_vec3 *smooth
 static void allowed_moves(const problem *p, const rail *r, ur_vec3 *moves)
 {
     for (size_t i = 0; i < r->count; i++) {
-        ur_vec3 move = ur_vec3_sub(moves[i], r->original[i]), allowed = ur_vec3_make(0, 0, 0);
+        ur_vec3 move = ur_vec3_sub(moves[i], r->base[i]), allowed = ur_vec3_make(0, 0, 0);
         for (size_t a = 0; a < p->axis_count; a++)
             allowed = ur_vec3_add_scaled(allowed, p->axes[a], ur_vec3_dot(move, p->axes[a]));
         moves[i] = allowed;
@@ -898,6 +1000,32 @@ static ur_status smoothing_moves(const problem *p, size_t coefficients, ur_vec3 
         allowed_moves(p, q, moves[r]);
     }
     return UR_OK;
+}
+
+/*
+ * The rails moved by the smallest share of moves (which work in whole)
+ * that gives a strip everywhere, found by bisection; they are left so
+ * placed.
+ */
+static ur_status least_share(problem *p, ur_vec3 *const moves[2], ur_error *error)
+{
+    double low = 0.0, high = 1.0;
+    ur_status status = UR_OK;
+    for (int step = 0; status == UR_OK && step < BISECTIONS; step++) {
+        double middle = 0.5 * (low + high);
+        if (share_works(p, moves, middle))
+            high = middle;
+        else
+            low = middle;
+        status = ur_context_check(p->context, error);
+    }
+    /*
+     * The bisection ends next to rails with no strip, where the strip is
+     * nearly singular; a little further from them, when that works too.
+     */
+    if (status == UR_OK && !share_works(p, moves, fmin(1.0, SHARE_MARGIN * high)))
+        share_works(p, moves, high);
+    return status;
 }
 
 /*
@@ -926,21 +1054,8 @@ static ur_status repair_by_smoothing(problem *p, ur_rail_repair_report *report, 
         if (status == UR_OK)
             found = share_works(p, moves, 1.0);
     }
-    double low = 0.0, high = 1.0;
-    for (int step = 0; found && status == UR_OK && step < BISECTIONS; step++) {
-        double middle = 0.5 * (low + high);
-        if (share_works(p, moves, middle))
-            high = middle;
-        else
-            low = middle;
-        status = ur_context_check(p->context, error);
-    }
-    /*
-     * The bisection ends next to rails with no strip, where the strip is
-     * nearly singular; a little further from them, when that works too.
-     */
-    if (found && status == UR_OK && !share_works(p, moves, fmin(1.0, SHARE_MARGIN * high)))
-        share_works(p, moves, high);
+    if (found && status == UR_OK)
+        status = least_share(p, moves, error);
     if (found && status == UR_OK) {
         report->everywhere = true;
         report->smoothed = true;
@@ -976,7 +1091,7 @@ static ur_vec3 *local_repair(const ur_vec3 *rail1, size_t count1, const ur_vec3 
  * times more while the strip is not everywhere.
  */
 static ur_status attempt(problem *p, const ur_vec3 *const starts[2], bool proportional,
-                         ur_rail_repair_report *report, ur_error *error)
+                         size_t *budget, ur_rail_repair_report *report, ur_error *error)
 {
     gsl_vector *x = gsl_vector_alloc(p->unknowns);
     if (!x)
@@ -985,29 +1100,84 @@ static ur_status attempt(problem *p, const ur_vec3 *const starts[2], bool propor
     report->everywhere = false;
     p->strength = 1.0;
     for (int round = 0; status == UR_OK && round < ROUNDS && !report->everywhere; round++) {
-        status = solve(p, x, &report->iterations, error);
+        status = solve(p, x, &report->iterations, budget, &report->everywhere, error);
         if (status != UR_OK)
             break;
-        for (int r = 0; r < 2; r++)
-            place_points(p, &p->rails[r], x);
-        report->everywhere = strip_everywhere(p->rails[0].points, p->rails[0].count,
-                                              p->rails[1].points, p->rails[1].count, 0.0, false);
         p->strength *= 10;
-        status = ur_context_check(p->context, error);
     }
     gsl_vector_free(x);
     return status;
 }
 
-/*
- * From a repair whose edge of regression comes too close to a rail (the
- * repair only just straightened what was in the way, and the rulings crowd
- * together on the rail), the same displacement a little larger, the
- * smallest of STRETCHES steps of STRETCH that keeps the edge clear; else
- * the repair as it is, told so.
- */
-static ur_status clear_the_edge(problem *p, ur_rail_repair_report *report, ur_error *error)
+/* The unit normal of the strip along a ruling, from its ends as ur_ruled_rails gives them. */
+static ur_vec3 strip_normal(const ur_vec3 rails[4])
 {
+    ur_vec3 normal = ur_vec3_cross(rails[1], ur_vec3_sub(rails[2], rails[0]));
+    return ur_vec3_scale(normal, 1.0 / ur_vec3_length(normal));
+}
+
+/* The speed of a ruling's end across the ruling (direction the ruling's unit vector). */
+static double speed_across(ur_vec3 velocity, ur_vec3 direction)
+{
+    return ur_vec3_length(
+        ur_vec3_add_scaled(velocity, direction, -ur_vec3_dot(velocity, direction)));
+}
+
+/*
+ * The smallest bend radius of the strip between the rails as placed, at
+ * both ends of SAMPLES_PER_POINT rulings per point of rail 1: on a
+ * developable the curvature across a ruling varies as one over the
+ * distance from the edge of regression, so it is largest at an end.
+ * There the radius is the end's speed across the ruling over the rate at
+ * which the tangent plane's normal turns.  0 when there is no strip.
+ */
+static double smallest_bend_radius(const ur_vec3 *rail1, size_t count1, const ur_vec3 *rail2,
+                                   size_t count2)
+{
+    ur_ruled strip;
+    if (surface_strip_of_points(rail1, count1, rail2, count2, &strip, NULL) != UR_OK)
+        return 0.0;
+    double start = ur_ruled_start(&strip), end = ur_ruled_end(&strip), smallest = INFINITY;
+    size_t samples = SAMPLES_PER_POINT * count1;
+    double step = (end - start) / (double)samples;
+    for (size_t k = 1; k < samples; k++) {
+        ur_vec3 here[4], before[4], after[4];
+        double u = start + step * (double)k;
+        ur_ruled_rails(&strip, u, here);
+        ur_ruled_rails(&strip, u - 0.5 * step, before);
+        ur_ruled_rails(&strip, u + 0.5 * step, after);
+        double turning = ur_vec3_distance(strip_normal(after), strip_normal(before)) / step;
+        ur_vec3 ruling = ur_vec3_sub(here[2], here[0]);
+        ur_vec3 direction = ur_vec3_scale(ruling, 1.0 / ur_vec3_length(ruling));
+        double across = fmin(speed_across(here[1], direction), speed_across(here[3], direction));
+        if (turning > 0)
+            smallest = fmin(smallest, across / turning);
+    }
+    ur_ruled_free(&strip);
+    return smallest;
+}
+
+static bool placed_bend_radius_enough(const problem *p)
+{
+    return smallest_bend_radius(p->rails[0].points, p->rails[0].count, p->rails[1].points,
+                                p->rails[1].count) >= p->bend;
+}
+
+/*
+ * A repair that only just straightens what was in the way leaves the edge
+ * of regression near a rail, where the rulings crowd together and the
+ * strip bends as sharply as a crease.  Its displacement is then made a
+ * little larger: the smallest of STRETCHES steps of STRETCH that keeps the
+ * edge clear and bends no tighter than p->bend; when none does, the
+ * smallest that keeps the edge clear; when none does either, the repair as
+ * it is, told so.
+ */
+static ur_status ease_the_bend(problem *p, ur_rail_repair_report *report, ur_error *error)
+{
+    if (strip_everywhere(p->rails[0].points, p->rails[0].count, p->rails[1].points,
+                         p->rails[1].count, EDGE_CLEARANCE, false) &&
+        placed_bend_radius_enough(p))
+        return UR_OK;
     ur_vec3 *moves[2] = {NULL, NULL};
     ur_status status = UR_OK;
     for (int r = 0; status == UR_OK && r < 2; r++)
@@ -1016,16 +1186,20 @@ static ur_status clear_the_edge(problem *p, ur_rail_repair_report *report, ur_er
             if (!moves[r])
                 status = UR_ERROR_MEMORY;
             for (size_t i = 0; moves[r] && i < p->rails[r].count; i++)
-                moves[r][i] = ur_vec3_sub(p->rails[r].points[i], p->rails[r].original[i]);
+                moves[r][i] = ur_vec3_sub(p->rails[r].points[i], p->rails[r].base[i]);
         }
-    bool clear = false;
-    for (int step = 1; status == UR_OK && !clear && step <= STRETCHES; step++) {
-        clear = share_works(p, moves, 1.0 + STRETCH * step);
+    double clear = 0.0, eased = 0.0;
+    for (int step = 1; status == UR_OK && !(eased > 0) && step <= STRETCHES; step++) {
+        double share = 1.0 + STRETCH * step;
+        if (share_works(p, moves, share)) {
+            clear = clear > 0 ? clear : share;
+            eased = placed_bend_radius_enough(p) ? share : 0.0;
+        }
         status = ur_context_check(p->context, error);
     }
-    if (status == UR_OK && !clear) {
-        share_works(p, moves, 1.0);
-        report->edge_too_close = true;
+    if (status == UR_OK && !(eased > 0)) {
+        share_works(p, moves, clear > 0 ? clear : 1.0);
+        report->edge_too_close = !(clear > 0);
     }
     free(moves[0]);
     free(moves[1]);
@@ -1046,14 +1220,13 @@ static ur_status repair(problem *p, const ur_vec3 *local, ur_rail_repair_report 
 {
     ur_status status = repair_by_smoothing(p, report, error);
     const ur_vec3 *starts[2] = {NULL, local};
+    size_t budget = SOLVER_BUDGET;
     if (status == UR_OK && !report->everywhere)
-        status = attempt(p, starts, true, report, error);
+        status = attempt(p, starts, true, &budget, report, error);
     if (status == UR_OK && !report->everywhere)
-        status = attempt(p, starts, false, report, error);
-    if (status == UR_OK && report->everywhere &&
-        !strip_everywhere(p->rails[0].points, p->rails[0].count, p->rails[1].points,
-                          p->rails[1].count, EDGE_CLEARANCE, false))
-        status = clear_the_edge(p, report, error);
+        status = attempt(p, starts, false, &budget, report, error);
+    if (status == UR_OK && report->everywhere)
+        status = ease_the_bend(p, report, error);
     if (status == UR_OK)
         measure(p, report);
     return status;
@@ -1081,6 +1254,10 @@ static void prefer_local_repair(problem *p, const ur_vec3 *start, bool move_ends
         return;
     if (!strip_everywhere(p->rails[0].points, p->rails[0].count, start, two->count, EDGE_CLEARANCE,
                           false))
+        return;
+    /* A repair that bends as it should is not traded for a smaller one that does not. */
+    if (report->everywhere && !report->edge_too_close &&
+        smallest_bend_radius(p->rails[0].points, p->rails[0].count, start, two->count) < p->bend)
         return;
     memcpy(two->points, start, two->count * sizeof *two->points);
     report->everywhere = true;
@@ -1120,10 +1297,10 @@ static ur_status repair_rails(ur_vec3 *rail1, size_t count1, ur_vec3 *rail2, siz
         ur_ruled_free(&strip);
         return UR_OK;
     }
-    double limit = options->max_displacement > 0
-                       ? options->max_displacement
-                       : 0.25 * rails_distance(rail1, count1, rail2, count2);
+    double distance = rails_distance(rail1, count1, rail2, count2);
+    double limit = options->max_displacement > 0 ? options->max_displacement : 0.25 * distance;
     report->limit = limit;
+    p.bend = BEND * distance;
     ur_vec3 *start = local_repair(rail1, count1, rail2, count2, options);
     report->from_local_repair = start != NULL;
     status = set_up(&p, options, error);

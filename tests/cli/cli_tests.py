@@ -770,6 +770,23 @@ def adjust_reshapes_a_wavy_rail(work):
     found = run(work, "analyze", "strip", "--rail1", rail1, "--rail2", "moved.csv").stdout
     check(re.search(r"strip: developable", found) and "the whole of rail 1" in found,
           "analyze: " + found)
+    # The same rails written to 3 decimals, as a maker's CSV has them: the repair does
+    # not hang on the last digits, and moves rail 2 about as much.
+    for name, points in (("rail1-3.csv", read_points(rail1)), ("rail2-3.csv", before)):
+        with open(os.path.join(work, name), "w") as f:
+            f.writelines("%.3f,%.3f,%.3f\n" % p for p in points)
+    result = run(work, "strip", "--rail1", "rail1-3.csv", "--rail2", "rail2-3.csv", "--adjust",
+                 "rail2", "--adjusted-rail", "moved-3.csv", "-o", "s.svg")
+    rounded = read_points(os.path.join(work, "rail2-3.csv"))
+    largest = max(math.dist(p, q) for p, q in
+                  zip(read_points(os.path.join(work, "moved-3.csv")), rounded))
+    check(abs(largest - max(distances)) < 0.2 * max(distances),
+          "3 decimals: moved by %g mm, 9 decimals by %g mm" % (largest, max(distances)))
+    run(work, "strip", "--rail1", "rail1-3.csv", "--rail2", "moved-3.csv", "--strict", "-o",
+        "t.svg")
+    found = run(work, "analyze", "strip", "--rail1", "rail1-3.csv", "--rail2", "moved-3.csv").stdout
+    check(re.search(r"strip: developable", found) and "the whole of rail 1" in found,
+          "analyze, 3 decimals: " + found)
     # A pair that already has a strip everywhere comes back unchanged.
     write_points(work, "low.csv", circle_points(50, 0, 0, math.pi, 60))
     write_points(work, "high.csv", circle_points(30, 40, 0, math.pi, 60))
@@ -781,7 +798,8 @@ def adjust_reshapes_a_wavy_rail(work):
     # Bad input: each refused with one line, exit 2 and no files.
     bad(work, r"along rail 1.*0\.5 mm|0\.5 mm.*along rail 1", "strip", "--rail1", rail1, "--rail2", rail2, "--adjust",
         "rail2", "--adjust-max", "0.5", "--adjusted-rail", "m.csv", "-o", "x.svg")
-    write_points(work, "late.csv", circle_points(30, 40, 0.3, math.pi, 60))
+    # Rail 2 over the last third of rail 1 only (one 0.3 rad late is repaired by a fan).
+    write_points(work, "late.csv", circle_points(30, 40, 2.0, math.pi, 60))
     bad(work, r"rail 2 is too short there with its ends fixed; give --adjust-ends", "strip",
         "--rail1", "low.csv", "--rail2", "late.csv", "--adjust", "rail2", "-o", "x.svg")
     write_points(work, "across.csv", [(50 * math.cos(t), 50 * math.sin(t), 20 - 40 * t / math.pi)
@@ -833,6 +851,36 @@ def adjust_irons_out_a_bump_and_a_dent(work):
         r"all of rail 1; the strip is missing from [0-9.]+ to [0-9.]+ mm along rail 1", "strip",
         "--rail1", rail1, "--rail2", dent, "--adjust", "rail2", "--adjust-direction", "0,0,1",
         "-o", "x.svg")
+
+
+@test
+def adjust_untwists_a_twisted_rail(work):
+    """samples/make-gap-rails.py's twisted rails: rail 2 is rail 1 lifted by 40 mm and
+    turned about rail 1's tangent by up to 1.2 rad round its middle, which leaves the strip
+    missing there; --adjust rail2 repairs it by less than the twist moved rail 2 sideways,
+    and the repaired strip is developable along all of rail 1, its net an isometry."""
+    rail1, rail2 = (os.path.join(REPO, "samples", "twist-rail%d.csv" % k) for k in (1, 2))
+    bad(work, r"--strict.*|domain of existence", "strip", "--rail1", rail1, "--rail2", rail2,
+        "--strict", "-o", "x.svg")
+    run(work, "strip", "--rail1", rail1, "--rail2", rail2, "--adjust", "rail2",
+        "--adjusted-rail", "moved.csv", "-o", "s.svg")
+    before, moved = read_points(rail2), read_points(os.path.join(work, "moved.csv"))
+    # How far the twist moves rail 2 sideways, by hand, and as the files have it.
+    sideways = 40 * math.sin(1.2)
+    offsets = [math.dist(p[:2], q[:2]) for p, q in zip(before, read_points(rail1))]
+    check(0.99 * sideways < max(offsets) <= sideways, "sideways by %g mm" % max(offsets))
+    largest = max(math.dist(p, q) for p, q in zip(moved, before))
+    check(0 < largest < sideways, "moved by %g mm, not less than the twist's %g mm" %
+          (largest, sideways))
+    check(moved[0] == before[0] and moved[-1] == before[-1], "an end moved")
+    run(work, "strip", "--rail1", rail1, "--rail2", "moved.csv", "--strict", "-o", "t.svg",
+        "--report", "t.json", *FINE)
+    [piece] = report(work, "t.json")["pieces"]
+    close(piece["flat_area_mm2"], piece["area_3d_mm2"], 1e-6, "flat vs 3D area")
+    check(piece["edge_length_error"] < 1e-6, "edge length error %g" % piece["edge_length_error"])
+    found = run(work, "analyze", "strip", "--rail1", rail1, "--rail2", "moved.csv").stdout
+    check(re.search(r"strip: developable", found) and "the whole of rail 1" in found,
+          "analyze: " + found)
 
 
 @test

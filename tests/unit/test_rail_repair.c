@@ -145,12 +145,15 @@ static void test_repair_reshapes_the_wavy_rail(void **state)
     if (!(largest > 0 && largest < 4))
         fail_msg("moved by %g mm, not less than the 4 mm wave", largest);
     /*
-     * The rulings do not crowd together on rail 2: the strip bends no
-     * tighter than a hundredth of the rails' distance (45 mm and more).
+     * The rulings do not crowd together on rail 2: the repair is stretched
+     * until the strip bends no tighter than 1.5 % of the rails' distance
+     * (49 mm on average, so 0.74 mm); 0.7 mm leaves room for the two ways
+     * of estimating it (a repair stretched only to keep the edge of
+     * regression clear bends at 0.66 mm).
      */
     double radius = smallest_bend_radius(rail1, rail2, N);
     print_message("smallest bend radius %g mm\n", radius);
-    if (!(radius > 0.45))
+    if (!(radius > 0.7))
         fail_msg("the repaired strip bends with a radius of %g mm", radius);
 }
 
@@ -192,8 +195,13 @@ static void test_repair_refuses_what_it_cannot_do(void **state)
     assert_non_null(strstr(error.message, "along rail 1"));
     assert_memory_equal(rail2, before, sizeof before);
 
+    /*
+     * Rail 2 only over the last third of rail 1's half turn: with its ends
+     * fixed no smooth reshaping reaches the first two thirds (one that
+     * starts 0.3 rad late is repaired, by a fan of rulings at its start).
+     */
     arc_points(rail1, 50, 0, 0, M_PI);
-    arc_points(rail2, 30, 40, 0.3, M_PI);
+    arc_points(rail2, 30, 40, 2.0, M_PI);
     memcpy(before, rail2, sizeof before);
     options.max_displacement = 0;
     assert_int_equal(ur_rails_repair(rail1, N, rail2, N, &options, &report, &error),
