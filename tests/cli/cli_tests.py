@@ -670,6 +670,20 @@ def helix_point(r, c, t, d=0.0):
             c * t + d * c / s)
 
 
+def check_repaired_strip(work, rail1, rail2):
+    """The strip between rail1 and a repaired rail2: built with --strict, its
+    net an isometry (areas and edge lengths to 1e-6), and developable along
+    the whole of rail 1 by analyze."""
+    run(work, "strip", "--rail1", rail1, "--rail2", rail2, "--strict", "-o", "t.svg",
+        "--report", "t.json", *FINE)
+    [piece] = report(work, "t.json")["pieces"]
+    close(piece["flat_area_mm2"], piece["area_3d_mm2"], 1e-6, "flat vs 3D area")
+    check(piece["edge_length_error"] < 1e-6, "edge length error %g" % piece["edge_length_error"])
+    found = run(work, "analyze", "strip", "--rail1", rail1, "--rail2", rail2).stdout
+    check(re.search(r"strip: developable", found) and "the whole of rail 1" in found,
+          "analyze: " + found)
+
+
 def read_points(path):
     with open(path) as f:
         return [tuple(float(v) for v in line.split(",")) for line in f
@@ -762,14 +776,7 @@ def adjust_reshapes_a_wavy_rail(work):
     at = repair["largest_at"]
     check(at["rail"] == 2 and at["point"] == where + 1, "report: largest at %s" % at)
     check(math.dist(at["position"], before[where]) < 1e-9, "report: position %s" % at)
-    run(work, "strip", "--rail1", rail1, "--rail2", "moved.csv", "--strict", "-o", "t.svg",
-        "--report", "t.json", *FINE)
-    [piece] = report(work, "t.json")["pieces"]
-    close(piece["flat_area_mm2"], piece["area_3d_mm2"], 1e-6, "flat vs 3D area")
-    check(piece["edge_length_error"] < 1e-6, "edge length error %g" % piece["edge_length_error"])
-    found = run(work, "analyze", "strip", "--rail1", rail1, "--rail2", "moved.csv").stdout
-    check(re.search(r"strip: developable", found) and "the whole of rail 1" in found,
-          "analyze: " + found)
+    check_repaired_strip(work, rail1, "moved.csv")
     # The same rails written to 3 decimals, as a maker's CSV has them: the repair does
     # not hang on the last digits, and moves rail 2 about as much.
     for name, points in (("rail1-3.csv", read_points(rail1)), ("rail2-3.csv", before)):
@@ -873,14 +880,7 @@ def adjust_untwists_a_twisted_rail(work):
     check(0 < largest < sideways, "moved by %g mm, not less than the twist's %g mm" %
           (largest, sideways))
     check(moved[0] == before[0] and moved[-1] == before[-1], "an end moved")
-    run(work, "strip", "--rail1", rail1, "--rail2", "moved.csv", "--strict", "-o", "t.svg",
-        "--report", "t.json", *FINE)
-    [piece] = report(work, "t.json")["pieces"]
-    close(piece["flat_area_mm2"], piece["area_3d_mm2"], 1e-6, "flat vs 3D area")
-    check(piece["edge_length_error"] < 1e-6, "edge length error %g" % piece["edge_length_error"])
-    found = run(work, "analyze", "strip", "--rail1", rail1, "--rail2", "moved.csv").stdout
-    check(re.search(r"strip: developable", found) and "the whole of rail 1" in found,
-          "analyze: " + found)
+    check_repaired_strip(work, rail1, "moved.csv")
 
 
 @test

@@ -1274,6 +1274,22 @@ static void test_min_gap(void **state)
 }
 
 /*
+ * No search, and a gap of 2.5 mm kept everywhere, on both sides of a slit,
+ * even where a face is left a piece of its own.
+ */
+static ur_unfold_options strict_gap_options(void)
+{
+    ur_unfold_options options;
+    ur_unfold_options_default(&options);
+    options.max_steps = 0;
+    options.time_budget = 0;
+    options.min_gap = 2.5;
+    options.gap_strands_faces = true;
+    options.gap_both_sides = true;
+    return options;
+}
+
+/*
  * A UV sphere's pole triangles close a fan whose last wedge is narrower
  * than the gap: kept strictly, the gap strands some of them as pieces of
  * one face; by default each joins a neighbour without it, and every such
@@ -1285,13 +1301,7 @@ static void test_gap_spares_single_faces(void **state)
     (void)state;
     allow_projection(); /* the quads' two triangles are flat within the flat angle */
     ur_mesh mesh = uv_sphere(48, 24, 60);
-    ur_unfold_options options;
-    ur_unfold_options_default(&options);
-    options.max_steps = 0;
-    options.time_budget = 0;
-    options.min_gap = 2.5;
-    options.gap_strands_faces = true;
-    options.gap_both_sides = true;
+    ur_unfold_options options = strict_gap_options();
     ur_unfolding strict = unfold_with(&mesh, &options);
     check_unfolding(&mesh, &strict, NULL, 0);
     assert_true(strict.single_face > 0);
@@ -1394,13 +1404,7 @@ static void test_gap_break_cost(void **state)
     (void)state;
     allow_projection();
     ur_mesh mesh = uv_sphere(48, 24, 60);
-    ur_unfold_options options;
-    ur_unfold_options_default(&options);
-    options.max_steps = 0;
-    options.time_budget = 0;
-    options.min_gap = 2.5;
-    options.gap_strands_faces = true;
-    options.gap_both_sides = true;
+    ur_unfold_options options = strict_gap_options();
     ur_unfolding strict = unfold_with(&mesh, &options);
     check_unfolding(&mesh, &strict, NULL, 0);
     options.gap_strands_faces = false;
