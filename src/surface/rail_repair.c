@@ -662,7 +662,6 @@ static double squared_norm(const gsl_vector *v)
  * stops, MAX_ITERATIONS, or the budget of steps runs out.  x is left where
  * it got to.
  */
-
 static ur_status solve(problem *p, gsl_vector *x, size_t *iterations, size_t *budget,
                        bool *everywhere, ur_error *error)
 {
