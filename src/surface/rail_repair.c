@@ -1027,6 +1027,18 @@ static ur_status least_share(problem *p, ur_vec3 *const moves[2], ur_error *erro
     return status;
 }
 
+/* Room for a move of each point of each moving rail (NULL for a fixed one); free both. */
+static ur_status alloc_moves(const problem *p, ur_vec3 *moves[2], ur_error *error)
+{
+    for (int r = 0; r < 2; r++)
+        if (p->rails[r].moves) {
+            moves[r] = ur_alloc_array(p->rails[r].count, sizeof *moves[r], error);
+            if (!moves[r])
+                return UR_ERROR_MEMORY;
+        }
+    return UR_OK;
+}
+
 /*
  * A repair by smoothing: the moving rails smoothed with fewer
  * and fewer B-splines until the strip between them exists everywhere (the
@@ -1039,13 +1051,7 @@ static ur_status repair_by_smoothing(problem *p, ur_rail_repair_report *report, 
 {
     static const size_t coefficient_counts[] = {12, 8, 6, 5, 4};
     ur_vec3 *moves[2] = {NULL, NULL};
-    ur_status status = UR_OK;
-    for (int r = 0; status == UR_OK && r < 2; r++)
-        if (p->rails[r].moves) {
-            moves[r] = ur_alloc_array(p->rails[r].count, sizeof *moves[r], error);
-            if (!moves[r])
-                status = UR_ERROR_MEMORY;
-        }
+    ur_status status = alloc_moves(p, moves, error);
     bool found = false;
     size_t levels = sizeof coefficient_counts / sizeof *coefficient_counts;
     for (size_t level = 0; status == UR_OK && !found && level < levels; level++) {
@@ -1178,15 +1184,10 @@ static ur_status ease_the_bend(problem *p, ur_rail_repair_report *report, ur_err
         placed_bend_radius_enough(p))
         return UR_OK;
     ur_vec3 *moves[2] = {NULL, NULL};
-    ur_status status = UR_OK;
+    ur_status status = alloc_moves(p, moves, error);
     for (int r = 0; status == UR_OK && r < 2; r++)
-        if (p->rails[r].moves) {
-            moves[r] = ur_alloc_array(p->rails[r].count, sizeof *moves[r], error);
-            if (!moves[r])
-                status = UR_ERROR_MEMORY;
-            for (size_t i = 0; moves[r] && i < p->rails[r].count; i++)
-                moves[r][i] = ur_vec3_sub(p->rails[r].points[i], p->rails[r].base[i]);
-        }
+        for (size_t i = 0; moves[r] && i < p->rails[r].count; i++)
+            moves[r][i] = ur_vec3_sub(p->rails[r].points[i], p->rails[r].base[i]);
     double clear = 0.0, eased = 0.0;
     for (int step = 1; status == UR_OK && !(eased > 0) && step <= STRETCHES; step++) {
         double share = 1.0 + STRETCH * step;
