@@ -42,13 +42,20 @@ static void arc_points(ur_vec3 *points, double r, double z, double a, double b)
     }
 }
 
-static size_t gaps_of(const ur_vec3 *rail1, const ur_vec3 *rail2, size_t count)
+/* The strip between the rails (count points each), through interpolating curves. */
+static ur_ruled strip_of(const ur_vec3 *rail1, const ur_vec3 *rail2, size_t count)
 {
     ur_curve *c1, *c2;
     assert_int_equal(ur_curve_new_interpolating(rail1, count, false, &c1, NULL), UR_OK);
     assert_int_equal(ur_curve_new_interpolating(rail2, count, false, &c2, NULL), UR_OK);
     ur_ruled ruled;
     assert_int_equal(ur_ruled_strip(c1, c2, &ruled, NULL), UR_OK);
+    return ruled;
+}
+
+static size_t gaps_of(const ur_vec3 *rail1, const ur_vec3 *rail2, size_t count)
+{
+    ur_ruled ruled = strip_of(rail1, rail2, count);
     const ur_interval *gaps;
     size_t gap_count = ur_ruled_gaps(&ruled, &gaps);
     ur_ruled_free(&ruled);
@@ -70,11 +77,7 @@ static size_t gaps_between(const ur_vec3 *rail1, const ur_vec3 *rail2)
 static double smallest_bend_radius(const ur_vec3 *rail1, const ur_vec3 *rail2, size_t count)
 {
     enum { RULINGS = 4000 };
-    ur_curve *c1, *c2;
-    assert_int_equal(ur_curve_new_interpolating(rail1, count, false, &c1, NULL), UR_OK);
-    assert_int_equal(ur_curve_new_interpolating(rail2, count, false, &c2, NULL), UR_OK);
-    ur_ruled ruled;
-    assert_int_equal(ur_ruled_strip(c1, c2, &ruled, NULL), UR_OK);
+    ur_ruled ruled = strip_of(rail1, rail2, count);
     double start = ur_ruled_start(&ruled), end = ur_ruled_end(&ruled);
     static ur_vec3 ends[RULINGS + 1][2];
     for (int k = 0; k <= RULINGS; k++) {
@@ -236,11 +239,7 @@ static void arc_rails(ur_vec3 *rail1, ur_vec3 *rail2, double height, double dept
 /* The largest residual angle of the strip between the rails, at many rulings. */
 static double largest_residual(const ur_vec3 *rail1, const ur_vec3 *rail2, size_t count)
 {
-    ur_curve *c1, *c2;
-    assert_int_equal(ur_curve_new_interpolating(rail1, count, false, &c1, NULL), UR_OK);
-    assert_int_equal(ur_curve_new_interpolating(rail2, count, false, &c2, NULL), UR_OK);
-    ur_ruled ruled;
-    assert_int_equal(ur_ruled_strip(c1, c2, &ruled, NULL), UR_OK);
+    ur_ruled ruled = strip_of(rail1, rail2, count);
     double start = ur_ruled_start(&ruled), end = ur_ruled_end(&ruled), largest = 0;
     for (int k = 0; k <= 1000; k++)
         largest = fmax(largest, ur_ruled_residual(&ruled, start + (end - start) * k / 1000));
