@@ -1474,6 +1474,23 @@ static ur_status name_piece(const joiner *j, rooms *r, size_t index, ur_error *e
 }
 
 /*
+ * The first joint placed on the seam: the seams are joined in turn, so
+ * the joints come in the order of their seams.
+ */
+static size_t first_joint_of(const joiner *j, int seam)
+{
+    size_t low = 0, high = j->placed_count;
+    while (low < high) {
+        size_t middle = low + (high - low) / 2;
+        if (j->placed[middle].seam < seam)
+            low = middle + 1;
+        else
+            high = middle;
+    }
+    return low;
+}
+
+/*
  * Tries a label left over on the piece's tabs: those of its seam side, or
  * (the piece's name) any, each from the middle of its top half.
  */
@@ -1483,10 +1500,12 @@ static ur_status label_on_a_tab(const joiner *j, allow_room *room, const unplace
     const ur_joint_options *o = j->options;
     ur_status status = UR_OK;
     *placed = false;
-    for (size_t k = 0; status == UR_OK && !*placed && k < j->placed_count; k++) {
+    for (size_t k = u->side >= 0 ? first_joint_of(j, u->seam) : 0;
+         status == UR_OK && !*placed && k < j->placed_count; k++) {
         const placed_joint *p = &j->placed[k];
-        if (!p->kept || p->piece != u->piece ||
-            (u->side >= 0 && (p->seam != u->seam || p->side != u->side)))
+        if (u->side >= 0 && p->seam != u->seam)
+            break;
+        if (!p->kept || p->piece != u->piece || (u->side >= 0 && p->side != u->side))
             continue;
         size_t segment;
         ur_vec2 middle = point_at(&p->base, p->base.length / 2, &segment);
