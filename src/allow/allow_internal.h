@@ -135,4 +135,11 @@ ur_status allow_room_add_label(allow_room *room, const ur_font *font, const char
                                ur_vec2 near, ur_vec2 direction, double height, double min_height,
                                double clearance, double reach, bool *placed, ur_error *error);
 
+/*
+ * Whether labels from now on may cross the fold lines (scores, mountain or
+ * valley) the piece had when the room was opened, still clear of every
+ * other line (not as opened).
+ */
+void allow_room_cross_folds(allow_room *room, bool cross);
+
 #endif

@@ -1360,6 +1360,27 @@ static ur_status engrave_label(allow_room *room, const ur_piece *piece, const ur
     return status;
 }
 
+/*
+ * A label near a place on its piece: clear of every line, else across the
+ * net's folds, still clear of every other line (on a fine mesh no face may
+ * be as large as a label, and a label engraved over a fold still reads).
+ * The room is opened before the joints: their folds are not crossed.
+ */
+static ur_status engrave_near(allow_room *room, const ur_piece *piece, const ur_font *font,
+                              const char *text, ur_vec2 near, ur_vec2 along, double height,
+                              double clearance, double reach, bool *placed, ur_error *error)
+{
+    ur_status status = engrave_label(room, piece, font, text, near, along, height, clearance, reach,
+                                     placed, error);
+    if (status != UR_OK || *placed)
+        return status;
+    allow_room_cross_folds(room, true);
+    status = engrave_label(room, piece, font, text, near, along, height, clearance, reach, placed,
+                           error);
+    allow_room_cross_folds(room, false);
+    return status;
+}
+
 /* A label that found no room on its piece beside its seam, to try again on its tab. */
 typedef struct unplaced_label {
     size_t piece;
@@ -1424,8 +1445,8 @@ static ur_status label_side(const joiner *j, rooms *r, size_t piece_index, const
     bool placed;
     ur_status status = room_of(r, piece_index, &room, error);
     if (status == UR_OK)
-        status = engrave_label(room, piece, o->font, text, near, direction_at(seam_run, segment),
-                               o->label_height, clearance, reach, &placed, error);
+        status = engrave_near(room, piece, o->font, text, near, direction_at(seam_run, segment),
+                              o->label_height, clearance, reach, &placed, error);
     if (status == UR_OK && !placed)
         status = leave_for_tabs(r, piece_index, seam, side, middle, error);
     return status;
@@ -1465,9 +1486,9 @@ static ur_status name_piece(const joiner *j, rooms *r, size_t index, ur_error *e
     bool placed;
     ur_status status = room_of(r, index, &room, error);
     if (status == UR_OK)
-        status = engrave_label(room, piece, o->font, piece->name, centre, ur_vec2_make(1, 0),
-                               o->label_height, fmax(0.3, 0.15 * o->label_height), INFINITY,
-                               &placed, error);
+        status = engrave_near(room, piece, o->font, piece->name, centre, ur_vec2_make(1, 0),
+                              o->label_height, fmax(0.3, 0.15 * o->label_height), INFINITY, &placed,
+                              error);
     if (status == UR_OK && !placed)
         status = leave_for_tabs(r, index, 0, -1, centre, error);
     return status;

@@ -225,6 +225,7 @@ ur_status ur_text_strokes(const ur_font *font, const char *text, double height, 
 typedef struct wall {
     ur_vec2 points[WALL_POINTS];
     size_t count;
+    size_t path;        /* the piece's path it is part of */
     GEOSGeometry *line; /* owned: the tree keeps its envelope */
 } wall;
 
@@ -250,6 +251,7 @@ struct allow_room {
     size_t hole_count;
     ur_box outline_box;
     allow_items found; /* what a query of the labels found */
+    bool cross_folds;  /* labels may cross the fold lines */
 };
 
 /* How many walls a path makes (a closed one runs back to its start). */
@@ -262,12 +264,14 @@ static size_t walls_of_path(const ur_path *path)
 }
 
 /* One path as walls of at most WALL_POINTS points each, sharing their ends. */
-static ur_status add_path_walls(allow_room *r, const ur_path *path, ur_error *error)
+static ur_status add_path_walls(allow_room *r, size_t index, ur_error *error)
 {
+    const ur_path *path = &r->piece->paths[index];
     size_t n = path->count, total = n + (path->closed && n > 2 ? 1 : 0);
     for (size_t start = 0, made = walls_of_path(path); made > 0; start += WALL_POINTS - 1, made--) {
         wall *w = &r->walls[r->wall_count];
         w->count = 0;
+        w->path = index;
         for (size_t i = start; i < total && w->count < WALL_POINTS; i++)
             w->points[w->count++] = path->points[i % n];
         /* A line string needs two points: a lone point becomes a line of length 0. */
@@ -341,7 +345,7 @@ ur_status allow_room_open(ur_piece *piece, allow_room **room, ur_error *error)
             status = UR_ERROR_MEMORY;
     }
     for (size_t i = 0; status == UR_OK && i < piece->path_count; i++)
-        status = add_path_walls(r, &piece->paths[i], error);
+        status = add_path_walls(r, i, error);
     ur_box region = piece->box;
     double size = fmax(ur_box_width(region), ur_box_height(region));
     if (status == UR_OK)
@@ -464,8 +468,21 @@ static bool segment_near_box(const frame *f, double a, double b, double clearanc
     return false;
 }
 
+/* Whether a label may cross the wall: a fold, when the room lets labels cross them. */
+static bool crossable(const allow_room *r, const wall *w)
+{
+    ur_op op = r->piece->paths[w->path].op;
+    return r->cross_folds && (op == UR_OP_SCORE || op == UR_OP_SCORE_VALLEY);
+}
+
+void allow_room_cross_folds(allow_room *room, bool cross)
+{
+    room->cross_folds = cross;
+}
+
 /* A query of the walls near a label's box. */
 typedef struct wall_test {
+    const allow_room *r;
     const frame *f;
     double a, b, clearance;
     bool meets;
@@ -475,6 +492,8 @@ static void test_wall(void *item, void *userdata)
 {
     wall_test *test = userdata;
     const wall *w = item;
+    if (crossable(test->r, w))
+        return;
     for (size_t i = 0; !test->meets && i + 1 < w->count; i++)
         test->meets = segment_near_box(test->f, test->a, test->b, test->clearance, w->points[i],
                                        w->points[i + 1]);
@@ -546,7 +565,7 @@ static ur_status box_fits(allow_room *r, const frame *f, double a, double b, dou
         GEOSGeom_createRectangle_r(r->geos, box.min.x, box.min.y, box.max.x, box.max.y);
     if (!query)
         return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not build a label's box");
-    wall_test test = {f, a, b, clearance, false};
+    wall_test test = {r, f, a, b, clearance, false};
     GEOSSTRtree_query_r(r->geos, r->tree, query, test_wall, &test);
     GEOSGeom_destroy_r(r->geos, query);
     bool meets = test.meets;

@@ -1428,6 +1428,30 @@ def papercraft_nets_on_a3_in_few_pieces(work):
 
 
 @test
+def a_fine_mesh_keeps_room_for_tabs(work):
+    # The sample UV sphere at half size: its edges (4.7 mm on average) are
+    # shorter than paper's 6 mm tabs, and the unfolding keeps half an edge
+    # between the parts of a piece (with no gap, a quarter of its seam
+    # edges were left without a tab, in one piece): at most a tenth of the
+    # seam edges go without a tab, each said, and no two pieces overlap.
+    mesh = os.path.join(REPO, "samples", "uvsphere.obj")
+    result = run(work, "mesh", mesh, "--scale", "0.5", "--flatten", "unfold", "--material",
+                 "paper-0.3mm", "--nest-time", "0", "-o", "fine.svg", "--report", "fine.json")
+    seams = re.search(r"unfolded into \d+ pieces?.*, (\d+) seams", result.stderr)
+    check(seams, result.stderr)
+    data = report(work, "fine.json")
+    without_tab = sum(1 for piece in data["pieces"] for a in piece["allowances"]
+                      if a["warning"] and a["reason"].startswith("no room for a glue tab"))
+    check(10 * without_tab <= int(seams.group(1)), "%d of %s seam edges without a tab"
+          % (without_tab, seams.group(1)))
+    for sheet in data["sheets"]:
+        rings = outlines(os.path.join(work, os.path.basename(sheet["file"])))
+        for i in range(len(rings)):
+            for j in range(i):
+                check(rings_apart(rings[i], rings[j]), "two pieces overlap")
+
+
+@test
 def fewer_pieces_joins_where_tabs_lack_room(work):
     # --fewer-pieces joins pieces even where a tab then finds no room: on
     # A3 with tabs the sample UV sphere and torus come in fewer pieces than

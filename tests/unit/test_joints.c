@@ -53,6 +53,16 @@ static GEOSGeometry *polygon(const ur_vec2 *ring, size_t count)
     return result;
 }
 
+static GEOSGeometry *line_of(const ur_vec2 *points, size_t count)
+{
+    GEOSCoordSequence *sequence = GEOSCoordSeq_create_r(geos, (unsigned)count, 2);
+    for (size_t i = 0; i < count; i++)
+        GEOSCoordSeq_setXY_r(geos, sequence, (unsigned)i, points[i].x, points[i].y);
+    GEOSGeometry *line = GEOSGeom_createLineString_r(geos, sequence);
+    assert_non_null(line);
+    return line;
+}
+
 static double area_of(const GEOSGeometry *g)
 {
     double area;
@@ -598,6 +608,90 @@ static void test_label_goes_on_the_tab(void **state)
     ur_font_close(font);
 }
 
+/* Whether a stroke of an engraved path crosses one of the piece's folds. */
+static bool engraving_crosses_a_fold(const ur_piece *piece)
+{
+    bool crosses = false;
+    for (size_t k = 0; k < piece->path_count && !crosses; k++) {
+        const ur_path *text = &piece->paths[k];
+        if (text->op != UR_OP_ENGRAVE || text->count < 2)
+            continue;
+        GEOSGeometry *stroke = line_of(text->points, text->count);
+        for (size_t f = 0; f < piece->path_count && !crosses; f++) {
+            const ur_path *fold = &piece->paths[f];
+            if (fold->op != UR_OP_SCORE && fold->op != UR_OP_SCORE_VALLEY)
+                continue;
+            GEOSGeometry *line = line_of(fold->points, fold->count);
+            crosses = GEOSIntersects_r(geos, stroke, line) == 1;
+            GEOSGeom_destroy_r(geos, line);
+        }
+        GEOSGeom_destroy_r(geos, stroke);
+    }
+    return crosses;
+}
+
+/*
+ * A 40 x 30 mm strip folded every 2.5 mm across (faces narrower than any
+ * label: 2.5 mm at the least, 0.75 mm clear of each line), lapped along
+ * its 40 mm side to a 40 mm square: its label goes across the folds
+ * (laps carry no label), inside the strip's own outline and clear of the
+ * lap's mark; the square's, with no fold to cross, stands clear as before.
+ */
+static void test_label_crosses_folds(void **state)
+{
+    (void)state;
+    static const ur_vec2 strip[] = {{0, 0}, {40, 0}, {40, 30}, {0, 30}};
+    static const ur_vec2 square_grid[] = {{0, 30}, {40, 30}, {40, 70}, {0, 70}};
+    ur_vec2 square_flat[4];
+    for (size_t i = 0; i < 4; i++)
+        square_flat[i] = ur_vec2_add(square_grid[i], ur_vec2_make(100, 0));
+    ur_font *font;
+    ur_error error;
+    assert_int_equal(ur_font_open(NULL, &font, &error), UR_OK);
+    ur_net_list nets = {calloc(2, sizeof(ur_net)), 2};
+    assert_non_null(nets.nets);
+    nets.nets[0] = grid_net("P1", strip, strip, 4);
+    nets.nets[1] = grid_net("P2", square_flat, square_grid, 4);
+    int next;
+    assert_int_equal(ur_net_list_find_seams(&nets, 1, &next, &error), UR_OK);
+    ur_piece *pieces = pieces_of(&nets);
+    for (int k = 1; k < 16; k++) {
+        ur_vec2 fold[2] = {{2.5 * k, 0}, {2.5 * k, 30}};
+        assert_int_equal(ur_piece_add_path(&pieces[0], k % 2 ? UR_OP_SCORE : UR_OP_SCORE_VALLEY,
+                                           fold, 2, false, &error),
+                         UR_OK);
+    }
+    ur_joint_options options = tab_options(font);
+    options.lap = true;
+    assert_int_equal(ur_pieces_add_joints(pieces, &nets, &options, &error), UR_OK);
+    for (size_t n = 0; n < 2; n++) {
+        assert_int_equal(count_records(&pieces[n], UR_ALLOWANCE_LABEL, true), 0);
+        assert_int_equal(count_records(&pieces[n], UR_ALLOWANCE_LABEL, false), 1);
+        check_engraving_inside(&pieces[n], &nets.nets[n]);
+    }
+    assert_true(engraving_crosses_a_fold(&pieces[0]));
+    assert_false(engraving_crosses_a_fold(&pieces[1])); /* no folds there */
+    /* Clear of the lap's mark: the label's lines meet no mark line. */
+    for (size_t k = 0; k < pieces[0].path_count; k++) {
+        const ur_path *mark = &pieces[0].paths[k];
+        if (mark->op != UR_OP_MARK || mark->count < 2)
+            continue;
+        GEOSGeometry *line = line_of(mark->points, mark->count);
+        for (size_t e = 0; e < pieces[0].path_count; e++) {
+            const ur_path *text = &pieces[0].paths[e];
+            if (text->op != UR_OP_ENGRAVE || text->count < 2)
+                continue;
+            GEOSGeometry *stroke = line_of(text->points, text->count);
+            assert_int_equal(GEOSIntersects_r(geos, stroke, line), 0);
+            GEOSGeom_destroy_r(geos, stroke);
+        }
+        GEOSGeom_destroy_r(geos, line);
+    }
+    free_pieces(pieces, nets.count);
+    ur_net_list_free(&nets);
+    ur_font_close(font);
+}
+
 static void test_bad_options(void **state)
 {
     (void)state;
@@ -618,7 +712,7 @@ int main(void)
         cmocka_unit_test(test_helicoid_labels_pair),  cmocka_unit_test(test_every_seam_joined),
         cmocka_unit_test(test_unfolded_tabs_clear),   cmocka_unit_test(test_loop_seams_joined),
         cmocka_unit_test(test_laps_marked_on_both),   cmocka_unit_test(test_bad_options),
-        cmocka_unit_test(test_label_goes_on_the_tab),
+        cmocka_unit_test(test_label_goes_on_the_tab), cmocka_unit_test(test_label_crosses_folds),
     };
     return cmocka_run_group_tests(tests, start, finish);
 }
