@@ -225,7 +225,7 @@ ur_status ur_text_strokes(const ur_font *font, const char *text, double height, 
 typedef struct wall {
     ur_vec2 points[WALL_POINTS];
     size_t count;
-    size_t path;        /* the piece's path it is part of */
+    bool fold;          /* part of a fold line (a score, mountain or valley) */
     GEOSGeometry *line; /* owned: the tree keeps its envelope */
 } wall;
 
@@ -264,14 +264,13 @@ static size_t walls_of_path(const ur_path *path)
 }
 
 /* One path as walls of at most WALL_POINTS points each, sharing their ends. */
-static ur_status add_path_walls(allow_room *r, size_t index, ur_error *error)
+static ur_status add_path_walls(allow_room *r, const ur_path *path, ur_error *error)
 {
-    const ur_path *path = &r->piece->paths[index];
     size_t n = path->count, total = n + (path->closed && n > 2 ? 1 : 0);
     for (size_t start = 0, made = walls_of_path(path); made > 0; start += WALL_POINTS - 1, made--) {
         wall *w = &r->walls[r->wall_count];
         w->count = 0;
-        w->path = index;
+        w->fold = path->op == UR_OP_SCORE || path->op == UR_OP_SCORE_VALLEY;
         for (size_t i = start; i < total && w->count < WALL_POINTS; i++)
             w->points[w->count++] = path->points[i % n];
         /* A line string needs two points: a lone point becomes a line of length 0. */
@@ -345,7 +344,7 @@ ur_status allow_room_open(ur_piece *piece, allow_room **room, ur_error *error)
             status = UR_ERROR_MEMORY;
     }
     for (size_t i = 0; status == UR_OK && i < piece->path_count; i++)
-        status = add_path_walls(r, i, error);
+        status = add_path_walls(r, &piece->paths[i], error);
     ur_box region = piece->box;
     double size = fmax(ur_box_width(region), ur_box_height(region));
     if (status == UR_OK)
@@ -468,13 +467,6 @@ static bool segment_near_box(const frame *f, double a, double b, double clearanc
     return false;
 }
 
-/* Whether a label may cross the wall: a fold, when the room lets labels cross them. */
-static bool crossable(const allow_room *r, const wall *w)
-{
-    ur_op op = r->piece->paths[w->path].op;
-    return r->cross_folds && (op == UR_OP_SCORE || op == UR_OP_SCORE_VALLEY);
-}
-
 void allow_room_cross_folds(allow_room *room, bool cross)
 {
     room->cross_folds = cross;
@@ -492,7 +484,7 @@ static void test_wall(void *item, void *userdata)
 {
     wall_test *test = userdata;
     const wall *w = item;
-    if (crossable(test->r, w))
+    if (w->fold && test->r->cross_folds)
         return;
     for (size_t i = 0; !test->meets && i + 1 < w->count; i++)
         test->meets = segment_near_box(test->f, test->a, test->b, test->clearance, w->points[i],
@@ -648,14 +640,15 @@ static double far_radius(const search *s)
 
 /*
  * Near first, each height from the largest down; then, as a last resort,
- * the rest of the piece, again from the largest height down.  *height is
- * the one that fitted.
+ * the rest of the piece, again from the largest height down (not across
+ * folds: a label far from its seam and over folds would be hard to tell
+ * from the lines round it).  *height is the one that fitted.
  */
 static ur_status search_piece(const search *s, double max_height, double min_height, frame *f,
                               double *height, bool *found, ur_error *error)
 {
     *found = false;
-    for (int far = 0; far < 2; far++) {
+    for (int far = 0; far < (s->r->cross_folds ? 1 : 2); far++) {
         for (double h = max_height;; h = fmax(min_height, h * HEIGHT_STEP)) {
             double from = far ? near_radius(s, h) : 0;
             double to = far ? far_radius(s) : fmin(near_radius(s, h), s->reach);
