@@ -1392,6 +1392,48 @@ static void test_gap_one_side(void **state)
 }
 
 /*
+ * An open cone of 8 triangles round its apex, slant edges 10 mm long,
+ * whose angles there fall short of a full turn by deficit: laid in one
+ * piece, it is cut along one slant edge, whose two sides make a wedge at
+ * the apex, 10 sin(deficit) wide at its open end.
+ */
+static ur_mesh cone_fan(double deficit)
+{
+    builder b = {0};
+    double slant = 10, angle = (2 * M_PI - deficit) / 8;
+    double radius = slant * sin(angle / 2) / sin(M_PI / 8);
+    size_t apex = add_vertex(&b, ur_vec3_make(0, 0, sqrt(slant * slant - radius * radius)));
+    for (int k = 0; k < 8; k++)
+        add_vertex(&b, ur_vec3_make(radius * cos(k * M_PI / 4), radius * sin(k * M_PI / 4), 0));
+    for (size_t k = 0; k < 8; k++)
+        add_triangle(&b, apex, 1 + k, 1 + (k + 1) % 8, 0);
+    return build(&b);
+}
+
+/*
+ * A wedge between the two sides of one seam must hold that seam's tab:
+ * with a gap of 2 mm its open end is kept 3 mm wide.  The cone comes in
+ * one piece when its wedge opens 3.2 mm, in two (no wedge) when it opens
+ * 2.5 mm, which the gap alone would let through.
+ */
+static void test_wedge_holds_its_tab(void **state)
+{
+    (void)state;
+    ur_unfold_options options = strict_gap_options();
+    options.min_gap = 2.0;
+    double opens[2] = {3.2, 2.5};
+    size_t pieces[2] = {1, 2};
+    for (int i = 0; i < 2; i++) {
+        ur_mesh mesh = cone_fan(asin(opens[i] / 10));
+        ur_unfolding u = unfold_with(&mesh, &options);
+        check_unfolding(&mesh, &u, NULL, 0);
+        assert_int_equal(u.count, pieces[i]);
+        ur_unfolding_free(&u);
+        ur_mesh_free(&mesh);
+    }
+}
+
+/*
  * Joins without the gap at a cost below a piece: pieces of any size the
  * gap kept apart are joined at the end of the run, not only single faces
  * (fewer pieces than at the default cost), so that with the same first
@@ -1450,6 +1492,7 @@ int main(void)
         cmocka_unit_test(test_min_gap),
         cmocka_unit_test(test_gap_break_cost),
         cmocka_unit_test(test_gap_one_side),
+        cmocka_unit_test(test_wedge_holds_its_tab),
         cmocka_unit_test(test_gap_spares_single_faces),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
