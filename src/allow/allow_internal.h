@@ -45,6 +45,12 @@ double allow_area(GEOSContextHandle_t geos, const GEOSGeometry *geometry);
 /* The box of a GEOS geometry (an empty box when it has none). */
 ur_box allow_box(GEOSContextHandle_t geos, const GEOSGeometry *geometry);
 
+/* Whether two boxes meet (touching counts). */
+static inline bool allow_boxes_meet(ur_box a, ur_box b)
+{
+    return a.min.x <= b.max.x && b.min.x <= a.max.x && a.min.y <= b.max.y && b.min.y <= a.max.y;
+}
+
 /* A growing list of item numbers. */
 typedef struct allow_items {
     size_t *items;
@@ -76,6 +82,11 @@ void allow_grid_free(allow_grid *grid);
 ur_status allow_grid_add(allow_grid *grid, ur_box box, size_t *item, ur_error *error);
 /* The items whose box meets box, each once, in found (emptied first). */
 ur_status allow_grid_query(allow_grid *grid, ur_box box, allow_items *found, ur_error *error);
+/* The cell p falls in (the nearest border cell for a p beyond the region), numbered row by row. */
+size_t allow_grid_cell_of(const allow_grid *grid, ur_vec2 p);
+ur_vec2 allow_grid_cell_centre(const allow_grid *grid, size_t cell);
+/* Whether no item's box meets the cell. */
+bool allow_grid_cell_is_empty(const allow_grid *grid, size_t cell);
 
 /*
  * What the joints of one piece must keep clear of (clearance.c): its net's
@@ -116,9 +127,9 @@ size_t allow_board_joint_count(const allow_board *board);
 size_t allow_board_joint_tag(const allow_board *board, size_t k);
 
 /*
- * Room for labels on one piece, kept between labels (label.c): every path
- * the piece has when it is opened, in an STRtree, and the labels engraved
- * through it since, in a grid.  The piece gets no other paths while it is
+ * Room for labels on one piece, kept between labels (label.c): the
+ * segments of every path the piece has when it is opened, and the labels
+ * engraved through it since, each in a grid.  The piece gets no other paths while it is
  * open.
  */
 typedef struct allow_room allow_room;

@@ -122,11 +122,6 @@ ur_status allow_grid_add(allow_grid *grid, ur_box box, size_t *item, ur_error *e
     return UR_OK;
 }
 
-static bool boxes_meet(ur_box a, ur_box b)
-{
-    return a.min.x <= b.max.x && b.min.x <= a.max.x && a.min.y <= b.max.y && b.min.y <= a.max.y;
-}
-
 ur_status allow_grid_query(allow_grid *grid, ur_box box, allow_items *found, ur_error *error)
 {
     found->count = 0;
@@ -143,7 +138,7 @@ ur_status allow_grid_query(allow_grid *grid, ur_box box, allow_items *found, ur_
             const allow_cell *cell = &grid->cells[y * grid->columns + x];
             for (size_t k = 0; k < cell->count; k++) {
                 size_t item = cell->items[k];
-                if (grid->seen[item] == grid->stamp || !boxes_meet(grid->boxes[item], box))
+                if (grid->seen[item] == grid->stamp || !allow_boxes_meet(grid->boxes[item], box))
                     continue;
                 grid->seen[item] = grid->stamp;
                 ur_status status = allow_items_push(found, item, error);
@@ -152,6 +147,25 @@ ur_status allow_grid_query(allow_grid *grid, ur_box box, allow_items *found, ur_
             }
         }
     return UR_OK;
+}
+
+size_t allow_grid_cell_of(const allow_grid *grid, ur_vec2 p)
+{
+    size_t x = cell_index(p.x, grid->region.min.x, grid->cell, grid->columns);
+    size_t y = cell_index(p.y, grid->region.min.y, grid->cell, grid->rows);
+    return y * grid->columns + x;
+}
+
+ur_vec2 allow_grid_cell_centre(const allow_grid *grid, size_t cell)
+{
+    size_t x = cell % grid->columns, y = cell / grid->columns;
+    return ur_vec2_make(grid->region.min.x + ((double)x + 0.5) * grid->cell,
+                        grid->region.min.y + ((double)y + 0.5) * grid->cell);
+}
+
+bool allow_grid_cell_is_empty(const allow_grid *grid, size_t cell)
+{
+    return grid->cells[cell].count == 0;
 }
 
 ur_status allow_items_push(allow_items *items, size_t item, ur_error *error)

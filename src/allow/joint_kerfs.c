@@ -79,23 +79,28 @@ static GEOSGeometry *keep_out(GEOSContextHandle_t geos, const ur_piece *piece, s
     return all;
 }
 
-/* The points of a GEOS line string into a new array; false when it is none. */
-static bool line_points(GEOSContextHandle_t geos, const GEOSGeometry *line, ur_vec2 **points,
-                        size_t *count)
+/*
+ * The points of a GEOS line string into a new array (*count 0 and no
+ * array when it is none: a point where the line only touched).
+ */
+static ur_status line_points(GEOSContextHandle_t geos, const GEOSGeometry *line, ur_vec2 **points,
+                             size_t *count, ur_error *error)
 {
+    *points = NULL;
+    *count = 0;
     if (GEOSGeomTypeId_r(geos, line) != GEOS_LINESTRING)
-        return false;
+        return UR_OK;
     const GEOSCoordSequence *sequence = GEOSGeom_getCoordSeq_r(geos, line);
     unsigned size = 0;
     if (!sequence || !GEOSCoordSeq_getSize_r(geos, sequence, &size) || size < 2)
-        return false;
-    *points = malloc(size * sizeof **points);
+        return UR_OK;
+    *points = ur_alloc_array(size, sizeof **points, error);
     if (!*points)
-        return false;
+        return UR_ERROR_MEMORY;
     for (unsigned k = 0; k < size; k++)
         GEOSCoordSeq_getXY_r(geos, sequence, k, &(*points)[k].x, &(*points)[k].y);
     *count = size;
-    return true;
+    return UR_OK;
 }
 
 /*
@@ -129,9 +134,10 @@ static ur_status trim_line(GEOSContextHandle_t geos, ur_piece *piece, size_t ind
         const GEOSGeometry *part = GEOSGetGeometryN_r(geos, kept, k);
         ur_vec2 *points = NULL;
         size_t count = 0;
-        if (!part || !line_points(geos, part, &points, &count))
-            continue;
-        if (ur_polyline_length(points, count, false) >= shortest)
+        if (part)
+            status = line_points(geos, part, &points, &count, error);
+        /* A failed allocation must fail the run: the line would be cut short silently. */
+        if (status == UR_OK && count > 0 && ur_polyline_length(points, count, false) >= shortest)
             status = ur_piece_add_path(piece, UR_OP_KERF, points, count, false, error);
         free(points);
     }

@@ -22,11 +22,12 @@
  * its centre must lie inside the outline and outside every hole.  Since
  * the rectangle meets no wall, the centre decides for all of it.
  * Candidate centres lie on rings around `near`, the nearest first, for
- * each height from the largest down.  The walls are cut into short pieces
- * in a GEOS STRtree and the outline is a prepared polygon, so that a test
- * looks only at what is near the candidate: a piece with many seams takes
- * many labels, and each must stay quick (allow_room keeps all this from
- * one label to the next).
+ * each height from the largest down.  The walls are cut into their
+ * segments in a grid index and the outline is a prepared polygon, so that
+ * a test looks only at what is near the candidate: a piece with many seams
+ * takes many labels, each trying thousands of candidates when it finds no
+ * room, and each must stay quick (allow_room keeps all this from one label
+ * to the next).
  */
 #include "allow_internal.h"
 
@@ -218,16 +219,30 @@ ur_status ur_text_strokes(const ur_font *font, const char *text, double height, 
 
 /* ---- Where the piece has room ------------------------------------------- */
 
-/* Points per piece of a path in the walls' STRtree: enough to keep the tree small, few to test. */
-#define WALL_POINTS 9
-
-/* A piece of a path: its points, and the line the STRtree holds it by. */
+/* One segment of a path (a path of one point: a segment of length 0). */
 typedef struct wall {
-    ur_vec2 points[WALL_POINTS];
-    size_t count;
-    bool fold;          /* part of a fold line (a score, mountain or valley) */
-    GEOSGeometry *line; /* owned: the tree keeps its envelope */
+    ur_vec2 from, to;
+    bool fold; /* part of a fold line (a score, mountain or valley) */
 } wall;
+
+/*
+ * How many of the walls that stopped boxes lately are tried before a
+ * query: the candidates alternate between the two sides of a ring, so
+ * each side's last one must be among them.
+ */
+#define RECENT_WALLS 4
+
+/*
+ * What a cell of the walls' grid is known to be.  A cell that no wall
+ * meets lies wholly on one side of the outline and of every hole (they are
+ * walls), so that its centre answers for every point in it.
+ */
+typedef enum cell_state {
+    CELL_UNTESTED,
+    CELL_WALLED, /* a wall meets it: each point must be tested */
+    CELL_ON_MATERIAL,
+    CELL_OFF_MATERIAL
+} cell_state;
 
 /* A label engraved through the room: its text's box. */
 typedef struct label_box {
@@ -239,11 +254,13 @@ typedef struct label_box {
 struct allow_room {
     GEOSContextHandle_t geos;
     ur_piece *piece;
-    GEOSSTRtree *tree; /* the walls, pieces of every path of the piece when opened */
-    wall *walls;       /* owned; the tree's items (never moved once the tree is built) */
-    size_t wall_count;
-    allow_grid labels; /* the boxes of the labels engraved since */
-    label_box *boxes;  /* the grid's items */
+    allow_grid wall_grid; /* the walls: the segments of every path of the piece when opened */
+    wall *walls;          /* the grid's items */
+    size_t recent[RECENT_WALLS]; /* walls that stopped boxes lately, the latest first */
+    size_t recent_count;
+    unsigned char *cells; /* a cell_state per cell of the walls' grid */
+    allow_grid labels;    /* the boxes of the labels engraved since */
+    label_box *boxes;     /* the grid's items */
     size_t box_capacity;
     GEOSGeometry *outline; /* paths[0] as a polygon, and prepared */
     const GEOSPreparedGeometry *outline_fast;
@@ -257,44 +274,66 @@ struct allow_room {
 /* How many walls a path makes (a closed one runs back to its start). */
 static size_t walls_of_path(const ur_path *path)
 {
-    size_t n = path->count, total = n + (path->closed && n > 2 ? 1 : 0);
-    if (n == 0)
-        return 0;
-    return total <= WALL_POINTS ? 1 : (total - 2) / (WALL_POINTS - 1) + 1;
+    size_t n = path->count;
+    return n == 0 ? 0 : n == 1 ? 1 : n - 1 + (path->closed && n > 2 ? 1 : 0);
 }
 
-/* One path as walls of at most WALL_POINTS points each, sharing their ends. */
-static ur_status add_path_walls(allow_room *r, const ur_path *path, ur_error *error)
+/* The walls of every path, in order. */
+static size_t collect_walls(const ur_piece *piece, wall *walls)
 {
-    size_t n = path->count, total = n + (path->closed && n > 2 ? 1 : 0);
-    for (size_t start = 0, made = walls_of_path(path); made > 0; start += WALL_POINTS - 1, made--) {
-        wall *w = &r->walls[r->wall_count];
-        w->count = 0;
-        w->fold = path->op == UR_OP_SCORE || path->op == UR_OP_SCORE_VALLEY;
-        for (size_t i = start; i < total && w->count < WALL_POINTS; i++)
-            w->points[w->count++] = path->points[i % n];
-        /* A line string needs two points: a lone point becomes a line of length 0. */
-        ur_vec2 ends[2] = {w->points[0], w->points[w->count - 1]};
-        w->line =
-            allow_line(r->geos, w->count >= 2 ? w->points : ends, w->count >= 2 ? w->count : 2);
-        if (!w->line)
-            return ur_error_set(error, UR_ERROR_INTERNAL,
-                                "GEOS could not build the paths of piece '%s'", r->piece->name);
-        r->wall_count++;
-        GEOSSTRtree_insert_r(r->geos, r->tree, w->line, w);
+    size_t count = 0;
+    for (size_t i = 0; i < piece->path_count; i++) {
+        const ur_path *path = &piece->paths[i];
+        bool fold = path->op == UR_OP_SCORE || path->op == UR_OP_SCORE_VALLEY;
+        for (size_t k = 0, made = walls_of_path(path); k < made; k++)
+            walls[count++] = (wall){path->points[k], path->points[(k + 1) % path->count], fold};
     }
-    return UR_OK;
+    return count;
+}
+
+/*
+ * The walls in a grid whose cells are about as wide as a wall is long (or
+ * a 64th of the piece, when its walls are many short ones): a label's box
+ * then meets a few cells, each listing a few walls.
+ */
+static ur_status index_walls(allow_room *r, ur_error *error)
+{
+    size_t total = 0;
+    for (size_t i = 0; i < r->piece->path_count; i++)
+        total += walls_of_path(&r->piece->paths[i]);
+    r->walls = ur_alloc_array(total ? total : 1, sizeof *r->walls, error);
+    if (!r->walls)
+        return UR_ERROR_MEMORY;
+    size_t count = collect_walls(r->piece, r->walls);
+    double length = 0;
+    for (size_t k = 0; k < count; k++)
+        length += ur_vec2_length(ur_vec2_sub(r->walls[k].to, r->walls[k].from));
+    ur_box region = r->piece->box;
+    double size = fmax(ur_box_width(region), ur_box_height(region));
+    double cell = fmax(fmax(length / (double)(count ? count : 1), size / 64), 1e-3);
+    ur_status status = allow_grid_init(&r->wall_grid, region, cell, error);
+    for (size_t k = 0; status == UR_OK && k < count; k++) {
+        ur_box box = ur_box_empty();
+        ur_box_add(&box, r->walls[k].from);
+        ur_box_add(&box, r->walls[k].to);
+        status = allow_grid_add(&r->wall_grid, box, NULL, error);
+    }
+    if (status == UR_OK) {
+        /* Untested, all of them: a cell is tested when a label first needs it. */
+        r->cells = calloc(r->wall_grid.columns * r->wall_grid.rows, sizeof *r->cells);
+        if (!r->cells)
+            status = ur_error_out_of_memory(error);
+    }
+    return status;
 }
 
 void allow_room_close(allow_room *r)
 {
     if (!r)
         return;
-    if (r->tree)
-        GEOSSTRtree_destroy_r(r->geos, r->tree);
-    for (size_t i = 0; i < r->wall_count; i++)
-        GEOSGeom_destroy_r(r->geos, r->walls[i].line);
+    allow_grid_free(&r->wall_grid);
     free(r->walls);
+    free(r->cells);
     free(r->boxes);
     allow_grid_free(&r->labels);
     if (r->outline_fast)
@@ -332,19 +371,10 @@ ur_status allow_room_open(ur_piece *piece, allow_room **room, ur_error *error)
     r->piece = piece;
     r->outline_box = ur_box_of_points(piece->paths[0].points, piece->paths[0].count);
     r->geos = GEOS_init_r();
-    r->tree = r->geos ? GEOSSTRtree_create_r(r->geos, 8) : NULL;
     ur_status status =
-        r->tree ? UR_OK : ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not start");
-    size_t total = 0;
-    for (size_t i = 0; i < piece->path_count; i++)
-        total += walls_of_path(&piece->paths[i]);
-    if (status == UR_OK) {
-        r->walls = ur_alloc_array(total ? total : 1, sizeof *r->walls, error);
-        if (!r->walls)
-            status = UR_ERROR_MEMORY;
-    }
-    for (size_t i = 0; status == UR_OK && i < piece->path_count; i++)
-        status = add_path_walls(r, &piece->paths[i], error);
+        r->geos ? UR_OK : ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not start");
+    if (status == UR_OK)
+        status = index_walls(r, error);
     ur_box region = piece->box;
     double size = fmax(ur_box_width(region), ur_box_height(region));
     if (status == UR_OK)
@@ -394,6 +424,24 @@ static ur_status on_material(allow_room *r, ur_vec2 p, bool *inside, ur_error *e
         if (inside_ring(hole->points, hole->count, p))
             *inside = false;
     }
+    return UR_OK;
+}
+
+/* What the cell of the walls' grid that p falls in is known to be (tested the first time). */
+static ur_status material_of_cell(allow_room *r, ur_vec2 p, cell_state *state, ur_error *error)
+{
+    size_t cell = allow_grid_cell_of(&r->wall_grid, p);
+    if (r->cells[cell] == CELL_UNTESTED && !allow_grid_cell_is_empty(&r->wall_grid, cell))
+        r->cells[cell] = CELL_WALLED;
+    if (r->cells[cell] == CELL_UNTESTED) {
+        bool inside;
+        ur_status status =
+            on_material(r, allow_grid_cell_centre(&r->wall_grid, cell), &inside, error);
+        if (status != UR_OK)
+            return status;
+        r->cells[cell] = inside ? CELL_ON_MATERIAL : CELL_OFF_MATERIAL;
+    }
+    *state = r->cells[cell];
     return UR_OK;
 }
 
@@ -472,26 +520,53 @@ void allow_room_cross_folds(allow_room *room, bool cross)
     room->cross_folds = cross;
 }
 
-/* A query of the walls near a label's box. */
-typedef struct wall_test {
-    const allow_room *r;
-    const frame *f;
-    double a, b, clearance;
-    bool meets;
-} wall_test;
-
-static void test_wall(void *item, void *userdata)
+/* Whether a label must keep clear of the wall: any but a fold, when labels may cross folds. */
+static bool stops(const allow_room *r, const wall *w)
 {
-    wall_test *test = userdata;
-    const wall *w = item;
-    if (w->fold && test->r->cross_folds)
-        return;
-    for (size_t i = 0; !test->meets && i + 1 < w->count; i++)
-        test->meets = segment_near_box(test->f, test->a, test->b, test->clearance, w->points[i],
-                                       w->points[i + 1]);
-    if (w->count == 1 && !test->meets)
-        test->meets = segment_near_box(test->f, test->a, test->b, test->clearance, w->points[0],
-                                       w->points[0]);
+    return !(w->fold && r->cross_folds);
+}
+
+/* Makes stopper the latest of the recent walls. */
+static void remember_wall(allow_room *r, size_t stopper)
+{
+    size_t at = 0;
+    while (at < r->recent_count && r->recent[at] != stopper)
+        at++;
+    if (at == r->recent_count && r->recent_count < RECENT_WALLS)
+        r->recent_count++;
+    if (at == RECENT_WALLS)
+        at--;
+    for (; at > 0; at--)
+        r->recent[at] = r->recent[at - 1];
+    r->recent[0] = stopper;
+}
+
+/*
+ * Whether the box (half sizes a, b in frame f) comes within clearance of a
+ * wall whose box meets `around`.  The walls that stopped boxes lately go
+ * first: candidates come along rings, and most are stopped by a wall that
+ * stopped one of the last few, which then needs no query (whichever wall
+ * is tried first, the answer is the same).
+ */
+static ur_status meets_wall(allow_room *r, const frame *f, double a, double b, double clearance,
+                            ur_box around, bool *meets, ur_error *error)
+{
+    *meets = false;
+    for (size_t k = 0; !*meets && k < r->recent_count; k++) {
+        const wall *w = &r->walls[r->recent[k]];
+        *meets = stops(r, w) && allow_boxes_meet(r->wall_grid.boxes[r->recent[k]], around) &&
+                 segment_near_box(f, a, b, clearance, w->from, w->to);
+    }
+    if (*meets)
+        return UR_OK;
+    ur_status status = allow_grid_query(&r->wall_grid, around, &r->found, error);
+    for (size_t k = 0; status == UR_OK && !*meets && k < r->found.count; k++) {
+        const wall *w = &r->walls[r->found.items[k]];
+        *meets = stops(r, w) && segment_near_box(f, a, b, clearance, w->from, w->to);
+        if (*meets)
+            remember_wall(r, r->found.items[k]);
+    }
+    return status;
 }
 
 /* The corners of a label's box, counter-clockwise. */
@@ -541,8 +616,17 @@ static ur_box box_around(const frame *f, double a, double b, double clearance)
 /*
  * Whether the box fits: within the outline's box, no wall and no label
  * engraved since within clearance of it, on material.  Only the walls and
- * labels near the box are tested (the STRtree and the grid find them),
- * each segment by its exact distance from the box.
+ * labels near the box are tested (their grids find them), each segment by
+ * its exact distance from the box.
+ *
+ * Most candidates of a search that finds no room fall in a cell of the
+ * walls' grid that no wall meets, and its state says at once whether the
+ * centre is on material.  Rounding may put a centre in the cell beside
+ * its own, a hair from it; a wall between the two would then be within a
+ * hair of the centre, and the box fails on that wall anyway.  So the
+ * cell's answer is the exact one whenever it matters: a centre off
+ * material fails before any wall is tested, one on material needs no
+ * test of the outline.
  */
 static ur_status box_fits(allow_room *r, const frame *f, double a, double b, double clearance,
                           bool *fits, ur_error *error)
@@ -553,18 +637,21 @@ static ur_status box_fits(allow_room *r, const frame *f, double a, double b, dou
     if (box.min.x < r->outline_box.min.x || box.min.y < r->outline_box.min.y ||
         box.max.x > r->outline_box.max.x || box.max.y > r->outline_box.max.y)
         return UR_OK;
-    GEOSGeometry *query =
-        GEOSGeom_createRectangle_r(r->geos, box.min.x, box.min.y, box.max.x, box.max.y);
-    if (!query)
-        return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not build a label's box");
-    wall_test test = {r, f, a, b, clearance, false};
-    GEOSSTRtree_query_r(r->geos, r->tree, query, test_wall, &test);
-    GEOSGeom_destroy_r(r->geos, query);
-    bool meets = test.meets;
-    ur_status status = meets ? UR_OK : meets_label(r, f, a, b, clearance, box, &meets, error);
-    /* Meeting no wall, the whole box is on one side of each: its centre tells which. */
+    cell_state state;
+    ur_status status = material_of_cell(r, f->centre, &state, error);
+    if (status != UR_OK || state == CELL_OFF_MATERIAL)
+        return status;
+    bool meets;
+    status = meets_wall(r, f, a, b, clearance, box, &meets, error);
+    if (status == UR_OK && !meets)
+        status = meets_label(r, f, a, b, clearance, box, &meets, error);
     if (status != UR_OK || meets)
         return status;
+    if (state == CELL_ON_MATERIAL) {
+        *fits = true;
+        return UR_OK;
+    }
+    /* Meeting no wall, the whole box is on one side of each: its centre tells which. */
     return on_material(r, f->centre, fits, error);
 }
 

@@ -27,6 +27,7 @@
 
 #include "../geom/hull.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -168,6 +169,82 @@ static void box_of(GEOSContextHandle_t geos, const GEOSGeometry *g, double *box)
     GEOSGeom_getYMax_r(geos, g, &box[3]);
 }
 
+/* The exterior vertices of a polygon (last not repeated), allocated; how many (0 on failure). */
+static size_t vertices(GEOSContextHandle_t geos, const GEOSGeometry *polygon, ur_vec2 **points,
+                       bool *out_of_memory)
+{
+    *points = NULL;
+    const GEOSGeometry *ring = GEOSGetExteriorRing_r(geos, polygon);
+    const GEOSCoordSequence *sequence = ring ? GEOSGeom_getCoordSeq_r(geos, ring) : NULL;
+    unsigned size = 0;
+    if (!sequence || !GEOSCoordSeq_getSize_r(geos, sequence, &size) || size < 2)
+        return 0;
+    *points = malloc((size - 1) * sizeof **points);
+    if (!*points) {
+        *out_of_memory = true;
+        return 0;
+    }
+    for (unsigned i = 0; i + 1 < size; i++)
+        GEOSCoordSeq_getXY_r(geos, sequence, i, &(*points)[i].x, &(*points)[i].y);
+    return size - 1;
+}
+
+/* The area of a convex polygon (counter-clockwise: positive). */
+static double convex_area(const ur_vec2 *points, size_t count)
+{
+    double twice = 0;
+    for (size_t i = 0; i < count; i++)
+        twice += ur_vec2_cross(points[i], points[(i + 1) % count]);
+    return 0.5 * twice;
+}
+
+/* How far convex_area's rounding may stray, for count points no farther than reach from 0. */
+static double area_rounding(size_t count, double reach)
+{
+    double n = (double)count + 2;
+    return 16 * n * n * DBL_EPSILON * reach * reach;
+}
+
+/*
+ * Whether the convex hull of a and b surely has more area than limit,
+ * worked out on their vertices (geom_convex_hull) far more cheaply than
+ * GEOS's hull of a collection of their clones: most pairs that
+ * merge_parts tries do not merge (six in seven of a 48 x 24 sphere's
+ * nets), and for them GEOS is not asked.  "Surely": by more than the
+ * rounding of either area (of the same hull, summed in another order;
+ * GEOS may keep a point within rounding of a hull's edge, which changes
+ * its area by less still) and a millionth besides, so that GEOS's hull
+ * would fail convex_merge's test too.  False when unsure or when memory
+ * is short (GEOS then decides, as it would have).
+ */
+static bool hull_surely_larger(GEOSContextHandle_t geos, const GEOSGeometry *a,
+                               const GEOSGeometry *b, double limit)
+{
+    bool out_of_memory = false;
+    ur_vec2 *pa, *pb;
+    size_t na = vertices(geos, a, &pa, &out_of_memory);
+    size_t nb = vertices(geos, b, &pb, &out_of_memory);
+    size_t count = na + nb;
+    ur_vec2 *points = na && nb ? malloc(count * sizeof *points) : NULL;
+    ur_vec2 *hull = points ? malloc((count + 1) * sizeof *hull) : NULL;
+    bool larger = false;
+    if (hull) {
+        memcpy(points, pa, na * sizeof *points);
+        memcpy(points + na, pb, nb * sizeof *points);
+        double reach = 0;
+        for (size_t i = 0; i < count; i++)
+            reach = fmax(reach, fmax(fabs(points[i].x), fabs(points[i].y)));
+        size_t corners = geom_convex_hull(points, count, hull);
+        double area = convex_area(hull, corners);
+        larger = area > limit * (1 + 1e-6) + area_rounding(count, reach);
+    }
+    free(pa);
+    free(pb);
+    free(points);
+    free(hull);
+    return larger;
+}
+
 /*
  * The convex hull of a and b when it adds no area to them: then they share
  * an edge and their union is convex.  NULL otherwise.
@@ -175,6 +252,9 @@ static void box_of(GEOSContextHandle_t geos, const GEOSGeometry *g, double *box)
 static GEOSGeometry *convex_merge(GEOSContextHandle_t geos, const GEOSGeometry *a,
                                   const GEOSGeometry *b)
 {
+    double sum = area_of(geos, a) + area_of(geos, b), limit = sum * (1 + 1e-9) + 1e-12;
+    if (hull_surely_larger(geos, a, b, limit))
+        return NULL;
     GEOSGeometry *pair[2] = {GEOSGeom_clone_r(geos, a), GEOSGeom_clone_r(geos, b)};
     GEOSGeometry *both =
         pair[0] && pair[1] ? GEOSGeom_createCollection_r(geos, GEOS_MULTIPOLYGON, pair, 2) : NULL;
@@ -186,8 +266,7 @@ static GEOSGeometry *convex_merge(GEOSContextHandle_t geos, const GEOSGeometry *
     }
     GEOSGeometry *hull = GEOSConvexHull_r(geos, both);
     GEOSGeom_destroy_r(geos, both);
-    double sum = area_of(geos, a) + area_of(geos, b);
-    if (hull && area_of(geos, hull) <= sum * (1 + 1e-9) + 1e-12)
+    if (hull && area_of(geos, hull) <= limit)
         return hull;
     if (hull)
         GEOSGeom_destroy_r(geos, hull);
@@ -345,7 +424,7 @@ static GEOSGeometry *filled_shell(GEOSContextHandle_t geos, const GEOSGeometry *
 
 /*
  * The polygon's triangles (GEOS's constrained Delaunay triangulation),
- * merged into convex parts and shrunk.
+ * merged into convex parts (shrunk later: see coarseness).
  */
 static ur_status convex_parts(GEOSContextHandle_t geos, const GEOSGeometry *polygon,
                               nest_shape *shape, ur_error *error)
@@ -372,8 +451,6 @@ static ur_status convex_parts(GEOSContextHandle_t geos, const GEOSGeometry *poly
     if (status != UR_OK)
         return status;
     merge_parts(geos, shape);
-    if (!shrink_parts(geos, shape))
-        return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not shrink a piece's parts");
     return UR_OK;
 }
 
@@ -390,7 +467,10 @@ static void drop_parts(GEOSContextHandle_t geos, nest_shape *shape)
     shape->polygon = NULL;
 }
 
-/* The shape's polygon (exact grown, simplified and closed) and its convex parts, made again. */
+/*
+ * The shape's polygon (exact grown, simplified and closed) and its convex
+ * parts, made again; not shrunk yet.
+ */
 static ur_status shape_parts(GEOSContextHandle_t geos, const GEOSGeometry *exact, double grow,
                              double tolerance, double closing, nest_shape *shape, ur_error *error)
 {
@@ -399,6 +479,14 @@ static ur_status shape_parts(GEOSContextHandle_t geos, const GEOSGeometry *exact
     if (!shape->polygon)
         return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not prepare a piece to nest");
     return convex_parts(geos, shape->polygon, shape, error);
+}
+
+/* The shape's convex parts shrunk, once they are the ones kept. */
+static ur_status shrunk(GEOSContextHandle_t geos, nest_shape *shape, ur_error *error)
+{
+    if (!shrink_parts(geos, shape))
+        return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not shrink a piece's parts");
+    return UR_OK;
 }
 
 /*
@@ -472,6 +560,13 @@ ur_status nest_shape_make(GEOSContextHandle_t geos, const ur_piece *piece, doubl
         if (exact)
             GEOSGeom_destroy_r(geos, exact);
     }
+    /*
+     * Only the parts kept are shrunk (each on its own, so the same whenever
+     * it is done): the shapes coarseness gives up have a hundred parts or
+     * more, and shrinking each is a GEOS buffer.
+     */
+    if (status == UR_OK)
+        status = shrunk(geos, shape, error);
     if (status != UR_OK)
         return status;
     double reach[4];
@@ -488,26 +583,6 @@ void nest_shape_free(GEOSContextHandle_t geos, nest_shape *shape)
     if (shape->polygon)
         GEOSGeom_destroy_r(geos, shape->polygon);
     memset(shape, 0, sizeof *shape);
-}
-
-/* The exterior vertices of a polygon (last not repeated), allocated; how many (0 on failure). */
-static size_t vertices(GEOSContextHandle_t geos, const GEOSGeometry *polygon, ur_vec2 **points,
-                       bool *out_of_memory)
-{
-    *points = NULL;
-    const GEOSGeometry *ring = GEOSGetExteriorRing_r(geos, polygon);
-    const GEOSCoordSequence *sequence = ring ? GEOSGeom_getCoordSeq_r(geos, ring) : NULL;
-    unsigned size = 0;
-    if (!sequence || !GEOSCoordSeq_getSize_r(geos, sequence, &size) || size < 2)
-        return 0;
-    *points = malloc((size - 1) * sizeof **points);
-    if (!*points) {
-        *out_of_memory = true;
-        return 0;
-    }
-    for (unsigned i = 0; i + 1 < size; i++)
-        GEOSCoordSeq_getXY_r(geos, sequence, i, &(*points)[i].x, &(*points)[i].y);
-    return size - 1;
 }
 
 /* A closed ring of points as a GEOS polygon; NULL on failure. */
@@ -586,41 +661,81 @@ static size_t hull_of_sums(const ur_vec2 *a, size_t na, const ur_vec2 *b, size_t
     return count;
 }
 
-/*
- * The convex hull of a + (-b) for two convex polygons: the sum of their
- * hulls, edge by edge (the hull of all the sums of their vertices took an
- * eighth of a papercraft sphere's nesting, and GEOS's hull of them more).
- * NULL when it has no area, and when memory ran out (then *out_of_memory
- * is set).
- */
-static GEOSGeometry *convex_sum(GEOSContextHandle_t geos, const GEOSGeometry *a,
-                                const GEOSGeometry *b, bool *out_of_memory)
+/* A convex part's hull, counter-clockwise, as geom_convex_hull gives it. */
+typedef struct part_hull {
+    ur_vec2 *points; /* owned */
+    size_t count;    /* 0: the part has no vertices */
+} part_hull;
+
+static void part_hulls_free(part_hull *hulls, size_t count)
 {
-    ur_vec2 *pa, *pb;
-    size_t na = vertices(geos, a, &pa, out_of_memory), nb = vertices(geos, b, &pb, out_of_memory);
-    /* Room for both hulls (one more point each), then their sum (or, with a hull of less than
-     * three points, every sum of their points). */
-    size_t sum_room = na * nb > na + nb ? na * nb + 1 : na + nb + 1;
-    ur_vec2 *room = na && nb ? malloc((na + nb + 2 + sum_room) * sizeof *room) : NULL;
-    if (na && nb && !room)
+    for (size_t k = 0; hulls && k < count; k++)
+        free(hulls[k].points);
+    free(hulls);
+}
+
+/*
+ * The hulls of a shape's convex parts, each turned half round first when
+ * negated (b's parts in a + (-b)): worked out once per part for all the
+ * pairs nest_sums makes of them.  NULL when memory runs out (then
+ * *out_of_memory is set).
+ */
+static part_hull *part_hulls(GEOSContextHandle_t geos, const nest_shape *shape, bool negated,
+                             bool *out_of_memory)
+{
+    part_hull *hulls = calloc(shape->convex_count + 1, sizeof *hulls);
+    if (!hulls) {
         *out_of_memory = true;
-    GEOSGeometry *polygon = NULL;
-    if (room) {
-        for (size_t j = 0; j < nb; j++)
-            pb[j] = ur_vec2_make(-pb[j].x, -pb[j].y);
-        ur_vec2 *hull_a = room, *hull_b = room + na + 1, *sum = room + na + nb + 2;
-        size_t ha = geom_convex_hull(pa, na, hull_a), hb = geom_convex_hull(pb, nb, hull_b);
-        size_t count = ha >= 3 && hb >= 3
-                           ? merge_edges(hull_a, ha, hull_b, hb, sum)
-                           : hull_of_sums(hull_a, ha, hull_b, hb, sum, out_of_memory);
-        if (count >= 3) {
-            polygon = polygon_of(geos, sum, count);
-            *out_of_memory = *out_of_memory || !polygon; /* GEOS could not allocate it */
-        }
+        return NULL;
     }
-    free(room);
-    free(pa);
-    free(pb);
+    for (size_t k = 0; k < shape->convex_count && !*out_of_memory; k++) {
+        ur_vec2 *points;
+        size_t count = vertices(geos, shape->convex[k], &points, out_of_memory);
+        for (size_t i = 0; negated && i < count; i++)
+            points[i] = ur_vec2_make(-points[i].x, -points[i].y);
+        hulls[k].points = count ? malloc((count + 1) * sizeof *hulls[k].points) : NULL;
+        if (count && !hulls[k].points)
+            *out_of_memory = true;
+        else if (count)
+            hulls[k].count = geom_convex_hull(points, count, hulls[k].points);
+        free(points);
+    }
+    if (*out_of_memory) {
+        part_hulls_free(hulls, shape->convex_count);
+        return NULL;
+    }
+    return hulls;
+}
+
+/*
+ * The convex hull of a + (-b) for two convex polygons (their hulls, b's
+ * negated): the sum of their hulls, edge by edge (the hull of all the
+ * sums of their vertices took an eighth of a papercraft sphere's nesting,
+ * and GEOS's hull of them more).  NULL when it has no area, and when
+ * memory ran out (then *out_of_memory is set).
+ */
+static GEOSGeometry *convex_sum(GEOSContextHandle_t geos, const part_hull *a, const part_hull *b,
+                                bool *out_of_memory)
+{
+    size_t ha = a->count, hb = b->count;
+    if (!ha || !hb)
+        return NULL;
+    /* Room for their sum (or, with a hull of less than three points, every sum of their points). */
+    size_t sum_room = ha * hb > ha + hb ? ha * hb + 1 : ha + hb + 1;
+    ur_vec2 *sum = malloc(sum_room * sizeof *sum);
+    if (!sum) {
+        *out_of_memory = true;
+        return NULL;
+    }
+    size_t count = ha >= 3 && hb >= 3
+                       ? merge_edges(a->points, ha, b->points, hb, sum)
+                       : hull_of_sums(a->points, ha, b->points, hb, sum, out_of_memory);
+    GEOSGeometry *polygon = NULL;
+    if (count >= 3) {
+        polygon = polygon_of(geos, sum, count);
+        *out_of_memory = *out_of_memory || !polygon; /* GEOS could not allocate it */
+    }
+    free(sum);
     return polygon;
 }
 
@@ -667,15 +782,19 @@ GEOSGeometry *nest_sums(GEOSContextHandle_t geos, const nest_shape *a, const nes
         *out_of_memory = true;
         return NULL;
     }
-    bool failed = false; /* a sum left out would let pieces overlap: none or all */
+    part_hull *hulls_a = part_hulls(geos, a, false, out_of_memory);
+    part_hull *hulls_b = hulls_a ? part_hulls(geos, b, true, out_of_memory) : NULL;
+    bool failed = !hulls_b; /* a sum left out would let pieces overlap: none or all */
     for (size_t i = 0; !failed && i < a->convex_count; i++)
         for (size_t j = 0; !failed && j < b->convex_count; j++) {
             /* NULL also for a sum with no area (two parts' edges in line): nothing to add */
-            GEOSGeometry *sum = convex_sum(geos, a->convex[i], b->convex[j], out_of_memory);
+            GEOSGeometry *sum = convex_sum(geos, &hulls_a[i], &hulls_b[j], out_of_memory);
             failed = *out_of_memory;
             if (sum)
                 sums[made++] = sum;
         }
+    part_hulls_free(hulls_a, a->convex_count);
+    part_hulls_free(hulls_b, b->convex_count);
     if (!failed)
         largest_first(geos, sums, made);
     GEOSGeometry *collection =

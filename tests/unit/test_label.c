@@ -348,6 +348,57 @@ static void test_label_out_of_hole(void **state)
     ur_piece_free(&piece);
 }
 
+/* Adds the ring as a closed CUT path, each side cut into steps of 2 mm (as a curve's would be). */
+static void add_fine_ring(ur_piece *piece, const ur_vec2 *corners, size_t count)
+{
+    ur_vec2 points[1024];
+    size_t n = 0;
+    for (size_t i = 0; i < count; i++) {
+        ur_vec2 a = corners[i], b = corners[(i + 1) % count];
+        size_t steps = (size_t)ceil(ur_vec2_length(ur_vec2_sub(b, a)) / 2);
+        for (size_t k = 0; k < steps; k++) {
+            assert_true(n < 1024);
+            points[n++] = ur_vec2_add_scaled(a, ur_vec2_sub(b, a), (double)k / (double)steps);
+        }
+    }
+    assert_int_equal(ur_piece_add_path(piece, UR_OP_CUT, points, n, true, NULL), UR_OK);
+}
+
+/*
+ * A U-shaped piece with a rectangular hole in its base: the label asked
+ * for in the notch (off the piece) or in the hole finds its room on the
+ * material around them, far from where it was asked; a label too tall for
+ * any arm finds none.  Most candidates on the way lie in the notch, the
+ * hole or beyond the outline, where no wall is near.
+ */
+static void test_label_far_from_notch_and_hole(void **state)
+{
+    ur_font *font = *state;
+    ur_vec2 u[8] = {{0, 0},    {120, 0}, {120, 120}, {100, 120},
+                    {100, 60}, {20, 60}, {20, 120},  {0, 120}};
+    ur_vec2 hole[4] = {{20, 10}, {20, 50}, {100, 50}, {100, 10}}; /* clockwise, as holes go */
+    ur_vec2 asked[2] = {{60, 100}, {60, 30}};                     /* in the notch, in the hole */
+    for (int k = 0; k < 2; k++) {
+        ur_piece piece;
+        memset(&piece, 0, sizeof piece);
+        snprintf(piece.name, sizeof piece.name, "test");
+        add_fine_ring(&piece, u, 8);
+        add_fine_ring(&piece, hole, 4);
+        bool placed;
+        assert_int_equal(ur_piece_add_label(&piece, font, "A7", asked[k], ur_vec2_make(1, 0), 8, 6,
+                                            1, &placed, NULL),
+                         UR_OK);
+        assert_true(placed);
+        assert_clear(&piece, 2, 1, 1);
+        /* The arms and the strips round the hole are 10 to 20 mm wide: no room for 30 mm text. */
+        assert_int_equal(ur_piece_add_label(&piece, font, "A7", asked[k], ur_vec2_make(1, 0), 40,
+                                            30, 1, &placed, NULL),
+                         UR_OK);
+        assert_false(placed);
+        ur_piece_free(&piece);
+    }
+}
+
 static void test_many_labels_on_a_fine_outline(void **state)
 {
     ur_font *font = *state;
@@ -431,6 +482,7 @@ int main(void)
         cmocka_unit_test(test_no_room),
         cmocka_unit_test(test_label_off_score),
         cmocka_unit_test(test_label_out_of_hole),
+        cmocka_unit_test(test_label_far_from_notch_and_hole),
         cmocka_unit_test(test_many_labels_on_a_fine_outline),
         cmocka_unit_test(test_bad_arguments),
     };
