@@ -134,7 +134,7 @@ static ur_status restart(unfolder *u, ur_error *error)
                 island->hull[k] = u->flat[t][k];
         }
         island->hull_count = u->room ? 3 : 0;
-        ur_status status = unfold_grid_add(&u->grid, ur_box_of_points(u->flat[t], 3), t, t, error);
+        ur_status status = unfold_grid_add(&u->grid, unfold_box_of(u->flat[t], 3), t, t, error);
         if (status != UR_OK)
             return status;
     }

@@ -56,6 +56,47 @@ static inline double unfold_edge_length(const ur_mesh *mesh, size_t half)
                             mesh->vertices[unfold_to(mesh, half)]);
 }
 
+/*
+ * The box round points, as ur_box_of_points but inline: the runs of the
+ * search take the box of every triangle they move or test, and a call per
+ * point and per min and max was a tenth of their time.  (Points are
+ * finite, so a comparison picks what fmin and fmax would.)
+ */
+static inline ur_box unfold_box_of(const ur_vec2 *points, size_t count)
+{
+    ur_box box = {{INFINITY, INFINITY}, {-INFINITY, -INFINITY}};
+    for (size_t i = 0; i < count; i++) {
+        ur_vec2 p = points[i];
+        box.min.x = p.x < box.min.x ? p.x : box.min.x;
+        box.min.y = p.y < box.min.y ? p.y : box.min.y;
+        box.max.x = p.x > box.max.x ? p.x : box.max.x;
+        box.max.y = p.y > box.max.y ? p.y : box.max.y;
+    }
+    return box;
+}
+
+/*
+ * hypot(x, y) <= limit, asked of nearly every pair of points and every
+ * join the search tries: the squares decide unless they are within
+ * rounding of the limit, where hypot (what ur_vec2_distance uses) has the
+ * last word, so that the answer is always hypot's.
+ */
+static inline bool unfold_hypot_within(double x, double y, double limit)
+{
+    double squared = x * x + y * y, limit_squared = limit * limit;
+    if (squared < limit_squared * (1 - 1e-9))
+        return true;
+    if (squared > limit_squared * (1 + 1e-9))
+        return false;
+    return hypot(x, y) <= limit;
+}
+
+/* ur_vec2_distance(a, b) <= limit. */
+static inline bool unfold_within(ur_vec2 a, ur_vec2 b, double limit)
+{
+    return unfold_hypot_within(a.x - b.x, a.y - b.y, limit);
+}
+
 /* The mesh's edges, per half-edge. */
 typedef struct unfold_edges {
     size_t *twins; /* ur_mesh_twins */
@@ -126,15 +167,24 @@ bool unfold_point_near_triangle(ur_vec2 p, const ur_vec2 q[3], double eps);
  * covers many cells is kept on its piece's list of big ones, which every
  * query reads.
  */
+typedef struct unfold_grid_slot {
+    size_t head;  /* the first entry */
+    size_t stamp; /* the run head belongs to (else the slot is empty) */
+} unfold_grid_slot;
+
+/* What a query reads of an entry side by side: one cache line, not three arrays. */
+typedef struct unfold_grid_entry {
+    size_t item; /* a triangle */
+    size_t piece;
+    size_t next; /* the next in its slot */
+} unfold_grid_entry;
+
 typedef struct unfold_grid {
     double cell;
-    size_t mask;        /* slots - 1, a power of two less one */
-    size_t *head;       /* per slot: first entry */
-    size_t *head_stamp; /* per slot: the run head belongs to (else the slot is empty) */
-    size_t stamp;       /* the run */
-    size_t *entry_item; /* per entry: a triangle */
-    size_t *entry_piece;
-    size_t *entry_next; /* per entry: the next in its slot */
+    size_t mask; /* slots - 1, a power of two less one */
+    unfold_grid_slot *slots;
+    size_t stamp; /* the run */
+    unfold_grid_entry *entries;
     size_t entry_count, entry_capacity;
     size_t *seen; /* per triangle: the last query that found it */
     size_t query;

@@ -48,8 +48,8 @@ static unfold_motion hinge_motion(const unfolder *u, size_t small_half, size_t l
 static bool lands_on(const unfolder *u, const unfold_motion *m, size_t small_corner,
                      size_t large_corner)
 {
-    return ur_vec2_distance(unfold_move(m, corner_at(u, small_corner)),
-                            corner_at(u, large_corner)) <= u->eps;
+    return unfold_within(unfold_move(m, corner_at(u, small_corner)), corner_at(u, large_corner),
+                         u->eps);
 }
 
 static void add_pair(unfolder *u, size_t small_half, size_t large_half)
@@ -156,7 +156,7 @@ static bool paired(const unfolder *u, size_t s, size_t q)
 /* The bit of corner j of q if it is one with corner i of moved small triangle s; else 0. */
 static unsigned shared_corner(unfolder *u, size_t s, const ur_vec2 moved[3], int i, size_t q, int j)
 {
-    if (ur_vec2_distance(moved[i], u->flat[q][j]) > u->eps)
+    if (!unfold_within(moved[i], u->flat[q][j], u->eps))
         return 0;
     return made_one(u, 3 * s + (size_t)i, 3 * q + (size_t)j) ? 1u << j : 0;
 }
@@ -243,7 +243,7 @@ static double edge_gap(const unfolder *u, ur_vec2 a, ur_vec2 b, ur_vec2 c, ur_ve
     ur_vec2 ab[2] = {a, b}, cd[2] = {c, d};
     for (int i = 0; i < 2; i++)
         for (int j = 0; j < 2; j++) {
-            if (ur_vec2_distance(ab[i], cd[j]) > u->eps)
+            if (!unfold_within(ab[i], cd[j], u->eps))
                 continue;
             ur_vec2 far_ab = ab[1 - i], far_cd = cd[1 - j], near_cd, near_ab, unused;
             double from_ab = unfold_edge_gap(far_ab, far_ab, c, d, &unused, &near_cd);
@@ -368,7 +368,7 @@ static bool lies_well(unfolder *u, const unfold_motion *m, size_t s, const ur_ve
 
 static ur_box padded_box(const ur_vec2 corners[3], double eps)
 {
-    ur_box box = ur_box_of_points(corners, 3);
+    ur_box box = unfold_box_of(corners, 3);
     box.min = ur_vec2_sub(box.min, ur_vec2_make(eps, eps));
     box.max = ur_vec2_add(box.max, ur_vec2_make(eps, eps));
     return box;
@@ -499,8 +499,7 @@ static ur_status commit(unfolder *u, const unfold_motion *m, size_t small, size_
     for (size_t s = a->first; s != UNFOLD_NONE; s = u->next_member[s]) {
         move_triangle(m, u->flat[s], u->flat[s]);
         u->piece[s] = large;
-        ur_status status =
-            unfold_grid_add(&u->grid, ur_box_of_points(u->flat[s], 3), large, s, error);
+        ur_status status = unfold_grid_add(&u->grid, unfold_box_of(u->flat[s], 3), large, s, error);
         if (status != UR_OK)
             return status;
     }

@@ -32,8 +32,20 @@ bool unfold_hull_fits(const unfolder *u, const ur_vec2 *hull, size_t count)
      * A hull whose box's diagonal is within the room's width fits in any
      * direction (most joins of small pieces): no rectangle to look for.
      */
-    ur_box box = ur_box_of_points(hull, count);
-    if (count > 0 && hypot(ur_box_width(box), ur_box_height(box)) <= room_width)
+    ur_box box = unfold_box_of(hull, count);
+    if (count > 0 && unfold_hypot_within(ur_box_width(box), ur_box_height(box), room_width))
+        return true;
+    /*
+     * Nor is the rectangle needed when the box shows it fits (most of the
+     * other joins): its longer side is the hull's extent in some
+     * direction, at most the box's diagonal, and its shorter side squared
+     * is at most its area, at most the box's.  Kept a hair inside the room,
+     * so that rounding cannot make the rectangle say otherwise.
+     */
+    double box_area = ur_box_width(box) * ur_box_height(box);
+    if (count > 0 &&
+        unfold_hypot_within(ur_box_width(box), ur_box_height(box), room_length * (1 - 1e-9)) &&
+        box_area < room_width * room_width * (1 - 1e-9))
         return true;
     double length, width;
     unfold_hull_size(hull, count, &length, &width);
