@@ -125,6 +125,7 @@ static ur_status restart(unfolder *u, ur_error *error)
         island->face_count = 1;
         island->failed_with = UNFOLD_NONE;
         island->failures = 0;
+        island->layout = unfold_triangle_key(t);
         for (int k = 0; k < 3; k++) {
             u->flat[t][k] = u->faces.home[t][k];
             u->joined[3 * t + (size_t)k] = false;
@@ -134,7 +135,9 @@ static ur_status restart(unfolder *u, ur_error *error)
                 island->hull[k] = u->flat[t][k];
         }
         island->hull_count = u->room ? 3 : 0;
-        ur_status status = unfold_grid_add(&u->grid, unfold_box_of(u->flat[t], 3), t, t, error);
+        island->gridded = false;
+        island->absorbed_first = island->absorbed_last = UNFOLD_NONE;
+        ur_status status = u->last_run ? unfold_grid_piece(u, t, error) : UR_OK;
         if (status != UR_OK)
             return status;
     }
@@ -346,6 +349,8 @@ static ur_status unfolder_init(unfolder *u, const ur_mesh *mesh, const ur_seam *
     status = alloc_run(u, error);
     if (status == UR_OK)
         status = unfold_grid_init(&u->grid, mesh->triangle_count, u->edges.mean_edge, error);
+    if (status == UR_OK)
+        status = unfold_outcomes_init(u, error);
     return status;
 }
 
@@ -370,6 +375,7 @@ static void unfolder_free(unfolder *u)
     free(u->slit_sides);
     free(u->hull_points);
     free(u->hull_chain);
+    free(u->outcomes);
     unfold_grid_free(&u->grid);
 }
 
@@ -384,7 +390,12 @@ static ur_status check_faces_fit(unfolder *u, ur_error *error)
         return status;
     for (size_t t = 0; t < u->mesh->triangle_count; t++) {
         const unfold_island *island = &u->islands[t];
-        if (island->triangle_count == 0 || unfold_hull_fits(u, island->hull, island->hull_count))
+        if (island->triangle_count == 0)
+            continue;
+        status = unfold_update_hull(u, t, error);
+        if (status != UR_OK)
+            return status;
+        if (unfold_hull_fits(u, island->hull, island->hull_count))
             continue;
         double length, width;
         unfold_hull_size(island->hull, island->hull_count, &length, &width);

@@ -208,26 +208,6 @@ ur_status unfold_grid_add(unfold_grid *grid, ur_box box, size_t piece, size_t tr
  */
 bool unfold_grid_query(unfold_grid *grid, ur_box box, size_t piece, const size_t *piece_of);
 
-/* A piece of a run: its triangles in a list through unfolder.next_member. */
-typedef struct unfold_island {
-    size_t first, last;
-    size_t triangle_count;
-    size_t outline_count; /* half-edges not joined */
-    ur_vec2 *hull;        /* its convex hull, counter-clockwise, when the room is limited */
-    size_t hull_count, hull_capacity;
-    size_t face_count; /* flat faces, once the faces are joined (1 before) */
-    /* the piece it last failed to join as the smaller one, that piece's size then, how often */
-    size_t failed_with, failed_size, failures;
-} unfold_island;
-
-/*
- * Two pieces of several faces that failed to join this often, across as
- * many edges, are not tried again while neither changes: two large pieces
- * that do not fit would otherwise be tried across every edge between them.
- * A piece of one face is always tried.
- */
-#define UNFOLD_MOST_FAILURES 8
-
 /* p -> to + R (p - from), R the turn by (cos, sin). */
 typedef struct unfold_motion {
     double cos, sin;
@@ -240,6 +220,32 @@ static inline ur_vec2 unfold_move(const unfold_motion *m, ur_vec2 p)
     return ur_vec2_add(m->to,
                        ur_vec2_make(m->cos * d.x - m->sin * d.y, m->sin * d.x + m->cos * d.y));
 }
+
+/* A piece of a run: its triangles in a list through unfolder.next_member. */
+typedef struct unfold_island {
+    size_t first, last;
+    size_t triangle_count;
+    size_t outline_count; /* half-edges not joined */
+    ur_vec2 *hull;        /* its convex hull, counter-clockwise, when the room is limited */
+    size_t hull_count, hull_capacity;
+    size_t face_count; /* flat faces, once the faces are joined (1 before) */
+    /* the piece it last failed to join as the smaller one, that piece's size then, how often */
+    size_t failed_with, failed_size, failures;
+    uint64_t layout; /* what the piece is made of (see unfold_lay.c's join_key) */
+    bool gridded;    /* its triangles are in the grid where they lie */
+    /* the pieces whose hulls are still to be merged into hull (unfold_lay.c's defer_hull) */
+    size_t absorbed_first, absorbed_last;
+    size_t absorbed_next;          /* once joined to a larger piece: the next on its list */
+    unfold_motion absorbed_motion; /* and the motion that moved it there */
+} unfold_island;
+
+/*
+ * Two pieces of several faces that failed to join this often, across as
+ * many edges, are not tried again while neither changes: two large pieces
+ * that do not fit would otherwise be tried across every edge between them.
+ * A piece of one face is always tried.
+ */
+#define UNFOLD_MOST_FAILURES 8
 
 /* The point that m moves to p. */
 static inline ur_vec2 unfold_move_back(const unfold_motion *m, ur_vec2 p)
@@ -278,6 +284,8 @@ typedef struct unfolder {
     size_t *roots; /* 2 per pair: the flat vertices it makes one, small's then large's */
     ur_vec2 *hull_points, *hull_chain; /* room for the hull of every corner */
     size_t culprits[UNFOLD_CULPRITS];  /* the triangles that stopped the last joins */
+    uint64_t *outcomes;  /* joins already judged, by join_key (unfold_lay.c), over all runs */
+    size_t outcome_mask; /* slots - 1 */
     /*
      * The last pass of the last run (tabs_to_twins): a join may leave a
      * slit narrower than the gap when both its edges can give their tabs to
@@ -291,8 +299,40 @@ typedef struct unfolder {
     size_t slit_side_count;
 } unfolder;
 
+/* A well-mixed 64-bit number for x (splitmix64's finisher): keys of triangles and edges. */
+static inline uint64_t unfold_mix(uint64_t x)
+{
+    x ^= x >> 30;
+    x *= UINT64_C(0xBF58476D1CE4E5B9);
+    x ^= x >> 27;
+    x *= UINT64_C(0x94D049BB133111EB);
+    x ^= x >> 31;
+    return x;
+}
+
+/* The layout key of a piece of triangle t alone. */
+static inline uint64_t unfold_triangle_key(size_t t)
+{
+    return unfold_mix(4 * (uint64_t)t + 1);
+}
+
+/* Room for the outcomes of joins, the slots of unfolder.outcomes. */
+ur_status unfold_outcomes_init(unfolder *u, ur_error *error);
+
 /* The union-find root of corner c (with path halving). */
 size_t unfold_find(unfolder *u, size_t corner);
+
+/*
+ * Puts the triangles of piece p in the grid unless they are there: a join
+ * whose outcome is remembered (unfold_lay.c) looks at no triangle, so
+ * that the pieces are put in the grid when a join first tests them,
+ * except in the last run, where they are put in as they are joined:
+ * what it finds there is tested in the order they were put in.
+ */
+ur_status unfold_grid_piece(unfolder *u, size_t p, ur_error *error);
+
+/* Merges the hulls of the pieces joined to piece p into its hull (see unfold_lay.c). */
+ur_status unfold_update_hull(unfolder *u, size_t p, ur_error *error);
 
 /* Joins the pieces on either side of half-edge h if they fit together (unfold_lay.c). */
 ur_status unfold_try_join(unfolder *u, size_t h, bool *joined, ur_error *error);

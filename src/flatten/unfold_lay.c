@@ -484,6 +484,88 @@ static ur_status keep_hull(unfolder *u, size_t large, size_t count, ur_error *er
     return UR_OK;
 }
 
+/* ---- the outcomes of joins, remembered over the runs ---- */
+
+/* How a join came out, kept in the low two bits of its slot (0: no entry). */
+enum { OUTCOME_NONE, OUTCOME_TOO_LARGE, OUTCOME_OVERLAPS, OUTCOME_FITS };
+#define OUTCOME_BITS UINT64_C(3)
+
+/*
+ * The search runs the joins again and again in orders that differ by one
+ * edge, and most of a run's joins are joins of the same two pieces across
+ * the same edge as in an earlier run: their outcome is looked up instead
+ * of tested again.  A piece's key is the sum (exclusive or) of keys of
+ * its triangles, of the edges it was joined across (each hinge) and of
+ * the edges those joins zipped: pieces with the same key were laid
+ * through the same hinges, so that they are the same up to a motion
+ * (and rounding), with the same outline.  A join is then fixed by the two
+ * keys, its hinge in the smaller piece and what the phase allows; whether
+ * it fits does not depend on where the pieces lie, on which triangles were
+ * tried first (the culprits) nor on the grid.  Only the last run, whose
+ * slits depend on the order of its tests, judges everything itself.
+ */
+ur_status unfold_outcomes_init(unfolder *u, ur_error *error)
+{
+    size_t slots = 1024, wanted = 64 * u->mesh->triangle_count;
+    while (slots < wanted && slots < ((size_t)1 << 23))
+        slots *= 2;
+    u->outcomes = ur_alloc_array(slots, sizeof *u->outcomes, error);
+    if (!u->outcomes)
+        return UR_ERROR_MEMORY;
+    u->outcome_mask = slots - 1;
+    return UR_OK;
+}
+
+/* The key the pairs of the join under way add to the large piece's. */
+static uint64_t joined_key(const unfolder *u)
+{
+    uint64_t key = 0;
+    for (size_t i = 0; i < u->pair_count; i++) {
+        size_t s = u->pair_small[i], l = u->pair_large[i];
+        size_t lower = s < l ? s : l;
+        key ^= unfold_mix(4 * (uint64_t)lower + (i == 0 ? 2 : 3)); /* the hinge, then the zipped */
+    }
+    return key;
+}
+
+static uint64_t join_key(const unfolder *u, size_t small, size_t large, size_t hinge_small)
+{
+    uint64_t phase =
+        (uint64_t)u->slits | (uint64_t)u->room_binds << 1 | (uint64_t)u->gap_waived << 2;
+    uint64_t pieces = unfold_mix(unfold_mix(u->islands[small].layout) + u->islands[large].layout);
+    return pieces ^ unfold_mix(8 * (uint64_t)hinge_small + phase);
+}
+
+static bool remembers(const unfolder *u)
+{
+    return !u->last_run;
+}
+
+static unsigned recalled(const unfolder *u, uint64_t key)
+{
+    uint64_t slot = u->outcomes[(key >> 2) & u->outcome_mask];
+    return (slot & ~OUTCOME_BITS) == (key & ~OUTCOME_BITS) ? (unsigned)(slot & OUTCOME_BITS)
+                                                           : OUTCOME_NONE;
+}
+
+/* Kept in its slot, in place of what was there: a forgotten outcome is only judged again. */
+static void remember(unfolder *u, uint64_t key, unsigned outcome)
+{
+    u->outcomes[(key >> 2) & u->outcome_mask] = (key & ~OUTCOME_BITS) | outcome;
+}
+
+ur_status unfold_grid_piece(unfolder *u, size_t p, ur_error *error)
+{
+    unfold_island *island = &u->islands[p];
+    for (size_t t = island->first; t != UNFOLD_NONE && !island->gridded; t = u->next_member[t]) {
+        ur_status status = unfold_grid_add(&u->grid, unfold_box_of(u->flat[t], 3), p, t, error);
+        if (status != UR_OK)
+            return status;
+    }
+    island->gridded = true;
+    return UR_OK;
+}
+
 static ur_status commit(unfolder *u, const unfold_motion *m, size_t small, size_t large,
                         ur_error *error)
 {
@@ -499,10 +581,13 @@ static ur_status commit(unfolder *u, const unfold_motion *m, size_t small, size_
     for (size_t s = a->first; s != UNFOLD_NONE; s = u->next_member[s]) {
         move_triangle(m, u->flat[s], u->flat[s]);
         u->piece[s] = large;
-        ur_status status = unfold_grid_add(&u->grid, unfold_box_of(u->flat[s], 3), large, s, error);
+        ur_status status =
+            b->gridded ? unfold_grid_add(&u->grid, unfold_box_of(u->flat[s], 3), large, s, error)
+                       : UR_OK;
         if (status != UR_OK)
             return status;
     }
+    b->layout ^= a->layout ^ joined_key(u);
     u->next_member[b->last] = a->first;
     b->last = a->last;
     b->triangle_count += a->triangle_count;
@@ -511,6 +596,94 @@ static ur_status commit(unfolder *u, const unfold_motion *m, size_t small, size_
     b->outline_count = b->outline_count + a->outline_count - 2 * u->pair_count;
     a->triangle_count = 0;
     a->first = a->last = UNFOLD_NONE;
+    return UR_OK;
+}
+
+/*
+ * The hulls of the pieces, when the room is limited, are kept up to date
+ * only where a join is judged: a remembered join that fits leaves the
+ * hull of the smaller piece, and the motion that moved it, on a list of
+ * the larger one, and the hulls on the list are merged into its own in
+ * turn, each brought up to date first, when a join of the larger piece is
+ * judged: the same hulls of two, in the same order, as if each had been
+ * merged when its join was made.
+ */
+static void defer_hull(unfolder *u, const unfold_motion *m, size_t small, size_t large)
+{
+    unfold_island *a = &u->islands[small], *b = &u->islands[large];
+    a->absorbed_motion = *m;
+    a->absorbed_next = UNFOLD_NONE;
+    if (b->absorbed_last == UNFOLD_NONE)
+        b->absorbed_first = small;
+    else
+        u->islands[b->absorbed_last].absorbed_next = small;
+    b->absorbed_last = small;
+}
+
+/*
+ * Each piece on the list is at most half as large as the piece it joined,
+ * so that the lists nest at most log2(triangles) deep.
+ */
+ur_status unfold_update_hull(unfolder *u, size_t p, ur_error *error)
+{
+    while (u->islands[p].absorbed_first != UNFOLD_NONE) {
+        size_t a = u->islands[p].absorbed_first;
+        ur_status status = unfold_update_hull(u, a, error);
+        if (status != UR_OK)
+            return status;
+        u->islands[p].absorbed_first = u->islands[a].absorbed_next;
+        size_t count = joined_hull(u, &u->islands[a].absorbed_motion, a, p);
+        status = keep_hull(u, p, count, error);
+        if (status != UR_OK)
+            return status;
+    }
+    u->islands[p].absorbed_last = UNFOLD_NONE;
+    return UR_OK;
+}
+
+/* The pairs the join joins, and inside a face its slits. */
+static void find_all_pairs(unfolder *u, const unfold_motion *m, size_t small, size_t hinge_small,
+                           size_t large, size_t hinge_large)
+{
+    size_t most = u->islands[small].outline_count < u->islands[large].outline_count
+                      ? u->islands[small].outline_count
+                      : u->islands[large].outline_count;
+    find_pairs(u, m, hinge_small, hinge_large, most);
+    u->slit_count = 0;
+    if (u->slits)
+        find_slits(u, m, small, large);
+}
+
+/*
+ * How the join of the moved small piece to the large comes out: the tests
+ * a remembered outcome spares.  Leaves the hull of both pieces in
+ * u->hull_points (*hull_count points) and the pairs found.
+ */
+static ur_status judge(unfolder *u, const unfold_motion *m, size_t small, size_t hinge_small,
+                       size_t large, size_t hinge_large, size_t *hull_count, unsigned *outcome,
+                       ur_error *error)
+{
+    *hull_count = 0;
+    ur_status status = UR_OK;
+    if (u->room) {
+        status = unfold_update_hull(u, small, error);
+        if (status == UR_OK)
+            status = unfold_update_hull(u, large, error);
+        if (status != UR_OK)
+            return status;
+        *hull_count = joined_hull(u, m, small, large);
+        if (u->room_binds && !unfold_hull_fits(u, u->hull_points, *hull_count)) {
+            *outcome = OUTCOME_TOO_LARGE;
+            return UR_OK;
+        }
+    }
+    find_all_pairs(u, m, small, hinge_small, large, hinge_large);
+    status = unfold_grid_piece(u, small, error); /* the slits' test asks about both pieces */
+    if (status == UR_OK)
+        status = unfold_grid_piece(u, large, error);
+    if (status != UR_OK)
+        return status;
+    *outcome = fits(u, m, small, large) ? OUTCOME_FITS : OUTCOME_OVERLAPS;
     return UR_OK;
 }
 
@@ -552,24 +725,36 @@ ur_status unfold_try_join(unfolder *u, size_t h, bool *joined, ur_error *error)
     if (given_up(u, small, large))
         return UR_OK;
     size_t hinge_small = a_small ? h : g, hinge_large = a_small ? g : h;
-    unfold_motion m = hinge_motion(u, hinge_small, hinge_large);
-    size_t hull_count = u->room ? joined_hull(u, &m, small, large) : 0;
-    if (u->room && u->room_binds && !unfold_hull_fits(u, u->hull_points, hull_count))
+    uint64_t key = join_key(u, small, large, hinge_small);
+    unsigned outcome = remembers(u) ? recalled(u, key) : OUTCOME_NONE;
+    if (outcome == OUTCOME_TOO_LARGE)
         return UR_OK;
-    size_t most = u->islands[small].outline_count < u->islands[large].outline_count
-                      ? u->islands[small].outline_count
-                      : u->islands[large].outline_count;
-    find_pairs(u, &m, hinge_small, hinge_large, most);
-    u->slit_count = 0;
-    if (u->slits)
-        find_slits(u, &m, small, large);
-    if (!fits(u, &m, small, large)) {
+    if (outcome == OUTCOME_OVERLAPS) {
         count_failure(u, small, large);
         return UR_OK;
     }
-    ur_status status = u->room ? keep_hull(u, large, hull_count, error) : UR_OK;
-    if (status != UR_OK)
-        return status;
+    unfold_motion m = hinge_motion(u, hinge_small, hinge_large);
+    size_t hull_count = 0;
+    bool judged = outcome == OUTCOME_NONE;
+    if (judged) {
+        ur_status status =
+            judge(u, &m, small, hinge_small, large, hinge_large, &hull_count, &outcome, error);
+        if (status != UR_OK)
+            return status;
+        if (remembers(u))
+            remember(u, key, outcome);
+    } else
+        find_all_pairs(u, &m, small, hinge_small, large, hinge_large);
+    if (outcome == OUTCOME_OVERLAPS)
+        count_failure(u, small, large);
+    if (outcome != OUTCOME_FITS)
+        return UR_OK;
+    if (u->room && judged) {
+        ur_status status = keep_hull(u, large, hull_count, error);
+        if (status != UR_OK)
+            return status;
+    } else if (u->room)
+        defer_hull(u, &m, small, large);
     *joined = true;
     return commit(u, &m, small, large, error);
 }
