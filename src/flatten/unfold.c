@@ -134,6 +134,8 @@ static ur_status restart(unfolder *u, ur_error *error)
             if (u->room)
                 island->hull[k] = u->flat[t][k];
         }
+        if (u->room)
+            island->circle = u->home_circles[t];
         island->hull_count = u->room ? 3 : 0;
         island->gridded = false;
         island->absorbed_first = island->absorbed_last = UNFOLD_NONE;
@@ -317,8 +319,11 @@ static ur_status alloc_run(unfolder *u, ur_error *error)
         return UR_OK;
     u->hull_points = ur_alloc_array(3 * n + 1, sizeof *u->hull_points, error);
     u->hull_chain = ur_alloc_array(6 * n + 2, sizeof *u->hull_chain, error);
-    if (!u->hull_points || !u->hull_chain)
+    u->home_circles = ur_alloc_array(n, sizeof *u->home_circles, error);
+    if (!u->hull_points || !u->hull_chain || !u->home_circles)
         return UR_ERROR_MEMORY;
+    for (size_t t = 0; t < n; t++)
+        u->home_circles[t] = unfold_circle_round(u, u->faces.home[t], 3);
     for (size_t t = 0; t < n; t++) {
         u->islands[t].hull = ur_alloc_array(3, sizeof *u->islands[t].hull, error);
         if (!u->islands[t].hull)
@@ -375,6 +380,7 @@ static void unfolder_free(unfolder *u)
     free(u->slit_sides);
     free(u->hull_points);
     free(u->hull_chain);
+    free(u->home_circles);
     free(u->outcomes);
     unfold_grid_free(&u->grid);
 }

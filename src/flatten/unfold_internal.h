@@ -221,6 +221,12 @@ static inline ur_vec2 unfold_move(const unfold_motion *m, ur_vec2 p)
                        ur_vec2_make(m->cos * d.x - m->sin * d.y, m->sin * d.x + m->cos * d.y));
 }
 
+/* A circle: round a piece, not the least one, kept as pieces join at no cost. */
+typedef struct unfold_circle {
+    ur_vec2 center;
+    double radius;
+} unfold_circle;
+
 /* A piece of a run: its triangles in a list through unfolder.next_member. */
 typedef struct unfold_island {
     size_t first, last;
@@ -228,7 +234,8 @@ typedef struct unfold_island {
     size_t outline_count; /* half-edges not joined */
     ur_vec2 *hull;        /* its convex hull, counter-clockwise, when the room is limited */
     size_t hull_count, hull_capacity;
-    size_t face_count; /* flat faces, once the faces are joined (1 before) */
+    unfold_circle circle; /* round the piece, when the room is limited */
+    size_t face_count;    /* flat faces, once the faces are joined (1 before) */
     /* the piece it last failed to join as the smaller one, that piece's size then, how often */
     size_t failed_with, failed_size, failures;
     uint64_t layout; /* what the piece is made of (see unfold_lay.c's join_key) */
@@ -283,6 +290,7 @@ typedef struct unfolder {
     size_t gap_breaks;               /* the run's joins made so */
     size_t *roots; /* 2 per pair: the flat vertices it makes one, small's then large's */
     ur_vec2 *hull_points, *hull_chain; /* room for the hull of every corner */
+    unfold_circle *home_circles;       /* per triangle: a circle round it as it lies at home */
     size_t culprits[UNFOLD_CULPRITS];  /* the triangles that stopped the last joins */
     uint64_t *outcomes;  /* joins already judged, by join_key (unfold_lay.c), over all runs */
     size_t outcome_mask; /* slots - 1 */
@@ -351,6 +359,18 @@ void unfold_hull_size(const ur_vec2 *hull, size_t count, double *length, double 
 
 /* Whether a convex hull fits the room of the options. */
 bool unfold_hull_fits(const unfolder *u, const ur_vec2 *hull, size_t count);
+
+/* A circle round triangle corners (count of them). */
+unfold_circle unfold_circle_round(const unfolder *u, const ur_vec2 *corners, size_t count);
+
+/* A circle round circles a and b. */
+unfold_circle unfold_circle_join(const unfolder *u, unfold_circle a, unfold_circle b);
+
+/*
+ * Whether whatever lies in the circle fits the room for sure, as
+ * unfold_hull_fits would find of its hull: then the hull is not needed.
+ */
+bool unfold_circle_fits(const unfolder *u, unfold_circle circle);
 
 /* ---- one run (unfold.c) ---- */
 

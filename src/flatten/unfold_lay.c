@@ -468,6 +468,15 @@ static size_t joined_hull(unfolder *u, const unfold_motion *m, size_t small, siz
     return k;
 }
 
+/* A circle round both pieces, the small one moved by m. */
+static unfold_circle joined_circle(const unfolder *u, const unfold_motion *m, size_t small,
+                                   size_t large)
+{
+    unfold_circle moved = u->islands[small].circle;
+    moved.center = unfold_move(m, moved.center);
+    return unfold_circle_join(u, moved, u->islands[large].circle);
+}
+
 static ur_status keep_hull(unfolder *u, size_t large, size_t count, ur_error *error)
 {
     unfold_island *island = &u->islands[large];
@@ -588,6 +597,8 @@ static ur_status commit(unfolder *u, const unfold_motion *m, size_t small, size_
             return status;
     }
     b->layout ^= a->layout ^ joined_key(u);
+    if (u->room)
+        b->circle = joined_circle(u, m, small, large);
     u->next_member[b->last] = a->first;
     b->last = a->last;
     b->triangle_count += a->triangle_count;
@@ -601,11 +612,12 @@ static ur_status commit(unfolder *u, const unfold_motion *m, size_t small, size_
 
 /*
  * The hulls of the pieces, when the room is limited, are kept up to date
- * only where a join is judged: a remembered join that fits leaves the
- * hull of the smaller piece, and the motion that moved it, on a list of
- * the larger one, and the hulls on the list are merged into its own in
- * turn, each brought up to date first, when a join of the larger piece is
- * judged: the same hulls of two, in the same order, as if each had been
+ * only where a join needs them: a join that is looked up, or whose
+ * pieces' circle shows that they fit the room, leaves the hull of the
+ * smaller piece, and the motion that moved it, on a list of the larger
+ * one, and the hulls on the list are merged into its own in turn, each
+ * brought up to date first, when a join of the larger piece needs its
+ * hull: the same hulls of two, in the same order, as if each had been
  * merged when its join was made.
  */
 static void defer_hull(unfolder *u, const unfold_motion *m, size_t small, size_t large)
@@ -656,8 +668,10 @@ static void find_all_pairs(unfolder *u, const unfold_motion *m, size_t small, si
 
 /*
  * How the join of the moved small piece to the large comes out: the tests
- * a remembered outcome spares.  Leaves the hull of both pieces in
- * u->hull_points (*hull_count points) and the pairs found.
+ * a remembered outcome spares.  Leaves the pairs found, and the hull of
+ * both pieces in u->hull_points (*hull_count points) if it was needed
+ * (the room is limited, and the circle round both pieces does not show
+ * that they fit it); else *hull_count is 0.
  */
 static ur_status judge(unfolder *u, const unfold_motion *m, size_t small, size_t hinge_small,
                        size_t large, size_t hinge_large, size_t *hull_count, unsigned *outcome,
@@ -665,14 +679,14 @@ static ur_status judge(unfolder *u, const unfold_motion *m, size_t small, size_t
 {
     *hull_count = 0;
     ur_status status = UR_OK;
-    if (u->room) {
+    if (u->room && u->room_binds && !unfold_circle_fits(u, joined_circle(u, m, small, large))) {
         status = unfold_update_hull(u, small, error);
         if (status == UR_OK)
             status = unfold_update_hull(u, large, error);
         if (status != UR_OK)
             return status;
         *hull_count = joined_hull(u, m, small, large);
-        if (u->room_binds && !unfold_hull_fits(u, u->hull_points, *hull_count)) {
+        if (!unfold_hull_fits(u, u->hull_points, *hull_count)) {
             *outcome = OUTCOME_TOO_LARGE;
             return UR_OK;
         }
@@ -735,8 +749,7 @@ ur_status unfold_try_join(unfolder *u, size_t h, bool *joined, ur_error *error)
     }
     unfold_motion m = hinge_motion(u, hinge_small, hinge_large);
     size_t hull_count = 0;
-    bool judged = outcome == OUTCOME_NONE;
-    if (judged) {
+    if (outcome == OUTCOME_NONE) {
         ur_status status =
             judge(u, &m, small, hinge_small, large, hinge_large, &hull_count, &outcome, error);
         if (status != UR_OK)
@@ -749,7 +762,7 @@ ur_status unfold_try_join(unfolder *u, size_t h, bool *joined, ur_error *error)
         count_failure(u, small, large);
     if (outcome != OUTCOME_FITS)
         return UR_OK;
-    if (u->room && judged) {
+    if (u->room && hull_count > 0) {
         ur_status status = keep_hull(u, large, hull_count, error);
         if (status != UR_OK)
             return status;
