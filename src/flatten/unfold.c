@@ -125,6 +125,7 @@ static ur_status restart(unfolder *u, ur_error *error)
         island->face_count = 1;
         island->failed_with = UNFOLD_NONE;
         island->failures = 0;
+        island->layout = unfold_triangle_key(t);
         for (int k = 0; k < 3; k++) {
             u->flat[t][k] = u->faces.home[t][k];
             u->joined[3 * t + (size_t)k] = false;
@@ -133,8 +134,12 @@ static ur_status restart(unfolder *u, ur_error *error)
             if (u->room)
                 island->hull[k] = u->flat[t][k];
         }
+        if (u->room)
+            island->circle = u->home_circles[t];
         island->hull_count = u->room ? 3 : 0;
-        ur_status status = unfold_grid_add(&u->grid, ur_box_of_points(u->flat[t], 3), t, t, error);
+        island->gridded = false;
+        island->absorbed_first = island->absorbed_last = UNFOLD_NONE;
+        ur_status status = u->last_run ? unfold_grid_piece(u, t, error) : UR_OK;
         if (status != UR_OK)
             return status;
     }
@@ -314,8 +319,11 @@ static ur_status alloc_run(unfolder *u, ur_error *error)
         return UR_OK;
     u->hull_points = ur_alloc_array(3 * n + 1, sizeof *u->hull_points, error);
     u->hull_chain = ur_alloc_array(6 * n + 2, sizeof *u->hull_chain, error);
-    if (!u->hull_points || !u->hull_chain)
+    u->home_circles = ur_alloc_array(n, sizeof *u->home_circles, error);
+    if (!u->hull_points || !u->hull_chain || !u->home_circles)
         return UR_ERROR_MEMORY;
+    for (size_t t = 0; t < n; t++)
+        u->home_circles[t] = unfold_circle_round(u, u->faces.home[t], 3);
     for (size_t t = 0; t < n; t++) {
         u->islands[t].hull = ur_alloc_array(3, sizeof *u->islands[t].hull, error);
         if (!u->islands[t].hull)
@@ -346,6 +354,8 @@ static ur_status unfolder_init(unfolder *u, const ur_mesh *mesh, const ur_seam *
     status = alloc_run(u, error);
     if (status == UR_OK)
         status = unfold_grid_init(&u->grid, mesh->triangle_count, u->edges.mean_edge, error);
+    if (status == UR_OK)
+        status = unfold_outcomes_init(u, error);
     return status;
 }
 
@@ -370,6 +380,8 @@ static void unfolder_free(unfolder *u)
     free(u->slit_sides);
     free(u->hull_points);
     free(u->hull_chain);
+    free(u->home_circles);
+    free(u->outcomes);
     unfold_grid_free(&u->grid);
 }
 
@@ -384,7 +396,12 @@ static ur_status check_faces_fit(unfolder *u, ur_error *error)
         return status;
     for (size_t t = 0; t < u->mesh->triangle_count; t++) {
         const unfold_island *island = &u->islands[t];
-        if (island->triangle_count == 0 || unfold_hull_fits(u, island->hull, island->hull_count))
+        if (island->triangle_count == 0)
+            continue;
+        status = unfold_update_hull(u, t, error);
+        if (status != UR_OK)
+            return status;
+        if (unfold_hull_fits(u, island->hull, island->hull_count))
             continue;
         double length, width;
         unfold_hull_size(island->hull, island->hull_count, &length, &width);

@@ -92,8 +92,22 @@ static bool near_triangle(ur_vec2 p, const ur_vec2 q[3], double eps)
     return false;
 }
 
+/*
+ * Whether the boxes of t and q are more than eps apart: then so are the
+ * triangles, and no corner comes near.  Most of the triangles a join looks
+ * at are (it looks as far as the options' gap), and this costs no root.
+ */
+static bool boxes_apart(const ur_vec2 t[3], const ur_vec2 q[3], double eps)
+{
+    ur_box a = unfold_box_of(t, 3), b = unfold_box_of(q, 3);
+    return a.min.x - b.max.x > eps || b.min.x - a.max.x > eps || a.min.y - b.max.y > eps ||
+           b.min.y - a.max.y > eps;
+}
+
 unfold_contact unfold_triangle_contact(const ur_vec2 t[3], const ur_vec2 q[3], double eps)
 {
+    if (boxes_apart(t, q, eps))
+        return (unfold_contact){false, 0, 0};
     unfold_contact contact = {true, 0, 0};
     double widest = -INFINITY;
     for (int k = 0; k < 3; k++) {
@@ -176,16 +190,12 @@ ur_status unfold_grid_init(unfold_grid *grid, size_t triangle_count, double cell
         slots *= 2;
     grid->cell = cell;
     grid->mask = slots - 1;
-    grid->head = ur_alloc_array(slots, sizeof *grid->head, error);
-    grid->head_stamp = ur_alloc_array(slots, sizeof *grid->head_stamp, error);
+    grid->slots = ur_alloc_array(slots, sizeof *grid->slots, error);
     grid->entry_capacity = 8 * triangle_count + 16;
-    grid->entry_item = ur_alloc_array(grid->entry_capacity, sizeof *grid->entry_item, error);
-    grid->entry_piece = ur_alloc_array(grid->entry_capacity, sizeof *grid->entry_piece, error);
-    grid->entry_next = ur_alloc_array(grid->entry_capacity, sizeof *grid->entry_next, error);
+    grid->entries = ur_alloc_array(grid->entry_capacity, sizeof *grid->entries, error);
     grid->seen = ur_alloc_array(triangle_count, sizeof *grid->seen, error);
     grid->found = ur_alloc_array(triangle_count, sizeof *grid->found, error);
-    if (!grid->head || !grid->head_stamp || !grid->entry_item || !grid->entry_piece ||
-        !grid->entry_next || !grid->seen || !grid->found)
+    if (!grid->slots || !grid->entries || !grid->seen || !grid->found)
         return UR_ERROR_MEMORY;
     grid->stamp = 1;
     return UR_OK;
@@ -193,11 +203,8 @@ ur_status unfold_grid_init(unfold_grid *grid, size_t triangle_count, double cell
 
 void unfold_grid_free(unfold_grid *grid)
 {
-    free(grid->head);
-    free(grid->head_stamp);
-    free(grid->entry_item);
-    free(grid->entry_piece);
-    free(grid->entry_next);
+    free(grid->slots);
+    free(grid->entries);
     free(grid->seen);
     free(grid->found);
     *grid = (unfold_grid){0};
@@ -212,17 +219,10 @@ void unfold_grid_restart(unfold_grid *grid)
 static ur_status grow_entries(unfold_grid *grid, ur_error *error)
 {
     size_t capacity = 2 * grid->entry_capacity;
-    size_t *arrays[3] = {grid->entry_item, grid->entry_piece, grid->entry_next};
-    for (int i = 0; i < 3; i++) {
-        size_t *grown = realloc(arrays[i], capacity * sizeof *grown);
-        if (!grown)
-            return ur_error_out_of_memory(error);
-        arrays[i] = grown;
-        /* Keep what is grown at once, so that a failure further on frees it. */
-        grid->entry_item = arrays[0];
-        grid->entry_piece = arrays[1];
-        grid->entry_next = arrays[2];
-    }
+    unfold_grid_entry *grown = realloc(grid->entries, capacity * sizeof *grown);
+    if (!grown)
+        return ur_error_out_of_memory(error);
+    grid->entries = grown;
     grid->entry_capacity = capacity;
     return UR_OK;
 }
@@ -234,15 +234,14 @@ static ur_status add_to_cell(unfold_grid *grid, size_t piece, int64_t x, int64_t
         grid->entry_count == grid->entry_capacity ? grow_entries(grid, error) : UR_OK;
     if (status != UR_OK)
         return status;
-    size_t slot = slot_of(grid, piece, x, y), entry = grid->entry_count++;
-    if (grid->head_stamp[slot] != grid->stamp) {
-        grid->head_stamp[slot] = grid->stamp;
-        grid->head[slot] = UNFOLD_NONE;
+    unfold_grid_slot *slot = &grid->slots[slot_of(grid, piece, x, y)];
+    size_t entry = grid->entry_count++;
+    if (slot->stamp != grid->stamp) {
+        slot->stamp = grid->stamp;
+        slot->head = UNFOLD_NONE;
     }
-    grid->entry_item[entry] = triangle;
-    grid->entry_piece[entry] = piece;
-    grid->entry_next[entry] = grid->head[slot];
-    grid->head[slot] = entry;
+    grid->entries[entry] = (unfold_grid_entry){triangle, piece, slot->head};
+    slot->head = entry;
     return UR_OK;
 }
 
@@ -262,12 +261,12 @@ ur_status unfold_grid_add(unfold_grid *grid, ur_box box, size_t piece, size_t tr
 /* Adds the live triangles of the piece in the cell's slot to what the query found. */
 static void read_cell(unfold_grid *grid, size_t piece, int64_t x, int64_t y, const size_t *piece_of)
 {
-    size_t slot = slot_of(grid, piece, x, y);
-    if (grid->head_stamp[slot] != grid->stamp)
+    const unfold_grid_slot *slot = &grid->slots[slot_of(grid, piece, x, y)];
+    if (slot->stamp != grid->stamp)
         return;
-    for (size_t e = grid->head[slot]; e != UNFOLD_NONE; e = grid->entry_next[e]) {
-        size_t t = grid->entry_item[e];
-        if (grid->entry_piece[e] != piece || piece_of[t] != piece || grid->seen[t] == grid->query)
+    for (size_t e = slot->head; e != UNFOLD_NONE; e = grid->entries[e].next) {
+        size_t t = grid->entries[e].item;
+        if (grid->entries[e].piece != piece || piece_of[t] != piece || grid->seen[t] == grid->query)
             continue;
         grid->seen[t] = grid->query;
         grid->found[grid->found_count++] = t;

@@ -56,6 +56,47 @@ static inline double unfold_edge_length(const ur_mesh *mesh, size_t half)
                             mesh->vertices[unfold_to(mesh, half)]);
 }
 
+/*
+ * The box round points, as ur_box_of_points but inline: the runs of the
+ * search take the box of every triangle they move or test, and a call per
+ * point and per min and max was a tenth of their time.  (Points are
+ * finite, so a comparison picks what fmin and fmax would.)
+ */
+static inline ur_box unfold_box_of(const ur_vec2 *points, size_t count)
+{
+    ur_box box = {{INFINITY, INFINITY}, {-INFINITY, -INFINITY}};
+    for (size_t i = 0; i < count; i++) {
+        ur_vec2 p = points[i];
+        box.min.x = p.x < box.min.x ? p.x : box.min.x;
+        box.min.y = p.y < box.min.y ? p.y : box.min.y;
+        box.max.x = p.x > box.max.x ? p.x : box.max.x;
+        box.max.y = p.y > box.max.y ? p.y : box.max.y;
+    }
+    return box;
+}
+
+/*
+ * hypot(x, y) <= limit, asked of nearly every pair of points and every
+ * join the search tries: the squares decide unless they are within
+ * rounding of the limit, where hypot (what ur_vec2_distance uses) has the
+ * last word, so that the answer is always hypot's.
+ */
+static inline bool unfold_hypot_within(double x, double y, double limit)
+{
+    double squared = x * x + y * y, limit_squared = limit * limit;
+    if (squared < limit_squared * (1 - 1e-9))
+        return true;
+    if (squared > limit_squared * (1 + 1e-9))
+        return false;
+    return hypot(x, y) <= limit;
+}
+
+/* ur_vec2_distance(a, b) <= limit. */
+static inline bool unfold_within(ur_vec2 a, ur_vec2 b, double limit)
+{
+    return unfold_hypot_within(a.x - b.x, a.y - b.y, limit);
+}
+
 /* The mesh's edges, per half-edge. */
 typedef struct unfold_edges {
     size_t *twins; /* ur_mesh_twins */
@@ -126,15 +167,24 @@ bool unfold_point_near_triangle(ur_vec2 p, const ur_vec2 q[3], double eps);
  * covers many cells is kept on its piece's list of big ones, which every
  * query reads.
  */
+typedef struct unfold_grid_slot {
+    size_t head;  /* the first entry */
+    size_t stamp; /* the run head belongs to (else the slot is empty) */
+} unfold_grid_slot;
+
+/* What a query reads of an entry side by side: one cache line, not three arrays. */
+typedef struct unfold_grid_entry {
+    size_t item; /* a triangle */
+    size_t piece;
+    size_t next; /* the next in its slot */
+} unfold_grid_entry;
+
 typedef struct unfold_grid {
     double cell;
-    size_t mask;        /* slots - 1, a power of two less one */
-    size_t *head;       /* per slot: first entry */
-    size_t *head_stamp; /* per slot: the run head belongs to (else the slot is empty) */
-    size_t stamp;       /* the run */
-    size_t *entry_item; /* per entry: a triangle */
-    size_t *entry_piece;
-    size_t *entry_next; /* per entry: the next in its slot */
+    size_t mask; /* slots - 1, a power of two less one */
+    unfold_grid_slot *slots;
+    size_t stamp; /* the run */
+    unfold_grid_entry *entries;
     size_t entry_count, entry_capacity;
     size_t *seen; /* per triangle: the last query that found it */
     size_t query;
@@ -158,26 +208,6 @@ ur_status unfold_grid_add(unfold_grid *grid, ur_box box, size_t piece, size_t tr
  */
 bool unfold_grid_query(unfold_grid *grid, ur_box box, size_t piece, const size_t *piece_of);
 
-/* A piece of a run: its triangles in a list through unfolder.next_member. */
-typedef struct unfold_island {
-    size_t first, last;
-    size_t triangle_count;
-    size_t outline_count; /* half-edges not joined */
-    ur_vec2 *hull;        /* its convex hull, counter-clockwise, when the room is limited */
-    size_t hull_count, hull_capacity;
-    size_t face_count; /* flat faces, once the faces are joined (1 before) */
-    /* the piece it last failed to join as the smaller one, that piece's size then, how often */
-    size_t failed_with, failed_size, failures;
-} unfold_island;
-
-/*
- * Two pieces of several faces that failed to join this often, across as
- * many edges, are not tried again while neither changes: two large pieces
- * that do not fit would otherwise be tried across every edge between them.
- * A piece of one face is always tried.
- */
-#define UNFOLD_MOST_FAILURES 8
-
 /* p -> to + R (p - from), R the turn by (cos, sin). */
 typedef struct unfold_motion {
     double cos, sin;
@@ -190,6 +220,39 @@ static inline ur_vec2 unfold_move(const unfold_motion *m, ur_vec2 p)
     return ur_vec2_add(m->to,
                        ur_vec2_make(m->cos * d.x - m->sin * d.y, m->sin * d.x + m->cos * d.y));
 }
+
+/* A circle: round a piece, not the least one, kept as pieces join at no cost. */
+typedef struct unfold_circle {
+    ur_vec2 center;
+    double radius;
+} unfold_circle;
+
+/* A piece of a run: its triangles in a list through unfolder.next_member. */
+typedef struct unfold_island {
+    size_t first, last;
+    size_t triangle_count;
+    size_t outline_count; /* half-edges not joined */
+    ur_vec2 *hull;        /* its convex hull, counter-clockwise, when the room is limited */
+    size_t hull_count, hull_capacity;
+    unfold_circle circle; /* round the piece, when the room is limited */
+    size_t face_count;    /* flat faces, once the faces are joined (1 before) */
+    /* the piece it last failed to join as the smaller one, that piece's size then, how often */
+    size_t failed_with, failed_size, failures;
+    uint64_t layout; /* what the piece is made of (see unfold_lay.c's join_key) */
+    bool gridded;    /* its triangles are in the grid where they lie */
+    /* the pieces whose hulls are still to be merged into hull (unfold_lay.c's defer_hull) */
+    size_t absorbed_first, absorbed_last;
+    size_t absorbed_next;          /* once joined to a larger piece: the next on its list */
+    unfold_motion absorbed_motion; /* and the motion that moved it there */
+} unfold_island;
+
+/*
+ * Two pieces of several faces that failed to join this often, across as
+ * many edges, are not tried again while neither changes: two large pieces
+ * that do not fit would otherwise be tried across every edge between them.
+ * A piece of one face is always tried.
+ */
+#define UNFOLD_MOST_FAILURES 8
 
 /* The point that m moves to p. */
 static inline ur_vec2 unfold_move_back(const unfold_motion *m, ur_vec2 p)
@@ -227,7 +290,10 @@ typedef struct unfolder {
     size_t gap_breaks;               /* the run's joins made so */
     size_t *roots; /* 2 per pair: the flat vertices it makes one, small's then large's */
     ur_vec2 *hull_points, *hull_chain; /* room for the hull of every corner */
+    unfold_circle *home_circles;       /* per triangle: a circle round it as it lies at home */
     size_t culprits[UNFOLD_CULPRITS];  /* the triangles that stopped the last joins */
+    uint64_t *outcomes;  /* joins already judged, by join_key (unfold_lay.c), over all runs */
+    size_t outcome_mask; /* slots - 1 */
     /*
      * The last pass of the last run (tabs_to_twins): a join may leave a
      * slit narrower than the gap when both its edges can give their tabs to
@@ -241,8 +307,40 @@ typedef struct unfolder {
     size_t slit_side_count;
 } unfolder;
 
+/* A well-mixed 64-bit number for x (splitmix64's finisher): keys of triangles and edges. */
+static inline uint64_t unfold_mix(uint64_t x)
+{
+    x ^= x >> 30;
+    x *= UINT64_C(0xBF58476D1CE4E5B9);
+    x ^= x >> 27;
+    x *= UINT64_C(0x94D049BB133111EB);
+    x ^= x >> 31;
+    return x;
+}
+
+/* The layout key of a piece of triangle t alone. */
+static inline uint64_t unfold_triangle_key(size_t t)
+{
+    return unfold_mix(4 * (uint64_t)t + 1);
+}
+
+/* Room for the outcomes of joins, the slots of unfolder.outcomes. */
+ur_status unfold_outcomes_init(unfolder *u, ur_error *error);
+
 /* The union-find root of corner c (with path halving). */
 size_t unfold_find(unfolder *u, size_t corner);
+
+/*
+ * Puts the triangles of piece p in the grid unless they are there: a join
+ * whose outcome is remembered (unfold_lay.c) looks at no triangle, so
+ * that the pieces are put in the grid when a join first tests them,
+ * except in the last run, where they are put in as they are joined:
+ * what it finds there is tested in the order they were put in.
+ */
+ur_status unfold_grid_piece(unfolder *u, size_t p, ur_error *error);
+
+/* Merges the hulls of the pieces joined to piece p into its hull (see unfold_lay.c). */
+ur_status unfold_update_hull(unfolder *u, size_t p, ur_error *error);
 
 /* Joins the pieces on either side of half-edge h if they fit together (unfold_lay.c). */
 ur_status unfold_try_join(unfolder *u, size_t h, bool *joined, ur_error *error);
@@ -261,6 +359,18 @@ void unfold_hull_size(const ur_vec2 *hull, size_t count, double *length, double 
 
 /* Whether a convex hull fits the room of the options. */
 bool unfold_hull_fits(const unfolder *u, const ur_vec2 *hull, size_t count);
+
+/* A circle round triangle corners (count of them). */
+unfold_circle unfold_circle_round(const unfolder *u, const ur_vec2 *corners, size_t count);
+
+/* A circle round circles a and b. */
+unfold_circle unfold_circle_join(const unfolder *u, unfold_circle a, unfold_circle b);
+
+/*
+ * Whether whatever lies in the circle fits the room for sure, as
+ * unfold_hull_fits would find of its hull: then the hull is not needed.
+ */
+bool unfold_circle_fits(const unfolder *u, unfold_circle circle);
 
 /* ---- one run (unfold.c) ---- */
 

@@ -48,8 +48,8 @@ static unfold_motion hinge_motion(const unfolder *u, size_t small_half, size_t l
 static bool lands_on(const unfolder *u, const unfold_motion *m, size_t small_corner,
                      size_t large_corner)
 {
-    return ur_vec2_distance(unfold_move(m, corner_at(u, small_corner)),
-                            corner_at(u, large_corner)) <= u->eps;
+    return unfold_within(unfold_move(m, corner_at(u, small_corner)), corner_at(u, large_corner),
+                         u->eps);
 }
 
 static void add_pair(unfolder *u, size_t small_half, size_t large_half)
@@ -156,7 +156,7 @@ static bool paired(const unfolder *u, size_t s, size_t q)
 /* The bit of corner j of q if it is one with corner i of moved small triangle s; else 0. */
 static unsigned shared_corner(unfolder *u, size_t s, const ur_vec2 moved[3], int i, size_t q, int j)
 {
-    if (ur_vec2_distance(moved[i], u->flat[q][j]) > u->eps)
+    if (!unfold_within(moved[i], u->flat[q][j], u->eps))
         return 0;
     return made_one(u, 3 * s + (size_t)i, 3 * q + (size_t)j) ? 1u << j : 0;
 }
@@ -243,7 +243,7 @@ static double edge_gap(const unfolder *u, ur_vec2 a, ur_vec2 b, ur_vec2 c, ur_ve
     ur_vec2 ab[2] = {a, b}, cd[2] = {c, d};
     for (int i = 0; i < 2; i++)
         for (int j = 0; j < 2; j++) {
-            if (ur_vec2_distance(ab[i], cd[j]) > u->eps)
+            if (!unfold_within(ab[i], cd[j], u->eps))
                 continue;
             ur_vec2 far_ab = ab[1 - i], far_cd = cd[1 - j], near_cd, near_ab, unused;
             double from_ab = unfold_edge_gap(far_ab, far_ab, c, d, &unused, &near_cd);
@@ -387,7 +387,7 @@ static bool lies_well(unfolder *u, const unfold_motion *m, size_t s, const ur_ve
 
 static ur_box padded_box(const ur_vec2 corners[3], double eps)
 {
-    ur_box box = ur_box_of_points(corners, 3);
+    ur_box box = unfold_box_of(corners, 3);
     box.min = ur_vec2_sub(box.min, ur_vec2_make(eps, eps));
     box.max = ur_vec2_add(box.max, ur_vec2_make(eps, eps));
     return box;
@@ -487,6 +487,15 @@ static size_t joined_hull(unfolder *u, const unfold_motion *m, size_t small, siz
     return k;
 }
 
+/* A circle round both pieces, the small one moved by m. */
+static unfold_circle joined_circle(const unfolder *u, const unfold_motion *m, size_t small,
+                                   size_t large)
+{
+    unfold_circle moved = u->islands[small].circle;
+    moved.center = unfold_move(m, moved.center);
+    return unfold_circle_join(u, moved, u->islands[large].circle);
+}
+
 static ur_status keep_hull(unfolder *u, size_t large, size_t count, ur_error *error)
 {
     unfold_island *island = &u->islands[large];
@@ -500,6 +509,88 @@ static ur_status keep_hull(unfolder *u, size_t large, size_t count, ur_error *er
     for (size_t i = 0; i < count; i++)
         island->hull[i] = u->hull_points[i];
     island->hull_count = count;
+    return UR_OK;
+}
+
+/* ---- the outcomes of joins, remembered over the runs ---- */
+
+/* How a join came out, kept in the low two bits of its slot (0: no entry). */
+enum { OUTCOME_NONE, OUTCOME_TOO_LARGE, OUTCOME_OVERLAPS, OUTCOME_FITS };
+#define OUTCOME_BITS UINT64_C(3)
+
+/*
+ * The search runs the joins again and again in orders that differ by one
+ * edge, and most of a run's joins are joins of the same two pieces across
+ * the same edge as in an earlier run: their outcome is looked up instead
+ * of tested again.  A piece's key is the sum (exclusive or) of keys of
+ * its triangles, of the edges it was joined across (each hinge) and of
+ * the edges those joins zipped: pieces with the same key were laid
+ * through the same hinges, so that they are the same up to a motion
+ * (and rounding), with the same outline.  A join is then fixed by the two
+ * keys, its hinge in the smaller piece and what the phase allows; whether
+ * it fits does not depend on where the pieces lie, on which triangles were
+ * tried first (the culprits) nor on the grid.  Only the last run, whose
+ * slits depend on the order of its tests, judges everything itself.
+ */
+ur_status unfold_outcomes_init(unfolder *u, ur_error *error)
+{
+    size_t slots = 1024, wanted = 64 * u->mesh->triangle_count;
+    while (slots < wanted && slots < ((size_t)1 << 23))
+        slots *= 2;
+    u->outcomes = ur_alloc_array(slots, sizeof *u->outcomes, error);
+    if (!u->outcomes)
+        return UR_ERROR_MEMORY;
+    u->outcome_mask = slots - 1;
+    return UR_OK;
+}
+
+/* The key the pairs of the join under way add to the large piece's. */
+static uint64_t joined_key(const unfolder *u)
+{
+    uint64_t key = 0;
+    for (size_t i = 0; i < u->pair_count; i++) {
+        size_t s = u->pair_small[i], l = u->pair_large[i];
+        size_t lower = s < l ? s : l;
+        key ^= unfold_mix(4 * (uint64_t)lower + (i == 0 ? 2 : 3)); /* the hinge, then the zipped */
+    }
+    return key;
+}
+
+static uint64_t join_key(const unfolder *u, size_t small, size_t large, size_t hinge_small)
+{
+    uint64_t phase =
+        (uint64_t)u->slits | (uint64_t)u->room_binds << 1 | (uint64_t)u->gap_waived << 2;
+    uint64_t pieces = unfold_mix(unfold_mix(u->islands[small].layout) + u->islands[large].layout);
+    return pieces ^ unfold_mix(8 * (uint64_t)hinge_small + phase);
+}
+
+static bool remembers(const unfolder *u)
+{
+    return !u->last_run;
+}
+
+static unsigned recalled(const unfolder *u, uint64_t key)
+{
+    uint64_t slot = u->outcomes[(key >> 2) & u->outcome_mask];
+    return (slot & ~OUTCOME_BITS) == (key & ~OUTCOME_BITS) ? (unsigned)(slot & OUTCOME_BITS)
+                                                           : OUTCOME_NONE;
+}
+
+/* Kept in its slot, in place of what was there: a forgotten outcome is only judged again. */
+static void remember(unfolder *u, uint64_t key, unsigned outcome)
+{
+    u->outcomes[(key >> 2) & u->outcome_mask] = (key & ~OUTCOME_BITS) | outcome;
+}
+
+ur_status unfold_grid_piece(unfolder *u, size_t p, ur_error *error)
+{
+    unfold_island *island = &u->islands[p];
+    for (size_t t = island->first; t != UNFOLD_NONE && !island->gridded; t = u->next_member[t]) {
+        ur_status status = unfold_grid_add(&u->grid, unfold_box_of(u->flat[t], 3), p, t, error);
+        if (status != UR_OK)
+            return status;
+    }
+    island->gridded = true;
     return UR_OK;
 }
 
@@ -519,10 +610,14 @@ static ur_status commit(unfolder *u, const unfold_motion *m, size_t small, size_
         move_triangle(m, u->flat[s], u->flat[s]);
         u->piece[s] = large;
         ur_status status =
-            unfold_grid_add(&u->grid, ur_box_of_points(u->flat[s], 3), large, s, error);
+            b->gridded ? unfold_grid_add(&u->grid, unfold_box_of(u->flat[s], 3), large, s, error)
+                       : UR_OK;
         if (status != UR_OK)
             return status;
     }
+    b->layout ^= a->layout ^ joined_key(u);
+    if (u->room)
+        b->circle = joined_circle(u, m, small, large);
     u->next_member[b->last] = a->first;
     b->last = a->last;
     b->triangle_count += a->triangle_count;
@@ -531,6 +626,97 @@ static ur_status commit(unfolder *u, const unfold_motion *m, size_t small, size_
     b->outline_count = b->outline_count + a->outline_count - 2 * u->pair_count;
     a->triangle_count = 0;
     a->first = a->last = UNFOLD_NONE;
+    return UR_OK;
+}
+
+/*
+ * The hulls of the pieces, when the room is limited, are kept up to date
+ * only where a join needs them: a join that is looked up, or whose
+ * pieces' circle shows that they fit the room, leaves the hull of the
+ * smaller piece, and the motion that moved it, on a list of the larger
+ * one, and the hulls on the list are merged into its own in turn, each
+ * brought up to date first, when a join of the larger piece needs its
+ * hull: the same hulls of two, in the same order, as if each had been
+ * merged when its join was made.
+ */
+static void defer_hull(unfolder *u, const unfold_motion *m, size_t small, size_t large)
+{
+    unfold_island *a = &u->islands[small], *b = &u->islands[large];
+    a->absorbed_motion = *m;
+    a->absorbed_next = UNFOLD_NONE;
+    if (b->absorbed_last == UNFOLD_NONE)
+        b->absorbed_first = small;
+    else
+        u->islands[b->absorbed_last].absorbed_next = small;
+    b->absorbed_last = small;
+}
+
+/*
+ * Each piece on the list is at most half as large as the piece it joined,
+ * so that the lists nest at most log2(triangles) deep.
+ */
+ur_status unfold_update_hull(unfolder *u, size_t p, ur_error *error)
+{
+    while (u->islands[p].absorbed_first != UNFOLD_NONE) {
+        size_t a = u->islands[p].absorbed_first;
+        ur_status status = unfold_update_hull(u, a, error);
+        if (status != UR_OK)
+            return status;
+        u->islands[p].absorbed_first = u->islands[a].absorbed_next;
+        size_t count = joined_hull(u, &u->islands[a].absorbed_motion, a, p);
+        status = keep_hull(u, p, count, error);
+        if (status != UR_OK)
+            return status;
+    }
+    u->islands[p].absorbed_last = UNFOLD_NONE;
+    return UR_OK;
+}
+
+/* The pairs the join joins, and inside a face its slits. */
+static void find_all_pairs(unfolder *u, const unfold_motion *m, size_t small, size_t hinge_small,
+                           size_t large, size_t hinge_large)
+{
+    size_t most = u->islands[small].outline_count < u->islands[large].outline_count
+                      ? u->islands[small].outline_count
+                      : u->islands[large].outline_count;
+    find_pairs(u, m, hinge_small, hinge_large, most);
+    u->slit_count = 0;
+    if (u->slits)
+        find_slits(u, m, small, large);
+}
+
+/*
+ * How the join of the moved small piece to the large comes out: the tests
+ * a remembered outcome spares.  Leaves the pairs found, and the hull of
+ * both pieces in u->hull_points (*hull_count points) if it was needed
+ * (the room is limited, and the circle round both pieces does not show
+ * that they fit it); else *hull_count is 0.
+ */
+static ur_status judge(unfolder *u, const unfold_motion *m, size_t small, size_t hinge_small,
+                       size_t large, size_t hinge_large, size_t *hull_count, unsigned *outcome,
+                       ur_error *error)
+{
+    *hull_count = 0;
+    ur_status status = UR_OK;
+    if (u->room && u->room_binds && !unfold_circle_fits(u, joined_circle(u, m, small, large))) {
+        status = unfold_update_hull(u, small, error);
+        if (status == UR_OK)
+            status = unfold_update_hull(u, large, error);
+        if (status != UR_OK)
+            return status;
+        *hull_count = joined_hull(u, m, small, large);
+        if (!unfold_hull_fits(u, u->hull_points, *hull_count)) {
+            *outcome = OUTCOME_TOO_LARGE;
+            return UR_OK;
+        }
+    }
+    find_all_pairs(u, m, small, hinge_small, large, hinge_large);
+    status = unfold_grid_piece(u, small, error); /* the slits' test asks about both pieces */
+    if (status == UR_OK)
+        status = unfold_grid_piece(u, large, error);
+    if (status != UR_OK)
+        return status;
+    *outcome = fits(u, m, small, large) ? OUTCOME_FITS : OUTCOME_OVERLAPS;
     return UR_OK;
 }
 
@@ -572,24 +758,35 @@ ur_status unfold_try_join(unfolder *u, size_t h, bool *joined, ur_error *error)
     if (given_up(u, small, large))
         return UR_OK;
     size_t hinge_small = a_small ? h : g, hinge_large = a_small ? g : h;
-    unfold_motion m = hinge_motion(u, hinge_small, hinge_large);
-    size_t hull_count = u->room ? joined_hull(u, &m, small, large) : 0;
-    if (u->room && u->room_binds && !unfold_hull_fits(u, u->hull_points, hull_count))
+    uint64_t key = join_key(u, small, large, hinge_small);
+    unsigned outcome = remembers(u) ? recalled(u, key) : OUTCOME_NONE;
+    if (outcome == OUTCOME_TOO_LARGE)
         return UR_OK;
-    size_t most = u->islands[small].outline_count < u->islands[large].outline_count
-                      ? u->islands[small].outline_count
-                      : u->islands[large].outline_count;
-    find_pairs(u, &m, hinge_small, hinge_large, most);
-    u->slit_count = 0;
-    if (u->slits)
-        find_slits(u, &m, small, large);
-    if (!fits(u, &m, small, large)) {
+    if (outcome == OUTCOME_OVERLAPS) {
         count_failure(u, small, large);
         return UR_OK;
     }
-    ur_status status = u->room ? keep_hull(u, large, hull_count, error) : UR_OK;
-    if (status != UR_OK)
-        return status;
+    unfold_motion m = hinge_motion(u, hinge_small, hinge_large);
+    size_t hull_count = 0;
+    if (outcome == OUTCOME_NONE) {
+        ur_status status =
+            judge(u, &m, small, hinge_small, large, hinge_large, &hull_count, &outcome, error);
+        if (status != UR_OK)
+            return status;
+        if (remembers(u))
+            remember(u, key, outcome);
+    } else
+        find_all_pairs(u, &m, small, hinge_small, large, hinge_large);
+    if (outcome == OUTCOME_OVERLAPS)
+        count_failure(u, small, large);
+    if (outcome != OUTCOME_FITS)
+        return UR_OK;
+    if (u->room && hull_count > 0) {
+        ur_status status = keep_hull(u, large, hull_count, error);
+        if (status != UR_OK)
+            return status;
+    } else if (u->room)
+        defer_hull(u, &m, small, large);
     *joined = true;
     return commit(u, &m, small, large, error);
 }
