@@ -346,7 +346,7 @@ static double mean_edge_length(const ur_mesh *mesh)
  * Only a mesh of more than UNFOLD_TIMED_ABOVE triangles, whose steps take
  * long, stops early after UNFOLD_SECONDS of wall-clock time, and may then
  * unfold differently from one run to the next.  (A 2,208-triangle sphere
- * takes its 200 steps in about 1.5 s of CPU; a wall-clock limit on every
+ * takes its 200 steps in about 0.25 s of CPU; a wall-clock limit on every
  * mesh made the sample meshes' pieces depend on the machine's load.)
  */
 enum { UNFOLD_STEPS = 200, UNFOLD_TIMED_ABOVE = 20000 };
