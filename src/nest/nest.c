@@ -204,6 +204,37 @@ size_t nest_pair_key(const nester *n, size_t a, size_t ta, size_t b, size_t tb)
 /* What a cache of pairs holds, made for a pair at a's first turn (or one not turned). */
 typedef GEOSGeometry *(*pair_maker)(nester *n, size_t a, size_t ta, size_t b, size_t tb);
 
+/*
+ * The most points the cached convex sums may hold together (about 64 MB of
+ * coordinates, three times that in GEOS).  Each pair of detailed nets has
+ * up to a thousand sums: the 127 nets of Blender's subdivided monkey head
+ * made 27,000 of them with 35 million points, 1.7 GB, in one first-fit
+ * layout.  A first-fit layout uses a pair's sums only while it places the
+ * second part, and the search over orders their unions, which are kept.
+ */
+#define NEST_SUMS_POINTS 4000000
+
+/*
+ * Counts the points of the sums just made for key; past NEST_SUMS_POINTS
+ * every other pair's sums are dropped, to be made again (the same) if
+ * asked for.  No caller holds other sums while asking for these.
+ */
+static void keep_sums_small(nester *n, size_t key)
+{
+    int points = n->sums[key] ? GEOSGetNumCoordinates_r(n->geos, n->sums[key]) : 0;
+    size_t count = points > 0 ? (size_t)points : 0;
+    if (n->sums_points + count > NEST_SUMS_POINTS) {
+        size_t pairs = n->class_count * n->turn_count * n->class_count * n->turn_count;
+        for (size_t k = 0; k < pairs; k++)
+            if (k != key && n->sums[k]) {
+                GEOSGeom_destroy_r(n->geos, n->sums[k]);
+                n->sums[k] = NULL;
+            }
+        n->sums_points = 0;
+    }
+    n->sums_points += count;
+}
+
 /* The cache's entry for the pair: made, or turned from its first turn's, once. */
 static const GEOSGeometry *cached_pair(nester *n, GEOSGeometry **cache, pair_maker make, size_t a,
                                        size_t ta, size_t b, size_t tb)
@@ -218,6 +249,8 @@ static const GEOSGeometry *cached_pair(nester *n, GEOSGeometry **cache, pair_mak
     } else {
         cache[key] = make(n, a, ta, b, tb);
     }
+    if (cache == n->sums)
+        keep_sums_small(n, key);
     return cache[key];
 }
 

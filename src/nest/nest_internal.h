@@ -117,6 +117,7 @@ typedef struct nester {
     size_t class_count;
     /* Per (class a, turn a, class b, turn b), NULL until made: nest_sums, and their unions. */
     GEOSGeometry **sums, **nfps;
+    size_t sums_points; /* the points the sums made hold (nest.c, keep_sums_small) */
     size_t *pair_met;   /* per pair: when it was first met (nest.c, by_union), 0 never */
     size_t runs;        /* runs over an order so far */
     placed *placements; /* per piece, in order placed */
