@@ -289,9 +289,11 @@ static size_t collect_walls(const ur_piece *piece, wall *walls)
 }
 
 /*
- * The walls in a grid whose cells are about as wide as a wall is long (or
- * a 64th of the piece, when its walls are many short ones): a label's box
- * then meets a few cells, each listing a few walls.
+ * The walls in a grid whose cells are about as wide as a wall is long, or
+ * wider where the walls are many short ones (a curve's chords): a cell for
+ * about every wall.  A cell then lists a few walls, however fine the
+ * mesh (the folds of a 100,000-face net are walls too), and a label's box
+ * meets a few cells.
  */
 static ur_status index_walls(allow_room *r, ur_error *error)
 {
@@ -306,8 +308,9 @@ static ur_status index_walls(allow_room *r, ur_error *error)
     for (size_t k = 0; k < count; k++)
         length += ur_vec2_length(ur_vec2_sub(r->walls[k].to, r->walls[k].from));
     ur_box region = r->piece->box;
-    double size = fmax(ur_box_width(region), ur_box_height(region));
-    double cell = fmax(fmax(length / (double)(count ? count : 1), size / 64), 1e-3);
+    double walls = (double)(count ? count : 1);
+    double cell = fmax(length / walls, sqrt(ur_box_width(region) * ur_box_height(region) / walls));
+    cell = fmax(cell, 1e-3);
     ur_status status = allow_grid_init(&r->wall_grid, region, cell, error);
     for (size_t k = 0; status == UR_OK && k < count; k++) {
         ur_box box = ur_box_empty();
