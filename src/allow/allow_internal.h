@@ -82,6 +82,13 @@ void allow_grid_free(allow_grid *grid);
 ur_status allow_grid_add(allow_grid *grid, ur_box box, size_t *item, ur_error *error);
 /* The items whose box meets box, each once, in found (emptied first). */
 ur_status allow_grid_query(allow_grid *grid, ur_box box, allow_items *found, ur_error *error);
+/*
+ * Whether test(item, data) holds for an item whose box meets box: the
+ * items are tested each once, until one passes (no list is made, and a
+ * query that meets many items stops at the first that passes).
+ */
+bool allow_grid_any(allow_grid *grid, ur_box box, bool (*test)(size_t item, void *data),
+                    void *data);
 /* The cell p falls in (the nearest border cell for a p beyond the region), numbered row by row. */
 size_t allow_grid_cell_of(const allow_grid *grid, ur_vec2 p);
 ur_vec2 allow_grid_cell_centre(const allow_grid *grid, size_t cell);

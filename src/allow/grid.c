@@ -149,6 +149,31 @@ ur_status allow_grid_query(allow_grid *grid, ur_box box, allow_items *found, ur_
     return UR_OK;
 }
 
+bool allow_grid_any(allow_grid *grid, ur_box box, bool (*test)(size_t item, void *data), void *data)
+{
+    if (grid->count == 0)
+        return false;
+    if (++grid->stamp == 0) { /* the stamps wrapped: forget every old one */
+        memset(grid->seen, 0, grid->count * sizeof *grid->seen);
+        grid->stamp = 1;
+    }
+    size_t x0, x1, y0, y1;
+    cells_of(grid, box, &x0, &x1, &y0, &y1);
+    for (size_t y = y0; y <= y1; y++)
+        for (size_t x = x0; x <= x1; x++) {
+            const allow_cell *cell = &grid->cells[y * grid->columns + x];
+            for (size_t k = 0; k < cell->count; k++) {
+                size_t item = cell->items[k];
+                if (grid->seen[item] == grid->stamp || !allow_boxes_meet(grid->boxes[item], box))
+                    continue;
+                grid->seen[item] = grid->stamp;
+                if (test(item, data))
+                    return true;
+            }
+        }
+    return false;
+}
+
 size_t allow_grid_cell_of(const allow_grid *grid, ur_vec2 p)
 {
     size_t x = cell_index(p.x, grid->region.min.x, grid->cell, grid->columns);

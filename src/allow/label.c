@@ -292,9 +292,11 @@ static size_t collect_walls(const ur_piece *piece, wall *walls)
 }
 
 /*
- * The walls in a grid whose cells are about as wide as a wall is long (or
- * a 64th of the piece, when its walls are many short ones): a label's box
- * then meets a few cells, each listing a few walls.
+ * The walls in a grid whose cells are about as wide as a wall is long, or
+ * wider where the walls are many short ones (a curve's chords): a cell for
+ * about every wall.  A cell then lists a few walls, however fine the
+ * mesh (the folds of a 100,000-face net are walls too), and a label's box
+ * meets a few cells.
  */
 static ur_status index_walls(allow_room *r, ur_error *error)
 {
@@ -309,8 +311,9 @@ static ur_status index_walls(allow_room *r, ur_error *error)
     for (size_t k = 0; k < count; k++)
         length += ur_vec2_length(ur_vec2_sub(r->walls[k].to, r->walls[k].from));
     ur_box region = r->piece->box;
-    double size = fmax(ur_box_width(region), ur_box_height(region));
-    double cell = fmax(fmax(length / (double)(count ? count : 1), size / 64), 1e-3);
+    double walls = (double)(count ? count : 1);
+    double cell = fmax(length / walls, sqrt(ur_box_width(region) * ur_box_height(region) / walls));
+    cell = fmax(cell, 1e-3);
     ur_status status = allow_grid_init(&r->wall_grid, region, cell, error);
     for (size_t k = 0; status == UR_OK && k < count; k++) {
         ur_box box = ur_box_empty();
@@ -541,32 +544,47 @@ static void remember_wall(allow_room *r, size_t stopper)
     r->recent[0] = stopper;
 }
 
+/* A label's box being tested against the walls of a room. */
+typedef struct wall_test {
+    allow_room *r;
+    const frame *f;
+    double a, b, clearance;
+} wall_test;
+
+static bool wall_meets(size_t item, void *data)
+{
+    const wall_test *t = data;
+    const wall *w = &t->r->walls[item];
+    return stops(t->r, w) && segment_near_box(t->f, t->a, t->b, t->clearance, w->from, w->to);
+}
+
+/* Remembers the wall that stops a box, for the next boxes to try first. */
+static bool wall_stops(size_t item, void *data)
+{
+    if (!wall_meets(item, data))
+        return false;
+    remember_wall(((wall_test *)data)->r, item);
+    return true;
+}
+
 /*
  * Whether the box (half sizes a, b in frame f) comes within clearance of a
  * wall whose box meets `around`.  The walls that stopped boxes lately go
  * first: candidates come along rings, and most are stopped by a wall that
- * stopped one of the last few, which then needs no query (whichever wall
- * is tried first, the answer is the same).
+ * stopped one of the last few, which then needs no query; a query stops
+ * at the first wall that meets the box (a label's box on a fine mesh's
+ * net meets a hundred folds).  Whichever wall is tried first, the answer
+ * is the same.
  */
-static ur_status meets_wall(allow_room *r, const frame *f, double a, double b, double clearance,
-                            ur_box around, bool *meets, ur_error *error)
+static bool meets_wall(allow_room *r, const frame *f, double a, double b, double clearance,
+                       ur_box around)
 {
-    *meets = false;
-    for (size_t k = 0; !*meets && k < r->recent_count; k++) {
-        const wall *w = &r->walls[r->recent[k]];
-        *meets = stops(r, w) && allow_boxes_meet(r->wall_grid.boxes[r->recent[k]], around) &&
-                 segment_near_box(f, a, b, clearance, w->from, w->to);
-    }
-    if (*meets)
-        return UR_OK;
-    ur_status status = allow_grid_query(&r->wall_grid, around, &r->found, error);
-    for (size_t k = 0; status == UR_OK && !*meets && k < r->found.count; k++) {
-        const wall *w = &r->walls[r->found.items[k]];
-        *meets = stops(r, w) && segment_near_box(f, a, b, clearance, w->from, w->to);
-        if (*meets)
-            remember_wall(r, r->found.items[k]);
-    }
-    return status;
+    wall_test test = {r, f, a, b, clearance};
+    for (size_t k = 0; k < r->recent_count; k++)
+        if (allow_boxes_meet(r->wall_grid.boxes[r->recent[k]], around) &&
+            wall_meets(r->recent[k], &test))
+            return true;
+    return allow_grid_any(&r->wall_grid, around, wall_stops, &test);
 }
 
 /* The corners of a label's box, counter-clockwise. */
@@ -641,9 +659,8 @@ static ur_status box_fits(allow_room *r, const frame *f, double a, double b, dou
     ur_status status = material_of_cell(r, f->centre, &state, error);
     if (status != UR_OK || state == CELL_OFF_MATERIAL)
         return status;
-    bool meets;
-    status = meets_wall(r, f, a, b, clearance, box, &meets, error);
-    if (status == UR_OK && !meets)
+    bool meets = meets_wall(r, f, a, b, clearance, box);
+    if (!meets)
         status = meets_label(r, f, a, b, clearance, box, &meets, error);
     if (status != UR_OK || meets)
         return status;

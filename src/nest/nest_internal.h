@@ -166,6 +166,13 @@ const nest_shape *nest_shape_of(const nester *n, size_t piece, size_t turn);
 const GEOSGeometry *nest_nfp_of(nester *n, size_t a, size_t ta, size_t b, size_t tb);
 const GEOSGeometry *nest_sums_of(nester *n, size_t a, size_t ta, size_t b, size_t tb);
 
+/*
+ * A lower bound on the bins of the capacity given that items of the sizes
+ * given need (Martello and Toth's L2; order_search.c).
+ */
+size_t nest_bins_bound(double (*size)(const void *items, size_t k), const void *items, size_t count,
+                       double capacity);
+
 /* The size of one of the nester's sheets: a remnant's, or the stock's. */
 void nest_sheet_size(const nester *n, size_t sheet, double *width, double *height);
 

@@ -278,9 +278,61 @@ ur_status nest_search_orders(nester *n, size_t *order, double budget)
 /* ---- Fewer sheets, and the last one's offcut --------------------------------- */
 
 /*
+ * Martello and Toth's bound L2 on the bins of capacity `capacity` that
+ * items of the sizes given (size(items, k) for k < count) need.  For each
+ * alpha (0, or an item's size up to half a bin): an item larger than
+ * capacity - alpha shares its bin with no item of alpha or more, and no
+ * two items larger than half a bin share one, so each of those takes a
+ * bin; the items from alpha to half a bin that the room left beside the
+ * second kind cannot hold need bins of their own.  The largest over
+ * alpha; O(count^2), and no memory.
+ */
+size_t nest_bins_bound(double (*size)(const void *items, size_t k), const void *items, size_t count,
+                       double capacity)
+{
+    size_t best = 0;
+    for (size_t a = 0; a <= count; a++) {
+        double alpha = a < count ? size(items, a) : 0.0;
+        if (alpha > capacity / 2)
+            continue;
+        size_t alone = 0, large = 0; /* over capacity - alpha; over half and up to it */
+        double large_room = 0, small = 0;
+        for (size_t k = 0; k < count; k++) {
+            double s = size(items, k);
+            if (s > capacity - alpha) {
+                alone++;
+            } else if (s > capacity / 2) {
+                large++;
+                large_room += capacity - s;
+            } else if (s >= alpha) {
+                small += s;
+            }
+        }
+        double over = ceil((small - large_room) / capacity);
+        size_t bound = alone + large + (over > 0 ? (size_t)over : 0);
+        if (bound > best)
+            best = bound;
+    }
+    return best;
+}
+
+/* The area of a nester's piece, as nest_bins_bound asks for sizes. */
+static double shape_area(const void *items, size_t piece)
+{
+    return nest_shape_of(items, piece, 0)->area;
+}
+
+/*
  * The fewest stock sheets any layout needs by area: the parts' area less
  * the room inside the remnants' margins, over the room inside a stock
- * sheet's, rounded up.
+ * sheet's, rounded up.  Without remnants, better: parts on one sheet do
+ * not overlap and lie inside its margins, so the areas of each sheet's
+ * parts add up to no more than that room, and the sheets of any layout
+ * hold the parts' areas as bins of that capacity hold items of those
+ * sizes; nest_bins_bound's bound on such bins is one on the sheets (two
+ * parts larger than half the room, say, never share a sheet), with the
+ * capacity a billionth larger so that parts that tile a sheet exactly are
+ * not kept apart by rounding.
  */
 static size_t stock_sheets_bound(const nester *n)
 {
@@ -295,6 +347,8 @@ static size_t stock_sheets_bound(const nester *n)
     }
     double room = (o->sheet_width - 2 * o->margin) * (o->sheet_height - 2 * o->margin);
     double bound = area > 0 ? ceil(area / room - 1e-9) : 0;
+    if (n->remnant_count == 0)
+        bound = fmax(bound, (double)nest_bins_bound(shape_area, n, n->count, room * (1 + 1e-9)));
     return bound < (double)n->count ? (size_t)bound : n->count;
 }
 

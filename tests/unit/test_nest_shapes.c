@@ -1,6 +1,8 @@
 /*
  * test_nest_shapes.c: the shapes the nester makes of pieces (nfp.c): their
- * triangles merged into few convex parts, which cover the piece.
+ * triangles merged into few convex parts, which cover the piece; and the
+ * bound on sheets by area (order_search.c), checked against the fewest
+ * bins found by trying every packing.
  */
 #include "test_support.h"
 
@@ -95,10 +97,79 @@ static void test_convex_parts_merge(void **state)
     }
 }
 
+static double size_at(const void *items, size_t k)
+{
+    return ((const double *)items)[k];
+}
+
+/* Whether items k.. fit in bins (each holding what is left of it) by trying every bin for each. */
+static bool packs(const double *sizes, size_t count, size_t k, double *left, size_t bins)
+{
+    if (k == count)
+        return true;
+    for (size_t b = 0; b < bins; b++) {
+        if (sizes[k] > left[b])
+            continue;
+        left[b] -= sizes[k];
+        bool done = packs(sizes, count, k + 1, left, bins);
+        left[b] += sizes[k];
+        if (done)
+            return true;
+        if (left[b] == 1.0)
+            break; /* the other empty bins would do no better */
+    }
+    return false;
+}
+
+/* The fewest bins of capacity 1 that hold the items. */
+static size_t fewest_bins(const double *sizes, size_t count)
+{
+    double left[16];
+    for (size_t bins = 1;; bins++) {
+        for (size_t b = 0; b < bins; b++)
+            left[b] = 1.0;
+        if (packs(sizes, count, 0, left, bins))
+            return bins;
+    }
+}
+
+/*
+ * The bound: three items over half a bin take three bins (the area says
+ * two); 0.7 and two of 0.3 take two; four quarters one; and on random
+ * sets of up to 8 items it is never more than the fewest bins, nor less
+ * than the area's bound.
+ */
+static void test_bins_bound(void **state)
+{
+    (void)state;
+    double over_half[3] = {0.6, 0.6, 0.6}, mixed[3] = {0.7, 0.3, 0.3};
+    double quarters[4] = {0.25, 0.25, 0.25, 0.25};
+    assert_int_equal(nest_bins_bound(size_at, over_half, 3, 1.0), 3);
+    assert_int_equal(nest_bins_bound(size_at, mixed, 3, 1.0), 2);
+    assert_int_equal(nest_bins_bound(size_at, quarters, 4, 1.0), 1);
+    srand(7);
+    size_t raised = 0;
+    for (int trial = 0; trial < 300; trial++) {
+        double sizes[8], total = 0;
+        size_t count = 1 + (size_t)(rand() % 8);
+        for (size_t k = 0; k < count; k++) {
+            sizes[k] = 0.05 + 0.9 * rand() / (double)RAND_MAX;
+            total += sizes[k];
+        }
+        size_t bound = nest_bins_bound(size_at, sizes, count, 1.0);
+        size_t by_area = (size_t)ceil(total - 1e-12);
+        assert_true(bound >= by_area);
+        assert_true(bound <= fewest_bins(sizes, count));
+        raised += bound > by_area;
+    }
+    assert_true(raised > 0); /* the bound says more than the area, at times */
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_convex_parts_merge),
+        cmocka_unit_test(test_bins_bound),
     };
     return cmocka_run_group_tests(tests, start, finish);
 }
