@@ -1258,6 +1258,7 @@ static void test_min_gap(void **state)
     ur_unfold_options options;
     ur_unfold_options_default(&options);
     options.max_steps = 50;
+    options.time_budget = 0; /* the steps end it, however loaded the machine */
     options.gap_strands_faces = true;
     options.gap_both_sides = true;
     double gap = 3.0;
@@ -1368,6 +1369,7 @@ static void test_gap_one_side(void **state)
     ur_unfold_options options;
     ur_unfold_options_default(&options);
     options.max_steps = 50;
+    options.time_budget = 0; /* the steps end it, however loaded the machine */
     options.min_gap = 3.0;
     options.gap_strands_faces = true; /* no join without the gap */
     options.gap_both_sides = true;
