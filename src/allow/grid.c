@@ -122,31 +122,26 @@ ur_status allow_grid_add(allow_grid *grid, ur_box box, size_t *item, ur_error *e
     return UR_OK;
 }
 
+/* What allow_grid_query gathers through allow_grid_any: every item, until memory fails. */
+typedef struct gathering {
+    allow_items *found;
+    ur_status status;
+    ur_error *error;
+} gathering;
+
+static bool gather(size_t item, void *data)
+{
+    gathering *g = data;
+    g->status = allow_items_push(g->found, item, g->error);
+    return g->status != UR_OK;
+}
+
 ur_status allow_grid_query(allow_grid *grid, ur_box box, allow_items *found, ur_error *error)
 {
     found->count = 0;
-    if (grid->count == 0)
-        return UR_OK;
-    if (++grid->stamp == 0) { /* the stamps wrapped: forget every old one */
-        memset(grid->seen, 0, grid->count * sizeof *grid->seen);
-        grid->stamp = 1;
-    }
-    size_t x0, x1, y0, y1;
-    cells_of(grid, box, &x0, &x1, &y0, &y1);
-    for (size_t y = y0; y <= y1; y++)
-        for (size_t x = x0; x <= x1; x++) {
-            const allow_cell *cell = &grid->cells[y * grid->columns + x];
-            for (size_t k = 0; k < cell->count; k++) {
-                size_t item = cell->items[k];
-                if (grid->seen[item] == grid->stamp || !allow_boxes_meet(grid->boxes[item], box))
-                    continue;
-                grid->seen[item] = grid->stamp;
-                ur_status status = allow_items_push(found, item, error);
-                if (status != UR_OK)
-                    return status;
-            }
-        }
-    return UR_OK;
+    gathering g = {found, UR_OK, error};
+    allow_grid_any(grid, box, gather, &g);
+    return g.status;
 }
 
 bool allow_grid_any(allow_grid *grid, ur_box box, bool (*test)(size_t item, void *data), void *data)

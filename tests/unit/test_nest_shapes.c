@@ -26,16 +26,6 @@ static int finish(void **state)
     return 0;
 }
 
-static ur_piece polygon_piece(const char *name, const ur_vec2 *ring, size_t count)
-{
-    ur_piece piece;
-    memset(&piece, 0, sizeof piece);
-    snprintf(piece.name, sizeof piece.name, "%s", name);
-    assert_int_equal(ur_piece_add_path(&piece, UR_OP_CUT, ring, count, true, NULL), UR_OK);
-    piece.measures.flat_area = fabs(ur_polygon_signed_area(ring, count));
-    return piece;
-}
-
 /* The total area of a shape's convex parts, each checked convex (its hull's area). */
 static double convex_parts_area(const nest_shape *shape)
 {

@@ -54,6 +54,17 @@ static inline ur_net_list develop(ur_ruled *ruled, ur_method method, size_t n, d
     return nets;
 }
 
+/* A piece whose outline is the ring (a cut), with its flat area. */
+static inline ur_piece polygon_piece(const char *name, const ur_vec2 *ring, size_t count)
+{
+    ur_piece piece;
+    memset(&piece, 0, sizeof piece);
+    snprintf(piece.name, sizeof piece.name, "%s", name);
+    assert_int_equal(ur_piece_add_path(&piece, UR_OP_CUT, ring, count, true, NULL), UR_OK);
+    piece.measures.flat_area = fabs(ur_polygon_signed_area(ring, count));
+    return piece;
+}
+
 /* ---- A test directory under /tmp ---------------------------------------- */
 
 /* directory/name into path; fails the test rather than cut it short. */
