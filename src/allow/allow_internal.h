@@ -136,8 +136,8 @@ size_t allow_board_joint_tag(const allow_board *board, size_t k);
 /*
  * Room for labels on one piece, kept between labels (label.c): the
  * segments of every path the piece has when it is opened, and the labels
- * engraved through it since, each in a grid.  The piece gets no other paths while it is
- * open.
+ * engraved through it since, each in a grid.  The piece gets no other
+ * paths while it is open.
  */
 typedef struct allow_room allow_room;
 
