@@ -411,21 +411,41 @@ static ur_status check_stl_header(const char *path, FILE *file, off_t size, ur_e
 }
 
 /*
+ * Whether the content starts like a PLY file ("ply" on its first line,
+ * blanks allowed), whatever the name says: assimp falls back to reading by
+ * content a file named .obj or .gltf that is not one, reads one that starts
+ * so as PLY, and loops for ever on some such headers (found by fuzzing with
+ * a .gltf name) unless the PLY checks see them first.  Leaves the stream at
+ * its start.
+ */
+static bool starts_as_ply(FILE *file)
+{
+    char start[8] = {0};
+    size_t count = fread(start, 1, sizeof start - 1, file);
+    rewind(file);
+    size_t blanks = strspn(start, " \t\r\n");
+    const char *word = start + blanks;
+    return count >= blanks + 3 && strncasecmp(word, "ply", 3) == 0 &&
+           (word[3] == '\0' || strchr(" \t\r\n", word[3]) != NULL);
+}
+
+/*
  * What a header says about the size, for the formats that assimp trusts
  * blindly: of the file at path, or of size bytes of data when data is not
  * NULL (read through a stream over them: the same code).
  */
 static ur_status check_header(const char *path, const void *data, off_t size, ur_error *error)
 {
-    bool ply = io_has_extension(path, "ply");
-    if (!ply && !io_has_extension(path, "stl"))
-        return UR_OK;
     /* "r": the buffer is only read */
     FILE *file = data ? fmemopen((void *)data, (size_t)size, "r") : fopen(path, "rb");
     if (!file)
         return ur_error_set(error, UR_ERROR_INPUT, "%s: cannot open: %s", path, strerror(errno));
-    ur_status status =
-        ply ? check_ply_header(path, file, size, error) : check_stl_header(path, file, size, error);
+    bool ply = io_has_extension(path, "ply") || starts_as_ply(file);
+    ur_status status = UR_OK;
+    if (ply)
+        status = check_ply_header(path, file, size, error);
+    else if (io_has_extension(path, "stl"))
+        status = check_stl_header(path, file, size, error);
     if (fclose(file) != 0 && status == UR_OK)
         status = ur_error_set(error, UR_ERROR_INPUT, "%s: cannot read: %s", path, strerror(errno));
     return status;

@@ -559,6 +559,34 @@ static void test_ply_header_checked(void **state)
                    NULL, "orphan.ply:3: not a line");
 }
 
+/*
+ * assimp reads a file by its content when its name's format does not fit:
+ * a PLY header named .gltf or .obj went to assimp's PLY reader unchecked,
+ * which looped for ever on this one (found by fuzz_mesh with a .gltf name).
+ * The PLY checks go by the content too, for a file and for a buffer.
+ */
+static void test_ply_content_checked_whatever_the_name(void **state)
+{
+    (void)state;
+    const char *text = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\n"
+                       "property floder\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n";
+    expect_refusal(write_file("hang.gltf", text), NULL, "hang.gltf:5: not a line of a PLY header");
+    expect_refusal(write_file("hang.obj", text), NULL, "hang.obj:5: not a line of a PLY header");
+    ur_mesh mesh;
+    ur_error error;
+    assert_int_equal(
+        ur_mesh_import_buffer("hang.gltf", text, strlen(text), NULL, &mesh, NULL, &error),
+        UR_ERROR_INPUT);
+    assert_non_null(strstr(error.message, "hang.gltf:5: not a line of a PLY header"));
+    /* Only a first word "ply" makes a PLY: an OBJ that starts "plywood" is read as OBJ. */
+    expect_refusal(write_file("notes.obj", "plywood\n"), NULL, "notes.obj");
+    ur_error obj_error;
+    assert_int_equal(
+        ur_mesh_import_buffer("notes.obj", "plywood\n", 8, NULL, &mesh, NULL, &obj_error),
+        UR_ERROR_INPUT);
+    assert_null(strstr(obj_error.message, "PLY"));
+}
+
 static void test_bad_index_and_options(void **state)
 {
     (void)state;
@@ -624,6 +652,7 @@ int main(void)
         cmocka_unit_test(test_coordinates_beyond_1000_km),
         cmocka_unit_test(test_headers_claiming_too_much),
         cmocka_unit_test(test_ply_header_checked),
+        cmocka_unit_test(test_ply_content_checked_whatever_the_name),
         cmocka_unit_test(test_bad_index_and_options),
         cmocka_unit_test(test_up_axis_from_the_writer),
     };
