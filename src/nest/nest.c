@@ -147,15 +147,6 @@ static bool same_angle(double a, double b)
 }
 
 /* Turns a point about the origin by the angle whose cosine and sine userdata holds. */
-static int turn_xy(double *x, double *y, void *userdata)
-{
-    const double *cs = userdata;
-    double tx = cs[0] * *x - cs[1] * *y, ty = cs[1] * *x + cs[0] * *y;
-    *x = tx;
-    *y = ty;
-    return 1;
-}
-
 /*
  * The turn of class c whose angle is angle (mod a whole turn); the class's
  * turn count when it has none.
@@ -245,7 +236,7 @@ static const GEOSGeometry *cached_pair(nester *n, GEOSGeometry **cache, pair_mak
         return cache[key];
     if (turned_pair(n, a, ta, b, tb, &first, cs)) {
         const GEOSGeometry *base = cached_pair(n, cache, make, a, 0, b, first);
-        cache[key] = base ? GEOSGeom_transformXY_r(n->geos, base, turn_xy, cs) : NULL;
+        cache[key] = base ? GEOSGeom_transformXY_r(n->geos, base, nest_turn_xy, cs) : NULL;
     } else {
         cache[key] = make(n, a, ta, b, tb);
     }

@@ -61,6 +61,10 @@ ur_status nest_shape_make(GEOSContextHandle_t geos, const ur_piece *piece, doubl
                           ur_error *error);
 void nest_shape_free(GEOSContextHandle_t geos, nest_shape *shape);
 
+/* Turns (x, y) about the origin by the angle whose cosine and sine are cosine_sine[0, 1]; GEOS's
+ * transform callback. */
+int nest_turn_xy(double *x, double *y, void *cosine_sine);
+
 /*
  * The no-fit polygon of moving shape b around fixed shape a, both at their
  * origins, where b's origin may not go (a + (-b)), as the sums of their

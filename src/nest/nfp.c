@@ -524,6 +524,67 @@ static ur_status coarseness(GEOSContextHandle_t geos, const ur_piece *piece, dou
     return status;
 }
 
+int nest_turn_xy(double *x, double *y, void *cosine_sine)
+{
+    const double *cs = cosine_sine;
+    double tx = cs[0] * *x - cs[1] * *y, ty = cs[1] * *x + cs[0] * *y;
+    *x = tx;
+    *y = ty;
+    return 1;
+}
+
+/*
+ * The shape of a piece's first turn: its coarseness decided unturned, the
+ * parts made at angle, then shrunk.  Only the parts kept are shrunk (each
+ * on its own, so the same whenever it is done): the shapes coarseness
+ * gives up have a hundred parts or more, and shrinking each is a GEOS
+ * buffer.
+ */
+static ur_status first_turn(GEOSContextHandle_t geos, const ur_piece *piece, double angle,
+                            double grow, bool holes, nest_shape *shape, ur_error *error)
+{
+    ur_status status = coarseness(geos, piece, grow, holes, shape, error);
+    if (status == UR_OK && angle != 0.0) {
+        GEOSGeometry *exact;
+        status = piece_polygon(geos, piece, angle, holes, &exact, error);
+        if (status == UR_OK)
+            status = shape_parts(geos, exact, grow, shape->tolerance, shape->closing, shape, error);
+        if (exact)
+            GEOSGeom_destroy_r(geos, exact);
+    }
+    return status == UR_OK ? shrunk(geos, shape, error) : status;
+}
+
+/*
+ * Another turn of the same piece: like's polygon and shrunk parts turned
+ * to angle.  Making them again from the turned piece cost as much as the
+ * first turn and gave the same shape to rounding, since every turn is
+ * simplified alike.
+ */
+static ur_status turned_copy(GEOSContextHandle_t geos, const nest_shape *like, double angle,
+                             nest_shape *shape, ur_error *error)
+{
+    shape->area = like->area;
+    shape->tolerance = like->tolerance;
+    shape->closing = like->closing;
+    double cs[2] = {cos(angle - like->angle), sin(angle - like->angle)};
+    shape->convex = calloc(like->convex_count ? like->convex_count : 1, sizeof *shape->convex);
+    if (!shape->convex)
+        return ur_error_out_of_memory(error);
+    shape->polygon = GEOSGeom_transformXY_r(geos, like->polygon, nest_turn_xy, cs);
+    bool turned = shape->polygon != NULL;
+    for (size_t k = 0; turned && k < like->convex_count; k++) {
+        shape->convex[k] = GEOSGeom_transformXY_r(geos, like->convex[k], nest_turn_xy, cs);
+        turned = shape->convex[k] != NULL;
+        shape->convex_count += turned;
+    }
+    if (!turned) {
+        drop_parts(geos, shape);
+        return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not turn a piece's shape");
+    }
+    return UR_OK;
+}
+
 ur_status nest_shape_make(GEOSContextHandle_t geos, const ur_piece *piece, double angle,
                           double grow, bool holes, const nest_shape *like, nest_shape *shape,
                           ur_error *error)
@@ -542,31 +603,11 @@ ur_status nest_shape_make(GEOSContextHandle_t geos, const ur_piece *piece, doubl
      * cost of that much more room round it.  The size is the unturned
      * outline's, so that every turn is simplified alike and the shapes of
      * a piece's turns are one shape turned (nest.c turns no-fit polygons):
-     * the first turn decides it (coarseness), the others take it.
+     * the first turn decides it (coarseness), the others are its shape
+     * turned.
      */
-    ur_status status = UR_OK;
-    if (like) {
-        shape->area = like->area;
-        shape->tolerance = like->tolerance;
-        shape->closing = like->closing;
-    } else {
-        status = coarseness(geos, piece, grow, holes, shape, error);
-    }
-    if (status == UR_OK && (like || angle != 0.0)) {
-        GEOSGeometry *exact;
-        status = piece_polygon(geos, piece, angle, holes, &exact, error);
-        if (status == UR_OK)
-            status = shape_parts(geos, exact, grow, shape->tolerance, shape->closing, shape, error);
-        if (exact)
-            GEOSGeom_destroy_r(geos, exact);
-    }
-    /*
-     * Only the parts kept are shrunk (each on its own, so the same whenever
-     * it is done): the shapes coarseness gives up have a hundred parts or
-     * more, and shrinking each is a GEOS buffer.
-     */
-    if (status == UR_OK)
-        status = shrunk(geos, shape, error);
+    ur_status status = like ? turned_copy(geos, like, angle, shape, error)
+                            : first_turn(geos, piece, angle, grow, holes, shape, error);
     if (status != UR_OK)
         return status;
     double reach[4];
