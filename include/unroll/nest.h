@@ -155,6 +155,16 @@ UR_API ur_status ur_outline_level_size(const ur_vec2 *outline, size_t count, dou
 UR_API double ur_outline_level_angle(const ur_vec2 *outline, size_t count);
 
 /*
+ * Whether the outline fits a length x width rectangle at some turn: level
+ * (its smallest enclosing rectangle along the rectangle's sides) or any
+ * other, as a long net with wings at both ends fits a sheet diagonally and
+ * nesting then turns it so.  *angle: a turn that fits it with its longer
+ * extent along x.  UR_ERROR_MEMORY only.
+ */
+UR_API ur_status ur_outline_fit_turn(const ur_vec2 *outline, size_t count, double length,
+                                     double width, bool *fits, double *angle, ur_error *error);
+
+/*
  * A part cut into the fewest parts that fit room_length x room_width
  * (split_part.c): turned level, it is cut across its length by straight
  * lines, each within the slack the even shares leave, where it is

@@ -1,7 +1,8 @@
 /*
  * unfold_room.c: whether a piece fits the room a sheet leaves it: the
  * smallest rectangle round its convex hull, longer side along the room's
- * longer side, as nesting first turns a piece (src/geom/hull.c).
+ * longer side, as nesting first turns a piece, or else its hull at any
+ * turn, as nesting turns a piece that fits only so (src/geom/hull.c).
  */
 #include "unfold_internal.h"
 
@@ -47,9 +48,9 @@ bool unfold_hull_fits(const unfolder *u, const ur_vec2 *hull, size_t count)
         unfold_hypot_within(ur_box_width(box), ur_box_height(box), room_length * (1 - 1e-9)) &&
         box_area < room_width * room_width * (1 - 1e-9))
         return true;
-    double length, width;
-    unfold_hull_size(hull, count, &length, &width);
-    return length <= room_length && width <= room_width;
+    /* Level, or else at any turn: nesting turns a piece that fits only diagonally so. */
+    double angle;
+    return geom_hull_fit_angle(hull, count, room_length, room_width, &angle);
 }
 
 /*

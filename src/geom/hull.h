@@ -6,6 +6,7 @@
 #ifndef UNROLL_HULL_H
 #define UNROLL_HULL_H
 
+#include <stdbool.h>
 #include <stddef.h>
 
 #include "unroll/geom.h"
@@ -33,5 +34,15 @@ size_t geom_convex_hull_of_two(ur_vec2 *points, size_t first, size_t second, ur_
  * its longer side (radians).  0 and 0 x 0 for fewer than 2 distinct points.
  */
 double geom_least_area_box(const ur_vec2 *hull, size_t count, double *length, double *width);
+
+/*
+ * Whether the convex polygon (hull) fits a length x width rectangle at
+ * some turn, not only with its least-area rectangle's sides along the
+ * rectangle's (a long net with wings at either end fits a sheet
+ * diagonally): *angle gets the angle of a direction along which its
+ * extent is at most length while across it it is at most width.
+ */
+bool geom_hull_fit_angle(const ur_vec2 *hull, size_t count, double length, double width,
+                         double *angle);
 
 #endif

@@ -109,13 +109,20 @@ static ur_status split_piece(const flattening *f, const ur_mesh *piece, size_t p
     return code;
 }
 
-/* The net's level size, and whether it fits the room. */
+/* The net's level size, and whether it fits the room, level or turned as nesting turns it. */
 static bool fits_room(const flattening *f, const ur_net *net, double *length, double *width)
 {
     ur_error error;
     if (ur_outline_level_size(net->outline, net->outline_count, length, width, &error) != UR_OK)
         return true; /* nesting will say */
-    return *length <= f->room.length && *width <= f->room.width;
+    if (*length <= f->room.length && *width <= f->room.width)
+        return true;
+    bool fits;
+    double angle;
+    if (ur_outline_fit_turn(net->outline, net->outline_count, f->room.length, f->room.width, &fits,
+                            &angle, &error) != UR_OK)
+        return true;
+    return fits;
 }
 
 /*

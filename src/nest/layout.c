@@ -10,6 +10,8 @@
  */
 #include "nest_internal.h"
 
+#include "../geom/hull.h"
+
 #include <stdlib.h>
 #include <string.h>
 
@@ -254,4 +256,26 @@ ur_status ur_outline_level_size(const ur_vec2 *outline, size_t count, double *le
     *length = count ? fmax(ur_box_width(box), ur_box_height(box)) : 0;
     *width = count ? fmin(ur_box_width(box), ur_box_height(box)) : 0;
     return UR_OK;
+}
+
+ur_status ur_outline_fit_turn(const ur_vec2 *outline, size_t count, double length, double width,
+                              bool *fits, double *angle, ur_error *error)
+{
+    *fits = false;
+    *angle = 0.0;
+    if (count == 0)
+        return UR_OK;
+    ur_vec2 *points = ur_alloc_array(count, sizeof *points, error);
+    ur_vec2 *hull = ur_alloc_array(count + 1, sizeof *hull, error);
+    if (points && hull) {
+        memcpy(points, outline, count * sizeof *points);
+        size_t corners = geom_convex_hull(points, count, hull);
+        double direction;
+        *fits = geom_hull_fit_angle(hull, corners, fmax(length, width), fmin(length, width),
+                                    &direction);
+        *angle = *fits ? -direction : 0.0; /* the turn that lays that direction along x */
+    }
+    free(points);
+    free(hull);
+    return points && hull ? UR_OK : UR_ERROR_MEMORY;
 }

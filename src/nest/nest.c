@@ -88,6 +88,41 @@ static size_t most_turns(const ur_nest_options *options, const ur_piece *pieces,
     return most;
 }
 
+/* Whether the outline, turned by angle, fits inside the sheet's margin. */
+static bool fits_sheet_at(const nester *n, const ur_path *outline, double angle)
+{
+    ur_transform2 turn = ur_transform2_make(angle, ur_vec2_make(0, 0));
+    ur_box box = ur_box_empty();
+    for (size_t i = 0; i < outline->count; i++)
+        ur_box_add(&box, ur_transform2_apply(turn, outline->points[i]));
+    return ur_box_width(box) <= n->options->sheet_width - 2 * n->options->margin &&
+           ur_box_height(box) <= n->options->sheet_height - 2 * n->options->margin;
+}
+
+/*
+ * The turn a piece's turns start from: the level one, unless the sheet
+ * takes it neither level nor a quarter turn from level but does at a turn
+ * between (a long net with wings at both ends, diagonally): then that turn,
+ * its longer extent along the sheet's longer side.  On a roll the level one.
+ */
+static ur_status start_angle(const nester *n, const ur_piece *p, double *angle)
+{
+    const ur_path *outline = &p->paths[0];
+    *angle = nest_level_angle(n->geos, outline);
+    if (n->options->roll_width > 0 || fits_sheet_at(n, outline, *angle) ||
+        fits_sheet_at(n, outline, *angle + M_PI / 2))
+        return UR_OK;
+    double width = n->options->sheet_width - 2 * n->options->margin;
+    double height = n->options->sheet_height - 2 * n->options->margin;
+    bool fits;
+    double turn;
+    ur_status status =
+        ur_outline_fit_turn(outline->points, outline->count, width, height, &fits, &turn, n->error);
+    if (status == UR_OK && fits)
+        *angle = width >= height ? turn : turn + M_PI / 2;
+    return status;
+}
+
 static ur_status make_class(nester *n, size_t piece)
 {
     nest_class *c = &n->classes[n->class_count];
@@ -98,7 +133,12 @@ static ur_status make_class(nester *n, size_t piece)
     if (!c->turns)
         return ur_error_out_of_memory(n->error);
     n->class_count++;
-    double base = n->options->level ? nest_level_angle(n->geos, &p->paths[0]) : 0.0;
+    double base = 0.0;
+    if (n->options->level) {
+        ur_status status = start_angle(n, p, &base);
+        if (status != UR_OK)
+            return status;
+    }
     bool grain = n->options->grain && p->has_rulings;
     for (size_t t = 0; t < c->turn_count; t++) {
         double angle = base + 2 * M_PI * (double)t / (double)c->turn_count;

@@ -122,12 +122,104 @@ static void test_hull_of_two(void **state)
     }
 }
 
+/* The polygon's extents along the direction of angle and across it. */
+static void extents_at(const ur_vec2 *points, size_t count, double angle, double *along,
+                       double *across)
+{
+    double c = cos(angle), s = sin(angle), low = INFINITY, high = -INFINITY;
+    double left = INFINITY, right = -INFINITY;
+    for (size_t i = 0; i < count; i++) {
+        double a = c * points[i].x + s * points[i].y, b = -s * points[i].x + c * points[i].y;
+        low = fmin(low, a), high = fmax(high, a), left = fmin(left, b), right = fmax(right, b);
+    }
+    *along = high - low;
+    *across = right - left;
+}
+
+/* Whether the hull of points fits length x width at some turn; checks the angle it gives. */
+static bool fits_turned(const ur_vec2 *points, size_t count, double length, double width)
+{
+    ur_vec2 copy[200], hull[201];
+    assert_true(count <= 200);
+    memcpy(copy, points, count * sizeof *copy);
+    size_t corners = geom_convex_hull(copy, count, hull);
+    double angle, along, across;
+    bool fits = geom_hull_fit_angle(hull, corners, length, width, &angle);
+    if (fits) {
+        extents_at(points, count, angle, &along, &across);
+        assert_true(along <= length * (1 + 1e-12) && across <= width * (1 + 1e-12));
+    }
+    return fits;
+}
+
+/* The corners of a w x h rectangle turned by angle. */
+static void turned_rectangle(double w, double h, double angle, ur_vec2 corners[4])
+{
+    double c = cos(angle), s = sin(angle);
+    for (int k = 0; k < 4; k++) {
+        double x = (k == 1 || k == 2) ? w : 0, y = k >= 2 ? h : 0;
+        corners[k] = ur_vec2_make(c * x - s * y, s * x + c * y);
+    }
+}
+
+/*
+ * A piece fits a sheet at some turn, not only level: closed forms for a
+ * needle (it fits L x W exactly when it is no longer than the diagonal)
+ * and a square (turning never helps it), a long thin rectangle that fits
+ * only diagonally, and a Blender cylinder's net (a 377 x 120 mm strip of
+ * 32 faces with both 120 mm caps) whose caps on faces 8 and 22 fit the
+ * 397 x 274 mm room turned by about 25 degrees (391 x 270 mm), and on one
+ * face no way (least overflow 1.27; both from a scan of every 0.005
+ * degree).
+ */
+static void test_hull_fits_turned(void **state)
+{
+    (void)state;
+    double diagonal = hypot(100, 50);
+    ur_vec2 needle[2] = {{0, 0}, {0.999 * diagonal, 0}};
+    assert_true(fits_turned(needle, 2, 100, 50));
+    needle[1].x = 1.001 * diagonal;
+    assert_false(fits_turned(needle, 2, 100, 50));
+    ur_vec2 square[4];
+    turned_rectangle(50.05, 50.05, 0.3, square);
+    assert_false(fits_turned(square, 4, 1000, 50));
+    turned_rectangle(49.95, 49.95, 0.3, square);
+    assert_true(fits_turned(square, 4, 1000, 50));
+    ur_vec2 thin[4];
+    turned_rectangle(110, 2, 1.0, thin); /* cos 0.9 turns it to 99.9 x 49.8 */
+    assert_true(fits_turned(thin, 4, 100, 50));
+    turned_rectangle(100, 10, M_PI / 6, thin); /* level: the least-area rectangle's own turn */
+    double angle;
+    ur_vec2 hull[5];
+    size_t corners = geom_convex_hull(thin, 4, hull);
+    assert_true(geom_hull_fit_angle(hull, corners, 101, 11, &angle));
+    assert_true(fabs(fmod(angle + 2 * M_PI, M_PI) - M_PI / 6) < 1e-9);
+
+    enum { SIDES = 32 };
+    const double radius = 60, face = 2 * radius * sin(M_PI / SIDES), height = 120;
+    for (int pair = 0; pair < 2; pair++) {
+        int top = pair ? 0 : 22, bottom = pair ? 0 : 8;
+        ur_vec2 net[4 + 2 * SIDES] = {
+            {0, 0}, {SIDES * face, 0}, {SIDES * face, height}, {0, height}};
+        double apothem = radius * cos(M_PI / SIDES);
+        for (int k = 0; k < SIDES; k++) {
+            double a = 2 * M_PI * k / SIDES + M_PI / SIDES;
+            net[4 + k] = ur_vec2_make((top + 0.5) * face + radius * cos(a),
+                                      height + apothem + radius * sin(a));
+            net[4 + SIDES + k] =
+                ur_vec2_make((bottom + 0.5) * face + radius * cos(a), -apothem + radius * sin(a));
+        }
+        assert_int_equal(fits_turned(net, 4 + 2 * SIDES, 397, 274), pair == 0);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_segment_distance),
         cmocka_unit_test(test_polylines_meet),
         cmocka_unit_test(test_hull_of_two),
+        cmocka_unit_test(test_hull_fits_turned),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

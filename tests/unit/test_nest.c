@@ -650,6 +650,38 @@ static void test_level_box_is_the_smallest(void **state)
 }
 
 /*
+ * Strips 110 x 2 mm fit a 110 x 60 mm sheet with a 5 mm margin (100 x 50
+ * mm inside) neither level nor on end, but diagonally: turned so that
+ * their length takes cos a = 0.9 of it, 99.9 x 49.8 mm (2 mm across at
+ * sin a = 0.436 adds 0.87 and 1.8 mm).  Nesting turns them so, one to a
+ * sheet, and ur_outline_fit_turn gives such a turn; a 112 mm strip is
+ * longer than the 111.8 mm diagonal and fits no way.
+ */
+static void test_strip_fits_diagonally(void **state)
+{
+    (void)state;
+    ur_vec2 ring[4] = {{0, 0}, {110, 0}, {110, 2}, {0, 2}};
+    ur_piece pieces[2] = {polygon_piece("strip", ring, 4), polygon_piece("strip", ring, 4)};
+    ur_nest_options o = sheet_options(110, 60, 5, 1, 2, true);
+    check_sheets_used(pieces, 2, &o, 2); /* a second one beside it would stick out */
+    free_pieces(pieces, 2);
+
+    bool fits;
+    double angle;
+    ur_error error;
+    assert_int_equal(ur_outline_fit_turn(ring, 4, 100, 50, &fits, &angle, &error), UR_OK);
+    assert_true(fits);
+    ur_transform2 turn = ur_transform2_make(angle, ur_vec2_make(0, 0));
+    ur_box box = ur_box_empty();
+    for (int k = 0; k < 4; k++)
+        ur_box_add(&box, ur_transform2_apply(turn, ring[k]));
+    assert_true(ur_box_width(box) <= 100 && ur_box_height(box) <= 50);
+    ring[1].x = ring[2].x = 112;
+    assert_int_equal(ur_outline_fit_turn(ring, 4, 100, 50, &fits, &angle, &error), UR_OK);
+    assert_false(fits);
+}
+
+/*
  * A set that the first layout puts on two sheets though its area fits
  * one: where the roll search (a roll as wide as the sheet is tall) fits it
  * in a sheet's length, the sheet search puts it on one sheet, every part
@@ -801,6 +833,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_rectangles_tile_one_sheet),
         cmocka_unit_test(test_level_box_is_the_smallest),
+        cmocka_unit_test(test_strip_fits_diagonally),
         cmocka_unit_test(test_part_goes_in_a_hole),
         cmocka_unit_test(test_search_keeps_every_part),
         cmocka_unit_test(test_l_shapes_interlock),
