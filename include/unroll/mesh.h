@@ -50,6 +50,7 @@ typedef struct ur_mesh_repairs {
     size_t degenerate; /* zero-area triangles dropped */
     size_t isolated;   /* vertices no triangle uses, dropped */
     size_t flipped;    /* triangles turned to agree with their neighbours */
+    size_t split;      /* vertices copied to take apart surfaces that touch along an edge */
 } ur_mesh_repairs;
 
 /*
@@ -59,7 +60,11 @@ typedef struct ur_mesh_repairs {
  * mesh with no triangles left, and non-manifold edges (three or more
  * triangles on one edge), which cannot be repaired safely.  An edge that
  * only welding made non-manifold (two parts that touch, each with its own
- * vertices) is not: the vertices welded into its ends are left apart.
+ * vertices) is not: the vertices welded into its ends are left apart.  Nor
+ * is an edge of four (or six...) triangles whose ends the surfaces share
+ * in the input: each surface round an end (a fan of triangles joined
+ * across manifold edges) gets its own copy of the vertex, and the edge
+ * comes apart if the copies leave no edge of more than two triangles.
  *
  * Welding merges each vertex, in order, into the nearest vertex kept before
  * it at a distance <= weld_tolerance (0 merges identical points only); it

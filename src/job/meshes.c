@@ -286,6 +286,11 @@ static void say_repairs(const job_run *run, const ur_mesh_repairs *repairs)
                  "vertices dropped, %zu triangles turned to agree with their neighbours",
                  run->job.command, repairs->welded, repairs->degenerate, repairs->isolated,
                  repairs->flipped);
+    if (repairs->split)
+        job_note(run,
+                 "%s: repaired: surfaces that touched along an edge taken apart (%zu vertices "
+                 "copied)",
+                 run->job.command, repairs->split);
 }
 
 /* A piece of an unfolding as a net: its outline, its folds, no strain. */

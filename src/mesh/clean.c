@@ -1,7 +1,8 @@
 /*
  * clean.c: ur_mesh_clean: welding, dropping zero-area triangles and unused
  * vertices, refusing non-manifold edges (after un-welding the vertices
- * whose welding made them) and orienting each part.
+ * whose welding made them, or taking apart surfaces that touch along
+ * them) and orienting each part.
  *
  * Every step writes new arrays; the mesh gets them only once all have
  * succeeded, so that a refused mesh is left as it was.  Messages name input
@@ -236,6 +237,45 @@ static bool mark_welded_ends(const cleaning *c, bool *apart)
     return marked;
 }
 
+/*
+ * Takes apart, at both ends of the bad edge, the fans of triangles round
+ * them (fans.c); *split says whether any vertex was copied.  Only an edge
+ * of an even count of triangles: two surfaces that touch; of three, one
+ * is a fin that no copy can tell from the surface it stands on.
+ */
+static ur_status split_bad_edge(cleaning *c, bool *split, ur_error *error)
+{
+    *split = false;
+    if (c->bad.count % 2 != 0)
+        return UR_OK;
+    size_t ends[2] = {c->bad.a, c->bad.b};
+    for (int e = 0; e < 2; e++) {
+        size_t copies = 0;
+        ur_status status = mesh_split_fans(c->triangles, c->triangle_count, ends[e],
+                                           c->vertex_count, &copies, error);
+        if (status != UR_OK)
+            return status;
+        if (copies == 0)
+            continue;
+        ur_vec3 *vertices = realloc(c->vertices, (c->vertex_count + copies) * sizeof *vertices);
+        if (vertices)
+            c->vertices = vertices;
+        size_t *original = realloc(c->original, (c->vertex_count + copies) * sizeof *original);
+        if (original)
+            c->original = original;
+        if (!vertices || !original)
+            return ur_error_out_of_memory(error);
+        for (size_t k = 0; k < copies; k++) {
+            c->vertices[c->vertex_count + k] = c->vertices[ends[e]];
+            c->original[c->vertex_count + k] = c->original[ends[e]];
+        }
+        c->vertex_count += copies;
+        c->repairs.split += copies;
+        *split = true;
+    }
+    return UR_OK;
+}
+
 /* At most this many edges made non-manifold by welding are taken apart again. */
 #define MOST_UNWELDS 1000
 
@@ -252,7 +292,9 @@ ur_status ur_mesh_clean_map(ur_mesh *mesh, double weld_tolerance, ur_mesh_repair
     /*
      * Welding can join two parts that only touch (a modeller's eyes set
      * into a head) along an edge of four triangles: the ends of such an
-     * edge are welded no more, and the mesh cleaned again.
+     * edge are welded no more, and the mesh cleaned again.  When the input
+     * itself joins them there, the surfaces round the edge's ends are
+     * given their own vertices (split_bad_edge).
      */
     bool *apart = NULL;
     if (status == UR_OK)
@@ -267,10 +309,21 @@ ur_status ur_mesh_clean_map(ur_mesh *mesh, double weld_tolerance, ur_mesh_repair
             }
             memset(apart, 0, mesh->vertex_count * sizeof *apart);
         }
-        if (!mark_welded_ends(&c, apart))
+        if (mark_welded_ends(&c, apart)) {
+            cleaning_reset(&c);
+            status = clean_once(&c, weld_tolerance, apart, error);
+            continue;
+        }
+        bool split;
+        ur_error refused = *error; /* the bad edge's message, if nothing is split */
+        ur_status splitting = split_bad_edge(&c, &split, error);
+        if (splitting != UR_OK || !split) {
+            if (splitting == UR_OK)
+                *error = refused;
+            status = splitting == UR_OK ? status : splitting;
             break;
-        cleaning_reset(&c);
-        status = clean_once(&c, weld_tolerance, apart, error);
+        }
+        status = orient(&c, error);
     }
     free(apart);
     if (status == UR_OK) {

@@ -28,6 +28,16 @@ static inline size_t mesh_to(const size_t (*triangles)[3], size_t half_edge)
 ur_status mesh_check_triangles(const size_t (*triangles)[3], size_t count, size_t vertex_count,
                                ur_error *error);
 
+/*
+ * Gives each fan of triangles round vertex v (triangles at v joined across
+ * edges that exactly two of them share) but the first its own copy of v,
+ * numbered from next_vertex on; *copies says how many (the caller adds
+ * the copies' points).  Two surfaces that only touch along an edge of v
+ * come apart there.
+ */
+ur_status mesh_split_fans(size_t (*triangles)[3], size_t count, size_t v, size_t next_vertex,
+                          size_t *copies, ur_error *error);
+
 /* An edge that three or more triangles share (vertex indices, 0-based). */
 typedef struct mesh_bad_edge {
     size_t a, b, count;

@@ -696,6 +696,49 @@ static void test_clean_unwelds_touching_parts(void **state)
     ur_mesh_free(&mesh);
 }
 
+/*
+ * The same two tetrahedra with the touching corners given once (as an STL
+ * read through assimp, or Blender's monkey head, has them): the edge of
+ * four triangles comes apart, each tetrahedron keeping a copy of its ends,
+ * and every edge then has two triangles.
+ */
+static void test_clean_splits_surfaces_touching_along_an_edge(void **state)
+{
+    (void)state;
+    static const double first[][3] = {{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}};
+    static const double second[][3] = {{1, 1, 1}, {1, -1, -1}, {3, 1, -1}, {3, -1, 1}};
+    ur_mesh a = solid(first, 4, 2 * sqrt(2.0)), b = solid(second, 4, 2 * sqrt(2.0));
+    builder both = {0};
+    for (size_t v = 0; v < 4; v++)
+        add_vertex(&both, first[v][0], first[v][1], first[v][2]);
+    for (size_t v = 2; v < 4; v++)
+        add_vertex(&both, second[v][0], second[v][1], second[v][2]);
+    const size_t second_index[4] = {0, 1, 4, 5};
+    for (size_t t = 0; t < 4; t++) {
+        add_triangle(&both, a.triangles[t][0], a.triangles[t][1], a.triangles[t][2], 0);
+        add_triangle(&both, second_index[b.triangles[t][0]], second_index[b.triangles[t][1]],
+                     second_index[b.triangles[t][2]], 0);
+    }
+    ur_mesh_free(&a);
+    ur_mesh_free(&b);
+    ur_mesh mesh = build(&both);
+    size_t *twins;
+    ur_error error;
+    assert_int_equal(ur_mesh_twins(&mesh, &twins, &error), UR_ERROR_INPUT);
+    assert_message(error, "(4 triangles)");
+    ur_mesh_repairs repairs;
+    assert_int_equal(ur_mesh_clean(&mesh, 1e-6, &repairs, &error), UR_OK);
+    assert_int_equal(repairs.split, 2);
+    assert_int_equal(repairs.welded, 0);
+    assert_int_equal(mesh.vertex_count, 8);
+    assert_int_equal(mesh.triangle_count, 8);
+    assert_int_equal(ur_mesh_twins(&mesh, &twins, &error), UR_OK);
+    for (size_t h = 0; h < 24; h++)
+        assert_int_not_equal(twins[h], UR_NO_EDGE); /* two closed surfaces */
+    free(twins);
+    ur_mesh_free(&mesh);
+}
+
 static void test_clean_refuses(void **state)
 {
     (void)state;
@@ -1198,6 +1241,7 @@ int main(void)
         cmocka_unit_test(test_clean_drops),
         cmocka_unit_test(test_clean_refuses),
         cmocka_unit_test(test_clean_unwelds_touching_parts),
+        cmocka_unit_test(test_clean_splits_surfaces_touching_along_an_edge),
         cmocka_unit_test(test_clean_refuses_moebius),
         cmocka_unit_test(test_clean_million),
         cmocka_unit_test(test_boundary),
