@@ -271,9 +271,11 @@ typedef struct unfolder {
     ur_unfold_options options;
     unfold_edges edges;
     unfold_faces faces;
-    double eps;      /* points closer than this meet */
-    bool room;       /* options.room_* limit the pieces: hulls are kept */
-    bool room_binds; /* joins that do not fit the room are refused (not inside faces) */
+    double eps;       /* points closer than this meet */
+    bool room;        /* options.room_* limit the pieces: hulls are kept */
+    bool room_binds;  /* joins that do not fit the room are refused (not inside faces) */
+    bool turned_room; /* a piece fits the room at any turn, not only level (unfold_room.c) */
+    size_t turnable_refusals; /* joins the level room refused that it would take turned */
     /* the run: */
     size_t *piece;      /* per triangle: its piece (an island's number) */
     ur_vec2 (*flat)[3]; /* per triangle: its corners on its piece */
@@ -360,6 +362,9 @@ void unfold_hull_size(const ur_vec2 *hull, size_t count, double *length, double 
 /* Whether a convex hull fits the room of the options. */
 bool unfold_hull_fits(const unfolder *u, const ur_vec2 *hull, size_t count);
 
+/* Whether the hull fits the room at some turn (whatever u->turned_room says). */
+bool unfold_hull_fits_turned(const unfolder *u, const ur_vec2 *hull, size_t count);
+
 /* A circle round triangle corners (count of them). */
 unfold_circle unfold_circle_round(const unfolder *u, const ur_vec2 *corners, size_t count);
 
@@ -409,7 +414,8 @@ size_t unfold_outline_previous(const unfolder *u, size_t h);
  * budget lasts, then runs it again so that u holds its pieces; *steps the
  * steps done.
  */
-ur_status unfold_search(unfolder *u, size_t *order, size_t count, size_t *steps, ur_error *error);
+ur_status unfold_search(unfolder *u, size_t *order, size_t count, size_t *steps, unfold_score *best,
+                        ur_error *error);
 
 /*
  * Turns piece p of the last run into *piece: triangles and their flat

@@ -558,10 +558,10 @@ static uint64_t joined_key(const unfolder *u)
 
 static uint64_t join_key(const unfolder *u, size_t small, size_t large, size_t hinge_small)
 {
-    uint64_t phase =
-        (uint64_t)u->slits | (uint64_t)u->room_binds << 1 | (uint64_t)u->gap_waived << 2;
+    uint64_t phase = (uint64_t)u->slits | (uint64_t)u->room_binds << 1 |
+                     (uint64_t)u->gap_waived << 2 | (uint64_t)u->turned_room << 3;
     uint64_t pieces = unfold_mix(unfold_mix(u->islands[small].layout) + u->islands[large].layout);
-    return pieces ^ unfold_mix(8 * (uint64_t)hinge_small + phase);
+    return pieces ^ unfold_mix(16 * (uint64_t)hinge_small + phase);
 }
 
 static bool remembers(const unfolder *u)
@@ -707,6 +707,8 @@ static ur_status judge(unfolder *u, const unfold_motion *m, size_t small, size_t
         *hull_count = joined_hull(u, m, small, large);
         if (!unfold_hull_fits(u, u->hull_points, *hull_count)) {
             *outcome = OUTCOME_TOO_LARGE;
+            if (!u->turned_room && unfold_hull_fits_turned(u, u->hull_points, *hull_count))
+                u->turnable_refusals++;
             return UR_OK;
         }
     }

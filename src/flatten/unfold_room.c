@@ -1,8 +1,9 @@
 /*
  * unfold_room.c: whether a piece fits the room a sheet leaves it: the
  * smallest rectangle round its convex hull, longer side along the room's
- * longer side, as nesting first turns a piece, or else its hull at any
- * turn, as nesting turns a piece that fits only so (src/geom/hull.c).
+ * longer side, as nesting first turns a piece, or (u->turned_room) its
+ * hull at any turn, as nesting turns a piece that fits only so
+ * (src/geom/hull.c).
  */
 #include "unfold_internal.h"
 
@@ -48,9 +49,18 @@ bool unfold_hull_fits(const unfolder *u, const ur_vec2 *hull, size_t count)
         unfold_hypot_within(ur_box_width(box), ur_box_height(box), room_length * (1 - 1e-9)) &&
         box_area < room_width * room_width * (1 - 1e-9))
         return true;
-    /* Level, or else at any turn: nesting turns a piece that fits only diagonally so. */
+    if (u->turned_room) /* nesting turns a piece that fits only between level and on end so */
+        return unfold_hull_fits_turned(u, hull, count);
+    double length, width;
+    unfold_hull_size(hull, count, &length, &width);
+    return length <= room_length && width <= room_width;
+}
+
+bool unfold_hull_fits_turned(const unfolder *u, const ur_vec2 *hull, size_t count)
+{
     double angle;
-    return geom_hull_fit_angle(hull, count, room_length, room_width, &angle);
+    return geom_hull_fit_angle(hull, count, fmax(u->options.room_length, u->options.room_width),
+                               fmin(u->options.room_length, u->options.room_width), &angle);
 }
 
 /*

@@ -242,11 +242,13 @@ static ur_status run_search(search *s, size_t least, size_t *steps, ur_error *er
     }
 }
 
-ur_status unfold_search(unfolder *u, size_t *order, size_t count, size_t *steps, ur_error *error)
+ur_status unfold_search(unfolder *u, size_t *order, size_t count, size_t *steps, unfold_score *best,
+                        ur_error *error)
 {
     *steps = 0;
     unfold_score first;
     ur_status status = unfold_run(u, order, count, &first, error);
+    *best = first;
     if (status != UR_OK)
         return status;
     const ur_unfold_options *o = &u->options;
@@ -273,7 +275,7 @@ ur_status unfold_search(unfolder *u, size_t *order, size_t count, size_t *steps,
     }
     if (status == UR_OK && *steps > 0) {
         memcpy(order, s.best, count * sizeof *order);
-        status = unfold_run(u, order, count, &first, error);
+        status = unfold_run(u, order, count, best, error);
     }
     free(s.trial);
     free(s.best);
