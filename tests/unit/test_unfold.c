@@ -1122,6 +1122,66 @@ static void test_room_splits(void **state)
     ur_mesh_free(&mesh);
 }
 
+/* An accordion of 11 panels, each 10 x 2 mm flat, folded 60 degrees: flat, a 110 x 2 mm strip. */
+static ur_mesh accordion(void)
+{
+    builder b = {0};
+    const double turn = M_PI / 6;
+    for (int i = 0; i <= 11; i++)
+        for (int j = 0; j < 2; j++)
+            add_vertex(&b, ur_vec3_make(10 * i * cos(turn), 2.0 * j, 10 * (i % 2) * sin(turn)));
+    for (size_t i = 0; i < 11; i++) {
+        add_triangle(&b, 2 * i, 2 * i + 2, 2 * i + 3, 0);
+        add_triangle(&b, 2 * i, 2 * i + 3, 2 * i + 1, 0);
+    }
+    return build(&b);
+}
+
+/* Whether the outline fits length x width at one of 18,000 turns (a scan, not the library's). */
+static bool fits_at_some_turn(const ur_vec2 *outline, size_t count, double length, double width)
+{
+    for (int step = 0; step < 18000; step++) {
+        double a = step * M_PI / 18000, c = cos(a), s = sin(a);
+        ur_box box = ur_box_empty();
+        for (size_t k = 0; k < count; k++)
+            ur_box_add(&box, ur_vec2_make(c * outline[k].x - s * outline[k].y,
+                                          s * outline[k].x + c * outline[k].y));
+        if (ur_box_width(box) <= length && ur_box_height(box) <= width)
+            return true;
+    }
+    return false;
+}
+
+/*
+ * The accordion's 110 x 2 mm strip fits a 100 x 50 mm room neither level
+ * nor on end, but turned by about 25 degrees (the room's diagonal is
+ * 111.8 mm): one piece, which a scan of turns finds fitting; a 100 x 5 mm
+ * room (diagonal 100.1 mm) takes it at no turn: two pieces.
+ */
+static void test_room_taken_turned(void **state)
+{
+    (void)state;
+    ur_mesh mesh = accordion();
+    ur_unfold_options options;
+    ur_unfold_options_default(&options);
+    options.room_length = 100;
+    options.room_width = 50;
+    ur_unfolding u = unfold_with(&mesh, &options);
+    check_unfolding(&mesh, &u, NULL, 0);
+    assert_int_equal(u.count, 1);
+    double length = INFINITY, width = INFINITY;
+    smallest_rectangle(u.pieces[0].outline, u.pieces[0].outline_count, &length, &width);
+    assert_true(fabs(length - 110) < 1e-6 && fabs(width - 2) < 1e-6);
+    assert_true(fits_at_some_turn(u.pieces[0].outline, u.pieces[0].outline_count, 100, 50));
+    ur_unfolding_free(&u);
+    options.room_width = 5;
+    u = unfold_with(&mesh, &options);
+    check_unfolding(&mesh, &u, NULL, 0);
+    assert_int_equal(u.count, 2);
+    ur_unfolding_free(&u);
+    ur_mesh_free(&mesh);
+}
+
 /* A face larger than the room cannot be split: refused, naming it and its size. */
 static void test_face_larger_than_room(void **state)
 {
@@ -1489,6 +1549,7 @@ int main(void)
         cmocka_unit_test(test_ring_one_piece),
         cmocka_unit_test(test_head_no_stray_faces),
         cmocka_unit_test(test_room_splits),
+        cmocka_unit_test(test_room_taken_turned),
         cmocka_unit_test(test_face_larger_than_room),
         cmocka_unit_test(test_search_repeats),
         cmocka_unit_test(test_min_gap),
