@@ -1513,7 +1513,9 @@ static size_t first_joint_of(const joiner *j, int seam)
 
 /*
  * Tries a label left over on the piece's tabs: those of its seam side, or
- * (the piece's name) any, each from the middle of its top half.
+ * (the piece's name) any, each from the middle of its top half; along the
+ * tab's fold, else across it, reading outward (a fine mesh's tabs are
+ * deeper than their edges are long).
  */
 static ur_status label_on_a_tab(const joiner *j, allow_room *room, const unplaced_label *u,
                                 const char *text, bool *placed, ur_error *error)
@@ -1532,10 +1534,11 @@ static ur_status label_on_a_tab(const joiner *j, allow_room *room, const unplace
         ur_vec2 middle = point_at(&p->base, p->base.length / 2, &segment);
         ur_vec2 outward = segment_normal(&p->base, segment);
         ur_vec2 near = ur_vec2_add_scaled(middle, outward, band_of(o) + 0.5 * p->depth);
-        status = engrave_label(room, &j->pieces[u->piece], o->font, text, near,
-                               direction_at(&p->base, segment), o->label_height,
-                               fmax(0.2, 0.1 * o->label_height), 0.5 * (p->base.length + p->depth),
-                               placed, error);
+        ur_vec2 directions[2] = {direction_at(&p->base, segment), outward};
+        for (int d = 0; d < 2 && status == UR_OK && !*placed; d++)
+            status = engrave_label(room, &j->pieces[u->piece], o->font, text, near, directions[d],
+                                   o->label_height, fmax(0.2, 0.1 * o->label_height),
+                                   0.5 * (p->base.length + p->depth), placed, error);
     }
     return status;
 }

@@ -608,6 +608,55 @@ static void test_label_goes_on_the_tab(void **state)
     ur_font_close(font);
 }
 
+/*
+ * A strip 4.4 mm long and 3 mm wide seamed along its 4.4 mm side to a
+ * large piece, with tabs 20 mm deep whose sides stand at 88 degrees (the
+ * tab narrows to 3 mm): the strip's label, 3.4 mm long at its least
+ * height (2.56 mm) and kept 0.5 mm clear of the lines, has no room along
+ * the tab's fold (it has from a 4.8 mm strip on), and goes across the
+ * tab, reading outward.
+ */
+static void test_label_across_the_tab(void **state)
+{
+    (void)state;
+    static const ur_vec2 strip[] = {{0, 0}, {4.4, 0}, {4.4, 3}, {0, 3}};
+    static const ur_vec2 large_grid[] = {{0, 3},   {4.4, 3},  {45, 30},
+                                         {45, 60}, {-40, 60}, {-40, 30}};
+    ur_vec2 large_flat[6];
+    for (size_t i = 0; i < 6; i++)
+        large_flat[i] = ur_vec2_add(large_grid[i], ur_vec2_make(100, 0));
+    ur_font *font;
+    ur_error error;
+    assert_int_equal(ur_font_open(NULL, &font, &error), UR_OK);
+    ur_net_list nets = {calloc(2, sizeof(ur_net)), 2};
+    assert_non_null(nets.nets);
+    nets.nets[0] = grid_net("P1", strip, strip, 4);
+    nets.nets[1] = grid_net("P2", large_flat, large_grid, 6);
+    int next;
+    assert_int_equal(ur_net_list_find_seams(&nets, 1, &next, &error), UR_OK);
+    ur_piece *pieces = pieces_of(&nets);
+    ur_joint_options options = tab_options(font);
+    options.tab_depth = 20;
+    options.tab_angle = 88;
+    assert_int_equal(ur_pieces_add_joints(pieces, &nets, &options, &error), UR_OK);
+    assert_int_equal(count_joints(&pieces[0]), 1);
+    assert_int_equal(count_records(&pieces[0], UR_ALLOWANCE_LABEL, true), 0);
+    assert_int_equal(count_records(&pieces[0], UR_ALLOWANCE_LABEL, false), 1);
+    GEOSGeometry *grown = polygon(pieces[0].paths[0].points, pieces[0].paths[0].count);
+    assert_true(engraved_on(&pieces[0], grown, &nets.nets[0]));
+    GEOSGeom_destroy_r(geos, grown);
+    check_nothing_crosses_outline(&pieces[0]);
+    ur_box text = ur_box_empty(); /* across: longer up the tab (y) than along its fold (x) */
+    for (size_t k = 0; k < pieces[0].path_count; k++)
+        for (size_t i = 0; pieces[0].paths[k].op == UR_OP_ENGRAVE && i < pieces[0].paths[k].count;
+             i++)
+            ur_box_add(&text, pieces[0].paths[k].points[i]);
+    assert_true(ur_box_height(text) > ur_box_width(text));
+    free_pieces(pieces, nets.count);
+    ur_net_list_free(&nets);
+    ur_font_close(font);
+}
+
 /* Whether a stroke of an engraved path crosses one of the piece's folds. */
 static bool engraving_crosses_a_fold(const ur_piece *piece)
 {
@@ -713,6 +762,7 @@ int main(void)
         cmocka_unit_test(test_unfolded_tabs_clear),   cmocka_unit_test(test_loop_seams_joined),
         cmocka_unit_test(test_laps_marked_on_both),   cmocka_unit_test(test_bad_options),
         cmocka_unit_test(test_label_goes_on_the_tab), cmocka_unit_test(test_label_crosses_folds),
+        cmocka_unit_test(test_label_across_the_tab),
     };
     return cmocka_run_group_tests(tests, start, finish);
 }
