@@ -538,6 +538,27 @@ static void test_every_seam_joined(void **state)
     ur_font_close(font);
 }
 
+/*
+ * Two nets seamed along the side they share: P1 laid as its grid, P2 laid
+ * 100 mm to the right of its grid (at most 8 corners).
+ */
+static ur_net_list strip_beside(const ur_vec2 *strip, size_t strip_count, const ur_vec2 *other,
+                                size_t other_count)
+{
+    ur_vec2 other_flat[8];
+    assert_true(other_count <= 8);
+    for (size_t i = 0; i < other_count; i++)
+        other_flat[i] = ur_vec2_add(other[i], ur_vec2_make(100, 0));
+    ur_net_list nets = {calloc(2, sizeof(ur_net)), 2};
+    assert_non_null(nets.nets);
+    nets.nets[0] = grid_net("P1", strip, strip, strip_count);
+    nets.nets[1] = grid_net("P2", other_flat, other, other_count);
+    int next;
+    ur_error error;
+    assert_int_equal(ur_net_list_find_seams(&nets, 1, &next, &error), UR_OK);
+    return nets;
+}
+
 /* Whether every engraved point of the piece lies inside ring and none inside net's outline. */
 static bool engraved_on(const ur_piece *piece, const GEOSGeometry *ring, const ur_net *net)
 {
@@ -570,19 +591,11 @@ static void test_label_goes_on_the_tab(void **state)
     (void)state;
     static const ur_vec2 strip[] = {{0, 0}, {40, 0}, {40, 3}, {0, 3}};
     static const ur_vec2 square_grid[] = {{0, 3}, {40, 3}, {40, 43}, {0, 43}};
-    ur_vec2 square_flat[4];
-    for (size_t i = 0; i < 4; i++)
-        square_flat[i] = ur_vec2_add(square_grid[i], ur_vec2_make(100, 0));
     ur_font *font;
     ur_error error;
     assert_int_equal(ur_font_open(NULL, &font, &error), UR_OK);
     for (int lap = 0; lap < 2; lap++) {
-        ur_net_list nets = {calloc(2, sizeof(ur_net)), 2};
-        assert_non_null(nets.nets);
-        nets.nets[0] = grid_net("P1", strip, strip, 4);
-        nets.nets[1] = grid_net("P2", square_flat, square_grid, 4);
-        int next;
-        assert_int_equal(ur_net_list_find_seams(&nets, 1, &next, &error), UR_OK);
+        ur_net_list nets = strip_beside(strip, 4, square_grid, 4);
         assert_int_equal(ur_net_list_last_seam(&nets), 1);
         ur_piece *pieces = pieces_of(&nets);
         ur_joint_options options = tab_options(font);
@@ -622,18 +635,10 @@ static void test_label_across_the_tab(void **state)
     static const ur_vec2 strip[] = {{0, 0}, {4.4, 0}, {4.4, 3}, {0, 3}};
     static const ur_vec2 large_grid[] = {{0, 3},   {4.4, 3},  {45, 30},
                                          {45, 60}, {-40, 60}, {-40, 30}};
-    ur_vec2 large_flat[6];
-    for (size_t i = 0; i < 6; i++)
-        large_flat[i] = ur_vec2_add(large_grid[i], ur_vec2_make(100, 0));
     ur_font *font;
     ur_error error;
     assert_int_equal(ur_font_open(NULL, &font, &error), UR_OK);
-    ur_net_list nets = {calloc(2, sizeof(ur_net)), 2};
-    assert_non_null(nets.nets);
-    nets.nets[0] = grid_net("P1", strip, strip, 4);
-    nets.nets[1] = grid_net("P2", large_flat, large_grid, 6);
-    int next;
-    assert_int_equal(ur_net_list_find_seams(&nets, 1, &next, &error), UR_OK);
+    ur_net_list nets = strip_beside(strip, 4, large_grid, 6);
     ur_piece *pieces = pieces_of(&nets);
     ur_joint_options options = tab_options(font);
     options.tab_depth = 20;
@@ -691,18 +696,10 @@ static void test_label_crosses_folds(void **state)
     (void)state;
     static const ur_vec2 strip[] = {{0, 0}, {40, 0}, {40, 30}, {0, 30}};
     static const ur_vec2 square_grid[] = {{0, 30}, {40, 30}, {40, 70}, {0, 70}};
-    ur_vec2 square_flat[4];
-    for (size_t i = 0; i < 4; i++)
-        square_flat[i] = ur_vec2_add(square_grid[i], ur_vec2_make(100, 0));
     ur_font *font;
     ur_error error;
     assert_int_equal(ur_font_open(NULL, &font, &error), UR_OK);
-    ur_net_list nets = {calloc(2, sizeof(ur_net)), 2};
-    assert_non_null(nets.nets);
-    nets.nets[0] = grid_net("P1", strip, strip, 4);
-    nets.nets[1] = grid_net("P2", square_flat, square_grid, 4);
-    int next;
-    assert_int_equal(ur_net_list_find_seams(&nets, 1, &next, &error), UR_OK);
+    ur_net_list nets = strip_beside(strip, 4, square_grid, 4);
     ur_piece *pieces = pieces_of(&nets);
     for (int k = 1; k < 16; k++) {
         ur_vec2 fold[2] = {{2.5 * k, 0}, {2.5 * k, 30}};

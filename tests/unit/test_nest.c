@@ -633,11 +633,7 @@ static void test_level_box_is_the_smallest(void **state)
     outline[count++] = ur_vec2_make(0, 120);
     double least = INFINITY;
     for (int step = 0; step < 18000; step++) {
-        double a = step * M_PI / 18000, c = cos(a), s = sin(a);
-        ur_box box = ur_box_empty();
-        for (size_t k = 0; k < count; k++)
-            ur_box_add(&box, ur_vec2_make(c * outline[k].x - s * outline[k].y,
-                                          s * outline[k].x + c * outline[k].y));
+        ur_box box = turned_box_of(outline, count, step * M_PI / 18000);
         least = fmin(least, ur_box_width(box) * ur_box_height(box));
     }
     double length, width;

@@ -65,6 +65,17 @@ static inline ur_piece polygon_piece(const char *name, const ur_vec2 *ring, size
     return piece;
 }
 
+/* The box of points turned by angle about the origin. */
+static inline ur_box turned_box_of(const ur_vec2 *points, size_t count, double angle)
+{
+    double c = cos(angle), s = sin(angle);
+    ur_box box = ur_box_empty();
+    for (size_t k = 0; k < count; k++)
+        ur_box_add(&box, ur_vec2_make(c * points[k].x - s * points[k].y,
+                                      s * points[k].x + c * points[k].y));
+    return box;
+}
+
 /* ---- A test directory under /tmp ---------------------------------------- */
 
 /* directory/name into path; fails the test rather than cut it short. */

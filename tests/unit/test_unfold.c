@@ -1141,11 +1141,7 @@ static ur_mesh accordion(void)
 static bool fits_at_some_turn(const ur_vec2 *outline, size_t count, double length, double width)
 {
     for (int step = 0; step < 18000; step++) {
-        double a = step * M_PI / 18000, c = cos(a), s = sin(a);
-        ur_box box = ur_box_empty();
-        for (size_t k = 0; k < count; k++)
-            ur_box_add(&box, ur_vec2_make(c * outline[k].x - s * outline[k].y,
-                                          s * outline[k].x + c * outline[k].y));
+        ur_box box = turned_box_of(outline, count, step * M_PI / 18000);
         if (ur_box_width(box) <= length && ur_box_height(box) <= width)
             return true;
     }
