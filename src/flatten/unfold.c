@@ -581,9 +581,9 @@ static ur_status search_in_two(unfolder *u, size_t **order, size_t count, size_t
  * level and on end, as nesting then turns it), keeping the better (the
  * level one when as good).  Neither always wins: the freer room lets the
  * search grow pieces that later block others (the project's torus sample:
- * 5 pieces level, 7 turned; Blender's torus: 10 level, 5 turned).  Each
- * search takes half of a time budget.  u is left with the pieces kept,
- * *order with its order.
+ * 5 pieces level, 7 turned; Blender's torus: 10 level, 5 turned).  The
+ * turned search takes half of a time budget.  u is left with the pieces
+ * kept, *order with its order.
  */
 static ur_status search_level_and_turned(unfolder *u, size_t **order, size_t count, size_t *steps,
                                          ur_error *error)
@@ -594,7 +594,6 @@ static ur_status search_level_and_turned(unfolder *u, size_t **order, size_t cou
         if (!turned)
             return UR_ERROR_MEMORY;
         memcpy(turned, *order, count * sizeof *turned);
-        u->options.time_budget /= 2;
     }
     unfold_score level, best;
     size_t more = 0;
@@ -603,7 +602,9 @@ static ur_status search_level_and_turned(unfolder *u, size_t **order, size_t cou
     ur_status status = search_in_two(u, order, count, steps, &level, error);
     if (status == UR_OK && u->room && u->turnable_refusals > 0) {
         u->turned_room = true;
+        u->options.time_budget /= 2;
         status = search_in_two(u, &turned, count, &more, &best, error);
+        u->options.time_budget *= 2;
         *steps += more;
         if (status == UR_OK && unfold_score_compare(best, level) < 0) {
             size_t *swap = *order;
