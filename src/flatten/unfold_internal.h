@@ -412,7 +412,7 @@ size_t unfold_outline_previous(const unfolder *u, size_t h);
 /*
  * Improves order (count edges; the best found is left in it) while the
  * budget lasts, then runs it again so that u holds its pieces; *steps the
- * steps done.
+ * steps done, *best the score of that run.
  */
 ur_status unfold_search(unfolder *u, size_t *order, size_t count, size_t *steps, unfold_score *best,
                         ur_error *error);

@@ -315,10 +315,12 @@ ur_status ur_mesh_clean_map(ur_mesh *mesh, double weld_tolerance, ur_mesh_repair
             continue;
         }
         bool split;
-        ur_error refused = *error; /* the bad edge's message, if nothing is split */
+        ur_error refused = {0}; /* the bad edge's message, if nothing is split */
+        if (error)
+            refused = *error;
         ur_status splitting = split_bad_edge(&c, &split, error);
         if (splitting != UR_OK || !split) {
-            if (splitting == UR_OK)
+            if (splitting == UR_OK && error)
                 *error = refused;
             status = splitting == UR_OK ? status : splitting;
             break;

@@ -186,7 +186,6 @@ static bool same_angle(double a, double b)
     return fabs(d) < 1e-9;
 }
 
-/* Turns a point about the origin by the angle whose cosine and sine userdata holds. */
 /*
  * The turn of class c whose angle is angle (mod a whole turn); the class's
  * turn count when it has none.

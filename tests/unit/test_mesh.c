@@ -750,6 +750,7 @@ static void test_clean_refuses(void **state)
     assert_message(error, "non-manifold edge between vertices 3 and 6 (3 triangles)");
     assert_int_equal(mesh.vertex_count, vertex_count); /* left as it was */
     assert_int_equal(mesh.triangle_count, 9);
+    assert_int_equal(ur_mesh_clean(&mesh, 1e-6, NULL, NULL), UR_ERROR_INPUT); /* no error asked */
     ur_mesh_free(&mesh);
 
     mesh = grid(2, 2);
