@@ -360,15 +360,16 @@ static double mean_edge_length(const ur_mesh *mesh)
  * as many; the library keeps the steps after its first 200 only when they
  * give fewer pieces (Blender's monkey head, 968 triangles, 723 steps: 17
  * pieces instead of 31; a 2,208-triangle sphere keeps 200 steps and its
- * time).  Only a mesh of more than
- * UNFOLD_TIMED_ABOVE triangles, whose steps take long, stops early after
- * UNFOLD_SECONDS of wall-clock time, and may then unfold differently from
- * one run to the next.  (A 2,208-triangle sphere takes 200 steps in about
- * 0.25 s of CPU; a wall-clock limit on every mesh made the sample meshes'
- * pieces depend on the machine's load.)
+ * time).  Only a mesh of more than UNFOLD_TIMED_ABOVE triangles, whose
+ * steps take long, stops early after UNFOLD_SECONDS of wall-clock time,
+ * and may then unfold differently from one run to the next.  (A
+ * 2,208-triangle sphere takes 200 steps in about 0.25 s of CPU; a
+ * wall-clock limit on every mesh made the sample meshes' pieces depend on
+ * the machine's load.)
  */
 enum { UNFOLD_STEPS = 200, UNFOLD_MOST_STEPS = 1000, UNFOLD_TIMED_ABOVE = 20000 };
 #define UNFOLD_WORK 7e5
+#define UNFOLD_SECONDS 5.0
 
 static size_t unfold_steps(const ur_mesh *mesh)
 {
@@ -377,7 +378,6 @@ static size_t unfold_steps(const ur_mesh *mesh)
         return UNFOLD_STEPS;
     return (size_t)fmin(UNFOLD_MOST_STEPS, steps);
 }
-#define UNFOLD_SECONDS 5.0
 
 /*
  * Unfolds along the edges: every face keeps its exact shape, flat faces
