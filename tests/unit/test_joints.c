@@ -579,6 +579,18 @@ static bool engraved_on(const ur_piece *piece, const GEOSGeometry *ring, const u
     return on && !off;
 }
 
+/* The piece has one tab, and its one label stands on it, inside the grown outline. */
+static void check_label_on_its_tab(const ur_piece *piece, const ur_net *net)
+{
+    assert_int_equal(count_joints(piece), 1);
+    assert_int_equal(count_records(piece, UR_ALLOWANCE_LABEL, true), 0);
+    assert_int_equal(count_records(piece, UR_ALLOWANCE_LABEL, false), 1);
+    GEOSGeometry *grown = polygon(piece->paths[0].points, piece->paths[0].count);
+    assert_true(engraved_on(piece, grown, net));
+    GEOSGeom_destroy_r(geos, grown);
+    check_nothing_crosses_outline(piece);
+}
+
 /*
  * A strip 3 mm wide seamed along its 40 mm side to a 40 mm square: a 5 mm
  * label (2.5 mm at the least, 0.75 mm clear of the edges) has no room on
@@ -604,14 +616,7 @@ static void test_label_goes_on_the_tab(void **state)
         assert_int_equal(count_records(&pieces[1], UR_ALLOWANCE_LABEL, true), 0);
         check_engraving_inside(&pieces[1], &nets.nets[1]);
         if (!lap) {
-            /* The tab went on the strip; its label stands on it, inside the grown outline. */
-            assert_int_equal(count_joints(&pieces[0]), 1);
-            assert_int_equal(count_records(&pieces[0], UR_ALLOWANCE_LABEL, true), 0);
-            assert_int_equal(count_records(&pieces[0], UR_ALLOWANCE_LABEL, false), 1);
-            GEOSGeometry *grown = polygon(pieces[0].paths[0].points, pieces[0].paths[0].count);
-            assert_true(engraved_on(&pieces[0], grown, &nets.nets[0]));
-            GEOSGeom_destroy_r(geos, grown);
-            check_nothing_crosses_outline(&pieces[0]);
+            check_label_on_its_tab(&pieces[0], &nets.nets[0]); /* the tab went on the strip */
         } else {
             assert_int_equal(count_records(&pieces[0], UR_ALLOWANCE_LABEL, true), 1);
         }
@@ -644,13 +649,7 @@ static void test_label_across_the_tab(void **state)
     options.tab_depth = 20;
     options.tab_angle = 88;
     assert_int_equal(ur_pieces_add_joints(pieces, &nets, &options, &error), UR_OK);
-    assert_int_equal(count_joints(&pieces[0]), 1);
-    assert_int_equal(count_records(&pieces[0], UR_ALLOWANCE_LABEL, true), 0);
-    assert_int_equal(count_records(&pieces[0], UR_ALLOWANCE_LABEL, false), 1);
-    GEOSGeometry *grown = polygon(pieces[0].paths[0].points, pieces[0].paths[0].count);
-    assert_true(engraved_on(&pieces[0], grown, &nets.nets[0]));
-    GEOSGeom_destroy_r(geos, grown);
-    check_nothing_crosses_outline(&pieces[0]);
+    check_label_on_its_tab(&pieces[0], &nets.nets[0]);
     ur_box text = ur_box_empty(); /* across: longer up the tab (y) than along its fold (x) */
     for (size_t k = 0; k < pieces[0].path_count; k++)
         for (size_t i = 0; pieces[0].paths[k].op == UR_OP_ENGRAVE && i < pieces[0].paths[k].count;
