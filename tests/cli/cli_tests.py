@@ -2663,15 +2663,18 @@ def lines_by_part(svg_file):
 def nest_keeps_the_folds_and_labels_of_unroll_files(work):
     """unroll's own cut file (SVG and DXF) nested again: every part keeps its
     folds and labels, turned and placed with it: each outline holds as many
-    score, valley and engrave lines, as long in all, as it did."""
+    score, valley and engrave lines, as long in all, as it did.  The sheet
+    of the unfolded torus with the most parts is nested again."""
     mesh = os.path.join(REPO, "samples", "torus.obj")
     run(work, "mesh", mesh, "--flatten", "unfold", "--material", "paper-0.3mm", "--nest-time", "0",
         "--no-kerf-compensation", "--order", "none", "-o", "t.svg", "--format", "svg,dxf",
         "--quiet")
-    before = lines_by_part(os.path.join(work, "t-1.svg"))
+    sheets = sorted(name[:-4] for name in os.listdir(work) if re.fullmatch(r"t-\d+\.svg", name))
+    sheet = max(sheets, key=lambda name: len(lines_by_part(os.path.join(work, name + ".svg"))))
+    before = lines_by_part(os.path.join(work, sheet + ".svg"))
     check(len(before) >= 3 and all(part[1] > 0 and part[5] > 0 for part in before),
-          "the unfolded torus has no folds or labels to keep")
-    for source in ("t-1.svg", "t-1.dxf"):
+          "the unfolded torus has no sheet of 3 parts with folds and labels to keep")
+    for source in (sheet + ".svg", sheet + ".dxf"):
         result = run(work, "nest", source, "--material", "paper-0.3mm", "--nest-time", "0",
                      "--no-kerf-compensation", "--rotations", "4", "-o", "again.svg",
                      "--format", "svg,dxf")
