@@ -420,7 +420,8 @@ static void test_not_a_mesh(void **state)
     /* Known extensions: assimp says why it cannot read them. */
     expect_refusal(write_file("notes.stl", text), NULL, "STL");
     expect_refusal(write_file("notes.ply", text), NULL, "ply");
-    expect_refusal(write_file("notes.gltf", text), NULL, "cannot read as a mesh");
+    expect_refusal(write_file("notes.gltf", text), NULL, "notes.gltf: not a glTF file");
+    expect_refusal(write_file("notes.glb", text), NULL, "notes.glb: not a binary glTF file");
     /* "plywood" reads as an OBJ point ("p") with a bad index. */
     expect_refusal(write_file("notes.obj", text), NULL, "cannot read as a mesh");
     /* Other text the OBJ reader skips line by line, finding nothing. */
@@ -560,24 +561,32 @@ static void test_ply_header_checked(void **state)
 }
 
 /*
- * assimp reads a file by its content when its name's format does not fit:
- * a PLY header named .gltf or .obj went to assimp's PLY reader unchecked,
- * which looped for ever on this one (found by fuzz_mesh with a .gltf name).
- * The PLY checks go by the content too, for a file and for a buffer.
+ * assimp reads a file by its content when no reader its name asks for takes
+ * it: a PLY header named .gltf went to assimp's PLY reader unchecked, which
+ * looped for ever on this one (found by fuzz_mesh).  A .gltf must be JSON
+ * (a .glb start with "glTF"), and the PLY checks go by the content, for a
+ * file and for a buffer: named .obj, the header is checked as PLY.
  */
-static void test_ply_content_checked_whatever_the_name(void **state)
+static void test_content_checked_whatever_the_name(void **state)
 {
     (void)state;
     const char *text = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\n"
                        "property floder\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n";
-    expect_refusal(write_file("hang.gltf", text), NULL, "hang.gltf:5: not a line of a PLY header");
+    expect_refusal(write_file("hang.gltf", text), NULL, "hang.gltf: not a glTF file");
+    expect_refusal(write_file("hang.glb", text), NULL, "hang.glb: not a binary glTF file");
     expect_refusal(write_file("hang.obj", text), NULL, "hang.obj:5: not a line of a PLY header");
     ur_mesh mesh;
     ur_error error;
     assert_int_equal(
         ur_mesh_import_buffer("hang.gltf", text, strlen(text), NULL, &mesh, NULL, &error),
         UR_ERROR_INPUT);
-    assert_non_null(strstr(error.message, "hang.gltf:5: not a line of a PLY header"));
+    assert_non_null(strstr(error.message, "hang.gltf: not a glTF file"));
+    assert_int_equal(
+        ur_mesh_import_buffer("hang.obj", text, strlen(text), NULL, &mesh, NULL, &error),
+        UR_ERROR_INPUT);
+    assert_non_null(strstr(error.message, "hang.obj:5: not a line of a PLY header"));
+    /* JSON after a byte-order mark and blanks is let through to assimp. */
+    expect_refusal(write_file("bom.gltf", "\xEF\xBB\xBF \n{}"), NULL, "cannot read as a mesh");
     /* Only a first word "ply" makes a PLY: an OBJ that starts "plywood" is read as OBJ. */
     expect_refusal(write_file("notes.obj", "plywood\n"), NULL, "notes.obj");
     ur_error obj_error;
@@ -652,7 +661,7 @@ int main(void)
         cmocka_unit_test(test_coordinates_beyond_1000_km),
         cmocka_unit_test(test_headers_claiming_too_much),
         cmocka_unit_test(test_ply_header_checked),
-        cmocka_unit_test(test_ply_content_checked_whatever_the_name),
+        cmocka_unit_test(test_content_checked_whatever_the_name),
         cmocka_unit_test(test_bad_index_and_options),
         cmocka_unit_test(test_up_axis_from_the_writer),
     };
