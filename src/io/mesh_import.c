@@ -412,11 +412,12 @@ static ur_status check_stl_header(const char *path, FILE *file, off_t size, ur_e
 
 /*
  * Whether the content starts like a PLY file ("ply" on its first line,
- * blanks allowed), whatever the name says: assimp falls back to reading by
- * content a file named .obj or .gltf that is not one, reads one that starts
- * so as PLY, and loops for ever on some such headers (found by fuzzing with
- * a .gltf name) unless the PLY checks see them first.  Leaves the stream at
- * its start.
+ * blanks allowed), whatever the name says: assimp reads a file by its
+ * content when no reader its name asks for takes it, and its PLY reader
+ * loops for ever on some headers (one under a .gltf name was found by
+ * fuzzing).  glTF names are checked for glTF first (check_gltf_start);
+ * any other file that starts so gets the PLY checks before assimp sees it.
+ * Leaves the stream at its start.
  */
 static bool starts_as_ply(FILE *file)
 {
@@ -457,9 +458,10 @@ static ur_status check_gltf_start(const char *path, FILE *file, ur_error *error)
 }
 
 /*
- * What a header says about the size, for the formats that assimp trusts
- * blindly: of the file at path, or of size bytes of data when data is not
- * NULL (read through a stream over them: the same code).
+ * What a header says, for the formats that assimp trusts blindly (a PLY's
+ * or a binary STL's counts), and whether a glTF starts as one: of the file
+ * at path, or of size bytes of data when data is not NULL (read through a
+ * stream over them: the same code).
  */
 static ur_status check_header(const char *path, const void *data, off_t size, ur_error *error)
 {
