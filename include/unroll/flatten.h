@@ -293,9 +293,12 @@ typedef struct ur_unfolding {
  * one of the smallest pieces goes first, or a fold goes last, and the
  * joining is done again; a change that leaves fewer pieces, or as many with
  * fewer of a single face, or as many with a shorter cut, is kept (worse
- * ones now and then early on, annealing).  The search stops early when the
- * pieces are as few as the mesh's parts, or after 100 steps with nothing
- * better.  For a seed and a number of steps the result is always the same;
+ * ones now and then early on, annealing).  After 100 steps with nothing
+ * better the walk starts again from the first order, as hot as at first,
+ * while max_steps leaves at least 100 more (without max_steps the search
+ * stops there); the best of all walks is kept.  The search stops early
+ * when the pieces are as few as the mesh's parts.  For a seed and a
+ * number of steps the result is always the same;
  * within a time budget the number of steps depends on the machine.  Every
  * edge was tried, so a piece of one face had nowhere to go: across every
  * one of its seams it would overlap or touch its neighbour.

@@ -15,6 +15,7 @@
  */
 #include "unfold_internal.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -158,9 +159,9 @@ static double worse_by(unfold_score a, unfold_score b, double total_length)
 
 typedef struct search {
     unfolder *u;
-    size_t *order, *trial, *best, *pieces;
+    size_t *order, *trial, *best, *pieces, *first_order; /* first_order: where the walks begin */
     size_t count;
-    unfold_score current, top;
+    unfold_score current, top, first;
     double start, total_length;
     uint64_t random;
 } search;
@@ -205,29 +206,60 @@ static ur_status step_once(search *s, double progress, bool *moved, ur_error *er
 }
 
 /*
- * The search gives up after UNFOLD_PATIENCE steps without a new best.  The
- * longest run of steps between two new bests in 200 was 93 on the sample
- * UV sphere (a seam without room for its tab before, none after), 53 on
- * the sample torus and at most 38 on the sample head, Blender's monkey,
- * subdivided monkey, torus and UV sphere and the bench's 48 x 24 sphere;
- * a cube, whose first cut is its best, and a cylinder, whose best came at
- * the first step, took all 200 steps for nothing.
+ * After UNFOLD_PATIENCE steps without a new best the walk starts again
+ * from the first order, its random choices going on, while at least that
+ * many counted steps are left; the best of all walks is kept.  The longest
+ * run of steps between two new bests in 200 was 93 on the sample UV sphere
+ * (a seam without room for its tab before, none after), 53 on the sample
+ * torus and at most 38 on the sample head, Blender's monkey, subdivided
+ * monkey, torus and UV sphere and the bench's 48 x 24 sphere.  Blender's
+ * cylinder (124 triangles, 1,000 steps) had its best at the first step and
+ * walked on for nothing; one piece needs its two caps on opposite sides
+ * of the strip about a quarter of the way from each end, which other walks
+ * find (seeds 2 and 4 did in 200 steps).  A search with no count of steps
+ * (time alone) stops instead.
  */
 enum { UNFOLD_PATIENCE = 100 };
+
+static bool may_restart(const search *s, size_t step)
+{
+    size_t most = s->u->options.max_steps;
+    return most > 0 && step + UNFOLD_PATIENCE <= most;
+}
+
+static void start_again(search *s)
+{
+    memcpy(s->order, s->first_order, s->count * sizeof *s->order);
+    s->current = s->first;
+}
+
+/* How far a walk that began at progress `from` has gone through what is left, from 0 to 1. */
+static double walk_progress(double from, double progress)
+{
+    return from < 1.0 ? fmin(1.0, (progress - from) / (1.0 - from)) : 1.0;
+}
 
 static ur_status run_search(search *s, size_t least, size_t *steps, ur_error *error)
 {
     const ur_unfold_options *o = &s->u->options;
     size_t stall = 0;
+    double walk_from = 0.0; /* each walk cools from the same temperature */
     for (size_t step = 0;; step++) {
         double progress = spent(s, step);
-        if (progress >= 1.0 || unfold_score_cost(s->top) <= least || stall >= UNFOLD_PATIENCE)
+        if (progress >= 1.0 || unfold_score_cost(s->top) <= least)
             return UR_OK;
+        if (stall >= UNFOLD_PATIENCE) {
+            if (!may_restart(s, step))
+                return UR_OK;
+            start_again(s);
+            stall = 0;
+            walk_from = progress;
+        }
         if (step % 32 == 0 && o->progress)
             o->progress(o->progress_context, "improving", progress);
         unfold_score before = s->top;
         bool moved;
-        ur_status status = step_once(s, progress, &moved, error);
+        ur_status status = step_once(s, walk_progress(walk_from, progress), &moved, error);
         if (status != UR_OK)
             return status;
         if (!moved)
@@ -260,14 +292,17 @@ ur_status unfold_search(unfolder *u, size_t *order, size_t count, size_t *steps,
                 .count = count,
                 .current = first,
                 .top = first,
+                .first = first,
                 .start = seconds_now(),
                 .random = o->seed * UINT64_C(0x9E3779B97F4A7C15) | 1};
     s.trial = ur_alloc_array(count, sizeof *s.trial, error);
     s.best = ur_alloc_array(count, sizeof *s.best, error);
     s.pieces = ur_alloc_array(n, sizeof *s.pieces, error);
-    status = s.trial && s.best && s.pieces ? UR_OK : UR_ERROR_MEMORY;
+    s.first_order = ur_alloc_array(count, sizeof *s.first_order, error);
+    status = s.trial && s.best && s.pieces && s.first_order ? UR_OK : UR_ERROR_MEMORY;
     if (status == UR_OK) {
         memcpy(s.best, order, count * sizeof *s.best);
+        memcpy(s.first_order, order, count * sizeof *s.first_order);
         for (size_t h = 0; h < 3 * n; h++)
             if (u->edges.twins[h] != UR_NO_EDGE && h < u->edges.twins[h])
                 s.total_length += unfold_edge_length(u->mesh, h);
@@ -280,5 +315,6 @@ ur_status unfold_search(unfolder *u, size_t *order, size_t count, size_t *steps,
     free(s.trial);
     free(s.best);
     free(s.pieces);
+    free(s.first_order);
     return status;
 }

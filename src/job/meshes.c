@@ -352,9 +352,10 @@ static double mean_edge_length(const ur_mesh *mesh)
 }
 
 /*
- * The search for fewer pieces takes a number of steps (fewer when 100 in
- * a row find nothing better), counted, so that a mesh unfolds the same way
- * every time and on every machine, however loaded: UNFOLD_WORK divided by
+ * The search for fewer pieces takes a number of steps (fewer when it
+ * finds the fewest pieces the mesh allows), counted, so that a mesh
+ * unfolds the same way every time and on every machine, however loaded:
+ * UNFOLD_WORK divided by
  * the triangles (a step's cost grows with them), at most
  * UNFOLD_MOST_STEPS, and UNFOLD_STEPS when that would be less than twice
  * as many; the library keeps the steps after its first 200 only when they
