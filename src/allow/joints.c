@@ -500,10 +500,12 @@ static ur_status warn_stretch(joiner *j, const seam_job *sj, const stretch *st, 
     char which[48] = "";
     if (total > 1 && sj->edges[0] == sj->edges[1])
         c_snprintf(which, sizeof which, " (edge %zu of %zu)", st->first + 1, total);
+    /* Both sides of a slit in one piece meet the same: said once. */
+    bool same = strcmp(sides[0], sides[1]) == 0;
     status = record(&j->pieces[sj->s->net[first_side]], UR_ALLOWANCE_JOINT, run_middle(&r), 0, true,
-                    error, "no room for a %s on seam %s%s: %s, %s: join it by hand",
+                    error, "no room for a %s on seam %s%s: %s%s%s: join it by hand",
                     j->options->lap ? "lap" : "glue tab", sj->label, which, sides[first_side],
-                    sides[1 - first_side]);
+                    same ? ", on either side" : ", ", same ? "" : sides[1 - first_side]);
     free(r.points);
     return status;
 }

@@ -344,9 +344,9 @@ static ur_net grid_net(const char *name, const ur_vec2 *flat, const ur_vec2 *gri
  * rim of the hole it leaves in the frame.  The frame is one piece, cut
  * open along the grid line x = 20 below the hole (that slit is a second
  * seam, both of its sides on the frame) and laid out with the slit opened
- * 4 mm, so that the frame's outline is a simple ring.
+ * by opening (mm), so that the frame's outline is a simple ring.
  */
-static ur_net_list grid_with_centre(void)
+static ur_net_list grid_with_centre(double opening)
 {
     static const ur_vec2 centre[] = {{20, 20}, {40, 20}, {40, 40}, {20, 40}};
     static const ur_vec2 frame_grid[] = {{20, 0},  {60, 0},  {60, 60}, {0, 60},  {0, 0},  {20, 0},
@@ -354,7 +354,7 @@ static ur_net_list grid_with_centre(void)
     ur_vec2 frame_flat[11];
     for (size_t i = 0; i < 11; i++)
         frame_flat[i] = frame_grid[i];
-    frame_flat[5].x = frame_flat[6].x = 16; /* the slit's left side, opened */
+    frame_flat[5].x = frame_flat[6].x = 20 - opening; /* the slit's left side, opened */
     ur_net_list nets = {calloc(2, sizeof(ur_net)), 2};
     assert_non_null(nets.nets);
     nets.nets[0] = grid_net("P1", frame_flat, frame_grid, 11);
@@ -377,7 +377,7 @@ static bool side_is_loop(const ur_net *net, size_t k)
 static void test_loop_seams_joined(void **state)
 {
     (void)state;
-    ur_net_list nets = grid_with_centre();
+    ur_net_list nets = grid_with_centre(4);
     /* The seams found: the slit and the loop round the centre quad. */
     assert_int_equal(ur_net_list_last_seam(&nets), 2);
     assert_int_equal(nets.nets[1].seam_side_count, 1);
@@ -434,6 +434,43 @@ static void test_loop_seams_joined(void **state)
     assert_int_equal(loop_tabs, 4);
     assert_true(grown_area > 4 * 0.2 * 5 * 20 * 0.5);
     assert_true(grown_area <= 4 * 75 + 2 * 20 * 5 + 1e-9); /* and the slit's, if any */
+    ur_font_close(font);
+    free_pieces(pieces, nets.count);
+    ur_net_list_free(&nets);
+}
+
+/*
+ * The same frame with its slit opened 1 mm: a 5 mm tab finds room on
+ * neither side of it, and the warning says why once, since both sides
+ * meet the same (each other, 1 mm away).
+ */
+static void test_narrow_slit_said_once(void **state)
+{
+    (void)state;
+    ur_net_list nets = grid_with_centre(1);
+    ur_piece *pieces = pieces_of(&nets);
+    ur_font *font;
+    ur_error error;
+    assert_int_equal(ur_font_open(NULL, &font, &error), UR_OK);
+    ur_joint_options options = tab_options(font);
+    options.tab_depth = 5;
+    options.thickness = 0.3;
+    options.label_height = 3;
+    assert_int_equal(ur_pieces_add_joints(pieces, &nets, &options, &error), UR_OK);
+    size_t warnings = 0;
+    for (size_t r = 0; r < pieces[0].record_count; r++) {
+        const ur_allowance_record *record = &pieces[0].records[r];
+        if (record->kind != UR_ALLOWANCE_JOINT || !record->warning)
+            continue;
+        warnings++;
+        print_message("%s\n", record->reason);
+        const char *why = "on P1 the seam's other side comes within 1.0 mm (a narrow slit)";
+        const char *first = strstr(record->reason, why);
+        assert_non_null(first);
+        assert_null(strstr(first + 1, why));
+        assert_non_null(strstr(record->reason, "(a narrow slit), on either side: join it by hand"));
+    }
+    assert_int_equal(warnings, 1);
     ur_font_close(font);
     free_pieces(pieces, nets.count);
     ur_net_list_free(&nets);
@@ -756,9 +793,9 @@ int main(void)
         cmocka_unit_test(test_seam_labels),           cmocka_unit_test(test_cylinder_tab),
         cmocka_unit_test(test_helicoid_labels_pair),  cmocka_unit_test(test_every_seam_joined),
         cmocka_unit_test(test_unfolded_tabs_clear),   cmocka_unit_test(test_loop_seams_joined),
-        cmocka_unit_test(test_laps_marked_on_both),   cmocka_unit_test(test_bad_options),
-        cmocka_unit_test(test_label_goes_on_the_tab), cmocka_unit_test(test_label_crosses_folds),
-        cmocka_unit_test(test_label_across_the_tab),
+        cmocka_unit_test(test_narrow_slit_said_once), cmocka_unit_test(test_laps_marked_on_both),
+        cmocka_unit_test(test_bad_options),           cmocka_unit_test(test_label_goes_on_the_tab),
+        cmocka_unit_test(test_label_crosses_folds),   cmocka_unit_test(test_label_across_the_tab),
     };
     return cmocka_run_group_tests(tests, start, finish);
 }
