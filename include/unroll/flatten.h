@@ -167,7 +167,14 @@ typedef struct ur_unfold_options {
      */
     double time_budget;
     size_t max_steps; /* most improvement steps, 0 for no limit but the time */
-    uint64_t seed;    /* of the search's random choices; default 1 */
+    /*
+     * With max_steps: the search takes at least this many steps for each
+     * piece its first 200 steps leave, up to 1,000 in all (a mesh in many
+     * pieces is searched longer: each piece costs the nesting far more
+     * than a step costs the search).  Default 0: max_steps alone.
+     */
+    size_t steps_per_piece;
+    uint64_t seed; /* of the search's random choices; default 1 */
     /*
      * The room a piece may take (mm, any order): every piece's smallest
      * enclosing rectangle fits it (long side along the long side).  0 x 0:

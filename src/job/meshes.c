@@ -361,14 +361,23 @@ static double mean_edge_length(const ur_mesh *mesh)
  * as many; the library keeps the steps after its first 200 only when they
  * give fewer pieces (Blender's monkey head, 968 triangles, 723 steps: 17
  * pieces instead of 31; a 2,208-triangle sphere keeps 200 steps and its
- * time).  Only a mesh of more than UNFOLD_TIMED_ABOVE triangles, whose
+ * time).  A mesh that the first 200 steps leave in many pieces gets
+ * UNFOLD_STEPS_PER_PIECE steps for each, up to 1,000: a step costs about a
+ * millisecond, a piece the nesting far more (Blender's monkey head
+ * subdivided once: 132 pieces and 26 s in all with 200 steps, 106 and
+ * 20 s with 1,000).  Only a mesh of more than UNFOLD_TIMED_ABOVE triangles, whose
  * steps take long, stops early after UNFOLD_SECONDS of wall-clock time,
  * and may then unfold differently from one run to the next.  (A
  * 2,208-triangle sphere takes 200 steps in about 0.25 s of CPU; a
  * wall-clock limit on every mesh made the sample meshes' pieces depend on
  * the machine's load.)
  */
-enum { UNFOLD_STEPS = 200, UNFOLD_MOST_STEPS = 1000, UNFOLD_TIMED_ABOVE = 20000 };
+enum {
+    UNFOLD_STEPS = 200,
+    UNFOLD_MOST_STEPS = 1000,
+    UNFOLD_TIMED_ABOVE = 20000,
+    UNFOLD_STEPS_PER_PIECE = 8
+};
 #define UNFOLD_WORK 7e5
 #define UNFOLD_SECONDS 5.0
 
@@ -403,6 +412,7 @@ static ur_status unfold_mesh(const job_run *run, const job_room *room, const ur_
     if (run->job.fewer_pieces) /* a seam joined by hand costs half a piece */
         options.gap_break_cost = 0.5;
     options.max_steps = unfold_steps(mesh);
+    options.steps_per_piece = UNFOLD_STEPS_PER_PIECE;
     options.time_budget = mesh->triangle_count > UNFOLD_TIMED_ABOVE ? UNFOLD_SECONDS : 0.0;
     double tab = material->joint == UR_JOINT_LAP ? material->lap_width : material->tab_depth;
     double edge = mean_edge_length(mesh);

@@ -1252,6 +1252,51 @@ static void test_stalled_search_starts_again(void **state)
     ur_mesh_free(&mesh);
 }
 
+/*
+ * steps_per_piece: a search whose first 200 steps leave many pieces goes
+ * on (8 steps a piece, up to 1,000 in all) and comes out in no more
+ * pieces; one that leaves few takes max_steps as before.  The sample UV
+ * sphere in a 60 x 40 mm room comes in 47 pieces after 200 steps (45 after
+ * 8 steps a piece), in a 397 x 274 mm room in 7.
+ */
+static void test_steps_for_many_pieces(void **state)
+{
+    (void)state;
+    ur_mesh mesh = cleaned_mesh_file("samples/uvsphere.obj");
+    ur_unfold_options options;
+    ur_unfold_options_default(&options);
+    options.time_budget = 0;
+    options.min_gap = 3;
+    options.max_steps = 200;
+    double rooms[2][2] = {{60, 40}, {397, 274}};
+    for (int r = 0; r < 2; r++) {
+        options.room_length = rooms[r][0];
+        options.room_width = rooms[r][1];
+        ur_unfolding u[2];
+        for (int k = 0; k < 2; k++) {
+            options.steps_per_piece = k ? 8 : 0;
+            u[k] = unfold_with(&mesh, &options);
+            allow_projection(); /* nearly flat faces are laid flat */
+            check_unfolding(&mesh, &u[k], NULL, 0);
+            length_tolerance = 1e-9;
+        }
+        print_message("room %g x %g: %zu pieces in %zu steps; by pieces %zu in %zu\n", rooms[r][0],
+                      rooms[r][1], u[0].count, u[0].steps, u[1].count, u[1].steps);
+        if (r == 0) {
+            assert_true(u[0].count >= 40);
+            assert_true(u[1].steps >= u[0].steps + 8 * 40 - 200);
+            assert_true(u[1].count <= u[0].count);
+        } else {
+            assert_true(8 * u[0].count < 200);
+            assert_int_equal(u[1].steps, u[0].steps);
+            assert_int_equal(u[1].count, u[0].count);
+        }
+        ur_unfolding_free(&u[0]);
+        ur_unfolding_free(&u[1]);
+    }
+    ur_mesh_free(&mesh);
+}
+
 /* A face larger than the room cannot be split: refused, naming it and its size. */
 static void test_face_larger_than_room(void **state)
 {
@@ -1622,6 +1667,7 @@ int main(void)
         cmocka_unit_test(test_room_taken_turned),
         cmocka_unit_test(test_longer_search_only_when_it_pays),
         cmocka_unit_test(test_stalled_search_starts_again),
+        cmocka_unit_test(test_steps_for_many_pieces),
         cmocka_unit_test(test_face_larger_than_room),
         cmocka_unit_test(test_search_repeats),
         cmocka_unit_test(test_min_gap),
