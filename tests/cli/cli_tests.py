@@ -1230,6 +1230,54 @@ def charts_keep_within_the_material(work):
         "--flatten", "charts", "-o", "x.svg")
 
 
+def low_poly_sphere(segments, rings, radius):
+    """An OBJ of a UV sphere of quads (triangles round the poles), as a modeller makes one."""
+    lines = ["v 0 0 %.9f" % radius, "v 0 0 %.9f" % -radius]
+    for j in range(1, rings):
+        polar = math.pi * j / rings
+        for i in range(segments):
+            a = 2 * math.pi * i / segments
+            lines.append("v %.9f %.9f %.9f" % (radius * math.sin(polar) * math.cos(a),
+                                               radius * math.sin(polar) * math.sin(a),
+                                               radius * math.cos(polar)))
+    ring = lambda j, i: 3 + (j - 1) * segments + i % segments
+    for i in range(segments):
+        lines.append("f 1 %d %d" % (ring(1, i), ring(1, i + 1)))
+        lines.append("f 2 %d %d" % (ring(rings - 1, i + 1), ring(rings - 1, i)))
+        for j in range(1, rings - 1):
+            lines.append("f %d %d %d %d" % (ring(j, i), ring(j + 1, i), ring(j + 1, i + 1),
+                                            ring(j, i + 1)))
+    return "\n".join(lines) + "\n"
+
+
+@test
+def charts_of_single_faces_suggest_unfolding(work):
+    # An 8 x 4 sphere: its faces meet at 45 degrees, sharp (over 30 degrees)
+    # but for those that chart joining takes back, so most of its 32 faces are
+    # charts of their own, strain-free: the summary says how many and
+    # suggests --flatten unfold, which holds them by folds in far fewer
+    # pieces.  The sample head (charts of many faces) gets no such note.
+    write(work, "ball.obj", low_poly_sphere(8, 4, 50.0))
+    result = run(work, "mesh", "ball.obj", "--material", "cardboard-2mm", "--nest-time", "0",
+                 "-o", "c.svg", "--report", "c.json")
+    charts = report(work, "c.json")["pieces"]
+    said = re.search(r"mesh: note: (\d+) of the (\d+) charts are a face or two of the mesh, cut "
+                     r"apart at sharp edges; --flatten unfold joins such faces", result.stderr)
+    check(said, result.stderr)
+    small, total = int(said.group(1)), int(said.group(2))
+    check(total == len(charts) and 10 <= small <= total and 4 * small >= total,
+          "%d of %d charts said, %d in the report" % (small, total, len(charts)))
+    check(all(p["max_stretch"] <= 1e-9 and p["max_compression"] <= 1e-9 for p in charts),
+          "a chart of flat faces is strained")
+    run(work, "mesh", "ball.obj", "--material", "cardboard-2mm", "--flatten", "unfold",
+        "--nest-time", "0", "-o", "u.svg", "--report", "u.json")
+    pieces = len(report(work, "u.json")["pieces"])
+    check(pieces <= 4, "--flatten unfold: %d pieces" % pieces)
+    result = run(work, "mesh", os.path.join(REPO, "samples", "head.obj"), "--material",
+                 "cardboard-2mm", "--nest-time", "0", "-o", "h.svg")
+    check("--flatten unfold" not in result.stderr, result.stderr)
+
+
 @test
 def mesh_in_metres_gets_a_warning(work):
     # A 2-unit cube, as Blender exports its default cube (metres).
