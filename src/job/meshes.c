@@ -522,7 +522,7 @@ static ur_status flatten_in_strips(const job_run *run, const ur_material *materi
 
 /*
  * A mesh whose faces meet at sharp edges comes out in charts of a face or
- * two (Blender's monkey head in 2 mm cardboard: 197 charts, 114 of them so),
+ * two (Blender's monkey head in 2 mm cardboard: 197 charts, 106 of them so),
  * which --flatten unfold holds together by folds, every face exact (17
  * pieces).  Said when at least a quarter of the charts, and 10 or more, are
  * of two triangles or fewer (a finely meshed model's charts are larger).
