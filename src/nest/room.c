@@ -327,9 +327,13 @@ static bool further_left(ur_vec2 p, ur_vec2 best)
 /*
  * The best place for piece at turn on sheet: the leftmost, then lowest,
  * feasible one.  Columns of cells are looked at from the left; the first
- * with room holds it (the columns after it lie further right).
+ * with room holds it (the columns after it lie further right).  A column
+ * where the part's box would start right of beyond (another turn's place
+ * already lies further left) is not looked at: false then, without
+ * marking the room full.
  */
-static bool place_on(nester *n, size_t sheet, size_t piece, size_t turn, ur_vec2 *at)
+static bool place_on(nester *n, size_t sheet, size_t piece, size_t turn, double beyond,
+                     ur_vec2 *at)
 {
     double fit[4];
     if (sheet >= n->sheet_count) { /* empty: the inner-fit rectangle's lower left corner */
@@ -344,7 +348,10 @@ static bool place_on(nester *n, size_t sheet, size_t piece, size_t turn, ur_vec2
         return false;
     if (!grid->cols && !grid_make(n, sheet, piece, turn, grid))
         return false; /* it does not fit the sheet, or no memory: no place */
+    double left = nest_shape_of(n, piece, turn)->box.min.x;
     for (size_t i = 0; i < grid->cols; i++) {
+        if (grid->x0 + (double)i * n->cell_size + left > beyond)
+            return false;
         bool found = false;
         for (size_t c = i * grid->rows; c < (i + 1) * grid->rows; c++) {
             if (!grid->free[c])
@@ -406,7 +413,12 @@ ur_status nest_place_piece(nester *n, size_t piece, size_t held)
         size_t first = held < turns ? held : 0, last = held < turns ? held + 1 : turns;
         for (size_t t = first; t < last; t++) {
             ur_vec2 at = {0, 0};
-            if (!place_on(n, sheet, piece, t, &at)) {
+            /*
+             * On sheets a turn can win only left of the best so far (ties
+             * go to the earlier turn), so its columns beyond are spared.
+             */
+            double beyond = found && n->options->roll_width <= 0 ? best_key.x + 1e-3 : INFINITY;
+            if (!place_on(n, sheet, piece, t, beyond, &at)) {
                 if (n->out_of_memory)
                     return ur_error_out_of_memory(n->error);
                 continue;
