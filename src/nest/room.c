@@ -332,8 +332,7 @@ static bool further_left(ur_vec2 p, ur_vec2 best)
  * already lies further left) is not looked at: false then, without
  * marking the room full.
  */
-static bool place_on(nester *n, size_t sheet, size_t piece, size_t turn, double beyond,
-                     ur_vec2 *at)
+static bool place_on(nester *n, size_t sheet, size_t piece, size_t turn, double beyond, ur_vec2 *at)
 {
     double fit[4];
     if (sheet >= n->sheet_count) { /* empty: the inner-fit rectangle's lower left corner */
