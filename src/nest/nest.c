@@ -244,25 +244,45 @@ typedef GEOSGeometry *(*pair_maker)(nester *n, size_t a, size_t ta, size_t b, si
  */
 #define NEST_SUMS_POINTS 4000000
 
+/* Drops every pair's sums but those of keep (a key, or SIZE_MAX for none). */
+static void drop_sums(nester *n, size_t keep)
+{
+    size_t pairs = n->class_count * n->turn_count * n->class_count * n->turn_count;
+    for (size_t k = 0; k < pairs; k++)
+        if (k != keep && n->sums[k]) {
+            GEOSGeom_destroy_r(n->geos, n->sums[k]);
+            n->sums[k] = NULL;
+        }
+}
+
+static size_t points_of(const nester *n, const GEOSGeometry *g)
+{
+    int points = g ? GEOSGetNumCoordinates_r(n->geos, g) : 0;
+    return points > 0 ? (size_t)points : 0;
+}
+
 /*
  * Counts the points of the sums just made for key; past NEST_SUMS_POINTS
  * every other pair's sums are dropped, to be made again (the same) if
- * asked for.  No caller holds other sums while asking for these.
+ * asked for, unless the sums are held.
  */
 static void keep_sums_small(nester *n, size_t key)
 {
-    int points = n->sums[key] ? GEOSGetNumCoordinates_r(n->geos, n->sums[key]) : 0;
-    size_t count = points > 0 ? (size_t)points : 0;
-    if (n->sums_points + count > NEST_SUMS_POINTS) {
-        size_t pairs = n->class_count * n->turn_count * n->class_count * n->turn_count;
-        for (size_t k = 0; k < pairs; k++)
-            if (k != key && n->sums[k]) {
-                GEOSGeom_destroy_r(n->geos, n->sums[k]);
-                n->sums[k] = NULL;
-            }
+    size_t count = points_of(n, n->sums[key]);
+    if (!n->sums_held && n->sums_points + count > NEST_SUMS_POINTS) {
+        drop_sums(n, key);
         n->sums_points = 0;
     }
     n->sums_points += count;
+}
+
+void nest_hold_sums(nester *n, bool hold)
+{
+    n->sums_held = hold;
+    if (!hold && n->sums_points > NEST_SUMS_POINTS) {
+        drop_sums(n, SIZE_MAX);
+        n->sums_points = 0;
+    }
 }
 
 /* The cache's entry for the pair: made, or turned from its first turn's, once. */

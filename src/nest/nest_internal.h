@@ -122,6 +122,7 @@ typedef struct nester {
     /* Per (class a, turn a, class b, turn b), NULL until made: nest_sums, and their unions. */
     GEOSGeometry **sums, **nfps;
     size_t sums_points; /* the points the sums made hold (nest.c, keep_sums_small) */
+    bool sums_held;     /* sums given out are in use: none is dropped (nest_hold_sums) */
     size_t *pair_met;   /* per pair: when it was first met (nest.c, by_union), 0 never */
     size_t runs;        /* runs over an order so far */
     placed *placements; /* per piece, in order placed */
@@ -169,6 +170,12 @@ const nest_shape *nest_shape_of(const nester *n, size_t piece, size_t turn);
  */
 const GEOSGeometry *nest_nfp_of(nester *n, size_t a, size_t ta, size_t b, size_t tb);
 const GEOSGeometry *nest_sums_of(nester *n, size_t a, size_t ta, size_t b, size_t tb);
+
+/*
+ * While held, the sums nest_sums_of gave stay (the cache may grow past its
+ * bound); let go, the cache is brought within it again.
+ */
+void nest_hold_sums(nester *n, bool hold);
 
 /*
  * A lower bound on the bins of the capacity given that items of the sizes

@@ -236,29 +236,74 @@ static bool by_union(nester *n, size_t a, size_t ta, size_t b, size_t tb, size_t
     return false;
 }
 
-/* Cuts placement k's no-fit polygon with piece at turn out of a cell's room (box). */
-static bool cut_placement(nester *n, size_t piece, size_t turn, const double *box, size_t k,
-                          room_cut *r, size_t *cut_by)
+static void note_cut_by(size_t *cut_by, size_t k)
+{
+    if (*cut_by < k + 1)
+        *cut_by = k + 1;
+}
+
+/* A polygon to cut out of a cell: placement k's no-fit polygon or one of its convex sums. */
+typedef struct cut_candidate {
+    const GEOSGeometry *polygon;
+    double area;
+    size_t k, order;
+} cut_candidate;
+
+static int larger_cut_first(const void *a, const void *b)
+{
+    const cut_candidate *x = a, *y = b;
+    if (x->area != y->area)
+        return x->area > y->area ? -1 : 1;
+    return (x->order > y->order) - (x->order < y->order);
+}
+
+typedef struct candidates {
+    cut_candidate *items;
+    size_t count, room;
+} candidates;
+
+static bool add_candidate(nester *n, candidates *c, const GEOSGeometry *polygon, double area,
+                          size_t k)
+{
+    if (c->count == c->room) {
+        size_t room = c->room ? 2 * c->room : 64;
+        cut_candidate *grown = realloc(c->items, room * sizeof *grown);
+        if (!grown) {
+            n->out_of_memory = true;
+            return false;
+        }
+        c->items = grown;
+        c->room = room;
+    }
+    c->items[c->count] = (cut_candidate){polygon, area, k, c->count};
+    c->count++;
+    return true;
+}
+
+/*
+ * Placement k's polygons that reach the cell (box), to be cut (the sums
+ * held meanwhile); false on a failure.
+ */
+static bool gather(nester *n, size_t piece, size_t turn, const double *box, size_t k, candidates *c)
 {
     const placed *p = &n->placements[k];
+    double area = 0;
     if (by_union(n, p->piece, p->turn, piece, turn, k)) {
         const GEOSGeometry *nfp = nest_nfp_of(n, p->piece, p->turn, piece, turn);
-        if (!nfp || (reaches(n->geos, nfp, p->at, box) && !cut_out(r, nfp, p->at)))
+        if (!nfp)
             return false;
-        *cut_by = k + 1;
-        return true;
+        return !reaches(n->geos, nfp, p->at, box) ||
+               (GEOSArea_r(n->geos, nfp, &area) && add_candidate(n, c, nfp, area, k));
     }
     const GEOSGeometry *sums = nest_sums_of(n, p->piece, p->turn, piece, turn);
     int count = sums ? GEOSGetNumGeometries_r(n->geos, sums) : -1;
     if (count < 0)
         return false;
-    for (int q = 0; q < count && *r->room; q++) {
+    for (int q = 0; q < count; q++) {
         const GEOSGeometry *sum = GEOSGetGeometryN_r(n->geos, sums, q);
-        if (!reaches(n->geos, sum, p->at, box))
-            continue;
-        if (!cut_out(r, sum, p->at))
+        if (reaches(n->geos, sum, p->at, box) &&
+            !(GEOSArea_r(n->geos, sum, &area) && add_candidate(n, c, sum, area, k)))
             return false;
-        *cut_by = k + 1;
     }
     return true;
 }
@@ -266,23 +311,37 @@ static bool cut_placement(nester *n, size_t piece, size_t turn, const double *bo
 /*
  * Cuts out of cell c the no-fit polygons (with piece at turn) of the parts
  * placed on the sheet since it was last brought up to date, those whose
- * box reaches into it.  False on a GEOS failure.
+ * box reaches into it: their convex sums (or, for a pair met before, their
+ * union) largest first, whatever part they come from.  On a sheet filled
+ * from the left most cells a new part looks at are full, and the large
+ * ones fill a cell in fewer cuts.  False on a GEOS failure.
  */
 static bool cell_update(nester *n, size_t sheet, size_t piece, size_t turn, room_grid *grid,
                         size_t c)
 {
     double box[4];
     nest_cell_box(n, grid, c, box);
-    room_cut r = {n->geos, &grid->free[c], NULL};
+    candidates all = {NULL, 0, 0};
     bool ok = true;
-    for (size_t k = grid->applied[c]; ok && grid->free[c] && k < n->placed_count; k++) {
+    nest_hold_sums(n, true);
+    for (size_t k = grid->applied[c]; ok && k < n->placed_count; k++) {
         if (n->sheet_of[k] != sheet)
             continue;
         if (!nfp_may_reach(n, &n->placements[k], piece, turn, box))
             continue; /* too far away to matter: its no-fit polygon is never made */
-        ok = cut_placement(n, piece, turn, box, k, &r, &grid->cut_by[c]);
+        ok = gather(n, piece, turn, box, k, &all);
+    }
+    if (ok)
+        qsort(all.items, all.count, sizeof *all.items, larger_cut_first);
+    room_cut r = {n->geos, &grid->free[c], NULL};
+    for (size_t q = 0; ok && grid->free[c] && q < all.count; q++) {
+        const cut_candidate *cut = &all.items[q];
+        ok = cut_out(&r, cut->polygon, n->placements[cut->k].at);
+        note_cut_by(&grid->cut_by[c], cut->k);
     }
     room_cut_forget(&r);
+    free(all.items);
+    nest_hold_sums(n, false);
     if (ok)
         grid->applied[c] = n->placed_count;
     return ok;
