@@ -31,9 +31,10 @@ static void cell_renew(nester *n, room_grid *grid, size_t c)
 /*
  * Forgets all placements but the first kept (maybe none), as if only those
  * had been made: a cell that a later one cut is made whole again, the
- * others only forget having looked at the later ones.  Rooms thus kept are
- * what a run placing just the first kept would have made, cut for cut; the
- * no-fit polygons stay, they hold for any run.
+ * others only forget having looked at the later ones.  Rooms thus kept
+ * leave the places a run placing just the first kept would leave (their
+ * cuts may have come in another order: room.c cuts each time the largest
+ * first); the no-fit polygons stay, they hold for any run.
  */
 static void rewind_run(nester *n, size_t kept)
 {
