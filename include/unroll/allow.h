@@ -156,6 +156,12 @@ typedef struct ur_joint_options {
     bool lap_kerfs;
     double lap_kerf_margin;
     const ur_context *context; /* stops with UR_ERROR_CANCELLED once it is cancelled; NULL: never */
+    /*
+     * Called now and then with the phase ("labels", then "tabs" or "laps") and how
+     * far it is, from 0 to 1 (each phase ends with 1); NULL for none.
+     */
+    void (*progress)(void *context, const char *phase, double fraction);
+    void *progress_context;
 } ur_joint_options;
 
 /* The label of seam number seam (from 1): "A1" ... "A99", "B1" ... "Z99", then "AA1" ... */

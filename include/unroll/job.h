@@ -201,6 +201,8 @@ typedef enum ur_job_progress_kind {
     UR_JOB_FLATTENING,      /* ARAP: iteration, energy */
     UR_JOB_UNFOLDING,       /* a mesh unfolded: phase, fraction done */
     UR_JOB_FLATTENING_DONE, /* no more flattening or unfolding reports */
+    UR_JOB_JOINING,         /* labels, then tabs or laps, on the seams: phase, fraction done */
+    UR_JOB_JOINING_DONE,    /* no more joining reports */
 } ur_job_progress_kind;
 
 typedef struct ur_job_progress {
@@ -212,8 +214,8 @@ typedef struct ur_job_progress {
     size_t count;      /* PLACING */
     size_t iteration;  /* FLATTENING */
     double energy;     /* FLATTENING */
-    const char *phase; /* UNFOLDING */
-    double fraction;   /* UNFOLDING */
+    const char *phase; /* UNFOLDING, JOINING */
+    double fraction;   /* UNFOLDING, JOINING */
 } ur_job_progress;
 
 /*

@@ -1598,17 +1598,29 @@ static ur_status gather_seams(const ur_net_list *nets, seam_sides **seams, int *
     return UR_OK;
 }
 
+/* Tells the progress callback how far a phase is: about a hundred times over its count. */
+static void report(const joiner *j, const char *phase, size_t done, size_t count)
+{
+    const ur_joint_options *o = j->options;
+    if (o->progress && (done % (count / 100 + 1) == 0 || done == count))
+        o->progress(o->progress_context, phase, count ? (double)done / (double)count : 1.0);
+}
+
 static ur_status add_labels(joiner *j, rooms *r, const seam_sides *seams, int last, ur_error *error)
 {
     ur_status status = UR_OK;
-    for (int seam = 1; status == UR_OK && seam <= last; seam++)
+    for (int seam = 1; status == UR_OK && seam <= last; seam++) {
+        report(j, "labels", (size_t)seam - 1, (size_t)last);
         if (seams[seam].found == 2) {
             status = ur_context_check(j->options->context, error);
             if (status == UR_OK)
                 status = label_seam(j, r, &seams[seam], seam, error);
         }
+    }
     for (size_t n = 0; status == UR_OK && j->options->name_pieces && n < j->nets->count; n++)
         status = name_piece(j, r, n, error);
+    if (status == UR_OK)
+        report(j, "labels", (size_t)last, (size_t)last);
     /* The tabs change the pieces: rooms are opened again for what is left. */
     rooms_close(r);
     return status;
@@ -1650,13 +1662,19 @@ static ur_status add_all_joints(joiner *j, const seam_sides *seams, int last, ur
         status = allow_board_open(j->geos, j->nets->nets[n].outline, j->nets->nets[n].outline_count,
                                   band_of(j->options) + full_depth(j->options) + j->gap, j->gap,
                                   &j->boards[n], error);
-    for (int seam = 1; status == UR_OK && seam <= last; seam++)
+    for (int seam = 1; status == UR_OK && seam <= last; seam++) {
+        report(j, j->options->lap ? "laps" : "tabs", (size_t)seam - 1, (size_t)last);
         if (seams[seam].found == 2) {
             status = ur_context_check(j->options->context, error);
             if (status == UR_OK)
                 status = join_seam(j, &seams[seam], seam, error);
         }
-    return status == UR_OK ? finish_all(j, error) : status;
+    }
+    if (status == UR_OK)
+        status = finish_all(j, error);
+    if (status == UR_OK)
+        report(j, j->options->lap ? "laps" : "tabs", (size_t)last, (size_t)last);
+    return status;
 }
 
 ur_status ur_pieces_add_joints(ur_piece *pieces, const ur_net_list *nets,

@@ -64,10 +64,12 @@ static void print_progress(void *user, const ur_job_progress *progress)
                 job->command, progress->iteration, progress->energy);
         break;
     case UR_JOB_UNFOLDING:
+    case UR_JOB_JOINING:
         fprintf(stderr, "\runroll: %s: %s, %.0f %%   ", job->command, progress->phase,
                 100 * progress->fraction);
         break;
     case UR_JOB_FLATTENING_DONE:
+    case UR_JOB_JOINING_DONE:
         fputs("\r\033[K", stderr);
         break;
     }

@@ -93,9 +93,15 @@ static ur_status add_bending(const ur_machine *machine, const ur_material *mater
     return status;
 }
 
-ur_status job_add_joints(const ur_machine *machine, const ur_material *material,
+static void report_joining(void *context, const char *phase, double fraction)
+{
+    ur_job_progress progress = {.kind = UR_JOB_JOINING, .phase = phase, .fraction = fraction};
+    job_progress(context, &progress);
+}
+
+ur_status job_add_joints(const job_run *run, const ur_machine *machine, const ur_material *material,
                          const ur_net_list *nets, ur_piece *pieces, ur_splice_list *splices,
-                         const ur_context *context, ur_error *error)
+                         ur_error *error)
 {
     ur_font *font = NULL;
     ur_status status = ur_font_open(NULL, &font, error);
@@ -114,9 +120,13 @@ ur_status job_add_joints(const ur_machine *machine, const ur_material *material,
         .lap_kerfs = machine != NULL,
         .lap_kerf_margin =
             machine && machine->kind == UR_MACHINE_LASER ? material->hinge_connection : 0.0,
-        .context = context,
+        .context = run->job.context,
+        .progress = job_shows_progress(run) ? report_joining : NULL,
+        .progress_context = (void *)run,
     };
     status = ur_pieces_add_joints(pieces, nets, &options, error);
+    ur_job_progress done = {.kind = UR_JOB_JOINING_DONE};
+    job_progress(run, &done);
     ur_font_close(font);
     return status;
 }
@@ -175,8 +185,8 @@ ur_status job_allowances_before_placing(const job_run *run, const ur_machine *ma
          * sphere: 955), so they are said, to join by hand, as in papercraft.
          */
         bool mesh = strcmp(run->job.command, "mesh") == 0;
-        status = first ? job_add_joints(machine, material, nets, *pieces, mesh ? NULL : &splices,
-                                        run->job.context, error)
+        status = first ? job_add_joints(run, machine, material, nets, *pieces,
+                                        mesh ? NULL : &splices, error)
                        : UR_ERROR_MEMORY;
         for (size_t k = 0; status == UR_OK && k < *count; k++)
             status = keep_kerfs_off_joints(machine, material, &(*pieces)[k], first[k], error);

@@ -77,8 +77,7 @@ static ur_status split_long_parts(const job_run *run, const ur_machine *machine,
     if (status == UR_OK && split.nets.count > 0)
         status = ur_net_list_find_seams(&split.nets, 1, &next_seam, error);
     if (status == UR_OK && split.nets.count > 0)
-        status = job_add_joints(NULL, material, &split.nets, split.pieces, NULL, run->job.context,
-                                error);
+        status = job_add_joints(run, NULL, material, &split.nets, split.pieces, NULL, error);
     if (status == UR_OK && split.nets.count > 0)
         status = replace_split(&split, cut, pieces, count, error);
     ur_split_parts_free(&split);

@@ -159,11 +159,12 @@ ur_status job_merge_lines(const job_run *run, const ur_layout *layout, ur_piece 
  * Joints and labels on the seams of the nets, as the material asks
  * (pieces[k] from nets[k]); splice pieces into splices where no joint fits
  * (NULL: a warning instead).  With a machine, laps carry the kerf lines of
- * the zone they lie on (kept a hinge's margin inside on a laser).
+ * the zone they lie on (kept a hinge's margin inside on a laser).  On a
+ * terminal, its progress is shown (UR_JOB_JOINING).
  */
-ur_status job_add_joints(const ur_machine *machine, const ur_material *material,
+ur_status job_add_joints(const job_run *run, const ur_machine *machine, const ur_material *material,
                          const ur_net_list *nets, ur_piece *pieces, ur_splice_list *splices,
-                         const ur_context *context, ur_error *error);
+                         ur_error *error);
 
 /* Once the pieces are placed: labels turned upright on the sheet, then holding bridges. */
 ur_status job_allowances_after_placing(const job_run *run, const ur_machine *machine,

@@ -476,6 +476,64 @@ static void test_narrow_slit_said_once(void **state)
     ur_net_list_free(&nets);
 }
 
+/* What the progress callback heard: each phase's name, reports and last fraction. */
+typedef struct heard {
+    char phases[4][16];
+    size_t phase_count, reports[4];
+    double last[4];
+    bool backwards;
+} heard;
+
+static void listen(void *context, const char *phase, double fraction)
+{
+    heard *h = context;
+    if (h->phase_count == 0 || strcmp(h->phases[h->phase_count - 1], phase) != 0) {
+        assert_true(h->phase_count < 4);
+        snprintf(h->phases[h->phase_count], sizeof h->phases[0], "%s", phase);
+        h->last[h->phase_count++] = 0.0;
+    }
+    size_t k = h->phase_count - 1;
+    h->backwards = h->backwards || fraction < h->last[k] || fraction < 0 || fraction > 1;
+    h->last[k] = fraction;
+    h->reports[k]++;
+}
+
+/*
+ * The progress callback hears the labels, then the tabs (laps with laps),
+ * each from 0 up to 1 and never back.
+ */
+static void test_progress_reported(void **state)
+{
+    (void)state;
+    ur_font *font;
+    ur_error error;
+    assert_int_equal(ur_font_open(NULL, &font, &error), UR_OK);
+    for (int lap = 0; lap < 2; lap++) {
+        ur_net_list nets = grid_with_centre(4);
+        ur_piece *pieces = pieces_of(&nets);
+        ur_joint_options options = tab_options(font);
+        options.lap = lap;
+        options.tab_depth = 5;
+        options.thickness = 0.3;
+        options.label_height = 3;
+        heard h = {0};
+        options.progress = listen;
+        options.progress_context = &h;
+        assert_int_equal(ur_pieces_add_joints(pieces, &nets, &options, &error), UR_OK);
+        assert_int_equal(h.phase_count, 2);
+        assert_string_equal(h.phases[0], "labels");
+        assert_string_equal(h.phases[1], lap ? "laps" : "tabs");
+        assert_false(h.backwards);
+        for (size_t k = 0; k < 2; k++) {
+            assert_true(h.reports[k] >= 2); /* the two seams' starts and the end */
+            assert_true(h.last[k] == 1.0);
+        }
+        free_pieces(pieces, nets.count);
+        ur_net_list_free(&nets);
+    }
+    ur_font_close(font);
+}
+
 static void test_laps_marked_on_both(void **state)
 {
     (void)state;
@@ -793,9 +851,10 @@ int main(void)
         cmocka_unit_test(test_seam_labels),           cmocka_unit_test(test_cylinder_tab),
         cmocka_unit_test(test_helicoid_labels_pair),  cmocka_unit_test(test_every_seam_joined),
         cmocka_unit_test(test_unfolded_tabs_clear),   cmocka_unit_test(test_loop_seams_joined),
-        cmocka_unit_test(test_narrow_slit_said_once), cmocka_unit_test(test_laps_marked_on_both),
-        cmocka_unit_test(test_bad_options),           cmocka_unit_test(test_label_goes_on_the_tab),
-        cmocka_unit_test(test_label_crosses_folds),   cmocka_unit_test(test_label_across_the_tab),
+        cmocka_unit_test(test_narrow_slit_said_once), cmocka_unit_test(test_progress_reported),
+        cmocka_unit_test(test_laps_marked_on_both),   cmocka_unit_test(test_bad_options),
+        cmocka_unit_test(test_label_goes_on_the_tab), cmocka_unit_test(test_label_crosses_folds),
+        cmocka_unit_test(test_label_across_the_tab),
     };
     return cmocka_run_group_tests(tests, start, finish);
 }
