@@ -533,11 +533,11 @@ static void suggest_unfolding(const job_run *run, const ur_charts *charts)
     for (size_t k = 0; k < charts->count; k++)
         small += charts->charts[k].piece.mesh.triangle_count <= 2;
     if (small >= 10 && 4 * small >= charts->count && !run->job.quiet)
-        job_note(run,
-                 "%s: note: %zu of the %zu charts are a face or two of the mesh, cut apart at "
-                 "sharp edges; --flatten unfold joins such faces along folds instead, every "
-                 "face exact",
-                 run->job.command, small, charts->count);
+        job_note_about(run, "flatten",
+                       "%s: note: %zu of the %zu charts are a face or two of the mesh, cut apart "
+                       "at sharp edges; flatten unfold joins such faces along folds instead, "
+                       "every face exact",
+                       run->job.command, small, charts->count);
 }
 
 /*
