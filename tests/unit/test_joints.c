@@ -365,6 +365,16 @@ static ur_net_list grid_with_centre(double opening)
     return nets;
 }
 
+/* Paper's joints for the frame: 5 mm tabs, 0.3 mm stock, 3 mm labels. */
+static ur_joint_options frame_options(const ur_font *font)
+{
+    ur_joint_options options = tab_options(font);
+    options.tab_depth = 5;
+    options.thickness = 0.3;
+    options.label_height = 3;
+    return options;
+}
+
 /* Whether seam side k of the net ends where it starts (in 3D): a closed loop. */
 static bool side_is_loop(const ur_net *net, size_t k)
 {
@@ -387,10 +397,7 @@ static void test_loop_seams_joined(void **state)
     ur_font *font;
     ur_error error;
     assert_int_equal(ur_font_open(NULL, &font, &error), UR_OK);
-    ur_joint_options options = tab_options(font);
-    options.tab_depth = 5;
-    options.thickness = 0.3;
-    options.label_height = 3;
+    ur_joint_options options = frame_options(font);
     assert_int_equal(ur_pieces_add_joints(pieces, &nets, &options, &error), UR_OK);
     /* Each seam's label on both its sides: the loop's on both pieces, the slit's twice on the
      * frame. */
@@ -452,10 +459,7 @@ static void test_narrow_slit_said_once(void **state)
     ur_font *font;
     ur_error error;
     assert_int_equal(ur_font_open(NULL, &font, &error), UR_OK);
-    ur_joint_options options = tab_options(font);
-    options.tab_depth = 5;
-    options.thickness = 0.3;
-    options.label_height = 3;
+    ur_joint_options options = frame_options(font);
     assert_int_equal(ur_pieces_add_joints(pieces, &nets, &options, &error), UR_OK);
     size_t warnings = 0;
     for (size_t r = 0; r < pieces[0].record_count; r++) {
@@ -511,11 +515,8 @@ static void test_progress_reported(void **state)
     for (int lap = 0; lap < 2; lap++) {
         ur_net_list nets = grid_with_centre(4);
         ur_piece *pieces = pieces_of(&nets);
-        ur_joint_options options = tab_options(font);
+        ur_joint_options options = frame_options(font);
         options.lap = lap;
-        options.tab_depth = 5;
-        options.thickness = 0.3;
-        options.label_height = 3;
         heard h = {0};
         options.progress = listen;
         options.progress_context = &h;

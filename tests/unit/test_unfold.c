@@ -1178,6 +1178,28 @@ static void test_room_taken_turned(void **state)
     ur_mesh_free(&mesh);
 }
 
+/* Options as the mesh job sets them for 6 mm tabs: counted steps, a 3 mm gap, the room given. */
+static ur_unfold_options papercraft_options(double room_length, double room_width)
+{
+    ur_unfold_options options;
+    ur_unfold_options_default(&options);
+    options.time_budget = 0;
+    options.min_gap = 3;
+    options.room_length = room_length;
+    options.room_width = room_width;
+    return options;
+}
+
+/* The mesh unfolded, its pieces checked (nearly flat faces laid flat). */
+static ur_unfolding checked_unfolding(const ur_mesh *mesh, const ur_unfold_options *options)
+{
+    ur_unfolding u = unfold_with(mesh, options);
+    allow_projection();
+    check_unfolding(mesh, &u, NULL, 0);
+    length_tolerance = 1e-9;
+    return u;
+}
+
 /*
  * Steps past the first 200 are kept only when, after the last run, they
  * leave neither more pieces nor more seams joined without the gap: the
@@ -1191,19 +1213,11 @@ static void test_longer_search_only_when_it_pays(void **state)
     const char *files[] = {"samples/head.obj", "samples/uvsphere.obj"};
     for (size_t f = 0; f < 2; f++) {
         ur_mesh mesh = cleaned_mesh_file(files[f]);
-        ur_unfold_options options;
-        ur_unfold_options_default(&options);
-        options.time_budget = 0;
-        options.min_gap = 3;
-        options.room_length = 397;
-        options.room_width = 274;
+        ur_unfold_options options = papercraft_options(397, 274);
         ur_unfolding u[2];
         for (int longer = 0; longer < 2; longer++) {
             options.max_steps = longer ? 700 : 200;
-            u[longer] = unfold_with(&mesh, &options);
-            allow_projection(); /* nearly flat faces are laid flat */
-            check_unfolding(&mesh, &u[longer], NULL, 0);
-            length_tolerance = 1e-9;
+            u[longer] = checked_unfolding(&mesh, &options);
         }
         print_message("%s: %zu pieces, %zu without the gap in 200 steps; %zu, %zu in 700\n",
                       files[f], u[0].count, u[0].gap_breaks, u[1].count, u[1].gap_breaks);
@@ -1227,20 +1241,12 @@ static void test_stalled_search_starts_again(void **state)
 {
     (void)state;
     ur_mesh mesh = cleaned_mesh_file("samples/uvsphere.obj");
-    ur_unfold_options options;
-    ur_unfold_options_default(&options);
-    options.time_budget = 0;
-    options.min_gap = 3;
-    options.room_length = 397;
-    options.room_width = 274;
+    ur_unfold_options options = papercraft_options(397, 274);
     ur_unfolding u[2];
     size_t steps[2] = {200, 700};
     for (int k = 0; k < 2; k++) {
         options.max_steps = steps[k];
-        u[k] = unfold_with(&mesh, &options);
-        allow_projection(); /* nearly flat faces are laid flat */
-        check_unfolding(&mesh, &u[k], NULL, 0);
-        length_tolerance = 1e-9;
+        u[k] = checked_unfolding(&mesh, &options);
     }
     print_message("uvsphere: %zu pieces in %zu steps (of 200), %zu in %zu (of 700)\n", u[0].count,
                   u[0].steps, u[1].count, u[1].steps);
@@ -1263,22 +1269,14 @@ static void test_steps_for_many_pieces(void **state)
 {
     (void)state;
     ur_mesh mesh = cleaned_mesh_file("samples/uvsphere.obj");
-    ur_unfold_options options;
-    ur_unfold_options_default(&options);
-    options.time_budget = 0;
-    options.min_gap = 3;
-    options.max_steps = 200;
     double rooms[2][2] = {{60, 40}, {397, 274}};
     for (int r = 0; r < 2; r++) {
-        options.room_length = rooms[r][0];
-        options.room_width = rooms[r][1];
+        ur_unfold_options options = papercraft_options(rooms[r][0], rooms[r][1]);
+        options.max_steps = 200;
         ur_unfolding u[2];
         for (int k = 0; k < 2; k++) {
             options.steps_per_piece = k ? 8 : 0;
-            u[k] = unfold_with(&mesh, &options);
-            allow_projection(); /* nearly flat faces are laid flat */
-            check_unfolding(&mesh, &u[k], NULL, 0);
-            length_tolerance = 1e-9;
+            u[k] = checked_unfolding(&mesh, &options);
         }
         print_message("room %g x %g: %zu pieces in %zu steps; by pieces %zu in %zu\n", rooms[r][0],
                       rooms[r][1], u[0].count, u[0].steps, u[1].count, u[1].steps);
