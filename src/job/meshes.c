@@ -365,9 +365,10 @@ static double mean_edge_length(const ur_mesh *mesh)
  * UNFOLD_STEPS_PER_PIECE steps for each, up to 1,000: a step costs about a
  * millisecond, a piece the nesting far more (Blender's monkey head
  * subdivided once: 132 pieces and 26 s in all with 200 steps, 106 and
- * 20 s with 1,000).  Only a mesh of more than UNFOLD_TIMED_ABOVE triangles, whose
- * steps take long, stops early after UNFOLD_SECONDS of wall-clock time,
- * and may then unfold differently from one run to the next.  (A
+ * 20 s with 1,000; not a mesh whose steps are timed).  Only a mesh of
+ * more than UNFOLD_TIMED_ABOVE triangles, whose steps take long, stops
+ * early after UNFOLD_SECONDS of wall-clock time, and may then unfold
+ * differently from one run to the next.  (A
  * 2,208-triangle sphere takes 200 steps in about 0.25 s of CPU; a
  * wall-clock limit on every mesh made the sample meshes' pieces depend on
  * the machine's load.)
@@ -412,8 +413,9 @@ static ur_status unfold_mesh(const job_run *run, const job_room *room, const ur_
     if (run->job.fewer_pieces) /* a seam joined by hand costs half a piece */
         options.gap_break_cost = 0.5;
     options.max_steps = unfold_steps(mesh);
-    options.steps_per_piece = UNFOLD_STEPS_PER_PIECE;
-    options.time_budget = mesh->triangle_count > UNFOLD_TIMED_ABOVE ? UNFOLD_SECONDS : 0.0;
+    bool timed = mesh->triangle_count > UNFOLD_TIMED_ABOVE;
+    options.steps_per_piece = timed ? 0 : UNFOLD_STEPS_PER_PIECE;
+    options.time_budget = timed ? UNFOLD_SECONDS : 0.0;
     double tab = material->joint == UR_JOINT_LAP ? material->lap_width : material->tab_depth;
     double edge = mean_edge_length(mesh);
     if (job_makes_joints(run) && edge >= tab / 2)
