@@ -355,23 +355,21 @@ static double mean_edge_length(const ur_mesh *mesh)
  * The search for fewer pieces takes a number of steps (fewer when it
  * finds the fewest pieces the mesh allows), counted, so that a mesh
  * unfolds the same way every time and on every machine, however loaded:
- * UNFOLD_WORK divided by
- * the triangles (a step's cost grows with them), at most
- * UNFOLD_MOST_STEPS, and UNFOLD_STEPS when that would be less than twice
- * as many; the library keeps the steps after its first 200 only when they
- * give fewer pieces (Blender's monkey head, 968 triangles, 723 steps: 17
- * pieces instead of 31; a 2,208-triangle sphere keeps 200 steps and its
- * time).  A mesh that the first 200 steps leave in many pieces gets
+ * UNFOLD_WORK divided by the triangles (a step's cost grows with them), at
+ * most UNFOLD_MOST_STEPS, and UNFOLD_STEPS when that would be less than
+ * twice as many; the library keeps the steps after its first 200 only
+ * when they give fewer pieces (Blender's monkey head, 968 triangles, 723
+ * steps: 17 pieces instead of 31; a 2,208-triangle sphere keeps 200 steps
+ * and its time).  A mesh that the first 200 steps leave in many pieces gets
  * UNFOLD_STEPS_PER_PIECE steps for each, up to 1,000: a step costs about a
  * millisecond, a piece the nesting far more (Blender's monkey head
  * subdivided once: 132 pieces and 26 s in all with 200 steps, 106 and
  * 20 s with 1,000; not a mesh whose steps are timed).  Only a mesh of
  * more than UNFOLD_TIMED_ABOVE triangles, whose steps take long, stops
  * early after UNFOLD_SECONDS of wall-clock time, and may then unfold
- * differently from one run to the next.  (A
- * 2,208-triangle sphere takes 200 steps in about 0.25 s of CPU; a
- * wall-clock limit on every mesh made the sample meshes' pieces depend on
- * the machine's load.)
+ * differently from one run to the next.  (A 2,208-triangle sphere takes
+ * 200 steps in about 0.25 s of CPU; a wall-clock limit on every mesh made
+ * the sample meshes' pieces depend on the machine's load.)
  */
 enum {
     UNFOLD_STEPS = 200,
