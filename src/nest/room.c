@@ -331,7 +331,7 @@ static bool cell_update(nester *n, size_t sheet, size_t piece, size_t turn, room
             continue; /* too far away to matter: its no-fit polygon is never made */
         ok = gather(n, piece, turn, box, k, &all);
     }
-    if (ok)
+    if (ok && all.count > 1)
         qsort(all.items, all.count, sizeof *all.items, larger_cut_first);
     room_cut r = {n->geos, &grid->free[c], NULL};
     for (size_t q = 0; ok && grid->free[c] && q < all.count; q++) {
