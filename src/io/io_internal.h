@@ -10,6 +10,7 @@
 #include <stdbool.h>
 #include <stddef.h>
 
+#include <assimp/cfileio.h>
 #include <libxml/tree.h>
 
 #include "unroll/base.h"
@@ -51,6 +52,21 @@ char *io_copy_text(const void *data, size_t size, ur_error *error);
 
 /* Trims white space (the '\r' of CRLF files too) at both ends, in place. */
 char *io_trim(char *text);
+
+/*
+ * The files assimp may open while it reads the mesh called name (mesh_files.c):
+ * the mesh itself (size bytes of data, or when data is NULL the file at
+ * name) and, for a glTF on disk, the files beside it; never a material
+ * library.  Pass &files.io to aiImportFileEx; files must outlive the import.
+ */
+typedef struct io_mesh_files {
+    struct aiFileIO io;
+    const char *name;
+    const void *data;
+    size_t size;
+} io_mesh_files;
+
+void io_mesh_files_init(io_mesh_files *files, const char *name, const void *data, size_t size);
 
 /* Whether path's file name ends in "." and extension, in any case ("obj": x.OBJ). */
 bool io_has_extension(const char *path, const char *extension);

@@ -624,15 +624,16 @@ size_t ur_mesh_import_memory_estimate(const char *path)
 /*
  * Reads the file at path, or size bytes of data when data is not NULL (the
  * format told by path's extension), and post-processes it; the caller
- * releases *scene.  A file is read by assimp itself, so that a .gltf finds
- * the .bin files beside it.
+ * releases *scene.  assimp opens files through io_mesh_files: a .gltf finds
+ * the .bin files beside it, and no material library is read.
  */
 static ur_status load_scene(const char *path, const void *data, size_t size,
                             const struct aiScene **scene, ur_error *error)
 {
+    io_mesh_files files;
+    io_mesh_files_init(&files, path, data, size);
     /* assimp keeps its last message even after a success: read it only on failure. */
-    *scene = data ? aiImportFileFromMemory(data, (unsigned)size, 0, strrchr(path, '.') + 1)
-                  : aiImportFile(path, 0);
+    *scene = aiImportFileEx(path, 0, &files.io);
     if (!*scene)
         return ur_error_set(error, UR_ERROR_INPUT, "%s: cannot read as a mesh: %s", path,
                             aiGetErrorString());

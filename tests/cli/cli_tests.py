@@ -1159,6 +1159,32 @@ def meshes_in_every_format_give_the_same_net(work):
 
 
 @test
+def gltf_reads_the_buffer_file_beside_it(work):
+    # The sample glTF with its data in a .bin file beside it (not in the
+    # JSON): read from another directory it gives the sample's net; without
+    # the .bin it is refused naming the file, with no output.
+    import base64
+    with open(os.path.join(REPO, "samples", "lampshade.gltf")) as f:
+        gltf = json.load(f)
+    os.mkdir(os.path.join(work, "model"))
+    for k, buffer in enumerate(gltf["buffers"]):
+        with open(os.path.join(work, "model", "shade%d.bin" % k), "wb") as f:
+            f.write(base64.b64decode(buffer["uri"].split(",", 1)[1]))
+        buffer["uri"] = "shade%d.bin" % k
+    with open(os.path.join(work, "model", "shade.gltf"), "w") as f:
+        json.dump(gltf, f)
+    run(work, "mesh", os.path.join(REPO, "samples", "lampshade.gltf"), "-o", "a.svg", "--report",
+        "a.json")
+    run(work, "mesh", os.path.join("model", "shade.gltf"), "-o", "b.svg", "--report", "b.json")
+    areas = [sum(p["flat_area_mm2"] for p in report(work, name)["pieces"])
+             for name in ("a.json", "b.json")]
+    close(areas[1], areas[0], 1e-9, "the glTF with a .bin beside it")
+    os.remove(os.path.join(work, "model", "shade0.bin"))
+    bad(work, r"shade\.gltf: cannot read as a mesh: .*shade0\.bin", "mesh",
+        os.path.join("model", "shade.gltf"), "-o", "c.svg")
+
+
+@test
 def closed_mesh_is_cut_and_flattened(work):
     # One piece whole (--flatten arap), not the charts that are the default.
     result = run(work, "mesh", os.path.join(REPO, "samples", "icosphere.obj"), "--flatten", "arap",
