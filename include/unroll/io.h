@@ -275,7 +275,9 @@ UR_API size_t ur_mesh_import_memory_estimate(const char *path);
  * vertices within one mesh joined; nothing is welded across meshes
  * (ur_mesh_clean does that); points and lines are left out.  options may be
  * NULL (defaults).  glTF files are in metres by their specification, but
- * the unit here is what the caller says, as for every format.
+ * the unit here is what the caller says, as for every format.  Only the
+ * file and a glTF's buffers beside it are read, never an OBJ's material
+ * library.
  *
  * When group_names is not NULL, *group_names receives mesh->group_count
  * names (NUL-terminated, cut to 63 bytes; unnamed groups take the file's

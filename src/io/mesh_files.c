@@ -12,6 +12,7 @@
  */
 #include "io_internal.h"
 
+#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -68,7 +69,7 @@ static size_t size_of_file(struct aiFile *file)
 static enum aiReturn seek_file(struct aiFile *file, size_t offset, enum aiOrigin origin)
 {
     int whence = origin == aiOrigin_SET ? SEEK_SET : origin == aiOrigin_CUR ? SEEK_CUR : SEEK_END;
-    if (offset > (size_t)0x7fffffff)
+    if (offset > (size_t)LONG_MAX)
         return aiReturn_FAILURE;
     return fseek(stream_of(file), (long)offset, whence) == 0 ? aiReturn_SUCCESS : aiReturn_FAILURE;
 }
