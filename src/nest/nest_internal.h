@@ -172,6 +172,20 @@ const GEOSGeometry *nest_nfp_of(nester *n, size_t a, size_t ta, size_t b, size_t
 const GEOSGeometry *nest_sums_of(nester *n, size_t a, size_t ta, size_t b, size_t tb);
 
 /*
+ * The head of what is sorted largest first (nfp.c sorts a pair's convex
+ * sums so, room.c the polygons it cuts out of a cell): an area and the
+ * place before sorting, which settles ties so that the order is the same
+ * on every machine.
+ */
+typedef struct nest_sized {
+    double area;
+    size_t index;
+} nest_sized;
+
+/* qsort's comparison for elements that begin with a nest_sized: larger area first. */
+int nest_larger_first(const void *a, const void *b);
+
+/*
  * While held, the sums nest_sums_of gave stay (the cache may grow past its
  * bound); let go, the cache is brought within it again.
  */

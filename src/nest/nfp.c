@@ -782,24 +782,24 @@ static GEOSGeometry *convex_sum(GEOSContextHandle_t geos, const part_hull *a, co
 
 /* A sum and its area, to sort the sums. */
 typedef struct sized_sum {
-    double area;
-    size_t index;
+    nest_sized size;
     GEOSGeometry *sum;
 } sized_sum;
 
-static int larger_first(const void *a, const void *b)
+int nest_larger_first(const void *a, const void *b)
 {
-    const sized_sum *x = a, *y = b;
+    const nest_sized *x = a, *y = b; /* each element begins with its nest_sized */
     if (x->area != y->area)
         return x->area > y->area ? -1 : 1;
     return (x->index > y->index) - (x->index < y->index);
 }
 
 /*
- * Sorts the sums largest first: room.c cuts a pair's sums out of a room
- * in this order and skips those that no longer meet it, and a large sum
- * cut early leaves more of the smaller ones nothing to take.  Left as
- * they are when there is no memory to sort them.
+ * Sorts the sums largest first: room.c cuts the sums out of a room largest
+ * first (with those of other pairs, ties in this order) and skips those
+ * that no longer meet it, and a large sum cut early leaves more of the
+ * smaller ones nothing to take.  Left as they are when there is no memory
+ * to sort them.
  */
 static void largest_first(GEOSContextHandle_t geos, GEOSGeometry **sums, size_t count)
 {
@@ -807,8 +807,8 @@ static void largest_first(GEOSContextHandle_t geos, GEOSGeometry **sums, size_t 
     if (!sized)
         return;
     for (size_t k = 0; k < count; k++)
-        sized[k] = (sized_sum){area_of(geos, sums[k]), k, sums[k]};
-    qsort(sized, count, sizeof *sized, larger_first);
+        sized[k] = (sized_sum){{area_of(geos, sums[k]), k}, sums[k]};
+    qsort(sized, count, sizeof *sized, nest_larger_first);
     for (size_t k = 0; k < count; k++)
         sums[k] = sized[k].sum;
     free(sized);

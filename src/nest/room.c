@@ -242,20 +242,15 @@ static void note_cut_by(size_t *cut_by, size_t k)
         *cut_by = k + 1;
 }
 
-/* A polygon to cut out of a cell: placement k's no-fit polygon or one of its convex sums. */
+/*
+ * A polygon to cut out of a cell: placement k's no-fit polygon or one of
+ * its convex sums, its area and its place in the order gathered.
+ */
 typedef struct cut_candidate {
+    nest_sized size;
     const GEOSGeometry *polygon;
-    double area;
-    size_t k, order;
+    size_t k;
 } cut_candidate;
-
-static int larger_cut_first(const void *a, const void *b)
-{
-    const cut_candidate *x = a, *y = b;
-    if (x->area != y->area)
-        return x->area > y->area ? -1 : 1;
-    return (x->order > y->order) - (x->order < y->order);
-}
 
 typedef struct candidates {
     cut_candidate *items;
@@ -275,7 +270,7 @@ static bool add_candidate(nester *n, candidates *c, const GEOSGeometry *polygon,
         c->items = grown;
         c->room = room;
     }
-    c->items[c->count] = (cut_candidate){polygon, area, k, c->count};
+    c->items[c->count] = (cut_candidate){{area, c->count}, polygon, k};
     c->count++;
     return true;
 }
@@ -332,7 +327,7 @@ static bool cell_update(nester *n, size_t sheet, size_t piece, size_t turn, room
         ok = gather(n, piece, turn, box, k, &all);
     }
     if (ok && all.count > 1)
-        qsort(all.items, all.count, sizeof *all.items, larger_cut_first);
+        qsort(all.items, all.count, sizeof *all.items, nest_larger_first);
     room_cut r = {n->geos, &grid->free[c], NULL};
     for (size_t q = 0; ok && grid->free[c] && q < all.count; q++) {
         const cut_candidate *cut = &all.items[q];
