@@ -707,7 +707,9 @@ static ur_status judge(unfolder *u, const unfold_motion *m, size_t small, size_t
         *hull_count = joined_hull(u, m, small, large);
         if (!unfold_hull_fits(u, u->hull_points, *hull_count)) {
             *outcome = OUTCOME_TOO_LARGE;
-            if (!u->turned_room && unfold_hull_fits_turned(u, u->hull_points, *hull_count))
+            /* Only whether there is one matters (to search turned): one test is enough. */
+            if (!u->turned_room && u->turnable_refusals == 0 &&
+                unfold_hull_fits_turned(u, u->hull_points, *hull_count))
                 u->turnable_refusals++;
             return UR_OK;
         }

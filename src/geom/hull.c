@@ -149,13 +149,9 @@ double geom_least_area_box(const ur_vec2 *hull, size_t count, double *length, do
     return angle;
 }
 
-/*
- * How far the polygon overflows the rectangle with the direction of angle
- * along its length: the larger of its extent along over length and across
- * over width (at most 1: it fits).
- */
-static double overflow_at(const ur_vec2 *hull, size_t count, double length, double width,
-                          double angle)
+/* The polygon's extents along the direction of angle and across it. */
+static void extents_at(const ur_vec2 *hull, size_t count, double angle, double *along_extent,
+                       double *across_extent)
 {
     ur_vec2 along = ur_vec2_make(cos(angle), sin(angle));
     double low = INFINITY, high = -INFINITY, left = INFINITY, right = -INFINITY;
@@ -164,7 +160,8 @@ static double overflow_at(const ur_vec2 *hull, size_t count, double length, doub
         low = fmin(low, a), high = fmax(high, a);
         left = fmin(left, c), right = fmax(right, c);
     }
-    return fmax((high - low) / length, (right - left) / width);
+    *along_extent = high - low;
+    *across_extent = right - left;
 }
 
 /* The diagonal of the points' box: at least the largest distance between two of them. */
@@ -179,13 +176,13 @@ static double diagonal_of(const ur_vec2 *hull, size_t count)
 /*
  * A fit at any turn, by branch and bound on the angle: an extent changes
  * by at most the polygon's diameter (at most its box's diagonal) times the
- * change of angle, so the overflow over an interval of half-width h round
- * an angle is at least its value there less slope * h.  An interval whose
- * bound is above 1 cannot fit; any other is halved until it fits or is
- * narrower than FIT_NARROWEST (a fit that only a thousandth of a degree
- * allows is none a cutter could hold).  Most polygons that do not fit are
- * refused on the FIT_FIRST first intervals; FIT_MOST_TRIES bounds the
- * rest.
+ * change of angle, so over an interval of half-width h round an angle each
+ * extent is at least its value there less diagonal * h.  An interval where
+ * either bound is over its side of the rectangle cannot fit; any other is
+ * halved until it fits or is narrower than FIT_NARROWEST (a fit that only
+ * a thousandth of a degree allows is none a cutter could hold).  Most
+ * polygons that do not fit are refused on the FIT_FIRST first intervals;
+ * FIT_MOST_TRIES bounds the rest.
  */
 enum { FIT_FIRST = 16, FIT_STACK = 64, FIT_MOST_TRIES = 4096 };
 #define FIT_NARROWEST 1e-5
@@ -199,22 +196,24 @@ bool geom_hull_fit_angle(const ur_vec2 *hull, size_t count, double length, doubl
         return true;
     if (count < 2 || !(length > 0) || !(width > 0))
         return false;
-    double slope = diagonal_of(hull, count) / fmin(length, width);
+    double diagonal = diagonal_of(hull, count);
     double centre[FIT_STACK], half[FIT_STACK];
     size_t top = 0;
-    for (int k = FIT_FIRST - 1; k >= 0; k--) { /* the overflow repeats after a half turn */
+    for (int k = FIT_FIRST - 1; k >= 0; k--) { /* the extents repeat after a half turn */
         half[top] = 0.5 * M_PI / FIT_FIRST;
         centre[top++] = (2 * k + 1) * half[0];
     }
     for (int tries = 0; top > 0 && tries < FIT_MOST_TRIES; tries++) {
         top--;
-        double at = centre[top], h = half[top];
-        double overflow = overflow_at(hull, count, length, width, at);
-        if (overflow <= 1.0) {
+        double at = centre[top], h = half[top], along, across;
+        extents_at(hull, count, at, &along, &across);
+        if (along <= length && across <= width) {
             *angle = at;
             return true;
         }
-        if (overflow - slope * h > 1.0 || h < FIT_NARROWEST || top + 2 > FIT_STACK)
+        double least_change = diagonal * h;
+        if (along - least_change > length || across - least_change > width || h < FIT_NARROWEST ||
+            top + 2 > FIT_STACK)
             continue;
         centre[top] = at + 0.5 * h, half[top++] = 0.5 * h;
         centre[top] = at - 0.5 * h, half[top++] = 0.5 * h;
