@@ -3,7 +3,7 @@
  * least-area rectangle round a convex polygon, and whether the polygon
  * fits a rectangle at some turn.  The least-area rectangle has a side on
  * one of the polygon's edges (Freeman and Shapira 1975), so each edge's
- * direction is tried.
+ * direction is tried, with rotating calipers.
  */
 #include "hull.h"
 
@@ -120,30 +120,83 @@ size_t geom_convex_hull_of_two(ur_vec2 *points, size_t first, size_t second, ur_
     return chain_sorted(points, count, hull);
 }
 
+/* The index after i round a polygon of count points. */
+static size_t next_index(size_t i, size_t count)
+{
+    return i + 1 < count ? i + 1 : 0;
+}
+
+/* Which extreme point of the polygon a caliper holds, seen from an edge. */
+typedef enum caliper { AHEAD, BEHIND, ACROSS } caliper;
+
+/*
+ * How far point j lies from point i in the caliper's sense, for the edge
+ * from i with unit direction d: along d, against it, or off its line.
+ */
+static double reach(const ur_vec2 *hull, size_t i, ur_vec2 d, size_t j, caliper c)
+{
+    ur_vec2 p = ur_vec2_sub(hull[j], hull[i]);
+    if (c == ACROSS)
+        return fabs(ur_vec2_cross(d, p));
+    return c == AHEAD ? ur_vec2_dot(p, d) : -ur_vec2_dot(p, d);
+}
+
+/*
+ * The caliper at j moved on round the polygon while that takes it no
+ * nearer: as the edge turns, each extreme point only moves forward.
+ */
+static size_t advance(const ur_vec2 *hull, size_t count, size_t i, ur_vec2 d, size_t j, caliper c)
+{
+    for (size_t steps = 0; steps < count; steps++) {
+        size_t next = next_index(j, count);
+        if (reach(hull, i, d, next, c) < reach(hull, i, d, j, c))
+            break;
+        j = next;
+    }
+    return j;
+}
+
+/* The caliper's reach, also asked of the two points after it (rounding may dent the polygon). */
+static double reach_at(const ur_vec2 *hull, size_t count, size_t i, ur_vec2 d, size_t j, caliper c)
+{
+    size_t after = next_index(j, count);
+    double r = fmax(reach(hull, i, d, j, c), reach(hull, i, d, after, c));
+    return fmax(r, reach(hull, i, d, next_index(after, count), c));
+}
+
+/*
+ * Rotating calipers (Toussaint 1983): the points farthest ahead, behind
+ * and across move forward as the edge does, so that every edge is tried
+ * in linear time in all.  A hull of a large piece has thousands of points,
+ * and the unfolder asks this of it at every join that its box leaves in
+ * doubt.
+ */
 double geom_least_area_box(const ur_vec2 *hull, size_t count, double *length, double *width)
 {
     double best_area = INFINITY, angle = 0.0;
     *length = *width = 0.0;
+    size_t ahead = 0, behind = 0, across = 0;
+    bool started = false;
     for (size_t i = 0; i < count; i++) {
-        ur_vec2 d = ur_vec2_sub(hull[(i + 1) % count], hull[i]);
+        ur_vec2 d = ur_vec2_sub(hull[next_index(i, count)], hull[i]);
         double norm = sqrt(ur_vec2_dot(d, d));
         if (!(norm > 0))
             continue;
         d = ur_vec2_scale(d, 1.0 / norm);
-        double low = 0.0, high = 0.0, across = 0.0;
-        /* The area only grows as points are added: stop once it is no better. */
-        for (size_t j = 0; j < count && (high - low) * across < best_area; j++) {
-            ur_vec2 p = ur_vec2_sub(hull[j], hull[i]);
-            double along = ur_vec2_dot(p, d), side = fabs(ur_vec2_cross(d, p));
-            low = along < low ? along : low;
-            high = along > high ? along : high;
-            across = side > across ? side : across;
-        }
-        if ((high - low) * across < best_area) {
-            best_area = (high - low) * across;
-            *length = high - low > across ? high - low : across;
-            *width = high - low > across ? across : high - low;
-            angle = atan2(d.y, d.x) + (high - low >= across ? 0.0 : M_PI / 2);
+        if (!started)
+            ahead = i;
+        ahead = advance(hull, count, i, d, ahead, AHEAD);
+        across = advance(hull, count, i, d, started ? across : ahead, ACROSS);
+        behind = advance(hull, count, i, d, started ? behind : across, BEHIND);
+        started = true;
+        double high = fmax(0.0, reach_at(hull, count, i, d, ahead, AHEAD));
+        double low = fmin(0.0, -reach_at(hull, count, i, d, behind, BEHIND));
+        double side = reach_at(hull, count, i, d, across, ACROSS);
+        if ((high - low) * side < best_area) {
+            best_area = (high - low) * side;
+            *length = high - low > side ? high - low : side;
+            *width = high - low > side ? side : high - low;
+            angle = atan2(d.y, d.x) + (high - low >= side ? 0.0 : M_PI / 2);
         }
     }
     return angle;

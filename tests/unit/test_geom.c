@@ -1,6 +1,8 @@
 /*
- * test_geom.c: segment distances against hand-worked cases, and the
- * polyline meeting test on rails that cross, touch and stay apart.
+ * test_geom.c: segment distances against hand-worked cases, the polyline
+ * meeting test on rails that cross, touch and stay apart, and the hulls:
+ * two merged, the least-area rectangle against every edge tried in full,
+ * and fits at a turn.
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -162,6 +164,80 @@ static void turned_rectangle(double w, double h, double angle, ur_vec2 corners[4
     }
 }
 
+/* The least-area rectangle the slow way: every edge's direction against every point. */
+static double least_area_by_every_point(const ur_vec2 *hull, size_t count, double *length,
+                                        double *width)
+{
+    double best = INFINITY;
+    *length = *width = 0;
+    for (size_t i = 0; i < count; i++) {
+        double dx = hull[(i + 1) % count].x - hull[i].x, dy = hull[(i + 1) % count].y - hull[i].y;
+        double norm = hypot(dx, dy);
+        double low = INFINITY, high = -INFINITY, across = 0;
+        for (size_t j = 0; j < count; j++) {
+            double px = hull[j].x - hull[i].x, py = hull[j].y - hull[i].y;
+            double along = (px * dx + py * dy) / norm;
+            low = fmin(low, along), high = fmax(high, along);
+            across = fmax(across, fabs(dx * py - dy * px) / norm);
+        }
+        if ((high - low) * across < best) {
+            best = (high - low) * across;
+            *length = fmax(high - low, across);
+            *width = fmin(high - low, across);
+        }
+    }
+    return best;
+}
+
+static uint64_t next_random(uint64_t *state)
+{
+    *state ^= *state << 13, *state ^= *state >> 7, *state ^= *state << 17;
+    return *state;
+}
+
+static double uniform(uint64_t *state)
+{
+    return (double)(next_random(state) >> 11) * 0x1.0p-53;
+}
+
+/*
+ * The rotating calipers find the rectangle that trying every edge against
+ * every point finds: on hulls of random points in a disc and in a long
+ * thin strip, and on a regular 2,000-gon (parallel edges: calipers that
+ * stop on a tie must still hold the extreme points).
+ */
+static void test_least_area_box(void **state)
+{
+    (void)state;
+    enum { MOST = 2000 };
+    static ur_vec2 points[MOST], hull[MOST + 1];
+    uint64_t random = 12345;
+    for (int trial = 0; trial < 300; trial++) {
+        size_t count = 3 + (size_t)(uniform(&random) * 400);
+        double stretch = trial % 2 ? 1.0 : 40.0, turn = uniform(&random) * 6.3;
+        for (size_t k = 0; k < count; k++) {
+            double r = sqrt(uniform(&random)), a = 2 * M_PI * uniform(&random);
+            double x = stretch * r * cos(a), y = r * sin(a);
+            points[k] = ur_vec2_make(x * cos(turn) - y * sin(turn), x * sin(turn) + y * cos(turn));
+        }
+        size_t corners = geom_convex_hull(points, count, hull);
+        double length, width, slow_length, slow_width;
+        geom_least_area_box(hull, corners, &length, &width);
+        double slow = least_area_by_every_point(hull, corners, &slow_length, &slow_width);
+        assert_float_equal(length * width, slow, 1e-9 * slow);
+        assert_float_equal(length, slow_length, 1e-9 * slow_length);
+        assert_float_equal(width, slow_width, 1e-9 * slow_length);
+    }
+    for (size_t k = 0; k < MOST; k++)
+        hull[k] = ur_vec2_make(50 * cos(2 * M_PI * (double)k / MOST),
+                               50 * sin(2 * M_PI * (double)k / MOST));
+    double length, width;
+    geom_least_area_box(hull, MOST, &length, &width);
+    /* A square on an edge: its sides 100 cos(pi / 2000), edge to opposite edge, both ways. */
+    assert_float_equal(length, 100 * cos(M_PI / MOST), 1e-9);
+    assert_float_equal(width, 100 * cos(M_PI / MOST), 1e-9);
+}
+
 /*
  * A piece fits a sheet at some turn, not only level: closed forms for a
  * needle (it fits L x W exactly when it is no longer than the diagonal)
@@ -216,9 +292,8 @@ static void test_hull_fits_turned(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_segment_distance),
-        cmocka_unit_test(test_polylines_meet),
-        cmocka_unit_test(test_hull_of_two),
+        cmocka_unit_test(test_segment_distance), cmocka_unit_test(test_polylines_meet),
+        cmocka_unit_test(test_hull_of_two),      cmocka_unit_test(test_least_area_box),
         cmocka_unit_test(test_hull_fits_turned),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
