@@ -51,11 +51,16 @@ typedef struct ur_mesh_repairs {
     size_t isolated;   /* vertices no triangle uses, dropped */
     size_t flipped;    /* triangles turned to agree with their neighbours */
     size_t split;      /* vertices copied to take apart surfaces that touch along an edge */
+    size_t flaps;      /* pairs of triangles back to back on the same corners, dropped */
 } ur_mesh_repairs;
 
 /*
- * Welds vertices closer than weld_tolerance (mm), drops zero-area triangles
- * and unused vertices, and orients every connected part consistently.
+ * Welds vertices closer than weld_tolerance (mm), drops zero-area triangles,
+ * flaps of no thickness and unused vertices, and orients every connected
+ * part consistently.  A flap is two triangles on the same three corners,
+ * back to back, that stand on the surface: taken away, they leave each of
+ * their edges with two triangles or none, and one edge with two (Blender's
+ * monkey head has one under its chin).
  * Refuses (UR_ERROR_INPUT, naming a vertex) NaN or infinite coordinates, a
  * mesh with no triangles left, and non-manifold edges (three or more
  * triangles on one edge), which cannot be repaired safely.  An edge that

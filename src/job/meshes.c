@@ -286,6 +286,11 @@ static void say_repairs(const job_run *run, const ur_mesh_repairs *repairs)
                  "vertices dropped, %zu triangles turned to agree with their neighbours",
                  run->job.command, repairs->welded, repairs->degenerate, repairs->isolated,
                  repairs->flipped);
+    if (repairs->flaps)
+        job_note(run,
+                 "%s: repaired: %zu flap%s of no thickness dropped (two triangles back to back on "
+                 "the same corners, standing on the surface)",
+                 run->job.command, repairs->flaps, repairs->flaps == 1 ? "" : "s");
     if (repairs->split)
         job_note(run,
                  "%s: repaired: surfaces that touched along an edge taken apart (%zu vertices "

@@ -1,8 +1,8 @@
 /*
  * fans.c: taking apart two surfaces that only touch along an edge, where
- * a file gives both the same vertices (Blender's monkey has two such
- * edges; written as STL, where every corner is a point, or as an OBJ
- * whose duplicate vertices were merged, the edges carry four triangles).
+ * a file gives both the same vertices (an STL, where every corner is a
+ * point, or an OBJ whose duplicate vertices were merged: the edge carries
+ * four triangles).
  *
  * Round each end of such an edge the triangles fall into fans: triangles
  * at the vertex joined across the edges that two of them share (an edge of

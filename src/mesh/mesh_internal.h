@@ -38,6 +38,14 @@ ur_status mesh_check_triangles(const size_t (*triangles)[3], size_t count, size_
 ur_status mesh_split_fans(size_t (*triangles)[3], size_t count, size_t v, size_t next_vertex,
                           size_t *copies, ur_error *error);
 
+/*
+ * Marks in drop (count entries, the caller's) the pairs of triangles that
+ * lie back to back on the same corners as a flap of no thickness standing
+ * on the surface (flaps.c says which); *pairs counts them.
+ */
+ur_status mesh_find_flaps(const size_t (*triangles)[3], size_t count, bool *drop, size_t *pairs,
+                          ur_error *error);
+
 /* An edge that three or more triangles share (vertex indices, 0-based). */
 typedef struct mesh_bad_edge {
     size_t a, b, count;

@@ -1305,6 +1305,32 @@ def charts_of_single_faces_suggest_unfolding(work):
 
 
 @test
+def flap_of_no_thickness_is_dropped(work):
+    # A 50 mm cube with a flap on one edge: two triangles back to back on
+    # the edge's ends and a point off the cube (Blender's monkey head has one
+    # under its chin).  Before, the edge's four triangles were taken apart
+    # and the flap came out as a piece of its own.  Now it is dropped, with a
+    # note, and the net is the cube's: its area, its pieces, no warning.
+    corners = [(x, y, z) for z in (0, 50) for y in (0, 50) for x in (0, 50)]
+    faces = [(1, 3, 4, 2), (5, 6, 8, 7), (1, 2, 6, 5), (3, 7, 8, 4), (1, 5, 7, 3), (2, 4, 8, 6)]
+    cube = "".join("v %d %d %d\n" % c for c in corners) + \
+        "".join("f %d %d %d %d\n" % f for f in faces)
+    write(work, "cube.obj", cube)
+    write(work, "flap.obj", cube + "v 25 -30 -30\nf 1 2 9\nf 2 1 9\n")
+    plain = run(work, "mesh", "cube.obj", "--flatten", "unfold", "--material", "paper-0.3mm",
+                "--nest-time", "0", "-o", "c.svg", "--report", "c.json")
+    result = run(work, "mesh", "flap.obj", "--flatten", "unfold", "--material", "paper-0.3mm",
+                 "--nest-time", "0", "-o", "f.svg", "--report", "f.json")
+    check("repaired: 1 flap of no thickness dropped" in result.stderr, result.stderr)
+    check("warning" not in result.stderr and "apart" not in result.stderr, result.stderr)
+    flap, cube_report = report(work, "f.json"), report(work, "c.json")
+    check(abs(flap["surface_area_mm2"] - 15000) < 1e-6, str(flap["surface_area_mm2"]))
+    check(len(flap["pieces"]) == len(cube_report["pieces"]),
+          "%d pieces, the cube alone %d" % (len(flap["pieces"]), len(cube_report["pieces"])))
+    check("flap" not in plain.stderr, plain.stderr)
+
+
+@test
 def mesh_in_metres_gets_a_warning(work):
     # A 2-unit cube, as Blender exports its default cube (metres).
     corners = [(x, y, z) for z in (-1, 1) for y in (-1, 1) for x in (-1, 1)]

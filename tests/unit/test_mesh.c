@@ -664,6 +664,91 @@ static ur_mesh grid_with_extra(size_t a, size_t b2, size_t c, double extra_z)
 }
 
 /*
+ * An octahedron with a flap on one edge: two triangles back to back on the
+ * edge's ends and a point off the surface, as Blender's monkey head has
+ * under its chin.  The pair goes, the point with it, and the octahedron
+ * is left whole (every edge on two triangles, Euler characteristic 2).
+ * Without the flap dropped the edge carries four triangles, and taking
+ * the surfaces apart there left the flap a closed surface of its own.
+ */
+static void test_clean_drops_flaps(void **state)
+{
+    (void)state;
+    for (int turned = 0; turned < 2; turned++) {
+        ur_mesh base = octahedron();
+        builder b = {0};
+        for (size_t v = 0; v < base.vertex_count; v++)
+            add_vertex(&b, base.vertices[v].x, base.vertices[v].y, base.vertices[v].z);
+        size_t foot_a = base.triangles[3][0], foot_b = base.triangles[3][1];
+        size_t tip = add_vertex(&b, 2, 2, 2);
+        for (size_t t = 0; t < base.triangle_count; t++) {
+            add_triangle(&b, base.triangles[t][0], base.triangles[t][1], base.triangles[t][2], 0);
+            if (t == 3) /* the flap among the surface's triangles, each way round first */
+                add_triangle(&b, turned ? foot_b : foot_a, turned ? foot_a : foot_b, tip, 0);
+        }
+        add_triangle(&b, turned ? foot_a : foot_b, turned ? foot_b : foot_a, tip, 0);
+        ur_mesh_free(&base);
+        ur_mesh mesh = build(&b);
+        ur_mesh_repairs repairs = clean(&mesh, 1e-6);
+        assert_int_equal(repairs.flaps, 1);
+        assert_int_equal(repairs.split, 0);
+        assert_int_equal(repairs.isolated, 1); /* the tip */
+        assert_int_equal(mesh.triangle_count, 8);
+        assert_int_equal(mesh.vertex_count, 6);
+        size_t *twins;
+        ur_error error;
+        assert_int_equal(ur_mesh_twins(&mesh, &twins, &error), UR_OK);
+        for (size_t h = 0; h < 24; h++)
+            assert_int_not_equal(twins[h], UR_NO_EDGE);
+        free(twins);
+        ur_mesh_free(&mesh);
+    }
+}
+
+/*
+ * What is not a flap stays: a sheet modelled with a face on each side (a
+ * grid and the same grid turned over: pairs side by side, and taking them
+ * would take the sheet), and a pair standing on the edge of an open grid
+ * (its foot then on three triangles: refused, as before).
+ */
+static void test_clean_keeps_what_is_no_flap(void **state)
+{
+    (void)state;
+    ur_mesh sheet = grid(3, 3);
+    builder b = {0};
+    for (size_t v = 0; v < sheet.vertex_count; v++)
+        add_vertex(&b, sheet.vertices[v].x, sheet.vertices[v].y, sheet.vertices[v].z);
+    for (size_t t = 0; t < sheet.triangle_count; t++) {
+        add_triangle(&b, sheet.triangles[t][0], sheet.triangles[t][1], sheet.triangles[t][2], 0);
+        add_triangle(&b, sheet.triangles[t][0], sheet.triangles[t][2], sheet.triangles[t][1], 0);
+    }
+    size_t faces = b.triangle_count;
+    ur_mesh both_sides = build(&b);
+    ur_mesh_repairs repairs;
+    ur_error error;
+    ur_status status = ur_mesh_clean(&both_sides, 1e-6, &repairs, &error);
+    if (status == UR_OK) {
+        assert_int_equal(repairs.flaps, 0);
+        assert_int_equal(both_sides.triangle_count, faces);
+    }
+    ur_mesh_free(&both_sides);
+
+    for (size_t v = 0; v < sheet.vertex_count; v++)
+        add_vertex(&b, sheet.vertices[v].x, sheet.vertices[v].y, sheet.vertices[v].z);
+    for (size_t t = 0; t < sheet.triangle_count; t++)
+        add_triangle(&b, sheet.triangles[t][0], sheet.triangles[t][1], sheet.triangles[t][2], 0);
+    size_t foot_a = sheet.triangles[0][0], foot_b = sheet.triangles[0][1];
+    size_t tip = add_vertex(&b, 0.5, 0.5, 1);
+    add_triangle(&b, foot_a, foot_b, tip, 0);
+    add_triangle(&b, foot_b, foot_a, tip, 0);
+    ur_mesh_free(&sheet);
+    ur_mesh open = build(&b);
+    assert_int_equal(ur_mesh_clean(&open, 1e-6, &repairs, &error), UR_ERROR_INPUT);
+    assert_message(error, "non-manifold edge");
+    ur_mesh_free(&open);
+}
+
+/*
  * Two tetrahedra, each with its own vertices, that touch along one edge
  * (two of their corners at the same places): welding alone would join
  * them by an edge of four triangles.
@@ -698,7 +783,7 @@ static void test_clean_unwelds_touching_parts(void **state)
 
 /*
  * The same two tetrahedra with the touching corners given once (as an STL
- * read through assimp, or Blender's monkey head, has them): the edge of
+ * read through assimp has them): the edge of
  * four triangles comes apart, each tetrahedron keeping a copy of its ends,
  * and every edge then has two triangles.
  */
@@ -1241,6 +1326,8 @@ int main(void)
         cmocka_unit_test(test_clean_orients),
         cmocka_unit_test(test_clean_drops),
         cmocka_unit_test(test_clean_refuses),
+        cmocka_unit_test(test_clean_drops_flaps),
+        cmocka_unit_test(test_clean_keeps_what_is_no_flap),
         cmocka_unit_test(test_clean_unwelds_touching_parts),
         cmocka_unit_test(test_clean_splits_surfaces_touching_along_an_edge),
         cmocka_unit_test(test_clean_refuses_moebius),

@@ -1,0 +1,176 @@
+/*
+ * flaps.c: finding flaps of no thickness: two triangles on the same
+ * three corners, back to back, standing on a surface.  Blender's monkey
+ * head has one under its chin: two quads that mirror each other each
+ * fold a triangle into the mirror plane, and the two triangles meet there
+ * back to back.  Left in, the pair makes an edge of four triangles (the
+ * flap's foot, and the surface on either side of it), and unfolding gives
+ * the flap as a piece of its own that nothing can be glued to.
+ *
+ * A pair is such a flap when, the pair taken away, every one of its edges
+ * is left with two triangles (the surface closes over the foot) or with
+ * none (the flap's own folds), and at least one with two.  A pair that
+ * shares an edge with other triangles on repeated corners is left alone:
+ * a sheet modelled with a face on each side is such pairs side by side,
+ * and taking them away would take the sheet.
+ */
+#include "mesh_internal.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+/* A triangle's corners in increasing order: the same for a pair, whichever way each runs. */
+typedef struct corners_key {
+    size_t corner[3];
+    size_t triangle;
+} corners_key;
+
+static int compare_keys(const void *a, const void *b)
+{
+    const corners_key *x = a, *y = b;
+    for (int k = 0; k < 3; k++)
+        if (x->corner[k] != y->corner[k])
+            return x->corner[k] < y->corner[k] ? -1 : 1;
+    return (x->triangle > y->triangle) - (x->triangle < y->triangle);
+}
+
+static corners_key key_of(const size_t (*triangles)[3], size_t t)
+{
+    size_t a = triangles[t][0], b = triangles[t][1], c = triangles[t][2], swap;
+    if (a > b)
+        swap = a, a = b, b = swap;
+    if (b > c)
+        swap = b, b = c, c = swap;
+    if (a > b)
+        swap = a, a = b, b = swap;
+    return (corners_key){{a, b, c}, t};
+}
+
+static bool same_corners(const corners_key *x, const corners_key *y)
+{
+    return memcmp(x->corner, y->corner, sizeof x->corner) == 0;
+}
+
+/* Whether triangles s and t run opposite ways round the same corners. */
+static bool back_to_back(const size_t (*triangles)[3], size_t s, size_t t)
+{
+    for (int k = 0; k < 3; k++)
+        if (triangles[t][k] == triangles[s][0])
+            return triangles[t][(k + 1) % 3] == triangles[s][2];
+    return false;
+}
+
+/* An edge (its ends in increasing order) of a triangle. */
+typedef struct edge_entry {
+    size_t low, high, triangle;
+} edge_entry;
+
+static int compare_edges(const void *a, const void *b)
+{
+    const edge_entry *x = a, *y = b;
+    if (x->low != y->low)
+        return x->low < y->low ? -1 : 1;
+    if (x->high != y->high)
+        return x->high < y->high ? -1 : 1;
+    return (x->triangle > y->triangle) - (x->triangle < y->triangle);
+}
+
+/* The first entry on edge (low, high) in the sorted edges. */
+static size_t first_on_edge(const edge_entry *edges, size_t count, size_t low, size_t high)
+{
+    size_t from = 0, to = count;
+    while (from < to) {
+        size_t middle = from + (to - from) / 2;
+        const edge_entry *e = &edges[middle];
+        if (e->low < low || (e->low == low && e->high < high))
+            from = middle + 1;
+        else
+            to = middle;
+    }
+    return from;
+}
+
+typedef struct flap_search {
+    const size_t (*triangles)[3];
+    edge_entry *edges;
+    size_t edge_count;
+    bool *repeated; /* per triangle: another has the same corners */
+} flap_search;
+
+/* Whether the pair s, t stands as a flap on the surface (see the top of the file). */
+static bool is_flap(const flap_search *p, size_t s, size_t t)
+{
+    bool foot = false;
+    for (int k = 0; k < 3; k++) {
+        size_t a = p->triangles[s][k], b = p->triangles[s][(k + 1) % 3];
+        size_t low = a < b ? a : b, high = a < b ? b : a, others = 0;
+        for (size_t i = first_on_edge(p->edges, p->edge_count, low, high);
+             i < p->edge_count && p->edges[i].low == low && p->edges[i].high == high; i++) {
+            size_t u = p->edges[i].triangle;
+            if (u == s || u == t)
+                continue;
+            if (p->repeated[u])
+                return false;
+            others++;
+        }
+        if (others != 0 && others != 2)
+            return false;
+        foot = foot || others == 2;
+    }
+    return foot;
+}
+
+static void find_flaps(const flap_search *p, const corners_key *keys, size_t count, bool *drop,
+                       size_t *pairs)
+{
+    for (size_t i = 0, j; i < count; i = j) {
+        for (j = i + 1; j < count && same_corners(&keys[j], &keys[i]); j++)
+            ;
+        if (j - i == 2 && back_to_back(p->triangles, keys[i].triangle, keys[i + 1].triangle) &&
+            is_flap(p, keys[i].triangle, keys[i + 1].triangle)) {
+            drop[keys[i].triangle] = drop[keys[i + 1].triangle] = true;
+            (*pairs)++;
+        }
+    }
+}
+
+ur_status mesh_find_flaps(const size_t (*triangles)[3], size_t count, bool *drop, size_t *pairs,
+                          ur_error *error)
+{
+    *pairs = 0;
+    memset(drop, 0, count * sizeof *drop);
+    corners_key *keys = ur_alloc_array(count, sizeof *keys, error);
+    flap_search p = {triangles, NULL, 0, ur_alloc_array(count, sizeof *p.repeated, error)};
+    if (!keys || !p.repeated) {
+        free(keys);
+        free(p.repeated);
+        return UR_ERROR_MEMORY;
+    }
+    for (size_t t = 0; t < count; t++)
+        keys[t] = key_of(triangles, t);
+    qsort(keys, count, sizeof *keys, compare_keys);
+    bool any = false;
+    for (size_t i = 0; i < count; i++) {
+        p.repeated[keys[i].triangle] = (i > 0 && same_corners(&keys[i], &keys[i - 1])) ||
+                                       (i + 1 < count && same_corners(&keys[i], &keys[i + 1]));
+        any = any || p.repeated[keys[i].triangle];
+    }
+    ur_status status = UR_OK;
+    if (any) { /* most meshes have no repeated corners: no edges to list */
+        p.edges = ur_alloc_array(3 * count, sizeof *p.edges, error);
+        status = p.edges ? UR_OK : UR_ERROR_MEMORY;
+        for (size_t t = 0; status == UR_OK && t < count; t++)
+            for (int k = 0; k < 3; k++) {
+                size_t a = triangles[t][k], b = triangles[t][(k + 1) % 3];
+                p.edges[p.edge_count++] = (edge_entry){a < b ? a : b, a < b ? b : a, t};
+            }
+        if (status == UR_OK) {
+            qsort(p.edges, p.edge_count, sizeof *p.edges, compare_edges);
+            find_flaps(&p, keys, count, drop, pairs);
+        }
+    }
+    free(keys);
+    free(p.repeated);
+    free(p.edges);
+    return status;
+}
