@@ -337,7 +337,7 @@ static ur_status alloc_run(unfolder *u, ur_error *error)
 static ur_status unfolder_init(unfolder *u, const ur_mesh *mesh, const ur_seam *seams,
                                size_t seam_count, const ur_unfold_options *options, ur_error *error)
 {
-    *u = (unfolder){.mesh = mesh};
+    *u = (unfolder){.mesh = mesh, .progress_span = 1.0};
     if (options)
         u->options = *options;
     else
@@ -546,15 +546,31 @@ static size_t steps_in_all(const unfolder *u, size_t given, unfold_score best)
     return by_pieces > given ? by_pieces : given;
 }
 
+/*
+ * The share of its window the first part of search_in_two reports in: its
+ * steps' share of those given, or half when the pieces may ask for more.
+ */
+static double first_part_share(const unfolder *u, size_t given)
+{
+    if (given > UNFOLD_FIRST_STEPS)
+        return (double)UNFOLD_FIRST_STEPS / (double)given;
+    return given > 0 && u->options.steps_per_piece > 0 ? 0.5 : 1.0;
+}
+
 static ur_status search_in_two(unfolder *u, size_t **order, size_t count, size_t *steps,
                                unfold_score *best, ur_error *error)
 {
     size_t given = u->options.max_steps;
+    double from = u->progress_from, span = u->progress_span;
+    double first_span = span * first_part_share(u, given);
     if (given > UNFOLD_FIRST_STEPS)
         u->options.max_steps = UNFOLD_FIRST_STEPS;
+    u->progress_span = first_span;
     ur_status status = unfold_search(u, *order, count, steps, best, error);
     size_t total = status == UR_OK ? steps_in_all(u, given, *best) : 0;
     u->options.max_steps = given;
+    u->progress_from = from + first_span; /* the second part, if any, goes on from there */
+    u->progress_span = span - first_span;
     if (status != UR_OK || total <= UNFOLD_FIRST_STEPS)
         return status;
     size_t *more = ur_alloc_array(count ? count : 1, sizeof *more, error);
@@ -616,9 +632,15 @@ static ur_status search_level_and_turned(unfolder *u, size_t **order, size_t cou
     size_t more = 0;
     u->turned_room = false;
     u->turnable_refusals = 0;
+    /* The turned search, if any, takes half the level one's steps: the last third of the report. */
+    double level_share = u->room ? 2.0 / 3.0 : 1.0;
+    u->progress_from = 0;
+    u->progress_span = level_share;
     ur_status status = search_in_two(u, order, count, steps, &level, error);
     if (status == UR_OK && u->room && u->turnable_refusals > 0) {
         u->turned_room = true;
+        u->progress_from = level_share;
+        u->progress_span = 1 - level_share;
         ur_unfold_options given = u->options;
         u->options.time_budget /= 2;
         u->options.max_steps = (given.max_steps + 1) / 2;

@@ -276,6 +276,8 @@ typedef struct unfolder {
     bool room_binds;  /* joins that do not fit the room are refused (not inside faces) */
     bool turned_room; /* a piece fits the room at any turn, not only level (unfold_room.c) */
     size_t turnable_refusals; /* 0, or 1 once the level room refused a join it would take turned */
+    /* the share of the whole search the part under way reports ("improving"), from..from + span */
+    double progress_from, progress_span;
     /* the run: */
     size_t *piece;      /* per triangle: its piece (an island's number) */
     ur_vec2 (*flat)[3]; /* per triangle: its corners on its piece */

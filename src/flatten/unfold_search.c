@@ -259,7 +259,8 @@ static ur_status run_search(search *s, size_t least, size_t *steps, ur_error *er
             walk_from = progress;
         }
         if (step % 32 == 0 && o->progress)
-            o->progress(o->progress_context, "improving", progress);
+            o->progress(o->progress_context, "improving",
+                        s->u->progress_from + s->u->progress_span * progress);
         unfold_score before = s->top;
         bool moved;
         ur_status status = step_once(s, walk_progress(walk_from, progress), &moved, error);
