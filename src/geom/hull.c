@@ -7,6 +7,7 @@
  */
 #include "hull.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdbool.h>
 #include <stdlib.h>
@@ -41,6 +42,31 @@ static size_t chain_sorted(const ur_vec2 *points, size_t count, ur_vec2 *hull)
     return k - 1; /* the first point came again */
 }
 
+/*
+ * Drops from sorted points each that lies within rounding of the one kept
+ * before it; the new count.  Two such points (a corner laid twice by two
+ * motions) make the chain's turn test meaningless: its base is no longer
+ * than rounding, so the test says anything, and the chain kept a corner
+ * where the polygon turns the wrong way by a whole edge (a piece of a
+ * bevelled cube then measured smaller than it is, and passed for fitting
+ * a sheet it did not fit).
+ */
+static size_t drop_near_duplicates(ur_vec2 *points, size_t count)
+{
+    double scale = 0;
+    for (size_t i = 0; i < count; i++)
+        scale = fmax(scale, fmax(fabs(points[i].x), fabs(points[i].y)));
+    double tiny = 64 * DBL_EPSILON * scale;
+    size_t kept = count > 0 ? 1 : 0;
+    for (size_t i = 1; i < count; i++) {
+        ur_vec2 last = points[kept - 1];
+        if (fabs(points[i].x - last.x) <= tiny && fabs(points[i].y - last.y) <= tiny)
+            continue;
+        points[kept++] = points[i];
+    }
+    return kept;
+}
+
 size_t geom_convex_hull(ur_vec2 *points, size_t count, ur_vec2 *hull)
 {
     if (count < 3) {
@@ -49,6 +75,12 @@ size_t geom_convex_hull(ur_vec2 *points, size_t count, ur_vec2 *hull)
         return count;
     }
     qsort(points, count, sizeof *points, compare_points);
+    count = drop_near_duplicates(points, count);
+    if (count < 3) {
+        for (size_t i = 0; i < count; i++)
+            hull[i] = points[i];
+        return count;
+    }
     return chain_sorted(points, count, hull);
 }
 
@@ -117,6 +149,12 @@ size_t geom_convex_hull_of_two(ur_vec2 *points, size_t first, size_t second, ur_
     /* Rounding can leave a moved polygon a hair off convex, and its chains out of order. */
     if (!is_sorted(points, count))
         qsort(points, count, sizeof *points, compare_points);
+    count = drop_near_duplicates(points, count);
+    if (count < 3) {
+        for (size_t i = 0; i < count; i++)
+            hull[i] = points[i];
+        return count;
+    }
     return chain_sorted(points, count, hull);
 }
 
@@ -177,10 +215,20 @@ double geom_least_area_box(const ur_vec2 *hull, size_t count, double *length, do
     *length = *width = 0.0;
     size_t ahead = 0, behind = 0, across = 0;
     bool started = false;
+    /*
+     * An edge no longer than about rounding points anywhere: the calipers
+     * would follow it past the extreme points and never come back.  The
+     * hulls made here have none (drop_near_duplicates); one given from
+     * elsewhere may.
+     */
+    ur_box box = ur_box_empty();
+    for (size_t i = 0; i < count; i++)
+        ur_box_add(&box, hull[i]);
+    double shortest = 1e-9 * hypot(ur_box_width(box), ur_box_height(box));
     for (size_t i = 0; i < count; i++) {
         ur_vec2 d = ur_vec2_sub(hull[next_index(i, count)], hull[i]);
         double norm = sqrt(ur_vec2_dot(d, d));
-        if (!(norm > 0))
+        if (!(norm > shortest))
             continue;
         d = ur_vec2_scale(d, 1.0 / norm);
         if (!started)

@@ -173,13 +173,14 @@ static double least_area_by_every_point(const ur_vec2 *hull, size_t count, doubl
     for (size_t i = 0; i < count; i++) {
         double dx = hull[(i + 1) % count].x - hull[i].x, dy = hull[(i + 1) % count].y - hull[i].y;
         double norm = hypot(dx, dy);
-        double low = INFINITY, high = -INFINITY, across = 0;
+        double low = INFINITY, high = -INFINITY, left = INFINITY, right = -INFINITY;
         for (size_t j = 0; j < count; j++) {
             double px = hull[j].x - hull[i].x, py = hull[j].y - hull[i].y;
-            double along = (px * dx + py * dy) / norm;
+            double along = (px * dx + py * dy) / norm, off = (dx * py - dy * px) / norm;
             low = fmin(low, along), high = fmax(high, along);
-            across = fmax(across, fabs(dx * py - dy * px) / norm);
+            left = fmin(left, off), right = fmax(right, off);
         }
+        double across = right - left;
         if ((high - low) * across < best) {
             best = (high - low) * across;
             *length = fmax(high - low, across);
@@ -238,6 +239,87 @@ static void test_least_area_box(void **state)
     assert_float_equal(width, 100 * cos(M_PI / MOST), 1e-9);
 }
 
+/* The least turn of a polygon at its corners, over its size squared (< 0: not convex). */
+static double least_turn(const ur_vec2 *hull, size_t count)
+{
+    double least = INFINITY, size = 0;
+    for (size_t i = 0; i < count; i++)
+        size = fmax(size, fmax(fabs(hull[i].x), fabs(hull[i].y)));
+    for (size_t i = 0; i < count; i++) {
+        ur_vec2 a = hull[i], b = hull[(i + 1) % count], c = hull[(i + 2) % count];
+        least = fmin(least, (b.x - a.x) * (c.y - b.y) - (b.y - a.y) * (c.x - b.x));
+    }
+    return least / (size * size);
+}
+
+/* The least-area rectangle by turning a rectangle round in steps of a millionth of a quarter. */
+static double least_area_by_turning(const ur_vec2 *points, size_t count)
+{
+    double best = INFINITY;
+    for (int k = 0; k < 1000000; k++) {
+        double t = 0.5 * M_PI * k / 1e6, c = cos(t), s = sin(t);
+        double low = INFINITY, high = -INFINITY, left = INFINITY, right = -INFINITY;
+        for (size_t i = 0; i < count; i++) {
+            double u = c * points[i].x + s * points[i].y, v = -s * points[i].x + c * points[i].y;
+            low = fmin(low, u), high = fmax(high, u), left = fmin(left, v), right = fmax(right, v);
+        }
+        best = fmin(best, (high - low) * (right - left));
+    }
+    return best;
+}
+
+/*
+ * A corner laid twice, a few units of the last place apart (the hull of a
+ * piece of Blender's bevelled cube, triangulated, as the unfolder met it):
+ * the chain's turn test on so short a base said anything, and the hull
+ * kept a corner where it turns the wrong way by a whole edge.  Its least
+ * rectangle then came out 70,505 mm2 where none is under 75,610, and the
+ * piece passed for fitting a sheet it did not fit.  Now the hull is convex
+ * and its rectangle that of a rectangle turned round it in fine steps;
+ * also for random hulls with a corner given twice so.
+ */
+static void test_hull_of_a_corner_laid_twice(void **state)
+{
+    (void)state;
+    ur_vec2 points[9] = {{-105.72622627169116, 15.152341888446408},
+                         {-24.588458245177399, -6.5884575299216745},
+                         {-24.588458245177396, -6.5884575299216772},
+                         {59.39696860814562, -59.39696860814562},
+                         {118.79393721629124, 0},
+                         {140.53473663465937, 37.656169189777515},
+                         {147.12319416458104, 62.244627434954921},
+                         {-8.6730884737680825, 264.26096362160627},
+                         {-89.81085650028183, 242.52016420323815}};
+    ur_vec2 copy[9], hull[10];
+    memcpy(copy, points, sizeof copy);
+    size_t corners = geom_convex_hull(copy, 9, hull);
+    assert_int_equal(corners, 7); /* the corner laid twice lies inside: both copies go */
+    assert_true(least_turn(hull, corners) > 0);
+    double length, width;
+    geom_least_area_box(hull, corners, &length, &width);
+    double turning = least_area_by_turning(points, 9);
+    assert_true(turning > 75600);
+    assert_float_equal(length * width, turning, 1e-6 * turning);
+
+    uint64_t random = 777;
+    ur_vec2 many[101], round_hull[102];
+    for (int trial = 0; trial < 20; trial++) {
+        for (size_t k = 0; k < 100; k++) {
+            double a = 2 * M_PI * uniform(&random), r = 50 + 100 * uniform(&random);
+            many[k] = ur_vec2_make(r * cos(a), 0.5 * r * sin(a));
+        }
+        many[100] = many[trial]; /* a point of the hull (maybe) given again, a hair off */
+        many[100].x = nextafter(nextafter(many[100].x, INFINITY), INFINITY);
+        many[100].y = nextafter(many[100].y, -INFINITY);
+        size_t n = geom_convex_hull(many, 101, round_hull);
+        assert_true(least_turn(round_hull, n) > 0);
+        geom_least_area_box(round_hull, n, &length, &width);
+        double slow_length, slow_width;
+        double slow = least_area_by_every_point(round_hull, n, &slow_length, &slow_width);
+        assert_float_equal(length * width, slow, 1e-9 * slow);
+    }
+}
+
 /*
  * A piece fits a sheet at some turn, not only level: closed forms for a
  * needle (it fits L x W exactly when it is no longer than the diagonal)
@@ -292,8 +374,11 @@ static void test_hull_fits_turned(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_segment_distance), cmocka_unit_test(test_polylines_meet),
-        cmocka_unit_test(test_hull_of_two),      cmocka_unit_test(test_least_area_box),
+        cmocka_unit_test(test_segment_distance),
+        cmocka_unit_test(test_polylines_meet),
+        cmocka_unit_test(test_hull_of_two),
+        cmocka_unit_test(test_least_area_box),
+        cmocka_unit_test(test_hull_of_a_corner_laid_twice),
         cmocka_unit_test(test_hull_fits_turned),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
