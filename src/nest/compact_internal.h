@@ -75,6 +75,7 @@ typedef struct compactor {
     depth_index *nfps;  /* per (class, turn, class, turn), as the nester keys them */
     double length;      /* a strip: the length the parts must keep within, from the margin (mm) */
     double deadline;    /* on nest_seconds_now's clock */
+    bool out_of_time;   /* a no-fit polygon was not made: the deadline had passed */
     uint64_t random;
     const depth_index *
         *row;           /* scratch: per turn and part, the no-fit polygon a moving part meets */
@@ -86,7 +87,14 @@ typedef struct compactor {
 /* Copies the parts' turns, places and sheets of from into to. */
 void compact_copy_state(const compactor *c, state *to, const state *from);
 
-/* Every pair's depth where the parts are now; false on a failure (out of memory). */
+/*
+ * The status of a step that failed: none (UR_OK) when it stopped because a
+ * no-fit polygon was due after the deadline (the search then ends, its
+ * best kept), out of memory otherwise.
+ */
+ur_status compact_failure(compactor *c);
+
+/* Every pair's depth where the parts are now; false on a failure (compact_failure says which). */
 bool compact_recompute_depths(compactor *c);
 
 /* How far the parts reach along the strip, from the sheet's margin (mm). */

@@ -147,7 +147,7 @@ static int run_search(void *context)
 {
     compactor *c = context;
     if (!compact_recompute_depths(c))
-        c->status = ur_error_out_of_memory(&c->error);
+        c->status = compact_failure(c);
     else
         c->status = c->across_sheets ? compact_search_fewer(c)
                     : c->to_one_end  ? compact_push_to_one_end(c)

@@ -824,10 +824,57 @@ static void test_sheet_search_keeps_remnants_and_grain(void **state)
     free_pieces(pieces, COUNT);
 }
 
+/* A comb: a spine w x 6 with teeth 2 wide and h long, one every 4, over a gap of 2. */
+static ur_piece comb(const char *name, size_t teeth, double h)
+{
+    ur_vec2 ring[4 * 64 + 4];
+    size_t n = 0;
+    double w = 4.0 * (double)teeth;
+    ring[n++] = ur_vec2_make(0, 0);
+    ring[n++] = ur_vec2_make(w, 0);
+    ring[n++] = ur_vec2_make(w, 6);
+    for (size_t k = teeth; k-- > 0;) {
+        double x = 4.0 * (double)k;
+        ring[n++] = ur_vec2_make(x + 3, 6);
+        ring[n++] = ur_vec2_make(x + 3, 6 + h);
+        ring[n++] = ur_vec2_make(x + 1, 6 + h);
+        ring[n++] = ur_vec2_make(x + 1, 6);
+    }
+    ring[n++] = ur_vec2_make(0, 6);
+    return polygon_piece(name, ring, n);
+}
+
+/*
+ * A search cut short by its budget ends without a failure and keeps what it
+ * had.  Combs of many teeth, each of its own length, make no-fit polygons of
+ * thousands of convex sums, which the sheet search makes as it needs them:
+ * with a budget of a twentieth of a second the deadline passes while it
+ * makes the first.  It used to go on making them all (past its budget by
+ * seconds on the nets of a sphere); now it stops there, and a search that
+ * stops so must not report running out of memory.
+ */
+static void test_search_cut_short_by_its_budget(void **state)
+{
+    (void)state;
+    enum { COUNT = 8 };
+    ur_piece pieces[COUNT];
+    for (int k = 0; k < COUNT; k++) {
+        char name[16];
+        snprintf(name, sizeof name, "comb%d", k);
+        pieces[k] = comb(name, 40 + 2 * (size_t)k, 20 + k);
+    }
+    ur_nest_options o = sheet_options(400, 120, 5, 2, 2, false);
+    size_t first = sheets_for(pieces, COUNT, &o, 0);
+    assert_true(first >= 2); /* something for the sheet search to try */
+    assert_true(sheets_for(pieces, COUNT, &o, 0.05) <= first);
+    free_pieces(pieces, COUNT);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_rectangles_tile_one_sheet),
+        cmocka_unit_test(test_search_cut_short_by_its_budget),
         cmocka_unit_test(test_level_box_is_the_smallest),
         cmocka_unit_test(test_strip_fits_diagonally),
         cmocka_unit_test(test_part_goes_in_a_hole),
