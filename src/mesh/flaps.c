@@ -60,29 +60,13 @@ static bool back_to_back(const size_t (*triangles)[3], size_t s, size_t t)
     return false;
 }
 
-/* An edge (its ends in increasing order) of a triangle. */
-typedef struct edge_entry {
-    size_t low, high, triangle;
-} edge_entry;
-
-static int compare_edges(const void *a, const void *b)
-{
-    const edge_entry *x = a, *y = b;
-    if (x->low != y->low)
-        return x->low < y->low ? -1 : 1;
-    if (x->high != y->high)
-        return x->high < y->high ? -1 : 1;
-    return (x->triangle > y->triangle) - (x->triangle < y->triangle);
-}
-
-/* The first entry on edge (low, high) in the sorted edges. */
-static size_t first_on_edge(const edge_entry *edges, size_t count, size_t low, size_t high)
+/* The first entry on the edge in the sorted edges. */
+static size_t first_on_edge(const mesh_edge_key *edges, size_t count, const mesh_edge_key *edge)
 {
     size_t from = 0, to = count;
     while (from < to) {
         size_t middle = from + (to - from) / 2;
-        const edge_entry *e = &edges[middle];
-        if (e->low < low || (e->low == low && e->high < high))
+        if (mesh_compare_edge_ends(&edges[middle], edge) < 0)
             from = middle + 1;
         else
             to = middle;
@@ -92,7 +76,7 @@ static size_t first_on_edge(const edge_entry *edges, size_t count, size_t low, s
 
 typedef struct flap_search {
     const size_t (*triangles)[3];
-    edge_entry *edges;
+    mesh_edge_key *edges; /* every triangle's edges, sorted */
     size_t edge_count;
     bool *repeated; /* per triangle: another has the same corners */
 } flap_search;
@@ -102,11 +86,11 @@ static bool is_flap(const flap_search *p, size_t s, size_t t)
 {
     bool foot = false;
     for (int k = 0; k < 3; k++) {
-        size_t a = p->triangles[s][k], b = p->triangles[s][(k + 1) % 3];
-        size_t low = a < b ? a : b, high = a < b ? b : a, others = 0;
-        for (size_t i = first_on_edge(p->edges, p->edge_count, low, high);
-             i < p->edge_count && p->edges[i].low == low && p->edges[i].high == high; i++) {
-            size_t u = p->edges[i].triangle;
+        mesh_edge_key edge = mesh_edge_key_of(p->triangles[s][k], p->triangles[s][(k + 1) % 3], 0);
+        size_t others = 0;
+        for (size_t i = first_on_edge(p->edges, p->edge_count, &edge);
+             i < p->edge_count && mesh_compare_edge_ends(&p->edges[i], &edge) == 0; i++) {
+            size_t u = p->edges[i].index; /* a triangle on the edge */
             if (u == s || u == t)
                 continue;
             if (p->repeated[u])
@@ -162,10 +146,10 @@ ur_status mesh_find_flaps(const size_t (*triangles)[3], size_t count, bool *drop
         for (size_t t = 0; status == UR_OK && t < count; t++)
             for (int k = 0; k < 3; k++) {
                 size_t a = triangles[t][k], b = triangles[t][(k + 1) % 3];
-                p.edges[p.edge_count++] = (edge_entry){a < b ? a : b, a < b ? b : a, t};
+                p.edges[p.edge_count++] = mesh_edge_key_of(a, b, t);
             }
         if (status == UR_OK) {
-            qsort(p.edges, p.edge_count, sizeof *p.edges, compare_edges);
+            qsort(p.edges, p.edge_count, sizeof *p.edges, mesh_compare_edge_keys);
             find_flaps(&p, keys, count, drop, pairs);
         }
     }

@@ -24,6 +24,22 @@ static inline size_t mesh_to(const size_t (*triangles)[3], size_t half_edge)
     return triangles[half_edge / 3][(half_edge % 3 + 1) % 3];
 }
 
+/* An edge by its ends in increasing order, and what it stands for (a triangle, a seam). */
+typedef struct mesh_edge_key {
+    size_t low, high, index;
+} mesh_edge_key;
+
+static inline mesh_edge_key mesh_edge_key_of(size_t a, size_t b, size_t index)
+{
+    return (mesh_edge_key){a < b ? a : b, a < b ? b : a, index};
+}
+
+/* qsort's order of edge keys: by their ends, then index. */
+int mesh_compare_edge_keys(const void *a, const void *b);
+
+/* By their ends alone, for bsearch. */
+int mesh_compare_edge_ends(const void *a, const void *b);
+
 /* Refuses a vertex index out of range, naming the triangle (1-based). */
 ur_status mesh_check_triangles(const size_t (*triangles)[3], size_t count, size_t vertex_count,
                                ur_error *error);

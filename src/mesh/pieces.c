@@ -67,29 +67,6 @@ ur_status cutter_init(cutter *c, const ur_mesh *mesh, ur_error *error)
     return check_mesh(c, error);
 }
 
-/* A user seam by its ends in increasing order, and its place in the caller's array. */
-typedef struct seam_key {
-    size_t low, high, index;
-} seam_key;
-
-static int compare_seams(const void *a, const void *b)
-{
-    const seam_key *x = a, *y = b;
-    if (x->low != y->low)
-        return x->low < y->low ? -1 : 1;
-    if (x->high != y->high)
-        return x->high < y->high ? -1 : 1;
-    return (x->index > y->index) - (x->index < y->index);
-}
-
-static int compare_ends(const void *a, const void *b)
-{
-    const seam_key *x = a, *y = b;
-    if (x->low != y->low)
-        return x->low < y->low ? -1 : 1;
-    return (x->high > y->high) - (x->high < y->high);
-}
-
 static ur_status check_seam(const ur_seam *seam, size_t index, size_t vertex_count, ur_error *error)
 {
     size_t far = seam->a > seam->b ? seam->a : seam->b;
@@ -105,7 +82,7 @@ static ur_status check_seam(const ur_seam *seam, size_t index, size_t vertex_cou
 
 /* The user's seams, checked, sorted and without repeats; *count is updated. */
 static ur_status sort_seams(const ur_seam *seams, size_t *count, size_t vertex_count,
-                            seam_key **keys, ur_error *error)
+                            mesh_edge_key **keys, ur_error *error)
 {
     *keys = ur_alloc_array(*count, sizeof **keys, error);
     if (!*keys)
@@ -115,12 +92,13 @@ static ur_status sort_seams(const ur_seam *seams, size_t *count, size_t vertex_c
         if (status != UR_OK)
             return status;
         size_t a = seams[i].a, b = seams[i].b;
-        (*keys)[i] = (seam_key){a < b ? a : b, a < b ? b : a, i};
+        (*keys)[i] =
+            mesh_edge_key_of(a, b, i); /* a user seam and its place in the caller's array */
     }
-    qsort(*keys, *count, sizeof **keys, compare_seams);
+    qsort(*keys, *count, sizeof **keys, mesh_compare_edge_keys);
     size_t kept = 0;
     for (size_t i = 0; i < *count; i++)
-        if (kept == 0 || compare_ends(&(*keys)[i], &(*keys)[kept - 1]) != 0)
+        if (kept == 0 || mesh_compare_edge_ends(&(*keys)[i], &(*keys)[kept - 1]) != 0)
             (*keys)[kept++] = (*keys)[i];
     *count = kept;
     return UR_OK;
@@ -129,7 +107,7 @@ static ur_status sort_seams(const ur_seam *seams, size_t *count, size_t vertex_c
 /* Unglues the user's seams; each must be an edge of the mesh. */
 static ur_status mark_user_seams(cutter *c, const ur_seam *seams, size_t count, ur_error *error)
 {
-    seam_key *keys = NULL;
+    mesh_edge_key *keys = NULL;
     bool *found = NULL;
     ur_status status = sort_seams(seams, &count, c->mesh->vertex_count, &keys, error);
     if (status == UR_OK && !(found = ur_alloc_array(count, sizeof *found, error)))
@@ -138,8 +116,8 @@ static ur_status mark_user_seams(cutter *c, const ur_seam *seams, size_t count, 
         if (c->twins[h] != UR_NO_EDGE && c->twins[h] < h)
             continue;
         size_t a = mesh_from(c->triangles, h), b = mesh_to(c->triangles, h);
-        seam_key key = {a < b ? a : b, a < b ? b : a, 0};
-        seam_key *hit = bsearch(&key, keys, count, sizeof *keys, compare_ends);
+        mesh_edge_key key = mesh_edge_key_of(a, b, 0);
+        mesh_edge_key *hit = bsearch(&key, keys, count, sizeof *keys, mesh_compare_edge_ends);
         if (hit) {
             found[hit - keys] = true;
             cutter_unglue(c, h);

@@ -75,6 +75,23 @@ static size_t bucket_half_edges(const size_t (*triangles)[3], size_t half_edge_c
     return largest;
 }
 
+int mesh_compare_edge_ends(const void *a, const void *b)
+{
+    const mesh_edge_key *x = a, *y = b;
+    if (x->low != y->low)
+        return x->low < y->low ? -1 : 1;
+    return (x->high > y->high) - (x->high < y->high);
+}
+
+int mesh_compare_edge_keys(const void *a, const void *b)
+{
+    int by_ends = mesh_compare_edge_ends(a, b);
+    if (by_ends != 0)
+        return by_ends;
+    const mesh_edge_key *x = a, *y = b;
+    return (x->index > y->index) - (x->index < y->index);
+}
+
 /* Pairs the half-edges of one bucket; false (and *bad) on a shared edge of three. */
 static bool pair_bucket(const size_t (*triangles)[3], const size_t *bucket, size_t count,
                         keyed *scratch, size_t *twins, mesh_bad_edge *bad)
