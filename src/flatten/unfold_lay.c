@@ -556,10 +556,11 @@ static uint64_t joined_key(const unfolder *u)
     return key;
 }
 
-static uint64_t join_key(const unfolder *u, size_t small, size_t large, size_t hinge_small)
+static uint64_t join_key(const unfolder *u, size_t small, size_t large, size_t hinge_small,
+                         bool turned_room)
 {
     uint64_t phase = (uint64_t)u->slits | (uint64_t)u->room_binds << 1 |
-                     (uint64_t)u->gap_waived << 2 | (uint64_t)u->turned_room << 3;
+                     (uint64_t)u->gap_waived << 2 | (uint64_t)turned_room << 3;
     uint64_t pieces = unfold_mix(unfold_mix(u->islands[small].layout) + u->islands[large].layout);
     return pieces ^ unfold_mix(16 * (uint64_t)hinge_small + phase);
 }
@@ -574,6 +575,26 @@ static unsigned recalled(const unfolder *u, uint64_t key)
     uint64_t slot = u->outcomes[(key >> 2) & u->outcome_mask];
     return (slot & ~OUTCOME_BITS) == (key & ~OUTCOME_BITS) ? (unsigned)(slot & OUTCOME_BITS)
                                                            : OUTCOME_NONE;
+}
+
+/*
+ * The outcome of a join, if one was judged before: with the room turned,
+ * also one judged with it level that holds turned as well.  A join that
+ * fits the level room fits the turned one (a piece that fits at its
+ * least-area rectangle's turn fits at some turn), and an overlap does not
+ * depend on the room; only "too large" may change.  The turned search
+ * starts from the level one's first order and walks much as it did (the
+ * same random choices), so that most of its joins were judged level.
+ */
+static unsigned recalled_join(const unfolder *u, size_t small, size_t large, size_t hinge_small,
+                              uint64_t *key)
+{
+    *key = join_key(u, small, large, hinge_small, u->turned_room);
+    unsigned outcome = recalled(u, *key);
+    if (outcome != OUTCOME_NONE || !u->turned_room)
+        return outcome;
+    unsigned level = recalled(u, join_key(u, small, large, hinge_small, false));
+    return level == OUTCOME_FITS || level == OUTCOME_OVERLAPS ? level : OUTCOME_NONE;
 }
 
 /* Kept in its slot, in place of what was there: a forgotten outcome is only judged again. */
@@ -762,8 +783,9 @@ ur_status unfold_try_join(unfolder *u, size_t h, bool *joined, ur_error *error)
     if (given_up(u, small, large))
         return UR_OK;
     size_t hinge_small = a_small ? h : g, hinge_large = a_small ? g : h;
-    uint64_t key = join_key(u, small, large, hinge_small);
-    unsigned outcome = remembers(u) ? recalled(u, key) : OUTCOME_NONE;
+    uint64_t key = 0;
+    unsigned outcome =
+        remembers(u) ? recalled_join(u, small, large, hinge_small, &key) : OUTCOME_NONE;
     if (outcome == OUTCOME_TOO_LARGE)
         return UR_OK;
     if (outcome == OUTCOME_OVERLAPS) {
