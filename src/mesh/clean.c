@@ -1,8 +1,8 @@
 /*
  * clean.c: ur_mesh_clean: welding, dropping zero-area triangles, flaps of
- * no thickness (flaps.c) and unused vertices, refusing non-manifold edges (after un-welding the
- * vertices whose welding made them, or taking apart surfaces that touch along them) and orienting
- * each part.
+ * no thickness (flaps.c) and unused vertices, refusing non-manifold edges
+ * (after un-welding the vertices whose welding made them, or taking apart
+ * surfaces that touch along them) and orienting each part.
  *
  * Every step writes new arrays; the mesh gets them only once all have
  * succeeded, so that a refused mesh is left as it was.  Messages name input

@@ -708,8 +708,9 @@ static void test_clean_drops_flaps(void **state)
 /*
  * What is not a flap stays: a sheet modelled with a face on each side (a
  * grid and the same grid turned over: pairs side by side, and taking them
- * would take the sheet), and a pair standing on the edge of an open grid
- * (its foot then on three triangles: refused, as before).
+ * would take the sheet; its two sides come apart as two surfaces, as
+ * before), and a pair standing on the edge of an open grid (its foot then
+ * on three triangles: refused, as before).
  */
 static void test_clean_keeps_what_is_no_flap(void **state)
 {
@@ -726,11 +727,10 @@ static void test_clean_keeps_what_is_no_flap(void **state)
     ur_mesh both_sides = build(&b);
     ur_mesh_repairs repairs;
     ur_error error;
-    ur_status status = ur_mesh_clean(&both_sides, 1e-6, &repairs, &error);
-    if (status == UR_OK) {
-        assert_int_equal(repairs.flaps, 0);
-        assert_int_equal(both_sides.triangle_count, faces);
-    }
+    assert_int_equal(ur_mesh_clean(&both_sides, 1e-6, &repairs, &error), UR_OK);
+    assert_int_equal(repairs.flaps, 0);
+    assert_int_equal(both_sides.triangle_count, faces); /* its sides taken apart, both kept */
+    assert_true(repairs.split > 0);
     ur_mesh_free(&both_sides);
 
     for (size_t v = 0; v < sheet.vertex_count; v++)
@@ -783,9 +783,9 @@ static void test_clean_unwelds_touching_parts(void **state)
 
 /*
  * The same two tetrahedra with the touching corners given once (as an STL
- * read through assimp has them): the edge of
- * four triangles comes apart, each tetrahedron keeping a copy of its ends,
- * and every edge then has two triangles.
+ * read through assimp has them): the edge of four triangles comes apart,
+ * each tetrahedron keeping a copy of its ends, and every edge then has two
+ * triangles.
  */
 static void test_clean_splits_surfaces_touching_along_an_edge(void **state)
 {
