@@ -91,9 +91,8 @@ static ur_status sort_seams(const ur_seam *seams, size_t *count, size_t vertex_c
         ur_status status = check_seam(&seams[i], i, vertex_count, error);
         if (status != UR_OK)
             return status;
-        size_t a = seams[i].a, b = seams[i].b;
-        (*keys)[i] =
-            mesh_edge_key_of(a, b, i); /* a user seam and its place in the caller's array */
+        /* A user seam and its place in the caller's array. */
+        (*keys)[i] = mesh_edge_key_of(seams[i].a, seams[i].b, i);
     }
     qsort(*keys, *count, sizeof **keys, mesh_compare_edge_keys);
     size_t kept = 0;
