@@ -67,21 +67,27 @@ static size_t drop_near_duplicates(ur_vec2 *points, size_t count)
     return kept;
 }
 
+/* Fewer than 3 points, copied as they are: no chain; their count. */
+static size_t copy_few(const ur_vec2 *points, size_t count, ur_vec2 *hull)
+{
+    for (size_t i = 0; i < count; i++)
+        hull[i] = points[i];
+    return count;
+}
+
+/* The hull of sorted points (near-duplicates dropped first, in place); its count. */
+static size_t hull_of_sorted(ur_vec2 *points, size_t count, ur_vec2 *hull)
+{
+    count = drop_near_duplicates(points, count);
+    return count < 3 ? copy_few(points, count, hull) : chain_sorted(points, count, hull);
+}
+
 size_t geom_convex_hull(ur_vec2 *points, size_t count, ur_vec2 *hull)
 {
-    if (count < 3) {
-        for (size_t i = 0; i < count; i++)
-            hull[i] = points[i];
-        return count;
-    }
+    if (count < 3)
+        return copy_few(points, count, hull);
     qsort(points, count, sizeof *points, compare_points);
-    count = drop_near_duplicates(points, count);
-    if (count < 3) {
-        for (size_t i = 0; i < count; i++)
-            hull[i] = points[i];
-        return count;
-    }
-    return chain_sorted(points, count, hull);
+    return hull_of_sorted(points, count, hull);
 }
 
 /* Merges the sorted runs a and b (na and nb points) into out. */
@@ -149,13 +155,16 @@ size_t geom_convex_hull_of_two(ur_vec2 *points, size_t first, size_t second, ur_
     /* Rounding can leave a moved polygon a hair off convex, and its chains out of order. */
     if (!is_sorted(points, count))
         qsort(points, count, sizeof *points, compare_points);
-    count = drop_near_duplicates(points, count);
-    if (count < 3) {
-        for (size_t i = 0; i < count; i++)
-            hull[i] = points[i];
-        return count;
-    }
-    return chain_sorted(points, count, hull);
+    return hull_of_sorted(points, count, hull);
+}
+
+/* The diagonal of the points' box: at least the largest distance between two of them. */
+static double diagonal_of(const ur_vec2 *hull, size_t count)
+{
+    ur_box box = ur_box_empty();
+    for (size_t i = 0; i < count; i++)
+        ur_box_add(&box, hull[i]);
+    return hypot(ur_box_width(box), ur_box_height(box));
 }
 
 /* The index after i round a polygon of count points. */
@@ -221,10 +230,7 @@ double geom_least_area_box(const ur_vec2 *hull, size_t count, double *length, do
      * hulls made here have none (drop_near_duplicates); one given from
      * elsewhere may.
      */
-    ur_box box = ur_box_empty();
-    for (size_t i = 0; i < count; i++)
-        ur_box_add(&box, hull[i]);
-    double shortest = 1e-9 * hypot(ur_box_width(box), ur_box_height(box));
+    double shortest = 1e-9 * diagonal_of(hull, count);
     for (size_t i = 0; i < count; i++) {
         ur_vec2 d = ur_vec2_sub(hull[next_index(i, count)], hull[i]);
         double norm = sqrt(ur_vec2_dot(d, d));
@@ -263,15 +269,6 @@ static void extents_at(const ur_vec2 *hull, size_t count, double angle, double *
     }
     *along_extent = high - low;
     *across_extent = right - left;
-}
-
-/* The diagonal of the points' box: at least the largest distance between two of them. */
-static double diagonal_of(const ur_vec2 *hull, size_t count)
-{
-    ur_box box = ur_box_empty();
-    for (size_t i = 0; i < count; i++)
-        ur_box_add(&box, hull[i]);
-    return hypot(ur_box_width(box), ur_box_height(box));
 }
 
 /*

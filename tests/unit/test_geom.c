@@ -257,13 +257,9 @@ static double least_area_by_turning(const ur_vec2 *points, size_t count)
 {
     double best = INFINITY;
     for (int k = 0; k < 1000000; k++) {
-        double t = 0.5 * M_PI * k / 1e6, c = cos(t), s = sin(t);
-        double low = INFINITY, high = -INFINITY, left = INFINITY, right = -INFINITY;
-        for (size_t i = 0; i < count; i++) {
-            double u = c * points[i].x + s * points[i].y, v = -s * points[i].x + c * points[i].y;
-            low = fmin(low, u), high = fmax(high, u), left = fmin(left, v), right = fmax(right, v);
-        }
-        best = fmin(best, (high - low) * (right - left));
+        double along, across;
+        extents_at(points, count, 0.5 * M_PI * k / 1e6, &along, &across);
+        best = fmin(best, along * across);
     }
     return best;
 }

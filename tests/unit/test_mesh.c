@@ -85,6 +85,18 @@ static ur_mesh build(builder *b)
     return mesh;
 }
 
+/* Adds a mesh's vertices and triangles (group 0) to b; the number its first vertex gets. */
+static size_t add_mesh(builder *b, const ur_mesh *m)
+{
+    size_t base = b->vertex_count;
+    for (size_t v = 0; v < m->vertex_count; v++)
+        add_vertex(b, m->vertices[v].x, m->vertices[v].y, m->vertices[v].z);
+    for (size_t t = 0; t < m->triangle_count; t++)
+        add_triangle(b, base + m->triangles[t][0], base + m->triangles[t][1],
+                     base + m->triangles[t][2], 0);
+    return base;
+}
+
 /* A k x k grid of unit squares in z = 0, counter-clockwise seen from +z; columns >= split in
  * group 1. */
 static ur_mesh grid(size_t k, size_t split)
@@ -608,10 +620,7 @@ static void test_clean_drops(void **state)
     (void)state;
     ur_mesh base = grid(2, 2); /* 9 vertices, 8 triangles */
     builder b = {0};
-    for (size_t v = 0; v < base.vertex_count; v++)
-        add_vertex(&b, base.vertices[v].x, base.vertices[v].y, base.vertices[v].z);
-    for (size_t t = 0; t < base.triangle_count; t++)
-        add_triangle(&b, base.triangles[t][0], base.triangles[t][1], base.triangles[t][2], 0);
+    add_mesh(&b, &base);
     ur_mesh_free(&base);
     /* Vertex 9 on edge 0-1: triangle 0 9 1 has no area, and 9 is then unused. */
     add_vertex(&b, 0.5, 0, 0);
@@ -652,11 +661,7 @@ static ur_mesh grid_with_extra(size_t a, size_t b2, size_t c, double extra_z)
     ur_mesh base = grid(2, 2);
     builder b = {0};
     add_vertex(&b, -5, -5, -5);
-    for (size_t v = 0; v < base.vertex_count; v++)
-        add_vertex(&b, base.vertices[v].x, base.vertices[v].y, base.vertices[v].z);
-    for (size_t t = 0; t < base.triangle_count; t++)
-        add_triangle(&b, base.triangles[t][0] + 1, base.triangles[t][1] + 1,
-                     base.triangles[t][2] + 1, 0);
+    add_mesh(&b, &base);
     ur_mesh_free(&base);
     size_t top = add_vertex(&b, 0.5, 0.5, extra_z);
     add_triangle(&b, a, b2, c == SIZE_MAX ? top : c, 0);
@@ -677,15 +682,11 @@ static void test_clean_drops_flaps(void **state)
     for (int turned = 0; turned < 2; turned++) {
         ur_mesh base = octahedron();
         builder b = {0};
-        for (size_t v = 0; v < base.vertex_count; v++)
-            add_vertex(&b, base.vertices[v].x, base.vertices[v].y, base.vertices[v].z);
+        add_mesh(&b, &base);
         size_t foot_a = base.triangles[3][0], foot_b = base.triangles[3][1];
         size_t tip = add_vertex(&b, 2, 2, 2);
-        for (size_t t = 0; t < base.triangle_count; t++) {
-            add_triangle(&b, base.triangles[t][0], base.triangles[t][1], base.triangles[t][2], 0);
-            if (t == 3) /* the flap among the surface's triangles, each way round first */
-                add_triangle(&b, turned ? foot_b : foot_a, turned ? foot_a : foot_b, tip, 0);
-        }
+        /* the flap, each way round first */
+        add_triangle(&b, turned ? foot_b : foot_a, turned ? foot_a : foot_b, tip, 0);
         add_triangle(&b, turned ? foot_a : foot_b, turned ? foot_b : foot_a, tip, 0);
         ur_mesh_free(&base);
         ur_mesh mesh = build(&b);
@@ -717,12 +718,9 @@ static void test_clean_keeps_what_is_no_flap(void **state)
     (void)state;
     ur_mesh sheet = grid(3, 3);
     builder b = {0};
-    for (size_t v = 0; v < sheet.vertex_count; v++)
-        add_vertex(&b, sheet.vertices[v].x, sheet.vertices[v].y, sheet.vertices[v].z);
-    for (size_t t = 0; t < sheet.triangle_count; t++) {
-        add_triangle(&b, sheet.triangles[t][0], sheet.triangles[t][1], sheet.triangles[t][2], 0);
+    add_mesh(&b, &sheet);
+    for (size_t t = 0; t < sheet.triangle_count; t++) /* the same faces turned over */
         add_triangle(&b, sheet.triangles[t][0], sheet.triangles[t][2], sheet.triangles[t][1], 0);
-    }
     size_t faces = b.triangle_count;
     ur_mesh both_sides = build(&b);
     ur_mesh_repairs repairs;
@@ -733,10 +731,7 @@ static void test_clean_keeps_what_is_no_flap(void **state)
     assert_true(repairs.split > 0);
     ur_mesh_free(&both_sides);
 
-    for (size_t v = 0; v < sheet.vertex_count; v++)
-        add_vertex(&b, sheet.vertices[v].x, sheet.vertices[v].y, sheet.vertices[v].z);
-    for (size_t t = 0; t < sheet.triangle_count; t++)
-        add_triangle(&b, sheet.triangles[t][0], sheet.triangles[t][1], sheet.triangles[t][2], 0);
+    add_mesh(&b, &sheet);
     size_t foot_a = sheet.triangles[0][0], foot_b = sheet.triangles[0][1];
     size_t tip = add_vertex(&b, 0.5, 0.5, 1);
     add_triangle(&b, foot_a, foot_b, tip, 0);
@@ -760,15 +755,8 @@ static void test_clean_unwelds_touching_parts(void **state)
     static const double second[][3] = {{1, 1, 1}, {1, -1, -1}, {3, 1, -1}, {3, -1, 1}};
     ur_mesh a = solid(first, 4, 2 * sqrt(2.0)), b = solid(second, 4, 2 * sqrt(2.0));
     builder both = {0};
-    for (int k = 0; k < 2; k++) {
-        const ur_mesh *m = k ? &b : &a;
-        size_t base = both.vertex_count;
-        for (size_t v = 0; v < m->vertex_count; v++)
-            add_vertex(&both, m->vertices[v].x, m->vertices[v].y, m->vertices[v].z);
-        for (size_t t = 0; t < m->triangle_count; t++)
-            add_triangle(&both, base + m->triangles[t][0], base + m->triangles[t][1],
-                         base + m->triangles[t][2], 0);
-    }
+    add_mesh(&both, &a);
+    add_mesh(&both, &b);
     ur_mesh_free(&a);
     ur_mesh_free(&b);
     ur_mesh mesh = build(&both);
