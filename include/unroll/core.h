@@ -110,6 +110,12 @@ typedef struct ur_net {
      */
     ur_vec3 (*faces_3d)[3];
     size_t face_count;
+    /*
+     * An unfolded piece's faces as the mesh's polygons: triangles that lie
+     * flat together (ur_unfold_options.flat_angle) count as one.  0 for any
+     * other net.
+     */
+    size_t polygon_count;
 } ur_net;
 
 typedef struct ur_net_list {
@@ -169,6 +175,8 @@ typedef struct ur_piece_measures {
     double flat_area;                    /* enclosed by the outline */
     double edge_error;                   /* largest relative error of a flat edge length */
     double max_stretch, max_compression; /* of an approximate flattening; 0 when exact */
+    size_t triangle_count;               /* of a mesh piece; 0 for a development or a part */
+    size_t polygon_count;                /* of an unfolded piece (ur_net.polygon_count); else 0 */
 } ur_piece_measures;
 
 /* ---- What was added and why ----------------------------------------- */

@@ -66,6 +66,8 @@ ur_status ur_piece_from_net(const ur_net *net, const ur_allowance_options *optio
     piece->measures.edge_error = net->edge_error;
     piece->measures.max_stretch = net->max_stretch;
     piece->measures.max_compression = net->max_compression;
+    piece->measures.triangle_count = net->face_count;
+    piece->measures.polygon_count = net->polygon_count;
     piece->ruling_angle = ruling_angle(net);
     piece->has_rulings = !isnan(piece->ruling_angle);
     ur_status status =

@@ -323,6 +323,7 @@ static ur_status net_of_unfolded(const ur_mesh *mesh, const ur_unfolded_piece *p
     net->fold_count = piece->fold_count;
     net->area_3d = piece->area_3d;
     net->flat_area = piece->flat_area;
+    net->polygon_count = piece->face_count;
     return ur_net_set_faces(net, mesh, piece->triangles, piece->triangle_count, error);
 }
 

@@ -110,6 +110,12 @@ static json_t *not_placed_json(const ur_layout *layout, const ur_piece *pieces)
     return array;
 }
 
+/* A count, or null when it is 0: not known for this kind of piece. */
+static json_t *count_or_null(size_t count)
+{
+    return count > 0 ? json_integer((json_int_t)count) : json_null();
+}
+
 /* json_object_set_new takes value even when it fails, so nothing leaks here. */
 static json_t *piece_json(const ur_piece *piece, size_t sheet)
 {
@@ -126,6 +132,8 @@ static json_t *piece_json(const ur_piece *piece, size_t sheet)
         json_object_set_new(object, "edge_length_error", json_number(m->edge_error)) != 0 ||
         json_object_set_new(object, "max_stretch", json_number(m->max_stretch)) != 0 ||
         json_object_set_new(object, "max_compression", json_number(m->max_compression)) != 0 ||
+        json_object_set_new(object, "triangles", count_or_null(m->triangle_count)) != 0 ||
+        json_object_set_new(object, "faces", count_or_null(m->polygon_count)) != 0 ||
         json_object_set_new(object, "allowances", records_json(piece)) != 0 ||
         json_object_set_new(object, "sheet",
                             sheet ? json_integer((json_int_t)sheet) : json_null()) != 0) {

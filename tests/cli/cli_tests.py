@@ -269,6 +269,8 @@ def tangent_developable_is_an_isometry(work):
     [piece] = data["pieces"]
     close(piece["flat_area_mm2"], piece["area_3d_mm2"], 1e-6, "flat vs 3D area")
     check(piece["edge_length_error"] < 1e-6, "edge length error %g" % piece["edge_length_error"])
+    check(piece["triangles"] is None and piece["faces"] is None,
+          "a development counted as triangles or faces")
     [outline] = outlines(os.path.join(work, "t.svg"))
     close(area(outline), piece["area_3d_mm2"], 1e-6, "area of the written outline")
 
@@ -1442,6 +1444,25 @@ def rings_apart(a, b):
 PAPERCRAFT = ["cube.obj", "uvsphere.obj", "torus.obj", "grid-hole.obj", "head.obj"]
 
 
+def check_faces_counted(name, mesh, pieces):
+    """The report's triangles and faces of each piece add up to the OBJ's:
+    every triangle in one piece; the faces are its polygons where no two
+    neighbours lie flat together (the cube, UV sphere and planar-quad torus;
+    the grid's quads lie in one plane and the head has quads folded in two)."""
+    with open(mesh) as f:
+        polygons = [line.split()[1:] for line in f if line.startswith("f ")]
+    triangles = sum(len(polygon) - 2 for polygon in polygons)
+    check(sum(piece["triangles"] for piece in pieces) == triangles,
+          "%s: the pieces' triangles add up to %d, not %d"
+          % (name, sum(piece["triangles"] for piece in pieces), triangles))
+    faces = sum(piece["faces"] for piece in pieces)
+    if name in ("cube.obj", "uvsphere.obj", "torus.obj"):
+        check(faces == len(polygons), "%s: the pieces' faces add up to %d, not %d"
+              % (name, faces, len(polygons)))
+    check(all(0 < piece["faces"] <= piece["triangles"] for piece in pieces),
+          "%s: a piece with more faces than triangles, or none" % name)
+
+
 @test
 def papercraft_of_the_sample_meshes(work):
     for name in PAPERCRAFT:
@@ -1487,6 +1508,7 @@ def papercraft_of_the_sample_meshes(work):
         # Small pieces can be short of room for a label (said above); most seams are not.
         check(3 * len(unlabelled) <= len(seams), "%s: %d of %d seams short of a label"
               % (name, len(unlabelled), len(seams)))
+        check_faces_counted(name, mesh, data["pieces"])
         for sheet in data["sheets"]:
             svg = os.path.join(work, os.path.basename(sheet["file"]))
             rings = outlines(svg)

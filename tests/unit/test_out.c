@@ -61,8 +61,11 @@ static void make_pieces(ur_piece pieces[PIECES])
     snprintf(pieces[0].name, sizeof pieces[0].name, "panel");
     add_path(&pieces[0], UR_OP_CUT, panel, 4, true);
     add_path(&pieces[0], UR_OP_SCORE, fold, 2, false);
-    pieces[0].measures =
-        (ur_piece_measures){.area_3d = 5100.0, .flat_area = 5000.0, .edge_error = 0.002};
+    pieces[0].measures = (ur_piece_measures){.area_3d = 5100.0,
+                                             .flat_area = 5000.0,
+                                             .edge_error = 0.002,
+                                             .triangle_count = 24,
+                                             .polygon_count = 10};
 
     const ur_vec2 triangle[] = {{0, 0}, {40, 0}, {0, 30}};
     const ur_vec2 mark[] = {{5, 5}, {15, 5}};
@@ -496,7 +499,11 @@ static void assert_report_pieces(json_t *pieces)
     assert_near(real_at(box, "width_mm"), 100.0);
     assert_near(real_at(box, "height_mm"), 50.0);
     assert_int_equal(json_integer_value(json_object_get(panel, "sheet")), 1);
+    assert_int_equal(json_integer_value(json_object_get(panel, "triangles")), 24);
+    assert_int_equal(json_integer_value(json_object_get(panel, "faces")), 10);
     json_t *spare = json_array_get(pieces, 2);
+    assert_true(json_is_null(json_object_get(spare, "triangles"))); /* not a mesh's piece */
+    assert_true(json_is_null(json_object_get(spare, "faces")));
     assert_true(json_is_null(json_object_get(spare, "coverage"))); /* no 3D area */
     assert_true(json_is_null(json_object_get(spare, "sheet")));    /* not placed */
 }
