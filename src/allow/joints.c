@@ -1455,19 +1455,52 @@ static ur_status label_side(const joiner *j, rooms *r, size_t piece_index, const
 }
 
 /*
- * Both sides of a seam get its label.  Labels go on before the joints, so
- * that they are placed within the net's own outline where they stay in
- * sight; one with no room there goes on its side's tab once the tabs are
- * on (label_on_tabs), where it still tells the maker which edge the tab
- * goes under, as Blender's paper model numbers its tabs.
+ * Whether the seam's two sides follow each other on one piece's outline,
+ * meeting at a corner: a notch or a slit that closes as the piece is
+ * folded, its two edges plainly going together (Blender's paper model
+ * numbers no such pair).
+ */
+static bool sides_meet(const joiner *j, const seam_sides *s)
+{
+    if (s->net[0] != s->net[1])
+        return false;
+    const ur_net *net = &j->nets->nets[s->net[0]];
+    const ur_seam_side *a = &net->seam_sides[s->side[0]], *b = &net->seam_sides[s->side[1]];
+    size_t n = net->outline_count;
+    return (a->first + a->count - 1) % n == b->first % n ||
+           (b->first + b->count - 1) % n == a->first % n;
+}
+
+/* Where the sides of a seam that meet (sides_meet) do so. */
+static ur_vec2 corner_of(const joiner *j, const seam_sides *s)
+{
+    const ur_net *net = &j->nets->nets[s->net[0]];
+    const ur_seam_side *a = &net->seam_sides[s->side[0]], *b = &net->seam_sides[s->side[1]];
+    size_t n = net->outline_count, end_of_a = (a->first + a->count - 1) % n;
+    return net->outline[end_of_a == b->first % n ? end_of_a : a->first % n];
+}
+
+/*
+ * Both sides of a seam get its label, or one side when the sides meet at
+ * a corner (sides_meet): one label then names the notch, where two beside
+ * each other crowded it (a fine mesh's pole, cut into a fan of slits, had
+ * a pair in each).  Labels go on before the joints, so that they are
+ * placed within the net's own outline where they stay in sight; one with
+ * no room there goes on its side's tab once the tabs are on
+ * (label_on_tabs), where it still tells the maker which edge the tab goes
+ * under, as Blender's paper model numbers its tabs.
  */
 static ur_status label_seam(const joiner *j, rooms *r, const seam_sides *s, int seam,
                             ur_error *error)
 {
     char label[16];
     ur_seam_label(seam, label, sizeof label);
+    int sides = sides_meet(j, s) ? 1 : 2;
     ur_status status = UR_OK;
-    for (int k = 0; status == UR_OK && k < 2; k++) {
+    if (sides == 1)
+        status = record(&j->pieces[s->net[0]], UR_ALLOWANCE_LABEL, corner_of(j, s), 0, false, error,
+                        "seam %s: one label for both sides, which meet at a corner", label);
+    for (int k = 0; status == UR_OK && k < sides; k++) {
         const ur_net *net = &j->nets->nets[s->net[k]];
         run seam_run = {0};
         status = run_of(net, &net->seam_sides[s->side[k]], &seam_run, error);

@@ -1472,7 +1472,7 @@ def papercraft_of_the_sample_meshes(work):
                      "-o", "p.svg", "--report", "p.json")
         data = report(work, "p.json")
         check(not data["not_placed"], "%s: pieces not placed" % name)
-        labels, tabs, unlabelled = {}, set(), set()
+        labels, tabs, unlabelled, once = {}, set(), set(), set()
         edges_without_tab = 0
         for piece in data["pieces"]:
             for a in piece["allowances"]:
@@ -1492,6 +1492,10 @@ def papercraft_of_the_sample_meshes(work):
                 found = re.match(r"label '([A-Z]+\d+)'", a["reason"])
                 if a["kind"] == "label" and found:
                     labels[found.group(1)] = labels.get(found.group(1), 0) + 1
+                # A seam whose sides meet at a corner of one piece is labelled once.
+                found = re.match(r"seam ([A-Z]+\d+): one label for both sides", a["reason"])
+                if a["kind"] == "label" and found:
+                    once.add(found.group(1))
                 found = re.match(r"\d+ glue tabs? on seam ([A-Z]+\d+)", a["reason"])
                 if found:
                     tabs.add(found.group(1))
@@ -1499,8 +1503,8 @@ def papercraft_of_the_sample_meshes(work):
         seams = sorted((set(labels) | tabs | unlabelled) - names)
         check(seams, "%s: no seam labels" % name)
         for label in seams:
-            placed = labels.get(label, 0)
-            check(placed == 2 or (placed < 2 and label in unlabelled),
+            placed, wanted = labels.get(label, 0), 1 if label in once else 2
+            check(placed == wanted or (placed < wanted and label in unlabelled),
                   "%s: seam %s labelled %d times" % (name, label, placed))
             check(label in tabs, "%s: seam %s has no glue tab" % (name, label))
         check(edges_without_tab <= 2, "%s: %d edges of seams without a tab"

@@ -320,6 +320,80 @@ static void test_unfolded_tabs_clear(void **state)
     ur_net_list_free(&nets);
 }
 
+/* Whether seam sides a and b of net end and begin at one point of the plane: they meet there. */
+static bool flat_sides_meet(const ur_net *net, const ur_seam_side *a, const ur_seam_side *b)
+{
+    size_t n = net->outline_count;
+    ur_vec2 a_start = net->outline[a->first % n],
+            a_end = net->outline[(a->first + a->count - 1) % n];
+    ur_vec2 b_start = net->outline[b->first % n],
+            b_end = net->outline[(b->first + b->count - 1) % n];
+    return ur_vec2_distance(a_end, b_start) < 1e-9 || ur_vec2_distance(b_end, a_start) < 1e-9;
+}
+
+/* How many records of the piece say the seam's two sides share one label. */
+static size_t one_label_notes(const ur_piece *piece, const char *label)
+{
+    char note[48];
+    snprintf(note, sizeof note, "seam %s: one label for both sides", label);
+    size_t found = 0;
+    for (size_t r = 0; r < piece->record_count; r++)
+        found += piece->records[r].kind == UR_ALLOWANCE_LABEL && !piece->records[r].warning &&
+                 strstr(piece->records[r].reason, note) != NULL;
+    return found;
+}
+
+/*
+ * The cube unfolded whole (no sheet): a cross, whose seams at its inner
+ * corners have both sides on it, meeting there; those get their label
+ * once, with a note, the others on both sides.
+ */
+static void test_label_once_where_sides_meet(void **state)
+{
+    (void)state;
+    size_t cut_edges;
+    ur_net_list nets = unfolded_nets("samples/cube.obj", &cut_edges);
+    int next;
+    ur_error error;
+    assert_int_equal(ur_net_list_find_seams(&nets, 1, &next, &error), UR_OK);
+    ur_piece *pieces = pieces_of(&nets);
+    ur_font *font;
+    assert_int_equal(ur_font_open(NULL, &font, &error), UR_OK);
+    ur_joint_options options = tab_options(font);
+    options.thickness = 0.3;
+    assert_int_equal(ur_pieces_add_joints(pieces, &nets, &options, &error), UR_OK);
+    size_t meeting = 0, apart = 0;
+    for (int seam = 1; seam <= ur_net_list_last_seam(&nets); seam++) {
+        const ur_seam_side *sides[2] = {NULL, NULL};
+        size_t net_of[2] = {0, 0}, found = 0;
+        for (size_t k = 0; k < nets.count; k++)
+            for (size_t i = 0; i < nets.nets[k].seam_side_count; i++)
+                if (nets.nets[k].seam_sides[i].seam == seam && found < 2) {
+                    net_of[found] = k;
+                    sides[found++] = &nets.nets[k].seam_sides[i];
+                }
+        assert_int_equal(found, 2);
+        bool meet =
+            net_of[0] == net_of[1] && flat_sides_meet(&nets.nets[net_of[0]], sides[0], sides[1]);
+        char label[16];
+        ur_seam_label(seam, label, sizeof label);
+        size_t labels = 0, notes = 0;
+        for (size_t k = 0; k < nets.count; k++) {
+            for (size_t r = 0; r < pieces[k].record_count; r++)
+                labels += names_label(&pieces[k].records[r], label);
+            notes += one_label_notes(&pieces[k], label);
+        }
+        assert_int_equal(labels, meet ? 1 : 2);
+        assert_int_equal(notes, meet ? 1 : 0);
+        meeting += meet;
+        apart += !meet;
+    }
+    assert_true(meeting >= 1 && apart >= 1); /* a cross has both */
+    ur_font_close(font);
+    free_pieces(pieces, nets.count);
+    ur_net_list_free(&nets);
+}
+
 /* A net of the given outline, its 3D points (x, y, 0) on the grid. */
 static ur_net grid_net(const char *name, const ur_vec2 *flat, const ur_vec2 *grid, size_t count)
 {
@@ -849,13 +923,20 @@ static void test_bad_options(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_seam_labels),           cmocka_unit_test(test_cylinder_tab),
-        cmocka_unit_test(test_helicoid_labels_pair),  cmocka_unit_test(test_every_seam_joined),
-        cmocka_unit_test(test_unfolded_tabs_clear),   cmocka_unit_test(test_loop_seams_joined),
-        cmocka_unit_test(test_narrow_slit_said_once), cmocka_unit_test(test_progress_reported),
-        cmocka_unit_test(test_laps_marked_on_both),   cmocka_unit_test(test_bad_options),
-        cmocka_unit_test(test_label_goes_on_the_tab), cmocka_unit_test(test_label_crosses_folds),
+        cmocka_unit_test(test_seam_labels),
+        cmocka_unit_test(test_cylinder_tab),
+        cmocka_unit_test(test_helicoid_labels_pair),
+        cmocka_unit_test(test_every_seam_joined),
+        cmocka_unit_test(test_unfolded_tabs_clear),
+        cmocka_unit_test(test_loop_seams_joined),
+        cmocka_unit_test(test_narrow_slit_said_once),
+        cmocka_unit_test(test_progress_reported),
+        cmocka_unit_test(test_laps_marked_on_both),
+        cmocka_unit_test(test_bad_options),
+        cmocka_unit_test(test_label_goes_on_the_tab),
+        cmocka_unit_test(test_label_crosses_folds),
         cmocka_unit_test(test_label_across_the_tab),
+        cmocka_unit_test(test_label_once_where_sides_meet),
     };
     return cmocka_run_group_tests(tests, start, finish);
 }
