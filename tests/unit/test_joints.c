@@ -254,6 +254,45 @@ static void test_helicoid_labels_pair(void **state)
     ur_ruled_free(&ruled);
 }
 
+/*
+ * A helicoid's pieces are sectors of a ring: the centre of a piece's box
+ * lies in the ring's hole, and a name sought from there was engraved
+ * smaller (3.2 and 4 mm of 5 on the README's helicoid) beside the inner
+ * edge.  From the centre of the largest circle inside the outline each
+ * name has its full height.
+ */
+static void test_names_full_height_on_sectors(void **state)
+{
+    (void)state;
+    ur_curve *curve;
+    ur_ruled ruled;
+    assert_int_equal(ur_curve_new_helix(30, 20 * M_PI, 0, 4 * M_PI, &curve, NULL), UR_OK);
+    assert_int_equal(ur_ruled_tangent(curve, 0, 25, &ruled, NULL), UR_OK);
+    ur_net_list nets = develop(&ruled, UR_METHOD_EXACT, 8, 0.01);
+    assert_true(nets.count >= 2);
+    ur_piece *pieces = pieces_of(&nets);
+    ur_font *font;
+    ur_error error;
+    assert_int_equal(ur_font_open(NULL, &font, &error), UR_OK);
+    ur_joint_options options = tab_options(font);
+    options.name_pieces = true;
+    assert_int_equal(ur_pieces_add_joints(pieces, &nets, &options, &error), UR_OK);
+    for (size_t k = 0; k < nets.count; k++) {
+        size_t names = 0;
+        for (size_t r = 0; r < pieces[k].record_count; r++)
+            if (names_label(&pieces[k].records[r], pieces[k].name)) {
+                names++;
+                assert_true(pieces[k].records[r].value == options.label_height);
+            }
+        assert_int_equal(names, 1);
+        check_engraving_inside(&pieces[k], &nets.nets[k]);
+    }
+    ur_font_close(font);
+    free_pieces(pieces, nets.count);
+    ur_net_list_free(&nets);
+    ur_ruled_free(&ruled);
+}
+
 static void test_seam_labels(void **state)
 {
     (void)state;
@@ -937,6 +976,7 @@ int main(void)
         cmocka_unit_test(test_label_crosses_folds),
         cmocka_unit_test(test_label_across_the_tab),
         cmocka_unit_test(test_label_once_where_sides_meet),
+        cmocka_unit_test(test_names_full_height_on_sectors),
     };
     return cmocka_run_group_tests(tests, start, finish);
 }
