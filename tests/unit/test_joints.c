@@ -211,15 +211,25 @@ static bool names_label(const ur_allowance_record *record, const char *label)
     return record->kind == UR_ALLOWANCE_LABEL && !record->warning && strstr(record->reason, quoted);
 }
 
+/*
+ * The developed pieces of a helicoid (tangents of a helix of radius 30 mm
+ * and pitch 20 pi mm, 25 mm long) up to angle end; ruled keeps the
+ * surface, for ur_ruled_free.
+ */
+static ur_net_list helicoid_nets(double end, ur_ruled *ruled)
+{
+    ur_curve *curve;
+    assert_int_equal(ur_curve_new_helix(30, 20 * M_PI, 0, end, &curve, NULL), UR_OK);
+    assert_int_equal(ur_ruled_tangent(curve, 0, 25, ruled, NULL), UR_OK);
+    return develop(ruled, UR_METHOD_EXACT, 8, 0.01);
+}
+
 static void test_helicoid_labels_pair(void **state)
 {
     (void)state;
-    ur_curve *curve;
     ur_ruled ruled;
     /* 2.5 turns develop to about 850 degrees: 3 pieces with room for tabs between. */
-    assert_int_equal(ur_curve_new_helix(30, 20 * M_PI, 0, 5 * M_PI, &curve, NULL), UR_OK);
-    assert_int_equal(ur_ruled_tangent(curve, 0, 25, &ruled, NULL), UR_OK);
-    ur_net_list nets = develop(&ruled, UR_METHOD_EXACT, 8, 0.01);
+    ur_net_list nets = helicoid_nets(5 * M_PI, &ruled);
     assert_true(nets.count >= 3);
     ur_piece *pieces = pieces_of(&nets);
     ur_font *font;
@@ -264,11 +274,8 @@ static void test_helicoid_labels_pair(void **state)
 static void test_names_full_height_on_sectors(void **state)
 {
     (void)state;
-    ur_curve *curve;
     ur_ruled ruled;
-    assert_int_equal(ur_curve_new_helix(30, 20 * M_PI, 0, 4 * M_PI, &curve, NULL), UR_OK);
-    assert_int_equal(ur_ruled_tangent(curve, 0, 25, &ruled, NULL), UR_OK);
-    ur_net_list nets = develop(&ruled, UR_METHOD_EXACT, 8, 0.01);
+    ur_net_list nets = helicoid_nets(4 * M_PI, &ruled);
     assert_true(nets.count >= 2);
     ur_piece *pieces = pieces_of(&nets);
     ur_font *font;
