@@ -1524,6 +1524,8 @@ static ur_vec2 name_centre(const joiner *j, const ur_piece *piece)
                                   (piece->box.min.y + piece->box.max.y) / 2);
     const ur_path *outline = &piece->paths[0];
     double diagonal = hypot(ur_box_width(piece->box), ur_box_height(piece->box));
+    if (!(diagonal > 0) || !isfinite(diagonal)) /* GEOS's search would not end */
+        return centre;
     GEOSGeometry *polygon = geos_polygon_of_ring(j->geos, outline->points, outline->count);
     GEOSGeometry *radius =
         polygon ? GEOSMaximumInscribedCircle_r(j->geos, polygon, 1e-3 * diagonal) : NULL;
