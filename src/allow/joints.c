@@ -1456,28 +1456,20 @@ static ur_status label_side(const joiner *j, rooms *r, size_t piece_index, const
 
 /*
  * Whether the seam's two sides follow each other on one piece's outline,
- * meeting at a corner: a notch or a slit that closes as the piece is
- * folded, its two edges plainly going together (Blender's paper model
- * numbers no such pair).
+ * meeting at a corner (*corner: its index on the outline): a notch or a
+ * slit that closes as the piece is folded, its two edges plainly going
+ * together (Blender's paper model numbers no such pair).
  */
-static bool sides_meet(const joiner *j, const seam_sides *s)
+static bool sides_meet(const joiner *j, const seam_sides *s, size_t *corner)
 {
     if (s->net[0] != s->net[1])
         return false;
     const ur_net *net = &j->nets->nets[s->net[0]];
     const ur_seam_side *a = &net->seam_sides[s->side[0]], *b = &net->seam_sides[s->side[1]];
     size_t n = net->outline_count;
-    return (a->first + a->count - 1) % n == b->first % n ||
-           (b->first + b->count - 1) % n == a->first % n;
-}
-
-/* Where the sides of a seam that meet (sides_meet) do so. */
-static ur_vec2 corner_of(const joiner *j, const seam_sides *s)
-{
-    const ur_net *net = &j->nets->nets[s->net[0]];
-    const ur_seam_side *a = &net->seam_sides[s->side[0]], *b = &net->seam_sides[s->side[1]];
-    size_t n = net->outline_count, end_of_a = (a->first + a->count - 1) % n;
-    return net->outline[end_of_a == b->first % n ? end_of_a : a->first % n];
+    size_t end_of_a = (a->first + a->count - 1) % n, end_of_b = (b->first + b->count - 1) % n;
+    *corner = end_of_a == b->first % n ? end_of_a : end_of_b;
+    return end_of_a == b->first % n || end_of_b == a->first % n;
 }
 
 /*
@@ -1495,10 +1487,12 @@ static ur_status label_seam(const joiner *j, rooms *r, const seam_sides *s, int 
 {
     char label[16];
     ur_seam_label(seam, label, sizeof label);
-    int sides = sides_meet(j, s) ? 1 : 2;
+    size_t corner;
+    int sides = sides_meet(j, s, &corner) ? 1 : 2;
     ur_status status = UR_OK;
     if (sides == 1)
-        status = record(&j->pieces[s->net[0]], UR_ALLOWANCE_LABEL, corner_of(j, s), 0, false, error,
+        status = record(&j->pieces[s->net[0]], UR_ALLOWANCE_LABEL,
+                        j->nets->nets[s->net[0]].outline[corner], 0, false, error,
                         "seam %s: one label for both sides, which meet at a corner", label);
     for (int k = 0; status == UR_OK && k < sides; k++) {
         const ur_net *net = &j->nets->nets[s->net[k]];
