@@ -583,6 +583,52 @@ static ur_status flatten_charts(const job_run *run, const job_room *room,
     return code;
 }
 
+/* Triangle t laid flat: its corners in its own plane, the first at the origin. */
+static void flat_triangle(const ur_mesh *mesh, size_t t, ur_vec2 corners[3])
+{
+    const size_t *v = mesh->triangles[t];
+    ur_vec3 ab = ur_vec3_sub(mesh->vertices[v[1]], mesh->vertices[v[0]]);
+    ur_vec3 ac = ur_vec3_sub(mesh->vertices[v[2]], mesh->vertices[v[0]]);
+    double length = ur_vec3_length(ab);
+    double along = length > 0 ? ur_vec3_dot(ac, ab) / length : 0.0;
+    double across = length > 0 ? ur_vec3_length(ur_vec3_cross(ab, ac)) / length : 0.0;
+    corners[0] = ur_vec2_make(0, 0);
+    corners[1] = ur_vec2_make(length, 0);
+    corners[2] = ur_vec2_make(along, across);
+}
+
+/*
+ * A triangle that fits no sheet at any turn: cutting along the mesh's
+ * edges, as flattening does to fit pieces to sheets, can never make it
+ * fit, so the mesh is refused up front, naming the triangle (as unfolding
+ * names a flat face), instead of after every cut has been tried.
+ */
+static ur_status check_triangles_fit(const job_run *run, const job_room *room, const ur_mesh *mesh)
+{
+    if (!run->job.develop.split || !(room->length > 0 && room->width > 0))
+        return 0;
+    for (size_t t = 0; t < mesh->triangle_count; t++) {
+        ur_vec2 corners[3];
+        flat_triangle(mesh, t, corners);
+        bool fits = true;
+        double angle, length = 0, width = 0;
+        ur_error error;
+        if (ur_outline_fit_turn(corners, 3, room->length, room->width, &fits, &angle, &error) !=
+                UR_OK ||
+            fits)
+            continue; /* out of memory here: nesting will say */
+        if (ur_outline_level_size(corners, 3, &length, &width, &error) != UR_OK)
+            continue;
+        return job_fail_about(run, UR_ERROR_INPUT, "sheet scale",
+                              "%s: triangle %zu is %.1f x %.1f mm and is never cut, but a piece "
+                              "may take only %.1f x %.1f mm: give a larger sheet or a smaller "
+                              "scale",
+                              run->job.command, t + 1, length, width,
+                              fmax(room->length, room->width), fmin(room->length, room->width));
+    }
+    return 0;
+}
+
 /* Cleans, cuts into disks and flattens; repairs are news only for a mesh from a file. */
 static ur_status nets_of_mesh(const job_run *run, const job_room *room, const ur_material *material,
                               ur_mesh *mesh, bool tell_repairs, ur_net_list *nets, double *area)
@@ -601,6 +647,10 @@ static ur_status nets_of_mesh(const job_run *run, const job_room *room, const ur
     char what[64];
     c_snprintf(what, sizeof what, "flattening %zu triangles", mesh->triangle_count);
     ur_status code = job_check_memory(run, what, ur_flatten_memory_estimate(mesh->triangle_count));
+    if (code)
+        return code;
+    if (!run->job.unfold) /* unfolding names the flat face that does not fit */
+        code = check_triangles_fit(run, room, mesh);
     if (code)
         return code;
     ur_seam *seams = NULL;

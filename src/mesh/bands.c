@@ -196,8 +196,7 @@ static void extent(const ur_mesh *mesh, ur_vec3 d, double *low, double *high)
         }
 }
 
-/* The fraction of a triangle whose corners lie at s[0] <= s[1] <= s[2] that lies below x. */
-static double fraction_below(const double s[3], double x)
+double mesh_fraction_below(const double s[3], double x)
 {
     if (x <= s[0])
         return 0.0;
@@ -248,9 +247,10 @@ static void bin_triangle(const ur_mesh *mesh, size_t t, ur_vec3 d, width_bins *b
     size_t first = bin_of(bins, s[0]), last = bin_of(bins, s[2]);
     first = first > 0 ? first - 1 : 0;
     last = last < WIDTH_BINS - 1 ? last + 1 : last;
-    double below = first == 0 ? 0.0 : fraction_below(s, bins->low + first * bins->step);
+    double below = first == 0 ? 0.0 : mesh_fraction_below(s, bins->low + first * bins->step);
     for (size_t i = first; i <= last; i++) {
-        double up = i == WIDTH_BINS - 1 ? 1.0 : fraction_below(s, bins->low + (i + 1) * bins->step);
+        double up =
+            i == WIDTH_BINS - 1 ? 1.0 : mesh_fraction_below(s, bins->low + (i + 1) * bins->step);
         bins->area[i] += area * (up - below);
         bins->across[i] += area * (up - below) * slope;
         below = up;

@@ -41,40 +41,68 @@ static ur_status farthest(const cutter *c, size_t source, size_t *far, double **
 
 static int compare_doubles(const void *a, const void *b)
 {
-    double x = ((const double *)a)[0], y = ((const double *)b)[0];
+    double x = *(const double *)a, y = *(const double *)b;
     return (x > y) - (x < y);
 }
 
+/* A triangle as the field sees it: its corners' values in order, and its area. */
+typedef struct field_span {
+    double s[3], area;
+} field_span;
+
+/* The area where the field lies below x: each triangle's share exact, the field linear on it. */
+static double area_below(const field_span *spans, size_t n, double x)
+{
+    double area = 0;
+    for (size_t t = 0; t < n; t++)
+        area += spans[t].area * mesh_fraction_below(spans[t].s, x);
+    return area;
+}
+
+/* Halvings of the field's range that find a level: far below any rounding of the area. */
+enum { LEVEL_HALVINGS = 64 };
+
 /*
  * The parts - 1 levels of the field below which 1/parts, 2/parts, ... of
- * the area lies (triangles by their mean).
+ * the area lies, found by halving.  Taken exactly, not triangle by
+ * triangle, so that they increase even where one large triangle holds
+ * several shares (a coarse piece cut into many parts).
  */
 static ur_status area_levels(const ur_mesh *mesh, const double *field, double *levels, size_t parts,
                              ur_error *error)
 {
     size_t n = mesh->triangle_count;
-    double(*pairs)[2] = ur_alloc_array(n, sizeof *pairs, error); /* mean, area */
-    if (!pairs)
+    field_span *spans = ur_alloc_array(n, sizeof *spans, error);
+    if (!spans)
         return UR_ERROR_MEMORY;
-    double total = 0;
+    double total = 0, low = INFINITY, high = -INFINITY;
     for (size_t t = 0; t < n; t++) {
         const size_t *v = mesh->triangles[t];
         ur_vec3 a = mesh->vertices[v[0]];
         ur_vec3 normal = ur_vec3_cross(ur_vec3_sub(mesh->vertices[v[1]], a),
                                        ur_vec3_sub(mesh->vertices[v[2]], a));
-        pairs[t][0] = (field[v[0]] + field[v[1]] + field[v[2]]) / 3;
-        pairs[t][1] = ur_vec3_length(normal) / 2;
-        total += pairs[t][1];
+        for (int k = 0; k < 3; k++)
+            spans[t].s[k] = field[v[k]];
+        qsort(spans[t].s, 3, sizeof spans[t].s[0], compare_doubles);
+        spans[t].area = ur_vec3_length(normal) / 2;
+        total += spans[t].area;
+        low = fmin(low, spans[t].s[0]);
+        high = fmax(high, spans[t].s[2]);
     }
-    qsort(pairs, n, sizeof *pairs, compare_doubles);
-    double below = 0;
-    size_t t = 0;
     for (size_t j = 1; j < parts; j++) {
-        while (t + 1 < n && below + pairs[t][1] < total * (double)j / (double)parts)
-            below += pairs[t++][1];
-        levels[j - 1] = pairs[t][0];
+        double target = total * (double)j / (double)parts, below = low, above = high;
+        for (int h = 0; h < LEVEL_HALVINGS && below < above; h++) {
+            double middle = below + 0.5 * (above - below);
+            if (area_below(spans, n, middle) < target)
+                below = middle;
+            else
+                above = middle;
+        }
+        levels[j - 1] = above;
+        if (j > 1 && !(levels[j - 1] > levels[j - 2])) /* rounding: a sliver of a part */
+            levels[j - 1] = nextafter(levels[j - 2], INFINITY);
     }
-    free(pairs);
+    free(spans);
     return UR_OK;
 }
 

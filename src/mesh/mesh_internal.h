@@ -125,6 +125,13 @@ static inline long long mesh_euler(const mesh_shape *shape)
 }
 
 /*
+ * The fraction of a triangle whose corners lie at offsets s[0] <= s[1] <=
+ * s[2] that lies below offset x, the offset varying linearly over it
+ * (bands.c).
+ */
+double mesh_fraction_below(const double s[3], double x);
+
+/*
  * ur_mesh_bands with the offsets given per vertex (field) instead of along
  * a direction (bands.c): band b holds the mesh where planes[b - 1] <=
  * field <= planes[b].

@@ -1670,6 +1670,12 @@ def unfolding_fits_the_sheet(work):
     bad(work, r"the flat face of triangle \d+ \(2 triangles\) is 100\.0 x 100\.0 mm, larger than "
         r"the room", "mesh", cube, "--flatten", "unfold", "--material", "paper-0.3mm",
         "--sheet", "120x120", "-o", "x.svg")
+    # Flattened (charts, or one method for all), a triangle larger than the
+    # room is refused before any cut is tried, and named.
+    for method in ([], ["--flatten", "arap"]):
+        bad(work, r"triangle \d+ is 141\.4 x 70\.7 mm and is never cut, but a piece may take only "
+            r"[\d.]+ x [\d.]+ mm: give a larger --sheet or a smaller --scale$", "mesh", cube,
+            *method, "--material", "paper-0.3mm", "--sheet", "90x90", "-o", "x.svg")
 
 
 @test

@@ -1303,6 +1303,39 @@ static void test_halve_along_the_length(void **state)
     ur_mesh_free(&tiny);
 }
 
+/*
+ * A fan of four triangles, one holding three quarters of the area, cut
+ * into four along its length: each part a quarter of the area, the cuts
+ * running through the large triangle.  Levels taken triangle by triangle
+ * fell three times on the large one, and the cut was refused as planes
+ * that do not increase.
+ */
+static void test_split_along_through_a_large_triangle(void **state)
+{
+    (void)state;
+    builder b = {0};
+    add_vertex(&b, 0, 10, 0); /* the apex */
+    double base[5] = {0, 1, 2, 3, 12};
+    for (size_t i = 0; i < 5; i++)
+        add_vertex(&b, base[i], 0, 0);
+    for (size_t i = 1; i < 5; i++)
+        add_triangle(&b, 0, i, i + 1, 0);
+    ur_mesh fan = build(&b);
+    double total = ur_mesh_area(&fan); /* 60: 5 + 5 + 5 + 45 */
+    assert_relative(total, 60.0, 1e-12);
+    ur_mesh split;
+    ur_error error;
+    assert_int_equal(ur_mesh_split_along(&fan, 4, &split, &error), UR_OK);
+    size_t count;
+    ur_mesh_piece *pieces = cut(&split, NULL, 0, &count);
+    assert_int_equal(count, 4);
+    for (size_t k = 0; k < count; k++)
+        assert_relative(ur_mesh_area(&pieces[k].mesh), total / 4, 1e-4);
+    ur_mesh_pieces_free(pieces, count);
+    ur_mesh_free(&split);
+    ur_mesh_free(&fan);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1332,6 +1365,7 @@ int main(void)
         cmocka_unit_test(test_from_ruled_cone),
         cmocka_unit_test(test_from_ruled_refuses),
         cmocka_unit_test(test_halve_along_the_length),
+        cmocka_unit_test(test_split_along_through_a_large_triangle),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
