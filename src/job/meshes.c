@@ -27,6 +27,30 @@ static ur_status fail(const job_run *run, const ur_error *error)
 }
 
 /* Long flattening reports its progress, and its end, to the progress callback. */
+/* How far a joint (tab or lap) stands out from the seam it is on, with the stock's thickness. */
+static double joint_reach(const ur_material *material)
+{
+    return (material->joint == UR_JOINT_LAP ? material->lap_width : material->tab_depth) +
+           material->thickness;
+}
+
+/*
+ * The room a flattened piece may take on a sheet: its joints stand out all
+ * round it, so its width keeps a joint's reach on each side, as its length
+ * does already (job_fit_room).  Without it a piece cut to fit came out too
+ * wide once its tabs were on (Blender's torus in 3 mm plywood at 10 x:
+ * a 611 x 442 mm net, 620 x 451 mm with tabs, for a 600 x 400 mm sheet).
+ */
+static job_room room_for_joints(const job_run *run, const job_room *room,
+                                const ur_material *material)
+{
+    job_room inner = *room;
+    double joint = joint_reach(material);
+    if (job_makes_joints(run) && inner.width - 2 * joint > 0)
+        inner.width -= 2 * joint;
+    return inner;
+}
+
 static void report_flattening(void *context, size_t iteration, double energy)
 {
     ur_job_progress progress = {
@@ -69,7 +93,14 @@ static ur_status append_net(const job_run *run, ur_net_list *nets, ur_net *net)
     return UR_OK;
 }
 
-enum { MOST_SPLITS = 6 }; /* cuts of a piece whose flat outline crosses itself or is too long */
+/*
+ * Cuts of a piece whose flat outline crosses itself or is too long, one
+ * inside another.  Each cut halves or better, and a piece much larger than
+ * the sheet takes many: samples/head.obj at 10 x (a metre across) as one
+ * chart on A3 needed 7 deep, 101 pieces; at 6 it stopped with a piece
+ * that fitted no sheet.
+ */
+enum { MOST_SPLITS = 12 };
 
 /*
  * How pieces are flattened: the job, the flattening's options, the room on
@@ -405,8 +436,7 @@ static ur_status unfold_mesh(const job_run *run, const job_room *room, const ur_
                              const ur_mesh *mesh, const ur_seam *seams, size_t seam_count,
                              ur_net_list *nets, double *area)
 {
-    double joint = (material->joint == UR_JOINT_LAP ? material->lap_width : material->tab_depth) +
-                   material->thickness;
+    double joint = joint_reach(material);
     ur_unfold_options options;
     ur_unfold_options_default(&options);
     if (run->job.develop.split && room->width - 2 * joint > 0) { /* --no-split: refuse instead */
@@ -649,8 +679,9 @@ static ur_status nets_of_mesh(const job_run *run, const job_room *room, const ur
     ur_status code = job_check_memory(run, what, ur_flatten_memory_estimate(mesh->triangle_count));
     if (code)
         return code;
+    job_room flat_room = room_for_joints(run, room, material);
     if (!run->job.unfold) /* unfolding names the flat face that does not fit */
-        code = check_triangles_fit(run, room, mesh);
+        code = check_triangles_fit(run, &flat_room, mesh);
     if (code)
         return code;
     ur_seam *seams = NULL;
@@ -667,7 +698,7 @@ static ur_status nets_of_mesh(const job_run *run, const job_room *room, const ur
         return code;
     }
     if (!code && run->job.flatten < 0 && strcmp(run->job.surface, "mesh") == 0) {
-        code = flatten_charts(run, room, material, mesh, seams, seam_count, nets, area);
+        code = flatten_charts(run, &flat_room, material, mesh, seams, seam_count, nets, area);
         free(seams);
         return code;
     }
@@ -676,7 +707,7 @@ static ur_status nets_of_mesh(const job_run *run, const job_room *room, const ur
     if (!code && ur_mesh_pieces(mesh, seams, seam_count, &pieces, &piece_count, &error) != UR_OK)
         code = fail(run, &error);
     if (!code)
-        code = flatten_pieces(run, room, pieces, piece_count, nets, area);
+        code = flatten_pieces(run, &flat_room, pieces, piece_count, nets, area);
     end_progress(run);
     ur_mesh_pieces_free(pieces, piece_count);
     free(seams);

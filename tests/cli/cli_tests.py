@@ -1679,6 +1679,32 @@ def unfolding_fits_the_sheet(work):
 
 
 @test
+def flattened_pieces_are_cut_to_fit_small_sheets(work):
+    # The sample head as one chart (about 235 x 166 mm flat) on 60 x 45 mm
+    # sheets: cut in halves inside halves, 7 deep, until every part fits;
+    # at most 6 deep, a part was left that fitted no sheet (exit 2).
+    head = os.path.join(REPO, "samples", "head.obj")
+    run(work, "mesh", head, "--flatten", "arap", "--material", "paper-0.3mm", "--sheet", "60x45",
+        "--nest-time", "0", "-o", "h.svg", "--report", "h.json")
+    data = report(work, "h.json")
+    check(not data["not_placed"], "pieces not placed")
+    check(len(data["pieces"]) > 64, "%d pieces: no deeper than 6 cuts" % len(data["pieces"]))
+    close(sum(p["area_3d_mm2"] for p in data["pieces"]), data["surface_area_mm2"], 1e-9,
+          "the parts' area")
+    # The sample torus six times as large in plywood: each piece cut to fit
+    # with room for the tabs all round it, not only at its ends (a 587 x 490
+    # mm piece with tabs for a 600 x 400 mm sheet).
+    torus = os.path.join(REPO, "samples", "torus.obj")
+    run(work, "mesh", torus, "--scale", "6", "--flatten", "arap", "--material", "plywood-3mm",
+        "--nest-time", "0", "-o", "t.svg", "--report", "t.json")
+    data = report(work, "t.json")
+    check(not data["not_placed"], "pieces not placed")
+    check(any(a["kind"] == "joint" for p in data["pieces"] for a in p["allowances"]), "no tabs")
+    close(sum(p["area_3d_mm2"] for p in data["pieces"]), data["surface_area_mm2"], 1e-9,
+          "the parts' area")
+
+
+@test
 def a_piece_that_would_overlap_itself_is_cut(work):
     # 1.6 turns of a helix's tangent developable: flat, it is an annular sector
     # of about 1.6 turns, so one piece would lie over itself.
