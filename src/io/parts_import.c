@@ -848,8 +848,8 @@ static ur_status no_part_error(const parts_collection *collection, ur_error *err
     if (collection->strict)
         return left_out_error(collection, first, error);
     return ur_error_set(error, UR_ERROR_INPUT,
-                        "%s:%d: no closed shape: nothing to use as a part (%zu open shape%s, the "
-                        "first a %s)",
+                        "%s:%d: no closed shape: nothing to use as a part (%zu open shape%s: "
+                        "%s first)",
                         collection->path, first->line, collection->line_count,
                         collection->line_count == 1 ? "" : "s", first->what);
 }

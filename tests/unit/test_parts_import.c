@@ -788,7 +788,7 @@ static void test_svg_refusals(void **state)
     /* Without strict, a file of open shapes only has no part, and says where the first is. */
     expect_refusal("only-open.svg",
                    SVG_HEAD "\n<line x1=\"0\" y1=\"0\" x2=\"5\" y2=\"5\"/></svg>\n", 0, ":3",
-                   "no closed shape");
+                   "no closed shape: nothing to use as a part (1 open shape: line first)");
     expect_refusal("xml.svg", SVG_HEAD "<rect width=\"5\" height=\"5\">\n</svg>\n", 0, ":3", "");
     expect_refusal("data.svg", SVG_HEAD "<path id=\"p\" d=\"M 0 0 L 5 nan Z\"/></svg>\n", 0,
                    ":2: path id=\"p\"", "bad path data at \"nan Z\"");
