@@ -322,6 +322,11 @@ static void say_repairs(const job_run *run, const ur_mesh_repairs *repairs)
                  "%s: repaired: %zu flap%s of no thickness dropped (two triangles back to back on "
                  "the same corners, standing on the surface)",
                  run->job.command, repairs->flaps, repairs->flaps == 1 ? "" : "s");
+    if (repairs->kept_apart)
+        job_note(run,
+                 "%s: repaired: %zu vertices left unwelded where welding would join three or more "
+                 "faces at an edge: the surfaces there stay apart, not joined by a seam",
+                 run->job.command, repairs->kept_apart);
     if (repairs->split)
         job_note(run,
                  "%s: repaired: surfaces that touched along an edge taken apart (%zu vertices "

@@ -233,6 +233,7 @@ static ur_status clean_once(cleaning *c, double weld_tolerance, const bool *apar
         if (c->map[v] != v && (apart[v] || apart[c->map[v]])) {
             c->map[v] = v;
             c->repairs.welded--;
+            c->repairs.kept_apart++;
         }
     if (status == UR_OK)
         status = drop_degenerate(c, error);

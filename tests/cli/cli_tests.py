@@ -1307,6 +1307,25 @@ def charts_of_single_faces_suggest_unfolding(work):
 
 
 @test
+def fin_on_a_plate_is_kept_apart_and_said(work):
+    # A 100 mm square plate and a fin standing on one of its edges, the fin
+    # with its own vertices at the plate's corners (as Blender writes faces
+    # whose normals differ): welding would put three faces on that edge, so
+    # the fin's two corners stay unwelded and a note says the surfaces are
+    # not joined there.  Both come out, whole; nothing is refused.
+    # (The normals keep assimp from joining the corners itself.)
+    plate = "v 0 0 0\nv 100 0 0\nv 100 100 0\nv 0 100 0\nvn 0 0 1\nf 1//1 2//1 3//1 4//1\n"
+    fin = "v 0 0 0\nv 0 100 0\nv 0 100 80\nv 0 0 80\nv 0 100 -80\nv 0 0 -80\nvn 1 0 0\n" \
+        "f 5//2 6//2 7//2 8//2\nf 6//2 5//2 10//2 9//2\n"
+    write(work, "fin.obj", plate + fin)
+    result = run(work, "mesh", "fin.obj", "--flatten", "unfold", "--material", "paper-0.3mm",
+                 "--nest-time", "0", "-o", "f.svg", "--report", "f.json")
+    check("repaired: 2 vertices left unwelded where welding would join three or more faces at "
+          "an edge: the surfaces there stay apart" in result.stderr, result.stderr)
+    close(report(work, "f.json")["surface_area_mm2"], 100 * 100 + 100 * 160, 1e-12, "area")
+
+
+@test
 def flap_of_no_thickness_is_dropped(work):
     # A 50 mm cube with a flap on one edge: two triangles back to back on
     # the edge's ends and a point off the cube (Blender's monkey head has one

@@ -766,6 +766,7 @@ static void test_clean_unwelds_touching_parts(void **state)
     assert_int_equal(mesh.vertex_count, 8); /* the shared corners welded no more */
     assert_int_equal(mesh.triangle_count, 8);
     assert_int_equal(repairs.welded, 0);
+    assert_int_equal(repairs.kept_apart, 2); /* the second tetrahedron's two touching corners */
     ur_mesh_free(&mesh);
 }
 
@@ -803,6 +804,7 @@ static void test_clean_splits_surfaces_touching_along_an_edge(void **state)
     assert_int_equal(ur_mesh_clean(&mesh, 1e-6, &repairs, &error), UR_OK);
     assert_int_equal(repairs.split, 2);
     assert_int_equal(repairs.welded, 0);
+    assert_int_equal(repairs.kept_apart, 0); /* given once: nothing was welded */
     assert_int_equal(mesh.vertex_count, 8);
     assert_int_equal(mesh.triangle_count, 8);
     assert_int_equal(ur_mesh_twins(&mesh, &twins, &error), UR_OK);
