@@ -441,6 +441,29 @@ double nest_roll_length(const nester *n)
 }
 
 /*
+ * Refuses a piece that fits no empty sheet, giving its size turned level
+ * (a square drawn at 45 degrees is its side across, not its diagonal), or
+ * its box as drawn when that cannot be had.
+ */
+static ur_status refuse_piece(nester *n, size_t piece)
+{
+    const ur_piece *p = &n->pieces[piece];
+    double length = ur_box_width(p->box), width = ur_box_height(p->box);
+    ur_error ignored;
+    if (p->path_count > 0 && ur_outline_level_size(p->paths[0].points, p->paths[0].count, &length,
+                                                   &width, &ignored) != UR_OK) {
+        length = ur_box_width(p->box);
+        width = ur_box_height(p->box);
+    }
+    ur_error_set(n->error, UR_ERROR_INPUT,
+                 "piece %s (%.1f x %.1f mm) does not fit in any allowed turn: give a larger "
+                 "sheet than %.1f x %.1f mm (%.1f mm margin)",
+                 p->name, length, width, n->options->sheet_width, n->options->sheet_height,
+                 n->options->margin);
+    return ur_error_set_setting(n->error, "sheet");
+}
+
+/*
  * Places one piece: the first sheet it fits, at its best turn there (or at
  * turn held, unless that is ANY_TURN); a new sheet otherwise.
  */
@@ -508,15 +531,8 @@ ur_status nest_place_piece(nester *n, size_t piece, size_t held)
             n->sheet_area[sheet] += nest_shape_of(n, piece, 0)->area;
             return UR_OK;
         }
-        if (sheet == n->sheet_count) { /* it fits no empty sheet either */
-            ur_error_set(n->error, UR_ERROR_INPUT,
-                         "piece %s (%.1f x %.1f mm) does not fit in any allowed turn: give a "
-                         "larger sheet than %.1f x %.1f mm (%.1f mm margin)",
-                         n->pieces[piece].name, ur_box_width(n->pieces[piece].box),
-                         ur_box_height(n->pieces[piece].box), n->options->sheet_width,
-                         n->options->sheet_height, n->options->margin);
-            return ur_error_set_setting(n->error, "sheet");
-        }
+        if (sheet == n->sheet_count) /* it fits no empty sheet either */
+            return refuse_piece(n, piece);
     }
     return UR_OK;
 }

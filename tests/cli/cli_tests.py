@@ -2969,6 +2969,20 @@ def mesh_too_long_for_a_sheet_is_cut_to_fit(work):
 
 
 @test
+def a_part_too_large_is_refused_with_its_level_size(work):
+    # A 100 mm square drawn turned by 45 degrees, for a 90 x 90 mm sheet:
+    # it is 100 mm across turned level, not the 141.4 mm its drawn box
+    # has, and the message gives the size that nesting could not fit.
+    write(work, "diamond.svg",
+          '<svg xmlns="http://www.w3.org/2000/svg" width="200mm" height="200mm" '
+          'viewBox="0 0 200 200"><rect x="-50" y="-50" width="100" height="100" '
+          'transform="translate(100 100) rotate(45)"/></svg>\n')
+    bad(work, r"piece diamond-1 \(100\.\d x 100\.\d mm\) does not fit in any allowed turn: give a "
+        r"larger --sheet than 90\.0 x 90\.0 mm", "nest", "diamond.svg", "--sheet", "90x90",
+        "--no-split", "-o", "x.svg")
+
+
+@test
 def nest_cuts_a_part_too_long_for_the_sheet(work):
     """A 900 x 60 mm bar with a 20 mm neck at x = 480..490 and a 20 mm hole,
     for the 600 x 400 bed: one cut makes it fit, and it goes through the
