@@ -92,6 +92,7 @@ typedef struct ur_job {
     bool unfold;                 /* along the mesh's edges, every face exact */
     bool strips;                 /* the fewest strips within the strain allowed */
     bool fewer_pieces;           /* unfold: join pieces where a tab then finds no room */
+    double hide_folds;           /* unfold: folds turning less (degrees) are not drawn; 0 */
     double max_strain;           /* NAN for the material's */
     size_t iterations;           /* 0: the default */
     const char *strain_png_path; /* the strain preview; NULL for none */

@@ -334,9 +334,15 @@ static void say_repairs(const job_run *run, const ur_mesh_repairs *repairs)
                  run->job.command, repairs->split);
 }
 
-/* A piece of an unfolding as a net: its outline, its folds, no strain. */
+/*
+ * A piece of an unfolding as a net: its outline, its folds, no strain.
+ * Folds that turn by less than hidden (radians) are left out: a smooth
+ * surface's many gentle folds, which paper takes by curling, where
+ * scoring each would only weaken it (as Blender's Paper Model hides folds
+ * below its "Hidden Edge Angle"); *left_out counts them.
+ */
 static ur_status net_of_unfolded(const ur_mesh *mesh, const ur_unfolded_piece *piece, size_t index,
-                                 ur_net *net, ur_error *error)
+                                 double hidden, ur_net *net, size_t *left_out, ur_error *error)
 {
     memset(net, 0, sizeof *net);
     c_snprintf(net->name, sizeof net->name, "P%zu", index + 1);
@@ -353,10 +359,13 @@ static ur_status net_of_unfolded(const ur_mesh *mesh, const ur_unfolded_piece *p
     memcpy(net->outline, piece->outline, piece->outline_count * sizeof *net->outline);
     net->outline_count = piece->outline_count;
     for (size_t k = 0; k < piece->fold_count; k++) {
-        net->folds[k] = (ur_segment){piece->folds[k].start, piece->folds[k].end};
-        net->fold_valley[k] = piece->folds[k].valley;
+        if (piece->folds[k].angle < hidden) {
+            (*left_out)++;
+            continue;
+        }
+        net->folds[net->fold_count] = (ur_segment){piece->folds[k].start, piece->folds[k].end};
+        net->fold_valley[net->fold_count++] = piece->folds[k].valley;
     }
-    net->fold_count = piece->fold_count;
     net->area_3d = piece->area_3d;
     net->flat_area = piece->flat_area;
     net->polygon_count = piece->face_count;
@@ -475,9 +484,11 @@ static ur_status unfold_mesh(const job_run *run, const job_room *room, const ur_
     if (!nets->nets)
         code = fail(run, &error);
     *area = 0.0;
+    size_t hidden = 0;
     for (size_t k = 0; !code && k < unfolding.count; k++) {
         nets->count++;
-        if (net_of_unfolded(mesh, &unfolding.pieces[k], k, &nets->nets[k], &error) != UR_OK)
+        if (net_of_unfolded(mesh, &unfolding.pieces[k], k, run->job.hide_folds * M_PI / 180,
+                            &nets->nets[k], &hidden, &error) != UR_OK)
             code = fail(run, &error);
         *area += unfolding.pieces[k].area_3d;
     }
@@ -487,6 +498,10 @@ static ur_status unfold_mesh(const job_run *run, const job_room *room, const ur_
                  "valleys), %zu seams",
                  run->job.command, unfolding.count, unfolding.count == 1 ? "" : "s",
                  unfolding.single_face, unfolding.folds, unfolding.valleys, unfolding.seams);
+    if (!code && !run->job.quiet && run->job.hide_folds > 0)
+        job_note_about(run, "hide-folds",
+                       "%s: hide-folds leaves out %zu folds that turn by less than %g degrees",
+                       run->job.command, hidden, run->job.hide_folds);
     ur_unfolding_free(&unfolding);
     return code;
 }

@@ -139,6 +139,20 @@ static ur_status set_fewer_pieces(ur_job *job, const char *value, ur_error *erro
     return UR_OK;
 }
 
+/* The angle in degrees, 0 or more and less than 180, below which folds are not drawn. */
+static ur_status set_hide_folds(ur_job *job, const char *value, ur_error *error)
+{
+    double degrees;
+    ur_status status = job_number(value, &degrees, error);
+    if (status != UR_OK)
+        return status;
+    if (!(degrees >= 0 && degrees < 180))
+        return ur_error_set(error, UR_ERROR_INPUT,
+                            "'%s' is not an angle in degrees, 0 or more and less than 180", value);
+    job->hide_folds = degrees;
+    return UR_OK;
+}
+
 /* rail1, rail2 or both: the rails a strip reshapes. */
 static ur_status set_adjust(ur_job *job, const char *value, ur_error *error)
 {
@@ -419,6 +433,7 @@ const job_setting job_surface_settings[] = {
     {"iterations", true, UR_JOB_OPTION_SURFACE, FLATTENED, set_iterations},
     {"max-strain", true, UR_JOB_OPTION_SURFACE, FLATTENED, set_max_strain},
     {"fewer-pieces", false, UR_JOB_OPTION_SURFACE, " mesh ", set_fewer_pieces},
+    {"hide-folds", true, UR_JOB_OPTION_SURFACE, " mesh ", set_hide_folds},
     {"method", true, UR_JOB_OPTION_SURFACE, NULL, set_method},
     {"parts", true, UR_JOB_OPTION_SURFACE, NULL, set_parts},
     {"rulings", false, UR_JOB_OPTION_SURFACE, NULL, set_rulings},

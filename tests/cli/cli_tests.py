@@ -1667,6 +1667,42 @@ def one_tab_spans_short_edges(work):
 
 
 @test
+def gentle_folds_can_be_hidden(work):
+    # An open tube of 24 sides (radius 30, 40 high) turns by 15 degrees at
+    # each fold; a 20 mm cube by 90.  --hide-folds 20 leaves out every fold
+    # of the tube and says how many; 10 leaves them all, and 45 leaves
+    # every fold of the cube.  No tabs: their bases are scored too.
+    n, r = 24, 30.0
+    lines = ["v %.9f %.9f %.9f" % (r * math.cos(2 * math.pi * i / n),
+                                   r * math.sin(2 * math.pi * i / n), z)
+             for z in (0.0, 40.0) for i in range(n)]
+    lines += ["f %d %d %d %d" % (i + 1, (i + 1) % n + 1, (i + 1) % n + n + 1, i + n + 1)
+              for i in range(n)]
+    write(work, "tube.obj", "\n".join(lines) + "\n")
+    def drawn(mesh, *extra):
+        result = run(work, "mesh", mesh, "--flatten", "unfold", "--material", "paper-0.3mm",
+                     "--allowances", "none", "--nest-time", "0", "-o", "f.svg", *extra)
+        sheets = [f for f in os.listdir(work) if f.startswith("f") and f.endswith(".svg")]
+        count = sum(len(paths(os.path.join(work, f), layer))
+                    for f in sheets for layer in ("score", "score-valley"))
+        for f in sheets:
+            os.remove(os.path.join(work, f))
+        return count, result.stderr
+    folds, _ = drawn("tube.obj")
+    check(folds >= n - 2, "%d folds on the tube" % folds)
+    check(drawn("tube.obj", "--hide-folds", "10")[0] == folds, "folds of 15 degrees hidden at 10")
+    hidden, said = drawn("tube.obj", "--hide-folds", "20")
+    check(hidden == 0, "%d folds drawn at 20" % hidden)
+    check("--hide-folds leaves out %d folds that turn by less than 20 degrees" % folds in said, said)
+    cube = os.path.join(REPO, "samples", "cube.obj")
+    check(drawn(cube, "--hide-folds", "45")[0] == drawn(cube)[0] > 0, "the cube's folds hidden")
+    bad(work, r"mesh: --hide-folds goes with --flatten unfold", "mesh", cube, "--hide-folds", "5",
+        "-o", "x.svg")
+    bad(work, r"--hide-folds: '180' is not an angle in degrees", "mesh", cube, "--flatten",
+        "unfold", "--hide-folds", "180", "-o", "x.svg")
+
+
+@test
 def unfolding_fits_the_sheet(work):
     # A 100 mm cube on a 250 x 180 mm sheet: inside the margins and with
     # room for a tab on each side, two squares side by side fit but three in
