@@ -52,8 +52,7 @@ typedef struct ur_mesh_repairs {
     size_t flipped;    /* triangles turned to agree with their neighbours */
     size_t split;      /* vertices copied to take apart surfaces that touch along an edge */
     size_t flaps;      /* pairs of triangles back to back on the same corners, dropped */
-    size_t
-        kept_apart; /* vertices not welded: welding would join three or more triangles at an edge */
+    size_t kept_apart; /* vertices left unwelded: welding would put 3+ triangles on an edge */
 } ur_mesh_repairs;
 
 /*

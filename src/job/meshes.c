@@ -26,7 +26,6 @@ static ur_status fail(const job_run *run, const ur_error *error)
     return job_fail_from(run, error);
 }
 
-/* Long flattening reports its progress, and its end, to the progress callback. */
 /* How far a joint (tab or lap) stands out from the seam it is on, with the stock's thickness. */
 static double joint_reach(const ur_material *material)
 {
@@ -51,6 +50,7 @@ static job_room room_for_joints(const job_run *run, const job_room *room,
     return inner;
 }
 
+/* Long flattening reports its progress, and its end, to the progress callback. */
 static void report_flattening(void *context, size_t iteration, double energy)
 {
     ur_job_progress progress = {
