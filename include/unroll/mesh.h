@@ -252,18 +252,17 @@ UR_API ur_status ur_mesh_bands(const ur_mesh *mesh, ur_vec3 direction, const dou
  * splits its area in two.  A ribbon that winds round comes out as two
  * halves that each wind half as far, where planes would cut it at every
  * turn.  The result is as ur_mesh_bands leaves it with two bands (groups
- * b * mesh->group_count + g); free it with ur_mesh_free.  Refuses
- * (UR_ERROR_INPUT) fewer than 2 triangles and the meshes cutting refuses
- * (ur_mesh_pieces).
+ * b * mesh->group_count + g); free it with ur_mesh_free.  The cut runs
+ * through triangles, so a single one is halved too.  Refuses
+ * (UR_ERROR_INPUT) the meshes cutting refuses (ur_mesh_pieces).
  */
 UR_API ur_status ur_mesh_halve(const ur_mesh *mesh, ur_mesh *halves, ur_error *error);
 
 /*
  * The same cut into parts pieces of equal area, one after another along
  * the piece's length (ur_mesh_halve is parts 2): for a flat piece too long
- * for any sheet.  Refuses (UR_ERROR_INPUT) parts below 2 or above the
- * triangle count, and levels that do not increase (a piece with no length
- * to speak of).
+ * for any sheet, whatever its count of triangles.  Refuses
+ * (UR_ERROR_INPUT) parts below 2.
  */
 UR_API ur_status ur_mesh_split_along(const ur_mesh *mesh, size_t parts, ur_mesh *split,
                                      ur_error *error);

@@ -129,10 +129,9 @@ static ur_status vertex_field(const cutter *c, const double *distance, double **
 ur_status ur_mesh_split_along(const ur_mesh *mesh, size_t parts, ur_mesh *split, ur_error *error)
 {
     memset(split, 0, sizeof *split);
-    if (parts < 2 || mesh->triangle_count < parts)
+    if (parts < 2)
         return ur_error_set(error, UR_ERROR_INPUT,
-                            "a piece of %zu triangles cannot be cut into %zu along its length",
-                            mesh->triangle_count, parts);
+                            "a piece is cut into 2 parts or more along its length, not %zu", parts);
     cutter c;
     double *distance = NULL, *field = NULL;
     double *levels = ur_alloc_array(parts, sizeof *levels, error);

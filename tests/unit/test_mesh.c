@@ -1310,7 +1310,8 @@ static void test_halve_along_the_length(void **state)
  * into four along its length: each part a quarter of the area, the cuts
  * running through the large triangle.  Levels taken triangle by triangle
  * fell three times on the large one, and the cut was refused as planes
- * that do not increase.
+ * that do not increase.  Cut into 7, more parts than it has triangles,
+ * each part is a seventh.
  */
 static void test_split_along_through_a_large_triangle(void **state)
 {
@@ -1335,6 +1336,16 @@ static void test_split_along_through_a_large_triangle(void **state)
         assert_relative(ur_mesh_area(&pieces[k].mesh), total / 4, 1e-4);
     ur_mesh_pieces_free(pieces, count);
     ur_mesh_free(&split);
+    /* More parts than triangles: the cuts run through them. */
+    assert_int_equal(ur_mesh_split_along(&fan, 7, &split, &error), UR_OK);
+    pieces = cut(&split, NULL, 0, &count);
+    assert_int_equal(count, 7);
+    for (size_t k = 0; k < count; k++)
+        assert_relative(ur_mesh_area(&pieces[k].mesh), total / 7, 1e-4);
+    ur_mesh_pieces_free(pieces, count);
+    ur_mesh_free(&split);
+    assert_int_equal(ur_mesh_split_along(&fan, 1, &split, &error), UR_ERROR_INPUT);
+    assert_message(error, "2 parts or more");
     ur_mesh_free(&fan);
 }
 
