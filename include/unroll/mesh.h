@@ -212,6 +212,17 @@ UR_API ur_status ur_mesh_bending_direction(const ur_mesh *mesh, ur_vec3 *directi
                                            ur_error *error);
 
 /*
+ * The tightest bend of the mesh (mm) and the middle of the edge where it
+ * is: over its edges between two triangles, the mean of their heights
+ * over the edge divided by the angle between their normals (radians), the
+ * radius a faceted surface bends to there (a regular n-sided prism of
+ * radius r: r sin(pi/n) / (pi/n)).  INFINITY for a flat mesh.  Refuses
+ * (UR_ERROR_INPUT) a mesh with an edge of three or more triangles.
+ */
+UR_API ur_status ur_mesh_tightest_bend(const ur_mesh *mesh, double *radius, ur_vec3 *at,
+                                       ur_error *error);
+
+/*
  * Offsets (p . d, d the unit direction) of count - 1 planes, increasing,
  * into planes[0 .. count - 2], that cut the mesh into count bands of about
  * the same width measured on the surface: width accumulates along d as

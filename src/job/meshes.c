@@ -522,6 +522,60 @@ static ur_strip_limits strip_limits(const job_run *run, const ur_material *mater
     return limits;
 }
 
+/*
+ * Pieces that bend tighter than the material can: bending kerfs follow a
+ * developed surface's rulings (bending.c), and a flattened mesh piece has
+ * none, so it would crack (Blender's cylinder, radius 60 mm, in 3 mm
+ * plywood, whose smallest bend radius is 150 mm).  The material's smaller
+ * radius (with or across its grain) is the limit, so that a warning is
+ * sure.  A tally of the pieces looked at, those too tight and the
+ * tightest.
+ */
+typedef struct bend_tally {
+    double limit;
+    size_t pieces, tight;
+    double least;
+} bend_tally;
+
+static bend_tally bend_tally_start(const ur_material *material)
+{
+    return (bend_tally){
+        .limit = fmin(material->bend_radius_with_grain, material->bend_radius_across_grain),
+        .least = INFINITY};
+}
+
+static void bend_tally_add(bend_tally *tally, const ur_mesh *piece)
+{
+    double radius;
+    ur_vec3 at;
+    ur_error error;
+    tally->pieces++;
+    if (tally->limit > 0 && ur_mesh_tightest_bend(piece, &radius, &at, &error) == UR_OK &&
+        radius < tally->limit) {
+        tally->tight++;
+        tally->least = fmin(tally->least, radius);
+    }
+}
+
+/* what: the kind of piece, singular ("chart"). */
+static void warn_tight_bends(const job_run *run, const ur_material *material,
+                             const bend_tally *tally, const char *what)
+{
+    if (tally->tight == 0)
+        return;
+    char which[64];
+    if (tally->pieces == 1)
+        c_snprintf(which, sizeof which, "the %s bends", what);
+    else
+        c_snprintf(which, sizeof which, "%zu of the %zu %ss bend%s", tally->tight, tally->pieces,
+                   what, tally->tight == 1 ? "s" : "");
+    job_warn(run,
+             "%s: warning: %s tighter than %s takes (a radius of %g mm), down to %.1f mm, and a "
+             "flattened piece gets no bending kerfs: use a thinner material, or develop a "
+             "cylinder or cone as a surface of its own",
+             run->job.command, which, material->name, tally->limit, tally->least);
+}
+
 /* The strips' pieces as nets S1, S2, ... in order across the surface. */
 static ur_status nets_of_strips(const job_run *run, const ur_strips *strips,
                                 const ur_strip_limits *limits, ur_net_list *nets, double *area)
@@ -572,6 +626,11 @@ static ur_status flatten_in_strips(const job_run *run, const ur_material *materi
                               error.message);
     }
     ur_status code = nets_of_strips(run, &strips, &limits, nets, area);
+    bend_tally tally = bend_tally_start(material);
+    for (size_t k = 0; !code && k < strips.count; k++)
+        bend_tally_add(&tally, &strips.strips[k].piece.mesh);
+    if (!code)
+        warn_tight_bends(run, material, &tally, "strip");
     ur_strips_free(&strips);
     return code;
 }
@@ -627,8 +686,13 @@ static ur_status flatten_charts(const job_run *run, const job_room *room,
                  run->job.command, charts.count, charts.count == 1 ? "" : "s", charts.sharp_edges,
                  100 * limits.max_stretch, 100 * limits.max_compression, 100 * charts.max_stretch,
                  100 * charts.max_compression);
-    if (!code)
+    if (!code) {
         suggest_unfolding(run, &charts);
+        bend_tally tally = bend_tally_start(material);
+        for (size_t k = 0; k < charts.count; k++)
+            bend_tally_add(&tally, &charts.charts[k].piece.mesh);
+        warn_tight_bends(run, material, &tally, "chart");
+    }
     ur_charts_free(&charts);
     return code;
 }
@@ -728,6 +792,11 @@ static ur_status nets_of_mesh(const job_run *run, const job_room *room, const ur
         code = fail(run, &error);
     if (!code)
         code = flatten_pieces(run, &flat_room, pieces, piece_count, nets, area);
+    bend_tally tally = bend_tally_start(material);
+    for (size_t k = 0; !code && k < piece_count; k++)
+        bend_tally_add(&tally, &pieces[k].mesh);
+    if (!code)
+        warn_tight_bends(run, material, &tally, "piece");
     end_progress(run);
     ur_mesh_pieces_free(pieces, piece_count);
     free(seams);

@@ -412,6 +412,16 @@ def write(work, name, text):
         f.write(text)
 
 
+def write_tube(work, name, sides, radius, height):
+    """An open prism of quads round a circle, as an OBJ."""
+    lines = ["v %.9f %.9f %.9f" % (radius * math.cos(2 * math.pi * i / sides),
+                                   radius * math.sin(2 * math.pi * i / sides), z)
+             for z in (0.0, height) for i in range(sides)]
+    lines += ["f %d %d %d %d" % (i + 1, (i + 1) % sides + 1, (i + 1) % sides + sides + 1,
+                                 i + sides + 1) for i in range(sides)]
+    write(work, name, "\n".join(lines) + "\n")
+
+
 HELICOID = ["helicoid", "--radius", "30", "--pitch", "60", "--turns", "1", "--width", "20"]
 
 
@@ -1307,6 +1317,25 @@ def charts_of_single_faces_suggest_unfolding(work):
 
 
 @test
+def a_chart_that_bends_too_tight_is_warned_of(work):
+    # An open tube of 32 sides and radius 60 bends to 60 sin(pi/32) / (pi/32)
+    # = 59.9 mm: in 3 mm plywood (150 mm across its grain) a flattened chart
+    # gets no bending kerfs and would crack, and a warning says so; paper
+    # (3 mm) takes it.
+    n, r = 32, 60.0
+    write_tube(work, "tube.obj", n, r, 40.0)
+    radius = r * math.sin(math.pi / n) / (math.pi / n)
+    result = run(work, "mesh", "tube.obj", "--material", "plywood-3mm", "--nest-time", "0",
+                 "-o", "t.svg")
+    check("warning: the chart bends tighter than plywood-3mm takes (a radius of 150 mm), down "
+          "to %.1f mm, and a flattened piece gets no bending kerfs" % radius in result.stderr,
+          result.stderr)
+    result = run(work, "mesh", "tube.obj", "--material", "paper-0.3mm", "--nest-time", "0",
+                 "-o", "p.svg")
+    check("bends tighter" not in result.stderr, result.stderr)
+
+
+@test
 def fin_on_a_plate_is_kept_apart_and_said(work):
     # A 100 mm square plate and a fin standing on one of its edges, the fin
     # with its own vertices at the plate's corners (as Blender writes faces
@@ -1672,13 +1701,8 @@ def gentle_folds_can_be_hidden(work):
     # each fold; a 20 mm cube by 90.  --hide-folds 20 leaves out every fold
     # of the tube and says how many; 10 leaves them all, and 45 leaves
     # every fold of the cube.  No tabs: their bases are scored too.
-    n, r = 24, 30.0
-    lines = ["v %.9f %.9f %.9f" % (r * math.cos(2 * math.pi * i / n),
-                                   r * math.sin(2 * math.pi * i / n), z)
-             for z in (0.0, 40.0) for i in range(n)]
-    lines += ["f %d %d %d %d" % (i + 1, (i + 1) % n + 1, (i + 1) % n + n + 1, i + n + 1)
-              for i in range(n)]
-    write(work, "tube.obj", "\n".join(lines) + "\n")
+    n = 24
+    write_tube(work, "tube.obj", n, 30.0, 40.0)
     def drawn(mesh, *extra):
         result = run(work, "mesh", mesh, "--flatten", "unfold", "--material", "paper-0.3mm",
                      "--allowances", "none", "--nest-time", "0", "-o", "f.svg", *extra)

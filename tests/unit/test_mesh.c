@@ -1349,6 +1349,30 @@ static void test_split_along_through_a_large_triangle(void **state)
     ur_mesh_free(&fan);
 }
 
+/*
+ * An open prism of 32 sides round a circle of radius 60, 40 high, its
+ * quads split in two: it bends at its upright edges by 2 pi / 32 over a
+ * face 2 * 60 sin(pi / 32) wide, a radius of 60 sin(pi/32) / (pi/32); the
+ * diagonals inside its flat quads do not bend.  A flat grid does not bend
+ * at all.
+ */
+static void test_tightest_bend(void **state)
+{
+    (void)state;
+    ur_mesh prism = tube(32, 1, 60, 40);
+    double radius;
+    ur_vec3 at;
+    ur_error error;
+    assert_int_equal(ur_mesh_tightest_bend(&prism, &radius, &at, &error), UR_OK);
+    assert_relative(radius, 60 * sin(M_PI / 32) / (M_PI / 32), 1e-9);
+    assert_true(fabs(hypot(at.x, at.y) - 60) < 1e-9 && fabs(at.z - 20) < 1e-9); /* an upright */
+    ur_mesh_free(&prism);
+    ur_mesh flat = grid(3, 0);
+    assert_int_equal(ur_mesh_tightest_bend(&flat, &radius, &at, &error), UR_OK);
+    assert_true(isinf(radius));
+    ur_mesh_free(&flat);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1379,6 +1403,7 @@ int main(void)
         cmocka_unit_test(test_from_ruled_refuses),
         cmocka_unit_test(test_halve_along_the_length),
         cmocka_unit_test(test_split_along_through_a_large_triangle),
+        cmocka_unit_test(test_tightest_bend),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
