@@ -1313,6 +1313,21 @@ static void test_halve_along_the_length(void **state)
  * that do not increase.  Cut into 7, more parts than it has triangles,
  * each part is a seventh.
  */
+/* The mesh cut into parts along its length, each with its share of the area. */
+static void assert_split_evenly(const ur_mesh *mesh, size_t parts)
+{
+    ur_mesh split;
+    ur_error error;
+    assert_int_equal(ur_mesh_split_along(mesh, parts, &split, &error), UR_OK);
+    size_t count;
+    ur_mesh_piece *pieces = cut(&split, NULL, 0, &count);
+    assert_int_equal(count, parts);
+    for (size_t k = 0; k < count; k++)
+        assert_relative(ur_mesh_area(&pieces[k].mesh), ur_mesh_area(mesh) / (double)parts, 1e-4);
+    ur_mesh_pieces_free(pieces, count);
+    ur_mesh_free(&split);
+}
+
 static void test_split_along_through_a_large_triangle(void **state)
 {
     (void)state;
@@ -1326,24 +1341,10 @@ static void test_split_along_through_a_large_triangle(void **state)
     ur_mesh fan = build(&b);
     double total = ur_mesh_area(&fan); /* 60: 5 + 5 + 5 + 45 */
     assert_relative(total, 60.0, 1e-12);
+    assert_split_evenly(&fan, 4);
+    assert_split_evenly(&fan, 7); /* more parts than triangles: the cuts run through them */
     ur_mesh split;
     ur_error error;
-    assert_int_equal(ur_mesh_split_along(&fan, 4, &split, &error), UR_OK);
-    size_t count;
-    ur_mesh_piece *pieces = cut(&split, NULL, 0, &count);
-    assert_int_equal(count, 4);
-    for (size_t k = 0; k < count; k++)
-        assert_relative(ur_mesh_area(&pieces[k].mesh), total / 4, 1e-4);
-    ur_mesh_pieces_free(pieces, count);
-    ur_mesh_free(&split);
-    /* More parts than triangles: the cuts run through them. */
-    assert_int_equal(ur_mesh_split_along(&fan, 7, &split, &error), UR_OK);
-    pieces = cut(&split, NULL, 0, &count);
-    assert_int_equal(count, 7);
-    for (size_t k = 0; k < count; k++)
-        assert_relative(ur_mesh_area(&pieces[k].mesh), total / 7, 1e-4);
-    ur_mesh_pieces_free(pieces, count);
-    ur_mesh_free(&split);
     assert_int_equal(ur_mesh_split_along(&fan, 1, &split, &error), UR_ERROR_INPUT);
     assert_message(error, "2 parts or more");
     ur_mesh_free(&fan);
