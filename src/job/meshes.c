@@ -564,8 +564,8 @@ static void warn_tight_bends(const job_run *run, const ur_material *material,
     if (tally->tight == 0)
         return;
     char which[64];
-    if (tally->pieces == 1)
-        c_snprintf(which, sizeof which, "the %s bends", what);
+    if (tally->pieces == 1) /* one piece, chart or strip is the whole mesh */
+        c_snprintf(which, sizeof which, "the mesh bends");
     else
         c_snprintf(which, sizeof which, "%zu of the %zu %ss bend%s", tally->tight, tally->pieces,
                    what, tally->tight == 1 ? "s" : "");

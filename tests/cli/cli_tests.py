@@ -1327,7 +1327,7 @@ def a_chart_that_bends_too_tight_is_warned_of(work):
     radius = r * math.sin(math.pi / n) / (math.pi / n)
     result = run(work, "mesh", "tube.obj", "--material", "plywood-3mm", "--nest-time", "0",
                  "-o", "t.svg")
-    check("warning: the chart bends tighter than plywood-3mm takes (a radius of 150 mm), down "
+    check("warning: the mesh bends tighter than plywood-3mm takes (a radius of 150 mm), down "
           "to %.1f mm, and a flattened piece gets no bending kerfs" % radius in result.stderr,
           result.stderr)
     result = run(work, "mesh", "tube.obj", "--material", "paper-0.3mm", "--nest-time", "0",
