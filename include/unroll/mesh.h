@@ -213,11 +213,11 @@ UR_API ur_status ur_mesh_bending_direction(const ur_mesh *mesh, ur_vec3 *directi
 
 /*
  * The tightest bend of the mesh (mm) and the middle of the edge where it
- * is: over its edges between two triangles, the mean of their heights
- * over the edge divided by the angle between their normals (radians), the
- * radius a faceted surface bends to there (a regular n-sided prism of
- * radius r: r sin(pi/n) / (pi/n)).  INFINITY for a flat mesh.  Refuses
- * (UR_ERROR_INPUT) a mesh with an edge of three or more triangles.
+ * is: over its edges, the edge's length divided by the angle (radians)
+ * between its ends' normals, each vertex's normal its triangles' weighted
+ * by their angles there.  The least over the edges approaches the
+ * smallest radius of curvature (a regular n-sided prism of radius r: r
+ * sin(pi/n) / (pi/n)).  INFINITY for a flat mesh; UR_ERROR_MEMORY only.
  */
 UR_API ur_status ur_mesh_tightest_bend(const ur_mesh *mesh, double *radius, ur_vec3 *at,
                                        ur_error *error);
