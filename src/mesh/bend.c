@@ -13,7 +13,7 @@
  * (Thuermer and Wuethrich 1998).  Triangle by triangle instead (the angle
  * between two triangles' normals over their heights) the twist of a
  * ruled surface's thin quads, folded along their diagonals, came out as a
- * bend three times too tight: 14.3 mm for a hyperbolic paraboloid whose
+ * bend 3.5 times too tight: 14.3 mm for a hyperbolic paraboloid whose
  * smallest bend radius is 50 mm.
  *
  * On a regular n-sided prism of radius r it is r sin(pi/n) / (pi/n) along

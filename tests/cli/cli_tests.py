@@ -1698,7 +1698,7 @@ def one_tab_spans_short_edges(work):
 @test
 def gentle_folds_can_be_hidden(work):
     # An open tube of 24 sides (radius 30, 40 high) turns by 15 degrees at
-    # each fold; a 20 mm cube by 90.  --hide-folds 20 leaves out every fold
+    # each fold; the sample cube by 90.  --hide-folds 20 leaves out every fold
     # of the tube and says how many; 10 leaves them all, and 45 leaves
     # every fold of the cube.  No tabs: their bases are scored too.
     n = 24
