@@ -10,7 +10,7 @@
  * bends most, so the tightest radius is the least L / phi over the edges.
  * A vertex's normal is the mean of its triangles' normals weighted by
  * their angles there, which sees a quad split in two as the quad
- * (Thuermer and Wuethrich 1998).  Triangle by triangle instead (the angle
+ * [Thurmer1998].  Triangle by triangle instead (the angle
  * between two triangles' normals over their heights) the twist of a
  * ruled surface's thin quads, folded along their diagonals, came out as a
  * bend 3.5 times too tight: 14.3 mm for a hyperbolic paraboloid whose
