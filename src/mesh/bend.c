@@ -10,11 +10,11 @@
  * bends most, so the tightest radius is the least L / phi over the edges.
  * A vertex's normal is the mean of its triangles' normals weighted by
  * their angles there, which sees a quad split in two as the quad
- * [Thurmer1998].  Triangle by triangle instead (the angle
- * between two triangles' normals over their heights) the twist of a
- * ruled surface's thin quads, folded along their diagonals, came out as a
- * bend 3.5 times too tight: 14.3 mm for a hyperbolic paraboloid whose
- * smallest bend radius is 50 mm.
+ * [Thurmer1998].  Triangle by triangle instead (the angle between two
+ * triangles' normals over their heights) the twist of a ruled surface's
+ * thin quads, folded along their diagonals, came out as a bend 3.5 times
+ * too tight: 14.3 mm for a hyperbolic paraboloid whose smallest bend
+ * radius is 50 mm.
  *
  * On a regular n-sided prism of radius r it is r sin(pi/n) / (pi/n) along
  * its rims: the cylinder's radius, less 0.16 % at 32 sides.
