@@ -576,40 +576,58 @@ static void warn_tight_bends(const job_run *run, const ur_material *material,
              run->job.command, which, material->name, tally->limit, tally->least);
 }
 
-/* The strips' pieces as nets S1, S2, ... in order across the surface. */
-static ur_status nets_of_strips(const job_run *run, const ur_strips *strips,
+/*
+ * Names the nets from first on after strip band (counted from 0): S3, or
+ * S3.1, S3.2, ... for the parts of a strip cut to fit.
+ */
+static void name_strip_parts(ur_net_list *nets, size_t first, size_t band)
+{
+    size_t parts = nets->count - first;
+    for (size_t k = first; k < nets->count; k++) {
+        char *name = nets->nets[k].name;
+        if (parts == 1)
+            c_snprintf(name, sizeof nets->nets[k].name, "S%zu", band + 1);
+        else
+            c_snprintf(name, sizeof nets->nets[k].name, "S%zu.%zu", band + 1, k - first + 1);
+    }
+}
+
+/*
+ * The strips' pieces as nets S1, S2, ... in order across the surface,
+ * each cut along its length where it does not fit the room (a flat grid
+ * is one strip as large as the grid) or its outline crosses itself.
+ */
+static ur_status nets_of_strips(const job_run *run, const job_room *room, const ur_strips *strips,
                                 const ur_strip_limits *limits, ur_net_list *nets, double *area)
 {
-    ur_error error;
-    nets->nets = ur_alloc_array(strips->count, sizeof *nets->nets, &error);
-    if (!nets->nets)
-        return fail(run, &error);
+    flattening f = {.run = run, .room = *room, .limits = limits};
+    flatten_options(run, &f.options);
+    f.options.progress = NULL; /* the strips' progress has ended */
     *area = 0.0;
-    for (size_t k = 0; k < strips->count; k++) {
+    ur_status code = 0;
+    for (size_t k = 0; !code && k < strips->count; k++) {
         const ur_strip *strip = &strips->strips[k];
-        char name[32];
-        c_snprintf(name, sizeof name, "S%zu", strip->band + 1);
-        if (ur_net_from_flat(&strip->piece.mesh, &strip->flat, name, &nets->nets[k], &error) !=
-            UR_OK)
-            return fail(run, &error);
-        nets->count++;
-        *area += nets->nets[k].area_3d;
+        size_t first = nets->count;
+        code = place_flat(&f, &strip->piece.mesh, &strip->flat, 0, nets, area);
+        if (!code)
+            name_strip_parts(nets, first, strip->band);
     }
-    if (!run->job.quiet)
+    if (!code && !run->job.quiet)
         job_note(run,
                  "%s: %zu strip%s keep the strain within %.3g %% stretch and %.3g %% "
                  "compression (at most %.3g %% and %.3g %%)",
                  run->job.command, strips->bands, strips->bands == 1 ? "" : "s",
                  100 * limits->max_stretch, 100 * limits->max_compression,
                  100 * strips->max_stretch, 100 * strips->max_compression);
-    return UR_OK;
+    return code;
 }
 
 /* --flatten strips on a mesh or a ruled surface (mesh NULL), with the material's limits. */
 /* seams: the user's (--seams), on the mesh; none for a ruled surface. */
-static ur_status flatten_in_strips(const job_run *run, const ur_material *material, ur_mesh *mesh,
-                                   const ur_seam *seams, size_t seam_count, ur_ruled *ruled,
-                                   ur_net_list *nets, double *area)
+static ur_status flatten_in_strips(const job_run *run, const job_room *room,
+                                   const ur_material *material, ur_mesh *mesh, const ur_seam *seams,
+                                   size_t seam_count, ur_ruled *ruled, ur_net_list *nets,
+                                   double *area)
 {
     ur_strip_limits limits = strip_limits(run, material);
     ur_flatten_options options;
@@ -625,7 +643,7 @@ static ur_status flatten_in_strips(const job_run *run, const ur_material *materi
                               "%s: %s (max-strain sets another limit)", run->job.command,
                               error.message);
     }
-    ur_status code = nets_of_strips(run, &strips, &limits, nets, area);
+    ur_status code = nets_of_strips(run, room, &strips, &limits, nets, area);
     bend_tally tally = bend_tally_start(material);
     for (size_t k = 0; !code && k < strips.count; k++)
         bend_tally_add(&tally, &strips.strips[k].piece.mesh);
@@ -772,7 +790,8 @@ static ur_status nets_of_mesh(const job_run *run, const job_room *room, const ur
     size_t seam_count = 0;
     code = read_seams(run, mesh, 1e-4 * size, &seams, &seam_count);
     if (!code && run->job.strips) {
-        code = flatten_in_strips(run, material, mesh, seams, seam_count, NULL, nets, area);
+        code =
+            flatten_in_strips(run, &flat_room, material, mesh, seams, seam_count, NULL, nets, area);
         free(seams);
         return code;
     }
@@ -863,8 +882,10 @@ ur_status job_mesh_nets(const job_run *run, const job_room *room, const ur_mater
 ur_status job_flatten_ruled(const job_run *run, const job_room *room, const ur_material *material,
                             ur_ruled *ruled, ur_net_list *nets, double *area)
 {
-    if (run->job.strips)
-        return flatten_in_strips(run, material, NULL, NULL, 0, ruled, nets, area);
+    if (run->job.strips) {
+        job_room flat_room = room_for_joints(run, room, material);
+        return flatten_in_strips(run, &flat_room, material, NULL, NULL, 0, ruled, nets, area);
+    }
     ur_mesh mesh;
     ur_error error;
     if (ur_mesh_from_ruled(ruled, RULED_ALONG, RULED_ACROSS, &mesh, &error) != UR_OK)

@@ -2994,7 +2994,7 @@ def mesh_too_long_for_a_sheet_is_cut_to_fit(work):
     the 554 mm a joint at each end leaves along the bed, fits that room
     turned; with the one joint it has, nesting lays both level), the two
     sharing one seam label, the 3D area (1100 x 50 to a few ppm) kept;
-    --no-split refuses it, writing nothing."""
+    --no-split refuses it, writing nothing.  The same with --flatten strips."""
     radius, length, width, along, across = 700.0, 1100.0, 50.0, 110, 5
     lines = []
     for i in range(along + 1):
@@ -3023,6 +3023,17 @@ def mesh_too_long_for_a_sheet_is_cut_to_fit(work):
                 seams.setdefault(label.group(1), []).append(piece["name"])
     check(sorted(seams) == ["A1"] and all(len(v) == 2 for v in seams.values()),
           "seam labels %r" % seams)
+    # --flatten strips makes it one strip, S1, cut the same way into S1.1 and
+    # S1.2 (it was refused, as --no-split refuses it).
+    result = run(work, "mesh", "strip.obj", "--flatten", "strips", "-o", "strips.svg", "--report",
+                 "strips.json")
+    check(re.search(r"cut into 2 along its length", result.stderr), result.stderr)
+    pieces = report(work, "strips.json")["pieces"]
+    check(sorted(p["name"] for p in pieces) == ["S1.1", "S1.2"] and all(p["sheet"] for p in pieces),
+          "pieces %r" % [(p["name"], p["sheet"]) for p in pieces])
+    close(sum(p["area_3d_mm2"] for p in pieces), length * width, 1e-4, "3D area of the strip's parts")
+    bad(work, r"piece S1 \(1100\.\d x 50\.\d mm\) does not fit in any allowed turn", "mesh",
+        "strip.obj", "--flatten", "strips", "--no-split", "--quiet", "-o", "refused.svg")
     # --quiet: the note on the charts comes before the refusal.
     bad(work, r"does not fit in any allowed turn: give a larger --sheet than 600\.0 x 400\.0 mm",
         "mesh", "strip.obj", "--no-split", "--quiet", "-o", "refused.svg")
