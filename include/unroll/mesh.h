@@ -248,11 +248,11 @@ UR_API ur_status ur_mesh_band_planes(const ur_mesh *mesh, ur_vec3 direction, siz
  * they come from, so that pieces come in band order; a triangle keeps its
  * orientation.  The vertices of the mesh come first with their numbers,
  * then the points where planes cross edges, once per edge and plane.  A
- * vertex within a millionth of the mesh's extent along d of a plane is
- * taken to lie on it, so that no sliver of a triangle comes out; the area
- * is kept to rounding.  Free the result with ur_mesh_free.  Refuses
- * (UR_ERROR_INPUT) count 0, planes that do not increase, a direction of no
- * length and a mesh with no triangles or a bad vertex or index.
+ * vertex within a hundred-thousandth of the mesh's extent along d of a
+ * plane is taken to lie on it, so that no sliver of a triangle comes out
+ * (one too small to flatten); the area is kept to rounding.  Free the result with ur_mesh_free.
+ * Refuses (UR_ERROR_INPUT) count 0, planes that do not increase, a direction of no length and a
+ * mesh with no triangles or a bad vertex or index.
  */
 UR_API ur_status ur_mesh_bands(const ur_mesh *mesh, ur_vec3 direction, const double *planes,
                                size_t count, ur_mesh *banded, ur_error *error);
@@ -277,6 +277,17 @@ UR_API ur_status ur_mesh_halve(const ur_mesh *mesh, ur_mesh *halves, ur_error *e
  */
 UR_API ur_status ur_mesh_split_along(const ur_mesh *mesh, size_t parts, ur_mesh *split,
                                      ur_error *error);
+
+/*
+ * The same cut into parts pieces of equal area at the levels of field, a
+ * value at each vertex taken as linear over each triangle (field[v] for
+ * vertex v): with a flat piece's position along its longer side, the cuts
+ * run straight across it.  The result is as ur_mesh_split_along's.  Refuses
+ * (UR_ERROR_INPUT) parts below 2, a value that is not finite, and the
+ * meshes ur_mesh_bands refuses.
+ */
+UR_API ur_status ur_mesh_split_by(const ur_mesh *mesh, const double *field, size_t parts,
+                                  ur_mesh *split, ur_error *error);
 
 #ifdef __cplusplus
 }

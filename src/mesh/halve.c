@@ -10,7 +10,9 @@
  * of the piece, measured along its edges (the far end of a double sweep:
  * the vertex farthest from anywhere, then the one farthest from that), and
  * the cut is the line where that distance splits the piece's area in two
- * (or in as many equal parts as asked).
+ * (or in as many equal parts as asked).  ur_mesh_split_by cuts the same
+ * way at the levels of a field the caller gives, such as the position
+ * along a flat piece's length, for straight cuts across it.
  */
 #include "cutter.h"
 
@@ -126,19 +128,38 @@ static ur_status vertex_field(const cutter *c, const double *distance, double **
     return UR_OK;
 }
 
-ur_status ur_mesh_split_along(const ur_mesh *mesh, size_t parts, ur_mesh *split, ur_error *error)
+/* The cut at the levels of field that part the area evenly (parts checked by the caller). */
+static ur_status split_by_levels(const ur_mesh *mesh, const double *field, size_t parts,
+                                 ur_mesh *split, ur_error *error)
 {
-    memset(split, 0, sizeof *split);
+    double *levels = ur_alloc_array(parts, sizeof *levels, error);
+    if (!levels)
+        return UR_ERROR_MEMORY;
+    ur_status status = area_levels(mesh, field, levels, parts, error);
+    if (status == UR_OK)
+        status = mesh_bands_of_field(mesh, field, levels, parts, split, error);
+    free(levels);
+    return status;
+}
+
+static ur_status check_parts(size_t parts, ur_error *error)
+{
     if (parts < 2)
         return ur_error_set(error, UR_ERROR_INPUT,
                             "a piece is cut into 2 parts or more along its length, not %zu", parts);
+    return UR_OK;
+}
+
+ur_status ur_mesh_split_along(const ur_mesh *mesh, size_t parts, ur_mesh *split, ur_error *error)
+{
+    memset(split, 0, sizeof *split);
+    ur_status status = check_parts(parts, error);
+    if (status != UR_OK)
+        return status;
     cutter c;
     double *distance = NULL, *field = NULL;
-    double *levels = ur_alloc_array(parts, sizeof *levels, error);
     size_t start, end;
-    ur_status status = levels ? cutter_init(&c, mesh, error) : UR_ERROR_MEMORY;
-    if (!levels)
-        return status;
+    status = cutter_init(&c, mesh, error);
     if (status == UR_OK) {
         c.part_count = 1;
         c.part_size[0] = mesh->triangle_count;
@@ -151,14 +172,26 @@ ur_status ur_mesh_split_along(const ur_mesh *mesh, size_t parts, ur_mesh *split,
     if (status == UR_OK)
         status = vertex_field(&c, distance, &field, error);
     if (status == UR_OK)
-        status = area_levels(mesh, field, levels, parts, error);
-    if (status == UR_OK)
-        status = mesh_bands_of_field(mesh, field, levels, parts, split, error);
-    free(levels);
+        status = split_by_levels(mesh, field, parts, split, error);
     free(distance);
     free(field);
     cutter_free(&c);
     return status;
+}
+
+ur_status ur_mesh_split_by(const ur_mesh *mesh, const double *field, size_t parts, ur_mesh *split,
+                           ur_error *error)
+{
+    memset(split, 0, sizeof *split);
+    ur_status status = check_parts(parts, error);
+    if (status != UR_OK)
+        return status;
+    for (size_t v = 0; v < mesh->vertex_count; v++)
+        if (!isfinite(field[v]))
+            return ur_error_set(error, UR_ERROR_INPUT,
+                                "the value at vertex %zu, by which a piece is cut, is not finite",
+                                v + 1);
+    return split_by_levels(mesh, field, parts, split, error);
 }
 
 ur_status ur_mesh_halve(const ur_mesh *mesh, ur_mesh *halves, ur_error *error)

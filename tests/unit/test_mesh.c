@@ -1351,6 +1351,87 @@ static void test_split_along_through_a_large_triangle(void **state)
 }
 
 /*
+ * A 6 x 6 square cut at the levels of x into 4 parts: each a rectangle of
+ * 1.5 x 6, whatever the diagonals of its triangles (the distance along
+ * the edges from a corner would cut it on the slant).  A value that is
+ * not finite is refused, naming its vertex.
+ */
+static void test_split_by_cuts_straight_across(void **state)
+{
+    (void)state;
+    ur_mesh square = grid(6, 0);
+    double *field = malloc(square.vertex_count * sizeof *field);
+    assert_non_null(field);
+    for (size_t v = 0; v < square.vertex_count; v++)
+        field[v] = square.vertices[v].x;
+    ur_mesh split;
+    ur_error error;
+    assert_int_equal(ur_mesh_split_by(&square, field, 4, &split, &error), UR_OK);
+    size_t count;
+    ur_mesh_piece *pieces = cut(&split, NULL, 0, &count);
+    assert_int_equal(count, 4);
+    bool seen[4] = {false};
+    for (size_t k = 0; k < count; k++) {
+        const ur_mesh *part = &pieces[k].mesh;
+        double low = INFINITY, high = -INFINITY;
+        for (size_t v = 0; v < part->vertex_count; v++) {
+            low = fmin(low, part->vertices[v].x);
+            high = fmax(high, part->vertices[v].x);
+        }
+        size_t band = (size_t)lround(low / 1.5);
+        assert_true(band < 4 && !seen[band]);
+        seen[band] = true;
+        assert_true(fabs(low - 1.5 * (double)band) < 1e-9);
+        assert_true(fabs(high - 1.5 * (double)(band + 1)) < 1e-9);
+        assert_relative(ur_mesh_area(part), 9.0, 1e-9);
+    }
+    ur_mesh_pieces_free(pieces, count);
+    ur_mesh_free(&split);
+    field[7] = NAN;
+    assert_int_equal(ur_mesh_split_by(&square, field, 4, &split, &error), UR_ERROR_INPUT);
+    assert_message(error, "vertex 8");
+    assert_int_equal(ur_mesh_split_by(&square, field, 1, &split, &error), UR_ERROR_INPUT);
+    assert_message(error, "2 parts or more");
+    free(field);
+    ur_mesh_free(&square);
+}
+
+/*
+ * A plane just past the snapping distance of a sharp corner (11.4
+ * degrees) would cut off a triangle with legs of 2e-6 and an area of
+ * 4e-13, below what flattening takes as a triangle (1e-12 of the size
+ * squared): the corner is taken onto the plane instead, and no triangle
+ * of the cut is that small.
+ */
+static void test_bands_leave_no_sliver(void **state)
+{
+    (void)state;
+    builder b = {0};
+    add_vertex(&b, 0, 0, 0);
+    add_vertex(&b, 1, -0.1, 0);
+    add_vertex(&b, 1, 0.1, 0);
+    add_triangle(&b, 0, 1, 2, 0);
+    ur_mesh wedge = build(&b);
+    double planes[1] = {2e-6}, size = ur_mesh_size(&wedge);
+    ur_mesh banded;
+    ur_error error;
+    assert_int_equal(ur_mesh_bands(&wedge, ur_vec3_make(1, 0, 0), planes, 2, &banded, &error),
+                     UR_OK);
+    double total = 0;
+    for (size_t t = 0; t < banded.triangle_count; t++) {
+        const size_t *c = banded.triangles[t];
+        ur_vec3 a = banded.vertices[c[0]];
+        double area = 0.5 * ur_vec3_length(ur_vec3_cross(ur_vec3_sub(banded.vertices[c[1]], a),
+                                                         ur_vec3_sub(banded.vertices[c[2]], a)));
+        assert_true(area > UR_MESH_ZERO_AREA * size * size);
+        total += area;
+    }
+    assert_relative(total, 0.1, 1e-12);
+    ur_mesh_free(&banded);
+    ur_mesh_free(&wedge);
+}
+
+/*
  * An open prism of 32 sides round a circle of radius 60, 40 high, its
  * quads split in two: along its rims the normal turns by 2 pi / 32 over
  * an edge 2 * 60 sin(pi / 32) long, a radius of 60 sin(pi/32) / (pi/32);
@@ -1419,6 +1500,8 @@ int main(void)
         cmocka_unit_test(test_from_ruled_refuses),
         cmocka_unit_test(test_halve_along_the_length),
         cmocka_unit_test(test_split_along_through_a_large_triangle),
+        cmocka_unit_test(test_split_by_cuts_straight_across),
+        cmocka_unit_test(test_bands_leave_no_sliver),
         cmocka_unit_test(test_tightest_bend),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
