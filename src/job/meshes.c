@@ -117,18 +117,23 @@ static ur_status flatten_piece(const flattening *f, const ur_mesh *piece, size_t
                                ur_net_list *nets, double *area);
 
 /*
- * A piece cut into parts along its length (ur_mesh_split_along), each
- * flattened: a flat outline that crosses itself cannot be cut (2 parts),
- * nor can one longer than any sheet.
+ * A piece cut into parts along its length, each flattened: a flat outline
+ * that crosses itself cannot be cut (2 parts), nor can one longer than any
+ * sheet.  With a field (a value at each vertex), straight across its
+ * levels (ur_mesh_split_by); without, across the distance along the
+ * surface from one end (ur_mesh_split_along), which halves a ribbon that
+ * winds round.
  */
-static ur_status split_piece(const flattening *f, const ur_mesh *piece, size_t parts, size_t depth,
-                             ur_net_list *nets, double *area)
+static ur_status split_piece(const flattening *f, const ur_mesh *piece, const double *field,
+                             size_t parts, size_t depth, ur_net_list *nets, double *area)
 {
     ur_error error;
     ur_mesh split;
     ur_mesh_piece *pieces = NULL;
     size_t piece_count = 0;
-    if (ur_mesh_split_along(piece, parts, &split, &error) != UR_OK)
+    ur_status cut = field ? ur_mesh_split_by(piece, field, parts, &split, &error)
+                          : ur_mesh_split_along(piece, parts, &split, &error);
+    if (cut != UR_OK)
         return fail(f->run, &error);
     ur_status code = ur_mesh_pieces(&split, NULL, 0, &pieces, &piece_count, &error) == UR_OK
                          ? 0
@@ -157,44 +162,117 @@ static bool fits_room(const flattening *f, const ur_net *net, double *length, do
 }
 
 /*
- * A flat piece longer than the room, cut into the fewest parts along its
- * length that each fit: first as many as its length asks, then one more
- * at a time (the cut follows the mesh's edges, so parts come out a little
- * longer than an even share), then halving whatever still does not fit.
+ * Each vertex's position along the longer side of the net's smallest
+ * enclosing rectangle: cut at its levels, a flat piece too long for the
+ * sheet comes apart straight across (a flat square in rectangles, where
+ * the distance along the surface from a corner cut it on the diagonal).
  */
-static ur_status split_to_fit(const flattening *f, const ur_mesh *piece, double length,
-                              double width, size_t depth, ur_net_list *nets, double *area)
+static ur_status lengthwise_field(const job_run *run, const ur_flat_piece *flat, const ur_net *net,
+                                  double **field)
+{
+    ur_error error;
+    *field = ur_alloc_array(flat->vertex_count ? flat->vertex_count : 1, sizeof **field, &error);
+    if (!*field)
+        return fail(run, &error);
+    double angle = ur_outline_level_angle(net->outline, net->outline_count);
+    ur_transform2 turn = ur_transform2_make(angle, ur_vec2_make(0, 0));
+    ur_box box = ur_box_empty();
+    for (size_t k = 0; k < net->outline_count; k++)
+        ur_box_add(&box, ur_transform2_apply(turn, net->outline[k]));
+    bool along_x = ur_box_width(box) >= ur_box_height(box);
+    for (size_t v = 0; v < flat->vertex_count; v++) {
+        ur_vec2 p = ur_transform2_apply(turn, flat->flat[v]);
+        (*field)[v] = along_x ? p.x : p.y;
+    }
+    return UR_OK;
+}
+
+/*
+ * One way of cutting a piece into parts: into trial, with the area of
+ * the parts' smallest enclosing rectangles (what nesting has to place),
+ * and whether every part fits the room; parts that fall apart into more
+ * pieces than asked (a C-shaped piece cut straight across) do not.
+ */
+typedef struct split_trial {
+    ur_net_list nets;
+    double area, box_area;
+    bool fits;
+} split_trial;
+
+static ur_status try_split(const flattening *f, const ur_mesh *piece, const double *field,
+                           size_t parts, size_t depth, split_trial *trial)
 {
     flattening no_fit = *f; /* the trials halve only outlines that cross themselves */
     no_fit.room = (job_room){0, 0};
+    *trial = (split_trial){{NULL, 0}, 0, 0, false};
+    ur_status code = split_piece(&no_fit, piece, field, parts, depth, &trial->nets, &trial->area);
+    trial->fits = !code && (!field || trial->nets.count == parts);
+    for (size_t k = 0; trial->fits && k < trial->nets.count; k++) {
+        double length, width;
+        trial->fits = fits_room(f, &trial->nets.nets[k], &length, &width);
+        trial->box_area += length * width;
+    }
+    return code;
+}
+
+/* Moves the trial's nets to the list. */
+static ur_status take_trial(const job_run *run, split_trial *trial, ur_net_list *nets, double *area)
+{
+    ur_status code = 0;
+    for (size_t k = 0; !code && k < trial->nets.count; k++) {
+        code = append_net(run, nets, &trial->nets.nets[k]);
+        trial->nets.nets[k] = (ur_net){0};
+    }
+    *area += trial->area;
+    return code;
+}
+
+/*
+ * A flat piece longer than the room, cut into the fewest parts along its
+ * length that each fit: first as many as its length asks, then one more
+ * at a time (the cut follows the mesh's edges, so parts come out a little
+ * longer than an even share); then halving (along the surface) whatever
+ * still does not fit.  Each count is cut both straight across (field) and
+ * along the surface, and the parts whose enclosing rectangles take less
+ * area are kept: a flat piece comes out in rectangles (Blender's grid at
+ * 500 x 500 mm in two, on 2 sheets of 600 x 400 mm, where the distance
+ * from a corner cut it on the diagonal into 4, on 4 sheets).
+ */
+static ur_status split_to_fit(const flattening *f, const ur_mesh *piece, const double *field,
+                              double length, double width, size_t depth, ur_net_list *nets,
+                              double *area)
+{
     size_t first = (size_t)fmax(2, ceil(length / f->room.length));
     for (size_t parts = first; parts < first + 3; parts++) {
-        ur_net_list trial = {NULL, 0};
-        double trial_area = 0, l, w;
-        ur_status code = split_piece(&no_fit, piece, parts, depth, &trial, &trial_area);
-        bool all = !code;
-        for (size_t k = 0; all && k < trial.count; k++)
-            all = fits_room(f, &trial.nets[k], &l, &w);
-        for (size_t k = 0; all && !code && k < trial.count; k++) {
-            code = append_net(f->run, nets, &trial.nets[k]);
-            trial.nets[k] = (ur_net){0};
-        }
-        ur_net_list_free(&trial);
+        split_trial across, along;
+        ur_status code = try_split(f, piece, field, parts, depth, &across);
+        if (code == UR_ERROR_INPUT) /* a part the straight cut left unflattenable */
+            code = 0;
+        if (!code)
+            code = try_split(f, piece, NULL, parts, depth, &along);
+        else
+            along = (split_trial){{NULL, 0}, 0, 0, false};
+        split_trial *best = across.fits ? &across : NULL;
+        if (along.fits && (!best || along.box_area < best->box_area))
+            best = &along;
+        if (!code && best)
+            code = take_trial(f->run, best, nets, area);
+        ur_net_list_free(&across.nets);
+        ur_net_list_free(&along.nets);
         if (code)
             return code;
-        if (all) {
-            *area += trial_area;
-            if (!f->run->job.quiet)
-                job_note_about(f->run, "no-split",
-                               "%s: a piece %.0f x %.0f mm does not fit the %.0f x %.0f mm a "
-                               "sheet leaves it: cut into %zu along its length (no-split refuses "
-                               "instead)",
-                               f->run->job.command, length, width, f->room.length, f->room.width,
-                               parts);
-            return UR_OK;
-        }
+        if (!best)
+            continue;
+        if (!f->run->job.quiet)
+            job_note_about(f->run, "no-split",
+                           "%s: a piece %.0f x %.0f mm does not fit the %.0f x %.0f mm a "
+                           "sheet leaves it: cut into %zu along its length (no-split "
+                           "refuses instead)",
+                           f->run->job.command, length, width, f->room.length, f->room.width,
+                           parts);
+        return UR_OK;
     }
-    return split_piece(f, piece, 2, depth, nets, area);
+    return split_piece(f, piece, NULL, 2, depth, nets, area);
 }
 
 /*
@@ -212,13 +290,18 @@ static ur_status place_flat(const flattening *f, const ur_mesh *piece, const ur_
     if ((flat->flipped || !ur_outline_is_simple(net.outline, net.outline_count)) &&
         depth < MOST_SPLITS) {
         ur_net_free(&net);
-        return split_piece(f, piece, 2, depth, nets, area);
+        return split_piece(f, piece, NULL, 2, depth, nets, area);
     }
     double length, width;
     if (f->run->job.develop.split && f->room.length > 0 && depth < MOST_SPLITS &&
         !fits_room(f, &net, &length, &width)) {
+        double *field = NULL;
+        ur_status code = lengthwise_field(f->run, flat, &net, &field);
         ur_net_free(&net);
-        return split_to_fit(f, piece, length, width, depth, nets, area);
+        if (!code)
+            code = split_to_fit(f, piece, field, length, width, depth, nets, area);
+        free(field);
+        return code;
     }
     *area += net.area_3d;
     return append_net(f->run, nets, &net);

@@ -3040,6 +3040,35 @@ def mesh_too_long_for_a_sheet_is_cut_to_fit(work):
 
 
 @test
+def a_flat_panel_too_large_is_cut_in_rectangles(work):
+    # A flat 500 x 500 mm panel of 10 x 10 squares, cardboard on the 600 x
+    # 400 mm bed (566 x 366 mm with a joint's reach round it): two parts of
+    # 500 x 250, cut straight across.  The distance along the edges from a
+    # corner cut it on the diagonal, into triangles (each 500 + 500 + 707 mm
+    # round) and then into 4 parts on 4 sheets.
+    n, size = 10, 500.0
+    lines = ["v %g %g 0" % (size * i / n, size * j / n) for j in range(n + 1) for i in range(n + 1)]
+    for j in range(n):
+        for i in range(n):
+            a = j * (n + 1) + i + 1
+            lines.append("f %d %d %d\nf %d %d %d" % (a, a + 1, a + n + 2, a, a + n + 2, a + n + 1))
+    write(work, "panel.obj", "\n".join(lines) + "\n")
+    for flatten in ("arap", "strips"):
+        run(work, "mesh", "panel.obj", "--flatten", flatten, "--material", "cardboard-2mm",
+            "--allowances", "none", "--no-kerf-compensation", "--nest-time", "0", "-o",
+            flatten + ".svg", "--report", flatten + ".json")
+        data = report(work, flatten + ".json")
+        check(len(data["pieces"]) == 2 and len(data["sheets"]) == 2,
+              "%s: %d pieces on %d sheets" % (flatten, len(data["pieces"]), len(data["sheets"])))
+        for piece in data["pieces"]:
+            close(piece["area_3d_mm2"], size * size / 2, 1e-6, "%s: a part's area" % flatten)
+        rounds = sorted(perimeter(o) for k in (1, 2)
+                        for o in outlines(os.path.join(work, "%s-%d.svg" % (flatten, k))))
+        check(len(rounds) == 2 and all(abs(r - 1500) < 0.5 for r in rounds),
+              "%s: the parts are %s mm round, not 1500 (500 x 250)" % (flatten, rounds))
+
+
+@test
 def a_part_too_large_is_refused_with_its_level_size(work):
     # A 100 mm square drawn turned by 45 degrees, for a 90 x 90 mm sheet:
     # it is 100 mm across turned level, not the 141.4 mm its drawn box
