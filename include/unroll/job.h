@@ -88,13 +88,14 @@ typedef struct ur_job {
     double scale;          /* NAN when not given */
     const char *seam_paths[16];
     size_t seam_count;
-    int flatten;                 /* ur_flatten_method, or -1 for the default */
-    bool unfold;                 /* along the mesh's edges, every face exact */
-    bool strips;                 /* the fewest strips within the strain allowed */
-    bool fewer_pieces;           /* unfold: join pieces where a tab then finds no room */
-    double hide_folds;           /* unfold: folds turning less (degrees) are not drawn; 0 */
-    double max_strain;           /* NAN for the material's */
-    size_t iterations;           /* 0: the default */
+    int flatten;         /* ur_flatten_method, or -1 for the default */
+    bool unfold;         /* along the mesh's edges, every face exact */
+    bool strips;         /* the fewest strips within the strain allowed */
+    bool fewer_pieces;   /* unfold: join pieces where a tab then finds no room */
+    double hide_folds;   /* unfold: folds turning less (degrees) are not drawn; 0 */
+    double max_strain;   /* NAN for the material's */
+    size_t iterations;   /* 0: the default */
+    size_t unfold_steps; /* unfold: the search's steps with the room level; 0: as the mesh asks */
     const char *strain_png_path; /* the strain preview; NULL for none */
     const char *assembly_path;   /* the assembly guide (.png or .pdf); NULL for none */
     ur_up_axis assembly_up;      /* the model's up; UR_UP_AUTO (default): the file's guess */

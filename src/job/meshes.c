@@ -547,6 +547,11 @@ static ur_status unfold_mesh(const job_run *run, const job_room *room, const ur_
     bool timed = mesh->triangle_count > UNFOLD_TIMED_ABOVE;
     options.steps_per_piece = timed ? 0 : UNFOLD_STEPS_PER_PIECE;
     options.time_budget = timed ? UNFOLD_SECONDS : 0.0;
+    if (run->job.unfold_steps > 0) { /* the steps asked, all of them, on any machine alike */
+        options.max_steps = run->job.unfold_steps;
+        options.steps_per_piece = 0;
+        options.time_budget = 0.0;
+    }
     double tab = material->joint == UR_JOINT_LAP ? material->lap_width : material->tab_depth;
     double edge = mean_edge_length(mesh);
     if (job_makes_joints(run) && edge >= tab / 2)
@@ -577,10 +582,11 @@ static ur_status unfold_mesh(const job_run *run, const job_room *room, const ur_
     }
     if (!code && !run->job.quiet)
         job_note(run,
-                 "%s: unfolded into %zu piece%s (%zu of a single face): %zu folds (%zu "
-                 "valleys), %zu seams",
+                 "%s: unfolded into %zu piece%s (%zu of a single face) in %zu search steps: "
+                 "%zu folds (%zu valleys), %zu seams",
                  run->job.command, unfolding.count, unfolding.count == 1 ? "" : "s",
-                 unfolding.single_face, unfolding.folds, unfolding.valleys, unfolding.seams);
+                 unfolding.single_face, unfolding.steps, unfolding.folds, unfolding.valleys,
+                 unfolding.seams);
     if (!code && !run->job.quiet && run->job.hide_folds > 0)
         job_note_about(run, "hide-folds",
                        "%s: hide-folds leaves out %zu folds that turn by less than %g degrees",

@@ -155,6 +155,10 @@ ur_status ur_job_check(const ur_job *job, ur_error *error)
         ur_error_set(error, UR_ERROR_INPUT, "%s: fewer-pieces goes with flatten unfold", command);
         return ur_error_set_setting(error, "fewer-pieces flatten");
     }
+    if (job->unfold_steps > 0 && !(mesh && job->unfold)) {
+        ur_error_set(error, UR_ERROR_INPUT, "%s: unfold-steps goes with flatten unfold", command);
+        return ur_error_set_setting(error, "unfold-steps flatten");
+    }
     if (job->hide_folds > 0 && !(mesh && job->unfold)) {
         ur_error_set(error, UR_ERROR_INPUT, "%s: hide-folds goes with flatten unfold", command);
         return ur_error_set_setting(error, "hide-folds flatten");

@@ -153,6 +153,17 @@ static ur_status set_hide_folds(ur_job *job, const char *value, ur_error *error)
     return UR_OK;
 }
 
+/* The unfolding search's steps, from 1 to 1,000,000. */
+static ur_status set_unfold_steps(ur_job *job, const char *value, ur_error *error)
+{
+    long count;
+    if (!job_whole_number(value, 1, 1000000, &count))
+        return ur_error_set(error, UR_ERROR_INPUT, "'%s' is not a whole number from 1 to 1000000",
+                            value);
+    job->unfold_steps = (size_t)count;
+    return UR_OK;
+}
+
 /* rail1, rail2 or both: the rails a strip reshapes. */
 static ur_status set_adjust(ur_job *job, const char *value, ur_error *error)
 {
@@ -434,6 +445,7 @@ const job_setting job_surface_settings[] = {
     {"max-strain", true, UR_JOB_OPTION_SURFACE, FLATTENED, set_max_strain},
     {"fewer-pieces", false, UR_JOB_OPTION_SURFACE, " mesh ", set_fewer_pieces},
     {"hide-folds", true, UR_JOB_OPTION_SURFACE, " mesh ", set_hide_folds},
+    {"unfold-steps", true, UR_JOB_OPTION_SURFACE, " mesh ", set_unfold_steps},
     {"method", true, UR_JOB_OPTION_SURFACE, NULL, set_method},
     {"parts", true, UR_JOB_OPTION_SURFACE, NULL, set_parts},
     {"rulings", false, UR_JOB_OPTION_SURFACE, NULL, set_rulings},

@@ -1433,8 +1433,8 @@ def grid_with_grouped_centre_joined(work):
 def unfolding_keeps_every_face(work):
     result = run(work, "mesh", os.path.join(REPO, "samples", "icosphere.obj"), "--flatten",
                  "unfold", "-o", "u.svg", "--report", "u.json")
-    counts = re.search(r"unfolded into (\d+) pieces? \(\d+ of a single face\): (\d+) folds "
-                       r"\((\d+) valleys\), (\d+) seams", result.stderr)
+    counts = re.search(r"unfolded into (\d+) pieces? \(\d+ of a single face\) in \d+ search "
+                       r"steps: (\d+) folds \((\d+) valleys\), (\d+) seams", result.stderr)
     check(counts, result.stderr)
     pieces = report(work, "u.json")["pieces"]
     for piece in pieces:
@@ -1727,6 +1727,35 @@ def gentle_folds_can_be_hidden(work):
 
 
 @test
+def a_longer_unfolding_search_leaves_fewer_pieces(work):
+    # The sample head as papercraft: by default the search takes the steps
+    # the mesh asks for; --unfold-steps N takes N with the pieces level and
+    # half as many more when it searches again with them turned (the summary
+    # says how many it took).  Here 3000 steps leave fewer pieces than the
+    # default and 50 more; the same count gives the same pieces every time.
+    head = os.path.join(REPO, "samples", "head.obj")
+    found = {}
+    for steps in (None, 50, 3000):
+        extra = [] if steps is None else ["--unfold-steps", str(steps)]
+        result = run(work, "mesh", head, "--flatten", "unfold", "--material", "paper-0.3mm",
+                     "--nest-time", "0", "-o", "h.svg", *extra)
+        summary = re.search(r"unfolded into (\d+) pieces? \(\d+ of a single face\) in (\d+) "
+                            r"search steps", result.stderr)
+        check(summary, result.stderr)
+        found[steps] = (int(summary.group(1)), int(summary.group(2)))
+    pieces, taken = found[None]
+    check(found[50][1] <= 75 and taken > 75, "steps taken %r" % found)
+    check(3000 < found[3000][1] <= 4500 and found[3000][1] > taken, "steps taken %r" % found)
+    check(found[3000][0] < pieces < found[50][0], "pieces %r" % found)
+    cube = os.path.join(REPO, "samples", "cube.obj")
+    bad(work, r"mesh: --unfold-steps goes with --flatten unfold", "mesh", cube, "--unfold-steps",
+        "100", "-o", "x.svg")
+    for value in ("0", "10x", "2000000"):
+        bad(work, r"--unfold-steps: '%s' is not a whole number from 1 to 1000000" % value, "mesh",
+            cube, "--flatten", "unfold", "--unfold-steps", value, "-o", "x.svg")
+
+
+@test
 def unfolding_fits_the_sheet(work):
     # A 100 mm cube on a 250 x 180 mm sheet: inside the margins and with
     # room for a tab on each side, two squares side by side fit but three in
@@ -1736,8 +1765,8 @@ def unfolding_fits_the_sheet(work):
     cube = os.path.join(REPO, "samples", "cube.obj")
     result = run(work, "mesh", cube, "--flatten", "unfold", "--material", "paper-0.3mm",
                  "--sheet", "250x180", "--allowances", "none", "-o", "c.svg", "--report", "c.json")
-    check("unfolded into 3 pieces (0 of a single face): 3 folds (0 valleys), 9 seams"
-          in result.stderr, result.stderr)
+    check(re.search(r"unfolded into 3 pieces \(0 of a single face\) in \d+ search steps: 3 folds "
+                    r"\(0 valleys\), 9 seams", result.stderr), result.stderr)
     pieces = report(work, "c.json")["pieces"]
     check(len(pieces) == 3, "%d pieces" % len(pieces))
     for piece in pieces:
