@@ -27,6 +27,16 @@ bool job_whole_number(const char *text, long least, long most, long *value)
     return true;
 }
 
+ur_status job_count(const char *text, long most, size_t *count, ur_error *error)
+{
+    long parsed;
+    if (!job_whole_number(text, 1, most, &parsed))
+        return ur_error_set(error, UR_ERROR_INPUT, "'%s' is not a whole number from 1 to %ld", text,
+                            most);
+    *count = (size_t)parsed;
+    return UR_OK;
+}
+
 ur_status job_number(const char *text, double *value, ur_error *error)
 {
     char *end;

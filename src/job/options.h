@@ -36,6 +36,9 @@ ur_job_option_kind job_setting_kind(const char *name);
 /* Whether text is a whole number from least to most (decimal, nothing after it). */
 bool job_whole_number(const char *text, long least, long most, long *value);
 
+/* A count from 1 to most; the message gives the range. */
+ur_status job_count(const char *text, long most, size_t *count, ur_error *error);
+
 /* A finite number no larger than UR_LENGTH_MAX; the message says what is wrong. */
 ur_status job_number(const char *text, double *value, ur_error *error);
 

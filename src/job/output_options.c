@@ -176,12 +176,7 @@ static ur_status set_nest_time(ur_job *job, const char *value, ur_error *error)
 
 static ur_status set_threads(ur_job *job, const char *value, ur_error *error)
 {
-    long threads;
-    if (!job_whole_number(value, 1, UR_NEST_MAX_THREADS, &threads))
-        return ur_error_set(error, UR_ERROR_INPUT, "'%s' is not a whole number from 1 to %d", value,
-                            UR_NEST_MAX_THREADS);
-    job->threads = (size_t)threads;
-    return UR_OK;
+    return job_count(value, UR_NEST_MAX_THREADS, &job->threads, error);
 }
 
 static ur_status set_seed(ur_job *job, const char *value, ur_error *error)

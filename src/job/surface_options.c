@@ -156,12 +156,7 @@ static ur_status set_hide_folds(ur_job *job, const char *value, ur_error *error)
 /* The unfolding search's steps, from 1 to 1,000,000. */
 static ur_status set_unfold_steps(ur_job *job, const char *value, ur_error *error)
 {
-    long count;
-    if (!job_whole_number(value, 1, 1000000, &count))
-        return ur_error_set(error, UR_ERROR_INPUT, "'%s' is not a whole number from 1 to 1000000",
-                            value);
-    job->unfold_steps = (size_t)count;
-    return UR_OK;
+    return job_count(value, 1000000, &job->unfold_steps, error);
 }
 
 /* rail1, rail2 or both: the rails a strip reshapes. */
@@ -255,12 +250,7 @@ static ur_status set_flatten(ur_job *job, const char *value, ur_error *error)
 
 static ur_status set_iterations(ur_job *job, const char *value, ur_error *error)
 {
-    long count;
-    if (!job_whole_number(value, 1, 100000, &count))
-        return ur_error_set(error, UR_ERROR_INPUT, "'%s' is not a whole number from 1 to 100000",
-                            value);
-    job->iterations = (size_t)count;
-    return UR_OK;
+    return job_count(value, 100000, &job->iterations, error);
 }
 
 static ur_status set_max_strain(ur_job *job, const char *value, ur_error *error)
@@ -317,12 +307,7 @@ static ur_status set_method(ur_job *job, const char *value, ur_error *error)
 /* How many rulings (and so strips or triangles) the development has. */
 static ur_status set_parts(ur_job *job, const char *value, ur_error *error)
 {
-    long count;
-    if (!job_whole_number(value, 1, 10000000, &count))
-        return ur_error_set(error, UR_ERROR_INPUT, "'%s' is not a whole number from 1 to 10000000",
-                            value);
-    job->develop.rulings = (size_t)count;
-    return UR_OK;
+    return job_count(value, 10000000, &job->develop.rulings, error);
 }
 
 static ur_status set_rulings(ur_job *job, const char *value, ur_error *error)
