@@ -3074,7 +3074,7 @@ def a_flat_panel_too_large_is_cut_in_rectangles(work):
     # 400 mm bed (566 x 366 mm with a joint's reach round it): two parts of
     # 500 x 250, cut straight across.  The distance along the edges from a
     # corner cut it on the diagonal, into triangles (each 500 + 500 + 707 mm
-    # round) and then into 4 parts on 4 sheets.
+    # round) and further: 3 pieces on 3 sheets.
     n, size = 10, 500.0
     lines = ["v %g %g 0" % (size * i / n, size * j / n) for j in range(n + 1) for i in range(n + 1)]
     for j in range(n):
