@@ -666,8 +666,9 @@ static void warn_tight_bends(const job_run *run, const ur_material *material,
 }
 
 /*
- * Names the nets from first on after strip band (counted from 0): S3, or
- * S3.1, S3.2, ... for the parts of a strip cut to fit.
+ * Names the nets from first on, all of strip band (counted from 0): S3,
+ * or S3.1, S3.2, ... when the strip is in parts (a band of a mesh that
+ * falls apart, or a strip cut to fit).
  */
 static void name_strip_parts(ur_net_list *nets, size_t first, size_t band)
 {
@@ -684,7 +685,10 @@ static void name_strip_parts(ur_net_list *nets, size_t first, size_t band)
 /*
  * The strips' pieces as nets S1, S2, ... in order across the surface,
  * each cut along its length where it does not fit the room (a flat grid
- * is one strip as large as the grid) or its outline crosses itself.
+ * is one strip as large as the grid) or its outline crosses itself.  The
+ * pieces come band by band, and a band's parts are numbered together (the
+ * sample lampshade's one strip comes in two pieces: S1.1 and S1.2, not
+ * two S1).
  */
 static ur_status nets_of_strips(const job_run *run, const job_room *room, const ur_strips *strips,
                                 const ur_strip_limits *limits, ur_net_list *nets, double *area)
@@ -694,9 +698,11 @@ static ur_status nets_of_strips(const job_run *run, const job_room *room, const 
     f.options.progress = NULL; /* the strips' progress has ended */
     *area = 0.0;
     ur_status code = 0;
+    size_t first = 0; /* the first net of the band */
     for (size_t k = 0; !code && k < strips->count; k++) {
         const ur_strip *strip = &strips->strips[k];
-        size_t first = nets->count;
+        if (k == 0 || strip->band != strips->strips[k - 1].band)
+            first = nets->count;
         code = place_flat(&f, &strip->piece.mesh, &strip->flat, 0, nets, area);
         if (!code)
             name_strip_parts(nets, first, strip->band);

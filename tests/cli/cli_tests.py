@@ -948,6 +948,24 @@ def png_size(path):
 
 
 @test
+def a_strip_in_parts_has_its_parts_numbered(work):
+    # The sample lampshade is one strip that comes in two pieces (a band of
+    # a mesh can fall apart): S1.1 and S1.2, where both were named S1.  At 3 x
+    # in cardboard each is also cut to fit the sheet, and the parts of the
+    # one strip are numbered on: S1.1 to S1.n, every name once.
+    lampshade = os.path.join(REPO, "samples", "lampshade.obj")
+    run(work, "mesh", lampshade, "--flatten", "strips", "--material", "paper-0.3mm",
+        "--nest-time", "0", "-o", "one.svg", "--report", "one.json")
+    names = [p["name"] for p in report(work, "one.json")["pieces"]]
+    check(names == ["S1.1", "S1.2"], "pieces %r" % names)
+    run(work, "mesh", lampshade, "--scale", "3", "--flatten", "strips", "--material",
+        "cardboard-2mm", "--nest-time", "0", "-o", "big.svg", "--report", "big.json")
+    names = [p["name"] for p in report(work, "big.json")["pieces"]]
+    check(len(names) > 2 and names == ["S1.%d" % (k + 1) for k in range(len(names))],
+          "pieces %r" % names)
+
+
+@test
 def strips_keep_the_strain_within_the_material(work):
     limit = 0.01
     result = run(work, "hypar", "--corners", HYPAR, "--flatten", "strips", "--max-strain",
