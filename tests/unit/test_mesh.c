@@ -1305,14 +1305,6 @@ static void test_halve_along_the_length(void **state)
     ur_mesh_free(&tiny);
 }
 
-/*
- * A fan of four triangles, one holding three quarters of the area, cut
- * into four along its length: each part a quarter of the area, the cuts
- * running through the large triangle.  Levels taken triangle by triangle
- * fell three times on the large one, and the cut was refused as planes
- * that do not increase.  Cut into 7, more parts than it has triangles,
- * each part is a seventh.
- */
 /* The mesh cut into parts along its length, each with its share of the area. */
 static void assert_split_evenly(const ur_mesh *mesh, size_t parts)
 {
@@ -1328,6 +1320,14 @@ static void assert_split_evenly(const ur_mesh *mesh, size_t parts)
     ur_mesh_free(&split);
 }
 
+/*
+ * A fan of four triangles, one holding three quarters of the area, cut
+ * into four along its length: each part a quarter of the area, the cuts
+ * running through the large triangle.  Levels taken triangle by triangle
+ * fell three times on the large one, and the cut was refused as planes
+ * that do not increase.  Cut into 7, more parts than it has triangles,
+ * each part is a seventh.
+ */
 static void test_split_along_through_a_large_triangle(void **state)
 {
     (void)state;
