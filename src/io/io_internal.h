@@ -14,6 +14,7 @@
 #include <libxml/tree.h>
 
 #include "unroll/base.h"
+#include "unroll/geom.h"
 #include "unroll/io.h"
 
 /* "machine" or "material": a profile kind's schema and root element. */
@@ -67,6 +68,40 @@ typedef struct io_mesh_files {
 } io_mesh_files;
 
 void io_mesh_files_init(io_mesh_files *files, const char *name, const void *data, size_t size);
+
+/*
+ * The quads of a raw assimp scene, found again once assimp has triangulated
+ * it (mesh_quads.c): per mesh, per face of the triangulated mesh, whether
+ * that face and the next are the two triangles of a quad.
+ */
+struct aiScene;
+typedef struct io_quad_marks {
+    unsigned mesh_count;
+    unsigned char **starts; /* owned, per mesh: NULL for a mesh without quads */
+    size_t *face_counts;    /* owned, per mesh: its faces once triangulated */
+} io_quad_marks;
+
+/* Marks the quads of a scene not yet triangulated; io_quad_marks_free releases them. */
+ur_status io_quad_marks_read(const struct aiScene *raw, io_quad_marks *marks, ur_error *error);
+
+/* Forgets the marks of every mesh that triangulating did not turn into as many faces as foreseen.
+ */
+void io_quad_marks_match(io_quad_marks *marks, const struct aiScene *triangulated);
+
+/* A mesh's marks, or NULL. */
+const unsigned char *io_quad_marks_of(const io_quad_marks *marks, unsigned mesh);
+
+void io_quad_marks_free(io_quad_marks *marks);
+
+/*
+ * Splits each twisted quad (the triangles quads[k] and quads[k] + 1 of the
+ * triangles, as assimp made them from one face) whose sides all fold one
+ * way along the diagonal that folds that way too.  Neighbours are found
+ * by position.
+ */
+ur_status io_quads_follow_surface(const ur_vec3 *vertices, size_t vertex_count,
+                                  size_t (*triangles)[3], size_t triangle_count,
+                                  const size_t *quads, size_t quad_count, ur_error *error);
 
 /* Whether path's file name ends in "." and extension, in any case ("obj": x.OBJ). */
 bool io_has_extension(const char *path, const char *extension);

@@ -8,7 +8,8 @@
  * and applied in double precision here rather than by assimp, so that each
  * node stays its own group and a mirroring node can have its triangles
  * turned back to face outwards.  Nothing is welded across meshes or nodes:
- * ur_mesh_clean does that with the user's tolerance.
+ * ur_mesh_clean does that with the user's tolerance.  A twisted quad is
+ * split along the diagonal that follows the surface (mesh_quads.c).
  */
 #include "io_internal.h"
 
@@ -628,7 +629,7 @@ size_t ur_mesh_import_memory_estimate(const char *path)
  * the .bin files beside it, and no material library is read.
  */
 static ur_status load_scene(const char *path, const void *data, size_t size,
-                            const struct aiScene **scene, ur_error *error)
+                            const struct aiScene **scene, io_quad_marks *quads, ur_error *error)
 {
     io_mesh_files files;
     io_mesh_files_init(&files, path, data, size);
@@ -638,6 +639,8 @@ static ur_status load_scene(const char *path, const void *data, size_t size,
         return ur_error_set(error, UR_ERROR_INPUT, "%s: cannot read as a mesh: %s", path,
                             aiGetErrorString());
     ur_status status = check_raw_scene(path, *scene, error);
+    if (status == UR_OK)
+        status = io_quad_marks_read(*scene, quads, error);
     if (status != UR_OK) {
         aiReleaseImport(*scene);
         *scene = NULL;
@@ -645,9 +648,12 @@ static ur_status load_scene(const char *path, const void *data, size_t size,
     }
     /* No normals: unroll computes its own from the triangles. */
     *scene = aiApplyPostProcessing(*scene, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices);
-    if (!*scene) /* assimp has released the scene */
+    if (!*scene) { /* assimp has released the scene */
+        io_quad_marks_free(quads);
         return ur_error_set(error, UR_ERROR_INPUT, "%s: cannot process the mesh: %s", path,
                             aiGetErrorString());
+    }
+    io_quad_marks_match(quads, *scene);
     return UR_OK;
 }
 
@@ -720,6 +726,9 @@ typedef struct import_state {
     size_t *groups;                 /* likewise */
     char (*names)[GROUP_NAME_SIZE]; /* likewise */
     bool *named;                    /* owned: whether the file named the group */
+    io_quad_marks quads;            /* owned: the file's quads, among its meshes' faces */
+    size_t *quad_starts;            /* owned: the first triangle of each quad's two */
+    size_t quad_count;
 } import_state;
 
 static void state_free(import_state *state)
@@ -729,6 +738,9 @@ static void state_free(import_state *state)
     free(state->groups);
     free(state->names);
     free(state->named);
+    free(state->quad_starts);
+    io_quad_marks_free(&state->quads);
+    state->quad_starts = NULL;
     state->vertices = NULL;
     state->triangles = NULL;
     state->groups = NULL;
@@ -805,7 +817,9 @@ static ur_status allocate(import_state *state, ur_error *error)
     state->groups = ur_alloc_array(state->triangle_count, sizeof *state->groups, error);
     state->names = ur_alloc_array(state->group_count, sizeof *state->names, error);
     state->named = ur_alloc_array(state->group_count, sizeof *state->named, error);
-    if (!state->vertices || !state->triangles || !state->groups || !state->names || !state->named)
+    state->quad_starts = ur_alloc_array(state->triangle_count, sizeof *state->quad_starts, error);
+    if (!state->vertices || !state->triangles || !state->groups || !state->names || !state->named ||
+        !state->quad_starts)
         return UR_ERROR_MEMORY;
     /* The counts come back as fill_node moves its cursors over the arrays. */
     state->vertex_count = state->triangle_count = state->group_count = 0;
@@ -846,14 +860,21 @@ static ur_status add_vertices(import_state *state, const struct aiMesh *mesh, un
     return UR_OK;
 }
 
-/* Copies one mesh's triangles after its vertices, turned round under a mirror. */
-static void add_triangles(import_state *state, const struct aiMesh *mesh, bool mirrored)
+/*
+ * Copies one mesh's triangles after its vertices, turned round under a
+ * mirror, and notes where its quads' pairs of triangles are.
+ */
+static void add_triangles(import_state *state, const struct aiMesh *mesh, unsigned index,
+                          bool mirrored)
 {
     size_t base = state->vertex_count;
+    const unsigned char *quads = io_quad_marks_of(&state->quads, index);
     for (unsigned f = 0; f < mesh->mNumFaces; f++) {
         const struct aiFace *face = &mesh->mFaces[f];
         if (face->mNumIndices != 3)
             continue;
+        if (quads && quads[f] && f + 1 < mesh->mNumFaces && mesh->mFaces[f + 1].mNumIndices == 3)
+            state->quad_starts[state->quad_count++] = state->triangle_count;
         size_t *t = state->triangles[state->triangle_count];
         t[0] = base + face->mIndices[0];
         t[1] = base + face->mIndices[mirrored ? 2 : 1];
@@ -886,7 +907,7 @@ static ur_status fill_meshes(import_state *state, const struct aiNode *node, con
         status = add_vertices(state, mesh, index, &to_mm, error);
         if (status != UR_OK)
             return status;
-        add_triangles(state, mesh, mirrored);
+        add_triangles(state, mesh, index, mirrored);
     }
     if (started)
         state->group_count++;
@@ -1013,6 +1034,10 @@ static ur_status build(import_state *state, ur_error *error)
         return status;
     affine identity = affine_identity();
     status = fill_node(state, state->scene->mRootNode, &identity, error);
+    if (status == UR_OK)
+        status = io_quads_follow_surface(state->vertices, state->vertex_count, state->triangles,
+                                         state->triangle_count, state->quad_starts,
+                                         state->quad_count, error);
     if (status != UR_OK)
         return status;
     name_unnamed(state);
@@ -1055,7 +1080,7 @@ static ur_status import_mesh(const char *path, const void *data, size_t size,
         status = data ? check_buffer(path, data, size, error) : check_file(path, error);
     import_state state = {.path = path};
     if (status == UR_OK)
-        status = load_scene(path, data, size, &state.scene, error);
+        status = load_scene(path, data, size, &state.scene, &state.quads, error);
     if (status != UR_OK)
         return status;
     state.factor = ur_length_unit_mm(options->unit) * options->scale;

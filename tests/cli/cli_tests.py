@@ -1750,8 +1750,8 @@ def a_longer_unfolding_search_leaves_fewer_pieces(work):
     # the mesh asks for; --unfold-steps N takes N with the pieces level and
     # half as many more when it searches again with them turned (the summary
     # says how many it took).  Here 1000 steps leave fewer pieces than the
-    # default (764 steps) and 50 more; the same count gives the same pieces
-    # every time.  (3000 leave 5 pieces, but cost more under valgrind.)
+    # default (6 in 783 steps: 5 against 12 for 50); the same count gives
+    # the same pieces every time.
     head = os.path.join(REPO, "samples", "head.obj")
     found = {}
     for steps in (None, 50, 1000):

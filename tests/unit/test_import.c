@@ -3,7 +3,8 @@
  * format (OBJ, ASCII and binary STL, PLY, glTF with node transforms, GLB
  * with an instanced, mirrored half) gives the same surface, facing the same
  * way; groups and their names; units and scale; and every refusal names the
- * file.  Areas, boxes and orientation are computed here, not with src/mesh,
+ * file; a twisted quad is split along the diagonal that follows the
+ * surface.  Areas, boxes and orientation are computed here, not with src/mesh,
  * so that this test stands on the importer alone.
  */
 #include <stdarg.h>
@@ -13,6 +14,7 @@
 #include <cmocka.h>
 
 #include <math.h>
+#include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -319,6 +321,102 @@ static void test_icosphere_is_closed_and_outward(void **state)
     assert_true(volume > 0.8 * sphere && volume < sphere);
     free(names);
     free_mesh(&mesh);
+}
+
+/* ---- Twisted quads ----------------------------------------------------- */
+
+/*
+ * A 3 x 3 grid of quads on z = bend (x^2 + y^2 + xy) / 10, as OBJ with a
+ * normal per face (as Blender writes flat faces, so that assimp keeps each
+ * face's corners apart).  Each quad is twisted and written from its corner
+ * (x, y): assimp splits it from there, along its long diagonal.  In the
+ * metric of x^2 + y^2 + xy a cell is two equilateral triangles on the short
+ * diagonal, so the lifted surface's hull (a dome for bend -1, a bowl for
+ * +1) is the grid split along the short diagonals, every fold of it a hill
+ * (a valley in the bowl).
+ */
+static void write_twisted_grid(char *text, size_t size, int bend)
+{
+    size_t used = (size_t)snprintf(text, size, "o grid\n");
+    for (int y = 0; y <= 3; y++)
+        for (int x = 0; x <= 3; x++)
+            used += (size_t)snprintf(text + used, size - used, "v %d %d %g\n", x, y,
+                                     bend * (x * x + y * y + x * y) / 10.0);
+    for (int k = 1; k <= 9; k++)
+        used += (size_t)snprintf(text + used, size - used, "vn 0 0 %d.%d\n", k % 2, k);
+    for (int y = 0; y < 3; y++)
+        for (int x = 0; x < 3; x++) {
+            int a = 4 * y + x + 1, n = 3 * y + x + 1;
+            used += (size_t)snprintf(text + used, size - used, "f %d//%d %d//%d %d//%d %d//%d\n", a,
+                                     n, a + 1, n, a + 5, n, a + 4, n);
+        }
+    assert_true(used < size);
+}
+
+static bool same_point(ur_vec3 a, ur_vec3 b)
+{
+    return a.x == b.x && a.y == b.y && a.z == b.z;
+}
+
+/*
+ * For every edge two triangles share (by position): how far the other's
+ * far corner lies above the plane of the one, along its unit normal; the
+ * least and the most of these.
+ */
+static void fold_heights(const ur_mesh *mesh, double *least, double *most, int *edges)
+{
+    *least = INFINITY, *most = -INFINITY, *edges = 0;
+    for (size_t t = 0; t < mesh->triangle_count; t++)
+        for (size_t o = 0; o < mesh->triangle_count; o++)
+            for (int k = 0; o != t && k < 3; k++) {
+                ur_vec3 a = corner(mesh, t, k), b = corner(mesh, t, (k + 1) % 3);
+                int shared = 0, far = -1;
+                for (int j = 0; j < 3; j++) {
+                    ur_vec3 p = corner(mesh, o, j);
+                    if (same_point(p, a) || same_point(p, b))
+                        shared++;
+                    else
+                        far = j;
+                }
+                if (shared != 2)
+                    continue;
+                ur_vec3 normal = area_vector(mesh, t);
+                double height = ur_vec3_dot(ur_vec3_sub(corner(mesh, o, far), a), normal) /
+                                ur_vec3_length(normal);
+                *least = fmin(*least, height);
+                *most = fmax(*most, height);
+                (*edges)++;
+            }
+}
+
+static void test_twisted_quads_follow_the_surface(void **state)
+{
+    (void)state;
+    for (int bend = -1; bend <= 1; bend += 2) {
+        char text[2048];
+        write_twisted_grid(text, sizeof text, bend);
+        const char *path = write_file(bend < 0 ? "dome.obj" : "bowl.obj", text);
+        ur_mesh mesh = {0};
+        import_ok(path, NULL, &mesh, NULL);
+        assert_int_equal(mesh.triangle_count, 18);
+        assert_int_equal(mesh.vertex_count, 36); /* the faces' corners kept apart */
+        double area = 0;
+        for (size_t t = 0; t < mesh.triangle_count; t++) {
+            assert_true(area_vector(&mesh, t).z > 0); /* facing +z, as written */
+            area += 0.5 * area_vector(&mesh, t).z;
+        }
+        assert_relative(area, 9, 1e-12, "area seen from above");
+        double least, most;
+        int edges;
+        fold_heights(&mesh, &least, &most, &edges);
+        assert_int_equal(edges, 2 * 21); /* 12 sides of quads inside the grid, 9 diagonals */
+        /* Folds of at least a few hundredths: the far corner clearly below (dome) or above. */
+        if (bend < 0 && !(most < -0.01))
+            fail_msg("dome: a fold rises %g above its neighbour's plane", most);
+        if (bend > 0 && !(least > 0.01))
+            fail_msg("bowl: a fold falls %g below its neighbour's plane", least);
+        free_mesh(&mesh);
+    }
 }
 
 /* ---- Units ------------------------------------------------------------- */
@@ -683,6 +781,7 @@ int main(void)
         cmocka_unit_test(test_unnamed_group_takes_the_file_name),
         cmocka_unit_test(test_group_named_twice_is_one_group),
         cmocka_unit_test(test_icosphere_is_closed_and_outward),
+        cmocka_unit_test(test_twisted_quads_follow_the_surface),
         cmocka_unit_test(test_unit_names),
         cmocka_unit_test(test_units_and_scale_multiply),
         cmocka_unit_test(test_missing_file),

@@ -1,0 +1,410 @@
+/*
+ * mesh_quads.c: splitting a modeller's quads along the diagonal that
+ * follows the surface around them.
+ *
+ * assimp splits every quad along its first diagonal (corner 0 to corner 2)
+ * unless the quad is concave.  A flat quad does not care, but a twisted
+ * one (a bevel's corners, every quad of a subdivided mesh) becomes two
+ * triangles with a fold between them, and on half of them the first
+ * diagonal folds the wrong way: a rounded cube gets valley folds, a
+ * papercraft model small dents.  Here a twisted quad whose sides all fold
+ * the same way (all hills, or all valleys) is split along the diagonal
+ * that folds that way too: a hill on a hill, a valley in a bowl.  Where
+ * its sides fold both ways (a saddle) neither diagonal is the surface's,
+ * and the file's split stays: turning those too gave Blender's subdivided
+ * monkey head a fifth more pieces.
+ *
+ * The quads are marked on the raw scene, before assimp triangulates it,
+ * and found again afterwards: its triangulation puts a quad's two
+ * triangles where the quad was, in order.  Neighbours are found by
+ * position, as the file's corners of two faces may be different vertices
+ * (an OBJ's normals and texture coordinates keep them apart).
+ */
+#include "io_internal.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <assimp/scene.h>
+
+/* How many faces a face of n corners becomes once triangulated (points and lines stay). */
+static size_t faces_after(unsigned corners)
+{
+    return corners > 3 ? corners - 2 : 1;
+}
+
+ur_status io_quad_marks_read(const struct aiScene *raw, io_quad_marks *marks, ur_error *error)
+{
+    *marks = (io_quad_marks){0};
+    if (raw->mNumMeshes == 0)
+        return UR_OK;
+    marks->starts = ur_alloc_array(raw->mNumMeshes, sizeof *marks->starts, error);
+    marks->face_counts = ur_alloc_array(raw->mNumMeshes, sizeof *marks->face_counts, error);
+    if (!marks->starts || !marks->face_counts) {
+        io_quad_marks_free(marks);
+        return UR_ERROR_MEMORY;
+    }
+    marks->mesh_count = raw->mNumMeshes;
+    for (unsigned m = 0; m < raw->mNumMeshes; m++) {
+        const struct aiMesh *mesh = raw->mMeshes[m];
+        size_t count = 0, quads = 0;
+        for (unsigned f = 0; f < mesh->mNumFaces; f++) {
+            count += faces_after(mesh->mFaces[f].mNumIndices);
+            quads += mesh->mFaces[f].mNumIndices == 4;
+        }
+        marks->face_counts[m] = count;
+        if (quads == 0)
+            continue;
+        unsigned char *starts = ur_alloc_array(count, 1, error);
+        if (!starts) {
+            io_quad_marks_free(marks);
+            return UR_ERROR_MEMORY;
+        }
+        size_t at = 0;
+        for (unsigned f = 0; f < mesh->mNumFaces; f++) {
+            unsigned corners = mesh->mFaces[f].mNumIndices;
+            starts[at] = corners == 4;
+            at += faces_after(corners);
+        }
+        marks->starts[m] = starts;
+    }
+    return UR_OK;
+}
+
+void io_quad_marks_match(io_quad_marks *marks, const struct aiScene *triangulated)
+{
+    for (unsigned m = 0; m < marks->mesh_count; m++)
+        if (m >= triangulated->mNumMeshes ||
+            triangulated->mMeshes[m]->mNumFaces != marks->face_counts[m]) {
+            free(marks->starts[m]);
+            marks->starts[m] = NULL;
+        }
+}
+
+const unsigned char *io_quad_marks_of(const io_quad_marks *marks, unsigned mesh)
+{
+    return mesh < marks->mesh_count ? marks->starts[mesh] : NULL;
+}
+
+void io_quad_marks_free(io_quad_marks *marks)
+{
+    for (unsigned m = 0; marks->starts && m < marks->mesh_count; m++)
+        free(marks->starts[m]);
+    free(marks->starts);
+    free(marks->face_counts);
+    *marks = (io_quad_marks){0};
+}
+
+/* ---- Neighbours by position ------------------------------------------- */
+
+/* An edge of a triangle, between two positions (their numbers, the smaller first). */
+typedef struct edge_record {
+    size_t low, high, triangle;
+} edge_record;
+
+typedef struct surface {
+    const ur_vec3 *vertices;
+    size_t (*triangles)[3];
+    size_t *position;   /* per vertex: the number of its position */
+    edge_record *edges; /* three per triangle, sorted */
+    size_t edge_count;
+} surface;
+
+/* A vertex and its point, to sort by point. */
+typedef struct placed_vertex {
+    ur_vec3 point;
+    size_t vertex;
+} placed_vertex;
+
+static int compare_points(const void *a, const void *b)
+{
+    ur_vec3 p = ((const placed_vertex *)a)->point, q = ((const placed_vertex *)b)->point;
+    if (p.x != q.x)
+        return p.x < q.x ? -1 : 1;
+    if (p.y != q.y)
+        return p.y < q.y ? -1 : 1;
+    if (p.z != q.z)
+        return p.z < q.z ? -1 : 1;
+    return 0;
+}
+
+static int compare_edges(const void *a, const void *b)
+{
+    const edge_record *p = a, *q = b;
+    if (p->low != q->low)
+        return p->low < q->low ? -1 : 1;
+    if (p->high != q->high)
+        return p->high < q->high ? -1 : 1;
+    return (p->triangle > q->triangle) - (p->triangle < q->triangle);
+}
+
+/* Numbers the positions: vertices at the same point share a number. */
+static ur_status number_positions(surface *s, size_t vertex_count, ur_error *error)
+{
+    placed_vertex *sorted = ur_alloc_array(vertex_count, sizeof *sorted, error);
+    if (!sorted)
+        return UR_ERROR_MEMORY;
+    for (size_t v = 0; v < vertex_count; v++)
+        sorted[v] = (placed_vertex){s->vertices[v], v};
+    qsort(sorted, vertex_count, sizeof *sorted, compare_points);
+    size_t number = 0;
+    for (size_t k = 0; k < vertex_count; k++) {
+        if (k > 0 && compare_points(&sorted[k], &sorted[k - 1]) != 0)
+            number++;
+        s->position[sorted[k].vertex] = number;
+    }
+    free(sorted);
+    return UR_OK;
+}
+
+static edge_record edge_of(const surface *s, size_t triangle, size_t a, size_t b)
+{
+    size_t p = s->position[a], q = s->position[b];
+    return (edge_record){p < q ? p : q, p < q ? q : p, triangle};
+}
+
+static ur_status surface_make(surface *s, const ur_vec3 *vertices, size_t vertex_count,
+                              size_t (*triangles)[3], size_t triangle_count, ur_error *error)
+{
+    *s = (surface){.vertices = vertices, .triangles = triangles, .edge_count = 3 * triangle_count};
+    s->position = ur_alloc_array(vertex_count, sizeof *s->position, error);
+    s->edges = ur_alloc_array(s->edge_count, sizeof *s->edges, error);
+    if (!s->position || !s->edges)
+        return UR_ERROR_MEMORY;
+    ur_status status = number_positions(s, vertex_count, error);
+    if (status != UR_OK)
+        return status;
+    for (size_t t = 0; t < triangle_count; t++)
+        for (int k = 0; k < 3; k++)
+            s->edges[3 * t + k] = edge_of(s, t, triangles[t][k], triangles[t][(k + 1) % 3]);
+    qsort(s->edges, s->edge_count, sizeof *s->edges, compare_edges);
+    return UR_OK;
+}
+
+static void surface_free(surface *s)
+{
+    free(s->position);
+    free(s->edges);
+}
+
+/* The first of the records of edge ab (by position), or where it would be. */
+static size_t first_record(const surface *s, size_t a, size_t b)
+{
+    edge_record key = edge_of(s, 0, a, b);
+    size_t low = 0, high = s->edge_count;
+    while (low < high) {
+        size_t middle = low + (high - low) / 2;
+        if (compare_edges(&s->edges[middle], &key) < 0)
+            low = middle + 1;
+        else
+            high = middle;
+    }
+    return low;
+}
+
+static bool record_is(const edge_record *record, const edge_record *key)
+{
+    return record->low == key->low && record->high == key->high;
+}
+
+/*
+ * The one triangle across edge ab other than those of the quad (first, second);
+ * SIZE_MAX on the rim of the surface or where more than one meet there.
+ */
+static size_t neighbour_across(const surface *s, size_t a, size_t b, size_t first, size_t second)
+{
+    edge_record key = edge_of(s, 0, a, b);
+    size_t found = SIZE_MAX;
+    for (size_t k = first_record(s, a, b); k < s->edge_count && record_is(&s->edges[k], &key);
+         k++) {
+        size_t t = s->edges[k].triangle;
+        if (t == first || t == second)
+            continue;
+        if (found != SIZE_MAX)
+            return SIZE_MAX;
+        found = t;
+    }
+    return found;
+}
+
+/* The corner of triangle t that is at neither end of edge ab, by position; SIZE_MAX if none. */
+static size_t far_corner(const surface *s, size_t t, size_t a, size_t b)
+{
+    for (int k = 0; k < 3; k++) {
+        size_t p = s->position[s->triangles[t][k]];
+        if (p != s->position[a] && p != s->position[b])
+            return s->triangles[t][k];
+    }
+    return SIZE_MAX;
+}
+
+/* ---- The fold of an edge --------------------------------------------------- */
+
+/*
+ * A fold of less than half a degree is taken as flat (the sine of 0.5
+ * degrees): a side that flat says nothing about how the surface bends, and
+ * a quad twisted less is left as split (unfolding lays faces within 0.5
+ * degrees of each other as one flat face anyway).
+ */
+#define FLAT_SINE 0.008726535498373935
+
+/*
+ * How triangle (a, b, c) and a neighbour across ab whose far corner is x
+ * fold: the sine of the fold, positive where x rises to the side the
+ * triangle's normal points to (a valley, seen from that side), negative
+ * where it falls away (a hill).  0 for a triangle of no area.
+ */
+static double fold_sine(ur_vec3 a, ur_vec3 b, ur_vec3 c, ur_vec3 x)
+{
+    ur_vec3 normal = ur_vec3_cross(ur_vec3_sub(b, a), ur_vec3_sub(c, a));
+    ur_vec3 edge = ur_vec3_sub(b, a);
+    double area = ur_vec3_length(normal), length = ur_vec3_length(edge);
+    double reach =
+        ur_vec3_length(ur_vec3_cross(edge, ur_vec3_sub(x, a))); /* length times x's distance */
+    if (!(area > 0) || !(reach > 0))
+        return 0;
+    return ur_vec3_dot(ur_vec3_sub(x, a), normal) / area * length / reach;
+}
+
+/*
+ * How the surface bends round the quad: +1 where each of its sides that
+ * folds (against the triangle across it) folds as a valley, seen from the
+ * side the normals point to; -1 where each is a hill; 0 where they differ
+ * (a saddle, where neither diagonal is the surface's) or fewer than two
+ * sides fold (a side on the rim, or flat, does not count).
+ */
+static int bend_around(const surface *s, size_t first, size_t second, const size_t corner[4])
+{
+    /*
+     * The quad's corners u, q, v, p run round it, first is (u, v, p) and
+     * second (v, u, q): each side, and the corner that makes its triangle.
+     */
+    static const int sides[4][3] = {{0, 1, 2}, {1, 2, 0}, {2, 3, 0}, {3, 0, 2}};
+    int valleys = 0, hills = 0;
+    for (int k = 0; k < 4; k++) {
+        size_t a = corner[sides[k][0]], b = corner[sides[k][1]], c = corner[sides[k][2]];
+        size_t across = neighbour_across(s, a, b, first, second);
+        size_t x = across == SIZE_MAX ? SIZE_MAX : far_corner(s, across, a, b);
+        if (x == SIZE_MAX)
+            continue;
+        double fold = fold_sine(s->vertices[a], s->vertices[b], s->vertices[c], s->vertices[x]);
+        valleys += fold > FLAT_SINE;
+        hills += fold < -FLAT_SINE;
+    }
+    if (valleys >= 2 && hills == 0)
+        return 1;
+    return hills >= 2 && valleys == 0 ? -1 : 0;
+}
+
+/* ---- Turning a quad's diagonal ------------------------------------------ */
+
+/*
+ * The quad of two triangles that share an edge (by their vertices, as
+ * assimp made them from one face): its corners u, q, v, p in their turn,
+ * the diagonal from u to v.  False when they share no edge.
+ */
+static bool quad_corners(size_t (*triangles)[3], size_t first, size_t second, size_t corner[4])
+{
+    for (int k = 0; k < 3; k++) {
+        size_t u = triangles[first][k], v = triangles[first][(k + 1) % 3];
+        for (int j = 0; j < 3; j++)
+            if (triangles[second][j] == v && triangles[second][(j + 1) % 3] == u) {
+                corner[0] = u;
+                corner[1] = triangles[second][(j + 2) % 3];
+                corner[2] = v;
+                corner[3] = triangles[first][(k + 2) % 3];
+                return corner[1] != corner[3];
+            }
+    }
+    return false;
+}
+
+static ur_vec3 normal_of(const ur_vec3 *v, size_t a, size_t b, size_t c)
+{
+    return ur_vec3_cross(ur_vec3_sub(v[b], v[a]), ur_vec3_sub(v[c], v[a]));
+}
+
+/*
+ * Whether the quad of triangles first and second is better split along its
+ * other diagonal, from corner[1] to corner[3] (its corners as
+ * quad_corners gives them): its sides all bend one way and this diagonal
+ * the other.
+ */
+static bool should_turn(const surface *s, size_t first, size_t second, size_t corner[4])
+{
+    if (!quad_corners(s->triangles, first, second, corner))
+        return false;
+    const ur_vec3 *v = s->vertices;
+    size_t u = corner[0], q = corner[1], w = corner[2], p = corner[3];
+    double diagonal = fold_sine(v[u], v[w], v[p], v[q]);
+    int around = bend_around(s, first, second, corner);
+    if (around == 0 || !(fabs(diagonal) > FLAT_SINE) || (diagonal > 0) == (around > 0))
+        return false;
+    /* The other diagonal must stay inside the quad: both new triangles face as the old did. */
+    ur_vec3 facing = ur_vec3_add(normal_of(v, u, w, p), normal_of(v, w, u, q));
+    return ur_vec3_dot(normal_of(v, u, q, p), facing) > 0 &&
+           ur_vec3_dot(normal_of(v, q, w, p), facing) > 0;
+}
+
+/* A quad to turn: its first triangle, its corners, its new diagonal as an edge. */
+typedef struct turn {
+    size_t first, corner[4];
+    edge_record diagonal;
+} turn;
+
+static int compare_turns(const void *a, const void *b)
+{
+    return compare_edges(&((const turn *)a)->diagonal, &((const turn *)b)->diagonal);
+}
+
+/*
+ * Whether turn k of the sorted turns may go ahead: its new diagonal is no
+ * edge yet (at a corner of three faces it would make two triangles on the
+ * same corners) and no other quad's new diagonal.
+ */
+static bool turn_allowed(const surface *s, const turn *turns, size_t count, size_t k)
+{
+    const edge_record *d = &turns[k].diagonal;
+    size_t record = first_record(s, turns[k].corner[1], turns[k].corner[3]);
+    if (record < s->edge_count && record_is(&s->edges[record], d))
+        return false;
+    return !(k > 0 && record_is(&turns[k - 1].diagonal, d)) &&
+           !(k + 1 < count && record_is(&turns[k + 1].diagonal, d));
+}
+
+ur_status io_quads_follow_surface(const ur_vec3 *vertices, size_t vertex_count,
+                                  size_t (*triangles)[3], size_t triangle_count,
+                                  const size_t *quads, size_t quad_count, ur_error *error)
+{
+    if (quad_count == 0)
+        return UR_OK;
+    surface s;
+    ur_status status = surface_make(&s, vertices, vertex_count, triangles, triangle_count, error);
+    turn *turns = status == UR_OK ? ur_alloc_array(quad_count, sizeof *turns, error) : NULL;
+    if (status == UR_OK && !turns)
+        status = UR_ERROR_MEMORY;
+    /* Every quad judged on the file's own split, so that the order of the faces does not matter. */
+    size_t count = 0;
+    for (size_t k = 0; status == UR_OK && k < quad_count; k++) {
+        turn *t = &turns[count];
+        t->first = quads[k];
+        if (t->first + 1 < triangle_count && should_turn(&s, t->first, t->first + 1, t->corner)) {
+            t->diagonal = edge_of(&s, 0, t->corner[1], t->corner[3]);
+            count++;
+        }
+    }
+    if (status == UR_OK)
+        qsort(turns, count, sizeof *turns, compare_turns);
+    for (size_t k = 0; status == UR_OK && k < count; k++) {
+        if (!turn_allowed(&s, turns, count, k))
+            continue;
+        const size_t *c = turns[k].corner;
+        size_t *a = triangles[turns[k].first], *b = triangles[turns[k].first + 1];
+        a[0] = c[0], a[1] = c[1], a[2] = c[3];
+        b[0] = c[1], b[1] = c[2], b[2] = c[3];
+    }
+    free(turns);
+    surface_free(&s);
+    return status;
+}
