@@ -632,8 +632,9 @@ static ur_box box_around(const frame *f, double a, double b, double clearance)
 }
 
 /*
- * Whether the box fits: within the outline's box, no wall and no label
- * engraved since within clearance of it, on material.  Only the walls and
+ * Whether the box fits: within the outline's box, no wall within
+ * clearance of it and no label engraved since within a word's space, on
+ * material.  Only the walls and
  * labels near the box are tested (their grids find them), each segment by
  * its exact distance from the box.
  *
@@ -660,8 +661,14 @@ static ur_status box_fits(allow_room *r, const frame *f, double a, double b, dou
     if (status != UR_OK || state == CELL_OFF_MATERIAL)
         return status;
     bool meets = meets_wall(r, f, a, b, clearance, box);
+    /*
+     * Between two labels at least a word's space, half their height (b):
+     * labels of short seams side by side closer than that read as one
+     * ("A16A15A12").
+     */
+    double apart = fmax(clearance, b);
     if (!meets)
-        status = meets_label(r, f, a, b, clearance, box, &meets, error);
+        status = meets_label(r, f, a, b, apart, box_around(f, a, b, apart), &meets, error);
     if (status != UR_OK || meets)
         return status;
     if (state == CELL_ON_MATERIAL) {

@@ -10,7 +10,8 @@
  * large as the net and the tabs together); a seam that is a closed loop
  * (a grid's centre quad) gets a tab on each edge and its labels; laps mark
  * the zone on both pieces; two turns of a helicoid, in cardboard and in
- * plywood, get every seam joined, by a splice piece where nothing fits.
+ * plywood, get every seam joined, by a splice piece where nothing fits;
+ * the icosphere's labels stand a word's space apart.
  * Geometry is checked with GEOS, independently of the code under test.
  *
  * Run from the repository root (it reads samples/icosphere.obj).
@@ -953,6 +954,67 @@ static void test_label_crosses_folds(void **state)
     ur_font_close(font);
 }
 
+/* The least distance between the strokes of two labels of a piece (GEOS). */
+static double label_distance(const ur_piece *piece, const ur_allowance_record *a,
+                             const ur_allowance_record *b)
+{
+    double least = INFINITY;
+    for (size_t i = a->first_path; i < a->first_path + a->path_count; i++)
+        for (size_t k = b->first_path; k < b->first_path + b->path_count; k++) {
+            GEOSGeometry *p = line_of(piece->paths[i].points, piece->paths[i].count);
+            GEOSGeometry *q = line_of(piece->paths[k].points, piece->paths[k].count);
+            double distance;
+            assert_int_equal(GEOSDistance_r(geos, p, q, &distance), 1);
+            least = fmin(least, distance);
+            GEOSGeom_destroy_r(geos, p);
+            GEOSGeom_destroy_r(geos, q);
+        }
+    return least;
+}
+
+/*
+ * The unfolded icosphere's many short seams, labelled 3 mm high: no two
+ * labels of a piece come closer than half the smaller one's height (a
+ * word's space), else labels of neighbouring seams run together and read
+ * as one ("A16A15A12").
+ */
+static void test_labels_stand_apart(void **state)
+{
+    (void)state;
+    ur_font *font;
+    ur_error error;
+    assert_int_equal(ur_font_open(NULL, &font, &error), UR_OK);
+    ur_net_list nets = icosphere_nets();
+    ur_piece *pieces = pieces_of(&nets);
+    ur_joint_options options = tab_options(font);
+    options.tab_depth = 3;
+    options.thickness = 0.3;
+    options.label_height = 5;
+    options.name_pieces = true;
+    assert_int_equal(ur_pieces_add_joints(pieces, &nets, &options, &error), UR_OK);
+    size_t pairs = 0;
+    for (size_t n = 0; n < nets.count; n++) {
+        const ur_piece *piece = &pieces[n];
+        for (size_t i = 0; i < piece->record_count; i++)
+            for (size_t k = i + 1; k < piece->record_count; k++) {
+                const ur_allowance_record *a = &piece->records[i], *b = &piece->records[k];
+                if (a->path_count == 0 || b->path_count == 0)
+                    continue;
+                double distance = label_distance(piece, a, b);
+                double space = 0.5 * fmin(a->value, b->value);
+                if (distance < space - 1e-9)
+                    fail_msg("piece %zu: %s and %s only %g mm apart (under %g)", n, a->reason,
+                             b->reason, distance, space);
+                pairs += distance < 4 * space; /* neighbours, not labels across the piece */
+            }
+    }
+    print_message("%zu pairs of labels within four spaces\n", pairs);
+    assert_true(pairs > 0); /* some labels were close enough to have mattered */
+    free_pieces(pieces, nets.count);
+    ur_net_list_free(&nets);
+    ur_font_close(font);
+}
+
 static void test_bad_options(void **state)
 {
     (void)state;
@@ -981,6 +1043,7 @@ int main(void)
         cmocka_unit_test(test_bad_options),
         cmocka_unit_test(test_label_goes_on_the_tab),
         cmocka_unit_test(test_label_crosses_folds),
+        cmocka_unit_test(test_labels_stand_apart),
         cmocka_unit_test(test_label_across_the_tab),
         cmocka_unit_test(test_label_once_where_sides_meet),
         cmocka_unit_test(test_names_full_height_on_sectors),
