@@ -23,6 +23,9 @@ torus.obj            a torus (radii 60 and 20 mm, 24 by 12) of planar quads
 grid-hole.obj        a 3 x 3 grid of 20 mm quads, its centre quad a group of
                      its own, and a 2 x 2 frame of quads around a square hole
                      beside it: seams that are closed loops
+pocket.obj           a 30 x 30 x 15 mm block with a star-shaped pocket, in
+                     triangles as OpenSCAD's CSG makes them: a flat top
+                     round a hole
 head.obj             a closed head-like mesh (about 120 mm tall): a smooth
                      skull and cheeks, a nose, a flat base meeting the sides
                      at a sharp edge
@@ -429,6 +432,51 @@ def head(segments=32, rings=20):
     return shaped, faces
 
 
+def pocket_block(size=30.0, height=15.0, depth=10.0, points=3, turn=1.0):
+    """A block with a star-shaped pocket, as CSG makes one (OpenSCAD's
+    difference of a cube and an extruded shape): the top a flat face round
+    a hole, fanned from the hole to the square, the pocket's walls and its
+    floor."""
+    star = []
+    for k in range(2 * points):
+        a = turn + math.pi * k / points
+        r = 9.0 if k % 2 else 5.4
+        star.append((r * math.cos(a), r * math.sin(a)))
+    square = [(-size / 2, -size / 2), (size / 2, -size / 2), (size / 2, size / 2),
+              (-size / 2, size / 2)]
+    vertices = [(x, y, height) for x, y in square] + [(x, y, height) for x, y in star]
+    vertices += [(x, y, height - depth) for x, y in star] + [(0.0, 0.0, height - depth)]
+    vertices += [(x, y, 0.0) for x, y in square]
+    n = len(star)
+    top, rim, floor, centre, bottom = 0, 4, 4 + n, 4 + 2 * n, 5 + 2 * n
+
+    def angle(p):
+        return math.atan2(p[1], p[0]) % (2 * math.pi)
+
+    # The top: walk round the square and the star together by angle.
+    outer = sorted(range(4), key=lambda i: angle(square[i]))
+    inner = sorted(range(n), key=lambda i: angle(star[i]))
+    faces, o, i = [], 0, 0
+    while o < 4 or i < n:
+        next_outer = angle(square[outer[(o + 1) % 4]]) + (2 * math.pi if o + 1 >= 4 else 0)
+        next_inner = angle(star[inner[(i + 1) % n]]) + (2 * math.pi if i + 1 >= n else 0)
+        if i >= n or (o < 4 and next_outer < next_inner):
+            faces.append((top + outer[o % 4], top + outer[(o + 1) % 4], rim + inner[i % n]))
+            o += 1
+        else:
+            faces.append((rim + inner[i % n], top + outer[o % 4], rim + inner[(i + 1) % n]))
+            i += 1
+    for k in range(n):  # the walls face into the pocket, the floor up
+        a, b = k, (k + 1) % n
+        faces += [(rim + a, rim + b, floor + b), (rim + a, floor + b, floor + a)]
+        faces.append((floor + a, floor + b, centre))
+    for k in range(4):  # the sides and the bottom
+        a, b = k, (k + 1) % 4
+        faces += [(bottom + a, bottom + b, top + b), (bottom + a, top + b, top + a)]
+    faces += [(bottom, bottom + 2, bottom + 1), (bottom, bottom + 3, bottom + 2)]
+    return vertices, faces
+
+
 def write_papercraft_meshes():
     write_faces_obj(os.path.join(HERE, "cube.obj"), ["Cube of side 100 mm (mm), six quads."],
                     *cube_groups(100.0))
@@ -442,6 +490,11 @@ def write_papercraft_meshes():
     write_faces_obj(os.path.join(HERE, "grid-hole.obj"),
                     ["A 3 x 3 grid of 20 mm quads, its centre quad a group of its own,",
                      "and a frame of 8 quads round a square hole (mm)."], v, groups)
+    v, f = pocket_block()
+    write_faces_obj(os.path.join(HERE, "pocket.obj"),
+                    ["A 30 x 30 x 15 mm block with a star-shaped pocket 10 mm deep (mm),",
+                     "triangles as CSG makes them: its top a flat face round a hole."],
+                    v, [("block", f)])
     v, f = head()
     write_faces_obj(os.path.join(HERE, "head.obj"),
                     ["A closed head-like mesh (mm): a smooth skull, a nose, a flat base",

@@ -58,9 +58,15 @@ static ur_vec2 *interior_ring(GEOSContextHandle_t geos, const GEOSGeometry *poly
     return points;
 }
 
-/* The piece's outline replaced by the polygon's rim, its holes added as cut paths. */
+/*
+ * The piece's outline replaced by the polygon's rim, its holes added as cut
+ * paths: those of more than `least` area.  A slit whose two sides lie a
+ * rounding apart (the same corner laid flat two ways round the hole) comes
+ * back from GEOS as a hole of its own with next to no area, which no cutter
+ * can cut and kerf compensation would refuse as too narrow.
+ */
 static ur_status take_rim_and_holes(GEOSContextHandle_t geos, ur_piece *piece,
-                                    const GEOSGeometry *polygon, ur_error *error)
+                                    const GEOSGeometry *polygon, double least, ur_error *error)
 {
     ur_vec2 *rim;
     size_t rim_count;
@@ -74,8 +80,10 @@ static ur_status take_rim_and_holes(GEOSContextHandle_t geos, ur_piece *piece,
     for (int k = 0; status == UR_OK && k < holes; k++) {
         size_t count = 0;
         ur_vec2 *hole = interior_ring(geos, polygon, k, &count);
-        status = hole ? ur_piece_add_path(piece, UR_OP_CUT, hole, count, true, error)
-                      : ur_error_out_of_memory(error);
+        if (!hole)
+            status = ur_error_out_of_memory(error);
+        else if (fabs(ur_polygon_signed_area(hole, count)) > least)
+            status = ur_piece_add_path(piece, UR_OP_CUT, hole, count, true, error);
         free(hole);
     }
     return status;
@@ -83,10 +91,11 @@ static ur_status take_rim_and_holes(GEOSContextHandle_t geos, ur_piece *piece,
 
 /*
  * The one polygon of what GEOS made valid: itself, or the only polygon of
- * a collection whose other parts are lines (the slit, collapsed) or
- * points; NULL otherwise.
+ * more than `least` area of a collection whose other parts are lines (the
+ * slit, collapsed), points or such slivers; NULL otherwise.
  */
-static const GEOSGeometry *only_polygon(GEOSContextHandle_t geos, const GEOSGeometry *valid)
+static const GEOSGeometry *only_polygon(GEOSContextHandle_t geos, const GEOSGeometry *valid,
+                                        double least)
 {
     if (GEOSGeomTypeId_r(geos, valid) == GEOS_POLYGON)
         return valid;
@@ -97,6 +106,9 @@ static const GEOSGeometry *only_polygon(GEOSContextHandle_t geos, const GEOSGeom
     for (int k = 0; k < count; k++) {
         const GEOSGeometry *part = GEOSGetGeometryN_r(geos, valid, k);
         int type = GEOSGeomTypeId_r(geos, part);
+        double area = 0;
+        if (type == GEOS_POLYGON && GEOSArea_r(geos, part, &area) == 1 && area <= least)
+            continue;
         if (type == GEOS_POLYGON || type == GEOS_MULTIPOLYGON) {
             if (found || type == GEOS_MULTIPOLYGON)
                 return NULL;
@@ -119,13 +131,14 @@ ur_status allow_open_slits(ur_piece *piece, ur_error *error)
         return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not be started");
     GEOSGeometry *drawn = geos_polygon_of_ring(geos, outline->points, outline->count);
     GEOSGeometry *valid = drawn ? GEOSMakeValid_r(geos, drawn) : NULL;
-    const GEOSGeometry *polygon = valid ? only_polygon(geos, valid) : NULL;
     double area = fabs(ur_polygon_signed_area(outline->points, outline->count)), valid_area = 0;
+    double least = 1e-9 * area; /* a sliver's, a rounding wide */
+    const GEOSGeometry *polygon = valid ? only_polygon(geos, valid, least) : NULL;
     ur_status status = UR_OK;
     /* Only a slit: one polygon with holes, of the outline's own area (a slit has none). */
     if (polygon && GEOSGetNumInteriorRings_r(geos, polygon) > 0 &&
-        GEOSArea_r(geos, polygon, &valid_area) && fabs(valid_area - area) <= 1e-9 * area)
-        status = take_rim_and_holes(geos, piece, polygon, error);
+        GEOSArea_r(geos, polygon, &valid_area) && fabs(valid_area - area) <= 1e-6 * area)
+        status = take_rim_and_holes(geos, piece, polygon, least, error);
     if (valid)
         GEOSGeom_destroy_r(geos, valid);
     if (drawn)
