@@ -61,6 +61,17 @@ static inline double ur_vec3_distance(ur_vec3 a, ur_vec3 b)
 {
     return ur_vec3_length(ur_vec3_sub(a, b));
 }
+/* The order of two points by x, then y, then z: -1, 0 or 1 (for sorting; 0 and -0 are one). */
+static inline int ur_vec3_order(ur_vec3 a, ur_vec3 b)
+{
+    if (a.x != b.x)
+        return a.x < b.x ? -1 : 1;
+    if (a.y != b.y)
+        return a.y < b.y ? -1 : 1;
+    if (a.z != b.z)
+        return a.z < b.z ? -1 : 1;
+    return 0;
+}
 /* Triple product det(a, b, c). */
 static inline double ur_vec3_det(ur_vec3 a, ur_vec3 b, ur_vec3 c)
 {

@@ -28,23 +28,12 @@ typedef struct partner {
     size_t net, index;
 } partner;
 
-static int compare_points(ur_vec3 a, ur_vec3 b)
-{
-    if (a.x != b.x)
-        return a.x < b.x ? -1 : 1;
-    if (a.y != b.y)
-        return a.y < b.y ? -1 : 1;
-    if (a.z != b.z)
-        return a.z < b.z ? -1 : 1;
-    return 0;
-}
-
 static int compare_entries(const void *a, const void *b)
 {
     const edge_entry *x = a, *y = b;
-    int order = compare_points(x->low, y->low);
+    int order = ur_vec3_order(x->low, y->low);
     if (order == 0)
-        order = compare_points(x->high, y->high);
+        order = ur_vec3_order(x->high, y->high);
     if (order == 0) /* keep the sort deterministic */
         order = x->net != y->net ? (x->net < y->net ? -1 : 1)
                                  : (x->index < y->index ? -1 : x->index > y->index);
@@ -70,7 +59,7 @@ static size_t collect_edges(const ur_net_list *nets, edge_entry *entries)
             continue;
         for (size_t i = 0; i < net->outline_count; i++) {
             ur_vec3 from = net->outline_3d[i], to = net->outline_3d[(i + 1) % net->outline_count];
-            int order = compare_points(from, to);
+            int order = ur_vec3_order(from, to);
             if (order == 0)
                 continue;
             edge_entry *e = &entries[count++];
@@ -93,7 +82,7 @@ static void pair_edges(edge_entry *entries, size_t count, partner **partners)
     qsort(entries, count, sizeof *entries, compare_entries);
     for (size_t k = 0; k + 1 < count; k++) {
         edge_entry *a = &entries[k], *b = &entries[k + 1];
-        if (compare_points(a->low, b->low) != 0 || compare_points(a->high, b->high) != 0 ||
+        if (ur_vec3_order(a->low, b->low) != 0 || ur_vec3_order(a->high, b->high) != 0 ||
             a->forward == b->forward)
             continue;
         partners[a->net][a->index] = (partner){b->net, b->index};

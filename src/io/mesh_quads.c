@@ -119,14 +119,7 @@ typedef struct placed_vertex {
 
 static int compare_points(const void *a, const void *b)
 {
-    ur_vec3 p = ((const placed_vertex *)a)->point, q = ((const placed_vertex *)b)->point;
-    if (p.x != q.x)
-        return p.x < q.x ? -1 : 1;
-    if (p.y != q.y)
-        return p.y < q.y ? -1 : 1;
-    if (p.z != q.z)
-        return p.z < q.z ? -1 : 1;
-    return 0;
+    return ur_vec3_order(((const placed_vertex *)a)->point, ((const placed_vertex *)b)->point);
 }
 
 static int compare_edges(const void *a, const void *b)
