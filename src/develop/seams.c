@@ -5,13 +5,15 @@
  * Mesh nets carry the 3D point of each outline point.  An edge of one
  * outline from P to Q and an edge from Q to P (of another outline, or of
  * the same one) are the two sides of one cut edge: every edge is sorted by
- * its end points, and equal neighbours in that order are partners.  Runs
+ * its end points, and equal neighbours in that order are partners (but
+ * two sides of one net lying on each other: a closed slit, no seam).  Runs
  * of partnered edges that follow each other on both sides are one seam.
  * Developments set their seam sides themselves (develop.c): their seams
  * are cut rulings.
  */
 #include "unroll/develop.h"
 
+#include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -73,11 +75,42 @@ static size_t collect_edges(const ur_net_list *nets, edge_entry *entries)
     return count;
 }
 
+/* The diagonal of a net's outline's box: its size, for tolerances. */
+static double net_size(const ur_net *net)
+{
+    ur_box box = ur_box_empty();
+    for (size_t i = 0; i < net->outline_count; i++)
+        ur_box_add(&box, net->outline[i]);
+    return hypot(ur_box_width(box), ur_box_height(box));
+}
+
 /*
- * Pairs equal edges of opposite direction.  Three or more sides on one edge
- * (a non-manifold cut) pair the first two and leave the rest unpaired.
+ * Whether two partnered edges of one net lie on each other laid flat, the
+ * start of each at the end of the other: the slit that opens a flat face
+ * round a hole into a disk (a frame round its window).  The material is
+ * whole there, both sides in place: no seam, nothing to join or label.
+ * Laid flat two ways round the hole, the ends may differ in their last
+ * digits.
  */
-static void pair_edges(edge_entry *entries, size_t count, partner **partners)
+static bool lies_closed(const ur_net_list *nets, const edge_entry *a, const edge_entry *b)
+{
+    if (a->net != b->net)
+        return false;
+    const ur_net *net = &nets->nets[a->net];
+    size_t n = net->outline_count;
+    double tolerance = 1e-9 * net_size(net);
+    return ur_vec2_distance(net->outline[a->index], net->outline[(b->index + 1) % n]) <=
+               tolerance &&
+           ur_vec2_distance(net->outline[(a->index + 1) % n], net->outline[b->index]) <= tolerance;
+}
+
+/*
+ * Pairs equal edges of opposite direction, but for the sides of a slit
+ * lying closed.  Three or more sides on one edge (a non-manifold cut) pair
+ * the first two and leave the rest unpaired.
+ */
+static void pair_edges(const ur_net_list *nets, edge_entry *entries, size_t count,
+                       partner **partners)
 {
     qsort(entries, count, sizeof *entries, compare_entries);
     for (size_t k = 0; k + 1 < count; k++) {
@@ -85,6 +118,10 @@ static void pair_edges(edge_entry *entries, size_t count, partner **partners)
         if (ur_vec3_order(a->low, b->low) != 0 || ur_vec3_order(a->high, b->high) != 0 ||
             a->forward == b->forward)
             continue;
+        if (lies_closed(nets, a, b)) {
+            k++;
+            continue;
+        }
         partners[a->net][a->index] = (partner){b->net, b->index};
         partners[b->net][b->index] = (partner){a->net, a->index};
         k++;
@@ -203,7 +240,7 @@ ur_status ur_net_list_find_seams(ur_net_list *nets, int first_seam, int *next_se
     edge_entry *entries = ur_alloc_array(edge_count ? edge_count : 1, sizeof *entries, error);
     ur_status status = entries ? make_tables(nets, &partners, &run_seam, error) : UR_ERROR_MEMORY;
     if (status == UR_OK) {
-        pair_edges(entries, collect_edges(nets, entries), partners);
+        pair_edges(nets, entries, collect_edges(nets, entries), partners);
         for (size_t n = 0; n < nets->count; n++) {
             ur_net *net = &nets->nets[n];
             if (!net->outline_3d)

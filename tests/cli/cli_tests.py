@@ -1786,6 +1786,24 @@ def a_flat_face_round_a_hole_unfolds(work):
         for i in range(len(rings)):
             for j in range(i):
                 check(rings_apart(rings[i], rings[j]), "%s: two rings cross" % mesh)
+    # The slit lies closed, its two sides on each other: the material is whole
+    # there, so it is no seam.  The sample's frame (a group of its own) has
+    # nothing to join: no tab and no label but its name (it had a tab laid
+    # over itself and two labels A3 beside a fold line along the slit).
+    run(work, "mesh", os.path.join(REPO, "samples", "grid-hole.obj"), "--flatten", "unfold",
+        "--material", "paper-0.3mm", "--nest-time", "0", "-o", "grid.svg", "--report",
+        "grid.json")
+    frames = [piece for piece in report(work, "grid.json")["pieces"]
+              if any("1 hole inward" in a["reason"] for a in piece["allowances"])]
+    check(len(frames) == 2, "%d pieces round a hole" % len(frames))
+    # One is the grid's rim round its centre quad (seam A1, whose tabs are on
+    # the quad), the other the frame.
+    found = sorted(sorted(re.match(r"label '(\w+)'", a["reason"]).group(1)
+                          for a in piece["allowances"] if a["kind"] == "label")
+                   + [a["kind"] for a in piece["allowances"] if a["kind"] == "joint"]
+                   for piece in frames)
+    names = sorted(piece["name"] for piece in frames)
+    check(found == [["A1", names[0]], [names[1]]], "labels and joints %r" % found)
 
 
 @test

@@ -2,8 +2,9 @@
  * test_seams.c: both sides of every seam are found and numbered alike: the
  * cut ruling of a closed cylinder, the rulings where a helicoid of two turns
  * is split, the cut of a tube flattened with ARAP and every edge of an
- * unfolded closed mesh.  The two sides must be the same 3D edge run in
- * opposite directions, and where the net is exact, equally long flat.
+ * unfolded closed mesh; a slit lying closed in its piece is none.  The
+ * two sides must be the same 3D edge run in opposite directions, and where
+ * the net is exact, equally long flat.
  *
  * Run from the repository root (it reads samples/icosphere.obj).
  */
@@ -180,13 +181,51 @@ static void test_unfolded_icosphere(void **state)
     ur_net_list_free(&nets);
 }
 
+/* Whether the net's outline runs along some 3D edge both ways: it has a slit. */
+static bool has_slit(const ur_net *net)
+{
+    size_t n = net->outline_count;
+    for (size_t i = 0; i < n; i++)
+        for (size_t j = 0; j < n; j++)
+            if (i != j && ur_vec3_distance(net->outline_3d[i], net->outline_3d[(j + 1) % n]) == 0 &&
+                ur_vec3_distance(net->outline_3d[(i + 1) % n], net->outline_3d[j]) == 0)
+                return true;
+    return false;
+}
+
+/*
+ * The sample's frame of 8 quads round a square hole unfolds into one piece
+ * cut once from its hole to its rim; the two sides of that slit lie on each
+ * other, the material whole there: no seam.  The grid beside it keeps its
+ * one seam round its centre quad, on both pieces.
+ */
+static void test_closed_slit_is_no_seam(void **state)
+{
+    (void)state;
+    size_t cut_edges;
+    ur_net_list nets = unfolded_nets("samples/grid-hole.obj", &cut_edges);
+    int next;
+    ur_error error;
+    assert_int_equal(ur_net_list_find_seams(&nets, 1, &next, &error), UR_OK);
+    assert_int_equal(nets.count, 3);
+    size_t slits = 0, without = 0;
+    for (size_t k = 0; k < nets.count; k++) {
+        slits += has_slit(&nets.nets[k]);
+        without += nets.nets[k].seam_side_count == 0;
+    }
+    assert_int_equal(slits, 2);   /* the frame and the grid's rim round its centre */
+    assert_int_equal(without, 1); /* the frame */
+    assert_int_equal(next, 2);    /* one seam: round the centre quad */
+    check_pairs_3d(&nets, next - 1, 1e-9);
+    ur_net_list_free(&nets);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_closed_cylinder),
-        cmocka_unit_test(test_split_helicoid),
-        cmocka_unit_test(test_flattened_tube),
-        cmocka_unit_test(test_unfolded_icosphere),
+        cmocka_unit_test(test_closed_cylinder),        cmocka_unit_test(test_split_helicoid),
+        cmocka_unit_test(test_flattened_tube),         cmocka_unit_test(test_unfolded_icosphere),
+        cmocka_unit_test(test_closed_slit_is_no_seam),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
