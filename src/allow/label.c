@@ -634,9 +634,8 @@ static ur_box box_around(const frame *f, double a, double b, double clearance)
 /*
  * Whether the box fits: within the outline's box, no wall within
  * clearance of it and no label engraved since within a word's space, on
- * material.  Only the walls and
- * labels near the box are tested (their grids find them), each segment by
- * its exact distance from the box.
+ * material.  Only the walls and labels near the box are tested (their
+ * grids find them), each segment by its exact distance from the box.
  *
  * Most candidates of a search that finds no room fall in a cell of the
  * walls' grid that no wall meets, and its state says at once whether the

@@ -92,13 +92,14 @@ static double net_size(const ur_net *net)
  * Laid flat two ways round the hole, the ends may differ in their last
  * digits.
  */
-static bool lies_closed(const ur_net_list *nets, const edge_entry *a, const edge_entry *b)
+static bool lies_closed(const ur_net_list *nets, const double *sizes, const edge_entry *a,
+                        const edge_entry *b)
 {
     if (a->net != b->net)
         return false;
     const ur_net *net = &nets->nets[a->net];
     size_t n = net->outline_count;
-    double tolerance = 1e-9 * net_size(net);
+    double tolerance = 1e-9 * sizes[a->net];
     return ur_vec2_distance(net->outline[a->index], net->outline[(b->index + 1) % n]) <=
                tolerance &&
            ur_vec2_distance(net->outline[(a->index + 1) % n], net->outline[b->index]) <= tolerance;
@@ -106,11 +107,12 @@ static bool lies_closed(const ur_net_list *nets, const edge_entry *a, const edge
 
 /*
  * Pairs equal edges of opposite direction, but for the sides of a slit
- * lying closed.  Three or more sides on one edge (a non-manifold cut) pair
- * the first two and leave the rest unpaired.
+ * lying closed (sizes: each net's, from net_size).  Three or more sides on
+ * one edge (a non-manifold cut) pair the first two and leave the rest
+ * unpaired.
  */
-static void pair_edges(const ur_net_list *nets, edge_entry *entries, size_t count,
-                       partner **partners)
+static void pair_edges(const ur_net_list *nets, const double *sizes, edge_entry *entries,
+                       size_t count, partner **partners)
 {
     qsort(entries, count, sizeof *entries, compare_entries);
     for (size_t k = 0; k + 1 < count; k++) {
@@ -118,7 +120,7 @@ static void pair_edges(const ur_net_list *nets, edge_entry *entries, size_t coun
         if (ur_vec3_order(a->low, b->low) != 0 || ur_vec3_order(a->high, b->high) != 0 ||
             a->forward == b->forward)
             continue;
-        if (lies_closed(nets, a, b)) {
+        if (lies_closed(nets, sizes, a, b)) {
             k++;
             continue;
         }
@@ -238,9 +240,13 @@ ur_status ur_net_list_find_seams(ur_net_list *nets, int first_seam, int *next_se
     int **run_seam = NULL;
     size_t edge_count = count_edges(nets);
     edge_entry *entries = ur_alloc_array(edge_count ? edge_count : 1, sizeof *entries, error);
-    ur_status status = entries ? make_tables(nets, &partners, &run_seam, error) : UR_ERROR_MEMORY;
+    double *sizes = ur_alloc_array(nets->count, sizeof *sizes, error);
+    ur_status status =
+        entries && sizes ? make_tables(nets, &partners, &run_seam, error) : UR_ERROR_MEMORY;
+    for (size_t n = 0; status == UR_OK && n < nets->count; n++)
+        sizes[n] = net_size(&nets->nets[n]);
     if (status == UR_OK) {
-        pair_edges(nets, entries, collect_edges(nets, entries), partners);
+        pair_edges(nets, sizes, entries, collect_edges(nets, entries), partners);
         for (size_t n = 0; n < nets->count; n++) {
             ur_net *net = &nets->nets[n];
             if (!net->outline_3d)
@@ -254,6 +260,7 @@ ur_status ur_net_list_find_seams(ur_net_list *nets, int first_seam, int *next_se
                 status = number_runs(nets, partners, run_seam, n, next_seam, error);
     }
     free(entries);
+    free(sizes);
     free_tables(partners, run_seam, nets->count);
     return status;
 }
