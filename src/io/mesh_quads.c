@@ -270,8 +270,8 @@ static double fold_sine(ur_vec3 a, ur_vec3 b, ur_vec3 c, ur_vec3 x)
 static int bend_around(const surface *s, size_t first, size_t second, const size_t corner[4])
 {
     /*
-     * The quad's corners u, q, v, p run round it, first is (u, v, p) and
-     * second (v, u, q): each side, and the corner that makes its triangle.
+     * The quad's corners u, q, w, p run round it, first is (u, w, p) and
+     * second (w, u, q): each side, and the corner that makes its triangle.
      */
     static const int sides[4][3] = {{0, 1, 2}, {1, 2, 0}, {2, 3, 0}, {3, 0, 2}};
     int valleys = 0, hills = 0;
@@ -294,18 +294,18 @@ static int bend_around(const surface *s, size_t first, size_t second, const size
 
 /*
  * The quad of two triangles that share an edge (by their vertices, as
- * assimp made them from one face): its corners u, q, v, p in their turn,
- * the diagonal from u to v.  False when they share no edge.
+ * assimp made them from one face): its corners u, q, w, p in their turn,
+ * the diagonal from u to w.  False when they share no edge.
  */
 static bool quad_corners(size_t (*triangles)[3], size_t first, size_t second, size_t corner[4])
 {
     for (int k = 0; k < 3; k++) {
-        size_t u = triangles[first][k], v = triangles[first][(k + 1) % 3];
+        size_t u = triangles[first][k], w = triangles[first][(k + 1) % 3];
         for (int j = 0; j < 3; j++)
-            if (triangles[second][j] == v && triangles[second][(j + 1) % 3] == u) {
+            if (triangles[second][j] == w && triangles[second][(j + 1) % 3] == u) {
                 corner[0] = u;
                 corner[1] = triangles[second][(j + 2) % 3];
-                corner[2] = v;
+                corner[2] = w;
                 corner[3] = triangles[first][(k + 2) % 3];
                 return corner[1] != corner[3];
             }
