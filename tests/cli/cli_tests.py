@@ -1811,9 +1811,9 @@ def a_longer_unfolding_search_leaves_fewer_pieces(work):
     # The sample head as papercraft: by default the search takes the steps
     # the mesh asks for; --unfold-steps N takes N with the pieces level and
     # half as many more when it searches again with them turned (the summary
-    # says how many it took).  Here 1000 steps leave fewer pieces than the
-    # default (6 in 783 steps: 5 against 12 for 50); the same count gives
-    # the same pieces every time.
+    # says how many it took).  Here 1000 steps leave 5 pieces, the default
+    # (783 steps) 6 and 50 steps 12; the same count gives the same pieces
+    # every time.
     head = os.path.join(REPO, "samples", "head.obj")
     found = {}
     for steps in (None, 50, 1000):
