@@ -21,6 +21,7 @@
  * (an OBJ's normals and texture coordinates keep them apart).
  */
 #include "io_internal.h"
+#include "../geom/points.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -111,17 +112,6 @@ typedef struct surface {
     size_t edge_count;
 } surface;
 
-/* A vertex and its point, to sort by point. */
-typedef struct placed_vertex {
-    ur_vec3 point;
-    size_t vertex;
-} placed_vertex;
-
-static int compare_points(const void *a, const void *b)
-{
-    return ur_vec3_order(((const placed_vertex *)a)->point, ((const placed_vertex *)b)->point);
-}
-
 static int compare_edges(const void *a, const void *b)
 {
     const edge_record *p = a, *q = b;
@@ -130,25 +120,6 @@ static int compare_edges(const void *a, const void *b)
     if (p->high != q->high)
         return p->high < q->high ? -1 : 1;
     return (p->triangle > q->triangle) - (p->triangle < q->triangle);
-}
-
-/* Numbers the positions: vertices at the same point share a number. */
-static ur_status number_positions(surface *s, size_t vertex_count, ur_error *error)
-{
-    placed_vertex *sorted = ur_alloc_array(vertex_count, sizeof *sorted, error);
-    if (!sorted)
-        return UR_ERROR_MEMORY;
-    for (size_t v = 0; v < vertex_count; v++)
-        sorted[v] = (placed_vertex){s->vertices[v], v};
-    qsort(sorted, vertex_count, sizeof *sorted, compare_points);
-    size_t number = 0;
-    for (size_t k = 0; k < vertex_count; k++) {
-        if (k > 0 && compare_points(&sorted[k], &sorted[k - 1]) != 0)
-            number++;
-        s->position[sorted[k].vertex] = number;
-    }
-    free(sorted);
-    return UR_OK;
 }
 
 static edge_record edge_of(const surface *s, size_t triangle, size_t a, size_t b)
@@ -165,7 +136,8 @@ static ur_status surface_make(surface *s, const ur_vec3 *vertices, size_t vertex
     s->edges = ur_alloc_array(s->edge_count, sizeof *s->edges, error);
     if (!s->position || !s->edges)
         return UR_ERROR_MEMORY;
-    ur_status status = number_positions(s, vertex_count, error);
+    /* Vertices at the same point share a position number. */
+    ur_status status = geom_number_points(vertices, vertex_count, s->position, error);
     if (status != UR_OK)
         return status;
     for (size_t t = 0; t < triangle_count; t++)

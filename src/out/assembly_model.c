@@ -15,6 +15,7 @@
  * that meet at a seam get hues far apart (choose_slots).
  */
 #include "assembly.h"
+#include "../geom/points.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -222,29 +223,6 @@ static ur_status choose_colours(model *m, pair_list *pairs, ur_error *error)
     return status;
 }
 
-static int compare_points(const ur_vec3 *a, const ur_vec3 *b)
-{
-    if (a->x != b->x)
-        return a->x < b->x ? -1 : 1;
-    if (a->y != b->y)
-        return a->y < b->y ? -1 : 1;
-    if (a->z != b->z)
-        return a->z < b->z ? -1 : 1;
-    return 0;
-}
-
-typedef struct point_ref {
-    const ur_vec3 *point;
-    size_t index;
-} point_ref;
-
-static int compare_point_refs(const void *a, const void *b)
-{
-    const point_ref *p = a, *q = b;
-    int order = compare_points(p->point, q->point);
-    return order ? order : (p->index > q->index) - (p->index < q->index);
-}
-
 /* An edge of a face, or of a piece's outline (face NO_FACE). */
 typedef struct edge_ref {
     size_t low, high; /* the point numbers of its ends */
@@ -271,25 +249,19 @@ static int compare_edges(const void *a, const void *b)
 static ur_status number_points(const model *m, const ur_net_list *nets, size_t count,
                                size_t *numbers, ur_error *error)
 {
-    point_ref *points = ur_alloc_array(count, sizeof *points, error);
+    ur_vec3 *points = ur_alloc_array(count, sizeof *points, error);
     if (!points)
         return UR_ERROR_MEMORY;
     size_t n = 0;
     for (size_t f = 0; f < m->face_count; f++)
-        for (int k = 0; k < 3; k++, n++)
-            points[n] = (point_ref){&m->faces[f].corner[k], n};
+        for (int k = 0; k < 3; k++)
+            points[n++] = m->faces[f].corner[k];
     for (size_t k = 0; k < nets->count; k++)
-        for (size_t i = 0; m->outlined[k] && i < nets->nets[k].outline_count; i++, n++)
-            points[n] = (point_ref){&nets->nets[k].outline_3d[i], n};
-    qsort(points, count, sizeof *points, compare_point_refs);
-    size_t number = 0;
-    for (size_t i = 0; i < count; i++) {
-        if (i > 0 && compare_points(points[i - 1].point, points[i].point) != 0)
-            number++;
-        numbers[points[i].index] = number;
-    }
+        for (size_t i = 0; m->outlined[k] && i < nets->nets[k].outline_count; i++)
+            points[n++] = nets->nets[k].outline_3d[i];
+    ur_status status = geom_number_points(points, count, numbers, error);
     free(points);
-    return UR_OK;
+    return status;
 }
 
 static edge_ref edge_between(size_t a, size_t b, size_t face_index, size_t piece, int side)
