@@ -70,28 +70,43 @@ typedef struct io_mesh_files {
 void io_mesh_files_init(io_mesh_files *files, const char *name, const void *data, size_t size);
 
 /*
- * The quads of a raw assimp scene, found again once assimp has triangulated
- * it (mesh_quads.c): per mesh, per face of the triangulated mesh, whether
- * that face and the next are the two triangles of a quad.
+ * The faces of more than three corners of a raw assimp scene, found again
+ * once assimp has triangulated it (mesh_polygons.c): per mesh, per face of
+ * the triangulated mesh, the number of corners of the file's face whose
+ * triangles begin there (its triangles follow in order), or 0.
  */
 struct aiScene;
-typedef struct io_quad_marks {
+typedef struct io_polygon_marks {
     unsigned mesh_count;
-    unsigned char **starts; /* owned, per mesh: NULL for a mesh without quads */
-    size_t *face_counts;    /* owned, per mesh: its faces once triangulated */
-} io_quad_marks;
+    unsigned **corners;  /* owned, per mesh: NULL for a mesh of triangles alone */
+    size_t *face_counts; /* owned, per mesh: its faces once triangulated */
+} io_polygon_marks;
 
-/* Marks the quads of a scene not yet triangulated; io_quad_marks_free releases them. */
-ur_status io_quad_marks_read(const struct aiScene *raw, io_quad_marks *marks, ur_error *error);
+/* Marks the polygons of a scene not yet triangulated; io_polygon_marks_free releases them. */
+ur_status io_polygon_marks_read(const struct aiScene *raw, io_polygon_marks *marks,
+                                ur_error *error);
 
 /* Forgets the marks of every mesh that triangulating did not turn into as many faces as foreseen.
  */
-void io_quad_marks_match(io_quad_marks *marks, const struct aiScene *triangulated);
+void io_polygon_marks_match(io_polygon_marks *marks, const struct aiScene *triangulated);
 
 /* A mesh's marks, or NULL. */
-const unsigned char *io_quad_marks_of(const io_quad_marks *marks, unsigned mesh);
+const unsigned *io_polygon_marks_of(const io_polygon_marks *marks, unsigned mesh);
 
-void io_quad_marks_free(io_quad_marks *marks);
+void io_polygon_marks_free(io_polygon_marks *marks);
+
+/*
+ * Triangulates again each flat polygon of five corners or more (its
+ * corners[k] - 2 triangles from starts[k]): the constrained Delaunay
+ * triangulation of its corners in its plane, which leaves no slivers to
+ * fold inside it where the polygon has corners almost in line.  Polygons
+ * that are not flat, or that GEOS cannot triangulate, keep their
+ * triangles.  Fails only when out of memory or without GEOS.
+ */
+ur_status io_triangulate_flat_polygons(const ur_vec3 *vertices, size_t (*triangles)[3],
+                                       size_t triangle_count, const size_t *starts,
+                                       const size_t *corners, size_t polygon_count,
+                                       ur_error *error);
 
 /*
  * Splits each twisted quad (the triangles quads[k] and quads[k] + 1 of the

@@ -9,7 +9,9 @@
  * node stays its own group and a mirroring node can have its triangles
  * turned back to face outwards.  Nothing is welded across meshes or nodes:
  * ur_mesh_clean does that with the user's tolerance.  A twisted quad is
- * split along the diagonal that follows the surface (mesh_quads.c).
+ * split along the diagonal that follows the surface (mesh_quads.c), and a
+ * flat polygon of five corners or more triangulated again without slivers
+ * (mesh_polygons.c).
  */
 #include "io_internal.h"
 
@@ -629,7 +631,8 @@ size_t ur_mesh_import_memory_estimate(const char *path)
  * the .bin files beside it, and no material library is read.
  */
 static ur_status load_scene(const char *path, const void *data, size_t size,
-                            const struct aiScene **scene, io_quad_marks *quads, ur_error *error)
+                            const struct aiScene **scene, io_polygon_marks *polygons,
+                            ur_error *error)
 {
     io_mesh_files files;
     io_mesh_files_init(&files, path, data, size);
@@ -640,7 +643,7 @@ static ur_status load_scene(const char *path, const void *data, size_t size,
                             aiGetErrorString());
     ur_status status = check_raw_scene(path, *scene, error);
     if (status == UR_OK)
-        status = io_quad_marks_read(*scene, quads, error);
+        status = io_polygon_marks_read(*scene, polygons, error);
     if (status != UR_OK) {
         aiReleaseImport(*scene);
         *scene = NULL;
@@ -649,11 +652,11 @@ static ur_status load_scene(const char *path, const void *data, size_t size,
     /* No normals: unroll computes its own from the triangles. */
     *scene = aiApplyPostProcessing(*scene, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices);
     if (!*scene) { /* assimp has released the scene */
-        io_quad_marks_free(quads);
+        io_polygon_marks_free(polygons);
         return ur_error_set(error, UR_ERROR_INPUT, "%s: cannot process the mesh: %s", path,
                             aiGetErrorString());
     }
-    io_quad_marks_match(quads, *scene);
+    io_polygon_marks_match(polygons, *scene);
     return UR_OK;
 }
 
@@ -726,9 +729,12 @@ typedef struct import_state {
     size_t *groups;                 /* likewise */
     char (*names)[GROUP_NAME_SIZE]; /* likewise */
     bool *named;                    /* owned: whether the file named the group */
-    io_quad_marks quads;            /* owned: the file's quads, among its meshes' faces */
+    io_polygon_marks polygons;      /* owned: the file's faces of more than three corners */
     size_t *quad_starts;            /* owned: the first triangle of each quad's two */
     size_t quad_count;
+    size_t *polygon_starts;  /* owned: the first triangle of each face of five corners or more */
+    size_t *polygon_corners; /* owned: its corners */
+    size_t polygon_count;
 } import_state;
 
 static void state_free(import_state *state)
@@ -739,8 +745,10 @@ static void state_free(import_state *state)
     free(state->names);
     free(state->named);
     free(state->quad_starts);
-    io_quad_marks_free(&state->quads);
-    state->quad_starts = NULL;
+    free(state->polygon_starts);
+    free(state->polygon_corners);
+    io_polygon_marks_free(&state->polygons);
+    state->quad_starts = state->polygon_starts = state->polygon_corners = NULL;
     state->vertices = NULL;
     state->triangles = NULL;
     state->groups = NULL;
@@ -818,8 +826,12 @@ static ur_status allocate(import_state *state, ur_error *error)
     state->names = ur_alloc_array(state->group_count, sizeof *state->names, error);
     state->named = ur_alloc_array(state->group_count, sizeof *state->named, error);
     state->quad_starts = ur_alloc_array(state->triangle_count, sizeof *state->quad_starts, error);
+    state->polygon_starts =
+        ur_alloc_array(state->triangle_count, sizeof *state->polygon_starts, error);
+    state->polygon_corners =
+        ur_alloc_array(state->triangle_count, sizeof *state->polygon_corners, error);
     if (!state->vertices || !state->triangles || !state->groups || !state->names || !state->named ||
-        !state->quad_starts)
+        !state->quad_starts || !state->polygon_starts || !state->polygon_corners)
         return UR_ERROR_MEMORY;
     /* The counts come back as fill_node moves its cursors over the arrays. */
     state->vertex_count = state->triangle_count = state->group_count = 0;
@@ -862,19 +874,25 @@ static ur_status add_vertices(import_state *state, const struct aiMesh *mesh, un
 
 /*
  * Copies one mesh's triangles after its vertices, turned round under a
- * mirror, and notes where its quads' pairs of triangles are.
+ * mirror, and notes where the triangles of its quads and larger polygons
+ * begin.
  */
 static void add_triangles(import_state *state, const struct aiMesh *mesh, unsigned index,
                           bool mirrored)
 {
     size_t base = state->vertex_count;
-    const unsigned char *quads = io_quad_marks_of(&state->quads, index);
+    const unsigned *corners = io_polygon_marks_of(&state->polygons, index);
     for (unsigned f = 0; f < mesh->mNumFaces; f++) {
         const struct aiFace *face = &mesh->mFaces[f];
         if (face->mNumIndices != 3)
             continue;
-        if (quads && quads[f] && f + 1 < mesh->mNumFaces && mesh->mFaces[f + 1].mNumIndices == 3)
+        if (corners && corners[f] == 4 && f + 1 < mesh->mNumFaces &&
+            mesh->mFaces[f + 1].mNumIndices == 3)
             state->quad_starts[state->quad_count++] = state->triangle_count;
+        if (corners && corners[f] >= 5 && corners[f] - 2 <= mesh->mNumFaces - f) {
+            state->polygon_starts[state->polygon_count] = state->triangle_count;
+            state->polygon_corners[state->polygon_count++] = corners[f];
+        }
         size_t *t = state->triangles[state->triangle_count];
         t[0] = base + face->mIndices[0];
         t[1] = base + face->mIndices[mirrored ? 2 : 1];
@@ -1038,6 +1056,10 @@ static ur_status build(import_state *state, ur_error *error)
         status = io_quads_follow_surface(state->vertices, state->vertex_count, state->triangles,
                                          state->triangle_count, state->quad_starts,
                                          state->quad_count, error);
+    if (status == UR_OK)
+        status = io_triangulate_flat_polygons(state->vertices, state->triangles,
+                                              state->triangle_count, state->polygon_starts,
+                                              state->polygon_corners, state->polygon_count, error);
     if (status != UR_OK)
         return status;
     name_unnamed(state);
@@ -1080,7 +1102,7 @@ static ur_status import_mesh(const char *path, const void *data, size_t size,
         status = data ? check_buffer(path, data, size, error) : check_file(path, error);
     import_state state = {.path = path};
     if (status == UR_OK)
-        status = load_scene(path, data, size, &state.scene, &state.quads, error);
+        status = load_scene(path, data, size, &state.scene, &state.polygons, error);
     if (status != UR_OK)
         return status;
     state.factor = ur_length_unit_mm(options->unit) * options->scale;

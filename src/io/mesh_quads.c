@@ -15,8 +15,8 @@
  * monkey head a fifth more pieces.
  *
  * The quads are marked on the raw scene, before assimp triangulates it,
- * and found again afterwards: its triangulation puts a quad's two
- * triangles where the quad was, in order.  Neighbours are found by
+ * and found again afterwards (mesh_polygons.c): its triangulation puts a
+ * quad's two triangles where the quad was, in order.  Neighbours are found by
  * position, as the file's corners of two faces may be different vertices
  * (an OBJ's normals and texture coordinates keep them apart).
  */
@@ -28,74 +28,6 @@
 #include <string.h>
 
 #include <assimp/scene.h>
-
-/* How many faces a face of n corners becomes once triangulated (points and lines stay). */
-static size_t faces_after(unsigned corners)
-{
-    return corners > 3 ? corners - 2 : 1;
-}
-
-ur_status io_quad_marks_read(const struct aiScene *raw, io_quad_marks *marks, ur_error *error)
-{
-    *marks = (io_quad_marks){0};
-    if (raw->mNumMeshes == 0)
-        return UR_OK;
-    marks->starts = ur_alloc_array(raw->mNumMeshes, sizeof *marks->starts, error);
-    marks->face_counts = ur_alloc_array(raw->mNumMeshes, sizeof *marks->face_counts, error);
-    if (!marks->starts || !marks->face_counts) {
-        io_quad_marks_free(marks);
-        return UR_ERROR_MEMORY;
-    }
-    marks->mesh_count = raw->mNumMeshes;
-    for (unsigned m = 0; m < raw->mNumMeshes; m++) {
-        const struct aiMesh *mesh = raw->mMeshes[m];
-        size_t count = 0, quads = 0;
-        for (unsigned f = 0; f < mesh->mNumFaces; f++) {
-            count += faces_after(mesh->mFaces[f].mNumIndices);
-            quads += mesh->mFaces[f].mNumIndices == 4;
-        }
-        marks->face_counts[m] = count;
-        if (quads == 0)
-            continue;
-        unsigned char *starts = ur_alloc_array(count, 1, error);
-        if (!starts) {
-            io_quad_marks_free(marks);
-            return UR_ERROR_MEMORY;
-        }
-        size_t at = 0;
-        for (unsigned f = 0; f < mesh->mNumFaces; f++) {
-            unsigned corners = mesh->mFaces[f].mNumIndices;
-            starts[at] = corners == 4;
-            at += faces_after(corners);
-        }
-        marks->starts[m] = starts;
-    }
-    return UR_OK;
-}
-
-void io_quad_marks_match(io_quad_marks *marks, const struct aiScene *triangulated)
-{
-    for (unsigned m = 0; m < marks->mesh_count; m++)
-        if (m >= triangulated->mNumMeshes ||
-            triangulated->mMeshes[m]->mNumFaces != marks->face_counts[m]) {
-            free(marks->starts[m]);
-            marks->starts[m] = NULL;
-        }
-}
-
-const unsigned char *io_quad_marks_of(const io_quad_marks *marks, unsigned mesh)
-{
-    return mesh < marks->mesh_count ? marks->starts[mesh] : NULL;
-}
-
-void io_quad_marks_free(io_quad_marks *marks)
-{
-    for (unsigned m = 0; marks->starts && m < marks->mesh_count; m++)
-        free(marks->starts[m]);
-    free(marks->starts);
-    free(marks->face_counts);
-    *marks = (io_quad_marks){0};
-}
 
 /* ---- Neighbours by position ------------------------------------------- */
 

@@ -419,6 +419,97 @@ static void test_twisted_quads_follow_the_surface(void **state)
     }
 }
 
+/* ---- Flat polygons ----------------------------------------------------- */
+
+/* The largest angle (degrees) between the normals of two triangles that share an edge by position.
+ */
+static double largest_fold(const ur_mesh *mesh)
+{
+    double largest = 0;
+    for (size_t t = 0; t < mesh->triangle_count; t++)
+        for (size_t o = t + 1; o < mesh->triangle_count; o++) {
+            int shared = 0;
+            for (int j = 0; j < 3; j++)
+                for (int k = 0; k < 3; k++)
+                    shared += same_point(corner(mesh, t, j), corner(mesh, o, k));
+            if (shared != 2)
+                continue;
+            ur_vec3 a = area_vector(mesh, t), b = area_vector(mesh, o);
+            double cosine = ur_vec3_dot(a, b) / (ur_vec3_length(a) * ur_vec3_length(b));
+            largest = fmax(largest, acos(fmin(1.0, cosine)) * 180 / M_PI);
+        }
+    return largest;
+}
+
+/*
+ * A six-cornered facet like those round a cut gem's girdle: an apex and
+ * five corners almost in line, the middle one lifted by `lift` mm.  An
+ * ear-clipped triangulation has a sliver 0.1 mm wide along the line, which
+ * such a lift folds by about lift / 0.1 radians; the Delaunay one has none.
+ */
+static void test_flat_polygons_have_no_slivers(void **state)
+{
+    (void)state;
+    const double lifts[] = {0.003, 1.0};
+    for (int c = 0; c < 2; c++) {
+        char text[512];
+        snprintf(text, sizeof text,
+                 "o facet\nv 0 30 0\nv -20 0 0\nv -10 -0.2 0\nv 0 -0.3 %g\nv 10 -0.2 0\nv 20 0 0\n"
+                 "f 1 2 3 4 5 6\n",
+                 lifts[c]);
+        ur_mesh mesh = {0};
+        import_ok(write_file("facet.obj", text), NULL, &mesh, NULL);
+        assert_int_equal(mesh.triangle_count, 4);
+        double area = 0;
+        for (size_t t = 0; t < mesh.triangle_count; t++) {
+            assert_true(area_vector(&mesh, t).z > 0); /* facing +z, as the face runs */
+            area += 0.5 * area_vector(&mesh, t).z;
+        }
+        /* The shoelace area of the corners seen from above. */
+        assert_relative(area, 600 + 2 * 0.5 * 10 * 0.2 + 2 * 0.5 * 10 * (0.2 + 0.3), 1e-9,
+                        "facet area");
+        double fold = largest_fold(&mesh);
+        if (c == 0 && !(fold < 0.05)) /* flat to 1e-4 of its size: no sliver left to fold */
+            fail_msg("a flat facet's triangles fold by %g degrees", fold);
+        if (c == 1 && !(fold > 1.0)) /* lifted 1 mm over 30: not flat, folded as it is */
+            fail_msg("a facet lifted 1 mm folds by only %g degrees", fold);
+        free_mesh(&mesh);
+    }
+}
+
+/*
+ * A flat concave polygon (a U of eight corners, in a tilted plane) comes
+ * out as triangles inside it: they cover its area once, all facing the
+ * way it runs.
+ */
+static void test_concave_flat_polygon_triangulated_inside(void **state)
+{
+    (void)state;
+    const double u[8][2] = {{0, 0},  {30, 0}, {30, 20}, {20, 20},
+                            {20, 5}, {10, 5}, {10, 20}, {0, 20}};
+    char text[1024];
+    size_t used = (size_t)snprintf(text, sizeof text, "o u\n");
+    for (int k = 0; k < 8; k++) /* the plane z = 0.5 x + 0.25 y */
+        used += (size_t)snprintf(text + used, sizeof text - used, "v %g %g %g\n", u[k][0], u[k][1],
+                                 0.5 * u[k][0] + 0.25 * u[k][1]);
+    snprintf(text + used, sizeof text - used, "f 1 2 3 4 5 6 7 8\n");
+    ur_mesh mesh = {0};
+    import_ok(write_file("u.obj", text), NULL, &mesh, NULL);
+    assert_int_equal(mesh.triangle_count, 6);
+    ur_vec3 normal = {-0.5, -0.25, 1}; /* of the plane, up */
+    double area = 0, size = 0;
+    for (size_t t = 0; t < mesh.triangle_count; t++) {
+        ur_vec3 a = area_vector(&mesh, t);
+        assert_true(ur_vec3_dot(a, normal) > 0);
+        area += 0.5 * a.z; /* seen from above */
+        size += 0.5 * ur_vec3_length(a);
+    }
+    assert_relative(area, 30 * 20 - 10 * 15, 1e-9, "area seen from above");
+    assert_relative(size, (30 * 20 - 10 * 15) * ur_vec3_length(normal), 1e-9, "area");
+    assert_true(largest_fold(&mesh) < 1e-6);
+    free_mesh(&mesh);
+}
+
 /* ---- Units ------------------------------------------------------------- */
 
 static void test_unit_names(void **state)
@@ -782,6 +873,8 @@ int main(void)
         cmocka_unit_test(test_group_named_twice_is_one_group),
         cmocka_unit_test(test_icosphere_is_closed_and_outward),
         cmocka_unit_test(test_twisted_quads_follow_the_surface),
+        cmocka_unit_test(test_flat_polygons_have_no_slivers),
+        cmocka_unit_test(test_concave_flat_polygon_triangulated_inside),
         cmocka_unit_test(test_unit_names),
         cmocka_unit_test(test_units_and_scale_multiply),
         cmocka_unit_test(test_missing_file),
