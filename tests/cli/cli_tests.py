@@ -1807,6 +1807,32 @@ def a_flat_face_round_a_hole_unfolds(work):
 
 
 @test
+def a_flat_polygon_is_one_face(work):
+    # A convex prism on a hexagon whose side has corners almost in line (as
+    # round a cut gem's girdle), the top's middle one 0.01 mm out of plane,
+    # as a file's rounding leaves it.  Cut by clipping ears, the top had a
+    # sliver 0.5 mm wide that this folded by over a degree: 10 faces, 9
+    # folds, one of them a valley on a convex solid.  Triangulated again in
+    # its plane, each cap is one face: 8 faces, no valley.
+    corners = [(0, 30), (-20, 0), (-10, -1), (0, -1.5), (10, -1), (20, 0)]
+    vertices = [(x, y, 0) for x, y in corners]
+    vertices += [(x, y, 20.01 if k == 3 else 20) for k, (x, y) in enumerate(corners)]
+    n = len(corners)
+    faces = [tuple(range(n, 2 * n)), tuple(reversed(range(n)))]
+    faces += [(k, (k + 1) % n, n + (k + 1) % n, n + k) for k in range(n)]
+    prism = os.path.join(work, "prism.obj")
+    make_meshes_module().write_faces_obj(prism, ["A hexagonal prism"], vertices, [("prism", faces)])
+    result = run(work, "mesh", prism, "--flatten", "unfold", "--material", "paper-0.3mm",
+                 "--nest-time", "0", "-o", "prism.svg", "--report", "prism.json")
+    summary = re.search(r"unfolded into (\d+) pieces? .*: (\d+) folds \((\d+) valleys\)",
+                        result.stderr)
+    check(summary, result.stderr)
+    pieces, folds, valleys = (int(g) for g in summary.groups())
+    check(valleys == 0 and folds + pieces == 8, result.stderr)
+    check(sum(p["faces"] for p in report(work, "prism.json")["pieces"]) == 8, "faces")
+
+
+@test
 def a_longer_unfolding_search_leaves_fewer_pieces(work):
     # The sample head as papercraft: by default the search takes the steps
     # the mesh asks for; --unfold-steps N takes N with the pieces level and
