@@ -583,7 +583,7 @@ static ur_status unfold_mesh(const job_run *run, const job_room *room, const ur_
     if (!code && !run->job.quiet)
         job_note(run,
                  "%s: unfolded into %zu piece%s (%zu of a single face) in %zu search steps: "
-                 "%zu folds (%zu valleys), %zu seams",
+                 "%zu folds (%zu valleys), %zu seam edges",
                  run->job.command, unfolding.count, unfolding.count == 1 ? "" : "s",
                  unfolding.single_face, unfolding.steps, unfolding.folds, unfolding.valleys,
                  unfolding.seams);

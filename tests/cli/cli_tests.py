@@ -1452,7 +1452,7 @@ def unfolding_keeps_every_face(work):
     result = run(work, "mesh", os.path.join(REPO, "samples", "icosphere.obj"), "--flatten",
                  "unfold", "-o", "u.svg", "--report", "u.json")
     counts = re.search(r"unfolded into (\d+) pieces? \(\d+ of a single face\) in \d+ search "
-                       r"steps: (\d+) folds \((\d+) valleys\), (\d+) seams", result.stderr)
+                       r"steps: (\d+) folds \((\d+) valleys\), (\d+) seam edges", result.stderr)
     check(counts, result.stderr)
     pieces = report(work, "u.json")["pieces"]
     for piece in pieces:
@@ -1629,7 +1629,7 @@ def a_fine_mesh_keeps_room_for_tabs(work):
     mesh = os.path.join(REPO, "samples", "uvsphere.obj")
     result = run(work, "mesh", mesh, "--scale", "0.5", "--flatten", "unfold", "--material",
                  "paper-0.3mm", "--nest-time", "0", "-o", "fine.svg", "--report", "fine.json")
-    seams = re.search(r"unfolded into \d+ pieces?.*, (\d+) seams", result.stderr)
+    seams = re.search(r"unfolded into \d+ pieces?.*, (\d+) seam edges", result.stderr)
     check(seams, result.stderr)
     data = report(work, "fine.json")
     without_tab = sum(1 for piece in data["pieces"] for a in piece["allowances"]
@@ -1873,7 +1873,7 @@ def unfolding_fits_the_sheet(work):
     result = run(work, "mesh", cube, "--flatten", "unfold", "--material", "paper-0.3mm",
                  "--sheet", "250x180", "--allowances", "none", "-o", "c.svg", "--report", "c.json")
     check(re.search(r"unfolded into 3 pieces \(0 of a single face\) in \d+ search steps: 3 folds "
-                    r"\(0 valleys\), 9 seams", result.stderr), result.stderr)
+                    r"\(0 valleys\), 9 seam edges", result.stderr), result.stderr)
     pieces = report(work, "c.json")["pieces"]
     check(len(pieces) == 3, "%d pieces" % len(pieces))
     for piece in pieces:
