@@ -229,9 +229,14 @@ UR_API ur_status ur_piece_keep_kerfs_off_joints(ur_piece *piece, size_t first, d
  * 11 degrees keep their point); other paths are untouched.  The outline
  * stays counter-clockwise, each hole keeps its direction, the box is
  * recomputed.  Refuses with UR_ERROR_INPUT naming the piece, leaving it
- * unchanged, when a hole would vanish or split, or the outline would close
- * a slot into a hole (a feature narrower than the kerf), and for a kerf
- * that is negative or not finite, or an outline already opened by bridges.
+ * unchanged, when a hole would vanish or split, and for a kerf that is
+ * negative or not finite, or an outline already opened by bridges.  A slot
+ * of the outline narrower than the kerf, which closes into a hole as the
+ * outline moves out, is filled with a warning record.  So is material the
+ * beam would burn away, found by the opening of the outline as drawn by
+ * the kerf: a piece narrower than the kerf everywhere, one a narrow neck
+ * would leave in parts, or a narrow part of more than 50 kerf squares
+ * (the tip a sharp corner loses is less).
  * A kerf of 0 does nothing.  A path that is exactly a circle (its
  * circle set) stays exactly one, radius kerf / 2 more (outline) or less
  * (hole), its points moved along their radii onto it, without GEOS; a

@@ -10,7 +10,10 @@
  * hole that would vanish or split) leaves it as it was.  A slot of the
  * outline narrower than the kerf (between two glue tabs, say) closes as
  * the outline moves out: it is filled, with a warning, since no cutter can
- * cut it.
+ * cut it.  Material narrower than the kerf is burned away by the cut
+ * itself: where the outline's own parts are (a strip of a modeller's
+ * micro-faces, such as a cut gem's girdle 0.012 mm high, unfolded), a
+ * warning says so.
  */
 #include "allow_internal.h"
 
@@ -166,9 +169,145 @@ static ur_status offset_circle(const ur_piece *piece, size_t index, double dista
     return UR_OK;
 }
 
-/* Every path's new ring (NULL: unchanged) into rings, counts; *holes how many holes moved. */
+/*
+ * What of the outline's material is narrower than the kerf: what its
+ * opening by the kerf (shrunk by half of it, then grown back, GEOS
+ * buffers) takes away.  A sharp corner loses its tip there, little (a 5
+ * degree point 0.05 mm2 at a 0.1 mm kerf); a strip narrower than the kerf
+ * goes whole, and a neck parts what is left.
+ */
+typedef struct narrow_material {
+    size_t parts;   /* the parts left, specks (a corner's tip cut off) not counted */
+    double largest; /* the area of the largest part taken away (mm2), if made */
+    ur_vec2 where;  /* the middle of that part's box, else of the smallest part left */
+} narrow_material;
+
+/*
+ * A part taken away, or left, of more than this many kerf squares (a
+ * strip 50 kerfs long) is worth a warning; less is a speck.
+ */
+#define KERF_NARROW_SQUARES 50.0
+
+static ur_vec2 box_middle(GEOSContextHandle_t geos, const GEOSGeometry *g)
+{
+    double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+    GEOSGeom_getXMin_r(geos, g, &x0);
+    GEOSGeom_getYMin_r(geos, g, &y0);
+    GEOSGeom_getXMax_r(geos, g, &x1);
+    GEOSGeom_getYMax_r(geos, g, &y1);
+    return ur_vec2_make((x0 + x1) / 2, (y0 + y1) / 2);
+}
+
+/* The polygons of g larger than least, and the middle of the smallest of them. */
+static size_t polygons_larger_than(GEOSContextHandle_t geos, const GEOSGeometry *g, double least,
+                                   ur_vec2 *smallest)
+{
+    size_t count = 0;
+    double fewest = INFINITY;
+    for (int k = 0, n = GEOSGetNumGeometries_r(geos, g); k < n; k++) {
+        const GEOSGeometry *part = GEOSGetGeometryN_r(geos, g, k);
+        double area = 0;
+        if (GEOSArea_r(geos, part, &area) && area > least) {
+            count++;
+            if (area < fewest) {
+                fewest = area;
+                *smallest = box_middle(geos, part);
+            }
+        }
+    }
+    return count;
+}
+
+/* The largest polygon of what was taken away: its area and where it is. */
+static void largest_taken(GEOSContextHandle_t geos, const GEOSGeometry *taken,
+                          narrow_material *narrow)
+{
+    narrow->largest = 0;
+    for (int k = 0, n = GEOSGetNumGeometries_r(geos, taken); k < n; k++) {
+        const GEOSGeometry *part = GEOSGetGeometryN_r(geos, taken, k);
+        double area = 0;
+        if (GEOSArea_r(geos, part, &area) && area > narrow->largest) {
+            narrow->largest = area;
+            narrow->where = box_middle(geos, part);
+        }
+    }
+}
+
+/*
+ * False when GEOS cannot tell (the outline is left as it is, with no
+ * warning).  What the opening took away is made (a difference, the
+ * costly part) only when there may be something to say.
+ */
+static bool measure_narrow(GEOSContextHandle_t geos, const ur_path *outline, double kerf,
+                           narrow_material *narrow)
+{
+    double speck = KERF_NARROW_SQUARES * kerf * kerf, area = 0, kept = 0;
+    GEOSGeometry *polygon = geos_polygon_of_ring(geos, outline->points, outline->count);
+    if (polygon && GEOSisValid_r(geos, polygon) != 1) {
+        /* An outline touching itself (a flap held at a point): the overlay needs it valid. */
+        GEOSGeometry *valid = GEOSMakeValid_r(geos, polygon);
+        GEOSGeom_destroy_r(geos, polygon);
+        polygon = valid;
+    }
+    GEOSGeometry *shrunk = polygon ? GEOSBuffer_r(geos, polygon, -kerf / 2, 2) : NULL;
+    GEOSGeometry *opened = shrunk ? GEOSBuffer_r(geos, shrunk, kerf / 2, 2) : NULL;
+    bool known =
+        opened && GEOSArea_r(geos, polygon, &area) == 1 && GEOSArea_r(geos, opened, &kept) == 1;
+    GEOSGeometry *taken = NULL;
+    *narrow = (narrow_material){0};
+    if (known) {
+        /* Where a piece comes apart, its smallest part says where, if GEOS cannot say more. */
+        narrow->parts = polygons_larger_than(geos, opened, speck, &narrow->where);
+        if (narrow->parts != 1 || area - kept > speck)
+            taken = GEOSDifference_r(geos, polygon, opened);
+        known = narrow->parts != 1 || taken;
+        if (taken)
+            largest_taken(geos, taken, narrow);
+    }
+    GEOSGeometry *made[] = {polygon, shrunk, opened, taken};
+    for (size_t i = 0; i < sizeof made / sizeof *made; i++)
+        if (made[i])
+            GEOSGeom_destroy_r(geos, made[i]);
+    return known;
+}
+
+/* The warning for material narrower than the kerf, when there is enough of it to matter. */
+static ur_status record_narrow(ur_piece *piece, double kerf, const narrow_material *narrow,
+                               ur_error *error)
+{
+    bool gone = narrow->parts == 0, parted = narrow->parts >= 2;
+    if (!gone && !parted && !(narrow->largest > KERF_NARROW_SQUARES * kerf * kerf))
+        return UR_OK;
+    ur_allowance_record warning = {.kind = UR_ALLOWANCE_KERF_COMPENSATION,
+                                   .count = 1,
+                                   .value = kerf,
+                                   .limit = NAN,
+                                   .where = narrow->where,
+                                   .warning = true};
+    if (gone)
+        c_snprintf(warning.reason, sizeof warning.reason,
+                   "narrower than the kerf (%g mm) everywhere: the cut would burn it away", kerf);
+    else if (parted)
+        c_snprintf(warning.reason, sizeof warning.reason,
+                   "narrower than the kerf (%g mm) near (%.1f, %.1f): the cut would leave it in "
+                   "%zu parts",
+                   kerf, narrow->where.x, narrow->where.y, narrow->parts);
+    else
+        c_snprintf(warning.reason, sizeof warning.reason,
+                   "%.2f mm2 of it narrower than the kerf (%g mm) near (%.1f, %.1f): the cut "
+                   "would burn that away",
+                   narrow->largest, kerf, narrow->where.x, narrow->where.y);
+    return ur_piece_record(piece, &warning, error);
+}
+
+/*
+ * Every path's new ring (NULL: unchanged) into rings, counts; *holes how
+ * many holes moved; *narrow (when *measured) what of the outline as drawn
+ * is narrower than the kerf.
+ */
 static ur_status offset_all(const ur_piece *piece, double kerf, ur_vec2 **rings, size_t *counts,
-                            size_t *holes, size_t *slots, ur_vec2 *slot_at, ur_error *error)
+                            size_t *holes, size_t *slots, ur_vec2 *slot_at, narrow_material *narrow,
+                            bool *measured, ur_error *error)
 {
     GEOSContextHandle_t geos = GEOS_init_r();
     GEOSBufferParams *params = geos ? GEOSBufferParams_create_r(geos) : NULL;
@@ -181,6 +320,7 @@ static ur_status offset_all(const ur_piece *piece, double kerf, ur_vec2 **rings,
     GEOSBufferParams_setMitreLimit_r(geos, params, KERF_MITRE_LIMIT);
     ur_status status = UR_OK;
     *holes = 0;
+    *measured = measure_narrow(geos, &piece->paths[0], kerf, narrow);
     for (size_t i = 0; status == UR_OK && i < piece->path_count; i++) {
         if (i > 0 && !is_hole(&piece->paths[i]))
             continue;
@@ -252,9 +392,11 @@ ur_status ur_piece_compensate_kerf(ur_piece *piece, double kerf, ur_error *error
     size_t *counts = calloc(piece->path_count, sizeof *counts);
     size_t holes = 0, slots = 0;
     ur_vec2 slot_at = {0, 0};
-    ur_status status = rings && counts
-                           ? offset_all(piece, kerf, rings, counts, &holes, &slots, &slot_at, error)
-                           : ur_error_out_of_memory(error);
+    narrow_material narrow = {0};
+    bool measured = false;
+    ur_status status = rings && counts ? offset_all(piece, kerf, rings, counts, &holes, &slots,
+                                                    &slot_at, &narrow, &measured, error)
+                                       : ur_error_out_of_memory(error);
     for (size_t i = 0; status == UR_OK && i < piece->path_count; i++)
         if (rings[i]) {
             free(piece->paths[i].points);
@@ -271,5 +413,6 @@ ur_status ur_piece_compensate_kerf(ur_piece *piece, double kerf, ur_error *error
     if (status != UR_OK)
         return status;
     ur_piece_recompute_box(piece);
-    return record(piece, kerf, holes, slots, slot_at, error);
+    status = measured ? record_narrow(piece, kerf, &narrow, error) : UR_OK;
+    return status == UR_OK ? record(piece, kerf, holes, slots, slot_at, error) : status;
 }

@@ -377,6 +377,77 @@ static void test_kerf_values(void **state)
     ur_piece_free(&piece);
 }
 
+/* The piece compensated for a 0.1 mm kerf; its warning about narrow material, or NULL. */
+static const ur_allowance_record *narrow_warning(ur_piece *piece)
+{
+    assert_int_equal(ur_piece_compensate_kerf(piece, 0.1, NULL), UR_OK);
+    const ur_allowance_record *found = NULL;
+    for (size_t k = 0; k < piece->record_count; k++)
+        if (piece->records[k].warning && strstr(piece->records[k].reason, "narrower than the kerf"))
+            found = &piece->records[k];
+    return found;
+}
+
+static ur_piece outline_piece(const char *name, const ur_vec2 *points, size_t count)
+{
+    ur_piece piece = piece_named(name);
+    add(&piece, UR_OP_CUT, points, count, true);
+    return piece;
+}
+
+/*
+ * Material narrower than the kerf, which the beam burns away, is found by
+ * the opening of the outline by the kerf, and said with where it is: a
+ * strip 0.05 mm wide (a unfolded gem's girdle) goes whole; two squares on
+ * a 0.05 mm neck come apart; a 30 mm tail 0.05 mm wide is lost, 1.5 mm2.
+ * A 5 degree point loses only its tip (about 0.05 mm2 at a 0.1 mm kerf)
+ * and a plain rectangle nothing: no warning.
+ */
+static void test_kerf_finds_material_it_would_burn(void **state)
+{
+    (void)state;
+    ur_vec2 strip[4];
+    rectangle(strip, 0, 0, 20, 0.05);
+    ur_piece piece = outline_piece("strip", strip, 4);
+    const ur_allowance_record *w = narrow_warning(&piece);
+    assert_non_null(w);
+    assert_non_null(strstr(w->reason, "everywhere"));
+    ur_piece_free(&piece);
+
+    ur_vec2 dumbbell[] = {{0, 0},   {10, 0},  {10, 4.975}, {13, 4.975}, {13, 0},  {23, 0},
+                          {23, 10}, {13, 10}, {13, 5.025}, {10, 5.025}, {10, 10}, {0, 10}};
+    piece = outline_piece("dumbbell", dumbbell, sizeof dumbbell / sizeof *dumbbell);
+    w = narrow_warning(&piece);
+    assert_non_null(w);
+    assert_non_null(strstr(w->reason, "leave it in 2 parts"));
+    assert_close(w->where.x, 11.5, 0.1); /* the neck, 10 to 13 */
+    assert_close(w->where.y, 5, 0.1);
+    ur_piece_free(&piece);
+
+    ur_vec2 tailed[] = {{0, 0},      {10, 0},     {10, 4.975}, {40, 4.975},
+                        {40, 5.025}, {10, 5.025}, {10, 10},    {0, 10}};
+    piece = outline_piece("tailed", tailed, sizeof tailed / sizeof *tailed);
+    w = narrow_warning(&piece);
+    assert_non_null(w);
+    assert_non_null(strstr(w->reason, "burn that away"));
+    assert_close(w->where.x, 25, 0.1);
+    double lost = 0;
+    assert_int_equal(sscanf(w->reason, "%lf mm2", &lost), 1);
+    assert_close(lost, 30 * 0.05, 0.02); /* the tail, less the bit the opening keeps at its root */
+    ur_piece_free(&piece);
+
+    double half = 2.5 * M_PI / 180; /* a 5 degree point 50 mm long */
+    ur_vec2 point[] = {{0, 0}, {50 * cos(half), -50 * sin(half)}, {50 * cos(half), 50 * sin(half)}};
+    piece = outline_piece("point", point, 3);
+    assert_null(narrow_warning(&piece));
+    ur_piece_free(&piece);
+    ur_vec2 plain[4];
+    rectangle(plain, 0, 0, 30, 20);
+    piece = outline_piece("plain", plain, 4);
+    assert_null(narrow_warning(&piece));
+    ur_piece_free(&piece);
+}
+
 /* ---- Bridges ----------------------------------------------------------------- */
 
 static void assert_even(const gaps *g, double length)
@@ -752,6 +823,7 @@ int main(void)
         cmocka_unit_test(test_kerf_refuses_vanishing_hole),
         cmocka_unit_test(test_kerf_refuses_narrow_features),
         cmocka_unit_test(test_kerf_values),
+        cmocka_unit_test(test_kerf_finds_material_it_would_burn),
         cmocka_unit_test(test_bridges_rectangle),
         cmocka_unit_test(test_bridges_shifted_off_corners),
         cmocka_unit_test(test_bridges_automatic_count),
