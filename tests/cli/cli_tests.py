@@ -1833,6 +1833,38 @@ def a_flat_polygon_is_one_face(work):
 
 
 @test
+def material_narrower_than_the_kerf_is_said(work):
+    # A gem: two octagonal pyramids on a girdle 0.01 mm high, as Blender's
+    # brilliant-cut gem has one 0.012 mm high.  Unfolded, the girdle is a
+    # strip narrower than the paper's 0.1 mm kerf, with glue tabs on it:
+    # the cut would burn the strip away and leave the tabs loose.  The
+    # summary and the report say so; without kerf compensation nothing is
+    # said (the outline is cut as drawn).
+    corners = [(30 * math.cos(k * math.pi / 4), 30 * math.sin(k * math.pi / 4)) for k in range(8)]
+    vertices = [(0, 0, 20.01), (0, 0, -20)]
+    vertices += [(x, y, 0.01) for x, y in corners] + [(x, y, 0) for x, y in corners]
+    faces = []
+    for k in range(8):
+        top, next_top = 2 + k, 2 + (k + 1) % 8
+        faces += [(0, top, next_top), (1, next_top + 8, top + 8)]  # the two pyramids
+        faces.append((top, top + 8, next_top + 8, next_top))  # the girdle
+    gem = os.path.join(work, "gem.obj")
+    make_meshes_module().write_faces_obj(gem, ["A gem with a thin girdle"], vertices,
+                                         [("gem", faces)])
+    common = ["mesh", gem, "--flatten", "unfold", "--material", "paper-0.3mm", "--nest-time", "0",
+              "-o", "gem.svg", "--report", "gem.json"]
+    result = run(work, *common)
+    check(re.search(r"warning: piece P\d+: narrower than the kerf \(0\.1 mm\)", result.stderr),
+          result.stderr)
+    said = [a for piece in report(work, "gem.json")["pieces"] for a in piece["allowances"]
+            if a["kind"] == "kerf-compensation" and a["warning"]
+            and "narrower than the kerf" in a["reason"]]
+    check(said and said[0]["value"] == 0.1, "report: %r" % said)
+    result = run(work, *common, "--no-kerf-compensation")
+    check("narrower than the kerf" not in result.stderr, result.stderr)
+
+
+@test
 def a_longer_unfolding_search_leaves_fewer_pieces(work):
     # The sample head as papercraft: by default the search takes the steps
     # the mesh asks for; --unfold-steps N takes N with the pieces level and
