@@ -236,7 +236,8 @@ UR_API ur_status ur_piece_keep_kerfs_off_joints(ur_piece *piece, size_t first, d
  * beam would burn away, found by the opening of the outline as drawn by
  * the kerf: a piece narrower than the kerf everywhere, one a narrow neck
  * would leave in parts, or a narrow part of more than 50 kerf squares
- * (the tip a sharp corner loses is less).
+ * where the narrow material is more than a hundredth of the piece (the
+ * tip a sharp corner loses is less).
  * A kerf of 0 does nothing.  A path that is exactly a circle (its
  * circle set) stays exactly one, radius kerf / 2 more (outline) or less
  * (hole), its points moved along their radii onto it, without GEOS; a

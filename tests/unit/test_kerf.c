@@ -399,7 +399,8 @@ static ur_piece outline_piece(const char *name, const ur_vec2 *points, size_t co
  * Material narrower than the kerf, which the beam burns away, is found by
  * the opening of the outline by the kerf, and said with where it is: a
  * strip 0.05 mm wide (a unfolded gem's girdle) goes whole; two squares on
- * a 0.05 mm neck come apart; a 30 mm tail 0.05 mm wide is lost, 1.5 mm2.
+ * a 0.05 mm neck come apart; a 30 mm tail 0.05 mm wide is lost, 1.5 mm2
+ * (1.5 % of the piece: over the 1 % from which narrow parts are sought).
  * A 5 degree point loses only its tip (about 0.05 mm2 at a 0.1 mm kerf)
  * and a plain rectangle nothing: no warning.
  */
