@@ -249,17 +249,18 @@ static size_t vertex_at(const plane_corner *sorted, size_t count, double x, doub
 /*
  * Writes the triangulation's triangles (corners found by their exact
  * coordinates, which GEOS copies from its input) over the polygon's, each
- * counter-clockwise; false, leaving them, unless there are as many and
- * each has three different corners.
+ * counter-clockwise, made first in made (room for count - 2); false,
+ * leaving them, unless there are as many and each has three different
+ * corners.
  */
 static bool take_triangulation(GEOSContextHandle_t geos, const GEOSGeometry *triangulation,
-                               const plane_corner *sorted, size_t count, size_t (*triangles)[3])
+                               const plane_corner *sorted, size_t count, size_t (*made)[3],
+                               size_t (*triangles)[3])
 {
     int found = GEOSGetNumGeometries_r(geos, triangulation);
     if (found < 0 || (size_t)found != count - 2)
         return false;
-    size_t(*made)[3] = ur_alloc_array(count - 2, sizeof *made, NULL);
-    bool ok = made != NULL;
+    bool ok = true;
     for (int t = 0; ok && t < found; t++) {
         const GEOSGeometry *ring =
             GEOSGetExteriorRing_r(geos, GEOSGetGeometryN_r(geos, triangulation, t));
@@ -278,7 +279,6 @@ static bool take_triangulation(GEOSContextHandle_t geos, const GEOSGeometry *tri
     }
     if (ok)
         memcpy(triangles, made, (count - 2) * sizeof *made);
-    free(made);
     return ok;
 }
 
@@ -288,12 +288,14 @@ typedef struct polygon_work {
     size_t *outline;      /* the corners' vertices in order round the polygon */
     ur_vec2 *points;      /* the corners in the polygon's plane, in that order */
     plane_corner *sorted; /* the same by position, with their vertices */
+    size_t (*made)[3];    /* the new triangles */
     size_t room;          /* corners */
 } polygon_work;
 
 static void work_free(polygon_work *work)
 {
     free(work->edges), free(work->outline), free(work->points), free(work->sorted);
+    free(work->made);
     *work = (polygon_work){0};
 }
 
@@ -306,7 +308,9 @@ static bool work_room(polygon_work *work, size_t count)
     work->outline = ur_alloc_array(count, sizeof *work->outline, NULL);
     work->points = ur_alloc_array(count, sizeof *work->points, NULL);
     work->sorted = ur_alloc_array(count, sizeof *work->sorted, NULL);
-    work->room = work->edges && work->outline && work->points && work->sorted ? count : 0;
+    work->made = ur_alloc_array(count, sizeof *work->made, NULL);
+    work->room =
+        work->edges && work->outline && work->points && work->sorted && work->made ? count : 0;
     return work->room > 0;
 }
 
@@ -329,7 +333,7 @@ static bool triangulate_again(GEOSContextHandle_t geos, const ur_vec3 *vertices,
     GEOSGeometry *triangulation =
         polygon ? GEOSConstrainedDelaunayTriangulation_r(geos, polygon) : NULL;
     if (triangulation) {
-        take_triangulation(geos, triangulation, work->sorted, count, triangles);
+        take_triangulation(geos, triangulation, work->sorted, count, work->made, triangles);
         GEOSGeom_destroy_r(geos, triangulation);
     }
     if (polygon)
