@@ -421,8 +421,7 @@ static void test_twisted_quads_follow_the_surface(void **state)
 
 /* ---- Flat polygons ----------------------------------------------------- */
 
-/* The largest angle (degrees) between the normals of two triangles that share an edge by position.
- */
+/* The largest angle (degrees) between the normals of triangles sharing an edge (by position). */
 static double largest_fold(const ur_mesh *mesh)
 {
     double largest = 0;
