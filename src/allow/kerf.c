@@ -265,13 +265,13 @@ static bool measure_narrow(GEOSContextHandle_t geos, const ur_path *outline, dou
     GEOSGeometry *taken = NULL;
     *narrow = (narrow_material){0};
     if (known) {
-        /* Where a piece comes apart, its smallest part says where, if GEOS cannot say more. */
         narrow->parts = polygons_larger_than(geos, opened, speck, &narrow->where);
-        if (narrow->parts != 1 || area - kept > fmax(speck, KERF_NARROW_SHARE * area))
-            taken = GEOSDifference_r(geos, polygon, opened);
-        known = narrow->parts != 1 || taken;
+        bool look = narrow->parts != 1 || area - kept > fmax(speck, KERF_NARROW_SHARE * area);
+        taken = look ? GEOSDifference_r(geos, polygon, opened) : NULL;
         if (taken)
             largest_taken(geos, taken, narrow);
+        /* Without the difference a piece in parts is still said, placed by its smallest part. */
+        known = !look || taken || narrow->parts != 1;
     }
     GEOSGeometry *made[] = {polygon, shrunk, opened, taken};
     for (size_t i = 0; i < sizeof made / sizeof *made; i++)
