@@ -27,8 +27,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include <assimp/scene.h>
-
 /* ---- Neighbours by position ------------------------------------------- */
 
 /* An edge of a triangle, between two positions (their numbers, the smaller first). */
