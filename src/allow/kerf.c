@@ -69,25 +69,28 @@ static void drop_straight_points(ur_vec2 *ring, size_t *count)
     *count = n;
 }
 
+static ur_vec2 box_middle(ur_box box)
+{
+    return ur_vec2_make((box.min.x + box.max.x) / 2, (box.min.y + box.max.y) / 2);
+}
+
 /* The middle of a path's box: where the report and the messages say it is. */
 static ur_vec2 path_middle(const ur_path *path)
 {
-    ur_box box = ur_box_of_points(path->points, path->count);
-    return ur_vec2_make((box.min.x + box.max.x) / 2, (box.min.y + box.max.y) / 2);
+    return box_middle(ur_box_of_points(path->points, path->count));
+}
+
+/* The middle of a GEOS geometry's box; (0, 0) for none. */
+static ur_vec2 geometry_middle(GEOSContextHandle_t geos, const GEOSGeometry *g)
+{
+    ur_box box = allow_box(geos, g);
+    return box.min.x <= box.max.x ? box_middle(box) : ur_vec2_make(0, 0);
 }
 
 /* Where a GEOS polygon's first interior ring is (its box's middle). */
 static ur_vec2 first_slot(GEOSContextHandle_t geos, const GEOSGeometry *polygon)
 {
-    const GEOSGeometry *ring = GEOSGetInteriorRingN_r(geos, polygon, 0);
-    double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
-    if (ring) {
-        GEOSGeom_getXMin_r(geos, ring, &x0);
-        GEOSGeom_getYMin_r(geos, ring, &y0);
-        GEOSGeom_getXMax_r(geos, ring, &x1);
-        GEOSGeom_getYMax_r(geos, ring, &y1);
-    }
-    return ur_vec2_make((x0 + x1) / 2, (y0 + y1) / 2);
+    return geometry_middle(geos, GEOSGetInteriorRingN_r(geos, polygon, 0));
 }
 
 /*
@@ -196,16 +199,6 @@ typedef struct narrow_material {
  */
 #define KERF_NARROW_SHARE 0.01
 
-static ur_vec2 box_middle(GEOSContextHandle_t geos, const GEOSGeometry *g)
-{
-    double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
-    GEOSGeom_getXMin_r(geos, g, &x0);
-    GEOSGeom_getYMin_r(geos, g, &y0);
-    GEOSGeom_getXMax_r(geos, g, &x1);
-    GEOSGeom_getYMax_r(geos, g, &y1);
-    return ur_vec2_make((x0 + x1) / 2, (y0 + y1) / 2);
-}
-
 /* The polygons of g larger than least, and the middle of the smallest of them. */
 static size_t polygons_larger_than(GEOSContextHandle_t geos, const GEOSGeometry *g, double least,
                                    ur_vec2 *smallest)
@@ -214,12 +207,12 @@ static size_t polygons_larger_than(GEOSContextHandle_t geos, const GEOSGeometry 
     double fewest = INFINITY;
     for (int k = 0, n = GEOSGetNumGeometries_r(geos, g); k < n; k++) {
         const GEOSGeometry *part = GEOSGetGeometryN_r(geos, g, k);
-        double area = 0;
-        if (GEOSArea_r(geos, part, &area) && area > least) {
+        double area = allow_area(geos, part);
+        if (area > least) {
             count++;
             if (area < fewest) {
                 fewest = area;
-                *smallest = box_middle(geos, part);
+                *smallest = geometry_middle(geos, part);
             }
         }
     }
@@ -233,10 +226,10 @@ static void largest_taken(GEOSContextHandle_t geos, const GEOSGeometry *taken,
     narrow->largest = 0;
     for (int k = 0, n = GEOSGetNumGeometries_r(geos, taken); k < n; k++) {
         const GEOSGeometry *part = GEOSGetGeometryN_r(geos, taken, k);
-        double area = 0;
-        if (GEOSArea_r(geos, part, &area) && area > narrow->largest) {
+        double area = allow_area(geos, part);
+        if (area > narrow->largest) {
             narrow->largest = area;
-            narrow->where = box_middle(geos, part);
+            narrow->where = geometry_middle(geos, part);
         }
     }
 }
