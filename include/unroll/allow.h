@@ -229,9 +229,11 @@ UR_API ur_status ur_piece_keep_kerfs_off_joints(ur_piece *piece, size_t first, d
  * 11 degrees keep their point); other paths are untouched.  The outline
  * stays counter-clockwise, each hole keeps its direction, the box is
  * recomputed.  Refuses with UR_ERROR_INPUT naming the piece, leaving it
- * unchanged, when a hole would vanish or split, and for a kerf that is
- * negative or not finite, or an outline already opened by bridges.  A slot
- * of the outline narrower than the kerf, which closes into a hole as the
+ * unchanged, for a kerf that is negative or not finite, or an outline
+ * already opened by bridges.  A hole with a part narrower than the kerf,
+ * which moved in would vanish or split, is left as drawn with a warning
+ * record (cut so, it comes out half a kerf wider all round).  A slot of
+ * the outline narrower than the kerf, which closes into a hole as the
  * outline moves out, is filled with a warning record.  So is material the
  * beam would burn away, found by the opening of the outline as drawn by
  * the kerf: a piece narrower than the kerf everywhere, one a narrow neck
@@ -241,7 +243,7 @@ UR_API ur_status ur_piece_keep_kerfs_off_joints(ur_piece *piece, size_t first, d
  * A kerf of 0 does nothing.  A path that is exactly a circle (its
  * circle set) stays exactly one, radius kerf / 2 more (outline) or less
  * (hole), its points moved along their radii onto it, without GEOS; a
- * hole whose radius would not stay above 0 is refused as vanishing.
+ * hole whose radius would not stay above 0 is left as drawn, as above.
  * Records a UR_ALLOWANCE_KERF_COMPENSATION entry (value: the kerf).
  */
 UR_API ur_status ur_piece_compensate_kerf(ur_piece *piece, double kerf, ur_error *error);

@@ -6,14 +6,15 @@
  * the kerf (GEOS buffer, mitred joins so square corners stay square) makes
  * the part come out at its drawn size.
  *
- * Everything is worked out before the piece is touched, so a refusal (a
- * hole that would vanish or split) leaves it as it was.  A slot of the
- * outline narrower than the kerf (between two glue tabs, say) closes as
- * the outline moves out: it is filled, with a warning, since no cutter can
- * cut it.  Material narrower than the kerf is burned away by the cut
- * itself: where the outline's own parts are (a strip of a modeller's
- * micro-faces, such as a cut gem's girdle 0.012 mm high, unfolded), a
- * warning says so.
+ * Everything is worked out before the piece is touched, so a failure
+ * leaves it as it was.  A slot of the outline narrower than the kerf
+ * (between two glue tabs, say) closes as the outline moves out: it is
+ * filled, with a warning, since no cutter can cut it.  A hole with a part
+ * narrower than the kerf cannot move in (it would vanish or split): it is
+ * cut as drawn, coming out half a kerf wider all round, with a warning.
+ * Material narrower than the kerf is burned away by the cut itself: where
+ * the outline's own parts are (a strip of a modeller's micro-faces, such
+ * as a cut gem's girdle 0.012 mm high, unfolded), a warning says so.
  */
 #include "allow_internal.h"
 
@@ -94,16 +95,32 @@ static ur_vec2 first_slot(GEOSContextHandle_t geos, const GEOSGeometry *polygon)
 }
 
 /*
+ * What offsetting found that the cutter cannot do as asked: slots of the
+ * outline filled, holes cut as drawn; each with the place of the first.
+ */
+typedef struct kerf_findings {
+    size_t slots, narrow_holes;
+    ur_vec2 slot_at, narrow_hole_at;
+} kerf_findings;
+
+/* Notes a hole too narrow to move in, which is then cut as drawn (its ring left NULL). */
+static void note_narrow_hole(kerf_findings *found, ur_vec2 at)
+{
+    if (found->narrow_holes++ == 0)
+        found->narrow_hole_at = at;
+}
+
+/*
  * The ring of path offset by distance (> 0 outward, < 0 inward) into
- * *ring (counter-clockwise).  A hole that vanishes or splits is refused,
- * naming the piece and where the hole is: the laser cannot cut it.  A slot
- * of the outline narrower than the kerf closes into a hole as the outline
- * moves out; the cutter could not cut it either, so it is filled, counted
- * in *slots with its place in *slot_at, for a warning.
+ * *ring (counter-clockwise), or *ring NULL for a hole that would vanish or
+ * split, noted in found: the laser cannot cut it smaller, and cuts it as
+ * drawn.  A slot of the outline narrower than the kerf closes into a hole
+ * as the outline moves out; the cutter could not cut it either, so it is
+ * filled, counted in found, for a warning.
  */
 static ur_status offset_ring(GEOSContextHandle_t geos, const GEOSBufferParams *params,
                              const ur_piece *piece, size_t index, double distance, ur_vec2 **ring,
-                             size_t *count, size_t *slots, ur_vec2 *slot_at, ur_error *error)
+                             size_t *count, kerf_findings *found, ur_error *error)
 {
     const ur_path *path = &piece->paths[index];
     ur_vec2 at = path_middle(path);
@@ -111,33 +128,31 @@ static ur_status offset_ring(GEOSContextHandle_t geos, const GEOSBufferParams *p
     GEOSGeometry *buffered =
         polygon ? GEOSBufferWithParams_r(geos, polygon, params, distance) : NULL;
     ur_status status = UR_OK;
+    *ring = NULL;
     if (!buffered)
         status = ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not offset a path of piece %s",
                               piece->name);
-    else if (GEOSisEmpty_r(geos, buffered))
+    else if (index > 0 &&
+             (GEOSisEmpty_r(geos, buffered) || GEOSGeomTypeId_r(geos, buffered) != GEOS_POLYGON ||
+              GEOSGetNumInteriorRings_r(geos, buffered) != 0))
+        note_narrow_hole(found, at);
+    else if (GEOSGeomTypeId_r(geos, buffered) != GEOS_POLYGON || GEOSisEmpty_r(geos, buffered))
         status = ur_error_set(error, UR_ERROR_INPUT,
-                              "piece %s: the hole at (%.1f, %.1f) is no wider than the kerf "
-                              "(%g mm) and would vanish",
-                              piece->name, at.x, at.y, -2 * distance);
-    else if (GEOSGeomTypeId_r(geos, buffered) != GEOS_POLYGON ||
-             (index > 0 && GEOSGetNumInteriorRings_r(geos, buffered) != 0))
-        status = ur_error_set(error, UR_ERROR_INPUT,
-                              "piece %s: %s at (%.1f, %.1f) has a part narrower than the kerf "
-                              "(%g mm) that would split it",
-                              piece->name, index == 0 ? "the outline" : "the hole", at.x, at.y,
-                              2 * fabs(distance));
+                              "piece %s: the outline at (%.1f, %.1f) has a part narrower than the "
+                              "kerf (%g mm) that would split it",
+                              piece->name, at.x, at.y, 2 * distance);
     else {
-        if (GEOSGetNumInteriorRings_r(geos, buffered) > 0) {
-            *slots += (size_t)GEOSGetNumInteriorRings_r(geos, buffered);
-            *slot_at = first_slot(geos, buffered);
-        }
+        size_t closed = (size_t)GEOSGetNumInteriorRings_r(geos, buffered);
+        if (closed > 0 && found->slots == 0)
+            found->slot_at = first_slot(geos, buffered);
+        found->slots += closed;
         status = allow_exterior_ring(geos, buffered, ring, count, error);
     }
     if (buffered)
         GEOSGeom_destroy_r(geos, buffered);
     if (polygon)
         GEOSGeom_destroy_r(geos, polygon);
-    if (status == UR_OK)
+    if (status == UR_OK && *ring)
         drop_straight_points(*ring, count);
     return status;
 }
@@ -149,16 +164,16 @@ static ur_status offset_ring(GEOSContextHandle_t geos, const GEOSBufferParams *p
  * inscribed polygon would be a polygon near the circle but not on it.
  */
 static ur_status offset_circle(const ur_piece *piece, size_t index, double distance, ur_vec2 **ring,
-                               size_t *count, ur_error *error)
+                               size_t *count, kerf_findings *found, ur_error *error)
 {
     const ur_path *path = &piece->paths[index];
     ur_path_circle circle = path->circle;
     double radius = circle.radius + distance;
-    if (!(radius > 0))
-        return ur_error_set(error, UR_ERROR_INPUT,
-                            "piece %s: the hole at (%.1f, %.1f) is no wider than the kerf "
-                            "(%g mm) and would vanish",
-                            piece->name, circle.centre.x, circle.centre.y, -2 * distance);
+    *ring = NULL;
+    if (!(radius > 0)) {
+        note_narrow_hole(found, circle.centre);
+        return UR_OK;
+    }
     *ring = ur_alloc_array(path->count, sizeof **ring, error);
     if (!*ring)
         return UR_ERROR_MEMORY;
@@ -258,7 +273,8 @@ static bool measure_narrow(GEOSContextHandle_t geos, const ur_path *outline, dou
     GEOSGeometry *taken = NULL;
     *narrow = (narrow_material){0};
     if (known) {
-        narrow->parts = polygons_larger_than(geos, opened, speck, &narrow->where);
+        /* A tenth of the piece is never a speck, however wide the kerf. */
+        narrow->parts = polygons_larger_than(geos, opened, fmin(speck, 0.1 * area), &narrow->where);
         bool look = narrow->parts != 1 || area - kept > fmax(speck, KERF_NARROW_SHARE * area);
         taken = look ? GEOSDifference_r(geos, polygon, opened) : NULL;
         if (taken)
@@ -304,11 +320,11 @@ static ur_status record_narrow(ur_piece *piece, double kerf, const narrow_materi
 
 /*
  * Every path's new ring (NULL: unchanged) into rings, counts; *holes how
- * many holes moved; *narrow (when *measured) what of the outline as drawn
- * is narrower than the kerf.
+ * many holes moved; found what could not be done as asked; *narrow (when
+ * *measured) what of the outline as drawn is narrower than the kerf.
  */
 static ur_status offset_all(const ur_piece *piece, double kerf, ur_vec2 **rings, size_t *counts,
-                            size_t *holes, size_t *slots, ur_vec2 *slot_at, narrow_material *narrow,
+                            size_t *holes, kerf_findings *found, narrow_material *narrow,
                             bool *measured, ur_error *error)
 {
     GEOSContextHandle_t geos = GEOS_init_r();
@@ -328,13 +344,15 @@ static ur_status offset_all(const ur_piece *piece, double kerf, ur_vec2 **rings,
             continue;
         double distance = i == 0 ? kerf / 2 : -kerf / 2;
         bool round = piece->paths[i].circle.radius > 0;
-        status = round ? offset_circle(piece, i, distance, &rings[i], &counts[i], error)
-                       : offset_ring(geos, params, piece, i, distance, &rings[i], &counts[i], slots,
-                                     slot_at, error);
-        if (status == UR_OK && i > 0)
+        status = round ? offset_circle(piece, i, distance, &rings[i], &counts[i], found, error)
+                       : offset_ring(geos, params, piece, i, distance, &rings[i], &counts[i], found,
+                                     error);
+        if (status != UR_OK || !rings[i])
+            continue; /* a hole cut as drawn */
+        if (i > 0)
             (*holes)++;
         /* Holes keep the direction they had (a circle's points keep their order). */
-        if (status == UR_OK && i > 0 && !round &&
+        if (i > 0 && !round &&
             ur_polygon_signed_area(piece->paths[i].points, piece->paths[i].count) < 0)
             ur_points_reverse(rings[i], counts[i]);
     }
@@ -343,29 +361,57 @@ static ur_status offset_all(const ur_piece *piece, double kerf, ur_vec2 **rings,
     return status;
 }
 
-static ur_status record(ur_piece *piece, double kerf, size_t holes, size_t slots, ur_vec2 slot_at,
+/* A warning of count things at where, its reason the text. */
+static ur_status record_warning(ur_piece *piece, double kerf, size_t count, ur_vec2 where,
+                                const char *text, ur_error *error)
+{
+    ur_allowance_record warning = {.kind = UR_ALLOWANCE_KERF_COMPENSATION,
+                                   .count = count,
+                                   .value = kerf,
+                                   .limit = NAN,
+                                   .where = where,
+                                   .warning = true};
+    c_snprintf(warning.reason, sizeof warning.reason, "%s", text);
+    return ur_piece_record(piece, &warning, error);
+}
+
+static ur_status record_findings(ur_piece *piece, double kerf, const kerf_findings *found,
+                                 ur_error *error)
+{
+    char text[sizeof((ur_allowance_record *)NULL)->reason];
+    ur_status status = UR_OK;
+    if (found->slots > 0) {
+        size_t n = found->slots;
+        c_snprintf(text, sizeof text,
+                   "%zu slot%s of the outline narrower than the kerf (%g mm), near (%.1f, %.1f), "
+                   "closed as the outline moved out: filled, as the cutter could not cut %s",
+                   n, n == 1 ? "" : "s", kerf, found->slot_at.x, found->slot_at.y,
+                   n == 1 ? "it" : "them");
+        status = record_warning(piece, kerf, n, found->slot_at, text, error);
+    }
+    if (status == UR_OK && found->narrow_holes > 0) {
+        size_t n = found->narrow_holes;
+        c_snprintf(text, sizeof text,
+                   "%zu hole%s with a part narrower than the kerf (%g mm), near (%.1f, %.1f), "
+                   "which moved in would vanish or split: cut as drawn, %s out %g mm wider all "
+                   "round",
+                   n, n == 1 ? "" : "s", kerf, found->narrow_hole_at.x, found->narrow_hole_at.y,
+                   n == 1 ? "it comes" : "they come", kerf / 2);
+        status = record_warning(piece, kerf, n, found->narrow_hole_at, text, error);
+    }
+    return status;
+}
+
+static ur_status record(ur_piece *piece, double kerf, size_t holes, const kerf_findings *found,
                         ur_error *error)
 {
     ur_allowance_record entry = {
         .kind = UR_ALLOWANCE_KERF_COMPENSATION, .count = 1 + holes, .value = kerf, .limit = NAN};
     entry.where = ur_vec2_make((piece->box.min.x + piece->box.max.x) / 2,
                                (piece->box.min.y + piece->box.max.y) / 2);
-    if (slots > 0) {
-        ur_allowance_record warning = {.kind = UR_ALLOWANCE_KERF_COMPENSATION,
-                                       .count = slots,
-                                       .value = kerf,
-                                       .limit = NAN,
-                                       .where = slot_at,
-                                       .warning = true};
-        c_snprintf(warning.reason, sizeof warning.reason,
-                   "%zu slot%s of the outline narrower than the kerf (%g mm), near (%.1f, %.1f), "
-                   "closed as the outline moved out: filled, as the cutter could not cut %s",
-                   slots, slots == 1 ? "" : "s", kerf, slot_at.x, slot_at.y,
-                   slots == 1 ? "it" : "them");
-        ur_status status = ur_piece_record(piece, &warning, error);
-        if (status != UR_OK)
-            return status;
-    }
+    ur_status status = record_findings(piece, kerf, found, error);
+    if (status != UR_OK)
+        return status;
     if (holes == 0)
         c_snprintf(entry.reason, sizeof entry.reason,
                    "outline offset outward by half the kerf, %g mm", kerf / 2);
@@ -392,12 +438,12 @@ ur_status ur_piece_compensate_kerf(ur_piece *piece, double kerf, ur_error *error
                             piece->name);
     ur_vec2 **rings = calloc(piece->path_count, sizeof *rings);
     size_t *counts = calloc(piece->path_count, sizeof *counts);
-    size_t holes = 0, slots = 0;
-    ur_vec2 slot_at = {0, 0};
+    size_t holes = 0;
+    kerf_findings found = {0, 0, {0, 0}, {0, 0}};
     narrow_material narrow = {0};
     bool measured = false;
-    ur_status status = rings && counts ? offset_all(piece, kerf, rings, counts, &holes, &slots,
-                                                    &slot_at, &narrow, &measured, error)
+    ur_status status = rings && counts ? offset_all(piece, kerf, rings, counts, &holes, &found,
+                                                    &narrow, &measured, error)
                                        : ur_error_out_of_memory(error);
     for (size_t i = 0; status == UR_OK && i < piece->path_count; i++)
         if (rings[i]) {
@@ -416,5 +462,5 @@ ur_status ur_piece_compensate_kerf(ur_piece *piece, double kerf, ur_error *error
         return status;
     ur_piece_recompute_box(piece);
     status = measured ? record_narrow(piece, kerf, &narrow, error) : UR_OK;
-    return status == UR_OK ? record(piece, kerf, holes, slots, slot_at, error) : status;
+    return status == UR_OK ? record(piece, kerf, holes, &found, error) : status;
 }

@@ -1865,6 +1865,33 @@ def material_narrower_than_the_kerf_is_said(work):
 
 
 @test
+def a_hole_narrower_than_the_kerf_is_cut_as_drawn(work):
+    # A 100 x 50 mm plate with a dumbbell hole: two 5 mm squares joined by
+    # a channel 0.05 mm wide, narrower than the default 0.2 mm kerf.  The
+    # hole moved in by half the kerf would split in two, so it is cut as
+    # drawn (50.5 mm2, its corners where they were) with a warning that
+    # says where, while the outline still moves out (100.2 x 50.2 mm).
+    # Before, the job stopped with exit 2, although a laser cuts such a
+    # hole without trouble: PrusaSlicer's recycling symbols unfolded at
+    # their own size, and OpenCASCADE's bearing and head meshes, ended so.
+    hole = "M 30 30 H 35 V 32.475 H 45 V 30 H 50 V 35 H 45 V 32.525 H 35 V 35 H 30 Z"
+    write(work, "holed.svg",
+          '<svg xmlns="http://www.w3.org/2000/svg" width="120mm" height="70mm" '
+          'viewBox="0 0 120 70"><path d="M 10 10 H 110 V 60 H 10 Z" fill="none" stroke="black"/>'
+          '<path d="%s" fill="none" stroke="black"/></svg>' % hole)
+    result = run(work, "nest", "holed.svg", "-o", "holed-out.svg", "--report", "holed.json")
+    check(re.search(r"warning: piece \S+: 1 hole with a part narrower than the kerf \(0\.2 mm\), "
+                    r"near \(40\.0, \d+\.\d\), .*cut as drawn", result.stderr), result.stderr)
+    said = [a for piece in report(work, "holed.json")["pieces"] for a in piece["allowances"]
+            if a["kind"] == "kerf-compensation" and a["warning"]]
+    check(len(said) == 1 and abs(said[0]["at_mm"][0] - 40) < 1e-6, "report: %r" % said)
+    rings = sorted(outlines(os.path.join(work, "holed-out.svg")), key=area)
+    check(len(rings) == 2, "%d rings" % len(rings))
+    check(abs(area(rings[0]) - 50.5) < 1e-6, "the hole's area is %.6f mm2" % area(rings[0]))
+    check(abs(area(rings[1]) - 100.2 * 50.2) < 1e-6, "the outline's area is %.6f" % area(rings[1]))
+
+
+@test
 def a_longer_unfolding_search_leaves_fewer_pieces(work):
     # The sample head as papercraft: by default the search takes the steps
     # the mesh asks for; --unfold-steps N takes N with the pieces level and

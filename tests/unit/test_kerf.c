@@ -315,26 +315,64 @@ static void assert_refused(ur_piece *piece, double kerf, const char *words)
     assert_int_equal(piece->record_count, 0);
 }
 
-static void test_kerf_refuses_vanishing_hole(void **state)
+/*
+ * A hole the kerf cannot move in (it would vanish or split) is cut as
+ * drawn: the hole keeps its points, the outline (the 100 x 50 plate)
+ * still moves out by half the kerf, and one warning, placed within 3 mm
+ * of where the hole is, says it comes out wider; the piece's record counts
+ * the outline alone as moved.
+ */
+static void assert_cut_as_drawn(ur_piece *piece, double kerf, ur_vec2 hole_middle)
+{
+    size_t count = piece->paths[1].count;
+    ur_vec2 *hole = malloc(count * sizeof *hole);
+    assert_non_null(hole);
+    memcpy(hole, piece->paths[1].points, count * sizeof *hole);
+    assert_int_equal(ur_piece_compensate_kerf(piece, kerf, NULL), UR_OK);
+    assert_int_equal(piece->paths[1].count, count);
+    assert_memory_equal(piece->paths[1].points, hole, count * sizeof *hole);
+    free(hole);
+    assert_close(fabs(ur_polygon_signed_area(piece->paths[0].points, piece->paths[0].count)),
+                 (100 + kerf) * (50 + kerf), 1e-6);
+    assert_int_equal(piece->record_count, 2);
+    const ur_allowance_record *warning = &piece->records[0];
+    assert_true(warning->warning);
+    assert_int_equal(warning->count, 1);
+    assert_non_null(strstr(warning->reason, "cut as drawn"));
+    assert_true(ur_vec2_distance(warning->where, hole_middle) < 3);
+    const ur_allowance_record *moved = &piece->records[1];
+    assert_false(moved->warning);
+    assert_int_equal(moved->count, 1);
+    assert_null(strstr(moved->reason, "hole"));
+}
+
+static void test_kerf_cuts_vanishing_hole_as_drawn(void **state)
 {
     (void)state;
     ur_vec2 hole[HOLE_SIDES];
     regular(hole, HOLE_SIDES, ur_vec2_make(50, 25), 0.05, false); /* 0.1 mm across */
     ur_piece piece = plate_with_hole(hole, HOLE_SIDES);
-    assert_refused(&piece, 0.2, "vanish");
+    assert_cut_as_drawn(&piece, 0.2, ur_vec2_make(50, 25));
     ur_piece_free(&piece);
 }
 
-static void test_kerf_refuses_narrow_features(void **state)
+static void test_kerf_narrow_features(void **state)
 {
     (void)state;
     /* A dumbbell hole: two 5 mm squares joined by a 0.1 mm channel, split by a 0.2 kerf. */
     ur_vec2 dumbbell[] = {{20, 20}, {25, 20}, {25, 22.45}, {35, 22.45}, {35, 20}, {40, 20},
                           {40, 25}, {35, 25}, {35, 22.55}, {25, 22.55}, {25, 25}, {20, 25}};
-    ur_piece piece = plate_with_hole(dumbbell, sizeof dumbbell / sizeof *dumbbell);
-    assert_refused(&piece, 0.2, "split");
-    /* The same kerf narrower than the channel goes through. */
+    size_t corners = sizeof dumbbell / sizeof *dumbbell;
+    ur_piece piece = plate_with_hole(dumbbell, corners);
+    assert_cut_as_drawn(&piece, 0.2, ur_vec2_make(30, 22.5));
+    ur_piece_free(&piece);
+    /* A kerf narrower than the channel moves the hole in: 50 mm2 less 0.05 all round. */
+    piece = plate_with_hole(dumbbell, corners);
     assert_int_equal(ur_piece_compensate_kerf(&piece, 0.05, NULL), UR_OK);
+    assert_false(piece.records[0].warning);
+    assert_int_equal(piece.records[0].count, 2);
+    double area = fabs(ur_polygon_signed_area(piece.paths[1].points, piece.paths[1].count));
+    assert_true(area > 49 && area < 50); /* 51 mm2 less about its 60 mm round by 0.025 */
     ur_piece_free(&piece);
 
     /*
@@ -735,10 +773,19 @@ static void test_kerf_keeps_circles(void **state)
     assert_on_circle(&piece.paths[0]);
     assert_on_circle(&piece.paths[1]);
     assert_true(ur_polygon_signed_area(piece.paths[1].points, piece.paths[1].count) < 0);
-    ur_error error;
-    assert_int_equal(ur_piece_compensate_kerf(&copy, 20, &error), UR_ERROR_INPUT);
-    assert_non_null(strstr(error.message, "would vanish"));
-    assert_close(copy.paths[1].circle.radius, 10, 0); /* refused: unchanged */
+    /*
+     * A kerf wider than the hole: the hole is cut as drawn, still the
+     * circle it was, and the only warning (the disc, a speck beside 50
+     * kerf squares, is not burned away).
+     */
+    assert_int_equal(ur_piece_compensate_kerf(&copy, 20, NULL), UR_OK);
+    assert_close(copy.paths[1].circle.radius, 10, 0);
+    assert_on_circle(&copy.paths[1]);
+    assert_close(copy.paths[0].circle.radius, 50, 1e-12);
+    assert_int_equal(copy.record_count, 2);
+    assert_true(copy.records[0].warning);
+    assert_close(ur_vec2_distance(copy.records[0].where, hole_centre), 0, 0);
+    assert_non_null(strstr(copy.records[0].reason, "cut as drawn, it comes out 10 mm wider"));
     ur_piece_free(&copy);
     ur_piece_free(&piece);
 }
@@ -821,8 +868,8 @@ int main(void)
         cmocka_unit_test(test_kerf_rectangle_with_hole),
         cmocka_unit_test(test_slit_to_a_window_is_cut_as_a_hole),
         cmocka_unit_test(test_kerf_sharp_corner),
-        cmocka_unit_test(test_kerf_refuses_vanishing_hole),
-        cmocka_unit_test(test_kerf_refuses_narrow_features),
+        cmocka_unit_test(test_kerf_cuts_vanishing_hole_as_drawn),
+        cmocka_unit_test(test_kerf_narrow_features),
         cmocka_unit_test(test_kerf_values),
         cmocka_unit_test(test_kerf_finds_material_it_would_burn),
         cmocka_unit_test(test_bridges_rectangle),
