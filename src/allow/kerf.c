@@ -289,6 +289,20 @@ static bool measure_narrow(GEOSContextHandle_t geos, const ur_path *outline, dou
     return known;
 }
 
+/* A warning of count things at where, its reason the text. */
+static ur_status record_warning(ur_piece *piece, double kerf, size_t count, ur_vec2 where,
+                                const char *text, ur_error *error)
+{
+    ur_allowance_record warning = {.kind = UR_ALLOWANCE_KERF_COMPENSATION,
+                                   .count = count,
+                                   .value = kerf,
+                                   .limit = NAN,
+                                   .where = where,
+                                   .warning = true};
+    c_snprintf(warning.reason, sizeof warning.reason, "%s", text);
+    return ur_piece_record(piece, &warning, error);
+}
+
 /* The warning for material narrower than the kerf, when there is enough of it to matter. */
 static ur_status record_narrow(ur_piece *piece, double kerf, const narrow_material *narrow,
                                ur_error *error)
@@ -296,26 +310,21 @@ static ur_status record_narrow(ur_piece *piece, double kerf, const narrow_materi
     bool gone = narrow->parts == 0, parted = narrow->parts >= 2;
     if (!gone && !parted && !(narrow->largest > KERF_NARROW_SQUARES * kerf * kerf))
         return UR_OK;
-    ur_allowance_record warning = {.kind = UR_ALLOWANCE_KERF_COMPENSATION,
-                                   .count = 1,
-                                   .value = kerf,
-                                   .limit = NAN,
-                                   .where = narrow->where,
-                                   .warning = true};
+    char text[sizeof((ur_allowance_record *)NULL)->reason];
     if (gone)
-        c_snprintf(warning.reason, sizeof warning.reason,
+        c_snprintf(text, sizeof text,
                    "narrower than the kerf (%g mm) everywhere: the cut would burn it away", kerf);
     else if (parted)
-        c_snprintf(warning.reason, sizeof warning.reason,
+        c_snprintf(text, sizeof text,
                    "narrower than the kerf (%g mm) near (%.1f, %.1f): the cut would leave it in "
                    "%zu parts",
                    kerf, narrow->where.x, narrow->where.y, narrow->parts);
     else
-        c_snprintf(warning.reason, sizeof warning.reason,
+        c_snprintf(text, sizeof text,
                    "%.2f mm2 of it narrower than the kerf (%g mm) near (%.1f, %.1f): the cut "
                    "would burn that away",
                    narrow->largest, kerf, narrow->where.x, narrow->where.y);
-    return ur_piece_record(piece, &warning, error);
+    return record_warning(piece, kerf, 1, narrow->where, text, error);
 }
 
 /*
@@ -359,20 +368,6 @@ static ur_status offset_all(const ur_piece *piece, double kerf, ur_vec2 **rings,
     GEOSBufferParams_destroy_r(geos, params);
     GEOS_finish_r(geos);
     return status;
-}
-
-/* A warning of count things at where, its reason the text. */
-static ur_status record_warning(ur_piece *piece, double kerf, size_t count, ur_vec2 where,
-                                const char *text, ur_error *error)
-{
-    ur_allowance_record warning = {.kind = UR_ALLOWANCE_KERF_COMPENSATION,
-                                   .count = count,
-                                   .value = kerf,
-                                   .limit = NAN,
-                                   .where = where,
-                                   .warning = true};
-    c_snprintf(warning.reason, sizeof warning.reason, "%s", text);
-    return ur_piece_record(piece, &warning, error);
 }
 
 static ur_status record_findings(ur_piece *piece, double kerf, const kerf_findings *found,
