@@ -167,11 +167,7 @@ static ur_status sort_classes(nester *n)
         }
         n->class_of[p] = c;
     }
-    size_t pairs = n->class_count * n->turn_count * n->class_count * n->turn_count;
-    n->nfps = calloc(pairs ? pairs : 1, sizeof *n->nfps);
-    n->sums = calloc(pairs ? pairs : 1, sizeof *n->sums);
-    n->pair_met = calloc(pairs ? pairs : 1, sizeof *n->pair_met);
-    return n->nfps && n->sums && n->pair_met ? UR_OK : ur_error_out_of_memory(n->error);
+    return UR_OK;
 }
 
 const nest_shape *nest_shape_of(const nester *n, size_t piece, size_t turn)
@@ -231,8 +227,16 @@ size_t nest_pair_key(const nester *n, size_t a, size_t ta, size_t b, size_t tb)
     return ((ca * t + ta) * n->class_count + cb) * t + tb;
 }
 
-/* What a cache of pairs holds, made for a pair at a's first turn (or one not turned). */
+/* What the cache of pairs holds, made for a pair at a's first turn (or one not turned). */
 typedef GEOSGeometry *(*pair_maker)(nester *n, size_t a, size_t ta, size_t b, size_t tb);
+
+/* The two things kept per pair: the convex sums, and their union, the no-fit polygon. */
+typedef enum pair_kind { PAIR_SUMS, PAIR_NFP } pair_kind;
+
+static GEOSGeometry **held_by(pair_entry *entry, pair_kind kind)
+{
+    return kind == PAIR_SUMS ? &entry->sums : &entry->nfp;
+}
 
 /*
  * The most points the cached convex sums may hold together (about 64 MB of
@@ -247,12 +251,13 @@ typedef GEOSGeometry *(*pair_maker)(nester *n, size_t a, size_t ta, size_t b, si
 /* Drops every pair's sums but those of keep (a key, or SIZE_MAX for none). */
 static void drop_sums(nester *n, size_t keep)
 {
-    size_t pairs = n->class_count * n->turn_count * n->class_count * n->turn_count;
-    for (size_t k = 0; k < pairs; k++)
-        if (k != keep && n->sums[k]) {
-            GEOSGeom_destroy_r(n->geos, n->sums[k]);
-            n->sums[k] = NULL;
+    for (size_t s = 0; s < n->pairs.capacity; s++) {
+        pair_entry *entry = &n->pairs.slots[s];
+        if (entry->key != keep && entry->sums) {
+            GEOSGeom_destroy_r(n->geos, entry->sums);
+            entry->sums = NULL;
         }
+    }
 }
 
 static size_t points_of(const nester *n, const GEOSGeometry *g)
@@ -266,9 +271,9 @@ static size_t points_of(const nester *n, const GEOSGeometry *g)
  * every other pair's sums are dropped, to be made again (the same) if
  * asked for, unless the sums are held.
  */
-static void keep_sums_small(nester *n, size_t key)
+static void keep_sums_small(nester *n, size_t key, const GEOSGeometry *sums)
 {
-    size_t count = points_of(n, n->sums[key]);
+    size_t count = points_of(n, sums);
     if (!n->sums_held && n->sums_points + count > NEST_SUMS_POINTS) {
         drop_sums(n, key);
         n->sums_points = 0;
@@ -285,23 +290,38 @@ void nest_hold_sums(nester *n, bool hold)
     }
 }
 
-/* The cache's entry for the pair: made, or turned from its first turn's, once. */
-static const GEOSGeometry *cached_pair(nester *n, GEOSGeometry **cache, pair_maker make, size_t a,
+/*
+ * What the cache holds of a kind for the pair: made, or turned from its
+ * first turn's, once.  NULL when GEOS fails or memory runs out.
+ */
+static const GEOSGeometry *cached_pair(nester *n, pair_kind kind, pair_maker make, size_t a,
                                        size_t ta, size_t b, size_t tb)
 {
     size_t key = nest_pair_key(n, a, ta, b, tb), first;
+    pair_entry *entry = pair_table_find(&n->pairs, key);
+    if (entry && *held_by(entry, kind))
+        return *held_by(entry, kind);
     double cs[2];
-    if (cache[key])
-        return cache[key];
+    GEOSGeometry *made;
     if (turned_pair(n, a, ta, b, tb, &first, cs)) {
-        const GEOSGeometry *base = cached_pair(n, cache, make, a, 0, b, first);
-        cache[key] = base ? GEOSGeom_transformXY_r(n->geos, base, nest_turn_xy, cs) : NULL;
+        const GEOSGeometry *base = cached_pair(n, kind, make, a, 0, b, first);
+        made = base ? GEOSGeom_transformXY_r(n->geos, base, nest_turn_xy, cs) : NULL;
     } else {
-        cache[key] = make(n, a, ta, b, tb);
+        made = make(n, a, ta, b, tb);
     }
-    if (cache == n->sums)
-        keep_sums_small(n, key);
-    return cache[key];
+    /* Looked up again: making the pair may have added others, and moved this one. */
+    entry = made ? pair_table_add(&n->pairs, key) : NULL;
+    if (!entry) {
+        if (made) {
+            GEOSGeom_destroy_r(n->geos, made);
+            n->out_of_memory = true;
+        }
+        return NULL;
+    }
+    *held_by(entry, kind) = made;
+    if (kind == PAIR_SUMS)
+        keep_sums_small(n, key, made);
+    return made;
 }
 
 static GEOSGeometry *make_sums(nester *n, size_t a, size_t ta, size_t b, size_t tb)
@@ -317,12 +337,12 @@ static GEOSGeometry *make_union(nester *n, size_t a, size_t ta, size_t b, size_t
 
 const GEOSGeometry *nest_sums_of(nester *n, size_t a, size_t ta, size_t b, size_t tb)
 {
-    return cached_pair(n, n->sums, make_sums, a, ta, b, tb);
+    return cached_pair(n, PAIR_SUMS, make_sums, a, ta, b, tb);
 }
 
 const GEOSGeometry *nest_nfp_of(nester *n, size_t a, size_t ta, size_t b, size_t tb)
 {
-    return cached_pair(n, n->nfps, make_union, a, ta, b, tb);
+    return cached_pair(n, PAIR_NFP, make_union, a, ta, b, tb);
 }
 
 void nest_sheet_size(const nester *n, size_t sheet, double *width, double *height)
@@ -409,25 +429,21 @@ static ur_status list_not_placed(const nester *n, ur_layout *layout)
 
 static void nester_free(nester *n)
 {
-    size_t slots = n->sheet_slots * (n->class_count + 1) * n->turn_count;
-    for (size_t k = 0; n->rooms && k < slots; k++)
-        nest_grid_free(n->geos, &n->rooms[k]);
-    free(n->rooms);
-    free(n->full);
+    size_t slots = n->class_count * n->turn_count;
+    for (size_t s = 0; n->sheets && s < n->sheet_slots; s++) {
+        for (size_t k = 0; n->sheets[s].rooms && k < slots; k++)
+            nest_grid_free(n->geos, &n->sheets[s].rooms[k]);
+        free(n->sheets[s].rooms);
+        free(n->sheets[s].full);
+        nest_index_free(&n->sheets[s]);
+    }
+    free(n->sheets);
+    free(n->near);
     free(n->run_piece);
     free(n->run_held);
     free(n->run_placed);
     free(n->sheet_area);
-    size_t pairs = n->class_count * n->turn_count * n->class_count * n->turn_count;
-    for (size_t k = 0; k < pairs; k++) {
-        if (n->nfps && n->nfps[k])
-            GEOSGeom_destroy_r(n->geos, n->nfps[k]);
-        if (n->sums && n->sums[k])
-            GEOSGeom_destroy_r(n->geos, n->sums[k]);
-    }
-    free(n->nfps);
-    free(n->sums);
-    free(n->pair_met);
+    pair_table_free(n->geos, &n->pairs);
     for (size_t c = 0; c < n->class_count; c++) {
         for (size_t t = 0; n->classes[c].turns && t < n->classes[c].turn_count; t++)
             nest_shape_free(n->geos, &n->classes[c].turns[t]);
@@ -534,15 +550,13 @@ ur_status ur_layout_nest(const ur_piece *pieces, size_t count, const ur_nest_opt
         status = ur_error_out_of_memory(error);
     if (status == UR_OK)
         status = sort_classes(&n);
-    size_t slots = n.sheet_slots * (n.class_count + 1) * n.turn_count;
     if (status == UR_OK) {
-        n.rooms = calloc(slots, sizeof *n.rooms);
-        n.full = calloc(slots, sizeof *n.full);
+        n.sheets = calloc(n.sheet_slots, sizeof *n.sheets);
         n.sheet_area = calloc(n.sheet_slots, sizeof *n.sheet_area);
         n.run_piece = calloc(count + 1, sizeof *n.run_piece);
         n.run_held = calloc(count + 1, sizeof *n.run_held);
         n.run_placed = calloc(count + 1, sizeof *n.run_placed);
-        if (!n.rooms || !n.full || !n.sheet_area || !n.run_piece || !n.run_held || !n.run_placed)
+        if (!n.sheets || !n.sheet_area || !n.run_piece || !n.run_held || !n.run_placed)
             status = ur_error_out_of_memory(error);
     }
     for (size_t p = 0; status == UR_OK && p < count; p++)

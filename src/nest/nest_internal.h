@@ -80,6 +80,37 @@ GEOSGeometry *nest_union_of_sums(GEOSContextHandle_t geos, const GEOSGeometry *s
 
 /* ---- The true-shape nester's state (nest.c), shared with compact.c ---- */
 
+/*
+ * What is kept of a pair (shape a at turn ta, shape b at turn tb), under
+ * its key (nest_pair_key): the sums of their convex parts and their no-fit
+ * polygon (both NULL until made; the sums may be dropped again), and when
+ * the pair was first met (room.c, by_union; 0 never).
+ */
+typedef struct pair_entry {
+    size_t key;
+    GEOSGeometry *sums, *nfp;
+    size_t met;
+} pair_entry;
+
+/* The pairs met, by key (pair_table.c). */
+typedef struct pair_table {
+    pair_entry *slots;
+    size_t count, capacity;
+} pair_table;
+
+/* The pair's entry, or NULL when it has none. */
+pair_entry *pair_table_find(const pair_table *table, size_t key);
+
+/*
+ * The pair's entry, made empty when it had none; NULL when memory runs
+ * out.  Entries move when the table grows: an entry is good until the
+ * next call.
+ */
+pair_entry *pair_table_add(pair_table *table, size_t key);
+
+/* Frees the table and the geometries it holds. */
+void pair_table_free(GEOSContextHandle_t geos, pair_table *table);
+
 /* Parts that are the same shape (copies) share their no-fit polygons. */
 typedef struct nest_class {
     size_t representative; /* a piece of this shape */
@@ -110,6 +141,33 @@ typedef struct placed {
     ur_vec2 at; /* where its origin went */
 } placed;
 
+/* The placements (their numbers, in order placed) whose reach meets one bucket of a sheet. */
+typedef struct index_bucket {
+    size_t *items;
+    size_t count, room;
+} index_bucket;
+
+/*
+ * What the nester keeps per sheet, made when the sheet is first looked
+ * at: the rooms of the shapes at their turns, and the placements on it
+ * in a grid of buckets by the box they reach (placed_index.c), so that
+ * bringing a cell of a room up to date looks only at the placements near
+ * it, not at every one on every sheet.  Kept per sheet rather than per
+ * (sheet, class, turn) in one table, whose size grew with the square of
+ * the parts: 1,616 parts of an unfolded mesh, near 600 MB.
+ */
+typedef struct sheet_state {
+    room_grid *rooms; /* per (class, turn); NULL until the sheet is looked at */
+    /*
+     * Per (class, turn): no room was left for it there.  Sheets only fill
+     * up during a run, so it never fits there again in that run.
+     */
+    bool *full;
+    index_bucket *buckets; /* column by column; NULL until the first placement */
+    size_t columns, rows;
+    double x0, y0; /* the lower left corner of bucket 0 */
+} sheet_state;
+
 typedef struct nester {
     GEOSContextHandle_t geos;
     const ur_piece *pieces;
@@ -119,11 +177,9 @@ typedef struct nester {
     size_t *class_of; /* per piece */
     nest_class *classes;
     size_t class_count;
-    /* Per (class a, turn a, class b, turn b), NULL until made: nest_sums, and their unions. */
-    GEOSGeometry **sums, **nfps;
+    pair_table pairs;   /* per (class a, turn a, class b, turn b) met: sums, no-fit polygon */
     size_t sums_points; /* the points the sums made hold (nest.c, keep_sums_small) */
     bool sums_held;     /* sums given out are in use: none is dropped (nest_hold_sums) */
-    size_t *pair_met;   /* per pair: when it was first met (nest.c, by_union), 0 never */
     size_t runs;        /* runs over an order so far */
     placed *placements; /* per piece, in order placed */
     size_t *sheet_of;   /* per placement */
@@ -132,14 +188,11 @@ typedef struct nester {
      * (maybe empty); stock sheets follow as they are opened.
      */
     size_t placed_count, sheet_count, remnant_count;
-    size_t sheet_slots; /* sheets there can be: remnants, one per part and one more */
-    room_grid *rooms;   /* per (sheet, class, turn) */
-    double cell_size;   /* of the rooms' cells: about two parts across (mm) */
-    /*
-     * Per (sheet, class, turn): no room was left for it there.  Sheets only
-     * fill up during a run, so it never fits there again in that run.
-     */
-    bool *full;
+    size_t sheet_slots;  /* sheets there can be: remnants, one per part and one more */
+    sheet_state *sheets; /* per sheet slot */
+    double cell_size;    /* of the rooms' cells and the index's buckets: about two parts (mm) */
+    size_t *near;        /* the placements an index query found (placed_index.c) */
+    size_t near_room;
     /*
      * The last run over an order, for the next to start where the two
      * orders part: per position, the piece placed, the turn it was held at
@@ -203,6 +256,31 @@ void nest_sheet_size(const nester *n, size_t sheet, double *width, double *heigh
 
 /* The key of the pair (piece a at turn ta, piece b at turn tb) in the nester's caches. */
 size_t nest_pair_key(const nester *n, size_t a, size_t ta, size_t b, size_t tb);
+
+/* ---- The placements on a sheet by where they reach (placed_index.c) ------ */
+
+/*
+ * Indexes placement k (the last made) on its sheet; false when memory
+ * runs out (then n->out_of_memory is set).
+ */
+bool nest_index_add(nester *n, size_t k);
+
+/* Forgets the placements from kept on, as rewinding a run does. */
+void nest_index_rewind(nester *n, size_t kept);
+
+/*
+ * The placements from `from` on, on sheet, whose reach box (as indexed,
+ * widened by its share of the slack) may meet box (x0, y0, x1, y1): in
+ * n->near, in the order placed, *count of them; a superset of those that
+ * do.  False when memory runs out.
+ */
+bool nest_index_near(nester *n, size_t sheet, const double *box, size_t from, size_t *count);
+
+/* Frees a sheet's index (the sheet_state itself is the nester's). */
+void nest_index_free(sheet_state *sheet);
+
+/* How much one shape's reach box is widened by in the no-fit box tests (mm). */
+double nest_reach_slack(const nest_shape *shape);
 
 /* ---- Placing a part (room.c) ---------------------------------------------- */
 

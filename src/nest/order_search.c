@@ -38,17 +38,19 @@ static void cell_renew(nester *n, room_grid *grid, size_t c)
  */
 static void rewind_run(nester *n, size_t kept)
 {
-    size_t slots = n->sheet_slots * (n->class_count + 1) * n->turn_count;
-    for (size_t k = 0; k < slots; k++) {
-        room_grid *grid = &n->rooms[k];
-        n->full[k] = false; /* a later placement may have filled it */
-        for (size_t c = 0; grid->cols && c < grid->cols * grid->rows; c++) {
-            if (grid->cut_by[c] > kept)
-                cell_renew(n, grid, c);
-            else if (grid->applied[c] > kept)
-                grid->applied[c] = kept;
+    size_t slots = n->class_count * n->turn_count;
+    for (size_t s = 0; s < n->sheet_slots; s++)
+        for (size_t k = 0; n->sheets[s].rooms && k < slots; k++) {
+            room_grid *grid = &n->sheets[s].rooms[k];
+            n->sheets[s].full[k] = false; /* a later placement may have filled it */
+            for (size_t c = 0; grid->cols && c < grid->cols * grid->rows; c++) {
+                if (grid->cut_by[c] > kept)
+                    cell_renew(n, grid, c);
+                else if (grid->applied[c] > kept)
+                    grid->applied[c] = kept;
+            }
         }
-    }
+    nest_index_rewind(n, kept);
     memset(n->sheet_area, 0, n->sheet_slots * sizeof *n->sheet_area);
     n->sheet_count = n->remnant_count;
     for (size_t k = 0; k < kept; k++) {

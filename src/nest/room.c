@@ -52,10 +52,26 @@ static int shift_xy(double *x, double *y, void *userdata)
     return 1;
 }
 
-/* The cache slot of (sheet, piece's class, turn). */
-static size_t taken_slot(const nester *n, size_t sheet, size_t piece, size_t turn)
+/* The slot of (piece's class, turn) in a sheet's rooms. */
+static size_t shape_slot(const nester *n, size_t piece, size_t turn)
 {
-    return (sheet * n->class_count + n->class_of[piece]) * n->turn_count + turn;
+    return n->class_of[piece] * n->turn_count + turn;
+}
+
+/* Makes a sheet's rooms, all not yet made; false when memory runs out. */
+static bool rooms_make(nester *n, sheet_state *state)
+{
+    size_t slots = n->class_count * n->turn_count;
+    state->rooms = calloc(slots, sizeof *state->rooms);
+    state->full = calloc(slots, sizeof *state->full);
+    if (state->rooms && state->full)
+        return true;
+    free(state->rooms);
+    free(state->full);
+    state->rooms = NULL;
+    state->full = NULL;
+    n->out_of_memory = true;
+    return false;
 }
 
 void nest_grid_free(GEOSContextHandle_t geos, room_grid *grid)
@@ -126,8 +142,8 @@ static bool nfp_may_reach(const nester *n, const placed *p, size_t piece, size_t
 {
     const ur_box *a = &nest_shape_of(n, p->piece, p->turn)->reach;
     const ur_box *b = &nest_shape_of(n, piece, turn)->reach;
-    double slack =
-        1e-3 + 1e-3 * (ur_box_width(*a) + ur_box_height(*a) + ur_box_width(*b) + ur_box_height(*b));
+    double slack = 1e-3 + nest_reach_slack(nest_shape_of(n, p->piece, p->turn)) +
+                   nest_reach_slack(nest_shape_of(n, piece, turn));
     double x0 = p->at.x + a->min.x - b->max.x - slack, x1 = p->at.x + a->max.x - b->min.x + slack;
     double y0 = p->at.y + a->min.y - b->max.y - slack, y1 = p->at.y + a->max.y - b->min.y + slack;
     return x0 < cell[2] && x1 > cell[0] && y0 < cell[3] && y1 > cell[1];
@@ -228,11 +244,15 @@ static bool cut_out(room_cut *r, const GEOSGeometry *polygon, ur_vec2 at)
  */
 static bool by_union(nester *n, size_t a, size_t ta, size_t b, size_t tb, size_t k)
 {
-    size_t key = nest_pair_key(n, a, ta, b, tb);
+    pair_entry *pair = pair_table_add(&n->pairs, nest_pair_key(n, a, ta, b, tb));
+    if (!pair) {
+        n->out_of_memory = true;
+        return true; /* the union cannot be had either: the cell's update fails */
+    }
     size_t meeting = n->runs * (n->count + 1) + k + 1;
-    if (n->nfps[key] || (n->pair_met[key] && n->pair_met[key] != meeting))
+    if (pair->nfp || (pair->met && pair->met != meeting))
         return true;
-    n->pair_met[key] = meeting;
+    pair->met = meeting;
     return false;
 }
 
@@ -304,6 +324,20 @@ static bool gather(nester *n, size_t piece, size_t turn, const double *box, size
 }
 
 /*
+ * Where the reach box of a placement whose no-fit polygon with piece (at
+ * turn) may reach a cell lies: the cell less the piece's reach, widened by
+ * the piece's share of nfp_may_reach's slack and a little more for
+ * rounding (the index adds the placement's share).
+ */
+static void reach_box(const nester *n, size_t piece, size_t turn, const double *cell, double *box)
+{
+    const nest_shape *b = nest_shape_of(n, piece, turn);
+    double slack = 2e-3 + nest_reach_slack(b);
+    box[0] = cell[0] + b->reach.min.x - slack, box[1] = cell[1] + b->reach.min.y - slack;
+    box[2] = cell[2] + b->reach.max.x + slack, box[3] = cell[3] + b->reach.max.y + slack;
+}
+
+/*
  * Cuts out of cell c the no-fit polygons (with piece at turn) of the parts
  * placed on the sheet since it was last brought up to date, those whose
  * box reaches into it: their convex sums (or, for a pair met before, their
@@ -317,11 +351,13 @@ static bool cell_update(nester *n, size_t sheet, size_t piece, size_t turn, room
     double box[4];
     nest_cell_box(n, grid, c, box);
     candidates all = {NULL, 0, 0};
-    bool ok = true;
+    double reach[4];
+    reach_box(n, piece, turn, box, reach);
+    size_t near = 0;
+    bool ok = nest_index_near(n, sheet, reach, grid->applied[c], &near);
     nest_hold_sums(n, true);
-    for (size_t k = grid->applied[c]; ok && k < n->placed_count; k++) {
-        if (n->sheet_of[k] != sheet)
-            continue;
+    for (size_t q = 0; ok && q < near; q++) {
+        size_t k = n->near[q];
         if (!nfp_may_reach(n, &n->placements[k], piece, turn, box))
             continue; /* too far away to matter: its no-fit polygon is never made */
         ok = gather(n, piece, turn, box, k, &all);
@@ -395,9 +431,12 @@ static bool place_on(nester *n, size_t sheet, size_t piece, size_t turn, double 
         *at = ur_vec2_make(fit[0], fit[1]);
         return true;
     }
-    size_t slot = taken_slot(n, sheet, piece, turn);
-    room_grid *grid = &n->rooms[slot];
-    if (n->full[slot])
+    sheet_state *state = &n->sheets[sheet];
+    if (!state->rooms && !rooms_make(n, state))
+        return false;
+    size_t slot = shape_slot(n, piece, turn);
+    room_grid *grid = &state->rooms[slot];
+    if (state->full[slot])
         return false;
     if (!grid->cols && !grid_make(n, sheet, piece, turn, grid))
         return false; /* it does not fit the sheet, or no memory: no place */
@@ -423,7 +462,7 @@ static bool place_on(nester *n, size_t sheet, size_t piece, size_t turn, double 
         if (found)
             return true;
     }
-    n->full[slot] = true;
+    state->full[slot] = true;
     return false;
 }
 
@@ -529,6 +568,8 @@ ur_status nest_place_piece(nester *n, size_t piece, size_t held)
             if (sheet == n->sheet_count)
                 n->sheet_count++;
             n->sheet_area[sheet] += nest_shape_of(n, piece, 0)->area;
+            if (!nest_index_add(n, n->placed_count - 1))
+                return ur_error_out_of_memory(n->error);
             return UR_OK;
         }
         if (sheet == n->sheet_count) /* it fits no empty sheet either */

@@ -1,8 +1,10 @@
 /*
  * test_nest_shapes.c: the shapes the nester makes of pieces (nfp.c): their
- * triangles merged into few convex parts, which cover the piece; and the
+ * triangles merged into few convex parts, which cover the piece; the
  * bound on sheets by area (order_search.c), checked against the fewest
- * bins found by trying every packing.
+ * bins found by trying every packing; and the two indexes that keep
+ * nesting many parts from costing their square (pair_table.c,
+ * placed_index.c), checked against looking at every entry.
  */
 #include "test_support.h"
 
@@ -155,11 +157,135 @@ static void test_bins_bound(void **state)
     assert_true(raised > 0); /* the bound says more than the area, at times */
 }
 
+/*
+ * The pairs met, by key: 20,000 keys spread as nest_pair_key spreads them
+ * (and many the same modulo every table size) are each found with what
+ * was put in, keys never added are not, and adding a key again gives its
+ * entry, not a new one.
+ */
+static void test_pair_table(void **state)
+{
+    (void)state;
+    pair_table table = {NULL, 0, 0};
+    assert_null(pair_table_find(&table, 3));
+    for (size_t k = 0; k < 20000; k++) {
+        size_t key = k % 2 ? k * 4096 : k * 7 + 1;
+        pair_entry *entry = pair_table_add(&table, key);
+        assert_non_null(entry);
+        assert_int_equal(entry->key, key);
+        assert_int_equal(entry->met, 0);
+        entry->met = k + 1;
+    }
+    assert_int_equal(table.count, 20000);
+    assert_true(2 * table.count <= table.capacity);
+    for (size_t k = 0; k < 20000; k++) {
+        size_t key = k % 2 ? k * 4096 : k * 7 + 1;
+        pair_entry *entry = pair_table_find(&table, key);
+        assert_non_null(entry);
+        assert_int_equal(entry->met, k + 1);
+        assert_ptr_equal(pair_table_add(&table, key), entry);
+    }
+    assert_int_equal(table.count, 20000);
+    assert_null(pair_table_find(&table, 4096 * 2 + 1));
+    assert_null(pair_table_find(&table, 7 * 20000 + 1));
+    pair_table_free(geos, &table);
+    assert_null(table.slots);
+}
+
+/* Whether placement k's reach box, as the index widens it, meets box. */
+static bool reach_meets(const nester *n, size_t k, const double *box)
+{
+    const placed *p = &n->placements[k];
+    const nest_shape *shape = nest_shape_of(n, p->piece, p->turn);
+    double slack = nest_reach_slack(shape);
+    return p->at.x + shape->reach.min.x - slack < box[2] &&
+           p->at.x + shape->reach.max.x + slack > box[0] &&
+           p->at.y + shape->reach.min.y - slack < box[3] &&
+           p->at.y + shape->reach.max.y + slack > box[1];
+}
+
+/*
+ * The placements by where they reach: on two sheets of 300 x 200 mm with
+ * 10 mm buckets, 400 placements of three sizes of part (some reaching past
+ * the sheet's edge) are each found by every query box their reach meets,
+ * in the order placed, once, from the first asked for on, and only on
+ * their own sheet; a query far off finds few.  After forgetting all but
+ * the first 150, the same holds of those.
+ */
+static void test_placed_index(void **state)
+{
+    (void)state;
+    enum { PLACED = 400 };
+    ur_nest_options options = {.sheet_width = 300, .sheet_height = 200};
+    nest_shape shapes[3] = {0};
+    double half[3] = {1, 6, 40};
+    for (int s = 0; s < 3; s++)
+        shapes[s].reach = (ur_box){{-half[s], -half[s] / 2}, {half[s], half[s] / 2}};
+    nest_class classes[3] = {{0, &shapes[0], 1}, {1, &shapes[1], 1}, {2, &shapes[2], 1}};
+    size_t class_of[PLACED];
+    placed placements[PLACED];
+    size_t sheet_of[PLACED];
+    sheet_state sheets[2] = {0};
+    nester n = {.count = PLACED,
+                .options = &options,
+                .turn_count = 1,
+                .class_of = class_of,
+                .classes = classes,
+                .class_count = 3,
+                .placements = placements,
+                .sheet_of = sheet_of,
+                .sheet_slots = 2,
+                .sheets = sheets,
+                .cell_size = 10};
+    srand(11);
+    for (size_t k = 0; k < PLACED; k++) {
+        class_of[k] = k % 7 == 0 ? 2 : k % 3 == 0 ? 1 : 0;
+        placements[k] =
+            (placed){k, 0, {-20 + 340.0 * rand() / RAND_MAX, -20 + 240.0 * rand() / RAND_MAX}};
+        sheet_of[k] = k % 5 == 0;
+        n.placed_count = k + 1;
+        assert_true(nest_index_add(&n, k));
+    }
+    for (int round = 0; round < 2; round++) {
+        for (int q = 0; q < 300; q++) {
+            double x = -30 + 360.0 * rand() / RAND_MAX, y = -30 + 260.0 * rand() / RAND_MAX;
+            double w = 30.0 * rand() / RAND_MAX, h = 30.0 * rand() / RAND_MAX;
+            double box[4] = {x, y, x + w, y + h};
+            size_t sheet = (size_t)(q % 2), from = (size_t)(q % 4) * 40, count = 0, expected = 0;
+            assert_true(nest_index_near(&n, sheet, box, from, &count));
+            for (size_t i = 1; i < count; i++)
+                assert_true(n.near[i - 1] < n.near[i]);
+            for (size_t i = 0; i < count; i++) {
+                assert_true(n.near[i] >= from && n.near[i] < n.placed_count);
+                assert_int_equal(sheet_of[n.near[i]], sheet);
+            }
+            for (size_t k = from; k < n.placed_count; k++) {
+                if (sheet_of[k] != sheet || !reach_meets(&n, k, box))
+                    continue;
+                expected++;
+                bool found = false;
+                for (size_t i = 0; i < count && !found; i++)
+                    found = n.near[i] == k;
+                assert_true(found);
+            }
+            /* Buckets of 10 mm round a box at most 30 mm across: few besides. */
+            assert_true(count <= expected + 60);
+        }
+        nest_index_rewind(&n, 150);
+        n.placed_count = 150;
+    }
+    free(n.near);
+    nest_index_free(&sheets[0]);
+    nest_index_free(&sheets[1]);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_convex_parts_merge),
         cmocka_unit_test(test_bins_bound),
+        cmocka_unit_test(test_pair_table),
+        cmocka_unit_test(test_placed_index),
     };
     return cmocka_run_group_tests(tests, start, finish);
 }
