@@ -224,35 +224,72 @@ ur_status job_allowances_after_placing(const job_run *run, const ur_machine *mac
 }
 
 /*
+ * At most this many lines of allowance warnings; the rest are counted in
+ * one line.  A mesh unfolded into a thousand small nets had 1,500 lines
+ * (a glue tab or a label without room on most pieces), which buried the
+ * summary and every other message.
+ */
+#define ALLOWANCE_WARNING_LINES 20
+
+/* The first warning of a kind on a piece, and how many more of it there are. */
+static const ur_allowance_record *first_warning(const ur_piece *piece, int kind, size_t *more)
+{
+    const ur_allowance_record *first = NULL;
+    *more = 0;
+    for (size_t r = 0; r < piece->record_count; r++) {
+        const ur_allowance_record *record = &piece->records[r];
+        if (!record->warning || record->kind != (ur_allowance_kind)kind)
+            continue;
+        if (first)
+            (*more)++;
+        else
+            first = record;
+    }
+    return first;
+}
+
+/*
  * One line per piece and kind of allowance: the first warning's reason,
  * and how many more there are (all are in the report), so that a strongly
- * strained piece does not bury the summary.
+ * strained piece does not bury the summary; after ALLOWANCE_WARNING_LINES
+ * lines, one that counts the rest.
  */
 void job_allowance_warnings(const job_run *run, const ur_piece *pieces, size_t count)
 {
     if (run->job.quiet)
         return;
-    for (size_t k = 0; k < count; k++)
+    size_t lines = 0, unsaid = 0, unsaid_pieces = 0;
+    for (size_t k = 0; k < count; k++) {
+        bool piece_unsaid = false;
         for (int kind = 0; kind < UR_ALLOWANCE_KIND_COUNT; kind++) {
-            const ur_allowance_record *first = NULL;
-            size_t more = 0;
-            for (size_t r = 0; r < pieces[k].record_count; r++) {
-                const ur_allowance_record *record = &pieces[k].records[r];
-                if (!record->warning || record->kind != (ur_allowance_kind)kind)
-                    continue;
-                if (first)
-                    more++;
-                else
-                    first = record;
-            }
+            size_t more;
+            const ur_allowance_record *first = first_warning(&pieces[k], kind, &more);
             if (!first)
                 continue;
-            if (more)
+            if (lines++ >= ALLOWANCE_WARNING_LINES) {
+                unsaid += 1 + more;
+                piece_unsaid = true;
+            } else if (more) {
                 job_warn(run, "%s: warning: piece %s: %s (and %zu more %s warning%s in the report)",
                          run->job.command, pieces[k].name, first->reason, more,
                          ur_allowance_kind_name((ur_allowance_kind)kind), more == 1 ? "" : "s");
-            else
+            } else {
                 job_warn(run, "%s: warning: piece %s: %s", run->job.command, pieces[k].name,
                          first->reason);
+            }
         }
+        unsaid_pieces += piece_unsaid;
+    }
+    if (unsaid && run->job.report_path)
+        job_warn(run,
+                 "%s: warning: and %zu more allowance warning%s on %zu more piece%s, in the report",
+                 run->job.command, unsaid, unsaid == 1 ? "" : "s", unsaid_pieces,
+                 unsaid_pieces == 1 ? "" : "s");
+    else if (unsaid)
+        job_warn_about(
+            run, "report",
+            "%s: warning: and %zu more allowance warning%s on %zu more piece%s: a report "
+            "lists them all",
+            run->job.command, unsaid, unsaid == 1 ? "" : "s", unsaid_pieces,
+            unsaid_pieces == 1 ? "" : "s");
 }

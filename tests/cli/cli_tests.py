@@ -1892,6 +1892,36 @@ def a_hole_narrower_than_the_kerf_is_cut_as_drawn(work):
 
 
 @test
+def many_pieces_warnings_are_counted_after_twenty_lines(work):
+    # 24 plates of 20 x 15 mm, each with a dumbbell hole whose 0.05 mm
+    # channel is narrower than the kerf: one warning each.  The summary
+    # gives the first 20 pieces a line each and counts the other four in
+    # one line, so that a thousand small nets do not bury it; the report
+    # has all 24.  Without a report, the line says to ask for one.
+    paths = []
+    for k in range(24):
+        x, y = 5 + 25 * (k % 6), 5 + 20 * (k // 6)
+        paths.append("M %g %g h 20 v 15 h -20 Z" % (x, y))
+        paths.append("M %g %g h 4 v 1.975 h 6 v -1.975 h 4 v 4 h -4 v -1.975 h -6 v 1.975 "
+                     "h -4 Z" % (x + 3, y + 5))
+    write(work, "plates.svg",
+          '<svg xmlns="http://www.w3.org/2000/svg" width="160mm" height="90mm" '
+          'viewBox="0 0 160 90">%s</svg>'
+          % "".join('<path d="%s" fill="none" stroke="black"/>' % d for d in paths))
+    result = run(work, "nest", "plates.svg", "-o", "plates-out.svg", "--report", "plates.json")
+    lines = [l for l in result.stderr.splitlines() if re.search(r"warning: piece \S+: ", l)]
+    check(len(lines) == 20, "%d piece lines:\n%s" % (len(lines), result.stderr))
+    check(re.search(r"warning: and 4 more allowance warnings on 4 more pieces, in the report",
+                    result.stderr), result.stderr)
+    said = [a for piece in report(work, "plates.json")["pieces"] for a in piece["allowances"]
+            if a["kind"] == "kerf-compensation" and a["warning"]]
+    check(len(said) == 24, "%d warnings in the report" % len(said))
+    result = run(work, "nest", "plates.svg", "-o", "plates-out.svg")
+    check(re.search(r"warning: and 4 more allowance warnings on 4 more pieces: a --report lists "
+                    r"them all", result.stderr), result.stderr)
+
+
+@test
 def a_longer_unfolding_search_leaves_fewer_pieces(work):
     # The sample head as papercraft: by default the search takes the steps
     # the mesh asks for; --unfold-steps N takes N with the pieces level and
