@@ -77,6 +77,10 @@ ur_status nest_run_order(nester *n, const size_t *order, const size_t *held)
     n->run_length = same;
     ur_status status = UR_OK;
     for (size_t k = same; status == UR_OK && k < n->count; k++) {
+        /* A first layout of a thousand parts takes minutes: it stops when the run is cancelled. */
+        status = ur_context_check(n->options->context, n->error);
+        if (status != UR_OK)
+            break;
         n->run_piece[k] = order[k];
         n->run_held[k] = held ? held[order[k]] : ANY_TURN;
         n->run_placed[k] = n->placed_count;

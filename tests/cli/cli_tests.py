@@ -3703,6 +3703,69 @@ def signals_stop_cleanly(work):
     check(snapshot(work) == before, "mesh after SIGTERM left or changed files")
 
 
+def interrupted_on_terminal(work, args, signal_number, delay):
+    """Runs unroll with its standard error on a terminal (a pseudo-terminal),
+    so that it shows its progress, and sends it a signal after delay
+    seconds; its exit status and what it wrote there."""
+    import pty
+    import select
+    import time
+    main, terminal = pty.openpty()
+    process = subprocess.Popen([UNROLL, *args], cwd=work, stdout=subprocess.DEVNULL,
+                               stderr=terminal, text=True,
+                               env=dict(os.environ, UNROLL_PROFILES=os.path.join(REPO, "profiles")))
+    os.close(terminal)
+    said, signalled, start = b"", False, time.monotonic()
+    while True:
+        if not signalled and time.monotonic() - start >= delay:
+            check(process.poll() is None, "unroll %s ended before the signal" % " ".join(args))
+            process.send_signal(signal_number)
+            signalled = True
+        ready, _, _ = select.select([main], [], [], 0.1)
+        if ready:
+            try:
+                chunk = os.read(main, 65536)
+            except OSError:  # the terminal closed: unroll has ended
+                chunk = b""
+            if not chunk:
+                break
+            said += chunk
+    os.close(main)
+    return process.wait(timeout=600), said.decode(errors="replace")
+
+
+@test
+def sigint_stops_the_first_layout_of_many_parts(work):
+    """SIGINT while the first layout of 500 different stars is made (a
+    minute of placing here, with no search after it: --nest-time 0): the
+    placing stops there, exit 130, nothing written.  Before, the first
+    layout did not look at the signal and placed all 500 parts (its
+    progress line says how many) before the run stopped."""
+    import random
+    import signal
+    random.seed(5)
+    stars = []
+    for k in range(500):
+        cx, cy, n = 20 + 40 * (k % 25), 20 + 40 * (k // 25), 5 + k % 7
+        points = []
+        for i in range(n):
+            r = 6 + 10 * random.random() * (0.5 + i % 2)
+            points.append("%.3f,%.3f" % (cx + r * math.cos(2 * math.pi * i / n),
+                                         cy + r * math.sin(2 * math.pi * i / n)))
+        stars.append('<polygon points="%s"/>' % " ".join(points))
+    write(work, "stars.svg", '<svg xmlns="http://www.w3.org/2000/svg" width="1020mm" '
+          'height="820mm" viewBox="0 0 1020 820">%s</svg>' % "".join(stars))
+    before = snapshot(work)
+    status, said = interrupted_on_terminal(work, ["nest", "stars.svg", "--nest-time", "0",
+                                                  "--sheet", "420x297", "-o", "s.svg",
+                                                  "--report", "s.json"], signal.SIGINT, 3.0)
+    check(status == 130, "nest after SIGINT: exit %d; %s" % (status, said.strip()))
+    check(re.search(r"stopped by SIGINT: no file was left half-written", said), said)
+    placed = [int(m) for m in re.findall(r"placed (\d+) of 500 parts", said)]
+    check(placed and max(placed) < 500, "placed before stopping: %r" % placed[-3:])
+    check(snapshot(work) == before, "nest after SIGINT left or changed files")
+
+
 def write_bowl_stl(path, n):
     """A paraboloid over an n x n grid, 2 n^2 triangles, as binary STL: far from developable."""
     import struct
