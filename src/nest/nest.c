@@ -429,6 +429,7 @@ static ur_status list_not_placed(const nester *n, ur_layout *layout)
 
 static void nester_free(nester *n)
 {
+    nest_raster_free(n); /* before the sheets that hold the rasters */
     size_t slots = n->class_count * n->turn_count;
     for (size_t s = 0; n->sheets && s < n->sheet_slots; s++) {
         for (size_t k = 0; n->sheets[s].rooms && k < slots; k++)
@@ -552,11 +553,13 @@ ur_status ur_layout_nest(const ur_piece *pieces, size_t count, const ur_nest_opt
         status = sort_classes(&n);
     if (status == UR_OK) {
         n.sheets = calloc(n.sheet_slots, sizeof *n.sheets);
+        n.raster_shapes = calloc(n.class_count * n.turn_count + 1, sizeof *n.raster_shapes);
         n.sheet_area = calloc(n.sheet_slots, sizeof *n.sheet_area);
         n.run_piece = calloc(count + 1, sizeof *n.run_piece);
         n.run_held = calloc(count + 1, sizeof *n.run_held);
         n.run_placed = calloc(count + 1, sizeof *n.run_placed);
-        if (!n.sheets || !n.sheet_area || !n.run_piece || !n.run_held || !n.run_placed)
+        if (!n.sheets || !n.raster_shapes || !n.sheet_area || !n.run_piece || !n.run_held ||
+            !n.run_placed)
             status = ur_error_out_of_memory(error);
     }
     for (size_t p = 0; status == UR_OK && p < count; p++)

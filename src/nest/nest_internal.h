@@ -148,6 +148,29 @@ typedef struct index_bucket {
 } index_bucket;
 
 /*
+ * A sheet's raster (sheet_raster.c): per pixel, row by row, the distance
+ * (mm) from its centre to the nearest centre that lies inside a placed
+ * part; made for the sheet's version, again when that changes.
+ */
+typedef struct sheet_raster {
+    float *distance; /* NULL until made */
+    size_t columns, rows;
+    double pixel; /* its side (mm) */
+    size_t version;
+} sheet_raster;
+
+/*
+ * What sheet_raster.c keeps per shape at a turn: its polygon less a thin
+ * band (what blocks pixels), and a disc it holds (centre, radius).
+ */
+typedef struct raster_shape {
+    GEOSGeometry *core; /* NULL when it could not be made */
+    ur_vec2 centre;
+    double radius; /* 0 when none was found */
+    bool made;
+} raster_shape;
+
+/*
  * What the nester keeps per sheet, made when the sheet is first looked
  * at: the rooms of the shapes at their turns, and the placements on it
  * in a grid of buckets by the box they reach (placed_index.c), so that
@@ -165,7 +188,9 @@ typedef struct sheet_state {
     bool *full;
     index_bucket *buckets; /* column by column; NULL until the first placement */
     size_t columns, rows;
-    double x0, y0; /* the lower left corner of bucket 0 */
+    double x0, y0;       /* the lower left corner of bucket 0 */
+    size_t version;      /* changes with every placement made on it or forgotten */
+    sheet_raster raster; /* made when first asked for */
 } sheet_state;
 
 typedef struct nester {
@@ -192,6 +217,7 @@ typedef struct nester {
     sheet_state *sheets; /* per sheet slot */
     double cell_size;    /* of the rooms' cells and the index's buckets: about two parts (mm) */
     size_t *near;        /* the placements an index query found (placed_index.c) */
+    raster_shape *raster_shapes; /* per (class, turn); NULL: no raster tests (sheet_raster.c) */
     size_t near_room;
     /*
      * The last run over an order, for the next to start where the two
@@ -281,6 +307,18 @@ void nest_index_free(sheet_state *sheet);
 
 /* How much one shape's reach box is widened by in the no-fit box tests (mm). */
 double nest_reach_slack(const nest_shape *shape);
+
+/* ---- Places ruled out by a raster of each sheet (sheet_raster.c) -------- */
+
+/*
+ * Whether piece at turn has certainly no place with its origin in box
+ * (x0, y0, x1, y1) on sheet, as the sheet's raster shows; false when that
+ * cannot be shown.
+ */
+bool nest_raster_rules_out(nester *n, size_t sheet, size_t piece, size_t turn, const double *box);
+
+/* Frees the rasters and the shapes' cores. */
+void nest_raster_free(nester *n);
 
 /* ---- Placing a part (room.c) ---------------------------------------------- */
 

@@ -51,6 +51,8 @@ static void rewind_run(nester *n, size_t kept)
             }
         }
     nest_index_rewind(n, kept);
+    for (size_t k = kept; k < n->placed_count; k++)
+        n->sheets[n->sheet_of[k]].version++; /* its raster is made again from what is kept */
     memset(n->sheet_area, 0, n->sheet_slots * sizeof *n->sheet_area);
     n->sheet_count = n->remnant_count;
     for (size_t k = 0; k < kept; k++) {

@@ -438,8 +438,14 @@ static bool place_on(nester *n, size_t sheet, size_t piece, size_t turn, double 
     room_grid *grid = &state->rooms[slot];
     if (state->full[slot])
         return false;
-    if (!grid->cols && !grid_make(n, sheet, piece, turn, grid))
+    bool fresh = !grid->cols;
+    if (fresh && !grid_make(n, sheet, piece, turn, grid))
         return false; /* it does not fit the sheet, or no memory: no place */
+    double whole[4] = {grid->x0, grid->y0, grid->x1, grid->y1};
+    if (fresh && nest_raster_rules_out(n, sheet, piece, turn, whole)) {
+        state->full[slot] = true;
+        return false;
+    }
     double left = nest_shape_of(n, piece, turn)->box.min.x;
     for (size_t i = 0; i < grid->cols; i++) {
         if (grid->x0 + (double)i * n->cell_size + left > beyond)
@@ -448,6 +454,16 @@ static bool place_on(nester *n, size_t sheet, size_t piece, size_t turn, double 
         for (size_t c = i * grid->rows; c < (i + 1) * grid->rows; c++) {
             if (!grid->free[c])
                 continue;
+            /*
+             * A cell not cut yet would be cut by every placement near it:
+             * the raster may show it full first.  One cut already is
+             * brought up to date by the few placed since, which costs less
+             * than a raster made again (copies of a part).
+             */
+            double cell[4];
+            nest_cell_box(n, grid, c, cell);
+            if (grid->applied[c] == 0 && nest_raster_rules_out(n, sheet, piece, turn, cell))
+                continue; /* left as it is: no place there, whatever its cuts */
             if (!cell_update(n, sheet, piece, turn, grid, c)) {
                 nest_grid_free(n->geos, grid); /* GEOS failed: better no place than an overlap */
                 return false;
@@ -570,6 +586,7 @@ ur_status nest_place_piece(nester *n, size_t piece, size_t held)
             n->sheet_area[sheet] += nest_shape_of(n, piece, 0)->area;
             if (!nest_index_add(n, n->placed_count - 1))
                 return ur_error_out_of_memory(n->error);
+            n->sheets[sheet].version++;
             return UR_OK;
         }
         if (sheet == n->sheet_count) /* it fits no empty sheet either */

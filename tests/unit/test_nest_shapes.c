@@ -2,9 +2,10 @@
  * test_nest_shapes.c: the shapes the nester makes of pieces (nfp.c): their
  * triangles merged into few convex parts, which cover the piece; the
  * bound on sheets by area (order_search.c), checked against the fewest
- * bins found by trying every packing; and the two indexes that keep
- * nesting many parts from costing their square (pair_table.c,
- * placed_index.c), checked against looking at every entry.
+ * bins found by trying every packing; the two indexes that keep nesting
+ * many parts from costing their square (pair_table.c, placed_index.c),
+ * checked against looking at every entry; and the sheet's raster
+ * (sheet_raster.c), whose every place ruled out is checked against GEOS.
  */
 #include "test_support.h"
 
@@ -279,6 +280,145 @@ static void test_placed_index(void **state)
     nest_index_free(&sheets[1]);
 }
 
+/* A star of n points about (0, 0), radii alternating r and r / 3, as a GEOS polygon. */
+static GEOSGeometry *star(int n, double r, double turn)
+{
+    GEOSCoordSequence *ring = GEOSCoordSeq_create_r(geos, (unsigned)(2 * n + 1), 2);
+    for (int i = 0; i <= 2 * n; i++) {
+        double a = turn + M_PI * (i % (2 * n)) / n, radius = i % 2 ? r / 3 : r; /* closed */
+        GEOSCoordSeq_setXY_r(geos, ring, (unsigned)i, radius * cos(a), radius * sin(a));
+    }
+    return GEOSGeom_createPolygon_r(geos, GEOSGeom_createLinearRing_r(geos, ring), NULL, 0);
+}
+
+static int move_xy(double *x, double *y, void *by)
+{
+    *x += ((const ur_vec2 *)by)->x;
+    *y += ((const ur_vec2 *)by)->y;
+    return 1;
+}
+
+static GEOSGeometry *shifted_copy(const GEOSGeometry *g, double x, double y)
+{
+    ur_vec2 by = {x, y};
+    return GEOSGeom_transformXY_r(geos, g, move_xy, &by);
+}
+
+/*
+ * The sheet's raster rules out only places that overlap: on a 200 x 150
+ * mm sheet with 13 stars and a plate with a square hole placed, a star
+ * and a 48-gon (whose inscribed disc is nearly all of it: a raster that
+ * reached a pixel too far would rule out places where it does not
+ * overlap) are asked about 6,000 small boxes of origins each.  Every box
+ * ruled out is checked at its corners, centre and 8 random points: there
+ * the piece overlaps a placed part by more than a square micrometre
+ * (GEOS).  Over 300 boxes are ruled out; the 48-gon in the middle of the
+ * plate's hole is not; and after the parts are forgotten (a rewind), no
+ * box is.
+ */
+static void test_raster_rules_out_only_overlaps(void **state)
+{
+    (void)state;
+    enum { PLACED = 14 };
+    ur_nest_options options = {.sheet_width = 200, .sheet_height = 150};
+    nest_shape shapes[PLACED + 2] = {0};
+    nest_class classes[PLACED + 2] = {0};
+    size_t class_of[PLACED + 2];
+    placed placements[PLACED];
+    size_t sheet_of[PLACED] = {0};
+    sheet_state sheets[1] = {0};
+    srand(3);
+    GEOSGeometry *placed_union = NULL;
+    for (size_t k = 0; k < PLACED + 2; k++) {
+        if (k == PLACED + 1) { /* a round piece: its disc is nearly all of it */
+            shapes[k].polygon = star(24, 6, 0);
+            GEOSGeometry *round = GEOSConvexHull_r(geos, shapes[k].polygon);
+            GEOSGeom_destroy_r(geos, shapes[k].polygon);
+            shapes[k].polygon = round;
+        } else if (k == 3) { /* a plate with a square hole: parts may go in the hole */
+            GEOSGeometry *plate = nest_rectangle_polygon(geos, -30, -30, 30, 30);
+            GEOSGeometry *hole = nest_rectangle_polygon(geos, -15, -15, 15, 15);
+            shapes[k].polygon = GEOSDifference_r(geos, plate, hole);
+            GEOSGeom_destroy_r(geos, plate);
+            GEOSGeom_destroy_r(geos, hole);
+        } else {
+            shapes[k].polygon = star(5 + (int)k % 4, 8 + 12.0 * rand() / RAND_MAX, k * 0.3);
+        }
+        classes[k] = (nest_class){k, &shapes[k], 1};
+        class_of[k] = k;
+        if (k >= PLACED)
+            continue;
+        /* The plate at the left, alone; the stars to its right, maybe over each other. */
+        placements[k] =
+            k == 3
+                ? (placed){k, 0, {40, 75}}
+                : (placed){k, 0, {95 + 90.0 * rand() / RAND_MAX, 20 + 110.0 * rand() / RAND_MAX}};
+        GEOSGeometry *there =
+            shifted_copy(shapes[k].polygon, placements[k].at.x, placements[k].at.y);
+        GEOSGeometry *grown = placed_union ? GEOSUnion_r(geos, placed_union, there) : there;
+        if (placed_union) {
+            GEOSGeom_destroy_r(geos, placed_union);
+            GEOSGeom_destroy_r(geos, there);
+        }
+        placed_union = grown;
+    }
+    nester n = {.geos = geos,
+                .count = PLACED + 2,
+                .options = &options,
+                .turn_count = 1,
+                .class_of = class_of,
+                .classes = classes,
+                .class_count = PLACED + 2,
+                .placements = placements,
+                .placed_count = PLACED,
+                .sheet_of = sheet_of,
+                .sheet_count = 1,
+                .sheet_slots = 1,
+                .sheets = sheets,
+                .cell_size = 10,
+                .first_run = true};
+    n.raster_shapes = calloc(PLACED + 2, sizeof *n.raster_shapes);
+    assert_non_null(n.raster_shapes);
+    size_t ruled_out = 0;
+    for (size_t piece = PLACED; piece < PLACED + 2; piece++)
+        for (int q = 0; q < 6000; q++) {
+            double x = 200.0 * rand() / RAND_MAX, y = 150.0 * rand() / RAND_MAX;
+            double box[4] = {x, y, x + 6.0 * rand() / RAND_MAX, y + 6.0 * rand() / RAND_MAX};
+            if (!nest_raster_rules_out(&n, 0, piece, 0, box))
+                continue;
+            ruled_out++;
+            for (int t = 0; t < 13; t++) {
+                double u = t < 4 ? t % 2 : t == 4 ? 0.5 : (double)rand() / RAND_MAX;
+                double v = t < 4 ? t / 2 : t == 4 ? 0.5 : (double)rand() / RAND_MAX;
+                GEOSGeometry *there =
+                    shifted_copy(shapes[piece].polygon, box[0] + u * (box[2] - box[0]),
+                                 box[1] + v * (box[3] - box[1]));
+                GEOSGeometry *common = GEOSIntersection_r(geos, there, placed_union);
+                double area = 0;
+                assert_true(common && GEOSArea_r(geos, common, &area));
+                assert_true(area > 1e-6);
+                GEOSGeom_destroy_r(geos, common);
+                GEOSGeom_destroy_r(geos, there);
+            }
+        }
+    assert_true(ruled_out > 300);
+    /* In the plate's hole, 30 mm square, the round piece has room: its middle is not ruled out. */
+    double middle[4] = {placements[3].at.x - 1, placements[3].at.y - 1, placements[3].at.x + 1,
+                        placements[3].at.y + 1};
+    assert_false(nest_raster_rules_out(&n, 0, PLACED + 1, 0, middle));
+    n.placed_count = 0;
+    sheets[0].version++;
+    for (int q = 0; q < 300; q++) {
+        double x = 200.0 * rand() / RAND_MAX, y = 150.0 * rand() / RAND_MAX;
+        double box[4] = {x, y, x + 1, y + 1};
+        assert_false(nest_raster_rules_out(&n, 0, PLACED, 0, box));
+    }
+    nest_raster_free(&n);
+    for (size_t k = 0; k < PLACED + 2; k++)
+        GEOSGeom_destroy_r(geos, shapes[k].polygon);
+    GEOSGeom_destroy_r(geos, placed_union);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -286,6 +426,7 @@ int main(void)
         cmocka_unit_test(test_bins_bound),
         cmocka_unit_test(test_pair_table),
         cmocka_unit_test(test_placed_index),
+        cmocka_unit_test(test_raster_rules_out_only_overlaps),
     };
     return cmocka_run_group_tests(tests, start, finish);
 }
