@@ -310,12 +310,20 @@ double nest_reach_slack(const nest_shape *shape);
 
 /* ---- Places ruled out by a raster of each sheet (sheet_raster.c) -------- */
 
+/* What a sheet's raster shows of a region of a part's origins. */
+typedef enum raster_verdict {
+    RASTER_UNKNOWN,  /* nothing: no raster, or the region reaches past it */
+    RASTER_NONE,     /* no place there */
+    RASTER_NARROWED, /* the places there, if any, lie in the narrowed box */
+} raster_verdict;
+
 /*
- * Whether piece at turn has certainly no place with its origin in box
- * (x0, y0, x1, y1) on sheet, as the sheet's raster shows; false when that
- * cannot be shown.
+ * What sheet's raster shows of the origins of piece at turn in box (x0,
+ * y0, x1, y1): none is a place, or those that may be lie in narrowed
+ * (when not NULL; within box).  RASTER_UNKNOWN when it cannot tell.
  */
-bool nest_raster_rules_out(nester *n, size_t sheet, size_t piece, size_t turn, const double *box);
+raster_verdict nest_raster_room(nester *n, size_t sheet, size_t piece, size_t turn,
+                                const double *box, double *narrowed);
 
 /* Frees the rasters and the shapes' cores. */
 void nest_raster_free(nester *n);

@@ -378,6 +378,30 @@ static bool cell_update(nester *n, size_t sheet, size_t piece, size_t turn, room
     return ok;
 }
 
+/*
+ * Starts cell c's room from the narrowed box the raster gave, when that is
+ * much smaller than the cell: no place lies outside it, and fewer no-fit
+ * polygons reach it.  The placements so far showed it, so a rewind past
+ * them makes the cell whole again (cut_by).  False on a GEOS failure.
+ */
+static bool narrow_cell(nester *n, room_grid *grid, size_t c, const double *cell,
+                        const double *narrowed)
+{
+    double whole = (cell[2] - cell[0]) * (cell[3] - cell[1]);
+    double part = (narrowed[2] - narrowed[0]) * (narrowed[3] - narrowed[1]);
+    if (!(part < 0.8 * whole))
+        return true;
+    GEOSGeometry *room =
+        nest_rectangle_polygon(n->geos, narrowed[0], narrowed[1], narrowed[2], narrowed[3]);
+    if (!room)
+        return false;
+    GEOSGeom_destroy_r(n->geos, grid->free[c]);
+    grid->free[c] = room;
+    if (n->placed_count > 0)
+        note_cut_by(&grid->cut_by[c], n->placed_count - 1);
+    return true;
+}
+
 /* The leftmost, then lowest, vertex of a region's rings; false when it has none. */
 static bool leftmost(GEOSContextHandle_t geos, const GEOSGeometry *region, ur_vec2 *best)
 {
@@ -442,7 +466,7 @@ static bool place_on(nester *n, size_t sheet, size_t piece, size_t turn, double 
     if (fresh && !grid_make(n, sheet, piece, turn, grid))
         return false; /* it does not fit the sheet, or no memory: no place */
     double whole[4] = {grid->x0, grid->y0, grid->x1, grid->y1};
-    if (fresh && nest_raster_rules_out(n, sheet, piece, turn, whole)) {
+    if (fresh && nest_raster_room(n, sheet, piece, turn, whole, NULL) == RASTER_NONE) {
         state->full[slot] = true;
         return false;
     }
@@ -456,14 +480,22 @@ static bool place_on(nester *n, size_t sheet, size_t piece, size_t turn, double 
                 continue;
             /*
              * A cell not cut yet would be cut by every placement near it:
-             * the raster may show it full first.  One cut already is
-             * brought up to date by the few placed since, which costs less
-             * than a raster made again (copies of a part).
+             * the raster may show it full, or its places in a corner of it,
+             * first.  One cut already is brought up to date by the few
+             * placed since, which costs less than a raster made again
+             * (copies of a part).
              */
-            double cell[4];
-            nest_cell_box(n, grid, c, cell);
-            if (grid->applied[c] == 0 && nest_raster_rules_out(n, sheet, piece, turn, cell))
-                continue; /* left as it is: no place there, whatever its cuts */
+            if (grid->applied[c] == 0) {
+                double cell[4], narrowed[4];
+                nest_cell_box(n, grid, c, cell);
+                raster_verdict seen = nest_raster_room(n, sheet, piece, turn, cell, narrowed);
+                if (seen == RASTER_NONE)
+                    continue; /* left as it is: no place there, whatever its cuts */
+                if (seen == RASTER_NARROWED && !narrow_cell(n, grid, c, cell, narrowed)) {
+                    nest_grid_free(n->geos, grid);
+                    return false;
+                }
+            }
             if (!cell_update(n, sheet, piece, turn, grid, c)) {
                 nest_grid_free(n->geos, grid); /* GEOS failed: better no place than an overlap */
                 return false;

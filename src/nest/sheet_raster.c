@@ -225,13 +225,23 @@ static bool raster_make(nester *n, size_t sheet, sheet_raster *raster)
     return distance_transform(raster);
 }
 
-/*
- * Whether no origin of piece at turn in box (x0, y0, x1, y1) is a place
- * on sheet: every pixel its disc's centre can reach from there lies
- * nearer than the disc's radius to a blocked centre.  False when that
- * cannot be shown (or memory runs out: the room is then cut as before).
- */
-bool nest_raster_rules_out(nester *n, size_t sheet, size_t piece, size_t turn, const double *box)
+/* The sheet's raster, made again if the sheet changed since; NULL when it cannot be had. */
+static const sheet_raster *raster_of(nester *n, size_t sheet)
+{
+    sheet_raster *raster = &n->sheets[sheet].raster;
+    if (raster->version != n->sheets[sheet].version || !raster->distance) {
+        if (!raster_make(n, sheet, raster)) {
+            free(raster->distance);
+            memset(raster, 0, sizeof *raster);
+            return NULL;
+        }
+        raster->version = n->sheets[sheet].version;
+    }
+    return raster;
+}
+
+raster_verdict nest_raster_room(nester *n, size_t sheet, size_t piece, size_t turn,
+                                const double *box, double *narrowed)
 {
     /*
      * Only while the first layout is made: there every part meets its
@@ -240,33 +250,40 @@ bool nest_raster_rules_out(nester *n, size_t sheet, size_t piece, size_t turn, c
      * milliseconds) would cost them more than it saves.
      */
     if (!n->first_run || !n->raster_shapes || sheet >= n->sheet_count)
-        return false;
+        return RASTER_UNKNOWN;
     const raster_shape *shape = shape_for(n, piece, turn);
-    if (!(shape->radius > 0))
-        return false;
-    sheet_raster *raster = &n->sheets[sheet].raster;
-    if (raster->version != n->sheets[sheet].version || !raster->distance) {
-        if (!raster_make(n, sheet, raster)) {
-            free(raster->distance);
-            memset(raster, 0, sizeof *raster);
-            return false;
-        }
-        raster->version = n->sheets[sheet].version;
-    }
+    const sheet_raster *raster = shape->radius > 0 ? raster_of(n, sheet) : NULL;
+    if (!raster)
+        return RASTER_UNKNOWN;
     double h = raster->pixel, reach = shape->radius - h * M_SQRT1_2;
     double x0 = box[0] + shape->centre.x, x1 = box[2] + shape->centre.x;
     double y0 = box[1] + shape->centre.y, y1 = box[3] + shape->centre.y;
     if (!(reach > 0) || x0 < 0 || y0 < 0 || x1 >= (double)raster->columns * h ||
         y1 >= (double)raster->rows * h)
-        return false;
-    /* The pixels whose squares meet the region: their centres are within half a diagonal. */
+        return RASTER_UNKNOWN;
+    /*
+     * The pixels whose squares meet the region; a place may lie only where
+     * the disc's centre falls in a pixel as far from every blocked centre
+     * as the disc is wide: the box of those, less the centre, holds them.
+     */
     size_t i0 = (size_t)(x0 / h), i1 = (size_t)(x1 / h), j0 = (size_t)(y0 / h),
            j1 = (size_t)(y1 / h);
+    size_t low_i = SIZE_MAX, high_i = 0, low_j = SIZE_MAX, high_j = 0;
     for (size_t j = j0; j <= j1; j++)
         for (size_t i = i0; i <= i1; i++)
-            if (raster->distance[j * raster->columns + i] >= reach)
-                return false;
-    return true;
+            if (raster->distance[j * raster->columns + i] >= reach) {
+                if (!narrowed)
+                    return RASTER_UNKNOWN; /* a place may be there: that is all asked */
+                low_i = i < low_i ? i : low_i, high_i = i > high_i ? i : high_i;
+                low_j = j < low_j ? j : low_j, high_j = j > high_j ? j : high_j;
+            }
+    if (low_i == SIZE_MAX)
+        return RASTER_NONE;
+    narrowed[0] = fmax(box[0], (double)low_i * h - shape->centre.x);
+    narrowed[1] = fmax(box[1], (double)low_j * h - shape->centre.y);
+    narrowed[2] = fmin(box[2], (double)(high_i + 1) * h - shape->centre.x);
+    narrowed[3] = fmin(box[3], (double)(high_j + 1) * h - shape->centre.y);
+    return RASTER_NARROWED;
 }
 
 void nest_raster_free(nester *n)

@@ -310,9 +310,11 @@ static GEOSGeometry *shifted_copy(const GEOSGeometry *g, double x, double y)
  * and a 48-gon (whose inscribed disc is nearly all of it: a raster that
  * reached a pixel too far would rule out places where it does not
  * overlap) are asked about 6,000 small boxes of origins each.  Every box
- * ruled out is checked at its corners, centre and 8 random points: there
+ * ruled out is checked at its corners, centre and 8 random points, and
+ * every box narrowed at 13 points outside what it was narrowed to: there
  * the piece overlaps a placed part by more than a square micrometre
- * (GEOS).  Over 300 boxes are ruled out; the 48-gon in the middle of the
+ * (GEOS).  Over 300 boxes are ruled out and over 100 narrowed to less than
+ * half; the 48-gon in the middle of the
  * plate's hole is not; and after the parts are forgotten (a rewind), no
  * box is.
  */
@@ -380,19 +382,32 @@ static void test_raster_rules_out_only_overlaps(void **state)
     n.raster_shapes = calloc(PLACED + 2, sizeof *n.raster_shapes);
     assert_non_null(n.raster_shapes);
     size_t ruled_out = 0;
+    size_t narrowed_count = 0;
     for (size_t piece = PLACED; piece < PLACED + 2; piece++)
         for (int q = 0; q < 6000; q++) {
             double x = 200.0 * rand() / RAND_MAX, y = 150.0 * rand() / RAND_MAX;
-            double box[4] = {x, y, x + 6.0 * rand() / RAND_MAX, y + 6.0 * rand() / RAND_MAX};
-            if (!nest_raster_rules_out(&n, 0, piece, 0, box))
+            double box[4] = {x, y, x + 12.0 * rand() / RAND_MAX, y + 12.0 * rand() / RAND_MAX};
+            double narrowed[4];
+            raster_verdict seen = nest_raster_room(&n, 0, piece, 0, box, narrowed);
+            if (seen == RASTER_NARROWED) {
+                assert_true(narrowed[0] >= box[0] && narrowed[2] <= box[2] &&
+                            narrowed[1] >= box[1] && narrowed[3] <= box[3]);
+                narrowed_count += (narrowed[2] - narrowed[0]) * (narrowed[3] - narrowed[1]) <
+                                  0.5 * (box[2] - box[0]) * (box[3] - box[1]);
+            }
+            if (seen == RASTER_UNKNOWN)
                 continue;
-            ruled_out++;
-            for (int t = 0; t < 13; t++) {
+            ruled_out += seen == RASTER_NONE;
+            /* Ruled out: every point of the box overlaps; narrowed: every point outside it. */
+            for (int t = 0, checked = 0; t < 200 && checked < 13; t++) {
                 double u = t < 4 ? t % 2 : t == 4 ? 0.5 : (double)rand() / RAND_MAX;
                 double v = t < 4 ? t / 2 : t == 4 ? 0.5 : (double)rand() / RAND_MAX;
-                GEOSGeometry *there =
-                    shifted_copy(shapes[piece].polygon, box[0] + u * (box[2] - box[0]),
-                                 box[1] + v * (box[3] - box[1]));
+                double px = box[0] + u * (box[2] - box[0]), py = box[1] + v * (box[3] - box[1]);
+                if (seen == RASTER_NARROWED && px >= narrowed[0] && px <= narrowed[2] &&
+                    py >= narrowed[1] && py <= narrowed[3])
+                    continue;
+                checked++;
+                GEOSGeometry *there = shifted_copy(shapes[piece].polygon, px, py);
                 GEOSGeometry *common = GEOSIntersection_r(geos, there, placed_union);
                 double area = 0;
                 assert_true(common && GEOSArea_r(geos, common, &area));
@@ -401,17 +416,18 @@ static void test_raster_rules_out_only_overlaps(void **state)
                 GEOSGeom_destroy_r(geos, there);
             }
         }
+    assert_true(narrowed_count > 100);
     assert_true(ruled_out > 300);
     /* In the plate's hole, 30 mm square, the round piece has room: its middle is not ruled out. */
     double middle[4] = {placements[3].at.x - 1, placements[3].at.y - 1, placements[3].at.x + 1,
                         placements[3].at.y + 1};
-    assert_false(nest_raster_rules_out(&n, 0, PLACED + 1, 0, middle));
+    assert_int_not_equal(nest_raster_room(&n, 0, PLACED + 1, 0, middle, NULL), RASTER_NONE);
     n.placed_count = 0;
     sheets[0].version++;
     for (int q = 0; q < 300; q++) {
         double x = 200.0 * rand() / RAND_MAX, y = 150.0 * rand() / RAND_MAX;
         double box[4] = {x, y, x + 1, y + 1};
-        assert_false(nest_raster_rules_out(&n, 0, PLACED, 0, box));
+        assert_int_not_equal(nest_raster_room(&n, 0, PLACED, 0, box, NULL), RASTER_NONE);
     }
     nest_raster_free(&n);
     for (size_t k = 0; k < PLACED + 2; k++)
