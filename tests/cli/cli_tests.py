@@ -3703,21 +3703,20 @@ def signals_stop_cleanly(work):
     check(snapshot(work) == before, "mesh after SIGTERM left or changed files")
 
 
-def interrupted_on_terminal(work, args, signal_number, delay):
+def interrupted_on_terminal(work, args, signal_number, when):
     """Runs unroll with its standard error on a terminal (a pseudo-terminal),
-    so that it shows its progress, and sends it a signal after delay
-    seconds; its exit status and what it wrote there."""
+    so that it shows its progress, and sends it a signal once what it wrote
+    there matches the pattern when; its exit status and all it wrote."""
     import pty
     import select
-    import time
     main, terminal = pty.openpty()
     process = subprocess.Popen([UNROLL, *args], cwd=work, stdout=subprocess.DEVNULL,
                                stderr=terminal, text=True,
                                env=dict(os.environ, UNROLL_PROFILES=os.path.join(REPO, "profiles")))
     os.close(terminal)
-    said, signalled, start = b"", False, time.monotonic()
+    said, signalled = b"", False
     while True:
-        if not signalled and time.monotonic() - start >= delay:
+        if not signalled and re.search(when, said.decode(errors="replace")):
             check(process.poll() is None, "unroll %s ended before the signal" % " ".join(args))
             process.send_signal(signal_number)
             signalled = True
@@ -3731,13 +3730,14 @@ def interrupted_on_terminal(work, args, signal_number, delay):
                 break
             said += chunk
     os.close(main)
+    check(signalled, "unroll %s never wrote %r" % (" ".join(args), when))
     return process.wait(timeout=600), said.decode(errors="replace")
 
 
 @test
 def sigint_stops_the_first_layout_of_many_parts(work):
-    """SIGINT while the first layout of 500 different stars is made (a
-    minute of placing here, with no search after it: --nest-time 0): the
+    """SIGINT once the first layout of 500 different stars has begun (ten
+    seconds of placing here, with no search after it: --nest-time 0): the
     placing stops there, exit 130, nothing written.  Before, the first
     layout did not look at the signal and placed all 500 parts (its
     progress line says how many) before the run stopped."""
@@ -3758,7 +3758,8 @@ def sigint_stops_the_first_layout_of_many_parts(work):
     before = snapshot(work)
     status, said = interrupted_on_terminal(work, ["nest", "stars.svg", "--nest-time", "0",
                                                   "--sheet", "420x297", "-o", "s.svg",
-                                                  "--report", "s.json"], signal.SIGINT, 3.0)
+                                                  "--report", "s.json"], signal.SIGINT,
+                                           r"placed [1-9]\d* of 500 parts")
     check(status == 130, "nest after SIGINT: exit %d; %s" % (status, said.strip()))
     check(re.search(r"stopped by SIGINT: no file was left half-written", said), said)
     placed = [int(m) for m in re.findall(r"placed (\d+) of 500 parts", said)]
