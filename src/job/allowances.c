@@ -281,15 +281,13 @@ void job_allowance_warnings(const job_run *run, const ur_piece *pieces, size_t c
         unsaid_pieces += piece_unsaid;
     }
     if (unsaid && run->job.report_path)
-        job_warn(run,
-                 "%s: warning: and %zu more allowance warning%s on %zu more piece%s, in the report",
+        job_warn(run, "%s: warning: and %zu more allowance warning%s on %zu piece%s, in the report",
                  run->job.command, unsaid, unsaid == 1 ? "" : "s", unsaid_pieces,
                  unsaid_pieces == 1 ? "" : "s");
     else if (unsaid)
-        job_warn_about(
-            run, "report",
-            "%s: warning: and %zu more allowance warning%s on %zu more piece%s: a report "
-            "lists them all",
-            run->job.command, unsaid, unsaid == 1 ? "" : "s", unsaid_pieces,
-            unsaid_pieces == 1 ? "" : "s");
+        job_warn_about(run, "report",
+                       "%s: warning: and %zu more allowance warning%s on %zu piece%s: a report "
+                       "lists them all",
+                       run->job.command, unsaid, unsaid == 1 ? "" : "s", unsaid_pieces,
+                       unsaid_pieces == 1 ? "" : "s");
 }

@@ -1895,8 +1895,8 @@ def a_hole_narrower_than_the_kerf_is_cut_as_drawn(work):
 def many_pieces_warnings_are_counted_after_twenty_lines(work):
     # 24 plates of 20 x 15 mm, each with a dumbbell hole whose 0.05 mm
     # channel is narrower than the kerf: one warning each.  The summary
-    # gives the first 20 pieces a line each and counts the other four in
-    # one line, so that a thousand small nets do not bury it; the report
+    # gives the first 20 pieces a line each and counts the other four (the
+    # pieces they are on, named or not) in one line, so that a thousand small nets do not bury it; the report
     # has all 24.  Without a report, the line says to ask for one.
     paths = []
     for k in range(24):
@@ -1911,13 +1911,13 @@ def many_pieces_warnings_are_counted_after_twenty_lines(work):
     result = run(work, "nest", "plates.svg", "-o", "plates-out.svg", "--report", "plates.json")
     lines = [l for l in result.stderr.splitlines() if re.search(r"warning: piece \S+: ", l)]
     check(len(lines) == 20, "%d piece lines:\n%s" % (len(lines), result.stderr))
-    check(re.search(r"warning: and 4 more allowance warnings on 4 more pieces, in the report",
+    check(re.search(r"warning: and 4 more allowance warnings on 4 pieces, in the report",
                     result.stderr), result.stderr)
     said = [a for piece in report(work, "plates.json")["pieces"] for a in piece["allowances"]
             if a["kind"] == "kerf-compensation" and a["warning"]]
     check(len(said) == 24, "%d warnings in the report" % len(said))
     result = run(work, "nest", "plates.svg", "-o", "plates-out.svg")
-    check(re.search(r"warning: and 4 more allowance warnings on 4 more pieces: a --report lists "
+    check(re.search(r"warning: and 4 more allowance warnings on 4 pieces: a --report lists "
                     r"them all", result.stderr), result.stderr)
 
 
