@@ -8,7 +8,8 @@
  * of c + x: the two would overlap there.  So a cell of the part's room
  * where every pixel the disc's centre can reach lies nearer than r to a
  * blocked centre (less the half diagonal of a pixel, for the points
- * between centres) is full, and its no-fit polygons need not be cut.
+ * between centres) is full, and its no-fit polygons need not be cut; a
+ * cell with a few such pixels left has its places within their box.
  *
  * Nesting a thousand different small nets spent nearly all its time
  * proving cells of full sheets full, one difference of polygons at a time.
