@@ -924,18 +924,26 @@ static ur_status nets_of_mesh(const job_run *run, const job_room *room, const ur
  */
 #define TINY_MODEL 10.0
 
-/* Without units or a scale, a mesh smaller than TINY_MODEL gets a warning naming both. */
-static void warn_if_tiny(const job_run *run, const ur_mesh *mesh)
+/* The largest side of the mesh's box (mm); 0 for no vertices. */
+static double model_size(const ur_mesh *mesh)
 {
-    if (run->job.quiet || mesh->vertex_count == 0)
-        return;
+    if (mesh->vertex_count == 0)
+        return 0;
     ur_vec3 low = mesh->vertices[0], high = mesh->vertices[0];
     for (size_t v = 1; v < mesh->vertex_count; v++) {
         ur_vec3 p = mesh->vertices[v];
         low = ur_vec3_make(fmin(low.x, p.x), fmin(low.y, p.y), fmin(low.z, p.z));
         high = ur_vec3_make(fmax(high.x, p.x), fmax(high.y, p.y), fmax(high.z, p.z));
     }
-    double size = fmax(high.x - low.x, fmax(high.y - low.y, high.z - low.z));
+    return fmax(high.x - low.x, fmax(high.y - low.y, high.z - low.z));
+}
+
+/* Without units or a scale, a mesh smaller than TINY_MODEL gets a warning naming both. */
+static void warn_if_tiny(const job_run *run, const ur_mesh *mesh)
+{
+    if (run->job.quiet)
+        return;
+    double size = model_size(mesh);
     if (!(size < TINY_MODEL) || !(size > 0))
         return;
     job_warn_about(run, "units units scale",
@@ -943,6 +951,64 @@ static void warn_if_tiny(const job_run *run, const ur_mesh *mesh)
                    "modelled in metres (as Blender's are) give units m (%.4g mm), in inches "
                    "units in (%.4g mm), or scale S",
                    run->job.command, run->job.mesh_path, size, size * 1000, size * 25.4);
+}
+
+/*
+ * A model smaller than this (mm) whose edges are mostly shorter than a
+ * glue tab is deep gets a note suggesting a scale: read at 1:1, a 30 mm
+ * recycling symbol from PrusaSlicer unfolded with tabs full of "no room",
+ * and at 5 times its size well.  A larger model with short edges is a
+ * fine mesh, which a scale would not help.
+ */
+#define SMALL_FOR_TABS 100.0
+/* The size the note's scale brings the model to, at least (mm). */
+#define TABS_SIZE 150.0
+
+static int shorter_first(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* The median length of the triangles' edges; 0 when there are none or memory runs out. */
+static double median_edge(const ur_mesh *mesh)
+{
+    size_t count = 3 * mesh->triangle_count;
+    double *lengths = count ? malloc(count * sizeof *lengths) : NULL;
+    if (!lengths)
+        return 0;
+    for (size_t t = 0; t < mesh->triangle_count; t++)
+        for (int k = 0; k < 3; k++) {
+            lengths[3 * t + (size_t)k] =
+                ur_vec3_distance(mesh->vertices[mesh->triangles[t][k]],
+                                 mesh->vertices[mesh->triangles[t][(k + 1) % 3]]);
+        }
+    qsort(lengths, count, sizeof *lengths, shorter_first);
+    double median = lengths[count / 2];
+    free(lengths);
+    return median;
+}
+
+/* Without units or a scale, a small papercraft model of short edges gets a note with a scale. */
+static void note_if_small_for_tabs(const job_run *run, const ur_material *material,
+                                   const ur_mesh *mesh)
+{
+    if (run->job.quiet || !run->job.unfold || !job_makes_joints(run) ||
+        material->joint != UR_JOINT_TAB || !(material->tab_depth > 0))
+        return;
+    double size = model_size(mesh);
+    if (!(size >= TINY_MODEL && size < SMALL_FOR_TABS))
+        return; /* a tiny model has its warning already; a large one is fine */
+    double median = median_edge(mesh);
+    if (!(median > 0 && median < material->tab_depth))
+        return;
+    double scale = ceil(TABS_SIZE / size);
+    job_note_about(run, "scale",
+                   "%s: note: %s is %.0f mm across and half its edges are under %.1f mm, shorter "
+                   "than a glue tab is deep (%g mm): many seams will have no tab; scale %g makes "
+                   "it %.0f mm across",
+                   run->job.command, run->job.mesh_path, size, median, material->tab_depth, scale,
+                   size * scale);
 }
 
 ur_status job_mesh_nets(const job_run *run, const job_room *room, const ur_material *material,
@@ -967,8 +1033,10 @@ ur_status job_mesh_nets(const job_run *run, const job_room *room, const ur_mater
     ur_error error;
     if (ur_mesh_import(run->job.mesh_path, &options, &mesh, NULL, &error) != UR_OK)
         return fail(run, &error);
-    if (!run->job.unit_name && isnan(run->job.scale))
+    if (!run->job.unit_name && isnan(run->job.scale)) {
         warn_if_tiny(run, &mesh);
+        note_if_small_for_tabs(run, material, &mesh);
+    }
     code = nets_of_mesh(run, room, material, &mesh, true, nets, area);
     ur_mesh_free(&mesh);
     return code;
