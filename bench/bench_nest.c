@@ -77,6 +77,19 @@ static void ring_piece(ur_piece *piece, double r0, double r1)
     piece->measures.flat_area -= M_PI * r0 * r0;
 }
 
+/* Sheets of width x height with a 5 mm margin, the spacing given and 4 turns. */
+static ur_nest_options sheet_options(double width, double height, double spacing)
+{
+    ur_nest_options options;
+    memset(&options, 0, sizeof options);
+    options.sheet_width = width;
+    options.sheet_height = height;
+    options.margin = 5;
+    options.spacing = spacing;
+    options.rotations = 4;
+    return options;
+}
+
 /* A star of n points about its centre, radii drawn from the seed, as nest --nest-time 0 takes. */
 static void star(ur_piece *piece, int n, unsigned *seed)
 {
@@ -100,13 +113,7 @@ static int many_different_parts(void)
     unsigned seed = 5;
     for (int k = 0; k < STARS; k++)
         star(&pieces[k], 5 + k % 7, &seed);
-    ur_nest_options options;
-    memset(&options, 0, sizeof options);
-    options.sheet_width = 420;
-    options.sheet_height = 297;
-    options.margin = 5;
-    options.spacing = 2;
-    options.rotations = 4;
+    ur_nest_options options = sheet_options(420, 297, 2);
     ur_layout layout;
     ur_error error;
     double start = now();
@@ -136,13 +143,7 @@ int main(void)
         l_shape(&pieces[n++], 60 + 10 * (k % 3), 15);
     for (int k = 0; k < 10; k++)
         ring_piece(&pieces[n++], 25, 40);
-    ur_nest_options options;
-    memset(&options, 0, sizeof options);
-    options.sheet_width = 600;
-    options.sheet_height = 400;
-    options.margin = 5;
-    options.spacing = 3;
-    options.rotations = 4;
+    ur_nest_options options = sheet_options(600, 400, 3);
     options.holes = true;
     double area = 0;
     for (size_t k = 0; k < n; k++)

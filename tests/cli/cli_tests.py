@@ -1893,36 +1893,15 @@ def a_hole_narrower_than_the_kerf_is_cut_as_drawn(work):
 
 @test
 def a_small_papercraft_model_gets_a_scale_note(work):
-    # A UV sphere 30 mm across, 32 x 16 faces: its edges are 1 to 2.9 mm
-    # long, shorter than paper's 6 mm glue tabs are deep.  Unfolded as
+    # A UV sphere 30 mm across, 32 x 16 faces (quads, split as they are
+    # read): its edges are 0.6 to 4.2 mm long, half under 2.9 mm, shorter
+    # than paper's 6 mm glue tabs are deep.  Unfolded as
     # papercraft without units or a scale, a note says so and gives the
     # scale that makes it 150 mm across (PrusaSlicer's 30 mm recycling
     # symbols unfolded full of "no room" so).  With that scale, or without
     # allowances (no tabs), or as the 150 mm sphere it makes, no note.
-    def sphere(name, radius):
-        rows, columns = 16, 32
-        lines = ["v 0 0 %g" % radius]
-        for i in range(1, rows):
-            phi = math.pi * i / rows
-            for j in range(columns):
-                theta = 2 * math.pi * j / columns
-                lines.append("v %.6f %.6f %.6f" % (radius * math.sin(phi) * math.cos(theta),
-                                                   radius * math.sin(phi) * math.sin(theta),
-                                                   radius * math.cos(phi)))
-        lines.append("v 0 0 %g" % -radius)
-        ring = lambda i, j: 2 + (i - 1) * columns + j % columns
-        bottom = 2 + (rows - 1) * columns
-        for j in range(columns):
-            lines.append("f 1 %d %d" % (ring(1, j), ring(1, j + 1)))
-            lines.append("f %d %d %d" % (bottom, ring(rows - 1, j + 1), ring(rows - 1, j)))
-            for i in range(1, rows - 1):
-                a, b = ring(i, j), ring(i, j + 1)
-                c, d = ring(i + 1, j + 1), ring(i + 1, j)
-                lines.append("f %d %d %d" % (a, d, c))
-                lines.append("f %d %d %d" % (a, c, b))
-        write(work, name, "\n".join(lines) + "\n")
-    sphere("small.obj", 15)
-    sphere("large.obj", 75)
+    write(work, "small.obj", low_poly_sphere(32, 16, 15))
+    write(work, "large.obj", low_poly_sphere(32, 16, 75))
     common = ["--flatten", "unfold", "--material", "paper-0.3mm", "--nest-time", "0"]
     result = run(work, "mesh", "small.obj", *common, "-o", "s.svg")
     check(re.search(r"note: small\.obj is 30 mm across and half its edges are under 2\.9 mm, "
