@@ -444,6 +444,7 @@ static void nester_free(nester *n)
     free(n->run_held);
     free(n->run_placed);
     free(n->sheet_area);
+    free(n->class_left);
     pair_table_free(n->geos, &n->pairs);
     for (size_t c = 0; c < n->class_count; c++) {
         for (size_t t = 0; n->classes[c].turns && t < n->classes[c].turn_count; t++)
@@ -561,6 +562,13 @@ ur_status ur_layout_nest(const ur_piece *pieces, size_t count, const ur_nest_opt
         if (!n.sheets || !n.raster_shapes || !n.sheet_area || !n.run_piece || !n.run_held ||
             !n.run_placed)
             status = ur_error_out_of_memory(error);
+    }
+    if (status == UR_OK && !(options->time_budget > 0)) {
+        n.class_left = calloc(n.class_count + 1, sizeof *n.class_left);
+        if (!n.class_left)
+            status = ur_error_out_of_memory(error);
+        for (size_t p = 0; status == UR_OK && p < count; p++)
+            n.class_left[n.class_of[p]]++;
     }
     for (size_t p = 0; status == UR_OK && p < count; p++)
         keys[p] = (order_key){nest_shape_of(&n, p, 0)->area, p};

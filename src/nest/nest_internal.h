@@ -228,7 +228,13 @@ typedef struct nester {
     size_t *run_piece, *run_held, *run_placed;
     size_t run_length;
     double *sheet_area; /* per sheet: area of the parts on it */
-    bool first_run;     /* the first layout is being made: options->placing hears of it */
+    /*
+     * Per class: its parts not placed yet in the first layout, when no
+     * search follows it (a budget of 0); NULL otherwise.  A class with
+     * none left has its rooms freed (room.c): nothing asks for them again.
+     */
+    size_t *class_left;
+    bool first_run; /* the first layout is being made: options->placing hears of it */
     /*
      * Memory ran out making a no-fit polygon or a room: a place not found
      * then says nothing of the part, and placing stops (UR_ERROR_MEMORY).

@@ -551,6 +551,22 @@ static ur_status refuse_piece(nester *n, size_t piece)
 }
 
 /*
+ * Frees the rooms of piece's class on every sheet once the first layout,
+ * with no search after it, has placed all its parts: a mesh unfolded into
+ * 1,616 different nets kept a room per net, turn and sheet, 1.77 GB, of
+ * which nothing would ask again.
+ */
+static void drop_finished_rooms(nester *n, size_t piece)
+{
+    size_t c = n->class_of[piece];
+    if (!n->first_run || !n->class_left || --n->class_left[c] > 0)
+        return;
+    for (size_t s = 0; s < n->sheet_slots; s++)
+        for (size_t t = 0; n->sheets[s].rooms && t < n->turn_count; t++)
+            nest_grid_free(n->geos, &n->sheets[s].rooms[c * n->turn_count + t]);
+}
+
+/*
  * Places one piece: the first sheet it fits, at its best turn there (or at
  * turn held, unless that is ANY_TURN); a new sheet otherwise.
  */
@@ -619,6 +635,7 @@ ur_status nest_place_piece(nester *n, size_t piece, size_t held)
             if (!nest_index_add(n, n->placed_count - 1))
                 return ur_error_out_of_memory(n->error);
             n->sheets[sheet].version++;
+            drop_finished_rooms(n, piece);
             return UR_OK;
         }
         if (sheet == n->sheet_count) /* it fits no empty sheet either */
