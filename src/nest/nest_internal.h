@@ -186,9 +186,8 @@ typedef struct sheet_state {
      * up during a run, so it never fits there again in that run.
      */
     bool *full;
-    index_bucket *buckets; /* column by column; NULL until the first placement */
+    index_bucket *buckets; /* column by column from the sheet's corner; NULL until placed on */
     size_t columns, rows;
-    double x0, y0;       /* the lower left corner of bucket 0 */
     size_t version;      /* changes with every placement made on it or forgotten */
     sheet_raster raster; /* made when first asked for */
 } sheet_state;

@@ -1,10 +1,10 @@
 /*
- * placed_index.c: the placements on each sheet in a grid of buckets, by the
- * box each reaches (its shape's grown outline where it lies), so that a
- * cell of a room (room.c) asks only for the placements whose no-fit
- * polygons may reach it.  Looking at every placement on the sheet for
- * every cell made placing n parts cost n squared box tests per sheet: on
- * 1,188 small nets of an unfolded mesh, two thirds of the nesting's time.
+ * placed_index.c: the placements on each sheet in a grid of buckets (cells
+ * of the sheet from its lower left corner), by the box each reaches (its
+ * shape's grown outline where it lies), so that a cell of a room (room.c)
+ * asks only for the placements whose no-fit polygons may reach it, not
+ * for every placement on every sheet: a box test per placement and cell,
+ * which grows with the square of the parts.
  */
 #include "nest_internal.h"
 
@@ -17,13 +17,14 @@ double nest_reach_slack(const nest_shape *shape)
 }
 
 /*
- * The bucket column (or row) of coordinate v, counting from origin, kept
- * within 0 to count - 1: a box beyond the sheet's edge goes in the edge's
- * buckets, which keeps every two boxes that meet in buckets that do.
+ * The bucket column (or row) of coordinate v, counting from the sheet's
+ * edge, kept within 0 to count - 1: a box beyond the sheet's edge goes in
+ * the edge's buckets, which keeps every two boxes that meet in buckets
+ * that do.
  */
-static size_t bucket_of(double v, double origin, double size, size_t count)
+static size_t bucket_of(double v, double size, size_t count)
 {
-    double i = floor((v - origin) / size);
+    double i = floor(v / size);
     if (!(i > 0))
         return 0;
     return i >= (double)(count - 1) ? count - 1 : (size_t)i;
@@ -36,7 +37,6 @@ static bool index_make(nester *n, size_t sheet, sheet_state *state)
     nest_sheet_size(n, sheet, &width, &height);
     state->columns = (size_t)fmax(1.0, ceil(width / n->cell_size));
     state->rows = (size_t)fmax(1.0, ceil(height / n->cell_size));
-    state->x0 = state->y0 = 0;
     state->buckets = calloc(state->columns * state->rows, sizeof *state->buckets);
     if (!state->buckets) {
         state->columns = state->rows = 0;
@@ -62,10 +62,10 @@ static bool bucket_add(index_bucket *bucket, size_t k)
 /* The buckets a box covers: columns i0 to i1, rows j0 to j1. */
 static void bucket_range(const nester *n, const sheet_state *s, const double *box, size_t *range)
 {
-    range[0] = bucket_of(box[0], s->x0, n->cell_size, s->columns);
-    range[1] = bucket_of(box[1], s->y0, n->cell_size, s->rows);
-    range[2] = bucket_of(box[2], s->x0, n->cell_size, s->columns);
-    range[3] = bucket_of(box[3], s->y0, n->cell_size, s->rows);
+    range[0] = bucket_of(box[0], n->cell_size, s->columns);
+    range[1] = bucket_of(box[1], n->cell_size, s->rows);
+    range[2] = bucket_of(box[2], n->cell_size, s->columns);
+    range[3] = bucket_of(box[3], n->cell_size, s->rows);
 }
 
 bool nest_index_add(nester *n, size_t k)
