@@ -61,6 +61,12 @@ ur_status nest_shape_make(GEOSContextHandle_t geos, const ur_piece *piece, doubl
                           ur_error *error);
 void nest_shape_free(GEOSContextHandle_t geos, nest_shape *shape);
 
+/*
+ * The box of a geometry (x0, y0, x1, y1); false when GEOS gives none (an
+ * empty one), box then not all set.
+ */
+bool nest_box_of(GEOSContextHandle_t geos, const GEOSGeometry *g, double *box);
+
 /* Turns (x, y) about the origin by the angle whose cosine and sine are cosine_sine[0, 1]; GEOS's
  * transform callback. */
 int nest_turn_xy(double *x, double *y, void *cosine_sine);

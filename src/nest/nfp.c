@@ -161,12 +161,10 @@ static bool boxes_touch(const double *a, const double *b)
            b[1] <= a[3] + slack;
 }
 
-static void box_of(GEOSContextHandle_t geos, const GEOSGeometry *g, double *box)
+bool nest_box_of(GEOSContextHandle_t geos, const GEOSGeometry *g, double *box)
 {
-    GEOSGeom_getXMin_r(geos, g, &box[0]);
-    GEOSGeom_getYMin_r(geos, g, &box[1]);
-    GEOSGeom_getXMax_r(geos, g, &box[2]);
-    GEOSGeom_getYMax_r(geos, g, &box[3]);
+    return GEOSGeom_getXMin_r(geos, g, &box[0]) && GEOSGeom_getYMin_r(geos, g, &box[1]) &&
+           GEOSGeom_getXMax_r(geos, g, &box[2]) && GEOSGeom_getYMax_r(geos, g, &box[3]);
 }
 
 /* The exterior vertices of a polygon (last not repeated), allocated; how many (0 on failure). */
@@ -286,10 +284,10 @@ static void merge_parts(GEOSContextHandle_t geos, nest_shape *shape)
         merged = false;
         for (size_t i = 0; i < shape->convex_count; i++) {
             double box_i[4];
-            box_of(geos, shape->convex[i], box_i);
+            nest_box_of(geos, shape->convex[i], box_i);
             for (size_t j = i + 1; j < shape->convex_count; j++) {
                 double box_j[4];
-                box_of(geos, shape->convex[j], box_j);
+                nest_box_of(geos, shape->convex[j], box_j);
                 if (!boxes_touch(box_i, box_j))
                     continue;
                 GEOSGeometry *hull = convex_merge(geos, shape->convex[i], shape->convex[j]);
@@ -299,7 +297,7 @@ static void merge_parts(GEOSContextHandle_t geos, nest_shape *shape)
                 GEOSGeom_destroy_r(geos, shape->convex[j]);
                 shape->convex[i] = hull;
                 shape->convex[j] = shape->convex[--shape->convex_count];
-                box_of(geos, hull, box_i);
+                nest_box_of(geos, hull, box_i);
                 merged = true;
                 j = i; /* the grown part may now merge with one already passed */
             }
@@ -387,7 +385,7 @@ static ur_status triangulate(GEOSContextHandle_t geos, const GEOSGeometry *polyg
     if (halvings >= MOST_HALVINGS)
         return UR_ERROR_INTERNAL;
     double box[4];
-    box_of(geos, polygon, box);
+    nest_box_of(geos, polygon, box);
     bool across_x = box[2] - box[0] >= box[3] - box[1];
     double middle = across_x ? (box[0] + box[2]) / 2 : (box[1] + box[3]) / 2;
     ur_status status = UR_OK;
@@ -611,7 +609,7 @@ ur_status nest_shape_make(GEOSContextHandle_t geos, const ur_piece *piece, doubl
     if (status != UR_OK)
         return status;
     double reach[4];
-    box_of(geos, shape->polygon, reach);
+    nest_box_of(geos, shape->polygon, reach);
     shape->reach = (ur_box){{reach[0], reach[1]}, {reach[2], reach[3]}};
     return UR_OK;
 }

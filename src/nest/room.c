@@ -152,11 +152,11 @@ static bool nfp_may_reach(const nester *n, const placed *p, size_t piece, size_t
 /* Whether a geometry's box, shifted by at, reaches into a cell (x0, y0, x1, y1). */
 static bool reaches(GEOSContextHandle_t geos, const GEOSGeometry *g, ur_vec2 at, const double *cell)
 {
-    double x0, y0, x1, y1;
-    if (!GEOSGeom_getXMin_r(geos, g, &x0) || !GEOSGeom_getYMin_r(geos, g, &y0) ||
-        !GEOSGeom_getXMax_r(geos, g, &x1) || !GEOSGeom_getYMax_r(geos, g, &y1))
+    double b[4];
+    if (!nest_box_of(geos, g, b))
         return true; /* no box: cut it out and let GEOS say */
-    return x0 + at.x < cell[2] && x1 + at.x > cell[0] && y0 + at.y < cell[3] && y1 + at.y > cell[1];
+    return b[0] + at.x < cell[2] && b[2] + at.x > cell[0] && b[1] + at.y < cell[3] &&
+           b[3] + at.y > cell[1];
 }
 
 /*
@@ -186,14 +186,7 @@ static void room_cut_forget(room_cut *r)
 static bool takes_from(room_cut *r, const GEOSGeometry *shifted)
 {
     double a[4], b[4];
-    if (GEOSGeom_getXMin_r(r->geos, *r->room, &a[0]) &&
-        GEOSGeom_getYMin_r(r->geos, *r->room, &a[1]) &&
-        GEOSGeom_getXMax_r(r->geos, *r->room, &a[2]) &&
-        GEOSGeom_getYMax_r(r->geos, *r->room, &a[3]) &&
-        GEOSGeom_getXMin_r(r->geos, shifted, &b[0]) &&
-        GEOSGeom_getYMin_r(r->geos, shifted, &b[1]) &&
-        GEOSGeom_getXMax_r(r->geos, shifted, &b[2]) &&
-        GEOSGeom_getYMax_r(r->geos, shifted, &b[3]) &&
+    if (nest_box_of(r->geos, *r->room, a) && nest_box_of(r->geos, shifted, b) &&
         (b[0] > a[2] || b[2] < a[0] || b[1] > a[3] || b[3] < a[1]))
         return false;
     if (!r->prepared)

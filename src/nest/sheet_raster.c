@@ -103,9 +103,7 @@ static void fill_rings(nester *n, sheet_raster *raster, const GEOSGeometry *poly
 {
     GEOSContextHandle_t geos = n->geos;
     double box[4];
-    if (!GEOSGeom_getXMin_r(geos, polygon, &box[0]) ||
-        !GEOSGeom_getYMin_r(geos, polygon, &box[1]) ||
-        !GEOSGeom_getXMax_r(geos, polygon, &box[2]) || !GEOSGeom_getYMax_r(geos, polygon, &box[3]))
+    if (!nest_box_of(geos, polygon, box))
         return;
     double h = raster->pixel;
     long j0 = (long)ceil((box[1] + at.y) / h - 0.5), j1 = (long)floor((box[3] + at.y) / h - 0.5);
