@@ -10,7 +10,9 @@
 #include <stdint.h>
 #include <stdlib.h>
 
-enum { EMPTY_KEY = SIZE_MAX, FIRST_CAPACITY = 1024 };
+/* A key no pair has: pair keys are indices well below SIZE_MAX. */
+#define EMPTY_KEY SIZE_MAX
+enum { FIRST_CAPACITY = 1024 };
 
 /* The slot to look in first for key: Fibonacci hashing into capacity, a power of two. */
 static size_t home_of(size_t key, size_t capacity)
