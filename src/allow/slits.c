@@ -16,30 +16,57 @@
 /* Two points this close (a share of the outline's size) are one. */
 #define SAME_POINT 1e-9
 
+/* A point of a ring and its place in it, to sort by x. */
+typedef struct ring_point {
+    ur_vec2 at;
+    size_t index;
+} ring_point;
+
 static int compare_x(const void *a, const void *b)
 {
-    const ur_vec2 *p = a, *q = b;
-    return (p->x > q->x) - (p->x < q->x);
+    const ring_point *p = a, *q = b;
+    return (p->at.x > q->at.x) - (p->at.x < q->at.x);
 }
 
-/* Whether some point of the ring comes back: the ends of a slit do, twice. */
-static bool has_repeated_point(const ur_vec2 *points, size_t count, double tolerance)
+/*
+ * A copy of the ring (*snapped, the caller's to free) in which each point
+ * that comes back within the tolerance is made equal to where it was
+ * first: the ends of a slit come back, twice.  Laid flat two ways round a
+ * hole, a slit's sides may end a rounding apart, and GEOS then keeps the
+ * slit as a hole of no width, joining the holes at its ends into one cut
+ * path that crosses itself (Cura's farm2 bed: its round hole and its slot,
+ * 1e-14 mm apart).  *repeated says whether any point came back.
+ */
+static ur_status snapped_ring(const ur_vec2 *points, size_t count, double tolerance,
+                              ur_vec2 **snapped, bool *repeated, ur_error *error)
 {
-    ur_vec2 *sorted = malloc(count * sizeof *sorted);
-    if (!sorted)
-        return false;
-    for (size_t i = 0; i < count; i++)
-        sorted[i] = points[i];
+    *repeated = false;
+    *snapped = ur_alloc_array(count, sizeof **snapped, error);
+    ring_point *sorted = ur_alloc_array(count, sizeof *sorted, error);
+    bool *taken = ur_alloc_array(count, sizeof *taken, error);
+    if (!*snapped || !sorted || !taken) {
+        free(*snapped);
+        *snapped = NULL;
+        free(sorted);
+        free(taken);
+        return UR_ERROR_MEMORY;
+    }
+    for (size_t i = 0; i < count; i++) {
+        (*snapped)[i] = points[i];
+        sorted[i] = (ring_point){points[i], i};
+        taken[i] = false;
+    }
     qsort(sorted, count, sizeof *sorted, compare_x);
-    bool repeated = false;
-    for (size_t i = 0; i < count && !repeated; i++)
-        for (size_t j = i + 1; j < count && sorted[j].x - sorted[i].x <= tolerance; j++)
-            if (ur_vec2_distance(sorted[i], sorted[j]) <= tolerance) {
-                repeated = true;
-                break;
+    for (size_t i = 0; i < count; i++)
+        for (size_t j = i + 1;
+             !taken[i] && j < count && sorted[j].at.x - sorted[i].at.x <= tolerance; j++)
+            if (!taken[j] && ur_vec2_distance(sorted[i].at, sorted[j].at) <= tolerance) {
+                (*snapped)[sorted[j].index] = sorted[i].at;
+                taken[j] = *repeated = true;
             }
     free(sorted);
-    return repeated;
+    free(taken);
+    return UR_OK;
 }
 
 /* Interior ring k of a polygon as points (last not repeated); NULL on failure. */
@@ -124,17 +151,25 @@ ur_status allow_open_slits(ur_piece *piece, ur_error *error)
         return UR_OK;
     const ur_path *outline = &piece->paths[0];
     double size = hypot(ur_box_width(piece->box), ur_box_height(piece->box));
-    if (!has_repeated_point(outline->points, outline->count, SAME_POINT * size))
-        return UR_OK;
+    ur_vec2 *ring = NULL;
+    bool repeated = false;
+    ur_status status =
+        snapped_ring(outline->points, outline->count, SAME_POINT * size, &ring, &repeated, error);
+    if (status != UR_OK || !repeated) {
+        free(ring);
+        return status;
+    }
     GEOSContextHandle_t geos = GEOS_init_r();
-    if (!geos)
+    if (!geos) {
+        free(ring);
         return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not be started");
-    GEOSGeometry *drawn = geos_polygon_of_ring(geos, outline->points, outline->count);
+    }
+    GEOSGeometry *drawn = geos_polygon_of_ring(geos, ring, outline->count);
+    free(ring);
     GEOSGeometry *valid = drawn ? GEOSMakeValid_r(geos, drawn) : NULL;
     double area = fabs(ur_polygon_signed_area(outline->points, outline->count)), valid_area = 0;
     double least = 1e-9 * area; /* a sliver's, a rounding wide */
     const GEOSGeometry *polygon = valid ? only_polygon(geos, valid, least) : NULL;
-    ur_status status = UR_OK;
     /* Only a slit: one polygon with holes, of the outline's own area (a slit has none). */
     if (polygon && GEOSGetNumInteriorRings_r(geos, polygon) > 0 &&
         GEOSArea_r(geos, polygon, &valid_area) && fabs(valid_area - area) <= 1e-6 * area)

@@ -862,11 +862,70 @@ static void test_slit_to_a_window_is_cut_as_a_hole(void **state)
     ur_piece_free(&piece);
 }
 
+/*
+ * A plate with two windows, unfolded as one piece: a slit runs in from the
+ * rim to the first window, and another from it to the second.  Laid flat
+ * two ways round the windows, the second slit's sides end a rounding
+ * apart (1e-14 mm, as on Cura's farm2 bed).  It is still cut as the rim
+ * and two windows, each a path that does not cross itself, not as one
+ * hole of both windows joined by a slit of no width.
+ */
+static void test_slits_a_rounding_apart_leave_two_windows(void **state)
+{
+    (void)state;
+    const double rounding = 1e-14;
+    ur_vec2 plate[] = {{0, 0},
+                       {30, 0},
+                       {30, 20},
+                       {20, 20},
+                       {20, 40},
+                       {40, 40},
+                       {40, 30},
+                       {60, 30},
+                       {60, 40},
+                       {80, 40},
+                       {80, 20},
+                       {60, 20},
+                       {60, 30 + rounding},
+                       {40, 30 - rounding},
+                       {40, 20},
+                       {30, 20},
+                       {30, 0},
+                       {100, 0},
+                       {100, 60},
+                       {0, 60}};
+    ur_net net;
+    memset(&net, 0, sizeof net);
+    net.outline = plate;
+    net.outline_count = sizeof plate / sizeof plate[0];
+    ur_piece piece;
+    ur_error error;
+    assert_int_equal(ur_piece_from_net(&net, NULL, &piece, &error), UR_OK);
+    assert_int_equal(piece.path_count, 3);
+    assert_float_equal(ur_polygon_signed_area(piece.paths[0].points, piece.paths[0].count), 6000,
+                       1e-9);
+    for (size_t k = 1; k < 3; k++) {
+        const ur_path *window = &piece.paths[k];
+        assert_true(window->op == UR_OP_CUT && window->closed);
+        ur_box box = ur_box_empty();
+        for (size_t i = 0; i < window->count; i++) {
+            ur_box_add(&box, window->points[i]);
+            for (size_t j = 0; j < i; j++) /* no point comes back: the path does not cross itself */
+                assert_true(ur_vec2_distance(window->points[i], window->points[j]) > 1e-6);
+        }
+        assert_float_equal(ur_box_width(box), 20, 1e-9);
+        assert_float_equal(ur_box_height(box), 20, 1e-9);
+        assert_float_equal(fabs(ur_polygon_signed_area(window->points, window->count)), 400, 1e-9);
+    }
+    ur_piece_free(&piece);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_kerf_rectangle_with_hole),
         cmocka_unit_test(test_slit_to_a_window_is_cut_as_a_hole),
+        cmocka_unit_test(test_slits_a_rounding_apart_leave_two_windows),
         cmocka_unit_test(test_kerf_sharp_corner),
         cmocka_unit_test(test_kerf_cuts_vanishing_hole_as_drawn),
         cmocka_unit_test(test_kerf_narrow_features),
