@@ -829,6 +829,17 @@ static void test_bridges_leave_arcs(void **state)
     ur_piece_free(&piece);
 }
 
+/* The piece of a net with this outline and nothing else. */
+static void piece_of_outline(ur_vec2 *outline, size_t count, ur_piece *piece)
+{
+    ur_net net;
+    memset(&net, 0, sizeof net);
+    net.outline = outline;
+    net.outline_count = count;
+    ur_error error;
+    assert_int_equal(ur_piece_from_net(&net, NULL, piece, &error), UR_OK);
+}
+
 /*
  * A flat frame unfolded as one piece: its outline runs in from the rim to
  * the window along a slit of no width, round the window and back.  It is
@@ -841,13 +852,9 @@ static void test_slit_to_a_window_is_cut_as_a_hole(void **state)
     ur_vec2 frame[] = {{0, 0},   {20, 0},  {40, 0},  {60, 0},  {60, 20}, {40, 20},
                        {20, 20}, {20, 40}, {40, 40}, {40, 20}, {60, 20}, {60, 40},
                        {60, 60}, {40, 60}, {20, 60}, {0, 60},  {0, 40},  {0, 20}};
-    ur_net net;
-    memset(&net, 0, sizeof net);
-    net.outline = frame;
-    net.outline_count = sizeof frame / sizeof frame[0];
     ur_piece piece;
+    piece_of_outline(frame, sizeof frame / sizeof frame[0], &piece);
     ur_error error;
-    assert_int_equal(ur_piece_from_net(&net, NULL, &piece, &error), UR_OK);
     assert_int_equal(piece.path_count, 2);
     assert_true(piece.paths[1].op == UR_OP_CUT && piece.paths[1].closed);
     assert_float_equal(ur_polygon_signed_area(piece.paths[0].points, piece.paths[0].count), 3600,
@@ -894,13 +901,8 @@ static void test_slits_a_rounding_apart_leave_two_windows(void **state)
                        {100, 0},
                        {100, 60},
                        {0, 60}};
-    ur_net net;
-    memset(&net, 0, sizeof net);
-    net.outline = plate;
-    net.outline_count = sizeof plate / sizeof plate[0];
     ur_piece piece;
-    ur_error error;
-    assert_int_equal(ur_piece_from_net(&net, NULL, &piece, &error), UR_OK);
+    piece_of_outline(plate, sizeof plate / sizeof plate[0], &piece);
     assert_int_equal(piece.path_count, 3);
     assert_float_equal(ur_polygon_signed_area(piece.paths[0].points, piece.paths[0].count), 6000,
                        1e-9);
