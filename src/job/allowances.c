@@ -99,6 +99,19 @@ static void report_joining(void *context, const char *phase, double fraction)
     job_progress(context, &progress);
 }
 
+/* The joints the material asks for, as options with no labels and no splices. */
+static ur_joint_options joints_of(const job_run *run, const ur_material *material)
+{
+    return (ur_joint_options){
+        .lap = material->joint == UR_JOINT_LAP,
+        .tab_depth = material->tab_depth,
+        .tab_angle = material->tab_angle,
+        .lap_width = material->lap_width,
+        .thickness = material->thickness,
+        .context = run->job.context,
+    };
+}
+
 ur_status job_add_joints(const job_run *run, const ur_machine *machine, const ur_material *material,
                          const ur_net_list *nets, ur_piece *pieces, ur_splice_list *splices,
                          ur_error *error)
@@ -107,27 +120,69 @@ ur_status job_add_joints(const job_run *run, const ur_machine *machine, const ur
     ur_status status = ur_font_open(NULL, &font, error);
     if (status != UR_OK)
         return status;
-    ur_joint_options options = {
-        .lap = material->joint == UR_JOINT_LAP,
-        .tab_depth = material->tab_depth,
-        .tab_angle = material->tab_angle,
-        .lap_width = material->lap_width,
-        .thickness = material->thickness,
-        .font = font,
-        .label_height = material->label_height,
-        .name_pieces = true,
-        .splices = splices,
-        .lap_kerfs = machine != NULL,
-        .lap_kerf_margin =
-            machine && machine->kind == UR_MACHINE_LASER ? material->hinge_connection : 0.0,
-        .context = run->job.context,
-        .progress = job_shows_progress(run) ? report_joining : NULL,
-        .progress_context = (void *)run,
-    };
+    ur_joint_options options = joints_of(run, material);
+    options.font = font;
+    options.label_height = material->label_height;
+    options.name_pieces = true;
+    options.splices = splices;
+    options.lap_kerfs = machine != NULL;
+    options.lap_kerf_margin =
+        machine && machine->kind == UR_MACHINE_LASER ? material->hinge_connection : 0.0;
+    options.progress = job_shows_progress(run) ? report_joining : NULL;
+    options.progress_context = (void *)run;
     status = ur_pieces_add_joints(pieces, nets, &options, error);
     ur_job_progress done = {.kind = UR_JOB_JOINING_DONE};
     job_progress(run, &done);
     ur_font_close(font);
+    return status;
+}
+
+/* The seam sides of every net gone, for the run to pair and number afresh. */
+static void forget_seams(ur_net_list *nets)
+{
+    for (size_t k = 0; k < nets->count; k++) {
+        free(nets->nets[k].seam_sides);
+        nets->nets[k].seam_sides = NULL;
+        nets->nets[k].seam_side_count = 0;
+    }
+}
+
+/* The joint warnings of the pieces: each a stretch of a seam with no room for its joint. */
+static size_t joint_warnings(const ur_piece *pieces, size_t count)
+{
+    size_t warnings = 0;
+    for (size_t k = 0; k < count; k++)
+        for (size_t r = 0; r < pieces[k].record_count; r++)
+            warnings +=
+                pieces[k].records[r].kind == UR_ALLOWANCE_JOINT && pieces[k].records[r].warning;
+    return warnings;
+}
+
+ur_status job_count_untabbed(const job_run *run, const ur_material *material, ur_net_list *nets,
+                             size_t *untabbed, ur_error *error)
+{
+    *untabbed = 0;
+    int next_seam;
+    ur_status status = ur_net_list_find_seams(nets, 1, &next_seam, error);
+    ur_piece *pieces = NULL;
+    if (status == UR_OK) {
+        pieces = ur_alloc_array(nets->count ? nets->count : 1, sizeof *pieces, error);
+        status = pieces ? UR_OK : UR_ERROR_MEMORY;
+    }
+    size_t made = 0;
+    while (status == UR_OK && made < nets->count) {
+        status = ur_piece_from_net(&nets->nets[made], NULL, &pieces[made], error);
+        made += status == UR_OK;
+    }
+    ur_joint_options options = joints_of(run, material);
+    if (status == UR_OK)
+        status = ur_pieces_add_joints(pieces, nets, &options, error);
+    if (status == UR_OK)
+        *untabbed = joint_warnings(pieces, made);
+    for (size_t k = 0; k < made; k++)
+        ur_piece_free(&pieces[k]);
+    free(pieces);
+    forget_seams(nets);
     return status;
 }
 

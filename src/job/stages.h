@@ -166,6 +166,14 @@ ur_status job_add_joints(const job_run *run, const ur_machine *machine, const ur
                          const ur_net_list *nets, ur_piece *pieces, ur_splice_list *splices,
                          ur_error *error);
 
+/*
+ * How many stretches of the nets' seams the material's joints find no room
+ * on, by putting them on (no labels) to pieces made for the count and
+ * freed after it.  The nets' seams are paired for it and forgotten again.
+ */
+ur_status job_count_untabbed(const job_run *run, const ur_material *material, ur_net_list *nets,
+                             size_t *untabbed, ur_error *error);
+
 /* Once the pieces are placed: labels turned upright on the sheet, then holding bridges. */
 ur_status job_allowances_after_placing(const job_run *run, const ur_machine *machine,
                                        const ur_layout *layout, ur_piece *pieces, size_t count,
