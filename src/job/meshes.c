@@ -12,6 +12,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <threads.h>
 #include <unistd.h>
 
 #include "unroll/flatten.h"
@@ -574,7 +575,6 @@ static ur_status unfold_once(const job_run *run, const ur_mesh *mesh, const ur_s
     memset(out, 0, sizeof *out);
     ur_unfolding unfolding;
     ur_status status = ur_unfold_with_options(mesh, seams, seam_count, options, &unfolding, error);
-    end_progress(run);
     if (status != UR_OK)
         return status;
     out->nets.nets = ur_alloc_array(unfolding.count, sizeof *out->nets.nets, error);
@@ -614,9 +614,53 @@ static bool better_unfolding(const unfolded_nets *a, const unfolded_nets *b, dou
  * pieces with every tab at the full gap and in 4 at half, a 48 x 24 sphere
  * in 10 pieces with 74 seam edges untabbed and in 8 with none, the torus
  * in 5 and 3 (one untabbed), but the monkey head in 14 pieces (3
- * untabbed) and in 6 (41 untabbed).
+ * untabbed) and in 6 (41 untabbed).  The tries run side by side, the
+ * second in a thread of its own (one after the other if it cannot
+ * start), each reading the mesh and making its own nets; only the first
+ * shows its progress.
  */
 enum { UNFOLD_GAP_TRIES = 2 };
+
+/* One try of the unfolding: what it needs, and what it gives. */
+typedef struct unfold_try {
+    const job_run *run;
+    const ur_material *material;
+    const ur_mesh *mesh;
+    const ur_seam *seams;
+    size_t seam_count;
+    ur_unfold_options options;
+    bool count_tabs; /* whether the tabs are counted, for a choice */
+    unfolded_nets result;
+    ur_status status;
+    ur_error error;
+} unfold_try;
+
+static int run_try(void *data)
+{
+    unfold_try *t = data;
+    t->status =
+        unfold_once(t->run, t->mesh, t->seams, t->seam_count, &t->options, &t->result, &t->error);
+    if (t->status == UR_OK && t->count_tabs)
+        t->status = job_count_untabbed(t->run, t->material, &t->result.nets, &t->result.untabbed,
+                                       &t->error);
+    return 0;
+}
+
+/* Runs the tries side by side and waits for them all. */
+static void run_tries(unfold_try *tries, size_t count)
+{
+    thrd_t threads[UNFOLD_GAP_TRIES];
+    bool started[UNFOLD_GAP_TRIES] = {false};
+    for (size_t k = 1; k < count; k++)
+        started[k] = thrd_create(&threads[k], run_try, &tries[k]) == thrd_success;
+    run_try(&tries[0]);
+    for (size_t k = 1; k < count; k++) {
+        if (started[k])
+            thrd_join(threads[k], NULL);
+        else
+            run_try(&tries[k]);
+    }
+}
 
 static void note_unfolding(const job_run *run, const unfolded_nets *chosen)
 {
@@ -648,32 +692,38 @@ static ur_status unfold_mesh(const job_run *run, const job_room *room, const ur_
 {
     ur_unfold_options options;
     unfold_options(run, room, material, mesh, &options);
-    size_t tries = options.min_gap > 0 ? UNFOLD_GAP_TRIES : 1;
-    double gap = options.min_gap;
-    unfolded_nets best = {0}, trial = {0};
-    ur_error error;
-    ur_status status = UR_OK;
-    for (size_t i = 0; status == UR_OK && i < tries; i++) {
-        options.min_gap = gap / (double)(1u << i);
-        status = unfold_once(run, mesh, seams, seam_count, &options, &trial, &error);
-        if (status == UR_OK && tries > 1)
-            status = job_count_untabbed(run, material, &trial.nets, &trial.untabbed, &error);
-        if (status == UR_OK &&
-            (i == 0 || better_unfolding(&trial, &best, options.gap_break_cost))) {
-            ur_net_list_free(&best.nets);
-            best = trial;
-        } else {
-            ur_net_list_free(&trial.nets);
-        }
-        trial = (unfolded_nets){0};
+    size_t count = options.min_gap > 0 ? UNFOLD_GAP_TRIES : 1;
+    unfold_try tries[UNFOLD_GAP_TRIES];
+    for (size_t k = 0; k < count; k++) {
+        tries[k] = (unfold_try){.run = run,
+                                .material = material,
+                                .mesh = mesh,
+                                .seams = seams,
+                                .seam_count = seam_count,
+                                .options = options,
+                                .count_tabs = count > 1};
+        tries[k].options.min_gap = options.min_gap / (double)(1u << k);
+        if (k > 0)
+            tries[k].options.progress = NULL;
     }
-    if (status != UR_OK) {
-        ur_net_list_free(&best.nets);
-        return fail(run, &error);
+    run_tries(tries, count);
+    end_progress(run);
+    size_t best = 0, failed = count;
+    for (size_t k = 0; k < count; k++) {
+        if (tries[k].status != UR_OK)
+            failed = failed < count ? failed : k;
+        else if (k > 0 &&
+                 better_unfolding(&tries[k].result, &tries[best].result, options.gap_break_cost))
+            best = k;
     }
-    note_unfolding(run, &best);
-    *nets = best.nets;
-    *area = best.area;
+    for (size_t k = 0; k < count; k++)
+        if (k != best || failed < count)
+            ur_net_list_free(&tries[k].result.nets);
+    if (failed < count)
+        return fail(run, &tries[failed].error);
+    note_unfolding(run, &tries[best].result);
+    *nets = tries[best].result.nets;
+    *area = tries[best].result.area;
     return UR_OK;
 }
 
