@@ -124,6 +124,9 @@ static ur_status restart(unfolder *u, ur_error *error)
         island->triangle_count = 1;
         island->outline_count = 3;
         island->face_count = 1;
+        island->area =
+            0.5 * fabs(ur_vec2_cross(ur_vec2_sub(u->faces.home[t][1], u->faces.home[t][0]),
+                                     ur_vec2_sub(u->faces.home[t][2], u->faces.home[t][0])));
         island->failed_with = UNFOLD_NONE;
         island->failures = 0;
         island->layout = unfold_triangle_key(t);
@@ -180,14 +183,22 @@ static ur_status join_with_tabs_on_twins(unfolder *u, const size_t *order, size_
 
 /*
  * Joins the pieces of a single face the gap left (a sphere's thin pole
- * triangles, which no join lays clear of their neighbours) to a neighbour
- * without it, counting the joins: a stray face costs the maker more than
- * a seam whose tab may find no room (the tabs then say so), and the
- * search weighs such joins as pieces.  With options.gap_break_cost below
- * one, pieces of any size are joined so, each join costing less than the
- * piece it saves.  Every edge was tried with the gap before and joins
- * only add to pieces, so each join here breaks it.
+ * triangles, which no join lays clear of their neighbours), and those
+ * smaller than options.small_piece_area, to a neighbour without it,
+ * counting the joins: a stray face or a scrap smaller than a tab costs
+ * the maker more than a seam whose tab may find no room (the tabs then
+ * say so), and the search weighs such joins as pieces.  With
+ * options.gap_break_cost below one, pieces of any size are joined so,
+ * each join costing less than the piece it saves.  Every edge was tried
+ * with the gap before and joins only add to pieces, so each join here
+ * breaks it.
  */
+/* Whether the gap may be broken for piece p: a single face, or less than small_piece_area. */
+static bool is_small(const unfolder *u, size_t p)
+{
+    return u->islands[p].face_count == 1 || u->islands[p].area < u->options.small_piece_area;
+}
+
 static ur_status join_single_faces(unfolder *u, const size_t *order, size_t count, size_t *joins,
                                    ur_error *error)
 {
@@ -196,8 +207,7 @@ static ur_status join_single_faces(unfolder *u, const size_t *order, size_t coun
     ur_status status = UR_OK;
     for (size_t i = 0; i < count && status == UR_OK; i++) {
         size_t h = order[i], g = u->edges.twins[h];
-        if (!any_piece && u->islands[u->piece[h / 3]].face_count != 1 &&
-            u->islands[u->piece[g / 3]].face_count != 1)
+        if (!any_piece && !is_small(u, u->piece[h / 3]) && !is_small(u, u->piece[g / 3]))
             continue;
         bool joined;
         status = unfold_try_join(u, h, &joined, error);
@@ -291,6 +301,10 @@ static ur_status check_options(const ur_unfold_options *o, ur_error *error)
     if (!(o->min_gap >= 0 && isfinite(o->min_gap)))
         return ur_error_set(error, UR_ERROR_INPUT,
                             "the narrowest gap between a piece's edges must be a length >= 0");
+    if (!(o->small_piece_area >= 0 && isfinite(o->small_piece_area)))
+        return ur_error_set(error, UR_ERROR_INPUT,
+                            "the area below which a piece is joined without the gap must be "
+                            "an area >= 0");
     if (!(o->gap_break_cost >= 0 && o->gap_break_cost <= 1))
         return ur_error_set(error, UR_ERROR_INPUT,
                             "what a join without the gap costs must be from 0 to 1 piece");

@@ -236,6 +236,7 @@ typedef struct unfold_island {
     size_t hull_count, hull_capacity;
     unfold_circle circle; /* round the piece, when the room is limited */
     size_t face_count;    /* flat faces, once the faces are joined (1 before) */
+    double area;          /* of its triangles, mm2 */
     /* the piece it last failed to join as the smaller one, that piece's size then, how often */
     size_t failed_with, failed_size, failures;
     uint64_t layout; /* what the piece is made of (see unfold_lay.c's join_key) */

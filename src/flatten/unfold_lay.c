@@ -643,6 +643,7 @@ static ur_status commit(unfolder *u, const unfold_motion *m, size_t small, size_
     b->last = a->last;
     b->triangle_count += a->triangle_count;
     b->face_count += a->face_count;
+    b->area += a->area;
     b->failures = 0;
     b->outline_count = b->outline_count + a->outline_count - 2 * u->pair_count;
     a->triangle_count = 0;

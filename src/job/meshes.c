@@ -550,8 +550,10 @@ static void unfold_options(const job_run *run, const job_room *room, const ur_ma
     }
     double tab = material->joint == UR_JOINT_LAP ? material->lap_width : material->tab_depth;
     double edge = mean_edge_length(mesh);
-    if (job_makes_joints(run) && edge >= tab / 2)
+    if (job_makes_joints(run) && edge >= tab / 2) {
         options->min_gap = fmin(tab, edge) / 2;
+        options->small_piece_area = tab * tab; /* a scrap smaller than a tab's square */
+    }
     if (job_shows_progress(run)) {
         options->progress = report_unfolding;
         options->progress_context = (void *)run;

@@ -1757,6 +1757,51 @@ static void test_gap_break_cost(void **state)
     length_tolerance = 1e-9;
 }
 
+/*
+ * Pieces smaller than small_piece_area are joined without the gap, as
+ * single faces are: with the same first order there are exactly as many
+ * pieces fewer as joins made so, every piece still lies flat without
+ * overlap, and fewer pieces of less than that area are left (the 48 x 24
+ * sphere with a 2.5 mm gap leaves pieces of a few faces round its poles).
+ * A negative or NaN area is refused.
+ */
+static void test_small_pieces_join_without_the_gap(void **state)
+{
+    (void)state;
+    allow_projection();
+    ur_mesh mesh = uv_sphere(48, 24, 60);
+    ur_unfold_options options = strict_gap_options();
+    ur_unfolding strict = unfold_with(&mesh, &options);
+    options.gap_strands_faces = false;
+    ur_unfolding faces_only = unfold_with(&mesh, &options);
+    const double small = 36.0;
+    options.small_piece_area = small;
+    ur_unfolding joined = unfold_with(&mesh, &options);
+    check_unfolding(&mesh, &joined, NULL, 0);
+    assert_int_equal(joined.count + joined.gap_breaks, strict.count);
+    size_t small_before = 0, small_after = 0;
+    for (size_t p = 0; p < faces_only.count; p++)
+        small_before += faces_only.pieces[p].area_3d < small;
+    for (size_t p = 0; p < joined.count; p++)
+        small_after += joined.pieces[p].area_3d < small;
+    assert_true(small_before > 0);
+    assert_true(small_after < small_before);
+    assert_true(joined.count < faces_only.count);
+    ur_unfolding refused;
+    ur_error error;
+    double bad[] = {-1.0, NAN, INFINITY};
+    for (size_t k = 0; k < 3; k++) {
+        options.small_piece_area = bad[k];
+        assert_int_equal(ur_unfold_with_options(&mesh, NULL, 0, &options, &refused, &error),
+                         UR_ERROR_INPUT);
+    }
+    ur_unfolding_free(&strict);
+    ur_unfolding_free(&faces_only);
+    ur_unfolding_free(&joined);
+    ur_mesh_free(&mesh);
+    length_tolerance = 1e-9;
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1788,6 +1833,7 @@ int main(void)
         cmocka_unit_test(test_gap_one_side),
         cmocka_unit_test(test_wedge_holds_its_tab),
         cmocka_unit_test(test_gap_spares_single_faces),
+        cmocka_unit_test(test_small_pieces_join_without_the_gap),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
