@@ -234,6 +234,8 @@ typedef struct ur_unfold_options {
      */
     void (*progress)(void *context, const char *phase, double fraction);
     void *progress_context;
+    /* The search stops with UR_ERROR_CANCELLED once it is cancelled (each step); NULL: never. */
+    const ur_context *context;
 } ur_unfold_options;
 
 UR_API void ur_unfold_options_default(ur_unfold_options *options);

@@ -265,7 +265,9 @@ static ur_status run_search(search *s, size_t least, size_t *steps, ur_error *er
                         s->u->progress_from + s->u->progress_span * progress);
         unfold_score before = s->top;
         bool moved;
-        ur_status status = step_once(s, walk_progress(walk_from, progress), &moved, error);
+        ur_status status = ur_context_check(o->context, error);
+        if (status == UR_OK)
+            status = step_once(s, walk_progress(walk_from, progress), &moved, error);
         if (status != UR_OK)
             return status;
         if (!moved)

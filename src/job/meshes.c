@@ -558,6 +558,7 @@ static void unfold_options(const job_run *run, const job_room *room, const ur_ma
         options->progress = report_unfolding;
         options->progress_context = (void *)run;
     }
+    options->context = run->job.context;
 }
 
 /* One unfolding of the mesh as nets, with what its note says and what the choice weighs. */

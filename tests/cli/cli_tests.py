@@ -3808,6 +3808,24 @@ def sigint_stops_the_first_layout_of_many_parts(work):
     check(snapshot(work) == before, "nest after SIGINT left or changed files")
 
 
+@test
+def sigint_stops_the_unfolding_search(work):
+    """SIGINT while a long unfolding search runs (a 48 x 24 sphere asked
+    for a million steps, minutes of searching at both gaps): the search
+    stops at its next step, exit 130, nothing written.  Before, the
+    search did not look at the signal and ran all its steps."""
+    import signal
+    write(work, "sphere.obj", low_poly_sphere(48, 24, 60))
+    before = snapshot(work)
+    status, said = interrupted_on_terminal(work, ["mesh", "sphere.obj", "--flatten", "unfold",
+                                                  "--material", "paper-0.3mm", "--unfold-steps",
+                                                  "1000000", "-o", "s.svg"], signal.SIGINT,
+                                           r"improving")
+    check(status == 130, "mesh after SIGINT: exit %d; %s" % (status, said.strip()))
+    check(re.search(r"stopped by SIGINT: no file was left half-written", said), said)
+    check(snapshot(work) == before, "mesh after SIGINT left or changed files")
+
+
 def write_bowl_stl(path, n):
     """A paraboloid over an n x n grid, 2 n^2 triangles, as binary STL: far from developable."""
     import struct
