@@ -181,6 +181,12 @@ static ur_status join_with_tabs_on_twins(unfolder *u, const size_t *order, size_
     return status;
 }
 
+/* Whether the gap may be broken for piece p: a single face, or less than small_piece_area. */
+static bool is_small(const unfolder *u, size_t p)
+{
+    return u->islands[p].face_count == 1 || u->islands[p].area < u->options.small_piece_area;
+}
+
 /*
  * Joins the pieces of a single face the gap left (a sphere's thin pole
  * triangles, which no join lays clear of their neighbours), and those
@@ -193,14 +199,8 @@ static ur_status join_with_tabs_on_twins(unfolder *u, const size_t *order, size_
  * with the gap before and joins only add to pieces, so each join here
  * breaks it.
  */
-/* Whether the gap may be broken for piece p: a single face, or less than small_piece_area. */
-static bool is_small(const unfolder *u, size_t p)
-{
-    return u->islands[p].face_count == 1 || u->islands[p].area < u->options.small_piece_area;
-}
-
-static ur_status join_single_faces(unfolder *u, const size_t *order, size_t count, size_t *joins,
-                                   ur_error *error)
+static ur_status join_strays(unfolder *u, const size_t *order, size_t count, size_t *joins,
+                             ur_error *error)
 {
     u->gap_waived = true;
     bool any_piece = u->options.gap_break_cost < 1.0;
@@ -273,7 +273,7 @@ ur_status unfold_run(unfolder *u, const size_t *order, size_t count, unfold_scor
         status = join_all(u, order, count, error);
     u->gap_breaks = 0;
     if (status == UR_OK && u->options.min_gap > 0 && !u->options.gap_strands_faces)
-        status = join_single_faces(u, order, count, &u->gap_breaks, error);
+        status = join_strays(u, order, count, &u->gap_breaks, error);
     if (status == UR_OK && u->last_run && u->options.min_gap > 0)
         status = join_with_tabs_on_twins(u, order, count, error);
     if (status == UR_OK) {
