@@ -1915,8 +1915,8 @@ def a_small_papercraft_model_gets_a_scale_note(work):
 
 @test
 def a_fine_uv_sphere_keeps_room_for_its_tabs(work):
-    # A UV sphere of 48 x 24 faces, 120 mm across, in paper on A3 (the
-    # papercraft bench's sphere): at the full gap for tabs (3 mm) its
+    # A UV sphere of 48 x 24 faces, 120 mm across, in paper on A3 (as the
+    # papercraft bench's sphere, made here): at the full gap for tabs (3 mm) its
     # thin pole triangles join their neighbours without it, and 65 seam
     # edges found no room for a tab.  Unfolded at half the gap too, and the
     # better of the two kept, it comes in 10 pieces with two seam edges
