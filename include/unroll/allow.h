@@ -244,7 +244,8 @@ UR_API ur_status ur_piece_keep_kerfs_off_joints(ur_piece *piece, size_t first, d
  * circle set) stays exactly one, radius kerf / 2 more (outline) or less
  * (hole), its points moved along their radii onto it, without GEOS; a
  * hole whose radius would not stay above 0 is left as drawn, as above.
- * Records a UR_ALLOWANCE_KERF_COMPENSATION entry (value: the kerf).
+ * Records a UR_ALLOWANCE_KERF_COMPENSATION entry (value: the kerf) and
+ * adds the kerf to piece->kerf_compensated.
  */
 UR_API ur_status ur_piece_compensate_kerf(ur_piece *piece, double kerf, ur_error *error);
 

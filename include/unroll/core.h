@@ -251,7 +251,22 @@ typedef struct ur_piece {
     double ruling_angle;
     /* The piece's own allowed turns for nesting (as ur_nest_options.rotations); 0: the nesting's */
     size_t rotations;
+    /*
+     * The kerf (mm) its cut paths were moved for, half of it to each side:
+     * what ur_piece_compensate_kerf added, or what the file a part was read
+     * from says (UR_KERF_NOTE); 0 when they are as drawn.
+     */
+    double kerf_compensated;
 } ur_piece;
+
+/*
+ * How unroll's cut files say that their cut paths were compensated: this,
+ * the kerf in mm and " mm" (SVG: the Dublin Core description in the
+ * metadata, which Inkscape shows among a document's properties; DXF: a
+ * 999 comment; PDF: the keywords).  ur_parts_import reads it back, so
+ * that nesting the file again does not compensate it twice.
+ */
+#define UR_KERF_NOTE "cut paths compensated for a kerf of "
 
 /* Copies points into a new path of the piece (no circle) and grows its box. */
 UR_API ur_status ur_piece_add_path(ur_piece *piece, ur_op op, const ur_vec2 *points, size_t count,

@@ -432,6 +432,12 @@ typedef struct ur_parts {
     size_t count;
     char (*warnings)[256]; /* owned; "FILE:LINE: ..." sentences for the user */
     size_t warning_count;
+    /*
+     * The kerf (mm) the file says its cut paths were compensated for
+     * (UR_KERF_NOTE, as unroll writes it), also in each piece's
+     * kerf_compensated; 0 when it says nothing.
+     */
+    double kerf_compensated;
 } ur_parts;
 
 /*
@@ -488,6 +494,10 @@ typedef struct ur_parts {
  * entities that draw no outline are skipped with a warning; 3D polygon
  * meshes, polyface meshes and splines given by fit points only are refused,
  * naming the entity and line.
+ *
+ * A file that says its cut paths were compensated for a kerf (UR_KERF_NOTE:
+ * an SVG's Dublin Core description in its metadata, a DXF 999 comment)
+ * gives that kerf in parts->kerf_compensated and each part's.
  *
  * Refuses with UR_ERROR_INPUT, "FILE:LINE: message" where there is a line:
  * a missing, empty or unreadable file, another extension, malformed XML

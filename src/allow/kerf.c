@@ -456,6 +456,7 @@ ur_status ur_piece_compensate_kerf(ur_piece *piece, double kerf, ur_error *error
     if (status != UR_OK)
         return status;
     ur_piece_recompute_box(piece);
+    piece->kerf_compensated += kerf;
     status = measured ? record_narrow(piece, kerf, &narrow, error) : UR_OK;
     return status == UR_OK ? record(piece, kerf, holes, &found, error) : status;
 }

@@ -58,6 +58,7 @@ ur_status ur_piece_copy(const ur_piece *from, ur_piece *to, ur_error *error)
     to->rotations = from->rotations;
     to->ruling_angle = from->ruling_angle;
     to->has_rulings = from->has_rulings;
+    to->kerf_compensated = from->kerf_compensated;
     ur_status status = UR_OK;
     for (size_t k = 0; status == UR_OK && k < from->path_count; k++) {
         status = ur_piece_add_path(to, from->paths[k].op, from->paths[k].points,

@@ -1094,6 +1094,15 @@ static ur_status chain_segments(dxf_reader *reader, ur_error *error)
     return status;
 }
 
+/* The kerf a 999 comment says the cut paths were compensated for (UR_KERF_NOTE), if any. */
+static void read_kerf_note(dxf_reader *reader)
+{
+    for (size_t i = 0; i < reader->count; i++)
+        if (reader->pairs[i].code == 999 &&
+            parts_read_kerf_note(reader->pairs[i].value, &reader->collection->kerf_compensated))
+            return;
+}
+
 ur_status parts_read_dxf(parts_collection *collection, ur_error *error)
 {
     dxf_reader reader = {.collection = collection,
@@ -1103,6 +1112,8 @@ ur_status parts_read_dxf(parts_collection *collection, ur_error *error)
     ur_status status = read_pairs(&reader, error);
     if (status == UR_OK)
         status = find_units(&reader, error);
+    if (status == UR_OK)
+        read_kerf_note(&reader);
     if (status == UR_OK)
         status = find_blocks(&reader, error);
     if (status == UR_OK)

@@ -276,6 +276,25 @@ ur_op parts_layer_op(const char *name)
     return UR_OP_COUNT;
 }
 
+bool parts_read_kerf_note(const char *text, double *kerf)
+{
+    while (isspace((unsigned char)*text))
+        text++;
+    size_t length = strlen(UR_KERF_NOTE);
+    if (strncmp(text, UR_KERF_NOTE, length) != 0)
+        return false;
+    char *end = NULL;
+    double value = c_strtod(text + length, &end);
+    if (end == text + length || !(value > 0) || !isfinite(value) || strncmp(end, " mm", 3) != 0)
+        return false;
+    for (end += 3; isspace((unsigned char)*end); end++)
+        ;
+    if (*end != '\0')
+        return false;
+    *kerf = value;
+    return true;
+}
+
 ur_status parts_warn(parts_collection *collection, ur_error *error, const char *format, ...)
 {
     char(*warnings)[256] =
@@ -927,6 +946,9 @@ ur_status parts_assemble(parts_collection *collection, ur_parts *parts, ur_error
     if (status == UR_OK) {
         parts->warnings = collection->warnings;
         parts->warning_count = collection->warning_count;
+        parts->kerf_compensated = collection->kerf_compensated;
+        for (size_t k = 0; k < parts->count; k++)
+            parts->pieces[k].kerf_compensated = collection->kerf_compensated;
         collection->warnings = NULL;
         collection->warning_count = 0;
     }

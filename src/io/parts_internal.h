@@ -135,6 +135,7 @@ typedef struct parts_collection {
     size_t line_count, line_capacity;
     char (*warnings)[256];
     size_t warning_count;
+    double kerf_compensated; /* what the file says (UR_KERF_NOTE); 0 when nothing */
 } parts_collection;
 
 /*
@@ -156,6 +157,12 @@ ur_status parts_add_line(parts_collection *collection, parts_points *points, boo
  * hyphens or underscores alike; UR_OP_COUNT for any other name.
  */
 ur_op parts_layer_op(const char *name);
+
+/*
+ * Whether text is UR_KERF_NOTE with a kerf above 0 and " mm" (spaces
+ * round it allowed), and that kerf, in *kerf.
+ */
+bool parts_read_kerf_note(const char *text, double *kerf);
 
 /* Adds a warning, formatted like an error message. */
 ur_status parts_warn(parts_collection *collection, ur_error *error, const char *format, ...)

@@ -367,6 +367,38 @@ static ur_status root_matrix(svg_element *root, parts_matrix *matrix, ur_error *
     return UR_OK;
 }
 
+/*
+ * The kerf an SVG's metadata says its cut paths were compensated for: a
+ * Dublin Core description holding UR_KERF_NOTE (unroll writes it in
+ * rdf:RDF / rdf:Description, Inkscape keeps it there), at most depth
+ * elements down.
+ */
+static bool find_kerf_note(xmlNodePtr node, int depth, double *kerf)
+{
+    for (xmlNodePtr child = node->children; child && depth > 0; child = child->next) {
+        if (child->type != XML_ELEMENT_NODE) /* RDF's and Dublin Core's, not SVG's */
+            continue;
+        if (svg_named(child, "description") && child->ns &&
+            xmlStrEqual(child->ns->href, BAD_CAST "http://purl.org/dc/elements/1.1/")) {
+            xmlChar *text = xmlNodeGetContent(child);
+            bool found = text && parts_read_kerf_note((const char *)text, kerf);
+            xmlFree(text);
+            if (found)
+                return true;
+        } else if (find_kerf_note(child, depth - 1, kerf))
+            return true;
+    }
+    return false;
+}
+
+static void read_kerf_note(svg_reader *reader, xmlNodePtr root)
+{
+    for (xmlNodePtr child = root->children; child; child = child->next)
+        if (svg_element_node(child) && svg_named(child, "metadata") &&
+            find_kerf_note(child, 4, &reader->collection->kerf_compensated))
+            return;
+}
+
 static ur_status read_root(svg_reader *reader, xmlNodePtr node, ur_error *error)
 {
     svg_element root;
@@ -383,6 +415,8 @@ static ur_status read_root(svg_reader *reader, xmlNodePtr node, ur_error *error)
         status = svg_parse_transform(&root, &own, error);
     if (status == UR_OK)
         status = svg_walk(reader, node, parts_matrix_multiply(base, own), 0, error);
+    if (status == UR_OK)
+        read_kerf_note(reader, node);
     return status;
 }
 

@@ -6,6 +6,7 @@
  */
 #include "stages.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -65,6 +66,9 @@ static ur_status split_long_parts(const job_run *run, const ur_machine *machine,
         size_t before = split.nets.count;
         status = ur_part_split(&(*pieces)[k], room.length, room.width, (double)k, &split, error);
         cut[k] = status == UR_OK;
+        /* What its file said of its outline holds for theirs (their cuts across it are new). */
+        for (size_t i = before; status == UR_OK && i < split.nets.count; i++)
+            split.pieces[i].kerf_compensated = (*pieces)[k].kerf_compensated;
         if (status == UR_OK && !run->job.quiet)
             job_note_about(run, "no-split",
                            "%s: part %s (%.0f x %.0f mm) fits no sheet in any allowed turn: cut "
@@ -85,14 +89,71 @@ static ur_status split_long_parts(const job_run *run, const ur_machine *machine,
     return status;
 }
 
+/* Parts whose files said they were compensated already: how many, and for what kerf. */
+typedef struct compensated_before {
+    size_t same, less, more; /* than the kerf now */
+    double first_less, first_more;
+    const char *name_less, *name_more;
+} compensated_before;
+
+static void note_compensated_before(const job_run *run, const compensated_before *before,
+                                    double kerf)
+{
+    if (run->job.quiet)
+        return;
+    if (before->same > 0)
+        job_note(run,
+                 "%s: %zu part%s already compensated for this kerf of %g mm (as %s say%s): "
+                 "not compensated again",
+                 run->job.command, before->same, before->same == 1 ? " was" : "s were", kerf,
+                 before->same == 1 ? "its file" : "their files", before->same == 1 ? "s" : "");
+    if (before->less > 0)
+        job_note(run,
+                 "%s: %zu part%s compensated for a smaller kerf (%s: %g mm): moved out by half "
+                 "the difference to this kerf of %g mm",
+                 run->job.command, before->less, before->less == 1 ? " was" : "s were",
+                 before->name_less, before->first_less, kerf);
+    if (before->more > 0)
+        job_warn(run,
+                 "%s: %zu part%s compensated for a larger kerf (%s: %g mm) than this machine "
+                 "and material cut (%g mm): left as read, %g mm too large all round; nest the "
+                 "drawing from before the compensation instead",
+                 run->job.command, before->more, before->more == 1 ? " was" : "s were",
+                 before->name_more, before->first_more, kerf, (before->first_more - kerf) / 2);
+}
+
+/*
+ * Each part moved out by half the kerf, less what its file says it was
+ * compensated for already (unroll's own cut files say so): a cut file
+ * nested again keeps its size.  A part compensated for a larger kerf is
+ * left with a warning: its paths were moved and are not moved back.
+ */
 static ur_status compensate(const job_run *run, const ur_machine *machine,
                             const ur_material *material, ur_piece *pieces, size_t count,
                             ur_error *error)
 {
     double kerf = ur_effective_kerf(machine, material);
+    compensated_before before = {0};
     ur_status status = UR_OK;
-    for (size_t k = 0; status == UR_OK && !run->job.no_kerf_compensation && k < count; k++)
-        status = ur_piece_compensate_kerf(&pieces[k], kerf, error);
+    for (size_t k = 0; status == UR_OK && !run->job.no_kerf_compensation && k < count; k++) {
+        double done = pieces[k].kerf_compensated, more = kerf - done;
+        if (done > 0 && fabs(more) <= 1e-9 * fmax(1.0, kerf)) {
+            before.same++;
+            continue;
+        }
+        if (done > 0 && more < 0) {
+            before.first_more = before.more++ ? before.first_more : done;
+            before.name_more = before.name_more ? before.name_more : pieces[k].name;
+            continue;
+        }
+        if (done > 0) {
+            before.first_less = before.less++ ? before.first_less : done;
+            before.name_less = before.name_less ? before.name_less : pieces[k].name;
+        }
+        status = ur_piece_compensate_kerf(&pieces[k], more, error);
+    }
+    if (status == UR_OK)
+        note_compensated_before(run, &before, kerf);
     return status;
 }
 

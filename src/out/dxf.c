@@ -19,7 +19,8 @@
  * one; a path that is exactly a circle is a CIRCLE, exactly an arc an ARC
  * (the driver says so; nothing is fitted here), a two-point open path a
  * LINE.  The job's name goes into a 999 comment: neither version has a
- * header variable for it ($PROJECTNAME came with R2004).
+ * header variable for it ($PROJECTNAME came with R2004); so does the kerf
+ * the cut paths were compensated for (UR_KERF_NOTE), for unroll to read.
  *
  * The header must hold $HANDSEED, above every handle used, so the entities
  * of a sheet are gathered in memory and the file written at end_sheet.
@@ -166,9 +167,10 @@ typedef struct dxf_sheet {
     size_t layer_of[UR_OP_COUNT];        /* index into layers */
     dxf_linetype linetypes[UR_OP_COUNT]; /* one per distinct dash pattern */
     size_t linetype_count;
-    const char *job_name; /* the caller's; NULL for none */
-    FILE *body;           /* owned: the entities, in memory until end_sheet */
-    char *body_data;      /* owned: what body wrote */
+    const char *job_name;                 /* the caller's; NULL for none */
+    char kerf_note[WRITE_KERF_NOTE_SIZE]; /* "" for none */
+    FILE *body;                           /* owned: the entities, in memory until end_sheet */
+    char *body_data;                      /* owned: what body wrote */
     size_t body_size;
     unsigned long next_handle;
 } dxf_sheet;
@@ -367,6 +369,8 @@ static void write_header(const dxf_sheet *sheet)
     FILE *file = sheet->file;
     if (sheet->job_name)
         write_comment(file, "job: ", sheet->job_name);
+    if (sheet->kerf_note[0])
+        write_comment(file, "", sheet->kerf_note);
     begin_section(file, "HEADER");
     group(file, 9, "$ACADVER");
     group(file, 1, sheet->r2000 ? "AC1015" : "AC1009");
@@ -729,6 +733,7 @@ static ur_status dxf_begin_sheet(void **state, void *document, FILE *file, size_
     sheet->height = job->layout->sheets[index].height;
     sheet->next_handle = H_FIRST_ENTITY;
     sheet->job_name = job->options->job_name;
+    write_kerf_note(job, index, sheet->kerf_note);
     ur_status status = make_layers(sheet, job->machine, error);
     if (status == UR_OK) {
         sheet->body = open_memstream(&sheet->body_data, &sheet->body_size);

@@ -103,14 +103,18 @@ static ur_status set_info(pdf_document *document, HPDF_InfoType type, const char
     return status;
 }
 
-static ur_status set_metadata(pdf_document *document, const write_settings *options,
-                              ur_error *error)
+static ur_status set_metadata(pdf_document *document, const write_job *job, ur_error *error)
 {
+    const write_settings *options = job->options;
+    char kerf_note[WRITE_KERF_NOTE_SIZE];
+    write_kerf_note(job, WRITE_ALL_SHEETS, kerf_note);
     ur_status status = set_info(document, HPDF_INFO_TITLE, "title", options->title, error);
     if (status == UR_OK)
         status = set_info(document, HPDF_INFO_CREATOR, "creator", "unroll " UR_VERSION, error);
     if (status == UR_OK)
         status = set_info(document, HPDF_INFO_SUBJECT, "job name", options->job_name, error);
+    if (status == UR_OK && kerf_note[0])
+        status = set_info(document, HPDF_INFO_KEYWORDS, "keywords", kerf_note, error);
     return status;
 }
 
@@ -136,7 +140,7 @@ static ur_status pdf_begin_document(void **state, const write_job *job, ur_error
         document->error_no = document->detail_no = 0;
     }
     if (status == UR_OK)
-        status = set_metadata(document, job->options, error);
+        status = set_metadata(document, job, error);
     for (int op = 0; status == UR_OK && op < UR_OP_COUNT; op++)
         status = style_check(job->machine, (ur_op)op, error);
     if (status != UR_OK) {

@@ -159,9 +159,11 @@ static ur_status write_element(svg_sheet *sheet, const char *name, const char *t
 
 /*
  * Dublin Core in RDF, where Inkscape keeps a drawing's title and creator:
- * the title, the program that made it and the job it comes from.
+ * the title, the program that made it, the job it comes from and, as its
+ * description, the kerf its cut paths were compensated for (kerf_note).
  */
-static ur_status write_metadata(svg_sheet *sheet, const write_settings *options, ur_error *error)
+static ur_status write_metadata(svg_sheet *sheet, const write_settings *options,
+                                const char *kerf_note, ur_error *error)
 {
     const char *const rdf[][2] = {{"xmlns:rdf", RDF_NAMESPACE}, {"xmlns:dc", DC_NAMESPACE}};
     const char *const about[][2] = {{"rdf:about", ""}};
@@ -179,6 +181,8 @@ static ur_status write_metadata(svg_sheet *sheet, const write_settings *options,
         status = write_element(sheet, "dc:creator", "unroll " UR_VERSION, error);
     if (status == UR_OK && options->job_name)
         status = write_element(sheet, "dc:source", options->job_name, error);
+    if (status == UR_OK && kerf_note[0])
+        status = write_element(sheet, "dc:description", kerf_note, error);
     for (int i = 0; status == UR_OK && i < 3; i++) /* rdf:Description, rdf:RDF, metadata */
         if (xmlTextWriterEndElement(sheet->writer) < 0)
             status = xml_failed(error, "end of metadata");
@@ -186,7 +190,7 @@ static ur_status write_metadata(svg_sheet *sheet, const write_settings *options,
 }
 
 static ur_status write_title_and_desc(svg_sheet *sheet, const write_settings *options,
-                                      ur_error *error)
+                                      const char *kerf_note, ur_error *error)
 {
     ur_status status = UR_OK;
     if (options->title)
@@ -198,7 +202,7 @@ static ur_status write_title_and_desc(svg_sheet *sheet, const write_settings *op
     if (status == UR_OK)
         status = write_element(sheet, "desc", "made by unroll " UR_VERSION "; 1 user unit = 1 mm",
                                error);
-    return status == UR_OK ? write_metadata(sheet, options, error) : status;
+    return status == UR_OK ? write_metadata(sheet, options, kerf_note, error) : status;
 }
 
 static void free_sheet(svg_sheet *sheet)
@@ -233,8 +237,10 @@ static ur_status svg_begin_sheet(void **state, void *document, FILE *file, size_
         status = xml_failed(error, "indent");
     if (status == UR_OK)
         status = write_root(sheet, width, height, error);
+    char kerf_note[WRITE_KERF_NOTE_SIZE];
+    write_kerf_note(job, index, kerf_note);
     if (status == UR_OK)
-        status = write_title_and_desc(sheet, options, error);
+        status = write_title_and_desc(sheet, options, kerf_note, error);
     if (status != UR_OK) {
         free_sheet(sheet);
         return status;

@@ -104,6 +104,16 @@ typedef struct format_writer {
     void (*discard_document)(void *document);
 } format_writer;
 
+/*
+ * The kerf the cut paths of the pieces placed on a sheet (its index, or
+ * every sheet with WRITE_ALL_SHEETS) were compensated for, when all of
+ * them were for one kerf; else 0, and the file says nothing.  Into text
+ * (at least WRITE_KERF_NOTE_SIZE bytes): UR_KERF_NOTE with it, "" for 0.
+ */
+#define WRITE_ALL_SHEETS ((size_t)-1)
+#define WRITE_KERF_NOTE_SIZE 80
+void write_kerf_note(const write_job *job, size_t sheet, char *text);
+
 /* Checks shared by the formats (style.c). */
 
 /* The machine's style for op, refused when a format could not show it. */

@@ -3410,6 +3410,76 @@ def nest_keeps_whole_a_part_that_fits_the_sheet(work):
             close(got, radius, 1e-6, "%s: a circle's radius" % material)
 
 
+@test
+def nest_compensates_unroll_files_once(work):
+    """unroll's cut files say the kerf their cut paths were compensated for
+    (the SVG's Dublin Core description, a DXF 999 comment, the PDF's
+    keywords), and nest reads it: a 60 mm square plate cut in paper (kerf
+    0.1 mm) is 60.1 mm across, and nested again from the SVG or the DXF in
+    paper it stays 60.1 mm (it grew to 60.2 mm when nest compensated it a
+    second time).  Nested in cardboard (kerf 0.15 mm) it grows by the
+    difference only, to 60.15 mm; that file nested in paper again is left
+    at 60.15 mm with a warning that it is too large.  A drawing that says
+    nothing is compensated as before, and a square's hole moves in as its
+    outline moves out."""
+    write(work, "plate.svg", '<svg xmlns="http://www.w3.org/2000/svg" width="100mm" '
+          'height="100mm" viewBox="0 0 100 100"><path id="plate" d="M10,10 h60 v60 h-60 Z '
+          'M30,30 v20 h20 v-20 Z"/></svg>\n')
+
+    def sizes(svg):
+        """The widths of the outline and of its hole, from the cut layer."""
+        rings = sorted(outlines(os.path.join(work, svg)), key=area)
+        return [max(x for x, _ in ring) - min(x for x, _ in ring) for ring in rings[::-1]]
+
+    def nest(source, material, out, *extra):
+        return run(work, "nest", source, "--material", material, "--sheet", "200x200",
+                   "--nest-time", "0", "-o", out, *extra)
+
+    def kerf_note(svg):
+        root = ET.parse(os.path.join(work, svg)).getroot()
+        found = [e.text for e in root.iter("{http://purl.org/dc/elements/1.1/}description")]
+        return found[0] if found else None
+
+    nest("plate.svg", "paper-0.3mm", "a.svg", "--format", "svg,dxf,pdf")
+    for got, want in zip(sizes("a.svg"), (60.1, 19.9)):
+        close(got, want, 1e-6, "the plate cut in paper")
+    check(kerf_note("a.svg") == "cut paths compensated for a kerf of 0.1 mm",
+          "a.svg says %r" % kerf_note("a.svg"))
+    with open(os.path.join(work, "a.dxf")) as f:
+        check("999\ncut paths compensated for a kerf of 0.1 mm\n" in f.read(),
+              "a.dxf has no 999 comment giving the kerf")
+    info = subprocess.run(["pdfinfo", os.path.join(work, "a.pdf")], capture_output=True, text=True)
+    check("cut paths compensated for a kerf of 0.1 mm" in info.stdout, info.stdout)
+    for source in ("a.svg", "a.dxf"):
+        result = nest(source, "paper-0.3mm", "b.svg")
+        check("already compensated for this kerf of 0.1 mm" in result.stderr, result.stderr)
+        for got, want in zip(sizes("b.svg"), (60.1, 19.9)):
+            close(got, want, 1e-6, source + " nested again in paper")
+    result = nest("a.svg", "cardboard-2mm", "c.svg")
+    check("compensated for a smaller kerf" in result.stderr, result.stderr)
+    for got, want in zip(sizes("c.svg"), (60.15, 19.85)):
+        close(got, want, 1e-6, "the paper plate nested in cardboard")
+    check(kerf_note("c.svg") == "cut paths compensated for a kerf of 0.15 mm",
+          "c.svg says %r" % kerf_note("c.svg"))
+    result = nest("c.svg", "paper-0.3mm", "d.svg")
+    check(re.search(r"compensated for a larger kerf \(c-1: 0\.15 mm\).*0\.025 mm too large",
+                    result.stderr), result.stderr)
+    for got, want in zip(sizes("d.svg"), (60.15, 19.85)):
+        close(got, want, 1e-6, "the cardboard plate nested in paper")
+    # What says nothing (the note edited away) is compensated in full.
+    with open(os.path.join(work, "a.svg")) as f:
+        text = f.read().replace("cut paths compensated", "paths compensated")
+    write(work, "edited.svg", text)
+    result = nest("edited.svg", "paper-0.3mm", "e.svg")
+    check("compensated" not in result.stderr, result.stderr)
+    for got, want in zip(sizes("e.svg"), (60.2, 19.8)):
+        close(got, want, 1e-6, "a plate whose file does not say")
+    # --no-kerf-compensation keeps what the file says it is.
+    nest("a.svg", "cardboard-2mm", "f.svg", "--no-kerf-compensation")
+    check(kerf_note("f.svg") == "cut paths compensated for a kerf of 0.1 mm",
+          "f.svg says %r" % kerf_note("f.svg"))
+
+
 # ---- job files -------------------------------------------------------------
 
 JOB_HEAD = """<?xml version="1.0" encoding="UTF-8"?>

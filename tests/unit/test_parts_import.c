@@ -3,7 +3,8 @@
  * same 100 x 50 mm plate with a 20 mm round hole, written as SVG in mm, in
  * px, with a viewBox scale and transforms, and as DXF in inches and in mm,
  * must come out the same; nesting of rings, bulges, chained loops, path
- * syntax, an Inkscape-like file, and every refusal with its file and line.
+ * syntax, an Inkscape-like file, the kerf a file says it was compensated
+ * for, and every refusal with its file and line.
  */
 #include "test_support.h"
 
@@ -233,6 +234,70 @@ static void test_dxf_in_inches_and_mm(void **state)
     /* No unit in the file: the caller's. */
     parts = import_text("unitless.dxf", plate_dxf(text, sizeof text, 0, 25.4), 25.4);
     check_plate(&parts, NULL);
+    ur_parts_free(&parts);
+}
+
+/* The kerf an SVG says it was compensated for, with description as its Dublin Core description. */
+static double svg_kerf(const char *description)
+{
+    char text[1024];
+    snprintf(text, sizeof text,
+             "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"100mm\" height=\"100mm\" "
+             "viewBox=\"0 0 100 100\"><metadata><rdf:RDF "
+             "xmlns:rdf=\"http://www.w3.org/1999/02/22-rdf-syntax-ns#\" "
+             "xmlns:dc=\"http://purl.org/dc/elements/1.1/\"><rdf:Description rdf:about=\"\">"
+             "<dc:description>%s</dc:description></rdf:Description></rdf:RDF></metadata>"
+             "<rect x=\"10\" y=\"10\" width=\"20\" height=\"20\"/>"
+             "<rect x=\"40\" y=\"10\" width=\"20\" height=\"20\"/></svg>\n",
+             description);
+    ur_parts parts = import_text("kerf.svg", text, 0);
+    assert_int_equal(parts.count, 2);
+    /* Every part takes what the file says. */
+    assert_true(parts.pieces[0].kerf_compensated == parts.kerf_compensated);
+    assert_true(parts.pieces[1].kerf_compensated == parts.kerf_compensated);
+    double kerf = parts.kerf_compensated;
+    ur_parts_free(&parts);
+    return kerf;
+}
+
+static void test_kerf_note(void **state)
+{
+    (void)state;
+    assert_true(svg_kerf(UR_KERF_NOTE "0.1 mm") == 0.1);
+    assert_true(svg_kerf("\n   " UR_KERF_NOTE "0.25 mm\n  ") == 0.25);
+    /* Anything else says nothing: compensated in full, as a drawing from elsewhere. */
+    const char *not_notes[] = {UR_KERF_NOTE "0.1",
+                               UR_KERF_NOTE "0.1 inch",
+                               UR_KERF_NOTE "-0.1 mm",
+                               UR_KERF_NOTE "0 mm",
+                               UR_KERF_NOTE "nan mm",
+                               UR_KERF_NOTE "0.1 mm, and more",
+                               "paths compensated for a kerf of 0.1 mm",
+                               ""};
+    for (size_t i = 0; i < sizeof not_notes / sizeof not_notes[0]; i++)
+        assert_true(svg_kerf(not_notes[i]) == 0);
+    /* A description in another namespace is not Dublin Core's. */
+    ur_parts parts = import_text("other.svg",
+                                 "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"100mm\" "
+                                 "height=\"100mm\" viewBox=\"0 0 100 100\"><metadata>"
+                                 "<description>" UR_KERF_NOTE "0.1 mm</description></metadata>"
+                                 "<rect x=\"10\" y=\"10\" width=\"20\" height=\"20\"/></svg>\n",
+                                 0);
+    assert_true(parts.kerf_compensated == 0);
+    ur_parts_free(&parts);
+    /* DXF: a 999 comment, anywhere before the entities; a CRLF file too. */
+    char plate[2048], text[2400];
+    plate_dxf(plate, sizeof plate, 4, 1);
+    snprintf(text, sizeof text, "999\njob: nest\n999\n" UR_KERF_NOTE "0.15 mm\n%s", plate);
+    parts = import_text("kerf.dxf", text, 0);
+    assert_true(parts.kerf_compensated == 0.15 && parts.pieces[0].kerf_compensated == 0.15);
+    ur_parts_free(&parts);
+    snprintf(text, sizeof text, "999\r\n" UR_KERF_NOTE "0.2 mm\r\n%s", plate);
+    parts = import_text("crlf.dxf", text, 0);
+    assert_true(parts.kerf_compensated == 0.2);
+    ur_parts_free(&parts);
+    parts = import_text("plain.dxf", plate, 0);
+    assert_true(parts.kerf_compensated == 0 && parts.pieces[0].kerf_compensated == 0);
     ur_parts_free(&parts);
 }
 
@@ -955,6 +1020,7 @@ int main(void)
         cmocka_unit_test(test_svg_use),
         cmocka_unit_test(test_chain_of_no_shape),
         cmocka_unit_test(test_block_spline_use_refusals),
+        cmocka_unit_test(test_kerf_note),
     };
     return cmocka_run_group_tests(tests, make_directory, remove_directory);
 }
