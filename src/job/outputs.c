@@ -11,6 +11,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 /*
  * What the layout uses, for the summary line: "2 sheets of 600 x 400 mm",
@@ -145,6 +146,91 @@ double job_sheets_lower_bound(const ur_piece *pieces, size_t count, const ur_lay
     return room > 0 ? fmax(0, ceil(area / room - 1e-9)) : 0;
 }
 
+/* A list of file names, grown as needed. */
+typedef struct name_list {
+    char (*names)[UR_OUTPUT_NAME_SIZE];
+    size_t count;
+} name_list;
+
+static bool among(char (*names)[UR_OUTPUT_NAME_SIZE], size_t count, const char *name)
+{
+    for (size_t k = 0; k < count; k++)
+        if (strcmp(names[k], name) == 0)
+            return true;
+    return false;
+}
+
+static bool add_name(name_list *list, const char *name)
+{
+    char(*grown)[UR_OUTPUT_NAME_SIZE] = realloc(list->names, (list->count + 1) * sizeof *grown);
+    if (!grown)
+        return false;
+    list->names = grown;
+    c_snprintf(list->names[list->count++], UR_OUTPUT_NAME_SIZE, "%s", name);
+    return true;
+}
+
+/*
+ * The files an output of sheet_count sheets would have that exist but
+ * were not written now, into stale; whether any was new.
+ */
+static bool find_stale(const job_run *run, unsigned asked, size_t sheet_count,
+                       const name_list *written, name_list *stale)
+{
+    char(*names)[UR_OUTPUT_NAME_SIZE] = NULL;
+    size_t count = 0;
+    ur_error ignored;
+    if (ur_output_files(run->job.output_path, asked, sheet_count, &names, &count, &ignored) !=
+        UR_OK)
+        return false;
+    bool found = false;
+    for (size_t k = 0; k < count; k++) {
+        if (among(written->names, written->count, names[k]) ||
+            among(stale->names, stale->count, names[k]) || access(names[k], F_OK) != 0)
+            continue;
+        found = add_name(stale, names[k]);
+        if (!found)
+            break;
+    }
+    free(names);
+    return found;
+}
+
+/*
+ * Sheet files of an earlier run under the same name that this run did not
+ * write over (net-3.svg after a run of two sheets, net.svg after one of
+ * several, net-1.svg after one of one) are said: sent to the cutter with
+ * the others they would be cut too.  They are left where they are: they
+ * may be the maker's own.
+ */
+static void warn_of_stale_sheets(const job_run *run, unsigned asked, size_t sheet_count,
+                                 const name_list *written)
+{
+    if (run->job.quiet || strcmp(run->job.output_path, "-") == 0)
+        return;
+    name_list stale = {NULL, 0};
+    if (sheet_count > 1)
+        find_stale(run, asked, 1, written, &stale);
+    for (size_t more = sheet_count + 1; more < sheet_count + 10000; more++)
+        if (!find_stale(run, asked, more, written, &stale))
+            break;
+    char more[48] = "";
+    if (stale.count > 2)
+        c_snprintf(more, sizeof more, " and %zu more", stale.count - 2);
+    if (stale.count == 1)
+        job_warn(run,
+                 "%s: %s is left from an earlier run under this name and is not a sheet of this "
+                 "one: remove it before sending the files to the cutter",
+                 run->job.command, stale.names[0]);
+    else if (stale.count > 1)
+        job_warn(run,
+                 "%s: %s%s%s%s are left from an earlier run under this name and are not sheets "
+                 "of this one: remove them before sending the files to the cutter",
+                 run->job.command, stale.names[0], stale.count == 2 ? " and " : ", ",
+                 stale.names[1], more);
+    free(stale.names);
+}
+
 ur_status job_write_outputs(const job_run *run, const ur_machine *machine, const ur_layout *layout,
                             const ur_piece *pieces, size_t count, ur_report_context *context,
                             ur_error *error)
@@ -183,7 +269,9 @@ ur_status job_write_outputs(const job_run *run, const ur_machine *machine, const
                                      run->job.context, error);
     }
     free(outputs);
-    free(names);
     ur_status ended = ur_output_set_end(run->job.context, status == UR_OK, error);
+    if (status == UR_OK && ended == UR_OK)
+        warn_of_stale_sheets(run, asked, layout->sheet_count, &(name_list){names, name_count});
+    free(names);
     return status == UR_OK ? ended : status;
 }

@@ -3480,6 +3480,38 @@ def nest_compensates_unroll_files_once(work):
           "f.svg says %r" % kerf_note("f.svg"))
 
 
+@test
+def sheets_left_from_an_earlier_run_are_said(work):
+    """A run that writes fewer sheets than an earlier one under the same
+    name leaves the earlier sheets on disk (they may be the maker's own),
+    but says so, naming them: sent to the cutter with the new ones they
+    would be cut too.  Three sheets, then one (out-1 to out-3 left), then
+    two (out.svg and out-3 left), then three again (out.svg left); a run
+    that writes over every file says nothing, and --quiet says nothing."""
+    write(work, "square.svg", '<svg xmlns="http://www.w3.org/2000/svg" width="100mm" '
+          'height="100mm" viewBox="0 0 100 100"><rect id="sq" x="10" y="10" width="80" '
+          'height="80"/></svg>\n')
+
+    def nest(copies, *extra):
+        return run(work, "nest", "square.svg:%d" % copies, "--sheet", "100x100", "--nest-time",
+                   "0", "-o", "out.svg", *extra).stderr
+
+    said = nest(3)
+    check("earlier run" not in said, said)
+    said = nest(1)
+    check("out-1.svg, out-2.svg and 1 more are left from an earlier run" in said, said)
+    said = nest(2)
+    check("out.svg and out-3.svg are left from an earlier run" in said, said)
+    said = nest(3)
+    check("out.svg is left from an earlier run under this name and is not a sheet" in said, said)
+    check("earlier run" not in nest(3, "--quiet"), "--quiet still warns")
+    os.remove(os.path.join(work, "out.svg"))
+    said = nest(3)
+    check("earlier run" not in said, said)
+    for k in (1, 2, 3):
+        check(os.path.exists(os.path.join(work, "out-%d.svg" % k)), "out-%d.svg is gone" % k)
+
+
 # ---- job files -------------------------------------------------------------
 
 JOB_HEAD = """<?xml version="1.0" encoding="UTF-8"?>
