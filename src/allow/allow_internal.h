@@ -130,6 +130,12 @@ ur_status allow_board_test(allow_board *board, const GEOSGeometry *joint, const 
 /* Puts the joint on the board (the caller keeps the shape alive), with a tag of the caller's. */
 ur_status allow_board_add(allow_board *board, const GEOSGeometry *shape, size_t first, size_t edges,
                           size_t tag, ur_error *error);
+/*
+ * Puts shape in place of the joint tagged tag, which it must lie within
+ * (a smaller tab on the same base): what the larger one kept clear of, it
+ * keeps clear of too.  The board keeps the larger one's box.
+ */
+void allow_board_replace(allow_board *board, size_t tag, const GEOSGeometry *shape);
 size_t allow_board_joint_count(const allow_board *board);
 size_t allow_board_joint_tag(const allow_board *board, size_t k);
 

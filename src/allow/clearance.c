@@ -117,6 +117,13 @@ ur_status allow_board_add(allow_board *b, const GEOSGeometry *shape, size_t firs
     return allow_grid_add(&b->grid, allow_box(b->geos, shape), NULL, error);
 }
 
+void allow_board_replace(allow_board *b, size_t tag, const GEOSGeometry *shape)
+{
+    for (size_t k = 0; k < b->grid.count; k++)
+        if (b->joints[k].tag == tag)
+            b->joints[k].shape = shape;
+}
+
 size_t allow_board_joint_count(const allow_board *b)
 {
     return b->grid.count;

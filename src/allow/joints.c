@@ -592,6 +592,89 @@ static ur_status join_stretch(joiner *j, const seam_job *sj, const stretch *st, 
 }
 
 /*
+ * The shares of the full depth a tab already placed may be lowered to, to
+ * make room for one that found none beside it: most such tabs are stopped
+ * by their neighbour round a concave corner of the outline, itself full
+ * size (Blender's torus, UV sphere and monkey head, and the sample head,
+ * on A3 paper: every seam edge left without a tab there was stopped so on
+ * at least one side).
+ */
+static const double lower_shares[] = {0.7, 0.5, 0.35, LOWEST_SHARE};
+
+/* The tab placed before whose shape stopped a joint (verdict v), or j->placed_count. */
+static size_t blocking_tab(const joiner *j, const allow_verdict *v)
+{
+    if (v->by != ALLOW_BLOCKED_JOINT)
+        return j->placed_count;
+    for (size_t k = 0; k < j->placed_count; k++)
+        if (j->placed[k].shape == v->what)
+            return k;
+    return j->placed_count;
+}
+
+/*
+ * Placed tab b lowered on its base to a share of the full depth, in
+ * *lower (NULL when that is not lower than it is, or does not lie within
+ * it: a tab whose sides were made steeper on a short edge).
+ */
+static ur_status lowered_tab(const joiner *j, size_t b, double share, GEOSGeometry **lower,
+                             double *depth, ur_error *error)
+{
+    const placed_joint *p = &j->placed[b];
+    ur_status status = joint_shape(j, &p->base, share, depth, lower, error);
+    if (status != UR_OK || !*lower)
+        return status;
+    if (!(*depth < p->depth - 1e-9) || GEOSCovers_r(j->geos, p->shape, *lower) != 1) {
+        GEOSGeom_destroy_r(j->geos, *lower);
+        *lower = NULL;
+    }
+    return status;
+}
+
+/* Puts outline in place of placed tab b's shape, on its board too. */
+static void swap_shape(joiner *j, size_t b, GEOSGeometry *outline)
+{
+    j->placed[b].shape = outline;
+    allow_board_replace(j->boards[j->placed[b].piece], b, outline);
+}
+
+/*
+ * A stretch that no tab fitted on either side, tried again with the tab
+ * that stopped it on a side lowered, a little at a time: the lowered tab
+ * lies within what it was, so it still keeps clear of everything, and
+ * stays lowered only if the stretch's tab then fits.
+ */
+static ur_status make_room(joiner *j, const seam_job *sj, const stretch *st, int first_side,
+                           bool *done, const allow_verdict why[2], ur_error *error)
+{
+    ur_status status = UR_OK;
+    for (int pass = 0; status == UR_OK && !j->options->lap && !*done && pass < 2; pass++) {
+        size_t b = blocking_tab(j, &why[pass == 0 ? first_side : 1 - first_side]);
+        for (size_t s = 0;
+             status == UR_OK && b < j->placed_count && !*done && s < COUNT(lower_shares); s++) {
+            GEOSGeometry *lower = NULL;
+            double depth = 0;
+            status = lowered_tab(j, b, lower_shares[s], &lower, &depth, error);
+            if (status != UR_OK || !lower)
+                continue;
+            GEOSGeometry *old = j->placed[b].shape;
+            swap_shape(j, b, lower);
+            allow_verdict again[2];
+            status = join_stretch(j, sj, st, first_side, done, again, error);
+            if (status == UR_OK && *done) {
+                j->placed[b].depth = depth;
+                j->placed[b].reduced = true;
+                GEOSGeom_destroy_r(j->geos, old);
+            } else {
+                swap_shape(j, b, old);
+                GEOSGeom_destroy_r(j->geos, lower);
+            }
+        }
+    }
+    return status;
+}
+
+/*
  * The stretches no joint went on: a splice piece behind each, where the
  * seam has no joint at all and the stretch is worth one; else the warning
  * to join it by hand.  A seam that keeps joints elsewhere (a papercraft
@@ -790,8 +873,11 @@ static ur_status join_seam(joiner *j, const seam_sides *s, int seam, ur_error *e
     allow_verdict(*why)[2] = done ? ur_alloc_array(count ? count : 1, sizeof *why, error) : NULL;
     if (status == UR_OK && !why)
         status = UR_ERROR_MEMORY;
-    for (size_t k = 0; status == UR_OK && k < count; k++)
+    for (size_t k = 0; status == UR_OK && k < count; k++) {
         status = join_stretch(j, &sj, &stretches[k], side, &done[k], why[k], error);
+        if (status == UR_OK && !done[k])
+            status = make_room(j, &sj, &stretches[k], side, &done[k], why[k], error);
+    }
     if (status == UR_OK)
         status = finish_stretches(j, &sj, stretches, count, side, done,
                                   (const allow_verdict(*)[2])why, error);

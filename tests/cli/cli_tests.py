@@ -1542,13 +1542,12 @@ def papercraft_of_the_sample_meshes(work):
         edges_without_tab = 0
         for piece in data["pieces"]:
             for a in piece["allowances"]:
-                # Every seam gets its tabs; a label with no room is said, never dropped silently.
-                # An edge of a seam may go without its tab, saying why (the
-                # seam keeps the tabs of its other edges, checked below).
+                # Every edge of every seam gets its tab (a tab in the way
+                # is lowered to make room: the sample head left 2 edges
+                # without before); a label with no room is said, never
+                # dropped silently.
                 check(not a["warning"] or a["reason"].startswith("no room for label ")
-                      or a["reason"].startswith("no room to engrave the piece's name")
-                      or re.match(r"no room for a glue tab on seam \w+ \(edge \d+ of \d+\): "
-                                  r"on P\d+ .* comes within", a["reason"]),
+                      or a["reason"].startswith("no room to engrave the piece's name"),
                       "%s: %s: %s" % (name, piece["name"], a["reason"]))
                 if a["warning"] and a["reason"].startswith("no room for a glue tab"):
                     edges_without_tab += 1
@@ -1573,7 +1572,7 @@ def papercraft_of_the_sample_meshes(work):
             check(placed == wanted or (placed < wanted and label in unlabelled),
                   "%s: seam %s labelled %d times" % (name, label, placed))
             check(label in tabs, "%s: seam %s has no glue tab" % (name, label))
-        check(edges_without_tab <= 2, "%s: %d edges of seams without a tab"
+        check(edges_without_tab == 0, "%s: %d edges of seams without a tab"
               % (name, edges_without_tab))
         # Small pieces can be short of room for a label (said above); most seams are not.
         check(3 * len(unlabelled) <= len(seams), "%s: %d of %d seams short of a label"
@@ -1919,16 +1918,17 @@ def a_fine_uv_sphere_keeps_room_for_its_tabs(work):
     # papercraft bench's sphere, made here): at the full gap for tabs (3 mm) its
     # thin pole triangles join their neighbours without it, and 65 seam
     # edges found no room for a tab.  Unfolded at half the gap too, and the
-    # better of the two kept, it comes in 10 pieces with two seam edges
+    # better of the two kept, it comes in 10 pieces with one seam edge
     # without a tab (a narrow slit where a scrap of the pole fan joined
-    # without the gap, and where two other tabs leave too little room).
+    # without the gap; a second, where two other tabs left too little room,
+    # has its tab since a tab in the way is lowered to make room).
     write(work, "sphere.obj", low_poly_sphere(48, 24, 60))
     result = run(work, "mesh", "sphere.obj", "--flatten", "unfold", "--material", "paper-0.3mm",
                  "--sheet", "420x297", "--nest-time", "0", "-o", "s.svg", "--report", "s.json")
     pieces = report(work, "s.json")["pieces"]
     untabbed = [a["reason"] for piece in pieces for a in piece["allowances"]
                 if a["kind"] == "joint" and a["warning"]]
-    check(len(untabbed) <= 2, "%d seam edges without a tab: %s" % (len(untabbed), untabbed[:3]))
+    check(len(untabbed) <= 1, "%d seam edges without a tab: %s" % (len(untabbed), untabbed[:3]))
     check(len(pieces) <= 10, "%d pieces\n%s" % (len(pieces), result.stderr))
 
 
