@@ -613,6 +613,23 @@ static size_t blocking_tab(const joiner *j, const allow_verdict *v)
 }
 
 /*
+ * Whether inner lies within around, but for rounding: its sides lie on
+ * around's, computed anew, and an exact test (GEOSCovers) said no to some
+ * of them by a last digit.  What sticks out must be under 1e-9 of its area.
+ */
+static bool lies_within(GEOSContextHandle_t geos, const GEOSGeometry *around,
+                        const GEOSGeometry *inner)
+{
+    GEOSGeometry *out = GEOSDifference_r(geos, inner, around);
+    double out_area = 1, area = 0;
+    bool within = out && GEOSArea_r(geos, out, &out_area) && GEOSArea_r(geos, inner, &area) &&
+                  out_area <= 1e-9 * area;
+    if (out)
+        GEOSGeom_destroy_r(geos, out);
+    return within;
+}
+
+/*
  * Placed tab b lowered on its base to a share of the full depth, in
  * *lower (NULL when that is not lower than it is, or does not lie within
  * it: a tab whose sides were made steeper on a short edge).
@@ -624,7 +641,7 @@ static ur_status lowered_tab(const joiner *j, size_t b, double share, GEOSGeomet
     ur_status status = joint_shape(j, &p->base, share, depth, lower, error);
     if (status != UR_OK || !*lower)
         return status;
-    if (!(*depth < p->depth - 1e-9) || GEOSCovers_r(j->geos, p->shape, *lower) != 1) {
+    if (!(*depth < p->depth - 1e-9) || !lies_within(j->geos, p->shape, *lower)) {
         GEOSGeom_destroy_r(j->geos, *lower);
         *lower = NULL;
     }
@@ -641,8 +658,8 @@ static void swap_shape(joiner *j, size_t b, GEOSGeometry *outline)
 /*
  * A stretch that no tab fitted on either side, tried again with the tab
  * that stopped it on a side lowered, a little at a time: the lowered tab
- * lies within what it was, so it still keeps clear of everything, and
- * stays lowered only if the stretch's tab then fits.
+ * lies within what it was (to rounding), so it still keeps clear of
+ * everything, and stays lowered only if the stretch's tab then fits.
  */
 static ur_status make_room(joiner *j, const seam_job *sj, const stretch *st, int first_side,
                            bool *done, const allow_verdict why[2], ur_error *error)
