@@ -137,18 +137,20 @@ static ur_status compensate(const job_run *run, const ur_machine *machine,
     ur_status status = UR_OK;
     for (size_t k = 0; status == UR_OK && !run->job.no_kerf_compensation && k < count; k++) {
         double done = pieces[k].kerf_compensated, more = kerf - done;
-        if (done > 0 && fabs(more) <= 1e-9 * fmax(1.0, kerf)) {
+        if (done > 0 && fabs(more) <= 1e-6) { /* the files keep 6 digits: a micron is none */
             before.same++;
             continue;
         }
         if (done > 0 && more < 0) {
-            before.first_more = before.more++ ? before.first_more : done;
-            before.name_more = before.name_more ? before.name_more : pieces[k].name;
+            if (before.more++ == 0) {
+                before.first_more = done;
+                before.name_more = pieces[k].name;
+            }
             continue;
         }
-        if (done > 0) {
-            before.first_less = before.less++ ? before.first_less : done;
-            before.name_less = before.name_less ? before.name_less : pieces[k].name;
+        if (done > 0 && before.less++ == 0) {
+            before.first_less = done;
+            before.name_less = pieces[k].name;
         }
         status = ur_piece_compensate_kerf(&pieces[k], more, error);
     }
