@@ -39,28 +39,6 @@
 #define THICK_STOCK 1.0
 
 /*
- * The shapes a joint tries, in order: the share of the full depth, and how
- * much of its stretch's length is left out at each end (clear of the
- * corners, where the neighbouring edges of the piece come closest).  A tab
- * first tries the full shape on both sides of the seam, then the smaller
- * ones on each; a lap all its shapes on one side, then on the other.
- */
-typedef struct shape {
-    double depth, shorten;
-} shape;
-
-static const shape tab_shapes[] = {{1.0, 0.0},  {0.7, 0.0},  {0.5, 0.0}, {0.35, 0.0},
-                                   {0.7, 0.15}, {0.5, 0.15}, {0.5, 0.3}, {0.35, 0.3}};
-static const shape lap_shapes[] = {{1.0, 0.0},  {0.7, 0.0}, {1.0, 0.15}, {0.7, 0.15},
-                                   {0.5, 0.15}, {0.5, 0.3}, {0.35, 0.3}};
-
-#define COUNT(array) (sizeof array / sizeof array[0])
-
-/* A stretch of a seam is straight when no point strays from its chord by more than this share of
- * the tab depth. */
-#define STRAIGHT_SHARE 0.02
-
-/*
  * A tab on an edge too short for its taper gets steeper sides, up to this
  * many degrees (still a notch between neighbouring tabs), before it is
  * made lower; lower than LOWEST_SHARE of the tab depth it is too small to
@@ -69,6 +47,34 @@ static const shape lap_shapes[] = {{1.0, 0.0},  {0.7, 0.0}, {1.0, 0.15}, {0.7, 0
 #define STEEPEST 75.0
 
 #define LOWEST_SHARE 0.2
+
+/*
+ * The shapes a joint tries, in order: the share of the full depth, and how
+ * much of its stretch's length is left out at each end (clear of the
+ * corners, where the neighbouring edges of the piece come closest).  A tab
+ * first tries the full shape on both sides of the seam, then the smaller
+ * ones on each; a lap all its shapes on one side, then on the other.  The
+ * last, lowest tab is tried only where no splice piece may take a
+ * stretch's place (a mesh's seams): a splice joins far better, but
+ * without one a tab of a fifth of the depth still glues (the wedges of
+ * narrow slits on Blender's monkey head: its last 2 seam edges without a
+ * tab).
+ */
+typedef struct shape {
+    double depth, shorten;
+} shape;
+
+static const shape tab_shapes[] = {{1.0, 0.0},  {0.7, 0.0},  {0.5, 0.0},
+                                   {0.35, 0.0}, {0.7, 0.15}, {0.5, 0.15},
+                                   {0.5, 0.3},  {0.35, 0.3}, {LOWEST_SHARE, 0.3}};
+static const shape lap_shapes[] = {{1.0, 0.0},  {0.7, 0.0}, {1.0, 0.15}, {0.7, 0.15},
+                                   {0.5, 0.15}, {0.5, 0.3}, {0.35, 0.3}};
+
+#define COUNT(array) (sizeof array / sizeof array[0])
+
+/* A stretch of a seam is straight when no point strays from its chord by more than this share of
+ * the tab depth. */
+#define STRAIGHT_SHARE 0.02
 
 void ur_seam_label(int seam, char *label, size_t size)
 {
@@ -576,7 +582,7 @@ static ur_status join_stretch(joiner *j, const seam_job *sj, const stretch *st, 
 {
     const ur_joint_options *o = j->options;
     const shape *shapes = o->lap ? lap_shapes : tab_shapes;
-    size_t count = o->lap ? COUNT(lap_shapes) : COUNT(tab_shapes);
+    size_t count = o->lap ? COUNT(lap_shapes) : COUNT(tab_shapes) - (o->splices ? 1 : 0);
     /* Tabs: the full shape on both sides before any smaller; laps: one side, then the other. */
     size_t split = o->lap ? count : 1;
     why[0] = why[1] = (allow_verdict){ALLOW_BLOCKED_SHAPE, NULL, 0};

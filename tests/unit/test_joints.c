@@ -659,7 +659,7 @@ static void test_progress_reported(void **state)
 /*
  * A plate with a V notch of the given angle (degrees), its two 40 mm
  * walls seams to two other plates, on which each wall's twin is a wall of
- * a slot 1.5 mm wide: no tab fits there, so both tabs must go into the
+ * a slot 1 mm wide: no tab fits there, so both tabs must go into the
  * notch, where near its point they are in each other's way.  Each net's
  * 3D points are its flat ones at its own height, the seams' ends shared.
  */
@@ -669,8 +669,8 @@ static ur_net_list notch_and_slots(double angle)
     ur_vec2 v = {50, 20}, p = {50 - 40 * sin(half), 20 + 40 * cos(half)},
             q = {50 + 40 * sin(half), 20 + 40 * cos(half)};
     const ur_vec2 plate[] = {{0, 0}, {100, 0}, {100, 70}, q, v, p, {0, 70}};
-    const ur_vec2 slot[] = {{0, 0},     {60, 0},  {60, 60}, {31.5, 60},
-                            {31.5, 20}, {30, 20}, {30, 60}, {0, 60}};
+    const ur_vec2 slot[] = {{0, 0},   {60, 0},  {60, 60}, {31, 60},
+                            {31, 20}, {30, 20}, {30, 60}, {0, 60}};
     ur_net_list nets = {calloc(3, sizeof(ur_net)), 3};
     assert_non_null(nets.nets);
     nets.nets[0] = grid_net("P1", plate, plate, 7);
@@ -692,19 +692,19 @@ static ur_net_list notch_and_slots(double angle)
 }
 
 /*
- * Two tabs in a V notch of 15 degrees: the first one joined goes on (2.5
+ * Two tabs in a V notch of 12 degrees: the first one joined goes on (2.5
  * mm deep, 12 mm from each end of its wall), and the second then finds
- * no room beside it, which left it to join by hand, until the first is
- * lowered on its base.  Both must go on, off each other and off the
- * plate: its grown outline a simple ring holding the plate.  (From 12 to
- * 17 degrees the lowered shape's sides, computed anew, lay outside the
- * old ones by a last digit to GEOSCovers at some angles, and no tab was
- * lowered there.)
+ * no room beside it, not even a fifth of the depth deep, which left it to
+ * join by hand, until the first is lowered on its base.  Both must go on,
+ * off each other and off the plate: its grown outline a simple ring
+ * holding the plate.  (Between 12 and 17 degrees the lowered shape's
+ * sides, computed anew, lay outside the old ones by a last digit to
+ * GEOSCovers at some angles, and no tab was lowered there.)
  */
 static void test_tab_in_the_way_is_lowered(void **state)
 {
     (void)state;
-    ur_net_list nets = notch_and_slots(15);
+    ur_net_list nets = notch_and_slots(12);
     ur_piece *pieces = pieces_of(&nets);
     ur_error error;
     ur_joint_options options = frame_options(NULL);
