@@ -675,7 +675,7 @@ static ur_net_list notch_and_slots(double angle)
     assert_non_null(nets.nets);
     nets.nets[0] = grid_net("P1", plate, plate, 7);
     for (int k = 1; k <= 2; k++) {
-        char name[8];
+        char name[16];
         snprintf(name, sizeof name, "P%d", k + 1);
         nets.nets[k] = grid_net(name, slot, slot, 8);
         for (size_t i = 0; i < 8; i++)
