@@ -262,8 +262,7 @@ typedef struct ur_piece {
 /*
  * How unroll's cut files say that their cut paths were compensated: this,
  * the kerf in mm and " mm" (SVG: the Dublin Core description in the
- * metadata, which Inkscape shows among a document's properties; DXF: a
- * 999 comment; PDF: the keywords).  ur_parts_import reads it back, so
+ * metadata; DXF: a 999 comment; PDF: the keywords).  ur_parts_import reads it back, so
  * that nesting the file again does not compensate it twice.
  */
 #define UR_KERF_NOTE "cut paths compensated for a kerf of "

@@ -370,8 +370,8 @@ static ur_status root_matrix(svg_element *root, parts_matrix *matrix, ur_error *
 /*
  * The kerf an SVG's metadata says its cut paths were compensated for: a
  * Dublin Core description holding UR_KERF_NOTE (unroll writes it in
- * rdf:RDF / rdf:Description, Inkscape keeps it there), at most depth
- * elements down.
+ * rdf:RDF / rdf:Description; another program may move it, as Inkscape's
+ * own metadata goes in a cc:Work), at most depth elements down.
  */
 static bool find_kerf_note(xmlNodePtr node, int depth, double *kerf)
 {
