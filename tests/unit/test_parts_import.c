@@ -276,6 +276,19 @@ static void test_kerf_note(void **state)
                                ""};
     for (size_t i = 0; i < sizeof not_notes / sizeof not_notes[0]; i++)
         assert_true(svg_kerf(not_notes[i]) == 0);
+    /* Where Inkscape keeps its own metadata, in a cc:Work, it is found too. */
+    ur_parts work = import_text("work.svg",
+                                "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"100mm\" "
+                                "height=\"100mm\" viewBox=\"0 0 100 100\"><metadata><rdf:RDF "
+                                "xmlns:rdf=\"http://www.w3.org/1999/02/22-rdf-syntax-ns#\" "
+                                "xmlns:cc=\"http://creativecommons.org/ns#\" "
+                                "xmlns:dc=\"http://purl.org/dc/elements/1.1/\"><cc:Work "
+                                "rdf:about=\"\"><dc:description>" UR_KERF_NOTE "0.3 mm"
+                                "</dc:description></cc:Work></rdf:RDF></metadata>"
+                                "<rect x=\"10\" y=\"10\" width=\"20\" height=\"20\"/></svg>\n",
+                                0);
+    assert_true(work.kerf_compensated == 0.3);
+    ur_parts_free(&work);
     /* A description in another namespace is not Dublin Core's. */
     ur_parts parts = import_text("other.svg",
                                  "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"100mm\" "
