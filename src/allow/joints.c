@@ -602,9 +602,10 @@ static ur_status join_stretch(joiner *j, const seam_job *sj, const stretch *st, 
  * The shares of the full depth a tab already placed may be lowered to, to
  * make room for one that found none beside it: most such tabs are stopped
  * by their neighbour round a concave corner of the outline, itself full
- * size (Blender's torus, UV sphere and monkey head, and the sample head,
- * on A3 paper: every seam edge left without a tab there was stopped so on
- * at least one side).
+ * size (on A3 paper, every seam edge the sample head, Blender's torus and
+ * a 48 x 24 sphere left without a tab was stopped so on at least one
+ * side, and 1 of the 3 on Blender's monkey head, whose other 2 lay in the
+ * wedges of narrow slits).
  */
 static const double lower_shares[] = {0.7, 0.5, 0.35, LOWEST_SHARE};
 
