@@ -262,8 +262,9 @@ typedef struct ur_piece {
 /*
  * How unroll's cut files say that their cut paths were compensated: this,
  * the kerf in mm and " mm" (SVG: the Dublin Core description in the
- * metadata; DXF: a 999 comment; PDF: the keywords).  ur_parts_import reads it back, so
- * that nesting the file again does not compensate it twice.
+ * metadata; DXF: a 999 comment; PDF: the keywords).  ur_parts_import
+ * reads it back, so that nesting the file again does not compensate it
+ * twice.
  */
 #define UR_KERF_NOTE "cut paths compensated for a kerf of "
 

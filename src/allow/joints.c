@@ -56,10 +56,9 @@
  * ones on each; a lap all its shapes on one side, then on the other.  The
  * last, lowest tab is tried only where no splice piece may take a
  * stretch's place (a mesh's seams, the cuts of a part nest splits): a
- * splice joins far better, but
- * without one a tab of a fifth of the depth still glues (the wedges of
- * narrow slits on Blender's monkey head: its last 2 seam edges without a
- * tab).
+ * splice joins far better, but without one a tab of a fifth of the depth
+ * still glues (the wedges of narrow slits on Blender's monkey head: its
+ * last 2 seam edges without a tab).
  */
 typedef struct shape {
     double depth, shorten;

@@ -379,7 +379,7 @@ static bool find_kerf_note(xmlNodePtr node, int depth, double *kerf)
         if (child->type != XML_ELEMENT_NODE) /* RDF's and Dublin Core's, not SVG's */
             continue;
         if (svg_named(child, "description") && child->ns &&
-            xmlStrEqual(child->ns->href, BAD_CAST "http://purl.org/dc/elements/1.1/")) {
+            xmlStrEqual(child->ns->href, BAD_CAST DC_NAMESPACE)) {
             xmlChar *text = xmlNodeGetContent(child);
             bool found = text && parts_read_kerf_note((const char *)text, kerf);
             xmlFree(text);

@@ -20,6 +20,8 @@
 #include "parts_internal.h"
 
 #define SVG_NAMESPACE "http://www.w3.org/2000/svg"
+/* Dublin Core, whose description in the metadata holds unroll's kerf note. */
+#define DC_NAMESPACE "http://purl.org/dc/elements/1.1/"
 
 /* Longest piece of attribute text quoted back in a message. */
 #define SVG_QUOTE_MAX 24

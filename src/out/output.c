@@ -28,29 +28,22 @@ _Static_assert(UR_OP_COUNT == 6, "put every operation into cut_order");
 static const ur_op cut_order[UR_OP_COUNT] = {UR_OP_ENGRAVE,      UR_OP_MARK, UR_OP_SCORE,
                                              UR_OP_SCORE_VALLEY, UR_OP_KERF, UR_OP_CUT};
 
-/* The kerf of piece_index, into *kerf; false once pieces differ. */
-static bool same_kerf(const write_job *job, size_t piece_index, double *kerf, bool *seen)
-{
-    double this_one = job->pieces[piece_index].kerf_compensated;
-    if (*seen && this_one != *kerf)
-        return false;
-    *kerf = this_one;
-    *seen = true;
-    return true;
-}
-
 void write_kerf_note(const write_job *job, size_t sheet, char *text)
 {
-    double kerf = 0;
-    bool seen = false, same = true;
-    for (size_t s = 0; same && s < job->layout->sheet_count; s++) {
-        const ur_sheet *on = &job->layout->sheets[s];
-        for (size_t p = 0;
-             same && (sheet == WRITE_ALL_SHEETS || s == sheet) && p < on->placement_count; p++)
-            same = same_kerf(job, on->placements[p].piece_index, &kerf, &seen);
-    }
     text[0] = '\0';
-    if (same && kerf > 0 && isfinite(kerf))
+    double kerf = -1; /* none placed yet */
+    for (size_t s = 0; s < job->layout->sheet_count; s++) {
+        if (sheet != WRITE_ALL_SHEETS && s != sheet)
+            continue;
+        const ur_sheet *on = &job->layout->sheets[s];
+        for (size_t p = 0; p < on->placement_count; p++) {
+            double this_one = job->pieces[on->placements[p].piece_index].kerf_compensated;
+            if (kerf >= 0 && this_one != kerf)
+                return; /* pieces compensated differently: the file says nothing */
+            kerf = this_one;
+        }
+    }
+    if (kerf > 0 && isfinite(kerf))
         c_snprintf(text, WRITE_KERF_NOTE_SIZE, UR_KERF_NOTE "%.6g mm", kerf);
 }
 
