@@ -663,17 +663,34 @@ static void swap_shape(joiner *j, size_t b, GEOSGeometry *outline)
 }
 
 /*
- * A stretch that no tab fitted on either side, tried again with the tab
- * that stopped it on a side lowered, a little at a time: the lowered tab
- * lies within what it was (to rounding), so it still keeps clear of
- * everything, and stays lowered only if the stretch's tab then fits.
+ * The verdicts of the seam's stretches that name tab shape old name now
+ * instead: old is about to be freed, and a stretch left without a tab
+ * says later what stopped it (describe).
  */
-static ur_status make_room(joiner *j, const seam_job *sj, const stretch *st, int first_side,
-                           bool *done, const allow_verdict why[2], ur_error *error)
+static void rename_blocker(allow_verdict (*why)[2], size_t count, const GEOSGeometry *old,
+                           const GEOSGeometry *now)
+{
+    for (size_t k = 0; k < count; k++)
+        for (int side = 0; side < 2; side++)
+            if (why[k][side].by == ALLOW_BLOCKED_JOINT && why[k][side].what == old)
+                why[k][side].what = now;
+}
+
+/*
+ * A stretch (the seam's stretch number k) that no tab fitted on either
+ * side, tried again with the tab that stopped it on a side lowered, a
+ * little at a time: the lowered tab lies within what it was (to rounding),
+ * so it still keeps clear of everything, and stays lowered only if the
+ * stretch's tab then fits.  why: the verdicts of all the seam's count
+ * stretches so far.
+ */
+static ur_status make_room(joiner *j, const seam_job *sj, const stretch *st, size_t k,
+                           int first_side, bool *done, allow_verdict (*why)[2], size_t count,
+                           ur_error *error)
 {
     ur_status status = UR_OK;
     for (int pass = 0; status == UR_OK && !j->options->lap && !*done && pass < 2; pass++) {
-        size_t b = blocking_tab(j, &why[pass == 0 ? first_side : 1 - first_side]);
+        size_t b = blocking_tab(j, &why[k][pass == 0 ? first_side : 1 - first_side]);
         for (size_t s = 0;
              status == UR_OK && b < j->placed_count && !*done && s < COUNT(lower_shares); s++) {
             GEOSGeometry *lower = NULL;
@@ -688,6 +705,7 @@ static ur_status make_room(joiner *j, const seam_job *sj, const stretch *st, int
             if (status == UR_OK && *done) {
                 j->placed[b].depth = depth;
                 j->placed[b].reduced = true;
+                rename_blocker(why, count, old, lower);
                 GEOSGeom_destroy_r(j->geos, old);
             } else {
                 swap_shape(j, b, old);
@@ -900,7 +918,7 @@ static ur_status join_seam(joiner *j, const seam_sides *s, int seam, ur_error *e
     for (size_t k = 0; status == UR_OK && k < count; k++) {
         status = join_stretch(j, &sj, &stretches[k], side, &done[k], why[k], error);
         if (status == UR_OK && !done[k])
-            status = make_room(j, &sj, &stretches[k], side, &done[k], why[k], error);
+            status = make_room(j, &sj, &stretches[k], k, side, &done[k], why, count, error);
     }
     if (status == UR_OK)
         status = finish_stretches(j, &sj, stretches, count, side, done,
