@@ -1935,14 +1935,16 @@ def a_fine_uv_sphere_keeps_room_for_its_tabs(work):
 @test
 def a_lowered_tab_is_still_named_where_it_stopped_another(work):
     # The papercraft bench's 48 x 24 sphere (samples/make-meshes.py's, of
-    # radius 1 at 60 mm a unit, as the bench writes and scales it) in cardboard, whose 10 mm tabs crowd each other: a tab that
-    # stopped one seam edge's tab was later lowered to make room for
-    # another's and freed, and the first edge's warning then measured how
-    # near the freed tab came (a crash on Blender's monkey head; valgrind
-    # sees it here).  The warning now measures the lowered tab.
-    vertices, faces = make_meshes_module().uv_sphere(1.0, 48, 24)
-    make_meshes_module().write_faces_obj(os.path.join(work, "sphere.obj"), ["A UV sphere"],
-                                         vertices, [("sphere", faces)])
+    # radius 1 at 60 mm a unit, as the bench writes and scales it) in
+    # cardboard, whose 10 mm tabs crowd each other.  A tab that stopped one
+    # seam edge's tab was later lowered to make room for another's, and
+    # freed; the first edge's warning then measured how near the freed tab
+    # came: 39.5 mm here (and an invalid read under valgrind), a crash on
+    # Blender's monkey head.  The warning now measures the lowered tab.
+    meshes = make_meshes_module()
+    vertices, faces = meshes.uv_sphere(1.0, 48, 24)
+    meshes.write_faces_obj(os.path.join(work, "sphere.obj"), ["A UV sphere"], vertices,
+                           [("sphere", faces)])
     run(work, "mesh", "sphere.obj", "--scale", "60", "--flatten", "unfold", "--material",
         "cardboard-2mm", "--nest-time", "0", "-o", "s.svg", "--report", "s.json")
     reasons = [a["reason"] for piece in report(work, "s.json")["pieces"]
