@@ -165,14 +165,21 @@ typedef struct sheet_raster {
     size_t version;
 } sheet_raster;
 
+/* The most discs sheet_raster.c keeps of a shape besides its largest. */
+enum { RASTER_MORE_DISCS = 48 };
+
 /*
  * What sheet_raster.c keeps per shape at a turn: its polygon less a thin
- * band (what blocks pixels), and a disc it holds (centre, radius).
+ * band (what blocks pixels), the largest disc it holds (centre, radius),
+ * and more discs it holds elsewhere (more_centres, more_radii).
  */
 typedef struct raster_shape {
     GEOSGeometry *core; /* NULL when it could not be made */
     ur_vec2 centre;
     double radius; /* 0 when none was found */
+    ur_vec2 more_centres[RASTER_MORE_DISCS];
+    double more_radii[RASTER_MORE_DISCS];
+    size_t more_count;
     bool made;
 } raster_shape;
 
