@@ -163,6 +163,7 @@ typedef struct sheet_raster {
     size_t columns, rows;
     double pixel; /* its side (mm) */
     size_t version;
+    size_t placed; /* the nester's placed_count when it was last brought up to date */
 } sheet_raster;
 
 /* The most discs sheet_raster.c keeps of a shape besides its largest. */

@@ -328,6 +328,8 @@ static bool distance_transform(sheet_raster *raster)
     return true;
 }
 
+enum { CROSSINGS = 4096 }; /* the most crossings of a row of pixels with a part's rings */
+
 /* Makes sheet's raster anew from the placements on it; false out of memory. */
 static bool raster_make(nester *n, size_t sheet, sheet_raster *raster)
 {
@@ -343,7 +345,6 @@ static bool raster_make(nester *n, size_t sheet, sheet_raster *raster)
     }
     for (size_t p = 0; p < raster->columns * raster->rows; p++)
         raster->distance[p] = FLT_MAX;
-    enum { CROSSINGS = 4096 };
     double *crossings = malloc(CROSSINGS * sizeof *crossings);
     if (!crossings)
         return false;
@@ -359,17 +360,100 @@ static bool raster_make(nester *n, size_t sheet, sheet_raster *raster)
     return distance_transform(raster);
 }
 
-/* The sheet's raster, made again if the sheet changed since; NULL when it cannot be had. */
+/*
+ * The widest any part's disc can be: no wider than the box of the polygon
+ * it lies in, at any turn.  No test compares a distance with more.
+ */
+static double widest_disc(const nester *n)
+{
+    double widest = 0;
+    for (size_t c = 0; c < n->class_count; c++)
+        for (size_t t = 0; t < n->classes[c].turn_count; t++) {
+            const ur_box *reach = &n->classes[c].turns[t].reach;
+            widest = fmax(widest, 0.5 * fmin(ur_box_width(*reach), ur_box_height(*reach)));
+        }
+    return widest;
+}
+
+/*
+ * Adds placement k's blocked centres to the raster without making it
+ * again: they lie in its core's box, so the distances to them are made
+ * in a window about that box (the same transform on a smaller grid) and
+ * kept where they are less.  Outside the window, a pixel lies farther
+ * from them than any disc is wide, so whatever distance it keeps, every
+ * test gives what a raster made anew would.  False out of memory.
+ */
+static bool raster_add(nester *n, sheet_raster *raster, size_t k, double margin)
+{
+    const placed *p = &n->placements[k];
+    const raster_shape *shape = shape_for(n, p->piece, p->turn);
+    double box[4], h = raster->pixel;
+    if (!shape->core || !nest_box_of(n->geos, shape->core, box))
+        return true; /* nothing blocked */
+    double x0 = floor((box[0] + p->at.x - margin) / h), x1 = ceil((box[2] + p->at.x + margin) / h);
+    double y0 = floor((box[1] + p->at.y - margin) / h), y1 = ceil((box[3] + p->at.y + margin) / h);
+    double last_i = (double)raster->columns - 1, last_j = (double)raster->rows - 1;
+    if (x1 < 0 || y1 < 0 || x0 > last_i || y0 > last_j)
+        return true; /* off the sheet */
+    size_t i0 = x0 > 0 ? (size_t)x0 : 0, j0 = y0 > 0 ? (size_t)y0 : 0;
+    size_t i1 = (size_t)fmin(x1, last_i), j1 = (size_t)fmin(y1, last_j);
+    sheet_raster window = {.columns = i1 - i0 + 1, .rows = j1 - j0 + 1, .pixel = h};
+    window.distance = malloc(window.columns * window.rows * sizeof *window.distance);
+    double *crossings = malloc(CROSSINGS * sizeof *crossings);
+    bool ok = window.distance && crossings;
+    if (ok) {
+        for (size_t q = 0; q < window.columns * window.rows; q++)
+            window.distance[q] = FLT_MAX;
+        ur_vec2 at = {p->at.x - (double)i0 * h, p->at.y - (double)j0 * h};
+        fill_rings(n, &window, shape->core, at, crossings, CROSSINGS);
+        ok = distance_transform(&window);
+    }
+    for (size_t j = 0; ok && j < window.rows; j++)
+        for (size_t i = 0; i < window.columns; i++) {
+            float *d = &raster->distance[(j + j0) * raster->columns + i + i0];
+            *d = fminf(*d, window.distance[j * window.columns + i]);
+        }
+    free(window.distance);
+    free(crossings);
+    return ok;
+}
+
+/*
+ * Brings sheet's raster up to date: the placements made on it since, one
+ * by one, when nothing was taken off it meanwhile (each placement on it
+ * counts one version, as does each one taken off); else made anew.
+ */
+static bool raster_update(nester *n, size_t sheet, sheet_raster *raster)
+{
+    size_t version = n->sheets[sheet].version, added = 0;
+    for (size_t k = raster->placed; raster->distance && k < n->placed_count; k++)
+        added += n->sheet_of[k] == sheet;
+    bool ok;
+    if (raster->distance && raster->placed <= n->placed_count &&
+        added == version - raster->version) {
+        double margin = widest_disc(n) + 2 * raster->pixel;
+        ok = true;
+        for (size_t k = raster->placed; ok && k < n->placed_count; k++)
+            if (n->sheet_of[k] == sheet)
+                ok = raster_add(n, raster, k, margin);
+    } else {
+        ok = raster_make(n, sheet, raster);
+    }
+    raster->version = version;
+    raster->placed = n->placed_count;
+    return ok;
+}
+
+/* The sheet's raster, brought up to date if the sheet changed since; NULL when it cannot be had. */
 static const sheet_raster *raster_of(nester *n, size_t sheet)
 {
     sheet_raster *raster = &n->sheets[sheet].raster;
     if (raster->version != n->sheets[sheet].version || !raster->distance) {
-        if (!raster_make(n, sheet, raster)) {
+        if (!raster_update(n, sheet, raster)) {
             free(raster->distance);
             memset(raster, 0, sizeof *raster);
             return NULL;
         }
-        raster->version = n->sheets[sheet].version;
     }
     return raster;
 }

@@ -352,6 +352,45 @@ static size_t ask_raster(nester *n, size_t piece, const GEOSGeometry *polygon,
 }
 
 /*
+ * A raster brought up to date placement by placement is the one made anew
+ * from all of them: in every pixel the same distance, or both beyond the
+ * widest disc any of the count shapes can hold (half the shorter side of
+ * its box), which no test looks beyond.  Sets the shapes' reach (the box
+ * of the polygon) as nest_shape_make does, and leaves every placement on.
+ */
+static void check_raster_brought_up_to_date(nester *n, nest_shape *shapes, size_t count)
+{
+    double widest = 0;
+    for (size_t k = 0; k < count; k++) {
+        double b[4];
+        assert_true(nest_box_of(geos, shapes[k].polygon, b));
+        shapes[k].reach = (ur_box){{b[0], b[1]}, {b[2], b[3]}};
+        widest = fmax(widest, 0.5 * fmin(b[2] - b[0], b[3] - b[1]));
+    }
+    size_t all = n->placed_count;
+    double middle[4] = {99, 74, 101, 76};
+    sheet_raster *raster = &n->sheets[0].raster;
+    for (n->placed_count = 0; n->placed_count <= all; n->placed_count++) {
+        n->sheets[0].version++;
+        nest_raster_room(n, 0, all, 0, middle, NULL);
+        assert_non_null(raster->distance);
+    }
+    n->placed_count = all;
+    size_t pixels = raster->columns * raster->rows;
+    float *added = malloc(pixels * sizeof *added);
+    assert_non_null(added);
+    memcpy(added, raster->distance, pixels * sizeof *added);
+    n->sheets[0].version++; /* a version no placement explains: made anew */
+    nest_raster_room(n, 0, all, 0, middle, NULL);
+    size_t differ = 0;
+    for (size_t q = 0; q < pixels; q++)
+        differ +=
+            added[q] != raster->distance[q] && !(added[q] > widest && raster->distance[q] > widest);
+    assert_int_equal(differ, 0);
+    free(added);
+}
+
+/*
  * The sheet's raster rules out only places that overlap: on a 200 x 150
  * mm sheet with 13 stars and a plate with a square hole placed, a star
  * and a 48-gon (whose inscribed disc is nearly all of it: a raster that
@@ -429,6 +468,7 @@ static void test_raster_rules_out_only_overlaps(void **state)
                 .first_run = true};
     n.raster_shapes = calloc(PLACED + 2, sizeof *n.raster_shapes);
     assert_non_null(n.raster_shapes);
+    check_raster_brought_up_to_date(&n, shapes, PLACED + 2);
     size_t ruled_out = 0, narrowed_count = 0;
     for (size_t piece = PLACED; piece < PLACED + 2; piece++)
         ruled_out += ask_raster(&n, piece, shapes[piece].polygon, placed_union, &narrowed_count);
