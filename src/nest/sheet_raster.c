@@ -61,7 +61,7 @@ static bool covered(const raster_shape *r, ur_vec2 centre)
     return false;
 }
 
-/* The rings of a polygon or multipolygon, for crossing counts and sides: ring r of part p. */
+/* Ring r of a polygon (part of a multipolygon): -1 its exterior, else hole r. */
 static const GEOSGeometry *ring_of(GEOSContextHandle_t geos, const GEOSGeometry *part, int r)
 {
     return r < 0 ? GEOSGetExteriorRing_r(geos, part) : GEOSGetInteriorRingN_r(geos, part, r);
@@ -200,28 +200,6 @@ static raster_shape *shape_for(nester *n, size_t piece, size_t turn)
     return r;
 }
 
-/* The crossings of one ring with the row of centres at height y, shifted by at. */
-static size_t ring_crossings(GEOSContextHandle_t geos, const GEOSGeometry *ring, ur_vec2 at,
-                             double y, double *crossings, size_t count, size_t room)
-{
-    const GEOSCoordSequence *points = ring ? GEOSGeom_getCoordSeq_r(geos, ring) : NULL;
-    unsigned size = 0;
-    if (!points || !GEOSCoordSeq_getSize_r(geos, points, &size) || size < 2)
-        return count;
-    double x0, y0;
-    GEOSCoordSeq_getXY_r(geos, points, 0, &x0, &y0);
-    x0 += at.x, y0 += at.y;
-    for (unsigned i = 1; i < size && count < room; i++) {
-        double x1, y1;
-        GEOSCoordSeq_getXY_r(geos, points, i, &x1, &y1);
-        x1 += at.x, y1 += at.y;
-        if ((y0 <= y) != (y1 <= y))
-            crossings[count++] = x0 + (y - y0) * (x1 - x0) / (y1 - y0);
-        x0 = x1, y0 = y1;
-    }
-    return count;
-}
-
 static int smaller_first(const void *a, const void *b)
 {
     double x = *(const double *)a, y = *(const double *)b;
@@ -236,23 +214,22 @@ static int smaller_first(const void *a, const void *b)
 static void fill_rings(nester *n, sheet_raster *raster, const GEOSGeometry *polygon, ur_vec2 at,
                        double *crossings, size_t room)
 {
-    GEOSContextHandle_t geos = n->geos;
     double box[4];
-    if (!nest_box_of(geos, polygon, box))
-        return;
+    sides s = {NULL, 0};
+    if (!nest_box_of(n->geos, polygon, box) || !sides_of(n->geos, polygon, &s)) {
+        free(s.ends);
+        return; /* nothing blocked, which is safe */
+    }
     double h = raster->pixel;
     long j0 = (long)ceil((box[1] + at.y) / h - 0.5), j1 = (long)floor((box[3] + at.y) / h - 0.5);
     for (long j = j0 < 0 ? 0 : j0; j <= j1 && j < (long)raster->rows; j++) {
         double y = (j + 0.5) * h;
         size_t count = 0;
-        int parts = GEOSGetNumGeometries_r(geos, polygon);
-        for (int p = 0; p < parts; p++) {
-            const GEOSGeometry *part = GEOSGetGeometryN_r(geos, polygon, p);
-            if (GEOSGeomTypeId_r(geos, part) != GEOS_POLYGON)
-                continue;
-            int holes = GEOSGetNumInteriorRings_r(geos, part);
-            for (int r = -1; r < holes; r++)
-                count = ring_crossings(geos, ring_of(geos, part, r), at, y, crossings, count, room);
+        for (size_t k = 0; k < s.count && count < room; k++) {
+            double x0 = s.ends[k][0].x + at.x, y0 = s.ends[k][0].y + at.y;
+            double x1 = s.ends[k][1].x + at.x, y1 = s.ends[k][1].y + at.y;
+            if ((y0 <= y) != (y1 <= y))
+                crossings[count++] = x0 + (y - y0) * (x1 - x0) / (y1 - y0);
         }
         if (count == room)
             continue; /* more crossings than expected: leave the row unblocked, which is safe */
@@ -264,6 +241,7 @@ static void fill_rings(nester *n, sheet_raster *raster, const GEOSGeometry *poly
                 raster->distance[(size_t)j * raster->columns + (size_t)i] = 0;
         }
     }
+    free(s.ends);
 }
 
 /*
