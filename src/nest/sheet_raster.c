@@ -36,8 +36,14 @@
  * a place ruled out here is ruled out there too.
  */
 #define CORE_DEPTH 0.01
-/* The most pixels of a sheet's raster, and the smallest pixel (mm). */
+/*
+ * The most pixels of a sheet's raster, and the smallest pixel (mm).  A
+ * roll is one sheet as long as all its parts in a row (metres, for many
+ * small nets): its raster may have more pixels, lest they be wider than
+ * the small nets' discs (3 mm on a 300 mm roll of 195 small nets).
+ */
 #define RASTER_PIXELS 250000
+#define RASTER_PIXELS_ON_ROLL 4000000
 #define SMALLEST_PIXEL 0.5
 
 /*
@@ -314,7 +320,9 @@ static bool raster_make(nester *n, size_t sheet, sheet_raster *raster)
     if (!raster->distance) {
         double width, height;
         nest_sheet_size(n, sheet, &width, &height);
-        raster->pixel = fmax(SMALLEST_PIXEL, sqrt(width * height / RASTER_PIXELS));
+        bool roll = n->options->roll_width > 0 && sheet >= n->remnant_count;
+        double most = roll ? RASTER_PIXELS_ON_ROLL : RASTER_PIXELS;
+        raster->pixel = fmax(SMALLEST_PIXEL, sqrt(width * height / most));
         raster->columns = (size_t)ceil(width / raster->pixel);
         raster->rows = (size_t)ceil(height / raster->pixel);
         raster->distance = malloc(raster->columns * raster->rows * sizeof *raster->distance);
