@@ -24,6 +24,8 @@
  */
 #include "nest_internal.h"
 
+#include "depth_index.h"
+
 #include <float.h>
 #include <math.h>
 #include <stdlib.h>
@@ -73,7 +75,7 @@ static const GEOSGeometry *ring_of(GEOSContextHandle_t geos, const GEOSGeometry 
     return r < 0 ? GEOSGetExteriorRing_r(geos, part) : GEOSGetInteriorRingN_r(geos, part, r);
 }
 
-/* The sides of a polygon's rings, each as its two ends, for depth(). */
+/* The sides of a polygon's rings, each as its two ends, for fill_rings. */
 typedef struct sides {
     ur_vec2 (*ends)[2];
     size_t count;
@@ -114,30 +116,6 @@ static bool sides_of(GEOSContextHandle_t geos, const GEOSGeometry *polygon, side
 }
 
 /*
- * How deep point p lies inside the polygon whose sides these are: its
- * distance to the nearest side, or -1 outside (even-odd).  Done here
- * rather than by GEOS: a few hundred points per shape, and a GEOS point
- * made and tested for each cost more than the nesting it saved on small
- * jobs.
- */
-static double depth(const sides *s, ur_vec2 p)
-{
-    bool inside = false;
-    double nearest = INFINITY;
-    for (size_t k = 0; k < s->count; k++) {
-        ur_vec2 a = s->ends[k][0], b = s->ends[k][1];
-        if ((a.y <= p.y) != (b.y <= p.y) && p.x < a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y))
-            inside = !inside;
-        ur_vec2 side = ur_vec2_sub(b, a);
-        double length2 = ur_vec2_dot(side, side);
-        double t = length2 > 0 ? ur_vec2_dot(ur_vec2_sub(p, a), side) / length2 : 0;
-        t = t < 0 ? 0 : t > 1 ? 1 : t;
-        nearest = fmin(nearest, ur_vec2_distance(p, ur_vec2_add_scaled(a, side, t)));
-    }
-    return inside ? nearest : -1;
-}
-
-/*
  * More discs the shape holds, besides its largest: one about each point of
  * a grid over its box that lies inside it, as wide as the point's distance
  * to its outline, the widest first, none centred well inside another.  A
@@ -148,8 +126,8 @@ static double depth(const sides *s, ur_vec2 p)
 static void more_discs(GEOSContextHandle_t geos, const GEOSGeometry *polygon, raster_shape *r)
 {
     double box[4];
-    sides s = {NULL, 0};
-    if (nest_box_of(geos, polygon, box) && sides_of(geos, polygon, &s)) {
+    depth_index inside = {0};
+    if (nest_box_of(geos, polygon, box) && depth_index_make(geos, polygon, &inside)) {
         ur_vec2 centres[DISC_GRID * DISC_GRID];
         double radii[DISC_GRID * DISC_GRID];
         size_t count = 0;
@@ -157,7 +135,7 @@ static void more_discs(GEOSContextHandle_t geos, const GEOSGeometry *polygon, ra
             for (int j = 0; j < DISC_GRID; j++) {
                 ur_vec2 at = {box[0] + (box[2] - box[0]) * (i + 0.5) / DISC_GRID,
                               box[1] + (box[3] - box[1]) * (j + 0.5) / DISC_GRID};
-                double radius = depth(&s, at) - CORE_DEPTH;
+                double radius = depth_index_depth(&inside, at) - CORE_DEPTH;
                 if (radius >= SMALLEST_DISC)
                     centres[count] = at, radii[count++] = radius;
             }
@@ -174,7 +152,7 @@ static void more_discs(GEOSContextHandle_t geos, const GEOSGeometry *polygon, ra
             centres[widest] = centres[a], radii[widest] = radii[a];
         }
     }
-    free(s.ends);
+    depth_index_free(&inside);
 }
 
 /* The shape of (class, turn)'s core and discs, made when first asked for. */
