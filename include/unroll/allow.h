@@ -233,8 +233,11 @@ UR_API ur_status ur_piece_keep_kerfs_off_joints(ur_piece *piece, size_t first, d
  * already opened by bridges.  A hole with a part narrower than the kerf,
  * which moved in would vanish or split, is left as drawn with a warning
  * record (cut so, it comes out half a kerf wider all round).  A slot of
- * the outline narrower than the kerf, which closes into a hole as the
- * outline moves out, is filled with a warning record.  So is material the
+ * the outline whose mouth is narrower than the kerf closes into a hole as
+ * the outline moves out: the room behind the mouth is added as a closed
+ * CUT path (a hole, clockwise), so that the slot's sides are still cut,
+ * with a warning record that the mouth holds them together; a room of
+ * less than a kerf square is filled, with a warning record.  So is material the
  * beam would burn away, found by the opening of the outline as drawn by
  * the kerf: a piece narrower than the kerf everywhere, one a narrow neck
  * would leave in parts, or a narrow part of more than 50 kerf squares

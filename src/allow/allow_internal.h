@@ -14,6 +14,14 @@
 GEOSGeometry *allow_line(GEOSContextHandle_t geos, const ur_vec2 *points, size_t count);
 
 /*
+ * A GEOS linear ring as points, counter-clockwise, first point not
+ * repeated; the caller frees *points.  Fails (UR_ERROR_INTERNAL) on a ring
+ * of fewer than 3 points.
+ */
+ur_status allow_ring_points(GEOSContextHandle_t geos, const GEOSGeometry *ring, ur_vec2 **points,
+                            size_t *count, ur_error *error);
+
+/*
  * The exterior ring of a polygon as points, counter-clockwise, first point
  * not repeated; the caller frees *ring.  Fails (UR_ERROR_INTERNAL) on
  * anything but a polygon with a ring of 3 points or more.

@@ -23,6 +23,28 @@ GEOSGeometry *allow_line(GEOSContextHandle_t geos, const ur_vec2 *points, size_t
     return GEOSGeom_createLineString_r(geos, sequence);
 }
 
+ur_status allow_ring_points(GEOSContextHandle_t geos, const GEOSGeometry *ring, ur_vec2 **points,
+                            size_t *count, ur_error *error)
+{
+    *points = NULL;
+    *count = 0;
+    const GEOSCoordSequence *sequence = ring ? GEOSGeom_getCoordSeq_r(geos, ring) : NULL;
+    unsigned size = 0;
+    if (!sequence || !GEOSCoordSeq_getSize_r(geos, sequence, &size) || size < 4)
+        return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS gave a polygon without a ring");
+    size_t n = size - 1; /* GEOS repeats the first point at the end */
+    ur_vec2 *read = ur_alloc_array(n, sizeof *read, error);
+    if (!read)
+        return UR_ERROR_MEMORY;
+    for (size_t i = 0; i < n; i++)
+        GEOSCoordSeq_getXY_r(geos, sequence, (unsigned)i, &read[i].x, &read[i].y);
+    if (ur_polygon_signed_area(read, n) < 0)
+        ur_points_reverse(read, n);
+    *points = read;
+    *count = n;
+    return UR_OK;
+}
+
 ur_status allow_exterior_ring(GEOSContextHandle_t geos, const GEOSGeometry *polygon, ur_vec2 **ring,
                               size_t *count, ur_error *error)
 {
@@ -32,26 +54,7 @@ ur_status allow_exterior_ring(GEOSContextHandle_t geos, const GEOSGeometry *poly
     if (type != GEOS_POLYGON)
         return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS gave a %s where a polygon was due",
                             type >= 0 ? "other geometry" : "nothing");
-    const GEOSGeometry *shell = GEOSGetExteriorRing_r(geos, polygon);
-    const GEOSCoordSequence *sequence = shell ? GEOSGeom_getCoordSeq_r(geos, shell) : NULL;
-    unsigned size = 0;
-    if (!sequence || !GEOSCoordSeq_getSize_r(geos, sequence, &size) || size < 4)
-        return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS gave a polygon without a ring");
-    size_t n = size - 1; /* GEOS repeats the first point at the end */
-    ur_vec2 *points = ur_alloc_array(n, sizeof *points, error);
-    if (!points)
-        return UR_ERROR_MEMORY;
-    for (size_t i = 0; i < n; i++)
-        GEOSCoordSeq_getXY_r(geos, sequence, (unsigned)i, &points[i].x, &points[i].y);
-    if (ur_polygon_signed_area(points, n) < 0)
-        for (size_t i = 0, j = n - 1; i < j; i++, j--) {
-            ur_vec2 swap = points[i];
-            points[i] = points[j];
-            points[j] = swap;
-        }
-    *ring = points;
-    *count = n;
-    return UR_OK;
+    return allow_ring_points(geos, GEOSGetExteriorRing_r(geos, polygon), ring, count, error);
 }
 
 GEOSGeometry *allow_inside(GEOSContextHandle_t geos, const ur_vec2 *ring, size_t count,

@@ -7,9 +7,14 @@
  * the part come out at its drawn size.
  *
  * Everything is worked out before the piece is touched, so a failure
- * leaves it as it was.  A slot of the outline narrower than the kerf
- * (between two glue tabs, say) closes as the outline moves out: it is
- * filled, with a warning, since no cutter can cut it.  A hole with a part
+ * leaves it as it was.  A slot of the outline whose mouth is narrower
+ * than the kerf (a glue tab reaching across a narrow notch to its other
+ * side, say) closes at the mouth as the outline moves out, and the room
+ * behind the mouth becomes a hole of the moved outline: it is cut as a
+ * hole, so that the slot's sides are still cut, with a warning that the
+ * mouth, which no cutter can cut, holds them together.  Filling it would
+ * leave the sides uncut: two faces of a net joined across a seam.  A room
+ * too small to cut round (less than a kerf square) is filled.  A hole with a part
  * narrower than the kerf cannot move in (it would vanish or split): it is
  * cut as drawn, coming out half a kerf wider all round, with a warning.
  * Material narrower than the kerf is burned away by the cut itself: where
@@ -88,20 +93,76 @@ static ur_vec2 geometry_middle(GEOSContextHandle_t geos, const GEOSGeometry *g)
     return box.min.x <= box.max.x ? box_middle(box) : ur_vec2_make(0, 0);
 }
 
-/* Where a GEOS polygon's first interior ring is (its box's middle). */
-static ur_vec2 first_slot(GEOSContextHandle_t geos, const GEOSGeometry *polygon)
-{
-    return geometry_middle(geos, GEOSGetInteriorRingN_r(geos, polygon, 0));
-}
-
 /*
  * What offsetting found that the cutter cannot do as asked: slots of the
- * outline filled, holes cut as drawn; each with the place of the first.
+ * outline filled or cut behind their mouths (the rooms behind them, as
+ * holes to add: owned), holes cut as drawn; each with the place of the
+ * first.
  */
 typedef struct kerf_findings {
     size_t slots, narrow_holes;
-    ur_vec2 slot_at, narrow_hole_at;
+    ur_vec2 slot_at, narrow_hole_at, room_at;
+    ur_path *rooms;
+    size_t room_count, room_capacity;
 } kerf_findings;
+
+/* Frees the rooms not given to the piece (their points NULL once given); their count stays. */
+static void findings_free(kerf_findings *found)
+{
+    for (size_t i = 0; i < found->room_count; i++)
+        free(found->rooms[i].points);
+    free(found->rooms);
+    found->rooms = NULL;
+}
+
+/* Keeps a room behind a slot's mouth (its points, now the findings'), as a clockwise hole. */
+static ur_status keep_room(kerf_findings *found, ur_vec2 *points, size_t count, ur_error *error)
+{
+    if (found->room_count == found->room_capacity) {
+        size_t capacity = found->room_capacity ? 2 * found->room_capacity : 4;
+        ur_path *grown = realloc(found->rooms, capacity * sizeof *grown);
+        if (!grown) {
+            free(points);
+            return ur_error_out_of_memory(error);
+        }
+        found->rooms = grown;
+        found->room_capacity = capacity;
+    }
+    ur_points_reverse(points, count); /* a hole runs against its outline */
+    if (found->room_count == 0)
+        found->room_at = box_middle(ur_box_of_points(points, count));
+    found->rooms[found->room_count++] =
+        (ur_path){.op = UR_OP_CUT, .closed = true, .points = points, .count = count};
+    return UR_OK;
+}
+
+/*
+ * The holes the outline moved out by half the kerf has: slots whose mouths
+ * closed.  Each is the room behind its mouth, its sides moved in by half
+ * the kerf as a hole's are: kept to be cut, or when it is less than a kerf
+ * square, counted as filled.
+ */
+static ur_status closed_slots(GEOSContextHandle_t geos, const GEOSGeometry *buffered, double kerf,
+                              kerf_findings *found, ur_error *error)
+{
+    ur_status status = UR_OK;
+    for (int k = 0, n = GEOSGetNumInteriorRings_r(geos, buffered); status == UR_OK && k < n; k++) {
+        const GEOSGeometry *ring = GEOSGetInteriorRingN_r(geos, buffered, k);
+        ur_vec2 *points = NULL;
+        size_t count = 0;
+        status = allow_ring_points(geos, ring, &points, &count, error);
+        if (status != UR_OK)
+            break;
+        if (ur_polygon_signed_area(points, count) >= kerf * kerf) {
+            status = keep_room(found, points, count, error);
+            continue;
+        }
+        if (found->slots++ == 0)
+            found->slot_at = box_middle(ur_box_of_points(points, count));
+        free(points);
+    }
+    return status;
+}
 
 /* Notes a hole too narrow to move in, which is then cut as drawn (its ring left NULL). */
 static void note_narrow_hole(kerf_findings *found, ur_vec2 at)
@@ -114,9 +175,9 @@ static void note_narrow_hole(kerf_findings *found, ur_vec2 at)
  * The ring of path offset by distance (> 0 outward, < 0 inward) into
  * *ring (counter-clockwise), or *ring NULL for a hole that would vanish or
  * split, noted in found: the laser cannot cut it smaller, and cuts it as
- * drawn.  A slot of the outline narrower than the kerf closes into a hole
- * as the outline moves out; the cutter could not cut it either, so it is
- * filled, counted in found, for a warning.
+ * drawn.  A slot of the outline whose mouth is narrower than the kerf
+ * closes into a hole as the outline moves out: the room behind the mouth,
+ * kept in found to be cut as a hole (closed_slots).
  */
 static ur_status offset_ring(GEOSContextHandle_t geos, const GEOSBufferParams *params,
                              const ur_piece *piece, size_t index, double distance, ur_vec2 **ring,
@@ -142,11 +203,9 @@ static ur_status offset_ring(GEOSContextHandle_t geos, const GEOSBufferParams *p
                               "kerf (%g mm) that would split it",
                               piece->name, at.x, at.y, 2 * distance);
     else {
-        size_t closed = (size_t)GEOSGetNumInteriorRings_r(geos, buffered);
-        if (closed > 0 && found->slots == 0)
-            found->slot_at = first_slot(geos, buffered);
-        found->slots += closed;
-        status = allow_exterior_ring(geos, buffered, ring, count, error);
+        status = closed_slots(geos, buffered, 2 * distance, found, error);
+        if (status == UR_OK)
+            status = allow_exterior_ring(geos, buffered, ring, count, error);
     }
     if (buffered)
         GEOSGeom_destroy_r(geos, buffered);
@@ -375,7 +434,17 @@ static ur_status record_findings(ur_piece *piece, double kerf, const kerf_findin
 {
     char text[sizeof((ur_allowance_record *)NULL)->reason];
     ur_status status = UR_OK;
-    if (found->slots > 0) {
+    if (found->room_count > 0) {
+        size_t n = found->room_count;
+        c_snprintf(text, sizeof text,
+                   "%zu slot%s of the outline with a mouth narrower than the kerf (%g mm), near "
+                   "(%.1f, %.1f): the room behind %s cut as a hole, and the mouth, which the "
+                   "cutter cannot cut, holds %s sides together: part %s by hand",
+                   n, n == 1 ? "" : "s", kerf, found->room_at.x, found->room_at.y,
+                   n == 1 ? "it is" : "each is", n == 1 ? "its" : "their", n == 1 ? "it" : "them");
+        status = record_warning(piece, kerf, n, found->room_at, text, error);
+    }
+    if (status == UR_OK && found->slots > 0) {
         size_t n = found->slots;
         c_snprintf(text, sizeof text,
                    "%zu slot%s of the outline narrower than the kerf (%g mm), near (%.1f, %.1f), "
@@ -417,6 +486,16 @@ static ur_status record(ur_piece *piece, double kerf, size_t holes, const kerf_f
     return ur_piece_record(piece, &entry, error);
 }
 
+/* Grows the piece's array of paths by `more`, so that adding them cannot fail. */
+static ur_status make_room_for_paths(ur_piece *piece, size_t more, ur_error *error)
+{
+    ur_path *grown = realloc(piece->paths, (piece->path_count + more) * sizeof *grown);
+    if (!grown)
+        return ur_error_out_of_memory(error);
+    piece->paths = grown;
+    return UR_OK;
+}
+
 ur_status ur_piece_compensate_kerf(ur_piece *piece, double kerf, ur_error *error)
 {
     if (!isfinite(kerf) || kerf < 0)
@@ -434,12 +513,14 @@ ur_status ur_piece_compensate_kerf(ur_piece *piece, double kerf, ur_error *error
     ur_vec2 **rings = calloc(piece->path_count, sizeof *rings);
     size_t *counts = calloc(piece->path_count, sizeof *counts);
     size_t holes = 0;
-    kerf_findings found = {0, 0, {0, 0}, {0, 0}};
+    kerf_findings found = {0};
     narrow_material narrow = {0};
     bool measured = false;
     ur_status status = rings && counts ? offset_all(piece, kerf, rings, counts, &holes, &found,
                                                     &narrow, &measured, error)
                                        : ur_error_out_of_memory(error);
+    if (status == UR_OK && found.room_count > 0) /* room for the slots' holes, before any change */
+        status = make_room_for_paths(piece, found.room_count, error);
     for (size_t i = 0; status == UR_OK && i < piece->path_count; i++)
         if (rings[i]) {
             free(piece->paths[i].points);
@@ -453,6 +534,11 @@ ur_status ur_piece_compensate_kerf(ur_piece *piece, double kerf, ur_error *error
         free(rings[i]);
     free(rings);
     free(counts);
+    for (size_t i = 0; status == UR_OK && i < found.room_count; i++) {
+        piece->paths[piece->path_count++] = found.rooms[i]; /* the piece owns its points now */
+        found.rooms[i].points = NULL;
+    }
+    findings_free(&found);
     if (status != UR_OK)
         return status;
     ur_piece_recompute_box(piece);

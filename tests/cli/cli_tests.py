@@ -1664,7 +1664,8 @@ def fewer_pieces_joins_where_tabs_lack_room(work):
                     check(not a["warning"] or a["reason"].startswith("no room for label ")
                           or a["reason"].startswith("no room to engrave the piece's name")
                           or a["reason"].startswith("no room for a glue tab on seam ")
-                          or re.match(r"\d+ slots? of the outline narrower than the kerf", a["reason"]),
+                          or re.match(r"\d+ slots? of the outline (with a mouth )?narrower than the kerf",
+                                      a["reason"]),
                           "%s: %s: %s" % (name, piece["name"], a["reason"]))
             for sheet in data["sheets"]:
                 rings = outlines(os.path.join(work, os.path.basename(sheet["file"])))

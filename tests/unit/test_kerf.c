@@ -2,7 +2,8 @@
  * test_kerf.c: kerf compensation and holding bridges, measured on the
  * geometry they leave.  A rectangle with a round hole grows and its hole
  * shrinks by exactly half the kerf, corners square; holes and slots the
- * kerf would close are refused by name.  Bridges are found again from the
+ * kerf would close are refused by name; a slot whose mouth closes has the
+ * room behind it cut as a hole.  Bridges are found again from the
  * open outline pieces (where each starts and ends along the original
  * outline): their number and width, their spacing, and their distance from
  * corners and tight fillets, worked out here independently.
@@ -376,9 +377,12 @@ static void test_kerf_narrow_features(void **state)
     ur_piece_free(&piece);
 
     /*
-     * A keyhole slot in the outline: a 0.1 mm channel to a 5 mm room closes
-     * into a hole the cutter could not reach: it is filled, with a warning
-     * that says where, and the outline is the plate grown by 0.1 mm.
+     * A keyhole slot in the outline: a 0.1 mm channel to a 10 x 5 mm room.
+     * At a 0.2 mm kerf the channel closes as the outline moves out; the
+     * room behind it is cut as a hole, its sides moved in by 0.1 mm (9.8 x
+     * 4.8 mm, clockwise against the outline), so that its sides are still
+     * cut; the warning says where and that the mouth holds.  The outline is
+     * the plate grown by 0.1 mm.
      */
     ur_vec2 keyhole[] = {{0, 0},   {100, 0}, {100, 50}, {50.05, 50}, {50.05, 30}, {55, 30},
                          {55, 25}, {45, 25}, {45, 30},  {49.95, 30}, {49.95, 50}, {0, 50}};
@@ -388,11 +392,33 @@ static void test_kerf_narrow_features(void **state)
     assert_int_equal(slot.record_count, 2);
     const ur_allowance_record *warning = &slot.records[0];
     assert_true(warning->warning && warning->count == 1);
-    assert_true(strstr(warning->reason, "slot") != NULL);
-    assert_close(warning->where.x, 50, 0.5); /* the room, 45..55 across */
-    assert_close(warning->where.y, 27.5, 3);
+    assert_true(strstr(warning->reason, "mouth") != NULL);
+    assert_close(warning->where.x, 50, 1e-9); /* the room, 45..55 across */
+    assert_close(warning->where.y, 27.5, 1e-9);
     assert_close(ur_box_width(slot.box), 100.2, 1e-9);
     assert_close(ur_box_height(slot.box), 50.2, 1e-9);
+    assert_close(fabs(ur_polygon_signed_area(slot.paths[0].points, slot.paths[0].count)),
+                 100.2 * 50.2, 1e-6);
+    assert_int_equal(slot.path_count, 2);
+    const ur_path *room = &slot.paths[1];
+    assert_true(room->op == UR_OP_CUT && room->closed);
+    assert_close(ur_polygon_signed_area(room->points, room->count), -9.8 * 4.8, 1e-9);
+    ur_box room_box = ur_box_of_points(room->points, room->count);
+    assert_close(room_box.min.x, 45.1, 1e-9);
+    assert_close(room_box.max.x, 54.9, 1e-9);
+    assert_close(room_box.min.y, 25.1, 1e-9);
+    assert_close(room_box.max.y, 29.9, 1e-9);
+    ur_piece_free(&slot);
+
+    /* A room less than a kerf square once its sides move in (0.05 x 0.05 mm) is filled. */
+    ur_vec2 pinhole[] = {{0, 0},       {100, 0},     {100, 50},       {50.05, 50},
+                         {50.05, 30},  {50.125, 30}, {50.125, 29.75}, {49.875, 29.75},
+                         {49.875, 30}, {49.95, 30},  {49.95, 50},     {0, 50}};
+    slot = piece_named("pinhole");
+    add(&slot, UR_OP_CUT, pinhole, sizeof pinhole / sizeof *pinhole, true);
+    assert_int_equal(ur_piece_compensate_kerf(&slot, 0.2, NULL), UR_OK);
+    assert_int_equal(slot.path_count, 1);
+    assert_true(slot.records[0].warning && strstr(slot.records[0].reason, "filled") != NULL);
     assert_close(fabs(ur_polygon_signed_area(slot.paths[0].points, slot.paths[0].count)),
                  100.2 * 50.2, 1e-6);
     ur_piece_free(&slot);
