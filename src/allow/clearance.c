@@ -7,11 +7,14 @@
  * takes new ones between queries.  A joint is tested against both with
  * two regions: inner, the joint shrunk by TOUCH, which nothing may meet;
  * outer, the joint grown by the gap on its outward side only (beyond its
- * base's chord), which nothing but what shares a corner with the joint's
- * edges may meet: the outline's neighbouring edges and the joints on them
- * touch it at the seam's corners, where the notch between two tabs closes.
- * Behind the base is the piece itself, whose outline runs on from the
- * base's ends.
+ * base's chord), which nothing may meet but what shares a corner with the
+ * joint's edges, and that only at the corner: the outline's neighbouring
+ * edges and the joints on them touch it at the seam's corners, where the
+ * notch between two tabs closes.  Where such a neighbour comes near the
+ * joint away from the corner (a tab across a narrow notch, nearly touching
+ * its other side) the notch would close there too, leaving a pocket no
+ * cutter can reach.  Behind the base is the piece itself, whose outline
+ * runs on from the base's ends.
  */
 #include "allow_internal.h"
 
@@ -36,6 +39,7 @@ typedef struct board_joint {
 struct allow_board {
     GEOSContextHandle_t geos;
     double gap;
+    ur_vec2 *corners; /* owned: the outline's points, edge e from corners[e] */
     GEOSSTRtree *tree;
     GEOSGeometry **segments; /* owned: outline edge e from point e to e + 1 */
     size_t *edge_ids;        /* the tree's items: edge_ids[e] == e */
@@ -58,6 +62,7 @@ void allow_board_close(allow_board *b)
             GEOSGeom_destroy_r(b->geos, b->segments[e]);
     free(b->segments);
     free(b->edge_ids);
+    free(b->corners);
     free(b->joints);
     allow_grid_free(&b->grid);
     allow_items_free(&b->found);
@@ -77,8 +82,11 @@ ur_status allow_board_open(GEOSContextHandle_t geos, const ur_vec2 *outline, siz
     b->tree = GEOSSTRtree_create_r(geos, 8);
     b->segments = calloc(count ? count : 1, sizeof *b->segments);
     b->edge_ids = calloc(count ? count : 1, sizeof *b->edge_ids);
+    b->corners = calloc(count ? count : 1, sizeof *b->corners);
     ur_status status =
-        b->tree && b->segments && b->edge_ids ? UR_OK : ur_error_out_of_memory(error);
+        b->tree && b->segments && b->edge_ids && b->corners ? UR_OK : ur_error_out_of_memory(error);
+    if (status == UR_OK && count > 0)
+        memcpy(b->corners, outline, count * sizeof *outline);
     for (size_t e = 0; status == UR_OK && e < count; e++) {
         ur_vec2 ends[2] = {outline[e], outline[(e + 1) % count]};
         b->segments[e] = allow_line(geos, ends, 2);
@@ -134,10 +142,25 @@ size_t allow_board_joint_tag(const allow_board *b, size_t k)
     return b->joints[k].tag;
 }
 
-/* Whether edges [a, a + la) and [c, c + lc) of an outline of n edges overlap or share a corner. */
-static bool share_corner(size_t n, size_t a, size_t la, size_t c, size_t lc)
+/*
+ * How edges [a, a + la) of an outline of n edges stand to a joint's
+ * [c, c + lc): overlapping (sharing an edge), or meeting at up to two
+ * corners (the outline's points where one run ends and the other begins).
+ */
+typedef struct contact {
+    bool overlap;
+    size_t corner_count;
+    size_t corners[2];
+} contact;
+
+static contact contact_of(size_t n, size_t a, size_t la, size_t c, size_t lc)
 {
-    return (c + n - a) % n <= la || (a + n - c) % n <= lc;
+    contact k = {.overlap = (c + n - a) % n < la || (a + n - c) % n < lc};
+    if (!k.overlap && (c + n - a) % n == la)
+        k.corners[k.corner_count++] = c;
+    if (!k.overlap && (a + n - c) % n == lc)
+        k.corners[k.corner_count++] = a;
+    return k;
 }
 
 static void collect_edge(void *item, void *userdata)
@@ -308,13 +331,54 @@ static bool regions_make(const allow_board *b, const GEOSGeometry *joint, const 
     return r->inner && r->outer;
 }
 
-/* Whether thing meets the joint: its inner region, and unless it shares a corner, its outer. */
-static ur_status meets(const allow_board *b, bool corner, const regions *r,
+/*
+ * Whether some part of what thing has in the outer region lies farther
+ * than the gap from every corner it shares with the joint: 1 or 0, 2 when
+ * GEOS fails.  Each part (one, for a tab and an edge or another tab, all
+ * convex) must come that near a corner, as a neighbour touching the joint
+ * at their corner does.
+ */
+static char away_from_corners(const allow_board *b, const regions *r, const GEOSGeometry *thing,
+                              const contact *k)
+{
+    GEOSGeometry *common = GEOSIntersection_r(b->geos, r->clipped, thing);
+    if (!common)
+        return 2;
+    char away = 0;
+    for (int i = 0, n = GEOSGetNumGeometries_r(b->geos, common); away == 0 && i < n; i++) {
+        const GEOSGeometry *part = GEOSGetGeometryN_r(b->geos, common, i);
+        double nearest = INFINITY;
+        for (size_t c = 0; away == 0 && c < k->corner_count; c++) {
+            ur_vec2 at = b->corners[k->corners[c]];
+            GEOSGeometry *point = GEOSGeom_createPointFromXY_r(b->geos, at.x, at.y);
+            double distance;
+            if (!point || GEOSDistance_r(b->geos, point, part, &distance) != 1)
+                away = 2;
+            else
+                nearest = fmin(nearest, distance);
+            if (point)
+                GEOSGeom_destroy_r(b->geos, point);
+        }
+        if (away == 0 && nearest > b->gap + TOUCH)
+            away = 1;
+    }
+    GEOSGeom_destroy_r(b->geos, common);
+    return away;
+}
+
+/*
+ * Whether thing meets the joint: its inner region, and unless it shares an
+ * edge with the joint, its outer, away from the corners it shares.
+ */
+static ur_status meets(const allow_board *b, const contact *k, const regions *r,
                        const GEOSGeometry *thing, bool *hit, ur_error *error)
 {
     char result = GEOSPreparedIntersects_r(b->geos, r->inner, thing);
-    if (result == 0 && !corner)
+    if (result == 0 && !k->overlap) {
         result = GEOSPreparedIntersects_r(b->geos, r->outer, thing);
+        if (result == 1 && k->corner_count > 0)
+            result = away_from_corners(b, r, thing, k);
+    }
     if (result == 2)
         return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS failed testing a joint");
     *hit = result == 1;
@@ -333,7 +397,8 @@ static ur_status test_near(allow_board *b, const regions *r, size_t first, size_
     ur_status status = UR_OK;
     for (size_t k = 0; status == UR_OK && !hit && k < b->found.count; k++) {
         size_t e = b->found.items[k];
-        status = meets(b, share_corner(n, e, 1, first, edges), r, b->segments[e], &hit, error);
+        contact with = contact_of(n, e, 1, first, edges);
+        status = meets(b, &with, r, b->segments[e], &hit, error);
         if (hit)
             *v = (allow_verdict){ALLOW_BLOCKED_OUTLINE, b->segments[e], e};
     }
@@ -342,8 +407,8 @@ static ur_status test_near(allow_board *b, const regions *r, size_t first, size_
     status = allow_grid_query(&b->grid, allow_box(b->geos, r->grown), &b->found, error);
     for (size_t k = 0; status == UR_OK && !hit && k < b->found.count; k++) {
         const board_joint *q = &b->joints[b->found.items[k]];
-        status =
-            meets(b, share_corner(n, q->first, q->edges, first, edges), r, q->shape, &hit, error);
+        contact with = contact_of(n, q->first, q->edges, first, edges);
+        status = meets(b, &with, r, q->shape, &hit, error);
         if (hit)
             *v = (allow_verdict){ALLOW_BLOCKED_JOINT, q->shape, 0};
     }

@@ -462,6 +462,11 @@ static void describe(const joiner *j, const seam_job *sj, int k, const stretch *
     else if (v->by == ALLOW_BLOCKED_JOINT)
         c_snprintf(text, size, "on %s another %s comes within %.1f mm", piece->name,
                    j->options->lap ? "lap" : "tab", distance);
+    else if (j->options->lap) /* a lap is not tapered: its shape fails only by crossing itself */
+        c_snprintf(text, size,
+                   "on %s the seam bends too much along its %.1f mm for a lap %g mm "
+                   "wide",
+                   piece->name, r.length, j->options->lap_width);
     else
         c_snprintf(text, size, "on %s the edge (%.1f mm) is too short", piece->name, r.length);
     free(r.points);
@@ -494,7 +499,7 @@ static ur_status record(ur_piece *piece, ur_allowance_kind kind, ur_vec2 where, 
 static ur_status warn_stretch(joiner *j, const seam_job *sj, const stretch *st, int first_side,
                               const allow_verdict why[2], ur_error *error)
 {
-    char sides[2][96];
+    char sides[2][128];
     for (int k = 0; k < 2; k++)
         describe(j, sj, k, st, &why[k], sides[k], sizeof sides[k]);
     run r = {0};
@@ -504,8 +509,11 @@ static ur_status warn_stretch(joiner *j, const seam_job *sj, const stretch *st, 
         return status;
     size_t total = sj->edges[0];
     char which[48] = "";
-    if (total > 1 && sj->edges[0] == sj->edges[1])
+    if (total > 1 && sj->edges[0] == sj->edges[1] && st->count == 1)
         c_snprintf(which, sizeof which, " (edge %zu of %zu)", st->first + 1, total);
+    else if (total > 1 && sj->edges[0] == sj->edges[1] && st->count < total)
+        c_snprintf(which, sizeof which, " (edges %zu to %zu of %zu)", st->first + 1,
+                   st->first + st->count, total);
     /* Both sides of a slit in one piece meet the same: said once. */
     bool same = strcmp(sides[0], sides[1]) == 0;
     status = record(&j->pieces[sj->s->net[first_side]], UR_ALLOWANCE_JOINT, run_middle(&r), 0, true,

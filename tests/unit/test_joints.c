@@ -734,6 +734,115 @@ static void test_tab_in_the_way_is_lowered(void **state)
     ur_net_list_free(&nets);
 }
 
+/*
+ * A plate with a V notch of the given angle (degrees) and 40 mm walls,
+ * which are the two sides of one seam: glued, they close the notch, as
+ * the faces round a vertex of an ico sphere do.  The tab on one wall
+ * lies in the notch, and a tab that reaches across it to nearly touch
+ * the other wall away from the notch's point closes a pocket there: the
+ * outline moved out by half a 0.1 mm kerf closed round it, and the pocket,
+ * the seam's two sides, came out uncut (the sample ico sphere in paper,
+ * 19 times).
+ */
+static ur_net_list notch_seam(double angle)
+{
+    double half = 0.5 * angle * M_PI / 180.0;
+    ur_vec2 v = {50, 20}, p = {50 - 40 * sin(half), 20 + 40 * cos(half)},
+            q = {50 + 40 * sin(half), 20 + 40 * cos(half)};
+    const ur_vec2 plate[] = {{0, 0}, {100, 0}, {100, 70}, q, v, p, {0, 70}};
+    ur_net_list nets = {calloc(1, sizeof(ur_net)), 1};
+    assert_non_null(nets.nets);
+    nets.nets[0] = grid_net("P1", plate, plate, 7);
+    nets.nets[0].outline_3d[5] = nets.nets[0].outline_3d[3]; /* the walls one edge in 3D */
+    int next;
+    ur_error error;
+    assert_int_equal(ur_net_list_find_seams(&nets, 1, &next, &error), UR_OK);
+    assert_int_equal(ur_net_list_last_seam(&nets), 1);
+    return nets;
+}
+
+/*
+ * The outline moved out by half the joints' gap (0.2 mm) closes round
+ * no pocket: nothing the tabs added comes nearer the rest of the outline
+ * than the gap but at the corners they share, where the notch between
+ * them opens outward.  At every angle the tab goes on, made smaller.
+ */
+static void test_tab_keeps_off_the_far_side_of_a_notch(void **state)
+{
+    (void)state;
+    const double angles[] = {8, 10, 12, 16, 20, 30};
+    for (size_t a = 0; a < sizeof angles / sizeof *angles; a++) {
+        ur_net_list nets = notch_seam(angles[a]);
+        ur_piece *pieces = pieces_of(&nets);
+        ur_error error;
+        ur_joint_options options = frame_options(NULL);
+        assert_int_equal(ur_pieces_add_joints(pieces, &nets, &options, &error), UR_OK);
+        for (size_t r = 0; r < pieces[0].record_count; r++)
+            assert_false(pieces[0].records[r].kind == UR_ALLOWANCE_JOINT &&
+                         pieces[0].records[r].warning);
+        assert_int_equal(count_joints(&pieces[0]), 1);
+        GEOSGeometry *grown = polygon(pieces[0].paths[0].points, pieces[0].paths[0].count);
+        GEOSGeometry *moved = GEOSBuffer_r(geos, grown, 0.1, 8);
+        assert_non_null(moved);
+        if (GEOSGetNumInteriorRings_r(geos, moved) != 0)
+            fail_msg("a %g degree notch: the tab closes %d pockets", angles[a],
+                     GEOSGetNumInteriorRings_r(geos, moved));
+        GEOSGeom_destroy_r(geos, moved);
+        GEOSGeom_destroy_r(geos, grown);
+        check_nothing_crosses_outline(&pieces[0]);
+        free_pieces(pieces, nets.count);
+        ur_net_list_free(&nets);
+    }
+}
+
+/*
+ * Two plates whose common edge meanders: three teeth 2 mm wide and 20 mm
+ * high, each plate's fitting between the other's.  A lap along it (15 mm
+ * wide, 5.25 mm at the lowest tried) would cross itself in every 2 mm
+ * slot, on either side.  The warning says that the seam bends too much
+ * for the lap; it once said that the 134 mm seam was too short, naming
+ * "edge 1 of 13" for a lap along all of them.
+ */
+static void test_lap_on_a_bent_seam_says_why(void **state)
+{
+    (void)state;
+    static const ur_vec2 lower[] = {{-2, -10}, {12, -10}, {12, 0}, {10, 0}, {10, 20}, {8, 20},
+                                    {8, 0},    {6, 0},    {6, 20}, {4, 20}, {4, 0},   {2, 0},
+                                    {2, 20},   {0, 20},   {0, 0},  {-2, 0}};
+    static const ur_vec2 upper[] = {{-2, 0}, {0, 0},  {0, 20},  {2, 20}, {2, 0},  {4, 0},
+                                    {4, 20}, {6, 20}, {6, 0},   {8, 0},  {8, 20}, {10, 20},
+                                    {10, 0}, {12, 0}, {12, 30}, {-2, 30}};
+    size_t n = sizeof lower / sizeof *lower;
+    ur_net_list nets = {calloc(2, sizeof(ur_net)), 2};
+    assert_non_null(nets.nets);
+    nets.nets[0] = grid_net("P1", lower, lower, n);
+    nets.nets[1] = grid_net("P2", upper, upper, n);
+    int next;
+    ur_error error;
+    assert_int_equal(ur_net_list_find_seams(&nets, 1, &next, &error), UR_OK);
+    assert_int_equal(ur_net_list_last_seam(&nets), 1);
+    ur_piece *pieces = pieces_of(&nets);
+    ur_joint_options options = frame_options(NULL);
+    options.lap = true;
+    options.lap_width = 15;
+    assert_int_equal(ur_pieces_add_joints(pieces, &nets, &options, &error), UR_OK);
+    size_t warned = 0;
+    for (size_t k = 0; k < nets.count; k++)
+        for (size_t r = 0; r < pieces[k].record_count; r++) {
+            const ur_allowance_record *record = &pieces[k].records[r];
+            if (record->kind != UR_ALLOWANCE_JOINT || !record->warning)
+                continue;
+            warned++;
+            print_message("%s\n", record->reason);
+            assert_non_null(strstr(record->reason, "bends too much along its 134.0 mm"));
+            assert_null(strstr(record->reason, "too short"));
+            assert_null(strstr(record->reason, "(edge"));
+        }
+    assert_int_equal(warned, 1);
+    free_pieces(pieces, nets.count);
+    ur_net_list_free(&nets);
+}
+
 static void test_laps_marked_on_both(void **state)
 {
     (void)state;
@@ -1124,6 +1233,8 @@ int main(void)
         cmocka_unit_test(test_labels_stand_apart),
         cmocka_unit_test(test_label_across_the_tab),
         cmocka_unit_test(test_tab_in_the_way_is_lowered),
+        cmocka_unit_test(test_tab_keeps_off_the_far_side_of_a_notch),
+        cmocka_unit_test(test_lap_on_a_bent_seam_says_why),
         cmocka_unit_test(test_label_once_where_sides_meet),
         cmocka_unit_test(test_names_full_height_on_sectors),
     };
