@@ -14,9 +14,10 @@
  * hole, so that the slot's sides are still cut, with a warning that the
  * mouth, which no cutter can cut, holds them together.  Filling it would
  * leave the sides uncut: two faces of a net joined across a seam.  A room
- * too small to cut round (less than a kerf square) is filled.  A hole with a part
- * narrower than the kerf cannot move in (it would vanish or split): it is
- * cut as drawn, coming out half a kerf wider all round, with a warning.
+ * too small to cut round (less than a kerf square) is filled.  A hole
+ * with a part narrower than the kerf cannot move in (it would vanish or
+ * split): it is cut as drawn, coming out half a kerf wider all round,
+ * with a warning.
  * Material narrower than the kerf is burned away by the cut itself: where
  * the outline's own parts are (a strip of a modeller's micro-faces, such
  * as a cut gem's girdle 0.012 mm high, unfolded), a warning says so.
