@@ -1892,6 +1892,34 @@ def a_hole_narrower_than_the_kerf_is_cut_as_drawn(work):
 
 
 @test
+def a_slot_whose_mouth_closes_has_its_room_cut(work):
+    # A 100 x 50 mm plate with a keyhole slot: a channel 0.1 mm wide from
+    # its top edge to a 10 x 5 mm room, nested at the default 0.2 mm kerf.
+    # The outline moved out by 0.1 mm closes the channel; the room behind
+    # it comes out as a ring of its own, its sides moved in by 0.1 mm
+    # (9.8 x 4.8 mm), so that the laser still cuts round it, and a warning
+    # says so.  Before, the room was filled: the file cut the plate's
+    # outline alone (the sample ico sphere's notches closed so, uncut).
+    write(work, "keyhole.svg",
+          '<svg xmlns="http://www.w3.org/2000/svg" width="120mm" height="70mm" '
+          'viewBox="0 0 120 70"><path d="M 10 10 H 110 V 60 H 60.05 V 40 H 65 V 35 H 55 V 40 '
+          'H 59.95 V 60 H 10 Z" fill="none" stroke="black"/></svg>')
+    result = run(work, "nest", "keyhole.svg", "-o", "keyhole-out.svg", "--report", "keyhole.json")
+    check(re.search(r"warning: piece \S+: 1 slot of the outline with a mouth narrower than the "
+                    r"kerf \(0\.2 mm\), near \(\d+\.\d, \d+\.\d\): the room behind it is cut as a "
+                    r"hole", result.stderr), result.stderr)
+    rings = sorted(outlines(os.path.join(work, "keyhole-out.svg")), key=area)
+    check(len(rings) == 2, "%d rings" % len(rings))
+    check(abs(area(rings[0]) - 9.8 * 4.8) < 1e-6, "the room's area is %.6f mm2" % area(rings[0]))
+    check(abs(area(rings[1]) - 100.2 * 50.2) < 1e-6, "the outline's area is %.6f" % area(rings[1]))
+    # The room's middle lies 2.5 mm from the plate's, however the part was turned.
+    middle = lambda ring: ((max(x for x, _ in ring) + min(x for x, _ in ring)) / 2,
+                           (max(y for _, y in ring) + min(y for _, y in ring)) / 2)
+    apart = math.dist(middle(rings[0]), middle(rings[1]))
+    check(abs(apart - 2.5) < 1e-6, "the room lies %.6f mm from the plate's middle" % apart)
+
+
+@test
 def a_small_papercraft_model_gets_a_scale_note(work):
     # A UV sphere 30 mm across, 32 x 16 faces (quads, split as they are
     # read): its edges are 0.6 to 4.2 mm long, half under 2.9 mm, shorter
