@@ -237,9 +237,9 @@ UR_API ur_status ur_piece_keep_kerfs_off_joints(ur_piece *piece, size_t first, d
  * the outline moves out: the room behind the mouth is added as a closed
  * CUT path (a hole, clockwise), so that the slot's sides are still cut,
  * with a warning record that the mouth holds them together; a room of
- * less than a kerf square is filled, with a warning record.  So is material the
- * beam would burn away, found by the opening of the outline as drawn by
- * the kerf: a piece narrower than the kerf everywhere, one a narrow neck
+ * less than a kerf square is filled, with a warning record.  Material the
+ * beam would burn away gets a warning record too, found by the opening
+ * of the outline as drawn by the kerf: a piece narrower than the kerf everywhere, one a narrow neck
  * would leave in parts, or a narrow part of more than 50 kerf squares
  * where the narrow material is more than a hundredth of the piece (the
  * tip a sharp corner loses is less).
