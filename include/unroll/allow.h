@@ -239,10 +239,10 @@ UR_API ur_status ur_piece_keep_kerfs_off_joints(ur_piece *piece, size_t first, d
  * with a warning record that the mouth holds them together; a room of
  * less than a kerf square is filled, with a warning record.  Material the
  * beam would burn away gets a warning record too, found by the opening
- * of the outline as drawn by the kerf: a piece narrower than the kerf everywhere, one a narrow neck
- * would leave in parts, or a narrow part of more than 50 kerf squares
- * where the narrow material is more than a hundredth of the piece (the
- * tip a sharp corner loses is less).
+ * of the outline as drawn by the kerf: a piece narrower than the kerf
+ * everywhere, one a narrow neck would leave in parts, or a narrow part of
+ * more than 50 kerf squares where the narrow material is more than a
+ * hundredth of the piece (the tip a sharp corner loses is less).
  * A kerf of 0 does nothing.  A path that is exactly a circle (its
  * circle set) stays exactly one, radius kerf / 2 more (outline) or less
  * (hole), its points moved along their radii onto it, without GEOS; a
