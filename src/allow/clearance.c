@@ -155,12 +155,12 @@ typedef struct contact {
 
 static contact contact_of(size_t n, size_t a, size_t la, size_t c, size_t lc)
 {
-    contact k = {.overlap = (c + n - a) % n < la || (a + n - c) % n < lc};
-    if (!k.overlap && (c + n - a) % n == la)
-        k.corners[k.corner_count++] = c;
-    if (!k.overlap && (a + n - c) % n == lc)
-        k.corners[k.corner_count++] = a;
-    return k;
+    contact with = {.overlap = (c + n - a) % n < la || (a + n - c) % n < lc};
+    if (!with.overlap && (c + n - a) % n == la)
+        with.corners[with.corner_count++] = c;
+    if (!with.overlap && (a + n - c) % n == lc)
+        with.corners[with.corner_count++] = a;
+    return with;
 }
 
 static void collect_edge(void *item, void *userdata)
@@ -339,7 +339,7 @@ static bool regions_make(const allow_board *b, const GEOSGeometry *joint, const 
  * at their corner does.
  */
 static char away_from_corners(const allow_board *b, const regions *r, const GEOSGeometry *thing,
-                              const contact *k)
+                              const contact *with)
 {
     GEOSGeometry *common = GEOSIntersection_r(b->geos, r->clipped, thing);
     if (!common)
@@ -348,8 +348,8 @@ static char away_from_corners(const allow_board *b, const regions *r, const GEOS
     for (int i = 0, n = GEOSGetNumGeometries_r(b->geos, common); away == 0 && i < n; i++) {
         const GEOSGeometry *part = GEOSGetGeometryN_r(b->geos, common, i);
         double nearest = INFINITY;
-        for (size_t c = 0; away == 0 && c < k->corner_count; c++) {
-            ur_vec2 at = b->corners[k->corners[c]];
+        for (size_t c = 0; away == 0 && c < with->corner_count; c++) {
+            ur_vec2 at = b->corners[with->corners[c]];
             GEOSGeometry *point = GEOSGeom_createPointFromXY_r(b->geos, at.x, at.y);
             double distance;
             if (!point || GEOSDistance_r(b->geos, point, part, &distance) != 1)
@@ -370,14 +370,14 @@ static char away_from_corners(const allow_board *b, const regions *r, const GEOS
  * Whether thing meets the joint: its inner region, and unless it shares an
  * edge with the joint, its outer, away from the corners it shares.
  */
-static ur_status meets(const allow_board *b, const contact *k, const regions *r,
+static ur_status meets(const allow_board *b, const contact *with, const regions *r,
                        const GEOSGeometry *thing, bool *hit, ur_error *error)
 {
     char result = GEOSPreparedIntersects_r(b->geos, r->inner, thing);
-    if (result == 0 && !k->overlap) {
+    if (result == 0 && !with->overlap) {
         result = GEOSPreparedIntersects_r(b->geos, r->outer, thing);
-        if (result == 1 && k->corner_count > 0)
-            result = away_from_corners(b, r, thing, k);
+        if (result == 1 && with->corner_count > 0)
+            result = away_from_corners(b, r, thing, with);
     }
     if (result == 2)
         return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS failed testing a joint");

@@ -462,10 +462,9 @@ static void describe(const joiner *j, const seam_job *sj, int k, const stretch *
     else if (v->by == ALLOW_BLOCKED_JOINT)
         c_snprintf(text, size, "on %s another %s comes within %.1f mm", piece->name,
                    j->options->lap ? "lap" : "tab", distance);
-    else if (j->options->lap) /* a lap is not tapered: its shape fails only by crossing itself */
+    else if (j->options->lap) /* never too short (not tapered): its shape fails where it bends */
         c_snprintf(text, size,
-                   "on %s the seam bends too much along its %.1f mm for a lap %g mm "
-                   "wide",
+                   "on %s the seam bends too much along its %.1f mm for a lap %g mm wide",
                    piece->name, r.length, j->options->lap_width);
     else
         c_snprintf(text, size, "on %s the edge (%.1f mm) is too short", piece->name, r.length);
