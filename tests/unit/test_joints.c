@@ -765,7 +765,7 @@ static ur_net_list notch_seam(double angle)
  * The outline moved out by half the joints' gap (0.2 mm) closes round
  * no pocket: nothing the tabs added comes nearer the rest of the outline
  * than the gap but at the corners they share, where the notch between
- * them opens outward.  At every angle the tab goes on, made smaller.
+ * them opens outward.  At every angle the tab goes on.
  */
 static void test_tab_keeps_off_the_far_side_of_a_notch(void **state)
 {
