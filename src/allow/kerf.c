@@ -119,21 +119,18 @@ static void findings_free(kerf_findings *found)
 /* Keeps a room behind a slot's mouth (its points, now the findings'), as a clockwise hole. */
 static ur_status keep_room(kerf_findings *found, ur_vec2 *points, size_t count, ur_error *error)
 {
-    if (found->room_count == found->room_capacity) {
-        size_t capacity = found->room_capacity ? 2 * found->room_capacity : 4;
-        ur_path *grown = realloc(found->rooms, capacity * sizeof *grown);
-        if (!grown) {
-            free(points);
-            return ur_error_out_of_memory(error);
-        }
-        found->rooms = grown;
-        found->room_capacity = capacity;
+    ur_path *grown = ur_array_grow(found->rooms, &found->room_capacity, found->room_count,
+                                   sizeof *grown, 4, error);
+    if (!grown) {
+        free(points);
+        return UR_ERROR_MEMORY;
     }
+    found->rooms = grown;
     ur_points_reverse(points, count); /* a hole runs against its outline */
-    if (found->room_count == 0)
-        found->room_at = box_middle(ur_box_of_points(points, count));
-    found->rooms[found->room_count++] =
-        (ur_path){.op = UR_OP_CUT, .closed = true, .points = points, .count = count};
+    ur_path *room = &found->rooms[found->room_count++];
+    *room = (ur_path){.op = UR_OP_CUT, .closed = true, .points = points, .count = count};
+    if (found->room_count == 1)
+        found->room_at = path_middle(room);
     return UR_OK;
 }
 
