@@ -151,11 +151,13 @@ size_t allow_board_joint_tag(const allow_board *board, size_t k);
  * Room for labels on one piece, kept between labels (label.c): the
  * segments of every path the piece has when it is opened, and the labels
  * engraved through it since, each in a grid.  The piece gets no other
- * paths while it is open.
+ * paths while it is open.  The closed marks among its paths from index
+ * zones_from on (SIZE_MAX: none) are zones where another piece will lie
+ * once glued: labels keep out of them, as out of holes.
  */
 typedef struct allow_room allow_room;
 
-ur_status allow_room_open(ur_piece *piece, allow_room **room, ur_error *error);
+ur_status allow_room_open(ur_piece *piece, size_t zones_from, allow_room **room, ur_error *error);
 void allow_room_close(allow_room *room);
 
 /*
@@ -173,5 +175,14 @@ ur_status allow_room_add_label(allow_room *room, const ur_font *font, const char
  * other line (not as opened).
  */
 void allow_room_cross_folds(allow_room *room, bool cross);
+
+/* Where labels from now on may go: out of the zones (as opened), into them, across their edges. */
+typedef enum allow_zone_rule {
+    ALLOW_ZONES_KEPT_OUT,
+    ALLOW_ZONES_ENTERED,
+    ALLOW_ZONES_CROSSED
+} allow_zone_rule;
+void allow_room_zone_rule(allow_room *room, allow_zone_rule rule);
+bool allow_room_has_zones(const allow_room *room);
 
 #endif

@@ -1501,20 +1501,32 @@ static ur_status engrave_label(allow_room *room, const ur_piece *piece, const ur
  * A label near a place on its piece: clear of every line, else across the
  * net's folds, still clear of every other line (on a fine mesh no face may
  * be as large as a label, and a label engraved over a fold still reads).
- * The room is opened before the joints: their folds are not crossed.
+ * Tabs go on after the labels: their folds are not crossed.  Laps go on
+ * before them, and a label keeps out of the laps and the zones they cover
+ * (the room's zones) where it can; on a piece too narrow for that (every
+ * point of a strip is near a seam) it goes into one, else across the
+ * lines that mark them, rather than nowhere: it still tells the maker
+ * which edge goes where before the lap covers it.
  */
 static ur_status engrave_near(allow_room *room, const ur_piece *piece, const ur_font *font,
                               const char *text, ur_vec2 near, ur_vec2 along, double height,
                               double clearance, double reach, bool *placed, ur_error *error)
 {
-    ur_status status = engrave_label(room, piece, font, text, near, along, height, clearance, reach,
-                                     placed, error);
-    if (status != UR_OK || *placed)
-        return status;
-    allow_room_cross_folds(room, true);
-    status = engrave_label(room, piece, font, text, near, along, height, clearance, reach, placed,
-                           error);
-    allow_room_cross_folds(room, false);
+    ur_status status = UR_OK;
+    *placed = false;
+    int rules = allow_room_has_zones(room) ? ALLOW_ZONES_CROSSED : ALLOW_ZONES_KEPT_OUT;
+    for (int zones = ALLOW_ZONES_KEPT_OUT; zones <= rules; zones++) {
+        allow_room_zone_rule(room, (allow_zone_rule)zones);
+        for (int cross = 0; status == UR_OK && !*placed && cross < 2; cross++) {
+            allow_room_cross_folds(room, cross == 1);
+            status = engrave_label(room, piece, font, text, near, along, height, clearance, reach,
+                                   placed, error);
+        }
+        allow_room_cross_folds(room, false);
+        if (status != UR_OK || *placed)
+            break;
+    }
+    allow_room_zone_rule(room, ALLOW_ZONES_KEPT_OUT);
     return status;
 }
 
@@ -1532,6 +1544,7 @@ typedef struct rooms {
     size_t count;
     unplaced_label *unplaced;
     size_t unplaced_count;
+    size_t *zones_from; /* laps: each piece's path count before its joints, its zones after */
 } rooms;
 
 static ur_status leave_for_tabs(rooms *r, size_t piece, int seam, int side, ur_vec2 where,
@@ -1556,7 +1569,8 @@ static void rooms_close(rooms *r)
 static ur_status room_of(rooms *r, size_t piece, allow_room **room, ur_error *error)
 {
     if (!r->of[piece]) {
-        ur_status status = allow_room_open(&r->pieces[piece], &r->of[piece], error);
+        size_t zones_from = r->zones_from ? r->zones_from[piece] : SIZE_MAX;
+        ur_status status = allow_room_open(&r->pieces[piece], zones_from, &r->of[piece], error);
         if (status != UR_OK)
             return status;
     }
@@ -1611,11 +1625,13 @@ static bool sides_meet(const joiner *j, const seam_sides *s, size_t *corner)
  * Both sides of a seam get its label, or one side when the sides meet at
  * a corner (sides_meet): one label then names the notch, where two beside
  * each other crowded it (a fine mesh's pole, cut into a fan of slits, had
- * a pair in each).  Labels go on before the joints, so that they are
- * placed within the net's own outline where they stay in sight; one with
- * no room there goes on its side's tab once the tabs are on
- * (label_on_tabs), where it still tells the maker which edge the tab goes
- * under, as Blender's paper model numbers its tabs.
+ * a pair in each).  Labels go on before tabs, so that they are placed
+ * within the net's own outline where they stay in sight; one with no room
+ * there goes on its side's tab once the tabs are on (label_on_tabs), where
+ * it still tells the maker which edge the tab goes under, as Blender's
+ * paper model numbers its tabs.  Laps lie on the other piece, inside its
+ * outline: labels go on after them, to keep out from under them and off
+ * the lines that mark where they go (engrave_near).
  */
 static ur_status label_seam(const joiner *j, rooms *r, const seam_sides *s, int seam,
                             ur_error *error)
@@ -1867,6 +1883,21 @@ static ur_status add_all_joints(joiner *j, const seam_sides *seams, int last, ur
     return status;
 }
 
+/* Laps, then labels kept out of the zones the laps lie on (the marks they add). */
+static ur_status add_laps_then_labels(joiner *j, rooms *r, const seam_sides *seams, int last,
+                                      ur_error *error)
+{
+    r->zones_from = ur_alloc_array(r->count + 1, sizeof *r->zones_from, error);
+    if (!r->zones_from)
+        return UR_ERROR_MEMORY;
+    for (size_t n = 0; n < r->count; n++)
+        r->zones_from[n] = j->pieces[n].path_count;
+    ur_status status = add_all_joints(j, seams, last, error);
+    if (status == UR_OK && j->options->font)
+        status = add_labels(j, r, seams, last, error);
+    return status;
+}
+
 ur_status ur_pieces_add_joints(ur_piece *pieces, const ur_net_list *nets,
                                const ur_joint_options *options, ur_error *error)
 {
@@ -1879,7 +1910,7 @@ ur_status ur_pieces_add_joints(ur_piece *pieces, const ur_net_list *nets,
                                 pieces[n].name);
     seam_sides *seams = NULL;
     int last = 0;
-    rooms r = {calloc(nets->count + 1, sizeof(allow_room *)), pieces, nets->count, NULL, 0};
+    rooms r = {calloc(nets->count + 1, sizeof(allow_room *)), pieces, nets->count, NULL, 0, NULL};
     joiner j = {.geos = GEOS_init_r(),
                 .pieces = pieces,
                 .nets = nets,
@@ -1891,14 +1922,19 @@ ur_status ur_pieces_add_joints(ur_piece *pieces, const ur_net_list *nets,
         status = ur_error_out_of_memory(error);
     if (status == UR_OK)
         status = gather_seams(nets, &seams, &last, error);
-    if (status == UR_OK && options->font)
-        status = add_labels(&j, &r, seams, last, error);
-    if (status == UR_OK)
-        status = add_all_joints(&j, seams, last, error);
+    if (status == UR_OK && options->lap)
+        status = add_laps_then_labels(&j, &r, seams, last, error);
+    else {
+        if (status == UR_OK && options->font)
+            status = add_labels(&j, &r, seams, last, error);
+        if (status == UR_OK)
+            status = add_all_joints(&j, seams, last, error);
+    }
     if (status == UR_OK && options->font)
         status = label_on_tabs(&j, &r, error);
     rooms_close(&r);
     free(r.of);
+    free(r.zones_from);
     free(r.unplaced);
     free(seams);
     joiner_free(&j);

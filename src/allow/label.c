@@ -34,6 +34,7 @@
 #include <geos_c.h>
 #include <hersheyfont.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -223,6 +224,7 @@ ur_status ur_text_strokes(const ur_font *font, const char *text, double height, 
 typedef struct wall {
     ur_vec2 from, to;
     bool fold; /* part of a fold line (a score, mountain or valley) */
+    bool zone; /* the edge of a zone kept free of labels */
 } wall;
 
 /*
@@ -266,9 +268,13 @@ struct allow_room {
     const GEOSPreparedGeometry *outline_fast;
     size_t *holes; /* the paths that are holes */
     size_t hole_count;
+    size_t zones_from; /* the closed marks from this path on are zones kept free of labels */
+    size_t *zones;     /* those paths */
+    size_t zone_count;
     ur_box outline_box;
     allow_items found; /* what a query of the labels found */
     bool cross_folds;  /* labels may cross the fold lines */
+    allow_zone_rule zone_rule;
 };
 
 /* How many walls a path makes (a closed one runs back to its start). */
@@ -278,15 +284,23 @@ static size_t walls_of_path(const ur_path *path)
     return n == 0 ? 0 : n == 1 ? 1 : n - 1 + (path->closed && n > 2 ? 1 : 0);
 }
 
+static bool is_zone(const allow_room *r, size_t i)
+{
+    const ur_path *path = &r->piece->paths[i];
+    return i >= r->zones_from && path->op == UR_OP_MARK && path->closed && path->count >= 3;
+}
+
 /* The walls of every path, in order. */
-static size_t collect_walls(const ur_piece *piece, wall *walls)
+static size_t collect_walls(const allow_room *r, wall *walls)
 {
     size_t count = 0;
-    for (size_t i = 0; i < piece->path_count; i++) {
-        const ur_path *path = &piece->paths[i];
+    for (size_t i = 0; i < r->piece->path_count; i++) {
+        const ur_path *path = &r->piece->paths[i];
         bool fold = path->op == UR_OP_SCORE || path->op == UR_OP_SCORE_VALLEY;
+        bool zone = is_zone(r, i);
         for (size_t k = 0, made = walls_of_path(path); k < made; k++)
-            walls[count++] = (wall){path->points[k], path->points[(k + 1) % path->count], fold};
+            walls[count++] =
+                (wall){path->points[k], path->points[(k + 1) % path->count], fold, zone};
     }
     return count;
 }
@@ -306,7 +320,7 @@ static ur_status index_walls(allow_room *r, ur_error *error)
     r->walls = ur_alloc_array(total ? total : 1, sizeof *r->walls, error);
     if (!r->walls)
         return UR_ERROR_MEMORY;
-    size_t count = collect_walls(r->piece, r->walls);
+    size_t count = collect_walls(r, r->walls);
     double length = 0;
     for (size_t k = 0; k < count; k++)
         length += ur_vec2_length(ur_vec2_sub(r->walls[k].to, r->walls[k].from));
@@ -344,34 +358,42 @@ void allow_room_close(allow_room *r)
     if (r->outline)
         GEOSGeom_destroy_r(r->geos, r->outline);
     free(r->holes);
+    free(r->zones);
     allow_items_free(&r->found);
     if (r->geos)
         GEOS_finish_r(r->geos);
     free(r);
 }
 
-/* The paths that are holes: a closed through cut drops out with what it encloses. */
+/*
+ * The paths that are holes (a closed through cut drops out with what it
+ * encloses) and those that are zones.
+ */
 static ur_status find_holes(allow_room *r, ur_error *error)
 {
     const ur_piece *piece = r->piece;
     r->holes = ur_alloc_array(piece->path_count, sizeof *r->holes, error);
-    if (!r->holes)
+    r->zones = r->holes ? ur_alloc_array(piece->path_count, sizeof *r->zones, error) : NULL;
+    if (!r->zones)
         return UR_ERROR_MEMORY;
     for (size_t i = 1; i < piece->path_count; i++) {
         const ur_path *path = &piece->paths[i];
         if (path->closed && path->count >= 3 && (path->op == UR_OP_CUT || path->op == UR_OP_KERF))
             r->holes[r->hole_count++] = i;
+        if (is_zone(r, i))
+            r->zones[r->zone_count++] = i;
     }
     return UR_OK;
 }
 
-ur_status allow_room_open(ur_piece *piece, allow_room **room, ur_error *error)
+ur_status allow_room_open(ur_piece *piece, size_t zones_from, allow_room **room, ur_error *error)
 {
     *room = NULL;
     allow_room *r = calloc(1, sizeof *r);
     if (!r)
         return ur_error_out_of_memory(error);
     r->piece = piece;
+    r->zones_from = zones_from;
     r->outline_box = ur_box_of_points(piece->paths[0].points, piece->paths[0].count);
     r->geos = GEOS_init_r();
     ur_status status =
@@ -523,10 +545,23 @@ void allow_room_cross_folds(allow_room *room, bool cross)
     room->cross_folds = cross;
 }
 
-/* Whether a label must keep clear of the wall: any but a fold, when labels may cross folds. */
+void allow_room_zone_rule(allow_room *room, allow_zone_rule rule)
+{
+    room->zone_rule = rule;
+}
+
+bool allow_room_has_zones(const allow_room *room)
+{
+    return room->zone_count > 0;
+}
+
+/*
+ * Whether a label must keep clear of the wall: any but a fold, when labels
+ * may cross folds, or a zone's edge, when labels may cross those.
+ */
 static bool stops(const allow_room *r, const wall *w)
 {
-    return !(w->fold && r->cross_folds);
+    return !(w->fold && r->cross_folds) && !(w->zone && r->zone_rule == ALLOW_ZONES_CROSSED);
 }
 
 /* Makes stopper the latest of the recent walls. */
@@ -670,12 +705,16 @@ static ur_status box_fits(allow_room *r, const frame *f, double a, double b, dou
         status = meets_label(r, f, a, b, apart, box_around(f, a, b, apart), &meets, error);
     if (status != UR_OK || meets)
         return status;
-    if (state == CELL_ON_MATERIAL) {
-        *fits = true;
-        return UR_OK;
-    }
     /* Meeting no wall, the whole box is on one side of each: its centre tells which. */
-    return on_material(r, f->centre, fits, error);
+    *fits = true;
+    if (state != CELL_ON_MATERIAL)
+        status = on_material(r, f->centre, fits, error);
+    bool kept_out = r->zone_rule == ALLOW_ZONES_KEPT_OUT;
+    for (size_t k = 0; status == UR_OK && *fits && kept_out && k < r->zone_count; k++) {
+        const ur_path *zone = &r->piece->paths[r->zones[k]];
+        *fits = !inside_ring(zone->points, zone->count, f->centre);
+    }
+    return status;
 }
 
 /* ---- The search ------------------------------------------------------------ */
@@ -922,7 +961,7 @@ ur_status ur_piece_add_label(ur_piece *piece, const ur_font *font, const char *t
                                              clearance, error);
     allow_room *room = NULL;
     if (status == UR_OK)
-        status = allow_room_open(piece, &room, error);
+        status = allow_room_open(piece, SIZE_MAX, &room, error);
     if (status == UR_OK)
         status = allow_room_add_label(room, font, text, near, direction, height, min_height,
                                       clearance, INFINITY, placed, error);

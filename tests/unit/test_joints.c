@@ -624,8 +624,8 @@ static void listen(void *context, const char *phase, double fraction)
 }
 
 /*
- * The progress callback hears the labels, then the tabs (laps with laps),
- * each from 0 up to 1 and never back.
+ * The progress callback hears the labels, then the tabs (with laps, the
+ * laps, then the labels), each from 0 up to 1 and never back.
  */
 static void test_progress_reported(void **state)
 {
@@ -643,8 +643,8 @@ static void test_progress_reported(void **state)
         options.progress_context = &h;
         assert_int_equal(ur_pieces_add_joints(pieces, &nets, &options, &error), UR_OK);
         assert_int_equal(h.phase_count, 2);
-        assert_string_equal(h.phases[0], "labels");
-        assert_string_equal(h.phases[1], lap ? "laps" : "tabs");
+        assert_string_equal(h.phases[0], lap ? "laps" : "labels");
+        assert_string_equal(h.phases[1], lap ? "labels" : "tabs");
         assert_false(h.backwards);
         for (size_t k = 0; k < 2; k++) {
             assert_true(h.reports[k] >= 2); /* the two seams' starts and the end */
@@ -998,9 +998,10 @@ static void check_label_on_its_tab(const ur_piece *piece, const ur_net *net)
 /*
  * A strip 3 mm wide seamed along its 40 mm side to a 40 mm square: a 5 mm
  * label (2.5 mm at the least, 0.75 mm clear of the edges) has no room on
- * the strip, so it goes on the strip's tab, 12 mm deep; the square keeps
- * its label beside the seam.  Without the tab (laps, which are not
- * labelled over) the strip's label is a warning as before.
+ * the strip, so it goes on the strip's tab, 12 mm deep, or on its lap
+ * (laps go on before the labels, which go on a lap only where nothing
+ * else has room: the maker reads it there before gluing); the square
+ * keeps its label beside the seam.
  */
 static void test_label_goes_on_the_tab(void **state)
 {
@@ -1019,11 +1020,7 @@ static void test_label_goes_on_the_tab(void **state)
         assert_int_equal(ur_pieces_add_joints(pieces, &nets, &options, &error), UR_OK);
         assert_int_equal(count_records(&pieces[1], UR_ALLOWANCE_LABEL, true), 0);
         check_engraving_inside(&pieces[1], &nets.nets[1]);
-        if (!lap) {
-            check_label_on_its_tab(&pieces[0], &nets.nets[0]); /* the tab went on the strip */
-        } else {
-            assert_int_equal(count_records(&pieces[0], UR_ALLOWANCE_LABEL, true), 1);
-        }
+        check_label_on_its_tab(&pieces[0], &nets.nets[0]); /* the tab or lap went on the strip */
         free_pieces(pieces, nets.count);
         ur_net_list_free(&nets);
     }
@@ -1141,6 +1138,91 @@ static void test_label_crosses_folds(void **state)
     ur_font_close(font);
 }
 
+/* Whether a stroke of an engraved path meets a closed mark: a lap, or the zone it covers. */
+static bool engraving_meets_a_lap(const ur_piece *piece)
+{
+    bool meets = false;
+    for (size_t k = 0; k < piece->path_count && !meets; k++) {
+        const ur_path *mark = &piece->paths[k];
+        if (mark->op != UR_OP_MARK || !mark->closed || mark->count < 3)
+            continue;
+        GEOSGeometry *zone = polygon(mark->points, mark->count);
+        for (size_t e = 0; e < piece->path_count && !meets; e++) {
+            const ur_path *text = &piece->paths[e];
+            if (text->op != UR_OP_ENGRAVE || text->count < 2)
+                continue;
+            GEOSGeometry *stroke = line_of(text->points, text->count);
+            meets = GEOSIntersects_r(geos, stroke, zone) == 1;
+            GEOSGeom_destroy_r(geos, stroke);
+        }
+        GEOSGeom_destroy_r(geos, zone);
+    }
+    return meets;
+}
+
+/*
+ * A 60 x 30 mm plate, a 12 mm square and a strip 60 x 12 mm, seamed to the
+ * plate along its long lower side and to the square at its left end, laid
+ * 100 mm apart.  Laps go on the first side of a seam that has room for
+ * them: the plate's and the square's, over the strip.
+ */
+static ur_net_list strip_in_a_corner(void)
+{
+    static const ur_vec2 strip[] = {{0, 0}, {60, 0}, {60, 12}, {0, 12}};
+    static const ur_vec2 square[] = {{-12, 0}, {0, 0}, {0, 12}, {-12, 12}};
+    static const ur_vec2 plate[] = {{0, -30}, {60, -30}, {60, 0}, {0, 0}};
+    const ur_vec2 *grids[] = {plate, square, strip};
+    ur_net_list nets = {calloc(3, sizeof(ur_net)), 3};
+    assert_non_null(nets.nets);
+    for (size_t n = 0; n < 3; n++) {
+        ur_vec2 flat[4];
+        for (size_t i = 0; i < 4; i++)
+            flat[i] = ur_vec2_add(grids[n][i], ur_vec2_make(100.0 * (double)n, 0));
+        char name[8];
+        snprintf(name, sizeof name, "P%zu", n + 1);
+        nets.nets[n] = grid_net(name, flat, grids[n], 4);
+    }
+    int next;
+    ur_error error;
+    assert_int_equal(ur_net_list_find_seams(&nets, 1, &next, &error), UR_OK);
+    return nets;
+}
+
+/*
+ * The strip in a corner, lapped (6 mm laps, 3 mm labels): the label of
+ * the short seam, 1 mm beyond its own seam's zone, fell in the zone of the
+ * long seam beside it (the strip is 12 mm wide) when labels went on before
+ * the laps.  Every label now finds room outside every lap and every zone
+ * a lap covers, where it stays in sight once glued and no mark line runs
+ * through it.
+ */
+static void test_labels_keep_off_laps(void **state)
+{
+    (void)state;
+    ur_font *font;
+    ur_error error;
+    assert_int_equal(ur_font_open(NULL, &font, &error), UR_OK);
+    ur_net_list nets = strip_in_a_corner();
+    assert_int_equal(ur_net_list_last_seam(&nets), 2);
+    ur_piece *pieces = pieces_of(&nets);
+    ur_joint_options options = frame_options(font);
+    options.lap = true;
+    options.lap_width = 6;
+    assert_int_equal(ur_pieces_add_joints(pieces, &nets, &options, &error), UR_OK);
+    size_t laps = 0;
+    for (size_t n = 0; n < nets.count; n++) {
+        laps += count_joints(&pieces[n]);
+        assert_int_equal(count_records(&pieces[n], UR_ALLOWANCE_LABEL, true), 0);
+        assert_true(count_op(&pieces[n], UR_OP_ENGRAVE) > 0);
+        assert_false(engraving_meets_a_lap(&pieces[n]));
+    }
+    assert_int_equal(laps, 2);
+    assert_int_equal(count_joints(&pieces[2]), 0); /* both laps lie on the strip */
+    free_pieces(pieces, nets.count);
+    ur_net_list_free(&nets);
+    ur_font_close(font);
+}
+
 /* The least distance between the strokes of two labels of a piece (GEOS). */
 static double label_distance(const ur_piece *piece, const ur_allowance_record *a,
                              const ur_allowance_record *b)
@@ -1230,6 +1312,7 @@ int main(void)
         cmocka_unit_test(test_bad_options),
         cmocka_unit_test(test_label_goes_on_the_tab),
         cmocka_unit_test(test_label_crosses_folds),
+        cmocka_unit_test(test_labels_keep_off_laps),
         cmocka_unit_test(test_labels_stand_apart),
         cmocka_unit_test(test_label_across_the_tab),
         cmocka_unit_test(test_tab_in_the_way_is_lowered),
