@@ -16,7 +16,9 @@
  * the seam's corner and fold apart.  On thick stock its first `thickness`
  * mm is a band with a second fold, which wraps the other piece's edge.
  * Laps: one band along each seam side (each half of a loop), mitred at
- * its corners (wood does not fold).
+ * its corners (wood does not fold); a seam that no lap can follow whole
+ * (it doubles back, or turns into a notch) is cut where it has turned by
+ * a quarter turn, a lap for each stretch.
  *
  * A joint must not overlap its piece or another joint, and keeps a gap
  * from all but its neighbours at the seam's corners: each piece has a
@@ -47,6 +49,12 @@
 #define STEEPEST 75.0
 
 #define LOWEST_SHARE 0.2
+
+/*
+ * A seam a lap cannot follow whole is cut into stretches that turn by no
+ * more than this (radians: 90 degrees), each with its own lap.
+ */
+#define LAP_TURN (M_PI / 2)
 
 /*
  * The shapes a joint tries, in order: the share of the full depth, and how
@@ -823,12 +831,78 @@ static bool too_short_for_a_tab(const joiner *j, const seam_job *sj, size_t firs
     return 2 * inset > 0.8 * stretch_length(sj, first, count); /* as joint_shape steepens */
 }
 
+/* Whether some lap shape on side k's edges of the stretch is a simple ring (joint_shape). */
+static ur_status lap_fits_the_seam(const joiner *j, const seam_job *sj, int k, const stretch *st,
+                                   bool *simple, ur_error *error)
+{
+    *simple = false;
+    ur_status status = UR_OK;
+    for (size_t step = 0; status == UR_OK && !*simple && step < COUNT(lap_shapes); step++) {
+        run whole = {0}, base = {0};
+        status =
+            sub_run(&sj->runs[k], local_first(sj, k, st), local_count(sj, k, st), &whole, error);
+        if (status == UR_OK)
+            status = shortened(&whole, lap_shapes[step].shorten * whole.length, &base, error);
+        double depth;
+        GEOSGeometry *lap = NULL;
+        if (status == UR_OK)
+            status = joint_shape(j, &base, lap_shapes[step].depth, &depth, &lap, error);
+        *simple = lap && GEOSisValid_r(j->geos, lap) == 1;
+        if (lap)
+            GEOSGeom_destroy_r(j->geos, lap);
+        free(whole.points);
+        free(base.points);
+    }
+    return status;
+}
+
+/* How far side 0 turns at the start of its edge i (radians, either way). */
+static double turn_before(const seam_job *sj, size_t i)
+{
+    const ur_vec2 *p = sj->runs[0].points;
+    ur_vec2 a = ur_vec2_sub(p[i], p[i - 1]), b = ur_vec2_sub(p[i + 1], p[i]);
+    return fabs(atan2(ur_vec2_cross(a, b), ur_vec2_dot(a, b)));
+}
+
+/*
+ * Adds a lap's stretch, cut where the seam turns too much for any lap
+ * (on either side every lap shape would cross itself: a seam that doubles
+ * back, or runs into a notch): a new stretch starts each time the turns
+ * add up to more than LAP_TURN.  A seam some lap can follow stays one
+ * stretch, as wood does not fold.
+ */
+static ur_status add_lap_stretch(const joiner *j, const seam_job *sj, stretch whole, stretch *out,
+                                 size_t *count, ur_error *error)
+{
+    bool fits[2] = {false, false};
+    ur_status status = UR_OK;
+    for (int k = 0; status == UR_OK && k < 2 && !fits[0]; k++)
+        status = lap_fits_the_seam(j, sj, k, &whole, &fits[k], error);
+    if (status != UR_OK || fits[0] || fits[1] || sj->edges[0] != sj->edges[1]) {
+        out[(*count)++] = whole;
+        return status;
+    }
+    size_t first = whole.first;
+    double turned = 0;
+    for (size_t i = whole.first + 1; i < whole.first + whole.count; i++) {
+        turned += turn_before(sj, i);
+        if (turned > LAP_TURN) {
+            out[(*count)++] = (stretch){first, i - first};
+            first = i;
+            turned = 0;
+        }
+    }
+    out[(*count)++] = (stretch){first, whole.first + whole.count - first};
+    return UR_OK;
+}
+
 /*
  * The seam cut into stretches: for tabs, its straight stretches (on a
  * folded mesh each edge, unless neighbouring edges run on in a straight
  * line on both pieces and in space), and a stretch too short for a tab
  * taken on over the next edges while it stays nearly straight; for laps,
- * all of it, or each half of a closed loop.
+ * all of it, or each half of a closed loop, cut again where a lap cannot
+ * follow it (add_lap_stretch).
  */
 static ur_status find_stretches(const joiner *j, const seam_job *sj, stretch **out, size_t *count,
                                 ur_error *error)
@@ -846,12 +920,14 @@ static ur_status find_stretches(const joiner *j, const seam_job *sj, stretch **o
     if (j->options->lap) {
         const run *r = &sj->runs[0];
         bool loop = ur_vec2_distance(r->points[0], r->points[r->count - 1]) <= 1e-9 * r->length;
+        ur_status status = UR_OK;
         if (loop) {
-            (*out)[(*count)++] = (stretch){0, m / 2};
-            (*out)[(*count)++] = (stretch){m / 2, m - m / 2};
+            status = add_lap_stretch(j, sj, (stretch){0, m / 2}, *out, count, error);
+            if (status == UR_OK)
+                status = add_lap_stretch(j, sj, (stretch){m / 2, m - m / 2}, *out, count, error);
         } else
-            (*out)[(*count)++] = (stretch){0, m};
-        return UR_OK;
+            status = add_lap_stretch(j, sj, (stretch){0, m}, *out, count, error);
+        return status;
     }
     for (size_t first = 0; first < m;) {
         size_t length = 1;
@@ -1283,16 +1359,23 @@ static ur_status add_mark(const joiner *j, ur_piece *piece, const GEOSGeometry *
     return status;
 }
 
-/* The other piece's lapped zone: inward of its side, clipped to it. */
-static ur_status mark_under(const joiner *j, ur_piece *piece, const run *r, ur_error *error)
+/*
+ * The other piece's lapped zone: inward of its side, clipped to its net's
+ * outline (its own laps, grown onto the outline by now, lie under a third
+ * piece: where a seam's laps change sides at a corner, the zone ran on
+ * over the lap beside it).
+ */
+static ur_status mark_under(const joiner *j, size_t under, const run *r, ur_error *error)
 {
+    ur_piece *piece = &j->pieces[under];
+    const ur_net *net = &j->nets->nets[under];
     ur_points ring = {0};
     ur_status status = joint_ring(r, 0.0, -j->options->lap_width, 0.0, &ring, error);
     GEOSGeometry *zone =
         status == UR_OK ? geos_polygon_of_ring(j->geos, ring.items, ring.count) : NULL;
     ur_points_free(&ring);
     GEOSGeometry *outline =
-        zone ? geos_polygon_of_ring(j->geos, piece->paths[0].points, piece->paths[0].count) : NULL;
+        zone ? geos_polygon_of_ring(j->geos, net->outline, net->outline_count) : NULL;
     GEOSGeometry *valid = zone ? GEOSMakeValid_r(j->geos, zone) : NULL;
     GEOSGeometry *clipped = outline && valid ? GEOSIntersection_r(j->geos, outline, valid) : NULL;
     if (status == UR_OK && clipped)
@@ -1391,7 +1474,7 @@ static ur_status finish_joint(const joiner *j, const placed_joint *p, ur_error *
     if (status == UR_OK)
         status = add_mark(j, piece, p->shape, error);
     if (status == UR_OK)
-        status = mark_under(j, &j->pieces[p->under_piece], &p->under, error);
+        status = mark_under(j, p->under_piece, &p->under, error);
     return status;
 }
 
@@ -1774,7 +1857,8 @@ static ur_status label_on_tabs(const joiner *j, rooms *r, ur_error *error)
             continue;
         if (u->side >= 0)
             status = record(piece, UR_ALLOWANCE_LABEL, u->where, 0, true, error,
-                            "no room for label %s beside its seam or on a tab", text);
+                            "no room for label %s beside its seam%s", text,
+                            j->options->lap ? ", even on a lap" : " or on a tab");
         else
             status = record(piece, UR_ALLOWANCE_LABEL, u->where, 0, true, error,
                             "no room to engrave the piece's name %s", piece->name);
