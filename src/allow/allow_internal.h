@@ -117,7 +117,8 @@ typedef enum allow_blocker {
     ALLOW_BLOCKED_NOT,     /* it fits */
     ALLOW_BLOCKED_SHAPE,   /* no joint, or no simple polygon */
     ALLOW_BLOCKED_OUTLINE, /* an edge of the piece's outline */
-    ALLOW_BLOCKED_JOINT    /* a joint placed before */
+    ALLOW_BLOCKED_JOINT,   /* a joint placed before */
+    ALLOW_BLOCKED_UNDER    /* a lap cut to the piece it lies on leaves too little to glue */
 } allow_blocker;
 
 typedef struct allow_verdict {

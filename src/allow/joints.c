@@ -18,7 +18,8 @@
  * Laps: one band along each seam side (each half of a loop), mitred at
  * its corners (wood does not fold); a seam that no lap can follow whole
  * (it doubles back, or turns into a notch) is cut where it has turned by
- * a quarter turn, a lap for each stretch.
+ * a quarter turn, a lap for each stretch.  A lap is cut where the piece
+ * it lies on ends (trim_lap).
  *
  * A joint must not overlap its piece or another joint, and keeps a gap
  * from all but its neighbours at the seam's corners: each piece has a
@@ -316,6 +317,144 @@ static ur_status joint_shape(const joiner *j, const run *base, double share, dou
     return status;
 }
 
+/*
+ * Where the lapped zone's point q lands on the lap: the lap lies on the
+ * zone, its seam run (base) on the zone's (under) the other way round (a
+ * turn about the two runs' middles, which shortening a lap leaves in
+ * place).
+ */
+static ur_vec2 onto_base(const run *under, const run *base, ur_vec2 q)
+{
+    ur_vec2 from = run_middle(under), to = run_middle(base);
+    ur_vec2 along = ur_vec2_sub(under->points[under->count - 1], under->points[0]);
+    ur_vec2 back = ur_vec2_sub(base->points[0], base->points[base->count - 1]);
+    double angle = atan2(ur_vec2_cross(along, back), ur_vec2_dot(along, back));
+    ur_vec2 d = ur_vec2_sub(q, from);
+    double c = cos(angle), s = sin(angle);
+    return ur_vec2_add(to, ur_vec2_make(c * d.x - s * d.y, s * d.x + c * d.y));
+}
+
+/* The unit vector at a counter-clockwise turn of angle from unit vector v. */
+static ur_vec2 turned(ur_vec2 v, double angle)
+{
+    double c = cos(angle), s = sin(angle);
+    return ur_vec2_make(c * v.x - s * v.y, s * v.x + c * v.y);
+}
+
+/* The unit vector from a to b (zero if they coincide). */
+static ur_vec2 direction(ur_vec2 a, ur_vec2 b)
+{
+    ur_vec2 d = ur_vec2_sub(b, a);
+    double length = ur_vec2_length(d);
+    return length > 0 ? ur_vec2_scale(d, 1.0 / length) : d;
+}
+
+/* The counter-clockwise angle from unit vector a to b, in (-pi, pi]. */
+static double angle_between(ur_vec2 a, ur_vec2 b)
+{
+    return atan2(ur_vec2_cross(a, b), ur_vec2_dot(a, b));
+}
+
+/*
+ * The wedge at corner c from direction `from` counter-clockwise to `to`
+ * (unit vectors), out to radius, as a polygon; NULL when it is not less
+ * than a half turn (or GEOS fails).
+ */
+static GEOSGeometry *wedge(const joiner *j, ur_vec2 c, ur_vec2 from, ur_vec2 to, double radius)
+{
+    double angle = angle_between(from, to);
+    if (!(angle > 1e-9) || angle >= M_PI) /* a half turn or more: atan2 gives 0 or less, or pi */
+        return NULL;
+    ur_vec2 ring[4] = {c, ur_vec2_add_scaled(c, from, radius),
+                       ur_vec2_add_scaled(c, turned(from, angle / 2), radius),
+                       ur_vec2_add_scaled(c, to, radius)};
+    return geos_polygon_of_ring(j->geos, ring, 4);
+}
+
+/*
+ * The part of a lap beyond the other piece at one end of the seam: the
+ * lap's end is the seam's corner c, where the seam leaves along `along`
+ * on the lap's side; on the other piece that corner is its outline point
+ * o_c, with the seam leaving along o_along and the outline's other edge
+ * along o_edge.  The other piece's corner, turned so that its seam runs
+ * along the lap's, lies from along counter-clockwise to the turned edge;
+ * beyond it, out to the seam's other direction, the lap would stick out.
+ * `clockwise` takes the corner the other way round (the seam's far end).
+ */
+static GEOSGeometry *beyond_corner(const joiner *j, ur_vec2 c, ur_vec2 along, ur_vec2 o_along,
+                                   ur_vec2 o_edge, bool clockwise, double radius)
+{
+    ur_vec2 edge = turned(o_edge, angle_between(o_along, along));
+    ur_vec2 back = ur_vec2_scale(along, -1);
+    return clockwise ? wedge(j, c, back, edge, radius) : wedge(j, c, edge, back, radius);
+}
+
+/*
+ * A lap trimmed to less than this share of its full band (lap width by
+ * seam length) is too small to glue: the least of lap_shapes, 35 % as
+ * wide and 40 % as long, untrimmed.
+ */
+#define LAP_LEAST_SHARE (0.35 * 0.4)
+
+/*
+ * The lap trimmed to the piece it lies on, at the seam's two ends, as a
+ * woodworker saws it: where that piece's outline turns away from the seam
+ * at less than a half turn, the part of the lap beyond the outline's next
+ * edge would stick out past that piece onto a third (a triangle's 60
+ * degree corner).  Each end is read off on its own, from the last edge of
+ * the seam on either side: a chart's two sides of a seam differ by their
+ * strain, and no one turn lays the one on the other.  whole is the lap's
+ * side of the seam (its first point the far end), under the other side,
+ * outline points first onwards of net other.  A trim that would leave
+ * more than one polygon is not made; one that leaves too little to glue
+ * (LAP_LEAST_SHARE: the other piece is too narrow beside the seam, as a
+ * tangent developable's strips are at their edge of regression) takes the
+ * lap away, *too_small.
+ */
+static ur_status trim_lap(const joiner *j, const ur_net *other, size_t first, const run *under,
+                          const run *whole, GEOSGeometry **lap, bool *too_small, ur_error *error)
+{
+    GEOSContextHandle_t geos = j->geos;
+    size_t u = under->count, w = whole->count;
+    *too_small = false;
+    if (!*lap || GEOSisValid_r(geos, *lap) != 1 || u < 2 || w < 2)
+        return UR_OK;
+    size_t n = other->outline_count, last = (first + u - 1) % n;
+    const ur_vec2 *o = other->outline, *up = under->points, *wp = whole->points;
+    double radius = 4 * j->options->lap_width + whole->length;
+    /* The other side's start is the lap's end, and its end the lap's start. */
+    GEOSGeometry *cuts[2] = {
+        beyond_corner(j, wp[w - 1], direction(wp[w - 1], wp[w - 2]), direction(up[0], up[1]),
+                      direction(o[first], o[(first + n - 1) % n]), false, radius),
+        beyond_corner(j, wp[0], direction(wp[0], wp[1]), direction(up[u - 1], up[u - 2]),
+                      direction(o[last], o[(last + 1) % n]), true, radius)};
+    ur_status status = UR_OK;
+    for (int k = 0; status == UR_OK && k < 2; k++) {
+        if (!cuts[k])
+            continue;
+        GEOSGeometry *trimmed = GEOSDifference_r(geos, *lap, cuts[k]);
+        if (!trimmed)
+            status = ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not trim a lap");
+        else if (GEOSGeomTypeId_r(geos, trimmed) == GEOS_POLYGON &&
+                 GEOSisEmpty_r(geos, trimmed) == 0 && GEOSisValid_r(geos, trimmed) == 1) {
+            GEOSGeom_destroy_r(geos, *lap);
+            *lap = trimmed;
+        } else
+            GEOSGeom_destroy_r(geos, trimmed);
+    }
+    for (int k = 0; k < 2; k++)
+        if (cuts[k])
+            GEOSGeom_destroy_r(geos, cuts[k]);
+    double area = 0;
+    if (status == UR_OK && (cuts[0] || cuts[1]) && GEOSArea_r(geos, *lap, &area) &&
+        area < LAP_LEAST_SHARE * j->options->lap_width * whole->length) {
+        GEOSGeom_destroy_r(geos, *lap);
+        *lap = NULL;
+        *too_small = true;
+    }
+    return status;
+}
+
 /* ---- One seam -------------------------------------------------------------- */
 
 typedef struct seam_sides {
@@ -394,13 +533,22 @@ static ur_status try_shapes(joiner *j, const seam_job *sj, int k, const stretch 
         status = sub_run(&sj->runs[k], first, count, &whole, error);
         if (status == UR_OK)
             status = shortened(&whole, shapes[step].shorten * whole.length, &base, error);
-        free(whole.points);
         double depth = 0;
         GEOSGeometry *joint = NULL;
         if (status == UR_OK)
             status = joint_shape(j, &base, shapes[step].depth, &depth, &joint, error);
-        allow_verdict tried = {ALLOW_BLOCKED_SHAPE, NULL, 0};
-        if (status == UR_OK)
+        run under = {0};
+        if (status == UR_OK && j->options->lap)
+            status = sub_run(&sj->runs[1 - k], local_first(sj, 1 - k, st),
+                             local_count(sj, 1 - k, st), &under, error);
+        bool too_small = false;
+        if (status == UR_OK && j->options->lap)
+            status = trim_lap(j, &j->nets->nets[sj->s->net[1 - k]],
+                              outline_edge(j, sj, 1 - k, local_first(sj, 1 - k, st)), &under,
+                              &whole, &joint, &too_small, error);
+        free(whole.points);
+        allow_verdict tried = {too_small ? ALLOW_BLOCKED_UNDER : ALLOW_BLOCKED_SHAPE, NULL, 0};
+        if (status == UR_OK && !too_small)
             status = allow_board_test(j->boards[piece], joint, base.points, base.count, edge, count,
                                       &tried, error);
         /* What stopped the smallest shape that could be built says most. */
@@ -416,18 +564,15 @@ static ur_status try_shapes(joiner *j, const seam_job *sj, int k, const stretch 
                               .seam = sj->seam,
                               .side = k,
                               .depth = depth,
-                              .reduced = step > 0};
-            if (j->options->lap)
-                status = sub_run(&sj->runs[1 - k], local_first(sj, 1 - k, st),
-                                 local_count(sj, 1 - k, st), &p.under, error);
-            if (status == UR_OK)
-                status = add_placed(j, &p, error);
+                              .reduced = step > 0,
+                              .under = under};
+            status = add_placed(j, &p, error);
             if (status == UR_OK) {
                 *done = true;
                 continue; /* the joiner owns the shape and the runs now */
             }
-            free(p.under.points);
         }
+        free(under.points);
         if (joint)
             GEOSGeom_destroy_r(j->geos, joint);
         free(base.points);
@@ -470,6 +615,9 @@ static void describe(const joiner *j, const seam_job *sj, int k, const stretch *
     else if (v->by == ALLOW_BLOCKED_JOINT)
         c_snprintf(text, size, "on %s another %s comes within %.1f mm", piece->name,
                    j->options->lap ? "lap" : "tab", distance);
+    else if (v->by == ALLOW_BLOCKED_UNDER)
+        c_snprintf(text, size, "on %s a lap cut to where %s ends is too small to glue", piece->name,
+                   j->pieces[sj->s->net[1 - k]].name);
     else if (j->options->lap) /* never too short (not tapered): its shape fails where it bends */
         c_snprintf(text, size,
                    "on %s the seam bends too much along its %.1f mm for a lap %g mm wide",
@@ -1387,20 +1535,9 @@ static ur_status mark_under(const joiner *j, size_t under, const run *r, ur_erro
     return status;
 }
 
-/*
- * Where the lapped zone's point q lands on the lap: the lap lies on the
- * zone, its seam run on the zone's seam run the other way round (a turn
- * about the two runs' middles, which shortening a lap leaves in place).
- */
 static ur_vec2 onto_lap(const placed_joint *p, ur_vec2 q)
 {
-    ur_vec2 from = run_middle(&p->under), to = run_middle(&p->base);
-    ur_vec2 along = ur_vec2_sub(p->under.points[p->under.count - 1], p->under.points[0]);
-    ur_vec2 back = ur_vec2_sub(p->base.points[0], p->base.points[p->base.count - 1]);
-    double angle = atan2(ur_vec2_cross(along, back), ur_vec2_dot(along, back));
-    ur_vec2 d = ur_vec2_sub(q, from);
-    double c = cos(angle), s = sin(angle);
-    return ur_vec2_add(to, ur_vec2_make(c * d.x - s * d.y, s * d.x + c * d.y));
+    return onto_base(&p->under, &p->base, q);
 }
 
 /* One kerf line of the zone, carried onto the lap and clipped to inside. */

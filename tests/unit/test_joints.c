@@ -819,6 +819,84 @@ static void check_laps_and_zones_apart(const ur_piece *piece, const ur_net *net)
     GEOSGeom_destroy_r(geos, outline);
 }
 
+/* The outline of net m moved so that its side t lies on net k's side s the other way round. */
+static GEOSGeometry *laid_on(const ur_net *k_net, const ur_seam_side *s, const ur_net *m_net,
+                             const ur_seam_side *t)
+{
+    size_t nk = k_net->outline_count, nm = m_net->outline_count;
+    ur_vec2 a = k_net->outline[s->first % nk], b = k_net->outline[(s->first + s->count - 1) % nk];
+    ur_vec2 c = m_net->outline[t->first % nm], d = m_net->outline[(t->first + t->count - 1) % nm];
+    /* c goes to b, d to a */
+    double angle = atan2(b.y - a.y, b.x - a.x) - atan2(c.y - d.y, c.x - d.x);
+    ur_vec2 *moved = malloc(nm * sizeof *moved);
+    assert_non_null(moved);
+    for (size_t i = 0; i < nm; i++) {
+        ur_vec2 v = ur_vec2_sub(m_net->outline[i], d);
+        moved[i] = ur_vec2_add(a, ur_vec2_make(cos(angle) * v.x - sin(angle) * v.y,
+                                               sin(angle) * v.x + cos(angle) * v.y));
+    }
+    GEOSGeometry *g = polygon(moved, nm);
+    free(moved);
+    return g;
+}
+
+/*
+ * Checks that the laps of piece k (its grown outline less its net) are,
+ * on each straight seam side that has one, the band width mm wide beyond
+ * the side cut to the other piece laid over it: a lap ends where the
+ * piece it lies on ends.  What lies beyond that piece may be up to
+ * `beyond` of the laps' area: at each end a lap is cut along the other
+ * piece's next edge only, exact where that edge runs on past the lap
+ * (a mesh's faces), a little short where it is one chord of a curve.
+ * None of what lies on the other piece is cut off.
+ */
+static void check_laps_on_the_other_piece(const ur_net_list *nets, const ur_piece *pieces, size_t k,
+                                          double width, double beyond)
+{
+    const ur_net *net = &nets->nets[k];
+    GEOSGeometry *grown = polygon(pieces[k].paths[0].points, pieces[k].paths[0].count);
+    GEOSGeometry *own = polygon(net->outline, net->outline_count);
+    GEOSGeometry *laps = GEOSDifference_r(geos, grown, own);
+    GEOSGeometry *expected = GEOSGeom_createEmptyPolygon_r(geos);
+    for (size_t i = 0; i < net->seam_side_count; i++) {
+        const ur_seam_side *s = &net->seam_sides[i];
+        if (s->count != 2)
+            continue; /* straight sides only */
+        for (size_t m = 0; m < nets->count; m++)
+            for (size_t q = 0; m != k && q < nets->nets[m].seam_side_count; q++) {
+                const ur_seam_side *t = &nets->nets[m].seam_sides[q];
+                if (t->seam != s->seam)
+                    continue;
+                ur_vec2 a = net->outline[s->first % net->outline_count];
+                ur_vec2 b = net->outline[(s->first + 1) % net->outline_count];
+                ur_vec2 along = ur_vec2_scale(ur_vec2_sub(b, a), 1.0 / ur_vec2_distance(a, b));
+                ur_vec2 out = ur_vec2_make(along.y, -along.x); /* right of a run: outward */
+                ur_vec2 band_ring[4] = {a, b, ur_vec2_add_scaled(b, out, width),
+                                        ur_vec2_add_scaled(a, out, width)};
+                GEOSGeometry *band = polygon(band_ring, 4);
+                GEOSGeometry *other = laid_on(net, s, &nets->nets[m], t);
+                GEOSGeometry *lap = GEOSIntersection_r(geos, band, other);
+                GEOSGeometry *there = GEOSIntersection_r(geos, lap, laps);
+                if (area_of(there) > 0.5 * area_of(lap)) { /* this side has the lap */
+                    GEOSGeometry *both = GEOSUnion_r(geos, expected, lap);
+                    GEOSGeom_destroy_r(geos, expected);
+                    expected = both;
+                }
+                GEOSGeometry *all[] = {band, other, lap, there};
+                for (size_t g = 0; g < 4; g++)
+                    GEOSGeom_destroy_r(geos, all[g]);
+            }
+    }
+    GEOSGeometry *over = GEOSDifference_r(geos, laps, expected);
+    GEOSGeometry *short_of = GEOSDifference_r(geos, expected, laps);
+    assert_true(area_of(laps) > 0);
+    assert_true(area_of(over) <= beyond * area_of(laps) + 1e-9);
+    assert_true(area_of(short_of) < 1e-9 * area_of(laps));
+    GEOSGeometry *all[] = {grown, own, laps, expected, over, short_of};
+    for (size_t g = 0; g < 6; g++)
+        GEOSGeom_destroy_r(geos, all[g]);
+}
+
 /*
  * A triangle with 80 mm sides (60 degree corners), a plate seamed to its
  * lower side and a triangle to its left side, laid 200 mm apart.
@@ -849,12 +927,15 @@ static ur_net_list triangle_between_two(void)
 
 /*
  * The triangle between two, lapped (6 mm): the triangle's lap on one seam,
- * the left triangle's on the other, over the triangle.  The zone that lap
- * covers, a band square to its seam, reaches past the triangle's 60 degree
- * corner; it is marked on the triangle only, not on the triangle's own lap
- * there, which lies under the plate.
+ * the left triangle's on the other, over the triangle.  That lap ends
+ * where the triangle does, mitred along its other sides (a band square to
+ * the seam stuck out past the triangle's 60 degree corners, onto the
+ * plate and the triangle's own lap).  The zone it covers, a band square
+ * to its seam, also reaches past that corner; it is marked on the
+ * triangle only, not on the triangle's own lap there, which lies under
+ * the plate.
  */
-static void test_lap_zone_stays_on_its_piece(void **state)
+static void test_laps_end_where_their_piece_does(void **state)
 {
     (void)state;
     ur_net_list nets = triangle_between_two();
@@ -869,6 +950,21 @@ static void test_lap_zone_stays_on_its_piece(void **state)
     assert_int_equal(count_joints(&pieces[1]), 0);
     assert_int_equal(count_joints(&pieces[2]), 1); /* over the triangle */
     assert_int_equal(count_op(&pieces[0], UR_OP_MARK), 2);
+    /*
+     * The lap on the plate's 90 degree corners stays a 6 x 80 mm band; the
+     * one over the triangle is mitred at 60 degrees at both ends, less two
+     * triangles of 6 mm by 6 / tan 60 mm.
+     */
+    const double lap_area[] = {6 * 80, 0, 6 * 80 - 36 / tan(M_PI / 3)};
+    for (size_t k = 0; k < 3; k++) {
+        GEOSGeometry *grown = polygon(pieces[k].paths[0].points, pieces[k].paths[0].count);
+        GEOSGeometry *net = polygon(nets.nets[k].outline, nets.nets[k].outline_count);
+        assert_true(fabs(area_of(grown) - area_of(net) - lap_area[k]) < 1e-6);
+        GEOSGeom_destroy_r(geos, grown);
+        GEOSGeom_destroy_r(geos, net);
+        if (k != 1)
+            check_laps_on_the_other_piece(&nets, pieces, k, 6, 0.0);
+    }
     for (size_t k = 0; k < nets.count; k++)
         check_laps_and_zones_apart(&pieces[k], &nets.nets[k]);
     free_pieces(pieces, nets.count);
@@ -881,10 +977,12 @@ static void test_lap_zone_stays_on_its_piece(void **state)
  * whole (15 mm wide, 5.25 mm at the lowest tried, it would cross itself in
  * every 2 mm slot, on either side), so the seam is cut where it has turned
  * by more than 90 degrees: into seven stretches, each a slot's floor or a
- * tooth's top and the wall after it, and the last edge alone.  The first
- * and the last two, on the outer teeth, get their laps; each of the four
- * between says which edges it is and why it has none (the other teeth, 2
- * to 4 mm away).  Before, the whole 134 mm seam went without a lap.
+ * tooth's top and the wall after it, and the last edge alone.  The last
+ * two, on the outer tooth, get their laps; each of the other five says
+ * which edges it is and why it has none (the other teeth, 2 to 4 mm away;
+ * for the first, the other plate's 2 mm tooth, which a lap cut to it
+ * leaves too small to glue).  Before, the whole 134 mm seam went without
+ * a lap.
  */
 static void test_lap_on_a_bent_seam_in_stretches(void **state)
 {
@@ -909,8 +1007,9 @@ static void test_lap_on_a_bent_seam_in_stretches(void **state)
     options.lap = true;
     options.lap_width = 15;
     assert_int_equal(ur_pieces_add_joints(pieces, &nets, &options, &error), UR_OK);
-    static const char *const unjoined[] = {"(edges 3 to 4 of 13)", "(edges 5 to 6 of 13)",
-                                           "(edges 7 to 8 of 13)", "(edges 9 to 10 of 13)"};
+    static const char *const unjoined[] = {"(edges 1 to 2 of 13)", "(edges 3 to 4 of 13)",
+                                           "(edges 5 to 6 of 13)", "(edges 7 to 8 of 13)",
+                                           "(edges 9 to 10 of 13)"};
     size_t warned = 0, laps = 0;
     for (size_t k = 0; k < nets.count; k++) {
         laps += count_joints(&pieces[k]);
@@ -919,14 +1018,15 @@ static void test_lap_on_a_bent_seam_in_stretches(void **state)
             if (record->kind != UR_ALLOWANCE_JOINT || !record->warning)
                 continue;
             print_message("%s\n", record->reason);
-            assert_true(warned < 4);
+            assert_true(warned < 5);
             assert_non_null(strstr(record->reason, unjoined[warned]));
-            assert_non_null(strstr(record->reason, "its own outline comes within"));
+            assert_true(strstr(record->reason, "its own outline comes within") ||
+                        strstr(record->reason, "ends is too small to glue"));
             warned++;
         }
     }
-    assert_int_equal(warned, 4);
-    assert_int_equal(laps, 3);
+    assert_int_equal(warned, 5);
+    assert_int_equal(laps, 2);
     for (size_t k = 0; k < nets.count; k++)
         check_laps_and_zones_apart(&pieces[k], &nets.nets[k]);
     free_pieces(pieces, nets.count);
@@ -955,14 +1055,23 @@ static void test_laps_marked_on_both(void **state)
     }
     assert_int_equal(laps, nets.count - 1);
     assert_int_equal(marks, 2 * laps); /* the lap and the zone it lies under */
-    /* A lap along a 25 mm ruling, 6 mm wide, adds 150 mm2 (the rulings are straight). */
+    /*
+     * A lap along a 25 mm ruling, 6 mm wide, is the band along it (the
+     * rulings are straight: the two sides of a seam are congruent), 150
+     * mm2, cut where the other piece ends: a piece's edges meet its
+     * rulings at an angle, and the square band stuck out past them.  Its
+     * edges are curves; what the chord next to the corner leaves of the
+     * lap beyond them is under 5 % of it (4 % here).
+     */
     for (size_t k = 0; k < nets.count; k++)
         if (count_records(&pieces[k], UR_ALLOWANCE_JOINT, false) == 1) {
             GEOSGeometry *grown = polygon(pieces[k].paths[0].points, pieces[k].paths[0].count);
             GEOSGeometry *net = polygon(nets.nets[k].outline, nets.nets[k].outline_count);
-            assert_relative(area_of(grown) - area_of(net), 25 * 6, 1e-6);
+            double lap = area_of(grown) - area_of(net);
+            assert_true(lap > 0.75 * 25 * 6 && lap < 25 * 6);
             GEOSGeom_destroy_r(geos, grown);
             GEOSGeom_destroy_r(geos, net);
+            check_laps_on_the_other_piece(&nets, pieces, k, 6, 0.05);
         }
     free_pieces(pieces, nets.count);
     ur_net_list_free(&nets);
@@ -973,11 +1082,13 @@ static void test_laps_marked_on_both(void **state)
  * Two turns of a helicoid (radius 30, pitch 62.83, ruling width 25, as the
  * README's example) develop to about 680 degrees and split in two pieces
  * whose seam has the other turn within a few millimetres on both sides:
- * no tab or lap fits.  In cardboard (tabs) and in plywood (laps) every seam
- * is joined all the same: by a tab or lap, or by a splice piece, a strip
- * glued behind the seam, as wide on each side as the tab is deep (the lap
- * wide): its area is twice that width times the seam's 25 mm, it marks
- * the seam and carries both pieces' names with the seam's label.
+ * no tab or lap fits (a lap cut to where the other piece ends, at the edge
+ * of regression where the strips come to a point, is too small to glue).
+ * In cardboard (tabs) and in plywood (laps) every seam is joined all the
+ * same: by a tab or lap, or by a splice piece, a strip glued behind the
+ * seam, as wide on each side as the tab is deep (the lap wide): its area
+ * is twice that width times the seam's 25 mm, it marks the seam and
+ * carries both pieces' names with the seam's label.
  */
 static void test_every_seam_joined(void **state)
 {
@@ -1408,7 +1519,7 @@ int main(void)
         cmocka_unit_test(test_tab_in_the_way_is_lowered),
         cmocka_unit_test(test_tab_keeps_off_the_far_side_of_a_notch),
         cmocka_unit_test(test_lap_on_a_bent_seam_in_stretches),
-        cmocka_unit_test(test_lap_zone_stays_on_its_piece),
+        cmocka_unit_test(test_laps_end_where_their_piece_does),
         cmocka_unit_test(test_label_once_where_sides_meet),
         cmocka_unit_test(test_names_full_height_on_sectors),
     };
