@@ -317,23 +317,6 @@ static ur_status joint_shape(const joiner *j, const run *base, double share, dou
     return status;
 }
 
-/*
- * Where the lapped zone's point q lands on the lap: the lap lies on the
- * zone, its seam run (base) on the zone's (under) the other way round (a
- * turn about the two runs' middles, which shortening a lap leaves in
- * place).
- */
-static ur_vec2 onto_base(const run *under, const run *base, ur_vec2 q)
-{
-    ur_vec2 from = run_middle(under), to = run_middle(base);
-    ur_vec2 along = ur_vec2_sub(under->points[under->count - 1], under->points[0]);
-    ur_vec2 back = ur_vec2_sub(base->points[0], base->points[base->count - 1]);
-    double angle = atan2(ur_vec2_cross(along, back), ur_vec2_dot(along, back));
-    ur_vec2 d = ur_vec2_sub(q, from);
-    double c = cos(angle), s = sin(angle);
-    return ur_vec2_add(to, ur_vec2_make(c * d.x - s * d.y, s * d.x + c * d.y));
-}
-
 /* The unit vector at a counter-clockwise turn of angle from unit vector v. */
 static ur_vec2 turned(ur_vec2 v, double angle)
 {
@@ -428,6 +411,7 @@ static ur_status trim_lap(const joiner *j, const ur_net *other, size_t first, co
                       direction(o[first], o[(first + n - 1) % n]), false, radius),
         beyond_corner(j, wp[0], direction(wp[0], wp[1]), direction(up[u - 1], up[u - 2]),
                       direction(o[last], o[(last + 1) % n]), true, radius)};
+    bool cut = cuts[0] || cuts[1];
     ur_status status = UR_OK;
     for (int k = 0; status == UR_OK && k < 2; k++) {
         if (!cuts[k])
@@ -446,7 +430,7 @@ static ur_status trim_lap(const joiner *j, const ur_net *other, size_t first, co
         if (cuts[k])
             GEOSGeom_destroy_r(geos, cuts[k]);
     double area = 0;
-    if (status == UR_OK && (cuts[0] || cuts[1]) && GEOSArea_r(geos, *lap, &area) &&
+    if (status == UR_OK && cut && GEOSArea_r(geos, *lap, &area) &&
         area < LAP_LEAST_SHARE * j->options->lap_width * whole->length) {
         GEOSGeom_destroy_r(geos, *lap);
         *lap = NULL;
@@ -1535,9 +1519,20 @@ static ur_status mark_under(const joiner *j, size_t under, const run *r, ur_erro
     return status;
 }
 
+/*
+ * Where the lapped zone's point q lands on the lap: the lap lies on the
+ * zone, its seam run on the zone's seam run the other way round (a turn
+ * about the two runs' middles, which shortening a lap leaves in place).
+ */
 static ur_vec2 onto_lap(const placed_joint *p, ur_vec2 q)
 {
-    return onto_base(&p->under, &p->base, q);
+    ur_vec2 from = run_middle(&p->under), to = run_middle(&p->base);
+    ur_vec2 along = ur_vec2_sub(p->under.points[p->under.count - 1], p->under.points[0]);
+    ur_vec2 back = ur_vec2_sub(p->base.points[0], p->base.points[p->base.count - 1]);
+    double angle = atan2(ur_vec2_cross(along, back), ur_vec2_dot(along, back));
+    ur_vec2 d = ur_vec2_sub(q, from);
+    double c = cos(angle), s = sin(angle);
+    return ur_vec2_add(to, ur_vec2_make(c * d.x - s * d.y, s * d.x + c * d.y));
 }
 
 /* One kerf line of the zone, carried onto the lap and clipped to inside. */
