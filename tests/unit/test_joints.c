@@ -898,6 +898,30 @@ static void check_laps_on_the_other_piece(const ur_net_list *nets, const ur_piec
 }
 
 /*
+ * Nets P1, P2, P3 of up to 4 corners on the grid, each laid `apart` mm to
+ * the right of the one before, with their seams found.
+ */
+static ur_net_list three_nets_apart(const ur_vec2 *const grids[3], const size_t counts[3],
+                                    double apart)
+{
+    ur_net_list nets = {calloc(3, sizeof(ur_net)), 3};
+    assert_non_null(nets.nets);
+    for (size_t n = 0; n < 3; n++) {
+        ur_vec2 flat[4];
+        assert_true(counts[n] <= 4);
+        for (size_t i = 0; i < counts[n]; i++)
+            flat[i] = ur_vec2_add(grids[n][i], ur_vec2_make(apart * (double)n, 0));
+        char name[8];
+        snprintf(name, sizeof name, "P%zu", n + 1);
+        nets.nets[n] = grid_net(name, flat, grids[n], counts[n]);
+    }
+    int next;
+    ur_error error;
+    assert_int_equal(ur_net_list_find_seams(&nets, 1, &next, &error), UR_OK);
+    return nets;
+}
+
+/*
  * A triangle with 80 mm sides (60 degree corners), a plate seamed to its
  * lower side and a triangle to its left side, laid 200 mm apart.
  */
@@ -907,22 +931,9 @@ static ur_net_list triangle_between_two(void)
     const ur_vec2 triangle[] = {{0, 0}, {80, 0}, {40, h}};
     const ur_vec2 plate[] = {{0, -40}, {80, -40}, {80, 0}, {0, 0}};
     const ur_vec2 left[] = {{0, 0}, {40, h}, {-40, h}};
-    const ur_vec2 *grids[] = {triangle, plate, left};
+    const ur_vec2 *const grids[] = {triangle, plate, left};
     const size_t counts[] = {3, 4, 3};
-    ur_net_list nets = {calloc(3, sizeof(ur_net)), 3};
-    assert_non_null(nets.nets);
-    for (size_t n = 0; n < 3; n++) {
-        ur_vec2 flat[4];
-        for (size_t i = 0; i < counts[n]; i++)
-            flat[i] = ur_vec2_add(grids[n][i], ur_vec2_make(200.0 * (double)n, 0));
-        char name[8];
-        snprintf(name, sizeof name, "P%zu", n + 1);
-        nets.nets[n] = grid_net(name, flat, grids[n], counts[n]);
-    }
-    int next;
-    ur_error error;
-    assert_int_equal(ur_net_list_find_seams(&nets, 1, &next, &error), UR_OK);
-    return nets;
+    return three_nets_apart(grids, counts, 200);
 }
 
 /*
@@ -1263,26 +1274,46 @@ static void test_label_across_the_tab(void **state)
     ur_font_close(font);
 }
 
-/* Whether a stroke of an engraved path crosses one of the piece's folds. */
+static bool is_fold(const ur_path *path)
+{
+    return path->op == UR_OP_SCORE || path->op == UR_OP_SCORE_VALLEY;
+}
+
+/* A lap, or the zone it covers. */
+static bool is_lap_mark(const ur_path *path)
+{
+    return path->op == UR_OP_MARK && path->closed && path->count >= 3;
+}
+
+/*
+ * Whether a stroke of an engraved path meets one of the piece's paths that
+ * `wanted` picks: its line, or with `area` the polygon it bounds.
+ */
+static bool engraving_meets(const ur_piece *piece, bool (*wanted)(const ur_path *), bool area)
+{
+    bool meets = false;
+    for (size_t k = 0; k < piece->path_count && !meets; k++) {
+        const ur_path *path = &piece->paths[k];
+        if (!wanted(path))
+            continue;
+        GEOSGeometry *other =
+            area ? polygon(path->points, path->count) : line_of(path->points, path->count);
+        for (size_t e = 0; e < piece->path_count && !meets; e++) {
+            const ur_path *text = &piece->paths[e];
+            if (text->op != UR_OP_ENGRAVE || text->count < 2)
+                continue;
+            GEOSGeometry *stroke = line_of(text->points, text->count);
+            meets = GEOSIntersects_r(geos, stroke, other) == 1;
+            GEOSGeom_destroy_r(geos, stroke);
+        }
+        GEOSGeom_destroy_r(geos, other);
+    }
+    return meets;
+}
+
 static bool engraving_crosses_a_fold(const ur_piece *piece)
 {
-    bool crosses = false;
-    for (size_t k = 0; k < piece->path_count && !crosses; k++) {
-        const ur_path *text = &piece->paths[k];
-        if (text->op != UR_OP_ENGRAVE || text->count < 2)
-            continue;
-        GEOSGeometry *stroke = line_of(text->points, text->count);
-        for (size_t f = 0; f < piece->path_count && !crosses; f++) {
-            const ur_path *fold = &piece->paths[f];
-            if (fold->op != UR_OP_SCORE && fold->op != UR_OP_SCORE_VALLEY)
-                continue;
-            GEOSGeometry *line = line_of(fold->points, fold->count);
-            crosses = GEOSIntersects_r(geos, stroke, line) == 1;
-            GEOSGeom_destroy_r(geos, line);
-        }
-        GEOSGeom_destroy_r(geos, stroke);
-    }
-    return crosses;
+    return engraving_meets(piece, is_fold, false);
 }
 
 /*
@@ -1339,26 +1370,9 @@ static void test_label_crosses_folds(void **state)
     ur_font_close(font);
 }
 
-/* Whether a stroke of an engraved path meets a closed mark: a lap, or the zone it covers. */
 static bool engraving_meets_a_lap(const ur_piece *piece)
 {
-    bool meets = false;
-    for (size_t k = 0; k < piece->path_count && !meets; k++) {
-        const ur_path *mark = &piece->paths[k];
-        if (mark->op != UR_OP_MARK || !mark->closed || mark->count < 3)
-            continue;
-        GEOSGeometry *zone = polygon(mark->points, mark->count);
-        for (size_t e = 0; e < piece->path_count && !meets; e++) {
-            const ur_path *text = &piece->paths[e];
-            if (text->op != UR_OP_ENGRAVE || text->count < 2)
-                continue;
-            GEOSGeometry *stroke = line_of(text->points, text->count);
-            meets = GEOSIntersects_r(geos, stroke, zone) == 1;
-            GEOSGeom_destroy_r(geos, stroke);
-        }
-        GEOSGeom_destroy_r(geos, zone);
-    }
-    return meets;
+    return engraving_meets(piece, is_lap_mark, true);
 }
 
 /*
@@ -1372,21 +1386,9 @@ static ur_net_list strip_in_a_corner(void)
     static const ur_vec2 strip[] = {{0, 0}, {60, 0}, {60, 12}, {0, 12}};
     static const ur_vec2 square[] = {{-12, 0}, {0, 0}, {0, 12}, {-12, 12}};
     static const ur_vec2 plate[] = {{0, -30}, {60, -30}, {60, 0}, {0, 0}};
-    const ur_vec2 *grids[] = {plate, square, strip};
-    ur_net_list nets = {calloc(3, sizeof(ur_net)), 3};
-    assert_non_null(nets.nets);
-    for (size_t n = 0; n < 3; n++) {
-        ur_vec2 flat[4];
-        for (size_t i = 0; i < 4; i++)
-            flat[i] = ur_vec2_add(grids[n][i], ur_vec2_make(100.0 * (double)n, 0));
-        char name[8];
-        snprintf(name, sizeof name, "P%zu", n + 1);
-        nets.nets[n] = grid_net(name, flat, grids[n], 4);
-    }
-    int next;
-    ur_error error;
-    assert_int_equal(ur_net_list_find_seams(&nets, 1, &next, &error), UR_OK);
-    return nets;
+    const ur_vec2 *const grids[] = {plate, square, strip};
+    const size_t counts[] = {4, 4, 4};
+    return three_nets_apart(grids, counts, 100);
 }
 
 /*
