@@ -373,6 +373,16 @@ static GEOSGeometry *beyond_corner(const joiner *j, ur_vec2 c, ur_vec2 along, ur
 }
 
 /*
+ * A trim that would take less than this share of the lap width squared
+ * (a triangle with a 5.7 degree corner) is not made: where a third piece's
+ * edge leaves the seam's end nearly square to it, the laps of the seams on
+ * either side, each trimmed along that edge as its own side of the seam
+ * lays it, came out a degree or so apart, with a sliver of a slit between
+ * them (a chart's sides of a seam differ by their strain).
+ */
+#define LAP_TRIM_LEAST 0.05
+
+/*
  * A lap trimmed to less than this share of its full band (lap width by
  * seam length) is too small to glue: the least of lap_shapes, 35 % as
  * wide and 40 % as long, untrimmed.
@@ -417,10 +427,13 @@ static ur_status trim_lap(const joiner *j, const ur_net *other, size_t first, co
         if (!cuts[k])
             continue;
         GEOSGeometry *trimmed = GEOSDifference_r(geos, *lap, cuts[k]);
+        double before = 0, after = 0, width = j->options->lap_width;
         if (!trimmed)
             status = ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not trim a lap");
         else if (GEOSGeomTypeId_r(geos, trimmed) == GEOS_POLYGON &&
-                 GEOSisEmpty_r(geos, trimmed) == 0 && GEOSisValid_r(geos, trimmed) == 1) {
+                 GEOSisEmpty_r(geos, trimmed) == 0 && GEOSisValid_r(geos, trimmed) == 1 &&
+                 GEOSArea_r(geos, *lap, &before) && GEOSArea_r(geos, trimmed, &after) &&
+                 before - after >= LAP_TRIM_LEAST * width * width) {
             GEOSGeom_destroy_r(geos, *lap);
             *lap = trimmed;
         } else

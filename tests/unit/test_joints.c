@@ -1175,6 +1175,41 @@ static ur_net_list strip_beside(const ur_vec2 *strip, size_t strip_count, const 
     return nets;
 }
 
+/*
+ * An 80 x 30 mm plate lapped (6 mm) onto a plate below it whose left side
+ * leaves the seam at 80 or 88 degrees: at 80 the lap is cut along that
+ * side, less a triangle of 6 mm by 6 tan 10 mm; at 88 the cut would take
+ * a sliver of 0.6 mm2, under 5 % of the lap width squared, and the lap
+ * stays a 6 x 80 mm band (slivers that small came out as slits between
+ * the laps of neighbouring seams).
+ */
+static void test_lap_cut_only_where_it_matters(void **state)
+{
+    (void)state;
+    static const ur_vec2 plate[] = {{0, 0}, {80, 0}, {80, 30}, {0, 30}};
+    const double angles[] = {80, 88};
+    for (size_t a = 0; a < 2; a++) {
+        double lean = 30 / tan(angles[a] * M_PI / 180);
+        const ur_vec2 below[] = {{lean, -30}, {80, -30}, {80, 0}, {0, 0}};
+        ur_net_list nets = strip_beside(plate, 4, below, 4);
+        ur_piece *pieces = pieces_of(&nets);
+        ur_joint_options options = frame_options(NULL);
+        options.lap = true;
+        options.lap_width = 6;
+        ur_error error;
+        assert_int_equal(ur_pieces_add_joints(pieces, &nets, &options, &error), UR_OK);
+        assert_int_equal(count_joints(&pieces[0]), 1);
+        GEOSGeometry *grown = polygon(pieces[0].paths[0].points, pieces[0].paths[0].count);
+        GEOSGeometry *net = polygon(nets.nets[0].outline, nets.nets[0].outline_count);
+        double cut = a == 0 ? 0.5 * 6 * 6 * tan(10 * M_PI / 180) : 0;
+        assert_true(fabs(area_of(grown) - area_of(net) - (6 * 80 - cut)) < 1e-6);
+        GEOSGeom_destroy_r(geos, grown);
+        GEOSGeom_destroy_r(geos, net);
+        free_pieces(pieces, nets.count);
+        ur_net_list_free(&nets);
+    }
+}
+
 /* Whether every engraved point of the piece lies inside ring and none inside net's outline. */
 static bool engraved_on(const ur_piece *piece, const GEOSGeometry *ring, const ur_net *net)
 {
@@ -1522,6 +1557,7 @@ int main(void)
         cmocka_unit_test(test_tab_keeps_off_the_far_side_of_a_notch),
         cmocka_unit_test(test_lap_on_a_bent_seam_in_stretches),
         cmocka_unit_test(test_laps_end_where_their_piece_does),
+        cmocka_unit_test(test_lap_cut_only_where_it_matters),
         cmocka_unit_test(test_label_once_where_sides_meet),
         cmocka_unit_test(test_names_full_height_on_sectors),
     };
