@@ -421,7 +421,7 @@ static ur_status trim_lap(const joiner *j, const ur_net *other, size_t first, co
                       direction(o[first], o[(first + n - 1) % n]), false, radius),
         beyond_corner(j, wp[0], direction(wp[0], wp[1]), direction(up[u - 1], up[u - 2]),
                       direction(o[last], o[(last + 1) % n]), true, radius)};
-    bool cut = cuts[0] || cuts[1];
+    bool cut = false; /* whether a cut was made */
     ur_status status = UR_OK;
     for (int k = 0; status == UR_OK && k < 2; k++) {
         if (!cuts[k])
@@ -436,6 +436,7 @@ static ur_status trim_lap(const joiner *j, const ur_net *other, size_t first, co
                  before - after >= LAP_TRIM_LEAST * width * width) {
             GEOSGeom_destroy_r(geos, *lap);
             *lap = trimmed;
+            cut = true;
         } else
             GEOSGeom_destroy_r(geos, trimmed);
     }
