@@ -1920,6 +1920,45 @@ def a_slot_whose_mouth_closes_has_its_room_cut(work):
 
 
 @test
+def laps_and_their_labels_keep_apart(work):
+    # The sample head in 3 mm plywood, the default material, whose joints
+    # are laps.  Labels went on before the laps, and the line that marks
+    # where a lap lies ran through 117 of the 714 label strokes; now they
+    # go on after, clear of those lines (none crosses one today; a label
+    # crosses one only on a piece with no room at all).  And a seam that
+    # doubles back is lapped in stretches: what finds no room is a stretch,
+    # named by its edges, never the whole seam (three seams were).
+    head = os.path.join(REPO, "samples", "head.obj")
+    run(work, "mesh", head, "--nest-time", "0", "-o", "head.svg", "--report", "head.json")
+    svg = os.path.join(work, "head.svg")
+    marks = [points for points, closed in paths(svg, "mark") if closed]
+    check(len(marks) > 50, "%d laps and lapped zones marked" % len(marks))
+    segments = [(ring[i], ring[(i + 1) % len(ring)]) for ring in marks for i in range(len(ring))]
+
+    def crosses(p, q, r, s):
+        side = lambda a, b, c: (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+        return ((side(r, s, p) > 0) != (side(r, s, q) > 0) and
+                (side(p, q, r) > 0) != (side(p, q, s) > 0))
+
+    strokes = [points for points, _ in paths(svg, "engrave")]
+    crossing = 0
+    for stroke in strokes:
+        xs, ys = [x for x, _ in stroke], [y for _, y in stroke]
+        near = [(a, b) for a, b in segments
+                if max(a[0], b[0]) >= min(xs) and min(a[0], b[0]) <= max(xs) and
+                max(a[1], b[1]) >= min(ys) and min(a[1], b[1]) <= max(ys)]
+        crossing += any(crosses(stroke[i], stroke[i + 1], a, b)
+                        for i in range(len(stroke) - 1) for a, b in near)
+    check(len(strokes) > 500, "%d label strokes" % len(strokes))
+    check(crossing <= len(strokes) // 100, "%d of %d label strokes cross a lap's mark line"
+          % (crossing, len(strokes)))
+    unlapped = [a["reason"] for piece in report(work, "head.json")["pieces"]
+                for a in piece["allowances"] if a["reason"].startswith("no room for a lap")]
+    check(all(re.search(r"\(edges? \d+( to \d+)? of \d+\)", line) for line in unlapped),
+          "a whole seam without a lap: %s" % unlapped)
+
+
+@test
 def a_small_papercraft_model_gets_a_scale_note(work):
     # A UV sphere 30 mm across, 32 x 16 faces (quads, split as they are
     # read): its edges are 0.6 to 4.2 mm long, half under 2.9 mm, shorter
