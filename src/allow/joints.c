@@ -1731,10 +1731,10 @@ static ur_status engrave_label(allow_room *room, const ur_piece *piece, const ur
  * net's folds, still clear of every other line (on a fine mesh no face may
  * be as large as a label, and a label engraved over a fold still reads).
  * Tabs go on after the labels: their folds are not crossed.  Laps go on
- * before them, and a label keeps out of the laps and the zones they cover
- * (the room's zones) where it can; on a piece too narrow for that (every
- * point of a strip is near a seam) it goes into one, else across the
- * lines that mark them, rather than nowhere: it still tells the maker
+ * before the labels, and a label keeps out of the laps and the zones they
+ * cover (the room's zones) where it can; on a piece too narrow for that
+ * (every point of a strip is near a seam) it goes into one, else across
+ * the lines that mark them, rather than nowhere: it still tells the maker
  * which edge goes where before the lap covers it.
  */
 static ur_status engrave_near(allow_room *room, const ur_piece *piece, const ur_font *font,

@@ -19,8 +19,10 @@
  * Finding room: the text's bounding rectangle, turned along the label's
  * direction and grown by the clearance, must not meet any path of the
  * piece (outline, holes, scores, engraves, kerfs, marks: "the walls"), and
- * its centre must lie inside the outline and outside every hole.  Since
- * the rectangle meets no wall, the centre decides for all of it.
+ * its centre must lie inside the outline and outside every hole, and
+ * outside every zone the room was given (laps, and where laps will lie)
+ * unless the caller lets labels in.  Since the rectangle meets no wall,
+ * the centre decides for all of it.
  * Candidate centres lie on rings around `near`, the nearest first, for
  * each height from the largest down.  The walls are cut into their
  * segments in a grid index and the outline is a prepared polygon, so that
