@@ -317,7 +317,7 @@ static ur_status joint_shape(const joiner *j, const run *base, double share, dou
     return status;
 }
 
-/* The unit vector at a counter-clockwise turn of angle from unit vector v. */
+/* v turned counter-clockwise by angle. */
 static ur_vec2 turned(ur_vec2 v, double angle)
 {
     double c = cos(angle), s = sin(angle);
@@ -332,7 +332,7 @@ static ur_vec2 direction(ur_vec2 a, ur_vec2 b)
     return length > 0 ? ur_vec2_scale(d, 1.0 / length) : d;
 }
 
-/* The counter-clockwise angle from unit vector a to b, in (-pi, pi]. */
+/* The counter-clockwise angle from the direction of a to that of b, in (-pi, pi]. */
 static double angle_between(ur_vec2 a, ur_vec2 b)
 {
     return atan2(ur_vec2_cross(a, b), ur_vec2_dot(a, b));
@@ -525,26 +525,24 @@ static ur_status try_shapes(joiner *j, const seam_job *sj, int k, const stretch 
     size_t piece = sj->s->net[k], first = local_first(sj, k, st), count = local_count(sj, k, st);
     size_t edge = outline_edge(j, sj, k, first);
     *done = false;
-    ur_status status = UR_OK;
+    /* The stretch on this side, and for a lap the other side, which it lies on. */
+    run whole = {0}, under = {0};
+    ur_status status = sub_run(&sj->runs[k], first, count, &whole, error);
+    if (status == UR_OK && j->options->lap)
+        status = sub_run(&sj->runs[1 - k], local_first(sj, 1 - k, st), local_count(sj, 1 - k, st),
+                         &under, error);
     for (size_t step = from; status == UR_OK && !*done && step < to; step++) {
-        run whole = {0}, base = {0};
-        status = sub_run(&sj->runs[k], first, count, &whole, error);
-        if (status == UR_OK)
-            status = shortened(&whole, shapes[step].shorten * whole.length, &base, error);
+        run base = {0};
+        status = shortened(&whole, shapes[step].shorten * whole.length, &base, error);
         double depth = 0;
         GEOSGeometry *joint = NULL;
         if (status == UR_OK)
             status = joint_shape(j, &base, shapes[step].depth, &depth, &joint, error);
-        run under = {0};
-        if (status == UR_OK && j->options->lap)
-            status = sub_run(&sj->runs[1 - k], local_first(sj, 1 - k, st),
-                             local_count(sj, 1 - k, st), &under, error);
         bool too_small = false;
         if (status == UR_OK && j->options->lap)
             status = trim_lap(j, &j->nets->nets[sj->s->net[1 - k]],
                               outline_edge(j, sj, 1 - k, local_first(sj, 1 - k, st)), &under,
                               &whole, &joint, &too_small, error);
-        free(whole.points);
         allow_verdict tried = {too_small ? ALLOW_BLOCKED_UNDER : ALLOW_BLOCKED_SHAPE, NULL, 0};
         if (status == UR_OK && !too_small)
             status = allow_board_test(j->boards[piece], joint, base.points, base.count, edge, count,
@@ -567,14 +565,16 @@ static ur_status try_shapes(joiner *j, const seam_job *sj, int k, const stretch 
             status = add_placed(j, &p, error);
             if (status == UR_OK) {
                 *done = true;
+                under = (run){0};
                 continue; /* the joiner owns the shape and the runs now */
             }
         }
-        free(under.points);
         if (joint)
             GEOSGeom_destroy_r(j->geos, joint);
         free(base.points);
     }
+    free(whole.points);
+    free(under.points);
     return status;
 }
 
@@ -982,13 +982,12 @@ static ur_status lap_fits_the_seam(const joiner *j, const seam_job *sj, int k, c
                                    bool *simple, ur_error *error)
 {
     *simple = false;
-    ur_status status = UR_OK;
+    run whole = {0};
+    ur_status status =
+        sub_run(&sj->runs[k], local_first(sj, k, st), local_count(sj, k, st), &whole, error);
     for (size_t step = 0; status == UR_OK && !*simple && step < COUNT(lap_shapes); step++) {
-        run whole = {0}, base = {0};
-        status =
-            sub_run(&sj->runs[k], local_first(sj, k, st), local_count(sj, k, st), &whole, error);
-        if (status == UR_OK)
-            status = shortened(&whole, lap_shapes[step].shorten * whole.length, &base, error);
+        run base = {0};
+        status = shortened(&whole, lap_shapes[step].shorten * whole.length, &base, error);
         double depth;
         GEOSGeometry *lap = NULL;
         if (status == UR_OK)
@@ -996,9 +995,9 @@ static ur_status lap_fits_the_seam(const joiner *j, const seam_job *sj, int k, c
         *simple = lap && GEOSisValid_r(j->geos, lap) == 1;
         if (lap)
             GEOSGeom_destroy_r(j->geos, lap);
-        free(whole.points);
         free(base.points);
     }
+    free(whole.points);
     return status;
 }
 
@@ -1006,8 +1005,7 @@ static ur_status lap_fits_the_seam(const joiner *j, const seam_job *sj, int k, c
 static double turn_before(const seam_job *sj, size_t i)
 {
     const ur_vec2 *p = sj->runs[0].points;
-    ur_vec2 a = ur_vec2_sub(p[i], p[i - 1]), b = ur_vec2_sub(p[i + 1], p[i]);
-    return fabs(atan2(ur_vec2_cross(a, b), ur_vec2_dot(a, b)));
+    return fabs(angle_between(ur_vec2_sub(p[i], p[i - 1]), ur_vec2_sub(p[i + 1], p[i])));
 }
 
 /*
@@ -1543,10 +1541,7 @@ static ur_vec2 onto_lap(const placed_joint *p, ur_vec2 q)
     ur_vec2 from = run_middle(&p->under), to = run_middle(&p->base);
     ur_vec2 along = ur_vec2_sub(p->under.points[p->under.count - 1], p->under.points[0]);
     ur_vec2 back = ur_vec2_sub(p->base.points[0], p->base.points[p->base.count - 1]);
-    double angle = atan2(ur_vec2_cross(along, back), ur_vec2_dot(along, back));
-    ur_vec2 d = ur_vec2_sub(q, from);
-    double c = cos(angle), s = sin(angle);
-    return ur_vec2_add(to, ur_vec2_make(c * d.x - s * d.y, s * d.x + c * d.y));
+    return ur_vec2_add(to, turned(ur_vec2_sub(q, from), angle_between(along, back)));
 }
 
 /* One kerf line of the zone, carried onto the lap and clipped to inside. */
