@@ -53,6 +53,7 @@ typedef struct ur_mesh_repairs {
     size_t split;      /* vertices copied to take apart surfaces that touch along an edge */
     size_t flaps;      /* pairs of triangles back to back on the same corners, dropped */
     size_t kept_apart; /* vertices left unwelded: welding would put 3+ triangles on an edge */
+    size_t duplicates; /* triangles on the same corners as an earlier one (a face given twice) */
 } ur_mesh_repairs;
 
 /*
@@ -61,7 +62,10 @@ typedef struct ur_mesh_repairs {
  * part consistently.  A flap is two triangles on the same three corners,
  * back to back, that stand on the surface: taken away, they leave each of
  * their edges with two triangles or none, and one edge with two (Blender's
- * monkey head has one under its chin).
+ * monkey head has one under its chin).  A face given twice (two triangles
+ * on the same corners the same way round, or the other way round where an
+ * edge of theirs carries an odd number of triangles) keeps its first
+ * triangle in the input; a sheet with a face on each side is kept whole.
  * Refuses (UR_ERROR_INPUT, naming a vertex) NaN or infinite coordinates, a
  * mesh with no triangles left, and non-manifold edges (three or more
  * triangles on one edge), which cannot be repaired safely.  An edge that

@@ -406,6 +406,11 @@ static void say_repairs(const job_run *run, const ur_mesh_repairs *repairs)
                  "%s: repaired: %zu flap%s of no thickness dropped (two triangles back to back on "
                  "the same corners, standing on the surface)",
                  run->job.command, repairs->flaps, repairs->flaps == 1 ? "" : "s");
+    if (repairs->duplicates)
+        job_note(run,
+                 "%s: repaired: %zu triangle%s dropped that repeated another's corners (a face "
+                 "given twice)",
+                 run->job.command, repairs->duplicates, repairs->duplicates == 1 ? "" : "s");
     if (repairs->kept_apart)
         job_note(run,
                  "%s: repaired: %zu vertices left unwelded where welding would join three or more "

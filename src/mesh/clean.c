@@ -1,8 +1,9 @@
 /*
  * clean.c: ur_mesh_clean: welding, dropping zero-area triangles, flaps of
- * no thickness (flaps.c) and unused vertices, refusing non-manifold edges
- * (after un-welding the vertices whose welding made them, or taking apart
- * surfaces that touch along them) and orienting each part.
+ * no thickness and faces given twice (flaps.c) and unused vertices,
+ * refusing non-manifold edges (after un-welding the vertices whose
+ * welding made them, or taking apart surfaces that touch along them) and
+ * orienting each part.
  *
  * Every step writes new arrays; the mesh gets them only once all have
  * succeeded, so that a refused mesh is left as it was.  Messages name input
@@ -99,26 +100,28 @@ static ur_status drop_degenerate(cleaning *c, ur_error *error)
     return UR_OK;
 }
 
-/* Drops the flaps of no thickness among the kept triangles (flaps.c). */
-static ur_status drop_flaps(cleaning *c, ur_error *error)
+/* Drops, among the kept triangles, flaps of no thickness and faces given twice (flaps.c). */
+static ur_status drop_repeated(cleaning *c, ur_error *error)
 {
     bool *drop = ur_alloc_array(c->triangle_count, sizeof *drop, error);
     if (!drop)
         return UR_ERROR_MEMORY;
-    size_t pairs = 0;
-    ur_status status =
-        mesh_find_flaps((const size_t(*)[3])c->triangles, c->triangle_count, drop, &pairs, error);
+    size_t flaps = 0, duplicates = 0;
+    ur_status status = mesh_find_repeated((const size_t(*)[3])c->triangles, c->triangle_count, drop,
+                                          &flaps, &duplicates, error);
+    bool any = status == UR_OK && flaps + duplicates > 0;
     size_t kept = 0;
-    for (size_t t = 0; status == UR_OK && pairs > 0 && t < c->triangle_count; t++) {
+    for (size_t t = 0; any && t < c->triangle_count; t++) {
         if (drop[t])
             continue;
         memmove(c->triangles[kept], c->triangles[t], sizeof c->triangles[t]);
         c->groups[kept] = c->groups[t];
         c->source[kept++] = c->source[t];
     }
-    if (status == UR_OK && pairs > 0) {
+    if (any) {
         c->triangle_count = kept;
-        c->repairs.flaps = pairs;
+        c->repairs.flaps = flaps;
+        c->repairs.duplicates = duplicates;
     }
     free(drop);
     return status;
@@ -238,7 +241,7 @@ static ur_status clean_once(cleaning *c, double weld_tolerance, const bool *apar
     if (status == UR_OK)
         status = drop_degenerate(c, error);
     if (status == UR_OK)
-        status = drop_flaps(c, error);
+        status = drop_repeated(c, error);
     if (status == UR_OK)
         status = renumber(c, error);
     if (status == UR_OK)

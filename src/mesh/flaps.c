@@ -1,18 +1,29 @@
 /*
- * flaps.c: finding flaps of no thickness: two triangles on the same
- * three corners, back to back, standing on a surface.  Blender's monkey
- * head has one under its chin: two quads that mirror each other each
- * fold a triangle into the mirror plane, and the two triangles meet there
- * back to back.  Left in, the pair makes an edge of four triangles (the
- * flap's foot, and the surface on either side of it), and unfolding gives
- * the flap as a piece of its own that nothing can be glued to.
+ * flaps.c: triangles on the same three corners as another.
  *
- * A pair is such a flap when, the pair taken away, every one of its edges
- * is left with two triangles (the surface closes over the foot) or with
- * none (the flap's own folds), and at least one with two.  A pair that
- * shares an edge with other triangles on repeated corners is left alone:
- * a sheet modelled with a face on each side is such pairs side by side,
- * and taking them away would take the sheet.
+ * A flap of no thickness is two such triangles back to back, standing on
+ * a surface.  Blender's monkey head has one under its chin: two quads that
+ * mirror each other each fold a triangle into the mirror plane, and the
+ * two triangles meet there back to back.  Left in, the pair makes an edge
+ * of four triangles (the flap's foot, and the surface on either side of
+ * it), and unfolding gives the flap as a piece of its own that nothing can
+ * be glued to.  A pair is such a flap when, the pair taken away, every one
+ * of its edges is left with two triangles (the surface closes over the
+ * foot) or with none (the flap's own folds), and at least one with two.  A
+ * pair that shares an edge with other triangles on repeated corners is
+ * left alone: a sheet modelled with a face on each side is such pairs
+ * side by side, and taking them away would take the sheet.
+ *
+ * A duplicate is a face given twice: an extrusion of no length, or a face
+ * filled again over one that was there, leaves one in a modeller's file.
+ * Its edges then carry three triangles, and the mesh was refused.  Of the
+ * triangles on the same corners the first in the file stays; another
+ * goes when it runs the same way round (two faces facing the same way on
+ * the same corners are never both meant), or when it runs the other way
+ * inside a surface: one of its edges carries an odd number of triangles,
+ * and none carries the two alone.  A sheet with a face on each side has
+ * two or four on every edge, and a flap on a sheet's rim carries the two
+ * alone on its folds: both are left as they were.
  */
 #include "mesh_internal.h"
 
@@ -118,10 +129,55 @@ static void find_flaps(const flap_search *p, const corners_key *keys, size_t cou
     }
 }
 
-ur_status mesh_find_flaps(const size_t (*triangles)[3], size_t count, bool *drop, size_t *pairs,
-                          ur_error *error)
+/*
+ * Whether triangle t, back to back with kept on the same corners, doubles
+ * a face inside a surface: an edge of theirs carries an odd number of
+ * triangles, and each carries some triangle besides the two.  A flap on
+ * the rim of a sheet (its foot on three triangles) has edges that carry
+ * the two alone, its folds; it is not a face given twice, and stays.
+ */
+static bool doubles_a_face(const flap_search *p, size_t t, size_t kept)
 {
-    *pairs = 0;
+    bool odd = false;
+    for (int k = 0; k < 3; k++) {
+        mesh_edge_key edge = mesh_edge_key_of(p->triangles[t][k], p->triangles[t][(k + 1) % 3], 0);
+        size_t on = 0, others = 0;
+        for (size_t i = first_on_edge(p->edges, p->edge_count, &edge);
+             i < p->edge_count && mesh_compare_edge_ends(&p->edges[i], &edge) == 0; i++) {
+            on++;
+            others += p->edges[i].index != t && p->edges[i].index != kept;
+        }
+        if (others == 0)
+            return false;
+        odd = odd || on % 2 == 1;
+    }
+    return odd;
+}
+
+/* Marks the duplicates (see the top of the file) among triangles not dropped as flaps. */
+static void find_duplicates(const flap_search *p, const corners_key *keys, size_t count, bool *drop,
+                            size_t *duplicates)
+{
+    for (size_t i = 0, j; i < count; i = j) {
+        for (j = i + 1; j < count && same_corners(&keys[j], &keys[i]); j++)
+            ;
+        size_t kept = keys[i].triangle; /* the first in the file: keys sort by triangle last */
+        if (drop[kept])
+            continue;
+        for (size_t k = i + 1; k < j; k++) {
+            size_t t = keys[k].triangle;
+            if (!back_to_back(p->triangles, kept, t) || doubles_a_face(p, t, kept)) {
+                drop[t] = true;
+                (*duplicates)++;
+            }
+        }
+    }
+}
+
+ur_status mesh_find_repeated(const size_t (*triangles)[3], size_t count, bool *drop, size_t *flaps,
+                             size_t *duplicates, ur_error *error)
+{
+    *flaps = *duplicates = 0;
     memset(drop, 0, count * sizeof *drop);
     corners_key *keys = ur_alloc_array(count, sizeof *keys, error);
     flap_search p = {triangles, NULL, 0, ur_alloc_array(count, sizeof *p.repeated, error)};
@@ -150,7 +206,8 @@ ur_status mesh_find_flaps(const size_t (*triangles)[3], size_t count, bool *drop
             }
         if (status == UR_OK) {
             qsort(p.edges, p.edge_count, sizeof *p.edges, mesh_compare_edge_keys);
-            find_flaps(&p, keys, count, drop, pairs);
+            find_flaps(&p, keys, count, drop, flaps);
+            find_duplicates(&p, keys, count, drop, duplicates);
         }
     }
     free(keys);

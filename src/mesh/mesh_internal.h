@@ -55,12 +55,13 @@ ur_status mesh_split_fans(size_t (*triangles)[3], size_t count, size_t v, size_t
                           size_t *copies, ur_error *error);
 
 /*
- * Marks in drop (count entries, the caller's) the pairs of triangles that
- * lie back to back on the same corners as a flap of no thickness standing
- * on the surface (flaps.c says which); *pairs counts them.
+ * Marks in drop (count entries, the caller's) the triangles on the same
+ * corners as another that go (flaps.c says which): the pairs back to back
+ * that stand on the surface as a flap of no thickness (*flaps counts the
+ * pairs), and faces given twice (*duplicates counts the triangles).
  */
-ur_status mesh_find_flaps(const size_t (*triangles)[3], size_t count, bool *drop, size_t *pairs,
-                          ur_error *error);
+ur_status mesh_find_repeated(const size_t (*triangles)[3], size_t count, bool *drop, size_t *flaps,
+                             size_t *duplicates, ur_error *error);
 
 /* An edge that three or more triangles share (vertex indices, 0-based). */
 typedef struct mesh_bad_edge {

@@ -1399,6 +1399,39 @@ def flap_of_no_thickness_is_dropped(work):
 
 
 @test
+def face_given_twice_is_dropped(work):
+    # A 50 mm cube whose top is given again on vertices of its own at the
+    # same points, as a modeller's extrusion of no length leaves it: the
+    # same way round, and the other way round (then assimp split it along
+    # the other diagonal).  Before, both were refused: "non-manifold edge
+    # between vertices 5 and 6 (3 triangles)".  Now the copy is dropped,
+    # with a note, and the net is the cube's: its area and its pieces.
+    corners = [(x, y, z) for z in (0, 50) for y in (0, 50) for x in (0, 50)]
+    faces = [(1, 3, 4, 2), (5, 6, 8, 7), (1, 2, 6, 5), (3, 7, 8, 4), (1, 5, 7, 3), (2, 4, 8, 6)]
+    cube = "".join("v %d %d %d\n" % c for c in corners) + \
+        "".join("f %d %d %d %d\n" % f for f in faces)
+    top = "".join("v %d %d 50\n" % (x, y) for x, y in ((0, 0), (50, 0), (50, 50), (0, 50)))
+    write(work, "cube.obj", cube)
+    write(work, "same.obj", cube + top + "f 9 10 11 12\n")
+    write(work, "turned.obj", cube + top + "f 12 11 10 9\n")
+    run(work, "mesh", "cube.obj", "--flatten", "unfold", "--material", "paper-0.3mm",
+        "--nest-time", "0", "-o", "c.svg", "--report", "c.json")
+    plain = report(work, "c.json")
+    for name in ("same", "turned"):
+        result = run(work, "mesh", name + ".obj", "--flatten", "unfold", "--material",
+                     "paper-0.3mm", "--nest-time", "0", "-o", name + ".svg", "--report",
+                     name + ".json")
+        check("repaired: 2 triangles dropped that repeated another's corners (a face given "
+              "twice)" in result.stderr, result.stderr)
+        check("warning" not in result.stderr and "apart" not in result.stderr, result.stderr)
+        doubled = report(work, name + ".json")
+        close(doubled["surface_area_mm2"], 6 * 50.0 ** 2, 1e-12, name + ": area")
+        check(len(doubled["pieces"]) == len(plain["pieces"]),
+              "%s: %d pieces, the cube alone %d" % (name, len(doubled["pieces"]),
+                                                   len(plain["pieces"])))
+
+
+@test
 def mesh_in_metres_gets_a_warning(work):
     # A 2-unit cube, as Blender exports its default cube (metres).
     corners = [(x, y, z) for z in (-1, 1) for y in (-1, 1) for x in (-1, 1)]

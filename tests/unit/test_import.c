@@ -33,7 +33,7 @@ static const char *const lampshades[] = {
 
 /* Every test writes its bad files into one temporary directory. */
 static char directory[64];
-static char written[48][128];
+static char written[64][128];
 static int written_count;
 
 static int make_directory(void **state)
@@ -58,7 +58,7 @@ static int remove_directory(void **state)
 /* Writes text to NAME in the temporary directory; returns the path. */
 static const char *write_file(const char *name, const char *text)
 {
-    assert_true(written_count < 48);
+    assert_true(written_count < 64);
     char *path = written[written_count++];
     snprintf(path, sizeof written[0], "%s/%s", directory, name);
     FILE *file = fopen(path, "w");
@@ -417,6 +417,56 @@ static void test_twisted_quads_follow_the_surface(void **state)
             fail_msg("bowl: a fold falls %g below its neighbour's plane", least);
         free_mesh(&mesh);
     }
+}
+
+/* Whether triangles t and o have their corners at the same three points, in any order. */
+static bool same_corners(const ur_mesh *mesh, size_t t, size_t o)
+{
+    int matched = 0;
+    for (int j = 0; j < 3; j++)
+        for (int k = 0; k < 3; k++)
+            matched += same_point(corner(mesh, t, j), corner(mesh, o, k));
+    return matched == 3;
+}
+
+/* Whether some triangle of the quad (first, first + 1) has the corners of triangle t. */
+static bool in_quad(const ur_mesh *mesh, size_t first, size_t t)
+{
+    return same_corners(mesh, first, t) || same_corners(mesh, first + 1, t);
+}
+
+/*
+ * A face given twice: a unit cube whose top is written again the other way
+ * round, on vertices of its own at the same points (as a modeller's
+ * extrusion of no length leaves it).  assimp splits the copy along the
+ * other diagonal; it comes out split as the top is, each of its triangles
+ * on a triangle of the top's corners, so that the mesh's cleaning can drop
+ * it.  A square sheet with a face on each side keeps assimp's split, the
+ * two faces' triangles on different corners: the same split would join
+ * its two sides round their rim.
+ */
+static void test_face_given_twice_split_alike(void **state)
+{
+    (void)state;
+    const char *cube = "o box\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+                       "v 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+                       "v 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+                       "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n"
+                       "f 12 11 10 9\n";
+    ur_mesh mesh = {0};
+    import_ok(write_file("doubled.obj", cube), NULL, &mesh, NULL);
+    assert_int_equal(mesh.triangle_count, 14);
+    size_t top = 2, copy = 12; /* each face's triangles where the face was, in order */
+    assert_true(area_vector(&mesh, top).z > 0);
+    assert_true(area_vector(&mesh, copy).z < 0 && area_vector(&mesh, copy + 1).z < 0);
+    assert_true(in_quad(&mesh, top, copy) && in_quad(&mesh, top, copy + 1));
+    free_mesh(&mesh);
+
+    const char *sheet = "o sheet\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\nf 4 3 2 1\n";
+    import_ok(write_file("two-sided.obj", sheet), NULL, &mesh, NULL);
+    assert_int_equal(mesh.triangle_count, 4);
+    assert_false(in_quad(&mesh, 0, 2) || in_quad(&mesh, 0, 3));
+    free_mesh(&mesh);
 }
 
 /* ---- Flat polygons ----------------------------------------------------- */
@@ -874,6 +924,7 @@ int main(void)
         cmocka_unit_test(test_twisted_quads_follow_the_surface),
         cmocka_unit_test(test_flat_polygons_have_no_slivers),
         cmocka_unit_test(test_concave_flat_polygon_triangulated_inside),
+        cmocka_unit_test(test_face_given_twice_split_alike),
         cmocka_unit_test(test_unit_names),
         cmocka_unit_test(test_units_and_scale_multiply),
         cmocka_unit_test(test_missing_file),

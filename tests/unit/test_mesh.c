@@ -707,6 +707,56 @@ static void test_clean_drops_flaps(void **state)
 }
 
 /*
+ * A face given twice: one triangle of an octahedron added again, the same
+ * way round or the other way (every edge of it then on three triangles),
+ * and the whole octahedron added again over itself with vertices of its
+ * own (welded onto the first), in group 1.  Each copy goes, the first of
+ * each in the input stays (group 0), and the octahedron is whole and
+ * closed again: 8 triangles, every edge on two, Euler characteristic 2.
+ * The build before the repair refused the first two ("non-manifold edge")
+ * and took the third apart into two octahedra.
+ */
+static void test_clean_drops_faces_given_twice(void **state)
+{
+    (void)state;
+    for (int c = 0; c < 3; c++) {
+        ur_mesh base = octahedron();
+        builder b = {0};
+        add_mesh(&b, &base);
+        const size_t *t = base.triangles[3];
+        if (c == 0)
+            add_triangle(&b, t[0], t[1], t[2], 1);
+        else if (c == 1)
+            add_triangle(&b, t[0], t[2], t[1], 1);
+        else {
+            size_t copy = add_mesh(&b, &base);
+            for (size_t k = base.triangle_count; k < 2 * base.triangle_count; k++)
+                b.groups[k] = 1;
+            assert_int_equal(copy, base.vertex_count);
+        }
+        size_t copies = c < 2 ? 1 : base.triangle_count;
+        ur_mesh_free(&base);
+        ur_mesh mesh = build(&b);
+        ur_mesh_repairs repairs = clean(&mesh, 1e-6);
+        assert_int_equal(repairs.duplicates, copies);
+        assert_int_equal(repairs.flaps, 0);
+        assert_int_equal(repairs.split, 0);
+        assert_int_equal(mesh.triangle_count, 8);
+        assert_int_equal(mesh.vertex_count, 6);
+        for (size_t k = 0; k < mesh.triangle_count; k++)
+            assert_int_equal(mesh.groups[k], 0);
+        topology top = topology_of(&mesh);
+        assert_int_equal(top.boundary_edges, 0);
+        assert_int_equal(top.euler, 2);
+        size_t *twins;
+        ur_error error;
+        assert_int_equal(ur_mesh_twins(&mesh, &twins, &error), UR_OK);
+        free(twins);
+        ur_mesh_free(&mesh);
+    }
+}
+
+/*
  * What is not a flap stays: a sheet modelled with a face on each side (a
  * grid and the same grid turned over: pairs side by side, and taking them
  * would take the sheet; its two sides come apart as two surfaces, as
@@ -727,6 +777,7 @@ static void test_clean_keeps_what_is_no_flap(void **state)
     ur_error error;
     assert_int_equal(ur_mesh_clean(&both_sides, 1e-6, &repairs, &error), UR_OK);
     assert_int_equal(repairs.flaps, 0);
+    assert_int_equal(repairs.duplicates, 0);            /* no edge on an odd number of triangles */
     assert_int_equal(both_sides.triangle_count, faces); /* its sides taken apart, both kept */
     assert_true(repairs.split > 0);
     ur_mesh_free(&both_sides);
@@ -1482,6 +1533,7 @@ int main(void)
         cmocka_unit_test(test_clean_drops),
         cmocka_unit_test(test_clean_refuses),
         cmocka_unit_test(test_clean_drops_flaps),
+        cmocka_unit_test(test_clean_drops_faces_given_twice),
         cmocka_unit_test(test_clean_keeps_what_is_no_flap),
         cmocka_unit_test(test_clean_unwelds_touching_parts),
         cmocka_unit_test(test_clean_splits_surfaces_touching_along_an_edge),
