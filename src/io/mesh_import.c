@@ -11,7 +11,8 @@
  * ur_mesh_clean does that with the user's tolerance.  A twisted quad is
  * split along the diagonal that follows the surface (mesh_quads.c), and a
  * flat polygon of five corners or more triangulated again without slivers
- * (mesh_polygons.c).
+ * (mesh_polygons.c); a face given twice is triangulated as it was the
+ * first time (mesh_repeats.c), for ur_mesh_clean to drop the copy.
  */
 #include "io_internal.h"
 
@@ -1060,6 +1061,11 @@ static ur_status build(import_state *state, ur_error *error)
         status = io_triangulate_flat_polygons(state->vertices, state->triangles,
                                               state->triangle_count, state->polygon_starts,
                                               state->polygon_corners, state->polygon_count, error);
+    if (status == UR_OK)
+        status = io_repeated_faces_alike(state->vertices, state->vertex_count, state->triangles,
+                                         state->triangle_count, state->quad_starts,
+                                         state->quad_count, state->polygon_starts,
+                                         state->polygon_corners, state->polygon_count, error);
     if (status != UR_OK)
         return status;
     name_unnamed(state);

@@ -14,13 +14,6 @@
  * and the file's split stays: turning those too gave Blender's subdivided
  * monkey head a fifth more pieces.
  *
- * A face given twice, the second time the other way round (a modeller's
- * extrusion of no length leaves one), is split along the other diagonal
- * by assimp, and its triangles then repeat no triangle of the first: the
- * mesh's cleaning could not drop them.  A quad on the same four corners
- * (by position) as an earlier one, inside a surface, is split along that
- * one's diagonal.
- *
  * The quads are marked on the raw scene, before assimp triangulates it,
  * and found again afterwards (mesh_polygons.c): its triangulation puts a
  * quad's two triangles where the quad was, in order.  Neighbours are found by
@@ -275,105 +268,6 @@ static bool turn_allowed(const surface *s, const turn *turns, size_t count, size
            !(k + 1 < count && record_is(&turns[k + 1].diagonal, d));
 }
 
-/* Splits the quad of triangles first and first + 1 along its other diagonal, corner[1] to [3]. */
-static void split_other_way(size_t (*triangles)[3], size_t first, const size_t corner[4])
-{
-    size_t *a = triangles[first], *b = triangles[first + 1];
-    a[0] = corner[0], a[1] = corner[1], a[2] = corner[3];
-    b[0] = corner[1], b[1] = corner[2], b[2] = corner[3];
-}
-
-/* ---- A face given twice ---------------------------------------------------- */
-
-/* A quad by the positions of its corners, sorted, and its first triangle. */
-typedef struct quad_key {
-    size_t position[4];
-    size_t first;
-} quad_key;
-
-static int compare_quad_keys(const void *a, const void *b)
-{
-    const quad_key *x = a, *y = b;
-    for (int k = 0; k < 4; k++)
-        if (x->position[k] != y->position[k])
-            return x->position[k] < y->position[k] ? -1 : 1;
-    return (x->first > y->first) - (x->first < y->first);
-}
-
-static quad_key key_of_quad(const surface *s, size_t first, const size_t corner[4])
-{
-    quad_key key = {.first = first};
-    for (int k = 0; k < 4; k++) { /* insertion sort of four */
-        size_t p = s->position[corner[k]];
-        int i = k;
-        for (; i > 0 && key.position[i - 1] > p; i--)
-            key.position[i] = key.position[i - 1];
-        key.position[i] = p;
-    }
-    return key;
-}
-
-/* Whether the quad (its corners) is split along the diagonal between positions a and b. */
-static bool split_between(const surface *s, const size_t corner[4], size_t a, size_t b)
-{
-    size_t u = s->position[corner[0]], w = s->position[corner[2]];
-    return (u == a && w == b) || (u == b && w == a);
-}
-
-/* Whether a side of the quad (its corners) carries an odd number of triangles. */
-static bool odd_side(const surface *s, const size_t corner[4])
-{
-    for (int k = 0; k < 4; k++) {
-        size_t a = corner[k], b = corner[(k + 1) % 4], on = 0;
-        edge_record key = edge_of(s, 0, a, b);
-        for (size_t r = first_record(s, a, b); r < s->edge_count && record_is(&s->edges[r], &key);
-             r++)
-            on++;
-        if (on % 2 == 1)
-            return true;
-    }
-    return false;
-}
-
-/*
- * Splits each quad on the same corners as an earlier one, with a side on
- * an odd number of triangles (a face given twice inside a surface), as
- * that one is split.  A sheet with a face on each side has two or four
- * on each side, and is left as assimp split it: the same split would
- * join its two sides round their rim, and taking them apart would then
- * cut each in pieces.
- */
-static ur_status split_repeats_alike(const surface *s, size_t (*triangles)[3],
-                                     size_t triangle_count, const size_t *quads, size_t quad_count,
-                                     ur_error *error)
-{
-    quad_key *keys = ur_alloc_array(quad_count, sizeof *keys, error);
-    if (!keys)
-        return UR_ERROR_MEMORY;
-    size_t count = 0, corner[4];
-    for (size_t k = 0; k < quad_count; k++)
-        if (quads[k] + 1 < triangle_count &&
-            quad_corners(triangles, quads[k], quads[k] + 1, corner))
-            keys[count++] = key_of_quad(s, quads[k], corner);
-    qsort(keys, count, sizeof *keys, compare_quad_keys);
-    for (size_t i = 0, j; i < count; i = j) {
-        for (j = i + 1;
-             j < count && memcmp(keys[j].position, keys[i].position, sizeof keys[i].position) == 0;
-             j++)
-            ;
-        size_t first[4];
-        if (j - i < 2 || !quad_corners(triangles, keys[i].first, keys[i].first + 1, first))
-            continue;
-        size_t a = s->position[first[0]], b = s->position[first[2]];
-        for (size_t k = i + 1; k < j; k++)
-            if (quad_corners(triangles, keys[k].first, keys[k].first + 1, corner) &&
-                !split_between(s, corner, a, b) && odd_side(s, corner))
-                split_other_way(triangles, keys[k].first, corner);
-    }
-    free(keys);
-    return UR_OK;
-}
-
 ur_status io_quads_follow_surface(const ur_vec3 *vertices, size_t vertex_count,
                                   size_t (*triangles)[3], size_t triangle_count,
                                   const size_t *quads, size_t quad_count, ur_error *error)
@@ -400,10 +294,11 @@ ur_status io_quads_follow_surface(const ur_vec3 *vertices, size_t vertex_count,
     for (size_t k = 0; status == UR_OK && k < count; k++) {
         if (!turn_allowed(&s, turns, count, k))
             continue;
-        split_other_way(triangles, turns[k].first, turns[k].corner);
+        const size_t *c = turns[k].corner;
+        size_t *a = triangles[turns[k].first], *b = triangles[turns[k].first + 1];
+        a[0] = c[0], a[1] = c[1], a[2] = c[3];
+        b[0] = c[1], b[1] = c[2], b[2] = c[3];
     }
-    if (status == UR_OK)
-        status = split_repeats_alike(&s, triangles, triangle_count, quads, quad_count, error);
     free(turns);
     surface_free(&s);
     return status;

@@ -20,8 +20,9 @@
  * triangles on the same corners the first in the file stays; another
  * goes when it runs the same way round (two faces facing the same way on
  * the same corners are never both meant), or when it runs the other way
- * inside a surface: one of its edges carries an odd number of triangles,
- * and none carries the two alone.  A sheet with a face on each side has
+ * inside a surface: one of its edges carries an odd number of triangles
+ * (counted again as copies go, so that those of a face of many triangles
+ * go from its rim inwards), and none carries the two alone.  A sheet with a face on each side has
  * two or four on every edge, and a flap on a sheet's rim carries the two
  * alone on its folds: both are left as they were.
  */
@@ -131,12 +132,13 @@ static void find_flaps(const flap_search *p, const corners_key *keys, size_t cou
 
 /*
  * Whether triangle t, back to back with kept on the same corners, doubles
- * a face inside a surface: an edge of theirs carries an odd number of
- * triangles, and each carries some triangle besides the two.  A flap on
- * the rim of a sheet (its foot on three triangles) has edges that carry
- * the two alone, its folds; it is not a face given twice, and stays.
+ * a face inside a surface: an edge of theirs carries an odd number of the
+ * triangles not dropped, and each carries some triangle besides the two.
+ * A flap on the rim of a sheet (its foot on three triangles) has edges
+ * that carry the two alone, its folds; it is not a face given twice, and
+ * stays.
  */
-static bool doubles_a_face(const flap_search *p, size_t t, size_t kept)
+static bool doubles_a_face(const flap_search *p, const bool *drop, size_t t, size_t kept)
 {
     bool odd = false;
     for (int k = 0; k < 3; k++) {
@@ -144,8 +146,9 @@ static bool doubles_a_face(const flap_search *p, size_t t, size_t kept)
         size_t on = 0, others = 0;
         for (size_t i = first_on_edge(p->edges, p->edge_count, &edge);
              i < p->edge_count && mesh_compare_edge_ends(&p->edges[i], &edge) == 0; i++) {
-            on++;
-            others += p->edges[i].index != t && p->edges[i].index != kept;
+            size_t u = p->edges[i].index;
+            on += !drop[u];
+            others += !drop[u] && u != t && u != kept;
         }
         if (others == 0)
             return false;
@@ -154,24 +157,41 @@ static bool doubles_a_face(const flap_search *p, size_t t, size_t kept)
     return odd;
 }
 
-/* Marks the duplicates (see the top of the file) among triangles not dropped as flaps. */
-static void find_duplicates(const flap_search *p, const corners_key *keys, size_t count, bool *drop,
-                            size_t *duplicates)
+/*
+ * Marks the copies in the groups of triangles on the same corners (see the
+ * top of the file) among those not dropped as flaps; true when it marked
+ * any.  A copy inside a doubled face of many triangles (a cylinder's cap)
+ * has no edge on an odd number until the copies round it are dropped: the
+ * caller asks again while copies go.
+ */
+static bool mark_copies(const flap_search *p, const corners_key *keys, size_t count, bool *drop,
+                        size_t *duplicates)
 {
+    bool marked = false;
     for (size_t i = 0, j; i < count; i = j) {
         for (j = i + 1; j < count && same_corners(&keys[j], &keys[i]); j++)
             ;
         size_t kept = keys[i].triangle; /* the first in the file: keys sort by triangle last */
-        if (drop[kept])
+        if (j - i < 2 || drop[kept])
             continue;
         for (size_t k = i + 1; k < j; k++) {
             size_t t = keys[k].triangle;
-            if (!back_to_back(p->triangles, kept, t) || doubles_a_face(p, t, kept)) {
+            if (!drop[t] &&
+                (!back_to_back(p->triangles, kept, t) || doubles_a_face(p, drop, t, kept))) {
                 drop[t] = true;
                 (*duplicates)++;
+                marked = true;
             }
         }
     }
+    return marked;
+}
+
+static void find_duplicates(const flap_search *p, const corners_key *keys, size_t count, bool *drop,
+                            size_t *duplicates)
+{
+    while (mark_copies(p, keys, count, drop, duplicates))
+        ;
 }
 
 ur_status mesh_find_repeated(const size_t (*triangles)[3], size_t count, bool *drop, size_t *flaps,

@@ -441,7 +441,8 @@ static bool in_quad(const ur_mesh *mesh, size_t first, size_t t)
  * extrusion of no length leaves it).  assimp splits the copy along the
  * other diagonal; it comes out split as the top is, each of its triangles
  * on a triangle of the top's corners, so that the mesh's cleaning can drop
- * it.  A square sheet with a face on each side keeps assimp's split, the
+ * it; so does an octagonal prism's top (mesh_polygons.c's Delaunay
+ * triangulation).  A square sheet with a face on each side keeps assimp's split, the
  * two faces' triangles on different corners: the same split would join
  * its two sides round their rim.
  */
@@ -460,6 +461,37 @@ static void test_face_given_twice_split_alike(void **state)
     assert_true(area_vector(&mesh, top).z > 0);
     assert_true(area_vector(&mesh, copy).z < 0 && area_vector(&mesh, copy + 1).z < 0);
     assert_true(in_quad(&mesh, top, copy) && in_quad(&mesh, top, copy + 1));
+    free_mesh(&mesh);
+
+    /*
+     * A regular octagon's corners lie on a circle, where its Delaunay
+     * triangulation may take any of its ties: an octagonal prism whose top
+     * is given again the other way round, on vertices of its own.
+     */
+    char text[2048];
+    size_t used = (size_t)snprintf(text, sizeof text, "o prism\n");
+    for (int ring = 0; ring < 3; ring++) /* the bottom, the top and the top's copy */
+        for (int k = 0; k < 8; k++)
+            used += (size_t)snprintf(text + used, sizeof text - used, "v %.17g %.17g %d\n",
+                                     cos(k * M_PI / 4), sin(k * M_PI / 4), ring > 0);
+    used += (size_t)snprintf(text + used, sizeof text - used, "f 8 7 6 5 4 3 2 1\n");
+    used += (size_t)snprintf(text + used, sizeof text - used, "f 9 10 11 12 13 14 15 16\n");
+    for (int k = 0; k < 8; k++)
+        used += (size_t)snprintf(text + used, sizeof text - used, "f %d %d %d %d\n", k + 1,
+                                 (k + 1) % 8 + 1, (k + 1) % 8 + 9, k + 9);
+    used += (size_t)snprintf(text + used, sizeof text - used, "f 24 23 22 21 20 19 18 17\n");
+    assert_true(used < sizeof text);
+    import_ok(write_file("prism.obj", text), NULL, &mesh, NULL);
+    assert_int_equal(mesh.triangle_count, 3 * 6 + 8 * 2);
+    size_t top_start = 6, copy_start = 6 + 6 + 16;
+    for (size_t k = copy_start; k < copy_start + 6; k++) {
+        assert_true(area_vector(&mesh, k).z < 0);
+        bool found = false;
+        for (size_t j = top_start; j < top_start + 6; j++)
+            found = found || same_corners(&mesh, j, k);
+        if (!found)
+            fail_msg("triangle %zu of the top's copy is on none of the top's corners", k);
+    }
     free_mesh(&mesh);
 
     const char *sheet = "o sheet\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\nf 4 3 2 1\n";

@@ -708,33 +708,42 @@ static void test_clean_drops_flaps(void **state)
 
 /*
  * A face given twice: one triangle of an octahedron added again, the same
- * way round or the other way (every edge of it then on three triangles),
- * and the whole octahedron added again over itself with vertices of its
- * own (welded onto the first), in group 1.  Each copy goes, the first of
- * each in the input stays (group 0), and the octahedron is whole and
- * closed again: 8 triangles, every edge on two, Euler characteristic 2.
- * The build before the repair refused the first two ("non-manifold edge")
- * and took the third apart into two octahedra.
+ * way round or the other way (every edge of it then on three triangles);
+ * the whole octahedron added again over itself with vertices of its own
+ * (welded onto the first); and seven of its eight triangles added again
+ * the other way round, where the copy of the triangle opposite the eighth
+ * has every edge on four triangles until the copies round it go.  The
+ * copies are in group 1.  Each goes, the first of each in the input stays
+ * (group 0), and the octahedron is whole and closed again: 8 triangles,
+ * every edge on two, Euler characteristic 2.  The build before the repair
+ * refused the first two ("non-manifold edge").
  */
 static void test_clean_drops_faces_given_twice(void **state)
 {
     (void)state;
-    for (int c = 0; c < 3; c++) {
+    for (int c = 0; c < 4; c++) {
         ur_mesh base = octahedron();
         builder b = {0};
         add_mesh(&b, &base);
         const size_t *t = base.triangles[3];
+        size_t copies = 1;
         if (c == 0)
             add_triangle(&b, t[0], t[1], t[2], 1);
         else if (c == 1)
             add_triangle(&b, t[0], t[2], t[1], 1);
-        else {
+        else if (c == 2) {
             size_t copy = add_mesh(&b, &base);
             for (size_t k = base.triangle_count; k < 2 * base.triangle_count; k++)
                 b.groups[k] = 1;
             assert_int_equal(copy, base.vertex_count);
+            copies = base.triangle_count;
+        } else {
+            for (size_t k = 1; k < base.triangle_count; k++) {
+                const size_t *u = base.triangles[k];
+                add_triangle(&b, u[0], u[2], u[1], 1);
+            }
+            copies = base.triangle_count - 1;
         }
-        size_t copies = c < 2 ? 1 : base.triangle_count;
         ur_mesh_free(&base);
         ur_mesh mesh = build(&b);
         ur_mesh_repairs repairs = clean(&mesh, 1e-6);
