@@ -21,10 +21,11 @@
  * goes when it runs the same way round (two faces facing the same way on
  * the same corners are never both meant), or when it runs the other way
  * inside a surface: one of its edges carries an odd number of triangles
- * (counted again as copies go, so that those of a face of many triangles
- * go from its rim inwards), and none carries the two alone.  A sheet with a face on each side has
- * two or four on every edge, and a flap on a sheet's rim carries the two
- * alone on its folds: both are left as they were.
+ * (counted again as copies go, so that those of a face of many
+ * triangles go from its rim inwards), and none carries the two alone.  A
+ * sheet with a face on each side has two or four on every edge, and a
+ * flap on a sheet's rim carries the two alone on its folds: both are left
+ * as they were.
  */
 #include "mesh_internal.h"
 
