@@ -29,6 +29,7 @@
  */
 #include "mesh_internal.h"
 
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -91,20 +92,71 @@ typedef struct flap_search {
     const size_t (*triangles)[3];
     mesh_edge_key *edges; /* every triangle's edges, sorted */
     size_t edge_count;
-    bool *repeated; /* per triangle: another has the same corners */
+    bool *repeated; /* per triangle: another not dropped has the same corners */
+    bool *drop;     /* per triangle: dropped (the caller's) */
 } flap_search;
+
+/* The end of the group of keys on the same corners that begins at i. */
+static size_t group_end(const corners_key *keys, size_t count, size_t i)
+{
+    size_t j = i + 1;
+    while (j < count && same_corners(&keys[j], &keys[i]))
+        j++;
+    return j;
+}
+
+/* The triangles on an edge, from the sorted edges: [*from, return value). */
+static size_t edge_range(const flap_search *p, size_t t, int k, size_t *from)
+{
+    mesh_edge_key edge = mesh_edge_key_of(p->triangles[t][k], p->triangles[t][(k + 1) % 3], 0);
+    size_t i = *from = first_on_edge(p->edges, p->edge_count, &edge);
+    while (i < p->edge_count && mesh_compare_edge_ends(&p->edges[i], &edge) == 0)
+        i++;
+    return i;
+}
+
+/*
+ * Drops each triangle that runs the same way round as an earlier one on
+ * the same corners, not dropped: two faces facing the same way on the
+ * same corners are never both meant.
+ */
+static void drop_same_way(const flap_search *p, const corners_key *keys, size_t count,
+                          size_t *duplicates)
+{
+    for (size_t i = 0, j; i < count; i = j) {
+        j = group_end(keys, count, i);
+        for (size_t k = i + 1; k < j; k++)
+            for (size_t e = i; e < k && !p->drop[keys[k].triangle]; e++)
+                if (!p->drop[keys[e].triangle] &&
+                    !back_to_back(p->triangles, keys[e].triangle, keys[k].triangle)) {
+                    p->drop[keys[k].triangle] = true;
+                    (*duplicates)++;
+                }
+    }
+}
+
+/* Marks the triangles not dropped that another not dropped repeats, in p->repeated. */
+static void mark_repeated(const flap_search *p, const corners_key *keys, size_t count)
+{
+    for (size_t i = 0, j; i < count; i = j) {
+        j = group_end(keys, count, i);
+        size_t kept = 0;
+        for (size_t k = i; k < j; k++)
+            kept += !p->drop[keys[k].triangle];
+        for (size_t k = i; k < j; k++)
+            p->repeated[keys[k].triangle] = kept > 1 && !p->drop[keys[k].triangle];
+    }
+}
 
 /* Whether the pair s, t stands as a flap on the surface (see the top of the file). */
 static bool is_flap(const flap_search *p, size_t s, size_t t)
 {
     bool foot = false;
     for (int k = 0; k < 3; k++) {
-        mesh_edge_key edge = mesh_edge_key_of(p->triangles[s][k], p->triangles[s][(k + 1) % 3], 0);
-        size_t others = 0;
-        for (size_t i = first_on_edge(p->edges, p->edge_count, &edge);
-             i < p->edge_count && mesh_compare_edge_ends(&p->edges[i], &edge) == 0; i++) {
+        size_t from, to = edge_range(p, s, k, &from), others = 0;
+        for (size_t i = from; i < to; i++) {
             size_t u = p->edges[i].index; /* a triangle on the edge */
-            if (u == s || u == t)
+            if (u == s || u == t || p->drop[u])
                 continue;
             if (p->repeated[u])
                 return false;
@@ -117,15 +169,30 @@ static bool is_flap(const flap_search *p, size_t s, size_t t)
     return foot;
 }
 
-static void find_flaps(const flap_search *p, const corners_key *keys, size_t count, bool *drop,
-                       size_t *pairs)
+/* The first triangle of the group [i, j) not dropped, and the second; false unless just two. */
+static bool two_kept(const flap_search *p, const corners_key *keys, size_t i, size_t j,
+                     size_t *first, size_t *second)
+{
+    size_t kept = 0;
+    for (size_t k = i; k < j; k++)
+        if (!p->drop[keys[k].triangle]) {
+            if (kept == 0)
+                *first = keys[k].triangle;
+            else
+                *second = keys[k].triangle;
+            kept++;
+        }
+    return kept == 2;
+}
+
+static void find_flaps(const flap_search *p, const corners_key *keys, size_t count, size_t *pairs)
 {
     for (size_t i = 0, j; i < count; i = j) {
-        for (j = i + 1; j < count && same_corners(&keys[j], &keys[i]); j++)
-            ;
-        if (j - i == 2 && back_to_back(p->triangles, keys[i].triangle, keys[i + 1].triangle) &&
-            is_flap(p, keys[i].triangle, keys[i + 1].triangle)) {
-            drop[keys[i].triangle] = drop[keys[i + 1].triangle] = true;
+        j = group_end(keys, count, i);
+        size_t s = 0, t = 0;
+        if (j - i >= 2 && two_kept(p, keys, i, j, &s, &t) && back_to_back(p->triangles, s, t) &&
+            is_flap(p, s, t)) {
+            p->drop[s] = p->drop[t] = true;
             (*pairs)++;
         }
     }
@@ -139,17 +206,15 @@ static void find_flaps(const flap_search *p, const corners_key *keys, size_t cou
  * that carry the two alone, its folds; it is not a face given twice, and
  * stays.
  */
-static bool doubles_a_face(const flap_search *p, const bool *drop, size_t t, size_t kept)
+static bool doubles_a_face(const flap_search *p, size_t t, size_t kept)
 {
     bool odd = false;
     for (int k = 0; k < 3; k++) {
-        mesh_edge_key edge = mesh_edge_key_of(p->triangles[t][k], p->triangles[t][(k + 1) % 3], 0);
-        size_t on = 0, others = 0;
-        for (size_t i = first_on_edge(p->edges, p->edge_count, &edge);
-             i < p->edge_count && mesh_compare_edge_ends(&p->edges[i], &edge) == 0; i++) {
+        size_t from, to = edge_range(p, t, k, &from), on = 0, others = 0;
+        for (size_t i = from; i < to; i++) {
             size_t u = p->edges[i].index;
-            on += !drop[u];
-            others += !drop[u] && u != t && u != kept;
+            on += !p->drop[u];
+            others += !p->drop[u] && u != t && u != kept;
         }
         if (others == 0)
             return false;
@@ -159,39 +224,43 @@ static bool doubles_a_face(const flap_search *p, const bool *drop, size_t t, siz
 }
 
 /*
- * Marks the copies in the groups of triangles on the same corners (see the
- * top of the file) among those not dropped as flaps; true when it marked
- * any.  A copy inside a doubled face of many triangles (a cylinder's cap)
- * has no edge on an odd number until the copies round it are dropped: the
+ * Drops the triangles back to back with the first of their group not
+ * dropped that double a face inside a surface; true when it dropped any.
+ * A copy inside a doubled face of many triangles (a cylinder's cap) has
+ * no edge on an odd number until the copies round it are dropped: the
  * caller asks again while copies go.
  */
-static bool mark_copies(const flap_search *p, const corners_key *keys, size_t count, bool *drop,
-                        size_t *duplicates)
+static bool drop_turned_copies(const flap_search *p, const corners_key *keys, size_t count,
+                               size_t *duplicates)
 {
-    bool marked = false;
+    bool dropped = false;
     for (size_t i = 0, j; i < count; i = j) {
-        for (j = i + 1; j < count && same_corners(&keys[j], &keys[i]); j++)
-            ;
-        size_t kept = keys[i].triangle; /* the first in the file: keys sort by triangle last */
-        if (j - i < 2 || drop[kept])
-            continue;
-        for (size_t k = i + 1; k < j; k++) {
+        j = group_end(keys, count, i);
+        size_t kept = SIZE_MAX;
+        for (size_t k = i; k < j; k++) {
             size_t t = keys[k].triangle;
-            if (!drop[t] &&
-                (!back_to_back(p->triangles, kept, t) || doubles_a_face(p, drop, t, kept))) {
-                drop[t] = true;
+            if (p->drop[t])
+                continue;
+            if (kept == SIZE_MAX)
+                kept = t; /* the first in the file: keys sort by triangle last */
+            else if (doubles_a_face(p, t, kept)) {
+                p->drop[t] = true;
                 (*duplicates)++;
-                marked = true;
+                dropped = true;
             }
         }
     }
-    return marked;
+    return dropped;
 }
 
-static void find_duplicates(const flap_search *p, const corners_key *keys, size_t count, bool *drop,
-                            size_t *duplicates)
+/* Flaps and duplicates, once the triangles' edges are listed and sorted. */
+static void find_repeated(const flap_search *p, const corners_key *keys, size_t count,
+                          size_t *flaps, size_t *duplicates)
 {
-    while (mark_copies(p, keys, count, drop, duplicates))
+    drop_same_way(p, keys, count, duplicates);
+    mark_repeated(p, keys, count);
+    find_flaps(p, keys, count, flaps);
+    while (drop_turned_copies(p, keys, count, duplicates))
         ;
 }
 
@@ -201,7 +270,7 @@ ur_status mesh_find_repeated(const size_t (*triangles)[3], size_t count, bool *d
     *flaps = *duplicates = 0;
     memset(drop, 0, count * sizeof *drop);
     corners_key *keys = ur_alloc_array(count, sizeof *keys, error);
-    flap_search p = {triangles, NULL, 0, ur_alloc_array(count, sizeof *p.repeated, error)};
+    flap_search p = {triangles, NULL, 0, ur_alloc_array(count, sizeof *p.repeated, error), drop};
     if (!keys || !p.repeated) {
         free(keys);
         free(p.repeated);
@@ -211,11 +280,8 @@ ur_status mesh_find_repeated(const size_t (*triangles)[3], size_t count, bool *d
         keys[t] = key_of(triangles, t);
     qsort(keys, count, sizeof *keys, compare_keys);
     bool any = false;
-    for (size_t i = 0; i < count; i++) {
-        p.repeated[keys[i].triangle] = (i > 0 && same_corners(&keys[i], &keys[i - 1])) ||
-                                       (i + 1 < count && same_corners(&keys[i], &keys[i + 1]));
-        any = any || p.repeated[keys[i].triangle];
-    }
+    for (size_t i = 1; i < count && !any; i++)
+        any = same_corners(&keys[i], &keys[i - 1]);
     ur_status status = UR_OK;
     if (any) { /* most meshes have no repeated corners: no edges to list */
         p.edges = ur_alloc_array(3 * count, sizeof *p.edges, error);
@@ -227,8 +293,7 @@ ur_status mesh_find_repeated(const size_t (*triangles)[3], size_t count, bool *d
             }
         if (status == UR_OK) {
             qsort(p.edges, p.edge_count, sizeof *p.edges, mesh_compare_edge_keys);
-            find_flaps(&p, keys, count, drop, flaps);
-            find_duplicates(&p, keys, count, drop, duplicates);
+            find_repeated(&p, keys, count, flaps, duplicates);
         }
     }
     free(keys);

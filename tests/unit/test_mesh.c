@@ -674,12 +674,15 @@ static ur_mesh grid_with_extra(size_t a, size_t b2, size_t c, double extra_z)
  * under its chin.  The pair goes, the point with it, and the octahedron
  * is left whole (every edge on two triangles, Euler characteristic 2).
  * Without the flap dropped the edge carries four triangles, and taking
- * the surfaces apart there left the flap a closed surface of its own.
+ * the surfaces apart there left the flap a closed surface of its own.  So
+ * too when all of it is given twice (a modeller's copy in place): the
+ * copies go first, and the flap is found among what is left.
  */
 static void test_clean_drops_flaps(void **state)
 {
     (void)state;
-    for (int turned = 0; turned < 2; turned++) {
+    for (int variant = 0; variant < 3; variant++) {
+        bool turned = variant == 1, doubled = variant == 2;
         ur_mesh base = octahedron();
         builder b = {0};
         add_mesh(&b, &base);
@@ -689,8 +692,15 @@ static void test_clean_drops_flaps(void **state)
         add_triangle(&b, turned ? foot_b : foot_a, turned ? foot_a : foot_b, tip, 0);
         add_triangle(&b, turned ? foot_a : foot_b, turned ? foot_b : foot_a, tip, 0);
         ur_mesh_free(&base);
+        if (doubled) { /* all of it given twice, the same way round: the copies go, then the flap */
+            ur_mesh once = build(&b);
+            add_mesh(&b, &once);
+            add_mesh(&b, &once);
+            ur_mesh_free(&once);
+        }
         ur_mesh mesh = build(&b);
         ur_mesh_repairs repairs = clean(&mesh, 1e-6);
+        assert_int_equal(repairs.duplicates, doubled ? 10 : 0);
         assert_int_equal(repairs.flaps, 1);
         assert_int_equal(repairs.split, 0);
         assert_int_equal(repairs.isolated, 1); /* the tip */
