@@ -189,18 +189,22 @@ static ur_status triangulate_alike(const repeats *r, const ur_vec3 *vertices, co
 }
 
 static ur_status repeats_make(repeats *r, const ur_vec3 *vertices, size_t vertex_count,
-                              size_t triangle_count, size_t face_count, size_t corner_count,
-                              ur_error *error)
+                              size_t face_count, size_t corner_count, ur_error *error)
 {
     r->point = ur_alloc_array(vertex_count, sizeof *r->point, error);
-    r->sides = ur_alloc_array(3 * triangle_count, sizeof *r->sides, error);
     r->faces = ur_alloc_array(face_count, sizeof *r->faces, error);
     r->points = ur_alloc_array(corner_count, sizeof *r->points, error);
-    if (!r->point || !r->sides || !r->faces || !r->points)
+    if (!r->point || !r->faces || !r->points)
         return UR_ERROR_MEMORY;
-    ur_status status = geom_number_points(vertices, vertex_count, r->point, error);
-    if (status != UR_OK)
-        return status;
+    return geom_number_points(vertices, vertex_count, r->point, error);
+}
+
+/* Lists every triangle's sides, sorted: only once some face is found twice. */
+static ur_status list_sides(repeats *r, size_t triangle_count, ur_error *error)
+{
+    r->sides = ur_alloc_array(3 * triangle_count, sizeof *r->sides, error);
+    if (!r->sides)
+        return UR_ERROR_MEMORY;
     for (size_t t = 0; t < triangle_count; t++)
         for (int k = 0; k < 3; k++) {
             size_t a = r->point[r->triangles[t][k]], b = r->point[r->triangles[t][(k + 1) % 3]];
@@ -244,8 +248,7 @@ ur_status io_repeated_faces_alike(const ur_vec3 *vertices, size_t vertex_count,
     for (size_t p = 0; p < polygon_count; p++)
         corner_count += polygon_corners[p];
     repeats r = {.triangles = triangles};
-    ur_status status =
-        repeats_make(&r, vertices, vertex_count, triangle_count, face_count, corner_count, error);
+    ur_status status = repeats_make(&r, vertices, vertex_count, face_count, corner_count, error);
     size_t used = 0;
     for (size_t k = 0; status == UR_OK && k < quad_count; k++)
         add_face(&r, quads[k], 4, triangle_count, &used);
@@ -256,6 +259,8 @@ ur_status io_repeated_faces_alike(const ur_vec3 *vertices, size_t vertex_count,
     for (size_t i = 0, j; status == UR_OK && i < r.face_count; i = j) {
         for (j = i + 1; j < r.face_count && same_points(&r.faces[j], &r.faces[i]); j++)
             ;
+        if (j - i > 1 && !r.sides) /* most files give no face twice: no sides to list */
+            status = list_sides(&r, triangle_count, error);
         for (size_t k = i + 1; status == UR_OK && k < j; k++)
             if (odd_side(&r, &r.faces[k]))
                 status = triangulate_alike(&r, vertices, &r.faces[i], &r.faces[k], error);
