@@ -141,7 +141,7 @@ static bool odd_side(const repeats *r, const face *f)
     return false;
 }
 
-/* Twice the area vector of triangle t: which way it faces. */
+/* Twice the triangle's area vector: which way it faces. */
 static ur_vec3 facing(const ur_vec3 *vertices, const size_t triangle[3])
 {
     ur_vec3 a = vertices[triangle[0]];
@@ -167,8 +167,7 @@ static size_t vertex_at(const repeats *r, const face *f, size_t p)
     return r->triangles[f->start][0];
 }
 
-/* Gives copy the triangles of first, on copy's vertices, turned over when copy faces the other way.
- */
+/* Gives copy the triangles of first, on its own vertices, turned over if it faces the other way. */
 static ur_status triangulate_alike(const repeats *r, const ur_vec3 *vertices, const face *first,
                                    const face *copy, ur_error *error)
 {
