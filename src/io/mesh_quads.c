@@ -14,6 +14,10 @@
  * and the file's split stays: turning those too gave Blender's subdivided
  * monkey head a fifth more pieces.
  *
+ * A face given twice (mesh_repeats.c) counts once: across a side the
+ * quad's own copies are left out and a neighbour's copies count as one,
+ * and a quad and its copy may take the same new diagonal.
+ *
  * The quads are marked on the raw scene, before assimp triangulates it,
  * and found again afterwards (mesh_polygons.c): its triangulation puts a
  * quad's two triangles where the quad was, in order.  Neighbours are found by
@@ -103,26 +107,6 @@ static bool record_is(const edge_record *record, const edge_record *key)
     return record->low == key->low && record->high == key->high;
 }
 
-/*
- * The one triangle across edge ab other than those of the quad (first, second);
- * SIZE_MAX on the rim of the surface or where more than one meet there.
- */
-static size_t neighbour_across(const surface *s, size_t a, size_t b, size_t first, size_t second)
-{
-    edge_record key = edge_of(s, 0, a, b);
-    size_t found = SIZE_MAX;
-    for (size_t k = first_record(s, a, b); k < s->edge_count && record_is(&s->edges[k], &key);
-         k++) {
-        size_t t = s->edges[k].triangle;
-        if (t == first || t == second)
-            continue;
-        if (found != SIZE_MAX)
-            return SIZE_MAX;
-        found = t;
-    }
-    return found;
-}
-
 /* The corner of triangle t that is at neither end of edge ab, by position; SIZE_MAX if none. */
 static size_t far_corner(const surface *s, size_t t, size_t a, size_t b)
 {
@@ -132,6 +116,35 @@ static size_t far_corner(const surface *s, size_t t, size_t a, size_t b)
             return s->triangles[t][k];
     }
     return SIZE_MAX;
+}
+
+/*
+ * The one triangle across edge ab other than those of the quad (first,
+ * second), own being the quad's corner beside ab; SIZE_MAX on the rim of
+ * the surface or where more than one meet there.  A face given twice
+ * (mesh_repeats.c) is one face here: triangles whose far corner is own
+ * are the quad's own copies, and those across with their far corners at
+ * one point count as one.
+ */
+static size_t neighbour_across(const surface *s, size_t a, size_t b, size_t first, size_t second,
+                               size_t own)
+{
+    edge_record key = edge_of(s, 0, a, b);
+    size_t found = SIZE_MAX;
+    for (size_t k = first_record(s, a, b); k < s->edge_count && record_is(&s->edges[k], &key);
+         k++) {
+        size_t t = s->edges[k].triangle;
+        if (t == first || t == second)
+            continue;
+        size_t x = far_corner(s, t, a, b);
+        if (x == SIZE_MAX || s->position[x] == s->position[own])
+            continue;
+        if (found != SIZE_MAX && s->position[far_corner(s, found, a, b)] != s->position[x])
+            return SIZE_MAX;
+        if (found == SIZE_MAX)
+            found = t;
+    }
+    return found;
 }
 
 /* ---- The fold of an edge --------------------------------------------------- */
@@ -179,7 +192,7 @@ static int bend_around(const surface *s, size_t first, size_t second, const size
     int valleys = 0, hills = 0;
     for (int k = 0; k < 4; k++) {
         size_t a = corner[sides[k][0]], b = corner[sides[k][1]], c = corner[sides[k][2]];
-        size_t across = neighbour_across(s, a, b, first, second);
+        size_t across = neighbour_across(s, a, b, first, second, c);
         size_t x = across == SIZE_MAX ? SIZE_MAX : far_corner(s, across, a, b);
         if (x == SIZE_MAX)
             continue;
@@ -253,10 +266,21 @@ static int compare_turns(const void *a, const void *b)
     return compare_edges(&((const turn *)a)->diagonal, &((const turn *)b)->diagonal);
 }
 
+/* Whether two turns are of quads on the same corners, by position: a face given twice. */
+static bool same_quad(const surface *s, const turn *a, const turn *b)
+{
+    size_t found = 0;
+    for (int i = 0; i < 4; i++)
+        for (int k = 0; k < 4; k++)
+            found += s->position[a->corner[i]] == s->position[b->corner[k]];
+    return found == 4;
+}
+
 /*
  * Whether turn k of the sorted turns may go ahead: its new diagonal is no
  * edge yet (at a corner of three faces it would make two triangles on the
- * same corners) and no other quad's new diagonal.
+ * same corners) and no other quad's new diagonal, but that of a copy of
+ * the quad (a face given twice, whose copy the cleaning drops).
  */
 static bool turn_allowed(const surface *s, const turn *turns, size_t count, size_t k)
 {
@@ -264,8 +288,13 @@ static bool turn_allowed(const surface *s, const turn *turns, size_t count, size
     size_t record = first_record(s, turns[k].corner[1], turns[k].corner[3]);
     if (record < s->edge_count && record_is(&s->edges[record], d))
         return false;
-    return !(k > 0 && record_is(&turns[k - 1].diagonal, d)) &&
-           !(k + 1 < count && record_is(&turns[k + 1].diagonal, d));
+    for (size_t i = k; i-- > 0 && record_is(&turns[i].diagonal, d);)
+        if (!same_quad(s, &turns[i], &turns[k]))
+            return false;
+    for (size_t i = k + 1; i < count && record_is(&turns[i].diagonal, d); i++)
+        if (!same_quad(s, &turns[i], &turns[k]))
+            return false;
+    return true;
 }
 
 ur_status io_quads_follow_surface(const ur_vec3 *vertices, size_t vertex_count,

@@ -419,14 +419,19 @@ static void test_twisted_quads_follow_the_surface(void **state)
     }
 }
 
-/* Whether triangles t and o have their corners at the same three points, in any order. */
-static bool same_corners(const ur_mesh *mesh, size_t t, size_t o)
+/* Whether triangle t of a and o of b have their corners at the same three points, in any order. */
+static bool same_corners_of(const ur_mesh *a, size_t t, const ur_mesh *b, size_t o)
 {
     int matched = 0;
     for (int j = 0; j < 3; j++)
         for (int k = 0; k < 3; k++)
-            matched += same_point(corner(mesh, t, j), corner(mesh, o, k));
+            matched += same_point(corner(a, t, j), corner(b, o, k));
     return matched == 3;
+}
+
+static bool same_corners(const ur_mesh *mesh, size_t t, size_t o)
+{
+    return same_corners_of(mesh, t, mesh, o);
 }
 
 /* Whether some triangle of the quad (first, first + 1) has the corners of triangle t. */
@@ -499,6 +504,35 @@ static void test_face_given_twice_split_alike(void **state)
     assert_int_equal(mesh.triangle_count, 4);
     assert_false(in_quad(&mesh, 0, 2) || in_quad(&mesh, 0, 3));
     free_mesh(&mesh);
+}
+
+/*
+ * The dome's quads each given twice, as a modeller's copy in place leaves
+ * them: each copy is split along the diagonal its quad turns to, so that
+ * the cleaning drops it, and the quads turn as they do given once.  Seen
+ * twice across each side, the neighbours counted as two, and no quad was
+ * turned (Blender's monkey head doubled: 9 pieces, against 14 once).
+ */
+static void test_twisted_quads_given_twice(void **state)
+{
+    (void)state;
+    char text[4096];
+    write_twisted_grid(text, sizeof text, -1);
+    ur_mesh once = {0}, twice = {0};
+    import_ok(write_file("dome-once.obj", text), NULL, &once, NULL);
+    const char *faces = strstr(text, "f ");
+    assert_non_null(faces);
+    size_t length = strlen(text);
+    assert_true(2 * length < sizeof text);
+    memcpy(text + length, faces, strlen(faces) + 1); /* the faces again, on the same vertices */
+    import_ok(write_file("dome-twice.obj", text), NULL, &twice, NULL);
+    assert_int_equal(once.triangle_count, 18);
+    assert_int_equal(twice.triangle_count, 36);
+    for (size_t t = 0; t < 18; t++) /* the faces' triangles in the file's order, each time */
+        if (!same_corners_of(&once, t, &twice, t) || !same_corners_of(&once, t, &twice, t + 18))
+            fail_msg("triangle %zu: split otherwise given twice", t);
+    free_mesh(&once);
+    free_mesh(&twice);
 }
 
 /* ---- Flat polygons ----------------------------------------------------- */
@@ -957,6 +991,7 @@ int main(void)
         cmocka_unit_test(test_flat_polygons_have_no_slivers),
         cmocka_unit_test(test_concave_flat_polygon_triangulated_inside),
         cmocka_unit_test(test_face_given_twice_split_alike),
+        cmocka_unit_test(test_twisted_quads_given_twice),
         cmocka_unit_test(test_unit_names),
         cmocka_unit_test(test_units_and_scale_multiply),
         cmocka_unit_test(test_missing_file),
