@@ -1372,6 +1372,15 @@ def fin_on_a_plate_is_kept_apart_and_said(work):
     close(report(work, "f.json")["surface_area_mm2"], 100 * 100 + 100 * 160, 1e-12, "area")
 
 
+def cube_obj(low, high):
+    """An OBJ cube from (low, low, low) to (high, high, high): its eight
+    corners, x fastest, and its six quads facing out."""
+    corners = [(x, y, z) for z in (low, high) for y in (low, high) for x in (low, high)]
+    faces = [(1, 3, 4, 2), (5, 6, 8, 7), (1, 2, 6, 5), (3, 7, 8, 4), (1, 5, 7, 3), (2, 4, 8, 6)]
+    return "".join("v %d %d %d\n" % c for c in corners) + \
+        "".join("f %d %d %d %d\n" % f for f in faces)
+
+
 @test
 def flap_of_no_thickness_is_dropped(work):
     # A 50 mm cube with a flap on one edge: two triangles back to back on
@@ -1379,10 +1388,7 @@ def flap_of_no_thickness_is_dropped(work):
     # under its chin).  Before, the edge's four triangles were taken apart
     # and the flap came out as a piece of its own.  Now it is dropped, with a
     # note, and the net is the cube's: its area, its pieces, no warning.
-    corners = [(x, y, z) for z in (0, 50) for y in (0, 50) for x in (0, 50)]
-    faces = [(1, 3, 4, 2), (5, 6, 8, 7), (1, 2, 6, 5), (3, 7, 8, 4), (1, 5, 7, 3), (2, 4, 8, 6)]
-    cube = "".join("v %d %d %d\n" % c for c in corners) + \
-        "".join("f %d %d %d %d\n" % f for f in faces)
+    cube = cube_obj(0, 50)
     write(work, "cube.obj", cube)
     write(work, "flap.obj", cube + "v 25 -30 -30\nf 1 2 9\nf 2 1 9\n")
     plain = run(work, "mesh", "cube.obj", "--flatten", "unfold", "--material", "paper-0.3mm",
@@ -1406,10 +1412,7 @@ def face_given_twice_is_dropped(work):
     # the other diagonal).  Before, both were refused: "non-manifold edge
     # between vertices 5 and 6 (3 triangles)".  Now the copy is dropped,
     # with a note, and the net is the cube's: its area and its pieces.
-    corners = [(x, y, z) for z in (0, 50) for y in (0, 50) for x in (0, 50)]
-    faces = [(1, 3, 4, 2), (5, 6, 8, 7), (1, 2, 6, 5), (3, 7, 8, 4), (1, 5, 7, 3), (2, 4, 8, 6)]
-    cube = "".join("v %d %d %d\n" % c for c in corners) + \
-        "".join("f %d %d %d %d\n" % f for f in faces)
+    cube = cube_obj(0, 50)
     top = "".join("v %d %d 50\n" % (x, y) for x, y in ((0, 0), (50, 0), (50, 50), (0, 50)))
     write(work, "cube.obj", cube)
     write(work, "same.obj", cube + top + "f 9 10 11 12\n")
@@ -1434,10 +1437,7 @@ def face_given_twice_is_dropped(work):
 @test
 def mesh_in_metres_gets_a_warning(work):
     # A 2-unit cube, as Blender exports its default cube (metres).
-    corners = [(x, y, z) for z in (-1, 1) for y in (-1, 1) for x in (-1, 1)]
-    faces = [(1, 3, 4, 2), (5, 6, 8, 7), (1, 2, 6, 5), (3, 7, 8, 4), (1, 5, 7, 3), (2, 4, 8, 6)]
-    write(work, "cube.obj", "".join("v %d %d %d\n" % c for c in corners) +
-          "".join("f %d %d %d %d\n" % f for f in faces))
+    write(work, "cube.obj", cube_obj(-1, 1))
     result = run(work, "mesh", "cube.obj", "--flatten", "unfold", "--material", "paper-0.3mm",
                  "-o", "c.svg")
     check(re.search(r"only 2 mm across.*--units m \(2000 mm\).*--units in \(50\.8 mm\)",
