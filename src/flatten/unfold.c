@@ -130,6 +130,7 @@ static ur_status restart(unfolder *u, ur_error *error)
         island->failed_with = UNFOLD_NONE;
         island->failures = 0;
         island->layout = unfold_triangle_key(t);
+        island->lowest = t;
         for (int k = 0; k < 3; k++) {
             u->flat[t][k] = u->faces.home[t][k];
             u->joined[3 * t + (size_t)k] = false;
@@ -371,6 +372,8 @@ static ur_status unfolder_init(unfolder *u, const ur_mesh *mesh, const ur_seam *
         status = unfold_grid_init(&u->grid, mesh->triangle_count, u->edges.mean_edge, error);
     if (status == UR_OK)
         status = unfold_outcomes_init(u, error);
+    if (status == UR_OK)
+        status = unfold_kept_hulls_init(u, error);
     return status;
 }
 
@@ -397,6 +400,7 @@ static void unfolder_free(unfolder *u)
     free(u->hull_chain);
     free(u->home_circles);
     free(u->outcomes);
+    unfold_kept_hulls_free(u);
     unfold_grid_free(&u->grid);
 }
 

@@ -240,6 +240,7 @@ typedef struct unfold_island {
     /* the piece it last failed to join as the smaller one, that piece's size then, how often */
     size_t failed_with, failed_size, failures;
     uint64_t layout; /* what the piece is made of (see unfold_lay.c's join_key) */
+    size_t lowest;   /* its triangle of the lowest number: where a kept hull is laid from */
     bool gridded;    /* its triangles are in the grid where they lie */
     /* the pieces whose hulls are still to be merged into hull (unfold_lay.c's defer_hull) */
     size_t absorbed_first, absorbed_last;
@@ -299,6 +300,8 @@ typedef struct unfolder {
     size_t culprits[UNFOLD_CULPRITS];  /* the triangles that stopped the last joins */
     uint64_t *outcomes;  /* joins already judged, by join_key (unfold_lay.c), over all runs */
     size_t outcome_mask; /* slots - 1 */
+    struct unfold_kept_hull *kept_hulls; /* pieces' hulls by their layout keys, over all runs */
+    size_t kept_mask;                    /* slots - 1 */
     /*
      * The last pass of the last run (tabs_to_twins): a join may leave a
      * slit narrower than the gap when both its edges can give their tabs to
@@ -331,6 +334,10 @@ static inline uint64_t unfold_triangle_key(size_t t)
 
 /* Room for the outcomes of joins, the slots of unfolder.outcomes. */
 ur_status unfold_outcomes_init(unfolder *u, ur_error *error);
+
+/* Room for the hulls kept over the runs when the room is limited (unfold_lay.c); and its end. */
+ur_status unfold_kept_hulls_init(unfolder *u, ur_error *error);
+void unfold_kept_hulls_free(unfolder *u);
 
 /* The union-find root of corner c (with path halving). */
 size_t unfold_find(unfolder *u, size_t corner);

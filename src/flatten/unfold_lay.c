@@ -496,9 +496,10 @@ static unfold_circle joined_circle(const unfolder *u, const unfold_motion *m, si
     return unfold_circle_join(u, moved, u->islands[large].circle);
 }
 
-static ur_status keep_hull(unfolder *u, size_t large, size_t count, ur_error *error)
+/* Sets piece p's hull to count points (room made for them as needed). */
+static ur_status set_hull(unfold_island *island, const ur_vec2 *points, size_t count,
+                          ur_error *error)
 {
-    unfold_island *island = &u->islands[large];
     if (count > island->hull_capacity) {
         ur_vec2 *grown = realloc(island->hull, 2 * count * sizeof *grown);
         if (!grown)
@@ -506,10 +507,14 @@ static ur_status keep_hull(unfolder *u, size_t large, size_t count, ur_error *er
         island->hull = grown;
         island->hull_capacity = 2 * count;
     }
-    for (size_t i = 0; i < count; i++)
-        island->hull[i] = u->hull_points[i];
+    memcpy(island->hull, points, count * sizeof *points);
     island->hull_count = count;
     return UR_OK;
+}
+
+static ur_status keep_hull(unfolder *u, size_t large, size_t count, ur_error *error)
+{
+    return set_hull(&u->islands[large], u->hull_points, count, error);
 }
 
 /* ---- the outcomes of joins, remembered over the runs ---- */
@@ -637,6 +642,7 @@ static ur_status commit(unfolder *u, const unfold_motion *m, size_t small, size_
             return status;
     }
     b->layout ^= a->layout ^ joined_key(u);
+    b->lowest = a->lowest < b->lowest ? a->lowest : b->lowest;
     if (u->room)
         b->circle = joined_circle(u, m, small, large);
     u->next_member[b->last] = a->first;
@@ -649,6 +655,112 @@ static ur_status commit(unfolder *u, const unfold_motion *m, size_t small, size_
     a->triangle_count = 0;
     a->first = a->last = UNFOLD_NONE;
     return UR_OK;
+}
+
+/* ---- hulls kept over the runs ---- */
+
+/*
+ * Bringing a piece's hull up to date merges in turn the hulls of the
+ * pieces it took in (unfold_update_hull), and most runs make the same
+ * pieces as the last: a fifth of a search's time went in merging the
+ * same hulls again.  A piece's hull is kept under its layout key, which
+ * fixes the piece up to a motion (see join_key), with where its lowest
+ * triangle lay; found again, it is moved to where that triangle lies now.
+ * A slot holds the last hull kept there.  Not in the last run, which
+ * judges everything itself.
+ */
+#define KEPT_HULLS_MOST ((size_t)1 << 14)
+
+typedef struct unfold_kept_hull {
+    uint64_t layout;
+    ur_vec2 at[2]; /* two corners of the piece's lowest triangle, as the hull was kept */
+    ur_vec2 *points;
+    size_t count, capacity; /* count 0: an empty slot */
+} unfold_kept_hull;
+
+ur_status unfold_kept_hulls_init(unfolder *u, ur_error *error)
+{
+    if (!u->room)
+        return UR_OK;
+    size_t slots = 1024; /* a piece's hull is kept when brought up to date: a few per join */
+    while (slots < 4 * u->mesh->triangle_count && slots < KEPT_HULLS_MOST)
+        slots *= 2;
+    u->kept_hulls = calloc(slots, sizeof *u->kept_hulls);
+    if (!u->kept_hulls)
+        return ur_error_out_of_memory(error);
+    u->kept_mask = slots - 1;
+    return UR_OK;
+}
+
+void unfold_kept_hulls_free(unfolder *u)
+{
+    for (size_t k = 0; u->kept_hulls && k <= u->kept_mask; k++)
+        free(u->kept_hulls[k].points);
+    free(u->kept_hulls);
+    u->kept_hulls = NULL;
+}
+
+static unfold_kept_hull *kept_slot(const unfolder *u, uint64_t layout)
+{
+    return &u->kept_hulls[(layout >> 3) & u->kept_mask];
+}
+
+/* Keeps piece p's hull, up to date, for the runs to come. */
+static ur_status keep_for_later(unfolder *u, size_t p, ur_error *error)
+{
+    if (!u->kept_hulls || u->last_run)
+        return UR_OK;
+    const unfold_island *island = &u->islands[p];
+    unfold_kept_hull *slot = kept_slot(u, island->layout);
+    if (island->hull_count > slot->capacity) {
+        ur_vec2 *grown = realloc(slot->points, 2 * island->hull_count * sizeof *grown);
+        if (!grown)
+            return ur_error_out_of_memory(error);
+        slot->points = grown;
+        slot->capacity = 2 * island->hull_count;
+    }
+    memcpy(slot->points, island->hull, island->hull_count * sizeof *slot->points);
+    slot->count = island->hull_count;
+    slot->layout = island->layout;
+    slot->at[0] = u->flat[island->lowest][0];
+    slot->at[1] = u->flat[island->lowest][1];
+    return UR_OK;
+}
+
+/* The motion that takes a to b and the direction a0 -> a1 to b0 -> b1. */
+static unfold_motion motion_between(const ur_vec2 a[2], ur_vec2 b0, ur_vec2 b1)
+{
+    ur_vec2 d = ur_vec2_sub(a[1], a[0]), e = ur_vec2_sub(b1, b0);
+    double lengths = ur_vec2_length(d) * ur_vec2_length(e);
+    return (unfold_motion){.cos = ur_vec2_dot(d, e) / lengths,
+                           .sin = ur_vec2_cross(d, e) / lengths,
+                           .from = a[0],
+                           .to = b0};
+}
+
+/*
+ * Sets piece p's hull from the one kept under its layout key, moved to
+ * where the piece lies, and forgets the hulls still to merge; *found says
+ * whether one was kept.
+ */
+static ur_status recall_hull(unfolder *u, size_t p, bool *found, ur_error *error)
+{
+    *found = false;
+    unfold_island *island = &u->islands[p];
+    const unfold_kept_hull *slot =
+        u->kept_hulls && !u->last_run ? kept_slot(u, island->layout) : NULL;
+    if (!slot || slot->count == 0 || slot->layout != island->layout)
+        return UR_OK;
+    const ur_vec2 *now = u->flat[island->lowest];
+    unfold_motion m = motion_between(slot->at, now[0], now[1]);
+    for (size_t i = 0; i < slot->count; i++)
+        u->hull_points[i] = unfold_move(&m, slot->points[i]);
+    ur_status status = set_hull(island, u->hull_points, slot->count, error);
+    if (status == UR_OK) {
+        island->absorbed_first = island->absorbed_last = UNFOLD_NONE;
+        *found = true;
+    }
+    return status;
 }
 
 /*
@@ -677,11 +789,12 @@ static void defer_hull(unfolder *u, const unfold_motion *m, size_t small, size_t
  * Each piece on the list is at most half as large as the piece it joined,
  * so that the lists nest at most log2(triangles) deep.
  */
-ur_status unfold_update_hull(unfolder *u, size_t p, ur_error *error)
+/* Merges the hulls on piece p's list into its own, each brought up to date first. */
+static ur_status merge_absorbed(unfolder *u, size_t p, ur_error *error)
 {
     while (u->islands[p].absorbed_first != UNFOLD_NONE) {
         size_t a = u->islands[p].absorbed_first;
-        ur_status status = unfold_update_hull(u, a, error);
+        ur_status status = merge_absorbed(u, a, error);
         if (status != UR_OK)
             return status;
         u->islands[p].absorbed_first = u->islands[a].absorbed_next;
@@ -692,6 +805,19 @@ ur_status unfold_update_hull(unfolder *u, size_t p, ur_error *error)
     }
     u->islands[p].absorbed_last = UNFOLD_NONE;
     return UR_OK;
+}
+
+ur_status unfold_update_hull(unfolder *u, size_t p, ur_error *error)
+{
+    if (u->islands[p].absorbed_first == UNFOLD_NONE)
+        return UR_OK;
+    bool found;
+    ur_status status = recall_hull(u, p, &found, error);
+    if (status == UR_OK && !found)
+        status = merge_absorbed(u, p, error);
+    if (status == UR_OK && !found)
+        status = keep_for_later(u, p, error);
+    return status;
 }
 
 /* The pairs the join joins, and inside a face its slits. */
@@ -808,12 +934,16 @@ ur_status unfold_try_join(unfolder *u, size_t h, bool *joined, ur_error *error)
         count_failure(u, small, large);
     if (outcome != OUTCOME_FITS)
         return UR_OK;
-    if (u->room && hull_count > 0) {
+    bool judged_hull = u->room && hull_count > 0;
+    if (judged_hull) {
         ur_status status = keep_hull(u, large, hull_count, error);
         if (status != UR_OK)
             return status;
     } else if (u->room)
         defer_hull(u, &m, small, large);
     *joined = true;
-    return commit(u, &m, small, large, error);
+    ur_status status = commit(u, &m, small, large, error);
+    if (status == UR_OK && judged_hull) /* the joined piece's, under its new key */
+        status = keep_for_later(u, large, error);
+    return status;
 }
