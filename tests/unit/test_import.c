@@ -524,7 +524,7 @@ static void test_twisted_quads_given_twice(void **state)
     assert_non_null(faces);
     size_t length = strlen(text);
     assert_true(2 * length < sizeof text);
-    memcpy(text + length, faces, strlen(faces) + 1); /* the faces again, on the same vertices */
+    memmove(text + length, faces, strlen(faces) + 1); /* the faces again, on the same vertices */
     import_ok(write_file("dome-twice.obj", text), NULL, &twice, NULL);
     assert_int_equal(once.triangle_count, 18);
     assert_int_equal(twice.triangle_count, 36);
