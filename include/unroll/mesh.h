@@ -64,8 +64,9 @@ typedef struct ur_mesh_repairs {
  * their edges with two triangles or none, and one edge with two (Blender's
  * monkey head has one under its chin).  A face given twice (two triangles
  * on the same corners the same way round, or the other way round where an
- * edge of theirs carries an odd number of triangles) keeps its first
- * triangle in the input; a sheet with a face on each side is kept whole.
+ * edge of theirs carries an odd number of triangles and at most one, on
+ * the rim, carries the two alone) keeps its first triangle in the input;
+ * a sheet with a face on each side is kept whole.
  * Refuses (UR_ERROR_INPUT, naming a vertex) NaN or infinite coordinates, a
  * mesh with no triangles left, and non-manifold edges (three or more
  * triangles on one edge), which cannot be repaired safely.  An edge that

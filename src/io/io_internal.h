@@ -121,9 +121,10 @@ ur_status io_quads_follow_surface(const ur_vec3 *vertices, size_t vertex_count,
 /*
  * Gives each face (a quad: two triangles from quads[k]; a polygon:
  * polygon_corners[k] - 2 from polygon_starts[k]) on the same corners, by
- * position, as an earlier one, with a side on an odd number of triangles,
- * the earlier one's triangulation (mesh_repeats.c): a face given twice,
- * whose copy the mesh's cleaning then drops.  Fails only when out of memory.
+ * position, as an earlier one, with a side on an odd number of triangles
+ * besides those of the faces on those corners, the earlier one's
+ * triangulation (mesh_repeats.c): a face given twice, whose copy the
+ * mesh's cleaning then drops.  Fails only when out of memory.
  */
 ur_status io_repeated_faces_alike(const ur_vec3 *vertices, size_t vertex_count,
                                   size_t (*triangles)[3], size_t triangle_count,

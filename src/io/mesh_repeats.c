@@ -13,12 +13,14 @@
  * triangles, and the mesh was refused or kept apart there.
  *
  * Faces are told by the points of their corners.  A face on the same
- * corners as an earlier one, with a side on an odd number of triangles (a
- * face doubled inside a surface), takes the earlier one's triangles, on
- * its own vertices and running its own way round.  A sheet with a face on
- * each side has two or four triangles on every side, and keeps its two
- * triangulations: the same one would join its sides round their rim, and
- * taking them apart would then cut each in pieces.
+ * corners as an earlier one, with a side on an odd number of triangles
+ * besides those of the faces on those corners (a face doubled, or given
+ * three times, in a surface: one neighbour across), takes the earlier
+ * one's triangles, on its own vertices and running its own way round.  A
+ * sheet with a face on each side has two neighbours across each side, or
+ * none on its rim, and keeps its two triangulations: the same one would
+ * join its sides round their rim, and taking them apart would then cut
+ * each in pieces.
  */
 #include "io_internal.h"
 #include "../geom/points.h"
@@ -129,13 +131,16 @@ static bool on_outline(const repeats *r, const face *f, size_t t, size_t a, size
     return true;
 }
 
-/* Whether a side of the face carries an odd number of triangles. */
-static bool odd_side(const repeats *r, const face *f)
+/*
+ * Whether a side of the face carries an odd number of triangles besides
+ * those of the copies faces on its corners (each has one on each side).
+ */
+static bool odd_side(const repeats *r, const face *f, size_t copies)
 {
     for (size_t t = f->start; t < f->start + f->corners - 2; t++)
         for (int k = 0; k < 3; k++) {
             size_t a = r->point[r->triangles[t][k]], b = r->point[r->triangles[t][(k + 1) % 3]];
-            if (on_outline(r, f, t, a, b) && triangles_on(r, a, b) % 2 == 1)
+            if (on_outline(r, f, t, a, b) && (triangles_on(r, a, b) - copies) % 2 == 1)
                 return true;
         }
     return false;
@@ -261,7 +266,7 @@ ur_status io_repeated_faces_alike(const ur_vec3 *vertices, size_t vertex_count,
         if (j - i > 1 && !r.sides) /* most files give no face twice: no sides to list */
             status = list_sides(&r, triangle_count, error);
         for (size_t k = i + 1; status == UR_OK && k < j; k++)
-            if (odd_side(&r, &r.faces[k]))
+            if (odd_side(&r, &r.faces[k], j - i))
                 status = triangulate_alike(&r, vertices, &r.faces[i], &r.faces[k], error);
     }
     repeats_free(&r);

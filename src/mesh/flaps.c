@@ -20,12 +20,12 @@
  * triangles on the same corners the first in the file stays; another
  * goes when it runs the same way round (two faces facing the same way on
  * the same corners are never both meant), or when it runs the other way
- * inside a surface: one of its edges carries an odd number of triangles
+ * in a surface: one of its edges carries an odd number of triangles
  * (counted again as copies go, so that those of a face of many
- * triangles go from its rim inwards), and none carries the two alone.  A
- * sheet with a face on each side has two or four on every edge, and a
- * flap on a sheet's rim carries the two alone on its folds: both are left
- * as they were.
+ * triangles go from its rim inwards), and at most one (on the surface's
+ * rim) carries the two alone.  A sheet with a face on each side has two
+ * or four on every edge, and a flap on a sheet's rim carries the two
+ * alone on both its folds: both are left as they were.
  */
 #include "mesh_internal.h"
 
@@ -200,15 +200,16 @@ static void find_flaps(const flap_search *p, const corners_key *keys, size_t cou
 
 /*
  * Whether triangle t, back to back with kept on the same corners, doubles
- * a face inside a surface: an edge of theirs carries an odd number of the
- * triangles not dropped, and each carries some triangle besides the two.
- * A flap on the rim of a sheet (its foot on three triangles) has edges
- * that carry the two alone, its folds; it is not a face given twice, and
- * stays.
+ * a face of a surface: an edge of theirs carries an odd number of the
+ * triangles not dropped, and at most one carries the two alone (the rim
+ * of an open surface).  A flap standing on the rim of a sheet (its foot
+ * on three triangles) has two edges that carry the two alone, its folds;
+ * it is not a face given twice, and stays.
  */
 static bool doubles_a_face(const flap_search *p, size_t t, size_t kept)
 {
     bool odd = false;
+    int alone = 0;
     for (int k = 0; k < 3; k++) {
         size_t from, to = edge_range(p, t, k, &from), on = 0, others = 0;
         for (size_t i = from; i < to; i++) {
@@ -216,11 +217,10 @@ static bool doubles_a_face(const flap_search *p, size_t t, size_t kept)
             on += !p->drop[u];
             others += !p->drop[u] && u != t && u != kept;
         }
-        if (others == 0)
-            return false;
+        alone += others == 0;
         odd = odd || on % 2 == 1;
     }
-    return odd;
+    return odd && alone <= 1;
 }
 
 /*

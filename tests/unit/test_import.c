@@ -446,8 +446,8 @@ static bool in_quad(const ur_mesh *mesh, size_t first, size_t t)
  * extrusion of no length leaves it).  assimp splits the copy along the
  * other diagonal; it comes out split as the top is, each of its triangles
  * on a triangle of the top's corners, so that the mesh's cleaning can drop
- * it; so does an octagonal prism's top (mesh_polygons.c's Delaunay
- * triangulation).  A square sheet with a face on each side keeps assimp's split, the
+ * it; so do a third copy, and an octagonal prism's top (mesh_polygons.c's
+ * Delaunay triangulation).  A square sheet with a face on each side keeps assimp's split, the
  * two faces' triangles on different corners: the same split would join
  * its two sides round their rim.
  */
@@ -466,6 +466,15 @@ static void test_face_given_twice_split_alike(void **state)
     assert_true(area_vector(&mesh, top).z > 0);
     assert_true(area_vector(&mesh, copy).z < 0 && area_vector(&mesh, copy + 1).z < 0);
     assert_true(in_quad(&mesh, top, copy) && in_quad(&mesh, top, copy + 1));
+    free_mesh(&mesh);
+
+    /* The top given three times: its sides then carry four triangles, still one neighbour. */
+    char thrice[512];
+    snprintf(thrice, sizeof thrice, "%sf 9 10 11 12\n", cube);
+    import_ok(write_file("tripled.obj", thrice), NULL, &mesh, NULL);
+    assert_int_equal(mesh.triangle_count, 16);
+    for (copy = 12; copy < 16; copy++)
+        assert_true(in_quad(&mesh, top, copy));
     free_mesh(&mesh);
 
     /*

@@ -776,6 +776,53 @@ static void test_clean_drops_faces_given_twice(void **state)
 }
 
 /*
+ * A face given twice on the rim of an open surface: a triangle of a 3 x 3
+ * grid with one edge on its rim, added again the other way round.  That
+ * edge carries the two alone, as a flap's folds do on a sheet's rim; the
+ * others carry three and four.  The copy goes, and the grid is as it was;
+ * given three times (once more the same way), both copies go.  The build
+ * before this case's rule refused it ("non-manifold edge").
+ */
+static void test_clean_drops_a_face_given_twice_on_the_rim(void **state)
+{
+    (void)state;
+    for (int times = 2; times <= 3; times++) {
+        ur_mesh base = grid(3, 3);
+        size_t *twins;
+        ur_error error;
+        assert_int_equal(ur_mesh_twins(&base, &twins, &error), UR_OK);
+        size_t rim_one = SIZE_MAX;
+        for (size_t t = 0; t < base.triangle_count && rim_one == SIZE_MAX; t++) {
+            int rim = 0;
+            for (int k = 0; k < 3; k++)
+                rim += twins[3 * t + (size_t)k] == UR_NO_EDGE;
+            if (rim == 1)
+                rim_one = t;
+        }
+        free(twins);
+        assert_int_not_equal(rim_one, SIZE_MAX);
+        topology before = topology_of(&base);
+        builder b = {0};
+        add_mesh(&b, &base);
+        const size_t *t = base.triangles[rim_one];
+        add_triangle(&b, t[0], t[2], t[1], 1);
+        if (times == 3)
+            add_triangle(&b, t[0], t[1], t[2], 1);
+        size_t count = base.triangle_count;
+        ur_mesh_free(&base);
+        ur_mesh mesh = build(&b);
+        ur_mesh_repairs repairs = clean(&mesh, 1e-6);
+        assert_int_equal(repairs.duplicates, (size_t)times - 1);
+        assert_int_equal(repairs.split, 0);
+        assert_int_equal(mesh.triangle_count, count);
+        topology after = topology_of(&mesh);
+        assert_int_equal(after.boundary_edges, before.boundary_edges);
+        assert_int_equal(after.euler, before.euler);
+        ur_mesh_free(&mesh);
+    }
+}
+
+/*
  * What is not a flap stays: a sheet modelled with a face on each side (a
  * grid and the same grid turned over: pairs side by side, and taking them
  * would take the sheet; its two sides come apart as two surfaces, as
@@ -1553,6 +1600,7 @@ int main(void)
         cmocka_unit_test(test_clean_refuses),
         cmocka_unit_test(test_clean_drops_flaps),
         cmocka_unit_test(test_clean_drops_faces_given_twice),
+        cmocka_unit_test(test_clean_drops_a_face_given_twice_on_the_rim),
         cmocka_unit_test(test_clean_keeps_what_is_no_flap),
         cmocka_unit_test(test_clean_unwelds_touching_parts),
         cmocka_unit_test(test_clean_splits_surfaces_touching_along_an_edge),
