@@ -662,12 +662,11 @@ static ur_status commit(unfolder *u, const unfold_motion *m, size_t small, size_
 /*
  * Bringing a piece's hull up to date merges in turn the hulls of the
  * pieces it took in (unfold_update_hull), and most runs make the same
- * pieces as the last: a fifth of a search's time went in merging the
- * same hulls again.  A piece's hull is kept under its layout key, which
- * fixes the piece up to a motion (see join_key), with where its lowest
- * triangle lay; found again, it is moved to where that triangle lies now.
- * A slot holds the last hull kept there.  Not in the last run, which
- * judges everything itself.
+ * pieces as the last: a quarter of the bench's 48 x 24 sphere's run
+ * without tabs went in merging the same hulls again.  A piece's hull is kept under its layout key,
+ * which fixes the piece up to a motion (see join_key), with where its lowest triangle lay; found
+ * again, it is moved to where that triangle lies now. A slot holds the last hull kept there.  Not
+ * in the last run, which judges everything itself.
  */
 #define KEPT_HULLS_MOST ((size_t)1 << 14)
 
@@ -786,10 +785,10 @@ static void defer_hull(unfolder *u, const unfold_motion *m, size_t small, size_t
 }
 
 /*
- * Each piece on the list is at most half as large as the piece it joined,
- * so that the lists nest at most log2(triangles) deep.
+ * Merges the hulls on piece p's list into its own, each brought up to
+ * date first.  Each piece on the list is at most half as large as the
+ * piece it joined, so that the lists nest at most log2(triangles) deep.
  */
-/* Merges the hulls on piece p's list into its own, each brought up to date first. */
 static ur_status merge_absorbed(unfolder *u, size_t p, ur_error *error)
 {
     while (u->islands[p].absorbed_first != UNFOLD_NONE) {
