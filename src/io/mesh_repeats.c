@@ -131,19 +131,38 @@ static bool on_outline(const repeats *r, const face *f, size_t t, size_t a, size
     return true;
 }
 
-/*
- * Whether a side of the face carries an odd number of triangles besides
- * those of the copies faces on its corners (each has one on each side).
- */
-static bool odd_side(const repeats *r, const face *f, size_t copies)
+/* Whether the points a, b are the ends of one of face f's sides. */
+static bool side_of(const repeats *r, const face *f, size_t a, size_t b)
 {
     for (size_t t = f->start; t < f->start + f->corners - 2; t++)
         for (int k = 0; k < 3; k++) {
-            size_t a = r->point[r->triangles[t][k]], b = r->point[r->triangles[t][(k + 1) % 3]];
-            if (on_outline(r, f, t, a, b) && (triangles_on(r, a, b) - copies) % 2 == 1)
+            size_t c = r->point[r->triangles[t][k]], d = r->point[r->triangles[t][(k + 1) % 3]];
+            if (((c == a && d == b) || (c == b && d == a)) && on_outline(r, f, t, c, d))
                 return true;
         }
     return false;
+}
+
+/*
+ * Whether face g is a copy of face f: on the same corners, with the same
+ * sides (not a bow tie drawn through them), one of which carries an odd
+ * number of triangles besides those of the copies faces on those corners
+ * (each has one on each side).
+ */
+static bool copy_to_split_alike(const repeats *r, const face *f, const face *g, size_t copies)
+{
+    bool odd = false;
+    for (size_t t = g->start; t < g->start + g->corners - 2; t++)
+        for (int k = 0; k < 3; k++) {
+            size_t a = r->point[r->triangles[t][k]], b = r->point[r->triangles[t][(k + 1) % 3]];
+            if (!on_outline(r, g, t, a, b))
+                continue;
+            if (!side_of(r, f, a, b))
+                return false;
+            size_t on = triangles_on(r, a, b);
+            odd = odd || (on > copies && (on - copies) % 2 == 1);
+        }
+    return odd;
 }
 
 /* Twice the triangle's area vector: which way it faces. */
@@ -266,7 +285,7 @@ ur_status io_repeated_faces_alike(const ur_vec3 *vertices, size_t vertex_count,
         if (j - i > 1 && !r.sides) /* most files give no face twice: no sides to list */
             status = list_sides(&r, triangle_count, error);
         for (size_t k = i + 1; status == UR_OK && k < j; k++)
-            if (odd_side(&r, &r.faces[k], j - i))
+            if (copy_to_split_alike(&r, &r.faces[i], &r.faces[k], j - i))
                 status = triangulate_alike(&r, vertices, &r.faces[i], &r.faces[k], error);
     }
     repeats_free(&r);

@@ -447,9 +447,9 @@ static bool in_quad(const ur_mesh *mesh, size_t first, size_t t)
  * other diagonal; it comes out split as the top is, each of its triangles
  * on a triangle of the top's corners, so that the mesh's cleaning can drop
  * it; so do a third copy, and an octagonal prism's top (mesh_polygons.c's
- * Delaunay triangulation).  A square sheet with a face on each side keeps assimp's split, the
- * two faces' triangles on different corners: the same split would join
- * its two sides round their rim.
+ * Delaunay triangulation).  A bow tie through the top's corners is no copy.  A square sheet with a
+ * face on each side keeps assimp's split, the two faces' triangles on different corners: the same
+ * split would join its two sides round their rim.
  */
 static void test_face_given_twice_split_alike(void **state)
 {
@@ -475,6 +475,15 @@ static void test_face_given_twice_split_alike(void **state)
     assert_int_equal(mesh.triangle_count, 16);
     for (copy = 12; copy < 16; copy++)
         assert_true(in_quad(&mesh, top, copy));
+    free_mesh(&mesh);
+
+    /* A bow tie through the top's corners is no copy of it: its own split stays. */
+    char bow_tie[512];
+    snprintf(bow_tie, sizeof bow_tie, "%.*sf 9 10 12 11\n", (int)(strstr(cube, "f 12") - cube),
+             cube);
+    import_ok(write_file("bow-tie.obj", bow_tie), NULL, &mesh, NULL);
+    assert_int_equal(mesh.triangle_count, 14);
+    assert_false(in_quad(&mesh, top, 12) && in_quad(&mesh, top, 13));
     free_mesh(&mesh);
 
     /*
