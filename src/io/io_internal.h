@@ -108,6 +108,45 @@ ur_status io_triangulate_flat_polygons(const ur_vec3 *vertices, size_t (*triangl
                                        const size_t *corners, size_t polygon_count,
                                        ur_error *error);
 
+/* An edge of a triangle, between two positions (their numbers, the smaller first). */
+typedef struct io_edge_record {
+    size_t low, high, triangle;
+} io_edge_record;
+
+/*
+ * Triangles with their edges by position (mesh_surface.c): vertices at
+ * the same point share a position number; every triangle's three edges,
+ * sorted by their ends' positions.  The surface does not own vertices or
+ * triangles; it owns position and edges.
+ */
+typedef struct io_surface {
+    const ur_vec3 *vertices;
+    size_t (*triangles)[3];
+    size_t *position;      /* per vertex: the number of its position */
+    io_edge_record *edges; /* three per triangle, sorted */
+    size_t edge_count;
+} io_surface;
+
+/* Makes the surface of the triangles; io_surface_free it also on failure. */
+ur_status io_surface_make(io_surface *s, const ur_vec3 *vertices, size_t vertex_count,
+                          size_t (*triangles)[3], size_t triangle_count, ur_error *error);
+void io_surface_free(io_surface *s);
+
+/* Edge ab (vertices) of triangle, by position. */
+io_edge_record io_surface_edge(const io_surface *s, size_t triangle, size_t a, size_t b);
+
+/* The order of the surface's edges: by their ends' positions, then triangle. */
+int io_compare_edges(const void *a, const void *b);
+
+/* The first of the records of edge ab (vertices, by position), or where it would be. */
+size_t io_surface_first(const io_surface *s, size_t a, size_t b);
+
+/* Whether two records are of one edge. */
+bool io_edge_same(const io_edge_record *record, const io_edge_record *key);
+
+/* How many triangles have edge ab (vertices, by position). */
+size_t io_surface_count(const io_surface *s, size_t a, size_t b);
+
 /*
  * Splits each twisted quad (the triangles quads[k] and quads[k] + 1 of the
  * triangles, as assimp made them from one face) whose sides all fold one

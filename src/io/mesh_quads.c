@@ -25,7 +25,6 @@
  * (an OBJ's normals and texture coordinates keep them apart).
  */
 #include "io_internal.h"
-#include "../geom/points.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -33,82 +32,8 @@
 
 /* ---- Neighbours by position ------------------------------------------- */
 
-/* An edge of a triangle, between two positions (their numbers, the smaller first). */
-typedef struct edge_record {
-    size_t low, high, triangle;
-} edge_record;
-
-typedef struct surface {
-    const ur_vec3 *vertices;
-    size_t (*triangles)[3];
-    size_t *position;   /* per vertex: the number of its position */
-    edge_record *edges; /* three per triangle, sorted */
-    size_t edge_count;
-} surface;
-
-static int compare_edges(const void *a, const void *b)
-{
-    const edge_record *p = a, *q = b;
-    if (p->low != q->low)
-        return p->low < q->low ? -1 : 1;
-    if (p->high != q->high)
-        return p->high < q->high ? -1 : 1;
-    return (p->triangle > q->triangle) - (p->triangle < q->triangle);
-}
-
-static edge_record edge_of(const surface *s, size_t triangle, size_t a, size_t b)
-{
-    size_t p = s->position[a], q = s->position[b];
-    return (edge_record){p < q ? p : q, p < q ? q : p, triangle};
-}
-
-static ur_status surface_make(surface *s, const ur_vec3 *vertices, size_t vertex_count,
-                              size_t (*triangles)[3], size_t triangle_count, ur_error *error)
-{
-    *s = (surface){.vertices = vertices, .triangles = triangles, .edge_count = 3 * triangle_count};
-    s->position = ur_alloc_array(vertex_count, sizeof *s->position, error);
-    s->edges = ur_alloc_array(s->edge_count, sizeof *s->edges, error);
-    if (!s->position || !s->edges)
-        return UR_ERROR_MEMORY;
-    /* Vertices at the same point share a position number. */
-    ur_status status = geom_number_points(vertices, vertex_count, s->position, error);
-    if (status != UR_OK)
-        return status;
-    for (size_t t = 0; t < triangle_count; t++)
-        for (int k = 0; k < 3; k++)
-            s->edges[3 * t + k] = edge_of(s, t, triangles[t][k], triangles[t][(k + 1) % 3]);
-    qsort(s->edges, s->edge_count, sizeof *s->edges, compare_edges);
-    return UR_OK;
-}
-
-static void surface_free(surface *s)
-{
-    free(s->position);
-    free(s->edges);
-}
-
-/* The first of the records of edge ab (by position), or where it would be. */
-static size_t first_record(const surface *s, size_t a, size_t b)
-{
-    edge_record key = edge_of(s, 0, a, b);
-    size_t low = 0, high = s->edge_count;
-    while (low < high) {
-        size_t middle = low + (high - low) / 2;
-        if (compare_edges(&s->edges[middle], &key) < 0)
-            low = middle + 1;
-        else
-            high = middle;
-    }
-    return low;
-}
-
-static bool record_is(const edge_record *record, const edge_record *key)
-{
-    return record->low == key->low && record->high == key->high;
-}
-
 /* The corner of triangle t that is at neither end of edge ab, by position; SIZE_MAX if none. */
-static size_t far_corner(const surface *s, size_t t, size_t a, size_t b)
+static size_t far_corner(const io_surface *s, size_t t, size_t a, size_t b)
 {
     for (int k = 0; k < 3; k++) {
         size_t p = s->position[s->triangles[t][k]];
@@ -126,13 +51,13 @@ static size_t far_corner(const surface *s, size_t t, size_t a, size_t b)
  * are the quad's own copies, and those across with their far corners at
  * one point count as one.
  */
-static size_t neighbour_across(const surface *s, size_t a, size_t b, size_t first, size_t second,
+static size_t neighbour_across(const io_surface *s, size_t a, size_t b, size_t first, size_t second,
                                size_t own)
 {
-    edge_record key = edge_of(s, 0, a, b);
+    io_edge_record key = io_surface_edge(s, 0, a, b);
     size_t found = SIZE_MAX;
-    for (size_t k = first_record(s, a, b); k < s->edge_count && record_is(&s->edges[k], &key);
-         k++) {
+    for (size_t k = io_surface_first(s, a, b);
+         k < s->edge_count && io_edge_same(&s->edges[k], &key); k++) {
         size_t t = s->edges[k].triangle;
         if (t == first || t == second)
             continue;
@@ -182,7 +107,7 @@ static double fold_sine(ur_vec3 a, ur_vec3 b, ur_vec3 c, ur_vec3 x)
  * (a saddle, where neither diagonal is the surface's) or fewer than two
  * sides fold (a side on the rim, or flat, does not count).
  */
-static int bend_around(const surface *s, size_t first, size_t second, const size_t corner[4])
+static int bend_around(const io_surface *s, size_t first, size_t second, const size_t corner[4])
 {
     /*
      * The quad's corners u, q, w, p run round it, first is (u, w, p) and
@@ -239,7 +164,7 @@ static ur_vec3 normal_of(const ur_vec3 *v, size_t a, size_t b, size_t c)
  * quad_corners gives them): its sides all bend one way and this diagonal
  * the other.
  */
-static bool should_turn(const surface *s, size_t first, size_t second, size_t corner[4])
+static bool should_turn(const io_surface *s, size_t first, size_t second, size_t corner[4])
 {
     if (!quad_corners(s->triangles, first, second, corner))
         return false;
@@ -258,16 +183,16 @@ static bool should_turn(const surface *s, size_t first, size_t second, size_t co
 /* A quad to turn: its first triangle, its corners, its new diagonal as an edge. */
 typedef struct turn {
     size_t first, corner[4];
-    edge_record diagonal;
+    io_edge_record diagonal;
 } turn;
 
 static int compare_turns(const void *a, const void *b)
 {
-    return compare_edges(&((const turn *)a)->diagonal, &((const turn *)b)->diagonal);
+    return io_compare_edges(&((const turn *)a)->diagonal, &((const turn *)b)->diagonal);
 }
 
 /* Whether two turns are of quads on the same corners, by position: a face given twice. */
-static bool same_quad(const surface *s, const turn *a, const turn *b)
+static bool same_quad(const io_surface *s, const turn *a, const turn *b)
 {
     size_t found = 0;
     for (int i = 0; i < 4; i++)
@@ -282,16 +207,16 @@ static bool same_quad(const surface *s, const turn *a, const turn *b)
  * same corners) and no other quad's new diagonal, but that of a copy of
  * the quad (a face given twice, whose copy the cleaning drops).
  */
-static bool turn_allowed(const surface *s, const turn *turns, size_t count, size_t k)
+static bool turn_allowed(const io_surface *s, const turn *turns, size_t count, size_t k)
 {
-    const edge_record *d = &turns[k].diagonal;
-    size_t record = first_record(s, turns[k].corner[1], turns[k].corner[3]);
-    if (record < s->edge_count && record_is(&s->edges[record], d))
+    const io_edge_record *d = &turns[k].diagonal;
+    size_t record = io_surface_first(s, turns[k].corner[1], turns[k].corner[3]);
+    if (record < s->edge_count && io_edge_same(&s->edges[record], d))
         return false;
-    for (size_t i = k; i-- > 0 && record_is(&turns[i].diagonal, d);)
+    for (size_t i = k; i-- > 0 && io_edge_same(&turns[i].diagonal, d);)
         if (!same_quad(s, &turns[i], &turns[k]))
             return false;
-    for (size_t i = k + 1; i < count && record_is(&turns[i].diagonal, d); i++)
+    for (size_t i = k + 1; i < count && io_edge_same(&turns[i].diagonal, d); i++)
         if (!same_quad(s, &turns[i], &turns[k]))
             return false;
     return true;
@@ -303,8 +228,9 @@ ur_status io_quads_follow_surface(const ur_vec3 *vertices, size_t vertex_count,
 {
     if (quad_count == 0)
         return UR_OK;
-    surface s;
-    ur_status status = surface_make(&s, vertices, vertex_count, triangles, triangle_count, error);
+    io_surface s;
+    ur_status status =
+        io_surface_make(&s, vertices, vertex_count, triangles, triangle_count, error);
     turn *turns = status == UR_OK ? ur_alloc_array(quad_count, sizeof *turns, error) : NULL;
     if (status == UR_OK && !turns)
         status = UR_ERROR_MEMORY;
@@ -314,7 +240,7 @@ ur_status io_quads_follow_surface(const ur_vec3 *vertices, size_t vertex_count,
         turn *t = &turns[count];
         t->first = quads[k];
         if (t->first + 1 < triangle_count && should_turn(&s, t->first, t->first + 1, t->corner)) {
-            t->diagonal = edge_of(&s, 0, t->corner[1], t->corner[3]);
+            t->diagonal = io_surface_edge(&s, 0, t->corner[1], t->corner[3]);
             count++;
         }
     }
@@ -329,6 +255,6 @@ ur_status io_quads_follow_surface(const ur_vec3 *vertices, size_t vertex_count,
         b[0] = c[1], b[1] = c[2], b[2] = c[3];
     }
     free(turns);
-    surface_free(&s);
+    io_surface_free(&s);
     return status;
 }

@@ -37,20 +37,12 @@ typedef struct face {
 typedef struct repeats {
     size_t (*triangles)[3];
     size_t *point;      /* per vertex: the number of its point */
-    size_t (*sides)[2]; /* every triangle side, as two points, the smaller first; sorted */
-    size_t side_count;
+    io_surface surface; /* the triangles' edges by position: made once a face is found twice */
+    bool surface_made;
     face *faces;
     size_t face_count;
     size_t *points; /* the faces' points, one face after the other */
 } repeats;
-
-static int compare_sides(const void *a, const void *b)
-{
-    const size_t *p = a, *q = b;
-    if (p[0] != q[0])
-        return p[0] < q[0] ? -1 : 1;
-    return (p[1] > q[1]) - (p[1] < q[1]);
-}
 
 /* By their corners' points, then in the file's order. */
 static int compare_faces(const void *a, const void *b)
@@ -99,23 +91,6 @@ static bool take_points(const repeats *r, face *f)
     return count == f->corners;
 }
 
-/* How many triangles have a side from point a to point b. */
-static size_t triangles_on(const repeats *r, size_t a, size_t b)
-{
-    size_t key[2] = {a < b ? a : b, a < b ? b : a}, low = 0, high = r->side_count;
-    while (low < high) {
-        size_t middle = low + (high - low) / 2;
-        if (compare_sides(r->sides[middle], key) < 0)
-            low = middle + 1;
-        else
-            high = middle;
-    }
-    size_t count = 0;
-    while (low + count < r->side_count && compare_sides(r->sides[low + count], key) == 0)
-        count++;
-    return count;
-}
-
 /* Whether side (a, b) of triangle t is a side of the face: no other of its triangles has it. */
 static bool on_outline(const repeats *r, const face *f, size_t t, size_t a, size_t b)
 {
@@ -159,7 +134,8 @@ static bool copy_to_split_alike(const repeats *r, const face *f, const face *g, 
                 continue;
             if (!side_of(r, f, a, b))
                 return false;
-            size_t on = triangles_on(r, a, b);
+            size_t on =
+                io_surface_count(&r->surface, r->triangles[t][k], r->triangles[t][(k + 1) % 3]);
             odd = odd || (on > copies && (on - copies) % 2 == 1);
         }
     return odd;
@@ -222,26 +198,10 @@ static ur_status repeats_make(repeats *r, const ur_vec3 *vertices, size_t vertex
     return geom_number_points(vertices, vertex_count, r->point, error);
 }
 
-/* Lists every triangle's sides, sorted: only once some face is found twice. */
-static ur_status list_sides(repeats *r, size_t triangle_count, ur_error *error)
-{
-    r->sides = ur_alloc_array(3 * triangle_count, sizeof *r->sides, error);
-    if (!r->sides)
-        return UR_ERROR_MEMORY;
-    for (size_t t = 0; t < triangle_count; t++)
-        for (int k = 0; k < 3; k++) {
-            size_t a = r->point[r->triangles[t][k]], b = r->point[r->triangles[t][(k + 1) % 3]];
-            r->sides[r->side_count][0] = a < b ? a : b;
-            r->sides[r->side_count++][1] = a < b ? b : a;
-        }
-    qsort(r->sides, r->side_count, sizeof *r->sides, compare_sides);
-    return UR_OK;
-}
-
 static void repeats_free(repeats *r)
 {
     free(r->point);
-    free(r->sides);
+    io_surface_free(&r->surface);
     free(r->faces);
     free(r->points);
 }
@@ -282,8 +242,11 @@ ur_status io_repeated_faces_alike(const ur_vec3 *vertices, size_t vertex_count,
     for (size_t i = 0, j; status == UR_OK && i < r.face_count; i = j) {
         for (j = i + 1; j < r.face_count && same_points(&r.faces[j], &r.faces[i]); j++)
             ;
-        if (j - i > 1 && !r.sides) /* most files give no face twice: no sides to list */
-            status = list_sides(&r, triangle_count, error);
+        if (j - i > 1 && !r.surface_made) { /* most files give no face twice: no edges to list */
+            r.surface_made = true;
+            status = io_surface_make(&r.surface, vertices, vertex_count, triangles, triangle_count,
+                                     error);
+        }
         for (size_t k = i + 1; status == UR_OK && k < j; k++)
             if (copy_to_split_alike(&r, &r.faces[i], &r.faces[k], j - i))
                 status = triangulate_alike(&r, vertices, &r.faces[i], &r.faces[k], error);
