@@ -496,6 +496,17 @@ static ur_joint_options frame_options(const ur_font *font)
     return options;
 }
 
+/* Adds laps width mm wide (frame_options otherwise) to the nets' pieces, which must succeed. */
+static void add_laps(ur_piece *pieces, const ur_net_list *nets, const ur_font *font, double width)
+{
+    ur_joint_options options = frame_options(font);
+    options.lap = true;
+    options.lap_width = width;
+    ur_error error;
+    if (ur_pieces_add_joints(pieces, nets, &options, &error) != UR_OK)
+        fail_msg("ur_pieces_add_joints: %s", error.message);
+}
+
 /* Whether seam side k of the net ends where it starts (in 3D): a closed loop. */
 static bool side_is_loop(const ur_net *net, size_t k)
 {
@@ -952,11 +963,7 @@ static void test_laps_end_where_their_piece_does(void **state)
     ur_net_list nets = triangle_between_two();
     assert_int_equal(ur_net_list_last_seam(&nets), 2);
     ur_piece *pieces = pieces_of(&nets);
-    ur_joint_options options = frame_options(NULL);
-    options.lap = true;
-    options.lap_width = 6;
-    ur_error error;
-    assert_int_equal(ur_pieces_add_joints(pieces, &nets, &options, &error), UR_OK);
+    add_laps(pieces, &nets, NULL, 6);
     assert_int_equal(count_joints(&pieces[0]), 1); /* to the plate */
     assert_int_equal(count_joints(&pieces[1]), 0);
     assert_int_equal(count_joints(&pieces[2]), 1); /* over the triangle */
@@ -1014,10 +1021,7 @@ static void test_lap_on_a_bent_seam_in_stretches(void **state)
     assert_int_equal(ur_net_list_find_seams(&nets, 1, &next, &error), UR_OK);
     assert_int_equal(ur_net_list_last_seam(&nets), 1);
     ur_piece *pieces = pieces_of(&nets);
-    ur_joint_options options = frame_options(NULL);
-    options.lap = true;
-    options.lap_width = 15;
-    assert_int_equal(ur_pieces_add_joints(pieces, &nets, &options, &error), UR_OK);
+    add_laps(pieces, &nets, NULL, 15);
     static const char *const unjoined[] = {"(edges 1 to 2 of 13)", "(edges 3 to 4 of 13)",
                                            "(edges 5 to 6 of 13)", "(edges 7 to 8 of 13)",
                                            "(edges 9 to 10 of 13)"};
@@ -1193,11 +1197,7 @@ static void test_lap_cut_only_where_it_matters(void **state)
         const ur_vec2 below[] = {{lean, -30}, {80, -30}, {80, 0}, {0, 0}};
         ur_net_list nets = strip_beside(plate, 4, below, 4);
         ur_piece *pieces = pieces_of(&nets);
-        ur_joint_options options = frame_options(NULL);
-        options.lap = true;
-        options.lap_width = 6;
-        ur_error error;
-        assert_int_equal(ur_pieces_add_joints(pieces, &nets, &options, &error), UR_OK);
+        add_laps(pieces, &nets, NULL, 6);
         assert_int_equal(count_joints(&pieces[0]), 1);
         GEOSGeometry *grown = polygon(pieces[0].paths[0].points, pieces[0].paths[0].count);
         GEOSGeometry *net = polygon(nets.nets[0].outline, nets.nets[0].outline_count);
@@ -1443,10 +1443,7 @@ static void test_labels_keep_off_laps(void **state)
     ur_net_list nets = strip_in_a_corner();
     assert_int_equal(ur_net_list_last_seam(&nets), 2);
     ur_piece *pieces = pieces_of(&nets);
-    ur_joint_options options = frame_options(font);
-    options.lap = true;
-    options.lap_width = 6;
-    assert_int_equal(ur_pieces_add_joints(pieces, &nets, &options, &error), UR_OK);
+    add_laps(pieces, &nets, font, 6);
     size_t laps = 0;
     for (size_t n = 0; n < nets.count; n++) {
         laps += count_joints(&pieces[n]);
