@@ -26,7 +26,7 @@ SONAME = libunroll.so.$(firstword $(subst ., ,$(VERSION)))
 
 CC ?= cc
 PKG_CONFIG ?= pkg-config
-PACKAGES = libxml-2.0 gsl jansson geos cairo assimp
+PACKAGES = libxml-2.0 gsl jansson geos cairo assimp minizip
 TEST_PACKAGES = cmocka
 
 # FUZZ=1 is how `make fuzz` builds the library and its targets: clang with

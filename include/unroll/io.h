@@ -230,18 +230,33 @@ UR_API double ur_effective_kerf(const ur_machine *machine, const ur_material *ma
 
 /* ---- Meshes ------------------------------------------------------------ */
 
-/* The length unit of a mesh file's coordinates; unroll works in millimetres. */
-typedef enum ur_length_unit { UR_UNIT_MM, UR_UNIT_CM, UR_UNIT_M, UR_UNIT_IN } ur_length_unit;
+/*
+ * The length unit of a mesh file's coordinates; unroll works in
+ * millimetres.  UR_UNIT_FILE is the one the file declares in its content
+ * (Collada's <unit>, 3MF's <model unit>), millimetres for a format that
+ * declares none (OBJ, STL, PLY; glTF too, although its specification says
+ * metres).
+ */
+typedef enum ur_length_unit {
+    UR_UNIT_MM,
+    UR_UNIT_CM,
+    UR_UNIT_M,
+    UR_UNIT_IN,
+    UR_UNIT_FILE
+} ur_length_unit;
 
-/* "mm", "cm", "m", "in"; ur_length_unit_from_name returns -1 when unknown. */
+/*
+ * "mm", "cm", "m", "in" ("file" for UR_UNIT_FILE); ur_length_unit_from_name
+ * returns -1 when unknown, and never UR_UNIT_FILE.
+ */
 UR_API const char *ur_length_unit_name(ur_length_unit unit);
 UR_API int ur_length_unit_from_name(const char *name);
 
-/* Millimetres in one unit: 1, 10, 1000, 25.4. */
+/* Millimetres in one unit: 1, 10, 1000, 25.4; NaN for UR_UNIT_FILE. */
 UR_API double ur_length_unit_mm(ur_length_unit unit);
 
 typedef struct ur_mesh_import_options {
-    ur_length_unit unit; /* of the file's coordinates; default millimetres */
+    ur_length_unit unit; /* of the file's coordinates; default UR_UNIT_FILE */
     double scale;        /* multiplies after the unit: positive and finite; default 1 */
 } ur_mesh_import_options;
 
@@ -256,7 +271,8 @@ UR_API void ur_mesh_import_options_default(ur_mesh_import_options *options);
 /*
  * About how many bytes reading the mesh file at path takes at its peak
  * (assimp's scene, its post-processing and unroll's copy): forty times the
- * file's size, measured on binary STL, the densest format; 0 when the file
+ * file's size, measured on binary STL, the densest format (a 3MF: forty
+ * times its size unpacked, which assimp holds whole); 0 when the file
  * cannot be read.  A caller can refuse a file that will not fit before
  * assimp starts: assimp does not survive running out of memory while it
  * post-processes (it crashes releasing the scene).
@@ -264,8 +280,9 @@ UR_API void ur_mesh_import_options_default(ur_mesh_import_options *options);
 UR_API size_t ur_mesh_import_memory_estimate(const char *path);
 
 /*
- * Reads OBJ, STL (ASCII and binary), PLY and glTF 2 (.gltf, .glb), known by
- * the file's extension, into one mesh in millimetres: every node's meshes
+ * Reads OBJ, STL (ASCII and binary), PLY, glTF 2 (.gltf, .glb), Collada
+ * (.dae) and 3MF (.3mf), known by the file's extension, into one mesh in
+ * millimetres: every node's meshes
  * with the node's transform (and its parents') applied, a mesh used by
  * several nodes copied for each.  Triangles keep the file's winding, also
  * under a mirroring transform.  Each node that carries triangles (an OBJ
@@ -274,10 +291,11 @@ UR_API size_t ur_mesh_import_memory_estimate(const char *path);
  * order they first appear.  Polygons are triangulated and identical
  * vertices within one mesh joined; nothing is welded across meshes
  * (ur_mesh_clean does that); points and lines are left out.  options may be
- * NULL (defaults).  glTF files are in metres by their specification, but
- * the unit here is what the caller says, as for every format.  Only the
- * file and a glTF's buffers beside it are read, never an OBJ's material
- * library.
+ * NULL (defaults).  The numbers are read in options->unit: by default
+ * (UR_UNIT_FILE) the unit a Collada or 3MF file declares, millimetres for
+ * the others; glTF files are in metres by their specification, but read
+ * in millimetres unless the caller says otherwise.  Only the file and a
+ * glTF's buffers beside it are read, never an OBJ's material library.
  *
  * When group_names is not NULL, *group_names receives mesh->group_count
  * names (NUL-terminated, cut to 63 bytes; unnamed groups take the file's
@@ -297,6 +315,16 @@ UR_API size_t ur_mesh_import_memory_estimate(const char *path);
  *
  * Not thread-safe: assimp keeps its last error message in a global.
  */
+/*
+ * The unit the mesh file at path declares in its content, as
+ * ur_mesh_import reads it by default: *mm the millimetres in one unit and
+ * name what the file calls it ("inch"; "0.0254 m" for a Collada unit
+ * without a name), or *mm 0 and name "" for a format that declares none.
+ * UR_ERROR_INPUT naming the file when that part of it cannot be read.
+ */
+UR_API ur_status ur_mesh_declared_unit(const char *path, double *mm, char name[32],
+                                       ur_error *error);
+
 UR_API ur_status ur_mesh_import(const char *path, const ur_mesh_import_options *options,
                                 ur_mesh *mesh, char (**group_names)[64], ur_error *error);
 
@@ -313,10 +341,11 @@ UR_API ur_status ur_mesh_import_buffer(const char *name, const void *data, size_
 /*
  * Which axis of a mesh file's coordinates points up, for drawings of the
  * model (the assembly guide): UR_UP_Y for glTF (.gltf, .glb: +y up by its
- * specification) and for an OBJ file Blender wrote (its first comment
+ * specification), for Collada (.dae: read +y up, assimp turning the file's
+ * declared up axis so) and for an OBJ file Blender wrote (its first comment
  * lines start "# Blender"; its OBJ export is +y up unless told otherwise),
- * UR_UP_Z for every other file (CAD programs, STL files, Blender's STL
- * export).  A guess from the writer, never from the shape: a file exported
+ * UR_UP_Z for every other file (CAD programs, STL and 3MF files, Blender's
+ * STL export).  A guess from the writer, never from the shape: a file exported
  * with another axis up needs to be told.  ur_mesh_up_axis reads the name's
  * extension and size bytes of the file's start (head, which may be NULL);
  * ur_mesh_file_up_axis reads the start of the file at path (UR_UP_Z when

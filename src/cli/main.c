@@ -20,7 +20,7 @@ static const char usage[] =
     "            [--regression EDGE.csv] [--adjust rail1|rail2|both ...]\n"
     "  ruled     --rail1 C1.csv --rail2 C2.csv        (flattened with strain unless developable)\n"
     "  hypar     --corners X,Y,Z:X,Y,Z:X,Y,Z:X,Y,Z   (flattened with strain unless flat)\n"
-    "  mesh      FILE.obj|stl|ply|gltf|glb [--units mm|cm|m|in] [--scale S] [--seams F.csv]\n"
+    "  mesh      FILE.obj|stl|ply|gltf|glb|dae|3mf [--units U] [--scale S] [--seams F.csv]\n"
     "non-developable surfaces and meshes:\n"
     "  --flatten charts|arap|lscm|strips|unfold  how to flatten (default charts for\n"
     "                        a mesh, arap for a surface)\n"
@@ -141,9 +141,10 @@ static const struct {
                 "  largest distance to the exact net after the best rigid fit; --png plots them\n"
                 "  on log-log axes.\n"},
     {"mesh", "unroll mesh FILE [--units mm|cm|m|in] [--scale S] [--seams PATH.csv] -o FILE.svg\n"
-             "  A mesh (OBJ, STL, PLY, glTF), welded and repaired, cut into disks along its\n"
-             "  groups, the seams given (vertex positions, one path per CSV) and where needed,\n"
-             "  and flattened with measured strain.\n"
+             "  A mesh (OBJ, STL, PLY, glTF, Collada, 3MF; in mm, or in the unit a Collada\n"
+             "  or 3MF file declares, unless --units says), welded and repaired, cut into\n"
+             "  disks along its groups, the seams given (vertex positions, one path per CSV)\n"
+             "  and where needed, and flattened with measured strain.\n"
              "  --flatten charts       (default) cut at sharp edges (over 30 degrees), then\n"
              "                         into charts that each lie flat within the material's\n"
              "                         strain (--max-strain S overrides it)\n"
@@ -159,7 +160,7 @@ static const struct {
              "  --assembly FILE.png|pdf  where each piece goes: the mesh from four sides,\n"
              "                         pieces coloured and named, seam labels where they lie;\n"
              "                         --assembly-up y|z: the axis up (default auto: y for\n"
-             "                         glTF and Blender's OBJ, z otherwise)\n"},
+             "                         glTF, Collada and Blender's OBJ, z otherwise)\n"},
     {"job", "unroll job FILE.xml [-o DIR] [--quiet]\n"
             "  Runs a job file: machine, material, options, parts (any surface, with a\n"
             "  quantity) nested together, and the outputs; -o DIR overrides its directory.\n"

@@ -70,6 +70,25 @@ typedef struct io_mesh_files {
 void io_mesh_files_init(io_mesh_files *files, const char *name, const void *data, size_t size);
 
 /*
+ * The length unit a mesh file declares in its content (mesh_units.c):
+ * Collada's <unit>, 3MF's <model unit>.  mm is 0 for a format that has
+ * none (OBJ, STL, PLY, glTF).
+ */
+typedef struct io_declared_unit {
+    double mm;      /* millimetres in one unit of the file's numbers; 0: none declared */
+    double applied; /* what assimp multiplied the numbers by (Collada: the unit in metres) */
+    char name[32];  /* as the file names it ("inch"), or "0.0254 m" */
+} io_declared_unit;
+/*
+ * The unit of the file at path, or of size bytes of data when data is not
+ * NULL (path naming it); UR_ERROR_INPUT naming the file when the part that
+ * declares it cannot be read or the unit is not one.
+ */
+ur_status io_mesh_declared_unit(const char *path, const void *data, size_t size,
+                                io_declared_unit *unit, ur_error *error);
+/* The bytes a 3MF's parts take unpacked (0 for other files, or one that cannot be read). */
+size_t io_mesh_unpacked_size(const char *path);
+/*
  * The faces of more than three corners of a raw assimp scene, found again
  * once assimp has triangulated it (mesh_polygons.c): per mesh, per face of
  * the triangulated mesh, the number of corners of the file's face whose

@@ -43,10 +43,9 @@ static const struct {
     const char *name;
     double mm;
 } unit_table[] = {
-    [UR_UNIT_MM] = {"mm", 1.0},
-    [UR_UNIT_CM] = {"cm", 10.0},
-    [UR_UNIT_M] = {"m", 1000.0},
-    [UR_UNIT_IN] = {"in", 25.4},
+    /* UR_UNIT_FILE has no size of its own and is never taken by name */
+    [UR_UNIT_MM] = {"mm", 1.0},  [UR_UNIT_CM] = {"cm", 10.0},    [UR_UNIT_M] = {"m", 1000.0},
+    [UR_UNIT_IN] = {"in", 25.4}, [UR_UNIT_FILE] = {"file", NAN},
 };
 
 #define UNIT_COUNT (sizeof unit_table / sizeof unit_table[0])
@@ -64,7 +63,7 @@ const char *ur_length_unit_name(ur_length_unit unit)
 int ur_length_unit_from_name(const char *name)
 {
     for (size_t i = 0; name && i < UNIT_COUNT; i++)
-        if (strcmp(name, unit_table[i].name) == 0)
+        if (i != UR_UNIT_FILE && strcmp(name, unit_table[i].name) == 0)
             return (int)i;
     return -1;
 }
@@ -76,7 +75,7 @@ double ur_length_unit_mm(ur_length_unit unit)
 
 void ur_mesh_import_options_default(ur_mesh_import_options *options)
 {
-    options->unit = UR_UNIT_MM;
+    options->unit = UR_UNIT_FILE;
     options->scale = 1.0;
 }
 
@@ -128,12 +127,15 @@ static void file_stem(const char *path, char *stem, size_t size)
 
 /* ---- The file itself --------------------------------------------------- */
 
-static const char *const supported_extensions[] = {"obj", "stl", "ply", "gltf", "glb"};
+static const char *const supported_extensions[] = {
+    "obj", "stl", "ply", "gltf", "glb", "dae", "3mf",
+};
 
 /*
- * assimp reads dozens of formats, but some of them (Collada, FBX) carry units
- * that it applies or not depending on settings: only the formats whose
- * coordinates are plain numbers in the user's unit are accepted.
+ * assimp reads dozens of formats; these are the ones modellers and 3D
+ * printers write whose units unroll knows: none (plain numbers in the
+ * caller's unit) or one the file declares (mesh_units.c).  FBX is left out:
+ * its unit is a scale factor that exporters and assimp each apply or not.
  */
 static ur_status check_extension(const char *path, ur_error *error)
 {
@@ -142,7 +144,7 @@ static ur_status check_extension(const char *path, ur_error *error)
             return UR_OK;
     return ur_error_set(error, UR_ERROR_INPUT,
                         "%s: unsupported file type: unroll reads meshes from .obj, .stl, .ply, "
-                        ".gltf and .glb files",
+                        ".gltf, .glb, .dae (Collada) and .3mf files",
                         path);
 }
 
@@ -621,7 +623,9 @@ size_t ur_mesh_import_memory_estimate(const char *path)
     struct stat info;
     if (stat(path, &info) != 0 || info.st_size < 0)
         return 0;
-    size_t size = (size_t)info.st_size;
+    size_t size = (size_t)info.st_size, unpacked = io_mesh_unpacked_size(path);
+    if (unpacked > size)
+        size = unpacked;
     return size > SIZE_MAX / 40 ? SIZE_MAX : 40 * size;
 }
 
@@ -1091,6 +1095,18 @@ static void hand_over(import_state *state, ur_mesh *mesh, char (**group_names)[6
     state_free(state);
 }
 
+/*
+ * The millimetres in one of the file's numbers: the unit the caller gives,
+ * or, by default, the one the file declares (millimetres when it has none).
+ */
+static double millimetres_per_number(const ur_mesh_import_options *options,
+                                     const io_declared_unit *declared)
+{
+    if (options->unit != UR_UNIT_FILE)
+        return ur_length_unit_mm(options->unit);
+    return declared->mm > 0 ? declared->mm : 1.0;
+}
+
 /* The file at path, or size bytes of data named path when data is not NULL. */
 static ur_status import_mesh(const char *path, const void *data, size_t size,
                              const ur_mesh_import_options *options, ur_mesh *mesh,
@@ -1106,12 +1122,15 @@ static ur_status import_mesh(const char *path, const void *data, size_t size,
     ur_status status = check_options(options, error);
     if (status == UR_OK)
         status = data ? check_buffer(path, data, size, error) : check_file(path, error);
+    io_declared_unit declared;
+    if (status == UR_OK)
+        status = io_mesh_declared_unit(path, data, size, &declared, error);
     import_state state = {.path = path};
     if (status == UR_OK)
         status = load_scene(path, data, size, &state.scene, &state.polygons, error);
     if (status != UR_OK)
         return status;
-    state.factor = ur_length_unit_mm(options->unit) * options->scale;
+    state.factor = millimetres_per_number(options, &declared) / declared.applied * options->scale;
     status = build(&state, error);
     aiReleaseImport(state.scene);
     if (status != UR_OK) {
@@ -1134,4 +1153,19 @@ ur_status ur_mesh_import_buffer(const char *name, const void *data, size_t size,
 {
     static const char nothing = 0; /* data NULL would mean a file: an empty buffer is refused */
     return import_mesh(name, data ? data : &nothing, size, options, mesh, group_names, error);
+}
+
+ur_status ur_mesh_declared_unit(const char *path, double *mm, char name[32], ur_error *error)
+{
+    *mm = 0;
+    name[0] = '\0';
+    io_declared_unit declared;
+    ur_status status = check_file(path, error);
+    if (status == UR_OK)
+        status = io_mesh_declared_unit(path, NULL, 0, &declared, error);
+    if (status != UR_OK)
+        return status;
+    *mm = declared.mm;
+    c_snprintf(name, 32, "%s", declared.mm > 0 ? declared.name : "");
+    return UR_OK;
 }

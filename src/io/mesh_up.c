@@ -3,10 +3,12 @@
  * it, for drawings of the model (the assembly guide).
  *
  * A mesh file does not say which way is up, but its format or its writer
- * often does: glTF is +y up by its specification, and Blender writes OBJ
- * files +y up unless told otherwise (and says so in the comment it puts on
- * the first line).  Everything else is taken as +z up, as CAD programs,
- * STL files (Blender's STL export included) and this project's samples are.
+ * often does: glTF is +y up by its specification, a Collada file comes
+ * out of assimp +y up (assimp turns the <up_axis> the file declares to
+ * +y), and Blender writes OBJ files +y up unless told otherwise (and says
+ * so in the comment it puts on the first line).  Everything else is taken
+ * as +z up, as CAD programs, STL and 3MF files (Blender's STL export
+ * included) and this project's samples are.
  */
 #include "io_internal.h"
 
@@ -34,7 +36,8 @@ static bool obj_written_by_blender(const char *head, size_t size)
 
 ur_up_axis ur_mesh_up_axis(const char *name, const void *head, size_t size)
 {
-    if (io_has_extension(name, "gltf") || io_has_extension(name, "glb"))
+    if (io_has_extension(name, "gltf") || io_has_extension(name, "glb") ||
+        io_has_extension(name, "dae"))
         return UR_UP_Y;
     if (io_has_extension(name, "obj") && head && obj_written_by_blender(head, size))
         return UR_UP_Y;

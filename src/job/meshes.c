@@ -1152,6 +1152,29 @@ static void note_if_small_for_tabs(const job_run *run, const ur_material *materi
                    size * scale);
 }
 
+/*
+ * Says which unit a file that declares one (Collada, 3MF) was read in,
+ * unless it is the millimetre the file says and nothing needs saying.
+ */
+static void note_declared_unit(const job_run *run, double declared_mm, const char *declared)
+{
+    if (declared_mm == 0)
+        return;
+    const char *given = run->job.unit_name;
+    if (!given) {
+        if (declared_mm != 1.0)
+            job_note(run, "%s: %s: its unit is %s (%g mm), as the file says", run->job.command,
+                     run->job.mesh_path, declared, declared_mm);
+        return;
+    }
+    double given_mm = ur_length_unit_mm((ur_length_unit)ur_length_unit_from_name(given));
+    if (given_mm != declared_mm)
+        job_note_about(
+            run, "units",
+            "%s: %s: its unit is %s (%g mm) as the file says, but read in %s, as units says",
+            run->job.command, run->job.mesh_path, declared, declared_mm, given);
+}
+
 ur_status job_mesh_nets(const job_run *run, const job_room *room, const ur_material *material,
                         ur_net_list *nets, double *area)
 {
@@ -1174,8 +1197,16 @@ ur_status job_mesh_nets(const job_run *run, const job_room *room, const ur_mater
     ur_error error;
     if (ur_mesh_import(run->job.mesh_path, &options, &mesh, NULL, &error) != UR_OK)
         return fail(run, &error);
+    double declared_mm = 0;
+    char declared[32];
+    if (ur_mesh_declared_unit(run->job.mesh_path, &declared_mm, declared, &error) != UR_OK) {
+        ur_mesh_free(&mesh);
+        return fail(run, &error);
+    }
+    note_declared_unit(run, declared_mm, declared);
     if (!run->job.unit_name && isnan(run->job.scale)) {
-        warn_if_tiny(run, &mesh);
+        if (declared_mm == 0) /* a unit the file gives is no guess to warn about */
+            warn_if_tiny(run, &mesh);
         note_if_small_for_tabs(run, material, &mesh);
     }
     code = nets_of_mesh(run, room, material, &mesh, true, nets, area);

@@ -16,6 +16,7 @@ import subprocess
 import sys
 import tempfile
 import xml.etree.ElementTree as ET
+import zipfile
 
 UNROLL = os.path.abspath(sys.argv[1])
 REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
@@ -1447,6 +1448,81 @@ def mesh_in_metres_gets_a_warning(work):
     check("across" not in result.stderr, result.stderr)
     close(sum(p["area_3d_mm2"] for p in report(work, "c.json")["pieces"]), 6 * 20.0 ** 2, 1e-9,
           "the cube's area in centimetres")
+
+
+def cube_3mf(path, side, unit):
+    """A 3MF package (zip) holding a cube of the given side from the origin,
+    its model in unit (3MF's unit names; None leaves the attribute out)."""
+    corners = [(x, y, z) for z in (0, side) for y in (0, side) for x in (0, side)]
+    quads = [(0, 2, 3, 1), (4, 5, 7, 6), (0, 1, 5, 4), (2, 6, 7, 3), (0, 4, 6, 2), (1, 3, 7, 5)]
+    triangles = [t for a, b, c, d in quads for t in ((a, b, c), (a, c, d))]
+    unit_attribute = ' unit="%s"' % unit if unit else ""
+    model = ('<?xml version="1.0" encoding="UTF-8"?>\n<model%s xmlns='
+             '"http://schemas.microsoft.com/3dmanufacturing/core/2015/02"><resources>'
+             '<object id="1" type="model"><mesh><vertices>%s</vertices><triangles>%s'
+             '</triangles></mesh></object></resources><build><item objectid="1"/></build>'
+             '</model>\n') % (unit_attribute,
+                              "".join('<vertex x="%g" y="%g" z="%g"/>' % c for c in corners),
+                              "".join('<triangle v1="%d" v2="%d" v3="%d"/>' % t for t in triangles))
+    with zipfile.ZipFile(path, "w", zipfile.ZIP_DEFLATED) as package:
+        package.writestr("[Content_Types].xml",
+                         '<?xml version="1.0" encoding="UTF-8"?><Types xmlns="http://schemas.'
+                         'openxmlformats.org/package/2006/content-types"><Default Extension="rels" '
+                         'ContentType="application/vnd.openxmlformats-package.relationships+xml"/>'
+                         '<Default Extension="model" ContentType="application/vnd.ms-package.'
+                         '3dmanufacturing-3dmodel+xml"/></Types>')
+        package.writestr("_rels/.rels",
+                         '<?xml version="1.0" encoding="UTF-8"?><Relationships xmlns="http://'
+                         'schemas.openxmlformats.org/package/2006/relationships"><Relationship '
+                         'Target="/3D/3dmodel.model" Id="rel0" Type="http://schemas.microsoft.com/'
+                         '3dmanufacturing/2013/01/3dmodel"/></Relationships>')
+        package.writestr("3D/3dmodel.model", model)
+
+
+@test
+def mesh_in_the_unit_its_file_declares(work):
+    # A 3MF cube of side 2 in inches (50.8 mm), and a 50 mm one without a
+    # unit (3MF's default, the millimetre): each read in its own unit, the
+    # first with a note saying so; --units reads the numbers in the unit it
+    # gives instead, with a note that the file says otherwise.  A Collada
+    # file the same: SketchUp writes inches.
+    cube_3mf(os.path.join(work, "inch.3mf"), 2, "inch")
+    cube_3mf(os.path.join(work, "plain.3mf"), 50, None)
+    cases = [("inch.3mf", [], 50.8, "its unit is inch (25.4 mm), as the file says"),
+             ("plain.3mf", [], 50, None),
+             ("inch.3mf", ["--units", "cm"], 20,
+              "its unit is inch (25.4 mm) as the file says, but read in cm, as --units says"),
+             ("plain.3mf", ["--units", "mm"], 50, None)]
+    square = ('<?xml version="1.0"?><COLLADA xmlns="http://www.collada.org/2005/11/'
+              'COLLADASchema" version="1.4.1"><asset><unit name="inch" meter="0.0254"/>'
+              '<up_axis>Z_UP</up_axis></asset><library_geometries><geometry id="g"><mesh>'
+              '<source id="p"><float_array id="a" count="12">0 0 0 4 0 0 4 2 0 0 2 0'
+              '</float_array><technique_common><accessor source="#a" count="4" stride="3">'
+              '<param name="X" type="float"/><param name="Y" type="float"/><param name="Z" '
+              'type="float"/></accessor></technique_common></source><vertices id="v"><input '
+              'semantic="POSITION" source="#p"/></vertices><triangles count="2"><input '
+              'semantic="VERTEX" source="#v" offset="0"/><p>0 1 2 0 2 3</p></triangles></mesh>'
+              '</geometry></library_geometries><library_visual_scenes><visual_scene id="s">'
+              '<node id="n"><instance_geometry url="#g"/></node></visual_scene>'
+              '</library_visual_scenes><scene><instance_visual_scene url="#s"/></scene>'
+              '</COLLADA>\n')
+    write(work, "square.dae", square)
+    for k, (name, units, side, note) in enumerate(cases):
+        result = run(work, "mesh", name, *units, "--flatten", "unfold", "--material",
+                     "paper-0.3mm", "--nest-time", "0", "-o", "c%d.svg" % k, "--report",
+                     "c%d.json" % k)
+        check(note is None or note in result.stderr, "%s %s: %s" % (name, units, result.stderr))
+        check(note is not None or "unit" not in result.stderr, result.stderr)
+        check("across" not in result.stderr, result.stderr)  # no guess at metres
+        close(report(work, "c%d.json" % k)["surface_area_mm2"], 6 * side ** 2, 1e-6,
+              "%s %s: area" % (name, units))
+    result = run(work, "mesh", "square.dae", "--flatten", "unfold", "--material", "paper-0.3mm",
+                 "--nest-time", "0", "-o", "s.svg", "--report", "s.json")
+    check("its unit is inch (25.4 mm), as the file says" in result.stderr, result.stderr)
+    close(report(work, "s.json")["surface_area_mm2"], 8 * 25.4 ** 2, 1e-6, "the square's area")
+    cube_3mf(os.path.join(work, "parsec.3mf"), 2, "parsec")
+    bad(work, r"parsec\.3mf: <model unit=\"parsec\">: not a 3MF unit", "mesh", "parsec.3mf",
+        "--flatten", "unfold", "--material", "paper-0.3mm", "-o", "p.svg")
 
 
 @test

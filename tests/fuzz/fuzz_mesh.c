@@ -6,7 +6,9 @@
  * into disks (mesh_check.h).
  *
  * The first byte picks the format, known to the loader by the extension:
- * OBJ, STL (ASCII or binary), PLY or glTF; the rest is the file.  Assimp
+ * OBJ, STL (ASCII or binary), PLY, glTF, Collada or 3MF (byte modulo 6,
+ * so that the seeds of the first four formats kept theirs); the rest is
+ * the file.  Assimp
  * itself is not instrumented, so coverage guides the fuzzer through
  * unroll's code only.
  */
@@ -14,7 +16,8 @@
 
 #include "unroll/io.h"
 
-static const char *const names[] = {"mesh.obj", "mesh.stl", "mesh.ply", "mesh.gltf"};
+static const char *const names[] = {"mesh.obj",  "mesh.stl", "mesh.ply",
+                                    "mesh.gltf", "mesh.dae", "mesh.3mf"};
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
@@ -22,7 +25,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         return 0;
     ur_mesh mesh;
     ur_error error;
-    if (ur_mesh_import_buffer(names[data[0] % 4], data + 1, size - 1, NULL, &mesh, NULL, &error) !=
+    if (ur_mesh_import_buffer(names[data[0] % 6], data + 1, size - 1, NULL, &mesh, NULL, &error) !=
         UR_OK) {
         FUZZ_CHECK(strstr(error.message, "mesh.") != NULL);
         return 0;

@@ -2,10 +2,10 @@
  * test_import.c: mesh files through assimp.  The lampshade sample in every
  * format (OBJ, ASCII and binary STL, PLY, glTF with node transforms, GLB
  * with an instanced, mirrored half) gives the same surface, facing the same
- * way; groups and their names; units and scale; and every refusal names the
- * file; a twisted quad is split along the diagonal that follows the
- * surface.  Areas, boxes and orientation are computed here, not with src/mesh,
- * so that this test stands on the importer alone.
+ * way; groups and their names; units and scale, and the units Collada and
+ * 3MF files declare; and every refusal names the file; a twisted quad is
+ * split along the diagonal that follows the surface.  Areas, boxes and orientation are computed
+ * here, not with src/mesh, so that this test stands on the importer alone.
  */
 #include <stdarg.h>
 #include <stddef.h>
@@ -21,6 +21,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <minizip/zip.h>
+
 #include "unroll/io.h"
 
 #define LAMPSHADE_TRIANGLES 144 /* 24 segments x 3 rows x 2 */
@@ -33,7 +35,7 @@ static const char *const lampshades[] = {
 
 /* Every test writes its bad files into one temporary directory. */
 static char directory[64];
-static char written[64][128];
+static char written[128][128];
 static int written_count;
 
 static int make_directory(void **state)
@@ -58,7 +60,7 @@ static int remove_directory(void **state)
 /* Writes text to NAME in the temporary directory; returns the path. */
 static const char *write_file(const char *name, const char *text)
 {
-    assert_true(written_count < 64);
+    assert_true(written_count < 128);
     char *path = written[written_count++];
     snprintf(path, sizeof written[0], "%s/%s", directory, name);
     FILE *file = fopen(path, "w");
@@ -659,9 +661,12 @@ static void test_unit_names(void **state)
     for (int u = UR_UNIT_MM; u <= UR_UNIT_IN; u++)
         assert_int_equal(ur_length_unit_from_name(ur_length_unit_name(u)), u);
     assert_true(ur_length_unit_mm(UR_UNIT_IN) == 25.4);
+    assert_string_equal(ur_length_unit_name(UR_UNIT_FILE), "file");
+    assert_int_equal(ur_length_unit_from_name("file"), -1);
+    assert_true(isnan(ur_length_unit_mm(UR_UNIT_FILE)));
     ur_mesh_import_options options = {UR_UNIT_IN, 0};
     ur_mesh_import_options_default(&options);
-    assert_int_equal(options.unit, UR_UNIT_MM);
+    assert_int_equal(options.unit, UR_UNIT_FILE);
     assert_true(options.scale == 1.0);
 }
 
@@ -696,6 +701,231 @@ static void test_units_and_scale_multiply(void **state)
         free_mesh(&scaled);
     }
     free_mesh(&mm);
+}
+
+/* ---- Units the file declares ------------------------------------------ */
+
+/*
+ * A Collada square of 10 x 20 units in the z = 0 plane (z up), its unit
+ * given by unit_element (an <asset> child, or "" for none).
+ */
+static const char *write_collada(const char *name, const char *unit_element)
+{
+    char text[2048];
+    snprintf(text, sizeof text,
+             "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n"
+             "<COLLADA xmlns=\"http://www.collada.org/2005/11/COLLADASchema\" version=\"1.4.1\">\n"
+             "  <asset>%s<up_axis>Z_UP</up_axis></asset>\n"
+             "  <library_geometries><geometry id=\"g\" name=\"square\"><mesh>\n"
+             "    <source id=\"p\"><float_array id=\"pa\" count=\"12\">0 0 0 10 0 0 10 20 0 0 20 0"
+             "</float_array>\n"
+             "      <technique_common><accessor source=\"#pa\" count=\"4\" stride=\"3\">"
+             "<param name=\"X\" type=\"float\"/><param name=\"Y\" type=\"float\"/>"
+             "<param name=\"Z\" type=\"float\"/></accessor></technique_common></source>\n"
+             "    <vertices id=\"v\"><input semantic=\"POSITION\" source=\"#p\"/></vertices>\n"
+             "    <triangles count=\"2\"><input semantic=\"VERTEX\" source=\"#v\" offset=\"0\"/>"
+             "<p>0 1 2 0 2 3</p></triangles>\n"
+             "  </mesh></geometry></library_geometries>\n"
+             "  <library_visual_scenes><visual_scene id=\"s\"><node id=\"n\" name=\"square\">"
+             "<instance_geometry url=\"#g\"/></node></visual_scene></library_visual_scenes>\n"
+             "  <scene><instance_visual_scene url=\"#s\"/></scene>\n"
+             "</COLLADA>\n",
+             unit_element);
+    return write_file(name, text);
+}
+
+static void add_part(zipFile zip, const char *name, const char *text)
+{
+    assert_int_equal(zipOpenNewFileInZip(zip, name, NULL, NULL, 0, NULL, 0, NULL, Z_DEFLATED,
+                                         Z_DEFAULT_COMPRESSION),
+                     ZIP_OK);
+    assert_int_equal(zipWriteInFileInZip(zip, text, (unsigned)strlen(text)), ZIP_OK);
+    assert_int_equal(zipCloseFileInZip(zip), ZIP_OK);
+}
+
+#define MODEL_TYPE "http://schemas.microsoft.com/3dmanufacturing/2013/01/3dmodel"
+
+/*
+ * A 3MF package (a zip archive) whose model part, 3D/3dmodel.model, holds
+ * model; with rels false it has no _rels/.rels to name it.
+ */
+static const char *write_3mf(const char *name, const char *model, bool rels)
+{
+    assert_true(written_count < 128);
+    char *path = written[written_count++];
+    snprintf(path, sizeof written[0], "%s/%s", directory, name);
+    zipFile zip = zipOpen(path, APPEND_STATUS_CREATE);
+    assert_non_null(zip);
+    add_part(zip, "[Content_Types].xml",
+             "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+             "<Types xmlns=\"http://schemas.openxmlformats.org/package/2006/content-types\">"
+             "<Default Extension=\"rels\" "
+             "ContentType=\"application/vnd.openxmlformats-package.relationships+xml\"/>"
+             "<Default Extension=\"model\" "
+             "ContentType=\"application/vnd.ms-package.3dmanufacturing-3dmodel+xml\"/></Types>\n");
+    if (rels)
+        add_part(zip, "_rels/.rels",
+                 "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+                 "<Relationships "
+                 "xmlns=\"http://schemas.openxmlformats.org/package/2006/relationships\">"
+                 "<Relationship Target=\"/3D/3dmodel.model\" Id=\"rel0\" Type=\"" MODEL_TYPE
+                 "\"/></Relationships>\n");
+    add_part(zip, "3D/3dmodel.model", model);
+    assert_int_equal(zipClose(zip, NULL), ZIP_OK);
+    return path;
+}
+
+/*
+ * A 3MF model of a cube of side 10 from the origin, placed by its build
+ * item at 2 times its size and 100 along x, in the unit given by
+ * unit_attribute (' unit="inch"', or "" for the default).
+ */
+static void cube_model(char *text, size_t size, const char *unit_attribute)
+{
+    static const int corners[8][3] = {{0, 0, 0},  {10, 0, 0},  {10, 10, 0},  {0, 10, 0},
+                                      {0, 0, 10}, {10, 0, 10}, {10, 10, 10}, {0, 10, 10}};
+    static const int faces[12][3] = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7},
+                                     {0, 1, 5}, {0, 5, 4}, {1, 2, 6}, {1, 6, 5},
+                                     {2, 3, 7}, {2, 7, 6}, {3, 0, 4}, {3, 4, 7}};
+    size_t at = (size_t)snprintf(
+        text, size,
+        "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<model%s xml:lang=\"en-US\" "
+        "xmlns=\"http://schemas.microsoft.com/3dmanufacturing/core/2015/02\">\n"
+        "<resources><object id=\"1\" type=\"model\" name=\"box\"><mesh><vertices>\n",
+        unit_attribute);
+    for (int v = 0; v < 8; v++)
+        at += (size_t)snprintf(text + at, size - at, "<vertex x=\"%d\" y=\"%d\" z=\"%d\"/>\n",
+                               corners[v][0], corners[v][1], corners[v][2]);
+    at += (size_t)snprintf(text + at, size - at, "</vertices><triangles>\n");
+    for (int f = 0; f < 12; f++)
+        at += (size_t)snprintf(text + at, size - at, "<triangle v1=\"%d\" v2=\"%d\" v3=\"%d\"/>\n",
+                               faces[f][0], faces[f][1], faces[f][2]);
+    snprintf(text + at, size - at,
+             "</triangles></mesh></object></resources>\n<build><item objectid=\"1\" "
+             "transform=\"2 0 0 0 2 0 0 0 2 100 0 0\"/></build></model>\n");
+}
+
+/* The box's sides, sorted, and its area, against the closed forms times mm per unit. */
+static void expect_size(const ur_mesh *mesh, const double sides[3], double area, double mm)
+{
+    double low[3], high[3], extent[3];
+    bounding_box(mesh, low, high);
+    for (int k = 0; k < 3; k++)
+        extent[k] = high[k] - low[k];
+    for (int i = 0; i < 3; i++) /* sort the three */
+        for (int j = i + 1; j < 3; j++)
+            if (extent[j] < extent[i]) {
+                double swap = extent[i];
+                extent[i] = extent[j];
+                extent[j] = swap;
+            }
+    for (int k = 0; k < 3; k++)
+        if (fabs(extent[k] - sides[k] * mm) > 1e-9 * mm * 100)
+            fail_msg("side %d: %.9g mm, expected %.9g", k, extent[k], sides[k] * mm);
+    assert_relative(total_area(mesh), area * mm * mm, 1e-9, "area");
+}
+
+static void expect_declared(const char *path, double mm, const char *name)
+{
+    double found = -1;
+    char found_name[32] = "?";
+    ur_error error = {0};
+    if (ur_mesh_declared_unit(path, &found, found_name, &error) != UR_OK)
+        fail_msg("%s: %s", path, error.message);
+    assert_true(found == mm);
+    assert_string_equal(found_name, name);
+}
+
+/* A Collada file is read in its <unit> (metres when it has none) unless the caller gives one. */
+static void test_collada_in_its_declared_unit(void **state)
+{
+    (void)state;
+    static const double square[3] = {0, 10, 20};
+    struct {
+        const char *element;
+        double mm;
+        const char *name;
+    } cases[] = {{"<unit name=\"inch\" meter=\"0.0254\"/>", 25.4, "inch"},
+                 {"<unit meter=\"0.01\"/>", 10, "0.01 m"},
+                 {"", 1000, "1 m"}};
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        char name[32];
+        snprintf(name, sizeof name, "square%zu.dae", c);
+        const char *path = write_collada(name, cases[c].element);
+        expect_declared(path, cases[c].mm, cases[c].name);
+        ur_mesh mesh = {0};
+        import_ok(path, NULL, &mesh, NULL);
+        assert_int_equal(mesh.triangle_count, 2);
+        expect_size(&mesh, square, 200, cases[c].mm);
+        /* assimp turns z up to y up: the square lies across y. */
+        double low[3], high[3];
+        bounding_box(&mesh, low, high);
+        assert_true(fabs(high[1] - low[1]) < 1e-9);
+        free_mesh(&mesh);
+        ur_mesh_import_options options = {UR_UNIT_CM, 2};
+        import_ok(path, &options, &mesh, NULL);
+        expect_size(&mesh, square, 200, 20); /* the numbers in cm, times 2 */
+        free_mesh(&mesh);
+    }
+    assert_int_equal(ur_mesh_up_axis("square.dae", NULL, 0), UR_UP_Y);
+}
+
+/* A 3MF is read in its model's unit (millimetres when it gives none), its build transform applied.
+ */
+static void test_3mf_in_its_declared_unit(void **state)
+{
+    (void)state;
+    static const double cube[3] = {20, 20, 20};
+    struct {
+        const char *attribute;
+        double mm;
+        const char *name;
+    } cases[] = {{" unit=\"inch\"", 25.4, "inch"},      {"", 1, "millimeter"},
+                 {" unit=\"micron\"", 0.001, "micron"}, {" unit=\"centimeter\"", 10, "centimeter"},
+                 {" unit=\"foot\"", 304.8, "foot"},     {" unit=\"meter\"", 1000, "meter"}};
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        char model[4096], name[32];
+        cube_model(model, sizeof model, cases[c].attribute);
+        snprintf(name, sizeof name, "cube%zu.3mf", c);
+        const char *path = write_3mf(name, model, true);
+        expect_declared(path, cases[c].mm, cases[c].name);
+        ur_mesh mesh = {0};
+        import_ok(path, NULL, &mesh, NULL);
+        assert_int_equal(mesh.triangle_count, 12);
+        expect_size(&mesh, cube, 6 * 20 * 20, cases[c].mm);
+        double low[3], high[3];
+        bounding_box(&mesh, low, high);
+        assert_relative(low[0], 100 * cases[c].mm, 1e-9, "placed by the build item");
+        free_mesh(&mesh);
+        ur_mesh_import_options options = {UR_UNIT_MM, 1};
+        import_ok(path, &options, &mesh, NULL);
+        expect_size(&mesh, cube, 6 * 20 * 20, 1);
+        free_mesh(&mesh);
+    }
+    /* Files that declare nothing. */
+    expect_declared("samples/lampshade.obj", 0, "");
+    expect_declared("samples/lampshade.gltf", 0, "");
+    assert_int_equal(ur_mesh_up_axis("cube.3mf", NULL, 0), UR_UP_Z);
+}
+
+/* A 3MF's memory is judged by its size unpacked: assimp holds the model whole. */
+static void test_3mf_memory_by_its_unpacked_size(void **state)
+{
+    (void)state;
+    enum { COMMENT = 1 << 20 };
+    char *model = malloc(4096 + COMMENT + 16);
+    assert_non_null(model);
+    cube_model(model, 4096, "");
+    size_t length = strlen(model); /* then a megabyte of comment, which packs to little */
+    memcpy(model + length, "<!--", 4);
+    memset(model + length + 4, 'x', COMMENT);
+    strcpy(model + length + 4 + COMMENT, "-->\n");
+    const char *path = write_3mf("comment.3mf", model, true);
+    free(model);
+    struct stat info;
+    assert_int_equal(stat(path, &info), 0);
+    assert_true(info.st_size < COMMENT / 100);
+    assert_true(ur_mesh_import_memory_estimate(path) >= (size_t)40 * COMMENT);
 }
 
 /* ---- Refusals ---------------------------------------------------------- */
@@ -969,6 +1199,72 @@ static void test_bad_index_and_options(void **state)
     }
 }
 
+/* Collada and 3MF files whose unit, or the part that declares it, cannot be read. */
+static void test_declared_unit_refusals(void **state)
+{
+    (void)state;
+    expect_refusal(write_collada("negative.dae", "<unit meter=\"-2\"/>"), NULL,
+                   "<unit meter=\"-2\">: the metres in one unit must be a positive number");
+    expect_refusal(write_collada("word.dae", "<unit meter=\"big\"/>"), NULL, "meter=\"big\"");
+    expect_refusal(write_collada("zero.dae", "<unit meter=\"0\"/>"), NULL, "meter=\"0\"");
+    expect_refusal(write_file("other.dae", "<?xml version=\"1.0\"?>\n<scene/>\n"), NULL,
+                   "not a Collada file");
+    expect_refusal(write_file("cut.dae", "<?xml version=\"1.0\"?>\n<COLLADA>\n<asset><unit "
+                                         "meter=\"1\"\n"),
+                   NULL, "Collada: line");
+    expect_refusal(write_file("text.dae", "Shopping list\n"), NULL, "Collada");
+    expect_refusal(write_file("text.3mf", "Shopping list\n"), NULL, "not a zip archive");
+    char model[4096];
+    cube_model(model, sizeof model, "");
+    expect_refusal(write_3mf("norels.3mf", model, false), NULL, "no _rels/.rels");
+    cube_model(model, sizeof model, " unit=\"parsec\"");
+    expect_refusal(write_3mf("parsec.3mf", model, true), NULL,
+                   "<model unit=\"parsec\">: not a 3MF unit");
+    expect_refusal(write_3mf("notxml.3mf", "Shopping list\n", true), NULL, "3MF model");
+    expect_refusal(write_3mf("scene.3mf", "<?xml version=\"1.0\"?>\n<scene/>\n", true), NULL,
+                   "does not start with <model>");
+    /* From memory, the same checks. */
+    ur_mesh mesh = {0};
+    ur_error error = {0};
+    const char text[] = "<?xml version=\"1.0\"?>\n<scene/>\n";
+    assert_int_equal(
+        ur_mesh_import_buffer("mem.dae", text, sizeof text - 1, NULL, &mesh, NULL, &error),
+        UR_ERROR_INPUT);
+    assert_non_null(strstr(error.message, "mem.dae: not a Collada file"));
+    assert_int_equal(
+        ur_mesh_import_buffer("mem.3mf", text, sizeof text - 1, NULL, &mesh, NULL, &error),
+        UR_ERROR_INPUT);
+    assert_non_null(strstr(error.message, "mem.3mf: not a 3MF file: not a zip archive"));
+}
+
+/* A 3MF read from memory is read as from its file. */
+static void test_3mf_from_memory(void **state)
+{
+    (void)state;
+    char model[4096];
+    cube_model(model, sizeof model, " unit=\"inch\"");
+    const char *path = write_3mf("memory.3mf", model, true);
+    char *data = NULL;
+    size_t size = 0;
+    FILE *file = fopen(path, "rb");
+    assert_non_null(file);
+    assert_int_equal(fseek(file, 0, SEEK_END), 0);
+    size = (size_t)ftell(file);
+    rewind(file);
+    data = malloc(size);
+    assert_non_null(data);
+    assert_int_equal(fread(data, 1, size, file), size);
+    fclose(file);
+    ur_mesh mesh = {0};
+    ur_error error = {0};
+    if (ur_mesh_import_buffer("memory.3mf", data, size, NULL, &mesh, NULL, &error) != UR_OK)
+        fail_msg("%s", error.message);
+    free(data);
+    static const double cube[3] = {20, 20, 20};
+    expect_size(&mesh, cube, 6 * 20 * 20, 25.4);
+    free_mesh(&mesh);
+}
+
 /* The up axis is the writer's: glTF's by its specification, Blender's OBJ export's, else +z. */
 static void test_up_axis_from_the_writer(void **state)
 {
@@ -1012,6 +1308,11 @@ int main(void)
         cmocka_unit_test(test_twisted_quads_given_twice),
         cmocka_unit_test(test_unit_names),
         cmocka_unit_test(test_units_and_scale_multiply),
+        cmocka_unit_test(test_collada_in_its_declared_unit),
+        cmocka_unit_test(test_3mf_in_its_declared_unit),
+        cmocka_unit_test(test_3mf_from_memory),
+        cmocka_unit_test(test_3mf_memory_by_its_unpacked_size),
+        cmocka_unit_test(test_declared_unit_refusals),
         cmocka_unit_test(test_missing_file),
         cmocka_unit_test(test_not_a_mesh),
         cmocka_unit_test(test_empty_obj),
