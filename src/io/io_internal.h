@@ -86,6 +86,14 @@ typedef struct io_declared_unit {
  */
 ur_status io_mesh_declared_unit(const char *path, const void *data, size_t size,
                                 io_declared_unit *unit, ur_error *error);
+/*
+ * For a 3MF (the file at path, or size bytes of data) with a picture whose
+ * name holds "thumbnail", which assimp 5.2 cannot read without crashing:
+ * *copy, a copy of the archive with those parts renamed, which the caller
+ * frees; NULL when there is nothing to rename.
+ */
+ur_status io_3mf_without_thumbnails(const char *path, const void *data, size_t size,
+                                    unsigned char **copy, size_t *copy_size, ur_error *error);
 /* The bytes a 3MF's parts take unpacked (0 for other files, or one that cannot be read). */
 size_t io_mesh_unpacked_size(const char *path);
 /*

@@ -639,10 +639,18 @@ static ur_status load_scene(const char *path, const void *data, size_t size,
                             const struct aiScene **scene, io_polygon_marks *polygons,
                             ur_error *error)
 {
+    unsigned char *copy = NULL; /* a 3MF's thumbnails renamed, or NULL */
+    size_t copy_size = 0;
+    if (io_has_extension(path, "3mf")) {
+        ur_status status = io_3mf_without_thumbnails(path, data, size, &copy, &copy_size, error);
+        if (status != UR_OK)
+            return status;
+    }
     io_mesh_files files;
-    io_mesh_files_init(&files, path, data, size);
+    io_mesh_files_init(&files, path, copy ? copy : data, copy ? copy_size : size);
     /* assimp keeps its last message even after a success: read it only on failure. */
     *scene = aiImportFileEx(path, 0, &files.io);
+    free(copy);
     if (!*scene)
         return ur_error_set(error, UR_ERROR_INPUT, "%s: cannot read as a mesh: %s", path,
                             aiGetErrorString());

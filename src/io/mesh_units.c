@@ -296,6 +296,73 @@ static ur_status three_mf_unit(const char *path, const void *data, size_t size,
     return status;
 }
 
+/* ---- 3MF thumbnails ---------------------------------------------------- */
+
+/*
+ * assimp 5.2 takes every picture whose name holds "thumbnail" (a 3MF's
+ * Metadata/thumbnail.png, which PrusaSlicer, Cura and 3D Builder all
+ * write) for a texture of the model, and then frees it twice: the import
+ * crashes (assimp's issues 5307 and 5328, mended in later versions).
+ * Such a part is renamed in a copy of the archive, its central directory
+ * entry's "thumbnail" becoming "Thumbnail" (same length: nothing else
+ * moves), and assimp reads the copy.  The model never needs a picture.
+ */
+#define ZIP_ENTRY_NAME_AT 46 /* bytes of a central directory entry before its name */
+
+/* Renames the current entry in bytes if its name holds "thumbnail"; false if not where expected. */
+static bool rename_thumbnail(unzFile zip, unsigned char *bytes, size_t size, bool *renamed)
+{
+    char name[1024];
+    unz_file_info64 info;
+    if (unzGetCurrentFileInfo64(zip, &info, name, sizeof name, NULL, 0, NULL, 0) != UNZ_OK)
+        return false;
+    if (!strstr(name, "thumbnail"))
+        return true;
+    size_t length = strlen(name);
+    ZPOS64_T entry = unzGetOffset64(zip);
+    if (info.size_filename != length || entry > size || size - entry < ZIP_ENTRY_NAME_AT + length)
+        return false;
+    char *stored = (char *)bytes + entry + ZIP_ENTRY_NAME_AT;
+    if (memcmp(stored, name, length) != 0)
+        return false; /* not a plain archive (data before it): leave it to the refusal */
+    for (size_t i = 0; i + 9 <= length; i++)
+        if (memcmp(stored + i, "thumbnail", 9) == 0)
+            stored[i] = 'T';
+    *renamed = true;
+    return true;
+}
+
+ur_status io_3mf_without_thumbnails(const char *path, const void *data, size_t size,
+                                    unsigned char **copy, size_t *copy_size, ur_error *error)
+{
+    *copy = NULL;
+    *copy_size = 0;
+    char *bytes = NULL;
+    size_t length = size;
+    ur_status status = data ? ((bytes = io_copy_text(data, size, error)) ? UR_OK : UR_ERROR_MEMORY)
+                            : io_read_file(path, 0, "a mesh", &bytes, &length, error);
+    if (status != UR_OK)
+        return status;
+    zip_source source = {.path = path, .data = bytes, .size = length};
+    unzFile zip = zip_open_source(&source);
+    bool renamed = false, understood = zip != NULL;
+    for (int at = zip ? unzGoToFirstFile(zip) : UNZ_OK; understood && zip && at == UNZ_OK;
+         at = unzGoToNextFile(zip))
+        understood = rename_thumbnail(zip, (unsigned char *)bytes, length, &renamed);
+    if (zip)
+        unzClose(zip);
+    if (!understood || !renamed) {
+        free(bytes);
+        if (zip && !understood)
+            return ur_error_set(error, UR_ERROR_INPUT,
+                                "%s: cannot read the 3MF archive's table of contents", path);
+        return UR_OK; /* nothing to rename, or not an archive (refused elsewhere) */
+    }
+    *copy = (unsigned char *)bytes;
+    *copy_size = length;
+    return UR_OK;
+}
+
 /* ---- Either ------------------------------------------------------------ */
 
 static ur_status collada_unit_of(const char *path, const void *data, size_t size,

@@ -747,9 +747,10 @@ static void add_part(zipFile zip, const char *name, const char *text)
 
 /*
  * A 3MF package (a zip archive) whose model part, 3D/3dmodel.model, holds
- * model; with rels false it has no _rels/.rels to name it.
+ * model; with rels false it has no _rels/.rels to name it; picture, when
+ * not NULL, names a picture part besides (a thumbnail).
  */
-static const char *write_3mf(const char *name, const char *model, bool rels)
+static const char *write_3mf(const char *name, const char *model, bool rels, const char *picture)
 {
     assert_true(written_count < 128);
     char *path = written[written_count++];
@@ -771,6 +772,8 @@ static const char *write_3mf(const char *name, const char *model, bool rels)
                  "<Relationship Target=\"/3D/3dmodel.model\" Id=\"rel0\" Type=\"" MODEL_TYPE
                  "\"/></Relationships>\n");
     add_part(zip, "3D/3dmodel.model", model);
+    if (picture) /* not a real PNG: assimp keeps a texture's bytes as they are */
+        add_part(zip, picture, "\x89PNG\r\n\x1a\n");
     assert_int_equal(zipClose(zip, NULL), ZIP_OK);
     return path;
 }
@@ -887,7 +890,7 @@ static void test_3mf_in_its_declared_unit(void **state)
         char model[4096], name[32];
         cube_model(model, sizeof model, cases[c].attribute);
         snprintf(name, sizeof name, "cube%zu.3mf", c);
-        const char *path = write_3mf(name, model, true);
+        const char *path = write_3mf(name, model, true, NULL);
         expect_declared(path, cases[c].mm, cases[c].name);
         ur_mesh mesh = {0};
         import_ok(path, NULL, &mesh, NULL);
@@ -908,6 +911,53 @@ static void test_3mf_in_its_declared_unit(void **state)
     assert_int_equal(ur_mesh_up_axis("cube.3mf", NULL, 0), UR_UP_Z);
 }
 
+/* The bytes of the file at path; free() them. */
+static char *file_bytes(const char *path, size_t *size)
+{
+    FILE *file = fopen(path, "rb");
+    assert_non_null(file);
+    assert_int_equal(fseek(file, 0, SEEK_END), 0);
+    *size = (size_t)ftell(file);
+    rewind(file);
+    char *data = malloc(*size);
+    assert_non_null(data);
+    assert_int_equal(fread(data, 1, *size, file), *size);
+    fclose(file);
+    return data;
+}
+
+/*
+ * A 3MF with a thumbnail, as slicers write them: assimp 5.2 took the
+ * picture for a texture and freed it twice (the import aborted).  Read
+ * from the file and from memory, neither of which is changed.
+ */
+static void test_3mf_with_a_thumbnail(void **state)
+{
+    (void)state;
+    static const double cube[3] = {20, 20, 20};
+    char model[4096];
+    cube_model(model, sizeof model, "");
+    const char *path = write_3mf("thumbnail.3mf", model, true, "Metadata/thumbnail.png");
+    size_t size = 0;
+    char *before = file_bytes(path, &size);
+    ur_mesh mesh = {0};
+    import_ok(path, NULL, &mesh, NULL);
+    expect_size(&mesh, cube, 6 * 20 * 20, 1);
+    free_mesh(&mesh);
+    size_t after_size = 0;
+    char *after = file_bytes(path, &after_size);
+    assert_true(after_size == size && memcmp(before, after, size) == 0);
+    ur_error error = {0};
+    if (ur_mesh_import_buffer("thumbnail.3mf", after, after_size, NULL, &mesh, NULL, &error) !=
+        UR_OK)
+        fail_msg("%s", error.message);
+    expect_size(&mesh, cube, 6 * 20 * 20, 1);
+    free_mesh(&mesh);
+    assert_memory_equal(before, after, size);
+    free(before);
+    free(after);
+}
+
 /* A 3MF's memory is judged by its size unpacked: assimp holds the model whole. */
 static void test_3mf_memory_by_its_unpacked_size(void **state)
 {
@@ -920,7 +970,7 @@ static void test_3mf_memory_by_its_unpacked_size(void **state)
     memcpy(model + length, "<!--", 4);
     memset(model + length + 4, 'x', COMMENT);
     strcpy(model + length + 4 + COMMENT, "-->\n");
-    const char *path = write_3mf("comment.3mf", model, true);
+    const char *path = write_3mf("comment.3mf", model, true, NULL);
     free(model);
     struct stat info;
     assert_int_equal(stat(path, &info), 0);
@@ -1216,12 +1266,12 @@ static void test_declared_unit_refusals(void **state)
     expect_refusal(write_file("text.3mf", "Shopping list\n"), NULL, "not a zip archive");
     char model[4096];
     cube_model(model, sizeof model, "");
-    expect_refusal(write_3mf("norels.3mf", model, false), NULL, "no _rels/.rels");
+    expect_refusal(write_3mf("norels.3mf", model, false, NULL), NULL, "no _rels/.rels");
     cube_model(model, sizeof model, " unit=\"parsec\"");
-    expect_refusal(write_3mf("parsec.3mf", model, true), NULL,
+    expect_refusal(write_3mf("parsec.3mf", model, true, NULL), NULL,
                    "<model unit=\"parsec\">: not a 3MF unit");
-    expect_refusal(write_3mf("notxml.3mf", "Shopping list\n", true), NULL, "3MF model");
-    expect_refusal(write_3mf("scene.3mf", "<?xml version=\"1.0\"?>\n<scene/>\n", true), NULL,
+    expect_refusal(write_3mf("notxml.3mf", "Shopping list\n", true, NULL), NULL, "3MF model");
+    expect_refusal(write_3mf("scene.3mf", "<?xml version=\"1.0\"?>\n<scene/>\n", true, NULL), NULL,
                    "does not start with <model>");
     /* From memory, the same checks. */
     ur_mesh mesh = {0};
@@ -1243,7 +1293,7 @@ static void test_3mf_from_memory(void **state)
     (void)state;
     char model[4096];
     cube_model(model, sizeof model, " unit=\"inch\"");
-    const char *path = write_3mf("memory.3mf", model, true);
+    const char *path = write_3mf("memory.3mf", model, true, NULL);
     char *data = NULL;
     size_t size = 0;
     FILE *file = fopen(path, "rb");
@@ -1311,6 +1361,7 @@ int main(void)
         cmocka_unit_test(test_collada_in_its_declared_unit),
         cmocka_unit_test(test_3mf_in_its_declared_unit),
         cmocka_unit_test(test_3mf_from_memory),
+        cmocka_unit_test(test_3mf_with_a_thumbnail),
         cmocka_unit_test(test_3mf_memory_by_its_unpacked_size),
         cmocka_unit_test(test_declared_unit_refusals),
         cmocka_unit_test(test_missing_file),
