@@ -69,6 +69,29 @@ static ur_status refuse_xml(const io_xml_capture *capture, const char *path, con
 
 /* ---- Collada ----------------------------------------------------------- */
 
+static const struct {
+    const char *name;
+    double metres;
+} collada_names[] = {{"meter", 1},         {"metre", 1},          {"centimeter", 0.01},
+                     {"centimetre", 0.01}, {"millimeter", 0.001}, {"millimetre", 0.001},
+                     {"inch", 0.0254},     {"foot", 0.3048},      {"kilometer", 1000}};
+
+/*
+ * The unit's name for messages: the file's, where it is a unit of that
+ * size (3ds Max has written name="centimeter" on a unit of one metre),
+ * else its size in metres.
+ */
+static void name_collada_unit(const char *name, double metres, char *text, size_t size)
+{
+    for (size_t i = 0; i < sizeof collada_names / sizeof collada_names[0]; i++)
+        if (strcmp(name, collada_names[i].name) == 0 &&
+            fabs(metres - collada_names[i].metres) <= 1e-6 * metres) {
+            c_snprintf(text, size, "%s", name);
+            return;
+        }
+    c_snprintf(text, size, "%g m", metres);
+}
+
 /*
  * COLLADA/asset/unit: metres in one unit (the specification's default is
  * 1 when the element or the attribute is absent) and the unit's name.
@@ -94,8 +117,13 @@ static ur_status collada_unit(xmlTextReaderPtr reader, const char *path, io_decl
             break;
         }
     }
+    char *comma = strchr(meter, ',');
+    if (comma) /* "0,010000": 3ds Max writes a decimal comma where the locale has one */
+        *comma = '.';
     char *end = NULL;
     double metres = c_strtod(meter, &end);
+    if (comma)
+        *comma = ',';
     if (end == meter || *end != '\0' || !(metres > 0) || !isfinite(metres))
         return ur_error_set(error, UR_ERROR_INPUT,
                             "%s: <unit meter=\"%s\">: the metres in one unit must be a positive "
@@ -104,10 +132,7 @@ static ur_status collada_unit(xmlTextReaderPtr reader, const char *path, io_decl
     unit->mm = 1000.0 * metres;
     /* assimp scales by the unit in single precision: its coordinates are raw * (float)metres. */
     unit->applied = (double)(float)metres;
-    if (name[0])
-        c_snprintf(unit->name, sizeof unit->name, "%s", name);
-    else
-        c_snprintf(unit->name, sizeof unit->name, "%g m", metres);
+    name_collada_unit(name, metres, unit->name, sizeof unit->name);
     return UR_OK;
 }
 

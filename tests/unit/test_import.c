@@ -850,6 +850,8 @@ static void test_collada_in_its_declared_unit(void **state)
         const char *name;
     } cases[] = {{"<unit name=\"inch\" meter=\"0.0254\"/>", 25.4, "inch"},
                  {"<unit meter=\"0.01\"/>", 10, "0.01 m"},
+                 {"<unit meter=\"0,0254\"/>", 25.4, "0.0254 m"}, /* a decimal comma (3ds Max) */
+                 {"<unit name=\"centimeter\" meter=\"1\"/>", 1000, "1 m"}, /* named wrong */
                  {"", 1000, "1 m"}};
     for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
         char name[32];
