@@ -87,13 +87,23 @@ typedef struct io_declared_unit {
 ur_status io_mesh_declared_unit(const char *path, const void *data, size_t size,
                                 io_declared_unit *unit, ur_error *error);
 /*
- * For a 3MF (the file at path, or size bytes of data) with a picture whose
- * name holds "thumbnail", which assimp 5.2 cannot read without crashing:
- * *copy, a copy of the archive with those parts renamed, which the caller
- * frees; NULL when there is nothing to rename.
+ * The 3MF archive (the file at path, or size bytes of data) made ready for
+ * assimp 5.2 (mesh_3mf.c): a new archive in *archive (the caller frees it)
+ * holding the content types, root relationships and model alone, the
+ * objects the model's components take from other parts copied into it.
  */
-ur_status io_3mf_without_thumbnails(const char *path, const void *data, size_t size,
-                                    unsigned char **copy, size_t *copy_size, ur_error *error);
+ur_status io_3mf_for_assimp(const char *path, const void *data, size_t size,
+                            unsigned char **archive, size_t *archive_size, ur_error *error);
+/* The unit a 3MF's model declares (mesh_3mf.c), as io_mesh_declared_unit gives it. */
+ur_status io_3mf_unit(const char *path, const void *data, size_t size, io_declared_unit *unit,
+                      ur_error *error);
+/* libxml2's streaming reader on the next element (depth: 0 the root); false at the end. */
+struct _xmlTextReader;
+bool io_reader_next_element(struct _xmlTextReader *reader, int *depth);
+/* Whether the reader's element has that local name. */
+bool io_reader_is(struct _xmlTextReader *reader, const char *name);
+/* The attribute's value into value (cut to size - 1 bytes; "" when absent); false when absent. */
+bool io_reader_attribute(struct _xmlTextReader *reader, const char *name, char *value, size_t size);
 /* The bytes a 3MF's parts take unpacked (0 for other files, or one that cannot be read). */
 size_t io_mesh_unpacked_size(const char *path);
 /*

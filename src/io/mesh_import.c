@@ -639,10 +639,10 @@ static ur_status load_scene(const char *path, const void *data, size_t size,
                             const struct aiScene **scene, io_polygon_marks *polygons,
                             ur_error *error)
 {
-    unsigned char *copy = NULL; /* a 3MF's thumbnails renamed, or NULL */
+    unsigned char *copy = NULL; /* a 3MF made ready for assimp, or NULL */
     size_t copy_size = 0;
     if (io_has_extension(path, "3mf")) {
-        ur_status status = io_3mf_without_thumbnails(path, data, size, &copy, &copy_size, error);
+        ur_status status = io_3mf_for_assimp(path, data, size, &copy, &copy_size, error);
         if (status != UR_OK)
             return status;
     }

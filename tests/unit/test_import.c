@@ -747,10 +747,11 @@ static void add_part(zipFile zip, const char *name, const char *text)
 
 /*
  * A 3MF package (a zip archive) whose model part, 3D/3dmodel.model, holds
- * model; with rels false it has no _rels/.rels to name it; picture, when
- * not NULL, names a picture part besides (a thumbnail).
+ * model; with rels false it has no _rels/.rels to name it; extra, when not
+ * NULL, gives more parts: a name, its text, ..., then NULL.
  */
-static const char *write_3mf(const char *name, const char *model, bool rels, const char *picture)
+static const char *write_3mf(const char *name, const char *model, bool rels,
+                             const char *const *extra)
 {
     assert_true(written_count < 128);
     char *path = written[written_count++];
@@ -772,11 +773,37 @@ static const char *write_3mf(const char *name, const char *model, bool rels, con
                  "<Relationship Target=\"/3D/3dmodel.model\" Id=\"rel0\" Type=\"" MODEL_TYPE
                  "\"/></Relationships>\n");
     add_part(zip, "3D/3dmodel.model", model);
-    if (picture) /* not a real PNG: assimp keeps a texture's bytes as they are */
-        add_part(zip, picture, "\x89PNG\r\n\x1a\n");
+    for (size_t i = 0; extra && extra[i]; i += 2)
+        add_part(zip, extra[i], extra[i + 1]);
     assert_int_equal(zipClose(zip, NULL), ZIP_OK);
     return path;
 }
+
+/* A cube of side 10 from the origin as a 3MF <mesh>, written at text + at; returns the new end. */
+static size_t cube_mesh(char *text, size_t size, size_t at)
+{
+    static const int corners[8][3] = {{0, 0, 0},  {10, 0, 0},  {10, 10, 0},  {0, 10, 0},
+                                      {0, 0, 10}, {10, 0, 10}, {10, 10, 10}, {0, 10, 10}};
+    static const int faces[12][3] = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7},
+                                     {0, 1, 5}, {0, 5, 4}, {1, 2, 6}, {1, 6, 5},
+                                     {2, 3, 7}, {2, 7, 6}, {3, 0, 4}, {3, 4, 7}};
+    at += (size_t)snprintf(text + at, size - at, "<mesh><vertices>\n");
+    for (int v = 0; v < 8; v++)
+        at += (size_t)snprintf(text + at, size - at, "<vertex x=\"%d\" y=\"%d\" z=\"%d\"/>\n",
+                               corners[v][0], corners[v][1], corners[v][2]);
+    at += (size_t)snprintf(text + at, size - at, "</vertices><triangles>\n");
+    for (int f = 0; f < 12; f++)
+        at += (size_t)snprintf(text + at, size - at,
+                               "<triangle v1=\"%d\" v2=\"%d\" v3=\"%d\" p1=\"%d\"/>\n", faces[f][0],
+                               faces[f][1], faces[f][2], f);
+    assert_true(at < size);
+    return at + (size_t)snprintf(text + at, size - at, "</triangles></mesh>");
+}
+
+#define MODEL_START                                                                                \
+    "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<model%s xml:lang=\"en-US\" "                     \
+    "xmlns=\"http://schemas.microsoft.com/3dmanufacturing/core/2015/02\" "                         \
+    "xmlns:p=\"http://schemas.microsoft.com/3dmanufacturing/production/2015/06\">\n"
 
 /*
  * A 3MF model of a cube of side 10 from the origin, placed by its build
@@ -785,26 +812,13 @@ static const char *write_3mf(const char *name, const char *model, bool rels, con
  */
 static void cube_model(char *text, size_t size, const char *unit_attribute)
 {
-    static const int corners[8][3] = {{0, 0, 0},  {10, 0, 0},  {10, 10, 0},  {0, 10, 0},
-                                      {0, 0, 10}, {10, 0, 10}, {10, 10, 10}, {0, 10, 10}};
-    static const int faces[12][3] = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7},
-                                     {0, 1, 5}, {0, 5, 4}, {1, 2, 6}, {1, 6, 5},
-                                     {2, 3, 7}, {2, 7, 6}, {3, 0, 4}, {3, 4, 7}};
-    size_t at = (size_t)snprintf(
-        text, size,
-        "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<model%s xml:lang=\"en-US\" "
-        "xmlns=\"http://schemas.microsoft.com/3dmanufacturing/core/2015/02\">\n"
-        "<resources><object id=\"1\" type=\"model\" name=\"box\"><mesh><vertices>\n",
-        unit_attribute);
-    for (int v = 0; v < 8; v++)
-        at += (size_t)snprintf(text + at, size - at, "<vertex x=\"%d\" y=\"%d\" z=\"%d\"/>\n",
-                               corners[v][0], corners[v][1], corners[v][2]);
-    at += (size_t)snprintf(text + at, size - at, "</vertices><triangles>\n");
-    for (int f = 0; f < 12; f++)
-        at += (size_t)snprintf(text + at, size - at, "<triangle v1=\"%d\" v2=\"%d\" v3=\"%d\"/>\n",
-                               faces[f][0], faces[f][1], faces[f][2]);
+    size_t at = (size_t)snprintf(text, size,
+                                 MODEL_START "<resources><object id=\"1\" type=\"model\" "
+                                             "name=\"box\">",
+                                 unit_attribute);
+    at = cube_mesh(text, size, at);
     snprintf(text + at, size - at,
-             "</triangles></mesh></object></resources>\n<build><item objectid=\"1\" "
+             "</object></resources>\n<build><item objectid=\"1\" "
              "transform=\"2 0 0 0 2 0 0 0 2 100 0 0\"/></build></model>\n");
 }
 
@@ -939,7 +953,9 @@ static void test_3mf_with_a_thumbnail(void **state)
     static const double cube[3] = {20, 20, 20};
     char model[4096];
     cube_model(model, sizeof model, "");
-    const char *path = write_3mf("thumbnail.3mf", model, true, "Metadata/thumbnail.png");
+    /* not a real PNG: assimp keeps a texture's bytes as they are */
+    const char *const thumbnail[] = {"Metadata/thumbnail.png", "\x89PNG\r\n\x1a\n", NULL};
+    const char *path = write_3mf("thumbnail.3mf", model, true, thumbnail);
     size_t size = 0;
     char *before = file_bytes(path, &size);
     ur_mesh mesh = {0};
@@ -1317,6 +1333,115 @@ static void test_3mf_from_memory(void **state)
     free_mesh(&mesh);
 }
 
+/*
+ * Objects in parts of their own, named by components' p:path (3MF's
+ * production extension, as Bambu Studio writes every model): assimp 5.2
+ * reads only the model part and found no mesh.  The model here has two
+ * components on one object of 3D/Objects/box.model, the second moved 50
+ * along x, and a build item on an object of 3D/Objects/nest.model that is
+ * a component of another object of that part.  The copied objects' colour
+ * (pid 7, pindex 5) would name the model's own basematerials 7, which has
+ * one entry: it is dropped.
+ */
+static void test_3mf_objects_in_parts_of_their_own(void **state)
+{
+    (void)state;
+    static const char model[] =
+        MODEL_START "<resources><basematerials id=\"7\"><base name=\"red\" "
+                    "displaycolor=\"#FF0000\"/></basematerials>\n"
+                    "<object id=\"1\" type=\"model\"><components>"
+                    "<component p:path=\"/3D/Objects/box.model\" objectid=\"1\"/>"
+                    "<component p:path=\"/3D/Objects/box.model\" objectid=\"1\" "
+                    "transform=\"1 0 0 0 1 0 0 0 1 50 0 0\"/></components></object></resources>\n"
+                    "<build><item objectid=\"1\"/><item p:path=\"/3D/Objects/nest.model\" "
+                    "objectid=\"3\" transform=\"1 0 0 0 1 0 0 0 1 0 100 0\"/></build></model>\n";
+    char text[4096], box[4096], nest[4096];
+    snprintf(text, sizeof text, model, "");
+    size_t at = (size_t)snprintf(box, sizeof box,
+                                 MODEL_START "<resources><object id=\"1\" type=\"model\" "
+                                             "pid=\"7\" pindex=\"5\">",
+                                 "");
+    at = cube_mesh(box, sizeof box, at);
+    snprintf(box + at, sizeof box - at, "</object></resources><build/></model>\n");
+    at = (size_t)snprintf(nest, sizeof nest,
+                          MODEL_START "<resources><object id=\"2\" type=\"model\">", "");
+    at = cube_mesh(nest, sizeof nest, at);
+    snprintf(nest + at, sizeof nest - at,
+             "</object><object id=\"3\" type=\"model\"><components><component objectid=\"2\"/>"
+             "</components></object></resources><build/></model>\n");
+    const char *const parts[] = {"3D/Objects/box.model", box, "3D/Objects/nest.model", nest, NULL};
+    const char *path = write_3mf("parts.3mf", text, true, parts);
+    ur_mesh mesh = {0};
+    import_ok(path, NULL, &mesh, NULL);
+    assert_int_equal(mesh.triangle_count, 3 * 12);
+    assert_relative(total_area(&mesh), 3 * 600, 1e-12, "three cubes");
+    double low[3], high[3];
+    bounding_box(&mesh, low, high);
+    assert_relative(high[0] - low[0], 60, 1e-12, "the second box 50 along");
+    assert_relative(high[1] - low[1], 110, 1e-12, "the nested one 100 along y");
+    free_mesh(&mesh);
+    /* A part or an object that is not there. */
+    const char *const no_part[] = {"3D/Objects/nest.model", nest, NULL};
+    expect_refusal(write_3mf("nopart.3mf", text, true, no_part), NULL,
+                   "3MF part '3D/Objects/box.model': a component names it, but the archive has no "
+                   "such part");
+    const char *const no_object[] = {"3D/Objects/box.model", nest, "3D/Objects/nest.model", nest,
+                                     NULL};
+    expect_refusal(write_3mf("noobject.3mf", text, true, no_object), NULL,
+                   "3MF part '3D/Objects/box.model': a component names its object 1, which it "
+                   "does not have");
+}
+
+/*
+ * A component that names an object not defined before it (missing, later,
+ * its own): assimp 5.2 crashed on the first and looped for ever on the
+ * last.  A model that is not well formed past its start.
+ */
+static void test_3mf_components_checked(void **state)
+{
+    (void)state;
+    static const char model[] =
+        MODEL_START "<resources>%s<object id=\"1\" type=\"model\"><components>"
+                    "<component objectid=\"%d\"/></components></object>%s</resources>"
+                    "<build><item objectid=\"1\"/></build></model>\n";
+    char mesh[4096], before[4096], text[8192];
+    size_t at = (size_t)snprintf(mesh, sizeof mesh, "<object id=\"2\" type=\"model\">");
+    at = cube_mesh(mesh, sizeof mesh, at);
+    snprintf(mesh + at, sizeof mesh - at, "</object>");
+    snprintf(before, sizeof before, "%s", mesh);
+    struct {
+        const char *first, *last;
+        int named;
+        const char *name;
+    } cases[] = {{"", "", 9, "missing.3mf"},
+                 {"", mesh, 2, "later.3mf"},
+                 {"", "", 1, "itself.3mf"},
+                 {before, "", 2, "before.3mf"}};
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        char unit[1] = "";
+        snprintf(text, sizeof text, model, unit, cases[c].first, cases[c].named, cases[c].last);
+        const char *path = write_3mf(cases[c].name, text, true, NULL);
+        if (c < 3) {
+            char expected[96];
+            snprintf(expected, sizeof expected,
+                     "a component names object %d, which is not defined "
+                     "before it",
+                     cases[c].named);
+            expect_refusal(path, NULL, expected);
+        } else {
+            ur_mesh mesh_read = {0};
+            import_ok(path, NULL, &mesh_read, NULL);
+            assert_int_equal(mesh_read.triangle_count, 12);
+            free_mesh(&mesh_read);
+        }
+    }
+    char cut[4096];
+    cube_model(cut, sizeof cut, "");
+    cut[strlen(cut) - 20] = '\0'; /* the end of the model lost */
+    expect_refusal(write_3mf("cut.3mf", cut, true, NULL), NULL,
+                   "3MF part '3D/3dmodel.model': line");
+}
+
 /* The up axis is the writer's: glTF's by its specification, Blender's OBJ export's, else +z. */
 static void test_up_axis_from_the_writer(void **state)
 {
@@ -1364,6 +1489,8 @@ int main(void)
         cmocka_unit_test(test_3mf_in_its_declared_unit),
         cmocka_unit_test(test_3mf_from_memory),
         cmocka_unit_test(test_3mf_with_a_thumbnail),
+        cmocka_unit_test(test_3mf_objects_in_parts_of_their_own),
+        cmocka_unit_test(test_3mf_components_checked),
         cmocka_unit_test(test_3mf_memory_by_its_unpacked_size),
         cmocka_unit_test(test_declared_unit_refusals),
         cmocka_unit_test(test_missing_file),
