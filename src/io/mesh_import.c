@@ -137,15 +137,31 @@ static const char *const supported_extensions[] = {
  * caller's unit) or one the file declares (mesh_units.c).  FBX is left out:
  * its unit is a scale factor that exporters and assimp each apply or not.
  */
+/* Files makers often have at hand, and what to export from them instead. */
+static const struct {
+    const char *extension, *advice;
+} other_files[] = {
+    {"fbx", "FBX is not read (programs disagree on how its unit applies)"},
+    {"blend", "a Blender file: export it as OBJ (File > Export > Wavefront)"},
+    {"skp", "a SketchUp file: export it as Collada (.dae)"},
+    {"step", "a CAD solid, not a mesh: export it as STL, 3MF or OBJ"},
+    {"stp", "a CAD solid, not a mesh: export it as STL, 3MF or OBJ"},
+    {"f3d", "a Fusion file: export it as STL, 3MF or OBJ"},
+};
+
 static ur_status check_extension(const char *path, ur_error *error)
 {
     for (size_t i = 0; i < sizeof supported_extensions / sizeof supported_extensions[0]; i++)
         if (io_has_extension(path, supported_extensions[i]))
             return UR_OK;
+    const char *advice = "";
+    for (size_t i = 0; i < sizeof other_files / sizeof other_files[0]; i++)
+        if (io_has_extension(path, other_files[i].extension))
+            advice = other_files[i].advice;
     return ur_error_set(error, UR_ERROR_INPUT,
-                        "%s: unsupported file type: unroll reads meshes from .obj, .stl, .ply, "
-                        ".gltf, .glb, .dae (Collada) and .3mf files",
-                        path);
+                        "%s: unsupported file type%s%s: unroll reads meshes from .obj, .stl, "
+                        ".ply, .gltf, .glb, .dae (Collada) and .3mf files",
+                        path, advice[0] ? ", " : "", advice);
 }
 
 static ur_status refuse_too_many(const char *path, unsigned long long count, ur_error *error)

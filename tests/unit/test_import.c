@@ -1036,7 +1036,11 @@ static void test_not_a_mesh(void **state)
 {
     (void)state;
     const char *text = "Shopping list\nplywood, glue\n";
-    expect_refusal(write_file("notes.txt", text), NULL, "unsupported file type");
+    expect_refusal(write_file("notes.txt", text), NULL, "unsupported file type: unroll reads");
+    /* What makers often have, with what to export instead. */
+    expect_refusal(write_file("model.fbx", text), NULL, "unsupported file type, FBX is not read");
+    expect_refusal(write_file("chair.skp", text), NULL, "export it as Collada (.dae)");
+    expect_refusal(write_file("bracket.STEP", text), NULL, "a CAD solid, not a mesh");
     /* Known extensions: assimp says why it cannot read them. */
     expect_refusal(write_file("notes.stl", text), NULL, "STL");
     expect_refusal(write_file("notes.ply", text), NULL, "ply");
