@@ -315,16 +315,6 @@ UR_API size_t ur_mesh_import_memory_estimate(const char *path);
  *
  * Not thread-safe: assimp keeps its last error message in a global.
  */
-/*
- * The unit the mesh file at path declares in its content, as
- * ur_mesh_import reads it by default: *mm the millimetres in one unit and
- * name what the file calls it ("inch"; "0.0254 m" for a Collada unit
- * without a name), or *mm 0 and name "" for a format that declares none.
- * UR_ERROR_INPUT naming the file when that part of it cannot be read.
- */
-UR_API ur_status ur_mesh_declared_unit(const char *path, double *mm, char name[32],
-                                       ur_error *error);
-
 UR_API ur_status ur_mesh_import(const char *path, const ur_mesh_import_options *options,
                                 ur_mesh *mesh, char (**group_names)[64], ur_error *error);
 
@@ -337,6 +327,16 @@ UR_API ur_status ur_mesh_import(const char *path, const ur_mesh_import_options *
 UR_API ur_status ur_mesh_import_buffer(const char *name, const void *data, size_t size,
                                 const ur_mesh_import_options *options, ur_mesh *mesh,
                                 char (**group_names)[64], ur_error *error);
+
+/*
+ * The unit the mesh file at path declares in its content, as
+ * ur_mesh_import reads it by default: *mm the millimetres in one unit and
+ * name what the file calls it ("inch"; "0.0254 m" for a Collada unit
+ * without a name), or *mm 0 and name "" for a format that declares none.
+ * UR_ERROR_INPUT naming the file when that part of it cannot be read.
+ */
+UR_API ur_status ur_mesh_declared_unit(const char *path, double *mm, char name[32],
+                                       ur_error *error);
 
 /*
  * Which axis of a mesh file's coordinates points up, for drawings of the

@@ -39,11 +39,11 @@
 
 /* ---- Units ------------------------------------------------------------- */
 
+/* UR_UNIT_FILE has no size of its own, and is never taken by name. */
 static const struct {
     const char *name;
     double mm;
 } unit_table[] = {
-    /* UR_UNIT_FILE has no size of its own and is never taken by name */
     [UR_UNIT_MM] = {"mm", 1.0},  [UR_UNIT_CM] = {"cm", 10.0},    [UR_UNIT_M] = {"m", 1000.0},
     [UR_UNIT_IN] = {"in", 25.4}, [UR_UNIT_FILE] = {"file", NAN},
 };
@@ -127,16 +127,16 @@ static void file_stem(const char *path, char *stem, size_t size)
 
 /* ---- The file itself --------------------------------------------------- */
 
-static const char *const supported_extensions[] = {
-    "obj", "stl", "ply", "gltf", "glb", "dae", "3mf",
-};
-
 /*
  * assimp reads dozens of formats; these are the ones modellers and 3D
  * printers write whose units unroll knows: none (plain numbers in the
  * caller's unit) or one the file declares (mesh_units.c).  FBX is left out:
  * its unit is a scale factor that exporters and assimp each apply or not.
  */
+static const char *const supported_extensions[] = {
+    "obj", "stl", "ply", "gltf", "glb", "dae", "3mf",
+};
+
 /* Files makers often have at hand, and what to export from them instead. */
 static const struct {
     const char *extension, *advice;
