@@ -1450,20 +1450,33 @@ def mesh_in_metres_gets_a_warning(work):
           "the cube's area in centimetres")
 
 
-def cube_3mf(path, side, unit):
+def cube_3mf(path, side, unit, slicer=False):
     """A 3MF package (zip) holding a cube of the given side from the origin,
-    its model in unit (3MF's unit names; None leaves the attribute out)."""
+    its model in unit (3MF's unit names; None leaves the attribute out).
+    With slicer, as Bambu Studio writes it: the cube in a part of its own,
+    3D/Objects/object_1.model, that a component of the model names (the
+    production extension), and a thumbnail."""
     corners = [(x, y, z) for z in (0, side) for y in (0, side) for x in (0, side)]
     quads = [(0, 2, 3, 1), (4, 5, 7, 6), (0, 1, 5, 4), (2, 6, 7, 3), (0, 4, 6, 2), (1, 3, 7, 5)]
     triangles = [t for a, b, c, d in quads for t in ((a, b, c), (a, c, d))]
     unit_attribute = ' unit="%s"' % unit if unit else ""
-    model = ('<?xml version="1.0" encoding="UTF-8"?>\n<model%s xmlns='
-             '"http://schemas.microsoft.com/3dmanufacturing/core/2015/02"><resources>'
-             '<object id="1" type="model"><mesh><vertices>%s</vertices><triangles>%s'
-             '</triangles></mesh></object></resources><build><item objectid="1"/></build>'
-             '</model>\n') % (unit_attribute,
-                              "".join('<vertex x="%g" y="%g" z="%g"/>' % c for c in corners),
-                              "".join('<triangle v1="%d" v2="%d" v3="%d"/>' % t for t in triangles))
+    start = ('<?xml version="1.0" encoding="UTF-8"?>\n<model%s xmlns='
+             '"http://schemas.microsoft.com/3dmanufacturing/core/2015/02" xmlns:p='
+             '"http://schemas.microsoft.com/3dmanufacturing/production/2015/06"><resources>'
+             % unit_attribute)
+    cube = ('<object id="1" type="model"><mesh><vertices>%s</vertices><triangles>%s'
+            '</triangles></mesh></object>') % (
+                "".join('<vertex x="%g" y="%g" z="%g"/>' % c for c in corners),
+                "".join('<triangle v1="%d" v2="%d" v3="%d"/>' % t for t in triangles))
+    if slicer:
+        parts = {"3D/Objects/object_1.model": start + cube + "</resources><build/></model>\n",
+                 "Metadata/thumbnail.png": "\x89PNG\r\n\x1a\n"}
+        model = (start + '<object id="2" type="model"><components><component '
+                 'p:path="/3D/Objects/object_1.model" objectid="1"/></components></object>'
+                 '</resources><build><item objectid="2"/></build></model>\n')
+    else:
+        parts = {}
+        model = start + cube + '</resources><build><item objectid="1"/></build></model>\n'
     with zipfile.ZipFile(path, "w", zipfile.ZIP_DEFLATED) as package:
         package.writestr("[Content_Types].xml",
                          '<?xml version="1.0" encoding="UTF-8"?><Types xmlns="http://schemas.'
@@ -1477,6 +1490,8 @@ def cube_3mf(path, side, unit):
                          'Target="/3D/3dmodel.model" Id="rel0" Type="http://schemas.microsoft.com/'
                          '3dmanufacturing/2013/01/3dmodel"/></Relationships>')
         package.writestr("3D/3dmodel.model", model)
+        for name, text in parts.items():
+            package.writestr(name, text)
 
 
 @test
@@ -1520,6 +1535,12 @@ def mesh_in_the_unit_its_file_declares(work):
                  "--nest-time", "0", "-o", "s.svg", "--report", "s.json")
     check("its unit is inch (25.4 mm), as the file says" in result.stderr, result.stderr)
     close(report(work, "s.json")["surface_area_mm2"], 8 * 25.4 ** 2, 1e-6, "the square's area")
+    # As Bambu Studio writes a model (and MakerWorld hands it out): assimp
+    # 5.2 read it as empty, and a thumbnail made it abort.
+    cube_3mf(os.path.join(work, "slicer.3mf"), 40, None, slicer=True)
+    run(work, "mesh", "slicer.3mf", "--flatten", "unfold", "--material", "paper-0.3mm",
+        "--nest-time", "0", "-o", "b.svg", "--report", "b.json")
+    close(report(work, "b.json")["surface_area_mm2"], 6 * 40.0 ** 2, 1e-9, "the slicer's cube")
     cube_3mf(os.path.join(work, "parsec.3mf"), 2, "parsec")
     bad(work, r"parsec\.3mf: <model unit=\"parsec\">: not a 3MF unit", "mesh", "parsec.3mf",
         "--flatten", "unfold", "--material", "paper-0.3mm", "-o", "p.svg")
