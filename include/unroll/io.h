@@ -332,8 +332,9 @@ UR_API ur_status ur_mesh_import_buffer(const char *name, const void *data, size_
  * The unit the mesh file at path declares in its content, as
  * ur_mesh_import reads it by default: *mm the millimetres in one unit and
  * name what the file calls it ("inch"; "0.0254 m" for a Collada unit
- * without a name), or *mm 0 and name "" for a format that declares none.
- * UR_ERROR_INPUT naming the file when that part of it cannot be read.
+ * without a name), or *mm 0 and name "" for a format that declares none
+ * (OBJ, STL, PLY, glTF: the file is not opened).  UR_ERROR_INPUT naming the
+ * file when the part that declares the unit cannot be read.
  */
 UR_API ur_status ur_mesh_declared_unit(const char *path, double *mm, char name[32],
                                        ur_error *error);

@@ -86,6 +86,8 @@ typedef struct io_declared_unit {
  */
 ur_status io_mesh_declared_unit(const char *path, const void *data, size_t size,
                                 io_declared_unit *unit, ur_error *error);
+/* Whether the file's format is one that declares a unit (Collada, 3MF), by its extension. */
+bool io_mesh_may_declare_unit(const char *path);
 /*
  * The 3MF archive (the file at path, or size bytes of data) made ready for
  * assimp 5.2 (mesh_3mf.c): a new archive in *archive (the caller frees it)

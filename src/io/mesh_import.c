@@ -1183,6 +1183,8 @@ ur_status ur_mesh_declared_unit(const char *path, double *mm, char name[32], ur_
 {
     *mm = 0;
     name[0] = '\0';
+    if (!io_mesh_may_declare_unit(path))
+        return UR_OK; /* a format that declares none: the file is not opened */
     io_declared_unit declared;
     ur_status status = check_file(path, error);
     if (status == UR_OK)

@@ -154,13 +154,18 @@ static ur_status collada_unit_of(const char *path, const void *data, size_t size
     return status;
 }
 
+bool io_mesh_may_declare_unit(const char *path)
+{
+    return io_has_extension(path, "dae") || io_has_extension(path, "3mf");
+}
+
 ur_status io_mesh_declared_unit(const char *path, const void *data, size_t size,
                                 io_declared_unit *unit, ur_error *error)
 {
     *unit = (io_declared_unit){.mm = 0.0, .applied = 1.0};
-    bool collada = io_has_extension(path, "dae"), three_mf = io_has_extension(path, "3mf");
-    if (!collada && !three_mf)
+    if (!io_mesh_may_declare_unit(path))
         return UR_OK;
+    bool collada = io_has_extension(path, "dae");
     io_xml_capture capture;
     io_xml_capture_begin(&capture);
     errno = 0;

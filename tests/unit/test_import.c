@@ -1316,17 +1316,8 @@ static void test_3mf_from_memory(void **state)
     char model[4096];
     cube_model(model, sizeof model, " unit=\"inch\"");
     const char *path = write_3mf("memory.3mf", model, true, NULL);
-    char *data = NULL;
     size_t size = 0;
-    FILE *file = fopen(path, "rb");
-    assert_non_null(file);
-    assert_int_equal(fseek(file, 0, SEEK_END), 0);
-    size = (size_t)ftell(file);
-    rewind(file);
-    data = malloc(size);
-    assert_non_null(data);
-    assert_int_equal(fread(data, 1, size, file), size);
-    fclose(file);
+    char *data = file_bytes(path, &size);
     ur_mesh mesh = {0};
     ur_error error = {0};
     if (ur_mesh_import_buffer("memory.3mf", data, size, NULL, &mesh, NULL, &error) != UR_OK)
