@@ -227,24 +227,13 @@ size_t nest_pair_key(const nester *n, size_t a, size_t ta, size_t b, size_t tb)
     return ((ca * t + ta) * n->class_count + cb) * t + tb;
 }
 
-/* What the cache of pairs holds, made for a pair at a's first turn (or one not turned). */
-typedef GEOSGeometry *(*pair_maker)(nester *n, size_t a, size_t ta, size_t b, size_t tb);
-
-/* The two things kept per pair: the convex sums, and their union, the no-fit polygon. */
-typedef enum pair_kind { PAIR_SUMS, PAIR_NFP } pair_kind;
-
-static GEOSGeometry **held_by(pair_entry *entry, pair_kind kind)
-{
-    return kind == PAIR_SUMS ? &entry->sums : &entry->nfp;
-}
-
 /*
- * The most points the cached convex sums may hold together (about 64 MB of
- * coordinates, three times that in GEOS).  Each pair of detailed nets has
- * up to a thousand sums: the 127 nets of Blender's subdivided monkey head
- * made 27,000 of them with 35 million points, 1.7 GB, in one first-fit
- * layout.  A first-fit layout uses a pair's sums only while it places the
- * second part, and the search over orders their unions, which are kept.
+ * The most points the cached convex sums may hold together (64 MB).  Each
+ * pair of detailed nets has up to a thousand sums: the 127 nets of
+ * Blender's subdivided monkey head made 27,000 of them with 35 million
+ * points in one first-fit layout.  A first-fit layout uses a pair's sums
+ * only while it places the second part, and the search over orders their
+ * unions, which are kept.
  */
 #define NEST_SUMS_POINTS 4000000
 
@@ -254,16 +243,10 @@ static void drop_sums(nester *n, size_t keep)
     for (size_t s = 0; s < n->pairs.capacity; s++) {
         pair_entry *entry = &n->pairs.slots[s];
         if (entry->key != keep && entry->sums) {
-            GEOSGeom_destroy_r(n->geos, entry->sums);
+            nest_sum_list_free(entry->sums);
             entry->sums = NULL;
         }
     }
-}
-
-static size_t points_of(const nester *n, const GEOSGeometry *g)
-{
-    int points = g ? GEOSGetNumCoordinates_r(n->geos, g) : 0;
-    return points > 0 ? (size_t)points : 0;
 }
 
 /*
@@ -271,9 +254,9 @@ static size_t points_of(const nester *n, const GEOSGeometry *g)
  * every other pair's sums are dropped, to be made again (the same) if
  * asked for, unless the sums are held.
  */
-static void keep_sums_small(nester *n, size_t key, const GEOSGeometry *sums)
+static void keep_sums_small(nester *n, size_t key, const nest_sum_list *sums)
 {
-    size_t count = points_of(n, sums);
+    size_t count = sums->first[sums->count];
     if (!n->sums_held && n->sums_points + count > NEST_SUMS_POINTS) {
         drop_sums(n, key);
         n->sums_points = 0;
@@ -291,58 +274,75 @@ void nest_hold_sums(nester *n, bool hold)
 }
 
 /*
- * What the cache holds of a kind for the pair: made, or turned from its
- * first turn's, once.  NULL when GEOS fails or memory runs out.
+ * The entry of the pair's key, for something just made (taken over, or
+ * freed with free_made when there is no memory for the entry); NULL then.
+ * Looked up again after making: making the pair may have added others,
+ * and moved this one.
  */
-static const GEOSGeometry *cached_pair(nester *n, pair_kind kind, pair_maker make, size_t a,
-                                       size_t ta, size_t b, size_t tb)
+static pair_entry *entry_for(nester *n, size_t key, void *made, void (*free_made)(nester *, void *))
+{
+    pair_entry *entry = made ? pair_table_add(&n->pairs, key) : NULL;
+    if (!entry && made) {
+        free_made(n, made);
+        n->out_of_memory = true;
+    }
+    return entry;
+}
+
+static void free_sums(nester *n, void *sums)
+{
+    (void)n;
+    nest_sum_list_free(sums);
+}
+
+static void free_geometry(nester *n, void *geometry)
+{
+    GEOSGeom_destroy_r(n->geos, geometry);
+}
+
+const nest_sum_list *nest_sums_of(nester *n, size_t a, size_t ta, size_t b, size_t tb)
 {
     size_t key = nest_pair_key(n, a, ta, b, tb), first;
     pair_entry *entry = pair_table_find(&n->pairs, key);
-    if (entry && *held_by(entry, kind))
-        return *held_by(entry, kind);
+    if (entry && entry->sums)
+        return entry->sums;
     double cs[2];
-    GEOSGeometry *made;
+    nest_sum_list *made;
     if (turned_pair(n, a, ta, b, tb, &first, cs)) {
-        const GEOSGeometry *base = cached_pair(n, kind, make, a, 0, b, first);
-        made = base ? GEOSGeom_transformXY_r(n->geos, base, nest_turn_xy, cs) : NULL;
+        const nest_sum_list *base = nest_sums_of(n, a, 0, b, first);
+        made = base ? nest_sums_turned(base, cs) : NULL;
+        n->out_of_memory = n->out_of_memory || (base && !made);
     } else {
-        made = make(n, a, ta, b, tb);
+        made = nest_sums(nest_shape_of(n, a, ta), nest_shape_of(n, b, tb), &n->out_of_memory);
     }
-    /* Looked up again: making the pair may have added others, and moved this one. */
-    entry = made ? pair_table_add(&n->pairs, key) : NULL;
-    if (!entry) {
-        if (made) {
-            GEOSGeom_destroy_r(n->geos, made);
-            n->out_of_memory = true;
-        }
+    entry = entry_for(n, key, made, free_sums);
+    if (!entry)
         return NULL;
-    }
-    *held_by(entry, kind) = made;
-    if (kind == PAIR_SUMS)
-        keep_sums_small(n, key, made);
+    entry->sums = made;
+    keep_sums_small(n, key, made);
     return made;
-}
-
-static GEOSGeometry *make_sums(nester *n, size_t a, size_t ta, size_t b, size_t tb)
-{
-    return nest_sums(n->geos, nest_shape_of(n, a, ta), nest_shape_of(n, b, tb), &n->out_of_memory);
-}
-
-static GEOSGeometry *make_union(nester *n, size_t a, size_t ta, size_t b, size_t tb)
-{
-    const GEOSGeometry *sums = nest_sums_of(n, a, ta, b, tb);
-    return sums ? nest_union_of_sums(n->geos, sums) : NULL;
-}
-
-const GEOSGeometry *nest_sums_of(nester *n, size_t a, size_t ta, size_t b, size_t tb)
-{
-    return cached_pair(n, PAIR_SUMS, make_sums, a, ta, b, tb);
 }
 
 const GEOSGeometry *nest_nfp_of(nester *n, size_t a, size_t ta, size_t b, size_t tb)
 {
-    return cached_pair(n, PAIR_NFP, make_union, a, ta, b, tb);
+    size_t key = nest_pair_key(n, a, ta, b, tb), first;
+    pair_entry *entry = pair_table_find(&n->pairs, key);
+    if (entry && entry->nfp)
+        return entry->nfp;
+    double cs[2];
+    GEOSGeometry *made;
+    if (turned_pair(n, a, ta, b, tb, &first, cs)) {
+        const GEOSGeometry *base = nest_nfp_of(n, a, 0, b, first);
+        made = base ? GEOSGeom_transformXY_r(n->geos, base, nest_turn_xy, cs) : NULL;
+    } else {
+        const nest_sum_list *sums = nest_sums_of(n, a, ta, b, tb);
+        made = sums ? nest_union_of_sums(n->geos, sums) : NULL;
+    }
+    entry = entry_for(n, key, made, free_geometry);
+    if (!entry)
+        return NULL;
+    entry->nfp = made;
+    return made;
 }
 
 void nest_sheet_size(const nester *n, size_t sheet, double *width, double *height)
@@ -460,9 +460,13 @@ static void nester_free(nester *n)
 }
 
 /*
- * The size of the rooms' cells: twice the mean part's larger side, so that
- * a no-fit polygon (about two parts across) reaches a few cells and a cell
- * holds a few parts' edges.  At most a third of the sheet's shorter side:
+ * The size of the rooms' cells: the mean part's larger side, so that a
+ * no-fit polygon (about two parts across) reaches a few cells and a cell
+ * holds a few parts' edges.  Twice that cost more: each placement of a
+ * part unlike any before it cuts its rooms anew, and a larger cell's
+ * room has more to be cut out of it, each cut costing more the more it
+ * holds (313 small nets on a 2 x 2 m sheet: 44 s, 29 s so; bench_nest's
+ * 500 stars 2.9 s, 2.6 s).  At most a third of the sheet's shorter side:
  * parts nearly as large as the sheet (a papercraft net's) would otherwise
  * make the whole sheet one cell, whose room grows more complex with each
  * part cut out of it, and each cut costs more the more it holds (a 2,208
@@ -475,7 +479,7 @@ static double cell_size_of(const ur_nest_options *options, const ur_piece *piece
     double sum = 0;
     for (size_t k = 0; k < count; k++)
         sum += fmax(ur_box_width(pieces[k].box), ur_box_height(pieces[k].box)) + options->spacing;
-    double size = count ? 2 * sum / (double)count : 0;
+    double size = count ? sum / (double)count : 0;
     double most = fmin(options->sheet_width, options->sheet_height) / 3;
     if (most > 0 && size > most)
         size = most;

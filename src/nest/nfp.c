@@ -583,55 +583,16 @@ static ur_status turned_copy(GEOSContextHandle_t geos, const nest_shape *like, d
     return UR_OK;
 }
 
-ur_status nest_shape_make(GEOSContextHandle_t geos, const ur_piece *piece, double angle,
-                          double grow, bool holes, const nest_shape *like, nest_shape *shape,
-                          ur_error *error)
-{
-    memset(shape, 0, sizeof *shape);
-    shape->angle = angle;
-    ur_transform2 turn = ur_transform2_make(angle, ur_vec2_make(0, 0));
-    shape->box = ur_box_empty();
-    for (size_t i = 0; i < piece->paths[0].count; i++)
-        ur_box_add(&shape->box, ur_transform2_apply(turn, piece->paths[0].points[i]));
-    /*
-     * Outlines of a few dozen points are nested as they are, so exact fits
-     * stay exact; longer ones (curves) are simplified to 2 per mille of
-     * their size, at least 0.05 mm, and grown by as much: a curved band
-     * splits into a few dozen convex parts instead of thousands, at the
-     * cost of that much more room round it.  The size is the unturned
-     * outline's, so that every turn is simplified alike and the shapes of
-     * a piece's turns are one shape turned (nest.c turns no-fit polygons):
-     * the first turn decides it (coarseness), the others are its shape
-     * turned.
-     */
-    ur_status status = like ? turned_copy(geos, like, angle, shape, error)
-                            : first_turn(geos, piece, angle, grow, holes, shape, error);
-    if (status != UR_OK)
-        return status;
-    double reach[4];
-    nest_box_of(geos, shape->polygon, reach);
-    shape->reach = (ur_box){{reach[0], reach[1]}, {reach[2], reach[3]}};
-    return UR_OK;
-}
-
-void nest_shape_free(GEOSContextHandle_t geos, nest_shape *shape)
-{
-    for (size_t k = 0; k < shape->convex_count; k++)
-        GEOSGeom_destroy_r(geos, shape->convex[k]);
-    free(shape->convex);
-    if (shape->polygon)
-        GEOSGeom_destroy_r(geos, shape->polygon);
-    memset(shape, 0, sizeof *shape);
-}
-
-/* A closed ring of points as a GEOS polygon; NULL on failure. */
-static GEOSGeometry *polygon_of(GEOSContextHandle_t geos, const ur_vec2 *points, size_t count)
+/* A closed ring of points moved by at, as a GEOS polygon; NULL on failure. */
+static GEOSGeometry *polygon_of(GEOSContextHandle_t geos, const ur_vec2 *points, size_t count,
+                                ur_vec2 at)
 {
     GEOSCoordSequence *sequence = GEOSCoordSeq_create_r(geos, (unsigned)count + 1, 2);
     if (!sequence)
         return NULL;
     for (size_t i = 0; i <= count; i++)
-        GEOSCoordSeq_setXY_r(geos, sequence, (unsigned)i, points[i % count].x, points[i % count].y);
+        GEOSCoordSeq_setXY_r(geos, sequence, (unsigned)i, points[i % count].x + at.x,
+                             points[i % count].y + at.y);
     GEOSGeometry *ring = GEOSGeom_createLinearRing_r(geos, sequence);
     return ring ? GEOSGeom_createPolygon_r(geos, ring, NULL, 0) : NULL;
 }
@@ -683,7 +644,7 @@ static size_t merge_edges(const ur_vec2 *a, size_t na, const ur_vec2 *b, size_t 
     return count;
 }
 
-/* The hull of every sum of a point of a and one of b, into sum; its count. */
+/* The hull of every sum of a point of a and one of b, into sum (room for na * nb); its count. */
 static size_t hull_of_sums(const ur_vec2 *a, size_t na, const ur_vec2 *b, size_t nb, ur_vec2 *sum,
                            bool *out_of_memory)
 {
@@ -700,13 +661,7 @@ static size_t hull_of_sums(const ur_vec2 *a, size_t na, const ur_vec2 *b, size_t
     return count;
 }
 
-/* A convex part's hull, counter-clockwise, as geom_convex_hull gives it. */
-typedef struct part_hull {
-    ur_vec2 *points; /* owned */
-    size_t count;    /* 0: the part has no vertices */
-} part_hull;
-
-static void part_hulls_free(part_hull *hulls, size_t count)
+static void hulls_free(nest_hull *hulls, size_t count)
 {
     for (size_t k = 0; hulls && k < count; k++)
         free(hulls[k].points);
@@ -715,74 +670,138 @@ static void part_hulls_free(part_hull *hulls, size_t count)
 
 /*
  * The hulls of a shape's convex parts, each turned half round first when
- * negated (b's parts in a + (-b)): worked out once per part for all the
- * pairs nest_sums makes of them.  NULL when memory runs out (then
- * *out_of_memory is set).
+ * negated (b's parts in a + (-b)).  NULL when memory runs out.
  */
-static part_hull *part_hulls(GEOSContextHandle_t geos, const nest_shape *shape, bool negated,
-                             bool *out_of_memory)
+static nest_hull *part_hulls(GEOSContextHandle_t geos, const nest_shape *shape, bool negated)
 {
-    part_hull *hulls = calloc(shape->convex_count + 1, sizeof *hulls);
-    if (!hulls) {
-        *out_of_memory = true;
-        return NULL;
-    }
-    for (size_t k = 0; k < shape->convex_count && !*out_of_memory; k++) {
+    nest_hull *hulls = calloc(shape->convex_count + 1, sizeof *hulls);
+    bool out_of_memory = !hulls;
+    for (size_t k = 0; hulls && k < shape->convex_count && !out_of_memory; k++) {
         ur_vec2 *points;
-        size_t count = vertices(geos, shape->convex[k], &points, out_of_memory);
+        size_t count = vertices(geos, shape->convex[k], &points, &out_of_memory);
         for (size_t i = 0; negated && i < count; i++)
             points[i] = ur_vec2_make(-points[i].x, -points[i].y);
         hulls[k].points = count ? malloc((count + 1) * sizeof *hulls[k].points) : NULL;
         if (count && !hulls[k].points)
-            *out_of_memory = true;
+            out_of_memory = true;
         else if (count)
             hulls[k].count = geom_convex_hull(points, count, hulls[k].points);
         free(points);
     }
-    if (*out_of_memory) {
-        part_hulls_free(hulls, shape->convex_count);
+    if (out_of_memory) {
+        hulls_free(hulls, shape->convex_count);
         return NULL;
     }
     return hulls;
 }
 
+static ur_status make_hulls(GEOSContextHandle_t geos, nest_shape *shape, ur_error *error)
+{
+    shape->hulls = part_hulls(geos, shape, false);
+    shape->negated = shape->hulls ? part_hulls(geos, shape, true) : NULL;
+    return shape->negated ? UR_OK : ur_error_out_of_memory(error);
+}
+
+ur_status nest_shape_make(GEOSContextHandle_t geos, const ur_piece *piece, double angle,
+                          double grow, bool holes, const nest_shape *like, nest_shape *shape,
+                          ur_error *error)
+{
+    memset(shape, 0, sizeof *shape);
+    shape->angle = angle;
+    ur_transform2 turn = ur_transform2_make(angle, ur_vec2_make(0, 0));
+    shape->box = ur_box_empty();
+    for (size_t i = 0; i < piece->paths[0].count; i++)
+        ur_box_add(&shape->box, ur_transform2_apply(turn, piece->paths[0].points[i]));
+    /*
+     * Outlines of a few dozen points are nested as they are, so exact fits
+     * stay exact; longer ones (curves) are simplified to 2 per mille of
+     * their size, at least 0.05 mm, and grown by as much: a curved band
+     * splits into a few dozen convex parts instead of thousands, at the
+     * cost of that much more room round it.  The size is the unturned
+     * outline's, so that every turn is simplified alike and the shapes of
+     * a piece's turns are one shape turned (nest.c turns no-fit polygons):
+     * the first turn decides it (coarseness), the others are its shape
+     * turned.
+     */
+    ur_status status = like ? turned_copy(geos, like, angle, shape, error)
+                            : first_turn(geos, piece, angle, grow, holes, shape, error);
+    if (status == UR_OK)
+        status = make_hulls(geos, shape, error);
+    if (status != UR_OK)
+        return status;
+    double reach[4];
+    nest_box_of(geos, shape->polygon, reach);
+    shape->reach = (ur_box){{reach[0], reach[1]}, {reach[2], reach[3]}};
+    return UR_OK;
+}
+
+void nest_shape_free(GEOSContextHandle_t geos, nest_shape *shape)
+{
+    hulls_free(shape->hulls, shape->convex_count);
+    hulls_free(shape->negated, shape->convex_count);
+    for (size_t k = 0; k < shape->convex_count; k++)
+        GEOSGeom_destroy_r(geos, shape->convex[k]);
+    free(shape->convex);
+    if (shape->polygon)
+        GEOSGeom_destroy_r(geos, shape->polygon);
+    memset(shape, 0, sizeof *shape);
+}
+
 /*
  * The convex hull of a + (-b) for two convex polygons (their hulls, b's
- * negated): the sum of their hulls, edge by edge (the hull of all the
- * sums of their vertices took an eighth of a papercraft sphere's nesting,
- * and GEOS's hull of them more).  NULL when it has no area, and when
- * memory ran out (then *out_of_memory is set).
+ * negated), into sum (room for max(na * nb, na + nb)): the sum of their
+ * hulls, edge by edge (the hull of all the sums of their vertices took an
+ * eighth of a papercraft sphere's nesting, and GEOS's hull of them more).
+ * Its count: below 3 when it has no area.
  */
-static GEOSGeometry *convex_sum(GEOSContextHandle_t geos, const part_hull *a, const part_hull *b,
-                                bool *out_of_memory)
+static size_t convex_sum(const nest_hull *a, const nest_hull *b, ur_vec2 *sum, bool *out_of_memory)
 {
     size_t ha = a->count, hb = b->count;
     if (!ha || !hb)
-        return NULL;
-    /* Room for their sum (or, with a hull of less than three points, every sum of their points). */
-    size_t sum_room = ha * hb > ha + hb ? ha * hb + 1 : ha + hb + 1;
-    ur_vec2 *sum = malloc(sum_room * sizeof *sum);
-    if (!sum) {
-        *out_of_memory = true;
-        return NULL;
-    }
-    size_t count = ha >= 3 && hb >= 3
-                       ? merge_edges(a->points, ha, b->points, hb, sum)
-                       : hull_of_sums(a->points, ha, b->points, hb, sum, out_of_memory);
-    GEOSGeometry *polygon = NULL;
-    if (count >= 3) {
-        polygon = polygon_of(geos, sum, count);
-        *out_of_memory = *out_of_memory || !polygon; /* GEOS could not allocate it */
-    }
-    free(sum);
-    return polygon;
+        return 0;
+    return ha >= 3 && hb >= 3 ? merge_edges(a->points, ha, b->points, hb, sum)
+                              : hull_of_sums(a->points, ha, b->points, hb, sum, out_of_memory);
 }
 
-/* A sum and its area, to sort the sums. */
-typedef struct sized_sum {
-    nest_sized size;
-    GEOSGeometry *sum;
-} sized_sum;
+void nest_sum_list_free(nest_sum_list *sums)
+{
+    if (!sums)
+        return;
+    free(sums->first);
+    free(sums->points);
+    free(sums->area);
+    free(sums->box);
+    free(sums);
+}
+
+/* A list with room for count sums of points in all; NULL without memory. */
+static nest_sum_list *sum_list_new(size_t count, size_t points)
+{
+    nest_sum_list *sums = calloc(1, sizeof *sums);
+    if (!sums)
+        return NULL;
+    sums->first = malloc((count + 1) * sizeof *sums->first);
+    sums->points = malloc((points ? points : 1) * sizeof *sums->points);
+    sums->area = malloc((count ? count : 1) * sizeof *sums->area);
+    sums->box = malloc((count ? count : 1) * sizeof *sums->box);
+    if (!sums->first || !sums->points || !sums->area || !sums->box) {
+        nest_sum_list_free(sums);
+        return NULL;
+    }
+    sums->first[0] = 0;
+    return sums;
+}
+
+/* Fills in sum k's area and box from its points. */
+static void measure_sum(nest_sum_list *sums, size_t k)
+{
+    const ur_vec2 *points = sums->points + sums->first[k];
+    size_t count = sums->first[k + 1] - sums->first[k];
+    sums->area[k] = convex_area(points, count);
+    sums->box[k] = ur_box_empty();
+    for (size_t i = 0; i < count; i++)
+        ur_box_add(&sums->box[k], points[i]);
+}
 
 int nest_larger_first(const void *a, const void *b)
 {
@@ -793,62 +812,124 @@ int nest_larger_first(const void *a, const void *b)
 }
 
 /*
- * Sorts the sums largest first: room.c cuts the sums out of a room largest
+ * The sums, largest first: room.c cuts the sums out of a room largest
  * first (with those of other pairs, ties in this order) and skips those
  * that no longer meet it, and a large sum cut early leaves more of the
- * smaller ones nothing to take.  Left as they are when there is no memory
- * to sort them.
+ * smaller ones nothing to take.  NULL without memory.
  */
-static void largest_first(GEOSContextHandle_t geos, GEOSGeometry **sums, size_t count)
+static nest_sum_list *largest_first(const nest_sum_list *sums)
 {
-    sized_sum *sized = malloc((count + 1) * sizeof *sized);
-    if (!sized)
-        return;
-    for (size_t k = 0; k < count; k++)
-        sized[k] = (sized_sum){{area_of(geos, sums[k]), k}, sums[k]};
-    qsort(sized, count, sizeof *sized, nest_larger_first);
-    for (size_t k = 0; k < count; k++)
-        sums[k] = sized[k].sum;
-    free(sized);
-}
-
-GEOSGeometry *nest_sums(GEOSContextHandle_t geos, const nest_shape *a, const nest_shape *b,
-                        bool *out_of_memory)
-{
-    size_t count = a->convex_count * b->convex_count, made = 0;
-    GEOSGeometry **sums = calloc(count ? count : 1, sizeof *sums);
-    if (!sums) {
-        *out_of_memory = true;
+    nest_sum_list *sorted = sum_list_new(sums->count, sums->first[sums->count]);
+    nest_sized *sized = malloc((sums->count + 1) * sizeof *sized);
+    if (!sorted || !sized) {
+        free(sized);
+        nest_sum_list_free(sorted);
         return NULL;
     }
-    part_hull *hulls_a = part_hulls(geos, a, false, out_of_memory);
-    part_hull *hulls_b = hulls_a ? part_hulls(geos, b, true, out_of_memory) : NULL;
-    bool failed = !hulls_b; /* a sum left out would let pieces overlap: none or all */
-    for (size_t i = 0; !failed && i < a->convex_count; i++)
-        for (size_t j = 0; !failed && j < b->convex_count; j++) {
-            /* NULL also for a sum with no area (two parts' edges in line): nothing to add */
-            GEOSGeometry *sum = convex_sum(geos, &hulls_a[i], &hulls_b[j], out_of_memory);
-            failed = *out_of_memory;
-            if (sum)
-                sums[made++] = sum;
-        }
-    part_hulls_free(hulls_a, a->convex_count);
-    part_hulls_free(hulls_b, b->convex_count);
-    if (!failed)
-        largest_first(geos, sums, made);
-    GEOSGeometry *collection =
-        failed ? NULL
-               : GEOSGeom_createCollection_r(geos, GEOS_GEOMETRYCOLLECTION, sums, (unsigned)made);
-    if (failed)
-        for (size_t k = 0; k < made; k++)
-            GEOSGeom_destroy_r(geos, sums[k]);
-    free(sums);
-    return collection;
+    for (size_t k = 0; k < sums->count; k++)
+        sized[k] = (nest_sized){sums->area[k], k};
+    qsort(sized, sums->count, sizeof *sized, nest_larger_first);
+    for (size_t k = 0; k < sums->count; k++) {
+        size_t from = sized[k].index, n = sums->first[from + 1] - sums->first[from];
+        memcpy(sorted->points + sorted->first[k], sums->points + sums->first[from],
+               n * sizeof *sorted->points);
+        sorted->first[k + 1] = sorted->first[k] + n;
+        sorted->area[k] = sums->area[from];
+        sorted->box[k] = sums->box[from];
+    }
+    sorted->count = sums->count;
+    free(sized);
+    return sorted;
 }
 
-GEOSGeometry *nest_union_of_sums(GEOSContextHandle_t geos, const GEOSGeometry *sums)
+/* The most points any sum of a's part i and b's part j can have. */
+static size_t sum_room(const nest_hull *a, const nest_hull *b)
 {
-    if (GEOSGetNumGeometries_r(geos, sums) == 1) /* one convex sum: the union would copy it */
-        return GEOSGeom_clone_r(geos, GEOSGetGeometryN_r(geos, sums, 0));
-    return GEOSUnaryUnion_r(geos, sums);
+    size_t ha = a->count, hb = b->count;
+    return ha * hb > ha + hb ? ha * hb : ha + hb;
+}
+
+/* Every sum of a's hulls and b's negated hulls, in the order made; NULL without memory. */
+static nest_sum_list *all_sums(const nest_shape *a, const nest_shape *b, bool *out_of_memory)
+{
+    size_t most = 0, widest = 0;
+    for (size_t i = 0; i < a->convex_count; i++)
+        for (size_t j = 0; j < b->convex_count; j++) {
+            size_t room = sum_room(&a->hulls[i], &b->negated[j]);
+            most += room;
+            widest = room > widest ? room : widest;
+        }
+    nest_sum_list *sums = sum_list_new(a->convex_count * b->convex_count, most);
+    ur_vec2 *sum = malloc((widest + 1) * sizeof *sum);
+    *out_of_memory = !sums || !sum;
+    for (size_t i = 0; !*out_of_memory && i < a->convex_count; i++)
+        for (size_t j = 0; !*out_of_memory && j < b->convex_count; j++) {
+            size_t count = convex_sum(&a->hulls[i], &b->negated[j], sum, out_of_memory);
+            if (count < 3) /* no area (two parts' edges in line): nothing to add */
+                continue;
+            size_t k = sums->count++;
+            memcpy(sums->points + sums->first[k], sum, count * sizeof *sum);
+            sums->first[k + 1] = sums->first[k] + count;
+            measure_sum(sums, k);
+        }
+    free(sum);
+    if (*out_of_memory) {
+        nest_sum_list_free(sums);
+        return NULL;
+    }
+    return sums;
+}
+
+nest_sum_list *nest_sums(const nest_shape *a, const nest_shape *b, bool *out_of_memory)
+{
+    nest_sum_list *made = all_sums(a, b, out_of_memory);
+    nest_sum_list *sorted = made ? largest_first(made) : NULL;
+    nest_sum_list_free(made);
+    *out_of_memory = *out_of_memory || !sorted;
+    return sorted;
+}
+
+nest_sum_list *nest_sums_turned(const nest_sum_list *sums, const double cs[2])
+{
+    nest_sum_list *turned = sum_list_new(sums->count, sums->first[sums->count]);
+    if (!turned)
+        return NULL;
+    memcpy(turned->first, sums->first, (sums->count + 1) * sizeof *turned->first);
+    for (size_t i = 0; i < sums->first[sums->count]; i++) {
+        ur_vec2 p = sums->points[i];
+        turned->points[i] = ur_vec2_make(cs[0] * p.x - cs[1] * p.y, cs[1] * p.x + cs[0] * p.y);
+    }
+    turned->count = sums->count;
+    for (size_t k = 0; k < sums->count; k++)
+        measure_sum(turned, k);
+    return turned;
+}
+
+GEOSGeometry *nest_sum_polygon(GEOSContextHandle_t geos, const nest_sum_list *sums, size_t k,
+                               ur_vec2 at)
+{
+    return polygon_of(geos, sums->points + sums->first[k], sums->first[k + 1] - sums->first[k], at);
+}
+
+GEOSGeometry *nest_union_of_sums(GEOSContextHandle_t geos, const nest_sum_list *sums)
+{
+    ur_vec2 origin = {0, 0};
+    if (sums->count == 1) /* one convex sum: nothing to unite */
+        return nest_sum_polygon(geos, sums, 0, origin);
+    GEOSGeometry **parts = calloc(sums->count + 1, sizeof *parts);
+    bool failed = !parts;
+    for (size_t k = 0; !failed && k < sums->count; k++)
+        failed = !(parts[k] = nest_sum_polygon(geos, sums, k, origin));
+    GEOSGeometry *all = failed ? NULL
+                               : GEOSGeom_createCollection_r(geos, GEOS_GEOMETRYCOLLECTION, parts,
+                                                             (unsigned)sums->count);
+    if (!all)
+        for (size_t k = 0; parts && k < sums->count; k++)
+            if (parts[k])
+                GEOSGeom_destroy_r(geos, parts[k]);
+    free(parts);
+    GEOSGeometry *united = all ? GEOSUnaryUnion_r(geos, all) : NULL;
+    if (all)
+        GEOSGeom_destroy_r(geos, all);
+    return united;
 }

@@ -79,8 +79,7 @@ pair_entry *pair_table_add(pair_table *table, size_t key)
 void pair_table_free(GEOSContextHandle_t geos, pair_table *table)
 {
     for (size_t s = 0; s < table->capacity; s++) {
-        if (table->slots[s].sums)
-            GEOSGeom_destroy_r(geos, table->slots[s].sums);
+        nest_sum_list_free(table->slots[s].sums);
         if (table->slots[s].nfp)
             GEOSGeom_destroy_r(geos, table->slots[s].nfp);
     }

@@ -149,23 +149,22 @@ static bool nfp_may_reach(const nester *n, const placed *p, size_t piece, size_t
     return x0 < cell[2] && x1 > cell[0] && y0 < cell[3] && y1 > cell[1];
 }
 
-/* Whether a geometry's box, shifted by at, reaches into a cell (x0, y0, x1, y1). */
-static bool reaches(GEOSContextHandle_t geos, const GEOSGeometry *g, ur_vec2 at, const double *cell)
+/* Whether a box (x0, y0, x1, y1) reaches into a cell (x0, y0, x1, y1). */
+static bool box_reaches(const double *b, const double *cell)
 {
-    double b[4];
-    if (!nest_box_of(geos, g, b))
-        return true; /* no box: cut it out and let GEOS say */
-    return b[0] + at.x < cell[2] && b[2] + at.x > cell[0] && b[1] + at.y < cell[3] &&
-           b[3] + at.y > cell[1];
+    return b[0] < cell[2] && b[2] > cell[0] && b[1] < cell[3] && b[3] > cell[1];
 }
 
 /*
- * A cell's room as it is cut: the room, and the room prepared for quick
- * tests, made when first asked for and dropped when the room changes.
+ * A cell's room as it is cut: the room, its box, and the room prepared
+ * for quick tests, made when first asked for and dropped when the room
+ * changes.
  */
 typedef struct room_cut {
     GEOSContextHandle_t geos;
     GEOSGeometry **room;
+    double box[4];
+    bool boxed; /* box holds the room's */
     const GEOSPreparedGeometry *prepared;
 } room_cut;
 
@@ -174,31 +173,36 @@ static void room_cut_forget(room_cut *r)
     if (r->prepared)
         GEOSPreparedGeom_destroy_r(r->geos, r->prepared);
     r->prepared = NULL;
+    r->boxed = false;
+}
+
+/* Whether a box (x0, y0, x1, y1) may meet the room: false only when it lies clear of the room's. */
+static bool box_meets_room(room_cut *r, const double *box)
+{
+    if (!r->boxed)
+        r->boxed = nest_box_of(r->geos, *r->room, r->box);
+    const double *a = r->box;
+    return !r->boxed || !(box[0] > a[2] || box[2] < a[0] || box[1] > a[3] || box[3] < a[1]);
 }
 
 /*
- * Whether a polygon may take something from the room: its box meets the
- * room's, and it meets the room itself.  Most of a pair's convex sums lie
- * where others already took the room (a 2,208 triangle sphere's 13 nets:
- * three cuts in four left the room as it was), and a prepared test costs
- * a fraction of a difference.
+ * Whether a polygon may take something from the room: it meets the room
+ * (its box has been found to meet the room's).  Most of a pair's convex
+ * sums lie where others already took the room (a 2,208 triangle sphere's
+ * 13 nets: three cuts in four left the room as it was), and a prepared
+ * test costs a fraction of a difference.
  */
 static bool takes_from(room_cut *r, const GEOSGeometry *shifted)
 {
-    double a[4], b[4];
-    if (nest_box_of(r->geos, *r->room, a) && nest_box_of(r->geos, shifted, b) &&
-        (b[0] > a[2] || b[2] < a[0] || b[1] > a[3] || b[3] < a[1]))
-        return false;
     if (!r->prepared)
         r->prepared = GEOSPrepare_r(r->geos, *r->room);
     return !r->prepared || GEOSPreparedIntersects_r(r->geos, r->prepared, shifted) != 0;
 }
 
-/* Cuts a polygon shifted by at out of the cell's room; false on a GEOS failure. */
-static bool cut_out(room_cut *r, const GEOSGeometry *polygon, ur_vec2 at)
+/* Cuts a polygon (taken over) out of the cell's room; false on a GEOS failure. */
+static bool cut_out(room_cut *r, GEOSGeometry *shifted)
 {
     GEOSContextHandle_t geos = r->geos;
-    GEOSGeometry *shifted = GEOSGeom_transformXY_r(geos, polygon, shift_xy, &at);
     if (shifted && !takes_from(r, shifted)) {
         GEOSGeom_destroy_r(geos, shifted);
         return true;
@@ -256,13 +260,16 @@ static void note_cut_by(size_t *cut_by, size_t k)
 }
 
 /*
- * A polygon to cut out of a cell: placement k's no-fit polygon or one of
- * its convex sums, its area and its place in the order gathered.
+ * A polygon to cut out of a cell: placement k's no-fit polygon, or sum
+ * `sum` of its convex sums; its area, its place in the order gathered and
+ * its box where the placement puts it.
  */
 typedef struct cut_candidate {
     nest_sized size;
-    const GEOSGeometry *polygon;
-    size_t k;
+    const GEOSGeometry *nfp;
+    const nest_sum_list *sums;
+    size_t sum, k;
+    double box[4];
 } cut_candidate;
 
 typedef struct candidates {
@@ -270,8 +277,7 @@ typedef struct candidates {
     size_t count, room;
 } candidates;
 
-static bool add_candidate(nester *n, candidates *c, const GEOSGeometry *polygon, double area,
-                          size_t k)
+static bool add_candidate(nester *n, candidates *c, const cut_candidate *candidate)
 {
     if (c->count == c->room) {
         size_t room = c->room ? 2 * c->room : 64;
@@ -283,37 +289,69 @@ static bool add_candidate(nester *n, candidates *c, const GEOSGeometry *polygon,
         c->items = grown;
         c->room = room;
     }
-    c->items[c->count] = (cut_candidate){{area, c->count}, polygon, k};
+    c->items[c->count] = *candidate;
+    c->items[c->count].size.index = c->count;
     c->count++;
     return true;
 }
 
-/*
- * Placement k's polygons that reach the cell (box), to be cut (the sums
- * held meanwhile); false on a failure.
- */
-static bool gather(nester *n, size_t piece, size_t turn, const double *box, size_t k, candidates *c)
+/* Placement k's no-fit polygon, to be cut if it reaches the cell; false on a failure. */
+static bool gather_nfp(nester *n, size_t piece, size_t turn, const double *cell, size_t k,
+                       candidates *c)
 {
     const placed *p = &n->placements[k];
-    double area = 0;
-    if (by_union(n, p->piece, p->turn, piece, turn, k)) {
-        const GEOSGeometry *nfp = nest_nfp_of(n, p->piece, p->turn, piece, turn);
-        if (!nfp)
-            return false;
-        return !reaches(n->geos, nfp, p->at, box) ||
-               (GEOSArea_r(n->geos, nfp, &area) && add_candidate(n, c, nfp, area, k));
-    }
-    const GEOSGeometry *sums = nest_sums_of(n, p->piece, p->turn, piece, turn);
-    int count = sums ? GEOSGetNumGeometries_r(n->geos, sums) : -1;
-    if (count < 0)
+    const GEOSGeometry *nfp = nest_nfp_of(n, p->piece, p->turn, piece, turn);
+    cut_candidate candidate = {
+        .nfp = nfp, .k = k, .box = {-INFINITY, -INFINITY, INFINITY, INFINITY}};
+    if (!nfp)
         return false;
-    for (int q = 0; q < count; q++) {
-        const GEOSGeometry *sum = GEOSGetGeometryN_r(n->geos, sums, q);
-        if (reaches(n->geos, sum, p->at, box) &&
-            !(GEOSArea_r(n->geos, sum, &area) && add_candidate(n, c, sum, area, k)))
+    if (nest_box_of(n->geos, nfp, candidate.box)) { /* no box: cut it out and let GEOS say */
+        candidate.box[0] += p->at.x, candidate.box[2] += p->at.x;
+        candidate.box[1] += p->at.y, candidate.box[3] += p->at.y;
+    }
+    return !box_reaches(candidate.box, cell) ||
+           (GEOSArea_r(n->geos, nfp, &candidate.size.area) && add_candidate(n, c, &candidate));
+}
+
+/*
+ * Placement k's polygons that reach the cell, to be cut (the sums held
+ * meanwhile); false on a failure.
+ */
+static bool gather(nester *n, size_t piece, size_t turn, const double *cell, size_t k,
+                   candidates *c)
+{
+    const placed *p = &n->placements[k];
+    if (by_union(n, p->piece, p->turn, piece, turn, k))
+        return gather_nfp(n, piece, turn, cell, k, c);
+    const nest_sum_list *sums = nest_sums_of(n, p->piece, p->turn, piece, turn);
+    if (!sums)
+        return false;
+    for (size_t q = 0; q < sums->count; q++) {
+        const ur_box *b = &sums->box[q];
+        cut_candidate candidate = {.size = {sums->area[q], 0},
+                                   .sums = sums,
+                                   .sum = q,
+                                   .k = k,
+                                   .box = {b->min.x + p->at.x, b->min.y + p->at.y,
+                                           b->max.x + p->at.x, b->max.y + p->at.y}};
+        if (box_reaches(candidate.box, cell) && !add_candidate(n, c, &candidate))
             return false;
     }
     return true;
+}
+
+/*
+ * Cuts a candidate out of the cell's room, where its box meets the room's;
+ * false on a GEOS failure.
+ */
+static bool cut_candidate_out(nester *n, room_cut *r, const cut_candidate *cut)
+{
+    if (!box_meets_room(r, cut->box))
+        return true;
+    ur_vec2 at = n->placements[cut->k].at;
+    GEOSGeometry *shifted = cut->nfp ? GEOSGeom_transformXY_r(n->geos, cut->nfp, shift_xy, &at)
+                                     : nest_sum_polygon(n->geos, cut->sums, cut->sum, at);
+    return shifted && cut_out(r, shifted);
 }
 
 /*
@@ -357,11 +395,10 @@ static bool cell_update(nester *n, size_t sheet, size_t piece, size_t turn, room
     }
     if (ok && all.count > 1)
         qsort(all.items, all.count, sizeof *all.items, nest_larger_first);
-    room_cut r = {n->geos, &grid->free[c], NULL};
+    room_cut r = {.geos = n->geos, .room = &grid->free[c]};
     for (size_t q = 0; ok && grid->free[c] && q < all.count; q++) {
-        const cut_candidate *cut = &all.items[q];
-        ok = cut_out(&r, cut->polygon, n->placements[cut->k].at);
-        note_cut_by(&grid->cut_by[c], cut->k);
+        ok = cut_candidate_out(n, &r, &all.items[q]);
+        note_cut_by(&grid->cut_by[c], all.items[q].k);
     }
     room_cut_forget(&r);
     free(all.items);
@@ -478,13 +515,14 @@ static bool place_on(nester *n, size_t sheet, size_t piece, size_t turn, double 
              * placed since, which costs less than a raster made again
              * (copies of a part).
              */
-            if (grid->applied[c] == 0) {
+            if (grid->applied[c] < n->placed_count) {
                 double cell[4], narrowed[4];
                 nest_cell_box(n, grid, c, cell);
                 raster_verdict seen = nest_raster_room(n, sheet, piece, turn, cell, narrowed);
                 if (seen == RASTER_NONE)
                     continue; /* left as it is: no place there, whatever its cuts */
-                if (seen == RASTER_NARROWED && !narrow_cell(n, grid, c, cell, narrowed)) {
+                if (grid->applied[c] == 0 && seen == RASTER_NARROWED &&
+                    !narrow_cell(n, grid, c, cell, narrowed)) {
                     nest_grid_free(n->geos, grid);
                     return false;
                 }
