@@ -349,6 +349,16 @@ static void test_unfolded_tabs_clear(void **state)
         GEOSGeom_destroy_r(geos, outside);
         /* Each tab's fold is a seam of this piece: the tabs' area is outside the net. */
         assert_true(area_of(grown) > area_of(net));
+        /*
+         * Every tab on the outline, as a part of its own: the outline is
+         * grown by splicing each tab in where its base lies, and none may
+         * be lost, nor two run into one.
+         */
+        GEOSGeometry *tabs_only = GEOSDifference_r(geos, grown, net);
+        assert_int_equal((size_t)GEOSGetNumGeometries_r(geos, tabs_only),
+                         count_joints(&pieces[k]));
+        assert_relative(area_of(tabs_only), area_of(grown) - area_of(net), 1e-9);
+        GEOSGeom_destroy_r(geos, tabs_only);
         GEOSGeom_destroy_r(geos, grown);
         GEOSGeom_destroy_r(geos, net);
         check_nothing_crosses_outline(&pieces[k]);
