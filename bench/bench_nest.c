@@ -11,7 +11,10 @@
  * Then the first layout alone (no search) of 500 different stars of 5 to
  * 11 points on A3 sheets: many parts each of a shape of its own, as a mesh
  * unfolded into many small nets gives, where every part's room is cut
- * from scratch on every sheet (sheet_raster.c).  Prints sheets and time.
+ * from scratch on every sheet (sheet_raster.c).  And the same stars on one
+ * sheet of 2000 x 2000 mm (a router's), where each new part's rooms are cut
+ * from scratch among all the parts placed before it.  Prints sheets and
+ * time.
  */
 #include <math.h>
 #include <stdio.h>
@@ -103,8 +106,8 @@ static void star(ur_piece *piece, int n, unsigned *seed)
     add(piece, "star", ring, (size_t)n);
 }
 
-/* The first layout of 500 different stars on A3 sheets, without a search. */
-static int many_different_parts(void)
+/* The first layout of 500 different stars on sheets of width x height, without a search. */
+static int many_different_parts(double width, double height)
 {
     enum { STARS = 500 };
     ur_piece *pieces = calloc(STARS, sizeof *pieces);
@@ -113,7 +116,7 @@ static int many_different_parts(void)
     unsigned seed = 5;
     for (int k = 0; k < STARS; k++)
         star(&pieces[k], 5 + k % 7, &seed);
-    ur_nest_options options = sheet_options(420, 297, 2);
+    ur_nest_options options = sheet_options(width, height, 2);
     ur_layout layout;
     ur_error error;
     double start = now();
@@ -121,8 +124,8 @@ static int many_different_parts(void)
         fprintf(stderr, "bench_nest: %s\n", error.message);
         return 1;
     }
-    printf("nest 500 different stars on 420 x 297, first layout only: %zu sheets, %.2f s\n",
-           layout.sheet_count, now() - start);
+    printf("nest 500 different stars on %g x %g, first layout only: %zu sheets, %.2f s\n", width,
+           height, layout.sheet_count, now() - start);
     ur_layout_free(&layout);
     for (size_t k = 0; k < STARS; k++)
         ur_piece_free(&pieces[k]);
@@ -166,5 +169,5 @@ int main(void)
     ur_layout_free(&layout);
     for (size_t k = 0; k < n; k++)
         ur_piece_free(&pieces[k]);
-    return many_different_parts();
+    return many_different_parts(420, 297) || many_different_parts(2000, 2000);
 }
