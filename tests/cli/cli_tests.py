@@ -630,10 +630,24 @@ def summary_gives_sheets_utilisation_cut_length_and_time(work):
     check_summary_against_report(line, report(work, os.path.join("lamp", "lamp.json")), "job")
 
 
+CUT_TIME = re.compile(r"in about (?:(\d+) h )?(?:(\d+) min )?(\d+) s")
+
+
+def cut_seconds(lines):
+    """The cut times the lines give ("in about 1 min 49 s"), in seconds."""
+    return [int(h or 0) * 3600 + int(m or 0) * 60 + int(sec)
+            for line in lines for h, m, sec in CUT_TIME.findall(line)]
+
+
+def without_cut_time(lines):
+    return [CUT_TIME.sub("in about TIME", line) for line in lines]
+
+
 @test
 def readme_examples_are_current(work):
     """Every example in README.md ("$ build/release/unroll ..." in a fenced block) prints
-    exactly the lines the README shows after it (make readme writes them)."""
+    exactly the lines the README shows after it (make readme writes them), their cut times
+    within 2 s."""
     with open(os.path.join(REPO, "README.md")) as f:
         lines = f.read().split("\n")
     os.symlink(os.path.join(REPO, "samples"), os.path.join(work, "samples"))
@@ -651,7 +665,13 @@ def readme_examples_are_current(work):
         words = " ".join(l.rstrip("\\") for l in lines[start:end + 1]).split()[2:]
         result = run(work, *words)
         printed = (result.stdout + result.stderr).splitlines()
-        check(printed == shown, "README.md line %d: unroll %s printed\n%s\nbut the README shows\n%s\n"
+        # The cut time depends on the order the parts are cut in, which the nesting's search,
+        # bounded by time, may change on a slower build (ASan): within 2 s it is the same.
+        printed_times, shown_times = cut_seconds(printed), cut_seconds(shown)
+        same_times = len(printed_times) == len(shown_times) and all(
+            abs(a - b) <= 2 for a, b in zip(printed_times, shown_times))
+        check(same_times and without_cut_time(printed) == without_cut_time(shown),
+              "README.md line %d: unroll %s printed\n%s\nbut the README shows\n%s\n"
               "(make readme brings it up to date)"
               % (start + 1, " ".join(words), "\n".join(printed), "\n".join(shown)))
         count += 1
