@@ -542,28 +542,6 @@ int nest_turn_xy(double *x, double *y, void *cosine_sine)
 }
 
 /*
- * The shape of a piece's first turn: its coarseness decided unturned, the
- * parts made at angle, then shrunk.  Only the parts kept are shrunk (each
- * on its own, so the same whenever it is done): the shapes coarseness
- * gives up have a hundred parts or more, and shrinking each is a GEOS
- * buffer.
- */
-static ur_status first_turn(GEOSContextHandle_t geos, const ur_piece *piece, double angle,
-                            double grow, bool holes, nest_shape *shape, ur_error *error)
-{
-    ur_status status = coarseness(geos, piece, grow, holes, shape, error);
-    if (status == UR_OK && angle != 0.0) {
-        GEOSGeometry *exact;
-        status = piece_polygon(geos, piece, angle, holes, &exact, error);
-        if (status == UR_OK)
-            status = shape_parts(geos, exact, grow, shape->tolerance, shape->closing, shape, error);
-        if (exact)
-            GEOSGeom_destroy_r(geos, exact);
-    }
-    return status == UR_OK ? shrunk(geos, shape, error) : status;
-}
-
-/*
  * Another turn of the same piece: like's polygon and shrunk parts turned
  * to angle.  Making them again from the turned piece cost as much as the
  * first turn and gave the same shape to rounding, since every turn is
@@ -591,6 +569,31 @@ static ur_status turned_copy(GEOSContextHandle_t geos, const nest_shape *like, d
         return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not turn a piece's shape");
     }
     return UR_OK;
+}
+
+/*
+ * The shape of a piece's first turn: its coarseness decided unturned, the
+ * parts made so turned to angle (as turned_copy turns them: making them
+ * again from the turned piece cost as much again, a twentieth of a
+ * papercraft sphere's run, for the same shape to rounding), then shrunk.
+ * Only the parts kept are shrunk (each on its own, so the same whenever it
+ * is done): the shapes coarseness gives up have a hundred parts or more,
+ * and shrinking each is a GEOS buffer.
+ */
+static ur_status first_turn(GEOSContextHandle_t geos, const ur_piece *piece, double angle,
+                            double grow, bool holes, nest_shape *shape, ur_error *error)
+{
+    ur_status status = coarseness(geos, piece, grow, holes, shape, error);
+    if (status == UR_OK && angle != 0.0) {
+        nest_shape unturned = *shape; /* its parts taken over */
+        unturned.angle = 0.0;
+        shape->polygon = NULL;
+        shape->convex = NULL;
+        shape->convex_count = 0;
+        status = turned_copy(geos, &unturned, angle, shape, error);
+        drop_parts(geos, &unturned);
+    }
+    return status == UR_OK ? shrunk(geos, shape, error) : status;
 }
 
 /* A closed ring of points moved by at, as a GEOS polygon; NULL on failure. */
