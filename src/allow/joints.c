@@ -1546,7 +1546,7 @@ static GEOSGeometry *spliced(joiner *j, const allow_board *b, const ur_piece *pi
         ok = push_outward(j, spans[k].joint, &ring, &error) &&
              push_between(outline, n, spans[k].end, next, &ring, &error);
     }
-    *out_of_memory = !spans || (!ok && ring.count > 0 && error.status == UR_ERROR_MEMORY);
+    *out_of_memory = !spans || error.status == UR_ERROR_MEMORY; /* not the union then */
     size_t kept = ok ? without_repeats(ring.items, ring.count) : 0;
     GEOSGeometry *grown = kept >= 3 ? geos_polygon_of_ring(j->geos, ring.items, kept) : NULL;
     if (grown && GEOSisValid_r(j->geos, grown) != 1) {
