@@ -13,8 +13,9 @@
  * unfolded into many small nets gives, where every part's room is cut
  * from scratch on every sheet (sheet_raster.c).  And the same stars on one
  * sheet of 2000 x 2000 mm (a router's), where each new part's rooms are cut
- * from scratch among all the parts placed before it.  Prints sheets and
- * time.
+ * from scratch among all the parts placed before it; and there again with
+ * a budget of 1 s, which that first layout alone exceeds (no search may
+ * follow it then).  Prints sheets and time.
  */
 #include <math.h>
 #include <stdio.h>
@@ -106,8 +107,11 @@ static void star(ur_piece *piece, int n, unsigned *seed)
     add(piece, "star", ring, (size_t)n);
 }
 
-/* The first layout of 500 different stars on sheets of width x height, without a search. */
-static int many_different_parts(double width, double height)
+/*
+ * The layout of 500 different stars on sheets of width x height: the
+ * first alone (budget 0), or with the search the budget (s) allows.
+ */
+static int many_different_parts(double width, double height, double budget)
 {
     enum { STARS = 500 };
     ur_piece *pieces = calloc(STARS, sizeof *pieces);
@@ -117,6 +121,7 @@ static int many_different_parts(double width, double height)
     for (int k = 0; k < STARS; k++)
         star(&pieces[k], 5 + k % 7, &seed);
     ur_nest_options options = sheet_options(width, height, 2);
+    options.time_budget = budget;
     ur_layout layout;
     ur_error error;
     double start = now();
@@ -124,8 +129,11 @@ static int many_different_parts(double width, double height)
         fprintf(stderr, "bench_nest: %s\n", error.message);
         return 1;
     }
-    printf("nest 500 different stars on %g x %g, first layout only: %zu sheets, %.2f s\n", width,
-           height, layout.sheet_count, now() - start);
+    char search[48] = "first layout only";
+    if (budget > 0)
+        snprintf(search, sizeof search, "a budget of %g s", budget);
+    printf("nest 500 different stars on %g x %g, %s: %zu sheets, %.2f s\n", width, height, search,
+           layout.sheet_count, now() - start);
     ur_layout_free(&layout);
     for (size_t k = 0; k < STARS; k++)
         ur_piece_free(&pieces[k]);
@@ -169,5 +177,6 @@ int main(void)
     ur_layout_free(&layout);
     for (size_t k = 0; k < n; k++)
         ur_piece_free(&pieces[k]);
-    return many_different_parts(420, 297) || many_different_parts(2000, 2000);
+    return many_different_parts(420, 297, 0) || many_different_parts(2000, 2000, 0) ||
+           many_different_parts(2000, 2000, 1);
 }

@@ -276,12 +276,14 @@ typedef struct nester {
     size_t run_length;
     double *sheet_area; /* per sheet: area of the parts on it */
     /*
-     * Per class: its parts not placed yet in the first layout, when no
-     * search follows it (a budget of 0); NULL otherwise.  A class with
-     * none left has its rooms freed (room.c): nothing asks for them again.
+     * Per class: its parts not placed yet in the first layout.  A class
+     * with none left has its rooms freed (room.c) when no search follows
+     * the first layout: with a budget of 0, or once the first layout has
+     * taken longer than the budget (nest.c then starts none).
      */
     size_t *class_left;
-    bool first_run; /* the first layout is being made: options->placing hears of it */
+    bool first_run;     /* the first layout is being made: options->placing hears of it */
+    double first_start; /* when the first layout began (nest_seconds_now) */
     /*
      * Memory ran out making a no-fit polygon or a room: a place not found
      * then says nothing of the part, and placing stops (UR_ERROR_MEMORY).

@@ -585,13 +585,17 @@ static ur_status refuse_piece(nester *n, size_t piece)
  * Frees the rooms of piece's class on every sheet once the first layout,
  * with no search after it, has placed all its parts: a mesh unfolded into
  * 1,616 different nets kept a room per net, turn and sheet, 1.77 GB, of
- * which nothing would ask again.
+ * which nothing would ask again.  No search follows when the budget is 0,
+ * nor once the first layout has taken longer than the budget (nest.c).
  */
 static void drop_finished_rooms(nester *n, size_t piece)
 {
     size_t c = n->class_of[piece];
     if (!n->first_run || !n->class_left || --n->class_left[c] > 0)
         return;
+    double budget = n->options->time_budget;
+    if (budget > 0 && nest_seconds_now() - n->first_start <= budget)
+        return; /* a search may follow, and take up these rooms again */
     for (size_t s = 0; s < n->sheet_slots; s++)
         for (size_t t = 0; n->sheets[s].rooms && t < n->turn_count; t++)
             nest_grid_free(n->geos, &n->sheets[s].rooms[c * n->turn_count + t]);
