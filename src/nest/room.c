@@ -515,14 +515,13 @@ static bool place_on(nester *n, size_t sheet, size_t piece, size_t turn, double 
              * placed since, which costs less than a raster made again
              * (copies of a part).
              */
-            if (grid->applied[c] < n->placed_count) {
+            if (grid->applied[c] == 0) {
                 double cell[4], narrowed[4];
                 nest_cell_box(n, grid, c, cell);
                 raster_verdict seen = nest_raster_room(n, sheet, piece, turn, cell, narrowed);
                 if (seen == RASTER_NONE)
                     continue; /* left as it is: no place there, whatever its cuts */
-                if (grid->applied[c] == 0 && seen == RASTER_NARROWED &&
-                    !narrow_cell(n, grid, c, cell, narrowed)) {
+                if (seen == RASTER_NARROWED && !narrow_cell(n, grid, c, cell, narrowed)) {
                     nest_grid_free(n->geos, grid);
                     return false;
                 }
