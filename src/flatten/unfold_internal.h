@@ -313,6 +313,7 @@ typedef struct unfolder {
     bool *tab_on_twin;
     size_t *slit_sides; /* the half-edges the join under way puts in slits, to mark */
     size_t slit_side_count;
+    struct unfold_faces_joined *faces_joined; /* the run's state once its faces are joined */
 } unfolder;
 
 /* A well-mixed 64-bit number for x (splitmix64's finisher): keys of triangles and edges. */
