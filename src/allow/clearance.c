@@ -19,6 +19,7 @@
 #include "allow_internal.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -28,6 +29,9 @@
  * rounding where they meet is no clash.
  */
 #define TOUCH 1e-4
+
+/* What meets() is told for a joint, which is no edge of the outline. */
+#define NOT_AN_EDGE SIZE_MAX
 
 /* A joint on the board: its shape (the caller's), the outline edges under it, the caller's tag. */
 typedef struct board_joint {
@@ -180,7 +184,8 @@ static void collect_edge(void *item, void *userdata)
 typedef struct regions {
     GEOSGeometry *shrunk, *grown, *clipped;
     const GEOSPreparedGeometry *inner, *outer;
-    bool out_of_memory; /* making them: not a joint that cannot go, a run that must stop */
+    ur_points clipped_ring; /* clipped's points, first not repeated */
+    bool out_of_memory;     /* making them: not a joint that cannot go, a run that must stop */
 } regions;
 
 static void regions_free(const allow_board *b, regions *r)
@@ -193,6 +198,7 @@ static void regions_free(const allow_board *b, regions *r)
     for (size_t k = 0; k < 3; k++)
         if (all[k])
             GEOSGeom_destroy_r(b->geos, all[k]);
+    ur_points_free(&r->clipped_ring);
 }
 
 /*
@@ -221,7 +227,7 @@ static bool outward_line(const ur_vec2 *base, size_t count, ur_vec2 *out, double
  * the clipped ring is too), as a polygon; NULL when nothing is left.
  */
 static GEOSGeometry *clip_outward(const allow_board *b, const GEOSGeometry *polygon, ur_vec2 out,
-                                  double level, bool *out_of_memory)
+                                  double level, ur_points *kept_ring, bool *out_of_memory)
 {
     const GEOSGeometry *shell = GEOSGetExteriorRing_r(b->geos, polygon);
     const GEOSCoordSequence *sequence = shell ? GEOSGeom_getCoordSeq_r(b->geos, shell) : NULL;
@@ -247,7 +253,7 @@ static GEOSGeometry *clip_outward(const allow_board *b, const GEOSGeometry *poly
     }
     GEOSGeometry *clipped =
         !failed && kept.count >= 3 ? geos_polygon_of_ring(b->geos, kept.items, kept.count) : NULL;
-    ur_points_free(&kept);
+    *kept_ring = kept;
     *out_of_memory = failed;
     return clipped;
 }
@@ -293,7 +299,93 @@ static GEOSGeometry *offset_convex(const allow_board *b, const ur_vec2 *ring, si
     return polygon;
 }
 
-/* The joint shrunk and grown: by offset_convex when it is convex, by GEOS's buffer otherwise. */
+/*
+ * Whether a mitred offset of the ring (counter-clockwise, first point not
+ * repeated) is worth trying: no edge of zero length and no corner sharper
+ * than a tab's, whose mitre would reach far.  A tab on a stretch of
+ * several edges that is not quite straight has such a ring, convex but
+ * for its base's points.
+ */
+static bool mitres_well(const ur_vec2 *ring, size_t n)
+{
+    double area = 0;
+    for (size_t i = 0; i < n; i++)
+        area += ur_vec2_cross(ring[i], ring[(i + 1) % n]);
+    if (!(area > 0))
+        return false;
+    for (size_t i = 0; i < n; i++) {
+        ur_vec2 d0 = ur_vec2_sub(ring[(i + 1) % n], ring[i]);
+        ur_vec2 d1 = ur_vec2_sub(ring[(i + 2) % n], ring[(i + 1) % n]);
+        double l0 = ur_vec2_length(d0), l1 = ur_vec2_length(d1);
+        if (!(l0 > 0 && l1 > 0) || ur_vec2_dot(d0, d1) / (l0 * l1) < -0.9)
+            return false;
+    }
+    return true;
+}
+
+/*
+ * The ring moved out by distance, its convex corners rounded as GEOS's
+ * buffer with two segments a quarter turn rounds them (points on the
+ * circle, in equal steps, as many as 45 degree steps fit the turn, rounded,
+ * and at least one), its concave ones where the moved edges meet: a valid
+ * polygon (nothing swallowed), else NULL.
+ */
+static GEOSGeometry *rounded_outward(const allow_board *b, const ur_vec2 *ring, size_t n,
+                                     double distance, bool *out_of_memory)
+{
+    ur_points moved = {0};
+    bool failed = false;
+    for (size_t i = 0; i < n && !failed; i++) {
+        ur_vec2 p = ring[(i + n - 1) % n], q = ring[i], r = ring[(i + 1) % n];
+        ur_vec2 d0 = ur_vec2_sub(q, p), d1 = ur_vec2_sub(r, q);
+        ur_vec2 n0 = ur_vec2_scale(ur_vec2_make(d0.y, -d0.x), 1 / ur_vec2_length(d0));
+        ur_vec2 n1 = ur_vec2_scale(ur_vec2_make(d1.y, -d1.x), 1 / ur_vec2_length(d1));
+        if (ur_vec2_cross(d0, d1) <= 0) { /* concave or straight: the edges' lines meet */
+            failed = ur_points_push(&moved,
+                                    ur_vec2_add_scaled(q, ur_vec2_add(n0, n1),
+                                                       distance / (1 + ur_vec2_dot(n0, n1))),
+                                    NULL) != UR_OK;
+            continue;
+        }
+        double from = atan2(n0.y, n0.x), turn = atan2(ur_vec2_cross(n0, n1), ur_vec2_dot(n0, n1));
+        int steps = (int)(turn / (M_PI / 4) + 0.5); /* as GEOS divides a turn */
+        steps = steps > 0 ? steps : 1;
+        for (int k = 0; k <= steps && !failed; k++) {
+            double angle = from + turn * (double)k / (double)steps;
+            failed =
+                ur_points_push(
+                    &moved, ur_vec2_add_scaled(q, ur_vec2_make(cos(angle), sin(angle)), distance),
+                    NULL) != UR_OK;
+        }
+    }
+    GEOSGeometry *polygon = failed ? NULL : geos_polygon_of_ring(b->geos, moved.items, moved.count);
+    *out_of_memory = failed;
+    ur_points_free(&moved);
+    if (polygon && GEOSisValid_r(b->geos, polygon) != 1) {
+        GEOSGeom_destroy_r(b->geos, polygon);
+        return NULL;
+    }
+    return polygon;
+}
+
+/* offset_convex's polygon for any ring, if valid (nothing swallowed); NULL otherwise. */
+static GEOSGeometry *offset_valid(const allow_board *b, const ur_vec2 *ring, size_t n,
+                                  double distance, bool *out_of_memory)
+{
+    GEOSGeometry *polygon = offset_convex(b, ring, n, distance, out_of_memory);
+    if (polygon && GEOSisValid_r(b->geos, polygon) != 1) {
+        GEOSGeom_destroy_r(b->geos, polygon);
+        return NULL;
+    }
+    return polygon;
+}
+
+/*
+ * The joint shrunk and grown: by offset_convex when it is convex or, if
+ * that stays valid, nearly so (mitred as a convex joint is: GEOS's buffer
+ * cost a quarter of a papercraft sphere's tabs); by GEOS's buffer
+ * otherwise.
+ */
 static void shrink_and_grow(const allow_board *b, const GEOSGeometry *joint, regions *r)
 {
     ur_vec2 *ring = NULL;
@@ -305,10 +397,14 @@ static void shrink_and_grow(const allow_board *b, const GEOSGeometry *joint, reg
     if (status == UR_OK && convex_ring(ring, n)) {
         r->shrunk = offset_convex(b, ring, n, -TOUCH, &r->out_of_memory);
         r->grown = offset_convex(b, ring, n, b->gap, &r->out_of_memory);
-    } else {
-        r->shrunk = GEOSBuffer_r(b->geos, joint, -TOUCH, 1);
-        r->grown = GEOSBuffer_r(b->geos, joint, b->gap, 2);
+    } else if (status == UR_OK && mitres_well(ring, n)) {
+        r->shrunk = offset_valid(b, ring, n, -TOUCH, &r->out_of_memory);
+        r->grown = r->shrunk ? rounded_outward(b, ring, n, b->gap, &r->out_of_memory) : NULL;
     }
+    if (!r->out_of_memory && !r->shrunk)
+        r->shrunk = GEOSBuffer_r(b->geos, joint, -TOUCH, 1);
+    if (!r->out_of_memory && !r->grown)
+        r->grown = GEOSBuffer_r(b->geos, joint, b->gap, 2);
     free(ring);
 }
 
@@ -323,7 +419,7 @@ static bool regions_make(const allow_board *b, const GEOSGeometry *joint, const 
         GEOSGeomTypeId_r(b->geos, r->grown) != GEOS_POLYGON ||
         !outward_line(base, count, &out, &level))
         return false;
-    r->clipped = clip_outward(b, r->grown, out, level, &r->out_of_memory);
+    r->clipped = clip_outward(b, r->grown, out, level, &r->clipped_ring, &r->out_of_memory);
     if (!r->clipped)
         return false;
     r->inner = GEOSPrepare_r(b->geos, r->shrunk);
@@ -338,6 +434,130 @@ static bool regions_make(const allow_board *b, const GEOSGeometry *joint, const 
  * convex) must come that near a corner, as a neighbour touching the joint
  * at their corner does.
  */
+static double distance_to_segment(ur_vec2 p, ur_vec2 a, ur_vec2 b)
+{
+    ur_vec2 ab = ur_vec2_sub(b, a);
+    double length2 = ur_vec2_dot(ab, ab);
+    double t = length2 > 0 ? fmin(1, fmax(0, ur_vec2_dot(ur_vec2_sub(p, a), ab) / length2)) : 0;
+    return ur_vec2_length(ur_vec2_sub(p, ur_vec2_add_scaled(a, ab, t)));
+}
+
+/* The sides of an outer region whose meetings with an edge edge_away_from_corners finds itself. */
+#define MOST_SIDES 64
+
+/* Where an edge meets a region's sides, as parameters along it (two per side at most, and its
+ * ends). */
+typedef struct meetings {
+    double at[2 * MOST_SIDES + 2];
+    size_t count;
+} meetings;
+
+static void add_meeting(meetings *m, double t)
+{
+    m->at[m->count++] = t;
+}
+
+/* Adds where segment p0 + t d meets the side a + u e (0 <= t, u <= 1): none, one, or two if along
+ * it. */
+static void add_meetings(ur_vec2 p0, ur_vec2 d, ur_vec2 a, ur_vec2 e, meetings *m)
+{
+    double denominator = ur_vec2_cross(d, e);
+    ur_vec2 w = ur_vec2_sub(a, p0);
+    double scale = ur_vec2_length(d) * ur_vec2_length(e);
+    if (fabs(denominator) > 1e-12 * scale) {
+        double t = ur_vec2_cross(w, e) / denominator, u = ur_vec2_cross(w, d) / denominator;
+        if (t >= 0 && t <= 1 && u >= 0 && u <= 1)
+            add_meeting(m, t);
+        return;
+    }
+    double length2 = ur_vec2_dot(d, d);
+    if (!(length2 > 0) || fabs(ur_vec2_cross(w, d)) > 1e-12 * length2) /* parallel, apart */
+        return;
+    double ta = ur_vec2_dot(w, d) / length2, tb = ur_vec2_dot(ur_vec2_add(w, e), d) / length2;
+    double from = fmax(0, fmin(ta, tb)), to = fmin(1, fmax(ta, tb));
+    if (from <= to)
+        add_meeting(m, from);
+    if (from < to)
+        add_meeting(m, to);
+}
+
+/* Whether p lies inside the ring or on it (crossings, and a side it lies on). */
+static bool inside_or_on(const ur_vec2 *ring, size_t n, ur_vec2 p)
+{
+    bool inside = false;
+    for (size_t i = 0, j = n - 1; i < n; j = i++) {
+        ur_vec2 a = ring[j], b = ring[i];
+        if (distance_to_segment(p, a, b) <= 1e-12 * (1 + fabs(p.x) + fabs(p.y)))
+            return true;
+        if ((a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y))
+            inside = !inside;
+    }
+    return inside;
+}
+
+static int compare_numbers(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/*
+ * away_from_corners for outline edge e: the edge cut where it meets the
+ * outer region's ring, each piece between two cuts kept if its middle is
+ * inside, pieces that touch one part, and a point where the edge only
+ * touches the ring a part of its own, as GEOS's overlay gives them (which
+ * took a third of the time tabs took on a papercraft sphere).  3 when that
+ * leaves nothing although GEOS found the two to meet (a touch, to
+ * rounding): then GEOS says.
+ */
+static char edge_away_from_corners(const allow_board *b, const regions *r, size_t e,
+                                   const contact *with)
+{
+    const ur_vec2 *ring = r->clipped_ring.items;
+    size_t n = r->clipped_ring.count;
+    if (n > MOST_SIDES)
+        return 3;
+    ur_vec2 p0 = b->corners[e], p1 = b->corners[(e + 1) % b->edge_count];
+    ur_vec2 d = ur_vec2_sub(p1, p0);
+    meetings m = {.count = 0};
+    for (size_t i = 0; i < n; i++)
+        add_meetings(p0, d, ring[i], ur_vec2_sub(ring[(i + 1) % n], ring[i]), &m);
+    add_meeting(&m, 0);
+    add_meeting(&m, 1);
+    qsort(m.at, m.count, sizeof *m.at, compare_numbers);
+    size_t unique = 1; /* a meeting at a corner of the ring comes from both its sides */
+    for (size_t i = 1; i < m.count; i++)
+        if (m.at[i] != m.at[unique - 1])
+            m.at[unique++] = m.at[i];
+    m.count = unique;
+    const double *at = m.at;
+    char away = 0;
+    bool any = false, open = false; /* a part under way, from part_start */
+    double part_start = 0, part_end = 0;
+    for (size_t i = 0; i < m.count && away == 0; i++) {
+        double t = at[i], next = i + 1 < m.count ? at[i + 1] : t;
+        bool inside = next > t && inside_or_on(ring, n, ur_vec2_add_scaled(p0, d, (t + next) / 2));
+        bool on_ring = inside_or_on(ring, n, ur_vec2_add_scaled(p0, d, t));
+        if (!open && (inside || on_ring)) {
+            open = any = true;
+            part_start = t;
+        }
+        if (open)
+            part_end = t;
+        if (open && !inside) { /* the part ends at t */
+            ur_vec2 from = ur_vec2_add_scaled(p0, d, part_start);
+            ur_vec2 to = ur_vec2_add_scaled(p0, d, part_end);
+            double nearest = INFINITY;
+            for (size_t c = 0; c < with->corner_count; c++)
+                nearest =
+                    fmin(nearest, distance_to_segment(b->corners[with->corners[c]], from, to));
+            away = nearest > b->gap + TOUCH;
+            open = false;
+        }
+    }
+    return any ? away : 3;
+}
+
 static char away_from_corners(const allow_board *b, const regions *r, const GEOSGeometry *thing,
                               const contact *with)
 {
@@ -371,12 +591,14 @@ static char away_from_corners(const allow_board *b, const regions *r, const GEOS
  * edge with the joint, its outer, away from the corners it shares.
  */
 static ur_status meets(const allow_board *b, const contact *with, const regions *r,
-                       const GEOSGeometry *thing, bool *hit, ur_error *error)
+                       const GEOSGeometry *thing, size_t edge, bool *hit, ur_error *error)
 {
     char result = GEOSPreparedIntersects_r(b->geos, r->inner, thing);
     if (result == 0 && !with->overlap) {
         result = GEOSPreparedIntersects_r(b->geos, r->outer, thing);
-        if (result == 1 && with->corner_count > 0)
+        if (result == 1 && with->corner_count > 0 && edge != NOT_AN_EDGE)
+            result = edge_away_from_corners(b, r, edge, with);
+        if ((result == 1 && with->corner_count > 0 && edge == NOT_AN_EDGE) || result == 3)
             result = away_from_corners(b, r, thing, with);
     }
     if (result == 2)
@@ -398,7 +620,7 @@ static ur_status test_near(allow_board *b, const regions *r, size_t first, size_
     for (size_t k = 0; status == UR_OK && !hit && k < b->found.count; k++) {
         size_t e = b->found.items[k];
         contact with = contact_of(n, e, 1, first, edges);
-        status = meets(b, &with, r, b->segments[e], &hit, error);
+        status = meets(b, &with, r, b->segments[e], e, &hit, error);
         if (hit)
             *v = (allow_verdict){ALLOW_BLOCKED_OUTLINE, b->segments[e], e};
     }
@@ -408,7 +630,7 @@ static ur_status test_near(allow_board *b, const regions *r, size_t first, size_
     for (size_t k = 0; status == UR_OK && !hit && k < b->found.count; k++) {
         const board_joint *q = &b->joints[b->found.items[k]];
         contact with = contact_of(n, q->first, q->edges, first, edges);
-        status = meets(b, &with, r, q->shape, &hit, error);
+        status = meets(b, &with, r, q->shape, NOT_AN_EDGE, &hit, error);
         if (hit)
             *v = (allow_verdict){ALLOW_BLOCKED_JOINT, q->shape, 0};
     }
