@@ -652,20 +652,23 @@ static ur_status relieve_rulings(relief_job *job, relief_need *need)
     return status == UR_OK ? relief_record_need(job, need, "across its rulings") : status;
 }
 
-static ur_status relieve_developed(relief_job *job)
+/*
+ * What a developed net needs, from its coverage: kerfing, overlaps or
+ * nothing (kind RELIEF_NONE), known before any geometry is made (an exact
+ * development, a mesh's unfolded net, needs nothing).
+ */
+static relief_need developed_need(const ur_net *net, const ur_relief_limits *limits)
 {
-    const ur_net *net = job->net;
-    if (!(net->area_3d > 0) || !(net->flat_area > 0))
-        return UR_OK;
-    double coverage = net->flat_area / net->area_3d;
-    const ur_relief_limits *limits = job->limits;
     relief_need need = {RELIEF_NONE, 0, 0, 0, {0, 0}, 0, 0};
+    if (!(net->area_3d > 0) || !(net->flat_area > 0))
+        return need;
+    double coverage = net->flat_area / net->area_3d;
     if (limits->kerfing && 1 - coverage > fmax(limits->max_stretch, RELIEF_NEGLIGIBLE))
         need = (relief_need){RELIEF_KERFING, 1 - coverage, limits->max_stretch, 0, {0, 0}, 0, 0};
     else if (limits->overlaps && coverage - 1 > fmax(limits->max_compression, RELIEF_NEGLIGIBLE))
         need =
             (relief_need){RELIEF_OVERLAP, coverage - 1, limits->max_compression, 0, {0, 0}, 0, 0};
-    return need.kind == RELIEF_NONE ? UR_OK : relieve_rulings(job, &need);
+    return need;
 }
 
 /* ---- Entry ------------------------------------------------------------ */
@@ -721,10 +724,15 @@ ur_status ur_piece_add_relief(ur_piece *piece, const ur_net *net, const ur_relie
     if (!net || net->outline_count < 3)
         return ur_error_set(error, UR_ERROR_INPUT, "piece '%s' has no outline to relieve",
                             piece->name);
+    bool flattened = net->shading.count > 0;
+    relief_need need =
+        flattened ? (relief_need){RELIEF_NONE, 0, 0, 0, {0, 0}, 0, 0} : developed_need(net, limits);
+    if (!flattened && need.kind == RELIEF_NONE)
+        return UR_OK;
     relief_job job = {NULL, piece, net, limits, NULL, NULL, NULL, 0, error};
     status = open_job(&job);
     if (status == UR_OK)
-        status = net->shading.count > 0 ? relieve_flattened(&job) : relieve_developed(&job);
+        status = flattened ? relieve_flattened(&job) : relieve_rulings(&job, &need);
     close_job(&job);
     return status;
 }
