@@ -162,7 +162,7 @@ $(PROGRAM): $(CLI_OBJECTS) $(LIBRARY)
 
 # test_support.h and nest_sets.h are shared, header-only: a change to them rebuilds every
 # test (and nest_sets.h, the benches that make the same sets of parts).
-$(BUILD)/tests/%: tests/unit/%.c tests/unit/test_support.h tests/unit/nest_sets.h $(OBJECT_ARCHIVE)
+$(BUILD)/tests/%: tests/unit/%.c tests/unit/test_support.h tests/unit/test_geos.h tests/unit/nest_sets.h $(OBJECT_ARCHIVE)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_ALL) $(shell $(PKG_CONFIG) --cflags $(TEST_PACKAGES)) -o $@ $< \
 		$(OBJECT_ARCHIVE) $(LDFLAGS_ALL) $(TEST_LDFLAGS) $(LDLIBS_ALL) \

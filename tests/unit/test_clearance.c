@@ -9,42 +9,12 @@
  * gap.
  */
 #include "test_support.h"
-
-#include <geos_c.h>
+#include "test_geos.h"
 
 #include "../../src/allow/allow_internal.h" /* internal: the board joints are tested on */
 
-static GEOSContextHandle_t geos;
-
-static int start(void **state)
-{
-    (void)state;
-    geos = GEOS_init_r();
-    return geos ? 0 : -1;
-}
-
-static int finish(void **state)
-{
-    (void)state;
-    GEOS_finish_r(geos);
-    return 0;
-}
-
 #define GAP 1.0
 #define REACH 10.0
-
-static GEOSGeometry *polygon(const ur_vec2 *ring, size_t count)
-{
-    GEOSCoordSequence *sequence = GEOSCoordSeq_create_r(geos, (unsigned)count + 1, 2);
-    assert_non_null(sequence);
-    for (size_t i = 0; i <= count; i++)
-        GEOSCoordSeq_setXY_r(geos, sequence, (unsigned)i, ring[i % count].x, ring[i % count].y);
-    GEOSGeometry *shell = GEOSGeom_createLinearRing_r(geos, sequence);
-    assert_non_null(shell);
-    GEOSGeometry *result = GEOSGeom_createPolygon_r(geos, shell, NULL, 0);
-    assert_non_null(result);
-    return result;
-}
 
 /*
  * What the board says of a tab 5 mm deep at 45 degrees on the floor of
@@ -134,5 +104,5 @@ int main(void)
         cmocka_unit_test(test_neighbour_at_the_corner_is_no_clash),
         cmocka_unit_test(test_roof_keeps_the_gap),
     };
-    return cmocka_run_group_tests(tests, start, finish);
+    return cmocka_run_group_tests(tests, geos_start, geos_finish);
 }

@@ -17,42 +17,13 @@
  * Run from the repository root (it reads samples/icosphere.obj).
  */
 #include "test_support.h"
-
-#include <geos_c.h>
+#include "test_geos.h"
 #include <stdlib.h>
 
 #include "unroll/allow.h"
 #include "unroll/flatten.h"
 #include "unroll/io.h"
 #include "unroll/mesh.h"
-
-static GEOSContextHandle_t geos;
-
-static int start(void **state)
-{
-    (void)state;
-    geos = GEOS_init_r();
-    return geos ? 0 : -1;
-}
-
-static int finish(void **state)
-{
-    (void)state;
-    GEOS_finish_r(geos);
-    return 0;
-}
-
-static GEOSGeometry *polygon(const ur_vec2 *ring, size_t count)
-{
-    GEOSCoordSequence *sequence = GEOSCoordSeq_create_r(geos, (unsigned)count + 1, 2);
-    for (size_t i = 0; i <= count; i++)
-        GEOSCoordSeq_setXY_r(geos, sequence, (unsigned)i, ring[i % count].x, ring[i % count].y);
-    GEOSGeometry *shell = GEOSGeom_createLinearRing_r(geos, sequence);
-    assert_non_null(shell);
-    GEOSGeometry *result = GEOSGeom_createPolygon_r(geos, shell, NULL, 0);
-    assert_non_null(result);
-    return result;
-}
 
 static GEOSGeometry *line_of(const ur_vec2 *points, size_t count)
 {
@@ -355,8 +326,7 @@ static void test_unfolded_tabs_clear(void **state)
          * be lost, nor two run into one.
          */
         GEOSGeometry *tabs_only = GEOSDifference_r(geos, grown, net);
-        assert_int_equal((size_t)GEOSGetNumGeometries_r(geos, tabs_only),
-                         count_joints(&pieces[k]));
+        assert_int_equal((size_t)GEOSGetNumGeometries_r(geos, tabs_only), count_joints(&pieces[k]));
         assert_relative(area_of(tabs_only), area_of(grown) - area_of(net), 1e-9);
         GEOSGeom_destroy_r(geos, tabs_only);
         GEOSGeom_destroy_r(geos, grown);
@@ -1568,5 +1538,5 @@ int main(void)
         cmocka_unit_test(test_label_once_where_sides_meet),
         cmocka_unit_test(test_names_full_height_on_sectors),
     };
-    return cmocka_run_group_tests(tests, start, finish);
+    return cmocka_run_group_tests(tests, geos_start, geos_finish);
 }

@@ -7,28 +7,11 @@
  * whatever its budget; a roll is shortened by the search.
  */
 #include "test_support.h"
-
-#include <geos_c.h>
+#include "test_geos.h"
 #include <stdlib.h>
 
 #include "nest_sets.h"
 #include "unroll/nest.h"
-
-static GEOSContextHandle_t geos;
-
-static int start(void **state)
-{
-    (void)state;
-    geos = GEOS_init_r();
-    return geos ? 0 : -1;
-}
-
-static int finish(void **state)
-{
-    (void)state;
-    GEOS_finish_r(geos);
-    return 0;
-}
 
 static ur_piece rectangle(const char *name, double w, double h)
 {
@@ -894,5 +877,5 @@ int main(void)
         cmocka_unit_test(test_last_sheet_leaves_an_offcut),
         cmocka_unit_test(test_sheet_search_keeps_remnants_and_grain),
     };
-    return cmocka_run_group_tests(tests, start, finish);
+    return cmocka_run_group_tests(tests, geos_start, geos_finish);
 }

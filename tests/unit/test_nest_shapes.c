@@ -8,26 +8,9 @@
  * (sheet_raster.c), whose every place ruled out is checked against GEOS.
  */
 #include "test_support.h"
-
-#include <geos_c.h>
+#include "test_geos.h"
 
 #include "../../src/nest/nest_internal.h" /* internal: the shapes' convex parts */
-
-static GEOSContextHandle_t geos;
-
-static int start(void **state)
-{
-    (void)state;
-    geos = GEOS_init_r();
-    return geos ? 0 : -1;
-}
-
-static int finish(void **state)
-{
-    (void)state;
-    GEOS_finish_r(geos);
-    return 0;
-}
 
 /* The total area of a shape's convex parts, each checked convex (its hull's area). */
 static double convex_parts_area(const nest_shape *shape)
@@ -513,5 +496,5 @@ int main(void)
         cmocka_unit_test(test_placed_index),
         cmocka_unit_test(test_raster_rules_out_only_overlaps),
     };
-    return cmocka_run_group_tests(tests, start, finish);
+    return cmocka_run_group_tests(tests, geos_start, geos_finish);
 }
