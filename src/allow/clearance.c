@@ -381,10 +381,10 @@ static GEOSGeometry *offset_valid(const allow_board *b, const ur_vec2 *ring, siz
 }
 
 /*
- * The joint shrunk and grown: by offset_convex when it is convex or, if
- * that stays valid, nearly so (mitred as a convex joint is: GEOS's buffer
- * cost a quarter of a papercraft sphere's tabs); by GEOS's buffer
- * otherwise.
+ * The joint shrunk and grown: by offset_convex when it is convex; when it
+ * is convex but for a few corners (mitres_well), shrunk mitred and grown
+ * by rounded_outward, each if it stays valid (GEOS's buffer cost a
+ * quarter of a papercraft sphere's tabs); by GEOS's buffer otherwise.
  */
 static void shrink_and_grow(const allow_board *b, const GEOSGeometry *joint, regions *r)
 {
@@ -427,13 +427,6 @@ static bool regions_make(const allow_board *b, const GEOSGeometry *joint, const 
     return r->inner && r->outer;
 }
 
-/*
- * Whether some part of what thing has in the outer region lies farther
- * than the gap from every corner it shares with the joint: 1 or 0, 2 when
- * GEOS fails.  Each part (one, for a tab and an edge or another tab, all
- * convex) must come that near a corner, as a neighbour touching the joint
- * at their corner does.
- */
 static double distance_to_segment(ur_vec2 p, ur_vec2 a, ur_vec2 b)
 {
     ur_vec2 ab = ur_vec2_sub(b, a);
@@ -445,8 +438,10 @@ static double distance_to_segment(ur_vec2 p, ur_vec2 a, ur_vec2 b)
 /* The sides of an outer region whose meetings with an edge edge_away_from_corners finds itself. */
 #define MOST_SIDES 64
 
-/* Where an edge meets a region's sides, as parameters along it (two per side at most, and its
- * ends). */
+/*
+ * Where an edge meets a region's sides, as parameters along it: two per
+ * side at most, and its ends.
+ */
 typedef struct meetings {
     double at[2 * MOST_SIDES + 2];
     size_t count;
@@ -457,8 +452,10 @@ static void add_meeting(meetings *m, double t)
     m->at[m->count++] = t;
 }
 
-/* Adds where segment p0 + t d meets the side a + u e (0 <= t, u <= 1): none, one, or two if along
- * it. */
+/*
+ * Adds where segment p0 + t d meets the side a + u e (0 <= t, u <= 1):
+ * nowhere, once, or at both ends of the stretch they share if along it.
+ */
 static void add_meetings(ur_vec2 p0, ur_vec2 d, ur_vec2 a, ur_vec2 e, meetings *m)
 {
     double denominator = ur_vec2_cross(d, e);
@@ -558,6 +555,13 @@ static char edge_away_from_corners(const allow_board *b, const regions *r, size_
     return any ? away : 3;
 }
 
+/*
+ * Whether some part of what thing has in the outer region lies farther
+ * than the gap from every corner it shares with the joint: 1 or 0, 2 when
+ * GEOS fails.  Each part (one, for a tab and an edge or another tab, all
+ * convex) must come that near a corner, as a neighbour touching the joint
+ * at their corner does.
+ */
 static char away_from_corners(const allow_board *b, const regions *r, const GEOSGeometry *thing,
                               const contact *with)
 {
@@ -596,10 +600,11 @@ static ur_status meets(const allow_board *b, const contact *with, const regions 
     char result = GEOSPreparedIntersects_r(b->geos, r->inner, thing);
     if (result == 0 && !with->overlap) {
         result = GEOSPreparedIntersects_r(b->geos, r->outer, thing);
-        if (result == 1 && with->corner_count > 0 && edge != NOT_AN_EDGE)
-            result = edge_away_from_corners(b, r, edge, with);
-        if ((result == 1 && with->corner_count > 0 && edge == NOT_AN_EDGE) || result == 3)
-            result = away_from_corners(b, r, thing, with);
+        if (result == 1 && with->corner_count > 0) {
+            result = edge != NOT_AN_EDGE ? edge_away_from_corners(b, r, edge, with) : 3;
+            if (result == 3) /* a neighbouring joint, or a touch the edge's cuts missed */
+                result = away_from_corners(b, r, thing, with);
+        }
     }
     if (result == 2)
         return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS failed testing a joint");
