@@ -6,6 +6,7 @@
 #define UNROLL_ALLOW_INTERNAL_H
 
 #include <geos_c.h>
+#include <math.h>
 
 #include "../geom/geos_polygon.h"
 #include "unroll/allow.h"
@@ -57,6 +58,17 @@ ur_box allow_box(GEOSContextHandle_t geos, const GEOSGeometry *geometry);
 static inline bool allow_boxes_meet(ur_box a, ur_box b)
 {
     return a.min.x <= b.max.x && b.min.x <= a.max.x && a.min.y <= b.max.y && b.min.y <= a.max.y;
+}
+
+/* The squared distance from point to the segment from p to q. */
+static inline double allow_distance2_to_segment(ur_vec2 point, ur_vec2 p, ur_vec2 q)
+{
+    ur_vec2 d = ur_vec2_sub(q, p);
+    double length2 = ur_vec2_dot(d, d);
+    double t =
+        length2 > 0 ? fmin(1.0, fmax(0.0, ur_vec2_dot(ur_vec2_sub(point, p), d) / length2)) : 0.0;
+    ur_vec2 off = ur_vec2_sub(point, ur_vec2_add_scaled(p, d, t));
+    return ur_vec2_dot(off, off);
 }
 
 /* A growing list of item numbers. */

@@ -427,14 +427,6 @@ static bool regions_make(const allow_board *b, const GEOSGeometry *joint, const 
     return r->inner && r->outer;
 }
 
-static double distance_to_segment(ur_vec2 p, ur_vec2 a, ur_vec2 b)
-{
-    ur_vec2 ab = ur_vec2_sub(b, a);
-    double length2 = ur_vec2_dot(ab, ab);
-    double t = length2 > 0 ? fmin(1, fmax(0, ur_vec2_dot(ur_vec2_sub(p, a), ab) / length2)) : 0;
-    return ur_vec2_length(ur_vec2_sub(p, ur_vec2_add_scaled(a, ab, t)));
-}
-
 /* The sides of an outer region whose meetings with an edge edge_away_from_corners finds itself. */
 #define MOST_SIDES 64
 
@@ -484,7 +476,7 @@ static bool inside_or_on(const ur_vec2 *ring, size_t n, ur_vec2 p)
     bool inside = false;
     for (size_t i = 0, j = n - 1; i < n; j = i++) {
         ur_vec2 a = ring[j], b = ring[i];
-        if (distance_to_segment(p, a, b) <= 1e-12 * (1 + fabs(p.x) + fabs(p.y)))
+        if (sqrt(allow_distance2_to_segment(p, a, b)) <= 1e-12 * (1 + fabs(p.x) + fabs(p.y)))
             return true;
         if ((a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y))
             inside = !inside;
@@ -547,7 +539,8 @@ static char edge_away_from_corners(const allow_board *b, const regions *r, size_
             double nearest = INFINITY;
             for (size_t c = 0; c < with->corner_count; c++)
                 nearest =
-                    fmin(nearest, distance_to_segment(b->corners[with->corners[c]], from, to));
+                    fmin(nearest,
+                         sqrt(allow_distance2_to_segment(b->corners[with->corners[c]], from, to)));
             away = nearest > b->gap + TOUCH;
             open = false;
         }

@@ -489,17 +489,6 @@ static double point_to_box(double u, double v, double a, double b)
     return du * du + dv * dv;
 }
 
-/* The squared distance from the point to the segment from p to q. */
-static double point_to_segment(ur_vec2 point, ur_vec2 p, ur_vec2 q)
-{
-    ur_vec2 d = ur_vec2_sub(q, p);
-    double length2 = ur_vec2_dot(d, d);
-    double t =
-        length2 > 0 ? fmin(1.0, fmax(0.0, ur_vec2_dot(ur_vec2_sub(point, p), d) / length2)) : 0.0;
-    ur_vec2 off = ur_vec2_sub(point, ur_vec2_add_scaled(p, d, t));
-    return ur_vec2_dot(off, off);
-}
-
 /* Whether the segment from p to q (frame coordinates) crosses the rectangle [-a, a] x [-b, b]. */
 static bool segment_crosses_box(ur_vec2 p, ur_vec2 q, double a, double b)
 {
@@ -537,7 +526,7 @@ static bool segment_near_box(const frame *f, double a, double b, double clearanc
         return true;
     static const int sign[4][2] = {{1, 1}, {-1, 1}, {-1, -1}, {1, -1}};
     for (int k = 0; k < 4; k++)
-        if (point_to_segment(ur_vec2_make(sign[k][0] * a, sign[k][1] * b), u, v) <= reach)
+        if (allow_distance2_to_segment(ur_vec2_make(sign[k][0] * a, sign[k][1] * b), u, v) <= reach)
             return true;
     return false;
 }
