@@ -725,8 +725,7 @@ ur_status ur_piece_add_relief(ur_piece *piece, const ur_net *net, const ur_relie
         return ur_error_set(error, UR_ERROR_INPUT, "piece '%s' has no outline to relieve",
                             piece->name);
     bool flattened = net->shading.count > 0;
-    relief_need need =
-        flattened ? (relief_need){RELIEF_NONE, 0, 0, 0, {0, 0}, 0, 0} : developed_need(net, limits);
+    relief_need need = developed_need(net, limits); /* a flattened net's is per triangle */
     if (!flattened && need.kind == RELIEF_NONE)
         return UR_OK;
     relief_job job = {NULL, piece, net, limits, NULL, NULL, NULL, 0, error};

@@ -660,7 +660,7 @@ ur_status ur_layout_nest(const ur_piece *pieces, size_t count, const ur_nest_opt
      * first layout of 25 s, then a single try of the 0.2 s search ran for
      * 7 minutes and took 1.9 GB).
      */
-    if (start - n.first_start > budget)
+    if (!nest_search_follows(&n, start))
         budget = 0.0;
     /*
      * The search over orders has a share of the budget; shortening the

@@ -464,4 +464,15 @@ uint64_t nest_next_random(uint64_t *state);
 /* A monotonic clock, in seconds. */
 double nest_seconds_now(void);
 
+/*
+ * Whether a search is to follow the first layout, asked at time now: a
+ * budget, and the first layout not longer than it (nest.c starts no search
+ * after a longer one).
+ */
+static inline bool nest_search_follows(const nester *n, double now)
+{
+    double budget = n->options->time_budget;
+    return budget > 0 && now - n->first_start <= budget;
+}
+
 #endif

@@ -590,11 +590,10 @@ static ur_status refuse_piece(nester *n, size_t piece)
 static void drop_finished_rooms(nester *n, size_t piece)
 {
     size_t c = n->class_of[piece];
-    if (!n->first_run || !n->class_left || --n->class_left[c] > 0)
+    if (!n->first_run || --n->class_left[c] > 0)
         return;
-    double budget = n->options->time_budget;
-    if (budget > 0 && nest_seconds_now() - n->first_start <= budget)
-        return; /* a search may follow, and take up these rooms again */
+    if (nest_search_follows(n, nest_seconds_now()))
+        return; /* it would take up these rooms again */
     for (size_t s = 0; s < n->sheet_slots; s++)
         for (size_t t = 0; n->sheets[s].rooms && t < n->turn_count; t++)
             nest_grid_free(n->geos, &n->sheets[s].rooms[c * n->turn_count + t]);
