@@ -273,6 +273,21 @@ static bool convex_ring(const ur_vec2 *ring, size_t n)
     return true;
 }
 
+/* The outward unit normals of the ring's sides before and after corner i (counter-clockwise). */
+static void corner_normals(const ur_vec2 *ring, size_t n, size_t i, ur_vec2 *before, ur_vec2 *after)
+{
+    ur_vec2 p = ring[(i + n - 1) % n], q = ring[i], r = ring[(i + 1) % n];
+    ur_vec2 d0 = ur_vec2_sub(q, p), d1 = ur_vec2_sub(r, q);
+    *before = ur_vec2_scale(ur_vec2_make(d0.y, -d0.x), 1 / ur_vec2_length(d0));
+    *after = ur_vec2_scale(ur_vec2_make(d1.y, -d1.x), 1 / ur_vec2_length(d1));
+}
+
+/* Where the two sides at corner q meet once each is moved out by distance along its normal. */
+static ur_vec2 mitre_point(ur_vec2 q, ur_vec2 n0, ur_vec2 n1, double distance)
+{
+    return ur_vec2_add_scaled(q, ur_vec2_add(n0, n1), distance / (1 + ur_vec2_dot(n0, n1)));
+}
+
 /*
  * A convex ring moved out by distance (in when negative) with mitred
  * corners, as a polygon: GEOS's buffer is exact but slow for the many
@@ -288,11 +303,9 @@ static GEOSGeometry *offset_convex(const allow_board *b, const ur_vec2 *ring, si
         return NULL;
     }
     for (size_t i = 0; i < n; i++) {
-        ur_vec2 p = ring[(i + n - 1) % n], q = ring[i], r = ring[(i + 1) % n];
-        ur_vec2 d0 = ur_vec2_sub(q, p), d1 = ur_vec2_sub(r, q);
-        ur_vec2 n0 = ur_vec2_scale(ur_vec2_make(d0.y, -d0.x), 1 / ur_vec2_length(d0));
-        ur_vec2 n1 = ur_vec2_scale(ur_vec2_make(d1.y, -d1.x), 1 / ur_vec2_length(d1));
-        moved[i] = ur_vec2_add_scaled(q, ur_vec2_add(n0, n1), distance / (1 + ur_vec2_dot(n0, n1)));
+        ur_vec2 n0, n1;
+        corner_normals(ring, n, i, &n0, &n1);
+        moved[i] = mitre_point(ring[i], n0, n1, distance);
     }
     GEOSGeometry *polygon = geos_polygon_of_ring(b->geos, moved, n);
     free(moved);
@@ -323,6 +336,16 @@ static bool mitres_well(const ur_vec2 *ring, size_t n)
     return true;
 }
 
+/* The polygon if GEOS finds it valid; else NULL, the polygon freed. */
+static GEOSGeometry *valid_or_none(const allow_board *b, GEOSGeometry *polygon)
+{
+    if (polygon && GEOSisValid_r(b->geos, polygon) != 1) {
+        GEOSGeom_destroy_r(b->geos, polygon);
+        return NULL;
+    }
+    return polygon;
+}
+
 /*
  * The ring moved out by distance, its convex corners rounded as GEOS's
  * buffer with two segments a quarter turn rounds them (points on the
@@ -336,15 +359,11 @@ static GEOSGeometry *rounded_outward(const allow_board *b, const ur_vec2 *ring, 
     ur_points moved = {0};
     bool failed = false;
     for (size_t i = 0; i < n && !failed; i++) {
-        ur_vec2 p = ring[(i + n - 1) % n], q = ring[i], r = ring[(i + 1) % n];
-        ur_vec2 d0 = ur_vec2_sub(q, p), d1 = ur_vec2_sub(r, q);
-        ur_vec2 n0 = ur_vec2_scale(ur_vec2_make(d0.y, -d0.x), 1 / ur_vec2_length(d0));
-        ur_vec2 n1 = ur_vec2_scale(ur_vec2_make(d1.y, -d1.x), 1 / ur_vec2_length(d1));
-        if (ur_vec2_cross(d0, d1) <= 0) { /* concave or straight: the edges' lines meet */
-            failed = ur_points_push(&moved,
-                                    ur_vec2_add_scaled(q, ur_vec2_add(n0, n1),
-                                                       distance / (1 + ur_vec2_dot(n0, n1))),
-                                    NULL) != UR_OK;
+        ur_vec2 q = ring[i], n0, n1;
+        corner_normals(ring, n, i, &n0, &n1);
+        ur_vec2 d0 = ur_vec2_sub(q, ring[(i + n - 1) % n]), d1 = ur_vec2_sub(ring[(i + 1) % n], q);
+        if (ur_vec2_cross(d0, d1) <= 0) { /* concave or straight: the sides' lines meet */
+            failed = ur_points_push(&moved, mitre_point(q, n0, n1, distance), NULL) != UR_OK;
             continue;
         }
         double from = atan2(n0.y, n0.x), turn = atan2(ur_vec2_cross(n0, n1), ur_vec2_dot(n0, n1));
@@ -361,23 +380,14 @@ static GEOSGeometry *rounded_outward(const allow_board *b, const ur_vec2 *ring, 
     GEOSGeometry *polygon = failed ? NULL : geos_polygon_of_ring(b->geos, moved.items, moved.count);
     *out_of_memory = failed;
     ur_points_free(&moved);
-    if (polygon && GEOSisValid_r(b->geos, polygon) != 1) {
-        GEOSGeom_destroy_r(b->geos, polygon);
-        return NULL;
-    }
-    return polygon;
+    return valid_or_none(b, polygon);
 }
 
 /* offset_convex's polygon for any ring, if valid (nothing swallowed); NULL otherwise. */
 static GEOSGeometry *offset_valid(const allow_board *b, const ur_vec2 *ring, size_t n,
                                   double distance, bool *out_of_memory)
 {
-    GEOSGeometry *polygon = offset_convex(b, ring, n, distance, out_of_memory);
-    if (polygon && GEOSisValid_r(b->geos, polygon) != 1) {
-        GEOSGeom_destroy_r(b->geos, polygon);
-        return NULL;
-    }
-    return polygon;
+    return valid_or_none(b, offset_convex(b, ring, n, distance, out_of_memory));
 }
 
 /*
