@@ -162,6 +162,28 @@ static ur_status join_all(unfolder *u, const size_t *order, size_t count, ur_err
     return UR_OK;
 }
 
+/* The arrays of a run that are copied whole (the islands are copied apart: each keeps its hull). */
+typedef struct run_arrays {
+    size_t *piece, *parent, *next_member;
+    ur_vec2 (*flat)[3];
+    bool *joined, *tab_on_twin;
+} run_arrays;
+
+static run_arrays arrays_of(const unfolder *u)
+{
+    return (run_arrays){u->piece, u->parent, u->next_member, u->flat, u->joined, u->tab_on_twin};
+}
+
+static void copy_arrays(run_arrays to, run_arrays from, size_t n)
+{
+    memcpy(to.piece, from.piece, n * sizeof *to.piece);
+    memcpy(to.parent, from.parent, 3 * n * sizeof *to.parent);
+    memcpy(to.next_member, from.next_member, n * sizeof *to.next_member);
+    memcpy(to.flat, from.flat, n * sizeof *to.flat);
+    memcpy(to.joined, from.joined, 3 * n * sizeof *to.joined);
+    memcpy(to.tab_on_twin, from.tab_on_twin, 3 * n * sizeof *to.tab_on_twin);
+}
+
 /*
  * Every run joins the edges inside flat faces first, in the same order
  * and with the same outcomes (the room does not bind there), so the state
@@ -173,9 +195,7 @@ static ur_status join_all(unfolder *u, const size_t *order, size_t count, ur_err
  * which judges every join itself, joins its faces anew.
  */
 typedef struct unfold_faces_joined {
-    size_t *piece, *parent, *next_member;
-    ur_vec2 (*flat)[3];
-    bool *joined, *tab_on_twin;
+    run_arrays arrays;
     unfold_island *islands;
     size_t culprits[UNFOLD_CULPRITS];
 } unfold_faces_joined;
@@ -184,12 +204,12 @@ static void faces_joined_free(unfold_faces_joined *f)
 {
     if (!f)
         return;
-    free(f->piece);
-    free(f->parent);
-    free(f->next_member);
-    free(f->flat);
-    free(f->joined);
-    free(f->tab_on_twin);
+    free(f->arrays.piece);
+    free(f->arrays.parent);
+    free(f->arrays.next_member);
+    free(f->arrays.flat);
+    free(f->arrays.joined);
+    free(f->arrays.tab_on_twin);
     free(f->islands);
     free(f);
 }
@@ -200,25 +220,21 @@ static void keep_faces_joined(unfolder *u)
     size_t n = u->mesh->triangle_count;
     unfold_faces_joined *f = calloc(1, sizeof *f);
     if (f) {
-        f->piece = malloc(n * sizeof *f->piece);
-        f->parent = malloc(3 * n * sizeof *f->parent);
-        f->next_member = malloc(n * sizeof *f->next_member);
-        f->flat = malloc(n * sizeof *f->flat);
-        f->joined = malloc(3 * n * sizeof *f->joined);
-        f->tab_on_twin = malloc(3 * n * sizeof *f->tab_on_twin);
+        run_arrays *a = &f->arrays;
+        a->piece = malloc(n * sizeof *a->piece);
+        a->parent = malloc(3 * n * sizeof *a->parent);
+        a->next_member = malloc(n * sizeof *a->next_member);
+        a->flat = malloc(n * sizeof *a->flat);
+        a->joined = malloc(3 * n * sizeof *a->joined);
+        a->tab_on_twin = malloc(3 * n * sizeof *a->tab_on_twin);
         f->islands = malloc(n * sizeof *f->islands);
     }
-    if (!f || !f->piece || !f->parent || !f->next_member || !f->flat || !f->joined ||
-        !f->tab_on_twin || !f->islands) {
+    if (!f || !f->arrays.piece || !f->arrays.parent || !f->arrays.next_member || !f->arrays.flat ||
+        !f->arrays.joined || !f->arrays.tab_on_twin || !f->islands) {
         faces_joined_free(f);
         return;
     }
-    memcpy(f->piece, u->piece, n * sizeof *f->piece);
-    memcpy(f->parent, u->parent, 3 * n * sizeof *f->parent);
-    memcpy(f->next_member, u->next_member, n * sizeof *f->next_member);
-    memcpy(f->flat, u->flat, n * sizeof *f->flat);
-    memcpy(f->joined, u->joined, 3 * n * sizeof *f->joined);
-    memcpy(f->tab_on_twin, u->tab_on_twin, 3 * n * sizeof *f->tab_on_twin);
+    copy_arrays(f->arrays, arrays_of(u), n);
     memcpy(f->islands, u->islands, n * sizeof *f->islands);
     memcpy(f->culprits, u->culprits, sizeof f->culprits);
     u->faces_joined = f;
@@ -230,12 +246,7 @@ static void put_back_faces_joined(unfolder *u)
     const unfold_faces_joined *f = u->faces_joined;
     size_t n = u->mesh->triangle_count;
     unfold_grid_restart(&u->grid);
-    memcpy(u->piece, f->piece, n * sizeof *u->piece);
-    memcpy(u->parent, f->parent, 3 * n * sizeof *u->parent);
-    memcpy(u->next_member, f->next_member, n * sizeof *u->next_member);
-    memcpy(u->flat, f->flat, n * sizeof *u->flat);
-    memcpy(u->joined, f->joined, 3 * n * sizeof *u->joined);
-    memcpy(u->tab_on_twin, f->tab_on_twin, 3 * n * sizeof *u->tab_on_twin);
+    copy_arrays(arrays_of(u), f->arrays, n);
     memcpy(u->culprits, f->culprits, sizeof u->culprits);
     for (size_t t = 0; t < n; t++) {
         unfold_island *island = &u->islands[t];
