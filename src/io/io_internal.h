@@ -96,6 +96,12 @@ bool io_mesh_may_declare_unit(const char *path);
  */
 ur_status io_3mf_for_assimp(const char *path, const void *data, size_t size,
                             unsigned char **archive, size_t *archive_size, ur_error *error);
+/*
+ * A Collada document (the file at path, or size bytes of data) checked for
+ * what would make assimp 5.2 crash or run out of memory (mesh_collada.c):
+ * UR_ERROR_INPUT naming the line of the first such thing.
+ */
+ur_status io_collada_check(const char *path, const void *data, size_t size, ur_error *error);
 /* The unit a 3MF's model declares (mesh_3mf.c), as io_mesh_declared_unit gives it. */
 ur_status io_3mf_unit(const char *path, const void *data, size_t size, io_declared_unit *unit,
                       ur_error *error);

@@ -481,12 +481,15 @@ static ur_status check_gltf_start(const char *path, FILE *file, ur_error *error)
 
 /*
  * What a header says, for the formats that assimp trusts blindly (a PLY's
- * or a binary STL's counts), and whether a glTF starts as one: of the file
+ * or a binary STL's counts; a Collada document's counts, lists and node
+ * instances), and whether a glTF starts as one: of the file
  * at path, or of size bytes of data when data is not NULL (read through a
  * stream over them: the same code).
  */
 static ur_status check_header(const char *path, const void *data, off_t size, ur_error *error)
 {
+    if (io_has_extension(path, "dae")) /* a whole document, read by mesh_collada.c */
+        return io_collada_check(path, data, (size_t)size, error);
     /* "r": the buffer is only read */
     FILE *file = data ? fmemopen((void *)data, (size_t)size, "r") : fopen(path, "rb");
     if (!file)

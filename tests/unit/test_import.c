@@ -707,12 +707,11 @@ static void test_units_and_scale_multiply(void **state)
 
 /*
  * A Collada square of 10 x 20 units in the z = 0 plane (z up), its unit
- * given by unit_element (an <asset> child, or "" for none).
+ * given by unit_element (an <asset> child, or "" for none), into text.
  */
-static const char *write_collada(const char *name, const char *unit_element)
+static void collada_square(char *text, size_t size, const char *unit_element)
 {
-    char text[2048];
-    snprintf(text, sizeof text,
+    snprintf(text, size,
              "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n"
              "<COLLADA xmlns=\"http://www.collada.org/2005/11/COLLADASchema\" version=\"1.4.1\">\n"
              "  <asset>%s<up_axis>Z_UP</up_axis></asset>\n"
@@ -731,7 +730,24 @@ static const char *write_collada(const char *name, const char *unit_element)
              "  <scene><instance_visual_scene url=\"#s\"/></scene>\n"
              "</COLLADA>\n",
              unit_element);
+}
+
+static const char *write_collada(const char *name, const char *unit_element)
+{
+    char text[2048];
+    collada_square(text, sizeof text, unit_element);
     return write_file(name, text);
+}
+
+/* The square in millimetres with the first "from" in its text made "to". */
+static const char *write_collada_changed(const char *name, const char *from, const char *to)
+{
+    char text[2048], changed[8192];
+    collada_square(text, sizeof text, "<unit meter=\"0.001\"/>");
+    const char *at = strstr(text, from);
+    assert_non_null(at);
+    snprintf(changed, sizeof changed, "%.*s%s%s", (int)(at - text), text, to, at + strlen(from));
+    return write_file(name, changed);
 }
 
 static void add_part(zipFile zip, const char *name, const char *text)
@@ -1271,6 +1287,112 @@ static void test_bad_index_and_options(void **state)
     }
 }
 
+/*
+ * Collada documents that crashed assimp 5.2 or made it take gigabytes
+ * (found by fuzz_mesh), refused naming their line before it reads them.
+ */
+static void test_collada_lies_refused(void **state)
+{
+    (void)state;
+    static const struct {
+        const char *from, *to, *fragment;
+    } cases[] = {
+        {"<p>0 1 2", "<p>0 1x 2", ":8: <p> holds '1x': not a whole number"},
+        {"<triangles count=\"2\">", "<triangles count=\"2000000000\">",
+         ":8: <p> holds 6 indices where <triangles count=\"2000000000\"> with 1 index per corner "
+         "needs 6000000000"},
+        {"<triangles count=\"2\">", "<triangles count=\"-1\">",
+         "<triangles count=\"-1\">: not a whole number from 0 to 4294967295"},
+        {"count=\"12\">", "count=\"3\">", ":5: <float_array count=\"3\"> holds 12 values"},
+        {"0 20 0<", "0 20 0 1..5<", "<float_array> holds '1..5': not a number"},
+        {"stride=\"3\"", "stride=\"4\"",
+         ":6: <accessor source=\"#pa\"> reaches value 16 of an array of 12"},
+        {"stride=\"3\"", "stride=\"0\"", "<accessor stride=\"0\">: a stride is at least 1"},
+        {"<param name=\"X\" type=\"float\"/>",
+         "<param name=\"W\" type=\"float\"/><param name=\"X\" type=\"float\"/>",
+         "<accessor stride=\"3\"> has 4 parameter values"},
+        {"semantic=\"VERTEX\" source=\"#v\"", "semantic=\"NORMAL\" source=\"#p\"",
+         "<p> of <triangles> before an <input semantic=\"VERTEX\">"},
+        {"<triangles count=\"2\"><input semantic=\"VERTEX\" source=\"#v\" offset=\"0\"/>"
+         "<p>0 1 2 0 2 3</p></triangles>",
+         "<tristrips count=\"0\"><input semantic=\"VERTEX\" source=\"#v\" offset=\"0\"/>"
+         "<p>0 1 2 3</p></tristrips>",
+         ":8: <tristrips count=\"0\"> has 1 <p>"},
+        {"<instance_geometry url=\"#g\"/>",
+         "<instance_geometry url=\"#g\"/><node id=\"m\"><instance_node url=\"#n\"/></node>",
+         ":10: <instance_node> makes a node contain itself"},
+        {"</asset>",
+         "</asset><library_images><image id=\"i\"><init_from><hex format=\"PNG\">0a</hex>"
+         "</init_from></image></library_images>",
+         "an image given in <hex>"},
+    };
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        char name[32];
+        snprintf(name, sizeof name, "lie%zu.dae", c);
+        expect_refusal(write_collada_changed(name, cases[c].from, cases[c].to), NULL,
+                       cases[c].fragment);
+    }
+}
+
+/*
+ * Nodes that instance others twice at each of 18 levels grow into 2^18
+ * nodes; at 10 levels (1,024 squares) they are a model, read in full.
+ */
+static void test_collada_instances_bounded(void **state)
+{
+    (void)state;
+    for (int levels = 10; levels <= 18; levels += 8) {
+        char nodes[8192] = "<library_nodes><node id=\"l0\"><instance_geometry url=\"#g\"/></node>";
+        for (int level = 1; level <= levels; level++) {
+            size_t used = strlen(nodes);
+            snprintf(nodes + used, sizeof nodes - used,
+                     "<node id=\"l%d\"><instance_node url=\"#l%d\"/>"
+                     "<node><matrix>1 0 0 0 0 1 0 0 0 0 1 %d 0 0 0 1</matrix>"
+                     "<instance_node url=\"#l%d\"/></node></node>",
+                     level, level - 1, 1 << level, level - 1);
+        }
+        size_t used = strlen(nodes);
+        snprintf(nodes + used, sizeof nodes - used,
+                 "</library_nodes><library_visual_scenes><visual_scene id=\"s\"><node id=\"n\">"
+                 "<instance_node url=\"#l%d\"/></node></visual_scene></library_visual_scenes>",
+                 levels);
+        char name[32];
+        snprintf(name, sizeof name, "levels%d.dae", levels);
+        const char *scene_start = "  <library_visual_scenes>";
+        char text[2048];
+        collada_square(text, sizeof text, "<unit meter=\"0.001\"/>");
+        const char *from = strstr(text, scene_start);
+        const char *to =
+            strstr(text, "</library_visual_scenes>") + strlen("</library_visual_scenes>");
+        char whole[16384];
+        snprintf(whole, sizeof whole, "%.*s%s%s", (int)(from - text), text, nodes, to);
+        const char *path = write_file(name, whole);
+        if (levels > 16) {
+            expect_refusal(path, NULL, "grows a node into more than 100000 nodes");
+            continue;
+        }
+        ur_mesh mesh;
+        ur_error error;
+        assert_int_equal(ur_mesh_import(path, NULL, &mesh, NULL, &error), UR_OK);
+        assert_int_equal(mesh.triangle_count, 2u << levels);
+        assert_relative(total_area(&mesh), 200.0 * (1 << levels), 1e-9, "squares' area");
+        free_mesh(&mesh);
+    }
+}
+
+/* 3ds Max writes a decimal comma in some locales; assimp reads it, and so does the check. */
+static void test_collada_decimal_comma(void **state)
+{
+    (void)state;
+    const char *path = write_collada_changed("comma.dae", "0 0 0 10 0 0 10 20 0 0 20 0",
+                                             "0 0 0 10,5 0 0 10,5 20 0 0 20 0");
+    ur_mesh mesh;
+    ur_error error;
+    assert_int_equal(ur_mesh_import(path, NULL, &mesh, NULL, &error), UR_OK);
+    assert_relative(total_area(&mesh), 210.0, 1e-6, "a 10.5 x 20 mm square");
+    free_mesh(&mesh);
+}
+
 /* Collada and 3MF files whose unit, or the part that declares it, cannot be read. */
 static void test_declared_unit_refusals(void **state)
 {
@@ -1283,7 +1405,7 @@ static void test_declared_unit_refusals(void **state)
                    "not a Collada file");
     expect_refusal(write_file("cut.dae", "<?xml version=\"1.0\"?>\n<COLLADA>\n<asset><unit "
                                          "meter=\"1\"\n"),
-                   NULL, "Collada: line");
+                   NULL, ":4: Collada: ");
     expect_refusal(write_file("text.dae", "Shopping list\n"), NULL, "Collada");
     expect_refusal(write_file("text.3mf", "Shopping list\n"), NULL, "not a zip archive");
     char model[4096];
@@ -1488,6 +1610,9 @@ int main(void)
         cmocka_unit_test(test_3mf_components_checked),
         cmocka_unit_test(test_3mf_memory_by_its_unpacked_size),
         cmocka_unit_test(test_declared_unit_refusals),
+        cmocka_unit_test(test_collada_lies_refused),
+        cmocka_unit_test(test_collada_instances_bounded),
+        cmocka_unit_test(test_collada_decimal_comma),
         cmocka_unit_test(test_missing_file),
         cmocka_unit_test(test_not_a_mesh),
         cmocka_unit_test(test_empty_obj),
