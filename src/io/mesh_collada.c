@@ -367,12 +367,29 @@ static int compare_arrays(const void *a, const void *b)
 }
 
 /*
- * Every accessor within its array, its parameters within its stride.  An
- * array two share one id with is found as either; assimp takes the last.
+ * Arrays sorted by id, those that share one each taking the fewest values
+ * of them: assimp keeps the last, which need not be the one found.
  */
-static ur_status check_accessors(checker *c)
+static void sort_arrays(checker *c)
 {
     qsort(c->arrays, c->array_count, sizeof *c->arrays, compare_arrays);
+    size_t start = 0;
+    for (size_t i = 1; i <= c->array_count; i++) {
+        if (i < c->array_count && strcmp(c->arrays[i].id, c->arrays[start].id) == 0)
+            continue;
+        uint64_t fewest = c->arrays[start].values;
+        for (size_t k = start; k < i; k++)
+            fewest = c->arrays[k].values < fewest ? c->arrays[k].values : fewest;
+        for (size_t k = start; k < i; k++)
+            c->arrays[k].values = fewest;
+        start = i;
+    }
+}
+
+/* Every accessor within its array, its parameters within its stride. */
+static ur_status check_accessors(checker *c)
+{
+    sort_arrays(c);
     for (size_t i = 0; i < c->accessor_count; i++) {
         const accessor *a = &c->accessors[i];
         char text[160];
