@@ -372,6 +372,8 @@ static int compare_arrays(const void *a, const void *b)
  */
 static void sort_arrays(checker *c)
 {
+    if (c->array_count == 0)
+        return; /* no array to sort: c->arrays is NULL, which qsort must not be given */
     qsort(c->arrays, c->array_count, sizeof *c->arrays, compare_arrays);
     size_t start = 0;
     for (size_t i = 1; i <= c->array_count; i++) {
@@ -399,8 +401,9 @@ static ur_status check_accessors(checker *c)
             return refuse(c, a->line, text);
         }
         value_array key = {.id = a->array};
-        const value_array *array =
-            bsearch(&key, c->arrays, c->array_count, sizeof *c->arrays, compare_arrays);
+        const value_array *array = c->array_count ? bsearch(&key, c->arrays, c->array_count,
+                                                            sizeof *c->arrays, compare_arrays)
+                                                  : NULL;
         if (!array)
             continue; /* assimp refuses a reference it cannot resolve itself */
         uint64_t reach = a->offset + a->count * a->stride;
