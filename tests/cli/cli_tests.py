@@ -1555,6 +1555,21 @@ def mesh_in_the_unit_its_file_declares(work):
                  "--nest-time", "0", "-o", "s.svg", "--report", "s.json")
     check("its unit is inch (25.4 mm), as the file says" in result.stderr, result.stderr)
     close(report(work, "s.json")["surface_area_mm2"], 8 * 25.4 ** 2, 1e-6, "the square's area")
+    # Counts that lie made assimp 5.2 take 3 GB (a stray byte in <p>) or crash
+    # (a negative count, a node instancing itself): one line naming the line,
+    # exit 2, and the cut file already there left as it was.
+    lies = [("<p>0 1 2", "<p>0 1x 2", r"stray\.dae:1: <p> holds '1x': not a whole number"),
+            ('count="12"', 'count="-12"', r'stray\.dae:1: <float_array count="-12">: not a whole'),
+            ('<instance_geometry url="#g"/>', '<instance_geometry url="#g"/><instance_node url="#n"/>',
+             r"stray\.dae:1: <instance_node> makes a node contain itself")]
+    with open(os.path.join(work, "s.svg"), "rb") as f:
+        kept = f.read()
+    for old_text, new_text, pattern in lies:
+        write(work, "stray.dae", square.replace(old_text, new_text, 1))
+        bad(work, pattern, "mesh", "stray.dae", "--flatten", "unfold", "--material",
+            "paper-0.3mm", "-o", "s.svg")
+        with open(os.path.join(work, "s.svg"), "rb") as f:
+            check(f.read() == kept, "the cut file already there was changed")
     # As Bambu Studio writes a model (and MakerWorld hands it out): assimp
     # 5.2 read it as empty, and a thumbnail made it abort.
     cube_3mf(os.path.join(work, "slicer.3mf"), 40, None, slicer=True)
