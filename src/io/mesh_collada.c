@@ -73,7 +73,6 @@ typedef struct {
     uint64_t count;
     uint64_t offsets; /* the largest input offset + 1 */
     bool has_vertex;  /* an input with semantic VERTEX came */
-    bool has_vcount;
     uint64_t vcount_entries;
     uint64_t vcount_sum;    /* of the first count entries */
     uint64_t p_elements;    /* <p> and <ph> */
@@ -101,17 +100,19 @@ typedef struct {
 
 /* ---- Small helpers ----------------------------------------------------- */
 
-static bool grow(void **items, size_t *capacity, size_t count, size_t item_size)
+/*
+ * items (count of them, room for *capacity) with room for one more: the
+ * same block, or a larger one; NULL when out of memory, items then kept.
+ */
+static void *with_room(void *items, size_t *capacity, size_t count, size_t item_size)
 {
     if (count < *capacity)
-        return true;
+        return items;
     size_t wanted = *capacity ? 2 * *capacity : 16;
-    void *bigger = realloc(*items, wanted * item_size);
-    if (!bigger)
-        return false;
-    *items = bigger;
-    *capacity = wanted;
-    return true;
+    void *bigger = realloc(items, wanted * item_size);
+    if (bigger)
+        *capacity = wanted;
+    return bigger;
 }
 
 static long current_line(const checker *c)
@@ -315,10 +316,12 @@ static ur_status check_array(checker *c, const char *element, word_kind kind)
         return out_of_memory(c);
     if (!id)
         return UR_OK;
-    if (!grow((void **)&c->arrays, &c->array_capacity, c->array_count, sizeof *c->arrays)) {
+    value_array *arrays = with_room(c->arrays, &c->array_capacity, c->array_count, sizeof *arrays);
+    if (!arrays) {
         free(id);
         return out_of_memory(c);
     }
+    c->arrays = arrays;
     c->arrays[c->array_count++] = (value_array){.id = id, .values = count};
     return UR_OK;
 }
@@ -341,11 +344,13 @@ static ur_status open_accessor(checker *c, int depth)
         return out_of_memory(c);
     if (!a.array)
         return UR_OK; /* assimp refuses a source that is not "#id" itself */
-    if (!grow((void **)&c->accessors, &c->accessor_capacity, c->accessor_count,
-              sizeof *c->accessors)) {
+    accessor *accessors =
+        with_room(c->accessors, &c->accessor_capacity, c->accessor_count, sizeof *accessors);
+    if (!accessors) {
         free(a.array);
         return out_of_memory(c);
     }
+    c->accessors = accessors;
     c->accessors[c->accessor_count++] = a;
     c->accessor_depth = depth;
     return UR_OK;
@@ -478,7 +483,6 @@ static ur_status read_input(checker *c)
 static ur_status read_vcount(checker *c)
 {
     primitive *p = &c->primitive;
-    p->has_vcount = true;
     p->vcount_sum = 0;
     return read_words(c, "vcount", WORDS_COUNT, &p->vcount_entries, &p->vcount_sum, p->count);
 }
@@ -595,8 +599,10 @@ static ur_status open_node(checker *c, int depth)
 {
     if (c->open_node_count == MAX_NODE_DEPTH)
         return refuse(c, current_line(c), "nodes nested more than 1000 deep");
-    if (!grow((void **)&c->nodes, &c->node_capacity, c->node_count, sizeof *c->nodes))
+    scene_node *nodes = with_room(c->nodes, &c->node_capacity, c->node_count, sizeof *nodes);
+    if (!nodes)
         return out_of_memory(c);
+    c->nodes = nodes;
     scene_node *node = &c->nodes[c->node_count];
     *node = (scene_node){.parent = innermost_node(c)};
     if (!copy_attribute(c, "id", false, &node->id) ||
@@ -615,15 +621,15 @@ static ur_status add_instance(checker *c)
     char *target = NULL;
     if (node != NO_NODE && !copy_attribute(c, "url", true, &target))
         return out_of_memory(c);
-    if (!target) {
-        free(target);
-        return UR_OK;
-    }
-    if (!grow((void **)&c->instances, &c->instance_capacity, c->instance_count,
-              sizeof *c->instances)) {
+    if (!target)
+        return UR_OK; /* outside a node, or not "#id": assimp does not follow it */
+    node_instance *instances =
+        with_room(c->instances, &c->instance_capacity, c->instance_count, sizeof *instances);
+    if (!instances) {
         free(target);
         return out_of_memory(c);
     }
+    c->instances = instances;
     c->instances[c->instance_count++] =
         (node_instance){.node = node, .target = target, .line = current_line(c)};
     return UR_OK;
