@@ -493,8 +493,8 @@ static void describe_need(const primitive *p, char *text, size_t size)
     unsigned long long offsets = p->offsets;
     if (p->layout == LAYOUT_TRIANGLES)
         snprintf(text, size, "%llu", 3 * p->count * offsets);
-    else if (p->layout == LAYOUT_LINES)
-        snprintf(text, size, "at least %llu", 2 * p->count * offsets);
+    else if (p->layout == LAYOUT_LINES) /* as check_indices lets SketchUp's counts pass */
+        snprintf(text, size, "at least %llu", p->count * offsets);
     else if (p->layout == LAYOUT_POLYLIST && p->vcount_entries != p->count)
         snprintf(text, size, "a <vcount> of %llu values (it has %llu)",
                  (unsigned long long)p->count, (unsigned long long)p->vcount_entries);
