@@ -31,6 +31,9 @@
 #define MAX_EXPANDED_NODES 100000
 #define MAX_NODE_DEPTH 1000
 
+/* Nodes an <instance_node> may name (ids and names are meant to be unique): more is a lie. */
+#define MAX_INSTANCE_TARGETS 64
+
 #define NO_NODE SIZE_MAX
 
 /* An array of values an accessor may read: its id and how many values it holds. */
@@ -46,10 +49,11 @@ typedef struct {
     long line;
 } accessor;
 
-/* A <node>: its id and name (either may be NULL) and the node it lies in. */
+/* A <node>: its id and name (either may be NULL), the node it lies in, its line. */
 typedef struct {
     char *id, *name;
     size_t parent;
+    long line;
 } scene_node;
 
 /* An <instance_node url="#target"> inside node. */
@@ -604,7 +608,7 @@ static ur_status open_node(checker *c, int depth)
         return out_of_memory(c);
     c->nodes = nodes;
     scene_node *node = &c->nodes[c->node_count];
-    *node = (scene_node){.parent = innermost_node(c)};
+    *node = (scene_node){.parent = innermost_node(c), .line = current_line(c)};
     if (!copy_attribute(c, "id", false, &node->id) ||
         !copy_attribute(c, "name", false, &node->name)) {
         free(node->id);
@@ -650,9 +654,12 @@ typedef struct {
     size_t key_count;
 } node_graph;
 
+/* By key, then node: a node whose id is its name (Blender writes them so) twice in a row. */
 static int compare_keys(const void *a, const void *b)
 {
-    return strcmp(((const node_key *)a)->key, ((const node_key *)b)->key);
+    const node_key *x = a, *y = b;
+    int order = strcmp(x->key, y->key);
+    return order ? order : (x->node > y->node) - (x->node < y->node);
 }
 
 static void graph_free(node_graph *g)
@@ -709,6 +716,8 @@ static size_t add_edges(const checker *c, const node_graph *g, size_t *fill, siz
         size_t begin, end;
         find_keys(g, c->instances[i].target, &begin, &end);
         for (size_t k = begin; k < end; k++) {
+            if (k > begin && g->keys[k].node == g->keys[k - 1].node)
+                continue; /* named by id and name alike */
             if (to)
                 to[fill[c->instances[i].node]++] = g->keys[k].node;
             else
@@ -719,13 +728,33 @@ static size_t add_edges(const checker *c, const node_graph *g, size_t *fill, siz
     return edges;
 }
 
-static bool make_graph(const checker *c, node_graph *g)
+/*
+ * Whether every instance names at most MAX_INSTANCE_TARGETS nodes, so that
+ * the graph has at most that many edges per instance; else *line is the
+ * first one's.
+ */
+static bool targets_few(const checker *c, const node_graph *g, long *line)
 {
-    *g = (node_graph){0};
+    for (size_t i = 0; i < c->instance_count; i++) {
+        size_t begin, end, nodes = 0;
+        find_keys(g, c->instances[i].target, &begin, &end);
+        for (size_t k = begin; k < end; k++) /* a node named by id and name alike counts once */
+            nodes += k == begin || g->keys[k].node != g->keys[k - 1].node;
+        if (nodes > MAX_INSTANCE_TARGETS) {
+            *line = c->instances[i].line;
+            return false;
+        }
+    }
+    return true;
+}
+
+/* The graph's edges, its keys made: per node, its nested nodes and those it instances. */
+static bool make_edges(const checker *c, node_graph *g)
+{
     size_t n = c->node_count;
     size_t *fill = calloc(n + 1, sizeof *fill);
     g->first = calloc(n + 1, sizeof *g->first);
-    if (!fill || !g->first || !make_keys(c, g)) {
+    if (!fill || !g->first) {
         free(fill);
         return false;
     }
@@ -816,9 +845,9 @@ static ur_status expand_all(const checker *c, const node_graph *g, expansion *x)
             return refuse(c, line, "<instance_node> makes a node contain itself");
         }
         if (x->size[i] > MAX_EXPANDED_NODES || x->depth[i] > MAX_NODE_DEPTH)
-            return refuse(c, instance_line(c, i),
-                          "<instance_node> grows a node into more than 100000 nodes, or more "
-                          "than 1000 deep");
+            return refuse(c, c->nodes[i].line,
+                          "through <instance_node>, this node grows into more than 100000 "
+                          "nodes, or more than 1000 deep");
     }
     return UR_OK;
 }
@@ -828,7 +857,7 @@ static ur_status check_nodes(const checker *c)
 {
     if (c->instance_count == 0)
         return UR_OK;
-    node_graph g;
+    node_graph g = {0};
     size_t n = c->node_count;
     expansion x = {.state = calloc(n, 1),
                    .size = calloc(n, sizeof *x.size),
@@ -836,7 +865,12 @@ static ur_status check_nodes(const checker *c)
                    .stack = calloc(n, sizeof *x.stack),
                    .edge = calloc(n, sizeof *x.edge)};
     ur_status status = UR_OK;
-    if (!make_graph(c, &g) || !x.state || !x.size || !x.depth || !x.stack || !x.edge)
+    long line = 0;
+    if (!x.state || !x.size || !x.depth || !x.stack || !x.edge || !make_keys(c, &g))
+        status = out_of_memory(c);
+    else if (!targets_few(c, &g, &line))
+        status = refuse(c, line, "<instance_node> names more than 64 nodes by one id or name");
+    else if (!make_edges(c, &g))
         status = out_of_memory(c);
     else
         status = expand_all(c, &g, &x);

@@ -1339,41 +1339,50 @@ static void test_collada_lies_refused(void **state)
     }
 }
 
+/* The square's file with scene (library nodes and visual scenes) in place of its visual scene. */
+static const char *write_collada_scene(const char *name, const char *scene)
+{
+    char text[2048];
+    collada_square(text, sizeof text, "<unit meter=\"0.001\"/>");
+    const char *from = strstr(text, "  <library_visual_scenes>");
+    const char *end = "</library_visual_scenes>";
+    const char *to = strstr(text, end) + strlen(end);
+    char whole[16384];
+    assert_true((size_t)snprintf(whole, sizeof whole, "%.*s%s%s", (int)(from - text), text, scene,
+                                 to) < sizeof whole);
+    return write_file(name, whole);
+}
+
 /*
- * Nodes that instance others twice at each of 18 levels grow into 2^18
- * nodes; at 10 levels (1,024 squares) they are a model, read in full.
+ * Nodes that instance the level below twice at each of 18 levels grow
+ * into 2^18 nodes; at 10 levels (1,024 squares) they are a model, read in
+ * full.  Each node's name is its id, as Blender writes them: a node found
+ * by both is one node, not two (else 10 levels would grow into 4^10).
  */
 static void test_collada_instances_bounded(void **state)
 {
     (void)state;
     for (int levels = 10; levels <= 18; levels += 8) {
-        char nodes[8192] = "<library_nodes><node id=\"l0\"><instance_geometry url=\"#g\"/></node>";
+        char scene[8192] = "<library_nodes><node id=\"l0\" name=\"l0\">"
+                           "<instance_geometry url=\"#g\"/></node>";
         for (int level = 1; level <= levels; level++) {
-            size_t used = strlen(nodes);
-            snprintf(nodes + used, sizeof nodes - used,
-                     "<node id=\"l%d\"><instance_node url=\"#l%d\"/>"
+            size_t used = strlen(scene);
+            snprintf(scene + used, sizeof scene - used,
+                     "<node id=\"l%d\" name=\"l%d\"><instance_node url=\"#l%d\"/>"
                      "<node><matrix>1 0 0 0 0 1 0 0 0 0 1 %d 0 0 0 1</matrix>"
                      "<instance_node url=\"#l%d\"/></node></node>",
-                     level, level - 1, 1 << level, level - 1);
+                     level, level, level - 1, 1 << level, level - 1);
         }
-        size_t used = strlen(nodes);
-        snprintf(nodes + used, sizeof nodes - used,
+        size_t used = strlen(scene);
+        snprintf(scene + used, sizeof scene - used,
                  "</library_nodes><library_visual_scenes><visual_scene id=\"s\"><node id=\"n\">"
                  "<instance_node url=\"#l%d\"/></node></visual_scene></library_visual_scenes>",
                  levels);
         char name[32];
         snprintf(name, sizeof name, "levels%d.dae", levels);
-        const char *scene_start = "  <library_visual_scenes>";
-        char text[2048];
-        collada_square(text, sizeof text, "<unit meter=\"0.001\"/>");
-        const char *from = strstr(text, scene_start);
-        const char *to =
-            strstr(text, "</library_visual_scenes>") + strlen("</library_visual_scenes>");
-        char whole[16384];
-        snprintf(whole, sizeof whole, "%.*s%s%s", (int)(from - text), text, nodes, to);
-        const char *path = write_file(name, whole);
+        const char *path = write_collada_scene(name, scene);
         if (levels > 16) {
-            expect_refusal(path, NULL, "grows a node into more than 100000 nodes");
+            expect_refusal(path, NULL, "this node grows into more than 100000 nodes");
             continue;
         }
         ur_mesh mesh;
@@ -1383,6 +1392,21 @@ static void test_collada_instances_bounded(void **state)
         assert_relative(total_area(&mesh), 200.0 * (1 << levels), 1e-9, "squares' area");
         free_mesh(&mesh);
     }
+}
+
+/* An instance that names 65 nodes (all called "x") is a lie: ids and names are meant to be unique.
+ */
+static void test_collada_instance_names_many(void **state)
+{
+    (void)state;
+    char scene[8192] = "<library_nodes>";
+    for (int k = 0; k < 65; k++)
+        strcat(scene, "<node name=\"x\"/>");
+    strcat(scene, "</library_nodes><library_visual_scenes><visual_scene id=\"s\"><node id=\"n\">"
+                  "<instance_geometry url=\"#g\"/><instance_node url=\"#x\"/></node>"
+                  "</visual_scene></library_visual_scenes>");
+    expect_refusal(write_collada_scene("many.dae", scene), NULL,
+                   ":10: <instance_node> names more than 64 nodes by one id or name");
 }
 
 /* 3ds Max writes a decimal comma in some locales; assimp reads it, and so does the check. */
@@ -1617,6 +1641,7 @@ int main(void)
         cmocka_unit_test(test_declared_unit_refusals),
         cmocka_unit_test(test_collada_lies_refused),
         cmocka_unit_test(test_collada_instances_bounded),
+        cmocka_unit_test(test_collada_instance_names_many),
         cmocka_unit_test(test_collada_decimal_comma),
         cmocka_unit_test(test_missing_file),
         cmocka_unit_test(test_not_a_mesh),
