@@ -9,6 +9,7 @@
 
 #include <stdbool.h>
 #include <stddef.h>
+#include <stdint.h>
 
 #include <assimp/cfileio.h>
 #include <libxml/tree.h>
@@ -50,6 +51,18 @@ ur_status io_read_file(const char *path, long max_bytes, const char *what, char 
 
 /* A copy of size bytes of data with a NUL after them, or NULL with error set; free() it. */
 char *io_copy_text(const void *data, size_t size, ur_error *error);
+
+/*
+ * Whether the length bytes at word are a whole number (a sign allowed
+ * when signed_ok) of at most max, then in *value; and whether they are a
+ * real number as XML formats write one (xs:double: 1, -2.5, .5, 3e-7, INF,
+ * NaN), or, where decimal_comma is set, with a comma before its fraction
+ * (2,5: assimp's Collada reader reads one, as 3ds Max writes it in some
+ * locales).
+ */
+bool io_whole_number(const char *word, size_t length, bool signed_ok, uint64_t max,
+                     uint64_t *value);
+bool io_real_number(const char *word, size_t length, bool decimal_comma);
 
 /* Trims white space (the '\r' of CRLF files too) at both ends, in place. */
 char *io_trim(char *text);

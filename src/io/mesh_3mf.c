@@ -34,6 +34,7 @@
 
 #define MODEL_RELATIONSHIP "http://schemas.microsoft.com/3dmanufacturing/2013/01/3dmodel"
 #define PRODUCTION_NAMESPACE "http://schemas.microsoft.com/3dmanufacturing/production/2015/06"
+#define CORE_NAMESPACE "http://schemas.microsoft.com/3dmanufacturing/core/2015/02"
 
 /* Components nested deeper than this (across parts) are not a model. */
 #define MAX_COMPONENT_DEPTH 64
@@ -586,14 +587,48 @@ static bool add_place(object_place **places, size_t *count, int id, size_t place
 }
 
 /*
+ * The attributes of a core <vertex> (x, y, z) or <triangle> (v1, v2, v3)
+ * that are present are numbers: assimp 5.2 reads a word as 0, which makes
+ * a wrong model without a word.  UR_ERROR_INPUT naming the line.
+ */
+static ur_status check_numbers(xmlTextReaderPtr reader, const char *path, const char *part,
+                               ur_error *error)
+{
+    const xmlChar *space = xmlTextReaderConstNamespaceUri(reader);
+    bool vertex = io_reader_is(reader, "vertex");
+    if (!space || strcmp((const char *)space, CORE_NAMESPACE) != 0 ||
+        (!vertex && !io_reader_is(reader, "triangle")))
+        return UR_OK; /* a slice's 2D vertex, say, is not read as the mesh's */
+    static const char *const names[2][3] = {{"v1", "v2", "v3"}, {"x", "y", "z"}};
+    for (int k = 0; k < 3; k++) {
+        char text[64];
+        if (!io_reader_attribute(reader, names[vertex][k], text, sizeof text))
+            continue;
+        uint64_t index = 0;
+        char *word = io_trim(text);
+        bool number = vertex ? io_real_number(word, strlen(word), false)
+                             : io_whole_number(word, strlen(word), false, INT_MAX, &index);
+        if (!number)
+            return ur_error_set(error, UR_ERROR_INPUT,
+                                "%s: 3MF model '%.200s': line %ld: <%s %s=\"%s\">: not %s", path,
+                                part, xmlGetLineNo(xmlTextReaderCurrentNode(reader)),
+                                vertex ? "vertex" : "triangle", names[vertex][k], text,
+                                vertex ? "a number" : "a vertex number");
+    }
+    return UR_OK;
+}
+
+/*
  * Every component must name an object the model defines before the one it
  * is in, as 3MF requires: assimp 5.2 dereferences a missing one and
- * follows a loop for ever (both crash it).
+ * follows a loop for ever (both crash it); and every vertex's coordinates
+ * and triangle's corners are numbers (check_numbers).
  */
-static ur_status check_components(const char *path, const char *part, const char *bytes,
-                                  size_t size, ur_error *error)
+static ur_status check_model(const char *path, const char *part, const char *bytes, size_t size,
+                             ur_error *error)
 {
-    xmlTextReaderPtr reader = xmlReaderForMemory(bytes, (int)size, part, NULL, XML_PARSE_NONET);
+    xmlTextReaderPtr reader =
+        xmlReaderForMemory(bytes, (int)size, part, NULL, XML_PARSE_NONET | XML_PARSE_BIG_LINES);
     if (!reader)
         return ur_error_out_of_memory(error);
     object_place *objects = NULL, *components = NULL;
@@ -601,17 +636,22 @@ static ur_status check_components(const char *path, const char *part, const char
     bool stored = true;
     int depth = 0, id = 0;
     char text[32];
-    while (stored && io_reader_next_element(reader, &depth)) {
+    ur_status status = UR_OK;
+    while (stored && status == UR_OK && io_reader_next_element(reader, &depth)) {
         if (depth == 2 && io_reader_is(reader, "object") &&
             io_reader_attribute(reader, "id", text, sizeof text))
             stored = add_place(&objects, &object_count, atoi(text), ++place);
         else if (depth == 4 && io_reader_is(reader, "component") &&
                  io_reader_attribute(reader, "objectid", text, sizeof text))
             stored = add_place(&components, &component_count, atoi(text), place);
+        else if (depth == 5)
+            status = check_numbers(reader, path, part, error);
     }
     xmlFreeTextReader(reader);
-    qsort(objects, object_count, sizeof *objects, by_id);
-    ur_status status = stored ? UR_OK : ur_error_out_of_memory(error);
+    if (status == UR_OK && object_count > 0)
+        qsort(objects, object_count, sizeof *objects, by_id);
+    if (status == UR_OK && !stored)
+        status = ur_error_out_of_memory(error);
     for (size_t i = 0; status == UR_OK && i < component_count; i++) {
         const object_place *named =
             bsearch(&components[i], objects, object_count, sizeof *objects, by_id);
@@ -694,8 +734,8 @@ static ur_status prepare(const char *path, const void *data, size_t size, unsign
         status = merge_parts(zip, path, root_part, model, model_size, &merged, &merged_size, error);
     unzClose(zip);
     if (status == UR_OK)
-        status = check_components(path, root_part, merged ? (const char *)merged : model,
-                                  merged ? (size_t)merged_size : model_size, error);
+        status = check_model(path, root_part, merged ? (const char *)merged : model,
+                             merged ? (size_t)merged_size : model_size, error);
     if (status == UR_OK) {
         archive_part parts[] = {
             {"[Content_Types].xml", types, types_size},

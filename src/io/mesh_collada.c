@@ -21,7 +21,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <strings.h>
 
 #include <libxml/xmlreader.h>
 
@@ -156,72 +155,6 @@ static bool next_word(const char **at, const char **word, size_t *length)
     return true;
 }
 
-/* A whole number of length bytes at word, a sign allowed when signed_ok, at most max. */
-static bool whole_number(const char *word, size_t length, bool signed_ok, uint64_t max,
-                         uint64_t *value)
-{
-    size_t i = 0;
-    if (signed_ok && length > 0 && (word[0] == '-' || word[0] == '+'))
-        i = 1;
-    if (i == length)
-        return false;
-    uint64_t n = 0;
-    for (; i < length; i++) {
-        if (word[i] < '0' || word[i] > '9')
-            return false;
-        n = 10 * n + (uint64_t)(word[i] - '0');
-        if (n > max)
-            return false;
-    }
-    *value = n;
-    return true;
-}
-
-static size_t skip_digits(const char *word, size_t length, size_t i)
-{
-    while (i < length && word[i] >= '0' && word[i] <= '9')
-        i++;
-    return i;
-}
-
-static bool same_word(const char *word, size_t length, const char *name)
-{
-    return strlen(name) == length && strncasecmp(word, name, length) == 0;
-}
-
-/* A real number as Collada writes one (xs:double: 1, -2.5, .5, 3e-7, INF, NaN), or 2,5. */
-static bool real_number(const char *word, size_t length)
-{
-    size_t i = (length > 0 && (word[0] == '-' || word[0] == '+')) ? 1 : 0;
-    const char *rest = word + i;
-    if (same_word(rest, length - i, "inf") || same_word(rest, length - i, "infinity") ||
-        same_word(rest, length - i, "nan"))
-        return true; /* unroll refuses a coordinate that is not finite, naming it */
-    size_t digits_start = i;
-    i = skip_digits(word, length, i);
-    size_t digits = i - digits_start;
-    /* assimp reads a comma before a digit as the decimal point, as 3ds Max writes it in some
-     * locales */
-    bool comma = i + 1 < length && word[i] == ',' && word[i + 1] >= '0' && word[i + 1] <= '9';
-    if (i < length && (word[i] == '.' || comma)) {
-        size_t fraction_start = ++i;
-        i = skip_digits(word, length, i);
-        digits += i - fraction_start;
-    }
-    if (digits == 0)
-        return false;
-    if (i < length && (word[i] == 'e' || word[i] == 'E')) {
-        i++;
-        if (i < length && (word[i] == '-' || word[i] == '+'))
-            i++;
-        size_t exponent_start = i;
-        i = skip_digits(word, length, i);
-        if (i == exponent_start)
-            return false;
-    }
-    return i == length;
-}
-
 /*
  * The attribute as a whole number of at most max, or fallback when it is
  * absent; UR_ERROR_INPUT naming the element and attribute otherwise.
@@ -235,7 +168,8 @@ static ur_status number_attribute(const checker *c, const char *element, const c
         return UR_OK;
     const char *at = (const char *)text, *word = NULL;
     size_t length = 0;
-    bool valid = next_word(&at, &word, &length) && whole_number(word, length, false, max, value) &&
+    bool valid = next_word(&at, &word, &length) &&
+                 io_whole_number(word, length, false, max, value) &&
                  !next_word(&at, &word, &length);
     ur_status status = UR_OK;
     if (!valid)
@@ -286,9 +220,10 @@ static ur_status read_words(const checker *c, const char *element, word_kind kin
     ur_status status = UR_OK;
     while (status == UR_OK && next_word(&at, &word, &length)) {
         uint64_t value = 0;
-        bool valid = kind == WORDS_ANY || (kind == WORDS_REAL && real_number(word, length)) ||
+        bool valid = kind == WORDS_ANY ||
+                     (kind == WORDS_REAL && io_real_number(word, length, true)) ||
                      (kind != WORDS_REAL &&
-                      whole_number(word, length, kind == WORDS_INDEX, INT_MAX, &value));
+                      io_whole_number(word, length, kind == WORDS_INDEX, INT_MAX, &value));
         if (!valid)
             status =
                 ur_error_set(c->error, UR_ERROR_INPUT, "%s:%ld: <%s> holds '%.*s': not %s", c->path,

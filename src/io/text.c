@@ -20,6 +20,68 @@ bool io_has_extension(const char *path, const char *extension)
     return dot && !strchr(dot, '/') && strcasecmp(dot + 1, extension) == 0;
 }
 
+bool io_whole_number(const char *word, size_t length, bool signed_ok, uint64_t max, uint64_t *value)
+{
+    size_t i = 0;
+    if (signed_ok && length > 0 && (word[0] == '-' || word[0] == '+'))
+        i = 1;
+    if (i == length)
+        return false;
+    uint64_t n = 0;
+    for (; i < length; i++) {
+        if (word[i] < '0' || word[i] > '9')
+            return false;
+        n = 10 * n + (uint64_t)(word[i] - '0');
+        if (n > max)
+            return false;
+    }
+    *value = n;
+    return true;
+}
+
+static size_t skip_digits(const char *word, size_t length, size_t i)
+{
+    while (i < length && word[i] >= '0' && word[i] <= '9')
+        i++;
+    return i;
+}
+
+static bool same_word(const char *word, size_t length, const char *name)
+{
+    return strlen(name) == length && strncasecmp(word, name, length) == 0;
+}
+
+bool io_real_number(const char *word, size_t length, bool decimal_comma)
+{
+    size_t i = (length > 0 && (word[0] == '-' || word[0] == '+')) ? 1 : 0;
+    const char *rest = word + i;
+    if (same_word(rest, length - i, "inf") || same_word(rest, length - i, "infinity") ||
+        same_word(rest, length - i, "nan"))
+        return true; /* the importer refuses a coordinate that is not finite, naming it */
+    size_t digits_start = i;
+    i = skip_digits(word, length, i);
+    size_t digits = i - digits_start;
+    bool comma = decimal_comma && i + 1 < length && word[i] == ',' && word[i + 1] >= '0' &&
+                 word[i + 1] <= '9';
+    if (i < length && (word[i] == '.' || comma)) {
+        size_t fraction_start = ++i;
+        i = skip_digits(word, length, i);
+        digits += i - fraction_start;
+    }
+    if (digits == 0)
+        return false;
+    if (i < length && (word[i] == 'e' || word[i] == 'E')) {
+        i++;
+        if (i < length && (word[i] == '-' || word[i] == '+'))
+            i++;
+        size_t exponent_start = i;
+        i = skip_digits(word, length, i);
+        if (i == exponent_start)
+            return false;
+    }
+    return i == length;
+}
+
 char *io_trim(char *text)
 {
     while (isspace((unsigned char)*text))

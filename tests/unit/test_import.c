@@ -1422,6 +1422,35 @@ static void test_collada_decimal_comma(void **state)
     free_mesh(&mesh);
 }
 
+/*
+ * A 3MF vertex coordinate or triangle corner that is not a number: assimp
+ * 5.2 reads it as 0, a wrong model without a word.
+ */
+static void test_3mf_numbers_checked(void **state)
+{
+    (void)state;
+    static const struct {
+        const char *from, *to, *fragment;
+    } cases[] = {
+        {"<vertex x=\"10\" y=\"0\"", "<vertex x=\"ten\" y=\"0\"",
+         "line 5: <vertex x=\"ten\">: not a number"},
+        {"<vertex x=\"10\" y=\"0\"", "<vertex x=\"1,5\" y=\"0\"",
+         "<vertex x=\"1,5\">: not a number"},
+        {"v2=\"2\" v3=\"1\"", "v2=\"2\" v3=\"-1\"",
+         "line 13: <triangle v3=\"-1\">: not a vertex number"},
+    };
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        char model[4096], changed[4096], name[32];
+        cube_model(model, sizeof model, "");
+        const char *at = strstr(model, cases[c].from);
+        assert_non_null(at);
+        snprintf(changed, sizeof changed, "%.*s%s%s", (int)(at - model), model, cases[c].to,
+                 at + strlen(cases[c].from));
+        snprintf(name, sizeof name, "numbers%zu.3mf", c);
+        expect_refusal(write_3mf(name, changed, true, NULL), NULL, cases[c].fragment);
+    }
+}
+
 /* Collada and 3MF files whose unit, or the part that declares it, cannot be read. */
 static void test_declared_unit_refusals(void **state)
 {
@@ -1637,6 +1666,7 @@ int main(void)
         cmocka_unit_test(test_3mf_with_a_thumbnail),
         cmocka_unit_test(test_3mf_objects_in_parts_of_their_own),
         cmocka_unit_test(test_3mf_components_checked),
+        cmocka_unit_test(test_3mf_numbers_checked),
         cmocka_unit_test(test_3mf_memory_by_its_unpacked_size),
         cmocka_unit_test(test_declared_unit_refusals),
         cmocka_unit_test(test_collada_lies_refused),
