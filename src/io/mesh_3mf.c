@@ -653,8 +653,9 @@ static ur_status check_model(const char *path, const char *part, const char *byt
     if (status == UR_OK && !stored)
         status = ur_error_out_of_memory(error);
     for (size_t i = 0; status == UR_OK && i < component_count; i++) {
-        const object_place *named =
-            bsearch(&components[i], objects, object_count, sizeof *objects, by_id);
+        const object_place *named = /* no object: its id missing, say */
+            object_count ? bsearch(&components[i], objects, object_count, sizeof *objects, by_id)
+                         : NULL;
         id = components[i].id;
         if (!named || named->place >= components[i].place)
             status = ur_error_set(error, UR_ERROR_INPUT,
