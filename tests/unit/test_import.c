@@ -1288,8 +1288,9 @@ static void test_bad_index_and_options(void **state)
 }
 
 /*
- * Collada documents that crashed assimp 5.2 or made it take gigabytes
- * (found by fuzz_mesh), refused naming their line before it reads them.
+ * Collada documents that crashed assimp 5.2, made it take gigabytes or
+ * read past its arrays (the first found by fuzz_mesh, the others made
+ * after assimp's reader), refused naming their line before it reads them.
  */
 static void test_collada_lies_refused(void **state)
 {
