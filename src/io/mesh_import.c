@@ -508,8 +508,12 @@ static ur_status check_header(const char *path, const void *data, off_t size, ur
     return status;
 }
 
-/* assimp's own message for a missing file is vaguer than strerror's. */
-static ur_status check_file(const char *path, ur_error *error)
+/*
+ * The file at path is a regular file with bytes in it and an extension
+ * unroll reads; its size in *size.  assimp's own message for a missing
+ * file is vaguer than strerror's.
+ */
+static ur_status check_file_itself(const char *path, off_t *size, ur_error *error)
 {
     struct stat info;
     if (stat(path, &info) != 0)
@@ -518,10 +522,16 @@ static ur_status check_file(const char *path, ur_error *error)
         return ur_error_set(error, UR_ERROR_INPUT, "%s: not a regular file", path);
     if (info.st_size == 0)
         return ur_error_set(error, UR_ERROR_INPUT, "%s: the file is empty", path);
-    ur_status status = check_extension(path, error);
-    if (status != UR_OK)
-        return status;
-    return check_header(path, NULL, info.st_size, error);
+    *size = info.st_size;
+    return check_extension(path, error);
+}
+
+/* The file itself, then what its header (or a Collada file's whole document) says. */
+static ur_status check_file(const char *path, ur_error *error)
+{
+    off_t size = 0;
+    ur_status status = check_file_itself(path, &size, error);
+    return status == UR_OK ? check_header(path, NULL, size, error) : status;
 }
 
 static ur_status check_buffer(const char *name, const void *data, size_t size, ur_error *error)
@@ -1188,8 +1198,11 @@ ur_status ur_mesh_declared_unit(const char *path, double *mm, char name[32], ur_
     name[0] = '\0';
     if (!io_mesh_may_declare_unit(path))
         return UR_OK; /* a format that declares none: the file is not opened */
+    /* Only the start of the file is read for its unit: assimp does not read it here, so the
+     * whole document need not be checked again (ur_mesh_import checks it). */
     io_declared_unit declared;
-    ur_status status = check_file(path, error);
+    off_t size = 0;
+    ur_status status = check_file_itself(path, &size, error);
     if (status == UR_OK)
         status = io_mesh_declared_unit(path, NULL, 0, &declared, error);
     if (status != UR_OK)
