@@ -236,6 +236,25 @@ typedef struct ur_unfold_options {
     void *progress_context;
     /* The search stops with UR_ERROR_CANCELLED once it is cancelled (each step); NULL: never. */
     const ur_context *context;
+    /*
+     * The threads the search may use.  With 2 or more and the room
+     * limited, the search with the room taken at any turn runs beside the
+     * level one, in a thread of its own with its own copy of the run's
+     * state, instead of after it (see ur_unfold).  Default 1: one after
+     * the other.
+     */
+    size_t threads;
+    /*
+     * Called once, in the unfolding's thread, when the run the search
+     * starts from is made, with its cost (its pieces, and its joins made
+     * without the gap at gap_break_cost each); NULL: none.  Returning false
+     * stops the unfolding there (UR_ERROR_CANCELLED), for a caller that
+     * runs several side by side and drops one that starts far behind the
+     * others; it may set *threads (the options' threads) for the search
+     * that follows, when another unfolding it ran beside has stopped.
+     */
+    bool (*started)(void *context, double cost, size_t *threads);
+    void *started_context;
 } ur_unfold_options;
 
 UR_API void ur_unfold_options_default(ur_unfold_options *options);
@@ -317,7 +336,15 @@ typedef struct ur_unfolding {
  * stops there); the best of all walks is kept.  The search stops early
  * when the pieces are as few as the mesh's parts.  For a seed and a
  * number of steps the result is always the same;
- * within a time budget the number of steps depends on the machine.  Every
+ * within a time budget the number of steps depends on the machine.  When
+ * the room is limited and a join it refused would have fitted it turned,
+ * a second search, of half the steps and budget, takes the room at any
+ * turn, from the same first order, and the better is kept (the level one
+ * when as good).  With options.threads of 2 or more it runs beside the
+ * level search from the start, on a state of its own, and is dropped when
+ * not needed: the caches a search keeps over its runs then differ, and
+ * the pieces may differ from one thread's where a hull kept from an earlier
+ * run rounds a piece's size across the room's edge.  Every
  * edge was tried, so a piece of one face had nowhere to go: across every
  * one of its seams it would overlap or touch its neighbour.
  *

@@ -19,6 +19,7 @@
 
 #include <stdlib.h>
 #include <string.h>
+#include <threads.h>
 
 /* ---- the orders of the edges ---- */
 
@@ -464,7 +465,7 @@ static ur_status alloc_run(unfolder *u, ur_error *error)
 static ur_status unfolder_init(unfolder *u, const ur_mesh *mesh, const ur_seam *seams,
                                size_t seam_count, const ur_unfold_options *options, ur_error *error)
 {
-    *u = (unfolder){.mesh = mesh, .progress_span = 1.0};
+    *u = (unfolder){.mesh = mesh, .seams = seams, .seam_count = seam_count, .progress_span = 1.0};
     if (options)
         u->options = *options;
     else
@@ -613,10 +614,11 @@ static ur_status build_pieces(const unfolder *u, GEOSContextHandle_t geos, ur_un
  * seam left without room for its tab), so there the bends keep their
  * say.  The fifth is what these meshes showed, not a law.
  */
-static ur_status first_order(unfolder *u, size_t **order, size_t *count, ur_error *error)
+static ur_status first_order(unfolder *u, size_t **order, size_t *count, unfold_score *first,
+                             ur_error *error)
 {
     size_t *by_length = NULL, by_length_count = 0;
-    unfold_score bend_score, length_score;
+    unfold_score bend_score = {0}, length_score = {0};
     ur_status status = rank_edges(u, false, order, count, error);
     if (status == UR_OK)
         status = rank_edges(u, true, &by_length, &by_length_count, error);
@@ -629,7 +631,9 @@ static ur_status first_order(unfolder *u, size_t **order, size_t *count, ur_erro
         size_t *swap = *order;
         *order = by_length;
         by_length = swap;
+        bend_score = length_score;
     }
+    *first = bend_score;
     free(by_length);
     return status;
 }
@@ -740,6 +744,16 @@ static ur_status search_in_two(unfolder *u, size_t **order, size_t count, size_t
     return status;
 }
 
+/* The turned search's options: half the level one's steps and time budget. */
+static ur_unfold_options turned_options(const ur_unfold_options *level)
+{
+    ur_unfold_options o = *level;
+    o.time_budget /= 2;
+    o.max_steps = (level->max_steps + 1) / 2;
+    o.steps_per_piece = (level->steps_per_piece + 1) / 2;
+    return o;
+}
+
 /*
  * The search for fewer pieces, with the room taken level (as nesting first
  * turns a piece); then, if the room refused joins it would have taken
@@ -752,8 +766,8 @@ static ur_status search_in_two(unfolder *u, size_t **order, size_t count, size_t
  * it; Blender's torus finds its 5 pieces so too).  u is left with the pieces kept, *order with its
  * order.
  */
-static ur_status search_level_and_turned(unfolder *u, size_t **order, size_t count, size_t *steps,
-                                         ur_error *error)
+static ur_status search_level_then_turned(unfolder *u, size_t **order, size_t count, size_t *steps,
+                                          ur_error *error)
 {
     size_t *turned = NULL;
     if (u->room) {
@@ -776,9 +790,7 @@ static ur_status search_level_and_turned(unfolder *u, size_t **order, size_t cou
         u->progress_from = level_share;
         u->progress_span = 1 - level_share;
         ur_unfold_options given = u->options;
-        u->options.time_budget /= 2;
-        u->options.max_steps = (given.max_steps + 1) / 2;
-        u->options.steps_per_piece = (given.steps_per_piece + 1) / 2;
+        u->options = turned_options(&given);
         status = search_in_two(u, &turned, count, &more, &best, error);
         u->options = given;
         *steps += more;
@@ -795,6 +807,91 @@ static ur_status search_level_and_turned(unfolder *u, size_t **order, size_t cou
     return status;
 }
 
+/*
+ * The turned search beside the level one (search_side_by_side): a state
+ * of its own, made from the level search's mesh, seams and options, and
+ * what it found.
+ */
+typedef struct turned_aside {
+    const ur_mesh *mesh;
+    const ur_seam *seams;
+    size_t seam_count;
+    ur_unfold_options options; /* copied: the level search changes its own as it goes */
+    unfolder u;
+    size_t *order; /* the first order, then the best found (owned) */
+    size_t count, steps;
+    unfold_score best;
+    ur_status status;
+    ur_error error;
+} turned_aside;
+
+static int search_turned_aside(void *data)
+{
+    turned_aside *a = data;
+    a->status = unfolder_init(&a->u, a->mesh, a->seams, a->seam_count, &a->options, &a->error);
+    if (a->status == UR_OK) {
+        a->u.turned_room = true;
+        a->status = search_in_two(&a->u, &a->order, a->count, &a->steps, &a->best, &a->error);
+    }
+    return 0;
+}
+
+/*
+ * search_level_then_turned with both searches side by side: the turned
+ * one starts at once in a thread of its own, before the level one has
+ * shown whether it is wanted, and is dropped when it is not.  Each search
+ * keeps its own outcomes and hulls over its runs.  When no thread can
+ * start, the turned search runs after the level one, still on a state of
+ * its own, so that the pieces are the same.
+ */
+static ur_status search_side_by_side(unfolder *u, size_t **order, size_t count, size_t *steps,
+                                     ur_error *error)
+{
+    turned_aside aside = {.mesh = u->mesh,
+                          .seams = u->seams,
+                          .seam_count = u->seam_count,
+                          .options = turned_options(&u->options),
+                          .count = count,
+                          .status = UR_OK};
+    aside.options.progress = NULL; /* the level search reports for both */
+    aside.options.threads = 1;
+    aside.options.started = NULL;
+    aside.order = ur_alloc_array(count ? count : 1, sizeof *aside.order, error);
+    if (!aside.order)
+        return UR_ERROR_MEMORY;
+    memcpy(aside.order, *order, count * sizeof *aside.order);
+    thrd_t thread;
+    bool beside = thrd_create(&thread, search_turned_aside, &aside) == thrd_success;
+    unfold_score level;
+    u->turned_room = false;
+    u->turnable_refusals = 0;
+    u->progress_from = 0;
+    u->progress_span = 1;
+    ur_status status = search_in_two(u, order, count, steps, &level, error);
+    bool wanted = status == UR_OK && u->turnable_refusals > 0;
+    if (beside)
+        thrd_join(thread, NULL);
+    else if (wanted)
+        search_turned_aside(&aside);
+    if (wanted && aside.status != UR_OK) {
+        status = aside.status;
+        *error = aside.error;
+    }
+    if (wanted && status == UR_OK) {
+        *steps += aside.steps;
+        if (unfold_score_compare(aside.best, level) < 0) { /* u is given its pieces */
+            size_t *swap = *order;
+            *order = aside.order;
+            aside.order = swap;
+            u->turned_room = true;
+            status = unfold_run(u, *order, count, &level, error);
+        }
+    }
+    unfolder_free(&aside.u);
+    free(aside.order);
+    return status;
+}
+
 static ur_status unfold(unfolder *u, ur_unfolding *out, ur_error *error)
 {
     size_t *order = NULL, count = 0;
@@ -802,10 +899,18 @@ static ur_status unfold(unfolder *u, ur_unfolding *out, ur_error *error)
     u->turned_room = true; /* a face too large level may still fit turned */
     ur_status status = u->room ? check_faces_fit(u, error) : UR_OK;
     u->turned_room = false;
+    unfold_score first = {0};
     if (status == UR_OK)
-        status = first_order(u, &order, &count, error);
-    if (status == UR_OK)
-        status = search_level_and_turned(u, &order, count, &out->steps, error);
+        status = first_order(u, &order, &count, &first, error);
+    if (status == UR_OK && u->options.started &&
+        !u->options.started(u->options.started_context, unfold_score_cost(first),
+                            &u->options.threads))
+        status = ur_error_set(error, UR_ERROR_CANCELLED,
+                              "the unfolding was stopped after its first run");
+    if (status == UR_OK && u->room && u->options.threads >= 2)
+        status = search_side_by_side(u, &order, count, &out->steps, error);
+    else if (status == UR_OK)
+        status = search_level_then_turned(u, &order, count, &out->steps, error);
     if (status == UR_OK && u->options.min_gap > 0 && !u->options.gap_both_sides) {
         unfold_score last;
         u->last_run = true;
@@ -833,6 +938,7 @@ void ur_unfold_options_default(ur_unfold_options *options)
         .time_budget = 1.0,
         .seed = 1,
         .gap_break_cost = 1.0,
+        .threads = 1,
     };
 }
 

@@ -270,6 +270,8 @@ static inline ur_vec2 unfold_move_back(const unfold_motion *m, ur_vec2 p)
 /* The mesh, its edges and faces, and the state of the current run of joins. */
 typedef struct unfolder {
     const ur_mesh *mesh;
+    const ur_seam *seams; /* the caller's, for a search beside this one (unfold.c) */
+    size_t seam_count;
     ur_unfold_options options;
     unfold_edges edges;
     unfold_faces faces;

@@ -2,7 +2,7 @@
  * stages.h: what the files of the job module share: one run's state that
  * every stage reports through (job_run), and the stages of a job from the
  * surface to the files (run.c, surfaces.c, domain.c, meshes.c,
- * allowances.c, outputs.c, memory.c).
+ * unfolding.c, allowances.c, outputs.c, memory.c).
  */
 #ifndef UNROLL_JOB_STAGES_H
 #define UNROLL_JOB_STAGES_H
@@ -129,6 +129,21 @@ ur_status job_piece_fits_stock(const job_run *run, const ur_machine *machine,
  */
 ur_status job_mesh_nets(const job_run *run, const job_room *room, const ur_material *material,
                         ur_net_list *nets, double *area);
+
+/* How far a joint (tab or lap) stands out from its seam, with the stock's thickness (meshes.c). */
+double job_joint_reach(const ur_material *material);
+
+/* The end of a flattening's or an unfolding's progress (meshes.c). */
+void job_end_flattening(const job_run *run);
+
+/*
+ * --flatten unfold: the mesh (cleaned, with the user's seams) unfolded
+ * along its edges into nets that fit the room with their joints
+ * (unfolding.c); UR_OK or a status with the run's error set.
+ */
+ur_status job_unfold_mesh(const job_run *run, const job_room *room, const ur_material *material,
+                          const ur_mesh *mesh, const ur_seam *seams, size_t seam_count,
+                          ur_net_list *nets, double *area);
 
 /* The nets of a non-developable ruled surface, flattened with strain (meshes.c). */
 ur_status job_flatten_ruled(const job_run *run, const job_room *room, const ur_material *material,

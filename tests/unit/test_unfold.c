@@ -1390,6 +1390,21 @@ static void count_calls(void *context, const char *phase, double fraction)
     (*(size_t *)context)++;
 }
 
+/* The same pieces, triangle for triangle and corner for corner, after as many steps. */
+static void assert_same_pieces(const ur_unfolding *a, const ur_unfolding *b)
+{
+    assert_int_equal(a->count, b->count);
+    assert_int_equal(a->seams, b->seams);
+    assert_int_equal(a->steps, b->steps);
+    for (size_t p = 0; p < a->count; p++) {
+        assert_int_equal(a->pieces[p].triangle_count, b->pieces[p].triangle_count);
+        assert_memory_equal(a->pieces[p].triangles, b->pieces[p].triangles,
+                            a->pieces[p].triangle_count * sizeof *a->pieces[p].triangles);
+        assert_memory_equal(a->pieces[p].flat, b->pieces[p].flat,
+                            a->pieces[p].triangle_count * sizeof *a->pieces[p].flat);
+    }
+}
+
 static void test_search_repeats(void **state)
 {
     (void)state;
@@ -1405,13 +1420,7 @@ static void test_search_repeats(void **state)
     ur_unfolding first = unfold_with(&mesh, &options), second = unfold_with(&mesh, &options);
     check_unfolding(&mesh, &first, NULL, 0);
     assert_true(calls >= 4);
-    assert_int_equal(first.count, second.count);
-    assert_int_equal(first.seams, second.seams);
-    for (size_t p = 0; p < first.count; p++) {
-        assert_int_equal(first.pieces[p].triangle_count, second.pieces[p].triangle_count);
-        assert_memory_equal(first.pieces[p].triangles, second.pieces[p].triangles,
-                            first.pieces[p].triangle_count * sizeof(size_t));
-    }
+    assert_same_pieces(&first, &second);
     options.time_budget = 0;
     options.max_steps = 0;
     ur_unfolding greedy = unfold_with(&mesh, &options);
@@ -1420,6 +1429,102 @@ static void test_search_repeats(void **state)
     ur_unfolding_free(&second);
     ur_unfolding_free(&greedy);
     ur_mesh_free(&mesh);
+}
+
+/*
+ * The search with the room turned, run beside the level one (threads 2)
+ * on a state of its own, finds what it finds after it (threads 1): the
+ * sample UV sphere with a 3 mm gap in a 100 x 60 mm room, 100 level steps
+ * and 50 turned, where the turned search's best (29 pieces) beats the
+ * level one's (30; seen with a print in the library), so that its order
+ * is the one kept and run again.
+ */
+static void test_turned_search_beside(void **state)
+{
+    (void)state;
+    ur_mesh mesh = cleaned_mesh_file("samples/uvsphere.obj");
+    ur_unfold_options options = papercraft_options(100, 60);
+    options.max_steps = 100;
+    ur_unfolding after = checked_unfolding(&mesh, &options);
+    options.threads = 2;
+    ur_unfolding beside = checked_unfolding(&mesh, &options);
+    print_message("%zu pieces in %zu steps after, %zu in %zu beside\n", after.count, after.steps,
+                  beside.count, beside.steps);
+    assert_int_equal(after.steps, 150); /* both searches ran */
+    assert_same_pieces(&after, &beside);
+    ur_unfolding_free(&after);
+    ur_unfolding_free(&beside);
+    ur_mesh_free(&mesh);
+}
+
+/* What ur_unfold_options.started was told, and what it answers. */
+typedef struct start_seen {
+    size_t calls;
+    double cost;
+    bool go_on;
+    size_t threads_given; /* set for the search when go_on */
+} start_seen;
+
+static bool note_start(void *context, double cost, size_t *threads)
+{
+    start_seen *seen = context;
+    seen->calls++;
+    seen->cost = cost;
+    if (seen->go_on && seen->threads_given)
+        *threads = seen->threads_given;
+    return seen->go_on;
+}
+
+/*
+ * The started callback is told the cost of the run the search starts
+ * from: with no search and no gap, that run's pieces are the unfolding's
+ * (the sample cube in a 150 x 200 mm room: 3).  Told to stop, the
+ * unfolding ends there with UR_ERROR_CANCELLED and no pieces; given two
+ * threads, it unfolds as with one (the sample UV sphere in a 60 x 40 mm
+ * room, with its turned search).
+ */
+static void test_started_callback(void **state)
+{
+    (void)state;
+    ur_mesh cube = cleaned_mesh_file("samples/cube.obj");
+    ur_unfold_options options;
+    ur_unfold_options_default(&options);
+    options.time_budget = 0;
+    options.room_length = 150;
+    options.room_width = 200;
+    start_seen seen = {.go_on = true};
+    options.started = note_start;
+    options.started_context = &seen;
+    ur_unfolding u = unfold_with(&cube, &options);
+    assert_int_equal(seen.calls, 1);
+    assert_true(seen.cost == (double)u.count);
+    assert_int_equal(u.count, 3);
+    ur_unfolding_free(&u);
+    seen = (start_seen){.go_on = false};
+    ur_error error;
+    assert_int_equal(ur_unfold_with_options(&cube, NULL, 0, &options, &u, &error),
+                     UR_ERROR_CANCELLED);
+    assert_message(error, "stopped after its first run");
+    assert_int_equal(u.count, 0);
+    assert_null(u.pieces);
+    assert_int_equal(seen.calls, 1);
+    ur_mesh_free(&cube);
+
+    ur_mesh sphere = cleaned_mesh_file("samples/uvsphere.obj");
+    options = papercraft_options(60, 40);
+    options.max_steps = 60;
+    ur_unfolding one = checked_unfolding(&sphere, &options);
+    seen = (start_seen){.go_on = true, .threads_given = 2};
+    options.started = note_start;
+    options.started_context = &seen;
+    ur_unfolding two = checked_unfolding(&sphere, &options);
+    assert_int_equal(seen.calls, 1);
+    assert_true(seen.cost >= (double)two.count);
+    assert_int_equal(two.steps, 90);
+    assert_same_pieces(&one, &two);
+    ur_unfolding_free(&one);
+    ur_unfolding_free(&two);
+    ur_mesh_free(&sphere);
 }
 
 /* The fractions the search reported, in order. */
@@ -1828,6 +1933,8 @@ int main(void)
         cmocka_unit_test(test_progress_moves_forward),
         cmocka_unit_test(test_face_larger_than_room),
         cmocka_unit_test(test_search_repeats),
+        cmocka_unit_test(test_turned_search_beside),
+        cmocka_unit_test(test_started_callback),
         cmocka_unit_test(test_min_gap),
         cmocka_unit_test(test_gap_break_cost),
         cmocka_unit_test(test_gap_one_side),
