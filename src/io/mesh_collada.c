@@ -886,15 +886,6 @@ static ur_status read_document(checker *c)
     return status;
 }
 
-/* "path:LINE: Collada: libxml2's message" for a document that is not well formed. */
-static ur_status refuse_xml(const io_xml_report *report, const char *path, ur_error *error)
-{
-    if (report->line > 0)
-        return ur_error_set(error, UR_ERROR_INPUT, "%s:%d: Collada: %s", path, report->line,
-                            report->message);
-    return ur_error_set(error, UR_ERROR_INPUT, "%s: Collada: %s", path, report->message);
-}
-
 static void checker_free(checker *c)
 {
     for (size_t i = 0; i < c->array_count; i++)
@@ -936,7 +927,7 @@ ur_status io_collada_check(const char *path, const void *data, size_t size, ur_e
         xmlFreeTextReader(reader);
     }
     io_xml_capture_end(&capture);
-    if (capture.report.have) /* what went wrong first */
-        status = refuse_xml(&capture.report, path, error);
+    if (capture.report.have) /* what went wrong first: the document is not well formed */
+        status = io_xml_refuse_file(&capture.report, path, "Collada", error);
     return status;
 }

@@ -56,14 +56,19 @@ bool io_reader_attribute(xmlTextReaderPtr reader, const char *name, char *value,
     return true;
 }
 
-/* "path: what: libxml2's message" for a document that is not well formed. */
-static ur_status refuse_xml(const io_xml_capture *capture, const char *path, const char *what,
+/*
+ * libxml2's message for a document that is not well formed: a Collada
+ * file's line is the file's, as the import's own check says it
+ * (mesh_collada.c); a 3MF model's is a line of the model inside the
+ * archive.
+ */
+static ur_status refuse_xml(const io_xml_report *report, const char *path, bool collada,
                             ur_error *error)
 {
-    if (capture->report.have)
-        return ur_error_set(error, UR_ERROR_INPUT, "%s: %s: line %d: %s", path, what,
-                            capture->report.line, capture->report.message);
-    return ur_error_set(error, UR_ERROR_INPUT, "%s: %s: not XML", path, what);
+    if (collada)
+        return io_xml_refuse_file(report, path, "Collada", error);
+    return ur_error_set(error, UR_ERROR_INPUT, "%s: 3MF model: line %d: %s", path, report->line,
+                        report->message);
 }
 
 /* ---- Collada ----------------------------------------------------------- */
@@ -173,6 +178,6 @@ ur_status io_mesh_declared_unit(const char *path, const void *data, size_t size,
                                : io_3mf_unit(path, data, size, unit, error);
     io_xml_capture_end(&capture);
     if (capture.report.have) /* what went wrong first */
-        status = refuse_xml(&capture, path, collada ? "Collada" : "3MF model", error);
+        status = refuse_xml(&capture.report, path, collada, error);
     return status;
 }

@@ -63,6 +63,15 @@ void io_xml_capture_end(io_xml_capture *capture)
     xmlSetGenericErrorFunc(capture->generic_context, capture->generic);
 }
 
+ur_status io_xml_refuse_file(const io_xml_report *report, const char *path, const char *what,
+                             ur_error *error)
+{
+    if (report->line > 0)
+        return ur_error_set(error, UR_ERROR_INPUT, "%s:%d: %s: %s", path, report->line, what,
+                            report->message);
+    return ur_error_set(error, UR_ERROR_INPUT, "%s: %s: %s", path, what, report->message);
+}
+
 ur_status io_xml_report_error(const io_xml_report *report, const char *name, ur_status status,
                               const char *fallback, ur_error *error)
 {

@@ -52,6 +52,14 @@ void io_xml_capture_end(io_xml_capture *capture);
  */
 void io_xml_collect_error(void *context, io_xml_error *xml_error);
 
+/*
+ * "path:LINE: what: message" from report, libxml2's first error in the
+ * file at path (a Collada document), or "path: what: message" when it
+ * gave no line.
+ */
+ur_status io_xml_refuse_file(const io_xml_report *report, const char *path, const char *what,
+                             ur_error *error);
+
 /* "FILE:LINE: message" from report (FILE: its own, else name), or "name: fallback". */
 ur_status io_xml_report_error(const io_xml_report *report, const char *name, ur_status status,
                               const char *fallback, ur_error *error);

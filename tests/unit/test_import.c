@@ -1462,9 +1462,15 @@ static void test_declared_unit_refusals(void **state)
     expect_refusal(write_collada("zero.dae", "<unit meter=\"0\"/>"), NULL, "meter=\"0\"");
     expect_refusal(write_file("other.dae", "<?xml version=\"1.0\"?>\n<scene/>\n"), NULL,
                    "not a Collada file");
-    expect_refusal(write_file("cut.dae", "<?xml version=\"1.0\"?>\n<COLLADA>\n<asset><unit "
-                                         "meter=\"1\"\n"),
-                   NULL, ":4: Collada: ");
+    const char *cut = write_file("cut.dae", "<?xml version=\"1.0\"?>\n<COLLADA>\n<asset><unit "
+                                            "meter=\"1\"\n");
+    expect_refusal(cut, NULL, ":4: Collada: ");
+    double mm = -1;
+    char unit_name[32];
+    ur_error error = {0};
+    /* the unit's reader says it as the import's check does */
+    assert_int_equal(ur_mesh_declared_unit(cut, &mm, unit_name, &error), UR_ERROR_INPUT);
+    assert_non_null(strstr(error.message, "cut.dae:4: Collada: "));
     expect_refusal(write_file("text.dae", "Shopping list\n"), NULL, "Collada");
     expect_refusal(write_file("text.3mf", "Shopping list\n"), NULL, "not a zip archive");
     char model[4096];
@@ -1478,7 +1484,6 @@ static void test_declared_unit_refusals(void **state)
                    "does not start with <model>");
     /* From memory, the same checks. */
     ur_mesh mesh = {0};
-    ur_error error = {0};
     const char text[] = "<?xml version=\"1.0\"?>\n<scene/>\n";
     assert_int_equal(
         ur_mesh_import_buffer("mem.dae", text, sizeof text - 1, NULL, &mesh, NULL, &error),
