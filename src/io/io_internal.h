@@ -115,6 +115,13 @@ ur_status io_3mf_for_assimp(const char *path, const void *data, size_t size,
  * UR_ERROR_INPUT naming the line of the first such thing.
  */
 ur_status io_collada_check(const char *path, const void *data, size_t size, ur_error *error);
+/*
+ * A .gltf or .glb (the file at path, of size bytes, or size bytes of data) checked to be
+ * glTF 2.0 that assimp 5.2's glTF 2.0 reader takes as its own
+ * (mesh_gltf.c), lest assimp try its other readers on it: UR_ERROR_INPUT
+ * naming the line (of a .glb, of its JSON chunk) of the first fault.
+ */
+ur_status io_gltf_check(const char *path, const void *data, size_t size, ur_error *error);
 /* The unit a 3MF's model declares (mesh_3mf.c), as io_mesh_declared_unit gives it. */
 ur_status io_3mf_unit(const char *path, const void *data, size_t size, io_declared_unit *unit,
                       ur_error *error);

@@ -499,6 +499,8 @@ static ur_status check_header(const char *path, const void *data, off_t size, ur
     ur_status status = UR_OK;
     if (gltf)
         status = check_gltf_start(path, file, error);
+    if (gltf && status == UR_OK) /* the whole document, read by mesh_gltf.c */
+        status = io_gltf_check(path, data, (size_t)size, error);
     else if (ply)
         status = check_ply_header(path, file, size, error);
     else if (io_has_extension(path, "stl"))
