@@ -9,8 +9,9 @@
  * which stops the process (an ai_assert; found by fuzz_mesh), a PLY header
  * made its PLY reader loop for ever.  So a glTF file is taken only where
  * glTF 2.0's reader will take it: JSON as rapidjson reads it, or stricter
- * (no number beyond 1e300, nothing nested more than 256 deep, a \u escape
- * of half a surrogate pair only as the first of a whole pair), its root an
+ * (no byte-order mark, no number of 1e300 or more, nothing nested more
+ * than 256 deep, a \u escape of half a surrogate pair only as the first of
+ * a whole pair), its root an
  * object whose first "asset" is an object with a first "version" that is
  * a string starting with 2, and a first "profile", if any, that is an
  * object; a .glb with glTF 2.0's header, its JSON chunk all there, and a
@@ -211,7 +212,11 @@ typedef enum { PLAIN, ROOT, ASSET } object_role;
 static bool read_value(json_reader *r, int depth);
 static bool read_object(json_reader *r, int depth, object_role role);
 
-/* What assimp reads of the object's member name before it reads the document's meshes. */
+/*
+ * A member's value (at it), the member named name: the root's first
+ * "asset", and that asset's first "version" and "profile", are checked as
+ * glTF 2.0's reader reads them when it decides whether the file is its own.
+ */
 static bool read_member(json_reader *r, int depth, object_role role, const char *name,
                         size_t length, bool seen[2])
 {
