@@ -11,13 +11,12 @@
  * glTF 2.0's reader will take it: JSON as rapidjson reads it, or stricter
  * (no byte-order mark, no number of 1e300 or more, nothing nested more
  * than 256 deep, a \u escape of half a surrogate pair only as the first of
- * a whole pair), its root an
- * object whose first "asset" is an object with a first "version" that is
- * a string starting with 2, and a first "profile", if any, that is an
- * object; a .glb with glTF 2.0's header, its JSON chunk all there, and a
- * BIN chunk where the header's length says one follows.  glTF 1.0, which
- * assimp reads with its other reader, is refused: it has been superseded
- * since 2017.
+ * a whole pair), its root an object whose first "asset" is an object with
+ * a first "version" that is a string starting with 2, and a first
+ * "profile", if any, that is an object; a .glb with glTF 2.0's header, its
+ * JSON chunk all there, and a BIN chunk where the header's length says one
+ * follows.  glTF 1.0, which assimp reads with its other reader, is
+ * refused: it has been superseded since 2017.
  */
 #include "io_internal.h"
 

@@ -497,11 +497,11 @@ static ur_status check_header(const char *path, const void *data, off_t size, ur
     bool gltf = io_has_extension(path, "gltf") || io_has_extension(path, "glb");
     bool ply = !gltf && (io_has_extension(path, "ply") || starts_as_ply(file));
     ur_status status = UR_OK;
-    if (gltf)
+    if (gltf) {
         status = check_gltf_start(path, file, error);
-    if (gltf && status == UR_OK) /* the whole document, read by mesh_gltf.c */
-        status = io_gltf_check(path, data, (size_t)size, error);
-    else if (ply)
+        if (status == UR_OK) /* the whole document, read by mesh_gltf.c */
+            status = io_gltf_check(path, data, (size_t)size, error);
+    } else if (ply)
         status = check_ply_header(path, file, size, error);
     else if (io_has_extension(path, "stl"))
         status = check_stl_header(path, file, size, error);
