@@ -1166,6 +1166,16 @@ static void smallest_rectangle(const ur_vec2 *points, size_t count, double *leng
         }
 }
 
+/* The defaults in a room of 150 x 200 mm, which the sample 100 mm cube fits in 3 pieces. */
+static ur_unfold_options cube_room_options(void)
+{
+    ur_unfold_options options;
+    ur_unfold_options_default(&options);
+    options.room_length = 150;
+    options.room_width = 200;
+    return options;
+}
+
 /*
  * A 100 mm cube in a room of 200 x 150 mm: two squares side by side fit,
  * three in a row or an L do not, so its six squares need 3 pieces.
@@ -1174,10 +1184,7 @@ static void test_room_splits(void **state)
 {
     (void)state;
     ur_mesh mesh = cleaned_mesh_file("samples/cube.obj");
-    ur_unfold_options options;
-    ur_unfold_options_default(&options);
-    options.room_length = 150;
-    options.room_width = 200;
+    ur_unfold_options options = cube_room_options();
     ur_unfolding u = unfold_with(&mesh, &options);
     check_unfolding(&mesh, &u, NULL, 0);
     assert_int_equal(u.count, 3);
@@ -1487,11 +1494,8 @@ static void test_started_callback(void **state)
 {
     (void)state;
     ur_mesh cube = cleaned_mesh_file("samples/cube.obj");
-    ur_unfold_options options;
-    ur_unfold_options_default(&options);
+    ur_unfold_options options = cube_room_options();
     options.time_budget = 0;
-    options.room_length = 150;
-    options.room_width = 200;
     start_seen seen = {.go_on = true};
     options.started = note_start;
     options.started_context = &seen;
