@@ -19,6 +19,8 @@
  */
 #include "unfold_internal.h"
 
+#include "../base/tables.h"
+
 #include <stdint.h>
 #include <stdlib.h>
 
@@ -190,7 +192,7 @@ ur_status unfold_grid_init(unfold_grid *grid, size_t triangle_count, double cell
         slots *= 2;
     grid->cell = cell;
     grid->mask = slots - 1;
-    grid->slots = ur_alloc_array(slots, sizeof *grid->slots, error);
+    grid->slots = table_alloc(slots, sizeof *grid->slots, error);
     grid->entry_capacity = 8 * triangle_count + 16;
     grid->entries = ur_alloc_array(grid->entry_capacity, sizeof *grid->entries, error);
     grid->seen = ur_alloc_array(triangle_count, sizeof *grid->seen, error);

@@ -23,6 +23,7 @@
 
 #include "../geom/hull.h"
 
+#include "../base/tables.h"
 #include "../base/union_find.h"
 
 #include <stdlib.h>
@@ -542,7 +543,7 @@ ur_status unfold_outcomes_init(unfolder *u, ur_error *error)
     size_t slots = 1024, wanted = 64 * u->mesh->triangle_count;
     while (slots < wanted && slots < ((size_t)1 << 23))
         slots *= 2;
-    u->outcomes = ur_alloc_array(slots, sizeof *u->outcomes, error);
+    u->outcomes = table_alloc(slots, sizeof *u->outcomes, error);
     if (!u->outcomes)
         return UR_ERROR_MEMORY;
     u->outcome_mask = slots - 1;
@@ -684,9 +685,9 @@ ur_status unfold_kept_hulls_init(unfolder *u, ur_error *error)
     size_t slots = 1024; /* a piece's hull is kept when brought up to date: a few per join */
     while (slots < 4 * u->mesh->triangle_count && slots < KEPT_HULLS_MOST)
         slots *= 2;
-    u->kept_hulls = calloc(slots, sizeof *u->kept_hulls);
+    u->kept_hulls = table_alloc(slots, sizeof *u->kept_hulls, error);
     if (!u->kept_hulls)
-        return ur_error_out_of_memory(error);
+        return UR_ERROR_MEMORY;
     u->kept_mask = slots - 1;
     return UR_OK;
 }
