@@ -16,11 +16,15 @@
  * "profile", if any, that is an object; a .glb with glTF 2.0's header, its
  * JSON chunk all there, and a BIN chunk where the header's length says one
  * follows.  glTF 1.0, which assimp reads with its other reader, is
- * refused: it has been superseded since 2017.
+ * refused: it has been superseded since 2017.  The first bytes are
+ * looked at before the rest is read: a file that does not start as glTF
+ * is refused without reading it whole.
  */
 #include "io_internal.h"
 
+#include <errno.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -407,21 +411,73 @@ static ur_status check_glb(const char *path, const unsigned char *data, size_t s
     return check_json(path, true, data + GLB_HEADER + GLB_CHUNK, (size_t)json_length, error);
 }
 
+enum { START_BYTES = 64 };
+
+/* The first bytes of the file at path, or of data; how many there are. */
+static ur_status read_start(const char *path, const void *data, size_t size,
+                            unsigned char start[START_BYTES], size_t *count, ur_error *error)
+{
+    if (data) {
+        *count = size < START_BYTES ? size : START_BYTES;
+        memcpy(start, data, *count);
+        return UR_OK;
+    }
+    FILE *file = fopen(path, "rb");
+    if (!file)
+        return ur_error_set(error, UR_ERROR_INPUT, "%s: cannot open: %s", path, strerror(errno));
+    *count = fread(start, 1, START_BYTES, file);
+    bool failed = ferror(file) != 0;
+    if (fclose(file) != 0 || failed)
+        return ur_error_set(error, UR_ERROR_INPUT, "%s: cannot read: %s", path, strerror(errno));
+    return UR_OK;
+}
+
+/*
+ * Whether the start is a glTF's: "glTF" for a .glb; for a .gltf a JSON
+ * object, after blanks or a byte-order mark (refused later, with its own
+ * message).  Looked at before the whole file is read, so that a large
+ * file that is no glTF is refused at once.
+ */
+static ur_status check_start(const char *path, const void *data, size_t size, ur_error *error)
+{
+    unsigned char start[START_BYTES] = {0};
+    size_t count = 0;
+    ur_status status = read_start(path, data, size, start, &count, error);
+    if (status != UR_OK)
+        return status;
+    if (io_has_extension(path, "glb")) {
+        if (count < 4 || memcmp(start, "glTF", 4) != 0)
+            return ur_error_set(error, UR_ERROR_INPUT,
+                                "%s: not a binary glTF file: it does not start with 'glTF'", path);
+        return UR_OK;
+    }
+    size_t i = count >= 3 && memcmp(start, "\xEF\xBB\xBF", 3) == 0 ? 3 : 0;
+    while (i < count && start[i] != '\0' && strchr(" \t\r\n", start[i]))
+        i++;
+    if (i >= count || start[i] != '{')
+        return ur_error_set(error, UR_ERROR_INPUT,
+                            "%s: not a glTF file: it does not start with '{' (glTF is JSON)", path);
+    return UR_OK;
+}
+
 ur_status io_gltf_check(const char *path, const void *data, size_t size, ur_error *error)
 {
+    ur_status status = check_start(path, data, size, error);
+    if (status != UR_OK)
+        return status;
     /* size: the file's, or the data's; assimp's glTF reader refuses 4 GB of JSON */
     if (size >= UINT32_MAX)
         return ur_error_set(error, UR_ERROR_INPUT, "%s: %zu bytes: too large for a glTF file", path,
                             size);
     char *read = NULL;
     if (!data) {
-        ur_status status = io_read_file(path, 0, "", &read, &size, error);
+        status = io_read_file(path, 0, "", &read, &size, error);
         if (status != UR_OK)
             return status;
         data = read;
     }
-    ur_status status = io_has_extension(path, "glb") ? check_glb(path, data, size, error)
-                                                     : check_json(path, false, data, size, error);
+    status = io_has_extension(path, "glb") ? check_glb(path, data, size, error)
+                                           : check_json(path, false, data, size, error);
     free(read);
     return status;
 }

@@ -437,8 +437,8 @@ static ur_status check_stl_header(const char *path, FILE *file, off_t size, ur_e
  * blanks allowed), whatever the name says: assimp reads a file by its
  * content when no reader its name asks for takes it, and its PLY reader
  * loops for ever on some headers (one under a .gltf name was found by
- * fuzzing).  glTF names are checked for glTF first (check_gltf_start);
- * any other file that starts so gets the PLY checks before assimp sees it.
+ * fuzzing).  glTF names are checked for glTF first (mesh_gltf.c); any
+ * other file that starts so gets the PLY checks before assimp sees it.
  * Leaves the stream at its start.
  */
 static bool starts_as_ply(FILE *file)
@@ -453,55 +453,25 @@ static bool starts_as_ply(FILE *file)
 }
 
 /*
- * A .gltf is JSON (an object, after blanks or a byte-order mark) and a
- * .glb starts with the bytes "glTF".  assimp has two readers for each of
- * those names; when neither takes a file, it tries every reader it has on
- * the content (a .gltf holding a PLY header looped for ever in assimp's
- * PLY reader; fuzz_mesh), so a file that is not glTF is refused here.
- */
-static ur_status check_gltf_start(const char *path, FILE *file, ur_error *error)
-{
-    unsigned char start[64] = {0};
-    size_t count = fread(start, 1, sizeof start, file);
-    rewind(file);
-    if (io_has_extension(path, "glb")) {
-        if (count < 4 || memcmp(start, "glTF", 4) != 0)
-            return ur_error_set(error, UR_ERROR_INPUT,
-                                "%s: not a binary glTF file: it does not start with 'glTF'", path);
-        return UR_OK;
-    }
-    size_t i = count >= 3 && memcmp(start, "\xEF\xBB\xBF", 3) == 0 ? 3 : 0;
-    while (i < count && start[i] != '\0' && strchr(" \t\r\n", start[i]))
-        i++;
-    if (i >= count || start[i] != '{')
-        return ur_error_set(error, UR_ERROR_INPUT,
-                            "%s: not a glTF file: it does not start with '{' (glTF is JSON)", path);
-    return UR_OK;
-}
-
-/*
  * What a header says, for the formats that assimp trusts blindly (a PLY's
  * or a binary STL's counts; a Collada document's counts, lists and node
- * instances), and whether a glTF starts as one: of the file
- * at path, or of size bytes of data when data is not NULL (read through a
- * stream over them: the same code).
+ * instances; a glTF document as glTF 2.0's reader would take it): of
+ * the file at path, or of size bytes of data when data is not NULL (read
+ * through a stream over them: the same code).
  */
 static ur_status check_header(const char *path, const void *data, off_t size, ur_error *error)
 {
     if (io_has_extension(path, "dae")) /* a whole document, read by mesh_collada.c */
         return io_collada_check(path, data, (size_t)size, error);
+    if (io_has_extension(path, "gltf") || io_has_extension(path, "glb"))
+        return io_gltf_check(path, data, (size_t)size, error); /* the same, mesh_gltf.c */
     /* "r": the buffer is only read */
     FILE *file = data ? fmemopen((void *)data, (size_t)size, "r") : fopen(path, "rb");
     if (!file)
         return ur_error_set(error, UR_ERROR_INPUT, "%s: cannot open: %s", path, strerror(errno));
-    bool gltf = io_has_extension(path, "gltf") || io_has_extension(path, "glb");
-    bool ply = !gltf && (io_has_extension(path, "ply") || starts_as_ply(file));
+    bool ply = io_has_extension(path, "ply") || starts_as_ply(file);
     ur_status status = UR_OK;
-    if (gltf) {
-        status = check_gltf_start(path, file, error);
-        if (status == UR_OK) /* the whole document, read by mesh_gltf.c */
-            status = io_gltf_check(path, data, (size_t)size, error);
-    } else if (ply)
+    if (ply)
         status = check_ply_header(path, file, size, error);
     else if (io_has_extension(path, "stl"))
         status = check_stl_header(path, file, size, error);
