@@ -131,11 +131,11 @@ static GEOSGeometry *closed(GEOSContextHandle_t geos, const GEOSGeometry *polygo
     return back;
 }
 
-static GEOSGeometry *grown(GEOSContextHandle_t geos, const GEOSGeometry *polygon, double grow,
+/* The valid polygon simplified, grown and closed; NULL on failure. */
+static GEOSGeometry *grown(GEOSContextHandle_t geos, const GEOSGeometry *valid, double grow,
                            double tolerance, double closing)
 {
-    GEOSGeometry *valid = GEOSMakeValid_r(geos, polygon);
-    GEOSGeometry *simple = valid ? GEOSTopologyPreserveSimplify_r(geos, valid, tolerance) : NULL;
+    GEOSGeometry *simple = GEOSTopologyPreserveSimplify_r(geos, valid, tolerance);
     GEOSBufferParams *params = GEOSBufferParams_create_r(geos);
     GEOSGeometry *out = NULL;
     if (simple && params) {
@@ -152,8 +152,6 @@ static GEOSGeometry *grown(GEOSContextHandle_t geos, const GEOSGeometry *polygon
         GEOSBufferParams_destroy_r(geos, params);
     if (simple)
         GEOSGeom_destroy_r(geos, simple);
-    if (valid)
-        GEOSGeom_destroy_r(geos, valid);
     return out;
 }
 
@@ -476,14 +474,14 @@ static void drop_parts(GEOSContextHandle_t geos, nest_shape *shape)
 }
 
 /*
- * The shape's polygon (exact grown, simplified and closed) and its convex
- * parts, made again; not shrunk yet.
+ * The shape's polygon (the piece's, made valid, then grown, simplified
+ * and closed) and its convex parts, made again; not shrunk yet.
  */
-static ur_status shape_parts(GEOSContextHandle_t geos, const GEOSGeometry *exact, double grow,
+static ur_status shape_parts(GEOSContextHandle_t geos, const GEOSGeometry *valid, double grow,
                              double tolerance, double closing, nest_shape *shape, ur_error *error)
 {
     drop_parts(geos, shape);
-    shape->polygon = exact ? grown(geos, exact, grow, tolerance, closing) : NULL;
+    shape->polygon = valid ? grown(geos, valid, grow, tolerance, closing) : NULL;
     if (!shape->polygon)
         return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not prepare a piece to nest");
     return convex_parts(geos, shape->polygon, shape, error);
@@ -517,14 +515,18 @@ static ur_status coarseness(GEOSContextHandle_t geos, const ur_piece *piece, dou
     GEOSGeometry *exact;
     ur_status status = piece_polygon(geos, piece, 0.0, holes, &exact, error);
     shape->area = area_of(geos, exact);
+    /* made valid once for every coarseness tried */
+    GEOSGeometry *valid = status == UR_OK && exact ? GEOSMakeValid_r(geos, exact) : NULL;
     if (status == UR_OK)
-        status = shape_parts(geos, exact, grow, tolerance, closing, shape, error);
+        status = shape_parts(geos, valid, grow, tolerance, closing, shape, error);
     while (status == UR_OK && shape->convex_count > MOST_PARTS && tolerance > 0 &&
            2 * tolerance <= COARSEST * size) {
         tolerance *= 2;
         closing *= 2;
-        status = shape_parts(geos, exact, grow, tolerance, closing, shape, error);
+        status = shape_parts(geos, valid, grow, tolerance, closing, shape, error);
     }
+    if (valid)
+        GEOSGeom_destroy_r(geos, valid);
     if (exact)
         GEOSGeom_destroy_r(geos, exact);
     shape->tolerance = tolerance;
