@@ -280,8 +280,14 @@ typedef struct unfolder {
     bool room_binds;  /* joins that do not fit the room are refused (not inside faces) */
     bool turned_room; /* a piece fits the room at any turn, not only level (unfold_room.c) */
     size_t turnable_refusals; /* 0, or 1 once the level room refused a join it would take turned */
-    /* the share of the whole search the part under way reports ("improving"), from..from + span */
+    /*
+     * the share of the whole search the part under way reports
+     * ("improving"), from..from + span; of which a first part of
+     * search_in_two given progress_given steps (0: none) reports in the
+     * share unfold_first_part_share gives
+     */
     double progress_from, progress_span;
+    size_t progress_given;
     /* the run: */
     size_t *piece;      /* per triangle: its piece (an island's number) */
     ur_vec2 (*flat)[3]; /* per triangle: its corners on its piece */
@@ -429,6 +435,9 @@ size_t unfold_outline_previous(const unfolder *u, size_t h);
  */
 ur_status unfold_search(unfolder *u, size_t *order, size_t count, size_t *steps, unfold_score *best,
                         ur_error *error);
+
+/* The share of its window a search reports in, its best so far being best (unfold.c). */
+double unfold_first_part_share(const unfolder *u, unfold_score best);
 
 /*
  * Turns piece p of the last run into *piece: triangles and their flat

@@ -262,7 +262,8 @@ static ur_status run_search(search *s, size_t least, size_t *steps, ur_error *er
         }
         if (step % 32 == 0 && o->progress)
             o->progress(o->progress_context, "improving",
-                        s->u->progress_from + s->u->progress_span * progress);
+                        s->u->progress_from +
+                            s->u->progress_span * unfold_first_part_share(s->u, s->top) * progress);
         unfold_score before = s->top;
         bool moved;
         ur_status status = ur_context_check(o->context, error);

@@ -1576,6 +1576,42 @@ static void test_progress_moves_forward(void **state)
     ur_mesh_free(&mesh);
 }
 
+/*
+ * When the pieces ask for no more steps than the first 200, the line goes
+ * on to the end of the level search's window (two thirds, the turned
+ * search taking the last third) instead of stopping half way: a 48 x 24
+ * UV sphere of radius 60 mm in a 390 x 270 mm room, whose first run makes
+ * more than 25 pieces (more than 200 steps at 8 a piece) and whose search
+ * ends with fewer.  No two reports are further apart than a few of the 32
+ * steps between them (before: from a third to two thirds at once).
+ */
+static void test_progress_follows_the_pieces(void **state)
+{
+    (void)state;
+    ur_mesh mesh = uv_sphere(48, 24, 60);
+    ur_unfold_options options = papercraft_options(390, 270);
+    options.max_steps = 200;
+    options.steps_per_piece = 8;
+    static reported r;
+    r.count = 0;
+    options.progress = note_improving;
+    options.progress_context = &r;
+    ur_unfolding u = checked_unfolding(&mesh, &options);
+    print_message("%zu pieces in %zu steps, %zu reports:", u.count, u.steps, r.count);
+    for (size_t k = 0; k < r.count; k++)
+        print_message(" %.3f", r.fractions[k]);
+    print_message("\n");
+    assert_true(u.steps == 300); /* 200 level, 100 turned: the pieces asked for no more */
+    assert_true(r.fractions[0] == 0);
+    for (size_t k = 1; k < r.count; k++) {
+        assert_true(r.fractions[k] >= r.fractions[k - 1]);
+        assert_true(r.fractions[k] - r.fractions[k - 1] < 0.15);
+    }
+    assert_true(r.fractions[r.count - 1] > 0.9);
+    ur_unfolding_free(&u);
+    ur_mesh_free(&mesh);
+}
+
 static double point_segment_distance(ur_vec2 p, ur_vec2 a, ur_vec2 b)
 {
     ur_vec2 d = ur_vec2_sub(b, a);
@@ -1938,6 +1974,7 @@ int main(void)
         cmocka_unit_test(test_face_larger_than_room),
         cmocka_unit_test(test_search_repeats),
         cmocka_unit_test(test_turned_search_beside),
+        cmocka_unit_test(test_progress_follows_the_pieces),
         cmocka_unit_test(test_started_callback),
         cmocka_unit_test(test_min_gap),
         cmocka_unit_test(test_gap_break_cost),
