@@ -31,6 +31,15 @@ ur_status allow_exterior_ring(GEOSContextHandle_t geos, const GEOSGeometry *poly
                               size_t *count, ur_error *error);
 
 /*
+ * Where each of the count pieces' names is sought first (name_centres.c):
+ * the centre of the largest circle inside its outline, found with geos
+ * and, beside it, in a thread with a context of its own.  *centres is
+ * allocated (the caller frees it), one point per piece.
+ */
+ur_status allow_name_centres(GEOSContextHandle_t geos, const ur_piece *pieces, size_t count,
+                             ur_vec2 **centres, ur_error *error);
+
+/*
  * A piece whose outline reaches a hole through a slit of no width (slits.c)
  * is cut as its rim and its holes instead: the outline becomes the rim,
  * each hole a closed CUT path.  Any other piece is left as it is.

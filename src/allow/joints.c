@@ -2035,39 +2035,11 @@ static ur_status label_seam(const joiner *j, rooms *r, const seam_sides *s, int 
     return status;
 }
 
-/*
- * Where a piece's name is sought first: the centre of the largest circle
- * inside its outline (GEOS), well inside the piece whatever its shape,
- * where the centre of its box may lie on a fold (a cube's cross of faces)
- * or off the piece (a ring, a spiral strip); that centre if GEOS cannot
- * tell.
- */
-static ur_vec2 name_centre(const joiner *j, const ur_piece *piece)
-{
-    ur_vec2 centre = ur_vec2_make((piece->box.min.x + piece->box.max.x) / 2,
-                                  (piece->box.min.y + piece->box.max.y) / 2);
-    const ur_path *outline = &piece->paths[0];
-    double diagonal = hypot(ur_box_width(piece->box), ur_box_height(piece->box));
-    if (!(diagonal > 0) || !isfinite(diagonal)) /* GEOS's search would not end */
-        return centre;
-    GEOSGeometry *polygon = geos_polygon_of_ring(j->geos, outline->points, outline->count);
-    GEOSGeometry *radius =
-        polygon ? GEOSMaximumInscribedCircle_r(j->geos, polygon, 1e-3 * diagonal) : NULL;
-    const GEOSCoordSequence *ends = radius ? GEOSGeom_getCoordSeq_r(j->geos, radius) : NULL;
-    double x, y;
-    if (ends && GEOSCoordSeq_getXY_r(j->geos, ends, 0, &x, &y) && isfinite(x) && isfinite(y))
-        centre = ur_vec2_make(x, y);
-    if (radius)
-        GEOSGeom_destroy_r(j->geos, radius);
-    if (polygon)
-        GEOSGeom_destroy_r(j->geos, polygon);
-    return centre;
-}
-
-static ur_status name_piece(const joiner *j, rooms *r, size_t index, ur_error *error)
+/* The piece's name, sought first round centre (allow_name_centres). */
+static ur_status name_piece(const joiner *j, rooms *r, size_t index, ur_vec2 centre,
+                            ur_error *error)
 {
     ur_piece *piece = &j->pieces[index];
-    ur_vec2 centre = name_centre(j, piece);
     const ur_joint_options *o = j->options;
     allow_room *room;
     bool placed;
@@ -2203,8 +2175,12 @@ static ur_status add_labels(joiner *j, rooms *r, const seam_sides *seams, int la
                 status = label_seam(j, r, &seams[seam], seam, error);
         }
     }
+    ur_vec2 *centres = NULL;
+    if (status == UR_OK && j->options->name_pieces)
+        status = allow_name_centres(j->geos, j->pieces, j->nets->count, &centres, error);
     for (size_t n = 0; status == UR_OK && j->options->name_pieces && n < j->nets->count; n++)
-        status = name_piece(j, r, n, error);
+        status = name_piece(j, r, n, centres[n], error);
+    free(centres);
     if (status == UR_OK)
         report(j, "labels", (size_t)last, (size_t)last);
     /* The tabs change the pieces: rooms are opened again for what is left. */
