@@ -1544,6 +1544,19 @@ static void note_improving(void *context, const char *phase, double fraction)
         r->fractions[r->count++] = fraction;
 }
 
+/* The mesh unfolded in the room with 200 steps and 8 a piece, the search's reports noted in r. */
+static ur_unfolding reporting_unfolding(const ur_mesh *mesh, double room_length, double room_width,
+                                        reported *r)
+{
+    ur_unfold_options options = papercraft_options(room_length, room_width);
+    options.max_steps = 200;
+    options.steps_per_piece = 8;
+    r->count = 0;
+    options.progress = note_improving;
+    options.progress_context = r;
+    return checked_unfolding(mesh, &options);
+}
+
 /*
  * The "improving" line only moves forward, through all the search's parts
  * (the first 200 steps, the steps the pieces ask for, the turned room):
@@ -1554,14 +1567,8 @@ static void test_progress_moves_forward(void **state)
 {
     (void)state;
     ur_mesh mesh = cleaned_mesh_file("samples/uvsphere.obj");
-    ur_unfold_options options = papercraft_options(60, 40);
-    options.max_steps = 200;
-    options.steps_per_piece = 8;
     static reported r;
-    r.count = 0;
-    options.progress = note_improving;
-    options.progress_context = &r;
-    ur_unfolding u = checked_unfolding(&mesh, &options);
+    ur_unfolding u = reporting_unfolding(&mesh, 60, 40, &r);
     print_message("%zu reports over %zu steps, the last at %.3f\n", r.count, u.steps,
                   r.count ? r.fractions[r.count - 1] : 0.0);
     assert_true(u.steps > 400); /* a second part and a turned one */
@@ -1589,14 +1596,8 @@ static void test_progress_follows_the_pieces(void **state)
 {
     (void)state;
     ur_mesh mesh = uv_sphere(48, 24, 60);
-    ur_unfold_options options = papercraft_options(390, 270);
-    options.max_steps = 200;
-    options.steps_per_piece = 8;
     static reported r;
-    r.count = 0;
-    options.progress = note_improving;
-    options.progress_context = &r;
-    ur_unfolding u = checked_unfolding(&mesh, &options);
+    ur_unfolding u = reporting_unfolding(&mesh, 390, 270, &r);
     print_message("%zu pieces in %zu steps, %zu reports:", u.count, u.steps, r.count);
     for (size_t k = 0; k < r.count; k++)
         print_message(" %.3f", r.fractions[k]);
