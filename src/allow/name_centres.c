@@ -20,7 +20,7 @@
 #include <stdlib.h>
 #include <threads.h>
 
-/* The pieces' outlines, as read before the threads start, and where their centres go. */
+/* The pieces (only read while the threads run) and where their centres go. */
 typedef struct centre_work {
     const ur_piece *pieces;
     size_t count;
