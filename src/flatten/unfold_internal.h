@@ -306,6 +306,8 @@ typedef struct unfolder {
     ur_vec2 *hull_points, *hull_chain; /* room for the hull of every corner */
     unfold_circle *home_circles;       /* per triangle: a circle round it as it lies at home */
     size_t culprits[UNFOLD_CULPRITS];  /* the triangles that stopped the last joins */
+    size_t blocker;                    /* the large triangle that stopped the last one */
+    size_t (*hinge_culprits)[2]; /* per lower half-edge: the two triangles that stopped its join */
     uint64_t *outcomes;  /* joins already judged, by join_key (unfold_lay.c), over all runs */
     size_t outcome_mask; /* slots - 1 */
     struct unfold_kept_hull *kept_hulls; /* pieces' hulls by their layout keys, over all runs */
