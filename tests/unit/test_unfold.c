@@ -1403,12 +1403,24 @@ static void assert_same_pieces(const ur_unfolding *a, const ur_unfolding *b)
     assert_int_equal(a->count, b->count);
     assert_int_equal(a->seams, b->seams);
     assert_int_equal(a->steps, b->steps);
+    assert_int_equal(a->folds, b->folds);
+    assert_int_equal(a->valleys, b->valleys);
+    assert_int_equal(a->flat, b->flat);
+    assert_int_equal(a->boundary, b->boundary);
+    assert_int_equal(a->single_face, b->single_face);
+    assert_int_equal(a->gap_breaks, b->gap_breaks);
+    assert_true(a->seam_length == b->seam_length);
     for (size_t p = 0; p < a->count; p++) {
         assert_int_equal(a->pieces[p].triangle_count, b->pieces[p].triangle_count);
         assert_memory_equal(a->pieces[p].triangles, b->pieces[p].triangles,
                             a->pieces[p].triangle_count * sizeof *a->pieces[p].triangles);
         assert_memory_equal(a->pieces[p].flat, b->pieces[p].flat,
                             a->pieces[p].triangle_count * sizeof *a->pieces[p].flat);
+        assert_int_equal(a->pieces[p].outline_count, b->pieces[p].outline_count);
+        assert_memory_equal(a->pieces[p].outline, b->pieces[p].outline,
+                            a->pieces[p].outline_count * sizeof *a->pieces[p].outline);
+        assert_int_equal(a->pieces[p].fold_count, b->pieces[p].fold_count);
+        assert_int_equal(a->pieces[p].face_count, b->pieces[p].face_count);
     }
 }
 
@@ -1444,7 +1456,9 @@ static void test_search_repeats(void **state)
  * sample UV sphere with a 3 mm gap in a 100 x 60 mm room, 100 level steps
  * and 50 turned, where the turned search's best (29 pieces) beats the
  * level one's (30; seen with a print in the library), so that its order
- * is the one kept and run again.
+ * is the one kept and run again.  The turned search, half as long, ends
+ * first and builds its pieces itself while the level one goes on: they
+ * are the ones handed on.
  */
 static void test_turned_search_beside(void **state)
 {
@@ -1458,6 +1472,34 @@ static void test_turned_search_beside(void **state)
     print_message("%zu pieces in %zu steps after, %zu in %zu beside\n", after.count, after.steps,
                   beside.count, beside.steps);
     assert_int_equal(after.steps, 150); /* both searches ran */
+    assert_same_pieces(&after, &beside);
+    ur_unfolding_free(&after);
+    ur_unfolding_free(&beside);
+    ur_mesh_free(&mesh);
+}
+
+/*
+ * The accordion in a 100 x 50 mm room (a 0.5 mm gap) is one piece turned and two level:
+ * the turned search ends at its first run, at the fewest pieces there
+ * can be, and builds its pieces while the level one goes on through its
+ * 1,000 steps; they are the pieces the search after it makes (threads 1).
+ */
+static void test_turned_pieces_built_ahead(void **state)
+{
+    (void)state;
+    ur_mesh mesh = accordion();
+    ur_unfold_options options;
+    ur_unfold_options_default(&options);
+    options.time_budget = 0;
+    options.max_steps = 1000;
+    options.min_gap = 0.5; /* a last run, after the search's */
+    options.room_length = 100;
+    options.room_width = 50;
+    ur_unfolding after = unfold_with(&mesh, &options);
+    options.threads = 2;
+    ur_unfolding beside = unfold_with(&mesh, &options);
+    check_unfolding(&mesh, &beside, NULL, 0);
+    assert_int_equal(beside.count, 1);
     assert_same_pieces(&after, &beside);
     ur_unfolding_free(&after);
     ur_unfolding_free(&beside);
@@ -1975,6 +2017,7 @@ int main(void)
         cmocka_unit_test(test_face_larger_than_room),
         cmocka_unit_test(test_search_repeats),
         cmocka_unit_test(test_turned_search_beside),
+        cmocka_unit_test(test_turned_pieces_built_ahead),
         cmocka_unit_test(test_progress_follows_the_pieces),
         cmocka_unit_test(test_started_callback),
         cmocka_unit_test(test_min_gap),
