@@ -646,17 +646,19 @@ static void remember(unfolder *u, uint64_t key, unsigned outcome)
 ur_status unfold_grid_piece(unfolder *u, size_t p, ur_error *error)
 {
     unfold_island *island = &u->islands[p];
-    for (size_t t = island->first; t != UNFOLD_NONE && !island->gridded; t = u->next_member[t]) {
+    size_t from = island->gridded ? u->next_member[island->grid_last] : island->first;
+    for (size_t t = from; t != UNFOLD_NONE; t = u->next_member[t]) {
         ur_status status = unfold_grid_add(&u->grid, unfold_box_of(u->flat[t], 3), p, t, error);
         if (status != UR_OK)
             return status;
+        island->grid_last = t;
     }
     island->gridded = true;
     return UR_OK;
 }
 
-static ur_status commit(unfolder *u, const unfold_motion *m, size_t small, size_t large,
-                        ur_error *error)
+/* Joins the moved small piece to the large: its triangles go in the grid when a join tests it. */
+static void commit(unfolder *u, const unfold_motion *m, size_t small, size_t large)
 {
     for (size_t i = 0; i < u->slit_side_count; i++)
         u->tab_on_twin[u->slit_sides[i]] = true;
@@ -670,11 +672,6 @@ static ur_status commit(unfolder *u, const unfold_motion *m, size_t small, size_
     for (size_t s = a->first; s != UNFOLD_NONE; s = u->next_member[s]) {
         move_triangle(m, u->flat[s], u->flat[s]);
         u->piece[s] = large;
-        ur_status status =
-            b->gridded ? unfold_grid_add(&u->grid, unfold_box_of(u->flat[s], 3), large, s, error)
-                       : UR_OK;
-        if (status != UR_OK)
-            return status;
     }
     b->layout ^= a->layout ^ joined_key(u);
     b->lowest = a->lowest < b->lowest ? a->lowest : b->lowest;
@@ -689,7 +686,6 @@ static ur_status commit(unfolder *u, const unfold_motion *m, size_t small, size_
     b->outline_count = b->outline_count + a->outline_count - 2 * u->pair_count;
     a->triangle_count = 0;
     a->first = a->last = UNFOLD_NONE;
-    return UR_OK;
 }
 
 /* ---- hulls kept over the runs ---- */
@@ -984,8 +980,7 @@ ur_status unfold_try_join(unfolder *u, size_t h, bool *joined, ur_error *error)
     } else if (u->room)
         defer_hull(u, &m, small, large);
     *joined = true;
-    ur_status status = commit(u, &m, small, large, error);
-    if (status == UR_OK && judged_hull) /* the joined piece's, under its new key */
-        status = keep_for_later(u, large, error);
-    return status;
+    commit(u, &m, small, large);
+    /* the joined piece's hull, under its new key */
+    return judged_hull ? keep_for_later(u, large, error) : UR_OK;
 }
