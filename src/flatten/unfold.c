@@ -442,9 +442,10 @@ static ur_status alloc_run(unfolder *u, ur_error *error)
     u->tab_on_twin = ur_alloc_array(3 * n, sizeof *u->tab_on_twin, error);
     u->slit_sides = ur_alloc_array(3 * n, sizeof *u->slit_sides, error);
     u->hinge_culprits = ur_alloc_array(3 * n, sizeof *u->hinge_culprits, error);
+    u->hinge_outcomes = calloc(n > 0 ? 3 * n : 1, sizeof *u->hinge_outcomes);
     if (!u->piece || !u->flat || !u->joined || !u->parent || !u->next_member || !u->islands ||
         !u->pair_small || !u->pair_large || !u->roots || !u->nearby || !u->tab_on_twin ||
-        !u->slit_sides || !u->hinge_culprits)
+        !u->slit_sides || !u->hinge_culprits || !u->hinge_outcomes)
         return UR_ERROR_MEMORY;
     for (size_t h = 0; h < 3 * n; h++)
         u->hinge_culprits[h][0] = u->hinge_culprits[h][1] = UNFOLD_NONE;
@@ -514,6 +515,7 @@ static void unfolder_free(unfolder *u)
     free(u->tab_on_twin);
     free(u->slit_sides);
     free(u->hinge_culprits);
+    free(u->hinge_outcomes);
     free(u->hull_points);
     free(u->hull_chain);
     free(u->home_circles);
