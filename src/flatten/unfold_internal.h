@@ -310,7 +310,7 @@ typedef struct unfolder {
     size_t blocker;                    /* the large triangle that stopped the last one */
     size_t (*hinge_culprits)[2]; /* per lower half-edge: the two triangles that stopped its join */
     uint64_t *outcomes;       /* joins already judged, by join_key (unfold_lay.c), over all runs */
-    uint64_t *hinge_outcomes; /* per lower half-edge: the last join judged across it */
+    uint64_t *hinge_outcomes; /* per lower half-edge: the last join judged or found across it */
     size_t outcome_mask;      /* slots - 1 */
     struct unfold_kept_hull *kept_hulls; /* pieces' hulls by their layout keys, over all runs */
     size_t kept_mask;                    /* slots - 1 */

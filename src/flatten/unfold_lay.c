@@ -627,14 +627,15 @@ static unsigned recalled(const unfolder *u, uint64_t key)
  * same random choices), so that most of its joins were judged level.
  *
  * Most runs try the same join across a hinge as the run before, so each
- * hinge keeps the last join judged across it, looked at first: a table of
+ * hinge keeps the last join judged or looked up across it, looked at
+ * first: a table of
  * a few entries per triangle, which stays in the processor's cache, where
  * the large one is read from memory (the bench's 48 x 24 sphere: a
  * tenth of its search's time went in reading it).  A join found there
  * that the large table has since forgotten is not judged again: its
  * outcome is the same.
  */
-static unsigned recalled_join(const unfolder *u, size_t small, size_t large, size_t hinge_small,
+static unsigned recalled_join(unfolder *u, size_t small, size_t large, size_t hinge_small,
                               size_t hinge, uint64_t *key)
 {
     *key = join_key(u, small, large, hinge_small, u->turned_room);
@@ -642,6 +643,8 @@ static unsigned recalled_join(const unfolder *u, size_t small, size_t large, siz
     if ((last & ~OUTCOME_BITS) == (*key & ~OUTCOME_BITS) && (last & OUTCOME_BITS))
         return (unsigned)(last & OUTCOME_BITS);
     unsigned outcome = recalled(u, *key);
+    if (outcome != OUTCOME_NONE)
+        u->hinge_outcomes[hinge] = (*key & ~OUTCOME_BITS) | outcome;
     if (outcome != OUTCOME_NONE || !u->turned_room)
         return outcome;
     unsigned level = recalled(u, join_key(u, small, large, hinge_small, false));
