@@ -628,12 +628,11 @@ static unsigned recalled(const unfolder *u, uint64_t key)
  *
  * Most runs try the same join across a hinge as the run before, so each
  * hinge keeps the last join judged or looked up across it, looked at
- * first: a table of
- * a few entries per triangle, which stays in the processor's cache, where
- * the large one is read from memory (the bench's 48 x 24 sphere: a
- * tenth of its search's time went in reading it).  A join found there
- * that the large table has since forgotten is not judged again: its
- * outcome is the same.
+ * first: a table of three entries per triangle, which stays in the
+ * processor's cache, where the large one is read from memory (the bench's
+ * 48 x 24 sphere: a tenth of its search's time went in reading it).  A
+ * join found there that the large table has since forgotten is not
+ * judged again: its outcome is the same.
  */
 static unsigned recalled_join(unfolder *u, size_t small, size_t large, size_t hinge_small,
                               size_t hinge, uint64_t *key)
