@@ -475,6 +475,14 @@ static bool fits(unfolder *u, const unfold_motion *m, size_t small, size_t large
     return true;
 }
 
+/* Whether moved small triangle s lies well beside large triangle q (lies_well, s moved first). */
+static bool lies_well_moved(unfolder *u, const unfold_motion *m, size_t s, size_t q)
+{
+    ur_vec2 moved[3];
+    move_triangle(m, u->flat[s], moved);
+    return lies_well(u, m, s, moved, q);
+}
+
 /*
  * Whether the two triangles that stopped the last join across this hinge
  * (one of each piece) stop this one too: the join is then refused after a
@@ -492,9 +500,15 @@ static bool stopped_as_before(unfolder *u, const unfold_motion *m, size_t small,
     if (u->last_run)
         return false;
     const size_t *pair = u->hinge_culprits[hinge];
-    for (int i = 0; i < 2; i++)
-        if (pair[i] != UNFOLD_NONE && u->piece[pair[i]] == small && !fits_one(u, m, pair[i], large))
+    for (int i = 0; i < 2; i++) {
+        size_t s = pair[i], q = pair[1 - i];
+        if (s == UNFOLD_NONE || u->piece[s] != small)
+            continue;
+        if (q != UNFOLD_NONE && u->piece[q] == large && !lies_well_moved(u, m, s, q))
+            return true; /* as before: the grid would have found q near s */
+        if (!fits_one(u, m, s, large))
             return true;
+    }
     return false;
 }
 
