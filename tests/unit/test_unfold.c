@@ -1212,6 +1212,16 @@ static ur_mesh accordion(void)
     return build(&b);
 }
 
+/* The default options with a room of length x width mm. */
+static ur_unfold_options room_options(double length, double width)
+{
+    ur_unfold_options options;
+    ur_unfold_options_default(&options);
+    options.room_length = length;
+    options.room_width = width;
+    return options;
+}
+
 /* Whether the outline fits length x width at one of 18,000 turns (a scan, not the library's). */
 static bool fits_at_some_turn(const ur_vec2 *outline, size_t count, double length, double width)
 {
@@ -1233,10 +1243,7 @@ static void test_room_taken_turned(void **state)
 {
     (void)state;
     ur_mesh mesh = accordion();
-    ur_unfold_options options;
-    ur_unfold_options_default(&options);
-    options.room_length = 100;
-    options.room_width = 50;
+    ur_unfold_options options = room_options(100, 50);
     ur_unfolding u = unfold_with(&mesh, &options);
     check_unfolding(&mesh, &u, NULL, 0);
     assert_int_equal(u.count, 1);
@@ -1479,22 +1486,20 @@ static void test_turned_search_beside(void **state)
 }
 
 /*
- * The accordion in a 100 x 50 mm room (a 0.5 mm gap) is one piece turned and two level:
- * the turned search ends at its first run, at the fewest pieces there
- * can be, and builds its pieces while the level one goes on through its
- * 1,000 steps; they are the pieces the search after it makes (threads 1).
+ * The accordion in a 100 x 50 mm room (a 0.5 mm gap) is one piece turned
+ * and two level: the turned search ends at its first run, at the fewest
+ * pieces there can be, and builds its pieces while the level one goes on
+ * through its 1,000 steps; they are the pieces the search after it makes
+ * (threads 1).
  */
 static void test_turned_pieces_built_ahead(void **state)
 {
     (void)state;
     ur_mesh mesh = accordion();
-    ur_unfold_options options;
-    ur_unfold_options_default(&options);
+    ur_unfold_options options = room_options(100, 50);
     options.time_budget = 0;
     options.max_steps = 1000;
     options.min_gap = 0.5; /* a last run, after the search's */
-    options.room_length = 100;
-    options.room_width = 50;
     ur_unfolding after = unfold_with(&mesh, &options);
     options.threads = 2;
     ur_unfolding beside = unfold_with(&mesh, &options);
