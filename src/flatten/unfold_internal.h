@@ -360,8 +360,8 @@ size_t unfold_find(unfolder *u, size_t corner);
  * whose outcome is remembered (unfold_lay.c) looks at no triangle, so
  * that the pieces are put in the grid when a join first tests them, and
  * the triangles that join a piece in the grid when a join tests it next
- * (most of a run's joins are remembered: 1,100 of the 2,200 a step of the
- * bench's 48 x 24 sphere makes, against 50 that fit and are tested).
+ * (of the 2,200 joins a step of the bench's 48 x 24 sphere tries, about
+ * 150 are judged; the others are looked up and test nothing).
  * They are put in in the order they joined it, as they were when each
  * join put them in at once, so that a query finds a piece's triangles in
  * the same order: the last run's slits depend on the order of its tests.
