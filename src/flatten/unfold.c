@@ -144,6 +144,7 @@ static ur_status restart(unfolder *u, ur_error *error)
         if (u->room)
             island->circle = u->home_circles[t];
         island->hull_count = u->room ? 3 : 0;
+        island->hull_set = false;
         island->gridded = false;
         island->absorbed_first = island->absorbed_last = UNFOLD_NONE;
         ur_status status = u->last_run ? unfold_grid_piece(u, t, error) : UR_OK;
@@ -254,11 +255,13 @@ static void put_back_faces_joined(unfolder *u)
         unfold_island *island = &u->islands[t];
         ur_vec2 *hull = island->hull;
         size_t capacity = island->hull_capacity;
+        bool set = island->hull_set;
         *island = f->islands[t];
         island->hull = hull;
         island->hull_capacity = capacity;
         island->gridded = false;
-        for (int k = 0; u->room && k < 3; k++)
+        /* Most hulls are still their first triangles': left, not read from memory again. */
+        for (int k = 0; u->room && set && k < 3; k++)
             hull[k] = u->faces.home[t][k];
     }
 }

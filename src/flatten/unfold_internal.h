@@ -234,6 +234,7 @@ typedef struct unfold_island {
     size_t outline_count; /* half-edges not joined */
     ur_vec2 *hull;        /* its convex hull, counter-clockwise, when the room is limited */
     size_t hull_count, hull_capacity;
+    bool hull_set;        /* hull is no longer its first triangle's, as it lay at home (unfold.c) */
     unfold_circle circle; /* round the piece, when the room is limited */
     size_t face_count;    /* flat faces, once the faces are joined (1 before) */
     double area;          /* of its triangles, mm2 */

@@ -558,6 +558,7 @@ static ur_status set_hull(unfold_island *island, const ur_vec2 *points, size_t c
     }
     memcpy(island->hull, points, count * sizeof *points);
     island->hull_count = count;
+    island->hull_set = true;
     return UR_OK;
 }
 
