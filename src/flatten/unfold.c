@@ -260,7 +260,7 @@ static void put_back_faces_joined(unfolder *u)
         island->hull = hull;
         island->hull_capacity = capacity;
         island->gridded = false;
-        /* Most hulls are still their first triangles': left, not read from memory again. */
+        /* Most hulls are still their first triangles': left, not written again (a miss each). */
         for (int k = 0; u->room && set && k < 3; k++)
             hull[k] = u->faces.home[t][k];
     }
