@@ -1166,14 +1166,20 @@ static void smallest_rectangle(const ur_vec2 *points, size_t count, double *leng
         }
 }
 
-/* The defaults in a room of 150 x 200 mm, which the sample 100 mm cube fits in 3 pieces. */
-static ur_unfold_options cube_room_options(void)
+/* The default options with a room of length x width mm. */
+static ur_unfold_options room_options(double length, double width)
 {
     ur_unfold_options options;
     ur_unfold_options_default(&options);
-    options.room_length = 150;
-    options.room_width = 200;
+    options.room_length = length;
+    options.room_width = width;
     return options;
+}
+
+/* The defaults in a room of 150 x 200 mm, which the sample 100 mm cube fits in 3 pieces. */
+static ur_unfold_options cube_room_options(void)
+{
+    return room_options(150, 200);
 }
 
 /*
@@ -1210,16 +1216,6 @@ static ur_mesh accordion(void)
         add_triangle(&b, 2 * i, 2 * i + 3, 2 * i + 1, 0);
     }
     return build(&b);
-}
-
-/* The default options with a room of length x width mm. */
-static ur_unfold_options room_options(double length, double width)
-{
-    ur_unfold_options options;
-    ur_unfold_options_default(&options);
-    options.room_length = length;
-    options.room_width = width;
-    return options;
 }
 
 /* Whether the outline fits length x width at one of 18,000 turns (a scan, not the library's). */
@@ -1263,12 +1259,9 @@ static void test_room_taken_turned(void **state)
 /* Options as the mesh job sets them for 6 mm tabs: counted steps, a 3 mm gap, the room given. */
 static ur_unfold_options papercraft_options(double room_length, double room_width)
 {
-    ur_unfold_options options;
-    ur_unfold_options_default(&options);
+    ur_unfold_options options = room_options(room_length, room_width);
     options.time_budget = 0;
     options.min_gap = 3;
-    options.room_length = room_length;
-    options.room_width = room_width;
     return options;
 }
 
@@ -1463,9 +1456,10 @@ static void test_search_repeats(void **state)
  * sample UV sphere with a 3 mm gap in a 100 x 60 mm room, 100 level steps
  * and 50 turned, where the turned search's best (29 pieces) beats the
  * level one's (30; seen with a print in the library), so that its order
- * is the one kept and run again.  The turned search, half as long, ends
- * first and builds its pieces itself while the level one goes on: they
- * are the ones handed on.
+ * is the one kept and run again.  (Here the turned search, slower a step
+ * in so small a room, has ended after the level one whenever it was
+ * looked at, and the level thread runs its order again; pieces built
+ * ahead are test_turned_pieces_built_ahead's.)
  */
 static void test_turned_search_beside(void **state)
 {
@@ -1496,8 +1490,7 @@ static void test_turned_pieces_built_ahead(void **state)
 {
     (void)state;
     ur_mesh mesh = accordion();
-    ur_unfold_options options = room_options(100, 50);
-    options.time_budget = 0;
+    ur_unfold_options options = papercraft_options(100, 50);
     options.max_steps = 1000;
     options.min_gap = 0.5; /* a last run, after the search's */
     ur_unfolding after = unfold_with(&mesh, &options);
