@@ -445,7 +445,7 @@ static ur_status alloc_run(unfolder *u, ur_error *error)
     u->tab_on_twin = ur_alloc_array(3 * n, sizeof *u->tab_on_twin, error);
     u->slit_sides = ur_alloc_array(3 * n, sizeof *u->slit_sides, error);
     u->hinge_culprits = ur_alloc_array(3 * n, sizeof *u->hinge_culprits, error);
-    u->hinge_outcomes = calloc(n > 0 ? 3 * n : 1, sizeof *u->hinge_outcomes);
+    u->hinge_outcomes = ur_alloc_array(3 * n, sizeof *u->hinge_outcomes, error);
     if (!u->piece || !u->flat || !u->joined || !u->parent || !u->next_member || !u->islands ||
         !u->pair_small || !u->pair_large || !u->roots || !u->nearby || !u->tab_on_twin ||
         !u->slit_sides || !u->hinge_culprits || !u->hinge_outcomes)
