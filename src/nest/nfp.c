@@ -283,20 +283,20 @@ static GEOSGeometry *convex_merge(GEOSContextHandle_t geos, const GEOSGeometry *
  * Merges convex parts two at a time while any two that touch make a convex
  * whole (Hertel and Mehlhorn's idea, greedily): a curved band of triangles
  * becomes about one quadrilateral per stretch of its arcs.  Each pair is
- * tried once per pass; passes repeat until none merges.
+ * tried once per pass; passes repeat until none merges.  The parts' boxes
+ * are kept beside them in boxes (room for every part), not asked of GEOS
+ * for every pair.
  */
-static void merge_parts(GEOSContextHandle_t geos, nest_shape *shape)
+static void merge_parts(GEOSContextHandle_t geos, nest_shape *shape, double (*boxes)[4])
 {
+    for (size_t i = 0; i < shape->convex_count; i++)
+        nest_box_of(geos, shape->convex[i], boxes[i]);
     bool merged = true;
     while (merged) {
         merged = false;
         for (size_t i = 0; i < shape->convex_count; i++) {
-            double box_i[4];
-            nest_box_of(geos, shape->convex[i], box_i);
             for (size_t j = i + 1; j < shape->convex_count; j++) {
-                double box_j[4];
-                nest_box_of(geos, shape->convex[j], box_j);
-                if (!boxes_touch(box_i, box_j))
+                if (!boxes_touch(boxes[i], boxes[j]))
                     continue;
                 GEOSGeometry *hull = convex_merge(geos, shape->convex[i], shape->convex[j]);
                 if (!hull)
@@ -304,8 +304,9 @@ static void merge_parts(GEOSContextHandle_t geos, nest_shape *shape)
                 GEOSGeom_destroy_r(geos, shape->convex[i]);
                 GEOSGeom_destroy_r(geos, shape->convex[j]);
                 shape->convex[i] = hull;
+                nest_box_of(geos, hull, boxes[i]);
                 shape->convex[j] = shape->convex[--shape->convex_count];
-                nest_box_of(geos, hull, box_i);
+                memcpy(boxes[j], boxes[shape->convex_count], sizeof boxes[j]);
                 merged = true;
                 j = i; /* the grown part may now merge with one already passed */
             }
@@ -456,7 +457,11 @@ static ur_status convex_parts(GEOSContextHandle_t geos, const GEOSGeometry *poly
         return ur_error_set(error, UR_ERROR_INTERNAL, "GEOS could not triangulate a piece");
     if (status != UR_OK)
         return status;
-    merge_parts(geos, shape);
+    double(*boxes)[4] = malloc((shape->convex_count + 1) * sizeof *boxes);
+    if (!boxes)
+        return ur_error_out_of_memory(error);
+    merge_parts(geos, shape, boxes);
+    free(boxes);
     return UR_OK;
 }
 
