@@ -592,6 +592,96 @@ static void test_narrow_slit_said_once(void **state)
     ur_net_list_free(&nets);
 }
 
+/* Whether the two pieces have the same outline, point for point. */
+static bool same_outline(const ur_piece *a, const ur_piece *b)
+{
+    const ur_path *p = &a->paths[0], *q = &b->paths[0];
+    if (p->count != q->count)
+        return false;
+    for (size_t i = 0; i < p->count; i++)
+        if (p->points[i].x != q->points[i].x || p->points[i].y != q->points[i].y)
+            return false;
+    return true;
+}
+
+/* The piece's UR_ALLOWANCE_JOINT records, in order; whether they come one after another. */
+static size_t joint_records(const ur_piece *piece, const ur_allowance_record **out, bool *together)
+{
+    size_t count = 0, first = 0, last = 0;
+    for (size_t r = 0; r < piece->record_count; r++)
+        if (piece->records[r].kind == UR_ALLOWANCE_JOINT) {
+            if (count == 0)
+                first = r;
+            last = r;
+            out[count++] = &piece->records[r];
+        }
+    *together = count == 0 || last - first + 1 == count;
+    return count;
+}
+
+/*
+ * Joints on the nets' pieces with options as given and again with labels
+ * and names (font), which seeks the tabs beside them in a thread of their
+ * own: the tabs come out as they do alone, outlines and joint records
+ * alike, and each piece's joint records (the warnings held while the
+ * labels went on, then a count per seam side) lie together, after the
+ * labels beside the seams.  How many edges found no tab.
+ */
+static size_t check_tabs_beside_labels(const ur_net_list *nets, ur_joint_options options,
+                                       const ur_font *font)
+{
+    ur_error error;
+    ur_piece *alone = pieces_of(nets), *beside = pieces_of(nets);
+    options.font = NULL;
+    assert_int_equal(ur_pieces_add_joints(alone, nets, &options, &error), UR_OK);
+    options.font = font;
+    options.name_pieces = true;
+    assert_int_equal(ur_pieces_add_joints(beside, nets, &options, &error), UR_OK);
+    size_t warnings = 0, labels = 0;
+    for (size_t k = 0; k < nets->count; k++) {
+        assert_true(same_outline(&alone[k], &beside[k]));
+        const ur_allowance_record *a[256], *b[256];
+        assert_true(alone[k].record_count <= 256 && beside[k].record_count <= 256);
+        bool together;
+        size_t count = joint_records(&alone[k], a, &together);
+        assert_int_equal(joint_records(&beside[k], b, &together), count);
+        assert_true(together);
+        for (size_t r = 0; r < count; r++) {
+            assert_int_equal(a[r]->count, b[r]->count);
+            assert_int_equal(a[r]->warning, b[r]->warning);
+            assert_string_equal(a[r]->reason, b[r]->reason);
+            warnings += a[r]->warning;
+        }
+        labels += count_op(&beside[k], UR_OP_ENGRAVE);
+        assert_true(count == 0 || count_op(&beside[k], UR_OP_ENGRAVE) == 0 ||
+                    beside[k].records[0].kind == UR_ALLOWANCE_LABEL);
+    }
+    assert_true(labels > 0);
+    free_pieces(alone, nets->count);
+    free_pieces(beside, nets->count);
+    return warnings;
+}
+
+/* The icosphere's many tabs, and the narrow slit's warning, beside labels as alone. */
+static void test_tabs_beside_labels_as_alone(void **state)
+{
+    (void)state;
+    ur_font *font;
+    ur_error error;
+    assert_int_equal(ur_font_open(NULL, &font, &error), UR_OK);
+    ur_net_list nets = icosphere_nets();
+    ur_joint_options options = tab_options(NULL);
+    options.tab_depth = 3;
+    options.thickness = 0.3;
+    options.label_height = 2;
+    check_tabs_beside_labels(&nets, options, font);
+    ur_net_list_free(&nets);
+    nets = grid_with_centre(1);
+    assert_int_equal(check_tabs_beside_labels(&nets, frame_options(NULL), font), 1);
+    ur_net_list_free(&nets);
+    ur_font_close(font);
+}
+
 /* What the progress callback heard: each phase's name, reports and last fraction. */
 typedef struct heard {
     char phases[4][16];
@@ -1520,6 +1610,7 @@ int main(void)
         cmocka_unit_test(test_helicoid_labels_pair),
         cmocka_unit_test(test_every_seam_joined),
         cmocka_unit_test(test_unfolded_tabs_clear),
+        cmocka_unit_test(test_tabs_beside_labels_as_alone),
         cmocka_unit_test(test_loop_seams_joined),
         cmocka_unit_test(test_narrow_slit_said_once),
         cmocka_unit_test(test_progress_reported),
