@@ -284,12 +284,21 @@ static bool distance_transform(sheet_raster *raster)
     }
     /* Squared distances in pixels; the unblocked start far beyond the sheet but finite. */
     float far = (float)(4.0 * (double)most * (double)most);
-    for (size_t p = 0; p < w * h; p++)
+    bool blocked = false;
+    for (size_t p = 0; p < w * h; p++) {
         if (raster->distance[p] != 0)
             raster->distance[p] = far;
-    for (size_t i = 0; i < w; i++)
+        else
+            blocked = true;
+    }
+    /*
+     * With nothing blocked (a sheet with no part on it yet) every line
+     * stays far as it is: each pixel's own parabola is the lowest at it,
+     * and far plus the squares of the whole numbers involved is exact.
+     */
+    for (size_t i = 0; blocked && i < w; i++)
         distance_line(raster->distance + i, h, w, v, z, d);
-    for (size_t j = 0; j < h; j++)
+    for (size_t j = 0; blocked && j < h; j++)
         distance_line(raster->distance + j * w, w, 1, v, z, d);
     for (size_t p = 0; p < w * h; p++)
         raster->distance[p] = (float)(sqrt(raster->distance[p]) * raster->pixel);
