@@ -273,7 +273,7 @@ typedef struct joiner {
     double gap; /* mm a joint keeps from anything it does not share a corner with */
     /*
      * The joints' records (warnings, splices), held until the labels
-     * beside them are done (joints_beside_labels): then given to their
+     * beside them are done (tabs_beside_labels): then given to their
      * pieces after the labels', in the order they were made.
      */
     struct held_record *held;
