@@ -38,6 +38,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <threads.h>
+#include <time.h>
 #include "../base/c_locale.h"
 
 /* A tab on stock at least this thick (mm) wraps the other piece's edge. */
