@@ -145,7 +145,7 @@ static ur_status restart(unfolder *u, ur_error *error)
             island->circle = u->home_circles[t];
         island->hull_count = u->room ? 3 : 0;
         island->hull_set = false;
-        island->gridded = false;
+        island->grid_last = UNFOLD_NONE;
         island->absorbed_first = island->absorbed_last = UNFOLD_NONE;
         ur_status status = u->last_run ? unfold_grid_piece(u, t, error) : UR_OK;
         if (status != UR_OK)
@@ -259,7 +259,7 @@ static void put_back_faces_joined(unfolder *u)
         *island = f->islands[t];
         island->hull = hull;
         island->hull_capacity = capacity;
-        island->gridded = false;
+        island->grid_last = UNFOLD_NONE;
         /* Most hulls are still their first triangles': left, not written again (a miss each). */
         for (int k = 0; u->room && set && k < 3; k++)
             hull[k] = u->faces.home[t][k];

@@ -242,8 +242,7 @@ typedef struct unfold_island {
     size_t failed_with, failed_size, failures;
     uint64_t layout;  /* what the piece is made of (see unfold_lay.c's join_key) */
     size_t lowest;    /* its triangle of the lowest number: where a kept hull is laid from */
-    bool gridded;     /* its triangles up to grid_last are in the grid where they lie */
-    size_t grid_last; /* the last of its members in the grid (those after it joined since) */
+    size_t grid_last; /* its last member in the grid (later ones joined since); UNFOLD_NONE: none */
     /* the pieces whose hulls are still to be merged into hull (unfold_lay.c's defer_hull) */
     size_t absorbed_first, absorbed_last;
     size_t absorbed_next;          /* once joined to a larger piece: the next on its list */

@@ -675,14 +675,14 @@ static void remember(unfolder *u, uint64_t key, size_t hinge, unsigned outcome)
 ur_status unfold_grid_piece(unfolder *u, size_t p, ur_error *error)
 {
     unfold_island *island = &u->islands[p];
-    size_t from = island->gridded ? u->next_member[island->grid_last] : island->first;
+    size_t from =
+        island->grid_last != UNFOLD_NONE ? u->next_member[island->grid_last] : island->first;
     for (size_t t = from; t != UNFOLD_NONE; t = u->next_member[t]) {
         ur_status status = unfold_grid_add(&u->grid, unfold_box_of(u->flat[t], 3), p, t, error);
         if (status != UR_OK)
             return status;
         island->grid_last = t;
     }
-    island->gridded = true;
     return UR_OK;
 }
 
