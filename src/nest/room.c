@@ -622,11 +622,13 @@ static ur_status refuse_piece(nester *n, size_t piece)
  */
 static void drop_finished_rooms(nester *n, size_t piece)
 {
-    size_t c = n->class_of[piece];
-    if (!n->first_run || --n->class_left[c] > 0)
+    if (!n->first_run)
         return;
-    if (nest_search_follows(n, nest_seconds_now()))
-        return; /* it would take up these rooms again */
+    size_t c = n->class_of[piece];
+    bool again = rooms_asked_again(n, piece); /* another of its class, or a search, takes them up */
+    n->class_left[c]--;
+    if (again)
+        return;
     for (size_t s = 0; s < n->sheet_slots; s++)
         for (size_t t = 0; n->sheets[s].rooms && t < n->turn_count; t++)
             nest_grid_free(n->geos, &n->sheets[s].rooms[c * n->turn_count + t]);
